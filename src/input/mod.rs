@@ -1,0 +1,1 @@
+//! Reading models and matrices: linear-DAE pencil files, Matrix Market matrices.

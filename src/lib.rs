@@ -1,0 +1,17 @@
+//! romdyn: linear reduced-order models (ROMs) extracted from nonlinear multibody models.
+//!
+//! Data flows one way along the modules:
+//!
+//! ```text
+//! input -> model -> dae (assembly) -> solve -> linear (F_yd, F_y, eigen) -> rom -> output
+//! ```
+//!
+//! Equation numbers in doc comments refer to "Reduced order models from multibody
+//! analysis" (the paper behind `shared/METHOD.md`). Units are SI throughout.
+
+pub mod input;
+pub mod linear;
+pub mod output;
+
+/// Complex scalar used throughout (re-exported from faer).
+pub use faer::c64;

@@ -1,0 +1,137 @@
+//! The linearized DAE `F_yd Δẏ + F_y Δy = B̃ u`, `z = C̃ Δy` (eqs. 38–40).
+
+use faer::Mat;
+
+/// How the Jacobians of the DAE residual were supplied.
+///
+/// Both carry the same information: `J(c) = F_yd + c F_y` is affine in `c`, so
+/// `F_yd = (J + J*)/2` and `F_y = (J − J*)/(2c)` (eqs. 13–16) are exact.
+#[derive(Clone, Debug)]
+pub enum Jacobians {
+    /// `F_/ẏ` and `F_/y` directly.
+    Derivatives { fyd: Mat<f64>, fy: Mat<f64> },
+    /// `J = F_yd + c F_y` and `J* = F_yd − c F_y` for a coefficient `c = dCoef` (eqs. 13–14).
+    Coefficient { j: Mat<f64>, jstar: Mat<f64>, dcoef: f64 },
+}
+
+/// Which layout the constraint equations use; it decides how many eigenvalues of the
+/// constrained variables come out zero or infinite (paper §6.1, Table 2).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ConstraintForm {
+    /// Eq. 29: multipliers are algebraic unknowns, constraint rows unscaled.
+    Plain,
+    /// Eq. 30: multipliers treated as derivatives, constraint rows divided by dCoef.
+    Scaled,
+}
+
+impl ConstraintForm {
+    pub fn name(self) -> &'static str {
+        match self {
+            ConstraintForm::Plain => "plain (eq. 29)",
+            ConstraintForm::Scaled => "scaled (eq. 30)",
+        }
+    }
+}
+
+/// A linear DAE with its input and output maps.
+#[derive(Clone, Debug)]
+pub struct LinearDae {
+    pub jacobians: Jacobians,
+    /// `B̃`: rows = equations, columns = inputs (`−ΔF = B̃ u`, eq. 38).
+    pub b: Mat<f64>,
+    /// `C̃`: rows = outputs, columns = unknowns (`z = C̃ Δy`, eq. 39).
+    pub c: Mat<f64>,
+    pub unknown_names: Vec<String>,
+    pub input_names: Vec<String>,
+    pub output_names: Vec<String>,
+    /// Layout of the constraint equations, when known (multibody models report it).
+    pub constraint_form: Option<ConstraintForm>,
+}
+
+/// `F_yd = (J + J*)/2`, `F_y = (J − J*)/(2c)` (eqs. 15–16).
+pub fn derivatives_from_coefficient(j: &Mat<f64>, jstar: &Mat<f64>, dcoef: f64) -> (Mat<f64>, Mat<f64>) {
+    let fyd = (j + jstar) * faer::Scale(0.5);
+    let fy = (j - jstar) * faer::Scale(0.5 / dcoef);
+    (fyd, fy)
+}
+
+/// `J = F_yd + c F_y`, `J* = F_yd − c F_y` (eqs. 13–14).
+pub fn coefficient_from_derivatives(fyd: &Mat<f64>, fy: &Mat<f64>, dcoef: f64) -> (Mat<f64>, Mat<f64>) {
+    let j = fyd + fy * faer::Scale(dcoef);
+    let jstar = fyd - fy * faer::Scale(dcoef);
+    (j, jstar)
+}
+
+impl Jacobians {
+    /// Number of equations (= unknowns).
+    pub fn dim(&self) -> usize {
+        match self {
+            Jacobians::Derivatives { fyd, .. } => fyd.nrows(),
+            Jacobians::Coefficient { j, .. } => j.nrows(),
+        }
+    }
+
+    /// `(F_yd, F_y)`, computed by eqs. 15–16 when J and J* were given.
+    pub fn derivatives(&self) -> (Mat<f64>, Mat<f64>) {
+        match self {
+            Jacobians::Derivatives { fyd, fy } => (fyd.clone(), fy.clone()),
+            Jacobians::Coefficient { j, jstar, dcoef } => derivatives_from_coefficient(j, jstar, *dcoef),
+        }
+    }
+
+    /// `(J, J*, c)`; when only F_yd and F_y were given, `c` defaults to
+    /// `‖F_yd‖ / ‖F_y‖`, which balances the two terms of `J(c)`.
+    pub fn coefficient(&self) -> (Mat<f64>, Mat<f64>, f64) {
+        match self {
+            Jacobians::Coefficient { j, jstar, dcoef } => (j.clone(), jstar.clone(), *dcoef),
+            Jacobians::Derivatives { fyd, fy } => {
+                let c = self.dcoef();
+                let (j, jstar) = coefficient_from_derivatives(fyd, fy, c);
+                (j, jstar, c)
+            }
+        }
+    }
+
+    /// The dCoef used by the Λ form: the given one, or `‖F_yd‖_F / ‖F_y‖_F`.
+    pub fn dcoef(&self) -> f64 {
+        match self {
+            Jacobians::Coefficient { dcoef, .. } => *dcoef,
+            Jacobians::Derivatives { fyd, fy } => {
+                let (a, b) = (fyd.norm_l2(), fy.norm_l2());
+                if a > 0.0 && b > 0.0 && (a / b).is_finite() { a / b } else { 1.0 }
+            }
+        }
+    }
+}
+
+impl LinearDae {
+    /// Number of equations (= unknowns).
+    pub fn dim(&self) -> usize {
+        self.jacobians.dim()
+    }
+    pub fn num_inputs(&self) -> usize {
+        self.b.ncols()
+    }
+    pub fn num_outputs(&self) -> usize {
+        self.c.nrows()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Eqs. 13–16 are exact inverses of each other (J is affine in c).
+    #[test]
+    fn linearization_algebra_round_trips() {
+        let fyd = Mat::from_fn(4, 4, |i, j| (i * 4 + j) as f64 * 0.3 - 1.0);
+        let fy = Mat::from_fn(4, 4, |i, j| ((i + 2 * j) % 5) as f64 + 0.5);
+        let c = 1e-3;
+        let (j, jstar) = coefficient_from_derivatives(&fyd, &fy, c);
+        let (fyd2, fy2) = derivatives_from_coefficient(&j, &jstar, c);
+        // Rounding only: entries are O(1) to O(10), F_y recovered through a 1/(2c) factor.
+        assert!((&fyd2 - &fyd).norm_max() < 1e-14);
+        assert!((&fy2 - &fy).norm_max() < 1e-10);
+    }
+}

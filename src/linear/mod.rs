@@ -1,0 +1,7 @@
+//! Linearized DAEs: the matrices F_yd and F_y (eqs. 13–16), generalized eigenanalysis with
+//! right and adjoint vectors (eqs. 10–11, 18–23) and the labelling of eigenvalues
+//! (eqs. 32–35).
+
+mod dae;
+
+pub use dae::{coefficient_from_derivatives, derivatives_from_coefficient, ConstraintForm, Jacobians, LinearDae};

@@ -1,0 +1,3 @@
+fn main() {
+    println!("romdyn {}", env!("CARGO_PKG_VERSION"));
+}
