@@ -2,6 +2,11 @@
 //! right and adjoint vectors (eqs. 10–11, 18–23) and the labelling of eigenvalues
 //! (eqs. 32–35).
 
+mod balance;
+mod classify;
 mod dae;
+mod eigen;
 
+pub use classify::{Classification, ModeKind};
 pub use dae::{coefficient_from_derivatives, derivatives_from_coefficient, ConstraintForm, Jacobians, LinearDae};
+pub use eigen::{EigenError, EigenRoute, ModalAnalysis, Mode};

@@ -1,0 +1,324 @@
+//! Generalized eigenanalysis of a linear DAE with right and adjoint (left) vectors.
+//!
+//! Right problem `(λ F_yd + F_y) Y = 0` (eq. 10), adjoint problem with the transposed
+//! matrices (eq. 11). Two routes give the same finite eigenvalues:
+//! - [`EigenRoute::Direct`]: QZ on the pencil `F_y v = μ (−F_yd) v`, `λ = μ`;
+//! - [`EigenRoute::Lambda`]: QZ on `J* v = Λ (−J) v` (eq. 18), `λ = (1/c)(Λ+1)/(Λ−1)` (eq. 23).
+
+use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::linalg::evd::ComputeEigenvectors;
+use faer::linalg::gevd::{gevd_real, gevd_scratch};
+use faer::diag::Diag;
+use faer::{c64, Col, Mat, Par};
+
+use super::balance::balance_pencil;
+use super::classify::{classify, Classification, ModeKind};
+use super::dae::Jacobians;
+
+/// Which pencil the QZ algorithm is run on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum EigenRoute {
+    /// `(λ F_yd + F_y) Y = 0` (eq. 10).
+    Direct,
+    /// `(Λ J + J*) Y = 0` (eq. 18), mapped back with eq. 23.
+    Lambda,
+}
+
+/// One eigenvalue with its vectors and label.
+#[derive(Clone, Debug)]
+pub struct Mode {
+    /// Continuous-time eigenvalue λ [rad/s]; `±∞`/NaN parts only for infinite modes
+    /// whose QZ β was exactly zero.
+    pub lambda: c64,
+    pub kind: ModeKind,
+    /// Estimated absolute error of λ [rad/s] (eqs. 32–35 for the Λ route).
+    pub error: f64,
+    /// Chordal distance of the computed eigenvalue to the nearest of zero/infinity and the
+    /// uncertainty it was compared with (both in the route's variable, balanced pencil).
+    pub classification: Classification,
+    /// Right vector `v`: `(λ F_yd + F_y) v = 0`, unit 2-norm, largest entry real positive.
+    pub right: Option<Col<c64>>,
+    /// Left (adjoint) vector `u`: `uᵀ (λ F_yd + F_y) = 0`, scaled so `uᵀ F_yd v = 1`
+    /// whenever that product is not negligible.
+    pub left: Option<Col<c64>>,
+    /// Index (in [`ModalAnalysis::modes`]) of the complex-conjugate partner, if any.
+    pub partner: Option<usize>,
+}
+
+impl Mode {
+    /// Natural frequency `|λ|/(2π)` [Hz].
+    pub fn freq_hz(&self) -> f64 {
+        self.lambda.norm() / (2.0 * std::f64::consts::PI)
+    }
+    /// Damping ratio `−Re λ / |λ|` (0 for λ = 0).
+    pub fn damping(&self) -> f64 {
+        let m = self.lambda.norm();
+        if m > 0.0 { -self.lambda.re / m } else { 0.0 }
+    }
+}
+
+/// All eigenvalues of a linear DAE, sorted: dynamic by increasing |λ| (positive imaginary
+/// part first within a pair), then zero, then infinite.
+#[derive(Clone, Debug)]
+pub struct ModalAnalysis {
+    pub route: EigenRoute,
+    /// The dCoef of the Λ form (also reported for the direct route).
+    pub dcoef: f64,
+    pub modes: Vec<Mode>,
+}
+
+/// Eigenanalysis failure.
+#[derive(Debug, thiserror::Error)]
+pub enum EigenError {
+    #[error("the QZ iteration did not converge for the {0}x{0} pencil")]
+    NoConvergence(usize),
+    #[error("the pencil is empty")]
+    Empty,
+}
+
+/// Raw output of QZ on a (balanced) pencil `A v = μ B v`, with the products `A V`, `B V`,
+/// `Uᵀ A`, `Uᵀ B` formed once (four matrix products) for the error estimates.
+/// faer stores a complex pair's `re, im` parts in two consecutive columns.
+struct RawEigen {
+    alpha_re: Vec<f64>,
+    alpha_im: Vec<f64>,
+    beta: Vec<f64>,
+    right: Mat<f64>,
+    left: Mat<f64>,
+    a_right: Mat<f64>,
+    b_right: Mat<f64>,
+    left_a: Mat<f64>,
+    left_b: Mat<f64>,
+}
+
+/// One eigenvalue's vectors and the products the error estimate needs.
+pub(crate) struct EigenVectors {
+    pub v: Col<c64>,
+    pub u: Col<c64>,
+    pub av: Col<c64>,
+    pub bv: Col<c64>,
+    pub ua: Col<c64>,
+    pub ub: Col<c64>,
+}
+
+fn qz(a: &Mat<f64>, b: &Mat<f64>) -> Result<RawEigen, EigenError> {
+    let n = a.nrows();
+    let (mut h, mut t) = (a.clone(), b.clone());
+    let (mut ar, mut ai, mut be) = (Diag::<f64>::zeros(n), Diag::<f64>::zeros(n), Diag::<f64>::zeros(n));
+    let (mut ul, mut ur) = (Mat::<f64>::zeros(n, n), Mat::<f64>::zeros(n, n));
+    let par = Par::Seq;
+    let scratch = gevd_scratch::<f64>(n, ComputeEigenvectors::Yes, ComputeEigenvectors::Yes, par, Default::default());
+    // faer 0.24.4's gevd_scratch omits the eigenvector back-substitution's workspace
+    // (column norms and a few n x 2 blocks); give it room for them.
+    let scratch = scratch.and(StackReq::new::<f64>(16 * n + 1024));
+    let mut buf = MemBuffer::new(scratch);
+    gevd_real(
+        h.as_mut(),
+        t.as_mut(),
+        ar.as_mut(),
+        ai.as_mut(),
+        be.as_mut(),
+        Some(ul.as_mut()),
+        Some(ur.as_mut()),
+        par,
+        MemStack::new(&mut buf),
+        Default::default(),
+    )
+    .map_err(|_| EigenError::NoConvergence(n))?;
+    // Columns of infinite eigenvalues come back as NaN; zero them so the products stay finite.
+    for m in [&mut ul, &mut ur] {
+        for j in 0..n {
+            if (0..n).any(|i| !m[(i, j)].is_finite()) {
+                for i in 0..n {
+                    m[(i, j)] = f64::NAN;
+                }
+            }
+        }
+    }
+    let clean = |m: &Mat<f64>| Mat::from_fn(n, n, |i, j| if m[(i, j)].is_finite() { m[(i, j)] } else { 0.0 });
+    let (urc, ulc) = (clean(&ur), clean(&ul));
+    Ok(RawEigen {
+        alpha_re: (0..n).map(|i| ar[i]).collect(),
+        alpha_im: (0..n).map(|i| ai[i]).collect(),
+        beta: (0..n).map(|i| be[i]).collect(),
+        a_right: a * &urc,
+        b_right: b * &urc,
+        left_a: ulc.transpose() * a,
+        left_b: ulc.transpose() * b,
+        right: ur,
+        left: ul,
+    })
+}
+
+impl RawEigen {
+    /// Vectors of the eigenvalue stored at column `j` (with `j + 1` holding the imaginary
+    /// parts when `im`); `None` when QZ returned NaN vectors (β = 0).
+    fn vectors(&self, j: usize, im: bool) -> Option<EigenVectors> {
+        let n = self.right.nrows();
+        if (0..n).any(|i| !self.right[(i, j)].is_finite() || !self.left[(i, j)].is_finite()) {
+            return None;
+        }
+        let col = |m: &Mat<f64>| Col::<c64>::from_fn(n, |i| c64::new(m[(i, j)], if im { m[(i, j + 1)] } else { 0.0 }));
+        let row = |m: &Mat<f64>| Col::<c64>::from_fn(n, |i| c64::new(m[(j, i)], if im { m[(j + 1, i)] } else { 0.0 }));
+        Some(EigenVectors {
+            v: col(&self.right),
+            u: col(&self.left),
+            av: col(&self.a_right),
+            bv: col(&self.b_right),
+            ua: row(&self.left_a),
+            ub: row(&self.left_b),
+        })
+    }
+}
+
+fn conj(v: &Col<c64>) -> Col<c64> {
+    Col::from_fn(v.nrows(), |i| v[i].conj())
+}
+
+/// `M v` for real `M` and complex `v`.
+pub(crate) fn mul_real_complex(m: &Mat<f64>, v: &Col<c64>) -> Col<c64> {
+    let re = Col::<f64>::from_fn(v.nrows(), |i| v[i].re);
+    let im = Col::<f64>::from_fn(v.nrows(), |i| v[i].im);
+    let (r, s) = (m * &re, m * &im);
+    Col::from_fn(m.nrows(), |i| c64::new(r[i], s[i]))
+}
+
+/// `uᵀ w` (no conjugation).
+pub(crate) fn dot_t(u: &Col<c64>, w: &Col<c64>) -> c64 {
+    u.iter().zip(w.iter()).fold(c64::new(0.0, 0.0), |s, (a, b)| s + a * b)
+}
+
+fn norm(v: &Col<c64>) -> f64 {
+    v.iter().map(|x| x.norm_sqr()).sum::<f64>().sqrt()
+}
+
+impl ModalAnalysis {
+    /// Eigenanalysis of a linear DAE by the chosen route.
+    pub fn compute(jacobians: &Jacobians, route: EigenRoute) -> Result<Self, EigenError> {
+        if jacobians.dim() == 0 {
+            return Err(EigenError::Empty);
+        }
+        let (fyd, _fy) = jacobians.derivatives();
+        let dcoef = jacobians.dcoef();
+        // Pencil A v = μ B v in the route's variable μ.
+        let (a, b, mu_scale) = match route {
+            EigenRoute::Direct => {
+                let (fyd, fy) = jacobians.derivatives();
+                // Scale B so ‖A‖ = ‖B‖: the chordal metric used by the labelling then
+                // weighs both matrices alike (μ = λ / σ).
+                let (na, nb) = (fy.norm_l2(), fyd.norm_l2());
+                let sigma = if na > 0.0 && nb > 0.0 { na / nb } else { 1.0 };
+                (fy, &fyd * faer::Scale(-sigma), sigma)
+            }
+            EigenRoute::Lambda => {
+                let (j, jstar, _) = jacobians.coefficient();
+                (jstar, &j * faer::Scale(-1.0), 1.0)
+            }
+        };
+        let balanced = balance_pencil(&a, &b);
+        let raw = qz(&balanced.a, &balanced.b)?;
+        let norms = (balanced.a.norm_l2(), balanced.b.norm_l2());
+
+        let n = a.nrows();
+        let mut units: Vec<Vec<Mode>> = Vec::with_capacity(n);
+        let mut k = 0;
+        while k < n {
+            let pair = raw.alpha_im[k] != 0.0 && k + 1 < n;
+            let alpha = c64::new(raw.alpha_re[k], raw.alpha_im[k]);
+            let vectors = raw.vectors(k, pair);
+            let class = classify(alpha, raw.beta[k], vectors.as_ref(), norms, route);
+            let (mut lambda, error) = class.lambda_and_error(route, mu_scale, dcoef);
+            if !(lambda.re.is_finite() && lambda.im.is_finite()) {
+                lambda = c64::new(f64::INFINITY, 0.0);
+            }
+            let (right, left) = match vectors {
+                Some(w) if class.kind != ModeKind::Infinite => {
+                    let (v, u) = normalize(&balanced.unscale_right(&w.v), &balanced.unscale_left(&w.u), &fyd);
+                    (Some(v), Some(u))
+                }
+                _ => (None, None),
+            };
+            let mode = Mode { lambda, kind: class.kind, error, classification: class, right, left, partner: None };
+            if pair {
+                let partner = conjugate_mode(&mode);
+                units.push(vec![mode, partner]);
+                k += 2;
+            } else {
+                units.push(vec![mode]);
+                k += 1;
+            }
+        }
+        Ok(ModalAnalysis { route, dcoef, modes: sort_units(units) })
+    }
+
+    /// Indices of the modes of one kind.
+    pub fn of_kind(&self, kind: ModeKind) -> impl Iterator<Item = usize> + '_ {
+        self.modes.iter().enumerate().filter(move |(_, m)| m.kind == kind).map(|(i, _)| i)
+    }
+
+    /// Number of modes of one kind.
+    pub fn count(&self, kind: ModeKind) -> usize {
+        self.of_kind(kind).count()
+    }
+}
+
+fn conjugate_mode(m: &Mode) -> Mode {
+    Mode {
+        lambda: m.lambda.conj(),
+        kind: m.kind,
+        error: m.error,
+        classification: m.classification.clone(),
+        right: m.right.as_ref().map(conj),
+        left: m.left.as_ref().map(conj),
+        partner: None,
+    }
+}
+
+/// `v` to unit norm with its largest entry real positive; `u` so that `uᵀ F_yd v = 1`
+/// when that product is not negligible against `‖u‖ ‖F_yd‖ ‖v‖`, else to unit norm.
+fn normalize(v: &Col<c64>, u: &Col<c64>, fyd: &Mat<f64>) -> (Col<c64>, Col<c64>) {
+    let big = v.iter().copied().fold(c64::new(0.0, 0.0), |a, x| if x.norm() > a.norm() { x } else { a });
+    let phase = if big.norm() > 0.0 { big.conj() / big.norm() } else { c64::new(1.0, 0.0) };
+    let nv = norm(v);
+    let v = Col::from_fn(v.nrows(), |i| v[i] * phase / nv);
+    let p = dot_t(u, &mul_real_complex(fyd, &v));
+    let nu = norm(u);
+    let scale = if p.norm() > 1e3 * f64::EPSILON * nu * fyd.norm_l2() { c64::new(1.0, 0.0) / p } else { c64::new(1.0 / nu, 0.0) };
+    let u = Col::from_fn(u.nrows(), |i| u[i] * scale);
+    (v, u)
+}
+
+/// Sorts modes (a complex pair is one unit, positive imaginary part first): dynamic by
+/// increasing |λ|, then zero, then infinite; records each pair's partner index.
+fn sort_units(mut units: Vec<Vec<Mode>>) -> Vec<Mode> {
+    let rank = |k: ModeKind| match k {
+        ModeKind::Dynamic => 0,
+        ModeKind::Zero => 1,
+        ModeKind::Infinite => 2,
+    };
+    for u in units.iter_mut() {
+        if u.len() == 2 && u[0].lambda.im < 0.0 {
+            u.swap(0, 1);
+        }
+    }
+    let size = |m: &Mode| if m.lambda.norm().is_finite() { m.lambda.norm() } else { f64::MAX };
+    units.sort_by(|a, b| {
+        rank(a[0].kind)
+            .cmp(&rank(b[0].kind))
+            .then(size(&a[0]).total_cmp(&size(&b[0])))
+            .then(b[0].lambda.re.total_cmp(&a[0].lambda.re))
+    });
+    let mut modes = Vec::with_capacity(units.iter().map(Vec::len).sum());
+    for unit in units {
+        let i = modes.len();
+        let paired = unit.len() == 2;
+        for (k, mut m) in unit.into_iter().enumerate() {
+            if paired {
+                m.partner = Some(if k == 0 { i + 1 } else { i });
+            }
+            modes.push(m);
+        }
+    }
+    modes
+}
