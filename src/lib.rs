@@ -12,6 +12,7 @@
 pub mod input;
 pub mod linear;
 pub mod output;
+pub mod rom;
 
 /// Complex scalar used throughout (re-exported from faer).
 pub use faer::c64;

@@ -1,0 +1,122 @@
+//! Projection onto selected right and adjoint eigenvectors: the descriptor ROM
+//! `E ẋ = A x + B u`, `z = C x` (eqs. 41–50; eqs. 64–67 when J and J* were given).
+
+use faer::{c64, Mat};
+
+use super::dense::transfer;
+use super::select::Selection;
+use crate::linear::{EigenError, Jacobians, LinearDae, ModalAnalysis, Mode};
+
+/// Why a ROM could not be built.
+#[derive(Debug, thiserror::Error)]
+pub enum RomError {
+    #[error("mode selection: {0}")]
+    Selection(String),
+    #[error("mode {0} has no eigenvectors (infinite eigenvalue)")]
+    MissingVectors(usize),
+    #[error("{0} is singular: no static response can be computed")]
+    SingularStatic(&'static str),
+    #[error(transparent)]
+    Eigen(#[from] EigenError),
+}
+
+/// Descriptor reduced-order model. States of statically residualized modes have zero rows
+/// and columns in `E`.
+#[derive(Clone, Debug)]
+pub struct DescriptorRom {
+    pub e: Mat<f64>,
+    pub a: Mat<f64>,
+    pub b: Mat<f64>,
+    pub c: Mat<f64>,
+    /// Eigenvalues of the kept (dynamic) part [rad/s].
+    pub eigenvalues: Vec<c64>,
+    pub state_names: Vec<String>,
+    pub input_names: Vec<String>,
+    pub output_names: Vec<String>,
+    /// Number of statically residualized states.
+    pub static_states: usize,
+}
+
+/// Real bases `V = Ỹ T`, `W` (eq. 42): a complex pair gives `[Re v, Im v]` and
+/// `[2 Re u, −2 Im u]`, so that with `uᵀ F_yd v = 1` the pair's block of `E` is the identity.
+fn real_bases(modal: &ModalAnalysis, modes: &[usize], n: usize) -> Result<(Mat<f64>, Mat<f64>, Vec<String>), RomError> {
+    let mut cols_v: Vec<Vec<f64>> = Vec::new();
+    let mut cols_w: Vec<Vec<f64>> = Vec::new();
+    let mut names = Vec::new();
+    for &i in modes {
+        let m: &Mode = &modal.modes[i];
+        let (v, u) = match (&m.right, &m.left) {
+            (Some(v), Some(u)) => (v, u),
+            _ => return Err(RomError::MissingVectors(i + 1)),
+        };
+        match m.partner {
+            Some(p) if p < i => continue,
+            Some(_) => {
+                cols_v.push((0..n).map(|k| v[k].re).collect());
+                cols_v.push((0..n).map(|k| v[k].im).collect());
+                cols_w.push((0..n).map(|k| 2.0 * u[k].re).collect());
+                cols_w.push((0..n).map(|k| -2.0 * u[k].im).collect());
+                names.push(format!("mode {} re", i + 1));
+                names.push(format!("mode {} im", i + 1));
+            }
+            None => {
+                cols_v.push((0..n).map(|k| v[k].re).collect());
+                cols_w.push((0..n).map(|k| u[k].re).collect());
+                names.push(format!("mode {}", i + 1));
+            }
+        }
+    }
+    let to_mat = |cols: &Vec<Vec<f64>>| Mat::from_fn(n, cols.len(), |r, c| cols[c][r]);
+    Ok((to_mat(&cols_v), to_mat(&cols_w), names))
+}
+
+impl DescriptorRom {
+    /// Projects the linear DAE onto the kept modes; with `residualize`, the dropped dynamic
+    /// modes are projected too but with their rows and columns of `E` set to zero, so that
+    /// they contribute only their static response (paper Fig. 7).
+    pub fn project(dae: &LinearDae, modal: &ModalAnalysis, sel: &Selection, residualize: bool) -> Result<Self, RomError> {
+        let n = dae.dim();
+        let mut modes = sel.kept.clone();
+        if residualize {
+            modes.extend(sel.dropped.iter().copied());
+        }
+        let (v, w, state_names) = real_bases(modal, &modes, n)?;
+        let kept_states = real_bases(modal, &sel.kept, n)?.0.ncols();
+        let wt = w.transpose();
+        let (mut e, a) = match &dae.jacobians {
+            Jacobians::Derivatives { fyd, fy } => (wt * fyd * &v, -(wt * fy * &v)),
+            Jacobians::Coefficient { j, jstar, dcoef } => {
+                // Eqs. 66–67: E = ½ (WᵀJV + WᵀJ*V), A = −(WᵀJV − WᵀJ*V)/(2c).
+                let (wjv, wjsv) = (wt * j * &v, wt * jstar * &v);
+                (&wjv + &wjsv, (&wjv - &wjsv) * faer::Scale(-0.5 / dcoef))
+            }
+        };
+        if let Jacobians::Coefficient { .. } = &dae.jacobians {
+            e = e * faer::Scale(0.5);
+        }
+        let s = v.ncols();
+        for i in kept_states..s {
+            for k in 0..s {
+                e[(i, k)] = 0.0;
+                e[(k, i)] = 0.0;
+            }
+        }
+        Ok(DescriptorRom {
+            e,
+            a,
+            b: wt * &dae.b,
+            c: &dae.c * &v,
+            eigenvalues: sel.kept.iter().map(|&i| modal.modes[i].lambda).collect(),
+            state_names,
+            input_names: dae.input_names.clone(),
+            output_names: dae.output_names.clone(),
+            static_states: s - kept_states,
+        })
+    }
+
+    /// `C (jω E − A)⁻¹ B` at each frequency [Hz].
+    pub fn frequency_response(&self, freq_hz: &[f64]) -> Vec<Mat<c64>> {
+        let minus_a = -&self.a;
+        freq_hz.iter().map(|f| transfer(2.0 * std::f64::consts::PI * f, &self.e, &minus_a, &self.b, &self.c, None)).collect()
+    }
+}

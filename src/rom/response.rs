@@ -1,0 +1,30 @@
+//! Frequency responses and static gains of the full linear DAE (paper §7, eq. 40).
+
+use faer::{c64, Mat};
+
+use super::dense::{solve_nonsingular, transfer};
+use super::RomError;
+use crate::linear::LinearDae;
+
+/// `n` frequencies [Hz] spaced logarithmically from `fmin` to `fmax` (inclusive).
+pub fn log_frequencies(fmin_hz: f64, fmax_hz: f64, n: usize) -> Vec<f64> {
+    if n < 2 {
+        return vec![fmin_hz];
+    }
+    let (a, b) = (fmin_hz.ln(), fmax_hz.ln());
+    (0..n).map(|k| (a + (b - a) * k as f64 / (n - 1) as f64).exp()).collect()
+}
+
+/// `z/u = C̃ (jω F_yd + F_y)⁻¹ B̃` at each frequency [Hz] (outputs × inputs).
+pub fn full_frequency_response(dae: &LinearDae, freq_hz: &[f64]) -> Vec<Mat<c64>> {
+    let (fyd, fy) = dae.jacobians.derivatives();
+    freq_hz.iter().map(|f| transfer(2.0 * std::f64::consts::PI * f, &fyd, &fy, &dae.b, &dae.c, None)).collect()
+}
+
+/// Static gain `C̃ F_y⁻¹ B̃`. Fails when `F_y` is singular, as it is in the form of eq. 30
+/// (constrained variables have zero eigenvalues) or for free-floating models.
+pub fn full_static_gain(dae: &LinearDae) -> Result<Mat<f64>, RomError> {
+    let (_, fy) = dae.jacobians.derivatives();
+    let x = solve_nonsingular(&fy, &dae.b).ok_or(RomError::SingularStatic("F_y of the full model"))?;
+    Ok(&dae.c * &x)
+}
