@@ -7,7 +7,8 @@
 
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::evd::ComputeEigenvectors;
-use faer::linalg::gevd::{gevd_real, gevd_scratch};
+use faer::linalg::gevd::{gevd_real, gevd_scratch, GevdParams};
+use faer::Spec;
 use faer::diag::Diag;
 use faer::{c64, Col, Mat, Par};
 
@@ -108,7 +109,13 @@ fn qz(a: &Mat<f64>, b: &Mat<f64>) -> Result<RawEigen, EigenError> {
     let (mut ar, mut ai, mut be) = (Diag::<f64>::zeros(n), Diag::<f64>::zeros(n), Diag::<f64>::zeros(n));
     let (mut ul, mut ur) = (Mat::<f64>::zeros(n, n), Mat::<f64>::zeros(n, n));
     let par = Par::Seq;
-    let scratch = gevd_scratch::<f64>(n, ComputeEigenvectors::Yes, ComputeEigenvectors::Yes, par, Default::default());
+    let mut params: Spec<GevdParams, f64> = Default::default();
+    // faer 0.24.4's blocked (multishift, aggressive-early-deflation) QZ stalls on some
+    // structured pencils (measured on a tridiagonal pencil with B = I: 1.9 s against
+    // 13 ms at n = 101; over a minute against 2.6 s at n = 600), so the unblocked sweep
+    // is always used.
+    params.schur.blocking_threshold = usize::MAX;
+    let scratch = gevd_scratch::<f64>(n, ComputeEigenvectors::Yes, ComputeEigenvectors::Yes, par, params);
     // faer 0.24.4's gevd_scratch omits the eigenvector back-substitution's workspace
     // (column norms and a few n x 2 blocks); give it room for them.
     let scratch = scratch.and(StackReq::new::<f64>(16 * n + 1024));
@@ -123,7 +130,7 @@ fn qz(a: &Mat<f64>, b: &Mat<f64>) -> Result<RawEigen, EigenError> {
         Some(ur.as_mut()),
         par,
         MemStack::new(&mut buf),
-        Default::default(),
+        params,
     )
     .map_err(|_| EigenError::NoConvergence(n))?;
     // Columns of infinite eigenvalues come back as NaN; zero them so the products stay finite.
@@ -194,13 +201,22 @@ fn norm(v: &Col<c64>) -> f64 {
 }
 
 impl ModalAnalysis {
-    /// Eigenanalysis of a linear DAE by the chosen route.
+    /// Eigenanalysis of a linear DAE by the chosen route, with the Jacobians' own dCoef.
     pub fn compute(jacobians: &Jacobians, route: EigenRoute) -> Result<Self, EigenError> {
+        Self::compute_with_dcoef(jacobians, route, None)
+    }
+
+    /// Eigenanalysis with an explicit dCoef for the Λ form (ignored when the Jacobians were
+    /// given as J/J*, whose own dCoef is part of them).
+    pub fn compute_with_dcoef(jacobians: &Jacobians, route: EigenRoute, dcoef: Option<f64>) -> Result<Self, EigenError> {
         if jacobians.dim() == 0 {
             return Err(EigenError::Empty);
         }
         let (fyd, _fy) = jacobians.derivatives();
-        let dcoef = jacobians.dcoef();
+        let dcoef = match (jacobians, dcoef) {
+            (Jacobians::Derivatives { .. }, Some(c)) => c,
+            _ => jacobians.dcoef(),
+        };
         // Pencil A v = μ B v in the route's variable μ.
         let (a, b, mu_scale) = match route {
             EigenRoute::Direct => {
@@ -212,7 +228,10 @@ impl ModalAnalysis {
                 (fy, &fyd * faer::Scale(-sigma), sigma)
             }
             EigenRoute::Lambda => {
-                let (j, jstar, _) = jacobians.coefficient();
+                let (j, jstar) = match jacobians {
+                    Jacobians::Coefficient { j, jstar, .. } => (j.clone(), jstar.clone()),
+                    Jacobians::Derivatives { fyd, fy } => super::dae::coefficient_from_derivatives(fyd, fy, dcoef),
+                };
                 (jstar, &j * faer::Scale(-1.0), 1.0)
             }
         };
