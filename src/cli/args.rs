@@ -1,0 +1,88 @@
+//! Command-line arguments shared by several subcommands.
+
+use std::path::PathBuf;
+
+use clap::{Args, ValueEnum};
+use romdyn::linear::EigenRoute;
+use romdyn::rom::ModeSelection;
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum Route {
+    /// QZ on (λ F_yd + F_y) Y = 0 (paper eq. 10)
+    Direct,
+    /// QZ on (Λ J + J*) Y = 0, λ = (1/c)(Λ+1)/(Λ−1) (paper eqs. 18–23)
+    Lambda,
+}
+
+impl From<Route> for EigenRoute {
+    fn from(r: Route) -> Self {
+        match r {
+            Route::Direct => EigenRoute::Direct,
+            Route::Lambda => EigenRoute::Lambda,
+        }
+    }
+}
+
+/// Where the linear DAE comes from and how it is eigenanalysed.
+#[derive(Args, Debug)]
+pub struct PencilArgs {
+    /// Linear-DAE pencil file (JSON with Fyd/Fy or J/Jstar/dcoef, B, C)
+    #[arg(long, value_name = "FILE")]
+    pub pencil: PathBuf,
+    /// Eigenanalysis route
+    #[arg(long, value_enum, default_value = "direct")]
+    pub route: Route,
+    /// dCoef of the Λ form [s] (default: the file's, else ‖F_yd‖/‖F_y‖)
+    #[arg(long, value_name = "C")]
+    pub dcoef: Option<f64>,
+}
+
+/// Which modes a ROM keeps (a complex-conjugate pair counts as one mode).
+#[derive(Args, Debug)]
+#[group(required = true, multiple = false)]
+pub struct SelectionArgs {
+    /// Keep the dynamic modes with natural frequency in [FMIN, FMAX] Hz
+    #[arg(long, value_name = "FMIN:FMAX", value_parser = parse_band)]
+    pub band: Option<(f64, f64)>,
+    /// Keep the N dynamic modes of lowest natural frequency
+    #[arg(long, value_name = "N")]
+    pub count: Option<usize>,
+    /// Keep the modes with these 1-based indices of the modal table
+    #[arg(long, value_name = "I,J,...", value_delimiter = ',')]
+    pub modes: Option<Vec<usize>>,
+}
+
+impl SelectionArgs {
+    pub fn selection(&self) -> ModeSelection {
+        match (&self.band, self.count, &self.modes) {
+            (Some((a, b)), _, _) => ModeSelection::Band { fmin_hz: *a, fmax_hz: *b },
+            (_, Some(n), _) => ModeSelection::Lowest(n),
+            (_, _, Some(list)) => ModeSelection::Indices(list.clone()),
+            _ => ModeSelection::Lowest(1),
+        }
+    }
+}
+
+fn parse_band(s: &str) -> Result<(f64, f64), String> {
+    let (a, b) = s.split_once(':').ok_or("expected FMIN:FMAX in Hz, e.g. 0.1:20")?;
+    let a: f64 = a.trim().parse().map_err(|_| format!("FMIN '{a}' is not a number"))?;
+    let b: f64 = b.trim().parse().map_err(|_| format!("FMAX '{b}' is not a number"))?;
+    if !(0.0 <= a && a <= b) {
+        return Err(format!("need 0 <= FMIN <= FMAX, got {a}:{b}"));
+    }
+    Ok((a, b))
+}
+
+/// Frequency grid of a Bode plot.
+#[derive(Args, Debug)]
+pub struct FrequencyArgs {
+    /// Lowest frequency [Hz] (default: a decade below the lowest kept mode)
+    #[arg(long, value_name = "HZ")]
+    pub fmin: Option<f64>,
+    /// Highest frequency [Hz] (default: a decade above the highest kept mode)
+    #[arg(long, value_name = "HZ")]
+    pub fmax: Option<f64>,
+    /// Number of log-spaced frequencies
+    #[arg(long, default_value_t = 400)]
+    pub points: usize,
+}

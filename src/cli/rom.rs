@@ -1,0 +1,149 @@
+//! `romdyn rom` and `romdyn freq`: reduced-order models and their frequency responses.
+
+use std::path::PathBuf;
+
+use anyhow::{Context, Result};
+use clap::{Args, ValueEnum};
+use romdyn::input::pencil::read_pencil;
+use romdyn::linear::{LinearDae, ModalAnalysis};
+use romdyn::output::rom_file::RomExport;
+use romdyn::rom::{full_static_gain, select_modes, DescriptorRom, OrdinaryRom};
+
+use super::args::{FrequencyArgs, PencilArgs, SelectionArgs};
+use super::bode::{write_bode_files, Curves};
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum Form {
+    /// x' = A x + B u, z = C x + D u (E = I), after SVD residualization (eqs. 51–63)
+    Ordinary,
+    /// E x' = A x + B u, z = C x (eqs. 47–50)
+    Descriptor,
+}
+
+#[derive(Args, Debug)]
+pub struct RomArgs {
+    #[command(flatten)]
+    pub pencil: PencilArgs,
+    #[command(flatten)]
+    pub select: SelectionArgs,
+    /// Statically residualize the dynamic modes that were not selected (paper Fig. 7)
+    #[arg(long)]
+    pub residualize: bool,
+    /// Which form to export
+    #[arg(long, value_enum, default_value = "ordinary")]
+    pub form: Form,
+    /// Output file: .json, .mat (MATLAB v5) or .npz (NumPy); JSON to stdout if absent
+    #[arg(short, long, value_name = "FILE")]
+    pub output: Option<PathBuf>,
+    /// Also write PREFIX.csv, PREFIX.svg and PREFIX.png: Bode plot of the full model and the ROM
+    #[arg(long, value_name = "PREFIX")]
+    pub bode: Option<PathBuf>,
+    #[command(flatten)]
+    pub freq: FrequencyArgs,
+}
+
+#[derive(Args, Debug)]
+pub struct FreqArgs {
+    #[command(flatten)]
+    pub pencil: PencilArgs,
+    /// Overlay the ROM keeping the N lowest dynamic modes
+    #[arg(long, value_name = "N")]
+    pub count: Option<usize>,
+    /// Overlay the ROM keeping the modes in FMIN:FMAX Hz
+    #[arg(long, value_name = "FMIN:FMAX")]
+    pub band: Option<String>,
+    /// Statically residualize the modes the overlaid ROM drops
+    #[arg(long)]
+    pub residualize: bool,
+    /// Output prefix: writes PREFIX.csv, PREFIX.svg, PREFIX.png
+    #[arg(short, long, value_name = "PREFIX")]
+    pub output: PathBuf,
+    #[command(flatten)]
+    pub freq: FrequencyArgs,
+}
+
+struct Built {
+    dae: LinearDae,
+    modal: ModalAnalysis,
+    descriptor: DescriptorRom,
+    ordinary: OrdinaryRom,
+}
+
+fn build(pencil: &PencilArgs, selection: &romdyn::rom::ModeSelection, residualize: bool) -> Result<Built> {
+    let file = read_pencil(&pencil.pencil)?;
+    let modal = ModalAnalysis::compute_with_dcoef(&file.dae.jacobians, pencil.route.into(), pencil.dcoef.or(file.dcoef))?;
+    let sel = select_modes(&modal, selection)?;
+    let descriptor = DescriptorRom::project(&file.dae, &modal, &sel, residualize)?;
+    let ordinary = descriptor.to_ordinary()?;
+    Ok(Built { dae: file.dae, modal, descriptor, ordinary })
+}
+
+/// Static gains of the full model and of the ROM, side by side, on stderr.
+fn report_static_gain(b: &Built) {
+    let rom = b.ordinary.static_gain();
+    match (full_static_gain(&b.dae), rom) {
+        (Ok(full), Ok(rom)) => {
+            for i in 0..full.nrows() {
+                for j in 0..full.ncols() {
+                    let (f, r) = (full[(i, j)], rom[(i, j)]);
+                    let rel = if f != 0.0 { (r - f).abs() / f.abs() } else { (r - f).abs() };
+                    eprintln!("static gain {} / {}: full {f:.6e}, ROM {r:.6e} (relative difference {rel:.1e})", b.dae.output_names[i], b.dae.input_names[j]);
+                }
+            }
+        }
+        (Err(e), _) | (_, Err(e)) => eprintln!("static gain: not available ({e})"),
+    }
+}
+
+pub fn run(a: RomArgs) -> Result<()> {
+    let b = build(&a.pencil, &a.select.selection(), a.residualize)?;
+    let kept: Vec<String> = b.descriptor.eigenvalues.iter().map(|l| format!("{:.6}{:+.6}j", l.re, l.im)).collect();
+    eprintln!(
+        "ROM: {} states ({} kept eigenvalues: {}), {} statically residualized states",
+        b.ordinary.a.nrows(),
+        kept.len(),
+        kept.join(", "),
+        b.descriptor.static_states
+    );
+    report_static_gain(&b);
+    let export = match a.form {
+        Form::Ordinary => RomExport::from(&b.ordinary),
+        Form::Descriptor => RomExport::from(&b.descriptor),
+    };
+    match &a.output {
+        Some(path) => {
+            export.write(path).with_context(|| format!("writing {}", path.display()))?;
+            eprintln!("wrote {}", path.display());
+        }
+        None => println!("{}", serde_json::to_string_pretty(&export.to_json())?),
+    }
+    if let Some(prefix) = &a.bode {
+        let curves = Curves::new(&b.dae, &b.modal, &a.freq, &b.descriptor.eigenvalues);
+        let curves = curves.with_rom("ROM", &b.ordinary);
+        write_bode_files(&curves, prefix)?;
+    }
+    Ok(())
+}
+
+pub fn run_freq(a: FreqArgs) -> Result<()> {
+    let selection = match (&a.count, &a.band) {
+        (Some(n), _) => Some(romdyn::rom::ModeSelection::Lowest(*n)),
+        (None, Some(band)) => {
+            let (x, y) = band.split_once(':').context("--band expects FMIN:FMAX in Hz")?;
+            Some(romdyn::rom::ModeSelection::Band { fmin_hz: x.trim().parse()?, fmax_hz: y.trim().parse()? })
+        }
+        (None, None) => None,
+    };
+    let curves = match selection {
+        Some(sel) => {
+            let b = build(&a.pencil, &sel, a.residualize)?;
+            Curves::new(&b.dae, &b.modal, &a.freq, &b.descriptor.eigenvalues).with_rom("ROM", &b.ordinary)
+        }
+        None => {
+            let file = read_pencil(&a.pencil.pencil)?;
+            let modal = ModalAnalysis::compute_with_dcoef(&file.dae.jacobians, a.pencil.route.into(), a.pencil.dcoef.or(file.dcoef))?;
+            Curves::new(&file.dae, &modal, &a.freq, &[])
+        }
+    };
+    write_bode_files(&curves, &a.output)
+}

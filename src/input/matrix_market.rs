@@ -1,0 +1,226 @@
+//! Matrix Market files (`coordinate` or `array`; `real`, `integer` or `pattern`;
+//! `general`, `symmetric` or `skew-symmetric`) read into dense matrices.
+
+use std::path::{Path, PathBuf};
+
+use faer::Mat;
+
+/// A malformed Matrix Market file.
+#[derive(Debug, thiserror::Error)]
+pub enum MatrixMarketError {
+    #[error("{file}: cannot read: {source}")]
+    Io { file: PathBuf, source: std::io::Error },
+    #[error("{file}:{line}:{column}: {message}")]
+    Syntax { file: PathBuf, line: usize, column: usize, message: String },
+}
+
+#[derive(Clone, Copy, PartialEq)]
+enum Symmetry {
+    General,
+    Symmetric,
+    Skew,
+}
+
+/// Reads a Matrix Market file into a dense matrix.
+pub fn read_matrix(file: &Path) -> Result<Mat<f64>, MatrixMarketError> {
+    let text = std::fs::read_to_string(file).map_err(|source| MatrixMarketError::Io { file: file.to_path_buf(), source })?;
+    parse_matrix(&text, file)
+}
+
+/// Parses the text of a Matrix Market file (`file` names it in errors).
+pub fn parse_matrix(text: &str, file: &Path) -> Result<Mat<f64>, MatrixMarketError> {
+    let err = |line: usize, column: usize, message: String| MatrixMarketError::Syntax { file: file.to_path_buf(), line, column, message };
+    let mut lines = text.lines().enumerate().map(|(i, l)| (i + 1, l));
+    let (_, header) = lines.next().ok_or_else(|| err(1, 1, "empty file: expected a '%%MatrixMarket matrix ...' header".into()))?;
+    let words: Vec<String> = header.split_whitespace().map(str::to_ascii_lowercase).collect();
+    if words.len() != 5 || words[0] != "%%matrixmarket" || words[1] != "matrix" {
+        return Err(err(1, 1, "expected '%%MatrixMarket matrix <coordinate|array> <real|integer|pattern> <general|symmetric|skew-symmetric>'".into()));
+    }
+    let coordinate = match words[2].as_str() {
+        "coordinate" => true,
+        "array" => false,
+        f => return Err(err(1, column_of(header, 3), format!("format '{f}' is not supported: expected coordinate or array"))),
+    };
+    let pattern = match words[3].as_str() {
+        "real" | "integer" | "double" => false,
+        "pattern" if coordinate => true,
+        f => return Err(err(1, column_of(header, 4), format!("field '{f}' is not supported: expected real, integer or pattern"))),
+    };
+    let symmetry = match words[4].as_str() {
+        "general" => Symmetry::General,
+        "symmetric" => Symmetry::Symmetric,
+        "skew-symmetric" => Symmetry::Skew,
+        s => return Err(err(1, column_of(header, 5), format!("symmetry '{s}' is not supported: expected general, symmetric or skew-symmetric"))),
+    };
+    let mut data = lines.filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('%'));
+    let (size_line, size_text) = data.next().ok_or_else(|| err(2, 1, "missing the size line".into()))?;
+    let size = numbers::<usize>(size_text, size_line, file)?;
+    let want = if coordinate { 3 } else { 2 };
+    if size.len() != want {
+        return Err(err(size_line, 1, format!("size line: expected {want} integers, found {}", size.len())));
+    }
+    let (nrows, ncols) = (size[0], size[1]);
+    let mut m = Mat::<f64>::zeros(nrows, ncols);
+    let mut count = 0;
+    let expected = if coordinate {
+        size[2]
+    } else if symmetry == Symmetry::General {
+        nrows * ncols
+    } else {
+        ncols * (ncols + 1) / 2 - if symmetry == Symmetry::Skew { ncols } else { 0 }
+    };
+    let (mut i_arr, mut j_arr) = (0usize, 0usize);
+    for (line, text) in data {
+        if count == expected {
+            return Err(err(line, 1, format!("more entries than the {expected} declared")));
+        }
+        let (i, j, v) = if coordinate {
+            let fields: Vec<&str> = text.split_whitespace().collect();
+            let need = if pattern { 2 } else { 3 };
+            if fields.len() != need {
+                return Err(err(line, 1, format!("expected {need} fields (row, column{}), found {}", if pattern { "" } else { ", value" }, fields.len())));
+            }
+            let idx = |k: usize, n: usize, what: &str| -> Result<usize, MatrixMarketError> {
+                let x: usize = fields[k].parse().map_err(|_| err(line, column_of(text, k + 1), format!("{what} index '{}' is not a positive integer", fields[k])))?;
+                if x == 0 || x > n {
+                    return Err(err(line, column_of(text, k + 1), format!("{what} index {x} is out of range 1..={n}")));
+                }
+                Ok(x - 1)
+            };
+            let (i, j) = (idx(0, nrows, "row")?, idx(1, ncols, "column")?);
+            let v = if pattern { 1.0 } else { value(fields[2], line, column_of(text, 3), file)? };
+            (i, j, v)
+        } else {
+            let v = value(text.trim(), line, column_of(text, 1), file)?;
+            let (i, j) = (i_arr, j_arr);
+            // Column-major; symmetric storage lists the lower triangle only.
+            i_arr += 1;
+            if i_arr >= nrows {
+                j_arr += 1;
+                i_arr = match symmetry {
+                    Symmetry::General => 0,
+                    Symmetry::Symmetric => j_arr,
+                    Symmetry::Skew => j_arr + 1,
+                };
+            }
+            (i, j, v)
+        };
+        m[(i, j)] += v;
+        if i != j {
+            match symmetry {
+                Symmetry::General => {}
+                Symmetry::Symmetric => m[(j, i)] += v,
+                Symmetry::Skew => m[(j, i)] -= v,
+            }
+        }
+        count += 1;
+    }
+    if count != expected {
+        let last = text.lines().count();
+        return Err(err(last, 1, format!("found {count} entries, the size line declares {expected}")));
+    }
+    Ok(m)
+}
+
+/// 1-based column of the `k`-th (1-based) whitespace-separated field of `line`.
+fn column_of(line: &str, k: usize) -> usize {
+    let mut seen = 0;
+    let mut in_word = false;
+    for (c, ch) in line.char_indices() {
+        if !ch.is_whitespace() && !in_word {
+            seen += 1;
+            if seen == k {
+                return c + 1;
+            }
+        }
+        in_word = !ch.is_whitespace();
+    }
+    line.len() + 1
+}
+
+fn numbers<T: std::str::FromStr>(text: &str, line: usize, file: &Path) -> Result<Vec<T>, MatrixMarketError> {
+    text.split_whitespace()
+        .enumerate()
+        .map(|(k, w)| {
+            w.parse().map_err(|_| MatrixMarketError::Syntax {
+                file: file.to_path_buf(),
+                line,
+                column: column_of(text, k + 1),
+                message: format!("'{w}' is not a non-negative integer"),
+            })
+        })
+        .collect()
+}
+
+fn value(w: &str, line: usize, column: usize, file: &Path) -> Result<f64, MatrixMarketError> {
+    w.parse::<f64>().ok().filter(|x| x.is_finite()).ok_or_else(|| MatrixMarketError::Syntax {
+        file: file.to_path_buf(),
+        line,
+        column,
+        message: format!("'{w}' is not a finite number"),
+    })
+}
+
+/// Writes a matrix as `coordinate real general` (nonzeros only), atomically.
+pub fn write_matrix(path: &Path, m: &Mat<f64>) -> Result<(), crate::output::atomic::OutputError> {
+    let mut entries = Vec::new();
+    for j in 0..m.ncols() {
+        for i in 0..m.nrows() {
+            if m[(i, j)] != 0.0 {
+                entries.push(format!("{} {} {:e}", i + 1, j + 1, m[(i, j)]));
+            }
+        }
+    }
+    let text = format!("%%MatrixMarket matrix coordinate real general\n% written by romdyn\n{} {} {}\n{}\n", m.nrows(), m.ncols(), entries.len(), entries.join("\n"));
+    crate::output::atomic::write_atomic_bytes(path, text.as_bytes())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(t: &str) -> Result<Mat<f64>, String> {
+        parse_matrix(t, Path::new("m.mtx")).map_err(|e| e.to_string())
+    }
+
+    #[test]
+    fn coordinate_symmetric_and_array_forms() {
+        let m = parse("%%MatrixMarket matrix coordinate real symmetric\n% comment\n2 2 2\n1 1 4\n2 1 -1\n").unwrap();
+        assert_eq!((m[(0, 0)], m[(0, 1)], m[(1, 0)], m[(1, 1)]), (4.0, -1.0, -1.0, 0.0));
+        let m = parse("%%MatrixMarket matrix array real general\n2 2\n1\n2\n3\n4\n").unwrap();
+        assert_eq!((m[(0, 0)], m[(1, 0)], m[(0, 1)], m[(1, 1)]), (1.0, 2.0, 3.0, 4.0));
+        let m = parse("%%MatrixMarket matrix coordinate pattern general\n2 3 1\n2 3\n").unwrap();
+        assert_eq!(m[(1, 2)], 1.0);
+        let m = parse("%%MatrixMarket matrix coordinate real skew-symmetric\n2 2 1\n2 1 5\n").unwrap();
+        assert_eq!((m[(1, 0)], m[(0, 1)]), (5.0, -5.0));
+    }
+
+    #[test]
+    fn errors_name_line_and_column() {
+        let cases = [
+            ("", "m.mtx:1:1: empty file"),
+            ("%%MatrixMarket vector coordinate real general\n", "m.mtx:1:1: expected '%%MatrixMarket matrix"),
+            ("%%MatrixMarket matrix coordinate complex general\n1 1 1\n1 1 1\n", "m.mtx:1:34: field 'complex' is not supported"),
+            ("%%MatrixMarket matrix coordinate real general\n2 2\n", "m.mtx:2:1: size line: expected 3 integers, found 2"),
+            ("%%MatrixMarket matrix coordinate real general\n2 2 1\n3 1 1.0\n", "m.mtx:3:1: row index 3 is out of range 1..=2"),
+            ("%%MatrixMarket matrix coordinate real general\n2 2 1\n1 2 abc\n", "m.mtx:3:5: 'abc' is not a finite number"),
+            ("%%MatrixMarket matrix coordinate real general\n2 2 2\n1 1 1.0\n", "m.mtx:3:1: found 1 entries, the size line declares 2"),
+            ("%%MatrixMarket matrix coordinate real general\n2 2 1\n1 1 1.0\n2 2 1.0\n", "m.mtx:4:1: more entries than the 1 declared"),
+            ("%%MatrixMarket matrix coordinate real general\n2 x 1\n", "m.mtx:2:3: 'x' is not a non-negative integer"),
+            ("%%MatrixMarket matrix coordinate real general\n2 2 1\n1 1\n", "m.mtx:3:1: expected 3 fields"),
+        ];
+        for (text, want) in cases {
+            let got = parse(text).unwrap_err();
+            assert!(got.starts_with(want), "{text:?}\n got: {got}\nwant: {want}");
+        }
+    }
+
+    #[test]
+    fn write_then_read_round_trips() {
+        let dir = std::env::temp_dir().join(format!("romdyn-mm-{}", std::process::id()));
+        let m = Mat::from_fn(3, 2, |i, j| if i == j { 0.0 } else { (i + 10 * j) as f64 + 0.25 });
+        write_matrix(&dir.join("m.mtx"), &m).unwrap();
+        assert_eq!(read_matrix(&dir.join("m.mtx")).unwrap(), m);
+        std::fs::remove_dir_all(&dir).ok();
+    }
+}

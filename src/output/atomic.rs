@@ -1,0 +1,69 @@
+//! Atomic file output: write a temporary file beside the target, flush and sync it, then
+//! rename it over the target. A failed write leaves neither a partial target nor the
+//! temporary file.
+
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+/// An output file could not be written.
+#[derive(Debug, thiserror::Error)]
+pub enum OutputError {
+    #[error("{path}: cannot {operation}: {source}")]
+    Io { path: PathBuf, operation: &'static str, source: std::io::Error },
+    #[error("{path}: {message}")]
+    Invalid { path: PathBuf, message: String },
+}
+
+fn temp_path(path: &Path) -> PathBuf {
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| "out".into());
+    let unique = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.subsec_nanos());
+    path.with_file_name(format!(".{name}.tmp-{}-{unique}", std::process::id()))
+}
+
+/// Writes `path` atomically with the bytes produced by `write`.
+pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>) -> Result<(), OutputError> {
+    let io = |operation, source| OutputError::Io { path: path.to_path_buf(), operation, source };
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).map_err(|e| io("create its directory", e))?;
+    }
+    let tmp = temp_path(path);
+    let result = (|| {
+        let file = File::create(&tmp).map_err(|e| io("create a temporary file", e))?;
+        let mut w = BufWriter::new(file);
+        write(&mut w).map_err(|e| io("write", e))?;
+        let file = w.into_inner().map_err(|e| io("write", e.into_error()))?;
+        file.sync_all().map_err(|e| io("sync", e))?;
+        std::fs::rename(&tmp, path).map_err(|e| io("rename the temporary file onto it", e))
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
+}
+
+/// Writes `bytes` to `path` atomically.
+pub fn write_atomic_bytes(path: &Path, bytes: &[u8]) -> Result<(), OutputError> {
+    write_atomic(path, |w| w.write_all(bytes))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn failed_write_leaves_no_target_and_no_temporary() {
+        let dir = std::env::temp_dir().join(format!("romdyn-atomic-{}", std::process::id()));
+        let target = dir.join("out.bin");
+        let r = write_atomic(&target, |w| {
+            w.write_all(b"half")?;
+            Err(std::io::Error::other("disk full"))
+        });
+        assert!(r.unwrap_err().to_string().contains("disk full"));
+        assert!(!target.exists());
+        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0);
+        write_atomic_bytes(&target, b"whole").unwrap();
+        assert_eq!(std::fs::read(&target).unwrap(), b"whole");
+        std::fs::remove_dir_all(&dir).ok();
+    }
+}

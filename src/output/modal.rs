@@ -1,0 +1,105 @@
+//! The modal table: one row per eigenvalue, as text and as JSON.
+
+use serde::Serialize;
+
+use crate::linear::{EigenRoute, ModalAnalysis, ModeKind};
+
+/// One row of the modal table (units: rad/s, Hz).
+#[derive(Serialize, Debug, Clone)]
+pub struct ModeRow {
+    pub index: usize,
+    /// Real part of λ [rad/s]; `null` in JSON when not finite.
+    pub re: Option<f64>,
+    /// Imaginary part of λ [rad/s]; `null` in JSON when not finite.
+    pub im: Option<f64>,
+    pub kind: ModeKind,
+    /// Natural frequency |λ|/2π [Hz].
+    pub freq_hz: Option<f64>,
+    /// Damping ratio −Re λ/|λ|.
+    pub damping: Option<f64>,
+    /// Estimated absolute error of λ [rad/s] (eqs. 32–35).
+    pub error: Option<f64>,
+}
+
+/// The JSON document of `romdyn eig --json`.
+#[derive(Serialize, Debug, Clone)]
+pub struct ModalReport {
+    pub equations: usize,
+    pub dcoef: f64,
+    pub route: EigenRoute,
+    pub units: &'static str,
+    pub counts: Counts,
+    pub eigenvalues: Vec<ModeRow>,
+}
+
+#[derive(Serialize, Debug, Clone)]
+pub struct Counts {
+    pub dynamic: usize,
+    pub zero: usize,
+    pub infinite: usize,
+}
+
+fn finite(x: f64) -> Option<f64> {
+    x.is_finite().then_some(x)
+}
+
+impl ModalReport {
+    pub fn new(modal: &ModalAnalysis, equations: usize) -> Self {
+        let eigenvalues = modal
+            .modes
+            .iter()
+            .enumerate()
+            .map(|(i, m)| {
+                let infinite = m.kind == ModeKind::Infinite;
+                let representable = m.lambda.re.is_finite() && m.lambda.im.is_finite();
+                ModeRow {
+                    index: i + 1,
+                    re: representable.then_some(m.lambda.re),
+                    im: representable.then_some(m.lambda.im),
+                    kind: m.kind,
+                    freq_hz: if infinite { None } else { finite(m.freq_hz()) },
+                    damping: if infinite { None } else { finite(m.damping()) },
+                    error: finite(m.error),
+                }
+            })
+            .collect();
+        ModalReport {
+            equations,
+            dcoef: modal.dcoef,
+            route: modal.route,
+            units: "eigenvalues in rad/s, frequencies in Hz, dcoef in s",
+            counts: Counts {
+                dynamic: modal.count(ModeKind::Dynamic),
+                zero: modal.count(ModeKind::Zero),
+                infinite: modal.count(ModeKind::Infinite),
+            },
+            eigenvalues,
+        }
+    }
+
+    /// The table as aligned text.
+    pub fn to_text(&self) -> String {
+        let mut s = format!(
+            "# {} equations, route {:?}, dCoef {:e} s; {} dynamic, {} zero, {} infinite\n",
+            self.equations, self.route, self.dcoef, self.counts.dynamic, self.counts.zero, self.counts.infinite
+        );
+        s += &format!(
+            "{:>5}  {:>14}  {:>14}  {:>12}  {:>9}  {:>8}  {:>9}\n",
+            "mode", "Re λ [rad/s]", "Im λ [rad/s]", "freq [Hz]", "damping", "kind", "error"
+        );
+        let num = |x: Option<f64>, w: usize| x.map_or(format!("{:>w$}", "-"), |v| format!("{v:>w$.6e}"));
+        for r in &self.eigenvalues {
+            s += &format!(
+                "{:>5}  {}  {}  {}  {}  {:>8}  {}\n",
+                r.index,
+                num(r.re, 14),
+                num(r.im, 14),
+                r.freq_hz.map_or(format!("{:>12}", "-"), |v| format!("{v:>12.6}")),
+                r.damping.map_or(format!("{:>9}", "-"), |v| format!("{v:>9.4}")),
+                r.kind.name(),
+                r.error.map_or(format!("{:>9}", "inf"), |v| format!("{v:>9.1e}")),
+            );
+        }
+        s
+    }
+}

@@ -1,0 +1,137 @@
+//! NumPy `.npz` writer: an uncompressed ZIP archive of `.npy` (format 1.0) arrays —
+//! float64 matrices, complex128 vectors and unicode string arrays — readable with
+//! `numpy.load(path, allow_pickle=False)`.
+
+use std::path::Path;
+
+use faer::{c64, Mat};
+
+use super::atomic::{write_atomic_bytes, OutputError};
+
+/// An `.npz` archive being assembled in memory.
+#[derive(Default)]
+pub struct NpzWriter {
+    entries: Vec<(String, Vec<u8>)>,
+}
+
+/// A `.npy` file: magic, version 1.0, header dict padded so the data starts on a
+/// 64-byte boundary, then the data.
+fn npy(descr: &str, shape: &[usize], data: &[u8]) -> Vec<u8> {
+    let shape = match shape {
+        [] => "()".to_string(),
+        [n] => format!("({n},)"),
+        s => format!("({})", s.iter().map(usize::to_string).collect::<Vec<_>>().join(", ")),
+    };
+    let mut header = format!("{{'descr': '{descr}', 'fortran_order': False, 'shape': {shape}, }}");
+    let total = 10 + header.len() + 1;
+    header.push_str(&" ".repeat(total.next_multiple_of(64) - total));
+    header.push('\n');
+    let mut out = b"\x93NUMPY\x01\x00".to_vec();
+    out.extend((header.len() as u16).to_le_bytes());
+    out.extend(header.as_bytes());
+    out.extend(data);
+    out
+}
+
+/// CRC-32 (IEEE 802.3, reflected polynomial 0xEDB88320), as ZIP requires.
+pub(crate) fn crc32(data: &[u8]) -> u32 {
+    let table: Vec<u32> = (0..256u32)
+        .map(|n| (0..8).fold(n, |c, _| if c & 1 != 0 { 0xEDB8_8320 ^ (c >> 1) } else { c >> 1 }))
+        .collect();
+    !data.iter().fold(!0u32, |c, &b| table[((c ^ b as u32) & 0xff) as usize] ^ (c >> 8))
+}
+
+impl NpzWriter {
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    fn push(&mut self, name: &str, npy: Vec<u8>) -> Result<(), OutputError> {
+        let file = format!("{name}.npy");
+        if name.is_empty() || name.contains('/') || self.entries.iter().any(|(n, _)| *n == file) {
+            return Err(OutputError::Invalid { path: name.into(), message: "array names must be unique, non-empty and contain no '/'".into() });
+        }
+        self.entries.push((file, npy));
+        Ok(())
+    }
+
+    /// A float64 matrix (row-major, shape (rows, cols)).
+    pub fn add_matrix(&mut self, name: &str, m: &Mat<f64>) -> Result<(), OutputError> {
+        let data: Vec<u8> = (0..m.nrows()).flat_map(|i| (0..m.ncols()).map(move |j| m[(i, j)])).flat_map(f64::to_le_bytes).collect();
+        self.push(name, npy("<f8", &[m.nrows(), m.ncols()], &data))
+    }
+
+    /// A complex128 vector.
+    pub fn add_complex_column(&mut self, name: &str, v: &[c64]) -> Result<(), OutputError> {
+        let data: Vec<u8> = v.iter().flat_map(|x| [x.re, x.im]).flat_map(f64::to_le_bytes).collect();
+        self.push(name, npy("<c16", &[v.len()], &data))
+    }
+
+    /// A float64 scalar (shape ()).
+    pub fn add_scalar(&mut self, name: &str, x: f64) -> Result<(), OutputError> {
+        self.push(name, npy("<f8", &[], &x.to_le_bytes()))
+    }
+
+    /// A unicode string array (`<U{max length}`, UTF-32LE).
+    pub fn add_string_list(&mut self, name: &str, list: &[String]) -> Result<(), OutputError> {
+        let width = list.iter().map(|s| s.chars().count()).max().unwrap_or(0).max(1);
+        let mut data = Vec::with_capacity(list.len() * width * 4);
+        for s in list {
+            let n = s.chars().count();
+            data.extend(s.chars().flat_map(|c| (c as u32).to_le_bytes()));
+            data.extend(std::iter::repeat_n(0u8, 4 * (width - n)));
+        }
+        self.push(name, npy(&format!("<U{width}"), &[list.len()], &data))
+    }
+
+    /// The ZIP archive: local headers and data, central directory, end record (stored, no
+    /// compression; date 1980-01-01).
+    pub fn to_bytes(&self) -> Vec<u8> {
+        let mut out = Vec::new();
+        let mut central = Vec::new();
+        for (name, data) in &self.entries {
+            let (crc, size, offset) = (crc32(data), data.len() as u32, out.len() as u32);
+            let common = |v: &mut Vec<u8>| {
+                v.extend(20u16.to_le_bytes()); // version needed
+                v.extend(0u16.to_le_bytes()); // flags
+                v.extend(0u16.to_le_bytes()); // stored
+                v.extend(0u16.to_le_bytes()); // time
+                v.extend(0x21u16.to_le_bytes()); // date 1980-01-01
+                v.extend(crc.to_le_bytes());
+                v.extend(size.to_le_bytes());
+                v.extend(size.to_le_bytes());
+                v.extend((name.len() as u16).to_le_bytes());
+                v.extend(0u16.to_le_bytes()); // extra length
+            };
+            out.extend(0x0403_4b50u32.to_le_bytes());
+            common(&mut out);
+            out.extend(name.as_bytes());
+            out.extend(data);
+            central.extend(0x0201_4b50u32.to_le_bytes());
+            central.extend(20u16.to_le_bytes()); // version made by
+            common(&mut central);
+            central.extend([0u8; 8]); // comment length, disk, internal and external attributes
+            central.extend([0u8; 2]);
+            central.extend(offset.to_le_bytes());
+            central.extend(name.as_bytes());
+        }
+        let (cd_offset, cd_size, n) = (out.len() as u32, central.len() as u32, self.entries.len() as u16);
+        out.extend(central);
+        out.extend(0x0605_4b50u32.to_le_bytes());
+        out.extend([0u8; 4]);
+        out.extend(n.to_le_bytes());
+        out.extend(n.to_le_bytes());
+        out.extend(cd_size.to_le_bytes());
+        out.extend(cd_offset.to_le_bytes());
+        out.extend(0u16.to_le_bytes());
+        out
+    }
+
+    /// Writes the archive atomically.
+    pub fn write(&self, path: &Path) -> Result<(), OutputError> {
+        write_atomic_bytes(path, &self.to_bytes())
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,42 @@
+//! Frequency responses as a CSV table.
+//!
+//! Layout: `#` comment lines (units), a header row, then one row per frequency:
+//! `freq_hz`, and for each curve four columns `<label>: <output> / <input> re`, `… im`,
+//! `… mag`, `… phase_deg` (phase unwrapped along the curve).
+
+use std::path::Path;
+
+use super::atomic::{write_atomic, OutputError};
+use super::bode::{unwrapped_phase_deg, ResponseCurve};
+
+fn quote(s: &str) -> String {
+    if s.contains([',', '"', '\n']) { format!("\"{}\"", s.replace('"', "\"\"")) } else { s.to_string() }
+}
+
+/// Writes the curves (which must share one frequency grid) atomically.
+pub fn write_response_csv(curves: &[ResponseCurve], path: &Path) -> Result<(), OutputError> {
+    let invalid = |message: &str| OutputError::Invalid { path: path.to_path_buf(), message: message.into() };
+    let first = curves.first().ok_or_else(|| invalid("no curve to write"))?;
+    if curves.iter().any(|c| c.freq_hz != first.freq_hz || c.values.len() != c.freq_hz.len()) {
+        return Err(invalid("all curves must share one frequency grid"));
+    }
+    let phases: Vec<Vec<f64>> = curves.iter().map(|c| unwrapped_phase_deg(&c.values)).collect();
+    write_atomic(path, |w| {
+        writeln!(w, "# romdyn frequency response z/u; frequency in Hz; re, im and magnitude in output units per input unit (SI); phase in degrees")?;
+        let mut header = vec!["freq_hz".to_string()];
+        for c in curves {
+            let name = format!("{}: {} / {}", c.label, c.output, c.input);
+            header.extend(["re", "im", "mag", "phase_deg"].map(|k| quote(&format!("{name} {k}"))));
+        }
+        writeln!(w, "{}", header.join(","))?;
+        for (k, f) in first.freq_hz.iter().enumerate() {
+            write!(w, "{f:.10e}")?;
+            for (c, p) in curves.iter().zip(&phases) {
+                let v = c.values[k];
+                write!(w, ",{:.10e},{:.10e},{:.10e},{:.6}", v.re, v.im, v.norm(), p[k])?;
+            }
+            writeln!(w)?;
+        }
+        Ok(())
+    })
+}

@@ -1,0 +1,95 @@
+//! The `romdyn` binary end to end on the shipped example (CASES C1).
+
+use std::path::PathBuf;
+use std::process::Command;
+
+fn romdyn(args: &[&str]) -> (bool, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_romdyn")).args(args).current_dir(env!("CARGO_MANIFEST_DIR")).output().unwrap();
+    (out.status.success(), String::from_utf8_lossy(&out.stdout).into(), String::from_utf8_lossy(&out.stderr).into())
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("romdyn-cli-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+#[test]
+fn eig_json_has_the_documented_fields_and_c1_eigenvalues() {
+    let (ok, out, err) = romdyn(&["eig", "--pencil", "examples/two_masses.json", "--json"]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["equations"], 5);
+    assert_eq!(v["dcoef"], 1e-3);
+    let ev = v["eigenvalues"].as_array().unwrap();
+    assert_eq!(ev.len(), 5);
+    // CASES C1, r = 10: −0.5 ± 9.987492 j rad/s (closed form), 1e-6 absolute.
+    assert!((ev[0]["re"].as_f64().unwrap() + 0.5).abs() < 1e-6);
+    assert!((ev[0]["im"].as_f64().unwrap() - 9.987492).abs() < 1e-6);
+    assert_eq!(ev[0]["kind"], "dynamic");
+    // f = |λ|/2π = sqrt(100)/2π = 1.591549 Hz; ζ = r / (2 sqrt(k M)) = 0.05.
+    assert!((ev[0]["freq_hz"].as_f64().unwrap() - 1.5915494).abs() < 1e-6);
+    assert!((ev[0]["damping"].as_f64().unwrap() - 0.05).abs() < 1e-9);
+    let kinds: Vec<&str> = ev.iter().map(|e| e["kind"].as_str().unwrap()).collect();
+    assert_eq!(kinds, ["dynamic", "dynamic", "infinite", "infinite", "infinite"]);
+}
+
+#[test]
+fn eig_text_table_and_lambda_route_agree() {
+    let (ok, direct, err) = romdyn(&["eig", "--pencil", "examples/two_masses.json"]);
+    assert!(ok, "{err}");
+    assert!(direct.contains("dynamic") && direct.contains("infinite") && direct.contains("[Hz]"), "{direct}");
+    let (ok, lambda, err) = romdyn(&["eig", "--pencil", "examples/two_masses.json", "--route", "lambda", "--json"]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&lambda).unwrap();
+    assert!((v["eigenvalues"][0]["im"].as_f64().unwrap() - 9.987492).abs() < 1e-6);
+    assert_eq!(v["counts"]["infinite"], 3);
+}
+
+#[test]
+fn rom_to_stdout_json_and_files() {
+    let (ok, out, err) = romdyn(&["rom", "--pencil", "examples/two_masses.json", "--count", "1"]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["kind"], "ordinary");
+    for k in ["E", "A", "B", "C", "D"] {
+        assert!(v[k].is_array(), "{k}");
+    }
+    assert_eq!(v["A"].as_array().unwrap().len(), 2);
+    // Static gain printed against the full model's 1/k = 1e-3 m/N.
+    assert!(err.contains("full 1.000000e-3, ROM 1.000000e-3"), "{err}");
+
+    let dir = temp_dir("rom");
+    for ext in ["json", "mat", "npz"] {
+        let path = dir.join(format!("rom.{ext}"));
+        let (ok, _, err) = romdyn(&["rom", "--pencil", "examples/two_masses.json", "--count", "1", "-o", path.to_str().unwrap()]);
+        assert!(ok, "{err}");
+        assert!(path.metadata().unwrap().len() > 100, "{ext}");
+    }
+    let bode = dir.join("bode");
+    let (ok, _, err) = romdyn(&["rom", "--pencil", "examples/two_masses.json", "--count", "1", "-o", dir.join("r.json").to_str().unwrap(), "--bode", bode.to_str().unwrap()]);
+    assert!(ok, "{err}");
+    for ext in ["csv", "svg", "png"] {
+        assert!(dir.join(format!("bode.{ext}")).exists(), "{ext}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn bad_input_gives_a_clear_error_and_no_output() {
+    let dir = temp_dir("bad");
+    let bad = dir.join("bad.json");
+    std::fs::write(&bad, "{\"Fyd\": [[1]], \"Fy\": [[1]], \"B\": [[1]]}").unwrap();
+    let out = dir.join("rom.json");
+    let (ok, _, err) = romdyn(&["rom", "--pencil", bad.to_str().unwrap(), "--count", "1", "-o", out.to_str().unwrap()]);
+    assert!(!ok);
+    assert!(err.contains("field \"C\": missing"), "{err}");
+    assert!(!out.exists());
+    let (ok, _, err) = romdyn(&["rom", "--pencil", "examples/two_masses.json", "--count", "7"]);
+    assert!(!ok);
+    assert!(err.contains("7 modes requested, the model has 1 dynamic modes"), "{err}");
+    let (ok, _, err) = romdyn(&["rom", "--pencil", "examples/two_masses.json", "--band", "5:1"]);
+    assert!(!ok);
+    assert!(err.contains("FMIN <= FMAX"), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}
