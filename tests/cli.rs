@@ -76,6 +76,25 @@ fn rom_to_stdout_json_and_files() {
 }
 
 #[test]
+fn freq_writes_table_and_plots() {
+    let dir = temp_dir("freq");
+    let prefix = dir.join("resp");
+    let (ok, _, err) = romdyn(&["freq", "--pencil", "examples/two_masses.json", "--count", "1", "--fmin", "0.1", "--fmax", "10", "--points", "50", "-o", prefix.to_str().unwrap()]);
+    assert!(ok, "{err}");
+    let csv = std::fs::read_to_string(dir.join("resp.csv")).unwrap();
+    // Header comment, column names, 50 frequencies; full model and ROM columns.
+    assert_eq!(csv.lines().count(), 52);
+    assert!(csv.contains("full model: x2 [m] / f (force on mass 2) [N] mag") && csv.contains("ROM: x2 [m] / f (force on mass 2) [N] mag"));
+    // At 0.1 Hz the response is close to the static 1e-3 m/N: |H| = 1/|k − M ω² + j r ω| (closed form).
+    let row: Vec<f64> = csv.lines().nth(2).unwrap().split(',').map(|x| x.parse().unwrap()).collect();
+    let w = 2.0 * std::f64::consts::PI * 0.1;
+    let exact = 1.0 / ((1000.0 - 10.0 * w * w).powi(2) + (10.0 * w).powi(2)).sqrt();
+    assert!((row[3] - exact).abs() / exact < 1e-9 && (row[7] - exact).abs() / exact < 1e-9, "{row:?}");
+    assert!(dir.join("resp.svg").exists() && dir.join("resp.png").exists());
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
 fn bad_input_gives_a_clear_error_and_no_output() {
     let dir = temp_dir("bad");
     let bad = dir.join("bad.json");

@@ -108,3 +108,22 @@ fn three_pair_rom_truncated_and_residualized() {
         }
     }
 }
+
+#[test]
+fn band_count_and_index_selections_agree() {
+    let modal = ModalAnalysis::compute(&chain().jacobians, EigenRoute::Direct).unwrap();
+    let by_count = select_modes(&modal, &ModeSelection::Lowest(3)).unwrap();
+    // Natural frequencies 0.1565, 0.4696, 0.7823 Hz for the 3 lowest pairs (LOWEST / 2π);
+    // the 4th pair is above 0.9 Hz.
+    let by_band = select_modes(&modal, &ModeSelection::Band { fmin_hz: 0.0, fmax_hz: 0.9 }).unwrap();
+    // Table indices are 1-based; either member of a pair selects the pair.
+    let by_index = select_modes(&modal, &ModeSelection::Indices(vec![2, 3, 6])).unwrap();
+    assert_eq!(by_count.kept, [0, 1, 2, 3, 4, 5]);
+    assert_eq!(by_band, by_count);
+    assert_eq!(by_index, by_count);
+    assert_eq!(by_count.dropped.len(), 92);
+    let infinite = modal.of_kind(ModeKind::Infinite).next().unwrap() + 1;
+    assert!(select_modes(&modal, &ModeSelection::Indices(vec![infinite])).is_err());
+    assert!(select_modes(&modal, &ModeSelection::Indices(vec![102])).is_err());
+    assert!(select_modes(&modal, &ModeSelection::Band { fmin_hz: 100.0, fmax_hz: 200.0 }).is_err());
+}
