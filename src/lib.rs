@@ -10,6 +10,7 @@
 //! analysis" (the paper behind `shared/METHOD.md`). Units are SI throughout.
 
 pub mod input;
+pub mod kinematics;
 pub mod linear;
 pub mod output;
 pub mod rom;

@@ -1,0 +1,100 @@
+//! Gibbs–Rodrigues parameters `g = 2 tan(φ/2) n`:
+//! `R(g) = I + 4/(4 + gᵀg) ([g×] + ½ [g×]²)`, `G(g) = 4/(4 + gᵀg) (I + ½ [g×])`.
+//! With `R = R(g) R_ref`, a variation is `δR Rᵀ = [(G δg)×]` and the angular velocity is
+//! `ω = G(g) ġ`.
+
+use super::{skew, Mat3, Vec3};
+
+/// `R(g)`.
+pub fn gibbs_rotation(g: &Vec3) -> Mat3 {
+    let s = 4.0 / (4.0 + g.dot(g));
+    let gx = skew(g);
+    Mat3::identity() + s * (gx + 0.5 * gx * gx)
+}
+
+/// `G(g)`, with `δθ = G δg` and `ω = G ġ`.
+pub fn gibbs_g(g: &Vec3) -> Mat3 {
+    let s = 4.0 / (4.0 + g.dot(g));
+    s * (Mat3::identity() + 0.5 * skew(g))
+}
+
+/// `∂(G(g) ġ)/∂g = −(s²/2)(ġ + ½ g×ġ) gᵀ − (s/2) [ġ×]`, `s = 4/(4 + gᵀg)`.
+pub fn gibbs_rate_derivative(g: &Vec3, gdot: &Vec3) -> Mat3 {
+    let s = 4.0 / (4.0 + g.dot(g));
+    -(0.5 * s * s) * (gdot + 0.5 * g.cross(gdot)) * g.transpose() - 0.5 * s * skew(gdot)
+}
+
+/// `g` of a rotation matrix (through its quaternion); undefined for rotations by π.
+pub fn gibbs_from_rotation(r: &Mat3) -> Vec3 {
+    let q = nalgebra::UnitQuaternion::from_matrix(r);
+    let (w, v) = (q.w, q.imag());
+    let v = if w < 0.0 { -v } else { v };
+    2.0 * v / w.abs().max(f64::MIN_POSITIVE)
+}
+
+/// Rotation vector `φ n` of a rotation matrix.
+pub fn rotation_vector(r: &Mat3) -> Vec3 {
+    nalgebra::Rotation3::from_matrix_unchecked(*r).scaled_axis()
+}
+
+/// `ax(M) = ½ (M − Mᵀ)^∨`, the axial vector of the skew-symmetric part of `M`.
+pub fn axial_of_skew_part(m: &Mat3) -> Vec3 {
+    0.5 * Vec3::new(m[(2, 1)] - m[(1, 2)], m[(0, 2)] - m[(2, 0)], m[(1, 0)] - m[(0, 1)])
+}
+
+/// `P(M) = ½ (tr M I − M)`: `ax([a×] M) = P(M) a`.
+pub fn skew_part_jacobian(m: &Mat3) -> Mat3 {
+    0.5 * (m.trace() * Mat3::identity() - m)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn rot(axis: Vec3, angle: f64) -> Mat3 {
+        *nalgebra::Rotation3::from_axis_angle(&nalgebra::Unit::new_normalize(axis), angle).matrix()
+    }
+
+    #[test]
+    fn gibbs_rotation_matches_axis_angle() {
+        // g = 2 tan(φ/2) n (definition): R(g) equals the axis-angle rotation to rounding.
+        let (n, phi) = (Vec3::new(1.0, -2.0, 0.5).normalize(), 0.9_f64);
+        let g = 2.0 * (phi / 2.0).tan() * n;
+        assert!((gibbs_rotation(&g) - rot(n, phi)).norm() < 1e-14);
+        assert!((gibbs_from_rotation(&rot(n, phi)) - g).norm() < 1e-13);
+        assert!((rotation_vector(&rot(n, phi)) - phi * n).norm() < 1e-14);
+    }
+
+    #[test]
+    fn variation_is_g_times_dg() {
+        // δR Rᵀ = [(G δg)×], checked by central differences (h = 1e-6, error O(h²)).
+        let g = Vec3::new(0.3, -0.2, 0.4);
+        let h = 1e-6;
+        for k in 0..3 {
+            let e = Vec3::ith(k, h);
+            let dr = (gibbs_rotation(&(g + e)) - gibbs_rotation(&(g - e))) / (2.0 * h);
+            let w = dr * gibbs_rotation(&g).transpose();
+            let want = gibbs_g(&g) * Vec3::ith(k, 1.0);
+            assert!((w - skew(&want)).norm() < 1e-8, "{k}");
+        }
+    }
+
+    #[test]
+    fn rate_derivative_matches_finite_differences() {
+        let (g, gd) = (Vec3::new(0.3, -0.2, 0.4), Vec3::new(1.0, 2.0, -0.7));
+        let h = 1e-6;
+        let d = gibbs_rate_derivative(&g, &gd);
+        for k in 0..3 {
+            let e = Vec3::ith(k, h);
+            let fd = (gibbs_g(&(g + e)) * gd - gibbs_g(&(g - e)) * gd) / (2.0 * h);
+            assert!((fd - d.column(k)).norm() < 1e-8, "{k}");
+        }
+    }
+
+    #[test]
+    fn skew_part_jacobian_is_exact() {
+        let m = rot(Vec3::new(0.2, 1.0, -0.3), 1.1) * 1.3;
+        let a = Vec3::new(0.7, -0.4, 0.9);
+        assert!((axial_of_skew_part(&(skew(&a) * m)) - skew_part_jacobian(&m) * a).norm() < 1e-14);
+    }
+}
