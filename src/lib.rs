@@ -9,11 +9,15 @@
 //! Equation numbers in doc comments refer to "Reduced order models from multibody
 //! analysis" (the paper behind `shared/METHOD.md`). Units are SI throughout.
 
+pub mod dae;
+pub mod element;
 pub mod input;
 pub mod kinematics;
 pub mod linear;
+pub mod model;
 pub mod output;
 pub mod rom;
+pub mod solve;
 
 /// Complex scalar used throughout (re-exported from faer).
 pub use faer::c64;

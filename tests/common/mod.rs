@@ -1,6 +1,8 @@
 //! Test helpers shared by the validation tests.
 #![allow(dead_code)]
 
+pub mod models;
+
 use faer::Mat;
 use romdyn::linear::{Jacobians, LinearDae};
 

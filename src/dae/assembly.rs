@@ -1,0 +1,235 @@
+//! Assembly of the residual `F(y, ẏ, t)` and of `a F_/ẏ + b F_/y` from the nodes and the
+//! elements' contributions (`a = 1, b = c` gives `J(c)`, eq. 5).
+
+use super::state::NodeFrame;
+use super::{DofMap, State, Triplets};
+use crate::element::{Col, ElementState, JacobianSink, NodeKinematics, ResidualSink, Row};
+use crate::kinematics::{skew, Vec3};
+use crate::linear::ConstraintForm;
+use crate::model::{Model, NodeKind};
+
+/// Which combination of the two Jacobians to assemble: `a F_/ẏ + b F_/y`, in a given
+/// constraint form. `dcoef` scales the constraint rows of the form of eq. 30 (`Φ/c`).
+#[derive(Clone, Copy, Debug)]
+pub struct Coefficients {
+    pub a: f64,
+    pub b: f64,
+    pub form: ConstraintForm,
+    pub dcoef: f64,
+}
+
+impl Coefficients {
+    /// `J(c) = F_/ẏ + c F_/y` (Newton in time integration).
+    pub fn newton(dcoef: f64, form: ConstraintForm) -> Self {
+        Coefficients { a: 1.0, b: dcoef, form, dcoef }
+    }
+    /// `F_/y` in the plain form (static analysis).
+    pub fn static_analysis() -> Self {
+        Coefficients { a: 0.0, b: 1.0, form: ConstraintForm::Plain, dcoef: 1.0 }
+    }
+}
+
+/// Assembles a model's DAE. Borrows the model; owns only its numbering.
+pub struct Assembler<'m> {
+    pub model: &'m Model,
+    pub dofs: DofMap,
+}
+
+struct Context<'a> {
+    nodes: Vec<&'a NodeKinematics>,
+    multipliers: &'a [f64],
+    t: f64,
+    load: f64,
+    gravity: Vec3,
+}
+
+impl ElementState for Context<'_> {
+    fn node(&self, slot: usize) -> &NodeKinematics {
+        self.nodes[slot]
+    }
+    fn multiplier(&self, k: usize) -> f64 {
+        self.multipliers[k]
+    }
+    fn time(&self) -> f64 {
+        self.t
+    }
+    fn gravity(&self) -> Vec3 {
+        self.gravity * self.load
+    }
+    fn load_factor(&self) -> f64 {
+        self.load
+    }
+}
+
+/// Maps an element's local rows to global equations (`None`: a momentum row of a static
+/// node, which does not exist).
+fn global_row(dofs: &DofMap, slots: &[usize], first: usize, row: Row) -> Option<usize> {
+    match row {
+        Row::Equilibrium { slot, comp } => Some(dofs.equilibrium_row(slots[slot]) + comp),
+        Row::Momentum { slot, comp } => (dofs.node_kind[slots[slot]] == NodeKind::Dynamic).then(|| dofs.node_first[slots[slot]] + comp),
+        Row::Constraint(k) => Some(first + k),
+    }
+}
+
+struct Residual<'a> {
+    dofs: &'a DofMap,
+    slots: &'a [usize],
+    first: usize,
+    constraint_scale: f64,
+    f: &'a mut [f64],
+}
+
+impl ResidualSink for Residual<'_> {
+    fn add(&mut self, row: Row, value: f64) {
+        let scale = if matches!(row, Row::Constraint(_)) { self.constraint_scale } else { 1.0 };
+        if let Some(i) = global_row(self.dofs, self.slots, self.first, row) {
+            self.f[i] += value * scale;
+        }
+    }
+}
+
+struct Jacobian<'a> {
+    dofs: &'a DofMap,
+    frames: &'a [NodeFrame],
+    slots: &'a [usize],
+    first: usize,
+    c: Coefficients,
+    out: &'a mut Triplets,
+}
+
+impl JacobianSink for Jacobian<'_> {
+    fn add(&mut self, row: Row, col: Col, v: f64) {
+        let Some(i) = global_row(self.dofs, self.slots, self.first, row) else { return };
+        let scaled = self.c.form == ConstraintForm::Scaled;
+        // y-derivatives of constraint rows belong to F_/ẏ in the form of eq. 30.
+        let b = if scaled && matches!(row, Row::Constraint(_)) { self.c.a } else { self.c.b };
+        let a = self.c.a;
+        match col {
+            Col::Position { slot, comp } => self.out.push(i, self.dofs.node_first[self.slots[slot]] + comp, b * v),
+            Col::Velocity { slot, comp } => self.out.push(i, self.dofs.node_first[self.slots[slot]] + comp, a * v),
+            Col::Rotation { slot, comp } => {
+                let (n, fr) = (self.slots[slot], &self.frames[self.slots[slot]]);
+                for k in 0..3 {
+                    self.out.push(i, self.dofs.node_first[n] + 3 + k, b * v * fr.g_matrix[(comp, k)]);
+                }
+            }
+            Col::AngularVelocity { slot, comp } => {
+                let (n, fr) = (self.slots[slot], &self.frames[self.slots[slot]]);
+                for k in 0..3 {
+                    let value = a * v * fr.g_matrix[(comp, k)] + b * v * fr.rate_derivative[(comp, k)];
+                    self.out.push(i, self.dofs.node_first[n] + 3 + k, value);
+                }
+            }
+            Col::Multiplier(k) => self.out.push(i, self.first + k, if scaled { a } else { self.c.b } * v),
+        }
+    }
+}
+
+impl<'m> Assembler<'m> {
+    pub fn new(model: &'m Model) -> Self {
+        Assembler { model, dofs: DofMap::new(model) }
+    }
+
+    fn frames(&self, st: &State) -> Vec<NodeFrame> {
+        (0..self.model.nodes.len()).map(|i| st.node_frame(&self.dofs, i)).collect()
+    }
+
+    fn context<'a>(&self, frames: &'a [NodeFrame], st: &'a State, e: usize) -> Context<'a> {
+        let first = self.dofs.element_first[e];
+        Context {
+            nodes: self.dofs.element_nodes[e].iter().map(|&n| &frames[n].kin).collect(),
+            multipliers: &st.y[first..first + self.dofs.element_len[e]],
+            t: st.t,
+            load: st.load,
+            gravity: self.model.gravity,
+        }
+    }
+
+    /// `F(y, ẏ, t)`; constraint rows are divided by `dcoef` in the form of eq. 30.
+    pub fn residual(&self, st: &State, form: ConstraintForm, dcoef: f64) -> Vec<f64> {
+        let frames = self.frames(st);
+        let mut f = vec![0.0; self.dofs.len];
+        for (i, fr) in frames.iter().enumerate() {
+            self.node_residual(st, i, fr, &mut f);
+        }
+        let scale = if form == ConstraintForm::Scaled { 1.0 / dcoef } else { 1.0 };
+        for (e, el) in self.model.elements.iter().enumerate() {
+            let ctx = self.context(&frames, st, e);
+            let mut sink = Residual { dofs: &self.dofs, slots: &self.dofs.element_nodes[e], first: self.dofs.element_first[e], constraint_scale: scale, f: &mut f };
+            el.residual(&ctx, &mut sink);
+        }
+        f
+    }
+
+    /// `a F_/ẏ + b F_/y` as triplets in a fixed order.
+    pub fn jacobian(&self, st: &State, c: Coefficients) -> Triplets {
+        let frames = self.frames(st);
+        let mut out = Triplets::new(self.dofs.len);
+        for (i, fr) in frames.iter().enumerate() {
+            self.node_jacobian(st, i, fr, c, &mut out);
+        }
+        for (e, el) in self.model.elements.iter().enumerate() {
+            let ctx = self.context(&frames, st, e);
+            let mut sink = Jacobian { dofs: &self.dofs, frames: &frames, slots: &self.dofs.element_nodes[e], first: self.dofs.element_first[e], c, out: &mut out };
+            el.jacobian(&ctx, &mut sink);
+        }
+        out
+    }
+
+    /// A dynamic node's own terms: `β`, `γ` in the momentum definitions; `β̇` and
+    /// `γ̇ + ẋ × β` in the equilibrium.
+    fn node_residual(&self, st: &State, i: usize, fr: &NodeFrame, f: &mut [f64]) {
+        if self.dofs.node_kind[i] != NodeKind::Dynamic {
+            return;
+        }
+        let first = self.dofs.node_first[i];
+        let (beta, _) = st.momenta(&self.dofs, i);
+        let gyro = fr.kin.xdot.cross(&beta);
+        for k in 0..3 {
+            f[first + k] += st.y[first + 6 + k];
+            f[first + 3 + k] += st.y[first + 9 + k];
+            f[first + 6 + k] += st.yp[first + 6 + k];
+            f[first + 9 + k] += st.yp[first + 9 + k] + gyro[k];
+        }
+    }
+
+    fn node_jacobian(&self, st: &State, i: usize, fr: &NodeFrame, c: Coefficients, out: &mut Triplets) {
+        if self.dofs.node_kind[i] != NodeKind::Dynamic {
+            return;
+        }
+        let first = self.dofs.node_first[i];
+        let (beta, _) = st.momenta(&self.dofs, i);
+        let (bx, vx) = (skew(&beta), skew(&fr.kin.xdot));
+        for k in 0..3 {
+            out.push(first + k, first + 6 + k, c.b);
+            out.push(first + 3 + k, first + 9 + k, c.b);
+            out.push(first + 6 + k, first + 6 + k, c.a);
+            out.push(first + 9 + k, first + 9 + k, c.a);
+            for j in 0..3 {
+                // ∂(ẋ × β)/∂ẋ = −[β×], ∂(ẋ × β)/∂β = [ẋ×].
+                out.push(first + 9 + k, first + j, -c.a * bx[(k, j)]);
+                out.push(first + 9 + k, first + 6 + j, c.b * vx[(k, j)]);
+            }
+        }
+    }
+
+    /// The contribution of one element alone (for the finite-difference check).
+    pub(crate) fn element_residual(&self, st: &State, e: usize, form: ConstraintForm, dcoef: f64) -> Vec<f64> {
+        let frames = self.frames(st);
+        let mut f = vec![0.0; self.dofs.len];
+        let ctx = self.context(&frames, st, e);
+        let scale = if form == ConstraintForm::Scaled { 1.0 / dcoef } else { 1.0 };
+        let mut sink = Residual { dofs: &self.dofs, slots: &self.dofs.element_nodes[e], first: self.dofs.element_first[e], constraint_scale: scale, f: &mut f };
+        self.model.elements[e].residual(&ctx, &mut sink);
+        f
+    }
+
+    pub(crate) fn element_jacobian(&self, st: &State, e: usize, c: Coefficients) -> Triplets {
+        let frames = self.frames(st);
+        let mut out = Triplets::new(self.dofs.len);
+        let ctx = self.context(&frames, st, e);
+        let mut sink = Jacobian { dofs: &self.dofs, frames: &frames, slots: &self.dofs.element_nodes[e], first: self.dofs.element_first[e], c, out: &mut out };
+        self.model.elements[e].jacobian(&ctx, &mut sink);
+        out
+    }
+}

@@ -1,0 +1,99 @@
+//! Numbering of unknowns and equations; names for reports.
+
+use crate::model::{Model, NodeKind};
+
+/// Where each node's and element's unknowns (and equations) start.
+#[derive(Clone, Debug)]
+pub struct DofMap {
+    pub node_first: Vec<usize>,
+    pub node_kind: Vec<NodeKind>,
+    pub element_first: Vec<usize>,
+    pub element_len: Vec<usize>,
+    /// Node index of each slot of each element.
+    pub element_nodes: Vec<Vec<usize>>,
+    /// Number of unknowns (= equations).
+    pub len: usize,
+}
+
+/// What one unknown (and the equation with the same index) belongs to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Owner {
+    Node { index: usize, offset: usize },
+    Element { index: usize, offset: usize },
+}
+
+impl DofMap {
+    /// Numbers the model; node labels of elements must exist (checked by the builder).
+    pub fn new(model: &Model) -> Self {
+        let mut first = 0;
+        let mut node_first = Vec::with_capacity(model.nodes.len());
+        for n in &model.nodes {
+            node_first.push(first);
+            first += n.kind.unknowns();
+        }
+        let mut element_first = Vec::with_capacity(model.elements.len());
+        let mut element_len = Vec::with_capacity(model.elements.len());
+        let mut element_nodes = Vec::with_capacity(model.elements.len());
+        for e in &model.elements {
+            element_first.push(first);
+            let k = e.multipliers().len();
+            element_len.push(k);
+            first += k;
+            element_nodes.push(e.nodes().iter().map(|l| model.node_index(*l).unwrap_or(usize::MAX)).collect());
+        }
+        DofMap { node_first, node_kind: model.nodes.iter().map(|n| n.kind).collect(), element_first, element_len, element_nodes, len: first }
+    }
+
+    /// First equilibrium row of a node (after the momentum definitions of a dynamic node).
+    pub fn equilibrium_row(&self, node: usize) -> usize {
+        self.node_first[node] + if self.node_kind[node] == NodeKind::Dynamic { 6 } else { 0 }
+    }
+
+    /// Owner of unknown/equation `i`.
+    pub fn owner(&self, i: usize) -> Owner {
+        match self.element_first.iter().rposition(|&f| f <= i) {
+            Some(e) if i < self.element_first[e] + self.element_len[e] => Owner::Element { index: e, offset: i - self.element_first[e] },
+            _ => {
+                let n = self.node_first.iter().rposition(|&f| f <= i).unwrap_or(0);
+                Owner::Node { index: n, offset: i - self.node_first[n] }
+            }
+        }
+    }
+
+    /// Whether unknown `i` is a Lagrange multiplier.
+    pub fn is_multiplier(&self, i: usize) -> bool {
+        matches!(self.owner(i), Owner::Element { .. })
+    }
+
+    /// "node 2 x", "node 2 gz", "node 2 beta_y", "revolute hinge 3 m x".
+    pub fn unknown_name(&self, model: &Model, i: usize) -> String {
+        const NAMES: [&str; 12] = ["x", "y", "z", "gx", "gy", "gz", "beta_x", "beta_y", "beta_z", "gamma_x", "gamma_y", "gamma_z"];
+        match self.owner(i) {
+            Owner::Node { index, offset } => format!("node {} {}", model.nodes[index].label, NAMES[offset]),
+            Owner::Element { index, offset } => {
+                let e = &model.elements[index];
+                format!("{} {} {}", e.type_name(), e.label(), e.multipliers().get(offset).cloned().unwrap_or_default())
+            }
+        }
+    }
+
+    /// "node 2 force x equilibrium", "node 2 linear momentum y definition", "clamp 1 constraint f z".
+    pub fn equation_name(&self, model: &Model, i: usize) -> String {
+        const EQ: [&str; 6] = ["force x", "force y", "force z", "moment x", "moment y", "moment z"];
+        const DEF: [&str; 6] = ["linear momentum x", "linear momentum y", "linear momentum z", "angular momentum x", "angular momentum y", "angular momentum z"];
+        match self.owner(i) {
+            Owner::Node { index, offset } => {
+                let label = model.nodes[index].label;
+                match (self.node_kind[index], offset) {
+                    (NodeKind::Dynamic, o) if o < 6 => format!("node {label} {} definition", DEF[o]),
+                    (NodeKind::Dynamic, o) => format!("node {label} {} equilibrium", EQ[o - 6]),
+                    (NodeKind::Static, o) => format!("node {label} {} equilibrium", EQ[o]),
+                }
+            }
+            Owner::Element { index, offset } => {
+                let e = &model.elements[index];
+                format!("{} {} constraint {}", e.type_name(), e.label(), e.multipliers().get(offset).cloned().unwrap_or_default())
+            }
+        }
+    }
+}

@@ -1,0 +1,29 @@
+//! The assembled DAE: numbering of unknowns and equations, the state vector, assembly of
+//! `F(y, ẏ, t)` and `J(c) = F_/ẏ + c F_/y` (eqs. 1, 5), and linearization (eqs. 13–16).
+//!
+//! Conventions (METHOD §2, §5):
+//! - Newton solves `J(c) δẏ = −F`, then `ẏ += δẏ`, `y += c δẏ` for differential unknowns.
+//! - Node unknowns: static `[x, g]`, dynamic `[x, g, β, γ]`; `R = R(g) R_ref`, `ω = G(g) ġ`,
+//!   `R_ref` re-based every step so that `g = 0` at a converged solution.
+//! - Node equations: dynamic rows 0–5 are the momentum definitions, rows 6–11 the force and
+//!   moment equilibrium (`β̇ − f`, `γ̇ + ẋ × β − m`); static rows 0–5 the equilibrium.
+//! - Multipliers follow the [`ConstraintForm`]: `Scaled` (eq. 30, MBDyn's): algebraic
+//!   unknowns updated by `δ` with Jacobian coefficient 1, constraint rows `Φ/c` with Jacobian
+//!   `Φ_/q`; `Plain` (eq. 29): treated like `y` (coefficient `c`), rows `Φ` with `c Φ_/q`.
+//!   Static analysis solves `F(y, 0, t) = 0` with `F_/y` in the plain form.
+//!
+//! [`ConstraintForm`]: crate::linear::ConstraintForm
+
+mod assembly;
+mod check;
+mod dofs;
+mod linearize;
+mod sparse;
+mod state;
+
+pub use assembly::{Assembler, Coefficients};
+pub use check::{check_jacobians, JacobianMismatch};
+pub use dofs::DofMap;
+pub use linearize::{linearize, NodeInput, NodeOutput, PortError};
+pub use sparse::{SparseLu, Triplets};
+pub use state::State;

@@ -1,0 +1,81 @@
+//! Rigid body on a structural node: mass, centre-of-mass offset and inertia, plus its
+//! weight in the gravity field (METHOD §5).
+//!
+//! With `f = R o` (offset in the global frame), `S = m f` and `J = R J₀ Rᵀ`,
+//! `J₀ = J_cm + m (oᵀo I − o oᵀ)` (inertia about the node, node frame), it adds
+//! `−(m ẋ + ω × S)` and `−(S × ẋ + J ω)` to the node's momentum definitions and
+//! `−m g`, `−S × g` to its equilibrium (moments about the node). On a static node, which
+//! has no momentum rows, only the weight acts.
+
+use super::contract::{add_block, add_vec, Col, Element, ElementState, JacobianSink, ResidualSink, Row};
+use crate::kinematics::{skew, Mat3, Vec3};
+use crate::model::Label;
+
+/// A rigid body attached to a node.
+#[derive(Clone, Debug)]
+pub struct RigidBody {
+    pub label: Label,
+    pub node: Label,
+    /// Mass [kg].
+    pub mass: f64,
+    /// Centre of mass in the node frame [m].
+    pub offset: Vec3,
+    /// Inertia about the centre of mass, node frame [kg m²].
+    pub inertia: Mat3,
+}
+
+impl RigidBody {
+    pub fn new(label: Label, node: Label, mass: f64, offset: Vec3, inertia: Mat3) -> Self {
+        RigidBody { label, node, mass, offset, inertia }
+    }
+
+    /// Inertia about the node, node frame.
+    pub fn inertia_about_node(&self) -> Mat3 {
+        let o = self.offset;
+        self.inertia + self.mass * (o.dot(&o) * Mat3::identity() - o * o.transpose())
+    }
+}
+
+impl Element for RigidBody {
+    fn label(&self) -> Label {
+        self.label
+    }
+    fn type_name(&self) -> &'static str {
+        "body"
+    }
+    fn nodes(&self) -> Vec<Label> {
+        vec![self.node]
+    }
+
+    fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
+        let n = st.node(0);
+        let s = self.mass * (n.r * self.offset);
+        let g = st.gravity();
+        add_vec(out, Row::force(0), &(-self.mass * g));
+        add_vec(out, Row::moment(0), &(-s.cross(&g)));
+        {
+            let j = n.r * self.inertia_about_node() * n.r.transpose();
+            add_vec(out, Row::linear_momentum(0), &(-(self.mass * n.xdot + n.omega.cross(&s))));
+            add_vec(out, Row::angular_momentum(0), &(-(s.cross(&n.xdot) + j * n.omega)));
+        }
+    }
+
+    fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
+        let n = st.node(0);
+        let s = self.mass * (n.r * self.offset);
+        let (sx, g) = (skew(&s), st.gravity());
+        // δS = −[S×] δθ.
+        add_block(out, Row::moment(0), Col::rotation(0), &(-skew(&g) * sx));
+        {
+            let j = n.r * self.inertia_about_node() * n.r.transpose();
+            let lin = Row::linear_momentum(0);
+            let ang = Row::angular_momentum(0);
+            add_block(out, lin, Col::velocity(0), &(-self.mass * Mat3::identity()));
+            add_block(out, lin, Col::angular_velocity(0), &sx);
+            add_block(out, lin, Col::rotation(0), &(skew(&n.omega) * sx));
+            add_block(out, ang, Col::velocity(0), &(-sx));
+            add_block(out, ang, Col::angular_velocity(0), &(-j));
+            add_block(out, ang, Col::rotation(0), &(-skew(&n.xdot) * sx + skew(&(j * n.omega)) - j * skew(&n.omega)));
+        }
+    }
+}

@@ -1,0 +1,121 @@
+//! The element contract: local addressing of rows and columns, and the two sinks.
+
+use crate::kinematics::{Mat3, Vec3};
+use crate::model::Label;
+
+/// Kinematics of one node, as an element sees it.
+#[derive(Clone, Debug)]
+pub struct NodeKinematics {
+    pub x: Vec3,
+    pub r: Mat3,
+    pub xdot: Vec3,
+    pub omega: Vec3,
+}
+
+/// An equation, addressed locally. `slot` indexes the element's own node list.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Row {
+    /// Force (0..3) or moment (3..6) equilibrium of a node: residual `… − f`.
+    Equilibrium { slot: usize, comp: usize },
+    /// Linear (0..3) or angular (3..6) momentum definition of a dynamic node.
+    Momentum { slot: usize, comp: usize },
+    /// The element's own constraint equation `k`.
+    Constraint(usize),
+}
+
+/// A perturbation an entry is a derivative with respect to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Col {
+    Position { slot: usize, comp: usize },
+    /// Virtual rotation δθ (`δR Rᵀ = [δθ×]`).
+    Rotation { slot: usize, comp: usize },
+    Velocity { slot: usize, comp: usize },
+    AngularVelocity { slot: usize, comp: usize },
+    /// The element's own multiplier `k`.
+    Multiplier(usize),
+}
+
+/// What an element reads: its nodes' kinematics, its multipliers, the time and gravity.
+pub trait ElementState {
+    fn node(&self, slot: usize) -> &NodeKinematics;
+    fn multiplier(&self, k: usize) -> f64;
+    fn time(&self) -> f64;
+    /// Gravity [m/s²], already multiplied by the load factor.
+    fn gravity(&self) -> Vec3;
+    /// Factor on applied loads (ramped from 0 to 1 by static analysis; 1 otherwise).
+    fn load_factor(&self) -> f64;
+}
+
+/// Where an element adds its residual.
+pub trait ResidualSink {
+    fn add(&mut self, row: Row, value: f64);
+}
+
+/// Where an element adds `∂F/∂(perturbation)` entries; the assembler turns them into `J(c)`.
+pub trait JacobianSink {
+    fn add(&mut self, row: Row, col: Col, value: f64);
+}
+
+/// Rows of a 3-vector quantity.
+impl Row {
+    pub fn force(slot: usize) -> [Row; 3] {
+        [0, 1, 2].map(|comp| Row::Equilibrium { slot, comp })
+    }
+    pub fn moment(slot: usize) -> [Row; 3] {
+        [3, 4, 5].map(|comp| Row::Equilibrium { slot, comp })
+    }
+    pub fn linear_momentum(slot: usize) -> [Row; 3] {
+        [0, 1, 2].map(|comp| Row::Momentum { slot, comp })
+    }
+    pub fn angular_momentum(slot: usize) -> [Row; 3] {
+        [3, 4, 5].map(|comp| Row::Momentum { slot, comp })
+    }
+}
+
+impl Col {
+    pub fn position(slot: usize) -> [Col; 3] {
+        [0, 1, 2].map(|comp| Col::Position { slot, comp })
+    }
+    pub fn rotation(slot: usize) -> [Col; 3] {
+        [0, 1, 2].map(|comp| Col::Rotation { slot, comp })
+    }
+    pub fn velocity(slot: usize) -> [Col; 3] {
+        [0, 1, 2].map(|comp| Col::Velocity { slot, comp })
+    }
+    pub fn angular_velocity(slot: usize) -> [Col; 3] {
+        [0, 1, 2].map(|comp| Col::AngularVelocity { slot, comp })
+    }
+}
+
+/// Adds a 3-vector to three rows.
+pub fn add_vec(sink: &mut dyn ResidualSink, rows: [Row; 3], v: &Vec3) {
+    for (k, row) in rows.into_iter().enumerate() {
+        sink.add(row, v[k]);
+    }
+}
+
+/// Adds a 3x3 block.
+pub fn add_block(sink: &mut dyn JacobianSink, rows: [Row; 3], cols: [Col; 3], m: &Mat3) {
+    for (i, row) in rows.into_iter().enumerate() {
+        for (j, col) in cols.into_iter().enumerate() {
+            sink.add(row, col, m[(i, j)]);
+        }
+    }
+}
+
+/// One element of the model.
+pub trait Element: Send + Sync {
+    fn label(&self) -> Label;
+    /// The element type in MBDyn's words, e.g. "revolute hinge".
+    fn type_name(&self) -> &'static str;
+    /// Labels of the structural nodes it connects, in slot order.
+    fn nodes(&self) -> Vec<Label>;
+    /// Names of its own unknowns (Lagrange multipliers), one per constraint equation.
+    fn multipliers(&self) -> Vec<String> {
+        Vec::new()
+    }
+    /// Adds its contribution to `F(y, ẏ, t)`.
+    fn residual(&self, s: &dyn ElementState, out: &mut dyn ResidualSink);
+    /// Adds its derivatives; the assembler forms `J(c)` from them.
+    fn jacobian(&self, s: &dyn ElementState, out: &mut dyn JacobianSink);
+}

@@ -1,0 +1,23 @@
+//! The element library and the one contract every element follows.
+//!
+//! An element contributes to the DAE residual `F(y, ẏ, t)` (eq. 1) and to its Jacobian
+//! `J(c) = F_/ẏ + c F_/y` (eq. 5). It sees its nodes only through their kinematics
+//! (position `x`, orientation `R`, velocity `ẋ`, angular velocity `ω`) and writes to rows
+//! and columns named locally (`Row`, `Col`): the assembler maps them to global equations,
+//! applies the chain rule of the orientation parameters (`δθ = G δg`,
+//! `δω = G δġ + ∂(Gġ)/∂g δg`) and the constraint form (eq. 29 or eq. 30). The integrator,
+//! the static solver and the linearization use nothing else.
+
+mod body;
+mod contract;
+mod deformable;
+mod drive;
+mod force;
+mod joint;
+
+pub use body::RigidBody;
+pub use contract::{Col, Element, ElementState, JacobianSink, NodeKinematics, ResidualSink, Row};
+pub use deformable::{DeformableDisplacement, DeformableHinge, LinearViscoelastic, Rod};
+pub use drive::Drive;
+pub use force::{Couple, Force, ForceFrame};
+pub use joint::{Anchor, Joint, JointKind};

@@ -1,0 +1,107 @@
+//! Building a model from Rust: nodes, elements and gravity, checked for consistency.
+
+use super::{Label, Model, NodeKind, StructuralNode};
+use crate::element::Element;
+use crate::kinematics::{Mat3, Vec3};
+use crate::linear::ConstraintForm;
+
+/// An inconsistent model.
+#[derive(Debug, thiserror::Error)]
+pub enum ModelError {
+    #[error("structural node {0} is defined twice")]
+    DuplicateNode(Label),
+    #[error("element {0} is defined twice")]
+    DuplicateElement(Label),
+    #[error("{kind} {element} refers to structural node {node}, which is not defined")]
+    UnknownNode { kind: &'static str, element: Label, node: Label },
+    #[error("the orientation of node {0} is not a rotation matrix")]
+    BadOrientation(Label),
+}
+
+/// Collects nodes and elements; `build` checks labels and references.
+pub struct ModelBuilder {
+    nodes: Vec<StructuralNode>,
+    elements: Vec<Box<dyn Element>>,
+    gravity: Option<Vec3>,
+    form: ConstraintForm,
+}
+
+impl Default for ModelBuilder {
+    fn default() -> Self {
+        ModelBuilder { nodes: Vec::new(), elements: Vec::new(), gravity: None, form: ConstraintForm::Scaled }
+    }
+}
+
+impl ModelBuilder {
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// A static node (6 unknowns) at `position` with `orientation`.
+    pub fn static_node(&mut self, label: Label, position: Vec3, orientation: Mat3) -> &mut Self {
+        self.node(StructuralNode { label, kind: NodeKind::Static, position, orientation, velocity: Vec3::zeros(), angular_velocity: Vec3::zeros() })
+    }
+
+    /// A dynamic node (12 unknowns) with initial velocity and angular velocity.
+    pub fn dynamic_node(&mut self, label: Label, position: Vec3, orientation: Mat3, velocity: Vec3, angular_velocity: Vec3) -> &mut Self {
+        self.node(StructuralNode { label, kind: NodeKind::Dynamic, position, orientation, velocity, angular_velocity })
+    }
+
+    pub fn node(&mut self, node: StructuralNode) -> &mut Self {
+        self.nodes.push(node);
+        self
+    }
+
+    pub fn element(&mut self, element: impl Element + 'static) -> &mut Self {
+        self.elements.push(Box::new(element));
+        self
+    }
+
+    pub fn boxed_element(&mut self, element: Box<dyn Element>) -> &mut Self {
+        self.elements.push(element);
+        self
+    }
+
+    /// Uniform gravity [m/s²].
+    pub fn gravity(&mut self, g: Vec3) -> &mut Self {
+        self.gravity = Some(g);
+        self
+    }
+
+    /// Constraint layout for dynamics and linearization (default: eq. 30, MBDyn's).
+    pub fn constraint_form(&mut self, form: ConstraintForm) -> &mut Self {
+        self.form = form;
+        self
+    }
+
+    pub fn build(self) -> Result<Model, ModelError> {
+        let mut seen = std::collections::HashSet::new();
+        for n in &self.nodes {
+            if !seen.insert(n.label) {
+                return Err(ModelError::DuplicateNode(n.label));
+            }
+            let r = &n.orientation;
+            if ((r.transpose() * r) - Mat3::identity()).norm() > 1e-9 || r.determinant() < 0.0 {
+                return Err(ModelError::BadOrientation(n.label));
+            }
+        }
+        let mut seen_el = std::collections::HashSet::new();
+        for e in &self.elements {
+            if !seen_el.insert((e.type_name(), e.label())) {
+                return Err(ModelError::DuplicateElement(e.label()));
+            }
+            for node in e.nodes() {
+                if !seen.contains(&node) {
+                    return Err(ModelError::UnknownNode { kind: e.type_name(), element: e.label(), node });
+                }
+            }
+        }
+        Ok(Model {
+            nodes: self.nodes,
+            elements: self.elements,
+            gravity: self.gravity.unwrap_or_else(Vec3::zeros),
+            has_gravity: self.gravity.is_some(),
+            constraint_form: self.form,
+        })
+    }
+}

@@ -1,0 +1,61 @@
+//! The model description, independent of any file format: structural nodes, elements
+//! addressed by label, gravity, and the constraint form.
+
+mod builder;
+mod summary;
+
+pub use builder::{ModelBuilder, ModelError};
+pub use summary::Summary;
+
+use crate::element::Element;
+use crate::kinematics::{Mat3, Vec3};
+use crate::linear::ConstraintForm;
+
+/// Label of a node or an element, as in MBDyn input files.
+pub type Label = u32;
+
+/// Static nodes carry 6 unknowns (x, g); dynamic ones 12 (x, g, β, γ).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum NodeKind {
+    Static,
+    Dynamic,
+}
+
+impl NodeKind {
+    pub fn unknowns(self) -> usize {
+        match self {
+            NodeKind::Static => 6,
+            NodeKind::Dynamic => 12,
+        }
+    }
+}
+
+/// A structural node with its initial state (SI units: m, rad, m/s, rad/s).
+#[derive(Clone, Debug)]
+pub struct StructuralNode {
+    pub label: Label,
+    pub kind: NodeKind,
+    pub position: Vec3,
+    pub orientation: Mat3,
+    pub velocity: Vec3,
+    pub angular_velocity: Vec3,
+}
+
+/// A complete model. Build it with [`ModelBuilder`].
+pub struct Model {
+    pub nodes: Vec<StructuralNode>,
+    pub elements: Vec<Box<dyn Element>>,
+    /// Uniform gravity field [m/s²] (zero when absent).
+    pub gravity: Vec3,
+    pub has_gravity: bool,
+    /// Layout of the constraint equations (eq. 29 or eq. 30) used by dynamics and
+    /// linearization; static analysis always uses the plain form.
+    pub constraint_form: ConstraintForm,
+}
+
+impl Model {
+    /// Index of the node with this label.
+    pub fn node_index(&self, label: Label) -> Option<usize> {
+        self.nodes.iter().position(|n| n.label == label)
+    }
+}

@@ -1,0 +1,11 @@
+//! Solvers on the assembled DAE: Newton with sparse LU (symbolic factorization reused),
+//! static analysis with load ramping, consistent initial derivatives, and fixed-step
+//! implicit multistep integration in predictor–corrector form (eqs. 2–5).
+
+mod integrate;
+mod newton;
+mod static_analysis;
+
+pub use integrate::{initial_derivatives, Integrator, Method, StepRecord};
+pub use newton::{newton, NewtonFailure, NewtonSettings, SolveError, Update};
+pub use static_analysis::static_solution;

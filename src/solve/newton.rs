@@ -1,0 +1,109 @@
+//! Newton's method on `F = 0` with `J δ = −F` (eq. 5), sparse LU with symbolic reuse.
+
+use crate::dae::{Assembler, Coefficients, SparseLu, State};
+use crate::linear::ConstraintForm;
+
+/// Convergence settings (residual in the units of each equation: N, N m, kg m/s, m).
+#[derive(Clone, Copy, Debug)]
+pub struct NewtonSettings {
+    /// Converged when `‖F‖∞ ≤ tolerance` …
+    pub tolerance: f64,
+    /// … or when the increment `‖δ‖∞ ≤ increment_tolerance` with `‖F‖∞ ≤ 1e3 · tolerance`.
+    pub increment_tolerance: f64,
+    pub max_iterations: usize,
+}
+
+impl Default for NewtonSettings {
+    fn default() -> Self {
+        NewtonSettings { tolerance: 1e-9, increment_tolerance: 1e-12, max_iterations: 20 }
+    }
+}
+
+/// How the unknowns move with a Newton increment δ.
+#[derive(Clone, Copy, Debug)]
+pub enum Update {
+    /// `y += δ` (static analysis, `J = F_/y`).
+    Static,
+    /// `ẏ += δ`, `y += c δ` (multipliers of eq. 30: `y += δ`), `J = J(c)`.
+    Dynamic { dcoef: f64, form: ConstraintForm },
+}
+
+/// A Newton iteration that did not converge.
+#[derive(Clone, Debug, thiserror::Error)]
+#[error("Newton failed at t = {time} s, iteration {iteration}: residual norm {residual_norm:.3e}; worst equation: {worst_equation} ({worst_value:.3e}){}", .reason.as_deref().map(|r| format!("; {r}")).unwrap_or_default())]
+pub struct NewtonFailure {
+    pub time: f64,
+    pub iteration: usize,
+    pub residual_norm: f64,
+    pub worst_equation: String,
+    pub worst_value: f64,
+    pub reason: Option<String>,
+}
+
+/// Solver errors.
+#[derive(Clone, Debug, thiserror::Error)]
+pub enum SolveError {
+    #[error(transparent)]
+    Newton(#[from] NewtonFailure),
+}
+
+fn worst(f: &[f64]) -> (usize, f64) {
+    f.iter().enumerate().fold((0, 0.0), |(bi, bv), (i, &v)| if v.abs() > bv || v.is_nan() { (i, v.abs()) } else { (bi, bv) })
+}
+
+/// Iterates to convergence; returns the number of iterations.
+pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &NewtonSettings, lu: &mut SparseLu) -> Result<usize, NewtonFailure> {
+    let (coef, form, dcoef) = match update {
+        Update::Static => (Coefficients::static_analysis(), ConstraintForm::Plain, 1.0),
+        Update::Dynamic { dcoef, form } => (Coefficients::newton(dcoef, form), form, dcoef),
+    };
+    let fail = |st: &State, iteration, f: &[f64], reason: Option<String>| {
+        let (i, v) = worst(f);
+        NewtonFailure { time: st.t, iteration, residual_norm: v, worst_equation: asm.dofs.equation_name(asm.model, i), worst_value: f[i], reason }
+    };
+    for iteration in 0..=settings.max_iterations {
+        let mut f = asm.residual(st, form, dcoef);
+        let (_, norm) = worst(&f);
+        if norm <= settings.tolerance {
+            return Ok(iteration);
+        }
+        if !norm.is_finite() || iteration == settings.max_iterations {
+            return Err(fail(st, iteration, &f, (!norm.is_finite()).then(|| "the residual is not finite".to_string())));
+        }
+        let mut j = asm.jacobian(st, coef);
+        let residual = f.clone();
+        for x in f.iter_mut() {
+            *x = -*x;
+        }
+        if lu.solve(&j, &mut f).is_err() {
+            // A singular Jacobian, typically at the first static iteration where stiffness
+            // comes only from joint reactions that are still zero: take one regularized
+            // step, `(J + μ I) δ = −F` with μ a small fraction of the largest entry.
+            let mu = 1e-8 * j.values.iter().fold(0.0f64, |m, v| m.max(v.abs())).max(1.0);
+            for i in 0..j.n {
+                j.push(i, i, mu);
+            }
+            f = residual.iter().map(|x| -x).collect();
+            let mut regularized = SparseLu::new();
+            regularized.solve(&j, &mut f).map_err(|e| fail(st, iteration, &residual, Some(e.to_string())))?;
+        }
+        let step = f.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        for (i, d) in f.iter().enumerate() {
+            match update {
+                Update::Static => st.y[i] += d,
+                Update::Dynamic { dcoef, form } => {
+                    if form == ConstraintForm::Scaled && asm.dofs.is_multiplier(i) {
+                        st.y[i] += d;
+                    } else {
+                        st.yp[i] += d;
+                        st.y[i] += dcoef * d;
+                    }
+                }
+            }
+        }
+        if step <= settings.increment_tolerance && norm <= 1e3 * settings.tolerance {
+            return Ok(iteration + 1);
+        }
+    }
+    unreachable!("the loop returns by max_iterations")
+}

@@ -1,0 +1,88 @@
+//! CASES C2 and C3: the simple and the inverted pendulum (paper §7.2, eqs. 82 and 87).
+
+mod common;
+
+use common::models::{pendulum, G, J, L, M};
+use romdyn::c64;
+use romdyn::dae::{linearize, Assembler, State};
+use romdyn::linear::{ConstraintForm, EigenRoute, ModalAnalysis, ModeKind};
+use romdyn::model::Summary;
+use romdyn::rom::{select_modes, DescriptorRom, ModeSelection};
+use romdyn::solve::{static_solution, NewtonSettings};
+
+/// ω² = (g/L)/(1 + J/(m L²)) (eq. 82): 3.130527 rad/s.
+fn omega() -> f64 {
+    ((G / L) / (1.0 + J / (M * L * L))).sqrt()
+}
+
+#[test]
+fn pendulum_has_29_equations() {
+    // Paper §7.2: 6 (ground node) + 12 (pendulum node) + 6 (clamp) + 5 (revolute hinge).
+    let s = Summary::of(&pendulum(0.0, false, ConstraintForm::Scaled));
+    assert_eq!((s.static_nodes, s.dynamic_nodes, s.node_equations, s.constraint_equations), (1, 1, 18, 11));
+    assert_eq!(s.equations(), 29);
+}
+
+fn equilibrium(upright: bool, form: ConstraintForm) -> (romdyn::model::Model, State) {
+    let model = pendulum(0.0, upright, form);
+    let asm = Assembler::new(&model);
+    let mut st = State::initial(&model, &asm.dofs);
+    static_solution(&asm, &mut st, 1, &NewtonSettings::default()).unwrap();
+    drop(asm);
+    (model, st)
+}
+
+#[test]
+fn hanging_pendulum_eigenvalues_in_both_forms_and_routes() {
+    assert!((omega() - 3.130527).abs() < 5e-7, "CASES C2 value");
+    for form in [ConstraintForm::Plain, ConstraintForm::Scaled] {
+        let (model, st) = equilibrium(false, form);
+        for dcoef in [None, Some(1e-3)] {
+            let dae = linearize(&model, &st, &[], &[], dcoef).unwrap();
+            for route in [EigenRoute::Direct, EigenRoute::Lambda] {
+                let modal = ModalAnalysis::compute(&dae.jacobians, route).unwrap();
+                let ctx = format!("{form:?} dcoef={dcoef:?} {route:?}");
+                assert_eq!(modal.count(ModeKind::Dynamic), 2, "{ctx}");
+                // Eq. 82, 1e-6 relative (CASES C2).
+                let l = modal.modes[0].lambda;
+                assert!((l - c64::new(0.0, omega())).norm() / omega() < 1e-6, "{ctx}: {l}");
+            }
+        }
+    }
+}
+
+#[test]
+fn inverted_pendulum_eigenvalues_are_real() {
+    for form in [ConstraintForm::Plain, ConstraintForm::Scaled] {
+        let (model, st) = equilibrium(true, form);
+        let dae = linearize(&model, &st, &[], &[], None).unwrap();
+        let modal = ModalAnalysis::compute(&dae.jacobians, EigenRoute::Direct).unwrap();
+        assert_eq!(modal.count(ModeKind::Dynamic), 2);
+        // Eq. 87: ±3.130527 real, one unstable (1e-6 relative, CASES C3).
+        let mut re: Vec<f64> = modal.modes[..2].iter().map(|m| m.lambda.re).collect();
+        re.sort_by(f64::total_cmp);
+        assert!((re[0] + omega()).abs() / omega() < 1e-6 && (re[1] - omega()).abs() / omega() < 1e-6, "{re:?}");
+        assert!(modal.modes[..2].iter().all(|m| m.lambda.im == 0.0));
+    }
+}
+
+#[test]
+fn torque_to_angle_rom_and_mode_shape() {
+    let (model, st) = equilibrium(false, ConstraintForm::Scaled);
+    let dae = linearize(&model, &st, &["2:Mz".parse().unwrap()], &["2:rz".parse().unwrap(), "2:x".parse().unwrap()], None).unwrap();
+    let modal = ModalAnalysis::compute(&dae.jacobians, EigenRoute::Direct).unwrap();
+    let sel = select_modes(&modal, &ModeSelection::Lowest(1)).unwrap();
+    let rom = DescriptorRom::project(&dae, &modal, &sel, false).unwrap().to_ordinary().unwrap();
+    // Static gain 1/(m g L) rad/(N m) (CASES C2), 1e-9 relative; x/M = L/(m g L).
+    let g = rom.static_gain().unwrap();
+    assert!((g[(0, 0)] * M * G * L - 1.0).abs() < 1e-9, "{}", g[(0, 0)]);
+    assert!((g[(1, 0)] * M * G - 1.0).abs() < 1e-9, "{}", g[(1, 0)]);
+    let ev = rom.a.eigenvalues().unwrap();
+    assert!(ev.iter().all(|l| (l.norm() - omega()).abs() / omega() < 1e-6), "{ev:?}");
+    // Mode shape: displacement x of node 2 over its rotation rz equals L (paper §7.2).
+    let v = modal.modes[0].right.as_ref().unwrap();
+    let names = &dae.unknown_names;
+    let (ix, ig) = (names.iter().position(|n| n == "node 2 x").unwrap(), names.iter().position(|n| n == "node 2 gz").unwrap());
+    let ratio = v[ix] / v[ig];
+    assert!((ratio - c64::new(L, 0.0)).norm() < 1e-9, "{ratio}");
+}
