@@ -111,3 +111,34 @@ fn torque_free_body_conserves_angular_momentum() {
         assert!(drift.abs() < 1e-2, "{method:?}: energy drift {drift:e}");
     }
 }
+
+#[test]
+fn motion_history_has_mbdyn_mov_layout() {
+    use romdyn::output::motion::{MotionWriter, OrientationOutput};
+    let model = pendulum(0.5, false, ConstraintForm::Scaled);
+    let asm = Assembler::new(&model);
+    let mut st = State::initial(&model, &asm.dofs);
+    let settings = NewtonSettings::default();
+    initial_derivatives(&asm, &mut st, &settings).unwrap();
+    let path = std::env::temp_dir().join(format!("romdyn-mov-{}.mov", std::process::id()));
+    let mut mov = MotionWriter::create(&path, OrientationOutput::Euler123Degrees).unwrap();
+    let mut int = Integrator::new(&asm, st, Method::Ms { rho: 0.6 }, 1e-3, settings);
+    for _ in 0..10 {
+        int.step().unwrap();
+        let nodes: Vec<_> = model.nodes.iter().enumerate().map(|(i, n)| (n.label, int.state.node_frame(&asm.dofs, i).kin)).collect();
+        mov.write_step(&nodes).unwrap();
+    }
+    assert!(!path.exists(), "the file appears only when complete");
+    mov.finish().unwrap();
+    let text = std::fs::read_to_string(&path).unwrap();
+    let rows: Vec<Vec<f64>> = text.lines().map(|l| l.split_whitespace().map(|x| x.parse().unwrap()).collect()).collect();
+    assert_eq!(rows.len(), 20);
+    assert!(rows.iter().all(|r| r.len() == 13));
+    let last = &rows[19];
+    assert_eq!(last[0], 2.0);
+    // The pendulum stays on its circle of radius L, and its rotation about z (deg) equals
+    // its angle from the vertical: atan2(x, −y).
+    assert!(((last[1].powi(2) + last[2].powi(2)).sqrt() - 1.0).abs() < 1e-9);
+    assert!((last[6] - last[1].atan2(-last[2]).to_degrees()).abs() < 1e-6);
+    std::fs::remove_file(&path).ok();
+}

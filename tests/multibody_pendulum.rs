@@ -86,3 +86,18 @@ fn torque_to_angle_rom_and_mode_shape() {
     let ratio = v[ix] / v[ig];
     assert!((ratio - c64::new(L, 0.0)).norm() < 1e-9, "{ratio}");
 }
+
+#[test]
+fn pendulum_mode_is_labelled_by_its_kinetic_energy() {
+    use romdyn::dae::{describe, kinetic_energy_shares};
+    let (model, st) = equilibrium(false, ConstraintForm::Scaled);
+    let dae = linearize(&model, &st, &[], &[], None).unwrap();
+    let modal = ModalAnalysis::compute(&dae.jacobians, EigenRoute::Direct).unwrap();
+    let shares = kinetic_energy_shares(&model, &dae, &modal.modes[0]);
+    // Swing about the hinge: node 2 moves along x (m L² θ̇²/2) and rotates about z
+    // (J θ̇²/2): shares m L²/(m L² + J) = 0.999 and J/(m L² + J) = 0.000999 (closed form).
+    assert_eq!((shares[0].node, shares[0].component), (2, "x"));
+    assert!((shares[0].share - M * L * L / (M * L * L + J)).abs() < 1e-9, "{shares:?}");
+    assert_eq!((shares[1].node, shares[1].component), (2, "rz"));
+    assert_eq!(describe(&shares), "node 2 x 100 %");
+}

@@ -17,6 +17,7 @@
 mod assembly;
 mod check;
 mod dofs;
+mod energy;
 mod linearize;
 mod sparse;
 mod state;
@@ -24,6 +25,7 @@ mod state;
 pub use assembly::{Assembler, Coefficients};
 pub use check::{check_jacobians, JacobianMismatch};
 pub use dofs::DofMap;
+pub use energy::{describe, kinetic_energy_shares, EnergyShare};
 pub use linearize::{linearize, NodeInput, NodeOutput, PortError};
 pub use sparse::{SparseLu, Triplets};
 pub use state::State;

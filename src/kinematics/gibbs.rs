@@ -37,6 +37,12 @@ pub fn rotation_vector(r: &Mat3) -> Vec3 {
     nalgebra::Rotation3::from_matrix_unchecked(*r).scaled_axis()
 }
 
+/// Euler angles `(a, b, c)` of `R = R_x(a) R_y(b) R_z(c)` (MBDyn's "euler123") [rad].
+pub fn euler123(r: &Mat3) -> Vec3 {
+    let b = r[(0, 2)].clamp(-1.0, 1.0).asin();
+    Vec3::new((-r[(1, 2)]).atan2(r[(2, 2)]), b, (-r[(0, 1)]).atan2(r[(0, 0)]))
+}
+
 /// `ax(M) = ½ (M − Mᵀ)^∨`, the axial vector of the skew-symmetric part of `M`.
 pub fn axial_of_skew_part(m: &Mat3) -> Vec3 {
     0.5 * Vec3::new(m[(2, 1)] - m[(1, 2)], m[(0, 2)] - m[(2, 0)], m[(1, 0)] - m[(0, 1)])
@@ -63,6 +69,13 @@ mod tests {
         assert!((gibbs_rotation(&g) - rot(n, phi)).norm() < 1e-14);
         assert!((gibbs_from_rotation(&rot(n, phi)) - g).norm() < 1e-13);
         assert!((rotation_vector(&rot(n, phi)) - phi * n).norm() < 1e-14);
+    }
+
+    #[test]
+    fn euler123_inverts_its_definition() {
+        let (a, b, c) = (0.3, -0.7, 1.2);
+        let r = rot(Vec3::x(), a) * rot(Vec3::y(), b) * rot(Vec3::z(), c);
+        assert!((euler123(&r) - Vec3::new(a, b, c)).norm() < 1e-14);
     }
 
     #[test]

@@ -3,7 +3,7 @@
 
 mod gibbs;
 
-pub use gibbs::{axial_of_skew_part, gibbs_from_rotation, gibbs_g, gibbs_rotation, gibbs_rate_derivative, rotation_vector, skew_part_jacobian};
+pub use gibbs::{axial_of_skew_part, euler123, gibbs_from_rotation, gibbs_g, gibbs_rotation, gibbs_rate_derivative, rotation_vector, skew_part_jacobian};
 
 /// 3-vector.
 pub type Vec3 = nalgebra::Vector3<f64>;

@@ -5,6 +5,7 @@ pub mod atomic;
 pub mod bode;
 pub mod mat5;
 pub mod modal;
+pub mod motion;
 pub mod npz;
 pub mod response_csv;
 pub mod rom_file;

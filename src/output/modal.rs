@@ -2,6 +2,7 @@
 
 use serde::Serialize;
 
+use crate::dae::{describe, EnergyShare};
 use crate::linear::{EigenRoute, ModalAnalysis, ModeKind};
 
 /// One row of the modal table (units: rad/s, Hz).
@@ -19,6 +20,12 @@ pub struct ModeRow {
     pub damping: Option<f64>,
     /// Estimated absolute error of λ [rad/s] (eqs. 32–35).
     pub error: Option<f64>,
+    /// Dominant node components by kinetic energy, e.g. "node 3 rz 92 %" (multibody models).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub description: Option<String>,
+    /// Kinetic-energy share of every node component (multibody models).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub energy: Vec<EnergyShare>,
 }
 
 /// The JSON document of `romdyn eig --json`.
@@ -60,6 +67,8 @@ impl ModalReport {
                     freq_hz: if infinite { None } else { finite(m.freq_hz()) },
                     damping: if infinite { None } else { finite(m.damping()) },
                     error: finite(m.error),
+                    description: None,
+                    energy: Vec::new(),
                 }
             })
             .collect();
@@ -77,20 +86,30 @@ impl ModalReport {
         }
     }
 
+    /// Attaches kinetic-energy shares (one list per mode, in table order).
+    pub fn with_energy(mut self, shares: Vec<Vec<EnergyShare>>) -> Self {
+        for (row, s) in self.eigenvalues.iter_mut().zip(shares) {
+            row.description = (!s.is_empty()).then(|| describe(&s));
+            row.energy = s;
+        }
+        self
+    }
+
     /// The table as aligned text.
     pub fn to_text(&self) -> String {
         let mut s = format!(
             "# {} equations, route {:?}, dCoef {:e} s; {} dynamic, {} zero, {} infinite\n",
             self.equations, self.route, self.dcoef, self.counts.dynamic, self.counts.zero, self.counts.infinite
         );
+        let energy_column = if self.eigenvalues.iter().any(|r| r.description.is_some()) { "  kinetic energy" } else { "" };
         s += &format!(
-            "{:>5}  {:>14}  {:>14}  {:>12}  {:>9}  {:>8}  {:>9}\n",
+            "{:>5}  {:>14}  {:>14}  {:>12}  {:>9}  {:>8}  {:>9}{energy_column}\n",
             "mode", "Re λ [rad/s]", "Im λ [rad/s]", "freq [Hz]", "damping", "kind", "error"
         );
         let num = |x: Option<f64>, w: usize| x.map_or(format!("{:>w$}", "-"), |v| format!("{v:>w$.6e}"));
         for r in &self.eigenvalues {
-            s += &format!(
-                "{:>5}  {}  {}  {}  {}  {:>8}  {}\n",
+            let row = format!(
+                "{:>5}  {}  {}  {}  {}  {:>8}  {}  {}",
                 r.index,
                 num(r.re, 14),
                 num(r.im, 14),
@@ -98,7 +117,10 @@ impl ModalReport {
                 r.damping.map_or(format!("{:>9}", "-"), |v| format!("{v:>9.4}")),
                 r.kind.name(),
                 r.error.map_or(format!("{:>9}", "inf"), |v| format!("{v:>9.1e}")),
+                r.description.as_deref().unwrap_or(""),
             );
+            s += row.trim_end();
+            s += "\n";
         }
         s
     }

@@ -1,0 +1,58 @@
+//! Which node and component a mode moves: shares of its kinetic energy (issue 3, item 7).
+//!
+//! A dynamic node's momentum-definition rows of `F_/ẏ` hold `−M_n`, its 6x6 mass matrix
+//! (translation and rotation about the node). For a mode `v` with eigenvalue λ the nodal
+//! velocities are `λ v`; the share of component `k` of node `n` is
+//! `M_n,kk |v_k|² / Σ M_m,jj |v_j|²` (diagonal terms; `|λ|²` cancels).
+
+use super::DofMap;
+use crate::linear::{LinearDae, Mode};
+use crate::model::{Model, NodeKind};
+
+const COMPONENTS: [&str; 6] = ["x", "y", "z", "rx", "ry", "rz"];
+
+/// One node component's share of a mode's kinetic energy.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct EnergyShare {
+    pub node: u32,
+    pub component: &'static str,
+    /// Fraction in [0, 1].
+    pub share: f64,
+}
+
+/// Kinetic-energy shares of a mode, largest first (empty without eigenvector or mass).
+pub fn kinetic_energy_shares(model: &Model, dae: &LinearDae, mode: &Mode) -> Vec<EnergyShare> {
+    let Some(v) = &mode.right else { return Vec::new() };
+    let dofs = DofMap::new(model);
+    let (fyd, _) = dae.jacobians.derivatives();
+    let mut out = Vec::new();
+    for (i, node) in model.nodes.iter().enumerate() {
+        if dofs.node_kind[i] != NodeKind::Dynamic {
+            continue;
+        }
+        let f = dofs.node_first[i];
+        for (k, component) in COMPONENTS.iter().enumerate() {
+            let mass = -fyd[(f + k, f + k)];
+            out.push(EnergyShare { node: node.label, component, share: mass.max(0.0) * v[f + k].norm_sqr() });
+        }
+    }
+    let total: f64 = out.iter().map(|s| s.share).sum();
+    if total <= 0.0 {
+        return Vec::new();
+    }
+    out.iter_mut().for_each(|s| s.share /= total);
+    out.retain(|s| s.share > 0.0);
+    out.sort_by(|a, b| b.share.total_cmp(&a.share));
+    out
+}
+
+/// "node 3 rz 92 %, node 2 x 6 %": the components above 5 % (at least the largest).
+pub fn describe(shares: &[EnergyShare]) -> String {
+    shares
+        .iter()
+        .enumerate()
+        .filter(|(i, s)| *i == 0 || s.share >= 0.05)
+        .map(|(_, s)| format!("node {} {} {:.0} %", s.node, s.component, 100.0 * s.share))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
