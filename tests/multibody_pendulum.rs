@@ -101,3 +101,32 @@ fn pendulum_mode_is_labelled_by_its_kinetic_energy() {
     assert_eq!((shares[1].node, shares[1].component), (2, "rz"));
     assert_eq!(describe(&shares), "node 2 x 100 %");
 }
+
+#[test]
+fn newton_failure_names_time_residual_and_worst_equation() {
+    // Two iterations are not enough from the horizontal position (a nonlinear static problem).
+    let model = pendulum(1.2, false, ConstraintForm::Plain);
+    let asm = Assembler::new(&model);
+    let mut st = State::initial(&model, &asm.dofs);
+    st.t = 0.25;
+    let settings = NewtonSettings { max_iterations: 1, ..Default::default() };
+    let e = static_solution(&asm, &mut st, 1, &settings).unwrap_err();
+    let text = e.to_string();
+    assert!(text.starts_with("Newton failed at t = 0.25 s, iteration 1: residual norm"), "{text}");
+    let worst = text.split("worst equation: ").nth(1).unwrap_or("");
+    assert!(["node 1 ", "node 2 ", "clamp 1 ", "revolute hinge 2 "].iter().any(|p| worst.starts_with(p)), "{text}");
+    assert_eq!(e.iteration, 1);
+    assert!(e.residual_norm > settings.tolerance);
+}
+
+#[test]
+fn static_solution_from_far_reaches_the_hanging_equilibrium() {
+    // Released at 1.2 rad, the static solver must bring the pendulum down (x = 0, y = −L).
+    let model = pendulum(1.2, false, ConstraintForm::Plain);
+    let asm = Assembler::new(&model);
+    let mut st = State::initial(&model, &asm.dofs);
+    let settings = NewtonSettings { max_iterations: 100, ..Default::default() };
+    static_solution(&asm, &mut st, 1, &settings).unwrap();
+    let f = asm.dofs.node_first[1];
+    assert!(st.y[f].abs() < 1e-9 && (st.y[f + 1] + L).abs() < 1e-9, "{:?}", &st.y[f..f + 3]);
+}

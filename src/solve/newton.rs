@@ -51,6 +51,19 @@ fn worst(f: &[f64]) -> (usize, f64) {
     f.iter().enumerate().fold((0, 0.0), |(bi, bv), (i, &v)| if v.abs() > bv || v.is_nan() { (i, v.abs()) } else { (bi, bv) })
 }
 
+/// Largest orientation-parameter change allowed in one static iteration (|δg| ≈ rotation
+/// in rad for small steps): longer steps, typical far from equilibrium, are shortened.
+const MAX_STATIC_ROTATION_STEP: f64 = 0.5;
+
+fn limit_rotation_step(asm: &Assembler, delta: &mut [f64]) {
+    let dofs = &asm.dofs;
+    let largest = dofs.node_first.iter().flat_map(|&f| delta[f + 3..f + 6].iter()).fold(0.0f64, |m, x| m.max(x.abs()));
+    if largest > MAX_STATIC_ROTATION_STEP {
+        let s = MAX_STATIC_ROTATION_STEP / largest;
+        delta.iter_mut().for_each(|x| *x *= s);
+    }
+}
+
 /// Iterates to convergence; returns the number of iterations.
 pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &NewtonSettings, lu: &mut SparseLu) -> Result<usize, NewtonFailure> {
     let (coef, form, dcoef) = match update {
@@ -79,13 +92,16 @@ pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &Newton
             // A singular Jacobian, typically at the first static iteration where stiffness
             // comes only from joint reactions that are still zero: take one regularized
             // step, `(J + μ I) δ = −F` with μ a small fraction of the largest entry.
-            let mu = 1e-8 * j.values.iter().fold(0.0f64, |m, v| m.max(v.abs())).max(1.0);
+            let mu = 1e-6 * j.values.iter().fold(0.0f64, |m, v| m.max(v.abs())).max(1.0);
             for i in 0..j.n {
                 j.push(i, i, mu);
             }
             f = residual.iter().map(|x| -x).collect();
             let mut regularized = SparseLu::new();
             regularized.solve(&j, &mut f).map_err(|e| fail(st, iteration, &residual, Some(e.to_string())))?;
+        }
+        if let Update::Static = update {
+            limit_rotation_step(asm, &mut f);
         }
         let step = f.iter().fold(0.0f64, |m, x| m.max(x.abs()));
         for (i, d) in f.iter().enumerate() {

@@ -1,0 +1,76 @@
+//! N-link pendulum chain (issue 3 benchmark): time per step and per Newton iteration for
+//! N = 10, 100, 1000 dynamic nodes; eigenanalysis + ROM for N = 10 and 100.
+//! `cargo bench --bench pendulum_chain`.
+
+use romdyn::dae::{linearize, Assembler, SparseLu, State};
+use romdyn::element::{Anchor, Joint, RigidBody};
+use romdyn::kinematics::{Mat3, Vec3};
+use romdyn::linear::{EigenRoute, ModalAnalysis};
+use romdyn::model::{Model, ModelBuilder};
+use romdyn::rom::{select_modes, DescriptorRom, ModeSelection};
+use romdyn::solve::{initial_derivatives, static_solution, Integrator, Method, NewtonSettings};
+
+fn main() {
+    divan::main();
+}
+
+/// Ground node 0 clamped; links 1..=n of 0.1 m and 0.1 kg, hinged about z, in a horizontal
+/// line (released) or hanging (for the eigenanalysis).
+fn chain(n: u32, hanging: bool) -> Model {
+    let dir = if hanging { Vec3::new(0.0, -0.1, 0.0) } else { Vec3::new(0.1, 0.0, 0.0) };
+    let mut b = ModelBuilder::new();
+    b.static_node(0, Vec3::zeros(), Mat3::identity()).element(Joint::clamp(0, 0, Vec3::zeros(), Mat3::identity()));
+    for i in 1..=n {
+        b.dynamic_node(i, dir * i as f64, Mat3::identity(), Vec3::zeros(), Vec3::zeros());
+        b.element(RigidBody::new(i, i, 0.1, Vec3::zeros(), 1e-4 * Mat3::identity()));
+        b.element(Joint::revolute_hinge(
+            n + i,
+            Anchor::Node { label: i - 1, offset: Vec3::zeros(), orientation: Mat3::identity() },
+            Anchor::Node { label: i, offset: -dir, orientation: Mat3::identity() },
+        ));
+    }
+    b.gravity(Vec3::new(0.0, -9.81, 0.0));
+    b.build().unwrap()
+}
+
+#[divan::bench(args = [10, 100, 1000], sample_count = 5)]
+fn time_step(bencher: divan::Bencher, n: u32) {
+    let model = chain(n, false);
+    let asm = Assembler::new(&model);
+    let mut st = State::initial(&model, &asm.dofs);
+    initial_derivatives(&asm, &mut st, &NewtonSettings::default()).unwrap();
+    let mut int = Integrator::new(&asm, st, Method::Ms { rho: 0.6 }, 1e-3, NewtonSettings::default());
+    bencher.bench_local(|| int.step().unwrap());
+}
+
+/// One Newton iteration = assembly of F and J(c) + sparse LU (symbolic factorization reused).
+#[divan::bench(args = [10, 100, 1000], sample_count = 5)]
+fn newton_iteration(bencher: divan::Bencher, n: u32) {
+    let model = chain(n, false);
+    let asm = Assembler::new(&model);
+    let st = State::initial(&model, &asm.dofs);
+    let mut lu = SparseLu::new();
+    let coef = romdyn::dae::Coefficients::newton(5e-4, model.constraint_form);
+    bencher.bench_local(|| {
+        let mut f = asm.residual(&st, model.constraint_form, 5e-4);
+        let j = asm.jacobian(&st, coef);
+        lu.solve(&j, &mut f).unwrap();
+        f
+    });
+}
+
+#[divan::bench(args = [10, 100], sample_count = 1, sample_size = 1)]
+fn eigen_and_rom(bencher: divan::Bencher, n: u32) {
+    let model = chain(n, true);
+    let asm = Assembler::new(&model);
+    let mut st = State::initial(&model, &asm.dofs);
+    static_solution(&asm, &mut st, 1, &NewtonSettings::default()).unwrap();
+    let output = format!("{n}:x").parse().unwrap();
+    let input = format!("{n}:Fx").parse().unwrap();
+    bencher.bench_local(|| {
+        let dae = linearize(&model, &st, &[input], &[output], None).unwrap();
+        let modal = ModalAnalysis::compute(&dae.jacobians, EigenRoute::Direct).unwrap();
+        let sel = select_modes(&modal, &ModeSelection::Lowest(3)).unwrap();
+        DescriptorRom::project(&dae, &modal, &sel, true).unwrap().to_ordinary().unwrap()
+    });
+}
