@@ -53,11 +53,9 @@ impl Element for RigidBody {
         let g = st.gravity();
         add_vec(out, Row::force(0), &(-self.mass * g));
         add_vec(out, Row::moment(0), &(-s.cross(&g)));
-        {
-            let j = n.r * self.inertia_about_node() * n.r.transpose();
-            add_vec(out, Row::linear_momentum(0), &(-(self.mass * n.xdot + n.omega.cross(&s))));
-            add_vec(out, Row::angular_momentum(0), &(-(s.cross(&n.xdot) + j * n.omega)));
-        }
+        let j = n.r * self.inertia_about_node() * n.r.transpose();
+        add_vec(out, Row::linear_momentum(0), &(-(self.mass * n.xdot + n.omega.cross(&s))));
+        add_vec(out, Row::angular_momentum(0), &(-(s.cross(&n.xdot) + j * n.omega)));
     }
 
     fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
@@ -66,16 +64,13 @@ impl Element for RigidBody {
         let (sx, g) = (skew(&s), st.gravity());
         // δS = −[S×] δθ.
         add_block(out, Row::moment(0), Col::rotation(0), &(-skew(&g) * sx));
-        {
-            let j = n.r * self.inertia_about_node() * n.r.transpose();
-            let lin = Row::linear_momentum(0);
-            let ang = Row::angular_momentum(0);
-            add_block(out, lin, Col::velocity(0), &(-self.mass * Mat3::identity()));
-            add_block(out, lin, Col::angular_velocity(0), &sx);
-            add_block(out, lin, Col::rotation(0), &(skew(&n.omega) * sx));
-            add_block(out, ang, Col::velocity(0), &(-sx));
-            add_block(out, ang, Col::angular_velocity(0), &(-j));
-            add_block(out, ang, Col::rotation(0), &(-skew(&n.xdot) * sx + skew(&(j * n.omega)) - j * skew(&n.omega)));
-        }
+        let j = n.r * self.inertia_about_node() * n.r.transpose();
+        let (lin, ang) = (Row::linear_momentum(0), Row::angular_momentum(0));
+        add_block(out, lin, Col::velocity(0), &(-self.mass * Mat3::identity()));
+        add_block(out, lin, Col::angular_velocity(0), &sx);
+        add_block(out, lin, Col::rotation(0), &(skew(&n.omega) * sx));
+        add_block(out, ang, Col::velocity(0), &(-sx));
+        add_block(out, ang, Col::angular_velocity(0), &(-j));
+        add_block(out, ang, Col::rotation(0), &(-skew(&n.xdot) * sx + skew(&(j * n.omega)) - j * skew(&n.omega)));
     }
 }

@@ -3,7 +3,7 @@
 //! (angular spring–damper) and the rod (axial spring).
 
 use super::contract::{add_block, add_vec, Col, Element, ElementState, JacobianSink, ResidualSink, Row};
-use super::joint::Anchor;
+use super::anchor::{node_labels, Anchor, Pair};
 use crate::kinematics::{axial_of_skew_part, skew, skew_part_jacobian, Mat3, Vec3};
 use crate::model::Label;
 
@@ -20,114 +20,6 @@ impl LinearViscoelastic {
     }
     pub fn isotropic(k: f64, c: f64) -> Self {
         LinearViscoelastic { stiffness: k * Mat3::identity(), viscosity: c * Mat3::identity() }
-    }
-}
-
-/// Frame kinematics of both anchors (A may be fixed in space).
-struct Pair {
-    slot_a: Option<usize>,
-    slot_b: usize,
-    f_a: Vec3,
-    f_b: Vec3,
-    q_a: Mat3,
-    q_b: Mat3,
-    /// `p_b − p_a`.
-    d: Vec3,
-    /// `p_b − x_a`.
-    h: Vec3,
-    omega_a: Vec3,
-    omega_b: Vec3,
-    /// `ṗ_b − ṗ_a − ω_a × d` … in the form `ẋ_b + ω_b × f_b − ẋ_a − ω_a × h`.
-    u: Vec3,
-}
-
-fn side(anchor: &Anchor, slot: Option<usize>, st: &dyn ElementState) -> (Vec3, Vec3, Mat3, Vec3, Vec3) {
-    match (anchor, slot) {
-        (Anchor::Node { offset, orientation, .. }, Some(s)) => {
-            let n = st.node(s);
-            (n.x, n.r * offset, n.r * orientation, n.xdot, n.omega)
-        }
-        (Anchor::Ground { position, orientation }, _) => (*position, Vec3::zeros(), *orientation, Vec3::zeros(), Vec3::zeros()),
-        (Anchor::Node { .. }, None) => unreachable!("a node anchor always has a slot"),
-    }
-}
-
-fn node_labels(a: &Anchor, b: &Anchor) -> Vec<Label> {
-    [a, b].into_iter().filter_map(|x| if let Anchor::Node { label, .. } = x { Some(*label) } else { None }).collect()
-}
-
-impl Pair {
-    fn new(a: &Anchor, b: &Anchor, st: &dyn ElementState) -> Self {
-        let slot_a = matches!(a, Anchor::Node { .. }).then_some(0);
-        let slot_b = usize::from(slot_a.is_some());
-        let (x_a, f_a, q_a, v_a, omega_a) = side(a, slot_a, st);
-        let (x_b, f_b, q_b, v_b, omega_b) = side(b, Some(slot_b), st);
-        let h = x_b + f_b - x_a;
-        Pair { slot_a, slot_b, f_a, f_b, q_a, q_b, d: h - f_a, h, omega_a, omega_b, u: v_b + omega_b.cross(&f_b) - v_a - omega_a.cross(&h) }
-    }
-
-    /// Residual of a force `F` at `p_b` on B, and `−F` (also at `p_b`) on A.
-    fn add_force(&self, out: &mut dyn ResidualSink, force: &Vec3) {
-        add_vec(out, Row::force(self.slot_b), force);
-        add_vec(out, Row::moment(self.slot_b), &self.f_b.cross(force));
-        if let Some(a) = self.slot_a {
-            add_vec(out, Row::force(a), &(-force));
-            add_vec(out, Row::moment(a), &(-self.h.cross(force)));
-        }
-    }
-
-    /// Jacobian of [`Pair::add_force`] for `F = Q_a φ`: geometric terms at fixed `φ`, plus
-    /// `∂(reaction)/∂φ · dφ` for the given derivative blocks of `φ`.
-    fn add_force_jacobian(&self, out: &mut dyn JacobianSink, force: &Vec3, dphi: &[([Col; 3], Mat3)]) {
-        let (b, fx, fbx, hx) = (self.slot_b, skew(force), skew(&self.f_b), skew(&self.h));
-        add_block(out, Row::moment(b), Col::rotation(b), &(fx * fbx));
-        let mut rows = vec![(Row::force(b), self.q_a), (Row::moment(b), fbx * self.q_a)];
-        if let Some(a) = self.slot_a {
-            add_block(out, Row::force(b), Col::rotation(a), &(-fx));
-            add_block(out, Row::moment(b), Col::rotation(a), &(-fbx * fx));
-            add_block(out, Row::force(a), Col::rotation(a), &fx);
-            add_block(out, Row::moment(a), Col::position(b), &fx);
-            add_block(out, Row::moment(a), Col::rotation(b), &(-fx * fbx));
-            add_block(out, Row::moment(a), Col::position(a), &(-fx));
-            add_block(out, Row::moment(a), Col::rotation(a), &(hx * fx));
-            rows.push((Row::force(a), -self.q_a));
-            rows.push((Row::moment(a), -hx * self.q_a));
-        }
-        for (r, dr) in &rows {
-            for (c, dc) in dphi {
-                add_block(out, *r, *c, &(dr * dc));
-            }
-        }
-    }
-
-    /// `∂(Q_aᵀ d)/∂q` blocks.
-    fn strain_derivatives(&self) -> Vec<([Col; 3], Mat3)> {
-        let qt = self.q_a.transpose();
-        let mut v = vec![(Col::position(self.slot_b), qt), (Col::rotation(self.slot_b), -qt * skew(&self.f_b))];
-        if let Some(a) = self.slot_a {
-            v.push((Col::position(a), -qt));
-            v.push((Col::rotation(a), qt * skew(&self.h)));
-        }
-        v
-    }
-
-    /// `∂(Q_aᵀ u)/∂q` blocks, with `u = ẋ_b + ω_b × f_b − ẋ_a − ω_a × h`.
-    fn rate_derivatives(&self) -> Vec<([Col; 3], Mat3)> {
-        let (qt, b) = (self.q_a.transpose(), self.slot_b);
-        let (fbx, wax, wbx) = (skew(&self.f_b), skew(&self.omega_a), skew(&self.omega_b));
-        let mut v = vec![
-            (Col::velocity(b), qt),
-            (Col::angular_velocity(b), -qt * fbx),
-            (Col::position(b), -qt * wax),
-            (Col::rotation(b), qt * (wax - wbx) * fbx),
-        ];
-        if let Some(a) = self.slot_a {
-            v.push((Col::velocity(a), -qt));
-            v.push((Col::angular_velocity(a), qt * skew(&self.h)));
-            v.push((Col::position(a), qt * wax));
-            v.push((Col::rotation(a), qt * skew(&self.u)));
-        }
-        v
     }
 }
 

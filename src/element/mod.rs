@@ -8,6 +8,7 @@
 //! `δω = G δġ + ∂(Gġ)/∂g δg`) and the constraint form (eq. 29 or eq. 30). The integrator,
 //! the static solver and the linearization use nothing else.
 
+mod anchor;
 mod body;
 mod contract;
 mod deformable;
@@ -20,4 +21,5 @@ pub use contract::{Col, Element, ElementState, JacobianSink, NodeKinematics, Res
 pub use deformable::{DeformableDisplacement, DeformableHinge, LinearViscoelastic, Rod};
 pub use drive::Drive;
 pub use force::{Couple, Force, ForceFrame};
-pub use joint::{Anchor, Joint, JointKind};
+pub use anchor::Anchor;
+pub use joint::{Joint, JointKind};
