@@ -13,6 +13,8 @@ pub struct DofMap {
     pub element_nodes: Vec<Vec<usize>>,
     /// Number of unknowns (= equations).
     pub len: usize,
+    /// Whether each unknown is a Lagrange multiplier.
+    multiplier: Vec<bool>,
 }
 
 /// What one unknown (and the equation with the same index) belongs to.
@@ -41,7 +43,11 @@ impl DofMap {
             first += k;
             element_nodes.push(e.nodes().iter().map(|l| model.node_index(*l).unwrap_or(usize::MAX)).collect());
         }
-        DofMap { node_first, node_kind: model.nodes.iter().map(|n| n.kind).collect(), element_first, element_len, element_nodes, len: first }
+        let mut multiplier = vec![false; first];
+        for (&f, &k) in element_first.iter().zip(&element_len) {
+            multiplier[f..f + k].iter_mut().for_each(|m| *m = true);
+        }
+        DofMap { node_first, node_kind: model.nodes.iter().map(|n| n.kind).collect(), element_first, element_len, element_nodes, len: first, multiplier }
     }
 
     /// First equilibrium row of a node (after the momentum definitions of a dynamic node).
@@ -62,7 +68,7 @@ impl DofMap {
 
     /// Whether unknown `i` is a Lagrange multiplier.
     pub fn is_multiplier(&self, i: usize) -> bool {
-        matches!(self.owner(i), Owner::Element { .. })
+        self.multiplier[i]
     }
 
     /// "node 2 x", "node 2 gz", "node 2 beta_y", "revolute hinge 3 m x".
