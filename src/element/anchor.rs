@@ -3,7 +3,7 @@
 
 use super::contract::{add_block, add_vec, Col, ElementState, JacobianSink, ResidualSink, Row};
 use crate::kinematics::{skew, Mat3, Vec3};
-use crate::model::Label;
+use super::contract::Label;
 
 /// One side of a two-frame element.
 #[derive(Clone, Debug)]

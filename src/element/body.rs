@@ -9,7 +9,7 @@
 
 use super::contract::{add_block, add_vec, Col, Element, ElementState, JacobianSink, ResidualSink, Row};
 use crate::kinematics::{skew, Mat3, Vec3};
-use crate::model::Label;
+use super::contract::Label;
 
 /// A rigid body attached to a node.
 #[derive(Clone, Debug)]

@@ -1,7 +1,9 @@
 //! The element contract: local addressing of rows and columns, and the two sinks.
 
 use crate::kinematics::{Mat3, Vec3};
-use crate::model::Label;
+
+/// Label of a node or an element, as in MBDyn input files.
+pub type Label = u32;
 
 /// Kinematics of one node, as an element sees it.
 #[derive(Clone, Debug)]

@@ -5,7 +5,7 @@
 use super::contract::{add_block, add_vec, Col, Element, ElementState, JacobianSink, ResidualSink, Row};
 use super::anchor::{node_labels, Anchor, Pair};
 use crate::kinematics::{axial_of_skew_part, skew, skew_part_jacobian, Mat3, Vec3};
-use crate::model::Label;
+use super::contract::Label;
 
 /// `φ = K ε + C ε̇` with 3x3 stiffness and viscosity matrices (linear elastic when `C = 0`).
 #[derive(Clone, Debug, PartialEq)]

@@ -4,7 +4,7 @@
 use super::contract::{add_block, add_vec, Col, Element, ElementState, JacobianSink, ResidualSink, Row};
 use super::Drive;
 use crate::kinematics::{skew, Vec3};
-use crate::model::Label;
+use super::contract::Label;
 
 /// The frame a force or couple direction is given in.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -11,7 +11,7 @@
 use super::anchor::{node_labels, Anchor, Pair};
 use super::contract::{add_block, add_vec, Col, Element, ElementState, JacobianSink, ResidualSink, Row};
 use crate::kinematics::{axial_of_skew_part, skew, skew_part_jacobian, Mat3, Vec3};
-use crate::model::Label;
+use super::contract::Label;
 
 /// Which joint, for names and counts.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

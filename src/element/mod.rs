@@ -17,7 +17,7 @@ mod force;
 mod joint;
 
 pub use body::RigidBody;
-pub use contract::{Col, Element, ElementState, JacobianSink, NodeKinematics, ResidualSink, Row};
+pub use contract::{Col, Element, Label, ElementState, JacobianSink, NodeKinematics, ResidualSink, Row};
 pub use deformable::{DeformableDisplacement, DeformableHinge, LinearViscoelastic, Rod};
 pub use drive::Drive;
 pub use force::{Couple, Force, ForceFrame};

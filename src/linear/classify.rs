@@ -18,7 +18,7 @@
 
 use faer::c64;
 
-use super::eigen::{dot_t, EigenRoute, EigenVectors};
+use super::route::{dot_t, norm, EigenRoute, EigenVectors};
 
 /// What an eigenvalue stands for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
@@ -54,10 +54,6 @@ pub struct Classification {
     pub to_infinity: f64,
     /// Estimated chordal error δχ of μ.
     pub uncertainty: f64,
-}
-
-fn norm(v: &faer::Col<c64>) -> f64 {
-    v.iter().map(|x| x.norm_sqr()).sum::<f64>().sqrt()
 }
 
 /// Chordal distance between `μ = α/β` and a finite point `p`.

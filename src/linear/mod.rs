@@ -6,7 +6,9 @@ mod balance;
 mod classify;
 mod dae;
 mod eigen;
+mod route;
 
 pub use classify::{Classification, ModeKind};
 pub use dae::{coefficient_from_derivatives, derivatives_from_coefficient, ConstraintForm, Jacobians, LinearDae};
-pub use eigen::{EigenError, EigenRoute, ModalAnalysis, Mode};
+pub use eigen::{EigenError, ModalAnalysis, Mode};
+pub use route::EigenRoute;

@@ -11,8 +11,7 @@ use crate::element::Element;
 use crate::kinematics::{Mat3, Vec3};
 use crate::linear::ConstraintForm;
 
-/// Label of a node or an element, as in MBDyn input files.
-pub type Label = u32;
+pub use crate::element::Label;
 
 /// Static nodes carry 6 unknowns (x, g); dynamic ones 12 (x, g, β, γ).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

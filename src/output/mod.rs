@@ -4,6 +4,7 @@
 pub mod atomic;
 pub mod bode;
 pub mod mat5;
+pub mod matrix_market;
 pub mod modal;
 pub mod motion;
 pub mod npz;

@@ -5,20 +5,8 @@ use faer::{c64, Mat};
 
 use super::dense::transfer;
 use super::select::Selection;
-use crate::linear::{EigenError, Jacobians, LinearDae, ModalAnalysis, Mode};
-
-/// Why a ROM could not be built.
-#[derive(Debug, thiserror::Error)]
-pub enum RomError {
-    #[error("mode selection: {0}")]
-    Selection(String),
-    #[error("mode {0} has no eigenvectors (infinite eigenvalue)")]
-    MissingVectors(usize),
-    #[error("{0} is singular: no static response can be computed")]
-    SingularStatic(&'static str),
-    #[error(transparent)]
-    Eigen(#[from] EigenError),
-}
+use super::RomError;
+use crate::linear::{Jacobians, LinearDae, ModalAnalysis, Mode};
 
 /// Descriptor reduced-order model. States of statically residualized modes have zero rows
 /// and columns in `E`.

@@ -4,11 +4,13 @@
 
 mod dense;
 mod descriptor;
+mod error;
 mod ordinary;
 mod response;
 mod select;
 
-pub use descriptor::{DescriptorRom, RomError};
+pub use descriptor::DescriptorRom;
+pub use error::RomError;
 pub use ordinary::OrdinaryRom;
 pub use response::{full_frequency_response, full_static_gain, log_frequencies};
 pub use select::{select_modes, ModeSelection, Selection};

@@ -2,7 +2,7 @@
 
 use crate::linear::{ModalAnalysis, ModeKind};
 
-use super::descriptor::RomError;
+use super::RomError;
 
 /// How modes are selected. A complex-conjugate pair counts as one mode and is always kept
 /// or dropped whole.
