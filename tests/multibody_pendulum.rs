@@ -130,3 +130,49 @@ fn static_solution_from_far_reaches_the_hanging_equilibrium() {
     let f = asm.dofs.node_first[1];
     assert!(st.y[f].abs() < 1e-9 && (st.y[f + 1] + L).abs() < 1e-9, "{:?}", &st.y[f..f + 3]);
 }
+
+#[test]
+fn both_linearization_routes_agree_to_1e_12() {
+    // METHOD §2: F_yd, F_y assembled directly and recovered from J(±c) (eqs. 15–16).
+    use romdyn::linear::Jacobians;
+    for form in [ConstraintForm::Plain, ConstraintForm::Scaled] {
+        let (model, st) = equilibrium(false, form);
+        let direct = linearize(&model, &st, &[], &[], None).unwrap();
+        let via_j = linearize(&model, &st, &[], &[], Some(1e-3)).unwrap();
+        assert!(matches!(via_j.jacobians, Jacobians::Coefficient { .. }));
+        let ((a, b), (c, d)) = (direct.jacobians.derivatives(), via_j.jacobians.derivatives());
+        let rel = |x: &faer::Mat<f64>, y: &faer::Mat<f64>| (x - y).norm_max() / x.norm_max();
+        assert!(rel(&a, &c) < 1e-12 && rel(&b, &d) < 1e-12, "{form:?}: {:e} {:e}", rel(&a, &c), rel(&b, &d));
+    }
+}
+
+#[test]
+fn static_load_ramp_reaches_the_same_equilibrium() {
+    // Ten load steps from the horizontal position end where one step from the bottom does.
+    let model = pendulum(1.2, false, ConstraintForm::Plain);
+    let asm = Assembler::new(&model);
+    let mut st = State::initial(&model, &asm.dofs);
+    static_solution(&asm, &mut st, 10, &NewtonSettings { max_iterations: 100, ..Default::default() }).unwrap();
+    let f = asm.dofs.node_first[1];
+    assert!(st.y[f].abs() < 1e-9 && (st.y[f + 1] + L).abs() < 1e-9);
+    // The hinge carries the weight: reaction m g (plain form: multiplier = force, N).
+    let lambda: Vec<f64> = st.y[asm.dofs.element_first[1]..asm.dofs.element_first[1] + 3].to_vec();
+    assert!((lambda[1].abs() - M * G).abs() < 1e-9, "{lambda:?}");
+}
+
+#[test]
+fn linearization_at_a_time_step_of_a_resting_pendulum() {
+    // Released at its equilibrium the pendulum stays put; linearized after 100 steps it has
+    // the eigenvalues of eq. 82 (1e-6 relative).
+    use romdyn::solve::{initial_derivatives, Integrator, Method};
+    let (model, mut st) = equilibrium(false, ConstraintForm::Scaled);
+    let asm = Assembler::new(&model);
+    initial_derivatives(&asm, &mut st, &NewtonSettings::default()).unwrap();
+    let mut int = Integrator::new(&asm, st, Method::Ms { rho: 0.6 }, 1e-2, NewtonSettings::default());
+    for _ in 0..100 {
+        int.step().unwrap();
+    }
+    let dae = linearize(&model, &int.state, &[], &[], Some(0.5 * 1e-2)).unwrap();
+    let modal = ModalAnalysis::compute(&dae.jacobians, EigenRoute::Lambda).unwrap();
+    assert!((modal.modes[0].lambda - c64::new(0.0, omega())).norm() / omega() < 1e-6, "{}", modal.modes[0].lambda);
+}
