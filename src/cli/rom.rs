@@ -9,7 +9,7 @@ use romdyn::linear::{LinearDae, ModalAnalysis};
 use romdyn::output::rom_file::RomExport;
 use romdyn::rom::{full_static_gain, select_modes, DescriptorRom, OrdinaryRom};
 
-use super::args::{FrequencyArgs, PencilArgs, SelectionArgs};
+use super::args::{parse_band, FrequencyArgs, PencilArgs, SelectionArgs};
 use super::bode::{write_bode_files, Curves};
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -50,8 +50,8 @@ pub struct FreqArgs {
     #[arg(long, value_name = "N")]
     pub count: Option<usize>,
     /// Overlay the ROM keeping the modes in FMIN:FMAX Hz
-    #[arg(long, value_name = "FMIN:FMAX")]
-    pub band: Option<String>,
+    #[arg(long, value_name = "FMIN:FMAX", value_parser = parse_band)]
+    pub band: Option<(f64, f64)>,
     /// Statically residualize the modes the overlaid ROM drops
     #[arg(long)]
     pub residualize: bool,
@@ -128,10 +128,7 @@ pub fn run(a: RomArgs) -> Result<()> {
 pub fn run_freq(a: FreqArgs) -> Result<()> {
     let selection = match (&a.count, &a.band) {
         (Some(n), _) => Some(romdyn::rom::ModeSelection::Lowest(*n)),
-        (None, Some(band)) => {
-            let (x, y) = band.split_once(':').context("--band expects FMIN:FMAX in Hz")?;
-            Some(romdyn::rom::ModeSelection::Band { fmin_hz: x.trim().parse()?, fmax_hz: y.trim().parse()? })
-        }
+        (None, Some((fmin_hz, fmax_hz))) => Some(romdyn::rom::ModeSelection::Band { fmin_hz: *fmin_hz, fmax_hz: *fmax_hz }),
         (None, None) => None,
     };
     let curves = match selection {

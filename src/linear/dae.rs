@@ -80,19 +80,6 @@ impl Jacobians {
         }
     }
 
-    /// `(J, J*, c)`; when only F_yd and F_y were given, `c` defaults to
-    /// `‖F_yd‖ / ‖F_y‖`, which balances the two terms of `J(c)`.
-    pub fn coefficient(&self) -> (Mat<f64>, Mat<f64>, f64) {
-        match self {
-            Jacobians::Coefficient { j, jstar, dcoef } => (j.clone(), jstar.clone(), *dcoef),
-            Jacobians::Derivatives { fyd, fy } => {
-                let c = self.dcoef();
-                let (j, jstar) = coefficient_from_derivatives(fyd, fy, c);
-                (j, jstar, c)
-            }
-        }
-    }
-
     /// The dCoef used by the Λ form: the given one, or `‖F_yd‖_F / ‖F_y‖_F`.
     pub fn dcoef(&self) -> f64 {
         match self {
