@@ -1,0 +1,51 @@
+//! Errors in MBDyn input files, with the file, line and column, the offending line and a
+//! caret under the column.
+
+use std::fmt;
+use std::path::PathBuf;
+
+/// A position in a source file (1-based line and column, in characters).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct Span {
+    pub file: usize,
+    pub line: usize,
+    pub column: usize,
+}
+
+/// An error in an MBDyn input file.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct MbdynError {
+    pub file: PathBuf,
+    pub line: usize,
+    pub column: usize,
+    pub message: String,
+    /// The text of the offending line (empty when unknown).
+    pub source_line: String,
+}
+
+impl fmt::Display for MbdynError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}:{}:{}: error: {}", self.file.display(), self.line, self.column, self.message)?;
+        if !self.source_line.is_empty() {
+            let width = self.line.to_string().len();
+            write!(f, "\n{:width$} |\n{} | {}\n{:width$} | {}^", "", self.line, self.source_line, "", " ".repeat(self.column.saturating_sub(1)))?;
+        }
+        Ok(())
+    }
+}
+
+impl std::error::Error for MbdynError {}
+
+/// The files read so far (main file and includes), to turn spans into messages.
+#[derive(Default, Debug)]
+pub struct Sources {
+    pub files: Vec<(PathBuf, String)>,
+}
+
+impl Sources {
+    pub fn error(&self, span: Span, message: impl Into<String>) -> MbdynError {
+        let (file, text) = self.files.get(span.file).cloned().unwrap_or_default();
+        let source_line = text.lines().nth(span.line.saturating_sub(1)).unwrap_or("").to_string();
+        MbdynError { file, line: span.line, column: span.column, message: message.into(), source_line }
+    }
+}

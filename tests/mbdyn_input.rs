@@ -1,0 +1,152 @@
+//! MBDyn input files: the shipped examples and malformed inputs with their diagnostics.
+
+use std::path::Path;
+
+use romdyn::dae::{linearize, Assembler, State};
+use romdyn::input::mbdyn::{build, parse_text, read_model};
+use romdyn::linear::{EigenRoute, ModalAnalysis, ModeKind};
+use romdyn::model::Summary;
+use romdyn::solve::{initial_derivatives, NewtonSettings};
+
+/// ω = sqrt((g/L)/(1 + J/(m L²))) = 3.130527 rad/s (eq. 82, CASES C2).
+const OMEGA: f64 = 3.130527;
+
+fn eigenvalues(file: &str) -> Vec<romdyn::c64> {
+    let m = read_model(Path::new(file)).unwrap();
+    let asm = Assembler::new(&m.model);
+    let mut st = State::initial(&m.model, &asm.dofs);
+    initial_derivatives(&asm, &mut st, &NewtonSettings::default()).unwrap();
+    let dae = linearize(&m.model, &st, &[], &[], None).unwrap();
+    let modal = ModalAnalysis::compute(&dae.jacobians, EigenRoute::Direct).unwrap();
+    modal.modes.iter().filter(|m| m.kind == ModeKind::Dynamic).map(|m| m.lambda).collect()
+}
+
+#[test]
+fn pendulum_file_has_29_equations_and_eq_82_eigenvalues() {
+    let m = read_model(Path::new("examples/pendulum.mbd")).unwrap();
+    assert_eq!(Summary::of(&m.model).equations(), 29);
+    assert_eq!(m.analysis.eigenanalysis, [0.0]);
+    let ev = eigenvalues("examples/pendulum.mbd");
+    assert_eq!(ev.len(), 2);
+    // 1e-6 relative (CASES C2; the printed constant has 7 digits).
+    assert!(ev.iter().all(|l| l.re.abs() < 1e-9 && (l.im.abs() - OMEGA).abs() / OMEGA < 1e-6), "{ev:?}");
+}
+
+#[test]
+fn inverted_pendulum_file_has_real_eigenvalues() {
+    let ev = eigenvalues("examples/inverted_pendulum.mbd");
+    assert_eq!(ev.len(), 2);
+    assert!(ev.iter().all(|l| l.im == 0.0 && (l.re.abs() - OMEGA).abs() / OMEGA < 1e-6), "{ev:?}");
+}
+
+const GOOD: &str = "begin: data; problem: initial value; end: data;
+begin: control data; structural nodes: 1; rigid bodies: 1; end: control data;
+begin: nodes; structural: 1, dynamic, null, eye, null, null; end: nodes;
+begin: elements; body: 1, 1, 2., null, eye; end: elements;
+";
+
+fn error_of(text: &str) -> String {
+    match parse_text(text, Path::new("m.mbd")).and_then(|d| build(&d)) {
+        Ok(_) => "accepted".into(),
+        Err(e) => e.to_string(),
+    }
+}
+
+#[test]
+fn a_minimal_file_is_accepted() {
+    assert_eq!(error_of(GOOD), "accepted");
+}
+
+#[test]
+fn expressions_and_variables() {
+    let text = "set: real a = 2 * (3 + 1) ^ 2 / 4 - -1; set: integer n = 7 / 2; set: real s = sqrt(16) + atan2(0, 1) + cos(pi);
+begin: data; problem: initial value; end: data;";
+    let d = parse_text(text, Path::new("m.mbd")).unwrap();
+    let v = |n: &str| d.variables.0[n].value;
+    // 2·16/4 + 1 = 9; integer division truncates 3.5 to 3; 4 + 0 − 1 = 3.
+    assert_eq!((v("a"), v("n"), v("s")), (9.0, 3.0, 3.0));
+}
+
+#[test]
+fn malformed_inputs_give_their_error_at_the_right_place() {
+    let cases: &[(&str, &str)] = &[
+        ("begin: data; problem: initial value end: data;", "m.mbd:1:37: error: missing ';' before 'end'"),
+        ("begin: data; problem: initial value; end: data", "m.mbd:1:43: error: missing ';' at the end"),
+        ("begin: data;\n  frobnicate: 1;\nend: data;", "m.mbd:2:3: error: statement 'frobnicate' in the data block is not supported"),
+        ("set: real x = 1 / 0;", "m.mbd:1:17: error: division by zero"),
+        ("set: real x = y + 1;", "m.mbd:1:15: error: undefined variable 'y'"),
+        ("set: real x = sqrt(-1);", "m.mbd:1:15: error: sqrt(-1): argument out of domain"),
+        ("set: real x = (1 + 2;", "m.mbd:1:15: error: unbalanced parenthesis"),
+        ("set: const real x = 1; set: real x = 2;", "m.mbd:1:34: error: 'x' is a constant"),
+        ("/* never closed\nbegin: data;", "m.mbd:1:1: error: unterminated comment"),
+        ("include: \"nope.mbd\";", "m.mbd:1:10: error: cannot include"),
+        ("begin: data; problem: initial value; end: nodes;", "m.mbd:1:43: error: end: nodes does not match"),
+        ("end: data;", "m.mbd:1:1: error: end: data without a matching"),
+        ("problem: initial value;", "m.mbd:1:1: error: statement 'problem' outside of any block"),
+        ("begin: data; problem: initial value; end: data; begin: flux; end: flux;", "m.mbd:1:49: error: block 'flux' is not supported"),
+        ("set: real x = 1 $ 2;", "m.mbd:1:17: error: unexpected character '$'"),
+        ("set: real x = \"abc;", "m.mbd:1:15: error: unterminated string"),
+    ];
+    for (text, want) in cases {
+        let got = error_of(text);
+        assert!(got.starts_with(want), "input {text:?}\n  got:  {got}\n  want: {want}");
+    }
+}
+
+#[test]
+fn model_level_errors_name_the_statement() {
+    let with = |from: &str, to: &str| GOOD.replace(from, to);
+    let cases: Vec<(String, &str)> = vec![
+        (with("rigid bodies: 1", "rigid bodies: 2"), "control data declares 2 rigid bodies, the model has 1"),
+        (with("body: 1, 1, 2., null, eye;", "body: 1, 3, 2., null, eye;"), "structural node 3 is not defined"),
+        (with("body: 1, 1, 2., null, eye;", "body: 1, 1, 2., null, eye; body: 1, 1, 2., null, eye;").replace("rigid bodies: 1", "rigid bodies: 2"), "body 1 is defined twice"),
+        (with("body: 1, 1, 2., null, eye;", "aerodynamic body: 1, 1;"), "element type 'aerodynamic body' is not supported by romdyn"),
+        (with("body: 1, 1, 2., null, eye;", "body: 1, 1, 2., null, eye; joint: 2, prismatic, 1;"), "joint type 'prismatic' is not supported by romdyn"),
+        (with("dynamic", "flying"), "expected the node type (static, dynamic), found 'flying'"),
+        (with("null, eye, null, null", "null, euler123, 1, 2, null, null"), "expected angle about z [rad] (a number), found 'null'"),
+        (with("null, eye, null, null", "null, 1, 1., 0., 0., 2, 2., 0., 0., null, null"), "the two vectors are null or parallel"),
+        (with("body: 1, 1, 2., null, eye;", "body: 1, 1, 2., null, eye, 7;"), "unexpected extra argument the number 7"),
+        (with("structural: 1,", "structural: -1,"), "expected node label (a non-negative integer label), found -1"),
+    ];
+    for (text, want) in &cases {
+        let got = error_of(text);
+        assert!(got.contains(want), "got:  {got}\nwant: {want}");
+        assert!(got.starts_with("m.mbd:"), "{got}");
+    }
+}
+
+#[test]
+fn errors_show_the_line_with_a_caret() {
+    let got = error_of("set: real x = 1;\nset: real y = x / 0;");
+    assert_eq!(got, "m.mbd:2:17: error: division by zero\n  |\n2 | set: real y = x / 0;\n  |                 ^");
+}
+
+#[test]
+fn random_mutations_never_panic() {
+    // Deterministic byte-level mutations of a valid file (a bounded fuzz run).
+    let base = std::fs::read_to_string("examples/pendulum.mbd").unwrap();
+    let bytes = base.as_bytes();
+    let mut s: u64 = 0x9E3779B97F4A7C15;
+    let mut next = || {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        s
+    };
+    let alphabet = b" \n,;:()+-*/^#\"=abcdeflnrstuvxyz0123456789._";
+    for _ in 0..3000 {
+        let mut m = bytes.to_vec();
+        for _ in 0..(1 + next() % 4) {
+            let i = (next() % m.len() as u64) as usize;
+            match next() % 3 {
+                0 => m[i] = alphabet[(next() % alphabet.len() as u64) as usize],
+                1 => {
+                    m.remove(i);
+                }
+                _ => m.insert(i, alphabet[(next() % alphabet.len() as u64) as usize]),
+            }
+        }
+        let text = String::from_utf8_lossy(&m);
+        let _ = parse_text(&text, Path::new("fuzz.mbd")).and_then(|d| build(&d));
+    }
+}
