@@ -112,3 +112,27 @@ fn bad_input_gives_a_clear_error_and_no_output() {
     assert!(err.contains("FMIN <= FMAX"), "{err}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn eig_and_rom_on_an_mbdyn_model() {
+    let (ok, out, err) = romdyn(&["eig", "examples/pendulum.mbd", "--json"]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["equations"], 29);
+    let first = &v["eigenvalues"][0];
+    // ±3.130527 j rad/s (eq. 82, CASES C2), 1e-6 relative; the swing is node 2 moving along x.
+    assert!((first["im"].as_f64().unwrap() - 3.130527).abs() < 3.2e-6, "{first}");
+    assert_eq!(first["description"], "node 2 x 100 %");
+
+    let dir = temp_dir("model");
+    let path = dir.join("rom.json");
+    let (ok, _, err) = romdyn(&["rom", "examples/pendulum.mbd", "--input", "2:Mz", "--output", "2:rz", "--count", "1", "-o", path.to_str().unwrap()]);
+    assert!(ok, "{err}");
+    // Static gain 1/(m g L) = 0.1019368 rad/(N m) (CASES C2).
+    assert!(err.contains("static gain node 2 rz [rad] / node 2 Mz [N m]: ROM 1.019368e-1"), "{err}");
+    let rom: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    assert_eq!(rom["inputs"][0], "node 2 Mz [N m]");
+    let (ok, _, err) = romdyn(&["rom", "examples/pendulum.mbd", "--input", "2:Qz", "--output", "2:rz", "--count", "1"]);
+    assert!(!ok && err.contains("'2:Qz': expected NODE:COMPONENT with COMPONENT one of Fx|Fy|Fz|Mx|My|Mz"), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}

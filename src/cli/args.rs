@@ -3,6 +3,7 @@
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
+use romdyn::dae::{NodeInput, NodeOutput};
 use romdyn::linear::EigenRoute;
 use romdyn::rom::ModeSelection;
 
@@ -26,9 +27,18 @@ impl From<Route> for EigenRoute {
 /// Where the linear DAE comes from and how it is eigenanalysed.
 #[derive(Args, Debug)]
 pub struct PencilArgs {
-    /// Linear-DAE pencil file (JSON with Fyd/Fy or J/Jstar/dcoef, B, C)
-    #[arg(long, value_name = "FILE")]
-    pub pencil: PathBuf,
+    /// MBDyn input file of a multibody model, linearized at its initial time
+    #[arg(value_name = "MODEL", required_unless_present = "pencil")]
+    pub model: Option<PathBuf>,
+    /// Linear-DAE pencil file (JSON with Fyd/Fy or J/Jstar/dcoef, B, C) instead of a model
+    #[arg(long, value_name = "FILE", conflicts_with = "model")]
+    pub pencil: Option<PathBuf>,
+    /// ROM input of a model: NODE:Fx|Fy|Fz (force [N]) or NODE:Mx|My|Mz (moment [N m]), global frame
+    #[arg(long = "input", value_name = "NODE:COMP")]
+    pub inputs: Vec<NodeInput>,
+    /// ROM output of a model: NODE:x|y|z (displacement [m]) or NODE:rx|ry|rz (rotation [rad])
+    #[arg(long = "output", value_name = "NODE:COMP")]
+    pub outputs: Vec<NodeOutput>,
     /// Eigenanalysis route
     #[arg(long, value_enum, default_value = "direct")]
     pub route: Route,

@@ -2,11 +2,10 @@
 
 use anyhow::Result;
 use clap::Args;
-use romdyn::input::pencil::read_pencil;
-use romdyn::linear::ModalAnalysis;
 use romdyn::output::modal::ModalReport;
 
 use super::args::PencilArgs;
+use super::load::load;
 
 #[derive(Args, Debug)]
 pub struct EigArgs {
@@ -18,9 +17,8 @@ pub struct EigArgs {
 }
 
 pub fn run(a: EigArgs) -> Result<()> {
-    let file = read_pencil(&a.pencil.pencil)?;
-    let modal = ModalAnalysis::compute_with_dcoef(&file.dae.jacobians, a.pencil.route.into(), a.pencil.dcoef.or(file.dcoef))?;
-    let report = ModalReport::new(&modal, file.dae.dim());
+    let loaded = load(&a.pencil)?;
+    let report = ModalReport::new(&loaded.modal, loaded.dae.dim()).with_energy(loaded.energy());
     if a.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {

@@ -3,6 +3,7 @@
 mod args;
 mod bode;
 mod eig;
+mod load;
 mod rom;
 
 use std::process::ExitCode;

@@ -4,13 +4,13 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
-use romdyn::input::pencil::read_pencil;
 use romdyn::linear::{LinearDae, ModalAnalysis};
 use romdyn::output::rom_file::RomExport;
 use romdyn::rom::{full_static_gain, select_modes, DescriptorRom, OrdinaryRom};
 
 use super::args::{parse_band, FrequencyArgs, PencilArgs, SelectionArgs};
 use super::bode::{write_bode_files, Curves};
+use super::load::{load, Loaded};
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
 pub enum Form {
@@ -32,9 +32,9 @@ pub struct RomArgs {
     /// Which form to export
     #[arg(long, value_enum, default_value = "ordinary")]
     pub form: Form,
-    /// Output file: .json, .mat (MATLAB v5) or .npz (NumPy); JSON to stdout if absent
-    #[arg(short, long, value_name = "FILE")]
-    pub output: Option<PathBuf>,
+    /// ROM file: .json, .mat (MATLAB v5) or .npz (NumPy); JSON to stdout if absent
+    #[arg(short = 'o', long = "out", value_name = "FILE")]
+    pub file: Option<PathBuf>,
     /// Also write PREFIX.csv, PREFIX.svg and PREFIX.png: Bode plot of the full model and the ROM
     #[arg(long, value_name = "PREFIX")]
     pub bode: Option<PathBuf>,
@@ -55,9 +55,9 @@ pub struct FreqArgs {
     /// Statically residualize the modes the overlaid ROM drops
     #[arg(long)]
     pub residualize: bool,
-    /// Output prefix: writes PREFIX.csv, PREFIX.svg, PREFIX.png
-    #[arg(short, long, value_name = "PREFIX")]
-    pub output: PathBuf,
+    /// Writes PREFIX.csv, PREFIX.svg, PREFIX.png
+    #[arg(short = 'o', long = "out", value_name = "PREFIX")]
+    pub prefix: PathBuf,
     #[command(flatten)]
     pub freq: FrequencyArgs,
 }
@@ -70,12 +70,14 @@ struct Built {
 }
 
 fn build(pencil: &PencilArgs, selection: &romdyn::rom::ModeSelection, residualize: bool) -> Result<Built> {
-    let file = read_pencil(&pencil.pencil)?;
-    let modal = ModalAnalysis::compute_with_dcoef(&file.dae.jacobians, pencil.route.into(), pencil.dcoef.or(file.dcoef))?;
+    let Loaded { dae, modal, .. } = load(pencil)?;
+    if dae.num_inputs() == 0 || dae.num_outputs() == 0 {
+        anyhow::bail!("a ROM needs inputs and outputs: give --input NODE:COMP and --output NODE:COMP for a model");
+    }
     let sel = select_modes(&modal, selection)?;
-    let descriptor = DescriptorRom::project(&file.dae, &modal, &sel, residualize)?;
+    let descriptor = DescriptorRom::project(&dae, &modal, &sel, residualize)?;
     let ordinary = descriptor.to_ordinary()?;
-    Ok(Built { dae: file.dae, modal, descriptor, ordinary })
+    Ok(Built { dae, modal, descriptor, ordinary })
 }
 
 /// Static gains of the full model and of the ROM, side by side, on stderr.
@@ -91,7 +93,15 @@ fn report_static_gain(b: &Built) {
                 }
             }
         }
-        (Err(e), _) | (_, Err(e)) => eprintln!("static gain: not available ({e})"),
+        (Err(full), Ok(rom)) => {
+            eprintln!("static gain of the full model: not available ({full})");
+            for i in 0..rom.nrows() {
+                for j in 0..rom.ncols() {
+                    eprintln!("static gain {} / {}: ROM {:.6e}", b.dae.output_names[i], b.dae.input_names[j], rom[(i, j)]);
+                }
+            }
+        }
+        (_, Err(e)) => eprintln!("static gain: not available ({e})"),
     }
 }
 
@@ -110,7 +120,7 @@ pub fn run(a: RomArgs) -> Result<()> {
         Form::Ordinary => RomExport::from(&b.ordinary),
         Form::Descriptor => RomExport::from(&b.descriptor),
     };
-    match &a.output {
+    match &a.file {
         Some(path) => {
             export.write(path).with_context(|| format!("writing {}", path.display()))?;
             eprintln!("wrote {}", path.display());
@@ -137,10 +147,9 @@ pub fn run_freq(a: FreqArgs) -> Result<()> {
             Curves::new(&b.dae, &b.modal, &a.freq, &b.descriptor.eigenvalues).with_rom("ROM", &b.ordinary)
         }
         None => {
-            let file = read_pencil(&a.pencil.pencil)?;
-            let modal = ModalAnalysis::compute_with_dcoef(&file.dae.jacobians, a.pencil.route.into(), a.pencil.dcoef.or(file.dcoef))?;
-            Curves::new(&file.dae, &modal, &a.freq, &[])
+            let Loaded { dae, modal, .. } = load(&a.pencil)?;
+            Curves::new(&dae, &modal, &a.freq, &[])
         }
     };
-    write_bode_files(&curves, &a.output)
+    write_bode_files(&curves, &a.prefix)
 }
