@@ -7,7 +7,7 @@ use std::path::Path;
 use super::cursor::Cursor;
 use super::diagnostic::{MbdynError, Span};
 use super::elements::{element, Parsed};
-use super::parser::{parse_file, Block, Document, Statement};
+use super::parser::{parse_file, Block, Document};
 use crate::model::{Model, ModelBuilder, NodeKind, StructuralNode};
 use crate::solve::Method;
 
@@ -230,9 +230,8 @@ fn nodes(doc: &Document) -> Result<Vec<StructuralNode>, MbdynError> {
             return Err(src.error(st.span, format!("node type '{}' is not supported by romdyn", st.keyword)));
         }
         let mut c = Cursor::new(st, src);
-        let n = structural(&mut c, st)?;
-        if let Some(prev) = out.iter().find(|p| p.label == n.label) {
-            let _ = prev;
+        let n = structural(&mut c)?;
+        if out.iter().any(|p| p.label == n.label) {
             return Err(src.error(st.span, format!("structural node {} is defined twice", n.label)));
         }
         out.push(n);
@@ -240,7 +239,7 @@ fn nodes(doc: &Document) -> Result<Vec<StructuralNode>, MbdynError> {
     Ok(out)
 }
 
-fn structural(c: &mut Cursor, _st: &Statement) -> Result<StructuralNode, MbdynError> {
+fn structural(c: &mut Cursor) -> Result<StructuralNode, MbdynError> {
     let label = c.label("node label")?;
     let kind = match c.word("the node type", &["static", "dynamic"])?.as_str() {
         "static" => NodeKind::Static,

@@ -117,7 +117,7 @@ impl Reader {
         let body = colon.map_or(&[][..], |c| &toks[c + 1..]);
         match keyword.as_str() {
             "include" => return self.include(body, first.span, end, path),
-            "set" => return self.set(body, first.span, end),
+            "set" => return self.set(body, end),
             "begin" | "end" => return self.block(&keyword, body, first.span, end),
             _ => {}
         }
@@ -186,7 +186,7 @@ impl Reader {
         self.read(&target, Some(body[0].span))
     }
 
-    fn set(&mut self, body: &[Spanned], span: Span, end: Span) -> Result<(), MbdynError> {
+    fn set(&mut self, body: &[Spanned], end: Span) -> Result<(), MbdynError> {
         let src = &self.doc.sources;
         let mut k = 0;
         let word = |k: usize| body.get(k).and_then(|t| if let Token::Word(w) = &t.token { Some(w.to_lowercase()) } else { None });
@@ -214,7 +214,6 @@ impl Reader {
         if integer {
             value = value.trunc();
         }
-        let _ = span;
         self.doc.variables.0.insert(name.clone(), Variable { value, integer, constant });
         Ok(())
     }
