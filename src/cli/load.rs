@@ -37,8 +37,8 @@ pub fn load(a: &PencilArgs) -> Result<Loaded> {
             let m = read_model(path)?;
             let asm = Assembler::new(&m.model);
             let mut st = State::initial(&m.model, &asm.dofs);
-            st.t = m.analysis.initial_time;
-            let settings = NewtonSettings { tolerance: m.analysis.tolerance, max_iterations: m.analysis.max_iterations.max(20), ..Default::default() };
+            st.t = m.problem.initial_time;
+            let settings = NewtonSettings { tolerance: m.problem.tolerance, max_iterations: m.problem.max_iterations.max(20), ..Default::default() };
             initial_derivatives(&asm, &mut st, &settings).with_context(|| format!("{}: initial derivatives", path.display()))?;
             let dae = linearize(&m.model, &st, &a.inputs, &a.outputs, None)?;
             drop(asm);

@@ -2,9 +2,11 @@
 //! addressed by label, gravity, and the constraint form.
 
 mod builder;
+mod problem;
 mod summary;
 
 pub use builder::{ModelBuilder, ModelError};
+pub use problem::{AbortAfter, EigenOutput, EigenRequest, InitialValueProblem, Method};
 pub use summary::Summary;
 
 use crate::element::Element;

@@ -7,19 +7,7 @@ use super::newton::{newton, NewtonFailure, NewtonSettings, Update};
 use crate::dae::{Assembler, SparseLu, State};
 use crate::kinematics::{gibbs_from_rotation, gibbs_g, Mat3, Vec3};
 use crate::linear::ConstraintForm;
-use crate::model::NodeKind;
-
-/// Integration formula.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Method {
-    /// `y_k = y_{k−1} + h ẏ_k`.
-    ImplicitEuler,
-    /// `y_k = y_{k−1} + h/2 (ẏ_k + ẏ_{k−1})` (`b₀ = h/2`).
-    CrankNicolson,
-    /// MBDyn's two-step "ms" family with asymptotic spectral radius `rho` in [0, 1]
-    /// (METHOD §5; `rho = 1`: two-step trapezoidal rule, `rho = 0`: BDF2).
-    Ms { rho: f64 },
-}
+use crate::model::{Method, NodeKind};
 
 /// Coefficients `(a₁, a₂, b₀, b₁, b₂)` for step `h` (the `b`'s include `h`).
 fn coefficients(method: Method, h: f64, first_step: bool) -> [f64; 5] {

@@ -6,6 +6,7 @@ mod integrate;
 mod newton;
 mod static_analysis;
 
-pub use integrate::{initial_derivatives, Integrator, Method, StepRecord};
+pub use crate::model::Method;
+pub use integrate::{initial_derivatives, Integrator, StepRecord};
 pub use newton::{newton, NewtonFailure, NewtonSettings, SolveError, Update};
 pub use static_analysis::static_solution;

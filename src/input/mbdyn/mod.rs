@@ -12,5 +12,5 @@ mod model;
 mod parser;
 
 pub use diagnostic::MbdynError;
-pub use model::{build, read_model, Analysis, MbdynModel};
+pub use model::{build, read_model, MbdynModel};
 pub use parser::{parse_file, parse_text, Document};

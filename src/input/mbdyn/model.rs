@@ -8,33 +8,12 @@ use super::cursor::Cursor;
 use super::diagnostic::{MbdynError, Span};
 use super::elements::{element, Parsed};
 use super::parser::{parse_file, Block, Document};
-use crate::model::{Model, ModelBuilder, NodeKind, StructuralNode};
-use crate::solve::Method;
+use crate::model::{AbortAfter, EigenOutput, EigenRequest, InitialValueProblem, Method, Model, ModelBuilder, NodeKind, StructuralNode};
 
-/// The initial-value problem a file describes (SI units: s).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Analysis {
-    pub initial_time: f64,
-    pub final_time: f64,
-    pub time_step: f64,
-    pub method: Method,
-    /// Residual tolerance of Newton.
-    pub tolerance: f64,
-    pub max_iterations: usize,
-    /// Times at which an eigenanalysis is requested.
-    pub eigenanalysis: Vec<f64>,
-}
-
-impl Default for Analysis {
-    fn default() -> Self {
-        Analysis { initial_time: 0.0, final_time: 0.0, time_step: 1e-3, method: Method::Ms { rho: 0.6 }, tolerance: 1e-6, max_iterations: 20, eigenanalysis: Vec::new() }
-    }
-}
-
-/// A model file: the model and its analysis.
+/// A model file: the model and the initial-value problem it asks for.
 pub struct MbdynModel {
     pub model: Model,
-    pub analysis: Analysis,
+    pub problem: InitialValueProblem,
 }
 
 /// Reads an MBDyn input file into a model.
@@ -66,7 +45,7 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
             other => return Err(src.error(st.span, format!("statement '{other}' in the data block is not supported by romdyn"))),
         }
     }
-    let analysis = initial_value(doc)?;
+    let problem = initial_value(doc)?;
     let counts = control_data(doc)?;
     let nodes = nodes(doc)?;
     let mut b = ModelBuilder::new();
@@ -113,12 +92,12 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
         }
     }
     let model = b.build().map_err(|e| src.error(first, e.to_string()))?;
-    Ok(MbdynModel { model, analysis })
+    Ok(MbdynModel { model, problem })
 }
 
-fn initial_value(doc: &Document) -> Result<Analysis, MbdynError> {
+fn initial_value(doc: &Document) -> Result<InitialValueProblem, MbdynError> {
     let src = &doc.sources;
-    let mut a = Analysis::default();
+    let mut a = InitialValueProblem::default();
     let Some(iv) = block(doc, "initial value") else { return Ok(a) };
     for st in &iv.statements {
         let mut c = Cursor::new(st, src);
@@ -129,8 +108,18 @@ fn initial_value(doc: &Document) -> Result<Analysis, MbdynError> {
             "tolerance" => a.tolerance = c.real("residual tolerance")?,
             "max iterations" => a.max_iterations = c.label("maximum number of iterations")? as usize,
             "method" => a.method = method(&mut c)?,
-            "eigenanalysis" => a.eigenanalysis = eigen_times(&mut c)?,
-            "derivatives tolerance" | "derivatives max iterations" | "derivatives coefficient" | "linear solver" | "threads" | "output" => {
+            "eigenanalysis" => a.eigenanalysis = Some(eigenanalysis(&mut c)?),
+            "derivatives tolerance" => a.derivatives_tolerance = c.real("derivatives tolerance")?,
+            "derivatives max iterations" => a.derivatives_max_iterations = c.label("derivatives max iterations")? as usize,
+            "abort after" => {
+                a.abort_after = Some(match c.word("where to stop", &["input", "assembly", "derivatives", "dummy steps"])?.as_str() {
+                    "input" => AbortAfter::Input,
+                    "assembly" => AbortAfter::Assembly,
+                    "derivatives" => AbortAfter::Derivatives,
+                    _ => AbortAfter::DummySteps,
+                })
+            }
+            "derivatives coefficient" | "linear solver" | "threads" | "output" => {
                 // Accepted; romdyn's own settings apply (documented in the manual page).
                 while !c.is_done() {
                     if c.peek_word().is_some() {
@@ -163,27 +152,29 @@ fn method(c: &mut Cursor) -> Result<Method, MbdynError> {
     })
 }
 
-fn eigen_times(c: &mut Cursor) -> Result<Vec<f64>, MbdynError> {
+fn eigenanalysis(c: &mut Cursor) -> Result<EigenRequest, MbdynError> {
     let times = if c.accept("list") {
         let n = c.label("number of eigenanalysis times")?;
         (0..n).map(|_| c.real("eigenanalysis time [s]")).collect::<Result<_, _>>()?
     } else {
         vec![c.real("eigenanalysis time [s] (or list)")?]
     };
-    let options = ["output matrices", "output full matrices", "output sparse matrices", "output eigenvectors", "output geometry", "use lapack", "use arpack", "use jdqz", "parameter", "lower frequency limit", "upper frequency limit", "abort after"];
+    let mut r = EigenRequest { times, dcoef: None, lower_frequency_hz: None, upper_frequency_hz: None, output: EigenOutput::default() };
+    let options = ["output matrices", "output full matrices", "output sparse matrices", "output eigenvectors", "output geometry", "use lapack", "use arpack", "use jdqz", "parameter", "lower frequency limit", "upper frequency limit"];
     while !c.is_done() {
         let w = c.word("an eigenanalysis option", &options)?;
         match w.as_str() {
-            "parameter" | "lower frequency limit" | "upper frequency limit" => {
-                c.real(&w)?;
-            }
-            "abort after" => {
-                c.word("abort after", &["input", "assembly", "derivatives", "dummy steps"])?;
-            }
+            "output matrices" | "output full matrices" => r.output.full_matrices = true,
+            "output sparse matrices" => r.output.sparse_matrices = true,
+            "output eigenvectors" => r.output.eigenvectors = true,
+            "output geometry" => r.output.geometry = true,
+            "parameter" => r.dcoef = Some(c.real("parameter (dCoef) [s]")?),
+            "lower frequency limit" => r.lower_frequency_hz = Some(c.real("lower frequency limit [Hz]")?),
+            "upper frequency limit" => r.upper_frequency_hz = Some(c.real("upper frequency limit [Hz]")?),
             _ => {}
         }
     }
-    Ok(times)
+    Ok(r)
 }
 
 /// Declared counts: kind → (count, span).
