@@ -84,10 +84,48 @@ struct RawEigen {
     left_b: Mat<f64>,
 }
 
+/// QZ with left and right vectors. faer's QZ iteration can fail to converge within its
+/// `30 n` sweeps without reporting it (measured on a prestressed beam pencil, n = 138):
+/// eigenvalues it did not reach are left untouched, so they are initialized to NaN and a
+/// NaN afterwards means failure. The pencil is then retried after a left multiplication by
+/// a (deterministic) random orthogonal `Q`: `Qᵀ A v = μ Qᵀ B v` has the same eigenvalues
+/// and right vectors, and left vectors `u = Q u′`.
 fn qz(a: &Mat<f64>, b: &Mat<f64>) -> Result<RawEigen, EigenError> {
     let n = a.nrows();
-    let (mut h, mut t) = (a.clone(), b.clone());
+    if let Some(raw) = qz_attempt(a, b, a, b, None) {
+        return Ok(raw);
+    }
+    for seed in 1..=3u64 {
+        let q = random_orthogonal(n, seed);
+        let qt = q.transpose();
+        if let Some(raw) = qz_attempt(a, b, &(qt * a), &(qt * b), Some(&q)) {
+            return Ok(raw);
+        }
+    }
+    Err(EigenError::NoConvergence(n))
+}
+
+/// An orthogonal matrix: the Q factor of a matrix with entries from xorshift64.
+fn random_orthogonal(n: usize, seed: u64) -> Mat<f64> {
+    let mut x = 0x9E37_79B9_7F4A_7C15u64 ^ seed;
+    let m = Mat::<f64>::from_fn(n, n, |_, _| {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        (x >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    });
+    m.qr().compute_Q()
+}
+
+/// QZ on `(h, t)` (the pencil `(a, b)` or its left rotation by `qᵀ`); `None` when the
+/// iteration did not converge.
+fn qz_attempt(a: &Mat<f64>, b: &Mat<f64>, h: &Mat<f64>, t: &Mat<f64>, q: Option<&Mat<f64>>) -> Option<RawEigen> {
+    let n = a.nrows();
+    let (mut h, mut t) = (h.clone(), t.clone());
     let (mut ar, mut ai, mut be) = (Diag::<f64>::zeros(n), Diag::<f64>::zeros(n), Diag::<f64>::zeros(n));
+    for i in 0..n {
+        (ar[i], ai[i], be[i]) = (f64::NAN, f64::NAN, f64::NAN);
+    }
     let (mut ul, mut ur) = (Mat::<f64>::zeros(n, n), Mat::<f64>::zeros(n, n));
     let par = Par::Seq;
     let mut params: Spec<GevdParams, f64> = Default::default();
@@ -113,8 +151,15 @@ fn qz(a: &Mat<f64>, b: &Mat<f64>) -> Result<RawEigen, EigenError> {
         MemStack::new(&mut buf),
         params,
     )
-    .map_err(|_| EigenError::NoConvergence(n))?;
-    // Columns of infinite eigenvalues come back as NaN; zero them so the products stay finite.
+    .ok()?;
+    if (0..n).any(|i| ar[i].is_nan() || ai[i].is_nan() || be[i].is_nan()) {
+        return None;
+    }
+    if let Some(q) = q {
+        ul = q * &ul;
+    }
+    // Columns of infinite eigenvalues come back as NaN; mark the whole column so
+    // `vectors` reports none, and use zeros in the products.
     for m in [&mut ul, &mut ur] {
         for j in 0..n {
             if (0..n).any(|i| !m[(i, j)].is_finite()) {
@@ -126,7 +171,7 @@ fn qz(a: &Mat<f64>, b: &Mat<f64>) -> Result<RawEigen, EigenError> {
     }
     let clean = |m: &Mat<f64>| Mat::from_fn(n, n, |i, j| if m[(i, j)].is_finite() { m[(i, j)] } else { 0.0 });
     let (urc, ulc) = (clean(&ur), clean(&ul));
-    Ok(RawEigen {
+    Some(RawEigen {
         alpha_re: (0..n).map(|i| ar[i]).collect(),
         alpha_im: (0..n).map(|i| ai[i]).collect(),
         beta: (0..n).map(|i| be[i]).collect(),
