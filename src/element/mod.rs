@@ -9,6 +9,7 @@
 //! the static solver and the linearization use nothing else.
 
 mod anchor;
+mod beam;
 mod body;
 mod contract;
 mod deformable;
@@ -16,6 +17,7 @@ mod drive;
 mod force;
 mod joint;
 
+pub use beam::{shape as beam_shape, Beam3, BeamError, BeamNode, SectionLaw, SectionOrientation, SectionState};
 pub use body::RigidBody;
 pub use contract::{Col, Element, Label, ElementState, JacobianSink, NodeKinematics, ResidualSink, Row};
 pub use deformable::{DeformableDisplacement, DeformableHinge, LinearViscoelastic, Rod};

@@ -52,6 +52,12 @@ impl ModelBuilder {
         self
     }
 
+    /// The nodes added so far (elements such as beams take their reference configuration
+    /// from them).
+    pub fn nodes(&self) -> &[StructuralNode] {
+        &self.nodes
+    }
+
     pub fn element(&mut self, element: impl Element + 'static) -> &mut Self {
         self.elements.push(Box::new(element));
         self

@@ -1,0 +1,210 @@
+//! Strains, curvatures and their rates at one evaluation point of the 3-node beam, with
+//! their derivatives with respect to the element's 36 node perturbations.
+//!
+//! Node `i` has position `x_i`, orientation `R_i` (initially `R_i⁰`), offset `f_i`; the
+//! reference line passes through `y_i = x_i + R_i f_i`. Rotations are interpolated relative
+//! to the middle node (objective, any rigid rotation): `T = R_2 R_2⁰ᵀ`,
+//! `Δ_i = Tᵀ R_i R_i⁰ᵀ = R(g_i)` (`g_2 = 0`), `g(ξ) = Σ N_i g_i` and the section frame
+//! `R_s = T R(g) R_s⁰`. Then
+//!
+//! - `p = Σ N_i y_i`, `p′ = Σ N_i′ y_i / (ds/dξ)`;
+//! - strain `ε = R_sᵀ p′ − ε⁰`, with `ε⁰ = R_s⁰ᵀ p′⁰` (the initial state is unstrained);
+//! - curvature `κ = R_s⁰ᵀ Gᵀ(g) g′` (the change of `R_sᵀ ax(R_s′ R_sᵀ)`, since `R(g)ᵀ G(g) = Gᵀ(g)`);
+//! - rates `ε̇ = R_sᵀ (ṗ′ + p′ × ω_s)`, `κ̇ = R_s⁰ᵀ (∂(Gᵀg′)/∂g ġ + Gᵀ ġ′)`, with
+//!   `ġ_i = Γ(g_i) Tᵀ (ω_i − ω_2)` and `ω_s = ω_2 + T G(g) ġ`.
+//!
+//! Each derivative is a 3x36 [`Tangent`]: columns `12 i + 3 k + c` for node `i`, kind `k`
+//! (0 position, 1 rotation δθ, 2 velocity, 3 angular velocity), component `c`.
+
+use nalgebra::SMatrix;
+
+use super::shape;
+use crate::element::contract::ElementState;
+use crate::kinematics::{gibbs_from_rotation, gibbs_g, gibbs_g_inverse, gibbs_g_inverse_derivative, gibbs_gt_apply, gibbs_gt_derivative, gibbs_gt_derivative_in_a, gibbs_gt_second_derivative, gibbs_rate_derivative, gibbs_rotation, skew, Mat3, Vec3};
+
+/// Derivative of a 3-vector with respect to the element's node perturbations.
+pub type Tangent = SMatrix<f64, 3, 36>;
+
+pub const POSITION: usize = 0;
+pub const ROTATION: usize = 1;
+pub const VELOCITY: usize = 2;
+pub const ANGULAR_VELOCITY: usize = 3;
+
+/// `t[:, block(node, kind)] += m`.
+pub fn put(t: &mut Tangent, node: usize, kind: usize, m: &Mat3) {
+    let mut v = t.fixed_view_mut::<3, 3>(0, 12 * node + 3 * kind);
+    v += m;
+}
+
+fn single(node: usize, kind: usize, m: &Mat3) -> Tangent {
+    let mut t = Tangent::zeros();
+    put(&mut t, node, kind, m);
+    t
+}
+
+/// What an evaluation point needs from its element's reference configuration.
+#[derive(Clone, Debug)]
+pub struct SectionReference {
+    pub xi: f64,
+    /// `R_s⁰`: the section frame in the initial configuration.
+    pub orientation: Mat3,
+    /// `ds/dξ` in the initial configuration [m].
+    pub dsdxi: f64,
+    /// `ε⁰ = R_s⁰ᵀ p′⁰` (axis 1 for a beam straight along its section axis).
+    pub initial_strain: Vec3,
+}
+
+/// Per-element quantities shared by both evaluation points.
+pub struct NodeTerms {
+    /// `T = R_2 R_2⁰ᵀ`.
+    t: Mat3,
+    x: [Vec3; 3],
+    y: [Vec3; 3],
+    g: [Vec3; 3],
+    dy: [Tangent; 3],
+    dg: [Tangent; 3],
+    /// `ẏ_i`, `ġ_i` and derivatives, when the law is viscous.
+    rates: Option<NodeRates>,
+    omega_mid: Vec3,
+}
+
+struct NodeRates {
+    ydot: [Vec3; 3],
+    gdot: [Vec3; 3],
+    dydot: [Tangent; 3],
+    dgdot: [Tangent; 3],
+}
+
+impl NodeTerms {
+    pub fn new(st: &dyn ElementState, offsets: &[Vec3; 3], initial: &[Mat3; 3], with_rates: bool) -> Self {
+        let n = [st.node(0), st.node(1), st.node(2)];
+        let t = n[1].r * initial[1].transpose();
+        let tt = t.transpose();
+        let a: [Vec3; 3] = std::array::from_fn(|i| n[i].r * offsets[i]);
+        let y = std::array::from_fn(|i| n[i].x + a[i]);
+        let dy = std::array::from_fn(|i| {
+            let mut d = single(i, POSITION, &Mat3::identity());
+            put(&mut d, i, ROTATION, &-skew(&a[i]));
+            d
+        });
+        let mut g = [Vec3::zeros(); 3];
+        let mut gamma = [Mat3::identity(); 3];
+        let mut dg = [Tangent::zeros(); 3];
+        for i in [0, 2] {
+            g[i] = gibbs_from_rotation(&(tt * n[i].r * initial[i].transpose()));
+            gamma[i] = gibbs_g_inverse(&g[i]);
+            // δg_i = Γ(g_i) Tᵀ (δθ_i − δθ_2).
+            let m = gamma[i] * tt;
+            put(&mut dg[i], i, ROTATION, &m);
+            put(&mut dg[i], 1, ROTATION, &-m);
+        }
+        let rates = with_rates.then(|| {
+            let ydot = std::array::from_fn(|i| n[i].xdot + n[i].omega.cross(&a[i]));
+            let dydot = std::array::from_fn(|i| {
+                let mut d = single(i, VELOCITY, &Mat3::identity());
+                put(&mut d, i, ANGULAR_VELOCITY, &-skew(&a[i]));
+                put(&mut d, i, ROTATION, &(-skew(&n[i].omega) * skew(&a[i])));
+                d
+            });
+            let mut gdot = [Vec3::zeros(); 3];
+            let mut dgdot = [Tangent::zeros(); 3];
+            for i in [0, 2] {
+                let rel = n[i].omega - n[1].omega;
+                let w = tt * rel;
+                gdot[i] = gamma[i] * w;
+                // δw = Tᵀ (δω_i − δω_2) + Tᵀ [(ω_i − ω_2)×] δθ_2.
+                let mut dw = single(i, ANGULAR_VELOCITY, &tt);
+                put(&mut dw, 1, ANGULAR_VELOCITY, &-tt);
+                put(&mut dw, 1, ROTATION, &(tt * skew(&rel)));
+                dgdot[i] = gibbs_g_inverse_derivative(&g[i], &w) * dg[i] + gamma[i] * dw;
+            }
+            NodeRates { ydot, gdot, dydot, dgdot }
+        });
+        NodeTerms { t, x: std::array::from_fn(|i| n[i].x), y, g, dy, dg, rates, omega_mid: n[1].omega }
+    }
+
+    pub fn x(&self, i: usize) -> Vec3 {
+        self.x[i]
+    }
+}
+
+/// The state of one evaluation point and its derivatives.
+pub struct SectionKinematics {
+    /// Position `p` of the reference line [m].
+    pub p: Vec3,
+    /// Section frame `R_s`.
+    pub r: Mat3,
+    /// Strain `ε` and curvature `κ` [1/m] in the section frame.
+    pub strain: Vec3,
+    pub curvature: Vec3,
+    pub strain_rate: Vec3,
+    pub curvature_rate: Vec3,
+    pub dp: Tangent,
+    /// Virtual rotation of the section frame.
+    pub dtheta: Tangent,
+    pub dstrain: Tangent,
+    pub dcurvature: Tangent,
+    pub dstrain_rate: Tangent,
+    pub dcurvature_rate: Tangent,
+}
+
+fn combine(w: &[f64; 3], v: &[Vec3; 3]) -> Vec3 {
+    w[0] * v[0] + w[1] * v[1] + w[2] * v[2]
+}
+
+fn combine_t(w: &[f64; 3], v: &[Tangent; 3]) -> Tangent {
+    v[0] * w[0] + v[1] * w[1] + v[2] * w[2]
+}
+
+impl SectionKinematics {
+    pub fn new(node: &NodeTerms, reference: &SectionReference) -> Self {
+        let nv = shape::values(reference.xi);
+        let nd = shape::derivatives(reference.xi).map(|d| d / reference.dsdxi);
+        let (p, pp) = (combine(&nv, &node.y), combine(&nd, &node.y));
+        let (dp, dpp) = (combine_t(&nv, &node.dy), combine_t(&nd, &node.dy));
+        let (g, gp) = (combine(&nv, &node.g), combine(&nd, &node.g));
+        let (dg, dgp) = (combine_t(&nv, &node.dg), combine_t(&nd, &node.dg));
+        let (gm, r0t) = (gibbs_g(&g), reference.orientation.transpose());
+        let r = node.t * gibbs_rotation(&g) * reference.orientation;
+        let rt = r.transpose();
+        let tg = node.t * gm;
+        let mut dtheta = tg * dg;
+        put(&mut dtheta, 1, ROTATION, &Mat3::identity());
+        let strain = rt * pp - reference.initial_strain;
+        let dstrain = rt * (dpp + skew(&pp) * dtheta);
+        let dgt_gp = gibbs_gt_derivative(&g, &gp);
+        let curvature = r0t * gibbs_gt_apply(&g, &gp);
+        let dcurvature = r0t * (dgt_gp * dg + gm.transpose() * dgp);
+        let mut s = SectionKinematics {
+            p,
+            r,
+            strain,
+            curvature,
+            strain_rate: Vec3::zeros(),
+            curvature_rate: Vec3::zeros(),
+            dp,
+            dtheta,
+            dstrain,
+            dcurvature,
+            dstrain_rate: Tangent::zeros(),
+            dcurvature_rate: Tangent::zeros(),
+        };
+        if let Some(rates) = &node.rates {
+            let (ppd, dppd) = (combine(&nd, &rates.ydot), combine_t(&nd, &rates.dydot));
+            let (gd, gpd) = (combine(&nv, &rates.gdot), combine(&nd, &rates.gdot));
+            let (dgd, dgpd) = (combine_t(&nv, &rates.dgdot), combine_t(&nd, &rates.dgdot));
+            let spin = tg * gd;
+            let omega = node.omega_mid + spin;
+            let mut domega = node.t * (gibbs_rate_derivative(&g, &gd) * dg + gm * dgd);
+            put(&mut domega, 1, ANGULAR_VELOCITY, &Mat3::identity());
+            put(&mut domega, 1, ROTATION, &-skew(&spin));
+            let u = ppd + pp.cross(&omega);
+            s.strain_rate = rt * u;
+            s.dstrain_rate = rt * (skew(&u) * dtheta + dppd + skew(&pp) * domega - skew(&omega) * dpp);
+            s.curvature_rate = r0t * (dgt_gp * gd + gibbs_gt_apply(&g, &gpd));
+            let dg_total = (gibbs_gt_second_derivative(&g, &gp, &gd) + gibbs_gt_derivative(&g, &gpd)) * dg;
+            s.dcurvature_rate = r0t * (dg_total + dgt_gp * dgd + gibbs_gt_derivative_in_a(&g, &gd) * dgp + gm.transpose() * dgpd);
+        }
+        s
+    }
+}
