@@ -2,9 +2,11 @@
 
 mod args;
 mod bode;
+mod check;
 mod eig;
 mod load;
 mod rom;
+mod run;
 
 use std::process::ExitCode;
 
@@ -23,6 +25,10 @@ struct Cli {
 
 #[derive(Subcommand, Debug)]
 enum Command {
+    /// Run an MBDyn input file: initial-value problem and eigenanalyses; writes .out, .mov, .log, .m, .json
+    Run(run::RunArgs),
+    /// Check every element's Jacobian against finite differences of its residual
+    Check(check::CheckArgs),
     /// Eigenanalysis of a linear DAE: modal table with labels and error estimates
     Eig(eig::EigArgs),
     /// Reduced-order model from selected modes; exports E, A, B, C, D (.json/.mat/.npz)
@@ -34,6 +40,8 @@ enum Command {
 pub fn run() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
+        Command::Run(a) => run::run(a),
+        Command::Check(a) => check::run(a),
         Command::Eig(a) => eig::run(a),
         Command::Rom(a) => rom::run(a),
         Command::Freq(a) => rom::run_freq(a),
