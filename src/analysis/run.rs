@@ -25,8 +25,8 @@ pub enum RunError {
     Problem(String),
     #[error("initial derivatives: {0}")]
     Derivatives(NewtonFailure),
-    #[error("step {step} of {steps} (t = {time} s): {source}")]
-    Step { step: usize, steps: usize, time: f64, source: NewtonFailure },
+    #[error("step {step} of {steps} (t = {time} s): {failure}")]
+    Step { step: usize, steps: usize, time: f64, failure: NewtonFailure },
     #[error("eigenanalysis {index} at t = {time} s: {message}")]
     Eigen { index: usize, time: f64, message: String },
     #[error(transparent)]
@@ -148,7 +148,7 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
     let settings = NewtonSettings { tolerance: problem.tolerance, max_iterations: problem.max_iterations, ..Default::default() };
     let mut integrator = Integrator::new(&asm, state, problem.method, problem.time_step, settings);
     for step in 1..=steps {
-        let r = integrator.step().map_err(|source| RunError::Step { step, steps, time: source.time, source })?;
+        let r = integrator.step().map_err(|failure| RunError::Step { step, steps, time: failure.time, failure })?;
         report.steps = step;
         report.newton_iterations += r.iterations;
         observed(observer.step(&step_done(&asm, step, problem.time_step, (r.iterations, r.residual_norm), &integrator.state)))?;

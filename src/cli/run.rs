@@ -45,29 +45,37 @@ impl RunObserver for Progress {
         Ok(())
     }
     fn eigenanalysis(&mut self, e: &EigenDone) -> Result<(), ObserverError> {
-        self.bar.set_message(format!("eigenanalysis {} at t = {} s", e.analysis.index, e.analysis.time));
+        self.bar.set_message(format!("eigenanalysis {} at t = {} s", e.analysis.index, seconds(e.analysis.time)));
         Ok(())
     }
+}
+
+/// A time [s] to 9 decimals, trailing zeros dropped (steps accumulate rounding in t).
+fn seconds(t: f64) -> String {
+    let s = format!("{t:.9}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" { "0".into() } else { s.to_string() }
 }
 
 fn print_summary(file: &str, r: &RunReport, written: &[PathBuf]) {
     println!(
         "romdyn run {file}: {} steps to t = {} s, {} Newton iterations (+{} for the initial derivatives), wall time {:.3} s",
         r.steps,
-        r.final_state.t,
+        seconds(r.final_state.t),
         r.newton_iterations,
         r.derivatives_iterations,
         r.wall_time.as_secs_f64()
     );
     for e in &r.eigenanalyses {
-        println!("eigenanalysis {} at t = {} s (dCoef = {} s): {} dynamic, {} zero, {} infinite eigenvalues", e.index, e.time, e.dcoef, e.dynamic.len(), e.zero, e.infinite);
+        println!("eigenanalysis {} at t = {} s (dCoef = {} s): {} dynamic, {} zero, {} infinite eigenvalues", e.index, seconds(e.time), e.dcoef, e.dynamic.len(), e.zero, e.infinite);
         for l in &e.dynamic {
             let (f, zeta) = (l.norm() / (2.0 * std::f64::consts::PI), if l.norm() > 0.0 { -l.re / l.norm() } else { 0.0 });
             println!("  λ = {:+.6e} {:+.6e} j rad/s  (f = {f:.6} Hz, ζ = {zeta:.4})", l.re, l.im);
         }
     }
     if !r.eigen_times_not_reached.is_empty() {
-        println!("eigenanalyses not reached (after the final time): {:?} s", r.eigen_times_not_reached);
+        let times: Vec<String> = r.eigen_times_not_reached.iter().map(|t| seconds(*t)).collect();
+        println!("eigenanalyses not reached (after the final time): t = {} s", times.join(", "));
     }
     let names: Vec<String> = written.iter().map(|p| p.display().to_string()).collect();
     println!("wrote {}", names.join(", "));

@@ -76,7 +76,7 @@ impl StepLog {
 
     /// The closing comment: final time, steps and Newton iterations.
     pub fn end(&mut self, time: f64, steps: usize, iterations: usize) -> Result<(), OutputError> {
-        self.file.write_with(|w| writeln!(w, "# End of simulation at time {time} after {steps} steps; total iterations: {iterations}"))
+        self.file.write_with(|w| writeln!(w, "# End of simulation at time {time:.12e} after {steps} steps; total iterations: {iterations}"))
     }
 
     /// Puts the file in place.
