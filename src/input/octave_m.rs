@@ -392,7 +392,8 @@ mod tests {
         assert_eq!(v.im.as_ref().unwrap()[..2], [2.0, -2.0]);
         assert!(v.re[2].is_nan() && v.re[3] == f64::NEG_INFINITY);
         assert_eq!((s.get("z").unwrap().rows, s.get("z").unwrap().cols), (2, 0));
-        assert_eq!(s.position("Aminus"), Some(Position { line: 5, column: 1 }));
+        // The last assignment counts: the spconvert line.
+        assert_eq!(s.position("Aminus"), Some(Position { line: 10, column: 1 }));
     }
 
     #[test]
