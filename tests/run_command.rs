@@ -131,7 +131,7 @@ fn several_eigenanalyses_are_numbered_and_a_time_after_the_end_is_reported() {
     let (ok, out, err) = romdyn(&["run", &file]);
     assert!(ok, "{err}");
     assert!(out.contains("eigenanalysis 1 at t = 0.02 s"), "{out}");
-    assert!(out.contains("eigenanalyses not reached (after the final time): t = 1 s"), "{out}");
+    assert!(out.contains("eigenanalyses not done (the run ended first): t = 1 s"), "{out}");
     let files = listing(&dir);
     for f in ["pendulum_0.m", "pendulum_0.json", "pendulum_1.m", "pendulum_1.json"] {
         assert!(files.contains(&f.to_string()), "{f} in {files:?}");

@@ -30,7 +30,7 @@ pub struct JacobianCheck {
 impl JacobianCheck {
     /// Elements whose worst entry exceeds the tolerance.
     pub fn failures(&self) -> impl Iterator<Item = &JacobianMismatch> {
-        self.elements.iter().filter(|e| !(e.relative_error <= self.tolerance))
+        self.elements.iter().filter(|e| !e.within(self.tolerance))
     }
 
     pub fn passed(&self) -> bool {

@@ -28,7 +28,7 @@ struct Progress {
 impl Progress {
     fn new() -> Self {
         let bar = if std::io::stderr().is_terminal() { ProgressBar::new(0) } else { ProgressBar::hidden() };
-        let style = ProgressStyle::with_template("{bar:40} {pos}/{len} steps, {msg} [{elapsed_precise}, eta {eta}]").unwrap_or_else(|_| ProgressStyle::default_bar());
+        let style = ProgressStyle::with_template("{bar:30} {pos}/{len} steps {msg} eta {eta}").unwrap_or_else(|_| ProgressStyle::default_bar());
         bar.set_style(style);
         Progress { bar }
     }
@@ -45,7 +45,7 @@ impl RunObserver for Progress {
         Ok(())
     }
     fn eigenanalysis(&mut self, e: &EigenDone) -> Result<(), ObserverError> {
-        self.bar.set_message(format!("eigenanalysis {} at t = {} s", e.analysis.index, seconds(e.analysis.time)));
+        self.bar.set_message(format!("eigenanalysis {}", e.analysis.index));
         Ok(())
     }
 }
@@ -75,7 +75,7 @@ fn print_summary(file: &str, r: &RunReport, written: &[PathBuf]) {
     }
     if !r.eigen_times_not_reached.is_empty() {
         let times: Vec<String> = r.eigen_times_not_reached.iter().map(|t| seconds(*t)).collect();
-        println!("eigenanalyses not reached (after the final time): t = {} s", times.join(", "));
+        println!("eigenanalyses not done (the run ended first): t = {} s", times.join(", "));
     }
     let names: Vec<String> = written.iter().map(|p| p.display().to_string()).collect();
     println!("wrote {}", names.join(", "));

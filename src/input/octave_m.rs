@@ -147,7 +147,7 @@ impl Scanner<'_> {
         }
         Some(s)
     }
-    fn expect(&mut self, c: char, what: &str) -> Result<(), OctaveError> {
+    fn require(&mut self, c: char, what: &str) -> Result<(), OctaveError> {
         self.skip_blanks();
         if self.peek() == Some(c) {
             self.bump();
@@ -267,11 +267,11 @@ impl Scanner<'_> {
 
     /// `name(args)`, the name already read.
     fn call(&mut self, script: &OctaveScript, name: &str, at: Position) -> Result<OctaveMatrix, OctaveError> {
-        self.expect('(', &format!("after '{name}'"))?;
+        self.require('(', &format!("after '{name}'"))?;
         let value = match name {
             "zeros" => {
                 let r = self.size()?;
-                self.expect(',', "between the sizes of zeros(R, C)")?;
+                self.require(',', "between the sizes of zeros(R, C)")?;
                 let c = self.size()?;
                 OctaveMatrix::real(r, c, vec![0.0; r * c])
             }
@@ -284,7 +284,7 @@ impl Scanner<'_> {
             }
             _ => return Err(self.error_at(at, format!("function '{name}' is not supported (romdyn reads numbers, [matrices], spconvert and zeros)"))),
         };
-        self.expect(')', &format!("to close '{name}('"))?;
+        self.require(')', &format!("to close '{name}('"))?;
         Ok(value)
     }
 }
@@ -327,7 +327,7 @@ pub fn parse_octave_script(text: &str, file: &Path) -> Result<OctaveScript, Octa
         }
         let at = s.here();
         let name = s.identifier().ok_or_else(|| s.error(format!("expected a variable name, found {}", s.found())))?;
-        s.expect('=', &format!("after '{name}'"))?;
+        s.require('=', &format!("after '{name}'"))?;
         s.skip_blanks();
         let value_at = s.here();
         let value = match s.peek() {
@@ -363,46 +363,4 @@ pub fn parse_octave_script(text: &str, file: &Path) -> Result<OctaveScript, Octa
         script.set(name, value, at);
     }
     Ok(script)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn parse(text: &str) -> Result<OctaveScript, String> {
-        parse_octave_script(text, Path::new("e.m")).map_err(|e| e.to_string())
-    }
-
-    #[test]
-    fn full_sparse_and_complex_matrices_as_mbdyn_writes_them() {
-        let s = parse(
-            "% coefficient\ndCoef = 5.0e-01;\nAplus = [1 2.5e0 ;\n-3 4 ];\n\
-             Aminus = [\n1 1 2;\n2 2 -1e-3;\n3 3 0;\n];\nAminus = spconvert(Aminus);\n\
-             VR = [\n1.0e0+i*2.0e0 1.0e0-i*2.0e0 NaN ;\n-Inf 0 3];\nz = zeros(2, 0);\n",
-        )
-        .unwrap();
-        assert_eq!(s.get("dCoef").and_then(OctaveMatrix::scalar), Some(0.5));
-        let a = s.get("Aplus").unwrap();
-        assert_eq!((a.rows, a.cols, a.re.clone()), (2, 2, vec![1.0, 2.5, -3.0, 4.0]));
-        let m = s.get("Aminus").unwrap();
-        assert_eq!((m.rows, m.cols, m.from_sparse), (3, 3, true));
-        assert_eq!((m.get(0, 0), m.get(1, 1), m.get(2, 2), m.get(0, 1)), (2.0, -1e-3, 0.0, 0.0));
-        let v = s.get("VR").unwrap();
-        assert_eq!((v.rows, v.cols), (2, 3));
-        assert_eq!(v.im.as_ref().unwrap()[..2], [2.0, -2.0]);
-        assert!(v.re[2].is_nan() && v.re[3] == f64::NEG_INFINITY);
-        assert_eq!((s.get("z").unwrap().rows, s.get("z").unwrap().cols), (2, 0));
-        // The last assignment counts: the spconvert line.
-        assert_eq!(s.position("Aminus"), Some(Position { line: 10, column: 1 }));
-    }
-
-    #[test]
-    fn errors_name_line_and_column() {
-        assert_eq!(parse("a = [1 2;\n3];").unwrap_err(), "e.m:2:1: this row has 1 entries, the first row has 2");
-        assert_eq!(parse("a = [1 2x];").unwrap_err(), "e.m:1:9: expected a blank, ',', ';' or ']' after a number, found 'x'");
-        assert_eq!(parse("dCoef 0.5;").unwrap_err(), "e.m:1:7: expected '=' after 'dCoef', found '0'");
-        assert_eq!(parse("a = [1 2").unwrap_err(), "e.m:1:5: this '[' is never closed");
-        assert_eq!(parse("a = eig(b);").unwrap_err(), "e.m:1:5: function 'eig' is not supported (romdyn reads numbers, [matrices], spconvert and zeros)");
-        assert_eq!(parse("a = spconvert(b);").unwrap_err(), "e.m:1:15: 'b' is not defined before this line");
-    }
 }
