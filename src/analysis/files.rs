@@ -17,14 +17,8 @@ use crate::output::eigen_json::eigen_json;
 use crate::output::eigen_m::write_eigen_m;
 use crate::output::model_log::write_model_log;
 use crate::output::motion::{MotionWriter, OrientationOutput};
+use crate::output::prefixed_path;
 use crate::output::step_log::{StepLine, StepLog};
-
-fn with_ext(prefix: &Path, ext: &str) -> PathBuf {
-    let mut s = prefix.as_os_str().to_owned();
-    s.push(".");
-    s.push(ext);
-    PathBuf::from(s)
-}
 
 /// `PREFIX` for one analysis, `PREFIX_K` (zero-padded) for analysis K of `count`.
 pub fn eigen_file_stem(prefix: &Path, index: usize, count: usize) -> PathBuf {
@@ -50,9 +44,9 @@ pub struct RunFiles {
 impl RunFiles {
     /// Starts the files of a run of `model` (read from `input`) under `prefix`.
     pub fn create(prefix: &Path, input: &str, model: &Model, problem: &InitialValueProblem) -> Result<Self, OutputError> {
-        let out = StepLog::create(&with_ext(prefix, "out"), input)?;
-        let mov = MotionWriter::create(&with_ext(prefix, "mov"), OrientationOutput::Euler123Degrees)?;
-        let mut log = AtomicFile::create(&with_ext(prefix, "log"))?;
+        let out = StepLog::create(&prefixed_path(prefix, "out"), input)?;
+        let mov = MotionWriter::create(&prefixed_path(prefix, "mov"), OrientationOutput::Euler123Degrees)?;
+        let mut log = AtomicFile::create(&prefixed_path(prefix, "log"))?;
         log.write_with(|w| write_model_log(w, input, model))?;
         let eigen_count = problem.eigenanalysis.as_ref().map_or(0, |r| r.times.len());
         Ok(RunFiles { prefix: prefix.to_path_buf(), input: input.to_string(), eigen_count, out, mov, staged: vec![log] })
@@ -61,7 +55,7 @@ impl RunFiles {
     /// Ends the step log and puts every file in place; returns their paths.
     pub fn finish(mut self, report: &RunReport) -> Result<Vec<PathBuf>, OutputError> {
         self.out.end(report.final_state.t, report.steps, report.newton_iterations)?;
-        let mut paths = vec![with_ext(&self.prefix, "out"), with_ext(&self.prefix, "mov")];
+        let mut paths = vec![prefixed_path(&self.prefix, "out"), prefixed_path(&self.prefix, "mov")];
         self.out.finish()?;
         self.mov.finish()?;
         for f in self.staged {
@@ -95,9 +89,9 @@ impl RunObserver for RunFiles {
         );
         self.out.eigenvalues(&title, &rows)?;
         let stem = eigen_file_stem(&self.prefix, a.index, self.eigen_count);
-        let mut m = AtomicFile::create(&with_ext(&stem, "m"))?;
+        let mut m = AtomicFile::create(&prefixed_path(&stem, "m"))?;
         m.write_with(|w| write_eigen_m(w, &self.input, &file))?;
-        let mut json = AtomicFile::create(&with_ext(&stem, "json"))?;
+        let mut json = AtomicFile::create(&prefixed_path(&stem, "json"))?;
         let text = serde_json::to_string_pretty(&eigen_json(&self.input, &file))?;
         json.write_with(|w| writeln!(w, "{text}"))?;
         self.staged.extend([m, json]);

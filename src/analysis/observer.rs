@@ -76,21 +76,6 @@ pub trait RunObserver {
 /// No observer.
 impl RunObserver for () {}
 
-impl<T: RunObserver + ?Sized> RunObserver for &mut T {
-    fn started(&mut self, e: &RunStart) -> Result<(), ObserverError> {
-        (**self).started(e)
-    }
-    fn derivatives(&mut self, e: &Derivatives) -> Result<(), ObserverError> {
-        (**self).derivatives(e)
-    }
-    fn step(&mut self, e: &StepDone) -> Result<(), ObserverError> {
-        (**self).step(e)
-    }
-    fn eigenanalysis(&mut self, e: &EigenDone) -> Result<(), ObserverError> {
-        (**self).eigenanalysis(e)
-    }
-}
-
 /// Two observers, called in order.
 impl<A: RunObserver, B: RunObserver> RunObserver for (A, B) {
     fn started(&mut self, e: &RunStart) -> Result<(), ObserverError> {

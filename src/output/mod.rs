@@ -17,3 +17,13 @@ pub mod npz;
 pub mod response_csv;
 pub mod rom_file;
 pub mod step_log;
+
+use std::path::{Path, PathBuf};
+
+/// `PREFIX.ext`: a file named after an output prefix (the prefix may contain dots).
+pub fn prefixed_path(prefix: &Path, ext: &str) -> PathBuf {
+    let mut s = prefix.as_os_str().to_owned();
+    s.push(".");
+    s.push(ext);
+    PathBuf::from(s)
+}
