@@ -79,6 +79,9 @@ fn validate(p: &InitialValueProblem) -> Result<(), RunError> {
     if !(p.tolerance > 0.0) || !(p.derivatives_tolerance > 0.0) {
         return bad(format!("tolerances must be positive (tolerance {}, derivatives tolerance {})", p.tolerance, p.derivatives_tolerance));
     }
+    if let Some(c) = p.eigenanalysis.as_ref().and_then(|r| r.dcoef).filter(|c| !(*c > 0.0 && c.is_finite())) {
+        return bad(format!("eigenanalysis coefficient dCoef = {c} s must be positive"));
+    }
     Ok(())
 }
 

@@ -70,7 +70,7 @@ fn print_summary(file: &str, r: &RunReport, written: &[PathBuf]) {
         println!("eigenanalysis {} at t = {} s (dCoef = {} s): {} dynamic, {} zero, {} infinite eigenvalues", e.index, seconds(e.time), e.dcoef, e.dynamic.len(), e.zero, e.infinite);
         for l in &e.dynamic {
             let (f, zeta) = (l.norm() / (2.0 * std::f64::consts::PI), if l.norm() > 0.0 { -l.re / l.norm() } else { 0.0 });
-            println!("  λ = {:+.6e} {:+.6e} j rad/s  (f = {f:.6} Hz, ζ = {zeta:.4})", l.re, l.im);
+            println!("  λ = {:.6}{:+.6}j rad/s  (f = {f:.6} Hz, ζ = {zeta:.4})", l.re, l.im);
         }
     }
     if !r.eigen_times_not_reached.is_empty() {

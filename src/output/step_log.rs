@@ -47,7 +47,7 @@ impl StepLog {
 
     /// `# Derivatives solution step at time t performed in n iterations with e error`.
     pub fn derivatives(&mut self, time: f64, iterations: usize, error: f64) -> Result<(), OutputError> {
-        self.file.write_with(|w| writeln!(w, "# Derivatives solution step at time {time} performed in {iterations} iterations with {error:e} error"))
+        self.file.write_with(|w| writeln!(w, "# Derivatives solution step at time {time} performed in {iterations} iterations with {error:.6e} error"))
     }
 
     /// One `Step` line; step 0 is preceded by the key line.
