@@ -4,11 +4,13 @@
 //!
 //! ```text
 //! input -> model -> dae (assembly) -> solve -> linear (F_yd, F_y, eigen) -> rom -> output
+//!   -> analysis (runs an initial-value problem with its eigenanalyses)
 //! ```
 //!
 //! Equation numbers in doc comments refer to "Reduced order models from multibody
 //! analysis" (the paper behind `shared/METHOD.md`). Units are SI throughout.
 
+pub mod analysis;
 pub mod dae;
 pub mod element;
 pub mod input;

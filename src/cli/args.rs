@@ -27,18 +27,27 @@ impl From<Route> for EigenRoute {
 /// Where the linear DAE comes from and how it is eigenanalysed.
 #[derive(Args, Debug)]
 pub struct PencilArgs {
-    /// MBDyn input file of a multibody model, linearized at its initial time
+    /// MBDyn input file of a multibody model, linearized at its initial time (or --at)
     #[arg(value_name = "MODEL", required_unless_present = "pencil")]
     pub model: Option<PathBuf>,
-    /// Linear-DAE pencil file (JSON with Fyd/Fy or J/Jstar/dcoef, B, C) instead of a model
+    /// Linearize the model at the solution of its initial-value problem at TIME [s] (integrated with the file's method, step and tolerance)
+    #[arg(long, value_name = "TIME", conflicts_with = "pencil")]
+    pub at: Option<f64>,
+    /// Pencil file instead of a model: an MBDyn eigenanalysis .m file (Aplus = J(+c), Aminus = J(-c), dCoef; written with 'output matrices') or JSON (Fyd/Fy or J/Jstar/dcoef, B, C)
     #[arg(long, value_name = "FILE", conflicts_with = "model")]
     pub pencil: Option<PathBuf>,
     /// ROM input of a model: NODE:Fx|Fy|Fz (force [N]) or NODE:Mx|My|Mz (moment [N m]), global frame
-    #[arg(long = "input", value_name = "NODE:COMP")]
+    #[arg(long = "input", value_name = "NODE:COMP", conflicts_with = "pencil")]
     pub inputs: Vec<NodeInput>,
     /// ROM output of a model: NODE:x|y|z (displacement [m]) or NODE:rx|ry|rz (rotation [rad])
-    #[arg(long = "output", value_name = "NODE:COMP")]
+    #[arg(long = "output", value_name = "NODE:COMP", conflicts_with = "pencil")]
     pub outputs: Vec<NodeOutput>,
+    /// ROM input of an .m pencil: a unit generalized force entering equation I (1-based row of Aplus/Aminus) as -dF_I = u. In romdyn's numbering a dynamic node with first unknown idx (the file's 'idx' with 'output geometry') has its force equilibrium x,y,z in rows idx+7..idx+9 and moments in idx+10..idx+12 (static node: idx+1..idx+6)
+    #[arg(long = "input-row", value_name = "I", requires = "pencil")]
+    pub input_rows: Vec<usize>,
+    /// ROM output of an .m pencil: unknown J (1-based column of Aplus/Aminus); a node's x,y,z displacements [m] are idx+1..idx+3 and its rotations [rad] idx+4..idx+6
+    #[arg(long = "output-col", value_name = "J", requires = "pencil")]
+    pub output_cols: Vec<usize>,
     /// Eigenanalysis route
     #[arg(long, value_enum, default_value = "direct")]
     pub route: Route,

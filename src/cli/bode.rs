@@ -1,11 +1,12 @@
 //! Frequency grid and curves for `--bode` / `romdyn freq`.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use anyhow::{Context, Result};
 use faer::{c64, Mat};
 use romdyn::linear::{LinearDae, ModalAnalysis, ModeKind};
 use romdyn::output::bode::{write_bode, BodePlot, CurveStyle, ResponseCurve};
+use romdyn::output::prefixed_path;
 use romdyn::output::response_csv::write_response_csv;
 use romdyn::rom::{full_frequency_response, log_frequencies, OrdinaryRom};
 
@@ -67,16 +68,9 @@ impl Curves {
     }
 }
 
-fn with_ext(prefix: &Path, ext: &str) -> PathBuf {
-    let mut s = prefix.as_os_str().to_owned();
-    s.push(".");
-    s.push(ext);
-    PathBuf::from(s)
-}
-
 /// Writes PREFIX.csv, PREFIX.svg and PREFIX.png.
 pub fn write_bode_files(c: &Curves, prefix: &Path) -> Result<()> {
-    let (csv, svg, png) = (with_ext(prefix, "csv"), with_ext(prefix, "svg"), with_ext(prefix, "png"));
+    let (csv, svg, png) = (prefixed_path(prefix, "csv"), prefixed_path(prefix, "svg"), prefixed_path(prefix, "png"));
     write_response_csv(&c.curves, &csv).with_context(|| format!("writing {}", csv.display()))?;
     let plot = BodePlot {
         title: "Frequency response".into(),

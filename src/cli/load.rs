@@ -1,13 +1,15 @@
-//! The linear DAE a command works on: from a pencil file, or from an MBDyn model linearized
-//! at its initial time (after consistent initial derivatives, as MBDyn does).
+//! The linear DAE a command works on: from a pencil file (JSON or MBDyn `.m`), or from an
+//! MBDyn model linearized at its reference solution (initial time after consistent initial
+//! derivatives, as MBDyn does, or `--at TIME`).
 
 use anyhow::{Context, Result};
-use romdyn::dae::{kinetic_energy_shares, linearize, Assembler, EnergyShare, State};
+use romdyn::analysis::reference_state;
+use romdyn::dae::{kinetic_energy_shares, linearize, EnergyShare};
+use romdyn::input::eigen_pencil::PencilPorts;
 use romdyn::input::mbdyn::read_model;
-use romdyn::input::pencil::read_pencil;
+use romdyn::input::pencil::read_pencil_file;
 use romdyn::linear::{LinearDae, ModalAnalysis};
 use romdyn::model::Model;
-use romdyn::solve::{initial_derivatives, NewtonSettings};
 
 use super::args::PencilArgs;
 
@@ -30,18 +32,14 @@ impl Loaded {
 pub fn load(a: &PencilArgs) -> Result<Loaded> {
     let (dae, dcoef, model) = match (&a.pencil, &a.model) {
         (Some(path), _) => {
-            let file = read_pencil(path)?;
+            let ports = PencilPorts { input_rows: a.input_rows.clone(), output_cols: a.output_cols.clone() };
+            let file = read_pencil_file(path, &ports)?;
             (file.dae, file.dcoef, None)
         }
         (None, Some(path)) => {
             let m = read_model(path)?;
-            let asm = Assembler::new(&m.model);
-            let mut st = State::initial(&m.model, &asm.dofs);
-            st.t = m.problem.initial_time;
-            let settings = NewtonSettings { tolerance: m.problem.tolerance, max_iterations: m.problem.max_iterations.max(20), ..Default::default() };
-            initial_derivatives(&asm, &mut st, &settings).with_context(|| format!("{}: initial derivatives", path.display()))?;
+            let st = reference_state(&m.model, &m.problem, a.at).with_context(|| format!("{}: reference solution", path.display()))?;
             let dae = linearize(&m.model, &st, &a.inputs, &a.outputs, None)?;
-            drop(asm);
             (dae, None, Some(m.model))
         }
         (None, None) => anyhow::bail!("give a MODEL file or --pencil FILE"),

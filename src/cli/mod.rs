@@ -2,9 +2,11 @@
 
 mod args;
 mod bode;
+mod check;
 mod eig;
 mod load;
 mod rom;
+mod run;
 
 use std::process::ExitCode;
 
@@ -23,6 +25,26 @@ struct Cli {
 
 #[derive(Subcommand, Debug)]
 enum Command {
+    /// Run an MBDyn input file: initial-value problem and eigenanalyses; writes .out, .mov, .log, .m, .json
+    ///
+    /// Consistent initial derivatives, then fixed steps of the file's method from the initial to the
+    /// final time [s]; at each 'eigenanalysis' time J(+c) and J(-c) (c = the file's 'parameter', else
+    /// 0.5 s as MBDyn) and their eigenvalues λ [rad/s]. Files (MBDyn layouts, SI units): PREFIX.out
+    /// step log, PREFIX.mov node motion (m, deg, m/s, rad/s), PREFIX.log model log, and per
+    /// eigenanalysis PREFIX.m (Octave: dTime, dCoef, Aplus, Aminus, alpha, VR, VL, geometry) and
+    /// PREFIX.json. Files appear only when the run succeeds; a Newton failure names the step, the
+    /// residual norm and the worst equation, and exits with status 1.
+    Run(run::RunArgs),
+    /// Check every element's Jacobian against finite differences of its residual
+    ///
+    /// At the model's reference solution, compares each element's J(c) = F/y' + c F/y (c = b0 of the
+    /// file's method and time step [s], the coefficient Newton uses) with central finite differences
+    /// of the element's residual: y' is perturbed by ±h and y by ±c h (multipliers as Newton moves
+    /// them), h = 1e-6 (1 + max(|y_j|, |y'_j|)). Prints each element's worst entry (equation,
+    /// unknown, analytic and finite-difference values); an element fails when
+    /// max |analytic - fd| / max(max |J_element|, 1) exceeds the tolerance (default 1e-6), and any
+    /// failure gives exit status 1.
+    Check(check::CheckArgs),
     /// Eigenanalysis of a linear DAE: modal table with labels and error estimates
     Eig(eig::EigArgs),
     /// Reduced-order model from selected modes; exports E, A, B, C, D (.json/.mat/.npz)
@@ -34,6 +56,8 @@ enum Command {
 pub fn run() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
+        Command::Run(a) => run::run(a),
+        Command::Check(a) => check::run(a),
         Command::Eig(a) => eig::run(a),
         Command::Rom(a) => rom::run(a),
         Command::Freq(a) => rom::run_freq(a),

@@ -72,7 +72,7 @@ struct Built {
 fn build(pencil: &PencilArgs, selection: &romdyn::rom::ModeSelection, residualize: bool) -> Result<Built> {
     let Loaded { dae, modal, .. } = load(pencil)?;
     if dae.num_inputs() == 0 || dae.num_outputs() == 0 {
-        anyhow::bail!("a ROM needs inputs and outputs: give --input NODE:COMP and --output NODE:COMP for a model");
+        anyhow::bail!("a ROM needs inputs and outputs: give --input NODE:COMP and --output NODE:COMP for a model, --input-row I and --output-col J for an .m pencil");
     }
     let sel = select_modes(&modal, selection)?;
     let descriptor = DescriptorRom::project(&dae, &modal, &sel, residualize)?;

@@ -19,6 +19,13 @@ pub struct JacobianMismatch {
     pub relative_error: f64,
 }
 
+impl JacobianMismatch {
+    /// Whether the worst entry agrees within `tolerance` (a NaN error does not).
+    pub fn within(&self, tolerance: f64) -> bool {
+        self.relative_error <= tolerance
+    }
+}
+
 /// Checks every element at `st` with coefficient `dcoef`; returns each element's worst
 /// entry (all of them, sorted by decreasing error).
 pub fn check_jacobians(asm: &Assembler, st: &State, dcoef: f64, form: ConstraintForm) -> Vec<JacobianMismatch> {

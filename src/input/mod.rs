@@ -1,5 +1,8 @@
-//! Reading models and matrices: linear-DAE pencil files, Matrix Market matrices.
+//! Reading models and matrices: MBDyn input files, linear-DAE pencil files (JSON, or the
+//! eigenanalysis `.m` files MBDyn writes), Matrix Market matrices.
 
 pub mod matrix_market;
+pub mod eigen_pencil;
 pub mod mbdyn;
+pub mod octave_m;
 pub mod pencil;

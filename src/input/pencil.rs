@@ -3,12 +3,16 @@
 //!
 //! A matrix is a dense row-major array of rows, or a path (string, relative to the JSON
 //! file) to a Matrix Market file, or `{"matrix_market": "path"}`.
+//!
+//! [`read_pencil_file`] also takes MBDyn's eigenanalysis `.m` files (by the extension; see
+//! [`super::eigen_pencil`]).
 
 use std::path::{Path, PathBuf};
 
 use faer::Mat;
 use serde_json::Value;
 
+use super::eigen_pencil::{read_eigen_pencil, EigenPencilError, PencilPorts};
 use crate::linear::{Jacobians, LinearDae};
 
 /// A malformed pencil file.
@@ -22,6 +26,8 @@ pub enum PencilError {
     Field { file: PathBuf, field: String, message: String },
     #[error("{file}: {message}")]
     Shape { file: PathBuf, message: String },
+    #[error(transparent)]
+    EigenFile(#[from] EigenPencilError),
 }
 
 struct Reader<'a> {
@@ -120,7 +126,20 @@ pub struct PencilFile {
     pub dcoef: Option<f64>,
 }
 
-/// Reads a pencil file.
+/// Reads a pencil file: an MBDyn eigenanalysis `.m` file (inputs and outputs from `ports`)
+/// or a JSON pencil (inputs and outputs in the file; `ports` must be empty).
+pub fn read_pencil_file(file: &Path, ports: &PencilPorts) -> Result<PencilFile, PencilError> {
+    if file.extension().is_some_and(|e| e.eq_ignore_ascii_case("m")) {
+        let (dae, dcoef) = read_eigen_pencil(file, ports)?;
+        return Ok(PencilFile { dae, dcoef: Some(dcoef) });
+    }
+    if !ports.is_empty() {
+        return Err(PencilError::Shape { file: file.to_path_buf(), message: "input rows and output columns select ports of an MBDyn .m pencil; a JSON pencil carries its own B and C".into() });
+    }
+    read_pencil(file)
+}
+
+/// Reads a JSON pencil file.
 pub fn read_pencil(file: &Path) -> Result<PencilFile, PencilError> {
     let text = std::fs::read_to_string(file).map_err(|source| PencilError::Io { file: file.to_path_buf(), source })?;
     parse_pencil(&text, file)

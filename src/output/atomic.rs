@@ -1,6 +1,6 @@
 //! Atomic file output: write a temporary file beside the target, flush and sync it, then
-//! rename it over the target. A failed write leaves neither a partial target nor the
-//! temporary file.
+//! rename it over the target. A failed or abandoned write leaves neither a partial target
+//! nor the temporary file.
 
 use std::fs::File;
 use std::io::{BufWriter, Write};
@@ -21,25 +21,69 @@ fn temp_path(path: &Path) -> PathBuf {
     path.with_file_name(format!(".{name}.tmp-{}-{unique}", std::process::id()))
 }
 
+/// A file being written under a temporary name; [`AtomicFile::commit`] puts it in place.
+/// Dropped without a commit (an error, a failed run), it removes its temporary file.
+pub struct AtomicFile {
+    path: PathBuf,
+    tmp: PathBuf,
+    out: Option<BufWriter<File>>,
+}
+
+impl AtomicFile {
+    /// Creates the temporary file (and the target's directory).
+    pub fn create(path: &Path) -> Result<Self, OutputError> {
+        let io = |operation, source| OutputError::Io { path: path.to_path_buf(), operation, source };
+        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+            std::fs::create_dir_all(dir).map_err(|e| io("create its directory", e))?;
+        }
+        let tmp = temp_path(path);
+        let file = File::create(&tmp).map_err(|e| io("create a temporary file", e))?;
+        Ok(AtomicFile { path: path.to_path_buf(), tmp, out: Some(BufWriter::new(file)) })
+    }
+
+    /// The target path.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// Runs `write` on the file's stream, naming the file in an error.
+    pub fn write_with(&mut self, write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>) -> Result<(), OutputError> {
+        let path = self.path.clone();
+        let out = self.out.as_mut().ok_or_else(|| OutputError::Invalid { path: path.clone(), message: "written after commit".into() })?;
+        write(out).map_err(|source| OutputError::Io { path, operation: "write", source })
+    }
+
+    /// Flushes, syncs and renames the file onto its target.
+    pub fn commit(mut self) -> Result<(), OutputError> {
+        let io = |operation, source| OutputError::Io { path: self.path.clone(), operation, source };
+        if let Some(out) = self.out.take() {
+            let result = (|| {
+                let file = out.into_inner().map_err(|e| io("write", e.into_error()))?;
+                file.sync_all().map_err(|e| io("sync", e))?;
+                std::fs::rename(&self.tmp, &self.path).map_err(|e| io("rename the temporary file onto it", e))
+            })();
+            if result.is_err() {
+                let _ = std::fs::remove_file(&self.tmp);
+            }
+            result?;
+        }
+        Ok(())
+    }
+}
+
+impl Drop for AtomicFile {
+    fn drop(&mut self) {
+        if self.out.take().is_some() {
+            let _ = std::fs::remove_file(&self.tmp);
+        }
+    }
+}
+
 /// Writes `path` atomically with the bytes produced by `write`.
 pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>) -> Result<(), OutputError> {
-    let io = |operation, source| OutputError::Io { path: path.to_path_buf(), operation, source };
-    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).map_err(|e| io("create its directory", e))?;
-    }
-    let tmp = temp_path(path);
-    let result = (|| {
-        let file = File::create(&tmp).map_err(|e| io("create a temporary file", e))?;
-        let mut w = BufWriter::new(file);
-        write(&mut w).map_err(|e| io("write", e))?;
-        let file = w.into_inner().map_err(|e| io("write", e.into_error()))?;
-        file.sync_all().map_err(|e| io("sync", e))?;
-        std::fs::rename(&tmp, path).map_err(|e| io("rename the temporary file onto it", e))
-    })();
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result
+    let mut file = AtomicFile::create(path)?;
+    file.write_with(write)?;
+    file.commit()
 }
 
 /// Writes `bytes` to `path` atomically.
@@ -64,6 +108,18 @@ mod tests {
         assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0);
         write_atomic_bytes(&target, b"whole").unwrap();
         assert_eq!(std::fs::read(&target).unwrap(), b"whole");
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
+    #[test]
+    fn an_abandoned_file_is_never_put_in_place() {
+        let dir = std::env::temp_dir().join(format!("romdyn-atomic-drop-{}", std::process::id()));
+        let target = dir.join("run.out");
+        let mut f = AtomicFile::create(&target).unwrap();
+        f.write_with(|w| w.write_all(b"Step 1\n")).unwrap();
+        drop(f);
+        assert!(!target.exists());
+        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0);
         std::fs::remove_dir_all(&dir).ok();
     }
 }

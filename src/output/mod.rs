@@ -1,12 +1,29 @@
-//! Writing results: MATLAB v5 `.mat`, NumPy `.npz`, JSON, CSV, Bode plots; every file is
-//! written atomically (temporary file, then rename).
+//! Writing results: MATLAB v5 `.mat`, NumPy `.npz`, JSON, CSV, Bode plots, and MBDyn's
+//! run files (`.out` step log, `.mov` motion, `.log` model log, eigenanalysis `.m`); every
+//! file is written atomically (temporary file, then rename).
 
 pub mod atomic;
 pub mod bode;
+pub mod eigen_file;
+pub mod eigen_json;
+pub mod eigen_m;
 pub mod mat5;
+pub mod jacobian_check;
 pub mod matrix_market;
 pub mod modal;
+pub mod model_log;
 pub mod motion;
 pub mod npz;
 pub mod response_csv;
 pub mod rom_file;
+pub mod step_log;
+
+use std::path::{Path, PathBuf};
+
+/// `PREFIX.ext`: a file named after an output prefix (the prefix may contain dots).
+pub fn prefixed_path(prefix: &Path, ext: &str) -> PathBuf {
+    let mut s = prefix.as_os_str().to_owned();
+    s.push(".");
+    s.push(ext);
+    PathBuf::from(s)
+}

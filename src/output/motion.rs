@@ -1,4 +1,4 @@
-//! Node histories in MBDyn's `.mov` layout: one line per node per step,
+//! Node histories in MBDyn's `.mov` layout: one line per node per output instant,
 //!
 //! ```text
 //! label  x y z  o1 o2 o3  vx vy vz  wx wy wz
@@ -9,11 +9,9 @@
 //! frame; no header, so Octave's `load` reads it. The file is written to a temporary name
 //! and renamed when the run finishes.
 
-use std::fs::File;
-use std::io::{BufWriter, Write};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use super::atomic::OutputError;
+use super::atomic::{AtomicFile, OutputError};
 use crate::element::NodeKinematics;
 use crate::kinematics::{euler123, rotation_vector};
 use crate::model::Label;
@@ -29,55 +27,38 @@ pub enum OrientationOutput {
 
 /// A `.mov` file being written step by step.
 pub struct MotionWriter {
-    path: PathBuf,
-    tmp: PathBuf,
-    out: Option<BufWriter<File>>,
+    file: AtomicFile,
     orientation: OrientationOutput,
 }
 
 impl MotionWriter {
     pub fn create(path: &Path, orientation: OrientationOutput) -> Result<Self, OutputError> {
-        let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
-        let tmp = path.with_file_name(format!(".{name}.tmp-{}", std::process::id()));
-        let file = File::create(&tmp).map_err(|source| OutputError::Io { path: path.to_path_buf(), operation: "create a temporary file", source })?;
-        Ok(MotionWriter { path: path.to_path_buf(), tmp, out: Some(BufWriter::new(file)), orientation })
+        Ok(MotionWriter { file: AtomicFile::create(path)?, orientation })
     }
 
-    /// Appends one step: a line per node.
+    /// Appends one output instant: a line per node.
     pub fn write_step(&mut self, nodes: &[(Label, NodeKinematics)]) -> Result<(), OutputError> {
-        let Some(out) = self.out.as_mut() else { return Ok(()) };
-        for (label, k) in nodes {
-            let o = match self.orientation {
-                OrientationOutput::Euler123Degrees => euler123(&k.r).map(f64::to_degrees),
-                OrientationOutput::RotationVector => rotation_vector(&k.r),
-            };
-            let mut line = format!("{label}");
-            for v in [k.x, o, k.xdot, k.omega] {
-                for c in v.iter() {
-                    line += &format!(" {c:.12e}");
+        let orientation = self.orientation;
+        self.file.write_with(|out| {
+            for (label, k) in nodes {
+                let o = match orientation {
+                    OrientationOutput::Euler123Degrees => euler123(&k.r).map(f64::to_degrees),
+                    OrientationOutput::RotationVector => rotation_vector(&k.r),
+                };
+                write!(out, "{label}")?;
+                for v in [k.x, o, k.xdot, k.omega] {
+                    for c in v.iter() {
+                        write!(out, " {c:.12e}")?;
+                    }
                 }
+                writeln!(out)?;
             }
-            writeln!(out, "{line}").map_err(|source| OutputError::Io { path: self.path.clone(), operation: "write", source })?;
-        }
-        Ok(())
+            Ok(())
+        })
     }
 
     /// Flushes and renames the file into place.
-    pub fn finish(mut self) -> Result<(), OutputError> {
-        let io = |operation, source| OutputError::Io { path: self.path.clone(), operation, source };
-        if let Some(out) = self.out.take() {
-            let file = out.into_inner().map_err(|e| io("write", e.into_error()))?;
-            file.sync_all().map_err(|e| io("sync", e))?;
-            std::fs::rename(&self.tmp, &self.path).map_err(|e| io("rename the temporary file onto it", e))?;
-        }
-        Ok(())
-    }
-}
-
-impl Drop for MotionWriter {
-    fn drop(&mut self) {
-        if self.out.take().is_some() {
-            let _ = std::fs::remove_file(&self.tmp);
-        }
+    pub fn finish(self) -> Result<(), OutputError> {
+        self.file.commit()
     }
 }

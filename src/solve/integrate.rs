@@ -3,7 +3,7 @@
 //! Newton with `δy = b₀ δẏ` (eqs. 3–5). Orientations are re-based at every step, so each
 //! node's `g` is measured from its orientation at the previous step.
 
-use super::newton::{newton, NewtonFailure, NewtonSettings, Update};
+use super::newton::{newton, Convergence, NewtonFailure, NewtonSettings, Update};
 use crate::dae::{Assembler, SparseLu, State};
 use crate::kinematics::{gibbs_from_rotation, gibbs_g, Mat3, Vec3};
 use crate::linear::ConstraintForm;
@@ -24,6 +24,12 @@ fn coefficients(method: Method, h: f64, first_step: bool) -> [f64; 5] {
     }
 }
 
+/// `dCoef = b₀` of the regular steps of `method` with step `h` [s]: the coefficient of
+/// `J(c) = F_/ẏ + c F_/y` that Newton uses (eq. 5).
+pub fn newton_dcoef(method: Method, h: f64) -> f64 {
+    coefficients(method, h, false)[2]
+}
+
 /// The solution two steps back, with each node's orientation and angular velocity.
 #[derive(Clone)]
 struct Past {
@@ -38,6 +44,8 @@ struct Past {
 pub struct StepRecord {
     pub t: f64,
     pub iterations: usize,
+    /// `‖F‖∞` when Newton stopped.
+    pub residual_norm: f64,
 }
 
 /// Steps a model in time from a state with consistent derivatives.
@@ -106,15 +114,15 @@ impl<'a, 'm> Integrator<'a, 'm> {
             self.state.y[i] = a1 * y1[i] + a2 * y2[i] + b0 * ypred + b1 * yp1[i] + b2 * yp2[i];
         }
         self.state.t += self.h;
-        let iterations = newton(self.asm, &mut self.state, Update::Dynamic { dcoef: b0, form }, &self.settings, &mut self.lu)?;
+        let done = newton(self.asm, &mut self.state, Update::Dynamic { dcoef: b0, form }, &self.settings, &mut self.lu)?;
         self.previous = Some(current);
-        Ok(StepRecord { t: self.state.t, iterations })
+        Ok(StepRecord { t: self.state.t, iterations: done.iterations, residual_norm: done.residual_norm })
     }
 }
 
 /// Consistent initial derivatives: momenta from the momentum definitions at the initial
 /// velocities, then Newton on `ẏ` with a tiny coefficient (`y` moves by `c δẏ` only).
-pub fn initial_derivatives(asm: &Assembler, st: &mut State, settings: &NewtonSettings) -> Result<usize, NewtonFailure> {
+pub fn initial_derivatives(asm: &Assembler, st: &mut State, settings: &NewtonSettings) -> Result<Convergence, NewtonFailure> {
     let dofs = &asm.dofs;
     let form = asm.model.constraint_form;
     for i in 0..dofs.node_first.len() {

@@ -7,6 +7,6 @@ mod newton;
 mod static_analysis;
 
 pub use crate::model::Method;
-pub use integrate::{initial_derivatives, Integrator, StepRecord};
-pub use newton::{newton, NewtonFailure, NewtonSettings, SolveError, Update};
+pub use integrate::{initial_derivatives, newton_dcoef, Integrator, StepRecord};
+pub use newton::{newton, Convergence, NewtonFailure, NewtonSettings, SolveError, Update};
 pub use static_analysis::static_solution;

@@ -40,6 +40,15 @@ pub struct NewtonFailure {
     pub reason: Option<String>,
 }
 
+/// A converged Newton iteration.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Convergence {
+    pub iterations: usize,
+    /// `‖F‖∞` at the last residual evaluation (before the last update when the increment
+    /// test converged), in the units of the worst equation.
+    pub residual_norm: f64,
+}
+
 /// Solver errors.
 #[derive(Clone, Debug, thiserror::Error)]
 pub enum SolveError {
@@ -64,8 +73,8 @@ fn limit_rotation_step(asm: &Assembler, delta: &mut [f64]) {
     }
 }
 
-/// Iterates to convergence; returns the number of iterations.
-pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &NewtonSettings, lu: &mut SparseLu) -> Result<usize, NewtonFailure> {
+/// Iterates to convergence.
+pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &NewtonSettings, lu: &mut SparseLu) -> Result<Convergence, NewtonFailure> {
     let (coef, form, dcoef) = match update {
         Update::Static => (Coefficients::static_analysis(), ConstraintForm::Plain, 1.0),
         Update::Dynamic { dcoef, form } => (Coefficients::newton(dcoef, form), form, dcoef),
@@ -78,7 +87,7 @@ pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &Newton
         let mut f = asm.residual(st, form, dcoef);
         let (_, norm) = worst(&f);
         if norm <= settings.tolerance {
-            return Ok(iteration);
+            return Ok(Convergence { iterations: iteration, residual_norm: norm });
         }
         if !norm.is_finite() || iteration == settings.max_iterations {
             return Err(fail(st, iteration, &f, (!norm.is_finite()).then(|| "the residual is not finite".to_string())));
@@ -118,7 +127,7 @@ pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &Newton
             }
         }
         if step <= settings.increment_tolerance && norm <= 1e3 * settings.tolerance {
-            return Ok(iteration + 1);
+            return Ok(Convergence { iterations: iteration + 1, residual_norm: norm });
         }
     }
     unreachable!("the loop returns by max_iterations")

@@ -12,7 +12,7 @@ pub fn static_solution(asm: &Assembler, st: &mut State, steps: usize, settings: 
     let steps = steps.max(1);
     for k in 1..=steps {
         st.load = k as f64 / steps as f64;
-        iterations += newton(asm, st, Update::Static, settings, &mut lu)?;
+        iterations += newton(asm, st, Update::Static, settings, &mut lu)?.iterations;
         st.rebase(&asm.dofs);
     }
     st.load = 1.0;

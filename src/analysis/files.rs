@@ -1,0 +1,100 @@
+//! The files of a run, named after a prefix as MBDyn names them: `PREFIX.out` (step log),
+//! `PREFIX.mov` (node motion), `PREFIX.log` (model log), and for each eigenanalysis
+//! `STEM.m` (Octave script) and `STEM.json` (romdyn's JSON), where STEM is PREFIX for a
+//! single analysis and `PREFIX_K` (K its 0-based number, zero-padded to the width of the
+//! largest, MBDyn's `suffix width, compute`) when there are several.
+//!
+//! Every file is written under a temporary name; [`RunFiles::finish`] puts them all in
+//! place after a successful run. A failed run drops them: no output file appears.
+
+use std::path::{Path, PathBuf};
+
+use super::observer::{Derivatives, EigenDone, ObserverError, RunObserver, StepDone};
+use super::run::RunReport;
+use crate::model::{InitialValueProblem, Model};
+use crate::output::atomic::{AtomicFile, OutputError};
+use crate::output::eigen_json::eigen_json;
+use crate::output::eigen_m::write_eigen_m;
+use crate::output::model_log::write_model_log;
+use crate::output::motion::{MotionWriter, OrientationOutput};
+use crate::output::prefixed_path;
+use crate::output::step_log::{StepLine, StepLog};
+
+/// `PREFIX` for one analysis, `PREFIX_K` (zero-padded) for analysis K of `count`.
+pub fn eigen_file_stem(prefix: &Path, index: usize, count: usize) -> PathBuf {
+    if count <= 1 {
+        return prefix.to_path_buf();
+    }
+    let width = (count - 1).to_string().len();
+    let mut s = prefix.as_os_str().to_owned();
+    s.push(format!("_{index:0width$}"));
+    PathBuf::from(s)
+}
+
+/// Writes a run's files as the run goes (an observer).
+pub struct RunFiles {
+    prefix: PathBuf,
+    input: String,
+    eigen_count: usize,
+    out: StepLog,
+    mov: MotionWriter,
+    staged: Vec<AtomicFile>,
+}
+
+impl RunFiles {
+    /// Starts the files of a run of `model` (read from `input`) under `prefix`.
+    pub fn create(prefix: &Path, input: &str, model: &Model, problem: &InitialValueProblem) -> Result<Self, OutputError> {
+        let out = StepLog::create(&prefixed_path(prefix, "out"), input)?;
+        let mov = MotionWriter::create(&prefixed_path(prefix, "mov"), OrientationOutput::Euler123Degrees)?;
+        let mut log = AtomicFile::create(&prefixed_path(prefix, "log"))?;
+        log.write_with(|w| write_model_log(w, input, model))?;
+        let eigen_count = problem.eigenanalysis.as_ref().map_or(0, |r| r.times.len());
+        Ok(RunFiles { prefix: prefix.to_path_buf(), input: input.to_string(), eigen_count, out, mov, staged: vec![log] })
+    }
+
+    /// Ends the step log and puts every file in place; returns their paths.
+    pub fn finish(mut self, report: &RunReport) -> Result<Vec<PathBuf>, OutputError> {
+        self.out.end(report.final_state.t, report.steps, report.newton_iterations)?;
+        let mut paths = vec![prefixed_path(&self.prefix, "out"), prefixed_path(&self.prefix, "mov")];
+        self.out.finish()?;
+        self.mov.finish()?;
+        for f in self.staged {
+            paths.push(f.path().to_path_buf());
+            f.commit()?;
+        }
+        Ok(paths)
+    }
+}
+
+impl RunObserver for RunFiles {
+    fn derivatives(&mut self, e: &Derivatives) -> Result<(), ObserverError> {
+        Ok(self.out.derivatives(e.time, e.iterations, e.residual_norm)?)
+    }
+
+    fn step(&mut self, e: &StepDone) -> Result<(), ObserverError> {
+        self.out.step(&StepLine { step: e.step, time: e.time, time_step: e.time_step, iterations: e.iterations, residual_norm: e.residual_norm })?;
+        Ok(self.mov.write_step(&e.node_kinematics())?)
+    }
+
+    fn eigenanalysis(&mut self, e: &EigenDone) -> Result<(), ObserverError> {
+        let a = e.analysis;
+        let file = a.file();
+        let rows: Vec<_> = a.written.iter().map(|&k| (k + 1, a.modal.modes[k].lambda)).collect();
+        let title = format!(
+            "Eigenanalysis {} at time {} s: dCoef {} s, {} equations, eigenvalues λ in rad/s (Λ form, paper eq. 18)",
+            a.index,
+            a.time,
+            a.dcoef,
+            a.aplus.nrows()
+        );
+        self.out.eigenvalues(&title, &rows)?;
+        let stem = eigen_file_stem(&self.prefix, a.index, self.eigen_count);
+        let mut m = AtomicFile::create(&prefixed_path(&stem, "m"))?;
+        m.write_with(|w| write_eigen_m(w, &self.input, &file))?;
+        let mut json = AtomicFile::create(&prefixed_path(&stem, "json"))?;
+        let text = serde_json::to_string_pretty(&eigen_json(&self.input, &file))?;
+        json.write_with(|w| writeln!(w, "{text}"))?;
+        self.staged.extend([m, json]);
+        Ok(())
+    }
+}

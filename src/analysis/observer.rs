@@ -1,0 +1,97 @@
+//! What a run reports while it goes: a start, the initial derivatives, every step (step 0 is
+//! the initial state) and every eigenanalysis. Observers (a progress bar, the file writers)
+//! implement [`RunObserver`]; an observer's error stops the run.
+
+use super::eigen::Eigenanalysis;
+use crate::dae::{DofMap, State};
+use crate::element::NodeKinematics;
+use crate::model::{InitialValueProblem, Label, Model};
+
+/// An observer's failure (e.g. a file that cannot be written).
+pub type ObserverError = Box<dyn std::error::Error + Send + Sync>;
+
+/// The run is about to start.
+pub struct RunStart<'a> {
+    pub model: &'a Model,
+    pub problem: &'a InitialValueProblem,
+    /// Number of time steps the run will take.
+    pub steps: usize,
+    /// Number of eigenanalyses requested.
+    pub eigenanalyses: usize,
+}
+
+/// The consistent initial derivatives converged.
+#[derive(Clone, Copy, Debug)]
+pub struct Derivatives {
+    /// [s]
+    pub time: f64,
+    pub iterations: usize,
+    /// `‖F‖∞` at convergence.
+    pub residual_norm: f64,
+}
+
+/// A step converged (step 0: the initial state after the derivatives).
+pub struct StepDone<'a> {
+    pub step: usize,
+    /// [s]
+    pub time: f64,
+    /// [s]
+    pub time_step: f64,
+    pub iterations: usize,
+    /// `‖F‖∞` when Newton stopped.
+    pub residual_norm: f64,
+    pub model: &'a Model,
+    pub dofs: &'a DofMap,
+    pub state: &'a State,
+}
+
+impl StepDone<'_> {
+    /// Every structural node's position, orientation and velocities (global frame).
+    pub fn node_kinematics(&self) -> Vec<(Label, NodeKinematics)> {
+        self.model.nodes.iter().enumerate().map(|(i, n)| (n.label, self.state.node_frame(self.dofs, i).kin)).collect()
+    }
+}
+
+/// An eigenanalysis was done.
+pub struct EigenDone<'a> {
+    pub analysis: &'a Eigenanalysis,
+}
+
+/// Receives a run's events; every method defaults to doing nothing.
+pub trait RunObserver {
+    fn started(&mut self, _: &RunStart) -> Result<(), ObserverError> {
+        Ok(())
+    }
+    fn derivatives(&mut self, _: &Derivatives) -> Result<(), ObserverError> {
+        Ok(())
+    }
+    fn step(&mut self, _: &StepDone) -> Result<(), ObserverError> {
+        Ok(())
+    }
+    fn eigenanalysis(&mut self, _: &EigenDone) -> Result<(), ObserverError> {
+        Ok(())
+    }
+}
+
+/// No observer.
+impl RunObserver for () {}
+
+/// Two observers, called in order.
+impl<A: RunObserver, B: RunObserver> RunObserver for (A, B) {
+    fn started(&mut self, e: &RunStart) -> Result<(), ObserverError> {
+        self.0.started(e)?;
+        self.1.started(e)
+    }
+    fn derivatives(&mut self, e: &Derivatives) -> Result<(), ObserverError> {
+        self.0.derivatives(e)?;
+        self.1.derivatives(e)
+    }
+    fn step(&mut self, e: &StepDone) -> Result<(), ObserverError> {
+        self.0.step(e)?;
+        self.1.step(e)
+    }
+    fn eigenanalysis(&mut self, e: &EigenDone) -> Result<(), ObserverError> {
+        self.0.eigenanalysis(e)?;
+        self.1.eigenanalysis(e)
+    }
+}

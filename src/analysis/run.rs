@@ -1,0 +1,163 @@
+//! The run driver: what MBDyn's `initial value` problem does (manual, "Initial-Value
+//! Problem"). Consistent initial derivatives at the initial time, then fixed steps of the
+//! file's method until the final time; an eigenanalysis at the first solution whose time
+//! reaches each requested time (at the initial time: after the derivatives).
+//!
+//! `abort after: input` or `assembly` stops before the derivatives, `derivatives` or
+//! `dummy steps` right after them (no eigenanalysis, as in MBDyn). A final time equal to the
+//! initial time runs the derivatives and the eigenanalyses at the initial time.
+
+use std::time::{Duration, Instant};
+
+use faer::c64;
+
+use super::eigen::Eigenanalysis;
+use super::observer::{Derivatives, EigenDone, ObserverError, RunObserver, RunStart, StepDone};
+use crate::dae::{Assembler, State};
+use crate::linear::ModeKind;
+use crate::model::{AbortAfter, InitialValueProblem, Model};
+use crate::solve::{initial_derivatives, Integrator, NewtonFailure, NewtonSettings};
+
+/// Why a run stopped.
+#[derive(Debug, thiserror::Error)]
+pub enum RunError {
+    #[error("invalid initial-value problem: {0}")]
+    Problem(String),
+    #[error("initial derivatives: {0}")]
+    Derivatives(NewtonFailure),
+    #[error("step {step} of {steps} (t = {time} s): {failure}")]
+    Step { step: usize, steps: usize, time: f64, failure: NewtonFailure },
+    #[error("eigenanalysis {index} at t = {time} s: {message}")]
+    Eigen { index: usize, time: f64, message: String },
+    #[error(transparent)]
+    Observer(ObserverError),
+}
+
+/// One eigenanalysis in the report.
+#[derive(Clone, Debug)]
+pub struct EigenSummary {
+    pub index: usize,
+    /// [s]
+    pub time: f64,
+    /// [s]
+    pub dcoef: f64,
+    pub dynamic: Vec<c64>,
+    pub zero: usize,
+    pub infinite: usize,
+}
+
+/// What a run did.
+#[derive(Clone, Debug)]
+pub struct RunReport {
+    pub steps: usize,
+    /// Newton iterations of the time steps.
+    pub newton_iterations: usize,
+    /// Newton iterations of the initial derivatives.
+    pub derivatives_iterations: usize,
+    pub wall_time: Duration,
+    pub eigenanalyses: Vec<EigenSummary>,
+    /// Requested eigenanalysis times the run did not reach [s].
+    pub eigen_times_not_reached: Vec<f64>,
+    pub final_state: State,
+}
+
+/// Steps from the initial to the final time: the first `k` with `t₀ + k h ≥ t_f` (up to a
+/// millionth of a step).
+fn step_count(p: &InitialValueProblem) -> usize {
+    let n = (p.final_time - p.initial_time) / p.time_step - 1e-6;
+    if n > 0.0 { n.ceil() as usize } else { 0 }
+}
+
+fn validate(p: &InitialValueProblem) -> Result<(), RunError> {
+    let bad = |m: String| Err(RunError::Problem(m));
+    if !(p.time_step > 0.0 && p.time_step.is_finite()) {
+        return bad(format!("time step {} s must be positive", p.time_step));
+    }
+    if !(p.initial_time.is_finite() && p.final_time.is_finite()) || p.final_time < p.initial_time {
+        return bad(format!("final time {} s must not be before initial time {} s", p.final_time, p.initial_time));
+    }
+    if !(p.tolerance > 0.0) || !(p.derivatives_tolerance > 0.0) {
+        return bad(format!("tolerances must be positive (tolerance {}, derivatives tolerance {})", p.tolerance, p.derivatives_tolerance));
+    }
+    if let Some(c) = p.eigenanalysis.as_ref().and_then(|r| r.dcoef).filter(|c| !(*c > 0.0 && c.is_finite())) {
+        return bad(format!("eigenanalysis coefficient dCoef = {c} s must be positive"));
+    }
+    Ok(())
+}
+
+/// A step event: `(iterations, residual_norm)` of the Newton iteration that produced `state`.
+fn step_done<'a>(asm: &'a Assembler, step: usize, time_step: f64, (iterations, residual_norm): (usize, f64), state: &'a State) -> StepDone<'a> {
+    StepDone { step, time: state.t, time_step, iterations, residual_norm, model: asm.model, dofs: &asm.dofs, state }
+}
+
+/// Runs `problem` on `model`, reporting every event to `observer`.
+pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunObserver) -> Result<RunReport, RunError> {
+    validate(problem)?;
+    let clock = Instant::now();
+    let observed = |r: Result<(), ObserverError>| r.map_err(RunError::Observer);
+    let asm = Assembler::new(model);
+    let mut state = State::initial(model, &asm.dofs);
+    state.t = problem.initial_time;
+    let steps = step_count(problem);
+    let times: &[f64] = problem.eigenanalysis.as_ref().map_or(&[], |r| &r.times);
+    observed(observer.started(&RunStart { model, problem, steps, eigenanalyses: times.len() }))?;
+    let mut report = RunReport {
+        steps: 0,
+        newton_iterations: 0,
+        derivatives_iterations: 0,
+        wall_time: Duration::ZERO,
+        eigenanalyses: Vec::new(),
+        eigen_times_not_reached: times.to_vec(),
+        final_state: state.clone(),
+    };
+    if matches!(problem.abort_after, Some(AbortAfter::Input | AbortAfter::Assembly)) {
+        observed(observer.step(&step_done(&asm, 0, problem.time_step, (0, f64::NAN), &state)))?;
+        report.wall_time = clock.elapsed();
+        return Ok(report);
+    }
+
+    let derivative_settings = NewtonSettings { tolerance: problem.derivatives_tolerance, max_iterations: problem.derivatives_max_iterations, ..Default::default() };
+    let done = initial_derivatives(&asm, &mut state, &derivative_settings).map_err(RunError::Derivatives)?;
+    report.derivatives_iterations = done.iterations;
+    observed(observer.derivatives(&Derivatives { time: state.t, iterations: done.iterations, residual_norm: done.residual_norm }))?;
+    observed(observer.step(&step_done(&asm, 0, problem.time_step, (done.iterations, done.residual_norm), &state)))?;
+    if matches!(problem.abort_after, Some(AbortAfter::Derivatives | AbortAfter::DummySteps)) {
+        report.final_state = state;
+        report.wall_time = clock.elapsed();
+        return Ok(report);
+    }
+
+    let mut next_eigen = 0;
+    let mut eigenanalyses_due = |state: &State, observer: &mut dyn RunObserver, report: &mut RunReport| -> Result<(), RunError> {
+        let Some(request) = &problem.eigenanalysis else { return Ok(()) };
+        while next_eigen < times.len() && times[next_eigen] <= state.t + 1e-6 * problem.time_step {
+            let e = Eigenanalysis::at(model, state, next_eigen, request)?;
+            observed(observer.eigenanalysis(&EigenDone { analysis: &e }))?;
+            report.eigenanalyses.push(EigenSummary {
+                index: e.index,
+                time: e.time,
+                dcoef: e.dcoef,
+                dynamic: e.dynamic_eigenvalues(),
+                zero: e.modal.count(ModeKind::Zero),
+                infinite: e.modal.count(ModeKind::Infinite),
+            });
+            next_eigen += 1;
+        }
+        report.eigen_times_not_reached = times[next_eigen..].to_vec();
+        Ok(())
+    };
+    eigenanalyses_due(&state, observer, &mut report)?;
+
+    let settings = NewtonSettings { tolerance: problem.tolerance, max_iterations: problem.max_iterations, ..Default::default() };
+    let mut integrator = Integrator::new(&asm, state, problem.method, problem.time_step, settings);
+    for step in 1..=steps {
+        let r = integrator.step().map_err(|failure| RunError::Step { step, steps, time: failure.time, failure })?;
+        report.steps = step;
+        report.newton_iterations += r.iterations;
+        observed(observer.step(&step_done(&asm, step, problem.time_step, (r.iterations, r.residual_norm), &integrator.state)))?;
+        eigenanalyses_due(&integrator.state, observer, &mut report)?;
+    }
+    report.final_state = integrator.state;
+    report.wall_time = clock.elapsed();
+    Ok(report)
+}

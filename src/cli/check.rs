@@ -1,0 +1,33 @@
+//! `romdyn check`: every element's analytic Jacobian against finite differences of its
+//! residual at the model's reference solution.
+
+use std::path::PathBuf;
+
+use anyhow::{Context, Result};
+use clap::Args;
+use romdyn::analysis::{check_model_jacobians, JACOBIAN_CHECK_TOLERANCE};
+use romdyn::input::mbdyn::read_model;
+
+#[derive(Args, Debug)]
+pub struct CheckArgs {
+    /// MBDyn input file
+    #[arg(value_name = "FILE")]
+    pub file: PathBuf,
+    /// Check at the solution at TIME [s] (default: the initial time, after the initial derivatives)
+    #[arg(long, value_name = "TIME")]
+    pub at: Option<f64>,
+    /// Largest accepted max |analytic - fd| / max(max |J_element|, 1)
+    #[arg(long, default_value_t = JACOBIAN_CHECK_TOLERANCE)]
+    pub tolerance: f64,
+}
+
+pub fn run(a: CheckArgs) -> Result<()> {
+    let m = read_model(&a.file)?;
+    let check = check_model_jacobians(&m.model, &m.problem, a.at, a.tolerance).with_context(|| format!("{}: reference solution", a.file.display()))?;
+    print!("{}", check.to_text());
+    let failed = check.failures().count();
+    if failed > 0 {
+        anyhow::bail!("{}: {failed} of {} elements have Jacobians that disagree with their residuals", a.file.display(), check.elements.len());
+    }
+    Ok(())
+}

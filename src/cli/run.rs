@@ -1,0 +1,97 @@
+//! `romdyn run`: the initial-value problem of an MBDyn input file with its eigenanalyses,
+//! MBDyn-compatible files, a progress bar on a terminal and a summary.
+
+use std::io::IsTerminal;
+use std::path::PathBuf;
+
+use anyhow::{Context, Result};
+use clap::Args;
+use indicatif::{ProgressBar, ProgressStyle};
+use romdyn::analysis::{run as run_problem, EigenDone, ObserverError, RunFiles, RunObserver, RunReport, RunStart, StepDone};
+use romdyn::input::mbdyn::read_model;
+
+#[derive(Args, Debug)]
+pub struct RunArgs {
+    /// MBDyn input file (its 'initial value' block sets times [s], method, step, tolerance, max iterations and eigenanalyses)
+    #[arg(value_name = "FILE")]
+    pub file: PathBuf,
+    /// Output prefix: writes PREFIX.out, .mov, .log and PREFIX.m/.json (PREFIX_K.m/.json for several eigenanalyses) [default: FILE without its extension]
+    #[arg(short = 'o', long = "out", value_name = "PREFIX")]
+    pub prefix: Option<PathBuf>,
+}
+
+/// A progress bar on stderr (hidden when stderr is not a terminal).
+struct Progress {
+    bar: ProgressBar,
+}
+
+impl Progress {
+    fn new() -> Self {
+        let bar = if std::io::stderr().is_terminal() { ProgressBar::new(0) } else { ProgressBar::hidden() };
+        let style = ProgressStyle::with_template("{bar:30} {pos}/{len} steps {msg} eta {eta}").unwrap_or_else(|_| ProgressStyle::default_bar());
+        bar.set_style(style);
+        Progress { bar }
+    }
+}
+
+impl RunObserver for Progress {
+    fn started(&mut self, e: &RunStart) -> Result<(), ObserverError> {
+        self.bar.set_length(e.steps as u64);
+        Ok(())
+    }
+    fn step(&mut self, e: &StepDone) -> Result<(), ObserverError> {
+        self.bar.set_position(e.step as u64);
+        self.bar.set_message(format!("t = {:.4} s", e.time));
+        Ok(())
+    }
+    fn eigenanalysis(&mut self, e: &EigenDone) -> Result<(), ObserverError> {
+        self.bar.set_message(format!("eigenanalysis {}", e.analysis.index));
+        Ok(())
+    }
+}
+
+/// A time [s] to 9 decimals, trailing zeros dropped (steps accumulate rounding in t).
+fn seconds(t: f64) -> String {
+    let s = format!("{t:.9}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" { "0".into() } else { s.to_string() }
+}
+
+fn print_summary(file: &str, r: &RunReport, written: &[PathBuf]) {
+    println!(
+        "romdyn run {file}: {} steps to t = {} s, {} Newton iterations (+{} for the initial derivatives), wall time {:.3} s",
+        r.steps,
+        seconds(r.final_state.t),
+        r.newton_iterations,
+        r.derivatives_iterations,
+        r.wall_time.as_secs_f64()
+    );
+    for e in &r.eigenanalyses {
+        println!("eigenanalysis {} at t = {} s (dCoef = {} s): {} dynamic, {} zero, {} infinite eigenvalues", e.index, seconds(e.time), e.dcoef, e.dynamic.len(), e.zero, e.infinite);
+        for l in &e.dynamic {
+            let (f, zeta) = (l.norm() / (2.0 * std::f64::consts::PI), if l.norm() > 0.0 { -l.re / l.norm() } else { 0.0 });
+            println!("  λ = {:.6}{:+.6}j rad/s  (f = {f:.6} Hz, ζ = {zeta:.4})", l.re, l.im);
+        }
+    }
+    if !r.eigen_times_not_reached.is_empty() {
+        let times: Vec<String> = r.eigen_times_not_reached.iter().map(|t| seconds(*t)).collect();
+        println!("eigenanalyses not done (the run ended first): t = {} s", times.join(", "));
+    }
+    let names: Vec<String> = written.iter().map(|p| p.display().to_string()).collect();
+    println!("wrote {}", names.join(", "));
+}
+
+pub fn run(a: RunArgs) -> Result<()> {
+    let m = read_model(&a.file)?;
+    let input = a.file.display().to_string();
+    let prefix = a.prefix.clone().unwrap_or_else(|| a.file.with_extension(""));
+    let files = RunFiles::create(&prefix, &input, &m.model, &m.problem).with_context(|| format!("starting the output files {}.*", prefix.display()))?;
+    let mut observers = (Progress::new(), files);
+    let result = run_problem(&m.model, &m.problem, &mut observers);
+    let (progress, files) = observers;
+    progress.bar.finish_and_clear();
+    let report = result.with_context(|| format!("{input}: the run failed; no output file was written"))?;
+    let written = files.finish(&report)?;
+    print_summary(&input, &report, &written);
+    Ok(())
+}

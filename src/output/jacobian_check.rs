@@ -1,0 +1,32 @@
+//! The report of a Jacobian check (`romdyn check`): one row per element with its worst
+//! entry, then a summary line.
+
+use crate::dae::JacobianMismatch;
+
+/// The report as text. An element passes when its relative error is at most `tolerance`.
+pub fn jacobian_check_text(elements: &[JacobianMismatch], tolerance: f64, time: f64, dcoef: f64) -> String {
+    let mut s = format!(
+        "# Jacobian check at t = {time} s, dCoef = {dcoef:e} s: each element's J(c) = F/y' + c F/y against central differences of its residual\n\
+         # error = |analytic - fd| / max(max |J_element|, 1); tolerance {tolerance:e}\n"
+    );
+    s += &format!("{:<6}  {:<24}  {:>9}  {:>14}  {:>14}  worst entry d(equation)/d(unknown)\n", "status", "element", "error", "analytic", "fd");
+    for e in elements {
+        let status = if e.within(tolerance) { "ok" } else { "FAIL" };
+        let entry = if e.equation.is_empty() { "none: analytic and finite differences agree exactly".to_string() } else { format!("d({})/d({})", e.equation, e.unknown) };
+        s += &format!("{status:<6}  {:<24}  {:>9.2e}  {:>14.6e}  {:>14.6e}  {entry}\n", e.element, e.relative_error, e.analytic, e.finite_difference);
+    }
+    let failed: Vec<&JacobianMismatch> = elements.iter().filter(|e| !e.within(tolerance)).collect();
+    match failed.first() {
+        None => s += &format!("{} elements checked: all agree within {tolerance:e}\n", elements.len()),
+        Some(worst) => {
+            s += &format!(
+                "{} of {} elements disagree beyond {tolerance:e} (worst: {}, error {:.2e})\n",
+                failed.len(),
+                elements.len(),
+                worst.element,
+                worst.relative_error
+            )
+        }
+    }
+    s
+}

@@ -1,0 +1,98 @@
+//! The step log in MBDyn's `.out` layout (MBDyn's solver output; manual, "Initial-Value
+//! Problem" and "Eigenanalysis: Output"): comment lines start with `#`; after the initial
+//! derivatives a key line and one line per time step,
+//!
+//! ```text
+//! # Step Time TStep NIter ResErr SolErr SolConv Out
+//! Step 1 1.000000000000e-03 1.000000000000e-03 2 3.4e-12 0 0 1
+//! ```
+//!
+//! `Step 0` is the initial state after the derivatives. Each eigenanalysis adds a table
+//! `Mode n.  Real  Imag  Damp %  Freq Hz` with rows `k: σ + ω j  ζ%  f` (λ = σ + jω in
+//! rad/s, ζ in percent, f = ω/2π in Hz). romdyn's ResErr is `‖F‖∞` in the units of the
+//! worst equation; it has no solution test, so SolErr and SolConv are 0. The file ends with
+//! an `# End of simulation` line and is put in place only when the run finishes.
+
+use std::path::Path;
+
+use faer::c64;
+
+use super::atomic::{AtomicFile, OutputError};
+
+/// One time step as the log records it (SI: s).
+#[derive(Clone, Copy, Debug)]
+pub struct StepLine {
+    pub step: usize,
+    pub time: f64,
+    pub time_step: f64,
+    pub iterations: usize,
+    pub residual_norm: f64,
+}
+
+/// A `.out` file being written.
+pub struct StepLog {
+    file: AtomicFile,
+}
+
+impl StepLog {
+    /// Creates the log with a header naming the input and the units.
+    pub fn create(path: &Path, input: &str) -> Result<Self, OutputError> {
+        let mut file = AtomicFile::create(path)?;
+        file.write_with(|w| {
+            writeln!(w, "# romdyn {} step log of {input} (MBDyn .out layout)", env!("CARGO_PKG_VERSION"))?;
+            writeln!(w, "# units: Time, TStep [s]; ResErr = max |F_i| in the units of equation i (N, N m, kg m/s, m, rad)")
+        })?;
+        Ok(StepLog { file })
+    }
+
+    /// `# Derivatives solution step at time t performed in n iterations with e error`.
+    pub fn derivatives(&mut self, time: f64, iterations: usize, error: f64) -> Result<(), OutputError> {
+        self.file.write_with(|w| writeln!(w, "# Derivatives solution step at time {time} performed in {iterations} iterations with {error:.6e} error"))
+    }
+
+    /// One `Step` line; step 0 is preceded by the key line.
+    pub fn step(&mut self, s: &StepLine) -> Result<(), OutputError> {
+        self.file.write_with(|w| {
+            if s.step == 0 {
+                writeln!(w, "# Key for lines starting with \"Step\":")?;
+                writeln!(w, "# Step Time TStep NIter ResErr SolErr SolConv Out")?;
+            }
+            writeln!(w, "Step {} {:.12e} {:.12e} {} {:.6e} 0 0 1", s.step, s.time, s.time_step, s.iterations, s.residual_norm)
+        })
+    }
+
+    /// An eigenvalue table: `title` as a comment line, then one row per `(number, λ)`.
+    pub fn eigenvalues(&mut self, title: &str, rows: &[(usize, c64)]) -> Result<(), OutputError> {
+        self.file.write_with(|w| {
+            writeln!(w, "# {title}")?;
+            writeln!(w, "Mode n.       Real           Imag              Damp %        Freq Hz")?;
+            for &(k, l) in rows {
+                let (damping, freq) = damping_percent_and_hz(l);
+                writeln!(w, "{k:>8}: {:>13.6e} + {:>13.6e} j    {damping:>13.6e}    {freq:>13.6e}", l.re, l.im)?;
+            }
+            Ok(())
+        })
+    }
+
+    /// The closing comment: final time, steps and Newton iterations.
+    pub fn end(&mut self, time: f64, steps: usize, iterations: usize) -> Result<(), OutputError> {
+        self.file.write_with(|w| writeln!(w, "# End of simulation at time {time:.12e} after {steps} steps; total iterations: {iterations}"))
+    }
+
+    /// Puts the file in place.
+    pub fn finish(self) -> Result<(), OutputError> {
+        self.file.commit()
+    }
+}
+
+/// MBDyn's damping column (`−100 σ/|λ|` for complex λ, `∓100` for real ones) and frequency
+/// `ω/2π` (0 for real λ).
+fn damping_percent_and_hz(l: c64) -> (f64, f64) {
+    if l.im != 0.0 {
+        (-100.0 * l.re / l.norm(), l.im / (2.0 * std::f64::consts::PI))
+    } else if l.re == 0.0 {
+        (0.0, 0.0)
+    } else {
+        (-100.0 * l.re.signum(), 0.0)
+    }
+}
