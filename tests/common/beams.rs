@@ -1,0 +1,78 @@
+//! Beam models of CASES C4/C5 built through the Rust API: 3-node finite-volume beams along
+//! x with masses lumped on the nodes by finite volumes.
+
+use romdyn::element::{beam_shape, Anchor, Beam3, BeamNode, Drive, Force, ForceFrame, Joint, RigidBody, SectionLaw, SectionOrientation};
+use romdyn::kinematics::{Mat3, Vec3};
+use romdyn::model::{Label, Model, ModelBuilder};
+
+/// Section and mass data of a uniform beam (SI).
+#[derive(Clone, Copy, Debug)]
+pub struct BeamData {
+    pub length: f64,
+    pub ea: f64,
+    pub ga: f64,
+    pub gj: f64,
+    pub ej: f64,
+    /// Mass per unit length [kg/m].
+    pub rho_a: f64,
+}
+
+/// Paper Table 3 (CASES C4).
+pub const TABLE3: BeamData = BeamData { length: 1.0, ea: 1e6, ga: 1e6, gj: 1e3, ej: 1e3, rho_a: 1.0 };
+
+/// Node labels 1..=2n+1 along x from 0 to L; beam labels 1..=n; bodies 101..; joints 201..;
+/// forces 301...
+pub fn node_label(i: usize) -> Label {
+    i as Label + 1
+}
+
+/// A straight beam of `elements` 3-node elements along x, all nodes dynamic with the mass of
+/// their finite volumes (end nodes of an element `(1 − 1/√3)/2` of its mass, the middle
+/// node `1/√3`) and no rotary inertia.
+pub fn straight_beam(b: &mut ModelBuilder, d: &BeamData, elements: usize) {
+    let n = 2 * elements + 1;
+    let h = d.length / (n - 1) as f64;
+    for i in 0..n {
+        b.dynamic_node(node_label(i), Vec3::new(i as f64 * h, 0.0, 0.0), Mat3::identity(), Vec3::zeros(), Vec3::zeros());
+    }
+    let law = SectionLaw::diagonal(d.ea, d.ga, d.ga, d.gj, d.ej, d.ej);
+    let mut mass = vec![0.0; n];
+    let fractions = beam_shape::volume_fractions();
+    for e in 0..elements {
+        let nodes = [0, 1, 2].map(|k| BeamNode::new(node_label(2 * e + k), Vec3::zeros()));
+        let beam = Beam3::new(e as Label + 1, nodes, [SectionOrientation::Given(Mat3::identity()), SectionOrientation::Given(Mat3::identity())], [law.clone(), law.clone()], b.nodes()).expect("valid beam");
+        b.element(beam);
+        for k in 0..3 {
+            mass[2 * e + k] += fractions[k] * d.rho_a * 2.0 * h;
+        }
+    }
+    for (i, m) in mass.iter().enumerate() {
+        b.element(RigidBody::new(101 + i as Label, node_label(i), *m, Vec3::zeros(), Mat3::zeros()));
+    }
+}
+
+fn ground() -> Anchor {
+    Anchor::Ground { position: Vec3::zeros(), orientation: Mat3::identity() }
+}
+
+fn at_node(label: Label) -> Anchor {
+    Anchor::Node { label, offset: Vec3::zeros(), orientation: Mat3::identity() }
+}
+
+/// The simply supported beam of paper §6.2 bending in the x–y plane: every node kept in
+/// the plane (z, rx, ry locked), node 1 pinned (x, y also locked), the last node pinned and
+/// free to slide along x (y locked); torsion is restrained by the plane constraints. An
+/// axial compression `n_axial` [N] acts on the sliding end.
+pub fn simply_supported(d: &BeamData, elements: usize, n_axial: f64) -> Model {
+    let mut b = ModelBuilder::new();
+    straight_beam(&mut b, d, elements);
+    let last = 2 * elements;
+    for i in 0..=last {
+        let (x, y) = (i == 0, i == 0 || i == last);
+        b.element(Joint::total(201 + i as Label, ground(), at_node(node_label(i)), [x, y, true], [true, true, false]));
+    }
+    if n_axial != 0.0 {
+        b.element(Force { label: 301, node: node_label(last), frame: ForceFrame::Absolute, direction: Vec3::new(-1.0, 0.0, 0.0), offset: Vec3::zeros(), drive: Drive::Const(n_axial) });
+    }
+    b.build().expect("valid simply supported beam")
+}
