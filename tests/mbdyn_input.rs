@@ -62,7 +62,7 @@ fn expressions_and_variables() {
     let text = "set: real a = 2 * (3 + 1) ^ 2 / 4 - -1; set: integer n = 7 / 2; set: real s = sqrt(16) + atan2(0, 1) + cos(pi);
 begin: data; problem: initial value; end: data;";
     let d = parse_text(text, Path::new("m.mbd")).unwrap();
-    let v = |n: &str| d.variables.0[n].value;
+    let v = |n: &str| d.variables.real(n).unwrap_or(f64::NAN);
     // 2·16/4 + 1 = 9; integer division truncates 3.5 to 3; 4 + 0 − 1 = 3.
     assert_eq!((v("a"), v("n"), v("s")), (9.0, 3.0, 3.0));
 }
@@ -102,7 +102,7 @@ fn model_level_errors_name_the_statement() {
         (with("body: 1, 1, 2., null, eye;", "body: 1, 1, 2., null, eye; body: 1, 1, 2., null, eye;").replace("rigid bodies: 1", "rigid bodies: 2"), "body 1 is defined twice"),
         (with("body: 1, 1, 2., null, eye;", "aerodynamic body: 1, 1;"), "element type 'aerodynamic body' is not supported by romdyn"),
         (with("body: 1, 1, 2., null, eye;", "body: 1, 1, 2., null, eye; joint: 2, prismatic, 1;"), "joint type 'prismatic' is not supported by romdyn"),
-        (with("dynamic", "flying"), "expected the node type (static, dynamic), found 'flying'"),
+        (with("dynamic", "flying"), "expected the node type (static, dynamic, dummy, modal, static displacement, dynamic displacement), found 'flying'"),
         (with("null, eye, null, null", "null, euler123, 1, 2, null, null"), "expected angle about z [rad] (a number), found 'null'"),
         (with("null, eye, null, null", "null, 1, 1., 0., 0., 2, 2., 0., 0., null, null"), "the two vectors are null or parallel"),
         (with("body: 1, 1, 2., null, eye;", "body: 1, 1, 2., null, eye, 7;"), "unexpected extra argument the number 7"),
