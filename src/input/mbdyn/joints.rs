@@ -57,14 +57,14 @@ impl Side<'_> {
 enum Position {
     /// `position` written or not, the offset is read (MBDyn: "position, OFFSET").
     Always,
-    /// Read only after `position` (or when it obviously starts: `null`, `reference`).
+    /// Read only after `position` (or when it is `null`).
     IfKeyword,
 }
 
 fn side<'a>(c: &mut Cursor, ctx: &ElementContext<'a>, what: &str, position: Position, other: Option<&Side>) -> Result<Side<'a>, MbdynError> {
     let node = ctx.node(c, what)?;
     let on = Context { other: other.map(Side::other), ..ctx.on(node) };
-    let written = c.accept("position") || c.peek_keyword().is_some_and(|w| w == "null" || w == "reference");
+    let written = c.accept("position") || c.peek_keyword().is_some_and(|w| w == "null");
     let offset = if written || position == Position::Always { on.relative_position(c, &format!("offset of {what} [m]"))? } else { Vec3::zeros() };
     let orientation = if c.accept("orientation") || c.accept("hinge") { on.relative_orientation(c, &format!("orientation of {what}"))? } else { Mat3::identity() };
     Ok(Side { node, offset, orientation })

@@ -61,7 +61,8 @@ fn orthogonal(m: Mat3) -> Option<Mat3> {
     if !m.iter().all(|x| x.is_finite()) || ((m.transpose() * m) - Mat3::identity()).norm() > MATR_TOLERANCE || m.determinant() <= 0.0 {
         return None;
     }
-    Some(*Rotation3::from_matrix_eps(&m, 1e-15, 100, Rotation3::identity()).matrix())
+    let svd = m.svd(true, true);
+    Some(svd.u? * svd.v_t?)
 }
 
 fn axis_index(c: &mut Cursor, what: &str) -> Result<usize, MbdynError> {
