@@ -103,7 +103,7 @@ fn model_level_errors_name_the_statement() {
         (with("body: 1, 1, 2., null, eye;", "aerodynamic body: 1, 1;"), "element type 'aerodynamic body' is not supported by romdyn"),
         (with("body: 1, 1, 2., null, eye;", "body: 1, 1, 2., null, eye; joint: 2, prismatic, 1;"), "joint type 'prismatic' is not supported by romdyn"),
         (with("dynamic", "flying"), "expected the node type (static, dynamic, dummy, modal, static displacement, dynamic displacement), found 'flying'"),
-        (with("null, eye, null, null", "null, euler123, 1, 2, null, null"), "expected angle about z [rad] (a number), found 'null'"),
+        (with("null, eye, null, null", "null, euler123, 1, 2, null, null"), "expected node orientation: angle about z [rad] (a number), found 'null'"),
         (with("null, eye, null, null", "null, 1, 1., 0., 0., 2, 2., 0., 0., null, null"), "the two vectors are null or parallel"),
         (with("body: 1, 1, 2., null, eye;", "body: 1, 1, 2., null, eye, 7;"), "unexpected extra argument the number 7"),
         (with("structural: 1,", "structural: -1,"), "expected node label (a non-negative integer label), found -1"),

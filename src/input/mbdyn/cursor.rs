@@ -89,7 +89,7 @@ impl<'a> Cursor<'a> {
             Some(Value::Empty) => default,
             Some(Value::Word(_)) if self.st.args.get(self.pos).is_some_and(|a| is_name(&a.text)) => {
                 let name = self.st.args.get(self.pos).map_or("", |a| a.text.as_str());
-                return Err(self.error(format!("expected {what} (a number), found '{name}', which is not a defined variable")));
+                return Err(self.error(format!("expected {what} (a number), found '{name}', which is neither a number nor a defined variable")));
             }
             _ => return Err(self.error(format!("expected {what} (a number), found {}", self.found()))),
         };

@@ -203,8 +203,10 @@ fn force(couple: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Re
         ForceFrame::Follower => on.relative_vector(c, &format!("{what} direction")),
     };
     let mut offset = Vec3::zeros();
+    let mut value_span = c.here();
     let terms = if c.accept("position") {
         offset = on.relative_position(c, "arm [m]")?;
+        value_span = c.here();
         template_vec3(c, ctx.drives, ctx.seq, &basis, &direction)?
     } else if couple {
         template_vec3(c, ctx.drives, ctx.seq, &basis, &direction)?
@@ -215,7 +217,7 @@ fn force(couple: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Re
         offset = on.relative_position(c, "arm [m]")?;
         vec![(dir, super::drives::drive(c, ctx.drives, ctx.seq)?)]
     };
-    let (direction, drive) = single_term(terms).ok_or_else(|| c.error_at(span, format!("romdyn's {what} is one direction times one drive: this value combines components with different drives")))?;
+    let (direction, drive) = single_term(terms).ok_or_else(|| c.error_at(value_span, format!("romdyn's {what} is one direction times one drive: this value combines components with different drives")))?;
     if frame == ForceFrame::Follower {
         c.accept("output relative");
     }

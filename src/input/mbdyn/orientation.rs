@@ -38,9 +38,14 @@ pub fn orientation_values(c: &mut Cursor, what: &str) -> Result<Mat3, MbdynError
     if let Some(kind) = c.accept_any(&["euler123", "euler313", "euler321", "euler"]) {
         let scale = if c.accept("degrees") { std::f64::consts::PI / 180.0 } else { 1.0 };
         let unit = if scale == 1.0 { "rad" } else { "deg" };
+        let axes = match kind {
+            "euler313" => ["z", "x", "z"],
+            "euler321" => ["z", "y", "x"],
+            _ => ["x", "y", "z"],
+        };
         let mut a = [0.0; 3];
-        for (k, x) in a.iter_mut().enumerate() {
-            *x = scale * c.real(&format!("{what}: Euler angle {} [{unit}]", k + 1))?;
+        for (x, axis) in a.iter_mut().zip(axes) {
+            *x = scale * c.real(&format!("{what}: angle about {axis} [{unit}]"))?;
         }
         let (x, y, z) = (Vec3::x(), Vec3::y(), Vec3::z());
         return Ok(match kind {
@@ -89,13 +94,13 @@ fn two_vectors(c: &mut Cursor, what: &str) -> Result<Mat3, MbdynError> {
     let vj_span = c.here();
     let vj = if c.accept("guess") { guess(&vi) } else { c.vec3_values(&format!("{what}: component of the vector of axis {}", j + 1))? };
     let Some(ei) = vi.try_normalize(1e-300) else {
-        return Err(c.error_at(vi_span, format!("{what}: the vector of axis {} is null", i + 1)));
+        return Err(c.error_at(vi_span, format!("{what}: the two vectors are null or parallel (the vector of axis {} is null)", i + 1)));
     };
     let k = 3 - i - j;
     // (i, j, k) cyclic: e_k = e_i × v_j; otherwise the opposite.
     let sign = if (j + 3 - i) % 3 == 1 { 1.0 } else { -1.0 };
     let Some(ek) = (sign * ei.cross(&vj)).try_normalize(1e-12 * vj.norm().max(1e-300)) else {
-        return Err(c.error_at(vj_span, format!("{what}: the vectors of axes {} and {} are parallel (or the second is null)", i + 1, j + 1)));
+        return Err(c.error_at(vj_span, format!("{what}: the two vectors are null or parallel (axes {} and {})", i + 1, j + 1)));
     };
     let ej = sign * ek.cross(&ei);
     let mut m = Mat3::zeros();

@@ -184,10 +184,18 @@ impl Reader {
     /// Splits at top-level commas and evaluates each piece, in order.
     fn args(&mut self, body: &[Spanned], end: Span) -> Result<Vec<Arg>, MbdynError> {
         if let Some(k) = body.iter().position(|t| t.token == Token::Symbol(":")) {
-            // A second ':' means the previous statement was not closed.
-            let at = if k > 0 { &body[k - 1] } else { &body[k] };
-            let what = if let Token::Word(w) = &at.token { format!("'{w}'") } else { "this".into() };
-            return Err(self.doc.sources.error(at.span, format!("missing ';' before {what}")));
+            // A second ':' means the previous statement was not closed: point at the keyword
+            // of the next one (its first word when it starts a line, else the last word).
+            let mut at = k.saturating_sub(1);
+            let mut start = at;
+            while start > 0 && matches!(body[start - 1].token, Token::Word(_)) && matches!(body[start].token, Token::Word(_)) {
+                start -= 1;
+            }
+            if let Some(first) = (start..at).find(|&i| i > 0 && body[i - 1].span.line < body[i].span.line) {
+                at = first;
+            }
+            let what = if let Token::Word(w) = &body[at].token { format!("'{w}'") } else { "this".into() };
+            return Err(self.doc.sources.error(body[at].span, format!("missing ';' before {what}")));
         }
         let mut pieces: Vec<(&[Spanned], Span)> = Vec::new();
         let (mut depth, mut start) = (0i32, 0);

@@ -37,10 +37,11 @@ impl Frame {
     }
 }
 
-/// The `reference:` cards read so far.
+/// The `reference:` cards read so far, and the labels of those still to come.
 #[derive(Default)]
 pub struct Frames {
     table: HashMap<u32, (Frame, usize, Span)>,
+    later: HashMap<u32, Span>,
 }
 
 impl Frames {
@@ -52,8 +53,16 @@ impl Frames {
         match self.table.get(&label) {
             Some((f, s, _)) if *s < seq => Ok(*f),
             Some((_, _, at)) => Err(c.error_at(span, format!("reference {label} is used before its definition (line {}): a reference must be defined before it is used", at.line))),
-            None => Err(c.error_at(span, format!("reference {label} is not defined"))),
+            None => match self.later.get(&label) {
+                Some(at) => Err(c.error_at(span, format!("reference {label} is used before its definition (line {}): a reference must be defined before it is used", at.line))),
+                None => Err(c.error_at(span, format!("reference {label} is not defined"))),
+            },
         }
+    }
+
+    /// Notes that reference `label` is defined at `span` further on (for messages).
+    pub fn announce(&mut self, label: u32, span: Span) {
+        self.later.entry(label).or_insert(span);
     }
 }
 
