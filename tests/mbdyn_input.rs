@@ -2,9 +2,9 @@
 
 use std::path::Path;
 
-use romdyn::dae::{linearize, Assembler, State};
+use romdyn::dae::{check_jacobians, linearize, Assembler, State};
 use romdyn::input::mbdyn::{build, parse_text, read_model};
-use romdyn::linear::{EigenRoute, ModalAnalysis, ModeKind};
+use romdyn::linear::{ConstraintForm, EigenRoute, ModalAnalysis, ModeKind};
 use romdyn::model::Summary;
 use romdyn::solve::{initial_derivatives, NewtonSettings};
 
@@ -37,6 +37,91 @@ fn inverted_pendulum_file_has_real_eigenvalues() {
     let ev = eigenvalues("examples/inverted_pendulum.mbd");
     assert_eq!(ev.len(), 2);
     assert!(ev.iter().all(|l| l.im == 0.0 && (l.re.abs() - OMEGA).abs() / OMEGA < 1e-6), "{ev:?}");
+}
+
+/// Dynamic eigenvalues of an example, linearized after consistent initial derivatives
+/// (as `romdyn eig` does).
+fn dynamic_eigenvalues(file: &str) -> (usize, Vec<romdyn::c64>) {
+    let m = read_model(Path::new(file)).unwrap_or_else(|e| panic!("{e}"));
+    let asm = Assembler::new(&m.model);
+    let mut st = State::initial(&m.model, &asm.dofs);
+    initial_derivatives(&asm, &mut st, &NewtonSettings::default()).unwrap();
+    let dae = linearize(&m.model, &st, &[], &[], None).unwrap();
+    let modal = ModalAnalysis::compute(&dae.jacobians, EigenRoute::Direct).unwrap();
+    (Summary::of(&m.model).equations(), modal.modes.iter().filter(|m| m.kind == ModeKind::Dynamic).map(|m| m.lambda).collect())
+}
+
+#[test]
+fn double_pendulum_frequencies_match_the_linearized_lagrangian() {
+    let (equations, ev) = dynamic_eigenvalues("examples/double_pendulum.mbd");
+    // 6 (ground) + 2 x 12 (bobs) + 6 (clamp) + 5 + 5 (revolute hinges).
+    assert_eq!(equations, 46);
+    // Independent source: Lagrange's equations of the double pendulum linearized about the
+    // hanging position, bobs of mass m with inertia J about their centres, absolute link
+    // angles θ1, θ2: M = [[2mL² + J, mL²], [mL², mL² + J]], K = diag(2mgL, mgL);
+    // det(K − ω² M) = 0 is a quadratic in ω². For J → 0: ω² = (g/L)(2 ∓ √2).
+    let (m, l, j, g) = (1.0f64, 0.5f64, 1e-6f64, 9.81f64);
+    let a = (2.0 * m * l * l + j) * (m * l * l + j) - (m * l * l).powi(2);
+    let b = -(2.0 * m * g * l * (m * l * l + j) + m * g * l * (2.0 * m * l * l + j));
+    let c = 2.0 * (m * g * l).powi(2);
+    let disc = (b * b - 4.0 * a * c).sqrt();
+    let want = [((-b - disc) / (2.0 * a)).sqrt(), ((-b + disc) / (2.0 * a)).sqrt()];
+    assert_eq!(ev.len(), 4, "{ev:?}");
+    for w in want {
+        // 1e-9 relative: the linearization is exact, the eigensolver's error is ~1e-14.
+        assert!(ev.iter().filter(|l| l.re.abs() < 1e-9 && (l.im.abs() - w).abs() < 1e-9 * w).count() == 2, "{w} not in {ev:?}");
+    }
+    // The point-mass formula holds to the effect of J (J/(mL²) = 4e-6 relative).
+    for (w, sign) in want.iter().zip([-1.0, 1.0]) {
+        let point_mass = ((g / l) * (2.0 + sign * 2f64.sqrt())).sqrt();
+        assert!((w - point_mass).abs() / point_mass < 1e-5, "{w} vs {point_mass}");
+    }
+}
+
+#[test]
+fn masses_on_springs_oscillate_at_the_closed_form_frequencies() {
+    let (equations, ev) = dynamic_eigenvalues("examples/mass_on_springs.mbd");
+    // 6 + 2 x 12 node equations, clamp 6, two total joints with 3 rotations each.
+    assert_eq!(equations, 42);
+    assert_eq!(ev.len(), 12, "{ev:?}");
+    // Independent source: m x'' + c x' + k x = 0 per direction,
+    // λ = −c/(2m) ± j sqrt(k/m − (c/(2m))²); undamped λ = ± j sqrt(k/m).
+    let m = 2.0f64;
+    for (k, c) in [(100.0f64, 1.0f64), (400.0, 2.0), (900.0, 3.0)] {
+        for damping in [0.0, c] {
+            let want = romdyn::c64::new(-damping / (2.0 * m), (k / m - (damping / (2.0 * m)).powi(2)).sqrt());
+            // 1e-9 relative (exact linear system; eigensolver error ~1e-13).
+            let hits = ev.iter().filter(|l| (romdyn::c64::new(l.re, l.im.abs()) - want).norm() < 1e-9 * want.norm()).count();
+            assert_eq!(hits, 2, "k = {k}, c = {damping}: {want} not twice in {ev:?}");
+        }
+    }
+}
+
+#[test]
+fn spatial_mechanism_reads_assembles_and_has_exact_jacobians() {
+    let m = read_model(Path::new("examples/spatial_mechanism.mbd")).unwrap_or_else(|e| panic!("{e}"));
+    let s = Summary::of(&m.model);
+    // Hand count: 6 (static ground) + 4 x 12 (dynamic nodes) = 54 node equations;
+    // clamp 6 + revolute hinge 5 + spherical hinge 3 + total joint 5 + total pin joint 5 = 24.
+    assert_eq!((s.node_equations, s.constraint_equations), (54, 24));
+    for kind in ["clamp", "revolute hinge", "spherical hinge", "total joint", "deformable displacement joint", "deformable hinge", "rod", "body", "absolute force", "follower force", "absolute couple", "follower couple", "gravity"] {
+        assert!(s.elements.contains_key(kind), "no {kind} in {:?}", s.elements);
+    }
+    let asm = Assembler::new(&m.model);
+    let mut st = State::initial(&m.model, &asm.dofs);
+    let settings = NewtonSettings { tolerance: 1e-10, ..Default::default() };
+    initial_derivatives(&asm, &mut st, &settings).unwrap_or_else(|e| panic!("{e:?}"));
+    // Consistent: the residual vanishes at the initial state with the derivatives found.
+    let f = asm.residual(&st, m.model.constraint_form, 1e-3);
+    let worst = f.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+    assert!(worst < 1e-8, "residual {worst}");
+    // Every element's Jacobian against central differences of its residual: 1e-6
+    // relative to the element's largest entry (the criterion of multibody_jacobians.rs).
+    for (dcoef, form) in [(1e-3, ConstraintForm::Scaled), (0.1, ConstraintForm::Plain)] {
+        let checks = check_jacobians(&asm, &st, dcoef, form);
+        assert_eq!(checks.len(), m.model.elements.len());
+        assert!(checks.iter().all(|c| c.relative_error < 1e-6), "{:?}", checks.first());
+    }
 }
 
 const GOOD: &str = "begin: data; problem: initial value; end: data;
