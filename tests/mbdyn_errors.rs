@@ -215,3 +215,16 @@ fn problem_errors() {
     ];
     check(&cases);
 }
+
+#[test]
+fn deep_nesting_is_an_error_not_a_stack_overflow() {
+    // 90 levels read (on a test thread's small stack), 150 are refused.
+    let nested = |n: usize| format!("set: real a = {}1.{};", "(".repeat(n), ")".repeat(n));
+    assert_eq!(error_of(&(nested(90) + HEAD)), "accepted");
+    assert!(error_of(&nested(150)).starts_with("m.mbd:1:"), "{}", error_of(&nested(150)));
+    assert!(error_of(&nested(150)).contains("nested more than 100 levels deep"));
+    let unary = format!("set: real a = {}1.;", "- ".repeat(150));
+    assert!(error_of(&unary).contains("nested more than 100 levels deep"));
+    let arrays = model("structural nodes: 2; forces: 1;", NODES, &format!("force: 1, absolute, 2, position, null, {}1., 0., 0., const, 1.;", "array, 1, ".repeat(20)));
+    assert!(error_of(&arrays).contains("nested in 'array' more than 8 deep"), "{}", error_of(&arrays));
+}

@@ -137,6 +137,13 @@ fn cycles(c: &mut Cursor, sine: bool) -> Result<Option<f64>, MbdynError> {
 /// reads the vector of `single` (with its optional `reference`); `basis` maps the
 /// components of `component` to the same frame.
 pub fn template_vec3(c: &mut Cursor, drives: &Drives, seq: usize, basis: &Mat3, direction: &dyn Fn(&mut Cursor) -> Result<Vec3, MbdynError>) -> Result<Vec<(Vec3, Drive)>, MbdynError> {
+    template_terms(c, drives, seq, basis, direction, 0)
+}
+
+/// Nesting of `array` template drive callers romdyn follows.
+const MAX_ARRAY_DEPTH: usize = 8;
+
+fn template_terms(c: &mut Cursor, drives: &Drives, seq: usize, basis: &Mat3, direction: &dyn Fn(&mut Cursor) -> Result<Vec3, MbdynError>, depth: usize) -> Result<Vec<(Vec3, Drive)>, MbdynError> {
     if c.accept("null") {
         return Ok(vec![(Vec3::zeros(), Drive::Const(0.0))]);
     }
@@ -153,10 +160,13 @@ pub fn template_vec3(c: &mut Cursor, drives: &Drives, seq: usize, basis: &Mat3, 
         return Ok(terms);
     }
     if c.accept("array") {
+        if depth >= MAX_ARRAY_DEPTH {
+            return Err(c.error(format!("template drive callers nested in 'array' more than {MAX_ARRAY_DEPTH} deep")));
+        }
         let n = c.count("number of template drive callers")?;
         let mut terms = Vec::new();
         for _ in 0..n {
-            terms.extend(template_vec3(c, drives, seq, basis, direction)?);
+            terms.extend(template_terms(c, drives, seq, basis, direction, depth + 1)?);
         }
         return Ok(terms);
     }
