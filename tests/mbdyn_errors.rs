@@ -151,6 +151,7 @@ fn model_errors() {
         // 40. Unsupported element and joint types are named.
         (model("structural nodes: 2;", NODES, "aerodynamic body: 1, 2;"), "m.mbd:6:1: error: element type 'aerodynamic body' is not supported by romdyn"),
         (model("structural nodes: 2; joints: 1;", NODES, "joint: 1, prismatic, 1, 2;"), "m.mbd:6:11: error: joint type 'prismatic' is not supported by romdyn"),
+        (model("structural nodes: 2; joints: 1;", NODES, "driven: 1, string, \"Time > 1.\", joint: 1, clamp, 1, node, node;"), "m.mbd:6:1: error: element type 'driven' (an element switched on and off during the run) is not supported by romdyn"),
         // 41. beam3 waits for the beam element.
         (model("structural nodes: 2; beams: 1;", NODES, "beam3: 5, 1, null, 2, null, 1, null, same, linear elastic, 1.;"), "m.mbd:6:1: error: element type 'beam3' (beam3 5) is not supported by romdyn yet"),
         // 42. Physics romdyn cannot honour is an error, not skipped.

@@ -235,3 +235,77 @@ fn random_mutations_never_panic() {
         let _ = parse_text(&text, Path::new("fuzz.mbd")).and_then(|d| build(&d));
     }
 }
+
+/// A file in the style of MBDyn's own examples: no data block, labels from `set:`
+/// constants (one of them 0), label expressions, references named by variables, tabs,
+/// total joints written with 'reference, node' everywhere.
+const MBDYN_STYLE: &str = "begin: initial value;
+\tinitial time: 0.;
+\tfinal time: 1.;
+\ttime step: 1e-3;
+\ttolerance: 1.e-6;
+\tmax iterations: 10;
+\tthreads: disable;
+end: initial value;
+
+begin: control data;
+\tstructural nodes: 2;
+\trigid bodies: 1;
+\tjoints: 3;
+end: control data;
+
+set: const integer BASE = 0;
+set: const integer SLIDER = 10;
+set: const real M = 2.;
+set: const real L = 0.3;
+set: const real EA = M*(5*2*pi)^2*L;   # axial stiffness EA/L: 5 Hz on purpose
+
+reference: BASE, reference, global, null, reference, global, eye, reference, global, null, reference, global, null;
+reference: SLIDER, reference, BASE, L, 0., 0., reference, BASE, eye, reference, BASE, null, reference, BASE, null;
+
+begin: nodes;
+\tstructural: BASE, static, reference, BASE, null, reference, BASE, eye, reference, BASE, null, reference, BASE, null;
+\tstructural: SLIDER, dynamic, reference, SLIDER, null, reference, SLIDER, eye, reference, SLIDER, null, reference, SLIDER, null;
+end: nodes;
+
+begin: elements;
+\tbody: SLIDER, SLIDER, M, null, null;   # no inertia: the rotations are locked
+\tjoint: BASE, total pin joint,
+\t\tBASE,
+\t\t\tposition, reference, node, null,
+\t\t\tposition orientation, reference, node, eye,
+\t\t\trotation orientation, reference, node, eye,
+\t\t\tposition, reference, node, null,
+\t\t\tposition orientation, reference, node, eye,
+\t\t\trotation orientation, reference, node, eye,
+\t\tposition constraint, 1, 1, 1, null,
+\t\torientation constraint, 1, 1, 1, null;
+\tjoint: SLIDER, total joint,
+\t\tBASE, position, reference, node, null, position orientation, reference, node, eye, rotation orientation, reference, node, eye,
+\t\tSLIDER, position, reference, node, null, position orientation, reference, node, eye, rotation orientation, reference, node, eye,
+\t\tposition constraint, 0, 1, 1, null,
+\t\torientation constraint, 1, 1, 1, null;
+\tjoint: SLIDER + 1, rod,
+\t\tBASE, position, reference, node, null,
+\t\tSLIDER, position, reference, node, null,
+\t\tL,
+\t\t\tlinear elastic, EA;
+end: elements;
+";
+
+#[test]
+fn a_file_in_mbdyn_style_gives_its_designed_frequency() {
+    let m = parse_text(MBDYN_STYLE, Path::new("style.mbd")).and_then(|d| build(&d)).unwrap_or_else(|e| panic!("{e}"));
+    let asm = Assembler::new(&m.model);
+    let mut st = State::initial(&m.model, &asm.dofs);
+    initial_derivatives(&asm, &mut st, &NewtonSettings::default()).unwrap();
+    let dae = linearize(&m.model, &st, &[], &[], None).unwrap();
+    let modal = ModalAnalysis::compute(&dae.jacobians, EigenRoute::Direct).unwrap();
+    let ev: Vec<_> = modal.modes.iter().filter(|m| m.kind == ModeKind::Dynamic).map(|m| m.lambda).collect();
+    // The slider moves along x on the rod only, whose stiffness is EA/L (manual, §Rod:
+    // F = EA (l − l₀)/l₀): ω = sqrt(EA/(L M)) = 2π · 5 rad/s by the file's construction
+    // EA = M (2π 5)² L; 1e-9 relative.
+    let w = 2.0 * std::f64::consts::PI * 5.0;
+    assert_eq!(ev.len(), 2, "{ev:?}");
+    assert!(ev.iter().all(|l| l.re.abs() < 1e-6 && (l.im.abs() - w).abs() < 1e-9 * w), "{ev:?}");
+}

@@ -85,8 +85,10 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
     if let Some(st) = block(doc, "drivers").and_then(|b| b.statements.first()) {
         return Err(src.error(st.span, "file drivers are not supported by romdyn"));
     }
-    let data_block = block(doc, "data").ok_or_else(|| src.error(first, "missing 'begin: data;' block"))?;
-    data(data_block, src)?;
+    // The data block is optional: MBDyn's problem defaults to the initial value problem.
+    if let Some(data_block) = block(doc, "data") {
+        data(data_block, src)?;
+    }
     let cards = cards(doc)?;
     let problem = initial_value(block(doc, "initial value"), src, &cards.drives)?;
     let counts = control_data(block(doc, "control data"), src)?;

@@ -168,6 +168,10 @@ impl Reader {
             }
             None => {}
         }
+        if known(&keyword, &["driven"]).is_some() {
+            // `driven: …, ELEMENT: …;` wraps a whole element statement.
+            return Err(self.doc.sources.error(first.span, "element type 'driven' (an element switched on and off during the run) is not supported by romdyn"));
+        }
         let args = self.args(body, end)?;
         let st = Statement { keyword, span: first.span, args, end, seq: self.seq };
         if known(&st.keyword, &CARDS).is_some() {
