@@ -46,10 +46,12 @@ struct Cards {
 fn cards(doc: &Document) -> Result<Cards, MbdynError> {
     let mut out = Cards::default();
     for st in doc.cards.iter().filter(|st| known(&st.keyword, &["reference"]).is_some()) {
-        if let Some(super::parser::Arg { value: super::parser::Value::Number(x), .. }) = st.args.first() {
-            if *x >= 0.0 && x.fract() == 0.0 && *x <= u32::MAX as f64 {
-                out.frames.announce(*x as u32, st.span);
-            }
+        if let Some(super::parser::Arg { value: super::parser::Value::Number(x), .. }) = st.args.first()
+            && *x >= 0.0
+            && x.fract() == 0.0
+            && *x <= u32::MAX as f64
+        {
+            out.frames.announce(*x as u32, st.span);
         }
     }
     for st in &doc.cards {

@@ -221,10 +221,10 @@ fn eigenanalysis(c: &mut Cursor) -> Result<EigenRequest, MbdynError> {
             }
         }
     }
-    if let (Some(lo), Some(hi)) = (r.lower_frequency_hz, r.upper_frequency_hz) {
-        if lo > hi {
-            return Err(c.error_at(c.statement().span, format!("eigenanalysis: lower frequency limit {lo} Hz is above the upper limit {hi} Hz")));
-        }
+    if let (Some(lo), Some(hi)) = (r.lower_frequency_hz, r.upper_frequency_hz)
+        && lo > hi
+    {
+        return Err(c.error_at(c.statement().span, format!("eigenanalysis: lower frequency limit {lo} Hz is above the upper limit {hi} Hz")));
     }
     Ok(r)
 }

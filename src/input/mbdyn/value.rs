@@ -120,7 +120,8 @@ impl TypedValue {
         if let (TypedValue::Str(a), "+") = (self, op) {
             let b = match rhs {
                 TypedValue::Str(b) => b.clone(),
-                other => other.cast(Type::String)?.to_string().trim_matches('"').to_string(),
+                TypedValue::Real(x) => format!("{x:e}"),
+                other => other.to_string(),
             };
             return Ok(TypedValue::Str(format!("{a}{b}")));
         }
@@ -150,10 +151,10 @@ impl TypedValue {
 
     /// `^`: integer when both are integers and the exponent is not negative.
     pub fn power(&self, rhs: &TypedValue) -> Result<TypedValue, String> {
-        if let (Some(a), Some(b)) = (self.integer(), rhs.integer()) {
-            if (0..=u32::MAX as i64).contains(&b) {
-                return a.checked_pow(b as u32).map(TypedValue::Int).ok_or_else(|| format!("integer overflow in {a}^{b}"));
-            }
+        if let (Some(a), Some(b)) = (self.integer(), rhs.integer())
+            && (0..=u32::MAX as i64).contains(&b)
+        {
+            return a.checked_pow(b as u32).map(TypedValue::Int).ok_or_else(|| format!("integer overflow in {a}^{b}"));
         }
         match (self.real(), rhs.real()) {
             (Some(a), Some(b)) if a == 0.0 && b < 0.0 => Err("division by zero (0 raised to a negative power)".into()),
