@@ -15,7 +15,12 @@ use crate::model::{AbortAfter, EigenOutput, EigenRequest, InitialValueProblem, M
 pub fn data(block: &Block, sources: &Sources) -> Result<(), MbdynError> {
     for st in &block.statements {
         let mut c = Cursor::new(st, sources);
-        match known(&st.keyword, &["problem"]) {
+        match known(&st.keyword, &["problem", "integrator"]) {
+            Some("integrator") => {
+                // MBDyn's older name of the same card.
+                c.keyword("the integrator", &["multistep", "initial value"])?;
+                c.finish()?;
+            }
             Some(_) => {
                 let span = c.here();
                 if c.accept("inverse dynamics") {
