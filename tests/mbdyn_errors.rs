@@ -229,3 +229,10 @@ fn deep_nesting_is_an_error_not_a_stack_overflow() {
     let arrays = model("structural nodes: 2; forces: 1;", NODES, &format!("force: 1, absolute, 2, position, null, {}1., 0., 0., const, 1.;", "array, 1, ".repeat(20)));
     assert!(error_of(&arrays).contains("nested in 'array' more than 8 deep"), "{}", error_of(&arrays));
 }
+
+#[test]
+fn the_caret_lines_up_under_tabs() {
+    let e = parse_text("begin: data;\n\tproblem: initial value\n\tfoo: 1;\nend: data;", Path::new("m.mbd")).err().unwrap();
+    // Line 3 starts with a tab: the caret line keeps it, then one space per character.
+    assert_eq!(e.to_string(), "m.mbd:3:2: error: missing ';' before 'foo'\n  |\n3 | \tfoo: 1;\n  | \t^");
+}

@@ -171,7 +171,7 @@ fn template_terms(c: &mut Cursor, drives: &Drives, seq: usize, basis: &Mat3, dir
         return Ok(terms);
     }
     if c.accept("reference") {
-        return Err(c.error("template drive caller cards ('reference, LABEL' to a 'template drive caller:') are not supported by romdyn"));
+        return Err(c.error("'reference, …' here names a template drive caller card, which romdyn does not support; to give the vector in another frame write 'single, reference, FRAME, x, y, z, DRIVE'"));
     }
     c.accept("single");
     let dir = direction(c)?;
