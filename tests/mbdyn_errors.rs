@@ -194,6 +194,9 @@ fn drive_and_law_errors() {
         // 56. A constitutive law romdyn does not have, and one of the wrong dimension.
         (model("structural nodes: 2; joints: 1;", NODES, "joint: 1, deformable hinge, 1, 2, cubic elastic generic, 1., 2., 3.;"), "m.mbd:6:35: error: constitutive law 'cubic elastic generic' is not supported by romdyn"),
         (model("structural nodes: 2; joints: 1;", NODES, "constitutive law: 3, 1, linear elastic, 1.;\njoint: 1, deformable hinge, 1, 2, reference, 3;"), "m.mbd:7:35: error: constitutive law 3 has dimension 1, this element needs 3"),
+        // A 6-D law (for beams) is read in full, 21 values of 'sym' or 6 of 'diag'.
+        (model("structural nodes: 2; joints: 1;", NODES, &format!("constitutive law: 3, 6, linear viscoelastic generic, sym, {}, diag, 1., 1., 1., 1., 1., 1.;\njoint: 1, deformable hinge, 1, 2, reference, 3;", vec!["1."; 21].join(", "))), "m.mbd:7:35: error: constitutive law 3 has dimension 6, this element needs 3"),
+        (model("structural nodes: 2;", NODES, "constitutive law: 3, 6, linear elastic generic, diag, 1., 1., 1., 1., 1.;"), "m.mbd:6:73: error: expected stiffness (a number), found the end of the statement"),
     ];
     check(&cases);
 }
