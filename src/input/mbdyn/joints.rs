@@ -18,18 +18,18 @@ use crate::element::{Anchor, DeformableDisplacement, DeformableHinge, Drive, Ele
 use crate::kinematics::{axial_of_skew_part, Mat3, Vec3};
 use crate::model::{Label, StructuralNode};
 
-const SUPPORTED: [&str; 15] = [
+const SUPPORTED: [&str; 14] = [
     "clamp", "revolute hinge", "plane hinge", "revolute pin", "plane pin", "spherical hinge", "spherical pin", "total joint", "total pin joint",
-    "deformable displacement joint", "deformable displacement hinge", "deformable hinge", "rod", "rod with offset", "revolute rotation",
+    "deformable displacement joint", "deformable displacement hinge", "deformable hinge", "rod", "rod with offset",
 ];
 
 /// MBDyn joints romdyn names in its "not supported" error.
-const OTHER_JOINTS: [&str; 32] = [
+const OTHER_JOINTS: [&str; 33] = [
     "angular acceleration", "angular velocity", "axial rotation", "beam slider", "brake", "cardano hinge", "cardano pin", "cardano rotation",
     "coincidence", "deformable axial joint", "deformable joint", "distance", "distance with offset", "drive displacement", "drive displacement pin",
     "drive hinge", "gimbal rotation", "imposed displacement", "imposed displacement pin", "imposed orientation", "in line", "in plane",
     "invariant deformable displacement joint", "invariant deformable hinge", "linear acceleration", "linear velocity", "modal",
-    "plane displacement", "plane displacement pin", "point contact", "prismatic", "rod bezier",
+    "plane displacement", "plane displacement pin", "point contact", "prismatic", "revolute rotation", "rod bezier",
 ];
 
 /// One side of a two-node joint: node, offset and orientation in the node frame.
@@ -53,7 +53,7 @@ impl Side<'_> {
 }
 
 /// Whether an offset needs its `position` keyword to be read.
-#[derive(PartialEq)]
+#[derive(Clone, Copy, PartialEq)]
 enum Position {
     /// `position` written or not, the offset is read (MBDyn: "position, OFFSET").
     Always,
@@ -85,7 +85,7 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
         "revolute hinge" | "plane hinge" | "spherical hinge" => {
             let revolute = kind != "spherical hinge";
             let position = if revolute { Position::Always } else { Position::IfKeyword };
-            let a = side(c, ctx, "node 1", if revolute { Position::Always } else { Position::IfKeyword }, None)?;
+            let a = side(c, ctx, "node 1", position, None)?;
             let b = side(c, ctx, "node 2", position, Some(&a))?;
             if revolute && c.accept("initial theta") {
                 c.real("initial theta [rad]")?;
@@ -100,8 +100,9 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
         "total joint" | "total pin joint" => Box::new(total(kind == "total pin joint", label, c, ctx, span)?),
         "deformable displacement joint" | "deformable displacement hinge" | "deformable hinge" => {
             let hinge = kind == "deformable hinge";
-            let a = side(c, ctx, "node 1", if hinge { Position::IfKeyword } else { Position::Always }, None)?;
-            let b = side(c, ctx, "node 2", if hinge { Position::IfKeyword } else { Position::Always }, Some(&a))?;
+            let position = if hinge { Position::IfKeyword } else { Position::Always };
+            let a = side(c, ctx, "node 1", position, None)?;
+            let b = side(c, ctx, "node 2", position, Some(&a))?;
             let law_span = c.here();
             let law = linear_law(c, 3, ctx.laws, ctx.drives, ctx.seq)?;
             if hinge {
@@ -117,7 +118,6 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
                 Box::new(DeformableDisplacement { label, a: a.anchor(), b: b.anchor(), law: three(&law), rest })
             }
         }
-        "revolute rotation" => return Err(c.error_at(span, "joint type 'revolute rotation' is not supported by romdyn (use a total joint with the rotation constraint only)")),
         _ => Box::new(rod(kind == "rod with offset", label, c, ctx)?),
     };
     Ok(element)
@@ -262,7 +262,7 @@ fn constraint(c: &mut Cursor, ctx: &ElementContext, kind: &str, words: &[&'stati
 fn rod(offsets: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Rod, MbdynError> {
     let position = if offsets { Position::Always } else { Position::IfKeyword };
     let a = side(c, ctx, "node 1", position, None)?;
-    let b = side(c, ctx, "node 2", if offsets { Position::Always } else { Position::IfKeyword }, Some(&a))?;
+    let b = side(c, ctx, "node 2", position, Some(&a))?;
     let distance = (b.global().0 - a.global().0).norm();
     let span = c.here();
     if distance == 0.0 {
