@@ -1,7 +1,10 @@
-//! Reading a statement's arguments one at a time, with errors that say what was expected.
+//! Reading a statement's arguments one at a time, with errors that say what was expected,
+//! and the plain higher-order structures of the input manual ("General", §Higher-Order
+//! Math Structures): `Vec3` and `Mat3x3` with `null`, `eye`, `diag`, `sym`, `skew`,
+//! `matr` and the trailing `scale, FACTOR`.
 
 use super::diagnostic::{MbdynError, Sources, Span};
-use super::parser::{Statement, Value};
+use super::parser::{same_keyword, Statement, Value};
 use crate::kinematics::{Mat3, Vec3};
 
 pub struct Cursor<'a> {
@@ -10,60 +13,54 @@ pub struct Cursor<'a> {
     sources: &'a Sources,
 }
 
+/// Largest count romdyn reads for a list (points of a drive, eigenanalysis times, …).
+const MAX_COUNT: f64 = 1.0e6;
+
 impl<'a> Cursor<'a> {
     pub fn new(st: &'a Statement, sources: &'a Sources) -> Self {
         Cursor { st, pos: 0, sources }
     }
 
-    fn here(&self) -> Span {
+    pub fn statement(&self) -> &'a Statement {
+        self.st
+    }
+
+    /// Where the next argument is (the ';' when none is left).
+    pub fn here(&self) -> Span {
         self.st.args.get(self.pos).map_or(self.st.end, |a| a.span)
     }
 
     pub fn error(&self, message: impl Into<String>) -> MbdynError {
         self.sources.error(self.here(), message)
     }
+    pub fn error_at(&self, span: Span, message: impl Into<String>) -> MbdynError {
+        self.sources.error(span, message)
+    }
 
-    fn found(&self) -> String {
-        match self.st.args.get(self.pos).map(|a| &a.value) {
-            None => "the end of the statement".into(),
-            Some(Value::Number(x)) => format!("the number {x}"),
-            Some(Value::Word(w)) => format!("'{w}'"),
-            Some(Value::Str(s)) => format!("\"{s}\""),
+    /// What the next argument is, for messages.
+    pub fn found(&self) -> String {
+        let Some(a) = self.st.args.get(self.pos) else { return "the end of the statement".into() };
+        match &a.value {
+            Value::Number(x) => format!("the number {x}"),
+            Value::Word(w) => format!("'{w}'"),
+            Value::Str(s) => format!("the string \"{s}\""),
+            Value::Empty => "an empty field".into(),
         }
     }
 
-    /// A number.
-    pub fn real(&mut self, what: &str) -> Result<f64, MbdynError> {
-        match self.st.args.get(self.pos).map(|a| &a.value) {
-            Some(Value::Number(x)) => {
-                self.pos += 1;
-                Ok(*x)
-            }
-            _ => Err(self.error(format!("expected {what} (a number), found {}", self.found()))),
-        }
+    /// Whether the next argument is a number (or an empty field).
+    pub fn next_is_number(&self) -> bool {
+        matches!(self.st.args.get(self.pos).map(|a| &a.value), Some(Value::Number(_) | Value::Empty))
     }
 
-    /// A non-negative integer label.
-    pub fn label(&mut self, what: &str) -> Result<u32, MbdynError> {
-        let span = self.here();
-        let x = self.real(what)?;
-        if x < 0.0 || x.fract() != 0.0 || x > u32::MAX as f64 {
-            return Err(self.sources.error(span, format!("expected {what} (a non-negative integer label), found {x}")));
-        }
-        Ok(x as u32)
+    /// The next argument read as a keyword, if it can be one.
+    pub fn peek_keyword(&self) -> Option<&'a str> {
+        self.st.args.get(self.pos).and_then(|a| a.keyword.as_deref())
     }
 
-    /// The next argument if it is a word.
-    pub fn peek_word(&self) -> Option<&str> {
-        match self.st.args.get(self.pos).map(|a| &a.value) {
-            Some(Value::Word(w)) => Some(w),
-            _ => None,
-        }
-    }
-
-    /// Consumes the word `w` if it is next.
-    pub fn accept(&mut self, w: &str) -> bool {
-        if self.peek_word() == Some(w) {
+    /// Consumes the keyword `kw` if it is next.
+    pub fn accept(&mut self, kw: &str) -> bool {
+        if self.peek_keyword().is_some_and(|w| same_keyword(w, kw)) {
             self.pos += 1;
             true
         } else {
@@ -71,90 +68,92 @@ impl<'a> Cursor<'a> {
         }
     }
 
-    /// One of the given words.
-    pub fn word(&mut self, what: &str, options: &[&str]) -> Result<String, MbdynError> {
-        match self.peek_word() {
-            Some(w) if options.is_empty() || options.contains(&w) => {
-                let w = w.to_string();
-                self.pos += 1;
-                Ok(w)
+    /// Consumes the next argument if it is one of `options`; returns that option.
+    pub fn accept_any(&mut self, options: &[&'static str]) -> Option<&'static str> {
+        let w = self.peek_keyword()?;
+        let found = options.iter().copied().find(|o| same_keyword(o, w))?;
+        self.pos += 1;
+        Some(found)
+    }
+
+    /// One of `options`.
+    pub fn keyword(&mut self, what: &str, options: &[&'static str]) -> Result<&'static str, MbdynError> {
+        self.accept_any(options).ok_or_else(|| self.error(format!("expected {what} ({}), found {}", options.join(", "), self.found())))
+    }
+
+    /// A number; an empty field reads as `default`.
+    pub fn real_or(&mut self, what: &str, default: f64) -> Result<f64, MbdynError> {
+        let v = match self.st.args.get(self.pos).map(|a| &a.value) {
+            Some(Value::Number(x)) if x.is_finite() => *x,
+            Some(Value::Number(x)) => return Err(self.error(format!("expected {what} (a finite number), found {x}"))),
+            Some(Value::Empty) => default,
+            Some(Value::Word(_)) if self.st.args.get(self.pos).is_some_and(|a| is_name(&a.text)) => {
+                let name = self.st.args.get(self.pos).map_or("", |a| a.text.as_str());
+                return Err(self.error(format!("expected {what} (a number), found '{name}', which is neither a number nor a defined variable")));
             }
-            _ => Err(self.error(format!("expected {what} ({}), found {}", options.join(", "), self.found()))),
-        }
+            _ => return Err(self.error(format!("expected {what} (a number), found {}", self.found()))),
+        };
+        self.pos += 1;
+        Ok(v)
     }
 
-    /// `null`, or three numbers (optionally after `reference, global`).
-    pub fn vec3(&mut self, what: &str) -> Result<Vec3, MbdynError> {
-        if self.accept("null") || self.accept("default") {
-            return Ok(Vec3::zeros());
-        }
-        self.global_reference(what)?;
-        Ok(Vec3::new(self.real(what)?, self.real(what)?, self.real(what)?))
+    /// A number; an empty field reads as zero.
+    pub fn real(&mut self, what: &str) -> Result<f64, MbdynError> {
+        self.real_or(what, 0.0)
     }
 
-    fn global_reference(&mut self, what: &str) -> Result<(), MbdynError> {
-        if self.accept("reference") {
-            match self.peek_word() {
-                Some("global") => self.pos += 1,
-                _ => return Err(self.error(format!("{what}: only 'reference, global' is supported by romdyn so far, found {}", self.found()))),
-            }
-        }
-        Ok(())
-    }
-
-    /// `eye`, `null`, `euler123, a, b, c` (`euler`: the same, radians), `matr, 9 numbers`
-    /// (row by row), or the two-vector form `I, v_I, J, v_J`.
-    pub fn orientation(&mut self, what: &str) -> Result<Mat3, MbdynError> {
-        if self.accept("eye") || self.accept("null") {
-            return Ok(Mat3::identity());
-        }
-        self.global_reference(what)?;
-        if self.accept("euler123") || self.accept("euler") {
-            let (a, b, c) = (self.real("angle about x [rad]")?, self.real("angle about y [rad]")?, self.real("angle about z [rad]")?);
-            let r = |axis: Vec3, angle: f64| *nalgebra::Rotation3::from_axis_angle(&nalgebra::Unit::new_normalize(axis), angle).matrix();
-            return Ok(r(Vec3::x(), a) * r(Vec3::y(), b) * r(Vec3::z(), c));
-        }
-        if self.accept("matr") {
-            let mut m = Mat3::zeros();
-            for i in 0..3 {
-                for j in 0..3 {
-                    m[(i, j)] = self.real("an orientation matrix entry")?;
-                }
-            }
-            return Ok(m);
-        }
-        self.two_vectors(what)
-    }
-
-    fn two_vectors(&mut self, what: &str) -> Result<Mat3, MbdynError> {
+    /// A whole number.
+    pub fn integer(&mut self, what: &str) -> Result<i64, MbdynError> {
         let span = self.here();
-        let axis = |c: &mut Self| -> Result<usize, MbdynError> {
-            let k = c.real(&format!("{what}: 'eye', 'euler123', 'matr' or an axis index 1, 2 or 3"))?;
-            if ![1.0, 2.0, 3.0].contains(&k) {
-                return Err(c.error(format!("{what}: axis index must be 1, 2 or 3, found {k}")));
-            }
-            Ok(k as usize - 1)
-        };
-        let i = axis(self)?;
-        let vi = Vec3::new(self.real("vector component")?, self.real("vector component")?, self.real("vector component")?);
-        let j = axis(self)?;
-        let vj = Vec3::new(self.real("vector component")?, self.real("vector component")?, self.real("vector component")?);
-        let ei = vi.try_normalize(1e-12);
-        let ej = ei.and_then(|ei| (vj - ei * ei.dot(&vj)).try_normalize(1e-12));
-        let (Some(ei), Some(ej)) = (ei, ej) else {
-            return Err(self.sources.error(span, format!("{what}: the two vectors are null or parallel")));
-        };
-        if i == j {
-            return Err(self.sources.error(span, format!("{what}: the two axis indices must differ")));
+        let x = self.real(what)?;
+        if x.fract() != 0.0 || !x.is_finite() || x.abs() > 9.0e15 {
+            return Err(self.error_at(span, format!("expected {what} (a whole number), found {x}")));
         }
-        let k = 3 - i - j;
-        let sign = if (j + 3 - i) % 3 == 1 { 1.0 } else { -1.0 };
-        let ek = sign * ei.cross(&ej);
-        let mut m = Mat3::zeros();
-        m.set_column(i, &ei);
-        m.set_column(j, &ej);
-        m.set_column(k, &ek);
-        Ok(m)
+        Ok(x as i64)
+    }
+
+    /// A non-negative integer label.
+    pub fn label(&mut self, what: &str) -> Result<u32, MbdynError> {
+        let span = self.here();
+        let x = self.real(what)?;
+        if x < 0.0 || x.fract() != 0.0 || x > u32::MAX as f64 || !x.is_finite() {
+            return Err(self.error_at(span, format!("expected {what} (a non-negative integer label), found {x}")));
+        }
+        Ok(x as u32)
+    }
+
+    /// A count for a list that follows.
+    pub fn count(&mut self, what: &str) -> Result<usize, MbdynError> {
+        let span = self.here();
+        let x = self.real(what)?;
+        if x < 0.0 || x.fract() != 0.0 || x > MAX_COUNT || !x.is_finite() {
+            return Err(self.error_at(span, format!("expected {what} (a whole number from 0 to {MAX_COUNT}), found {x}")));
+        }
+        Ok(x as usize)
+    }
+
+    /// A double-quoted string.
+    pub fn string(&mut self, what: &str) -> Result<String, MbdynError> {
+        match self.st.args.get(self.pos).map(|a| &a.value) {
+            Some(Value::Str(s)) => {
+                self.pos += 1;
+                Ok(s.clone())
+            }
+            _ => Err(self.error(format!("expected {what} (a string in double quotes), found {}", self.found()))),
+        }
+    }
+
+    /// `yes`, `no`, or a number (non-zero is yes).
+    pub fn flag(&mut self, what: &str) -> Result<bool, MbdynError> {
+        if let Some(w) = self.accept_any(&["yes", "no", "true", "false"]) {
+            return Ok(w == "yes" || w == "true");
+        }
+        Ok(self.real(&format!("{what} (yes or no)"))? != 0.0)
+    }
+
+    /// Skips every remaining argument (statements romdyn accepts and ignores).
+    pub fn skip_rest(&mut self) {
+        self.pos = self.st.args.len();
     }
 
     /// Errors unless every argument was read.
@@ -168,4 +167,53 @@ impl<'a> Cursor<'a> {
     pub fn is_done(&self) -> bool {
         self.pos >= self.st.args.len()
     }
+
+    /// Three numbers, or `null` / `default` (zero); a non-null vector may be followed by
+    /// `scale, FACTOR`.
+    pub fn vec3_values(&mut self, what: &str) -> Result<Vec3, MbdynError> {
+        if self.accept("null") || self.accept("default") {
+            return Ok(Vec3::zeros());
+        }
+        let v = Vec3::new(self.real(what)?, self.real(what)?, self.real(what)?);
+        Ok(v * self.scale()?)
+    }
+
+    fn scale(&mut self) -> Result<f64, MbdynError> {
+        if self.accept("scale") { self.real("scale factor") } else { Ok(1.0) }
+    }
+
+    /// A 3x3 matrix: `eye`, `null`, `diag, 3 values`, `sym, 6 values` (upper triangle by
+    /// rows), `skew, 3 values`, or 9 values by rows (optionally after `matr`).
+    pub fn mat3x3(&mut self, what: &str) -> Result<Mat3, MbdynError> {
+        if self.accept("eye") {
+            return Ok(Mat3::identity() * self.scale()?);
+        }
+        if self.accept("null") {
+            return Ok(Mat3::zeros());
+        }
+        let m = if self.accept("diag") {
+            Mat3::from_diagonal(&Vec3::new(self.real(what)?, self.real(what)?, self.real(what)?))
+        } else if self.accept("sym") {
+            let mut v = [0.0; 6];
+            for x in &mut v {
+                *x = self.real(what)?;
+            }
+            Mat3::new(v[0], v[1], v[2], v[1], v[3], v[4], v[2], v[4], v[5])
+        } else if self.accept("skew") {
+            crate::kinematics::skew(&Vec3::new(self.real(what)?, self.real(what)?, self.real(what)?))
+        } else {
+            self.accept("matr");
+            let mut v = [0.0; 9];
+            for x in &mut v {
+                *x = self.real(what)?;
+            }
+            Mat3::from_row_slice(&v)
+        };
+        Ok(m * self.scale()?)
+    }
+}
+
+/// Whether `text` is a single identifier.
+fn is_name(text: &str) -> bool {
+    text.chars().next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_') && text.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
 }

@@ -28,7 +28,9 @@ impl fmt::Display for MbdynError {
         write!(f, "{}:{}:{}: error: {}", self.file.display(), self.line, self.column, self.message)?;
         if !self.source_line.is_empty() {
             let width = self.line.to_string().len();
-            write!(f, "\n{:width$} |\n{} | {}\n{:width$} | {}^", "", self.line, self.source_line, "", " ".repeat(self.column.saturating_sub(1)))?;
+            // Tabs are kept under tabs so the caret lines up however they are displayed.
+            let pad: String = self.source_line.chars().take(self.column.saturating_sub(1)).map(|c| if c == '\t' { '\t' } else { ' ' }).collect();
+            write!(f, "\n{:width$} |\n{} | {}\n{:width$} | {pad}^", "", self.line, self.source_line, "")?;
         }
         Ok(())
     }

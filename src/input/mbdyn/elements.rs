@@ -1,8 +1,17 @@
-//! The `elements` block: bodies, joints, deformable joints, rods, forces, couples, gravity.
+//! The `elements` block (input manual, "Elements"): `body`, `joint` (see `joints`),
+//! `force` and `couple`, `gravity`, and the hook for `beam3`/`beam2`. Every other element
+//! type is named in an error; `automatic structural` (initial momenta, recomputed anyway)
+//! and the `inertia` and `output` cards (output only) are accepted and ignored.
 
 use super::cursor::Cursor;
 use super::diagnostic::MbdynError;
-use crate::element::{Anchor, Couple, DeformableDisplacement, DeformableHinge, Drive, Element, Force, ForceFrame, Joint, LinearViscoelastic, RigidBody, Rod};
+use super::drives::{single_term, template_vec3, Drives};
+use super::joints::joint;
+use super::laws::Laws;
+use super::nodes::Nodes;
+use super::parser::{known, Statement};
+use super::references::{Context, Frame, Frames};
+use crate::element::{Couple, Drive, Element, Force, ForceFrame, RigidBody};
 use crate::kinematics::{Mat3, Vec3};
 use crate::model::{Label, StructuralNode};
 
@@ -11,174 +20,222 @@ pub enum Parsed {
     Element(Box<dyn Element>),
     /// Gravity acceleration [m/s²].
     Gravity(Vec3),
+    /// A card that does not change the model.
+    Ignored,
 }
 
-fn node<'n>(c: &mut Cursor, nodes: &'n [StructuralNode], what: &str) -> Result<&'n StructuralNode, MbdynError> {
-    let label = c.label(what)?;
-    nodes.iter().find(|n| n.label == label).ok_or_else(|| c.error(format!("structural node {label} is not defined")))
+/// Everything an element statement can refer to.
+pub struct ElementContext<'a> {
+    pub nodes: &'a Nodes,
+    pub frames: &'a Frames,
+    pub drives: &'a Drives,
+    pub laws: &'a Laws,
+    /// The statement being read (cards must come before it).
+    pub seq: usize,
 }
 
-/// `node, [position,] offset [, orientation, R]` — an anchor on a node, in its frame.
-fn anchor(c: &mut Cursor, nodes: &[StructuralNode], what: &str) -> Result<Anchor, MbdynError> {
-    let n = node(c, nodes, what)?;
-    c.accept("position");
-    let offset = c.vec3("relative offset")?;
-    let orientation = if c.accept("orientation") { c.orientation("relative orientation")? } else { Mat3::identity() };
-    Ok(Anchor::Node { label: n.label, offset, orientation })
-}
-
-/// A 3x3 matrix: `eye`, `null`, `diag, a, b, c`, `sym, 6 values` or 9 values by rows.
-fn matrix(c: &mut Cursor, what: &str) -> Result<Mat3, MbdynError> {
-    if c.accept("eye") {
-        return Ok(Mat3::identity());
-    }
-    if c.accept("null") {
-        return Ok(Mat3::zeros());
-    }
-    if c.accept("diag") {
-        return Ok(Mat3::from_diagonal(&Vec3::new(c.real(what)?, c.real(what)?, c.real(what)?)));
-    }
-    if c.accept("sym") {
-        let v: Vec<f64> = (0..6).map(|_| c.real(what)).collect::<Result<_, _>>()?;
-        return Ok(Mat3::new(v[0], v[1], v[2], v[1], v[3], v[4], v[2], v[4], v[5]));
-    }
-    let v: Vec<f64> = (0..9).map(|_| c.real(what)).collect::<Result<_, _>>()?;
-    Ok(Mat3::from_row_slice(&v))
-}
-
-/// A 3-D constitutive law (isotropic scalars or generic matrices).
-fn law(c: &mut Cursor) -> Result<LinearViscoelastic, MbdynError> {
-    let kinds = ["linear elastic", "linear elastic isotropic", "linear elastic generic", "linear viscoelastic", "linear viscoelastic isotropic", "linear viscoelastic generic"];
-    let kind = c.word("a constitutive law", &kinds)?;
-    Ok(match kind.as_str() {
-        "linear elastic" | "linear elastic isotropic" => LinearViscoelastic::isotropic(c.real("stiffness")?, 0.0),
-        "linear elastic generic" => LinearViscoelastic::elastic(matrix(c, "stiffness matrix")?),
-        "linear viscoelastic" | "linear viscoelastic isotropic" => {
-            let k = c.real("stiffness")?;
-            LinearViscoelastic::isotropic(k, c.real("viscosity")?)
+impl<'a> ElementContext<'a> {
+    /// A structural node label that names a node with unknowns.
+    pub fn node(&self, c: &mut Cursor, what: &str) -> Result<&'a StructuralNode, MbdynError> {
+        let span = c.here();
+        let label = c.label(what)?;
+        match self.nodes.find(label) {
+            Some(n) if n.dummy => Err(c.error_at(span, format!("structural node {label} is a dummy node (output only): romdyn cannot connect elements to it"))),
+            Some(n) => Ok(&n.node),
+            None => Err(c.error_at(span, format!("structural node {label} is not defined"))),
         }
-        _ => LinearViscoelastic { stiffness: matrix(c, "stiffness matrix")?, viscosity: matrix(c, "viscosity matrix")? },
-    })
+    }
+    /// Entities read relative to node `n`.
+    pub fn on(&self, n: &StructuralNode) -> Context<'a> {
+        Context::on_node(self.frames, self.seq, n)
+    }
+    pub fn global(&self) -> Context<'a> {
+        Context::global(self.frames, self.seq)
+    }
 }
 
-/// Drive callers: const, time, ramp, step, sine, cosine, piecewise linear.
-fn drive(c: &mut Cursor) -> Result<Drive, MbdynError> {
-    let kind = c.word("a drive", &["const", "time", "ramp", "step", "sine", "cosine", "piecewise linear"])?;
-    let cycles = |c: &mut Cursor| -> Result<Option<f64>, MbdynError> {
-        if c.accept("forever") {
-            Ok(None)
-        } else if c.accept("one") {
-            Ok(Some(1.0))
-        } else if c.accept("half") {
-            Ok(Some(0.5))
-        } else {
-            c.real("number of cycles (or forever, one, half)").map(Some)
-        }
+/// Element types of MBDyn romdyn names in its "not supported" error.
+const OTHER_TYPES: [&str; 24] = [
+    "aerodynamic beam2", "aerodynamic beam3", "aerodynamic body", "aeromodal", "aircraft instruments", "air properties", "induced velocity",
+    "electric", "hydraulic", "thermal", "rtai output", "stream output", "stream motion output", "bind", "bulk", "genel", "loadable",
+    "user defined", "joint regularization", "plate", "shell4eas", "shell4easans", "membrane4eas", "driven",
+];
+
+/// The element kind counted in control data, by element keyword.
+pub fn counted_kind(keyword: &str) -> Option<&'static str> {
+    match known(keyword, &["body", "joint", "force", "couple", "beam", "beam2", "beam3", "gravity", "automatic structural"])? {
+        "body" => Some("rigid bodies"),
+        "joint" => Some("joints"),
+        "force" | "couple" => Some("forces"),
+        "gravity" => Some("gravity"),
+        "automatic structural" => Some("automatic structural elements"),
+        _ => Some("beams"),
+    }
+}
+
+/// The label space of an element keyword: forces and couples share one, as do beams.
+pub fn label_space(keyword: &str) -> &'static str {
+    match known(keyword, &["body", "joint", "force", "couple", "beam", "beam2", "beam3", "automatic structural"]) {
+        Some("body") => "body",
+        Some("joint") => "joint",
+        Some("force" | "couple") => "force",
+        Some("automatic structural") => "automatic structural",
+        _ => "beam",
+    }
+}
+
+/// One statement of the `elements` block (after the label for labelled elements).
+pub fn element(st: &Statement, c: &mut Cursor, ctx: &ElementContext) -> Result<Parsed, MbdynError> {
+    let kinds = ["body", "joint", "force", "couple", "gravity", "beam", "beam2", "beam3", "automatic structural", "inertia", "output"];
+    let Some(kind) = known(&st.keyword, &kinds) else {
+        let name = known(&st.keyword, &OTHER_TYPES).unwrap_or(&st.keyword);
+        return Err(c.error_at(st.span, format!("element type '{name}' is not supported by romdyn")));
     };
-    Ok(match kind.as_str() {
-        "const" => Drive::Const(c.real("constant value")?),
-        "time" => Drive::Time,
-        "ramp" => {
-            let (slope, t0) = (c.real("slope")?, c.real("initial time")?);
-            let t1 = if c.accept("forever") { f64::INFINITY } else { c.real("final time (or forever)")? };
-            Drive::Ramp { slope, t0, t1, v0: c.real("initial value")? }
+    match kind {
+        "gravity" => return gravity(c, ctx),
+        "inertia" | "output" => {
+            c.skip_rest();
+            return Ok(Parsed::Ignored);
         }
-        "step" => Drive::Step { t0: c.real("initial time")?, value: c.real("step value")?, v0: c.real("initial value")? },
-        "sine" | "cosine" => {
-            let (t0, omega, amplitude) = (c.real("initial time")?, c.real("angular frequency [rad/s]")?, c.real("amplitude")?);
-            let (cycles, v0) = (cycles(c)?, c.real("initial value")?);
-            if kind == "sine" { Drive::Sine { t0, omega, amplitude, cycles, v0 } } else { Drive::Cosine { t0, omega, amplitude, cycles, v0 } }
-        }
-        _ => {
-            let n = c.label("number of points")?;
-            let points = (0..n).map(|_| Ok((c.real("time")?, c.real("value")?))).collect::<Result<Vec<_>, MbdynError>>()?;
-            Drive::PiecewiseLinear(points)
-        }
-    })
-}
-
-/// `single, dx, dy, dz, <drive>` or the older `dx, dy, dz, <drive>`.
-fn vector_drive(c: &mut Cursor) -> Result<(Vec3, Drive), MbdynError> {
-    c.accept("single");
-    let dir = Vec3::new(c.real("direction x")?, c.real("direction y")?, c.real("direction z")?);
-    Ok((dir, drive(c)?))
-}
-
-fn joint(c: &mut Cursor, label: Label, nodes: &[StructuralNode]) -> Result<Box<dyn Element>, MbdynError> {
-    let kinds = ["clamp", "revolute hinge", "spherical hinge", "deformable displacement joint", "deformable hinge", "rod"];
-    let Some(kind) = c.peek_word().map(str::to_string) else {
-        return Err(c.error(format!("expected a joint type ({})", kinds.join(", "))));
-    };
-    if !kinds.contains(&kind.as_str()) {
-        return Err(c.error(format!("joint type '{kind}' is not supported by romdyn (supported: {})", kinds.join(", "))));
+        _ => {}
     }
-    c.word("a joint type", &kinds)?;
-    Ok(match kind.as_str() {
-        "clamp" => {
-            let n = node(c, nodes, "clamped node")?;
-            let position = if c.accept("node") { n.position } else { c.vec3("clamp position")? };
-            let orientation = if c.accept("node") { n.orientation } else { c.orientation("clamp orientation")? };
-            Box::new(Joint::clamp(label, n.label, position, orientation))
+    let label = c.label(&format!("{kind} label"))?;
+    let parsed = match kind {
+        "body" => Parsed::Element(Box::new(body(label, c, ctx)?)),
+        "joint" => Parsed::Element(joint(label, c, ctx)?),
+        "force" | "couple" => Parsed::Element(force(kind == "couple", label, c, ctx)?),
+        "automatic structural" => {
+            ctx.node_with_label(c, label)?;
+            c.skip_rest();
+            Parsed::Ignored
         }
-        "revolute hinge" => Box::new(Joint::revolute_hinge(label, anchor(c, nodes, "node 1")?, anchor(c, nodes, "node 2")?)),
-        "spherical hinge" => Box::new(Joint::spherical_hinge(label, anchor(c, nodes, "node 1")?, anchor(c, nodes, "node 2")?)),
-        "deformable displacement joint" => {
-            let (a, b) = (anchor(c, nodes, "node 1")?, anchor(c, nodes, "node 2")?);
-            Box::new(DeformableDisplacement { label, a, b, law: law(c)?, rest: Vec3::zeros() })
-        }
-        "deformable hinge" => {
-            let (a, b) = (anchor(c, nodes, "node 1")?, anchor(c, nodes, "node 2")?);
-            Box::new(DeformableHinge { label, a, b, law: law(c)? })
-        }
-        _ => {
-            let (a, b) = (anchor(c, nodes, "node 1")?, anchor(c, nodes, "node 2")?);
-            let point = |x: &Anchor| match x {
-                Anchor::Node { label, offset, .. } => nodes.iter().find(|n| n.label == *label).map_or(*offset, |n| n.position + n.orientation * offset),
-                Anchor::Ground { position, .. } => *position,
-            };
-            let length = if c.accept("from nodes") { (point(&b) - point(&a)).norm() } else { c.real("unstretched length [m] (or from nodes)")? };
-            c.word("a rod law", &["linear elastic"])?;
-            Box::new(Rod { label, a, b, axial_stiffness: c.real("axial stiffness EA [N]")?, length })
-        }
-    })
+        _ => beam(kind, label, c, ctx)?,
+    };
+    if c.accept("output") {
+        c.flag("output flag")?;
+    }
+    Ok(parsed)
 }
 
-/// One statement of the `elements` block.
-pub fn element(keyword: &str, c: &mut Cursor, nodes: &[StructuralNode]) -> Result<Parsed, MbdynError> {
-    if keyword == "gravity" {
-        c.accept("uniform");
-        let (dir, d) = vector_drive(c)?;
-        return Ok(Parsed::Gravity(dir * d.value(0.0)));
+impl ElementContext<'_> {
+    fn node_with_label(&self, c: &Cursor, label: Label) -> Result<(), MbdynError> {
+        match self.nodes.find(label) {
+            Some(n) if !n.dummy && n.node.kind == crate::model::NodeKind::Dynamic => Ok(()),
+            _ => Err(c.error_at(c.statement().span, format!("automatic structural {label}: there is no dynamic structural node {label}"))),
+        }
     }
-    let label = c.label(&format!("{keyword} label"))?;
-    let e: Box<dyn Element> = match keyword {
-        "body" => {
-            let n = node(c, nodes, "node of the body")?;
-            let mass = c.real("mass [kg]")?;
-            let offset = c.vec3("centre of mass offset [m]")?;
-            Box::new(RigidBody::new(label, n.label, mass, offset, matrix(c, "inertia [kg m^2]")?))
+}
+
+/// `beam3` and `beam2` (input manual, §Beam Elements). romdyn's finite-volume beam is being
+/// written: when it lands, build it here from `c` (nodes, offsets, orientations, 6-D laws
+/// through `laws::linear_law(c, 6, …)`) and return `Parsed::Element`.
+pub fn beam(keyword: &str, label: Label, c: &mut Cursor, _ctx: &ElementContext) -> Result<Parsed, MbdynError> {
+    Err(c.error_at(c.statement().span, format!("element type '{keyword}' ({keyword} {label}) is not supported by romdyn yet: the finite-volume beam is being implemented")))
+}
+
+/// `body: LABEL, NODE, [allow negative mass,] MASS, CM, J [, orientation, R]`, or
+/// `condense, N, …` with N such masses, lumped into one rigid body about their common
+/// centre of mass (input manual, §Body).
+fn body(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<RigidBody, MbdynError> {
+    let n = ctx.node(c, "node of the body")?;
+    let on = ctx.on(n);
+    if c.accept("variable mass") {
+        return Err(c.error("variable-mass bodies are not supported by romdyn"));
+    }
+    let mut allow_negative = c.accept("allow negative mass");
+    let count = if c.accept("condense") {
+        let span = c.here();
+        let k = c.count("number of masses")?;
+        if k == 0 {
+            return Err(c.error_at(span, "condense: at least one mass is needed"));
         }
-        "joint" => joint(c, label, nodes)?,
-        "force" | "couple" => {
-            let frame = match c.word("the force frame", &["absolute", "follower"])?.as_str() {
-                "absolute" => ForceFrame::Absolute,
-                _ => ForceFrame::Follower,
-            };
-            let n = node(c, nodes, "node")?;
-            if keyword == "force" {
-                c.accept("position");
-                let offset = c.vec3("arm [m]")?;
-                let (direction, drive) = vector_drive(c)?;
-                Box::new(Force { label, node: n.label, frame, direction, offset, drive })
-            } else {
-                if c.accept("position") {
-                    c.vec3("arm [m]")?;
-                }
-                let (direction, drive) = vector_drive(c)?;
-                Box::new(Couple { label, node: n.label, frame, direction, drive })
-            }
-        }
-        other => return Err(c.error(format!("element type '{other}' is not supported by romdyn"))),
+        allow_negative |= c.accept("allow negative mass");
+        k
+    } else {
+        1
     };
-    Ok(Parsed::Element(e))
+    let mut parts = Vec::new();
+    for _ in 0..count {
+        let span = c.here();
+        let mass = c.real("mass [kg]")?;
+        if mass < 0.0 && !allow_negative {
+            return Err(c.error_at(span, format!("negative mass {mass} (write 'allow negative mass' if intended)")));
+        }
+        let cm = on.relative_position(c, "centre of mass offset [m]")?;
+        let mut j = on.relative_matrix(c, "inertia about the centre of mass [kg m^2]")?;
+        if c.accept("orientation") {
+            let r = on.relative_orientation(c, "orientation of the inertia")?;
+            j = r * j * r.transpose();
+        }
+        parts.push((mass, cm, j));
+    }
+    let mass: f64 = parts.iter().map(|p| p.0).sum();
+    let cm = if mass != 0.0 { parts.iter().map(|(m, o, _)| *m * o).sum::<Vec3>() / mass } else { Vec3::zeros() };
+    let inertia = parts.iter().map(|(m, o, j)| {
+        let d = o - cm;
+        j + *m * (d.dot(&d) * Mat3::identity() - d * d.transpose())
+    });
+    Ok(RigidBody::new(label, n.label, mass, cm, inertia.sum()))
+}
+
+/// `force: LABEL, {absolute | follower}, NODE, position, ARM, VALUE` and
+/// `couple: LABEL, {absolute | follower}, NODE, [position, ARM,] VALUE` (input manual,
+/// §Structural force, §Structural couple). VALUE is a 3-vector template drive caller,
+/// read in the node frame by default: an absolute force along `v` acts along `R₀ v`
+/// (node orientation at input) unless written `single, reference, global, v, …`.
+fn force(couple: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<dyn Element>, MbdynError> {
+    let what = if couple { "couple" } else { "force" };
+    let span = c.here();
+    let unsupported = ["total", "total internal", "absolute internal", "follower internal", "conservative internal", "absolute displacement", "absolute internal displacement", "abstract", "abstract internal", "modal", "external structural", "external modal", "external structural mapping", "external modal mapping"];
+    if let Some(k) = c.accept_any(&unsupported) {
+        return Err(c.error_at(span, format!("{what} type '{k}' is not supported by romdyn (supported: absolute, follower)")));
+    }
+    let frame = match c.keyword(&format!("the {what} type"), &["absolute", "conservative", "follower"])? {
+        "follower" => ForceFrame::Follower,
+        _ => ForceFrame::Absolute,
+    };
+    let n = ctx.node(c, &format!("node of the {what}"))?;
+    let on = ctx.on(n);
+    let r0 = n.orientation;
+    let basis = if frame == ForceFrame::Absolute { r0 } else { Mat3::identity() };
+    let direction = |c: &mut Cursor| match frame {
+        ForceFrame::Absolute => on.vector_in(c, &format!("{what} direction"), Frame::of_node(n)),
+        ForceFrame::Follower => on.relative_vector(c, &format!("{what} direction")),
+    };
+    let mut offset = Vec3::zeros();
+    let mut value_span = c.here();
+    let terms = if c.accept("position") {
+        offset = on.relative_position(c, "arm [m]")?;
+        value_span = c.here();
+        template_vec3(c, ctx.drives, ctx.seq, &basis, &direction)?
+    } else if couple {
+        template_vec3(c, ctx.drives, ctx.seq, &basis, &direction)?
+    } else {
+        // MBDyn's older syntax: unit direction, arm, drive.
+        let dir_span = c.here();
+        let dir = direction(c)?.try_normalize(0.0).ok_or_else(|| c.error_at(dir_span, "the force direction is null"))?;
+        offset = on.relative_position(c, "arm [m]")?;
+        vec![(dir, super::drives::drive(c, ctx.drives, ctx.seq)?)]
+    };
+    let (direction, drive) = single_term(terms).ok_or_else(|| c.error_at(value_span, format!("romdyn's {what} is one direction times one drive: this value combines components with different drives")))?;
+    if frame == ForceFrame::Follower {
+        c.accept("output relative");
+    }
+    Ok(if couple { Box::new(Couple { label, node: n.label, frame, direction, drive }) } else { Box::new(Force { label, node: n.label, frame, direction, offset, drive }) })
+}
+
+/// `gravity: [uniform,] VALUE` with a constant 3-vector value in the global frame (input
+/// manual, §Gravity Element).
+fn gravity(c: &mut Cursor, ctx: &ElementContext) -> Result<Parsed, MbdynError> {
+    let span = c.here();
+    if c.accept("central") {
+        return Err(c.error_at(span, "central gravity is not supported by romdyn (supported: uniform)"));
+    }
+    c.accept("uniform");
+    let g = ctx.global();
+    let terms = template_vec3(c, ctx.drives, ctx.seq, &Mat3::identity(), &|c: &mut Cursor| g.vector_in(c, "gravity direction", Frame::global()))?;
+    match single_term(terms) {
+        Some((dir, Drive::Const(x))) => Ok(Parsed::Gravity(dir * x)),
+        _ => Err(c.error_at(span, "time-varying gravity is not supported by romdyn (give a constant drive)")),
+    }
 }

@@ -1,201 +1,371 @@
-//! Arithmetic expressions over `set:` variables: `+ - * / ^`, unary minus, parentheses,
-//! functions (sin, cos, tan, asin, acos, atan, atan2, sqrt, exp, log, abs, sinh, cosh,
-//! tanh, ceil, floor) and the constants `pi` and `e`.
+//! Expressions of MBDyn's math parser (input manual, "General", §Variables, operator table
+//! "from higher to lower precedence"): `^`, unary `+ -`, `* / %`, `+ -`, comparisons,
+//! `!`, `&&`, `||`, `~|` (xor); declarations `[ifndef] [const] TYPE NAME [= EXPR]`,
+//! assignments `NAME = EXPR`, and statement lists `(S1; S2; …)` whose value is the last
+//! one. Expressions are evaluated as they are read, so later `set:` statements do not
+//! change earlier values.
 
 use std::collections::HashMap;
 
 use super::diagnostic::{MbdynError, Sources, Span};
+use super::functions::{call, constants, is_function, FUNCTIONS, UNSUPPORTED_FUNCTIONS};
 use super::lexer::{Spanned, Token};
+use super::value::{Type, TypedValue};
 
-/// A `set:` variable.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// A variable of the math parser.
+#[derive(Clone, Debug, PartialEq)]
 pub struct Variable {
-    pub value: f64,
-    pub integer: bool,
+    pub value: TypedValue,
     pub constant: bool,
+    /// Where it was declared (`None` for the predefined constants).
+    pub declared: Option<Span>,
 }
 
-/// Variables defined so far, with the predefined constants.
+/// The symbol table: predefined constants plus everything declared so far.
 #[derive(Clone, Debug)]
 pub struct Variables(pub HashMap<String, Variable>);
 
 impl Default for Variables {
     fn default() -> Self {
-        let c = |value| Variable { value, integer: false, constant: true };
-        Variables(HashMap::from([("pi".to_string(), c(std::f64::consts::PI)), ("e".to_string(), c(std::f64::consts::E))]))
+        Variables(constants().into_iter().map(|(n, value)| (n.to_string(), Variable { value, constant: true, declared: None })).collect())
     }
 }
 
-const FUNCTIONS: [&str; 16] = ["sin", "cos", "tan", "asin", "acos", "atan", "atan2", "sqrt", "exp", "log", "abs", "sinh", "cosh", "tanh", "ceil", "floor"];
-
-/// Whether a word names a function or a variable (so the word starts an expression).
-pub fn is_expression_word(w: &str, vars: &Variables) -> bool {
-    FUNCTIONS.contains(&w) || vars.0.contains_key(w)
+impl Variables {
+    pub fn get(&self, name: &str) -> Option<&Variable> {
+        self.0.get(name)
+    }
+    /// The numeric value of a variable (`None` if undefined or a string).
+    pub fn real(&self, name: &str) -> Option<f64> {
+        self.0.get(name).and_then(|v| v.value.real())
+    }
 }
 
-/// Recursive-descent evaluator over a token slice.
+/// Nesting of parentheses, unary operators and `!` romdyn follows (each level costs a few
+/// stack frames; real files nest a handful).
+const MAX_DEPTH: usize = 100;
+
+/// Recursive-descent evaluator over one expression's tokens.
 pub struct Evaluator<'a> {
     tokens: &'a [Spanned],
     pos: usize,
-    vars: &'a Variables,
+    vars: &'a mut Variables,
     sources: &'a Sources,
     end: Span,
+    depth: usize,
 }
 
 impl<'a> Evaluator<'a> {
-    pub fn new(tokens: &'a [Spanned], vars: &'a Variables, sources: &'a Sources, end: Span) -> Self {
-        Evaluator { tokens, pos: 0, vars, sources, end }
+    pub fn new(tokens: &'a [Spanned], vars: &'a mut Variables, sources: &'a Sources, end: Span) -> Self {
+        Evaluator { tokens, pos: 0, vars, sources, end, depth: 0 }
+    }
+
+    /// Evaluates all the tokens as one statement list.
+    pub fn evaluate(mut self) -> Result<TypedValue, MbdynError> {
+        let v = self.statements()?;
+        if let Some(t) = self.tokens.get(self.pos) {
+            let what = if t.token == Token::Symbol(")") { "unbalanced parenthesis: this ')' closes nothing".to_string() } else { format!("expected an operator or the end of the value, found {}", describe(&t.token)) };
+            return Err(self.sources.error(t.span, what));
+        }
+        Ok(v)
     }
 
     fn span(&self) -> Span {
         self.tokens.get(self.pos).map_or(self.end, |t| t.span)
     }
-
     fn err(&self, span: Span, m: impl Into<String>) -> MbdynError {
         self.sources.error(span, m)
     }
-
     fn peek(&self) -> Option<&Token> {
         self.tokens.get(self.pos).map(|t| &t.token)
     }
+    fn peek_at(&self, k: usize) -> Option<&Token> {
+        self.tokens.get(self.pos + k).map(|t| &t.token)
+    }
+    fn symbol(&self) -> Option<&'static str> {
+        match self.peek() {
+            Some(Token::Symbol(s)) => Some(s),
+            _ => None,
+        }
+    }
+    fn eat(&mut self, sym: &str) -> bool {
+        if self.symbol() == Some(sym) {
+            self.pos += 1;
+            true
+        } else {
+            false
+        }
+    }
+    fn enter(&mut self) -> Result<(), MbdynError> {
+        self.depth += 1;
+        if self.depth > MAX_DEPTH {
+            return Err(self.err(self.span(), format!("expression nested more than {MAX_DEPTH} levels deep")));
+        }
+        Ok(())
+    }
+    fn at(&self, span: Span) -> impl Fn(String) -> MbdynError + '_ {
+        move |m| self.sources.error(span, m)
+    }
 
-    /// Evaluates the whole slice as one expression.
-    pub fn evaluate(mut self) -> Result<f64, MbdynError> {
-        let v = self.sum()?;
-        if self.pos < self.tokens.len() {
-            return Err(self.err(self.span(), "expected an operator or ',' after this expression"));
+    fn statements(&mut self) -> Result<TypedValue, MbdynError> {
+        self.enter()?;
+        let mut v = self.statement()?;
+        while self.eat(";") {
+            v = self.statement()?;
+        }
+        self.depth -= 1;
+        Ok(v)
+    }
+
+    fn word(&self, k: usize) -> Option<&str> {
+        match self.peek_at(k) {
+            Some(Token::Word(w)) => Some(w),
+            _ => None,
+        }
+    }
+
+    /// A declaration, an assignment, or an expression.
+    fn statement(&mut self) -> Result<TypedValue, MbdynError> {
+        let start = self.span();
+        let mut k = 0;
+        let ifndef = self.word(k) == Some("ifndef");
+        k += usize::from(ifndef);
+        let constant = self.word(k) == Some("const");
+        k += usize::from(constant);
+        let ty = self.word(k).and_then(Type::from_name);
+        if let Some(ty) = ty.filter(|_| self.peek_at(k + 1) != Some(&Token::Symbol("("))) {
+            self.pos += k + 1;
+            return self.declaration(ty, constant, ifndef);
+        }
+        if ifndef || constant {
+            return Err(self.err(start, format!("expected a type (bool, integer, real or string) after '{}'", if constant { "const" } else { "ifndef" })));
+        }
+        if let (Some(name), Some(Token::Symbol("="))) = (self.word(0).map(str::to_string), self.peek_at(1)) {
+            self.pos += 2;
+            let value = self.logical()?;
+            return self.assign(&name, start, value);
+        }
+        self.logical()
+    }
+
+    fn declaration(&mut self, ty: Type, constant: bool, ifndef: bool) -> Result<TypedValue, MbdynError> {
+        let span = self.span();
+        let Some(name) = self.word(0).map(str::to_string) else {
+            return Err(self.err(span, format!("expected a variable name after '{}'", ty.name())));
+        };
+        if is_function(&name) || Type::from_name(&name).is_some() || ["const", "ifndef"].contains(&name.as_str()) {
+            return Err(self.err(span, format!("'{name}' is a keyword of the math parser and cannot name a variable")));
+        }
+        self.pos += 1;
+        let value = if self.eat("=") {
+            Some(self.logical()?)
+        } else if constant {
+            return Err(self.err(span, format!("constant '{name}' needs a value: 'const {} {name} = …'", ty.name())));
+        } else {
+            None
+        };
+        if let Some(old) = self.vars.get(&name) {
+            if ifndef {
+                return Ok(old.value.clone());
+            }
+            let line = old.declared.map_or("predefined".to_string(), |s| format!("declared at line {}", s.line));
+            return Err(self.err(span, if old.constant {
+                format!("'{name}' is a constant ({line}) and cannot be declared again")
+            } else {
+                format!("variable '{name}' is already declared ({line}): assign it with 'set: {name} = …;' or declare it with 'ifndef'")
+            }));
+        }
+        let value = match value {
+            Some(v) => v.cast(ty).map_err(self.at(span))?,
+            None => ty.zero(),
+        };
+        self.vars.0.insert(name, super::expr::Variable { value: value.clone(), constant, declared: Some(span) });
+        Ok(value)
+    }
+
+    fn assign(&mut self, name: &str, span: Span, value: TypedValue) -> Result<TypedValue, MbdynError> {
+        let Some(var) = self.vars.0.get_mut(name) else {
+            return Err(self.err(span, format!("undefined variable '{name}': declare it first, e.g. 'set: real {name} = …;'")));
+        };
+        if var.constant {
+            return Err(self.sources.error(span, format!("'{name}' is a constant and cannot be assigned")));
+        }
+        var.value = value.cast(var.value.type_of()).map_err(|m| self.sources.error(span, m))?;
+        Ok(var.value.clone())
+    }
+
+    fn logical(&mut self) -> Result<TypedValue, MbdynError> {
+        self.binary_level(0)
+    }
+
+    /// Levels, lowest precedence first: `~|`, `||`, `&&`.
+    fn binary_level(&mut self, level: usize) -> Result<TypedValue, MbdynError> {
+        const OPS: [&str; 3] = ["~|", "||", "&&"];
+        let Some(op) = OPS.get(level) else { return self.not() };
+        let mut v = self.binary_level(level + 1)?;
+        while self.symbol() == Some(op) {
+            let span = self.span();
+            self.pos += 1;
+            let r = self.binary_level(level + 1)?;
+            let (a, b) = (v.truth().map_err(self.at(span))?, r.truth().map_err(self.at(span))?);
+            v = TypedValue::Bool(match *op {
+                "~|" => a != b,
+                "||" => a || b,
+                _ => a && b,
+            });
         }
         Ok(v)
     }
 
-    fn sum(&mut self) -> Result<f64, MbdynError> {
+    fn not(&mut self) -> Result<TypedValue, MbdynError> {
+        let span = self.span();
+        if self.eat("!") {
+            self.enter()?;
+            let v = self.not()?;
+            self.depth -= 1;
+            return Ok(TypedValue::Bool(!v.truth().map_err(self.at(span))?));
+        }
+        self.relational()
+    }
+
+    fn relational(&mut self) -> Result<TypedValue, MbdynError> {
+        let mut v = self.sum()?;
+        while let Some(op @ (">" | ">=" | "==" | "<=" | "<" | "!=")) = self.symbol() {
+            let span = self.span();
+            self.pos += 1;
+            let r = self.sum()?;
+            v = v.compare(op, &r).map_err(self.at(span))?;
+        }
+        Ok(v)
+    }
+
+    fn sum(&mut self) -> Result<TypedValue, MbdynError> {
         let mut v = self.product()?;
-        while let Some(Token::Punct(op @ ('+' | '-'))) = self.peek().cloned() {
+        while let Some(op @ ("+" | "-")) = self.symbol() {
+            let span = self.span();
             self.pos += 1;
             let r = self.product()?;
-            v = if op == '+' { v + r } else { v - r };
+            v = v.arithmetic(op, &r).map_err(self.at(span))?;
         }
         Ok(v)
     }
 
-    fn product(&mut self) -> Result<f64, MbdynError> {
+    fn product(&mut self) -> Result<TypedValue, MbdynError> {
         let mut v = self.unary()?;
-        while let Some(Token::Punct(op @ ('*' | '/'))) = self.peek().cloned() {
+        while let Some(op @ ("*" | "/" | "%")) = self.symbol() {
             let span = self.span();
             self.pos += 1;
             let r = self.unary()?;
-            if op == '/' && r == 0.0 {
-                return Err(self.err(span, "division by zero"));
-            }
-            v = if op == '*' { v * r } else { v / r };
+            v = v.arithmetic(op, &r).map_err(self.at(span))?;
         }
         Ok(v)
     }
 
-    fn unary(&mut self) -> Result<f64, MbdynError> {
-        match self.peek() {
-            Some(Token::Punct('-')) => {
-                self.pos += 1;
-                Ok(-self.unary()?)
-            }
-            Some(Token::Punct('+')) => {
-                self.pos += 1;
-                self.unary()
-            }
-            _ => self.power(),
-        }
-    }
-
-    fn power(&mut self) -> Result<f64, MbdynError> {
-        let base = self.primary()?;
-        if let Some(Token::Punct('^')) = self.peek() {
+    fn unary(&mut self) -> Result<TypedValue, MbdynError> {
+        let span = self.span();
+        if let Some(op @ ("-" | "+")) = self.symbol() {
             self.pos += 1;
-            let exp = self.unary()?;
-            return Ok(base.powf(exp));
+            self.enter()?;
+            let v = self.unary()?;
+            self.depth -= 1;
+            return if op == "-" { v.negate().map_err(self.at(span)) } else { Ok(v) };
+        }
+        let base = self.primary()?;
+        if self.symbol() == Some("^") {
+            let span = self.span();
+            self.pos += 1;
+            self.enter()?;
+            let exponent = self.unary()?;
+            self.depth -= 1;
+            return base.power(&exponent).map_err(self.at(span));
         }
         Ok(base)
     }
 
-    fn primary(&mut self) -> Result<f64, MbdynError> {
+    fn primary(&mut self) -> Result<TypedValue, MbdynError> {
         let span = self.span();
         let Some(tok) = self.tokens.get(self.pos) else {
-            return Err(self.err(span, "expected a number, a variable or '('"));
+            return Err(self.err(span, "expected a value (a number, a variable, a function call or '(')"));
         };
         self.pos += 1;
         match &tok.token {
-            Token::Number(x) => Ok(*x),
-            Token::Punct('(') => {
-                let v = self.sum()?;
-                match self.peek() {
-                    Some(Token::Punct(')')) => {
-                        self.pos += 1;
-                        Ok(v)
+            Token::Integer(i) => Ok(TypedValue::Int(*i)),
+            Token::Real(x) => Ok(TypedValue::Real(*x)),
+            Token::Str(s) => Ok(TypedValue::Str(s.clone())),
+            Token::Symbol("(") => {
+                let v = self.statements()?;
+                if !self.eat(")") {
+                    return Err(self.err(span, "unbalanced parenthesis: expected ')' to close this '('"));
+                }
+                Ok(v)
+            }
+            Token::Symbol("[") => Err(self.err(span, "plugin variables ('[node, …]', '[element, …]', '[dof, …]') read run-time values and are not supported by romdyn")),
+            Token::Word(w) => {
+                let mut name = w.clone();
+                if self.eat("::") {
+                    match (name.as_str(), self.word(0).map(str::to_string)) {
+                        ("default", Some(f)) => {
+                            self.pos += 1;
+                            name = f;
+                        }
+                        ("model", _) => return Err(self.err(span, "the 'model' namespace reads run-time values of nodes and elements and is not supported by romdyn")),
+                        (ns, _) => return Err(self.err(span, format!("unknown namespace '{ns}' (romdyn knows 'default')"))),
                     }
-                    _ => Err(self.err(span, "unbalanced parenthesis: expected ')' to close this '('")),
+                }
+                if self.symbol() == Some("(") {
+                    return self.call(&name, span);
+                }
+                match self.vars.get(&name) {
+                    Some(v) => Ok(v.value.clone()),
+                    None => Err(self.err(span, format!("undefined variable '{name}'"))),
                 }
             }
-            Token::Word(w) if FUNCTIONS.contains(&w.as_str()) => self.call(w, span),
-            Token::Word(w) => self.vars.0.get(w.as_str()).map(|v| v.value).ok_or_else(|| self.err(span, format!("undefined variable '{w}'"))),
-            other => Err(self.err(span, format!("expected a number, a variable or '(', found {}", describe(other)))),
+            other => Err(self.err(span, format!("expected a value (a number, a variable, a function call or '('), found {}", describe(other)))),
         }
     }
 
-    fn call(&mut self, name: &str, span: Span) -> Result<f64, MbdynError> {
-        if self.peek() != Some(&Token::Punct('(')) {
-            return Err(self.err(span, format!("expected '(' after function '{name}'")));
-        }
+    fn call(&mut self, name: &str, span: Span) -> Result<TypedValue, MbdynError> {
         self.pos += 1;
-        let mut args = vec![self.sum()?];
-        while self.peek() == Some(&Token::Punct(',')) {
-            self.pos += 1;
-            args.push(self.sum()?);
+        let mut args = Vec::new();
+        if !self.eat(")") {
+            loop {
+                args.push(self.statements()?);
+                if self.eat(",") {
+                    continue;
+                }
+                if self.eat(")") {
+                    break;
+                }
+                return Err(self.err(span, format!("unbalanced parenthesis in the call of '{name}': expected ',' or ')'")));
+            }
         }
-        if self.peek() != Some(&Token::Punct(')')) {
-            return Err(self.err(span, format!("unbalanced parenthesis in the call of '{name}': expected ')'")));
+        if let Some(ty) = Type::from_name(name) {
+            if args.len() != 1 {
+                return Err(self.err(span, format!("the cast '{name}(…)' takes 1 argument, found {}", args.len())));
+            }
+            return args[0].cast(ty).map_err(self.at(span));
         }
-        self.pos += 1;
-        let want = if name == "atan2" { 2 } else { 1 };
+        if UNSUPPORTED_FUNCTIONS.contains(&name) {
+            return Err(self.err(span, format!("function '{name}' is not supported by romdyn")));
+        }
+        let Some(&(_, want)) = FUNCTIONS.iter().find(|(f, _)| *f == name) else {
+            return Err(self.err(span, format!("unknown function '{name}'")));
+        };
         if args.len() != want {
             return Err(self.err(span, format!("'{name}' takes {want} argument(s), found {}", args.len())));
         }
-        let x = args[0];
-        let domain = |ok: bool, what: &str| if ok { Ok(()) } else { Err(self.err(span, format!("{name}({x}): argument out of domain ({what})"))) };
-        let v = match name {
-            "sin" => x.sin(),
-            "cos" => x.cos(),
-            "tan" => x.tan(),
-            "asin" | "acos" => {
-                domain(x.abs() <= 1.0, "|x| must not exceed 1")?;
-                if name == "asin" { x.asin() } else { x.acos() }
-            }
-            "atan" => x.atan(),
-            "atan2" => x.atan2(args[1]),
-            "sqrt" => {
-                domain(x >= 0.0, "x must not be negative")?;
-                x.sqrt()
-            }
-            "exp" => x.exp(),
-            "log" => {
-                domain(x > 0.0, "x must be positive")?;
-                x.ln()
-            }
-            "abs" => x.abs(),
-            "sinh" => x.sinh(),
-            "cosh" => x.cosh(),
-            "tanh" => x.tanh(),
-            "ceil" => x.ceil(),
-            _ => x.floor(),
-        };
-        Ok(v)
+        let reals = args.iter().map(|a| a.real().ok_or_else(|| self.err(span, format!("'{name}' takes numbers, found a string")))).collect::<Result<Vec<f64>, _>>()?;
+        call(name, &reals).map_err(self.at(span))
     }
 }
 
-/// "',' ", "the word 'x'", … for messages.
+/// "the number 3", "the word 'x'", … for messages.
 pub fn describe(t: &Token) -> String {
     match t {
-        Token::Number(x) => format!("the number {x}"),
+        Token::Integer(x) => format!("the number {x}"),
+        Token::Real(x) => format!("the number {x}"),
         Token::Word(w) => format!("the word '{w}'"),
         Token::Str(s) => format!("the string \"{s}\""),
-        Token::Punct(c) => format!("'{c}'"),
+        Token::Symbol(c) => format!("'{c}'"),
     }
 }

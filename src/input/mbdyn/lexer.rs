@@ -1,15 +1,19 @@
-//! Tokens of MBDyn's input language: numbers, words, strings and punctuation; `#` comments
-//! to the end of the line and `/* … */` comments.
+//! Tokens of MBDyn's input language (input manual, "General", §Types): integers (digits
+//! without a dot), reals (with a dot or an exponent), names, double-quoted strings with
+//! backslash escapes, and operators; `#` comments to the end of the line and `/* … */`
+//! comments.
 
 use super::diagnostic::{MbdynError, Sources, Span};
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum Token {
-    Number(f64),
+    /// A literal without a dot or exponent: MBDyn types it `integer` (so `1/3` is 0).
+    Integer(i64),
+    Real(f64),
     Word(String),
     Str(String),
-    /// One of `: , ; ( ) + - * / ^ = < > !`.
-    Punct(char),
+    /// Punctuation and operators: `: , ; ( ) [ ] + - * / % ^ = == != < <= > >= ! && || ~| ::`.
+    Symbol(&'static str),
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -18,92 +22,151 @@ pub struct Spanned {
     pub span: Span,
 }
 
+const SYMBOLS: [&str; 24] = ["::", "==", "!=", "<=", ">=", "&&", "||", "~|", ":", ",", ";", "(", ")", "[", "]", "+", "-", "*", "/", "%", "^", "=", "<", ">"];
+
+/// Character stream with line and column.
+struct Scanner<'a> {
+    chars: &'a [char],
+    i: usize,
+    line: usize,
+    column: usize,
+    file: usize,
+}
+
+impl Scanner<'_> {
+    fn peek(&self, k: usize) -> Option<char> {
+        self.chars.get(self.i + k).copied()
+    }
+    fn span(&self) -> Span {
+        Span { file: self.file, line: self.line, column: self.column }
+    }
+    fn bump(&mut self) -> Option<char> {
+        let c = self.peek(0)?;
+        self.i += 1;
+        if c == '\n' {
+            self.line += 1;
+            self.column = 1;
+        } else {
+            self.column += 1;
+        }
+        Some(c)
+    }
+    fn starts_with(&self, s: &str) -> bool {
+        s.chars().enumerate().all(|(k, c)| self.peek(k) == Some(c))
+    }
+}
+
 /// Splits a file's text into tokens.
 pub fn tokenize(text: &str, file: usize, sources: &Sources) -> Result<Vec<Spanned>, MbdynError> {
     let chars: Vec<char> = text.chars().collect();
+    let mut s = Scanner { chars: &chars, i: 0, line: 1, column: 1, file };
     let mut out = Vec::new();
-    let (mut i, mut line, mut col) = (0, 1, 1);
-    let advance = |i: &mut usize, line: &mut usize, col: &mut usize, c: char| {
-        *i += 1;
-        if c == '\n' {
-            *line += 1;
-            *col = 1;
-        } else {
-            *col += 1;
-        }
-    };
-    while i < chars.len() {
-        let c = chars[i];
-        let span = Span { file, line, column: col };
+    while let Some(c) = s.peek(0) {
+        let span = s.span();
         if c.is_whitespace() {
-            advance(&mut i, &mut line, &mut col, c);
+            s.bump();
         } else if c == '#' {
-            while i < chars.len() && chars[i] != '\n' {
-                { let ch = chars[i]; advance(&mut i, &mut line, &mut col, ch); }
+            while s.peek(0).is_some_and(|c| c != '\n') {
+                s.bump();
             }
-        } else if c == '/' && chars.get(i + 1) == Some(&'*') {
-            advance(&mut i, &mut line, &mut col, '/');
-            advance(&mut i, &mut line, &mut col, '*');
+        } else if s.starts_with("/*") {
+            s.bump();
+            s.bump();
             loop {
-                if i >= chars.len() {
+                if s.peek(0).is_none() {
                     return Err(sources.error(span, "unterminated comment: expected '*/' to close the '/*' opened here"));
                 }
-                if chars[i] == '*' && chars.get(i + 1) == Some(&'/') {
-                    advance(&mut i, &mut line, &mut col, '*');
-                    advance(&mut i, &mut line, &mut col, '/');
+                if s.starts_with("*/") {
+                    s.bump();
+                    s.bump();
                     break;
                 }
-                { let ch = chars[i]; advance(&mut i, &mut line, &mut col, ch); }
+                s.bump();
             }
         } else if c == '"' {
-            advance(&mut i, &mut line, &mut col, c);
-            let mut s = String::new();
-            loop {
-                match chars.get(i) {
-                    None | Some('\n') => return Err(sources.error(span, "unterminated string: expected a closing '\"' on the same line")),
-                    Some('"') => {
-                        advance(&mut i, &mut line, &mut col, '"');
-                        break;
-                    }
-                    Some(&ch) => {
-                        s.push(ch);
-                        advance(&mut i, &mut line, &mut col, ch);
-                    }
-                }
+            out.push(Spanned { token: Token::Str(string(&mut s, span, sources)?), span });
+        } else if c.is_ascii_digit() || (c == '.' && s.peek(1).is_some_and(|d| d.is_ascii_digit())) {
+            out.push(Spanned { token: number(&mut s, span, sources)?, span });
+        } else if c.is_ascii_alphabetic() || c == '_' {
+            let mut w = String::new();
+            while let Some(c) = s.peek(0).filter(|c| c.is_ascii_alphanumeric() || *c == '_') {
+                w.push(c);
+                s.bump();
             }
-            out.push(Spanned { token: Token::Str(s), span });
-        } else if c.is_ascii_digit() || (c == '.' && chars.get(i + 1).is_some_and(|d| d.is_ascii_digit())) {
-            let start = i;
-            while i < chars.len() && (chars[i].is_ascii_digit() || chars[i] == '.') {
-                { let ch = chars[i]; advance(&mut i, &mut line, &mut col, ch); }
+            out.push(Spanned { token: Token::Word(w), span });
+        } else if let Some(sym) = SYMBOLS.iter().find(|sym| s.starts_with(sym)) {
+            for _ in 0..sym.len() {
+                s.bump();
             }
-            if i < chars.len() && (chars[i] == 'e' || chars[i] == 'E') {
-                let sign = matches!(chars.get(i + 1), Some('+') | Some('-'));
-                let digit_at = if sign { i + 2 } else { i + 1 };
-                if chars.get(digit_at).is_some_and(|d| d.is_ascii_digit()) {
-                    for _ in i..digit_at {
-                        advance(&mut i, &mut line, &mut col, 'e');
-                    }
-                    while i < chars.len() && chars[i].is_ascii_digit() {
-                        { let ch = chars[i]; advance(&mut i, &mut line, &mut col, ch); }
-                    }
-                }
-            }
-            let text: String = chars[start..i].iter().collect();
-            let value = text.parse::<f64>().map_err(|_| sources.error(span, format!("'{text}' is not a valid number")))?;
-            out.push(Spanned { token: Token::Number(value), span });
-        } else if c.is_alphabetic() || c == '_' {
-            let start = i;
-            while i < chars.len() && (chars[i].is_alphanumeric() || chars[i] == '_') {
-                { let ch = chars[i]; advance(&mut i, &mut line, &mut col, ch); }
-            }
-            out.push(Spanned { token: Token::Word(chars[start..i].iter().collect()), span });
-        } else if ":,;()+-*/^=<>!".contains(c) {
-            advance(&mut i, &mut line, &mut col, c);
-            out.push(Spanned { token: Token::Punct(c), span });
+            out.push(Spanned { token: Token::Symbol(sym), span });
+        } else if c == '!' {
+            s.bump();
+            out.push(Spanned { token: Token::Symbol("!"), span });
         } else {
-            return Err(sources.error(span, format!("unexpected character '{c}'")));
+            return Err(sources.error(span, format!("unexpected character '{}'", c.escape_default())));
         }
     }
     Ok(out)
+}
+
+/// A double-quoted string; `\\` and `\"` escape, a backslash before a newline joins lines,
+/// `\hh` (two hex digits) is a character code.
+fn string(s: &mut Scanner, span: Span, sources: &Sources) -> Result<String, MbdynError> {
+    s.bump();
+    let mut text = String::new();
+    loop {
+        match s.bump() {
+            None | Some('\n') => return Err(sources.error(span, "unterminated string: expected a closing '\"' on the same line (end a line with '\\' to continue it)")),
+            Some('"') => return Ok(text),
+            Some('\\') => match s.peek(0) {
+                Some('\n') => {
+                    s.bump();
+                }
+                Some(c @ ('\\' | '"')) => {
+                    text.push(c);
+                    s.bump();
+                }
+                Some(h) if h.is_ascii_hexdigit() && s.peek(1).is_some_and(|l| l.is_ascii_hexdigit()) => {
+                    let code = h.to_digit(16).unwrap_or(0) * 16 + s.peek(1).and_then(|l| l.to_digit(16)).unwrap_or(0);
+                    text.push(char::from_u32(code).unwrap_or('?'));
+                    s.bump();
+                    s.bump();
+                }
+                _ => text.push('\\'),
+            },
+            Some(c) => text.push(c),
+        }
+    }
+}
+
+fn number(s: &mut Scanner, span: Span, sources: &Sources) -> Result<Token, MbdynError> {
+    let mut text = String::new();
+    let mut real = false;
+    while let Some(c) = s.peek(0).filter(|c| c.is_ascii_digit() || *c == '.') {
+        real |= c == '.';
+        text.push(c);
+        s.bump();
+    }
+    if matches!(s.peek(0), Some('e' | 'E')) {
+        let sign = matches!(s.peek(1), Some('+' | '-'));
+        let first_digit = if sign { 2 } else { 1 };
+        if s.peek(first_digit).is_some_and(|d| d.is_ascii_digit()) {
+            real = true;
+            for _ in 0..first_digit {
+                text.push(s.bump().unwrap_or('e'));
+            }
+            while let Some(d) = s.peek(0).filter(|d| d.is_ascii_digit()) {
+                text.push(d);
+                s.bump();
+            }
+        }
+    }
+    if s.peek(0).is_some_and(|c| c.is_ascii_alphabetic() || c == '_') {
+        return Err(sources.error(span, format!("'{text}{}' is not a valid number", s.peek(0).unwrap_or(' '))));
+    }
+    if real {
+        text.parse::<f64>().map(Token::Real).map_err(|_| sources.error(span, format!("'{text}' is not a valid number")))
+    } else {
+        text.parse::<i64>().map(Token::Integer).map_err(|_| sources.error(span, format!("the integer {text} is too large (write it with a dot, '{text}.', to make it real)")))
+    }
 }

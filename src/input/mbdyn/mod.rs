@@ -1,16 +1,34 @@
-//! MBDyn's input language: lexer, expressions over `set:` variables, statements and blocks
-//! with `include:`, and the mapping of the supported subset to a [`Model`].
+//! MBDyn's input language (the MBDyn input manual, `manual/input/*.tex`): lexer, the math
+//! parser's typed expressions over `set:` variables, statements and blocks with
+//! `include:`, reference frames, drive callers and constitutive laws, and the mapping of
+//! the supported subset onto a [`Model`] and an [`InitialValueProblem`].
+//!
+//! Everything else is named in an error: romdyn never skips a statement silently.
+//! Statements that only tune MBDyn's own numerics or output are accepted and ignored.
 //!
 //! [`Model`]: crate::model::Model
+//! [`InitialValueProblem`]: crate::model::InitialValueProblem
 
+mod control;
 mod cursor;
 mod diagnostic;
+mod drives;
 mod elements;
 mod expr;
+mod functions;
+mod joints;
+mod laws;
 mod lexer;
 mod model;
+mod nodes;
+mod orientation;
 mod parser;
+mod problem;
+mod references;
+mod value;
 
 pub use diagnostic::MbdynError;
+pub use expr::{Variable, Variables};
 pub use model::{build, read_model, MbdynModel};
 pub use parser::{parse_file, parse_text, Document};
+pub use value::TypedValue;

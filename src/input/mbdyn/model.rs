@@ -1,14 +1,22 @@
-//! From a parsed document to a [`Model`] and the analysis it asks for: the `data`,
-//! `initial value`, `control data`, `nodes` and `elements` blocks.
+//! From a parsed document to a [`Model`] and the analysis it asks for: the cards
+//! (`reference`, `drive caller`, `constitutive law`) in file order, then the `data`,
+//! `initial value`, `control data`, `nodes` and `elements` blocks, with the counts of
+//! control data checked against the model as MBDyn does.
 
 use std::collections::HashMap;
 use std::path::Path;
 
+use super::control::{control_data, Counts, COUNTED};
 use super::cursor::Cursor;
 use super::diagnostic::{MbdynError, Span};
-use super::elements::{element, Parsed};
-use super::parser::{parse_file, Block, Document};
-use crate::model::{AbortAfter, EigenOutput, EigenRequest, InitialValueProblem, Method, Model, ModelBuilder, NodeKind, StructuralNode};
+use super::drives::{drive_caller_card, Drives};
+use super::elements::{counted_kind, element, label_space, ElementContext, Parsed};
+use super::laws::{constitutive_law_card, Laws};
+use super::nodes::{node_statement, Nodes};
+use super::parser::{known, parse_file, same_keyword, Block, Document, CARDS};
+use super::problem::{data, initial_value};
+use super::references::{reference, Frames};
+use crate::model::{InitialValueProblem, Model, ModelBuilder};
 
 /// A model file: the model and the initial-value problem it asks for.
 pub struct MbdynModel {
@@ -21,225 +29,129 @@ pub fn read_model(path: &Path) -> Result<MbdynModel, MbdynError> {
     build(&parse_file(path)?)
 }
 
+const BLOCKS: [&str; 7] = ["data", "initial value", "control data", "nodes", "drivers", "elements", "inverse dynamics"];
+
 fn block<'d>(doc: &'d Document, name: &str) -> Option<&'d Block> {
-    doc.blocks.iter().find(|b| b.name == name)
+    doc.blocks.iter().find(|b| same_keyword(&b.name, name))
+}
+
+/// The entities cards define: frames, drive callers, constitutive laws.
+#[derive(Default)]
+struct Cards {
+    frames: Frames,
+    drives: Drives,
+    laws: Laws,
+}
+
+fn cards(doc: &Document) -> Result<Cards, MbdynError> {
+    let mut out = Cards::default();
+    for st in doc.cards.iter().filter(|st| known(&st.keyword, &["reference"]).is_some()) {
+        if let Some(super::parser::Arg { value: super::parser::Value::Number(x), .. }) = st.args.first()
+            && *x >= 0.0
+            && x.fract() == 0.0
+            && *x <= u32::MAX as f64
+        {
+            out.frames.announce(*x as u32, st.span);
+        }
+    }
+    for st in &doc.cards {
+        let mut c = Cursor::new(st, &doc.sources);
+        match known(&st.keyword, &CARDS) {
+            Some("reference") => reference(st, &mut c, &mut out.frames)?,
+            Some("drive caller") => drive_caller_card(st, &mut c, &mut out.drives)?,
+            Some("constitutive law") => constitutive_law_card(st, &mut c, &mut out.laws, &out.drives)?,
+            Some("setenv" | "print symbol table") => {}
+            Some(other) => return Err(c.error_at(st.span, format!("'{other}' cards are not supported by romdyn"))),
+            None => return Err(c.error_at(st.span, format!("unknown card '{}'", st.keyword))),
+        }
+    }
+    Ok(out)
 }
 
 /// Builds the model from a parsed document.
 pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
     let src = &doc.sources;
     let first = doc.blocks.first().map_or(Span::default(), |b| b.span);
+    let mut seen: HashMap<&str, Span> = HashMap::new();
     for b in &doc.blocks {
-        if !["data", "initial value", "control data", "nodes", "elements"].contains(&b.name.as_str()) {
+        let Some(name) = known(&b.name, &BLOCKS) else {
             return Err(src.error(b.span, format!("block '{}' is not supported by romdyn", b.name)));
+        };
+        if name == "inverse dynamics" {
+            return Err(src.error(b.span, "block 'inverse dynamics' is not supported by romdyn"));
+        }
+        if let Some(prev) = seen.insert(name, b.span) {
+            return Err(src.error(b.span, format!("block '{name}' appears twice (first at line {})", prev.line)));
         }
     }
-    let data = block(doc, "data").ok_or_else(|| src.error(first, "missing 'begin: data;' block"))?;
-    for st in &data.statements {
-        let mut c = Cursor::new(st, src);
-        match st.keyword.as_str() {
-            "problem" => {
-                c.word("the problem", &["initial value"])?;
-                c.finish()?;
-            }
-            other => return Err(src.error(st.span, format!("statement '{other}' in the data block is not supported by romdyn"))),
-        }
+    if let Some(st) = block(doc, "drivers").and_then(|b| b.statements.first()) {
+        return Err(src.error(st.span, "file drivers are not supported by romdyn"));
     }
-    let problem = initial_value(doc)?;
-    let counts = control_data(doc)?;
-    let nodes = nodes(doc)?;
+    // The data block is optional: MBDyn's problem defaults to the initial value problem.
+    if let Some(data_block) = block(doc, "data") {
+        data(data_block, src)?;
+    }
+    let cards = cards(doc)?;
+    let problem = initial_value(block(doc, "initial value"), src, &cards.drives)?;
+    let counts = control_data(block(doc, "control data"), src)?;
+    let mut nodes = Nodes::default();
+    for st in block(doc, "nodes").map_or(&[][..], |b| &b.statements) {
+        node_statement(st, &mut Cursor::new(st, src), &cards.frames, &mut nodes)?;
+    }
     let mut b = ModelBuilder::new();
-    for n in &nodes {
+    for n in nodes.structural() {
         b.node(n.clone());
     }
-    let mut found: HashMap<&str, (usize, Span)> = HashMap::new();
-    let mut labels: HashMap<(String, u32), Span> = HashMap::new();
-    if let Some(els) = block(doc, "elements") {
-        for st in &els.statements {
-            let mut c = Cursor::new(st, src);
-            let parsed = element(&st.keyword, &mut c, &nodes)?;
-            c.finish()?;
-            match parsed {
-                Parsed::Gravity(g) => {
-                    b.gravity(g);
-                    found.entry("gravity").or_insert((0, st.span)).0 += 1;
+    let mut found: HashMap<&'static str, (usize, Span)> = HashMap::new();
+    found.insert("structural nodes", (nodes.0.len(), block(doc, "nodes").map_or(first, |b| b.span)));
+    let mut labels: HashMap<(&'static str, u32), Span> = HashMap::new();
+    let mut gravity: Option<Span> = None;
+    for st in block(doc, "elements").map_or(&[][..], |b| &b.statements) {
+        let mut c = Cursor::new(st, src);
+        let ctx = ElementContext { nodes: &nodes, frames: &cards.frames, drives: &cards.drives, laws: &cards.laws, seq: st.seq };
+        let label_span = c.here();
+        let parsed = element(st, &mut c, &ctx)?;
+        c.finish()?;
+        if let Some(kind) = counted_kind(&st.keyword) {
+            found.entry(kind).or_insert((0, st.span)).0 += 1;
+        }
+        match parsed {
+            Parsed::Gravity(g) => {
+                if let Some(prev) = gravity.replace(st.span) {
+                    return Err(src.error(st.span, format!("gravity is defined twice (first at line {})", prev.line)));
                 }
-                Parsed::Element(e) => {
-                    let kind = match st.keyword.as_str() {
-                        "body" => "rigid bodies",
-                        "joint" => "joints",
-                        _ => "forces",
-                    };
-                    if let Some(prev) = labels.insert((st.keyword.clone(), e.label()), st.span) {
-                        return Err(src.error(st.span, format!("{} {} is defined twice (first at line {})", st.keyword, e.label(), prev.line)));
-                    }
-                    found.entry(kind).or_insert((0, st.span)).0 += 1;
-                    b.boxed_element(e);
-                }
+                b.gravity(g);
             }
+            Parsed::Element(e) => {
+                let space = label_space(&st.keyword);
+                if let Some(prev) = labels.insert((space, e.label()), st.span) {
+                    return Err(src.error(label_span, format!("{space} {} is defined twice (first at line {})", e.label(), prev.line)));
+                }
+                b.boxed_element(e);
+            }
+            Parsed::Ignored => {}
         }
     }
-    found.insert("structural nodes", (nodes.len(), block(doc, "nodes").map_or(first, |b| b.span)));
-    for (kind, (declared, span)) in &counts {
-        let have = found.get(kind.as_str()).map_or(0, |x| x.0);
-        if have != *declared {
-            return Err(src.error(*span, format!("control data declares {declared} {kind}, the model has {have}")));
-        }
-    }
-    for (kind, (have, span)) in &found {
-        if *have > 0 && !counts.contains_key(*kind) {
-            return Err(src.error(*span, format!("the model has {have} {kind}, but control data does not declare '{kind}'")));
-        }
-    }
+    check_counts(doc, &counts, &found)?;
     let model = b.build().map_err(|e| src.error(first, e.to_string()))?;
     Ok(MbdynModel { model, problem })
 }
 
-fn initial_value(doc: &Document) -> Result<InitialValueProblem, MbdynError> {
+/// Errors unless every kind found in the model is declared in control data with its
+/// number, and every declared number is matched.
+fn check_counts(doc: &Document, counts: &Counts, found: &HashMap<&'static str, (usize, Span)>) -> Result<(), MbdynError> {
     let src = &doc.sources;
-    let mut a = InitialValueProblem::default();
-    let Some(iv) = block(doc, "initial value") else { return Ok(a) };
-    for st in &iv.statements {
-        let mut c = Cursor::new(st, src);
-        match st.keyword.as_str() {
-            "initial time" => a.initial_time = c.real("initial time [s]")?,
-            "final time" => a.final_time = c.real("final time [s]")?,
-            "time step" => a.time_step = c.real("time step [s]")?,
-            "tolerance" => a.tolerance = c.real("residual tolerance")?,
-            "max iterations" => a.max_iterations = c.label("maximum number of iterations")? as usize,
-            "method" => a.method = method(&mut c)?,
-            "eigenanalysis" => a.eigenanalysis = Some(eigenanalysis(&mut c)?),
-            "derivatives tolerance" => a.derivatives_tolerance = c.real("derivatives tolerance")?,
-            "derivatives max iterations" => a.derivatives_max_iterations = c.label("derivatives max iterations")? as usize,
-            "abort after" => {
-                a.abort_after = Some(match c.word("where to stop", &["input", "assembly", "derivatives", "dummy steps"])?.as_str() {
-                    "input" => AbortAfter::Input,
-                    "assembly" => AbortAfter::Assembly,
-                    "derivatives" => AbortAfter::Derivatives,
-                    _ => AbortAfter::DummySteps,
-                })
+    for kind in COUNTED {
+        let have = found.get(kind).map_or(0, |x| x.0);
+        match (counts.get(kind), found.get(kind)) {
+            (Some((declared, span)), _) if *declared != have => {
+                return Err(src.error(*span, format!("control data declares {declared} {kind}, the model has {have}")));
             }
-            "derivatives coefficient" | "linear solver" | "threads" | "output" => {
-                // Accepted; romdyn's own settings apply (documented in the manual page).
-                while !c.is_done() {
-                    if c.peek_word().is_some() {
-                        c.word("", &[])?;
-                    } else {
-                        c.real("value")?;
-                    }
-                }
+            (None, Some((n, span))) if *n > 0 && kind != "automatic structural elements" => {
+                return Err(src.error(*span, format!("the model has {n} {kind}, but control data does not declare '{kind}'")));
             }
-            other => return Err(src.error(st.span, format!("statement '{other}' in the initial value block is not supported by romdyn"))),
-        }
-        c.finish()?;
-    }
-    Ok(a)
-}
-
-fn method(c: &mut Cursor) -> Result<Method, MbdynError> {
-    let m = c.word("an integration method", &["ms", "crank nicolson", "implicit euler", "bdf"])?;
-    Ok(match m.as_str() {
-        "ms" => {
-            let rho = c.real("asymptotic spectral radius rho")?;
-            if !c.is_done() {
-                c.real("algebraic spectral radius")?;
-            }
-            Method::Ms { rho }
-        }
-        "crank nicolson" => Method::CrankNicolson,
-        "implicit euler" => Method::ImplicitEuler,
-        _ => Method::Ms { rho: 0.0 },
-    })
-}
-
-fn eigenanalysis(c: &mut Cursor) -> Result<EigenRequest, MbdynError> {
-    let times = if c.accept("list") {
-        let n = c.label("number of eigenanalysis times")?;
-        (0..n).map(|_| c.real("eigenanalysis time [s]")).collect::<Result<_, _>>()?
-    } else {
-        vec![c.real("eigenanalysis time [s] (or list)")?]
-    };
-    let mut r = EigenRequest { times, dcoef: None, lower_frequency_hz: None, upper_frequency_hz: None, output: EigenOutput::default() };
-    let options = ["output matrices", "output full matrices", "output sparse matrices", "output eigenvectors", "output geometry", "use lapack", "use arpack", "use jdqz", "parameter", "lower frequency limit", "upper frequency limit"];
-    while !c.is_done() {
-        let w = c.word("an eigenanalysis option", &options)?;
-        match w.as_str() {
-            "output matrices" | "output full matrices" => r.output.full_matrices = true,
-            "output sparse matrices" => r.output.sparse_matrices = true,
-            "output eigenvectors" => r.output.eigenvectors = true,
-            "output geometry" => r.output.geometry = true,
-            "parameter" => r.dcoef = Some(c.real("parameter (dCoef) [s]")?),
-            "lower frequency limit" => r.lower_frequency_hz = Some(c.real("lower frequency limit [Hz]")?),
-            "upper frequency limit" => r.upper_frequency_hz = Some(c.real("upper frequency limit [Hz]")?),
             _ => {}
         }
     }
-    Ok(r)
-}
-
-/// Declared counts: kind → (count, span).
-fn control_data(doc: &Document) -> Result<HashMap<String, (usize, Span)>, MbdynError> {
-    let src = &doc.sources;
-    let mut counts = HashMap::new();
-    let Some(cd) = block(doc, "control data") else { return Ok(counts) };
-    for st in &cd.statements {
-        let mut c = Cursor::new(st, src);
-        match st.keyword.as_str() {
-            "structural nodes" | "rigid bodies" | "joints" | "forces" => {
-                counts.insert(st.keyword.clone(), (c.label(&format!("number of {}", st.keyword))? as usize, st.span));
-            }
-            "gravity" => {
-                counts.insert("gravity".into(), (1, st.span));
-            }
-            "beams" | "aerodynamic elements" | "electric nodes" | "abstract nodes" | "hydraulic nodes" | "genels" => {
-                if c.label("count")? > 0 {
-                    return Err(src.error(st.span, format!("{} are not supported by romdyn", st.keyword)));
-                }
-            }
-            "default output" | "output frequency" | "print" | "output results" | "default orientation" | "max iterations" | "tolerance" => {
-                while !c.is_done() {
-                    if c.peek_word().is_some() {
-                        c.word("", &[])?;
-                    } else {
-                        c.real("value")?;
-                    }
-                }
-            }
-            other => return Err(src.error(st.span, format!("statement '{other}' in control data is not supported by romdyn"))),
-        }
-        c.finish()?;
-    }
-    Ok(counts)
-}
-
-fn nodes(doc: &Document) -> Result<Vec<StructuralNode>, MbdynError> {
-    let src = &doc.sources;
-    let mut out: Vec<StructuralNode> = Vec::new();
-    let Some(nb) = block(doc, "nodes") else { return Ok(out) };
-    for st in &nb.statements {
-        if st.keyword != "structural" {
-            return Err(src.error(st.span, format!("node type '{}' is not supported by romdyn", st.keyword)));
-        }
-        let mut c = Cursor::new(st, src);
-        let n = structural(&mut c)?;
-        if out.iter().any(|p| p.label == n.label) {
-            return Err(src.error(st.span, format!("structural node {} is defined twice", n.label)));
-        }
-        out.push(n);
-    }
-    Ok(out)
-}
-
-fn structural(c: &mut Cursor) -> Result<StructuralNode, MbdynError> {
-    let label = c.label("node label")?;
-    let kind = match c.word("the node type", &["static", "dynamic"])?.as_str() {
-        "static" => NodeKind::Static,
-        _ => NodeKind::Dynamic,
-    };
-    let position = c.vec3("position [m]")?;
-    let orientation = c.orientation("orientation")?;
-    let velocity = c.vec3("velocity [m/s]")?;
-    let angular_velocity = c.vec3("angular velocity [rad/s]")?;
-    c.finish()?;
-    Ok(StructuralNode { label, kind, position, orientation, velocity, angular_velocity })
+    Ok(())
 }

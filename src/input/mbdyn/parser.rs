@@ -1,25 +1,38 @@
-//! Statements `keyword words: arg, arg, …;` grouped in `begin: NAME;` … `end: NAME;` blocks,
-//! with `include: "file";` and `set: [const] real|integer NAME = EXPR;` handled as read.
+//! Statements `keyword words: arg, arg, …;` grouped in `begin: NAME;` … `end: NAME;`
+//! blocks (input manual, "Overview"), with the input-related cards handled as read
+//! ("General", §Input Related Cards): `include: "file";`, `set: EXPR;`, `remark: …;`, and
+//! the cards kept for the model (`reference:`, `drive caller:`, `constitutive law:`, …).
+//!
+//! Every argument is evaluated when its statement is read, in file order, as MBDyn does:
+//! a `set:` further down does not change values above it.
 
 use std::path::{Path, PathBuf};
 
 use super::diagnostic::{MbdynError, Sources, Span};
-use super::expr::{describe, is_expression_word, Evaluator, Variable, Variables};
+use super::expr::{describe, Evaluator, Variables};
 use super::lexer::{tokenize, Spanned, Token};
+use super::value::TypedValue;
 
 /// An evaluated argument.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Value {
     Number(f64),
-    /// One or more words, lowercased and joined by single spaces ("revolute hinge").
+    /// One or more names, lowercased and joined by single spaces ("revolute hinge").
     Word(String),
     Str(String),
+    /// An empty field (`1., , 3.`): MBDyn reads it as the default value, or zero.
+    Empty,
 }
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Arg {
     pub value: Value,
     pub span: Span,
+    /// The argument read as a keyword: set for names, even when a name is also a variable
+    /// (keywords win where the syntax expects one, as in MBDyn).
+    pub keyword: Option<String>,
+    /// The argument's text as written (for messages).
+    pub text: String,
 }
 
 /// `keyword: args;`, the keyword lowercased with single spaces.
@@ -30,6 +43,9 @@ pub struct Statement {
     pub args: Vec<Arg>,
     /// Where the terminating ';' is (for "missing argument" errors).
     pub end: Span,
+    /// Position in the whole input (includes counted): entities defined by cards can only
+    /// be used by statements that come later.
+    pub seq: usize,
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -43,37 +59,55 @@ pub struct Block {
 #[derive(Debug, Default)]
 pub struct Document {
     pub blocks: Vec<Block>,
+    /// Cards that may appear anywhere: `reference`, `drive caller`, `constitutive law`, …
+    pub cards: Vec<Statement>,
     pub sources: Sources,
     pub variables: Variables,
+}
+
+/// Cards allowed anywhere in the input ("General", §Input Related Cards), kept for `build`.
+pub const CARDS: [&str; 10] = ["reference", "drive caller", "constitutive law", "template drive caller", "scalar function", "hydraulic fluid", "c81 data", "module load", "setenv", "print symbol table"];
+
+/// Compares keywords the way MBDyn does: case and spaces do not matter
+/// ("control data" = "Control Data" = "controldata").
+pub fn same_keyword(a: &str, b: &str) -> bool {
+    a.chars().filter(|c| !c.is_whitespace()).map(|c| c.to_ascii_lowercase()).eq(b.chars().filter(|c| !c.is_whitespace()).map(|c| c.to_ascii_lowercase()))
+}
+
+/// The phrase of `known` that `keyword` spells, if any.
+pub fn known<'k>(keyword: &str, known: &[&'k str]) -> Option<&'k str> {
+    known.iter().copied().find(|k| same_keyword(k, keyword))
 }
 
 struct Reader {
     doc: Document,
     stack: Vec<PathBuf>,
     open: Option<Block>,
+    seq: usize,
 }
 
 /// Reads and parses an MBDyn input file (and its includes).
 pub fn parse_file(path: &Path) -> Result<Document, MbdynError> {
-    let mut r = Reader { doc: Document::default(), stack: Vec::new(), open: None };
+    let mut r = Reader { doc: Document::default(), stack: Vec::new(), open: None, seq: 0 };
     r.read(path, None)?;
-    if let Some(b) = r.open.take() {
-        return Err(r.doc.sources.error(b.span, format!("block '{}' is never closed: expected 'end: {};'", b.name, b.name)));
-    }
-    Ok(r.doc)
+    r.finish()
 }
 
 /// Parses text as if it were the file `name` (includes resolve relative to its folder).
 pub fn parse_text(text: &str, name: &Path) -> Result<Document, MbdynError> {
-    let mut r = Reader { doc: Document::default(), stack: Vec::new(), open: None };
+    let mut r = Reader { doc: Document::default(), stack: Vec::new(), open: None, seq: 0 };
     r.read_text(text.to_string(), name)?;
-    if let Some(b) = r.open.take() {
-        return Err(r.doc.sources.error(b.span, format!("block '{}' is never closed: expected 'end: {};'", b.name, b.name)));
-    }
-    Ok(r.doc)
+    r.finish()
 }
 
 impl Reader {
+    fn finish(mut self) -> Result<Document, MbdynError> {
+        if let Some(b) = self.open.take() {
+            return Err(self.doc.sources.error(b.span, format!("block '{}' is never closed: expected 'end: {};'", b.name, b.name)));
+        }
+        Ok(self.doc)
+    }
+
     fn read(&mut self, path: &Path, from: Option<Span>) -> Result<(), MbdynError> {
         let text = std::fs::read_to_string(path).map_err(|e| match from {
             Some(span) => self.doc.sources.error(span, format!("cannot include \"{}\": {e}", path.display())),
@@ -84,45 +118,66 @@ impl Reader {
 
     fn read_text(&mut self, text: String, path: &Path) -> Result<(), MbdynError> {
         let file = self.doc.sources.files.len();
-        self.doc.sources.files.push((path.to_path_buf(), text.clone()));
+        self.doc.sources.files.push((path.to_path_buf(), text));
         self.stack.push(path.to_path_buf());
-        let tokens = tokenize(&text, file, &self.doc.sources)?;
-        let mut i = 0;
-        while i < tokens.len() {
-            let end = tokens[i..].iter().position(|t| t.token == Token::Punct(';')).map(|k| i + k);
-            let Some(end) = end else {
-                let last = tokens.last().map_or(tokens[i].span, |t| t.span);
-                return Err(self.doc.sources.error(last, "missing ';' at the end of this statement"));
+        let tokens = tokenize(&self.doc.sources.files[file].1, file, &self.doc.sources)?;
+        let mut start = 0;
+        while start < tokens.len() {
+            let end = match statement_end(&tokens[start..]) {
+                Ok(k) => start + k,
+                Err(Some(paren)) => return Err(self.doc.sources.error(paren, "unbalanced parenthesis: expected ')' to close this '('")),
+                Err(None) => {
+                    let last = tokens.last().map_or(tokens[start].span, |t| t.span);
+                    return Err(self.doc.sources.error(last, "missing ';' at the end of this statement"));
+                }
             };
-            self.statement(&tokens[i..end], tokens[end].span, path)?;
-            i = end + 1;
+            self.statement(&tokens[start..end], tokens[end].span, path)?;
+            start = end + 1;
         }
         self.stack.pop();
         Ok(())
     }
 
     fn statement(&mut self, toks: &[Spanned], end: Span, path: &Path) -> Result<(), MbdynError> {
-        let src = &self.doc.sources;
-        let Some(first) = toks.first() else { return Err(src.error(end, "empty statement: expected a keyword before ';'")) };
-        let colon = toks.iter().position(|t| t.token == Token::Punct(':'));
+        let Some(first) = toks.first() else { return Err(self.doc.sources.error(end, "empty statement: expected a keyword before ';'")) };
+        let colon = toks.iter().position(|t| t.token == Token::Symbol(":"));
         let head = &toks[..colon.unwrap_or(toks.len())];
         let mut words = Vec::new();
         for t in head {
             match &t.token {
                 Token::Word(w) => words.push(w.to_lowercase()),
-                other => return Err(src.error(t.span, format!("expected a keyword, found {}", describe(other)))),
+                other => return Err(self.doc.sources.error(t.span, format!("expected a keyword, found {}", describe(other)))),
             }
         }
         let keyword = words.join(" ");
         let body = colon.map_or(&[][..], |c| &toks[c + 1..]);
-        match keyword.as_str() {
-            "include" => return self.include(body, first.span, end, path),
-            "set" => return self.set(body, end),
-            "begin" | "end" => return self.block(&keyword, body, first.span, end),
-            _ => {}
+        self.seq += 1;
+        match known(&keyword, &["include", "set", "begin", "end", "remark"]) {
+            Some("include") => return self.include(body, first.span, end, path),
+            Some("set") => {
+                if body.is_empty() {
+                    return Err(self.doc.sources.error(end, "set: expected an expression, e.g. 'set: real L = 1.;'"));
+                }
+                Evaluator::new(body, &mut self.doc.variables, &self.doc.sources, end).evaluate()?;
+                return Ok(());
+            }
+            Some(kw @ ("begin" | "end")) => return self.block(kw, body, first.span, end),
+            Some(_) => {
+                self.args(body, end)?;
+                return Ok(());
+            }
+            None => {}
+        }
+        if known(&keyword, &["driven"]).is_some() {
+            // `driven: …, ELEMENT: …;` wraps a whole element statement.
+            return Err(self.doc.sources.error(first.span, "element type 'driven' (an element switched on and off during the run) is not supported by romdyn"));
         }
         let args = self.args(body, end)?;
-        let st = Statement { keyword, span: first.span, args, end };
+        let st = Statement { keyword, span: first.span, args, end, seq: self.seq };
+        if known(&st.keyword, &CARDS).is_some() {
+            self.doc.cards.push(st);
+            return Ok(());
+        }
         match self.open.as_mut() {
             Some(b) => b.statements.push(st),
             None => return Err(self.doc.sources.error(first.span, format!("statement '{}' outside of any block: expected 'begin: <block>;' first", st.keyword))),
@@ -130,46 +185,64 @@ impl Reader {
         Ok(())
     }
 
-    /// Splits at top-level commas and evaluates each piece.
-    fn args(&self, body: &[Spanned], end: Span) -> Result<Vec<Arg>, MbdynError> {
-        let src = &self.doc.sources;
-        if let Some(k) = body.iter().position(|t| t.token == Token::Punct(':')) {
-            // A second ':' means the previous statement was not closed.
-            let at = if k > 0 { &body[k - 1] } else { &body[k] };
-            let what = if let Token::Word(w) = &at.token { format!("'{w}'") } else { "this".into() };
-            return Err(src.error(at.span, format!("missing ';' before {what}")));
+    /// Splits at top-level commas and evaluates each piece, in order.
+    fn args(&mut self, body: &[Spanned], end: Span) -> Result<Vec<Arg>, MbdynError> {
+        if let Some(k) = body.iter().position(|t| t.token == Token::Symbol(":")) {
+            // A second ':' means the previous statement was not closed: point at the keyword
+            // of the next one (its first word when it starts a line, else the last word).
+            let mut at = k.saturating_sub(1);
+            let mut start = at;
+            while start > 0 && matches!(body[start - 1].token, Token::Word(_)) && matches!(body[start].token, Token::Word(_)) {
+                start -= 1;
+            }
+            if let Some(first) = (start..at).find(|&i| i > 0 && body[i - 1].span.line < body[i].span.line) {
+                at = first;
+            }
+            let what = if let Token::Word(w) = &body[at].token { format!("'{w}'") } else { "this".into() };
+            return Err(self.doc.sources.error(body[at].span, format!("missing ';' before {what}")));
         }
-        let mut pieces: Vec<&[Spanned]> = Vec::new();
+        let mut pieces: Vec<(&[Spanned], Span)> = Vec::new();
         let (mut depth, mut start) = (0i32, 0);
         for (k, t) in body.iter().enumerate() {
             match t.token {
-                Token::Punct('(') => depth += 1,
-                Token::Punct(')') => depth -= 1,
-                Token::Punct(',') if depth == 0 => {
-                    pieces.push(&body[start..k]);
+                Token::Symbol("(" | "[") => depth += 1,
+                Token::Symbol(")" | "]") => depth -= 1,
+                Token::Symbol(",") if depth <= 0 => {
+                    let span = body.get(start).filter(|_| start < k).map_or(t.span, |s| s.span);
+                    pieces.push((&body[start..k], span));
                     start = k + 1;
                 }
                 _ => {}
             }
         }
         if !body.is_empty() {
-            pieces.push(&body[start..]);
+            pieces.push((&body[start..], body.get(start).map_or(end, |t| t.span)));
         }
         let mut args = Vec::with_capacity(pieces.len());
-        for (k, p) in pieces.iter().enumerate() {
-            let span = match p.first() {
-                Some(t) => t.span,
-                None => return Err(src.error(if k == 0 { end } else { body[body.len().min(1) - 1].span }, "empty argument: expected a value between the commas")),
-            };
-            let all_words = p.iter().all(|t| matches!(&t.token, Token::Word(w) if !is_expression_word(&w.to_lowercase(), &self.doc.variables) && !is_expression_word(w, &self.doc.variables)));
-            let value = match (&p[0].token, p.len()) {
-                (Token::Str(s), 1) => Value::Str(s.clone()),
-                _ if all_words => Value::Word(p.iter().map(|t| if let Token::Word(w) = &t.token { w.to_lowercase() } else { String::new() }).collect::<Vec<_>>().join(" ")),
-                _ => Value::Number(Evaluator::new(p, &self.doc.variables, src, end).evaluate()?),
-            };
-            args.push(Arg { value, span });
+        for (p, span) in pieces {
+            args.push(self.piece(p, span, end)?);
         }
         Ok(args)
+    }
+
+    fn piece(&mut self, p: &[Spanned], span: Span, end: Span) -> Result<Arg, MbdynError> {
+        let text = p.iter().map(|t| token_text(&t.token)).collect::<Vec<_>>().join(" ");
+        let Some(first) = p.first() else {
+            return Ok(Arg { value: Value::Empty, span, keyword: None, text });
+        };
+        let is_variable = |t: &Spanned| matches!(&t.token, Token::Word(w) if self.doc.variables.get(w).is_some());
+        // A phrase of names (and integers, as in "euler 321") that is not an expression.
+        let phrase = matches!(first.token, Token::Word(_)) && p.iter().all(|t| matches!(t.token, Token::Word(_) | Token::Integer(_))) && !(p.len() == 1 && is_variable(first));
+        let lower = text.to_lowercase();
+        if phrase {
+            return Ok(Arg { value: Value::Word(lower.clone()), span, keyword: Some(lower), text });
+        }
+        let value = match Evaluator::new(p, &mut self.doc.variables, &self.doc.sources, end).evaluate()? {
+            TypedValue::Str(s) => Value::Str(s),
+            v => Value::Number(v.real().unwrap_or(0.0)),
+        };
+        let keyword = (p.len() == 1 && matches!(first.token, Token::Word(_))).then(|| lower.clone());
+        Ok(Arg { value, span, keyword, text })
     }
 
     fn include(&mut self, body: &[Spanned], span: Span, end: Span, path: &Path) -> Result<(), MbdynError> {
@@ -184,38 +257,6 @@ impl Reader {
             return Err(src.error(span, format!("include loop: \"{name}\" is already being read")));
         }
         self.read(&target, Some(body[0].span))
-    }
-
-    fn set(&mut self, body: &[Spanned], end: Span) -> Result<(), MbdynError> {
-        let src = &self.doc.sources;
-        let mut k = 0;
-        let word = |k: usize| body.get(k).and_then(|t| if let Token::Word(w) = &t.token { Some(w.to_lowercase()) } else { None });
-        let constant = word(k).as_deref() == Some("const");
-        if constant {
-            k += 1;
-        }
-        let integer = match word(k).as_deref() {
-            Some("real") => false,
-            Some("integer") => true,
-            _ => return Err(src.error(body.get(k).map_or(end, |t| t.span), "set: expected 'real' or 'integer' (optionally after 'const')")),
-        };
-        let Some(Token::Word(name)) = body.get(k + 1).map(|t| &t.token) else {
-            return Err(src.error(body.get(k + 1).map_or(end, |t| t.span), "set: expected a variable name"));
-        };
-        if body.get(k + 2).map(|t| &t.token) != Some(&Token::Punct('=')) {
-            return Err(src.error(body.get(k + 2).map_or(end, |t| t.span), format!("set: expected '=' after '{name}'")));
-        }
-        if let Some(old) = self.doc.variables.0.get(name.as_str()) {
-            if old.constant {
-                return Err(src.error(body[k + 1].span, format!("'{name}' is a constant and cannot be set again")));
-            }
-        }
-        let mut value = Evaluator::new(&body[k + 3..], &self.doc.variables, src, end).evaluate()?;
-        if integer {
-            value = value.trunc();
-        }
-        self.doc.variables.0.insert(name.clone(), Variable { value, integer, constant });
-        Ok(())
     }
 
     fn block(&mut self, keyword: &str, body: &[Spanned], span: Span, end: Span) -> Result<(), MbdynError> {
@@ -239,12 +280,42 @@ impl Reader {
             return Ok(());
         }
         match self.open.take() {
-            Some(b) if b.name == name => {
+            Some(b) if same_keyword(&b.name, &name) => {
                 self.doc.blocks.push(b);
                 Ok(())
             }
             Some(b) => Err(src.error(body[0].span, format!("end: {name} does not match the open block: expected 'end: {};'", b.name))),
             None => Err(src.error(span, format!("end: {name} without a matching 'begin: {name};'"))),
         }
+    }
+}
+
+/// Index of the ';' that ends the first statement (semicolons inside parentheses separate
+/// expressions of a statement list, `(real a = 1.; 2.*a)`). Errors with the span of an
+/// unclosed '(' (also when a ':' shows that the next statement began inside it), or with
+/// `None` when there is no ';'.
+fn statement_end(tokens: &[Spanned]) -> Result<usize, Option<Span>> {
+    let mut open: Vec<Span> = Vec::new();
+    for (k, t) in tokens.iter().enumerate() {
+        match t.token {
+            Token::Symbol("(" | "[") => open.push(t.span),
+            Token::Symbol(")" | "]") => {
+                open.pop();
+            }
+            Token::Symbol(";") if open.is_empty() => return Ok(k),
+            Token::Symbol(":") if !open.is_empty() => return Err(open.first().copied()),
+            _ => {}
+        }
+    }
+    Err(open.first().copied())
+}
+
+fn token_text(t: &Token) -> String {
+    match t {
+        Token::Integer(i) => i.to_string(),
+        Token::Real(x) => x.to_string(),
+        Token::Word(w) => w.clone(),
+        Token::Str(s) => format!("\"{s}\""),
+        Token::Symbol(s) => s.to_string(),
     }
 }

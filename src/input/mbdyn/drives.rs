@@ -1,0 +1,195 @@
+//! Drive callers (input manual, "General", §Drives and Drive Callers) mapped onto
+//! romdyn's [`Drive`]: a plain number, `const`, `null`, `unit`, `time`, `ramp`, `step`,
+//! `sine`, `cosine`, `piecewise linear`, and `reference, LABEL` to a `drive caller:` card;
+//! and the 3-vector template drive callers (§Template Drive): `null`, `single`,
+//! `component`, `array`.
+
+use std::collections::HashMap;
+
+use super::cursor::Cursor;
+use super::diagnostic::{MbdynError, Span};
+use super::parser::Statement;
+use crate::element::Drive;
+use crate::kinematics::{Mat3, Vec3};
+
+/// Drive callers romdyn evaluates.
+const SUPPORTED: [&str; 11] = ["const", "null", "unit", "one", "time", "ramp", "step", "sine", "cosine", "piecewise linear", "reference"];
+
+/// MBDyn drive callers romdyn cannot represent (named in the error).
+const UNSUPPORTED: [&str; 28] = [
+    "array", "closest next", "cubic", "direct", "discrete filter", "dof", "double ramp", "double step", "drive", "element", "exponential", "ginac", "file",
+    "fourier series", "frequency sweep", "linear", "meter", "mult", "node", "parabolic", "periodic", "postponed", "random", "sample and hold",
+    "scalar function", "string", "tanh", "timestep",
+];
+
+/// The `drive caller:` cards read so far.
+#[derive(Default)]
+pub struct Drives {
+    table: HashMap<u32, (Drive, usize, Span)>,
+}
+
+/// Reads a `drive caller: LABEL, [name, "…",] DRIVE;` card.
+pub fn drive_caller_card(st: &Statement, c: &mut Cursor, drives: &mut Drives) -> Result<(), MbdynError> {
+    let span = c.here();
+    let label = c.label("drive caller label")?;
+    if let Some((_, _, at)) = drives.table.get(&label) {
+        return Err(c.error_at(span, format!("drive caller {label} is defined twice (first at line {})", at.line)));
+    }
+    if c.accept("name") {
+        c.string("drive caller name")?;
+    }
+    let d = drive(c, drives, st.seq)?;
+    c.finish()?;
+    drives.table.insert(label, (d, st.seq, st.span));
+    Ok(())
+}
+
+/// One drive caller; `seq` is the reading statement's position (for `reference, LABEL`).
+pub fn drive(c: &mut Cursor, drives: &Drives, seq: usize) -> Result<Drive, MbdynError> {
+    if c.accept("const") {
+        return Ok(Drive::Const(c.real("constant value of the drive")?));
+    }
+    let span = c.here();
+    let Some(kind) = c.accept_any(&SUPPORTED) else {
+        if c.next_is_number() {
+            return Ok(Drive::Const(c.real("constant value of the drive")?));
+        }
+        if let Some(k) = c.peek_keyword().and_then(|w| UNSUPPORTED.iter().find(|u| super::parser::same_keyword(u, w))) {
+            return Err(c.error(format!("drive caller '{k}' is not supported by romdyn (supported: a number, {})", SUPPORTED.join(", "))));
+        }
+        return Err(c.error(format!("expected a drive caller (a number, {}), found {}", SUPPORTED.join(", "), c.found())));
+    };
+    Ok(match kind {
+        "null" => Drive::Const(0.0),
+        "unit" | "one" => Drive::Const(1.0),
+        "time" => Drive::Time,
+        "ramp" => {
+            let slope = c.real("ramp slope")?;
+            let t0 = c.real("ramp initial time [s]")?;
+            let t1_span = c.here();
+            let t1 = if c.accept("forever") { f64::INFINITY } else { c.real("ramp final time [s] (or forever)")? };
+            if t1 < t0 {
+                return Err(c.error_at(t1_span, format!("ramp: final time {t1} is before the initial time {t0}")));
+            }
+            Drive::Ramp { slope, t0, t1, v0: c.real("ramp initial value")? }
+        }
+        "step" => Drive::Step { t0: c.real("step time [s]")?, value: c.real("step value")?, v0: c.real("initial value")? },
+        "sine" | "cosine" => {
+            let (t0, omega, amplitude) = (c.real("initial time [s]")?, c.real("angular frequency [rad/s]")?, c.real("amplitude")?);
+            let cycles = cycles(c, kind == "sine")?;
+            let v0 = c.real("initial value")?;
+            if kind == "sine" { Drive::Sine { t0, omega, amplitude, cycles, v0 } } else { Drive::Cosine { t0, omega, amplitude, cycles, v0 } }
+        }
+        "piecewise linear" => {
+            let n_span = c.here();
+            let n = c.count("number of points")?;
+            if n == 0 {
+                return Err(c.error_at(n_span, "piecewise linear: at least one point is needed"));
+            }
+            let mut points: Vec<(f64, f64)> = Vec::new();
+            for _ in 0..n {
+                let t_span = c.here();
+                let t = c.real("point (time [s])")?;
+                if points.last().is_some_and(|(prev, _)| t <= *prev) {
+                    return Err(c.error_at(t_span, format!("piecewise linear: the points must increase, {t} does not follow {}", points.last().map_or(0.0, |p| p.0))));
+                }
+                points.push((t, c.real("value")?));
+            }
+            Drive::PiecewiseLinear(points)
+        }
+        _ => {
+            let label = c.label("drive caller label")?;
+            match drives.table.get(&label) {
+                Some((d, s, _)) if *s < seq => d.clone(),
+                Some((_, _, at)) => return Err(c.error_at(span, format!("drive caller {label} is used before its definition (line {})", at.line))),
+                None => return Err(c.error_at(span, format!("drive caller {label} is not defined"))),
+            }
+        }
+    })
+}
+
+/// Cycles of `sine`/`cosine` as full periods before the phase freezes. Sine: `N > 0` ends
+/// after `N − 1/2` periods, `N < 0` after `|N| − 3/4` (`one` = 1, `half` = −1); cosine:
+/// `N > 0` after `N`, `N < 0` after `|N| − 1/2` (`one` = 1, `half` = −1).
+fn cycles(c: &mut Cursor, sine: bool) -> Result<Option<f64>, MbdynError> {
+    let n = match c.accept_any(&["forever", "one", "half"]) {
+        Some("forever") => return Ok(None),
+        Some("one") => 1.0,
+        Some(_) => -1.0,
+        None => {
+            let span = c.here();
+            let n = c.integer("number of cycles (or forever, one, half)")? as f64;
+            if n == 0.0 {
+                return Err(c.error_at(span, "number of cycles must not be zero (write 'forever' for no end)"));
+            }
+            n
+        }
+    };
+    Ok(Some(match (sine, n > 0.0) {
+        (true, true) => n - 0.5,
+        (true, false) => -n - 0.75,
+        (false, true) => n,
+        (false, false) => -n - 0.5,
+    }))
+}
+
+/// A 3-vector template drive caller: a sum of `direction · drive` terms. `direction`
+/// reads the vector of `single` (with its optional `reference`); `basis` maps the
+/// components of `component` to the same frame.
+pub fn template_vec3(c: &mut Cursor, drives: &Drives, seq: usize, basis: &Mat3, direction: &dyn Fn(&mut Cursor) -> Result<Vec3, MbdynError>) -> Result<Vec<(Vec3, Drive)>, MbdynError> {
+    template_terms(c, drives, seq, basis, direction, 0)
+}
+
+/// Nesting of `array` template drive callers romdyn follows.
+const MAX_ARRAY_DEPTH: usize = 8;
+
+fn template_terms(c: &mut Cursor, drives: &Drives, seq: usize, basis: &Mat3, direction: &dyn Fn(&mut Cursor) -> Result<Vec3, MbdynError>, depth: usize) -> Result<Vec<(Vec3, Drive)>, MbdynError> {
+    if c.accept("null") {
+        return Ok(vec![(Vec3::zeros(), Drive::Const(0.0))]);
+    }
+    if c.accept("component") {
+        if c.accept_any(&["sym", "diag"]).is_some() {
+            return Err(c.error("'sym' and 'diag' apply to matrix template drive callers, not to vectors"));
+        }
+        let mut terms = Vec::new();
+        for k in 0..3 {
+            if !c.accept("inactive") {
+                terms.push((basis.column(k).into_owned(), drive(c, drives, seq)?));
+            }
+        }
+        return Ok(terms);
+    }
+    if c.accept("array") {
+        if depth >= MAX_ARRAY_DEPTH {
+            return Err(c.error(format!("template drive callers nested in 'array' more than {MAX_ARRAY_DEPTH} deep")));
+        }
+        let n = c.count("number of template drive callers")?;
+        let mut terms = Vec::new();
+        for _ in 0..n {
+            terms.extend(template_terms(c, drives, seq, basis, direction, depth + 1)?);
+        }
+        return Ok(terms);
+    }
+    if c.accept("reference") {
+        return Err(c.error("'reference, …' here names a template drive caller card, which romdyn does not support; to give the vector in another frame write 'single, reference, FRAME, x, y, z, DRIVE'"));
+    }
+    c.accept("single");
+    let dir = direction(c)?;
+    Ok(vec![(dir, drive(c, drives, seq)?)])
+}
+
+/// The single `direction · drive` romdyn's forces, couples and gravity take: terms with a
+/// zero direction or a zero drive drop out, constant terms add up, terms with one and the
+/// same drive add up.
+pub fn single_term(terms: Vec<(Vec3, Drive)>) -> Option<(Vec3, Drive)> {
+    let terms: Vec<_> = terms.into_iter().filter(|(d, dr)| *d != Vec3::zeros() && *dr != Drive::Const(0.0)).collect();
+    let Some((_, first)) = terms.first() else { return Some((Vec3::zeros(), Drive::Const(0.0))) };
+    if terms.iter().all(|(_, d)| matches!(d, Drive::Const(_))) {
+        let sum = terms.iter().map(|(v, d)| v * if let Drive::Const(x) = d { *x } else { 0.0 }).sum();
+        return Some((sum, Drive::Const(1.0)));
+    }
+    if terms.iter().all(|(_, d)| d == first) {
+        return Some((terms.iter().map(|(v, _)| *v).sum(), first.clone()));
+    }
+    None
+}

@@ -1,0 +1,306 @@
+//! `joint` statements (input manual, "Elements", §Joint): clamp, revolute hinge and pin,
+//! spherical hinge and pin, total joint, total pin joint, deformable displacement joint,
+//! deformable hinge, rod and rod with offset, mapped onto romdyn's [`Joint`],
+//! [`DeformableDisplacement`], [`DeformableHinge`] and [`Rod`].
+//!
+//! Offsets and orientations are relative to their node (`reference, node` by default);
+//! the second node may refer to the first with `reference, other node` (or `other
+//! position`, `other orientation`). romdyn does not run MBDyn's initial assembly, so a
+//! constraint must hold in the initial configuration as written.
+
+use super::cursor::Cursor;
+use super::diagnostic::MbdynError;
+use super::drives::{single_term, template_vec3};
+use super::elements::ElementContext;
+use super::laws::{linear_law, rest_strain, three, LinearLaw};
+use super::references::{Context, Frame, OtherSide};
+use crate::element::{Anchor, DeformableDisplacement, DeformableHinge, Drive, Element, Joint, Rod};
+use crate::kinematics::{axial_of_skew_part, Mat3, Vec3};
+use crate::model::{Label, StructuralNode};
+
+const SUPPORTED: [&str; 14] = [
+    "clamp", "revolute hinge", "plane hinge", "revolute pin", "plane pin", "spherical hinge", "spherical pin", "total joint", "total pin joint",
+    "deformable displacement joint", "deformable displacement hinge", "deformable hinge", "rod", "rod with offset",
+];
+
+/// MBDyn joints romdyn names in its "not supported" error.
+const OTHER_JOINTS: [&str; 33] = [
+    "angular acceleration", "angular velocity", "axial rotation", "beam slider", "brake", "cardano hinge", "cardano pin", "cardano rotation",
+    "coincidence", "deformable axial joint", "deformable joint", "distance", "distance with offset", "drive displacement", "drive displacement pin",
+    "drive hinge", "gimbal rotation", "imposed displacement", "imposed displacement pin", "imposed orientation", "in line", "in plane",
+    "invariant deformable displacement joint", "invariant deformable hinge", "linear acceleration", "linear velocity", "modal",
+    "plane displacement", "plane displacement pin", "point contact", "prismatic", "revolute rotation", "rod bezier",
+];
+
+/// One side of a two-node joint: node, offset and orientation in the node frame.
+struct Side<'a> {
+    node: &'a StructuralNode,
+    offset: Vec3,
+    orientation: Mat3,
+}
+
+impl Side<'_> {
+    fn anchor(&self) -> Anchor {
+        Anchor::Node { label: self.node.label, offset: self.offset, orientation: self.orientation }
+    }
+    fn other(&self) -> OtherSide {
+        OtherSide { frame: Frame::of_node(self.node), offset: self.offset, orientation: self.orientation }
+    }
+    /// Global point and frame in the initial configuration.
+    fn global(&self) -> (Vec3, Mat3) {
+        (self.node.position + self.node.orientation * self.offset, self.node.orientation * self.orientation)
+    }
+}
+
+/// Whether an offset needs its `position` keyword to be read.
+#[derive(Clone, Copy, PartialEq)]
+enum Position {
+    /// `position` written or not, the offset is read (MBDyn: "position, OFFSET").
+    Always,
+    /// Read only after `position` (or when it is `null`).
+    IfKeyword,
+}
+
+fn side<'a>(c: &mut Cursor, ctx: &ElementContext<'a>, what: &str, position: Position, other: Option<&Side>) -> Result<Side<'a>, MbdynError> {
+    let node = ctx.node(c, what)?;
+    let on = Context { other: other.map(Side::other), ..ctx.on(node) };
+    let written = c.accept("position") || c.peek_keyword().is_some_and(|w| w == "null");
+    let offset = if written || position == Position::Always { on.relative_position(c, &format!("offset of {what} [m]"))? } else { Vec3::zeros() };
+    let orientation = if c.accept("orientation") || c.accept("hinge") { on.relative_orientation(c, &format!("orientation of {what}"))? } else { Mat3::identity() };
+    Ok(Side { node, offset, orientation })
+}
+
+/// `joint: LABEL, TYPE, …`.
+pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<dyn Element>, MbdynError> {
+    let span = c.here();
+    let Some(kind) = c.accept_any(&SUPPORTED) else {
+        if let Some(w) = c.peek_keyword() {
+            let name = OTHER_JOINTS.iter().find(|o| super::parser::same_keyword(o, w)).copied().unwrap_or(w);
+            return Err(c.error(format!("joint type '{name}' is not supported by romdyn (supported: clamp, revolute hinge, revolute pin, spherical hinge, spherical pin, total joint, total pin joint, deformable displacement joint, deformable hinge, rod)")));
+        }
+        return Err(c.error(format!("expected a joint type, found {}", c.found())));
+    };
+    let element: Box<dyn Element> = match kind {
+        "clamp" => Box::new(clamp(label, c, ctx)?),
+        "revolute hinge" | "plane hinge" | "spherical hinge" => {
+            let revolute = kind != "spherical hinge";
+            let position = if revolute { Position::Always } else { Position::IfKeyword };
+            let a = side(c, ctx, "node 1", position, None)?;
+            let b = side(c, ctx, "node 2", position, Some(&a))?;
+            if revolute && c.accept("initial theta") {
+                c.real("initial theta [rad]")?;
+            }
+            if c.peek_keyword().is_some_and(|w| w == "friction") {
+                return Err(c.error("joint friction is not supported by romdyn"));
+            }
+            let j = if revolute { Joint::revolute_hinge(label, a.anchor(), b.anchor()) } else { Joint::spherical_hinge(label, a.anchor(), b.anchor()) };
+            Box::new(assembled(j, &a.global(), &b.global(), c, span)?)
+        }
+        "revolute pin" | "plane pin" | "spherical pin" => Box::new(pin(kind, label, c, ctx, span)?),
+        "total joint" | "total pin joint" => Box::new(total(kind == "total pin joint", label, c, ctx, span)?),
+        "deformable displacement joint" | "deformable displacement hinge" | "deformable hinge" => {
+            let hinge = kind == "deformable hinge";
+            let position = if hinge { Position::IfKeyword } else { Position::Always };
+            let a = side(c, ctx, "node 1", position, None)?;
+            let b = side(c, ctx, "node 2", position, Some(&a))?;
+            let law_span = c.here();
+            let law = linear_law(c, 3, ctx.laws, ctx.drives, ctx.seq)?;
+            if hinge {
+                if c.accept("orientation description") {
+                    c.keyword("an orientation description", &["euler123", "euler313", "euler321", "orientation vector", "orientation matrix"])?;
+                }
+                if law.prestrain.iter().chain(law.prestress.iter()).any(|x| *x != 0.0) {
+                    return Err(c.error_at(law_span, "prestrain and prestress of a deformable hinge are not supported by romdyn"));
+                }
+                Box::new(DeformableHinge { label, a: a.anchor(), b: b.anchor(), law: three(&law) })
+            } else {
+                let rest = rest_strain(&law).ok_or_else(|| c.error_at(law_span, "a prestress needs an invertible stiffness matrix in romdyn (it becomes a rest strain)"))?;
+                Box::new(DeformableDisplacement { label, a: a.anchor(), b: b.anchor(), law: three(&law), rest })
+            }
+        }
+        _ => Box::new(rod(kind == "rod with offset", label, c, ctx)?),
+    };
+    Ok(element)
+}
+
+/// `clamp, NODE, [position,] {node | POSITION}, [orientation,] {node | ORIENTATION}`.
+fn clamp(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Joint, MbdynError> {
+    let span = c.here();
+    let n = ctx.node(c, "clamped node")?;
+    let on = Context { node: Some(Frame::of_node(n)), ..ctx.global() };
+    c.accept("position");
+    let position = if c.accept("node") || c.is_done() { n.position } else { on.position(c, "clamp position [m]")? };
+    c.accept("orientation");
+    let orientation = if c.accept("node") || c.is_done() { n.orientation } else { on.orientation(c, "clamp orientation")? };
+    let j = Joint::clamp(label, n.label, position, orientation);
+    assembled(j, &(position, orientation), &(n.position, n.orientation), c, span)
+}
+
+/// `revolute pin, NODE, position, OFFSET [, orientation, R], position, PIN [, orientation,
+/// R_PIN]` and `spherical pin` alike: the joint with a frame fixed in space.
+fn pin(kind: &str, label: Label, c: &mut Cursor, ctx: &ElementContext, span: super::diagnostic::Span) -> Result<Joint, MbdynError> {
+    let revolute = kind != "spherical pin";
+    let b = side(c, ctx, "the node", if revolute { Position::Always } else { Position::IfKeyword }, None)?;
+    let on = Context { node: Some(Frame::of_node(b.node)), ..ctx.global() };
+    c.keyword("'position' of the pin", &["position"])?;
+    let position = on.position(c, "pin position [m]")?;
+    let orientation = if c.accept("orientation") { on.orientation(c, "pin orientation")? } else { Mat3::identity() };
+    if revolute && c.accept("initial theta") {
+        c.real("initial theta [rad]")?;
+    }
+    let a = Anchor::Ground { position, orientation };
+    let j = if revolute { Joint::revolute_hinge(label, a, b.anchor()) } else { Joint::spherical_hinge(label, a, b.anchor()) };
+    assembled(j, &(position, orientation), &b.global(), c, span)
+}
+
+/// One side of a total joint: a node (or the ground, `node: None`, with an absolute
+/// position), the offset and the position and rotation orientations.
+struct TotalSide<'a> {
+    node: Option<&'a StructuralNode>,
+    offset: Vec3,
+    position: Mat3,
+    rotation: Mat3,
+}
+
+impl TotalSide<'_> {
+    /// The anchor with frame `q` and the point moved by `shift` (in frame `q`).
+    fn anchor(&self, q: &Mat3, shift: &Vec3) -> Anchor {
+        match self.node {
+            Some(n) => Anchor::Node { label: n.label, offset: self.offset + q * shift, orientation: *q },
+            None => Anchor::Ground { position: self.offset + q * shift, orientation: *q },
+        }
+    }
+    fn global(&self, q: &Mat3, shift: &Vec3) -> (Vec3, Mat3) {
+        match self.node {
+            Some(n) => (n.position + n.orientation * (self.offset + q * shift), n.orientation * q),
+            None => (self.offset + q * shift, *q),
+        }
+    }
+}
+
+/// `[position, OFFSET] [, position orientation, R] [, rotation orientation, R]`.
+fn total_side<'a>(c: &mut Cursor, on: &Context, node: Option<&'a StructuralNode>) -> Result<TotalSide<'a>, MbdynError> {
+    let ground = node.is_none();
+    let offset = match (c.accept("position"), ground) {
+        (false, _) => Vec3::zeros(),
+        (true, false) => on.relative_position(c, "offset [m]")?,
+        (true, true) => on.position(c, "absolute position [m]")?,
+    };
+    let orientation = |c: &mut Cursor, kw: &str| -> Result<Mat3, MbdynError> {
+        match (c.accept(kw), ground) {
+            (false, _) => Ok(Mat3::identity()),
+            (true, false) => on.relative_orientation(c, kw),
+            (true, true) => on.orientation(c, kw),
+        }
+    };
+    let position = orientation(c, "position orientation")?;
+    let rotation = orientation(c, "rotation orientation")?;
+    Ok(TotalSide { node, offset, position, rotation })
+}
+
+/// `total joint` / `total pin joint` (input manual, §Total joint, §Total pin joint): the
+/// active components of relative position and rotation are locked, in the frame of node 1
+/// (total joint) or in the absolute frame (total pin joint). romdyn's total joint has one
+/// frame per side, so where both kinds of constraint are active the position and rotation
+/// orientations of that frame must agree. Imposed values must be constant: a constant
+/// imposed position moves the constraint point, a non-zero imposed rotation is an error.
+fn total(pin: bool, label: Label, c: &mut Cursor, ctx: &ElementContext, span: super::diagnostic::Span) -> Result<Joint, MbdynError> {
+    let node = ctx.node(c, if pin { "the node" } else { "node 1" })?;
+    let first = total_side(c, &ctx.on(node), Some(node))?;
+    let second = if pin {
+        let ground = Context { node: Some(Frame::of_node(node)), ..ctx.global() };
+        total_side(c, &ground, None)?
+    } else {
+        let node_b = ctx.node(c, "node 2")?;
+        let other = OtherSide { frame: Frame::of_node(node), offset: first.offset, orientation: first.position };
+        total_side(c, &Context { other: Some(other), ..ctx.on(node_b) }, Some(node_b))?
+    };
+    let (pos_locked, imposed_pos) = constraint(c, ctx, "position constraint", &["position", "velocity"])?;
+    let (rot_locked, imposed_rot) = constraint(c, ctx, "orientation constraint", &["rotation", "angular velocity"])?;
+    if imposed_rot.iter().zip(rot_locked).any(|(x, on)| on && *x != 0.0) {
+        return Err(c.error_at(span, "a non-zero imposed relative rotation is not supported by romdyn's total joint"));
+    }
+    let (any_pos, any_rot) = (pos_locked.contains(&true), rot_locked.contains(&true));
+    // A: where the constraints are written (the ground of a pin joint, node 1 otherwise).
+    let (a, b) = if pin { (second, first) } else { (first, second) };
+    if any_pos && any_rot && (a.position - a.rotation).norm() > 1e-12 {
+        return Err(c.error_at(span, "romdyn's total joint uses one constraint frame: with both position and orientation constraints active, 'position orientation' and 'rotation orientation' must be the same"));
+    }
+    let qa = if any_pos { a.position } else { a.rotation };
+    let qb = if any_rot { b.rotation } else { b.position };
+    let shift = Vec3::from_fn(|k, _| if pos_locked[k] { imposed_pos[k] } else { 0.0 });
+    let j = Joint::total(label, a.anchor(&qa, &shift), b.anchor(&qb, &Vec3::zeros()), pos_locked, rot_locked);
+    assembled(j, &a.global(&qa, &shift), &b.global(&qb, &Vec3::zeros()), c, span)
+}
+
+/// `KIND, STATUS, STATUS, STATUS, VALUE`: locked components and the constant imposed value.
+fn constraint(c: &mut Cursor, ctx: &ElementContext, kind: &str, words: &[&'static str; 2]) -> Result<([bool; 3], Vec3), MbdynError> {
+    if !c.accept(kind) {
+        return Ok(([false; 3], Vec3::zeros()));
+    }
+    let mut locked = [false; 3];
+    for l in &mut locked {
+        let span = c.here();
+        *l = match c.accept_any(&["inactive", "active", words[0], words[1]]) {
+            Some("inactive") => false,
+            Some(w) if w == words[1] => return Err(c.error_at(span, format!("'{w}' (a non-holonomic constraint) is not supported by romdyn's total joint"))),
+            Some(_) => true,
+            None => c.real(&format!("{kind} status (active, inactive, or 0/1)"))? != 0.0,
+        };
+    }
+    let span = c.here();
+    let terms = template_vec3(c, ctx.drives, ctx.seq, &Mat3::identity(), &|c: &mut Cursor| c.vec3_values("imposed value"))?;
+    match single_term(terms) {
+        Some((v, Drive::Const(x))) => Ok((locked, v * x)),
+        _ => Err(c.error_at(span, format!("a time-varying imposed value in the {kind} is not supported by romdyn"))),
+    }
+}
+
+/// `rod, NODE1, [position, O1,] NODE2, [position, O2,] {L0 | from nodes}, LAW` and `rod with
+/// offset, NODE1, O1, NODE2, O2, …` (input manual, §Rod): `F = EA (l − l₀)/l₀`; a
+/// prestrain `ε_p` and a prestress `F_p` shift the rest length to `l₀ (1 + ε_p − F_p/EA)`.
+fn rod(offsets: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Rod, MbdynError> {
+    let position = if offsets { Position::Always } else { Position::IfKeyword };
+    let a = side(c, ctx, "node 1", position, None)?;
+    let b = side(c, ctx, "node 2", position, Some(&a))?;
+    let distance = (b.global().0 - a.global().0).norm();
+    let span = c.here();
+    if distance == 0.0 {
+        return Err(c.error_at(span, "rod: the two points coincide in the initial configuration"));
+    }
+    let l0 = if c.accept("from nodes") { distance } else { c.real("rod length [m] (or from nodes)")? };
+    if l0 <= 0.0 {
+        return Err(c.error_at(span, format!("rod length must be positive, found {l0}")));
+    }
+    let law_span = c.here();
+    let law: LinearLaw = linear_law(c, 1, ctx.laws, ctx.drives, ctx.seq)?;
+    let ea = law.stiffness[(0, 0)];
+    if !law.is_elastic() {
+        return Err(c.error_at(law_span, "romdyn's rod is elastic: a viscous rod law is not supported"));
+    }
+    if ea <= 0.0 {
+        return Err(c.error_at(law_span, format!("rod axial stiffness EA must be positive, found {ea}")));
+    }
+    let rest = l0 * (1.0 + law.prestrain[0] - law.prestress[0] / ea);
+    if rest <= 0.0 {
+        return Err(c.error_at(law_span, "rod: prestrain and prestress leave no positive rest length"));
+    }
+    Ok(Rod { label, a: a.anchor(), b: b.anchor(), axial_stiffness: ea * rest / l0, length: rest })
+}
+
+/// Errors unless the joint's locked components hold in the initial configuration: frame A
+/// at `(p_a, Q_a)`, frame B at `(p_b, Q_b)`.
+fn assembled(j: Joint, a: &(Vec3, Mat3), b: &(Vec3, Mat3), c: &Cursor, span: super::diagnostic::Span) -> Result<Joint, MbdynError> {
+    let scale = 1.0f64.max(a.0.norm()).max(b.0.norm());
+    let gap = a.1.transpose() * (b.0 - a.0);
+    let twist = axial_of_skew_part(&(a.1.transpose() * b.1));
+    for k in 0..3 {
+        if j.position_locked[k] && gap[k].abs() > 1e-6 * scale {
+            return Err(c.error_at(span, format!("joint {}: its two points are {:.3e} m apart along the joint's axis {} in the initial configuration; romdyn does not run MBDyn's initial assembly, so joints must hold as written", j.label, gap[k], k + 1)));
+        }
+        if j.rotation_locked[k] && twist[k].abs() > 1e-6 {
+            return Err(c.error_at(span, format!("joint {}: its two frames are rotated by {:.3e} rad about the joint's axis {} in the initial configuration; romdyn does not run MBDyn's initial assembly, so joints must hold as written", j.label, twist[k], k + 1)));
+        }
+    }
+    Ok(j)
+}

@@ -1,0 +1,210 @@
+//! Constitutive laws (input manual, "General", §Constitutive Laws) that romdyn's elements
+//! honour: `linear elastic [isotropic]`, `linear elastic generic`, `linear viscous
+//! [isotropic]`, `linear viscous generic`, `linear viscoelastic [isotropic]`, `linear
+//! viscoelastic generic` (viscosity or `proportional, FACTOR`), with the optional
+//! `prestress` and constant `prestrain`; `reference, LABEL` to a `constitutive law:` card.
+//! Laws are read for 1 (rod), 3 (deformable displacement joint and hinge) or 6 (beams)
+//! dimensions.
+
+use std::collections::HashMap;
+
+use nalgebra::{DMatrix, DVector};
+
+use super::cursor::Cursor;
+use super::diagnostic::{MbdynError, Span};
+use super::drives::{single_term, template_vec3, Drives};
+use super::parser::Statement;
+use crate::element::Drive;
+use crate::kinematics::{Mat3, Vec3};
+
+/// A linear (visco)elastic law in `dim` dimensions: `f = K (ε − ε_p) + C ε̇ + f_p`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LinearLaw {
+    pub stiffness: DMatrix<f64>,
+    pub viscosity: DMatrix<f64>,
+    pub prestrain: DVector<f64>,
+    pub prestress: DVector<f64>,
+}
+
+impl LinearLaw {
+    pub fn dim(&self) -> usize {
+        self.stiffness.nrows()
+    }
+    pub fn stiffness3(&self) -> Mat3 {
+        Mat3::from_fn(|i, j| self.stiffness[(i, j)])
+    }
+    pub fn viscosity3(&self) -> Mat3 {
+        Mat3::from_fn(|i, j| self.viscosity[(i, j)])
+    }
+    pub fn is_elastic(&self) -> bool {
+        self.viscosity.iter().all(|x| *x == 0.0)
+    }
+}
+
+const KINDS: [&str; 9] = [
+    "linear elastic generic", "linear elastic isotropic", "linear elastic", "linear viscous generic", "linear viscous isotropic", "linear viscous",
+    "linear viscoelastic generic", "linear viscoelastic isotropic", "linear viscoelastic",
+];
+
+const UNSUPPORTED: [&str; 16] = [
+    "linear elastic generic axial torsion coupling", "cubic elastic generic", "inverse square elastic", "log elastic", "linear elastic bistop",
+    "double linear elastic", "isotropic hardening elastic", "scalar function elastic", "linear time variant viscoelastic generic",
+    "cubic viscoelastic generic", "double linear viscoelastic", "turbulent viscoelastic", "linear viscoelastic bistop", "shock absorber",
+    "symbolic elastic", "nlsf elastic",
+];
+
+/// The `constitutive law:` cards read so far.
+#[derive(Default)]
+pub struct Laws {
+    table: HashMap<u32, (LinearLaw, usize, Span)>,
+}
+
+/// Reads a `constitutive law: LABEL, [name, "…",] DIM, LAW;` card.
+pub fn constitutive_law_card(st: &Statement, c: &mut Cursor, laws: &mut Laws, drives: &Drives) -> Result<(), MbdynError> {
+    let span = c.here();
+    let label = c.label("constitutive law label")?;
+    if let Some((_, _, at)) = laws.table.get(&label) {
+        return Err(c.error_at(span, format!("constitutive law {label} is defined twice (first at line {})", at.line)));
+    }
+    if c.accept("name") {
+        c.string("constitutive law name")?;
+    }
+    let dim_span = c.here();
+    let dim = c.count("dimension of the constitutive law (1, 3 or 6)")?;
+    if ![1, 3, 6].contains(&dim) {
+        return Err(c.error_at(dim_span, format!("a constitutive law has dimension 1, 3 or 6, found {dim}")));
+    }
+    let law = linear_law(c, dim, laws, drives, st.seq)?;
+    c.finish()?;
+    laws.table.insert(label, (law, st.seq, st.span));
+    Ok(())
+}
+
+/// A constitutive law of dimension `dim` at statement `seq`.
+pub fn linear_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq: usize) -> Result<LinearLaw, MbdynError> {
+    let span = c.here();
+    if c.accept("reference") {
+        let label = c.label("constitutive law label")?;
+        return match laws.table.get(&label) {
+            Some((l, s, _)) if *s < seq && l.dim() == dim => Ok(l.clone()),
+            Some((l, s, _)) if *s < seq => Err(c.error_at(span, format!("constitutive law {label} has dimension {}, this element needs {dim}", l.dim()))),
+            Some((_, _, at)) => Err(c.error_at(span, format!("constitutive law {label} is used before its definition (line {})", at.line))),
+            None => Err(c.error_at(span, format!("constitutive law {label} is not defined"))),
+        };
+    }
+    let Some(kind) = c.accept_any(&KINDS) else {
+        if let Some(k) = c.peek_keyword().and_then(|w| UNSUPPORTED.iter().find(|u| super::parser::same_keyword(u, w))) {
+            return Err(c.error(format!("constitutive law '{k}' is not supported by romdyn (supported: linear elastic, linear viscous, linear viscoelastic, each isotropic or generic)")));
+        }
+        return Err(c.error(format!("expected a constitutive law ({}), found {}", KINDS.join(", "), c.found())));
+    };
+    let generic = kind.ends_with("generic");
+    let read = |c: &mut Cursor, what: &str| if generic { matrix(c, dim, what) } else { Ok(DMatrix::identity(dim, dim) * c.real(what)?) };
+    let zero = DMatrix::zeros(dim, dim);
+    let (stiffness, viscosity) = if kind.starts_with("linear elastic") {
+        (read(c, "stiffness")?, zero)
+    } else if kind.starts_with("linear viscous") {
+        (zero, read(c, "viscosity")?)
+    } else {
+        let k = read(c, "stiffness")?;
+        let v = if c.accept("proportional") { &k * c.real("proportional damping factor [s]")? } else { read(c, "viscosity")? };
+        (k, v)
+    };
+    let mut law = LinearLaw { stiffness, viscosity, prestrain: DVector::zeros(dim), prestress: DVector::zeros(dim) };
+    if c.accept("prestress") {
+        law.prestress = if dim == 3 { DVector::from_column_slice(c.vec3_values("prestress")?.as_slice()) } else { vector(c, dim, "prestress")? };
+    }
+    if c.accept("prestrain") {
+        law.prestrain = prestrain(c, dim, drives, seq)?;
+    }
+    Ok(law)
+}
+
+/// A constant prestrain (a template drive caller that does not change in time).
+fn prestrain(c: &mut Cursor, dim: usize, drives: &Drives, seq: usize) -> Result<DVector<f64>, MbdynError> {
+    let span = c.here();
+    let constant = |d: &Drive| matches!(d, Drive::Const(_));
+    if dim == 3 {
+        let terms = template_vec3(c, drives, seq, &Mat3::identity(), &|c: &mut Cursor| c.vec3_values("prestrain"))?;
+        return match single_term(terms) {
+            Some((v, d)) if constant(&d) => Ok(DVector::from_column_slice((v * d.value(0.0)).as_slice())),
+            _ => Err(c.error_at(span, "a time-varying prestrain is not supported by romdyn")),
+        };
+    }
+    c.accept("single");
+    let v = if dim == 1 { DVector::from_element(1, c.real("prestrain")?) } else { vector(c, dim, "prestrain")? };
+    let d = super::drives::drive(c, drives, seq)?;
+    if !constant(&d) {
+        return Err(c.error_at(span, "a time-varying prestrain is not supported by romdyn"));
+    }
+    Ok(v * d.value(0.0))
+}
+
+fn vector(c: &mut Cursor, dim: usize, what: &str) -> Result<DVector<f64>, MbdynError> {
+    if c.accept("null") {
+        return Ok(DVector::zeros(dim));
+    }
+    let mut v = DVector::zeros(dim);
+    for k in 0..dim {
+        v[k] = c.real(what)?;
+    }
+    Ok(v)
+}
+
+/// A `dim × dim` matrix (a scalar for 1D; `Mat3x3` or `Mat6x6` forms otherwise).
+fn matrix(c: &mut Cursor, dim: usize, what: &str) -> Result<DMatrix<f64>, MbdynError> {
+    match dim {
+        1 => Ok(DMatrix::from_element(1, 1, c.real(what)?)),
+        3 => {
+            let m = c.mat3x3(what)?;
+            Ok(DMatrix::from_fn(3, 3, |i, j| m[(i, j)]))
+        }
+        _ => {
+            if c.accept("eye") {
+                return Ok(DMatrix::identity(dim, dim));
+            }
+            if c.accept("null") {
+                return Ok(DMatrix::zeros(dim, dim));
+            }
+            if c.accept("diag") {
+                return Ok(DMatrix::from_diagonal(&vector(c, dim, what)?));
+            }
+            if c.accept("anba") {
+                return Err(c.error("the 'anba' 6x6 matrix layout is not supported by romdyn; give the matrix in MBDyn's axes"));
+            }
+            let mut m = DMatrix::zeros(dim, dim);
+            if c.accept("sym") {
+                for i in 0..dim {
+                    for j in i..dim {
+                        m[(i, j)] = c.real(what)?;
+                        m[(j, i)] = m[(i, j)];
+                    }
+                }
+            } else {
+                c.accept("matr");
+                for i in 0..dim {
+                    for j in 0..dim {
+                        m[(i, j)] = c.real(what)?;
+                    }
+                }
+            }
+            Ok(m)
+        }
+    }
+}
+
+/// The 3-D law a deformable displacement joint or hinge takes.
+pub fn three(law: &LinearLaw) -> crate::element::LinearViscoelastic {
+    crate::element::LinearViscoelastic { stiffness: law.stiffness3(), viscosity: law.viscosity3() }
+}
+
+/// The prestrain and prestress of a 3-D law as one equivalent rest strain `ε_p − K⁻¹ f_p`
+/// (`None` if a prestress meets a singular stiffness).
+pub fn rest_strain(law: &LinearLaw) -> Option<Vec3> {
+    let p = Vec3::new(law.prestrain[0], law.prestrain[1], law.prestrain[2]);
+    let f = Vec3::new(law.prestress[0], law.prestress[1], law.prestress[2]);
+    if f == Vec3::zeros() {
+        return Some(p);
+    }
+    law.stiffness3().try_inverse().map(|k| p - k * f)
+}

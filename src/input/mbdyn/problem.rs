@@ -1,0 +1,235 @@
+//! The `data` block (`problem: initial value;`) and the `initial value` block (input
+//! manual, "Problems", §Initial-Value Problem) into an [`InitialValueProblem`]: times,
+//! step, `method`, Newton `tolerance` and `max iterations`, the derivatives phase, and the
+//! `eigenanalysis` request (§Eigenanalysis). Statements that only tune MBDyn's own
+//! numerics (nonlinear and linear solver, threads, time-step strategy, dummy steps, output
+//! and real-time settings) are accepted and ignored: romdyn uses its own.
+
+use super::cursor::Cursor;
+use super::diagnostic::{MbdynError, Sources};
+use super::drives::{drive, Drives};
+use super::parser::{known, Block};
+use crate::model::{AbortAfter, EigenOutput, EigenRequest, InitialValueProblem, Method};
+
+/// Reads the `data` block.
+pub fn data(block: &Block, sources: &Sources) -> Result<(), MbdynError> {
+    for st in &block.statements {
+        let mut c = Cursor::new(st, sources);
+        match known(&st.keyword, &["problem", "integrator"]) {
+            Some("integrator") => {
+                // MBDyn's older name of the same card.
+                c.keyword("the integrator", &["multistep", "initial value"])?;
+                c.finish()?;
+            }
+            Some(_) => {
+                let span = c.here();
+                if c.accept("inverse dynamics") {
+                    return Err(c.error_at(span, "problem 'inverse dynamics' is not supported by romdyn (supported: initial value)"));
+                }
+                c.keyword("the problem", &["initial value"])?;
+                c.finish()?;
+            }
+            None => return Err(c.error_at(st.span, format!("statement '{}' in the data block is not supported by romdyn", st.keyword))),
+        }
+    }
+    Ok(())
+}
+
+/// MBDyn's numerics settings romdyn ignores.
+const IGNORED: [&str; 17] = [
+    "strategy", "min time step", "max time step", "modify residual test", "nonlinear solver", "linear solver", "solver", "threads",
+    "derivatives coefficient", "dummy steps tolerance", "dummy steps max iterations", "dummy steps number", "dummy steps ratio",
+    "dummy steps method", "output", "output meter", "real time",
+];
+
+const STATEMENTS: [&str; 10] = ["initial time", "final time", "time step", "tolerance", "max iterations", "method", "eigenanalysis", "derivatives tolerance", "derivatives max iterations", "abort after"];
+
+/// Reads the `initial value` block (defaults when absent).
+pub fn initial_value(block: Option<&Block>, sources: &Sources, drives: &Drives) -> Result<InitialValueProblem, MbdynError> {
+    let mut a = InitialValueProblem::default();
+    let Some(iv) = block else { return Ok(a) };
+    let mut eigen_span = None;
+    for st in &iv.statements {
+        let mut c = Cursor::new(st, sources);
+        if known(&st.keyword, &IGNORED).is_some() {
+            c.skip_rest();
+            continue;
+        }
+        match known(&st.keyword, &STATEMENTS) {
+            Some("initial time") => a.initial_time = c.real("initial time [s]")?,
+            Some("final time") => a.final_time = if c.accept("forever") { f64::INFINITY } else { c.real("final time [s] (or forever)")? },
+            Some("time step") => {
+                let span = c.here();
+                a.time_step = c.real("time step [s]")?;
+                if a.time_step <= 0.0 {
+                    return Err(c.error_at(span, format!("the time step must be positive, found {}", a.time_step)));
+                }
+            }
+            Some("tolerance") => tolerance(&mut c, &mut a)?,
+            Some("max iterations") => {
+                a.max_iterations = c.count("maximum number of iterations")?;
+                c.accept("at most");
+            }
+            Some("method") => a.method = method(&mut c, drives, a.initial_time, st.seq)?,
+            Some("eigenanalysis") => {
+                if let Some(first) = eigen_span.replace(st.span) {
+                    return Err(c.error_at(st.span, format!("'eigenanalysis' appears twice (first at line {}): use 'list' for several times", first.line)));
+                }
+                a.eigenanalysis = Some(eigenanalysis(&mut c)?);
+            }
+            Some("derivatives tolerance") => a.derivatives_tolerance = c.real("derivatives tolerance")?,
+            Some("derivatives max iterations") => a.derivatives_max_iterations = c.count("derivatives max iterations")?,
+            Some(_) => {
+                a.abort_after = Some(match c.keyword("where to stop", &["input", "assembly", "derivatives", "dummy steps"])? {
+                    "input" => AbortAfter::Input,
+                    "assembly" => AbortAfter::Assembly,
+                    "derivatives" => AbortAfter::Derivatives,
+                    _ => AbortAfter::DummySteps,
+                })
+            }
+            None => return Err(c.error_at(st.span, format!("statement '{}' in the initial value block is not supported by romdyn", st.keyword))),
+        }
+        c.finish()?;
+    }
+    if a.final_time < a.initial_time {
+        return Err(sources.error(iv.span, format!("final time {} is before initial time {}", a.final_time, a.initial_time)));
+    }
+    Ok(a)
+}
+
+/// `tolerance: {null | RES} [, test, …[, scale]] [, {null | SOL} [, test, …]]`: romdyn tests
+/// the residual; `null` keeps romdyn's default, the solution tolerance is ignored.
+fn tolerance(c: &mut Cursor, a: &mut InitialValueProblem) -> Result<(), MbdynError> {
+    if !c.accept("null") {
+        let span = c.here();
+        a.tolerance = c.real("residual tolerance")?;
+        if a.tolerance <= 0.0 {
+            return Err(c.error_at(span, format!("the residual tolerance must be positive, found {}", a.tolerance)));
+        }
+    }
+    let test = |c: &mut Cursor| -> Result<(), MbdynError> {
+        if c.accept("test") {
+            c.keyword("a convergence test", &["none", "norm", "minmax"])?;
+            c.accept("scale");
+        }
+        Ok(())
+    };
+    test(c)?;
+    if !c.is_done() {
+        if !c.accept("null") {
+            c.real("solution tolerance")?;
+        }
+        test(c)?;
+    }
+    Ok(())
+}
+
+/// `ms, RHO [, ALG_RHO]` (radii as drive callers, evaluated at the initial time),
+/// `crank nicolson`, `implicit euler`, `bdf [, order, {1 | 2}]`.
+fn method(c: &mut Cursor, drives: &Drives, t0: f64, seq: usize) -> Result<Method, MbdynError> {
+    let span = c.here();
+    if let Some(m) = c.accept_any(&["hope", "third order", "thirdorder"]) {
+        return Err(c.error_at(span, format!("integration method '{m}' is not supported by romdyn (supported: ms, crank nicolson, implicit euler, bdf)")));
+    }
+    Ok(match c.keyword("an integration method", &["ms", "crank nicolson", "implicit euler", "bdf"])? {
+        "ms" => {
+            let rho_span = c.here();
+            let rho = drive(c, drives, seq)?.value(t0);
+            if !(0.0..=1.0).contains(&rho) {
+                return Err(c.error_at(rho_span, format!("the asymptotic spectral radius must be between 0 and 1, found {rho}")));
+            }
+            if !c.is_done() {
+                // The algebraic radius: romdyn integrates all unknowns with one formula.
+                drive(c, drives, seq)?;
+            }
+            Method::Ms { rho }
+        }
+        "crank nicolson" => Method::CrankNicolson,
+        "implicit euler" => Method::ImplicitEuler,
+        _ => {
+            if c.accept("order") {
+                let span = c.here();
+                match c.integer("BDF order (1 or 2)")? {
+                    1 => return Ok(Method::ImplicitEuler),
+                    2 => {}
+                    k => return Err(c.error_at(span, format!("BDF order must be 1 or 2, found {k}"))),
+                }
+            }
+            Method::Ms { rho: 0.0 }
+        }
+    })
+}
+
+/// `eigenanalysis: {WHEN | list, N, WHEN…} [, option …]` (input manual, §Eigenanalysis).
+fn eigenanalysis(c: &mut Cursor) -> Result<EigenRequest, MbdynError> {
+    let times = if c.accept("list") {
+        let span = c.here();
+        let n = c.count("number of eigenanalysis times")?;
+        if n == 0 {
+            return Err(c.error_at(span, "eigenanalysis: the list needs at least one time"));
+        }
+        let mut times: Vec<f64> = Vec::new();
+        for _ in 0..n {
+            let span = c.here();
+            let t = c.real("eigenanalysis time [s]")?;
+            if times.last().is_some_and(|prev| t <= *prev) {
+                return Err(c.error_at(span, format!("eigenanalysis times must increase, {t} does not follow {}", times.last().copied().unwrap_or(0.0))));
+            }
+            times.push(t);
+        }
+        times
+    } else {
+        vec![c.real("eigenanalysis time [s] (or list)")?]
+    };
+    let mut r = EigenRequest { times, dcoef: None, lower_frequency_hz: None, upper_frequency_hz: None, output: EigenOutput::default() };
+    let options = [
+        "output matrices", "output full matrices", "output sparse matrices", "output eigenvectors", "output geometry", "parameter", "lower frequency limit",
+        "upper frequency limit", "use lapack", "use arpack", "use jdqz", "use external", "balance", "suffix width", "suffix format",
+        "matrix output precision", "results output precision",
+    ];
+    while !c.is_done() {
+        match c.keyword("an eigenanalysis option", &options)? {
+            "output matrices" | "output full matrices" => r.output.full_matrices = true,
+            "output sparse matrices" => r.output.sparse_matrices = true,
+            "output eigenvectors" => r.output.eigenvectors = true,
+            "output geometry" => r.output.geometry = true,
+            "parameter" => {
+                let span = c.here();
+                let p = c.real("parameter (dCoef) [s]")?;
+                if p <= 0.0 {
+                    return Err(c.error_at(span, format!("the eigenanalysis parameter must be positive, found {p}")));
+                }
+                r.dcoef = Some(p);
+            }
+            "lower frequency limit" => r.lower_frequency_hz = Some(c.real("lower frequency limit [Hz]")?),
+            "upper frequency limit" => r.upper_frequency_hz = Some(c.real("upper frequency limit [Hz]")?),
+            // Solvers map onto romdyn's own dense QZ; their tuning is ignored.
+            "use lapack" | "use external" => {}
+            "use arpack" | "use jdqz" => {
+                c.count("number of eigenvalues (nev)")?;
+                c.count("number of Arnoldi vectors (ncv)")?;
+                c.real("tolerance")?;
+            }
+            "balance" => {
+                c.keyword("a balancing", &["no", "scale", "permute", "all"])?;
+            }
+            "suffix width" => {
+                if !c.accept("compute") {
+                    c.count("suffix width")?;
+                }
+            }
+            "suffix format" => {
+                c.string("suffix format")?;
+            }
+            _ => {
+                c.count("output precision (digits)")?;
+            }
+        }
+    }
+    if let (Some(lo), Some(hi)) = (r.lower_frequency_hz, r.upper_frequency_hz)
+        && lo > hi
+    {
+        return Err(c.error_at(c.statement().span, format!("eigenanalysis: lower frequency limit {lo} Hz is above the upper limit {hi} Hz")));
+    }
+    Ok(r)
+}
