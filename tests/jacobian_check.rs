@@ -5,7 +5,7 @@ mod common;
 
 use common::cli::{pendulum_variant, romdyn, temp_dir, write_file, DISPLACED_NODE, PENDULUM_NODE};
 use common::models::pendulum;
-use romdyn::analysis::{check_model_jacobians, JACOBIAN_CHECK_TOLERANCE};
+use romdyn::analysis::{check_model_jacobians, Reference, JACOBIAN_CHECK_TOLERANCE};
 use romdyn::element::{Col, Element, ElementState, JacobianSink, ResidualSink, Row};
 use romdyn::linear::ConstraintForm;
 use romdyn::model::{InitialValueProblem, Method, Model};
@@ -41,7 +41,7 @@ fn pendulum_with_wrong_spring() -> Model {
 fn the_check_names_the_wrong_element_its_entry_and_both_values() {
     let model = pendulum_with_wrong_spring();
     let problem = InitialValueProblem::default();
-    let check = check_model_jacobians(&model, &problem, None, JACOBIAN_CHECK_TOLERANCE).unwrap();
+    let check = check_model_jacobians(&model, &problem, Reference::Initial, JACOBIAN_CHECK_TOLERANCE).unwrap();
     assert!(!check.passed());
     let failures: Vec<_> = check.failures().collect();
     assert_eq!(failures.len(), 1, "{}", check.to_text());
@@ -77,7 +77,7 @@ fn check_passes_on_the_pendulum_file_at_rest_and_swinging() {
     assert!(out.starts_with("# Jacobian check at t = 0.05"), "{out}");
     assert!(out.trim_end().ends_with("3 elements checked: all agree within 1e-6"), "{out}");
     let m = romdyn::input::mbdyn::read_model(std::path::Path::new(&file)).unwrap();
-    let check = check_model_jacobians(&m.model, &m.problem, Some(0.05), JACOBIAN_CHECK_TOLERANCE).unwrap();
+    let check = check_model_jacobians(&m.model, &m.problem, Reference::At(0.05), JACOBIAN_CHECK_TOLERANCE).unwrap();
     eprintln!("worst relative error while swinging: {:e} ({})", check.elements[0].relative_error, check.elements[0].element);
     std::fs::remove_dir_all(&dir).ok();
 }

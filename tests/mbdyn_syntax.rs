@@ -538,7 +538,8 @@ fn initial_value_block_fills_the_problem() {
     assert!(matches!(p.method, Method::Ms { rho } if (rho - 0.4).abs() < 1e-15), "{:?}", p.method);
     assert_eq!((p.derivatives_tolerance, p.derivatives_max_iterations, p.abort_after), (1e-5, 7, Some(AbortAfter::Derivatives)));
     let e = p.eigenanalysis.as_ref().unwrap();
-    assert_eq!((e.times.clone(), e.dcoef, e.lower_frequency_hz, e.upper_frequency_hz), (vec![0.5, 1.0], Some(1e-2), Some(0.1), Some(20.0)));
+    assert_eq!((e.times.clone(), e.dcoef, e.lower_frequency_hz, e.upper_frequency_hz), (vec![0.5, 1.0], Some(0.5e-2), Some(0.1), Some(20.0)));
+    // dCoef = parameter / 2: MBDyn assembles Aplus, Aminus as J(±h/2) (solver.cc).
     assert!(e.output.sparse_matrices && e.output.eigenvectors && e.output.geometry && !e.output.full_matrices);
 }
 

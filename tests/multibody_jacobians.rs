@@ -60,13 +60,16 @@ fn every_element(form: ConstraintForm) -> Model {
     let random_law = |n: &mut Noise, viscous: bool| {
         let a = nalgebra::Matrix6::from_fn(|_, _| n.next());
         let v = nalgebra::Matrix6::from_fn(|_, _| n.next());
-        SectionLaw { stiffness: 1e3 * (a * a.transpose() + nalgebra::Matrix6::identity()), viscosity: if viscous { 10.0 * v } else { nalgebra::Matrix6::zeros() } }
+        let mut law = SectionLaw::viscoelastic(1e3 * (a * a.transpose() + nalgebra::Matrix6::identity()), if viscous { 10.0 * v } else { nalgebra::Matrix6::zeros() });
+        law.prestrain = 1e-2 * nalgebra::Vector6::from_fn(|_, _| n.next());
+        law.prestress = nalgebra::Vector6::from_fn(|_, _| n.next());
+        law
     };
-    let beam_nodes = |n: &mut Noise| [1, 2, 3].map(|l| BeamNode { label: l, offset: 0.3 * n.vec(), orientation: n.rotation() });
-    let (bn, laws) = (beam_nodes(&mut n), [random_law(&mut n, false), random_law(&mut n, false)]);
-    let elastic = Beam3::new(30, bn, [SectionOrientation::FromNodes, SectionOrientation::FromNodes], laws, b.nodes()).unwrap();
-    let (bn, laws) = (beam_nodes(&mut n), [random_law(&mut n, true), random_law(&mut n, true)]);
-    let viscous = Beam3::new(31, bn, [SectionOrientation::Given(n.rotation()), SectionOrientation::Given(n.rotation())], laws, b.nodes()).unwrap();
+    let beam_nodes = |n: &mut Noise, b: &ModelBuilder| [0, 1, 2].map(|i| { let m = &b.nodes()[i]; BeamNode::new(m.label, m.position, m.orientation, 0.3 * n.vec()) }.with_orientation(n.rotation()));
+    let (bn, laws) = (beam_nodes(&mut n, &b), [random_law(&mut n, false), random_law(&mut n, false)]);
+    let elastic = Beam3::new(30, bn, [SectionOrientation::FromNodes, SectionOrientation::FromNodes], laws).unwrap();
+    let (bn, laws) = (beam_nodes(&mut n, &b), [random_law(&mut n, true), random_law(&mut n, true)]);
+    let viscous = Beam3::new(31, bn, [SectionOrientation::Given(n.rotation()), SectionOrientation::Given(n.rotation())], laws).unwrap();
     b.element(elastic).element(viscous);
     b.gravity(Vec3::new(0.3, -9.81, 0.2)).constraint_form(form);
     b.build().unwrap()

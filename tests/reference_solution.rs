@@ -6,7 +6,7 @@ mod common;
 use std::path::Path;
 
 use common::cli::{pendulum_variant, romdyn, temp_dir, write_file, DISPLACED_NODE, PENDULUM_NODE};
-use romdyn::analysis::reference_state;
+use romdyn::analysis::{reference_state, Reference};
 use romdyn::input::mbdyn::read_model;
 
 /// Period released from rest at 0.1 rad (CASES C2, computed).
@@ -26,13 +26,13 @@ fn the_reference_state_half_a_period_later_is_the_mirror_position() {
     let dir = temp_dir("reference-mirror");
     let file = write_file(&dir, "swing.mbd", &pendulum_variant(&[(PENDULUM_NODE, DISPLACED_NODE)]));
     let m = read_model(Path::new(&file)).unwrap();
-    let st = reference_state(&m.model, &m.problem, Some(PERIOD / 2.0)).unwrap();
+    let st = reference_state(&m.model, &m.problem, Reference::At(PERIOD / 2.0)).unwrap();
     assert!(st.t >= PERIOD / 2.0 && st.t < PERIOD / 2.0 + 1e-3, "t = {}", st.t);
     // Node 2 (x, y) are unknowns 6, 7: after the 6 of the static ground node.
     let (x, y) = (st.y[6], st.y[7]);
     let angle = x.atan2(-y);
     assert!((angle + 0.1).abs() < 1e-5, "angle {angle} rad at t = {} s", st.t);
-    assert!(reference_state(&m.model, &m.problem, Some(-1.0)).unwrap_err().to_string().contains("before the initial time"));
+    assert!(reference_state(&m.model, &m.problem, Reference::At(-1.0)).unwrap_err().to_string().contains("before the initial time"));
     std::fs::remove_dir_all(&dir).ok();
 }
 

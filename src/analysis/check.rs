@@ -2,7 +2,7 @@
 //! a model file's reference solution (`dae::check_jacobians`), with the coefficient the
 //! file's integrator uses (`c = b₀`, eq. 5).
 
-use super::reference::reference_state;
+use super::reference::{reference_state, Reference};
 use super::run::RunError;
 use crate::dae::{check_jacobians, Assembler, JacobianMismatch};
 use crate::model::{InitialValueProblem, Model};
@@ -43,10 +43,9 @@ impl JacobianCheck {
     }
 }
 
-/// Checks every element of `model` at the solution of `problem` at time `at` (the initial
-/// time when `None`).
-pub fn check_model_jacobians(model: &Model, problem: &InitialValueProblem, at: Option<f64>, tolerance: f64) -> Result<JacobianCheck, RunError> {
-    let mut state = reference_state(model, problem, at)?;
+/// Checks every element of `model` at its reference solution.
+pub fn check_model_jacobians(model: &Model, problem: &InitialValueProblem, reference: Reference, tolerance: f64) -> Result<JacobianCheck, RunError> {
+    let mut state = reference_state(model, problem, reference)?;
     let asm = Assembler::new(model);
     state.rebase(&asm.dofs);
     let dcoef = newton_dcoef(problem.method, problem.time_step);

@@ -16,5 +16,5 @@ pub use check::{check_model_jacobians, JacobianCheck, JACOBIAN_CHECK_TOLERANCE};
 pub use eigen::{Eigenanalysis, DEFAULT_DCOEF};
 pub use files::{eigen_file_stem, RunFiles};
 pub use observer::{Derivatives, EigenDone, ObserverError, RunObserver, RunStart, StepDone};
-pub use reference::reference_state;
+pub use reference::{reference_state, Reference};
 pub use run::{run, EigenSummary, RunError, RunReport};

@@ -1,21 +1,45 @@
-//! The reference solution of a model file at a time: the file's problem integrated from its
-//! initial time up to that time (no eigenanalyses, no output), as `eig --at`, `rom --at` and
-//! `check --at` linearize there.
+//! The reference solution a model file is linearized at: the initial state after consistent
+//! initial derivatives, the file's problem integrated up to a time, or the static
+//! equilibrium at the initial time (loads and gravity ramped) — as `eig`, `rom`, `freq` and
+//! `check` use with `--at TIME` or `--static`.
 
 use super::run::{run, RunError};
-use crate::dae::State;
+use crate::dae::{Assembler, State};
 use crate::model::{InitialValueProblem, Model};
+use crate::solve::{static_solution, NewtonSettings};
 
-/// The solution at the first step whose time reaches `at` (the initial time, after the
-/// consistent initial derivatives, when `at` is `None`).
-pub fn reference_state(model: &Model, problem: &InitialValueProblem, at: Option<f64>) -> Result<State, RunError> {
+/// Where a model is linearized.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Reference {
+    /// The initial time, after the consistent initial derivatives (MBDyn's eigenanalysis at
+    /// the initial time).
+    Initial,
+    /// The first step of the file's problem whose time reaches this time [s].
+    At(f64),
+    /// The static equilibrium at the initial time, loads and gravity applied in
+    /// `load_steps` equal increments (prestressed structures, buckling, C4).
+    Static { load_steps: usize },
+}
+
+/// The state at `reference`.
+pub fn reference_state(model: &Model, problem: &InitialValueProblem, reference: Reference) -> Result<State, RunError> {
     let mut p = problem.clone();
     p.eigenanalysis = None;
     p.abort_after = None;
-    p.final_time = match at {
-        None => p.initial_time,
-        Some(t) if t.is_finite() && t >= p.initial_time => t,
-        Some(t) => return Err(RunError::Problem(format!("time {t} s is before the initial time {} s", p.initial_time))),
+    p.final_time = match reference {
+        Reference::Static { load_steps } => return static_state(model, problem, load_steps),
+        Reference::Initial => p.initial_time,
+        Reference::At(t) if t.is_finite() && t >= p.initial_time => t,
+        Reference::At(t) => return Err(RunError::Problem(format!("time {t} s is before the initial time {} s", p.initial_time))),
     };
     Ok(run(model, &p, &mut ())?.final_state)
+}
+
+fn static_state(model: &Model, problem: &InitialValueProblem, load_steps: usize) -> Result<State, RunError> {
+    let asm = Assembler::new(model);
+    let mut st = State::initial(model, &asm.dofs);
+    st.t = problem.initial_time;
+    let settings = NewtonSettings { tolerance: problem.tolerance, max_iterations: problem.max_iterations, ..NewtonSettings::default() };
+    static_solution(&asm, &mut st, load_steps, &settings).map_err(RunError::Static)?;
+    Ok(st)
 }

@@ -25,6 +25,8 @@ pub enum RunError {
     Problem(String),
     #[error("initial derivatives: {0}")]
     Derivatives(NewtonFailure),
+    #[error("static equilibrium: {0}")]
+    Static(NewtonFailure),
     #[error("step {step} of {steps} (t = {time} s): {failure}")]
     Step { step: usize, steps: usize, time: f64, failure: NewtonFailure },
     #[error("eigenanalysis {index} at t = {time} s: {message}")]

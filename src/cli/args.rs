@@ -3,6 +3,7 @@
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
+use romdyn::analysis::Reference;
 use romdyn::dae::{NodeInput, NodeOutput};
 use romdyn::linear::EigenRoute;
 use romdyn::rom::ModeSelection;
@@ -30,9 +31,8 @@ pub struct PencilArgs {
     /// MBDyn input file of a multibody model, linearized at its initial time (or --at)
     #[arg(value_name = "MODEL", required_unless_present = "pencil")]
     pub model: Option<PathBuf>,
-    /// Linearize the model at the solution of its initial-value problem at TIME [s] (integrated with the file's method, step and tolerance)
-    #[arg(long, value_name = "TIME", conflicts_with = "pencil")]
-    pub at: Option<f64>,
+    #[command(flatten)]
+    pub reference: ReferenceArgs,
     /// Pencil file instead of a model: an MBDyn eigenanalysis .m file (Aplus = J(+c), Aminus = J(-c), dCoef; written with 'output matrices') or JSON (Fyd/Fy or J/Jstar/dcoef, B, C)
     #[arg(long, value_name = "FILE", conflicts_with = "model")]
     pub pencil: Option<PathBuf>,
@@ -48,12 +48,37 @@ pub struct PencilArgs {
     /// ROM output of an .m pencil: unknown J (1-based column of Aplus/Aminus); a node's x,y,z displacements [m] are idx+1..idx+3 and its rotations [rad] idx+4..idx+6
     #[arg(long = "output-col", value_name = "J", requires = "pencil")]
     pub output_cols: Vec<usize>,
-    /// Eigenanalysis route
-    #[arg(long, value_enum, default_value = "direct")]
+    /// Eigenanalysis route (lambda by default: its pencil has no infinite eigenvalues, on which faer's QZ can stall)
+    #[arg(long, value_enum, default_value = "lambda")]
     pub route: Route,
     /// dCoef of the Λ form [s] (default: the file's, else ‖F_yd‖/‖F_y‖)
     #[arg(long, value_name = "C")]
     pub dcoef: Option<f64>,
+}
+
+/// Where a model file is linearized (default: its initial time, after consistent initial
+/// derivatives).
+#[derive(Args, Debug, Clone)]
+pub struct ReferenceArgs {
+    /// At the solution of the file's initial-value problem at TIME [s] (integrated with the file's method, step and tolerance)
+    #[arg(long, value_name = "TIME", conflicts_with_all = ["pencil", "static_equilibrium"])]
+    pub at: Option<f64>,
+    /// At the static equilibrium at the initial time (loads and gravity applied in --load-steps increments): prestressed structures
+    #[arg(long = "static", id = "static_equilibrium", conflicts_with = "pencil")]
+    pub static_equilibrium: bool,
+    /// Load increments of --static
+    #[arg(long, value_name = "N", default_value_t = 10, requires = "static_equilibrium")]
+    pub load_steps: usize,
+}
+
+impl ReferenceArgs {
+    pub fn reference(&self) -> Reference {
+        match (self.at, self.static_equilibrium) {
+            (_, true) => Reference::Static { load_steps: self.load_steps },
+            (Some(t), false) => Reference::At(t),
+            (None, false) => Reference::Initial,
+        }
+    }
 }
 
 /// Which modes a ROM keeps (a complex-conjugate pair counts as one mode).

@@ -8,14 +8,15 @@ use clap::Args;
 use romdyn::analysis::{check_model_jacobians, JACOBIAN_CHECK_TOLERANCE};
 use romdyn::input::mbdyn::read_model;
 
+use super::args::ReferenceArgs;
+
 #[derive(Args, Debug)]
 pub struct CheckArgs {
     /// MBDyn input file
     #[arg(value_name = "FILE")]
     pub file: PathBuf,
-    /// Check at the solution at TIME [s] (default: the initial time, after the initial derivatives)
-    #[arg(long, value_name = "TIME")]
-    pub at: Option<f64>,
+    #[command(flatten)]
+    pub reference: ReferenceArgs,
     /// Largest accepted max |analytic - fd| / max(max |J_element|, 1)
     #[arg(long, default_value_t = JACOBIAN_CHECK_TOLERANCE)]
     pub tolerance: f64,
@@ -23,7 +24,7 @@ pub struct CheckArgs {
 
 pub fn run(a: CheckArgs) -> Result<()> {
     let m = read_model(&a.file)?;
-    let check = check_model_jacobians(&m.model, &m.problem, a.at, a.tolerance).with_context(|| format!("{}: reference solution", a.file.display()))?;
+    let check = check_model_jacobians(&m.model, &m.problem, a.reference.reference(), a.tolerance).with_context(|| format!("{}: reference solution", a.file.display()))?;
     print!("{}", check.to_text());
     let failed = check.failures().count();
     if failed > 0 {

@@ -38,7 +38,7 @@ pub fn load(a: &PencilArgs) -> Result<Loaded> {
         }
         (None, Some(path)) => {
             let m = read_model(path)?;
-            let st = reference_state(&m.model, &m.problem, a.at).with_context(|| format!("{}: reference solution", path.display()))?;
+            let st = reference_state(&m.model, &m.problem, a.reference.reference()).with_context(|| format!("{}: reference solution", path.display()))?;
             let dae = linearize(&m.model, &st, &a.inputs, &a.outputs, None)?;
             (dae, None, Some(m.model))
         }

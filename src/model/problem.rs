@@ -32,7 +32,7 @@ pub struct EigenOutput {
 pub struct EigenRequest {
     /// Times of the analyses [s], ascending.
     pub times: Vec<f64>,
-    /// dCoef `c` of `J(±c)` [s] (MBDyn's `parameter`); `None`: romdyn chooses.
+    /// dCoef `c` of `J(±c)` [s] (half MBDyn's `parameter` h); `None`: romdyn chooses.
     pub dcoef: Option<f64>,
     /// Modes below this natural frequency are not reported [Hz].
     pub lower_frequency_hz: Option<f64>,

@@ -39,8 +39,8 @@ pub fn straight_beam(b: &mut ModelBuilder, d: &BeamData, elements: usize) {
     let mut mass = vec![0.0; n];
     let fractions = beam_shape::volume_fractions();
     for e in 0..elements {
-        let nodes = [0, 1, 2].map(|k| BeamNode::new(node_label(2 * e + k), Vec3::zeros()));
-        let beam = Beam3::new(e as Label + 1, nodes, [SectionOrientation::Given(Mat3::identity()), SectionOrientation::Given(Mat3::identity())], [law.clone(), law.clone()], b.nodes()).expect("valid beam");
+        let nodes = [0, 1, 2].map(|k| { let m = &b.nodes()[2 * e + k]; BeamNode::new(m.label, m.position, m.orientation, Vec3::zeros()) });
+        let beam = Beam3::new(e as Label + 1, nodes, [SectionOrientation::Given(Mat3::identity()), SectionOrientation::Given(Mat3::identity())], [law.clone(), law.clone()]).expect("valid beam");
         b.element(beam);
         for k in 0..3 {
             mass[2 * e + k] += fractions[k] * d.rho_a * 2.0 * h;

@@ -17,21 +17,32 @@ use nalgebra::{SMatrix, Vector6};
 
 use super::contract::{Col, Element, ElementState, JacobianSink, Label, ResidualSink, Row};
 use crate::kinematics::{gibbs_from_rotation, gibbs_rotation, skew, Mat3, Vec3};
-use crate::model::StructuralNode;
 use section::{put, NodeTerms, SectionKinematics, SectionReference, Tangent, POSITION};
 
-/// One end or the middle of a beam: a node, the offset of the reference line from it and
+/// One end or the middle of a beam: a node with its initial position and orientation (they
+/// define the unstrained configuration), the offset of the reference line from the node and
 /// the orientation of the beam frame relative to the node (both in the node frame).
 #[derive(Clone, Debug)]
 pub struct BeamNode {
     pub label: Label,
+    pub initial_position: Vec3,
+    pub initial_orientation: Mat3,
     pub offset: Vec3,
     pub orientation: Mat3,
 }
 
 impl BeamNode {
-    pub fn new(label: Label, offset: Vec3) -> Self {
-        BeamNode { label, offset, orientation: Mat3::identity() }
+    /// Node `label`, initially at `position` with `orientation`; the reference line passes
+    /// through its point at `offset` (node frame).
+    pub fn new(label: Label, position: Vec3, orientation: Mat3, offset: Vec3) -> Self {
+        BeamNode { label, initial_position: position, initial_orientation: orientation, offset, orientation: Mat3::identity() }
+    }
+
+    /// The beam frame at this node, relative to the node frame (used by
+    /// [`SectionOrientation::FromNodes`]).
+    pub fn with_orientation(mut self, orientation: Mat3) -> Self {
+        self.orientation = orientation;
+        self
     }
 }
 
@@ -47,8 +58,6 @@ pub enum SectionOrientation {
 /// A beam that cannot be built.
 #[derive(Debug, thiserror::Error)]
 pub enum BeamError {
-    #[error("beam {0}: structural node {1} is not defined")]
-    UnknownNode(Label, Label),
     #[error("beam {0}: the reference line has zero length at evaluation point {1}")]
     ZeroLength(Label, &'static str),
     #[error("beam {0}: the orientation of evaluation point {1} is not a rotation matrix")]
@@ -88,15 +97,11 @@ pub struct Beam3 {
 const POINT_NAMES: [&str; 2] = ["I", "II"];
 
 impl Beam3 {
-    /// A beam on three of `model_nodes` (their initial positions and orientations define the
-    /// unstrained configuration), with a section law per evaluation point.
-    pub fn new(label: Label, nodes: [BeamNode; 3], orientations: [SectionOrientation; 2], laws: [SectionLaw; 2], model_nodes: &[StructuralNode]) -> Result<Self, BeamError> {
-        let mut found = Vec::with_capacity(3);
-        for n in &nodes {
-            found.push(model_nodes.iter().find(|m| m.label == n.label).ok_or(BeamError::UnknownNode(label, n.label))?);
-        }
-        let y: [Vec3; 3] = std::array::from_fn(|i| found[i].position + found[i].orientation * nodes[i].offset);
-        let frames: [Mat3; 3] = std::array::from_fn(|i| found[i].orientation * nodes[i].orientation);
+    /// A beam on three nodes, unstrained in their initial configuration, with a section law
+    /// per evaluation point.
+    pub fn new(label: Label, nodes: [BeamNode; 3], orientations: [SectionOrientation; 2], laws: [SectionLaw; 2]) -> Result<Self, BeamError> {
+        let y: [Vec3; 3] = std::array::from_fn(|i| nodes[i].initial_position + nodes[i].initial_orientation * nodes[i].offset);
+        let frames: [Mat3; 3] = std::array::from_fn(|i| nodes[i].initial_orientation * nodes[i].orientation);
         let mut sections = Vec::with_capacity(2);
         for (k, orientation) in orientations.iter().enumerate() {
             let xi = shape::EVALUATION_POINTS[k];
@@ -120,7 +125,7 @@ impl Beam3 {
             label,
             nodes: std::array::from_fn(|i| nodes[i].label),
             offsets: std::array::from_fn(|i| nodes[i].offset),
-            initial: std::array::from_fn(|i| found[i].orientation),
+            initial: std::array::from_fn(|i| nodes[i].initial_orientation),
             sections: [sections[0].clone(), sections[1].clone()],
             laws,
             viscous,
@@ -133,10 +138,10 @@ impl Beam3 {
         (terms, k)
     }
 
-    /// Local generalized forces `[F; M] = K [ε; κ] + V [ε̇; κ̇]`.
+    /// Local generalized forces `[F; M] = K ([ε; κ] − e_p) + V [ε̇; κ̇] + f_p`.
     fn local_forces(&self, s: usize, k: &SectionKinematics) -> Vector6<f64> {
         let law = &self.laws[s];
-        let mut out = law.stiffness * stack(&k.strain, &k.curvature);
+        let mut out = law.stiffness * (stack(&k.strain, &k.curvature) - law.prestrain) + law.prestress;
         if self.viscous {
             out += law.viscosity * stack(&k.strain_rate, &k.curvature_rate);
         }

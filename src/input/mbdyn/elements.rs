@@ -1,10 +1,11 @@
 //! The `elements` block (input manual, "Elements"): `body`, `joint` (see `joints`),
-//! `force` and `couple`, `gravity`, and the hook for `beam3`/`beam2`. Every other element
+//! `force` and `couple`, `gravity`, and `beam3` (see `beams`). Every other element
 //! type is named in an error; `automatic structural` (initial momenta, recomputed anyway)
 //! and the `inertia` and `output` cards (output only) are accepted and ignored.
 
 use super::cursor::Cursor;
 use super::diagnostic::MbdynError;
+use super::beams::beam;
 use super::drives::{single_term, template_vec3, Drives};
 use super::joints::joint;
 use super::laws::Laws;
@@ -124,13 +125,6 @@ impl ElementContext<'_> {
             _ => Err(c.error_at(c.statement().span, format!("automatic structural {label}: there is no dynamic structural node {label}"))),
         }
     }
-}
-
-/// `beam3` and `beam2` (input manual, §Beam Elements). romdyn's finite-volume beam is being
-/// written: when it lands, build it here from `c` (nodes, offsets, orientations, 6-D laws
-/// through `laws::linear_law(c, 6, …)`) and return `Parsed::Element`.
-pub fn beam(keyword: &str, label: Label, c: &mut Cursor, _ctx: &ElementContext) -> Result<Parsed, MbdynError> {
-    Err(c.error_at(c.statement().span, format!("element type '{keyword}' ({keyword} {label}) is not supported by romdyn yet: the finite-volume beam is being implemented")))
 }
 
 /// `body: LABEL, NODE, [allow negative mass,] MASS, CM, J [, orientation, R]`, or

@@ -9,6 +9,7 @@
 //! [`Model`]: crate::model::Model
 //! [`InitialValueProblem`]: crate::model::InitialValueProblem
 
+mod beams;
 mod control;
 mod cursor;
 mod diagnostic;

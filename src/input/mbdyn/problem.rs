@@ -195,11 +195,12 @@ fn eigenanalysis(c: &mut Cursor) -> Result<EigenRequest, MbdynError> {
             "output geometry" => r.output.geometry = true,
             "parameter" => {
                 let span = c.here();
-                let p = c.real("parameter (dCoef) [s]")?;
+                let p = c.real("parameter (a step h [s]; dCoef = h/2)")?;
                 if p <= 0.0 {
                     return Err(c.error_at(span, format!("the eigenanalysis parameter must be positive, found {p}")));
                 }
-                r.dcoef = Some(p);
+                // MBDyn assembles Aplus/Aminus as J(±h/2) with h = parameter (solver.cc).
+                r.dcoef = Some(p / 2.0);
             }
             "lower frequency limit" => r.lower_frequency_hz = Some(c.real("lower frequency limit [Hz]")?),
             "upper frequency limit" => r.upper_frequency_hz = Some(c.real("upper frequency limit [Hz]")?),
