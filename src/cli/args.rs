@@ -34,7 +34,7 @@ pub struct PencilArgs {
     #[command(flatten)]
     pub reference: ReferenceArgs,
     /// Pencil file instead of a model: an MBDyn eigenanalysis .m file (Aplus = J(+c), Aminus = J(-c), dCoef; written with 'output matrices') or JSON (Fyd/Fy or J/Jstar/dcoef, B, C)
-    #[arg(long, value_name = "FILE", conflicts_with = "model")]
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["model", "at", "static_equilibrium"])]
     pub pencil: Option<PathBuf>,
     /// ROM input of a model: NODE:Fx|Fy|Fz (force [N]) or NODE:Mx|My|Mz (moment [N m]), global frame
     #[arg(long = "input", value_name = "NODE:COMP", conflicts_with = "pencil")]
@@ -61,10 +61,10 @@ pub struct PencilArgs {
 #[derive(Args, Debug, Clone)]
 pub struct ReferenceArgs {
     /// At the solution of the file's initial-value problem at TIME [s] (integrated with the file's method, step and tolerance)
-    #[arg(long, value_name = "TIME", conflicts_with_all = ["pencil", "static_equilibrium"])]
+    #[arg(long, value_name = "TIME", conflicts_with = "static_equilibrium")]
     pub at: Option<f64>,
     /// At the static equilibrium at the initial time (loads and gravity applied in --load-steps increments): prestressed structures
-    #[arg(long = "static", id = "static_equilibrium", conflicts_with = "pencil")]
+    #[arg(long = "static", id = "static_equilibrium")]
     pub static_equilibrium: bool,
     /// Load increments of --static
     #[arg(long, value_name = "N", default_value_t = 10, requires = "static_equilibrium")]
