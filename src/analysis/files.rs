@@ -1,5 +1,6 @@
 //! The files of a run, named after a prefix as MBDyn names them: `PREFIX.out` (step log),
-//! `PREFIX.mov` (node motion), `PREFIX.log` (model log), and for each eigenanalysis
+//! `PREFIX.mov` (node motion), `PREFIX.log` (model log), for models with beams `PREFIX.act`
+//! (internal forces) and `PREFIX.bst` (strains and curvatures), and for each eigenanalysis
 //! `STEM.m` (Octave script) and `STEM.json` (romdyn's JSON), where STEM is PREFIX for a
 //! single analysis and `PREFIX_K` (K its 0-based number, zero-padded to the width of the
 //! largest, MBDyn's `suffix width, compute`) when there are several.
@@ -13,6 +14,7 @@ use super::observer::{Derivatives, EigenDone, ObserverError, RunObserver, StepDo
 use super::run::RunReport;
 use crate::model::{InitialValueProblem, Model};
 use crate::output::atomic::{AtomicFile, OutputError};
+use crate::output::beam_sections::BeamSectionWriter;
 use crate::output::eigen_json::eigen_json;
 use crate::output::eigen_m::write_eigen_m;
 use crate::output::model_log::write_model_log;
@@ -38,6 +40,8 @@ pub struct RunFiles {
     eigen_count: usize,
     out: StepLog,
     mov: MotionWriter,
+    /// `.act` and `.bst`, opened at the first step that has beams.
+    beams: Option<BeamSectionWriter>,
     staged: Vec<AtomicFile>,
 }
 
@@ -49,7 +53,7 @@ impl RunFiles {
         let mut log = AtomicFile::create(&prefixed_path(prefix, "log"))?;
         log.write_with(|w| write_model_log(w, input, model))?;
         let eigen_count = problem.eigenanalysis.as_ref().map_or(0, |r| r.times.len());
-        Ok(RunFiles { prefix: prefix.to_path_buf(), input: input.to_string(), eigen_count, out, mov, staged: vec![log] })
+        Ok(RunFiles { prefix: prefix.to_path_buf(), input: input.to_string(), eigen_count, out, mov, beams: None, staged: vec![log] })
     }
 
     /// Ends the step log and puts every file in place; returns their paths.
@@ -58,6 +62,10 @@ impl RunFiles {
         let mut paths = vec![prefixed_path(&self.prefix, "out"), prefixed_path(&self.prefix, "mov")];
         self.out.finish()?;
         self.mov.finish()?;
+        if let Some(b) = self.beams {
+            paths.extend(b.paths().map(Path::to_path_buf));
+            b.finish()?;
+        }
         for f in self.staged {
             paths.push(f.path().to_path_buf());
             f.commit()?;
@@ -73,7 +81,17 @@ impl RunObserver for RunFiles {
 
     fn step(&mut self, e: &StepDone) -> Result<(), ObserverError> {
         self.out.step(&StepLine { step: e.step, time: e.time, time_step: e.time_step, iterations: e.iterations, residual_norm: e.residual_norm })?;
-        Ok(self.mov.write_step(&e.node_kinematics())?)
+        self.mov.write_step(&e.node_kinematics())?;
+        let sections = e.beam_sections();
+        if !sections.is_empty() {
+            if self.beams.is_none() {
+                self.beams = Some(BeamSectionWriter::create(&prefixed_path(&self.prefix, "act"), &prefixed_path(&self.prefix, "bst"))?);
+            }
+            if let Some(b) = self.beams.as_mut() {
+                b.write_step(&sections)?;
+            }
+        }
+        Ok(())
     }
 
     fn eigenanalysis(&mut self, e: &EigenDone) -> Result<(), ObserverError> {

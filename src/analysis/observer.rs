@@ -3,8 +3,8 @@
 //! implement [`RunObserver`]; an observer's error stops the run.
 
 use super::eigen::Eigenanalysis;
-use crate::dae::{DofMap, State};
-use crate::element::NodeKinematics;
+use crate::dae::{Assembler, State};
+use crate::element::{NodeKinematics, SectionState};
 use crate::model::{InitialValueProblem, Label, Model};
 
 /// An observer's failure (e.g. a file that cannot be written).
@@ -41,14 +41,19 @@ pub struct StepDone<'a> {
     /// `‖F‖∞` when Newton stopped.
     pub residual_norm: f64,
     pub model: &'a Model,
-    pub dofs: &'a DofMap,
+    pub assembler: &'a Assembler<'a>,
     pub state: &'a State,
 }
 
 impl StepDone<'_> {
+    /// Every beam's internal forces and deformation at its evaluation points.
+    pub fn beam_sections(&self) -> Vec<(Label, Vec<SectionState>)> {
+        self.assembler.section_states(self.state).into_iter().map(|(e, s)| (self.model.elements[e].label(), s)).collect()
+    }
+
     /// Every structural node's position, orientation and velocities (global frame).
     pub fn node_kinematics(&self) -> Vec<(Label, NodeKinematics)> {
-        self.model.nodes.iter().enumerate().map(|(i, n)| (n.label, self.state.node_frame(self.dofs, i).kin)).collect()
+        self.model.nodes.iter().enumerate().map(|(i, n)| (n.label, self.state.node_frame(&self.assembler.dofs, i).kin)).collect()
     }
 }
 

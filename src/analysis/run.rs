@@ -89,7 +89,7 @@ fn validate(p: &InitialValueProblem) -> Result<(), RunError> {
 
 /// A step event: `(iterations, residual_norm)` of the Newton iteration that produced `state`.
 fn step_done<'a>(asm: &'a Assembler, step: usize, time_step: f64, (iterations, residual_norm): (usize, f64), state: &'a State) -> StepDone<'a> {
-    StepDone { step, time: state.t, time_step, iterations, residual_norm, model: asm.model, dofs: &asm.dofs, state }
+    StepDone { step, time: state.t, time_step, iterations, residual_norm, model: asm.model, assembler: asm, state }
 }
 
 /// Runs `problem` on `model`, reporting every event to `observer`.

@@ -3,7 +3,7 @@
 
 use super::state::NodeFrame;
 use super::{DofMap, State, Triplets};
-use crate::element::{Col, ElementState, JacobianSink, NodeKinematics, ResidualSink, Row};
+use crate::element::{Col, ElementState, JacobianSink, NodeKinematics, ResidualSink, Row, SectionState};
 use crate::kinematics::{skew, Vec3};
 use crate::linear::ConstraintForm;
 use crate::model::{Model, NodeKind};
@@ -211,6 +211,20 @@ impl<'m> Assembler<'m> {
                 out.push(first + 9 + k, first + 6 + j, c.b * vx[(k, j)]);
             }
         }
+    }
+
+    /// Internal forces and deformation of every element that has evaluation points (beams),
+    /// as `(element index, sections)`.
+    pub fn section_states(&self, st: &State) -> Vec<(usize, Vec<SectionState>)> {
+        let frames = self.frames(st);
+        let mut out = Vec::new();
+        for (e, el) in self.model.elements.iter().enumerate() {
+            let sections = el.sections(&self.context(&frames, st, e));
+            if !sections.is_empty() {
+                out.push((e, sections));
+            }
+        }
+        out
     }
 
     /// The contribution of one element alone (for the finite-difference check).

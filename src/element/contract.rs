@@ -120,4 +120,26 @@ pub trait Element: Send + Sync {
     fn residual(&self, s: &dyn ElementState, out: &mut dyn ResidualSink);
     /// Adds its derivatives; the assembler forms `J(c)` from them.
     fn jacobian(&self, s: &dyn ElementState, out: &mut dyn JacobianSink);
+    /// Internal forces and deformation at the element's evaluation points (beams), for
+    /// output; none for other elements.
+    fn sections(&self, _s: &dyn ElementState) -> Vec<SectionState> {
+        Vec::new()
+    }
+}
+
+/// Internal forces and deformation at one evaluation point of a beam, in the section frame.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SectionState {
+    /// Position of the evaluation point [m].
+    pub position: Vec3,
+    /// Section frame (axis 1 along the beam).
+    pub orientation: Mat3,
+    /// Axial strain and shear strains [-].
+    pub strain: Vec3,
+    /// Torsional and bending curvatures [1/m].
+    pub curvature: Vec3,
+    /// Axial and shear forces [N].
+    pub force: Vec3,
+    /// Torsional and bending moments [N m].
+    pub moment: Vec3,
 }

@@ -17,9 +17,9 @@ mod drive;
 mod force;
 mod joint;
 
-pub use beam::{shape as beam_shape, Beam3, BeamError, BeamNode, SectionLaw, SectionOrientation, SectionState};
+pub use beam::{shape as beam_shape, Beam3, BeamError, BeamNode, SectionLaw, SectionOrientation};
 pub use body::RigidBody;
-pub use contract::{Col, Element, Label, ElementState, JacobianSink, NodeKinematics, ResidualSink, Row};
+pub use contract::{Col, Element, ElementState, JacobianSink, Label, NodeKinematics, ResidualSink, Row, SectionState};
 pub use deformable::{DeformableDisplacement, DeformableHinge, LinearViscoelastic, Rod};
 pub use drive::Drive;
 pub use force::{Couple, Force, ForceFrame};

@@ -3,6 +3,7 @@
 //! file is written atomically (temporary file, then rename).
 
 pub mod atomic;
+pub mod beam_sections;
 pub mod bode;
 pub mod eigen_file;
 pub mod eigen_json;

@@ -17,14 +17,19 @@ pub fn temp_dir(name: &str) -> PathBuf {
     d
 }
 
-/// `examples/pendulum.mbd` with each `(from, to)` replacement applied (each must match).
-pub fn pendulum_variant(replacements: &[(&str, &str)]) -> String {
-    let mut text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/pendulum.mbd")).expect("example");
+/// `examples/NAME` with each `(from, to)` replacement applied (each must match).
+pub fn example_variant(name: &str, replacements: &[(&str, &str)]) -> String {
+    let mut text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples").join(name)).expect("example");
     for (from, to) in replacements {
-        assert!(text.contains(from), "examples/pendulum.mbd no longer contains {from:?}");
+        assert!(text.contains(from), "examples/{name} no longer contains {from:?}");
         text = text.replace(from, to);
     }
     text
+}
+
+/// `examples/pendulum.mbd` with each `(from, to)` replacement applied (each must match).
+pub fn pendulum_variant(replacements: &[(&str, &str)]) -> String {
+    example_variant("pendulum.mbd", replacements)
 }
 
 /// Writes `text` as `dir/name` and returns its path as a string.

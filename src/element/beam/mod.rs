@@ -15,7 +15,7 @@ pub use law::SectionLaw;
 
 use nalgebra::{SMatrix, Vector6};
 
-use super::contract::{Col, Element, ElementState, JacobianSink, Label, ResidualSink, Row};
+use super::contract::{Col, Element, ElementState, JacobianSink, Label, ResidualSink, Row, SectionState};
 use crate::kinematics::{gibbs_from_rotation, gibbs_rotation, skew, Mat3, Vec3};
 use section::{put, NodeTerms, SectionKinematics, SectionReference, Tangent, POSITION};
 
@@ -62,23 +62,6 @@ pub enum BeamError {
     ZeroLength(Label, &'static str),
     #[error("beam {0}: the orientation of evaluation point {1} is not a rotation matrix")]
     BadOrientation(Label, &'static str),
-}
-
-/// Internal forces and deformation at one evaluation point, in the section frame.
-#[derive(Clone, Debug, PartialEq)]
-pub struct SectionState {
-    /// Position of the evaluation point [m].
-    pub position: Vec3,
-    /// Section frame (axis 1 along the beam).
-    pub orientation: Mat3,
-    /// Axial strain and shear strains [-].
-    pub strain: Vec3,
-    /// Torsional and bending curvatures [1/m].
-    pub curvature: Vec3,
-    /// Axial and shear forces [N].
-    pub force: Vec3,
-    /// Torsional and bending moments [N m].
-    pub moment: Vec3,
 }
 
 /// Three-node beam (MBDyn's `beam3`).
@@ -148,15 +131,6 @@ impl Beam3 {
         out
     }
 
-    /// Internal forces, moments, strains and curvatures at points I and II.
-    pub fn section_states(&self, st: &dyn ElementState) -> [SectionState; 2] {
-        let (_, ks) = self.evaluate(st);
-        std::array::from_fn(|s| {
-            let k = &ks[s];
-            let f = self.local_forces(s, k);
-            SectionState { position: k.p, orientation: k.r, strain: k.strain, curvature: k.curvature, force: f.fixed_rows::<3>(0).into(), moment: f.fixed_rows::<3>(3).into() }
-        })
-    }
 }
 
 /// `[a; b]`.
@@ -203,6 +177,19 @@ impl Element for Beam3 {
                 }
             }
         }
+    }
+
+    /// Points I and II: forces and moments `K ([ε; κ] − e_p) + V [ε̇; κ̇] + f_p`, strains and
+    /// curvatures, all in the section frame.
+    fn sections(&self, st: &dyn ElementState) -> Vec<SectionState> {
+        let (_, ks) = self.evaluate(st);
+        ks.iter()
+            .enumerate()
+            .map(|(s, k)| {
+                let f = self.local_forces(s, k);
+                SectionState { position: k.p, orientation: k.r, strain: k.strain, curvature: k.curvature, force: f.fixed_rows::<3>(0).into(), moment: f.fixed_rows::<3>(3).into() }
+            })
+            .collect()
     }
 
     fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {

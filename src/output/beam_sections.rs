@@ -1,0 +1,58 @@
+//! Beam internal forces and deformations per output instant, one line per beam:
+//!
+//! - `PREFIX.act`, MBDyn's layout for beams: `label  F_I  M_I  F_II  M_II`, forces [N] and
+//!   moments [N m] at evaluation points I and II in the section frames (axis 1 along the
+//!   beam: axial force, two shear forces; torsional moment, two bending moments);
+//! - `PREFIX.bst` (romdyn's): `label  ε_I  κ_I  ε_II  κ_II`, axial and shear strains [-] and
+//!   torsional and bending curvatures [1/m] in the same frames.
+//!
+//! No header, so Octave's `load` reads both; written under temporary names and renamed
+//! when the run finishes.
+
+use std::io::Write;
+use std::path::Path;
+
+use super::atomic::{AtomicFile, OutputError};
+use crate::element::SectionState;
+use crate::kinematics::Vec3;
+use crate::model::Label;
+
+/// The `.act` and `.bst` files of a run, written step by step.
+pub struct BeamSectionWriter {
+    forces: AtomicFile,
+    strains: AtomicFile,
+}
+
+fn line(out: &mut dyn Write, label: Label, sections: &[SectionState], pick: impl Fn(&SectionState) -> [Vec3; 2]) -> std::io::Result<()> {
+    write!(out, "{label}")?;
+    for s in sections {
+        for v in pick(s) {
+            for c in v.iter() {
+                write!(out, " {c:.12e}")?;
+            }
+        }
+    }
+    writeln!(out)
+}
+
+impl BeamSectionWriter {
+    pub fn create(forces: &Path, strains: &Path) -> Result<Self, OutputError> {
+        Ok(BeamSectionWriter { forces: AtomicFile::create(forces)?, strains: AtomicFile::create(strains)? })
+    }
+
+    /// Appends one output instant: a line per beam in each file.
+    pub fn write_step(&mut self, beams: &[(Label, Vec<SectionState>)]) -> Result<(), OutputError> {
+        self.forces.write_with(|out| beams.iter().try_for_each(|(label, s)| line(out, *label, s, |x| [x.force, x.moment])))?;
+        self.strains.write_with(|out| beams.iter().try_for_each(|(label, s)| line(out, *label, s, |x| [x.strain, x.curvature])))
+    }
+
+    /// Flushes and renames both files into place.
+    pub fn finish(self) -> Result<(), OutputError> {
+        self.forces.commit()?;
+        self.strains.commit()
+    }
+
+    pub fn paths(&self) -> [&Path; 2] {
+        [self.forces.path(), self.strains.path()]
+    }
+}
