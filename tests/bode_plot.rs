@@ -51,3 +51,34 @@ fn sdof_plot_and_table() {
     assert!((at_resonance[4] + 90.0).abs() < 1e-6);
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn undamped_sign_flips_unwrap_to_a_phase_lag() {
+    // An undamped response changes sign at each resonance and antiresonance: the phase
+    // steps by −180° each time, whichever side rounding puts the crossing on.
+    use romdyn::output::bode::unwrapped_phase_deg;
+    let v = [1.0, -1.0, 1.0, -1.0].map(|x| c64::new(x, 0.0));
+    assert_eq!(unwrapped_phase_deg(&v), vec![0.0, -180.0, -360.0, -540.0]);
+    let v = [1.0, -1.0, 1.0].map(|x| c64::new(x, -0.0));
+    assert_eq!(unwrapped_phase_deg(&v), vec![0.0, -180.0, -360.0]);
+}
+
+#[test]
+fn line_plot_writes_svg_png_and_csv_and_refuses_an_empty_plot() {
+    use romdyn::output::line_plot::{write_line_plot, write_series_csv, LinePlot, Series, SeriesStyle};
+    let dir = std::env::temp_dir().join(format!("romdyn-line-{}", std::process::id()));
+    let series = vec![Series { label: "y = x²".into(), points: (0..=10).map(|i| (i as f64, (i * i) as f64)).collect(), style: SeriesStyle::Markers }];
+    let plot = LinePlot { title: "parabola".into(), x_label: "x [-]".into(), y_label: "y [-]".into(), series };
+    let (svg, png, csv) = (dir.join("p.svg"), dir.join("p.png"), dir.join("p.csv"));
+    write_line_plot(&plot, &svg, &png).unwrap();
+    write_series_csv(&plot, &csv).unwrap();
+    assert!(std::fs::read_to_string(&svg).unwrap().contains("parabola"));
+    assert!(std::fs::metadata(&png).unwrap().len() > 1000);
+    let rows: Vec<String> = std::fs::read_to_string(&csv).unwrap().lines().map(String::from).collect();
+    assert_eq!(rows.len(), 12);
+    assert_eq!(rows[0], "series,x [-],y [-]");
+    assert!(rows[11].ends_with(",1.000000000000e1,1.000000000000e2"), "{}", rows[11]);
+    let empty = LinePlot { series: vec![], ..plot };
+    assert!(write_line_plot(&empty, &dir.join("e.svg"), &dir.join("e.png")).is_err());
+    std::fs::remove_dir_all(&dir).ok();
+}

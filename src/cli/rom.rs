@@ -9,7 +9,7 @@ use romdyn::output::rom_file::RomExport;
 use romdyn::rom::{full_static_gain, select_modes, DescriptorRom, OrdinaryRom};
 
 use super::args::{parse_band, FrequencyArgs, PencilArgs, SelectionArgs};
-use super::bode::{write_bode_files, Curves};
+use super::bode::{full_responses, write_bode_files};
 use super::load::{load, Loaded};
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -128,7 +128,7 @@ pub fn run(a: RomArgs) -> Result<()> {
         None => println!("{}", serde_json::to_string_pretty(&export.to_json())?),
     }
     if let Some(prefix) = &a.bode {
-        let curves = Curves::new(&b.dae, &b.modal, &a.freq, &b.descriptor.eigenvalues);
+        let curves = full_responses(&b.dae, &b.modal, &a.freq, &b.descriptor.eigenvalues);
         let curves = curves.with_rom("ROM", &b.ordinary);
         write_bode_files(&curves, prefix)?;
     }
@@ -144,11 +144,11 @@ pub fn run_freq(a: FreqArgs) -> Result<()> {
     let curves = match selection {
         Some(sel) => {
             let b = build(&a.pencil, &sel, a.residualize)?;
-            Curves::new(&b.dae, &b.modal, &a.freq, &b.descriptor.eigenvalues).with_rom("ROM", &b.ordinary)
+            full_responses(&b.dae, &b.modal, &a.freq, &b.descriptor.eigenvalues).with_rom("ROM", &b.ordinary)
         }
         None => {
             let Loaded { dae, modal, .. } = load(&a.pencil)?;
-            Curves::new(&dae, &modal, &a.freq, &[])
+            full_responses(&dae, &modal, &a.freq, &[])
         }
     };
     write_bode_files(&curves, &a.prefix)

@@ -4,15 +4,14 @@
 //! fonts or fontconfig.
 
 use std::path::Path;
-use std::sync::Once;
 
 use faer::c64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::atomic::{write_atomic_bytes, OutputError};
+use super::atomic::OutputError;
+use super::figure::{write_figure, Figure, COLORS, FONT};
 
-const FONT: &str = "dejavu-sans";
 const SIZE: (u32, u32) = (1200, 900);
 
 /// Whether a curve is the full model (solid) or a ROM (dashed).
@@ -44,15 +43,6 @@ pub struct BodePlot {
     pub curves: Vec<ResponseCurve>,
 }
 
-fn ensure_font() {
-    static ONCE: Once = Once::new();
-    ONCE.call_once(|| {
-        // The embedded TTF is valid; a failure here would only make text fall back.
-        let _ = plotters::style::register_font(FONT, FontStyle::Normal, dejavu::sans::regular());
-        let _ = plotters::style::register_font(FONT, FontStyle::Bold, dejavu::sans::bold());
-    });
-}
-
 /// Phase in degrees, unwrapped along the curve.
 pub fn unwrapped_phase_deg(values: &[c64]) -> Vec<f64> {
     let mut out = Vec::with_capacity(values.len());
@@ -62,7 +52,8 @@ pub fn unwrapped_phase_deg(values: &[c64]) -> Vec<f64> {
         let p = v.im.atan2(v.re).to_degrees();
         if let Some(q) = prev {
             let d = p + offset - q;
-            offset -= 360.0 * (d / 360.0).round();
+            // Half turns (the sign flips of undamped responses) go down: a phase lag.
+            offset -= 360.0 * (d / 360.0 + 0.5).floor();
         }
         let u = p + offset;
         prev = Some(u);
@@ -80,17 +71,6 @@ fn range(values: impl Iterator<Item = f64>, pad: f64) -> (f64, f64) {
     let (lo, hi) = values.filter(|x| x.is_finite()).fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(x), b.max(x)));
     if lo.is_finite() { (lo - pad, hi + pad) } else { (-1.0, 1.0) }
 }
-
-const COLORS: [RGBColor; 8] = [
-    RGBColor(0, 0, 0),
-    RGBColor(214, 39, 40),
-    RGBColor(31, 119, 180),
-    RGBColor(44, 160, 44),
-    RGBColor(148, 103, 189),
-    RGBColor(255, 127, 14),
-    RGBColor(140, 86, 75),
-    RGBColor(23, 190, 207),
-];
 
 /// Colour and legend text of each curve: colour by input/output pair when there are
 /// several pairs, by model otherwise.
@@ -181,48 +161,35 @@ fn draw_panel<DB: DrawingBackend>(
     Ok(())
 }
 
-fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, plot: &BodePlot) -> Result<(), String> {
-    let err = |e: &dyn std::fmt::Display| e.to_string();
-    root.fill(&WHITE).map_err(|e| err(&e))?;
-    let root = root.titled(&plot.title, (FONT, 28)).map_err(|e| err(&e))?;
-    let (top, bottom) = root.split_vertically(SIZE.1 as i32 * 52 / 100);
-    let (flo, fhi) = range(plot.curves.iter().flat_map(|c| c.freq_hz.iter().copied().filter(|f| *f > 0.0)), 0.0);
-    let mag: Plotted = plot
-        .curves
-        .iter()
-        .map(|c| (c, c.freq_hz.iter().zip(&c.values).filter_map(|(f, v)| magnitude_db(*v).map(|m| (*f, m))).collect()))
-        .collect();
-    let phase: Plotted = plot
-        .curves
-        .iter()
-        .map(|c| (c, c.freq_hz.iter().copied().zip(unwrapped_phase_deg(&c.values)).filter(|(_, p)| p.is_finite()).collect()))
-        .collect();
-    let unit = format!("magnitude [dB re 1 {}]", plot.magnitude_unit);
-    draw_panel(&top, plot, mag, &unit, true, (flo, fhi))?;
-    draw_panel(&bottom, plot, phase, "phase [deg]", false, (flo, fhi))?;
-    root.present().map_err(|e| err(&e))
+impl Figure for BodePlot {
+    fn draw<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> Result<(), String> {
+        let plot = self;
+        let err = |e: &dyn std::fmt::Display| e.to_string();
+        root.fill(&WHITE).map_err(|e| err(&e))?;
+        let root = root.titled(&plot.title, (FONT, 28)).map_err(|e| err(&e))?;
+        let (top, bottom) = root.split_vertically(SIZE.1 as i32 * 52 / 100);
+        let (flo, fhi) = range(plot.curves.iter().flat_map(|c| c.freq_hz.iter().copied().filter(|f| *f > 0.0)), 0.0);
+        let mag: Plotted = plot
+            .curves
+            .iter()
+            .map(|c| (c, c.freq_hz.iter().zip(&c.values).filter_map(|(f, v)| magnitude_db(*v).map(|m| (*f, m))).collect()))
+            .collect();
+        let phase: Plotted = plot
+            .curves
+            .iter()
+            .map(|c| (c, c.freq_hz.iter().copied().zip(unwrapped_phase_deg(&c.values)).filter(|(_, p)| p.is_finite()).collect()))
+            .collect();
+        let unit = format!("magnitude [dB re 1 {}]", plot.magnitude_unit);
+        draw_panel(&top, plot, mag, &unit, true, (flo, fhi))?;
+        draw_panel(&bottom, plot, phase, "phase [deg]", false, (flo, fhi))?;
+        root.present().map_err(|e| err(&e))
+    }
 }
 
 /// Writes the plot as SVG and PNG (each atomically).
 pub fn write_bode(plot: &BodePlot, svg_path: &Path, png_path: &Path) -> Result<(), OutputError> {
-    ensure_font();
-    let invalid = |path: &Path, message: String| OutputError::Invalid { path: path.to_path_buf(), message };
     if plot.curves.is_empty() {
-        return Err(invalid(svg_path, "no curve to plot".into()));
+        return Err(OutputError::Invalid { path: svg_path.to_path_buf(), message: "no curve to plot".into() });
     }
-    let mut svg = String::new();
-    draw(SVGBackend::with_string(&mut svg, SIZE).into_drawing_area(), plot).map_err(|m| invalid(svg_path, m))?;
-    write_atomic_bytes(svg_path, svg.as_bytes())?;
-
-    // The PNG encoder writes to a path: render to a temporary file beside the target,
-    // then rename it into place.
-    let name = png_path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
-    let tmp = png_path.with_file_name(format!(".{name}.tmp-{}.png", std::process::id()));
-    let result = draw(BitMapBackend::new(&tmp, SIZE).into_drawing_area(), plot)
-        .map_err(|m| invalid(png_path, m))
-        .and_then(|_| std::fs::rename(&tmp, png_path).map_err(|e| OutputError::Io { path: png_path.to_path_buf(), operation: "rename the temporary file onto it", source: e }));
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result
+    write_figure(plot, SIZE, svg_path, png_path)
 }

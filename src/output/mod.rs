@@ -5,6 +5,9 @@
 pub mod atomic;
 pub mod beam_sections;
 pub mod bode;
+pub mod figure;
+pub mod frequency_plot;
+pub mod line_plot;
 pub mod eigen_file;
 pub mod eigen_json;
 pub mod eigen_m;
