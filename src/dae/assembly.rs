@@ -4,7 +4,7 @@
 use super::state::NodeFrame;
 use super::{DofMap, State, Triplets};
 use crate::element::{Col, ElementState, JacobianSink, NodeKinematics, ResidualSink, Row, SectionState};
-use crate::kinematics::{skew, Vec3};
+use crate::kinematics::{skew, Mat3, Vec3};
 use crate::linear::ConstraintForm;
 use crate::model::{Model, NodeKind};
 
@@ -97,12 +97,66 @@ struct Jacobian<'a> {
     out: &'a mut Triplets,
 }
 
+impl Jacobian<'_> {
+    /// Coefficient of a `y`-derivative in `row`: `y`-derivatives of constraint rows belong to
+    /// `F_/ẏ` in the form of eq. 30.
+    fn y_coefficient(&self, row: Row) -> f64 {
+        if self.c.form == ConstraintForm::Scaled && matches!(row, Row::Constraint(_)) { self.c.a } else { self.c.b }
+    }
+}
+
+/// The node columns a 3x3 block covers, when it is one kind of one node's.
+fn node_block(cols: &[Col; 3]) -> Option<Col> {
+    let first = cols[0];
+    let same = match first {
+        Col::Position { slot, comp: 0 } => *cols == Col::position(slot),
+        Col::Rotation { slot, comp: 0 } => *cols == Col::rotation(slot),
+        Col::Velocity { slot, comp: 0 } => *cols == Col::velocity(slot),
+        Col::AngularVelocity { slot, comp: 0 } => *cols == Col::angular_velocity(slot),
+        _ => false,
+    };
+    same.then_some(first)
+}
+
 impl JacobianSink for Jacobian<'_> {
+    fn add_block(&mut self, rows: [Row; 3], cols: [Col; 3], m: &Mat3) {
+        let Some(block) = node_block(&cols) else {
+            for (i, row) in rows.into_iter().enumerate() {
+                for (j, col) in cols.into_iter().enumerate() {
+                    self.add(row, col, m[(i, j)]);
+                }
+            }
+            return;
+        };
+        let a = self.c.a;
+        for (i, row) in rows.into_iter().enumerate() {
+            let Some(r) = global_row(self.dofs, self.slots, self.first, row) else { continue };
+            let b = self.y_coefficient(row);
+            let mrow = m.row(i);
+            // A block row times G (δθ = G δg) gives the row in the g columns: 3 entries.
+            let (values, first) = match block {
+                Col::Position { slot, .. } => (b * mrow, self.dofs.node_first[self.slots[slot]]),
+                Col::Velocity { slot, .. } => (a * mrow, self.dofs.node_first[self.slots[slot]]),
+                Col::Rotation { slot, .. } => {
+                    let n = self.slots[slot];
+                    (b * mrow * self.frames[n].g_matrix, self.dofs.node_first[n] + 3)
+                }
+                Col::AngularVelocity { slot, .. } => {
+                    let (n, fr) = (self.slots[slot], &self.frames[self.slots[slot]]);
+                    (a * mrow * fr.g_matrix + b * mrow * fr.rate_derivative, self.dofs.node_first[n] + 3)
+                }
+                Col::Multiplier(_) => unreachable!("node_block returns node columns only"),
+            };
+            for k in 0..3 {
+                self.out.push(r, first + k, values[k]);
+            }
+        }
+    }
+
     fn add(&mut self, row: Row, col: Col, v: f64) {
         let Some(i) = global_row(self.dofs, self.slots, self.first, row) else { return };
         let scaled = self.c.form == ConstraintForm::Scaled;
-        // y-derivatives of constraint rows belong to F_/ẏ in the form of eq. 30.
-        let b = if scaled && matches!(row, Row::Constraint(_)) { self.c.a } else { self.c.b };
+        let b = self.y_coefficient(row);
         let a = self.c.a;
         match col {
             Col::Position { slot, comp } => self.out.push(i, self.dofs.node_first[self.slots[slot]] + comp, b * v),
@@ -163,17 +217,23 @@ impl<'m> Assembler<'m> {
 
     /// `a F_/ẏ + b F_/y` as triplets in a fixed order.
     pub fn jacobian(&self, st: &State, c: Coefficients) -> Triplets {
-        let frames = self.frames(st);
         let mut out = Triplets::new(self.dofs.len);
+        self.jacobian_into(st, c, &mut out);
+        out
+    }
+
+    /// [`Assembler::jacobian`] into `out`, reusing its storage (Newton iterations).
+    pub fn jacobian_into(&self, st: &State, c: Coefficients, out: &mut Triplets) {
+        out.clear(self.dofs.len);
+        let frames = self.frames(st);
         for (i, fr) in frames.iter().enumerate() {
-            self.node_jacobian(st, i, fr, c, &mut out);
+            self.node_jacobian(st, i, fr, c, out);
         }
         for (e, el) in self.model.elements.iter().enumerate() {
             let ctx = self.context(&frames, st, e);
-            let mut sink = Jacobian { dofs: &self.dofs, frames: &frames, slots: &self.dofs.element_nodes[e], first: self.dofs.element_first[e], c, out: &mut out };
+            let mut sink = Jacobian { dofs: &self.dofs, frames: &frames, slots: &self.dofs.element_nodes[e], first: self.dofs.element_first[e], c, out };
             el.jacobian(&ctx, &mut sink);
         }
-        out
     }
 
     /// A dynamic node's own terms: `β`, `γ` in the momentum definitions; `β̇` and

@@ -1,10 +1,11 @@
 //! Sparse Jacobians as triplets, and a sparse LU whose symbolic factorization is computed
 //! once per sparsity pattern and reused across Newton iterations and time steps.
 
-use faer::linalg::solvers::Solve;
-use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
-use faer::sparse::{Argsort, Pair, SparseColMat, SymbolicSparseColMat};
-use faer::Mat;
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::reborrow::ReborrowMut;
+use faer::sparse::linalg::lu::{factorize_symbolic_lu, NumericLu, SymbolicLu};
+use faer::sparse::{Pair, SparseColMatRef, SymbolicSparseColMat};
+use faer::{Conj, Mat, MatMut, Par};
 
 /// Entries `(row, col, value)` in a fixed order for a fixed model (duplicates are summed).
 #[derive(Clone, Debug, Default)]
@@ -18,6 +19,13 @@ pub struct Triplets {
 impl Triplets {
     pub fn new(n: usize) -> Self {
         Triplets { n, ..Default::default() }
+    }
+    /// Empties the triplets (keeping their storage) for an `n`x`n` matrix.
+    pub fn clear(&mut self, n: usize) {
+        self.n = n;
+        self.rows.clear();
+        self.cols.clear();
+        self.values.clear();
     }
     pub fn push(&mut self, row: usize, col: usize, value: f64) {
         self.rows.push(row);
@@ -43,13 +51,49 @@ pub enum SparseError {
     Structure(String),
 }
 
-/// Sparse LU with symbolic reuse: the pattern (and its fill-reducing ordering and symbolic
-/// factorization) is kept while the triplet positions stay the same.
-#[derive(Default)]
+/// A sparsity pattern with its symbolic factorization: the triplet positions it was made
+/// from, the CSC structure, where each triplet lands in it, and the symbolic LU
+/// (fill-reducing ordering included).
+struct Pattern {
+    rows: Vec<usize>,
+    cols: Vec<usize>,
+    csc: SymbolicSparseColMat<usize>,
+    /// CSC value index of each triplet (duplicates share one).
+    position: Vec<usize>,
+    lu: SymbolicLu<usize>,
+}
+
+impl Pattern {
+    fn new(j: &Triplets) -> Result<Self, SparseError> {
+        let structure = |e: &dyn std::fmt::Debug| SparseError::Structure(format!("{e:?}"));
+        let idx: Vec<Pair<usize, usize>> = j.rows.iter().zip(&j.cols).map(|(&row, &col)| Pair { row, col }).collect();
+        let (csc, _) = SymbolicSparseColMat::try_new_from_indices(j.n, j.n, &idx).map_err(|e| structure(&e))?;
+        let (ptr, rows) = (csc.col_ptr(), csc.row_idx());
+        let position = idx
+            .iter()
+            .map(|p| ptr[p.col] + rows[ptr[p.col]..ptr[p.col + 1]].binary_search(&p.row).unwrap_or_else(|_| unreachable!("the pattern holds every triplet")))
+            .collect();
+        let lu = factorize_symbolic_lu(csc.as_ref(), Default::default()).map_err(|e| structure(&e))?;
+        Ok(Pattern { rows: j.rows.clone(), cols: j.cols.clone(), csc, position, lu })
+    }
+}
+
+/// Sparse LU with symbolic reuse: the pattern (its fill-reducing ordering and symbolic
+/// factorization) is kept while the triplet positions stay the same, and the numeric
+/// factors, values and scratch memory are reused from one solve to the next.
 pub struct SparseLu {
-    pattern: Option<(Vec<usize>, Vec<usize>, SymbolicSparseColMat<usize>, Argsort<usize>, SymbolicLu<usize>)>,
+    pattern: Option<Pattern>,
+    numeric: NumericLu<usize, f64>,
+    values: Vec<f64>,
+    scratch: MemBuffer,
     /// Number of symbolic factorizations done (1 for a fixed pattern).
     pub symbolic_factorizations: usize,
+}
+
+impl Default for SparseLu {
+    fn default() -> Self {
+        SparseLu { pattern: None, numeric: NumericLu::new(), values: Vec::new(), scratch: MemBuffer::new(faer::dyn_stack::StackReq::EMPTY), symbolic_factorizations: 0 }
+    }
 }
 
 impl SparseLu {
@@ -59,24 +103,27 @@ impl SparseLu {
 
     /// Solves `J x = rhs` in place.
     pub fn solve(&mut self, j: &Triplets, rhs: &mut [f64]) -> Result<(), SparseError> {
-        let same = matches!(&self.pattern, Some((r, c, ..)) if *r == j.rows && *c == j.cols);
+        let same = matches!(&self.pattern, Some(p) if p.rows == j.rows && p.cols == j.cols);
         if !same {
-            let idx: Vec<Pair<usize, usize>> = j.rows.iter().zip(&j.cols).map(|(&row, &col)| Pair { row, col }).collect();
-            let (symbolic, argsort) = SymbolicSparseColMat::try_new_from_indices(j.n, j.n, &idx).map_err(|e| SparseError::Structure(format!("{e:?}")))?;
-            let lu = SymbolicLu::try_new(symbolic.as_ref()).map_err(|e| SparseError::Structure(format!("{e:?}")))?;
-            self.pattern = Some((j.rows.clone(), j.cols.clone(), symbolic, argsort, lu));
+            let p = Pattern::new(j)?;
+            let req = p.lu.factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default()).or(p.lu.solve_in_place_scratch::<f64>(1, Par::Seq));
+            self.scratch = MemBuffer::new(req);
+            self.values = vec![0.0; p.csc.row_idx().len()];
+            self.pattern = Some(p);
             self.symbolic_factorizations += 1;
         }
-        let Some((_, _, symbolic, argsort, symbolic_lu)) = &self.pattern else { unreachable!() };
-        let a = SparseColMat::new_from_argsort(symbolic.clone(), argsort, &j.values).map_err(|e| SparseError::Structure(format!("{e:?}")))?;
-        let lu = Lu::try_new_with_symbolic(symbolic_lu.clone(), a.as_ref()).map_err(|_| SparseError::Singular)?;
-        let mut b = Mat::from_fn(j.n, 1, |i, _| rhs[i]);
-        lu.solve_in_place(b.as_mut());
-        if (0..j.n).any(|i| !b[(i, 0)].is_finite()) {
-            return Err(SparseError::Singular);
+        let Some(p) = &self.pattern else { unreachable!("set above") };
+        self.values.iter_mut().for_each(|v| *v = 0.0);
+        for (&k, v) in p.position.iter().zip(&j.values) {
+            self.values[k] += v;
         }
-        for (i, x) in rhs.iter_mut().enumerate() {
-            *x = b[(i, 0)];
+        let a = SparseColMatRef::new(p.csc.as_ref(), &self.values);
+        let stack = MemStack::new(&mut self.scratch);
+        let lu = p.lu.factorize_numeric_lu(&mut self.numeric, a, Par::Seq, stack, Default::default()).map_err(|_| SparseError::Singular)?;
+        let mut b = MatMut::from_column_major_slice_mut(rhs, j.n, 1);
+        lu.solve_in_place_with_conj(Conj::No, b.rb_mut(), Par::Seq, MemStack::new(&mut self.scratch));
+        if rhs.iter().any(|x| !x.is_finite()) {
+            return Err(SparseError::Singular);
         }
         Ok(())
     }

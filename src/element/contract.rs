@@ -56,6 +56,14 @@ pub trait ResidualSink {
 /// Where an element adds `∂F/∂(perturbation)` entries; the assembler turns them into `J(c)`.
 pub trait JacobianSink {
     fn add(&mut self, row: Row, col: Col, value: f64);
+    /// A 3x3 block (the assembler maps a block of one node's columns at once).
+    fn add_block(&mut self, rows: [Row; 3], cols: [Col; 3], m: &Mat3) {
+        for (i, row) in rows.into_iter().enumerate() {
+            for (j, col) in cols.into_iter().enumerate() {
+                self.add(row, col, m[(i, j)]);
+            }
+        }
+    }
 }
 
 /// Rows of a 3-vector quantity.
@@ -98,11 +106,7 @@ pub fn add_vec(sink: &mut dyn ResidualSink, rows: [Row; 3], v: &Vec3) {
 
 /// Adds a 3x3 block.
 pub fn add_block(sink: &mut dyn JacobianSink, rows: [Row; 3], cols: [Col; 3], m: &Mat3) {
-    for (i, row) in rows.into_iter().enumerate() {
-        for (j, col) in cols.into_iter().enumerate() {
-            sink.add(row, col, m[(i, j)]);
-        }
-    }
+    sink.add_block(rows, cols, m);
 }
 
 /// One element of the model.

@@ -26,7 +26,8 @@ pub fn gibbs_rate_derivative(g: &Vec3, gdot: &Vec3) -> Mat3 {
 
 /// `g` of a rotation matrix (through its quaternion); undefined for rotations by π.
 pub fn gibbs_from_rotation(r: &Mat3) -> Vec3 {
-    let q = nalgebra::UnitQuaternion::from_matrix(r);
+    // Shepperd's direct method (from_rotation_matrix), not nalgebra's iterative from_matrix.
+    let q = nalgebra::UnitQuaternion::from_rotation_matrix(&nalgebra::Rotation3::from_matrix_unchecked(*r));
     let (w, v) = (q.w, q.imag());
     let v = if w < 0.0 { -v } else { v };
     2.0 * v / w.abs().max(f64::MIN_POSITIVE)

@@ -102,7 +102,9 @@ impl ModelBuilder {
                 }
             }
         }
+        let node_indices = self.nodes.iter().enumerate().map(|(i, n)| (n.label, i)).collect();
         Ok(Model {
+            node_indices,
             nodes: self.nodes,
             elements: self.elements,
             gravity: self.gravity.unwrap_or_else(Vec3::zeros),

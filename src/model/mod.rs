@@ -9,6 +9,8 @@ pub use builder::{ModelBuilder, ModelError};
 pub use problem::{AbortAfter, EigenOutput, EigenRequest, InitialValueProblem, Method};
 pub use summary::Summary;
 
+use std::collections::HashMap;
+
 use crate::element::Element;
 use crate::kinematics::{Mat3, Vec3};
 use crate::linear::ConstraintForm;
@@ -52,11 +54,13 @@ pub struct Model {
     /// Layout of the constraint equations (eq. 29 or eq. 30) used by dynamics and
     /// linearization; static analysis always uses the plain form.
     pub constraint_form: ConstraintForm,
+    /// Index in `nodes` of each node label.
+    node_indices: HashMap<Label, usize>,
 }
 
 impl Model {
     /// Index of the node with this label.
     pub fn node_index(&self, label: Label) -> Option<usize> {
-        self.nodes.iter().position(|n| n.label == label)
+        self.node_indices.get(&label).copied()
     }
 }

@@ -3,8 +3,8 @@
 //! Newton with `δy = b₀ δẏ` (eqs. 3–5). Orientations are re-based at every step, so each
 //! node's `g` is measured from its orientation at the previous step.
 
-use super::newton::{newton, Convergence, NewtonFailure, NewtonSettings, Update};
-use crate::dae::{Assembler, SparseLu, State};
+use super::newton::{newton, NewtonWorkspace, Convergence, NewtonFailure, NewtonSettings, Update};
+use crate::dae::{Assembler, State};
 use crate::kinematics::{gibbs_from_rotation, gibbs_g, Mat3, Vec3};
 use crate::linear::ConstraintForm;
 use crate::model::{Method, NodeKind};
@@ -55,18 +55,18 @@ pub struct Integrator<'a, 'm> {
     pub h: f64,
     pub settings: NewtonSettings,
     pub state: State,
-    lu: SparseLu,
+    workspace: NewtonWorkspace,
     previous: Option<Past>,
 }
 
 impl<'a, 'm> Integrator<'a, 'm> {
     pub fn new(asm: &'a Assembler<'m>, state: State, method: Method, h: f64, settings: NewtonSettings) -> Self {
-        Integrator { asm, method, h, settings, state, lu: SparseLu::new(), previous: None }
+        Integrator { asm, method, h, settings, state, workspace: NewtonWorkspace::new(), previous: None }
     }
 
     /// Number of symbolic factorizations so far (1 for a fixed sparsity pattern).
     pub fn symbolic_factorizations(&self) -> usize {
-        self.lu.symbolic_factorizations
+        self.workspace.lu.symbolic_factorizations
     }
 
     fn snapshot(&self) -> Past {
@@ -114,7 +114,7 @@ impl<'a, 'm> Integrator<'a, 'm> {
             self.state.y[i] = a1 * y1[i] + a2 * y2[i] + b0 * ypred + b1 * yp1[i] + b2 * yp2[i];
         }
         self.state.t += self.h;
-        let done = newton(self.asm, &mut self.state, Update::Dynamic { dcoef: b0, form }, &self.settings, &mut self.lu)?;
+        let done = newton(self.asm, &mut self.state, Update::Dynamic { dcoef: b0, form }, &self.settings, &mut self.workspace)?;
         self.previous = Some(current);
         Ok(StepRecord { t: self.state.t, iterations: done.iterations, residual_norm: done.residual_norm })
     }
@@ -141,6 +141,5 @@ pub fn initial_derivatives(asm: &Assembler, st: &mut State, settings: &NewtonSet
             }
         }
     }
-    let mut lu = SparseLu::new();
-    newton(asm, st, Update::Dynamic { dcoef: 1e-6, form }, settings, &mut lu)
+    newton(asm, st, Update::Dynamic { dcoef: 1e-6, form }, settings, &mut NewtonWorkspace::new())
 }

@@ -8,5 +8,5 @@ mod static_analysis;
 
 pub use crate::model::Method;
 pub use integrate::{initial_derivatives, newton_dcoef, Integrator, StepRecord};
-pub use newton::{newton, Convergence, NewtonFailure, NewtonSettings, SolveError, Update};
+pub use newton::{newton, Convergence, NewtonFailure, NewtonSettings, NewtonWorkspace, SolveError, Update};
 pub use static_analysis::static_solution;

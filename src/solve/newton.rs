@@ -1,6 +1,6 @@
 //! Newton's method on `F = 0` with `J δ = −F` (eq. 5), sparse LU with symbolic reuse.
 
-use crate::dae::{Assembler, Coefficients, SparseLu, State};
+use crate::dae::{Assembler, Coefficients, SparseLu, State, Triplets};
 use crate::linear::ConstraintForm;
 
 /// Convergence settings (residual in the units of each equation: N, N m, kg m/s, m).
@@ -73,8 +73,22 @@ fn limit_rotation_step(asm: &Assembler, delta: &mut [f64]) {
     }
 }
 
+/// What Newton keeps from one iteration (and one step) to the next: the sparse LU with its
+/// symbolic factorization, and the Jacobian's storage.
+#[derive(Default)]
+pub struct NewtonWorkspace {
+    pub lu: SparseLu,
+    jacobian: Triplets,
+}
+
+impl NewtonWorkspace {
+    pub fn new() -> Self {
+        Self::default()
+    }
+}
+
 /// Iterates to convergence.
-pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &NewtonSettings, lu: &mut SparseLu) -> Result<Convergence, NewtonFailure> {
+pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &NewtonSettings, ws: &mut NewtonWorkspace) -> Result<Convergence, NewtonFailure> {
     let (coef, form, dcoef) = match update {
         Update::Static => (Coefficients::static_analysis(), ConstraintForm::Plain, 1.0),
         Update::Dynamic { dcoef, form } => (Coefficients::newton(dcoef, form), form, dcoef),
@@ -92,12 +106,13 @@ pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &Newton
         if !norm.is_finite() || iteration == settings.max_iterations {
             return Err(fail(st, iteration, &f, (!norm.is_finite()).then(|| "the residual is not finite".to_string())));
         }
-        let mut j = asm.jacobian(st, coef);
+        asm.jacobian_into(st, coef, &mut ws.jacobian);
+        let j = &mut ws.jacobian;
         let residual = f.clone();
         for x in f.iter_mut() {
             *x = -*x;
         }
-        if lu.solve(&j, &mut f).is_err() {
+        if ws.lu.solve(j, &mut f).is_err() {
             // A singular Jacobian, typically at the first static iteration where stiffness
             // comes only from joint reactions that are still zero: take one regularized
             // step, `(J + μ I) δ = −F` with μ a small fraction of the largest entry.
@@ -107,7 +122,7 @@ pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &Newton
             }
             f = residual.iter().map(|x| -x).collect();
             let mut regularized = SparseLu::new();
-            regularized.solve(&j, &mut f).map_err(|e| fail(st, iteration, &residual, Some(e.to_string())))?;
+            regularized.solve(j, &mut f).map_err(|e| fail(st, iteration, &residual, Some(e.to_string())))?;
         }
         if let Update::Static = update {
             limit_rotation_step(asm, &mut f);

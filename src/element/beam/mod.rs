@@ -224,19 +224,16 @@ impl Element for Beam3 {
         }
         let kinds = if self.viscous { 4 } else { 2 };
         for node in 0..3 {
-            for row in 0..6 {
-                let r = Row::Equilibrium { slot: node, comp: row };
+            for rows in [Row::force(node), Row::moment(node)] {
+                let r = match rows[0] {
+                    Row::Equilibrium { comp, .. } => 6 * node + comp,
+                    _ => unreachable!("beam rows are equilibrium rows"),
+                };
                 for slot in 0..3 {
-                    for kind in 0..kinds {
-                        for comp in 0..3 {
-                            let col = match kind {
-                                0 => Col::Position { slot, comp },
-                                1 => Col::Rotation { slot, comp },
-                                2 => Col::Velocity { slot, comp },
-                                _ => Col::AngularVelocity { slot, comp },
-                            };
-                            out.add(r, col, jac[(6 * node + row, 12 * slot + 3 * kind + comp)]);
-                        }
+                    let cols = [Col::position(slot), Col::rotation(slot), Col::velocity(slot), Col::angular_velocity(slot)];
+                    for (kind, c) in cols.into_iter().enumerate().take(kinds) {
+                        let block: Mat3 = jac.fixed_view::<3, 3>(r, 12 * slot + 3 * kind).into();
+                        out.add_block(rows, c, &block);
                     }
                 }
             }
