@@ -152,8 +152,12 @@ fn model_errors() {
         (model("structural nodes: 2;", NODES, "aerodynamic body: 1, 2;"), "m.mbd:6:1: error: element type 'aerodynamic body' is not supported by romdyn"),
         (model("structural nodes: 2; joints: 1;", NODES, "joint: 1, prismatic, 1, 2;"), "m.mbd:6:11: error: joint type 'prismatic' is not supported by romdyn"),
         (model("structural nodes: 2; joints: 1;", NODES, "driven: 1, string, \"Time > 1.\", joint: 1, clamp, 1, node, node;"), "m.mbd:6:1: error: element type 'driven' (an element switched on and off during the run) is not supported by romdyn"),
-        // 41. beam3 waits for the beam element.
-        (model("structural nodes: 2; beams: 1;", NODES, "beam3: 5, 1, null, 2, null, 1, null, same, linear elastic, 1.;"), "m.mbd:6:1: error: element type 'beam3' (beam3 5) is not supported by romdyn yet"),
+        // 41. Beams: the two-node beam is not supported; a 3-node beam needs a length, a
+        // section orientation before 'same', and a 6-D law.
+        (model("structural nodes: 2; beams: 1;", NODES, "beam2: 5, 1, null, 2, null, eye, linear elastic, 1.;"), "m.mbd:6:1: error: element type 'beam2' (beam2 5) is not supported by romdyn (supported: beam3)"),
+        (model("structural nodes: 2; beams: 1;", NODES, "beam3: 5, 1, null, 1, null, 1, null, eye, linear elastic, 1., same, same;"), "m.mbd:6:1: error: beam 5: the reference line has zero length at evaluation point I"),
+        (model("structural nodes: 2; beams: 1;", NODES, "beam3: 5, 1, null, 2, null, 1, null, same, linear elastic, 1.;"), "m.mbd:6:38: error: expected orientation of section I: "),
+        (model("structural nodes: 2; beams: 1;", NODES, "constitutive law: 1, 3, linear elastic, 1.;\nbeam3: 5, 1, null, 2, null, 2, 1., 0., 0., eye, reference, 1, same, same;"), "m.mbd:7:49: error: constitutive law 1 has dimension 3, this element needs 6"),
         // 42. Physics romdyn cannot honour is an error, not skipped.
         (model("structural nodes: 2; model: static;", NODES, ""), "m.mbd:2:43: error: 'model: static' (dynamic nodes treated as static) changes the physics and is not supported by romdyn"),
         (model("structural nodes: 2; genels: 1;", NODES, ""), "m.mbd:2:51: error: control data declares genels, which romdyn does not support"),
