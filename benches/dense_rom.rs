@@ -36,6 +36,7 @@ fn pencil(n: usize) -> LinearDae {
         input_names: vec!["u".into()],
         output_names: vec!["z".into()],
         constraint_form: None,
+        multipliers: Vec::new(),
     }
 }
 

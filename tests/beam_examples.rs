@@ -64,3 +64,16 @@ fn cantilever_file_reproduces_the_elastica() {
     let (down, back) = (-st.y[tip + 1], 1.0 - st.y[tip]);
     assert!(rel(down, 0.30172) < 0.005 && rel(back, 0.05643) < 0.005, "{down} {back}");
 }
+
+#[test]
+fn full_model_static_gain_is_eq_73_in_the_form_of_eq_30() {
+    // The file's model uses MBDyn's constraint form (eq. 30), where F_y alone is singular;
+    // the static matrix restores the constraint rows and multiplier columns. Paper eq. 73:
+    // L³/(48 EJ) + L/(4 GA), to 1e-9 relative.
+    let m = with_variables("simply_supported_beam.mbd", "");
+    let st = reference_state(&m.model, &m.problem, Reference::Static { load_steps: 1 }).unwrap();
+    let dae = linearize(&m.model, &st, &["5:Fy".parse().unwrap()], &["5:y".parse().unwrap()], None).unwrap();
+    let gain = romdyn::rom::full_static_gain(&dae).unwrap()[(0, 0)];
+    let exact = TABLE3.length.powi(3) / (48.0 * TABLE3.ej) + TABLE3.length / (4.0 * TABLE3.ga);
+    assert!(rel(gain, exact) < 1e-9, "{gain:e}");
+}

@@ -47,6 +47,7 @@ fn chain() -> LinearDae {
         input_names: vec!["f50".into()],
         output_names: vec!["x50".into()],
         constraint_form: None,
+        multipliers: Vec::new(),
     }
 }
 

@@ -116,3 +116,19 @@ fn full_model_response_matches_closed_form() {
         assert!((h - exact).norm() / exact.norm() < 1e-12);
     }
 }
+
+#[test]
+fn full_static_gain_in_the_form_of_eq_30_restores_the_constraint() {
+    // Eq. 30: the constraint row and the multiplier column live in F_yd, so F_y is singular;
+    // with the multiplier known, the static matrix is eq. 29's F_y and the gain is 1/k =
+    // 1e-3 m/N (CASES C1), to rounding. Without that knowledge there is no static gain.
+    use romdyn::linear::ConstraintForm;
+    use romdyn::rom::full_static_gain;
+    let mut dae = two_masses(10.0, true);
+    assert!(full_static_gain(&dae).is_err());
+    dae.constraint_form = Some(ConstraintForm::Scaled);
+    dae.multipliers = vec![4];
+    let g = full_static_gain(&dae).unwrap()[(0, 0)];
+    assert!(rel(g, 1e-3) < 1e-12, "{g}");
+    assert!(rel(full_static_gain(&two_masses(10.0, false)).unwrap()[(0, 0)], 1e-3) < 1e-12);
+}

@@ -103,5 +103,6 @@ pub fn linearize(model: &Model, state: &State, inputs: &[NodeInput], outputs: &[
         input_names: inputs.iter().map(NodeInput::name).collect(),
         output_names: outputs.iter().map(NodeOutput::name).collect(),
         constraint_form: Some(form),
+        multipliers: (0..n).filter(|&i| asm.dofs.is_multiplier(i)).collect(),
     })
 }

@@ -99,6 +99,7 @@ pub fn read_eigen_pencil(path: &Path, ports: &PencilPorts) -> Result<(LinearDae,
         input_names: ports.input_rows.iter().map(|r| format!("equation {r} (generalized force)")).collect(),
         output_names: ports.output_cols.iter().map(|c| format!("unknown {c}")).collect(),
         constraint_form: None,
+        multipliers: Vec::new(),
     };
     Ok((dae, c))
 }

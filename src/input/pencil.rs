@@ -200,6 +200,7 @@ pub fn parse_pencil(text: &str, file: &Path) -> Result<PencilFile, PencilError> 
         b,
         c,
         constraint_form: None,
+        multipliers: Vec::new(),
     };
     Ok(PencilFile { dae, dcoef: r.dcoef()? })
 }

@@ -47,6 +47,9 @@ pub struct LinearDae {
     pub output_names: Vec<String>,
     /// Layout of the constraint equations, when known (multibody models report it).
     pub constraint_form: Option<ConstraintForm>,
+    /// Indices of the Lagrange multipliers (each also the index of its constraint
+    /// equation), when known.
+    pub multipliers: Vec<usize>,
 }
 
 /// `F_yd = (J + J*)/2`, `F_y = (J − J*)/(2c)` (eqs. 15–16).
@@ -93,6 +96,25 @@ impl Jacobians {
 }
 
 impl LinearDae {
+    /// The matrix of the static response `S Δy = B̃ u` (`ẏ = 0`). It is `F_y`, except in the
+    /// form of eq. 30, where the multipliers' columns and the constraints' rows sit in
+    /// `F_yd` (multipliers as derivatives, constraint rows scaled by 1/c): `S` takes those
+    /// from `F_yd`, which gives the plain form's `F_y` (eq. 29).
+    pub fn static_matrix(&self) -> Mat<f64> {
+        let (fyd, mut s) = self.jacobians.derivatives();
+        if self.constraint_form == Some(ConstraintForm::Scaled) {
+            for &k in &self.multipliers {
+                for i in 0..s.nrows() {
+                    s[(i, k)] = fyd[(i, k)];
+                }
+                for j in 0..s.ncols() {
+                    s[(k, j)] = fyd[(k, j)];
+                }
+            }
+        }
+        s
+    }
+
     /// Number of equations (= unknowns).
     pub fn dim(&self) -> usize {
         self.jacobians.dim()

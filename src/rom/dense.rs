@@ -3,20 +3,44 @@
 use faer::linalg::solvers::Solve;
 use faer::{c64, Mat};
 
-/// `M⁻¹ R` by LU with full pivoting, or `None` when `M` is numerically singular
-/// (smallest pivot below `n ε` times the largest).
+/// Row and column scale factors (powers of two) that bring every row's and column's largest
+/// entry of `m` near 1 (alternating sweeps).
+fn equilibration(m: &Mat<f64>) -> (Vec<f64>, Vec<f64>) {
+    let n = m.nrows();
+    let (mut row, mut col) = (vec![1.0; n], vec![1.0; n]);
+    let pow2 = |s: f64| if s > 0.0 && s.is_finite() { (-s.log2().round()).exp2() } else { 1.0 };
+    for _ in 0..4 {
+        for i in 0..n {
+            row[i] *= pow2((0..n).map(|j| (row[i] * m[(i, j)] * col[j]).abs()).fold(0.0, f64::max));
+        }
+        for j in 0..n {
+            col[j] *= pow2((0..n).map(|i| (row[i] * m[(i, j)] * col[j]).abs()).fold(0.0, f64::max));
+        }
+    }
+    (row, col)
+}
+
+/// `M⁻¹ R` by LU with full pivoting of the equilibrated `D_r M D_c`, or `None` when it is
+/// numerically singular (smallest pivot below `n ε` times the largest). Equilibration
+/// matters for multibody static matrices: a saddle point `[K Φᵀ; Φ 0]` with stiffness
+/// `K ~ 1e7` and unit constraint gradients has singular values near `1/K` while being
+/// perfectly determined.
 pub(crate) fn solve_nonsingular(m: &Mat<f64>, r: &Mat<f64>) -> Option<Mat<f64>> {
     let n = m.nrows();
     if n == 0 {
         return Some(Mat::zeros(0, r.ncols()));
     }
-    let lu = m.full_piv_lu();
+    let (dr, dc) = equilibration(m);
+    let scaled = Mat::from_fn(n, n, |i, j| dr[i] * m[(i, j)] * dc[j]);
+    let lu = scaled.full_piv_lu();
     let u = lu.U();
     let (big, small) = (0..n).map(|i| u[(i, i)].abs()).fold((0.0f64, f64::INFINITY), |(b, s), x| (b.max(x), s.min(x)));
     if !(small > big * n as f64 * f64::EPSILON) {
         return None;
     }
-    Some(lu.solve(r))
+    // M x = R  ⇔  (D_r M D_c)(D_c⁻¹ x) = D_r R.
+    let x = lu.solve(Mat::from_fn(n, r.ncols(), |i, j| dr[i] * r[(i, j)]));
+    Some(Mat::from_fn(n, r.ncols(), |i, j| dc[i] * x[(i, j)]))
 }
 
 /// Complex copy of a real matrix.

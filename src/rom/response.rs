@@ -21,10 +21,10 @@ pub fn full_frequency_response(dae: &LinearDae, freq_hz: &[f64]) -> Vec<Mat<c64>
     freq_hz.iter().map(|f| transfer(2.0 * std::f64::consts::PI * f, &fyd, &fy, &dae.b, &dae.c, None)).collect()
 }
 
-/// Static gain `C̃ F_y⁻¹ B̃`. Fails when `F_y` is singular, as it is in the form of eq. 30
-/// (constrained variables have zero eigenvalues) or for free-floating models.
+/// Static gain `C̃ S⁻¹ B̃` with `S` = [`LinearDae::static_matrix`] (`F_y`, with the
+/// constraint rows and multiplier columns of eq. 30 restored). Fails when `S` is singular:
+/// free-floating models, or a pencil in the form of eq. 30 whose multipliers are unknown.
 pub fn full_static_gain(dae: &LinearDae) -> Result<Mat<f64>, RomError> {
-    let (_, fy) = dae.jacobians.derivatives();
-    let x = solve_nonsingular(&fy, &dae.b).ok_or(RomError::SingularStatic("F_y of the full model"))?;
+    let x = solve_nonsingular(&dae.static_matrix(), &dae.b).ok_or(RomError::SingularStatic("the static matrix of the full model"))?;
     Ok(&dae.c * &x)
 }

@@ -41,6 +41,7 @@ pub fn two_masses(r: f64, scaled: bool) -> LinearDae {
         input_names: vec!["f".into()],
         output_names: vec!["x2".into()],
         constraint_form: None,
+        multipliers: Vec::new(),
     }
 }
 
