@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
 use romdyn::linear::{LinearDae, ModalAnalysis};
+use romdyn::output::modal::ModalReport;
 use romdyn::output::rom_file::RomExport;
 use romdyn::rom::{full_static_gain, select_modes, DescriptorRom, OrdinaryRom};
 
@@ -27,8 +28,11 @@ pub struct RomArgs {
     #[command(flatten)]
     pub select: SelectionArgs,
     /// Statically residualize the dynamic modes that were not selected (paper Fig. 7)
-    #[arg(long)]
+    #[arg(long, conflicts_with = "residualize_modes")]
     pub residualize: bool,
+    /// Statically residualize only these modes (1-based indices of the modal table; a pair counts once), e.g. the third bending mode of a beam
+    #[arg(long, value_name = "I,J,...", value_delimiter = ',')]
+    pub residualize_modes: Option<Vec<usize>>,
     /// Which form to export
     #[arg(long, value_enum, default_value = "ordinary")]
     pub form: Form,
@@ -65,19 +69,38 @@ pub struct FreqArgs {
 struct Built {
     dae: LinearDae,
     modal: ModalAnalysis,
+    /// The lowest dynamic modes of the modal table, as text.
+    table: String,
     descriptor: DescriptorRom,
     ordinary: OrdinaryRom,
 }
 
-fn build(pencil: &PencilArgs, selection: &romdyn::rom::ModeSelection, residualize: bool) -> Result<Built> {
-    let Loaded { dae, modal, .. } = load(pencil)?;
+/// Which dropped modes a ROM keeps as static states.
+enum Residualize {
+    None,
+    AllDropped,
+    /// 1-based modal-table indices.
+    Modes(Vec<usize>),
+}
+
+fn build(pencil: &PencilArgs, selection: &romdyn::rom::ModeSelection, residualize: Residualize) -> Result<Built> {
+    let loaded = load(pencil)?;
+    let table = ModalReport::new(&loaded.modal, loaded.dae.dim()).with_energy(loaded.energy()).to_text_dynamic(12);
+    let Loaded { dae, modal, .. } = loaded;
     if dae.num_inputs() == 0 || dae.num_outputs() == 0 {
         anyhow::bail!("a ROM needs inputs and outputs: give --input NODE:COMP and --output NODE:COMP for a model, --input-row I and --output-col J for an .m pencil");
     }
-    let sel = select_modes(&modal, selection)?;
-    let descriptor = DescriptorRom::project(&dae, &modal, &sel, residualize)?;
+    let mut sel = select_modes(&modal, selection)?;
+    if let Residualize::Modes(list) = &residualize {
+        let chosen = select_modes(&modal, &romdyn::rom::ModeSelection::Indices(list.clone()))?.kept;
+        if let Some(k) = chosen.iter().find(|k| sel.kept.contains(k)) {
+            anyhow::bail!("mode {} is both kept and residualized", k + 1);
+        }
+        sel.dropped = chosen;
+    }
+    let descriptor = DescriptorRom::project(&dae, &modal, &sel, !matches!(residualize, Residualize::None))?;
     let ordinary = descriptor.to_ordinary()?;
-    Ok(Built { dae, modal, descriptor, ordinary })
+    Ok(Built { dae, modal, table, descriptor, ordinary })
 }
 
 /// Static gains of the full model and of the ROM, side by side, on stderr.
@@ -106,7 +129,13 @@ fn report_static_gain(b: &Built) {
 }
 
 pub fn run(a: RomArgs) -> Result<()> {
-    let b = build(&a.pencil, &a.select.selection(), a.residualize)?;
+    let residualize = match (&a.residualize_modes, a.residualize) {
+        (Some(list), _) => Residualize::Modes(list.clone()),
+        (None, true) => Residualize::AllDropped,
+        (None, false) => Residualize::None,
+    };
+    let b = build(&a.pencil, &a.select.selection(), residualize)?;
+    eprint!("{}", b.table);
     let kept: Vec<String> = b.descriptor.eigenvalues.iter().map(|l| format!("{:.6}{:+.6}j", l.re, l.im)).collect();
     eprintln!(
         "ROM: {} states ({} kept eigenvalues: {}), {} statically residualized states",
@@ -143,7 +172,7 @@ pub fn run_freq(a: FreqArgs) -> Result<()> {
     };
     let curves = match selection {
         Some(sel) => {
-            let b = build(&a.pencil, &sel, a.residualize)?;
+            let b = build(&a.pencil, &sel, if a.residualize { Residualize::AllDropped } else { Residualize::None })?;
             full_responses(&b.dae, &b.modal, &a.freq, &b.descriptor.eigenvalues).with_rom("ROM", &b.ordinary)
         }
         None => {

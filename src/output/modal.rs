@@ -97,6 +97,18 @@ impl ModalReport {
 
     /// The table as aligned text.
     pub fn to_text(&self) -> String {
+        self.text(self.eigenvalues.iter(), "")
+    }
+
+    /// The header and the first `limit` dynamic modes (pairs count twice), as aligned text.
+    pub fn to_text_dynamic(&self, limit: usize) -> String {
+        let dynamic: Vec<&ModeRow> = self.eigenvalues.iter().filter(|r| r.kind == ModeKind::Dynamic).collect();
+        let more = dynamic.len().saturating_sub(limit);
+        let tail = if more > 0 { format!("  … {more} more dynamic modes (romdyn eig lists every mode)\n") } else { String::new() };
+        self.text(dynamic.into_iter().take(limit), &tail)
+    }
+
+    fn text<'a>(&self, rows: impl Iterator<Item = &'a ModeRow>, tail: &str) -> String {
         let mut s = format!(
             "# {} equations, route {:?}, dCoef {:e} s; {} dynamic, {} zero, {} infinite\n",
             self.equations, self.route, self.dcoef, self.counts.dynamic, self.counts.zero, self.counts.infinite
@@ -107,14 +119,15 @@ impl ModalReport {
             "mode", "Re λ [rad/s]", "Im λ [rad/s]", "freq [Hz]", "damping", "kind", "error"
         );
         let num = |x: Option<f64>, w: usize| x.map_or(format!("{:>w$}", "-"), |v| format!("{v:>w$.6e}"));
-        for r in &self.eigenvalues {
+        for r in rows {
             let row = format!(
                 "{:>5}  {}  {}  {}  {}  {:>8}  {}  {}",
                 r.index,
                 num(r.re, 14),
                 num(r.im, 14),
                 r.freq_hz.map_or(format!("{:>12}", "-"), |v| format!("{v:>12.6}")),
-                r.damping.map_or(format!("{:>9}", "-"), |v| format!("{v:>9.4}")),
+                // Rounding leaves |ζ| ~ 1e-12 on undamped modes: show 0.0000, not -0.0000.
+                r.damping.map_or(format!("{:>9}", "-"), |v| format!("{:>9.4}", if v.abs() < 5e-5 { 0.0 } else { v })),
                 r.kind.name(),
                 r.error.map_or(format!("{:>9}", "inf"), |v| format!("{v:>9.1e}")),
                 r.description.as_deref().unwrap_or(""),
@@ -122,6 +135,6 @@ impl ModalReport {
             s += row.trim_end();
             s += "\n";
         }
-        s
+        s + tail
     }
 }
