@@ -40,7 +40,9 @@ pub fn load(a: &PencilArgs) -> Result<Loaded> {
             let m = read_model(path)?;
             let st = reference_state(&m.model, &m.problem, a.reference.reference()).with_context(|| format!("{}: reference solution", path.display()))?;
             let dae = linearize(&m.model, &st, &a.inputs, &a.outputs, None)?;
-            (dae, None, Some(m.model))
+            // The Λ form's dCoef: the file's eigenanalysis parameter (h/2) when it gives one.
+            let dcoef = m.problem.eigenanalysis.as_ref().and_then(|e| e.dcoef);
+            (dae, dcoef, Some(m.model))
         }
         (None, None) => anyhow::bail!("give a MODEL file or --pencil FILE"),
     };

@@ -68,9 +68,13 @@ fn print_summary(file: &str, r: &RunReport, written: &[PathBuf]) {
     );
     for e in &r.eigenanalyses {
         println!("eigenanalysis {} at t = {} s (dCoef = {} s): {} dynamic, {} zero, {} infinite eigenvalues", e.index, seconds(e.time), e.dcoef, e.dynamic.len(), e.zero, e.infinite);
-        for l in &e.dynamic {
+        const SHOWN: usize = 10;
+        for l in e.dynamic.iter().take(SHOWN) {
             let (f, zeta) = (l.norm() / (2.0 * std::f64::consts::PI), if l.norm() > 0.0 { -l.re / l.norm() } else { 0.0 });
-            println!("  λ = {:.6}{:+.6}j rad/s  (f = {f:.6} Hz, ζ = {zeta:.4})", l.re, l.im);
+            println!("  λ = {:.6}{:+.6}j rad/s  (f = {f:.6} Hz, ζ = {:.4})", l.re, l.im, if zeta.abs() < 5e-5 { 0.0 } else { zeta });
+        }
+        if e.dynamic.len() > SHOWN {
+            println!("  … {} more (all of them in the .m and .json files)", e.dynamic.len() - SHOWN);
         }
     }
     if !r.eigen_times_not_reached.is_empty() {
