@@ -28,7 +28,7 @@ impl From<Route> for EigenRoute {
 /// Where the linear DAE comes from and how it is eigenanalysed.
 #[derive(Args, Debug)]
 pub struct PencilArgs {
-    /// MBDyn input file of a multibody model, linearized at its initial time (or --at)
+    /// MBDyn input file of a multibody model, linearized at its initial time (or --at, --static)
     #[arg(value_name = "MODEL", required_unless_present = "pencil")]
     pub model: Option<PathBuf>,
     #[command(flatten)]

@@ -25,7 +25,7 @@ struct Cli {
 
 #[derive(Subcommand, Debug)]
 enum Command {
-    /// Run an MBDyn input file: initial-value problem and eigenanalyses; writes .out, .mov, .log, .m, .json
+    /// Run an MBDyn input file: initial-value problem and eigenanalyses; writes .out, .mov, .log, .m, .json (.act, .bst with beams)
     ///
     /// Consistent initial derivatives, then fixed steps of the file's method from the initial to the
     /// final time [s]; at each 'eigenanalysis' time J(+c) and J(-c) (c = the file's 'parameter', else
@@ -40,7 +40,8 @@ enum Command {
     /// At the model's reference solution, compares each element's J(c) = F/y' + c F/y (c = b0 of the
     /// file's method and time step [s], the coefficient Newton uses) with central finite differences
     /// of the element's residual: y' is perturbed by ±h and y by ±c h (multipliers as Newton moves
-    /// them), h = 1e-6 (1 + max(|y_j|, |y'_j|)). Prints each element's worst entry (equation,
+    /// them), h = 1e-6 max(1 + |y'_j|, (1 + |y_j|)/c), so y moves by about 1e-6 (1 + |y_j|). Prints
+    /// each element's worst entry (equation,
     /// unknown, analytic and finite-difference values); an element fails when
     /// max |analytic - fd| / max(max |J_element|, 1) exceeds the tolerance (default 1e-6), and any
     /// failure gives exit status 1.

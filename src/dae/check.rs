@@ -2,7 +2,10 @@
 //!
 //! For each unknown `j` the state is perturbed the way Newton moves it — `ẏ_j ± h` and
 //! `y_j ± c h` for differential unknowns, `y_j ± h` (eq. 30) or `y_j ± c h` (eq. 29) for
-//! multipliers — so the central difference of `F` is column `j` of `J(c)`.
+//! multipliers — so the central difference of `F` is column `j` of `J(c)`. The step makes
+//! `y_j` move by about `1e-6 (1 + |y_j|)` whatever `c` is (a step of `c h` with a small `c`
+//! would drown the difference of a stiff element's residual in rounding), and `ẏ_j` by at
+//! least `1e-6 (1 + |ẏ_j|)`.
 
 use super::{Assembler, Coefficients, State};
 use crate::linear::ConstraintForm;
@@ -39,7 +42,8 @@ pub fn check_jacobians(asm: &Assembler, st: &State, dcoef: f64, form: Constraint
         let mut worst = JacobianMismatch { element: format!("{} {}", el.type_name(), el.label()), equation: String::new(), unknown: String::new(), analytic: 0.0, finite_difference: 0.0, relative_error: 0.0 };
         for &j in &unknowns {
             let multiplier = dofs.is_multiplier(j);
-            let h = 1e-6 * (1.0 + st.y[j].abs().max(st.yp[j].abs()));
+            let moves_y_by_h = multiplier && form == ConstraintForm::Scaled;
+            let h = if moves_y_by_h { 1e-6 * (1.0 + st.y[j].abs()) } else { 1e-6 * (1.0 + st.yp[j].abs()).max((1.0 + st.y[j].abs()) / dcoef) };
             let perturbed = |sign: f64| {
                 let mut s = st.clone();
                 if multiplier {
