@@ -65,6 +65,11 @@ pub fn run() -> ExitCode {
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
+        // Input errors already read "FILE:LINE:COLUMN: error: …" with the line and a caret.
+        Err(e) if e.downcast_ref::<romdyn::input::mbdyn::MbdynError>().is_some() => {
+            eprintln!("{e}");
+            ExitCode::FAILURE
+        }
         Err(e) => {
             eprintln!("romdyn: error: {e:#}");
             ExitCode::FAILURE
