@@ -4,32 +4,12 @@
 mod common;
 
 use common::cli::{pendulum_variant, romdyn, temp_dir, write_file, DISPLACED_NODE, PENDULUM_NODE};
+use common::fixtures::WrongSpring;
 use common::models::pendulum;
 use romdyn::analysis::{check_model_jacobians, Reference, JACOBIAN_CHECK_TOLERANCE};
-use romdyn::element::{Col, Element, ElementState, JacobianSink, ResidualSink, Row};
 use romdyn::linear::ConstraintForm;
 use romdyn::model::{InitialValueProblem, Method, Model};
 use romdyn::solve::newton_dcoef;
-
-/// A spring to ground along y at node 2 whose Jacobian is twice its residual's derivative.
-struct WrongSpring;
-impl Element for WrongSpring {
-    fn label(&self) -> u32 {
-        99
-    }
-    fn type_name(&self) -> &'static str {
-        "wrong spring"
-    }
-    fn nodes(&self) -> Vec<u32> {
-        vec![2]
-    }
-    fn residual(&self, s: &dyn ElementState, out: &mut dyn ResidualSink) {
-        out.add(Row::Equilibrium { slot: 0, comp: 1 }, 10.0 * s.node(0).x.y);
-    }
-    fn jacobian(&self, _: &dyn ElementState, out: &mut dyn JacobianSink) {
-        out.add(Row::Equilibrium { slot: 0, comp: 1 }, Col::Position { slot: 0, comp: 1 }, 20.0);
-    }
-}
 
 fn pendulum_with_wrong_spring() -> Model {
     let mut model = pendulum(0.0, false, ConstraintForm::Scaled);

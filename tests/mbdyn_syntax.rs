@@ -4,7 +4,11 @@
 //! residual compared with the same model built through the Rust API from the manual's
 //! formulas, at pseudo-random states).
 
+mod common;
+
 use std::path::Path;
+
+use common::fixtures::Noise;
 
 use romdyn::dae::{Assembler, State};
 use romdyn::element::{Anchor, Couple, DeformableDisplacement, DeformableHinge, Drive, Force, ForceFrame, Joint, LinearViscoelastic, RigidBody, Rod};
@@ -24,17 +28,6 @@ fn variables(text: &str) -> romdyn::input::mbdyn::Variables {
 /// A file with the given control data, nodes and elements.
 fn file(control: &str, nodes: &str, elements: &str) -> String {
     format!("begin: data; problem: initial value; end: data;\nbegin: control data; {control} end: control data;\nbegin: nodes;\n{nodes}\nend: nodes;\nbegin: elements;\n{elements}\nend: elements;\n")
-}
-
-/// Deterministic noise in [-1, 1) (xorshift64*).
-struct Noise(u64);
-impl Noise {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        2.0 * ((self.0.wrapping_mul(0x2545F4914F6CDD1D) >> 11) as f64 / (1u64 << 53) as f64) - 1.0
-    }
 }
 
 /// `F(y, ẏ, t)` at the initial state moved by noise (same layout for equal models).

@@ -2,31 +2,14 @@
 //! a random state (random orientation parameters, velocities, momenta, multipliers), in both
 //! constraint forms. Tolerance: 1e-6 relative to the element's largest entry (issue 3).
 
+mod common;
+
+use common::fixtures::{Noise, WrongSpring};
 use romdyn::dae::{check_jacobians, Assembler, State};
-use romdyn::element::{Beam3, BeamNode, SectionLaw, SectionOrientation, Anchor, Col, Element, ElementState, JacobianSink, ResidualSink, Row, Couple, DeformableDisplacement, DeformableHinge, Drive, Force, ForceFrame, Joint, LinearViscoelastic, RigidBody, Rod};
-use romdyn::kinematics::{gibbs_rotation, Mat3, Vec3};
+use romdyn::element::{Anchor, Beam3, BeamNode, SectionLaw, SectionOrientation, Couple, DeformableDisplacement, DeformableHinge, Drive, Force, ForceFrame, Joint, LinearViscoelastic, RigidBody, Rod};
+use romdyn::kinematics::{Mat3, Vec3};
 use romdyn::linear::ConstraintForm;
 use romdyn::model::{Model, ModelBuilder};
-
-/// Deterministic pseudo-random numbers in [-1, 1) (xorshift64*).
-struct Noise(u64);
-impl Noise {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        2.0 * ((self.0.wrapping_mul(0x2545F4914F6CDD1D) >> 11) as f64 / (1u64 << 53) as f64) - 1.0
-    }
-    fn vec(&mut self) -> Vec3 {
-        Vec3::new(self.next(), self.next(), self.next())
-    }
-    fn rotation(&mut self) -> Mat3 {
-        gibbs_rotation(&self.vec())
-    }
-    fn matrix(&mut self) -> Mat3 {
-        Mat3::from_fn(|_, _| self.next())
-    }
-}
 
 fn node(label: u32, n: &mut Noise) -> Anchor {
     Anchor::Node { label, offset: n.vec(), orientation: n.rotation() }
@@ -92,26 +75,6 @@ fn every_element_jacobian_matches_finite_differences() {
         for w in &worst {
             assert!(w.relative_error < 1e-6, "{form:?}: {} d({})/d({}): analytic {:e}, fd {:e} (error {:e})", w.element, w.equation, w.unknown, w.analytic, w.finite_difference, w.relative_error);
         }
-    }
-}
-
-/// A spring to ground whose Jacobian is deliberately twice its residual's derivative.
-struct WrongSpring;
-impl Element for WrongSpring {
-    fn label(&self) -> u32 {
-        99
-    }
-    fn type_name(&self) -> &'static str {
-        "wrong spring"
-    }
-    fn nodes(&self) -> Vec<u32> {
-        vec![2]
-    }
-    fn residual(&self, s: &dyn ElementState, out: &mut dyn ResidualSink) {
-        out.add(Row::Equilibrium { slot: 0, comp: 1 }, 10.0 * s.node(0).x.y);
-    }
-    fn jacobian(&self, _: &dyn ElementState, out: &mut dyn JacobianSink) {
-        out.add(Row::Equilibrium { slot: 0, comp: 1 }, Col::Position { slot: 0, comp: 1 }, 20.0);
     }
 }
 

@@ -1,8 +1,9 @@
 //! Reading models and matrices: MBDyn input files, linear-DAE pencil files (JSON, or the
 //! eigenanalysis `.m` files MBDyn writes), Matrix Market matrices.
 
-pub mod matrix_market;
+mod chars;
 pub mod eigen_pencil;
+pub mod matrix_market;
 pub mod mbdyn;
 pub mod octave_m;
 pub mod pencil;

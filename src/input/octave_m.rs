@@ -11,6 +11,8 @@
 
 use std::path::{Path, PathBuf};
 
+use super::chars::CharStream;
+
 /// A malformed script.
 #[derive(Debug, thiserror::Error)]
 pub enum OctaveError {
@@ -81,32 +83,21 @@ pub fn read_octave_script(file: &Path) -> Result<OctaveScript, OctaveError> {
 
 struct Scanner<'a> {
     file: &'a Path,
-    chars: Vec<char>,
-    pos: usize,
-    line: usize,
-    column: usize,
+    text: CharStream,
 }
 
 impl Scanner<'_> {
     fn peek(&self) -> Option<char> {
-        self.chars.get(self.pos).copied()
+        self.text.peek()
     }
     fn peek_at(&self, k: usize) -> Option<char> {
-        self.chars.get(self.pos + k).copied()
+        self.text.peek_at(k)
     }
     fn bump(&mut self) -> Option<char> {
-        let c = self.peek()?;
-        self.pos += 1;
-        if c == '\n' {
-            self.line += 1;
-            self.column = 1;
-        } else {
-            self.column += 1;
-        }
-        Some(c)
+        self.text.bump()
     }
     fn here(&self) -> Position {
-        Position { line: self.line, column: self.column }
+        Position { line: self.text.line, column: self.text.column }
     }
     fn error_at(&self, at: Position, message: impl Into<String>) -> OctaveError {
         OctaveError::Syntax { file: self.file.to_path_buf(), line: at.line, column: at.column, message: message.into() }
@@ -313,7 +304,7 @@ fn spconvert(t: &OctaveMatrix) -> Result<OctaveMatrix, String> {
 
 /// Parses a script (`file` names it in errors).
 pub fn parse_octave_script(text: &str, file: &Path) -> Result<OctaveScript, OctaveError> {
-    let mut s = Scanner { file, chars: text.chars().collect(), pos: 0, line: 1, column: 1 };
+    let mut s = Scanner { file, text: CharStream::new(text) };
     let mut script = OctaveScript { file: file.to_path_buf(), variables: Vec::new() };
     loop {
         s.skip_blanks();
@@ -337,10 +328,10 @@ pub fn parse_octave_script(text: &str, file: &Path) -> Result<OctaveScript, Octa
             }
             Some(c) if c.is_ascii_alphabetic() => {
                 // A function call, or Inf/NaN (read again as a number).
-                let save = (s.pos, s.line, s.column);
+                let save = s.text.mark();
                 let word = s.identifier().unwrap_or_default();
                 if matches!(word.to_ascii_lowercase().as_str(), "inf" | "nan") {
-                    (s.pos, s.line, s.column) = save;
+                    s.text.reset(save);
                     let (re, im) = s.entry()?;
                     OctaveMatrix { rows: 1, cols: 1, re: vec![re], im: (im != 0.0).then(|| vec![im]), from_sparse: false }
                 } else {

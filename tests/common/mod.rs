@@ -3,6 +3,7 @@
 
 pub mod beams;
 pub mod cli;
+pub mod fixtures;
 pub mod models;
 
 use faer::Mat;

@@ -4,6 +4,7 @@
 //! comments.
 
 use super::diagnostic::{MbdynError, Sources, Span};
+use crate::input::chars::CharStream;
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum Token {
@@ -24,42 +25,30 @@ pub struct Spanned {
 
 const SYMBOLS: [&str; 24] = ["::", "==", "!=", "<=", ">=", "&&", "||", "~|", ":", ",", ";", "(", ")", "[", "]", "+", "-", "*", "/", "%", "^", "=", "<", ">"];
 
-/// Character stream with line and column.
-struct Scanner<'a> {
-    chars: &'a [char],
-    i: usize,
-    line: usize,
-    column: usize,
+/// Characters with line and column, in file `file` of the sources.
+struct Scanner {
+    text: CharStream,
     file: usize,
 }
 
-impl Scanner<'_> {
+impl Scanner {
     fn peek(&self, k: usize) -> Option<char> {
-        self.chars.get(self.i + k).copied()
+        self.text.peek_at(k)
     }
     fn span(&self) -> Span {
-        Span { file: self.file, line: self.line, column: self.column }
+        Span { file: self.file, line: self.text.line, column: self.text.column }
     }
     fn bump(&mut self) -> Option<char> {
-        let c = self.peek(0)?;
-        self.i += 1;
-        if c == '\n' {
-            self.line += 1;
-            self.column = 1;
-        } else {
-            self.column += 1;
-        }
-        Some(c)
+        self.text.bump()
     }
     fn starts_with(&self, s: &str) -> bool {
-        s.chars().enumerate().all(|(k, c)| self.peek(k) == Some(c))
+        self.text.starts_with(s)
     }
 }
 
 /// Splits a file's text into tokens.
 pub fn tokenize(text: &str, file: usize, sources: &Sources) -> Result<Vec<Spanned>, MbdynError> {
-    let chars: Vec<char> = text.chars().collect();
-    let mut s = Scanner { chars: &chars, i: 0, line: 1, column: 1, file };
+    let mut s = Scanner { text: CharStream::new(text), file };
     let mut out = Vec::new();
     while let Some(c) = s.peek(0) {
         let span = s.span();
