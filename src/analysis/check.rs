@@ -3,7 +3,7 @@
 //! file's integrator uses (`c = b₀`, eq. 5).
 
 use super::reference::{reference_state, Reference};
-use super::run::RunError;
+use super::error::RunError;
 use crate::dae::{check_jacobians, Assembler, JacobianMismatch};
 use crate::model::{InitialValueProblem, Model};
 use crate::output::jacobian_check::jacobian_check_text;

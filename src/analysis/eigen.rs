@@ -4,7 +4,7 @@
 
 use faer::{c64, Mat};
 
-use super::run::RunError;
+use super::error::RunError;
 use crate::dae::{kinetic_energy_shares, linearize, DofMap, EnergyShare, State};
 use crate::kinematics::rotation_vector;
 use crate::linear::{EigenRoute, Jacobians, LinearDae, ModalAnalysis, ModeKind};

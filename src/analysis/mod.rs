@@ -7,6 +7,7 @@
 
 mod check;
 mod eigen;
+mod error;
 mod files;
 mod observer;
 mod reference;
@@ -17,4 +18,5 @@ pub use eigen::{Eigenanalysis, DEFAULT_DCOEF};
 pub use files::{eigen_file_stem, RunFiles};
 pub use observer::{Derivatives, EigenDone, ObserverError, RunObserver, RunStart, StepDone};
 pub use reference::{reference_state, Reference};
-pub use run::{run, EigenSummary, RunError, RunReport};
+pub use error::RunError;
+pub use run::{run, EigenSummary, RunReport};

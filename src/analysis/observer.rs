@@ -3,12 +3,10 @@
 //! implement [`RunObserver`]; an observer's error stops the run.
 
 use super::eigen::Eigenanalysis;
+pub use super::error::ObserverError;
 use crate::dae::{Assembler, State};
 use crate::element::{NodeKinematics, SectionState};
 use crate::model::{InitialValueProblem, Label, Model};
-
-/// An observer's failure (e.g. a file that cannot be written).
-pub type ObserverError = Box<dyn std::error::Error + Send + Sync>;
 
 /// The run is about to start.
 pub struct RunStart<'a> {

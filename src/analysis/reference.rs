@@ -3,7 +3,8 @@
 //! equilibrium at the initial time (loads and gravity ramped) — as `eig`, `rom`, `freq` and
 //! `check` use with `--at TIME` or `--static`.
 
-use super::run::{run, RunError};
+use super::error::RunError;
+use super::run::run;
 use crate::dae::{Assembler, State};
 use crate::model::{InitialValueProblem, Model};
 use crate::solve::{static_solution, NewtonSettings};

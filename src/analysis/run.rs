@@ -12,28 +12,13 @@ use std::time::{Duration, Instant};
 use faer::c64;
 
 use super::eigen::Eigenanalysis;
-use super::observer::{Derivatives, EigenDone, ObserverError, RunObserver, RunStart, StepDone};
+use super::error::{ObserverError, RunError};
+use super::observer::{Derivatives, EigenDone, RunObserver, RunStart, StepDone};
 use crate::dae::{Assembler, State};
 use crate::linear::ModeKind;
 use crate::model::{AbortAfter, InitialValueProblem, Model};
-use crate::solve::{initial_derivatives, Integrator, NewtonFailure, NewtonSettings};
+use crate::solve::{initial_derivatives, Integrator, NewtonSettings};
 
-/// Why a run stopped.
-#[derive(Debug, thiserror::Error)]
-pub enum RunError {
-    #[error("invalid initial-value problem: {0}")]
-    Problem(String),
-    #[error("initial derivatives: {0}")]
-    Derivatives(NewtonFailure),
-    #[error("static equilibrium: {0}")]
-    Static(NewtonFailure),
-    #[error("step {step} of {steps} (t = {time} s): {failure}")]
-    Step { step: usize, steps: usize, time: f64, failure: NewtonFailure },
-    #[error("eigenanalysis {index} at t = {time} s: {message}")]
-    Eigen { index: usize, time: f64, message: String },
-    #[error(transparent)]
-    Observer(ObserverError),
-}
 
 /// One eigenanalysis in the report.
 #[derive(Clone, Debug)]

@@ -7,7 +7,7 @@ use nalgebra::{Matrix6, Vector6};
 
 use super::cursor::Cursor;
 use super::diagnostic::MbdynError;
-use super::elements::{ElementContext, Parsed};
+use super::element_context::{ElementContext, Parsed};
 use super::laws::{linear_law, LinearLaw};
 use crate::element::{Beam3, BeamNode, SectionLaw, SectionOrientation};
 use crate::model::Label;

@@ -3,57 +3,17 @@
 //! type is named in an error; `automatic structural` (initial momenta, recomputed anyway)
 //! and the `inertia` and `output` cards (output only) are accepted and ignored.
 
+use super::beams::beam;
 use super::cursor::Cursor;
 use super::diagnostic::MbdynError;
-use super::beams::beam;
-use super::drives::{single_term, template_vec3, Drives};
+use super::element_context::{ElementContext, Parsed};
+use super::drives::{single_term, template_vec3};
 use super::joints::joint;
-use super::laws::Laws;
-use super::nodes::Nodes;
 use super::parser::{known, Statement};
-use super::references::{Context, Frame, Frames};
+use super::references::Frame;
 use crate::element::{Couple, Drive, Element, Force, ForceFrame, RigidBody};
 use crate::kinematics::{Mat3, Vec3};
-use crate::model::{Label, StructuralNode};
-
-/// What an `elements` statement produced.
-pub enum Parsed {
-    Element(Box<dyn Element>),
-    /// Gravity acceleration [m/s²].
-    Gravity(Vec3),
-    /// A card that does not change the model.
-    Ignored,
-}
-
-/// Everything an element statement can refer to.
-pub struct ElementContext<'a> {
-    pub nodes: &'a Nodes,
-    pub frames: &'a Frames,
-    pub drives: &'a Drives,
-    pub laws: &'a Laws,
-    /// The statement being read (cards must come before it).
-    pub seq: usize,
-}
-
-impl<'a> ElementContext<'a> {
-    /// A structural node label that names a node with unknowns.
-    pub fn node(&self, c: &mut Cursor, what: &str) -> Result<&'a StructuralNode, MbdynError> {
-        let span = c.here();
-        let label = c.label(what)?;
-        match self.nodes.find(label) {
-            Some(n) if n.dummy => Err(c.error_at(span, format!("structural node {label} is a dummy node (output only): romdyn cannot connect elements to it"))),
-            Some(n) => Ok(&n.node),
-            None => Err(c.error_at(span, format!("structural node {label} is not defined"))),
-        }
-    }
-    /// Entities read relative to node `n`.
-    pub fn on(&self, n: &StructuralNode) -> Context<'a> {
-        Context::on_node(self.frames, self.seq, n)
-    }
-    pub fn global(&self) -> Context<'a> {
-        Context::global(self.frames, self.seq)
-    }
-}
+use crate::model::Label;
 
 /// Element types of MBDyn romdyn names in its "not supported" error.
 const OTHER_TYPES: [&str; 24] = [

@@ -11,7 +11,7 @@
 use super::cursor::Cursor;
 use super::diagnostic::MbdynError;
 use super::drives::{single_term, template_vec3};
-use super::elements::ElementContext;
+use super::element_context::ElementContext;
 use super::laws::{linear_law, rest_strain, three, LinearLaw};
 use super::references::{Context, Frame, OtherSide};
 use crate::element::{Anchor, DeformableDisplacement, DeformableHinge, Drive, Element, Joint, Rod};

@@ -1,0 +1,52 @@
+//! What an `elements` statement reads from the rest of the file (nodes, reference frames,
+//! drive callers, constitutive laws) and what it produces.
+
+use super::cursor::Cursor;
+use super::diagnostic::MbdynError;
+use super::drives::Drives;
+use super::laws::Laws;
+use super::nodes::Nodes;
+use super::references::{Context, Frames};
+use crate::element::Element;
+use crate::kinematics::Vec3;
+use crate::model::StructuralNode;
+
+/// What an `elements` statement produced.
+pub enum Parsed {
+    Element(Box<dyn Element>),
+    /// Gravity acceleration [m/s²].
+    Gravity(Vec3),
+    /// A card that does not change the model.
+    Ignored,
+}
+
+/// Everything an element statement can refer to.
+pub struct ElementContext<'a> {
+    pub nodes: &'a Nodes,
+    pub frames: &'a Frames,
+    pub drives: &'a Drives,
+    pub laws: &'a Laws,
+    /// The statement being read (cards must come before it).
+    pub seq: usize,
+}
+
+impl<'a> ElementContext<'a> {
+    /// A structural node label that names a node with unknowns.
+    pub fn node(&self, c: &mut Cursor, what: &str) -> Result<&'a StructuralNode, MbdynError> {
+        let span = c.here();
+        let label = c.label(what)?;
+        match self.nodes.find(label) {
+            Some(n) if n.dummy => Err(c.error_at(span, format!("structural node {label} is a dummy node (output only): romdyn cannot connect elements to it"))),
+            Some(n) => Ok(&n.node),
+            None => Err(c.error_at(span, format!("structural node {label} is not defined"))),
+        }
+    }
+    /// Entities read relative to node `n`.
+    pub fn on(&self, n: &StructuralNode) -> Context<'a> {
+        Context::on_node(self.frames, self.seq, n)
+    }
+    pub fn global(&self) -> Context<'a> {
+        Context::global(self.frames, self.seq)
+    }
+}
+
