@@ -71,19 +71,20 @@ fn global_row(dofs: &DofMap, slots: &[usize], first: usize, row: Row) -> Option<
     }
 }
 
-struct Residual<'a> {
+/// Maps an element's residual rows to equations and hands `(equation, value)` to `put`.
+struct Residual<'a, P: FnMut(usize, f64)> {
     dofs: &'a DofMap,
     slots: &'a [usize],
     first: usize,
     constraint_scale: f64,
-    f: &'a mut [f64],
+    put: P,
 }
 
-impl ResidualSink for Residual<'_> {
+impl<P: FnMut(usize, f64)> ResidualSink for Residual<'_, P> {
     fn add(&mut self, row: Row, value: f64) {
         let scale = if matches!(row, Row::Constraint(_)) { self.constraint_scale } else { 1.0 };
         if let Some(i) = global_row(self.dofs, self.slots, self.first, row) {
-            self.f[i] += value * scale;
+            (self.put)(i, value * scale);
         }
     }
 }
@@ -184,7 +185,7 @@ impl<'m> Assembler<'m> {
         Assembler { model, dofs: DofMap::new(model) }
     }
 
-    fn frames(&self, st: &State) -> Vec<NodeFrame> {
+    pub(crate) fn frames(&self, st: &State) -> Vec<NodeFrame> {
         (0..self.model.nodes.len()).map(|i| st.node_frame(&self.dofs, i)).collect()
     }
 
@@ -209,7 +210,7 @@ impl<'m> Assembler<'m> {
         let scale = if form == ConstraintForm::Scaled { 1.0 / dcoef } else { 1.0 };
         for (e, el) in self.model.elements.iter().enumerate() {
             let ctx = self.context(&frames, st, e);
-            let mut sink = Residual { dofs: &self.dofs, slots: &self.dofs.element_nodes[e], first: self.dofs.element_first[e], constraint_scale: scale, f: &mut f };
+            let mut sink = Residual { dofs: &self.dofs, slots: &self.dofs.element_nodes[e], first: self.dofs.element_first[e], constraint_scale: scale, put: |i, v| f[i] += v };
             el.residual(&ctx, &mut sink);
         }
         f
@@ -287,22 +288,22 @@ impl<'m> Assembler<'m> {
         out
     }
 
-    /// The contribution of one element alone (for the finite-difference check).
-    pub(crate) fn element_residual(&self, st: &State, e: usize, form: ConstraintForm, dcoef: f64) -> Vec<f64> {
-        let frames = self.frames(st);
-        let mut f = vec![0.0; self.dofs.len];
-        let ctx = self.context(&frames, st, e);
+    /// The contribution of one element alone, as `(equation, value)` entries (for the
+    /// finite-difference check), with the nodes' frames at `st` given.
+    pub(crate) fn element_residual(&self, st: &State, frames: &[NodeFrame], e: usize, form: ConstraintForm, dcoef: f64) -> Vec<(usize, f64)> {
+        let mut entries = Vec::new();
+        let ctx = self.context(frames, st, e);
         let scale = if form == ConstraintForm::Scaled { 1.0 / dcoef } else { 1.0 };
-        let mut sink = Residual { dofs: &self.dofs, slots: &self.dofs.element_nodes[e], first: self.dofs.element_first[e], constraint_scale: scale, f: &mut f };
+        let mut sink = Residual { dofs: &self.dofs, slots: &self.dofs.element_nodes[e], first: self.dofs.element_first[e], constraint_scale: scale, put: |i, v| entries.push((i, v)) };
         self.model.elements[e].residual(&ctx, &mut sink);
-        f
+        entries
     }
 
-    pub(crate) fn element_jacobian(&self, st: &State, e: usize, c: Coefficients) -> Triplets {
-        let frames = self.frames(st);
+    /// The Jacobian entries of one element alone, with the nodes' frames at `st` given.
+    pub(crate) fn element_jacobian(&self, st: &State, frames: &[NodeFrame], e: usize, c: Coefficients) -> Triplets {
         let mut out = Triplets::new(self.dofs.len);
-        let ctx = self.context(&frames, st, e);
-        let mut sink = Jacobian { dofs: &self.dofs, frames: &frames, slots: &self.dofs.element_nodes[e], first: self.dofs.element_first[e], c, out: &mut out };
+        let ctx = self.context(frames, st, e);
+        let mut sink = Jacobian { dofs: &self.dofs, frames, slots: &self.dofs.element_nodes[e], first: self.dofs.element_first[e], c, out: &mut out };
         self.model.elements[e].jacobian(&ctx, &mut sink);
         out
     }

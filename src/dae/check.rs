@@ -7,6 +7,8 @@
 //! would drown the difference of a stiff element's residual in rounding), and `ẏ_j` by at
 //! least `1e-6 (1 + |ẏ_j|)`.
 
+use std::collections::HashMap;
+
 use super::{Assembler, Coefficients, State};
 use crate::linear::ConstraintForm;
 
@@ -29,44 +31,70 @@ impl JacobianMismatch {
     }
 }
 
+/// The unknowns (and equations) an element touches: its nodes' and its own multipliers, each
+/// with the index of the node that owns it.
+fn element_unknowns(dofs: &super::DofMap, e: usize) -> Vec<(usize, Option<usize>)> {
+    let mut u: Vec<(usize, Option<usize>)> = dofs.element_nodes[e].iter().flat_map(|&n| (dofs.node_first[n]..dofs.node_first[n] + dofs.node_kind[n].unknowns()).map(move |j| (j, Some(n)))).collect();
+    u.extend((dofs.element_first[e]..dofs.element_first[e] + dofs.element_len[e]).map(|j| (j, None)));
+    u
+}
+
 /// Checks every element at `st` with coefficient `dcoef`; returns each element's worst
-/// entry (all of them, sorted by decreasing error).
+/// entry (all of them, sorted by decreasing error). Work per element is proportional to its
+/// own size: only the perturbed node's frame is recomputed, and only the element's
+/// equations are compared.
 pub fn check_jacobians(asm: &Assembler, st: &State, dcoef: f64, form: ConstraintForm) -> Vec<JacobianMismatch> {
     let dofs = &asm.dofs;
+    let mut st = st.clone();
+    let mut frames = asm.frames(&st);
     let mut out = Vec::new();
     for (e, el) in asm.model.elements.iter().enumerate() {
-        let analytic = asm.element_jacobian(st, e, Coefficients::newton(dcoef, form)).to_dense();
-        let mut unknowns: Vec<usize> = dofs.element_nodes[e].iter().flat_map(|&n| dofs.node_first[n]..dofs.node_first[n] + dofs.node_kind[n].unknowns()).collect();
-        unknowns.extend(dofs.element_first[e]..dofs.element_first[e] + dofs.element_len[e]);
-        let scale = analytic.norm_max().max(1.0);
+        let unknowns = element_unknowns(dofs, e);
+        let local: HashMap<usize, usize> = unknowns.iter().enumerate().map(|(k, &(j, _))| (j, k)).collect();
+        let m = unknowns.len();
+        // Analytic block (rows and columns: the element's equations and unknowns).
+        let mut analytic = vec![0.0; m * m];
+        let t = asm.element_jacobian(&st, &frames, e, Coefficients::newton(dcoef, form));
+        for k in 0..t.values.len() {
+            if let (Some(&r), Some(&c)) = (local.get(&t.rows[k]), local.get(&t.cols[k])) {
+                analytic[r * m + c] += t.values[k];
+            }
+        }
+        let scale = analytic.iter().fold(1.0f64, |a, v| a.max(v.abs()));
         let mut worst = JacobianMismatch { element: format!("{} {}", el.type_name(), el.label()), equation: String::new(), unknown: String::new(), analytic: 0.0, finite_difference: 0.0, relative_error: 0.0 };
-        for &j in &unknowns {
+        for (c, &(j, node)) in unknowns.iter().enumerate() {
             let multiplier = dofs.is_multiplier(j);
             let moves_y_by_h = multiplier && form == ConstraintForm::Scaled;
             let h = if moves_y_by_h { 1e-6 * (1.0 + st.y[j].abs()) } else { 1e-6 * (1.0 + st.yp[j].abs()).max((1.0 + st.y[j].abs()) / dcoef) };
-            let perturbed = |sign: f64| {
-                let mut s = st.clone();
+            let (y0, yp0) = (st.y[j], st.yp[j]);
+            let mut residual_at = |sign: f64| {
                 if multiplier {
-                    s.y[j] += sign * h * if form == ConstraintForm::Scaled { 1.0 } else { dcoef };
+                    st.y[j] = y0 + sign * h * if form == ConstraintForm::Scaled { 1.0 } else { dcoef };
                 } else {
-                    s.yp[j] += sign * h;
-                    s.y[j] += sign * h * dcoef;
+                    st.yp[j] = yp0 + sign * h;
+                    st.y[j] = y0 + sign * h * dcoef;
                 }
-                asm.element_residual(&s, e, form, dcoef)
+                let saved = node.map(|n| std::mem::replace(&mut frames[n], st.node_frame(dofs, n)));
+                let mut f = vec![0.0; m];
+                for (i, v) in asm.element_residual(&st, &frames, e, form, dcoef) {
+                    if let Some(&r) = local.get(&i) {
+                        f[r] += v;
+                    }
+                }
+                if let (Some(n), Some(fr)) = (node, saved) {
+                    frames[n] = fr;
+                }
+                (st.y[j], st.yp[j]) = (y0, yp0);
+                f
             };
-            let (fp, fm) = (perturbed(1.0), perturbed(-1.0));
-            for i in 0..dofs.len {
-                let fd = (fp[i] - fm[i]) / (2.0 * h);
-                let err = (analytic[(i, j)] - fd).abs() / scale;
-                if err > worst.relative_error {
-                    worst = JacobianMismatch {
-                        element: worst.element.clone(),
-                        equation: dofs.equation_name(asm.model, i),
-                        unknown: dofs.unknown_name(asm.model, j),
-                        analytic: analytic[(i, j)],
-                        finite_difference: fd,
-                        relative_error: err,
-                    };
+            let (fp, fm) = (residual_at(1.0), residual_at(-1.0));
+            for r in 0..m {
+                let fd = (fp[r] - fm[r]) / (2.0 * h);
+                let a = analytic[r * m + c];
+                let err = (a - fd).abs() / scale;
+                if err > worst.relative_error || (err.is_nan() && !worst.relative_error.is_nan()) {
+                    let i = unknowns[r].0;
+                    worst = JacobianMismatch { element: worst.element.clone(), equation: dofs.equation_name(asm.model, i), unknown: dofs.unknown_name(asm.model, j), analytic: a, finite_difference: fd, relative_error: err };
                 }
             }
         }
