@@ -5,7 +5,7 @@
 use faer::{c64, Mat};
 
 use super::error::RunError;
-use crate::dae::{kinetic_energy_shares, linearize, DofMap, EnergyShare, State};
+use crate::dae::{linearize, DofMap, EnergyShare, ModalEnergy, State};
 use crate::kinematics::rotation_vector;
 use crate::linear::{EigenRoute, Jacobians, LinearDae, ModalAnalysis, ModeKind};
 use crate::model::{EigenOutput, EigenRequest, Model};
@@ -56,9 +56,13 @@ impl Eigenanalysis {
         let dae = linearize(model, state, &[], &[], Some(dcoef)).map_err(|e| fail(e.to_string()))?;
         let modal = ModalAnalysis::compute(&dae.jacobians, EigenRoute::Lambda).map_err(|e| fail(e.to_string()))?;
         let written = within_limits(&modal, request);
-        let energy = (0..modal.modes.len())
-            .map(|k| if modal.modes[k].kind == ModeKind::Dynamic && written.contains(&k) { kinetic_energy_shares(model, &dae, &modal.modes[k]) } else { Vec::new() })
-            .collect();
+        let shares = ModalEnergy::new(model, &dae);
+        let mut energy = vec![Vec::new(); modal.modes.len()];
+        for &k in &written {
+            if modal.modes[k].kind == ModeKind::Dynamic {
+                energy[k] = shares.shares(&modal.modes[k]);
+            }
+        }
         let LinearDae { jacobians: Jacobians::Coefficient { j: aplus, jstar: aminus, .. }, unknown_names, .. } = dae else {
             return Err(fail("linearization did not return J(±c)".into()));
         };

@@ -40,8 +40,10 @@ pub struct RunFiles {
     eigen_count: usize,
     out: StepLog,
     mov: MotionWriter,
-    /// `.act` and `.bst`, opened at the first step that has beams.
+    /// `.act` and `.bst`, opened at step 0 when the model has beams.
     beams: Option<BeamSectionWriter>,
+    /// Whether step 0 showed elements with evaluation points (then every step is written).
+    has_beams: Option<bool>,
     staged: Vec<AtomicFile>,
 }
 
@@ -53,7 +55,7 @@ impl RunFiles {
         let mut log = AtomicFile::create(&prefixed_path(prefix, "log"))?;
         log.write_with(|w| write_model_log(w, input, model))?;
         let eigen_count = problem.eigenanalysis.as_ref().map_or(0, |r| r.times.len());
-        Ok(RunFiles { prefix: prefix.to_path_buf(), input: input.to_string(), eigen_count, out, mov, beams: None, staged: vec![log] })
+        Ok(RunFiles { prefix: prefix.to_path_buf(), input: input.to_string(), eigen_count, out, mov, beams: None, has_beams: None, staged: vec![log] })
     }
 
     /// Ends the step log and puts every file in place; returns their paths.
@@ -82,14 +84,18 @@ impl RunObserver for RunFiles {
     fn step(&mut self, e: &StepDone) -> Result<(), ObserverError> {
         self.out.step(&StepLine { step: e.step, time: e.time, time_step: e.time_step, iterations: e.iterations, residual_norm: e.residual_norm })?;
         self.mov.write_step(&e.node_kinematics())?;
+        if self.has_beams == Some(false) {
+            return Ok(());
+        }
         let sections = e.beam_sections();
-        if !sections.is_empty() {
-            if self.beams.is_none() {
+        if self.has_beams.is_none() {
+            self.has_beams = Some(!sections.is_empty());
+            if !sections.is_empty() {
                 self.beams = Some(BeamSectionWriter::create(&prefixed_path(&self.prefix, "act"), &prefixed_path(&self.prefix, "bst"))?);
             }
-            if let Some(b) = self.beams.as_mut() {
-                b.write_step(&sections)?;
-            }
+        }
+        if let Some(b) = self.beams.as_mut() {
+            b.write_step(&sections)?;
         }
         Ok(())
     }

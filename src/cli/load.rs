@@ -4,7 +4,7 @@
 
 use anyhow::{Context, Result};
 use romdyn::analysis::reference_state;
-use romdyn::dae::{kinetic_energy_shares, linearize, EnergyShare};
+use romdyn::dae::{linearize, EnergyShare, ModalEnergy};
 use romdyn::input::eigen_pencil::PencilPorts;
 use romdyn::input::mbdyn::read_model;
 use romdyn::input::pencil::read_pencil_file;
@@ -23,7 +23,10 @@ impl Loaded {
     /// Kinetic-energy shares of every mode (empty lists for pencil files).
     pub fn energy(&self) -> Vec<Vec<EnergyShare>> {
         match &self.model {
-            Some(model) => self.modal.modes.iter().map(|m| kinetic_energy_shares(model, &self.dae, m)).collect(),
+            Some(model) => {
+                let energy = ModalEnergy::new(model, &self.dae);
+                self.modal.modes.iter().map(|m| energy.shares(m)).collect()
+            }
             None => vec![Vec::new(); self.modal.modes.len()],
         }
     }

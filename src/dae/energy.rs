@@ -20,30 +20,48 @@ pub struct EnergyShare {
     pub share: f64,
 }
 
-/// Kinetic-energy shares of a mode, largest first (empty without eigenvector or mass).
+/// The diagonal mass terms of every dynamic node component, read once from `F_/ẏ`, to
+/// share out the kinetic energy of any number of modes.
+pub struct ModalEnergy {
+    /// `(node label, component, unknown index, mass)`.
+    terms: Vec<(u32, &'static str, usize, f64)>,
+}
+
+impl ModalEnergy {
+    pub fn new(model: &Model, dae: &LinearDae) -> Self {
+        let dofs = DofMap::new(model);
+        let (fyd, _) = dae.jacobians.derivatives();
+        let mut terms = Vec::new();
+        for (i, node) in model.nodes.iter().enumerate() {
+            if dofs.node_kind[i] != NodeKind::Dynamic {
+                continue;
+            }
+            let f = dofs.node_first[i];
+            for (k, component) in COMPONENTS.iter().enumerate() {
+                terms.push((node.label, *component, f + k, (-fyd[(f + k, f + k)]).max(0.0)));
+            }
+        }
+        ModalEnergy { terms }
+    }
+
+    /// Kinetic-energy shares of a mode, largest first (empty without eigenvector or mass).
+    pub fn shares(&self, mode: &Mode) -> Vec<EnergyShare> {
+        let Some(v) = &mode.right else { return Vec::new() };
+        let mut out: Vec<EnergyShare> = self.terms.iter().map(|&(node, component, j, mass)| EnergyShare { node, component, share: mass * v[j].norm_sqr() }).collect();
+        let total: f64 = out.iter().map(|s| s.share).sum();
+        if total <= 0.0 {
+            return Vec::new();
+        }
+        out.iter_mut().for_each(|s| s.share /= total);
+        out.retain(|s| s.share > 0.0);
+        out.sort_by(|a, b| b.share.total_cmp(&a.share));
+        out
+    }
+}
+
+/// Kinetic-energy shares of one mode (for several modes, build one [`ModalEnergy`]).
 pub fn kinetic_energy_shares(model: &Model, dae: &LinearDae, mode: &Mode) -> Vec<EnergyShare> {
-    let Some(v) = &mode.right else { return Vec::new() };
-    let dofs = DofMap::new(model);
-    let (fyd, _) = dae.jacobians.derivatives();
-    let mut out = Vec::new();
-    for (i, node) in model.nodes.iter().enumerate() {
-        if dofs.node_kind[i] != NodeKind::Dynamic {
-            continue;
-        }
-        let f = dofs.node_first[i];
-        for (k, component) in COMPONENTS.iter().enumerate() {
-            let mass = -fyd[(f + k, f + k)];
-            out.push(EnergyShare { node: node.label, component, share: mass.max(0.0) * v[f + k].norm_sqr() });
-        }
-    }
-    let total: f64 = out.iter().map(|s| s.share).sum();
-    if total <= 0.0 {
-        return Vec::new();
-    }
-    out.iter_mut().for_each(|s| s.share /= total);
-    out.retain(|s| s.share > 0.0);
-    out.sort_by(|a, b| b.share.total_cmp(&a.share));
-    out
+    ModalEnergy::new(model, dae).shares(mode)
 }
 
 /// "node 3 rz 92 %, node 2 x 6 %": the components above 5 % (at least the largest).

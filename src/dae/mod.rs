@@ -25,7 +25,7 @@ mod state;
 pub use assembly::{Assembler, Coefficients};
 pub use check::{check_jacobians, JacobianMismatch};
 pub use dofs::DofMap;
-pub use energy::{describe, kinetic_energy_shares, EnergyShare};
+pub use energy::{describe, kinetic_energy_shares, EnergyShare, ModalEnergy};
 pub use linearize::{linearize, NodeInput, NodeOutput, PortError};
 pub use sparse::{SparseLu, Triplets};
 pub use state::State;

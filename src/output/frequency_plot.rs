@@ -58,10 +58,6 @@ impl FrequencyResponses {
         self
     }
 
-    pub fn curves(&self) -> &[ResponseCurve] {
-        &self.curves
-    }
-
     /// Writes `PREFIX.csv`, `PREFIX.svg` and `PREFIX.png`; returns their paths.
     pub fn write_files(&self, prefix: &Path, title: &str) -> Result<[PathBuf; 3], OutputError> {
         let paths = [prefixed_path(prefix, "csv"), prefixed_path(prefix, "svg"), prefixed_path(prefix, "png")];

@@ -224,11 +224,8 @@ impl Element for Beam3 {
         }
         let kinds = if self.viscous { 4 } else { 2 };
         for node in 0..3 {
-            for rows in [Row::force(node), Row::moment(node)] {
-                let r = match rows[0] {
-                    Row::Equilibrium { comp, .. } => 6 * node + comp,
-                    _ => unreachable!("beam rows are equilibrium rows"),
-                };
+            for (half, rows) in [Row::force(node), Row::moment(node)].into_iter().enumerate() {
+                let r = 6 * node + 3 * half;
                 for slot in 0..3 {
                     let cols = [Col::position(slot), Col::rotation(slot), Col::velocity(slot), Col::angular_velocity(slot)];
                     for (kind, c) in cols.into_iter().enumerate().take(kinds) {
