@@ -5,7 +5,7 @@
 use std::str::FromStr;
 
 use super::{Assembler, Coefficients, State};
-use crate::linear::{Jacobians, LinearDae};
+use crate::linear::{Jacobians, LinearDae, SparseLinearDae, SparseMatrix};
 use crate::model::{Label, Model};
 
 const FORCES: [&str; 6] = ["Fx", "Fy", "Fz", "Mx", "My", "Mz"];
@@ -68,19 +68,9 @@ impl NodeOutput {
     }
 }
 
-/// Linearizes `model` at `state` (re-based first so that rotations are measured by `g`).
-/// With `dcoef = Some(c)` the Jacobians are assembled as `J(±c)` (eqs. 13–14), otherwise
-/// `F_/ẏ` and `F_/y` directly; both routes agree to rounding.
-pub fn linearize(model: &Model, state: &State, inputs: &[NodeInput], outputs: &[NodeOutput], dcoef: Option<f64>) -> Result<LinearDae, PortError> {
-    let asm = Assembler::new(model);
-    let mut st = state.clone();
-    st.rebase(&asm.dofs);
-    let form = model.constraint_form;
-    let coef = |a, b| Coefficients { a, b, form, dcoef: dcoef.unwrap_or(1.0) };
-    let jacobians = match dcoef {
-        None => Jacobians::Derivatives { fyd: asm.jacobian(&st, coef(1.0, 0.0)).to_dense(), fy: asm.jacobian(&st, coef(0.0, 1.0)).to_dense() },
-        Some(c) => Jacobians::Coefficient { j: asm.jacobian(&st, coef(1.0, c)).to_dense(), jstar: asm.jacobian(&st, coef(1.0, -c)).to_dense(), dcoef: c },
-    };
+/// `B̃` (a force enters its node's equilibrium rows) and `C̃` (a motion is read at its node's
+/// first unknowns) for the given ports (eqs. 38–39).
+fn port_matrices(model: &Model, asm: &Assembler, inputs: &[NodeInput], outputs: &[NodeOutput]) -> Result<(faer::Mat<f64>, faer::Mat<f64>), PortError> {
     let n = asm.dofs.len;
     let node = |label: Label, text: String| model.node_index(label).ok_or(PortError::UnknownNode(text, label));
     let mut b = faer::Mat::<f64>::zeros(n, inputs.len());
@@ -95,6 +85,52 @@ pub fn linearize(model: &Model, state: &State, inputs: &[NodeInput], outputs: &[
         // At g = 0 a rotation increment is δθ = δg.
         c[(k, asm.dofs.node_first[i] + p.component)] = 1.0;
     }
+    Ok((b, c))
+}
+
+/// Linearizes `model` at `state` keeping `F_/ẏ` and `F_/y` sparse as assembled
+/// ([`SparseLinearDae`]: memory proportional to the non-zeros).
+pub fn linearize_sparse(model: &Model, state: &State, inputs: &[NodeInput], outputs: &[NodeOutput]) -> Result<SparseLinearDae, PortError> {
+    let asm = Assembler::new(model);
+    let mut st = state.clone();
+    st.rebase(&asm.dofs);
+    let form = model.constraint_form;
+    let n = asm.dofs.len;
+    let sparse = |a: f64, b: f64| {
+        let t = asm.jacobian(&st, Coefficients { a, b, form, dcoef: 1.0 });
+        let entries = (0..t.values.len()).map(|k| (t.rows[k], t.cols[k], t.values[k]));
+        SparseMatrix::from_triplets(n, n, entries).unwrap_or_else(|| unreachable!("the assembler writes inside its {n} x {n} pattern"))
+    };
+    let (fyd, fy) = (sparse(1.0, 0.0), sparse(0.0, 1.0));
+    let (b, c) = port_matrices(model, &asm, inputs, outputs)?;
+    Ok(SparseLinearDae {
+        fyd,
+        fy,
+        b,
+        c,
+        unknown_names: (0..n).map(|i| asm.dofs.unknown_name(model, i)).collect(),
+        input_names: inputs.iter().map(NodeInput::name).collect(),
+        output_names: outputs.iter().map(NodeOutput::name).collect(),
+        constraint_form: Some(form),
+        multipliers: (0..n).filter(|&i| asm.dofs.is_multiplier(i)).collect(),
+    })
+}
+
+/// Linearizes `model` at `state` (re-based first so that rotations are measured by `g`).
+/// With `dcoef = Some(c)` the Jacobians are assembled as `J(±c)` (eqs. 13–14), otherwise
+/// `F_/ẏ` and `F_/y` directly; both routes agree to rounding.
+pub fn linearize(model: &Model, state: &State, inputs: &[NodeInput], outputs: &[NodeOutput], dcoef: Option<f64>) -> Result<LinearDae, PortError> {
+    let asm = Assembler::new(model);
+    let mut st = state.clone();
+    st.rebase(&asm.dofs);
+    let form = model.constraint_form;
+    let coef = |a, b| Coefficients { a, b, form, dcoef: dcoef.unwrap_or(1.0) };
+    let jacobians = match dcoef {
+        None => Jacobians::Derivatives { fyd: asm.jacobian(&st, coef(1.0, 0.0)).to_dense(), fy: asm.jacobian(&st, coef(0.0, 1.0)).to_dense() },
+        Some(c) => Jacobians::Coefficient { j: asm.jacobian(&st, coef(1.0, c)).to_dense(), jstar: asm.jacobian(&st, coef(1.0, -c)).to_dense(), dcoef: c },
+    };
+    let n = asm.dofs.len;
+    let (b, c) = port_matrices(model, &asm, inputs, outputs)?;
     Ok(LinearDae {
         jacobians,
         b,

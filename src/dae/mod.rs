@@ -26,6 +26,6 @@ pub use assembly::{Assembler, Coefficients};
 pub use check::{check_jacobians, JacobianMismatch};
 pub use dofs::DofMap;
 pub use energy::{describe, kinetic_energy_shares, EnergyShare, ModalEnergy};
-pub use linearize::{linearize, NodeInput, NodeOutput, PortError};
+pub use linearize::{linearize, linearize_sparse, NodeInput, NodeOutput, PortError};
 pub use sparse::{SparseLu, Triplets};
 pub use state::State;

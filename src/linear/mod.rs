@@ -10,9 +10,11 @@ mod dynamic_eigen;
 mod eigen;
 mod route;
 mod sparse;
+mod sparse_dae;
 
 pub use classify::{Classification, ModeKind};
 pub use dae::{coefficient_from_derivatives, derivatives_from_coefficient, ConstraintForm, Jacobians, LinearDae};
 pub use eigen::{EigenError, ModalAnalysis, Mode};
 pub use route::EigenRoute;
 pub use sparse::SparseMatrix;
+pub use sparse_dae::{SparseLinearDae, SparseSolveError};

@@ -21,6 +21,35 @@ impl SparseMatrix {
         Self::from_dense_part(m, &rows, &cols)
     }
 
+    /// An `nrows x ncols` matrix from `(row, col, value)` entries; duplicates are summed
+    /// and entries that sum to zero are dropped. `None` when an index is out of range.
+    pub fn from_triplets(nrows: usize, ncols: usize, entries: impl IntoIterator<Item = (usize, usize, f64)>) -> Option<Self> {
+        let mut e: Vec<(usize, usize, f64)> = entries.into_iter().collect();
+        if e.iter().any(|&(i, j, _)| i >= nrows || j >= ncols) {
+            return None;
+        }
+        e.sort_unstable_by_key(|&(i, j, _)| (i, j));
+        let mut start = vec![0; nrows + 1];
+        let (mut col, mut val) = (Vec::with_capacity(e.len()), Vec::with_capacity(e.len()));
+        let mut k = 0;
+        for i in 0..nrows {
+            while k < e.len() && e[k].0 == i {
+                let j = e[k].1;
+                let mut x = 0.0;
+                while k < e.len() && e[k].0 == i && e[k].1 == j {
+                    x += e[k].2;
+                    k += 1;
+                }
+                if x != 0.0 {
+                    col.push(j);
+                    val.push(x);
+                }
+            }
+            start[i + 1] = col.len();
+        }
+        Some(SparseMatrix { nrows, ncols, start, col, val })
+    }
+
     /// The non-zeros of the submatrix `m[rows, cols]` (indices in the given order).
     pub fn from_dense_part(m: &Mat<f64>, rows: &[usize], cols: &[usize]) -> Self {
         let mut start = Vec::with_capacity(rows.len() + 1);
@@ -106,6 +135,11 @@ impl SparseMatrix {
             }
         }
         out
+    }
+
+    /// `(row, col, value)` of every stored entry, row by row.
+    pub fn triplets(&self) -> impl Iterator<Item = (usize, usize, f64)> + '_ {
+        (0..self.nrows).flat_map(move |i| (self.start[i]..self.start[i + 1]).map(move |k| (i, self.col[k], self.val[k])))
     }
 
     /// Dense copy.

@@ -8,9 +8,11 @@ mod error;
 mod ordinary;
 mod response;
 mod select;
+mod static_correction;
 
 pub use descriptor::DescriptorRom;
 pub use error::RomError;
 pub use ordinary::OrdinaryRom;
 pub use response::{full_frequency_response, full_static_gain, log_frequencies};
 pub use select::{select_modes, ModeSelection, Selection};
+pub use static_correction::with_static_correction;
