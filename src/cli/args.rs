@@ -5,8 +5,10 @@ use std::path::PathBuf;
 use clap::{Args, ValueEnum};
 use romdyn::analysis::Reference;
 use romdyn::dae::{NodeInput, NodeOutput};
+use romdyn::input::eigen_pencil::PencilPorts;
 use romdyn::linear::EigenRoute;
 use romdyn::rom::ModeSelection;
+use romdyn::study::{EigenSettings, FrequencyGrid, Linearization, Study, StudyError};
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
 pub enum Route {
@@ -54,6 +56,26 @@ pub struct PencilArgs {
     /// dCoef of the Λ form [s] (default: the file's, else ‖F_yd‖/‖F_y‖)
     #[arg(long, value_name = "C")]
     pub dcoef: Option<f64>,
+}
+
+impl PencilArgs {
+    /// The study these arguments describe: a model file linearized at its reference, or a
+    /// pencil file.
+    pub fn study(&self) -> Result<Study, StudyError> {
+        let eigen = EigenSettings { route: self.route.into(), dcoef: self.dcoef };
+        match (&self.pencil, &self.model) {
+            (Some(path), _) => {
+                let ports = PencilPorts { input_rows: self.input_rows.clone(), output_cols: self.output_cols.clone() };
+                Study::from_pencil_file(path, &ports, eigen)
+            }
+            (None, Some(path)) => {
+                let lin = Linearization { reference: self.reference.reference(), inputs: self.inputs.clone(), outputs: self.outputs.clone() };
+                Study::from_model_file(path, &lin, eigen)
+            }
+            // clap requires one of them.
+            (None, None) => Err(StudyError::NoSource),
+        }
+    }
 }
 
 /// Where a model file is linearized (default: its initial time, after consistent initial
@@ -129,4 +151,10 @@ pub struct FrequencyArgs {
     /// Number of log-spaced frequencies
     #[arg(long, default_value_t = 400)]
     pub points: usize,
+}
+
+impl FrequencyArgs {
+    pub fn grid(&self) -> FrequencyGrid {
+        FrequencyGrid { fmin_hz: self.fmin, fmax_hz: self.fmax, points: self.points }
+    }
 }

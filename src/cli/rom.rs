@@ -1,17 +1,15 @@
 //! `romdyn rom` and `romdyn freq`: reduced-order models and their frequency responses.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
-use romdyn::linear::{LinearDae, ModalAnalysis};
-use romdyn::output::modal::ModalReport;
+use romdyn::output::frequency_plot::FrequencyResponses;
 use romdyn::output::rom_file::RomExport;
-use romdyn::rom::{full_static_gain, select_modes, DescriptorRom, OrdinaryRom};
+use romdyn::rom::ModeSelection;
+use romdyn::study::{ReducedModel, Residualization, RomRequest, StaticGains};
 
 use super::args::{parse_band, FrequencyArgs, PencilArgs, SelectionArgs};
-use super::bode::{full_responses, write_bode_files};
-use super::load::{load, Loaded};
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
 pub enum Form {
@@ -66,53 +64,15 @@ pub struct FreqArgs {
     pub freq: FrequencyArgs,
 }
 
-struct Built {
-    dae: LinearDae,
-    modal: ModalAnalysis,
-    /// The lowest dynamic modes of the modal table, as text.
-    table: String,
-    descriptor: DescriptorRom,
-    ordinary: OrdinaryRom,
-}
-
-/// Which dropped modes a ROM keeps as static states.
-enum Residualize {
-    None,
-    AllDropped,
-    /// 1-based modal-table indices.
-    Modes(Vec<usize>),
-}
-
-fn build(pencil: &PencilArgs, selection: &romdyn::rom::ModeSelection, residualize: Residualize) -> Result<Built> {
-    let loaded = load(pencil)?;
-    let table = ModalReport::new(&loaded.modal, loaded.dae.dim()).with_energy(loaded.energy()).to_text_dynamic(12);
-    let Loaded { dae, modal, .. } = loaded;
-    if dae.num_inputs() == 0 || dae.num_outputs() == 0 {
-        anyhow::bail!("a ROM needs inputs and outputs: give --input NODE:COMP and --output NODE:COMP for a model, --input-row I and --output-col J for an .m pencil");
-    }
-    let mut sel = select_modes(&modal, selection)?;
-    if let Residualize::Modes(list) = &residualize {
-        let chosen = select_modes(&modal, &romdyn::rom::ModeSelection::Indices(list.clone()))?.kept;
-        if let Some(k) = chosen.iter().find(|k| sel.kept.contains(k)) {
-            anyhow::bail!("mode {} is both kept and residualized", k + 1);
-        }
-        sel.dropped = chosen;
-    }
-    let descriptor = DescriptorRom::project(&dae, &modal, &sel, !matches!(residualize, Residualize::None))?;
-    let ordinary = descriptor.to_ordinary()?;
-    Ok(Built { dae, modal, table, descriptor, ordinary })
-}
-
 /// Static gains of the full model and of the ROM, side by side, on stderr.
-fn report_static_gain(b: &Built) {
-    let rom = b.ordinary.static_gain();
-    match (full_static_gain(&b.dae), rom) {
+fn report_static_gain(g: &StaticGains) {
+    match (&g.full, &g.rom) {
         (Ok(full), Ok(rom)) => {
             for i in 0..full.nrows() {
                 for j in 0..full.ncols() {
                     let (f, r) = (full[(i, j)], rom[(i, j)]);
                     let rel = if f != 0.0 { (r - f).abs() / f.abs() } else { (r - f).abs() };
-                    eprintln!("static gain {} / {}: full {f:.6e}, ROM {r:.6e} (relative difference {rel:.1e})", b.dae.output_names[i], b.dae.input_names[j]);
+                    eprintln!("static gain {} / {}: full {f:.6e}, ROM {r:.6e} (relative difference {rel:.1e})", g.output_names[i], g.input_names[j]);
                 }
             }
         }
@@ -120,7 +80,7 @@ fn report_static_gain(b: &Built) {
             eprintln!("static gain of the full model: not available ({full})");
             for i in 0..rom.nrows() {
                 for j in 0..rom.ncols() {
-                    eprintln!("static gain {} / {}: ROM {:.6e}", b.dae.output_names[i], b.dae.input_names[j], rom[(i, j)]);
+                    eprintln!("static gain {} / {}: ROM {:.6e}", g.output_names[i], g.input_names[j], rom[(i, j)]);
                 }
             }
         }
@@ -128,26 +88,32 @@ fn report_static_gain(b: &Built) {
     }
 }
 
+fn print_summary(r: &ReducedModel) {
+    let kept: Vec<String> = r.descriptor.eigenvalues.iter().map(|l| format!("{:.6}{:+.6}j", l.re, l.im)).collect();
+    eprintln!("ROM: {} states ({} kept eigenvalues: {}), {} statically residualized states", r.ordinary.a.nrows(), kept.len(), kept.join(", "), r.descriptor.static_states);
+    report_static_gain(&r.static_gains);
+}
+
+/// Writes PREFIX.csv, PREFIX.svg and PREFIX.png.
+fn write_bode_files(r: &FrequencyResponses, prefix: &Path) -> Result<()> {
+    let [csv, svg, png] = r.write_files(prefix, "Frequency response").with_context(|| format!("writing {}.{{csv,svg,png}}", prefix.display()))?;
+    eprintln!("wrote {}, {}, {}", csv.display(), svg.display(), png.display());
+    Ok(())
+}
+
 pub fn run(a: RomArgs) -> Result<()> {
-    let residualize = match (&a.residualize_modes, a.residualize) {
-        (Some(list), _) => Residualize::Modes(list.clone()),
-        (None, true) => Residualize::AllDropped,
-        (None, false) => Residualize::None,
+    let residualization = match (&a.residualize_modes, a.residualize) {
+        (Some(list), _) => Residualization::Modes(list.clone()),
+        (None, true) => Residualization::Dropped,
+        (None, false) => Residualization::None,
     };
-    let b = build(&a.pencil, &a.select.selection(), residualize)?;
-    eprint!("{}", b.table);
-    let kept: Vec<String> = b.descriptor.eigenvalues.iter().map(|l| format!("{:.6}{:+.6}j", l.re, l.im)).collect();
-    eprintln!(
-        "ROM: {} states ({} kept eigenvalues: {}), {} statically residualized states",
-        b.ordinary.a.nrows(),
-        kept.len(),
-        kept.join(", "),
-        b.descriptor.static_states
-    );
-    report_static_gain(&b);
+    let study = a.pencil.study()?;
+    let rom = study.reduce(&RomRequest::new(a.select.selection()).residualize(residualization))?;
+    eprint!("{}", study.modal_report().to_text_dynamic(12));
+    print_summary(&rom);
     let export = match a.form {
-        Form::Ordinary => RomExport::from(&b.ordinary),
-        Form::Descriptor => RomExport::from(&b.descriptor),
+        Form::Ordinary => RomExport::from(&rom.ordinary),
+        Form::Descriptor => RomExport::from(&rom.descriptor),
     };
     match &a.file {
         Some(path) => {
@@ -157,28 +123,27 @@ pub fn run(a: RomArgs) -> Result<()> {
         None => println!("{}", serde_json::to_string_pretty(&export.to_json())?),
     }
     if let Some(prefix) = &a.bode {
-        let curves = full_responses(&b.dae, &b.modal, &a.freq, &b.descriptor.eigenvalues);
-        let curves = curves.with_rom("ROM", &b.ordinary);
-        write_bode_files(&curves, prefix)?;
+        let freq = study.frequencies(&a.freq.grid(), &rom.descriptor.eigenvalues)?;
+        write_bode_files(&study.full_responses(freq).with_rom("ROM", &rom.ordinary), prefix)?;
     }
     Ok(())
 }
 
 pub fn run_freq(a: FreqArgs) -> Result<()> {
     let selection = match (&a.count, &a.band) {
-        (Some(n), _) => Some(romdyn::rom::ModeSelection::Lowest(*n)),
-        (None, Some((fmin_hz, fmax_hz))) => Some(romdyn::rom::ModeSelection::Band { fmin_hz: *fmin_hz, fmax_hz: *fmax_hz }),
+        (Some(n), _) => Some(ModeSelection::Lowest(*n)),
+        (None, Some((fmin_hz, fmax_hz))) => Some(ModeSelection::Band { fmin_hz: *fmin_hz, fmax_hz: *fmax_hz }),
         (None, None) => None,
     };
+    let study = a.pencil.study()?;
     let curves = match selection {
         Some(sel) => {
-            let b = build(&a.pencil, &sel, if a.residualize { Residualize::AllDropped } else { Residualize::None })?;
-            full_responses(&b.dae, &b.modal, &a.freq, &b.descriptor.eigenvalues).with_rom("ROM", &b.ordinary)
+            let residualization = if a.residualize { Residualization::Dropped } else { Residualization::None };
+            let rom = study.reduce(&RomRequest::new(sel).residualize(residualization))?;
+            let freq = study.frequencies(&a.freq.grid(), &rom.descriptor.eigenvalues)?;
+            study.full_responses(freq).with_rom("ROM", &rom.ordinary)
         }
-        None => {
-            let Loaded { dae, modal, .. } = load(&a.pencil)?;
-            full_responses(&dae, &modal, &a.freq, &[])
-        }
+        None => study.full_responses(study.frequencies(&a.freq.grid(), &[])?),
     };
     write_bode_files(&curves, &a.prefix)
 }

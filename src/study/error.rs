@@ -1,0 +1,50 @@
+//! Why a study could not be set up or a ROM built.
+
+use std::path::{Path, PathBuf};
+
+use crate::analysis::RunError;
+use crate::dae::PortError;
+use crate::input::mbdyn::MbdynError;
+use crate::input::pencil::PencilError;
+use crate::linear::EigenError;
+use crate::rom::RomError;
+
+/// A failure of [`super::Study`], with the file or option it concerns.
+#[derive(Debug, thiserror::Error)]
+pub enum StudyError {
+    /// The MBDyn input file: `FILE:LINE:COLUMN: error: …` with the line and a caret.
+    #[error(transparent)]
+    Model(#[from] Box<MbdynError>),
+    #[error(transparent)]
+    Pencil(#[from] PencilError),
+    #[error("{}reference solution: {source}", file.as_ref().map(|f| format!("{}: ", f.display())).unwrap_or_default())]
+    Reference { file: Option<PathBuf>, source: RunError },
+    #[error(transparent)]
+    Port(#[from] PortError),
+    #[error(transparent)]
+    Eigen(#[from] EigenError),
+    #[error(transparent)]
+    Rom(#[from] RomError),
+    #[error("a ROM needs inputs and outputs: give --input NODE:COMP and --output NODE:COMP for a model, --input-row I and --output-col J for an .m pencil")]
+    NoPorts,
+    #[error("give a MODEL file or --pencil FILE")]
+    NoSource,
+    #[error("mode {0} is both kept and residualized")]
+    KeptAndResidualized(usize),
+}
+
+impl From<MbdynError> for StudyError {
+    fn from(e: MbdynError) -> Self {
+        StudyError::Model(Box::new(e))
+    }
+}
+
+impl StudyError {
+    /// Names the model file in a reference-solution failure.
+    pub(super) fn in_file(self, path: &Path) -> Self {
+        match self {
+            StudyError::Reference { file: None, source } => StudyError::Reference { file: Some(path.to_path_buf()), source },
+            e => e,
+        }
+    }
+}
