@@ -13,6 +13,8 @@ pub enum RomError {
     SingularStatic(&'static str),
     #[error("a velocity output of this ROM would need the time derivative of its inputs (its statically residualized states respond to u̇): keep those modes, or measure displacements")]
     ImproperRate,
+    #[error("imposed motion: {0}")]
+    Imposed(String),
     #[error(transparent)]
     Eigen(#[from] EigenError),
 }

@@ -5,12 +5,16 @@
 mod dense;
 mod descriptor;
 mod error;
+mod imposed;
 mod ordinary;
 mod response;
 mod select;
+mod springs;
 
 pub use descriptor::DescriptorRom;
 pub use error::RomError;
+pub use imposed::{transmissibility, ImposedModel};
+pub use springs::{with_spring_ports, without_elements, SpringFeedback};
 pub use ordinary::OrdinaryRom;
 pub use response::{full_frequency_response, full_static_gain, log_frequencies};
 pub use select::{select_modes, ModeSelection, Selection};
