@@ -29,6 +29,16 @@ pub enum StudyError {
     NoPorts,
     #[error("give a MODEL file or --pencil FILE")]
     NoSource,
+    #[error(transparent)]
+    ElementPart(#[from] crate::dae::ElementPartError),
+    #[error(transparent)]
+    PortsFile(#[from] crate::input::ports_file::PortsFileError),
+    #[error("no imposed motion was given (--imposed NODE[:COMPONENTS] or \"imposed\" in the ports file)")]
+    NoImposedMotion,
+    #[error("the imposed motion cannot be produced at {0} Hz (C_e (jω E − A)⁻¹ B_e is singular there, eq. 99)")]
+    SingularImposedMotion(f64),
+    #[error("{0}")]
+    Application(String),
     #[error("mode {0} is both kept and residualized")]
     KeptAndResidualized(usize),
 }

@@ -22,11 +22,13 @@
 //! on a model's linear DAE), corrections of the full model go in before the eigenanalysis
 //! ([`Study::from_dae`] again), corrections of a ROM are fields of [`RomRequest`].
 
+mod application;
 mod error;
 mod reduce;
 mod response;
 mod setup;
 
+pub use application::{parse_imposed, Application, Transmissibility};
 pub use error::StudyError;
 pub use reduce::{ReducedModel, Residualization, RomRequest, StaticGains};
 pub use response::FrequencyGrid;

@@ -78,7 +78,14 @@ impl Study {
             sel.dropped = chosen;
         }
         let residualize = request.residualization != Residualization::None;
-        let descriptor = DescriptorRom::project(dae, modal, &sel, residualize)?;
+        // Dummy springs (paper eqs. 92–95): projected with the springs present, then their
+        // force fed back with a plus sign (`A + B_e K C_e`, see `rom::springs`).
+        let applied = self.application.as_ref();
+        let projected = applied.and_then(|a| a.projected.as_ref()).unwrap_or(dae);
+        let mut descriptor = DescriptorRom::project(projected, modal, &sel, residualize)?;
+        if let Some(fb) = applied.and_then(|a| a.feedback.as_ref()) {
+            descriptor = descriptor.without_springs(fb)?;
+        }
         let ordinary = descriptor.to_ordinary()?;
         let static_gains = StaticGains {
             input_names: dae.input_names.clone(),

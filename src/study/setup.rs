@@ -43,6 +43,8 @@ pub struct Study {
     pub(super) dae: LinearDae,
     pub(super) modal: ModalAnalysis,
     pub(super) model: Option<Model>,
+    /// Ports, names, removed springs and imposed motion (paper §8), when given.
+    pub(super) application: Option<super::application::Applied>,
 }
 
 impl Study {
@@ -72,7 +74,7 @@ impl Study {
     /// gives the modes' kinetic-energy shares.
     pub fn from_dae(dae: LinearDae, model: Option<Model>, eigen: EigenSettings) -> Result<Self, StudyError> {
         let modal = ModalAnalysis::compute_with_dcoef(&dae.jacobians, eigen.route, eigen.dcoef)?;
-        Ok(Study { dae, modal, model })
+        Ok(Study { dae, modal, model, application: None })
     }
 
     /// The linear DAE `F_yd Δẏ + F_y Δy = B̃ u`, `z = C̃ Δy`.
@@ -103,6 +105,7 @@ impl Study {
 
     /// The modal table with kinetic-energy shares.
     pub fn modal_report(&self) -> ModalReport {
-        ModalReport::new(&self.modal, self.dae.dim()).with_energy(self.energy())
+        let report = ModalReport::new(&self.modal, self.dae.dim()).with_energy(self.energy());
+        if self.application.is_some() { report.with_labels(self.mode_labels()) } else { report }
     }
 }
