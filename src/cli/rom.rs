@@ -48,11 +48,11 @@ pub struct RomArgs {
     /// Only the diagonal panels of --grid and --transmissibility
     #[arg(long)]
     pub diagonal: bool,
-    /// With --imposed: write PREFIX.{csv,svg,png}, the transmissibility z/z_e of eq. 100, full model and ROM, log-log (paper Fig. 11)
-    #[arg(long, value_name = "PREFIX", requires = "imposed")]
+    /// With an imposed motion (--imposed or the ports file): write PREFIX.{csv,svg,png}, the transmissibility z/z_e of eq. 100, full model and ROM, log-log (paper Fig. 11)
+    #[arg(long, value_name = "PREFIX")]
     pub transmissibility: Option<PathBuf>,
-    /// With --imposed: write the proper state-space model from the imposed displacements to the other outputs (.json/.mat/.npz)
-    #[arg(long, value_name = "FILE", requires = "imposed")]
+    /// With an imposed motion: write the proper state-space model from the imposed displacements to the other outputs (.json/.mat/.npz)
+    #[arg(long, value_name = "FILE")]
     pub imposed_out: Option<PathBuf>,
     #[command(flatten)]
     pub freq: FrequencyArgs,
@@ -80,6 +80,16 @@ pub struct FreqArgs {
 
 /// Static gains of the full model and of the ROM, side by side, on stderr.
 fn report_static_gain(g: &StaticGains) {
+    let entries = g.input_names.len() * g.output_names.len();
+    if entries > 16 {
+        let worst = match (&g.full, &g.rom) {
+            (Ok(full), Ok(rom)) => format!("largest difference |ROM - full| / max |full| {:.1e}", (rom - full).norm_max() / full.norm_max().max(f64::MIN_POSITIVE)),
+            (Err(e), Ok(_)) => format!("full model: not available ({e})"),
+            (_, Err(e)) => format!("not available ({e})"),
+        };
+        eprintln!("static gains ({} outputs x {} inputs, in the exported files): {worst}", g.output_names.len(), g.input_names.len());
+        return;
+    }
     match (&g.full, &g.rom) {
         (Ok(full), Ok(rom)) => {
             for i in 0..full.nrows() {

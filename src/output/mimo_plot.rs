@@ -104,8 +104,20 @@ impl Figure for MimoPlot {
         let (cols, rows) = self.shape();
         let areas = root.split_evenly((rows, cols));
         let (flo, fhi) = (self.freq_hz.first().copied().unwrap_or(0.01), self.freq_hz.last().copied().unwrap_or(100.0));
+        // Largest magnitude of each row and column: a panel far below both is rounding noise
+        // of a pair that does not couple, and is labelled so instead of drawn as a curve.
+        let peak = |i: usize, j: usize| self.full.iter().map(|m| m[(i, j)].norm()).filter(|v| v.is_finite()).fold(0.0, f64::max);
+        let (no, ni) = (self.outputs.len(), self.inputs.len());
+        let row_max: Vec<f64> = (0..no).map(|i| (0..ni).map(|j| peak(i, j)).fold(0.0, f64::max)).collect();
+        let col_max: Vec<f64> = (0..ni).map(|j| (0..no).map(|i| peak(i, j)).fold(0.0, f64::max)).collect();
         for (k, (i, j)) in self.panels().into_iter().enumerate() {
             let area = &areas[k];
+            if peak(i, j) <= 1e-7 * row_max[i].max(col_max[j]) {
+                let text = format!("{} / {}", self.outputs[i], self.inputs[j]);
+                area.draw(&Text::new(text, (10, 10), (FONT, 15))).map_err(|e| err(&e))?;
+                area.draw(&Text::new(format!("no coupling: |H| < 1e-7 of its row and column (max {:.0e})", peak(i, j)), (10, 40), (FONT, 13))).map_err(|e| err(&e))?;
+                continue;
+            }
             let full = self.points(&self.full, i, j);
             let rom = self.rom.as_ref().map(|r| self.points(r, i, j)).unwrap_or_default();
             let (lo, hi) = full.iter().chain(&rom).fold((f64::INFINITY, 0.0f64), |(a, b), p| (a.min(p.1), b.max(p.1)));

@@ -91,8 +91,17 @@ impl Study {
             input_names: dae.input_names.clone(),
             output_names: dae.output_names.clone(),
             full: full_static_gain(dae).map_err(|e: RomError| e.to_string()),
-            rom: ordinary.static_gain().map_err(|e| e.to_string()),
+            rom: rigid_body_modes(&ordinary.eigenvalues).map_or_else(|| ordinary.static_gain().map_err(|e| e.to_string()), Err),
         };
         Ok(ReducedModel { selection: sel, descriptor, ordinary, static_gains })
     }
+}
+
+/// With rigid-body (zero) eigenvalues, e.g. after removing the springs that ground a model,
+/// a ROM has no static gain: `A` is singular up to rounding, and inverting it would print
+/// numbers that mean nothing.
+fn rigid_body_modes(eigenvalues: &[faer::c64]) -> Option<String> {
+    let big = eigenvalues.iter().map(|l| l.norm()).fold(0.0, f64::max);
+    let zero = eigenvalues.iter().filter(|l| l.norm() <= 1e-6 * big).count();
+    (zero > 0).then(|| format!("the ROM has {zero} zero (rigid-body) eigenvalues"))
 }
