@@ -27,6 +27,7 @@ impl Default for FrequencyGrid {
 pub struct GridAccuracy {
     pub fmin_hz: f64,
     pub fmax_hz: f64,
+    pub points: usize,
     /// `max_f ‖H_rom(f) − H_full(f)‖_F / ‖H_full(f)‖_F`.
     pub largest_relative_error: f64,
     /// Where it occurs [Hz].
@@ -56,6 +57,7 @@ impl Comparison {
         GridAccuracy {
             fmin_hz: self.freq_hz[0],
             fmax_hz: self.freq_hz[self.freq_hz.len() - 1],
+            points: self.freq_hz.len(),
             largest_relative_error: worst,
             at_hz: self.freq_hz[k],
             within_1_percent_up_to_hz: good.checked_sub(1).map(|g| self.freq_hz[g]),

@@ -7,6 +7,11 @@ use crate::dae::{describe, ModalEnergy};
 
 use super::{GridAccuracy, ReducedModel, StaticGains, Study};
 
+/// A frequency [Hz] with 4 decimals in 1e-3..1e5, scientific outside.
+fn fmt_hz(f: f64) -> String {
+    if (1e-3..1e5).contains(&f) { format!("{f:.4}") } else { format!("{f:.4e}") }
+}
+
 fn hz(l: faer::c64) -> (f64, f64) {
     let tau = 2.0 * std::f64::consts::PI;
     (l.im.abs() / tau, l.norm() / tau)
@@ -93,10 +98,14 @@ impl ReducedModel {
             s += &format!("the ROM keeps {:.4} % of the full model's static gain (Frobenius norms); largest relative difference {rel:.1e} ({channel})\n", 100.0 * share);
         }
         if let Some(a) = accuracy {
-            let ok = a.within_1_percent_up_to_hz.map_or("nowhere on the grid".to_string(), |f| format!("up to {f:.4} Hz"));
+            let ok = a.within_1_percent_up_to_hz.map_or("nowhere on the grid".to_string(), |f| format!("up to {} Hz", fmt_hz(f)));
             s += &format!(
-                "frequency response on {:.4}–{:.4} Hz: largest relative error {:.2e} at {:.4} Hz; within 1 % {ok}\n",
-                a.fmin_hz, a.fmax_hz, a.largest_relative_error, a.at_hz
+                "frequency response on {}–{} Hz ({} points): largest relative error {:.2e} at {} Hz; within 1 % {ok}\n",
+                fmt_hz(a.fmin_hz),
+                fmt_hz(a.fmax_hz),
+                a.points,
+                a.largest_relative_error,
+                fmt_hz(a.at_hz)
             );
         }
         s
