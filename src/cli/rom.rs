@@ -6,12 +6,11 @@ use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
 use romdyn::output::frequency_plot::FrequencyResponses;
 use romdyn::output::rom_file::RomExport;
-use romdyn::rom::ModeSelection;
 use romdyn::output::mimo_plot::MimoPlot;
-use romdyn::rom::full_frequency_response;
-use romdyn::study::{ReducedModel, Residualization, RomRequest, StaticGains, Study};
+use romdyn::rom::{full_frequency_response, ModalDamping, ModeSelection};
+use romdyn::study::{ReducedModel, Residualization, RomForm, RomRequest, Study, Warning};
 
-use super::args::{parse_band, FrequencyArgs, PencilArgs, SelectionArgs};
+use super::args::{parse_band, parse_damping, BelowBandArg, By, FrequencyArgs, PencilArgs, SelectionArgs};
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
 pub enum Form {
@@ -33,6 +32,15 @@ pub struct RomArgs {
     /// Statically residualize only these modes (1-based indices of the modal table; a pair counts once), e.g. the third bending mode of a beam
     #[arg(long, value_name = "I,J,...", value_delimiter = ',')]
     pub residualize_modes: Option<Vec<usize>>,
+    /// Rank modes for --count and --band by natural frequency or by dominance for these inputs and outputs
+    #[arg(long, value_enum, default_value = "frequency")]
+    pub by: By,
+    /// What --residualize does with a dropped mode below the frequencies of interest (the band's top, or the highest kept mode): static residualization is valid only above them
+    #[arg(long, value_enum, default_value = "drop")]
+    pub below_band: BelowBandArg,
+    /// Modal damping ratio added to the ROM (never to the full model): ZETA for every kept mode, or K=ZETA,... by modal-table index; reported in the summary
+    #[arg(long, value_name = "ZETA|K=ZETA,...", value_parser = parse_damping)]
+    pub damping: Option<ModalDamping>,
     /// Which form to export
     #[arg(long, value_enum, default_value = "ordinary")]
     pub form: Form,
@@ -68,9 +76,15 @@ pub struct FreqArgs {
     /// Overlay the ROM keeping the modes in FMIN:FMAX Hz
     #[arg(long, value_name = "FMIN:FMAX", value_parser = parse_band)]
     pub band: Option<(f64, f64)>,
-    /// Statically residualize the modes the overlaid ROM drops
+    /// Statically residualize the modes the overlaid ROM drops (above the frequencies of interest)
     #[arg(long)]
     pub residualize: bool,
+    /// Rank modes for --count and --band by natural frequency or by dominance for these inputs and outputs
+    #[arg(long, value_enum, default_value = "frequency")]
+    pub by: By,
+    /// Modal damping ratio added to the overlaid ROM: ZETA, or K=ZETA,...
+    #[arg(long, value_name = "ZETA|K=ZETA,...", value_parser = parse_damping)]
+    pub damping: Option<ModalDamping>,
     /// Writes PREFIX.csv, PREFIX.svg, PREFIX.png
     #[arg(short = 'o', long = "out", value_name = "PREFIX")]
     pub prefix: PathBuf,
@@ -78,44 +92,14 @@ pub struct FreqArgs {
     pub freq: FrequencyArgs,
 }
 
-/// Static gains of the full model and of the ROM, side by side, on stderr.
-fn report_static_gain(g: &StaticGains) {
-    let entries = g.input_names.len() * g.output_names.len();
-    if entries > 16 {
-        let worst = match (&g.full, &g.rom) {
-            (Ok(full), Ok(rom)) => format!("largest difference |ROM - full| / max |full| {:.1e}", (rom - full).norm_max() / full.norm_max().max(f64::MIN_POSITIVE)),
-            (Err(e), Ok(_)) => format!("full model: not available ({e})"),
-            (_, Err(e)) => format!("not available ({e})"),
-        };
-        eprintln!("static gains ({} outputs x {} inputs, in the exported files): {worst}", g.output_names.len(), g.input_names.len());
-        return;
-    }
-    match (&g.full, &g.rom) {
-        (Ok(full), Ok(rom)) => {
-            for i in 0..full.nrows() {
-                for j in 0..full.ncols() {
-                    let (f, r) = (full[(i, j)], rom[(i, j)]);
-                    let rel = if f != 0.0 { (r - f).abs() / f.abs() } else { (r - f).abs() };
-                    eprintln!("static gain {} / {}: full {f:.6e}, ROM {r:.6e} (relative difference {rel:.1e})", g.output_names[i], g.input_names[j]);
-                }
-            }
-        }
-        (Err(full), Ok(rom)) => {
-            eprintln!("static gain of the full model: not available ({full})");
-            for i in 0..rom.nrows() {
-                for j in 0..rom.ncols() {
-                    eprintln!("static gain {} / {}: ROM {:.6e}", g.output_names[i], g.input_names[j], rom[(i, j)]);
-                }
-            }
-        }
-        (_, Err(e)) => eprintln!("static gain: not available ({e})"),
+fn print_warnings(w: &[Warning]) {
+    for w in w {
+        eprintln!("warning: {w}");
     }
 }
 
-fn print_summary(r: &ReducedModel) {
-    let kept: Vec<String> = r.descriptor.eigenvalues.iter().map(|l| format!("{:.6}{:+.6}j", l.re, l.im)).collect();
-    eprintln!("ROM: {} states ({} kept eigenvalues: {}), {} statically residualized states", r.ordinary.a.nrows(), kept.len(), kept.join(", "), r.descriptor.static_states);
-    report_static_gain(&r.static_gains);
+fn print_study(study: &Study) {
+    print_warnings(study.warnings());
 }
 
 /// Writes PREFIX.csv, PREFIX.svg and PREFIX.png.
@@ -126,23 +110,33 @@ fn write_bode_files(r: &FrequencyResponses, prefix: &Path) -> Result<()> {
 }
 
 pub fn run(a: RomArgs) -> Result<()> {
+    if let Some(path) = &a.file {
+        RomExport::check_path(path)?;
+    }
     let residualization = match (&a.residualize_modes, a.residualize) {
         (Some(list), _) => Residualization::Modes(list.clone()),
         (None, true) => Residualization::Dropped,
         (None, false) => Residualization::None,
     };
     let study = a.pencil.study()?;
-    let rom = study.reduce(&RomRequest::new(a.select.selection()).residualize(residualization))?;
+    let mut request = RomRequest::new(a.select.selection()).residualize(residualization).ranked_by(a.by.into());
+    request.below_band = a.below_band.into();
+    request.damping = a.damping.clone();
+    let rom = study.reduce(&request)?;
+    let freq = study.frequencies(&a.freq.grid(), &rom.descriptor.eigenvalues)?;
     eprint!("{}", study.modal_report().to_text_dynamic(12));
-    print_summary(&rom);
+    print_study(&study);
+    let comparison = study.compare(&rom, freq);
+    eprint!("{}", rom.summary(&study, Some(&comparison.accuracy())));
+    print_warnings(&rom.warnings);
     let removed = study.removed_springs();
     if !removed.is_empty() {
         eprintln!("removed from the full model and the ROM (their force fed back, A + B_e K C_e): {}", removed.join(", "));
     }
     let export = match a.form {
-        Form::Ordinary => RomExport::from(&rom.ordinary),
+        Form::Ordinary => rom.export(&study, RomForm::Ordinary),
         Form::Descriptor if rom.descriptor.c_rate.is_some() => anyhow::bail!("--form descriptor: velocity outputs need z = C x + C_v x', which the descriptor export has no place for; use --form ordinary (its C and D carry them)"),
-        Form::Descriptor => RomExport::from(&rom.descriptor),
+        Form::Descriptor => rom.export(&study, RomForm::Descriptor),
     };
     match &a.file {
         Some(path) => {
@@ -152,8 +146,7 @@ pub fn run(a: RomArgs) -> Result<()> {
         None => println!("{}", serde_json::to_string_pretty(&export.to_json())?),
     }
     if let Some(prefix) = &a.bode {
-        let freq = study.frequencies(&a.freq.grid(), &rom.descriptor.eigenvalues)?;
-        write_bode_files(&study.full_responses(freq).with_rom("ROM", &rom.ordinary), prefix)?;
+        write_bode_files(&comparison.responses(&study, "ROM"), prefix)?;
     }
     write_application_files(&a, &study, &rom)
 }
@@ -195,7 +188,7 @@ fn write_application_files(a: &RomArgs, study: &Study, rom: &ReducedModel) -> Re
         let m = study.imposed_model(rom)?;
         let eig: Vec<String> = m.rom.eigenvalues.iter().map(|l| format!("{:.6}{:+.6}j", l.re, l.im)).collect();
         eprintln!("imposed-motion model: {} states, eigenvalues {}", m.rom.a.nrows(), eig.join(", "));
-        RomExport::from(&m.rom).write(path).with_context(|| format!("writing {}", path.display()))?;
+        study.imposed_export(&m).write(path).with_context(|| format!("writing {}", path.display()))?;
         eprintln!("wrote {}", path.display());
     }
     Ok(())
@@ -208,12 +201,16 @@ pub fn run_freq(a: FreqArgs) -> Result<()> {
         (None, None) => None,
     };
     let study = a.pencil.study()?;
+    print_study(&study);
     let curves = match selection {
         Some(sel) => {
             let residualization = if a.residualize { Residualization::Dropped } else { Residualization::None };
-            let rom = study.reduce(&RomRequest::new(sel).residualize(residualization))?;
+            let mut request = RomRequest::new(sel).residualize(residualization).ranked_by(a.by.into());
+            request.damping = a.damping.clone();
+            let rom = study.reduce(&request)?;
+            print_warnings(&rom.warnings);
             let freq = study.frequencies(&a.freq.grid(), &rom.descriptor.eigenvalues)?;
-            study.full_responses(freq).with_rom("ROM", &rom.ordinary)
+            study.compare(&rom, freq).responses(&study, "ROM")
         }
         None => study.full_responses(study.frequencies(&a.freq.grid(), &[])?),
     };

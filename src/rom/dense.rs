@@ -5,7 +5,7 @@ use faer::{c64, Mat};
 
 /// Row and column scale factors (powers of two) that bring every row's and column's largest
 /// entry of `m` near 1 (alternating sweeps).
-fn equilibration(m: &Mat<f64>) -> (Vec<f64>, Vec<f64>) {
+pub(crate) fn equilibration(m: &Mat<f64>) -> (Vec<f64>, Vec<f64>) {
     let n = m.nrows();
     let (mut row, mut col) = (vec![1.0; n], vec![1.0; n]);
     let pow2 = |s: f64| if s > 0.0 && s.is_finite() { (-s.log2().round()).exp2() } else { 1.0 };

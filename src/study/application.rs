@@ -13,6 +13,7 @@ use crate::linear::{LinearDae, ModalAnalysis};
 use crate::model::{InitialValueProblem, Label, Model};
 use crate::rom::{full_frequency_response, transmissibility, with_spring_ports, without_elements, ImposedModel, SpringFeedback};
 
+use super::checks::{equilibrium_warning, port_warnings};
 use super::{EigenSettings, ReducedModel, Study, StudyError};
 
 /// What the application adds to a linearization.
@@ -98,7 +99,9 @@ impl Study {
         };
         let free = without_elements(&dae, &parts);
         let applied = Applied { projected, feedback, parts, imposed, names: app.names.clone() };
-        Ok(Study { dae: free, modal, model: Some(model), application: Some(applied) })
+        let mut warnings: Vec<_> = equilibrium_warning(&model, &state, problem.tolerance).into_iter().collect();
+        warnings.extend(port_warnings(&free, &modal));
+        Ok(Study { dae: free, modal, model: Some(model), warnings, reference_time: Some(state.t), application: Some(applied) })
     }
 
     /// One label per mode ("table pitch (ry) 93 %") from the kinetic-energy shares and the
@@ -150,5 +153,36 @@ impl Study {
     pub fn from_application_file(path: &std::path::Path, reference: Reference, app: &Application, eigen: EigenSettings) -> Result<Self, StudyError> {
         let m = crate::input::mbdyn::read_model(path)?;
         Self::from_application(m.model, &m.problem, reference, app, eigen).map_err(|e| e.in_file(path))
+    }
+}
+
+impl Study {
+    /// The imposed-motion model in exportable form (inputs: the imposed displacements).
+    pub fn imposed_export(&self, m: &ImposedModel) -> crate::output::rom_file::RomExport {
+        use crate::output::rom_file::unit_of_name;
+        let r = &m.rom;
+        let n = r.a.nrows();
+        crate::output::rom_file::RomExport {
+            kind: "ordinary",
+            e: Mat::identity(n, n),
+            a: r.a.clone(),
+            b: r.b.clone(),
+            c: r.c.clone(),
+            d: r.d.clone(),
+            eigenvalues: r.eigenvalues.clone(),
+            full_eigenvalues: Vec::new(),
+            inputs: r.input_names.clone(),
+            outputs: r.output_names.clone(),
+            states: (1..=n).map(|k| format!("imposed-motion state {k}")).collect(),
+            input_units: r.input_names.iter().map(|s| unit_of_name(s)).collect(),
+            output_units: r.output_names.iter().map(|s| unit_of_name(s)).collect(),
+            state_units: vec!["state of the ROM minus the imposed motion's part (see rom::imposed)".to_string(); n],
+            state_modes: vec![0; n],
+            state_freq_hz: vec![f64::NAN; n],
+            reference_time: self.reference_time,
+            dcoef: self.modal.dcoef,
+            full_static_gain: None,
+            rom_static_gain: None,
+        }
     }
 }

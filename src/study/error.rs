@@ -19,6 +19,10 @@ pub enum StudyError {
     Pencil(#[from] PencilError),
     #[error("{}reference solution: {source}", file.as_ref().map(|f| format!("{}: ", f.display())).unwrap_or_default())]
     Reference { file: Option<PathBuf>, source: RunError },
+    #[error("static equilibrium: unrestrained rigid-body motion along {motion} (the model needs more supports or joints); {source}")]
+    Unrestrained { motion: String, source: RunError },
+    #[error("{option}: {message}")]
+    Option { option: &'static str, message: String },
     #[error(transparent)]
     Port(#[from] PortError),
     #[error(transparent)]
@@ -39,6 +43,10 @@ pub enum StudyError {
     SingularImposedMotion(f64),
     #[error("{0}")]
     Application(String),
+    #[error("mode(s) {} lie below the frequencies of interest (up to {top_hz:.4} Hz): static residualization is valid only above them (--below-band keep|drop)", modes.iter().map(|(k, f)| format!("{k} ({f:.4} Hz)")).collect::<Vec<_>>().join(", "))]
+    ResidualizedBelowBand { modes: Vec<(usize, f64)>, top_hz: f64 },
+    #[error("modal damping for mode {0}, which the ROM does not keep")]
+    DampingOfDroppedMode(usize),
     #[error("mode {0} is both kept and residualized")]
     KeptAndResidualized(usize),
 }

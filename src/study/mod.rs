@@ -23,13 +23,20 @@
 //! ([`Study::from_dae`] again), corrections of a ROM are fields of [`RomRequest`].
 
 mod application;
+mod checks;
 mod error;
+mod export;
 mod reduce;
 mod response;
 mod setup;
+mod summary;
+mod warning;
 
 pub use application::{parse_imposed, Application, Transmissibility};
+pub use checks::zero_channels;
 pub use error::StudyError;
-pub use reduce::{ReducedModel, Residualization, RomRequest, StaticGains};
-pub use response::FrequencyGrid;
+pub use export::RomForm;
+pub use reduce::{BelowBand, KeptMode, ReducedModel, Residualization, RomRequest, StaticGains};
+pub use response::{Comparison, FrequencyGrid, GridAccuracy};
 pub use setup::{EigenSettings, Linearization, Study};
+pub use warning::Warning;
