@@ -20,9 +20,9 @@ fn beam() -> romdyn::input::mbdyn::MbdynModel {
 fn sparse_linearization_is_the_dense_one() {
     let m = beam();
     let st = reference_state(&m.model, &m.problem, Reference::Static { load_steps: 1 }).unwrap();
-    let (i, o) = ("5:Fy".parse().unwrap(), "5:y".parse().unwrap());
+    let (i, o): (romdyn::dae::NodeInput, romdyn::dae::NodeOutput) = ("5:Fy".parse().unwrap(), "5:y".parse().unwrap());
     let dense = linearize(&m.model, &st, &[i], &[o], None).unwrap();
-    let sparse = linearize_sparse(&m.model, &st, &[i], &[o]).unwrap();
+    let sparse = linearize_sparse(&m.model, &st, &[i.port()], &[o.port()]).unwrap();
     let (fyd, fy) = dense.jacobians.derivatives();
     // Same assembly, same entries: exact.
     assert_eq!(sparse.fyd.to_dense(), fyd);

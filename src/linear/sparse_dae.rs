@@ -18,6 +18,8 @@ pub struct SparseLinearDae {
     pub b: Mat<f64>,
     /// `C̃` (outputs x unknowns).
     pub c: Mat<f64>,
+    /// `C̃_v` of rate outputs (`z = C̃ Δy + C̃_v Δẏ`), as in [`LinearDae::c_rate`].
+    pub c_rate: Option<Mat<f64>>,
     pub unknown_names: Vec<String>,
     pub input_names: Vec<String>,
     pub output_names: Vec<String>,
@@ -47,6 +49,7 @@ impl SparseLinearDae {
             fy: SparseMatrix::from_dense(&fy),
             b: dae.b.clone(),
             c: dae.c.clone(),
+            c_rate: dae.c_rate.clone(),
             unknown_names: dae.unknown_names.clone(),
             input_names: dae.input_names.clone(),
             output_names: dae.output_names.clone(),
@@ -66,6 +69,7 @@ impl SparseLinearDae {
             output_names: self.output_names.clone(),
             constraint_form: self.constraint_form,
             multipliers: self.multipliers.clone(),
+            c_rate: self.c_rate.clone(),
         }
     }
 
@@ -94,7 +98,7 @@ impl SparseLinearDae {
         t
     }
 
-    /// Static gain `C̃ S⁻¹ B̃` by one sparse LU of the static matrix (eq. 30 rows and
+    /// Static gain `C̃ S⁻¹ B̃` (rate outputs read zero) by one sparse LU of the static matrix (eq. 30 rows and
     /// columns restored), checked by its true residual.
     pub fn static_gain(&self) -> Result<Mat<f64>, SparseSolveError> {
         let x = self.static_solve(&self.b)?;
@@ -129,7 +133,7 @@ impl SparseLinearDae {
         Ok(x)
     }
 
-    /// `z/u = C̃ (jω F_yd + F_y)⁻¹ B̃` at each frequency [Hz] by sparse LU (the symbolic
+    /// `z/u = (C̃ + jω C̃_v)(jω F_yd + F_y)⁻¹ B̃` at each frequency [Hz] by sparse LU (the symbolic
     /// factorization computed once), each solve checked by its true residual.
     pub fn frequency_response(&self, freq_hz: &[f64]) -> Result<Vec<Mat<c64>>, SparseSolveError> {
         let what = "jω F_yd + F_y";
@@ -141,7 +145,7 @@ impl SparseLinearDae {
             p
         };
         let rhs = Mat::from_fn(n, self.b.ncols(), |i, j| c64::new(self.b[(i, j)], 0.0));
-        let c = Mat::from_fn(self.c.nrows(), n, |i, j| c64::new(self.c[(i, j)], 0.0));
+        let rate = |i: usize, j: usize| self.c_rate.as_ref().map_or(0.0, |cv| cv[(i, j)]);
         let norm_p = |w: f64| (self.fy.norm_l2().powi(2) + (w * self.fyd.norm_l2()).powi(2)).sqrt();
         let mut symbolic = None;
         let mut out = Vec::with_capacity(freq_hz.len());
@@ -175,6 +179,7 @@ impl SparseLinearDae {
                     return Err(SparseSolveError::Inaccurate { what, residual: rel });
                 }
             }
+            let c = Mat::from_fn(self.c.nrows(), n, |i, j| c64::new(self.c[(i, j)], w * rate(i, j)));
             out.push(&c * &x);
         }
         Ok(out)

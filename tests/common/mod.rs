@@ -44,6 +44,7 @@ pub fn two_masses(r: f64, scaled: bool) -> LinearDae {
         output_names: vec!["x2".into()],
         constraint_form: None,
         multipliers: Vec::new(),
+        c_rate: None,
     }
 }
 
@@ -96,6 +97,7 @@ pub fn mass_chain() -> LinearDae {
         output_names: vec!["x50".into()],
         constraint_form: None,
         multipliers: Vec::new(),
+        c_rate: None,
     }
 }
 
