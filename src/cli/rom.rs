@@ -132,6 +132,7 @@ pub fn run(a: RomArgs) -> Result<()> {
     let removed = study.removed_springs();
     if !removed.is_empty() {
         eprintln!("removed from the full model and the ROM (their force fed back, A + B_e K C_e): {}", removed.join(", "));
+        eprint!("{}", free_eigenvalues(&rom.descriptor.eigenvalues));
     }
     let export = match a.form {
         Form::Ordinary => rom.export(&study, RomForm::Ordinary),
@@ -149,6 +150,19 @@ pub fn run(a: RomArgs) -> Result<()> {
         write_bode_files(&comparison.responses(&study, "ROM"), prefix)?;
     }
     write_application_files(&a, &study, &rom)
+}
+
+/// The eigenvalues of a ROM whose dummy springs were removed: rigid-body, unstable and
+/// oscillatory ones (the modal table above is the grounded model's).
+fn free_eigenvalues(eig: &[faer::c64]) -> String {
+    let big = eig.iter().map(|l| l.norm()).fold(0.0, f64::max);
+    let zero = eig.iter().filter(|l| l.norm() <= 1e-6 * big).count();
+    let mut s = format!("ROM eigenvalues without them [rad/s]: {zero} zero (rigid-body motion)\n");
+    for l in eig.iter().filter(|l| l.norm() > 1e-6 * big && l.im >= 0.0) {
+        let kind = if l.im.abs() <= 1e-9 * big { if l.re > 0.0 { "real, unstable" } else { "real" } } else if l.re > 1e-9 * big { "oscillatory, unstable" } else { "oscillatory" };
+        s += &format!("  {:>14.6e} {:+.6e}j   {:>10.6} Hz   {kind}\n", l.re, l.im, l.norm() / (2.0 * std::f64::consts::PI));
+    }
+    s
 }
 
 /// --grid, --transmissibility, --imposed-out.
