@@ -97,7 +97,7 @@ fn legend_entries(curves: &[ResponseCurve]) -> Vec<(RGBColor, String)> {
 }
 
 /// A frequency tick: plain decimals between 1e-3 and 1e4, scientific outside.
-fn tick_label(x: f64) -> String {
+pub(super) fn tick_label(x: f64) -> String {
     if (1e-3..1e4).contains(&x.abs()) {
         let s = format!("{x:.3}");
         s.trim_end_matches('0').trim_end_matches('.').to_string()
