@@ -38,6 +38,7 @@ fn mechanical(m: &Mat<f64>, d: &Mat<f64>, k: &Mat<f64>, b: &Mat<f64>, c: &Mat<f6
         output_names: (0..c.nrows()).map(|i| format!("x{i} [m]")).collect(),
         constraint_form: None,
         multipliers: vec![],
+        c_rate: None,
     }
 }
 

@@ -7,8 +7,9 @@ use romdyn::analysis::Reference;
 use romdyn::dae::{NodeInput, NodeOutput};
 use romdyn::input::eigen_pencil::PencilPorts;
 use romdyn::linear::EigenRoute;
+use romdyn::input::ports_file::{read_ports_file, PortsFile};
 use romdyn::rom::{ModalDamping, ModeSelection, Ranking};
-use romdyn::study::{BelowBand, EigenSettings, FrequencyGrid, Linearization, Study, StudyError};
+use romdyn::study::{parse_imposed, Application, BelowBand, EigenSettings, FrequencyGrid, Linearization, Study, StudyError};
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
 pub enum Route {
@@ -50,6 +51,15 @@ pub struct PencilArgs {
     /// ROM output of an .m pencil: unknown J (1-based column of Aplus/Aminus); a node's x,y,z displacements [m] are idx+1..idx+3 and its rotations [rad] idx+4..idx+6
     #[arg(long = "output-col", value_name = "J", requires = "pencil")]
     pub output_cols: Vec<usize>,
+    /// Ports file (JSON): named inputs and outputs at points of nodes (forces, moments, actuators; displacements, rotations, LVDTs, velocities), node names for mode labels, dummy springs to remove, an imposed motion (README, 'Ports')
+    #[arg(long, value_name = "FILE", conflicts_with = "pencil")]
+    pub ports: Option<PathBuf>,
+    /// Remove these deformable elements (dummy springs) from the full model and the ROM: their force is fed back, A + B_e K C_e (paper eqs. 92-95 with the sign of romdyn's applied-force inputs)
+    #[arg(long = "remove-spring", value_name = "LABEL,...", value_delimiter = ',', conflicts_with = "pencil")]
+    pub remove_spring: Vec<u32>,
+    /// Imposed motion of a node (all six components, or NODE:x,y,rz): its forces and displacements become the last inputs and outputs; transmissibility by eq. 100
+    #[arg(long, value_name = "NODE[:COMPONENTS]", conflicts_with = "pencil")]
+    pub imposed: Option<String>,
     /// Eigenanalysis route (lambda by default: its pencil has no infinite eigenvalues, on which faer's QZ can stall)
     #[arg(long, value_enum, default_value = "lambda")]
     pub route: Route,
@@ -68,6 +78,10 @@ impl PencilArgs {
                 let ports = PencilPorts { input_rows: self.input_rows.clone(), output_cols: self.output_cols.clone() };
                 Study::from_pencil_file(path, &ports, eigen)
             }
+            (None, Some(path)) if self.ports.is_some() || !self.remove_spring.is_empty() || self.imposed.is_some() => {
+                let app = self.application()?;
+                Study::from_application_file(path, self.reference.reference(), &app, eigen)
+            }
             (None, Some(path)) => {
                 let lin = Linearization { reference: self.reference.reference(), inputs: self.inputs.clone(), outputs: self.outputs.clone() };
                 Study::from_model_file(path, &lin, eigen)
@@ -75,6 +89,28 @@ impl PencilArgs {
             // clap requires one of them.
             (None, None) => Err(StudyError::NoSource),
         }
+    }
+}
+
+impl PencilArgs {
+    /// The ports file's ports and names, then --input/--output, --remove-spring and --imposed.
+    fn application(&self) -> Result<Application, StudyError> {
+        let file = match &self.ports {
+            Some(path) => read_ports_file(path)?,
+            None => PortsFile::default(),
+        };
+        let mut app = Application { inputs: file.inputs, outputs: file.outputs, names: file.names, remove_springs: file.remove_springs, imposed: None };
+        app.inputs.extend(self.inputs.iter().map(|p| p.port()));
+        app.outputs.extend(self.outputs.iter().map(|p| p.port()));
+        for l in &self.remove_spring {
+            if !app.remove_springs.contains(l) {
+                app.remove_springs.push(*l);
+            }
+        }
+        if let Some(s) = self.imposed.as_ref().or(file.imposed.as_ref()) {
+            app.imposed = Some(parse_imposed(s).map_err(|m| StudyError::Application(format!("--imposed {m}")))?);
+        }
+        Ok(app)
     }
 }
 

@@ -6,8 +6,9 @@ use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
 use romdyn::output::frequency_plot::FrequencyResponses;
 use romdyn::output::rom_file::RomExport;
-use romdyn::rom::{ModalDamping, ModeSelection};
-use romdyn::study::{Residualization, RomForm, RomRequest, Study, Warning};
+use romdyn::output::mimo_plot::MimoPlot;
+use romdyn::rom::{full_frequency_response, ModalDamping, ModeSelection};
+use romdyn::study::{ReducedModel, Residualization, RomForm, RomRequest, Study, Warning};
 
 use super::args::{parse_band, parse_damping, BelowBandArg, By, FrequencyArgs, PencilArgs, SelectionArgs};
 
@@ -49,6 +50,18 @@ pub struct RomArgs {
     /// Also write PREFIX.csv, PREFIX.svg and PREFIX.png: Bode plot of the full model and the ROM
     #[arg(long, value_name = "PREFIX")]
     pub bode: Option<PathBuf>,
+    /// Also write PREFIX.{csv,svg,png}: the transfer matrix as a grid of Bode-magnitude panels, full model and ROM (paper Figs. 9, 10)
+    #[arg(long, value_name = "PREFIX")]
+    pub grid: Option<PathBuf>,
+    /// Only the diagonal panels of --grid and --transmissibility
+    #[arg(long)]
+    pub diagonal: bool,
+    /// With an imposed motion (--imposed or the ports file): write PREFIX.{csv,svg,png}, the transmissibility z/z_e of eq. 100, full model and ROM, log-log (paper Fig. 11)
+    #[arg(long, value_name = "PREFIX")]
+    pub transmissibility: Option<PathBuf>,
+    /// With an imposed motion: write the proper state-space model from the imposed displacements to the other outputs (.json/.mat/.npz)
+    #[arg(long, value_name = "FILE")]
+    pub imposed_out: Option<PathBuf>,
     #[command(flatten)]
     pub freq: FrequencyArgs,
 }
@@ -116,8 +129,13 @@ pub fn run(a: RomArgs) -> Result<()> {
     let comparison = study.compare(&rom, freq);
     eprint!("{}", rom.summary(&study, Some(&comparison.accuracy())));
     print_warnings(&rom.warnings);
+    let removed = study.removed_springs();
+    if !removed.is_empty() {
+        eprintln!("removed from the full model and the ROM (their force fed back, A + B_e K C_e): {}", removed.join(", "));
+    }
     let export = match a.form {
         Form::Ordinary => rom.export(&study, RomForm::Ordinary),
+        Form::Descriptor if rom.descriptor.c_rate.is_some() => anyhow::bail!("--form descriptor: velocity outputs need z = C x + C_v x', which the descriptor export has no place for; use --form ordinary (its C and D carry them)"),
         Form::Descriptor => rom.export(&study, RomForm::Descriptor),
     };
     match &a.file {
@@ -129,6 +147,49 @@ pub fn run(a: RomArgs) -> Result<()> {
     }
     if let Some(prefix) = &a.bode {
         write_bode_files(&comparison.responses(&study, "ROM"), prefix)?;
+    }
+    write_application_files(&a, &study, &rom)
+}
+
+/// --grid, --transmissibility, --imposed-out.
+fn write_application_files(a: &RomArgs, study: &Study, rom: &ReducedModel) -> Result<()> {
+    let wrote = |p: [PathBuf; 3]| eprintln!("wrote {}, {}, {}", p[0].display(), p[1].display(), p[2].display());
+    if let Some(prefix) = &a.grid {
+        let freq = study.frequencies(&a.freq.grid(), &rom.descriptor.eigenvalues)?;
+        let dae = study.dae();
+        // The imposed displacements (last outputs) are inputs of the transmissibility, not
+        // responses: the grid shows the other outputs.
+        let no = dae.num_outputs() - study.imposed_len();
+        let rows = |h: Vec<faer::Mat<faer::c64>>| h.into_iter().map(|m| m.get(..no, ..).to_owned()).collect::<Vec<_>>();
+        let plot = MimoPlot {
+            title: "Transfer matrix |z/u|".into(),
+            full: rows(full_frequency_response(dae, &freq)),
+            rom: Some(rows(rom.ordinary.frequency_response(&freq))),
+            freq_hz: freq,
+            inputs: dae.input_names.clone(),
+            outputs: dae.output_names[..no].to_vec(),
+            diagonal: a.diagonal,
+        };
+        wrote(plot.write_files(prefix).with_context(|| format!("writing {}.{{csv,svg,png}}", prefix.display()))?);
+    }
+    if let Some(prefix) = &a.transmissibility {
+        let freq = study.frequencies(&a.freq.grid(), &rom.descriptor.eigenvalues)?;
+        let t = study.transmissibility(rom, &freq)?;
+        let mut plot = MimoPlot { title: "Transmissibility |z/z_e| (eq. 100)".into(), freq_hz: t.freq_hz, inputs: t.imposed, outputs: t.outputs, full: t.full, rom: Some(t.rom), diagonal: a.diagonal };
+        wrote(plot.write_files(prefix).with_context(|| format!("writing {}.{{csv,svg,png}}", prefix.display()))?);
+        // The diagonal alone (x/x, y/y, …: paper Fig. 11) beside the whole matrix.
+        if !plot.diagonal {
+            plot.diagonal = true;
+            let diag = romdyn::output::prefixed_path(prefix, "diagonal");
+            wrote(plot.write_files(&diag).with_context(|| format!("writing {}.{{csv,svg,png}}", diag.display()))?);
+        }
+    }
+    if let Some(path) = &a.imposed_out {
+        let m = study.imposed_model(rom)?;
+        let eig: Vec<String> = m.rom.eigenvalues.iter().map(|l| format!("{:.6}{:+.6}j", l.re, l.im)).collect();
+        eprintln!("imposed-motion model: {} states, eigenvalues {}", m.rom.a.nrows(), eig.join(", "));
+        study.imposed_export(&m).write(path).with_context(|| format!("writing {}", path.display()))?;
+        eprintln!("wrote {}", path.display());
     }
     Ok(())
 }

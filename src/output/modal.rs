@@ -22,6 +22,9 @@ pub struct ModeRow {
     pub damping: Option<f64>,
     /// Estimated absolute error of λ [rad/s] (eqs. 32–35).
     pub error: Option<f64>,
+    /// One-line label of a dynamic mode, e.g. "table pitch (ry) 93 %" (multibody models).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub label: Option<String>,
     /// Dominant node components by kinetic energy, e.g. "node 3 rz 92 %" (multibody models).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub description: Option<String>,
@@ -74,6 +77,7 @@ impl ModalReport {
                     partner: None,
                     damping: if infinite { None } else { finite(m.damping()) },
                     error: finite(m.error),
+                    label: None,
                     description: None,
                     energy: Vec::new(),
                 }
@@ -105,6 +109,14 @@ impl ModalReport {
         for (row, s) in self.eigenvalues.iter_mut().zip(shares) {
             row.description = (!s.is_empty()).then(|| describe(&s));
             row.energy = s;
+        }
+        self
+    }
+
+    /// Attaches mode labels (one per mode, in table order; dynamic modes only are shown).
+    pub fn with_labels(mut self, labels: Vec<Option<String>>) -> Self {
+        for (row, l) in self.eigenvalues.iter_mut().zip(labels) {
+            row.label = if row.kind == ModeKind::Dynamic { l } else { None };
         }
         self
     }
@@ -156,7 +168,12 @@ impl ModalReport {
             "# {} equations, route {:?}, dCoef {:e} s; {} dynamic, {} zero, {} infinite; freq = |Im λ|/2π (MBDyn's), undamped = |λ|/2π\n",
             self.equations, self.route, self.dcoef, self.counts.dynamic, self.counts.zero, self.counts.infinite
         );
-        let energy_column = if self.eigenvalues.iter().any(|r| r.description.is_some()) { "  kinetic energy" } else { "" };
+        let labels = self.eigenvalues.iter().any(|r| r.label.is_some());
+        let energy_column = match (labels, self.eigenvalues.iter().any(|r| r.description.is_some())) {
+            (true, _) => format!("  {:<36}  kinetic energy", "label"),
+            (false, true) => "  kinetic energy".to_string(),
+            (false, false) => String::new(),
+        };
         s += &format!(
             "{:>7}  {:>14}  {:>15}  {:>12}  {:>14}  {:>9}  {:>8}  {:>9}{energy_column}\n",
             "mode", "Re λ [rad/s]", "Im λ [rad/s]", "freq [Hz]", "undamped [Hz]", "damping", "kind", "error"
@@ -174,8 +191,9 @@ impl ModalReport {
             let real_pair = partner.is_some() && !complex_pair;
             let re = if real_pair { r.re.map_or(format!("{:>14}", "-"), |v| format!("{:>14}", format!("±{:.6e}", v.abs()))) } else { num(r.re, 14) };
             let im = if complex_pair { r.im.map_or(format!("{:>15}", "-"), |v| format!("{:>15}", format!("±{:.6e}", v.abs()))) } else { num(r.im, 15) };
+            let label = if labels { format!("{:<36}  ", if dynamic { r.label.as_deref().unwrap_or("") } else { "" }) } else { String::new() };
             let row = format!(
-                "{index:>7}  {re}  {im}  {}  {}  {}  {:>8}  {}  {}",
+                "{index:>7}  {re}  {im}  {}  {}  {}  {:>8}  {}  {label}{}",
                 hz(r.freq_hz, 12),
                 hz(r.undamped_freq_hz, 14),
                 // Rounding leaves |ζ| ~ 1e-12 on undamped modes: show 0.0000, not -0.0000;

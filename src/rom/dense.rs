@@ -62,3 +62,17 @@ pub(crate) fn transfer(omega: f64, p: &Mat<f64>, q: &Mat<f64>, b: &Mat<f64>, c: 
     }
     h
 }
+
+/// `(C + jω C_v) (jω P + Q)⁻¹ B + D` for one frequency: outputs with rate rows `C_v`.
+pub(crate) fn transfer_with_rates(omega: f64, p: &Mat<f64>, q: &Mat<f64>, b: &Mat<f64>, c: &Mat<f64>, c_rate: Option<&Mat<f64>>, d: Option<&Mat<f64>>) -> Mat<c64> {
+    let x = shifted(omega, p, q).partial_piv_lu().solve(&to_complex(b));
+    let cc = match c_rate {
+        Some(cv) => shifted(omega, cv, c),
+        None => to_complex(c),
+    };
+    let mut h = &cc * &x;
+    if let Some(d) = d {
+        h += &to_complex(d);
+    }
+    h
+}

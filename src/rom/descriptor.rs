@@ -3,7 +3,7 @@
 
 use faer::{c64, Mat};
 
-use super::dense::transfer;
+use super::dense::transfer_with_rates;
 use super::select::Selection;
 use super::RomError;
 use crate::linear::{Jacobians, LinearDae, ModalAnalysis, Mode};
@@ -16,6 +16,8 @@ pub struct DescriptorRom {
     pub a: Mat<f64>,
     pub b: Mat<f64>,
     pub c: Mat<f64>,
+    /// Rate rows of velocity outputs: `z = C x + C_v ẋ` (`None` without rate outputs).
+    pub c_rate: Option<Mat<f64>>,
     /// Eigenvalues of the kept (dynamic) part [rad/s].
     pub eigenvalues: Vec<c64>,
     pub state_names: Vec<String>,
@@ -100,6 +102,7 @@ impl DescriptorRom {
             a,
             b: wt * &dae.b,
             c: &dae.c * &v,
+            c_rate: dae.c_rate.as_ref().map(|cv| cv * &v),
             eigenvalues: sel.kept.iter().map(|&i| modal.modes[i].lambda).collect(),
             state_names,
             state_modes,
@@ -109,9 +112,9 @@ impl DescriptorRom {
         })
     }
 
-    /// `C (jω E − A)⁻¹ B` at each frequency [Hz].
+    /// `(C + jω C_v) (jω E − A)⁻¹ B` at each frequency [Hz].
     pub fn frequency_response(&self, freq_hz: &[f64]) -> Vec<Mat<c64>> {
         let minus_a = -&self.a;
-        freq_hz.iter().map(|f| transfer(2.0 * std::f64::consts::PI * f, &self.e, &minus_a, &self.b, &self.c, None)).collect()
+        freq_hz.iter().map(|f| transfer_with_rates(2.0 * std::f64::consts::PI * f, &self.e, &minus_a, &self.b, &self.c, self.c_rate.as_ref(), None)).collect()
     }
 }

@@ -33,6 +33,16 @@ pub enum StudyError {
     NoPorts,
     #[error("give a MODEL file or --pencil FILE")]
     NoSource,
+    #[error(transparent)]
+    ElementPart(#[from] crate::dae::ElementPartError),
+    #[error(transparent)]
+    PortsFile(#[from] crate::input::ports_file::PortsFileError),
+    #[error("no imposed motion was given (--imposed NODE[:COMPONENTS] or \"imposed\" in the ports file)")]
+    NoImposedMotion,
+    #[error("the imposed motion cannot be produced at {0} Hz (C_e (jω E − A)⁻¹ B_e is singular there, eq. 99)")]
+    SingularImposedMotion(f64),
+    #[error("{0}")]
+    Application(String),
     #[error("mode(s) {} lie below the frequencies of interest (up to {top_hz:.4} Hz): static residualization is valid only above them (--below-band keep|drop)", modes.iter().map(|(k, f)| format!("{k} ({f:.4} Hz)")).collect::<Vec<_>>().join(", "))]
     ResidualizedBelowBand { modes: Vec<(usize, f64)>, top_hz: f64 },
     #[error("modal damping for mode {0}, which the ROM does not keep")]

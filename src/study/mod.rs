@@ -22,6 +22,7 @@
 //! on a model's linear DAE), corrections of the full model go in before the eigenanalysis
 //! ([`Study::from_dae`] again), corrections of a ROM are fields of [`RomRequest`].
 
+mod application;
 mod checks;
 mod error;
 mod export;
@@ -31,6 +32,7 @@ mod setup;
 mod summary;
 mod warning;
 
+pub use application::{parse_imposed, Application, Transmissibility};
 pub use checks::zero_channels;
 pub use error::StudyError;
 pub use export::RomForm;

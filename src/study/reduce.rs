@@ -200,7 +200,14 @@ impl Study {
             warnings.push(Warning::Invisible { modes: invisible });
         }
 
-        let mut descriptor = DescriptorRom::project(dae, modal, &sel, !sel.dropped.is_empty())?;
+        // Dummy springs (paper eqs. 92–95): projected with the springs present, then their
+        // force fed back with a plus sign (`A + B_e K C_e`, see `rom::springs`).
+        let applied = self.application.as_ref();
+        let projected = applied.and_then(|a| a.projected.as_ref()).unwrap_or(dae);
+        let mut descriptor = DescriptorRom::project(projected, modal, &sel, !sel.dropped.is_empty())?;
+        if let Some(fb) = applied.and_then(|a| a.feedback.as_ref()) {
+            descriptor = descriptor.without_springs(fb)?;
+        }
         let damping = match &request.damping {
             Some(d) => {
                 for &i in &sel.kept {
@@ -230,7 +237,7 @@ impl Study {
                 None => e.to_string(),
             }),
         };
-        let static_gains = StaticGains { input_names: dae.input_names.clone(), output_names: dae.output_names.clone(), full, rom: ordinary.static_gain().map_err(|e| e.to_string()) };
+        let static_gains = StaticGains { input_names: dae.input_names.clone(), output_names: dae.output_names.clone(), full, rom: rigid_body_modes(&ordinary.eigenvalues).map_or_else(|| ordinary.static_gain().map_err(|e| e.to_string()), Err) };
         if let Some((rel, channel)) = static_gains.largest_relative_difference() {
             let all_residualized = request.residualization == Residualization::Dropped && relevant.is_empty();
             let reason = if all_residualized && rel > 1e-9 {
@@ -262,4 +269,13 @@ impl Study {
         let names: Vec<&str> = idx.iter().take(6).map(|&i| self.dae.unknown_names.get(i).map_or("?", String::as_str)).collect();
         names.join(", ")
     }
+}
+
+/// With rigid-body (zero) eigenvalues, e.g. after removing the springs that ground a model,
+/// a ROM has no static gain: `A` is singular up to rounding, and inverting it would print
+/// numbers that mean nothing.
+fn rigid_body_modes(eigenvalues: &[faer::c64]) -> Option<String> {
+    let big = eigenvalues.iter().map(|l| l.norm()).fold(0.0, f64::max);
+    let zero = eigenvalues.iter().filter(|l| l.norm() <= 1e-6 * big).count();
+    (zero > 0).then(|| format!("the ROM has {zero} zero (rigid-body) eigenvalues"))
 }

@@ -71,6 +71,8 @@ pub struct Study {
     pub(super) model: Option<Model>,
     pub(super) warnings: Vec<Warning>,
     pub(super) reference_time: Option<f64>,
+    /// Ports, names, removed springs and imposed motion (paper §8), when given.
+    pub(super) application: Option<super::application::Applied>,
 }
 
 impl Study {
@@ -120,7 +122,7 @@ impl Study {
         }
         let modal = ModalAnalysis::compute_with_dcoef(&dae.jacobians, eigen.route, eigen.dcoef)?;
         let warnings = port_warnings(&dae, &modal);
-        Ok(Study { dae, modal, model, warnings, reference_time: None })
+        Ok(Study { dae, modal, model, warnings, reference_time: None, application: None })
     }
 
     /// What the user must know about the linear model: reference not in equilibrium, ports
@@ -162,6 +164,7 @@ impl Study {
 
     /// The modal table with kinetic-energy shares.
     pub fn modal_report(&self) -> ModalReport {
-        ModalReport::new(&self.modal, self.dae.dim()).with_energy(self.energy())
+        let report = ModalReport::new(&self.modal, self.dae.dim()).with_energy(self.energy());
+        if self.application.is_some() { report.with_labels(self.mode_labels()) } else { report }
     }
 }
