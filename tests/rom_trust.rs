@@ -338,3 +338,134 @@ fn full_model_and_rom_phases_agree_where_magnitudes_agree() {
         assert!(compared >= 50, "{compared}");
     }
 }
+
+/// Point 9: one modal-table row per pair (`--all`: every eigenvalue), the frequency column
+/// as MBDyn's |Im λ|/2π next to the undamped |λ|/2π, zero and infinite rows without
+/// damping or energy.
+#[test]
+fn modal_table_has_one_row_per_pair_and_both_frequencies() {
+    let (ok, out, err) = romdyn(&["eig", "--pencil", "examples/two_masses.json"]);
+    assert!(ok, "{err}");
+    // C1: λ = −0.5 ± 9.987492 j rad/s: |Im λ|/2π = 1.589559 Hz, |λ|/2π = 10/2π = 1.591549 Hz (closed form).
+    let row = out.lines().find(|l| l.trim_start().starts_with("1,2")).unwrap_or_else(|| panic!("{out}"));
+    assert!(row.contains("±9.987492e0") && row.contains("1.589559") && row.contains("1.591549") && row.contains("0.0500"), "{row}");
+    assert!(out.contains("modes 3–5: 3 infinite eigenvalues"), "{out}");
+    let (ok, all, _) = romdyn(&["eig", "--pencil", "examples/two_masses.json", "--all"]);
+    assert!(ok);
+    let infinite: Vec<&str> = all.lines().filter(|l| l.contains("infinite") && !l.starts_with('#')).collect();
+    assert_eq!(infinite.len(), 3, "{all}");
+    // No damping on an infinite row: the column is blank between the frequencies and the kind.
+    assert!(infinite.iter().all(|l| !l.contains("0.0500")), "{all}");
+    // The inverted pendulum's ±3.13 rad/s real pair is one row with ±Re λ (CASES C3).
+    let (ok, out, _) = romdyn(&["eig", "examples/inverted_pendulum.mbd"]);
+    assert!(ok);
+    assert!(out.lines().any(|l| l.trim_start().starts_with("1,2") && l.contains("±3.130527e0")), "{out}");
+}
+
+/// Point 6: nonsense options are refused before any computation, naming the option.
+#[test]
+fn nonsense_options_are_refused_with_the_option_named() {
+    let pencil = |extra: &[&str]| {
+        let mut a = vec!["rom", "--pencil", "examples/two_masses.json", "--count", "1"];
+        a.extend_from_slice(extra);
+        romdyn(&a)
+    };
+    for (extra, expect) in [
+        (&["--fmin", "10", "--fmax", "1"][..], "--fmin: need FMIN < FMAX"),
+        (&["--fmin", "1", "--fmax", "1"][..], "--fmin: need FMIN < FMAX"),
+        (&["--fmin", "0"][..], "--fmin: a frequency of a log-spaced grid must be positive"),
+        (&["--points", "1"][..], "--points: a frequency grid needs at least 2 points"),
+        (&["--points", "0"][..], "--points: a frequency grid needs at least 2 points"),
+        (&["--dcoef", "0"][..], "--dcoef: dCoef must be a positive finite"),
+        (&["--dcoef", "nan"][..], "--dcoef: dCoef must be a positive finite"),
+        (&["--dcoef", "inf"][..], "--dcoef: dCoef must be a positive finite"),
+        (&["--dcoef", "-1"][..], "--dcoef: dCoef must be a positive finite"),
+        (&["-o", "/tmp"][..], "is a directory"),
+        (&["-o", "x.txt"][..], "unknown ROM file format"),
+        (&["--damping", "1.5"][..], "outside [0, 1)"),
+    ] {
+        let (ok, _, err) = pencil(extra);
+        assert!(!ok && err.contains(expect), "{extra:?}: {err}");
+    }
+    let (ok, _, err) = romdyn(&["rom", "--pencil", "examples/two_masses.json", "--count", "0"]);
+    assert!(!ok && err.contains("at least 1 mode"), "{err}");
+    let model = |extra: &[&str]| {
+        let mut a = vec!["rom", "examples/pendulum.mbd", "--input", "2:Mz", "--output", "2:rz", "--count", "1"];
+        a.extend_from_slice(extra);
+        romdyn(&a)
+    };
+    for (extra, expect) in [
+        (&["--at", "-1"][..], "--at: TIME -1 s is before the file's initial time 0 s"),
+        (&["--at", "1e9"][..], "--at: TIME 1000000000 s is after the file's final time 2 s"),
+        (&["--at", "inf"][..], "--at: TIME must be a finite time"),
+        (&["--at", "nan"][..], "--at: TIME must be a finite time"),
+        (&["--static", "--load-steps", "0"][..], "--load-steps: need at least 1 load increment"),
+        (&["--input", "2:Mz"][..], "--input: node 2 Mz [N m] is given twice"),
+    ] {
+        let (ok, _, err) = model(extra);
+        assert!(!ok && err.contains(expect), "{extra:?}: {err}");
+    }
+    // An input on the clamped node 1: accepted, with a warning that no output responds.
+    let (ok, _, err) = romdyn(&["rom", "examples/pendulum.mbd", "--input", "1:Fx", "--input", "2:Mz", "--output", "2:rz", "--count", "1"]);
+    assert!(ok, "{err}");
+    assert!(err.contains("warning: no output responds to input node 1 Fx [N]"), "{err}");
+    // `--modes K` on a zero eigenvalue says what it is.
+    let (ok, _, err) = romdyn(&["rom", "examples/pendulum.mbd", "--input", "2:Mz", "--output", "2:rz", "--modes", "3"]);
+    assert!(!ok && err.contains("mode 3 is zero (not a dynamic mode)"), "{err}");
+}
+
+/// Point 10: every export carries the ROM's own eigenvalues next to the full model's kept
+/// ones, names, units, each state's mode and frequency, the reference time, dCoef and both
+/// static gains.
+#[test]
+fn exports_carry_eigenvalues_units_states_reference_and_static_gains() {
+    let dir = temp_dir("export");
+    let json = dir.join("rom.json");
+    let (ok, _, err) = romdyn(&["rom", "examples/pendulum.mbd", "--input", "2:Mz", "--output", "2:rz", "--count", "1", "-o", json.to_str().unwrap()]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    // The ROM's own eigenvalues equal the full model's kept ±3.130527 j rad/s (C2), 1e-6.
+    for key in ["eigenvalues", "full_eigenvalues"] {
+        let im: Vec<f64> = v[key].as_array().unwrap().iter().map(|e| e["im"].as_f64().unwrap().abs()).collect();
+        assert!(im.len() == 2 && im.iter().all(|x| (x - 3.130527).abs() < 1e-6), "{key}: {im:?}");
+    }
+    assert_eq!(v["input_units"][0], "N m");
+    assert_eq!(v["output_units"][0], "rad");
+    assert_eq!(v["state_modes"], serde_json::json!([1, 1]));
+    // 3.130527/2π = 0.498239 Hz.
+    assert!((v["state_freq_hz"][0].as_f64().unwrap() - 0.498239).abs() < 1e-6);
+    assert_eq!(v["reference_time"], 0.0);
+    assert!(v["dcoef"].as_f64().unwrap() > 0.0);
+    // 1/(m g L) = 0.1019368 rad/(N m) (C2), both gains.
+    assert!((v["full_static_gain"][0][0].as_f64().unwrap() - 0.1019368).abs() < 1e-7);
+    assert!((v["rom_static_gain"][0][0].as_f64().unwrap() - 0.1019368).abs() < 1e-7);
+    for ext in ["mat", "npz"] {
+        let path = dir.join(format!("rom.{ext}"));
+        let (ok, _, err) = romdyn(&["rom", "examples/pendulum.mbd", "--input", "2:Mz", "--output", "2:rz", "--count", "1", "-o", path.to_str().unwrap()]);
+        assert!(ok, "{err}");
+        let bytes = std::fs::read(&path).unwrap();
+        let text = String::from_utf8_lossy(&bytes);
+        for name in ["full_eigenvalues", "input_units", "output_units", "state_modes", "state_freq_hz", "reference_time", "dcoef", "full_static_gain", "rom_static_gain", "states"] {
+            assert!(text.contains(name), "{ext}: {name}");
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Point 6, `romdyn run`: an empty file is refused with no output written; `-o DIR` of an
+/// existing directory writes DIR/NAME.* inside it, not DIR.out beside it.
+#[test]
+fn run_refuses_an_empty_model_and_writes_into_an_output_directory() {
+    let dir = temp_dir("run");
+    let empty = write_model(&dir, "empty.mbd", "");
+    let (ok, _, err) = romdyn(&["run", empty.to_str().unwrap()]);
+    assert!(!ok, "{err}");
+    assert!(std::fs::read_dir(&dir).unwrap().count() == 1, "an output file was written");
+    let out = dir.join("results");
+    std::fs::create_dir_all(&out).unwrap();
+    let (ok, _, err) = romdyn(&["run", "examples/pendulum.mbd", "-o", out.to_str().unwrap()]);
+    assert!(ok, "{err}");
+    assert!(out.join("pendulum.out").exists() && out.join("pendulum.mov").exists());
+    assert!(!dir.join("results.out").exists());
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -15,7 +15,7 @@ pub struct RunArgs {
     /// MBDyn input file (its 'initial value' block sets times [s], method, step, tolerance, max iterations and eigenanalyses)
     #[arg(value_name = "FILE")]
     pub file: PathBuf,
-    /// Output prefix: writes PREFIX.out, .mov, .log and PREFIX.m/.json (PREFIX_K.m/.json for several eigenanalyses) [default: FILE without its extension]
+    /// Output prefix: writes PREFIX.out, .mov, .log and PREFIX.m/.json (PREFIX_K.m/.json for several eigenanalyses); an existing directory DIR means DIR/NAME with NAME the file's stem [default: FILE without its extension]
     #[arg(short = 'o', long = "out", value_name = "PREFIX")]
     pub prefix: Option<PathBuf>,
 }
@@ -88,7 +88,15 @@ fn print_summary(file: &str, r: &RunReport, written: &[PathBuf]) {
 pub fn run(a: RunArgs) -> Result<()> {
     let m = read_model(&a.file)?;
     let input = a.file.display().to_string();
-    let prefix = a.prefix.clone().unwrap_or_else(|| a.file.with_extension(""));
+    if m.model.nodes.is_empty() {
+        anyhow::bail!("{input}: the model has no structural nodes: nothing to run, no file written");
+    }
+    let stem = a.file.file_stem().map(PathBuf::from).unwrap_or_else(|| PathBuf::from("romdyn"));
+    let prefix = match &a.prefix {
+        Some(dir) if dir.is_dir() => dir.join(stem),
+        Some(p) => p.clone(),
+        None => a.file.with_extension(""),
+    };
     let files = RunFiles::create(&prefix, &input, &m.model, &m.problem).with_context(|| format!("starting the output files {}.*", prefix.display()))?;
     let mut observers = (Progress::new(), files);
     let result = run_problem(&m.model, &m.problem, &mut observers);

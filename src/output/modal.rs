@@ -14,8 +14,10 @@ pub struct ModeRow {
     /// Imaginary part of λ [rad/s]; `null` in JSON when not finite.
     pub im: Option<f64>,
     pub kind: ModeKind,
-    /// Natural frequency |λ|/2π [Hz].
+    /// Frequency as MBDyn reports it, |Im λ|/2π [Hz] (the damped frequency).
     pub freq_hz: Option<f64>,
+    /// Undamped natural frequency |λ|/2π [Hz].
+    pub undamped_freq_hz: Option<f64>,
     /// Damping ratio −Re λ/|λ|.
     pub damping: Option<f64>,
     /// Estimated absolute error of λ [rad/s] (eqs. 32–35).
@@ -26,6 +28,9 @@ pub struct ModeRow {
     /// Dominant node components by kinetic energy, e.g. "node 3 rz 92 %" (multibody models).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub description: Option<String>,
+    /// 1-based index of the other member of a complex or ± real pair.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub partner: Option<usize>,
     /// Kinetic-energy share of every node component (multibody models).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub energy: Vec<EnergyShare>,
@@ -67,7 +72,9 @@ impl ModalReport {
                     re: representable.then_some(m.lambda.re),
                     im: representable.then_some(m.lambda.im),
                     kind: m.kind,
-                    freq_hz: if infinite { None } else { finite(m.freq_hz()) },
+                    freq_hz: if infinite { None } else { finite(m.lambda.im.abs() / (2.0 * std::f64::consts::PI)) },
+                    undamped_freq_hz: if infinite { None } else { finite(m.freq_hz()) },
+                    partner: None,
                     damping: if infinite { None } else { finite(m.damping()) },
                     error: finite(m.error),
                     label: None,
@@ -76,11 +83,18 @@ impl ModalReport {
                 }
             })
             .collect();
+        let mut eigenvalues: Vec<ModeRow> = eigenvalues;
+        for unit in crate::rom::mode_units(modal) {
+            if let [a, b] = unit[..] {
+                eigenvalues[a].partner = Some(b + 1);
+                eigenvalues[b].partner = Some(a + 1);
+            }
+        }
         ModalReport {
             equations,
             dcoef: modal.dcoef,
             route: modal.route,
-            units: "eigenvalues in rad/s, frequencies in Hz, dcoef in s",
+            units: "eigenvalues in rad/s, frequencies in Hz (freq_hz = |Im λ|/2π as MBDyn, undamped_freq_hz = |λ|/2π), dcoef in s",
             counts: Counts {
                 dynamic: modal.count(ModeKind::Dynamic),
                 zero: modal.count(ModeKind::Zero),
@@ -107,22 +121,51 @@ impl ModalReport {
         self
     }
 
-    /// The table as aligned text.
+    /// The table as aligned text: one row per dynamic mode (a complex or ± real pair is
+    /// one row), the zero and infinite eigenvalues counted on one line each.
     pub fn to_text(&self) -> String {
-        self.text(self.eigenvalues.iter(), "")
+        let rows = self.paired_rows(usize::MAX);
+        let (z, i) = (self.of_kind(ModeKind::Zero), self.of_kind(ModeKind::Infinite));
+        let mut tail = String::new();
+        for (rows, what) in [(z, "zero eigenvalues (constrained or static unknowns)"), (i, "infinite eigenvalues (multipliers, algebraic unknowns)")] {
+            if let (Some(a), Some(b)) = (rows.first(), rows.last()) {
+                tail += &format!("  modes {}–{}: {} {what}; --all lists every eigenvalue\n", a.index, b.index, rows.len());
+            }
+        }
+        self.text(rows, &tail)
     }
 
-    /// The header and the first `limit` dynamic modes (pairs count twice), as aligned text.
+    /// Every eigenvalue on its own row.
+    pub fn to_text_all(&self) -> String {
+        self.text(self.eigenvalues.iter().map(|r| (r, None)).collect(), "")
+    }
+
+    /// The header and the first `limit` dynamic modes (one row per pair), as aligned text.
     pub fn to_text_dynamic(&self, limit: usize) -> String {
-        let dynamic: Vec<&ModeRow> = self.eigenvalues.iter().filter(|r| r.kind == ModeKind::Dynamic).collect();
-        let more = dynamic.len().saturating_sub(limit);
+        let rows = self.paired_rows(limit);
+        let total = self.paired_rows(usize::MAX).len();
+        let more = total.saturating_sub(limit);
         let tail = if more > 0 { format!("  … {more} more dynamic modes (romdyn eig lists every mode)\n") } else { String::new() };
-        self.text(dynamic.into_iter().take(limit), &tail)
+        self.text(rows, &tail)
     }
 
-    fn text<'a>(&self, rows: impl Iterator<Item = &'a ModeRow>, tail: &str) -> String {
+    fn of_kind(&self, kind: ModeKind) -> Vec<&ModeRow> {
+        self.eigenvalues.iter().filter(|r| r.kind == kind).collect()
+    }
+
+    /// Dynamic rows, a pair as its first member with its partner.
+    fn paired_rows(&self, limit: usize) -> Vec<(&ModeRow, Option<&ModeRow>)> {
+        self.eigenvalues
+            .iter()
+            .filter(|r| r.kind == ModeKind::Dynamic && r.partner.is_none_or(|p| p > r.index))
+            .take(limit)
+            .map(|r| (r, r.partner.and_then(|p| self.eigenvalues.get(p - 1))))
+            .collect()
+    }
+
+    fn text(&self, rows: Vec<(&ModeRow, Option<&ModeRow>)>, tail: &str) -> String {
         let mut s = format!(
-            "# {} equations, route {:?}, dCoef {:e} s; {} dynamic, {} zero, {} infinite\n",
+            "# {} equations, route {:?}, dCoef {:e} s; {} dynamic, {} zero, {} infinite; freq = |Im λ|/2π (MBDyn's), undamped = |λ|/2π\n",
             self.equations, self.route, self.dcoef, self.counts.dynamic, self.counts.zero, self.counts.infinite
         );
         let labels = self.eigenvalues.iter().any(|r| r.label.is_some());
@@ -132,23 +175,36 @@ impl ModalReport {
             (false, false) => String::new(),
         };
         s += &format!(
-            "{:>5}  {:>14}  {:>14}  {:>12}  {:>9}  {:>8}  {:>9}{energy_column}\n",
-            "mode", "Re λ [rad/s]", "Im λ [rad/s]", "freq [Hz]", "damping", "kind", "error"
+            "{:>7}  {:>14}  {:>15}  {:>12}  {:>14}  {:>9}  {:>8}  {:>9}{energy_column}\n",
+            "mode", "Re λ [rad/s]", "Im λ [rad/s]", "freq [Hz]", "undamped [Hz]", "damping", "kind", "error"
         );
         let num = |x: Option<f64>, w: usize| x.map_or(format!("{:>w$}", "-"), |v| format!("{v:>w$.6e}"));
-        for r in rows {
-            let label = if labels { format!("{:<36}  ", r.label.as_deref().unwrap_or("")) } else { String::new() };
+        let hz = |x: Option<f64>, w: usize| x.map_or(format!("{:>w$}", "-"), |v| format!("{v:>w$.6}"));
+        for (r, partner) in rows {
+            let dynamic = r.kind == ModeKind::Dynamic;
+            let index = match partner {
+                Some(p) => format!("{},{}", r.index, p.index),
+                None => r.index.to_string(),
+            };
+            // A complex pair shows ±Im λ; a ± real pair ±Re λ.
+            let complex_pair = partner.is_some() && r.im.is_some_and(|v| v != 0.0);
+            let real_pair = partner.is_some() && !complex_pair;
+            let re = if real_pair { r.re.map_or(format!("{:>14}", "-"), |v| format!("{:>14}", format!("±{:.6e}", v.abs()))) } else { num(r.re, 14) };
+            let im = if complex_pair { r.im.map_or(format!("{:>15}", "-"), |v| format!("{:>15}", format!("±{:.6e}", v.abs()))) } else { num(r.im, 15) };
+            let label = if labels { format!("{:<36}  ", if dynamic { r.label.as_deref().unwrap_or("") } else { "" }) } else { String::new() };
             let row = format!(
-                "{:>5}  {}  {}  {}  {}  {:>8}  {}  {label}{}",
-                r.index,
-                num(r.re, 14),
-                num(r.im, 14),
-                r.freq_hz.map_or(format!("{:>12}", "-"), |v| format!("{v:>12.6}")),
-                // Rounding leaves |ζ| ~ 1e-12 on undamped modes: show 0.0000, not -0.0000.
-                r.damping.map_or(format!("{:>9}", "-"), |v| format!("{:>9.4}", if v.abs() < 5e-5 { 0.0 } else { v })),
+                "{index:>7}  {re}  {im}  {}  {}  {}  {:>8}  {}  {label}{}",
+                hz(r.freq_hz, 12),
+                hz(r.undamped_freq_hz, 14),
+                // Rounding leaves |ζ| ~ 1e-12 on undamped modes: show 0.0000, not -0.0000;
+                // a ± real pair has no single damping ratio; zero and infinite rows none.
+                match (dynamic && !real_pair, r.damping) {
+                    (true, Some(v)) => format!("{:>9.4}", if v.abs() < 5e-5 { 0.0 } else { v }),
+                    _ => format!("{:>9}", ""),
+                },
                 r.kind.name(),
                 r.error.map_or(format!("{:>9}", "inf"), |v| format!("{v:>9.1e}")),
-                r.description.as_deref().unwrap_or(""),
+                if dynamic { r.description.as_deref().unwrap_or("") } else { "" },
             );
             s += row.trim_end();
             s += "\n";
