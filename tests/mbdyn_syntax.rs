@@ -281,7 +281,7 @@ fn clamp_revolute_spherical_joints_and_pins() {
         NODES,
         "joint: 1, clamp, 1, node, node;
          joint: 2, revolute hinge, 1, position, 1., 0.5, 0., orientation, eye, 2, position, reference, other position, null, orientation, reference, other orientation, eye;
-         joint: 3, spherical hinge, 2, position, reference, global, 0., 2., 0.5, 3;
+         joint: 3, spherical hinge, 2, position, reference, global, 0., 2., 0.5, 3, null;
          joint: 4, revolute pin, 3, position, null, orientation, eye, position, 0., 2., 0.5, orientation, eye, initial theta, 0.;
          joint: 5, spherical pin, 3, position, null, position, reference, global, 0., 2., 0.5;
          joint: 6, plane hinge, 1, null, 3, reference, other node, null;",

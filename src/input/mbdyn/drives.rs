@@ -144,7 +144,8 @@ pub fn template_vec3(c: &mut Cursor, drives: &Drives, seq: usize, basis: &Mat3, 
 const MAX_ARRAY_DEPTH: usize = 8;
 
 fn template_terms(c: &mut Cursor, drives: &Drives, seq: usize, basis: &Mat3, direction: &dyn Fn(&mut Cursor) -> Result<Vec3, MbdynError>, depth: usize) -> Result<Vec<(Vec3, Drive)>, MbdynError> {
-    if c.accept("null") {
+    // `zero` is the deprecated name of `null` (tpldrive_impl.cc, ZeroTDCR).
+    if c.accept("null") || c.accept("zero") {
         return Ok(vec![(Vec3::zeros(), Drive::Const(0.0))]);
     }
     if c.accept("component") {

@@ -61,6 +61,9 @@ pub fn element(st: &Statement, c: &mut Cursor, ctx: &ElementContext) -> Result<P
         _ => {}
     }
     let label = c.label(&format!("{kind} label"))?;
+    if c.accept("name") {
+        c.string(&format!("{kind} name"))?;
+    }
     let parsed = match kind {
         "body" => Parsed::Element(Box::new(body(label, c, ctx)?)),
         "joint" => Parsed::Element(joint(label, c, ctx)?),
@@ -117,7 +120,13 @@ fn body(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<RigidBody,
         }
         let cm = on.relative_position(c, "centre of mass offset [m]")?;
         let mut j = on.relative_matrix(c, "inertia about the centre of mass [kg m^2]")?;
-        if c.accept("orientation") {
+        // `inertial, {node | R}` (body.cc, ReadBody): the frame the inertia is written in.
+        if c.accept("inertial") {
+            if !c.accept("node") {
+                let r = on.relative_orientation(c, "orientation of the inertia")?;
+                j = r * j * r.transpose();
+            }
+        } else if c.accept("orientation") {
             let r = on.relative_orientation(c, "orientation of the inertia")?;
             j = r * j * r.transpose();
         }

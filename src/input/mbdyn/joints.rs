@@ -84,9 +84,10 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
         "clamp" => Box::new(clamp(label, c, ctx)?),
         "revolute hinge" | "plane hinge" | "spherical hinge" => {
             let revolute = kind != "spherical hinge";
-            let position = if revolute { Position::Always } else { Position::IfKeyword };
-            let a = side(c, ctx, "node 1", position, None)?;
-            let b = side(c, ctx, "node 2", position, Some(&a))?;
+            // MBDyn reads both offsets whether or not `position` is written (joint.cc,
+            // MBDYN_X_COMPATIBLE_INPUT, which joint.cc defines).
+            let a = side(c, ctx, "node 1", Position::Always, None)?;
+            let b = side(c, ctx, "node 2", Position::Always, Some(&a))?;
             if revolute && c.accept("initial theta") {
                 c.real("initial theta [rad]")?;
             }
@@ -136,15 +137,22 @@ fn clamp(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Joint, Mb
     assembled(j, &(position, orientation), &(n.position, n.orientation), c, span)
 }
 
-/// `revolute pin, NODE, position, OFFSET [, orientation, R], position, PIN [, orientation,
-/// R_PIN]` and `spherical pin` alike: the joint with a frame fixed in space.
+/// `revolute pin, NODE, [position,] OFFSET [, {orientation | hinge}, R], [position,] PIN [,
+/// {orientation | hinge}, R_PIN]` and `spherical pin` alike: the joint with a frame fixed in
+/// space. Both `position` keywords are optional and `hinge` is the older word for
+/// `orientation` (joint.cc, MBDYN_X_COMPATIBLE_INPUT); a spherical pin reads its
+/// orientations and ignores them.
 fn pin(kind: &str, label: Label, c: &mut Cursor, ctx: &ElementContext, span: super::diagnostic::Span) -> Result<Joint, MbdynError> {
     let revolute = kind != "spherical pin";
-    let b = side(c, ctx, "the node", if revolute { Position::Always } else { Position::IfKeyword }, None)?;
+    let mut b = side(c, ctx, "the node", Position::Always, None)?;
+    if !revolute {
+        b.orientation = Mat3::identity();
+    }
     let on = Context { node: Some(Frame::of_node(b.node)), ..ctx.global() };
-    c.keyword("'position' of the pin", &["position"])?;
+    c.accept("position");
     let position = on.position(c, "pin position [m]")?;
-    let orientation = if c.accept("orientation") { on.orientation(c, "pin orientation")? } else { Mat3::identity() };
+    let orientation = if c.accept("orientation") || c.accept("hinge") { on.orientation(c, "pin orientation")? } else { Mat3::identity() };
+    let orientation = if revolute { orientation } else { Mat3::identity() };
     if revolute && c.accept("initial theta") {
         c.real("initial theta [rad]")?;
     }

@@ -1,0 +1,228 @@
+//! Syntax real MBDyn files use that MBDyn 1.7.3's reader accepts (issue 12, point 1): each
+//! construct is in a file of `tests/mbdyn_files/` written as MBDyn's own test files are, and
+//! is read here against the same model in the current syntax (the construct replaced by its
+//! documented equivalent: same residual at pseudo-random states, same problem), plus the
+//! numbers the construct must produce (closed forms, stated next to each assertion). What
+//! MBDyn's reader does is cited from its source (mbdyn/base, mbdyn/struct) per construct.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use common::mbdyn::residual;
+use common::cli::temp_dir;
+use romdyn::analysis::{run, RunFiles};
+use romdyn::input::mbdyn::{build, parse_text, read_model, MbdynModel};
+use romdyn::kinematics::Vec3;
+use romdyn::model::{Method, OrientationOutput};
+
+fn path(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files").join(name)
+}
+
+fn text(name: &str) -> String {
+    std::fs::read_to_string(path(name)).unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+fn read(name: &str) -> MbdynModel {
+    read_model(&path(name)).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The file's text with each `(old, new)` replaced; every `old` must occur (so a test cannot
+/// pass by replacing nothing).
+fn rewritten(name: &str, replacements: &[(&str, &str)]) -> MbdynModel {
+    let mut t = text(name);
+    for (old, new) in replacements {
+        assert!(t.contains(old), "{name} does not contain {old:?}");
+        t = t.replace(old, new);
+    }
+    parse_text(&t, &path(name)).and_then(|d| build(&d)).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Same nodes, same residual at three noisy states and times (1e-12 relative), same problem.
+fn assert_same(a: &MbdynModel, b: &MbdynModel) {
+    assert_eq!(a.model.nodes.len(), b.model.nodes.len(), "node count");
+    assert_eq!(a.model.elements.len(), b.model.elements.len(), "element count");
+    for (seed, t) in [(7, 0.0), (11, 0.37), (13, 2.5)] {
+        let (x, y) = (residual(&a.model, t, seed), residual(&b.model, t, seed));
+        let scale = y.iter().fold(1.0f64, |m, v| m.max(v.abs()));
+        for (i, (p, q)) in x.iter().zip(&y).enumerate() {
+            assert!((p - q).abs() <= 1e-12 * scale, "t = {t}, equation {i}: {p} against {q}");
+        }
+    }
+    assert_eq!(a.problem, b.problem);
+}
+
+#[test]
+fn older_spellings_and_compatible_offsets_read_as_the_current_syntax() {
+    // solver.cc (Solver::ReadData): `begin: multistep` and `problem: multistep` (mbdyn.cc)
+    // are the initial value problem, `crank nicholson` is Crank-Nicolson, `fictitious steps
+    // …` are the dummy steps, `newton raphson: true` is `nonlinear solver: newton raphson`.
+    // joint.cc (MBDYN_X_COMPATIBLE_INPUT): pin and hinge offsets without `position`, `hinge`
+    // for `orientation`. body.cc: `inertial, {node | R}` is the inertia's frame (R J Rᵀ:
+    // diag(1, 2, 3)e-2 turned by π/2 about z is diag(2, 1, 3)e-2). dataman3.cc: `name, "…"`
+    // after node and element labels; control data read twice keeps the later count.
+    // tpldrive_impl.cc: `zero` is `null`. Input manual §Reference: the keywords of
+    // `reference:` are optional. A string may span lines (parser.cc, GetStringWithDelims).
+    let legacy = read("compat_pendulum.mbd");
+    let modern = rewritten(
+        "compat_pendulum.mbd",
+        &[
+            ("problem: multistep", "problem: initial value"),
+            ("begin: multistep", "begin: initial value"),
+            ("end: multistep", "end: initial value"),
+            ("crank nicholson", "crank nicolson"),
+            ("fictitious steps number: 0;", "dummy steps number: 0;"),
+            ("newton raphson: true;", "nonlinear solver: newton raphson;"),
+            ("\"a double pendulum\nin the older syntax\"", "\"a double pendulum\""),
+            ("    joints: 1;\n", ""),
+            ("    position, 0., 0., 0.,\n    orientation, euler123", "    0., 0., 0.,\n    euler123"),
+            ("    velocity, null,\n    angular velocity, null;", "    null,\n    null;"),
+            (", name, \"upper\"", ""),
+            (", name, \"lower\"", ""),
+            (", name, \"pivot\"", ""),
+            (", name, \"bob\"", ""),
+            ("revolute pin, 1, -1., 0., 0., hinge, eye, 0., 0., 0., hinge, eye", "revolute pin, 1, position, -1., 0., 0., orientation, eye, position, 0., 0., 0., orientation, eye"),
+            ("revolute hinge, 1, 0.5, 0., 0., hinge, eye, 2, -0.5, 0., 0., hinge, eye", "revolute hinge, 1, position, 0.5, 0., 0., orientation, eye, 2, position, -0.5, 0., 0., orientation, eye"),
+            (", inertial, node;", ";"),
+            ("diag, 1.e-2, 2.e-2, 3.e-2, inertial, euler123, 0., 0., pi/2;", "diag, 2.e-2, 1.e-2, 3.e-2;"),
+            ("position, null, zero;", "position, null, null;"),
+        ],
+    );
+    assert_same(&legacy, &modern);
+    assert_eq!(legacy.problem.method, Method::CrankNicolson);
+    // Two bodies, two joints and the couple; node 1 at R_z(π/6) (1, 0, 0) from reference 10.
+    assert_eq!(legacy.model.elements.len(), 5);
+    let (c, s) = ((std::f64::consts::PI / 6.0).cos(), (std::f64::consts::PI / 6.0).sin());
+    assert!((legacy.model.nodes[0].position - Vec3::new(c, s, 0.0)).norm() < 1e-15);
+}
+
+#[test]
+fn spherical_hinge_and_pin_offsets_are_read_without_position() {
+    // joint.cc reads both offsets of a spherical hinge and the node offset and the absolute
+    // point of a spherical pin whether or not `position` precedes them.
+    let legacy = read("compat_spherical.mbd");
+    let modern = rewritten(
+        "compat_spherical.mbd",
+        &[
+            ("spherical pin, 1, -0.5, 0., 0., 0., 0., 0.", "spherical pin, 1, position, -0.5, 0., 0., position, 0., 0., 0."),
+            ("spherical hinge, 1, reference, node, 0.5, 0., 0., 2, reference, node, null", "spherical hinge, 1, position, reference, node, 0.5, 0., 0., 2, position, reference, node, null"),
+        ],
+    );
+    assert_same(&legacy, &modern);
+    // The rigid rotation about z at 1 rad/s keeps the pin and the hinge closed: after 10 steps
+    // node 2 is still 1 m from the pin (|x₂| = 1 to the Newton tolerance).
+    let report = run(&legacy.model, &legacy.problem, &mut ()).unwrap();
+    let asm = romdyn::dae::Assembler::new(&legacy.model);
+    let x2 = report.final_state.node_frame(&asm.dofs, 1).kin.x;
+    assert!((x2.norm() - 1.0).abs() < 1e-8, "|x2| = {}", x2.norm());
+}
+
+#[test]
+fn the_beam_card_is_beam3() {
+    // MBDyn reads `beam:` with the three-node beam's reader (dataman4.cc, case BEAM/BEAM3).
+    assert_same(&read("beam_card.mbd"), &rewritten("beam_card.mbd", &[("beam: 1,", "beam3: 1,")]));
+}
+
+#[test]
+fn a_second_derivatives_tolerance_is_read_and_the_first_one_used() {
+    let pair = read("derivatives_tolerance_pair.mbd");
+    // MBDyn 1.7.3 itself rejects the second value ("invalid call to GetDescription"): later
+    // versions read a residual and a solution tolerance; romdyn reads both, uses the first.
+    assert_eq!(pair.problem.derivatives_tolerance, 1e-6);
+    assert_same(&pair, &rewritten("derivatives_tolerance_pair.mbd", &[("derivatives tolerance: 1.e-6, 1.e-9;", "derivatives tolerance: 1.e-6;")]));
+}
+
+#[test]
+fn use_automatic_differentiation_changes_nothing() {
+    assert_same(&read("automatic_differentiation.mbd"), &rewritten("automatic_differentiation.mbd", &[("    use automatic differentiation;\n", "")]));
+}
+
+#[test]
+fn dummy_nodes_and_output_flags_select_the_mov_rows() {
+    let m = read("dummy_output.mbd");
+    let out = m.problem.output.clone().unwrap();
+    assert_eq!(out.every, 2);
+    let labels: Vec<_> = out.nodes.iter().filter(|n| n.written).map(|n| n.label).collect();
+    // default output: none; node 2 `output, yes`; 3 and 4 by `output: structural, range, 3, 4`;
+    // node 5 `output, no` (dataman3.cc, DataManager::ReadNodes).
+    assert_eq!(labels, [2, 3, 4]);
+    assert_eq!(out.nodes[1].orientation, OrientationOutput::RotationVector);
+    assert_eq!(out.nodes[3].orientation, OrientationOutput::Euler321Degrees);
+
+    let dir = temp_dir("dummy-output");
+    let prefix = dir.join("dummy_output");
+    let mut files = RunFiles::create(&prefix, "dummy_output.mbd", &m.model, &m.problem).unwrap();
+    let report = run(&m.model, &m.problem, &mut files).unwrap();
+    files.finish(&report).unwrap();
+    let mov = std::fs::read_to_string(dir.join("dummy_output.mov")).unwrap();
+    let rows: Vec<Vec<f64>> = mov.lines().map(|l| l.split_whitespace().map(|x| x.parse().unwrap()).collect()).collect();
+    // Steps 0, 2, …, 10 (output frequency 2), three rows each, in file order.
+    assert_eq!(rows.len(), 6 * 3);
+    assert_eq!(rows.iter().map(|r| r[0] as u32).take(6).collect::<Vec<_>>(), [2, 3, 4, 2, 3, 4]);
+    // Step 0 (closed form): node 2 at (1, 0, 0) turning at ω = 0.5 rad/s about z; node 3 at
+    // (1.5, 0, 0) with v = ω × (1.5, 0, 0) = (0, 0.75, 0); node 4 at (1.5, 0.2, 0) with R_z(π/4)
+    // R₃, Euler 3-2-1 angles (45°, 0, 0), v = ω × (1.5, 0.2, 0) = (−0.1, 0.75, 0).
+    let close = |a: &[f64], b: &[f64]| a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-12);
+    assert!(close(&rows[1][1..4], &[1.5, 0.0, 0.0]) && close(&rows[1][7..10], &[0.0, 0.75, 0.0]), "{:?}", rows[1]);
+    assert!(close(&rows[2][1..7], &[1.5, 0.2, 0.0, 45.0, 0.0, 0.0]) && close(&rows[2][7..13], &[-0.1, 0.75, 0.0, 0.0, 0.0, 0.5]), "{:?}", rows[2]);
+    // Later rows: node 3 stays 1.5 m from the hinge at the origin.
+    for r in rows.iter().filter(|r| r[0] == 3.0) {
+        assert!((Vec3::new(r[1], r[2], r[3]).norm() - 1.5).abs() < 1e-9, "{r:?}");
+    }
+}
+
+#[test]
+fn files_without_a_method_get_mbdyn_defaults() {
+    // solver.cc (Solver::ReadData) and solver_impl.h: ms with ρ∞ = 0, tolerance 1e-6 on the
+    // residual's 2-norm, at most 1 iteration, the same for the derivatives, derivatives
+    // coefficient 1e-6 (times the time step).
+    let m = rewritten("automatic_differentiation.mbd", &[("    method: ms, .6;\n    tolerance: 1.e-9;\n    max iterations: 10;\n", ""), ("    derivatives tolerance: 1.e-6;\n    derivatives max iterations: 10;\n", "")]);
+    let p = &m.problem;
+    assert_eq!((p.method, p.tolerance, p.max_iterations, p.derivatives_tolerance, p.derivatives_max_iterations, p.derivatives_coefficient), (Method::Ms { rho: 0.0 }, 1e-6, 1, 1e-6, 1, 1e-6));
+    assert_eq!(p.residual_norm, romdyn::model::ResidualNorm::Euclidean);
+}
+
+/// Final positions [m] and velocities [m/s] (x, y, vx, vy) of the moving nodes after 1 s,
+/// from MBDyn 1.7.3 (github:alex-marinov/mbdyn 1727489e, built with
+/// shared/tools/build-mbdyn.sh) on the file named, with `output precision: 15;` added to
+/// control data so that the .mov carries 16 digits (the physics is the file's).
+const MBDYN_AFTER_1S: [(&str, &[[f64; 4]]); 3] = [
+    ("default_pendulum.mbd", &[[-9.861388655041513e-01, -1.659220839496368e-01, -2.992003118115070e-01, 1.778368129224172e+00]]),
+    (
+        "default_double_pendulum.mbd",
+        &[
+            [-5.836155501578368e-01, -8.120301038840766e-01, -3.177552013625006e+00, 2.283732691968736e+00],
+            [-1.443953624661910e+00, -1.321753948292666e+00, -3.851263704087549e+00, 3.420901574874445e+00],
+        ],
+    ),
+    (
+        "default_chain.mbd",
+        &[
+            [2.214041710103559e-01, -9.751821332752559e-01, -9.194557292597751e-01, -2.087549845787199e-01],
+            [4.349673501842904e-01, -1.952111387879444e+00, -2.727784210194222e+00, -6.040539766494291e-01],
+            [7.109461033631994e-01, -2.913275124084016e+00, -3.616970332056697e+00, -8.593833964772684e-01],
+            [8.534739980919601e-01, -3.903065909666746e+00, -6.524487017942838e+00, -1.277916236495490e+00],
+            [1.445937765093792e+00, -4.708663007967157e+00, -1.331813238000851e+01, -6.274621912321413e+00],
+        ],
+    ),
+];
+
+#[test]
+fn without_a_method_line_the_trajectories_are_mbdyns() {
+    // Issue 12 acceptance: 1e-6 relative to MBDyn after 1 s (the integrator's tolerance),
+    // relative to the largest entry of each node's position and velocity.
+    for (name, want) in MBDYN_AFTER_1S {
+        let m = read(name);
+        let report = run(&m.model, &m.problem, &mut ()).unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(report.steps, 1000);
+        let asm = romdyn::dae::Assembler::new(&m.model);
+        for (k, w) in want.iter().enumerate() {
+            let kin = report.final_state.node_frame(&asm.dofs, k + 1).kin;
+            let got = [kin.x[0], kin.x[1], kin.xdot[0], kin.xdot[1]];
+            let (dx, dv) = ((got[0] - w[0]).hypot(got[1] - w[1]) / w[0].hypot(w[1]), (got[2] - w[2]).hypot(got[3] - w[3]) / w[2].hypot(w[3]));
+            eprintln!("{name} node {}: position {dx:.1e}, velocity {dv:.1e} from MBDyn", k + 2);
+            assert!(dx < 1e-6 && dv < 1e-6, "{name} node {}: romdyn {got:?}, MBDyn {w:?}", k + 2);
+        }
+    }
+}
