@@ -21,7 +21,7 @@ pub use beam::{shape as beam_shape, Beam3, BeamError, BeamNode, SectionLaw, Sect
 pub use body::RigidBody;
 pub use contract::{Col, Element, ElementState, JacobianSink, Label, NodeKinematics, ResidualSink, Row, SectionState};
 pub use deformable::{DeformableDisplacement, DeformableHinge, LinearViscoelastic, Rod};
-pub use drive::Drive;
+pub use drive::{Drive, TimeFunction};
 pub use force::{Couple, Force, ForceFrame};
 pub use anchor::Anchor;
 pub use joint::{Joint, JointKind};

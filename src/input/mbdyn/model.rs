@@ -46,6 +46,7 @@ struct Cards {
 
 fn cards(doc: &Document) -> Result<Cards, MbdynError> {
     let mut out = Cards::default();
+    out.drives.variables = doc.variables.clone();
     for st in doc.cards.iter().filter(|st| known(&st.keyword, &["reference"]).is_some()) {
         if let Some(super::parser::Arg { value: super::parser::Value::Number(x), .. }) = st.args.first()
             && *x >= 0.0
