@@ -32,13 +32,17 @@ last_positions() {
 # file's dCoef and alpha rows; those with Im λ > 0, sorted by Im λ.
 eigenvalues() {
     awk '
-        /^dCoef *=/ { gsub(/[^0-9.eE+-]/, " ", $0); split($0, a, " "); dcoef = a[1] + 0 }
-        /^alpha *= *\[/ { inside = 1; next }
-        inside && /\]/ { inside = 0 }
-        inside && NF >= 3 {
-            gsub(/;/, ""); ar = $1; ai = $2; b = $3
-            d = dcoef * ((ar + b) ^ 2 + ai ^ 2)
-            if (d != 0 && b != 0) { re = (ar ^ 2 + ai ^ 2 - b ^ 2) / d; im = 2 * ai * b / d; if (im > 1e-9) printf "%.10e %.10e\n", re, im }
+        /^dCoef *=/ { v = $0; sub(/^dCoef *= */, "", v); sub(/;.*/, "", v); dcoef = v + 0 }
+        /^alpha *= *\[/ { inside = 1; sub(/^alpha *= *\[/, "") }
+        inside {
+            line = $0; last = (line ~ /\]/); gsub(/[];[]/, " ", line)
+            n = split(line, a, " ")
+            if (n >= 3) {
+                ar = a[1]; ai = a[2]; b = a[3]
+                d = dcoef * ((ar + b) ^ 2 + ai ^ 2)
+                if (d != 0 && b != 0) { re = (ar ^ 2 + ai ^ 2 - b ^ 2) / d; im = 2 * ai * b / d; if (im > 1e-6) printf "%.10e %.10e\n", re, im }
+            }
+            if (last) inside = 0
         }' "$1" | sort -g -k2
 }
 
