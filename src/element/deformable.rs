@@ -4,7 +4,7 @@
 
 use super::contract::{add_block, add_vec, Col, Element, ElementState, JacobianSink, ResidualSink, Row};
 use super::anchor::{node_labels, Anchor, Pair};
-use crate::kinematics::{axial_of_skew_part, skew, skew_part_jacobian, Mat3, Vec3};
+use crate::kinematics::{rotation_vector, skew, Mat3, Vec3};
 use super::contract::Label;
 
 /// `φ = K ε + C ε̇` with 3x3 stiffness and viscosity matrices (linear elastic when `C = 0`).
@@ -68,8 +68,9 @@ impl Element for DeformableDisplacement {
     }
 }
 
-/// Angular spring–damper: relative rotation `r = ax(Q_aᵀ Q_b)` (the rotation vector to
-/// first order), rate `ṙ = P(M) Q_aᵀ (ω_b − ω_a)`; moment `Q_a (K r + C ṙ)` on B, opposite
+/// Angular spring–damper as MBDyn's deformable hinge (vehj.cc, `ElasticHingeJoint`,
+/// `ViscousHingeJoint`): relative rotation `θ = rotvec(Q_aᵀ Q_b)` (the exact rotation
+/// vector, in frame A), rate `w = Q_aᵀ (ω_b − ω_a)`; moment `Q_a (K θ + C w)` on B, opposite
 /// on A.
 #[derive(Clone, Debug)]
 pub struct DeformableHinge {
@@ -77,6 +78,15 @@ pub struct DeformableHinge {
     pub a: Anchor,
     pub b: Anchor,
     pub law: LinearViscoelastic,
+}
+
+/// `Γ⁻¹(θ)`: `θ' = θ + Γ⁻¹(θ) δφ` when `exp(θ×)` is turned to `exp(δφ×) exp(θ×)`
+/// (MBDyn's `RotManip::DRot_I`): `I − ½ [θ×] + (1/φ² − (1 + cos φ)/(2 φ sin φ)) [θ×]²`.
+fn inverse_rotation_jacobian(theta: &Vec3) -> Mat3 {
+    let phi = theta.norm();
+    let c = if phi < 1e-4 { 1.0 / 12.0 + phi * phi / 720.0 } else { 1.0 / (phi * phi) - (1.0 + phi.cos()) / (2.0 * phi * phi.sin()) };
+    let t = skew(theta);
+    Mat3::identity() - 0.5 * t + c * t * t
 }
 
 impl Element for DeformableHinge {
@@ -91,10 +101,9 @@ impl Element for DeformableHinge {
     }
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
         let p = Pair::new(&self.a, &self.b, st);
-        let m_rel = p.q_a.transpose() * p.q_b;
+        let theta = rotation_vector(&(p.q_a.transpose() * p.q_b));
         let w = p.q_a.transpose() * (p.omega_b - p.omega_a);
-        let mu = self.law.stiffness * axial_of_skew_part(&m_rel) + self.law.viscosity * skew_part_jacobian(&m_rel) * w;
-        let m = p.q_a * mu;
+        let m = p.q_a * (self.law.stiffness * theta + self.law.viscosity * w);
         add_vec(out, Row::moment(p.slot_b), &m);
         if let Some(a) = p.slot_a {
             add_vec(out, Row::moment(a), &(-m));
@@ -103,15 +112,14 @@ impl Element for DeformableHinge {
     fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
         let p = Pair::new(&self.a, &self.b, st);
         let (qa, qt) = (p.q_a, p.q_a.transpose());
-        let m_rel = qt * p.q_b;
-        let (pm, r) = (skew_part_jacobian(&m_rel), axial_of_skew_part(&m_rel));
+        let theta = rotation_vector(&(qt * p.q_b));
         let w = qt * (p.omega_b - p.omega_a);
         let (k, c) = (self.law.stiffness, self.law.viscosity);
-        let m = qa * (k * r + c * pm * w);
-        // δμ = (K P + C (−w rᵀ + ½[(M w)×])) Qᵀ (δθ_b − δθ_a) + C P Qᵀ [(ω_b − ω_a)×] δθ_a
-        //      + C P Qᵀ (δω_b − δω_a);  δm = −[m×] δθ_a + Q δμ.
-        let d_rel = qa * (k * pm + c * (-w * r.transpose() + 0.5 * skew(&(m_rel * w)))) * qt;
-        let d_omega = qa * c * pm * qt;
+        let m = qa * (k * theta + c * w);
+        // δθ = Γ⁻¹(θ) Q_aᵀ (δθ_b − δθ_a), δw = Q_aᵀ (δω_b − δω_a) + Q_aᵀ [(ω_b − ω_a)×] δθ_a,
+        // δm = −[m×] δθ_a + Q_a (K δθ + C δw).
+        let d_rel = qa * k * inverse_rotation_jacobian(&theta) * qt;
+        let d_omega = qa * c * qt;
         let d_theta_a = -skew(&m) - d_rel + d_omega * skew(&(p.omega_b - p.omega_a));
         let (b, sa) = (p.slot_b, p.slot_a);
         for (sign, slot) in [(1.0, Some(b)), (-1.0, sa)] {
