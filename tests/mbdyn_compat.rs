@@ -302,3 +302,31 @@ fn a_deformable_hinge_through_large_rotations_follows_mbdyn() {
         assert!((kin.omega[k] - omega[k]).abs() < 1e-6 * 1.1, "ω {k}: {} against MBDyn {}", kin.omega[k], omega[k]);
     }
 }
+
+#[test]
+fn the_derivatives_phase_keeps_the_velocities_written_and_reports_inconsistent_ones() {
+    // MBDyn's derivatives phase holds positions and velocities (strnode.cc,
+    // StructNode::DerivativesUpdate) and solves for the momenta's derivatives: a body in free
+    // fall keeps v = (1, 0, 0) m/s exactly (romdyn's earlier phase gave it g·dCoef), its
+    // momentum derivative is m g = (0, −2·9.81, 0) N.
+    let text = "begin: data; problem: initial value; end: data;
+        begin: initial value; initial time: 0.; final time: 0.; time step: 1.e-3; end: initial value;
+        begin: control data; structural nodes: 1; rigid bodies: 1; gravity; end: control data;
+        begin: nodes; structural: 1, dynamic, 0., 0., 0., eye, 1., 0., 0., null; end: nodes;
+        begin: elements; body: 1, 1, 2., null, eye; gravity: uniform, 0., -1., 0., const, 9.81; end: elements;";
+    let m = parse_text(text, Path::new("free_fall.mbd")).and_then(|d| build(&d)).unwrap();
+    let report = run(&m.model, &m.problem, &mut ()).unwrap();
+    let st = &report.final_state;
+    assert_eq!(&st.yp[0..3], &[1.0, 0.0, 0.0]);
+    assert!((st.yp[7] + 2.0 * 9.81).abs() < 1e-12 && st.yp[6].abs() < 1e-12, "β' = {:?}", &st.yp[6..9]);
+    assert!(report.inconsistent_velocity.is_none());
+
+    // A pendulum bob given a radial velocity of 0.5 m/s violates its hinge at 0.5 m/s: kept,
+    // and reported.
+    let bad = rewritten("default_pendulum.mbd", &[("structural: 2, dynamic, 1., 0., 0., eye, null, null;", "structural: 2, dynamic, 1., 0., 0., eye, 0.5, 0., 0., null;"), ("    final time: 1.;", "    final time: 0.;")]);
+    let report = run(&bad.model, &bad.problem, &mut ()).unwrap();
+    let (equation, rate) = report.inconsistent_velocity.clone().expect("the violation is reported");
+    assert!((rate.abs() - 0.5).abs() < 1e-6, "{equation}: {rate}");
+    let asm = romdyn::dae::Assembler::new(&bad.model);
+    assert_eq!(report.final_state.node_frame(&asm.dofs, 1).kin.xdot, Vec3::new(0.5, 0.0, 0.0));
+}
