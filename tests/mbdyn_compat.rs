@@ -330,3 +330,26 @@ fn the_derivatives_phase_keeps_the_velocities_written_and_reports_inconsistent_o
     let asm = romdyn::dae::Assembler::new(&bad.model);
     assert_eq!(report.final_state.node_frame(&asm.dofs, 1).kin.xdot, Vec3::new(0.5, 0.0, 0.0));
 }
+
+#[test]
+fn in_line_in_plane_and_prismatic_slide_as_the_closed_form_and_mbdyn() {
+    // sliders.mbd: from rest under g = 9.81 m/s², after 1 s node 2 is g sin30°/2 = 2.4525 m
+    // down the line (cos30°, 0, −sin30°), node 3 at (0, 5, 0) + (g − (g·n) n)/2 with
+    // n = (0, sin30°, cos30°). MBDyn 1.7.3 (1727489e, output precision 15):
+    // (2.123927307027063, 0, −1.226250002451271) and (0, 7.123927307027264, −1.226250002451388).
+    let (s, c) = (0.5f64, 0.75f64.sqrt());
+    let d = 9.81 * s / 2.0;
+    let closed = [Vec3::new(d * c, 0.0, -d * s), Vec3::new(0.0, 5.0 + 9.81 * c * s / 2.0, -9.81 * (1.0 - c * c) / 2.0)];
+    let mbdyn = [Vec3::new(2.123927307027063, 0.0, -1.226250002451271), Vec3::new(0.0, 7.123927307027264, -1.226250002451388)];
+    let m = read("sliders.mbd");
+    let report = run(&m.model, &m.problem, &mut ()).unwrap();
+    let asm = romdyn::dae::Assembler::new(&m.model);
+    for k in 0..2 {
+        let kin = report.final_state.node_frame(&asm.dofs, k + 1).kin;
+        // The motion is a parabola in time, which ms integrates to rounding: 1e-9 m.
+        assert!((kin.x - closed[k]).norm() < 1e-8, "node {}: {} against the closed form {}", k + 2, kin.x, closed[k]);
+        assert!((kin.x - mbdyn[k]).norm() < 1e-8, "node {}: {} against MBDyn {}", k + 2, kin.x, mbdyn[k]);
+        // Prismatic: no rotation.
+        assert!((kin.r - romdyn::kinematics::Mat3::identity()).norm() < 1e-12);
+    }
+}

@@ -18,18 +18,18 @@ use crate::element::{Anchor, DeformableDisplacement, DeformableHinge, Drive, Ele
 use crate::kinematics::{axial_of_skew_part, Mat3, Vec3};
 use crate::model::{Label, StructuralNode};
 
-const SUPPORTED: [&str; 14] = [
+const SUPPORTED: [&str; 17] = [
     "clamp", "revolute hinge", "plane hinge", "revolute pin", "plane pin", "spherical hinge", "spherical pin", "total joint", "total pin joint",
-    "deformable displacement joint", "deformable displacement hinge", "deformable hinge", "rod", "rod with offset",
+    "deformable displacement joint", "deformable displacement hinge", "deformable hinge", "rod", "rod with offset", "in line", "in plane", "prismatic",
 ];
 
 /// MBDyn joints romdyn names in its "not supported" error.
-const OTHER_JOINTS: [&str; 33] = [
+const OTHER_JOINTS: [&str; 30] = [
     "angular acceleration", "angular velocity", "axial rotation", "beam slider", "brake", "cardano hinge", "cardano pin", "cardano rotation",
     "coincidence", "deformable axial joint", "deformable joint", "distance", "distance with offset", "drive displacement", "drive displacement pin",
-    "drive hinge", "gimbal rotation", "imposed displacement", "imposed displacement pin", "imposed orientation", "in line", "in plane",
+    "drive hinge", "gimbal rotation", "imposed displacement", "imposed displacement pin", "imposed orientation",
     "invariant deformable displacement joint", "invariant deformable hinge", "linear acceleration", "linear velocity", "modal",
-    "plane displacement", "plane displacement pin", "point contact", "prismatic", "revolute rotation", "rod bezier",
+    "plane displacement", "plane displacement pin", "point contact", "revolute rotation", "rod bezier",
 ];
 
 /// One side of a two-node joint: node, offset and orientation in the node frame.
@@ -76,7 +76,7 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
     let Some(kind) = c.accept_any(&SUPPORTED) else {
         if let Some(w) = c.peek_keyword() {
             let name = OTHER_JOINTS.iter().find(|o| super::parser::same_keyword(o, w)).copied().unwrap_or(w);
-            return Err(c.error(format!("joint type '{name}' is not supported by romdyn (supported: clamp, revolute hinge, revolute pin, spherical hinge, spherical pin, total joint, total pin joint, deformable displacement joint, deformable hinge, rod)")));
+            return Err(c.error(format!("joint type '{name}' is not supported by romdyn (supported: clamp, revolute hinge, revolute pin, spherical hinge, spherical pin, total joint, total pin joint, deformable displacement joint, deformable hinge, rod, in line, in plane, prismatic)")));
         }
         return Err(c.error(format!("expected a joint type, found {}", c.found())));
     };
@@ -99,6 +99,18 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
         }
         "revolute pin" | "plane pin" | "spherical pin" => Box::new(pin(kind, label, c, ctx, span)?),
         "total joint" | "total pin joint" => Box::new(total(kind == "total pin joint", label, c, ctx, span)?),
+        "in line" | "in plane" => Box::new(in_line_or_plane(kind == "in line", label, c, ctx, span)?),
+        "prismatic" => {
+            let orientation = |c: &mut Cursor, n: &StructuralNode, other: Option<&Side>| -> Result<Mat3, MbdynError> {
+                let on = Context { other: other.map(Side::other), ..ctx.on(n) };
+                if c.accept("orientation") || c.accept("hinge") { on.relative_orientation(c, "orientation of the joint") } else { Ok(Mat3::identity()) }
+            };
+            let na = ctx.node(c, "node 1")?;
+            let a = Side { node: na, offset: Vec3::zeros(), orientation: orientation(c, na, None)? };
+            let nb = ctx.node(c, "node 2")?;
+            let b = Side { node: nb, offset: Vec3::zeros(), orientation: orientation(c, nb, Some(&a))? };
+            Box::new(assembled(Joint::prismatic(label, a.anchor(), b.anchor()), &a.global(), &b.global(), c, span)?)
+        }
         "deformable displacement joint" | "deformable displacement hinge" | "deformable hinge" => {
             let hinge = kind == "deformable hinge";
             let position = if hinge { Position::IfKeyword } else { Position::Always };
@@ -122,6 +134,41 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
         _ => Box::new(rod(kind == "rod with offset", label, c, ctx)?),
     };
     Ok(element)
+}
+
+/// `in line, NODE_1, [position,] P, [orientation,] R, NODE_2 [, offset, O]` (B's point on
+/// the line through P along R's axis 3) and `in plane, NODE_1, [position,] P, N, NODE_2 [,
+/// offset, O]` (B's point in the plane through P normal to N, normalized): input manual,
+/// §In line, §In plane. The plane's frame has N as axis 3 (axes 1 and 2 any pair normal to
+/// it: the constraint does not depend on them).
+fn in_line_or_plane(line: bool, label: Label, c: &mut Cursor, ctx: &ElementContext, span: super::diagnostic::Span) -> Result<Joint, MbdynError> {
+    let na = ctx.node(c, "node 1")?;
+    let on = ctx.on(na);
+    c.accept("position");
+    let p = on.relative_position(c, if line { "point of the line [m]" } else { "point of the plane [m]" })?;
+    let orientation = if line {
+        c.accept("orientation");
+        on.relative_orientation(c, "orientation of the line (axis 3 along it)")?
+    } else {
+        let n_span = c.here();
+        let n = on.relative_vector(c, "normal of the plane")?;
+        let n = n.try_normalize(0.0).ok_or_else(|| c.error_at(n_span, "in plane: the normal is null"))?;
+        let t = if n.x.abs() < 0.9 { Vec3::x() } else { Vec3::y() };
+        let e1 = (t - n * n.dot(&t)).normalize();
+        Mat3::from_columns(&[e1, n.cross(&e1), n])
+    };
+    let a = Side { node: na, offset: p, orientation };
+    let nb = ctx.node(c, "node 2")?;
+    let offset = if c.accept("offset") { Context { other: Some(a.other()), ..ctx.on(nb) }.relative_position(c, "offset of node 2 [m]")? } else { Vec3::zeros() };
+    if c.peek_keyword().is_some_and(|w| w == "friction") {
+        return Err(c.error("joint friction is not supported by romdyn"));
+    }
+    let b = Side { node: nb, offset, orientation: Mat3::identity() };
+    let (frame_b_point, _) = b.global();
+    let (pa, qa) = a.global();
+    let j = if line { Joint::in_line(label, a.anchor(), b.anchor()) } else { Joint::in_plane(label, a.anchor(), b.anchor()) };
+    // Only position components are locked: B's frame orientation does not matter.
+    assembled(j, &(pa, qa), &(frame_b_point, qa), c, span)
 }
 
 /// `clamp, NODE, [position,] {node | POSITION}, [orientation,] {node | ORIENTATION}`.
