@@ -353,3 +353,22 @@ fn in_line_in_plane_and_prismatic_slide_as_the_closed_form_and_mbdyn() {
         assert!((kin.r - romdyn::kinematics::Mat3::identity()).norm() < 1e-12);
     }
 }
+
+#[test]
+fn a_conical_pendulum_on_a_distance_joint_keeps_its_circle() {
+    // conical_pendulum.mbd: uniform circular motion at ω = sqrt(g/(L cos30°)) on the circle of
+    // radius L sin30° at height −L cos30°: after 1 s at (0.5 cos ω, 0.5 sin ω, −cos30°).
+    // MBDyn 1.7.3 (1727489e, output precision 15): (−4.875022163242603e-01,
+    // −1.110926869790308e-01, −8.660254060815498e-01).
+    let w = (9.81 / (std::f64::consts::PI / 6.0).cos()).sqrt();
+    let closed = Vec3::new(0.5 * w.cos(), 0.5 * w.sin(), -(0.75f64).sqrt());
+    let mbdyn = Vec3::new(-4.875022163242603e-01, -1.110926869790308e-01, -8.660254060815498e-01);
+    let m = read("conical_pendulum.mbd");
+    let report = run(&m.model, &m.problem, &mut ()).unwrap();
+    let asm = romdyn::dae::Assembler::new(&m.model);
+    let x = report.final_state.node_frame(&asm.dofs, 1).kin.x;
+    // The phase error of ms (ρ∞ = 0.6) at ω h = 3.4e-3 over 1 s: below 5e-6 m.
+    assert!((x - closed).norm() < 5e-6, "{x} against the closed form {closed}");
+    assert!((x - mbdyn).norm() < 1e-8, "{x} against MBDyn {mbdyn}");
+    assert!((x.norm() - 1.0).abs() < 1e-9);
+}

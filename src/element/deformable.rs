@@ -200,3 +200,85 @@ impl Element for Rod {
         }
     }
 }
+
+/// Distance constraint between two points: `Φ = |p_b − p_a| − L(t)` (MBDyn's `distance`
+/// joint, one multiplier λ here where MBDyn's own formulation carries four unknowns; the
+/// motion is the same), reaction `F = λ e` along `e = (p_b − p_a)/|p_b − p_a|` at each
+/// point, equal and opposite.
+#[derive(Clone, Debug)]
+pub struct Distance {
+    pub label: Label,
+    pub a: Anchor,
+    pub b: Anchor,
+    /// Imposed distance L(t) [m].
+    pub length: super::Drive,
+}
+
+impl Element for Distance {
+    fn label(&self) -> Label {
+        self.label
+    }
+    fn type_name(&self) -> &'static str {
+        "distance"
+    }
+    fn nodes(&self) -> Vec<Label> {
+        node_labels(&self.a, &self.b)
+    }
+    fn multipliers(&self) -> Vec<String> {
+        vec!["f".into()]
+    }
+    fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
+        let p = Pair::new(&self.a, &self.b, st);
+        let l = p.d.norm();
+        out.add(Row::Constraint(0), l - self.length.value(st.time()));
+        let f = st.multiplier(0) * p.d / l;
+        add_vec(out, Row::force(p.slot_b), &f);
+        add_vec(out, Row::moment(p.slot_b), &p.f_b.cross(&f));
+        if let Some(a) = p.slot_a {
+            add_vec(out, Row::force(a), &(-f));
+            add_vec(out, Row::moment(a), &(-p.f_a.cross(&f)));
+        }
+    }
+    fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
+        let p = Pair::new(&self.a, &self.b, st);
+        let (l, lambda) = (p.d.norm(), st.multiplier(0));
+        let e = p.d / l;
+        let f = lambda * e;
+        let kd = lambda / l * (Mat3::identity() - e * e.transpose());
+        let (fx, fax, fbx) = (skew(&f), skew(&p.f_a), skew(&p.f_b));
+        // δd = δx_b − [f_b×] δθ_b − δx_a + [f_a×] δθ_a.
+        let mut dd = vec![(Col::position(p.slot_b), Mat3::identity()), (Col::rotation(p.slot_b), -fbx)];
+        if let Some(a) = p.slot_a {
+            dd.push((Col::position(a), -Mat3::identity()));
+            dd.push((Col::rotation(a), fax));
+        }
+        let b = p.slot_b;
+        add_block(out, Row::moment(b), Col::rotation(b), &(fx * fbx));
+        for (c, m) in &dd {
+            add_block(out, Row::force(b), *c, &(kd * m));
+            add_block(out, Row::moment(b), *c, &(fbx * kd * m));
+            // The constraint row: eᵀ δd.
+            let row = e.transpose() * m;
+            for (j, col) in c.iter().enumerate() {
+                out.add(Row::Constraint(0), *col, row[j]);
+            }
+            if let Some(a) = p.slot_a {
+                add_block(out, Row::force(a), *c, &(-kd * m));
+                add_block(out, Row::moment(a), *c, &(-fax * kd * m));
+            }
+        }
+        if let Some(a) = p.slot_a {
+            add_block(out, Row::moment(a), Col::rotation(a), &(-fx * fax));
+        }
+        // ∂F/∂λ = e.
+        let (mb, ma) = (p.f_b.cross(&e), p.f_a.cross(&e));
+        for i in 0..3 {
+            out.add(Row::Equilibrium { slot: b, comp: i }, Col::Multiplier(0), e[i]);
+            out.add(Row::Equilibrium { slot: b, comp: 3 + i }, Col::Multiplier(0), mb[i]);
+            if let Some(a) = p.slot_a {
+                out.add(Row::Equilibrium { slot: a, comp: i }, Col::Multiplier(0), -e[i]);
+                out.add(Row::Equilibrium { slot: a, comp: 3 + i }, Col::Multiplier(0), -ma[i]);
+            }
+        }
+    }
+}

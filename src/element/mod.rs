@@ -20,7 +20,7 @@ mod joint;
 pub use beam::{shape as beam_shape, Beam3, BeamError, BeamNode, SectionLaw, SectionOrientation};
 pub use body::RigidBody;
 pub use contract::{Col, Element, ElementState, JacobianSink, Label, NodeKinematics, ResidualSink, Row, SectionState};
-pub use deformable::{DeformableDisplacement, DeformableHinge, LinearViscoelastic, Rod};
+pub use deformable::{DeformableDisplacement, DeformableHinge, Distance, LinearViscoelastic, Rod};
 pub use drive::{Drive, TimeFunction};
 pub use force::{Couple, Force, ForceFrame};
 pub use anchor::Anchor;

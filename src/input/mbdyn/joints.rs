@@ -14,19 +14,20 @@ use super::drives::{single_term, template_vec3};
 use super::element_context::ElementContext;
 use super::laws::{linear_law, rest_strain, three, LinearLaw};
 use super::references::{Context, Frame, OtherSide};
-use crate::element::{Anchor, DeformableDisplacement, DeformableHinge, Drive, Element, Joint, Rod};
+use crate::element::{Anchor, DeformableDisplacement, DeformableHinge, Distance, Drive, Element, Joint, Rod};
 use crate::kinematics::{axial_of_skew_part, Mat3, Vec3};
 use crate::model::{Label, StructuralNode};
 
-const SUPPORTED: [&str; 17] = [
+const SUPPORTED: [&str; 19] = [
     "clamp", "revolute hinge", "plane hinge", "revolute pin", "plane pin", "spherical hinge", "spherical pin", "total joint", "total pin joint",
     "deformable displacement joint", "deformable displacement hinge", "deformable hinge", "rod", "rod with offset", "in line", "in plane", "prismatic",
+    "distance", "distance with offset",
 ];
 
 /// MBDyn joints romdyn names in its "not supported" error.
-const OTHER_JOINTS: [&str; 30] = [
+const OTHER_JOINTS: [&str; 28] = [
     "angular acceleration", "angular velocity", "axial rotation", "beam slider", "brake", "cardano hinge", "cardano pin", "cardano rotation",
-    "coincidence", "deformable axial joint", "deformable joint", "distance", "distance with offset", "drive displacement", "drive displacement pin",
+    "coincidence", "deformable axial joint", "deformable joint", "drive displacement", "drive displacement pin",
     "drive hinge", "gimbal rotation", "imposed displacement", "imposed displacement pin", "imposed orientation",
     "invariant deformable displacement joint", "invariant deformable hinge", "linear acceleration", "linear velocity", "modal",
     "plane displacement", "plane displacement pin", "point contact", "revolute rotation", "rod bezier",
@@ -76,7 +77,7 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
     let Some(kind) = c.accept_any(&SUPPORTED) else {
         if let Some(w) = c.peek_keyword() {
             let name = OTHER_JOINTS.iter().find(|o| super::parser::same_keyword(o, w)).copied().unwrap_or(w);
-            return Err(c.error(format!("joint type '{name}' is not supported by romdyn (supported: clamp, revolute hinge, revolute pin, spherical hinge, spherical pin, total joint, total pin joint, deformable displacement joint, deformable hinge, rod, in line, in plane, prismatic)")));
+            return Err(c.error(format!("joint type '{name}' is not supported by romdyn (supported: clamp, revolute hinge, revolute pin, spherical hinge, spherical pin, total joint, total pin joint, deformable displacement joint, deformable hinge, rod, in line, in plane, prismatic, distance)")));
         }
         return Err(c.error(format!("expected a joint type, found {}", c.found())));
     };
@@ -100,6 +101,25 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
         "revolute pin" | "plane pin" | "spherical pin" => Box::new(pin(kind, label, c, ctx, span)?),
         "total joint" | "total pin joint" => Box::new(total(kind == "total pin joint", label, c, ctx, span)?),
         "in line" | "in plane" => Box::new(in_line_or_plane(kind == "in line", label, c, ctx, span)?),
+        "distance" | "distance with offset" => {
+            // `distance, NODE_1, [position, O_1,] NODE_2, [position, O_2,] {DRIVE | from nodes}`;
+            // the deprecated `distance with offset` always reads both offsets.
+            let position = if kind == "distance" { Position::IfKeyword } else { Position::Always };
+            let a = side(c, ctx, "node 1", position, None)?;
+            let b = side(c, ctx, "node 2", position, Some(&a))?;
+            let l0 = (b.global().0 - a.global().0).norm();
+            let l_span = c.here();
+            let length = if c.accept("from nodes") { Drive::Const(l0) } else { super::drives::drive(c, ctx.drives, ctx.seq)? };
+            let t0 = 0.0;
+            let l = length.value(t0);
+            if !(l > 0.0) || l0 == 0.0 {
+                return Err(c.error_at(l_span, format!("distance: MBDyn's distance joint needs a positive distance (imposed {l} m, initial {l0:.6e} m)")));
+            }
+            if (l - l0).abs() > 1e-6 * l0.max(1.0) {
+                return Err(c.error_at(span, format!("joint {label}: its points are {l0:.6e} m apart in the initial configuration, the imposed distance is {l:.6e} m; romdyn does not run MBDyn's initial assembly, so joints must hold as written")));
+            }
+            Box::new(Distance { label, a: a.anchor(), b: b.anchor(), length })
+        }
         "prismatic" => {
             let orientation = |c: &mut Cursor, n: &StructuralNode, other: Option<&Side>| -> Result<Mat3, MbdynError> {
                 let on = Context { other: other.map(Side::other), ..ctx.on(n) };
