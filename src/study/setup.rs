@@ -120,7 +120,7 @@ impl Study {
                 return Err(StudyError::Option { option: "--dcoef", message: format!("dCoef must be a positive finite time step coefficient [s], got {c}") });
             }
         }
-        let modal = ModalAnalysis::compute_with_dcoef(&dae.jacobians, eigen.route, eigen.dcoef)?;
+        let modal = ModalAnalysis::of_dae(&dae, eigen.route, eigen.dcoef)?;
         let warnings = port_warnings(&dae, &modal);
         Ok(Study { dae, modal, model, warnings, reference_time: None, application: None })
     }
