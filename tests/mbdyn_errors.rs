@@ -150,7 +150,7 @@ fn model_errors() {
         (model("structural nodes: 2; rigid bodies: 1;", NODES, "body: 1, 7, 1., null, eye;"), "m.mbd:6:10: error: structural node 7 is not defined"),
         // 40. Unsupported element and joint types are named.
         (model("structural nodes: 2;", NODES, "aerodynamic body: 1, 2;"), "m.mbd:6:1: error: element type 'aerodynamic body' is not supported by romdyn"),
-        (model("structural nodes: 2; joints: 1;", NODES, "joint: 1, prismatic, 1, 2;"), "m.mbd:6:11: error: joint type 'prismatic' is not supported by romdyn"),
+        (model("structural nodes: 2; joints: 1;", NODES, "joint: 1, axial rotation, 1, 2;"), "m.mbd:6:11: error: joint type 'axial rotation' is not supported by romdyn"),
         (model("structural nodes: 2; joints: 1;", NODES, "driven: 1, string, \"Time > 1.\", joint: 1, clamp, 1, node, node;"), "m.mbd:6:1: error: element type 'driven' (an element switched on and off during the run) is not supported by romdyn"),
         // 41. Beams: the two-node beam is not supported; a 3-node beam needs a length, a
         // section orientation before 'same', and a 6-D law.
@@ -162,7 +162,7 @@ fn model_errors() {
         (model("structural nodes: 2; model: static;", NODES, ""), "m.mbd:2:43: error: 'model: static' (dynamic nodes treated as static) changes the physics and is not supported by romdyn"),
         (model("structural nodes: 2; genels: 1;", NODES, ""), "m.mbd:2:51: error: control data declares genels, which romdyn does not support"),
         // 43. A joint that does not hold as written (no initial assembly in romdyn).
-        (model("structural nodes: 2; joints: 1;", NODES, "joint: 1, spherical hinge, 1, 2;"), "m.mbd:6:11: error: joint 1: its two points are -1.000e0 m apart along the joint's axis 2"),
+        (model("structural nodes: 2; joints: 1;", NODES, "joint: 1, spherical hinge, 1, null, 2, null;"), "m.mbd:6:11: error: joint 1: its two points are -1.000e0 m apart along the joint's axis 2"),
         // 44. A dummy node cannot carry elements.
         (model("structural nodes: 3; rigid bodies: 1;", &format!("{NODES} structural: 3, dummy, 2, offset, null, eye;"), "body: 1, 3, 1., null, eye;"), "m.mbd:6:10: error: structural node 3 is a dummy node"),
         // 45. Negative mass needs 'allow negative mass'.
@@ -188,7 +188,7 @@ fn drive_and_law_errors() {
         // 51. Piecewise linear points out of order.
         (force("piecewise linear, 2, 1., 0., 0.5, 1."), "m.mbd:6:81: error: piecewise linear: the points must increase, 0.5 does not follow 1"),
         // 52. A drive caller romdyn cannot represent.
-        (force("linear, 0., 1."), "m.mbd:6:52: error: drive caller 'linear' is not supported by romdyn"),
+        (force("meter, 0., forever"), "m.mbd:6:52: error: drive caller 'meter' is not supported by romdyn"),
         // 53. An undefined drive caller.
         (force("reference, 4"), "m.mbd:6:52: error: drive caller 4 is not defined"),
         // 54. Different drives on different components of one force.

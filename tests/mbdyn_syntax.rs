@@ -281,7 +281,7 @@ fn clamp_revolute_spherical_joints_and_pins() {
         NODES,
         "joint: 1, clamp, 1, node, node;
          joint: 2, revolute hinge, 1, position, 1., 0.5, 0., orientation, eye, 2, position, reference, other position, null, orientation, reference, other orientation, eye;
-         joint: 3, spherical hinge, 2, position, reference, global, 0., 2., 0.5, 3;
+         joint: 3, spherical hinge, 2, position, reference, global, 0., 2., 0.5, 3, null;
          joint: 4, revolute pin, 3, position, null, orientation, eye, position, 0., 2., 0.5, orientation, eye, initial theta, 0.;
          joint: 5, spherical pin, 3, position, null, position, reference, global, 0., 2., 0.5;
          joint: 6, plane hinge, 1, null, 3, reference, other node, null;",
@@ -371,8 +371,9 @@ fn rods_from_nodes_with_offsets_and_prestrain() {
 
 #[test]
 fn forces_and_couples_read_directions_in_the_node_frame() {
-    // Node 2 is turned 90° about z: an absolute force along x in its frame acts along
-    // global y (manual, §Structural force, "Known issues"), unless given in the global frame.
+    // Node 2 is turned 90° about z: an absolute force along x acts along global x as MBDyn
+    // 1.7.3 applies it (tests/mbdyn_files/absolute_force_direction.mbd; the manual's "Known
+    // issues" says the node frame), a follower's components are in the node frame.
     let text = file(
         "structural nodes: 3; forces: 6;",
         NODES,
@@ -386,13 +387,13 @@ fn forces_and_couples_read_directions_in_the_node_frame() {
     let mut b = ModelBuilder::new();
     nodes(&mut b);
     let c = |v| Drive::Const(v);
-    b.element(Force { label: 1, node: 2, frame: ForceFrame::Absolute, direction: Vec3::new(0.0, 1.0, 0.0), offset: Vec3::new(0.1, 0.0, 0.0), drive: c(3.0) });
+    b.element(Force { label: 1, node: 2, frame: ForceFrame::Absolute, direction: Vec3::new(1.0, 0.0, 0.0), offset: Vec3::new(0.1, 0.0, 0.0), drive: c(3.0) });
     b.element(Force { label: 2, node: 2, frame: ForceFrame::Absolute, direction: Vec3::new(1.0, 0.0, 0.0), offset: Vec3::zeros(), drive: c(3.0) });
     b.element(Force { label: 3, node: 2, frame: ForceFrame::Follower, direction: Vec3::new(1.0, 0.0, 2.0), offset: Vec3::zeros(), drive: c(1.0) });
     // MBDyn's older syntax: unit direction, arm, drive.
     b.element(Force { label: 4, node: 2, frame: ForceFrame::Absolute, direction: Vec3::new(0.0, 0.0, 1.0), offset: Vec3::new(0.1, 0.0, 0.0), drive: c(5.0) });
     b.element(Couple { label: 5, node: 3, frame: ForceFrame::Follower, direction: Vec3::new(0.0, 0.0, 1.0), drive: Drive::Sine { t0: 0.0, omega: 2.0, amplitude: 1.0, cycles: None, v0: 0.0 } });
-    b.element(Couple { label: 6, node: 2, frame: ForceFrame::Absolute, direction: Vec3::new(-2.0, 1.0, 0.0), drive: c(1.0) });
+    b.element(Couple { label: 6, node: 2, frame: ForceFrame::Absolute, direction: Vec3::new(1.0, 2.0, 0.0), drive: c(1.0) });
     assert_same_physics(&text, b.build().unwrap());
 }
 

@@ -12,13 +12,13 @@ use std::path::{Path, PathBuf};
 
 use super::observer::{Derivatives, EigenDone, ObserverError, RunObserver, StepDone};
 use super::run::RunReport;
-use crate::model::{InitialValueProblem, Model};
+use crate::model::{InitialValueProblem, Model, MotionOutput};
 use crate::output::atomic::{AtomicFile, OutputError};
 use crate::output::beam_sections::BeamSectionWriter;
 use crate::output::eigen_json::eigen_json;
 use crate::output::eigen_m::write_eigen_m;
 use crate::output::model_log::write_model_log;
-use crate::output::motion::{MotionWriter, OrientationOutput};
+use crate::output::motion::{motion_rows, MotionWriter, OrientationOutput};
 use crate::output::prefixed_path;
 use crate::output::step_log::{StepLine, StepLog};
 
@@ -40,6 +40,8 @@ pub struct RunFiles {
     eigen_count: usize,
     out: StepLog,
     mov: MotionWriter,
+    /// The nodes and steps the file asks for (`None`: every node, every step).
+    motion: Option<MotionOutput>,
     /// `.act` and `.bst`, opened at step 0 when the model has beams.
     beams: Option<BeamSectionWriter>,
     /// Whether step 0 showed elements with evaluation points (then every step is written).
@@ -55,7 +57,7 @@ impl RunFiles {
         let mut log = AtomicFile::create(&prefixed_path(prefix, "log"))?;
         log.write_with(|w| write_model_log(w, input, model))?;
         let eigen_count = problem.eigenanalysis.as_ref().map_or(0, |r| r.times.len());
-        Ok(RunFiles { prefix: prefix.to_path_buf(), input: input.to_string(), eigen_count, out, mov, beams: None, has_beams: None, staged: vec![log] })
+        Ok(RunFiles { prefix: prefix.to_path_buf(), input: input.to_string(), eigen_count, out, mov, motion: problem.output.clone(), beams: None, has_beams: None, staged: vec![log] })
     }
 
     /// Ends the step log and puts every file in place; returns their paths.
@@ -83,7 +85,11 @@ impl RunObserver for RunFiles {
 
     fn step(&mut self, e: &StepDone) -> Result<(), ObserverError> {
         self.out.step(&StepLine { step: e.step, time: e.time, time_step: e.time_step, iterations: e.iterations, residual_norm: e.residual_norm })?;
-        self.mov.write_step(&e.node_kinematics())?;
+        match &self.motion {
+            None => self.mov.write_step(&e.node_kinematics())?,
+            Some(m) if e.step % m.every.max(1) == 0 => self.mov.write_rows(&motion_rows(m, &e.node_kinematics()))?,
+            Some(_) => {}
+        }
         if self.has_beams == Some(false) {
             return Ok(());
         }

@@ -17,7 +17,7 @@ use super::observer::{Derivatives, EigenDone, RunObserver, RunStart, StepDone};
 use crate::dae::{Assembler, State};
 use crate::linear::ModeKind;
 use crate::model::{AbortAfter, InitialValueProblem, Model};
-use crate::solve::{initial_derivatives, Integrator, NewtonSettings};
+use crate::solve::{constraint_rate, initial_derivatives_with, Integrator, NewtonSettings};
 
 
 /// One eigenanalysis in the report.
@@ -43,16 +43,34 @@ pub struct RunReport {
     pub derivatives_iterations: usize,
     pub wall_time: Duration,
     pub eigenanalyses: Vec<EigenSummary>,
+    /// The joint whose constraint the initial velocities violate most, and the rate
+    /// `Φ_/q q̇` [m/s or rad/s], when it exceeds the tolerance: the velocities written in the
+    /// file are not consistent, and the first step changes them (as in MBDyn).
+    pub inconsistent_velocity: Option<(String, f64)>,
     /// Requested eigenanalysis times the run did not reach [s].
     pub eigen_times_not_reached: Vec<f64>,
     pub final_state: State,
 }
 
-/// Steps from the initial to the final time: the first `k` with `t₀ + k h ≥ t_f` (up to a
-/// millionth of a step).
+/// Steps from the initial to the final time as MBDyn counts them: it adds the step to the
+/// time until the sum reaches the final time (solver.cc, `Solver::Advance`: `dTime >=
+/// dFinalTime`), so the rounding of that sum decides the last step (ten steps of 0.01 s sum
+/// to 0.09999999999999999 s, and MBDyn takes an eleventh). Runs longer than 1e8 steps are
+/// counted without the sum: the first `k` with `t₀ + k h ≥ t_f`.
 fn step_count(p: &InitialValueProblem) -> usize {
-    let n = (p.final_time - p.initial_time) / p.time_step - 1e-6;
-    if n > 0.0 { n.ceil() as usize } else { 0 }
+    let n = (p.final_time - p.initial_time) / p.time_step;
+    if !(n > 0.0) {
+        return 0;
+    }
+    if n > 1e8 {
+        return (n - 1e-6).ceil() as usize;
+    }
+    let (mut t, mut k) = (p.initial_time, 0usize);
+    while t < p.final_time {
+        t += p.time_step;
+        k += 1;
+    }
+    k
 }
 
 fn validate(p: &InitialValueProblem) -> Result<(), RunError> {
@@ -94,6 +112,7 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
         derivatives_iterations: 0,
         wall_time: Duration::ZERO,
         eigenanalyses: Vec::new(),
+        inconsistent_velocity: None,
         eigen_times_not_reached: times.to_vec(),
         final_state: state.clone(),
     };
@@ -103,8 +122,10 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
         return Ok(report);
     }
 
-    let derivative_settings = NewtonSettings { tolerance: problem.derivatives_tolerance, max_iterations: problem.derivatives_max_iterations, ..Default::default() };
-    let done = initial_derivatives(&asm, &mut state, &derivative_settings).map_err(RunError::Derivatives)?;
+    let derivative_settings = NewtonSettings { tolerance: problem.derivatives_tolerance, norm: problem.residual_norm, max_iterations: problem.derivatives_max_iterations, ..Default::default() };
+    report.inconsistent_velocity = constraint_rate(&asm, &state).filter(|(_, rate)| rate.abs() > problem.tolerance);
+    let dcoef = problem.derivatives_coefficient * problem.time_step;
+    let done = initial_derivatives_with(&asm, &mut state, &derivative_settings, dcoef).map_err(RunError::Derivatives)?;
     report.derivatives_iterations = done.iterations;
     observed(observer.derivatives(&Derivatives { time: state.t, iterations: done.iterations, residual_norm: done.residual_norm }))?;
     observed(observer.step(&step_done(&asm, 0, problem.time_step, (done.iterations, done.residual_norm), &state)))?;
@@ -135,7 +156,7 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
     };
     eigenanalyses_due(&state, observer, &mut report)?;
 
-    let settings = NewtonSettings { tolerance: problem.tolerance, max_iterations: problem.max_iterations, ..Default::default() };
+    let settings = NewtonSettings { tolerance: problem.tolerance, norm: problem.residual_norm, max_iterations: problem.max_iterations, ..Default::default() };
     let mut integrator = Integrator::new(&asm, state, problem.method, problem.time_step, settings);
     for step in 1..=steps {
         let r = integrator.step().map_err(|failure| RunError::Step { step, steps, time: failure.time, failure })?;

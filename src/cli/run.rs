@@ -105,5 +105,8 @@ pub fn run(a: RunArgs) -> Result<()> {
     let report = result.with_context(|| format!("{input}: the run failed; no output file was written"))?;
     let written = files.finish(&report)?;
     print_summary(&input, &report, &written);
+    if let Some((equation, rate)) = &report.inconsistent_velocity {
+        eprintln!("warning: the initial velocities do not satisfy the joints ({equation} changes at {rate:.3e} per s); they are kept for the initial derivatives, as in MBDyn, and the first step changes them");
+    }
     Ok(())
 }

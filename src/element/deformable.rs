@@ -4,7 +4,7 @@
 
 use super::contract::{add_block, add_vec, Col, Element, ElementState, JacobianSink, ResidualSink, Row};
 use super::anchor::{node_labels, Anchor, Pair};
-use crate::kinematics::{axial_of_skew_part, skew, skew_part_jacobian, Mat3, Vec3};
+use crate::kinematics::{rotation_vector, skew, Mat3, Vec3};
 use super::contract::Label;
 
 /// `φ = K ε + C ε̇` with 3x3 stiffness and viscosity matrices (linear elastic when `C = 0`).
@@ -68,8 +68,9 @@ impl Element for DeformableDisplacement {
     }
 }
 
-/// Angular spring–damper: relative rotation `r = ax(Q_aᵀ Q_b)` (the rotation vector to
-/// first order), rate `ṙ = P(M) Q_aᵀ (ω_b − ω_a)`; moment `Q_a (K r + C ṙ)` on B, opposite
+/// Angular spring–damper as MBDyn's deformable hinge (vehj.cc, `ElasticHingeJoint`,
+/// `ViscousHingeJoint`): relative rotation `θ = rotvec(Q_aᵀ Q_b)` (the exact rotation
+/// vector, in frame A), rate `w = Q_aᵀ (ω_b − ω_a)`; moment `Q_a (K θ + C w)` on B, opposite
 /// on A.
 #[derive(Clone, Debug)]
 pub struct DeformableHinge {
@@ -77,6 +78,15 @@ pub struct DeformableHinge {
     pub a: Anchor,
     pub b: Anchor,
     pub law: LinearViscoelastic,
+}
+
+/// `Γ⁻¹(θ)`: `θ' = θ + Γ⁻¹(θ) δφ` when `exp(θ×)` is turned to `exp(δφ×) exp(θ×)`
+/// (MBDyn's `RotManip::DRot_I`): `I − ½ [θ×] + (1/φ² − (1 + cos φ)/(2 φ sin φ)) [θ×]²`.
+fn inverse_rotation_jacobian(theta: &Vec3) -> Mat3 {
+    let phi = theta.norm();
+    let c = if phi < 1e-4 { 1.0 / 12.0 + phi * phi / 720.0 } else { 1.0 / (phi * phi) - (1.0 + phi.cos()) / (2.0 * phi * phi.sin()) };
+    let t = skew(theta);
+    Mat3::identity() - 0.5 * t + c * t * t
 }
 
 impl Element for DeformableHinge {
@@ -91,10 +101,9 @@ impl Element for DeformableHinge {
     }
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
         let p = Pair::new(&self.a, &self.b, st);
-        let m_rel = p.q_a.transpose() * p.q_b;
+        let theta = rotation_vector(&(p.q_a.transpose() * p.q_b));
         let w = p.q_a.transpose() * (p.omega_b - p.omega_a);
-        let mu = self.law.stiffness * axial_of_skew_part(&m_rel) + self.law.viscosity * skew_part_jacobian(&m_rel) * w;
-        let m = p.q_a * mu;
+        let m = p.q_a * (self.law.stiffness * theta + self.law.viscosity * w);
         add_vec(out, Row::moment(p.slot_b), &m);
         if let Some(a) = p.slot_a {
             add_vec(out, Row::moment(a), &(-m));
@@ -103,15 +112,14 @@ impl Element for DeformableHinge {
     fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
         let p = Pair::new(&self.a, &self.b, st);
         let (qa, qt) = (p.q_a, p.q_a.transpose());
-        let m_rel = qt * p.q_b;
-        let (pm, r) = (skew_part_jacobian(&m_rel), axial_of_skew_part(&m_rel));
+        let theta = rotation_vector(&(qt * p.q_b));
         let w = qt * (p.omega_b - p.omega_a);
         let (k, c) = (self.law.stiffness, self.law.viscosity);
-        let m = qa * (k * r + c * pm * w);
-        // δμ = (K P + C (−w rᵀ + ½[(M w)×])) Qᵀ (δθ_b − δθ_a) + C P Qᵀ [(ω_b − ω_a)×] δθ_a
-        //      + C P Qᵀ (δω_b − δω_a);  δm = −[m×] δθ_a + Q δμ.
-        let d_rel = qa * (k * pm + c * (-w * r.transpose() + 0.5 * skew(&(m_rel * w)))) * qt;
-        let d_omega = qa * c * pm * qt;
+        let m = qa * (k * theta + c * w);
+        // δθ = Γ⁻¹(θ) Q_aᵀ (δθ_b − δθ_a), δw = Q_aᵀ (δω_b − δω_a) + Q_aᵀ [(ω_b − ω_a)×] δθ_a,
+        // δm = −[m×] δθ_a + Q_a (K δθ + C δw).
+        let d_rel = qa * k * inverse_rotation_jacobian(&theta) * qt;
+        let d_omega = qa * c * qt;
         let d_theta_a = -skew(&m) - d_rel + d_omega * skew(&(p.omega_b - p.omega_a));
         let (b, sa) = (p.slot_b, p.slot_a);
         for (sign, slot) in [(1.0, Some(b)), (-1.0, sa)] {
@@ -189,6 +197,88 @@ impl Element for Rod {
         }
         if let Some(a) = p.slot_a {
             add_block(out, Row::moment(a), Col::rotation(a), &(-fx * fax));
+        }
+    }
+}
+
+/// Distance constraint between two points: `Φ = |p_b − p_a| − L(t)` (MBDyn's `distance`
+/// joint, one multiplier λ here where MBDyn's own formulation carries four unknowns; the
+/// motion is the same), reaction `F = λ e` along `e = (p_b − p_a)/|p_b − p_a|` at each
+/// point, equal and opposite.
+#[derive(Clone, Debug)]
+pub struct Distance {
+    pub label: Label,
+    pub a: Anchor,
+    pub b: Anchor,
+    /// Imposed distance L(t) [m].
+    pub length: super::Drive,
+}
+
+impl Element for Distance {
+    fn label(&self) -> Label {
+        self.label
+    }
+    fn type_name(&self) -> &'static str {
+        "distance"
+    }
+    fn nodes(&self) -> Vec<Label> {
+        node_labels(&self.a, &self.b)
+    }
+    fn multipliers(&self) -> Vec<String> {
+        vec!["f".into()]
+    }
+    fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
+        let p = Pair::new(&self.a, &self.b, st);
+        let l = p.d.norm();
+        out.add(Row::Constraint(0), l - self.length.value(st.time()));
+        let f = st.multiplier(0) * p.d / l;
+        add_vec(out, Row::force(p.slot_b), &f);
+        add_vec(out, Row::moment(p.slot_b), &p.f_b.cross(&f));
+        if let Some(a) = p.slot_a {
+            add_vec(out, Row::force(a), &(-f));
+            add_vec(out, Row::moment(a), &(-p.f_a.cross(&f)));
+        }
+    }
+    fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
+        let p = Pair::new(&self.a, &self.b, st);
+        let (l, lambda) = (p.d.norm(), st.multiplier(0));
+        let e = p.d / l;
+        let f = lambda * e;
+        let kd = lambda / l * (Mat3::identity() - e * e.transpose());
+        let (fx, fax, fbx) = (skew(&f), skew(&p.f_a), skew(&p.f_b));
+        // δd = δx_b − [f_b×] δθ_b − δx_a + [f_a×] δθ_a.
+        let mut dd = vec![(Col::position(p.slot_b), Mat3::identity()), (Col::rotation(p.slot_b), -fbx)];
+        if let Some(a) = p.slot_a {
+            dd.push((Col::position(a), -Mat3::identity()));
+            dd.push((Col::rotation(a), fax));
+        }
+        let b = p.slot_b;
+        add_block(out, Row::moment(b), Col::rotation(b), &(fx * fbx));
+        for (c, m) in &dd {
+            add_block(out, Row::force(b), *c, &(kd * m));
+            add_block(out, Row::moment(b), *c, &(fbx * kd * m));
+            // The constraint row: eᵀ δd.
+            let row = e.transpose() * m;
+            for (j, col) in c.iter().enumerate() {
+                out.add(Row::Constraint(0), *col, row[j]);
+            }
+            if let Some(a) = p.slot_a {
+                add_block(out, Row::force(a), *c, &(-kd * m));
+                add_block(out, Row::moment(a), *c, &(-fax * kd * m));
+            }
+        }
+        if let Some(a) = p.slot_a {
+            add_block(out, Row::moment(a), Col::rotation(a), &(-fx * fax));
+        }
+        // ∂F/∂λ = e.
+        let (mb, ma) = (p.f_b.cross(&e), p.f_a.cross(&e));
+        for i in 0..3 {
+            out.add(Row::Equilibrium { slot: b, comp: i }, Col::Multiplier(0), e[i]);
+            out.add(Row::Equilibrium { slot: b, comp: 3 + i }, Col::Multiplier(0), mb[i]);
+            if let Some(a) = p.slot_a {
+                out.add(Row::Equilibrium { slot: a, comp: i }, Col::Multiplier(0), -e[i]);
+                out.add(Row::Equilibrium { slot: a, comp: 3 + i }, Col::Multiplier(0), -ma[i]);
+            }
         }
     }
 }

@@ -1,4 +1,38 @@
-//! Scalar functions of time that drive forces and couples (MBDyn's drive callers).
+//! Scalar functions of time that drive forces and couples (MBDyn's drive callers, input
+//! manual "General", §Drive Caller: the formulas are the manual's).
+
+use std::fmt;
+use std::sync::Arc;
+
+/// A function of time given as text by the input (MBDyn's `string` drive, an expression of
+/// `Time` for its math parser): the text names it in messages and decides equality; the
+/// reader supplies the evaluation.
+#[derive(Clone)]
+pub struct TimeFunction {
+    pub text: String,
+    f: Arc<dyn Fn(f64) -> f64 + Send + Sync>,
+}
+
+impl TimeFunction {
+    pub fn new(text: impl Into<String>, f: impl Fn(f64) -> f64 + Send + Sync + 'static) -> Self {
+        TimeFunction { text: text.into(), f: Arc::new(f) }
+    }
+    pub fn value(&self, t: f64) -> f64 {
+        (self.f)(t)
+    }
+}
+
+impl fmt::Debug for TimeFunction {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "TimeFunction({:?})", self.text)
+    }
+}
+
+impl PartialEq for TimeFunction {
+    fn eq(&self, other: &Self) -> bool {
+        self.text == other.text
+    }
+}
 
 /// A drive `v(t)`.
 #[derive(Clone, Debug, PartialEq)]
@@ -18,6 +52,29 @@ pub enum Drive {
     Cosine { t0: f64, omega: f64, amplitude: f64, cycles: Option<f64>, v0: f64 },
     /// Linear interpolation between `(t, v)` points, constant outside.
     PiecewiseLinear(Vec<(f64, f64)>),
+    /// `Σ c_k t^k` (MBDyn's `linear`, `parabolic`, `cubic`).
+    Polynomial(Vec<f64>),
+    /// `v0 + A (1 − exp(−(t − t0)/τ))` from `t0` on (MBDyn's `exponential`).
+    Exponential { amplitude: f64, tau: f64, t0: f64, v0: f64 },
+    /// `v0 + A tanh(s (t − t0))` (MBDyn's `tanh`).
+    Tanh { t0: f64, amplitude: f64, slope: f64, v0: f64 },
+    /// Ramp `a` on `[a_t0, a_t1]`, held, then ramp `d` on `[d_t0, d_t1]`, held (MBDyn's
+    /// `double ramp`).
+    DoubleRamp { a_slope: f64, a_t0: f64, a_t1: f64, d_slope: f64, d_t0: f64, d_t1: f64, v0: f64 },
+    /// `v0 + value` on `[t0, t1]`, `v0` elsewhere (MBDyn's `double step`).
+    DoubleStep { t0: f64, t1: f64, value: f64, v0: f64 },
+    /// The sum of the drives (MBDyn's `array`).
+    Sum(Vec<Drive>),
+    /// The product of two drives (MBDyn's `mult`).
+    Product(Box<Drive>, Box<Drive>),
+    /// `f_i` before `t_i`, `f_i + A(t) sin(ω(t) (t − t_i))` on `[t_i, t_f]`, `f_f` after
+    /// (MBDyn's `frequency sweep`).
+    FrequencySweep { t0: f64, omega: Box<Drive>, amplitude: Box<Drive>, v0: f64, t1: f64, v1: f64 },
+    /// 0 before `t0`, then `f` of the time since the start of the current period (MBDyn's
+    /// `periodic`).
+    Periodic { t0: f64, period: f64, f: Box<Drive> },
+    /// An expression of time (MBDyn's `string`).
+    Expression(TimeFunction),
 }
 
 impl Drive {
@@ -30,6 +87,35 @@ impl Drive {
             Drive::Sine { t0, omega, amplitude, cycles, v0 } => v0 + amplitude * periodic(t, *t0, *omega, *cycles).sin(),
             Drive::Cosine { t0, omega, amplitude, cycles, v0 } => v0 + amplitude * (1.0 - periodic(t, *t0, *omega, *cycles).cos()),
             Drive::PiecewiseLinear(points) => piecewise(points, t),
+            Drive::Polynomial(c) => c.iter().rev().fold(0.0, |acc, k| acc * t + k),
+            Drive::Exponential { amplitude, tau, t0, v0 } => v0 + if t < *t0 { 0.0 } else { amplitude * (1.0 - (-(t - t0) / tau).exp()) },
+            Drive::Tanh { t0, amplitude, slope, v0 } => v0 + amplitude * (slope * (t - t0)).tanh(),
+            Drive::DoubleRamp { a_slope, a_t0, a_t1, d_slope, d_t0, d_t1, v0 } => {
+                let a = a_slope * (t.clamp(*a_t0, *a_t1) - a_t0);
+                let d = if t < *d_t0 { 0.0 } else { d_slope * (t.min(*d_t1) - d_t0) };
+                v0 + a + d
+            }
+            Drive::DoubleStep { t0, t1, value, v0 } => v0 + if (*t0..=*t1).contains(&t) { *value } else { 0.0 },
+            Drive::Sum(drives) => drives.iter().map(|d| d.value(t)).sum(),
+            Drive::Product(a, b) => a.value(t) * b.value(t),
+            Drive::FrequencySweep { t0, omega, amplitude, v0, t1, v1 } => {
+                if t < *t0 {
+                    *v0
+                } else if t > *t1 {
+                    *v1
+                } else {
+                    v0 + amplitude.value(t) * (omega.value(t) * (t - t0)).sin()
+                }
+            }
+            Drive::Periodic { t0, period, f } => {
+                if t < *t0 {
+                    0.0
+                } else {
+                    let s = t - t0;
+                    f.value(s - period * (s / period).floor())
+                }
+            }
+            Drive::Expression(f) => f.value(t),
         }
     }
 }
@@ -80,5 +166,35 @@ mod tests {
         assert!((cosine.value(1.0) - 2.0).abs() < 1e-15);
         let pl = Drive::PiecewiseLinear(vec![(0.0, 0.0), (1.0, 10.0), (2.0, 0.0)]);
         assert_eq!([pl.value(-1.0), pl.value(0.5), pl.value(1.5), pl.value(9.0)], [0.0, 5.0, 5.0, 0.0]);
+    }
+
+    #[test]
+    fn the_other_scalar_drives_follow_the_manual_formulas() {
+        // Input manual, §Drive Caller: cubic 1 + 2t + 3t² + 4t³ at t = 2 is 49.
+        assert_eq!(Drive::Polynomial(vec![1.0, 2.0, 3.0, 4.0]).value(2.0), 49.0);
+        // exponential, 10, 0.2, 5, 0: the step response of 1/(1 + 0.2 s), 10 (1 − e⁻¹) one
+        // time constant after t = 5.
+        let e = Drive::Exponential { amplitude: 10.0, tau: 0.2, t0: 5.0, v0: 0.0 };
+        assert_eq!(e.value(4.0), 0.0);
+        assert!((e.value(5.2) - 10.0 * (1.0 - (-1f64).exp())).abs() < 1e-12);
+        let th = Drive::Tanh { t0: 1.0, amplitude: 2.0, slope: 3.0, v0: 0.5 };
+        assert!((th.value(1.5) - (0.5 + 2.0 * 1.5f64.tanh())).abs() < 1e-15);
+        // double ramp: +1/s on [1, 2], held at 1, −2/s on [3, 4], held at −1.
+        let dr = Drive::DoubleRamp { a_slope: 1.0, a_t0: 1.0, a_t1: 2.0, d_slope: -2.0, d_t0: 3.0, d_t1: 4.0, v0: 0.0 };
+        assert_eq!([0.0, 1.5, 2.5, 3.5, 5.0].map(|t| dr.value(t)), [0.0, 0.5, 1.0, 0.0, -1.0]);
+        let ds = Drive::DoubleStep { t0: 1.0, t1: 2.0, value: 3.0, v0: 1.0 };
+        assert_eq!([0.5, 1.0, 2.0, 2.5].map(|t| ds.value(t)), [1.0, 4.0, 4.0, 1.0]);
+        let sum = Drive::Sum(vec![Drive::Const(1.0), Drive::Time]);
+        let product = Drive::Product(Box::new(Drive::Const(2.0)), Box::new(Drive::Time));
+        assert_eq!((sum.value(3.0), product.value(3.0)), (4.0, 6.0));
+        // frequency sweep from t = 1 with ω = t rad/s, A = 2, to t = 3, then 7.
+        let fs = Drive::FrequencySweep { t0: 1.0, omega: Box::new(Drive::Time), amplitude: Box::new(Drive::Const(2.0)), v0: 0.5, t1: 3.0, v1: 7.0 };
+        assert_eq!((fs.value(0.0), fs.value(4.0)), (0.5, 7.0));
+        assert!((fs.value(2.0) - (0.5 + 2.0 * (2.0f64 * 1.0).sin())).abs() < 1e-15);
+        // periodic from t = 1 with period 2 of f(s) = s: 0, then the time into the period.
+        let p = Drive::Periodic { t0: 1.0, period: 2.0, f: Box::new(Drive::Time) };
+        assert_eq!([0.5, 1.5, 3.5].map(|t| p.value(t)), [0.0, 0.5, 0.5]);
+        let f = Drive::Expression(TimeFunction::new("2*Time", |t| 2.0 * t));
+        assert_eq!(f.value(1.5), 3.0);
     }
 }

@@ -20,6 +20,12 @@ pub enum JointKind {
     SphericalHinge,
     RevoluteHinge,
     TotalJoint,
+    /// A point of B on the line through A's point along A's axis 3 (MBDyn's `in line`).
+    InLine,
+    /// A point of B in the plane through A's point normal to A's axis 3 (`in plane`).
+    InPlane,
+    /// All relative rotation locked (`prismatic`).
+    Prismatic,
 }
 
 /// A joint locking the selected components of relative position and rotation.
@@ -57,6 +63,21 @@ impl Joint {
         Joint { label, kind: JointKind::RevoluteHinge, a, b, position_locked: [true; 3], rotation_locked: [true, true, false] }
     }
 
+    /// B's point on A's axis 3 (2 multipliers: the force across the line).
+    pub fn in_line(label: Label, a: Anchor, b: Anchor) -> Self {
+        Joint { label, kind: JointKind::InLine, a, b, position_locked: [true, true, false], rotation_locked: [false; 3] }
+    }
+
+    /// B's point in A's 1-2 plane (1 multiplier: the force along the normal).
+    pub fn in_plane(label: Label, a: Anchor, b: Anchor) -> Self {
+        Joint { label, kind: JointKind::InPlane, a, b, position_locked: [false, false, true], rotation_locked: [false; 3] }
+    }
+
+    /// The two frames keep their relative orientation (3 multipliers: the moment).
+    pub fn prismatic(label: Label, a: Anchor, b: Anchor) -> Self {
+        Joint { label, kind: JointKind::Prismatic, a, b, position_locked: [false; 3], rotation_locked: [true; 3] }
+    }
+
     /// Locks the chosen components of relative position and rotation (in frame A).
     pub fn total(label: Label, a: Anchor, b: Anchor, position_locked: [bool; 3], rotation_locked: [bool; 3]) -> Self {
         Joint { label, kind: JointKind::TotalJoint, a, b, position_locked, rotation_locked }
@@ -92,6 +113,9 @@ impl Element for Joint {
             JointKind::SphericalHinge => "spherical hinge",
             JointKind::RevoluteHinge => "revolute hinge",
             JointKind::TotalJoint => "total joint",
+            JointKind::InLine => "in line",
+            JointKind::InPlane => "in plane",
+            JointKind::Prismatic => "prismatic",
         }
     }
     fn nodes(&self) -> Vec<Label> {

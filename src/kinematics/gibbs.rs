@@ -33,8 +33,16 @@ pub fn gibbs_from_rotation(r: &Mat3) -> Vec3 {
     2.0 * v / w.abs().max(f64::MIN_POSITIVE)
 }
 
-/// Rotation vector `φ n` of a rotation matrix.
+/// Rotation vector `φ n` of a rotation matrix. Below a quarter turn from the skew part,
+/// `φ = atan2(sin φ, cos φ)` with `sin φ n = ax(R)`, full precision near the identity (an
+/// angle from `acos` of the trace loses half the digits there, a residual floor for springs
+/// on relative rotations); beyond, nalgebra's axis-angle.
 pub fn rotation_vector(r: &Mat3) -> Vec3 {
+    let v = axial_of_skew_part(r);
+    let (s, c) = (v.norm(), 0.5 * (r.trace() - 1.0));
+    if c > 0.0 {
+        return if s > 0.0 { v * (s.atan2(c) / s) } else { Vec3::zeros() };
+    }
     nalgebra::Rotation3::from_matrix_unchecked(*r).scaled_axis()
 }
 

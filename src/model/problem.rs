@@ -50,6 +50,16 @@ pub enum AbortAfter {
     DummySteps,
 }
 
+/// How Newton measures the residual for its convergence test.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum ResidualNorm {
+    /// Largest entry, `‖F‖∞` (romdyn's default).
+    #[default]
+    Max,
+    /// `‖F‖₂`, MBDyn's `test, norm` (its default).
+    Euclidean,
+}
+
 /// An initial-value problem (SI units: s).
 #[derive(Clone, Debug, PartialEq)]
 pub struct InitialValueProblem {
@@ -57,12 +67,19 @@ pub struct InitialValueProblem {
     pub final_time: f64,
     pub time_step: f64,
     pub method: Method,
-    /// Newton converges when the residual's max norm is below this (N, N m, …).
+    /// Newton converges when the residual's norm is below this (N, N m, …).
     pub tolerance: f64,
+    /// The norm of that test.
+    pub residual_norm: ResidualNorm,
     pub max_iterations: usize,
     /// Tolerance and iteration limit of the consistent initial derivatives.
     pub derivatives_tolerance: f64,
     pub derivatives_max_iterations: usize,
+    /// The initial derivatives solve with dCoef = this factor times the time step (MBDyn's
+    /// `derivatives coefficient`).
+    pub derivatives_coefficient: f64,
+    /// Nodes written to the motion file and how (`None`: every node, every step).
+    pub output: Option<MotionOutput>,
     pub eigenanalysis: Option<EigenRequest>,
     pub abort_after: Option<AbortAfter>,
 }
@@ -75,11 +92,64 @@ impl Default for InitialValueProblem {
             time_step: 1e-3,
             method: Method::Ms { rho: 0.6 },
             tolerance: 1e-6,
+            residual_norm: ResidualNorm::Max,
             max_iterations: 20,
             derivatives_tolerance: 1e-6,
             derivatives_max_iterations: 20,
+            derivatives_coefficient: 1e-6,
+            output: None,
             eigenanalysis: None,
             abort_after: None,
         }
     }
+}
+
+/// How a motion file writes orientations (MBDyn's `orientation description`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum OrientationOutput {
+    /// Euler 1-2-3 angles in degrees (MBDyn's default).
+    #[default]
+    Euler123Degrees,
+    /// Euler 3-1-3 angles in degrees.
+    Euler313Degrees,
+    /// Euler 3-2-1 angles in degrees.
+    Euler321Degrees,
+    /// Rotation vector φ n in radians.
+    RotationVector,
+    /// The nine entries of R by rows.
+    Matrix,
+}
+
+/// Where a written node's motion comes from.
+#[derive(Clone, Debug, PartialEq)]
+pub enum NodeSource {
+    /// A node of the model.
+    Node(super::Label),
+    /// A point and frame rigidly attached to another written entry (MBDyn's `dummy, BASE,
+    /// offset`): `x = x_b + R_b o`, `R = R_b R_o`, `v = v_b + ω_b × R_b o`, `ω = ω_b`;
+    /// `base` indexes the list of written nodes.
+    Offset { base: usize, offset: crate::kinematics::Vec3, orientation: crate::kinematics::Mat3 },
+    /// The motion of entry `base` seen from entry `reference` (MBDyn's `dummy, BASE,
+    /// relative frame, REF`): `x = R_rᵀ (x_b − x_r)`, `R = R_rᵀ R_b`,
+    /// `v = R_rᵀ (v_b − v_r − ω_r × (x_b − x_r))`, `ω = R_rᵀ (ω_b − ω_r)`.
+    RelativeFrame { base: usize, reference: usize },
+}
+
+/// One node of the motion file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct WrittenNode {
+    pub label: super::Label,
+    pub source: NodeSource,
+    /// Whether its rows are written (MBDyn's `output, no` and `default output`); a node
+    /// that is not written may still be the base of one that is.
+    pub written: bool,
+    pub orientation: OrientationOutput,
+}
+
+/// The motion file's rows: nodes in file order, every `every`-th step (MBDyn's `output
+/// frequency`; step 0, the initial state, is always written).
+#[derive(Clone, Debug, PartialEq)]
+pub struct MotionOutput {
+    pub nodes: Vec<WrittenNode>,
+    pub every: usize,
 }

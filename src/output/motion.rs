@@ -4,26 +4,20 @@
 //! label  x y z  o1 o2 o3  vx vy vz  wx wy wz
 //! ```
 //!
-//! positions [m], orientation as Euler 1-2-3 angles [deg] (MBDyn's default) or as a
-//! rotation vector [rad], velocities [m/s] and angular velocities [rad/s] in the global
-//! frame; no header, so Octave's `load` reads it. The file is written to a temporary name
+//! positions [m], orientation as Euler 1-2-3 angles [deg] (MBDyn's default), Euler 3-1-3 or
+//! 3-2-1 angles [deg], a rotation vector [rad] or the nine entries of R by rows (MBDyn's
+//! `orientation description`, strnode.cc `StructNode::Output`), velocities [m/s] and angular
+//! velocities [rad/s] in the global frame; no header, so Octave's `load` reads it. Dummy
+//! nodes are rows computed from their base node, as MBDyn writes them. The file is written to a temporary name
 //! and renamed when the run finishes.
 
 use std::path::Path;
 
 use super::atomic::{AtomicFile, OutputError};
 use crate::element::NodeKinematics;
-use crate::kinematics::{euler123, rotation_vector};
-use crate::model::Label;
-
-/// How orientations are written.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum OrientationOutput {
-    /// Euler 1-2-3 angles in degrees (MBDyn's default).
-    Euler123Degrees,
-    /// Rotation vector φ n in radians.
-    RotationVector,
-}
+use crate::kinematics::{euler123, rotation_vector, Mat3, Vec3};
+pub use crate::model::OrientationOutput;
+use crate::model::{Label, MotionOutput, NodeSource};
 
 /// A `.mov` file being written step by step.
 pub struct MotionWriter {
@@ -31,22 +25,77 @@ pub struct MotionWriter {
     orientation: OrientationOutput,
 }
 
+/// Euler angles `[a, b, c]` of `R = R_i(a) R_j(b) R_k(c)` for the axis sequences 3-1-3 and
+/// 3-2-1 (input manual, "Orientation Matrix"), in radians.
+fn euler313(r: &Mat3) -> Vec3 {
+    let b = r[(2, 2)].clamp(-1.0, 1.0).acos();
+    if b.sin().abs() < 1e-12 {
+        return Vec3::new(r[(1, 0)].atan2(r[(0, 0)]), b, 0.0);
+    }
+    Vec3::new(r[(0, 2)].atan2(-r[(1, 2)]), b, r[(2, 0)].atan2(r[(2, 1)]))
+}
+
+fn euler321(r: &Mat3) -> Vec3 {
+    let b = (-r[(2, 0)]).clamp(-1.0, 1.0).asin();
+    Vec3::new(r[(1, 0)].atan2(r[(0, 0)]), b, r[(2, 1)].atan2(r[(2, 2)]))
+}
+
+/// The numbers a row writes for orientation `r`.
+fn orientation_values(r: &Mat3, how: OrientationOutput) -> Vec<f64> {
+    match how {
+        OrientationOutput::Euler123Degrees => euler123(r).map(f64::to_degrees).iter().copied().collect(),
+        OrientationOutput::Euler313Degrees => euler313(r).map(f64::to_degrees).iter().copied().collect(),
+        OrientationOutput::Euler321Degrees => euler321(r).map(f64::to_degrees).iter().copied().collect(),
+        OrientationOutput::RotationVector => rotation_vector(r).iter().copied().collect(),
+        OrientationOutput::Matrix => (0..9).map(|k| r[(k / 3, k % 3)]).collect(),
+    }
+}
+
+/// The rows `output` asks for, from the kinematics of the model's nodes: each written
+/// entry's label, kinematics and orientation form, dummy nodes computed from their bases.
+pub fn motion_rows(output: &MotionOutput, nodes: &[(Label, NodeKinematics)]) -> Vec<(Label, NodeKinematics, OrientationOutput)> {
+    let mut all: Vec<NodeKinematics> = Vec::with_capacity(output.nodes.len());
+    for n in &output.nodes {
+        let k = match &n.source {
+            NodeSource::Node(label) => nodes.iter().find(|(l, _)| l == label).map(|(_, k)| k.clone()),
+            NodeSource::Offset { base, offset, orientation } => all.get(*base).map(|b| {
+                let arm = b.r * offset;
+                NodeKinematics { x: b.x + arm, r: b.r * orientation, xdot: b.xdot + b.omega.cross(&arm), omega: b.omega }
+            }),
+            NodeSource::RelativeFrame { base, reference } => all.get(*base).zip(all.get(*reference)).map(|(b, f)| {
+                let (rt, d) = (f.r.transpose(), b.x - f.x);
+                NodeKinematics { x: rt * d, r: rt * b.r, xdot: rt * (b.xdot - f.xdot - f.omega.cross(&d)), omega: rt * (b.omega - f.omega) }
+            }),
+        };
+        // A source that is missing (a bug upstream) writes nothing rather than a wrong row.
+        all.push(k.unwrap_or(NodeKinematics { x: Vec3::repeat(f64::NAN), r: Mat3::repeat(f64::NAN), xdot: Vec3::repeat(f64::NAN), omega: Vec3::repeat(f64::NAN) }));
+    }
+    output.nodes.iter().zip(all).filter(|(n, k)| n.written && k.x[0].is_finite()).map(|(n, k)| (n.label, k, n.orientation)).collect()
+}
+
 impl MotionWriter {
     pub fn create(path: &Path, orientation: OrientationOutput) -> Result<Self, OutputError> {
         Ok(MotionWriter { file: AtomicFile::create(path)?, orientation })
     }
 
-    /// Appends one output instant: a line per node.
+    /// Appends one output instant: a line per node, orientations in the writer's form.
     pub fn write_step(&mut self, nodes: &[(Label, NodeKinematics)]) -> Result<(), OutputError> {
-        let orientation = self.orientation;
+        let rows: Vec<_> = nodes.iter().map(|(l, k)| (*l, k.clone(), self.orientation)).collect();
+        self.write_rows(&rows)
+    }
+
+    /// Appends one output instant: a line per row, each with its own orientation form.
+    pub fn write_rows(&mut self, rows: &[(Label, NodeKinematics, OrientationOutput)]) -> Result<(), OutputError> {
         self.file.write_with(|out| {
-            for (label, k) in nodes {
-                let o = match orientation {
-                    OrientationOutput::Euler123Degrees => euler123(&k.r).map(f64::to_degrees),
-                    OrientationOutput::RotationVector => rotation_vector(&k.r),
-                };
+            for (label, k, how) in rows {
                 write!(out, "{label}")?;
-                for v in [k.x, o, k.xdot, k.omega] {
+                for c in k.x.iter() {
+                    write!(out, " {c:.12e}")?;
+                }
+                for c in orientation_values(&k.r, *how) {
+                    write!(out, " {c:.12e}")?;
+                }
+                for v in [k.xdot, k.omega] {
                     for c in v.iter() {
                         write!(out, " {c:.12e}")?;
                     }

@@ -3,11 +3,11 @@
 //! Newton with `δy = b₀ δẏ` (eqs. 3–5). Orientations are re-based at every step, so each
 //! node's `g` is measured from its orientation at the previous step.
 
-use super::newton::{newton, NewtonWorkspace, Convergence, NewtonFailure, NewtonSettings, Update};
+use super::newton::{momenta_from_definitions, newton, Convergence, NewtonFailure, NewtonSettings, NewtonWorkspace, Update};
 use crate::dae::{Assembler, State};
 use crate::kinematics::{gibbs_from_rotation, gibbs_g, Mat3, Vec3};
 use crate::linear::ConstraintForm;
-use crate::model::{Method, NodeKind};
+use crate::model::Method;
 
 /// Coefficients `(a₁, a₂, b₀, b₁, b₂)` for step `h` (the `b`'s include `h`).
 fn coefficients(method: Method, h: f64, first_step: bool) -> [f64; 5] {
@@ -120,26 +120,42 @@ impl<'a, 'm> Integrator<'a, 'm> {
     }
 }
 
-/// Consistent initial derivatives: momenta from the momentum definitions at the initial
-/// velocities, then Newton on `ẏ` with a tiny coefficient (`y` moves by `c δẏ` only).
-pub fn initial_derivatives(asm: &Assembler, st: &mut State, settings: &NewtonSettings) -> Result<Convergence, NewtonFailure> {
-    let dofs = &asm.dofs;
+/// Initial derivatives as MBDyn's derivatives phase computes them (stepsol.cc,
+/// `DerivativeSolver`): Newton with dCoef = `dcoef` for the momenta's derivatives and the
+/// multipliers, every node's position, orientation, velocity and angular velocity held as
+/// given, the momenta from their definitions at those velocities. Constraint
+/// rows and the equilibrium of static nodes therefore must already hold to the tolerance.
+pub fn initial_derivatives_with(asm: &Assembler, st: &mut State, settings: &NewtonSettings, dcoef: f64) -> Result<Convergence, NewtonFailure> {
     let form = asm.model.constraint_form;
-    for i in 0..dofs.node_first.len() {
-        if dofs.node_kind[i] == NodeKind::Dynamic {
-            let f = dofs.node_first[i];
-            st.y[f + 6..f + 12].iter_mut().for_each(|x| *x = 0.0);
-        }
-    }
-    let r = asm.residual(st, form, 1.0);
-    for i in 0..dofs.node_first.len() {
-        if dofs.node_kind[i] == NodeKind::Dynamic {
-            let f = dofs.node_first[i];
-            for k in 0..6 {
-                // Definition rows read β − Σ(…): with β = 0 the residual is −Σ(…).
-                st.y[f + 6 + k] = -r[f + k];
+    momenta_from_definitions(asm, st, form);
+    newton(asm, st, Update::Derivatives { dcoef, form }, settings, &mut NewtonWorkspace::new())
+}
+
+/// [`initial_derivatives_with`] at dCoef = 1e-6 s · 1e-3 (MBDyn's default derivatives
+/// coefficient times a 1 ms step).
+pub fn initial_derivatives(asm: &Assembler, st: &mut State, settings: &NewtonSettings) -> Result<Convergence, NewtonFailure> {
+    initial_derivatives_with(asm, st, settings, 1e-9)
+}
+
+/// The largest rate of change of a constraint, `max |Φ_/q q̇|`, at the state's positions
+/// and velocities, with the equation's name: non-zero when the velocities written in a file
+/// do not satisfy the joints (the first step then changes them). Central differences along
+/// `q̇` with a step of 1e-7 s.
+pub fn constraint_rate(asm: &Assembler, st: &State) -> Option<(String, f64)> {
+    let dofs = &asm.dofs;
+    let moved = |s: f64| {
+        let mut m = st.clone();
+        for &f in &dofs.node_first {
+            for i in f..f + 6 {
+                m.y[i] += s * st.yp[i];
             }
         }
-    }
-    newton(asm, st, Update::Dynamic { dcoef: 1e-6, form }, settings, &mut NewtonWorkspace::new())
+        asm.residual(&m, ConstraintForm::Plain, 1.0)
+    };
+    let eps = 1e-7;
+    let (plus, minus) = (moved(eps), moved(-eps));
+    (0..dofs.len).filter(|&i| dofs.is_multiplier(i)).map(|i| (i, (plus[i] - minus[i]) / (2.0 * eps))).fold(None, |best: Option<(usize, f64)>, (i, v)| match best {
+        Some((_, b)) if b.abs() >= v.abs() => best,
+        _ => Some((i, v)),
+    }).map(|(i, v)| (dofs.equation_name(asm.model, i), v))
 }

@@ -7,6 +7,6 @@ mod newton;
 mod static_analysis;
 
 pub use crate::model::Method;
-pub use integrate::{initial_derivatives, newton_dcoef, Integrator, StepRecord};
+pub use integrate::{constraint_rate, initial_derivatives, initial_derivatives_with, newton_dcoef, Integrator, StepRecord};
 pub use newton::{newton, Convergence, NewtonFailure, NewtonSettings, NewtonWorkspace, SolveError, Update};
 pub use static_analysis::static_solution;

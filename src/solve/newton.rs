@@ -2,12 +2,14 @@
 
 use crate::dae::{Assembler, Coefficients, SparseLu, State, Triplets};
 use crate::linear::ConstraintForm;
+use crate::model::{NodeKind, ResidualNorm};
 
 /// Convergence settings (residual in the units of each equation: N, N m, kg m/s, m).
 #[derive(Clone, Copy, Debug)]
 pub struct NewtonSettings {
-    /// Converged when `‖F‖∞ ≤ tolerance` …
+    /// Converged when `‖F‖ ≤ tolerance` (the norm is `norm`) …
     pub tolerance: f64,
+    pub norm: ResidualNorm,
     /// … or when the increment `‖δ‖∞ ≤ increment_tolerance` with `‖F‖∞ ≤ 1e3 · tolerance`.
     pub increment_tolerance: f64,
     pub max_iterations: usize,
@@ -15,7 +17,7 @@ pub struct NewtonSettings {
 
 impl Default for NewtonSettings {
     fn default() -> Self {
-        NewtonSettings { tolerance: 1e-9, increment_tolerance: 1e-12, max_iterations: 20 }
+        NewtonSettings { tolerance: 1e-9, norm: ResidualNorm::Max, increment_tolerance: 1e-12, max_iterations: 20 }
     }
 }
 
@@ -26,6 +28,14 @@ pub enum Update {
     Static,
     /// `ẏ += δ`, `y += c δ` (multipliers of eq. 30: `y += δ`), `J = J(c)`.
     Dynamic { dcoef: f64, form: ConstraintForm },
+    /// As `Dynamic`, then every node's position, orientation parameters and their
+    /// derivatives are put back to their values at entry: MBDyn's derivatives phase solves
+    /// for momenta, their derivatives and the multipliers only (strnode.cc,
+    /// `StructNode::DerivativesUpdate`: "forza configurazione e velocita' al valore
+    /// iniziale"). The momenta are then set from their definitions at the held velocities
+    /// (MBDyn keeps the Newton values, off by m·dCoef·(acceleration), a residual floor that
+    /// can sit above a tight tolerance).
+    Derivatives { dcoef: f64, form: ConstraintForm },
 }
 
 /// A Newton iteration that did not converge.
@@ -87,19 +97,43 @@ impl NewtonWorkspace {
     }
 }
 
+/// Sets each dynamic node's momenta so that its momentum definition rows vanish (they read
+/// `β − Σ(…)`, linear in β and γ with unit coefficients).
+pub fn momenta_from_definitions(asm: &Assembler, st: &mut State, form: ConstraintForm) {
+    let dofs = &asm.dofs;
+    let r = asm.residual(st, form, 1.0);
+    for i in 0..dofs.node_first.len() {
+        if dofs.node_kind[i] == NodeKind::Dynamic {
+            let f = dofs.node_first[i];
+            for k in 0..6 {
+                st.y[f + 6 + k] -= r[f + k];
+            }
+        }
+    }
+}
+
 /// Iterates to convergence.
 pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &NewtonSettings, ws: &mut NewtonWorkspace) -> Result<Convergence, NewtonFailure> {
     let (coef, form, dcoef) = match update {
         Update::Static => (Coefficients::static_analysis(), ConstraintForm::Plain, 1.0),
-        Update::Dynamic { dcoef, form } => (Coefficients::newton(dcoef, form), form, dcoef),
+        Update::Dynamic { dcoef, form } | Update::Derivatives { dcoef, form } => (Coefficients::newton(dcoef, form), form, dcoef),
+    };
+    // Node unknowns x, g and their derivatives, held by the derivatives phase.
+    let held: Vec<(usize, f64, f64)> = match update {
+        Update::Derivatives { .. } => asm.dofs.node_first.iter().flat_map(|&f| (f..f + 6).map(|i| (i, st.y[i], st.yp[i]))).collect(),
+        _ => Vec::new(),
+    };
+    let measure = |f: &[f64]| match settings.norm {
+        ResidualNorm::Max => worst(f).1,
+        ResidualNorm::Euclidean => f.iter().map(|x| x * x).sum::<f64>().sqrt(),
     };
     let fail = |st: &State, iteration, f: &[f64], reason: Option<String>| {
-        let (i, v) = worst(f);
-        NewtonFailure { time: st.t, iteration, residual_norm: v, worst_equation: asm.dofs.equation_name(asm.model, i), worst_value: f[i], reason }
+        let (i, _) = worst(f);
+        NewtonFailure { time: st.t, iteration, residual_norm: measure(f), worst_equation: asm.dofs.equation_name(asm.model, i), worst_value: f[i], reason }
     };
     for iteration in 0..=settings.max_iterations {
         let mut f = asm.residual(st, form, dcoef);
-        let (_, norm) = worst(&f);
+        let norm = measure(&f);
         if norm <= settings.tolerance {
             return Ok(Convergence { iterations: iteration, residual_norm: norm });
         }
@@ -131,7 +165,7 @@ pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &Newton
         for (i, d) in f.iter().enumerate() {
             match update {
                 Update::Static => st.y[i] += d,
-                Update::Dynamic { dcoef, form } => {
+                Update::Dynamic { dcoef, form } | Update::Derivatives { dcoef, form } => {
                     if form == ConstraintForm::Scaled && asm.dofs.is_multiplier(i) {
                         st.y[i] += d;
                     } else {
@@ -141,7 +175,14 @@ pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &Newton
                 }
             }
         }
-        if step <= settings.increment_tolerance && norm <= 1e3 * settings.tolerance {
+        if !held.is_empty() {
+            for &(i, y, yp) in &held {
+                st.y[i] = y;
+                st.yp[i] = yp;
+            }
+            momenta_from_definitions(asm, st, form);
+        }
+        if held.is_empty() && step <= settings.increment_tolerance && norm <= 1e3 * settings.tolerance {
             return Ok(Convergence { iterations: iteration + 1, residual_norm: norm });
         }
     }

@@ -1,7 +1,8 @@
 //! `beam3` (input manual, "Elements", §Three-node beam element): three nodes with offsets
 //! (and optional orientations), then for evaluation points I and II a section orientation
 //! (global, or `from nodes`) and a 6-D constitutive law, `same` repeating point I's.
-//! `beam2` is named as not supported.
+//! `beam:` is the same card as `beam3` (MBDyn reads both with one reader); `beam2` is named
+//! as not supported.
 
 use nalgebra::{Matrix6, Vector6};
 
@@ -51,7 +52,7 @@ fn section_law(law: &LinearLaw) -> SectionLaw {
 /// `beam3: LABEL, NODE_1, …, NODE_3, …, R_I, LAW_I, {same | R_II}, {same | LAW_II}
 /// [, custom output, FLAGS…]`.
 pub fn beam(keyword: &str, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Parsed, MbdynError> {
-    if keyword != "beam3" {
+    if keyword != "beam3" && keyword != "beam" {
         return Err(c.error_at(c.statement().span, format!("element type '{keyword}' ({keyword} {label}) is not supported by romdyn (supported: beam3)")));
     }
     let nodes = [beam_node(c, ctx, "node 1")?, beam_node(c, ctx, "node 2")?, beam_node(c, ctx, "node 3")?];

@@ -1,13 +1,18 @@
 //! The `control data` block (input manual, "Control Data"): the model counters romdyn
-//! checks against the model, as MBDyn does; settings of MBDyn's initial assembly and
-//! output, accepted and ignored (romdyn assembles nothing: the initial configuration is
-//! taken as given); and the statements that would change the physics, which are errors.
+//! checks against the model, as MBDyn does; the output settings romdyn honours (`default
+//! output`, `output frequency`, `default orientation`); settings of MBDyn's initial assembly
+//! and the rest of its output, accepted and ignored (romdyn assembles nothing: the initial
+//! configuration is taken as given); and the statements that would change the physics,
+//! which are errors. A statement given twice is read twice, the later value winning, as
+//! MBDyn's reader does (dataman3.cc, `DataManager::ReadControl`, has no duplicate check).
 
 use std::collections::HashMap;
 
 use super::cursor::Cursor;
 use super::diagnostic::{MbdynError, Sources, Span};
+use super::nodes::orientation_kind;
 use super::parser::{known, Block};
+use crate::model::OrientationOutput;
 
 /// Entity kinds counted in control data and found in the model.
 pub const COUNTED: [&str; 7] = ["structural nodes", "rigid bodies", "joints", "forces", "beams", "gravity", "automatic structural elements"];
@@ -20,27 +25,70 @@ const UNSUPPORTED_COUNTERS: [&str; 18] = [
 ];
 
 /// Settings of MBDyn's initial assembly and output: accepted, ignored.
-const IGNORED: [&str; 24] = [
-    "skip initial joint assembly", "use", "initial stiffness", "omega rotates", "tolerance", "initial tolerance", "max iterations",
-    "max initial iterations", "title", "print", "make restart file", "select timeout", "default output", "output units", "output frequency",
-    "output meter", "output precision", "output results", "default orientation", "default aerodynamic output", "default beam output",
-    "default scale", "finite difference jacobian meter", "loadable path",
+const IGNORED: [&str; 23] = [
+    "skip initial joint assembly", "use", "use automatic differentiation", "initial stiffness", "omega rotates", "tolerance", "initial tolerance",
+    "max iterations", "max initial iterations", "title", "print", "make restart file", "select timeout", "output units", "output meter",
+    "output precision", "output results", "default aerodynamic output", "default beam output", "default scale", "finite difference jacobian meter",
+    "loadable path", "model name",
 ];
+
+/// What control data says about the motion file.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ControlOutput {
+    /// Whether structural nodes are written unless their card says otherwise.
+    pub structural_nodes: bool,
+    /// Output every this many steps.
+    pub every: usize,
+    pub orientation: OrientationOutput,
+}
+
+impl Default for ControlOutput {
+    fn default() -> Self {
+        ControlOutput { structural_nodes: true, every: 1, orientation: OrientationOutput::Euler123Degrees }
+    }
+}
+
+/// `default output: {all | none | structural nodes | …} …` (dataman3.cc, case
+/// DEFAULTOUTPUT): `all` and `none` set every kind, a kind's name switches it on; only the
+/// structural nodes' flag matters for romdyn's files.
+fn default_output(c: &mut Cursor, out: &mut ControlOutput) -> Result<(), MbdynError> {
+    const KINDS: [&str; 27] = [
+        "all", "none", "reference frames", "accelerations", "drive callers", "structural nodes", "electric nodes", "thermal nodes", "abstract nodes",
+        "hydraulic nodes", "gravity", "rigid bodies", "joints", "beams", "plates", "shells", "membranes", "aerodynamic elements", "forces", "genels",
+        "electric elements", "hydraulic elements", "loadable", "induced velocity elements", "aeromodals", "external elements", "thermal elements",
+    ];
+    while !c.is_done() {
+        match c.keyword("an output kind", &KINDS)? {
+            "all" | "structural nodes" => out.structural_nodes = true,
+            "none" => out.structural_nodes = false,
+            _ => {}
+        }
+    }
+    Ok(())
+}
 
 /// Declared counts by kind, with the statement that declares them.
 pub type Counts = HashMap<&'static str, (usize, Span)>;
 
 /// Reads the `control data` block.
-pub fn control_data(block: Option<&Block>, sources: &Sources) -> Result<Counts, MbdynError> {
+pub fn control_data(block: Option<&Block>, sources: &Sources) -> Result<(Counts, ControlOutput), MbdynError> {
     let mut counts = Counts::new();
-    let Some(cd) = block else { return Ok(counts) };
-    let mut seen: HashMap<String, Span> = HashMap::new();
+    let mut output = ControlOutput::default();
+    let Some(cd) = block else { return Ok((counts, output)) };
     for st in &cd.statements {
         let mut c = Cursor::new(st, sources);
-        if let Some(prev) = seen.insert(st.keyword.replace(' ', ""), st.span) {
-            return Err(c.error_at(st.span, format!("'{}' appears twice in control data (first at line {})", st.keyword, prev.line)));
-        }
-        if let Some(kind) = known(&st.keyword, &COUNTED) {
+        if known(&st.keyword, &["default output"]).is_some() {
+            default_output(&mut c, &mut output)?;
+        } else if known(&st.keyword, &["output frequency"]).is_some() {
+            let span = c.here();
+            let n = c.count("output frequency (steps)")?;
+            if n < 1 {
+                return Err(c.error_at(span, "the output frequency must be at least 1 step"));
+            }
+            output.every = n;
+        } else if known(&st.keyword, &["default orientation"]).is_some() {
+            output.orientation = orientation_kind(&mut c)?;
+        } else if let Some(kind) = known(&st.keyword, &COUNTED) {
             let n = if kind == "gravity" { 1 } else { c.count(&format!("number of {kind}"))? };
             counts.insert(kind, (n, st.span));
         } else if let Some(kind) = known(&st.keyword, &UNSUPPORTED_COUNTERS) {
@@ -59,5 +107,5 @@ pub fn control_data(block: Option<&Block>, sources: &Sources) -> Result<Counts, 
         }
         c.finish()?;
     }
-    Ok(counts)
+    Ok((counts, output))
 }

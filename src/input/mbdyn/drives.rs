@@ -1,31 +1,47 @@
 //! Drive callers (input manual, "General", §Drives and Drive Callers) mapped onto
-//! romdyn's [`Drive`]: a plain number, `const`, `null`, `unit`, `time`, `ramp`, `step`,
-//! `sine`, `cosine`, `piecewise linear`, and `reference, LABEL` to a `drive caller:` card;
+//! romdyn's [`Drive`]: a plain number, `const`, `null`, `unit`, `time`, `direct`, `ramp`,
+//! `step`, `sine`, `cosine`, `piecewise linear`, `linear`, `parabolic`, `cubic`,
+//! `exponential`, `tanh`, `double ramp`, `double step`, `array`, `mult`, `frequency sweep`,
+//! `periodic`, `string` (an expression of `Time` for the math parser, evaluated with the
+//! file's variables as they stand at the end of the input, as MBDyn evaluates it during the
+//! run), and `reference, LABEL` to a `drive caller:` card;
 //! and the 3-vector template drive callers (§Template Drive): `null`, `single`,
 //! `component`, `array`.
 
 use std::collections::HashMap;
 
+use std::sync::Mutex;
+
 use super::cursor::Cursor;
-use super::diagnostic::{MbdynError, Span};
+use super::diagnostic::{MbdynError, Sources, Span};
+use super::expr::{Evaluator, Variable, Variables};
+use super::lexer::tokenize;
 use super::parser::Statement;
-use crate::element::Drive;
+use super::value::TypedValue;
+use crate::element::{Drive, TimeFunction};
 use crate::kinematics::{Mat3, Vec3};
 
 /// Drive callers romdyn evaluates.
-const SUPPORTED: [&str; 11] = ["const", "null", "unit", "one", "time", "ramp", "step", "sine", "cosine", "piecewise linear", "reference"];
-
-/// MBDyn drive callers romdyn cannot represent (named in the error).
-const UNSUPPORTED: [&str; 28] = [
-    "array", "closest next", "cubic", "direct", "discrete filter", "dof", "double ramp", "double step", "drive", "element", "exponential", "ginac", "file",
-    "fourier series", "frequency sweep", "linear", "meter", "mult", "node", "parabolic", "periodic", "postponed", "random", "sample and hold",
-    "scalar function", "string", "tanh", "timestep",
+const SUPPORTED: [&str; 26] = [
+    "const", "null", "unit", "one", "time", "direct", "ramp", "step", "sine", "cosine", "piecewise linear", "linear", "parabolic", "cubic", "exponential",
+    "tanh", "double ramp", "double step", "array", "mult", "frequency sweep", "periodic", "string", "reference", "zero", "constant",
 ];
 
-/// The `drive caller:` cards read so far.
+/// MBDyn drive callers romdyn cannot represent (named in the error): they read the model's
+/// state, files, random numbers or the step counter.
+const UNSUPPORTED: [&str; 14] = [
+    "closest next", "discrete filter", "dof", "drive", "element", "ginac", "file", "fourier series", "meter", "node", "postponed", "random", "sample and hold",
+    "scalar function",
+];
+
+/// Nesting of drive callers inside drive callers romdyn follows.
+const MAX_DEPTH: usize = 16;
+
+/// The `drive caller:` cards read so far, and the variables `string` drives evaluate with.
 #[derive(Default)]
 pub struct Drives {
     table: HashMap<u32, (Drive, usize, Span)>,
+    pub variables: Variables,
 }
 
 /// Reads a `drive caller: LABEL, [name, "…",] DRIVE;` card.
@@ -46,7 +62,15 @@ pub fn drive_caller_card(st: &Statement, c: &mut Cursor, drives: &mut Drives) ->
 
 /// One drive caller; `seq` is the reading statement's position (for `reference, LABEL`).
 pub fn drive(c: &mut Cursor, drives: &Drives, seq: usize) -> Result<Drive, MbdynError> {
-    if c.accept("const") {
+    nested_drive(c, drives, seq, 0)
+}
+
+fn nested_drive(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) -> Result<Drive, MbdynError> {
+    if depth > MAX_DEPTH {
+        return Err(c.error(format!("drive callers nested more than {MAX_DEPTH} deep")));
+    }
+    let inner = |c: &mut Cursor| nested_drive(c, drives, seq, depth + 1);
+    if c.accept("const") || c.accept("constant") {
         return Ok(Drive::Const(c.real("constant value of the drive")?));
     }
     let span = c.here();
@@ -60,9 +84,71 @@ pub fn drive(c: &mut Cursor, drives: &Drives, seq: usize) -> Result<Drive, Mbdyn
         return Err(c.error(format!("expected a drive caller (a number, {}), found {}", SUPPORTED.join(", "), c.found())));
     };
     Ok(match kind {
-        "null" => Drive::Const(0.0),
+        "null" | "zero" => Drive::Const(0.0),
         "unit" | "one" => Drive::Const(1.0),
-        "time" => Drive::Time,
+        // `direct` passes its argument through; called with none it gives the time.
+        "time" | "direct" => Drive::Time,
+        "linear" => Drive::Polynomial(vec![c.real("constant coefficient")?, c.real("slope")?]),
+        "parabolic" => Drive::Polynomial(vec![c.real("constant coefficient")?, c.real("linear coefficient")?, c.real("parabolic coefficient")?]),
+        "cubic" => Drive::Polynomial(vec![c.real("constant coefficient")?, c.real("linear coefficient")?, c.real("parabolic coefficient")?, c.real("cubic coefficient")?]),
+        "exponential" => {
+            let amplitude = c.real("amplitude")?;
+            let span = c.here();
+            let tau = c.real("time constant [s]")?;
+            if tau == 0.0 {
+                return Err(c.error_at(span, "exponential: the time constant must not be zero"));
+            }
+            Drive::Exponential { amplitude, tau, t0: c.real("initial time [s]")?, v0: c.real("initial value")? }
+        }
+        "tanh" => Drive::Tanh { t0: c.real("initial time [s]")?, amplitude: c.real("amplitude")?, slope: c.real("slope")?, v0: c.real("initial value")? },
+        "double ramp" => {
+            let (a_slope, a_t0, a_t1) = (c.real("ascending slope")?, c.real("ascending initial time [s]")?, c.real("ascending final time [s]")?);
+            let (d_slope, d_t0) = (c.real("descending slope")?, c.real("descending initial time [s]")?);
+            let d_t1 = if c.accept("forever") { f64::INFINITY } else { c.real("descending final time [s] (or forever)")? };
+            if !(a_t0 <= a_t1 && a_t1 <= d_t0 && d_t0 <= d_t1) {
+                return Err(c.error(format!("double ramp: the times must not decrease, found {a_t0}, {a_t1}, {d_t0}, {d_t1}")));
+            }
+            Drive::DoubleRamp { a_slope, a_t0, a_t1, d_slope, d_t0, d_t1, v0: c.real("initial value")? }
+        }
+        "double step" => Drive::DoubleStep { t0: c.real("initial time [s]")?, t1: c.real("final time [s]")?, value: c.real("step value")?, v0: c.real("initial value")? },
+        "array" => {
+            let span = c.here();
+            let n = c.count("number of drive callers")?;
+            if n == 0 {
+                return Err(c.error_at(span, "array: at least one drive caller is needed"));
+            }
+            let mut terms = Vec::with_capacity(n.min(64));
+            for _ in 0..n {
+                terms.push(inner(c)?);
+            }
+            if terms.len() == 1 { terms.remove(0) } else { Drive::Sum(terms) }
+        }
+        "mult" => {
+            let a = inner(c)?;
+            Drive::Product(Box::new(a), Box::new(inner(c)?))
+        }
+        "frequency sweep" => {
+            let t0 = c.real("initial time [s]")?;
+            let omega = Box::new(inner(c)?);
+            let amplitude = Box::new(inner(c)?);
+            let v0 = c.real("initial value")?;
+            let t1 = if c.accept("forever") { f64::INFINITY } else { c.real("final time [s] (or forever)")? };
+            Drive::FrequencySweep { t0, omega, amplitude, v0, t1, v1: c.real("final value")? }
+        }
+        "periodic" => {
+            let t0 = c.real("initial time [s]")?;
+            let span = c.here();
+            let period = c.real("period [s]")?;
+            if period <= 0.0 {
+                return Err(c.error_at(span, format!("periodic: the period must be positive, found {period}")));
+            }
+            Drive::Periodic { t0, period, f: Box::new(inner(c)?) }
+        }
+        "string" => {
+            let span = c.here();
+            let text = c.string("the expression (a string in double quotes)")?;
+            Drive::Expression(string_drive(&text, &drives.variables).map_err(|m| c.error_at(span, format!("string drive \"{text}\": {m}")))?)
+        }
         "ramp" => {
             let slope = c.real("ramp slope")?;
             let t0 = c.real("ramp initial time [s]")?;
@@ -108,6 +194,33 @@ pub fn drive(c: &mut Cursor, drives: &Drives, seq: usize) -> Result<Drive, Mbdyn
     })
 }
 
+/// The expression of a `string` drive as a function of time: the math parser on its tokens
+/// with `Time` (and `Var`, the argument MBDyn passes, here the time) set to `t`; checked at
+/// t = 0 so that errors show when the file is read. A value that cannot be computed later
+/// (out of a function's domain) is NaN, which the Newton iteration reports.
+fn string_drive(text: &str, variables: &Variables) -> Result<TimeFunction, String> {
+    let mut sources = Sources::default();
+    sources.files.push(("string drive".into(), text.to_string()));
+    let tokens = tokenize(text, 0, &sources).map_err(|e| e.message)?;
+    if tokens.is_empty() {
+        return Err("the expression is empty".into());
+    }
+    let evaluate = move |vars: &mut Variables, tokens: &[super::lexer::Spanned], sources: &Sources, t: f64| -> Result<f64, String> {
+        for name in ["Time", "Var"] {
+            vars.0.insert(name.into(), Variable { value: TypedValue::Real(t), constant: false, declared: None });
+        }
+        let v = Evaluator::new(tokens, vars, sources, Span::default()).evaluate().map_err(|e| e.message)?;
+        v.real().ok_or_else(|| "the expression gives a string, not a number".to_string())
+    };
+    let mut vars = variables.clone();
+    evaluate(&mut vars, &tokens, &sources, 0.0)?;
+    let state = Mutex::new(vars);
+    Ok(TimeFunction::new(text, move |t| {
+        let mut vars = state.lock().unwrap_or_else(|e| e.into_inner());
+        evaluate(&mut vars, &tokens, &sources, t).unwrap_or(f64::NAN)
+    }))
+}
+
 /// Cycles of `sine`/`cosine` as full periods before the phase freezes. Sine: `N > 0` ends
 /// after `N − 1/2` periods, `N < 0` after `|N| − 3/4` (`one` = 1, `half` = −1); cosine:
 /// `N > 0` after `N`, `N < 0` after `|N| − 1/2` (`one` = 1, `half` = −1).
@@ -144,7 +257,8 @@ pub fn template_vec3(c: &mut Cursor, drives: &Drives, seq: usize, basis: &Mat3, 
 const MAX_ARRAY_DEPTH: usize = 8;
 
 fn template_terms(c: &mut Cursor, drives: &Drives, seq: usize, basis: &Mat3, direction: &dyn Fn(&mut Cursor) -> Result<Vec3, MbdynError>, depth: usize) -> Result<Vec<(Vec3, Drive)>, MbdynError> {
-    if c.accept("null") {
+    // `zero` is the deprecated name of `null` (tpldrive_impl.cc, ZeroTDCR).
+    if c.accept("null") || c.accept("zero") {
         return Ok(vec![(Vec3::zeros(), Drive::Const(0.0))]);
     }
     if c.accept("component") {

@@ -61,6 +61,9 @@ pub fn element(st: &Statement, c: &mut Cursor, ctx: &ElementContext) -> Result<P
         _ => {}
     }
     let label = c.label(&format!("{kind} label"))?;
+    if c.accept("name") {
+        c.string(&format!("{kind} name"))?;
+    }
     let parsed = match kind {
         "body" => Parsed::Element(Box::new(body(label, c, ctx)?)),
         "joint" => Parsed::Element(joint(label, c, ctx)?),
@@ -117,7 +120,13 @@ fn body(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<RigidBody,
         }
         let cm = on.relative_position(c, "centre of mass offset [m]")?;
         let mut j = on.relative_matrix(c, "inertia about the centre of mass [kg m^2]")?;
-        if c.accept("orientation") {
+        // `inertial, {node | R}` (body.cc, ReadBody): the frame the inertia is written in.
+        if c.accept("inertial") {
+            if !c.accept("node") {
+                let r = on.relative_orientation(c, "orientation of the inertia")?;
+                j = r * j * r.transpose();
+            }
+        } else if c.accept("orientation") {
             let r = on.relative_orientation(c, "orientation of the inertia")?;
             j = r * j * r.transpose();
         }
@@ -134,9 +143,12 @@ fn body(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<RigidBody,
 
 /// `force: LABEL, {absolute | follower}, NODE, position, ARM, VALUE` and
 /// `couple: LABEL, {absolute | follower}, NODE, [position, ARM,] VALUE` (input manual,
-/// §Structural force, §Structural couple). VALUE is a 3-vector template drive caller,
-/// read in the node frame by default: an absolute force along `v` acts along `R₀ v`
-/// (node orientation at input) unless written `single, reference, global, v, …`.
+/// §Structural force, §Structural couple). VALUE is a 3-vector template drive caller: a
+/// follower's components are in the node frame, an absolute one's in the global frame
+/// unless written `single, reference, FRAME, v, …`. (The manual's "Known issues" says the
+/// node frame for both; MBDyn 1.7.3 reads absolute values with `ReadDCVecAbs`, strforce.cc,
+/// and moves a node turned 90° about z along global x under `absolute, …, 1., 0., 0.`:
+/// tests/mbdyn_files/absolute_force_direction.mbd.)
 fn force(couple: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<dyn Element>, MbdynError> {
     let what = if couple { "couple" } else { "force" };
     let span = c.here();
@@ -150,10 +162,9 @@ fn force(couple: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Re
     };
     let n = ctx.node(c, &format!("node of the {what}"))?;
     let on = ctx.on(n);
-    let r0 = n.orientation;
-    let basis = if frame == ForceFrame::Absolute { r0 } else { Mat3::identity() };
+    let basis = Mat3::identity();
     let direction = |c: &mut Cursor| match frame {
-        ForceFrame::Absolute => on.vector_in(c, &format!("{what} direction"), Frame::of_node(n)),
+        ForceFrame::Absolute => on.vector_in(c, &format!("{what} direction"), Frame::global()),
         ForceFrame::Follower => on.relative_vector(c, &format!("{what} direction")),
     };
     let mut offset = Vec3::zeros();

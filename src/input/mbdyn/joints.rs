@@ -14,22 +14,23 @@ use super::drives::{single_term, template_vec3};
 use super::element_context::ElementContext;
 use super::laws::{linear_law, rest_strain, three, LinearLaw};
 use super::references::{Context, Frame, OtherSide};
-use crate::element::{Anchor, DeformableDisplacement, DeformableHinge, Drive, Element, Joint, Rod};
+use crate::element::{Anchor, DeformableDisplacement, DeformableHinge, Distance, Drive, Element, Joint, Rod};
 use crate::kinematics::{axial_of_skew_part, Mat3, Vec3};
 use crate::model::{Label, StructuralNode};
 
-const SUPPORTED: [&str; 14] = [
+const SUPPORTED: [&str; 19] = [
     "clamp", "revolute hinge", "plane hinge", "revolute pin", "plane pin", "spherical hinge", "spherical pin", "total joint", "total pin joint",
-    "deformable displacement joint", "deformable displacement hinge", "deformable hinge", "rod", "rod with offset",
+    "deformable displacement joint", "deformable displacement hinge", "deformable hinge", "rod", "rod with offset", "in line", "in plane", "prismatic",
+    "distance", "distance with offset",
 ];
 
 /// MBDyn joints romdyn names in its "not supported" error.
-const OTHER_JOINTS: [&str; 33] = [
+const OTHER_JOINTS: [&str; 28] = [
     "angular acceleration", "angular velocity", "axial rotation", "beam slider", "brake", "cardano hinge", "cardano pin", "cardano rotation",
-    "coincidence", "deformable axial joint", "deformable joint", "distance", "distance with offset", "drive displacement", "drive displacement pin",
-    "drive hinge", "gimbal rotation", "imposed displacement", "imposed displacement pin", "imposed orientation", "in line", "in plane",
+    "coincidence", "deformable axial joint", "deformable joint", "drive displacement", "drive displacement pin",
+    "drive hinge", "gimbal rotation", "imposed displacement", "imposed displacement pin", "imposed orientation",
     "invariant deformable displacement joint", "invariant deformable hinge", "linear acceleration", "linear velocity", "modal",
-    "plane displacement", "plane displacement pin", "point contact", "prismatic", "revolute rotation", "rod bezier",
+    "plane displacement", "plane displacement pin", "point contact", "revolute rotation", "rod bezier",
 ];
 
 /// One side of a two-node joint: node, offset and orientation in the node frame.
@@ -76,7 +77,7 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
     let Some(kind) = c.accept_any(&SUPPORTED) else {
         if let Some(w) = c.peek_keyword() {
             let name = OTHER_JOINTS.iter().find(|o| super::parser::same_keyword(o, w)).copied().unwrap_or(w);
-            return Err(c.error(format!("joint type '{name}' is not supported by romdyn (supported: clamp, revolute hinge, revolute pin, spherical hinge, spherical pin, total joint, total pin joint, deformable displacement joint, deformable hinge, rod)")));
+            return Err(c.error(format!("joint type '{name}' is not supported by romdyn (supported: clamp, revolute hinge, revolute pin, spherical hinge, spherical pin, total joint, total pin joint, deformable displacement joint, deformable hinge, rod, in line, in plane, prismatic, distance)")));
         }
         return Err(c.error(format!("expected a joint type, found {}", c.found())));
     };
@@ -84,9 +85,10 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
         "clamp" => Box::new(clamp(label, c, ctx)?),
         "revolute hinge" | "plane hinge" | "spherical hinge" => {
             let revolute = kind != "spherical hinge";
-            let position = if revolute { Position::Always } else { Position::IfKeyword };
-            let a = side(c, ctx, "node 1", position, None)?;
-            let b = side(c, ctx, "node 2", position, Some(&a))?;
+            // MBDyn reads both offsets whether or not `position` is written (joint.cc,
+            // MBDYN_X_COMPATIBLE_INPUT, which joint.cc defines).
+            let a = side(c, ctx, "node 1", Position::Always, None)?;
+            let b = side(c, ctx, "node 2", Position::Always, Some(&a))?;
             if revolute && c.accept("initial theta") {
                 c.real("initial theta [rad]")?;
             }
@@ -98,6 +100,37 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
         }
         "revolute pin" | "plane pin" | "spherical pin" => Box::new(pin(kind, label, c, ctx, span)?),
         "total joint" | "total pin joint" => Box::new(total(kind == "total pin joint", label, c, ctx, span)?),
+        "in line" | "in plane" => Box::new(in_line_or_plane(kind == "in line", label, c, ctx, span)?),
+        "distance" | "distance with offset" => {
+            // `distance, NODE_1, [position, O_1,] NODE_2, [position, O_2,] {DRIVE | from nodes}`;
+            // the deprecated `distance with offset` always reads both offsets.
+            let position = if kind == "distance" { Position::IfKeyword } else { Position::Always };
+            let a = side(c, ctx, "node 1", position, None)?;
+            let b = side(c, ctx, "node 2", position, Some(&a))?;
+            let l0 = (b.global().0 - a.global().0).norm();
+            let l_span = c.here();
+            let length = if c.accept("from nodes") { Drive::Const(l0) } else { super::drives::drive(c, ctx.drives, ctx.seq)? };
+            let t0 = 0.0;
+            let l = length.value(t0);
+            if !(l > 0.0) || l0 == 0.0 {
+                return Err(c.error_at(l_span, format!("distance: MBDyn's distance joint needs a positive distance (imposed {l} m, initial {l0:.6e} m)")));
+            }
+            if (l - l0).abs() > 1e-6 * l0.max(1.0) {
+                return Err(c.error_at(span, format!("joint {label}: its points are {l0:.6e} m apart in the initial configuration, the imposed distance is {l:.6e} m; romdyn does not run MBDyn's initial assembly, so joints must hold as written")));
+            }
+            Box::new(Distance { label, a: a.anchor(), b: b.anchor(), length })
+        }
+        "prismatic" => {
+            let orientation = |c: &mut Cursor, n: &StructuralNode, other: Option<&Side>| -> Result<Mat3, MbdynError> {
+                let on = Context { other: other.map(Side::other), ..ctx.on(n) };
+                if c.accept("orientation") || c.accept("hinge") { on.relative_orientation(c, "orientation of the joint") } else { Ok(Mat3::identity()) }
+            };
+            let na = ctx.node(c, "node 1")?;
+            let a = Side { node: na, offset: Vec3::zeros(), orientation: orientation(c, na, None)? };
+            let nb = ctx.node(c, "node 2")?;
+            let b = Side { node: nb, offset: Vec3::zeros(), orientation: orientation(c, nb, Some(&a))? };
+            Box::new(assembled(Joint::prismatic(label, a.anchor(), b.anchor()), &a.global(), &b.global(), c, span)?)
+        }
         "deformable displacement joint" | "deformable displacement hinge" | "deformable hinge" => {
             let hinge = kind == "deformable hinge";
             let position = if hinge { Position::IfKeyword } else { Position::Always };
@@ -123,6 +156,41 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
     Ok(element)
 }
 
+/// `in line, NODE_1, [position,] P, [orientation,] R, NODE_2 [, offset, O]` (B's point on
+/// the line through P along R's axis 3) and `in plane, NODE_1, [position,] P, N, NODE_2 [,
+/// offset, O]` (B's point in the plane through P normal to N, normalized): input manual,
+/// §In line, §In plane. The plane's frame has N as axis 3 (axes 1 and 2 any pair normal to
+/// it: the constraint does not depend on them).
+fn in_line_or_plane(line: bool, label: Label, c: &mut Cursor, ctx: &ElementContext, span: super::diagnostic::Span) -> Result<Joint, MbdynError> {
+    let na = ctx.node(c, "node 1")?;
+    let on = ctx.on(na);
+    c.accept("position");
+    let p = on.relative_position(c, if line { "point of the line [m]" } else { "point of the plane [m]" })?;
+    let orientation = if line {
+        c.accept("orientation");
+        on.relative_orientation(c, "orientation of the line (axis 3 along it)")?
+    } else {
+        let n_span = c.here();
+        let n = on.relative_vector(c, "normal of the plane")?;
+        let n = n.try_normalize(0.0).ok_or_else(|| c.error_at(n_span, "in plane: the normal is null"))?;
+        let t = if n.x.abs() < 0.9 { Vec3::x() } else { Vec3::y() };
+        let e1 = (t - n * n.dot(&t)).normalize();
+        Mat3::from_columns(&[e1, n.cross(&e1), n])
+    };
+    let a = Side { node: na, offset: p, orientation };
+    let nb = ctx.node(c, "node 2")?;
+    let offset = if c.accept("offset") { Context { other: Some(a.other()), ..ctx.on(nb) }.relative_position(c, "offset of node 2 [m]")? } else { Vec3::zeros() };
+    if c.peek_keyword().is_some_and(|w| w == "friction") {
+        return Err(c.error("joint friction is not supported by romdyn"));
+    }
+    let b = Side { node: nb, offset, orientation: Mat3::identity() };
+    let (frame_b_point, _) = b.global();
+    let (pa, qa) = a.global();
+    let j = if line { Joint::in_line(label, a.anchor(), b.anchor()) } else { Joint::in_plane(label, a.anchor(), b.anchor()) };
+    // Only position components are locked: B's frame orientation does not matter.
+    assembled(j, &(pa, qa), &(frame_b_point, qa), c, span)
+}
+
 /// `clamp, NODE, [position,] {node | POSITION}, [orientation,] {node | ORIENTATION}`.
 fn clamp(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Joint, MbdynError> {
     let span = c.here();
@@ -136,15 +204,22 @@ fn clamp(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Joint, Mb
     assembled(j, &(position, orientation), &(n.position, n.orientation), c, span)
 }
 
-/// `revolute pin, NODE, position, OFFSET [, orientation, R], position, PIN [, orientation,
-/// R_PIN]` and `spherical pin` alike: the joint with a frame fixed in space.
+/// `revolute pin, NODE, [position,] OFFSET [, {orientation | hinge}, R], [position,] PIN [,
+/// {orientation | hinge}, R_PIN]` and `spherical pin` alike: the joint with a frame fixed in
+/// space. Both `position` keywords are optional and `hinge` is the older word for
+/// `orientation` (joint.cc, MBDYN_X_COMPATIBLE_INPUT); a spherical pin reads its
+/// orientations and ignores them.
 fn pin(kind: &str, label: Label, c: &mut Cursor, ctx: &ElementContext, span: super::diagnostic::Span) -> Result<Joint, MbdynError> {
     let revolute = kind != "spherical pin";
-    let b = side(c, ctx, "the node", if revolute { Position::Always } else { Position::IfKeyword }, None)?;
+    let mut b = side(c, ctx, "the node", Position::Always, None)?;
+    if !revolute {
+        b.orientation = Mat3::identity();
+    }
     let on = Context { node: Some(Frame::of_node(b.node)), ..ctx.global() };
-    c.keyword("'position' of the pin", &["position"])?;
+    c.accept("position");
     let position = on.position(c, "pin position [m]")?;
-    let orientation = if c.accept("orientation") { on.orientation(c, "pin orientation")? } else { Mat3::identity() };
+    let orientation = if c.accept("orientation") || c.accept("hinge") { on.orientation(c, "pin orientation")? } else { Mat3::identity() };
+    let orientation = if revolute { orientation } else { Mat3::identity() };
     if revolute && c.accept("initial theta") {
         c.real("initial theta [rad]")?;
     }

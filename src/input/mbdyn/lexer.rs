@@ -98,14 +98,16 @@ pub fn tokenize(text: &str, file: usize, sources: &Sources) -> Result<Vec<Spanne
     Ok(out)
 }
 
-/// A double-quoted string; `\\` and `\"` escape, a backslash before a newline joins lines,
+/// A double-quoted string, which may span lines; `\\` and `\"` escape, a backslash before a
+/// newline joins lines (the newline is dropped),
 /// `\hh` (two hex digits) is a character code.
 fn string(s: &mut Scanner, span: Span, sources: &Sources) -> Result<String, MbdynError> {
     s.bump();
     let mut text = String::new();
     loop {
         match s.bump() {
-            None | Some('\n') => return Err(sources.error(span, "unterminated string: expected a closing '\"' on the same line (end a line with '\\' to continue it)")),
+            // A newline inside the quotes is part of the string, as in MBDyn's reader.
+            None => return Err(sources.error(span, "unterminated string: expected a closing '\"' before the end of the file")),
             Some('"') => return Ok(text),
             Some('\\') => match s.peek(0) {
                 Some('\n') => {

@@ -17,7 +17,7 @@ use super::nodes::{node_statement, Nodes};
 use super::parser::{known, parse_file, same_keyword, Block, Document, CARDS};
 use super::problem::{data, initial_value};
 use super::references::{reference, Frames};
-use crate::model::{InitialValueProblem, Model, ModelBuilder};
+use crate::model::{InitialValueProblem, Model, ModelBuilder, MotionOutput, WrittenNode};
 
 /// A model file: the model and the initial-value problem it asks for.
 pub struct MbdynModel {
@@ -46,6 +46,7 @@ struct Cards {
 
 fn cards(doc: &Document) -> Result<Cards, MbdynError> {
     let mut out = Cards::default();
+    out.drives.variables = doc.variables.clone();
     for st in doc.cards.iter().filter(|st| known(&st.keyword, &["reference"]).is_some()) {
         if let Some(super::parser::Arg { value: super::parser::Value::Number(x), .. }) = st.args.first()
             && *x >= 0.0
@@ -93,12 +94,25 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
         data(data_block, src)?;
     }
     let cards = cards(doc)?;
-    let problem = initial_value(block(doc, "initial value"), src, &cards.drives)?;
-    let counts = control_data(block(doc, "control data"), src)?;
+    let mut problem = initial_value(block(doc, "initial value"), src, &cards.drives)?;
+    let (counts, control_output) = control_data(block(doc, "control data"), src)?;
     let mut nodes = Nodes::default();
     for st in block(doc, "nodes").map_or(&[][..], |b| &b.statements) {
         node_statement(st, &mut Cursor::new(st, src), &cards.frames, &mut nodes)?;
     }
+    problem.output = Some(MotionOutput {
+        nodes: nodes
+            .0
+            .iter()
+            .map(|n| WrittenNode {
+                label: n.node.label,
+                source: n.source.clone(),
+                written: n.output.unwrap_or(control_output.structural_nodes),
+                orientation: n.orientation.unwrap_or(control_output.orientation),
+            })
+            .collect(),
+        every: control_output.every,
+    });
     let mut b = ModelBuilder::new();
     for n in nodes.structural() {
         b.node(n.clone());

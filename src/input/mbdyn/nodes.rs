@@ -1,22 +1,32 @@
 //! The `nodes` block (input manual, "Nodes", §Structural Node): `structural: LABEL,
 //! {static | dynamic}, [position,] X, [orientation,] R, [velocity,] V, [angular velocity,]
 //! W` (each optionally in a `reference`), or `at reference, LABEL`; then the optional
-//! `assembly`, `scale`, `output` and `accelerations` settings, which only tune MBDyn's
-//! initial assembly and output and are ignored. `dummy` nodes carry no unknowns (they only
-//! produce output in MBDyn): they are counted and kept out of the model.
+//! `assembly`, `scale`, `output` and `accelerations` settings (`assembly` and `scale` only
+//! tune MBDyn's initial assembly and are ignored; `output` selects the node's `.mov` rows).
+//! A node label may be followed by `name, "…"`. `dummy` nodes carry no unknowns: they are
+//! counted, kept out of the model, and written to the motion file from their base node
+//! (which may itself be a dummy node). `output: structural, LABEL | range, A, B, …;` turns
+//! the output of those nodes on (dataman3.cc, `DataManager::ReadNodes`).
 
 use super::cursor::Cursor;
 use super::diagnostic::{MbdynError, Span};
 use super::parser::{known, Statement};
 use super::references::{Context, Frame, Frames};
-use crate::model::{Label, NodeKind, StructuralNode};
+use crate::model::{Label, NodeKind, NodeSource, OrientationOutput, StructuralNode};
 
 /// A node of the file: a structural node of the model, or a dummy node.
 #[derive(Clone, Debug)]
 pub struct NodeEntry {
+    /// For a dummy node, its initial kinematics (with the base node's kind).
     pub node: StructuralNode,
     pub dummy: bool,
     pub span: Span,
+    /// Where its motion-file rows come from.
+    pub source: NodeSource,
+    /// `output, yes | no` (`None`: the `default output` of control data).
+    pub output: Option<bool>,
+    /// `orientation description, …` (`None`: the `default orientation` of control data).
+    pub orientation: Option<OrientationOutput>,
 }
 
 /// The structural nodes, in file order.
@@ -37,6 +47,9 @@ const NODE_TYPES: [&str; 6] = ["abstract", "electric", "hydraulic", "parameter",
 
 /// Reads one statement of the `nodes` block.
 pub fn node_statement(st: &Statement, c: &mut Cursor, frames: &Frames, nodes: &mut Nodes) -> Result<(), MbdynError> {
+    if known(&st.keyword, &["output"]).is_some() {
+        return output_card(c, nodes);
+    }
     match known(&st.keyword, &NODE_TYPES) {
         Some("structural") => {}
         Some(other) => return Err(c.error_at(st.span, format!("node type '{other}' is not supported by romdyn"))),
@@ -47,77 +60,151 @@ pub fn node_statement(st: &Statement, c: &mut Cursor, frames: &Frames, nodes: &m
     if let Some(prev) = nodes.find(label) {
         return Err(c.error_at(label_span, format!("structural node {label} is defined twice (first at line {})", prev.span.line)));
     }
+    if c.accept("name") {
+        c.string("node name")?;
+    }
     let kind_span = c.here();
     let kind = c.keyword("the node type", &["static", "dynamic", "dummy", "modal", "static displacement", "dynamic displacement"])?;
     let ctx = Context::global(frames, st.seq);
-    let entry = match kind {
-        "static" | "dynamic" => NodeEntry { node: structural(c, &ctx, label, if kind == "static" { NodeKind::Static } else { NodeKind::Dynamic })?, dummy: false, span: st.span },
-        "dummy" => NodeEntry { node: dummy(c, &ctx, label, nodes)?, dummy: true, span: st.span },
+    let (node, dummy, source, orientation) = match kind {
+        "static" | "dynamic" => {
+            let (node, orientation) = structural(c, &ctx, label, if kind == "static" { NodeKind::Static } else { NodeKind::Dynamic })?;
+            (node, false, NodeSource::Node(label), orientation)
+        }
+        "dummy" => {
+            let (node, source, orientation) = dummy(c, &ctx, label, nodes)?;
+            (node, true, source, orientation)
+        }
         _ => return Err(c.error_at(kind_span, format!("'{kind}' structural nodes are not supported by romdyn (supported: static, dynamic, dummy)"))),
     };
-    settings(c)?;
+    let output = settings(c)?;
     c.finish()?;
-    nodes.0.push(entry);
+    nodes.0.push(NodeEntry { node, dummy, span: st.span, source, output, orientation });
     Ok(())
 }
 
-fn structural(c: &mut Cursor, ctx: &Context, label: Label, kind: NodeKind) -> Result<StructuralNode, MbdynError> {
+/// `output: structural [, accelerations], {LABEL | range, FIRST, LAST} …;`: those nodes'
+/// output on (labels that name no node are skipped, as MBDyn does with a warning).
+fn output_card(c: &mut Cursor, nodes: &mut Nodes) -> Result<(), MbdynError> {
+    let kind = c.keyword("a node type", &NODE_TYPES)?;
+    if kind != "structural" {
+        // Nodes romdyn does not read have no rows to switch on.
+        c.skip_rest();
+        return Ok(());
+    }
+    c.accept("accelerations");
+    while !c.is_done() {
+        let (first, last) = if c.accept("range") {
+            let span = c.here();
+            let (a, b) = (c.label("first node label")?, c.label("last node label")?);
+            if b < a {
+                return Err(c.error_at(span, format!("output: range end {b} is before its start {a}")));
+            }
+            (a, b)
+        } else {
+            let l = c.label("node label (or range)")?;
+            (l, l)
+        };
+        for n in nodes.0.iter_mut().filter(|n| (first..=last).contains(&n.node.label)) {
+            n.output = Some(true);
+        }
+    }
+    Ok(())
+}
+
+fn structural(c: &mut Cursor, ctx: &Context, label: Label, kind: NodeKind) -> Result<(StructuralNode, Option<OrientationOutput>), MbdynError> {
     if c.accept("at reference") {
         let span = c.here();
         let r = c.label("reference label")?;
         let f = ctx.frames.get(r, ctx.seq, span, c, None)?;
-        orientation_description(c)?;
-        return Ok(StructuralNode { label, kind, position: f.x, orientation: f.r, velocity: f.v, angular_velocity: f.w });
+        let od = orientation_description(c)?;
+        return Ok((StructuralNode { label, kind, position: f.x, orientation: f.r, velocity: f.v, angular_velocity: f.w }, od));
     }
     c.accept("position");
     let position = ctx.position(c, "node position [m]")?;
     c.accept("orientation");
     let orientation = ctx.orientation(c, "node orientation")?;
-    orientation_description(c)?;
+    let od = orientation_description(c)?;
     c.accept("velocity");
     let velocity = ctx.velocity(c, "node velocity [m/s]", &position)?;
     c.accept("angular velocity");
     let angular_velocity = ctx.angular_velocity(c, "node angular velocity [rad/s]")?;
-    Ok(StructuralNode { label, kind, position, orientation, velocity, angular_velocity })
+    Ok((StructuralNode { label, kind, position, orientation, velocity, angular_velocity }, od))
 }
 
-fn orientation_description(c: &mut Cursor) -> Result<(), MbdynError> {
+fn orientation_description(c: &mut Cursor) -> Result<Option<OrientationOutput>, MbdynError> {
     if c.accept("orientation description") {
-        c.keyword("an orientation description", &["euler123", "euler313", "euler321", "orientation vector", "orientation matrix"])?;
+        return orientation_kind(c).map(Some);
     }
-    Ok(())
+    Ok(None)
 }
 
-/// `dummy, BASE, offset, OFFSET, ORIENTATION` or `dummy, BASE, relative frame, …`: read
-/// for the count and the labels; it contributes nothing to the model.
-fn dummy(c: &mut Cursor, ctx: &Context, label: Label, nodes: &Nodes) -> Result<StructuralNode, MbdynError> {
+/// `euler123 | euler313 | euler321 | orientation vector | orientation matrix` (input
+/// manual, "Orientation description"; `euler` alone is 1-2-3).
+pub fn orientation_kind(c: &mut Cursor) -> Result<OrientationOutput, MbdynError> {
+    Ok(match c.keyword("an orientation description", &["euler123", "euler 123", "euler313", "euler 313", "euler321", "euler 321", "euler", "orientation vector", "orientation matrix"])? {
+        "euler313" | "euler 313" => OrientationOutput::Euler313Degrees,
+        "euler321" | "euler 321" => OrientationOutput::Euler321Degrees,
+        "orientation vector" => OrientationOutput::RotationVector,
+        "orientation matrix" => OrientationOutput::Matrix,
+        _ => OrientationOutput::Euler123Degrees,
+    })
+}
+
+/// `dummy, BASE, offset, OFFSET, ORIENTATION` (the base may be a dummy node) or `dummy,
+/// BASE, relative frame, REF`: the node's initial kinematics and where its rows come from.
+fn dummy(c: &mut Cursor, ctx: &Context, label: Label, nodes: &Nodes) -> Result<(StructuralNode, NodeSource, Option<OrientationOutput>), MbdynError> {
     let span = c.here();
-    let base = c.label("base node label")?;
-    let Some(b) = nodes.find(base).filter(|b| !b.dummy) else {
-        return Err(c.error_at(span, format!("structural node {base} is not defined (a dummy node must follow its base node)")));
+    let base_label = c.label("base node label")?;
+    let Some(base) = nodes.0.iter().position(|n| n.node.label == base_label) else {
+        return Err(c.error_at(span, format!("structural node {base_label} is not defined (a dummy node must follow its base node)")));
     };
-    let on_base = Context { node: Some(Frame::of_node(&b.node)), ..*ctx };
+    let b = &nodes.0[base].node;
+    let on_base = Context { node: Some(Frame::of_node(b)), ..*ctx };
     match c.keyword("the dummy node type", &["offset", "relative frame"])? {
         "offset" => {
-            on_base.relative_position(c, "dummy node offset [m]")?;
-            on_base.relative_orientation(c, "dummy node orientation")?;
-            orientation_description(c)?;
+            let offset = on_base.relative_position(c, "dummy node offset [m]")?;
+            let orientation = on_base.relative_orientation(c, "dummy node orientation")?;
+            let od = orientation_description(c)?;
+            let arm = b.orientation * offset;
+            let node = StructuralNode {
+                label,
+                position: b.position + arm,
+                orientation: b.orientation * orientation,
+                velocity: b.velocity + b.angular_velocity.cross(&arm),
+                ..b.clone()
+            };
+            Ok((node, NodeSource::Offset { base, offset, orientation }, od))
         }
         _ => {
             let r = c.here();
-            let reference = c.label("reference node label")?;
-            if nodes.find(reference).is_none() {
-                return Err(c.error_at(r, format!("structural node {reference} is not defined")));
+            let reference_label = c.label("reference node label")?;
+            let Some(reference) = nodes.0.iter().position(|n| n.node.label == reference_label) else {
+                return Err(c.error_at(r, format!("structural node {reference_label} is not defined")));
+            };
+            if let Some(k) = c.accept_any(&["position", "orientation", "pivot node"]) {
+                return Err(c.error(format!("'{k}' of a relative-frame dummy node is not supported by romdyn (supported: dummy, BASE, relative frame, REFERENCE)")));
             }
-            c.skip_rest();
+            let od = orientation_description(c)?;
+            let f = &nodes.0[reference].node;
+            let (rt, d) = (f.orientation.transpose(), b.position - f.position);
+            let node = StructuralNode {
+                label,
+                position: rt * d,
+                orientation: rt * b.orientation,
+                velocity: rt * (b.velocity - f.velocity - f.angular_velocity.cross(&d)),
+                angular_velocity: rt * (b.angular_velocity - f.angular_velocity),
+                ..b.clone()
+            };
+            Ok((node, NodeSource::RelativeFrame { base, reference }, od))
         }
     }
-    Ok(StructuralNode { label, ..b.node.clone() })
 }
 
 /// `assembly, …`, `scale, …`, `output, …`, `accelerations, …`: MBDyn's initial assembly
-/// and output settings, ignored by romdyn.
-fn settings(c: &mut Cursor) -> Result<(), MbdynError> {
+/// settings (ignored by romdyn) and the node's output flag, returned.
+fn settings(c: &mut Cursor) -> Result<Option<bool>, MbdynError> {
+    let mut output = None;
     loop {
         if c.accept("assembly") {
             c.real("position initial stiffness")?;
@@ -127,10 +214,12 @@ fn settings(c: &mut Cursor) -> Result<(), MbdynError> {
             if !c.accept("default") {
                 c.real("residual scale factor")?;
             }
-        } else if c.accept("output") || c.accept("accelerations") {
-            c.flag("output flag")?;
+        } else if c.accept("output") {
+            output = Some(c.flag("output flag")?);
+        } else if c.accept("accelerations") {
+            c.flag("accelerations flag")?;
         } else {
-            return Ok(());
+            return Ok(output);
         }
     }
 }

@@ -271,7 +271,11 @@ impl Reader {
         if name.is_empty() {
             return Err(src.error(end, format!("{keyword}: expected a block name")));
         }
-        let name = name.join(" ");
+        let mut name = name.join(" ");
+        if same_keyword(&name, "multistep") {
+            // MBDyn's deprecated name of the initial value block (solver.cc, Solver::ReadData).
+            name = "initial value".into();
+        }
         if keyword == "begin" {
             if let Some(open) = &self.open {
                 return Err(src.error(span, format!("begin: {name} inside block '{}': expected 'end: {};' first", open.name, open.name)));

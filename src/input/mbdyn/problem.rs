@@ -9,7 +9,7 @@ use super::cursor::Cursor;
 use super::diagnostic::{MbdynError, Sources};
 use super::drives::{drive, Drives};
 use super::parser::{known, Block};
-use crate::model::{AbortAfter, EigenOutput, EigenRequest, InitialValueProblem, Method};
+use crate::model::{AbortAfter, EigenOutput, EigenRequest, InitialValueProblem, Method, ResidualNorm};
 
 /// Reads the `data` block.
 pub fn data(block: &Block, sources: &Sources) -> Result<(), MbdynError> {
@@ -26,7 +26,8 @@ pub fn data(block: &Block, sources: &Sources) -> Result<(), MbdynError> {
                 if c.accept("inverse dynamics") {
                     return Err(c.error_at(span, "problem 'inverse dynamics' is not supported by romdyn (supported: initial value)"));
                 }
-                c.keyword("the problem", &["initial value"])?;
+                // `multistep` is MBDyn's deprecated name of the initial value problem.
+                c.keyword("the problem", &["initial value", "multistep"])?;
                 c.finish()?;
             }
             None => return Err(c.error_at(st.span, format!("statement '{}' in the data block is not supported by romdyn", st.keyword))),
@@ -35,18 +36,46 @@ pub fn data(block: &Block, sources: &Sources) -> Result<(), MbdynError> {
     Ok(())
 }
 
-/// MBDyn's numerics settings romdyn ignores.
-const IGNORED: [&str; 17] = [
+/// MBDyn's numerics settings romdyn ignores, with their deprecated spellings (`fictitious
+/// steps …` for `dummy steps …`, `newton raphson: …` for `nonlinear solver: newton raphson,
+/// …`, `solver`, `interface solver`, `preconditioner`: solver.cc, Solver::ReadData).
+const IGNORED: [&str; 30] = [
     "strategy", "min time step", "max time step", "modify residual test", "nonlinear solver", "linear solver", "solver", "threads",
-    "derivatives coefficient", "dummy steps tolerance", "dummy steps max iterations", "dummy steps number", "dummy steps ratio",
-    "dummy steps method", "output", "output meter", "real time",
+    "dummy steps tolerance", "dummy steps max iterations", "dummy steps number", "dummy steps ratio",
+    "dummy steps method", "output", "output meter", "real time", "fictitious steps tolerance", "fictitious steps max iterations",
+    "fictitious steps number", "fictitious steps ratio", "fictitious steps method", "newton raphson", "interface linear solver",
+    "interface solver", "preconditioner", "max residual", "enforce constraint equations", "pod", "time step pattern", "min time step pattern",
 ];
 
-const STATEMENTS: [&str; 10] = ["initial time", "final time", "time step", "tolerance", "max iterations", "method", "eigenanalysis", "derivatives tolerance", "derivatives max iterations", "abort after"];
+const STATEMENTS: [&str; 11] = [
+    "initial time", "final time", "time step", "tolerance", "max iterations", "method", "eigenanalysis", "derivatives tolerance", "derivatives max iterations", "abort after",
+    "derivatives coefficient",
+];
+
+/// MBDyn's settings when the file does not give them (solver_impl.h: `dDefaultTol = 1e-6`,
+/// `iDefaultMaxIterations = 1`, `dDefaultDerivativesCoefficient = 1e-6`; solver.cc,
+/// `Solver::ReadData`: without `method:` the integrator is `ms` with a null drive for ρ∞,
+/// i.e. ρ∞ = 0; the initial time step is 1 s; the derivatives use the same tolerance and
+/// iteration defaults; the residual test is the 2-norm, `test, norm`).
+pub fn mbdyn_defaults() -> InitialValueProblem {
+    InitialValueProblem {
+        initial_time: 0.0,
+        final_time: 0.0,
+        time_step: 1.0,
+        method: Method::Ms { rho: 0.0 },
+        tolerance: 1e-6,
+        max_iterations: 1,
+        derivatives_tolerance: 1e-6,
+        derivatives_max_iterations: 1,
+        derivatives_coefficient: 1e-6,
+        residual_norm: ResidualNorm::Euclidean,
+        ..InitialValueProblem::default()
+    }
+}
 
 /// Reads the `initial value` block (defaults when absent).
 pub fn initial_value(block: Option<&Block>, sources: &Sources, drives: &Drives) -> Result<InitialValueProblem, MbdynError> {
-    let mut a = InitialValueProblem::default();
+    let mut a = mbdyn_defaults();
     let Some(iv) = block else { return Ok(a) };
     let mut eigen_span = None;
     for st in &iv.statements {
@@ -77,10 +106,19 @@ pub fn initial_value(block: Option<&Block>, sources: &Sources, drives: &Drives) 
                 }
                 a.eigenanalysis = Some(eigenanalysis(&mut c)?);
             }
-            Some("derivatives tolerance") => a.derivatives_tolerance = c.real("derivatives tolerance")?,
+            Some("derivatives tolerance") => {
+                a.derivatives_tolerance = c.real("derivatives tolerance")?;
+                // MBDyn 1.7.3 reads one value (solver.cc, case DERIVATIVESTOLERANCE) and
+                // skips what follows; files written for the later residual/solution pair
+                // give two.
+                if !c.is_done() {
+                    c.real("derivatives solution tolerance")?;
+                }
+            }
+            Some("derivatives coefficient") => derivatives_coefficient(&mut c, &mut a)?,
             Some("derivatives max iterations") => a.derivatives_max_iterations = c.count("derivatives max iterations")?,
             Some(_) => {
-                a.abort_after = Some(match c.keyword("where to stop", &["input", "assembly", "derivatives", "dummy steps"])? {
+                a.abort_after = Some(match c.keyword("where to stop", &["input", "assembly", "derivatives", "dummy steps", "fictitious steps"])? {
                     "input" => AbortAfter::Input,
                     "assembly" => AbortAfter::Assembly,
                     "derivatives" => AbortAfter::Derivatives,
@@ -107,19 +145,48 @@ fn tolerance(c: &mut Cursor, a: &mut InitialValueProblem) -> Result<(), MbdynErr
             return Err(c.error_at(span, format!("the residual tolerance must be positive, found {}", a.tolerance)));
         }
     }
-    let test = |c: &mut Cursor| -> Result<(), MbdynError> {
-        if c.accept("test") {
-            c.keyword("a convergence test", &["none", "norm", "minmax"])?;
-            c.accept("scale");
+    if c.accept("test") {
+        // `norm` (MBDyn's default) is the 2-norm of the residual, `minmax` its largest
+        // entry; `none` leaves only the solution test, which romdyn does not run: the
+        // residual is then tested with the default norm.
+        match c.keyword("a convergence test", &["none", "norm", "minmax"])? {
+            "minmax" => a.residual_norm = ResidualNorm::Max,
+            _ => a.residual_norm = ResidualNorm::Euclidean,
         }
-        Ok(())
-    };
-    test(c)?;
+        c.accept("scale");
+    }
     if !c.is_done() {
         if !c.accept("null") {
             c.real("solution tolerance")?;
         }
-        test(c)?;
+        if c.accept("test") {
+            c.keyword("a convergence test", &["none", "norm", "minmax"])?;
+            c.accept("scale");
+        }
+    }
+    Ok(())
+}
+
+/// `derivatives coefficient: {COEF | [COEF,] auto [, max iterations, N] [, factor, F]}`:
+/// the derivatives solve with dCoef = COEF · time step (solver.cc: `dInitialTimeStep *
+/// dDerivativesCoef`); `auto` retries other coefficients, which romdyn does not: it keeps
+/// COEF.
+fn derivatives_coefficient(c: &mut Cursor, a: &mut InitialValueProblem) -> Result<(), MbdynError> {
+    if c.next_is_number() {
+        let span = c.here();
+        let k = c.real("derivatives coefficient")?;
+        if k <= 0.0 {
+            return Err(c.error_at(span, format!("the derivatives coefficient must be positive, found {k}")));
+        }
+        a.derivatives_coefficient = k;
+    }
+    if c.accept("auto") {
+        if c.accept("max iterations") {
+            c.count("derivatives coefficient max iterations")?;
+        }
+        if c.accept("factor") {
+            c.real("derivatives coefficient factor")?;
+        }
     }
     Ok(())
 }
@@ -131,7 +198,8 @@ fn method(c: &mut Cursor, drives: &Drives, t0: f64, seq: usize) -> Result<Method
     if let Some(m) = c.accept_any(&["hope", "third order", "thirdorder"]) {
         return Err(c.error_at(span, format!("integration method '{m}' is not supported by romdyn (supported: ms, crank nicolson, implicit euler, bdf)")));
     }
-    Ok(match c.keyword("an integration method", &["ms", "crank nicolson", "implicit euler", "bdf"])? {
+    // `crank nicholson` is MBDyn's deprecated spelling (solver.cc, Solver::ReadData).
+    Ok(match c.keyword("an integration method", &["ms", "crank nicolson", "crank nicholson", "implicit euler", "bdf"])? {
         "ms" => {
             let rho_span = c.here();
             let rho = drive(c, drives, seq)?.value(t0);
@@ -144,7 +212,7 @@ fn method(c: &mut Cursor, drives: &Drives, t0: f64, seq: usize) -> Result<Method
             }
             Method::Ms { rho }
         }
-        "crank nicolson" => Method::CrankNicolson,
+        "crank nicolson" | "crank nicholson" => Method::CrankNicolson,
         "implicit euler" => Method::ImplicitEuler,
         _ => {
             if c.accept("order") {

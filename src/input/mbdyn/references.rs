@@ -200,9 +200,14 @@ pub fn reference(st: &Statement, c: &mut Cursor, frames: &mut Frames) -> Result<
     let frame = if c.accept("denavit hartenberg") {
         denavit_hartenberg(&ctx, c)?
     } else {
+        // Each entity may be introduced by its keyword (input manual, §Reference).
+        c.accept("position");
         let x = ctx.position(c, "reference position [m]")?;
+        c.accept("orientation");
         let r = ctx.orientation(c, "reference orientation")?;
+        c.accept("velocity");
         let v = ctx.velocity(c, "reference velocity [m/s]", &x)?;
+        c.accept("angular velocity");
         let w = ctx.angular_velocity(c, "reference angular velocity [rad/s]")?;
         Frame { x, r, v, w }
     };
