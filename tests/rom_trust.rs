@@ -206,7 +206,11 @@ fn reference_out_of_equilibrium_and_unrestrained_motion_are_reported() {
     let horizontal = pendulum.replace("structural: 2, dynamic, 0., -L, 0.,", "structural: 2, dynamic, L, 0., 0.,").replace("2, position, 0., L, 0.;", "2, position, -L, 0., 0.;");
     assert_ne!(horizontal, pendulum);
     let file = write_model(&dir, "horizontal.mbd", &horizontal);
-    let (ok, _, err) = romdyn(&["rom", file.to_str().unwrap(), "--input", "2:Fy", "--output", "2:y", "--count", "1"]);
+    // Released horizontally at rest, the rod carries no tension and gravity's moment has zero
+    // derivative (m g L cos 90°), so the linear model has no restoring stiffness: its swing
+    // eigenvalues are zero (MBDyn's derivatives phase keeps the written velocities, as here)
+    // and `eig` is the command that still succeeds and warns.
+    let (ok, _, err) = romdyn(&["eig", file.to_str().unwrap()]);
     assert!(ok, "{err}");
     // Unbalanced weight: m g less the hinge reaction at release m g J/(m L² + J) (rigid
     // pendulum, closed form) = 9.81 (1 − 0.001/1.001) = 9.8002 N on node 2 in y.
