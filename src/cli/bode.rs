@@ -6,14 +6,14 @@ use anyhow::{Context, Result};
 use faer::c64;
 use romdyn::linear::{LinearDae, ModalAnalysis};
 use romdyn::output::frequency_plot::{default_band, FrequencyResponses};
-use romdyn::rom::log_frequencies;
+use romdyn::rom::frequency_grid;
 
 use super::args::FrequencyArgs;
 
 /// The full model's response on the requested grid (default: around `focus`).
-pub fn full_responses(dae: &LinearDae, modal: &ModalAnalysis, f: &FrequencyArgs, focus: &[c64]) -> FrequencyResponses {
+pub fn full_responses(dae: &LinearDae, modal: &ModalAnalysis, f: &FrequencyArgs, focus: &[c64]) -> Result<FrequencyResponses> {
     let (lo, hi) = default_band(modal, focus);
-    FrequencyResponses::full(dae, log_frequencies(f.fmin.unwrap_or(lo), f.fmax.unwrap_or(hi), f.points.max(2)))
+    Ok(FrequencyResponses::full(dae, frequency_grid(f.fmin.unwrap_or(lo), f.fmax.unwrap_or(hi), f.points.max(2))?))
 }
 
 /// Writes PREFIX.csv, PREFIX.svg and PREFIX.png.

@@ -157,7 +157,7 @@ pub fn run(a: RomArgs) -> Result<()> {
         None => println!("{}", serde_json::to_string_pretty(&export.to_json())?),
     }
     if let Some(prefix) = &a.bode {
-        let curves = full_responses(&b.dae, &b.modal, &a.freq, &b.descriptor.eigenvalues);
+        let curves = full_responses(&b.dae, &b.modal, &a.freq, &b.descriptor.eigenvalues)?;
         let curves = curves.with_rom("ROM", &b.ordinary);
         write_bode_files(&curves, prefix)?;
     }
@@ -173,11 +173,11 @@ pub fn run_freq(a: FreqArgs) -> Result<()> {
     let curves = match selection {
         Some(sel) => {
             let b = build(&a.pencil, &sel, if a.residualize { Residualize::AllDropped } else { Residualize::None })?;
-            full_responses(&b.dae, &b.modal, &a.freq, &b.descriptor.eigenvalues).with_rom("ROM", &b.ordinary)
+            full_responses(&b.dae, &b.modal, &a.freq, &b.descriptor.eigenvalues)?.with_rom("ROM", &b.ordinary)
         }
         None => {
             let Loaded { dae, modal, .. } = load(&a.pencil)?;
-            full_responses(&dae, &modal, &a.freq, &[])
+            full_responses(&dae, &modal, &a.freq, &[])?
         }
     };
     write_bode_files(&curves, &a.prefix)

@@ -21,10 +21,16 @@ pub(crate) fn balance_pencil(a: &Mat<f64>, b: &Mat<f64>) -> BalancedPencil {
     let (mut a, mut b) = (a.clone(), b.clone());
     let (mut row, mut col) = (vec![1.0; n], vec![1.0; n]);
     let pow2 = |s: f64| if s > 0.0 && s.is_finite() { (-s.log2().round()).exp2() } else { 1.0 };
+    // 2-norm of entries without overflow or underflow (entries of 1e±200 square out of range).
+    let norm = |xs: &mut dyn Iterator<Item = f64>| {
+        let v: Vec<f64> = xs.map(f64::abs).collect();
+        let m = v.iter().copied().fold(0.0, f64::max);
+        if m > 0.0 && m.is_finite() { m * v.iter().map(|x| (x / m).powi(2)).sum::<f64>().sqrt() } else { m }
+    };
     for _sweep in 0..8 {
         let mut changed = false;
         for i in 0..n {
-            let s = (0..n).map(|j| a[(i, j)].powi(2) + b[(i, j)].powi(2)).sum::<f64>().sqrt();
+            let s = norm(&mut (0..n).flat_map(|j| [a[(i, j)], b[(i, j)]]));
             let f = pow2(s);
             if f != 1.0 {
                 changed = true;
@@ -36,7 +42,7 @@ pub(crate) fn balance_pencil(a: &Mat<f64>, b: &Mat<f64>) -> BalancedPencil {
             }
         }
         for j in 0..n {
-            let s = (0..n).map(|i| a[(i, j)].powi(2) + b[(i, j)].powi(2)).sum::<f64>().sqrt();
+            let s = norm(&mut (0..n).flat_map(|i| [a[(i, j)], b[(i, j)]]));
             let f = pow2(s);
             if f != 1.0 {
                 changed = true;

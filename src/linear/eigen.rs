@@ -67,6 +67,12 @@ pub enum EigenError {
     NoConvergence(usize),
     #[error("the pencil is empty")]
     Empty,
+    #[error("the pencil has non-finite entries: {0}")]
+    NonFinite(String),
+    #[error("dCoef = {0} s: the coefficient of J(+c), J(-c) must be a positive normal number")]
+    InvalidDcoef(f64),
+    #[error("the pencil is singular: det(λ F_yd + F_y) = 0 for every λ, so it has no eigenvalues to label ({0}); a model with an unknown that no equation determines gives this")]
+    Singular(String),
 }
 
 /// Raw output of QZ on a (balanced) pencil `A v = μ B v`, with the products `A V`, `B V`,
@@ -217,6 +223,8 @@ impl ModalAnalysis {
         if jacobians.dim() == 0 {
             return Err(EigenError::Empty);
         }
+        let prepared = super::degenerate::prepare(jacobians, dcoef)?;
+        let jacobians = &prepared.jacobians;
         let (fyd, _fy) = jacobians.derivatives();
         let dcoef = match (jacobians, dcoef) {
             (Jacobians::Derivatives { .. }, Some(c)) => c,
@@ -273,7 +281,7 @@ impl ModalAnalysis {
                 k += 1;
             }
         }
-        Ok(ModalAnalysis { route, dcoef, modes: sort_units(units) })
+        super::degenerate::finish(ModalAnalysis { route, dcoef, modes: sort_units(units) }, prepared.scale)
     }
 
     /// Indices of the modes of one kind.

@@ -5,6 +5,7 @@
 mod balance;
 mod classify;
 mod dae;
+mod degenerate;
 mod eigen;
 mod route;
 

@@ -13,4 +13,6 @@ pub enum RomError {
     SingularStatic(&'static str),
     #[error(transparent)]
     Eigen(#[from] EigenError),
+    #[error("frequency grid: {0}")]
+    Grid(String),
 }

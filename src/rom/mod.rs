@@ -12,5 +12,5 @@ mod select;
 pub use descriptor::DescriptorRom;
 pub use error::RomError;
 pub use ordinary::OrdinaryRom;
-pub use response::{full_frequency_response, full_static_gain, log_frequencies};
+pub use response::{frequency_grid, full_frequency_response, full_static_gain, log_frequencies};
 pub use select::{select_modes, ModeSelection, Selection};

@@ -85,6 +85,7 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
             return Err(src.error(b.span, format!("block '{name}' appears twice (first at line {})", prev.line)));
         }
     }
+    block_order(doc)?;
     if let Some(st) = block(doc, "drivers").and_then(|b| b.statements.first()) {
         return Err(src.error(st.span, "file drivers are not supported by romdyn"));
     }
@@ -134,8 +135,28 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
         }
     }
     check_counts(doc, &counts, &found)?;
+    if nodes.0.is_empty() && block(doc, "elements").is_none_or(|b| b.statements.is_empty()) {
+        let at = Span { line: 1, column: 1, ..first };
+        return Err(src.error(at, "the file defines no nodes and no elements: there is no model to solve (expected 'begin: nodes;' and 'begin: elements;' blocks)"));
+    }
     let model = b.build().map_err(|e| src.error(first, e.to_string()))?;
     Ok(MbdynModel { model, problem })
+}
+
+/// MBDyn's data manager reads `control data`, then `nodes`, `drivers` and `elements` in
+/// this order (mbdyn/base/dataman.cc: "<begin: nodes;> expected"); romdyn refuses the
+/// same files.
+fn block_order(doc: &Document) -> Result<(), MbdynError> {
+    const ORDER: [&str; 4] = ["control data", "nodes", "drivers", "elements"];
+    let mut last: Option<(usize, &Block)> = None;
+    for b in &doc.blocks {
+        let Some(rank) = ORDER.iter().position(|o| same_keyword(o, &b.name)) else { continue };
+        if let Some((prev, pb)) = last.filter(|(prev, _)| *prev > rank) {
+            return Err(doc.sources.error(b.span, format!("block '{}' must come before '{}' (line {}): MBDyn reads control data, nodes, drivers and elements in this order", ORDER[rank], ORDER[prev], pb.span.line)));
+        }
+        last = Some((rank, b));
+    }
+    Ok(())
 }
 
 /// Errors unless every kind found in the model is declared in control data with its

@@ -94,6 +94,16 @@ pub fn initial_value(block: Option<&Block>, sources: &Sources, drives: &Drives) 
     if a.final_time < a.initial_time {
         return Err(sources.error(iv.span, format!("final time {} is before initial time {}", a.final_time, a.initial_time)));
     }
+    if let (Some(span), Some(t)) = (eigen_span, a.eigenanalysis.as_ref().and_then(|r| r.times.iter().copied().find(|t| *t < a.initial_time))) {
+        return Err(sources.error(span, format!("eigenanalysis time {t} s is before the initial time {} s: it would never be reached", a.initial_time)));
+    }
+    let steps = (a.final_time - a.initial_time) / a.time_step;
+    if a.final_time.is_finite() && !(steps <= crate::limits::MAX_TIME_STEPS) {
+        return Err(sources.error(
+            iv.span,
+            format!("initial time {} s to final time {} s with time step {} s is {steps:.3e} steps, more than romdyn's limit of {:.0e} steps per run", a.initial_time, a.final_time, a.time_step, crate::limits::MAX_TIME_STEPS),
+        ));
+    }
     Ok(a)
 }
 
