@@ -19,6 +19,18 @@ pub const MAX_FREQUENCY_POINTS: usize = 1_000_000;
 /// Most load increments of a static solution (1e5).
 pub const MAX_LOAD_STEPS: usize = 100_000;
 
+/// A number for a message: plain when it reads well, else in exponent form (`1e308`,
+/// `1e-320`); an overflowed count reads "more than 1.8e308".
+pub fn readable(x: f64) -> String {
+    if x.is_infinite() && x > 0.0 {
+        "more than 1.8e308".into()
+    } else if x == 0.0 || (1e-4..1e15).contains(&x.abs()) || !x.is_finite() {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
 /// Why a size is refused.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[error("{what} is {rows} x {cols} = {entries} entries, more than romdyn's budget of {max} entries for a dense matrix ({mb} MB)", entries = *rows as u128 * *cols as u128, max = MAX_DENSE_ENTRIES, mb = MAX_DENSE_ENTRIES * 8 / 1_000_000)]
@@ -39,6 +51,14 @@ pub fn check_dense(rows: usize, cols: usize, what: impl FnOnce() -> String) -> R
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn numbers_read_well() {
+        assert_eq!(readable(1e308), "1e308");
+        assert_eq!(readable(1e-320), "1e-320");
+        assert_eq!(readable(0.001), "0.001");
+        assert_eq!(readable(f64::INFINITY), "more than 1.8e308");
+    }
 
     #[test]
     fn dense_budget_is_exact() {

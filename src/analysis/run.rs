@@ -11,6 +11,8 @@ use std::time::{Duration, Instant};
 
 use faer::c64;
 
+use crate::limits::readable;
+
 use super::eigen::Eigenanalysis;
 use super::error::{ObserverError, RunError};
 use super::observer::{Derivatives, EigenDone, RunObserver, RunStart, StepDone};
@@ -68,10 +70,11 @@ fn validate(p: &InitialValueProblem) -> Result<(), RunError> {
     let steps = (p.final_time - p.initial_time) / p.time_step;
     if !(steps <= crate::limits::MAX_TIME_STEPS) {
         return bad(format!(
-            "from initial time {} s to final time {} s with time step {} s is {steps:.3e} steps, more than romdyn's limit of {:.0e} steps per run",
-            p.initial_time,
-            p.final_time,
-            p.time_step,
+            "from initial time {} s to final time {} s with time step {} s is {} steps, more than romdyn's limit of {:e} steps per run",
+            readable(p.initial_time),
+            readable(p.final_time),
+            readable(p.time_step),
+            readable(steps.round()),
             crate::limits::MAX_TIME_STEPS
         ));
     }

@@ -82,7 +82,7 @@ pub fn pencil_from_script(s: &OctaveScript, ports: &PencilPorts) -> Result<(Line
     let aminus = variable(s, "Aminus", MATRICES)?;
     let dcoef = variable(s, "dCoef", "the file must define dCoef = c, the coefficient of J(+c) and J(-c)")?;
     // A subnormal dCoef (below 2.2e-308) cannot divide J(+c) - J(-c) (eq. 16) without overflow.
-    let c = dcoef.scalar().filter(|c| c.is_normal() && *c > 0.0).ok_or_else(|| invalid(s, "dCoef", format!("must be a positive normal number (s), found {}", dcoef.re.first().copied().unwrap_or(f64::NAN))))?;
+    let c = dcoef.scalar().filter(|c| c.is_normal() && *c > 0.0).ok_or_else(|| invalid(s, "dCoef", format!("must be a positive normal number (s), found {}", crate::limits::readable(dcoef.re.first().copied().unwrap_or(f64::NAN)))))?;
     let n = [aplus.rows, aplus.cols, aminus.rows, aminus.cols].into_iter().max().unwrap_or(0);
     let (j, jstar) = (square(s, "Aplus", aplus, n)?, square(s, "Aminus", aminus, n)?);
     let out_of_range = |what: &str, k: usize, of: &str| EigenPencilError::Ports { file: s.file.clone(), message: format!("{what} {k} is out of range: the pencil has {n} {of} (1-based)") };

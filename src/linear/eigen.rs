@@ -69,7 +69,7 @@ pub enum EigenError {
     Empty,
     #[error("the pencil has non-finite entries: {0}")]
     NonFinite(String),
-    #[error("dCoef = {0} s: the coefficient of J(+c), J(-c) must be a positive normal number")]
+    #[error("dCoef = {} s: the coefficient of J(+c), J(-c) must be a positive normal number", crate::limits::readable(*.0))]
     InvalidDcoef(f64),
     #[error("the pencil is singular: det(λ F_yd + F_y) = 0 for every λ, so it has no eigenvalues to label ({0}); a model with an unknown that no equation determines gives this")]
     Singular(String),

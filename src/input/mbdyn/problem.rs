@@ -6,6 +6,7 @@
 //! and real-time settings) are accepted and ignored: romdyn uses its own.
 
 use super::cursor::Cursor;
+use crate::limits::readable;
 use super::diagnostic::{MbdynError, Sources};
 use super::drives::{drive, Drives};
 use super::parser::{known, Block};
@@ -101,7 +102,14 @@ pub fn initial_value(block: Option<&Block>, sources: &Sources, drives: &Drives) 
     if a.final_time.is_finite() && !(steps <= crate::limits::MAX_TIME_STEPS) {
         return Err(sources.error(
             iv.span,
-            format!("initial time {} s to final time {} s with time step {} s is {steps:.3e} steps, more than romdyn's limit of {:.0e} steps per run", a.initial_time, a.final_time, a.time_step, crate::limits::MAX_TIME_STEPS),
+            format!(
+                "initial time {} s to final time {} s with time step {} s is {} steps, more than romdyn's limit of {:e} steps per run",
+                readable(a.initial_time),
+                readable(a.final_time),
+                readable(a.time_step),
+                readable(steps.round()),
+                crate::limits::MAX_TIME_STEPS
+            ),
         ));
     }
     Ok(a)
