@@ -4,7 +4,7 @@
 //! - Non-finite entries (NaN, ±∞, or `F_y = (J − J*)/(2c)` overflowing for a tiny `c`,
 //!   eq. 16) are refused, naming the matrix and the entry.
 //! - Extreme magnitudes (largest entry 1e308, or 1e-300): both matrices are multiplied by
-//!   the same power of two so the largest entry is about 1; this is exact and leaves every
+//!   the same power of two so the exponents of their nonzero entries centre on 1; this is exact and leaves every
 //!   eigenvalue and right vector unchanged (left vectors are scaled back by [`finish`]).
 //!   Rows and columns of very different sizes (1e-200 next to 1e200) are then equilibrated
 //!   by the balancing before QZ.
@@ -29,6 +29,20 @@ fn max_abs(m: &Mat<f64>) -> f64 {
         for i in 0..m.nrows() {
             let v = m[(i, j)].abs();
             if !(v <= x) {
+                x = v;
+            }
+        }
+    }
+    x
+}
+
+/// The smallest nonzero absolute entry (∞ for a zero matrix).
+fn min_nonzero_abs(m: &Mat<f64>) -> f64 {
+    let mut x = f64::INFINITY;
+    for j in 0..m.ncols() {
+        for i in 0..m.nrows() {
+            let v = m[(i, j)].abs();
+            if v > 0.0 && v < x {
                 x = v;
             }
         }
@@ -61,9 +75,11 @@ pub(crate) fn prepare(jacobians: &Jacobians, dcoef: Option<f64>) -> Result<Prepa
     if let Some(c) = dcoef.filter(|c| !dcoef_ok(*c)) {
         return Err(EigenError::InvalidDcoef(c));
     }
-    let largest = max_abs(a).max(max_abs(b));
-    // A power of two: the product is exact (barring underflow far below the largest entry).
-    let scale = if largest > 0.0 { (-largest.log2().round()).exp2() } else { 1.0 };
+    // A power of two that centres the exponents of the nonzero entries on 1: the product is
+    // exact, and entries spanning more than the double range's half (1e-151 next to 1e180)
+    // neither overflow nor underflow.
+    let (largest, smallest) = (max_abs(a).max(max_abs(b)), min_nonzero_abs(a).min(min_nonzero_abs(b)));
+    let scale = if largest > 0.0 { (-((largest.log2() + smallest.log2()) / 2.0).round()).exp2() } else { 1.0 };
     let scaled = |m: &Mat<f64>| m * faer::Scale(scale);
     let jacobians = match jacobians {
         Jacobians::Derivatives { fyd, fy } => Jacobians::Derivatives { fyd: scaled(fyd), fy: scaled(fy) },
