@@ -288,6 +288,12 @@ fn lenient_inputs_are_refused_or_accepted_as_documented() {
     };
     let line = elements_first.lines().position(|l| l.starts_with("begin: nodes;")).unwrap() + 1;
     refused("order", &[("p.mbd", &elements_first)], &["eig", "p.mbd"], &[&format!("p.mbd:{line}:1: error: block 'nodes' must come before 'elements'")]);
+    let negative = PENDULUM.replace("body: 3, 2, M, null, diag, J, J, J;", "body: 3, 2, M, null, diag, J, -J, J;");
+    let line = negative.lines().position(|l| l.contains("diag, J, -J, J")).unwrap() + 1;
+    refused("inertia", &[("p.mbd", &negative)], &["eig", "p.mbd"], &[&format!("p.mbd:{line}:26: error: the inertia is not symmetric positive semi-definite (principal moments")]);
+    let itself = PENDULUM.replace("        2, position, 0., L, 0.;", "        1, position, null;");
+    let line = itself.lines().position(|l| l.contains("joint: 2, revolute hinge")).unwrap() + 1;
+    refused("itself", &[("p.mbd", &itself)], &["eig", "p.mbd"], &[&format!("p.mbd:{line}:12: error: revolute hinge 2 connects node 1 to itself")]);
     let o = refused("missing", &[], &["eig", "missing.mbd"], &["missing.mbd: error: cannot read: No such file or directory"]);
     assert!(!o.contains(":0:0:"), "{o}");
     let o = refused("missing-pencil", &[], &["eig", "--pencil", "missing.json"], &["missing.json: cannot read: No such file or directory (os error 2)"]);

@@ -125,6 +125,10 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
                 b.gravity(g);
             }
             Parsed::Element(e) => {
+                let on = e.nodes();
+                if let Some(n) = on.iter().enumerate().find(|(k, n)| on[..*k].contains(n)).map(|(_, n)| n) {
+                    return Err(src.error(label_span, format!("{} {} connects node {n} to itself", e.type_name(), e.label())));
+                }
                 let space = label_space(&st.keyword);
                 if let Some(prev) = labels.insert((space, e.label()), st.span) {
                     return Err(src.error(label_span, format!("{space} {} is defined twice (first at line {})", e.label(), prev.line)));
