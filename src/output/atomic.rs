@@ -203,6 +203,39 @@ mod tests {
     }
 
     #[test]
+    fn a_set_whose_rename_fails_is_taken_back_out() {
+        let dir = std::env::temp_dir().join(format!("romdyn-atomic-set-{}", std::process::id()));
+        let (a, b) = (dir.join("run.out"), dir.join("run.mov"));
+        let journal = dir.join(".run.romdyn-commit");
+        let mut fa = AtomicFile::create(&a).unwrap();
+        fa.write_with(|w| w.write_all(b"out")).unwrap();
+        let mut fb = AtomicFile::create(&b).unwrap();
+        fb.write_with(|w| w.write_all(b"mov")).unwrap();
+        // A non-empty directory appears where the second file goes: its rename fails.
+        std::fs::create_dir_all(b.join("x")).unwrap();
+        assert!(commit_set(vec![fa, fb], &journal).is_err());
+        assert!(!a.exists() && !journal.exists());
+        std::fs::remove_dir_all(&b).unwrap();
+        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0);
+        // The same set without the obstacle is put in place, journal removed.
+        let mut fa = AtomicFile::create(&a).unwrap();
+        fa.write_with(|w| w.write_all(b"out")).unwrap();
+        let fb = AtomicFile::create(&b).unwrap();
+        commit_set(vec![fa, fb], &journal).unwrap();
+        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 2);
+        // An interrupted commit (journal written, renames not done) is completed.
+        let mut fc = AtomicFile::create(&dir.join("run.log")).unwrap();
+        fc.write_with(|w| w.write_all(b"log")).unwrap();
+        fc.sync().unwrap();
+        std::fs::write(&journal, format!("{}\t{}\n", fc.tmp.display(), dir.join("run.log").display())).unwrap();
+        std::mem::forget(fc);
+        assert!(recover_set(&journal).unwrap());
+        assert_eq!(std::fs::read(dir.join("run.log")).unwrap(), b"log");
+        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 3);
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
+    #[test]
     fn an_abandoned_file_is_never_put_in_place() {
         let dir = std::env::temp_dir().join(format!("romdyn-atomic-drop-{}", std::process::id()));
         let target = dir.join("run.out");
