@@ -83,6 +83,15 @@ fn declared_sizes_beyond_the_budget_are_refused_before_allocating() {
     assert_eq!(below.map(|m| m.nrows()).ok(), Some(50_000_000));
     let above = romdyn::input::matrix_market::parse_matrix("%%MatrixMarket matrix coordinate real general\n50000001 1 0\n", Path::new("a.mtx"));
     assert!(above.is_err());
+    // Octave zeros(R, C): 7071^2 = 49 999 041 entries is within, 7072^2 = 50 013 184 beyond.
+    let m = Path::new("p.m");
+    assert!(romdyn::input::octave_m::parse_octave_script("A = zeros(7071, 7071);\n", m).is_ok());
+    let e = romdyn::input::octave_m::parse_octave_script("A = zeros(7072, 7072);\n", m).unwrap_err().to_string();
+    assert!(e.starts_with("p.m:1:5: zeros(7072, 7072) is 7072 x 7072 = 50013184 entries, more than romdyn's budget"), "{e}");
+    // JSON: the numbers are counted (by their separators) before parsing.
+    let text = format!("{{\"Fyd\": [[{}0]]}}", "0,".repeat(50_000_001));
+    let e = romdyn::input::pencil::parse_pencil(&text, Path::new("p.json")).unwrap_err().to_string();
+    assert!(e.starts_with("p.json: 50000001 values: more than romdyn's budget of 50000000 numbers"), "{e}");
 }
 
 #[test]

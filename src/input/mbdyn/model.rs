@@ -27,7 +27,14 @@ pub struct MbdynModel {
 
 /// Reads an MBDyn input file into a model.
 pub fn read_model(path: &Path) -> Result<MbdynModel, MbdynError> {
-    build(&parse_file(path)?)
+    let doc = parse_file(path)?;
+    let m = build(&doc)?;
+    // An empty, blank or comments-only file would "run" and write empty outputs.
+    if m.model.nodes.is_empty() && m.model.elements.is_empty() {
+        let at = Span { file: 0, line: 1, column: 1 };
+        return Err(doc.sources.error(at, "the file defines no nodes and no elements: there is no model to solve (expected 'begin: nodes;' and 'begin: elements;' blocks)"));
+    }
+    Ok(m)
 }
 
 const BLOCKS: [&str; 7] = ["data", "initial value", "control data", "nodes", "drivers", "elements", "inverse dynamics"];
@@ -139,10 +146,6 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
         }
     }
     check_counts(doc, &counts, &found)?;
-    if nodes.0.is_empty() && block(doc, "elements").is_none_or(|b| b.statements.is_empty()) {
-        let at = Span { line: 1, column: 1, ..first };
-        return Err(src.error(at, "the file defines no nodes and no elements: there is no model to solve (expected 'begin: nodes;' and 'begin: elements;' blocks)"));
-    }
     let model = b.build().map_err(|e| src.error(first, e.to_string()))?;
     Ok(MbdynModel { model, problem })
 }
