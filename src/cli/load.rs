@@ -49,6 +49,6 @@ pub fn load(a: &PencilArgs) -> Result<Loaded> {
         }
         (None, None) => anyhow::bail!("give a MODEL file or --pencil FILE"),
     };
-    let modal = ModalAnalysis::compute_with_dcoef(&dae.jacobians, a.route.into(), a.dcoef.or(dcoef))?;
+    let modal = ModalAnalysis::compute_with_dcoef(&dae.jacobians, a.route.into(), a.dcoef.or(dcoef)).map_err(|e| anyhow::anyhow!(e.describe(&dae.unknown_names)))?;
     Ok(Loaded { dae, modal, model })
 }

@@ -116,7 +116,7 @@ fn check_regular(fyd: &Mat<f64>, fy: &Mat<f64>) -> Result<(), EigenError> {
         if let Some(i) = empty_row {
             what.push(format!("equation {} has no entry in F_yd or F_y", i + 1));
         }
-        return Err(EigenError::Singular(what.join(", ")));
+        return Err(EigenError::Singular { detail: what.join(", "), unknowns: empty_col.into_iter().collect() });
     }
     let balanced = balance_pencil(fy, fyd);
     let (a, b) = (&balanced.a, &balanced.b);
@@ -137,7 +137,46 @@ fn check_regular(fyd: &Mat<f64>, fy: &Mat<f64>) -> Result<(), EigenError> {
             return Ok(());
         }
     }
-    Err(EigenError::Singular(format!("F_y + s F_yd is rank deficient at two unrelated shifts s (smallest LU pivot below {tolerance:.1e} of the largest, after balancing)")))
+    Err(EigenError::Singular {
+        detail: format!("F_y + s F_yd is rank deficient at two unrelated shifts s (smallest LU pivot below {tolerance:.1e} of the largest, after balancing)"),
+        unknowns: common_null_vector(a, b),
+    })
+}
+
+/// Largest system whose common null vector is looked for (dense SVD of `[A; B]`).
+const NULL_VECTOR_LIMIT: usize = 2000;
+
+/// The unknowns of a common null vector `A v = B v = 0` (entries within a tenth of the
+/// largest, largest first), when `[A; B]` is rank deficient; empty otherwise.
+fn common_null_vector(a: &Mat<f64>, b: &Mat<f64>) -> Vec<usize> {
+    let n = a.ncols();
+    if n == 0 || n > NULL_VECTOR_LIMIT {
+        return Vec::new();
+    }
+    let stacked = Mat::<f64>::from_fn(2 * n, n, |i, j| if i < n { a[(i, j)] } else { b[(i - n, j)] });
+    let Ok(svd) = stacked.thin_svd() else { return Vec::new() };
+    let s = svd.S();
+    if !(s[n - 1] <= 10.0 * n as f64 * f64::EPSILON * s[0]) {
+        return Vec::new();
+    }
+    let v = svd.V();
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by(|&x, &y| v[(y, n - 1)].abs().total_cmp(&v[(x, n - 1)].abs()));
+    let top = v[(order[0], n - 1)].abs();
+    order.into_iter().take_while(|&i| v[(i, n - 1)].abs() >= 0.1 * top).collect()
+}
+
+/// ", undetermined unknowns: …" for a message (1-based indices, or names when given).
+pub(crate) fn list_unknowns(unknowns: &[usize], names: Option<&[String]>) -> String {
+    if unknowns.is_empty() {
+        return String::new();
+    }
+    const SHOWN: usize = 8;
+    let mut list: Vec<String> = unknowns.iter().take(SHOWN).map(|&k| names.and_then(|n| n.get(k).cloned()).unwrap_or_else(|| format!("unknown {}", k + 1))).collect();
+    if unknowns.len() > SHOWN {
+        list.push(format!("… {} more", unknowns.len() - SHOWN));
+    }
+    format!("; a common null vector of F_yd and F_y involves {}", list.join(", "))
 }
 
 /// Undoes [`prepare`]'s scaling on the left vectors (normalized with the scaled F_yd) and
@@ -167,11 +206,11 @@ mod tests {
     #[test]
     fn zero_and_common_null_vector_pencils_are_singular() {
         let zero = derivatives(Mat::zeros(3, 3), Mat::zeros(3, 3));
-        assert!(matches!(prepare(&zero, None), Err(EigenError::Singular(m)) if m.contains("unknown 1")));
+        assert!(matches!(prepare(&zero, None), Err(EigenError::Singular { detail: m, .. }) if m.contains("unknown 1")));
         // A common null vector that is not a coordinate: v = (1, 1) with F_yd v = F_y v = 0.
         let fyd = Mat::from_fn(2, 2, |i, j| if j == 0 { 1.0 + i as f64 } else { -1.0 - i as f64 });
         let fy = Mat::from_fn(2, 2, |_, j| if j == 0 { 3.0 } else { -3.0 });
-        assert!(matches!(prepare(&derivatives(fyd, fy), None), Err(EigenError::Singular(m)) if m.contains("rank deficient")));
+        assert!(matches!(prepare(&derivatives(fyd, fy), None), Err(EigenError::Singular { detail: m, unknowns }) if m.contains("rank deficient") && unknowns.len() == 2));
         // Regular: the two-mass system's kind of pencil.
         let ok = derivatives(Mat::<f64>::identity(2, 2), Mat::from_fn(2, 2, |i, j| [[0.0, -1.0], [4.0, 0.1]][i][j]));
         assert!(prepare(&ok, None).is_ok());

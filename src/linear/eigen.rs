@@ -71,8 +71,12 @@ pub enum EigenError {
     NonFinite(String),
     #[error("dCoef = {} s: the coefficient of J(+c), J(-c) must be a positive normal number", crate::limits::readable(*.0))]
     InvalidDcoef(f64),
-    #[error("the pencil is singular: det(λ F_yd + F_y) = 0 for every λ, so it has no eigenvalues to label ({0}); a model with an unknown that no equation determines gives this")]
-    Singular(String),
+    #[error("the pencil is singular: det(λ F_yd + F_y) = 0 for every λ, so it has no eigenvalues to label ({detail}){}; a model with an unknown that no equation determines gives this", super::degenerate::list_unknowns(unknowns, None))]
+    Singular {
+        detail: String,
+        /// Unknowns (0-based) of a common null vector, largest entries first.
+        unknowns: Vec<usize>,
+    },
 }
 
 /// Raw output of QZ on a (balanced) pencil `A v = μ B v`, with the products `A V`, `B V`,
@@ -208,6 +212,19 @@ impl RawEigen {
             ua: row(&self.left_a),
             ub: row(&self.left_b),
         })
+    }
+}
+
+impl EigenError {
+    /// The message, with the unknowns of a singular pencil named by `unknown_names`.
+    pub fn describe(&self, unknown_names: &[String]) -> String {
+        match self {
+            EigenError::Singular { detail, unknowns } => format!(
+                "the pencil is singular: det(λ F_yd + F_y) = 0 for every λ, so it has no eigenvalues to label ({detail}){}",
+                super::degenerate::list_unknowns(unknowns, Some(unknown_names))
+            ),
+            e => e.to_string(),
+        }
     }
 }
 
