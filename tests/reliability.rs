@@ -77,15 +77,20 @@ fn declared_sizes_beyond_the_budget_are_refused_before_allocating() {
     refused("mtx-huge", &[("a.mtx", "%%MatrixMarket matrix coordinate real general\n100000 100000 0\n"), ("p.json", json)], &["eig", "--pencil", "p.json"], &["a.mtx:2:1: the matrix is 100000 x 100000 = 10000000000 entries, more than romdyn's budget of 50000000 entries"]);
     refused("m-zeros", &[("p.m", "dCoef = 1;\nAplus = zeros(100000, 100000);\n")], &["eig", "--pencil", "p.m"], &["p.m:2:9: zeros(100000, 100000) is 100000 x 100000"]);
     refused("m-spconvert", &[("p.m", "dCoef = 1;\nT = [1 1 1; 99999 99999 2];\nAplus = spconvert(T);\n")], &["eig", "--pencil", "p.m"], &["p.m:3:19: spconvert(T): the matrix (its size is the largest row and column index) is 99999 x 99999"]);
-    // Just below the budget is accepted by the reader (a 7071 x 7071 zero matrix is 5.0e7
+    // Just below the budget is accepted by the reader (a 7064 x 7064 zero matrix is 5.0e7
     // entries; its parse is checked in the library test below to keep this test fast).
     let below = romdyn::input::matrix_market::parse_matrix("%%MatrixMarket matrix coordinate real general\n50000000 1 0\n", Path::new("a.mtx"));
     assert_eq!(below.map(|m| m.nrows()).ok(), Some(50_000_000));
     let above = romdyn::input::matrix_market::parse_matrix("%%MatrixMarket matrix coordinate real general\n50000001 1 0\n", Path::new("a.mtx"));
     assert!(above.is_err());
-    // Octave zeros(R, C): 7071^2 = 49 999 041 entries is within, 7072^2 = 50 013 184 beyond.
+    // Found by cargo-fuzz (matrix_market, an out-of-memory of 2 GB): a 1 x 38 888 882
+    // matrix is stored as 8 x 38 888 882 by faer, beyond the budget.
+    let wide = romdyn::input::matrix_market::parse_matrix("%%MatrixMarket matrix coordinate pattern general\n1 38888882 388888888883\n1 2 9\n", Path::new("a.mtx"));
+    assert!(wide.unwrap_err().to_string().starts_with("a.mtx:2:1: the matrix is 1 x 38888882 = 38888882 entries, more than romdyn's budget"));
+    // Octave zeros(R, C): 7064^2 = 49 900 096 entries is within, 7072^2 = 50 013 184 beyond
+    // (rows count in multiples of 8, faer's storage).
     let m = Path::new("p.m");
-    assert!(romdyn::input::octave_m::parse_octave_script("A = zeros(7071, 7071);\n", m).is_ok());
+    assert!(romdyn::input::octave_m::parse_octave_script("A = zeros(7064, 7064);\n", m).is_ok());
     let e = romdyn::input::octave_m::parse_octave_script("A = zeros(7072, 7072);\n", m).unwrap_err().to_string();
     assert!(e.starts_with("p.m:1:5: zeros(7072, 7072) is 7072 x 7072 = 50013184 entries, more than romdyn's budget"), "{e}");
     // JSON: the numbers are counted (by their separators) before parsing.
