@@ -14,28 +14,12 @@ use romdyn::input::matrix_market::parse_matrix;
 use romdyn::input::octave_m::parse_octave_script;
 use romdyn::input::pencil::parse_pencil;
 
+mod common;
+
+use common::fuzz::Rng;
+
 fn budget() -> Duration {
-    std::env::var("ROMDYN_FUZZ_SECONDS").ok().and_then(|s| s.parse::<f64>().ok()).map_or(Duration::from_millis(1000), Duration::from_secs_f64)
-}
-
-fn seed_offset() -> u64 {
-    std::env::var("ROMDYN_FUZZ_SEED").ok().and_then(|s| s.parse().ok()).unwrap_or(0)
-}
-
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n.max(1) as u64) as usize
-    }
-    fn pick<'a>(&mut self, items: &[&'a str]) -> &'a str {
-        items[self.below(items.len())]
-    }
+    common::fuzz::budget(Duration::from_millis(1000))
 }
 
 /// A random edit of `text`: insert a word, delete or duplicate a span, replace a number.
@@ -65,7 +49,7 @@ fn mutate(r: &mut Rng, text: &str, words: &[&str]) -> String {
 }
 
 fn run(seed: u64, what: &str, mut make: impl FnMut(&mut Rng) -> String, read: impl Fn(&str)) -> usize {
-    let mut r = Rng(seed ^ seed_offset().wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1);
+    let mut r = Rng::seeded(seed);
     let start = Instant::now();
     let mut n = 0;
     while start.elapsed() < budget() {
