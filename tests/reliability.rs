@@ -213,6 +213,20 @@ fn octave_pencils_with_subnormal_dcoef_or_non_finite_entries_are_refused() {
 }
 
 #[test]
+fn octave_pencils_with_entries_of_1e308_keep_their_labels() {
+    // F_yd = (J + J*)/2 = 1e308 I and F_y = (J - J*)/(2 dCoef) = 1e308 [[0, 1/2], [-2, 0]]
+    // both overflow when formed directly; λ² + 1 = 0 gives λ = ±1j rad/s (closed form).
+    let d = folder("big-m", &[("p.m", "dCoef = 0.5;\nAplus = [1e308 0.25e308; -1e308 1e308];\nAminus = [1e308 -0.25e308; 1e308 1e308];\n")]);
+    let o = romdyn_in(&d, &["eig", "--pencil", "p.m", "--json"]);
+    assert_eq!(o.code, Some(0), "{}", o.stderr);
+    let v: serde_json::Value = serde_json::from_str(&o.stdout).unwrap();
+    let ev = v["eigenvalues"].as_array().unwrap();
+    assert!(ev.iter().all(|e| e["kind"] == "dynamic"), "{}", o.stdout);
+    assert!((ev[0]["im"].as_f64().unwrap().abs() - 1.0).abs() < 1e-12, "{}", o.stdout);
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[test]
 fn a_zero_dcoef_is_refused() {
     let json = pencil_json("[[1, 0], [0, 1]]", "[[0, -1], [4, 0]]");
     refused("dcoef0", &[("p.json", &json)], &["eig", "--pencil", "p.json", "--dcoef", "0"], &["dCoef = 0 s: the coefficient of J(+c), J(-c) must be a positive normal number"]);
