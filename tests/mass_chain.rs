@@ -48,6 +48,7 @@ fn chain() -> LinearDae {
         output_names: vec!["x50".into()],
         constraint_form: None,
         multipliers: Vec::new(),
+        c_rate: None,
     }
 }
 

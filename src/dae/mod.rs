@@ -17,15 +17,19 @@
 mod assembly;
 mod check;
 mod dofs;
+mod element_part;
 mod energy;
 mod linearize;
+pub mod ports;
 mod sparse;
 mod state;
 
 pub use assembly::{Assembler, Coefficients};
 pub use check::{check_jacobians, JacobianMismatch};
 pub use dofs::DofMap;
-pub use energy::{describe, kinetic_energy_shares, EnergyShare, ModalEnergy};
-pub use linearize::{linearize, NodeInput, NodeOutput, PortError};
+pub use element_part::{element_part, ElementPart, ElementPartError};
+pub use energy::{describe, kinetic_energy_shares, mode_label, EnergyShare, ModalEnergy};
+pub use linearize::{linearize, linearize_ports, NodeInput, NodeOutput};
+pub use ports::{InputPort, OutputPort, PortError, PortMap};
 pub use sparse::{SparseLu, Triplets};
 pub use state::State;

@@ -109,6 +109,7 @@ pub fn pencil_from_script(s: &OctaveScript, ports: &PencilPorts) -> Result<(Line
         output_names: ports.output_cols.iter().map(|c| format!("unknown {c}")).collect(),
         constraint_form: None,
         multipliers: Vec::new(),
+        c_rate: None,
     };
     Ok((dae, c))
 }

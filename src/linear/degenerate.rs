@@ -116,7 +116,7 @@ fn check_regular(fyd: &Mat<f64>, fy: &Mat<f64>) -> Result<(), EigenError> {
         if let Some(i) = empty_row {
             what.push(format!("equation {} has no entry in F_yd or F_y", i + 1));
         }
-        return Err(EigenError::Singular { detail: what.join(", "), unknowns: empty_col.into_iter().collect() });
+        return Err(EigenError::Singular { detail: what.join(", "), unknowns: empty_col.into_iter().collect(), unknown_names: Vec::new() });
     }
     let balanced = balance_pencil(fy, fyd);
     let (a, b) = (&balanced.a, &balanced.b);
@@ -140,6 +140,7 @@ fn check_regular(fyd: &Mat<f64>, fy: &Mat<f64>) -> Result<(), EigenError> {
     Err(EigenError::Singular {
         detail: format!("F_y + s F_yd is rank deficient at two unrelated shifts s (smallest LU pivot below {tolerance:.1e} of the largest, after balancing)"),
         unknowns: common_null_vector(a, b),
+        unknown_names: Vec::new(),
     })
 }
 
@@ -167,12 +168,12 @@ fn common_null_vector(a: &Mat<f64>, b: &Mat<f64>) -> Vec<usize> {
 }
 
 /// ", undetermined unknowns: …" for a message (1-based indices, or names when given).
-pub(crate) fn list_unknowns(unknowns: &[usize], names: Option<&[String]>) -> String {
+pub(crate) fn list_unknowns(unknowns: &[usize], names: &[String]) -> String {
     if unknowns.is_empty() {
         return String::new();
     }
     const SHOWN: usize = 8;
-    let mut list: Vec<String> = unknowns.iter().take(SHOWN).map(|&k| names.and_then(|n| n.get(k).cloned()).unwrap_or_else(|| format!("unknown {}", k + 1))).collect();
+    let mut list: Vec<String> = unknowns.iter().take(SHOWN).map(|&k| names.get(k).cloned().unwrap_or_else(|| format!("unknown {}", k + 1))).collect();
     if unknowns.len() > SHOWN {
         list.push(format!("… {} more", unknowns.len() - SHOWN));
     }

@@ -71,11 +71,13 @@ pub enum EigenError {
     NonFinite(String),
     #[error("dCoef = {} s: the coefficient of J(+c), J(-c) must be a positive normal number", crate::limits::readable(*.0))]
     InvalidDcoef(f64),
-    #[error("the pencil is singular: det(λ F_yd + F_y) = 0 for every λ, so it has no eigenvalues to label ({detail}){}; a model with an unknown that no equation determines gives this", super::degenerate::list_unknowns(unknowns, None))]
+    #[error("the pencil is singular: det(λ F_yd + F_y) = 0 for every λ, so it has no eigenvalues to label ({detail}){}; a model with an unknown that no equation determines gives this", super::degenerate::list_unknowns(unknowns, unknown_names))]
     Singular {
         detail: String,
         /// Unknowns (0-based) of a common null vector, largest entries first.
         unknowns: Vec<usize>,
+        /// Names of all unknowns, when known ([`EigenError::with_unknown_names`]).
+        unknown_names: Vec<String>,
     },
 }
 
@@ -216,14 +218,11 @@ impl RawEigen {
 }
 
 impl EigenError {
-    /// The message, with the unknowns of a singular pencil named by `unknown_names`.
-    pub fn describe(&self, unknown_names: &[String]) -> String {
+    /// The error with the unknowns of a singular pencil named by `names` (the DAE's).
+    pub fn with_unknown_names(self, names: &[String]) -> Self {
         match self {
-            EigenError::Singular { detail, unknowns } => format!(
-                "the pencil is singular: det(λ F_yd + F_y) = 0 for every λ, so it has no eigenvalues to label ({detail}){}",
-                super::degenerate::list_unknowns(unknowns, Some(unknown_names))
-            ),
-            e => e.to_string(),
+            EigenError::Singular { detail, unknowns, .. } => EigenError::Singular { detail, unknowns, unknown_names: names.to_vec() },
+            e => e,
         }
     }
 }

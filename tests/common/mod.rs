@@ -45,6 +45,7 @@ pub fn two_masses(r: f64, scaled: bool) -> LinearDae {
         output_names: vec!["x2".into()],
         constraint_form: None,
         multipliers: Vec::new(),
+        c_rate: None,
     }
 }
 
