@@ -116,3 +116,19 @@ fn json_pencils_never_panic() {
     });
     assert!(n > 100, "only {n} inputs");
 }
+
+#[test]
+fn ports_files_never_panic() {
+    let seeds = [
+        r#"{"names": {"1": "base", "3": "table"}, "inputs": ["3:Fz", {"name": "H1", "type": "actuator", "from": 1, "to": 2, "at": [0.95, 0, 0.5], "direction": [0, 1, 0]}], "outputs": [{"name": "g", "type": "velocity", "node": 3, "at": [0.9, 0, 1], "direction": [1, 0, 0]}, "2:rz"], "remove_springs": [901], "imposed": "1"}"#,
+        r#"{"inputs": [{"type": "force", "node": 3, "offset": [0.5, 0, 0], "direction": [0, 0, 1], "frame": "node"}, {"type": "moment", "node": 3, "direction": [0, 1, 0]}], "outputs": [{"type": "relative", "from": 1, "to": 2, "direction": [0, 1, 0]}, {"type": "rotation", "node": 3, "direction": [0, 1, 0]}]}"#,
+    ];
+    let words: Vec<&str> = NUMBERS.iter().copied().chain(["\"names\"", "\"inputs\"", "\"outputs\"", "\"type\"", "\"actuator\"", "\"force\"", "\"velocity\"", "\"node\"", "\"direction\"", "\"at\"", "\"1:Fx\"", "\"2:ry\"", "[", "]", "{", "}", ",", ":"]).collect();
+    let n = run(0x7777_1234_5555_AAAA, "ports", |r| {
+        let seed = seeds[r.below(seeds.len())];
+        mutate(r, seed, &words)
+    }, |t| {
+        let _ = romdyn::input::ports_file::parse_ports(t, Path::new("ports.json"));
+    });
+    assert!(n > 100, "only {n} inputs");
+}

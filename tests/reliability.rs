@@ -229,7 +229,7 @@ fn octave_pencils_with_entries_of_1e308_keep_their_labels() {
 #[test]
 fn a_zero_dcoef_is_refused() {
     let json = pencil_json("[[1, 0], [0, 1]]", "[[0, -1], [4, 0]]");
-    refused("dcoef0", &[("p.json", &json)], &["eig", "--pencil", "p.json", "--dcoef", "0"], &["dCoef = 0 s: the coefficient of J(+c), J(-c) must be a positive normal number"]);
+    refused("dcoef0", &[("p.json", &json)], &["eig", "--pencil", "p.json", "--dcoef", "0"], &["--dcoef", "dCoef must be a positive finite time step coefficient [s], got 0"]);
 }
 
 #[test]
