@@ -280,3 +280,23 @@ fn removing_the_spring_of_an_inverted_pendulum_leaves_a_real_positive_eigenvalue
     let modal = ModalAnalysis::compute(&without_elements(&dae, &[part]).jacobians, EigenRoute::Lambda).unwrap();
     assert!(modal.modes.iter().any(|md| (md.lambda - c64::new(s, 0.0)).norm() < 1e-6 * s), "{:?}", modal.modes.iter().map(|m| m.lambda).collect::<Vec<_>>());
 }
+
+#[test]
+fn a_bad_ports_file_names_file_line_and_column_and_the_cli_takes_ports() {
+    let dir = std::env::temp_dir().join(format!("romdyn-ports-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let bad = dir.join("bad.json");
+    std::fs::write(&bad, "{\n  \"outputs\": [\n    {\"type\": \"displacement\", \"node\": 3, \"direction\": [1, 0]}\n  ]\n}\n").unwrap();
+    let exe = env!("CARGO_BIN_EXE_romdyn");
+    let out = std::process::Command::new(exe).args(["eig", "examples/ham_sas.mbd", "--static", "--load-steps", "1", "--ports"]).arg(&bad).output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    // serde_json's position of the short array: line 3.
+    assert!(err.contains("bad.json:3:"), "{err}");
+    // The HAM-SAS ports file labels the table modes in the modal table.
+    let out = std::process::Command::new(exe).args(["eig", "examples/ham_sas.mbd", "--static", "--load-steps", "1", "--ports", "examples/ham_sas_ports.json"]).output().unwrap();
+    let table = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(table.contains("table pitch (ry) 100 %"), "{table}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

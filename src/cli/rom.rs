@@ -123,7 +123,7 @@ pub fn run(a: RomArgs) -> Result<()> {
     request.below_band = a.below_band.into();
     request.damping = a.damping.clone();
     let rom = study.reduce(&request)?;
-    let freq = study.frequencies(&a.freq.grid(), &rom.descriptor.eigenvalues)?;
+    let freq = study.frequencies(&a.freq.grid(), &nonzero(&rom.descriptor.eigenvalues))?;
     eprint!("{}", study.modal_report().to_text_dynamic(12));
     print_study(&study);
     let comparison = study.compare(&rom, freq);
@@ -132,6 +132,7 @@ pub fn run(a: RomArgs) -> Result<()> {
     let removed = study.removed_springs();
     if !removed.is_empty() {
         eprintln!("removed from the full model and the ROM (their force fed back, A + B_e K C_e): {}", removed.join(", "));
+        eprint!("{}", free_eigenvalues(&rom.descriptor.eigenvalues));
     }
     let export = match a.form {
         Form::Ordinary => rom.export(&study, RomForm::Ordinary),
@@ -151,11 +152,32 @@ pub fn run(a: RomArgs) -> Result<()> {
     write_application_files(&a, &study, &rom)
 }
 
+/// The eigenvalues that set a default frequency grid: rigid-body (zero) ones of a ROM whose
+/// dummy springs were removed would stretch it down to rounding.
+fn nonzero(eig: &[faer::c64]) -> Vec<faer::c64> {
+    let big = eig.iter().map(|l| l.norm()).fold(0.0, f64::max);
+    eig.iter().copied().filter(|l| l.norm() > 1e-6 * big).collect()
+}
+
+/// The eigenvalues of a ROM whose dummy springs were removed: rigid-body, unstable and
+/// oscillatory ones (the modal table above is the grounded model's).
+fn free_eigenvalues(eig: &[faer::c64]) -> String {
+    let big = eig.iter().map(|l| l.norm()).fold(0.0, f64::max);
+    let zero = eig.iter().filter(|l| l.norm() <= 1e-6 * big).count();
+    let mut s = format!("ROM eigenvalues without them [rad/s]: {zero} zero (rigid-body motion)\n");
+    // One line per pair (its upper member), every real one.
+    for l in eig.iter().filter(|l| l.norm() > 1e-6 * big && (l.im > 1e-9 * big || l.im.abs() <= 1e-9 * big)) {
+        let kind = if l.im.abs() <= 1e-9 * big { if l.re > 0.0 { "real, unstable" } else { "real" } } else if l.re > 1e-9 * big { "oscillatory, unstable" } else { "oscillatory" };
+        s += &format!("  {:>14.6e} {:+.6e}j   {:>10.6} Hz   {kind}\n", l.re, l.im, l.norm() / (2.0 * std::f64::consts::PI));
+    }
+    s
+}
+
 /// --grid, --transmissibility, --imposed-out.
 fn write_application_files(a: &RomArgs, study: &Study, rom: &ReducedModel) -> Result<()> {
     let wrote = |p: [PathBuf; 3]| eprintln!("wrote {}, {}, {}", p[0].display(), p[1].display(), p[2].display());
     if let Some(prefix) = &a.grid {
-        let freq = study.frequencies(&a.freq.grid(), &rom.descriptor.eigenvalues)?;
+        let freq = study.frequencies(&a.freq.grid(), &nonzero(&rom.descriptor.eigenvalues))?;
         let dae = study.dae();
         // The imposed displacements (last outputs) are inputs of the transmissibility, not
         // responses: the grid shows the other outputs.
@@ -173,7 +195,7 @@ fn write_application_files(a: &RomArgs, study: &Study, rom: &ReducedModel) -> Re
         wrote(plot.write_files(prefix).with_context(|| format!("writing {}.{{csv,svg,png}}", prefix.display()))?);
     }
     if let Some(prefix) = &a.transmissibility {
-        let freq = study.frequencies(&a.freq.grid(), &rom.descriptor.eigenvalues)?;
+        let freq = study.frequencies(&a.freq.grid(), &nonzero(&rom.descriptor.eigenvalues))?;
         let t = study.transmissibility(rom, &freq)?;
         let mut plot = MimoPlot { title: "Transmissibility |z/z_e| (eq. 100)".into(), freq_hz: t.freq_hz, inputs: t.imposed, outputs: t.outputs, full: t.full, rom: Some(t.rom), diagonal: a.diagonal };
         wrote(plot.write_files(prefix).with_context(|| format!("writing {}.{{csv,svg,png}}", prefix.display()))?);
@@ -209,7 +231,7 @@ pub fn run_freq(a: FreqArgs) -> Result<()> {
             request.damping = a.damping.clone();
             let rom = study.reduce(&request)?;
             print_warnings(&rom.warnings);
-            let freq = study.frequencies(&a.freq.grid(), &rom.descriptor.eigenvalues)?;
+            let freq = study.frequencies(&a.freq.grid(), &nonzero(&rom.descriptor.eigenvalues))?;
             study.compare(&rom, freq).responses(&study, "ROM")
         }
         None => study.full_responses(study.frequencies(&a.freq.grid(), &[])?),

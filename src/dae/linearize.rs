@@ -7,7 +7,7 @@ use std::str::FromStr;
 use super::ports::{Direction, Excitation, InputPort, Measurement, OutputPort, Point, PortError, PortMap};
 use super::{Assembler, Coefficients, State};
 use crate::kinematics::Vec3;
-use crate::linear::{Jacobians, LinearDae};
+use crate::linear::{Jacobians, LinearDae, SparseLinearDae, SparseMatrix};
 use crate::model::{Label, Model};
 
 const FORCES: [&str; 6] = ["Fx", "Fy", "Fz", "Mx", "My", "Mz"];
@@ -121,5 +121,36 @@ pub fn linearize_ports(model: &Model, state: &State, inputs: &[InputPort], outpu
         constraint_form: Some(form),
         multipliers: (0..n).filter(|&i| asm.dofs.is_multiplier(i)).collect(),
         c_rate,
+    })
+}
+
+/// [`linearize_ports`] keeping `F_/ẏ` and `F_/y` sparse as assembled ([`SparseLinearDae`]:
+/// memory proportional to the non-zeros, not to n²).
+pub fn linearize_sparse(model: &Model, state: &State, inputs: &[InputPort], outputs: &[OutputPort]) -> Result<SparseLinearDae, PortError> {
+    let asm = Assembler::new(model);
+    let mut st = state.clone();
+    st.rebase(&asm.dofs);
+    let form = model.constraint_form;
+    let n = asm.dofs.len;
+    let sparse = |a: f64, b: f64| {
+        let t = asm.jacobian(&st, Coefficients { a, b, form, dcoef: 1.0 });
+        let entries = (0..t.values.len()).map(|k| (t.rows[k], t.cols[k], t.values[k]));
+        SparseMatrix::from_triplets(n, n, entries).unwrap_or_else(|| unreachable!("the assembler writes inside its {n} x {n} pattern"))
+    };
+    let (fyd, fy) = (sparse(1.0, 0.0), sparse(0.0, 1.0));
+    let ports = PortMap::new(model, &st);
+    let b = ports.input_matrix(inputs)?;
+    let (c, c_rate) = ports.output_matrices(outputs)?;
+    Ok(SparseLinearDae {
+        fyd,
+        fy,
+        b,
+        c,
+        c_rate,
+        unknown_names: (0..n).map(|i| asm.dofs.unknown_name(model, i)).collect(),
+        input_names: inputs.iter().map(InputPort::label).collect(),
+        output_names: outputs.iter().map(OutputPort::label).collect(),
+        constraint_form: Some(form),
+        multipliers: (0..n).filter(|&i| asm.dofs.is_multiplier(i)).collect(),
     })
 }

@@ -29,7 +29,7 @@ pub use check::{check_jacobians, JacobianMismatch};
 pub use dofs::DofMap;
 pub use element_part::{element_part, ElementPart, ElementPartError};
 pub use energy::{describe, kinetic_energy_shares, mode_label, EnergyShare, ModalEnergy};
-pub use linearize::{linearize, linearize_ports, NodeInput, NodeOutput};
+pub use linearize::{linearize, linearize_ports, linearize_sparse, NodeInput, NodeOutput};
 pub use ports::{InputPort, OutputPort, PortError, PortMap};
 pub use sparse::{SparseLu, Triplets};
 pub use state::State;

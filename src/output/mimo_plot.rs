@@ -11,6 +11,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::atomic::{write_atomic_bytes, OutputError};
+use super::bode::tick_label;
 use super::figure::{write_figure, Figure, COLORS, FONT};
 use super::prefixed_path;
 
@@ -86,15 +87,6 @@ impl MimoPlot {
     }
 }
 
-fn tick(x: f64) -> String {
-    if (1e-3..1e4).contains(&x.abs()) {
-        let s = format!("{x:.3}");
-        s.trim_end_matches('0').trim_end_matches('.').to_string()
-    } else {
-        format!("{x:.0e}")
-    }
-}
-
 impl Figure for MimoPlot {
     fn draw<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> Result<(), String> {
         let err = |e: &dyn std::fmt::Display| e.to_string();
@@ -134,7 +126,7 @@ impl Figure for MimoPlot {
                 .configure_mesh()
                 .x_labels(5)
                 .y_labels(5)
-                .x_label_formatter(&|x| tick(*x))
+                .x_label_formatter(&|x| tick_label(*x))
                 .y_label_formatter(&|y| format!("{y:.0e}"))
                 .label_style((FONT, 12))
                 .x_desc(if i + 1 == self.outputs.len() || self.diagonal { "Hz" } else { "" })

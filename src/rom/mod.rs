@@ -13,6 +13,7 @@ mod ordinary;
 mod response;
 mod select;
 mod springs;
+mod static_correction;
 mod units;
 
 pub use damping::{DampingChange, ModalDamping};
@@ -26,3 +27,4 @@ pub use ordinary::OrdinaryRom;
 pub use response::{frequency_grid, full_frequency_response, full_static_gain, log_frequencies};
 pub use select::{select_dominant_modes, select_modes, ModeSelection, Ranking, Selection};
 pub use units::{mode_units, unit_of, REAL_PAIR_TOLERANCE};
+pub use static_correction::with_static_correction;
