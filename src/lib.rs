@@ -16,6 +16,7 @@ pub mod dae;
 pub mod element;
 pub mod input;
 pub mod kinematics;
+pub mod limits;
 pub mod linear;
 pub mod model;
 pub mod output;

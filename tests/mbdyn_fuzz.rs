@@ -11,30 +11,12 @@ use std::time::{Duration, Instant};
 
 use romdyn::input::mbdyn::{build, parse_text};
 
-/// Time given to each generator (1.5 s unless `ROMDYN_FUZZ_SECONDS` says otherwise).
+mod common;
+
+use common::fuzz::Rng;
+
 fn budget() -> Duration {
-    std::env::var("ROMDYN_FUZZ_SECONDS").ok().and_then(|s| s.parse::<f64>().ok()).map_or(Duration::from_millis(1500), Duration::from_secs_f64)
-}
-
-/// Extra seed from `ROMDYN_FUZZ_SEED` (0 by default).
-fn seed_offset() -> u64 {
-    std::env::var("ROMDYN_FUZZ_SEED").ok().and_then(|s| s.parse().ok()).unwrap_or(0)
-}
-
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n.max(1) as u64) as usize
-    }
-    fn pick<'a>(&mut self, items: &[&'a str]) -> &'a str {
-        items[self.below(items.len())]
-    }
+    common::fuzz::budget(Duration::from_millis(1500))
 }
 
 /// Words of the grammar: statements, blocks, element and joint types, keywords of entities.
@@ -77,7 +59,7 @@ fn survives(text: &str, what: &str) {
 }
 
 fn run(mut make: impl FnMut(&mut Rng) -> String, seed: u64, what: &str) -> usize {
-    let mut r = Rng(seed ^ seed_offset().wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1);
+    let mut r = Rng::seeded(seed);
     let start = Instant::now();
     let mut n = 0;
     while start.elapsed() < budget() {

@@ -54,7 +54,7 @@ fn a_pencil_file_without_matrices_says_how_to_get_them() {
     assert!(err.ends_with("eig.m: 'Aplus' is missing; write the eigenanalysis with 'output matrices' (MBDyn) or 'output full matrices'"), "{err}");
     std::fs::write(&file, "dCoef = -1;\nAplus = [1];\nAminus = [1];\n").unwrap();
     let err = romdyn::input::pencil::read_pencil_file(&file, &ports).unwrap_err().to_string();
-    assert!(err.ends_with("eig.m:1:1: 'dCoef' must be a positive number (s)"), "{err}");
+    assert!(err.ends_with("eig.m:1:1: 'dCoef' must be a positive normal number (s), found -1"), "{err}");
     std::fs::write(&file, "dCoef = 1;\nAplus = [1 2];\nAminus = [1];\n").unwrap();
     let err = romdyn::input::pencil::read_pencil_file(&file, &ports).unwrap_err().to_string();
     assert!(err.ends_with("eig.m:2:1: 'Aplus' is 1x2, expected 2x2 (square, the size of the other matrix)"), "{err}");

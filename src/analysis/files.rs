@@ -6,14 +6,16 @@
 //! largest, MBDyn's `suffix width, compute`) when there are several.
 //!
 //! Every file is written under a temporary name; [`RunFiles::finish`] puts them all in
-//! place after a successful run. A failed run drops them: no output file appears.
+//! place after a successful run, as one set ([`commit_set`]: while the journal
+//! `.NAME.romdyn-commit` exists beside them, the set is incomplete; the next run with the
+//! same prefix completes it). A failed or interrupted run drops them: no output file appears.
 
 use std::path::{Path, PathBuf};
 
 use super::observer::{Derivatives, EigenDone, ObserverError, RunObserver, StepDone};
 use super::run::RunReport;
 use crate::model::{InitialValueProblem, Model, MotionOutput};
-use crate::output::atomic::{AtomicFile, OutputError};
+use crate::output::atomic::{commit_set, recover_set, AtomicFile, OutputError};
 use crate::output::beam_sections::BeamSectionWriter;
 use crate::output::eigen_json::eigen_json;
 use crate::output::eigen_m::write_eigen_m;
@@ -31,6 +33,13 @@ pub fn eigen_file_stem(prefix: &Path, index: usize, count: usize) -> PathBuf {
     let mut s = prefix.as_os_str().to_owned();
     s.push(format!("_{index:0width$}"));
     PathBuf::from(s)
+}
+
+/// The journal of the set of files under `prefix` (`.NAME.romdyn-commit` beside them):
+/// while it exists, the set is incomplete.
+pub fn journal_path(prefix: &Path) -> PathBuf {
+    let name = prefix.file_name().map_or_else(|| "romdyn".into(), |n| n.to_string_lossy().into_owned());
+    prefix.with_file_name(format!(".{name}.romdyn-commit"))
 }
 
 /// Writes a run's files as the run goes (an observer).
@@ -52,28 +61,33 @@ pub struct RunFiles {
 impl RunFiles {
     /// Starts the files of a run of `model` (read from `input`) under `prefix`.
     pub fn create(prefix: &Path, input: &str, model: &Model, problem: &InitialValueProblem) -> Result<Self, OutputError> {
+        recover_set(&journal_path(prefix))?;
+        let eigen_count = problem.eigenanalysis.as_ref().map_or(0, |r| r.times.len());
+        // A directory in the way of any file of the set is found before the run.
+        let stems = (0..eigen_count.max(1)).map(|k| eigen_file_stem(prefix, k, eigen_count));
+        let eigen_files = stems.flat_map(|s| [prefixed_path(&s, "m"), prefixed_path(&s, "json")]);
+        for path in ["out", "mov", "log", "act", "bst"].map(|e| prefixed_path(prefix, e)).into_iter().chain(eigen_files) {
+            if path.is_dir() {
+                return Err(OutputError::Invalid { path, message: "is a directory: the run could not write its file there".into() });
+            }
+        }
         let out = StepLog::create(&prefixed_path(prefix, "out"), input)?;
         let mov = MotionWriter::create(&prefixed_path(prefix, "mov"), OrientationOutput::Euler123Degrees)?;
         let mut log = AtomicFile::create(&prefixed_path(prefix, "log"))?;
         log.write_with(|w| write_model_log(w, input, model))?;
-        let eigen_count = problem.eigenanalysis.as_ref().map_or(0, |r| r.times.len());
         Ok(RunFiles { prefix: prefix.to_path_buf(), input: input.to_string(), eigen_count, out, mov, motion: problem.output.clone(), beams: None, has_beams: None, staged: vec![log] })
     }
 
     /// Ends the step log and puts every file in place; returns their paths.
     pub fn finish(mut self, report: &RunReport) -> Result<Vec<PathBuf>, OutputError> {
         self.out.end(report.final_state.t, report.steps, report.newton_iterations)?;
-        let mut paths = vec![prefixed_path(&self.prefix, "out"), prefixed_path(&self.prefix, "mov")];
-        self.out.finish()?;
-        self.mov.finish()?;
+        let mut files = vec![self.out.into_file(), self.mov.into_file()];
         if let Some(b) = self.beams {
-            paths.extend(b.paths().map(Path::to_path_buf));
-            b.finish()?;
+            files.extend(b.into_files());
         }
-        for f in self.staged {
-            paths.push(f.path().to_path_buf());
-            f.commit()?;
-        }
+        files.extend(self.staged);
+        let paths = files.iter().map(|f| f.path().to_path_buf()).collect();
+        commit_set(files, &journal_path(&self.prefix))?;
         Ok(paths)
     }
 }

@@ -15,7 +15,7 @@ mod run;
 
 pub use check::{check_model_jacobians, JacobianCheck, JACOBIAN_CHECK_TOLERANCE};
 pub use eigen::{Eigenanalysis, DEFAULT_DCOEF};
-pub use files::{eigen_file_stem, RunFiles};
+pub use files::{eigen_file_stem, journal_path, RunFiles};
 pub use observer::{Derivatives, EigenDone, ObserverError, RunObserver, RunStart, StepDone};
 pub use reference::{reference_state, Reference};
 pub use error::RunError;

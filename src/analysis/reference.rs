@@ -37,6 +37,9 @@ pub fn reference_state(model: &Model, problem: &InitialValueProblem, reference: 
 }
 
 fn static_state(model: &Model, problem: &InitialValueProblem, load_steps: usize) -> Result<State, RunError> {
+    if load_steps > crate::limits::MAX_LOAD_STEPS {
+        return Err(RunError::Problem(format!("{load_steps} load increments: more than romdyn's limit of {}", crate::limits::MAX_LOAD_STEPS)));
+    }
     let asm = Assembler::new(model);
     let mut st = State::initial(model, &asm.dofs);
     st.t = problem.initial_time;

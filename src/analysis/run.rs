@@ -11,6 +11,8 @@ use std::time::{Duration, Instant};
 
 use faer::c64;
 
+use crate::limits::readable;
+
 use super::eigen::Eigenanalysis;
 use super::error::{ObserverError, RunError};
 use super::observer::{Derivatives, EigenDone, RunObserver, RunStart, StepDone};
@@ -80,6 +82,26 @@ fn validate(p: &InitialValueProblem) -> Result<(), RunError> {
     }
     if !(p.initial_time.is_finite() && p.final_time.is_finite()) || p.final_time < p.initial_time {
         return bad(format!("final time {} s must not be before initial time {} s", p.final_time, p.initial_time));
+    }
+    // Steps are counted before the run: a final time of 1e308 s or a step of 1e-300 s
+    // would never end (and fill the disk with output).
+    let steps = (p.final_time - p.initial_time) / p.time_step;
+    if !(steps <= crate::limits::MAX_TIME_STEPS) {
+        return bad(format!(
+            "from initial time {} s to final time {} s with time step {} s is {} steps, more than romdyn's limit of {:e} steps per run",
+            readable(p.initial_time),
+            readable(p.final_time),
+            readable(p.time_step),
+            readable(steps.round()),
+            crate::limits::MAX_TIME_STEPS
+        ));
+    }
+    let end = p.initial_time.abs().max(p.final_time.abs());
+    if end + p.time_step == end {
+        return bad(format!("time step {} s is below the resolution of the time {end} s: the time would not advance", p.time_step));
+    }
+    if let Some(t) = p.eigenanalysis.as_ref().and_then(|r| r.times.iter().copied().find(|t| !(*t >= p.initial_time))) {
+        return bad(format!("eigenanalysis time {t} s is before the initial time {} s", p.initial_time));
     }
     if !(p.tolerance > 0.0) || !(p.derivatives_tolerance > 0.0) {
         return bad(format!("tolerances must be positive (tolerance {}, derivatives tolerance {})", p.tolerance, p.derivatives_tolerance));

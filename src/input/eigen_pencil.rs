@@ -62,20 +62,29 @@ fn square(s: &OctaveScript, name: &'static str, m: &OctaveMatrix, n: usize) -> R
     if !(m.rows == n && m.cols == n || m.from_sparse && m.rows <= n && m.cols <= n) {
         return Err(invalid(s, name, format!("is {}x{}, expected {n}x{n} (square, the size of the other matrix)", m.rows, m.cols)));
     }
+    if let Some(k) = m.re.iter().position(|x| !x.is_finite()) {
+        return Err(invalid(s, name, format!("entry ({}, {}) is {}: a Jacobian must be finite", k / m.cols.max(1) + 1, k % m.cols.max(1) + 1, m.re[k])));
+    }
+    crate::limits::check_dense(n, n, || format!("'{name}'")).map_err(|e| invalid(s, name, e.to_string()))?;
     Ok(Mat::from_fn(n, n, |i, j| if i < m.rows && j < m.cols { m.get(i, j) } else { 0.0 }))
 }
 
 /// The pencil of an MBDyn eigenanalysis file, with the inputs and outputs of `ports`.
 /// Returns the linear DAE (`Jacobians::Coefficient`) and `dCoef`.
 pub fn read_eigen_pencil(path: &Path, ports: &PencilPorts) -> Result<(LinearDae, f64), EigenPencilError> {
-    let s = read_octave_script(path)?;
+    pencil_from_script(&read_octave_script(path)?, ports)
+}
+
+/// The pencil of a parsed eigenanalysis script (see [`read_eigen_pencil`]).
+pub fn pencil_from_script(s: &OctaveScript, ports: &PencilPorts) -> Result<(LinearDae, f64), EigenPencilError> {
     const MATRICES: &str = "write the eigenanalysis with 'output matrices' (MBDyn) or 'output full matrices'";
-    let aplus = variable(&s, "Aplus", MATRICES)?;
-    let aminus = variable(&s, "Aminus", MATRICES)?;
-    let dcoef = variable(&s, "dCoef", "the file must define dCoef = c, the coefficient of J(+c) and J(-c)")?;
-    let c = dcoef.scalar().filter(|c| *c > 0.0 && c.is_finite()).ok_or_else(|| invalid(&s, "dCoef", "must be a positive number (s)".into()))?;
+    let aplus = variable(s, "Aplus", MATRICES)?;
+    let aminus = variable(s, "Aminus", MATRICES)?;
+    let dcoef = variable(s, "dCoef", "the file must define dCoef = c, the coefficient of J(+c) and J(-c)")?;
+    // A subnormal dCoef (below 2.2e-308) cannot divide J(+c) - J(-c) (eq. 16) without overflow.
+    let c = dcoef.scalar().filter(|c| c.is_normal() && *c > 0.0).ok_or_else(|| invalid(s, "dCoef", format!("must be a positive normal number (s), found {}", crate::limits::readable(dcoef.re.first().copied().unwrap_or(f64::NAN)))))?;
     let n = [aplus.rows, aplus.cols, aminus.rows, aminus.cols].into_iter().max().unwrap_or(0);
-    let (j, jstar) = (square(&s, "Aplus", aplus, n)?, square(&s, "Aminus", aminus, n)?);
+    let (j, jstar) = (square(s, "Aplus", aplus, n)?, square(s, "Aminus", aminus, n)?);
     let out_of_range = |what: &str, k: usize, of: &str| EigenPencilError::Ports { file: s.file.clone(), message: format!("{what} {k} is out of range: the pencil has {n} {of} (1-based)") };
     let mut b = Mat::<f64>::zeros(n, ports.input_rows.len());
     for (k, &row) in ports.input_rows.iter().enumerate() {

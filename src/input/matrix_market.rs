@@ -5,11 +5,14 @@ use std::path::{Path, PathBuf};
 
 use faer::Mat;
 
+use super::text_file::{read_text_file, TextFileError};
+use crate::limits::check_dense;
+
 /// A malformed Matrix Market file.
 #[derive(Debug, thiserror::Error)]
 pub enum MatrixMarketError {
-    #[error("{file}: cannot read: {source}")]
-    Io { file: PathBuf, source: std::io::Error },
+    #[error(transparent)]
+    Read(#[from] TextFileError),
     #[error("{file}:{line}:{column}: {message}")]
     Syntax { file: PathBuf, line: usize, column: usize, message: String },
 }
@@ -23,7 +26,7 @@ enum Symmetry {
 
 /// Reads a Matrix Market file into a dense matrix.
 pub fn read_matrix(file: &Path) -> Result<Mat<f64>, MatrixMarketError> {
-    let text = std::fs::read_to_string(file).map_err(|source| MatrixMarketError::Io { file: file.to_path_buf(), source })?;
+    let text = read_text_file(file)?;
     parse_matrix(&text, file)
 }
 
@@ -60,8 +63,10 @@ pub fn parse_matrix(text: &str, file: &Path) -> Result<Mat<f64>, MatrixMarketErr
         return Err(err(size_line, 1, format!("size line: expected {want} integers, found {}", size.len())));
     }
     let (nrows, ncols) = (size[0], size[1]);
-    let mut m = Mat::<f64>::zeros(nrows, ncols);
-    let mut count = 0;
+    if symmetry != Symmetry::General && nrows != ncols {
+        return Err(err(size_line, 1, format!("a {} matrix must be square, the size line declares {nrows} x {ncols}", words[4])));
+    }
+    check_dense(nrows, ncols, || "the matrix".into()).map_err(|e| err(size_line, 1, e.to_string()))?;
     let expected = if coordinate {
         size[2]
     } else if symmetry == Symmetry::General {
@@ -69,7 +74,10 @@ pub fn parse_matrix(text: &str, file: &Path) -> Result<Mat<f64>, MatrixMarketErr
     } else {
         ncols * (ncols + 1) / 2 - if symmetry == Symmetry::Skew { ncols } else { 0 }
     };
-    let (mut i_arr, mut j_arr) = (0usize, 0usize);
+    let mut m = Mat::<f64>::zeros(nrows, ncols);
+    let mut count = 0;
+    // Column-major; symmetric storage lists the lower triangle, skew-symmetric the strict one.
+    let (mut i_arr, mut j_arr) = (usize::from(symmetry == Symmetry::Skew), 0usize);
     for (line, text) in data {
         if count == expected {
             return Err(err(line, 1, format!("more entries than the {expected} declared")));
@@ -88,6 +96,9 @@ pub fn parse_matrix(text: &str, file: &Path) -> Result<Mat<f64>, MatrixMarketErr
                 Ok(x - 1)
             };
             let (i, j) = (idx(0, nrows, "row")?, idx(1, ncols, "column")?);
+            if symmetry == Symmetry::Skew && i == j {
+                return Err(err(line, 1, format!("entry ({}, {}) is on the diagonal of a skew-symmetric matrix (it must be zero and is not stored)", i + 1, j + 1)));
+            }
             let v = if pattern { 1.0 } else { value(fields[2], line, column_of(text, 3), file)? };
             (i, j, v)
         } else {

@@ -8,3 +8,4 @@ pub mod matrix_market;
 pub mod mbdyn;
 pub mod octave_m;
 pub mod pencil;
+pub mod text_file;

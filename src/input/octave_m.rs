@@ -12,12 +12,14 @@
 use std::path::{Path, PathBuf};
 
 use super::chars::CharStream;
+use super::text_file::{read_text_file, TextFileError};
+use crate::limits::{check_dense, MAX_DENSE_ENTRIES};
 
 /// A malformed script.
 #[derive(Debug, thiserror::Error)]
 pub enum OctaveError {
-    #[error("{file}: cannot read: {source}")]
-    Io { file: PathBuf, source: std::io::Error },
+    #[error(transparent)]
+    Read(#[from] TextFileError),
     #[error("{file}:{line}:{column}: {message}")]
     Syntax { file: PathBuf, line: usize, column: usize, message: String },
 }
@@ -77,7 +79,7 @@ impl OctaveScript {
 
 /// Reads a script file.
 pub fn read_octave_script(file: &Path) -> Result<OctaveScript, OctaveError> {
-    let text = std::fs::read_to_string(file).map_err(|source| OctaveError::Io { file: file.to_path_buf(), source })?;
+    let text = read_text_file(file)?;
     parse_octave_script(&text, file)
 }
 
@@ -200,6 +202,7 @@ impl Scanner<'_> {
         let mut rows: Vec<(Position, Vec<(f64, f64)>)> = Vec::new();
         let mut row: Vec<(f64, f64)> = Vec::new();
         let mut row_start = self.here();
+        let mut entries = 0usize;
         loop {
             self.skip_blanks();
             match self.peek() {
@@ -221,6 +224,10 @@ impl Scanner<'_> {
                 Some(_) => {
                     if row.is_empty() {
                         row_start = self.here();
+                    }
+                    entries += 1;
+                    if entries > MAX_DENSE_ENTRIES {
+                        return Err(self.error_at(open, format!("this matrix has more than romdyn's budget of {MAX_DENSE_ENTRIES} entries for a dense matrix")));
                     }
                     row.push(self.entry()?);
                     if !matches!(self.peek(), None | Some(' ' | '\t' | '\r' | '\n' | ',' | ';' | ']' | '%' | '#')) {
@@ -264,6 +271,7 @@ impl Scanner<'_> {
                 let r = self.size()?;
                 self.require(',', "between the sizes of zeros(R, C)")?;
                 let c = self.size()?;
+                check_dense(r, c, || format!("zeros({r}, {c})")).map_err(|e| self.error_at(at, e.to_string()))?;
                 OctaveMatrix::real(r, c, vec![0.0; r * c])
             }
             "spconvert" => {
@@ -292,11 +300,14 @@ fn spconvert(t: &OctaveMatrix) -> Result<OctaveMatrix, String> {
     }
     let rows = triplets.iter().map(|t| t.0 + 1).max().unwrap_or(0);
     let cols = triplets.iter().map(|t| t.1 + 1).max().unwrap_or(0);
+    check_dense(rows, cols, || "the matrix (its size is the largest row and column index)".into()).map_err(|e| e.to_string())?;
     let mut re = vec![0.0; rows * cols];
-    let mut im = vec![0.0; rows * cols];
+    let mut im = if triplets.iter().any(|t| t.3 != 0.0) { vec![0.0; rows * cols] } else { Vec::new() };
     for (i, j, r, c) in triplets {
         re[i * cols + j] += r;
-        im[i * cols + j] += c;
+        if !im.is_empty() {
+            im[i * cols + j] += c;
+        }
     }
     let complex = im.iter().any(|x| *x != 0.0);
     Ok(OctaveMatrix { rows, cols, re, im: complex.then_some(im), from_sparse: true })

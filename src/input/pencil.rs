@@ -12,14 +12,15 @@ use std::path::{Path, PathBuf};
 use faer::Mat;
 use serde_json::Value;
 
+use super::text_file::{read_text_file, TextFileError};
 use super::eigen_pencil::{read_eigen_pencil, EigenPencilError, PencilPorts};
 use crate::linear::{Jacobians, LinearDae};
 
 /// A malformed pencil file.
 #[derive(Debug, thiserror::Error)]
 pub enum PencilError {
-    #[error("{file}: cannot read: {source}")]
-    Io { file: PathBuf, source: std::io::Error },
+    #[error(transparent)]
+    Read(#[from] TextFileError),
     #[error("{file}:{line}:{column}: invalid JSON: {message}")]
     Json { file: PathBuf, line: usize, column: usize, message: String },
     #[error("{file}: field \"{field}\": {message}")]
@@ -141,21 +142,28 @@ pub fn read_pencil_file(file: &Path, ports: &PencilPorts) -> Result<PencilFile, 
 
 /// Reads a JSON pencil file.
 pub fn read_pencil(file: &Path) -> Result<PencilFile, PencilError> {
-    let text = std::fs::read_to_string(file).map_err(|source| PencilError::Io { file: file.to_path_buf(), source })?;
+    let text = read_text_file(file)?;
     parse_pencil(&text, file)
 }
 
 /// Parses the text of a pencil file (`file` names it in errors and anchors relative paths).
 pub fn parse_pencil(text: &str, file: &Path) -> Result<PencilFile, PencilError> {
-    let value: Value = serde_json::from_str(text).map_err(|e| PencilError::Json {
-        file: file.to_path_buf(),
-        line: e.line(),
-        column: e.column(),
-        message: e.to_string(),
-    })?;
-    let Value::Object(root) = value else {
+    // Every number becomes a JSON value (32 bytes) before it is a matrix entry: bound their
+    // count by the dense-matrix budget before parsing.
+    let separators = text.bytes().filter(|b| *b == b',').count();
+    if separators > crate::limits::MAX_DENSE_ENTRIES {
+        return Err(PencilError::Shape {
+            file: file.to_path_buf(),
+            message: format!("{separators} values: more than romdyn's budget of {} numbers for a JSON pencil (use Matrix Market files for large matrices)", crate::limits::MAX_DENSE_ENTRIES),
+        });
+    }
+    let json_error = |e: serde_json::Error| PencilError::Json { file: file.to_path_buf(), line: e.line(), column: e.column(), message: e.to_string() };
+    let value: Value = serde_json::from_str(text).map_err(json_error)?;
+    if !value.is_object() {
         return Err(PencilError::Shape { file: file.to_path_buf(), message: "expected a JSON object at the top level".into() });
-    };
+    }
+    // JSON leaves duplicate keys undefined and serde keeps the last: refuse them, at the key.
+    let UniqueFields(root) = serde_json::from_str(text).map_err(json_error)?;
     let r = Reader { file, root };
     let shape = |message: String| PencilError::Shape { file: file.to_path_buf(), message };
     let jacobians = match (r.matrix("Fyd")?, r.matrix("Fy")?, r.matrix("J")?, r.matrix("Jstar")?) {
@@ -204,4 +212,31 @@ pub fn parse_pencil(text: &str, file: &Path) -> Result<PencilFile, PencilError> 
         c_rate: None,
     };
     Ok(PencilFile { dae, dcoef: r.dcoef()? })
+}
+
+/// The top-level object of a pencil file, refusing a key that appears twice.
+struct UniqueFields(serde_json::Map<String, Value>);
+
+impl<'de> serde::Deserialize<'de> for UniqueFields {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Fields;
+        impl<'de> serde::de::Visitor<'de> for Fields {
+            type Value = UniqueFields;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a JSON object")
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(self, mut map: A) -> Result<UniqueFields, A::Error> {
+                let mut out = serde_json::Map::new();
+                while let Some(key) = map.next_key::<String>()? {
+                    if out.contains_key(&key) {
+                        return Err(serde::de::Error::custom(format!("field \"{key}\" appears twice")));
+                    }
+                    let value: Value = map.next_value()?;
+                    out.insert(key, value);
+                }
+                Ok(UniqueFields(out))
+            }
+        }
+        d.deserialize_map(Fields)
+    }
 }

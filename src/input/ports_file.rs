@@ -53,8 +53,8 @@ pub struct PortsFile {
 /// Why a ports file could not be read.
 #[derive(Debug, thiserror::Error)]
 pub enum PortsFileError {
-    #[error("{}: {source}", path.display())]
-    Io { path: PathBuf, source: std::io::Error },
+    #[error(transparent)]
+    Read(#[from] super::text_file::TextFileError),
     #[error("{}:{line}:{column}: error: {message}", path.display())]
     Syntax { path: PathBuf, line: usize, column: usize, message: String },
     #[error("{}: {list}[{index}] ({name}): {message}", path.display())]
@@ -231,14 +231,12 @@ pub fn parse_ports(text: &str, path: &Path) -> Result<PortsFile, PortsFileError>
     Ok(out)
 }
 
-/// Reads a ports file (at most 16 MiB).
+/// Reads a ports file (a regular UTF-8 file, see [`super::text_file`]; at most 16 MiB).
 pub fn read_ports_file(path: &Path) -> Result<PortsFile, PortsFileError> {
-    let io = |source| PortsFileError::Io { path: path.to_path_buf(), source };
-    let len = std::fs::metadata(path).map_err(io)?.len();
-    if len > 16 << 20 {
+    if let Some(len) = std::fs::metadata(path).ok().map(|m| m.len()).filter(|len| *len > 16 << 20) {
         return Err(PortsFileError::Syntax { path: path.to_path_buf(), line: 0, column: 0, message: format!("{len} bytes: a ports file is at most 16 MiB") });
     }
-    let text = std::fs::read_to_string(path).map_err(io)?;
+    let text = super::text_file::read_text_file(path)?;
     parse_ports(&text, path)
 }
 

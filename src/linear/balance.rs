@@ -21,6 +21,14 @@ pub(crate) fn balance_pencil(a: &Mat<f64>, b: &Mat<f64>) -> BalancedPencil {
     let (mut a, mut b) = (a.clone(), b.clone());
     let (mut row, mut col) = (vec![1.0; n], vec![1.0; n]);
     let pow2 = |s: f64| if s > 0.0 && s.is_finite() { (-s.log2().round()).exp2() } else { 1.0 };
+    // The 2-norm of entries whose squares overflow or underflow (1e±200): scaled by the
+    // largest first. Used only where the plain sum of squares is out of range.
+    let safe_norm = |xs: &mut dyn Iterator<Item = f64>| {
+        let v: Vec<f64> = xs.map(f64::abs).collect();
+        let m = v.iter().copied().fold(0.0, f64::max);
+        if m > 0.0 && m.is_finite() { m * v.iter().map(|x| (x / m).powi(2)).sum::<f64>().sqrt() } else { m }
+    };
+    let out_of_range = |sum: f64| !sum.is_finite() || sum < f64::MIN_POSITIVE;
     // Column-major passes (faer stores columns contiguously); each row's sum runs over
     // j = 0..n in order, as a row-wise loop would.
     for _sweep in 0..8 {
@@ -31,7 +39,9 @@ pub(crate) fn balance_pencil(a: &Mat<f64>, b: &Mat<f64>) -> BalancedPencil {
                 rs[i] += a[(i, j)].powi(2) + b[(i, j)].powi(2);
             }
         }
-        let fr: Vec<f64> = rs.iter().map(|s| pow2(s.sqrt())).collect();
+        let fr: Vec<f64> = (0..n)
+            .map(|i| pow2(if out_of_range(rs[i]) { safe_norm(&mut (0..n).flat_map(|j| [a[(i, j)], b[(i, j)]])) } else { rs[i].sqrt() }))
+            .collect();
         if fr.iter().any(|&f| f != 1.0) {
             changed = true;
             for j in 0..n {
@@ -45,7 +55,8 @@ pub(crate) fn balance_pencil(a: &Mat<f64>, b: &Mat<f64>) -> BalancedPencil {
             }
         }
         for j in 0..n {
-            let s = (0..n).map(|i| a[(i, j)].powi(2) + b[(i, j)].powi(2)).sum::<f64>().sqrt();
+            let sum = (0..n).map(|i| a[(i, j)].powi(2) + b[(i, j)].powi(2)).sum::<f64>();
+            let s = if out_of_range(sum) { safe_norm(&mut (0..n).flat_map(|i| [a[(i, j)], b[(i, j)]])) } else { sum.sqrt() };
             let f = pow2(s);
             if f != 1.0 {
                 changed = true;

@@ -58,6 +58,11 @@ impl ModalAnalysis {
         if jacobians.dim() == 0 {
             return Err(EigenError::Empty);
         }
+        // Non-finite, singular (det ≡ 0) pencils are refused before any deflation; pencils of
+        // extreme magnitude take the dense route, which rescales them exactly.
+        if super::degenerate::prepare(jacobians, dcoef)?.scale != 1.0 {
+            return Self::compute_with_dcoef(jacobians, route, dcoef);
+        }
         let (fyd, fy) = jacobians.derivatives();
         let Some(part) = DynamicPart::new(&fyd, &fy, dae.constraint_form, &dae.multipliers) else {
             return Self::compute_with_dcoef(jacobians, route, dcoef);

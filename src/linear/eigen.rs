@@ -67,6 +67,18 @@ pub enum EigenError {
     NoConvergence(usize),
     #[error("the pencil is empty")]
     Empty,
+    #[error("the pencil has non-finite entries: {0}")]
+    NonFinite(String),
+    #[error("dCoef = {} s: the coefficient of J(+c), J(-c) must be a positive normal number", crate::limits::readable(*.0))]
+    InvalidDcoef(f64),
+    #[error("the pencil is singular: det(λ F_yd + F_y) = 0 for every λ, so it has no eigenvalues to label ({detail}){}; a model with an unknown that no equation determines gives this", super::degenerate::list_unknowns(unknowns, unknown_names))]
+    Singular {
+        detail: String,
+        /// Unknowns (0-based) of a common null vector, largest entries first.
+        unknowns: Vec<usize>,
+        /// Names of all unknowns, when known ([`EigenError::with_unknown_names`]).
+        unknown_names: Vec<String>,
+    },
 }
 
 /// Raw output of QZ on a (balanced) pencil `A v = μ B v`, with the products `A V`, `B V`,
@@ -205,6 +217,16 @@ impl RawEigen {
     }
 }
 
+impl EigenError {
+    /// The error with the unknowns of a singular pencil named by `names` (the DAE's).
+    pub fn with_unknown_names(self, names: &[String]) -> Self {
+        match self {
+            EigenError::Singular { detail, unknowns, .. } => EigenError::Singular { detail, unknowns, unknown_names: names.to_vec() },
+            e => e,
+        }
+    }
+}
+
 impl ModalAnalysis {
     /// Eigenanalysis of a linear DAE by the chosen route, with the Jacobians' own dCoef.
     pub fn compute(jacobians: &Jacobians, route: EigenRoute) -> Result<Self, EigenError> {
@@ -217,6 +239,8 @@ impl ModalAnalysis {
         if jacobians.dim() == 0 {
             return Err(EigenError::Empty);
         }
+        let prepared = super::degenerate::prepare(jacobians, dcoef)?;
+        let jacobians = &prepared.jacobians;
         let (fyd, _fy) = jacobians.derivatives();
         let dcoef = match (jacobians, dcoef) {
             (Jacobians::Derivatives { .. }, Some(c)) => c,
@@ -273,7 +297,7 @@ impl ModalAnalysis {
                 k += 1;
             }
         }
-        Ok(ModalAnalysis { route, dcoef, modes: sort_units(units) })
+        super::degenerate::finish(ModalAnalysis { route, dcoef, modes: sort_units(units) }, prepared.scale)
     }
 
     /// Indices of the modes of one kind.

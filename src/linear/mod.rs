@@ -5,6 +5,7 @@
 mod balance;
 mod classify;
 mod dae;
+mod degenerate;
 mod deflate;
 mod dynamic_eigen;
 mod eigen;

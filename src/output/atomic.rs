@@ -1,6 +1,12 @@
 //! Atomic file output: write a temporary file beside the target, flush and sync it, then
 //! rename it over the target. A failed or abandoned write leaves neither a partial target
-//! nor the temporary file.
+//! nor the temporary file (on SIGINT/SIGTERM too, see [`super::cleanup`]).
+//!
+//! A set of files that belong together (a run's `.out`, `.mov`, `.log`, `.m`, `.json`) is
+//! put in place by [`commit_set`]: every file is synced first, then a journal
+//! `.NAME.romdyn-commit` lists the renames, the renames are done and the journal removed.
+//! A process killed during the renames leaves the journal: the set is incomplete while it
+//! exists, and [`recover_set`] (run by the next run with the same prefix) completes it.
 
 use std::fs::File;
 use std::io::{BufWriter, Write};
@@ -36,8 +42,19 @@ impl AtomicFile {
         if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
             std::fs::create_dir_all(dir).map_err(|e| io("create its directory", e))?;
         }
+        if path.is_dir() {
+            return Err(OutputError::Invalid { path: path.to_path_buf(), message: "is a directory: cannot write a file there".into() });
+        }
+        super::cleanup::remove_stale_temporaries(path.parent().unwrap_or(Path::new("")));
         let tmp = temp_path(path);
-        let file = File::create(&tmp).map_err(|e| io("create a temporary file", e))?;
+        super::cleanup::register(&tmp);
+        let file = match File::create(&tmp) {
+            Ok(f) => f,
+            Err(e) => {
+                super::cleanup::unregister(&tmp);
+                return Err(io("create a temporary file", e));
+            }
+        };
         Ok(AtomicFile { path: path.to_path_buf(), tmp, out: Some(BufWriter::new(file)) })
     }
 
@@ -53,30 +70,104 @@ impl AtomicFile {
         write(out).map_err(|source| OutputError::Io { path, operation: "write", source })
     }
 
-    /// Flushes, syncs and renames the file onto its target.
-    pub fn commit(mut self) -> Result<(), OutputError> {
+    /// Flushes and syncs the temporary file (it stays under its temporary name).
+    fn sync(&mut self) -> Result<(), OutputError> {
         let io = |operation, source| OutputError::Io { path: self.path.clone(), operation, source };
         if let Some(out) = self.out.take() {
-            let result = (|| {
-                let file = out.into_inner().map_err(|e| io("write", e.into_error()))?;
-                file.sync_all().map_err(|e| io("sync", e))?;
-                std::fs::rename(&self.tmp, &self.path).map_err(|e| io("rename the temporary file onto it", e))
-            })();
-            if result.is_err() {
-                let _ = std::fs::remove_file(&self.tmp);
-            }
-            result?;
+            let file = out.into_inner().map_err(|e| io("write", e.into_error()))?;
+            file.sync_all().map_err(|e| io("sync", e))?;
         }
         Ok(())
+    }
+
+    fn rename(&self) -> Result<(), OutputError> {
+        std::fs::rename(&self.tmp, &self.path).map_err(|source| OutputError::Io { path: self.path.clone(), operation: "rename the temporary file onto it", source })
+    }
+
+    /// Flushes, syncs and renames the file onto its target.
+    pub fn commit(mut self) -> Result<(), OutputError> {
+        self.sync()?;
+        let _guard = super::cleanup::commit_guard();
+        self.rename()?;
+        self.committed();
+        Ok(())
+    }
+
+    fn committed(&mut self) {
+        super::cleanup::unregister(&self.tmp);
+        self.tmp = PathBuf::new();
     }
 }
 
 impl Drop for AtomicFile {
     fn drop(&mut self) {
-        if self.out.take().is_some() {
+        if !self.tmp.as_os_str().is_empty() {
             let _ = std::fs::remove_file(&self.tmp);
+            super::cleanup::unregister(&self.tmp);
         }
     }
+}
+
+/// Puts a set of files in place together (see the module doc); `journal` names the set's
+/// journal. On an error no file of the set is left in place.
+pub fn commit_set(mut files: Vec<AtomicFile>, journal: &Path) -> Result<(), OutputError> {
+    for f in files.iter_mut() {
+        f.sync()?;
+    }
+    let io = |operation, source| OutputError::Io { path: journal.to_path_buf(), operation, source };
+    let mut text = String::new();
+    for f in &files {
+        let (Some(tmp), Some(target)) = (f.tmp.to_str(), f.path.to_str()) else {
+            return Err(OutputError::Invalid { path: f.path.clone(), message: "an output path must be UTF-8".into() });
+        };
+        if tmp.contains('\n') || target.contains('\n') || tmp.contains('\t') {
+            return Err(OutputError::Invalid { path: f.path.clone(), message: "an output path must not contain a tab or a newline".into() });
+        }
+        text.push_str(&format!("{tmp}\t{target}\n"));
+    }
+    let _guard = super::cleanup::commit_guard();
+    write_journal(journal, &text).map_err(|e| io("write the commit journal", e))?;
+    for k in 0..files.len() {
+        if let Err(e) = files[k].rename() {
+            // Take the set back out: complete or absent.
+            for f in &files[..k] {
+                let _ = std::fs::remove_file(&f.path);
+            }
+            let _ = std::fs::remove_file(journal);
+            return Err(e);
+        }
+    }
+    for f in files.iter_mut() {
+        f.committed();
+    }
+    std::fs::remove_file(journal).map_err(|e| io("remove the commit journal", e))
+}
+
+fn write_journal(journal: &Path, text: &str) -> std::io::Result<()> {
+    let tmp = temp_path(journal);
+    let mut f = File::create(&tmp)?;
+    f.write_all(text.as_bytes())?;
+    f.sync_all()?;
+    std::fs::rename(&tmp, journal)
+}
+
+/// Completes a set whose commit was interrupted (its journal exists): renames what is
+/// still under a temporary name and removes the journal. Returns whether there was one.
+pub fn recover_set(journal: &Path) -> Result<bool, OutputError> {
+    let text = match std::fs::read_to_string(journal) {
+        Ok(t) => t,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(false),
+        Err(source) => return Err(OutputError::Io { path: journal.to_path_buf(), operation: "read the commit journal", source }),
+    };
+    for line in text.lines() {
+        if let Some((tmp, target)) = line.split_once('\t') {
+            if Path::new(tmp).exists() {
+                std::fs::rename(tmp, target).map_err(|source| OutputError::Io { path: target.into(), operation: "complete an interrupted commit", source })?;
+            }
+        }
+    }
+    std::fs::remove_file(journal).map_err(|source| OutputError::Io { path: journal.to_path_buf(), operation: "remove the commit journal", source })?;
+    Ok(true)
 }
 
 /// Writes `path` atomically with the bytes produced by `write`.
@@ -108,6 +199,39 @@ mod tests {
         assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0);
         write_atomic_bytes(&target, b"whole").unwrap();
         assert_eq!(std::fs::read(&target).unwrap(), b"whole");
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
+    #[test]
+    fn a_set_whose_rename_fails_is_taken_back_out() {
+        let dir = std::env::temp_dir().join(format!("romdyn-atomic-set-{}", std::process::id()));
+        let (a, b) = (dir.join("run.out"), dir.join("run.mov"));
+        let journal = dir.join(".run.romdyn-commit");
+        let mut fa = AtomicFile::create(&a).unwrap();
+        fa.write_with(|w| w.write_all(b"out")).unwrap();
+        let mut fb = AtomicFile::create(&b).unwrap();
+        fb.write_with(|w| w.write_all(b"mov")).unwrap();
+        // A non-empty directory appears where the second file goes: its rename fails.
+        std::fs::create_dir_all(b.join("x")).unwrap();
+        assert!(commit_set(vec![fa, fb], &journal).is_err());
+        assert!(!a.exists() && !journal.exists());
+        std::fs::remove_dir_all(&b).unwrap();
+        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0);
+        // The same set without the obstacle is put in place, journal removed.
+        let mut fa = AtomicFile::create(&a).unwrap();
+        fa.write_with(|w| w.write_all(b"out")).unwrap();
+        let fb = AtomicFile::create(&b).unwrap();
+        commit_set(vec![fa, fb], &journal).unwrap();
+        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 2);
+        // An interrupted commit (journal written, renames not done) is completed.
+        let mut fc = AtomicFile::create(&dir.join("run.log")).unwrap();
+        fc.write_with(|w| w.write_all(b"log")).unwrap();
+        fc.sync().unwrap();
+        std::fs::write(&journal, format!("{}\t{}\n", fc.tmp.display(), dir.join("run.log").display())).unwrap();
+        std::mem::forget(fc);
+        assert!(recover_set(&journal).unwrap());
+        assert_eq!(std::fs::read(dir.join("run.log")).unwrap(), b"log");
+        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 3);
         std::fs::remove_dir_all(&dir).ok();
     }
 

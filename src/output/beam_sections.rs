@@ -47,6 +47,11 @@ impl BeamSectionWriter {
     }
 
     /// Flushes and renames both files into place.
+    /// The `.act` and `.bst` files, to be put in place with the rest of their set.
+    pub fn into_files(self) -> [AtomicFile; 2] {
+        [self.forces, self.strains]
+    }
+
     pub fn finish(self) -> Result<(), OutputError> {
         self.forces.commit()?;
         self.strains.commit()

@@ -4,6 +4,7 @@
 
 pub mod atomic;
 pub mod beam_sections;
+pub mod cleanup;
 pub mod bode;
 pub mod figure;
 pub mod frequency_plot;

@@ -107,6 +107,11 @@ impl MotionWriter {
     }
 
     /// Flushes and renames the file into place.
+    /// The file, to be put in place with the rest of its set.
+    pub fn into_file(self) -> AtomicFile {
+        self.file
+    }
+
     pub fn finish(self) -> Result<(), OutputError> {
         self.file.commit()
     }

@@ -80,6 +80,11 @@ impl StepLog {
     }
 
     /// Puts the file in place.
+    /// The file, to be put in place with the rest of its set.
+    pub fn into_file(self) -> AtomicFile {
+        self.file
+    }
+
     pub fn finish(self) -> Result<(), OutputError> {
         self.file.commit()
     }

@@ -17,4 +17,6 @@ pub enum RomError {
     Imposed(String),
     #[error(transparent)]
     Eigen(#[from] EigenError),
+    #[error("frequency grid: {0}")]
+    Grid(String),
 }

@@ -15,6 +15,20 @@ pub fn log_frequencies(fmin_hz: f64, fmax_hz: f64, n: usize) -> Vec<f64> {
     (0..n).map(|k| (a + (b - a) * k as f64 / (n - 1) as f64).exp()).collect()
 }
 
+/// [`log_frequencies`] after checking the grid: `0 < fmin < fmax` finite and
+/// `2 ≤ n ≤` [`MAX_FREQUENCY_POINTS`](crate::limits::MAX_FREQUENCY_POINTS) (each point
+/// holds an outputs × inputs response of the full model and of each ROM).
+pub fn frequency_grid(fmin_hz: f64, fmax_hz: f64, n: usize) -> Result<Vec<f64>, RomError> {
+    let max = crate::limits::MAX_FREQUENCY_POINTS;
+    if !(n >= 2 && n <= max) {
+        return Err(RomError::Grid(format!("{n} points: a frequency grid has 2 to {max} points")));
+    }
+    if !(fmin_hz > 0.0 && fmin_hz < fmax_hz && fmax_hz.is_finite()) {
+        return Err(RomError::Grid(format!("from {fmin_hz} Hz to {fmax_hz} Hz: the band must satisfy 0 < fmin < fmax (finite)")));
+    }
+    Ok(log_frequencies(fmin_hz, fmax_hz, n))
+}
+
 /// `z/u = (C̃ + jω C̃_v) (jω F_yd + F_y)⁻¹ B̃` at each frequency [Hz] (outputs × inputs).
 pub fn full_frequency_response(dae: &LinearDae, freq_hz: &[f64]) -> Vec<Mat<c64>> {
     let (fyd, fy) = dae.jacobians.derivatives();

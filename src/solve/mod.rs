@@ -4,9 +4,11 @@
 
 mod integrate;
 mod newton;
+mod singular;
 mod static_analysis;
 
 pub use crate::model::Method;
 pub use integrate::{constraint_rate, initial_derivatives, initial_derivatives_with, newton_dcoef, Integrator, StepRecord};
 pub use newton::{newton, Convergence, NewtonFailure, NewtonSettings, NewtonWorkspace, SolveError, Update};
+pub use singular::explain_singular_matrix;
 pub use static_analysis::static_solution;

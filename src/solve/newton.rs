@@ -127,8 +127,11 @@ pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &Newton
         ResidualNorm::Max => worst(f).1,
         ResidualNorm::Euclidean => f.iter().map(|x| x * x).sum::<f64>().sqrt(),
     };
+    // Why the matrix was singular, when an iteration found it so (named in a failure).
+    let singular: std::cell::RefCell<Option<String>> = Default::default();
     let fail = |st: &State, iteration, f: &[f64], reason: Option<String>| {
         let (i, _) = worst(f);
+        let reason = [reason, singular.borrow().clone()].into_iter().flatten().reduce(|a, b| format!("{a}; {b}"));
         NewtonFailure { time: st.t, iteration, residual_norm: measure(f), worst_equation: asm.dofs.equation_name(asm.model, i), worst_value: f[i], reason }
     };
     for iteration in 0..=settings.max_iterations {
@@ -147,6 +150,9 @@ pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &Newton
             *x = -*x;
         }
         if ws.lu.solve(j, &mut f).is_err() {
+            if singular.borrow().is_none() {
+                *singular.borrow_mut() = super::singular::explain_singular_matrix(asm, j);
+            }
             // A singular Jacobian, typically at the first static iteration where stiffness
             // comes only from joint reactions that are still zero: take one regularized
             // step, `(J + μ I) δ = −F` with μ a small fraction of the largest entry.

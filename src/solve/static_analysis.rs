@@ -12,7 +12,12 @@ pub fn static_solution(asm: &Assembler, st: &mut State, steps: usize, settings: 
     let steps = steps.max(1);
     for k in 1..=steps {
         st.load = k as f64 / steps as f64;
-        iterations += newton(asm, st, Update::Static, settings, &mut ws)?.iterations;
+        let done = newton(asm, st, Update::Static, settings, &mut ws).map_err(|mut failure| {
+            let increment = format!("load increment {k} of {steps} (loads and gravity at {} of their value)", k as f64 / steps as f64);
+            failure.reason = Some(failure.reason.take().map_or(increment.clone(), |r| format!("{increment}; {r}")));
+            failure
+        })?;
+        iterations += done.iterations;
         st.rebase(&asm.dofs);
     }
     st.load = 1.0;

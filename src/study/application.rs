@@ -90,7 +90,7 @@ impl Study {
         let dae = linearize_ports(&model, &state, &inputs, &outputs, None)?;
         let parts = app.remove_springs.iter().map(|&l| element_part(&model, &state, l)).collect::<Result<Vec<_>, _>>()?;
         let file_dcoef = problem.eigenanalysis.as_ref().and_then(|e| e.dcoef);
-        let modal = ModalAnalysis::of_dae(&dae, eigen.route, eigen.dcoef.or(file_dcoef))?;
+        let modal = ModalAnalysis::of_dae(&dae, eigen.route, eigen.dcoef.or(file_dcoef)).map_err(|e| e.with_unknown_names(&dae.unknown_names))?;
         let (projected, feedback) = if parts.is_empty() {
             (None, None)
         } else {

@@ -3,7 +3,7 @@
 use faer::{c64, Mat};
 
 use crate::output::frequency_plot::{default_band, FrequencyResponses};
-use crate::rom::{full_frequency_response, log_frequencies};
+use crate::rom::{frequency_grid, full_frequency_response};
 
 use super::{ReducedModel, Study, StudyError};
 
@@ -91,7 +91,8 @@ impl Study {
         if !(a < b) {
             return option("--fmin", format!("need FMIN < FMAX, got --fmin {a} --fmax {b} Hz"));
         }
-        Ok(log_frequencies(a, b, grid.points))
+        // The size budget (romdyn::limits::MAX_FREQUENCY_POINTS) is the grid's own check.
+        frequency_grid(a, b, grid.points).map_err(|e| StudyError::Option { option: "--points", message: e.to_string() })
     }
 
     /// The full model's responses at `freq_hz`, to which ROMs can be added.

@@ -120,7 +120,7 @@ impl Study {
                 return Err(StudyError::Option { option: "--dcoef", message: format!("dCoef must be a positive finite time step coefficient [s], got {c}") });
             }
         }
-        let modal = ModalAnalysis::of_dae(&dae, eigen.route, eigen.dcoef)?;
+        let modal = ModalAnalysis::of_dae(&dae, eigen.route, eigen.dcoef).map_err(|e| e.with_unknown_names(&dae.unknown_names))?;
         let warnings = port_warnings(&dae, &modal);
         Ok(Study { dae, modal, model, warnings, reference_time: None, application: None })
     }

@@ -4,6 +4,7 @@
 pub mod beams;
 pub mod cli;
 pub mod fixtures;
+pub mod fuzz;
 pub mod mbdyn;
 pub mod models;
 

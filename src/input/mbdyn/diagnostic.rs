@@ -25,6 +25,9 @@ pub struct MbdynError {
 
 impl fmt::Display for MbdynError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.line == 0 {
+            return write!(f, "{}: error: {}", self.file.display(), self.message);
+        }
         write!(f, "{}:{}:{}: error: {}", self.file.display(), self.line, self.column, self.message)?;
         if !self.source_line.is_empty() {
             let width = self.line.to_string().len();

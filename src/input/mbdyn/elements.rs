@@ -119,7 +119,17 @@ fn body(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<RigidBody,
             return Err(c.error_at(span, format!("negative mass {mass} (write 'allow negative mass' if intended)")));
         }
         let cm = on.relative_position(c, "centre of mass offset [m]")?;
+        let j_span = c.here();
         let mut j = on.relative_matrix(c, "inertia about the centre of mass [kg m^2]")?;
+        if !allow_negative {
+            // An inertia tensor is symmetric positive semi-definite (principal moments ≥ 0).
+            let sym = (j + j.transpose()) * 0.5;
+            let moments = sym.symmetric_eigenvalues();
+            let (lo, hi) = (moments.min(), moments.amax());
+            if (j - j.transpose()).amax() > 1e-12 * hi.max(f64::MIN_POSITIVE) || lo < -1e-12 * hi {
+                return Err(c.error_at(j_span, format!("the inertia is not symmetric positive semi-definite (principal moments {:.6e}, {:.6e}, {:.6e} kg m^2)", moments[0], moments[1], moments[2])));
+            }
+        }
         // `inertial, {node | R}` (body.cc, ReadBody): the frame the inertia is written in.
         if c.accept("inertial") {
             if !c.accept("node") {

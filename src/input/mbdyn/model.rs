@@ -27,7 +27,14 @@ pub struct MbdynModel {
 
 /// Reads an MBDyn input file into a model.
 pub fn read_model(path: &Path) -> Result<MbdynModel, MbdynError> {
-    build(&parse_file(path)?)
+    let doc = parse_file(path)?;
+    let m = build(&doc)?;
+    // An empty, blank or comments-only file would "run" and write empty outputs.
+    if m.model.nodes.is_empty() && m.model.elements.is_empty() {
+        let at = Span { file: 0, line: 1, column: 1 };
+        return Err(doc.sources.error(at, "the file defines no nodes and no elements: there is no model to solve (expected 'begin: nodes;' and 'begin: elements;' blocks)"));
+    }
+    Ok(m)
 }
 
 const BLOCKS: [&str; 7] = ["data", "initial value", "control data", "nodes", "drivers", "elements", "inverse dynamics"];
@@ -86,6 +93,7 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
             return Err(src.error(b.span, format!("block '{name}' appears twice (first at line {})", prev.line)));
         }
     }
+    block_order(doc)?;
     if let Some(st) = block(doc, "drivers").and_then(|b| b.statements.first()) {
         return Err(src.error(st.span, "file drivers are not supported by romdyn"));
     }
@@ -138,6 +146,10 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
                 b.gravity(g);
             }
             Parsed::Element(e) => {
+                let on = e.nodes();
+                if let Some(n) = on.iter().enumerate().find(|(k, n)| on[..*k].contains(n)).map(|(_, n)| n) {
+                    return Err(src.error(label_span, format!("{} {} connects node {n} to itself", e.type_name(), e.label())));
+                }
                 let space = label_space(&st.keyword);
                 if let Some(prev) = labels.insert((space, e.label()), st.span) {
                     return Err(src.error(label_span, format!("{space} {} is defined twice (first at line {})", e.label(), prev.line)));
@@ -150,6 +162,22 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
     check_counts(doc, &counts, &found)?;
     let model = b.build().map_err(|e| src.error(first, e.to_string()))?;
     Ok(MbdynModel { model, problem })
+}
+
+/// MBDyn's data manager reads `control data`, then `nodes`, `drivers` and `elements` in
+/// this order (mbdyn/base/dataman.cc: "<begin: nodes;> expected"); romdyn refuses the
+/// same files.
+fn block_order(doc: &Document) -> Result<(), MbdynError> {
+    const ORDER: [&str; 4] = ["control data", "nodes", "drivers", "elements"];
+    let mut last: Option<(usize, &Block)> = None;
+    for b in &doc.blocks {
+        let Some(rank) = ORDER.iter().position(|o| same_keyword(o, &b.name)) else { continue };
+        if let Some((prev, pb)) = last.filter(|(prev, _)| *prev > rank) {
+            return Err(doc.sources.error(b.span, format!("block '{}' must come before '{}' (line {}): MBDyn reads control data, nodes, drivers and elements in this order", ORDER[rank], ORDER[prev], pb.span.line)));
+        }
+        last = Some((rank, b));
+    }
+    Ok(())
 }
 
 /// Errors unless every kind found in the model is declared in control data with its

@@ -109,14 +109,20 @@ impl Reader {
     }
 
     fn read(&mut self, path: &Path, from: Option<Span>) -> Result<(), MbdynError> {
-        let text = std::fs::read_to_string(path).map_err(|e| match from {
-            Some(span) => self.doc.sources.error(span, format!("cannot include \"{}\": {e}", path.display())),
-            None => MbdynError { file: path.to_path_buf(), line: 0, column: 0, message: format!("cannot read: {e}"), source_line: String::new() },
+        let text = crate::input::text_file::read_text_file(path).map_err(|e| match (from, e.at) {
+            (Some(span), _) => self.doc.sources.error(span, format!("cannot include \"{}\": {}", path.display(), e.message)),
+            (None, Some((line, column))) => MbdynError { file: path.to_path_buf(), line, column, message: e.message, source_line: String::new() },
+            // Line 0: the error is about the whole file (printed without a position).
+            (None, None) => MbdynError { file: path.to_path_buf(), line: 0, column: 0, message: e.message, source_line: String::new() },
         })?;
         self.read_text(text, path)
     }
 
-    fn read_text(&mut self, text: String, path: &Path) -> Result<(), MbdynError> {
+    fn read_text(&mut self, mut text: String, path: &Path) -> Result<(), MbdynError> {
+        // A UTF-8 byte-order mark (editors on Windows write one) is not part of the text.
+        if text.starts_with('\u{feff}') {
+            text.drain(..'\u{feff}'.len_utf8());
+        }
         let file = self.doc.sources.files.len();
         self.doc.sources.files.push((path.to_path_buf(), text));
         self.stack.push(path.to_path_buf());

@@ -6,6 +6,7 @@
 //! and real-time settings) are accepted and ignored: romdyn uses its own.
 
 use super::cursor::Cursor;
+use crate::limits::readable;
 use super::diagnostic::{MbdynError, Sources};
 use super::drives::{drive, Drives};
 use super::parser::{known, Block};
@@ -131,6 +132,23 @@ pub fn initial_value(block: Option<&Block>, sources: &Sources, drives: &Drives) 
     }
     if a.final_time < a.initial_time {
         return Err(sources.error(iv.span, format!("final time {} is before initial time {}", a.final_time, a.initial_time)));
+    }
+    if let (Some(span), Some(t)) = (eigen_span, a.eigenanalysis.as_ref().and_then(|r| r.times.iter().copied().find(|t| *t < a.initial_time))) {
+        return Err(sources.error(span, format!("eigenanalysis time {t} s is before the initial time {} s: it would never be reached", a.initial_time)));
+    }
+    let steps = (a.final_time - a.initial_time) / a.time_step;
+    if a.final_time.is_finite() && !(steps <= crate::limits::MAX_TIME_STEPS) {
+        return Err(sources.error(
+            iv.span,
+            format!(
+                "initial time {} s to final time {} s with time step {} s is {} steps, more than romdyn's limit of {:e} steps per run",
+                readable(a.initial_time),
+                readable(a.final_time),
+                readable(a.time_step),
+                readable(steps.round()),
+                crate::limits::MAX_TIME_STEPS
+            ),
+        ));
     }
     Ok(a)
 }

@@ -1,0 +1,235 @@
+//! Pencils the eigenanalysis cannot answer honestly, found before QZ, and the exact
+//! rescaling that lets extreme but regular pencils through.
+//!
+//! - Non-finite entries (NaN, ±∞, or `F_y = (J − J*)/(2c)` overflowing for a tiny `c`,
+//!   eq. 16) are refused, naming the matrix and the entry.
+//! - Extreme magnitudes (largest entry 1e308, or 1e-300): both matrices are multiplied by
+//!   the same power of two so the exponents of their nonzero entries centre on 1; this is exact and leaves every
+//!   eigenvalue and right vector unchanged (left vectors are scaled back by [`finish`]).
+//!   Rows and columns of very different sizes (1e-200 next to 1e200) are then equilibrated
+//!   by the balancing before QZ.
+//! - A singular pencil, `det(λ F_yd + F_y) ≡ 0` (every λ is an "eigenvalue"; e.g. an
+//!   all-zero pencil, or an unknown with no entry in either matrix: a common null vector),
+//!   has no eigenvalues to label. A regular pencil has at most n values of `s` where
+//!   `F_y + s F_yd` is singular, so the pencil is declared singular when, after
+//!   balancing, this matrix is numerically rank deficient (smallest pivot of a
+//!   full-pivoting LU below `10 n ε` of the largest) at two unrelated shifts `s`. An
+//!   unknown or equation without any entry is named.
+
+use faer::Mat;
+
+use super::balance::balance_pencil;
+use super::dae::Jacobians;
+use super::eigen::{EigenError, ModalAnalysis};
+
+/// The largest absolute entry of a matrix (NaN if any entry is NaN).
+fn max_abs(m: &Mat<f64>) -> f64 {
+    let mut x = 0.0f64;
+    for j in 0..m.ncols() {
+        for i in 0..m.nrows() {
+            let v = m[(i, j)].abs();
+            if !(v <= x) {
+                x = v;
+            }
+        }
+    }
+    x
+}
+
+/// The smallest nonzero absolute entry (∞ for a zero matrix).
+fn min_nonzero_abs(m: &Mat<f64>) -> f64 {
+    let mut x = f64::INFINITY;
+    for j in 0..m.ncols() {
+        for i in 0..m.nrows() {
+            let v = m[(i, j)].abs();
+            if v > 0.0 && v < x {
+                x = v;
+            }
+        }
+    }
+    x
+}
+
+fn first_non_finite(m: &Mat<f64>) -> Option<(usize, usize, f64)> {
+    (0..m.ncols()).flat_map(|j| (0..m.nrows()).map(move |i| (i, j))).find(|&(i, j)| !m[(i, j)].is_finite()).map(|(i, j)| (i, j, m[(i, j)]))
+}
+
+/// Jacobians rescaled for the eigenanalysis, and the factor `s` they were multiplied by.
+pub(crate) struct Prepared {
+    pub jacobians: Jacobians,
+    pub scale: f64,
+}
+
+/// Checks a pencil before QZ (see the module doc) and rescales it by a power of two;
+/// `dcoef` is the coefficient of the Λ form requested for a pencil given as F_yd, F_y.
+pub(crate) fn prepare(jacobians: &Jacobians, dcoef: Option<f64>) -> Result<Prepared, EigenError> {
+    let non_finite = |what: &str, m: &Mat<f64>| first_non_finite(m).map(|(i, j, x)| EigenError::NonFinite(format!("{what} entry ({}, {}) is {x}", i + 1, j + 1)));
+    let (a, b, names) = match jacobians {
+        Jacobians::Derivatives { fyd, fy } => (fyd, fy, ["F_yd", "F_y"]),
+        Jacobians::Coefficient { j, jstar, .. } => (j, jstar, ["J(+c)", "J(-c)"]),
+    };
+    if let Some(e) = non_finite(names[0], a).or_else(|| non_finite(names[1], b)) {
+        return Err(e);
+    }
+    let dcoef_ok = |c: f64| c.is_normal() && c > 0.0;
+    if let Some(c) = dcoef.filter(|c| !dcoef_ok(*c)) {
+        return Err(EigenError::InvalidDcoef(c));
+    }
+    // A power of two that centres the exponents of the nonzero entries on 1: the product is
+    // exact, and entries spanning more than the double range's half (1e-151 next to 1e180)
+    // neither overflow nor underflow.
+    let (largest, smallest) = (max_abs(a).max(max_abs(b)), min_nonzero_abs(a).min(min_nonzero_abs(b)));
+    // Pencils of ordinary magnitudes are left exactly as they are.
+    let ordinary = largest <= 2f64.powi(400) && smallest >= 2f64.powi(-400);
+    let scale = if largest > 0.0 && !ordinary { (-((largest.log2() + smallest.log2()) / 2.0).round()).exp2() } else { 1.0 };
+    let scaled = |m: &Mat<f64>| m * faer::Scale(scale);
+    let jacobians = match jacobians {
+        Jacobians::Derivatives { fyd, fy } => Jacobians::Derivatives { fyd: scaled(fyd), fy: scaled(fy) },
+        Jacobians::Coefficient { j, jstar, dcoef } => {
+            if !dcoef_ok(*dcoef) {
+                return Err(EigenError::InvalidDcoef(*dcoef));
+            }
+            Jacobians::Coefficient { j: scaled(j), jstar: scaled(jstar), dcoef: *dcoef }
+        }
+    };
+    let (fyd, fy) = jacobians.derivatives();
+    if let Some(e) = non_finite("F_y = (J(+c) - J(-c))/(2 dCoef) (eq. 16; dCoef too small for these matrices)", &fy) {
+        return Err(e);
+    }
+    if let (Some(c), Jacobians::Derivatives { .. }) = (dcoef, &jacobians) {
+        if !(max_abs(&fyd) + c * max_abs(&fy)).is_finite() {
+            return Err(EigenError::NonFinite(format!("J = F_yd + dCoef F_y overflows with dCoef = {c} s")));
+        }
+    }
+    check_regular(&fyd, &fy)?;
+    Ok(Prepared { jacobians, scale })
+}
+
+/// Errors when `λ F_yd + F_y` is singular for every λ (see the module doc).
+fn check_regular(fyd: &Mat<f64>, fy: &Mat<f64>) -> Result<(), EigenError> {
+    let n = fyd.nrows();
+    let empty_col = (0..n).find(|&j| (0..n).all(|i| fyd[(i, j)] == 0.0 && fy[(i, j)] == 0.0));
+    let empty_row = (0..n).find(|&i| (0..n).all(|j| fyd[(i, j)] == 0.0 && fy[(i, j)] == 0.0));
+    if empty_col.is_some() || empty_row.is_some() {
+        let mut what = Vec::new();
+        if let Some(j) = empty_col {
+            what.push(format!("unknown {} has no entry in F_yd or F_y", j + 1));
+        }
+        if let Some(i) = empty_row {
+            what.push(format!("equation {} has no entry in F_yd or F_y", i + 1));
+        }
+        return Err(EigenError::Singular { detail: what.join(", "), unknowns: empty_col.into_iter().collect(), unknown_names: Vec::new() });
+    }
+    let balanced = balance_pencil(fy, fyd);
+    let (a, b) = (&balanced.a, &balanced.b);
+    let ratio = {
+        let (na, nb) = (max_abs(a), max_abs(b));
+        if na > 0.0 && nb > 0.0 { na / nb } else { 1.0 }
+    };
+    let tolerance = 10.0 * n as f64 * f64::EPSILON;
+    // Two shifts with no relation to each other or to simple eigenvalues (0, ±1, ±2, …).
+    for s in [0.734_918_251_3, -1.618_033_988_7] {
+        let m = a + b * faer::Scale(s * ratio);
+        let lu = m.full_piv_lu();
+        let u = lu.U();
+        let pivots: Vec<f64> = (0..n).map(|k| u[(k, k)].abs()).collect();
+        let largest = pivots.iter().copied().fold(0.0, f64::max);
+        let smallest = pivots.iter().copied().fold(f64::INFINITY, f64::min);
+        if smallest > tolerance * largest {
+            return Ok(());
+        }
+    }
+    Err(EigenError::Singular {
+        detail: format!("F_y + s F_yd is rank deficient at two unrelated shifts s (smallest LU pivot below {tolerance:.1e} of the largest, after balancing)"),
+        unknowns: common_null_vector(a, b),
+        unknown_names: Vec::new(),
+    })
+}
+
+/// Largest system whose common null vector is looked for (dense SVD of `[A; B]`).
+const NULL_VECTOR_LIMIT: usize = 2000;
+
+/// The unknowns of a common null vector `A v = B v = 0` (entries within a tenth of the
+/// largest, largest first), when `[A; B]` is rank deficient; empty otherwise.
+fn common_null_vector(a: &Mat<f64>, b: &Mat<f64>) -> Vec<usize> {
+    let n = a.ncols();
+    if n == 0 || n > NULL_VECTOR_LIMIT {
+        return Vec::new();
+    }
+    let stacked = Mat::<f64>::from_fn(2 * n, n, |i, j| if i < n { a[(i, j)] } else { b[(i - n, j)] });
+    let Ok(svd) = stacked.thin_svd() else { return Vec::new() };
+    let s = svd.S();
+    if !(s[n - 1] <= 10.0 * n as f64 * f64::EPSILON * s[0]) {
+        return Vec::new();
+    }
+    let v = svd.V();
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by(|&x, &y| v[(y, n - 1)].abs().total_cmp(&v[(x, n - 1)].abs()));
+    let top = v[(order[0], n - 1)].abs();
+    order.into_iter().take_while(|&i| v[(i, n - 1)].abs() >= 0.1 * top).collect()
+}
+
+/// ", undetermined unknowns: …" for a message (1-based indices, or names when given).
+pub(crate) fn list_unknowns(unknowns: &[usize], names: &[String]) -> String {
+    if unknowns.is_empty() {
+        return String::new();
+    }
+    const SHOWN: usize = 8;
+    let mut list: Vec<String> = unknowns.iter().take(SHOWN).map(|&k| names.get(k).cloned().unwrap_or_else(|| format!("unknown {}", k + 1))).collect();
+    if unknowns.len() > SHOWN {
+        list.push(format!("… {} more", unknowns.len() - SHOWN));
+    }
+    format!("; a common null vector of F_yd and F_y involves {}", list.join(", "))
+}
+
+/// Undoes [`prepare`]'s scaling on the left vectors (normalized with the scaled F_yd) and
+/// refuses a result whose labels cannot be trusted (a non-finite λ labelled dynamic or zero).
+pub(crate) fn finish(mut modal: ModalAnalysis, scale: f64) -> Result<ModalAnalysis, EigenError> {
+    for m in &mut modal.modes {
+        if let Some(u) = m.left.as_mut() {
+            for i in 0..u.nrows() {
+                u[i] *= scale;
+            }
+        }
+        if m.kind != super::ModeKind::Infinite && !(m.lambda.re.is_finite() && m.lambda.im.is_finite() && !m.error.is_nan()) {
+            return Err(EigenError::NonFinite(format!("QZ gave λ = {} labelled {}", m.lambda, m.kind.name())));
+        }
+    }
+    Ok(modal)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn derivatives(fyd: Mat<f64>, fy: Mat<f64>) -> Jacobians {
+        Jacobians::Derivatives { fyd, fy }
+    }
+
+    #[test]
+    fn zero_and_common_null_vector_pencils_are_singular() {
+        let zero = derivatives(Mat::zeros(3, 3), Mat::zeros(3, 3));
+        assert!(matches!(prepare(&zero, None), Err(EigenError::Singular { detail: m, .. }) if m.contains("unknown 1")));
+        // A common null vector that is not a coordinate: v = (1, 1) with F_yd v = F_y v = 0.
+        let fyd = Mat::from_fn(2, 2, |i, j| if j == 0 { 1.0 + i as f64 } else { -1.0 - i as f64 });
+        let fy = Mat::from_fn(2, 2, |_, j| if j == 0 { 3.0 } else { -3.0 });
+        assert!(matches!(prepare(&derivatives(fyd, fy), None), Err(EigenError::Singular { detail: m, unknowns, .. }) if m.contains("rank deficient") && unknowns.len() == 2));
+        // Regular: the two-mass system's kind of pencil.
+        let ok = derivatives(Mat::<f64>::identity(2, 2), Mat::from_fn(2, 2, |i, j| [[0.0, -1.0], [4.0, 0.1]][i][j]));
+        assert!(prepare(&ok, None).is_ok());
+    }
+
+    #[test]
+    fn non_finite_entries_and_tiny_dcoef_are_refused() {
+        let mut fy = Mat::<f64>::identity(2, 2);
+        fy[(1, 0)] = f64::NAN;
+        assert!(matches!(prepare(&derivatives(Mat::identity(2, 2), fy), None), Err(EigenError::NonFinite(m)) if m.contains("F_y entry (2, 1)")));
+        let j = Mat::<f64>::identity(2, 2);
+        let jstar = Mat::<f64>::identity(2, 2) * faer::Scale(-1.0);
+        let tiny = Jacobians::Coefficient { j: j.clone(), jstar: jstar.clone(), dcoef: 1e-320 };
+        assert!(matches!(prepare(&tiny, None), Err(EigenError::InvalidDcoef(_))));
+        // The smallest normal dCoef still gives a finite F_y once J is scaled to entries of 1.
+        let small = Jacobians::Coefficient { j: j * faer::Scale(1e300), jstar: jstar * faer::Scale(1e300), dcoef: 2.3e-308 };
+        assert!(prepare(&small, None).is_ok());
+    }
+}
