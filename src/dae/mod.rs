@@ -15,6 +15,7 @@
 //! [`ConstraintForm`]: crate::linear::ConstraintForm
 
 mod assembly;
+mod band;
 mod check;
 mod dofs;
 mod energy;
@@ -27,5 +28,5 @@ pub use check::{check_jacobians, JacobianMismatch};
 pub use dofs::DofMap;
 pub use energy::{describe, kinetic_energy_shares, EnergyShare, ModalEnergy};
 pub use linearize::{linearize, NodeInput, NodeOutput, PortError};
-pub use sparse::{SparseLu, Triplets};
+pub use sparse::{LuPath, SparseLu, Triplets, BAND_WORK_PER_ENTRY};
 pub use state::State;
