@@ -144,6 +144,8 @@ pub struct BandLu {
     ld: usize,
     band: Vec<f64>,
     pivot: Vec<usize>,
+    /// Rows of `L` below the diagonal in each column up to its last nonzero.
+    lower: Vec<usize>,
 }
 
 /// A zero pivot: the matrix is singular.
@@ -153,7 +155,7 @@ pub struct ZeroPivot;
 impl BandLu {
     pub fn new(n: usize, kl: usize, ku: usize) -> Self {
         let ld = 2 * kl + ku + 1;
-        BandLu { n, kl, ku, ld, band: vec![0.0; ld * n], pivot: vec![0; n] }
+        BandLu { n, kl, ku, ld, band: vec![0.0; ld * n], pivot: vec![0; n], lower: vec![0; n] }
     }
 
     /// Index in the band storage of entry `(i, j)` of the renumbered matrix
@@ -202,6 +204,10 @@ impl BandLu {
                     self.band.swap(row_j, row_j + p);
                 }
             }
+            // Rows below the last nonzero of column j take no update: skip them (the
+            // renumbered band is far from full, so this is most of the work saved).
+            let km = (1..=km).rev().find(|&i| self.band[col + i] != 0.0).unwrap_or(0);
+            self.lower[j] = km;
             let inv = 1.0 / self.band[col];
             for v in &mut self.band[col + 1..=col + km] {
                 *v *= inv;
@@ -226,14 +232,14 @@ impl BandLu {
 
     /// Solves `A x = b` in place with the factors (in the renumbered ordering).
     pub fn solve_in_place(&self, b: &mut [f64]) {
-        let (n, kl, ld) = (self.n, self.kl, self.ld);
+        let (n, ld) = (self.n, self.ld);
         let kv = self.kl + self.ku;
         for j in 0..n {
             let p = self.pivot[j];
             if p != j {
                 b.swap(j, p);
             }
-            let km = kl.min(n - 1 - j);
+            let km = self.lower[j];
             let bj = b[j];
             if bj != 0.0 {
                 let col = j * ld + kv;
