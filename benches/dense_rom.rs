@@ -37,6 +37,7 @@ fn pencil(n: usize) -> LinearDae {
         output_names: vec!["z".into()],
         constraint_form: None,
         multipliers: Vec::new(),
+        c_rate: None,
     }
 }
 

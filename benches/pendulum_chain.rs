@@ -94,8 +94,31 @@ fn eigen_and_rom(bencher: divan::Bencher, n: u32) {
     let input = format!("{n}:Fx").parse().unwrap();
     bencher.bench_local(|| {
         let dae = linearize(&model, &st, &[input], &[output], None).unwrap();
-        let modal = ModalAnalysis::compute(&dae.jacobians, EigenRoute::Direct).unwrap();
+        let modal = ModalAnalysis::of_dae(&dae, EigenRoute::Direct, None).unwrap();
         let sel = select_modes(&modal, &ModeSelection::Lowest(3)).unwrap();
         DescriptorRom::project(&dae, &modal, &sel, true).unwrap().to_ordinary().unwrap()
     });
+}
+
+/// Dense eigenanalysis (Λ route, as `romdyn eig`) with the constraint structure deflated
+/// first: N = 100 is the 1712-equation chain.
+#[divan::bench(args = [20, 100], sample_count = 1, sample_size = 1)]
+fn eigen_deflated(bencher: divan::Bencher, n: u32) {
+    let model = chain(n, true);
+    let asm = Assembler::new(&model);
+    let mut st = State::initial(&model, &asm.dofs);
+    static_solution(&asm, &mut st, 1, &NewtonSettings::default()).unwrap();
+    let dae = linearize(&model, &st, &[], &[], Some(1e-3)).unwrap();
+    bencher.bench_local(|| ModalAnalysis::of_dae(&dae, EigenRoute::Lambda, None).unwrap());
+}
+
+/// The same on the whole pencil (QZ on all 17 N + 12 unknowns), for the ratio.
+#[divan::bench(args = [20, 40], sample_count = 1, sample_size = 1)]
+fn eigen_whole(bencher: divan::Bencher, n: u32) {
+    let model = chain(n, true);
+    let asm = Assembler::new(&model);
+    let mut st = State::initial(&model, &asm.dofs);
+    static_solution(&asm, &mut st, 1, &NewtonSettings::default()).unwrap();
+    let dae = linearize(&model, &st, &[], &[], Some(1e-3)).unwrap();
+    bencher.bench_local(|| ModalAnalysis::compute(&dae.jacobians, EigenRoute::Lambda).unwrap());
 }

@@ -5,6 +5,7 @@
 //! ```text
 //! input -> model -> dae (assembly) -> solve -> linear (F_yd, F_y, eigen) -> rom -> output
 //!   -> analysis (runs an initial-value problem with its eigenanalyses)
+//!   -> study (the ROM workflow: reference, linearization, modes, ROM, checks)
 //! ```
 //!
 //! Equation numbers in doc comments refer to "Reduced order models from multibody
@@ -20,6 +21,7 @@ pub mod model;
 pub mod output;
 pub mod rom;
 pub mod solve;
+pub mod study;
 
 /// Complex scalar used throughout (re-exported from faer).
 pub use faer::c64;

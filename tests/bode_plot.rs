@@ -33,7 +33,7 @@ fn sdof_plot_and_table() {
     assert_eq!(&png_bytes[..8], b"\x89PNG\r\n\x1a\n");
     assert!(png_bytes.len() > 20_000);
     let svg_text = std::fs::read_to_string(&svg).unwrap();
-    for text in ["frequency [Hz]", "phase [deg]", "dB re 1 m/N", "full model: x [m] / f [N]", "ROM: x [m] / f [N]"] {
+    for text in ["frequency [Hz]", "phase [deg]", "dB re 1 m/N", "full model", "ROM", "x [m] / f [N]"] {
         assert!(svg_text.contains(text), "{text}");
     }
     write_response_csv(&plot.curves, &csv).unwrap();
@@ -53,14 +53,21 @@ fn sdof_plot_and_table() {
 }
 
 #[test]
-fn undamped_sign_flips_unwrap_to_a_phase_lag() {
-    // An undamped response changes sign at each resonance and antiresonance: the phase
-    // steps by −180° each time, whichever side rounding puts the crossing on.
+fn undamped_sign_flips_unwrap_down_at_poles_and_up_at_zeros() {
+    // Issue 9 point 4: an undamped response changes sign at each resonance (phase −180°,
+    // |H| peaks) and antiresonance (+180°, |H| dips). H = (1 − (f/2)²) / ((1 − f²)(1 − (f/3)²)):
+    // poles at 1 and 3, a zero at 2 (closed form): phase 0, −180, 0, −180.
     use romdyn::output::bode::unwrapped_phase_deg;
-    let v = [1.0, -1.0, 1.0, -1.0].map(|x| c64::new(x, 0.0));
-    assert_eq!(unwrapped_phase_deg(&v), vec![0.0, -180.0, -360.0, -540.0]);
-    let v = [1.0, -1.0, 1.0].map(|x| c64::new(x, -0.0));
-    assert_eq!(unwrapped_phase_deg(&v), vec![0.0, -180.0, -360.0]);
+    let f = log_frequencies(0.1, 10.0, 301);
+    let h: Vec<c64> = f.iter().map(|f| c64::new((1.0 - f * f / 4.0) / ((1.0 - f * f) * (1.0 - f * f / 9.0)), 0.0)).collect();
+    let p = unwrapped_phase_deg(&h);
+    for (f, p) in f.iter().zip(&p) {
+        let expect = if *f < 1.0 || (2.0..3.0).contains(f) { 0.0 } else if *f < 2.0 || *f > 3.0 { -180.0 } else { unreachable!() };
+        assert_eq!(*p, expect, "at {f} Hz");
+    }
+    // A real negative start is −180°, whatever the sign of a rounding imaginary part.
+    assert_eq!(unwrapped_phase_deg(&[c64::new(-1.0, 0.0)]), vec![-180.0]);
+    assert_eq!(unwrapped_phase_deg(&[c64::new(-1.0, -0.0)]), vec![-180.0]);
 }
 
 #[test]

@@ -5,50 +5,12 @@
 mod common;
 
 use common::{rel, with_coefficient};
-use faer::Mat;
 use romdyn::c64;
-use romdyn::linear::{EigenRoute, Jacobians, LinearDae, ModalAnalysis, ModeKind};
+use romdyn::linear::{EigenRoute, LinearDae, ModalAnalysis, ModeKind};
 use romdyn::rom::{full_static_gain, select_modes, DescriptorRom, ModeSelection};
 
-const N: usize = 50;
-const K: f64 = 1000.0;
-
-/// Unknowns [x1..x50, q1..q50, α].
 fn chain() -> LinearDae {
-    let n = 2 * N + 1;
-    let (mut fyd, mut fy) = (Mat::<f64>::zeros(n, n), Mat::<f64>::zeros(n, n));
-    for i in 0..N {
-        fyd[(i, i)] = 1.0; // m ẋ_i − q_i = 0
-        fy[(i, N + i)] = -1.0;
-        fyd[(N + i, N + i)] = 1.0; // q̇_i + (K x)_i + Φ_/xᵀ α = f_i
-    }
-    fy[(N, 0)] += K;
-    for i in 0..N - 2 {
-        let (a, b) = (N + i, N + i + 1);
-        fy[(a, i)] += K;
-        fy[(b, i + 1)] += K;
-        fy[(a, i + 1)] -= K;
-        fy[(b, i)] -= K;
-    }
-    // Φ = x50 − x49.
-    fy[(2 * N, N - 1)] = 1.0;
-    fy[(2 * N, N - 2)] = -1.0;
-    fy[(2 * N - 1, 2 * N)] = 1.0;
-    fy[(2 * N - 2, 2 * N)] = -1.0;
-    let mut b = Mat::<f64>::zeros(n, 1);
-    b[(2 * N - 1, 0)] = 1.0;
-    let mut c = Mat::<f64>::zeros(1, n);
-    c[(0, N - 1)] = 1.0;
-    LinearDae {
-        jacobians: Jacobians::Derivatives { fyd, fy },
-        b,
-        c,
-        unknown_names: (0..n).map(|i| format!("y{i}")).collect(),
-        input_names: vec!["f50".into()],
-        output_names: vec!["x50".into()],
-        constraint_form: None,
-        multipliers: Vec::new(),
-    }
+    common::mass_chain()
 }
 
 /// Three lowest natural frequencies [rad/s] of the 49-DOF reduced chain, from

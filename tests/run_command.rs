@@ -194,7 +194,8 @@ fn rom_from_the_m_file_reproduces_the_pendulum_eigenvalues_and_static_gain() {
         assert!(e["re"].as_f64().unwrap().abs() < 1e-6 && (e["im"].as_f64().unwrap() - sign * OMEGA).abs() / OMEGA < 1e-6, "{e}");
     }
     // Static gain 1/(m g L) = 0.1019368 rad/(N m) (CASES C2).
-    assert!(err.contains("static gain unknown 12 / equation 18 (generalized force): ROM 1.019368e-1"), "{err}");
+    assert!(err.contains("equation 18 (generalized force)") && err.contains("\nunknown 12\n"), "{err}");
+    assert!(err.lines().any(|l| l.trim_start().starts_with("ROM ") && l.trim_end().ends_with("1.019368e-1")), "{err}");
     assert_eq!(v["inputs"][0], "equation 18 (generalized force)");
     let (ok, _, err) = romdyn(&["eig", "--pencil", &pencil, "--input-row", "40"]);
     assert!(!ok && err.contains("input row 40 is out of range: the pencil has 29 equations (1-based)"), "{err}");

@@ -54,7 +54,7 @@ impl Eigenanalysis {
         let fail = |message: String| RunError::Eigen { index, time: state.t, message };
         let dcoef = request.dcoef.unwrap_or(DEFAULT_DCOEF);
         let dae = linearize(model, state, &[], &[], Some(dcoef)).map_err(|e| fail(e.to_string()))?;
-        let modal = ModalAnalysis::compute(&dae.jacobians, EigenRoute::Lambda).map_err(|e| fail(e.to_string()))?;
+        let modal = ModalAnalysis::of_dae(&dae, EigenRoute::Lambda, None).map_err(|e| fail(e.to_string()))?;
         let written = within_limits(&modal, request);
         let shares = ModalEnergy::new(model, &dae);
         let mut energy = vec![Vec::new(); modal.modes.len()];

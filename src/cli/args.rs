@@ -5,8 +5,11 @@ use std::path::PathBuf;
 use clap::{Args, ValueEnum};
 use romdyn::analysis::Reference;
 use romdyn::dae::{NodeInput, NodeOutput};
+use romdyn::input::eigen_pencil::PencilPorts;
 use romdyn::linear::EigenRoute;
-use romdyn::rom::ModeSelection;
+use romdyn::input::ports_file::{read_ports_file, PortsFile};
+use romdyn::rom::{ModalDamping, ModeSelection, Ranking};
+use romdyn::study::{parse_imposed, Application, BelowBand, EigenSettings, FrequencyGrid, Linearization, Study, StudyError};
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
 pub enum Route {
@@ -48,12 +51,67 @@ pub struct PencilArgs {
     /// ROM output of an .m pencil: unknown J (1-based column of Aplus/Aminus); a node's x,y,z displacements [m] are idx+1..idx+3 and its rotations [rad] idx+4..idx+6
     #[arg(long = "output-col", value_name = "J", requires = "pencil")]
     pub output_cols: Vec<usize>,
+    /// Ports file (JSON): named inputs and outputs at points of nodes (forces, moments, actuators; displacements, rotations, LVDTs, velocities), node names for mode labels, dummy springs to remove, an imposed motion (README, 'Ports')
+    #[arg(long, value_name = "FILE", conflicts_with = "pencil")]
+    pub ports: Option<PathBuf>,
+    /// Remove these deformable elements (dummy springs) from the full model and the ROM: their force is fed back, A + B_e K C_e (paper eqs. 92-95 with the sign of romdyn's applied-force inputs)
+    #[arg(long = "remove-spring", value_name = "LABEL,...", value_delimiter = ',', conflicts_with = "pencil")]
+    pub remove_spring: Vec<u32>,
+    /// Imposed motion of a node (all six components, or NODE:x,y,rz): its forces and displacements become the last inputs and outputs; transmissibility by eq. 100
+    #[arg(long, value_name = "NODE[:COMPONENTS]", conflicts_with = "pencil")]
+    pub imposed: Option<String>,
     /// Eigenanalysis route (lambda by default: its pencil has no infinite eigenvalues, on which faer's QZ can stall)
     #[arg(long, value_enum, default_value = "lambda")]
     pub route: Route,
-    /// dCoef of the Λ form [s] (default: the file's, else ‖F_yd‖/‖F_y‖)
-    #[arg(long, value_name = "C")]
+    /// dCoef of the Λ form [s], positive and finite (default: the file's, else ‖F_yd‖/‖F_y‖)
+    #[arg(long, value_name = "C", allow_negative_numbers = true)]
     pub dcoef: Option<f64>,
+}
+
+impl PencilArgs {
+    /// The study these arguments describe: a model file linearized at its reference, or a
+    /// pencil file.
+    pub fn study(&self) -> Result<Study, StudyError> {
+        let eigen = EigenSettings { route: self.route.into(), dcoef: self.dcoef };
+        match (&self.pencil, &self.model) {
+            (Some(path), _) => {
+                let ports = PencilPorts { input_rows: self.input_rows.clone(), output_cols: self.output_cols.clone() };
+                Study::from_pencil_file(path, &ports, eigen)
+            }
+            (None, Some(path)) if self.ports.is_some() || !self.remove_spring.is_empty() || self.imposed.is_some() => {
+                let app = self.application()?;
+                Study::from_application_file(path, self.reference.reference(), &app, eigen)
+            }
+            (None, Some(path)) => {
+                let lin = Linearization { reference: self.reference.reference(), inputs: self.inputs.clone(), outputs: self.outputs.clone() };
+                Study::from_model_file(path, &lin, eigen)
+            }
+            // clap requires one of them.
+            (None, None) => Err(StudyError::NoSource),
+        }
+    }
+}
+
+impl PencilArgs {
+    /// The ports file's ports and names, then --input/--output, --remove-spring and --imposed.
+    fn application(&self) -> Result<Application, StudyError> {
+        let file = match &self.ports {
+            Some(path) => read_ports_file(path)?,
+            None => PortsFile::default(),
+        };
+        let mut app = Application { inputs: file.inputs, outputs: file.outputs, names: file.names, remove_springs: file.remove_springs, imposed: None };
+        app.inputs.extend(self.inputs.iter().map(|p| p.port()));
+        app.outputs.extend(self.outputs.iter().map(|p| p.port()));
+        for l in &self.remove_spring {
+            if !app.remove_springs.contains(l) {
+                app.remove_springs.push(*l);
+            }
+        }
+        if let Some(s) = self.imposed.as_ref().or(file.imposed.as_ref()) {
+            app.imposed = Some(parse_imposed(s).map_err(|m| StudyError::Application(format!("--imposed {m}")))?);
+        }
+        Ok(app)
+    }
 }
 
 /// Where a model file is linearized (default: its initial time, after consistent initial
@@ -61,7 +119,7 @@ pub struct PencilArgs {
 #[derive(Args, Debug, Clone)]
 pub struct ReferenceArgs {
     /// At the solution of the file's initial-value problem at TIME [s] (integrated with the file's method, step and tolerance)
-    #[arg(long, value_name = "TIME", conflicts_with = "static_equilibrium")]
+    #[arg(long, value_name = "TIME", conflicts_with = "static_equilibrium", allow_negative_numbers = true)]
     pub at: Option<f64>,
     /// At the static equilibrium at the initial time (loads and gravity applied in --load-steps increments): prestressed structures
     #[arg(long = "static", id = "static_equilibrium")]
@@ -88,8 +146,8 @@ pub struct SelectionArgs {
     /// Keep the dynamic modes with natural frequency in [FMIN, FMAX] Hz
     #[arg(long, value_name = "FMIN:FMAX", value_parser = parse_band)]
     pub band: Option<(f64, f64)>,
-    /// Keep the N dynamic modes of lowest natural frequency
-    #[arg(long, value_name = "N")]
+    /// Keep N dynamic modes (a complex or ± real pair is one mode): the lowest, or with --by dominance the N that matter most for these inputs and outputs
+    #[arg(long, value_name = "N", value_parser = parse_count)]
     pub count: Option<usize>,
     /// Keep the modes with these 1-based indices of the modal table
     #[arg(long, value_name = "I,J,...", value_delimiter = ',')]
@@ -111,8 +169,8 @@ pub fn parse_band(s: &str) -> Result<(f64, f64), String> {
     let (a, b) = s.split_once(':').ok_or("expected FMIN:FMAX in Hz, e.g. 0.1:20")?;
     let a: f64 = a.trim().parse().map_err(|_| format!("FMIN '{a}' is not a number"))?;
     let b: f64 = b.trim().parse().map_err(|_| format!("FMAX '{b}' is not a number"))?;
-    if !(0.0 <= a && a <= b) {
-        return Err(format!("need 0 <= FMIN <= FMAX, got {a}:{b}"));
+    if !(a.is_finite() && b.is_finite() && 0.0 <= a && a <= b) {
+        return Err(format!("need 0 <= FMIN <= FMAX (finite), got {a}:{b}"));
     }
     Ok((a, b))
 }
@@ -120,13 +178,85 @@ pub fn parse_band(s: &str) -> Result<(f64, f64), String> {
 /// Frequency grid of a Bode plot.
 #[derive(Args, Debug)]
 pub struct FrequencyArgs {
-    /// Lowest frequency [Hz] (default: a decade below the lowest kept mode)
-    #[arg(long, value_name = "HZ")]
+    /// Lowest frequency [Hz], > 0 (default: a decade below the lowest kept mode)
+    #[arg(long, value_name = "HZ", allow_negative_numbers = true)]
     pub fmin: Option<f64>,
-    /// Highest frequency [Hz] (default: a decade above the highest kept mode)
-    #[arg(long, value_name = "HZ")]
+    /// Highest frequency [Hz], > FMIN (default: a decade above the highest kept mode)
+    #[arg(long, value_name = "HZ", allow_negative_numbers = true)]
     pub fmax: Option<f64>,
-    /// Number of log-spaced frequencies
+    /// Number of log-spaced frequencies (at least 2); the ROM summary's accuracy uses the same grid
     #[arg(long, default_value_t = 400)]
     pub points: usize,
+}
+
+impl FrequencyArgs {
+    pub fn grid(&self) -> FrequencyGrid {
+        FrequencyGrid { fmin_hz: self.fmin, fmax_hz: self.fmax, points: self.points }
+    }
+}
+
+/// How `--count` and `--band` rank modes.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum By {
+    /// Natural frequency, lowest first (every mode of a band is kept)
+    Frequency,
+    /// Dominance for the chosen inputs and outputs, ‖C v‖ ‖uᵀ B‖ / |λ| (a mode's share of the low-frequency response), largest first; modes that contribute nothing are never kept
+    Dominance,
+}
+
+impl From<By> for Ranking {
+    fn from(b: By) -> Self {
+        match b {
+            By::Frequency => Ranking::Frequency,
+            By::Dominance => Ranking::Dominance,
+        }
+    }
+}
+
+/// What `--residualize` does with a mode below the frequencies of interest.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum BelowBandArg {
+    /// Keep it as a dynamic mode (warning)
+    Keep,
+    /// Leave it out of the ROM (warning)
+    Drop,
+    /// Stop with an error
+    Refuse,
+}
+
+impl From<BelowBandArg> for BelowBand {
+    fn from(b: BelowBandArg) -> Self {
+        match b {
+            BelowBandArg::Keep => BelowBand::Keep,
+            BelowBandArg::Drop => BelowBand::Drop,
+            BelowBandArg::Refuse => BelowBand::Refuse,
+        }
+    }
+}
+
+/// `ZETA` (every kept mode) or `K=ZETA,...` (modal-table indices), each ζ in [0, 1).
+pub fn parse_damping(s: &str) -> Result<ModalDamping, String> {
+    let zeta = |t: &str| -> Result<f64, String> {
+        let z: f64 = t.trim().parse().map_err(|_| format!("'{t}' is not a damping ratio (expected a number in [0, 1), e.g. 0.02)"))?;
+        if (0.0..1.0).contains(&z) { Ok(z) } else { Err(format!("damping ratio {z} is outside [0, 1)")) }
+    };
+    if !s.contains('=') {
+        return zeta(s).map(ModalDamping::Uniform);
+    }
+    let mut list = Vec::new();
+    for item in s.split(',') {
+        let (k, z) = item.split_once('=').ok_or_else(|| format!("'{item}': expected MODE=ZETA, e.g. 1=0.02"))?;
+        let k: usize = k.trim().parse().map_err(|_| format!("'{k}' is not a modal-table index"))?;
+        list.push((k, zeta(z)?));
+    }
+    Ok(ModalDamping::PerMode(list))
+}
+
+/// A mode count: a whole number of at least 1.
+pub fn parse_count(s: &str) -> Result<usize, String> {
+    match s.trim().parse::<usize>() {
+        Ok(0) => Err("a ROM keeps at least 1 mode".into()),
+        Ok(n) => Ok(n),
+        Err(_) => Err(format!("'{s}' is not a whole number of modes")),
+    }
 }

@@ -2,10 +2,8 @@
 
 use anyhow::Result;
 use clap::Args;
-use romdyn::output::modal::ModalReport;
 
 use super::args::PencilArgs;
-use super::load::load;
 
 #[derive(Args, Debug)]
 pub struct EigArgs {
@@ -17,8 +15,7 @@ pub struct EigArgs {
 }
 
 pub fn run(a: EigArgs) -> Result<()> {
-    let loaded = load(&a.pencil)?;
-    let report = ModalReport::new(&loaded.modal, loaded.dae.dim()).with_energy(loaded.energy());
+    let report = a.pencil.study()?.modal_report();
     if a.json {
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else {

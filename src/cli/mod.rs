@@ -1,10 +1,8 @@
 //! Command-line interface: argument parsing, printing, exit codes.
 
 mod args;
-mod bode;
 mod check;
 mod eig;
-mod load;
 mod rom;
 mod run;
 
@@ -66,7 +64,7 @@ pub fn run() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         // Input errors already read "FILE:LINE:COLUMN: error: …" with the line and a caret.
-        Err(e) if e.downcast_ref::<romdyn::input::mbdyn::MbdynError>().is_some() => {
+        Err(e) if e.downcast_ref::<romdyn::input::mbdyn::MbdynError>().is_some() || matches!(e.downcast_ref(), Some(romdyn::study::StudyError::Model(_))) => {
             eprintln!("{e}");
             ExitCode::FAILURE
         }

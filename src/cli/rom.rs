@@ -1,17 +1,16 @@
 //! `romdyn rom` and `romdyn freq`: reduced-order models and their frequency responses.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
-use romdyn::linear::{LinearDae, ModalAnalysis};
-use romdyn::output::modal::ModalReport;
+use romdyn::output::frequency_plot::FrequencyResponses;
 use romdyn::output::rom_file::RomExport;
-use romdyn::rom::{full_static_gain, select_modes, DescriptorRom, OrdinaryRom};
+use romdyn::output::mimo_plot::MimoPlot;
+use romdyn::rom::{full_frequency_response, ModalDamping, ModeSelection};
+use romdyn::study::{ReducedModel, Residualization, RomForm, RomRequest, Study, Warning};
 
-use super::args::{parse_band, FrequencyArgs, PencilArgs, SelectionArgs};
-use super::bode::{full_responses, write_bode_files};
-use super::load::{load, Loaded};
+use super::args::{parse_band, parse_damping, BelowBandArg, By, FrequencyArgs, PencilArgs, SelectionArgs};
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
 pub enum Form {
@@ -33,6 +32,15 @@ pub struct RomArgs {
     /// Statically residualize only these modes (1-based indices of the modal table; a pair counts once), e.g. the third bending mode of a beam
     #[arg(long, value_name = "I,J,...", value_delimiter = ',')]
     pub residualize_modes: Option<Vec<usize>>,
+    /// Rank modes for --count and --band by natural frequency or by dominance for these inputs and outputs
+    #[arg(long, value_enum, default_value = "frequency")]
+    pub by: By,
+    /// What --residualize does with a dropped mode below the frequencies of interest (the band's top, or the highest kept mode): static residualization is valid only above them
+    #[arg(long, value_enum, default_value = "drop")]
+    pub below_band: BelowBandArg,
+    /// Modal damping ratio added to the ROM (never to the full model): ZETA for every kept mode, or K=ZETA,... by modal-table index; reported in the summary
+    #[arg(long, value_name = "ZETA|K=ZETA,...", value_parser = parse_damping)]
+    pub damping: Option<ModalDamping>,
     /// Which form to export
     #[arg(long, value_enum, default_value = "ordinary")]
     pub form: Form,
@@ -42,6 +50,18 @@ pub struct RomArgs {
     /// Also write PREFIX.csv, PREFIX.svg and PREFIX.png: Bode plot of the full model and the ROM
     #[arg(long, value_name = "PREFIX")]
     pub bode: Option<PathBuf>,
+    /// Also write PREFIX.{csv,svg,png}: the transfer matrix as a grid of Bode-magnitude panels, full model and ROM (paper Figs. 9, 10)
+    #[arg(long, value_name = "PREFIX")]
+    pub grid: Option<PathBuf>,
+    /// Only the diagonal panels of --grid and --transmissibility
+    #[arg(long)]
+    pub diagonal: bool,
+    /// With an imposed motion (--imposed or the ports file): write PREFIX.{csv,svg,png}, the transmissibility z/z_e of eq. 100, full model and ROM, log-log (paper Fig. 11)
+    #[arg(long, value_name = "PREFIX")]
+    pub transmissibility: Option<PathBuf>,
+    /// With an imposed motion: write the proper state-space model from the imposed displacements to the other outputs (.json/.mat/.npz)
+    #[arg(long, value_name = "FILE")]
+    pub imposed_out: Option<PathBuf>,
     #[command(flatten)]
     pub freq: FrequencyArgs,
 }
@@ -56,9 +76,15 @@ pub struct FreqArgs {
     /// Overlay the ROM keeping the modes in FMIN:FMAX Hz
     #[arg(long, value_name = "FMIN:FMAX", value_parser = parse_band)]
     pub band: Option<(f64, f64)>,
-    /// Statically residualize the modes the overlaid ROM drops
+    /// Statically residualize the modes the overlaid ROM drops (above the frequencies of interest)
     #[arg(long)]
     pub residualize: bool,
+    /// Rank modes for --count and --band by natural frequency or by dominance for these inputs and outputs
+    #[arg(long, value_enum, default_value = "frequency")]
+    pub by: By,
+    /// Modal damping ratio added to the overlaid ROM: ZETA, or K=ZETA,...
+    #[arg(long, value_name = "ZETA|K=ZETA,...", value_parser = parse_damping)]
+    pub damping: Option<ModalDamping>,
     /// Writes PREFIX.csv, PREFIX.svg, PREFIX.png
     #[arg(short = 'o', long = "out", value_name = "PREFIX")]
     pub prefix: PathBuf,
@@ -66,88 +92,52 @@ pub struct FreqArgs {
     pub freq: FrequencyArgs,
 }
 
-struct Built {
-    dae: LinearDae,
-    modal: ModalAnalysis,
-    /// The lowest dynamic modes of the modal table, as text.
-    table: String,
-    descriptor: DescriptorRom,
-    ordinary: OrdinaryRom,
+fn print_warnings(w: &[Warning]) {
+    for w in w {
+        eprintln!("warning: {w}");
+    }
 }
 
-/// Which dropped modes a ROM keeps as static states.
-enum Residualize {
-    None,
-    AllDropped,
-    /// 1-based modal-table indices.
-    Modes(Vec<usize>),
+fn print_study(study: &Study) {
+    print_warnings(study.warnings());
 }
 
-fn build(pencil: &PencilArgs, selection: &romdyn::rom::ModeSelection, residualize: Residualize) -> Result<Built> {
-    let loaded = load(pencil)?;
-    let table = ModalReport::new(&loaded.modal, loaded.dae.dim()).with_energy(loaded.energy()).to_text_dynamic(12);
-    let Loaded { dae, modal, .. } = loaded;
-    if dae.num_inputs() == 0 || dae.num_outputs() == 0 {
-        anyhow::bail!("a ROM needs inputs and outputs: give --input NODE:COMP and --output NODE:COMP for a model, --input-row I and --output-col J for an .m pencil");
-    }
-    let mut sel = select_modes(&modal, selection)?;
-    if let Residualize::Modes(list) = &residualize {
-        let chosen = select_modes(&modal, &romdyn::rom::ModeSelection::Indices(list.clone()))?.kept;
-        if let Some(k) = chosen.iter().find(|k| sel.kept.contains(k)) {
-            anyhow::bail!("mode {} is both kept and residualized", k + 1);
-        }
-        sel.dropped = chosen;
-    }
-    let descriptor = DescriptorRom::project(&dae, &modal, &sel, !matches!(residualize, Residualize::None))?;
-    let ordinary = descriptor.to_ordinary()?;
-    Ok(Built { dae, modal, table, descriptor, ordinary })
-}
-
-/// Static gains of the full model and of the ROM, side by side, on stderr.
-fn report_static_gain(b: &Built) {
-    let rom = b.ordinary.static_gain();
-    match (full_static_gain(&b.dae), rom) {
-        (Ok(full), Ok(rom)) => {
-            for i in 0..full.nrows() {
-                for j in 0..full.ncols() {
-                    let (f, r) = (full[(i, j)], rom[(i, j)]);
-                    let rel = if f != 0.0 { (r - f).abs() / f.abs() } else { (r - f).abs() };
-                    eprintln!("static gain {} / {}: full {f:.6e}, ROM {r:.6e} (relative difference {rel:.1e})", b.dae.output_names[i], b.dae.input_names[j]);
-                }
-            }
-        }
-        (Err(full), Ok(rom)) => {
-            eprintln!("static gain of the full model: not available ({full})");
-            for i in 0..rom.nrows() {
-                for j in 0..rom.ncols() {
-                    eprintln!("static gain {} / {}: ROM {:.6e}", b.dae.output_names[i], b.dae.input_names[j], rom[(i, j)]);
-                }
-            }
-        }
-        (_, Err(e)) => eprintln!("static gain: not available ({e})"),
-    }
+/// Writes PREFIX.csv, PREFIX.svg and PREFIX.png.
+fn write_bode_files(r: &FrequencyResponses, prefix: &Path) -> Result<()> {
+    let [csv, svg, png] = r.write_files(prefix, "Frequency response").with_context(|| format!("writing {}.{{csv,svg,png}}", prefix.display()))?;
+    eprintln!("wrote {}, {}, {}", csv.display(), svg.display(), png.display());
+    Ok(())
 }
 
 pub fn run(a: RomArgs) -> Result<()> {
-    let residualize = match (&a.residualize_modes, a.residualize) {
-        (Some(list), _) => Residualize::Modes(list.clone()),
-        (None, true) => Residualize::AllDropped,
-        (None, false) => Residualize::None,
+    if let Some(path) = &a.file {
+        RomExport::check_path(path)?;
+    }
+    let residualization = match (&a.residualize_modes, a.residualize) {
+        (Some(list), _) => Residualization::Modes(list.clone()),
+        (None, true) => Residualization::Dropped,
+        (None, false) => Residualization::None,
     };
-    let b = build(&a.pencil, &a.select.selection(), residualize)?;
-    eprint!("{}", b.table);
-    let kept: Vec<String> = b.descriptor.eigenvalues.iter().map(|l| format!("{:.6}{:+.6}j", l.re, l.im)).collect();
-    eprintln!(
-        "ROM: {} states ({} kept eigenvalues: {}), {} statically residualized states",
-        b.ordinary.a.nrows(),
-        kept.len(),
-        kept.join(", "),
-        b.descriptor.static_states
-    );
-    report_static_gain(&b);
+    let study = a.pencil.study()?;
+    let mut request = RomRequest::new(a.select.selection()).residualize(residualization).ranked_by(a.by.into());
+    request.below_band = a.below_band.into();
+    request.damping = a.damping.clone();
+    let rom = study.reduce(&request)?;
+    let freq = study.frequencies(&a.freq.grid(), &nonzero(&rom.descriptor.eigenvalues))?;
+    eprint!("{}", study.modal_report().to_text_dynamic(12));
+    print_study(&study);
+    let comparison = study.compare(&rom, freq);
+    eprint!("{}", rom.summary(&study, Some(&comparison.accuracy())));
+    print_warnings(&rom.warnings);
+    let removed = study.removed_springs();
+    if !removed.is_empty() {
+        eprintln!("removed from the full model and the ROM (their force fed back, A + B_e K C_e): {}", removed.join(", "));
+        eprint!("{}", free_eigenvalues(&rom.descriptor.eigenvalues));
+    }
     let export = match a.form {
-        Form::Ordinary => RomExport::from(&b.ordinary),
-        Form::Descriptor => RomExport::from(&b.descriptor),
+        Form::Ordinary => rom.export(&study, RomForm::Ordinary),
+        Form::Descriptor if rom.descriptor.c_rate.is_some() => anyhow::bail!("--form descriptor: velocity outputs need z = C x + C_v x', which the descriptor export has no place for; use --form ordinary (its C and D carry them)"),
+        Form::Descriptor => rom.export(&study, RomForm::Descriptor),
     };
     match &a.file {
         Some(path) => {
@@ -157,28 +147,94 @@ pub fn run(a: RomArgs) -> Result<()> {
         None => println!("{}", serde_json::to_string_pretty(&export.to_json())?),
     }
     if let Some(prefix) = &a.bode {
-        let curves = full_responses(&b.dae, &b.modal, &a.freq, &b.descriptor.eigenvalues);
-        let curves = curves.with_rom("ROM", &b.ordinary);
-        write_bode_files(&curves, prefix)?;
+        write_bode_files(&comparison.responses(&study, "ROM"), prefix)?;
+    }
+    write_application_files(&a, &study, &rom)
+}
+
+/// The eigenvalues that set a default frequency grid: rigid-body (zero) ones of a ROM whose
+/// dummy springs were removed would stretch it down to rounding.
+fn nonzero(eig: &[faer::c64]) -> Vec<faer::c64> {
+    let big = eig.iter().map(|l| l.norm()).fold(0.0, f64::max);
+    eig.iter().copied().filter(|l| l.norm() > 1e-6 * big).collect()
+}
+
+/// The eigenvalues of a ROM whose dummy springs were removed: rigid-body, unstable and
+/// oscillatory ones (the modal table above is the grounded model's).
+fn free_eigenvalues(eig: &[faer::c64]) -> String {
+    let big = eig.iter().map(|l| l.norm()).fold(0.0, f64::max);
+    let zero = eig.iter().filter(|l| l.norm() <= 1e-6 * big).count();
+    let mut s = format!("ROM eigenvalues without them [rad/s]: {zero} zero (rigid-body motion)\n");
+    // One line per pair (its upper member), every real one.
+    for l in eig.iter().filter(|l| l.norm() > 1e-6 * big && (l.im > 1e-9 * big || l.im.abs() <= 1e-9 * big)) {
+        let kind = if l.im.abs() <= 1e-9 * big { if l.re > 0.0 { "real, unstable" } else { "real" } } else if l.re > 1e-9 * big { "oscillatory, unstable" } else { "oscillatory" };
+        s += &format!("  {:>14.6e} {:+.6e}j   {:>10.6} Hz   {kind}\n", l.re, l.im, l.norm() / (2.0 * std::f64::consts::PI));
+    }
+    s
+}
+
+/// --grid, --transmissibility, --imposed-out.
+fn write_application_files(a: &RomArgs, study: &Study, rom: &ReducedModel) -> Result<()> {
+    let wrote = |p: [PathBuf; 3]| eprintln!("wrote {}, {}, {}", p[0].display(), p[1].display(), p[2].display());
+    if let Some(prefix) = &a.grid {
+        let freq = study.frequencies(&a.freq.grid(), &nonzero(&rom.descriptor.eigenvalues))?;
+        let dae = study.dae();
+        // The imposed displacements (last outputs) are inputs of the transmissibility, not
+        // responses: the grid shows the other outputs.
+        let no = dae.num_outputs() - study.imposed_len();
+        let rows = |h: Vec<faer::Mat<faer::c64>>| h.into_iter().map(|m| m.get(..no, ..).to_owned()).collect::<Vec<_>>();
+        let plot = MimoPlot {
+            title: "Transfer matrix |z/u|".into(),
+            full: rows(full_frequency_response(dae, &freq)),
+            rom: Some(rows(rom.ordinary.frequency_response(&freq))),
+            freq_hz: freq,
+            inputs: dae.input_names.clone(),
+            outputs: dae.output_names[..no].to_vec(),
+            diagonal: a.diagonal,
+        };
+        wrote(plot.write_files(prefix).with_context(|| format!("writing {}.{{csv,svg,png}}", prefix.display()))?);
+    }
+    if let Some(prefix) = &a.transmissibility {
+        let freq = study.frequencies(&a.freq.grid(), &nonzero(&rom.descriptor.eigenvalues))?;
+        let t = study.transmissibility(rom, &freq)?;
+        let mut plot = MimoPlot { title: "Transmissibility |z/z_e| (eq. 100)".into(), freq_hz: t.freq_hz, inputs: t.imposed, outputs: t.outputs, full: t.full, rom: Some(t.rom), diagonal: a.diagonal };
+        wrote(plot.write_files(prefix).with_context(|| format!("writing {}.{{csv,svg,png}}", prefix.display()))?);
+        // The diagonal alone (x/x, y/y, …: paper Fig. 11) beside the whole matrix.
+        if !plot.diagonal {
+            plot.diagonal = true;
+            let diag = romdyn::output::prefixed_path(prefix, "diagonal");
+            wrote(plot.write_files(&diag).with_context(|| format!("writing {}.{{csv,svg,png}}", diag.display()))?);
+        }
+    }
+    if let Some(path) = &a.imposed_out {
+        let m = study.imposed_model(rom)?;
+        let eig: Vec<String> = m.rom.eigenvalues.iter().map(|l| format!("{:.6}{:+.6}j", l.re, l.im)).collect();
+        eprintln!("imposed-motion model: {} states, eigenvalues {}", m.rom.a.nrows(), eig.join(", "));
+        study.imposed_export(&m).write(path).with_context(|| format!("writing {}", path.display()))?;
+        eprintln!("wrote {}", path.display());
     }
     Ok(())
 }
 
 pub fn run_freq(a: FreqArgs) -> Result<()> {
     let selection = match (&a.count, &a.band) {
-        (Some(n), _) => Some(romdyn::rom::ModeSelection::Lowest(*n)),
-        (None, Some((fmin_hz, fmax_hz))) => Some(romdyn::rom::ModeSelection::Band { fmin_hz: *fmin_hz, fmax_hz: *fmax_hz }),
+        (Some(n), _) => Some(ModeSelection::Lowest(*n)),
+        (None, Some((fmin_hz, fmax_hz))) => Some(ModeSelection::Band { fmin_hz: *fmin_hz, fmax_hz: *fmax_hz }),
         (None, None) => None,
     };
+    let study = a.pencil.study()?;
+    print_study(&study);
     let curves = match selection {
         Some(sel) => {
-            let b = build(&a.pencil, &sel, if a.residualize { Residualize::AllDropped } else { Residualize::None })?;
-            full_responses(&b.dae, &b.modal, &a.freq, &b.descriptor.eigenvalues).with_rom("ROM", &b.ordinary)
+            let residualization = if a.residualize { Residualization::Dropped } else { Residualization::None };
+            let mut request = RomRequest::new(sel).residualize(residualization).ranked_by(a.by.into());
+            request.damping = a.damping.clone();
+            let rom = study.reduce(&request)?;
+            print_warnings(&rom.warnings);
+            let freq = study.frequencies(&a.freq.grid(), &nonzero(&rom.descriptor.eigenvalues))?;
+            study.compare(&rom, freq).responses(&study, "ROM")
         }
-        None => {
-            let Loaded { dae, modal, .. } = load(&a.pencil)?;
-            full_responses(&dae, &modal, &a.freq, &[])
-        }
+        None => study.full_responses(study.frequencies(&a.freq.grid(), &[])?),
     };
     write_bode_files(&curves, &a.prefix)
 }

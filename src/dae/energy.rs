@@ -74,3 +74,34 @@ pub fn describe(shares: &[EnergyShare]) -> String {
         .collect::<Vec<_>>()
         .join(", ")
 }
+
+/// A one-line label a control engineer reads, "table pitch (ry) 93 %": the node component
+/// with the largest share of the mode's kinetic energy, named by its node's name (else
+/// "node N") and by the direction of its motion relative to gravity (`vertical`, `yaw` about
+/// the vertical, `horizontal`, and `roll`/`pitch` about the first/second horizontal axis);
+/// without gravity the axis letters only. `None` without shares.
+pub fn mode_label(shares: &[EnergyShare], names: &std::collections::BTreeMap<u32, String>, gravity: &crate::kinematics::Vec3) -> Option<String> {
+    let top = shares.iter().max_by(|a, b| a.share.total_cmp(&b.share))?;
+    let node = names.get(&top.node).cloned().unwrap_or_else(|| format!("node {}", top.node));
+    let k = COMPONENTS.iter().position(|c| *c == top.component)?;
+    let vertical = (gravity.norm() > 0.0).then(|| gravity.iamax());
+    let word = match vertical {
+        None => None,
+        Some(v) => {
+            let axis = k % 3;
+            let horizontal: Vec<usize> = (0..3).filter(|&a| a != v).collect();
+            Some(match (k < 3, axis == v) {
+                (true, true) => "vertical",
+                (true, false) => "horizontal",
+                (false, true) => "yaw",
+                (false, false) if axis == horizontal[0] => "roll",
+                (false, false) => "pitch",
+            })
+        }
+    };
+    let pct = 100.0 * top.share;
+    Some(match word {
+        Some(w) => format!("{node} {w} ({}) {pct:.0} %", top.component),
+        None => format!("{node} {} {pct:.0} %", top.component),
+    })
+}

@@ -4,8 +4,10 @@
 
 use std::str::FromStr;
 
+use super::ports::{Direction, Excitation, InputPort, Measurement, OutputPort, Point, PortError, PortMap};
 use super::{Assembler, Coefficients, State};
-use crate::linear::{Jacobians, LinearDae};
+use crate::kinematics::Vec3;
+use crate::linear::{Jacobians, LinearDae, SparseLinearDae, SparseMatrix};
 use crate::model::{Label, Model};
 
 const FORCES: [&str; 6] = ["Fx", "Fy", "Fz", "Mx", "My", "Mz"];
@@ -23,15 +25,6 @@ pub struct NodeInput {
 pub struct NodeOutput {
     pub node: Label,
     pub component: usize,
-}
-
-/// A malformed or dangling input/output name.
-#[derive(Debug, thiserror::Error)]
-pub enum PortError {
-    #[error("'{0}': expected NODE:COMPONENT with COMPONENT one of {1}")]
-    Syntax(String, String),
-    #[error("'{0}': structural node {1} is not defined")]
-    UnknownNode(String, Label),
 }
 
 fn parse_port(s: &str, names: &[&str; 6]) -> Result<(Label, usize), PortError> {
@@ -56,15 +49,39 @@ impl FromStr for NodeOutput {
     }
 }
 
+fn unit(k: usize) -> Vec3 {
+    Vec3::from_fn(|i, _| if i == k { 1.0 } else { 0.0 })
+}
+
 impl NodeInput {
     pub fn name(&self) -> String {
-        format!("node {} {} [{}]", self.node, FORCES[self.component], if self.component < 3 { "N" } else { "N m" })
+        self.port().label()
+    }
+    /// The same input as a port: a force at the node's origin or a moment, global axes.
+    pub fn port(&self) -> InputPort {
+        let direction = Direction::global(unit(self.component % 3));
+        let excitation = if self.component < 3 {
+            Excitation::Force { point: Point::node(self.node), direction }
+        } else {
+            Excitation::Moment { node: self.node, direction }
+        };
+        InputPort { name: format!("node {} {}", self.node, FORCES[self.component]), excitation }
     }
 }
 
 impl NodeOutput {
     pub fn name(&self) -> String {
-        format!("node {} {} [{}]", self.node, MOTIONS[self.component], if self.component < 3 { "m" } else { "rad" })
+        self.port().label()
+    }
+    /// The same output as a port: displacement of the node's origin or rotation, global axes.
+    pub fn port(&self) -> OutputPort {
+        let direction = Direction::global(unit(self.component % 3));
+        let measurement = if self.component < 3 {
+            Measurement::Displacement { point: Point::node(self.node), direction }
+        } else {
+            Measurement::Rotation { node: self.node, direction }
+        };
+        OutputPort { name: format!("node {} {}", self.node, MOTIONS[self.component]), measurement }
     }
 }
 
@@ -72,6 +89,14 @@ impl NodeOutput {
 /// With `dcoef = Some(c)` the Jacobians are assembled as `J(±c)` (eqs. 13–14), otherwise
 /// `F_/ẏ` and `F_/y` directly; both routes agree to rounding.
 pub fn linearize(model: &Model, state: &State, inputs: &[NodeInput], outputs: &[NodeOutput], dcoef: Option<f64>) -> Result<LinearDae, PortError> {
+    let inputs: Vec<InputPort> = inputs.iter().map(NodeInput::port).collect();
+    let outputs: Vec<OutputPort> = outputs.iter().map(NodeOutput::port).collect();
+    linearize_ports(model, state, &inputs, &outputs, dcoef)
+}
+
+/// [`linearize`] with inputs and outputs at points of nodes along any direction, rates
+/// included (`B̃`, `C̃`, `C̃_v` by [`PortMap`]).
+pub fn linearize_ports(model: &Model, state: &State, inputs: &[InputPort], outputs: &[OutputPort], dcoef: Option<f64>) -> Result<LinearDae, PortError> {
     let asm = Assembler::new(model);
     let mut st = state.clone();
     st.rebase(&asm.dofs);
@@ -82,26 +107,49 @@ pub fn linearize(model: &Model, state: &State, inputs: &[NodeInput], outputs: &[
         Some(c) => Jacobians::Coefficient { j: asm.jacobian(&st, coef(1.0, c)).to_dense(), jstar: asm.jacobian(&st, coef(1.0, -c)).to_dense(), dcoef: c },
     };
     let n = asm.dofs.len;
-    let node = |label: Label, text: String| model.node_index(label).ok_or(PortError::UnknownNode(text, label));
-    let mut b = faer::Mat::<f64>::zeros(n, inputs.len());
-    for (k, p) in inputs.iter().enumerate() {
-        let i = node(p.node, p.name())?;
-        // A force u enters the equilibrium residual as −u, and −ΔF = B̃ u (eq. 38).
-        b[(asm.dofs.equilibrium_row(i) + p.component, k)] = 1.0;
-    }
-    let mut c = faer::Mat::<f64>::zeros(outputs.len(), n);
-    for (k, p) in outputs.iter().enumerate() {
-        let i = node(p.node, p.name())?;
-        // At g = 0 a rotation increment is δθ = δg.
-        c[(k, asm.dofs.node_first[i] + p.component)] = 1.0;
-    }
+    let ports = PortMap::new(model, &st);
+    // A force u enters the equilibrium residual as −u, and −ΔF = B̃ u (eq. 38).
+    let b = ports.input_matrix(inputs)?;
+    let (c, c_rate) = ports.output_matrices(outputs)?;
     Ok(LinearDae {
         jacobians,
         b,
         c,
         unknown_names: (0..n).map(|i| asm.dofs.unknown_name(model, i)).collect(),
-        input_names: inputs.iter().map(NodeInput::name).collect(),
-        output_names: outputs.iter().map(NodeOutput::name).collect(),
+        input_names: inputs.iter().map(InputPort::label).collect(),
+        output_names: outputs.iter().map(OutputPort::label).collect(),
+        constraint_form: Some(form),
+        multipliers: (0..n).filter(|&i| asm.dofs.is_multiplier(i)).collect(),
+        c_rate,
+    })
+}
+
+/// [`linearize_ports`] keeping `F_/ẏ` and `F_/y` sparse as assembled ([`SparseLinearDae`]:
+/// memory proportional to the non-zeros, not to n²).
+pub fn linearize_sparse(model: &Model, state: &State, inputs: &[InputPort], outputs: &[OutputPort]) -> Result<SparseLinearDae, PortError> {
+    let asm = Assembler::new(model);
+    let mut st = state.clone();
+    st.rebase(&asm.dofs);
+    let form = model.constraint_form;
+    let n = asm.dofs.len;
+    let sparse = |a: f64, b: f64| {
+        let t = asm.jacobian(&st, Coefficients { a, b, form, dcoef: 1.0 });
+        let entries = (0..t.values.len()).map(|k| (t.rows[k], t.cols[k], t.values[k]));
+        SparseMatrix::from_triplets(n, n, entries).unwrap_or_else(|| unreachable!("the assembler writes inside its {n} x {n} pattern"))
+    };
+    let (fyd, fy) = (sparse(1.0, 0.0), sparse(0.0, 1.0));
+    let ports = PortMap::new(model, &st);
+    let b = ports.input_matrix(inputs)?;
+    let (c, c_rate) = ports.output_matrices(outputs)?;
+    Ok(SparseLinearDae {
+        fyd,
+        fy,
+        b,
+        c,
+        c_rate,
+        unknown_names: (0..n).map(|i| asm.dofs.unknown_name(model, i)).collect(),
+        input_names: inputs.iter().map(InputPort::label).collect(),
+        output_names: outputs.iter().map(OutputPort::label).collect(),
         constraint_form: Some(form),
         multipliers: (0..n).filter(|&i| asm.dofs.is_multiplier(i)).collect(),
     })

@@ -100,6 +100,7 @@ pub fn read_eigen_pencil(path: &Path, ports: &PencilPorts) -> Result<(LinearDae,
         output_names: ports.output_cols.iter().map(|c| format!("unknown {c}")).collect(),
         constraint_form: None,
         multipliers: Vec::new(),
+        c_rate: None,
     };
     Ok((dae, c))
 }

@@ -2,6 +2,7 @@
 //! eigenanalysis `.m` files MBDyn writes), Matrix Market matrices.
 
 mod chars;
+pub mod ports_file;
 pub mod eigen_pencil;
 pub mod matrix_market;
 pub mod mbdyn;

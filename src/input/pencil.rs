@@ -201,6 +201,7 @@ pub fn parse_pencil(text: &str, file: &Path) -> Result<PencilFile, PencilError> 
         c,
         constraint_form: None,
         multipliers: Vec::new(),
+        c_rate: None,
     };
     Ok(PencilFile { dae, dcoef: r.dcoef()? })
 }

@@ -10,8 +10,8 @@ use faer::{c64, Col, Mat};
 pub(crate) struct BalancedPencil {
     pub a: Mat<f64>,
     pub b: Mat<f64>,
-    row: Vec<f64>,
-    col: Vec<f64>,
+    pub row: Vec<f64>,
+    pub col: Vec<f64>,
 }
 
 /// Alternating row/column equilibration: each sweep divides every row, then every column,
@@ -21,18 +21,27 @@ pub(crate) fn balance_pencil(a: &Mat<f64>, b: &Mat<f64>) -> BalancedPencil {
     let (mut a, mut b) = (a.clone(), b.clone());
     let (mut row, mut col) = (vec![1.0; n], vec![1.0; n]);
     let pow2 = |s: f64| if s > 0.0 && s.is_finite() { (-s.log2().round()).exp2() } else { 1.0 };
+    // Column-major passes (faer stores columns contiguously); each row's sum runs over
+    // j = 0..n in order, as a row-wise loop would.
     for _sweep in 0..8 {
         let mut changed = false;
-        for i in 0..n {
-            let s = (0..n).map(|j| a[(i, j)].powi(2) + b[(i, j)].powi(2)).sum::<f64>().sqrt();
-            let f = pow2(s);
-            if f != 1.0 {
-                changed = true;
-                row[i] *= f;
-                for j in 0..n {
-                    a[(i, j)] *= f;
-                    b[(i, j)] *= f;
+        let mut rs = vec![0.0; n];
+        for j in 0..n {
+            for i in 0..n {
+                rs[i] += a[(i, j)].powi(2) + b[(i, j)].powi(2);
+            }
+        }
+        let fr: Vec<f64> = rs.iter().map(|s| pow2(s.sqrt())).collect();
+        if fr.iter().any(|&f| f != 1.0) {
+            changed = true;
+            for j in 0..n {
+                for i in 0..n {
+                    a[(i, j)] *= fr[i];
+                    b[(i, j)] *= fr[i];
                 }
+            }
+            for i in 0..n {
+                row[i] *= fr[i];
             }
         }
         for j in 0..n {

@@ -50,6 +50,9 @@ pub struct LinearDae {
     /// Indices of the Lagrange multipliers (each also the index of its constraint
     /// equation), when known.
     pub multipliers: Vec<usize>,
+    /// `C̃_v` of rate outputs (velocity sensors): `z = C̃ Δy + C̃_v Δẏ`; rows = outputs,
+    /// columns = unknowns. `None` when every output is a displacement or rotation.
+    pub c_rate: Option<Mat<f64>>,
 }
 
 /// `F_yd = (J + J*)/2`, `F_y = (J − J*)/(2c)` (eqs. 15–16).

@@ -72,10 +72,10 @@ pub enum EigenError {
 /// Raw output of QZ on a (balanced) pencil `A v = μ B v`, with the products `A V`, `B V`,
 /// `Uᵀ A`, `Uᵀ B` formed once (four matrix products) for the error estimates.
 /// faer stores a complex pair's `re, im` parts in two consecutive columns.
-struct RawEigen {
-    alpha_re: Vec<f64>,
-    alpha_im: Vec<f64>,
-    beta: Vec<f64>,
+pub(super) struct RawEigen {
+    pub alpha_re: Vec<f64>,
+    pub alpha_im: Vec<f64>,
+    pub beta: Vec<f64>,
     right: Mat<f64>,
     left: Mat<f64>,
     a_right: Mat<f64>,
@@ -90,7 +90,7 @@ struct RawEigen {
 /// NaN afterwards means failure. The pencil is then retried after a left multiplication by
 /// a (deterministic) random orthogonal `Q`: `Qᵀ A v = μ Qᵀ B v` has the same eigenvalues
 /// and right vectors, and left vectors `u = Q u′`.
-fn qz(a: &Mat<f64>, b: &Mat<f64>) -> Result<RawEigen, EigenError> {
+pub(super) fn qz(a: &Mat<f64>, b: &Mat<f64>) -> Result<RawEigen, EigenError> {
     let n = a.nrows();
     if let Some(raw) = qz_attempt(a, b, a, b, None) {
         return Ok(raw);
@@ -187,7 +187,7 @@ fn qz_attempt(a: &Mat<f64>, b: &Mat<f64>, h: &Mat<f64>, t: &Mat<f64>, q: Option<
 impl RawEigen {
     /// Vectors of the eigenvalue stored at column `j` (with `j + 1` holding the imaginary
     /// parts when `im`); `None` when QZ returned NaN vectors (β = 0).
-    fn vectors(&self, j: usize, im: bool) -> Option<EigenVectors> {
+    pub(super) fn vectors(&self, j: usize, im: bool) -> Option<EigenVectors> {
         let n = self.right.nrows();
         if (0..n).any(|i| !self.right[(i, j)].is_finite() || !self.left[(i, j)].is_finite()) {
             return None;
@@ -258,7 +258,7 @@ impl ModalAnalysis {
             }
             let (right, left) = match vectors {
                 Some(w) if class.kind != ModeKind::Infinite => {
-                    let (v, u) = normalize(&balanced.unscale_right(&w.v), &balanced.unscale_left(&w.u), &fyd);
+                    let (v, u) = normalize(&balanced.unscale_right(&w.v), &balanced.unscale_left(&w.u), |x| mul_real_complex(&fyd, x), fyd.norm_l2());
                     (Some(v), Some(u))
                 }
                 _ => (None, None),
@@ -287,7 +287,7 @@ impl ModalAnalysis {
     }
 }
 
-fn conjugate_mode(m: &Mode) -> Mode {
+pub(super) fn conjugate_mode(m: &Mode) -> Mode {
     Mode {
         lambda: m.lambda.conj(),
         kind: m.kind,
@@ -301,21 +301,22 @@ fn conjugate_mode(m: &Mode) -> Mode {
 
 /// `v` to unit norm with its largest entry real positive; `u` so that `uᵀ F_yd v = 1`
 /// when that product is not negligible against `‖u‖ ‖F_yd‖ ‖v‖`, else to unit norm.
-fn normalize(v: &Col<c64>, u: &Col<c64>, fyd: &Mat<f64>) -> (Col<c64>, Col<c64>) {
+/// `fyd_v` computes `F_yd x`; `fyd_norm` is `‖F_yd‖_F`.
+pub(super) fn normalize(v: &Col<c64>, u: &Col<c64>, fyd_v: impl Fn(&Col<c64>) -> Col<c64>, fyd_norm: f64) -> (Col<c64>, Col<c64>) {
     let big = v.iter().copied().fold(c64::new(0.0, 0.0), |a, x| if x.norm() > a.norm() { x } else { a });
     let phase = if big.norm() > 0.0 { big.conj() / big.norm() } else { c64::new(1.0, 0.0) };
     let nv = norm(v);
     let v = Col::from_fn(v.nrows(), |i| v[i] * phase / nv);
-    let p = dot_t(u, &mul_real_complex(fyd, &v));
+    let p = dot_t(u, &fyd_v(&v));
     let nu = norm(u);
-    let scale = if p.norm() > 1e3 * f64::EPSILON * nu * fyd.norm_l2() { c64::new(1.0, 0.0) / p } else { c64::new(1.0 / nu, 0.0) };
+    let scale = if p.norm() > 1e3 * f64::EPSILON * nu * fyd_norm { c64::new(1.0, 0.0) / p } else { c64::new(1.0 / nu, 0.0) };
     let u = Col::from_fn(u.nrows(), |i| u[i] * scale);
     (v, u)
 }
 
 /// Sorts modes (a complex pair is one unit, positive imaginary part first): dynamic by
 /// increasing |λ|, then zero, then infinite; records each pair's partner index.
-fn sort_units(mut units: Vec<Vec<Mode>>) -> Vec<Mode> {
+pub(super) fn sort_units(mut units: Vec<Vec<Mode>>) -> Vec<Mode> {
     let rank = |k: ModeKind| match k {
         ModeKind::Dynamic => 0,
         ModeKind::Zero => 1,

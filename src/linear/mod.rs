@@ -5,10 +5,16 @@
 mod balance;
 mod classify;
 mod dae;
+mod deflate;
+mod dynamic_eigen;
 mod eigen;
 mod route;
+mod sparse;
+mod sparse_dae;
 
 pub use classify::{Classification, ModeKind};
 pub use dae::{coefficient_from_derivatives, derivatives_from_coefficient, ConstraintForm, Jacobians, LinearDae};
 pub use eigen::{EigenError, ModalAnalysis, Mode};
 pub use route::EigenRoute;
+pub use sparse::SparseMatrix;
+pub use sparse_dae::{SparseLinearDae, SparseSolveError};

@@ -43,23 +43,61 @@ pub struct BodePlot {
     pub curves: Vec<ResponseCurve>,
 }
 
-/// Phase in degrees, unwrapped along the curve.
+/// Phase in degrees, unwrapped along the curve, starting in (−180°, 180°] (a real negative
+/// start is −180°). A step of less than half a turn is taken as it is. An exact sign flip
+/// of an undamped response (a step within 1° of ±180°) is ambiguous in the phase alone:
+/// it is a pole (−180°) when |H| peaks there and a zero (+180°) when |H| dips, as the phase
+/// of a lightly damped pole or zero would run.
 pub fn unwrapped_phase_deg(values: &[c64]) -> Vec<f64> {
+    let raw: Vec<f64> = values.iter().map(|v| v.im.atan2(v.re).to_degrees()).collect();
+    let mag: Vec<f64> = values.iter().map(|v| v.norm()).collect();
     let mut out = Vec::with_capacity(values.len());
-    let mut offset = 0.0;
-    let mut prev: Option<f64> = None;
-    for v in values {
-        let p = v.im.atan2(v.re).to_degrees();
-        if let Some(q) = prev {
-            let d = p + offset - q;
-            // Half turns (the sign flips of undamped responses) go down: a phase lag.
-            offset -= 360.0 * (d / 360.0 + 0.5).floor();
+    for (k, &p) in raw.iter().enumerate() {
+        let Some(&prev) = out.last() else {
+            out.push(if p > 179.999 { p - 360.0 } else { p });
+            continue;
+        };
+        let prev: f64 = prev;
+        // The step to the nearest branch, in (−180, 180].
+        let mut d = (p - prev).rem_euclid(360.0);
+        if d > 180.0 {
+            d -= 360.0;
         }
-        let u = p + offset;
-        prev = Some(u);
-        out.push(u);
+        if (d.abs() - 180.0).abs() < 1.0 {
+            let inner = mag[k - 1].max(f64::MIN_POSITIVE).ln() + mag[k].max(f64::MIN_POSITIVE).ln();
+            let outer_l = if k >= 2 { mag[k - 2] } else { mag[k - 1] };
+            let outer_r = if k + 1 < mag.len() { mag[k + 1] } else { mag[k] };
+            let outer = outer_l.max(f64::MIN_POSITIVE).ln() + outer_r.max(f64::MIN_POSITIVE).ln();
+            let pole = inner >= outer;
+            d = if pole { -d.abs() } else { d.abs() };
+        }
+        out.push(prev + d);
     }
     out
+}
+
+/// Unwrapped phases of curves of one channel from a common reference: each curve is
+/// unwrapped along frequency ([`unwrapped_phase_deg`]), then every curve after the first
+/// is shifted by whole turns to meet the first at the lowest frequency where their
+/// magnitudes agree within 1 % (else at the lowest frequency), so that curves overlay
+/// wherever they agree.
+pub fn common_reference_phases(curves: &[&ResponseCurve]) -> Vec<Vec<f64>> {
+    let mut phases: Vec<Vec<f64>> = curves.iter().map(|c| unwrapped_phase_deg(&c.values)).collect();
+    let Some(reference) = curves.first() else { return phases };
+    for k in 1..curves.len() {
+        let c = curves[k];
+        let at = (0..c.values.len().min(reference.values.len()))
+            .find(|&i| {
+                let (a, b) = (reference.values[i].norm(), c.values[i].norm());
+                a > 0.0 && ((b - a) / a).abs() <= 0.01
+            })
+            .unwrap_or(0);
+        if at < phases[k].len() && at < phases[0].len() {
+            let turns = ((phases[0][at] - phases[k][at]) / 360.0).round();
+            phases[k].iter_mut().for_each(|p| *p += 360.0 * turns);
+        }
+    }
+    phases
 }
 
 fn magnitude_db(v: c64) -> Option<f64> {
@@ -72,32 +110,8 @@ fn range(values: impl Iterator<Item = f64>, pad: f64) -> (f64, f64) {
     if lo.is_finite() { (lo - pad, hi + pad) } else { (-1.0, 1.0) }
 }
 
-/// Colour and legend text of each curve: colour by input/output pair when there are
-/// several pairs, by model otherwise.
-fn legend_entries(curves: &[ResponseCurve]) -> Vec<(RGBColor, String)> {
-    let mut pairs: Vec<(&str, &str)> = Vec::new();
-    let mut labels: Vec<&str> = Vec::new();
-    for c in curves {
-        if !pairs.contains(&(c.output.as_str(), c.input.as_str())) {
-            pairs.push((&c.output, &c.input));
-        }
-        if !labels.contains(&c.label.as_str()) {
-            labels.push(&c.label);
-        }
-    }
-    curves
-        .iter()
-        .map(|c| {
-            let pair = pairs.iter().position(|p| *p == (c.output.as_str(), c.input.as_str())).unwrap_or(0);
-            let label = labels.iter().position(|l| *l == c.label).unwrap_or(0);
-            let color = if pairs.len() > 1 { pair } else { label };
-            (COLORS[color % COLORS.len()], format!("{}: {} / {}", c.label, c.output, c.input))
-        })
-        .collect()
-}
-
 /// A frequency tick: plain decimals between 1e-3 and 1e4, scientific outside.
-fn tick_label(x: f64) -> String {
+pub(super) fn tick_label(x: f64) -> String {
     if (1e-3..1e4).contains(&x.abs()) {
         let s = format!("{x:.3}");
         s.trim_end_matches('0').trim_end_matches('.').to_string()
@@ -106,57 +120,138 @@ fn tick_label(x: f64) -> String {
     }
 }
 
-type Plotted<'a> = Vec<(&'a ResponseCurve, Vec<(f64, f64)>)>;
+/// Largest |value| of a curve.
+fn peak(c: &ResponseCurve) -> f64 {
+    c.values.iter().map(|v| v.norm()).fold(0.0, f64::max)
+}
 
-fn draw_panel<DB: DrawingBackend>(
-    area: &DrawingArea<DB, Shift>,
-    plot: &BodePlot,
-    series: Plotted<'_>,
-    y_desc: &str,
-    legend: bool,
-    x_range: (f64, f64),
-) -> Result<(), String> {
+/// A channel whose largest magnitude is below this fraction of the plot's largest is zero.
+pub const ZERO_CHANNEL: f64 = 1e-12;
+
+/// One input→output pair and the curves of every model for it.
+struct Channel<'a> {
+    output: &'a str,
+    input: &'a str,
+    curves: Vec<&'a ResponseCurve>,
+}
+
+fn channels(plot: &BodePlot) -> Vec<Channel<'_>> {
+    let mut out: Vec<Channel> = Vec::new();
+    for c in &plot.curves {
+        match out.iter_mut().find(|ch| ch.output == c.output && ch.input == c.input) {
+            Some(ch) => ch.curves.push(c),
+            None => out.push(Channel { output: &c.output, input: &c.input, curves: vec![c] }),
+        }
+    }
+    out
+}
+
+fn models(plot: &BodePlot) -> Vec<(&str, CurveStyle)> {
+    let mut labels: Vec<(&str, CurveStyle)> = Vec::new();
+    for c in &plot.curves {
+        if !labels.iter().any(|(l, _)| *l == c.label) {
+            labels.push((&c.label, c.style));
+        }
+    }
+    labels
+}
+
+/// Grid of a plot with `n_out × n_in` channels: (rows, columns).
+fn grid(plot: &BodePlot) -> (usize, usize) {
+    let chans = channels(plot);
+    let outs: Vec<&str> = chans.iter().map(|c| c.output).fold(Vec::new(), |mut v, o| {
+        if !v.contains(&o) {
+            v.push(o)
+        }
+        v
+    });
+    let n = chans.len().max(1);
+    let cols = if outs.len() > 0 && n % outs.len() == 0 && n / outs.len() <= 4 { n / outs.len() } else { (n as f64).sqrt().ceil() as usize };
+    (n.div_ceil(cols), cols)
+}
+
+/// Pixel size of a plot: 1200 × 900 for one channel, 640 × 620 per channel cell otherwise.
+pub fn plot_size(plot: &BodePlot) -> (u32, u32) {
+    match grid(plot) {
+        (1, 1) => SIZE,
+        (r, c) => (640 * c as u32, 620 * r as u32 + 60),
+    }
+}
+
+type Series = Vec<(f64, f64)>;
+
+#[allow(clippy::too_many_arguments)]
+fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, series: &[(&ResponseCurve, Series)], y_desc: &str, x_range: (f64, f64), styles: &[(RGBColor, &str)], legend: bool, font: u32, caption: Option<&str>) -> Result<(), String> {
     let err = |e: &dyn std::fmt::Display| e.to_string();
     let (ylo, yhi) = range(series.iter().flat_map(|(_, p)| p.iter().map(|q| q.1)), 5.0);
-    let mut chart = ChartBuilder::on(area)
-        .margin(15)
-        .margin_right(30)
-        .x_label_area_size(55)
-        .y_label_area_size(90)
-        .build_cartesian_2d((x_range.0..x_range.1).log_scale(), ylo..yhi)
-        .map_err(|e| err(&e))?;
+    let mut builder = ChartBuilder::on(area);
+    builder.margin(10).margin_right(25).x_label_area_size(font * 5 / 2).y_label_area_size(font * 4);
+    if let Some(c) = caption {
+        builder.caption(c, (FONT, font + 2));
+    }
+    let mut chart = builder.build_cartesian_2d((x_range.0..x_range.1).log_scale(), ylo..yhi).map_err(|e| err(&e))?;
     chart
         .configure_mesh()
         .x_desc("frequency [Hz]")
         .y_desc(y_desc)
-        .axis_desc_style((FONT, 22))
-        .label_style((FONT, 18))
-        .x_labels(12)
+        .axis_desc_style((FONT, font + 2))
+        .label_style((FONT, font))
+        .x_labels(if font > 16 { 12 } else { 6 })
         .x_label_formatter(&|x| tick_label(*x))
         .light_line_style(RGBColor(235, 235, 235))
         .draw()
         .map_err(|e| err(&e))?;
-    let entries = legend_entries(&plot.curves);
-    for (k, (curve, points)) in series.into_iter().enumerate() {
-        let (color, text) = entries[k].clone();
-        let style = ShapeStyle { color: color.to_rgba(), filled: false, stroke_width: 2 };
+    for (curve, points) in series {
+        let (color, label) = styles.iter().find(|(_, l)| *l == curve.label).copied().unwrap_or((BLACK, ""));
+        let style = ShapeStyle { color: color.to_rgba(), filled: false, stroke_width: if curve.style == CurveStyle::Full { 3 } else { 2 } };
         let drawn = match curve.style {
-            CurveStyle::Full => chart.draw_series(LineSeries::new(points, style)).map_err(|e| err(&e))?,
-            CurveStyle::Rom => chart.draw_series(DashedLineSeries::new(points, 12, 8, style)).map_err(|e| err(&e))?,
+            CurveStyle::Full => chart.draw_series(LineSeries::new(points.clone(), style)).map_err(|e| err(&e))?,
+            CurveStyle::Rom => chart.draw_series(DashedLineSeries::new(points.clone(), 12, 8, style)).map_err(|e| err(&e))?,
         };
-        if legend && k < 12 {
-            drawn.label(text).legend(move |(x, y)| PathElement::new(vec![(x - 5, y), (x + 15, y)], style));
+        if legend {
+            let dashed = curve.style == CurveStyle::Rom;
+            drawn.label(label.to_string()).legend(move |(x, y)| {
+                let pts = if dashed { vec![(x - 5, y), (x + 3, y)] } else { vec![(x - 5, y), (x + 15, y)] };
+                PathElement::new(pts, style)
+            });
         }
     }
     if legend {
         chart
             .configure_series_labels()
             .position(SeriesLabelPosition::LowerLeft)
-            .label_font((FONT, 18))
+            .label_font((FONT, font))
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK)
             .draw()
             .map_err(|e| err(&e))?;
+    }
+    Ok(())
+}
+
+fn draw_channel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, ch: &Channel, styles: &[(RGBColor, &str)], x_range: (f64, f64), plot: &BodePlot, legend: bool, font: u32, largest: f64, single: bool) -> Result<(), String> {
+    let err = |e: &dyn std::fmt::Display| e.to_string();
+    let caption = format!("{} / {}", ch.output, ch.input);
+    let zero = |c: &ResponseCurve| peak(c) <= ZERO_CHANNEL * largest;
+    if ch.curves.iter().all(|c| zero(c)) {
+        let area = area.margin(20, 20, 20, 20);
+        area.draw(&Text::new(caption.clone(), (10, 10), (FONT, font + 2))).map_err(|e| err(&e))?;
+        let text = format!("exactly zero: {} does not respond to {}", ch.output, ch.input);
+        area.draw(&Text::new(text, (10, 60), (FONT, font + 2).into_font().color(&RED))).map_err(|e| err(&e))?;
+        area.draw(&Text::new("(every model; nothing to plot)".to_string(), (10, 60 + 2 * font as i32), (FONT, font))).map_err(|e| err(&e))?;
+        return Ok(());
+    }
+    let drawn: Vec<&ResponseCurve> = ch.curves.iter().copied().filter(|c| !zero(c)).collect();
+    let (top, bottom) = area.split_vertically(area.dim_in_pixel().1 as i32 * 52 / 100);
+    let mag: Vec<(&ResponseCurve, Series)> = drawn.iter().map(|c| (*c, c.freq_hz.iter().zip(&c.values).filter_map(|(f, v)| magnitude_db(*v).map(|m| (*f, m))).collect())).collect();
+    let phases = common_reference_phases(&drawn);
+    let phase: Vec<(&ResponseCurve, Series)> = drawn.iter().zip(phases).map(|(c, p)| (*c, c.freq_hz.iter().copied().zip(p).filter(|(_, p)| p.is_finite()).collect())).collect();
+    let unit = if single { format!("magnitude [dB re 1 {}]", plot.magnitude_unit) } else { "magnitude [dB]".to_string() };
+    draw_panel(&top, &mag, &unit, x_range, styles, legend, font, Some(caption.as_str()))?;
+    draw_panel(&bottom, &phase, "phase [deg]", x_range, styles, false, font, None)?;
+    for (k, c) in ch.curves.iter().filter(|c| zero(c)).enumerate() {
+        let text = format!("{}: exactly zero in this channel (not drawn)", c.label);
+        top.draw(&Text::new(text, (font as i32 * 5, font as i32 * (3 + k as i32)), (FONT, font).into_font().color(&RED))).map_err(|e| err(&e))?;
     }
     Ok(())
 }
@@ -166,22 +261,22 @@ impl Figure for BodePlot {
         let plot = self;
         let err = |e: &dyn std::fmt::Display| e.to_string();
         root.fill(&WHITE).map_err(|e| err(&e))?;
-        let root = root.titled(&plot.title, (FONT, 28)).map_err(|e| err(&e))?;
-        let (top, bottom) = root.split_vertically(SIZE.1 as i32 * 52 / 100);
+        let (rows, cols) = grid(plot);
+        let single = rows * cols == 1;
+        let title = if single { plot.title.clone() } else { format!("{} (magnitude in dB re 1 {})", plot.title, plot.magnitude_unit) };
+        let root = root.titled(&title, (FONT, 28)).map_err(|e| err(&e))?;
+        let font = if single { 18 } else { 15 };
         let (flo, fhi) = range(plot.curves.iter().flat_map(|c| c.freq_hz.iter().copied().filter(|f| *f > 0.0)), 0.0);
-        let mag: Plotted = plot
-            .curves
-            .iter()
-            .map(|c| (c, c.freq_hz.iter().zip(&c.values).filter_map(|(f, v)| magnitude_db(*v).map(|m| (*f, m))).collect()))
-            .collect();
-        let phase: Plotted = plot
-            .curves
-            .iter()
-            .map(|c| (c, c.freq_hz.iter().copied().zip(unwrapped_phase_deg(&c.values)).filter(|(_, p)| p.is_finite()).collect()))
-            .collect();
-        let unit = format!("magnitude [dB re 1 {}]", plot.magnitude_unit);
-        draw_panel(&top, plot, mag, &unit, true, (flo, fhi))?;
-        draw_panel(&bottom, plot, phase, "phase [deg]", false, (flo, fhi))?;
+        // Colour by model: the full model black and solid, each ROM its own colour, dashed.
+        let styles: Vec<(RGBColor, &str)> = models(plot).iter().enumerate().map(|(k, (l, _))| (COLORS[k % COLORS.len()], *l)).collect();
+        let largest = plot.curves.iter().map(peak).fold(0.0, f64::max);
+        let cells = root.split_evenly((rows, cols));
+        let chans = channels(plot);
+        // The legend goes on the first channel that has something drawn.
+        let legend_at = chans.iter().position(|ch| ch.curves.iter().any(|c| peak(c) > ZERO_CHANNEL * largest)).unwrap_or(0);
+        for (k, ch) in chans.iter().enumerate() {
+            draw_channel(&cells[k], ch, &styles, (flo, fhi), plot, k == legend_at, font, largest, single)?;
+        }
         root.present().map_err(|e| err(&e))
     }
 }
@@ -191,5 +286,5 @@ pub fn write_bode(plot: &BodePlot, svg_path: &Path, png_path: &Path) -> Result<(
     if plot.curves.is_empty() {
         return Err(OutputError::Invalid { path: svg_path.to_path_buf(), message: "no curve to plot".into() });
     }
-    write_figure(plot, SIZE, svg_path, png_path)
+    write_figure(plot, plot_size(plot), svg_path, png_path)
 }

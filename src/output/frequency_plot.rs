@@ -51,10 +51,22 @@ impl FrequencyResponses {
         FrequencyResponses { freq_hz, inputs: dae.input_names.clone(), outputs: dae.output_names.clone(), curves }
     }
 
+    /// The full model's response `h` (outputs × inputs at each of `freq_hz`), computed
+    /// elsewhere.
+    pub fn from_full(freq_hz: Vec<f64>, h: &[Mat<c64>], inputs: &[String], outputs: &[String]) -> Self {
+        let curves = curves_of("full model", CurveStyle::Full, &freq_hz, h, inputs, outputs);
+        FrequencyResponses { freq_hz, inputs: inputs.to_vec(), outputs: outputs.to_vec(), curves }
+    }
+
     /// Adds a ROM's response (dashed) under `label`.
-    pub fn with_rom(mut self, label: &str, rom: &OrdinaryRom) -> Self {
+    pub fn with_rom(self, label: &str, rom: &OrdinaryRom) -> Self {
         let h = rom.frequency_response(&self.freq_hz);
-        self.curves.extend(curves_of(label, CurveStyle::Rom, &self.freq_hz, &h, &self.inputs, &self.outputs));
+        self.with_response(label, &h)
+    }
+
+    /// Adds a ROM's response `h` on the same grid (dashed) under `label`.
+    pub fn with_response(mut self, label: &str, h: &[Mat<c64>]) -> Self {
+        self.curves.extend(curves_of(label, CurveStyle::Rom, &self.freq_hz, h, &self.inputs, &self.outputs));
         self
     }
 

@@ -14,6 +14,7 @@ pub mod eigen_m;
 pub mod mat5;
 pub mod jacobian_check;
 pub mod matrix_market;
+pub mod mimo_plot;
 pub mod modal;
 pub mod model_log;
 pub mod motion;

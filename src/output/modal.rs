@@ -20,6 +20,9 @@ pub struct ModeRow {
     pub damping: Option<f64>,
     /// Estimated absolute error of λ [rad/s] (eqs. 32–35).
     pub error: Option<f64>,
+    /// One-line label of a dynamic mode, e.g. "table pitch (ry) 93 %" (multibody models).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub label: Option<String>,
     /// Dominant node components by kinetic energy, e.g. "node 3 rz 92 %" (multibody models).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub description: Option<String>,
@@ -67,6 +70,7 @@ impl ModalReport {
                     freq_hz: if infinite { None } else { finite(m.freq_hz()) },
                     damping: if infinite { None } else { finite(m.damping()) },
                     error: finite(m.error),
+                    label: None,
                     description: None,
                     energy: Vec::new(),
                 }
@@ -95,6 +99,14 @@ impl ModalReport {
         self
     }
 
+    /// Attaches mode labels (one per mode, in table order; dynamic modes only are shown).
+    pub fn with_labels(mut self, labels: Vec<Option<String>>) -> Self {
+        for (row, l) in self.eigenvalues.iter_mut().zip(labels) {
+            row.label = if row.kind == ModeKind::Dynamic { l } else { None };
+        }
+        self
+    }
+
     /// The table as aligned text.
     pub fn to_text(&self) -> String {
         self.text(self.eigenvalues.iter(), "")
@@ -113,15 +125,21 @@ impl ModalReport {
             "# {} equations, route {:?}, dCoef {:e} s; {} dynamic, {} zero, {} infinite\n",
             self.equations, self.route, self.dcoef, self.counts.dynamic, self.counts.zero, self.counts.infinite
         );
-        let energy_column = if self.eigenvalues.iter().any(|r| r.description.is_some()) { "  kinetic energy" } else { "" };
+        let labels = self.eigenvalues.iter().any(|r| r.label.is_some());
+        let energy_column = match (labels, self.eigenvalues.iter().any(|r| r.description.is_some())) {
+            (true, _) => format!("  {:<36}  kinetic energy", "label"),
+            (false, true) => "  kinetic energy".to_string(),
+            (false, false) => String::new(),
+        };
         s += &format!(
             "{:>5}  {:>14}  {:>14}  {:>12}  {:>9}  {:>8}  {:>9}{energy_column}\n",
             "mode", "Re λ [rad/s]", "Im λ [rad/s]", "freq [Hz]", "damping", "kind", "error"
         );
         let num = |x: Option<f64>, w: usize| x.map_or(format!("{:>w$}", "-"), |v| format!("{v:>w$.6e}"));
         for r in rows {
+            let label = if labels { format!("{:<36}  ", r.label.as_deref().unwrap_or("")) } else { String::new() };
             let row = format!(
-                "{:>5}  {}  {}  {}  {}  {:>8}  {}  {}",
+                "{:>5}  {}  {}  {}  {}  {:>8}  {}  {label}{}",
                 r.index,
                 num(r.re, 14),
                 num(r.im, 14),

@@ -2,12 +2,12 @@
 //!
 //! Layout: `#` comment lines (units), a header row, then one row per frequency:
 //! `freq_hz`, and for each curve four columns `<label>: <output> / <input> re`, `… im`,
-//! `… mag`, `… phase_deg` (phase unwrapped along the curve).
+//! `… mag`, `… phase_deg` (phase unwrapped along the curve, each channel's curves from a common reference).
 
 use std::path::Path;
 
 use super::atomic::{write_atomic, OutputError};
-use super::bode::{unwrapped_phase_deg, ResponseCurve};
+use super::bode::{common_reference_phases, ResponseCurve};
 
 fn quote(s: &str) -> String {
     if s.contains([',', '"', '\n']) { format!("\"{}\"", s.replace('"', "\"\"")) } else { s.to_string() }
@@ -20,7 +20,18 @@ pub fn write_response_csv(curves: &[ResponseCurve], path: &Path) -> Result<(), O
     if curves.iter().any(|c| c.freq_hz != first.freq_hz || c.values.len() != c.freq_hz.len()) {
         return Err(invalid("all curves must share one frequency grid"));
     }
-    let phases: Vec<Vec<f64>> = curves.iter().map(|c| unwrapped_phase_deg(&c.values)).collect();
+    // Each channel's curves from a common reference, as the Bode plot draws them.
+    let mut phases: Vec<Vec<f64>> = vec![Vec::new(); curves.len()];
+    for (k, c) in curves.iter().enumerate() {
+        if !phases[k].is_empty() {
+            continue;
+        }
+        let same: Vec<usize> = (k..curves.len()).filter(|&j| curves[j].output == c.output && curves[j].input == c.input).collect();
+        let refs: Vec<&ResponseCurve> = same.iter().map(|&j| &curves[j]).collect();
+        for (j, p) in same.into_iter().zip(common_reference_phases(&refs)) {
+            phases[j] = p;
+        }
+    }
     write_atomic(path, |w| {
         writeln!(w, "# romdyn frequency response z/u; frequency in Hz; re, im and magnitude in output units per input unit (SI); phase in degrees")?;
         let mut header = vec!["freq_hz".to_string()];

@@ -1,13 +1,26 @@
 //! Exporting a ROM: JSON, MATLAB v5 `.mat` or NumPy `.npz`, chosen by the file extension.
+//! All three formats carry the same content (names as cell arrays of strings in `.mat`,
+//! str arrays in `.npz`):
+//!
+//! | name | content |
+//! | --- | --- |
+//! | `E A B C D` | `E ẋ = A x + B u`, `z = C x + D u` |
+//! | `kind` | `"ordinary"` (E = I) or `"descriptor"` (D = 0, E possibly singular) |
+//! | `eigenvalues` | the ROM's own eigenvalues (finite eigenvalues of `(A, E)`) [rad/s] |
+//! | `full_eigenvalues` | the full model's kept eigenvalues [rad/s] |
+//! | `inputs outputs states` | names |
+//! | `input_units output_units state_units` | SI units |
+//! | `state_modes state_freq_hz` | each state's mode (1-based modal-table index, 0 for a static state) and its frequency Im λ/2π [Hz] |
+//! | `reference_time dcoef` | where the model was linearized [s] (NaN: a pencil file) and the dCoef of its eigenanalysis [s] |
+//! | `full_static_gain rom_static_gain` | outputs × inputs (NaN when not available) |
 
 use std::path::Path;
 
 use faer::{c64, Mat};
 use serde_json::{json, Value};
 
-use crate::rom::{DescriptorRom, OrdinaryRom};
-
-/// A ROM in exportable form: `E ẋ = A x + B u`, `z = C x + D u`.
+/// A ROM in exportable form: `E ẋ = A x + B u`, `z = C x + D u`, with what is needed to
+/// use and check it.
 #[derive(Clone, Debug)]
 pub struct RomExport {
     /// `"descriptor"` (D = 0, E possibly singular) or `"ordinary"` (E = I).
@@ -17,109 +30,173 @@ pub struct RomExport {
     pub b: Mat<f64>,
     pub c: Mat<f64>,
     pub d: Mat<f64>,
+    /// The ROM's own eigenvalues [rad/s].
     pub eigenvalues: Vec<c64>,
+    /// The full model's kept eigenvalues [rad/s].
+    pub full_eigenvalues: Vec<c64>,
     pub inputs: Vec<String>,
     pub outputs: Vec<String>,
-}
-
-impl From<&DescriptorRom> for RomExport {
-    fn from(r: &DescriptorRom) -> Self {
-        RomExport {
-            kind: "descriptor",
-            e: r.e.clone(),
-            a: r.a.clone(),
-            b: r.b.clone(),
-            c: r.c.clone(),
-            d: Mat::zeros(r.c.nrows(), r.b.ncols()),
-            eigenvalues: r.eigenvalues.clone(),
-            inputs: r.input_names.clone(),
-            outputs: r.output_names.clone(),
-        }
-    }
-}
-
-impl From<&OrdinaryRom> for RomExport {
-    fn from(r: &OrdinaryRom) -> Self {
-        let n = r.a.nrows();
-        RomExport {
-            kind: "ordinary",
-            e: Mat::identity(n, n),
-            a: r.a.clone(),
-            b: r.b.clone(),
-            c: r.c.clone(),
-            d: r.d.clone(),
-            eigenvalues: r.eigenvalues.clone(),
-            inputs: r.input_names.clone(),
-            outputs: r.output_names.clone(),
-        }
-    }
+    pub states: Vec<String>,
+    pub input_units: Vec<String>,
+    pub output_units: Vec<String>,
+    pub state_units: Vec<String>,
+    /// 1-based modal-table index of each state's mode (0: a static state).
+    pub state_modes: Vec<usize>,
+    /// `Im λ/2π` of each state's mode [Hz] (NaN for a static state).
+    pub state_freq_hz: Vec<f64>,
+    /// Time of the reference solution [s] (`None`: a pencil file).
+    pub reference_time: Option<f64>,
+    pub dcoef: f64,
+    pub full_static_gain: Option<Mat<f64>>,
+    pub rom_static_gain: Option<Mat<f64>>,
 }
 
 fn rows(m: &Mat<f64>) -> Value {
     Value::Array((0..m.nrows()).map(|i| Value::Array((0..m.ncols()).map(|j| json!(m[(i, j)])).collect())).collect())
 }
 
+/// The SI unit in a port name's brackets ("node 5 y [m]" → "m"), or "" when it has none.
+pub fn unit_of_name(name: &str) -> String {
+    match (name.rfind('['), name.rfind(']')) {
+        (Some(a), Some(b)) if a < b => name[a + 1..b].to_string(),
+        _ => String::new(),
+    }
+}
+
 /// Why a ROM could not be written.
 #[derive(Debug, thiserror::Error)]
 pub enum ExportError {
-    #[error("{0}: unknown output format (use .json, .mat or .npz)")]
+    #[error("{0}: unknown ROM file format (the extension must be .json, .mat or .npz)")]
     UnknownFormat(String),
+    #[error("{0}: is a directory; give a ROM file name ending in .json, .mat or .npz")]
+    IsDirectory(String),
     #[error(transparent)]
     Output(#[from] super::atomic::OutputError),
 }
 
+#[derive(Clone, Copy)]
+enum Format {
+    Json,
+    Mat,
+    Npz,
+}
+
+fn format_of(path: &Path) -> Result<Format, ExportError> {
+    if path.is_dir() {
+        return Err(ExportError::IsDirectory(path.display().to_string()));
+    }
+    let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("json") => Ok(Format::Json),
+        Some("mat") => Ok(Format::Mat),
+        Some("npz") => Ok(Format::Npz),
+        _ => Err(ExportError::UnknownFormat(path.display().to_string())),
+    }
+}
+
+fn nan_matrix(m: &Option<Mat<f64>>, rows: usize, cols: usize) -> Mat<f64> {
+    m.clone().unwrap_or_else(|| Mat::from_fn(rows, cols, |_, _| f64::NAN))
+}
+
 impl RomExport {
-    /// The JSON document (keys E, A, B, C, D as arrays of rows).
+    /// Checks that `path` names a file in a known format (before any computation).
+    pub fn check_path(path: &Path) -> Result<(), ExportError> {
+        format_of(path).map(|_| ())
+    }
+
+    /// The JSON document (matrices as arrays of rows; complex numbers as {re, im}).
     pub fn to_json(&self) -> Value {
+        let complex = |v: &[c64]| v.iter().map(|l| json!({"re": l.re, "im": l.im})).collect::<Vec<_>>();
+        let gain = |g: &Option<Mat<f64>>| g.as_ref().map_or(Value::Null, rows);
         json!({
             "kind": self.kind,
-            "units": "SI: inputs and outputs in the units of the model's forces/moments and displacements/rotations; eigenvalues in rad/s",
+            "units": "SI: inputs, outputs and states in the units listed; eigenvalues in rad/s, frequencies in Hz, times in s",
             "E": rows(&self.e),
             "A": rows(&self.a),
             "B": rows(&self.b),
             "C": rows(&self.c),
             "D": rows(&self.d),
-            "eigenvalues": self.eigenvalues.iter().map(|l| json!({"re": l.re, "im": l.im})).collect::<Vec<_>>(),
+            "eigenvalues": complex(&self.eigenvalues),
+            "full_eigenvalues": complex(&self.full_eigenvalues),
             "inputs": self.inputs,
             "outputs": self.outputs,
+            "states": self.states,
+            "input_units": self.input_units,
+            "output_units": self.output_units,
+            "state_units": self.state_units,
+            "state_modes": self.state_modes,
+            "state_freq_hz": self.state_freq_hz.iter().map(|f| if f.is_finite() { json!(f) } else { Value::Null }).collect::<Vec<_>>(),
+            "reference_time": self.reference_time,
+            "dcoef": self.dcoef,
+            "full_static_gain": gain(&self.full_static_gain),
+            "rom_static_gain": gain(&self.rom_static_gain),
         })
     }
 
-    fn matrices(&self) -> [(&'static str, &Mat<f64>); 5] {
-        [("E", &self.e), ("A", &self.a), ("B", &self.b), ("C", &self.c), ("D", &self.d)]
+    fn matrices(&self) -> Vec<(&'static str, Mat<f64>)> {
+        let (no, ni) = (self.c.nrows(), self.b.ncols());
+        vec![
+            ("E", self.e.clone()),
+            ("A", self.a.clone()),
+            ("B", self.b.clone()),
+            ("C", self.c.clone()),
+            ("D", self.d.clone()),
+            ("state_modes", Mat::from_fn(self.state_modes.len(), 1, |i, _| self.state_modes[i] as f64)),
+            ("state_freq_hz", Mat::from_fn(self.state_freq_hz.len(), 1, |i, _| self.state_freq_hz[i])),
+            ("full_static_gain", nan_matrix(&self.full_static_gain, no, ni)),
+            ("rom_static_gain", nan_matrix(&self.rom_static_gain, no, ni)),
+        ]
+    }
+
+    fn names(&self) -> [(&'static str, &Vec<String>); 6] {
+        [
+            ("inputs", &self.inputs),
+            ("outputs", &self.outputs),
+            ("states", &self.states),
+            ("input_units", &self.input_units),
+            ("output_units", &self.output_units),
+            ("state_units", &self.state_units),
+        ]
     }
 
     /// Writes the ROM atomically; the format follows the extension of `path`.
     pub fn write(&self, path: &Path) -> Result<(), ExportError> {
-        let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
-        match ext.as_deref() {
-            Some("json") => {
+        let reference_time = self.reference_time.unwrap_or(f64::NAN);
+        match format_of(path)? {
+            Format::Json => {
                 let text = serde_json::to_string_pretty(&self.to_json()).unwrap_or_default() + "\n";
                 super::atomic::write_atomic_bytes(path, text.as_bytes())?;
             }
-            Some("mat") => {
+            Format::Mat => {
                 let mut f = super::mat5::MatFile::new();
                 for (name, m) in self.matrices() {
-                    f.add_matrix(name, m)?;
+                    f.add_matrix(name, &m)?;
                 }
                 f.add_complex_column("eigenvalues", &self.eigenvalues)?;
-                f.add_string_list("inputs", &self.inputs)?;
-                f.add_string_list("outputs", &self.outputs)?;
+                f.add_complex_column("full_eigenvalues", &self.full_eigenvalues)?;
+                for (name, list) in self.names() {
+                    f.add_string_list(name, list)?;
+                }
                 f.add_string("kind", self.kind)?;
+                f.add_scalar("reference_time", reference_time)?;
+                f.add_scalar("dcoef", self.dcoef)?;
                 f.write(path)?;
             }
-            Some("npz") => {
+            Format::Npz => {
                 let mut f = super::npz::NpzWriter::new();
                 for (name, m) in self.matrices() {
-                    f.add_matrix(name, m)?;
+                    f.add_matrix(name, &m)?;
                 }
                 f.add_complex_column("eigenvalues", &self.eigenvalues)?;
-                f.add_string_list("inputs", &self.inputs)?;
-                f.add_string_list("outputs", &self.outputs)?;
+                f.add_complex_column("full_eigenvalues", &self.full_eigenvalues)?;
+                for (name, list) in self.names() {
+                    f.add_string_list(name, list)?;
+                }
                 f.add_string_list("kind", &[self.kind.to_string()])?;
+                f.add_scalar("reference_time", reference_time)?;
+                f.add_scalar("dcoef", self.dcoef)?;
                 f.write(path)?;
             }
-            _ => return Err(ExportError::UnknownFormat(path.display().to_string())),
         }
         Ok(())
     }

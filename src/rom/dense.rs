@@ -5,7 +5,7 @@ use faer::{c64, Mat};
 
 /// Row and column scale factors (powers of two) that bring every row's and column's largest
 /// entry of `m` near 1 (alternating sweeps).
-fn equilibration(m: &Mat<f64>) -> (Vec<f64>, Vec<f64>) {
+pub(crate) fn equilibration(m: &Mat<f64>) -> (Vec<f64>, Vec<f64>) {
     let n = m.nrows();
     let (mut row, mut col) = (vec![1.0; n], vec![1.0; n]);
     let pow2 = |s: f64| if s > 0.0 && s.is_finite() { (-s.log2().round()).exp2() } else { 1.0 };
@@ -57,6 +57,20 @@ pub(crate) fn shifted(omega: f64, p: &Mat<f64>, q: &Mat<f64>) -> Mat<c64> {
 pub(crate) fn transfer(omega: f64, p: &Mat<f64>, q: &Mat<f64>, b: &Mat<f64>, c: &Mat<f64>, d: Option<&Mat<f64>>) -> Mat<c64> {
     let x = shifted(omega, p, q).partial_piv_lu().solve(&to_complex(b));
     let mut h = &to_complex(c) * &x;
+    if let Some(d) = d {
+        h += &to_complex(d);
+    }
+    h
+}
+
+/// `(C + jω C_v) (jω P + Q)⁻¹ B + D` for one frequency: outputs with rate rows `C_v`.
+pub(crate) fn transfer_with_rates(omega: f64, p: &Mat<f64>, q: &Mat<f64>, b: &Mat<f64>, c: &Mat<f64>, c_rate: Option<&Mat<f64>>, d: Option<&Mat<f64>>) -> Mat<c64> {
+    let x = shifted(omega, p, q).partial_piv_lu().solve(&to_complex(b));
+    let cc = match c_rate {
+        Some(cv) => shifted(omega, cv, c),
+        None => to_complex(c),
+    };
+    let mut h = &cc * &x;
     if let Some(d) = d {
         h += &to_complex(d);
     }

@@ -3,7 +3,7 @@
 
 use faer::{c64, Mat};
 
-use super::dense::transfer;
+use super::dense::transfer_with_rates;
 use super::select::Selection;
 use super::RomError;
 use crate::linear::{Jacobians, LinearDae, ModalAnalysis, Mode};
@@ -16,9 +16,14 @@ pub struct DescriptorRom {
     pub a: Mat<f64>,
     pub b: Mat<f64>,
     pub c: Mat<f64>,
+    /// Rate rows of velocity outputs: `z = C x + C_v ẋ` (`None` without rate outputs).
+    pub c_rate: Option<Mat<f64>>,
     /// Eigenvalues of the kept (dynamic) part [rad/s].
     pub eigenvalues: Vec<c64>,
     pub state_names: Vec<String>,
+    /// The mode (0-based index into the modal analysis) each state comes from: both states
+    /// `[Re v, Im v]` of a complex pair name its member with positive imaginary part.
+    pub state_modes: Vec<usize>,
     pub input_names: Vec<String>,
     pub output_names: Vec<String>,
     /// Number of statically residualized states.
@@ -27,10 +32,11 @@ pub struct DescriptorRom {
 
 /// Real bases `V = Ỹ T`, `W` (eq. 42): a complex pair gives `[Re v, Im v]` and
 /// `[2 Re u, −2 Im u]`, so that with `uᵀ F_yd v = 1` the pair's block of `E` is the identity.
-fn real_bases(modal: &ModalAnalysis, modes: &[usize], n: usize) -> Result<(Mat<f64>, Mat<f64>, Vec<String>), RomError> {
+fn real_bases(modal: &ModalAnalysis, modes: &[usize], n: usize) -> Result<(Mat<f64>, Mat<f64>, Vec<String>, Vec<usize>), RomError> {
     let mut cols_v: Vec<Vec<f64>> = Vec::new();
     let mut cols_w: Vec<Vec<f64>> = Vec::new();
     let mut names = Vec::new();
+    let mut state_modes = Vec::new();
     for &i in modes {
         let m: &Mode = &modal.modes[i];
         let (v, u) = match (&m.right, &m.left) {
@@ -46,16 +52,18 @@ fn real_bases(modal: &ModalAnalysis, modes: &[usize], n: usize) -> Result<(Mat<f
                 cols_w.push((0..n).map(|k| -2.0 * u[k].im).collect());
                 names.push(format!("mode {} re", i + 1));
                 names.push(format!("mode {} im", i + 1));
+                state_modes.extend([i, i]);
             }
             None => {
                 cols_v.push((0..n).map(|k| v[k].re).collect());
                 cols_w.push((0..n).map(|k| u[k].re).collect());
                 names.push(format!("mode {}", i + 1));
+                state_modes.push(i);
             }
         }
     }
     let to_mat = |cols: &Vec<Vec<f64>>| Mat::from_fn(n, cols.len(), |r, c| cols[c][r]);
-    Ok((to_mat(&cols_v), to_mat(&cols_w), names))
+    Ok((to_mat(&cols_v), to_mat(&cols_w), names, state_modes))
 }
 
 impl DescriptorRom {
@@ -68,7 +76,7 @@ impl DescriptorRom {
         if residualize {
             modes.extend(sel.dropped.iter().copied());
         }
-        let (v, w, state_names) = real_bases(modal, &modes, n)?;
+        let (v, w, state_names, state_modes) = real_bases(modal, &modes, n)?;
         let kept_states = real_bases(modal, &sel.kept, n)?.0.ncols();
         let wt = w.transpose();
         let (mut e, a) = match &dae.jacobians {
@@ -94,17 +102,19 @@ impl DescriptorRom {
             a,
             b: wt * &dae.b,
             c: &dae.c * &v,
+            c_rate: dae.c_rate.as_ref().map(|cv| cv * &v),
             eigenvalues: sel.kept.iter().map(|&i| modal.modes[i].lambda).collect(),
             state_names,
+            state_modes,
             input_names: dae.input_names.clone(),
             output_names: dae.output_names.clone(),
             static_states: s - kept_states,
         })
     }
 
-    /// `C (jω E − A)⁻¹ B` at each frequency [Hz].
+    /// `(C + jω C_v) (jω E − A)⁻¹ B` at each frequency [Hz].
     pub fn frequency_response(&self, freq_hz: &[f64]) -> Vec<Mat<c64>> {
         let minus_a = -&self.a;
-        freq_hz.iter().map(|f| transfer(2.0 * std::f64::consts::PI * f, &self.e, &minus_a, &self.b, &self.c, None)).collect()
+        freq_hz.iter().map(|f| transfer_with_rates(2.0 * std::f64::consts::PI * f, &self.e, &minus_a, &self.b, &self.c, self.c_rate.as_ref(), None)).collect()
     }
 }

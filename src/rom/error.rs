@@ -11,6 +11,10 @@ pub enum RomError {
     MissingVectors(usize),
     #[error("{0} is singular: no static response can be computed")]
     SingularStatic(&'static str),
+    #[error("a velocity output of this ROM would need the time derivative of its inputs (its statically residualized states respond to u̇): keep those modes, or measure displacements")]
+    ImproperRate,
+    #[error("imposed motion: {0}")]
+    Imposed(String),
     #[error(transparent)]
     Eigen(#[from] EigenError),
 }

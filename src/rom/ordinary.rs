@@ -44,8 +44,20 @@ impl DescriptorRom {
         // Eqs. 60–63.
         let a = &sinv * ud.transpose() * (&self.a * &vd - &av_s * &xa);
         let b = &sinv * ud.transpose() * (&self.b - &av_s * &xb);
-        let c = &self.c * (&vd - &vs * &xa);
-        let d = -(&self.c * &vs * &xb);
+        let mut c = &self.c * (&vd - &vs * &xa);
+        let mut d = -(&self.c * &vs * &xb);
+        if let Some(cv) = &self.c_rate {
+            // Rate outputs: z = C_v ẋ_desc with ẋ_desc = (V_d − V_s X_a) ẋ − V_s X_b u̇;
+            // the ordinary form has no u̇, so its term must vanish (no static states).
+            let d_udot = -(cv * &vs * &xb);
+            let scale = (cv * &vs).norm_max().max(f64::MIN_POSITIVE) * xb.norm_max().max(1.0);
+            if d_udot.norm_max() > 1e-9 * scale {
+                return Err(RomError::ImproperRate);
+            }
+            let cr = cv * (&vd - &vs * &xa);
+            c += &cr * &a;
+            d += &cr * &b;
+        }
         Ok(OrdinaryRom {
             a,
             b,

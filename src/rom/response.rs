@@ -2,7 +2,7 @@
 
 use faer::{c64, Mat};
 
-use super::dense::{solve_nonsingular, transfer};
+use super::dense::{solve_nonsingular, transfer_with_rates};
 use super::RomError;
 use crate::linear::LinearDae;
 
@@ -15,10 +15,10 @@ pub fn log_frequencies(fmin_hz: f64, fmax_hz: f64, n: usize) -> Vec<f64> {
     (0..n).map(|k| (a + (b - a) * k as f64 / (n - 1) as f64).exp()).collect()
 }
 
-/// `z/u = C̃ (jω F_yd + F_y)⁻¹ B̃` at each frequency [Hz] (outputs × inputs).
+/// `z/u = (C̃ + jω C̃_v) (jω F_yd + F_y)⁻¹ B̃` at each frequency [Hz] (outputs × inputs).
 pub fn full_frequency_response(dae: &LinearDae, freq_hz: &[f64]) -> Vec<Mat<c64>> {
     let (fyd, fy) = dae.jacobians.derivatives();
-    freq_hz.iter().map(|f| transfer(2.0 * std::f64::consts::PI * f, &fyd, &fy, &dae.b, &dae.c, None)).collect()
+    freq_hz.iter().map(|f| transfer_with_rates(2.0 * std::f64::consts::PI * f, &fyd, &fy, &dae.b, &dae.c, dae.c_rate.as_ref(), None)).collect()
 }
 
 /// Static gain `C̃ S⁻¹ B̃` with `S` = [`LinearDae::static_matrix`] (`F_y`, with the

@@ -44,6 +44,7 @@ pub fn two_masses(r: f64, scaled: bool) -> LinearDae {
         output_names: vec!["x2".into()],
         constraint_form: None,
         multipliers: Vec::new(),
+        c_rate: None,
     }
 }
 
@@ -53,3 +54,50 @@ pub fn with_coefficient(dae: &LinearDae, c: f64) -> LinearDae {
     let (j, jstar) = romdyn::linear::coefficient_from_derivatives(&fyd, &fy, c);
     LinearDae { jacobians: Jacobians::Coefficient { j, jstar, dcoef: c }, ..dae.clone() }
 }
+
+const CHAIN_N: usize = 50;
+const CHAIN_K: f64 = 1000.0;
+
+/// The 50-mass chain of issue 2 (CASES): mass 1 grounded by a 1000 N/m spring, springs
+/// between masses i and i+1 for i < 49, x50 − x49 = 0 (form of eq. 29); force on mass 50,
+/// output x50. Unknowns [x1..x50, q1..q50, α].
+pub fn mass_chain() -> LinearDae {
+    const N: usize = CHAIN_N;
+    const K: f64 = CHAIN_K;
+    let n = 2 * N + 1;
+    let (mut fyd, mut fy) = (Mat::<f64>::zeros(n, n), Mat::<f64>::zeros(n, n));
+    for i in 0..N {
+        fyd[(i, i)] = 1.0; // m ẋ_i − q_i = 0
+        fy[(i, N + i)] = -1.0;
+        fyd[(N + i, N + i)] = 1.0; // q̇_i + (K x)_i + Φ_/xᵀ α = f_i
+    }
+    fy[(N, 0)] += K;
+    for i in 0..N - 2 {
+        let (a, b) = (N + i, N + i + 1);
+        fy[(a, i)] += K;
+        fy[(b, i + 1)] += K;
+        fy[(a, i + 1)] -= K;
+        fy[(b, i)] -= K;
+    }
+    // Φ = x50 − x49.
+    fy[(2 * N, N - 1)] = 1.0;
+    fy[(2 * N, N - 2)] = -1.0;
+    fy[(2 * N - 1, 2 * N)] = 1.0;
+    fy[(2 * N - 2, 2 * N)] = -1.0;
+    let mut b = Mat::<f64>::zeros(n, 1);
+    b[(2 * N - 1, 0)] = 1.0;
+    let mut c = Mat::<f64>::zeros(1, n);
+    c[(0, N - 1)] = 1.0;
+    LinearDae {
+        jacobians: Jacobians::Derivatives { fyd, fy },
+        b,
+        c,
+        unknown_names: (0..n).map(|i| format!("y{i}")).collect(),
+        input_names: vec!["f50".into()],
+        output_names: vec!["x50".into()],
+        constraint_form: None,
+        multipliers: Vec::new(),
+        c_rate: None,
+    }
+}
+

@@ -34,3 +34,22 @@ pub fn pendulum(theta: f64, upright: bool, form: ConstraintForm) -> Model {
         .constraint_form(form);
     b.build().expect("valid pendulum")
 }
+
+/// N-link pendulum chain (issue 13 benchmark): ground node 0 clamped; links 1..=n of 0.1 m
+/// and 0.1 kg (inertia 1e-4 kg m²), hinged about z, hanging. 17 n + 12 equations.
+pub fn hanging_chain(n: u32, form: ConstraintForm) -> Model {
+    let dir = Vec3::new(0.0, -0.1, 0.0);
+    let mut b = ModelBuilder::new();
+    b.static_node(0, Vec3::zeros(), Mat3::identity()).element(Joint::clamp(0, 0, Vec3::zeros(), Mat3::identity()));
+    for i in 1..=n {
+        b.dynamic_node(i, dir * i as f64, Mat3::identity(), Vec3::zeros(), Vec3::zeros());
+        b.element(RigidBody::new(i, i, 0.1, Vec3::zeros(), 1e-4 * Mat3::identity()));
+        b.element(Joint::revolute_hinge(
+            n + i,
+            Anchor::Node { label: i - 1, offset: Vec3::zeros(), orientation: Mat3::identity() },
+            Anchor::Node { label: i, offset: -dir, orientation: Mat3::identity() },
+        ));
+    }
+    b.gravity(Vec3::new(0.0, -9.81, 0.0)).constraint_form(form);
+    b.build().expect("valid chain")
+}

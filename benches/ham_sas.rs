@@ -1,0 +1,44 @@
+//! HAM-SAS-like isolator (issue 11, CASES C6): eigenanalysis of its 144-equation linear
+//! model, and the whole chain from the file to the free ROM of its modes up to 2 Hz (dummy
+//! springs removed), the paper's real-size case. Goal: eigenanalysis + ROM under 20 ms.
+//! `cargo bench --bench ham_sas`.
+
+use romdyn::analysis::{reference_state, Reference};
+use romdyn::dae::linearize;
+use romdyn::input::mbdyn::read_model;
+use romdyn::input::ports_file::read_ports_file;
+use romdyn::linear::{EigenRoute, ModalAnalysis};
+use romdyn::rom::ModeSelection;
+use romdyn::study::{parse_imposed, Application, EigenSettings, RomRequest, Study};
+
+fn main() {
+    divan::main();
+}
+
+fn application() -> Application {
+    let p = read_ports_file("examples/ham_sas_ports.json".as_ref()).unwrap();
+    Application { inputs: p.inputs, outputs: p.outputs, names: p.names, remove_springs: p.remove_springs, imposed: p.imposed.as_deref().map(|s| parse_imposed(s).unwrap()) }
+}
+
+/// Eigenanalysis (QZ, right and adjoint vectors) of the linearized model as written (dummy
+/// springs present: the pencil the ROM is projected from).
+#[divan::bench(sample_count = 5)]
+fn eigenanalysis(bencher: divan::Bencher) {
+    let m = read_model("examples/ham_sas.mbd".as_ref()).unwrap();
+    let st = reference_state(&m.model, &m.problem, Reference::Static { load_steps: 1 }).unwrap();
+    let dae = linearize(&m.model, &st, &[], &[], None).unwrap();
+    let dcoef = m.problem.eigenanalysis.as_ref().and_then(|e| e.dcoef);
+    bencher.bench(|| ModalAnalysis::compute_with_dcoef(&dae.jacobians, EigenRoute::Lambda, dcoef).unwrap());
+}
+
+/// The whole chain from the file: read, static equilibrium, linearization with ports,
+/// eigenanalysis, free ROM of the modes up to 2 Hz (dummy springs removed).
+#[divan::bench(sample_count = 5)]
+fn file_to_free_rom(bencher: divan::Bencher) {
+    let app = application();
+    bencher.bench(|| {
+        let m = read_model("examples/ham_sas.mbd".as_ref()).unwrap();
+        let study = Study::from_application(m.model, &m.problem, Reference::Static { load_steps: 1 }, &app, EigenSettings::default()).unwrap();
+        study.reduce(&RomRequest::new(ModeSelection::Band { fmin_hz: 0.0, fmax_hz: 2.0 })).unwrap()
+    });
+}

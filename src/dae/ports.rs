@@ -1,0 +1,344 @@
+//! Ports of a linearized model (paper §7 eqs. 38–39, §8): where the inputs act and what the
+//! outputs measure, at points of nodes and along directions, as the columns of `B̃`
+//! (`−ΔF = B̃ u`) and the rows of `C̃` (`z = C̃ Δy + C̃_v Δẏ`) at the reference configuration.
+//!
+//! A point of a node is `p = x + R f` (offset `f` in the node frame); at the reference
+//! (`g = 0`, so `δθ = δg`) its displacement is `δp = δx − [R f ×] δg`. A force `u d` at `p`
+//! enters the node's force rows as `d` and its moment rows as `(R f) × d`: the input column
+//! of a force is the transpose of the output row of the displacement along the same
+//! direction (collocation). Directions are unit vectors in the global frame, or in a node's
+//! frame (the first node's for actuators and relative sensors), taken at the reference.
+
+use faer::Mat;
+
+use super::state::NodeFrame;
+use super::{DofMap, State};
+use crate::kinematics::{skew, Vec3};
+use crate::model::{Label, Model};
+
+/// The frame a direction is given in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Frame {
+    Global,
+    /// The node's frame at the reference configuration (for a pair: the first node's).
+    Node,
+}
+
+/// A direction (normalized when the port is built).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Direction {
+    pub vector: Vec3,
+    pub frame: Frame,
+}
+
+impl Direction {
+    pub fn global(vector: Vec3) -> Self {
+        Direction { vector, frame: Frame::Global }
+    }
+    pub fn node(vector: Vec3) -> Self {
+        Direction { vector, frame: Frame::Node }
+    }
+}
+
+/// Where a point of a node is.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Location {
+    /// Offset in the node frame [m].
+    Offset(Vec3),
+    /// Global position at the reference configuration [m] (the offset follows from it).
+    At(Vec3),
+}
+
+/// A point attached to a structural node.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Point {
+    pub node: Label,
+    pub location: Location,
+}
+
+impl Point {
+    /// The node's own origin.
+    pub fn node(node: Label) -> Self {
+        Point { node, location: Location::Offset(Vec3::zeros()) }
+    }
+    pub fn offset(node: Label, offset: Vec3) -> Self {
+        Point { node, location: Location::Offset(offset) }
+    }
+    pub fn at(node: Label, position: Vec3) -> Self {
+        Point { node, location: Location::At(position) }
+    }
+}
+
+/// What an input applies.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Excitation {
+    /// A force `u d` at a point [N].
+    Force { point: Point, direction: Direction },
+    /// A moment `u d` on a node [N m].
+    Moment { node: Label, direction: Direction },
+    /// An actuator between two bodies: `+u d` at `to`, `−u d` at `from` [N].
+    Actuator { from: Point, to: Point, direction: Direction },
+}
+
+/// What an output measures.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Measurement {
+    /// Displacement of a point along a direction [m].
+    Displacement { point: Point, direction: Direction },
+    /// Rotation of a node about a direction [rad].
+    Rotation { node: Label, direction: Direction },
+    /// `d · (p_to − p_from)`, change from the reference (an LVDT) [m].
+    Relative { from: Point, to: Point, direction: Direction },
+    /// Velocity of a point along a direction (a geophone) [m/s].
+    Velocity { point: Point, direction: Direction },
+    /// Angular velocity of a node about a direction [rad/s].
+    AngularVelocity { node: Label, direction: Direction },
+}
+
+/// A named input.
+#[derive(Clone, Debug, PartialEq)]
+pub struct InputPort {
+    pub name: String,
+    pub excitation: Excitation,
+}
+
+/// A named output.
+#[derive(Clone, Debug, PartialEq)]
+pub struct OutputPort {
+    pub name: String,
+    pub measurement: Measurement,
+}
+
+impl InputPort {
+    /// SI unit of the input.
+    pub fn unit(&self) -> &'static str {
+        match self.excitation {
+            Excitation::Moment { .. } => "N m",
+            _ => "N",
+        }
+    }
+    /// "NAME [UNIT]", as the ROM's input names carry it.
+    pub fn label(&self) -> String {
+        format!("{} [{}]", self.name, self.unit())
+    }
+}
+
+impl OutputPort {
+    /// SI unit of the output.
+    pub fn unit(&self) -> &'static str {
+        match self.measurement {
+            Measurement::Displacement { .. } | Measurement::Relative { .. } => "m",
+            Measurement::Rotation { .. } => "rad",
+            Measurement::Velocity { .. } => "m/s",
+            Measurement::AngularVelocity { .. } => "rad/s",
+        }
+    }
+    pub fn label(&self) -> String {
+        format!("{} [{}]", self.name, self.unit())
+    }
+    /// Whether the output is a rate (it has a row in `C̃_v`).
+    pub fn is_rate(&self) -> bool {
+        matches!(self.measurement, Measurement::Velocity { .. } | Measurement::AngularVelocity { .. })
+    }
+}
+
+/// A malformed or dangling port.
+#[derive(Debug, thiserror::Error)]
+pub enum PortError {
+    #[error("'{0}': expected NODE:COMPONENT with COMPONENT one of {1}")]
+    Syntax(String, String),
+    #[error("'{0}': structural node {1} is not defined")]
+    UnknownNode(String, Label),
+    #[error("'{0}': the direction is zero or not finite")]
+    BadDirection(String),
+    #[error("'{0}': {1}")]
+    Invalid(String, String),
+}
+
+/// The model's nodes at the reference configuration (re-based: `g = 0`), to build `B̃`
+/// columns and `C̃` rows from.
+pub struct PortMap<'m> {
+    model: &'m Model,
+    dofs: DofMap,
+    frames: Vec<NodeFrame>,
+}
+
+/// One output row: `C̃` and, for rates, `C̃_v`.
+pub struct OutputRow {
+    pub c: Vec<f64>,
+    pub c_rate: Option<Vec<f64>>,
+}
+
+impl<'m> PortMap<'m> {
+    /// `state` is re-based here (a copy), so rotations are measured by `g` from `R_ref`.
+    pub fn new(model: &'m Model, state: &State) -> Self {
+        let dofs = DofMap::new(model);
+        let mut st = state.clone();
+        st.rebase(&dofs);
+        let frames = (0..model.nodes.len()).map(|i| st.node_frame(&dofs, i)).collect();
+        PortMap { model, dofs, frames }
+    }
+
+    /// Number of unknowns (= equations).
+    pub fn dim(&self) -> usize {
+        self.dofs.len
+    }
+
+    fn node(&self, name: &str, label: Label) -> Result<usize, PortError> {
+        self.model.node_index(label).ok_or_else(|| PortError::UnknownNode(name.to_string(), label))
+    }
+
+    /// Node index and the point's offset in global axes `R f` [m].
+    fn point(&self, name: &str, p: &Point) -> Result<(usize, Vec3), PortError> {
+        let i = self.node(name, p.node)?;
+        let fr = &self.frames[i];
+        let r = match p.location {
+            Location::Offset(f) => fr.kin.r * f,
+            Location::At(x) => x - fr.kin.x,
+        };
+        if !r.iter().all(|v| v.is_finite()) {
+            return Err(PortError::Invalid(name.to_string(), "the point is not finite".into()));
+        }
+        Ok((i, r))
+    }
+
+    /// The global unit vector of a direction (node frames: of node `i`).
+    fn direction(&self, name: &str, d: &Direction, i: usize) -> Result<Vec3, PortError> {
+        let n = d.vector.norm();
+        if !(n > 0.0 && n.is_finite()) {
+            return Err(PortError::BadDirection(name.to_string()));
+        }
+        let v = d.vector / n;
+        Ok(match d.frame {
+            Frame::Global => v,
+            Frame::Node => self.frames[i].kin.r * v,
+        })
+    }
+
+    /// Global position of a point at the reference [m].
+    pub fn position(&self, name: &str, p: &Point) -> Result<Vec3, PortError> {
+        let (i, r) = self.point(name, p)?;
+        Ok(self.frames[i].kin.x + r)
+    }
+
+    /// The column of `B̃` of an input.
+    pub fn input_column(&self, port: &InputPort) -> Result<Vec<f64>, PortError> {
+        let name = &port.name;
+        let mut col = vec![0.0; self.dofs.len];
+        let force = |col: &mut Vec<f64>, i: usize, r: Vec3, f: Vec3| {
+            let row = self.dofs.equilibrium_row(i);
+            let m = r.cross(&f);
+            for k in 0..3 {
+                col[row + k] += f[k];
+                col[row + 3 + k] += m[k];
+            }
+        };
+        match &port.excitation {
+            Excitation::Force { point, direction } => {
+                let (i, r) = self.point(name, point)?;
+                force(&mut col, i, r, self.direction(name, direction, i)?);
+            }
+            Excitation::Moment { node, direction } => {
+                let i = self.node(name, *node)?;
+                let d = self.direction(name, direction, i)?;
+                let row = self.dofs.equilibrium_row(i) + 3;
+                (0..3).for_each(|k| col[row + k] += d[k]);
+            }
+            Excitation::Actuator { from, to, direction } => {
+                let (a, ra) = self.point(name, from)?;
+                let (b, rb) = self.point(name, to)?;
+                let d = self.direction(name, direction, a)?;
+                force(&mut col, b, rb, d);
+                force(&mut col, a, ra, -d);
+            }
+        }
+        Ok(col)
+    }
+
+    /// Adds `s d · δp` of a point (offset `r`) of node `i` to a row of `C̃`.
+    fn add_motion(&self, row: &mut [f64], i: usize, r: Vec3, d: Vec3, s: f64) {
+        let first = self.dofs.node_first[i];
+        let m = r.cross(&d);
+        for k in 0..3 {
+            row[first + k] += s * d[k];
+            row[first + 3 + k] += s * m[k];
+        }
+    }
+
+    /// The rows of `C̃` (and `C̃_v`) of an output.
+    pub fn output_row(&self, port: &OutputPort) -> Result<OutputRow, PortError> {
+        let name = &port.name;
+        let n = self.dofs.len;
+        let mut c = vec![0.0; n];
+        let mut rate = None;
+        match &port.measurement {
+            Measurement::Displacement { point, direction } => {
+                let (i, r) = self.point(name, point)?;
+                self.add_motion(&mut c, i, r, self.direction(name, direction, i)?, 1.0);
+            }
+            Measurement::Rotation { node, direction } => {
+                let i = self.node(name, *node)?;
+                let d = self.direction(name, direction, i)?;
+                (0..3).for_each(|k| c[self.dofs.node_first[i] + 3 + k] += d[k]);
+            }
+            Measurement::Relative { from, to, direction } => {
+                let (a, ra) = self.point(name, from)?;
+                let (b, rb) = self.point(name, to)?;
+                let d = self.direction(name, direction, a)?;
+                self.add_motion(&mut c, b, rb, d, 1.0);
+                self.add_motion(&mut c, a, ra, d, -1.0);
+                if direction.frame == Frame::Node {
+                    // δ(d · Δ) with d turning with node `from`: δθ_a · (d × Δ).
+                    let gap = (self.frames[b].kin.x + rb) - (self.frames[a].kin.x + ra);
+                    let t = d.cross(&gap);
+                    (0..3).for_each(|k| c[self.dofs.node_first[a] + 3 + k] += t[k]);
+                }
+            }
+            Measurement::Velocity { point, direction } => {
+                // ṗ = ẋ + ω × r, δω = δġ + ∂(Gġ)/∂g δg at g = 0, δr = δθ × r.
+                let (i, r) = self.point(name, point)?;
+                let d = self.direction(name, direction, i)?;
+                let fr = &self.frames[i];
+                let mut cv = vec![0.0; n];
+                self.add_motion(&mut cv, i, r, d, 1.0);
+                let pdot = fr.kin.xdot + fr.kin.omega.cross(&r);
+                let mut t = (r.cross(&d)).transpose() * fr.rate_derivative - d.transpose() * skew(&fr.kin.omega) * skew(&r);
+                if direction.frame == Frame::Node {
+                    t += d.cross(&pdot).transpose();
+                }
+                (0..3).for_each(|k| c[self.dofs.node_first[i] + 3 + k] += t[k]);
+                rate = Some(cv);
+            }
+            Measurement::AngularVelocity { node, direction } => {
+                let i = self.node(name, *node)?;
+                let d = self.direction(name, direction, i)?;
+                let fr = &self.frames[i];
+                let mut cv = vec![0.0; n];
+                (0..3).for_each(|k| cv[self.dofs.node_first[i] + 3 + k] += d[k]);
+                let mut t = d.transpose() * fr.rate_derivative;
+                if direction.frame == Frame::Node {
+                    t += d.cross(&fr.kin.omega).transpose();
+                }
+                (0..3).for_each(|k| c[self.dofs.node_first[i] + 3 + k] += t[k]);
+                rate = Some(cv);
+            }
+        }
+        Ok(OutputRow { c, c_rate: rate })
+    }
+
+    /// `B̃` (equations × inputs).
+    pub fn input_matrix(&self, inputs: &[InputPort]) -> Result<Mat<f64>, PortError> {
+        let cols = inputs.iter().map(|p| self.input_column(p)).collect::<Result<Vec<_>, _>>()?;
+        Ok(Mat::from_fn(self.dofs.len, cols.len(), |i, j| cols[j][i]))
+    }
+
+    /// `C̃` and `C̃_v` (outputs × unknowns); `C̃_v` is `None` when no output is a rate.
+    pub fn output_matrices(&self, outputs: &[OutputPort]) -> Result<(Mat<f64>, Option<Mat<f64>>), PortError> {
+        let rows = outputs.iter().map(|p| self.output_row(p)).collect::<Result<Vec<_>, _>>()?;
+        let n = self.dofs.len;
+        let c = Mat::from_fn(rows.len(), n, |i, j| rows[i].c[j]);
+        let any_rate = rows.iter().any(|r| r.c_rate.is_some());
+        let c_rate = any_rate.then(|| Mat::from_fn(rows.len(), n, |i, j| rows[i].c_rate.as_ref().map_or(0.0, |v| v[j])));
+        Ok((c, c_rate))
+    }
+}

@@ -1,0 +1,266 @@
+//! Exact deflation of the eigenvalues that the constraint structure fixes, so that QZ runs
+//! on the dynamic part of the pencil `λ F_yd + F_y` only (eqs. 10, 29–30).
+//!
+//! With `C` the constraint rows and `L` their multipliers (`m` of each, `D` the other
+//! indices), three exact steps:
+//! 1. Form of eq. 30 → form of eq. 29. In eq. 30 the rows `C` and columns `L` sit in `F_yd`
+//!    only, and `F_yd[C, L] = 0`; moving them to `F_y` gives the plain pencil `P₂₉` with
+//!    `P₃₀(λ) = Δ(λ) P₂₉(λ) Δ(λ)`, `Δ = diag(λ on C and L, 1 elsewhere)`, so
+//!    `det P₃₀ = λ^{2m} det P₂₉`: the 2m zero eigenvalues of the constrained variables
+//!    leave, and vectors map as `v₃₀[L] = v₂₉[L]/λ`, `u₃₀[C] = u₂₉[C]/λ`.
+//! 2. Eq. 29: `P = [[P_DD(λ), H], [G, 0]]` with `G = F_y[C, D]`, `H = F_y[D, L]` of full
+//!    rank. With full QRs `Gᵀ = Q_G R_G`, `H = Q_H R_H`, `N = Q_G[:, m..]`,
+//!    `M = Q_H[:, m..]`: `det P = ± det R_G det R_H det(Mᵀ P_DD N)`, which removes 2m
+//!    infinite eigenvalues (multipliers and constrained coordinates). The right vector's
+//!    multipliers follow from `H v_L = −P_DD v_D`, the left vector's constraint part from
+//!    `Gᵀ u_C = −P_DDᵀ u_D`.
+//! 3. Index-1 part: with the SVD `E₁ = Mᵀ F_yd N = U diag(Σ, 0) Vᵀ` and
+//!    `Uᵀ K₁ V = [[A₁₁, A₁₂], [A₂₁, A₂₂]]`, `A₂₂` nonsingular, the Schur complement
+//!    `λ Σ + A₁₁ − A₁₂ A₂₂⁻¹ A₂₁` keeps every finite eigenvalue and drops the infinite ones
+//!    (momenta fixed by the momentum-definition rows, static nodes).
+//!
+//! All steps are orthogonal or exact eliminations of a balanced pencil; any structure they
+//! need that is missing (a non-zero where a zero must be, a rank-deficient `G` or `H`, no
+//! clear gap in `Σ`, a singular `A₂₂`) returns `None`, and the caller runs QZ on the whole
+//! pencil.
+
+use faer::{c64, Col, Mat};
+
+use super::balance::balance_pencil;
+use super::dae::ConstraintForm;
+use super::sparse::SparseMatrix;
+
+/// The dynamic part `λ E + K` of a pencil and what is needed to lift its vectors back.
+pub(super) struct DynamicPart {
+    pub e: Mat<f64>,
+    pub k: Mat<f64>,
+    /// Eigenvalues deflated at λ = 0 (step 1) and at λ = ∞ (steps 2–3).
+    pub zeros: usize,
+    pub infinities: usize,
+    n: usize,
+    scaled: bool,
+    row_scale: Vec<f64>,
+    col_scale: Vec<f64>,
+    d: Vec<usize>,
+    l: Vec<usize>,
+    fyd_dd: SparseMatrix,
+    fy_dd: SparseMatrix,
+    /// Range of `Gᵀ` and of `H` (first m columns of `Q_G`, `Q_H`) and their `R`.
+    q_g1: Mat<f64>,
+    r_g: Mat<f64>,
+    q_h1: Mat<f64>,
+    r_h: Mat<f64>,
+    /// `N X₂` and `M Y₂`: the dynamic part's right and left bases in the `D` unknowns.
+    nx2: Mat<f64>,
+    my2: Mat<f64>,
+}
+
+fn all_zero(m: &Mat<f64>, rows: &[usize], cols: &[usize]) -> bool {
+    rows.iter().all(|&i| cols.iter().all(|&j| m[(i, j)] == 0.0))
+}
+
+/// Full QR of a tall `p x m` matrix of full column rank: `(Q, R)` with `R` `m x m`.
+fn full_rank_qr(a: &Mat<f64>) -> Option<(Mat<f64>, Mat<f64>)> {
+    let m = a.ncols();
+    let qr = a.qr();
+    let r = qr.thin_R().to_owned();
+    let diag: Vec<f64> = (0..m).map(|i| r[(i, i)].abs()).collect();
+    let big = diag.iter().copied().fold(0.0, f64::max);
+    if diag.iter().any(|&x| !(x > big * a.nrows() as f64 * f64::EPSILON)) {
+        return None;
+    }
+    Some((qr.compute_Q(), r))
+}
+
+/// `x` with `R x = b` for upper triangular `R`.
+fn back_substitute(r: &Mat<f64>, b: &Col<c64>) -> Col<c64> {
+    let m = r.nrows();
+    let mut x = b.clone();
+    for i in (0..m).rev() {
+        let mut s = x[i];
+        for j in i + 1..m {
+            s -= x[j] * r[(i, j)];
+        }
+        x[i] = s / r[(i, i)];
+    }
+    x
+}
+
+impl DynamicPart {
+    /// Deflates the pencil `λ F_yd + F_y` whose constraint rows and multipliers are
+    /// `multipliers` (each index both); `None` when the structure is not there.
+    pub fn new(fyd: &Mat<f64>, fy: &Mat<f64>, form: Option<ConstraintForm>, multipliers: &[usize]) -> Option<Self> {
+        let n = fyd.nrows();
+        let mut l = multipliers.to_vec();
+        l.sort_unstable();
+        l.dedup();
+        if l.len() != multipliers.len() || l.last().is_some_and(|&k| k >= n) {
+            return None;
+        }
+        let mut is_l = vec![false; n];
+        for &k in &l {
+            is_l[k] = true;
+        }
+        let d: Vec<usize> = (0..n).filter(|&i| !is_l[i]).collect();
+        let all: Vec<usize> = (0..n).collect();
+        let scaled = form == Some(ConstraintForm::Scaled) && !l.is_empty();
+        let (mut pd, mut py) = (fyd.clone(), fy.clone());
+        if scaled {
+            // Step 1: eq. 30 -> eq. 29.
+            if !(all_zero(fy, &l, &all) && all_zero(fy, &all, &l) && all_zero(fyd, &l, &l)) {
+                return None;
+            }
+            for &k in &l {
+                for j in 0..n {
+                    py[(k, j)] = pd[(k, j)];
+                    pd[(k, j)] = 0.0;
+                    py[(j, k)] = pd[(j, k)];
+                    pd[(j, k)] = 0.0;
+                }
+            }
+        }
+        if !(all_zero(&pd, &l, &all) && all_zero(&pd, &all, &l) && all_zero(&py, &l, &l)) {
+            return None;
+        }
+        let bal = balance_pencil(&py, &pd);
+        let (a, b) = (&bal.a, &bal.b);
+        let (m, nd) = (l.len(), d.len());
+        let fyd_dd = SparseMatrix::from_dense_part(b, &d, &d);
+        let fy_dd = SparseMatrix::from_dense_part(a, &d, &d);
+        // Step 2: N = null(G), M = null(Hᵀ).
+        let (q_g, r_g, q_h, r_h) = if m > 0 {
+            let gt = Mat::from_fn(nd, m, |i, j| a[(l[j], d[i])]);
+            let h = Mat::from_fn(nd, m, |i, j| a[(d[i], l[j])]);
+            let (q_g, r_g) = full_rank_qr(&gt)?;
+            let (q_h, r_h) = full_rank_qr(&h)?;
+            (q_g, r_g, q_h, r_h)
+        } else {
+            (Mat::identity(nd, nd), Mat::zeros(0, 0), Mat::identity(nd, nd), Mat::zeros(0, 0))
+        };
+        let (nn, mm) = (q_g.subcols(m, nd - m), q_h.subcols(m, nd - m));
+        let e1 = mm.transpose() * fyd_dd.mul_dense(&nn.to_owned());
+        let k1 = mm.transpose() * fy_dd.mul_dense(&nn.to_owned());
+        // Step 3: index-1 part by the SVD of E₁.
+        let s = nd - m;
+        let svd = e1.svd().ok()?;
+        let sv: Vec<f64> = (0..s).map(|i| svd.S()[i]).collect();
+        let top = sv.first().copied().unwrap_or(0.0);
+        let negligible = s as f64 * f64::EPSILON * top;
+        let rank = sv.iter().take_while(|&&x| x > negligible).count();
+        // The structural zeros sit at rounding level; a singular value between that and
+        // sqrt(ε) of the largest would make the rank a guess: leave the pencil whole.
+        if rank == 0 || sv[..rank].iter().any(|&x| x < f64::EPSILON.sqrt() * top) {
+            return None;
+        }
+        let (u, v) = (svd.U(), svd.V());
+        let a_t = u.transpose() * &k1 * v;
+        let (a11, a12) = (a_t.submatrix(0, 0, rank, rank), a_t.submatrix(0, rank, rank, s - rank));
+        let (a21, a22) = (a_t.submatrix(rank, 0, s - rank, rank), a_t.submatrix(rank, rank, s - rank, s - rank));
+        let (e2, k2, x2, y2) = if rank < s {
+            let lu = a22.full_piv_lu();
+            let uu = lu.U();
+            let (big, small) = (0..s - rank).map(|i| uu[(i, i)].abs()).fold((0.0f64, f64::INFINITY), |(b, sm), x| (b.max(x), sm.min(x)));
+            if !(small > big * (s - rank) as f64 * f64::EPSILON) {
+                return None;
+            }
+            use faer::linalg::solvers::Solve;
+            let g21 = lu.solve(a21.to_owned());
+            let g12t = lu.solve_transpose(a12.transpose().to_owned());
+            let k2 = a11 - a12 * &g21;
+            let x2 = v.subcols(0, rank) - v.subcols(rank, s - rank) * &g21;
+            let y2 = u.subcols(0, rank) - u.subcols(rank, s - rank) * &g12t;
+            (Mat::from_fn(rank, rank, |i, j| if i == j { sv[i] } else { 0.0 }), k2, x2, y2)
+        } else {
+            (e1.clone(), k1.clone(), Mat::identity(s, s), Mat::identity(s, s))
+        };
+        Some(DynamicPart {
+            e: e2,
+            k: k2,
+            zeros: if scaled { 2 * m } else { 0 },
+            infinities: if scaled { s - rank } else { 2 * m + s - rank },
+            n,
+            scaled,
+            row_scale: bal.row.clone(),
+            col_scale: bal.col.clone(),
+            d,
+            l,
+            fyd_dd,
+            fy_dd,
+            q_g1: q_g.subcols(0, m).to_owned(),
+            r_g,
+            q_h1: q_h.subcols(0, m).to_owned(),
+            r_h,
+            nx2: nn * &x2,
+            my2: mm * &y2,
+        })
+    }
+
+    /// Size of the dynamic part.
+    pub fn dim(&self) -> usize {
+        self.e.nrows()
+    }
+
+    /// Right vectors of the whole pencil (given form, unbalanced), one column per right
+    /// vector `z` of `λ E + K` (columns of `z`, eigenvalues `lambda`).
+    pub fn right(&self, z: &Mat<c64>, lambda: &[c64]) -> Mat<c64> {
+        let v_d = real_times_complex(self.nx2.as_ref(), z);
+        let v_l = self.multiplier_part(&v_d, lambda, false);
+        self.assemble(&v_d, &v_l, lambda, &self.col_scale)
+    }
+
+    /// Left vectors of the whole pencil from left vectors `w` of `λ E + K`.
+    pub fn left(&self, w: &Mat<c64>, lambda: &[c64]) -> Mat<c64> {
+        let u_d = real_times_complex(self.my2.as_ref(), w);
+        let u_c = self.multiplier_part(&u_d, lambda, true);
+        self.assemble(&u_d, &u_c, lambda, &self.row_scale)
+    }
+
+    /// Right: `v_L` from `H v_L = −P_DD(λ) v_D`; left (`transpose`): `u_C` from
+    /// `Gᵀ u_C = −P_DD(λ)ᵀ u_D`. Both by `R⁻¹ Q₁ᵀ` of the QR of `H` resp. `Gᵀ`.
+    fn multiplier_part(&self, x_d: &Mat<c64>, lambda: &[c64], transpose: bool) -> Mat<c64> {
+        let m = self.l.len();
+        if m == 0 {
+            return Mat::zeros(0, x_d.ncols());
+        }
+        let (fy, fyd) = if transpose {
+            (self.fy_dd.mul_t_complex_mat(x_d), self.fyd_dd.mul_t_complex_mat(x_d))
+        } else {
+            (self.fy_dd.mul_complex_mat(x_d), self.fyd_dd.mul_complex_mat(x_d))
+        };
+        let p = Mat::from_fn(x_d.nrows(), x_d.ncols(), |i, j| -(fy[(i, j)] + lambda[j] * fyd[(i, j)]));
+        let (q1, r) = if transpose { (&self.q_g1, &self.r_g) } else { (&self.q_h1, &self.r_h) };
+        let rhs = real_times_complex(q1.transpose(), &p);
+        let mut x = Mat::<c64>::zeros(m, x_d.ncols());
+        for j in 0..x_d.ncols() {
+            let col = back_substitute(r, &Col::from_fn(m, |i| rhs[(i, j)]));
+            for i in 0..m {
+                x[(i, j)] = col[i];
+            }
+        }
+        x
+    }
+
+    /// Scatters `D` and multiplier parts into whole vectors, maps the form of eq. 29 back
+    /// to eq. 30 (`/λ` on the multipliers or constraint rows) and undoes the balancing.
+    fn assemble(&self, x_d: &Mat<c64>, x_l: &Mat<c64>, lambda: &[c64], scale: &[f64]) -> Mat<c64> {
+        let mut out = Mat::<c64>::zeros(self.n, x_d.ncols());
+        for j in 0..x_d.ncols() {
+            for (i, &k) in self.d.iter().enumerate() {
+                out[(k, j)] = x_d[(i, j)] * scale[k];
+            }
+            for (i, &k) in self.l.iter().enumerate() {
+                let x = if self.scaled { x_l[(i, j)] / lambda[j] } else { x_l[(i, j)] };
+                out[(k, j)] = x * scale[k];
+            }
+        }
+        out
+    }
+}
+
+/// `M Z` for real `M` and complex `Z` (two real products).
+fn real_times_complex(m: faer::MatRef<'_, f64>, z: &Mat<c64>) -> Mat<c64> {
+    let re = Mat::<f64>::from_fn(z.nrows(), z.ncols(), |i, j| z[(i, j)].re);
+    let im = Mat::<f64>::from_fn(z.nrows(), z.ncols(), |i, j| z[(i, j)].im);
+    let (a, b) = (m * &re, m * &im);
+    Mat::from_fn(a.nrows(), a.ncols(), |i, j| c64::new(a[(i, j)], b[(i, j)]))
+}

@@ -1,0 +1,174 @@
+//! Eigenanalysis of a linear DAE with the structurally known zero and infinite eigenvalues
+//! deflated first ([`super::deflate`]): QZ runs on the dynamic part only (about 2N for an
+//! N-link chain instead of 17N), and the vectors are lifted back to the whole model.
+
+use faer::{c64, Col, Mat};
+
+use super::balance::balance_pencil;
+use super::classify::{classify, Classification, ModeKind};
+use super::dae::LinearDae;
+use super::deflate::DynamicPart;
+use super::eigen::{conjugate_mode, normalize, qz, sort_units, EigenError, ModalAnalysis, Mode};
+use super::route::{EigenRoute, EigenVectors};
+use super::sparse::SparseMatrix;
+
+/// A mode the deflation fixed exactly: λ = 0 or λ = ∞, in the route's variable μ
+/// (direct: μ = 0 or ∞; Λ form: Λ = −1 or Λ = 1).
+fn deflated_mode(kind: ModeKind, route: EigenRoute) -> Mode {
+    let (alpha, beta, lambda) = match (kind, route) {
+        (ModeKind::Zero, EigenRoute::Direct) => (0.0, 1.0, 0.0),
+        (ModeKind::Zero, EigenRoute::Lambda) => (-1.0, 1.0, 0.0),
+        (_, EigenRoute::Direct) => (1.0, 0.0, f64::INFINITY),
+        (_, EigenRoute::Lambda) => (1.0, 1.0, f64::INFINITY),
+    };
+    let zero = kind == ModeKind::Zero;
+    Mode {
+        lambda: c64::new(lambda, 0.0),
+        kind,
+        error: if zero { 0.0 } else { f64::INFINITY },
+        classification: Classification {
+            kind,
+            alpha: c64::new(alpha, 0.0),
+            beta,
+            to_zero: if zero { 0.0 } else { 1.0 },
+            to_infinity: if zero { 1.0 } else { 0.0 },
+            uncertainty: 0.0,
+        },
+        right: None,
+        left: None,
+        partner: None,
+    }
+}
+
+impl ModalAnalysis {
+    /// Size of the pencil QZ runs on in [`ModalAnalysis::of_dae`] when the constraint
+    /// structure allows deflation, `None` when the whole pencil is used.
+    pub fn deflated_size(dae: &LinearDae) -> Option<usize> {
+        let (fyd, fy) = dae.jacobians.derivatives();
+        DynamicPart::new(&fyd, &fy, dae.constraint_form, &dae.multipliers).map(|p| p.dim())
+    }
+
+    /// Eigenanalysis of a linear DAE by the chosen route, with the zero and infinite
+    /// eigenvalues that its constraint structure fixes deflated exactly before QZ. The
+    /// finite eigenvalues, labels and vectors are those of [`ModalAnalysis::compute`] on the
+    /// whole pencil (to rounding); when the structure is not there it runs that.
+    /// `dcoef` as in [`ModalAnalysis::compute_with_dcoef`].
+    pub fn of_dae(dae: &LinearDae, route: EigenRoute, dcoef: Option<f64>) -> Result<Self, EigenError> {
+        let jacobians = &dae.jacobians;
+        if jacobians.dim() == 0 {
+            return Err(EigenError::Empty);
+        }
+        let (fyd, fy) = jacobians.derivatives();
+        let Some(part) = DynamicPart::new(&fyd, &fy, dae.constraint_form, &dae.multipliers) else {
+            return Self::compute_with_dcoef(jacobians, route, dcoef);
+        };
+        let dcoef = match (jacobians, dcoef) {
+            (super::dae::Jacobians::Derivatives { .. }, Some(c)) => c,
+            _ => jacobians.dcoef(),
+        };
+        let mut units: Vec<Vec<Mode>> = Vec::with_capacity(fyd.nrows());
+        units.extend((0..part.zeros).map(|_| vec![deflated_mode(ModeKind::Zero, route)]));
+        units.extend((0..part.infinities).map(|_| vec![deflated_mode(ModeKind::Infinite, route)]));
+        let r = part.dim();
+        if r > 0 {
+            let (a, b, mu_scale) = route_pencil(&part.k, &part.e, route, dcoef);
+            let balanced = balance_pencil(&a, &b);
+            let raw = qz(&balanced.a, &balanced.b)?;
+            let norms = (balanced.a.norm_l2(), balanced.b.norm_l2());
+            // Eigenvalues and reduced vectors, one entry per unit (a pair counts once).
+            let mut found = Vec::new();
+            let mut k = 0;
+            while k < r {
+                let pair = raw.alpha_im[k] != 0.0 && k + 1 < r;
+                let alpha = c64::new(raw.alpha_re[k], raw.alpha_im[k]);
+                let vectors = raw.vectors(k, pair);
+                let class = classify(alpha, raw.beta[k], vectors.as_ref(), norms, route);
+                let (lambda, error) = class.lambda_and_error(route, mu_scale, dcoef);
+                let lambda = if lambda.re.is_finite() && lambda.im.is_finite() { lambda } else { c64::new(f64::INFINITY, 0.0) };
+                // The form of eq. 30 divides multipliers by λ: no vectors for λ = 0.
+                let z = vectors.filter(|_| lambda.norm().is_finite() && lambda.norm() > 0.0).map(|w| (balanced.unscale_right(&w.v), balanced.unscale_left(&w.u)));
+                found.push((Mode { lambda, kind: class.kind, error, classification: class, right: None, left: None, partner: None }, z, pair));
+                k += if pair { 2 } else { 1 };
+            }
+            let with: Vec<(usize, Col<c64>, Col<c64>)> = found.iter_mut().enumerate().filter_map(|(i, f)| f.1.take().map(|(v, u)| (i, v, u))).collect();
+            let lambdas: Vec<c64> = with.iter().map(|w| found[w.0].0.lambda).collect();
+            let gather = |left: bool| Mat::from_fn(r, with.len(), |i, j| if left { with[j].2[i] } else { with[j].1[i] });
+            let (zr, zl) = (gather(false), gather(true));
+            let (right, left) = (part.right(&zr, &lambdas), part.left(&zl, &lambdas));
+            // Labels and error estimates on the whole pencil, as the undeflated route has them.
+            let whole = WholePencil::new(&fyd, &fy, route, dcoef);
+            let fyd_sparse = SparseMatrix::from_dense(&fyd);
+            let fyd_norm = fyd_sparse.norm_l2();
+            for (j, &(i, _, _)) in with.iter().enumerate() {
+                let v = Col::from_fn(dae.dim(), |k| right[(k, j)]);
+                let u = Col::from_fn(dae.dim(), |k| left[(k, j)]);
+                let mode = &mut found[i].0;
+                let class = whole.classify(mode.lambda, &v, &u, route, dcoef);
+                mode.error = class.lambda_and_error(route, whole.mu_scale, dcoef).1;
+                mode.kind = class.kind;
+                mode.classification = class;
+                if mode.kind != ModeKind::Infinite {
+                    let (v, u) = normalize(&v, &u, |x| fyd_sparse.mul_complex(x), fyd_norm);
+                    mode.right = Some(v);
+                    mode.left = Some(u);
+                }
+            }
+            for (mode, _, pair) in found {
+                if pair {
+                    let partner = conjugate_mode(&mode);
+                    units.push(vec![mode, partner]);
+                } else {
+                    units.push(vec![mode]);
+                }
+            }
+        }
+        Ok(ModalAnalysis { route, dcoef, modes: sort_units(units) })
+    }
+}
+
+/// `(A, B, σ)` of the route's pencil `A v = μ B v` built from `λ E + K`: direct
+/// `(K, −σ E)` with `σ = ‖K‖/‖E‖` (μ = λ/σ); Λ form `(E − c K, −(E + c K))` (eq. 18).
+fn route_pencil(k: &Mat<f64>, e: &Mat<f64>, route: EigenRoute, dcoef: f64) -> (Mat<f64>, Mat<f64>, f64) {
+    match route {
+        EigenRoute::Direct => {
+            let (na, nb) = (k.norm_l2(), e.norm_l2());
+            let sigma = if na > 0.0 && nb > 0.0 { na / nb } else { 1.0 };
+            (k.clone(), e * faer::Scale(-sigma), sigma)
+        }
+        EigenRoute::Lambda => (e - k * faer::Scale(dcoef), (e + k * faer::Scale(dcoef)) * faer::Scale(-1.0), 1.0),
+    }
+}
+
+/// The whole route pencil, balanced as the undeflated eigenanalysis balances it, stored
+/// sparse: the labels (eqs. 32–35) are decided on it with the lifted vectors.
+struct WholePencil {
+    a: SparseMatrix,
+    b: SparseMatrix,
+    row: Vec<f64>,
+    col: Vec<f64>,
+    norms: (f64, f64),
+    mu_scale: f64,
+}
+
+impl WholePencil {
+    fn new(fyd: &Mat<f64>, fy: &Mat<f64>, route: EigenRoute, dcoef: f64) -> Self {
+        let (a, b, mu_scale) = route_pencil(fy, fyd, route, dcoef);
+        let bal = balance_pencil(&a, &b);
+        let norms = (bal.a.norm_l2(), bal.b.norm_l2());
+        WholePencil { a: SparseMatrix::from_dense(&bal.a), b: SparseMatrix::from_dense(&bal.b), row: bal.row, col: bal.col, norms, mu_scale }
+    }
+
+    /// Label of the eigenvalue `lambda` with right and left vectors `v`, `u` of `λ F_yd + F_y`.
+    fn classify(&self, lambda: c64, v: &Col<c64>, u: &Col<c64>, route: EigenRoute, dcoef: f64) -> Classification {
+        let mu = match route {
+            EigenRoute::Direct => lambda / self.mu_scale,
+            // Eq. 23 inverted: Λ = (cλ + 1)/(cλ − 1).
+            EigenRoute::Lambda => (lambda * dcoef + 1.0) / (lambda * dcoef - 1.0),
+        };
+        let s = 1.0 / (1.0 + mu.norm_sqr()).sqrt();
+        let v = Col::from_fn(v.nrows(), |i| v[i] / self.col[i]);
+        let u = Col::from_fn(u.nrows(), |i| u[i] / self.row[i]);
+        let w = EigenVectors { av: self.a.mul_complex(&v), bv: self.b.mul_complex(&v), ua: self.a.mul_t_complex(&u), ub: self.b.mul_t_complex(&u), v, u };
+        classify(mu * s, s, Some(&w), self.norms, route)
+    }
+}

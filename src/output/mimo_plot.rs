@@ -1,0 +1,146 @@
+//! A transfer matrix as a grid of Bode-magnitude panels (paper Figs. 9 and 10: one panel per
+//! output/input pair, or the diagonal only), the full model solid and the ROM dashed, and a
+//! log-log transmissibility plot (paper Fig. 11). Each panel names its pair with units;
+//! magnitudes are |H| in SI units (log axis), frequencies in Hz (log axis). A CSV with the
+//! same numbers is written beside the figure.
+
+use std::path::{Path, PathBuf};
+
+use faer::{c64, Mat};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+use super::atomic::{write_atomic_bytes, OutputError};
+use super::bode::tick_label;
+use super::figure::{write_figure, Figure, COLORS, FONT};
+use super::prefixed_path;
+
+/// A transfer matrix of the full model and of a ROM on one grid.
+pub struct MimoPlot {
+    pub title: String,
+    pub freq_hz: Vec<f64>,
+    pub inputs: Vec<String>,
+    pub outputs: Vec<String>,
+    pub full: Vec<Mat<c64>>,
+    pub rom: Option<Vec<Mat<c64>>>,
+    /// Only the panels `(i, i)`.
+    pub diagonal: bool,
+}
+
+impl MimoPlot {
+    fn panels(&self) -> Vec<(usize, usize)> {
+        if self.diagonal {
+            (0..self.outputs.len().min(self.inputs.len())).map(|i| (i, i)).collect()
+        } else {
+            (0..self.outputs.len()).flat_map(|i| (0..self.inputs.len()).map(move |j| (i, j))).collect()
+        }
+    }
+
+    /// Columns and rows of the grid.
+    fn shape(&self) -> (usize, usize) {
+        let n = self.panels().len();
+        if self.diagonal {
+            let c = (n as f64).sqrt().ceil() as usize;
+            (c.max(1), n.div_ceil(c.max(1)).max(1))
+        } else {
+            (self.inputs.len().max(1), self.outputs.len().max(1))
+        }
+    }
+
+    /// Pixel size: panels of at least 360 x 260 px.
+    pub fn size(&self) -> (u32, u32) {
+        let (c, r) = self.shape();
+        ((c as u32 * 380).max(800), (r as u32 * 280 + 90).max(500))
+    }
+
+    fn points(&self, h: &[Mat<c64>], i: usize, j: usize) -> Vec<(f64, f64)> {
+        self.freq_hz.iter().zip(h).filter_map(|(f, m)| {
+            let v = m[(i, j)].norm();
+            (v > 0.0 && v.is_finite() && *f > 0.0).then_some((*f, v))
+        }).collect()
+    }
+
+    /// Writes `PREFIX.csv`, `PREFIX.svg`, `PREFIX.png`.
+    pub fn write_files(&self, prefix: &Path) -> Result<[PathBuf; 3], OutputError> {
+        let paths = [prefixed_path(prefix, "csv"), prefixed_path(prefix, "svg"), prefixed_path(prefix, "png")];
+        let mut csv = String::from("# magnitude |H| in SI units (output unit / input unit); frequency in Hz\nfrequency_hz");
+        for (i, j) in self.panels() {
+            csv += &format!(",\"full |{} / {}|\"", self.outputs[i], self.inputs[j]);
+            if self.rom.is_some() {
+                csv += &format!(",\"ROM |{} / {}|\"", self.outputs[i], self.inputs[j]);
+            }
+        }
+        csv += "\n";
+        for (k, f) in self.freq_hz.iter().enumerate() {
+            csv += &format!("{f:e}");
+            for (i, j) in self.panels() {
+                csv += &format!(",{:e}", self.full[k][(i, j)].norm());
+                if let Some(r) = &self.rom {
+                    csv += &format!(",{:e}", r[k][(i, j)].norm());
+                }
+            }
+            csv += "\n";
+        }
+        write_atomic_bytes(&paths[0], csv.as_bytes())?;
+        write_figure(self, self.size(), &paths[1], &paths[2])?;
+        Ok(paths)
+    }
+}
+
+impl Figure for MimoPlot {
+    fn draw<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> Result<(), String> {
+        let err = |e: &dyn std::fmt::Display| e.to_string();
+        root.fill(&WHITE).map_err(|e| err(&e))?;
+        let legend = if self.rom.is_some() { "   (solid: full model, dashed: ROM)" } else { "" };
+        let root = root.titled(&format!("{}{legend}", self.title), (FONT, 26)).map_err(|e| err(&e))?;
+        let (cols, rows) = self.shape();
+        let areas = root.split_evenly((rows, cols));
+        let (flo, fhi) = (self.freq_hz.first().copied().unwrap_or(0.01), self.freq_hz.last().copied().unwrap_or(100.0));
+        // Largest magnitude of each row and column: a panel far below both is rounding noise
+        // of a pair that does not couple, and is labelled so instead of drawn as a curve.
+        let peak = |i: usize, j: usize| self.full.iter().map(|m| m[(i, j)].norm()).filter(|v| v.is_finite()).fold(0.0, f64::max);
+        let (no, ni) = (self.outputs.len(), self.inputs.len());
+        let row_max: Vec<f64> = (0..no).map(|i| (0..ni).map(|j| peak(i, j)).fold(0.0, f64::max)).collect();
+        let col_max: Vec<f64> = (0..ni).map(|j| (0..no).map(|i| peak(i, j)).fold(0.0, f64::max)).collect();
+        for (k, (i, j)) in self.panels().into_iter().enumerate() {
+            let area = &areas[k];
+            if peak(i, j) <= 1e-7 * row_max[i].max(col_max[j]) {
+                let text = format!("{} / {}", self.outputs[i], self.inputs[j]);
+                area.draw(&Text::new(text, (10, 10), (FONT, 15))).map_err(|e| err(&e))?;
+                area.draw(&Text::new(format!("no coupling: |H| < 1e-7 of its row and column (max {:.0e})", peak(i, j)), (10, 40), (FONT, 13))).map_err(|e| err(&e))?;
+                continue;
+            }
+            let full = self.points(&self.full, i, j);
+            let rom = self.rom.as_ref().map(|r| self.points(r, i, j)).unwrap_or_default();
+            let (lo, hi) = full.iter().chain(&rom).fold((f64::INFINITY, 0.0f64), |(a, b), p| (a.min(p.1), b.max(p.1)));
+            let (lo, hi) = if lo.is_finite() && hi > 0.0 { (lo / 2.0, hi * 2.0) } else { (1e-12, 1.0) };
+            let title = format!("{} / {}", self.outputs[i], self.inputs[j]);
+            let mut chart = ChartBuilder::on(area)
+                .caption(&title, (FONT, 15))
+                .margin(6)
+                .x_label_area_size(30)
+                .y_label_area_size(58)
+                .build_cartesian_2d((flo..fhi).log_scale(), (lo..hi).log_scale())
+                .map_err(|e| err(&e))?;
+            chart
+                .configure_mesh()
+                .x_labels(5)
+                .y_labels(5)
+                .x_label_formatter(&|x| tick_label(*x))
+                .y_label_formatter(&|y| format!("{y:.0e}"))
+                .label_style((FONT, 12))
+                .x_desc(if i + 1 == self.outputs.len() || self.diagonal { "Hz" } else { "" })
+                .axis_desc_style((FONT, 12))
+                .light_line_style(RGBColor(235, 235, 235))
+                .draw()
+                .map_err(|e| err(&e))?;
+            let solid = ShapeStyle { color: COLORS[0].to_rgba(), filled: false, stroke_width: 2 };
+            let dashed = ShapeStyle { color: COLORS[1].to_rgba(), filled: false, stroke_width: 2 };
+            chart.draw_series(LineSeries::new(full, solid)).map_err(|e| err(&e))?;
+            if !rom.is_empty() {
+                chart.draw_series(DashedLineSeries::new(rom, 8, 6, dashed)).map_err(|e| err(&e))?;
+            }
+        }
+        root.present().map_err(|e| err(&e))
+    }
+}

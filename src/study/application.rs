@@ -1,0 +1,188 @@
+//! The paper's application (§8) on a [`Study`]: ports at points of bodies, node names and
+//! mode labels, dummy springs removed from the ROM (eqs. 92–95), imposed motion and
+//! transmissibility (eqs. 96–100).
+
+use std::collections::BTreeMap;
+
+use faer::{c64, Mat};
+
+use crate::analysis::{reference_state, Reference};
+use crate::dae::ports::{InputPort, OutputPort};
+use crate::dae::{element_part, linearize_ports, mode_label, ElementPart, NodeInput, NodeOutput};
+use crate::linear::{LinearDae, ModalAnalysis};
+use crate::model::{InitialValueProblem, Label, Model};
+use crate::rom::{full_frequency_response, transmissibility, with_spring_ports, without_elements, ImposedModel, SpringFeedback};
+
+use super::checks::{equilibrium_warning, port_warnings};
+use super::{EigenSettings, ReducedModel, Study, StudyError};
+
+/// What the application adds to a linearization.
+#[derive(Clone, Debug, Default)]
+pub struct Application {
+    pub inputs: Vec<InputPort>,
+    pub outputs: Vec<OutputPort>,
+    /// Names of nodes (bodies) for mode labels.
+    pub names: BTreeMap<Label, String>,
+    /// Labels of deformable elements (dummy springs) removed from the ROM and the full model.
+    pub remove_springs: Vec<Label>,
+    /// Imposed motion: node and components (0..6: x, y, z, rx, ry, rz).
+    pub imposed: Option<(Label, Vec<usize>)>,
+}
+
+/// `NODE` (all six components) or `NODE:x,y,rz`.
+pub fn parse_imposed(s: &str) -> Result<(Label, Vec<usize>), String> {
+    const NAMES: [&str; 6] = ["x", "y", "z", "rx", "ry", "rz"];
+    let bad = || format!("'{s}': expected NODE or NODE:COMPONENTS with components among x,y,z,rx,ry,rz");
+    let (node, comps) = s.split_once(':').map_or((s, None), |(n, c)| (n, Some(c)));
+    let node: Label = node.trim().parse().map_err(|_| bad())?;
+    let mut list = match comps {
+        None => (0..6).collect(),
+        Some(c) => c.split(',').map(|x| NAMES.iter().position(|n| n.eq_ignore_ascii_case(x.trim())).ok_or_else(bad)).collect::<Result<Vec<_>, _>>()?,
+    };
+    list.sort_unstable();
+    list.dedup();
+    if list.is_empty() {
+        return Err(bad());
+    }
+    Ok((node, list))
+}
+
+/// What a study keeps of its application.
+pub(super) struct Applied {
+    /// The DAE the ROM is projected from: the springs present, their coordinates as the last
+    /// inputs and outputs (`None` without springs to remove).
+    pub projected: Option<LinearDae>,
+    pub feedback: Option<SpringFeedback>,
+    pub parts: Vec<ElementPart>,
+    /// Number of imposed components (the last inputs and outputs of the study's DAE).
+    pub imposed: usize,
+    pub names: BTreeMap<Label, String>,
+}
+
+/// The transmissibility `z/z_e` (eq. 100) of the full model and of a ROM on a grid.
+#[derive(Clone, Debug)]
+pub struct Transmissibility {
+    pub freq_hz: Vec<f64>,
+    /// Regular outputs (rows).
+    pub outputs: Vec<String>,
+    /// Imposed components (columns).
+    pub imposed: Vec<String>,
+    pub full: Vec<Mat<c64>>,
+    pub rom: Vec<Mat<c64>>,
+}
+
+impl Study {
+    /// Linearizes `model` at `reference` with the application's ports; the eigenanalysis is
+    /// that of the model as written (dummy springs present), the study's full model and its
+    /// ROMs have the springs removed.
+    pub fn from_application(model: Model, problem: &InitialValueProblem, reference: Reference, app: &Application, eigen: EigenSettings) -> Result<Self, StudyError> {
+        let state = reference_state(&model, problem, reference).map_err(|source| StudyError::Reference { file: None, source })?;
+        let mut inputs = app.inputs.clone();
+        let mut outputs = app.outputs.clone();
+        let mut imposed = 0;
+        if let Some((node, comps)) = &app.imposed {
+            for &k in comps {
+                inputs.push(NodeInput { node: *node, component: k }.port());
+                outputs.push(NodeOutput { node: *node, component: k }.port());
+            }
+            imposed = comps.len();
+        }
+        let dae = linearize_ports(&model, &state, &inputs, &outputs, None)?;
+        let parts = app.remove_springs.iter().map(|&l| element_part(&model, &state, l)).collect::<Result<Vec<_>, _>>()?;
+        let file_dcoef = problem.eigenanalysis.as_ref().and_then(|e| e.dcoef);
+        let modal = ModalAnalysis::of_dae(&dae, eigen.route, eigen.dcoef.or(file_dcoef))?;
+        let (projected, feedback) = if parts.is_empty() {
+            (None, None)
+        } else {
+            let (p, f) = with_spring_ports(&dae, &parts);
+            (Some(p), Some(f))
+        };
+        let free = without_elements(&dae, &parts);
+        let applied = Applied { projected, feedback, parts, imposed, names: app.names.clone() };
+        let mut warnings: Vec<_> = equilibrium_warning(&model, &state, problem.tolerance).into_iter().collect();
+        warnings.extend(port_warnings(&free, &modal));
+        Ok(Study { dae: free, modal, model: Some(model), warnings, reference_time: Some(state.t), application: Some(applied) })
+    }
+
+    /// One label per mode ("table pitch (ry) 93 %") from the kinetic-energy shares and the
+    /// node names; `None` for modes without shares.
+    pub fn mode_labels(&self) -> Vec<Option<String>> {
+        let empty = BTreeMap::new();
+        let names = self.application.as_ref().map_or(&empty, |a| &a.names);
+        let gravity = self.model.as_ref().map(|m| m.gravity).unwrap_or_default();
+        self.energy().iter().map(|s| mode_label(s, names, &gravity)).collect()
+    }
+
+    /// The elements removed from the full model and the ROMs ("deformable hinge 902").
+    pub fn removed_springs(&self) -> Vec<String> {
+        self.application.as_ref().map_or(Vec::new(), |a| a.parts.iter().map(|p| p.element.clone()).collect())
+    }
+
+    /// Number of imposed components (the last inputs and outputs of [`Study::dae`]).
+    pub fn imposed_len(&self) -> usize {
+        self.application.as_ref().map_or(0, |a| a.imposed)
+    }
+
+    fn imposed_count(&self) -> Result<usize, StudyError> {
+        match self.application.as_ref().map_or(0, |a| a.imposed) {
+            0 => Err(StudyError::NoImposedMotion),
+            n => Ok(n),
+        }
+    }
+
+    /// Eq. 100 on the full model (springs removed: the result does not depend on them) and on
+    /// the ROM, at `freq_hz`.
+    pub fn transmissibility(&self, rom: &ReducedModel, freq_hz: &[f64]) -> Result<Transmissibility, StudyError> {
+        let n = self.imposed_count()?;
+        let eq100 = |h: Vec<Mat<c64>>| h.iter().zip(freq_hz).map(|(m, f)| transmissibility(m, n).ok_or(StudyError::SingularImposedMotion(*f))).collect::<Result<Vec<_>, _>>();
+        let full = eq100(full_frequency_response(&self.dae, freq_hz))?;
+        let rom_t = eq100(rom.ordinary.frequency_response(freq_hz))?;
+        let no = self.dae.num_outputs() - n;
+        Ok(Transmissibility { freq_hz: freq_hz.to_vec(), outputs: self.dae.output_names[..no].to_vec(), imposed: self.dae.output_names[no..].to_vec(), full, rom: rom_t })
+    }
+
+    /// The proper state-space model from the imposed displacements to the other outputs.
+    pub fn imposed_model(&self, rom: &ReducedModel) -> Result<ImposedModel, StudyError> {
+        let n = self.imposed_count()?;
+        Ok(rom.ordinary.imposed_motion(n)?)
+    }
+}
+
+impl Study {
+    /// [`Study::from_application`] on an MBDyn input file.
+    pub fn from_application_file(path: &std::path::Path, reference: Reference, app: &Application, eigen: EigenSettings) -> Result<Self, StudyError> {
+        let m = crate::input::mbdyn::read_model(path)?;
+        Self::from_application(m.model, &m.problem, reference, app, eigen).map_err(|e| e.in_file(path))
+    }
+}
+
+impl Study {
+    /// The imposed-motion model in exportable form (inputs: the imposed displacements).
+    pub fn imposed_export(&self, m: &ImposedModel) -> crate::output::rom_file::RomExport {
+        use crate::output::rom_file::unit_of_name;
+        let r = &m.rom;
+        let n = r.a.nrows();
+        crate::output::rom_file::RomExport {
+            kind: "ordinary",
+            e: Mat::identity(n, n),
+            a: r.a.clone(),
+            b: r.b.clone(),
+            c: r.c.clone(),
+            d: r.d.clone(),
+            eigenvalues: r.eigenvalues.clone(),
+            full_eigenvalues: Vec::new(),
+            inputs: r.input_names.clone(),
+            outputs: r.output_names.clone(),
+            states: (1..=n).map(|k| format!("imposed-motion state {k}")).collect(),
+            input_units: r.input_names.iter().map(|s| unit_of_name(s)).collect(),
+            output_units: r.output_names.iter().map(|s| unit_of_name(s)).collect(),
+            state_units: vec!["state of the ROM minus the imposed motion's part (see rom::imposed)".to_string(); n],
+            state_modes: vec![0; n],
+            state_freq_hz: vec![f64::NAN; n],
+            reference_time: self.reference_time,
+            dcoef: self.modal.dcoef,
+            full_static_gain: None,
+            rom_static_gain: None,
+        }
+    }
+}

@@ -1,0 +1,68 @@
+//! Why a study could not be set up or a ROM built.
+
+use std::path::{Path, PathBuf};
+
+use crate::analysis::RunError;
+use crate::dae::PortError;
+use crate::input::mbdyn::MbdynError;
+use crate::input::pencil::PencilError;
+use crate::linear::EigenError;
+use crate::rom::RomError;
+
+/// A failure of [`super::Study`], with the file or option it concerns.
+#[derive(Debug, thiserror::Error)]
+pub enum StudyError {
+    /// The MBDyn input file: `FILE:LINE:COLUMN: error: …` with the line and a caret.
+    #[error(transparent)]
+    Model(#[from] Box<MbdynError>),
+    #[error(transparent)]
+    Pencil(#[from] PencilError),
+    #[error("{}reference solution: {source}", file.as_ref().map(|f| format!("{}: ", f.display())).unwrap_or_default())]
+    Reference { file: Option<PathBuf>, source: RunError },
+    #[error("static equilibrium: unrestrained rigid-body motion along {motion} (the model needs more supports or joints); {source}")]
+    Unrestrained { motion: String, source: RunError },
+    #[error("{option}: {message}")]
+    Option { option: &'static str, message: String },
+    #[error(transparent)]
+    Port(#[from] PortError),
+    #[error(transparent)]
+    Eigen(#[from] EigenError),
+    #[error(transparent)]
+    Rom(#[from] RomError),
+    #[error("a ROM needs inputs and outputs: give --input NODE:COMP and --output NODE:COMP for a model, --input-row I and --output-col J for an .m pencil")]
+    NoPorts,
+    #[error("give a MODEL file or --pencil FILE")]
+    NoSource,
+    #[error(transparent)]
+    ElementPart(#[from] crate::dae::ElementPartError),
+    #[error(transparent)]
+    PortsFile(#[from] crate::input::ports_file::PortsFileError),
+    #[error("no imposed motion was given (--imposed NODE[:COMPONENTS] or \"imposed\" in the ports file)")]
+    NoImposedMotion,
+    #[error("the imposed motion cannot be produced at {0} Hz (C_e (jω E − A)⁻¹ B_e is singular there, eq. 99)")]
+    SingularImposedMotion(f64),
+    #[error("{0}")]
+    Application(String),
+    #[error("mode(s) {} lie below the frequencies of interest (up to {top_hz:.4} Hz): static residualization is valid only above them (--below-band keep|drop)", modes.iter().map(|(k, f)| format!("{k} ({f:.4} Hz)")).collect::<Vec<_>>().join(", "))]
+    ResidualizedBelowBand { modes: Vec<(usize, f64)>, top_hz: f64 },
+    #[error("modal damping for mode {0}, which the ROM does not keep")]
+    DampingOfDroppedMode(usize),
+    #[error("mode {0} is both kept and residualized")]
+    KeptAndResidualized(usize),
+}
+
+impl From<MbdynError> for StudyError {
+    fn from(e: MbdynError) -> Self {
+        StudyError::Model(Box::new(e))
+    }
+}
+
+impl StudyError {
+    /// Names the model file in a reference-solution failure.
+    pub(super) fn in_file(self, path: &Path) -> Self {
+        match self {
+            StudyError::Reference { file: None, source } => StudyError::Reference { file: Some(path.to_path_buf()), source },
+            e => e,
+        }
+    }
+}

@@ -1,0 +1,108 @@
+//! Frequency grids and responses of a study, and a ROM's accuracy on a grid.
+
+use faer::{c64, Mat};
+
+use crate::output::frequency_plot::{default_band, FrequencyResponses};
+use crate::rom::{full_frequency_response, log_frequencies};
+
+use super::{ReducedModel, Study, StudyError};
+
+/// A log-spaced frequency grid [Hz]; missing ends default to a decade around the modes of
+/// interest.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FrequencyGrid {
+    pub fmin_hz: Option<f64>,
+    pub fmax_hz: Option<f64>,
+    pub points: usize,
+}
+
+impl Default for FrequencyGrid {
+    fn default() -> Self {
+        FrequencyGrid { fmin_hz: None, fmax_hz: None, points: 400 }
+    }
+}
+
+/// How far a ROM's response is from the full model's on a frequency grid.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GridAccuracy {
+    pub fmin_hz: f64,
+    pub fmax_hz: f64,
+    pub points: usize,
+    /// `max_f ‖H_rom(f) − H_full(f)‖_F / ‖H_full(f)‖_F`.
+    pub largest_relative_error: f64,
+    /// Where it occurs [Hz].
+    pub at_hz: f64,
+    /// The highest frequency [Hz] below which the relative error stays within 1 % (`None`:
+    /// not even at the lowest).
+    pub within_1_percent_up_to_hz: Option<f64>,
+}
+
+/// The full model's and a ROM's responses on one grid.
+pub struct Comparison {
+    pub freq_hz: Vec<f64>,
+    pub full: Vec<Mat<c64>>,
+    pub rom: Vec<Mat<c64>>,
+}
+
+impl Comparison {
+    /// The curves to plot: the full model and the ROM (labelled `label`).
+    pub fn responses(&self, study: &Study, label: &str) -> FrequencyResponses {
+        FrequencyResponses::from_full(self.freq_hz.clone(), &self.full, &study.dae.input_names, &study.dae.output_names).with_response(label, &self.rom)
+    }
+
+    pub fn accuracy(&self) -> GridAccuracy {
+        let err: Vec<f64> = self.full.iter().zip(&self.rom).map(|(f, r)| (r - f).norm_l2() / f.norm_l2().max(f64::MIN_POSITIVE)).collect();
+        let (k, worst) = err.iter().enumerate().fold((0, 0.0f64), |(bk, bv), (k, &e)| if e > bv || e.is_nan() { (k, e) } else { (bk, bv) });
+        let good = err.iter().take_while(|&&e| e <= 0.01).count();
+        GridAccuracy {
+            fmin_hz: self.freq_hz[0],
+            fmax_hz: self.freq_hz[self.freq_hz.len() - 1],
+            points: self.freq_hz.len(),
+            largest_relative_error: worst,
+            at_hz: self.freq_hz[k],
+            within_1_percent_up_to_hz: good.checked_sub(1).map(|g| self.freq_hz[g]),
+        }
+    }
+}
+
+impl Study {
+    /// The frequencies [Hz] of `grid`, defaults a decade below the lowest and above the
+    /// highest of `focus` (eigenvalues in rad/s; all dynamic modes when empty). Refuses an
+    /// empty or reversed grid, a non-positive end (log spacing) and fewer than 2 points.
+    pub fn frequencies(&self, grid: &FrequencyGrid, focus: &[c64]) -> Result<Vec<f64>, StudyError> {
+        let option = |option, message: String| Err(StudyError::Option { option, message });
+        for (name, f) in [("--fmin", grid.fmin_hz), ("--fmax", grid.fmax_hz)] {
+            if let Some(f) = f {
+                if !(f.is_finite() && f > 0.0) {
+                    return option(name, format!("a frequency of a log-spaced grid must be positive and finite [Hz], got {f}"));
+                }
+            }
+        }
+        if grid.points < 2 {
+            return option("--points", format!("a frequency grid needs at least 2 points, got {}", grid.points));
+        }
+        let (lo, hi) = default_band(&self.modal, focus);
+        let (a, b) = match (grid.fmin_hz, grid.fmax_hz) {
+            (Some(a), Some(b)) => (a, b),
+            (Some(a), None) => (a, hi.max(a * 1e3)),
+            (None, Some(b)) => (lo.min(b / 1e3), b),
+            (None, None) => (lo, hi),
+        };
+        if !(a < b) {
+            return option("--fmin", format!("need FMIN < FMAX, got --fmin {a} --fmax {b} Hz"));
+        }
+        Ok(log_frequencies(a, b, grid.points))
+    }
+
+    /// The full model's responses at `freq_hz`, to which ROMs can be added.
+    pub fn full_responses(&self, freq_hz: Vec<f64>) -> FrequencyResponses {
+        FrequencyResponses::full(&self.dae, freq_hz)
+    }
+
+    /// The full model's and `rom`'s responses at `freq_hz`.
+    pub fn compare(&self, rom: &ReducedModel, freq_hz: Vec<f64>) -> Comparison {
+        let full = full_frequency_response(&self.dae, &freq_hz);
+        let rom = rom.ordinary.frequency_response(&freq_hz);
+        Comparison { freq_hz, full, rom }
+    }
+}

@@ -1,0 +1,170 @@
+//! Building a [`Study`]: where the linear DAE comes from and its eigenanalysis.
+
+use std::path::Path;
+
+use crate::analysis::{reference_state, Reference};
+use crate::dae::{linearize, EnergyShare, ModalEnergy, NodeInput, NodeOutput};
+use crate::input::eigen_pencil::PencilPorts;
+use crate::input::mbdyn::read_model;
+use crate::input::pencil::read_pencil_file;
+use crate::linear::{EigenRoute, LinearDae, ModalAnalysis};
+use crate::model::{InitialValueProblem, Model};
+use crate::output::modal::ModalReport;
+
+use super::checks::{equilibrium_warning, port_warnings, unrestrained_motion};
+use super::{StudyError, Warning};
+
+/// Where a model is linearized and which inputs and outputs the linear DAE has.
+#[derive(Clone, Debug)]
+pub struct Linearization {
+    pub reference: Reference,
+    /// Generalized forces `u` (`−ΔF = B̃ u`, eq. 38).
+    pub inputs: Vec<NodeInput>,
+    /// Observed unknowns `z = C̃ Δy` (eq. 39).
+    pub outputs: Vec<NodeOutput>,
+}
+
+impl Linearization {
+    /// Checks the reference against the problem and the ports for duplicates.
+    pub fn validate(&self, problem: &InitialValueProblem) -> Result<(), StudyError> {
+        let option = |option, message: String| Err(StudyError::Option { option, message });
+        match self.reference {
+            Reference::At(t) if !t.is_finite() => return option("--at", format!("TIME must be a finite time [s], got {t}")),
+            Reference::At(t) if t < problem.initial_time => return option("--at", format!("TIME {t} s is before the file's initial time {} s", problem.initial_time)),
+            Reference::At(t) if t > problem.final_time => return option("--at", format!("TIME {t} s is after the file's final time {} s (the file's problem ends there)", problem.final_time)),
+            Reference::Static { load_steps: 0 } => return option("--load-steps", "need at least 1 load increment".into()),
+            _ => {}
+        }
+        for (k, p) in self.inputs.iter().enumerate() {
+            if self.inputs[..k].contains(p) {
+                return option("--input", format!("{} is given twice", p.name()));
+            }
+        }
+        for (k, p) in self.outputs.iter().enumerate() {
+            if self.outputs[..k].contains(p) {
+                return option("--output", format!("{} is given twice", p.name()));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// How the eigenanalysis is done.
+#[derive(Clone, Copy, Debug)]
+pub struct EigenSettings {
+    pub route: EigenRoute,
+    /// dCoef of the Λ form [s]; `None`: the file's (MBDyn's eigenanalysis parameter h/2), else
+    /// `‖F_yd‖/‖F_y‖`.
+    pub dcoef: Option<f64>,
+}
+
+impl Default for EigenSettings {
+    fn default() -> Self {
+        EigenSettings { route: EigenRoute::Lambda, dcoef: None }
+    }
+}
+
+/// A linear DAE with its eigenanalysis: the starting point of every ROM.
+pub struct Study {
+    pub(super) dae: LinearDae,
+    pub(super) modal: ModalAnalysis,
+    pub(super) model: Option<Model>,
+    pub(super) warnings: Vec<Warning>,
+    pub(super) reference_time: Option<f64>,
+    /// Ports, names, removed springs and imposed motion (paper §8), when given.
+    pub(super) application: Option<super::application::Applied>,
+}
+
+impl Study {
+    /// Reads an MBDyn input file and linearizes it at `lin.reference`.
+    pub fn from_model_file(path: &Path, lin: &Linearization, eigen: EigenSettings) -> Result<Self, StudyError> {
+        let m = read_model(path)?;
+        Self::from_model(m.model, &m.problem, lin, eigen).map_err(|e| e.in_file(path))
+    }
+
+    /// Linearizes a model at `lin.reference` of `problem` (the Rust API's entry).
+    pub fn from_model(model: Model, problem: &InitialValueProblem, lin: &Linearization, eigen: EigenSettings) -> Result<Self, StudyError> {
+        lin.validate(problem)?;
+        let state = match reference_state(&model, problem, lin.reference) {
+            Ok(s) => s,
+            Err(source) => {
+                let motion = matches!(lin.reference, Reference::Static { .. }).then(|| unrestrained_motion(&model)).flatten();
+                return Err(match motion {
+                    Some(motion) => StudyError::Unrestrained { motion, source },
+                    None => StudyError::Reference { file: None, source },
+                });
+            }
+        };
+        let dae = linearize(&model, &state, &lin.inputs, &lin.outputs, None)?;
+        let equilibrium = equilibrium_warning(&model, &state, problem.tolerance);
+        // The Λ form's dCoef: the file's eigenanalysis parameter (h/2) when it gives one.
+        let file_dcoef = problem.eigenanalysis.as_ref().and_then(|e| e.dcoef);
+        let mut study = Self::from_dae(dae, Some(model), EigenSettings { dcoef: eigen.dcoef.or(file_dcoef), ..eigen })?;
+        study.warnings.splice(0..0, equilibrium);
+        study.reference_time = Some(state.t);
+        Ok(study)
+    }
+
+    /// Reads a pencil file: an MBDyn eigenanalysis `.m` file (ports by equation row and
+    /// unknown column) or a JSON pencil (ports in the file, `ports` empty).
+    pub fn from_pencil_file(path: &Path, ports: &PencilPorts, eigen: EigenSettings) -> Result<Self, StudyError> {
+        let file = read_pencil_file(path, ports)?;
+        Self::from_dae(file.dae, None, EigenSettings { dcoef: eigen.dcoef.or(file.dcoef), ..eigen })
+    }
+
+    /// Eigenanalysis of a given linear DAE; `model` (when it is a model's linearization)
+    /// gives the modes' kinetic-energy shares.
+    pub fn from_dae(dae: LinearDae, model: Option<Model>, eigen: EigenSettings) -> Result<Self, StudyError> {
+        if let Some(c) = eigen.dcoef {
+            if !(c.is_finite() && c > 0.0) {
+                return Err(StudyError::Option { option: "--dcoef", message: format!("dCoef must be a positive finite time step coefficient [s], got {c}") });
+            }
+        }
+        let modal = ModalAnalysis::of_dae(&dae, eigen.route, eigen.dcoef)?;
+        let warnings = port_warnings(&dae, &modal);
+        Ok(Study { dae, modal, model, warnings, reference_time: None, application: None })
+    }
+
+    /// What the user must know about the linear model: reference not in equilibrium, ports
+    /// that move nothing.
+    pub fn warnings(&self) -> &[Warning] {
+        &self.warnings
+    }
+
+    /// Time of the reference solution [s] (`None` for a pencil file).
+    pub fn reference_time(&self) -> Option<f64> {
+        self.reference_time
+    }
+
+    /// The linear DAE `F_yd Δẏ + F_y Δy = B̃ u`, `z = C̃ Δy`.
+    pub fn dae(&self) -> &LinearDae {
+        &self.dae
+    }
+
+    /// All eigenvalues with right and adjoint vectors and labels.
+    pub fn modal(&self) -> &ModalAnalysis {
+        &self.modal
+    }
+
+    /// The multibody model, when the DAE is its linearization.
+    pub fn model(&self) -> Option<&Model> {
+        self.model.as_ref()
+    }
+
+    /// Kinetic-energy shares of every mode (empty lists without a model).
+    pub fn energy(&self) -> Vec<Vec<EnergyShare>> {
+        match &self.model {
+            Some(model) => {
+                let energy = ModalEnergy::new(model, &self.dae);
+                self.modal.modes.iter().map(|m| energy.shares(m)).collect()
+            }
+            None => vec![Vec::new(); self.modal.modes.len()],
+        }
+    }
+
+    /// The modal table with kinetic-energy shares.
+    pub fn modal_report(&self) -> ModalReport {
+        let report = ModalReport::new(&self.modal, self.dae.dim()).with_energy(self.energy());
+        if self.application.is_some() { report.with_labels(self.mode_labels()) } else { report }
+    }
+}

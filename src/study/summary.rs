@@ -1,0 +1,113 @@
+//! The short text a ROM is reported with: kept modes, damping, static gains as a named
+//! matrix, accuracy on the frequency grid, warnings.
+
+use faer::Mat;
+
+use crate::dae::{describe, ModalEnergy};
+
+use super::{GridAccuracy, ReducedModel, StaticGains, Study};
+
+/// A frequency [Hz] with 4 decimals in 1e-3..1e5, scientific outside.
+fn fmt_hz(f: f64) -> String {
+    if (1e-3..1e5).contains(&f) { format!("{f:.4}") } else { format!("{f:.4e}") }
+}
+
+fn hz(l: faer::c64) -> (f64, f64) {
+    let tau = 2.0 * std::f64::consts::PI;
+    (l.im.abs() / tau, l.norm() / tau)
+}
+
+/// `rows × columns` matrices side by side under named columns, one block per row name.
+fn gain_table(g: &StaticGains) -> String {
+    let mut s = String::from("static gain (rows: outputs, columns: inputs; SI units)\n");
+    let width = g.input_names.iter().map(|n| n.chars().count()).max().unwrap_or(0).max(13);
+    s += &format!("{:<24}", "");
+    for n in &g.input_names {
+        s += &format!("  {n:>width$}");
+    }
+    s += "\n";
+    let big = g.full.as_ref().map_or(0.0, |m| m.norm_max());
+    let cell = |m: &Mat<f64>, i: usize, j: usize| format!("  {:>width$}", format!("{:.6e}", m[(i, j)]));
+    for (i, out) in g.output_names.iter().enumerate() {
+        s += &format!("{out}\n");
+        if let Ok(full) = &g.full {
+            s += &format!("{:<24}", "  full model");
+            (0..g.input_names.len()).for_each(|j| s += &cell(full, i, j));
+            s += "\n";
+        }
+        if let Ok(rom) = &g.rom {
+            s += &format!("{:<24}", "  ROM");
+            (0..g.input_names.len()).for_each(|j| s += &cell(rom, i, j));
+            s += "\n";
+        }
+        if let (Ok(full), Ok(rom)) = (&g.full, &g.rom) {
+            s += &format!("{:<24}", "  relative difference");
+            for j in 0..g.input_names.len() {
+                let f = full[(i, j)];
+                // Entries zero to rounding have no meaningful relative difference.
+                let text = if f.abs() > StaticGains::ZERO * big { format!("{:.1e}", (rom[(i, j)] - f) / f.abs()) } else { "(zero)".into() };
+                s += &format!("  {text:>width$}");
+            }
+            s += "\n";
+        }
+    }
+    if let Err(e) = &g.full {
+        s += &format!("full model: not available ({e})\n");
+    }
+    if let Err(e) = &g.rom {
+        s += &format!("ROM: not available ({e})\n");
+    }
+    s
+}
+
+impl ReducedModel {
+    /// The summary: states, kept modes with frequency, damping and dominant node
+    /// components, modal damping applied, static gains, accuracy on `grid` (when computed).
+    pub fn summary(&self, study: &Study, accuracy: Option<&GridAccuracy>) -> String {
+        let energy = study.model().map(|m| ModalEnergy::new(m, study.dae()));
+        let states = self.ordinary.a.nrows();
+        let mut s = format!(
+            "ROM: {states} states from {} kept mode(s), {} statically residualized state(s) folded into D\n",
+            self.kept_modes.len(),
+            self.descriptor.static_states
+        );
+        s += &format!("  {:>7}  {:>12}  {:>14}  {:>8}  {:>9}  description\n", "mode", "freq [Hz]", "undamped [Hz]", "damping", "dominance");
+        for k in &self.kept_modes {
+            let m = &study.modal().modes[k.indices[0] - 1];
+            let (f, fu) = hz(k.lambda);
+            let idx = k.indices.iter().map(|i| i.to_string()).collect::<Vec<_>>().join(",");
+            let label = energy.as_ref().map(|e| describe(&e.shares(m))).unwrap_or_default();
+            let zeta = m.damping();
+            s += &format!("  {idx:>7}  {f:>12.6}  {fu:>14.6}  {:>8.4}  {:>9.2e}  {label}\n", if zeta.abs() < 5e-5 { 0.0 } else { zeta }, k.dominance).trim_end().to_string();
+            s += "\n";
+        }
+        for d in &self.damping {
+            s += &format!(
+                "modal damping (ROM only): mode {}: ζ {:.4} -> {:.4}, λ {:.6}{:+.6}j -> {:.6}{:+.6}j rad/s\n",
+                d.mode + 1,
+                -d.before.re / d.before.norm(),
+                -d.after.re / d.after.norm(),
+                d.before.re,
+                d.before.im,
+                d.after.re,
+                d.after.im
+            );
+        }
+        s += &gain_table(&self.static_gains);
+        if let (Some(share), Some((rel, channel))) = (self.static_gains.kept_share(), self.static_gains.largest_relative_difference()) {
+            s += &format!("the ROM keeps {:.4} % of the full model's static gain (Frobenius norms); largest relative difference {rel:.1e} ({channel})\n", 100.0 * share);
+        }
+        if let Some(a) = accuracy {
+            let ok = a.within_1_percent_up_to_hz.map_or("nowhere on the grid".to_string(), |f| format!("up to {} Hz", fmt_hz(f)));
+            s += &format!(
+                "frequency response on {}–{} Hz ({} points): largest relative error {:.2e} at {} Hz; within 1 % {ok}\n",
+                fmt_hz(a.fmin_hz),
+                fmt_hz(a.fmax_hz),
+                a.points,
+                a.largest_relative_error,
+                fmt_hz(a.at_hz)
+            );
+        }
+        s
+    }
+}

@@ -1,0 +1,56 @@
+//! What a user must know about a study or a ROM that is not an error: each warning says
+//! what is wrong, by how much, and what to do.
+
+use std::fmt;
+
+/// A warning about the linear model or a ROM built from it.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Warning {
+    /// The reference solution is not an equilibrium: `F(ẏ = 0, y) ≠ 0` (unbalanced gravity
+    /// or loads, motion at `--at`).
+    NotInEquilibrium { residual: f64, equation: String, tolerance: f64 },
+    /// An input moves no unknown of the model statically (e.g. a force on a clamped node).
+    InputMovesNothing { input: String },
+    /// An output does not move under any input statically (e.g. a clamped node).
+    OutputSeesNothing { output: String },
+    /// Modes below the band of interest were dropped instead of statically residualized.
+    BelowBandDropped { modes: Vec<(usize, f64)>, top_hz: f64 },
+    /// Modes below the band of interest were kept as dynamic modes.
+    BelowBandKept { modes: Vec<(usize, f64)>, top_hz: f64 },
+    /// Kept modes that the inputs cannot excite or the outputs cannot see.
+    Invisible { modes: Vec<(usize, f64)> },
+    /// The ROM's static gain differs from the full model's.
+    StaticGain { relative: f64, channel: String, reason: String },
+    /// A real kept mode could not take modal damping.
+    DampingNotApplied { mode: usize, reason: String },
+}
+
+fn modes_hz(m: &[(usize, f64)]) -> String {
+    m.iter().map(|(k, f)| format!("{k} ({f:.4} Hz)")).collect::<Vec<_>>().join(", ")
+}
+
+impl fmt::Display for Warning {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Warning::NotInEquilibrium { residual, equation, tolerance } => write!(
+                f,
+                "the reference solution is not an equilibrium: the residual with zero derivatives is {residual:.3e} (tolerance {tolerance:.1e}) at '{equation}'; the linear model describes small motions about an accelerating or moving state (use --static for the static equilibrium)"
+            ),
+            Warning::InputMovesNothing { input } => write!(f, "no output responds to input {input} (a load on a clamped node, or in a direction the outputs do not see?): every response to it is exactly zero"),
+            Warning::OutputSeesNothing { output } => write!(f, "output {output} responds to no input (a clamped node, or a direction the inputs do not move?): its every response is exactly zero"),
+            Warning::BelowBandDropped { modes, top_hz } => write!(
+                f,
+                "mode(s) {} lie below the frequencies of interest (up to {top_hz:.4} Hz) and were dropped, not statically residualized: static residualization is valid only for modes above the band (--below-band keep keeps them, refuse stops)",
+                modes_hz(modes)
+            ),
+            Warning::BelowBandKept { modes, top_hz } => write!(f, "mode(s) {} lie below the frequencies of interest (up to {top_hz:.4} Hz) and were kept as dynamic modes (--below-band keep)", modes_hz(modes)),
+            Warning::Invisible { modes } => write!(
+                f,
+                "kept mode(s) {} contribute nothing to these inputs and outputs (not excited or not seen): their states add no response (--by dominance leaves them out)",
+                modes_hz(modes)
+            ),
+            Warning::StaticGain { relative, channel, reason } => write!(f, "the ROM's static gain differs from the full model's by {relative:.2e} (relative, {channel}): {reason}"),
+            Warning::DampingNotApplied { mode, reason } => write!(f, "modal damping not applied to mode {mode}: {reason}"),
+        }
+    }
+}
