@@ -2,7 +2,7 @@
 //! N = 10, 100, 1000 dynamic nodes; eigenanalysis + ROM for N = 10 and 100.
 //! `cargo bench --bench pendulum_chain`.
 
-use romdyn::dae::{linearize, Assembler, SparseLu, State};
+use romdyn::dae::{linearize, Assembler, Coefficients, LuPath, SparseLu, State};
 use romdyn::element::{Anchor, Joint, RigidBody};
 use romdyn::kinematics::{Mat3, Vec3};
 use romdyn::linear::{EigenRoute, ModalAnalysis};
@@ -50,12 +50,37 @@ fn newton_iteration(bencher: divan::Bencher, n: u32) {
     let asm = Assembler::new(&model);
     let st = State::initial(&model, &asm.dofs);
     let mut lu = SparseLu::new();
-    let coef = romdyn::dae::Coefficients::newton(5e-4, model.constraint_form);
+    let coef = Coefficients::newton(5e-4, model.constraint_form);
     bencher.bench_local(|| {
         let mut f = asm.residual(&st, model.constraint_form, 5e-4);
         let j = asm.jacobian(&st, coef);
         lu.solve(&j, &mut f).unwrap();
         f
+    });
+}
+
+/// The linear solve alone (values scattered, factored, solved; the pattern's ordering and
+/// symbolic part reused): the banded path Newton takes on chains, and faer's sparse LU.
+#[divan::bench(args = [10, 100, 1000], sample_count = 5)]
+fn lu_banded(bencher: divan::Bencher, n: u32) {
+    lu_solve(bencher, n, LuPath::Auto);
+}
+#[divan::bench(args = [10, 100, 1000], sample_count = 5)]
+fn lu_general_sparse(bencher: divan::Bencher, n: u32) {
+    lu_solve(bencher, n, LuPath::General);
+}
+
+fn lu_solve(bencher: divan::Bencher, n: u32, path: LuPath) {
+    let model = chain(n, false);
+    let asm = Assembler::new(&model);
+    let st = State::initial(&model, &asm.dofs);
+    let j = asm.jacobian(&st, Coefficients::newton(5e-4, model.constraint_form));
+    let f = asm.residual(&st, model.constraint_form, 5e-4);
+    let mut lu = SparseLu::with_path(path);
+    bencher.bench_local(|| {
+        let mut x = f.clone();
+        lu.solve(&j, &mut x).unwrap();
+        x
     });
 }
 

@@ -35,8 +35,10 @@ pub struct Assembler<'m> {
     pub dofs: DofMap,
 }
 
+/// What one element reads; its nodes are looked up through its slots (no allocation).
 struct Context<'a> {
-    nodes: Vec<&'a NodeKinematics>,
+    frames: &'a [NodeFrame],
+    slots: &'a [usize],
     multipliers: &'a [f64],
     t: f64,
     load: f64,
@@ -45,7 +47,7 @@ struct Context<'a> {
 
 impl ElementState for Context<'_> {
     fn node(&self, slot: usize) -> &NodeKinematics {
-        self.nodes[slot]
+        &self.frames[self.slots[slot]].kin
     }
     fn multiplier(&self, k: usize) -> f64 {
         self.multipliers[k]
@@ -189,10 +191,11 @@ impl<'m> Assembler<'m> {
         (0..self.model.nodes.len()).map(|i| st.node_frame(&self.dofs, i)).collect()
     }
 
-    fn context<'a>(&self, frames: &'a [NodeFrame], st: &'a State, e: usize) -> Context<'a> {
+    fn context<'a>(&'a self, frames: &'a [NodeFrame], st: &'a State, e: usize) -> Context<'a> {
         let first = self.dofs.element_first[e];
         Context {
-            nodes: self.dofs.element_nodes[e].iter().map(|&n| &frames[n].kin).collect(),
+            frames,
+            slots: &self.dofs.element_nodes[e],
             multipliers: &st.y[first..first + self.dofs.element_len[e]],
             t: st.t,
             load: st.load,

@@ -15,6 +15,7 @@
 //! [`ConstraintForm`]: crate::linear::ConstraintForm
 
 mod assembly;
+mod band;
 mod check;
 mod dofs;
 mod element_part;
@@ -31,5 +32,5 @@ pub use element_part::{element_part, ElementPart, ElementPartError};
 pub use energy::{describe, kinetic_energy_shares, mode_label, EnergyShare, ModalEnergy};
 pub use linearize::{linearize, linearize_ports, linearize_sparse, NodeInput, NodeOutput};
 pub use ports::{InputPort, OutputPort, PortError, PortMap};
-pub use sparse::{SparseLu, Triplets};
+pub use sparse::{LuPath, SparseLu, Triplets, BAND_WORK_PER_ENTRY};
 pub use state::State;

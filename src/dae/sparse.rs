@@ -1,11 +1,15 @@
-//! Sparse Jacobians as triplets, and a sparse LU whose symbolic factorization is computed
-//! once per sparsity pattern and reused across Newton iterations and time steps.
+//! Sparse Jacobians as triplets, and the LU of Newton's method: its ordering and symbolic
+//! part computed once per sparsity pattern and reused across Newton iterations and time
+//! steps, the values scattered straight into the factorization's storage; banded after a
+//! reverse Cuthill–McKee renumbering when the band is narrow, faer's sparse LU otherwise.
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::reborrow::ReborrowMut;
 use faer::sparse::linalg::lu::{factorize_symbolic_lu, NumericLu, SymbolicLu};
 use faer::sparse::{Pair, SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, Mat, MatMut, Par};
+
+use super::band::{BandLu, BandOrdering};
 
 /// Entries `(row, col, value)` in a fixed order for a fixed model (duplicates are summed).
 #[derive(Clone, Debug, Default)]
@@ -51,49 +55,107 @@ pub enum SparseError {
     Structure(String),
 }
 
-/// A sparsity pattern with its symbolic factorization: the triplet positions it was made
-/// from, the CSC structure, where each triplet lands in it, and the symbolic LU
-/// (fill-reducing ordering included).
+/// Which factorization [`SparseLu`] uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum LuPath {
+    /// Banded LU after a reverse Cuthill–McKee renumbering when the band is narrow
+    /// (work at most [`BAND_WORK_PER_ENTRY`] multiply–adds per stored entry), else faer's
+    /// general sparse LU.
+    #[default]
+    Auto,
+    /// Always faer's sparse LU (COLAMD ordering, simplicial or supernodal by faer's choice).
+    General,
+}
+
+/// Largest banded-LU work, in multiply–adds per distinct entry of the matrix, for which
+/// [`LuPath::Auto`] takes the banded path. Measured on the pendulum chains and beams
+/// (issue 14): a banded multiply–add costs about 1/20 of faer's sparse LU per
+/// multiply–add, and chains need about 70 per entry.
+pub const BAND_WORK_PER_ENTRY: usize = 256;
+
+/// The factorization a pattern uses, with where each triplet lands in its storage.
+enum Factorization {
+    Band { ordering: BandOrdering, lu: BandLu, rhs: Vec<f64> },
+    General { csc: SymbolicSparseColMat<usize>, lu: SymbolicLu<usize>, numeric: NumericLu<usize, f64>, values: Vec<f64>, scratch: MemBuffer },
+}
+
+/// A sparsity pattern: the triplet positions it was made from, the storage index of each
+/// triplet (duplicates share one) and the factorization's fixed part (ordering, band or
+/// symbolic LU).
 struct Pattern {
     rows: Vec<usize>,
     cols: Vec<usize>,
-    csc: SymbolicSparseColMat<usize>,
-    /// CSC value index of each triplet (duplicates share one).
     position: Vec<usize>,
-    lu: SymbolicLu<usize>,
+    factorization: Factorization,
 }
 
 impl Pattern {
-    fn new(j: &Triplets) -> Result<Self, SparseError> {
+    fn new(j: &Triplets, path: LuPath) -> Result<Self, SparseError> {
         let structure = |e: &dyn std::fmt::Debug| SparseError::Structure(format!("{e:?}"));
         let idx: Vec<Pair<usize, usize>> = j.rows.iter().zip(&j.cols).map(|(&row, &col)| Pair { row, col }).collect();
         let (csc, _) = SymbolicSparseColMat::try_new_from_indices(j.n, j.n, &idx).map_err(|e| structure(&e))?;
+        if path == LuPath::Auto {
+            let ordering = BandOrdering::reverse_cuthill_mckee(j.n, &j.rows, &j.cols);
+            if ordering.factorization_work() <= BAND_WORK_PER_ENTRY * csc.row_idx().len().max(1) {
+                let lu = BandLu::new(j.n, ordering.kl, ordering.ku);
+                let position = j.rows.iter().zip(&j.cols).map(|(&r, &c)| lu.index(ordering.position[r], ordering.position[c])).collect();
+                let factorization = Factorization::Band { ordering, lu, rhs: vec![0.0; j.n] };
+                return Ok(Pattern { rows: j.rows.clone(), cols: j.cols.clone(), position, factorization });
+            }
+        }
         let (ptr, rows) = (csc.col_ptr(), csc.row_idx());
         let position = idx
             .iter()
             .map(|p| ptr[p.col] + rows[ptr[p.col]..ptr[p.col + 1]].binary_search(&p.row).unwrap_or_else(|_| unreachable!("the pattern holds every triplet")))
             .collect();
         let lu = factorize_symbolic_lu(csc.as_ref(), Default::default()).map_err(|e| structure(&e))?;
-        Ok(Pattern { rows: j.rows.clone(), cols: j.cols.clone(), csc, position, lu })
+        let req = lu.factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default()).or(lu.solve_in_place_scratch::<f64>(1, Par::Seq));
+        let values = vec![0.0; csc.row_idx().len()];
+        let factorization = Factorization::General { csc, lu, numeric: NumericLu::new(), values, scratch: MemBuffer::new(req) };
+        Ok(Pattern { rows: j.rows.clone(), cols: j.cols.clone(), position, factorization })
+    }
+
+    /// Assembles `j`'s values, factors and solves `J x = rhs` in place.
+    fn solve(&mut self, j: &Triplets, rhs: &mut [f64]) -> Result<(), SparseError> {
+        match &mut self.factorization {
+            Factorization::Band { ordering, lu, rhs: x } => {
+                lu.clear();
+                for (&k, &v) in self.position.iter().zip(&j.values) {
+                    lu.add(k, v);
+                }
+                lu.factorize().map_err(|_| SparseError::Singular)?;
+                for (i, &p) in ordering.position.iter().enumerate() {
+                    x[p] = rhs[i];
+                }
+                lu.solve_in_place(x);
+                for (i, &p) in ordering.position.iter().enumerate() {
+                    rhs[i] = x[p];
+                }
+            }
+            Factorization::General { csc, lu, numeric, values, scratch } => {
+                values.iter_mut().for_each(|v| *v = 0.0);
+                for (&k, v) in self.position.iter().zip(&j.values) {
+                    values[k] += v;
+                }
+                let a = SparseColMatRef::new(csc.as_ref(), values);
+                let factors = lu.factorize_numeric_lu(numeric, a, Par::Seq, MemStack::new(scratch), Default::default()).map_err(|_| SparseError::Singular)?;
+                let mut b = MatMut::from_column_major_slice_mut(rhs, j.n, 1);
+                factors.solve_in_place_with_conj(Conj::No, b.rb_mut(), Par::Seq, MemStack::new(scratch));
+            }
+        }
+        Ok(())
     }
 }
 
-/// Sparse LU with symbolic reuse: the pattern (its fill-reducing ordering and symbolic
+/// The linear solver of Newton's method: the pattern (ordering, band or symbolic
 /// factorization) is kept while the triplet positions stay the same, and the numeric
 /// factors, values and scratch memory are reused from one solve to the next.
+#[derive(Default)]
 pub struct SparseLu {
     pattern: Option<Pattern>,
-    numeric: NumericLu<usize, f64>,
-    values: Vec<f64>,
-    scratch: MemBuffer,
+    path: LuPath,
     /// Number of symbolic factorizations done (1 for a fixed pattern).
     pub symbolic_factorizations: usize,
-}
-
-impl Default for SparseLu {
-    fn default() -> Self {
-        SparseLu { pattern: None, numeric: NumericLu::new(), values: Vec::new(), scratch: MemBuffer::new(faer::dyn_stack::StackReq::EMPTY), symbolic_factorizations: 0 }
-    }
 }
 
 impl SparseLu {
@@ -101,27 +163,25 @@ impl SparseLu {
         Self::default()
     }
 
+    /// A solver that always takes `path`.
+    pub fn with_path(path: LuPath) -> Self {
+        SparseLu { path, ..Self::default() }
+    }
+
+    /// Whether the current pattern is factored by the banded path.
+    pub fn is_banded(&self) -> bool {
+        matches!(&self.pattern, Some(Pattern { factorization: Factorization::Band { .. }, .. }))
+    }
+
     /// Solves `J x = rhs` in place.
     pub fn solve(&mut self, j: &Triplets, rhs: &mut [f64]) -> Result<(), SparseError> {
         let same = matches!(&self.pattern, Some(p) if p.rows == j.rows && p.cols == j.cols);
         if !same {
-            let p = Pattern::new(j)?;
-            let req = p.lu.factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default()).or(p.lu.solve_in_place_scratch::<f64>(1, Par::Seq));
-            self.scratch = MemBuffer::new(req);
-            self.values = vec![0.0; p.csc.row_idx().len()];
-            self.pattern = Some(p);
+            self.pattern = Some(Pattern::new(j, self.path)?);
             self.symbolic_factorizations += 1;
         }
-        let Some(p) = &self.pattern else { unreachable!("set above") };
-        self.values.iter_mut().for_each(|v| *v = 0.0);
-        for (&k, v) in p.position.iter().zip(&j.values) {
-            self.values[k] += v;
-        }
-        let a = SparseColMatRef::new(p.csc.as_ref(), &self.values);
-        let stack = MemStack::new(&mut self.scratch);
-        let lu = p.lu.factorize_numeric_lu(&mut self.numeric, a, Par::Seq, stack, Default::default()).map_err(|_| SparseError::Singular)?;
-        let mut b = MatMut::from_column_major_slice_mut(rhs, j.n, 1);
-        lu.solve_in_place_with_conj(Conj::No, b.rb_mut(), Par::Seq, MemStack::new(&mut self.scratch));
+        let Some(p) = &mut self.pattern else { unreachable!("set above") };
+        p.solve(j, rhs)?;
         if rhs.iter().any(|x| !x.is_finite()) {
             return Err(SparseError::Singular);
         }
