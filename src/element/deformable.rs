@@ -178,27 +178,34 @@ impl Element for Rod {
     fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
         let p = Pair::new(&self.a, &self.b, st);
         let (f, kd) = self.force(&p.d);
-        let (fx, fax, fbx) = (skew(&f), skew(&p.f_a), skew(&p.f_b));
-        // δd = δx_b − [f_b×] δθ_b − δx_a + [f_a×] δθ_a.
-        let mut dd = vec![(Col::position(p.slot_b), Mat3::identity()), (Col::rotation(p.slot_b), -fbx)];
+        add_pair_force_jacobian(out, &p, &f, &kd);
+    }
+}
+
+/// Jacobian of a force `f(d)` (with `∂f/∂d = kd`) applied at the point `f_b` of node b and,
+/// opposite, at `f_a` of node a, `d` being the distance vector between the points:
+/// `δd = δx_b − [f_b×] δθ_b − δx_a + [f_a×] δθ_a`. Returns those `δd` blocks.
+fn add_pair_force_jacobian(out: &mut dyn JacobianSink, p: &Pair, f: &Vec3, kd: &Mat3) -> Vec<([Col; 3], Mat3)> {
+    let (fx, fax, fbx) = (skew(f), skew(&p.f_a), skew(&p.f_b));
+    let mut dd = vec![(Col::position(p.slot_b), Mat3::identity()), (Col::rotation(p.slot_b), -fbx)];
+    if let Some(a) = p.slot_a {
+        dd.push((Col::position(a), -Mat3::identity()));
+        dd.push((Col::rotation(a), fax));
+    }
+    let b = p.slot_b;
+    add_block(out, Row::moment(b), Col::rotation(b), &(fx * fbx));
+    for (c, m) in &dd {
+        add_block(out, Row::force(b), *c, &(kd * m));
+        add_block(out, Row::moment(b), *c, &(fbx * kd * m));
         if let Some(a) = p.slot_a {
-            dd.push((Col::position(a), -Mat3::identity()));
-            dd.push((Col::rotation(a), fax));
-        }
-        let b = p.slot_b;
-        add_block(out, Row::moment(b), Col::rotation(b), &(fx * fbx));
-        for (c, m) in &dd {
-            add_block(out, Row::force(b), *c, &(kd * m));
-            add_block(out, Row::moment(b), *c, &(fbx * kd * m));
-            if let Some(a) = p.slot_a {
-                add_block(out, Row::force(a), *c, &(-kd * m));
-                add_block(out, Row::moment(a), *c, &(-fax * kd * m));
-            }
-        }
-        if let Some(a) = p.slot_a {
-            add_block(out, Row::moment(a), Col::rotation(a), &(-fx * fax));
+            add_block(out, Row::force(a), *c, &(-kd * m));
+            add_block(out, Row::moment(a), *c, &(-fax * kd * m));
         }
     }
+    if let Some(a) = p.slot_a {
+        add_block(out, Row::moment(a), Col::rotation(a), &(-fx * fax));
+    }
+    dd
 }
 
 /// Distance constraint between two points: `Φ = |p_b − p_a| − L(t)` (MBDyn's `distance`
@@ -245,30 +252,13 @@ impl Element for Distance {
         let e = p.d / l;
         let f = lambda * e;
         let kd = lambda / l * (Mat3::identity() - e * e.transpose());
-        let (fx, fax, fbx) = (skew(&f), skew(&p.f_a), skew(&p.f_b));
-        // δd = δx_b − [f_b×] δθ_b − δx_a + [f_a×] δθ_a.
-        let mut dd = vec![(Col::position(p.slot_b), Mat3::identity()), (Col::rotation(p.slot_b), -fbx)];
-        if let Some(a) = p.slot_a {
-            dd.push((Col::position(a), -Mat3::identity()));
-            dd.push((Col::rotation(a), fax));
-        }
         let b = p.slot_b;
-        add_block(out, Row::moment(b), Col::rotation(b), &(fx * fbx));
-        for (c, m) in &dd {
-            add_block(out, Row::force(b), *c, &(kd * m));
-            add_block(out, Row::moment(b), *c, &(fbx * kd * m));
-            // The constraint row: eᵀ δd.
+        // The constraint row: eᵀ δd.
+        for (c, m) in add_pair_force_jacobian(out, &p, &f, &kd) {
             let row = e.transpose() * m;
             for (j, col) in c.iter().enumerate() {
                 out.add(Row::Constraint(0), *col, row[j]);
             }
-            if let Some(a) = p.slot_a {
-                add_block(out, Row::force(a), *c, &(-kd * m));
-                add_block(out, Row::moment(a), *c, &(-fax * kd * m));
-            }
-        }
-        if let Some(a) = p.slot_a {
-            add_block(out, Row::moment(a), Col::rotation(a), &(-fx * fax));
         }
         // ∂F/∂λ = e.
         let (mb, ma) = (p.f_b.cross(&e), p.f_a.cross(&e));
