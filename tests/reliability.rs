@@ -87,6 +87,10 @@ fn declared_sizes_beyond_the_budget_are_refused_before_allocating() {
     // matrix is stored as 8 x 38 888 882 by faer, beyond the budget.
     let wide = romdyn::input::matrix_market::parse_matrix("%%MatrixMarket matrix coordinate pattern general\n1 38888882 388888888883\n1 2 9\n", Path::new("a.mtx"));
     assert!(wide.unwrap_err().to_string().starts_with("a.mtx:2:1: the matrix is 1 x 38888882 = 38888882 entries, more than romdyn's budget"));
+    // Found by cargo-fuzz (matrix_market, a timeout: 27 minutes on one input): a matrix with
+    // no rows and 3.9e18 columns holds no entry but was accepted and never finished.
+    let empty = romdyn::input::matrix_market::parse_matrix("%%MatrixMarket matrix coordinate pattern general\n0 3888888888888888888  3\n", Path::new("a.mtx"));
+    assert!(empty.unwrap_err().to_string().starts_with("a.mtx:2:1: the matrix is 0 x 3888888888888888888"));
     // Octave zeros(R, C): 7064^2 = 49 900 096 entries is within, 7072^2 = 50 013 184 beyond
     // (rows count in multiples of 8, faer's storage).
     let m = Path::new("p.m");
