@@ -344,3 +344,21 @@ fn lenient_inputs_are_refused_or_accepted_as_documented() {
     assert!(o.stdout.contains("3.130527e0"), "{}", o.stdout);
     std::fs::remove_dir_all(&d).ok();
 }
+
+/// Allocation failure is a message and exit status 1, never Rust's abort: a 7000 x 7000
+/// all-zero pencil (two dense matrices of 392 MB each, within the 5e7-entry budget) read
+/// under a 600 MB address-space limit (`ulimit -v`, POSIX sh).
+#[test]
+fn out_of_memory_is_a_message_not_an_abort() {
+    let mtx = "%%MatrixMarket matrix coordinate real general\n7000 7000 0\n";
+    let pencil = r#"{"Fyd": "z.mtx", "Fy": "z.mtx", "B": "b.mtx", "C": "c.mtx"}"#;
+    let b = "%%MatrixMarket matrix coordinate real general\n7000 1 1\n1 1 1\n";
+    let c = "%%MatrixMarket matrix coordinate real general\n1 7000 1\n1 1 1\n";
+    let d = folder("oom", &[("z.mtx", mtx), ("b.mtx", b), ("c.mtx", c), ("p.json", pencil)]);
+    let cmd = format!("ulimit -v 600000 && exec '{}' eig --pencil p.json", env!("CARGO_BIN_EXE_romdyn"));
+    let out = Command::new("sh").args(["-c", &cmd]).current_dir(&d).stdin(Stdio::null()).output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("romdyn: error: out of memory: the system refused ") && !err.contains("memory allocation of"), "{err}");
+    std::fs::remove_dir_all(&d).ok();
+}

@@ -1,5 +1,6 @@
 //! Command-line interface: argument parsing, printing, exit codes.
 
+mod allocator;
 mod args;
 mod check;
 mod eig;
