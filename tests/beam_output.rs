@@ -4,7 +4,7 @@
 mod common;
 
 use common::beams::{simply_supported, TABLE3};
-use common::cli::{example_variant, listing, romdyn, temp_dir, write_file};
+use common::cli::{example_variant, listing, romdyn_at, temp_dir, write_file};
 use common::rel;
 use romdyn::dae::{Assembler, State};
 use romdyn::solve::{static_solution, NewtonSettings};
@@ -40,7 +40,7 @@ fn run_writes_act_and_bst_with_a_line_per_beam_and_instant() {
     let dir = temp_dir("beam-act");
     let text = example_variant("cantilever.mbd", &[("    final time: 0.1;", "    final time: 1.e-3;"), ("    eigenanalysis: 0.1, output matrices, use lapack;\n", "")]);
     let file = write_file(&dir, "cantilever.mbd", &text);
-    let (ok, _, err) = romdyn(&["run", &file]);
+    let (ok, _, err) = romdyn_at(&dir, &["run", &file]);
     assert!(ok, "{err}");
     let files = listing(&dir);
     assert!(files.contains(&"cantilever.act".to_string()) && files.contains(&"cantilever.bst".to_string()), "{files:?}");

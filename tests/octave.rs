@@ -7,7 +7,7 @@ mod common;
 
 use std::process::Command;
 
-use common::cli::{listing, pendulum_variant, romdyn, temp_dir, write_file, EIGENANALYSIS, FINAL_TIME};
+use common::cli::{listing, pendulum_variant, romdyn_at, temp_dir, write_file, EIGENANALYSIS, FINAL_TIME};
 
 fn octave() -> Option<&'static str> {
     ["octave-cli", "octave"].into_iter().find(|exe| Command::new(exe).arg("--version").output().is_ok_and(|o| o.status.success()))
@@ -44,7 +44,7 @@ fn octave_loads_the_m_file_and_its_qz_gives_the_pendulum_eigenvalues() {
         let dir = temp_dir(&format!("octave-{name}"));
         let eigen = format!("    eigenanalysis: 0., {option}, output eigenvectors, output geometry;");
         let file = write_file(&dir, "pendulum.mbd", &pendulum_variant(&[(FINAL_TIME, "    final time: 0.;"), (EIGENANALYSIS, &eigen)]));
-        let (ok, _, err) = romdyn(&["run", &file]);
+        let (ok, _, err) = romdyn_at(&dir, &["run", &file]);
         assert!(ok, "{err}");
         assert!(listing(&dir).contains(&"pendulum.m".to_string()));
         let out = run_octave(exe, &dir, SCRIPT);

@@ -6,7 +6,7 @@ mod common;
 
 use std::path::Path;
 
-use common::cli::{listing, pendulum_variant, romdyn, temp_dir, write_file, DISPLACED_NODE, EIGENANALYSIS, FINAL_TIME, PENDULUM_NODE};
+use common::cli::{romdyn_at, listing, pendulum_variant, romdyn, temp_dir, write_file, DISPLACED_NODE, EIGENANALYSIS, FINAL_TIME, PENDULUM_NODE};
 use romdyn::input::octave_m::read_octave_script;
 
 /// ω = sqrt((g/L)/(1 + J/(m L²))) = 3.130527 rad/s (eq. 82, CASES C2).
@@ -28,7 +28,7 @@ fn run_writes_the_mbdyn_files_with_their_layouts() {
         "pendulum.mbd",
         &pendulum_variant(&[(FINAL_TIME, "    final time: 0.1;"), (EIGENANALYSIS, "    eigenanalysis: 0., output matrices, output eigenvectors, output geometry, use lapack;")]),
     );
-    let (ok, out, err) = romdyn(&["run", &file]);
+    let (ok, out, err) = romdyn_at(&dir, &["run", &file]);
     assert!(ok, "{err}");
     assert!(out.contains("100 steps to t = 0.1 s"), "{out}");
     assert!(out.contains("eigenanalysis 0 at t = 0 s (dCoef = 0.5 s): 2 dynamic"), "{out}");
@@ -129,7 +129,7 @@ fn several_eigenanalyses_are_numbered_and_a_time_after_the_end_is_reported() {
         "pendulum.mbd",
         &pendulum_variant(&[(FINAL_TIME, "    final time: 0.05;"), (EIGENANALYSIS, "    eigenanalysis: list, 3, 0., 0.02, 1., output sparse matrices, parameter, 0.002;")]),
     );
-    let (ok, out, err) = romdyn(&["run", &file]);
+    let (ok, out, err) = romdyn_at(&dir, &["run", &file]);
     assert!(ok, "{err}");
     assert!(out.contains("eigenanalysis 1 at t = 0.02 s"), "{out}");
     assert!(out.contains("eigenanalyses not done (the run ended first): t = 1 s"), "{out}");
@@ -150,7 +150,7 @@ fn several_eigenanalyses_are_numbered_and_a_time_after_the_end_is_reported() {
 fn a_bad_file_gives_file_line_column_and_writes_nothing() {
     let dir = temp_dir("run-bad");
     let file = write_file(&dir, "bad.mbd", &pendulum_variant(&[("    time step: 1.e-3;", "    time step: 1.e-3 +;")]));
-    let (ok, _, err) = romdyn(&["run", &file]);
+    let (ok, _, err) = romdyn_at(&dir, &["run", &file]);
     assert!(!ok);
     let line = pendulum_variant(&[]).lines().position(|l| l.contains("time step:")).unwrap() + 1;
     assert!(err.contains(&format!("bad.mbd:{line}:")), "{err}");
@@ -164,7 +164,7 @@ fn a_failing_run_names_step_residual_and_worst_equation_and_leaves_no_output() {
     let dir = temp_dir("run-fail");
     let node = "    structural: 2, dynamic, L*sin(1.), -L*cos(1.), 0., euler123, 0., 0., 1., null, null;";
     let file = write_file(&dir, "fail.mbd", &pendulum_variant(&[(PENDULUM_NODE, node), ("    max iterations: 10;", "    max iterations: 1;")]));
-    let (ok, out, err) = romdyn(&["run", &file]);
+    let (ok, out, err) = romdyn_at(&dir, &["run", &file]);
     assert!(!ok, "{out}");
     assert!(err.contains("the run failed; no output file was written"), "{err}");
     assert!(err.contains("step 1 of 2001 (t = 0.001 s): Newton failed at t = 0.001 s, iteration 1: residual norm"), "{err}");
@@ -179,7 +179,7 @@ fn a_failing_run_names_step_residual_and_worst_equation_and_leaves_no_output() {
 fn rom_from_the_m_file_reproduces_the_pendulum_eigenvalues_and_static_gain() {
     let dir = temp_dir("run-pencil");
     let file = write_file(&dir, "pendulum.mbd", &pendulum_variant(&[(FINAL_TIME, "    final time: 0.;")]));
-    let (ok, _, err) = romdyn(&["run", &file]);
+    let (ok, _, err) = romdyn_at(&dir, &["run", &file]);
     assert!(ok, "{err}");
     // Node 2 starts at unknown 6 (0-based): its moment about z is equation 6 + 6 + 5 + 1 = 18
     // and its rotation about z is unknown 6 + 5 + 1 = 12 (1-based).
@@ -201,4 +201,21 @@ fn rom_from_the_m_file_reproduces_the_pendulum_eigenvalues_and_static_gain() {
     let (ok, _, err) = romdyn(&["eig", "--pencil", &pencil, "--input-row", "40"]);
     assert!(!ok && err.contains("input row 40 is out of range: the pencil has 29 equations (1-based)"), "{err}");
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Issue 9, point 12: without `-o`, `romdyn run` writes in the current directory, not
+/// beside the input (a run of `examples/pendulum.mbd` must not write inside `examples/`).
+#[test]
+fn run_writes_in_the_current_directory_by_default() {
+    let input = temp_dir("run-default-input");
+    let here = temp_dir("run-default-here");
+    let file = write_file(&input, "pendulum.mbd", &pendulum_variant(&[(FINAL_TIME, "    final time: 0.01;")]));
+    let (ok, _, err) = romdyn_at(&here, &["run", &file]);
+    assert!(ok, "{err}");
+    assert_eq!(listing(&input), vec!["pendulum.mbd".to_string()]);
+    for f in ["pendulum.out", "pendulum.mov", "pendulum.log"] {
+        assert!(listing(&here).contains(&f.to_string()), "{:?}", listing(&here));
+    }
+    std::fs::remove_dir_all(&input).ok();
+    std::fs::remove_dir_all(&here).ok();
 }

@@ -15,7 +15,7 @@ pub struct RunArgs {
     /// MBDyn input file (its 'initial value' block sets times [s], method, step, tolerance, max iterations and eigenanalyses)
     #[arg(value_name = "FILE")]
     pub file: PathBuf,
-    /// Output prefix: writes PREFIX.out, .mov, .log and PREFIX.m/.json (PREFIX_K.m/.json for several eigenanalyses); an existing directory DIR means DIR/NAME with NAME the file's stem [default: FILE without its extension]
+    /// Output prefix: writes PREFIX.out, .mov, .log and PREFIX.m/.json (PREFIX_K.m/.json for several eigenanalyses); an existing directory DIR means DIR/NAME with NAME the file's stem [default: NAME in the current directory, NAME the file's stem]
     #[arg(short = 'o', long = "out", value_name = "PREFIX")]
     pub prefix: Option<PathBuf>,
 }
@@ -95,7 +95,7 @@ pub fn run(a: RunArgs) -> Result<()> {
     let prefix = match &a.prefix {
         Some(dir) if dir.is_dir() => dir.join(stem),
         Some(p) => p.clone(),
-        None => a.file.with_extension(""),
+        None => stem,
     };
     let files = RunFiles::create(&prefix, &input, &m.model, &m.problem).with_context(|| format!("starting the output files {}.*", prefix.display()))?;
     let mut observers = (Progress::new(), files);

@@ -9,6 +9,14 @@ pub fn romdyn(args: &[&str]) -> (bool, String, String) {
     (out.status.success(), String::from_utf8_lossy(&out.stdout).into(), String::from_utf8_lossy(&out.stderr).into())
 }
 
+/// Runs `romdyn` with `args` in `dir` (where `romdyn run` writes by default): (success,
+/// stdout, stderr).
+#[allow(dead_code)]
+pub fn romdyn_at(dir: &Path, args: &[&str]) -> (bool, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_romdyn")).args(args).current_dir(dir).output().expect("romdyn runs");
+    (out.status.success(), String::from_utf8_lossy(&out.stdout).into(), String::from_utf8_lossy(&out.stderr).into())
+}
+
 /// A fresh, empty temporary directory for one test.
 pub fn temp_dir(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("romdyn-test-{name}-{}", std::process::id()));
