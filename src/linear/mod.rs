@@ -12,6 +12,7 @@ mod eigen;
 mod route;
 mod sparse;
 mod sparse_dae;
+pub mod krylov;
 
 pub use classify::{Classification, ModeKind};
 pub use dae::{coefficient_from_derivatives, derivatives_from_coefficient, ConstraintForm, Jacobians, LinearDae};

@@ -6,7 +6,16 @@ use faer::{c64, Mat};
 use super::dense::transfer_with_rates;
 use super::select::Selection;
 use super::RomError;
-use crate::linear::{Jacobians, LinearDae, ModalAnalysis, Mode};
+use crate::linear::{Jacobians, LinearDae, ModalAnalysis, Mode, SparseLinearDae};
+
+/// The input and output maps of the full model, dense or sparse alike.
+struct Ports<'a> {
+    b: &'a Mat<f64>,
+    c: &'a Mat<f64>,
+    c_rate: Option<&'a Mat<f64>>,
+    input_names: &'a [String],
+    output_names: &'a [String],
+}
 
 /// Descriptor reduced-order model. States of statically residualized modes have zero rows
 /// and columns in `E`.
@@ -66,18 +75,26 @@ fn real_bases(modal: &ModalAnalysis, modes: &[usize], n: usize) -> Result<(Mat<f
     Ok((to_mat(&cols_v), to_mat(&cols_w), names, state_modes))
 }
 
+/// The bases of the kept modes (followed, with `residualize`, by the dropped ones) and the
+/// number of states of the kept ones.
+#[allow(clippy::type_complexity)]
+fn projection_bases(modal: &ModalAnalysis, sel: &Selection, residualize: bool, n: usize) -> Result<(Mat<f64>, Mat<f64>, Vec<String>, Vec<usize>, usize), RomError> {
+    let mut modes = sel.kept.clone();
+    if residualize {
+        modes.extend(sel.dropped.iter().copied());
+    }
+    let (v, w, state_names, state_modes) = real_bases(modal, &modes, n)?;
+    let kept_states = real_bases(modal, &sel.kept, n)?.0.ncols();
+    Ok((v, w, state_names, state_modes, kept_states))
+}
+
 impl DescriptorRom {
     /// Projects the linear DAE onto the kept modes; with `residualize`, the dropped dynamic
     /// modes are projected too but with their rows and columns of `E` set to zero, so that
     /// they contribute only their static response (paper Fig. 7).
     pub fn project(dae: &LinearDae, modal: &ModalAnalysis, sel: &Selection, residualize: bool) -> Result<Self, RomError> {
         let n = dae.dim();
-        let mut modes = sel.kept.clone();
-        if residualize {
-            modes.extend(sel.dropped.iter().copied());
-        }
-        let (v, w, state_names, state_modes) = real_bases(modal, &modes, n)?;
-        let kept_states = real_bases(modal, &sel.kept, n)?.0.ncols();
+        let (v, w, state_names, state_modes, kept_states) = projection_bases(modal, sel, residualize, n)?;
         let wt = w.transpose();
         let (mut e, a) = match &dae.jacobians {
             Jacobians::Derivatives { fyd, fy } => (wt * fyd * &v, -(wt * fy * &v)),
@@ -90,6 +107,26 @@ impl DescriptorRom {
         if let Jacobians::Coefficient { .. } = &dae.jacobians {
             e = e * faer::Scale(0.5);
         }
+        let ports = Ports { b: &dae.b, c: &dae.c, c_rate: dae.c_rate.as_ref(), input_names: &dae.input_names, output_names: &dae.output_names };
+        Ok(Self::assemble(e, a, &v, &w, ports, modal, sel, kept_states, state_names, state_modes))
+    }
+
+    /// [`DescriptorRom::project`] for a sparse linear DAE: `E = Wᵀ (F_yd V)`,
+    /// `A = −Wᵀ (F_y V)` by sparse products (issue 13 point 3), nothing n x n formed.
+    pub fn project_sparse(dae: &SparseLinearDae, modal: &ModalAnalysis, sel: &Selection, residualize: bool) -> Result<Self, RomError> {
+        let n = dae.dim();
+        let (v, w, state_names, state_modes, kept_states) = projection_bases(modal, sel, residualize, n)?;
+        let wt = w.transpose();
+        let e = wt * dae.fyd.mul_dense(&v);
+        let a = -(wt * dae.fy.mul_dense(&v));
+        let ports = Ports { b: &dae.b, c: &dae.c, c_rate: dae.c_rate.as_ref(), input_names: &dae.input_names, output_names: &dae.output_names };
+        Ok(Self::assemble(e, a, &v, &w, ports, modal, sel, kept_states, state_names, state_modes))
+    }
+
+    /// The ROM from its projected `E`, `A` (residualized states' rows and columns of `E`
+    /// zeroed) and the ports projected on the bases.
+    #[allow(clippy::too_many_arguments)]
+    fn assemble(mut e: Mat<f64>, a: Mat<f64>, v: &Mat<f64>, w: &Mat<f64>, ports: Ports<'_>, modal: &ModalAnalysis, sel: &Selection, kept_states: usize, state_names: Vec<String>, state_modes: Vec<usize>) -> Self {
         let s = v.ncols();
         for i in kept_states..s {
             for k in 0..s {
@@ -97,19 +134,19 @@ impl DescriptorRom {
                 e[(k, i)] = 0.0;
             }
         }
-        Ok(DescriptorRom {
+        DescriptorRom {
             e,
             a,
-            b: wt * &dae.b,
-            c: &dae.c * &v,
-            c_rate: dae.c_rate.as_ref().map(|cv| cv * &v),
+            b: w.transpose() * ports.b,
+            c: ports.c * v,
+            c_rate: ports.c_rate.map(|cv| cv * v),
             eigenvalues: sel.kept.iter().map(|&i| modal.modes[i].lambda).collect(),
             state_names,
             state_modes,
-            input_names: dae.input_names.clone(),
-            output_names: dae.output_names.clone(),
+            input_names: ports.input_names.to_vec(),
+            output_names: ports.output_names.to_vec(),
             static_states: s - kept_states,
-        })
+        }
     }
 
     /// `(C + jω C_v) (jω E − A)⁻¹ B` at each frequency [Hz].

@@ -1,0 +1,319 @@
+//! Where the shifts go and what the result certifies.
+//!
+//! - The N lowest modes: one real shift at 0 (or just left of it when `F_y` is singular, a
+//!   free rigid-body motion); the window `|λ − σ| ≤ r` must contain the N-th lowest mode, with
+//!   `|λ| + |σ| ≤ r`, else more eigenvalues are asked of the shift.
+//! - A band `f_min ≤ |λ|/2π ≤ f_max`: complex shifts `σ = jω` along the imaginary axis, one
+//!   for a narrow band, several overlapping windows for a wide one (each at most
+//!   [`SparseEigenSettings::per_shift`] eigenvalues), until the windows cover the band's
+//!   segment `j[ω_min, ω_max]` of the imaginary axis.
+//!
+//! Certification: in every window the right run (operator `T`) and the adjoint run
+//! (operator `Tᵀ`, another start vector) must find the same eigenvalues, every pair must pass
+//! its true-residual test, and the windows must cover the band. The windows' union then
+//! holds every mode of the band with damping ratio up to [`SparseModalAnalysis::damping_covered`]
+//! (1 for the lowest modes: the disc around 0). This is a check by two independent Krylov
+//! spaces, not a proof: a mode that is missing from both (e.g. the second vector of an
+//! exactly repeated eigenvalue, which a single-vector Krylov space holds only through
+//! rounding) would not be seen.
+
+use faer::{c64, Col};
+
+use super::pencil::Pencil;
+use super::window::{window, Eigenpair};
+use super::{KrylovError, SparseEigenSettings};
+use crate::linear::classify::{classify, Classification};
+use crate::linear::eigen::{conjugate_mode, normalize, sort_units, ModalAnalysis, Mode};
+use crate::linear::route::{EigenRoute, EigenVectors};
+use crate::linear::SparseLinearDae;
+
+/// Which modes to compute.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ModeTarget {
+    /// The N lowest dynamic modes (by |λ|; a complex pair is one mode).
+    Lowest(usize),
+    /// Natural frequencies `|λ|/2π` in `[fmin, fmax]` Hz.
+    Band { fmin_hz: f64, fmax_hz: f64 },
+}
+
+/// One shift and the disc `|λ − shift| ≤ radius` [rad/s] its two runs agreed on.
+#[derive(Clone, Debug)]
+pub struct ShiftWindow {
+    pub shift: c64,
+    pub radius: f64,
+    pub agreed: bool,
+    /// Accepted modes of the window (a complex pair once).
+    pub found: usize,
+    /// Pairs that converged but failed the true-residual test.
+    pub rejected: usize,
+}
+
+/// The modes found, with their windows and what is certified.
+#[derive(Clone, Debug)]
+pub struct SparseModalAnalysis {
+    /// The modes found (dynamic ones, and zero/infinite if the labels say so), sorted as the
+    /// dense route sorts them, with right and left vectors normalized as it does.
+    pub modal: ModalAnalysis,
+    pub windows: Vec<ShiftWindow>,
+    /// Every window agreed, no pair was rejected and the windows cover the band.
+    pub certified: bool,
+    /// Largest damping ratio up to which the windows cover the band (1: all of it).
+    pub damping_covered: f64,
+    /// Largest true residual of a returned pair (right or left).
+    pub max_residual: f64,
+    /// Why the result is not certified, when it is not.
+    pub note: Option<String>,
+}
+
+/// [`sparse_modes_with_progress`] without progress reports.
+pub fn sparse_modes(dae: &SparseLinearDae, target: ModeTarget, settings: &SparseEigenSettings) -> Result<SparseModalAnalysis, KrylovError> {
+    sparse_modes_with_progress(dae, target, settings, &|_| {})
+}
+
+/// The modes of `target` by shift-invert Krylov–Schur; `progress` gets a line per restart.
+pub fn sparse_modes_with_progress(dae: &SparseLinearDae, target: ModeTarget, settings: &SparseEigenSettings, progress: &dyn Fn(&str)) -> Result<SparseModalAnalysis, KrylovError> {
+    if dae.dim() == 0 {
+        return Err(KrylovError::Request("the model has no equations".into()));
+    }
+    let pencil = Pencil::new(dae)?;
+    match target {
+        ModeTarget::Lowest(count) => lowest(dae, &pencil, count, settings, progress),
+        ModeTarget::Band { fmin_hz, fmax_hz } => {
+            if !(fmin_hz >= 0.0 && fmax_hz > fmin_hz && fmax_hz.is_finite()) {
+                return Err(KrylovError::Request(format!("the band {fmin_hz}:{fmax_hz} Hz needs 0 <= fmin < fmax")));
+            }
+            band(dae, &pencil, fmin_hz, fmax_hz, settings, progress)
+        }
+    }
+}
+
+/// Distinct pairs: a pair whose eigenvalue and vector repeat one already kept is dropped.
+fn merge(into: &mut Vec<Eigenpair>, new: Vec<Eigenpair>) {
+    for p in new {
+        let same = into.iter().position(|q| {
+            let close = (q.lambda - p.lambda).norm() <= 1e-7 * q.lambda.norm().max(1e-300);
+            let overlap = (0..p.right.nrows()).fold(c64::new(0.0, 0.0), |s, i| s + q.right[i].conj() * p.right[i]).norm() / (q.right.norm_l2() * p.right.norm_l2());
+            close && overlap > 0.99
+        });
+        match same {
+            Some(i) if into[i].residual_right.max(into[i].residual_left) <= p.residual_right.max(p.residual_left) => {}
+            Some(i) => into[i] = p,
+            None => into.push(p),
+        }
+    }
+}
+
+fn lowest(dae: &SparseLinearDae, pencil: &Pencil, count: usize, s: &SparseEigenSettings, progress: &dyn Fn(&str)) -> Result<SparseModalAnalysis, KrylovError> {
+    if count == 0 {
+        return Err(KrylovError::Request("--count must be at least 1".into()));
+    }
+    let n = dae.dim();
+    let mut wanted = (2 * count + 6).min(n);
+    // σ = 0, or left of it when F_y is singular (a rigid-body motion).
+    let scale = (dae.fy.norm_l2() / dae.fyd.norm_l2().max(f64::MIN_POSITIVE)).sqrt();
+    let mut last_err = None;
+    for sigma in [0.0, -1e-3 * scale, -1e-1 * scale] {
+        loop {
+            let w = match window(dae, pencil, c64::new(sigma, 0.0), wanted, s, progress) {
+                Ok(w) => w,
+                Err(e @ (KrylovError::Singular(_) | KrylovError::Inaccurate { .. })) => {
+                    last_err = Some(e);
+                    break;
+                }
+                Err(e) => return Err(e),
+            };
+            let mut pairs = Vec::new();
+            merge(&mut pairs, w.pairs.clone());
+            let reach = w.radius - sigma.abs();
+            let inside: Vec<Eigenpair> = pairs.into_iter().filter(|p| p.lambda.norm() <= reach * (1.0 + 1e-9)).collect();
+            let units = inside.len();
+            if units >= count || w.radius.is_infinite() || wanted >= n {
+                let window = ShiftWindow { shift: w.shift, radius: w.radius, agreed: w.agreed, found: units, rejected: w.rejected };
+                let mut note = None;
+                if !w.agreed {
+                    note = Some("the right and adjoint Krylov runs found different eigenvalues".to_string());
+                } else if w.rejected > 0 {
+                    note = Some(format!("{} converged pair(s) failed the true-residual test", w.rejected));
+                } else if units < count {
+                    note = Some(format!("only {units} mode(s) exist or were found, {count} asked"));
+                }
+                let certified = w.agreed && w.rejected == 0;
+                return finish(dae, inside, vec![window], certified, 1.0, note, s);
+            }
+            if wanted >= n {
+                break;
+            }
+            wanted = (wanted * 2).min(n);
+        }
+    }
+    Err(last_err.unwrap_or_else(|| KrylovError::Request("no shift could be factored".into())))
+}
+
+/// Largest damping ratio ζ such that every λ with `|λ| ∈ [ω₁, ω₂]`, `|ζ(λ)| ≤ ζ` lies in a
+/// window (discs centred on the imaginary axis, sampled along ω).
+fn damping_covered(windows: &[ShiftWindow], w1: f64, w2: f64) -> f64 {
+    let samples = 2000;
+    let mut worst = 1.0f64;
+    for k in 0..=samples {
+        let w = w1 + (w2 - w1) * k as f64 / samples as f64;
+        let best = windows
+            .iter()
+            .map(|win| {
+                let (re, c, r) = (win.shift.re, win.shift.im.abs(), win.radius);
+                if r.is_infinite() {
+                    return 1.0;
+                }
+                if w == 0.0 {
+                    return if (re * re + c * c).sqrt() <= r { 1.0 } else { -1.0 };
+                }
+                if re != 0.0 || c == 0.0 {
+                    // Disc centred on the real axis (only at the shift 0 here).
+                    return if w + win.shift.norm() <= r { 1.0 } else { -1.0 };
+                }
+                // |ω(−ζ + j√(1−ζ²)) − jc|² ≤ r²  ⇔  √(1−ζ²) ≥ q.
+                let q = (w * w + c * c - r * r) / (2.0 * w * c);
+                if q <= 0.0 {
+                    1.0
+                } else if q <= 1.0 {
+                    (1.0 - q * q).sqrt()
+                } else {
+                    -1.0
+                }
+            })
+            .fold(-1.0f64, f64::max);
+        worst = worst.min(best);
+    }
+    worst
+}
+
+fn band(dae: &SparseLinearDae, pencil: &Pencil, fmin: f64, fmax: f64, s: &SparseEigenSettings, progress: &dyn Fn(&str)) -> Result<SparseModalAnalysis, KrylovError> {
+    let tau = 2.0 * std::f64::consts::PI;
+    let (w1, w2) = (tau * fmin, tau * fmax);
+    let n = dae.dim();
+    let wanted = s.per_shift.max(2).min(n);
+    let mut windows: Vec<ShiftWindow> = Vec::new();
+    let mut pairs = Vec::new();
+    let mut covered_to = w1;
+    let mut centre = 0.5 * (w1 + w2);
+    let mut guard = 0;
+    while covered_to < w2 {
+        guard += 1;
+        if guard > 200 {
+            return Err(KrylovError::Request(format!("the band {fmin}:{fmax} Hz needs more than 200 shifts")));
+        }
+        let mut sigma = c64::new(0.0, centre);
+        let w = loop {
+            match window(dae, pencil, sigma, wanted, s, progress) {
+                Ok(w) => break w,
+                // A shift on an eigenvalue: nudge it.
+                Err(KrylovError::Singular(_) | KrylovError::Inaccurate { .. }) if sigma.im != 0.0 => sigma = c64::new(0.0, sigma.im * (1.0 + 1e-7) + 1e-9),
+                Err(e) => return Err(e),
+            }
+        };
+        let (low, high) = (w.shift.im - w.radius, w.shift.im + w.radius);
+        if low > covered_to * (1.0 + 1e-12) && !w.radius.is_infinite() {
+            // A gap below this window: move the next shift down.
+            centre = covered_to + 0.9 * w.radius;
+            if (centre - w.shift.im).abs() < 1e-12 * w.shift.im.abs() {
+                return Err(KrylovError::Request("the shifts make no progress through the band".into()));
+            }
+            pairs_from(&mut pairs, &mut windows, w);
+            continue;
+        }
+        covered_to = if w.radius.is_infinite() { f64::INFINITY } else { high };
+        centre = covered_to + 0.8 * w.radius;
+        progress(&format!("band covered to {:.6} Hz of {fmax} Hz", covered_to.min(w2) / tau));
+        pairs_from(&mut pairs, &mut windows, w);
+    }
+    let in_band: Vec<Eigenpair> = pairs
+        .into_iter()
+        .filter(|p| {
+            let m = p.lambda.norm();
+            m >= w1 * (1.0 - 1e-12) && m <= w2 * (1.0 + 1e-12) && windows.iter().any(|win| (p.lambda - win.shift).norm() <= win.radius * (1.0 + 1e-9))
+        })
+        .collect();
+    let zeta = damping_covered(&windows, w1, w2);
+    let agreed = windows.iter().all(|w| w.agreed);
+    let rejected: usize = windows.iter().map(|w| w.rejected).sum();
+    let certified = agreed && rejected == 0 && zeta >= 0.0;
+    let note = if !agreed {
+        Some("the right and adjoint Krylov runs found different eigenvalues in a window".to_string())
+    } else if rejected > 0 {
+        Some(format!("{rejected} converged pair(s) failed the true-residual test"))
+    } else if zeta < 1.0 {
+        Some(format!("the shift windows cover the band only up to damping ratio {zeta:.3}"))
+    } else {
+        None
+    };
+    finish(dae, in_band, windows, certified, zeta.max(0.0), note, s)
+}
+
+fn pairs_from(pairs: &mut Vec<Eigenpair>, windows: &mut Vec<ShiftWindow>, w: super::window::WindowResult) {
+    windows.push(ShiftWindow { shift: w.shift, radius: w.radius, agreed: w.agreed, found: w.pairs.len(), rejected: w.rejected });
+    merge(pairs, w.pairs);
+}
+
+/// Labels, normalizes and sorts the pairs as the dense route does.
+fn finish(dae: &SparseLinearDae, pairs: Vec<Eigenpair>, windows: Vec<ShiftWindow>, certified: bool, damping_covered: f64, note: Option<String>, s: &SparseEigenSettings) -> Result<SparseModalAnalysis, KrylovError> {
+    let (nyd, ny) = (dae.fyd.norm_l2(), dae.fy.norm_l2());
+    let dcoef = s.dcoef.unwrap_or(if nyd > 0.0 && ny > 0.0 && (nyd / ny).is_finite() { nyd / ny } else { 1.0 });
+    let mu_scale = if nyd > 0.0 && ny > 0.0 { ny / nyd } else { 1.0 };
+    let mut max_residual: f64 = 0.0;
+    let mut units = Vec::with_capacity(pairs.len());
+    for p in pairs {
+        max_residual = max_residual.max(p.residual_right).max(p.residual_left);
+        let real = p.lambda.im.abs() <= 1e-9 * p.lambda.norm();
+        let (lambda, v, u) = if real { (c64::new(p.lambda.re, 0.0), real_part(&p.right), real_part(&p.left)) } else { (p.lambda, p.right, p.left) };
+        let class = label(dae, lambda, &v, &u, s.route, mu_scale, dcoef);
+        let (_, error) = class.lambda_and_error(s.route, mu_scale, dcoef);
+        let (v, u) = normalize(&v, &u, |x| dae.fyd.mul_complex(x), nyd);
+        let mode = Mode { lambda, kind: class.kind, error, classification: class, right: Some(v), left: Some(u), partner: None };
+        if real {
+            units.push(vec![mode]);
+        } else {
+            let partner = conjugate_mode(&mode);
+            units.push(vec![mode, partner]);
+        }
+    }
+    let modal = ModalAnalysis { route: s.route, dcoef, modes: sort_units(units) };
+    Ok(SparseModalAnalysis { modal, windows, certified, damping_covered, max_residual, note: if certified { None } else { note } })
+}
+
+/// The vector of a real eigenvalue made real (its phase removed).
+fn real_part(v: &Col<c64>) -> Col<c64> {
+    let big = v.iter().copied().fold(c64::new(0.0, 0.0), |a, x| if x.norm() > a.norm() { x } else { a });
+    let phase = if big.norm() > 0.0 { big.conj() / big.norm() } else { c64::new(1.0, 0.0) };
+    Col::from_fn(v.nrows(), |i| c64::new((v[i] * phase).re, 0.0))
+}
+
+/// The label of eqs. 32–35 on the route's (unbalanced) pencil with the pair's vectors.
+fn label(dae: &SparseLinearDae, lambda: c64, v: &Col<c64>, u: &Col<c64>, route: EigenRoute, mu_scale: f64, dcoef: f64) -> Classification {
+    let (fydv, fyv) = (dae.fyd.mul_complex(v), dae.fy.mul_complex(v));
+    let (ufyd, ufy) = (dae.fyd.mul_t_complex(u), dae.fy.mul_t_complex(u));
+    let n = v.nrows();
+    let comb = |a: &Col<c64>, ca: f64, b: &Col<c64>, cb: f64| Col::from_fn(n, |i| a[i] * ca + b[i] * cb);
+    let (nyd, ny) = (dae.fyd.norm_l2(), dae.fy.norm_l2());
+    let (mu, w, norms) = match route {
+        // A = F_y, B = −σ F_yd, μ = λ/σ.
+        EigenRoute::Direct => {
+            let w = EigenVectors { av: fyv.clone(), bv: comb(&fydv, -mu_scale, &fydv, 0.0), ua: ufy.clone(), ub: comb(&ufyd, -mu_scale, &ufyd, 0.0), v: v.clone(), u: u.clone() };
+            (lambda / mu_scale, w, (ny, mu_scale * nyd))
+        }
+        // A = J* = F_yd − c F_y, B = −J = −(F_yd + c F_y), Λ = (cλ + 1)/(cλ − 1) (eq. 18).
+        EigenRoute::Lambda => {
+            let w = EigenVectors {
+                av: comb(&fydv, 1.0, &fyv, -dcoef),
+                bv: comb(&fydv, -1.0, &fyv, -dcoef),
+                ua: comb(&ufyd, 1.0, &ufy, -dcoef),
+                ub: comb(&ufyd, -1.0, &ufy, -dcoef),
+                v: v.clone(),
+                u: u.clone(),
+            };
+            // ‖J*‖, ‖J‖ bounded by the triangle inequality (the sparse sum is not formed).
+            let nj = nyd + dcoef * ny;
+            ((lambda * dcoef + 1.0) / (lambda * dcoef - 1.0), w, (nj, nj))
+        }
+    };
+    let sc = 1.0 / (1.0 + mu.norm_sqr()).sqrt();
+    classify(mu * sc, sc, Some(&w), norms, route)
+}

@@ -1,0 +1,140 @@
+//! One shift: the eigenvalues nearest σ with right and left vectors, from two independent
+//! Krylov–Schur runs on the same factorization (`T` for the right vectors, its transposed
+//! operator for the left ones, eq. 11), each pair checked by its true residual on the DAE's
+//! own pencil.
+
+use faer::{c64, Col};
+
+use super::iteration::{krylov_schur, RitzPair, Run, Settings};
+use super::operator::ShiftInvert;
+use super::pencil::Pencil;
+use super::{KrylovError, SparseEigenSettings};
+use crate::linear::SparseLinearDae;
+
+/// An eigenpair of the DAE's pencil `λ F_yd + F_y` (the DAE's own constraint form), its
+/// representative with `Im λ ≥ 0`.
+#[derive(Clone, Debug)]
+pub(super) struct Eigenpair {
+    pub lambda: c64,
+    pub right: Col<c64>,
+    pub left: Col<c64>,
+    /// True relative residuals `‖(λ F_yd + F_y) v‖ / ((|λ| ‖F_yd‖ + ‖F_y‖) ‖v‖)`, and of `uᵀ`.
+    pub residual_right: f64,
+    pub residual_left: f64,
+}
+
+/// What one shift found: accepted pairs, the radius of the disc `|λ − σ| ≤ radius` in which
+/// both runs found the same eigenvalues (`f64::INFINITY` when the finite spectrum was
+/// exhausted), and whether they agreed.
+pub(super) struct WindowResult {
+    pub shift: c64,
+    pub radius: f64,
+    pub agreed: bool,
+    pub pairs: Vec<Eigenpair>,
+    /// Pairs that converged in the operator but failed the true-residual test.
+    pub rejected: usize,
+}
+
+/// `‖(λ F_yd + F_y) x‖ / ((|λ| ‖F_yd‖ + ‖F_y‖) ‖x‖)`, or with the transposes.
+pub(super) fn true_residual(dae: &SparseLinearDae, lambda: c64, x: &Col<c64>, transpose: bool) -> f64 {
+    let (a, b) = if transpose { (dae.fyd.mul_t_complex(x), dae.fy.mul_t_complex(x)) } else { (dae.fyd.mul_complex(x), dae.fy.mul_complex(x)) };
+    let r = Col::from_fn(x.nrows(), |i| lambda * a[i] + b[i]).norm_l2();
+    r / ((lambda.norm() * dae.fyd.norm_l2() + dae.fy.norm_l2()) * x.norm_l2())
+}
+
+/// θ at or below this fraction of the largest are the infinite eigenvalues (θ = 0).
+const NULL_THETA: f64 = 1e-8;
+
+/// The pairs of one run with their eigenvalues λ, purified (`x ← T x / θ` removes the
+/// components along the infinite eigenvalues); `exhausted` when the run reached θ ≈ 0.
+fn lambdas(op: &ShiftInvert, run: &Run, transpose: bool) -> (Vec<(c64, Col<c64>)>, bool) {
+    let top = run.pairs.first().map_or(0.0, |p| p.theta.norm());
+    let mut out = Vec::new();
+    let mut exhausted = false;
+    for RitzPair { theta, x } in &run.pairs {
+        if theta.norm() <= NULL_THETA * top {
+            exhausted = true;
+            break;
+        }
+        let y = op.apply(x, transpose);
+        let scale = c64::new(1.0, 0.0) / (*theta * y.norm_l2() / theta.norm());
+        out.push((op.lambda(*theta), Col::from_fn(y.nrows(), |i| y[i] * scale)));
+    }
+    // All wanted pairs converged and nothing but θ ≈ 0 (or nothing) is left.
+    exhausted |= run.complete && run.next.is_none_or(|t| t <= NULL_THETA * top);
+    (out, exhausted)
+}
+
+/// Runs both Krylov–Schur iterations at `sigma` for `wanted` eigenvalues.
+pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted: usize, s: &SparseEigenSettings, progress: &dyn Fn(&str)) -> Result<WindowResult, KrylovError> {
+    let n = pencil.dim();
+    let op = ShiftInvert::new(pencil, sigma)?;
+    let basis = (2 * wanted + 1).max(wanted + 20).min(n);
+    let settings = |seed| Settings { wanted, basis, tolerance: s.krylov_tolerance, max_restarts: s.max_restarts, seed };
+    let report = |side: &'static str| move |k: usize| progress(&format!("shift {sigma}: {side} {k}/{wanted} converged"));
+    let right_run = krylov_schur(n, &|x| op.apply(x, false), &settings(1), &report("right"))?;
+    let left_run = krylov_schur(n, &|x| op.apply(x, true), &settings(2), &report("left"))?;
+    let (right, right_all) = lambdas(&op, &right_run, false);
+    let (left, left_all) = lambdas(&op, &left_run, true);
+    // Radius of the disc each run covers: the farthest converged eigenvalue (everything
+    // when the run exhausted the finite spectrum).
+    let reach = |l: &[(c64, Col<c64>)], all: bool| {
+        if all {
+            f64::INFINITY
+        } else {
+            l.iter().map(|(x, _)| (x - sigma).norm()).fold(0.0, f64::max)
+        }
+    };
+    let radius = reach(&right, right_all).min(reach(&left, left_all));
+    let inside = |l: c64| (l - sigma).norm() <= radius * (1.0 + 1e-9);
+    // Match each right eigenvalue with the nearest unused left one.
+    let mut used = vec![false; left.len()];
+    let mut pairs = Vec::new();
+    let mut rejected = 0;
+    let mut agreed = true;
+    for (lr, v29) in &right {
+        let best = left.iter().enumerate().filter(|(i, _)| !used[*i]).min_by(|a, b| (a.1 .0 - lr).norm().total_cmp(&(b.1 .0 - lr).norm()));
+        let Some((i, (ll, u29))) = best else {
+            agreed &= !inside(*lr);
+            continue;
+        };
+        if (ll - lr).norm() > 1e-6 * (lr - sigma).norm().max(lr.norm() * 1e-3) {
+            agreed &= !inside(*lr);
+            continue;
+        }
+        used[i] = true;
+        // Two-sided Rayleigh quotient on eq. 29: λ = −(uᵀ K v)/(uᵀ E v).
+        let (kv, ev) = (pencil.k.mul_complex(v29), pencil.e.mul_complex(v29));
+        let (ukv, uev) = u29.iter().zip(kv.iter().zip(ev.iter())).fold((c64::new(0.0, 0.0), c64::new(0.0, 0.0)), |(a, b), (u, (k, e))| (a + u * k, b + u * e));
+        let rq = -ukv / uev;
+        let candidates = [*lr, rq];
+        let (lambda, v, u, rr, rl) = candidates
+            .iter()
+            .filter(|l| l.re.is_finite() && l.im.is_finite())
+            .map(|&l| {
+                let (v, u) = (pencil.to_dae(v29, l), pencil.to_dae(u29, l));
+                let (rr, rl) = (true_residual(dae, l, &v, false), true_residual(dae, l, &u, true));
+                (l, v, u, rr, rl)
+            })
+            .min_by(|a, b| a.3.max(a.4).total_cmp(&b.3.max(b.4)))
+            .unwrap_or_else(|| unreachable!("the Ritz value is finite"));
+        if !(rr <= s.tolerance && rl <= s.tolerance) {
+            rejected += 1;
+            agreed &= !inside(lambda);
+            continue;
+        }
+        let (lambda, right, left) = if lambda.im < 0.0 { (lambda.conj(), conj(&v), conj(&u)) } else { (lambda, v, u) };
+        pairs.push(Eigenpair { lambda, right, left, residual_right: rr, residual_left: rl });
+    }
+    // A left eigenvalue inside the disc without a right partner is a disagreement.
+    for (i, (ll, _)) in left.iter().enumerate() {
+        if !used[i] && inside(*ll) {
+            agreed = false;
+        }
+    }
+    Ok(WindowResult { shift: sigma, radius, agreed, pairs, rejected })
+}
+
+fn conj(v: &Col<c64>) -> Col<c64> {
+    Col::from_fn(v.nrows(), |i| v[i].conj())
+}

@@ -1,0 +1,172 @@
+//! Shift-invert Krylov–Schur eigenanalysis of sparse linear DAEs (issue 13 point 2) against
+//! the dense route (`ModalAnalysis::of_dae`, itself validated against QZ on the whole pencil
+//! in tests/eigen_deflation.rs and against the paper's cases): same eigenvalues to 1e-9
+//! relative, same labels, no spurious modes in MBDyn's constraint form (eq. 30), bands by one
+//! complex shift or several shifts, none missed.
+
+mod common;
+
+use common::beams::{simply_supported, TABLE3};
+use common::models::{hanging_chain, pendulum};
+use faer::c64;
+use romdyn::dae::{linearize, linearize_sparse, Assembler, State};
+use romdyn::linear::krylov::{sparse_modes, ModeTarget, SparseEigenSettings, SparseModalAnalysis};
+use romdyn::linear::{ConstraintForm, EigenRoute, LinearDae, ModalAnalysis, ModeKind, SparseLinearDae};
+use romdyn::model::Model;
+use romdyn::solve::{static_solution, NewtonSettings};
+
+fn at_rest(model: &Model) -> State {
+    let asm = Assembler::new(model);
+    let mut st = State::initial(model, &asm.dofs);
+    static_solution(&asm, &mut st, 1, &NewtonSettings::default()).unwrap();
+    st
+}
+
+/// The dense and the sparse linear model of the same state.
+fn models(model: &Model) -> (LinearDae, SparseLinearDae) {
+    let st = at_rest(model);
+    (linearize(model, &st, &[], &[], None).unwrap(), linearize_sparse(model, &st, &[], &[]).unwrap())
+}
+
+/// Dynamic eigenvalues of the dense route with Im λ ≥ 0 (one per unit), by increasing |λ|.
+fn dense_units(modal: &ModalAnalysis) -> Vec<c64> {
+    dense_units_with_error(modal).into_iter().map(|(l, _)| l).collect()
+}
+
+/// The same with each eigenvalue's estimated error (eqs. 32–35).
+fn dense_units_with_error(modal: &ModalAnalysis) -> Vec<(c64, f64)> {
+    modal.of_kind(ModeKind::Dynamic).map(|i| (modal.modes[i].lambda, modal.modes[i].error)).filter(|l| l.0.im >= 0.0).collect()
+}
+
+fn sparse_units(s: &SparseModalAnalysis) -> Vec<(c64, ModeKind)> {
+    s.modal.modes.iter().filter(|m| m.lambda.im >= 0.0).map(|m| (m.lambda, m.kind)).collect()
+}
+
+/// Every sparse mode is dynamic (as the dense route labels it) and equals the dense
+/// eigenvalue nearest to it; returns the dense units it matched. Issue 13's acceptance is
+/// 1e-9 relative; the dense route's own error (its estimate, eqs. 32–35) can exceed that on
+/// the real parts of undamped modes (1712-equation chain: Re λ = 8.0e-7 on 25.1j rad/s,
+/// where the sparse route gives 4e-14 and the exact value is 0), so the imaginary parts are
+/// compared to 1e-9 and the real parts to the larger of 1e-9 |λ| and the dense estimate.
+fn assert_matches_dense(what: &str, dense: &[(c64, f64)], sparse: &SparseModalAnalysis) -> Vec<c64> {
+    let mut matched = Vec::new();
+    for (l, kind) in sparse_units(sparse) {
+        assert_eq!(kind, ModeKind::Dynamic, "{what}: λ = {l} labelled {kind:?}");
+        let (d, e) = dense.iter().copied().min_by(|a, b| (a.0 - l).norm().total_cmp(&(b.0 - l).norm())).unwrap();
+        assert!((d.im - l.im).abs() <= 1e-9 * d.norm(), "{what}: sparse {l} vs dense {d}");
+        assert!((d.re - l.re).abs() <= (1e-9 * d.norm()).max(e), "{what}: sparse {l} vs dense {d} (error estimate {e:e})");
+        matched.push(d);
+    }
+    // Residuals of every returned pair at the stated tolerance.
+    assert!(sparse.max_residual <= 1e-10, "{what}: residual {:e}", sparse.max_residual);
+    for m in &sparse.modal.modes {
+        assert!(m.right.is_some() && m.left.is_some(), "{what}: vectors");
+    }
+    matched
+}
+
+#[test]
+fn shift_at_zero_returns_only_the_pendulums_swing_in_the_form_of_eq_30() {
+    // Paper Table 2: 29 equations, 2 dynamic eigenvalues ±3.1305j, 22 zero ones (eq. 30).
+    let model = pendulum(0.0, false, ConstraintForm::Scaled);
+    let (dense, sparse) = models(&model);
+    let modal = ModalAnalysis::of_dae(&dense, EigenRoute::Lambda, None).unwrap();
+    assert_eq!(modal.count(ModeKind::Zero), 22);
+    let s = sparse_modes(&sparse, ModeTarget::Lowest(1), &SparseEigenSettings::default()).unwrap();
+    assert!(s.certified, "{:?}", s.note);
+    // Exactly the swing pair: no zero eigenvalue of the constrained variables comes back.
+    assert_eq!(s.modal.modes.len(), 2, "{:?}", s.modal.modes.iter().map(|m| m.lambda).collect::<Vec<_>>());
+    let matched = assert_matches_dense("pendulum", &dense_units_with_error(&modal), &s);
+    // Paper §7.2: ω = sqrt(g/L (1 + J/(m L²))^-1) = 3.1305 rad/s.
+    assert!((matched[0].im - 3.1305).abs() < 1e-4);
+}
+
+#[test]
+fn shift_at_zero_on_chain_and_beam_returns_only_dynamic_modes() {
+    for form in [ConstraintForm::Scaled, ConstraintForm::Plain] {
+        // N = 6 chain: 2N = 12 dynamic eigenvalues (6 swing pairs), all asked.
+        let (dense, sparse) = models(&hanging_chain(6, form));
+        let modal = ModalAnalysis::of_dae(&dense, EigenRoute::Lambda, None).unwrap();
+        let units = dense_units(&modal);
+        assert_eq!(units.len(), 6);
+        let s = sparse_modes(&sparse, ModeTarget::Lowest(6), &SparseEigenSettings::default()).unwrap();
+        assert!(s.certified, "{:?}", s.note);
+        let matched = assert_matches_dense(&format!("chain {}", form.name()), &dense_units_with_error(&modal), &s);
+        assert_eq!(matched.len(), 6, "every swing mode once");
+    }
+    // 4-element simply supported beam (paper §6.2, eq. 30): the 8 lowest modes.
+    let (dense, sparse) = models(&simply_supported(&TABLE3, 4, 0.0, 0.0));
+    let modal = ModalAnalysis::of_dae(&dense, EigenRoute::Lambda, None).unwrap();
+    let units = dense_units(&modal);
+    let s = sparse_modes(&sparse, ModeTarget::Lowest(8), &SparseEigenSettings::default()).unwrap();
+    assert!(s.certified, "{:?}", s.note);
+    let matched = assert_matches_dense("beam", &dense_units_with_error(&modal), &s);
+    assert!(matched.len() >= 8);
+    for (k, d) in units.iter().take(8).enumerate() {
+        assert!(matched.iter().any(|m| m == d), "beam: dense mode {k} ({d}) not found");
+    }
+}
+
+#[test]
+fn twenty_lowest_modes_of_the_1712_equation_chain_match_the_dense_route() {
+    let (dense, sparse) = models(&hanging_chain(100, ConstraintForm::Scaled));
+    assert_eq!(sparse.dim(), 1712);
+    let modal = ModalAnalysis::of_dae(&dense, EigenRoute::Lambda, None).unwrap();
+    let units = dense_units(&modal);
+    let s = sparse_modes(&sparse, ModeTarget::Lowest(20), &SparseEigenSettings::default()).unwrap();
+    assert!(s.certified, "{:?}", s.note);
+    let matched = assert_matches_dense("chain N = 100", &dense_units_with_error(&modal), &s);
+    for (k, d) in units.iter().take(20).enumerate() {
+        assert!(matched.iter().any(|m| m == d), "chain: dense mode {k} ({d}) not found");
+    }
+    // The chain is undamped: Re λ = 0 exactly; the sparse route's real parts are rounding.
+    for m in s.modal.modes.iter().filter(|m| m.lambda.im > 0.0) {
+        assert!(m.lambda.re.abs() <= 1e-12 * m.lambda.norm(), "sparse {}", m.lambda);
+    }
+}
+
+/// Dense units with |λ| strictly between the midpoints around units `first..=last` (0-based),
+/// and that band in Hz.
+fn band_around(units: &[c64], first: usize, last: usize) -> (f64, f64) {
+    let tau = 2.0 * std::f64::consts::PI;
+    let lo = if first == 0 { 0.5 * units[0].norm() } else { 0.5 * (units[first - 1].norm() + units[first].norm()) };
+    let hi = 0.5 * (units[last].norm() + units[last + 1].norm());
+    (lo / tau, hi / tau)
+}
+
+fn assert_band(what: &str, modal: &ModalAnalysis, s: &SparseModalAnalysis, first: usize, last: usize) {
+    assert!(s.certified, "{what}: {:?}", s.note);
+    let units = dense_units(modal);
+    let matched = assert_matches_dense(what, &dense_units_with_error(modal), s);
+    // Exactly the band's modes, none missed, none extra.
+    assert_eq!(matched.len(), last - first + 1, "{what}: {matched:?}");
+    for d in &units[first..=last] {
+        assert!(matched.contains(d), "{what}: {d} missed");
+    }
+}
+
+#[test]
+fn a_band_in_the_middle_of_the_beam_spectrum_takes_one_complex_shift() {
+    let (dense, sparse) = models(&simply_supported(&TABLE3, 4, 0.0, 0.0));
+    let modal = ModalAnalysis::of_dae(&dense, EigenRoute::Lambda, None).unwrap();
+    let units = dense_units(&modal);
+    // 3rd to 5th modes of the spectrum.
+    let (fmin, fmax) = band_around(&units, 2, 4);
+    let s = sparse_modes(&sparse, ModeTarget::Band { fmin_hz: fmin, fmax_hz: fmax }, &SparseEigenSettings::default()).unwrap();
+    assert_eq!(s.windows.len(), 1, "{:?}", s.windows);
+    assert!(s.windows[0].shift.im > 0.0 && s.windows[0].shift.re == 0.0, "a complex shift");
+    assert_band("beam modes 3-5", &modal, &s, 2, 4);
+}
+
+#[test]
+fn a_wide_band_of_the_chain_takes_several_shifts_and_misses_none() {
+    let (dense, sparse) = models(&hanging_chain(30, ConstraintForm::Scaled));
+    let modal = ModalAnalysis::of_dae(&dense, EigenRoute::Lambda, None).unwrap();
+    let units = dense_units(&modal);
+    let (fmin, fmax) = band_around(&units, 3, 24);
+    // At most 10 eigenvalues per shift: the 22 modes need several windows.
+    let settings = SparseEigenSettings { per_shift: 10, ..Default::default() };
+    let s = sparse_modes(&sparse, ModeTarget::Band { fmin_hz: fmin, fmax_hz: fmax }, &settings).unwrap();
+    assert!(s.windows.len() >= 3, "{:?}", s.windows);
+    assert_band("chain N = 30 modes 4-25", &modal, &s, 3, 24);
+}
