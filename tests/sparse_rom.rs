@@ -80,3 +80,18 @@ fn rom_of_the_4_element_beam_is_the_dense_one() {
     let mid = common::beams::node_label(4);
     compare("beam", &model, &format!("{mid}:Fy"), &format!("{mid}:y"), 6, &freqs);
 }
+
+#[test]
+fn three_sparse_modes_of_the_mass_chain_with_static_correction_give_0_049() {
+    // CASES (issue 2): 50 unit masses, 49 springs of 1000 N/m in series to x50: 0.049 m/N.
+    let sparse = romdyn::linear::SparseLinearDae::from_dense(&common::mass_chain());
+    let sm = sparse_modes(&sparse, ModeTarget::Lowest(3), &SparseEigenSettings::default()).unwrap();
+    assert!(sm.certified, "{:?}", sm.note);
+    let sel = select_modes(&sm.modal, &ModeSelection::Lowest(3)).unwrap();
+    let rom = DescriptorRom::project_sparse(&sparse, &sm.modal, &sel, false).unwrap().to_ordinary().unwrap();
+    assert_eq!(rom.a.nrows(), 6);
+    let corrected = with_static_correction(&rom, &sparse.static_gain().unwrap()).unwrap();
+    let g = corrected.static_gain().unwrap()[(0, 0)];
+    // Issue 13 acceptance: 0.049 to 1e-9.
+    assert!((g - 0.049).abs() <= 1e-9 * 0.049, "{g}");
+}
