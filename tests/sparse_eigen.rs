@@ -38,23 +38,28 @@ fn dense_units_with_error(modal: &ModalAnalysis) -> Vec<(c64, f64)> {
     modal.of_kind(ModeKind::Dynamic).map(|i| (modal.modes[i].lambda, modal.modes[i].error)).filter(|l| l.0.im >= 0.0).collect()
 }
 
-fn sparse_units(s: &SparseModalAnalysis) -> Vec<(c64, ModeKind)> {
-    s.modal.modes.iter().filter(|m| m.lambda.im >= 0.0).map(|m| (m.lambda, m.kind)).collect()
-}
-
 /// Every sparse mode is dynamic (as the dense route labels it) and equals the dense
 /// eigenvalue nearest to it; returns the dense units it matched. Issue 13's acceptance is
-/// 1e-9 relative; the dense route's own error (its estimate, eqs. 32–35) can exceed that on
-/// the real parts of undamped modes (1712-equation chain: Re λ = 8.0e-7 on 25.1j rad/s,
-/// where the sparse route gives 4e-14 and the exact value is 0), so the imaginary parts are
-/// compared to 1e-9 and the real parts to the larger of 1e-9 |λ| and the dense estimate.
-fn assert_matches_dense(what: &str, dense: &[(c64, f64)], sparse: &SparseModalAnalysis) -> Vec<c64> {
+/// 1e-9 relative for the `asked` lowest units; the dense route's own error (its estimate,
+/// eqs. 32–35) can exceed that on the real parts of undamped modes (1712-equation chain:
+/// Re λ = 8.0e-7 on 25.1j rad/s, where the sparse route gives 4e-14 and the exact value is 0),
+/// so the imaginary parts are compared to 1e-9 and the real parts to the larger of 1e-9 |λ|
+/// and the dense estimate. Modes beyond the asked ones that a window also returned (far from
+/// the shift, where a residual of 1e-10 bounds λ less tightly) must agree within the sum of
+/// both routes' error estimates.
+fn assert_matches_dense(what: &str, dense: &[(c64, f64)], sparse: &SparseModalAnalysis, asked: usize) -> Vec<c64> {
     let mut matched = Vec::new();
-    for (l, kind) in sparse_units(sparse) {
+    let units: Vec<_> = sparse.modal.modes.iter().filter(|m| m.lambda.im >= 0.0).collect();
+    for (k, m) in units.iter().enumerate() {
+        let (l, kind) = (m.lambda, m.kind);
         assert_eq!(kind, ModeKind::Dynamic, "{what}: λ = {l} labelled {kind:?}");
         let (d, e) = dense.iter().copied().min_by(|a, b| (a.0 - l).norm().total_cmp(&(b.0 - l).norm())).unwrap();
-        assert!((d.im - l.im).abs() <= 1e-9 * d.norm(), "{what}: sparse {l} vs dense {d}");
-        assert!((d.re - l.re).abs() <= (1e-9 * d.norm()).max(e), "{what}: sparse {l} vs dense {d} (error estimate {e:e})");
+        if k < asked {
+            assert!((d.im - l.im).abs() <= 1e-9 * d.norm(), "{what}: sparse {l} vs dense {d}");
+            assert!((d.re - l.re).abs() <= (1e-9 * d.norm()).max(e), "{what}: sparse {l} vs dense {d} (error estimate {e:e})");
+        } else {
+            assert!((d - l).norm() <= 1e-9 * d.norm() + e + m.error, "{what}: sparse {l} (error {:e}) vs dense {d} (error {e:e})", m.error);
+        }
         matched.push(d);
     }
     // Residuals of every returned pair at the stated tolerance.
@@ -76,7 +81,7 @@ fn shift_at_zero_returns_only_the_pendulums_swing_in_the_form_of_eq_30() {
     assert!(s.certified, "{:?}", s.note);
     // Exactly the swing pair: no zero eigenvalue of the constrained variables comes back.
     assert_eq!(s.modal.modes.len(), 2, "{:?}", s.modal.modes.iter().map(|m| m.lambda).collect::<Vec<_>>());
-    let matched = assert_matches_dense("pendulum", &dense_units_with_error(&modal), &s);
+    let matched = assert_matches_dense("pendulum", &dense_units_with_error(&modal), &s, 1);
     // Paper §7.2: ω = sqrt(g/L (1 + J/(m L²))^-1) = 3.1305 rad/s.
     assert!((matched[0].im - 3.1305).abs() < 1e-4);
 }
@@ -91,7 +96,7 @@ fn shift_at_zero_on_chain_and_beam_returns_only_dynamic_modes() {
         assert_eq!(units.len(), 6);
         let s = sparse_modes(&sparse, ModeTarget::Lowest(6), &SparseEigenSettings::default()).unwrap();
         assert!(s.certified, "{:?}", s.note);
-        let matched = assert_matches_dense(&format!("chain {}", form.name()), &dense_units_with_error(&modal), &s);
+        let matched = assert_matches_dense(&format!("chain {}", form.name()), &dense_units_with_error(&modal), &s, 6);
         assert_eq!(matched.len(), 6, "every swing mode once");
     }
     // 4-element simply supported beam (paper §6.2, eq. 30): the 8 lowest modes.
@@ -100,7 +105,7 @@ fn shift_at_zero_on_chain_and_beam_returns_only_dynamic_modes() {
     let units = dense_units(&modal);
     let s = sparse_modes(&sparse, ModeTarget::Lowest(8), &SparseEigenSettings::default()).unwrap();
     assert!(s.certified, "{:?}", s.note);
-    let matched = assert_matches_dense("beam", &dense_units_with_error(&modal), &s);
+    let matched = assert_matches_dense("beam", &dense_units_with_error(&modal), &s, 8);
     assert!(matched.len() >= 8);
     for (k, d) in units.iter().take(8).enumerate() {
         assert!(matched.iter().any(|m| m == d), "beam: dense mode {k} ({d}) not found");
@@ -115,7 +120,7 @@ fn twenty_lowest_modes_of_the_1712_equation_chain_match_the_dense_route() {
     let units = dense_units(&modal);
     let s = sparse_modes(&sparse, ModeTarget::Lowest(20), &SparseEigenSettings::default()).unwrap();
     assert!(s.certified, "{:?}", s.note);
-    let matched = assert_matches_dense("chain N = 100", &dense_units_with_error(&modal), &s);
+    let matched = assert_matches_dense("chain N = 100", &dense_units_with_error(&modal), &s, 20);
     for (k, d) in units.iter().take(20).enumerate() {
         assert!(matched.iter().any(|m| m == d), "chain: dense mode {k} ({d}) not found");
     }
@@ -137,7 +142,7 @@ fn band_around(units: &[c64], first: usize, last: usize) -> (f64, f64) {
 fn assert_band(what: &str, modal: &ModalAnalysis, s: &SparseModalAnalysis, first: usize, last: usize) {
     assert!(s.certified, "{what}: {:?}", s.note);
     let units = dense_units(modal);
-    let matched = assert_matches_dense(what, &dense_units_with_error(modal), s);
+    let matched = assert_matches_dense(what, &dense_units_with_error(modal), s, usize::MAX);
     // Exactly the band's modes, none missed, none extra.
     assert_eq!(matched.len(), last - first + 1, "{what}: {matched:?}");
     for d in &units[first..=last] {

@@ -21,6 +21,9 @@ pub(super) struct Settings {
     pub max_restarts: usize,
     /// Seed of the start vector.
     pub seed: u64,
+    /// Want only θ with `Im θ ≥ 0` (`Im λ ≥ 0`): for a real operator the others are their
+    /// conjugates, so the basis need not hold them.
+    pub upper_half: bool,
 }
 
 /// A converged Ritz pair of the operator, `x` of unit norm.
@@ -52,11 +55,16 @@ fn pseudo_random(n: usize, seed: u64) -> Col<c64> {
 /// Unit vector along `w` after removing its components along `v[:, 0..cols]` (twice);
 /// the coefficients removed and the norm left.
 fn orthogonalize(v: &Mat<c64>, cols: usize, w: &mut Col<c64>) -> (Col<c64>, f64) {
+    use faer::linalg::matmul::matmul;
+    use faer::{Accum, Par};
     let basis = v.subcols(0, cols);
     let mut h = Col::<c64>::zeros(cols);
+    let mut c = Col::<c64>::zeros(cols);
+    let (one, minus_one) = (c64::new(1.0, 0.0), c64::new(-1.0, 0.0));
+    // Sequential products: these matrix-vector products are too small to gain from threads.
     for _ in 0..2 {
-        let c = basis.adjoint() * &*w;
-        *w -= basis * &c;
+        matmul(c.as_mat_mut(), Accum::Replace, basis.adjoint(), w.as_mat(), one, Par::Seq);
+        matmul(w.as_mat_mut(), Accum::Add, basis, c.as_mat(), minus_one, Par::Seq);
         h += &c;
     }
     (h, w.norm_l2())
@@ -152,7 +160,12 @@ pub(super) fn krylov_schur(n: usize, op: &dyn Fn(&Col<c64>) -> Col<c64>, s: &Set
         }
         let square = h.submatrix(0, 0, size, size).to_owned();
         let (mut t, mut z) = schur(&square).ok_or_else(|| KrylovError::Breakdown("the Schur form of the Rayleigh quotient did not converge".into()))?;
-        sort_schur(&mut t, &mut z, |x| x.norm());
+        // Wanted first (by decreasing |θ|), then the others (by decreasing |θ|).
+        let upper = s.upper_half;
+        sort_schur(&mut t, &mut z, |x| {
+            let m = x.norm() / (1.0 + x.norm());
+            if !upper || x.im >= -1e-8 * x.norm() { 1.0 + m } else { m }
+        });
         // Residual row bᵀ = h[size, :] Z.
         let b: Vec<c64> = (0..size).map(|j| (0..size).fold(c64::new(0.0, 0.0), |acc, i| acc + h[(size, i)] * z[(i, j)])).collect();
         let residual_of = |i: usize| {

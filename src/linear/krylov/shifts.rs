@@ -108,7 +108,7 @@ fn lowest(dae: &SparseLinearDae, pencil: &Pencil, count: usize, s: &SparseEigenS
         return Err(KrylovError::Request("--count must be at least 1".into()));
     }
     let n = dae.dim();
-    let mut wanted = (2 * count + 6).min(n);
+    let mut wanted = (count + 4).min(n);
     // σ = 0, or left of it when F_y is singular (a rigid-body motion).
     let scale = (dae.fy.norm_l2() / dae.fyd.norm_l2().max(f64::MIN_POSITIVE)).sqrt();
     let mut last_err = None;

@@ -70,7 +70,10 @@ pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted:
     let n = pencil.dim();
     let op = ShiftInvert::new(pencil, sigma)?;
     let basis = (2 * wanted + 1).max(wanted + 20).min(n);
-    let settings = |seed| Settings { wanted, basis, tolerance: s.krylov_tolerance, max_restarts: s.max_restarts, seed };
+    // A real shift of the real pencil: the eigenvalues below the real axis are the
+    // conjugates of those above, so only Im λ ≥ 0 is asked for.
+    let upper_half = sigma.im == 0.0;
+    let settings = |seed| Settings { wanted, basis, tolerance: s.krylov_tolerance, max_restarts: s.max_restarts, seed, upper_half };
     let report = |side: &'static str| move |k: usize| progress(&format!("shift {sigma}: {side} {k}/{wanted} converged"));
     let right_run = krylov_schur(n, &|x| op.apply(x, false), &settings(1), &report("right"))?;
     let left_run = krylov_schur(n, &|x| op.apply(x, true), &settings(2), &report("left"))?;
