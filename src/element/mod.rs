@@ -9,6 +9,7 @@
 //! the static solver and the linearization use nothing else.
 
 mod anchor;
+mod axial_rotation;
 mod beam;
 mod body;
 mod contract;
@@ -24,4 +25,5 @@ pub use deformable::{DeformableDisplacement, DeformableHinge, Distance, LinearVi
 pub use drive::{Drive, TimeFunction};
 pub use force::{Couple, Force, ForceFrame};
 pub use anchor::Anchor;
+pub use axial_rotation::AxialRotation;
 pub use joint::{Joint, JointKind};

@@ -14,19 +14,19 @@ use super::drives::{single_term, template_vec3};
 use super::element_context::ElementContext;
 use super::laws::{linear_law, rest_strain, three, LinearLaw};
 use super::references::{Context, Frame, OtherSide};
-use crate::element::{Anchor, DeformableDisplacement, DeformableHinge, Distance, Drive, Element, Joint, Rod};
+use crate::element::{Anchor, AxialRotation, DeformableDisplacement, DeformableHinge, Distance, Drive, Element, Joint, Rod};
 use crate::kinematics::{axial_of_skew_part, Mat3, Vec3};
 use crate::model::{Label, StructuralNode};
 
-const SUPPORTED: [&str; 19] = [
-    "clamp", "revolute hinge", "plane hinge", "revolute pin", "plane pin", "spherical hinge", "spherical pin", "total joint", "total pin joint",
+const SUPPORTED: [&str; 20] = [
+    "axial rotation", "clamp", "revolute hinge", "plane hinge", "revolute pin", "plane pin", "spherical hinge", "spherical pin", "total joint", "total pin joint",
     "deformable displacement joint", "deformable displacement hinge", "deformable hinge", "rod", "rod with offset", "in line", "in plane", "prismatic",
     "distance", "distance with offset",
 ];
 
 /// MBDyn joints romdyn names in its "not supported" error.
-const OTHER_JOINTS: [&str; 28] = [
-    "angular acceleration", "angular velocity", "axial rotation", "beam slider", "brake", "cardano hinge", "cardano pin", "cardano rotation",
+const OTHER_JOINTS: [&str; 27] = [
+    "angular acceleration", "angular velocity", "beam slider", "brake", "cardano hinge", "cardano pin", "cardano rotation",
     "coincidence", "deformable axial joint", "deformable joint", "drive displacement", "drive displacement pin",
     "drive hinge", "gimbal rotation", "imposed displacement", "imposed displacement pin", "imposed orientation",
     "invariant deformable displacement joint", "invariant deformable hinge", "linear acceleration", "linear velocity", "modal",
@@ -77,7 +77,7 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
     let Some(kind) = c.accept_any(&SUPPORTED) else {
         if let Some(w) = c.peek_keyword() {
             let name = OTHER_JOINTS.iter().find(|o| super::parser::same_keyword(o, w)).copied().unwrap_or(w);
-            return Err(c.error(format!("joint type '{name}' is not supported by romdyn (supported: clamp, revolute hinge, revolute pin, spherical hinge, spherical pin, total joint, total pin joint, deformable displacement joint, deformable hinge, rod, in line, in plane, prismatic, distance)")));
+            return Err(c.error(format!("joint type '{name}' is not supported by romdyn (supported: axial rotation, clamp, revolute hinge, revolute pin, spherical hinge, spherical pin, total joint, total pin joint, deformable displacement joint, deformable hinge, rod, in line, in plane, prismatic, distance)")));
         }
         return Err(c.error(format!("expected a joint type, found {}", c.found())));
     };
@@ -97,6 +97,19 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             }
             let j = if revolute { Joint::revolute_hinge(label, a.anchor(), b.anchor()) } else { Joint::spherical_hinge(label, a.anchor(), b.anchor()) };
             Box::new(assembled(j, &a.global(), &b.global(), c, span)?)
+        }
+        "axial rotation" => {
+            // Input manual §Axial rotation; joint.cc reads both offsets with `position`
+            // optional, then the drive, `friction` and the orientation description.
+            let a = side(c, ctx, "node 1", Position::Always, None)?;
+            let b = side(c, ctx, "node 2", Position::Always, Some(&a))?;
+            let omega = super::drives::drive(c, ctx.drives, ctx.seq)?;
+            if c.peek_keyword().is_some_and(|w| w == "friction") {
+                return Err(c.error("joint friction is not supported by romdyn"));
+            }
+            orientation_description(c)?;
+            let hinge = assembled(Joint::revolute_hinge(label, a.anchor(), b.anchor()), &a.global(), &b.global(), c, span)?;
+            Box::new(AxialRotation::new(label, hinge.a, hinge.b, omega))
         }
         "revolute pin" | "plane pin" | "spherical pin" => Box::new(pin(kind, label, c, ctx, span)?),
         "total joint" | "total pin joint" => Box::new(total(kind == "total pin joint", label, c, ctx, span)?),
@@ -139,9 +152,7 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             let law_span = c.here();
             let law = linear_law(c, 3, ctx.laws, ctx.drives, ctx.seq)?;
             if hinge {
-                if c.accept("orientation description") {
-                    c.keyword("an orientation description", &["euler123", "euler313", "euler321", "orientation vector", "orientation matrix"])?;
-                }
+                orientation_description(c)?;
                 if law.prestrain.iter().chain(law.prestress.iter()).any(|x| *x != 0.0) {
                     return Err(c.error_at(law_span, "prestrain and prestress of a deformable hinge are not supported by romdyn"));
                 }
@@ -154,6 +165,14 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
         _ => Box::new(rod(kind == "rod with offset", label, c, ctx)?),
     };
     Ok(element)
+}
+
+/// The optional `orientation description, …` (output only).
+fn orientation_description(c: &mut Cursor) -> Result<(), MbdynError> {
+    if c.accept("orientation description") {
+        c.keyword("an orientation description", &["euler123", "euler313", "euler321", "orientation vector", "orientation matrix"])?;
+    }
+    Ok(())
 }
 
 /// `in line, NODE_1, [position,] P, [orientation,] R, NODE_2 [, offset, O]` (B's point on
