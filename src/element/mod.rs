@@ -14,14 +14,18 @@ mod beam;
 mod body;
 mod contract;
 mod deformable;
+mod deformable_joint;
 mod drive;
 mod force;
+mod invariant_hinge;
 mod joint;
 
 pub use beam::{shape as beam_shape, Beam3, BeamError, BeamNode, SectionLaw, SectionOrientation};
 pub use body::RigidBody;
 pub use contract::{Col, Element, ElementState, JacobianSink, Label, NodeKinematics, ResidualSink, Row, SectionState};
 pub use deformable::{DeformableDisplacement, DeformableHinge, Distance, LinearViscoelastic, Rod};
+pub use deformable_joint::DeformableJoint;
+pub use invariant_hinge::InvariantDeformableHinge;
 pub use drive::{Drive, TimeFunction};
 pub use force::{Couple, Force, ForceFrame};
 pub use anchor::Anchor;

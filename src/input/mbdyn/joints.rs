@@ -14,22 +14,22 @@ use super::drives::{single_term, template_vec3};
 use super::element_context::ElementContext;
 use super::laws::{linear_law, rest_strain, three, LinearLaw};
 use super::references::{Context, Frame, OtherSide};
-use crate::element::{Anchor, AxialRotation, DeformableDisplacement, DeformableHinge, Distance, Drive, Element, Joint, Rod};
+use crate::element::{Anchor, AxialRotation, DeformableJoint, InvariantDeformableHinge, DeformableDisplacement, DeformableHinge, Distance, Drive, Element, Joint, Rod};
 use crate::kinematics::{axial_of_skew_part, Mat3, Vec3};
 use crate::model::{Label, StructuralNode};
 
-const SUPPORTED: [&str; 20] = [
-    "axial rotation", "clamp", "revolute hinge", "plane hinge", "revolute pin", "plane pin", "spherical hinge", "spherical pin", "total joint", "total pin joint",
+const SUPPORTED: [&str; 23] = [
+    "axial rotation", "deformable joint", "deformable axial joint", "invariant deformable hinge", "clamp", "revolute hinge", "plane hinge", "revolute pin", "plane pin", "spherical hinge", "spherical pin", "total joint", "total pin joint",
     "deformable displacement joint", "deformable displacement hinge", "deformable hinge", "rod", "rod with offset", "in line", "in plane", "prismatic",
     "distance", "distance with offset",
 ];
 
 /// MBDyn joints romdyn names in its "not supported" error.
-const OTHER_JOINTS: [&str; 27] = [
+const OTHER_JOINTS: [&str; 25] = [
     "angular acceleration", "angular velocity", "beam slider", "brake", "cardano hinge", "cardano pin", "cardano rotation",
-    "coincidence", "deformable axial joint", "deformable joint", "drive displacement", "drive displacement pin",
+    "coincidence", "drive displacement", "drive displacement pin",
     "drive hinge", "gimbal rotation", "imposed displacement", "imposed displacement pin", "imposed orientation",
-    "invariant deformable displacement joint", "invariant deformable hinge", "linear acceleration", "linear velocity", "modal",
+    "invariant deformable displacement joint", "invariant deformable joint", "linear acceleration", "linear velocity", "modal",
     "plane displacement", "plane displacement pin", "point contact", "revolute rotation", "rod bezier",
 ];
 
@@ -77,7 +77,7 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
     let Some(kind) = c.accept_any(&SUPPORTED) else {
         if let Some(w) = c.peek_keyword() {
             let name = OTHER_JOINTS.iter().find(|o| super::parser::same_keyword(o, w)).copied().unwrap_or(w);
-            return Err(c.error(format!("joint type '{name}' is not supported by romdyn (supported: axial rotation, clamp, revolute hinge, revolute pin, spherical hinge, spherical pin, total joint, total pin joint, deformable displacement joint, deformable hinge, rod, in line, in plane, prismatic, distance)")));
+            return Err(c.error(format!("joint type '{name}' is not supported by romdyn (supported: axial rotation, clamp, revolute hinge, revolute pin, spherical hinge, spherical pin, total joint, total pin joint, deformable displacement joint, deformable hinge, invariant deformable hinge, deformable joint, deformable axial joint, rod, in line, in plane, prismatic, distance)")));
         }
         return Err(c.error(format!("expected a joint type, found {}", c.found())));
     };
@@ -161,6 +161,33 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
                 let rest = rest_strain(&law).ok_or_else(|| c.error_at(law_span, "a prestress needs an invertible stiffness matrix in romdyn (it becomes a rest strain)"))?;
                 Box::new(DeformableDisplacement { label, a: a.anchor(), b: b.anchor(), law: three(&law), rest })
             }
+        }
+        "deformable joint" => {
+            // joint.cc: both offsets read, `position` optional; a 6-D law.
+            let a = side(c, ctx, "node 1", Position::Always, None)?;
+            let b = side(c, ctx, "node 2", Position::Always, Some(&a))?;
+            let law = super::beams::section_law(&linear_law(c, 6, ctx.laws, ctx.drives, ctx.seq)?);
+            orientation_description(c)?;
+            Box::new(DeformableJoint::new(label, a.anchor(), b.anchor(), law))
+        }
+        "deformable axial joint" => {
+            // joint.cc: offsets after `position` are read and ignored; a 1-D law.
+            let a = side(c, ctx, "node 1", Position::IfKeyword, None)?;
+            let b = side(c, ctx, "node 2", Position::IfKeyword, Some(&a))?;
+            let law = linear_law(c, 1, ctx.laws, ctx.drives, ctx.seq)?;
+            let (k, v) = (law.stiffness[(0, 0)], law.viscosity[(0, 0)]);
+            Box::new(DeformableJoint::axial(label, a.anchor(), b.anchor(), k, v, law.prestrain[0], law.prestress[0]))
+        }
+        "invariant deformable hinge" => {
+            let a = side(c, ctx, "node 1", Position::IfKeyword, None)?;
+            let b = side(c, ctx, "node 2", Position::IfKeyword, Some(&a))?;
+            let law_span = c.here();
+            let law = linear_law(c, 3, ctx.laws, ctx.drives, ctx.seq)?;
+            orientation_description(c)?;
+            if law.prestrain.iter().chain(law.prestress.iter()).any(|x| *x != 0.0) {
+                return Err(c.error_at(law_span, "prestrain and prestress of an invariant deformable hinge are not supported by romdyn"));
+            }
+            Box::new(InvariantDeformableHinge { label, a: a.anchor(), b: b.anchor(), law: three(&law) })
         }
         _ => Box::new(rod(kind == "rod with offset", label, c, ctx)?),
     };
