@@ -16,6 +16,7 @@ mod contract;
 mod deformable;
 mod deformable_joint;
 mod drive;
+mod driven_joint;
 mod force;
 mod invariant_hinge;
 mod joint;
@@ -27,6 +28,7 @@ pub use deformable::{DeformableDisplacement, DeformableHinge, Distance, LinearVi
 pub use deformable_joint::DeformableJoint;
 pub use invariant_hinge::InvariantDeformableHinge;
 pub use drive::{Drive, TimeFunction};
+pub use driven_joint::{DrivenJoint, VectorDrive};
 pub use force::{Couple, Force, ForceFrame};
 pub use anchor::Anchor;
 pub use axial_rotation::AxialRotation;
