@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 use common::fixtures::Noise;
 use romdyn::analysis::run;
 use romdyn::dae::{check_jacobians, Assembler, State};
-use romdyn::element::{Anchor, AxialRotation, DeformableJoint, Drive, DrivenJoint, Element, InvariantDeformableHinge, Joint, LinearViscoelastic, SectionLaw, VectorDrive};
+use romdyn::element::{Anchor, AxialRotation, CardanoHinge, DeformableJoint, Drive, DrivenJoint, Element, InvariantDeformableHinge, Joint, LinearViscoelastic, SectionLaw, VectorDrive};
 use romdyn::input::mbdyn::{build, parse_text, read_model, MbdynModel};
 use romdyn::kinematics::{Mat3, Vec3};
 use romdyn::linear::ConstraintForm;
@@ -332,4 +332,51 @@ fn initial_velocities_are_checked_against_moving_and_velocity_constraints() {
     let m = rewritten("driven_joints.mbd", &[("eye, .5, 0., 0., 0., 0., 2.;", "eye, null, 0., 0., 2.;"), short]);
     let message = run(&m.model, &m.problem, &mut ()).err().expect("the derivatives phase fails").to_string();
     assert!(message.contains("total joint 5 constraint v x (-5.000e-1)"), "{message}");
+}
+
+#[test]
+fn cardano_hinge_jacobians_match_finite_differences() {
+    assert_jacobians(|n| {
+        vec![
+            Box::new(CardanoHinge::new(1, node(2, n), node(3, n), true, "cardano hinge")),
+            Box::new(CardanoHinge::new(2, ground(n), node(2, n), true, "cardano pin")),
+            Box::new(CardanoHinge::new(3, node(1, n), node(3, n), false, "cardano rotation")),
+        ]
+    });
+}
+
+#[test]
+fn cardano_joints_transmit_rotation_as_hooke_and_swing_as_mbdyn() {
+    // cardano.mbd at t = 1 s. MBDyn 1.7.3 (1727489e) on the same file, .mov:
+    //   node 3 Euler 1-2-3 (4.943239448296498e+01, 2.368119219419702e+01,
+    //   −1.102397901969219e+01) deg; node 4 at (−8.194791944824115e-03,
+    //   1.377184303355277e-02, −9.998715826167178e-01) m, (7.891199256471066e-01,
+    //   4.695322477357720e-01, 3.2e-15) deg; node 5 the same 2 m along x.
+    let m = read("cardano.mbd");
+    let report = run(&m.model, &m.problem, &mut ()).unwrap();
+    assert!(report.inconsistent_velocity.is_none(), "{:?}", report.inconsistent_velocity);
+    let asm = Assembler::new(&m.model);
+    let kin = |label: u32| report.final_state.node_frame(&asm.dofs, m.model.node_index(label).unwrap()).kin;
+
+    // Hooke's joint: tan φ₂ = tan φ₁ cos β, the output turning about its axis s (1e-10 rad:
+    // the constraints hold to Newton's tolerance, whatever φ₁ the integrator reached).
+    let b = std::f64::consts::PI / 6.0;
+    let phi1 = rotation_vector_of(&kin(2).r);
+    // The input's angle integrates ω = 1 rad/s through the orientation parameters: 4.9e-8
+    // rad over 1000 steps, as MBDyn's (5.729578234769110e+01 deg); 1e-7 allowed.
+    assert!(phi1.y.abs() < 1e-12 && phi1.z.abs() < 1e-12 && (phi1.x - 1.0).abs() < 1e-7, "input {phi1}");
+    assert!((phi1.x.to_degrees() - 5.729578234769110e+01).abs() < 1e-10, "input {phi1} against MBDyn");
+    let phi2 = (phi1.x.tan() * b.cos()).atan();
+    let s = Vec3::new(b.cos(), b.sin(), 0.0);
+    assert!((rotation_vector_of(&kin(3).r) - phi2 * s).norm() < 1e-10, "output {} against {}", rotation_vector_of(&kin(3).r), phi2 * s);
+    let mbdyn_e3 = Vec3::new(4.943239448296498e+01, 2.368119219419702e+01, -1.102397901969219e+01);
+    assert!((euler_deg(&kin(3).r) - mbdyn_e3).norm() < 1e-10, "node 3 {} against MBDyn {mbdyn_e3}", euler_deg(&kin(3).r));
+
+    // The pendulums: as MBDyn to 1e-12 m and 1e-10 deg; the pin and the hinge to node 1
+    // give the same motion (1e-12), no twist about z (Euler angle 3 below 1e-12 deg).
+    let mbdyn_x4 = Vec3::new(-8.194791944824115e-03, 1.377184303355277e-02, -9.998715826167178e-01);
+    let mbdyn_e4 = Vec3::new(7.891199256471066e-01, 4.695322477357720e-01, 3.220156314460234e-15);
+    assert!((kin(4).x - mbdyn_x4).norm() < 1e-12, "node 4 {} against MBDyn {mbdyn_x4}", kin(4).x);
+    assert!((euler_deg(&kin(4).r) - mbdyn_e4).norm() < 1e-10, "node 4 {} against MBDyn {mbdyn_e4}", euler_deg(&kin(4).r));
+    assert!((kin(5).x - kin(4).x - Vec3::new(2.0, 0.0, 0.0)).norm() < 1e-12 && (kin(5).r - kin(4).r).norm() < 1e-12);
 }

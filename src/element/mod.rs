@@ -12,6 +12,7 @@ mod anchor;
 mod axial_rotation;
 mod beam;
 mod body;
+mod cardano;
 mod contract;
 mod deformable;
 mod deformable_joint;
@@ -23,6 +24,7 @@ mod joint;
 
 pub use beam::{shape as beam_shape, Beam3, BeamError, BeamNode, SectionLaw, SectionOrientation};
 pub use body::RigidBody;
+pub use cardano::CardanoHinge;
 pub use contract::{Col, Element, ElementState, JacobianSink, Label, NodeKinematics, ResidualSink, Row, SectionState};
 pub use deformable::{DeformableDisplacement, DeformableHinge, Distance, LinearViscoelastic, Rod};
 pub use deformable_joint::DeformableJoint;

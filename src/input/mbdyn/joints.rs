@@ -14,19 +14,19 @@ use super::drives::template_vec3;
 use super::element_context::ElementContext;
 use super::laws::{linear_law, rest_strain, three, LinearLaw};
 use super::references::{Context, Frame, OtherSide};
-use crate::element::{Anchor, AxialRotation, DeformableJoint, DrivenJoint, InvariantDeformableHinge, VectorDrive, DeformableDisplacement, DeformableHinge, Distance, Drive, Element, Joint, Rod};
+use crate::element::{Anchor, AxialRotation, CardanoHinge, DeformableJoint, DrivenJoint, InvariantDeformableHinge, VectorDrive, DeformableDisplacement, DeformableHinge, Distance, Drive, Element, Joint, Rod};
 use crate::kinematics::{axial_of_skew_part, Mat3, Vec3};
 use crate::model::{Label, StructuralNode};
 
-const SUPPORTED: [&str; 28] = [
-    "axial rotation", "drive displacement", "drive displacement pin", "imposed displacement", "imposed displacement pin", "drive hinge", "deformable joint", "deformable axial joint", "invariant deformable hinge", "clamp", "revolute hinge", "plane hinge", "revolute pin", "plane pin", "spherical hinge", "spherical pin", "total joint", "total pin joint",
+const SUPPORTED: [&str; 34] = [
+    "cardano hinge", "universal hinge", "cardano pin", "universal pin", "cardano rotation", "universal rotation", "axial rotation", "drive displacement", "drive displacement pin", "imposed displacement", "imposed displacement pin", "drive hinge", "deformable joint", "deformable axial joint", "invariant deformable hinge", "clamp", "revolute hinge", "plane hinge", "revolute pin", "plane pin", "spherical hinge", "spherical pin", "total joint", "total pin joint",
     "deformable displacement joint", "deformable displacement hinge", "deformable hinge", "rod", "rod with offset", "in line", "in plane", "prismatic",
     "distance", "distance with offset",
 ];
 
 /// MBDyn joints romdyn names in its "not supported" error.
-const OTHER_JOINTS: [&str; 20] = [
-    "angular acceleration", "angular velocity", "beam slider", "brake", "cardano hinge", "cardano pin", "cardano rotation",
+const OTHER_JOINTS: [&str; 17] = [
+    "angular acceleration", "angular velocity", "beam slider", "brake",
     "coincidence", "gimbal rotation", "imposed orientation",
     "invariant deformable displacement joint", "invariant deformable joint", "linear acceleration", "linear velocity", "modal",
     "plane displacement", "plane displacement pin", "point contact", "revolute rotation", "rod bezier",
@@ -76,7 +76,7 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
     let Some(kind) = c.accept_any(&SUPPORTED) else {
         if let Some(w) = c.peek_keyword() {
             let name = OTHER_JOINTS.iter().find(|o| super::parser::same_keyword(o, w)).copied().unwrap_or(w);
-            return Err(c.error(format!("joint type '{name}' is not supported by romdyn (supported: axial rotation, drive displacement, drive displacement pin, drive hinge, imposed displacement, imposed displacement pin, clamp, revolute hinge, revolute pin, spherical hinge, spherical pin, total joint, total pin joint, deformable displacement joint, deformable hinge, invariant deformable hinge, deformable joint, deformable axial joint, rod, in line, in plane, prismatic, distance)")));
+            return Err(c.error(format!("joint type '{name}' is not supported by romdyn (supported: axial rotation, cardano hinge, cardano pin, cardano rotation (and universal …), drive displacement, drive displacement pin, drive hinge, imposed displacement, imposed displacement pin, clamp, revolute hinge, revolute pin, spherical hinge, spherical pin, total joint, total pin joint, deformable displacement joint, deformable hinge, invariant deformable hinge, deformable joint, deformable axial joint, rod, in line, in plane, prismatic, distance)")));
         }
         return Err(c.error(format!("expected a joint type, found {}", c.found())));
     };
@@ -114,6 +114,7 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
         "total joint" | "total pin joint" => Box::new(total(kind == "total pin joint", label, c, ctx, span)?),
         "drive displacement" | "drive displacement pin" | "imposed displacement" | "imposed displacement pin" => Box::new(drive_displacement(kind, label, c, ctx, span)?),
         "drive hinge" => Box::new(drive_hinge(label, c, ctx, span)?),
+        "cardano hinge" | "universal hinge" | "cardano pin" | "universal pin" | "cardano rotation" | "universal rotation" => Box::new(cardano(kind, label, c, ctx, span)?),
         "in line" | "in plane" => Box::new(in_line_or_plane(kind == "in line", label, c, ctx, span)?),
         "distance" | "distance with offset" => {
             // `distance, NODE_1, [position, O_1,] NODE_2, [position, O_2,] {DRIVE | from nodes}`;
@@ -258,21 +259,71 @@ fn clamp(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Joint, Mb
 /// orientations and ignores them.
 fn pin(kind: &str, label: Label, c: &mut Cursor, ctx: &ElementContext, span: super::diagnostic::Span) -> Result<Joint, MbdynError> {
     let revolute = kind != "spherical pin";
+    let (a, b) = pin_frames(revolute, c, ctx)?;
+    if revolute && c.accept("initial theta") {
+        c.real("initial theta [rad]")?;
+    }
+    let Anchor::Ground { position, orientation } = a else { unreachable!("pin_frames returns a ground anchor") };
+    let j = if revolute { Joint::revolute_hinge(label, a, b.anchor()) } else { Joint::spherical_hinge(label, a, b.anchor()) };
+    assembled(j, &(position, orientation), &b.global(), c, span)
+}
+
+/// The node side and the frame fixed in space of a pin (`oriented`: both orientations kept;
+/// a spherical pin reads and ignores them).
+fn pin_frames<'a>(oriented: bool, c: &mut Cursor, ctx: &ElementContext<'a>) -> Result<(Anchor, Side<'a>), MbdynError> {
     let mut b = side(c, ctx, "the node", Position::Always, None)?;
-    if !revolute {
+    if !oriented {
         b.orientation = Mat3::identity();
     }
     let on = Context { node: Some(Frame::of_node(b.node)), ..ctx.global() };
     c.accept("position");
     let position = on.position(c, "pin position [m]")?;
     let orientation = if c.accept("orientation") || c.accept("hinge") { on.orientation(c, "pin orientation")? } else { Mat3::identity() };
-    let orientation = if revolute { orientation } else { Mat3::identity() };
-    if revolute && c.accept("initial theta") {
-        c.real("initial theta [rad]")?;
+    let orientation = if oriented { orientation } else { Mat3::identity() };
+    Ok((Anchor::Ground { position, orientation }, b))
+}
+
+/// `cardano hinge`/`universal hinge` (both offsets read, `position` optional, as the other
+/// hinges), `cardano pin`/`universal pin` (as the revolute pin), `cardano rotation`/`universal
+/// rotation` (offsets after `position` read and ignored, joint.cc): input manual §Cardano
+/// hinge, §Cardano pin, §Cardano rotation.
+fn cardano(kind: &'static str, label: Label, c: &mut Cursor, ctx: &ElementContext, span: super::diagnostic::Span) -> Result<CardanoHinge, MbdynError> {
+    let (a, b, with_position) = if kind.ends_with("pin") {
+        let (a, b) = pin_frames(true, c, ctx)?;
+        (a, b.anchor(), true)
+    } else if kind.ends_with("rotation") {
+        let a = side(c, ctx, "node 1", Position::IfKeyword, None)?;
+        let b = side(c, ctx, "node 2", Position::IfKeyword, Some(&a))?;
+        orientation_description(c)?;
+        let (mut a, mut b) = (a, b);
+        (a.offset, b.offset) = (Vec3::zeros(), Vec3::zeros());
+        (a.anchor(), b.anchor(), false)
+    } else {
+        let a = side(c, ctx, "node 1", Position::Always, None)?;
+        let b = side(c, ctx, "node 2", Position::Always, Some(&a))?;
+        (a.anchor(), b.anchor(), true)
+    };
+    let j = CardanoHinge::new(label, a.clone(), b.clone(), with_position, kind);
+    let (ga, gb) = (anchor_global(&a, ctx), anchor_global(&b, ctx));
+    if with_position {
+        assembled(Joint::spherical_hinge(label, a, b), &ga, &gb, c, span)?;
     }
-    let a = Anchor::Ground { position, orientation };
-    let j = if revolute { Joint::revolute_hinge(label, a, b.anchor()) } else { Joint::spherical_hinge(label, a, b.anchor()) };
-    assembled(j, &(position, orientation), &b.global(), c, span)
+    let misalignment = ga.1.column(2).dot(&gb.1.column(1));
+    if misalignment.abs() > 1e-6 {
+        return Err(c.error_at(span, format!("joint {label}: axis 3 of the first frame and axis 2 of the second are not normal in the initial configuration (cosine {misalignment:.3e}); romdyn does not run MBDyn's initial assembly, so joints must hold as written")));
+    }
+    Ok(j)
+}
+
+/// Global point and frame of an anchor in the initial configuration.
+fn anchor_global(anchor: &Anchor, ctx: &ElementContext) -> (Vec3, Mat3) {
+    match anchor {
+        Anchor::Ground { position, orientation } => (*position, *orientation),
+        Anchor::Node { label, offset, orientation } => match ctx.nodes.find(*label) {
+            Some(n) => (n.node.position + n.node.orientation * offset, n.node.orientation * orientation),
+            None => (Vec3::zeros(), Mat3::identity()),
+        },
+    }
 }
 
 /// One side of a total joint: a node (or the ground, `node: None`, with an absolute
@@ -438,14 +489,7 @@ fn drive_hinge(label: Label, c: &mut Cursor, ctx: &ElementContext, span: super::
 /// configuration (see [`assembled`]).
 fn driven_assembled(j: DrivenJoint, ctx: &ElementContext, c: &Cursor, span: super::diagnostic::Span) -> Result<DrivenJoint, MbdynError> {
     let at = j.joint_at(0.0);
-    let global = |anchor: &Anchor| match anchor {
-        Anchor::Ground { position, orientation } => (*position, *orientation),
-        Anchor::Node { label, offset, orientation } => match ctx.nodes.find(*label) {
-            Some(n) => (n.node.position + n.node.orientation * offset, n.node.orientation * orientation),
-            None => (Vec3::zeros(), Mat3::identity()),
-        },
-    };
-    assembled(at.clone(), &global(&at.a), &global(&at.b), c, span)?;
+    assembled(at.clone(), &anchor_global(&at.a, ctx), &anchor_global(&at.b, ctx), c, span)?;
     Ok(j)
 }
 
