@@ -380,3 +380,20 @@ fn cardano_joints_transmit_rotation_as_hooke_and_swing_as_mbdyn() {
     assert!((euler_deg(&kin(4).r) - mbdyn_e4).norm() < 1e-10, "node 4 {} against MBDyn {mbdyn_e4}", euler_deg(&kin(4).r));
     assert!((kin(5).x - kin(4).x - Vec3::new(2.0, 0.0, 0.0)).norm() < 1e-12 && (kin(5).r - kin(4).r).norm() < 1e-12);
 }
+
+#[test]
+fn a_velocity_constraint_linearizes_as_mbdyn_linearizes_it() {
+    // spinning_pendulum.mbd, eigenanalysis at t = 0.5 s. MBDyn 1.7.3 (1727489e) on the same
+    // file, sp_0.m: the only non-zero finite eigenvalues −4.7e-13 ± 3.1305270803j rad/s
+    // (= sqrt(9.81/1.001), the frozen linearization's), the others zero. romdyn: the same
+    // pair as its only dynamic mode, to 1e-9 relative.
+    let m = read("spinning_pendulum.mbd");
+    let report = run(&m.model, &m.problem, &mut ()).unwrap();
+    let eig = &report.eigenanalyses[0];
+    assert!((eig.time - 0.5).abs() < 1e-9);
+    assert_eq!(eig.dynamic.len(), 2, "{:?}", eig.dynamic);
+    for l in &eig.dynamic {
+        assert!(l.re.abs() < 1e-9 && (l.im.abs() - 3.1305270803).abs() < 1e-9 * 3.13, "λ = {l}");
+    }
+    assert!((3.1305270803f64 - (9.81f64 / 1.001).sqrt()).abs() < 1e-9);
+}
