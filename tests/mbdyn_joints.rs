@@ -135,6 +135,7 @@ fn deformable_joint_jacobians_match_finite_differences() {
             Box::new(DeformableJoint::new(3, node(1, n), node(2, n), random_law6(n))),
             Box::new(DeformableJoint::axial(4, node(2, n), node(3, n), 50.0, 2.0, 0.1, 0.3)),
             Box::new(DeformableJoint::axial(5, ground(n), node(2, n), 50.0, 2.0, -0.2, 0.0)),
+            Box::new(DeformableJoint::hinge(6, node(2, n), node(3, n), &LinearViscoelastic { stiffness: 80.0 * n.matrix(), viscosity: 2.0 * n.matrix() }, n.vec(), n.vec())),
         ]
     });
 }
@@ -396,4 +397,20 @@ fn a_velocity_constraint_linearizes_as_mbdyn_linearizes_it() {
         assert!(l.re.abs() < 1e-9 && (l.im.abs() - 3.1305270803).abs() < 1e-9 * 3.13, "λ = {l}");
     }
     assert!((3.1305270803f64 - (9.81f64 / 1.001).sqrt()).abs() < 1e-9);
+}
+
+#[test]
+fn a_prestressed_deformable_hinge_rests_at_its_shifted_strain_as_mbdyn() {
+    // prestressed_hinge.mbd at t = 2.001 s: θ = θ_p − K⁻¹ M_p = (0.09, 0.01, −0.06) rad (the
+    // transient has decayed, 1e-10 rad). MBDyn 1.7.3 (1727489e) on the same file, .mov:
+    // Euler 1-2-3 (5.170809779775328, 4.172887875894098e-01, −3.458939942759398) deg.
+    let m = read("prestressed_hinge.mbd");
+    let report = run(&m.model, &m.problem, &mut ()).unwrap();
+    let asm = Assembler::new(&m.model);
+    let r = report.final_state.node_frame(&asm.dofs, 1).kin.r;
+    let theta = rotation_vector_of(&r);
+    assert!((theta - Vec3::new(0.09, 0.01, -0.06)).norm() < 1e-10, "θ = {theta}");
+    let mbdyn = Vec3::new(5.170809779775328, 4.172887875894098e-01, -3.458939942759398);
+    assert!((euler_deg(&r) - mbdyn).norm() < 1e-9, "{} against MBDyn {mbdyn}", euler_deg(&r));
+    assert_eq!(m.model.elements[2].type_name(), "deformable hinge");
 }

@@ -3,7 +3,8 @@
 //! Q_b)]` and its rate `k̇ = [Q_aᵀ (ṗ_b − ṗ_a − ω_a × (p_b − p_a)), Q_aᵀ (ω_b − ω_a)]` in
 //! frame A, generalized force `φ = K (k − k_p) + C k̇ + φ_p`; the force `Q_a φ₁₋₃` acts at
 //! `p_b` and the moment `Q_a φ₄₋₆` on B, both opposite on A. Also MBDyn's `deformable axial
-//! joint` (vehj4.cc): the law only on the rotation about axis 3 of frame A.
+//! joint` (vehj4.cc): the law only on the rotation about axis 3 of frame A; and the
+//! `deformable hinge` with prestrain or prestress: the law only on the rotation.
 
 use nalgebra::{Matrix6, SMatrix, Vector6};
 
@@ -22,13 +23,24 @@ pub struct DeformableJoint {
     a: Anchor,
     b: Anchor,
     law: SectionLaw,
-    axial: bool,
+    name: &'static str,
 }
 
 impl DeformableJoint {
     /// The 6-D `deformable joint`; `law` in frame A, strains `[ε₁ ε₂ ε₃ θ₁ θ₂ θ₃]`.
     pub fn new(label: Label, a: Anchor, b: Anchor, law: SectionLaw) -> Self {
-        DeformableJoint { label, a, b, law, axial: false }
+        DeformableJoint { label, a, b, law, name: "deformable joint" }
+    }
+    /// MBDyn's `deformable hinge` with a `prestrain` `θ_p` and a `prestress` `M_p`: moment
+    /// `Q_a (K (θ − θ_p) + C w + M_p)`, the 6-D law's rotation block alone.
+    pub fn hinge(label: Label, a: Anchor, b: Anchor, law: &super::LinearViscoelastic, prestrain: Vec3, prestress: Vec3) -> Self {
+        let block = |m: &Mat3| Matrix6::from_fn(|i, j| if i >= 3 && j >= 3 { m[(i - 3, j - 3)] } else { 0.0 });
+        let mut six = SectionLaw::viscoelastic(block(&law.stiffness), block(&law.viscosity));
+        for k in 0..3 {
+            six.prestrain[3 + k] = prestrain[k];
+            six.prestress[3 + k] = prestress[k];
+        }
+        DeformableJoint { label, a, b, law: six, name: "deformable hinge" }
     }
     /// The `deformable axial joint`: moment `M = k (θ₃ − θ_p) + c ω₃ + M_p` about axis 3 of
     /// frame A, `θ₃` the third component of `rotvec(Q_aᵀ Q_b)`, `ω₃ = e₃ₐ · (ω_b − ω_a)`.
@@ -37,7 +49,7 @@ impl DeformableJoint {
         let mut law = SectionLaw::viscoelastic(one(stiffness), one(viscosity));
         law.prestrain[5] = prestrain;
         law.prestress[5] = prestress;
-        DeformableJoint { label, a, b, law, axial: true }
+        DeformableJoint { label, a, b, law, name: "deformable axial joint" }
     }
 
     /// Generalized force `φ` in frame A, relative rotation vector `θ`, relative angular velocity.
@@ -70,7 +82,7 @@ impl Element for DeformableJoint {
         self.label
     }
     fn type_name(&self) -> &'static str {
-        if self.axial { "deformable axial joint" } else { "deformable joint" }
+        self.name
     }
     fn nodes(&self) -> Vec<Label> {
         node_labels(&self.a, &self.b)

@@ -155,10 +155,12 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             let law = linear_law(c, 3, ctx.laws, ctx.drives, ctx.seq)?;
             if hinge {
                 orientation_description(c)?;
+                let v = |d: &nalgebra::DVector<f64>| Vec3::new(d[0], d[1], d[2]);
                 if law.prestrain.iter().chain(law.prestress.iter()).any(|x| *x != 0.0) {
-                    return Err(c.error_at(law_span, "prestrain and prestress of a deformable hinge are not supported by romdyn"));
+                    Box::new(DeformableJoint::hinge(label, a.anchor(), b.anchor(), &three(&law), v(&law.prestrain), v(&law.prestress)))
+                } else {
+                    Box::new(DeformableHinge { label, a: a.anchor(), b: b.anchor(), law: three(&law) })
                 }
-                Box::new(DeformableHinge { label, a: a.anchor(), b: b.anchor(), law: three(&law) })
             } else {
                 let rest = rest_strain(&law).ok_or_else(|| c.error_at(law_span, "a prestress needs an invertible stiffness matrix in romdyn (it becomes a rest strain)"))?;
                 Box::new(DeformableDisplacement { label, a: a.anchor(), b: b.anchor(), law: three(&law), rest })
