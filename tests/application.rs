@@ -341,3 +341,21 @@ fn the_cli_removes_a_dummy_spring_and_prints_the_free_pendulums_real_pair() {
     assert!(!ok && err.contains("body 3") && err.contains("cannot be removed as a spring"), "{err}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// MBDyn's `name, "…"` after a node label names the node in the modal table's label column
+/// (issue 11: mode labels from the model file, a ports file's names take precedence). The
+/// pendulum's mode is the bob's horizontal swing (closed form: ±j sqrt(g/L) = ±3.130527 j).
+#[test]
+fn node_names_from_the_mbdyn_file_label_the_modes() {
+    let dir = common::cli::temp_dir("node-names");
+    let text = common::cli::pendulum_variant(&[(common::cli::PENDULUM_NODE, "    structural: 2, name, \"bob\", dynamic, 0., -L, 0., eye, null, null;")]);
+    let file = common::cli::write_file(&dir, "named.mbd", &text);
+    let (ok, table, err) = common::cli::romdyn(&["eig", file.as_str()]);
+    assert!(ok, "{err}");
+    let row = table.lines().find(|l| l.contains("±3.130527e0")).unwrap_or_else(|| panic!("{table}"));
+    assert!(row.contains("bob horizontal (x) 100 %"), "{table}");
+    // Without names there is no label column.
+    let (ok, plain, _) = common::cli::romdyn(&["eig", "examples/pendulum.mbd"]);
+    assert!(ok && !plain.contains("label"), "{plain}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
