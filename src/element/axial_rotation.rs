@@ -49,13 +49,7 @@ impl Element for AxialRotation {
         let p = Pair::new(&self.hinge.a, &self.hinge.b, st);
         let e3 = p.q_a.column(2).into_owned();
         out.add(Row::Constraint(RATE), e3.dot(&(p.omega_b - p.omega_a)) - self.omega.value(st.time()));
-        let m = e3 * st.multiplier(RATE);
-        for i in 0..3 {
-            out.add(Row::Equilibrium { slot: p.slot_b, comp: 3 + i }, m[i]);
-            if let Some(a) = p.slot_a {
-                out.add(Row::Equilibrium { slot: a, comp: 3 + i }, -m[i]);
-            }
-        }
+        p.add_moment(out, &(e3 * st.multiplier(RATE)));
     }
     fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
         self.hinge.jacobian(st, out);
@@ -67,13 +61,12 @@ impl Element for AxialRotation {
         let d_theta_a: Vec3 = e3.cross(&w);
         for i in 0..3 {
             out.add(row, Col::AngularVelocity { slot: p.slot_b, comp: i }, e3[i]);
-            out.add(Row::Equilibrium { slot: p.slot_b, comp: 3 + i }, Col::Multiplier(RATE), e3[i]);
             if let Some(a) = p.slot_a {
                 out.add(row, Col::AngularVelocity { slot: a, comp: i }, -e3[i]);
                 out.add(row, Col::Rotation { slot: a, comp: i }, d_theta_a[i]);
-                out.add(Row::Equilibrium { slot: a, comp: 3 + i }, Col::Multiplier(RATE), -e3[i]);
             }
         }
+        p.add_reaction_column(out, Col::Multiplier(RATE), &Vec3::zeros(), &e3);
         // δ(e₃ₐ μ) = −μ [e₃ₐ×] δθ_a.
         if let Some(a) = p.slot_a {
             let k = -st.multiplier(RATE) * skew(&e3);

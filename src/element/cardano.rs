@@ -53,13 +53,7 @@ impl Element for CardanoHinge {
         let (e3a, e2b, g) = axes(&p);
         let k = self.index();
         out.add(Row::Constraint(k), e3a.dot(&e2b));
-        let m = g * st.multiplier(k);
-        for i in 0..3 {
-            out.add(Row::Equilibrium { slot: p.slot_b, comp: 3 + i }, m[i]);
-            if let Some(a) = p.slot_a {
-                out.add(Row::Equilibrium { slot: a, comp: 3 + i }, -m[i]);
-            }
-        }
+        p.add_moment(out, &(g * st.multiplier(k)));
     }
     fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
         self.joint.jacobian(st, out);
@@ -69,12 +63,11 @@ impl Element for CardanoHinge {
         let mu = st.multiplier(k);
         for i in 0..3 {
             out.add(Row::Constraint(k), Col::Rotation { slot: b, comp: i }, g[i]);
-            out.add(Row::Equilibrium { slot: b, comp: 3 + i }, Col::Multiplier(k), g[i]);
             if let Some(a) = p.slot_a {
                 out.add(Row::Constraint(k), Col::Rotation { slot: a, comp: i }, -g[i]);
-                out.add(Row::Equilibrium { slot: a, comp: 3 + i }, Col::Multiplier(k), -g[i]);
             }
         }
+        p.add_reaction_column(out, Col::Multiplier(k), &Vec3::zeros(), &g);
         // δg = [e₃ₐ×][e₂ᵦ×] δθ_b − [e₂ᵦ×][e₃ₐ×] δθ_a; the moment is g μ on B, −g μ on A.
         let (d_b, d_a) = (mu * skew(&e3a) * skew(&e2b), -mu * skew(&e2b) * skew(&e3a));
         add_block(out, Row::moment(b), Col::rotation(b), &d_b);

@@ -10,7 +10,7 @@ use nalgebra::{Matrix6, SMatrix, Vector6};
 
 use super::anchor::{node_labels, Anchor, Pair};
 use super::beam::SectionLaw;
-use super::contract::{add_block, add_vec, Col, Element, ElementState, JacobianSink, Label, ResidualSink, Row};
+use super::contract::{add_block, Col, Element, ElementState, JacobianSink, Label, ResidualSink, Row};
 use super::deformable::inverse_rotation_jacobian;
 use crate::kinematics::{rotation_vector, skew, Mat3, Vec3};
 
@@ -91,11 +91,7 @@ impl Element for DeformableJoint {
         let p = Pair::new(&self.a, &self.b, st);
         let (f, m) = split(&self.phi(&p).0);
         p.add_force(out, &(p.q_a * f));
-        let m = p.q_a * m;
-        add_vec(out, Row::moment(p.slot_b), &m);
-        if let Some(a) = p.slot_a {
-            add_vec(out, Row::moment(a), &(-m));
-        }
+        p.add_moment(out, &(p.q_a * m));
     }
     fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
         let p = Pair::new(&self.a, &self.b, st);

@@ -14,7 +14,7 @@
 //! `(Q_aᵀ (ω_b − ω_a))_k = W_k(t)`, reaction moment `Q_a μ`.
 
 use super::anchor::Pair;
-use super::contract::{add_block, add_vec, Col, Element, ElementState, JacobianSink, Label, ResidualSink, Row};
+use super::contract::{add_block, Col, Element, ElementState, JacobianSink, Label, ResidualSink, Row};
 use super::{Anchor, Drive, Joint};
 use crate::kinematics::{skew, Vec3};
 
@@ -155,10 +155,7 @@ impl Element for DrivenJoint {
         }
         let (force, moment) = self.rate_reactions(&p, st);
         p.add_force(out, &force);
-        add_vec(out, Row::moment(p.slot_b), &moment);
-        if let Some(a) = p.slot_a {
-            add_vec(out, Row::moment(a), &(-moment));
-        }
+        p.add_moment(out, &moment);
     }
     fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
         let j = self.joint_at(st.time());
@@ -199,16 +196,7 @@ impl Element for DrivenJoint {
                 Rate::Linear(k) => (p.q_a.column(k).into_owned(), Vec3::zeros()),
                 Rate::Angular(k) => (Vec3::zeros(), p.q_a.column(k).into_owned()),
             };
-            let (mb, ma) = (p.f_b.cross(&df) + dm, p.h.cross(&df) + dm);
-            let col = Col::Multiplier(n + i);
-            for c in 0..3 {
-                out.add(Row::Equilibrium { slot: b, comp: c }, col, df[c]);
-                out.add(Row::Equilibrium { slot: b, comp: 3 + c }, col, mb[c]);
-                if let Some(a) = p.slot_a {
-                    out.add(Row::Equilibrium { slot: a, comp: c }, col, -df[c]);
-                    out.add(Row::Equilibrium { slot: a, comp: 3 + c }, col, -ma[c]);
-                }
-            }
+            p.add_reaction_column(out, Col::Multiplier(n + i), &df, &dm);
         }
     }
 }

@@ -5,7 +5,7 @@
 //! moments for an anisotropic law.
 
 use super::anchor::{node_labels, Anchor, Pair};
-use super::contract::{add_block, add_vec, Col, Element, ElementState, JacobianSink, Label, ResidualSink, Row};
+use super::contract::{add_block, Col, Element, ElementState, JacobianSink, Label, ResidualSink, Row};
 use super::deformable::inverse_rotation_jacobian;
 use super::LinearViscoelastic;
 use crate::kinematics::{rotation_vector, skew, Mat3, Vec3};
@@ -50,11 +50,7 @@ impl Element for InvariantDeformableHinge {
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
         let p = Pair::new(&self.a, &self.b, st);
         let (r_hat, theta, w) = frames(&p);
-        let m = r_hat * (self.law.stiffness * theta + self.law.viscosity * w);
-        add_vec(out, Row::moment(p.slot_b), &m);
-        if let Some(a) = p.slot_a {
-            add_vec(out, Row::moment(a), &(-m));
-        }
+        p.add_moment(out, &(r_hat * (self.law.stiffness * theta + self.law.viscosity * w)));
     }
     fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
         let p = Pair::new(&self.a, &self.b, st);
