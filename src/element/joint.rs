@@ -26,6 +26,8 @@ pub enum JointKind {
     InPlane,
     /// All relative rotation locked (`prismatic`).
     Prismatic,
+    /// Relative rotation only about the common axis 3, position free (`revolute rotation`).
+    RevoluteRotation,
 }
 
 /// A joint locking the selected components of relative position and rotation.
@@ -61,6 +63,12 @@ impl Joint {
     /// frames (5 multipliers).
     pub fn revolute_hinge(label: Label, a: Anchor, b: Anchor) -> Self {
         Joint { label, kind: JointKind::RevoluteHinge, a, b, position_locked: [true; 3], rotation_locked: [true, true, false] }
+    }
+
+    /// Relative rotation only about the common z axis, relative position free (2
+    /// multipliers: MBDyn's `revolute rotation`, planej.cc `PlaneRotationJoint`).
+    pub fn revolute_rotation(label: Label, a: Anchor, b: Anchor) -> Self {
+        Joint { label, kind: JointKind::RevoluteRotation, a, b, position_locked: [false; 3], rotation_locked: [true, true, false] }
     }
 
     /// B's point on A's axis 3 (2 multipliers: the force across the line).
@@ -116,6 +124,7 @@ impl Element for Joint {
             JointKind::InLine => "in line",
             JointKind::InPlane => "in plane",
             JointKind::Prismatic => "prismatic",
+            JointKind::RevoluteRotation => "revolute rotation",
         }
     }
     fn nodes(&self) -> Vec<Label> {

@@ -18,18 +18,18 @@ use crate::element::{Anchor, AxialRotation, CardanoHinge, DeformableJoint, Drive
 use crate::kinematics::{axial_of_skew_part, Mat3, Vec3};
 use crate::model::{Label, StructuralNode};
 
-const SUPPORTED: [&str; 34] = [
-    "cardano hinge", "universal hinge", "cardano pin", "universal pin", "cardano rotation", "universal rotation", "axial rotation", "drive displacement", "drive displacement pin", "imposed displacement", "imposed displacement pin", "drive hinge", "deformable joint", "deformable axial joint", "invariant deformable hinge", "clamp", "revolute hinge", "plane hinge", "revolute pin", "plane pin", "spherical hinge", "spherical pin", "total joint", "total pin joint",
+const SUPPORTED: [&str; 35] = [
+    "revolute rotation", "cardano hinge", "universal hinge", "cardano pin", "universal pin", "cardano rotation", "universal rotation", "axial rotation", "drive displacement", "drive displacement pin", "imposed displacement", "imposed displacement pin", "drive hinge", "deformable joint", "deformable axial joint", "invariant deformable hinge", "clamp", "revolute hinge", "plane hinge", "revolute pin", "plane pin", "spherical hinge", "spherical pin", "total joint", "total pin joint",
     "deformable displacement joint", "deformable displacement hinge", "deformable hinge", "rod", "rod with offset", "in line", "in plane", "prismatic",
     "distance", "distance with offset",
 ];
 
 /// MBDyn joints romdyn names in its "not supported" error.
-const OTHER_JOINTS: [&str; 17] = [
+const OTHER_JOINTS: [&str; 16] = [
     "angular acceleration", "angular velocity", "beam slider", "brake",
     "coincidence", "gimbal rotation", "imposed orientation",
     "invariant deformable displacement joint", "invariant deformable joint", "linear acceleration", "linear velocity", "modal",
-    "plane displacement", "plane displacement pin", "point contact", "revolute rotation", "rod bezier",
+    "plane displacement", "plane displacement pin", "point contact", "rod bezier",
 ];
 
 /// One side of a two-node joint: node, offset and orientation in the node frame.
@@ -76,7 +76,7 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
     let Some(kind) = c.accept_any(&SUPPORTED) else {
         if let Some(w) = c.peek_keyword() {
             let name = OTHER_JOINTS.iter().find(|o| super::parser::same_keyword(o, w)).copied().unwrap_or(w);
-            return Err(c.error(format!("joint type '{name}' is not supported by romdyn (supported: axial rotation, cardano hinge, cardano pin, cardano rotation (and universal …), drive displacement, drive displacement pin, drive hinge, imposed displacement, imposed displacement pin, clamp, revolute hinge, revolute pin, spherical hinge, spherical pin, total joint, total pin joint, deformable displacement joint, deformable hinge, invariant deformable hinge, deformable joint, deformable axial joint, rod, in line, in plane, prismatic, distance)")));
+            return Err(c.error(format!("joint type '{name}' is not supported by romdyn (supported: axial rotation, revolute rotation, cardano hinge, cardano pin, cardano rotation (and universal …), drive displacement, drive displacement pin, drive hinge, imposed displacement, imposed displacement pin, clamp, revolute hinge, revolute pin, spherical hinge, spherical pin, total joint, total pin joint, deformable displacement joint, deformable hinge, invariant deformable hinge, deformable joint, deformable axial joint, rod, in line, in plane, prismatic, distance)")));
         }
         return Err(c.error(format!("expected a joint type, found {}", c.found())));
     };
@@ -114,6 +114,14 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
         "total joint" | "total pin joint" => Box::new(total(kind == "total pin joint", label, c, ctx, span)?),
         "drive displacement" | "drive displacement pin" | "imposed displacement" | "imposed displacement pin" => Box::new(drive_displacement(kind, label, c, ctx, span)?),
         "drive hinge" => Box::new(drive_hinge(label, c, ctx, span)?),
+        "revolute rotation" => {
+            // joint.cc: offsets after `position` read and ignored; the orientation description.
+            let mut a = side(c, ctx, "node 1", Position::IfKeyword, None)?;
+            let mut b = side(c, ctx, "node 2", Position::IfKeyword, Some(&a))?;
+            orientation_description(c)?;
+            (a.offset, b.offset) = (Vec3::zeros(), Vec3::zeros());
+            Box::new(assembled(Joint::revolute_rotation(label, a.anchor(), b.anchor()), &a.global(), &b.global(), c, span)?)
+        }
         "cardano hinge" | "universal hinge" | "cardano pin" | "universal pin" | "cardano rotation" | "universal rotation" => Box::new(cardano(kind, label, c, ctx, span)?),
         "in line" | "in plane" => Box::new(in_line_or_plane(kind == "in line", label, c, ctx, span)?),
         "distance" | "distance with offset" => {
