@@ -19,6 +19,7 @@ mod deformable_joint;
 mod drive;
 mod driven_joint;
 mod force;
+mod imposed_velocity;
 mod invariant_hinge;
 mod joint;
 
@@ -32,6 +33,7 @@ pub use invariant_hinge::InvariantDeformableHinge;
 pub use drive::{Drive, TimeFunction};
 pub use driven_joint::{DrivenJoint, VectorDrive};
 pub use force::{Couple, Force, ForceFrame};
+pub use imposed_velocity::{ImposedVelocity, VelocityKind};
 pub use anchor::Anchor;
 pub use axial_rotation::AxialRotation;
 pub use joint::{Joint, JointKind};

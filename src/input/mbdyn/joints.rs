@@ -14,21 +14,21 @@ use super::drives::template_vec3;
 use super::element_context::ElementContext;
 use super::laws::{linear_law, rest_strain, three, LinearLaw};
 use super::references::{Context, Frame, OtherSide};
-use crate::element::{Anchor, AxialRotation, CardanoHinge, DeformableJoint, DrivenJoint, InvariantDeformableHinge, VectorDrive, DeformableDisplacement, DeformableHinge, Distance, Drive, Element, Joint, Rod};
+use crate::element::{Anchor, AxialRotation, ImposedVelocity, VelocityKind, CardanoHinge, DeformableJoint, DrivenJoint, InvariantDeformableHinge, VectorDrive, DeformableDisplacement, DeformableHinge, Distance, Drive, Element, Joint, Rod};
 use crate::kinematics::{axial_of_skew_part, Mat3, Vec3};
 use crate::model::{Label, StructuralNode};
 
-const SUPPORTED: [&str; 35] = [
-    "revolute rotation", "cardano hinge", "universal hinge", "cardano pin", "universal pin", "cardano rotation", "universal rotation", "axial rotation", "drive displacement", "drive displacement pin", "imposed displacement", "imposed displacement pin", "drive hinge", "deformable joint", "deformable axial joint", "invariant deformable hinge", "clamp", "revolute hinge", "plane hinge", "revolute pin", "plane pin", "spherical hinge", "spherical pin", "total joint", "total pin joint",
+const SUPPORTED: [&str; 37] = [
+    "linear velocity", "angular velocity", "revolute rotation", "cardano hinge", "universal hinge", "cardano pin", "universal pin", "cardano rotation", "universal rotation", "axial rotation", "drive displacement", "drive displacement pin", "imposed displacement", "imposed displacement pin", "drive hinge", "deformable joint", "deformable axial joint", "invariant deformable hinge", "clamp", "revolute hinge", "plane hinge", "revolute pin", "plane pin", "spherical hinge", "spherical pin", "total joint", "total pin joint",
     "deformable displacement joint", "deformable displacement hinge", "deformable hinge", "rod", "rod with offset", "in line", "in plane", "prismatic",
     "distance", "distance with offset",
 ];
 
 /// MBDyn joints romdyn names in its "not supported" error.
-const OTHER_JOINTS: [&str; 16] = [
-    "angular acceleration", "angular velocity", "beam slider", "brake",
+const OTHER_JOINTS: [&str; 14] = [
+    "angular acceleration", "beam slider", "brake",
     "coincidence", "gimbal rotation", "imposed orientation",
-    "invariant deformable displacement joint", "invariant deformable joint", "linear acceleration", "linear velocity", "modal",
+    "invariant deformable displacement joint", "invariant deformable joint", "linear acceleration", "modal",
     "plane displacement", "plane displacement pin", "point contact", "rod bezier",
 ];
 
@@ -76,7 +76,7 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
     let Some(kind) = c.accept_any(&SUPPORTED) else {
         if let Some(w) = c.peek_keyword() {
             let name = OTHER_JOINTS.iter().find(|o| super::parser::same_keyword(o, w)).copied().unwrap_or(w);
-            return Err(c.error(format!("joint type '{name}' is not supported by romdyn (supported: axial rotation, revolute rotation, cardano hinge, cardano pin, cardano rotation (and universal …), drive displacement, drive displacement pin, drive hinge, imposed displacement, imposed displacement pin, clamp, revolute hinge, revolute pin, spherical hinge, spherical pin, total joint, total pin joint, deformable displacement joint, deformable hinge, invariant deformable hinge, deformable joint, deformable axial joint, rod, in line, in plane, prismatic, distance)")));
+            return Err(c.error(format!("joint type '{name}' is not supported by romdyn (supported: axial rotation, linear velocity, angular velocity, revolute rotation, cardano hinge, cardano pin, cardano rotation (and universal …), drive displacement, drive displacement pin, drive hinge, imposed displacement, imposed displacement pin, clamp, revolute hinge, revolute pin, spherical hinge, spherical pin, total joint, total pin joint, deformable displacement joint, deformable hinge, invariant deformable hinge, deformable joint, deformable axial joint, rod, in line, in plane, prismatic, distance)")));
         }
         return Err(c.error(format!("expected a joint type, found {}", c.found())));
     };
@@ -114,6 +114,18 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
         "total joint" | "total pin joint" => Box::new(total(kind == "total pin joint", label, c, ctx, span)?),
         "drive displacement" | "drive displacement pin" | "imposed displacement" | "imposed displacement pin" => Box::new(drive_displacement(kind, label, c, ctx, span)?),
         "drive hinge" => Box::new(drive_hinge(label, c, ctx, span)?),
+        "linear velocity" | "angular velocity" => {
+            // joint.cc: NODE, a unit direction relative to the node (normalized), a drive.
+            // drvj.cc turns the angular one's with the node (R d) and uses the linear one's
+            // node-frame components as global ones (`Dir.Dot(vNode)`): so does romdyn.
+            let n = ctx.node(c, "the node")?;
+            let d_span = c.here();
+            let d = ctx.on(n).relative_vector(c, "direction")?;
+            let d = d.try_normalize(0.0).ok_or_else(|| c.error_at(d_span, format!("{kind}: the direction is null")))?;
+            let value = super::drives::drive(c, ctx.drives, ctx.seq)?;
+            let kind = if kind == "linear velocity" { VelocityKind::Linear } else { VelocityKind::Angular };
+            Box::new(ImposedVelocity { label, node: n.label, kind, direction: d, value })
+        }
         "revolute rotation" => {
             // joint.cc: offsets after `position` read and ignored; the orientation description.
             let mut a = side(c, ctx, "node 1", Position::IfKeyword, None)?;
