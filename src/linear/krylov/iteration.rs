@@ -52,8 +52,8 @@ fn pseudo_random(n: usize, seed: u64) -> Col<c64> {
     Col::from_fn(n, |_| c64::new(next(), next()))
 }
 
-/// Unit vector along `w` after removing its components along `v[:, 0..cols]` (twice);
-/// the coefficients removed and the norm left.
+/// `w` with its components along `v[:, 0..cols]` removed (classical Gram–Schmidt, a
+/// second pass when needed); the coefficients removed and the norm left.
 fn orthogonalize(v: &Mat<c64>, cols: usize, w: &mut Col<c64>) -> (Col<c64>, f64) {
     use faer::linalg::matmul::matmul;
     use faer::{Accum, Par};
@@ -62,10 +62,18 @@ fn orthogonalize(v: &Mat<c64>, cols: usize, w: &mut Col<c64>) -> (Col<c64>, f64)
     let mut c = Col::<c64>::zeros(cols);
     let (one, minus_one) = (c64::new(1.0, 0.0), c64::new(-1.0, 0.0));
     // Sequential products: these matrix-vector products are too small to gain from threads.
+    // A second pass only when the first removed most of `w` (Kahan–Parlett "twice is
+    // enough": a norm kept above 1/√2 of the input is orthogonal to working accuracy).
+    let mut before = w.norm_l2();
     for _ in 0..2 {
         matmul(c.as_mat_mut(), Accum::Replace, basis.adjoint(), w.as_mat(), one, Par::Seq);
         matmul(w.as_mat_mut(), Accum::Add, basis, c.as_mat(), minus_one, Par::Seq);
         h += &c;
+        let after = w.norm_l2();
+        if after > std::f64::consts::FRAC_1_SQRT_2 * before {
+            return (h, after);
+        }
+        before = after;
     }
     (h, w.norm_l2())
 }
