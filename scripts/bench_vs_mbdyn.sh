@@ -17,6 +17,8 @@
 #                 100 steps, tolerance 1e-3 N (rounding alone leaves about 1e-4 N in the
 #                 equilibrium of segments of stiffness EA/h = 2e11 N/m).
 #
+# MBDyn writes 16 digits (`output precision: 16`, which romdyn reads and ignores: it
+# always writes 13), so that the positions can be compared to 1e-6 m on coordinates of 10 m.
 # romdyn: `romdyn run FILE` (release build: target/release/romdyn, else `romdyn` on PATH).
 # MBDyn: `mbdyn` on PATH or /root/mbdyn/bin/mbdyn, run as `mbdyn -f FILE -o PREFIX` with its
 # default linear solver and with `linear solver: klu` (and `naive, colamd`); skipped when
@@ -73,6 +75,7 @@ begin: control data;
     rigid bodies: $n;
     joints: $((n + 1));
     gravity;
+    output precision: 16;
 end: control data;
 
 begin: nodes;
@@ -132,6 +135,7 @@ begin: control data;
     joints: 1;
     beams: $ne;
     forces: 1;
+    output precision: 16;
 end: control data;
 
 begin: nodes;
