@@ -53,9 +53,8 @@ impl Pair {
         let slot_b = usize::from(slot_a.is_some());
         let (x_a, f_a, q_a, v_a, omega_a) = side(a, slot_a, st);
         let (x_b, f_b, q_b, v_b, omega_b) = side(b, Some(slot_b), st);
-        // Node positions first: nearby nodes far from the origin subtract exactly, so a
-        // joint written as holding holds to the offsets' rounding (about 1e-16 m), not the
-        // positions' (1e-15 m at 10 m, which the derivatives phase divides by dCoef).
+        // Node positions first, as MBDyn's joints do (`x1 + d1 − x2 − d2`): nearby nodes
+        // subtract exactly, so only the rounding of the positions as written remains.
         let h = (x_b - x_a) + f_b;
         Pair { slot_a, slot_b, f_a, f_b, q_a, q_b, d: h - f_a, h, omega_a, omega_b, u: v_b + omega_b.cross(&f_b) - v_a - omega_a.cross(&h) }
     }
