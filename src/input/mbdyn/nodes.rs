@@ -27,6 +27,8 @@ pub struct NodeEntry {
     pub output: Option<bool>,
     /// `orientation description, …` (`None`: the `default orientation` of control data).
     pub orientation: Option<OrientationOutput>,
+    /// `name, "…"` after the label.
+    pub name: Option<String>,
 }
 
 /// The structural nodes, in file order.
@@ -60,9 +62,7 @@ pub fn node_statement(st: &Statement, c: &mut Cursor, frames: &Frames, nodes: &m
     if let Some(prev) = nodes.find(label) {
         return Err(c.error_at(label_span, format!("structural node {label} is defined twice (first at line {})", prev.span.line)));
     }
-    if c.accept("name") {
-        c.string("node name")?;
-    }
+    let name = if c.accept("name") { Some(c.string("node name")?) } else { None };
     let kind_span = c.here();
     let kind = c.keyword("the node type", &["static", "dynamic", "dummy", "modal", "static displacement", "dynamic displacement"])?;
     let ctx = Context::global(frames, st.seq);
@@ -79,7 +79,7 @@ pub fn node_statement(st: &Statement, c: &mut Cursor, frames: &Frames, nodes: &m
     };
     let output = settings(c)?;
     c.finish()?;
-    nodes.0.push(NodeEntry { node, dummy, span: st.span, source, output, orientation });
+    nodes.0.push(NodeEntry { node, dummy, span: st.span, source, output, orientation, name });
     Ok(())
 }
 
