@@ -176,3 +176,34 @@ fn continuation_gives_the_same_static_solutions() {
     // The compression lowers the first bending frequency (paper Fig. 5).
     assert!(plain.results[2].as_ref().unwrap().modes[0].im < plain.results[0].as_ref().unwrap().modes[0].im);
 }
+
+#[test]
+fn cli_sweep_writes_the_others_and_exits_1_on_a_failed_point() {
+    let dir = std::env::temp_dir().join(format!("romdyn_sweep_cli_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (_, pendulum) = example("pendulum.mbd");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_romdyn"))
+        .args(["sweep".as_ref(), pendulum.as_os_str()])
+        .args(["--set", "M=1,-1", "--set", "L=1,4", "--input", "2:Mz", "--output", "2:rz", "--count", "1", "--lowest", "1", "--jobs", "2"])
+        .arg("-o")
+        .arg(dir.join("p.mat"))
+        .arg("--table")
+        .arg(dir.join("p.csv"))
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("design point 3 (M = -1, L = 1) failed:") && stderr.contains("pendulum.mbd:45:17: error: negative mass -1"), "{stderr}");
+    assert!(stderr.contains("2 of 4 design points failed"), "{stderr}");
+    let csv = std::fs::read_to_string(dir.join("p.csv")).unwrap();
+    // Row 2: M = 1, L = 4: ω = sqrt(M G L / (J + M L²)) (12 digits written).
+    let row: Vec<&str> = csv.lines().nth(2).unwrap().split(',').collect();
+    let w: f64 = row[4].parse().unwrap();
+    assert!((w - omega(1.0, 4.0)).abs() < 1e-6 * w, "{csv}");
+    assert!(dir.join("p.mat").exists());
+    // A name the file does not declare stops before any point runs.
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_romdyn")).args(["sweep".as_ref(), pendulum.as_os_str()]).args(["--set", "LEN=1,2", "--count", "1"]).output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.code() == Some(1) && stderr.contains("--set LEN: the file declares no variable 'LEN'"), "{stderr}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
