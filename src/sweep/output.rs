@@ -200,7 +200,10 @@ impl SweepResults {
         }
         let other_names: Vec<&String> = self.names.iter().enumerate().filter(|(j, _)| *j != x).map(|(_, n)| n).collect();
         let mut curves = Vec::new();
-        for (others, list) in &groups {
+        for (others, list) in groups.iter_mut() {
+            // Along increasing parameter (a list may be given in any order); a failed point
+            // keeps its place and breaks the line.
+            list.sort_by(|a, b| self.points[*a][x].total_cmp(&self.points[*b][x]));
             let tag = other_names.iter().zip(others).map(|(n, v)| format!("{n} = {v}")).collect::<Vec<_>>().join(", ");
             for j in 0..self.modes {
                 let lam = |p: &usize| self.results[*p].as_ref().ok().and_then(|r| r.modes.get(j).copied());
@@ -214,7 +217,13 @@ impl SweepResults {
             }
         }
         let file = self.file.file_name().map_or(String::new(), |f| f.to_string_lossy().into_owned());
-        Ok(SweepPlot { title: format!("{file}: lowest modes against {}", self.names[x]), parameter: format!("{} (the file's set: variable, its SI units)", self.names[x]), curves })
+        let failed: Vec<String> = self.failures().map(|(k, _, _)| self.describe_point(k)).collect();
+        let note = match failed.len() {
+            0 => String::new(),
+            1..=2 => format!(" ({} failed, not drawn: {})", failed.len(), failed.join("; ")),
+            n => format!(" ({n} failed points, not drawn)"),
+        };
+        Ok(SweepPlot { title: format!("{file}: lowest modes against {}{note}", self.names[x]), parameter: format!("{} (the file's set: variable, its SI units)", self.names[x]), curves })
     }
 
     /// Writes the plot as `PREFIX.svg` and `PREFIX.png`.
