@@ -5,7 +5,7 @@
 use std::io::Write;
 use std::path::Path;
 
-use faer::Mat;
+use faer::{c64, Mat};
 
 use crate::output::atomic::{write_atomic, OutputError};
 use crate::output::mat5::MatFile;
@@ -42,6 +42,16 @@ pub struct Stacked {
     pub arrays: Vec<Array>,
     pub strings: Vec<(&'static str, Vec<String>)>,
     pub kind: &'static str,
+}
+
+/// MBDyn's frequency `|Im λ|/2π` [Hz].
+fn freq_hz(l: c64) -> f64 {
+    l.im.abs() / (2.0 * std::f64::consts::PI)
+}
+
+/// Damping ratio `−Re λ/|λ|` (0 for λ = 0).
+fn damping(l: c64) -> f64 {
+    if l.norm() > 0.0 { -l.re / l.norm() } else { 0.0 }
 }
 
 fn dims(m: &Mat<f64>) -> (usize, usize) {
@@ -99,9 +109,9 @@ impl SweepResults {
         let m = self.modes;
         arrays.push(table("mode_re", k, m, |p, j| mode(p, j).map(|l| l.re)));
         arrays.push(table("mode_im", k, m, |p, j| mode(p, j).map(|l| l.im)));
-        arrays.push(table("mode_freq_hz", k, m, |p, j| mode(p, j).map(|l| l.im.abs() / (2.0 * std::f64::consts::PI))));
+        arrays.push(table("mode_freq_hz", k, m, |p, j| mode(p, j).map(freq_hz)));
         arrays.push(table("mode_undamped_hz", k, m, |p, j| mode(p, j).map(|l| l.norm() / (2.0 * std::f64::consts::PI))));
-        arrays.push(table("mode_damping", k, m, |p, j| mode(p, j).map(|l| if l.norm() > 0.0 { -l.re / l.norm() } else { 0.0 })));
+        arrays.push(table("mode_damping", k, m, |p, j| mode(p, j).map(damping)));
         let errors = self.results.iter().map(|r| r.as_ref().err().map_or(String::new(), |e| e.message.clone())).collect();
         let strings = vec![
             ("parameter_names", self.names.clone()),
@@ -165,7 +175,7 @@ impl SweepResults {
             }
             for j in 0..self.modes {
                 match r.as_ref().ok().and_then(|r| r.modes.get(j)) {
-                    Some(l) => s += &format!(",{:.12e},{:.12e},{:.12e},{:.6e}", l.re, l.im, l.im.abs() / (2.0 * std::f64::consts::PI), if l.norm() > 0.0 { -l.re / l.norm() } else { 0.0 }),
+                    Some(&l) => s += &format!(",{:.12e},{:.12e},{:.12e},{:.6e}", l.re, l.im, freq_hz(l), damping(l)),
                     None => s += ",,,,",
                 }
             }
@@ -211,8 +221,8 @@ impl SweepResults {
                 curves.push(ModeCurve {
                     label,
                     parameter: list.iter().map(|p| self.points[*p][x]).collect(),
-                    freq_hz: list.iter().map(|p| lam(p).map_or(f64::NAN, |l| l.im.abs() / (2.0 * std::f64::consts::PI))).collect(),
-                    damping: list.iter().map(|p| lam(p).map_or(f64::NAN, |l| if l.norm() > 0.0 { -l.re / l.norm() } else { 0.0 })).collect(),
+                    freq_hz: list.iter().map(|p| lam(p).map_or(f64::NAN, freq_hz)).collect(),
+                    damping: list.iter().map(|p| lam(p).map_or(f64::NAN, damping)).collect(),
                 });
             }
         }
