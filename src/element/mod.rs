@@ -9,19 +9,31 @@
 //! the static solver and the linearization use nothing else.
 
 mod anchor;
+mod axial_rotation;
 mod beam;
 mod body;
+mod cardano;
 mod contract;
 mod deformable;
+mod deformable_joint;
 mod drive;
+mod driven_joint;
 mod force;
+mod imposed_velocity;
+mod invariant_hinge;
 mod joint;
 
 pub use beam::{shape as beam_shape, Beam3, BeamError, BeamNode, SectionLaw, SectionOrientation};
 pub use body::RigidBody;
+pub use cardano::CardanoHinge;
 pub use contract::{Col, Element, ElementState, JacobianSink, Label, NodeKinematics, ResidualSink, Row, SectionState};
 pub use deformable::{DeformableDisplacement, DeformableHinge, Distance, LinearViscoelastic, Rod};
+pub use deformable_joint::DeformableJoint;
+pub use invariant_hinge::InvariantDeformableHinge;
 pub use drive::{Drive, TimeFunction};
+pub use driven_joint::{DrivenJoint, VectorDrive};
 pub use force::{Couple, Force, ForceFrame};
+pub use imposed_velocity::{ImposedVelocity, VelocityKind};
 pub use anchor::Anchor;
+pub use axial_rotation::AxialRotation;
 pub use joint::{Joint, JointKind};
