@@ -30,7 +30,7 @@ mod references;
 mod value;
 
 pub use diagnostic::MbdynError;
-pub use expr::{Variable, Variables};
-pub use model::{build, read_model, MbdynModel};
-pub use parser::{parse_file, parse_text, Document};
+pub use expr::{SetOverrides, Variable, Variables};
+pub use model::{build, read_model, read_model_text, read_model_with, MbdynModel};
+pub use parser::{parse_file, parse_file_with, parse_text, parse_text_with, Document};
 pub use value::TypedValue;

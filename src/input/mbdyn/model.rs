@@ -14,7 +14,8 @@ use super::element_context::{ElementContext, Parsed};
 use super::elements::{counted_kind, element, label_space};
 use super::laws::{constitutive_law_card, Laws};
 use super::nodes::{node_statement, Nodes};
-use super::parser::{known, parse_file, same_keyword, Block, Document, CARDS};
+use super::expr::SetOverrides;
+use super::parser::{known, parse_file_with, parse_text_with, same_keyword, Block, Document, CARDS};
 use super::problem::{data, initial_value};
 use super::references::{reference, Frames};
 use crate::model::{InitialValueProblem, Model, ModelBuilder, MotionOutput, WrittenNode};
@@ -27,7 +28,22 @@ pub struct MbdynModel {
 
 /// Reads an MBDyn input file into a model.
 pub fn read_model(path: &Path) -> Result<MbdynModel, MbdynError> {
-    let doc = parse_file(path)?;
+    read_model_with(path, &SetOverrides::new())
+}
+
+/// Reads an MBDyn input file into a model, `set:` variables overridden (a design point;
+/// a variable the file does not declare is an error).
+pub fn read_model_with(path: &Path, overrides: &SetOverrides) -> Result<MbdynModel, MbdynError> {
+    checked(parse_file_with(path, overrides)?)
+}
+
+/// [`read_model_with`] on the text of a file named `name` (includes resolve relative to its
+/// folder): a sweep's work unit is the file's text, not a path another machine may lack.
+pub fn read_model_text(text: &str, name: &Path, overrides: &SetOverrides) -> Result<MbdynModel, MbdynError> {
+    checked(parse_text_with(text, name, overrides)?)
+}
+
+fn checked(doc: Document) -> Result<MbdynModel, MbdynError> {
     let m = build(&doc)?;
     // An empty, blank or comments-only file would "run" and write empty outputs.
     if m.model.nodes.is_empty() && m.model.elements.is_empty() {
