@@ -43,6 +43,7 @@ fn static_state(model: &Model, problem: &InitialValueProblem, load_steps: usize)
     let asm = Assembler::new(model);
     let mut st = State::initial(model, &asm.dofs);
     st.t = problem.initial_time;
+    crate::solve::initial_assembly(model, &mut st, &problem.assembly).map_err(RunError::Assembly)?;
     // Static equilibrium from the straight shape needs more than MBDyn's one default
     // iteration per load step: the file's limit, at least 20.
     let settings = NewtonSettings { tolerance: problem.tolerance, norm: problem.residual_norm, max_iterations: problem.max_iterations.max(20), ..NewtonSettings::default() };

@@ -5,8 +5,8 @@
 //!
 //! Offsets and orientations are relative to their node (`reference, node` by default);
 //! the second node may refer to the first with `reference, other node` (or `other
-//! position`, `other orientation`). romdyn does not run MBDyn's initial assembly, so a
-//! constraint must hold in the initial configuration as written.
+//! position`, `other orientation`). A constraint need not hold as written: MBDyn's initial
+//! assembly (`solve::initial_assembly`) makes it hold before the run.
 
 use super::cursor::Cursor;
 use super::diagnostic::MbdynError;
@@ -15,7 +15,7 @@ use super::element_context::ElementContext;
 use super::laws::{linear_law, rest_strain, three, LinearLaw};
 use super::references::{Context, Frame, OtherSide};
 use crate::element::{Anchor, DeformableDisplacement, DeformableHinge, Distance, Drive, Element, Joint, Rod};
-use crate::kinematics::{axial_of_skew_part, Mat3, Vec3};
+use crate::kinematics::{Mat3, Vec3};
 use crate::model::{Label, StructuralNode};
 
 const SUPPORTED: [&str; 19] = [
@@ -114,9 +114,6 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             let l = length.value(t0);
             if !(l > 0.0) || l0 == 0.0 {
                 return Err(c.error_at(l_span, format!("distance: MBDyn's distance joint needs a positive distance (imposed {l} m, initial {l0:.6e} m)")));
-            }
-            if (l - l0).abs() > 1e-6 * l0.max(1.0) {
-                return Err(c.error_at(span, format!("joint {label}: its points are {l0:.6e} m apart in the initial configuration, the imposed distance is {l:.6e} m; romdyn does not run MBDyn's initial assembly, so joints must hold as written")));
             }
             Box::new(Distance { label, a: a.anchor(), b: b.anchor(), length })
         }
@@ -363,19 +360,8 @@ fn rod(offsets: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Res
     Ok(Rod { label, a: a.anchor(), b: b.anchor(), axial_stiffness: ea * rest / l0, length: rest })
 }
 
-/// Errors unless the joint's locked components hold in the initial configuration: frame A
-/// at `(p_a, Q_a)`, frame B at `(p_b, Q_b)`.
-fn assembled(j: Joint, a: &(Vec3, Mat3), b: &(Vec3, Mat3), c: &Cursor, span: super::diagnostic::Span) -> Result<Joint, MbdynError> {
-    let scale = 1.0f64.max(a.0.norm()).max(b.0.norm());
-    let gap = a.1.transpose() * (b.0 - a.0);
-    let twist = axial_of_skew_part(&(a.1.transpose() * b.1));
-    for k in 0..3 {
-        if j.position_locked[k] && gap[k].abs() > 1e-6 * scale {
-            return Err(c.error_at(span, format!("joint {}: its two points are {:.3e} m apart along the joint's axis {} in the initial configuration; romdyn does not run MBDyn's initial assembly, so joints must hold as written", j.label, gap[k], k + 1)));
-        }
-        if j.rotation_locked[k] && twist[k].abs() > 1e-6 {
-            return Err(c.error_at(span, format!("joint {}: its two frames are rotated by {:.3e} rad about the joint's axis {} in the initial configuration; romdyn does not run MBDyn's initial assembly, so joints must hold as written", j.label, twist[k], k + 1)));
-        }
-    }
+/// The joint as read: MBDyn's initial assembly (`solve::initial_assembly`, run before every
+/// analysis) makes it hold, or names it when it cannot (or when the assembly is skipped).
+fn assembled(j: Joint, _a: &(Vec3, Mat3), _b: &(Vec3, Mat3), _c: &Cursor, _span: super::diagnostic::Span) -> Result<Joint, MbdynError> {
     Ok(j)
 }

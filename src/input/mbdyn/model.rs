@@ -103,7 +103,7 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
     }
     let cards = cards(doc)?;
     let mut problem = initial_value(block(doc, "initial value"), src, &cards.drives)?;
-    let (counts, control_output) = control_data(block(doc, "control data"), src)?;
+    let (counts, control_output, assembly) = control_data(block(doc, "control data"), src)?;
     let mut nodes = Nodes::default();
     for st in block(doc, "nodes").map_or(&[][..], |b| &b.statements) {
         node_statement(st, &mut Cursor::new(st, src), &cards.frames, &mut nodes)?;
@@ -121,6 +121,8 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
             .collect(),
         every: control_output.every,
     });
+    problem.assembly = assembly;
+    problem.assembly.nodes = nodes.0.iter().filter(|n| !n.dummy).filter_map(|n| n.assembly.map(|a| (n.node.label, a))).collect();
     let mut b = ModelBuilder::new();
     for n in nodes.structural() {
         b.node(n.clone());
