@@ -15,6 +15,7 @@ mod contract;
 mod deformable;
 mod drive;
 mod force;
+mod internal_force;
 mod joint;
 
 pub use beam::{shape as beam_shape, Beam3, BeamError, BeamNode, SectionLaw, SectionOrientation};
@@ -23,5 +24,6 @@ pub use contract::{Col, Element, ElementState, JacobianSink, Label, NodeKinemati
 pub use deformable::{DeformableDisplacement, DeformableHinge, Distance, LinearViscoelastic, Rod};
 pub use drive::{Drive, TimeFunction};
 pub use force::{Couple, Force, ForceFrame};
+pub use internal_force::{InternalCouple, InternalForce, TotalInternalForce, VectorDrive};
 pub use anchor::Anchor;
 pub use joint::{Joint, JointKind};

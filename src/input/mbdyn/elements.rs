@@ -162,9 +162,19 @@ fn body(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<RigidBody,
 fn force(couple: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<dyn Element>, MbdynError> {
     let what = if couple { "couple" } else { "force" };
     let span = c.here();
-    let unsupported = ["total", "total internal", "absolute internal", "follower internal", "conservative internal", "absolute displacement", "absolute internal displacement", "abstract", "abstract internal", "modal", "external structural", "external modal", "external structural mapping", "external modal mapping"];
+    match c.accept_any(&["absolute internal", "conservative internal", "follower internal", "total internal"]) {
+        Some("follower internal") => return super::forces::internal(couple, ForceFrame::Follower, label, c, ctx),
+        Some("total internal") if !couple => return super::forces::total_internal(label, c, ctx),
+        Some("total internal") => return Err(c.error_at(span, "'total internal' is a force type (its couple is its 'moment' value), not a couple type")),
+        Some(_) => return super::forces::internal(couple, ForceFrame::Absolute, label, c, ctx),
+        None => {}
+    }
+    if c.accept("total") {
+        return Err(c.error_at(span, format!("{what} type 'total' (on one node) is not implemented by MBDyn 1.7.3 (force.cc builds only 'total internal'); write 'total internal' with a second node")));
+    }
+    let unsupported = ["absolute displacement", "absolute internal displacement", "abstract", "abstract internal", "modal", "external structural", "external modal", "external structural mapping", "external modal mapping"];
     if let Some(k) = c.accept_any(&unsupported) {
-        return Err(c.error_at(span, format!("{what} type '{k}' is not supported by romdyn (supported: absolute, follower)")));
+        return Err(c.error_at(span, format!("{what} type '{k}' is not supported by romdyn (supported: absolute, follower, absolute internal, follower internal, total internal)")));
     }
     let frame = match c.keyword(&format!("the {what} type"), &["absolute", "conservative", "follower"])? {
         "follower" => ForceFrame::Follower,

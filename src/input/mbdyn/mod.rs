@@ -17,6 +17,7 @@ mod drives;
 mod element_context;
 mod elements;
 mod expr;
+mod forces;
 mod functions;
 mod joints;
 mod laws;

@@ -1,0 +1,94 @@
+//! Forces and couples between two nodes (issue 12, point 3): `absolute internal`,
+//! `follower internal` and `total internal`, against MBDyn 1.7.3 and closed forms, and their
+//! Jacobians against finite differences.
+//!
+//! MBDyn numbers: MBDyn 1.7.3 (built from github:alex-marinov/mbdyn with
+//! shared/tools/build-mbdyn.sh), `mbdyn -f FILE -o out` on the file named, with `output
+//! precision: 15;` added to control data.
+
+use std::path::{Path, PathBuf};
+
+use romdyn::analysis::{check_model_jacobians, run, Reference, JACOBIAN_CHECK_TOLERANCE};
+use romdyn::dae::Assembler;
+use romdyn::input::mbdyn::{build, parse_text, read_model, MbdynModel};
+use romdyn::kinematics::euler123;
+
+fn path(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files").join(name)
+}
+
+fn read(name: &str) -> MbdynModel {
+    read_model(&path(name)).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Position, Euler 1-2-3 angles [deg], velocity and angular velocity of every node after
+/// the file's run, as MBDyn's .mov writes them.
+fn final_rows(m: &MbdynModel) -> Vec<[f64; 12]> {
+    let report = run(&m.model, &m.problem, &mut ()).unwrap_or_else(|e| panic!("{e}"));
+    let asm = Assembler::new(&m.model);
+    (0..m.model.nodes.len())
+        .map(|i| {
+            let k = report.final_state.node_frame(&asm.dofs, i).kin;
+            let e = euler123(&k.r).map(f64::to_degrees);
+            [k.x[0], k.x[1], k.x[2], e[0], e[1], e[2], k.xdot[0], k.xdot[1], k.xdot[2], k.omega[0], k.omega[1], k.omega[2]]
+        })
+        .collect()
+}
+
+#[test]
+fn internal_forces_and_couples_move_the_bodies_as_in_mbdyn() {
+    // MBDyn 1.7.3, internal_forces.mbd, .mov at t = 1 s, nodes 1–4.
+    let mbdyn: [[f64; 12]; 4] = [
+        [5.000000009995000e-01, 2.500000004997500e-01, 0.0, -2.051282785599113e+01, -6.247980456559010e+00, 9.589339651523066e+01, 1.000000001000019e+00, 5.000000005000096e-01, 0.0, -3.175293787441749e-01, 2.762650459479987e-01, 2.384060998714109e+00],
+        [7.499999995002978e-01, -1.250000002498750e-01, 0.0, 4.943655818942214e+01, 6.405936240373462e+01, -2.423414214257299e+01, -5.000000005000096e-01, -2.500000002500048e-01, 0.0, 1.044802001146971e+00, 2.063025250312728e+00, -8.243175347753362e-01],
+        [1.326851889089348e-02, 9.920796426928061e-01, 1.131773902494702e-01, 3.754521928451062e+01, -4.279358055173351e+01, -1.288462883728870e+02, 7.443058666996372e-02, 6.245930071014583e-02, 4.755531212267115e-02, 2.543862243597073e+00, 7.977117530257652e-01, -3.706860069736000e+00],
+        [-1.990277833634732e-02, 1.188053596076791e-02, 8.302339146251349e-01, -6.260836620559234e+01, -3.784822478121868e+01, -5.054181887344076e+01, -1.116458800050850e-01, -9.368895106574013e-02, -7.133296818479683e-02, -3.141998063584825e+00, -2.032977043682765e+00, 9.500349377002519e-01],
+    ];
+    let got = final_rows(&read("internal_forces.mbd"));
+    for (k, (g, w)) in got.iter().zip(&mbdyn).enumerate() {
+        for j in 0..12 {
+            // 1e-7 relative to the row's largest entry of that kind (MBDyn's derivatives
+            // phase leaves velocities 1e-9 off, and the steps' tolerance is 1e-9).
+            let scale = w[j / 3 * 3..j / 3 * 3 + 3].iter().fold(1.0f64, |m, x| m.max(x.abs()));
+            assert!((g[j] - w[j]).abs() < 1e-7 * scale, "node {} entry {j}: romdyn {g:?}, MBDyn {w:?}", k + 1);
+        }
+    }
+}
+
+#[test]
+fn the_total_internal_force_pushes_along_its_line_and_its_couple_spins() {
+    // Closed forms (constant loads from rest, no rotation of the force's frame): node 3
+    // (1.5 kg) moves F t²/(2 m) with F = √2 (1, −1, 0) N, node 2 (2 kg) the opposite way;
+    // node 4 (J_zz = 0.2) spins up at M/J = 1.5 rad/s², node 5 (J_zz = 0.4) at −0.75.
+    let got = final_rows(&read("total_internal_force.mbd"));
+    let r = 2f64.sqrt();
+    let want_x = [[1.0 - r / 4.0, r / 4.0], [r / 3.0, 1.0 - r / 3.0]];
+    for k in 0..2 {
+        assert!((got[k][0] - want_x[k][0]).abs() < 1e-12 && (got[k][1] - want_x[k][1]).abs() < 1e-12, "node {}: {:?}", k + 2, got[k]);
+        assert!(got[k][5].abs() < 1e-9, "no moment on the line of the force: {:?}", got[k]);
+    }
+    assert!((got[2][11] - 1.5).abs() < 1e-12 && (got[3][11] + 0.75).abs() < 1e-12, "{:?} {:?}", got[2], got[3]);
+    // Angles ½ α t²: 0.75 rad and −0.375 rad; the integrator's rotation error is 4e-8 rad.
+    assert!((got[2][5].to_radians() - 0.75).abs() < 1e-7 && (got[3][5].to_radians() + 0.375).abs() < 1e-7, "{:?} {:?}", got[2], got[3]);
+}
+
+#[test]
+fn internal_force_jacobians_agree_with_finite_differences() {
+    // At t = 0.5 s, where every node has turned: each element's J(c) against central
+    // differences of its residual (romdyn check's tolerance, 1e-6).
+    for name in ["internal_forces.mbd", "total_internal_force.mbd"] {
+        let m = read(name);
+        let check = check_model_jacobians(&m.model, &m.problem, Reference::At(0.5), JACOBIAN_CHECK_TOLERANCE).unwrap_or_else(|e| panic!("{e}"));
+        assert!(check.passed(), "{name}:\n{}", check.to_text());
+        let forces = check.elements.iter().filter(|e| e.element.contains("internal")).count();
+        assert_eq!(forces, if name == "internal_forces.mbd" { 4 } else { 2 }, "{}", check.to_text());
+    }
+}
+
+#[test]
+fn a_total_force_on_one_node_is_refused_as_mbdyn_refuses_it() {
+    // MBDyn 1.7.3 (force.cc, ReadForce) builds a total force only between two nodes.
+    let text = std::fs::read_to_string(path("total_internal_force.mbd")).unwrap().replace("force: 1, total internal, 3,", "force: 1, total, 3,");
+    let e = parse_text(&text, &path("total_internal_force.mbd")).and_then(|d| build(&d)).map(|_| ()).unwrap_err().to_string();
+    assert!(e.contains("total_internal_force.mbd:") && e.contains("'total' (on one node) is not implemented by MBDyn 1.7.3"), "{e}");
+}
