@@ -11,6 +11,7 @@
 mod anchor;
 mod beam;
 mod body;
+mod central_gravity;
 mod contract;
 mod deformable;
 mod drive;
@@ -20,6 +21,7 @@ mod joint;
 
 pub use beam::{shape as beam_shape, Beam3, BeamError, BeamNode, SectionLaw, SectionOrientation};
 pub use body::RigidBody;
+pub use central_gravity::CentralGravity;
 pub use contract::{Col, Element, ElementState, JacobianSink, Label, NodeKinematics, ResidualSink, Row, SectionState};
 pub use deformable::{DeformableDisplacement, DeformableHinge, Distance, LinearViscoelastic, Rod};
 pub use drive::{Drive, TimeFunction};

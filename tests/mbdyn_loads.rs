@@ -1,6 +1,6 @@
-//! Forces and couples between two nodes (issue 12, point 3): `absolute internal`,
-//! `follower internal` and `total internal`, against MBDyn 1.7.3 and closed forms, and their
-//! Jacobians against finite differences.
+//! Loads of issue 12, point 3: forces and couples between two nodes (`absolute internal`,
+//! `follower internal`, `total internal`) and central gravity, against MBDyn 1.7.3 and
+//! closed forms, and their Jacobians against finite differences.
 //!
 //! MBDyn numbers: MBDyn 1.7.3 (built from github:alex-marinov/mbdyn with
 //! shared/tools/build-mbdyn.sh), `mbdyn -f FILE -o out` on the file named, with `output
@@ -91,4 +91,34 @@ fn a_total_force_on_one_node_is_refused_as_mbdyn_refuses_it() {
     let text = std::fs::read_to_string(path("total_internal_force.mbd")).unwrap().replace("force: 1, total internal, 3,", "force: 1, total, 3,");
     let e = parse_text(&text, &path("total_internal_force.mbd")).and_then(|d| build(&d)).map(|_| ()).unwrap_err().to_string();
     assert!(e.contains("total_internal_force.mbd:") && e.contains("'total' (on one node) is not implemented by MBDyn 1.7.3"), "{e}");
+}
+
+#[test]
+fn satellites_of_a_central_mass_keep_their_circular_orbits_as_in_mbdyn() {
+    let m = read("central_gravity.mbd");
+    let got = final_rows(&m);
+    // MBDyn 1.7.3, central_gravity.mbd, .mov at its last step (t = 6.01 s: MBDyn's step
+    // count), nodes 1 and 2: position and velocity.
+    let mbdyn = [
+        [1.818638607165426e-01, 9.998346112118742e+00, 0.0, -2.582950386237261e+00, 4.698230264946786e-02, 0.0],
+        [1.043550258534162e+01, 0.0, 1.706166127342225e+01, 1.558347173539495e+00, 0.0, -9.531390716429995e-01],
+    ];
+    let gm = 1e12 * 6.67384e-11;
+    for (k, (radius, w)) in [(10.0f64, &mbdyn[0]), (20.0, &mbdyn[1])].into_iter().enumerate() {
+        let g = got[k];
+        let (x, v) = ([g[0], g[1], g[2]], [g[6], g[7], g[8]]);
+        for j in 0..3 {
+            // 1e-8 of the radius and of the orbital speed.
+            assert!((x[j] - w[j]).abs() < 1e-8 * radius && (v[j] - w[3 + j]).abs() < 1e-8 * (gm / radius).sqrt(), "node {}: {g:?} against MBDyn {w:?}", k + 1);
+        }
+        // Closed form: the circle at ω = sqrt(G M / r³); the step of 10 ms (ω h = 2.6e-3
+        // and 9e-4) leaves a phase error below 2e-6 of the radius.
+        let phase = (gm / radius.powi(3)).sqrt() * 6.01;
+        let want = if k == 0 { [radius * phase.cos(), radius * phase.sin(), 0.0] } else { [radius * phase.sin(), 0.0, radius * phase.cos()] };
+        for j in 0..3 {
+            assert!((x[j] - want[j]).abs() < 2e-6 * radius, "node {}: {x:?} against the circle {want:?}", k + 1);
+        }
+    }
+    let check = check_model_jacobians(&m.model, &m.problem, Reference::At(3.0), JACOBIAN_CHECK_TOLERANCE).unwrap_or_else(|e| panic!("{e}"));
+    assert!(check.passed() && check.elements.iter().filter(|e| e.element.contains("central gravity")).count() == 2, "{}", check.to_text());
 }
