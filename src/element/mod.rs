@@ -23,7 +23,7 @@ pub use beam::{shape as beam_shape, Beam3, BeamError, BeamNode, SectionLaw, Sect
 pub use body::RigidBody;
 pub use central_gravity::CentralGravity;
 pub use contract::{Col, Element, ElementState, JacobianSink, Label, NodeKinematics, ResidualSink, Row, SectionState};
-pub use deformable::{DeformableDisplacement, DeformableHinge, Distance, LinearViscoelastic, Rod};
+pub use deformable::{DeformableDisplacement, DeformableHinge, Distance, LinearViscoelastic, Rod, RodViscosity};
 pub use drive::{Drive, TimeFunction};
 pub use force::{Couple, Force, ForceFrame};
 pub use internal_force::{InternalCouple, InternalForce, TotalInternalForce, VectorDrive};

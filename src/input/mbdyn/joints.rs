@@ -14,7 +14,7 @@ use super::drives::{single_term, template_vec3};
 use super::element_context::ElementContext;
 use super::laws::{linear_law, rest_strain, three, LinearLaw};
 use super::references::{Context, Frame, OtherSide};
-use crate::element::{Anchor, DeformableDisplacement, DeformableHinge, Distance, Drive, Element, Joint, Rod};
+use crate::element::{Anchor, DeformableDisplacement, DeformableHinge, Distance, Drive, Element, Joint, Rod, RodViscosity};
 use crate::kinematics::{Mat3, Vec3};
 use crate::model::{Label, StructuralNode};
 
@@ -329,7 +329,8 @@ fn constraint(c: &mut Cursor, ctx: &ElementContext, kind: &str, words: &[&'stati
 }
 
 /// `rod, NODE1, [position, O1,] NODE2, [position, O2,] {L0 | from nodes}, LAW` and `rod with
-/// offset, NODE1, O1, NODE2, O2, …` (input manual, §Rod): `F = EA (l − l₀)/l₀`; a
+/// offset, NODE1, O1, NODE2, O2, …` (input manual, §Rod): `F = EA (l − l₀)/l₀` plus,
+/// with a viscous or viscoelastic law, `C ε̇`; a
 /// prestrain `ε_p` and a prestress `F_p` shift the rest length to `l₀ (1 + ε_p − F_p/EA)`.
 fn rod(offsets: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Rod, MbdynError> {
     let position = if offsets { Position::Always } else { Position::IfKeyword };
@@ -346,18 +347,20 @@ fn rod(offsets: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Res
     }
     let law_span = c.here();
     let law: LinearLaw = linear_law(c, 1, ctx.laws, ctx.drives, ctx.seq)?;
-    let ea = law.stiffness[(0, 0)];
-    if !law.is_elastic() {
-        return Err(c.error_at(law_span, "romdyn's rod is elastic: a viscous rod law is not supported"));
+    let (ea, viscosity) = (law.stiffness[(0, 0)], law.viscosity[(0, 0)]);
+    if ea < 0.0 || viscosity < 0.0 || ea + viscosity == 0.0 {
+        return Err(c.error_at(law_span, format!("rod: the axial stiffness EA [N] and viscosity [N s] must not be negative, nor both zero (found {ea}, {viscosity})")));
     }
-    if ea <= 0.0 {
-        return Err(c.error_at(law_span, format!("rod axial stiffness EA must be positive, found {ea}")));
+    if ea == 0.0 && law.prestress[0] != 0.0 {
+        return Err(c.error_at(law_span, "rod: a prestress needs an axial stiffness in romdyn (it becomes a rest length)"));
     }
-    let rest = l0 * (1.0 + law.prestrain[0] - law.prestress[0] / ea);
+    let rest = if ea == 0.0 { l0 } else { l0 * (1.0 + law.prestrain[0] - law.prestress[0] / ea) };
     if rest <= 0.0 {
         return Err(c.error_at(law_span, "rod: prestrain and prestress leave no positive rest length"));
     }
-    Ok(Rod { label, a: a.anchor(), b: b.anchor(), axial_stiffness: ea * rest / l0, length: rest })
+    // The viscous part acts on MBDyn's strain rate d·ḋ/(l l₀) (rodj.cc, ViscoElasticRod).
+    let viscous = (viscosity > 0.0).then_some(RodViscosity { coefficient: viscosity, length: l0 });
+    Ok(Rod { label, a: a.anchor(), b: b.anchor(), axial_stiffness: ea * rest / l0, length: rest, viscous })
 }
 
 /// The joint as read: MBDyn's initial assembly (`solve::initial_assembly`, run before every
