@@ -1,6 +1,6 @@
 //! Loads of issue 12, point 3: forces and couples between two nodes (`absolute internal`,
-//! `follower internal`, `total internal`), central gravity and viscous and viscoelastic
-//! rods, against MBDyn 1.7.3 and closed forms, and their Jacobians against finite
+//! `follower internal`, `total internal`), central gravity, viscous and viscoelastic rods
+//! and scalar functions (cards, drive caller, `scalar function elastic` rods), against MBDyn 1.7.3 and closed forms, and their Jacobians against finite
 //! differences.
 //!
 //! MBDyn numbers: MBDyn 1.7.3 (built from github:alex-marinov/mbdyn with
@@ -148,4 +148,42 @@ fn viscous_and_viscoelastic_rods_damp_as_the_oscillator_and_as_mbdyn() {
     assert!((got[1][0] - 0.9663148319409587).abs() < 5e-6 && (got[1][6] - 0.18534570698460584).abs() < 5e-5, "{:?}", got[1]);
     let check = check_model_jacobians(&m.model, &m.problem, Reference::At(0.5), JACOBIAN_CHECK_TOLERANCE).unwrap_or_else(|e| panic!("{e}"));
     assert!(check.passed() && check.elements.iter().filter(|e| e.element.starts_with("rod")).count() == 3, "{}", check.to_text());
+}
+
+#[test]
+fn scalar_functions_drive_a_force_and_make_a_rod_law_as_in_mbdyn() {
+    let m = read("scalar_functions.mbd");
+    let got = final_rows(&m);
+    // MBDyn 1.7.3, scalar_functions.mbd, .mov at t = 1 s: node 2's x and ẋ (the
+    // multilinear rod), node 3's x and ẋ, node 4's z and ż.
+    let mbdyn = [(1, 0, 9.246313752732457e-01, 9.033477102924566e+00), (2, 0, 4.424745664906943e-01, 1.192474530966040e+00), (3, 2, 3.333333830604273e-01, 8.333332346367369e-01)];
+    for (k, j, x, v) in mbdyn {
+        // 1e-7 (measured 1e-8: the law's kinks at the breakpoints).
+        assert!((got[k][j] - x).abs() < 1e-7 && (got[k][6 + j] - v).abs() < 1e-7, "node {}: {:?} against MBDyn {x}, {v}", k + 1, got[k]);
+    }
+    // Closed forms for the pushed unit masses from rest, x(1) = ∫₀¹ (1 − s) f(s) ds and
+    // ẋ(1) = ∫₀¹ f: f = 0.5 eˢ + s² gives 0.5 (e − 2) + 1/12 and 0.5 (e − 1) + 1/3; the
+    // chebychev series 1 + 0.5 ξ − 0.25 (2ξ² − 1), ξ = s − 1, is 0.25 + 1.5 s − 0.5 s²:
+    // 1/3 and 5/6. The 1 ms step's error, of order h² f''/12, is 3e-7 on the first (measured
+    // 3.2e-7 and 2.8e-7) and 5e-10 on the second.
+    let e = std::f64::consts::E;
+    assert!((got[2][0] - (0.5 * (e - 2.0) + 1.0 / 12.0)).abs() < 1e-6 && (got[2][6] - (0.5 * (e - 1.0) + 1.0 / 3.0)).abs() < 1e-6, "{:?}", got[2]);
+    assert!((got[3][2] - 1.0 / 3.0).abs() < 1e-8 && (got[3][8] - 5.0 / 6.0).abs() < 1e-8, "{:?}", got[3]);
+    let check = check_model_jacobians(&m.model, &m.problem, Reference::At(0.5), JACOBIAN_CHECK_TOLERANCE).unwrap_or_else(|e| panic!("{e}"));
+    assert!(check.passed(), "{}", check.to_text());
+}
+
+#[test]
+fn scalar_function_cards_are_checked_as_mbdyn_checks_them() {
+    let base = std::fs::read_to_string(path("scalar_functions.mbd")).unwrap();
+    for (old, new, want) in [
+        ("-.5, -70.,\n    0., 0.,", "-.5, -70.,\n    -.5, 0.,", "multilinear scalar function: the x values must increase, found -0.5 then -0.5"),
+        ("\"push\", sum, \"half exp\"", "\"push\", sum, \"half exps\"", "scalar function \"half exps\" is not defined"),
+        ("\"spring\", multilinear,", "\"spring\", cubic spline,", "the 'cubic spline' scalar function is not supported by romdyn"),
+        ("scalar function: \"half exp\", exp, .5;", "scalar function: \"half exp\", log, base, -2., .5;", "log scalar function: the base must be positive, found -2"),
+    ] {
+        assert!(base.contains(old), "{old}");
+        let e = parse_text(&base.replace(old, new), &path("scalar_functions.mbd")).and_then(|d| build(&d)).map(|_| ()).unwrap_err().to_string();
+        assert!(e.contains("scalar_functions.mbd:") && e.contains(want), "{e}");
+    }
 }

@@ -135,7 +135,7 @@ impl Element for DeformableHinge {
 }
 
 /// Axial spring–damper between two points (MBDyn's `rod`, rodj.cc): `N = (EA/l₀)(l − l₀)`
-/// plus, for a viscous or viscoelastic law, `C ε̇` with `ε̇ = d·ḋ/(l L₀)` (MBDyn's
+/// (or a function of the strain) plus, for a viscous or viscoelastic law, `C ε̇` with `ε̇ = d·ḋ/(l L₀)` (MBDyn's
 /// `ViscoElasticRod`), along the line of the points, applied at each point.
 #[derive(Clone, Debug)]
 pub struct Rod {
@@ -147,6 +147,9 @@ pub struct Rod {
     /// Unstretched length l₀ [m].
     pub length: f64,
     pub viscous: Option<RodViscosity>,
+    /// A nonlinear elastic law `N = f(l/l₀ − 1)` [N] (MBDyn's `scalar function elastic`),
+    /// in place of `EA`.
+    pub elastic: Option<super::ScalarFunction>,
 }
 
 /// The viscous part of a rod's law.
@@ -159,8 +162,16 @@ pub struct RodViscosity {
 }
 
 impl Rod {
-    /// `F = (EA/l₀)(1 − l₀/l) d` (the force on A from B's side) and `∂F/∂d`.
+    /// `F = (EA/l₀)(1 − l₀/l) d` (the force on A from B's side), or `F = f(ε) d/l` with
+    /// `ε = l/l₀ − 1`, and `∂F/∂d`.
     fn force(&self, d: &Vec3) -> (Vec3, Mat3) {
+        if let Some(f) = &self.elastic {
+            let l = d.norm();
+            let e = d / l;
+            let (n, dn) = f.value_and_derivative(l / self.length - 1.0);
+            let ee = e * e.transpose();
+            return (n * e, n / l * (Mat3::identity() - ee) + dn / self.length * ee);
+        }
         let (k, l0, l) = (self.axial_stiffness / self.length, self.length, d.norm());
         (k * (1.0 - l0 / l) * d, k * ((1.0 - l0 / l) * Mat3::identity() + (l0 / l.powi(3)) * d * d.transpose()))
     }

@@ -18,6 +18,7 @@ mod drive;
 mod force;
 mod internal_force;
 mod joint;
+mod scalar_function;
 
 pub use beam::{shape as beam_shape, Beam3, BeamError, BeamNode, SectionLaw, SectionOrientation};
 pub use body::RigidBody;
@@ -29,3 +30,4 @@ pub use force::{Couple, Force, ForceFrame};
 pub use internal_force::{InternalCouple, InternalForce, TotalInternalForce, VectorDrive};
 pub use anchor::Anchor;
 pub use joint::{Joint, JointKind};
+pub use scalar_function::ScalarFunction;

@@ -346,6 +346,11 @@ fn rod(offsets: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Res
         return Err(c.error_at(span, format!("rod length must be positive, found {l0}")));
     }
     let law_span = c.here();
+    // `scalar function elastic [isotropic | orthotropic], FUNCTION`: N = f(ε).
+    if c.accept("scalar function elastic isotropic") || c.accept("scalar function elastic orthotropic") || c.accept("scalar function elastic") {
+        let f = super::scalar_functions::scalar_function(c, &ctx.drives.functions, ctx.seq)?;
+        return Ok(Rod { label, a: a.anchor(), b: b.anchor(), axial_stiffness: 0.0, length: l0, viscous: None, elastic: Some(f) });
+    }
     let law: LinearLaw = linear_law(c, 1, ctx.laws, ctx.drives, ctx.seq)?;
     let (ea, viscosity) = (law.stiffness[(0, 0)], law.viscosity[(0, 0)]);
     if ea < 0.0 || viscosity < 0.0 || ea + viscosity == 0.0 {
@@ -360,7 +365,7 @@ fn rod(offsets: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Res
     }
     // The viscous part acts on MBDyn's strain rate d·ḋ/(l l₀) (rodj.cc, ViscoElasticRod).
     let viscous = (viscosity > 0.0).then_some(RodViscosity { coefficient: viscosity, length: l0 });
-    Ok(Rod { label, a: a.anchor(), b: b.anchor(), axial_stiffness: ea * rest / l0, length: rest, viscous })
+    Ok(Rod { label, a: a.anchor(), b: b.anchor(), axial_stiffness: ea * rest / l0, length: rest, viscous, elastic: None })
 }
 
 /// The joint as read: MBDyn's initial assembly (`solve::initial_assembly`, run before every

@@ -28,6 +28,7 @@ mod orientation;
 mod parser;
 mod problem;
 mod references;
+mod scalar_functions;
 mod value;
 
 pub use diagnostic::MbdynError;

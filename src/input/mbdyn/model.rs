@@ -69,6 +69,7 @@ fn cards(doc: &Document) -> Result<Cards, MbdynError> {
             Some("reference") => reference(st, &mut c, &mut out.frames)?,
             Some("drive caller") => drive_caller_card(st, &mut c, &mut out.drives)?,
             Some("constitutive law") => constitutive_law_card(st, &mut c, &mut out.laws, &out.drives)?,
+            Some("scalar function") => super::scalar_functions::scalar_function_card(&mut c, &mut out.drives.functions, st.seq)?,
             Some("setenv" | "print symbol table") => {}
             Some(other) => return Err(c.error_at(st.span, format!("'{other}' cards are not supported by romdyn"))),
             None => return Err(c.error_at(st.span, format!("unknown card '{}'", st.keyword))),
