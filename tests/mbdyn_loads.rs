@@ -165,10 +165,10 @@ fn scalar_functions_drive_a_force_and_make_a_rod_law_as_in_mbdyn() {
     // ẋ(1) = ∫₀¹ f: f = 0.5 eˢ + s² gives 0.5 (e − 2) + 1/12 and 0.5 (e − 1) + 1/3; the
     // chebychev series 1 + 0.5 ξ − 0.25 (2ξ² − 1), ξ = s − 1, is 0.25 + 1.5 s − 0.5 s²:
     // 1/3 and 5/6. The 1 ms step's error, of order h² f''/12, is 3e-7 on the first (measured
-    // 3.2e-7 and 2.8e-7) and 5e-10 on the second.
+    // 3.2e-7 and 2.8e-7) and 1e-7 on the second (measured 5e-8 and 1e-7).
     let e = std::f64::consts::E;
     assert!((got[2][0] - (0.5 * (e - 2.0) + 1.0 / 12.0)).abs() < 1e-6 && (got[2][6] - (0.5 * (e - 1.0) + 1.0 / 3.0)).abs() < 1e-6, "{:?}", got[2]);
-    assert!((got[3][2] - 1.0 / 3.0).abs() < 1e-8 && (got[3][8] - 5.0 / 6.0).abs() < 1e-8, "{:?}", got[3]);
+    assert!((got[3][2] - 1.0 / 3.0).abs() < 1e-6 && (got[3][8] - 5.0 / 6.0).abs() < 1e-6, "{:?}", got[3]);
     let check = check_model_jacobians(&m.model, &m.problem, Reference::At(0.5), JACOBIAN_CHECK_TOLERANCE).unwrap_or_else(|e| panic!("{e}"));
     assert!(check.passed(), "{}", check.to_text());
 }
