@@ -2,6 +2,8 @@
 //! (eqs. 92–95), imposed motion and transmissibility (eqs. 96–100), each against a closed
 //! form.
 
+mod common;
+
 use faer::c64;
 use romdyn::dae::ports::{Direction, Excitation, InputPort, Measurement, OutputPort, Point, PortMap};
 use romdyn::dae::{element_part, linearize_ports, Assembler, State};
@@ -298,5 +300,62 @@ fn a_bad_ports_file_names_file_line_and_column_and_the_cli_takes_ports() {
     let table = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     assert!(table.contains("table pitch (ry) 100 %"), "{table}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `--remove-spring` from the command line: the inverted pendulum (CASES C3) held upright by a
+/// torsional spring kθ = 2 m g L (a dummy spring, eq. 94); removing it gives the free model's
+/// real pair ±sqrt(m g L / I_O) = ±3.130527 rad/s (closed form, CASES C3; printed to 6 digits).
+#[test]
+fn the_cli_removes_a_dummy_spring_and_prints_the_free_pendulums_real_pair() {
+    let dir = common::cli::temp_dir("remove-spring");
+    let text = common::cli::example_variant(
+        "inverted_pendulum.mbd",
+        &[
+            ("    joints: 2;", "    joints: 3;"),
+            ("    body: 3,", "    joint: 4, deformable hinge, 1, 2, linear elastic isotropic, 2. * M * 9.81 * L;\n    body: 3,"),
+        ],
+    );
+    let file = common::cli::write_file(&dir, "held.mbd", &text);
+    let mat = dir.join("free.mat");
+    let mat_s = mat.to_string_lossy().into_owned();
+    let args = ["rom", file.as_str(), "--static", "--input", "2:Mz", "--output", "2:rz", "--count", "1"];
+    // With the spring: a stable pair at ±j sqrt((kθ − m g L)/I_O) = ±3.130527 j.
+    // The report goes to stderr (stdout carries the ROM itself when there is no -o).
+    let (ok, _, held) = common::cli::romdyn(&args);
+    assert!(ok, "{held}");
+    assert!(held.contains("±3.130527e0"), "{held}");
+    let mut removed = args.to_vec();
+    removed.extend(["--remove-spring", "4", "-o", mat_s.as_str()]);
+    let (ok, _, free) = common::cli::romdyn(&removed);
+    assert!(ok, "{free}");
+    assert!(mat.exists());
+    // Both signs of the real pair are the ROM's eigenvalues, the positive one called unstable.
+    assert!(free.contains("deformable hinge 4"), "{free}");
+    assert!(free.contains(" 3.130527e0 +0.000000e0j     0.498239 Hz   real, unstable"), "{free}");
+    assert!(free.contains("-3.130527e0 +0.000000e0j     0.498239 Hz   real\n"), "{free}");
+    // A label that is not a spring is refused, naming it.
+    let mut bad = args.to_vec();
+    bad.extend(["--remove-spring", "3"]);
+    let (ok, _, err) = common::cli::romdyn(&bad);
+    assert!(!ok && err.contains("body 3") && err.contains("cannot be removed as a spring"), "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// MBDyn's `name, "…"` after a node label names the node in the modal table's label column
+/// (issue 11: mode labels from the model file, a ports file's names take precedence). The
+/// pendulum's mode is the bob's horizontal swing (closed form: ±j sqrt(g/L) = ±3.130527 j).
+#[test]
+fn node_names_from_the_mbdyn_file_label_the_modes() {
+    let dir = common::cli::temp_dir("node-names");
+    let text = common::cli::pendulum_variant(&[(common::cli::PENDULUM_NODE, "    structural: 2, name, \"bob\", dynamic, 0., -L, 0., eye, null, null;")]);
+    let file = common::cli::write_file(&dir, "named.mbd", &text);
+    let (ok, table, err) = common::cli::romdyn(&["eig", file.as_str()]);
+    assert!(ok, "{err}");
+    let row = table.lines().find(|l| l.contains("±3.130527e0")).unwrap_or_else(|| panic!("{table}"));
+    assert!(row.contains("bob horizontal (x) 100 %"), "{table}");
+    // Without names there is no label column.
+    let (ok, plain, _) = common::cli::romdyn(&["eig", "examples/pendulum.mbd"]);
+    assert!(ok && !plain.contains("label"), "{plain}");
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -269,6 +269,7 @@ impl ModalAnalysis {
         let norms = (balanced.a.norm_l2(), balanced.b.norm_l2());
 
         let n = a.nrows();
+        let fyd_norm = fyd.norm_l2();
         let mut units: Vec<Vec<Mode>> = Vec::with_capacity(n);
         let mut k = 0;
         while k < n {
@@ -282,7 +283,7 @@ impl ModalAnalysis {
             }
             let (right, left) = match vectors {
                 Some(w) if class.kind != ModeKind::Infinite => {
-                    let (v, u) = normalize(&balanced.unscale_right(&w.v), &balanced.unscale_left(&w.u), |x| mul_real_complex(&fyd, x), fyd.norm_l2());
+                    let (v, u) = normalize(&balanced.unscale_right(&w.v), &balanced.unscale_left(&w.u), |x| mul_real_complex(&fyd, x), fyd_norm);
                     (Some(v), Some(u))
                 }
                 _ => (None, None),

@@ -24,11 +24,12 @@ pub struct ModelBuilder {
     elements: Vec<Box<dyn Element>>,
     gravity: Option<Vec3>,
     form: ConstraintForm,
+    node_names: std::collections::BTreeMap<Label, String>,
 }
 
 impl Default for ModelBuilder {
     fn default() -> Self {
-        ModelBuilder { nodes: Vec::new(), elements: Vec::new(), gravity: None, form: ConstraintForm::Scaled }
+        ModelBuilder { nodes: Vec::new(), elements: Vec::new(), gravity: None, form: ConstraintForm::Scaled, node_names: Default::default() }
     }
 }
 
@@ -65,6 +66,12 @@ impl ModelBuilder {
 
     pub fn boxed_element(&mut self, element: Box<dyn Element>) -> &mut Self {
         self.elements.push(element);
+        self
+    }
+
+    /// A human name for node `label` (MBDyn's `name, "…"`), used in mode labels.
+    pub fn node_name(&mut self, label: Label, name: impl Into<String>) -> &mut Self {
+        self.node_names.insert(label, name.into());
         self
     }
 
@@ -110,6 +117,7 @@ impl ModelBuilder {
             gravity: self.gravity.unwrap_or_else(Vec3::zeros),
             has_gravity: self.gravity.is_some(),
             constraint_form: self.form,
+            node_names: self.node_names,
         })
     }
 }

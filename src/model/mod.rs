@@ -54,6 +54,9 @@ pub struct Model {
     /// Layout of the constraint equations (eq. 29 or eq. 30) used by dynamics and
     /// linearization; static analysis always uses the plain form.
     pub constraint_form: ConstraintForm,
+    /// Names of nodes given in the input (MBDyn's `name, "…"` after a node label), for mode
+    /// labels; a ports file's `names` take precedence.
+    pub node_names: std::collections::BTreeMap<Label, String>,
     /// Index in `nodes` of each node label.
     node_indices: HashMap<Label, usize>,
 }

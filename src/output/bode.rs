@@ -120,6 +120,20 @@ pub(super) fn tick_label(x: f64) -> String {
     }
 }
 
+/// A tick label on a log frequency axis spanning `decades`: over more than one and a half
+/// decades only the 1-2-5 ticks of each decade are labelled (plotters puts a tick at every
+/// integer multiple, whose labels "80", "90", "100" ran into each other), the others keep
+/// their grid line and an empty label.
+pub(super) fn log_tick_label(x: f64, decades: f64) -> String {
+    if decades > 1.5 {
+        let mantissa = x.abs() / 10f64.powf(x.abs().log10().floor());
+        if ![1.0, 2.0, 5.0, 10.0].iter().any(|m| (mantissa - m).abs() < 1e-6 * m) {
+            return String::new();
+        }
+    }
+    tick_label(x)
+}
+
 /// Largest |value| of a curve.
 fn peak(c: &ResponseCurve) -> f64 {
     c.values.iter().map(|v| v.norm()).fold(0.0, f64::max)
@@ -197,7 +211,7 @@ fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, series: &[(&Res
         .axis_desc_style((FONT, font + 2))
         .label_style((FONT, font))
         .x_labels(if font > 16 { 12 } else { 6 })
-        .x_label_formatter(&|x| tick_label(*x))
+        .x_label_formatter(&|x| log_tick_label(*x, (x_range.1 / x_range.0).log10()))
         .light_line_style(RGBColor(235, 235, 235))
         .draw()
         .map_err(|e| err(&e))?;
@@ -287,4 +301,19 @@ pub fn write_bode(plot: &BodePlot, svg_path: &Path, png_path: &Path) -> Result<(
         return Err(OutputError::Invalid { path: svg_path.to_path_buf(), message: "no curve to plot".into() });
     }
     write_figure(plot, plot_size(plot), svg_path, png_path)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::log_tick_label;
+
+    /// Over three decades only 1-2-5 ticks carry a label; over less than one all of them do.
+    #[test]
+    fn log_ticks_label_one_two_five() {
+        let labels: Vec<String> = [10.0, 20.0, 30.0, 50.0, 90.0, 100.0].iter().map(|&x| log_tick_label(x, 3.0)).collect();
+        assert_eq!(labels, ["10", "20", "", "50", "", "100"]);
+        assert_eq!(log_tick_label(0.3, 3.0), "");
+        assert_eq!(log_tick_label(0.2, 3.0), "0.2");
+        assert_eq!(log_tick_label(30.0, 0.8), "30");
+    }
 }

@@ -11,7 +11,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::atomic::{write_atomic_bytes, OutputError};
-use super::bode::tick_label;
+use super::bode::log_tick_label;
 use super::figure::{write_figure, Figure, COLORS, FONT};
 use super::prefixed_path;
 
@@ -126,7 +126,7 @@ impl Figure for MimoPlot {
                 .configure_mesh()
                 .x_labels(5)
                 .y_labels(5)
-                .x_label_formatter(&|x| tick_label(*x))
+                .x_label_formatter(&|x| log_tick_label(*x, (fhi / flo).log10()))
                 .y_label_formatter(&|y| format!("{y:.0e}"))
                 .label_style((FONT, 12))
                 .x_desc(if i + 1 == self.outputs.len() || self.diagonal { "Hz" } else { "" })

@@ -107,8 +107,11 @@ impl Study {
     /// One label per mode ("table pitch (ry) 93 %") from the kinetic-energy shares and the
     /// node names; `None` for modes without shares.
     pub fn mode_labels(&self) -> Vec<Option<String>> {
-        let empty = BTreeMap::new();
-        let names = self.application.as_ref().map_or(&empty, |a| &a.names);
+        let mut names = self.model.as_ref().map(|m| m.node_names.clone()).unwrap_or_default();
+        if let Some(a) = &self.application {
+            names.extend(a.names.iter().map(|(k, v)| (*k, v.clone())));
+        }
+        let names = &names;
         let gravity = self.model.as_ref().map(|m| m.gravity).unwrap_or_default();
         self.energy().iter().map(|s| mode_label(s, names, &gravity)).collect()
     }

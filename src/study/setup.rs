@@ -162,9 +162,11 @@ impl Study {
         }
     }
 
-    /// The modal table with kinetic-energy shares.
+    /// The modal table with kinetic-energy shares, and a label column when nodes have names
+    /// (in the model file or a ports file) or ports are given.
     pub fn modal_report(&self) -> ModalReport {
         let report = ModalReport::new(&self.modal, self.dae.dim()).with_energy(self.energy());
-        if self.application.is_some() { report.with_labels(self.mode_labels()) } else { report }
+        let named = self.model.as_ref().is_some_and(|m| !m.node_names.is_empty());
+        if self.application.is_some() || named { report.with_labels(self.mode_labels()) } else { report }
     }
 }

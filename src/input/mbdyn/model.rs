@@ -128,6 +128,11 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
     for n in nodes.structural() {
         b.node(n.clone());
     }
+    for n in &nodes.0 {
+        if let Some(name) = &n.name {
+            b.node_name(n.node.label, name.clone());
+        }
+    }
     let mut found: HashMap<&'static str, (usize, Span)> = HashMap::new();
     found.insert("structural nodes", (nodes.0.len(), block(doc, "nodes").map_or(first, |b| b.span)));
     let mut labels: HashMap<(&'static str, u32), Span> = HashMap::new();

@@ -29,6 +29,8 @@ pub struct NodeEntry {
     pub orientation: Option<OrientationOutput>,
     /// `assembly, POSITION, VELOCITY, OMEGA_ROTATES`: its own initial-assembly penalties.
     pub assembly: Option<NodeAssembly>,
+    /// `name, "…"` after the label.
+    pub name: Option<String>,
 }
 
 /// The structural nodes, in file order.
@@ -62,9 +64,7 @@ pub fn node_statement(st: &Statement, c: &mut Cursor, frames: &Frames, nodes: &m
     if let Some(prev) = nodes.find(label) {
         return Err(c.error_at(label_span, format!("structural node {label} is defined twice (first at line {})", prev.span.line)));
     }
-    if c.accept("name") {
-        c.string("node name")?;
-    }
+    let name = if c.accept("name") { Some(c.string("node name")?) } else { None };
     let kind_span = c.here();
     let kind = c.keyword("the node type", &["static", "dynamic", "dummy", "modal", "static displacement", "dynamic displacement"])?;
     let ctx = Context::global(frames, st.seq);
@@ -81,7 +81,7 @@ pub fn node_statement(st: &Statement, c: &mut Cursor, frames: &Frames, nodes: &m
     };
     let (output, assembly) = settings(c)?;
     c.finish()?;
-    nodes.0.push(NodeEntry { node, dummy, span: st.span, source, output, orientation, assembly });
+    nodes.0.push(NodeEntry { node, dummy, span: st.span, source, output, orientation, assembly, name });
     Ok(())
 }
 
