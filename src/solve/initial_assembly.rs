@@ -272,14 +272,14 @@ impl Problem<'_> {
             }
         }
         let eps = 1e-6 * self.t.abs().max(1.0);
+        let (mut plus, mut minus) = (vec![0.0; self.layout.len], vec![0.0; self.layout.len]);
         for k in (0..self.layout.elements.len()).filter(|&k| !self.layout.element(k).multipliers().is_empty()) {
             self.element_jacobian(k, &kin, &u.lambda, None, &mut a);
-            let (mut plus, mut minus) = (vec![0.0; self.layout.len], vec![0.0; self.layout.len]);
             self.element_residual(k, &kin, &u.lambda, self.t + eps, &mut plus);
             self.element_residual(k, &kin, &u.lambda, self.t - eps, &mut minus);
-            for i in 0..self.layout.len {
-                b[i] -= (plus[i] - minus[i]) / (2.0 * eps);
-            }
+        }
+        for i in 0..self.layout.len {
+            b[i] -= (plus[i] - minus[i]) / (2.0 * eps);
         }
         (a, b)
     }
