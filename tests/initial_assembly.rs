@@ -124,3 +124,20 @@ fn skipping_the_assembly_of_open_hinges_names_the_open_joint() {
     let st = assembled(&closed);
     assert_eq!(planar(&closed, &st, 2)[..2], [2.0, 0.0]);
 }
+
+#[test]
+fn omega_rotates_turns_the_written_angular_velocity_with_the_node() {
+    // The hinge forces the node back by 0.1 rad about x (R = I). With `omega rotates: yes`
+    // the target angular velocity is MBDyn's R₀ Rᵀ ω₀ = (0, −sin 0.1, cos 0.1) rad/s; the
+    // hinge allows only ω = (0, 0, w) and v = (0, w, 0), and equal velocity penalties on
+    // v₀ = (0, 1, 0) and that target give w = (1 + cos 0.1)/2 (closed form of the
+    // least-squares projection). With `no`, w = 1: the written velocities already agree.
+    for (setting, want) in [("yes", (1.0 + 0.1f64.cos()) / 2.0), ("no", 1.0)] {
+        let m = rewritten("assembly_omega_rotates.mbd", &[("omega rotates: yes;", &format!("omega rotates: {setting};"))]);
+        let st = assembled(&m);
+        let p = planar(&m, &st, 1);
+        assert!((p[5] - want).abs() < 1e-12 && (p[4] - want).abs() < 1e-12, "omega rotates {setting}: {p:?}, want {want}");
+        let kin = st.node_frame(&Assembler::new(&m.model).dofs, 1).kin;
+        assert!((kin.r - romdyn::kinematics::Mat3::identity()).norm() < 1e-12 && kin.omega.xy().norm() < 1e-12, "{kin:?}");
+    }
+}
