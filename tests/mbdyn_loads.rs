@@ -155,10 +155,16 @@ fn scalar_functions_drive_a_force_and_make_a_rod_law_as_in_mbdyn() {
     let m = read("scalar_functions.mbd");
     let got = final_rows(&m);
     // MBDyn 1.7.3, scalar_functions.mbd, .mov at t = 1 s: node 2's x and ẋ (the
-    // multilinear rod), node 3's x and ẋ, node 4's z and ż.
-    let mbdyn = [(1, 0, 9.246313752732457e-01, 9.033477102924566e+00), (2, 0, 4.424745664906943e-01, 1.192474530966040e+00), (3, 2, 3.333333830604273e-01, 8.333332346367369e-01)];
+    // multilinear rod), node 3's x and ẋ, node 4's z and ż, node 5's y and ẏ (the cubic
+    // spline: the same to 13 digits).
+    let mbdyn = [
+        (1, 0, 9.246313752732457e-01, 9.033477102924566e+00),
+        (2, 0, 4.424745664906943e-01, 1.192474530966040e+00),
+        (3, 2, 3.333333830604273e-01, 8.333332346367369e-01),
+        (4, 1, 1.543438740505890e+01, 5.701209519101053e-01),
+    ];
     for (k, j, x, v) in mbdyn {
-        // 1e-7 (measured 1e-8: the law's kinks at the breakpoints).
+        // 1e-7 (measured 1e-8: the rod law's kinks at the breakpoints).
         assert!((got[k][j] - x).abs() < 1e-7 && (got[k][6 + j] - v).abs() < 1e-7, "node {}: {:?} against MBDyn {x}, {v}", k + 1, got[k]);
     }
     // Closed forms for the pushed unit masses from rest, x(1) = ∫₀¹ (1 − s) f(s) ds and
@@ -179,7 +185,7 @@ fn scalar_function_cards_are_checked_as_mbdyn_checks_them() {
     for (old, new, want) in [
         ("-.5, -70.,\n    0., 0.,", "-.5, -70.,\n    -.5, 0.,", "multilinear scalar function: the x values must increase, found -0.5 then -0.5"),
         ("\"push\", sum, \"half exp\"", "\"push\", sum, \"half exps\"", "scalar function \"half exps\" is not defined"),
-        ("\"spring\", multilinear,", "\"spring\", cubic spline,", "the 'cubic spline' scalar function is not supported by romdyn"),
+        ("\"spring\", multilinear,\n    -1., -100.,\n    -.5, -70.,", "\"spring\", cubic spline,\n    -1., -100.,\n    -1., -70.,", "cubic spline scalar function: the x values must increase, found -1 then -1"),
         ("scalar function: \"half exp\", exp, .5;", "scalar function: \"half exp\", log, base, -2., .5;", "log scalar function: the base must be positive, found -2"),
     ] {
         assert!(base.contains(old), "{old}");

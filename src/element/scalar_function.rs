@@ -17,6 +17,13 @@ pub enum ScalarFunction {
     /// pair's slope, or held at the end values (`extrapolate = false`). Two points are
     /// MBDyn's `linear`, more its `multilinear`.
     Multilinear { points: Vec<(f64, f64)>, extrapolate: bool },
+    /// A cubic spline through points with increasing `x` (at least 3), with the end
+    /// conditions of Forsythe, Malcolm and Moler's `spline` (the third derivative at each end
+    /// is that of the cubic through the four end points; a parabola for three points),
+    /// which MBDyn's `cubic spline` uses (interp.cc), `coefficients[i] = (b, c, d)` of
+    /// `y_i + b dx + c dx² + d dx³`; continued linearly with the end slopes, or held at the
+    /// end values (`extrapolate = false`).
+    CubicSpline { points: Vec<(f64, f64)>, coefficients: Vec<(f64, f64, f64)>, extrapolate: bool },
     /// `Σ c_k T_k(ξ)`, `ξ = (2x − (a + b))/(b − a)`, on `[a, b]`; continued linearly
     /// outside (with the end slopes) when `extrapolate`.
     Chebychev { a: f64, b: f64, coefficients: Vec<f64>, extrapolate: bool },
@@ -27,6 +34,12 @@ pub enum ScalarFunction {
 }
 
 impl ScalarFunction {
+    /// The cubic spline through `points` (x increasing, at least 3).
+    pub fn cubic_spline(points: Vec<(f64, f64)>, extrapolate: bool) -> Self {
+        let coefficients = spline_coefficients(&points);
+        ScalarFunction::CubicSpline { points, coefficients, extrapolate }
+    }
+
     pub fn value(&self, x: f64) -> f64 {
         self.value_and_derivative(x).0
     }
@@ -55,6 +68,7 @@ impl ScalarFunction {
             ScalarFunction::Pow(p) => (x.powf(*p), p * x.powf(p - 1.0)),
             ScalarFunction::Multilinear { points, extrapolate } => multilinear(points, *extrapolate, x),
             ScalarFunction::Chebychev { a, b, coefficients, extrapolate } => chebychev(*a, *b, coefficients, *extrapolate, x),
+            ScalarFunction::CubicSpline { points, coefficients, extrapolate } => spline(points, coefficients, *extrapolate, x),
             ScalarFunction::Sum(f, g) | ScalarFunction::Sub(f, g) | ScalarFunction::Mul(f, g) | ScalarFunction::Div(f, g) => {
                 let ((fv, fd), (gv, gd)) = (f.value_and_derivative(x), g.value_and_derivative(x));
                 match self {
@@ -84,6 +98,53 @@ fn multilinear(points: &[(f64, f64)], extrapolate: bool, x: f64) -> (f64, f64) {
     let ((x0, y0), (x1, y1)) = (points[i], points[i + 1]);
     let slope = (y1 - y0) / (x1 - x0);
     (y0 + slope * (x - x0), slope)
+}
+
+/// The spline's `(b, c, d)` per point: with `h_i` the intervals, `Δ_i` the slopes and `σ_i`
+/// a sixth of the second derivative, `h_{i−1} σ_{i−1} + 2 (h_{i−1} + h_i) σ_i + h_i σ_{i+1}
+/// = Δ_i − Δ_{i−1}` inside, and at the ends `σ_1 − σ_0` (and `σ_{n−1} − σ_{n−2}`) from the
+/// third divided differences of the four end points (zero for three points).
+fn spline_coefficients(p: &[(f64, f64)]) -> Vec<(f64, f64, f64)> {
+    let n = p.len();
+    let h: Vec<f64> = (0..n - 1).map(|i| p[i + 1].0 - p[i].0).collect();
+    let delta: Vec<f64> = (0..n - 1).map(|i| (p[i + 1].1 - p[i].1) / h[i]).collect();
+    let x = |i: usize| p[i].0;
+    // Tridiagonal system: sub[i] σ_{i−1} + diag[i] σ_i + sup[i] σ_{i+1} = rhs[i].
+    let (mut sub, mut diag, mut sup, mut rhs) = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    for i in 1..n - 1 {
+        (sub[i], diag[i], sup[i], rhs[i]) = (h[i - 1], 2.0 * (h[i - 1] + h[i]), h[i], delta[i] - delta[i - 1]);
+    }
+    (diag[0], sup[0]) = (-h[0], h[0]);
+    (sub[n - 1], diag[n - 1]) = (h[n - 2], -h[n - 2]);
+    if n > 3 {
+        let third = |a: usize| (delta[a + 2] - delta[a + 1]) / (x(a + 3) - x(a + 1)) - (delta[a + 1] - delta[a]) / (x(a + 2) - x(a));
+        rhs[0] = third(0) * h[0] * h[0] / (x(3) - x(0));
+        rhs[n - 1] = -third(n - 4) * h[n - 2] * h[n - 2] / (x(n - 1) - x(n - 4));
+    }
+    for i in 1..n {
+        let t = sub[i] / diag[i - 1];
+        diag[i] -= t * sup[i - 1];
+        rhs[i] -= t * rhs[i - 1];
+    }
+    let mut sigma = vec![0.0; n];
+    sigma[n - 1] = rhs[n - 1] / diag[n - 1];
+    for i in (0..n - 1).rev() {
+        sigma[i] = (rhs[i] - sup[i] * sigma[i + 1]) / diag[i];
+    }
+    let mut out: Vec<(f64, f64, f64)> = (0..n - 1).map(|i| (delta[i] - h[i] * (sigma[i + 1] + 2.0 * sigma[i]), 3.0 * sigma[i], (sigma[i + 1] - sigma[i]) / h[i])).collect();
+    out.push((delta[n - 2] + h[n - 2] * (sigma[n - 2] + 2.0 * sigma[n - 1]), 3.0 * sigma[n - 1], out[n - 2].2));
+    out
+}
+
+fn spline(p: &[(f64, f64)], k: &[(f64, f64, f64)], extrapolate: bool, x: f64) -> (f64, f64) {
+    let n = p.len();
+    if x <= p[0].0 || x >= p[n - 1].0 {
+        let i = if x <= p[0].0 { 0 } else { n - 1 };
+        return if extrapolate { (p[i].1 + k[i].0 * (x - p[i].0), k[i].0) } else { (p[i].1, 0.0) };
+    }
+    let i = p.windows(2).position(|w| x < w[1].0).unwrap_or(n - 2);
+    let (dx, (b, c, d)) = (x - p[i].0, k[i]);
+    (p[i].1 + dx * (b + dx * (c + dx * d)), b + dx * (2.0 * c + 3.0 * dx * d))
 }
 
 /// `Σ c_k T_k(ξ)` and its derivative in `x`, by the recurrences of the manual.
@@ -142,6 +203,17 @@ mod tests {
             assert!((d - fd).abs() < 1e-6 * fd.abs().max(1.0), "{f:?} at {x}: derivative {d}, differences {fd}");
         }
         assert!(F::Log { multiplier: 1.0, base: e, coefficient: 1.0 }.value(-1.0).is_nan());
+        // The spline's end conditions reproduce a cubic through its points exactly (x³ − x
+        // at five uneven points), and a parabola through three; outside, the end tangents.
+        let cubic = |x: f64| x * x * x - x;
+        let s = F::cubic_spline([-1.0, -0.2, 0.5, 1.0, 2.0].map(|x| (x, cubic(x))).to_vec(), true);
+        for x in [-0.7, 0.1, 0.75, 1.9] {
+            let (v, d) = s.value_and_derivative(x);
+            assert!((v - cubic(x)).abs() < 1e-12 && (d - (3.0 * x * x - 1.0)).abs() < 1e-12, "spline at {x}: {v}, {d}");
+        }
+        assert!((s.value(3.0) - (cubic(2.0) + 11.0)).abs() < 1e-12 && (s.value(-2.0) - (cubic(-1.0) - 2.0)).abs() < 1e-12);
+        let parabola = F::cubic_spline(vec![(0.0, 0.0), (1.0, 1.0), (3.0, 9.0)], false);
+        assert!((parabola.value(2.0) - 4.0).abs() < 1e-12 && parabola.value(5.0) == 9.0);
         assert!(F::Chebychev { a: 0.0, b: 1.0, coefficients: vec![1.0], extrapolate: false }.value(2.0).is_nan());
     }
 }

@@ -1,7 +1,6 @@
 //! `scalar function: "NAME", [TYPE,] ARGS;` cards (input manual, §Scalar functions;
 //! ScalarFunctionsImpl.cc, the `…SFR::Read` readers): `const` (the default), `exp`, `log`,
-//! `pow`, `linear`, `multilinear`, `chebychev`, `sum`, `sub`, `mul`, `div`. `cubic spline`
-//! is refused by name.
+//! `pow`, `linear`, `cubic spline`, `multilinear`, `chebychev`, `sum`, `sub`, `mul`, `div`.
 
 use std::collections::HashMap;
 
@@ -94,7 +93,10 @@ fn definition(c: &mut Cursor, functions: &ScalarFunctions, seq: usize) -> Result
             }
             ScalarFunction::Chebychev { a, b, coefficients, extrapolate }
         }
-        "cubic spline" => return Err(c.error_at(span, "the 'cubic spline' scalar function is not supported by romdyn (supported: const, exp, log, pow, linear, multilinear, chebychev, sum, sub, mul, div)")),
+        "cubic spline" => {
+            let extrapolate = !c.accept("do not extrapolate");
+            ScalarFunction::cubic_spline(points(c, 3)?, extrapolate)
+        }
         _ => {
             let operand = |c: &mut Cursor| -> Result<Box<ScalarFunction>, MbdynError> {
                 let at = c.here();
