@@ -45,7 +45,7 @@ pub struct AssemblyReport {
 /// Why the initial assembly stopped.
 #[derive(Clone, Debug, thiserror::Error)]
 pub enum AssemblyError {
-    #[error("initial assembly did not converge in {iterations} iteration(s) (control data 'max iterations'): MBDyn's test sqrt(|F|²/(1+|X|²)) = {test:.3e} is above the tolerance {tolerance:.3e}; the worst equation is {worst} ({value:.3e}); the joints cannot be made to hold near the configuration written in the file, or need more iterations")]
+    #[error("initial assembly did not converge in {iterations} iteration(s) (control data 'max iterations'): MBDyn's test sqrt(|F|²/(1+|X|²)) = {test:.3e} is above the tolerance {tolerance:.3e}; the worst equation is {worst} ({value:.3e}); the joints cannot be made to hold near the configuration written in the file (deformable joints, rods and beams also pull the nodes in the assembly), or need more iterations")]
     NotConverged { iterations: usize, test: f64, tolerance: f64, worst: String, value: f64 },
     #[error("initial assembly: the Newton matrix is singular at iteration {iteration} (redundant joints, or a node no joint or penalty holds)")]
     Singular { iteration: usize },
