@@ -76,7 +76,15 @@ fn definition(c: &mut Cursor, functions: &ScalarFunctions, seq: usize) -> Result
             if kind == "exp" { ScalarFunction::Exp { multiplier, base, coefficient } } else { ScalarFunction::Log { multiplier, base, coefficient } }
         }
         "pow" => ScalarFunction::Pow(c.real("the exponent")?),
-        "linear" => ScalarFunction::Multilinear { points: points(c, 2)?.into_iter().take(2).collect(), extrapolate: true },
+        "linear" => {
+            // The line through two points with different x, in either order.
+            let mut p = [(c.real("x of the first point")?, c.real("y of the first point")?), (c.real("x of the second point")?, c.real("y of the second point")?)];
+            if !(p[0].0 != p[1].0 && (p[1].0 - p[0].0).is_finite()) {
+                return Err(c.error_at(span, format!("linear scalar function: the two points need different x, found {} and {}", p[0].0, p[1].0)));
+            }
+            p.sort_by(|a, b| a.0.total_cmp(&b.0));
+            ScalarFunction::Multilinear { points: p.to_vec(), extrapolate: true }
+        }
         "multilinear" => {
             let extrapolate = !c.accept("do not extrapolate");
             ScalarFunction::Multilinear { points: points(c, 2)?, extrapolate }
