@@ -150,7 +150,7 @@ fn model_errors() {
         (model("structural nodes: 2; rigid bodies: 1;", NODES, "body: 1, 7, 1., null, eye;"), "m.mbd:6:10: error: structural node 7 is not defined"),
         // 40. Unsupported element and joint types are named.
         (model("structural nodes: 2;", NODES, "aerodynamic body: 1, 2;"), "m.mbd:6:1: error: element type 'aerodynamic body' is not supported by romdyn"),
-        (model("structural nodes: 2; joints: 1;", NODES, "joint: 1, axial rotation, 1, 2;"), "m.mbd:6:11: error: joint type 'axial rotation' is not supported by romdyn"),
+        (model("structural nodes: 2; joints: 1;", NODES, "joint: 1, brake, 1, 2;"), "m.mbd:6:11: error: joint type 'brake' is not supported by romdyn"),
         (model("structural nodes: 2; joints: 1;", NODES, "driven: 1, string, \"Time > 1.\", joint: 1, clamp, 1, node, node;"), "m.mbd:6:1: error: element type 'driven' (an element switched on and off during the run) is not supported by romdyn"),
         // 41. Beams: the two-node beam is not supported; a 3-node beam needs a length, a
         // section orientation before 'same', and a 6-D law.
@@ -168,8 +168,8 @@ fn model_errors() {
         (model("structural nodes: 2; rigid bodies: 1;", NODES, "body: 1, 2, -1., null, eye;"), "m.mbd:6:13: error: negative mass -1"),
         // 46. Extra arguments.
         (model("structural nodes: 2; rigid bodies: 1;", NODES, "body: 1, 2, 1., null, eye, 7.;"), "m.mbd:6:28: error: unexpected extra argument the number 7 in 'body'"),
-        // 47. A total joint with a velocity (non-holonomic) constraint.
-        (model("structural nodes: 2; joints: 1;", NODES, "joint: 1, total joint, 1, 2, position, 0., 1., 0., position constraint, velocity, active, active, null;"), "m.mbd:6:73: error: 'velocity' (a non-holonomic constraint) is not supported"),
+        // 47. A total joint imposing a rotation with only some rotations locked.
+        (model("structural nodes: 2; joints: 1;", NODES, "joint: 1, total joint, 1, 2, position, 0., 1., 0., orientation constraint, active, inactive, inactive, 1., 0., 0., const, .5;"), "m.mbd:6:11: error: a non-zero imposed relative rotation is supported by romdyn's total joint only with all three rotation components locked"),
     ];
     check(&cases);
 }

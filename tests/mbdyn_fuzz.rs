@@ -25,6 +25,8 @@ const WORDS: &[&str] = &[
     "drive caller", "constitutive law", "structural", "static", "dynamic", "dummy", "modal", "offset", "at reference", "body", "joint", "force",
     "couple", "gravity", "beam3", "beam2", "clamp", "revolute hinge", "revolute pin", "spherical hinge", "spherical pin", "total joint",
     "total pin joint", "deformable displacement joint", "deformable hinge", "rod", "rod with offset", "position", "orientation",
+    "axial rotation", "deformable joint", "deformable axial joint", "invariant deformable hinge", "drive hinge", "drive displacement",
+    "drive displacement pin", "imposed displacement", "imposed displacement pin", "cardano hinge", "cardano pin", "cardano rotation",
     "position orientation", "rotation orientation", "position constraint", "orientation constraint", "active", "inactive", "velocity",
     "angular velocity", "global", "node", "other node", "other position", "other orientation", "null", "eye", "matr", "sym", "diag", "skew",
     "euler", "euler123", "euler313", "euler321", "degrees", "vector", "guess", "scale", "default", "const", "time", "ramp", "step", "sine",

@@ -84,7 +84,10 @@ struct Residual<'a, P: FnMut(usize, f64)> {
 
 impl<P: FnMut(usize, f64)> ResidualSink for Residual<'_, P> {
     fn add(&mut self, row: Row, value: f64) {
-        let scale = if matches!(row, Row::Constraint(_)) { self.constraint_scale } else { 1.0 };
+        let scale = match row {
+            Row::Constraint(k) if self.dofs.is_multiplier(self.first + k) => self.constraint_scale,
+            _ => 1.0,
+        };
         if let Some(i) = global_row(self.dofs, self.slots, self.first, row) {
             (self.put)(i, value * scale);
         }
@@ -101,10 +104,13 @@ struct Jacobian<'a> {
 }
 
 impl Jacobian<'_> {
-    /// Coefficient of a `y`-derivative in `row`: `y`-derivatives of constraint rows belong to
-    /// `F_/ẏ` in the form of eq. 30.
+    /// Coefficient of a `y`-derivative in `row`: `y`-derivatives of holonomic constraint rows
+    /// belong to `F_/ẏ` in the form of eq. 30.
     fn y_coefficient(&self, row: Row) -> f64 {
-        if self.c.form == ConstraintForm::Scaled && matches!(row, Row::Constraint(_)) { self.c.a } else { self.c.b }
+        match row {
+            Row::Constraint(k) if self.c.form == ConstraintForm::Scaled && self.dofs.is_multiplier(self.first + k) => self.c.a,
+            _ => self.c.b,
+        }
     }
 }
 
@@ -177,7 +183,10 @@ impl JacobianSink for Jacobian<'_> {
                     self.out.push(i, self.dofs.node_first[n] + 3 + k, value);
                 }
             }
-            Col::Multiplier(k) => self.out.push(i, self.first + k, if scaled { a } else { self.c.b } * v),
+            Col::Multiplier(k) => {
+                let j = self.first + k;
+                self.out.push(i, j, if scaled && self.dofs.is_multiplier(j) { a } else { self.c.b } * v)
+            }
         }
     }
 }

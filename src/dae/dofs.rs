@@ -13,7 +13,9 @@ pub struct DofMap {
     pub element_nodes: Vec<Vec<usize>>,
     /// Number of unknowns (= equations).
     pub len: usize,
-    /// Whether each unknown is a Lagrange multiplier.
+    /// Whether each unknown is a Lagrange multiplier of a holonomic constraint (the
+    /// unknowns of velocity-level constraints are not: they follow the node unknowns'
+    /// coefficients in both constraint forms).
     multiplier: Vec<bool>,
 }
 
@@ -44,8 +46,10 @@ impl DofMap {
             element_nodes.push(e.nodes().iter().map(|l| model.node_index(*l).unwrap_or(usize::MAX)).collect());
         }
         let mut multiplier = vec![false; first];
-        for (&f, &k) in element_first.iter().zip(&element_len) {
-            multiplier[f..f + k].iter_mut().for_each(|m| *m = true);
+        for ((&f, &k), e) in element_first.iter().zip(&element_len).zip(&model.elements) {
+            for (j, m) in multiplier[f..f + k].iter_mut().enumerate() {
+                *m = !e.is_velocity_constraint(j);
+            }
         }
         DofMap { node_first, node_kind: model.nodes.iter().map(|n| n.kind).collect(), element_first, element_len, element_nodes, len: first, multiplier }
     }
@@ -66,7 +70,8 @@ impl DofMap {
         }
     }
 
-    /// Whether unknown `i` is a Lagrange multiplier.
+    /// Whether unknown `i` is the Lagrange multiplier of a holonomic constraint (equation `i`
+    /// is then divided by dCoef in the form of eq. 30).
     pub fn is_multiplier(&self, i: usize) -> bool {
         self.multiplier[i]
     }

@@ -67,6 +67,28 @@ impl Pair {
         }
     }
 
+    /// Residual of a moment `m` on B and `−m` on A.
+    pub fn add_moment(&self, out: &mut dyn ResidualSink, m: &Vec3) {
+        add_vec(out, Row::moment(self.slot_b), m);
+        if let Some(a) = self.slot_a {
+            add_vec(out, Row::moment(a), &(-m));
+        }
+    }
+
+    /// The column of a multiplier whose unit reaction is the force `df` at `p_b` and the
+    /// moment `dm` on B (both opposite on A, the force with its arm from `x_a`).
+    pub fn add_reaction_column(&self, out: &mut dyn JacobianSink, col: Col, df: &Vec3, dm: &Vec3) {
+        let (b, mb, ma) = (self.slot_b, self.f_b.cross(df) + dm, self.h.cross(df) + dm);
+        for i in 0..3 {
+            out.add(Row::Equilibrium { slot: b, comp: i }, col, df[i]);
+            out.add(Row::Equilibrium { slot: b, comp: 3 + i }, col, mb[i]);
+            if let Some(a) = self.slot_a {
+                out.add(Row::Equilibrium { slot: a, comp: i }, col, -df[i]);
+                out.add(Row::Equilibrium { slot: a, comp: 3 + i }, col, -ma[i]);
+            }
+        }
+    }
+
     /// Jacobian of [`Pair::add_force`] for `F = Q_a φ`: geometric terms at fixed `φ`, plus
     /// `∂(reaction)/∂φ · dφ` for the given derivative blocks of `φ`.
     pub fn add_force_jacobian(&self, out: &mut dyn JacobianSink, force: &Vec3, dphi: &[([Col; 3], Mat3)]) {

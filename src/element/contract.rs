@@ -120,6 +120,13 @@ pub trait Element: Send + Sync {
     fn multipliers(&self) -> Vec<String> {
         Vec::new()
     }
+    /// Whether its own equation `k` is a velocity-level constraint `ψ(q, q̇, t) = 0` (MBDyn's
+    /// "differential" constraint equations, e.g. the imposed angular velocity of `axial
+    /// rotation`): never divided by dCoef, and its unknown is an ordinary algebraic unknown
+    /// (Jacobian coefficient `c`, updated as `y += c δ`) in both constraint forms.
+    fn is_velocity_constraint(&self, _k: usize) -> bool {
+        false
+    }
     /// Adds its contribution to `F(y, ẏ, t)`.
     fn residual(&self, s: &dyn ElementState, out: &mut dyn ResidualSink);
     /// Adds its derivatives; the assembler forms `J(c)` from them.

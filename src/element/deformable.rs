@@ -82,7 +82,7 @@ pub struct DeformableHinge {
 
 /// `Γ⁻¹(θ)`: `θ' = θ + Γ⁻¹(θ) δφ` when `exp(θ×)` is turned to `exp(δφ×) exp(θ×)`
 /// (MBDyn's `RotManip::DRot_I`): `I − ½ [θ×] + (1/φ² − (1 + cos φ)/(2 φ sin φ)) [θ×]²`.
-fn inverse_rotation_jacobian(theta: &Vec3) -> Mat3 {
+pub(super) fn inverse_rotation_jacobian(theta: &Vec3) -> Mat3 {
     let phi = theta.norm();
     let c = if phi < 1e-4 { 1.0 / 12.0 + phi * phi / 720.0 } else { 1.0 / (phi * phi) - (1.0 + phi.cos()) / (2.0 * phi * phi.sin()) };
     let t = skew(theta);

@@ -3,18 +3,8 @@
 //! on the two nodes, node 1 receiving `+f`.
 
 use super::contract::{add_block, add_vec, Col, Element, ElementState, JacobianSink, Label, ResidualSink, Row};
-use super::{Drive, ForceFrame};
+use super::{ForceFrame, VectorDrive};
 use crate::kinematics::{skew, Mat3, Vec3};
-
-/// `Σ v_k d_k(t)`: a 3-vector template drive (MBDyn's `TplDriveCaller<Vec3>`).
-#[derive(Clone, Debug, PartialEq)]
-pub struct VectorDrive(pub Vec<(Vec3, Drive)>);
-
-impl VectorDrive {
-    pub fn value(&self, t: f64) -> Vec3 {
-        self.0.iter().map(|(v, d)| v * d.value(t)).sum()
-    }
-}
 
 /// `f(t)` applied at `p₁ = x₁ + R₁ a₁` on node 1 and `−f` at `p₂ = x₂ + R₂ a₂` on node 2;
 /// `f = v(t)` (absolute) or `R₁ v(t)` (follower, in node 1's frame).

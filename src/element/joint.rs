@@ -9,7 +9,7 @@
 //! `m = Q_a Pᵀ λ_r` with `P = ½ (tr M I − M)`, `M = Q_aᵀ Q_b`, equal and opposite on A.
 
 use super::anchor::{node_labels, Anchor, Pair};
-use super::contract::{add_block, add_vec, Col, Element, ElementState, JacobianSink, ResidualSink, Row};
+use super::contract::{add_block, Col, Element, ElementState, JacobianSink, ResidualSink, Row};
 use crate::kinematics::{axial_of_skew_part, skew, skew_part_jacobian, Mat3, Vec3};
 use super::contract::Label;
 
@@ -26,6 +26,8 @@ pub enum JointKind {
     InPlane,
     /// All relative rotation locked (`prismatic`).
     Prismatic,
+    /// Relative rotation only about the common axis 3, position free (`revolute rotation`).
+    RevoluteRotation,
 }
 
 /// A joint locking the selected components of relative position and rotation.
@@ -61,6 +63,12 @@ impl Joint {
     /// frames (5 multipliers).
     pub fn revolute_hinge(label: Label, a: Anchor, b: Anchor) -> Self {
         Joint { label, kind: JointKind::RevoluteHinge, a, b, position_locked: [true; 3], rotation_locked: [true, true, false] }
+    }
+
+    /// Relative rotation only about the common z axis, relative position free (2
+    /// multipliers: MBDyn's `revolute rotation`, planej.cc `PlaneRotationJoint`).
+    pub fn revolute_rotation(label: Label, a: Anchor, b: Anchor) -> Self {
+        Joint { label, kind: JointKind::RevoluteRotation, a, b, position_locked: [false; 3], rotation_locked: [true, true, false] }
     }
 
     /// B's point on A's axis 3 (2 multipliers: the force across the line).
@@ -116,6 +124,7 @@ impl Element for Joint {
             JointKind::InLine => "in line",
             JointKind::InPlane => "in plane",
             JointKind::Prismatic => "prismatic",
+            JointKind::RevoluteRotation => "revolute rotation",
         }
     }
     fn nodes(&self) -> Vec<Label> {
@@ -135,11 +144,7 @@ impl Element for Joint {
         }
         let (lambda_p, lambda_r) = lambdas(self, st);
         p.add_force(out, &(p.q_a * lambda_p));
-        let moment = p.q_a * skew_part_jacobian(&m_rel).transpose() * lambda_r;
-        add_vec(out, Row::moment(p.slot_b), &moment);
-        if let Some(a) = p.slot_a {
-            add_vec(out, Row::moment(a), &(-moment));
-        }
+        p.add_moment(out, &(p.q_a * skew_part_jacobian(&m_rel).transpose() * lambda_r));
     }
 
     fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
@@ -169,15 +174,7 @@ impl Element for Joint {
         let ptq = p.q_a * pm.transpose();
         for (col, (is_pos, comp)) in self.locked().enumerate() {
             let (df, dm) = if is_pos { (p.q_a.column(comp).into_owned(), Vec3::zeros()) } else { (Vec3::zeros(), ptq.column(comp).into_owned()) };
-            let (mb, ma) = (p.f_b.cross(&df) + dm, p.h.cross(&df) + dm);
-            for i in 0..3 {
-                out.add(Row::Equilibrium { slot: b, comp: i }, Col::Multiplier(col), df[i]);
-                out.add(Row::Equilibrium { slot: b, comp: 3 + i }, Col::Multiplier(col), mb[i]);
-                if let Some(a) = p.slot_a {
-                    out.add(Row::Equilibrium { slot: a, comp: i }, Col::Multiplier(col), -df[i]);
-                    out.add(Row::Equilibrium { slot: a, comp: 3 + i }, Col::Multiplier(col), -ma[i]);
-                }
-            }
+            p.add_reaction_column(out, Col::Multiplier(col), &df, &dm);
         }
 
         // The moment reaction m = Q_a Pᵀ λ_r: δm = −[m×] δθ_a + Q_a K Q_aᵀ (δθ_b − δθ_a),

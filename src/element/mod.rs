@@ -9,25 +9,37 @@
 //! the static solver and the linearization use nothing else.
 
 mod anchor;
+mod axial_rotation;
 mod beam;
 mod body;
+mod cardano;
 mod central_gravity;
 mod contract;
 mod deformable;
+mod deformable_joint;
 mod drive;
+mod driven_joint;
 mod force;
+mod imposed_velocity;
 mod internal_force;
+mod invariant_hinge;
 mod joint;
 mod scalar_function;
 
 pub use beam::{shape as beam_shape, Beam3, BeamError, BeamNode, SectionLaw, SectionOrientation};
 pub use body::RigidBody;
+pub use cardano::CardanoHinge;
 pub use central_gravity::CentralGravity;
 pub use contract::{Col, Element, ElementState, JacobianSink, Label, NodeKinematics, ResidualSink, Row, SectionState};
 pub use deformable::{DeformableDisplacement, DeformableHinge, Distance, LinearViscoelastic, Rod, RodViscosity};
+pub use deformable_joint::DeformableJoint;
+pub use invariant_hinge::InvariantDeformableHinge;
 pub use drive::{Drive, TimeFunction};
+pub use driven_joint::{DrivenJoint, VectorDrive};
 pub use force::{Couple, Force, ForceFrame};
-pub use internal_force::{InternalCouple, InternalForce, TotalInternalForce, VectorDrive};
+pub use imposed_velocity::{ImposedVelocity, VelocityKind};
+pub use internal_force::{InternalCouple, InternalForce, TotalInternalForce};
 pub use anchor::Anchor;
+pub use axial_rotation::AxialRotation;
 pub use joint::{Joint, JointKind};
 pub use scalar_function::ScalarFunction;

@@ -20,7 +20,7 @@ use faer::Mat;
 
 use super::balance::balance_pencil;
 use super::dae::Jacobians;
-use super::eigen::{EigenError, ModalAnalysis};
+use super::eigen_error::EigenError;
 
 /// The largest absolute entry of a matrix (NaN if any entry is NaN).
 fn max_abs(m: &Mat<f64>) -> f64 {
@@ -167,35 +167,6 @@ fn common_null_vector(a: &Mat<f64>, b: &Mat<f64>) -> Vec<usize> {
     order.sort_by(|&x, &y| v[(y, n - 1)].abs().total_cmp(&v[(x, n - 1)].abs()));
     let top = v[(order[0], n - 1)].abs();
     order.into_iter().take_while(|&i| v[(i, n - 1)].abs() >= 0.1 * top).collect()
-}
-
-/// ", undetermined unknowns: …" for a message (1-based indices, or names when given).
-pub(crate) fn list_unknowns(unknowns: &[usize], names: &[String]) -> String {
-    if unknowns.is_empty() {
-        return String::new();
-    }
-    const SHOWN: usize = 8;
-    let mut list: Vec<String> = unknowns.iter().take(SHOWN).map(|&k| names.get(k).cloned().unwrap_or_else(|| format!("unknown {}", k + 1))).collect();
-    if unknowns.len() > SHOWN {
-        list.push(format!("… {} more", unknowns.len() - SHOWN));
-    }
-    format!("; a common null vector of F_yd and F_y involves {}", list.join(", "))
-}
-
-/// Undoes [`prepare`]'s scaling on the left vectors (normalized with the scaled F_yd) and
-/// refuses a result whose labels cannot be trusted (a non-finite λ labelled dynamic or zero).
-pub(crate) fn finish(mut modal: ModalAnalysis, scale: f64) -> Result<ModalAnalysis, EigenError> {
-    for m in &mut modal.modes {
-        if let Some(u) = m.left.as_mut() {
-            for i in 0..u.nrows() {
-                u[i] *= scale;
-            }
-        }
-        if m.kind != super::ModeKind::Infinite && !(m.lambda.re.is_finite() && m.lambda.im.is_finite() && !m.error.is_nan()) {
-            return Err(EigenError::NonFinite(format!("QZ gave λ = {} labelled {}", m.lambda, m.kind.name())));
-        }
-    }
-    Ok(modal)
 }
 
 #[cfg(test)]

@@ -8,7 +8,8 @@ use super::balance::balance_pencil;
 use super::classify::{classify, Classification, ModeKind};
 use super::dae::LinearDae;
 use super::deflate::DynamicPart;
-use super::eigen::{conjugate_mode, normalize, qz, sort_units, EigenError, ModalAnalysis, Mode};
+use super::eigen::{conjugate_mode, normalize, qz, sort_units, ModalAnalysis, Mode};
+use super::eigen_error::EigenError;
 use super::route::{EigenRoute, EigenVectors};
 use super::sparse::SparseMatrix;
 

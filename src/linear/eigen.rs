@@ -16,6 +16,7 @@ use super::balance::balance_pencil;
 use super::classify::{classify, Classification, ModeKind};
 use super::route::{conj, dot_t, mul_real_complex, norm, EigenRoute, EigenVectors};
 use super::dae::Jacobians;
+use super::eigen_error::EigenError;
 
 /// One eigenvalue with its vectors and label.
 #[derive(Clone, Debug)]
@@ -58,27 +59,6 @@ pub struct ModalAnalysis {
     /// The dCoef of the Λ form (also reported for the direct route).
     pub dcoef: f64,
     pub modes: Vec<Mode>,
-}
-
-/// Eigenanalysis failure.
-#[derive(Debug, thiserror::Error)]
-pub enum EigenError {
-    #[error("the QZ iteration did not converge for the {0}x{0} pencil")]
-    NoConvergence(usize),
-    #[error("the pencil is empty")]
-    Empty,
-    #[error("the pencil has non-finite entries: {0}")]
-    NonFinite(String),
-    #[error("dCoef = {} s: the coefficient of J(+c), J(-c) must be a positive normal number", crate::limits::readable(*.0))]
-    InvalidDcoef(f64),
-    #[error("the pencil is singular: det(λ F_yd + F_y) = 0 for every λ, so it has no eigenvalues to label ({detail}){}; a model with an unknown that no equation determines gives this", super::degenerate::list_unknowns(unknowns, unknown_names))]
-    Singular {
-        detail: String,
-        /// Unknowns (0-based) of a common null vector, largest entries first.
-        unknowns: Vec<usize>,
-        /// Names of all unknowns, when known ([`EigenError::with_unknown_names`]).
-        unknown_names: Vec<String>,
-    },
 }
 
 /// Raw output of QZ on a (balanced) pencil `A v = μ B v`, with the products `A V`, `B V`,
@@ -217,16 +197,6 @@ impl RawEigen {
     }
 }
 
-impl EigenError {
-    /// The error with the unknowns of a singular pencil named by `names` (the DAE's).
-    pub fn with_unknown_names(self, names: &[String]) -> Self {
-        match self {
-            EigenError::Singular { detail, unknowns, .. } => EigenError::Singular { detail, unknowns, unknown_names: names.to_vec() },
-            e => e,
-        }
-    }
-}
-
 impl ModalAnalysis {
     /// Eigenanalysis of a linear DAE by the chosen route, with the Jacobians' own dCoef.
     pub fn compute(jacobians: &Jacobians, route: EigenRoute) -> Result<Self, EigenError> {
@@ -298,7 +268,7 @@ impl ModalAnalysis {
                 k += 1;
             }
         }
-        super::degenerate::finish(ModalAnalysis { route, dcoef, modes: sort_units(units) }, prepared.scale)
+        finish(ModalAnalysis { route, dcoef, modes: sort_units(units) }, prepared.scale)
     }
 
     /// Indices of the modes of one kind.
@@ -371,4 +341,20 @@ pub(super) fn sort_units(mut units: Vec<Vec<Mode>>) -> Vec<Mode> {
         }
     }
     modes
+}
+
+/// Undoes [`super::degenerate::prepare`]'s scaling on the left vectors (normalized with the scaled F_yd) and
+/// refuses a result whose labels cannot be trusted (a non-finite λ labelled dynamic or zero).
+fn finish(mut modal: ModalAnalysis, scale: f64) -> Result<ModalAnalysis, EigenError> {
+    for m in &mut modal.modes {
+        if let Some(u) = m.left.as_mut() {
+            for i in 0..u.nrows() {
+                u[i] *= scale;
+            }
+        }
+        if m.kind != ModeKind::Infinite && !(m.lambda.re.is_finite() && m.lambda.im.is_finite() && !m.error.is_nan()) {
+            return Err(EigenError::NonFinite(format!("QZ gave λ = {} labelled {}", m.lambda, m.kind.name())));
+        }
+    }
+    Ok(modal)
 }

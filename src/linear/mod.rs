@@ -9,13 +9,15 @@ mod degenerate;
 mod deflate;
 mod dynamic_eigen;
 mod eigen;
+mod eigen_error;
 mod route;
 mod sparse;
 mod sparse_dae;
 
 pub use classify::{Classification, ModeKind};
 pub use dae::{coefficient_from_derivatives, derivatives_from_coefficient, ConstraintForm, Jacobians, LinearDae};
-pub use eigen::{EigenError, ModalAnalysis, Mode};
+pub use eigen::{ModalAnalysis, Mode};
+pub use eigen_error::EigenError;
 pub use route::EigenRoute;
 pub use sparse::SparseMatrix;
 pub use sparse_dae::{SparseLinearDae, SparseSolveError};

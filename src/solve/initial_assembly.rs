@@ -21,6 +21,9 @@
 //! iterations` steps (the default, 1, accepts models that need at most one).
 //!
 //! With `omega rotates: yes`, `ω₀` is MBDyn's `R₀ Rᵀ ω₀` (dataman2.cc, `RDelta*wPrev`).
+//! A velocity-level constraint (a constraint row with velocity entries: `linear velocity`,
+//! `angular velocity`, `axial rotation`'s spin) has only its velocity row, its reaction on
+//! the velocity rows (drvj.cc, `LinearVelocityJoint::InitialAssRes`).
 
 use crate::dae::{SparseLu, State, Triplets};
 use crate::element::{Col, Element, ElementState, JacobianSink, NodeKinematics, ResidualSink, Row};
@@ -168,19 +171,28 @@ impl ResidualSink for Residual<'_> {
 /// Jacobian entries in the position unknowns `(x, g, λ)` (`g_matrix`: `δθ = G δg`), or,
 /// with `g_matrix = None`, in the velocity unknowns `(v, ω, λ̇)`: `ḟ = f_/x v + f_/θ ω +
 /// f_/λ λ̇`.
+/// Rows of velocity-level constraints (`velocity_rows`) have no position row: in the
+/// position unknowns they are skipped (their multiplier is held at zero), in the velocity
+/// unknowns they are the constraint itself, `Φ_/u u + Φ(q, 0, t)` (drvj.cc,
+/// `LinearVelocityJoint::InitialAssRes`).
 struct Jacobian<'a> {
     slots: &'a [usize],
     first: usize,
     g_matrix: Option<&'a [Mat3]>,
+    velocity_rows: &'a [bool],
     out: &'a mut Triplets,
 }
 
 impl JacobianSink for Jacobian<'_> {
     fn add(&mut self, row: Row, col: Col, v: f64) {
         let Some(r) = row_of(self.slots, self.first, row) else { return };
+        let velocity_row = self.velocity_rows[r];
+        if velocity_row && self.g_matrix.is_some() {
+            return;
+        }
         match col {
-            Col::Position { slot, comp } => self.out.push(r, 6 * self.slots[slot] + comp, v),
-            Col::Rotation { slot, comp } => {
+            Col::Position { slot, comp } | Col::Velocity { slot, comp } if matches!(col, Col::Velocity { .. }) == velocity_row => self.out.push(r, 6 * self.slots[slot] + comp, v),
+            Col::Rotation { slot, comp } | Col::AngularVelocity { slot, comp } if matches!(col, Col::AngularVelocity { .. }) == velocity_row => {
                 let n = self.slots[slot];
                 match self.g_matrix {
                     Some(g) => (0..3).for_each(|k| self.out.push(r, 6 * n + 3 + k, v * g[n][(comp, k)])),
@@ -188,13 +200,30 @@ impl JacobianSink for Jacobian<'_> {
                 }
             }
             Col::Multiplier(k) => self.out.push(r, self.first + k, v),
-            Col::Velocity { .. } | Col::AngularVelocity { .. } => {}
+            _ => {}
+        }
+    }
+}
+
+/// Marks the constraint rows whose Jacobian has velocity entries (velocity-level
+/// constraints).
+struct VelocityProbe<'a> {
+    first: usize,
+    rows: &'a mut [bool],
+}
+
+impl JacobianSink for VelocityProbe<'_> {
+    fn add(&mut self, row: Row, col: Col, _v: f64) {
+        if let (Row::Constraint(k), Col::Velocity { .. } | Col::AngularVelocity { .. }) = (row, col) {
+            self.rows[self.first + k] = true;
         }
     }
 }
 
 struct Problem<'m> {
     layout: Layout<'m>,
+    /// Whether each row is a velocity-level constraint.
+    velocity_rows: Vec<bool>,
     settings: Vec<NodeAssembly>,
     x0: Vec<Vec3>,
     r0: Vec<Mat3>,
@@ -219,7 +248,7 @@ impl Problem<'_> {
         let (slots, first) = (&self.layout.slots[k], self.layout.first[k]);
         let m = self.layout.element(k).multipliers().len();
         let ctx = Ctx { kin, slots, multipliers: &lambda[first - 6 * self.layout.nodes()..][..m], t: self.t };
-        self.layout.element(k).jacobian(&ctx, &mut Jacobian { slots, first, g_matrix, out });
+        self.layout.element(k).jacobian(&ctx, &mut Jacobian { slots, first, g_matrix, velocity_rows: &self.velocity_rows, out });
     }
 
     /// Position rows and constraint rows at `u`.
@@ -236,6 +265,10 @@ impl Problem<'_> {
         for k in 0..self.layout.elements.len() {
             self.element_residual(k, &kin, &u.lambda, self.t, &mut f);
         }
+        let n6 = 6 * self.layout.nodes();
+        for r in (n6..f.len()).filter(|&r| self.velocity_rows[r]) {
+            f[r] = u.lambda[r - n6];
+        }
         f
     }
 
@@ -248,6 +281,9 @@ impl Problem<'_> {
         }
         for k in 0..self.layout.elements.len() {
             self.element_jacobian(k, &kin, &u.lambda, Some(&g), &mut j);
+        }
+        for r in (0..self.layout.len).filter(|&r| self.velocity_rows[r]) {
+            j.push(r, r, 1.0);
         }
         j
     }
@@ -280,6 +316,17 @@ impl Problem<'_> {
         }
         for i in 0..self.layout.len {
             b[i] -= (plus[i] - minus[i]) / (2.0 * eps);
+        }
+        if self.velocity_rows.iter().any(|v| *v) {
+            // Velocity-level constraints: `−Φ(q, 0, t)` on the right.
+            let still: Vec<NodeKinematics> = kin.iter().map(|k| NodeKinematics { xdot: Vec3::zeros(), omega: Vec3::zeros(), ..k.clone() }).collect();
+            let mut phi0 = vec![0.0; self.layout.len];
+            for k in (0..self.layout.elements.len()).filter(|&k| !self.layout.element(k).multipliers().is_empty()) {
+                self.element_residual(k, &still, &u.lambda, self.t, &mut phi0);
+            }
+            for r in (0..self.layout.len).filter(|&r| self.velocity_rows[r]) {
+                b[r] = -phi0[r];
+            }
         }
         (a, b)
     }
@@ -329,7 +376,9 @@ pub fn initial_assembly(model: &Model, st: &mut State, settings: &InitialAssembl
     let n = model.nodes.len();
     let dofs = crate::dae::DofMap::new(model);
     let frames: Vec<_> = (0..n).map(|i| st.node_frame(&dofs, i)).collect();
+    let velocity_rows = velocity_rows(&layout, &frames.iter().map(|f| f.kin.clone()).collect::<Vec<_>>(), st.t);
     let problem = Problem {
+        velocity_rows,
         settings: model.nodes.iter().map(|node| settings.node(node.label)).collect(),
         x0: frames.iter().map(|f| f.kin.x).collect(),
         r0: frames.iter().map(|f| f.kin.r).collect(),
@@ -393,13 +442,28 @@ pub fn initial_assembly(model: &Model, st: &mut State, settings: &InitialAssembl
     Ok(report)
 }
 
+/// The rows of velocity-level constraints, from where the elements' Jacobians have
+/// velocity entries.
+fn velocity_rows(layout: &Layout, kin: &[NodeKinematics], t: f64) -> Vec<bool> {
+    let mut rows = vec![false; layout.len];
+    let lambda = vec![0.0; layout.len - 6 * layout.nodes()];
+    for k in 0..layout.elements.len() {
+        let (slots, first) = (&layout.slots[k], layout.first[k]);
+        let m = layout.element(k).multipliers().len();
+        let ctx = Ctx { kin, slots, multipliers: &lambda[first - 6 * layout.nodes()..][..m], t };
+        layout.element(k).jacobian(&ctx, &mut VelocityProbe { first, rows: &mut rows });
+    }
+    rows
+}
+
 /// `skip initial joint assembly`: the constraints must hold as written (to 1e-6 of the
 /// model's size), since nothing will move the nodes onto them.
 fn skipped(problem: &Problem, u: &Unknowns) -> Result<AssemblyReport, AssemblyError> {
     let n = problem.layout.nodes();
     let scale = problem.x0.iter().fold(1.0f64, |m, x| m.max(x.norm()));
     let f = problem.position_residual(u);
-    match (6 * n..f.len()).map(|i| (i, f[i])).find(|(_, v)| !(v.abs() <= 1e-6 * scale)) {
+    // Velocity-level constraints are checked against the written velocities by the run.
+    match (6 * n..f.len()).filter(|&i| !problem.velocity_rows[i]).map(|i| (i, f[i])).find(|(_, v)| !(v.abs() <= 1e-6 * scale)) {
         Some((i, value)) => {
             let k = problem.layout.first.iter().rposition(|&first| first <= i).unwrap_or(0);
             let e = problem.layout.element(k);

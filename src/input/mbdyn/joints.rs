@@ -10,27 +10,26 @@
 
 use super::cursor::Cursor;
 use super::diagnostic::MbdynError;
-use super::drives::{single_term, template_vec3};
+use super::drives::template_vec3;
 use super::element_context::ElementContext;
 use super::laws::{linear_law, rest_strain, three, LinearLaw};
 use super::references::{Context, Frame, OtherSide};
-use crate::element::{Anchor, DeformableDisplacement, DeformableHinge, Distance, Drive, Element, Joint, Rod, RodViscosity};
+use crate::element::{Anchor, AxialRotation, ImposedVelocity, VelocityKind, CardanoHinge, DeformableJoint, DrivenJoint, InvariantDeformableHinge, VectorDrive, DeformableDisplacement, DeformableHinge, Distance, Drive, Element, Joint, Rod, RodViscosity};
 use crate::kinematics::{Mat3, Vec3};
 use crate::model::{Label, StructuralNode};
 
-const SUPPORTED: [&str; 19] = [
-    "clamp", "revolute hinge", "plane hinge", "revolute pin", "plane pin", "spherical hinge", "spherical pin", "total joint", "total pin joint",
+const SUPPORTED: [&str; 37] = [
+    "linear velocity", "angular velocity", "revolute rotation", "cardano hinge", "universal hinge", "cardano pin", "universal pin", "cardano rotation", "universal rotation", "axial rotation", "drive displacement", "drive displacement pin", "imposed displacement", "imposed displacement pin", "drive hinge", "deformable joint", "deformable axial joint", "invariant deformable hinge", "clamp", "revolute hinge", "plane hinge", "revolute pin", "plane pin", "spherical hinge", "spherical pin", "total joint", "total pin joint",
     "deformable displacement joint", "deformable displacement hinge", "deformable hinge", "rod", "rod with offset", "in line", "in plane", "prismatic",
     "distance", "distance with offset",
 ];
 
 /// MBDyn joints romdyn names in its "not supported" error.
-const OTHER_JOINTS: [&str; 28] = [
-    "angular acceleration", "angular velocity", "axial rotation", "beam slider", "brake", "cardano hinge", "cardano pin", "cardano rotation",
-    "coincidence", "deformable axial joint", "deformable joint", "drive displacement", "drive displacement pin",
-    "drive hinge", "gimbal rotation", "imposed displacement", "imposed displacement pin", "imposed orientation",
-    "invariant deformable displacement joint", "invariant deformable hinge", "linear acceleration", "linear velocity", "modal",
-    "plane displacement", "plane displacement pin", "point contact", "revolute rotation", "rod bezier",
+const OTHER_JOINTS: [&str; 14] = [
+    "angular acceleration", "beam slider", "brake",
+    "coincidence", "gimbal rotation", "imposed orientation",
+    "invariant deformable displacement joint", "invariant deformable joint", "linear acceleration", "modal",
+    "plane displacement", "plane displacement pin", "point contact", "rod bezier",
 ];
 
 /// One side of a two-node joint: node, offset and orientation in the node frame.
@@ -77,7 +76,7 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
     let Some(kind) = c.accept_any(&SUPPORTED) else {
         if let Some(w) = c.peek_keyword() {
             let name = OTHER_JOINTS.iter().find(|o| super::parser::same_keyword(o, w)).copied().unwrap_or(w);
-            return Err(c.error(format!("joint type '{name}' is not supported by romdyn (supported: clamp, revolute hinge, revolute pin, spherical hinge, spherical pin, total joint, total pin joint, deformable displacement joint, deformable hinge, rod, in line, in plane, prismatic, distance)")));
+            return Err(c.error(format!("joint type '{name}' is not supported by romdyn (supported: axial rotation, linear velocity, angular velocity, revolute rotation, cardano hinge, cardano pin, cardano rotation (and universal …), drive displacement, drive displacement pin, drive hinge, imposed displacement, imposed displacement pin, clamp, revolute hinge, revolute pin, spherical hinge, spherical pin, total joint, total pin joint, deformable displacement joint, deformable hinge, invariant deformable hinge, deformable joint, deformable axial joint, rod, in line, in plane, prismatic, distance)")));
         }
         return Err(c.error(format!("expected a joint type, found {}", c.found())));
     };
@@ -98,8 +97,44 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             let j = if revolute { Joint::revolute_hinge(label, a.anchor(), b.anchor()) } else { Joint::spherical_hinge(label, a.anchor(), b.anchor()) };
             Box::new(assembled(j, &a.global(), &b.global(), c, span)?)
         }
+        "axial rotation" => {
+            // Input manual §Axial rotation; joint.cc reads both offsets with `position`
+            // optional, then the drive, `friction` and the orientation description.
+            let a = side(c, ctx, "node 1", Position::Always, None)?;
+            let b = side(c, ctx, "node 2", Position::Always, Some(&a))?;
+            let omega = super::drives::drive(c, ctx.drives, ctx.seq)?;
+            if c.peek_keyword().is_some_and(|w| w == "friction") {
+                return Err(c.error("joint friction is not supported by romdyn"));
+            }
+            orientation_description(c)?;
+            let hinge = assembled(Joint::revolute_hinge(label, a.anchor(), b.anchor()), &a.global(), &b.global(), c, span)?;
+            Box::new(AxialRotation::new(label, hinge.a, hinge.b, omega))
+        }
         "revolute pin" | "plane pin" | "spherical pin" => Box::new(pin(kind, label, c, ctx, span)?),
         "total joint" | "total pin joint" => Box::new(total(kind == "total pin joint", label, c, ctx, span)?),
+        "drive displacement" | "drive displacement pin" | "imposed displacement" | "imposed displacement pin" => Box::new(drive_displacement(kind, label, c, ctx, span)?),
+        "drive hinge" => Box::new(drive_hinge(label, c, ctx, span)?),
+        "linear velocity" | "angular velocity" => {
+            // joint.cc: NODE, a unit direction relative to the node (normalized), a drive.
+            // drvj.cc turns the angular one's with the node (R d) and uses the linear one's
+            // node-frame components as global ones (`Dir.Dot(vNode)`): so does romdyn.
+            let n = ctx.node(c, "the node")?;
+            let d_span = c.here();
+            let d = ctx.on(n).relative_vector(c, "direction")?;
+            let d = d.try_normalize(0.0).ok_or_else(|| c.error_at(d_span, format!("{kind}: the direction is null")))?;
+            let value = super::drives::drive(c, ctx.drives, ctx.seq)?;
+            let kind = if kind == "linear velocity" { VelocityKind::Linear } else { VelocityKind::Angular };
+            Box::new(ImposedVelocity { label, node: n.label, kind, direction: d, value })
+        }
+        "revolute rotation" => {
+            // joint.cc: offsets after `position` read and ignored; the orientation description.
+            let mut a = side(c, ctx, "node 1", Position::IfKeyword, None)?;
+            let mut b = side(c, ctx, "node 2", Position::IfKeyword, Some(&a))?;
+            orientation_description(c)?;
+            (a.offset, b.offset) = (Vec3::zeros(), Vec3::zeros());
+            Box::new(assembled(Joint::revolute_rotation(label, a.anchor(), b.anchor()), &a.global(), &b.global(), c, span)?)
+        }
+        "cardano hinge" | "universal hinge" | "cardano pin" | "universal pin" | "cardano rotation" | "universal rotation" => Box::new(cardano(kind, label, c, ctx, span)?),
         "in line" | "in plane" => Box::new(in_line_or_plane(kind == "in line", label, c, ctx, span)?),
         "distance" | "distance with offset" => {
             // `distance, NODE_1, [position, O_1,] NODE_2, [position, O_2,] {DRIVE | from nodes}`;
@@ -136,21 +171,56 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             let law_span = c.here();
             let law = linear_law(c, 3, ctx.laws, ctx.drives, ctx.seq)?;
             if hinge {
-                if c.accept("orientation description") {
-                    c.keyword("an orientation description", &["euler123", "euler313", "euler321", "orientation vector", "orientation matrix"])?;
-                }
+                orientation_description(c)?;
+                let v = |d: &nalgebra::DVector<f64>| Vec3::new(d[0], d[1], d[2]);
                 if law.prestrain.iter().chain(law.prestress.iter()).any(|x| *x != 0.0) {
-                    return Err(c.error_at(law_span, "prestrain and prestress of a deformable hinge are not supported by romdyn"));
+                    Box::new(DeformableJoint::hinge(label, a.anchor(), b.anchor(), &three(&law), v(&law.prestrain), v(&law.prestress)))
+                } else {
+                    Box::new(DeformableHinge { label, a: a.anchor(), b: b.anchor(), law: three(&law) })
                 }
-                Box::new(DeformableHinge { label, a: a.anchor(), b: b.anchor(), law: three(&law) })
             } else {
                 let rest = rest_strain(&law).ok_or_else(|| c.error_at(law_span, "a prestress needs an invertible stiffness matrix in romdyn (it becomes a rest strain)"))?;
                 Box::new(DeformableDisplacement { label, a: a.anchor(), b: b.anchor(), law: three(&law), rest })
             }
         }
+        "deformable joint" => {
+            // joint.cc: both offsets read, `position` optional; a 6-D law.
+            let a = side(c, ctx, "node 1", Position::Always, None)?;
+            let b = side(c, ctx, "node 2", Position::Always, Some(&a))?;
+            let law = super::beams::section_law(&linear_law(c, 6, ctx.laws, ctx.drives, ctx.seq)?);
+            orientation_description(c)?;
+            Box::new(DeformableJoint::new(label, a.anchor(), b.anchor(), law))
+        }
+        "deformable axial joint" => {
+            // joint.cc: offsets after `position` are read and ignored; a 1-D law.
+            let a = side(c, ctx, "node 1", Position::IfKeyword, None)?;
+            let b = side(c, ctx, "node 2", Position::IfKeyword, Some(&a))?;
+            let law = linear_law(c, 1, ctx.laws, ctx.drives, ctx.seq)?;
+            let (k, v) = (law.stiffness[(0, 0)], law.viscosity[(0, 0)]);
+            Box::new(DeformableJoint::axial(label, a.anchor(), b.anchor(), k, v, law.prestrain[0], law.prestress[0]))
+        }
+        "invariant deformable hinge" => {
+            let a = side(c, ctx, "node 1", Position::IfKeyword, None)?;
+            let b = side(c, ctx, "node 2", Position::IfKeyword, Some(&a))?;
+            let law_span = c.here();
+            let law = linear_law(c, 3, ctx.laws, ctx.drives, ctx.seq)?;
+            orientation_description(c)?;
+            if law.prestrain.iter().chain(law.prestress.iter()).any(|x| *x != 0.0) {
+                return Err(c.error_at(law_span, "prestrain and prestress of an invariant deformable hinge are not supported by romdyn"));
+            }
+            Box::new(InvariantDeformableHinge { label, a: a.anchor(), b: b.anchor(), law: three(&law) })
+        }
         _ => Box::new(rod(kind == "rod with offset", label, c, ctx)?),
     };
     Ok(element)
+}
+
+/// The optional `orientation description, …` (output only).
+fn orientation_description(c: &mut Cursor) -> Result<(), MbdynError> {
+    if c.accept("orientation description") {
+        c.keyword("an orientation description", &["euler123", "euler313", "euler321", "orientation vector", "orientation matrix"])?;
+    }
+    Ok(())
 }
 
 /// `in line, NODE_1, [position,] P, [orientation,] R, NODE_2 [, offset, O]` (B's point on
@@ -208,21 +278,67 @@ fn clamp(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Joint, Mb
 /// orientations and ignores them.
 fn pin(kind: &str, label: Label, c: &mut Cursor, ctx: &ElementContext, span: super::diagnostic::Span) -> Result<Joint, MbdynError> {
     let revolute = kind != "spherical pin";
+    let (a, b) = pin_frames(revolute, c, ctx)?;
+    if revolute && c.accept("initial theta") {
+        c.real("initial theta [rad]")?;
+    }
+    let Anchor::Ground { position, orientation } = a else { unreachable!("pin_frames returns a ground anchor") };
+    let j = if revolute { Joint::revolute_hinge(label, a, b.anchor()) } else { Joint::spherical_hinge(label, a, b.anchor()) };
+    assembled(j, &(position, orientation), &b.global(), c, span)
+}
+
+/// The node side and the frame fixed in space of a pin (`oriented`: both orientations kept;
+/// a spherical pin reads and ignores them).
+fn pin_frames<'a>(oriented: bool, c: &mut Cursor, ctx: &ElementContext<'a>) -> Result<(Anchor, Side<'a>), MbdynError> {
     let mut b = side(c, ctx, "the node", Position::Always, None)?;
-    if !revolute {
+    if !oriented {
         b.orientation = Mat3::identity();
     }
     let on = Context { node: Some(Frame::of_node(b.node)), ..ctx.global() };
     c.accept("position");
     let position = on.position(c, "pin position [m]")?;
     let orientation = if c.accept("orientation") || c.accept("hinge") { on.orientation(c, "pin orientation")? } else { Mat3::identity() };
-    let orientation = if revolute { orientation } else { Mat3::identity() };
-    if revolute && c.accept("initial theta") {
-        c.real("initial theta [rad]")?;
+    let orientation = if oriented { orientation } else { Mat3::identity() };
+    Ok((Anchor::Ground { position, orientation }, b))
+}
+
+/// `cardano hinge`/`universal hinge` (both offsets read, `position` optional, as the other
+/// hinges), `cardano pin`/`universal pin` (as the revolute pin), `cardano rotation`/`universal
+/// rotation` (offsets after `position` read and ignored, joint.cc): input manual §Cardano
+/// hinge, §Cardano pin, §Cardano rotation.
+fn cardano(kind: &'static str, label: Label, c: &mut Cursor, ctx: &ElementContext, span: super::diagnostic::Span) -> Result<CardanoHinge, MbdynError> {
+    let (a, b, with_position) = if kind.ends_with("pin") {
+        let (a, b) = pin_frames(true, c, ctx)?;
+        (a, b.anchor(), true)
+    } else if kind.ends_with("rotation") {
+        let a = side(c, ctx, "node 1", Position::IfKeyword, None)?;
+        let b = side(c, ctx, "node 2", Position::IfKeyword, Some(&a))?;
+        orientation_description(c)?;
+        let (mut a, mut b) = (a, b);
+        (a.offset, b.offset) = (Vec3::zeros(), Vec3::zeros());
+        (a.anchor(), b.anchor(), false)
+    } else {
+        let a = side(c, ctx, "node 1", Position::Always, None)?;
+        let b = side(c, ctx, "node 2", Position::Always, Some(&a))?;
+        (a.anchor(), b.anchor(), true)
+    };
+    let j = CardanoHinge::new(label, a.clone(), b.clone(), with_position, kind);
+    let (ga, gb) = (anchor_global(&a, ctx), anchor_global(&b, ctx));
+    if with_position {
+        assembled(Joint::spherical_hinge(label, a, b), &ga, &gb, c, span)?;
     }
-    let a = Anchor::Ground { position, orientation };
-    let j = if revolute { Joint::revolute_hinge(label, a, b.anchor()) } else { Joint::spherical_hinge(label, a, b.anchor()) };
-    assembled(j, &(position, orientation), &b.global(), c, span)
+    Ok(j)
+}
+
+/// Global point and frame of an anchor in the initial configuration.
+fn anchor_global(anchor: &Anchor, ctx: &ElementContext) -> (Vec3, Mat3) {
+    match anchor {
+        Anchor::Ground { position, orientation } => (*position, *orientation),
+        Anchor::Node { label, offset, orientation } => match ctx.nodes.find(*label) {
+            Some(n) => (n.node.position + n.node.orientation * offset, n.node.orientation * orientation),
+            None => (Vec3::zeros(), Mat3::identity()),
+        },
+    }
 }
 
 /// One side of a total joint: a node (or the ground, `node: None`, with an absolute
@@ -235,17 +351,11 @@ struct TotalSide<'a> {
 }
 
 impl TotalSide<'_> {
-    /// The anchor with frame `q` and the point moved by `shift` (in frame `q`).
-    fn anchor(&self, q: &Mat3, shift: &Vec3) -> Anchor {
+    /// The anchor with frame `q`.
+    fn anchor(&self, q: &Mat3) -> Anchor {
         match self.node {
-            Some(n) => Anchor::Node { label: n.label, offset: self.offset + q * shift, orientation: *q },
-            None => Anchor::Ground { position: self.offset + q * shift, orientation: *q },
-        }
-    }
-    fn global(&self, q: &Mat3, shift: &Vec3) -> (Vec3, Mat3) {
-        match self.node {
-            Some(n) => (n.position + n.orientation * (self.offset + q * shift), n.orientation * q),
-            None => (self.offset + q * shift, *q),
+            Some(n) => Anchor::Node { label: n.label, offset: self.offset, orientation: *q },
+            None => Anchor::Ground { position: self.offset, orientation: *q },
         }
     }
 }
@@ -271,12 +381,13 @@ fn total_side<'a>(c: &mut Cursor, on: &Context, node: Option<&'a StructuralNode>
 }
 
 /// `total joint` / `total pin joint` (input manual, §Total joint, §Total pin joint): the
-/// active components of relative position and rotation are locked, in the frame of node 1
-/// (total joint) or in the absolute frame (total pin joint). romdyn's total joint has one
-/// frame per side, so where both kinds of constraint are active the position and rotation
-/// orientations of that frame must agree. Imposed values must be constant: a constant
-/// imposed position moves the constraint point, a non-zero imposed rotation is an error.
-fn total(pin: bool, label: Label, c: &mut Cursor, ctx: &ElementContext, span: super::diagnostic::Span) -> Result<Joint, MbdynError> {
+/// active components of relative position and rotation are locked, or their rates imposed
+/// (`velocity`, `angular velocity`), in the frame of node 1 (total joint) or in the absolute
+/// frame (total pin joint), each to its component of the imposed-value template drive.
+/// romdyn's total joint has one frame per side, so where both kinds of constraint are active
+/// the position and rotation orientations of that frame must agree; a time-varying imposed
+/// rotation needs all three rotations locked.
+fn total(pin: bool, label: Label, c: &mut Cursor, ctx: &ElementContext, span: super::diagnostic::Span) -> Result<DrivenJoint, MbdynError> {
     let node = ctx.node(c, if pin { "the node" } else { "node 1" })?;
     let first = total_side(c, &ctx.on(node), Some(node))?;
     let second = if pin {
@@ -287,45 +398,114 @@ fn total(pin: bool, label: Label, c: &mut Cursor, ctx: &ElementContext, span: su
         let other = OtherSide { frame: Frame::of_node(node), offset: first.offset, orientation: first.position };
         total_side(c, &Context { other: Some(other), ..ctx.on(node_b) }, Some(node_b))?
     };
-    let (pos_locked, imposed_pos) = constraint(c, ctx, "position constraint", &["position", "velocity"])?;
-    let (rot_locked, imposed_rot) = constraint(c, ctx, "orientation constraint", &["rotation", "angular velocity"])?;
-    if imposed_rot.iter().zip(rot_locked).any(|(x, on)| on && *x != 0.0) {
-        return Err(c.error_at(span, "a non-zero imposed relative rotation is not supported by romdyn's total joint"));
-    }
-    let (any_pos, any_rot) = (pos_locked.contains(&true), rot_locked.contains(&true));
+    let position = constraint(c, ctx, "position constraint", &["position", "velocity"])?;
+    let rotation = constraint(c, ctx, "orientation constraint", &["rotation", "angular velocity"])?;
+    let any_pos = position.holonomic.contains(&true) || position.rate.contains(&true);
+    let any_rot = rotation.holonomic.contains(&true) || rotation.rate.contains(&true);
     // A: where the constraints are written (the ground of a pin joint, node 1 otherwise).
     let (a, b) = if pin { (second, first) } else { (first, second) };
     if any_pos && any_rot && (a.position - a.rotation).norm() > 1e-12 {
         return Err(c.error_at(span, "romdyn's total joint uses one constraint frame: with both position and orientation constraints active, 'position orientation' and 'rotation orientation' must be the same"));
     }
+    let imposed_rotation = rotation.on(&rotation.holonomic);
+    if !imposed_rotation.is_zero() && rotation.holonomic != [true; 3] {
+        return Err(c.error_at(span, "a non-zero imposed relative rotation is supported by romdyn's total joint only with all three rotation components locked"));
+    }
     let qa = if any_pos { a.position } else { a.rotation };
     let qb = if any_rot { b.rotation } else { b.position };
-    let shift = Vec3::from_fn(|k, _| if pos_locked[k] { imposed_pos[k] } else { 0.0 });
-    let j = Joint::total(label, a.anchor(&qa, &shift), b.anchor(&qb, &Vec3::zeros()), pos_locked, rot_locked);
-    assembled(j, &a.global(&qa, &shift), &b.global(&qb, &Vec3::zeros()), c, span)
+    let name = if pin { "total pin joint" } else { "total joint" };
+    let mut j = DrivenJoint::new(Joint::total(label, a.anchor(&qa), b.anchor(&qb), position.holonomic, rotation.holonomic), name);
+    j.position = position.on(&position.holonomic);
+    j.rotation = imposed_rotation;
+    j.velocity_locked = position.rate;
+    j.velocity = position.on(&position.rate);
+    j.angular_velocity_locked = rotation.rate;
+    j.angular_velocity = rotation.on(&rotation.rate);
+    driven_assembled(j, ctx, c, span)
 }
 
-/// `KIND, STATUS, STATUS, STATUS, VALUE`: locked components and the constant imposed value.
-fn constraint(c: &mut Cursor, ctx: &ElementContext, kind: &str, words: &[&'static str; 2]) -> Result<([bool; 3], Vec3), MbdynError> {
+/// One `position constraint` or `orientation constraint`: components held (holonomic) or
+/// whose rate is imposed, and the imposed value.
+struct Constraint {
+    holonomic: [bool; 3],
+    rate: [bool; 3],
+    value: VectorDrive,
+}
+
+impl Constraint {
+    /// The imposed value on the given components only.
+    fn on(&self, components: &[bool; 3]) -> VectorDrive {
+        let mask = |v: &Vec3| Vec3::from_fn(|k, _| if components[k] { v[k] } else { 0.0 });
+        VectorDrive(self.value.0.iter().map(|(v, d)| (mask(v), d.clone())).filter(|(v, _)| *v != Vec3::zeros()).collect())
+    }
+}
+
+/// `KIND, STATUS, STATUS, STATUS, VALUE`: each status `inactive`, `active` (or the
+/// holonomic word, or 0/1), or the rate word; VALUE a template drive caller.
+fn constraint(c: &mut Cursor, ctx: &ElementContext, kind: &str, words: &[&'static str; 2]) -> Result<Constraint, MbdynError> {
+    let mut out = Constraint { holonomic: [false; 3], rate: [false; 3], value: VectorDrive::default() };
     if !c.accept(kind) {
-        return Ok(([false; 3], Vec3::zeros()));
+        return Ok(out);
     }
-    let mut locked = [false; 3];
-    for l in &mut locked {
-        let span = c.here();
-        *l = match c.accept_any(&["inactive", "active", words[0], words[1]]) {
-            Some("inactive") => false,
-            Some(w) if w == words[1] => return Err(c.error_at(span, format!("'{w}' (a non-holonomic constraint) is not supported by romdyn's total joint"))),
-            Some(_) => true,
-            None => c.real(&format!("{kind} status (active, inactive, or 0/1)"))? != 0.0,
-        };
+    for k in 0..3 {
+        match c.accept_any(&["inactive", "active", words[0], words[1]]) {
+            Some("inactive") => {}
+            Some(w) if w == words[1] => out.rate[k] = true,
+            Some(_) => out.holonomic[k] = true,
+            None => out.holonomic[k] = c.real(&format!("{kind} status (active, inactive, or 0/1)"))? != 0.0,
+        }
     }
-    let span = c.here();
-    let terms = template_vec3(c, ctx.drives, ctx.seq, &Mat3::identity(), &|c: &mut Cursor| c.vec3_values("imposed value"))?;
-    match single_term(terms) {
-        Some((v, Drive::Const(x))) => Ok((locked, v * x)),
-        _ => Err(c.error_at(span, format!("a time-varying imposed value in the {kind} is not supported by romdyn"))),
-    }
+    out.value = VectorDrive(template_vec3(c, ctx.drives, ctx.seq, &Mat3::identity(), &|c: &mut Cursor| c.vec3_values("imposed value"))?);
+    Ok(out)
+}
+
+/// `drive displacement, NODE_1, [position,] O_1, NODE_2, [position,] O_2, VALUE` (B's point at
+/// `D(t)` from A's, in node 1's frame), `drive displacement pin, NODE, [position,] O,
+/// [position,] X, VALUE` (the node's point at `X + D(t)`, absolute), and `imposed
+/// displacement`/`imposed displacement pin` with the same arguments (joint.cc reads them as
+/// total joints with all three positions locked to the template drive VALUE, whatever the
+/// manual's "along a direction" says).
+fn drive_displacement(kind: &'static str, label: Label, c: &mut Cursor, ctx: &ElementContext, span: super::diagnostic::Span) -> Result<DrivenJoint, MbdynError> {
+    let pin = kind.ends_with("pin");
+    let first = side(c, ctx, if pin { "the node" } else { "node 1" }, Position::Always, None)?;
+    let (a, b, basis) = if pin {
+        let on = Context { node: Some(Frame::of_node(first.node)), ..ctx.global() };
+        c.accept("position");
+        let x = on.position(c, "absolute position [m]")?;
+        (Anchor::Ground { position: x, orientation: Mat3::identity() }, Anchor::Node { label: first.node.label, offset: first.offset, orientation: Mat3::identity() }, on)
+    } else {
+        let second = side(c, ctx, "node 2", Position::Always, Some(&first))?;
+        let a = Anchor::Node { label: first.node.label, offset: first.offset, orientation: Mat3::identity() };
+        (a, Anchor::Node { label: second.node.label, offset: second.offset, orientation: Mat3::identity() }, ctx.on(first.node))
+    };
+    let value = if pin {
+        template_vec3(c, ctx.drives, ctx.seq, &Mat3::identity(), &|c: &mut Cursor| basis.vector_in(c, "imposed position", Frame::global()))?
+    } else {
+        template_vec3(c, ctx.drives, ctx.seq, &Mat3::identity(), &|c: &mut Cursor| basis.relative_vector(c, "imposed relative position"))?
+    };
+    let mut j = DrivenJoint::new(Joint::total(label, a, b, [true; 3], [false; 3]), kind);
+    j.position = VectorDrive(value);
+    driven_assembled(j, ctx, c, span)
+}
+
+/// `drive hinge, NODE_1 [, orientation, R_1], NODE_2 [, orientation, R_2], VALUE`: the
+/// relative rotation vector of the two hinge frames imposed (input manual §Drive hinge;
+/// drvhinge.cc: `rotvec(R_1ᵀ R_2) = Θ(t)`).
+fn drive_hinge(label: Label, c: &mut Cursor, ctx: &ElementContext, span: super::diagnostic::Span) -> Result<DrivenJoint, MbdynError> {
+    let a = side(c, ctx, "node 1", Position::IfKeyword, None)?;
+    let b = side(c, ctx, "node 2", Position::IfKeyword, Some(&a))?;
+    let value = template_vec3(c, ctx.drives, ctx.seq, &Mat3::identity(), &|c: &mut Cursor| c.vec3_values("imposed relative rotation [rad]"))?;
+    let mut j = DrivenJoint::new(Joint::total(label, a.anchor(), b.anchor(), [false; 3], [true; 3]), "drive hinge");
+    j.rotation = VectorDrive(value);
+    driven_assembled(j, ctx, c, span)
+}
+
+/// The driven joint, unless its holonomic constraints fail at t = 0 in the initial
+/// configuration (see [`assembled`]).
+fn driven_assembled(j: DrivenJoint, ctx: &ElementContext, c: &Cursor, span: super::diagnostic::Span) -> Result<DrivenJoint, MbdynError> {
+    let at = j.joint_at(0.0);
+    assembled(at.clone(), &anchor_global(&at.a, ctx), &anchor_global(&at.b, ctx), c, span)?;
+    Ok(j)
 }
 
 /// `rod, NODE1, [position, O1,] NODE2, [position, O2,] {L0 | from nodes}, LAW` and `rod with

@@ -1,0 +1,202 @@
+//! A joint with imposed motion: the holonomic constraints of a [`Joint`] with a time-varying
+//! relative position `D(t)` (in frame A) and relative rotation `Θ(t)`, plus velocity-level
+//! constraints on the relative velocity and angular velocity in frame A (MBDyn's `total
+//! joint` and `total pin joint` with drives and `velocity`/`angular velocity` constraints,
+//! totalj.cc; its `drive displacement`, `imposed displacement` and `drive hinge` are total
+//! joints of this kind).
+//!
+//! The imposed position moves A's point: `p_a(t) = x_a + R_a o_a + Q_a D(t)`, so the
+//! position constraint reads `Q_aᵀ (p_b − p_a₀) − D(t)`. The imposed rotation turns B's
+//! frame back, `Q_b(t) = R_b H_b exp(Θ(t))ᵀ`, so the rotation constraint `ax(Q_aᵀ Q_b(t))`
+//! vanishes where `Q_aᵀ R_b H_b = exp(Θ(t))`: MBDyn's `RotManip::VecRot(R1rᵀ R2r R0ᵀ) = 0`,
+//! with the same zero set. Velocity constraints (not divided by dCoef): `(Q_aᵀ u)_k = V_k(t)`
+//! with `u = ẋ_b + ω_b × f_b − ẋ_a − ω_a × (p_b − x_a)`, reaction `Q_a λ` at `p_b`, and
+//! `(Q_aᵀ (ω_b − ω_a))_k = W_k(t)`, reaction moment `Q_a μ`.
+
+use super::anchor::Pair;
+use super::contract::{add_block, Col, Element, ElementState, JacobianSink, Label, ResidualSink, Row};
+use super::{Anchor, Drive, Joint};
+use crate::kinematics::{skew, Vec3};
+
+/// A 3-vector function of time `Σ v_k d_k(t)` (MBDyn's template drive caller).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct VectorDrive(pub Vec<(Vec3, Drive)>);
+
+impl VectorDrive {
+    pub fn value(&self, t: f64) -> Vec3 {
+        self.0.iter().map(|(v, d)| v * d.value(t)).sum()
+    }
+    pub fn is_zero(&self) -> bool {
+        self.0.iter().all(|(v, d)| *v == Vec3::zeros() || *d == Drive::Const(0.0))
+    }
+}
+
+/// A joint with imposed relative motion (see the module documentation).
+#[derive(Clone, Debug)]
+pub struct DrivenJoint {
+    joint: Joint,
+    name: &'static str,
+    /// Imposed relative position `D(t)` in frame A [m] (its locked components matter).
+    pub position: VectorDrive,
+    /// Imposed relative rotation vector `Θ(t)` [rad] (all three rotations locked).
+    pub rotation: VectorDrive,
+    /// Components of the relative velocity in frame A held at `velocity(t)` [m/s].
+    pub velocity_locked: [bool; 3],
+    pub velocity: VectorDrive,
+    /// Components of the relative angular velocity held at `angular_velocity(t)` [rad/s].
+    pub angular_velocity_locked: [bool; 3],
+    pub angular_velocity: VectorDrive,
+}
+
+/// Which reaction a velocity constraint has.
+#[derive(Clone, Copy)]
+enum Rate {
+    Linear(usize),
+    Angular(usize),
+}
+
+impl DrivenJoint {
+    /// `joint` (its kind names the locked holonomic components) with no imposed motion yet;
+    /// `name` is the MBDyn card it comes from.
+    pub fn new(joint: Joint, name: &'static str) -> Self {
+        DrivenJoint {
+            joint,
+            name,
+            position: VectorDrive::default(),
+            rotation: VectorDrive::default(),
+            velocity_locked: [false; 3],
+            velocity: VectorDrive::default(),
+            angular_velocity_locked: [false; 3],
+            angular_velocity: VectorDrive::default(),
+        }
+    }
+
+    fn holonomic(&self) -> usize {
+        self.joint.multipliers().len()
+    }
+
+    fn rates(&self) -> impl Iterator<Item = Rate> + '_ {
+        let v = (0..3).filter(|&k| self.velocity_locked[k]).map(Rate::Linear);
+        let w = (0..3).filter(|&k| self.angular_velocity_locked[k]).map(Rate::Angular);
+        v.chain(w)
+    }
+
+    /// The joint with its anchors where they are at time `t`.
+    pub fn joint_at(&self, t: f64) -> Joint {
+        let mut j = self.joint.clone();
+        if !self.position.0.is_empty() {
+            let d = self.position.value(t);
+            match &mut j.a {
+                Anchor::Node { offset, orientation, .. } => *offset += *orientation * d,
+                Anchor::Ground { position, orientation } => *position += *orientation * d,
+            }
+        }
+        if !self.rotation.0.is_empty() {
+            let back = nalgebra::Rotation3::new(self.rotation.value(t)).into_inner().transpose();
+            match &mut j.b {
+                Anchor::Node { orientation, .. } | Anchor::Ground { orientation, .. } => *orientation *= back,
+            }
+        }
+        j
+    }
+
+    /// Reactions of the velocity constraints: force `Q_a λ` (at `p_b`), moment `Q_a μ`.
+    fn rate_reactions(&self, p: &Pair, st: &dyn ElementState) -> (Vec3, Vec3) {
+        let (mut lambda, mut mu) = (Vec3::zeros(), Vec3::zeros());
+        for (i, r) in self.rates().enumerate() {
+            let x = st.multiplier(self.holonomic() + i);
+            match r {
+                Rate::Linear(k) => lambda[k] = x,
+                Rate::Angular(k) => mu[k] = x,
+            }
+        }
+        (p.q_a * lambda, p.q_a * mu)
+    }
+}
+
+impl Element for DrivenJoint {
+    fn label(&self) -> Label {
+        self.joint.label
+    }
+    fn type_name(&self) -> &'static str {
+        self.name
+    }
+    fn nodes(&self) -> Vec<Label> {
+        self.joint.nodes()
+    }
+    fn multipliers(&self) -> Vec<String> {
+        let mut m = self.joint.multipliers();
+        m.extend(self.rates().map(|r| match r {
+            Rate::Linear(k) => format!("v {}", ["x", "y", "z"][k]),
+            Rate::Angular(k) => format!("w {}", ["x", "y", "z"][k]),
+        }));
+        m
+    }
+    fn is_velocity_constraint(&self, k: usize) -> bool {
+        k >= self.holonomic()
+    }
+    fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
+        let t = st.time();
+        let j = self.joint_at(t);
+        j.residual(st, out);
+        if self.rates().next().is_none() {
+            return;
+        }
+        let p = Pair::new(&j.a, &j.b, st);
+        let qt = p.q_a.transpose();
+        let (v, w) = (qt * p.u, qt * (p.omega_b - p.omega_a));
+        let (v0, w0) = (self.velocity.value(t), self.angular_velocity.value(t));
+        for (i, r) in self.rates().enumerate() {
+            let value = match r {
+                Rate::Linear(k) => v[k] - v0[k],
+                Rate::Angular(k) => w[k] - w0[k],
+            };
+            out.add(Row::Constraint(self.holonomic() + i), value);
+        }
+        let (force, moment) = self.rate_reactions(&p, st);
+        p.add_force(out, &force);
+        p.add_moment(out, &moment);
+    }
+    fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
+        let j = self.joint_at(st.time());
+        j.jacobian(st, out);
+        if self.rates().next().is_none() {
+            return;
+        }
+        let p = Pair::new(&j.a, &j.b, st);
+        let qt = p.q_a.transpose();
+        let (b, n) = (p.slot_b, self.holonomic());
+        // Rows: ∂(Q_aᵀ u)/∂q, and ∂(Q_aᵀ (ω_b − ω_a))/∂q.
+        let linear = p.rate_derivatives();
+        let mut angular = vec![(Col::angular_velocity(b), qt)];
+        if let Some(a) = p.slot_a {
+            angular.push((Col::angular_velocity(a), -qt));
+            angular.push((Col::rotation(a), qt * skew(&(p.omega_b - p.omega_a))));
+        }
+        for (i, r) in self.rates().enumerate() {
+            let (blocks, k) = match r {
+                Rate::Linear(k) => (&linear, k),
+                Rate::Angular(k) => (&angular, k),
+            };
+            for (cols, m) in blocks {
+                for (c, col) in cols.iter().enumerate() {
+                    out.add(Row::Constraint(n + i), *col, m[(k, c)]);
+                }
+            }
+        }
+        // Reactions: geometric terms, then the multipliers' columns.
+        let (force, moment) = self.rate_reactions(&p, st);
+        p.add_force_jacobian(out, &force, &[]);
+        if let Some(a) = p.slot_a {
+            add_block(out, Row::moment(b), Col::rotation(a), &(-skew(&moment)));
+            add_block(out, Row::moment(a), Col::rotation(a), &skew(&moment));
+        }
+        for (i, r) in self.rates().enumerate() {
+            let (df, dm) = match r {
+                Rate::Linear(k) => (p.q_a.column(k).into_owned(), Vec3::zeros()),
+                Rate::Angular(k) => (Vec3::zeros(), p.q_a.column(k).into_owned()),
+            };
+            p.add_reaction_column(out, Col::Multiplier(n + i), &df, &dm);
+        }
+    }
+}
