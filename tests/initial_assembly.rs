@@ -141,3 +141,21 @@ fn omega_rotates_turns_the_written_angular_velocity_with_the_node() {
         assert!((kin.r - romdyn::kinematics::Mat3::identity()).norm() < 1e-12 && kin.omega.xy().norm() < 1e-12, "{kin:?}");
     }
 }
+
+#[test]
+fn velocity_constraints_are_assembled_as_mbdyn_assembles_them() {
+    // imposed_velocity.mbd with velocities its linear velocity joint (dir (1, 1, 0)/√2 at
+    // ramp(0) = 0 m/s) and angular velocity joint (2 rad/s about z) do not allow: node 2 at
+    // (0.3, 0, 0) m/s, node 3 spinning at (0.1, 0, 1.5) rad/s. MBDyn 1.7.3 on the file so
+    // changed (final time 0): node 2 (0.15, −0.15, 0) m/s, node 3 (0.1, 0, 2) rad/s, in one
+    // iteration with its defaults; the closed form is the projection onto the constraints.
+    let edits = [
+        ("structural: 2, dynamic, 0., 0., 0., eye, null, null;", "structural: 2, dynamic, 0., 0., 0., eye, .3, 0., 0., null;"),
+        ("structural: 3, dynamic, 0., 0., 5., eye, null, .1, 0., 2.;", "structural: 3, dynamic, 0., 0., 5., eye, null, .1, 0., 1.5;"),
+    ];
+    let m = rewritten("imposed_velocity.mbd", &edits);
+    let st = assembled(&m);
+    let asm = Assembler::new(&m.model);
+    let (v2, w3) = (st.node_frame(&asm.dofs, 0).kin.xdot, st.node_frame(&asm.dofs, 1).kin.omega);
+    assert!((v2 - romdyn::kinematics::Vec3::new(0.15, -0.15, 0.0)).norm() < 1e-12 && (w3 - romdyn::kinematics::Vec3::new(0.1, 0.0, 2.0)).norm() < 1e-12, "{v2:?} {w3:?}");
+}
