@@ -10,7 +10,7 @@ use crate::limits::readable;
 use super::diagnostic::{MbdynError, Sources};
 use super::drives::{drive, Drives};
 use super::parser::{known, Block};
-use crate::model::{AbortAfter, EigenOutput, EigenRequest, InitialValueProblem, Method, ResidualNorm};
+use crate::model::{AbortAfter, AutoCoefficient, EigenOutput, EigenRequest, InitialValueProblem, Method, ResidualNorm};
 
 /// Reads the `data` block.
 pub fn data(block: &Block, sources: &Sources) -> Result<(), MbdynError> {
@@ -57,7 +57,8 @@ const STATEMENTS: [&str; 11] = [
 /// `iDefaultMaxIterations = 1`, `dDefaultDerivativesCoefficient = 1e-6`; solver.cc,
 /// `Solver::ReadData`: without `method:` the integrator is `ms` with a null drive for ρ∞,
 /// i.e. ρ∞ = 0; the initial time step is 1 s; the derivatives use the same tolerance and
-/// iteration defaults; the residual test is the 2-norm, `test, norm`).
+/// iteration defaults; the residual test is the 2-norm, `test, norm`, and no solution
+/// test: `dSolutionTol = 0`, nonlin.cc `MakeSolTest`).
 pub fn mbdyn_defaults() -> InitialValueProblem {
     InitialValueProblem {
         initial_time: 0.0,
@@ -70,6 +71,7 @@ pub fn mbdyn_defaults() -> InitialValueProblem {
         derivatives_max_iterations: 1,
         derivatives_coefficient: 1e-6,
         residual_norm: ResidualNorm::Euclidean,
+        increment_tolerance: 0.0,
         ..InitialValueProblem::default()
     }
 }
@@ -199,12 +201,22 @@ fn derivatives_coefficient(c: &mut Cursor, a: &mut InitialValueProblem) -> Resul
         a.derivatives_coefficient = k;
     }
     if c.accept("auto") {
+        let mut auto = AutoCoefficient::default();
         if c.accept("max iterations") {
-            c.count("derivatives coefficient max iterations")?;
+            let span = c.here();
+            auto.retries = c.count("derivatives coefficient max iterations")?;
+            if auto.retries > 100 {
+                return Err(c.error_at(span, format!("at most 100 derivatives coefficient iterations are supported, found {}", auto.retries)));
+            }
         }
         if c.accept("factor") {
-            c.real("derivatives coefficient factor")?;
+            let span = c.here();
+            auto.factor = c.real("derivatives coefficient factor")?;
+            if !(auto.factor > 1.0) {
+                return Err(c.error_at(span, format!("the derivatives coefficient factor must be greater than one, found {}", auto.factor)));
+            }
         }
+        a.derivatives_coefficient_auto = Some(auto);
     }
     Ok(())
 }
