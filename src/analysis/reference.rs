@@ -43,6 +43,7 @@ fn static_state(model: &Model, problem: &InitialValueProblem, load_steps: usize)
     let asm = Assembler::new(model);
     let mut st = State::initial(model, &asm.dofs);
     st.t = problem.initial_time;
+    crate::solve::initial_assembly(model, &mut st, &problem.assembly).map_err(RunError::Assembly)?;
     static_solution(&asm, &mut st, load_steps, &static_settings(problem)).map_err(RunError::Static)?;
     Ok(st)
 }

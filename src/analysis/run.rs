@@ -19,7 +19,7 @@ use super::observer::{Derivatives, EigenDone, RunObserver, RunStart, StepDone};
 use crate::dae::{Assembler, State};
 use crate::linear::ModeKind;
 use crate::model::{AbortAfter, InitialValueProblem, Model};
-use crate::solve::{constraint_rate, initial_derivatives_with, Integrator, NewtonSettings};
+use crate::solve::{constraint_rate, initial_assembly, initial_derivatives_with, AssemblyReport, Integrator, NewtonSettings};
 
 
 /// One eigenanalysis in the report.
@@ -45,6 +45,8 @@ pub struct RunReport {
     pub derivatives_iterations: usize,
     pub wall_time: Duration,
     pub eigenanalyses: Vec<EigenSummary>,
+    /// What MBDyn's initial assembly changed.
+    pub assembly: AssemblyReport,
     /// The joint whose constraint the initial velocities violate most, and the rate
     /// `Φ_/q q̇` [m/s or rad/s], when it exceeds the tolerance: the velocities written in the
     /// file are not consistent, and the first step changes them (as in MBDyn).
@@ -125,6 +127,7 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
     let asm = Assembler::new(model);
     let mut state = State::initial(model, &asm.dofs);
     state.t = problem.initial_time;
+    let assembly = if problem.abort_after == Some(AbortAfter::Input) { AssemblyReport::default() } else { initial_assembly(model, &mut state, &problem.assembly).map_err(RunError::Assembly)? };
     let steps = step_count(problem);
     let times: &[f64] = problem.eigenanalysis.as_ref().map_or(&[], |r| &r.times);
     observed(observer.started(&RunStart { model, problem, steps, eigenanalyses: times.len() }))?;
@@ -134,6 +137,7 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
         derivatives_iterations: 0,
         wall_time: Duration::ZERO,
         eigenanalyses: Vec::new(),
+        assembly,
         inconsistent_velocity: None,
         eigen_times_not_reached: times.to_vec(),
         final_state: state.clone(),

@@ -114,6 +114,54 @@ pub struct InitialValueProblem {
     pub output: Option<MotionOutput>,
     pub eigenanalysis: Option<EigenRequest>,
     pub abort_after: Option<AbortAfter>,
+    /// MBDyn's initial assembly before the run (control data).
+    pub assembly: InitialAssembly,
+}
+
+/// MBDyn's initial joint assembly (input manual, "Control Data", §Assembly-Related Cards;
+/// dataman.cc defaults): penalty springs of stiffness `position_stiffness` on every node's
+/// position and orientation parameters and `velocity_stiffness` on its velocities hold the
+/// configuration written in the file while the joints are made to hold.
+#[derive(Clone, Debug, PartialEq)]
+pub struct InitialAssembly {
+    /// `skip initial joint assembly`: the configuration is used as written.
+    pub skip: bool,
+    /// `initial stiffness: POSITION [, VELOCITY]` (default 1, 1; a penalty, not SI).
+    pub position_stiffness: f64,
+    pub velocity_stiffness: f64,
+    /// `omega rotates: yes`: the written angular velocity turns with the node.
+    pub omega_rotates: bool,
+    /// `tolerance`: on `sqrt(|F|² / (1 + |X|²))` (default 1e-6).
+    pub tolerance: f64,
+    /// `max iterations` (default 1: a correct model needs none).
+    pub max_iterations: usize,
+    /// A node's own `assembly, POSITION, VELOCITY, OMEGA_ROTATES` settings, by label.
+    pub nodes: Vec<(super::Label, NodeAssembly)>,
+}
+
+/// One node's penalty settings in the initial assembly.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NodeAssembly {
+    pub position_stiffness: f64,
+    pub velocity_stiffness: f64,
+    pub omega_rotates: bool,
+}
+
+impl Default for InitialAssembly {
+    fn default() -> Self {
+        InitialAssembly { skip: false, position_stiffness: 1.0, velocity_stiffness: 1.0, omega_rotates: false, tolerance: 1e-6, max_iterations: 1, nodes: Vec::new() }
+    }
+}
+
+impl InitialAssembly {
+    /// The settings of the node with `label`.
+    pub fn node(&self, label: super::Label) -> NodeAssembly {
+        self.nodes.iter().find(|(l, _)| *l == label).map(|(_, n)| *n).unwrap_or(NodeAssembly {
+            position_stiffness: self.position_stiffness,
+            velocity_stiffness: self.velocity_stiffness,
+            omega_rotates: self.omega_rotates,
+        })
+    }
 }
 
 impl Default for InitialValueProblem {
@@ -134,6 +182,7 @@ impl Default for InitialValueProblem {
             output: None,
             eigenanalysis: None,
             abort_after: None,
+            assembly: InitialAssembly::default(),
         }
     }
 }

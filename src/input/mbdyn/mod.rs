@@ -17,6 +17,7 @@ mod drives;
 mod element_context;
 mod elements;
 mod expr;
+mod forces;
 mod functions;
 mod joints;
 mod laws;
@@ -27,6 +28,7 @@ mod orientation;
 mod parser;
 mod problem;
 mod references;
+mod scalar_functions;
 mod value;
 
 pub use diagnostic::MbdynError;

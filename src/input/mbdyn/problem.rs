@@ -228,6 +228,11 @@ fn method(c: &mut Cursor, drives: &Drives, t0: f64, seq: usize) -> Result<Method
     if let Some(m) = c.accept_any(&["hope", "third order", "thirdorder"]) {
         return Err(c.error_at(span, format!("integration method '{m}' is not supported by romdyn (supported: ms, crank nicolson, implicit euler, bdf)")));
     }
+    // Methods of later MBDyn versions: without MBDyn 1.7.3's definition to compare with,
+    // romdyn does not guess their coefficients.
+    if let Some(m) = c.accept_any(&["bathe", "hybrid", "dirk33", "dirk43", "dirk54", "msstc3", "msstc4", "msstc5", "mssth3", "mssth4", "mssth5", "ss2", "ss3", "ss4", "ss5"]) {
+        return Err(c.error_at(span, format!("integration method '{m}' is not known to MBDyn 1.7.3 (its reader stops with \"Unknown integration method\") and is not supported by romdyn (supported: ms, crank nicolson, implicit euler, bdf)")));
+    }
     // `crank nicholson` is MBDyn's deprecated spelling (solver.cc, Solver::ReadData).
     Ok(match c.keyword("an integration method", &["ms", "crank nicolson", "crank nicholson", "implicit euler", "bdf"])? {
         "ms" => {
