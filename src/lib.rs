@@ -23,6 +23,7 @@ pub mod output;
 pub mod rom;
 pub mod solve;
 pub mod study;
+pub mod sweep;
 
 /// Complex scalar used throughout (re-exported from faer).
 pub use faer::c64;

@@ -321,13 +321,20 @@ fn the_derivatives_phase_keeps_the_velocities_written_and_reports_inconsistent_o
     assert!((st.yp[7] + 2.0 * 9.81).abs() < 1e-12 && st.yp[6].abs() < 1e-12, "β' = {:?}", &st.yp[6..9]);
     assert!(report.inconsistent_velocity.is_none());
 
-    // A pendulum bob given a radial velocity of 0.5 m/s violates its hinge at 0.5 m/s: kept,
+    // A pendulum bob given a radial velocity of 0.5 m/s violates its hinge at 0.5 m/s. MBDyn's
+    // initial assembly removes it (MBDyn 1.7.3 on default_pendulum.mbd so changed: the .mov
+    // at t = 0 has node 2's velocity 0, 0, 0); with `skip initial joint assembly` it is kept,
     // and reported.
-    let bad = rewritten("default_pendulum.mbd", &[("structural: 2, dynamic, 1., 0., 0., eye, null, null;", "structural: 2, dynamic, 1., 0., 0., eye, 0.5, 0., 0., null;"), ("    final time: 1.;", "    final time: 0.;")]);
+    let edits = [("structural: 2, dynamic, 1., 0., 0., eye, null, null;", "structural: 2, dynamic, 1., 0., 0., eye, 0.5, 0., 0., null;"), ("    final time: 1.;", "    final time: 0.;")];
+    let assembled = rewritten("default_pendulum.mbd", &edits);
+    let report = run(&assembled.model, &assembled.problem, &mut ()).unwrap();
+    let asm = romdyn::dae::Assembler::new(&assembled.model);
+    assert!(report.inconsistent_velocity.is_none() && report.final_state.node_frame(&asm.dofs, 1).kin.xdot.norm() < 1e-15);
+    let skip = [edits[0], edits[1], ("    gravity;\n", "    gravity;\n    skip initial joint assembly;\n")];
+    let bad = rewritten("default_pendulum.mbd", &skip);
     let report = run(&bad.model, &bad.problem, &mut ()).unwrap();
     let (equation, rate) = report.inconsistent_velocity.clone().expect("the violation is reported");
     assert!((rate.abs() - 0.5).abs() < 1e-6, "{equation}: {rate}");
-    let asm = romdyn::dae::Assembler::new(&bad.model);
     assert_eq!(report.final_state.node_frame(&asm.dofs, 1).kin.xdot, Vec3::new(0.5, 0.0, 0.0));
 }
 
@@ -371,4 +378,55 @@ fn a_conical_pendulum_on_a_distance_joint_keeps_its_circle() {
     assert!((x - closed).norm() < 5e-6, "{x} against the closed form {closed}");
     assert!((x - mbdyn).norm() < 1e-8, "{x} against MBDyn {mbdyn}");
     assert!((x.norm() - 1.0).abs() < 1e-9);
+}
+
+/// The 100-link pendulum chain of scripts/bench_vs_mbdyn.sh (nodes 0.1 m apart along x,
+/// hinged about z, tolerance 1e-9, derivatives tolerance 1e-6 with at most 10 iterations),
+/// stopped after the derivatives phase, with the derivatives coefficient line given.
+fn chain_100_derivatives(coefficient: &str) -> MbdynModel {
+    let mut t = String::from(
+        "begin: data; problem: initial value; end: data;
+        begin: initial value; initial time: 0.; final time: 1.; time step: 1.e-3; method: ms, .6;
+        tolerance: 1.e-9; max iterations: 20; derivatives tolerance: 1.e-6; derivatives max iterations: 10;\n",
+    );
+    t += coefficient;
+    t += "\nabort after: derivatives; end: initial value;
+        begin: control data; structural nodes: 101; rigid bodies: 100; joints: 101; gravity; end: control data;
+        begin: nodes; structural: 0, static, null, eye, null, null;\n";
+    for i in 1..=100 {
+        t += &format!("structural: {i}, dynamic, {:.1}, 0., 0., eye, null, null;\n", 0.1 * i as f64);
+    }
+    t += "end: nodes; begin: elements; joint: 0, clamp, 0, node, node;\n";
+    for i in 1..=100 {
+        t += &format!("body: {i}, {i}, 0.1, null, diag, 1.e-4, 1.e-4, 1.e-4;\njoint: {}, revolute hinge, {}, position, null, {i}, position, -0.1, 0., 0.;\n", 100 + i, i - 1);
+    }
+    t += "gravity: uniform, single, 0., -1., 0., const, 9.81; end: elements;";
+    parse_text(&t, Path::new("chain_100.mbd")).and_then(|d| build(&d)).unwrap_or_else(|e| panic!("{e}"))
+}
+
+#[test]
+fn derivatives_coefficient_auto_retries_as_mbdyn() {
+    // MBDyn 1.7.3 on this file (scripts/bench_vs_mbdyn.sh's chain_100): at the coefficient
+    // 1e-6 (dCoef 1e-9 s) the hinges' rounding, about 1.4e-15 m at x = 8.3 m, divided by
+    // dCoef leaves a residual above 1e-6 and 10 iterations fail; with `auto` it prints
+    // "Derivatives(1/13) t=0 coef=1e-05 tol=1e-06" and converges in 1 iteration with error
+    // 4.42469e-07 (its .out). stepsol.cc DerivativeSolver::Advance: coef × 10 up to 6 times,
+    // then coef / 10 up to 6 times.
+    let sequence: Vec<f64> = romdyn::model::AutoCoefficient::default().sequence(1e-9).collect();
+    let expected = [1e-9, 1e-8, 1e-7, 1e-6, 1e-5, 1e-4, 1e-3, 1e-10, 1e-11, 1e-12, 1e-13, 1e-14, 1e-15];
+    assert_eq!(sequence.len(), 13);
+    assert!(sequence.iter().zip(expected).all(|(a, b)| (a - b).abs() <= 1e-12 * b), "{sequence:?}");
+
+    let fixed = chain_100_derivatives("derivatives coefficient: 1.e-6;");
+    assert!(fixed.problem.derivatives_coefficient_auto.is_none());
+    let failure = run(&fixed.model, &fixed.problem, &mut ()).expect_err("dCoef = 1e-9 s stays above the tolerance");
+    assert!(failure.to_string().contains("initial derivatives"), "{failure}");
+
+    let auto = chain_100_derivatives("derivatives coefficient: auto;");
+    assert_eq!(auto.problem.derivatives_coefficient_auto, Some(romdyn::model::AutoCoefficient { retries: 6, factor: 10.0 }));
+    let report = run(&auto.model, &auto.problem, &mut ()).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(report.derivatives_iterations, 1, "MBDyn: 1 iteration at coef 1e-5");
+
+    let custom = chain_100_derivatives("derivatives coefficient: 1.e-7, auto, max iterations, 2, factor, 3.;");
+    assert_eq!((custom.problem.derivatives_coefficient, custom.problem.derivatives_coefficient_auto), (1e-7, Some(romdyn::model::AutoCoefficient { retries: 2, factor: 3.0 })));
 }

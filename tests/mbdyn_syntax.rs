@@ -362,10 +362,10 @@ fn rods_from_nodes_with_offsets_and_prestrain() {
     let mut b = ModelBuilder::new();
     nodes(&mut b);
     let (o, i) = (Vec3::zeros(), Mat3::identity());
-    b.element(Rod { label: 1, a: node_anchor(1, o, i), b: node_anchor(3, o, i), axial_stiffness: 1000.0, length: (4.0f64 + 0.25).sqrt() });
-    b.element(Rod { label: 2, a: node_anchor(1, Vec3::new(0.0, 0.0, 0.5), i), b: node_anchor(3, Vec3::new(0.0, -1.0, 0.0), i), axial_stiffness: 200.0, length: 1.5 });
+    b.element(Rod { label: 1, a: node_anchor(1, o, i), b: node_anchor(3, o, i), axial_stiffness: 1000.0, length: (4.0f64 + 0.25).sqrt(), viscous: None, elastic: None });
+    b.element(Rod { label: 2, a: node_anchor(1, Vec3::new(0.0, 0.0, 0.5), i), b: node_anchor(3, Vec3::new(0.0, -1.0, 0.0), i), axial_stiffness: 200.0, length: 1.5, viscous: None, elastic: None });
     // Prestrain 0.1: rest length 2.2 and EA/l0 kept, so EA' = 100 · 2.2/2.
-    b.element(Rod { label: 3, a: node_anchor(2, o, i), b: node_anchor(3, o, i), axial_stiffness: 110.0, length: 2.2 });
+    b.element(Rod { label: 3, a: node_anchor(2, o, i), b: node_anchor(3, o, i), axial_stiffness: 110.0, length: 2.2, viscous: None, elastic: None });
     assert_same_physics(&text, b.build().unwrap());
 }
 

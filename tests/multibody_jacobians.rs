@@ -39,7 +39,7 @@ fn every_element(form: ConstraintForm) -> Model {
     b.element(DeformableDisplacement { label: 9, a: Anchor::Ground { position: n.vec(), orientation: n.rotation() }, b: node(3, &mut n), law: law.clone(), rest: Vec3::zeros() });
     b.element(DeformableHinge { label: 10, a: node(2, &mut n), b: node(3, &mut n), law: law.clone() });
     b.element(DeformableHinge { label: 11, a: Anchor::Ground { position: n.vec(), orientation: n.rotation() }, b: node(2, &mut n), law });
-    b.element(Rod { label: 12, a: node(1, &mut n), b: node(3, &mut n), axial_stiffness: 1e3, length: 0.7 });
+    b.element(Rod { label: 12, a: node(1, &mut n), b: node(3, &mut n), axial_stiffness: 1e3, length: 0.7, viscous: None, elastic: None });
     let drive = Drive::Sine { t0: 0.0, omega: 3.0, amplitude: 2.0, cycles: None, v0: 0.5 };
     for (label, frame) in [(13, ForceFrame::Absolute), (14, ForceFrame::Follower)] {
         b.element(Force { label, node: 3, frame, direction: n.vec(), offset: n.vec(), drive: drive.clone() });

@@ -1,6 +1,6 @@
 //! Why a run (or a reference solution) stopped.
 
-use crate::solve::NewtonFailure;
+use crate::solve::{AssemblyError, NewtonFailure};
 
 /// An observer's failure (e.g. a file that cannot be written).
 pub type ObserverError = Box<dyn std::error::Error + Send + Sync>;
@@ -10,6 +10,8 @@ pub type ObserverError = Box<dyn std::error::Error + Send + Sync>;
 pub enum RunError {
     #[error("invalid initial-value problem: {0}")]
     Problem(String),
+    #[error(transparent)]
+    Assembly(AssemblyError),
     #[error("initial derivatives: {0}")]
     Derivatives(NewtonFailure),
     #[error("static equilibrium: {0}")]

@@ -43,9 +43,28 @@ fn static_state(model: &Model, problem: &InitialValueProblem, load_steps: usize)
     let asm = Assembler::new(model);
     let mut st = State::initial(model, &asm.dofs);
     st.t = problem.initial_time;
-    // Static equilibrium from the straight shape needs more than MBDyn's one default
-    // iteration per load step: the file's limit, at least 20.
-    let settings = NewtonSettings { tolerance: problem.tolerance, norm: problem.residual_norm, max_iterations: problem.max_iterations.max(20), ..NewtonSettings::default() };
-    static_solution(&asm, &mut st, load_steps, &settings).map_err(RunError::Static)?;
+    crate::solve::initial_assembly(model, &mut st, &problem.assembly).map_err(RunError::Assembly)?;
+    static_solution(&asm, &mut st, load_steps, &static_settings(problem)).map_err(RunError::Static)?;
+    Ok(st)
+}
+
+/// Static equilibrium from the straight shape needs more than MBDyn's one default
+/// iteration per load step: the file's limit, at least 20.
+fn static_settings(problem: &InitialValueProblem) -> NewtonSettings {
+    NewtonSettings { tolerance: problem.tolerance, norm: problem.residual_norm, max_iterations: problem.max_iterations.max(20), ..NewtonSettings::default() }
+}
+
+/// The static equilibrium at the initial time starting from `start` (a neighbouring design
+/// point's equilibrium, the same unknowns) at full load in one increment.
+pub fn static_state_from(model: &Model, problem: &InitialValueProblem, start: &State) -> Result<State, RunError> {
+    let asm = Assembler::new(model);
+    let mut st = State::initial(model, &asm.dofs);
+    if st.y.len() != start.y.len() || st.r_ref.len() != start.r_ref.len() {
+        return Err(RunError::Problem(format!("the starting solution has {} unknowns, the model {}", start.y.len(), st.y.len())));
+    }
+    st.y.clone_from(&start.y);
+    st.r_ref.clone_from(&start.r_ref);
+    st.t = problem.initial_time;
+    static_solution(&asm, &mut st, 1, &static_settings(problem)).map_err(RunError::Static)?;
     Ok(st)
 }

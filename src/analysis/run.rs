@@ -19,7 +19,7 @@ use super::observer::{Derivatives, EigenDone, RunObserver, RunStart, StepDone};
 use crate::dae::{Assembler, State};
 use crate::linear::ModeKind;
 use crate::model::{AbortAfter, InitialValueProblem, Model};
-use crate::solve::{constraint_rate, initial_derivatives_with, Integrator, NewtonSettings};
+use crate::solve::{constraint_rate, initial_assembly, initial_derivatives_with, AssemblyReport, Integrator, NewtonSettings};
 
 
 /// One eigenanalysis in the report.
@@ -45,6 +45,8 @@ pub struct RunReport {
     pub derivatives_iterations: usize,
     pub wall_time: Duration,
     pub eigenanalyses: Vec<EigenSummary>,
+    /// What MBDyn's initial assembly changed.
+    pub assembly: AssemblyReport,
     /// The joint whose constraint the initial velocities violate most, and the rate
     /// `Φ_/q q̇` [m/s or rad/s], when it exceeds the tolerance: the velocities written in the
     /// file are not consistent, and the first step changes them (as in MBDyn).
@@ -125,6 +127,7 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
     let asm = Assembler::new(model);
     let mut state = State::initial(model, &asm.dofs);
     state.t = problem.initial_time;
+    let assembly = if problem.abort_after == Some(AbortAfter::Input) { AssemblyReport::default() } else { initial_assembly(model, &mut state, &problem.assembly).map_err(RunError::Assembly)? };
     let steps = step_count(problem);
     let times: &[f64] = problem.eigenanalysis.as_ref().map_or(&[], |r| &r.times);
     observed(observer.started(&RunStart { model, problem, steps, eigenanalyses: times.len() }))?;
@@ -134,6 +137,7 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
         derivatives_iterations: 0,
         wall_time: Duration::ZERO,
         eigenanalyses: Vec::new(),
+        assembly,
         inconsistent_velocity: None,
         eigen_times_not_reached: times.to_vec(),
         final_state: state.clone(),
@@ -144,10 +148,9 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
         return Ok(report);
     }
 
-    let derivative_settings = NewtonSettings { tolerance: problem.derivatives_tolerance, norm: problem.residual_norm, max_iterations: problem.derivatives_max_iterations, ..Default::default() };
+    let derivative_settings = NewtonSettings { tolerance: problem.derivatives_tolerance, norm: problem.residual_norm, increment_tolerance: problem.increment_tolerance, max_iterations: problem.derivatives_max_iterations };
     report.inconsistent_velocity = constraint_rate(&asm, &state).filter(|(_, rate)| rate.abs() > problem.tolerance);
-    let dcoef = problem.derivatives_coefficient * problem.time_step;
-    let done = initial_derivatives_with(&asm, &mut state, &derivative_settings, dcoef).map_err(RunError::Derivatives)?;
+    let done = derivatives(&asm, &mut state, problem, &derivative_settings).map_err(RunError::Derivatives)?;
     report.derivatives_iterations = done.iterations;
     observed(observer.derivatives(&Derivatives { time: state.t, iterations: done.iterations, residual_norm: done.residual_norm }))?;
     observed(observer.step(&step_done(&asm, 0, problem.time_step, (done.iterations, done.residual_norm), &state)))?;
@@ -178,7 +181,7 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
     };
     eigenanalyses_due(&state, observer, &mut report)?;
 
-    let settings = NewtonSettings { tolerance: problem.tolerance, norm: problem.residual_norm, max_iterations: problem.max_iterations, ..Default::default() };
+    let settings = NewtonSettings { tolerance: problem.tolerance, norm: problem.residual_norm, increment_tolerance: problem.increment_tolerance, max_iterations: problem.max_iterations };
     let mut integrator = Integrator::new(&asm, state, problem.method, problem.time_step, settings);
     for step in 1..=steps {
         let r = integrator.step().map_err(|failure| RunError::Step { step, steps, time: failure.time, failure })?;
@@ -190,4 +193,30 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
     report.final_state = integrator.state;
     report.wall_time = clock.elapsed();
     Ok(report)
+}
+
+/// The initial derivatives at the file's derivatives coefficient, and with `auto` at the
+/// coefficients MBDyn tries after it in turn (each from the state as given) until one
+/// converges; the first failure is reported when none does (MBDyn would instead accept the
+/// smallest residual with a raised tolerance).
+fn derivatives(asm: &Assembler, state: &mut State, problem: &InitialValueProblem, settings: &NewtonSettings) -> Result<crate::solve::Convergence, crate::solve::NewtonFailure> {
+    let initial = problem.derivatives_coefficient * problem.time_step;
+    let coefficients: Vec<f64> = match problem.derivatives_coefficient_auto {
+        Some(auto) => auto.sequence(initial).collect(),
+        None => vec![initial],
+    };
+    let mut first_failure = None;
+    for dcoef in coefficients {
+        let mut trial = state.clone();
+        match initial_derivatives_with(asm, &mut trial, settings, dcoef) {
+            Ok(done) => {
+                *state = trial;
+                return Ok(done);
+            }
+            Err(failure) => {
+                first_failure.get_or_insert(failure);
+            }
+        }
+    }
+    Err(first_failure.unwrap_or_else(|| unreachable!("at least one coefficient is tried")))
 }

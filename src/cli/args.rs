@@ -7,9 +7,9 @@ use romdyn::analysis::Reference;
 use romdyn::dae::{NodeInput, NodeOutput};
 use romdyn::input::eigen_pencil::PencilPorts;
 use romdyn::linear::EigenRoute;
-use romdyn::input::ports_file::{read_ports_file, PortsFile};
 use romdyn::rom::{ModalDamping, ModeSelection, Ranking};
-use romdyn::study::{parse_imposed, Application, BelowBand, EigenSettings, FrequencyGrid, Linearization, Study, StudyError};
+use romdyn::input::mbdyn::read_model;
+use romdyn::study::{BelowBand, EigenSettings, FrequencyGrid, Ports, Study, StudyError};
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
 pub enum Route {
@@ -72,45 +72,30 @@ impl PencilArgs {
     /// The study these arguments describe: a model file linearized at its reference, or a
     /// pencil file.
     pub fn study(&self) -> Result<Study, StudyError> {
-        let eigen = EigenSettings { route: self.route.into(), dcoef: self.dcoef };
+        let eigen = self.eigen();
         match (&self.pencil, &self.model) {
             (Some(path), _) => {
                 let ports = PencilPorts { input_rows: self.input_rows.clone(), output_cols: self.output_cols.clone() };
                 Study::from_pencil_file(path, &ports, eigen)
             }
-            (None, Some(path)) if self.ports.is_some() || !self.remove_spring.is_empty() || self.imposed.is_some() => {
-                let app = self.application()?;
-                Study::from_application_file(path, self.reference.reference(), &app, eigen)
-            }
             (None, Some(path)) => {
-                let lin = Linearization { reference: self.reference.reference(), inputs: self.inputs.clone(), outputs: self.outputs.clone() };
-                Study::from_model_file(path, &lin, eigen)
+                let m = read_model(path)?;
+                let (study, _) = Study::of_model(m.model, &m.problem, self.reference.reference(), &self.ports()?, eigen, None).map_err(|e| e.in_file(path))?;
+                Ok(study)
             }
             // clap requires one of them.
             (None, None) => Err(StudyError::NoSource),
         }
     }
-}
 
-impl PencilArgs {
-    /// The ports file's ports and names, then --input/--output, --remove-spring and --imposed.
-    fn application(&self) -> Result<Application, StudyError> {
-        let file = match &self.ports {
-            Some(path) => read_ports_file(path)?,
-            None => PortsFile::default(),
-        };
-        let mut app = Application { inputs: file.inputs, outputs: file.outputs, names: file.names, remove_springs: file.remove_springs, imposed: None };
-        app.inputs.extend(self.inputs.iter().map(|p| p.port()));
-        app.outputs.extend(self.outputs.iter().map(|p| p.port()));
-        for l in &self.remove_spring {
-            if !app.remove_springs.contains(l) {
-                app.remove_springs.push(*l);
-            }
-        }
-        if let Some(s) = self.imposed.as_ref().or(file.imposed.as_ref()) {
-            app.imposed = Some(parse_imposed(s).map_err(|m| StudyError::Application(format!("--imposed {m}")))?);
-        }
-        Ok(app)
+    pub fn eigen(&self) -> EigenSettings {
+        EigenSettings { route: self.route.into(), dcoef: self.dcoef }
+    }
+
+    /// The model's ports: --input/--output alone, or with a ports file, --remove-spring or
+    /// --imposed the whole application.
+    pub fn ports(&self) -> Result<Ports, StudyError> {
+        Ports::from_parts(self.ports.as_deref(), &self.inputs, &self.outputs, &self.remove_spring, self.imposed.as_deref())
     }
 }
 

@@ -6,6 +6,7 @@ mod check;
 mod eig;
 mod rom;
 mod run;
+mod sweep;
 
 use std::process::ExitCode;
 
@@ -51,6 +52,14 @@ enum Command {
     Rom(rom::RomArgs),
     /// Frequency response of the full model (and of a ROM): CSV table and Bode plot
     Freq(rom::FreqArgs),
+    /// ROMs of an MBDyn file over design points of its set: variables (--set NAME=A:B:N): stacked arrays, table and plot of the lowest modes
+    ///
+    /// At each design point the file is read with the swept variables replaced, then the reference
+    /// solution, linearization, eigenanalysis and ROM exactly as 'romdyn rom' with the same options
+    /// and ports. Points run in parallel (--jobs); a failed point is reported with its values and
+    /// error and the others are kept (exit status 1). Units: the file's (SI); frequencies in Hz,
+    /// eigenvalues in rad/s.
+    Sweep(sweep::SweepArgs),
 }
 
 pub fn run() -> ExitCode {
@@ -61,6 +70,7 @@ pub fn run() -> ExitCode {
         Command::Eig(a) => eig::run(a),
         Command::Rom(a) => rom::run(a),
         Command::Freq(a) => rom::run_freq(a),
+        Command::Sweep(a) => sweep::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

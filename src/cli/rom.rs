@@ -20,10 +20,9 @@ pub enum Form {
     Descriptor,
 }
 
+/// Which ROM to build: modes, residualization, ranking, damping, form (`rom` and `sweep`).
 #[derive(Args, Debug)]
-pub struct RomArgs {
-    #[command(flatten)]
-    pub pencil: PencilArgs,
+pub struct RomChoiceArgs {
     #[command(flatten)]
     pub select: SelectionArgs,
     /// Statically residualize the dynamic modes that were not selected (paper Fig. 7)
@@ -44,6 +43,35 @@ pub struct RomArgs {
     /// Which form to export
     #[arg(long, value_enum, default_value = "ordinary")]
     pub form: Form,
+}
+
+impl RomChoiceArgs {
+    pub fn request(&self) -> RomRequest {
+        let residualization = match (&self.residualize_modes, self.residualize) {
+            (Some(list), _) => Residualization::Modes(list.clone()),
+            (None, true) => Residualization::Dropped,
+            (None, false) => Residualization::None,
+        };
+        let mut request = RomRequest::new(self.select.selection()).residualize(residualization).ranked_by(self.by.into());
+        request.below_band = self.below_band.into();
+        request.damping = self.damping.clone();
+        request
+    }
+
+    pub fn form(&self) -> RomForm {
+        match self.form {
+            Form::Ordinary => RomForm::Ordinary,
+            Form::Descriptor => RomForm::Descriptor,
+        }
+    }
+}
+
+#[derive(Args, Debug)]
+pub struct RomArgs {
+    #[command(flatten)]
+    pub pencil: PencilArgs,
+    #[command(flatten)]
+    pub rom: RomChoiceArgs,
     /// ROM file: .json, .mat (MATLAB v5) or .npz (NumPy); JSON to stdout if absent
     #[arg(short = 'o', long = "out", value_name = "FILE")]
     pub file: Option<PathBuf>,
@@ -113,15 +141,8 @@ pub fn run(a: RomArgs) -> Result<()> {
     if let Some(path) = &a.file {
         RomExport::check_path(path)?;
     }
-    let residualization = match (&a.residualize_modes, a.residualize) {
-        (Some(list), _) => Residualization::Modes(list.clone()),
-        (None, true) => Residualization::Dropped,
-        (None, false) => Residualization::None,
-    };
     let study = a.pencil.study()?;
-    let mut request = RomRequest::new(a.select.selection()).residualize(residualization).ranked_by(a.by.into());
-    request.below_band = a.below_band.into();
-    request.damping = a.damping.clone();
+    let request = a.rom.request();
     let rom = study.reduce(&request)?;
     let freq = study.frequencies(&a.freq.grid(), &nonzero(&rom.descriptor.eigenvalues))?;
     eprint!("{}", study.modal_report().to_text_dynamic(12));
@@ -134,10 +155,9 @@ pub fn run(a: RomArgs) -> Result<()> {
         eprintln!("removed from the full model and the ROM (their force fed back, A + B_e K C_e): {}", removed.join(", "));
         eprint!("{}", free_eigenvalues(&rom.descriptor.eigenvalues));
     }
-    let export = match a.form {
-        Form::Ordinary => rom.export(&study, RomForm::Ordinary),
-        Form::Descriptor if rom.descriptor.c_rate.is_some() => anyhow::bail!("--form descriptor: velocity outputs need z = C x + C_v x', which the descriptor export has no place for; use --form ordinary (its C and D carry them)"),
-        Form::Descriptor => rom.export(&study, RomForm::Descriptor),
+    let export = match a.rom.form() {
+        RomForm::Descriptor if rom.descriptor.c_rate.is_some() => anyhow::bail!("--form descriptor: velocity outputs need z = C x + C_v x', which the descriptor export has no place for; use --form ordinary (its C and D carry them)"),
+        form => rom.export(&study, form),
     };
     match &a.file {
         Some(path) => {

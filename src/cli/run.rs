@@ -66,6 +66,13 @@ fn print_summary(file: &str, r: &RunReport, written: &[PathBuf]) {
         r.derivatives_iterations,
         r.wall_time.as_secs_f64()
     );
+    let a = &r.assembly;
+    if a.iterations > 0 {
+        println!(
+            "initial assembly: {} iteration(s) (test {:.1e}); positions moved by up to {:.3e} m and {:.3e} rad, velocities by up to {:.3e} m/s and {:.3e} rad/s",
+            a.iterations, a.test, a.moved_position, a.moved_rotation, a.moved_velocity, a.moved_angular_velocity
+        );
+    }
     for e in &r.eigenanalyses {
         println!("eigenanalysis {} at t = {} s (dCoef = {} s): {} dynamic, {} zero, {} infinite eigenvalues", e.index, seconds(e.time), e.dcoef, e.dynamic.len(), e.zero, e.infinite);
         const SHOWN: usize = 10;

@@ -53,7 +53,9 @@ impl Pair {
         let slot_b = usize::from(slot_a.is_some());
         let (x_a, f_a, q_a, v_a, omega_a) = side(a, slot_a, st);
         let (x_b, f_b, q_b, v_b, omega_b) = side(b, Some(slot_b), st);
-        let h = x_b + f_b - x_a;
+        // Node positions first, as MBDyn's joints do (`x1 + d1 − x2 − d2`): nearby nodes
+        // subtract exactly, so only the rounding of the positions as written remains.
+        let h = (x_b - x_a) + f_b;
         Pair { slot_a, slot_b, f_a, f_b, q_a, q_b, d: h - f_a, h, omega_a, omega_b, u: v_b + omega_b.cross(&f_b) - v_a - omega_a.cross(&h) }
     }
 

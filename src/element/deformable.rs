@@ -134,8 +134,9 @@ impl Element for DeformableHinge {
     }
 }
 
-/// Axial spring between two points: `N = (EA/l₀)(l − l₀)` along the line of the points,
-/// applied at each point.
+/// Axial spring–damper between two points (MBDyn's `rod`, rodj.cc): `N = (EA/l₀)(l − l₀)`
+/// (or a function of the strain) plus, for a viscous or viscoelastic law, `C ε̇` with `ε̇ = d·ḋ/(l L₀)` (MBDyn's
+/// `ViscoElasticRod`), along the line of the points, applied at each point.
 #[derive(Clone, Debug)]
 pub struct Rod {
     pub label: Label,
@@ -145,14 +146,55 @@ pub struct Rod {
     pub axial_stiffness: f64,
     /// Unstretched length l₀ [m].
     pub length: f64,
+    pub viscous: Option<RodViscosity>,
+    /// A nonlinear elastic law `N = f(l/l₀ − 1)` [N] (MBDyn's `scalar function elastic`),
+    /// in place of `EA`.
+    pub elastic: Option<super::ScalarFunction>,
+}
+
+/// The viscous part of a rod's law.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RodViscosity {
+    /// `C` of `N = C ε̇` [N s].
+    pub coefficient: f64,
+    /// The length `L₀` the strain rate is measured against (the file's rod length) [m].
+    pub length: f64,
 }
 
 impl Rod {
-    /// `F = (EA/l₀)(1 − l₀/l) d` (the force on A from B's side) and `∂F/∂d`.
+    /// `F = (EA/l₀)(1 − l₀/l) d` (the force on A from B's side), or `F = f(ε) d/l` with
+    /// `ε = l/l₀ − 1`, and `∂F/∂d`.
     fn force(&self, d: &Vec3) -> (Vec3, Mat3) {
+        if let Some(f) = &self.elastic {
+            let l = d.norm();
+            let e = d / l;
+            let (n, dn) = f.value_and_derivative(l / self.length - 1.0);
+            let ee = e * e.transpose();
+            return (n * e, n / l * (Mat3::identity() - ee) + dn / self.length * ee);
+        }
         let (k, l0, l) = (self.axial_stiffness / self.length, self.length, d.norm());
         (k * (1.0 - l0 / l) * d, k * ((1.0 - l0 / l) * Mat3::identity() + (l0 / l.powi(3)) * d * d.transpose()))
     }
+
+    /// The viscous force `F_v = (C/L₀)(d·ḋ) d/l²` with `∂F_v/∂d` and `∂F_v/∂ḋ`.
+    fn viscous_force(&self, d: &Vec3, d_dot: &Vec3) -> (Vec3, Mat3, Mat3) {
+        let Some(v) = self.viscous else { return (Vec3::zeros(), Mat3::zeros(), Mat3::zeros()) };
+        let (k, l2, r) = (v.coefficient / v.length, d.norm_squared(), d.dot(d_dot));
+        let f = k * r / l2 * d;
+        let dd = k * (r / l2 * Mat3::identity() + d * d_dot.transpose() / l2 - 2.0 * r / (l2 * l2) * d * d.transpose());
+        (f, dd, k / l2 * d * d.transpose())
+    }
+}
+
+/// `ḋ = u + ω_a × d` of a pair, and its derivatives `∂ḋ/∂(v, ω, θ)` of both sides.
+fn distance_rate(p: &Pair) -> (Vec3, Vec<([Col; 3], Mat3)>) {
+    let (b, fbx, wbx) = (p.slot_b, skew(&p.f_b), skew(&p.omega_b));
+    let mut blocks = vec![(Col::velocity(b), Mat3::identity()), (Col::angular_velocity(b), -fbx), (Col::rotation(b), -wbx * fbx)];
+    if let Some(a) = p.slot_a {
+        let (fax, wax) = (skew(&p.f_a), skew(&p.omega_a));
+        blocks.extend([(Col::velocity(a), -Mat3::identity()), (Col::angular_velocity(a), fax), (Col::rotation(a), wax * fax)]);
+    }
+    (p.u + p.omega_a.cross(&p.d), blocks)
 }
 
 impl Element for Rod {
@@ -167,7 +209,9 @@ impl Element for Rod {
     }
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
         let p = Pair::new(&self.a, &self.b, st);
-        let (f, _) = self.force(&p.d);
+        let (fe, _) = self.force(&p.d);
+        let (fv, _, _) = self.viscous_force(&p.d, &distance_rate(&p).0);
+        let f = fe + fv;
         add_vec(out, Row::force(p.slot_b), &f);
         add_vec(out, Row::moment(p.slot_b), &p.f_b.cross(&f));
         if let Some(a) = p.slot_a {
@@ -177,8 +221,23 @@ impl Element for Rod {
     }
     fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
         let p = Pair::new(&self.a, &self.b, st);
-        let (f, kd) = self.force(&p.d);
-        add_pair_force_jacobian(out, &p, &f, &kd);
+        let (fe, kd) = self.force(&p.d);
+        let (d_dot, rate_blocks) = distance_rate(&p);
+        let (fv, cd, c_rate) = self.viscous_force(&p.d, &d_dot);
+        add_pair_force_jacobian(out, &p, &(fe + fv), &(kd + cd));
+        if self.viscous.is_none() {
+            return;
+        }
+        let (b, fbx) = (p.slot_b, skew(&p.f_b));
+        for (c, m) in &rate_blocks {
+            let block = c_rate * m;
+            add_block(out, Row::force(b), *c, &block);
+            add_block(out, Row::moment(b), *c, &(fbx * block));
+            if let Some(a) = p.slot_a {
+                add_block(out, Row::force(a), *c, &(-block));
+                add_block(out, Row::moment(a), *c, &(-skew(&p.f_a) * block));
+            }
+        }
     }
 }
 

@@ -75,6 +75,8 @@ pub enum Drive {
     Periodic { t0: f64, period: f64, f: Box<Drive> },
     /// An expression of time (MBDyn's `string`).
     Expression(TimeFunction),
+    /// A scalar function of time (MBDyn's `scalar function` drive caller).
+    Function(super::ScalarFunction),
 }
 
 impl Drive {
@@ -116,6 +118,7 @@ impl Drive {
                 }
             }
             Drive::Expression(f) => f.value(t),
+            Drive::Function(f) => f.value(t),
         }
     }
 }

@@ -6,7 +6,7 @@ mod problem;
 mod summary;
 
 pub use builder::{ModelBuilder, ModelError};
-pub use problem::{AbortAfter, EigenOutput, EigenRequest, InitialValueProblem, Method, MotionOutput, NodeSource, OrientationOutput, ResidualNorm, WrittenNode};
+pub use problem::{AbortAfter, AutoCoefficient, EigenOutput, EigenRequest, InitialAssembly, InitialValueProblem, Method, MotionOutput, NodeAssembly, NodeSource, OrientationOutput, ResidualNorm, WrittenNode};
 pub use summary::Summary;
 
 use std::collections::HashMap;

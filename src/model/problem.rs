@@ -50,6 +50,30 @@ pub enum AbortAfter {
     DummySteps,
 }
 
+/// The retries of MBDyn's `derivatives coefficient: auto` (defaults: 6 retries each way,
+/// factor 10; solver.cc `iDerivativesCoefMaxIter`, `dDerivativesCoefFactor`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AutoCoefficient {
+    pub retries: usize,
+    pub factor: f64,
+}
+
+impl Default for AutoCoefficient {
+    fn default() -> Self {
+        AutoCoefficient { retries: 6, factor: 10.0 }
+    }
+}
+
+impl AutoCoefficient {
+    /// The coefficients tried in turn from `initial`: `initial`, `initial fᵏ` for
+    /// k = 1…retries, then `initial / fᵏ` for k = 1…retries.
+    pub fn sequence(self, initial: f64) -> impl Iterator<Item = f64> {
+        let up = (0..=self.retries).map(move |k| initial * self.factor.powi(k as i32));
+        let down = (1..=self.retries).map(move |k| initial / self.factor.powi(k as i32));
+        up.chain(down)
+    }
+}
+
 /// How Newton measures the residual for its convergence test.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum ResidualNorm {
@@ -71,6 +95,10 @@ pub struct InitialValueProblem {
     pub tolerance: f64,
     /// The norm of that test.
     pub residual_norm: ResidualNorm,
+    /// Newton also stops when its increment's largest entry is below this, with the
+    /// residual within 1e3 times the tolerance (0: never, MBDyn's default, which tests the
+    /// residual alone).
+    pub increment_tolerance: f64,
     pub max_iterations: usize,
     /// Tolerance and iteration limit of the consistent initial derivatives.
     pub derivatives_tolerance: f64,
@@ -78,10 +106,62 @@ pub struct InitialValueProblem {
     /// The initial derivatives solve with dCoef = this factor times the time step (MBDyn's
     /// `derivatives coefficient`).
     pub derivatives_coefficient: f64,
+    /// MBDyn's `derivatives coefficient: auto`: when the derivatives do not converge, they
+    /// are solved again with the coefficient multiplied by `factor` up to `retries` times,
+    /// then divided by it as many times (stepsol.cc, `DerivativeSolver::Advance`).
+    pub derivatives_coefficient_auto: Option<AutoCoefficient>,
     /// Nodes written to the motion file and how (`None`: every node, every step).
     pub output: Option<MotionOutput>,
     pub eigenanalysis: Option<EigenRequest>,
     pub abort_after: Option<AbortAfter>,
+    /// MBDyn's initial assembly before the run (control data).
+    pub assembly: InitialAssembly,
+}
+
+/// MBDyn's initial joint assembly (input manual, "Control Data", §Assembly-Related Cards;
+/// dataman.cc defaults): penalty springs of stiffness `position_stiffness` on every node's
+/// position and orientation parameters and `velocity_stiffness` on its velocities hold the
+/// configuration written in the file while the joints are made to hold.
+#[derive(Clone, Debug, PartialEq)]
+pub struct InitialAssembly {
+    /// `skip initial joint assembly`: the configuration is used as written.
+    pub skip: bool,
+    /// `initial stiffness: POSITION [, VELOCITY]` (default 1, 1; a penalty, not SI).
+    pub position_stiffness: f64,
+    pub velocity_stiffness: f64,
+    /// `omega rotates: yes`: the written angular velocity turns with the node.
+    pub omega_rotates: bool,
+    /// `tolerance`: on `sqrt(|F|² / (1 + |X|²))` (default 1e-6).
+    pub tolerance: f64,
+    /// `max iterations` (default 1: a correct model needs none).
+    pub max_iterations: usize,
+    /// A node's own `assembly, POSITION, VELOCITY, OMEGA_ROTATES` settings, by label.
+    pub nodes: Vec<(super::Label, NodeAssembly)>,
+}
+
+/// One node's penalty settings in the initial assembly.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NodeAssembly {
+    pub position_stiffness: f64,
+    pub velocity_stiffness: f64,
+    pub omega_rotates: bool,
+}
+
+impl Default for InitialAssembly {
+    fn default() -> Self {
+        InitialAssembly { skip: false, position_stiffness: 1.0, velocity_stiffness: 1.0, omega_rotates: false, tolerance: 1e-6, max_iterations: 1, nodes: Vec::new() }
+    }
+}
+
+impl InitialAssembly {
+    /// The settings of the node with `label`.
+    pub fn node(&self, label: super::Label) -> NodeAssembly {
+        self.nodes.iter().find(|(l, _)| *l == label).map(|(_, n)| *n).unwrap_or(NodeAssembly {
+            position_stiffness: self.position_stiffness,
+            velocity_stiffness: self.velocity_stiffness,
+            omega_rotates: self.omega_rotates,
+        })
+    }
 }
 
 impl Default for InitialValueProblem {
@@ -93,13 +173,16 @@ impl Default for InitialValueProblem {
             method: Method::Ms { rho: 0.6 },
             tolerance: 1e-6,
             residual_norm: ResidualNorm::Max,
+            increment_tolerance: 1e-12,
             max_iterations: 20,
             derivatives_tolerance: 1e-6,
             derivatives_max_iterations: 20,
             derivatives_coefficient: 1e-6,
+            derivatives_coefficient_auto: None,
             output: None,
             eigenanalysis: None,
             abort_after: None,
+            assembly: InitialAssembly::default(),
         }
     }
 }

@@ -92,6 +92,15 @@ impl MatFile {
         self.push(name, matrix_element(MX_DOUBLE, &[m.nrows(), m.ncols()], name, &data))
     }
 
+    /// A real double array of any rank, `data` in column-major order (MATLAB's: the first
+    /// index fastest), e.g. a sweep's `A(:,:,k)`.
+    pub fn add_array(&mut self, name: &str, dims: &[usize], data: &[f64]) -> Result<(), OutputError> {
+        if dims.iter().product::<usize>() != data.len() || dims.len() < 2 {
+            return Err(OutputError::Invalid { path: name.into(), message: format!("array of {} values does not have the dimensions {dims:?} (at least 2)", data.len()) });
+        }
+        self.push(name, matrix_element(MX_DOUBLE, dims, name, &doubles(data.iter().copied())))
+    }
+
     /// A complex column vector.
     pub fn add_complex_column(&mut self, name: &str, v: &[c64]) -> Result<(), OutputError> {
         let mut data = doubles(v.iter().map(|x| x.re));

@@ -23,6 +23,7 @@ pub mod npz;
 pub mod response_csv;
 pub mod rom_file;
 pub mod step_log;
+pub mod sweep_plot;
 
 use std::path::{Path, PathBuf};
 

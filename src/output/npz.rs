@@ -17,12 +17,18 @@ pub struct NpzWriter {
 /// A `.npy` file: magic, version 1.0, header dict padded so the data starts on a
 /// 64-byte boundary, then the data.
 fn npy(descr: &str, shape: &[usize], data: &[u8]) -> Vec<u8> {
+    npy_ordered(descr, shape, false, data)
+}
+
+/// [`npy`] with the data in column-major order when `fortran`.
+fn npy_ordered(descr: &str, shape: &[usize], fortran: bool, data: &[u8]) -> Vec<u8> {
     let shape = match shape {
         [] => "()".to_string(),
         [n] => format!("({n},)"),
         s => format!("({})", s.iter().map(usize::to_string).collect::<Vec<_>>().join(", ")),
     };
-    let mut header = format!("{{'descr': '{descr}', 'fortran_order': False, 'shape': {shape}, }}");
+    let order = if fortran { "True" } else { "False" };
+    let mut header = format!("{{'descr': '{descr}', 'fortran_order': {order}, 'shape': {shape}, }}");
     let total = 10 + header.len() + 1;
     header.push_str(&" ".repeat(total.next_multiple_of(64) - total));
     header.push('\n');
@@ -59,6 +65,16 @@ impl NpzWriter {
     pub fn add_matrix(&mut self, name: &str, m: &Mat<f64>) -> Result<(), OutputError> {
         let data: Vec<u8> = (0..m.nrows()).flat_map(|i| (0..m.ncols()).map(move |j| m[(i, j)])).flat_map(f64::to_le_bytes).collect();
         self.push(name, npy("<f8", &[m.nrows(), m.ncols()], &data))
+    }
+
+    /// A float64 array of any rank, `data` in column-major order (first index fastest, stored
+    /// with `fortran_order`): `A[:, :, k]` in NumPy is MATLAB's `A(:,:,k)`.
+    pub fn add_array(&mut self, name: &str, shape: &[usize], data: &[f64]) -> Result<(), OutputError> {
+        if shape.iter().product::<usize>() != data.len() {
+            return Err(OutputError::Invalid { path: name.into(), message: format!("array of {} values does not have the shape {shape:?}", data.len()) });
+        }
+        let bytes: Vec<u8> = data.iter().flat_map(|x| x.to_le_bytes()).collect();
+        self.push(name, npy_ordered("<f8", shape, true, &bytes))
     }
 
     /// A complex128 vector.

@@ -24,6 +24,39 @@ fn coefficients(method: Method, h: f64, first_step: bool) -> [f64; 5] {
     }
 }
 
+/// The predictor of a derivative `u_k` from the two previous steps.
+#[derive(Clone, Copy, Debug)]
+enum Predictor {
+    /// `u_k = u_{k−1}` (first step, and the one-step methods: MBDyn's Crank–Nicolson).
+    Constant,
+    /// `u_k = 2 u_{k−1} − u_{k−2}`.
+    Linear,
+    /// Cubic Hermite extrapolation from the values and derivatives of the two previous
+    /// steps, `u_k = −(12/h)(v_{k−1} − v_{k−2}) + 8 u_{k−1} + 5 u_{k−2}` with `u = v̇`
+    /// (MBDyn's `ms`, stepsol.cc `MultistepSolver::SetCoef` at a constant step: exact for
+    /// cubic `v`).
+    CubicHermite { h: f64 },
+}
+
+impl Predictor {
+    fn of(method: Method, h: f64, two_step: bool) -> Self {
+        match method {
+            _ if !two_step => Predictor::Constant,
+            Method::Ms { .. } => Predictor::CubicHermite { h },
+            Method::ImplicitEuler | Method::CrankNicolson => Predictor::Linear,
+        }
+    }
+
+    /// `u_k` from `u_{k−1}`, `u_{k−2}` and the increment `v_{k−1} − v_{k−2}` of `v`.
+    fn derivative(self, u1: f64, u2: f64, increment: f64) -> f64 {
+        match self {
+            Predictor::Constant => u1,
+            Predictor::Linear => 2.0 * u1 - u2,
+            Predictor::CubicHermite { h } => -12.0 / h * increment + 8.0 * u1 + 5.0 * u2,
+        }
+    }
+}
+
 /// `dCoef = b₀` of the regular steps of `method` with step `h` [s]: the coefficient of
 /// `J(c) = F_/ẏ + c F_/y` that Newton uses (eq. 5).
 pub fn newton_dcoef(method: Method, h: f64) -> f64 {
@@ -57,11 +90,16 @@ pub struct Integrator<'a, 'm> {
     pub state: State,
     workspace: NewtonWorkspace,
     previous: Option<Past>,
+    /// Per multiplier of the form of eq. 30, its integral's increment over the last step,
+    /// `b₀ λ_k + b₁ λ_{k−1} + b₂ λ_{k−2} − a₂ Λ_{k−1}` (MBDyn's `XPrime` of an algebraic
+    /// unknown, stepsol.cc): the multiplier's predictor needs it.
+    multiplier_increment: Vec<f64>,
 }
 
 impl<'a, 'm> Integrator<'a, 'm> {
     pub fn new(asm: &'a Assembler<'m>, state: State, method: Method, h: f64, settings: NewtonSettings) -> Self {
-        Integrator { asm, method, h, settings, state, workspace: NewtonWorkspace::new(), previous: None }
+        let multiplier_increment = vec![0.0; asm.dofs.len];
+        Integrator { asm, method, h, settings, state, workspace: NewtonWorkspace::new(), previous: None, multiplier_increment }
     }
 
     /// Number of symbolic factorizations so far (1 for a fixed sparsity pattern).
@@ -102,19 +140,27 @@ impl<'a, 'm> Integrator<'a, 'm> {
             Some(p) => self.past_in_current_frames(p),
             None => (y1.clone(), yp1.clone()),
         };
+        let two_step = self.previous.is_some();
+        let predictor = Predictor::of(self.method, self.h, two_step);
         for i in 0..dofs.len {
-            let two_step = self.previous.is_some();
             if form == ConstraintForm::Scaled && dofs.is_multiplier(i) {
-                // Algebraic: the multiplier itself is extrapolated.
-                self.state.y[i] = if two_step { 2.0 * y1[i] - y2[i] } else { y1[i] };
+                // Algebraic: the multiplier is the derivative of its integral, whose increment
+                // over the last step is kept.
+                self.state.y[i] = predictor.derivative(y1[i], y2[i], self.multiplier_increment[i]);
                 continue;
             }
-            let ypred = if two_step { 2.0 * yp1[i] - yp2[i] } else { yp1[i] };
+            let ypred = predictor.derivative(yp1[i], yp2[i], y1[i] - y2[i]);
             self.state.yp[i] = ypred;
             self.state.y[i] = a1 * y1[i] + a2 * y2[i] + b0 * ypred + b1 * yp1[i] + b2 * yp2[i];
         }
         self.state.t += self.h;
         let done = newton(self.asm, &mut self.state, Update::Dynamic { dcoef: b0, form }, &self.settings, &mut self.workspace)?;
+        if form == ConstraintForm::Scaled {
+            for i in (0..dofs.len).filter(|&i| dofs.is_multiplier(i)) {
+                let previous = self.multiplier_increment[i];
+                self.multiplier_increment[i] = b0 * self.state.y[i] + b1 * y1[i] + b2 * y2[i] - a2 * previous;
+            }
+        }
         self.previous = Some(current);
         Ok(StepRecord { t: self.state.t, iterations: done.iterations, residual_norm: done.residual_norm })
     }
@@ -165,4 +211,23 @@ pub fn constraint_rate(asm: &Assembler, st: &State) -> Option<(String, f64)> {
         Some((_, b)) if b.abs() >= v.abs() => best,
         _ => Some((i, v)),
     }).map(|(i, v)| (dofs.equation_name(asm.model, i), v))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Predictor;
+
+    #[test]
+    fn cubic_hermite_predictor_is_exact_for_cubics() {
+        // v(t) = a + b t + c t² + d t³ with u = v̇, steps at t = −2h, −h, predicting u(0):
+        // closed form u(0) = b.
+        let (a, b, c, d, h) = (0.3, -1.7, 2.9, 4.1, 1e-3);
+        let v = |t: f64| a + b * t + c * t * t + d * t * t * t;
+        let u = |t: f64| b + 2.0 * c * t + 3.0 * d * t * t;
+        let p = Predictor::CubicHermite { h };
+        let predicted = p.derivative(u(-h), u(-2.0 * h), v(-h) - v(-2.0 * h));
+        assert!((predicted - b).abs() < 1e-9, "{predicted} against {b}");
+        assert_eq!(Predictor::Constant.derivative(2.0, 5.0, 1.0), 2.0);
+        assert_eq!(Predictor::Linear.derivative(2.0, 5.0, 1.0), -1.0);
+    }
 }

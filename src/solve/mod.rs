@@ -1,13 +1,15 @@
-//! Solvers on the assembled DAE: Newton with sparse LU (symbolic factorization reused),
+//! Solvers on the assembled DAE: MBDyn's initial assembly, Newton with sparse LU (symbolic factorization reused),
 //! static analysis with load ramping, consistent initial derivatives, and fixed-step
 //! implicit multistep integration in predictor–corrector form (eqs. 2–5).
 
+mod initial_assembly;
 mod integrate;
 mod newton;
 mod singular;
 mod static_analysis;
 
 pub use crate::model::Method;
+pub use initial_assembly::{initial_assembly, AssemblyError, AssemblyReport};
 pub use integrate::{constraint_rate, initial_derivatives, initial_derivatives_with, newton_dcoef, Integrator, StepRecord};
 pub use newton::{newton, Convergence, NewtonFailure, NewtonSettings, NewtonWorkspace, SolveError, Update};
 pub use singular::explain_singular_matrix;

@@ -10,7 +10,8 @@ pub struct NewtonSettings {
     /// Converged when `‖F‖ ≤ tolerance` (the norm is `norm`) …
     pub tolerance: f64,
     pub norm: ResidualNorm,
-    /// … or when the increment `‖δ‖∞ ≤ increment_tolerance` with `‖F‖∞ ≤ 1e3 · tolerance`.
+    /// … or when the increment `‖δ‖∞ ≤ increment_tolerance` with `‖F‖∞ ≤ 1e3 · tolerance`
+    /// (never when 0: MBDyn's default test of the residual alone).
     pub increment_tolerance: f64,
     pub max_iterations: usize,
 }
@@ -188,7 +189,7 @@ pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &Newton
             }
             momenta_from_definitions(asm, st, form);
         }
-        if held.is_empty() && step <= settings.increment_tolerance && norm <= 1e3 * settings.tolerance {
+        if held.is_empty() && settings.increment_tolerance > 0.0 && step <= settings.increment_tolerance && norm <= 1e3 * settings.tolerance {
             return Ok(Convergence { iterations: iteration + 1, residual_norm: norm });
         }
     }

@@ -8,7 +8,7 @@ use faer::{c64, Mat};
 
 use crate::analysis::{reference_state, Reference};
 use crate::dae::ports::{InputPort, OutputPort};
-use crate::dae::{element_part, linearize_ports, mode_label, ElementPart, NodeInput, NodeOutput};
+use crate::dae::{element_part, linearize_ports, mode_label, ElementPart, NodeInput, NodeOutput, State};
 use crate::linear::{LinearDae, ModalAnalysis};
 use crate::model::{InitialValueProblem, Label, Model};
 use crate::rom::{full_frequency_response, transmissibility, with_spring_ports, without_elements, ImposedModel, SpringFeedback};
@@ -77,6 +77,11 @@ impl Study {
     /// ROMs have the springs removed.
     pub fn from_application(model: Model, problem: &InitialValueProblem, reference: Reference, app: &Application, eigen: EigenSettings) -> Result<Self, StudyError> {
         let state = reference_state(&model, problem, reference).map_err(|source| StudyError::Reference { file: None, source })?;
+        Self::from_application_state(model, problem, state, app, eigen)
+    }
+
+    /// [`Study::from_application`] at a given reference solution.
+    pub fn from_application_state(model: Model, problem: &InitialValueProblem, state: State, app: &Application, eigen: EigenSettings) -> Result<Self, StudyError> {
         let mut inputs = app.inputs.clone();
         let mut outputs = app.outputs.clone();
         let mut imposed = 0;

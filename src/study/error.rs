@@ -59,7 +59,7 @@ impl From<MbdynError> for StudyError {
 
 impl StudyError {
     /// Names the model file in a reference-solution failure.
-    pub(super) fn in_file(self, path: &Path) -> Self {
+    pub fn in_file(self, path: &Path) -> Self {
         match self {
             StudyError::Reference { file: None, source } => StudyError::Reference { file: Some(path.to_path_buf()), source },
             e => e,

@@ -38,5 +38,5 @@ pub use error::StudyError;
 pub use export::RomForm;
 pub use reduce::{BelowBand, KeptMode, ReducedModel, Residualization, RomRequest, StaticGains};
 pub use response::{Comparison, FrequencyGrid, GridAccuracy};
-pub use setup::{EigenSettings, Linearization, Study};
+pub use setup::{checked_reference_state, EigenSettings, Linearization, Ports, Study};
 pub use warning::Warning;

@@ -2,8 +2,8 @@
 
 use std::path::Path;
 
-use crate::analysis::{reference_state, Reference};
-use crate::dae::{linearize, EnergyShare, ModalEnergy, NodeInput, NodeOutput};
+use crate::analysis::{reference_state, static_state_from, Reference};
+use crate::dae::{linearize, EnergyShare, ModalEnergy, NodeInput, NodeOutput, State};
 use crate::input::eigen_pencil::PencilPorts;
 use crate::input::mbdyn::read_model;
 use crate::input::pencil::read_pencil_file;
@@ -12,7 +12,7 @@ use crate::model::{InitialValueProblem, Model};
 use crate::output::modal::ModalReport;
 
 use super::checks::{equilibrium_warning, port_warnings, unrestrained_motion};
-use super::{StudyError, Warning};
+use super::{Application, StudyError, Warning};
 
 /// Where a model is linearized and which inputs and outputs the linear DAE has.
 #[derive(Clone, Debug)]
@@ -47,6 +47,61 @@ impl Linearization {
         }
         Ok(())
     }
+}
+
+/// The inputs and outputs of a model's study.
+#[derive(Clone, Debug)]
+pub enum Ports {
+    /// Forces and moments at nodes, their displacements and rotations (`--input`, `--output`).
+    Nodes { inputs: Vec<NodeInput>, outputs: Vec<NodeOutput> },
+    /// Ports at points of bodies, node names, dummy springs, imposed motion (paper §8).
+    Application(Application),
+}
+
+impl Ports {
+    /// The ports every front end describes the same way: `ports_file` (a ports file's ports,
+    /// names, springs and imposed motion), then node ports, springs to remove and an imposed
+    /// motion (`NODE[:COMPONENTS]`); without a ports file, springs or imposed motion, node
+    /// ports only.
+    pub fn from_parts(ports_file: Option<&Path>, inputs: &[NodeInput], outputs: &[NodeOutput], remove_springs: &[crate::model::Label], imposed: Option<&str>) -> Result<Self, StudyError> {
+        if ports_file.is_none() && remove_springs.is_empty() && imposed.is_none() {
+            return Ok(Ports::Nodes { inputs: inputs.to_vec(), outputs: outputs.to_vec() });
+        }
+        let file = match ports_file {
+            Some(path) => crate::input::ports_file::read_ports_file(path)?,
+            None => crate::input::ports_file::PortsFile::default(),
+        };
+        let mut app = Application { inputs: file.inputs, outputs: file.outputs, names: file.names, remove_springs: file.remove_springs, imposed: None };
+        app.inputs.extend(inputs.iter().map(|p| p.port()));
+        app.outputs.extend(outputs.iter().map(|p| p.port()));
+        for l in remove_springs {
+            if !app.remove_springs.contains(l) {
+                app.remove_springs.push(*l);
+            }
+        }
+        if let Some(s) = imposed.or(file.imposed.as_deref()) {
+            app.imposed = Some(super::parse_imposed(s).map_err(|m| StudyError::Application(format!("--imposed {m}")))?);
+        }
+        Ok(Ports::Application(app))
+    }
+}
+
+/// The reference solution of a study, with an unrestrained model named. With `start` (a
+/// neighbouring design point's solution, same unknowns) the static equilibrium starts from
+/// it at full load; if Newton fails from there, it ramps the loads from the file's
+/// configuration as without `start`.
+pub fn checked_reference_state(model: &Model, problem: &InitialValueProblem, reference: Reference, start: Option<&State>) -> Result<State, StudyError> {
+    let result = match (reference, start) {
+        (Reference::Static { .. }, Some(start)) => static_state_from(model, problem, start).or_else(|_| reference_state(model, problem, reference)),
+        _ => reference_state(model, problem, reference),
+    };
+    result.map_err(|source| {
+        let motion = matches!(reference, Reference::Static { .. }).then(|| unrestrained_motion(model)).flatten();
+        match motion {
+            Some(motion) => StudyError::Unrestrained { motion, source },
+            None => StudyError::Reference { file: None, source },
+        }
+    })
 }
 
 /// How the eigenanalysis is done.
@@ -85,16 +140,13 @@ impl Study {
     /// Linearizes a model at `lin.reference` of `problem` (the Rust API's entry).
     pub fn from_model(model: Model, problem: &InitialValueProblem, lin: &Linearization, eigen: EigenSettings) -> Result<Self, StudyError> {
         lin.validate(problem)?;
-        let state = match reference_state(&model, problem, lin.reference) {
-            Ok(s) => s,
-            Err(source) => {
-                let motion = matches!(lin.reference, Reference::Static { .. }).then(|| unrestrained_motion(&model)).flatten();
-                return Err(match motion {
-                    Some(motion) => StudyError::Unrestrained { motion, source },
-                    None => StudyError::Reference { file: None, source },
-                });
-            }
-        };
+        let state = checked_reference_state(&model, problem, lin.reference, None)?;
+        Self::from_model_state(model, problem, state, lin, eigen)
+    }
+
+    /// Linearizes a model at a given reference solution (`lin.reference` says only how it
+    /// was found).
+    pub fn from_model_state(model: Model, problem: &InitialValueProblem, state: State, lin: &Linearization, eigen: EigenSettings) -> Result<Self, StudyError> {
         let dae = linearize(&model, &state, &lin.inputs, &lin.outputs, None)?;
         let equilibrium = equilibrium_warning(&model, &state, problem.tolerance);
         // The Λ form's dCoef: the file's eigenanalysis parameter (h/2) when it gives one.
@@ -103,6 +155,25 @@ impl Study {
         study.warnings.splice(0..0, equilibrium);
         study.reference_time = Some(state.t);
         Ok(study)
+    }
+
+    /// The one entry every front end uses for a model: `ports` node ports only (as
+    /// `romdyn rom --input/--output`) or a whole [`Application`]; the reference solution is
+    /// found from `start` when given (a sweep's continuation, see [`checked_reference_state`]).
+    /// Returns the study and the reference solution it was linearized at.
+    pub fn of_model(model: Model, problem: &InitialValueProblem, reference: Reference, ports: &Ports, eigen: EigenSettings, start: Option<&State>) -> Result<(Self, State), StudyError> {
+        let (inputs, outputs) = match ports {
+            Ports::Nodes { inputs, outputs } => (inputs.clone(), outputs.clone()),
+            Ports::Application(_) => (Vec::new(), Vec::new()),
+        };
+        let lin = Linearization { reference, inputs, outputs };
+        lin.validate(problem)?;
+        let state = checked_reference_state(&model, problem, reference, start)?;
+        let study = match ports {
+            Ports::Nodes { .. } => Self::from_model_state(model, problem, state.clone(), &lin, eigen)?,
+            Ports::Application(app) => Self::from_application_state(model, problem, state.clone(), app, eigen)?,
+        };
+        Ok((study, state))
     }
 
     /// Reads a pencil file: an MBDyn eigenanalysis `.m` file (ports by equation row and

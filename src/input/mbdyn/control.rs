@@ -1,8 +1,8 @@
 //! The `control data` block (input manual, "Control Data"): the model counters romdyn
 //! checks against the model, as MBDyn does; the output settings romdyn honours (`default
-//! output`, `output frequency`, `default orientation`); settings of MBDyn's initial assembly
-//! and the rest of its output, accepted and ignored (romdyn assembles nothing: the initial
-//! configuration is taken as given); and the statements that would change the physics,
+//! output`, `output frequency`, `default orientation`); the settings of MBDyn's initial
+//! assembly (`solve::initial_assembly`); MBDyn's numerics and the rest of its output,
+//! accepted and ignored; and the statements that would change the physics,
 //! which are errors. A statement given twice is read twice, the later value winning, as
 //! MBDyn's reader does (dataman3.cc, `DataManager::ReadControl`, has no duplicate check).
 
@@ -12,7 +12,7 @@ use super::cursor::Cursor;
 use super::diagnostic::{MbdynError, Sources, Span};
 use super::nodes::orientation_kind;
 use super::parser::{known, Block};
-use crate::model::OrientationOutput;
+use crate::model::{InitialAssembly, OrientationOutput};
 
 /// Entity kinds counted in control data and found in the model.
 pub const COUNTED: [&str; 7] = ["structural nodes", "rigid bodies", "joints", "forces", "beams", "gravity", "automatic structural elements"];
@@ -24,13 +24,50 @@ const UNSUPPORTED_COUNTERS: [&str; 18] = [
     "loadable elements", "output elements", "induced velocity elements",
 ];
 
-/// Settings of MBDyn's initial assembly and output: accepted, ignored.
-const IGNORED: [&str; 23] = [
-    "skip initial joint assembly", "use", "use automatic differentiation", "initial stiffness", "omega rotates", "tolerance", "initial tolerance",
-    "max iterations", "max initial iterations", "title", "print", "make restart file", "select timeout", "output units", "output meter",
+/// Settings of MBDyn's numerics and output: accepted, ignored.
+const IGNORED: [&str; 16] = [
+    "use automatic differentiation", "title", "print", "make restart file", "select timeout", "output units", "output meter",
     "output precision", "output results", "default aerodynamic output", "default beam output", "default scale", "finite difference jacobian meter",
-    "loadable path", "model name",
+    "loadable path", "model name", "epsilon",
 ];
+
+/// The initial assembly's statements (dataman3.cc, `DataManager::ReadControl`; input manual
+/// §Assembly-Related Cards), into `a`. `use: …, in assembly` may name only beams (used by
+/// default anyway): bodies, gravity and forces in the assembly are not supported, unless
+/// the assembly is skipped (checked by the caller, which gets the statement back).
+fn assembly_statement(keyword: &str, c: &mut Cursor, a: &mut InitialAssembly) -> Result<Option<String>, MbdynError> {
+    match keyword {
+        "skip initial joint assembly" => a.skip = true,
+        "initial stiffness" => {
+            a.position_stiffness = c.real("initial position stiffness")?;
+            a.velocity_stiffness = if c.is_done() { a.position_stiffness } else { c.real("initial velocity stiffness")? };
+        }
+        "omega rotates" => a.omega_rotates = c.flag("omega rotates (yes or no)")?,
+        "tolerance" | "initial tolerance" => {
+            let span = c.here();
+            a.tolerance = c.real("initial assembly tolerance")?;
+            if !(a.tolerance > 0.0) {
+                return Err(c.error_at(span, format!("the initial assembly tolerance must be positive, found {}", a.tolerance)));
+            }
+        }
+        "max iterations" | "max initial iterations" => a.max_iterations = c.count("initial assembly max iterations")?,
+        _ => {
+            // `use: ITEM, …, in assembly`.
+            let mut other = None;
+            loop {
+                if c.accept("in assembly") {
+                    break;
+                }
+                let item = c.keyword("an element kind (or 'in assembly')", &["rigid bodies", "gravity", "forces", "beams", "aerodynamic elements", "loadable elements", "plates"])?;
+                if item != "beams" && other.is_none() {
+                    other = Some(item.to_string());
+                }
+            }
+            return Ok(other);
+        }
+    }
+    Ok(None)
+}
 
 /// What control data says about the motion file.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -70,14 +107,24 @@ fn default_output(c: &mut Cursor, out: &mut ControlOutput) -> Result<(), MbdynEr
 /// Declared counts by kind, with the statement that declares them.
 pub type Counts = HashMap<&'static str, (usize, Span)>;
 
-/// Reads the `control data` block.
-pub fn control_data(block: Option<&Block>, sources: &Sources) -> Result<(Counts, ControlOutput), MbdynError> {
+/// Statements of the initial assembly.
+const ASSEMBLY: [&str; 8] = ["skip initial joint assembly", "initial stiffness", "omega rotates", "tolerance", "initial tolerance", "max iterations", "max initial iterations", "use"];
+
+/// Reads the `control data` block: the counts, the output settings and the initial
+/// assembly's settings.
+pub fn control_data(block: Option<&Block>, sources: &Sources) -> Result<(Counts, ControlOutput, InitialAssembly), MbdynError> {
     let mut counts = Counts::new();
     let mut output = ControlOutput::default();
-    let Some(cd) = block else { return Ok((counts, output)) };
+    let mut assembly = InitialAssembly::default();
+    let Some(cd) = block else { return Ok((counts, output, assembly)) };
+    let mut used = None;
     for st in &cd.statements {
         let mut c = Cursor::new(st, sources);
-        if known(&st.keyword, &["default output"]).is_some() {
+        if let Some(k) = known(&st.keyword, &ASSEMBLY) {
+            if let Some(item) = assembly_statement(k, &mut c, &mut assembly)? {
+                used = Some((item, st.span));
+            }
+        } else if known(&st.keyword, &["default output"]).is_some() {
             default_output(&mut c, &mut output)?;
         } else if known(&st.keyword, &["output frequency"]).is_some() {
             let span = c.here();
@@ -107,5 +154,8 @@ pub fn control_data(block: Option<&Block>, sources: &Sources) -> Result<(Counts,
         }
         c.finish()?;
     }
-    Ok((counts, output))
+    if let Some((item, span)) = used.filter(|_| !assembly.skip) {
+        return Err(sources.error(span, format!("'use: {item}, in assembly' is not supported by romdyn: its initial assembly uses joints and beams only, as MBDyn's does by default")));
+    }
+    Ok((counts, output, assembly))
 }

@@ -22,16 +22,15 @@ use crate::element::{Drive, TimeFunction};
 use crate::kinematics::{Mat3, Vec3};
 
 /// Drive callers romdyn evaluates.
-const SUPPORTED: [&str; 26] = [
+const SUPPORTED: [&str; 27] = [
     "const", "null", "unit", "one", "time", "direct", "ramp", "step", "sine", "cosine", "piecewise linear", "linear", "parabolic", "cubic", "exponential",
-    "tanh", "double ramp", "double step", "array", "mult", "frequency sweep", "periodic", "string", "reference", "zero", "constant",
+    "tanh", "double ramp", "double step", "array", "mult", "frequency sweep", "periodic", "string", "reference", "zero", "constant", "scalar function",
 ];
 
 /// MBDyn drive callers romdyn cannot represent (named in the error): they read the model's
 /// state, files, random numbers or the step counter.
-const UNSUPPORTED: [&str; 14] = [
+const UNSUPPORTED: [&str; 13] = [
     "closest next", "discrete filter", "dof", "drive", "element", "ginac", "file", "fourier series", "meter", "node", "postponed", "random", "sample and hold",
-    "scalar function",
 ];
 
 /// Nesting of drive callers inside drive callers romdyn follows.
@@ -42,6 +41,8 @@ const MAX_DEPTH: usize = 16;
 pub struct Drives {
     table: HashMap<u32, (Drive, usize, Span)>,
     pub variables: Variables,
+    /// The `scalar function:` cards (which `scalar function` drives and laws use).
+    pub functions: super::scalar_functions::ScalarFunctions,
 }
 
 /// Reads a `drive caller: LABEL, [name, "…",] DRIVE;` card.
@@ -123,6 +124,7 @@ fn nested_drive(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) -> Re
             }
             if terms.len() == 1 { terms.remove(0) } else { Drive::Sum(terms) }
         }
+        "scalar function" => Drive::Function(super::scalar_functions::scalar_function(c, &drives.functions, seq)?),
         "mult" => {
             let a = inner(c)?;
             Drive::Product(Box::new(a), Box::new(inner(c)?))

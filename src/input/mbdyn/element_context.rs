@@ -16,6 +16,10 @@ pub enum Parsed {
     Element(Box<dyn Element>),
     /// Gravity acceleration [m/s²].
     Gravity(Vec3),
+    /// A central gravity field: its centre [m] and `G M` [m³/s²].
+    CentralGravity { origin: Vec3, gm: f64 },
+    /// A rigid body (which a central gravity field acts on).
+    Body(crate::element::RigidBody),
     /// A card that does not change the model.
     Ignored,
 }

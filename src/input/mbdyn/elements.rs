@@ -65,7 +65,7 @@ pub fn element(st: &Statement, c: &mut Cursor, ctx: &ElementContext) -> Result<P
         c.string(&format!("{kind} name"))?;
     }
     let parsed = match kind {
-        "body" => Parsed::Element(Box::new(body(label, c, ctx)?)),
+        "body" => Parsed::Body(body(label, c, ctx)?),
         "joint" => Parsed::Element(joint(label, c, ctx)?),
         "force" | "couple" => Parsed::Element(force(kind == "couple", label, c, ctx)?),
         "automatic structural" => {
@@ -162,9 +162,19 @@ fn body(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<RigidBody,
 fn force(couple: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<dyn Element>, MbdynError> {
     let what = if couple { "couple" } else { "force" };
     let span = c.here();
-    let unsupported = ["total", "total internal", "absolute internal", "follower internal", "conservative internal", "absolute displacement", "absolute internal displacement", "abstract", "abstract internal", "modal", "external structural", "external modal", "external structural mapping", "external modal mapping"];
+    match c.accept_any(&["absolute internal", "conservative internal", "follower internal", "total internal"]) {
+        Some("follower internal") => return super::forces::internal(couple, ForceFrame::Follower, label, c, ctx),
+        Some("total internal") if !couple => return super::forces::total_internal(label, c, ctx),
+        Some("total internal") => return Err(c.error_at(span, "'total internal' is a force type (its couple is its 'moment' value), not a couple type")),
+        Some(_) => return super::forces::internal(couple, ForceFrame::Absolute, label, c, ctx),
+        None => {}
+    }
+    if c.accept("total") {
+        return Err(c.error_at(span, format!("{what} type 'total' (on one node) is not implemented by MBDyn 1.7.3 (force.cc builds only 'total internal'); use a follower force and a follower couple, or 'total internal' with a second node")));
+    }
+    let unsupported = ["absolute displacement", "absolute internal displacement", "abstract", "abstract internal", "modal", "external structural", "external modal", "external structural mapping", "external modal mapping"];
     if let Some(k) = c.accept_any(&unsupported) {
-        return Err(c.error_at(span, format!("{what} type '{k}' is not supported by romdyn (supported: absolute, follower)")));
+        return Err(c.error_at(span, format!("{what} type '{k}' is not supported by romdyn (supported: absolute, follower, absolute internal, follower internal, total internal)")));
     }
     let frame = match c.keyword(&format!("the {what} type"), &["absolute", "conservative", "follower"])? {
         "follower" => ForceFrame::Follower,
@@ -199,12 +209,28 @@ fn force(couple: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Re
     Ok(if couple { Box::new(Couple { label, node: n.label, frame, direction, drive }) } else { Box::new(Force { label, node: n.label, frame, direction, offset, drive }) })
 }
 
-/// `gravity: [uniform,] VALUE` with a constant 3-vector value in the global frame (input
-/// manual, §Gravity Element).
+/// `gravity: [uniform,] VALUE` with a constant 3-vector value in the global frame, or
+/// `gravity: central, [origin, X0,] mass, M, G, {si | G}` (input manual, §Gravity Element).
 fn gravity(c: &mut Cursor, ctx: &ElementContext) -> Result<Parsed, MbdynError> {
     let span = c.here();
     if c.accept("central") {
-        return Err(c.error_at(span, "central gravity is not supported by romdyn (supported: uniform)"));
+        // gravity.cc, ReadGravity: `[origin, X0,] mass, M, G, {si | G}`, M and G above the
+        // machine epsilon.
+        let origin = if c.accept("origin") { ctx.global().position(c, "origin of the central gravity field [m]")? } else { Vec3::zeros() };
+        c.keyword("'mass'", &["mass"])?;
+        let positive = |c: &mut Cursor, what: &str| -> Result<f64, MbdynError> {
+            let at = c.here();
+            let x = c.real(what)?;
+            if !(x > f64::EPSILON) {
+                return Err(c.error_at(at, format!("central gravity: {what} must be positive, found {x}")));
+            }
+            Ok(x)
+        };
+        let mass = positive(c, "central mass [kg]")?;
+        c.keyword("'G'", &["G"])?;
+        // 6.67384e-11 m³ kg⁻¹ s⁻² (MBDyn's value for `si`, NIST CODATA 2010).
+        let g = if c.accept("si") { 6.67384e-11 } else { positive(c, "gravitational constant [m^3 kg^-1 s^-2]")? };
+        return Ok(Parsed::CentralGravity { origin, gm: g * mass });
     }
     c.accept("uniform");
     let g = ctx.global();

@@ -5,7 +5,7 @@
 //! one. Expressions are evaluated as they are read, so later `set:` statements do not
 //! change earlier values.
 
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap};
 
 use super::diagnostic::{MbdynError, Sources, Span};
 use super::functions::{call, constants, is_function, FUNCTIONS, UNSUPPORTED_FUNCTIONS};
@@ -35,11 +35,32 @@ impl Variables {
     pub fn get(&self, name: &str) -> Option<&Variable> {
         self.0.get(name)
     }
+    /// Errors (about the whole `file`) unless every name is a variable the file declares with
+    /// `set:` (a swept or overridden name).
+    pub fn check_declared<'n>(&self, names: impl IntoIterator<Item = &'n String>, file: &std::path::Path) -> Result<(), MbdynError> {
+        for name in names {
+            if self.get(name).is_none_or(|v| v.declared.is_none()) {
+                let mut declared: Vec<&str> = self.0.iter().filter(|(_, v)| v.declared.is_some()).map(|(n, _)| n.as_str()).collect();
+                declared.sort_unstable();
+                let list = if declared.is_empty() { "none".to_string() } else { declared.join(", ") };
+                let message = format!("--set {name}: the file declares no variable '{name}' with 'set:' (its variables: {list})");
+                return Err(MbdynError { file: file.to_path_buf(), line: 0, column: 0, message, source_line: String::new() });
+            }
+        }
+        Ok(())
+    }
+
     /// The numeric value of a variable (`None` if undefined or a string).
     pub fn real(&self, name: &str) -> Option<f64> {
         self.0.get(name).and_then(|v| v.value.real())
     }
 }
+
+/// Values that replace what the file's `set:` statements give some variables (a design
+/// point of a sweep, `--set NAME=VALUE`): an overridden variable holds its override from its
+/// declaration on, whatever the file assigns it (the override is cast to the variable's type;
+/// an integer or bool variable needs an integer value).
+pub type SetOverrides = BTreeMap<String, f64>;
 
 /// Nesting of parentheses, unary operators and `!` romdyn follows (each level costs a few
 /// stack frames; real files nest a handful).
@@ -53,11 +74,34 @@ pub struct Evaluator<'a> {
     sources: &'a Sources,
     end: Span,
     depth: usize,
+    overrides: Option<&'a SetOverrides>,
 }
 
 impl<'a> Evaluator<'a> {
     pub fn new(tokens: &'a [Spanned], vars: &'a mut Variables, sources: &'a Sources, end: Span) -> Self {
-        Evaluator { tokens, pos: 0, vars, sources, end, depth: 0 }
+        Evaluator { tokens, pos: 0, vars, sources, end, depth: 0, overrides: None }
+    }
+
+    /// Declarations and assignments of these variables take the override's value (a `set:`
+    /// statement of a design point).
+    pub fn with_overrides(mut self, overrides: &'a SetOverrides) -> Self {
+        self.overrides = Some(overrides);
+        self
+    }
+
+    /// The value a declaration or an assignment of `name` stores: the override when there is
+    /// one (checked against the variable's type), else `value`.
+    fn overridden(&self, name: &str, ty: Type, span: Span, value: TypedValue) -> Result<TypedValue, MbdynError> {
+        let Some(&x) = self.overrides.and_then(|o| o.get(name)) else { return Ok(value) };
+        let exact = match ty {
+            Type::Real => true,
+            Type::Integer | Type::Bool => x.fract() == 0.0 && x.abs() < 9.0e15,
+            Type::String => false,
+        };
+        if !exact {
+            return Err(self.err(span, format!("--set {name}={x}: '{name}' is declared {} here, the value must be {}", ty.name(), if ty == Type::String { "given in the file (strings cannot be overridden)" } else { "a whole number" })));
+        }
+        TypedValue::Real(x).cast(ty).map_err(self.at(span))
     }
 
     /// Evaluates all the tokens as one statement list.
@@ -179,19 +223,23 @@ impl<'a> Evaluator<'a> {
             Some(v) => v.cast(ty).map_err(self.at(span))?,
             None => ty.zero(),
         };
+        let value = self.overridden(&name, ty, span, value)?;
         self.vars.0.insert(name, super::expr::Variable { value: value.clone(), constant, declared: Some(span) });
         Ok(value)
     }
 
     fn assign(&mut self, name: &str, span: Span, value: TypedValue) -> Result<TypedValue, MbdynError> {
-        let Some(var) = self.vars.0.get_mut(name) else {
-            return Err(self.err(span, format!("undefined variable '{name}': declare it first, e.g. 'set: real {name} = …;'")));
+        let ty = match self.vars.get(name) {
+            None => return Err(self.err(span, format!("undefined variable '{name}': declare it first, e.g. 'set: real {name} = …;'"))),
+            Some(var) if var.constant => return Err(self.sources.error(span, format!("'{name}' is a constant and cannot be assigned"))),
+            Some(var) => var.value.type_of(),
         };
-        if var.constant {
-            return Err(self.sources.error(span, format!("'{name}' is a constant and cannot be assigned")));
+        let value = value.cast(ty).map_err(|m| self.sources.error(span, m))?;
+        let value = self.overridden(name, ty, span, value)?;
+        if let Some(var) = self.vars.0.get_mut(name) {
+            var.value = value.clone();
         }
-        var.value = value.cast(var.value.type_of()).map_err(|m| self.sources.error(span, m))?;
-        Ok(var.value.clone())
+        Ok(value)
     }
 
     fn logical(&mut self) -> Result<TypedValue, MbdynError> {

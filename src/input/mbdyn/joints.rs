@@ -5,8 +5,8 @@
 //!
 //! Offsets and orientations are relative to their node (`reference, node` by default);
 //! the second node may refer to the first with `reference, other node` (or `other
-//! position`, `other orientation`). romdyn does not run MBDyn's initial assembly, so a
-//! constraint must hold in the initial configuration as written.
+//! position`, `other orientation`). A constraint need not hold as written: MBDyn's initial
+//! assembly (`solve::initial_assembly`) makes it hold before the run.
 
 use super::cursor::Cursor;
 use super::diagnostic::MbdynError;
@@ -14,8 +14,8 @@ use super::drives::template_vec3;
 use super::element_context::ElementContext;
 use super::laws::{linear_law, rest_strain, three, LinearLaw};
 use super::references::{Context, Frame, OtherSide};
-use crate::element::{Anchor, AxialRotation, ImposedVelocity, VelocityKind, CardanoHinge, DeformableJoint, DrivenJoint, InvariantDeformableHinge, VectorDrive, DeformableDisplacement, DeformableHinge, Distance, Drive, Element, Joint, Rod};
-use crate::kinematics::{axial_of_skew_part, Mat3, Vec3};
+use crate::element::{Anchor, AxialRotation, ImposedVelocity, VelocityKind, CardanoHinge, DeformableJoint, DrivenJoint, InvariantDeformableHinge, VectorDrive, DeformableDisplacement, DeformableHinge, Distance, Drive, Element, Joint, Rod, RodViscosity};
+use crate::kinematics::{Mat3, Vec3};
 use crate::model::{Label, StructuralNode};
 
 const SUPPORTED: [&str; 37] = [
@@ -149,9 +149,6 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             let l = length.value(t0);
             if !(l > 0.0) || l0 == 0.0 {
                 return Err(c.error_at(l_span, format!("distance: MBDyn's distance joint needs a positive distance (imposed {l} m, initial {l0:.6e} m)")));
-            }
-            if (l - l0).abs() > 1e-6 * l0.max(1.0) {
-                return Err(c.error_at(span, format!("joint {label}: its points are {l0:.6e} m apart in the initial configuration, the imposed distance is {l:.6e} m; romdyn does not run MBDyn's initial assembly, so joints must hold as written")));
             }
             Box::new(Distance { label, a: a.anchor(), b: b.anchor(), length })
         }
@@ -329,10 +326,6 @@ fn cardano(kind: &'static str, label: Label, c: &mut Cursor, ctx: &ElementContex
     let (ga, gb) = (anchor_global(&a, ctx), anchor_global(&b, ctx));
     if with_position {
         assembled(Joint::spherical_hinge(label, a, b), &ga, &gb, c, span)?;
-    }
-    let misalignment = ga.1.column(2).dot(&gb.1.column(1));
-    if misalignment.abs() > 1e-6 {
-        return Err(c.error_at(span, format!("joint {label}: axis 3 of the first frame and axis 2 of the second are not normal in the initial configuration (cosine {misalignment:.3e}); romdyn does not run MBDyn's initial assembly, so joints must hold as written")));
     }
     Ok(j)
 }
@@ -516,7 +509,8 @@ fn driven_assembled(j: DrivenJoint, ctx: &ElementContext, c: &Cursor, span: supe
 }
 
 /// `rod, NODE1, [position, O1,] NODE2, [position, O2,] {L0 | from nodes}, LAW` and `rod with
-/// offset, NODE1, O1, NODE2, O2, …` (input manual, §Rod): `F = EA (l − l₀)/l₀`; a
+/// offset, NODE1, O1, NODE2, O2, …` (input manual, §Rod): `F = EA (l − l₀)/l₀` plus,
+/// with a viscous or viscoelastic law, `C ε̇`; a
 /// prestrain `ε_p` and a prestress `F_p` shift the rest length to `l₀ (1 + ε_p − F_p/EA)`.
 fn rod(offsets: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Rod, MbdynError> {
     let position = if offsets { Position::Always } else { Position::IfKeyword };
@@ -532,34 +526,30 @@ fn rod(offsets: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Res
         return Err(c.error_at(span, format!("rod length must be positive, found {l0}")));
     }
     let law_span = c.here();
+    // `scalar function elastic [isotropic | orthotropic], FUNCTION`: N = f(ε).
+    if c.accept("scalar function elastic isotropic") || c.accept("scalar function elastic orthotropic") || c.accept("scalar function elastic") {
+        let f = super::scalar_functions::scalar_function(c, &ctx.drives.functions, ctx.seq)?;
+        return Ok(Rod { label, a: a.anchor(), b: b.anchor(), axial_stiffness: 0.0, length: l0, viscous: None, elastic: Some(f) });
+    }
     let law: LinearLaw = linear_law(c, 1, ctx.laws, ctx.drives, ctx.seq)?;
-    let ea = law.stiffness[(0, 0)];
-    if !law.is_elastic() {
-        return Err(c.error_at(law_span, "romdyn's rod is elastic: a viscous rod law is not supported"));
+    let (ea, viscosity) = (law.stiffness[(0, 0)], law.viscosity[(0, 0)]);
+    if ea < 0.0 || viscosity < 0.0 || ea + viscosity == 0.0 {
+        return Err(c.error_at(law_span, format!("rod: the axial stiffness EA [N] and viscosity [N s] must not be negative, nor both zero (found {ea}, {viscosity})")));
     }
-    if ea <= 0.0 {
-        return Err(c.error_at(law_span, format!("rod axial stiffness EA must be positive, found {ea}")));
+    if ea == 0.0 && law.prestress[0] != 0.0 {
+        return Err(c.error_at(law_span, "rod: a prestress needs an axial stiffness in romdyn (it becomes a rest length)"));
     }
-    let rest = l0 * (1.0 + law.prestrain[0] - law.prestress[0] / ea);
+    let rest = if ea == 0.0 { l0 } else { l0 * (1.0 + law.prestrain[0] - law.prestress[0] / ea) };
     if rest <= 0.0 {
         return Err(c.error_at(law_span, "rod: prestrain and prestress leave no positive rest length"));
     }
-    Ok(Rod { label, a: a.anchor(), b: b.anchor(), axial_stiffness: ea * rest / l0, length: rest })
+    // The viscous part acts on MBDyn's strain rate d·ḋ/(l l₀) (rodj.cc, ViscoElasticRod).
+    let viscous = (viscosity > 0.0).then_some(RodViscosity { coefficient: viscosity, length: l0 });
+    Ok(Rod { label, a: a.anchor(), b: b.anchor(), axial_stiffness: ea * rest / l0, length: rest, viscous, elastic: None })
 }
 
-/// Errors unless the joint's locked components hold in the initial configuration: frame A
-/// at `(p_a, Q_a)`, frame B at `(p_b, Q_b)`.
-fn assembled(j: Joint, a: &(Vec3, Mat3), b: &(Vec3, Mat3), c: &Cursor, span: super::diagnostic::Span) -> Result<Joint, MbdynError> {
-    let scale = 1.0f64.max(a.0.norm()).max(b.0.norm());
-    let gap = a.1.transpose() * (b.0 - a.0);
-    let twist = axial_of_skew_part(&(a.1.transpose() * b.1));
-    for k in 0..3 {
-        if j.position_locked[k] && gap[k].abs() > 1e-6 * scale {
-            return Err(c.error_at(span, format!("joint {}: its two points are {:.3e} m apart along the joint's axis {} in the initial configuration; romdyn does not run MBDyn's initial assembly, so joints must hold as written", j.label, gap[k], k + 1)));
-        }
-        if j.rotation_locked[k] && twist[k].abs() > 1e-6 {
-            return Err(c.error_at(span, format!("joint {}: its two frames are rotated by {:.3e} rad about the joint's axis {} in the initial configuration; romdyn does not run MBDyn's initial assembly, so joints must hold as written", j.label, twist[k], k + 1)));
-        }
-    }
+/// The joint as read: MBDyn's initial assembly (`solve::initial_assembly`, run before every
+/// analysis) makes it hold, or names it when it cannot (or when the assembly is skipped).
+fn assembled(j: Joint, _a: &(Vec3, Mat3), _b: &(Vec3, Mat3), _c: &Cursor, _span: super::diagnostic::Span) -> Result<Joint, MbdynError> {
     Ok(j)
 }

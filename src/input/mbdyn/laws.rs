@@ -36,9 +36,6 @@ impl LinearLaw {
     pub fn viscosity3(&self) -> Mat3 {
         Mat3::from_fn(|i, j| self.viscosity[(i, j)])
     }
-    pub fn is_elastic(&self) -> bool {
-        self.viscosity.iter().all(|x| *x == 0.0)
-    }
 }
 
 const KINDS: [&str; 9] = [

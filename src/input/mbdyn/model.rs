@@ -14,7 +14,8 @@ use super::element_context::{ElementContext, Parsed};
 use super::elements::{counted_kind, element, label_space};
 use super::laws::{constitutive_law_card, Laws};
 use super::nodes::{node_statement, Nodes};
-use super::parser::{known, parse_file, same_keyword, Block, Document, CARDS};
+use super::expr::SetOverrides;
+use super::parser::{known, parse_file_with, parse_text_with, same_keyword, Block, Document, CARDS};
 use super::problem::{data, initial_value};
 use super::references::{reference, Frames};
 use crate::model::{InitialValueProblem, Model, ModelBuilder, MotionOutput, WrittenNode};
@@ -27,7 +28,22 @@ pub struct MbdynModel {
 
 /// Reads an MBDyn input file into a model.
 pub fn read_model(path: &Path) -> Result<MbdynModel, MbdynError> {
-    let doc = parse_file(path)?;
+    read_model_with(path, &SetOverrides::new())
+}
+
+/// Reads an MBDyn input file into a model, `set:` variables overridden (a design point;
+/// a variable the file does not declare is an error).
+pub fn read_model_with(path: &Path, overrides: &SetOverrides) -> Result<MbdynModel, MbdynError> {
+    checked(parse_file_with(path, overrides)?)
+}
+
+/// [`read_model_with`] on the text of a file named `name` (includes resolve relative to its
+/// folder): a sweep's work unit is the file's text, not a path another machine may lack.
+pub fn read_model_text(text: &str, name: &Path, overrides: &SetOverrides) -> Result<MbdynModel, MbdynError> {
+    checked(parse_text_with(text, name, overrides)?)
+}
+
+fn checked(doc: Document) -> Result<MbdynModel, MbdynError> {
     let m = build(&doc)?;
     // An empty, blank or comments-only file would "run" and write empty outputs.
     if m.model.nodes.is_empty() && m.model.elements.is_empty() {
@@ -69,6 +85,7 @@ fn cards(doc: &Document) -> Result<Cards, MbdynError> {
             Some("reference") => reference(st, &mut c, &mut out.frames)?,
             Some("drive caller") => drive_caller_card(st, &mut c, &mut out.drives)?,
             Some("constitutive law") => constitutive_law_card(st, &mut c, &mut out.laws, &out.drives)?,
+            Some("scalar function") => super::scalar_functions::scalar_function_card(&mut c, &mut out.drives.functions, st.seq)?,
             Some("setenv" | "print symbol table") => {}
             Some(other) => return Err(c.error_at(st.span, format!("'{other}' cards are not supported by romdyn"))),
             None => return Err(c.error_at(st.span, format!("unknown card '{}'", st.keyword))),
@@ -103,7 +120,7 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
     }
     let cards = cards(doc)?;
     let mut problem = initial_value(block(doc, "initial value"), src, &cards.drives)?;
-    let (counts, control_output) = control_data(block(doc, "control data"), src)?;
+    let (counts, control_output, assembly) = control_data(block(doc, "control data"), src)?;
     let mut nodes = Nodes::default();
     for st in block(doc, "nodes").map_or(&[][..], |b| &b.statements) {
         node_statement(st, &mut Cursor::new(st, src), &cards.frames, &mut nodes)?;
@@ -121,6 +138,8 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
             .collect(),
         every: control_output.every,
     });
+    problem.assembly = assembly;
+    problem.assembly.nodes = nodes.0.iter().filter(|n| !n.dummy).filter_map(|n| n.assembly.map(|a| (n.node.label, a))).collect();
     let mut b = ModelBuilder::new();
     for n in nodes.structural() {
         b.node(n.clone());
@@ -134,11 +153,19 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
     found.insert("structural nodes", (nodes.0.len(), block(doc, "nodes").map_or(first, |b| b.span)));
     let mut labels: HashMap<(&'static str, u32), Span> = HashMap::new();
     let mut gravity: Option<Span> = None;
+    let mut central = None;
+    let mut bodies = Vec::new();
     for st in block(doc, "elements").map_or(&[][..], |b| &b.statements) {
         let mut c = Cursor::new(st, src);
         let ctx = ElementContext { nodes: &nodes, frames: &cards.frames, drives: &cards.drives, laws: &cards.laws, seq: st.seq };
         let label_span = c.here();
-        let parsed = element(st, &mut c, &ctx)?;
+        let parsed = match element(st, &mut c, &ctx)? {
+            Parsed::Body(body) => {
+                bodies.push((body.label, body.node, body.mass, body.offset));
+                Parsed::Element(Box::new(body))
+            }
+            p => p,
+        };
         c.finish()?;
         if let Some(kind) = counted_kind(&st.keyword) {
             found.entry(kind).or_insert((0, st.span)).0 += 1;
@@ -150,6 +177,13 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
                 }
                 b.gravity(g);
             }
+            Parsed::CentralGravity { origin, gm } => {
+                if let Some(prev) = gravity.replace(st.span) {
+                    return Err(src.error(st.span, format!("gravity is defined twice (first at line {})", prev.line)));
+                }
+                central = Some((origin, gm));
+            }
+            Parsed::Body(_) => unreachable!("bodies are turned into elements above"),
             Parsed::Element(e) => {
                 let on = e.nodes();
                 if let Some(n) = on.iter().enumerate().find(|(k, n)| on[..*k].contains(n)).map(|(_, n)| n) {
@@ -162,6 +196,12 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
                 b.boxed_element(e);
             }
             Parsed::Ignored => {}
+        }
+    }
+    // A central field acts on every body at its node (gravity.cc, body.cc).
+    if let Some((origin, gm)) = central {
+        for (label, node, mass, offset) in bodies {
+            b.boxed_element(Box::new(crate::element::CentralGravity { label, node, mass, offset, origin, gm }));
         }
     }
     check_counts(doc, &counts, &found)?;

@@ -1,8 +1,8 @@
 //! The `nodes` block (input manual, "Nodes", §Structural Node): `structural: LABEL,
 //! {static | dynamic}, [position,] X, [orientation,] R, [velocity,] V, [angular velocity,]
 //! W` (each optionally in a `reference`), or `at reference, LABEL`; then the optional
-//! `assembly`, `scale`, `output` and `accelerations` settings (`assembly` and `scale` only
-//! tune MBDyn's initial assembly and are ignored; `output` selects the node's `.mov` rows).
+//! `assembly`, `scale`, `output` and `accelerations` settings (`assembly` sets the node's
+//! initial-assembly penalties, `scale` is ignored, `output` selects the node's `.mov` rows).
 //! A node label may be followed by `name, "…"`. `dummy` nodes carry no unknowns: they are
 //! counted, kept out of the model, and written to the motion file from their base node
 //! (which may itself be a dummy node). `output: structural, LABEL | range, A, B, …;` turns
@@ -12,7 +12,7 @@ use super::cursor::Cursor;
 use super::diagnostic::{MbdynError, Span};
 use super::parser::{known, Statement};
 use super::references::{Context, Frame, Frames};
-use crate::model::{Label, NodeKind, NodeSource, OrientationOutput, StructuralNode};
+use crate::model::{Label, NodeAssembly, NodeKind, NodeSource, OrientationOutput, StructuralNode};
 
 /// A node of the file: a structural node of the model, or a dummy node.
 #[derive(Clone, Debug)]
@@ -27,6 +27,8 @@ pub struct NodeEntry {
     pub output: Option<bool>,
     /// `orientation description, …` (`None`: the `default orientation` of control data).
     pub orientation: Option<OrientationOutput>,
+    /// `assembly, POSITION, VELOCITY, OMEGA_ROTATES`: its own initial-assembly penalties.
+    pub assembly: Option<NodeAssembly>,
     /// `name, "…"` after the label.
     pub name: Option<String>,
 }
@@ -77,9 +79,9 @@ pub fn node_statement(st: &Statement, c: &mut Cursor, frames: &Frames, nodes: &m
         }
         _ => return Err(c.error_at(kind_span, format!("'{kind}' structural nodes are not supported by romdyn (supported: static, dynamic, dummy)"))),
     };
-    let output = settings(c)?;
+    let (output, assembly) = settings(c)?;
     c.finish()?;
-    nodes.0.push(NodeEntry { node, dummy, span: st.span, source, output, orientation, name });
+    nodes.0.push(NodeEntry { node, dummy, span: st.span, source, output, orientation, assembly, name });
     Ok(())
 }
 
@@ -201,15 +203,16 @@ fn dummy(c: &mut Cursor, ctx: &Context, label: Label, nodes: &Nodes) -> Result<(
     }
 }
 
-/// `assembly, …`, `scale, …`, `output, …`, `accelerations, …`: MBDyn's initial assembly
-/// settings (ignored by romdyn) and the node's output flag, returned.
-fn settings(c: &mut Cursor) -> Result<Option<bool>, MbdynError> {
+/// `assembly, …`, `scale, …`, `output, …`, `accelerations, …`: the node's output flag and
+/// initial-assembly settings, returned (`scale`, a residual scaling, is ignored).
+fn settings(c: &mut Cursor) -> Result<(Option<bool>, Option<NodeAssembly>), MbdynError> {
     let mut output = None;
+    let mut assembly = None;
     loop {
         if c.accept("assembly") {
-            c.real("position initial stiffness")?;
-            c.real("velocity initial stiffness")?;
-            c.flag("omega rotates")?;
+            let position_stiffness = c.real("position initial stiffness")?;
+            let velocity_stiffness = c.real("velocity initial stiffness")?;
+            assembly = Some(NodeAssembly { position_stiffness, velocity_stiffness, omega_rotates: c.flag("omega rotates")? });
         } else if c.accept("scale") {
             if !c.accept("default") {
                 c.real("residual scale factor")?;
@@ -219,7 +222,7 @@ fn settings(c: &mut Cursor) -> Result<Option<bool>, MbdynError> {
         } else if c.accept("accelerations") {
             c.flag("accelerations flag")?;
         } else {
-            return Ok(output);
+            return Ok((output, assembly));
         }
     }
 }

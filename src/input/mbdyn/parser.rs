@@ -9,7 +9,7 @@
 use std::path::{Path, PathBuf};
 
 use super::diagnostic::{MbdynError, Sources, Span};
-use super::expr::{describe, Evaluator, Variables};
+use super::expr::{describe, Evaluator, SetOverrides, Variables};
 use super::lexer::{tokenize, Spanned, Token};
 use super::value::TypedValue;
 
@@ -84,27 +84,45 @@ struct Reader {
     stack: Vec<PathBuf>,
     open: Option<Block>,
     seq: usize,
+    overrides: SetOverrides,
 }
 
 /// Reads and parses an MBDyn input file (and its includes).
 pub fn parse_file(path: &Path) -> Result<Document, MbdynError> {
-    let mut r = Reader { doc: Document::default(), stack: Vec::new(), open: None, seq: 0 };
-    r.read(path, None)?;
-    r.finish()
+    parse_file_with(path, &SetOverrides::new())
 }
 
 /// Parses text as if it were the file `name` (includes resolve relative to its folder).
 pub fn parse_text(text: &str, name: &Path) -> Result<Document, MbdynError> {
-    let mut r = Reader { doc: Document::default(), stack: Vec::new(), open: None, seq: 0 };
+    parse_text_with(text, name, &SetOverrides::new())
+}
+
+/// [`parse_file`] with `set:` variables overridden (a design point); a name the file never
+/// declares is an error.
+pub fn parse_file_with(path: &Path, overrides: &SetOverrides) -> Result<Document, MbdynError> {
+    let mut r = Reader::new(overrides);
+    r.read(path, None)?;
+    r.finish(path)
+}
+
+/// [`parse_text`] with `set:` variables overridden (a design point).
+pub fn parse_text_with(text: &str, name: &Path, overrides: &SetOverrides) -> Result<Document, MbdynError> {
+    let mut r = Reader::new(overrides);
     r.read_text(text.to_string(), name)?;
-    r.finish()
+    r.finish(name)
 }
 
 impl Reader {
-    fn finish(mut self) -> Result<Document, MbdynError> {
+    fn new(overrides: &SetOverrides) -> Self {
+        Reader { doc: Document::default(), stack: Vec::new(), open: None, seq: 0, overrides: overrides.clone() }
+    }
+
+    fn finish(mut self, path: &Path) -> Result<Document, MbdynError> {
         if let Some(b) = self.open.take() {
             return Err(self.doc.sources.error(b.span, format!("block '{}' is never closed: expected 'end: {};'", b.name, b.name)));
         }
+        // An override of a variable the file never declares would change nothing: refuse it.
+        self.doc.variables.check_declared(self.overrides.keys(), path)?;
         Ok(self.doc)
     }
 
@@ -164,7 +182,7 @@ impl Reader {
                 if body.is_empty() {
                     return Err(self.doc.sources.error(end, "set: expected an expression, e.g. 'set: real L = 1.;'"));
                 }
-                Evaluator::new(body, &mut self.doc.variables, &self.doc.sources, end).evaluate()?;
+                Evaluator::new(body, &mut self.doc.variables, &self.doc.sources, end).with_overrides(&self.overrides).evaluate()?;
                 return Ok(());
             }
             Some(kw @ ("begin" | "end")) => return self.block(kw, body, first.span, end),

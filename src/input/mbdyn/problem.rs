@@ -10,7 +10,7 @@ use crate::limits::readable;
 use super::diagnostic::{MbdynError, Sources};
 use super::drives::{drive, Drives};
 use super::parser::{known, Block};
-use crate::model::{AbortAfter, EigenOutput, EigenRequest, InitialValueProblem, Method, ResidualNorm};
+use crate::model::{AbortAfter, AutoCoefficient, EigenOutput, EigenRequest, InitialValueProblem, Method, ResidualNorm};
 
 /// Reads the `data` block.
 pub fn data(block: &Block, sources: &Sources) -> Result<(), MbdynError> {
@@ -57,7 +57,8 @@ const STATEMENTS: [&str; 11] = [
 /// `iDefaultMaxIterations = 1`, `dDefaultDerivativesCoefficient = 1e-6`; solver.cc,
 /// `Solver::ReadData`: without `method:` the integrator is `ms` with a null drive for ρ∞,
 /// i.e. ρ∞ = 0; the initial time step is 1 s; the derivatives use the same tolerance and
-/// iteration defaults; the residual test is the 2-norm, `test, norm`).
+/// iteration defaults; the residual test is the 2-norm, `test, norm`, and no solution
+/// test: `dSolutionTol = 0`, nonlin.cc `MakeSolTest`).
 pub fn mbdyn_defaults() -> InitialValueProblem {
     InitialValueProblem {
         initial_time: 0.0,
@@ -70,6 +71,7 @@ pub fn mbdyn_defaults() -> InitialValueProblem {
         derivatives_max_iterations: 1,
         derivatives_coefficient: 1e-6,
         residual_norm: ResidualNorm::Euclidean,
+        increment_tolerance: 0.0,
         ..InitialValueProblem::default()
     }
 }
@@ -199,12 +201,22 @@ fn derivatives_coefficient(c: &mut Cursor, a: &mut InitialValueProblem) -> Resul
         a.derivatives_coefficient = k;
     }
     if c.accept("auto") {
+        let mut auto = AutoCoefficient::default();
         if c.accept("max iterations") {
-            c.count("derivatives coefficient max iterations")?;
+            let span = c.here();
+            auto.retries = c.count("derivatives coefficient max iterations")?;
+            if auto.retries > 100 {
+                return Err(c.error_at(span, format!("at most 100 derivatives coefficient iterations are supported, found {}", auto.retries)));
+            }
         }
         if c.accept("factor") {
-            c.real("derivatives coefficient factor")?;
+            let span = c.here();
+            auto.factor = c.real("derivatives coefficient factor")?;
+            if !(auto.factor > 1.0) {
+                return Err(c.error_at(span, format!("the derivatives coefficient factor must be greater than one, found {}", auto.factor)));
+            }
         }
+        a.derivatives_coefficient_auto = Some(auto);
     }
     Ok(())
 }
@@ -215,6 +227,11 @@ fn method(c: &mut Cursor, drives: &Drives, t0: f64, seq: usize) -> Result<Method
     let span = c.here();
     if let Some(m) = c.accept_any(&["hope", "third order", "thirdorder"]) {
         return Err(c.error_at(span, format!("integration method '{m}' is not supported by romdyn (supported: ms, crank nicolson, implicit euler, bdf)")));
+    }
+    // Methods of later MBDyn versions: without MBDyn 1.7.3's definition to compare with,
+    // romdyn does not guess their coefficients.
+    if let Some(m) = c.accept_any(&["bathe", "hybrid", "dirk33", "dirk43", "dirk54", "msstc3", "msstc4", "msstc5", "mssth3", "mssth4", "mssth5", "ss2", "ss3", "ss4", "ss5"]) {
+        return Err(c.error_at(span, format!("integration method '{m}' is not known to MBDyn 1.7.3 (its reader stops with \"Unknown integration method\") and is not supported by romdyn (supported: ms, crank nicolson, implicit euler, bdf)")));
     }
     // `crank nicholson` is MBDyn's deprecated spelling (solver.cc, Solver::ReadData).
     Ok(match c.keyword("an integration method", &["ms", "crank nicolson", "crank nicholson", "implicit euler", "bdf"])? {

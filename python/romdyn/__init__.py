@@ -1,0 +1,28 @@
+"""romdyn: linear reduced-order models (ROMs) from MBDyn multibody models, for control design.
+
+The same library workflow as the ``romdyn`` command line: read an MBDyn input file
+(``set:`` variables overridden from Python), solve a reference (initial state, static
+equilibrium or a time of the file's problem), linearize with inputs and outputs, run the
+eigenanalysis and build ordinary or descriptor ROMs. SI units throughout: eigenvalues in
+rad/s, frequencies in Hz, forces in N, moments in N m, displacements in m, rotations in rad,
+times and dCoef in s.
+
+>>> import romdyn
+>>> study = romdyn.Model("examples/pendulum.mbd").study(inputs=["2:Mz"], outputs=["2:rz"])
+>>> rom = study.reduce(count=1)
+>>> sys = rom.to_control()          # python-control StateSpace with input/output names
+
+Errors carry the CLI's messages: ``ModelError`` (a subclass of ``RomdynError``) for an
+input file reads ``FILE:LINE:COLUMN: error: ...`` with the line and a caret.
+"""
+
+from ._romdyn import Model, ModelError, Rom, RomdynError, Study
+from ._sweep import SweepResult, sweep
+
+__all__ = ["Model", "Study", "Rom", "RomdynError", "ModelError", "load", "sweep", "SweepResult"]
+
+
+def load(path, set=None):
+    """Reads the MBDyn input file ``path``; ``set`` maps ``set:`` variables to the values
+    replacing the file's (its SI units). Same as ``Model(path, set=set)``."""
+    return Model(path, set=set)

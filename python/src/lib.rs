@@ -1,0 +1,420 @@
+//! `romdyn._romdyn`: the Python face of romdyn's library workflow. Every function maps its
+//! arguments onto the same library calls as the CLI (`Study::of_model`, `Study::reduce`,
+//! `sweep::run_point`) and converts the results to NumPy arrays; solves run with the GIL
+//! released. SI units throughout: eigenvalues in rad/s, frequencies in Hz, forces in N,
+//! moments in N m, displacements in m, rotations in rad, times and dCoef in s.
+
+mod convert;
+mod options;
+
+use std::path::PathBuf;
+
+use numpy::{Complex64, IntoPyArray, PyArray1, PyArray2, PyArray3, PyArrayMethods};
+use pyo3::exceptions::PyException;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use romdyn::analysis::{run, NodeHistories};
+use romdyn::input::mbdyn::{read_model_text, MbdynModel, SetOverrides};
+use romdyn::output::rom_file::RomExport;
+use romdyn::rom::full_frequency_response;
+use romdyn::study::{ReducedModel, RomForm, Study, StudyError};
+
+use convert::{complex_vec, mat, responses};
+
+pyo3::create_exception!(_romdyn, RomdynError, PyException, "A romdyn failure, with the message the CLI prints.");
+pyo3::create_exception!(_romdyn, ModelError, RomdynError, "An error in an MBDyn input file: 'FILE:LINE:COLUMN: error: ...' with the line and a caret.");
+
+/// The Python exception of a library error: input-file errors keep file:line:col.
+pub(crate) fn py_err(e: StudyError) -> PyErr {
+    match e {
+        StudyError::Model(m) => ModelError::new_err(m.to_string()),
+        e => RomdynError::new_err(e.to_string()),
+    }
+}
+
+/// An MBDyn input file, its text kept (with `set:` overrides) and read again for each
+/// study: `Model(path, set={"L": 2.0})`.
+#[pyclass(module = "romdyn._romdyn", frozen)]
+struct Model {
+    text: String,
+    name: PathBuf,
+    overrides: SetOverrides,
+    #[pyo3(get)]
+    /// Labels of the structural nodes.
+    nodes: Vec<u32>,
+    #[pyo3(get)]
+    /// Number of equations (unknowns) of the DAE.
+    equations: usize,
+}
+
+impl Model {
+    fn read(&self) -> Result<MbdynModel, StudyError> {
+        Ok(read_model_text(&self.text, &self.name, &self.overrides)?)
+    }
+
+    fn new_checked(text: String, name: PathBuf, overrides: SetOverrides) -> PyResult<Self> {
+        let m = read_model_text(&text, &name, &overrides).map_err(|e| ModelError::new_err(e.to_string()))?;
+        let nodes = m.model.nodes.iter().map(|n| n.label).collect();
+        let equations = romdyn::dae::Assembler::new(&m.model).dofs.len;
+        Ok(Model { text, name, overrides, nodes, equations })
+    }
+}
+
+#[pymethods]
+impl Model {
+    /// Reads the MBDyn input file `path`; `set` maps `set:` variables of the file to the values
+    /// that replace theirs (SI units of the file). Raises ModelError with file:line:col.
+    #[new]
+    #[pyo3(signature = (path, set = None))]
+    fn new(path: PathBuf, set: Option<SetOverrides>) -> PyResult<Self> {
+        let text = romdyn::input::text_file::read_text_file(&path).map_err(|e| ModelError::new_err(format!("{}: error: {}", path.display(), e.message)))?;
+        Self::new_checked(text, path, set.unwrap_or_default())
+    }
+
+    /// A model from the text of an MBDyn input file; `name` labels messages and resolves
+    /// includes.
+    #[staticmethod]
+    #[pyo3(signature = (text, name = "model.mbd".into(), set = None))]
+    fn from_text(text: String, name: PathBuf, set: Option<SetOverrides>) -> PyResult<Self> {
+        Self::new_checked(text, name, set.unwrap_or_default())
+    }
+
+    /// The file's text (a sweep's work unit).
+    #[getter]
+    fn text(&self) -> &str {
+        &self.text
+    }
+
+    /// The file name.
+    #[getter]
+    fn name(&self) -> PathBuf {
+        self.name.clone()
+    }
+
+    /// The `set:` overrides.
+    #[getter]
+    fn set(&self) -> SetOverrides {
+        self.overrides.clone()
+    }
+
+    /// Linearizes the model and runs its eigenanalysis (as `romdyn eig|rom`).
+    ///
+    /// reference: "initial" (the initial time after consistent derivatives), "static" (static
+    /// equilibrium, loads in `load_steps` increments) or a time [s] of the file's problem.
+    /// inputs/outputs: "NODE:Fx|Fy|Fz|Mx|My|Mz" (force [N], moment [N m]) and
+    /// "NODE:x|y|z|rx|ry|rz" (displacement [m], rotation [rad]); ports: a ports file (JSON);
+    /// remove_springs: labels of dummy springs; imposed: "NODE[:COMPONENTS]". route:
+    /// "lambda" or "direct"; dcoef [s].
+    #[pyo3(signature = (reference = None, load_steps = 10, inputs = Vec::new(), outputs = Vec::new(), ports = None, remove_springs = Vec::new(), imposed = None, route = "lambda", dcoef = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn study(&self, py: Python<'_>, reference: Option<&Bound<'_, PyAny>>, load_steps: usize, inputs: Vec<String>, outputs: Vec<String>, ports: Option<PathBuf>, remove_springs: Vec<u32>, imposed: Option<String>, route: &str, dcoef: Option<f64>) -> PyResult<StudyPy> {
+        let reference = options::reference(reference, load_steps)?;
+        let ports = options::ports(&inputs, &outputs, ports.as_deref(), &remove_springs, imposed.as_deref())?;
+        let eigen = options::eigen(route, dcoef)?;
+        let study = py.detach(|| {
+            let m = self.read()?;
+            Study::of_model(m.model, &m.problem, reference, &ports, eigen, None).map_err(|e| e.in_file(&self.name))
+        });
+        Ok(StudyPy { study: study.map_err(py_err)?.0 })
+    }
+
+    /// Runs the file's initial-value problem (as `romdyn run`, without files) and returns the
+    /// node histories: {"time" [s] (steps,), "labels" (nodes,), "position" [m] (steps, nodes,
+    /// 3), "orientation" (steps, nodes, 3, 3: node frame to global), "velocity" [m/s],
+    /// "angular_velocity" [rad/s] (steps, nodes, 3)}; step 0 is the initial state.
+    fn run<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let h = py
+            .detach(|| -> Result<NodeHistories, StudyError> {
+                let m = self.read()?;
+                let mut h = NodeHistories::default();
+                run(&m.model, &m.problem, &mut h).map_err(|source| StudyError::Reference { file: Some(self.name.clone()), source })?;
+                Ok(h)
+            })
+            .map_err(py_err)?;
+        let (nt, nn) = (h.time.len(), h.labels.len());
+        let d = PyDict::new(py);
+        d.set_item("time", h.time.into_pyarray(py))?;
+        d.set_item("labels", h.labels.into_pyarray(py))?;
+        d.set_item("position", h.position.into_pyarray(py).reshape([nt, nn, 3])?)?;
+        d.set_item("orientation", h.orientation.into_pyarray(py).reshape([nt, nn, 3, 3])?)?;
+        d.set_item("velocity", h.velocity.into_pyarray(py).reshape([nt, nn, 3])?)?;
+        d.set_item("angular_velocity", h.angular_velocity.into_pyarray(py).reshape([nt, nn, 3])?)?;
+        Ok(d)
+    }
+}
+
+/// A linear DAE with its eigenanalysis (romdyn's `Study`).
+#[pyclass(name = "Study", module = "romdyn._romdyn", frozen)]
+struct StudyPy {
+    study: Study,
+}
+
+#[pymethods]
+impl StudyPy {
+    /// Warnings (reference not in equilibrium, ports that move nothing, …).
+    #[getter]
+    fn warnings(&self) -> Vec<String> {
+        self.study.warnings().iter().map(|w| w.to_string()).collect()
+    }
+
+    /// Time of the reference solution [s].
+    #[getter]
+    fn reference_time(&self) -> Option<f64> {
+        self.study.reference_time()
+    }
+
+    /// The modal table as arrays: "eigenvalues" [rad/s] (complex), "kind" ("dynamic", "zero",
+    /// "infinite"), "freq_hz" (|Im λ|/2π, MBDyn's), "undamped_hz" (|λ|/2π), "damping"
+    /// (−Re λ/|λ|), "error" [rad/s], "partner" (index of a conjugate, -1 if none), "dcoef" [s].
+    fn modes<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let modal = self.study.modal();
+        let d = PyDict::new(py);
+        let lam: Vec<_> = modal.modes.iter().map(|m| m.lambda).collect();
+        d.set_item("eigenvalues", complex_vec(py, &lam))?;
+        d.set_item("kind", modal.modes.iter().map(|m| format!("{:?}", m.kind).to_lowercase()).collect::<Vec<_>>())?;
+        d.set_item("freq_hz", lam.iter().map(|l| l.im.abs() / (2.0 * std::f64::consts::PI)).collect::<Vec<_>>().into_pyarray(py))?;
+        d.set_item("undamped_hz", modal.modes.iter().map(|m| m.freq_hz()).collect::<Vec<_>>().into_pyarray(py))?;
+        d.set_item("damping", modal.modes.iter().map(|m| m.damping()).collect::<Vec<_>>().into_pyarray(py))?;
+        d.set_item("error", modal.modes.iter().map(|m| m.error).collect::<Vec<_>>().into_pyarray(py))?;
+        d.set_item("partner", modal.modes.iter().map(|m| m.partner.map_or(-1, |p| p as i64)).collect::<Vec<_>>().into_pyarray(py))?;
+        d.set_item("dcoef", modal.dcoef)?;
+        Ok(d)
+    }
+
+    /// The modal table as `romdyn eig` prints it (the lowest `limit` dynamic modes).
+    #[pyo3(signature = (limit = 12))]
+    fn modal_table(&self, limit: usize) -> String {
+        self.study.modal_report().to_text_dynamic(limit)
+    }
+
+    /// The linear DAE `F_yd Δẏ + F_y Δy = B̃ u`, `z = C̃ Δy` (paper eqs. 38, 39): "Fyd", "Fy",
+    /// "B", "C", "unknowns", "inputs", "outputs" (names with units).
+    fn linear<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let dae = self.study.dae();
+        let (fyd, fy) = dae.jacobians.derivatives();
+        let d = PyDict::new(py);
+        d.set_item("Fyd", mat(py, &fyd))?;
+        d.set_item("Fy", mat(py, &fy))?;
+        d.set_item("B", mat(py, &dae.b))?;
+        d.set_item("C", mat(py, &dae.c))?;
+        d.set_item("unknowns", dae.unknown_names.clone())?;
+        d.set_item("inputs", dae.input_names.clone())?;
+        d.set_item("outputs", dae.output_names.clone())?;
+        Ok(d)
+    }
+
+    /// Builds a ROM (as `romdyn rom`): count (N lowest, or with by="dominance" the N that
+    /// matter), band (FMIN, FMAX) [Hz] or modes (1-based modal-table indices); residualize:
+    /// True (the dropped modes) or a list of modes; below_band "drop"|"keep"|"refuse";
+    /// damping: ζ for every kept mode or {mode: ζ}; form "ordinary"|"descriptor".
+    #[pyo3(signature = (count = None, band = None, modes = None, residualize = None, by = "frequency", below_band = "drop", damping = None, form = "ordinary"))]
+    #[allow(clippy::too_many_arguments)]
+    fn reduce(&self, py: Python<'_>, count: Option<usize>, band: Option<(f64, f64)>, modes: Option<Vec<usize>>, residualize: Option<&Bound<'_, PyAny>>, by: &str, below_band: &str, damping: Option<&Bound<'_, PyAny>>, form: &str) -> PyResult<Rom> {
+        let request = options::request(count, band, modes, residualize, by, below_band, damping)?;
+        let form = options::form(form)?;
+        let rom = py.detach(|| self.study.reduce(&request)).map_err(py_err)?;
+        if form == RomForm::Descriptor && rom.descriptor.c_rate.is_some() {
+            return Err(RomdynError::new_err("form='descriptor': velocity outputs need z = C x + C_v x', which the descriptor form has no place for; use form='ordinary'"));
+        }
+        let export = rom.export(&self.study, form);
+        let summary = rom.summary(&self.study, None);
+        Ok(Rom { export, rom, summary })
+    }
+
+    /// Frequency response of the full model at `freq_hz` [Hz]: complex array (frequencies,
+    /// outputs, inputs), in the outputs' units per input unit.
+    fn frequency_response<'py>(&self, py: Python<'py>, freq_hz: Vec<f64>) -> PyResult<Bound<'py, PyArray3<Complex64>>> {
+        let h = py.detach(|| full_frequency_response(self.study.dae(), &freq_hz));
+        responses(py, &h, self.study.dae().num_outputs(), self.study.dae().num_inputs())
+    }
+}
+
+/// A reduced-order model: `E ẋ = A x + B u`, `z = C x + D u` (E = I for the ordinary form).
+#[pyclass(module = "romdyn._romdyn", frozen)]
+struct Rom {
+    export: RomExport,
+    rom: ReducedModel,
+    #[pyo3(get)]
+    /// The summary `romdyn rom` prints (kept modes, static gains, their difference).
+    summary: String,
+}
+
+#[pymethods]
+impl Rom {
+    /// "ordinary" or "descriptor".
+    #[getter]
+    fn kind(&self) -> &'static str {
+        self.export.kind
+    }
+    #[getter(E)]
+    fn e<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        mat(py, &self.export.e)
+    }
+    #[getter(A)]
+    fn a<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        mat(py, &self.export.a)
+    }
+    #[getter(B)]
+    fn b<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        mat(py, &self.export.b)
+    }
+    #[getter(C)]
+    fn c<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        mat(py, &self.export.c)
+    }
+    #[getter(D)]
+    fn d<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        mat(py, &self.export.d)
+    }
+    /// Input names with units ("node 2 Mz [N m]").
+    #[getter]
+    fn inputs(&self) -> Vec<String> {
+        self.export.inputs.clone()
+    }
+    /// Output names with units ("node 2 rz [rad]").
+    #[getter]
+    fn outputs(&self) -> Vec<String> {
+        self.export.outputs.clone()
+    }
+    #[getter]
+    fn states(&self) -> Vec<String> {
+        self.export.states.clone()
+    }
+    #[getter]
+    fn input_units(&self) -> Vec<String> {
+        self.export.input_units.clone()
+    }
+    #[getter]
+    fn output_units(&self) -> Vec<String> {
+        self.export.output_units.clone()
+    }
+    #[getter]
+    fn state_units(&self) -> Vec<String> {
+        self.export.state_units.clone()
+    }
+    /// The ROM's own eigenvalues [rad/s].
+    #[getter]
+    fn eigenvalues<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<Complex64>> {
+        complex_vec(py, &self.export.eigenvalues)
+    }
+    /// The full model's eigenvalues of the kept modes [rad/s].
+    #[getter]
+    fn full_eigenvalues<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<Complex64>> {
+        complex_vec(py, &self.export.full_eigenvalues)
+    }
+    /// Static gain of the full model (outputs × inputs), None if it has none.
+    #[getter]
+    fn full_static_gain<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray2<f64>>> {
+        self.export.full_static_gain.as_ref().map(|m| mat(py, m))
+    }
+    /// Static gain of the ROM (outputs × inputs), None if it has none.
+    #[getter]
+    fn rom_static_gain<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray2<f64>>> {
+        self.export.rom_static_gain.as_ref().map(|m| mat(py, m))
+    }
+    /// The ROM's warnings.
+    #[getter]
+    fn warnings(&self) -> Vec<String> {
+        self.rom.warnings.iter().map(|w| w.to_string()).collect()
+    }
+    /// Time of the reference solution [s].
+    #[getter]
+    fn reference_time(&self) -> Option<f64> {
+        self.export.reference_time
+    }
+
+    /// Frequency response of the ordinary ROM at `freq_hz` [Hz]: complex array (frequencies,
+    /// outputs, inputs).
+    fn frequency_response<'py>(&self, py: Python<'py>, freq_hz: Vec<f64>) -> PyResult<Bound<'py, PyArray3<Complex64>>> {
+        let h = py.detach(|| self.rom.ordinary.frequency_response(&freq_hz));
+        responses(py, &h, self.export.outputs.len(), self.export.inputs.len())
+    }
+
+    /// The ROM as a python-control `StateSpace` with input, output and state names (the
+    /// ordinary form; a descriptor ROM is refused: build it with form="ordinary").
+    fn to_control<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        self.ordinary_only("to_control")?;
+        let kw = PyDict::new(py);
+        kw.set_item("inputs", self.export.inputs.clone())?;
+        kw.set_item("outputs", self.export.outputs.clone())?;
+        kw.set_item("states", self.export.states.clone())?;
+        let args = (self.a(py), self.b(py), self.c(py), self.d(py));
+        py.import("control")?.getattr("StateSpace")?.call(args, Some(&kw))
+    }
+
+    /// The ROM as a `scipy.signal.StateSpace` (continuous time; `.to_discrete(dt)` gives the
+    /// `dlti`). Ordinary form only.
+    fn to_scipy<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        self.ordinary_only("to_scipy")?;
+        let args = (self.a(py), self.b(py), self.c(py), self.d(py));
+        py.import("scipy.signal")?.getattr("StateSpace")?.call1(args)
+    }
+
+    fn __repr__(&self) -> String {
+        format!("<romdyn Rom {}: {} states, inputs {:?}, outputs {:?}>", self.export.kind, self.export.a.nrows(), self.export.inputs, self.export.outputs)
+    }
+}
+
+impl Rom {
+    fn ordinary_only(&self, what: &str) -> PyResult<()> {
+        match self.export.kind {
+            "ordinary" => Ok(()),
+            k => Err(RomdynError::new_err(format!("{what}: the ROM is in {k} form (E x' = A x + B u with E possibly singular); build it with form='ordinary'"))),
+        }
+    }
+}
+
+/// Checks that the model text declares every swept variable with `set:`.
+#[pyfunction]
+fn check_parameters(text: &str, name: PathBuf, names: Vec<String>) -> PyResult<()> {
+    romdyn::sweep::check_parameters(text, &name, &names).map_err(|e| ModelError::new_err(e.to_string()))
+}
+
+/// `"NAME=A:B:N"` or `"NAME=V1,V2,..."` as (name, values).
+#[pyfunction]
+fn parse_set(spec: &str) -> PyResult<(String, Vec<f64>)> {
+    let p: romdyn::sweep::Parameter = spec.parse().map_err(RomdynError::new_err)?;
+    Ok((p.name, p.values))
+}
+
+/// The full grid of (name, values) pairs, the first varying slowest.
+#[pyfunction]
+fn grid(parameters: Vec<(String, Vec<f64>)>) -> PyResult<Vec<Vec<f64>>> {
+    let p: Vec<_> = parameters.into_iter().map(|(name, values)| romdyn::sweep::Parameter { name, values }).collect();
+    romdyn::sweep::grid(&p).map_err(RomdynError::new_err)
+}
+
+/// One design point (a sweep's work unit: the model text, the parameter values and the
+/// options dict): a dict of its ROM and modes, or {"error": message} when it fails.
+#[pyfunction]
+fn run_point<'py>(py: Python<'py>, text: &str, name: PathBuf, names: Vec<String>, values: Vec<f64>, options: &Bound<'py, PyDict>) -> PyResult<Bound<'py, PyDict>> {
+    let options = options::sweep(options)?;
+    let r = py.detach(|| romdyn::sweep::run_point(text, &name, &names, &values, &options, None));
+    convert::point(py, r.map_err(|e| e.to_string()))
+}
+
+/// Every design point in this process on rayon threads, the GIL released (continuation runs
+/// them in order); a list of run_point's dicts.
+#[pyfunction]
+#[pyo3(signature = (text, name, names, points, options, threads = None))]
+fn run_points<'py>(py: Python<'py>, text: &str, name: PathBuf, names: Vec<String>, points: Vec<Vec<f64>>, options: &Bound<'py, PyDict>, threads: Option<usize>) -> PyResult<Vec<Bound<'py, PyDict>>> {
+    let options = options::sweep(options)?;
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads.unwrap_or(0)).build().map_err(|e| RomdynError::new_err(e.to_string()))?;
+    let results = py.detach(|| pool.install(|| romdyn::sweep::sweep(text, &name, &names, points, &options, &|| {})));
+    results.results.into_iter().map(|r| convert::point(py, r.map_err(|e| e.message))).collect()
+}
+
+#[pymodule]
+fn _romdyn(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<Model>()?;
+    m.add_class::<StudyPy>()?;
+    m.add_class::<Rom>()?;
+    m.add("RomdynError", m.py().get_type::<RomdynError>())?;
+    m.add("ModelError", m.py().get_type::<ModelError>())?;
+    m.add_function(wrap_pyfunction!(check_parameters, m)?)?;
+    m.add_function(wrap_pyfunction!(parse_set, m)?)?;
+    m.add_function(wrap_pyfunction!(grid, m)?)?;
+    m.add_function(wrap_pyfunction!(run_point, m)?)?;
+    m.add_function(wrap_pyfunction!(run_points, m)?)?;
+    Ok(())
+}

@@ -1,0 +1,146 @@
+//! Python arguments onto romdyn's library options, the same for `Model.study`,
+//! `Study.reduce` and a sweep's options dict (the CLI's `--static`, `--input`, `--count`, …).
+
+use std::path::Path;
+
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use romdyn::analysis::Reference;
+use romdyn::dae::{NodeInput, NodeOutput};
+use romdyn::linear::EigenRoute;
+use romdyn::rom::{ModalDamping, ModeSelection, Ranking};
+use romdyn::study::{BelowBand, EigenSettings, Ports, Residualization, RomForm, RomRequest};
+use romdyn::sweep::SweepOptions;
+
+use crate::py_err;
+
+fn bad(what: &str, message: impl std::fmt::Display) -> PyErr {
+    PyValueError::new_err(format!("{what}: {message}"))
+}
+
+/// None/"initial", "static", or a time [s].
+pub fn reference(r: Option<&Bound<'_, PyAny>>, load_steps: usize) -> PyResult<Reference> {
+    let Some(r) = r.filter(|r| !r.is_none()) else { return Ok(Reference::Initial) };
+    if let Ok(s) = r.extract::<String>() {
+        return match s.as_str() {
+            "initial" => Ok(Reference::Initial),
+            "static" => Ok(Reference::Static { load_steps }),
+            other => Err(bad("reference", format!("'{other}': expected \"initial\", \"static\" or a time [s]"))),
+        };
+    }
+    let t: f64 = r.extract().map_err(|_| bad("reference", "expected \"initial\", \"static\" or a time [s]"))?;
+    Ok(Reference::At(t))
+}
+
+pub fn ports(inputs: &[String], outputs: &[String], file: Option<&Path>, remove_springs: &[u32], imposed: Option<&str>) -> PyResult<Ports> {
+    let inputs = inputs.iter().map(|s| s.parse::<NodeInput>().map_err(|e| bad("inputs", e))).collect::<PyResult<Vec<_>>>()?;
+    let outputs = outputs.iter().map(|s| s.parse::<NodeOutput>().map_err(|e| bad("outputs", e))).collect::<PyResult<Vec<_>>>()?;
+    Ports::from_parts(file, &inputs, &outputs, remove_springs, imposed).map_err(py_err)
+}
+
+pub fn eigen(route: &str, dcoef: Option<f64>) -> PyResult<EigenSettings> {
+    let route = match route {
+        "lambda" => EigenRoute::Lambda,
+        "direct" => EigenRoute::Direct,
+        r => return Err(bad("route", format!("'{r}': expected \"lambda\" or \"direct\""))),
+    };
+    Ok(EigenSettings { route, dcoef })
+}
+
+pub fn form(f: &str) -> PyResult<RomForm> {
+    match f {
+        "ordinary" => Ok(RomForm::Ordinary),
+        "descriptor" => Ok(RomForm::Descriptor),
+        f => Err(bad("form", format!("'{f}': expected \"ordinary\" or \"descriptor\""))),
+    }
+}
+
+/// The ROM request of `romdyn rom`'s selection options.
+pub fn request(count: Option<usize>, band: Option<(f64, f64)>, modes: Option<Vec<usize>>, residualize: Option<&Bound<'_, PyAny>>, by: &str, below_band: &str, damping: Option<&Bound<'_, PyAny>>) -> PyResult<RomRequest> {
+    let selection = match (count, band, modes) {
+        (Some(0), None, None) => return Err(bad("count", "a ROM keeps at least 1 mode")),
+        (Some(n), None, None) => ModeSelection::Lowest(n),
+        (None, Some((a, b)), None) if a.is_finite() && b.is_finite() && 0.0 <= a && a <= b => ModeSelection::Band { fmin_hz: a, fmax_hz: b },
+        (None, Some((a, b)), None) => return Err(bad("band", format!("need 0 <= FMIN <= FMAX [Hz] (finite), got ({a}, {b})"))),
+        (None, None, Some(list)) => ModeSelection::Indices(list),
+        _ => return Err(bad("reduce", "give exactly one of count=N, band=(FMIN, FMAX) [Hz], modes=[I, ...]")),
+    };
+    let residualization = match residualize.filter(|r| !r.is_none()) {
+        None => Residualization::None,
+        Some(r) => match r.extract::<bool>() {
+            Ok(true) => Residualization::Dropped,
+            Ok(false) => Residualization::None,
+            Err(_) => Residualization::Modes(r.extract().map_err(|_| bad("residualize", "expected True, False or a list of modal-table indices"))?),
+        },
+    };
+    let ranking = match by {
+        "frequency" => Ranking::Frequency,
+        "dominance" => Ranking::Dominance,
+        b => return Err(bad("by", format!("'{b}': expected \"frequency\" or \"dominance\""))),
+    };
+    let mut request = RomRequest::new(selection).residualize(residualization).ranked_by(ranking);
+    request.below_band = match below_band {
+        "drop" => BelowBand::Drop,
+        "keep" => BelowBand::Keep,
+        "refuse" => BelowBand::Refuse,
+        b => return Err(bad("below_band", format!("'{b}': expected \"drop\", \"keep\" or \"refuse\""))),
+    };
+    let zeta = |z: f64| if (0.0..1.0).contains(&z) { Ok(z) } else { Err(bad("damping", format!("damping ratio {z} is outside [0, 1)"))) };
+    request.damping = match damping.filter(|d| !d.is_none()) {
+        None => None,
+        Some(d) => match d.extract::<f64>() {
+            Ok(z) => Some(ModalDamping::Uniform(zeta(z)?)),
+            Err(_) => {
+                let map: std::collections::BTreeMap<usize, f64> = d.extract().map_err(|_| bad("damping", "expected a ratio or {mode: ratio}"))?;
+                Some(ModalDamping::PerMode(map.into_iter().map(|(k, z)| zeta(z).map(|z| (k, z))).collect::<PyResult<_>>()?))
+            }
+        },
+    };
+    Ok(request)
+}
+
+fn get<'py, T: FromPyObjectOwned<'py>>(d: &Bound<'py, PyDict>, key: &str) -> PyResult<Option<T>> {
+    match d.get_item(key)? {
+        Some(v) if !v.is_none() => v.extract().map(Some).map_err(|e| bad(key, Into::<PyErr>::into(e))),
+        _ => Ok(None),
+    }
+}
+
+/// Keys a sweep's options dict may hold (those of `Model.study` and `Study.reduce`, plus
+/// "lowest" and "continuation").
+const KEYS: [&str; 19] = ["reference", "load_steps", "inputs", "outputs", "ports", "remove_springs", "imposed", "route", "dcoef", "count", "band", "modes", "residualize", "by", "below_band", "damping", "form", "lowest", "continuation"];
+
+/// A sweep's options dict.
+pub fn sweep(d: &Bound<'_, PyDict>) -> PyResult<SweepOptions> {
+    for k in d.keys() {
+        let k: String = k.extract()?;
+        if !KEYS.contains(&k.as_str()) {
+            return Err(bad("sweep", format!("unknown option '{k}' (options: {})", KEYS.join(", "))));
+        }
+    }
+    let load_steps = get(d, "load_steps")?.unwrap_or(10);
+    let reference = reference(d.get_item("reference")?.as_ref(), load_steps)?;
+    let ports_file: Option<std::path::PathBuf> = get(d, "ports")?;
+    let ports = ports(&get::<Vec<String>>(d, "inputs")?.unwrap_or_default(), &get::<Vec<String>>(d, "outputs")?.unwrap_or_default(), ports_file.as_deref(), &get::<Vec<u32>>(d, "remove_springs")?.unwrap_or_default(), get::<String>(d, "imposed")?.as_deref())?;
+    let eigen = eigen(&get::<String>(d, "route")?.unwrap_or_else(|| "lambda".into()), get(d, "dcoef")?)?;
+    let rom = request(
+        get(d, "count")?,
+        get(d, "band")?,
+        get(d, "modes")?,
+        d.get_item("residualize")?.as_ref(),
+        &get::<String>(d, "by")?.unwrap_or_else(|| "frequency".into()),
+        &get::<String>(d, "below_band")?.unwrap_or_else(|| "drop".into()),
+        d.get_item("damping")?.as_ref(),
+    )?;
+    let form = form(&get::<String>(d, "form")?.unwrap_or_else(|| "ordinary".into()))?;
+    let modes = get(d, "lowest")?.unwrap_or(4);
+    if modes == 0 {
+        return Err(bad("lowest", "need at least 1 mode"));
+    }
+    let continuation = get(d, "continuation")?.unwrap_or(false);
+    if continuation && !matches!(reference, Reference::Static { .. }) {
+        return Err(bad("continuation", "needs reference=\"static\" (it starts each static equilibrium from the previous point's)"));
+    }
+    Ok(SweepOptions { reference, ports, eigen, rom, form, modes, continuation })
+}

@@ -1,0 +1,97 @@
+"""romdyn from Python against closed forms and the CLI (issue 15)."""
+
+import subprocess
+
+import numpy as np
+import pytest
+import scipy.io
+
+import romdyn
+
+# examples/pendulum.mbd: M = 1 kg, J = 1e-3 kg m^2 about the centre of mass, L = 1 m, G = 9.81 m/s^2.
+M, J, G = 1.0, 1e-3, 9.81
+
+
+def omega(length, mass=M):
+    """Compound pendulum about its hinge: omega^2 = M G L / (J + M L^2) (paper eq. 82 with offset L)."""
+    return np.sqrt(mass * G * length / (J + mass * length**2))
+
+
+def test_pendulum_eigenvalues_and_rom_gain(examples):
+    study = romdyn.Model(examples / "pendulum.mbd").study(inputs=["2:Mz"], outputs=["2:rz"])
+    modes = study.modes()
+    dyn = modes["eigenvalues"][[k == "dynamic" for k in modes["kind"]]]
+    # Paper §7.2 / CASES C2: ±3.130527 j rad/s (6 digits given).
+    assert np.allclose(sorted(dyn.imag), [-3.130527, 3.130527], atol=1e-6)
+    assert np.all(np.abs(dyn.real) < 1e-9)
+    rom = study.reduce(count=1)
+    # Static gain rz/Mz = 1/(M G L) rad/(N m): the gravity stiffness of the hanging pendulum.
+    assert rom.rom_static_gain[0, 0] == pytest.approx(1 / (M * G * 1.0), rel=1e-9)
+    sys = rom.to_control()
+    assert sys.input_labels == ["node 2 Mz [N m]"] and sys.output_labels == ["node 2 rz [rad]"]
+    assert sys.dcgain() == pytest.approx(1 / (M * G), rel=1e-9)
+    ss = rom.to_scipy()
+    assert np.array_equal(ss.A, rom.A) and np.array_equal(ss.D, rom.D)
+
+
+def test_beam_rom_equals_the_clis_mat(examples, romdyn_cli, tmp_path):
+    # The README's main job (paper §7.1, Fig. 7): one bending mode kept, the third residualized.
+    out = tmp_path / "beam_rom.mat"
+    subprocess.run([romdyn_cli, "rom", examples / "simply_supported_beam.mbd", "--static", "--input", "5:Fy", "--output", "5:y", "--count", "1", "--residualize-modes", "7", "-o", out], check=True, capture_output=True)
+    cli = scipy.io.loadmat(out)
+    study = romdyn.Model(examples / "simply_supported_beam.mbd").study(reference="static", inputs=["5:Fy"], outputs=["5:y"])
+    sys = study.reduce(count=1, residualize=[7]).to_control()
+    gain_cli = cli["D"] - cli["C"] @ np.linalg.solve(cli["A"], cli["B"])
+    assert np.allclose(sys.dcgain(), gain_cli, rtol=1e-12, atol=0)
+    poles_cli = np.sort_complex(np.linalg.eigvals(cli["A"]))
+    poles = np.sort_complex(sys.poles())
+    assert np.allclose(poles, poles_cli, rtol=1e-12, atol=0)
+    # And the full model's static gain, paper eq. 73: L^3/(48 EJ) + L/(4 GA) = 2.108333e-5 m/N.
+    assert cli["full_static_gain"][0, 0] == pytest.approx(1 / (48 * 1e3) + 1 / (4 * 1e6), rel=1e-6)
+
+
+def test_model_error_names_file_line_column(tmp_path):
+    bad = tmp_path / "bad.mbd"
+    bad.write_text("begin: data;\n    problem: initial value;\nend: data;\nbegin: control data;\n    structural nodes: 1;\nend: control data;\nbegin: nodes;\n    structural: 1, dynamik, null, eye, null, null;\nend: nodes;\n")
+    with pytest.raises(romdyn.ModelError) as e:
+        romdyn.Model(bad)
+    assert str(e.value).startswith(f"{bad}:8:20: error:"), str(e.value)
+    assert isinstance(e.value, romdyn.RomdynError)
+    with pytest.raises(romdyn.ModelError, match="declares no variable 'X'"):
+        romdyn.Model(tmp_path.parent / bad, set={"X": 1.0})
+
+
+def test_set_override_scales_as_the_closed_form(examples):
+    freqs = {}
+    for length in [0.25, 1.0, 4.0]:
+        study = romdyn.Model(examples / "pendulum.mbd", set={"L": length}).study(inputs=["2:Mz"], outputs=["2:rz"])
+        lam = study.reduce(count=1).full_eigenvalues
+        freqs[length] = abs(lam[0].imag)
+        assert freqs[length] == pytest.approx(omega(length), rel=1e-6)
+    # sqrt(g/L) scaling (J = 1e-3 makes it the compound pendulum's): L x4 -> omega / 2 within J's share.
+    assert freqs[4.0] / freqs[1.0] == pytest.approx(omega(4.0) / omega(1.0), rel=1e-6)
+
+
+def test_run_keeps_the_hinge_constraint(examples):
+    h = romdyn.Model(examples / "pendulum.mbd").run()
+    assert h["position"].shape == (len(h["time"]), 2, 3)
+    # MBDyn's step count: steps of 1 ms until the time passes the final time 2 s (as `romdyn run`).
+    assert h["time"][0] == 0.0 and h["time"][-1] == pytest.approx(2.001, abs=1e-9)
+    # Node 2 stays at L = 1 m from the hinge at the origin (tolerance 1e-9 of the file).
+    r = np.linalg.norm(h["position"][:, 1, :], axis=1)
+    assert np.allclose(r, 1.0, atol=1e-6)
+
+
+def test_linear_dae_and_frequency_responses(examples):
+    study = romdyn.Model(examples / "simply_supported_beam.mbd").study(reference="static", inputs=["5:Fy"], outputs=["5:y"])
+    lin = study.linear()
+    assert lin["Fyd"].shape == (138, 138) and lin["B"].shape == (138, 1) and lin["C"].shape == (1, 138)
+    assert lin["inputs"] == ["node 5 Fy [N]"] and lin["outputs"] == ["node 5 y [m]"]
+    # Far below the first mode (49.3 Hz) both responses are the static gains; the full
+    # model's is paper eq. 73, L^3/(48 EJ) + L/(4 GA) m/N (rel 1e-6 at 1e-3 Hz).
+    rom = study.reduce(count=1, residualize=[7])
+    h_full = study.frequency_response([1e-3])
+    h_rom = rom.frequency_response([1e-3])
+    assert h_full.shape == (1, 1, 1) and h_full.dtype == np.complex128
+    assert h_full[0, 0, 0].real == pytest.approx(1 / 48e3 + 1 / 4e6, rel=1e-6)
+    assert h_rom[0, 0, 0].real == pytest.approx(rom.rom_static_gain[0, 0], rel=1e-6)

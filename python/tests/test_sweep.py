@@ -1,0 +1,42 @@
+"""romdyn.sweep locally and on Dask (issue 15)."""
+
+import numpy as np
+import pytest
+
+import romdyn
+
+from test_study import omega
+
+OPTIONS = dict(inputs=["2:Mz"], outputs=["2:rz"], count=1, lowest=1)
+
+
+def test_length_sweep_matches_the_closed_form(examples):
+    r = romdyn.sweep(examples / "pendulum.mbd", set={"L": "0.5:4:8"}, **OPTIONS)
+    assert r.A.shape == (2, 2, 8) and r.ok.all()
+    lengths = r.parameters[:, 0]
+    assert np.allclose(lengths, np.linspace(0.5, 4, 8), rtol=0, atol=1e-15)
+    # omega = sqrt(M G L / (J + M L^2)) at each point, 1e-6 relative.
+    assert np.allclose(r.modes[:, 0].imag, omega(lengths), rtol=1e-6, atol=0)
+    # ROM static gain 1/(M G L) at each point.
+    assert np.allclose(r.rom_static_gain[0, 0, :], 1 / (9.81 * lengths), rtol=1e-6, atol=0)
+
+
+def test_failing_point_is_reported_and_the_others_kept(examples):
+    r = romdyn.sweep(examples / "pendulum.mbd", set={"M": [1.0, -1.0, 2.0]}, **OPTIONS)
+    assert list(r.ok) == [True, False, True]
+    [(k, values, message)] = r.failures
+    assert (k, values) == (1, {"M": -1.0})
+    assert "pendulum.mbd:45:17: error: negative mass -1" in message
+    assert np.isnan(r.A[:, :, 1]).all() and not np.isnan(r.A[:, :, [0, 2]]).any()
+    assert np.allclose(r.modes[[0, 2], 0].imag, [omega(1.0, 1.0), omega(1.0, 2.0)], rtol=1e-6)
+
+
+def test_dask_local_cluster_gives_byte_identical_arrays(examples):
+    distributed = pytest.importorskip("distributed")
+    local = romdyn.sweep(examples / "pendulum.mbd", set={"L": "0.5:4:8", "M": [1.0, -1.0]}, **OPTIONS)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, distributed.Client(cluster) as client:
+        remote = romdyn.sweep(examples / "pendulum.mbd", set={"L": "0.5:4:8", "M": [1.0, -1.0]}, executor=client.get_executor(), **OPTIONS)
+    for name in ["A", "B", "C", "D", "E", "modes", "parameters", "rom_static_gain", "full_static_gain"]:
+        assert getattr(local, name).tobytes() == getattr(remote, name).tobytes(), name
+    assert local.errors == remote.errors and sum(1 for e in remote.errors if e) == 8
+    assert remote.inputs == ["node 2 Mz [N m]"]

@@ -1,0 +1,103 @@
+//! `romdyn sweep`: ROMs of an MBDyn file over design points of its `set:` variables.
+
+use std::io::IsTerminal;
+use std::path::PathBuf;
+
+use anyhow::{bail, Context, Result};
+use clap::Args;
+use indicatif::{ProgressBar, ProgressStyle};
+use romdyn::input::text_file::read_text_file;
+use romdyn::sweep::{check_parameters, grid, sweep, Parameter, SweepOptions};
+
+use super::args::PencilArgs;
+use super::rom::RomChoiceArgs;
+
+#[derive(Args, Debug)]
+pub struct SweepArgs {
+    /// A swept `set:` variable of the file: NAME=A:B:N (N equally spaced values from A to B) or NAME=V1,V2,...; several --set make their full grid (the first varies slowest). Values are in the file's (SI) units and replace what the file's `set:` gives NAME
+    #[arg(long = "set", value_name = "NAME=A:B:N|NAME=V1,...", required = true)]
+    pub set: Vec<Parameter>,
+    #[command(flatten)]
+    pub pencil: PencilArgs,
+    #[command(flatten)]
+    pub rom: RomChoiceArgs,
+    /// Number of lowest dynamic modes of the full model in the table and plot (a pair counts once)
+    #[arg(long, value_name = "N", default_value_t = 4)]
+    pub lowest: usize,
+    /// Start each static equilibrium (--static) from the previous design point's (the points then run one after the other)
+    #[arg(long, requires = "static_equilibrium")]
+    pub continuation: bool,
+    /// Stacked arrays of every design point (.mat or .npz): E A B C D (n x n x K, point k is A(:,:,k)), parameters (K x P), point_ok, point_errors, mode_* (K x N), names and units
+    #[arg(short = 'o', long = "out", value_name = "FILE")]
+    pub file: Option<PathBuf>,
+    /// Write the table of the lowest modes against the parameters as CSV here (default: stdout)
+    #[arg(long, value_name = "FILE.csv")]
+    pub table: Option<PathBuf>,
+    /// Also write PREFIX.svg and PREFIX.png: frequency [Hz] and damping ratio of the lowest modes against one parameter
+    #[arg(long, value_name = "PREFIX")]
+    pub plot: Option<PathBuf>,
+    /// The parameter on the plot's horizontal axis (default: the first --set)
+    #[arg(long, value_name = "NAME", requires = "plot")]
+    pub against: Option<String>,
+    /// Design points computed at once (default: the number of cores)
+    #[arg(long, value_name = "N")]
+    pub jobs: Option<usize>,
+}
+
+pub fn run(a: SweepArgs) -> Result<()> {
+    let Some(path) = a.pencil.model.clone().filter(|_| a.pencil.pencil.is_none()) else { bail!("romdyn sweep needs a MODEL file (MBDyn input), not --pencil") };
+    if a.lowest == 0 {
+        bail!("--lowest: need at least 1 mode");
+    }
+    if let Some(name) = &a.against
+        && !a.set.iter().any(|p| &p.name == name)
+    {
+        bail!("--against {name}: not a swept parameter (--set gives {})", a.set.iter().map(|p| p.name.as_str()).collect::<Vec<_>>().join(", "));
+    }
+    let points = grid(&a.set).map_err(anyhow::Error::msg)?;
+    let text = read_text_file(&path).map_err(|e| anyhow::anyhow!("{}: {}", path.display(), e.message))?;
+    let names: Vec<String> = a.set.iter().map(|p| p.name.clone()).collect();
+    check_parameters(&text, &path, &names)?;
+    let options = SweepOptions {
+        reference: a.pencil.reference.reference(),
+        ports: a.pencil.ports()?,
+        eigen: a.pencil.eigen(),
+        rom: a.rom.request(),
+        form: a.rom.form(),
+        modes: a.lowest,
+        continuation: a.continuation,
+    };
+    let bar = if std::io::stderr().is_terminal() { ProgressBar::new(points.len() as u64) } else { ProgressBar::hidden() };
+    bar.set_style(ProgressStyle::with_template("{bar:30} {pos}/{len} design points eta {eta}").unwrap_or_else(|_| ProgressStyle::default_bar()));
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(a.jobs.unwrap_or(0)).build().context("starting the worker threads")?;
+    let results = pool.install(|| sweep(&text, &path, &names, points, &options, &|| bar.inc(1)));
+    bar.finish_and_clear();
+    let failed: Vec<_> = results.failures().map(|(k, _, e)| (k, e.to_string())).collect();
+    for (k, e) in &failed {
+        eprintln!("design point {} ({}) failed: {e}", k + 1, results.describe_point(*k));
+    }
+    for (k, r) in results.results.iter().enumerate() {
+        for w in r.as_ref().map_or(&[][..], |r| r.warnings.as_slice()) {
+            eprintln!("warning: design point {} ({}): {w}", k + 1, results.describe_point(k));
+        }
+    }
+    match &a.table {
+        Some(p) => {
+            results.write_modes_csv(p).with_context(|| format!("writing {}", p.display()))?;
+            eprintln!("wrote {}", p.display());
+        }
+        None => print!("{}", results.modes_csv()),
+    }
+    if let Some(p) = &a.file {
+        results.write_arrays(p).with_context(|| format!("writing {}", p.display()))?;
+        eprintln!("wrote {} ({} design points, point_ok marks the failed ones)", p.display(), results.points.len());
+    }
+    if let Some(prefix) = &a.plot {
+        let [svg, png] = results.write_plot(prefix, a.against.as_deref()).with_context(|| format!("writing {}.{{svg,png}}", prefix.display()))?;
+        eprintln!("wrote {}, {}", svg.display(), png.display());
+    }
+    if !failed.is_empty() {
+        bail!("{} of {} design points failed (listed above); the outputs hold the others, point_ok = 0 and point_errors mark the failed ones", failed.len(), results.points.len());
+    }
+    Ok(())
+}

@@ -1,0 +1,474 @@
+//! MBDyn's initial assembly (dataman2.cc, `DataManager::InitialJointAssembly`): before the
+//! run, every node's position, orientation, velocity and angular velocity is moved the least,
+//! in the sense of penalty springs, so that the joints hold.
+//!
+//! MBDyn's unknowns are each node's `x`, `g` (`R = R(g) R₀`), `v`, `ω` and each joint's
+//! reaction `λ` and its derivative `λ̇`; its equations (residuals in romdyn's sign):
+//!
+//! ```text
+//! k_p (x − x₀) + f_x(q, λ) = 0,   k_p g + f_θ(q, λ) = 0,   Φ(q, t) = 0              positions
+//! k_v (v − v₀) + ḟ_x = 0,   k_v (ω − ω₀) + ḟ_θ = 0,   Φ̇ = Φ_/q u + Φ_/t = 0          velocities
+//! ```
+//!
+//! with `f` the joints' reactions plus, on the position rows only, the elastic forces of
+//! deformable joints, rods and beams (vehj*.cc, rodj.cc, beam.cc: `InitialAssRes`), and
+//! `ḟ = f_/q u + f_/λ λ̇ + f_/t` the reactions' time derivative (spherj.cc: "derivate delle
+//! equazioni di equilibrio"). Bodies, forces and gravity take no part (MBDyn's default).
+//! The position rows do not depend on `u` except through viscous deformable elements, and
+//! the velocity rows are linear in `(u, λ̇)` at given `(q, λ)`: romdyn alternates a Newton
+//! step on `(q, λ)` and the exact solution of the velocity rows, and stops with MBDyn's test
+//! `sqrt(|F|² / (1 + |X|²)) ≤ tolerance` on all rows and unknowns, after at most `max
+//! iterations` steps (the default, 1, accepts models that need at most one).
+//!
+//! With `omega rotates: yes`, `ω₀` is MBDyn's `R₀ Rᵀ ω₀` (dataman2.cc, `RDelta*wPrev`).
+//! A velocity-level constraint (a constraint row with velocity entries: `linear velocity`,
+//! `angular velocity`, `axial rotation`'s spin) has only its velocity row, its reaction on
+//! the velocity rows (drvj.cc, `LinearVelocityJoint::InitialAssRes`).
+
+use crate::dae::{SparseLu, State, Triplets};
+use crate::element::{Col, Element, ElementState, JacobianSink, NodeKinematics, ResidualSink, Row};
+use crate::kinematics::{gibbs_g, gibbs_rotation, Mat3, Vec3};
+use crate::model::{InitialAssembly, Model, NodeAssembly};
+
+/// What the initial assembly did.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct AssemblyReport {
+    /// Newton steps (0: the file's configuration already passed MBDyn's test).
+    pub iterations: usize,
+    /// MBDyn's test `sqrt(|F|² / (1 + |X|²))` at the end.
+    pub test: f64,
+    /// Largest change of a node's position [m], rotation [rad], velocity [m/s] and angular
+    /// velocity [rad/s] from the values written in the file.
+    pub moved_position: f64,
+    pub moved_rotation: f64,
+    pub moved_velocity: f64,
+    pub moved_angular_velocity: f64,
+}
+
+/// Why the initial assembly stopped.
+#[derive(Clone, Debug, thiserror::Error)]
+pub enum AssemblyError {
+    #[error("initial assembly did not converge in {iterations} iteration(s) (control data 'max iterations'): MBDyn's test sqrt(|F|²/(1+|X|²)) = {test:.3e} is above the tolerance {tolerance:.3e}; the worst equation is {worst} ({value:.3e}); the joints cannot be made to hold near the configuration written in the file (deformable joints, rods and beams also pull the nodes in the assembly), or need more iterations")]
+    NotConverged { iterations: usize, test: f64, tolerance: f64, worst: String, value: f64 },
+    #[error("initial assembly: the Newton matrix is singular at iteration {iteration} (redundant joints, or a node no joint or penalty holds)")]
+    Singular { iteration: usize },
+    #[error("initial assembly diverged at iteration {iteration} (the residual is not finite)")]
+    Diverged { iteration: usize },
+    #[error("{element}: its constraint {constraint} is violated by {value:.3e} in the configuration written in the file, and control data says 'skip initial joint assembly' (without it, MBDyn's initial assembly, which romdyn runs, would make the joint hold)")]
+    Violated { element: String, constraint: String, value: f64 },
+}
+
+/// Whether MBDyn uses an element in its initial assembly: joints (deformable ones too) and
+/// beams, not bodies, forces and couples (elman.cc: `ToBeUsedInAssembly`).
+fn in_assembly(e: &dyn Element) -> bool {
+    let t = e.type_name();
+    !(t == "body" || t.ends_with("force") || t.ends_with("couple") || t.contains("gravity"))
+}
+
+/// The assembly problem's numbering: 6 rows per node, then each element's multipliers.
+struct Layout<'m> {
+    model: &'m Model,
+    /// Indices in `model.elements` of the elements in the assembly.
+    elements: Vec<usize>,
+    /// Node index of each slot, per element in `elements`.
+    slots: Vec<Vec<usize>>,
+    /// First multiplier row of each element in `elements`.
+    first: Vec<usize>,
+    len: usize,
+}
+
+impl<'m> Layout<'m> {
+    fn new(model: &'m Model) -> Self {
+        let mut len = 6 * model.nodes.len();
+        let (mut elements, mut slots, mut first) = (Vec::new(), Vec::new(), Vec::new());
+        for (i, e) in model.elements.iter().enumerate().filter(|(_, e)| in_assembly(e.as_ref())) {
+            elements.push(i);
+            slots.push(e.nodes().iter().map(|l| model.node_index(*l).unwrap_or(usize::MAX)).collect());
+            first.push(len);
+            len += e.multipliers().len();
+        }
+        Layout { model, elements, slots, first, len }
+    }
+    fn nodes(&self) -> usize {
+        self.model.nodes.len()
+    }
+    fn element(&self, k: usize) -> &dyn Element {
+        self.model.elements[self.elements[k]].as_ref()
+    }
+    /// The name of row `i` of the position (`derivative = false`) or velocity rows.
+    fn row_name(&self, i: usize, derivative: bool) -> String {
+        const POS: [&str; 6] = ["position x", "position y", "position z", "orientation gx", "orientation gy", "orientation gz"];
+        const VEL: [&str; 6] = ["velocity x", "velocity y", "velocity z", "angular velocity x", "angular velocity y", "angular velocity z"];
+        if i < 6 * self.nodes() {
+            return format!("node {} {}", self.model.nodes[i / 6].label, if derivative { VEL[i % 6] } else { POS[i % 6] });
+        }
+        let k = self.first.iter().rposition(|&f| f <= i).unwrap_or(0);
+        let e = self.element(k);
+        let name = e.multipliers().get(i - self.first[k]).cloned().unwrap_or_default();
+        format!("{} {} constraint {name}{}", e.type_name(), e.label(), if derivative { " (its time derivative)" } else { "" })
+    }
+}
+
+/// The unknowns of the assembly.
+#[derive(Clone)]
+struct Unknowns {
+    x: Vec<Vec3>,
+    g: Vec<Vec3>,
+    v: Vec<Vec3>,
+    w: Vec<Vec3>,
+    lambda: Vec<f64>,
+    lambda_dot: Vec<f64>,
+}
+
+struct Ctx<'a> {
+    kin: &'a [NodeKinematics],
+    slots: &'a [usize],
+    multipliers: &'a [f64],
+    t: f64,
+}
+
+impl ElementState for Ctx<'_> {
+    fn node(&self, slot: usize) -> &NodeKinematics {
+        &self.kin[self.slots[slot]]
+    }
+    fn multiplier(&self, k: usize) -> f64 {
+        self.multipliers[k]
+    }
+    fn time(&self) -> f64 {
+        self.t
+    }
+    fn gravity(&self) -> Vec3 {
+        Vec3::zeros()
+    }
+    fn load_factor(&self) -> f64 {
+        1.0
+    }
+}
+
+/// The row of an element's local row (momentum rows have none here).
+fn row_of(slots: &[usize], first: usize, row: Row) -> Option<usize> {
+    match row {
+        Row::Equilibrium { slot, comp } => Some(6 * slots[slot] + comp),
+        Row::Momentum { .. } => None,
+        Row::Constraint(k) => Some(first + k),
+    }
+}
+
+struct Residual<'a> {
+    slots: &'a [usize],
+    first: usize,
+    f: &'a mut [f64],
+}
+
+impl ResidualSink for Residual<'_> {
+    fn add(&mut self, row: Row, value: f64) {
+        if let Some(i) = row_of(self.slots, self.first, row) {
+            self.f[i] += value;
+        }
+    }
+}
+
+/// Jacobian entries in the position unknowns `(x, g, λ)` (`g_matrix`: `δθ = G δg`), or,
+/// with `g_matrix = None`, in the velocity unknowns `(v, ω, λ̇)`: `ḟ = f_/x v + f_/θ ω +
+/// f_/λ λ̇`.
+/// Rows of velocity-level constraints (`velocity_rows`) have no position row: in the
+/// position unknowns they are skipped (their multiplier is held at zero), in the velocity
+/// unknowns they are the constraint itself, `Φ_/u u + Φ(q, 0, t)` (drvj.cc,
+/// `LinearVelocityJoint::InitialAssRes`).
+struct Jacobian<'a> {
+    slots: &'a [usize],
+    first: usize,
+    g_matrix: Option<&'a [Mat3]>,
+    velocity_rows: &'a [bool],
+    out: &'a mut Triplets,
+}
+
+impl JacobianSink for Jacobian<'_> {
+    fn add(&mut self, row: Row, col: Col, v: f64) {
+        let Some(r) = row_of(self.slots, self.first, row) else { return };
+        let velocity_row = self.velocity_rows[r];
+        if velocity_row && self.g_matrix.is_some() {
+            return;
+        }
+        match col {
+            Col::Position { slot, comp } | Col::Velocity { slot, comp } if matches!(col, Col::Velocity { .. }) == velocity_row => self.out.push(r, 6 * self.slots[slot] + comp, v),
+            Col::Rotation { slot, comp } | Col::AngularVelocity { slot, comp } if matches!(col, Col::AngularVelocity { .. }) == velocity_row => {
+                let n = self.slots[slot];
+                match self.g_matrix {
+                    Some(g) => (0..3).for_each(|k| self.out.push(r, 6 * n + 3 + k, v * g[n][(comp, k)])),
+                    None => self.out.push(r, 6 * n + 3 + comp, v),
+                }
+            }
+            Col::Multiplier(k) => self.out.push(r, self.first + k, v),
+            _ => {}
+        }
+    }
+}
+
+/// Marks the constraint rows whose Jacobian has velocity entries (velocity-level
+/// constraints).
+struct VelocityProbe<'a> {
+    first: usize,
+    rows: &'a mut [bool],
+}
+
+impl JacobianSink for VelocityProbe<'_> {
+    fn add(&mut self, row: Row, col: Col, _v: f64) {
+        if let (Row::Constraint(k), Col::Velocity { .. } | Col::AngularVelocity { .. }) = (row, col) {
+            self.rows[self.first + k] = true;
+        }
+    }
+}
+
+struct Problem<'m> {
+    layout: Layout<'m>,
+    /// Whether each row is a velocity-level constraint.
+    velocity_rows: Vec<bool>,
+    settings: Vec<NodeAssembly>,
+    x0: Vec<Vec3>,
+    r0: Vec<Mat3>,
+    v0: Vec<Vec3>,
+    w0: Vec<Vec3>,
+    t: f64,
+}
+
+impl Problem<'_> {
+    fn kinematics(&self, u: &Unknowns) -> Vec<NodeKinematics> {
+        (0..self.layout.nodes()).map(|i| NodeKinematics { x: u.x[i], r: gibbs_rotation(&u.g[i]) * self.r0[i], xdot: u.v[i], omega: u.w[i] }).collect()
+    }
+
+    fn element_residual(&self, k: usize, kin: &[NodeKinematics], lambda: &[f64], t: f64, f: &mut [f64]) {
+        let (slots, first) = (&self.layout.slots[k], self.layout.first[k]);
+        let m = self.layout.element(k).multipliers().len();
+        let ctx = Ctx { kin, slots, multipliers: &lambda[first - 6 * self.layout.nodes()..][..m], t };
+        self.layout.element(k).residual(&ctx, &mut Residual { slots, first, f });
+    }
+
+    fn element_jacobian(&self, k: usize, kin: &[NodeKinematics], lambda: &[f64], g_matrix: Option<&[Mat3]>, out: &mut Triplets) {
+        let (slots, first) = (&self.layout.slots[k], self.layout.first[k]);
+        let m = self.layout.element(k).multipliers().len();
+        let ctx = Ctx { kin, slots, multipliers: &lambda[first - 6 * self.layout.nodes()..][..m], t: self.t };
+        self.layout.element(k).jacobian(&ctx, &mut Jacobian { slots, first, g_matrix, velocity_rows: &self.velocity_rows, out });
+    }
+
+    /// Position rows and constraint rows at `u`.
+    fn position_residual(&self, u: &Unknowns) -> Vec<f64> {
+        let kin = self.kinematics(u);
+        let mut f = vec![0.0; self.layout.len];
+        for i in 0..self.layout.nodes() {
+            let kp = self.settings[i].position_stiffness;
+            for c in 0..3 {
+                f[6 * i + c] = kp * (u.x[i][c] - self.x0[i][c]);
+                f[6 * i + 3 + c] = kp * u.g[i][c];
+            }
+        }
+        for k in 0..self.layout.elements.len() {
+            self.element_residual(k, &kin, &u.lambda, self.t, &mut f);
+        }
+        let n6 = 6 * self.layout.nodes();
+        for r in (n6..f.len()).filter(|&r| self.velocity_rows[r]) {
+            f[r] = u.lambda[r - n6];
+        }
+        f
+    }
+
+    fn position_jacobian(&self, u: &Unknowns) -> Triplets {
+        let kin = self.kinematics(u);
+        let g: Vec<Mat3> = u.g.iter().map(gibbs_g).collect();
+        let mut j = Triplets::new(self.layout.len);
+        for i in 0..self.layout.nodes() {
+            (0..6).for_each(|c| j.push(6 * i + c, 6 * i + c, self.settings[i].position_stiffness));
+        }
+        for k in 0..self.layout.elements.len() {
+            self.element_jacobian(k, &kin, &u.lambda, Some(&g), &mut j);
+        }
+        for r in (0..self.layout.len).filter(|&r| self.velocity_rows[r]) {
+            j.push(r, r, 1.0);
+        }
+        j
+    }
+
+    /// The velocity rows as `A w − b` with `w = (v, ω, λ̇)`: the matrix `A` and the
+    /// right-hand side `b` at the positions and reactions of `u`. Only elements with
+    /// multipliers (the joints) have velocity rows; `f_/t` and `Φ_/t` by central
+    /// differences in time.
+    fn velocity_system(&self, u: &Unknowns) -> (Triplets, Vec<f64>) {
+        let kin = self.kinematics(u);
+        let n = self.layout.nodes();
+        let mut a = Triplets::new(self.layout.len);
+        let mut b = vec![0.0; self.layout.len];
+        for i in 0..n {
+            let s = self.settings[i];
+            let w0 = if s.omega_rotates { self.r0[i] * kin[i].r.transpose() * self.w0[i] } else { self.w0[i] };
+            for c in 0..3 {
+                a.push(6 * i + c, 6 * i + c, s.velocity_stiffness);
+                a.push(6 * i + 3 + c, 6 * i + 3 + c, s.velocity_stiffness);
+                b[6 * i + c] = s.velocity_stiffness * self.v0[i][c];
+                b[6 * i + 3 + c] = s.velocity_stiffness * w0[c];
+            }
+        }
+        let eps = 1e-6 * self.t.abs().max(1.0);
+        let (mut plus, mut minus) = (vec![0.0; self.layout.len], vec![0.0; self.layout.len]);
+        for k in (0..self.layout.elements.len()).filter(|&k| !self.layout.element(k).multipliers().is_empty()) {
+            self.element_jacobian(k, &kin, &u.lambda, None, &mut a);
+            self.element_residual(k, &kin, &u.lambda, self.t + eps, &mut plus);
+            self.element_residual(k, &kin, &u.lambda, self.t - eps, &mut minus);
+        }
+        for i in 0..self.layout.len {
+            b[i] -= (plus[i] - minus[i]) / (2.0 * eps);
+        }
+        if self.velocity_rows.iter().any(|v| *v) {
+            // Velocity-level constraints: `−Φ(q, 0, t)` on the right.
+            let still: Vec<NodeKinematics> = kin.iter().map(|k| NodeKinematics { xdot: Vec3::zeros(), omega: Vec3::zeros(), ..k.clone() }).collect();
+            let mut phi0 = vec![0.0; self.layout.len];
+            for k in (0..self.layout.elements.len()).filter(|&k| !self.layout.element(k).multipliers().is_empty()) {
+                self.element_residual(k, &still, &u.lambda, self.t, &mut phi0);
+            }
+            for r in (0..self.layout.len).filter(|&r| self.velocity_rows[r]) {
+                b[r] = -phi0[r];
+            }
+        }
+        (a, b)
+    }
+
+    fn velocity_unknowns(&self, u: &Unknowns) -> Vec<f64> {
+        let mut w = vec![0.0; self.layout.len];
+        for i in 0..self.layout.nodes() {
+            for c in 0..3 {
+                w[6 * i + c] = u.v[i][c];
+                w[6 * i + 3 + c] = u.w[i][c];
+            }
+        }
+        w[6 * self.layout.nodes()..].copy_from_slice(&u.lambda_dot);
+        w
+    }
+
+    fn velocity_residual(&self, u: &Unknowns) -> Vec<f64> {
+        let (a, b) = self.velocity_system(u);
+        let w = self.velocity_unknowns(u);
+        let mut r: Vec<f64> = b.iter().map(|x| -x).collect();
+        for k in 0..a.values.len() {
+            r[a.rows[k]] += a.values[k] * w[a.cols[k]];
+        }
+        r
+    }
+
+    /// MBDyn's test and the worst row (`true`: a velocity row).
+    fn test(&self, u: &Unknowns, pos: &[f64], vel: &[f64]) -> (f64, (usize, bool, f64)) {
+        let sq = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>();
+        let sq3 = |v: &[Vec3]| v.iter().map(|x| x.norm_squared()).sum::<f64>();
+        let x2 = sq3(&u.x) + sq3(&u.g) + sq3(&u.v) + sq3(&u.w) + sq(&u.lambda) + sq(&u.lambda_dot);
+        let test = ((sq(pos) + sq(vel)) / (1.0 + x2)).sqrt();
+        let worst = pos.iter().enumerate().map(|(i, v)| (i, false, *v)).chain(vel.iter().enumerate().map(|(i, v)| (i, true, *v))).fold((0, false, 0.0f64), |b, c| if c.2.abs() > b.2.abs() || c.2.is_nan() { c } else { b });
+        (test, worst)
+    }
+}
+
+/// Runs MBDyn's initial assembly on `st` (the model's initial state, `g = 0`), or, with
+/// `skip initial joint assembly`, checks that the joints hold as written. On success the
+/// state carries the assembled positions, orientations (re-based, `g = 0`), velocities and
+/// angular velocities; momenta and multipliers are left to the derivatives phase.
+pub fn initial_assembly(model: &Model, st: &mut State, settings: &InitialAssembly) -> Result<AssemblyReport, AssemblyError> {
+    let layout = Layout::new(model);
+    if layout.elements.is_empty() {
+        return Ok(AssemblyReport::default());
+    }
+    let n = model.nodes.len();
+    let dofs = crate::dae::DofMap::new(model);
+    let frames: Vec<_> = (0..n).map(|i| st.node_frame(&dofs, i)).collect();
+    let velocity_rows = velocity_rows(&layout, &frames.iter().map(|f| f.kin.clone()).collect::<Vec<_>>(), st.t);
+    let problem = Problem {
+        velocity_rows,
+        settings: model.nodes.iter().map(|node| settings.node(node.label)).collect(),
+        x0: frames.iter().map(|f| f.kin.x).collect(),
+        r0: frames.iter().map(|f| f.kin.r).collect(),
+        v0: frames.iter().map(|f| f.kin.xdot).collect(),
+        w0: frames.iter().map(|f| f.kin.omega).collect(),
+        t: st.t,
+        layout,
+    };
+    let m = problem.layout.len - 6 * n;
+    let mut u = Unknowns { x: problem.x0.clone(), g: vec![Vec3::zeros(); n], v: problem.v0.clone(), w: problem.w0.clone(), lambda: vec![0.0; m], lambda_dot: vec![0.0; m] };
+    if settings.skip {
+        return skipped(&problem, &u);
+    }
+    let mut pos = problem.position_residual(&u);
+    let mut vel = problem.velocity_residual(&u);
+    let (mut test, mut worst) = problem.test(&u, &pos, &vel);
+    let mut iterations = 0;
+    while !(test <= settings.tolerance) {
+        if !test.is_finite() {
+            return Err(AssemblyError::Diverged { iteration: iterations });
+        }
+        if iterations >= settings.max_iterations {
+            let (row, derivative, value) = worst;
+            return Err(AssemblyError::NotConverged { iterations, test, tolerance: settings.tolerance, worst: problem.layout.row_name(row, derivative), value });
+        }
+        iterations += 1;
+        let mut delta: Vec<f64> = pos.iter().map(|x| -x).collect();
+        SparseLu::new().solve(&problem.position_jacobian(&u), &mut delta).map_err(|_| AssemblyError::Singular { iteration: iterations })?;
+        for i in 0..n {
+            u.x[i] += Vec3::new(delta[6 * i], delta[6 * i + 1], delta[6 * i + 2]);
+            u.g[i] += Vec3::new(delta[6 * i + 3], delta[6 * i + 4], delta[6 * i + 5]);
+        }
+        u.lambda.iter_mut().zip(&delta[6 * n..]).for_each(|(l, d)| *l += d);
+        let (a, mut w) = problem.velocity_system(&u);
+        SparseLu::new().solve(&a, &mut w).map_err(|_| AssemblyError::Singular { iteration: iterations })?;
+        for i in 0..n {
+            u.v[i] = Vec3::new(w[6 * i], w[6 * i + 1], w[6 * i + 2]);
+            u.w[i] = Vec3::new(w[6 * i + 3], w[6 * i + 4], w[6 * i + 5]);
+        }
+        u.lambda_dot.copy_from_slice(&w[6 * n..]);
+        pos = problem.position_residual(&u);
+        vel = problem.velocity_residual(&u);
+        (test, worst) = problem.test(&u, &pos, &vel);
+    }
+    let mut report = AssemblyReport { iterations, test, ..Default::default() };
+    for i in 0..n {
+        let r = gibbs_rotation(&u.g[i]) * problem.r0[i];
+        report.moved_position = report.moved_position.max((u.x[i] - problem.x0[i]).norm());
+        report.moved_rotation = report.moved_rotation.max(crate::kinematics::rotation_vector(&(r * problem.r0[i].transpose())).norm());
+        report.moved_velocity = report.moved_velocity.max((u.v[i] - problem.v0[i]).norm());
+        report.moved_angular_velocity = report.moved_angular_velocity.max((u.w[i] - problem.w0[i]).norm());
+        let f = dofs.node_first[i];
+        st.r_ref[i] = r;
+        for c in 0..3 {
+            st.y[f + c] = u.x[i][c];
+            st.y[f + 3 + c] = 0.0;
+            st.yp[f + c] = u.v[i][c];
+            st.yp[f + 3 + c] = u.w[i][c];
+        }
+    }
+    Ok(report)
+}
+
+/// The rows of velocity-level constraints, from where the elements' Jacobians have
+/// velocity entries.
+fn velocity_rows(layout: &Layout, kin: &[NodeKinematics], t: f64) -> Vec<bool> {
+    let mut rows = vec![false; layout.len];
+    let lambda = vec![0.0; layout.len - 6 * layout.nodes()];
+    for k in 0..layout.elements.len() {
+        let (slots, first) = (&layout.slots[k], layout.first[k]);
+        let m = layout.element(k).multipliers().len();
+        let ctx = Ctx { kin, slots, multipliers: &lambda[first - 6 * layout.nodes()..][..m], t };
+        layout.element(k).jacobian(&ctx, &mut VelocityProbe { first, rows: &mut rows });
+    }
+    rows
+}
+
+/// `skip initial joint assembly`: the constraints must hold as written (to 1e-6 of the
+/// model's size), since nothing will move the nodes onto them.
+fn skipped(problem: &Problem, u: &Unknowns) -> Result<AssemblyReport, AssemblyError> {
+    let n = problem.layout.nodes();
+    let scale = problem.x0.iter().fold(1.0f64, |m, x| m.max(x.norm()));
+    let f = problem.position_residual(u);
+    // Velocity-level constraints are checked against the written velocities by the run.
+    match (6 * n..f.len()).filter(|&i| !problem.velocity_rows[i]).map(|i| (i, f[i])).find(|(_, v)| !(v.abs() <= 1e-6 * scale)) {
+        Some((i, value)) => {
+            let k = problem.layout.first.iter().rposition(|&first| first <= i).unwrap_or(0);
+            let e = problem.layout.element(k);
+            Err(AssemblyError::Violated { element: format!("{} {}", e.type_name(), e.label()), constraint: e.multipliers().get(i - problem.layout.first[k]).cloned().unwrap_or_default(), value })
+        }
+        None => Ok(AssemblyReport::default()),
+    }
+}

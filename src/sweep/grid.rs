@@ -1,0 +1,104 @@
+//! Design points: values of an MBDyn file's `set:` variables, as a list or a linspace per
+//! variable and their full grid.
+
+/// One swept variable and its values.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Parameter {
+    /// The `set:` variable's name, as the file spells it.
+    pub name: String,
+    pub values: Vec<f64>,
+}
+
+/// Largest number of design points of one sweep (a typo such as `0:1:1e9` would otherwise
+/// allocate and run for days).
+pub const MAX_POINTS: usize = 1_000_000;
+
+impl std::str::FromStr for Parameter {
+    type Err = String;
+
+    /// `NAME=A:B:N` (N equally spaced values from A to B, both included) or
+    /// `NAME=V1,V2,…` (a list).
+    fn from_str(s: &str) -> Result<Self, String> {
+        let (name, spec) = s.split_once('=').ok_or_else(|| format!("'{s}': expected NAME=A:B:N or NAME=V1,V2,…"))?;
+        let name = name.trim();
+        if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') || name.starts_with(|c: char| c.is_ascii_digit()) {
+            return Err(format!("'{name}' is not a variable name (letters, digits and '_', not starting with a digit)"));
+        }
+        let number = |t: &str| -> Result<f64, String> {
+            let x: f64 = t.trim().parse().map_err(|_| format!("{name}: '{}' is not a number", t.trim()))?;
+            if x.is_finite() { Ok(x) } else { Err(format!("{name}: {x} is not a finite value")) }
+        };
+        let values = if spec.contains(':') {
+            let parts: Vec<&str> = spec.split(':').collect();
+            let [a, b, n] = parts[..] else { return Err(format!("{name}={spec}: expected A:B:N (from A to B in N points)")) };
+            let (a, b) = (number(a)?, number(b)?);
+            let n: usize = n.trim().parse().map_err(|_| format!("{name}={spec}: N '{}' is not a whole number of points", n.trim()))?;
+            match n {
+                0 => return Err(format!("{name}={spec}: need at least 1 point")),
+                1 if a != b => return Err(format!("{name}={spec}: 1 point cannot span {a} to {b} (give N >= 2, or A:A:1)")),
+                n if n > MAX_POINTS => return Err(format!("{name}={spec}: {n} points, more than romdyn's limit of {MAX_POINTS}")),
+                1 => vec![a],
+                // a + (b − a) k/(n − 1), the last one exactly b.
+                n => (0..n).map(|k| if k + 1 == n { b } else { a + (b - a) * k as f64 / (n - 1) as f64 }).collect(),
+            }
+        } else {
+            spec.split(',').map(number).collect::<Result<Vec<_>, _>>()?
+        };
+        Ok(Parameter { name: name.to_string(), values })
+    }
+}
+
+/// The design points of several parameters: their full grid, the first parameter varying
+/// slowest (as nested loops in the order given). Each point lists one value per parameter.
+pub fn grid(parameters: &[Parameter]) -> Result<Vec<Vec<f64>>, String> {
+    for (k, p) in parameters.iter().enumerate() {
+        if parameters[..k].iter().any(|q| q.name == p.name) {
+            return Err(format!("--set {}: the variable is given twice", p.name));
+        }
+    }
+    let total = parameters.iter().try_fold(1usize, |n, p| n.checked_mul(p.values.len()).filter(|&n| n <= MAX_POINTS));
+    let Some(total) = total else { return Err(format!("the grid has more than romdyn's limit of {MAX_POINTS} design points")) };
+    if parameters.is_empty() {
+        return Err("a sweep needs at least one --set NAME=A:B:N or NAME=V1,V2,…".into());
+    }
+    let mut points = Vec::with_capacity(total);
+    for k in 0..total {
+        let mut rest = k;
+        let mut point = vec![0.0; parameters.len()];
+        for (j, p) in parameters.iter().enumerate().rev() {
+            point[j] = p.values[rest % p.values.len()];
+            rest /= p.values.len();
+        }
+        points.push(point);
+    }
+    Ok(points)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn linspace_list_and_grid_order() {
+        let l: Parameter = "L=0.5:2:4".parse().unwrap();
+        assert_eq!(l.values, vec![0.5, 1.0, 1.5, 2.0]);
+        let m: Parameter = "M=1,2".parse().unwrap();
+        assert_eq!(m.values, vec![1.0, 2.0]);
+        let g = grid(&[l, m]).unwrap();
+        assert_eq!(g.len(), 8);
+        assert_eq!(g[0], vec![0.5, 1.0]);
+        assert_eq!(g[1], vec![0.5, 2.0]);
+        assert_eq!(g[7], vec![2.0, 2.0]);
+    }
+
+    #[test]
+    fn bad_specifications_are_named() {
+        for (s, part) in [("L", "expected NAME"), ("L=1:2", "A:B:N"), ("L=1:2:0", "at least 1"), ("L=a,2", "'a' is not a number"), ("1L=2", "not a variable name"), ("L=1:2:1", "1 point"), ("L=inf,1", "finite")] {
+            let e = s.parse::<Parameter>().unwrap_err();
+            assert!(e.contains(part), "{s}: {e}");
+        }
+        let l: Parameter = "L=1,2".parse().unwrap();
+        assert!(grid(&[l.clone(), l]).unwrap_err().contains("twice"));
+        assert!(grid(&["A=0:1:100000".parse().unwrap(), "B=0:1:100000".parse().unwrap()]).unwrap_err().contains("limit"));
+    }
+}

@@ -1,0 +1,82 @@
+//! Design-point sweeps (paper §2: ROMs "in a significant number of design points"): an
+//! MBDyn file's `set:` variables over a grid or a list, and at each point the reference
+//! solution, linearization, modes and ROM of the [`Study`](crate::study::Study) workflow
+//! with the same ports. Points run in parallel (rayon), or one after the other with
+//! continuation; a failed point is kept with its values and error, the others are
+//! unaffected. [`SweepResults`] stacks the ROMs as MATLAB's ss arrays (`A(:,:,k)`) and
+//! writes them with the lowest modes against the parameters.
+//!
+//! A design point's work is [`run_point`] on the model file's text and the parameter
+//! values only, so another process or machine can run it (the Python package's executors).
+
+mod grid;
+mod output;
+mod point;
+
+use std::path::{Path, PathBuf};
+
+use rayon::prelude::*;
+
+pub use grid::{grid, Parameter, MAX_POINTS};
+pub use output::StackError;
+pub use point::{lowest_modes, overrides, run_point, PointResult, SweepOptions};
+
+/// A design point that failed, with the error as the CLI prints it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PointFailure {
+    pub message: String,
+}
+
+/// Every design point's outcome, in the order of `points`.
+#[derive(Debug)]
+pub struct SweepResults {
+    /// The model file the points override (for messages and the outputs' headers).
+    pub file: PathBuf,
+    pub names: Vec<String>,
+    /// One row per design point, one value per parameter (SI units of the file).
+    pub points: Vec<Vec<f64>>,
+    pub results: Vec<Result<PointResult, PointFailure>>,
+    /// Number of lowest modes tabulated.
+    pub modes: usize,
+}
+
+impl SweepResults {
+    /// The failed points: index, parameter values, error.
+    pub fn failures(&self) -> impl Iterator<Item = (usize, &[f64], &str)> {
+        self.results.iter().enumerate().filter_map(|(k, r)| r.as_ref().err().map(|e| (k, self.points[k].as_slice(), e.message.as_str())))
+    }
+
+    /// "L = 1.5, M = 2" for point `k`.
+    pub fn describe_point(&self, k: usize) -> String {
+        self.names.iter().zip(&self.points[k]).map(|(n, v)| format!("{n} = {v}")).collect::<Vec<_>>().join(", ")
+    }
+}
+
+/// Checks, before a sweep, that the file (read with its own values) declares every swept
+/// variable with `set:`: a misspelt name would otherwise fail every point alike.
+pub fn check_parameters(text: &str, file: &Path, names: &[String]) -> Result<(), crate::input::mbdyn::MbdynError> {
+    crate::input::mbdyn::parse_text(text, file)?.variables.check_declared(names, file)
+}
+
+/// Runs every design point of `points` (values of `names`) on the MBDyn file text `text`
+/// (read as the file `file`). `done` is called after each point (a progress bar).
+pub fn sweep(text: &str, file: &Path, names: &[String], points: Vec<Vec<f64>>, options: &SweepOptions, done: &(dyn Fn() + Sync)) -> SweepResults {
+    let one = |values: &[f64], start: Option<&crate::dae::State>| {
+        let r = run_point(text, file, names, values, options, start).map_err(|e| PointFailure { message: e.to_string() });
+        done();
+        r
+    };
+    let results = if options.continuation {
+        let mut out: Vec<Result<PointResult, PointFailure>> = Vec::with_capacity(points.len());
+        for values in &points {
+            // The last point that succeeded is the start (a failed one has no solution).
+            let start = out.iter().rev().find_map(|r| r.as_ref().ok()).map(|r| &r.state);
+            let r = one(values, start);
+            out.push(r);
+        }
+        out
+    } else {
+        points.par_iter().map(|values| one(values, None)).collect()
+    };
+    SweepResults { file: file.to_path_buf(), names: names.to_vec(), points, results, modes: options.modes }
+}
