@@ -3,34 +3,25 @@
 //! `cargo bench --bench pendulum_chain`.
 
 use romdyn::dae::{linearize, Assembler, Coefficients, LuPath, SparseLu, State};
-use romdyn::element::{Anchor, Joint, RigidBody};
-use romdyn::kinematics::{Mat3, Vec3};
-use romdyn::linear::{EigenRoute, ModalAnalysis};
-use romdyn::model::{Model, ModelBuilder};
+use romdyn::kinematics::Vec3;
+use romdyn::linear::{ConstraintForm, EigenRoute, ModalAnalysis};
+use romdyn::model::Model;
 use romdyn::rom::{select_modes, DescriptorRom, ModeSelection};
 use romdyn::solve::{initial_derivatives, static_solution, Integrator, Method, NewtonSettings};
+
+#[allow(dead_code)]
+#[path = "../tests/common/models.rs"]
+mod models;
 
 fn main() {
     divan::main();
 }
 
-/// Ground node 0 clamped; links 1..=n of 0.1 m and 0.1 kg, hinged about z, in a horizontal
-/// line (released) or hanging (for the eigenanalysis).
+/// The chain of tests/common/models.rs: links of 0.1 m and 0.1 kg hinged about z, in a
+/// horizontal line (released) or hanging (for the eigenanalysis).
 fn chain(n: u32, hanging: bool) -> Model {
     let dir = if hanging { Vec3::new(0.0, -0.1, 0.0) } else { Vec3::new(0.1, 0.0, 0.0) };
-    let mut b = ModelBuilder::new();
-    b.static_node(0, Vec3::zeros(), Mat3::identity()).element(Joint::clamp(0, 0, Vec3::zeros(), Mat3::identity()));
-    for i in 1..=n {
-        b.dynamic_node(i, dir * i as f64, Mat3::identity(), Vec3::zeros(), Vec3::zeros());
-        b.element(RigidBody::new(i, i, 0.1, Vec3::zeros(), 1e-4 * Mat3::identity()));
-        b.element(Joint::revolute_hinge(
-            n + i,
-            Anchor::Node { label: i - 1, offset: Vec3::zeros(), orientation: Mat3::identity() },
-            Anchor::Node { label: i, offset: -dir, orientation: Mat3::identity() },
-        ));
-    }
-    b.gravity(Vec3::new(0.0, -9.81, 0.0));
-    b.build().unwrap()
+    models::link_chain(n, dir, ConstraintForm::Scaled)
 }
 
 #[divan::bench(args = [10, 100, 1000], sample_count = 5)]
