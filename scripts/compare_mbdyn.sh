@@ -11,7 +11,7 @@
 # Output, per file:
 #   FILE  mbdyn: ok|failed (last message)  romdyn: ok|failed (first error line)
 #   node LABEL  x y z (mbdyn)  x y z (romdyn)  |Δx|/max(|x|, 1)
-#   eig  Re Im (mbdyn)  Re Im (romdyn)  |Δλ|/|λ|         (eigenvalues with Im > 0, by Im)
+#   eig  Re Im (mbdyn)  Re Im (romdyn)  |Δλ|/|λ|         (eigenvalues with Im > 1e-3 rad/s, by Im: numerically split zero eigenvalues, |λ| ≈ 1e-6, are not modes)
 #   worst: position RELDIFF, eigenvalue RELDIFF
 set -u
 folder=${1:?usage: compare_mbdyn.sh FOLDER [OUTDIR]}
@@ -40,7 +40,7 @@ eigenvalues() {
             if (n >= 3) {
                 ar = a[1]; ai = a[2]; b = a[3]
                 d = dcoef * ((ar + b) ^ 2 + ai ^ 2)
-                if (d != 0 && b != 0) { re = (ar ^ 2 + ai ^ 2 - b ^ 2) / d; im = 2 * ai * b / d; if (im > 1e-6) printf "%.10e %.10e\n", re, im }
+                if (d != 0 && b != 0) { re = (ar ^ 2 + ai ^ 2 - b ^ 2) / d; im = 2 * ai * b / d; if (im > 1e-3) printf "%.10e %.10e\n", re, im }
             }
             if (last) inside = 0
         }' "$1" | sort -g -k2
