@@ -118,6 +118,53 @@ impl Model {
         Ok(StudyPy { study: study.map_err(py_err)?.0 })
     }
 
+    /// The lowest `count` dynamic modes, or those with natural frequency |λ|/2π in `band`
+    /// (FMIN, FMAX) [Hz], by the sparse shift-invert Krylov–Schur solver (issue 13): the
+    /// linearization stays sparse, so models too large for the dense eigenanalysis of
+    /// `study()` can be analysed. Every mode returned has a true relative residual below
+    /// `tolerance`. Returns {"eigenvalues" [rad/s] (complex), "kind", "freq_hz" (|Im λ|/2π),
+    /// "undamped_hz" (|λ|/2π), "damping", "error" [rad/s], "certified" (every shift window's
+    /// right and adjoint runs agreed and the windows cover the band), "max_residual",
+    /// "note" (why not certified, or None), "windows" (shifts used)}. `reference` and
+    /// `load_steps` as for `study()`.
+    #[pyo3(signature = (count = None, band = None, reference = None, load_steps = 10, tolerance = 1e-10))]
+    fn sparse_modes<'py>(&self, py: Python<'py>, count: Option<usize>, band: Option<(f64, f64)>, reference: Option<&Bound<'_, PyAny>>, load_steps: usize, tolerance: f64) -> PyResult<Bound<'py, PyDict>> {
+        use romdyn::linear::krylov::{sparse_modes, ModeTarget, SparseEigenSettings};
+        let target = match (count, band) {
+            (Some(n), None) if n > 0 => ModeTarget::Lowest(n),
+            (None, Some((fmin_hz, fmax_hz))) if fmin_hz.is_finite() && fmax_hz.is_finite() && 0.0 <= fmin_hz && fmin_hz < fmax_hz => ModeTarget::Band { fmin_hz, fmax_hz },
+            (None, Some(b)) => return Err(options::bad("band", format!("{b:?}: expected (FMIN, FMAX) [Hz] with 0 <= FMIN < FMAX"))),
+            _ => return Err(options::bad("count", "give exactly one of count (a positive number of modes) and band (FMIN, FMAX) [Hz]")),
+        };
+        if !(tolerance > 0.0 && tolerance < 1.0) {
+            return Err(options::bad("tolerance", format!("{tolerance}: expected a relative residual in (0, 1)")));
+        }
+        let reference = options::reference(reference, load_steps)?;
+        let settings = SparseEigenSettings { tolerance, ..SparseEigenSettings::default() };
+        let found = py
+            .detach(|| -> Result<_, StudyError> {
+                let m = self.read()?;
+                let state = romdyn::analysis::reference_state(&m.model, &m.problem, reference).map_err(|source| StudyError::Reference { file: Some(self.name.clone()), source })?;
+                let dae = romdyn::dae::linearize_sparse(&m.model, &state, &[], &[]).map_err(|e| StudyError::Application(format!("{}: {e}", self.name.display())))?;
+                sparse_modes(&dae, target, &settings).map_err(|e| StudyError::Application(format!("{}: sparse eigenanalysis: {e}", self.name.display())))
+            })
+            .map_err(py_err)?;
+        let modes = &found.modal.modes;
+        let lam: Vec<_> = modes.iter().map(|m| m.lambda).collect();
+        let d = PyDict::new(py);
+        d.set_item("eigenvalues", complex_vec(py, &lam))?;
+        d.set_item("kind", modes.iter().map(|m| format!("{:?}", m.kind).to_lowercase()).collect::<Vec<_>>())?;
+        d.set_item("freq_hz", lam.iter().map(|l| l.im.abs() / (2.0 * std::f64::consts::PI)).collect::<Vec<_>>().into_pyarray(py))?;
+        d.set_item("undamped_hz", modes.iter().map(|m| m.freq_hz()).collect::<Vec<_>>().into_pyarray(py))?;
+        d.set_item("damping", modes.iter().map(|m| m.damping()).collect::<Vec<_>>().into_pyarray(py))?;
+        d.set_item("error", modes.iter().map(|m| m.error).collect::<Vec<_>>().into_pyarray(py))?;
+        d.set_item("certified", found.certified)?;
+        d.set_item("max_residual", found.max_residual)?;
+        d.set_item("note", found.note.clone())?;
+        d.set_item("windows", found.windows.len())?;
+        Ok(d)
+    }
+
     /// Runs the file's initial-value problem (as `romdyn run`, without files) and returns the
     /// node histories: {"time" [s] (steps,), "labels" (nodes,), "position" [m] (steps, nodes,
     /// 3), "orientation" (steps, nodes, 3, 3: node frame to global), "velocity" [m/s],

@@ -15,7 +15,7 @@ use romdyn::sweep::SweepOptions;
 
 use crate::py_err;
 
-fn bad(what: &str, message: impl std::fmt::Display) -> PyErr {
+pub(crate) fn bad(what: &str, message: impl std::fmt::Display) -> PyErr {
     PyValueError::new_err(format!("{what}: {message}"))
 }
 
