@@ -245,15 +245,16 @@ mod tests {
     use super::*;
 
     #[test]
-    fn shorthand_and_full_ports_parse() {
+    fn shorthand_and_full_ports_parse() -> Result<(), PortsFileError> {
         let text = r#"{"names": {"3": "table"}, "inputs": ["3:Fz", {"name": "A", "type": "actuator", "from": 1, "to": 2, "at": [1, 0, 0], "direction": [0, 1, 0]}],
             "outputs": [{"name": "G", "type": "velocity", "node": 3, "offset": [0.5, 0, 0], "direction": [1, 0, 0], "frame": "node"}], "remove_springs": [9], "imposed": "1:x"}"#;
-        let p = parse_ports(text, Path::new("p.json")).unwrap();
+        let p = parse_ports(text, Path::new("p.json"))?;
         assert_eq!(p.inputs.len(), 2);
         assert_eq!(p.inputs[0].label(), "node 3 Fz [N]");
         assert_eq!(p.outputs[0].label(), "G [m/s]");
         assert_eq!(p.names[&3], "table");
         assert_eq!(p.remove_springs, vec![9]);
+        Ok(())
     }
 
     #[test]
