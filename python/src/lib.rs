@@ -32,6 +32,21 @@ pub(crate) fn py_err(e: StudyError) -> PyErr {
     }
 }
 
+/// The columns of a modal table shared by `Study.modes()` and `Model.sparse_modes()`:
+/// "eigenvalues" [rad/s], "kind", "freq_hz" (|Im λ|/2π), "undamped_hz" (|λ|/2π), "damping",
+/// "error" [rad/s].
+fn modes_dict<'py>(py: Python<'py>, modal: &romdyn::linear::ModalAnalysis) -> PyResult<Bound<'py, PyDict>> {
+    let lam: Vec<_> = modal.modes.iter().map(|m| m.lambda).collect();
+    let d = PyDict::new(py);
+    d.set_item("eigenvalues", complex_vec(py, &lam))?;
+    d.set_item("kind", modal.modes.iter().map(|m| format!("{:?}", m.kind).to_lowercase()).collect::<Vec<_>>())?;
+    d.set_item("freq_hz", lam.iter().map(|l| l.im.abs() / (2.0 * std::f64::consts::PI)).collect::<Vec<_>>().into_pyarray(py))?;
+    d.set_item("undamped_hz", modal.modes.iter().map(|m| m.freq_hz()).collect::<Vec<_>>().into_pyarray(py))?;
+    d.set_item("damping", modal.modes.iter().map(|m| m.damping()).collect::<Vec<_>>().into_pyarray(py))?;
+    d.set_item("error", modal.modes.iter().map(|m| m.error).collect::<Vec<_>>().into_pyarray(py))?;
+    Ok(d)
+}
+
 /// An MBDyn input file, its text kept (with `set:` overrides) and read again for each
 /// study: `Model(path, set={"L": 2.0})`.
 #[pyclass(module = "romdyn._romdyn", frozen)]
@@ -149,15 +164,7 @@ impl Model {
                 sparse_modes(&dae, target, &settings).map_err(|e| StudyError::Application(format!("{}: sparse eigenanalysis: {e}", self.name.display())))
             })
             .map_err(py_err)?;
-        let modes = &found.modal.modes;
-        let lam: Vec<_> = modes.iter().map(|m| m.lambda).collect();
-        let d = PyDict::new(py);
-        d.set_item("eigenvalues", complex_vec(py, &lam))?;
-        d.set_item("kind", modes.iter().map(|m| format!("{:?}", m.kind).to_lowercase()).collect::<Vec<_>>())?;
-        d.set_item("freq_hz", lam.iter().map(|l| l.im.abs() / (2.0 * std::f64::consts::PI)).collect::<Vec<_>>().into_pyarray(py))?;
-        d.set_item("undamped_hz", modes.iter().map(|m| m.freq_hz()).collect::<Vec<_>>().into_pyarray(py))?;
-        d.set_item("damping", modes.iter().map(|m| m.damping()).collect::<Vec<_>>().into_pyarray(py))?;
-        d.set_item("error", modes.iter().map(|m| m.error).collect::<Vec<_>>().into_pyarray(py))?;
+        let d = modes_dict(py, &found.modal)?;
         d.set_item("certified", found.certified)?;
         d.set_item("max_residual", found.max_residual)?;
         d.set_item("note", found.note.clone())?;
@@ -215,14 +222,7 @@ impl StudyPy {
     /// (−Re λ/|λ|), "error" [rad/s], "partner" (index of a conjugate, -1 if none), "dcoef" [s].
     fn modes<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let modal = self.study.modal();
-        let d = PyDict::new(py);
-        let lam: Vec<_> = modal.modes.iter().map(|m| m.lambda).collect();
-        d.set_item("eigenvalues", complex_vec(py, &lam))?;
-        d.set_item("kind", modal.modes.iter().map(|m| format!("{:?}", m.kind).to_lowercase()).collect::<Vec<_>>())?;
-        d.set_item("freq_hz", lam.iter().map(|l| l.im.abs() / (2.0 * std::f64::consts::PI)).collect::<Vec<_>>().into_pyarray(py))?;
-        d.set_item("undamped_hz", modal.modes.iter().map(|m| m.freq_hz()).collect::<Vec<_>>().into_pyarray(py))?;
-        d.set_item("damping", modal.modes.iter().map(|m| m.damping()).collect::<Vec<_>>().into_pyarray(py))?;
-        d.set_item("error", modal.modes.iter().map(|m| m.error).collect::<Vec<_>>().into_pyarray(py))?;
+        let d = modes_dict(py, modal)?;
         d.set_item("partner", modal.modes.iter().map(|m| m.partner.map_or(-1, |p| p as i64)).collect::<Vec<_>>().into_pyarray(py))?;
         d.set_item("dcoef", modal.dcoef)?;
         Ok(d)

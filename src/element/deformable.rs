@@ -212,12 +212,7 @@ impl Element for Rod {
         let (fe, _) = self.force(&p.d);
         let (fv, _, _) = self.viscous_force(&p.d, &distance_rate(&p).0);
         let f = fe + fv;
-        add_vec(out, Row::force(p.slot_b), &f);
-        add_vec(out, Row::moment(p.slot_b), &p.f_b.cross(&f));
-        if let Some(a) = p.slot_a {
-            add_vec(out, Row::force(a), &(-f));
-            add_vec(out, Row::moment(a), &(-p.f_a.cross(&f)));
-        }
+        add_pair_force(out, &p, &f);
     }
     fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
         let p = Pair::new(&self.a, &self.b, st);
@@ -238,6 +233,17 @@ impl Element for Rod {
                 add_block(out, Row::moment(a), *c, &(-skew(&p.f_a) * block));
             }
         }
+    }
+}
+
+/// Residual of a force `f` along the line of the points: `f` at `p_b` on B, `−f` at `p_a`
+/// on A (rods, distance joints; [`add_pair_force_jacobian`] is its Jacobian).
+fn add_pair_force(out: &mut dyn ResidualSink, p: &Pair, f: &Vec3) {
+    add_vec(out, Row::force(p.slot_b), f);
+    add_vec(out, Row::moment(p.slot_b), &p.f_b.cross(f));
+    if let Some(a) = p.slot_a {
+        add_vec(out, Row::force(a), &(-f));
+        add_vec(out, Row::moment(a), &(-p.f_a.cross(f)));
     }
 }
 
@@ -298,12 +304,7 @@ impl Element for Distance {
         let l = p.d.norm();
         out.add(Row::Constraint(0), l - self.length.value(st.time()));
         let f = st.multiplier(0) * p.d / l;
-        add_vec(out, Row::force(p.slot_b), &f);
-        add_vec(out, Row::moment(p.slot_b), &p.f_b.cross(&f));
-        if let Some(a) = p.slot_a {
-            add_vec(out, Row::force(a), &(-f));
-            add_vec(out, Row::moment(a), &(-p.f_a.cross(&f)));
-        }
+        add_pair_force(out, &p, &f);
     }
     fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
         let p = Pair::new(&self.a, &self.b, st);
