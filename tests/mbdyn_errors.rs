@@ -192,8 +192,8 @@ fn drive_and_law_errors() {
         (force("reference, 4"), "m.mbd:6:52: error: drive caller 4 is not defined"),
         // 54. Different drives on different components of one force.
         (force("component, const, 1., time, inactive").replace("1., 0., 0., component", "component"), "m.mbd:6:40: error: romdyn's force is one direction times one drive"),
-        // 55. Time-varying gravity.
-        (model("structural nodes: 2; gravity;", NODES, "gravity: 0., -1., 0., ramp, 1., 0., 1., 0.;"), "m.mbd:6:10: error: time-varying gravity is not supported by romdyn"),
+        // 55. Time-varying gravity with different drives on its components.
+        (model("structural nodes: 2; gravity;", NODES, "gravity: component, const, 1., ramp, 1., 0., 1., 0., inactive;"), "m.mbd:6:10: error: romdyn's time-varying gravity is one direction times one drive"),
         // 56. A constitutive law romdyn does not have, and one of the wrong dimension.
         (model("structural nodes: 2; joints: 1;", NODES, "joint: 1, deformable hinge, 1, 2, cubic elastic generic, 1., 2., 3.;"), "m.mbd:6:35: error: constitutive law 'cubic elastic generic' is not supported by romdyn"),
         (model("structural nodes: 2; joints: 1;", NODES, "constitutive law: 3, 1, linear elastic, 1.;\njoint: 1, deformable hinge, 1, 2, reference, 3;"), "m.mbd:7:35: error: constitutive law 3 has dimension 1, this element needs 3"),
