@@ -159,7 +159,12 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
         let mut c = Cursor::new(st, src);
         let ctx = ElementContext { nodes: &nodes, frames: &cards.frames, drives: &cards.drives, laws: &cards.laws, seq: st.seq };
         let label_span = c.here();
-        let parsed = match element(st, &mut c, &ctx)? {
+        let parsed = element(st, &mut c, &ctx)?;
+        let parsed = match &st.driven {
+            Some(head) => super::driven::wrap(head, parsed, src, &ctx)?,
+            None => parsed,
+        };
+        let parsed = match parsed {
             Parsed::Body(body) => {
                 bodies.push((body.label, body.node, body.mass, body.offset));
                 Parsed::Element(Box::new(body))
