@@ -194,6 +194,41 @@ fn scalar_function_cards_are_checked_as_mbdyn_checks_them() {
     }
 }
 
+/// scalar_functions.mbd with force 3's drive replaced by a string drive.
+fn with_push_drive(expression: &str) -> Result<MbdynModel, romdyn::input::mbdyn::MbdynError> {
+    let base = std::fs::read_to_string(path("scalar_functions.mbd")).unwrap_or_default();
+    let old = "scalar function, \"push\";";
+    assert!(base.contains(old));
+    parse_text(&base.replace(old, &format!("string, \"{expression}\";")), &path("scalar_functions.mbd")).and_then(|d| build(&d))
+}
+
+#[test]
+fn string_drives_call_scalar_functions_through_model_sf() {
+    // modelns.cc: `model::sf::NAME(x [, order])` is the scalar function card's value (order
+    // 0) or derivative (order 1). As a string drive, `model::sf::push(Time)` is the
+    // `scalar function, "push"` drive: the same final state to round-off.
+    let card = final_rows(&read("scalar_functions.mbd"));
+    let string = final_rows(&with_push_drive("model::sf::push(Time)").unwrap_or_else(|e| panic!("{e}")));
+    for (a, b) in card.iter().zip(&string) {
+        assert!(a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-12), "{a:?} against {b:?}");
+    }
+    // The derivative of 0.5 eᵗ + t² less 0.5 eᵗ is 2 t: from rest x(1) = 1/3 m, ẋ(1) = 1 m/s
+    // (the 1 ms step's error is 2e-7 m). MBDyn 1.7.3 on that file, .mov at t = 1 s:
+    // node 3 x = 3.333335312265708e-01 m (romdyn: the same to 1e-13).
+    let got = final_rows(&with_push_drive("model::sf::push(Time, 1) - exp(Time)/2.").unwrap_or_else(|e| panic!("{e}")));
+    assert!((got[2][0] - 1.0 / 3.0).abs() < 3e-7 && (got[2][6] - 1.0).abs() < 1e-6, "{:?}", got[2]);
+    assert!((got[2][0] - 3.333335312265708e-01).abs() < 1e-10, "{:?}", got[2]);
+    // MBDyn 1.7.3 has no top-level `sf` namespace ("unable to find namespace \"sf\"").
+    for (expression, want) in [
+        ("sf::push(Time)", "unknown namespace 'sf'"),
+        ("model::sf::pull(Time)", "model::sf::pull: scalar function \"pull\" is not defined before this drive"),
+        ("model::sf::push(Time, 2)", "model::sf::push: the derivative order must be 0 or 1"),
+    ] {
+        let e = with_push_drive(expression).map(|_| ()).unwrap_err().to_string();
+        assert!(e.contains("scalar_functions.mbd:") && e.contains(want), "{expression}: {e}");
+    }
+}
+
 #[test]
 fn time_varying_gravity_drops_the_bodies_as_its_integral_and_as_mbdyn() {
     let m = read("driven_gravity.mbd");
