@@ -76,7 +76,7 @@ while IFS= read -r f; do
     mstate=$( (cd "$dir" && timeout "$limit" "$mbdyn" -f "$base" -o "$m/$name" > "$m/stdout" 2>&1 < /dev/null); rc=$?; [ $rc -eq 0 ] && echo ok || { [ $rc -eq 124 ] && echo timeout || echo failed; })
     rstate=$( (cd "$dir" && timeout "$limit" "$romdyn" run "$base" -o "$r/$name" > "$r/stdout" 2> "$r/stderr" < /dev/null); rc=$?; [ $rc -eq 0 ] && echo ok || { [ $rc -eq 124 ] && echo timeout || echo failed; })
     ms=$mstate; [ "$mstate" = failed ] && ms="failed ($(grep -v '^$' "$m/stdout" | grep -iv 'aborting' | tail -1))"
-    rerr=$(grep -m1 -E 'error' "$r/stderr" | sed -E 's/^[^ ]*:[0-9]+:[0-9]+: //; s/^error: //')
+    rerr=$(grep -m1 -E 'error' "$r/stderr" | tr '\t' ' ' | sed -E 's/^[^ ]*:[0-9]+:[0-9]+: //; s/^error: //')
     [ -z "$rerr" ] && rerr=$(head -1 "$r/stderr")
     rs=$rstate; [ "$rstate" = failed ] && rs="failed ($rerr)"
     echo "$name  mbdyn: $ms  romdyn: $rs"
