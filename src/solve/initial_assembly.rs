@@ -313,8 +313,19 @@ impl Problem<'_> {
         // MBDyn's drives give their derivative from t₀ on (`GetP`, e.g. 0 for the cosine).
         let eps = 1e-6 * self.t.abs().max(1.0);
         let mut at = [vec![0.0; self.layout.len], vec![0.0; self.layout.len], vec![0.0; self.layout.len]];
+        let n6 = 6 * n;
         for k in (0..self.layout.elements.len()).filter(|&k| !self.layout.element(k).multipliers().is_empty()) {
-            self.element_jacobian(k, &kin, &u.lambda, None, &mut a);
+            if reaction_rate_without_geometry(self.layout.element(k).type_name()) {
+                let mut own = Triplets::new(self.layout.len);
+                self.element_jacobian(k, &kin, &u.lambda, None, &mut own);
+                for ((&r, &c), &v) in own.rows.iter().zip(&own.cols).zip(&own.values) {
+                    if r >= n6 || c >= n6 {
+                        a.push(r, c, v);
+                    }
+                }
+            } else {
+                self.element_jacobian(k, &kin, &u.lambda, None, &mut a);
+            }
             for (j, r) in at.iter_mut().enumerate() {
                 self.element_residual(k, &kin, &u.lambda, self.t + j as f64 * eps, r);
             }
@@ -476,4 +487,12 @@ fn skipped(problem: &Problem, u: &Unknowns) -> Result<AssemblyReport, AssemblyEr
         }
         None => Ok(AssemblyReport::default()),
     }
+}
+
+/// Joints whose velocity rows MBDyn writes with the reaction's rate alone, `f_/λ λ̇`, without
+/// the turning of its arm with the nodes, `f_/q u` (drvdisp.cc: `DriveDisplacementJoint` and
+/// `DriveDisplacementPinJoint::InitialAssRes` add `F'` and `d × F'` only, where spherj.cc
+/// adds `(ω × d) × F` too).
+fn reaction_rate_without_geometry(type_name: &str) -> bool {
+    matches!(type_name, "drive displacement" | "drive displacement pin")
 }
