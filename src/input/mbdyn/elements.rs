@@ -16,10 +16,10 @@ use crate::kinematics::{Mat3, Vec3};
 use crate::model::Label;
 
 /// Element types of MBDyn romdyn names in its "not supported" error.
-const OTHER_TYPES: [&str; 24] = [
+const OTHER_TYPES: [&str; 23] = [
     "aerodynamic beam2", "aerodynamic beam3", "aerodynamic body", "aeromodal", "aircraft instruments", "air properties", "induced velocity",
     "electric", "hydraulic", "thermal", "rtai output", "stream output", "stream motion output", "bind", "bulk", "genel", "loadable",
-    "user defined", "joint regularization", "plate", "shell4eas", "shell4easans", "membrane4eas", "driven",
+    "user defined", "joint regularization", "plate", "shell4eas", "shell4easans", "membrane4eas",
 ];
 
 /// The element kind counted in control data, by element keyword.
