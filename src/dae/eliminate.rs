@@ -1,0 +1,304 @@
+//! Elimination, before factoring, of unknowns that enter their own equation alone with a
+//! diagonal coefficient. A dynamic node's momenta `p = (β, γ)` appear in their definitions
+//! (rows 0–5: `β − Σ …`, `γ − Σ …`) only as `c p` (no element reads a momentum), so
+//! `δp = (r_M − J_Mq δq) / c` and the remaining unknowns solve the Schur complement
+//! `(J_Rq − J_Rp J_Mq / c) δq = r_R − J_Rp r_M / c` (`M`: the definitions, `R`: the other
+//! equations, `q`: the other unknowns): 6 fewer unknowns per dynamic node, and for chains
+//! and beams a band half as wide. Exact algebra: the same Newton increment as the whole
+//! system's, up to rounding.
+
+use std::collections::HashMap;
+
+use super::sparse::{Factored, LuPath, SparseError, Triplets};
+
+/// One eliminated unknown `p` and its equation `m`, with the pivot's entry.
+#[derive(Clone, Copy, Debug)]
+struct Pivot {
+    row: usize,
+    col: usize,
+    entry: usize,
+}
+
+/// The reduced system of a pattern and how its values are formed from the Jacobian's.
+pub(super) struct Eliminated {
+    /// Distinct entry of each triplet (duplicates summed).
+    entry_of: Vec<usize>,
+    /// Values of the distinct entries.
+    entries: Vec<f64>,
+    pivots: Vec<Pivot>,
+    inverse: Vec<f64>,
+    /// Original equation of each reduced equation, original unknown of each reduced unknown.
+    kept_rows: Vec<usize>,
+    kept_cols: Vec<usize>,
+    /// `(reduced entry, entry)`: entries of `J_Rq`.
+    direct: Vec<(usize, usize)>,
+    /// `(reduced entry, entry (r, p), entry (m, q), pivot)`: terms of `J_Rp J_Mq / c`.
+    products: Vec<(usize, usize, usize, usize)>,
+    /// `(reduced equation, entry, pivot)`: entries of `J_Rp`, for the right-hand side.
+    column: Vec<(usize, usize, usize)>,
+    /// Entries of `J_Mq` by pivot: `row[row_start[k]..row_start[k + 1]]` holds
+    /// `(reduced unknown, entry)`, for the back substitution.
+    row_start: Vec<usize>,
+    row: Vec<(usize, usize)>,
+    reduced: Vec<f64>,
+    inner: Factored,
+    x: Vec<f64>,
+}
+
+impl Eliminated {
+    /// The reduced pattern, or `None` when some equation `m` has an entry in another pair's
+    /// unknown (the elimination would not be one diagonal step) or lacks its pivot.
+    pub(super) fn new(j: &Triplets, pairs: &[(usize, usize)], path: LuPath) -> Result<Option<Self>, SparseError> {
+        let n = j.n;
+        let mut pivot_of_row = vec![usize::MAX; n];
+        let mut pivot_of_col = vec![usize::MAX; n];
+        for (k, &(m, p)) in pairs.iter().enumerate() {
+            if m >= n || p >= n || pivot_of_row[m] != usize::MAX || pivot_of_col[p] != usize::MAX {
+                return Ok(None);
+            }
+            pivot_of_row[m] = k;
+            pivot_of_col[p] = k;
+        }
+        // Distinct entries in order of first appearance (the scatter stays nearly sequential).
+        let mut index: HashMap<(usize, usize), usize> = HashMap::with_capacity(j.rows.len());
+        let mut keys = Vec::new();
+        let entry_of: Vec<usize> = j
+            .rows
+            .iter()
+            .zip(&j.cols)
+            .map(|(&r, &c)| {
+                *index.entry((r, c)).or_insert_with(|| {
+                    keys.push((r, c));
+                    keys.len() - 1
+                })
+            })
+            .collect();
+        let reduced_index = |kept: &mut Vec<usize>, eliminated: &[usize]| {
+            let mut map = vec![usize::MAX; n];
+            for (i, m) in map.iter_mut().enumerate() {
+                if eliminated[i] == usize::MAX {
+                    *m = kept.len();
+                    kept.push(i);
+                }
+            }
+            map
+        };
+        let (mut kept_rows, mut kept_cols) = (Vec::new(), Vec::new());
+        let row_map = reduced_index(&mut kept_rows, &pivot_of_row);
+        let col_map = reduced_index(&mut kept_cols, &pivot_of_col);
+        let mut pivots: Vec<Pivot> = pairs.iter().map(|&(row, col)| Pivot { row, col, entry: usize::MAX }).collect();
+        let mut reduced_entries: HashMap<(usize, usize), usize> = HashMap::new();
+        let (mut red_rows, mut red_cols) = (Vec::new(), Vec::new());
+        let mut reduced_entry = |r: usize, c: usize| {
+            *reduced_entries.entry((r, c)).or_insert_with(|| {
+                red_rows.push(r);
+                red_cols.push(c);
+                red_rows.len() - 1
+            })
+        };
+        let (mut direct, mut column, mut row_entries) = (Vec::new(), Vec::new(), Vec::new());
+        for (e, &(r, c)) in keys.iter().enumerate() {
+            match (pivot_of_row[r], pivot_of_col[c]) {
+                (k, l) if k != usize::MAX && l != usize::MAX => {
+                    if k != l {
+                        return Ok(None);
+                    }
+                    pivots[k].entry = e;
+                }
+                (k, _) if k != usize::MAX => row_entries.push((k, col_map[c], e)),
+                (_, l) if l != usize::MAX => column.push((row_map[r], e, l)),
+                _ => direct.push((reduced_entry(row_map[r], col_map[c]), e)),
+            }
+        }
+        if pivots.iter().any(|p| p.entry == usize::MAX) {
+            return Ok(None);
+        }
+        row_entries.sort_by_key(|&(k, _, _)| k);
+        let mut row_start = vec![0; pivots.len() + 1];
+        for &(k, _, _) in &row_entries {
+            row_start[k + 1] += 1;
+        }
+        for k in 0..pivots.len() {
+            row_start[k + 1] += row_start[k];
+        }
+        let row: Vec<(usize, usize)> = row_entries.iter().map(|&(_, q, e)| (q, e)).collect();
+        let mut products = Vec::new();
+        for &(r, a, k) in &column {
+            for &(q, b) in &row[row_start[k]..row_start[k + 1]] {
+                products.push((reduced_entry(r, q), a, b, k));
+            }
+        }
+        let inner = Factored::new(kept_rows.len(), &red_rows, &red_cols, path)?;
+        Ok(Some(Eliminated {
+            entry_of,
+            entries: vec![0.0; keys.len()],
+            inverse: vec![0.0; pivots.len()],
+            pivots,
+            x: vec![0.0; n],
+            reduced: vec![0.0; red_rows.len()],
+            kept_rows,
+            kept_cols,
+            direct,
+            products,
+            column,
+            row_start,
+            row,
+            inner,
+        }))
+    }
+
+    pub(super) fn eliminated(&self) -> usize {
+        self.pivots.len()
+    }
+
+    pub(super) fn is_banded(&self) -> bool {
+        self.inner.is_banded()
+    }
+
+    /// Solves `J x = rhs` in place, `J`'s values given in the pattern's triplet order;
+    /// `Err` for a zero pivot (the caller then solves the whole system).
+    pub(super) fn solve(&mut self, values: &[f64], rhs: &mut [f64]) -> Result<(), SparseError> {
+        self.entries.iter_mut().for_each(|v| *v = 0.0);
+        for (&e, &v) in self.entry_of.iter().zip(values) {
+            self.entries[e] += v;
+        }
+        for (inv, p) in self.inverse.iter_mut().zip(&self.pivots) {
+            let d = self.entries[p.entry];
+            if d == 0.0 || !d.is_finite() {
+                return Err(SparseError::Singular);
+            }
+            *inv = 1.0 / d;
+        }
+        let (entries, inverse) = (&self.entries, &self.inverse);
+        self.reduced.iter_mut().for_each(|v| *v = 0.0);
+        for &(t, e) in &self.direct {
+            self.reduced[t] += entries[e];
+        }
+        for &(t, a, b, k) in &self.products {
+            self.reduced[t] -= entries[a] * entries[b] * inverse[k];
+        }
+        // Reduced right-hand side r_R − J_Rp r_M / c, in the reduced unknowns' storage.
+        let nr = self.kept_rows.len();
+        let (y, momenta) = self.x.split_at_mut(nr);
+        for (yi, &i) in y.iter_mut().zip(&self.kept_rows) {
+            *yi = rhs[i];
+        }
+        for &(r, e, k) in &self.column {
+            y[r] -= entries[e] * rhs[self.pivots[k].row] * inverse[k];
+        }
+        self.inner.solve(&self.reduced, y)?;
+        // Back substitution δp = (r_M − J_Mq δq) / c, before rhs is overwritten.
+        for (k, p) in self.pivots.iter().enumerate() {
+            let mut acc = rhs[p.row];
+            for &(q, e) in &self.row[self.row_start[k]..self.row_start[k + 1]] {
+                acc -= entries[e] * y[q];
+            }
+            momenta[k] = acc * inverse[k];
+        }
+        for (p, &v) in self.pivots.iter().zip(momenta.iter()) {
+            rhs[p.col] = v;
+        }
+        for (&c, &v) in self.kept_cols.iter().zip(y.iter()) {
+            rhs[c] = v;
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::sparse::{LuPath, SparseLu, Triplets};
+
+    /// A pseudo-random 5-block system shaped like dynamic nodes: unknowns `[q, p]` per block,
+    /// equation `m` of a block reads `c p + J_mq q` (and nothing of other momenta), the rest
+    /// reads anything of its own and the neighbouring blocks; duplicates included.
+    fn system(c: f64, cross_momentum: bool) -> (Triplets, Vec<(usize, usize)>, Vec<f64>) {
+        let (blocks, half) = (5, 2);
+        let n = blocks * 2 * half;
+        let mut seed = 7u64;
+        let mut next = || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            ((seed >> 33) as f64 / (1u64 << 31) as f64) - 0.5
+        };
+        let mut j = Triplets::new(n);
+        let mut pairs = Vec::new();
+        for b in 0..blocks {
+            let f = 2 * half * b;
+            for k in 0..half {
+                let (m, p) = (f + k, f + half + k);
+                pairs.push((m, p));
+                j.push(m, p, 0.5 * c);
+                j.push(m, p, 0.5 * c);
+                for q in 0..half {
+                    j.push(m, f + q, next());
+                }
+                // Equilibrium rows: own momenta, own and neighbouring positions.
+                let r = f + half + k;
+                j.push(r, p, 1.0 + next());
+                for q in 0..2 * half {
+                    j.push(r, f + q, 2.0 * next() + if q == k { 3.0 } else { 0.0 });
+                }
+                if b + 1 < blocks {
+                    j.push(r, f + 2 * half + k, next());
+                    j.push(f + 2 * half + half + k, f + k, next());
+                }
+            }
+        }
+        if cross_momentum {
+            j.push(0, 2 * half + half, 0.1);
+        }
+        let rhs = (0..n).map(|i| (i as f64 + 1.0).sin()).collect();
+        (j, pairs, rhs)
+    }
+
+    fn solve(j: &Triplets, pairs: &[(usize, usize)], rhs: &[f64], path: LuPath) -> (Vec<f64>, usize) {
+        let mut lu = SparseLu::with_path(path);
+        lu.eliminating(pairs);
+        let mut x = rhs.to_vec();
+        lu.solve(j, &mut x).unwrap();
+        (x, lu.eliminated())
+    }
+
+    #[test]
+    fn eliminated_momenta_give_the_whole_systems_solution() {
+        for path in [LuPath::Auto, LuPath::General] {
+            for c in [1.0, 1e-4] {
+                let (j, pairs, rhs) = system(c, false);
+                let (x, eliminated) = solve(&j, &pairs, &rhs, path);
+                assert_eq!(eliminated, pairs.len());
+                let (reference, none) = solve(&j, &[], &rhs, path);
+                assert_eq!(none, 0);
+                // The same system solved two ways: agreement to rounding (condition ~1/c).
+                for (a, b) in x.iter().zip(&reference) {
+                    assert!((a - b).abs() <= 1e-9 * b.abs().max(1.0), "{a} vs {b} (c = {c})");
+                }
+                // And the residual of the eliminated solution itself.
+                let d = j.to_dense();
+                for i in 0..j.n {
+                    let r: f64 = (0..j.n).map(|k| d[(i, k)] * x[k]).sum::<f64>() - rhs[i];
+                    assert!(r.abs() < 1e-10, "residual {r} in row {i}");
+                }
+            }
+        }
+    }
+
+    /// An equation that reads another pair's unknown is not eliminated: the whole system is
+    /// solved instead, as is one with a zero pivot.
+    #[test]
+    fn elimination_falls_back_when_it_does_not_apply() {
+        let (j, pairs, rhs) = system(1.0, true);
+        let (x, eliminated) = solve(&j, &pairs, &rhs, LuPath::Auto);
+        assert_eq!(eliminated, 0);
+        assert_eq!(x, solve(&j, &[], &rhs, LuPath::Auto).0);
+        let (j, pairs, rhs) = system(0.0, false);
+        let mut lu = SparseLu::new();
+        lu.eliminating(&pairs);
+        let mut x = rhs.clone();
+        lu.solve(&j, &mut x).unwrap();
+        let d = j.to_dense();
+        for i in 0..j.n {
+            let r: f64 = (0..j.n).map(|k| d[(i, k)] * x[k]).sum::<f64>() - rhs[i];
+            assert!(r.abs() < 1e-10, "residual {r} in row {i} (zero pivots: whole system)");
+        }
+    }
+}
