@@ -7,8 +7,6 @@
 //! and beams a band half as wide. Exact algebra: the same Newton increment as the whole
 //! system's, up to rounding.
 
-use std::collections::HashMap;
-
 use super::sparse::{Factored, LuPath, SparseError, Triplets};
 
 /// One eliminated unknown `p` and its equation `m`, with the pivot's entry.
@@ -45,6 +43,51 @@ pub(super) struct Eliminated {
     x: Vec<f64>,
 }
 
+/// The distinct `(row, col)` pairs of an `n`x`n` pattern in order of first appearance, and
+/// the distinct entry of each pair: a bucket sort by row and a column marker, no hashing.
+fn distinct(n: usize, rows: &[usize], cols: &[usize]) -> (Vec<usize>, Vec<(usize, usize)>) {
+    let mut start = vec![0usize; n + 1];
+    for &r in rows {
+        start[r + 1] += 1;
+    }
+    for i in 0..n {
+        start[i + 1] += start[i];
+    }
+    let mut fill = start.clone();
+    let mut by_row = vec![0usize; rows.len()];
+    for (k, &r) in rows.iter().enumerate() {
+        by_row[fill[r]] = k;
+        fill[r] += 1;
+    }
+    // first[k]: the earliest triplet with k's pair (bucket order is triplet order).
+    let mut first = vec![0usize; rows.len()];
+    let mut seen = vec![usize::MAX; n];
+    for i in 0..n {
+        let bucket = &by_row[start[i]..start[i + 1]];
+        for &k in bucket {
+            let c = cols[k];
+            if seen[c] == usize::MAX {
+                seen[c] = k;
+            }
+            first[k] = seen[c];
+        }
+        for &k in bucket {
+            seen[cols[k]] = usize::MAX;
+        }
+    }
+    let mut entry_of = vec![0usize; rows.len()];
+    let mut keys = Vec::new();
+    for k in 0..rows.len() {
+        entry_of[k] = if first[k] == k {
+            keys.push((rows[k], cols[k]));
+            keys.len() - 1
+        } else {
+            entry_of[first[k]]
+        };
+    }
+    (entry_of, keys)
+}
+
 impl Eliminated {
     /// The reduced pattern, or `None` when some equation `m` has an entry in another pair's
     /// unknown (the elimination would not be one diagonal step) or lacks its pivot.
@@ -59,20 +102,7 @@ impl Eliminated {
             pivot_of_row[m] = k;
             pivot_of_col[p] = k;
         }
-        // Distinct entries in order of first appearance (the scatter stays nearly sequential).
-        let mut index: HashMap<(usize, usize), usize> = HashMap::with_capacity(j.rows.len());
-        let mut keys = Vec::new();
-        let entry_of: Vec<usize> = j
-            .rows
-            .iter()
-            .zip(&j.cols)
-            .map(|(&r, &c)| {
-                *index.entry((r, c)).or_insert_with(|| {
-                    keys.push((r, c));
-                    keys.len() - 1
-                })
-            })
-            .collect();
+        let (entry_of, keys) = distinct(n, &j.rows, &j.cols);
         let reduced_index = |kept: &mut Vec<usize>, eliminated: &[usize]| {
             let mut map = vec![usize::MAX; n];
             for (i, m) in map.iter_mut().enumerate() {
@@ -87,15 +117,6 @@ impl Eliminated {
         let row_map = reduced_index(&mut kept_rows, &pivot_of_row);
         let col_map = reduced_index(&mut kept_cols, &pivot_of_col);
         let mut pivots: Vec<Pivot> = pairs.iter().map(|&(row, col)| Pivot { row, col, entry: usize::MAX }).collect();
-        let mut reduced_entries: HashMap<(usize, usize), usize> = HashMap::new();
-        let (mut red_rows, mut red_cols) = (Vec::new(), Vec::new());
-        let mut reduced_entry = |r: usize, c: usize| {
-            *reduced_entries.entry((r, c)).or_insert_with(|| {
-                red_rows.push(r);
-                red_cols.push(c);
-                red_rows.len() - 1
-            })
-        };
         let (mut direct, mut column, mut row_entries) = (Vec::new(), Vec::new(), Vec::new());
         for (e, &(r, c)) in keys.iter().enumerate() {
             match (pivot_of_row[r], pivot_of_col[c]) {
@@ -107,7 +128,7 @@ impl Eliminated {
                 }
                 (k, _) if k != usize::MAX => row_entries.push((k, col_map[c], e)),
                 (_, l) if l != usize::MAX => column.push((row_map[r], e, l)),
-                _ => direct.push((reduced_entry(row_map[r], col_map[c]), e)),
+                _ => direct.push((row_map[r], col_map[c], e)),
             }
         }
         if pivots.iter().any(|p| p.entry == usize::MAX) {
@@ -122,12 +143,19 @@ impl Eliminated {
             row_start[k + 1] += row_start[k];
         }
         let row: Vec<(usize, usize)> = row_entries.iter().map(|&(_, q, e)| (q, e)).collect();
+        // Reduced entries: those of J_Rq, then the products' (r, q), duplicates shared.
         let mut products = Vec::new();
         for &(r, a, k) in &column {
             for &(q, b) in &row[row_start[k]..row_start[k + 1]] {
-                products.push((reduced_entry(r, q), a, b, k));
+                products.push((r, q, a, b, k));
             }
         }
+        let red_keys_rows: Vec<usize> = direct.iter().map(|d| d.0).chain(products.iter().map(|p| p.0)).collect();
+        let red_keys_cols: Vec<usize> = direct.iter().map(|d| d.1).chain(products.iter().map(|p| p.1)).collect();
+        let (reduced_of, reduced_keys) = distinct(kept_rows.len(), &red_keys_rows, &red_keys_cols);
+        let (red_rows, red_cols): (Vec<usize>, Vec<usize>) = reduced_keys.into_iter().unzip();
+        let direct: Vec<(usize, usize)> = direct.iter().zip(&reduced_of).map(|(&(_, _, e), &t)| (t, e)).collect();
+        let products: Vec<(usize, usize, usize, usize)> = products.iter().zip(&reduced_of[direct.len()..]).map(|(&(_, _, a, b, k), &t)| (t, a, b, k)).collect();
         let inner = Factored::new(kept_rows.len(), &red_rows, &red_cols, path)?;
         Ok(Some(Eliminated {
             entry_of,
