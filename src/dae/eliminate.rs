@@ -19,18 +19,18 @@ struct Pivot {
 
 /// The reduced system of a pattern and how its values are formed from the Jacobian's.
 pub(super) struct Eliminated {
-    /// Distinct entry of each triplet (duplicates summed).
-    entry_of: Vec<usize>,
-    /// Values of the distinct entries.
+    /// `(triplet, storage index)` of the triplets of `J_Rq`, added straight into the
+    /// factorization's storage.
+    direct: Vec<(usize, usize)>,
+    /// `(triplet, entry)` of the others (pivots, `J_Mq`, `J_Rp`), summed into `entries`.
+    other: Vec<(usize, usize)>,
     entries: Vec<f64>,
     pivots: Vec<Pivot>,
     inverse: Vec<f64>,
     /// Original equation of each reduced equation, original unknown of each reduced unknown.
     kept_rows: Vec<usize>,
     kept_cols: Vec<usize>,
-    /// `(reduced entry, entry)`: entries of `J_Rq`.
-    direct: Vec<(usize, usize)>,
-    /// `(reduced entry, entry (r, p), entry (m, q), pivot)`: terms of `J_Rp J_Mq / c`.
+    /// `(storage index, entry (r, p), entry (m, q), pivot)`: terms of `J_Rp J_Mq / c`.
     products: Vec<(usize, usize, usize, usize)>,
     /// `(reduced equation, entry, pivot)`: entries of `J_Rp`, for the right-hand side.
     column: Vec<(usize, usize, usize)>,
@@ -38,7 +38,6 @@ pub(super) struct Eliminated {
     /// `(reduced unknown, entry)`, for the back substitution.
     row_start: Vec<usize>,
     row: Vec<(usize, usize)>,
-    reduced: Vec<f64>,
     inner: Factored,
     x: Vec<f64>,
 }
@@ -118,17 +117,26 @@ impl Eliminated {
         let col_map = reduced_index(&mut kept_cols, &pivot_of_col);
         let mut pivots: Vec<Pivot> = pairs.iter().map(|&(row, col)| Pivot { row, col, entry: usize::MAX }).collect();
         let (mut direct, mut column, mut row_entries) = (Vec::new(), Vec::new(), Vec::new());
+        // Entries other than J_Rq's, numbered compactly.
+        let mut compact = vec![usize::MAX; keys.len()];
+        let mut others = 0;
         for (e, &(r, c)) in keys.iter().enumerate() {
-            match (pivot_of_row[r], pivot_of_col[c]) {
+            let (k, l) = (pivot_of_row[r], pivot_of_col[c]);
+            if k == usize::MAX && l == usize::MAX {
+                direct.push((row_map[r], col_map[c], e));
+                continue;
+            }
+            compact[e] = others;
+            others += 1;
+            match (k, l) {
                 (k, l) if k != usize::MAX && l != usize::MAX => {
                     if k != l {
                         return Ok(None);
                     }
-                    pivots[k].entry = e;
+                    pivots[k].entry = compact[e];
                 }
-                (k, _) if k != usize::MAX => row_entries.push((k, col_map[c], e)),
-                (_, l) if l != usize::MAX => column.push((row_map[r], e, l)),
-                _ => direct.push((row_map[r], col_map[c], e)),
+                (k, _) if k != usize::MAX => row_entries.push((k, col_map[c], compact[e])),
+                (_, l) => column.push((row_map[r], compact[e], l)),
             }
         }
         if pivots.iter().any(|p| p.entry == usize::MAX) {
@@ -154,19 +162,30 @@ impl Eliminated {
         let red_keys_cols: Vec<usize> = direct.iter().map(|d| d.1).chain(products.iter().map(|p| p.1)).collect();
         let (reduced_of, reduced_keys) = distinct(kept_rows.len(), &red_keys_rows, &red_keys_cols);
         let (red_rows, red_cols): (Vec<usize>, Vec<usize>) = reduced_keys.into_iter().unzip();
-        let direct: Vec<(usize, usize)> = direct.iter().zip(&reduced_of).map(|(&(_, _, e), &t)| (t, e)).collect();
-        let products: Vec<(usize, usize, usize, usize)> = products.iter().zip(&reduced_of[direct.len()..]).map(|(&(_, _, a, b, k), &t)| (t, a, b, k)).collect();
         let inner = Factored::new(kept_rows.len(), &red_rows, &red_cols, path)?;
+        let storage = inner.positions();
+        let mut storage_of = vec![usize::MAX; keys.len()];
+        for (&(_, _, e), &t) in direct.iter().zip(&reduced_of) {
+            storage_of[e] = storage[t];
+        }
+        let products = products.iter().zip(&reduced_of[direct.len()..]).map(|(&(_, _, a, b, k), &t)| (storage[t], a, b, k)).collect();
+        let (mut direct, mut other) = (Vec::new(), Vec::new());
+        for (k, &e) in entry_of.iter().enumerate() {
+            if compact[e] == usize::MAX {
+                direct.push((k, storage_of[e]));
+            } else {
+                other.push((k, compact[e]));
+            }
+        }
         Ok(Some(Eliminated {
-            entry_of,
-            entries: vec![0.0; keys.len()],
+            direct,
+            other,
+            entries: vec![0.0; others],
             inverse: vec![0.0; pivots.len()],
             pivots,
             x: vec![0.0; n],
-            reduced: vec![0.0; red_rows.len()],
             kept_rows,
             kept_cols,
-            direct,
             products,
             column,
             row_start,
@@ -187,8 +206,8 @@ impl Eliminated {
     /// `Err` for a zero pivot (the caller then solves the whole system).
     pub(super) fn solve(&mut self, values: &[f64], rhs: &mut [f64]) -> Result<(), SparseError> {
         self.entries.iter_mut().for_each(|v| *v = 0.0);
-        for (&e, &v) in self.entry_of.iter().zip(values) {
-            self.entries[e] += v;
+        for &(k, e) in &self.other {
+            self.entries[e] += values[k];
         }
         for (inv, p) in self.inverse.iter_mut().zip(&self.pivots) {
             let d = self.entries[p.entry];
@@ -198,13 +217,6 @@ impl Eliminated {
             *inv = 1.0 / d;
         }
         let (entries, inverse) = (&self.entries, &self.inverse);
-        self.reduced.iter_mut().for_each(|v| *v = 0.0);
-        for &(t, e) in &self.direct {
-            self.reduced[t] += entries[e];
-        }
-        for &(t, a, b, k) in &self.products {
-            self.reduced[t] -= entries[a] * entries[b] * inverse[k];
-        }
         // Reduced right-hand side r_R − J_Rp r_M / c, in the reduced unknowns' storage.
         let nr = self.kept_rows.len();
         let (y, momenta) = self.x.split_at_mut(nr);
@@ -214,7 +226,18 @@ impl Eliminated {
         for &(r, e, k) in &self.column {
             y[r] -= entries[e] * rhs[self.pivots[k].row] * inverse[k];
         }
-        self.inner.solve(&self.reduced, y)?;
+        let (direct, products) = (&self.direct, &self.products);
+        self.inner.solve_with(
+            |storage| {
+                for &(k, at) in direct {
+                    storage[at] += values[k];
+                }
+                for &(at, a, b, k) in products {
+                    storage[at] -= entries[a] * entries[b] * inverse[k];
+                }
+            },
+            y,
+        )?;
         // Back substitution δp = (r_M − J_Mq δq) / c, before rhs is overwritten.
         for (k, p) in self.pivots.iter().enumerate() {
             let mut acc = rhs[p.row];

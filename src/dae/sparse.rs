@@ -119,15 +119,34 @@ impl Factored {
         matches!(self.factorization, Factorization::Band { .. })
     }
 
+    /// Storage index of each entry of the pattern, in the order given to [`Factored::new`].
+    pub(super) fn positions(&self) -> &[usize] {
+        &self.position
+    }
+
     /// Assembles `values` (one per entry of the pattern, in its order), factors and solves
     /// `A x = rhs` in place.
     pub(super) fn solve(&mut self, values: &[f64], rhs: &mut [f64]) -> Result<(), SparseError> {
+        let position = std::mem::take(&mut self.position);
+        let done = self.solve_with(
+            |storage| {
+                for (&k, &v) in position.iter().zip(values) {
+                    storage[k] += v;
+                }
+            },
+            rhs,
+        );
+        self.position = position;
+        done
+    }
+
+    /// Zeroes the storage, lets `assemble` add the values at storage indices (from
+    /// [`Factored::positions`]), factors and solves `A x = rhs` in place.
+    pub(super) fn solve_with(&mut self, assemble: impl FnOnce(&mut [f64]), rhs: &mut [f64]) -> Result<(), SparseError> {
         match &mut self.factorization {
             Factorization::Band { ordering, lu, rhs: x } => {
                 lu.clear();
-                for (&k, &v) in self.position.iter().zip(values) {
-                    lu.add(k, v);
-                }
+                assemble(lu.storage_mut());
                 lu.factorize().map_err(|_| SparseError::Singular)?;
                 for (i, &p) in ordering.position.iter().enumerate() {
                     x[p] = rhs[i];
@@ -139,9 +158,7 @@ impl Factored {
             }
             Factorization::General { csc, lu, numeric, values: stored, scratch } => {
                 stored.iter_mut().for_each(|v| *v = 0.0);
-                for (&k, v) in self.position.iter().zip(values) {
-                    stored[k] += v;
-                }
+                assemble(stored);
                 let a = SparseColMatRef::new(csc.as_ref(), stored);
                 let factors = lu.factorize_numeric_lu(numeric, a, Par::Seq, MemStack::new(scratch), Default::default()).map_err(|_| SparseError::Singular)?;
                 let mut b = MatMut::from_column_major_slice_mut(rhs, self.n, 1);
