@@ -87,12 +87,14 @@ def main():
     ap.add_argument("--count", type=int, default=20, help="lowest modes asked (a complex pair is one)")
     ap.add_argument("--repeat", type=int, default=3, help="runs per solver, fastest kept")
     ap.add_argument("--workdir", default="/tmp/romdyn_bench_eigen", help="where the .mtx files go")
+    ap.add_argument("--no-build", action="store_true", help="use the example binary as built")
     ap.add_argument("--scipy-worker", nargs=3, metavar=("DIR", "COUNT", "REPEAT"), help=argparse.SUPPRESS)
     a = ap.parse_args()
     if a.scipy_worker:
         scipy_worker(a.scipy_worker[0], int(a.scipy_worker[1]), int(a.scipy_worker[2]))
         return
-    subprocess.run(["cargo", "build", "--release", "--example", "sparse_pencil"], cwd=ROOT, check=True)
+    if not a.no_build:
+        subprocess.run(["cargo", "build", "--release", "--example", "sparse_pencil"], cwd=ROOT, check=True)
     print(f"# {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC, load average {os.getloadavg()[0]:.2f}, {os.cpu_count()} cores")
     print(f"# {a.count} lowest modes, fastest of {a.repeat}; memory: peak resident set of the process")
     print(f"{'N':>6} {'equations':>9} | {'romdyn [s]':>10} {'MB':>6} | {'scipy [s]':>10} {'MB':>6} | {'ratio':>6} | max rel. diff")

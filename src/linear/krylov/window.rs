@@ -79,8 +79,17 @@ pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted:
     let upper_half = sigma.im == 0.0;
     let settings = |seed| Settings { wanted, basis, tolerance: s.krylov_tolerance, max_restarts: s.max_restarts, seed, upper_half };
     let report = |side: &'static str| move |k: usize| progress(&format!("shift {sigma}: {side} {k}/{wanted} converged"));
-    let right_run = krylov_schur(n, &|x| op.apply(x, false), &settings(1), &report("right"))?;
-    let left_run = krylov_schur(n, &|x| op.apply(x, true), &settings(2), &report("left"))?;
+    // The two runs are independent (one factorization, read only): the adjoint run goes
+    // to a second thread while this one does the right run and reports progress. Its own
+    // progress is not reported (the caller's callback need not be thread-safe); both take
+    // about as long.
+    let (right_run, left_run) = std::thread::scope(|scope| {
+        let left = scope.spawn(|| krylov_schur(n, &|x| op.apply(x, true), &settings(2), &|_| {}));
+        let right = krylov_schur(n, &|x| op.apply(x, false), &settings(1), &report("right"));
+        let left = left.join().unwrap_or_else(|_| Err(KrylovError::Breakdown("the adjoint Krylov run panicked".into())));
+        (right, left)
+    });
+    let (right_run, left_run) = (right_run?, left_run?);
     let (right, right_all) = lambdas(&op, &right_run, false);
     let (left, left_all) = lambdas(&op, &left_run, true);
     // Radius of the disc each run covers: the farthest converged eigenvalue (everything
