@@ -1,6 +1,6 @@
 //! The linearized DAE `F_yd Δẏ + F_y Δy = B̃ u`, `z = C̃ Δy` (eqs. 38–40).
 
-use faer::Mat;
+use faer::{Col, Mat};
 
 /// How the Jacobians of the DAE residual were supplied.
 ///
@@ -116,6 +116,37 @@ impl LinearDae {
             }
         }
         s
+    }
+
+    /// The real eigenvalue of `(λ F_yd + F_y) v = 0` nearest `lambda` [rad/s] and its right
+    /// vector (unit norm), by inverse iteration: `(σ F_yd + F_y)⁻¹ F_yd v = v / (σ − λ)`
+    /// with the shift `σ = lambda` (one LU, a few solves). `None` when the shifted matrix is
+    /// exactly singular or the relative residual `‖(λ F_yd + F_y) v‖ / (|λ| ‖F_yd‖ + ‖F_y‖)`
+    /// does not fall below 1e-8 (no real eigenvalue near the shift).
+    pub fn real_mode_near(&self, lambda: f64) -> Option<(f64, Col<f64>)> {
+        use faer::linalg::solvers::Solve;
+        let (fyd, fy) = self.jacobians.derivatives();
+        let n = fyd.nrows();
+        let lu = (&fyd * faer::Scale(lambda) + &fy).partial_piv_lu();
+        let mut x = Col::<f64>::from_fn(n, |i| 1.0 + (i % 7) as f64 * 0.1);
+        let mut estimate = lambda;
+        for _ in 0..20 {
+            let y = lu.solve(&fyd * &x);
+            let (xy, yy) = (x.transpose() * &y, y.norm_l2());
+            if !(yy.is_finite() && yy > 0.0) {
+                return None;
+            }
+            // x ≈ v, y ≈ v / (σ − λ): λ ≈ σ − (xᵀ x)/(xᵀ y).
+            if xy != 0.0 {
+                estimate = lambda - (x.norm_l2().powi(2)) / xy;
+            }
+            x = y * faer::Scale(1.0 / yy);
+            let r = (&fyd * &x * faer::Scale(estimate) + &fy * &x).norm_l2() / (estimate.abs() * fyd.norm_l2() + fy.norm_l2());
+            if r < 1e-8 {
+                return Some((estimate, x));
+            }
+        }
+        None
     }
 
     /// Number of equations (= unknowns).

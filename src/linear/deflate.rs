@@ -55,6 +55,10 @@ pub(super) struct DynamicPart {
     my2: Mat<f64>,
 }
 
+/// How far above the rounding level `s ε σ_max` every singular value of a full-rank `E₁`
+/// must be for it to count as nonsingular (step 3).
+const FULL_RANK_MARGIN: f64 = 1e4;
+
 fn all_zero(m: &Mat<f64>, rows: &[usize], cols: &[usize]) -> bool {
     rows.iter().all(|&i| cols.iter().all(|&j| m[(i, j)] == 0.0))
 }
@@ -148,8 +152,12 @@ impl DynamicPart {
         let negligible = s as f64 * f64::EPSILON * top;
         let rank = sv.iter().take_while(|&&x| x > negligible).count();
         // The structural zeros sit at rounding level; a singular value between that and
-        // sqrt(ε) of the largest would make the rank a guess: leave the pencil whole.
-        if rank == 0 || sv[..rank].iter().any(|&x| x < f64::EPSILON.sqrt() * top) {
+        // sqrt(ε) of the largest would make the rank a guess: leave the pencil whole. A
+        // full-rank E₁ whose smallest singular value is still FULL_RANK_MARGIN above the
+        // rounding level has no rank to guess (masses of 1e5 kg next to inertias of 1e-4
+        // kg m², examples/ham_sas.mbd: 1.1e-8 of the largest, 3.7e5 above rounding).
+        let full_rank = rank == s && sv.last().is_some_and(|&x| x > FULL_RANK_MARGIN * negligible);
+        if rank == 0 || (!full_rank && sv[..rank].iter().any(|&x| x < f64::EPSILON.sqrt() * top)) {
             return None;
         }
         let (u, v) = (svd.U(), svd.V());
