@@ -37,6 +37,10 @@ pub(super) struct DynamicPart {
     /// Eigenvalues deflated at λ = 0 (step 1) and at λ = ∞ (steps 2–3).
     pub zeros: usize,
     pub infinities: usize,
+    /// `E₁` was nonsingular with a margin (no index-1 part): the pencil is then regular,
+    /// since `det(λ E₁ + K₁)` has the leading coefficient `det E₁ ≠ 0`. (With an index-1
+    /// part, `A₂₂`'s pivots are only checked against each other, which does not prove it.)
+    pub regular: bool,
     n: usize,
     scaled: bool,
     row_scale: Vec<f64>,
@@ -186,6 +190,7 @@ impl DynamicPart {
             k: k2,
             zeros: if scaled { 2 * m } else { 0 },
             infinities: if scaled { s - rank } else { 2 * m + s - rank },
+            regular: rank == s,
             n,
             scaled,
             row_scale: bal.row.clone(),

@@ -60,10 +60,10 @@ impl ModalAnalysis {
             return Err(EigenError::Empty);
         }
         // Non-finite pencils are refused before any deflation; pencils of extreme magnitude
-        // take the dense route, which rescales them exactly. A pencil the deflation accepts
-        // is regular (det(λ F_yd + F_y) = ± det R_G det R_H det A₂₂ det(λ Σ + K₂) up to
-        // the eq. 30 factor λ^2m, with nonsingular R_G, R_H, A₂₂, Σ: leading coefficient
-        // ≠ 0); any other is checked for det ≡ 0 by the dense route.
+        // take the dense route, which rescales them exactly. Singular pencils (det ≡ 0) are
+        // refused too: a pencil whose dynamic part has a nonsingular E₁ is regular
+        // (det(λ F_yd + F_y) = ± det R_G det R_H det(λ E₁ + K₁), up to the eq. 30 factor
+        // λ^2m, with leading coefficient ≠ 0), any other is checked (two LUs).
         if super::degenerate::prepare_unchecked(jacobians, dcoef)?.scale != 1.0 {
             return Self::compute_with_dcoef(jacobians, route, dcoef);
         }
@@ -71,6 +71,9 @@ impl ModalAnalysis {
         let Some(part) = DynamicPart::new(&fyd, &fy, dae.constraint_form, &dae.multipliers) else {
             return Self::compute_with_dcoef(jacobians, route, dcoef);
         };
+        if !part.regular {
+            super::degenerate::prepare(jacobians, dcoef)?;
+        }
         let dcoef = match (jacobians, dcoef) {
             (super::dae::Jacobians::Derivatives { .. }, Some(c)) => c,
             _ => jacobians.dcoef(),
