@@ -19,6 +19,7 @@ mod band;
 mod check;
 mod dofs;
 mod element_part;
+mod eliminate;
 mod energy;
 mod linearize;
 pub mod ports;
