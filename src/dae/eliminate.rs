@@ -19,11 +19,11 @@ struct Pivot {
 
 /// The reduced system of a pattern and how its values are formed from the Jacobian's.
 pub(super) struct Eliminated {
-    /// `(triplet, storage index)` of the triplets of `J_Rq`, added straight into the
-    /// factorization's storage.
-    direct: Vec<(usize, usize)>,
-    /// `(triplet, entry)` of the others (pivots, `J_Mq`, `J_Rp`), summed into `entries`.
-    other: Vec<(usize, usize)>,
+    /// Where each triplet goes: below `storage_len`, the factorization's storage index (an
+    /// entry of `J_Rq`); else `storage_len +` its entry in `entries` (pivots, `J_Mq`, `J_Rp`).
+    /// One index per triplet keeps the memory near the whole system's (8 bytes a triplet).
+    target: Vec<usize>,
+    storage_len: usize,
     entries: Vec<f64>,
     pivots: Vec<Pivot>,
     inverse: Vec<f64>,
@@ -74,16 +74,18 @@ fn distinct(n: usize, rows: &[usize], cols: &[usize]) -> (Vec<usize>, Vec<(usize
             seen[cols[k]] = usize::MAX;
         }
     }
-    let mut entry_of = vec![0usize; rows.len()];
+    drop(by_row);
+    // Number the pairs in order of first appearance, in place: first[k] ≤ k is numbered.
     let mut keys = Vec::new();
     for k in 0..rows.len() {
-        entry_of[k] = if first[k] == k {
+        first[k] = if first[k] == k {
             keys.push((rows[k], cols[k]));
             keys.len() - 1
         } else {
-            entry_of[first[k]]
+            first[first[k]]
         };
     }
+    let entry_of = first;
     (entry_of, keys)
 }
 
@@ -162,24 +164,19 @@ impl Eliminated {
         let red_keys_cols: Vec<usize> = direct.iter().map(|d| d.1).chain(products.iter().map(|p| p.1)).collect();
         let (reduced_of, reduced_keys) = distinct(kept_rows.len(), &red_keys_rows, &red_keys_cols);
         let (red_rows, red_cols): (Vec<usize>, Vec<usize>) = reduced_keys.into_iter().unzip();
+        drop(keys);
         let inner = Factored::new(kept_rows.len(), &red_rows, &red_cols, path)?;
         let storage = inner.positions();
-        let mut storage_of = vec![usize::MAX; keys.len()];
+        let storage_len = storage.iter().max().map_or(0, |&m| m + 1);
+        let mut storage_of = vec![usize::MAX; compact.len()];
         for (&(_, _, e), &t) in direct.iter().zip(&reduced_of) {
             storage_of[e] = storage[t];
         }
         let products = products.iter().zip(&reduced_of[direct.len()..]).map(|(&(_, _, a, b, k), &t)| (storage[t], a, b, k)).collect();
-        let (mut direct, mut other) = (Vec::new(), Vec::new());
-        for (k, &e) in entry_of.iter().enumerate() {
-            if compact[e] == usize::MAX {
-                direct.push((k, storage_of[e]));
-            } else {
-                other.push((k, compact[e]));
-            }
-        }
+        let target = entry_of.iter().map(|&e| if compact[e] == usize::MAX { storage_of[e] } else { storage_len + compact[e] }).collect();
         Ok(Some(Eliminated {
-            direct,
-            other,
+            target,
+            storage_len,
             entries: vec![0.0; others],
             inverse: vec![0.0; pivots.len()],
             pivots,
@@ -206,8 +203,11 @@ impl Eliminated {
     /// `Err` for a zero pivot (the caller then solves the whole system).
     pub(super) fn solve(&mut self, values: &[f64], rhs: &mut [f64]) -> Result<(), SparseError> {
         self.entries.iter_mut().for_each(|v| *v = 0.0);
-        for &(k, e) in &self.other {
-            self.entries[e] += values[k];
+        let len = self.storage_len;
+        for (&t, &v) in self.target.iter().zip(values) {
+            if t >= len {
+                self.entries[t - len] += v;
+            }
         }
         for (inv, p) in self.inverse.iter_mut().zip(&self.pivots) {
             let d = self.entries[p.entry];
@@ -226,11 +226,13 @@ impl Eliminated {
         for &(r, e, k) in &self.column {
             y[r] -= entries[e] * rhs[self.pivots[k].row] * inverse[k];
         }
-        let (direct, products) = (&self.direct, &self.products);
+        let (target, products) = (&self.target, &self.products);
         self.inner.solve_with(
             |storage| {
-                for &(k, at) in direct {
-                    storage[at] += values[k];
+                for (&t, &v) in target.iter().zip(values) {
+                    if t < len {
+                        storage[t] += v;
+                    }
                 }
                 for &(at, a, b, k) in products {
                     storage[at] -= entries[a] * entries[b] * inverse[k];

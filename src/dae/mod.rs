@@ -30,7 +30,7 @@ pub use assembly::{Assembler, Coefficients};
 pub use check::{check_jacobians, JacobianMismatch};
 pub use dofs::DofMap;
 pub use element_part::{element_part, ElementPart, ElementPartError};
-pub use energy::{describe, kinetic_energy_shares, mode_label, EnergyShare, ModalEnergy};
+pub use energy::{describe, kinetic_energy_shares, mode_label, real_mode_label, EnergyShare, ModalEnergy};
 pub use linearize::{linearize, linearize_ports, linearize_sparse, NodeInput, NodeOutput};
 pub use ports::{InputPort, OutputPort, PortError, PortMap};
 pub use sparse::{LuPath, SparseLu, Triplets, BAND_WORK_PER_ENTRY};
