@@ -29,6 +29,10 @@ pub enum StudyError {
     Eigen(#[from] EigenError),
     #[error(transparent)]
     Rom(#[from] RomError),
+    #[error("sparse eigenanalysis: {0}")]
+    Krylov(#[from] crate::linear::krylov::KrylovError),
+    #[error("full model: {0}")]
+    SparseSolve(#[from] crate::linear::SparseSolveError),
     #[error("a ROM needs inputs and outputs: give --input NODE:COMP and --output NODE:COMP for a model, --input-row I and --output-col J for an .m pencil")]
     NoPorts,
     #[error("give a MODEL file or --pencil FILE")]
