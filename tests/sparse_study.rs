@@ -120,3 +120,24 @@ fn auto_takes_the_sparse_route_from_the_threshold_and_dense_for_dominance() {
     let refused = Study::of_model(hanging_chain(30, ConstraintForm::Scaled), &InitialValueProblem::default(), Reference::Static { load_steps: 1 }, &ports, eigen, None);
     assert!(refused.is_err_and(|e| e.to_string().contains("--solver") && e.to_string().contains("dominance")));
 }
+
+#[test]
+fn a_sparse_run_that_finds_fewer_modes_than_asked_warns_and_its_rom_says_so() {
+    // A 10-link planar chain has exactly 10 modes (one hinge angle per link): 12 asked.
+    let asked = RomRequest::new(ModeSelection::Lowest(12));
+    let s = study(hanging_chain(10, ConstraintForm::Scaled), "10:Fx", "10:x", Solver::Sparse, &asked);
+    let run = s.sparse_run().unwrap();
+    assert!(!run.certified && run.note.is_some(), "{:?}", run.note);
+    assert!(s.warnings().iter().any(|w| matches!(w, Warning::SparseNotCertified { .. }) && w.to_string().contains("not certified")), "{:?}", s.warnings());
+    assert!(s.modal_report_of(None).unwrap().to_text().contains("NOT certified"));
+    // The table shows the 10 found; a ROM of 12 is refused naming the sparse route, one of 10
+    // carries the warning itself.
+    assert_eq!(s.modal_report_of(None).unwrap().counts.dynamic, 20);
+    let err = s.reduce(&asked).unwrap_err().to_string();
+    assert!(err.contains("sparse route") && err.contains("found 10") && err.contains("--solver dense"), "{err}");
+    let rom = s.reduce(&RomRequest::new(ModeSelection::Lowest(10))).unwrap();
+    assert!(rom.warnings.iter().any(|w| matches!(w, Warning::SparseNotCertified { .. })), "{:?}", rom.warnings);
+    // The dense route refuses the same request for what the model is.
+    let d = study(hanging_chain(10, ConstraintForm::Scaled), "10:Fx", "10:x", Solver::Dense, &asked);
+    assert!(d.reduce(&asked).unwrap_err().to_string().contains("the model has 10 dynamic modes"));
+}

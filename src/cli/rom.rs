@@ -130,6 +130,12 @@ fn print_study(study: &Study) {
     print_warnings(study.warnings());
 }
 
+/// A ROM's warnings that the study's did not already print.
+fn print_rom_warnings(study: &Study, rom: &ReducedModel) {
+    let new: Vec<Warning> = rom.warnings.iter().filter(|w| !study.warnings().contains(w)).cloned().collect();
+    print_warnings(&new);
+}
+
 /// Writes PREFIX.csv, PREFIX.svg and PREFIX.png.
 fn write_bode_files(r: &FrequencyResponses, prefix: &Path) -> Result<()> {
     let [csv, svg, png] = r.write_files(prefix, "Frequency response").with_context(|| format!("writing {}.{{csv,svg,png}}", prefix.display()))?;
@@ -150,7 +156,7 @@ pub fn run(a: RomArgs) -> Result<()> {
     print_study(&study);
     let comparison = study.compare(&rom, freq)?;
     eprint!("{}", rom.summary(&study, Some(&comparison.accuracy())));
-    print_warnings(&rom.warnings);
+    print_rom_warnings(&study, &rom);
     let removed = study.removed_springs();
     if !removed.is_empty() {
         eprintln!("removed from the full model and the ROM (their force fed back, A + B_e K C_e): {}", removed.join(", "));
@@ -250,7 +256,7 @@ pub fn run_freq(a: FreqArgs) -> Result<()> {
     let curves = match &request {
         Some(request) => {
             let rom = study.reduce(request)?;
-            print_warnings(&rom.warnings);
+            print_rom_warnings(&study, &rom);
             let freq = study.frequencies(&a.freq.grid(), &nonzero(&rom.descriptor.eigenvalues))?;
             study.compare(&rom, freq)?.responses(&study, "ROM")
         }

@@ -33,6 +33,8 @@ pub enum StudyError {
     Krylov(#[from] crate::linear::krylov::KrylovError),
     #[error("full model: {0}")]
     SparseSolve(#[from] crate::linear::SparseSolveError),
+    #[error("mode selection: the sparse route computed {target} and found {found} mode(s), fewer than the selection needs{note}; --solver dense computes every mode")]
+    SparseModes { found: usize, target: String, note: String },
     #[error("a ROM needs inputs and outputs: give --input NODE:COMP and --output NODE:COMP for a model, --input-row I and --output-col J for an .m pencil")]
     NoPorts,
     #[error("give a MODEL file or --pencil FILE")]

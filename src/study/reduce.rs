@@ -185,14 +185,21 @@ impl Study {
         }
         let sparse = self.sparse.is_some();
         if sparse && super::solver::needs_every_mode(request) {
-            self.sparse_solver_refuses()?;
+            return Err(StudyError::Option { option: "--by", message: "dominance ranks every mode of the model, and the sparse route computed only the modes asked for (use --solver dense or auto)".into() });
         }
         let dominance = self.dominance();
-        let mut sel = match request.ranking {
-            Ranking::Frequency => select_modes(modal, &request.selection)?,
-            Ranking::Dominance => select_dominant_modes(modal, &dominance, &request.selection)?,
+        let mut sel = match (request.ranking, &self.sparse) {
+            (Ranking::Frequency, None) => select_modes(modal, &request.selection)?,
+            // The sparse route has only the modes it found: say so, not "the model has".
+            (Ranking::Frequency, Some(run)) => select_modes(modal, &request.selection).map_err(|_| StudyError::SparseModes {
+                found: crate::rom::mode_units(modal).len(),
+                target: run.describe_target(),
+                note: run.note.clone().map_or(String::new(), |n| format!(" (not certified: {n})")),
+            })?,
+            (Ranking::Dominance, _) => select_dominant_modes(modal, &dominance, &request.selection)?,
         };
-        let mut warnings = Vec::new();
+        // A ROM from modes that may be incomplete carries the warning itself.
+        let mut warnings: Vec<Warning> = self.linear_warnings().into_iter().filter(|w| matches!(w, Warning::SparseNotCertified { .. })).collect();
         let mut candidates = match &request.residualization {
             Residualization::None => Vec::new(),
             Residualization::Dropped => sel.dropped.clone(),
@@ -331,10 +338,6 @@ impl Study {
         })
     }
 
-    /// The error of a request the sparse route cannot serve.
-    fn sparse_solver_refuses(&self) -> Result<(), StudyError> {
-        Err(StudyError::Option { option: "--by", message: "dominance ranks every mode of the model, and the sparse route computed only the modes asked for (use --solver dense or auto)".into() })
-    }
 
     /// The largest components of a direction in the unknowns, e.g. "node 2 x, node 2 y"
     /// (multipliers left out).
