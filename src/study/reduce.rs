@@ -264,20 +264,19 @@ impl Study {
         };
         let mut ordinary = descriptor.to_ordinary()?;
         let full = self.full_static_gain();
-        if corrected {
-            if let Ok(full) = &full {
-                let target = if below_dropped.is_empty() {
-                    full.clone()
-                } else {
-                    // Their static part: G(kept ∪ below) − G(kept), both undamped projections.
-                    let mut with_below = Selection { kept: sel.kept.iter().chain(&below_dropped).copied().collect(), dropped: Vec::new() };
-                    with_below.kept.sort_unstable();
-                    let only_kept = Selection { kept: sel.kept.clone(), dropped: Vec::new() };
-                    let g = |s: &Selection| -> Result<Mat<f64>, StudyError> { Ok(self.project(s)?.to_ordinary()?.static_gain()?) };
-                    full - (g(&with_below)? - g(&only_kept)?)
-                };
-                ordinary = with_static_correction(&ordinary, &target)?;
-            }
+        let full_ok = full.is_ok();
+        if corrected && let Ok(full) = &full {
+            let target = if below_dropped.is_empty() {
+                full.clone()
+            } else {
+                // Their static part: G(kept ∪ below) − G(kept), both undamped projections.
+                let mut with_below = Selection { kept: sel.kept.iter().chain(&below_dropped).copied().collect(), dropped: Vec::new() };
+                with_below.kept.sort_unstable();
+                let only_kept = Selection { kept: sel.kept.clone(), dropped: Vec::new() };
+                let g = |s: &Selection| -> Result<Mat<f64>, StudyError> { Ok(self.project(s)?.to_ordinary()?.static_gain()?) };
+                full - (g(&with_below)? - g(&only_kept)?)
+            };
+            ordinary = with_static_correction(&ordinary, &target)?;
         }
         let static_gains = StaticGains { input_names: self.linear.input_names().to_vec(), output_names: self.linear.output_names().to_vec(), full, rom: rigid_body_modes(&ordinary.eigenvalues).map_or_else(|| ordinary.static_gain().map_err(|e| e.to_string()), Err) };
         if let Some((rel, channel)) = static_gains.largest_relative_difference() {
@@ -302,7 +301,7 @@ impl Study {
             .filter(|u| sel.kept.contains(&u[0]))
             .map(|u| KeptMode { indices: u.iter().map(|i| i + 1).collect(), lambda: modal.modes[u[0]].lambda, dominance: dominance.relative(u[0]) })
             .collect();
-        Ok(ReducedModel { selection: sel, kept_modes, descriptor, ordinary, static_gains, damping, static_correction: corrected, warnings })
+        Ok(ReducedModel { selection: sel, kept_modes, descriptor, ordinary, static_gains, damping, static_correction: corrected && full_ok, warnings })
     }
 
     /// The descriptor ROM of `sel` (kept and residualized modes): by sparse products on the
@@ -326,10 +325,10 @@ impl Study {
     /// The full model's static gain `C̃ S⁻¹ B̃` (by sparse LU on the sparse route), or why it
     /// does not exist (with the free direction on the dense route).
     pub fn full_static_gain(&self) -> Result<Mat<f64>, String> {
-        if self.sparse.is_some() {
-            if let Some(g) = self.linear.sparse_static_gain() {
-                return g.map_err(|e| format!("{e}: an unrestrained motion, or a load path the supports do not close"));
-            }
+        if self.sparse.is_some()
+            && let Some(g) = self.linear.sparse_static_gain()
+        {
+            return g.map_err(|e| format!("{e}: an unrestrained motion, or a load path the supports do not close"));
         }
         let dae = self.linear.dense();
         crate::rom::full_static_gain(dae).map_err(|e| match null_direction(&dae.static_matrix()) {

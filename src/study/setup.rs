@@ -232,7 +232,11 @@ impl Study {
 
     /// Eigenanalysis of a given linear DAE; `model` (when it is a model's linearization)
     /// gives the modes' kinetic-energy shares.
+    /// `Solver::Auto` keeps a DAE without its constraint structure (a pencil file) on the
+    /// dense route: the sparse solver's shift at 0 would meet the zero eigenvalues of MBDyn's
+    /// constrained variables (eq. 30), which it removes only where the structure is known.
     pub fn from_dae(dae: LinearDae, model: Option<Model>, eigen: EigenSettings) -> Result<Self, StudyError> {
+        let eigen = if eigen.solver == Solver::Auto && dae.constraint_form.is_none() { EigenSettings { solver: Solver::Dense, ..eigen } } else { eigen };
         let sparse = eigen.solver.is_sparse(dae.dim(), eigen.every_mode)?;
         Self::from_linear(LinearModel::from_dense(dae, sparse), model, eigen, &quiet)
     }
