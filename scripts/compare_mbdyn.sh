@@ -7,6 +7,16 @@
 #
 #   scripts/compare_mbdyn.sh FOLDER [OUTDIR]
 #   MBDYN=/path/to/mbdyn ROMDYN=target/release/romdyn scripts/compare_mbdyn.sh examples
+#   TIMEOUT=60 scripts/compare_mbdyn.sh /work/mbdyn-collection   (see mbdyn_collection.sh)
+#
+# The files are FOLDER/*.mbd, or the paths listed in FOLDER/list.txt when it exists (MBDyn
+# input files often have no extension). Each program runs in the file's own directory (so
+# `include:` and file drivers find their neighbours), limited to TIMEOUT seconds (600).
+# OUTDIR/summary.tsv gets one line a file: name, mbdyn ok|failed|timeout, romdyn
+# ok|failed|timeout, romdyn's first error message without its file:line:col, worst position
+# and eigenvalue differences (KEEP=0 deletes each run's output files once compared, keeping
+# stdout and stderr); the end of the run prints the counts and romdyn's refusals
+# grouped by message.
 #
 # Output, per file:
 #   FILE  mbdyn: ok|failed (last message)  romdyn: ok|failed (first error line)
@@ -46,13 +56,29 @@ eigenvalues() {
         }' "$1" | sort -g -k2
 }
 
-for f in "$folder"/*.mbd; do
-    [ -e "$f" ] || continue
-    name=$(basename "$f" .mbd)
+limit=${TIMEOUT:-600}
+case "$mbdyn" in /*) ;; *) mbdyn=$(pwd)/$mbdyn ;; esac
+case "$romdyn" in /*) ;; *) romdyn=$(pwd)/$romdyn ;; esac
+case "$out" in /*) ;; *) out=$(pwd)/$out ;; esac
+files() {
+    if [ -f "$folder/list.txt" ]; then
+        while IFS= read -r p; do [ -n "$p" ] && echo "$folder/$p"; done < "$folder/list.txt"
+    else
+        for f in "$folder"/*.mbd; do [ -e "$f" ] && echo "$f"; done
+    fi
+}
+: > "$out/summary.tsv"
+while IFS= read -r f; do
+    rel=${f#"$folder"/}; name=$(echo "${rel%.mbd}" | tr '/ ' '__')
+    dir=$(dirname "$f"); base=$(basename "$f")
     m="$out/$name.mbdyn"; r="$out/$name.romdyn"
     mkdir -p "$m" "$r"
-    if timeout 600 "$mbdyn" -f "$f" -o "$m/$name" > "$m/stdout" 2>&1; then ms="ok"; else ms="failed ($(grep -v '^$' "$m/stdout" | grep -iv 'aborting' | tail -1))"; fi
-    if timeout 600 "$romdyn" run "$f" -o "$r/$name" > "$r/stdout" 2> "$r/stderr"; then rs="ok"; else rs="failed ($(head -1 "$r/stderr"))"; fi
+    mstate=$( (cd "$dir" && timeout "$limit" "$mbdyn" -f "$base" -o "$m/$name" > "$m/stdout" 2>&1 < /dev/null); rc=$?; [ $rc -eq 0 ] && echo ok || { [ $rc -eq 124 ] && echo timeout || echo failed; })
+    rstate=$( (cd "$dir" && timeout "$limit" "$romdyn" run "$base" -o "$r/$name" > "$r/stdout" 2> "$r/stderr" < /dev/null); rc=$?; [ $rc -eq 0 ] && echo ok || { [ $rc -eq 124 ] && echo timeout || echo failed; })
+    ms=$mstate; [ "$mstate" = failed ] && ms="failed ($(grep -v '^$' "$m/stdout" | grep -iv 'aborting' | tail -1))"
+    rerr=$(grep -m1 -E 'error' "$r/stderr" | tr '\t' ' ' | sed -E 's/^[^ ]*:[0-9]+:[0-9]+: //; s/^error: //')
+    [ -z "$rerr" ] && rerr=$(head -1 "$r/stderr")
+    rs=$rstate; [ "$rstate" = failed ] && rs="failed ($rerr)"
     echo "$name  mbdyn: $ms  romdyn: $rs"
     worst_x=0; worst_l=0
     if [ -s "$m/$name.mov" ] && [ -s "$r/$name.mov" ]; then
@@ -71,5 +97,13 @@ for f in "$folder"/*.mbd; do
         done < <(paste -d' ' <(eigenvalues "$me") <(eigenvalues "$re") | awk 'NF == 4')
     fi
     echo "  worst: position $worst_x, eigenvalue $worst_l"
-done
+    [ "$rstate" = failed ] || rerr=""
+    [ "${KEEP:-1}" = 0 ] && find "$m" "$r" -type f ! -name stdout ! -name stderr -delete
+    printf '%s\t%s\t%s\t%s\t%s\t%s\n' "$name" "$mstate" "$rstate" "$rerr" "$worst_x" "$worst_l" >> "$out/summary.tsv"
+done < <(files)
+echo
+echo "files: $(wc -l < "$out/summary.tsv")"
+echo "mbdyn ok: $(awk -F'\t' '$2 == "ok"' "$out/summary.tsv" | wc -l), romdyn ok: $(awk -F'\t' '$3 == "ok"' "$out/summary.tsv" | wc -l), both ok: $(awk -F'\t' '$2 == "ok" && $3 == "ok"' "$out/summary.tsv" | wc -l)"
+echo "romdyn's refusals, grouped (numbers and quoted names kept):"
+awk -F'\t' '$3 == "failed" { print $4 }' "$out/summary.tsv" | sort | uniq -c | sort -rn
 echo "files in $out"

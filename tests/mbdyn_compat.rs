@@ -430,3 +430,13 @@ fn derivatives_coefficient_auto_retries_as_mbdyn() {
     let custom = chain_100_derivatives("derivatives coefficient: 1.e-7, auto, max iterations, 2, factor, 3.;");
     assert_eq!((custom.problem.derivatives_coefficient, custom.problem.derivatives_coefficient_auto), (1e-7, Some(romdyn::model::AutoCoefficient { retries: 2, factor: 3.0 })));
 }
+
+#[test]
+fn a_total_pin_joints_ground_side_can_refer_to_its_node_as_the_other_node() {
+    // joint.cc reads a total pin joint's absolute side with the node as the other side
+    // (`GetPosRel(AbsRefFrame, RF, fn)`), so `reference, other node` is the node's frame (as
+    // zanoni-mbdyn/blendyn's tests/bladeflap writes it; MBDyn 1.7.3 runs that file). Node 6
+    // is at (0, -2, 0), turned by eye.
+    let other = rewritten("driven_joints.mbd", &[("        position, 0., -2., 0.,\n        position constraint", "        position, reference, other node, null,\n        position constraint")]);
+    assert_same(&read("driven_joints.mbd"), &other);
+}

@@ -151,7 +151,7 @@ fn model_errors() {
         // 40. Unsupported element and joint types are named.
         (model("structural nodes: 2;", NODES, "aerodynamic body: 1, 2;"), "m.mbd:6:1: error: element type 'aerodynamic body' is not supported by romdyn"),
         (model("structural nodes: 2; joints: 1;", NODES, "joint: 1, brake, 1, 2;"), "m.mbd:6:11: error: joint type 'brake' is not supported by romdyn"),
-        (model("structural nodes: 2; joints: 1;", NODES, "driven: 1, string, \"Time > 1.\", joint: 1, clamp, 1, node, node;"), "m.mbd:6:1: error: element type 'driven' (an element switched on and off during the run) is not supported by romdyn"),
+        (model("structural nodes: 2; rigid bodies: 1;", NODES, "driven: 1, string, \"Time > 1.\", body: 1, 2, 1., null, eye;"), "m.mbd:6:1: error: driven: romdyn switches joints, forces and beams on and off, not bodies or gravity"),
         // 41. Beams: the two-node beam is not supported; a 3-node beam needs a length, a
         // section orientation before 'same', and a 6-D law.
         (model("structural nodes: 2; beams: 1;", NODES, "beam2: 5, 1, null, 2, null, eye, linear elastic, 1.;"), "m.mbd:6:1: error: element type 'beam2' (beam2 5) is not supported by romdyn (supported: beam3)"),
@@ -192,8 +192,12 @@ fn drive_and_law_errors() {
         (force("reference, 4"), "m.mbd:6:52: error: drive caller 4 is not defined"),
         // 54. Different drives on different components of one force.
         (force("component, const, 1., time, inactive").replace("1., 0., 0., component", "component"), "m.mbd:6:40: error: romdyn's force is one direction times one drive"),
-        // 55. Time-varying gravity.
-        (model("structural nodes: 2; gravity;", NODES, "gravity: 0., -1., 0., ramp, 1., 0., 1., 0.;"), "m.mbd:6:10: error: time-varying gravity is not supported by romdyn"),
+        // 55. Time-varying gravity with different drives on its components.
+        (model("structural nodes: 2; gravity;", NODES, "gravity: component, const, 1., ramp, 1., 0., 1., 0., inactive;"), "m.mbd:6:10: error: romdyn's time-varying gravity is one direction times one drive"),
+        // 55b. Driven elements: hints, a label that is not the wrapped element's, `existing`.
+        (model("structural nodes: 2; joints: 1;", NODES, "driven: 1, const, 1., hint, \"drive{1.}\", joint: 1, spherical hinge, 1, null, 2, null;"), "m.mbd:6:23: error: driven: hints (which re-set the element from the model's state when it switches on) are not supported by romdyn"),
+        (model("structural nodes: 2; joints: 1;", NODES, "driven: 2, const, 1., joint: 1, spherical hinge, 1, null, 2, null;"), "m.mbd:6:9: error: driven element 2 wraps spherical hinge 1: the labels must match"),
+        (model("structural nodes: 2; joints: 1;", NODES, "joint: 1, spherical hinge, 1, null, 2, null; driven: 1, const, 1., existing: joint, 1;"), "m.mbd:6:68: error: driven: wrapping an 'existing' element is not supported by romdyn"),
         // 56. A constitutive law romdyn does not have, and one of the wrong dimension.
         (model("structural nodes: 2; joints: 1;", NODES, "joint: 1, deformable hinge, 1, 2, cubic elastic generic, 1., 2., 3.;"), "m.mbd:6:35: error: constitutive law 'cubic elastic generic' is not supported by romdyn"),
         (model("structural nodes: 2; joints: 1;", NODES, "constitutive law: 3, 1, linear elastic, 1.;\njoint: 1, deformable hinge, 1, 2, reference, 3;"), "m.mbd:7:35: error: constitutive law 3 has dimension 1, this element needs 3"),

@@ -193,3 +193,62 @@ fn scalar_function_cards_are_checked_as_mbdyn_checks_them() {
         assert!(e.contains("scalar_functions.mbd:") && e.contains(want), "{e}");
     }
 }
+
+/// scalar_functions.mbd with force 3's drive replaced by a string drive.
+fn with_push_drive(expression: &str) -> Result<MbdynModel, romdyn::input::mbdyn::MbdynError> {
+    let base = std::fs::read_to_string(path("scalar_functions.mbd")).unwrap_or_default();
+    let old = "scalar function, \"push\";";
+    assert!(base.contains(old));
+    parse_text(&base.replace(old, &format!("string, \"{expression}\";")), &path("scalar_functions.mbd")).and_then(|d| build(&d))
+}
+
+#[test]
+fn string_drives_call_scalar_functions_through_model_sf() {
+    // modelns.cc: `model::sf::NAME(x [, order])` is the scalar function card's value (order
+    // 0) or derivative (order 1). As a string drive, `model::sf::push(Time)` is the
+    // `scalar function, "push"` drive: the same final state to round-off.
+    let card = final_rows(&read("scalar_functions.mbd"));
+    let string = final_rows(&with_push_drive("model::sf::push(Time)").unwrap_or_else(|e| panic!("{e}")));
+    for (a, b) in card.iter().zip(&string) {
+        assert!(a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-12), "{a:?} against {b:?}");
+    }
+    // The derivative of 0.5 eᵗ + t² less 0.5 eᵗ is 2 t: from rest x(1) = 1/3 m, ẋ(1) = 1 m/s
+    // (the 1 ms step's error is 2e-7 m). MBDyn 1.7.3 on that file, .mov at t = 1 s:
+    // node 3 x = 3.333335312265708e-01 m (romdyn: the same to 1e-13).
+    let got = final_rows(&with_push_drive("model::sf::push(Time, 1) - exp(Time)/2.").unwrap_or_else(|e| panic!("{e}")));
+    assert!((got[2][0] - 1.0 / 3.0).abs() < 3e-7 && (got[2][6] - 1.0).abs() < 1e-6, "{:?}", got[2]);
+    assert!((got[2][0] - 3.333335312265708e-01).abs() < 1e-10, "{:?}", got[2]);
+    // MBDyn 1.7.3 has no top-level `sf` namespace ("unable to find namespace \"sf\"").
+    for (expression, want) in [
+        ("sf::push(Time)", "unknown namespace 'sf'"),
+        ("model::sf::pull(Time)", "model::sf::pull: scalar function \"pull\" is not defined before this drive"),
+        ("model::sf::push(Time, 2)", "model::sf::push: the derivative order must be 0 or 1"),
+    ] {
+        let e = with_push_drive(expression).map(|_| ()).unwrap_err().to_string();
+        assert!(e.contains("scalar_functions.mbd:") && e.contains(want), "{expression}: {e}");
+    }
+}
+
+#[test]
+fn time_varying_gravity_drops_the_bodies_as_its_integral_and_as_mbdyn() {
+    let m = read("driven_gravity.mbd");
+    let got = final_rows(&m);
+    for (k, g) in got.iter().enumerate() {
+        // Closed form: g_z = −2 t from rest gives z(1) = −1/3 m, ż(1) = −1 m/s; the step of
+        // 1 ms leaves 6.7e-7 m (the position's integration error, as for an applied force
+        // with the same ramp: MBDyn 1.7.3 on that force gives romdyn's −3.333339992500e-1).
+        assert!((g[2] + 1.0 / 3.0).abs() < 1e-6 && (g[8] + 1.0).abs() < 1e-9, "node {}: {g:?}", k + 1);
+        // No rotation: the weight acts at the centre of mass, the node's moment S × g is
+        // balanced by the inertia about the node.
+        assert!(g[3..6].iter().all(|a| a.abs() < 1e-9), "node {} turned: {g:?}", k + 1);
+        // MBDyn 1.7.3, driven_gravity.mbd, .mov at t = 1 s: z = −3.333325009999893e-01,
+        // ż = −9.999984999999654e-01 for both nodes. MBDyn's bodies read the field that the
+        // gravity element stored in its own residual (gravity.cc, UniformGravity::AssRes),
+        // one evaluation late: its first step sees g(0) = 0 (ż(h) = 0 where g gives −h²),
+        // which leaves 1.5e-6 m/s after 1 s. romdyn evaluates g at the step's time, as
+        // MBDyn evaluates a force's drive.
+        assert!((g[2] + 3.333325009999893e-01).abs() < 2e-6 && (g[8] + 9.999984999999654e-01).abs() < 2e-6, "node {}: {g:?}", k + 1);
+    }
+    let check = check_model_jacobians(&m.model, &m.problem, Reference::At(0.5), JACOBIAN_CHECK_TOLERANCE).unwrap_or_else(|e| panic!("{e}"));
+    assert!(check.passed() && check.elements.iter().filter(|e| e.element.contains("driven uniform gravity")).count() == 2, "{}", check.to_text());
+}

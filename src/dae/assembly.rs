@@ -43,6 +43,7 @@ struct Context<'a> {
     t: f64,
     load: f64,
     gravity: Vec3,
+    constraint_scale: f64,
 }
 
 impl ElementState for Context<'_> {
@@ -60,6 +61,9 @@ impl ElementState for Context<'_> {
     }
     fn load_factor(&self) -> f64 {
         self.load
+    }
+    fn constraint_row_scale(&self) -> f64 {
+        self.constraint_scale
     }
 }
 
@@ -200,7 +204,7 @@ impl<'m> Assembler<'m> {
         (0..self.model.nodes.len()).map(|i| st.node_frame(&self.dofs, i)).collect()
     }
 
-    fn context<'a>(&'a self, frames: &'a [NodeFrame], st: &'a State, e: usize) -> Context<'a> {
+    fn context<'a>(&'a self, frames: &'a [NodeFrame], st: &'a State, e: usize, constraint_scale: f64) -> Context<'a> {
         let first = self.dofs.element_first[e];
         Context {
             frames,
@@ -209,6 +213,7 @@ impl<'m> Assembler<'m> {
             t: st.t,
             load: st.load,
             gravity: self.model.gravity,
+            constraint_scale,
         }
     }
 
@@ -221,7 +226,7 @@ impl<'m> Assembler<'m> {
         }
         let scale = if form == ConstraintForm::Scaled { 1.0 / dcoef } else { 1.0 };
         for (e, el) in self.model.elements.iter().enumerate() {
-            let ctx = self.context(&frames, st, e);
+            let ctx = self.context(&frames, st, e, scale);
             let mut sink = Residual { dofs: &self.dofs, slots: &self.dofs.element_nodes[e], first: self.dofs.element_first[e], constraint_scale: scale, put: |i, v| f[i] += v };
             el.residual(&ctx, &mut sink);
         }
@@ -242,8 +247,9 @@ impl<'m> Assembler<'m> {
         for (i, fr) in frames.iter().enumerate() {
             self.node_jacobian(st, i, fr, c, out);
         }
+        let scale = if c.form == ConstraintForm::Scaled { 1.0 / c.dcoef } else { 1.0 };
         for (e, el) in self.model.elements.iter().enumerate() {
-            let ctx = self.context(&frames, st, e);
+            let ctx = self.context(&frames, st, e, scale);
             let mut sink = Jacobian { dofs: &self.dofs, frames: &frames, slots: &self.dofs.element_nodes[e], first: self.dofs.element_first[e], c, out };
             el.jacobian(&ctx, &mut sink);
         }
@@ -292,7 +298,7 @@ impl<'m> Assembler<'m> {
         let frames = self.frames(st);
         let mut out = Vec::new();
         for (e, el) in self.model.elements.iter().enumerate() {
-            let sections = el.sections(&self.context(&frames, st, e));
+            let sections = el.sections(&self.context(&frames, st, e, 1.0));
             if !sections.is_empty() {
                 out.push((e, sections));
             }
@@ -304,8 +310,8 @@ impl<'m> Assembler<'m> {
     /// finite-difference check), with the nodes' frames at `st` given.
     pub(crate) fn element_residual(&self, st: &State, frames: &[NodeFrame], e: usize, form: ConstraintForm, dcoef: f64) -> Vec<(usize, f64)> {
         let mut entries = Vec::new();
-        let ctx = self.context(frames, st, e);
         let scale = if form == ConstraintForm::Scaled { 1.0 / dcoef } else { 1.0 };
+        let ctx = self.context(frames, st, e, scale);
         let mut sink = Residual { dofs: &self.dofs, slots: &self.dofs.element_nodes[e], first: self.dofs.element_first[e], constraint_scale: scale, put: |i, v| entries.push((i, v)) };
         self.model.elements[e].residual(&ctx, &mut sink);
         entries
@@ -314,7 +320,7 @@ impl<'m> Assembler<'m> {
     /// The Jacobian entries of one element alone, with the nodes' frames at `st` given.
     pub(crate) fn element_jacobian(&self, st: &State, frames: &[NodeFrame], e: usize, c: Coefficients) -> Triplets {
         let mut out = Triplets::new(self.dofs.len);
-        let ctx = self.context(frames, st, e);
+        let ctx = self.context(frames, st, e, if c.form == ConstraintForm::Scaled { 1.0 / c.dcoef } else { 1.0 });
         let mut sink = Jacobian { dofs: &self.dofs, frames, slots: &self.dofs.element_nodes[e], first: self.dofs.element_first[e], c, out: &mut out };
         self.model.elements[e].jacobian(&ctx, &mut sink);
         out

@@ -46,6 +46,13 @@ pub trait ElementState {
     fn gravity(&self) -> Vec3;
     /// Factor on applied loads (ramped from 0 to 1 by static analysis; 1 otherwise).
     fn load_factor(&self) -> f64;
+    /// The factor the assembler multiplies holonomic constraint rows by: `1/c` in the form
+    /// of eq. 30, 1 otherwise. Constraint rows depend on positions, whose scaling the
+    /// assembler applies; an equation in the element's own multiplier alone (a switched-off
+    /// driven element's `λ = 0`) needs it to write a Jacobian consistent with its residual.
+    fn constraint_row_scale(&self) -> f64 {
+        1.0
+    }
 }
 
 /// Where an element adds its residual.

@@ -18,6 +18,8 @@ mod contract;
 mod deformable;
 mod deformable_joint;
 mod drive;
+mod driven_element;
+mod driven_gravity;
 mod driven_joint;
 mod force;
 mod imposed_velocity;
@@ -35,6 +37,8 @@ pub use deformable::{DeformableDisplacement, DeformableHinge, Distance, LinearVi
 pub use deformable_joint::DeformableJoint;
 pub use invariant_hinge::InvariantDeformableHinge;
 pub use drive::{Drive, TimeFunction};
+pub use driven_element::DrivenElement;
+pub use driven_gravity::DrivenGravity;
 pub use driven_joint::{DrivenJoint, VectorDrive};
 pub use force::{Couple, Force, ForceFrame};
 pub use imposed_velocity::{ImposedVelocity, VelocityKind};

@@ -290,7 +290,7 @@ impl Problem<'_> {
 
     /// The velocity rows as `A w − b` with `w = (v, ω, λ̇)`: the matrix `A` and the
     /// right-hand side `b` at the positions and reactions of `u`. Only elements with
-    /// multipliers (the joints) have velocity rows; `f_/t` and `Φ_/t` by central
+    /// multipliers (the joints) have velocity rows; `f_/t` and `Φ_/t` by forward
     /// differences in time.
     fn velocity_system(&self, u: &Unknowns) -> (Triplets, Vec<f64>) {
         let kin = self.kinematics(u);
@@ -307,15 +307,31 @@ impl Problem<'_> {
                 b[6 * i + 3 + c] = s.velocity_stiffness * w0[c];
             }
         }
+        // Forward in time, second order, (−3 R(t) + 4 R(t + ε) − R(t + 2ε)) / (2ε): drives
+        // usually start at the initial time with a kink (a cosine held at its initial value
+        // before t₀), where a central difference would see half the kink (ω² A ε / 4) and
+        // MBDyn's drives give their derivative from t₀ on (`GetP`, e.g. 0 for the cosine).
         let eps = 1e-6 * self.t.abs().max(1.0);
-        let (mut plus, mut minus) = (vec![0.0; self.layout.len], vec![0.0; self.layout.len]);
+        let mut at = [vec![0.0; self.layout.len], vec![0.0; self.layout.len], vec![0.0; self.layout.len]];
+        let n6 = 6 * n;
         for k in (0..self.layout.elements.len()).filter(|&k| !self.layout.element(k).multipliers().is_empty()) {
-            self.element_jacobian(k, &kin, &u.lambda, None, &mut a);
-            self.element_residual(k, &kin, &u.lambda, self.t + eps, &mut plus);
-            self.element_residual(k, &kin, &u.lambda, self.t - eps, &mut minus);
+            if reaction_rate_without_geometry(self.layout.element(k).type_name()) {
+                let mut own = Triplets::new(self.layout.len);
+                self.element_jacobian(k, &kin, &u.lambda, None, &mut own);
+                for ((&r, &c), &v) in own.rows.iter().zip(&own.cols).zip(&own.values) {
+                    if r >= n6 || c >= n6 {
+                        a.push(r, c, v);
+                    }
+                }
+            } else {
+                self.element_jacobian(k, &kin, &u.lambda, None, &mut a);
+            }
+            for (j, r) in at.iter_mut().enumerate() {
+                self.element_residual(k, &kin, &u.lambda, self.t + j as f64 * eps, r);
+            }
         }
         for i in 0..self.layout.len {
-            b[i] -= (plus[i] - minus[i]) / (2.0 * eps);
+            b[i] -= (4.0 * at[1][i] - 3.0 * at[0][i] - at[2][i]) / (2.0 * eps);
         }
         if self.velocity_rows.iter().any(|v| *v) {
             // Velocity-level constraints: `−Φ(q, 0, t)` on the right.
@@ -471,4 +487,12 @@ fn skipped(problem: &Problem, u: &Unknowns) -> Result<AssemblyReport, AssemblyEr
         }
         None => Ok(AssemblyReport::default()),
     }
+}
+
+/// Joints whose velocity rows MBDyn writes with the reaction's rate alone, `f_/λ λ̇`, without
+/// the turning of its arm with the nodes, `f_/q u` (drvdisp.cc: `DriveDisplacementJoint` and
+/// `DriveDisplacementPinJoint::InitialAssRes` add `F'` and `d × F'` only, where spherj.cc
+/// adds `(ω × d) × F` too).
+fn reaction_rate_without_geometry(type_name: &str) -> bool {
+    matches!(type_name, "drive displacement" | "drive displacement pin")
 }

@@ -18,7 +18,7 @@ use super::expr::{Evaluator, Variable, Variables};
 use super::lexer::tokenize;
 use super::parser::Statement;
 use super::value::TypedValue;
-use crate::element::{Drive, TimeFunction};
+use crate::element::{Drive, ScalarFunction, TimeFunction};
 use crate::kinematics::{Mat3, Vec3};
 
 /// Drive callers romdyn evaluates.
@@ -149,7 +149,7 @@ fn nested_drive(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) -> Re
         "string" => {
             let span = c.here();
             let text = c.string("the expression (a string in double quotes)")?;
-            Drive::Expression(string_drive(&text, &drives.variables).map_err(|m| c.error_at(span, format!("string drive \"{text}\": {m}")))?)
+            Drive::Expression(string_drive(&text, &drives.variables, drives.functions.defined_before(seq)).map_err(|m| c.error_at(span, format!("string drive \"{text}\": {m}")))?)
         }
         "ramp" => {
             let slope = c.real("ramp slope")?;
@@ -200,7 +200,8 @@ fn nested_drive(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) -> Re
 /// with `Time` (and `Var`, the argument MBDyn passes, here the time) set to `t`; checked at
 /// t = 0 so that errors show when the file is read. A value that cannot be computed later
 /// (out of a function's domain) is NaN, which the Newton iteration reports.
-fn string_drive(text: &str, variables: &Variables) -> Result<TimeFunction, String> {
+/// `model::sf::NAME(x)` calls the scalar functions defined before the drive.
+fn string_drive(text: &str, variables: &Variables, functions: HashMap<String, ScalarFunction>) -> Result<TimeFunction, String> {
     let mut sources = Sources::default();
     sources.files.push(("string drive".into(), text.to_string()));
     let tokens = tokenize(text, 0, &sources).map_err(|e| e.message)?;
@@ -211,7 +212,7 @@ fn string_drive(text: &str, variables: &Variables) -> Result<TimeFunction, Strin
         for name in ["Time", "Var"] {
             vars.0.insert(name.into(), Variable { value: TypedValue::Real(t), constant: false, declared: None });
         }
-        let v = Evaluator::new(tokens, vars, sources, Span::default()).evaluate().map_err(|e| e.message)?;
+        let v = Evaluator::new(tokens, vars, sources, Span::default()).with_functions(&functions).evaluate().map_err(|e| e.message)?;
         v.real().ok_or_else(|| "the expression gives a string, not a number".to_string())
     };
     let mut vars = variables.clone();

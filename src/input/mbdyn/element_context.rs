@@ -18,6 +18,8 @@ pub enum Parsed {
     Gravity(Vec3),
     /// A central gravity field: its centre [m] and `G M` [m³/s²].
     CentralGravity { origin: Vec3, gm: f64 },
+    /// A uniform field varying in time: `direction · drive(t)` [m/s²].
+    DrivenGravity { direction: Vec3, drive: crate::element::Drive },
     /// A rigid body (which a central gravity field acts on).
     Body(crate::element::RigidBody),
     /// A card that does not change the model.

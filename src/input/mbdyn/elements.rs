@@ -16,10 +16,10 @@ use crate::kinematics::{Mat3, Vec3};
 use crate::model::Label;
 
 /// Element types of MBDyn romdyn names in its "not supported" error.
-const OTHER_TYPES: [&str; 24] = [
+const OTHER_TYPES: [&str; 23] = [
     "aerodynamic beam2", "aerodynamic beam3", "aerodynamic body", "aeromodal", "aircraft instruments", "air properties", "induced velocity",
     "electric", "hydraulic", "thermal", "rtai output", "stream output", "stream motion output", "bind", "bulk", "genel", "loadable",
-    "user defined", "joint regularization", "plate", "shell4eas", "shell4easans", "membrane4eas", "driven",
+    "user defined", "joint regularization", "plate", "shell4eas", "shell4easans", "membrane4eas",
 ];
 
 /// The element kind counted in control data, by element keyword.
@@ -209,7 +209,8 @@ fn force(couple: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Re
     Ok(if couple { Box::new(Couple { label, node: n.label, frame, direction, drive }) } else { Box::new(Force { label, node: n.label, frame, direction, offset, drive }) })
 }
 
-/// `gravity: [uniform,] VALUE` with a constant 3-vector value in the global frame, or
+/// `gravity: [uniform,] VALUE` with a 3-vector template drive in the global frame (a
+/// constant, or one direction times one drive), or
 /// `gravity: central, [origin, X0,] mass, M, G, {si | G}` (input manual, §Gravity Element).
 fn gravity(c: &mut Cursor, ctx: &ElementContext) -> Result<Parsed, MbdynError> {
     let span = c.here();
@@ -237,6 +238,7 @@ fn gravity(c: &mut Cursor, ctx: &ElementContext) -> Result<Parsed, MbdynError> {
     let terms = template_vec3(c, ctx.drives, ctx.seq, &Mat3::identity(), &|c: &mut Cursor| g.vector_in(c, "gravity direction", Frame::global()))?;
     match single_term(terms) {
         Some((dir, Drive::Const(x))) => Ok(Parsed::Gravity(dir * x)),
-        _ => Err(c.error_at(span, "time-varying gravity is not supported by romdyn (give a constant drive)")),
+        Some((direction, drive)) => Ok(Parsed::DrivenGravity { direction, drive }),
+        None => Err(c.error_at(span, "romdyn's time-varying gravity is one direction times one drive: this value combines components with different drives")),
     }
 }

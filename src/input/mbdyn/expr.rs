@@ -75,11 +75,22 @@ pub struct Evaluator<'a> {
     end: Span,
     depth: usize,
     overrides: Option<&'a SetOverrides>,
+    /// The scalar functions `model::sf::NAME(x)` calls (string drives; `None` while the file is
+    /// read, where `set:` runs before the `scalar function:` cards are read).
+    functions: Option<&'a std::collections::HashMap<String, crate::element::ScalarFunction>>,
 }
 
 impl<'a> Evaluator<'a> {
     pub fn new(tokens: &'a [Spanned], vars: &'a mut Variables, sources: &'a Sources, end: Span) -> Self {
-        Evaluator { tokens, pos: 0, vars, sources, end, depth: 0, overrides: None }
+        Evaluator { tokens, pos: 0, vars, sources, end, depth: 0, overrides: None, functions: None }
+    }
+
+    /// Makes `model::sf::NAME(x)` call these scalar functions (modelns.cc: the
+    /// `scalar function:` cards, the only part of the `model` namespace without run-time
+    /// state).
+    pub fn with_functions(mut self, functions: &'a std::collections::HashMap<String, crate::element::ScalarFunction>) -> Self {
+        self.functions = Some(functions);
+        self
     }
 
     /// Declarations and assignments of these variables take the override's value (a `set:`
@@ -356,8 +367,18 @@ impl<'a> Evaluator<'a> {
                             self.pos += 1;
                             name = f;
                         }
+                        ("model", Some(sf)) if sf == "sf" && self.tokens.get(self.pos + 1).is_some_and(|t| t.token == Token::Symbol("::")) => {
+                            // modelns.cc: `model::sf::NAME(x [, order])`, a scalar function
+                            // card's value (order 0) or derivative (order 1); no run-time state.
+                            self.pos += 2;
+                            let Some(f) = self.word(0).map(str::to_string) else {
+                                return Err(self.err(span, "model::sf:: expects a scalar function's name"));
+                            };
+                            self.pos += 1;
+                            return self.scalar_function(&f, span);
+                        }
                         ("model", _) => return Err(self.err(span, "the 'model' namespace reads run-time values of nodes and elements and is not supported by romdyn")),
-                        (ns, _) => return Err(self.err(span, format!("unknown namespace '{ns}' (romdyn knows 'default')"))),
+                        (ns, _) => return Err(self.err(span, format!("unknown namespace '{ns}' (romdyn knows 'default' and 'model::sf')"))),
                     }
                 }
                 if self.symbol() == Some("(") {
@@ -370,6 +391,34 @@ impl<'a> Evaluator<'a> {
             }
             other => Err(self.err(span, format!("expected a value (a number, a variable, a function call or '('), found {}", describe(other)))),
         }
+    }
+
+    /// `model::sf::NAME(x [, order])`: the scalar function `NAME` at `x` (order 0), or its
+    /// derivative (order 1), as modelns.cc's `model_sf`.
+    fn scalar_function(&mut self, name: &str, span: Span) -> Result<TypedValue, MbdynError> {
+        let what = format!("model::sf::{name}");
+        let Some(functions) = self.functions else {
+            return Err(self.err(span, format!("{what}: romdyn calls scalar functions in string drives only (it evaluates 'set:' while reading, before the scalar function cards)")));
+        };
+        let Some(f) = functions.get(name) else {
+            return Err(self.err(span, format!("{what}: scalar function \"{name}\" is not defined before this drive")));
+        };
+        if !self.eat("(") {
+            return Err(self.err(span, format!("{what}: expected '(' and the function's argument")));
+        }
+        let x = self.statements()?;
+        let order = if self.eat(",") { Some(self.statements()?) } else { None };
+        if !self.eat(")") {
+            return Err(self.err(span, format!("{what} takes an argument and an optional derivative order: expected ')'")));
+        }
+        let x = x.real().ok_or_else(|| self.err(span, format!("{what} takes a number, found a string")))?;
+        let (value, derivative) = f.value_and_derivative(x);
+        Ok(TypedValue::Real(match order.map(|o| o.real()) {
+            None => value,
+            Some(Some(o)) if o == 0.0 => value,
+            Some(Some(o)) if o == 1.0 => derivative,
+            _ => return Err(self.err(span, format!("{what}: the derivative order must be 0 or 1, as in MBDyn"))),
+        }))
     }
 
     fn call(&mut self, name: &str, span: Span) -> Result<TypedValue, MbdynError> {

@@ -391,7 +391,10 @@ fn total(pin: bool, label: Label, c: &mut Cursor, ctx: &ElementContext, span: su
     let node = ctx.node(c, if pin { "the node" } else { "node 1" })?;
     let first = total_side(c, &ctx.on(node), Some(node))?;
     let second = if pin {
-        let ground = Context { node: Some(Frame::of_node(node)), ..ctx.global() };
+        // joint.cc reads the ground side with the node as the other side
+        // (`GetPosRel(AbsRefFrame, RF, fn)`): `reference, other node` is the node's frame.
+        let other = OtherSide { frame: Frame::of_node(node), offset: first.offset, orientation: first.position };
+        let ground = Context { node: Some(Frame::of_node(node)), other: Some(other), ..ctx.global() };
         total_side(c, &ground, None)?
     } else {
         let node_b = ctx.node(c, "node 2")?;

@@ -14,6 +14,7 @@ mod control;
 mod cursor;
 mod diagnostic;
 mod drives;
+mod driven;
 mod element_context;
 mod elements;
 mod expr;

@@ -159,7 +159,12 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
         let mut c = Cursor::new(st, src);
         let ctx = ElementContext { nodes: &nodes, frames: &cards.frames, drives: &cards.drives, laws: &cards.laws, seq: st.seq };
         let label_span = c.here();
-        let parsed = match element(st, &mut c, &ctx)? {
+        let parsed = element(st, &mut c, &ctx)?;
+        let parsed = match &st.driven {
+            Some(head) => super::driven::wrap(head, parsed, src, &ctx)?,
+            None => parsed,
+        };
+        let parsed = match parsed {
             Parsed::Body(body) => {
                 bodies.push((body.label, body.node, body.mass, body.offset));
                 Parsed::Element(Box::new(body))
@@ -181,7 +186,13 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
                 if let Some(prev) = gravity.replace(st.span) {
                     return Err(src.error(st.span, format!("gravity is defined twice (first at line {})", prev.line)));
                 }
-                central = Some((origin, gm));
+                central = Some(Field::Central { origin, gm });
+            }
+            Parsed::DrivenGravity { direction, drive } => {
+                if let Some(prev) = gravity.replace(st.span) {
+                    return Err(src.error(st.span, format!("gravity is defined twice (first at line {})", prev.line)));
+                }
+                central = Some(Field::Driven { direction, drive });
             }
             Parsed::Body(_) => unreachable!("bodies are turned into elements above"),
             Parsed::Element(e) => {
@@ -198,15 +209,24 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
             Parsed::Ignored => {}
         }
     }
-    // A central field acts on every body at its node (gravity.cc, body.cc).
-    if let Some((origin, gm)) = central {
+    // A central or time-varying field acts on every body at its node (gravity.cc, body.cc).
+    if let Some(field) = central {
         for (label, node, mass, offset) in bodies {
-            b.boxed_element(Box::new(crate::element::CentralGravity { label, node, mass, offset, origin, gm }));
+            b.boxed_element(match &field {
+                Field::Central { origin, gm } => Box::new(crate::element::CentralGravity { label, node, mass, offset, origin: *origin, gm: *gm }),
+                Field::Driven { direction, drive } => Box::new(crate::element::DrivenGravity { label, node, mass, offset, direction: *direction, drive: drive.clone() }),
+            });
         }
     }
     check_counts(doc, &counts, &found)?;
     let model = b.build().map_err(|e| src.error(first, e.to_string()))?;
     Ok(MbdynModel { model, problem })
+}
+
+/// A gravity field romdyn applies body by body (a constant uniform field is the model's).
+enum Field {
+    Central { origin: crate::kinematics::Vec3, gm: f64 },
+    Driven { direction: crate::kinematics::Vec3, drive: crate::element::Drive },
 }
 
 /// MBDyn's data manager reads `control data`, then `nodes`, `drivers` and `elements` in

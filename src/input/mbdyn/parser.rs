@@ -46,6 +46,9 @@ pub struct Statement {
     /// Position in the whole input (includes counted): entities defined by cards can only
     /// be used by statements that come later.
     pub seq: usize,
+    /// The `driven: LABEL, DRIVE, …` head that wraps this element statement (its args up to
+    /// the wrapped element's keyword), if any.
+    pub driven: Option<Box<Statement>>,
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -193,11 +196,10 @@ impl Reader {
             None => {}
         }
         if known(&keyword, &["driven"]).is_some() {
-            // `driven: …, ELEMENT: …;` wraps a whole element statement.
-            return Err(self.doc.sources.error(first.span, "element type 'driven' (an element switched on and off during the run) is not supported by romdyn"));
+            return self.driven(first.span, body, end, path);
         }
         let args = self.args(body, end)?;
-        let st = Statement { keyword, span: first.span, args, end, seq: self.seq };
+        let st = Statement { keyword, span: first.span, args, end, seq: self.seq, driven: None };
         if known(&st.keyword, &CARDS).is_some() {
             self.doc.cards.push(st);
             return Ok(());
@@ -207,6 +209,46 @@ impl Reader {
             None => return Err(self.doc.sources.error(first.span, format!("statement '{}' outside of any block: expected 'begin: <block>;' first", st.keyword))),
         }
         Ok(())
+    }
+
+    /// `driven: LABEL, DRIVE, [hint, "…", …,] ELEMENT_TYPE: …;` (input manual, §Driven
+    /// Element): the wrapped element's statement, read as any other, carries the head
+    /// (label, drive, hints) in `driven`. The element's keyword is the phrase after the last
+    /// top-level comma before the second colon.
+    fn driven(&mut self, span: Span, body: &[Spanned], end: Span, path: &Path) -> Result<(), MbdynError> {
+        let expected = "driven: expected the wrapped element after the drive, e.g. 'driven: 1, string, \"Time < 1.\", joint: 1, …;'";
+        let Some(colon) = body.iter().position(|t| t.token == Token::Symbol(":")) else { return Err(self.doc.sources.error(end, expected)) };
+        let mut depth = 0i32;
+        let mut comma = None;
+        for (k, t) in body[..colon].iter().enumerate() {
+            match t.token {
+                Token::Symbol("(" | "[") => depth += 1,
+                Token::Symbol(")" | "]") => depth -= 1,
+                Token::Symbol(",") if depth <= 0 => comma = Some(k),
+                _ => {}
+            }
+        }
+        let Some(comma) = comma else { return Err(self.doc.sources.error(body[colon].span, expected)) };
+        let inner = &body[comma + 1..];
+        let inner_words: Vec<String> = inner.iter().take_while(|t| t.token != Token::Symbol(":")).map(|t| token_text(&t.token).to_lowercase()).collect();
+        match inner_words.join(" ").as_str() {
+            "existing" => return Err(self.doc.sources.error(inner[0].span, "driven: wrapping an 'existing' element is not supported by romdyn (write the element's card inside the driven card)")),
+            "driven" => return Err(self.doc.sources.error(inner[0].span, "driven: a driven element cannot wrap another driven element")),
+            _ => {}
+        }
+        let args = self.args(&body[..comma], body[comma].span)?;
+        let head = Statement { keyword: "driven".into(), span, args, end: body[comma].span, seq: self.seq, driven: None };
+        let before = self.open.as_ref().map_or(0, |b| b.statements.len());
+        self.statement(inner, end, path)?;
+        match self.open.as_mut() {
+            Some(b) if b.statements.len() == before + 1 => {
+                if let Some(st) = b.statements.last_mut() {
+                    st.driven = Some(Box::new(head));
+                }
+                Ok(())
+            }
+            _ => Err(self.doc.sources.error(inner[0].span, "driven: expected an element card (e.g. 'joint: …') inside an elements block")),
+        }
     }
 
     /// Splits at top-level commas and evaluates each piece, in order.

@@ -15,6 +15,11 @@ pub struct ScalarFunctions {
 }
 
 impl ScalarFunctions {
+    /// The functions defined before statement `seq`, by name (what `sf::NAME` sees).
+    pub fn defined_before(&self, seq: usize) -> HashMap<String, ScalarFunction> {
+        self.table.iter().filter(|(_, (_, s, _))| *s < seq).map(|(n, (f, _, _))| (n.clone(), f.clone())).collect()
+    }
+
     /// The function `name` as defined before statement `seq`.
     pub fn get(&self, c: &Cursor, span: Span, name: &str, seq: usize) -> Result<ScalarFunction, MbdynError> {
         match self.table.get(name) {
