@@ -330,10 +330,11 @@ fn the_cli_removes_a_dummy_spring_and_prints_the_free_pendulums_real_pair() {
     let (ok, _, free) = common::cli::romdyn(&removed);
     assert!(ok, "{free}");
     assert!(mat.exists());
-    // Both signs of the real pair are the ROM's eigenvalues, the positive one called unstable.
+    // Both signs of the real pair are the ROM's eigenvalues, the positive one called unstable,
+    // each with the motion of the free model's mode (the pendulum's tip swinging in x).
     assert!(free.contains("deformable hinge 4"), "{free}");
-    assert!(free.contains(" 3.130527e0 +0.000000e0j     0.498239 Hz   real, unstable"), "{free}");
-    assert!(free.contains("-3.130527e0 +0.000000e0j     0.498239 Hz   real\n"), "{free}");
+    assert!(free.contains(" 3.130527e0 +0.000000e0j     0.498239 Hz   real, node 2 horizontal (x) 100 %, unstable"), "{free}");
+    assert!(free.contains("-3.130527e0 +0.000000e0j     0.498239 Hz   real, node 2 horizontal (x) 100 %, stable\n"), "{free}");
     // A label that is not a spring is refused, naming it.
     let mut bad = args.to_vec();
     bad.extend(["--remove-spring", "3"]);

@@ -160,7 +160,7 @@ pub fn run(a: RomArgs) -> Result<()> {
     let removed = study.removed_springs();
     if !removed.is_empty() {
         eprintln!("removed from the full model and the ROM (their force fed back, A + B_e K C_e): {}", removed.join(", "));
-        eprint!("{}", free_eigenvalues(&rom.descriptor.eigenvalues));
+        eprint!("{}", free_eigenvalues(&rom.descriptor.eigenvalues, |l| study.free_real_mode_label(l)));
     }
     let export = rom.export(&study, a.rom.form());
     match &a.file {
@@ -184,14 +184,20 @@ fn nonzero(eig: &[faer::c64]) -> Vec<faer::c64> {
 }
 
 /// The eigenvalues of a ROM whose dummy springs were removed: rigid-body, unstable and
-/// oscillatory ones (the modal table above is the grounded model's).
-fn free_eigenvalues(eig: &[faer::c64]) -> String {
+/// oscillatory ones (the modal table above is the grounded model's); a real one with the
+/// motion of the free model's mode (`label`).
+fn free_eigenvalues(eig: &[faer::c64], label: impl Fn(f64) -> Option<String>) -> String {
     let big = eig.iter().map(|l| l.norm()).fold(0.0, f64::max);
     let zero = eig.iter().filter(|l| l.norm() <= 1e-6 * big).count();
     let mut s = format!("ROM eigenvalues without them [rad/s]: {zero} zero (rigid-body motion)\n");
     // One line per pair (its upper member), every real one.
     for l in eig.iter().filter(|l| l.norm() > 1e-6 * big && (l.im > 1e-9 * big || l.im.abs() <= 1e-9 * big)) {
-        let kind = if l.im.abs() <= 1e-9 * big { if l.re > 0.0 { "real, unstable" } else { "real" } } else if l.re > 1e-9 * big { "oscillatory, unstable" } else { "oscillatory" };
+        let real = l.im.abs() <= 1e-9 * big;
+        let kind = match (real, real.then(|| label(l.re)).flatten()) {
+            (true, Some(motion)) => format!("real, {motion}"),
+            (true, None) => (if l.re > 0.0 { "real, unstable" } else { "real" }).to_string(),
+            _ => (if l.re > 1e-9 * big { "oscillatory, unstable" } else { "oscillatory" }).to_string(),
+        };
         s += &format!("  {:>14.6e} {:+.6e}j   {:>10.6} Hz   {kind}\n", l.re, l.im, l.norm() / (2.0 * std::f64::consts::PI));
     }
     s

@@ -170,7 +170,13 @@ impl BandLu {
         self.band.iter_mut().for_each(|v| *v = 0.0);
     }
 
+    /// The storage, indexed by [`BandLu::index`].
+    pub fn storage_mut(&mut self) -> &mut [f64] {
+        &mut self.band
+    }
+
     /// Adds `v` at storage index `k` (from [`BandLu::index`]).
+    #[cfg(test)]
     pub fn add(&mut self, k: usize, v: f64) {
         self.band[k] += v;
     }

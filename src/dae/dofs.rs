@@ -59,6 +59,15 @@ impl DofMap {
         self.node_first[node] + if self.node_kind[node] == NodeKind::Dynamic { 6 } else { 0 }
     }
 
+    /// `(equation, unknown)` of every dynamic node's momentum definitions and momenta
+    /// (`node_first + k`, `node_first + 6 + k`, k = 0..6): the definitions read `p − Σ …` and
+    /// no element reads a momentum, so Newton's linear solver can eliminate them
+    /// ([`SparseLu::eliminating`](super::SparseLu::eliminating)).
+    pub fn momentum_pairs(&self) -> Vec<(usize, usize)> {
+        let dynamic = self.node_first.iter().zip(&self.node_kind).filter(|(_, k)| **k == NodeKind::Dynamic);
+        dynamic.flat_map(|(&f, _)| (0..6).map(move |k| (f + k, f + 6 + k))).collect()
+    }
+
     /// Owner of unknown/equation `i`.
     pub fn owner(&self, i: usize) -> Owner {
         match self.element_first.iter().rposition(|&f| f <= i) {

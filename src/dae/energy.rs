@@ -110,3 +110,28 @@ pub fn mode_label(shares: &[EnergyShare], names: &std::collections::BTreeMap<u32
         None => format!("{node} {} {pct:.0} %", top.component),
     })
 }
+
+/// A label for a real eigenvalue `lambda` [rad/s] (a `±a` pair of an unstable equilibrium,
+/// e.g. a free structure standing on its ground point) with its mode's kinetic-energy
+/// shares: "tipping (ry): base ry 48 %, spring box x 28 %, table x 23 %, unstable" when the
+/// largest share is a rotation about a horizontal axis (relative to gravity; the components
+/// above 5 % named), else [`mode_label`]'s words ("node 2 horizontal (x) 100 %, unstable");
+/// "unstable" for λ > 0 (the motion grows as e^{λt}), "stable" for λ < 0. `None` without
+/// shares.
+pub fn real_mode_label(shares: &[EnergyShare], names: &std::collections::BTreeMap<u32, String>, gravity: &crate::kinematics::Vec3, lambda: f64) -> Option<String> {
+    let top = shares.iter().max_by(|a, b| a.share.total_cmp(&b.share))?;
+    let k = COMPONENTS.iter().position(|c| *c == top.component)?;
+    let tipping = gravity.norm() > 0.0 && k >= 3 && k % 3 != gravity.iamax();
+    let head = if tipping {
+        let parts: Vec<String> = shares
+            .iter()
+            .enumerate()
+            .filter(|(i, s)| *i == 0 || s.share >= 0.05)
+            .map(|(_, s)| format!("{} {} {:.0} %", names.get(&s.node).cloned().unwrap_or_else(|| format!("node {}", s.node)), s.component, 100.0 * s.share))
+            .collect();
+        format!("tipping ({}): {}", top.component, parts.join(", "))
+    } else {
+        mode_label(shares, names, gravity)?
+    };
+    Some(format!("{head}, {}", if lambda > 0.0 { "unstable" } else { "stable" }))
+}

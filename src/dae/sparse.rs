@@ -10,6 +10,7 @@ use faer::sparse::{Pair, SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, Mat, MatMut, Par};
 
 use super::band::{BandLu, BandOrdering};
+use super::eliminate::Eliminated;
 
 /// Entries `(row, col, value)` in a fixed order for a fixed model (duplicates are summed).
 #[derive(Clone, Debug, Default)]
@@ -79,50 +80,73 @@ enum Factorization {
     General { csc: SymbolicSparseColMat<usize>, lu: SymbolicLu<usize>, numeric: NumericLu<usize, f64>, values: Vec<f64>, scratch: MemBuffer },
 }
 
-/// A sparsity pattern: the triplet positions it was made from, the storage index of each
-/// triplet (duplicates share one) and the factorization's fixed part (ordering, band or
-/// symbolic LU).
-struct Pattern {
-    rows: Vec<usize>,
-    cols: Vec<usize>,
+/// The factorization of one sparsity pattern: the storage index of each entry
+/// (duplicates share one) and the factorization's fixed part (ordering, band or symbolic LU).
+pub(super) struct Factored {
+    n: usize,
     position: Vec<usize>,
     factorization: Factorization,
 }
 
-impl Pattern {
-    fn new(j: &Triplets, path: LuPath) -> Result<Self, SparseError> {
+impl Factored {
+    /// The pattern of the `n`x`n` matrix with entries at `(rows[k], cols[k])`.
+    pub(super) fn new(n: usize, rows: &[usize], cols: &[usize], path: LuPath) -> Result<Self, SparseError> {
         let structure = |e: &dyn std::fmt::Debug| SparseError::Structure(format!("{e:?}"));
-        let idx: Vec<Pair<usize, usize>> = j.rows.iter().zip(&j.cols).map(|(&row, &col)| Pair { row, col }).collect();
-        let (csc, _) = SymbolicSparseColMat::try_new_from_indices(j.n, j.n, &idx).map_err(|e| structure(&e))?;
+        let idx: Vec<Pair<usize, usize>> = rows.iter().zip(cols).map(|(&row, &col)| Pair { row, col }).collect();
+        let (csc, _) = SymbolicSparseColMat::try_new_from_indices(n, n, &idx).map_err(|e| structure(&e))?;
         if path == LuPath::Auto {
-            let ordering = BandOrdering::reverse_cuthill_mckee(j.n, &j.rows, &j.cols);
+            let ordering = BandOrdering::reverse_cuthill_mckee(n, rows, cols);
             if ordering.factorization_work() <= BAND_WORK_PER_ENTRY * csc.row_idx().len().max(1) {
-                let lu = BandLu::new(j.n, ordering.kl, ordering.ku);
-                let position = j.rows.iter().zip(&j.cols).map(|(&r, &c)| lu.index(ordering.position[r], ordering.position[c])).collect();
-                let factorization = Factorization::Band { ordering, lu, rhs: vec![0.0; j.n] };
-                return Ok(Pattern { rows: j.rows.clone(), cols: j.cols.clone(), position, factorization });
+                let lu = BandLu::new(n, ordering.kl, ordering.ku);
+                let position = rows.iter().zip(cols).map(|(&r, &c)| lu.index(ordering.position[r], ordering.position[c])).collect();
+                let factorization = Factorization::Band { ordering, lu, rhs: vec![0.0; n] };
+                return Ok(Factored { n, position, factorization });
             }
         }
-        let (ptr, rows) = (csc.col_ptr(), csc.row_idx());
+        let (ptr, row_idx) = (csc.col_ptr(), csc.row_idx());
         let position = idx
             .iter()
-            .map(|p| ptr[p.col] + rows[ptr[p.col]..ptr[p.col + 1]].binary_search(&p.row).unwrap_or_else(|_| unreachable!("the pattern holds every triplet")))
+            .map(|p| ptr[p.col] + row_idx[ptr[p.col]..ptr[p.col + 1]].binary_search(&p.row).unwrap_or_else(|_| unreachable!("the pattern holds every triplet")))
             .collect();
         let lu = factorize_symbolic_lu(csc.as_ref(), Default::default()).map_err(|e| structure(&e))?;
         let req = lu.factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default()).or(lu.solve_in_place_scratch::<f64>(1, Par::Seq));
         let values = vec![0.0; csc.row_idx().len()];
         let factorization = Factorization::General { csc, lu, numeric: NumericLu::new(), values, scratch: MemBuffer::new(req) };
-        Ok(Pattern { rows: j.rows.clone(), cols: j.cols.clone(), position, factorization })
+        Ok(Factored { n, position, factorization })
     }
 
-    /// Assembles `j`'s values, factors and solves `J x = rhs` in place.
-    fn solve(&mut self, j: &Triplets, rhs: &mut [f64]) -> Result<(), SparseError> {
+    pub(super) fn is_banded(&self) -> bool {
+        matches!(self.factorization, Factorization::Band { .. })
+    }
+
+    /// Storage index of each entry of the pattern, in the order given to [`Factored::new`].
+    pub(super) fn positions(&self) -> &[usize] {
+        &self.position
+    }
+
+    /// Assembles `values` (one per entry of the pattern, in its order), factors and solves
+    /// `A x = rhs` in place.
+    pub(super) fn solve(&mut self, values: &[f64], rhs: &mut [f64]) -> Result<(), SparseError> {
+        let position = std::mem::take(&mut self.position);
+        let done = self.solve_with(
+            |storage| {
+                for (&k, &v) in position.iter().zip(values) {
+                    storage[k] += v;
+                }
+            },
+            rhs,
+        );
+        self.position = position;
+        done
+    }
+
+    /// Zeroes the storage, lets `assemble` add the values at storage indices (from
+    /// [`Factored::positions`]), factors and solves `A x = rhs` in place.
+    pub(super) fn solve_with(&mut self, assemble: impl FnOnce(&mut [f64]), rhs: &mut [f64]) -> Result<(), SparseError> {
         match &mut self.factorization {
             Factorization::Band { ordering, lu, rhs: x } => {
                 lu.clear();
-                for (&k, &v) in self.position.iter().zip(&j.values) {
-                    lu.add(k, v);
-                }
+                assemble(lu.storage_mut());
                 lu.factorize().map_err(|_| SparseError::Singular)?;
                 for (i, &p) in ordering.position.iter().enumerate() {
                     x[p] = rhs[i];
@@ -132,18 +156,58 @@ impl Pattern {
                     rhs[i] = x[p];
                 }
             }
-            Factorization::General { csc, lu, numeric, values, scratch } => {
-                values.iter_mut().for_each(|v| *v = 0.0);
-                for (&k, v) in self.position.iter().zip(&j.values) {
-                    values[k] += v;
-                }
-                let a = SparseColMatRef::new(csc.as_ref(), values);
+            Factorization::General { csc, lu, numeric, values: stored, scratch } => {
+                stored.iter_mut().for_each(|v| *v = 0.0);
+                assemble(stored);
+                let a = SparseColMatRef::new(csc.as_ref(), stored);
                 let factors = lu.factorize_numeric_lu(numeric, a, Par::Seq, MemStack::new(scratch), Default::default()).map_err(|_| SparseError::Singular)?;
-                let mut b = MatMut::from_column_major_slice_mut(rhs, j.n, 1);
+                let mut b = MatMut::from_column_major_slice_mut(rhs, self.n, 1);
                 factors.solve_in_place_with_conj(Conj::No, b.rb_mut(), Par::Seq, MemStack::new(scratch));
             }
         }
         Ok(())
+    }
+}
+
+/// How a pattern is solved: directly, or with some unknowns eliminated first (and the
+/// direct factorization built only if a pivot of the elimination turns out zero).
+enum Solver {
+    Direct(Factored),
+    Eliminated { reduced: Box<Eliminated>, direct: Option<Factored> },
+}
+
+/// A sparsity pattern: the triplet positions it was made from and its solver.
+struct Pattern {
+    rows: Vec<usize>,
+    cols: Vec<usize>,
+    solver: Solver,
+}
+
+impl Pattern {
+    fn new(j: &Triplets, path: LuPath, eliminate: &[(usize, usize)]) -> Result<Self, SparseError> {
+        let reduced = if eliminate.is_empty() { None } else { Eliminated::new(j, eliminate, path)? };
+        let solver = match reduced {
+            Some(r) => Solver::Eliminated { reduced: Box::new(r), direct: None },
+            None => Solver::Direct(Factored::new(j.n, &j.rows, &j.cols, path)?),
+        };
+        Ok(Pattern { rows: j.rows.clone(), cols: j.cols.clone(), solver })
+    }
+
+    /// Assembles `j`'s values, factors and solves `J x = rhs` in place.
+    fn solve(&mut self, j: &Triplets, rhs: &mut [f64], path: LuPath) -> Result<(), SparseError> {
+        match &mut self.solver {
+            Solver::Direct(f) => f.solve(&j.values, rhs),
+            Solver::Eliminated { reduced, direct } => {
+                if reduced.solve(&j.values, rhs).is_ok() {
+                    return Ok(());
+                }
+                if direct.is_none() {
+                    *direct = Some(Factored::new(j.n, &j.rows, &j.cols, path)?);
+                }
+                let Some(f) = direct else { unreachable!("set above") };
+                f.solve(&j.values, rhs)
+            }
+        }
     }
 }
 
@@ -154,6 +218,8 @@ impl Pattern {
 pub struct SparseLu {
     pattern: Option<Pattern>,
     path: LuPath,
+    /// `(equation, unknown)` pairs to eliminate before factoring (see [`SparseLu::eliminating`]).
+    eliminate: Vec<(usize, usize)>,
     /// Number of symbolic factorizations done (1 for a fixed pattern).
     pub symbolic_factorizations: usize,
 }
@@ -168,20 +234,46 @@ impl SparseLu {
         SparseLu { path, ..Self::default() }
     }
 
+    /// Eliminates, before factoring, unknown `p` through equation `m` for each pair
+    /// `(m, p)` (a dynamic node's momenta through their definitions: [`DofMap::momentum_pairs`]),
+    /// when in every such equation the only entry among these unknowns is its own `p`;
+    /// otherwise (or for a zero pivot) solves the whole system. Keeps the pattern when the
+    /// pairs are the same as before.
+    ///
+    /// [`DofMap::momentum_pairs`]: super::DofMap::momentum_pairs
+    pub fn eliminating(&mut self, pairs: &[(usize, usize)]) {
+        if self.eliminate != pairs {
+            self.eliminate = pairs.to_vec();
+            self.pattern = None;
+        }
+    }
+
     /// Whether the current pattern is factored by the banded path.
     pub fn is_banded(&self) -> bool {
-        matches!(&self.pattern, Some(Pattern { factorization: Factorization::Band { .. }, .. }))
+        match &self.pattern {
+            Some(Pattern { solver: Solver::Direct(f), .. }) => f.is_banded(),
+            Some(Pattern { solver: Solver::Eliminated { reduced, .. }, .. }) => reduced.is_banded(),
+            None => false,
+        }
+    }
+
+    /// Number of unknowns eliminated before factoring in the current pattern.
+    pub fn eliminated(&self) -> usize {
+        match &self.pattern {
+            Some(Pattern { solver: Solver::Eliminated { reduced, .. }, .. }) => reduced.eliminated(),
+            _ => 0,
+        }
     }
 
     /// Solves `J x = rhs` in place.
     pub fn solve(&mut self, j: &Triplets, rhs: &mut [f64]) -> Result<(), SparseError> {
         let same = matches!(&self.pattern, Some(p) if p.rows == j.rows && p.cols == j.cols);
         if !same {
-            self.pattern = Some(Pattern::new(j, self.path)?);
+            self.pattern = Some(Pattern::new(j, self.path, &self.eliminate)?);
             self.symbolic_factorizations += 1;
         }
         let Some(p) = &mut self.pattern else { unreachable!("set above") };
-        p.solve(j, rhs)?;
+        p.solve(j, rhs, self.path)?;
         if rhs.iter().any(|x| !x.is_finite()) {
             return Err(SparseError::Singular);
         }

@@ -37,6 +37,10 @@ pub(super) struct DynamicPart {
     /// Eigenvalues deflated at λ = 0 (step 1) and at λ = ∞ (steps 2–3).
     pub zeros: usize,
     pub infinities: usize,
+    /// `E₁` was nonsingular with a margin (no index-1 part): the pencil is then regular,
+    /// since `det(λ E₁ + K₁)` has the leading coefficient `det E₁ ≠ 0`. (With an index-1
+    /// part, `A₂₂`'s pivots are only checked against each other, which does not prove it.)
+    pub regular: bool,
     n: usize,
     scaled: bool,
     row_scale: Vec<f64>,
@@ -54,6 +58,10 @@ pub(super) struct DynamicPart {
     nx2: Mat<f64>,
     my2: Mat<f64>,
 }
+
+/// How far above the rounding level `s ε σ_max` every singular value of a full-rank `E₁`
+/// must be for it to count as nonsingular (step 3).
+const FULL_RANK_MARGIN: f64 = 1e4;
 
 fn all_zero(m: &Mat<f64>, rows: &[usize], cols: &[usize]) -> bool {
     rows.iter().all(|&i| cols.iter().all(|&j| m[(i, j)] == 0.0))
@@ -148,8 +156,12 @@ impl DynamicPart {
         let negligible = s as f64 * f64::EPSILON * top;
         let rank = sv.iter().take_while(|&&x| x > negligible).count();
         // The structural zeros sit at rounding level; a singular value between that and
-        // sqrt(ε) of the largest would make the rank a guess: leave the pencil whole.
-        if rank == 0 || sv[..rank].iter().any(|&x| x < f64::EPSILON.sqrt() * top) {
+        // sqrt(ε) of the largest would make the rank a guess: leave the pencil whole. A
+        // full-rank E₁ whose smallest singular value is still FULL_RANK_MARGIN above the
+        // rounding level has no rank to guess (masses of 1e5 kg next to inertias of 1e-4
+        // kg m², examples/ham_sas.mbd: 1.1e-8 of the largest, 3.7e5 above rounding).
+        let full_rank = rank == s && sv.last().is_some_and(|&x| x > FULL_RANK_MARGIN * negligible);
+        if rank == 0 || (!full_rank && sv[..rank].iter().any(|&x| x < f64::EPSILON.sqrt() * top)) {
             return None;
         }
         let (u, v) = (svd.U(), svd.V());
@@ -178,6 +190,7 @@ impl DynamicPart {
             k: k2,
             zeros: if scaled { 2 * m } else { 0 },
             infinities: if scaled { s - rank } else { 2 * m + s - rank },
+            regular: rank == s,
             n,
             scaled,
             row_scale: bal.row.clone(),

@@ -63,6 +63,15 @@ pub(crate) struct Prepared {
 /// Checks a pencil before QZ (see the module doc) and rescales it by a power of two;
 /// `dcoef` is the coefficient of the Λ form requested for a pencil given as F_yd, F_y.
 pub(crate) fn prepare(jacobians: &Jacobians, dcoef: Option<f64>) -> Result<Prepared, EigenError> {
+    let prepared = prepare_unchecked(jacobians, dcoef)?;
+    let (fyd, fy) = prepared.jacobians.derivatives();
+    check_regular(&fyd, &fy)?;
+    Ok(prepared)
+}
+
+/// [`prepare`] without the check for a singular pencil (for a caller that proves
+/// regularity otherwise: the deflation of `super::deflate`).
+pub(crate) fn prepare_unchecked(jacobians: &Jacobians, dcoef: Option<f64>) -> Result<Prepared, EigenError> {
     let non_finite = |what: &str, m: &Mat<f64>| first_non_finite(m).map(|(i, j, x)| EigenError::NonFinite(format!("{what} entry ({}, {}) is {x}", i + 1, j + 1)));
     let (a, b, names) = match jacobians {
         Jacobians::Derivatives { fyd, fy } => (fyd, fy, ["F_yd", "F_y"]),
@@ -101,7 +110,6 @@ pub(crate) fn prepare(jacobians: &Jacobians, dcoef: Option<f64>) -> Result<Prepa
             return Err(EigenError::NonFinite(format!("J = F_yd + dCoef F_y overflows with dCoef = {c} s")));
         }
     }
-    check_regular(&fyd, &fy)?;
     Ok(Prepared { jacobians, scale })
 }
 

@@ -8,7 +8,7 @@ use super::balance::balance_pencil;
 use super::classify::{classify, Classification, ModeKind};
 use super::dae::LinearDae;
 use super::deflate::DynamicPart;
-use super::eigen::{conjugate_mode, normalize, qz, sort_units, ModalAnalysis, Mode};
+use super::eigen::{conjugate_mode, normalize, qz, sort_units, ModalAnalysis, Mode, Products};
 use super::eigen_error::EigenError;
 use super::route::{EigenRoute, EigenVectors};
 use super::sparse::SparseMatrix;
@@ -59,15 +59,21 @@ impl ModalAnalysis {
         if jacobians.dim() == 0 {
             return Err(EigenError::Empty);
         }
-        // Non-finite, singular (det ≡ 0) pencils are refused before any deflation; pencils of
-        // extreme magnitude take the dense route, which rescales them exactly.
-        if super::degenerate::prepare(jacobians, dcoef)?.scale != 1.0 {
+        // Non-finite pencils are refused before any deflation; pencils of extreme magnitude
+        // take the dense route, which rescales them exactly. Singular pencils (det ≡ 0) are
+        // refused too: a pencil whose dynamic part has a nonsingular E₁ is regular
+        // (det(λ F_yd + F_y) = ± det R_G det R_H det(λ E₁ + K₁), up to the eq. 30 factor
+        // λ^2m, with leading coefficient ≠ 0), any other is checked (two LUs).
+        if super::degenerate::prepare_unchecked(jacobians, dcoef)?.scale != 1.0 {
             return Self::compute_with_dcoef(jacobians, route, dcoef);
         }
         let (fyd, fy) = jacobians.derivatives();
         let Some(part) = DynamicPart::new(&fyd, &fy, dae.constraint_form, &dae.multipliers) else {
             return Self::compute_with_dcoef(jacobians, route, dcoef);
         };
+        if !part.regular {
+            super::degenerate::prepare(jacobians, dcoef)?;
+        }
         let dcoef = match (jacobians, dcoef) {
             (super::dae::Jacobians::Derivatives { .. }, Some(c)) => c,
             _ => jacobians.dcoef(),
@@ -77,25 +83,7 @@ impl ModalAnalysis {
         units.extend((0..part.infinities).map(|_| vec![deflated_mode(ModeKind::Infinite, route)]));
         let r = part.dim();
         if r > 0 {
-            let (a, b, mu_scale) = route_pencil(&part.k, &part.e, route, dcoef);
-            let balanced = balance_pencil(&a, &b);
-            let raw = qz(&balanced.a, &balanced.b)?;
-            let norms = (balanced.a.norm_l2(), balanced.b.norm_l2());
-            // Eigenvalues and reduced vectors, one entry per unit (a pair counts once).
-            let mut found = Vec::new();
-            let mut k = 0;
-            while k < r {
-                let pair = raw.alpha_im[k] != 0.0 && k + 1 < r;
-                let alpha = c64::new(raw.alpha_re[k], raw.alpha_im[k]);
-                let vectors = raw.vectors(k, pair);
-                let class = classify(alpha, raw.beta[k], vectors.as_ref(), norms, route);
-                let (lambda, error) = class.lambda_and_error(route, mu_scale, dcoef);
-                let lambda = if lambda.re.is_finite() && lambda.im.is_finite() { lambda } else { c64::new(f64::INFINITY, 0.0) };
-                // The form of eq. 30 divides multipliers by λ: no vectors for λ = 0.
-                let z = vectors.filter(|_| lambda.norm().is_finite() && lambda.norm() > 0.0).map(|w| (balanced.unscale_right(&w.v), balanced.unscale_left(&w.u)));
-                found.push((Mode { lambda, kind: class.kind, error, classification: class, right: None, left: None, partner: None }, z, pair));
-                k += if pair { 2 } else { 1 };
-            }
+            let mut found = qz_modes(&part, route, dcoef)?;
             let with: Vec<(usize, Col<c64>, Col<c64>)> = found.iter_mut().enumerate().filter_map(|(i, f)| f.1.take().map(|(v, u)| (i, v, u))).collect();
             let lambdas: Vec<c64> = with.iter().map(|w| found[w.0].0.lambda).collect();
             let gather = |left: bool| Mat::from_fn(r, with.len(), |i, j| if left { with[j].2[i] } else { with[j].1[i] });
@@ -130,6 +118,41 @@ impl ModalAnalysis {
         }
         Ok(ModalAnalysis { route, dcoef, modes: sort_units(units) })
     }
+}
+
+/// A mode of the dynamic part with its reduced right and left vectors (`None` for λ = 0
+/// or ∞, whose vectors the form of eq. 30 cannot lift) and whether it stands for a pair.
+type ReducedMode = (Mode, Option<(Col<c64>, Col<c64>)>, bool);
+
+/// The dynamic part's modes by QZ on the route's pencil (balanced), labelled on it.
+fn qz_modes(part: &DynamicPart, route: EigenRoute, dcoef: f64) -> Result<Vec<ReducedMode>, EigenError> {
+    let r = part.dim();
+    let (a, b, mu_scale) = route_pencil(&part.k, &part.e, route, dcoef);
+    let balanced = balance_pencil(&a, &b);
+    let raw = qz(&balanced.a, &balanced.b, Products::PerVector)?;
+    let norms = (balanced.a.norm_l2(), balanced.b.norm_l2());
+    let mut found = Vec::new();
+    let mut k = 0;
+    while k < r {
+        let pair = raw.alpha_im[k] != 0.0 && k + 1 < r;
+        let alpha = c64::new(raw.alpha_re[k], raw.alpha_im[k]);
+        // λ follows from (α, β) alone; a finite nonzero λ is labelled on the whole pencil
+        // from its lifted vectors, so only the others need the reduced pencil's products.
+        let (lambda, _) = classify(alpha, raw.beta[k], None, norms, route).lambda_and_error(route, mu_scale, dcoef);
+        let liftable = lambda.re.is_finite() && lambda.im.is_finite() && lambda.norm() > 0.0;
+        let class = if liftable {
+            classify(alpha, raw.beta[k], None, norms, route)
+        } else {
+            classify(alpha, raw.beta[k], raw.vectors(k, pair).as_ref(), norms, route)
+        };
+        let (lambda, error) = class.lambda_and_error(route, mu_scale, dcoef);
+        let lambda = if lambda.re.is_finite() && lambda.im.is_finite() { lambda } else { c64::new(f64::INFINITY, 0.0) };
+        // The form of eq. 30 divides multipliers by λ: no vectors for λ = 0.
+        let z = raw.bare_vectors(k, pair).filter(|_| liftable).map(|(v, u)| (balanced.unscale_right(&v), balanced.unscale_left(&u)));
+        found.push((Mode { lambda, kind: class.kind, error, classification: class, right: None, left: None, partner: None }, z, pair));
+        k += if pair { 2 } else { 1 };
+    }
+    Ok(found)
 }
 
 /// `(A, B, σ)` of the route's pencil `A v = μ B v` built from `λ E + K`: direct

@@ -61,8 +61,9 @@ pub struct ModalAnalysis {
     pub modes: Vec<Mode>,
 }
 
-/// Raw output of QZ on a (balanced) pencil `A v = μ B v`, with the products `A V`, `B V`,
-/// `Uᵀ A`, `Uᵀ B` formed once (four matrix products) for the error estimates.
+/// Raw output of QZ on a (balanced) pencil `A v = μ B v`. The products `A V`, `B V`,
+/// `Uᵀ A`, `Uᵀ B` the error estimates need are formed once for all vectors (four matrix
+/// products, [`Products::All`]) or per requested vector ([`Products::PerVector`]).
 /// faer stores a complex pair's `re, im` parts in two consecutive columns.
 pub(super) struct RawEigen {
     pub alpha_re: Vec<f64>,
@@ -70,10 +71,17 @@ pub(super) struct RawEigen {
     pub beta: Vec<f64>,
     right: Mat<f64>,
     left: Mat<f64>,
-    a_right: Mat<f64>,
-    b_right: Mat<f64>,
-    left_a: Mat<f64>,
-    left_b: Mat<f64>,
+    products: Option<[Mat<f64>; 4]>,
+    a: Mat<f64>,
+    b: Mat<f64>,
+}
+
+/// Whether [`qz`] forms the error estimates' products for every vector at once (when every
+/// eigenvalue is labelled from them) or leaves them to each [`RawEigen::vectors`] call.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(super) enum Products {
+    All,
+    PerVector,
 }
 
 /// QZ with left and right vectors. faer's QZ iteration can fail to converge within its
@@ -82,15 +90,15 @@ pub(super) struct RawEigen {
 /// NaN afterwards means failure. The pencil is then retried after a left multiplication by
 /// a (deterministic) random orthogonal `Q`: `Qᵀ A v = μ Qᵀ B v` has the same eigenvalues
 /// and right vectors, and left vectors `u = Q u′`.
-pub(super) fn qz(a: &Mat<f64>, b: &Mat<f64>) -> Result<RawEigen, EigenError> {
+pub(super) fn qz(a: &Mat<f64>, b: &Mat<f64>, products: Products) -> Result<RawEigen, EigenError> {
     let n = a.nrows();
-    if let Some(raw) = qz_attempt(a, b, a, b, None) {
+    if let Some(raw) = qz_attempt(a, b, a, b, None, products) {
         return Ok(raw);
     }
     for seed in 1..=3u64 {
         let q = random_orthogonal(n, seed);
         let qt = q.transpose();
-        if let Some(raw) = qz_attempt(a, b, &(qt * a), &(qt * b), Some(&q)) {
+        if let Some(raw) = qz_attempt(a, b, &(qt * a), &(qt * b), Some(&q), products) {
             return Ok(raw);
         }
     }
@@ -111,7 +119,7 @@ fn random_orthogonal(n: usize, seed: u64) -> Mat<f64> {
 
 /// QZ on `(h, t)` (the pencil `(a, b)` or its left rotation by `qᵀ`); `None` when the
 /// iteration did not converge.
-fn qz_attempt(a: &Mat<f64>, b: &Mat<f64>, h: &Mat<f64>, t: &Mat<f64>, q: Option<&Mat<f64>>) -> Option<RawEigen> {
+fn qz_attempt(a: &Mat<f64>, b: &Mat<f64>, h: &Mat<f64>, t: &Mat<f64>, q: Option<&Mat<f64>>, products: Products) -> Option<RawEigen> {
     let n = a.nrows();
     let (mut h, mut t) = (h.clone(), t.clone());
     let (mut ar, mut ai, mut be) = (Diag::<f64>::zeros(n), Diag::<f64>::zeros(n), Diag::<f64>::zeros(n));
@@ -161,16 +169,18 @@ fn qz_attempt(a: &Mat<f64>, b: &Mat<f64>, h: &Mat<f64>, t: &Mat<f64>, q: Option<
             }
         }
     }
-    let clean = |m: &Mat<f64>| Mat::from_fn(n, n, |i, j| if m[(i, j)].is_finite() { m[(i, j)] } else { 0.0 });
-    let (urc, ulc) = (clean(&ur), clean(&ul));
+    let products = (products == Products::All).then(|| {
+        let clean = |m: &Mat<f64>| Mat::from_fn(n, n, |i, j| if m[(i, j)].is_finite() { m[(i, j)] } else { 0.0 });
+        let (urc, ulc) = (clean(&ur), clean(&ul));
+        [a * &urc, b * &urc, ulc.transpose() * a, ulc.transpose() * b]
+    });
     Some(RawEigen {
         alpha_re: (0..n).map(|i| ar[i]).collect(),
         alpha_im: (0..n).map(|i| ai[i]).collect(),
         beta: (0..n).map(|i| be[i]).collect(),
-        a_right: a * &urc,
-        b_right: b * &urc,
-        left_a: ulc.transpose() * a,
-        left_b: ulc.transpose() * b,
+        products,
+        a: a.clone(),
+        b: b.clone(),
         right: ur,
         left: ul,
     })
@@ -186,14 +196,25 @@ impl RawEigen {
         }
         let col = |m: &Mat<f64>| Col::<c64>::from_fn(n, |i| c64::new(m[(i, j)], if im { m[(i, j + 1)] } else { 0.0 }));
         let row = |m: &Mat<f64>| Col::<c64>::from_fn(n, |i| c64::new(m[(j, i)], if im { m[(j + 1, i)] } else { 0.0 }));
-        Some(EigenVectors {
-            v: col(&self.right),
-            u: col(&self.left),
-            av: col(&self.a_right),
-            bv: col(&self.b_right),
-            ua: row(&self.left_a),
-            ub: row(&self.left_b),
-        })
+        let (v, u) = (col(&self.right), col(&self.left));
+        let (av, bv, ua, ub) = match &self.products {
+            Some([ar, br, la, lb]) => (col(ar), col(br), row(la), row(lb)),
+            None => {
+                let t = |m: &Mat<f64>| m.transpose().to_owned();
+                (mul_real_complex(&self.a, &v), mul_real_complex(&self.b, &v), mul_real_complex(&t(&self.a), &u), mul_real_complex(&t(&self.b), &u))
+            }
+        };
+        Some(EigenVectors { v, u, av, bv, ua, ub })
+    }
+
+    /// The right and left vectors alone (no products), as [`RawEigen::vectors`].
+    pub(super) fn bare_vectors(&self, j: usize, im: bool) -> Option<(Col<c64>, Col<c64>)> {
+        let n = self.right.nrows();
+        if (0..n).any(|i| !self.right[(i, j)].is_finite() || !self.left[(i, j)].is_finite()) {
+            return None;
+        }
+        let col = |m: &Mat<f64>| Col::<c64>::from_fn(n, |i| c64::new(m[(i, j)], if im { m[(i, j + 1)] } else { 0.0 }));
+        Some((col(&self.right), col(&self.left)))
     }
 }
 
@@ -235,7 +256,7 @@ impl ModalAnalysis {
             }
         };
         let balanced = balance_pencil(&a, &b);
-        let raw = qz(&balanced.a, &balanced.b)?;
+        let raw = qz(&balanced.a, &balanced.b, Products::All)?;
         let norms = (balanced.a.norm_l2(), balanced.b.norm_l2());
 
         let n = a.nrows();

@@ -179,9 +179,9 @@ fn grid(plot: &BodePlot) -> (usize, usize) {
         }
         v
     });
-    let n = chans.len().max(1);
-    let cols = if outs.len() > 0 && n % outs.len() == 0 && n / outs.len() <= 4 { n / outs.len() } else { (n as f64).sqrt().ceil() as usize };
-    (n.div_ceil(cols), cols)
+    let n = chans.len();
+    // One row per output when there are at most 4 inputs.
+    super::figure::grid_shape(n, (!outs.is_empty() && n % outs.len() == 0).then(|| n / outs.len()), 4)
 }
 
 /// Pixel size of a plot: 1200 × 900 for one channel, 640 × 620 per channel cell otherwise.

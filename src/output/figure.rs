@@ -23,6 +23,19 @@ pub const COLORS: [RGBColor; 8] = [
     RGBColor(23, 190, 207),
 ];
 
+/// `(rows, columns)` of a grid of `n` panels: rows of `row` panels (a transfer matrix's
+/// inputs, one row per output) when `row` divides `n` and is at most `max_columns`, else the
+/// squarest grid, with at least as many columns as rows. The one layout of romdyn's panel
+/// grids (Bode panel pairs, MIMO magnitude grids).
+pub fn grid_shape(n: usize, row: Option<usize>, max_columns: usize) -> (usize, usize) {
+    let n = n.max(1);
+    let cols = match row {
+        Some(r) if r > 0 && n % r == 0 && r <= max_columns => r,
+        _ => (n as f64).sqrt().ceil() as usize,
+    };
+    (n.div_ceil(cols), cols)
+}
+
 /// Something that draws itself on any plotters backend.
 pub trait Figure {
     fn draw<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> Result<(), String>;
@@ -56,4 +69,24 @@ pub fn write_figure(figure: &impl Figure, size: (u32, u32), svg_path: &Path, png
         let _ = std::fs::remove_file(&tmp);
     }
     result
+}
+
+#[cfg(test)]
+mod tests {
+    use super::grid_shape;
+
+    #[test]
+    fn grids_follow_the_transfer_matrix_or_are_square() {
+        // 6 x 6 and 8 x 8 matrices: one row per output.
+        assert_eq!(grid_shape(36, Some(6), usize::MAX), (6, 6));
+        assert_eq!(grid_shape(64, Some(8), usize::MAX), (8, 8));
+        // Bode panel pairs: at most 4 per row, else the squarest grid.
+        assert_eq!(grid_shape(6, Some(2), 4), (3, 2));
+        assert_eq!(grid_shape(36, Some(6), 4), (6, 6));
+        assert_eq!(grid_shape(10, Some(5), 4), (3, 4));
+        // A diagonal of 8: 3 x 3 (columns first), one panel: 1 x 1.
+        assert_eq!(grid_shape(8, None, usize::MAX), (3, 3));
+        assert_eq!(grid_shape(1, None, 4), (1, 1));
+        assert_eq!(grid_shape(0, None, 4), (1, 1));
+    }
 }

@@ -36,15 +36,13 @@ impl MimoPlot {
         }
     }
 
-    /// Columns and rows of the grid.
+    /// Columns and rows of the grid: the transfer matrix's (one row per output), or the
+    /// squarest grid for the diagonal.
     fn shape(&self) -> (usize, usize) {
         let n = self.panels().len();
-        if self.diagonal {
-            let c = (n as f64).sqrt().ceil() as usize;
-            (c.max(1), n.div_ceil(c.max(1)).max(1))
-        } else {
-            (self.inputs.len().max(1), self.outputs.len().max(1))
-        }
+        let row = (!self.diagonal).then_some(self.inputs.len());
+        let (rows, cols) = super::figure::grid_shape(n, row, usize::MAX);
+        (cols, rows)
     }
 
     /// Pixel size: panels of at least 360 x 260 px.

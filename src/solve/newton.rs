@@ -124,6 +124,9 @@ pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &Newton
         Update::Derivatives { .. } => asm.dofs.node_first.iter().flat_map(|&f| (f..f + 6).map(|i| (i, st.y[i], st.yp[i]))).collect(),
         _ => Vec::new(),
     };
+    if !matches!(update, Update::Static) {
+        ws.lu.eliminating(&asm.dofs.momentum_pairs());
+    }
     let measure = |f: &[f64]| match settings.norm {
         ResidualNorm::Max => worst(f).1,
         ResidualNorm::Euclidean => f.iter().map(|x| x * x).sum::<f64>().sqrt(),

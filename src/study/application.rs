@@ -8,7 +8,7 @@ use faer::{c64, Mat};
 
 use crate::analysis::{reference_state, Reference};
 use crate::dae::ports::{InputPort, OutputPort};
-use crate::dae::{element_part, linearize_ports, mode_label, ElementPart, NodeInput, NodeOutput, State};
+use crate::dae::{element_part, linearize_ports, mode_label, real_mode_label, ElementPart, ModalEnergy, NodeInput, NodeOutput, State};
 use crate::linear::{LinearDae, ModalAnalysis};
 use crate::model::{InitialValueProblem, Label, Model};
 use crate::rom::{full_frequency_response, transmissibility, with_spring_ports, without_elements, ImposedModel, SpringFeedback};
@@ -135,6 +135,23 @@ impl Study {
         let names = &names;
         let gravity = self.model.as_ref().map(|m| m.gravity).unwrap_or_default();
         self.energy().iter().map(|s| mode_label(s, names, &gravity)).collect()
+    }
+
+    /// A label for a real eigenvalue `lambda` [rad/s] of the free model (the study's full
+    /// model, dummy springs removed: e.g. a free ROM's unstable pair): the kinetic-energy
+    /// shares of the free model's real mode nearest it ([`LinearDae::real_mode_near`]),
+    /// worded by [`real_mode_label`] ("tipping (ry): base ry 48 %, …, unstable"). `None`
+    /// without a model or when the free model has no real eigenvalue near `lambda`.
+    pub fn free_real_mode_label(&self, lambda: f64) -> Option<String> {
+        let model = self.model.as_ref()?;
+        let (lambda, v) = self.linear.dense().real_mode_near(lambda)?;
+        let right = faer::Col::from_fn(v.nrows(), |i| c64::new(v[i], 0.0));
+        let mode = crate::linear::Mode { lambda: c64::new(lambda, 0.0), right: Some(right), left: None, partner: None, ..self.modal.modes.first()?.clone() };
+        let mut names = model.node_names.clone();
+        if let Some(a) = &self.application {
+            names.extend(a.names.iter().map(|(k, v)| (*k, v.clone())));
+        }
+        real_mode_label(&ModalEnergy::new(model, self.linear.dense()).shares(&mode), &names, &model.gravity, lambda)
     }
 
     /// The elements removed from the full model and the ROMs ("deformable hinge 902").

@@ -17,7 +17,7 @@ use nalgebra::{SMatrix, Vector6};
 
 use super::contract::{Col, Element, ElementState, JacobianSink, Label, ResidualSink, Row, SectionState};
 use crate::kinematics::{gibbs_from_rotation, gibbs_rotation, skew, Mat3, Vec3};
-use section::{put, NodeTerms, SectionKinematics, SectionReference, Tangent, POSITION};
+use section::{combine, put, NodeTerms, SectionKinematics, SectionReference, Tangent, POSITION};
 
 /// One end or the middle of a beam: a node with its initial position and orientation (they
 /// define the unstrained configuration), the offset of the reference line from the node and
@@ -89,11 +89,14 @@ impl Beam3 {
         for (k, orientation) in orientations.iter().enumerate() {
             let xi = shape::EVALUATION_POINTS[k];
             let d = shape::derivatives(xi);
-            let tangent = d[0] * y[0] + d[1] * y[1] + d[2] * y[2];
-            let dsdxi = tangent.norm();
+            let dsdxi = combine(&d, &y).norm();
             if dsdxi <= f64::EPSILON * (y[0].norm() + y[2].norm() + 1.0) {
                 return Err(BeamError::ZeroLength(label, POINT_NAMES[k]));
             }
+            // p′⁰ by the very operations SectionKinematics applies to the nodes, so that
+            // the strain is exactly zero in the initial configuration (as MBDyn's: a
+            // 1000-element cantilever otherwise starts with 1e-4 N of rounding per node).
+            let tangent = combine(&d.map(|d| d / dsdxi), &y);
             let r0 = match orientation {
                 SectionOrientation::Given(r) => *r,
                 SectionOrientation::FromNodes => interpolate_frames(&frames, xi),
@@ -101,7 +104,7 @@ impl Beam3 {
             if ((r0.transpose() * r0) - Mat3::identity()).norm() > 1e-9 || r0.determinant() < 0.0 {
                 return Err(BeamError::BadOrientation(label, POINT_NAMES[k]));
             }
-            sections.push(SectionReference { xi, orientation: r0, dsdxi, initial_strain: r0.transpose() * tangent / dsdxi });
+            sections.push(SectionReference { xi, orientation: r0, dsdxi, initial_strain: r0.transpose() * tangent });
         }
         let viscous = laws.iter().any(SectionLaw::is_viscous);
         Ok(Beam3 {
@@ -194,8 +197,10 @@ impl Element for Beam3 {
 
     fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
         let (terms, ks) = self.evaluate(st);
+        let node_tangents = terms.tangents();
         let mut jac = ElementJacobian::zeros();
         for (s, k) in ks.iter().enumerate() {
+            let d = k.tangents(&terms, &node_tangents);
             let law = &self.laws[s];
             let f = self.local_forces(s, k);
             let (fl, ml) = (Vec3::new(f[0], f[1], f[2]), Vec3::new(f[3], f[4], f[5]));
@@ -203,17 +208,17 @@ impl Element for Beam3 {
             // δ(local forces) = K [δε; δκ] + V [δε̇; δκ̇].
             let block = |m: &nalgebra::Matrix6<f64>, i: usize, j: usize| -> Mat3 { m.fixed_view::<3, 3>(i, j).into() };
             let (kk, vv) = (&law.stiffness, &law.viscosity);
-            let mut dfl = block(kk, 0, 0) * k.dstrain + block(kk, 0, 3) * k.dcurvature;
-            let mut dml = block(kk, 3, 0) * k.dstrain + block(kk, 3, 3) * k.dcurvature;
+            let mut dfl = block(kk, 0, 0) * d.dstrain + block(kk, 0, 3) * d.dcurvature;
+            let mut dml = block(kk, 3, 0) * d.dstrain + block(kk, 3, 3) * d.dcurvature;
             if self.viscous {
-                dfl += block(vv, 0, 0) * k.dstrain_rate + block(vv, 0, 3) * k.dcurvature_rate;
-                dml += block(vv, 3, 0) * k.dstrain_rate + block(vv, 3, 3) * k.dcurvature_rate;
+                dfl += block(vv, 0, 0) * d.dstrain_rate + block(vv, 0, 3) * d.dcurvature_rate;
+                dml += block(vv, 3, 0) * d.dstrain_rate + block(vv, 3, 3) * d.dcurvature_rate;
             }
-            let dforce = k.r * dfl - skew(&force) * k.dtheta;
-            let dmoment = k.r * dml - skew(&moment) * k.dtheta;
+            let dforce = k.r * dfl - skew(&force) * d.dtheta;
+            let dmoment = k.r * dml - skew(&moment) * d.dtheta;
             for (node, sign) in [(s, -1.0), (s + 1, 1.0)] {
                 let arm = k.p - terms.x(node);
-                let mut darm = k.dp;
+                let mut darm = d.dp;
                 put(&mut darm, node, POSITION, &-Mat3::identity());
                 let dm: Tangent = dmoment + skew(&arm) * dforce - skew(&force) * darm;
                 let mut rows = jac.fixed_view_mut::<3, 36>(6 * node, 0);

@@ -54,25 +54,34 @@ pub struct SectionReference {
     pub initial_strain: Vec3,
 }
 
-/// Per-element quantities shared by both evaluation points.
+/// Per-element values shared by both evaluation points (no derivatives: the residual
+/// needs none; [`NodeTerms::tangents`] adds them for the Jacobian).
 pub struct NodeTerms {
     /// `T = R_2 R_2⁰ᵀ`.
     t: Mat3,
     x: [Vec3; 3],
+    /// `a_i = R_i f_i`.
+    a: [Vec3; 3],
     y: [Vec3; 3],
     g: [Vec3; 3],
-    dy: [Tangent; 3],
-    dg: [Tangent; 3],
-    /// `ẏ_i`, `ġ_i` and derivatives, when the law is viscous.
+    /// `Γ(g_i) = G(g_i)⁻¹`.
+    gamma: [Mat3; 3],
+    omega: [Vec3; 3],
+    /// `ẏ_i`, `ġ_i`, when the law is viscous.
     rates: Option<NodeRates>,
-    omega_mid: Vec3,
 }
 
 struct NodeRates {
     ydot: [Vec3; 3],
     gdot: [Vec3; 3],
-    dydot: [Tangent; 3],
-    dgdot: [Tangent; 3],
+}
+
+/// Derivatives of the node terms with respect to the element's perturbations.
+pub struct NodeTangents {
+    dy: [Tangent; 3],
+    dg: [Tangent; 3],
+    /// `∂ẏ_i`, `∂ġ_i`, when the law is viscous.
+    rates: Option<([Tangent; 3], [Tangent; 3])>,
 }
 
 impl NodeTerms {
@@ -82,53 +91,68 @@ impl NodeTerms {
         let tt = t.transpose();
         let a: [Vec3; 3] = std::array::from_fn(|i| n[i].r * offsets[i]);
         let y = std::array::from_fn(|i| n[i].x + a[i]);
-        let dy = std::array::from_fn(|i| {
-            let mut d = single(i, POSITION, &Mat3::identity());
-            put(&mut d, i, ROTATION, &-skew(&a[i]));
-            d
-        });
         let mut g = [Vec3::zeros(); 3];
         let mut gamma = [Mat3::identity(); 3];
-        let mut dg = [Tangent::zeros(); 3];
         for i in [0, 2] {
             g[i] = gibbs_from_rotation(&(tt * n[i].r * initial[i].transpose()));
             gamma[i] = gibbs_g_inverse(&g[i]);
-            // δg_i = Γ(g_i) Tᵀ (δθ_i − δθ_2).
-            let m = gamma[i] * tt;
-            put(&mut dg[i], i, ROTATION, &m);
-            put(&mut dg[i], 1, ROTATION, &-m);
         }
+        let omega = std::array::from_fn(|i| n[i].omega);
         let rates = with_rates.then(|| {
             let ydot = std::array::from_fn(|i| n[i].xdot + n[i].omega.cross(&a[i]));
-            let dydot = std::array::from_fn(|i| {
-                let mut d = single(i, VELOCITY, &Mat3::identity());
-                put(&mut d, i, ANGULAR_VELOCITY, &-skew(&a[i]));
-                put(&mut d, i, ROTATION, &(-skew(&n[i].omega) * skew(&a[i])));
-                d
-            });
             let mut gdot = [Vec3::zeros(); 3];
-            let mut dgdot = [Tangent::zeros(); 3];
             for i in [0, 2] {
-                let rel = n[i].omega - n[1].omega;
-                let w = tt * rel;
-                gdot[i] = gamma[i] * w;
-                // δw = Tᵀ (δω_i − δω_2) + Tᵀ [(ω_i − ω_2)×] δθ_2.
-                let mut dw = single(i, ANGULAR_VELOCITY, &tt);
-                put(&mut dw, 1, ANGULAR_VELOCITY, &-tt);
-                put(&mut dw, 1, ROTATION, &(tt * skew(&rel)));
-                dgdot[i] = gibbs_g_inverse_derivative(&g[i], &w) * dg[i] + gamma[i] * dw;
+                gdot[i] = gamma[i] * (tt * (n[i].omega - n[1].omega));
             }
-            NodeRates { ydot, gdot, dydot, dgdot }
+            NodeRates { ydot, gdot }
         });
-        NodeTerms { t, x: std::array::from_fn(|i| n[i].x), y, g, dy, dg, rates, omega_mid: n[1].omega }
+        NodeTerms { t, x: std::array::from_fn(|i| n[i].x), a, y, g, gamma, omega, rates }
     }
 
     pub fn x(&self, i: usize) -> Vec3 {
         self.x[i]
     }
+
+    /// `∂y_i`, `∂g_i` (and `∂ẏ_i`, `∂ġ_i` when viscous).
+    pub fn tangents(&self) -> NodeTangents {
+        let (a, tt) = (&self.a, self.t.transpose());
+        let dy = std::array::from_fn(|i| {
+            let mut d = single(i, POSITION, &Mat3::identity());
+            put(&mut d, i, ROTATION, &-skew(&a[i]));
+            d
+        });
+        let mut dg = [Tangent::zeros(); 3];
+        for i in [0, 2] {
+            // δg_i = Γ(g_i) Tᵀ (δθ_i − δθ_2).
+            let m = self.gamma[i] * tt;
+            put(&mut dg[i], i, ROTATION, &m);
+            put(&mut dg[i], 1, ROTATION, &-m);
+        }
+        let rates = self.rates.as_ref().map(|_| {
+            let omega = &self.omega;
+            let dydot = std::array::from_fn(|i| {
+                let mut d = single(i, VELOCITY, &Mat3::identity());
+                put(&mut d, i, ANGULAR_VELOCITY, &-skew(&a[i]));
+                put(&mut d, i, ROTATION, &(-skew(&omega[i]) * skew(&a[i])));
+                d
+            });
+            let mut dgdot = [Tangent::zeros(); 3];
+            for i in [0, 2] {
+                let rel = omega[i] - omega[1];
+                let w = tt * rel;
+                // δw = Tᵀ (δω_i − δω_2) + Tᵀ [(ω_i − ω_2)×] δθ_2.
+                let mut dw = single(i, ANGULAR_VELOCITY, &tt);
+                put(&mut dw, 1, ANGULAR_VELOCITY, &-tt);
+                put(&mut dw, 1, ROTATION, &(tt * skew(&rel)));
+                dgdot[i] = gibbs_g_inverse_derivative(&self.g[i], &w) * dg[i] + self.gamma[i] * dw;
+            }
+            (dydot, dgdot)
+        });
+        NodeTangents { dy, dg, rates }
+    }
 }
 
-/// The state of one evaluation point and its derivatives.
+/// The state of one evaluation point (values, and what its derivatives reuse).
 pub struct SectionKinematics {
     /// Position `p` of the reference line [m].
     pub p: Vec3,
@@ -139,16 +163,42 @@ pub struct SectionKinematics {
     pub curvature: Vec3,
     pub strain_rate: Vec3,
     pub curvature_rate: Vec3,
+    nv: [f64; 3],
+    nd: [f64; 3],
+    /// `p′`, `g`, `g′`, `G(g)`, `T G(g)`, `R_s⁰ᵀ`, `∂(Gᵀ(g) g′)/∂g`.
+    pp: Vec3,
+    g: Vec3,
+    gp: Vec3,
+    gm: Mat3,
+    tg: Mat3,
+    r0t: Mat3,
+    dgt_gp: Mat3,
+    rates: Option<SectionRates>,
+}
+
+/// Rate terms of an evaluation point that its derivatives reuse.
+struct SectionRates {
+    gd: Vec3,
+    gpd: Vec3,
+    spin: Vec3,
+    omega: Vec3,
+    u: Vec3,
+}
+
+/// Derivatives of an evaluation point's state with respect to the element's perturbations.
+pub struct SectionTangents {
     pub dp: Tangent,
     /// Virtual rotation of the section frame.
     pub dtheta: Tangent,
     pub dstrain: Tangent,
     pub dcurvature: Tangent,
+    /// Zero unless the law is viscous.
     pub dstrain_rate: Tangent,
     pub dcurvature_rate: Tangent,
 }
 
-fn combine(w: &[f64; 3], v: &[Vec3; 3]) -> Vec3 {
+/// `Σ w_i v_i` (interpolation from the nodes).
+pub fn combine(w: &[f64; 3], v: &[Vec3; 3]) -> Vec3 {
     w[0] * v[0] + w[1] * v[1] + w[2] * v[2]
 }
 
@@ -161,49 +211,48 @@ impl SectionKinematics {
         let nv = shape::values(reference.xi);
         let nd = shape::derivatives(reference.xi).map(|d| d / reference.dsdxi);
         let (p, pp) = (combine(&nv, &node.y), combine(&nd, &node.y));
-        let (dp, dpp) = (combine_t(&nv, &node.dy), combine_t(&nd, &node.dy));
         let (g, gp) = (combine(&nv, &node.g), combine(&nd, &node.g));
-        let (dg, dgp) = (combine_t(&nv, &node.dg), combine_t(&nd, &node.dg));
         let (gm, r0t) = (gibbs_g(&g), reference.orientation.transpose());
         let r = node.t * gibbs_rotation(&g) * reference.orientation;
         let rt = r.transpose();
         let tg = node.t * gm;
-        let mut dtheta = tg * dg;
-        put(&mut dtheta, 1, ROTATION, &Mat3::identity());
         let strain = rt * pp - reference.initial_strain;
-        let dstrain = rt * (dpp + skew(&pp) * dtheta);
         let dgt_gp = gibbs_gt_derivative(&g, &gp);
         let curvature = r0t * gibbs_gt_apply(&g, &gp);
-        let dcurvature = r0t * (dgt_gp * dg + gm.transpose() * dgp);
-        let mut s = SectionKinematics {
-            p,
-            r,
-            strain,
-            curvature,
-            strain_rate: Vec3::zeros(),
-            curvature_rate: Vec3::zeros(),
-            dp,
-            dtheta,
-            dstrain,
-            dcurvature,
-            dstrain_rate: Tangent::zeros(),
-            dcurvature_rate: Tangent::zeros(),
-        };
+        let mut s = SectionKinematics { p, r, strain, curvature, strain_rate: Vec3::zeros(), curvature_rate: Vec3::zeros(), nv, nd, pp, g, gp, gm, tg, r0t, dgt_gp, rates: None };
         if let Some(rates) = &node.rates {
-            let (ppd, dppd) = (combine(&nd, &rates.ydot), combine_t(&nd, &rates.dydot));
+            let ppd = combine(&nd, &rates.ydot);
             let (gd, gpd) = (combine(&nv, &rates.gdot), combine(&nd, &rates.gdot));
-            let (dgd, dgpd) = (combine_t(&nv, &rates.dgdot), combine_t(&nd, &rates.dgdot));
             let spin = tg * gd;
-            let omega = node.omega_mid + spin;
-            let mut domega = node.t * (gibbs_rate_derivative(&g, &gd) * dg + gm * dgd);
-            put(&mut domega, 1, ANGULAR_VELOCITY, &Mat3::identity());
-            put(&mut domega, 1, ROTATION, &-skew(&spin));
+            let omega = node.omega[1] + spin;
             let u = ppd + pp.cross(&omega);
             s.strain_rate = rt * u;
-            s.dstrain_rate = rt * (skew(&u) * dtheta + dppd + skew(&pp) * domega - skew(&omega) * dpp);
             s.curvature_rate = r0t * (dgt_gp * gd + gibbs_gt_apply(&g, &gpd));
-            let dg_total = (gibbs_gt_second_derivative(&g, &gp, &gd) + gibbs_gt_derivative(&g, &gpd)) * dg;
-            s.dcurvature_rate = r0t * (dg_total + dgt_gp * dgd + gibbs_gt_derivative_in_a(&g, &gd) * dgp + gm.transpose() * dgpd);
+            s.rates = Some(SectionRates { gd, gpd, spin, omega, u });
+        }
+        s
+    }
+
+    /// The derivatives of this point's state, from its element's node tangents.
+    pub fn tangents(&self, node: &NodeTerms, nt: &NodeTangents) -> SectionTangents {
+        let (nv, nd, pp, g, gp, gm) = (&self.nv, &self.nd, &self.pp, &self.g, &self.gp, &self.gm);
+        let rt = self.r.transpose();
+        let (dp, dpp) = (combine_t(nv, &nt.dy), combine_t(nd, &nt.dy));
+        let (dg, dgp) = (combine_t(nv, &nt.dg), combine_t(nd, &nt.dg));
+        let mut dtheta = self.tg * dg;
+        put(&mut dtheta, 1, ROTATION, &Mat3::identity());
+        let dstrain = rt * (dpp + skew(pp) * dtheta);
+        let dcurvature = self.r0t * (self.dgt_gp * dg + gm.transpose() * dgp);
+        let mut s = SectionTangents { dp, dtheta, dstrain, dcurvature, dstrain_rate: Tangent::zeros(), dcurvature_rate: Tangent::zeros() };
+        if let (Some(r), Some((dydot, dgdot))) = (&self.rates, &nt.rates) {
+            let dppd = combine_t(nd, dydot);
+            let (dgd, dgpd) = (combine_t(nv, dgdot), combine_t(nd, dgdot));
+            let mut domega = node.t * (gibbs_rate_derivative(g, &r.gd) * dg + gm * dgd);
+            put(&mut domega, 1, ANGULAR_VELOCITY, &Mat3::identity());
+            put(&mut domega, 1, ROTATION, &-skew(&r.spin));
+            s.dstrain_rate = rt * (skew(&r.u) * s.dtheta + dppd + skew(pp) * domega - skew(&r.omega) * dpp);
+            let dg_total = (gibbs_gt_second_derivative(g, gp, &r.gd) + gibbs_gt_derivative(g, &r.gpd)) * dg;
+            s.dcurvature_rate = self.r0t * (dg_total + self.dgt_gp * dgd + gibbs_gt_derivative_in_a(g, &r.gd) * dgp + gm.transpose() * dgpd);
         }
         s
     }

@@ -51,3 +51,11 @@ pub enum KrylovError {
     #[error("{0}")]
     Request(String),
 }
+
+/// The pencil `λ E + K` in the form of eq. 29 that [`sparse_modes`] factors and iterates on
+/// (MBDyn's constraint form, eq. 30, mapped as `pencil.rs` describes; other forms as they
+/// are): `(E, K)`, for exporting the exact problem to other eigensolvers.
+pub fn shift_invert_pencil(dae: &crate::linear::SparseLinearDae) -> Result<(crate::linear::SparseMatrix, crate::linear::SparseMatrix), KrylovError> {
+    let p = pencil::Pencil::new(dae)?;
+    Ok((p.e, p.k))
+}

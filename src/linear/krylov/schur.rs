@@ -8,6 +8,8 @@ use faer::{c64, Mat};
 
 /// `(T, Z)` with `H = Z T Zᴴ`, `T` upper triangular, `Z` unitary; `None` when the QR
 /// iteration does not converge within `30 n` sweeps per eigenvalue.
+// Out of line (here and `sort_schur`) so that profiles show the small dense work apart.
+#[inline(never)]
 pub(super) fn schur(h: &Mat<c64>) -> Option<(Mat<c64>, Mat<c64>)> {
     let n = h.nrows();
     let mut t = h.clone();
@@ -130,8 +132,9 @@ fn hessenberg(t: &mut Mat<c64>, z: &mut Mat<c64>) {
         if nv2 == 0.0 {
             continue;
         }
-        // P = I − 2 v vᴴ / (vᴴ v), applied on the left (rows k+1..) and the right.
-        for j in 0..n {
+        // P = I − 2 v vᴴ / (vᴴ v), applied on the left (rows k+1..; columns before k are
+        // already zero there) and the right.
+        for j in k..n {
             let s = v.iter().enumerate().fold(c64::new(0.0, 0.0), |s, (i, vi)| s + vi.conj() * t[(k + 1 + i, j)]) * (2.0 / nv2);
             for (i, vi) in v.iter().enumerate() {
                 t[(k + 1 + i, j)] -= *vi * s;
@@ -169,6 +172,7 @@ fn swap(t: &mut Mat<c64>, z: &mut Mat<c64>, k: usize) {
 
 /// Reorders the Schur form so that the diagonal entries come in decreasing `key`
 /// (a stable bubble sort of adjacent swaps).
+#[inline(never)]
 pub(super) fn sort_schur(t: &mut Mat<c64>, z: &mut Mat<c64>, key: impl Fn(c64) -> f64) {
     let n = t.nrows();
     for i in 1..n {

@@ -1,0 +1,123 @@
+//! The hanging N-link chain's pencil for side-by-side eigensolver timings
+//! (scripts/bench_eigen.py, issue 13 acceptance):
+//!
+//! ```text
+//! cargo run --release --example sparse_pencil -- export N DIR
+//!     writes DIR/E.mtx and DIR/K.mtx: the pencil λ E + K of eq. 29 that
+//!     linear::krylov::sparse_modes factors and iterates on (the chain of the tests and of
+//!     benches/sparse_eigen.rs linearized at rest in MBDyn's form, eq. 30, then mapped to
+//!     eq. 29), Matrix Market coordinate real general, 17 N + 12 rows.
+//! cargo run --release --example sparse_pencil -- solve DIR COUNT [REPEAT]
+//!     reads DIR/E.mtx, DIR/K.mtx, runs sparse_modes(Lowest(COUNT)) REPEAT times on
+//!     E ẏ + K y = 0 and prints the fastest wall time [s] and the eigenvalues [rad/s]
+//!     (Im λ ≥ 0 of each pair), one "re im" line each.
+//! ```
+
+#[allow(dead_code)]
+#[path = "../tests/common/models.rs"]
+mod models;
+
+use std::io::{BufRead, BufWriter, Write};
+use std::path::Path;
+
+use anyhow::{bail, Context, Result};
+use faer::Mat;
+use romdyn::dae::{linearize_sparse, Assembler, State};
+use romdyn::linear::krylov::{shift_invert_pencil, sparse_modes, ModeTarget, SparseEigenSettings};
+use romdyn::linear::{ConstraintForm, SparseLinearDae, SparseMatrix};
+use romdyn::solve::{static_solution, NewtonSettings};
+
+fn main() -> Result<()> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    match args.iter().map(String::as_str).collect::<Vec<_>>().as_slice() {
+        ["export", n, dir] => export(n.parse().context("N: a number of links")?, Path::new(dir)),
+        ["solve", dir, count] => solve(Path::new(dir), count.parse().context("COUNT: a number of modes")?, 1),
+        ["solve", dir, count, repeat] => solve(Path::new(dir), count.parse().context("COUNT: a number of modes")?, repeat.parse().context("REPEAT: a number of runs")?),
+        _ => bail!("usage: sparse_pencil export N DIR | sparse_pencil solve DIR COUNT [REPEAT]"),
+    }
+}
+
+fn export(n: u32, dir: &Path) -> Result<()> {
+    let model = models::hanging_chain(n, ConstraintForm::Scaled);
+    let asm = Assembler::new(&model);
+    let mut st = State::initial(&model, &asm.dofs);
+    static_solution(&asm, &mut st, 1, &NewtonSettings::default())?;
+    let dae = linearize_sparse(&model, &st, &[], &[])?;
+    let (e, k) = shift_invert_pencil(&dae)?;
+    std::fs::create_dir_all(dir)?;
+    write_matrix_market(&dir.join("E.mtx"), &e)?;
+    write_matrix_market(&dir.join("K.mtx"), &k)?;
+    println!("{} equations, nnz(E) = {}, nnz(K) = {}", e.nrows(), e.nnz(), k.nnz());
+    Ok(())
+}
+
+fn solve(dir: &Path, count: usize, repeat: usize) -> Result<()> {
+    let (e, k) = (read_matrix_market(&dir.join("E.mtx"))?, read_matrix_market(&dir.join("K.mtx"))?);
+    let n = e.nrows();
+    if k.nrows() != n || e.ncols() != n || k.ncols() != n {
+        bail!("E.mtx and K.mtx must be square and of one size");
+    }
+    let dae = SparseLinearDae {
+        fyd: e,
+        fy: k,
+        b: Mat::zeros(n, 0),
+        c: Mat::zeros(0, n),
+        c_rate: None,
+        unknown_names: (0..n).map(|i| format!("y{i}")).collect(),
+        input_names: Vec::new(),
+        output_names: Vec::new(),
+        constraint_form: None,
+        multipliers: Vec::new(),
+    };
+    let mut best = f64::INFINITY;
+    let mut result = None;
+    for _ in 0..repeat.max(1) {
+        let start = std::time::Instant::now();
+        let r = sparse_modes(&dae, ModeTarget::Lowest(count), &SparseEigenSettings::default())?;
+        best = best.min(start.elapsed().as_secs_f64());
+        result = Some(r);
+    }
+    let Some(r) = result else { unreachable!("at least one run") };
+    let out = std::io::stdout();
+    let mut out = out.lock();
+    writeln!(out, "time {best:.6} s, certified {}, max residual {:.2e}", r.certified, r.max_residual)?;
+    for m in r.modal.modes.iter().filter(|m| m.lambda.im >= 0.0) {
+        writeln!(out, "{:.17e} {:.17e}", m.lambda.re, m.lambda.im)?;
+    }
+    Ok(())
+}
+
+/// Matrix Market coordinate real general (1-based indices).
+fn write_matrix_market(path: &Path, m: &SparseMatrix) -> Result<()> {
+    let mut w = BufWriter::new(std::fs::File::create(path).with_context(|| format!("{}", path.display()))?);
+    writeln!(w, "%%MatrixMarket matrix coordinate real general")?;
+    writeln!(w, "{} {} {}", m.nrows(), m.ncols(), m.nnz())?;
+    for (i, j, v) in m.triplets() {
+        writeln!(w, "{} {} {:e}", i + 1, j + 1, v)?;
+    }
+    Ok(w.flush()?)
+}
+
+fn read_matrix_market(path: &Path) -> Result<SparseMatrix> {
+    let name = path.display().to_string();
+    let file = std::io::BufReader::new(std::fs::File::open(path).with_context(|| name.clone())?);
+    let mut lines = file.lines().enumerate().filter(|(_, l)| l.as_ref().map_or(true, |l| !l.starts_with('%')));
+    let (_, size) = lines.next().with_context(|| format!("{name}: no size line"))?;
+    let size: Vec<usize> = size?.split_whitespace().map(str::parse).collect::<Result<_, _>>().with_context(|| format!("{name}: size line"))?;
+    let [nrows, ncols, nnz] = size[..] else { bail!("{name}: the size line must be \"rows cols entries\"") };
+    let mut entries = Vec::with_capacity(nnz.min(1 << 26));
+    for (no, line) in lines {
+        let line = line?;
+        let f: Vec<&str> = line.split_whitespace().collect();
+        let [i, j, v] = f[..] else { bail!("{name}:{}: expected \"row col value\"", no + 1) };
+        let (i, j): (usize, usize) = (i.parse()?, j.parse()?);
+        if i == 0 || j == 0 {
+            bail!("{name}:{}: indices start at 1", no + 1);
+        }
+        entries.push((i - 1, j - 1, v.parse::<f64>()?));
+    }
+    if entries.len() != nnz {
+        bail!("{name}: {} entries, the size line says {nnz}", entries.len());
+    }
+    SparseMatrix::from_triplets(nrows, ncols, entries).with_context(|| format!("{name}: an index is out of range"))
+}

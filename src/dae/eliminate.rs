@@ -1,0 +1,357 @@
+//! Elimination, before factoring, of unknowns that enter their own equation alone with a
+//! diagonal coefficient. A dynamic node's momenta `p = (β, γ)` appear in their definitions
+//! (rows 0–5: `β − Σ …`, `γ − Σ …`) only as `c p` (no element reads a momentum), so
+//! `δp = (r_M − J_Mq δq) / c` and the remaining unknowns solve the Schur complement
+//! `(J_Rq − J_Rp J_Mq / c) δq = r_R − J_Rp r_M / c` (`M`: the definitions, `R`: the other
+//! equations, `q`: the other unknowns): 6 fewer unknowns per dynamic node, and for chains
+//! and beams a band half as wide. Exact algebra: the same Newton increment as the whole
+//! system's, up to rounding.
+
+use super::sparse::{Factored, LuPath, SparseError, Triplets};
+
+/// One eliminated unknown `p` and its equation `m`, with the pivot's entry.
+#[derive(Clone, Copy, Debug)]
+struct Pivot {
+    row: usize,
+    col: usize,
+    entry: usize,
+}
+
+/// The reduced system of a pattern and how its values are formed from the Jacobian's.
+pub(super) struct Eliminated {
+    /// Where each triplet goes: below `storage_len`, the factorization's storage index (an
+    /// entry of `J_Rq`); else `storage_len +` its entry in `entries` (pivots, `J_Mq`, `J_Rp`).
+    /// One index per triplet keeps the memory near the whole system's (8 bytes a triplet).
+    target: Vec<usize>,
+    storage_len: usize,
+    entries: Vec<f64>,
+    pivots: Vec<Pivot>,
+    inverse: Vec<f64>,
+    /// Original equation of each reduced equation, original unknown of each reduced unknown.
+    kept_rows: Vec<usize>,
+    kept_cols: Vec<usize>,
+    /// `(storage index, entry (r, p), entry (m, q), pivot)`: terms of `J_Rp J_Mq / c`.
+    products: Vec<(usize, usize, usize, usize)>,
+    /// `(reduced equation, entry, pivot)`: entries of `J_Rp`, for the right-hand side.
+    column: Vec<(usize, usize, usize)>,
+    /// Entries of `J_Mq` by pivot: `row[row_start[k]..row_start[k + 1]]` holds
+    /// `(reduced unknown, entry)`, for the back substitution.
+    row_start: Vec<usize>,
+    row: Vec<(usize, usize)>,
+    inner: Factored,
+    x: Vec<f64>,
+}
+
+/// The distinct `(row, col)` pairs of an `n`x`n` pattern in order of first appearance, and
+/// the distinct entry of each pair: a bucket sort by row and a column marker, no hashing.
+fn distinct(n: usize, rows: &[usize], cols: &[usize]) -> (Vec<usize>, Vec<(usize, usize)>) {
+    let mut start = vec![0usize; n + 1];
+    for &r in rows {
+        start[r + 1] += 1;
+    }
+    for i in 0..n {
+        start[i + 1] += start[i];
+    }
+    let mut fill = start.clone();
+    let mut by_row = vec![0usize; rows.len()];
+    for (k, &r) in rows.iter().enumerate() {
+        by_row[fill[r]] = k;
+        fill[r] += 1;
+    }
+    // first[k]: the earliest triplet with k's pair (bucket order is triplet order).
+    let mut first = vec![0usize; rows.len()];
+    let mut seen = vec![usize::MAX; n];
+    for i in 0..n {
+        let bucket = &by_row[start[i]..start[i + 1]];
+        for &k in bucket {
+            let c = cols[k];
+            if seen[c] == usize::MAX {
+                seen[c] = k;
+            }
+            first[k] = seen[c];
+        }
+        for &k in bucket {
+            seen[cols[k]] = usize::MAX;
+        }
+    }
+    drop(by_row);
+    // Number the pairs in order of first appearance, in place: first[k] ≤ k is numbered.
+    let mut keys = Vec::new();
+    for k in 0..rows.len() {
+        first[k] = if first[k] == k {
+            keys.push((rows[k], cols[k]));
+            keys.len() - 1
+        } else {
+            first[first[k]]
+        };
+    }
+    let entry_of = first;
+    (entry_of, keys)
+}
+
+impl Eliminated {
+    /// The reduced pattern, or `None` when some equation `m` has an entry in another pair's
+    /// unknown (the elimination would not be one diagonal step) or lacks its pivot.
+    pub(super) fn new(j: &Triplets, pairs: &[(usize, usize)], path: LuPath) -> Result<Option<Self>, SparseError> {
+        let n = j.n;
+        let mut pivot_of_row = vec![usize::MAX; n];
+        let mut pivot_of_col = vec![usize::MAX; n];
+        for (k, &(m, p)) in pairs.iter().enumerate() {
+            if m >= n || p >= n || pivot_of_row[m] != usize::MAX || pivot_of_col[p] != usize::MAX {
+                return Ok(None);
+            }
+            pivot_of_row[m] = k;
+            pivot_of_col[p] = k;
+        }
+        let (entry_of, keys) = distinct(n, &j.rows, &j.cols);
+        let reduced_index = |kept: &mut Vec<usize>, eliminated: &[usize]| {
+            let mut map = vec![usize::MAX; n];
+            for (i, m) in map.iter_mut().enumerate() {
+                if eliminated[i] == usize::MAX {
+                    *m = kept.len();
+                    kept.push(i);
+                }
+            }
+            map
+        };
+        let (mut kept_rows, mut kept_cols) = (Vec::new(), Vec::new());
+        let row_map = reduced_index(&mut kept_rows, &pivot_of_row);
+        let col_map = reduced_index(&mut kept_cols, &pivot_of_col);
+        let mut pivots: Vec<Pivot> = pairs.iter().map(|&(row, col)| Pivot { row, col, entry: usize::MAX }).collect();
+        let (mut direct, mut column, mut row_entries) = (Vec::new(), Vec::new(), Vec::new());
+        // Entries other than J_Rq's, numbered compactly.
+        let mut compact = vec![usize::MAX; keys.len()];
+        let mut others = 0;
+        for (e, &(r, c)) in keys.iter().enumerate() {
+            let (k, l) = (pivot_of_row[r], pivot_of_col[c]);
+            if k == usize::MAX && l == usize::MAX {
+                direct.push((row_map[r], col_map[c], e));
+                continue;
+            }
+            compact[e] = others;
+            others += 1;
+            match (k, l) {
+                (k, l) if k != usize::MAX && l != usize::MAX => {
+                    if k != l {
+                        return Ok(None);
+                    }
+                    pivots[k].entry = compact[e];
+                }
+                (k, _) if k != usize::MAX => row_entries.push((k, col_map[c], compact[e])),
+                (_, l) => column.push((row_map[r], compact[e], l)),
+            }
+        }
+        if pivots.iter().any(|p| p.entry == usize::MAX) {
+            return Ok(None);
+        }
+        row_entries.sort_by_key(|&(k, _, _)| k);
+        let mut row_start = vec![0; pivots.len() + 1];
+        for &(k, _, _) in &row_entries {
+            row_start[k + 1] += 1;
+        }
+        for k in 0..pivots.len() {
+            row_start[k + 1] += row_start[k];
+        }
+        let row: Vec<(usize, usize)> = row_entries.iter().map(|&(_, q, e)| (q, e)).collect();
+        // Reduced entries: those of J_Rq, then the products' (r, q), duplicates shared.
+        let mut products = Vec::new();
+        for &(r, a, k) in &column {
+            for &(q, b) in &row[row_start[k]..row_start[k + 1]] {
+                products.push((r, q, a, b, k));
+            }
+        }
+        let red_keys_rows: Vec<usize> = direct.iter().map(|d| d.0).chain(products.iter().map(|p| p.0)).collect();
+        let red_keys_cols: Vec<usize> = direct.iter().map(|d| d.1).chain(products.iter().map(|p| p.1)).collect();
+        let (reduced_of, reduced_keys) = distinct(kept_rows.len(), &red_keys_rows, &red_keys_cols);
+        let (red_rows, red_cols): (Vec<usize>, Vec<usize>) = reduced_keys.into_iter().unzip();
+        drop(keys);
+        let inner = Factored::new(kept_rows.len(), &red_rows, &red_cols, path)?;
+        let storage = inner.positions();
+        let storage_len = storage.iter().max().map_or(0, |&m| m + 1);
+        let mut storage_of = vec![usize::MAX; compact.len()];
+        for (&(_, _, e), &t) in direct.iter().zip(&reduced_of) {
+            storage_of[e] = storage[t];
+        }
+        let products = products.iter().zip(&reduced_of[direct.len()..]).map(|(&(_, _, a, b, k), &t)| (storage[t], a, b, k)).collect();
+        let target = entry_of.iter().map(|&e| if compact[e] == usize::MAX { storage_of[e] } else { storage_len + compact[e] }).collect();
+        Ok(Some(Eliminated {
+            target,
+            storage_len,
+            entries: vec![0.0; others],
+            inverse: vec![0.0; pivots.len()],
+            pivots,
+            x: vec![0.0; n],
+            kept_rows,
+            kept_cols,
+            products,
+            column,
+            row_start,
+            row,
+            inner,
+        }))
+    }
+
+    pub(super) fn eliminated(&self) -> usize {
+        self.pivots.len()
+    }
+
+    pub(super) fn is_banded(&self) -> bool {
+        self.inner.is_banded()
+    }
+
+    /// Solves `J x = rhs` in place, `J`'s values given in the pattern's triplet order;
+    /// `Err` for a zero pivot (the caller then solves the whole system).
+    pub(super) fn solve(&mut self, values: &[f64], rhs: &mut [f64]) -> Result<(), SparseError> {
+        self.entries.iter_mut().for_each(|v| *v = 0.0);
+        let len = self.storage_len;
+        for (&t, &v) in self.target.iter().zip(values) {
+            if t >= len {
+                self.entries[t - len] += v;
+            }
+        }
+        for (inv, p) in self.inverse.iter_mut().zip(&self.pivots) {
+            let d = self.entries[p.entry];
+            if d == 0.0 || !d.is_finite() {
+                return Err(SparseError::Singular);
+            }
+            *inv = 1.0 / d;
+        }
+        let (entries, inverse) = (&self.entries, &self.inverse);
+        // Reduced right-hand side r_R − J_Rp r_M / c, in the reduced unknowns' storage.
+        let nr = self.kept_rows.len();
+        let (y, momenta) = self.x.split_at_mut(nr);
+        for (yi, &i) in y.iter_mut().zip(&self.kept_rows) {
+            *yi = rhs[i];
+        }
+        for &(r, e, k) in &self.column {
+            y[r] -= entries[e] * rhs[self.pivots[k].row] * inverse[k];
+        }
+        let (target, products) = (&self.target, &self.products);
+        self.inner.solve_with(
+            |storage| {
+                for (&t, &v) in target.iter().zip(values) {
+                    if t < len {
+                        storage[t] += v;
+                    }
+                }
+                for &(at, a, b, k) in products {
+                    storage[at] -= entries[a] * entries[b] * inverse[k];
+                }
+            },
+            y,
+        )?;
+        // Back substitution δp = (r_M − J_Mq δq) / c, before rhs is overwritten.
+        for (k, p) in self.pivots.iter().enumerate() {
+            let mut acc = rhs[p.row];
+            for &(q, e) in &self.row[self.row_start[k]..self.row_start[k + 1]] {
+                acc -= entries[e] * y[q];
+            }
+            momenta[k] = acc * inverse[k];
+        }
+        for (p, &v) in self.pivots.iter().zip(momenta.iter()) {
+            rhs[p.col] = v;
+        }
+        for (&c, &v) in self.kept_cols.iter().zip(y.iter()) {
+            rhs[c] = v;
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::sparse::{LuPath, SparseLu, Triplets};
+
+    /// A pseudo-random 5-block system shaped like dynamic nodes: unknowns `[q, p]` per block,
+    /// equation `m` of a block reads `c p + J_mq q` (and nothing of other momenta), the rest
+    /// reads anything of its own and the neighbouring blocks; duplicates included.
+    fn system(c: f64, cross_momentum: bool) -> (Triplets, Vec<(usize, usize)>, Vec<f64>) {
+        let (blocks, half) = (5, 2);
+        let n = blocks * 2 * half;
+        let mut seed = 7u64;
+        let mut next = || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            ((seed >> 33) as f64 / (1u64 << 31) as f64) - 0.5
+        };
+        let mut j = Triplets::new(n);
+        let mut pairs = Vec::new();
+        for b in 0..blocks {
+            let f = 2 * half * b;
+            for k in 0..half {
+                let (m, p) = (f + k, f + half + k);
+                pairs.push((m, p));
+                j.push(m, p, 0.5 * c);
+                j.push(m, p, 0.5 * c);
+                for q in 0..half {
+                    j.push(m, f + q, next());
+                }
+                // Equilibrium rows: own momenta, own and neighbouring positions.
+                let r = f + half + k;
+                j.push(r, p, 1.0 + next());
+                for q in 0..2 * half {
+                    j.push(r, f + q, 2.0 * next() + if q == k { 3.0 } else { 0.0 });
+                }
+                if b + 1 < blocks {
+                    j.push(r, f + 2 * half + k, next());
+                    j.push(f + 2 * half + half + k, f + k, next());
+                }
+            }
+        }
+        if cross_momentum {
+            j.push(0, 2 * half + half, 0.1);
+        }
+        let rhs = (0..n).map(|i| (i as f64 + 1.0).sin()).collect();
+        (j, pairs, rhs)
+    }
+
+    fn solve(j: &Triplets, pairs: &[(usize, usize)], rhs: &[f64], path: LuPath) -> (Vec<f64>, usize) {
+        let mut lu = SparseLu::with_path(path);
+        lu.eliminating(pairs);
+        let mut x = rhs.to_vec();
+        lu.solve(j, &mut x).unwrap();
+        (x, lu.eliminated())
+    }
+
+    #[test]
+    fn eliminated_momenta_give_the_whole_systems_solution() {
+        for path in [LuPath::Auto, LuPath::General] {
+            for c in [1.0, 1e-4] {
+                let (j, pairs, rhs) = system(c, false);
+                let (x, eliminated) = solve(&j, &pairs, &rhs, path);
+                assert_eq!(eliminated, pairs.len());
+                let (reference, none) = solve(&j, &[], &rhs, path);
+                assert_eq!(none, 0);
+                // The same system solved two ways: agreement to rounding (condition ~1/c).
+                for (a, b) in x.iter().zip(&reference) {
+                    assert!((a - b).abs() <= 1e-9 * b.abs().max(1.0), "{a} vs {b} (c = {c})");
+                }
+                // And the residual of the eliminated solution itself.
+                let d = j.to_dense();
+                for i in 0..j.n {
+                    let r: f64 = (0..j.n).map(|k| d[(i, k)] * x[k]).sum::<f64>() - rhs[i];
+                    assert!(r.abs() < 1e-10, "residual {r} in row {i}");
+                }
+            }
+        }
+    }
+
+    /// An equation that reads another pair's unknown is not eliminated: the whole system is
+    /// solved instead, as is one with a zero pivot.
+    #[test]
+    fn elimination_falls_back_when_it_does_not_apply() {
+        let (j, pairs, rhs) = system(1.0, true);
+        let (x, eliminated) = solve(&j, &pairs, &rhs, LuPath::Auto);
+        assert_eq!(eliminated, 0);
+        assert_eq!(x, solve(&j, &[], &rhs, LuPath::Auto).0);
+        let (j, pairs, rhs) = system(0.0, false);
+        let mut lu = SparseLu::new();
+        lu.eliminating(&pairs);
+        let mut x = rhs.clone();
+        lu.solve(&j, &mut x).unwrap();
+        let d = j.to_dense();
+        for i in 0..j.n {
+            let r: f64 = (0..j.n).map(|k| d[(i, k)] * x[k]).sum::<f64>() - rhs[i];
+            assert!(r.abs() < 1e-10, "residual {r} in row {i} (zero pivots: whole system)");
+        }
+    }
+}
