@@ -73,12 +73,13 @@ fn the_sparse_route_of_a_5112_equation_chain_never_allocates_a_dense_matrix() {
     let dense = n * n * std::mem::size_of::<f64>();
     let (peak, largest) = (PEAK.load(Ordering::Relaxed) - before, LARGEST.load(Ordering::Relaxed));
     eprintln!("n = {n}: peak {:.1} MB, largest allocation {:.1} MB, one dense matrix {:.0} MB", peak as f64 / 1e6, largest as f64 / 1e6, dense as f64 / 1e6);
-    // One dense n x n matrix is 209 MB; the Krylov bases are n x (about 50) complex entries
-    // (4 MB). faer's matrix product (private-gemm) keeps one packing buffer of 32 MiB per
-    // thread, whatever the size (measured: the largest allocation, 33554432 bytes, from
-    // gemm's thread-local storage). Apart from it, a tenth of one dense matrix is a bound no
-    // n² allocation fits under.
+    // One dense n x n matrix is 209 MB; the Krylov bases are n x (a few times the wanted
+    // count) complex entries. faer's matrix product (private-gemm) keeps one packing buffer of
+    // 32 MiB per thread, whatever the size (measured: the largest allocation, 33554432 bytes,
+    // from gemm's thread-local storage), and the right and adjoint Krylov runs go on two
+    // threads (measured peak 81.6 MB, 46 MB before they did). Apart from those two buffers,
+    // a tenth of one dense matrix is a bound no n² allocation fits under.
     const GEMM_BUFFER: usize = 1 << 25;
     assert!(largest <= GEMM_BUFFER.max(dense / 10), "largest allocation {largest} bytes");
-    assert!(peak < GEMM_BUFFER + dense / 10, "peak {peak} bytes");
+    assert!(peak < 2 * GEMM_BUFFER + dense / 10, "peak {peak} bytes");
 }
