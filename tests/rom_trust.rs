@@ -59,7 +59,7 @@ fn chain_stiffness(k: &[f64]) -> Mat<f64> {
 }
 
 fn direct(dae: LinearDae) -> Study {
-    Study::from_dae(dae, None, EigenSettings { route: EigenRoute::Direct, dcoef: None }).unwrap()
+    Study::from_dae(dae, None, EigenSettings { route: EigenRoute::Direct, ..EigenSettings::default() }).unwrap()
 }
 
 /// A 3-mass chain, input and output at the last mass, modes near 0.38, 3.2 and 6 Hz.
@@ -319,7 +319,7 @@ fn full_model_and_rom_phases_agree_where_magnitudes_agree() {
     let curve = |label: &str, style, values: Vec<faer::c64>| ResponseCurve { label: label.into(), input: "u".into(), output: "z".into(), freq_hz: freq.clone(), values, style };
     for request in requests {
         let rom = study.reduce(&request).unwrap();
-        let c = study.compare(&rom, freq.clone());
+        let c = study.compare(&rom, freq.clone()).unwrap();
         let full = curve("full model", CurveStyle::Full, c.full.iter().map(|h| h[(0, 0)]).collect());
         let reduced = curve("ROM", CurveStyle::Rom, c.rom.iter().map(|h| h[(0, 0)]).collect());
         let p = common_reference_phases(&[&full, &reduced]);

@@ -16,8 +16,7 @@ use pyo3::types::PyDict;
 use romdyn::analysis::{run, NodeHistories};
 use romdyn::input::mbdyn::{read_model_text, MbdynModel, SetOverrides};
 use romdyn::output::rom_file::RomExport;
-use romdyn::rom::full_frequency_response;
-use romdyn::study::{ReducedModel, RomForm, Study, StudyError};
+use romdyn::study::{EigenSettings, ReducedModel, Study, StudyError};
 
 use convert::{complex_vec, mat, responses};
 
@@ -119,13 +118,17 @@ impl Model {
     /// inputs/outputs: "NODE:Fx|Fy|Fz|Mx|My|Mz" (force [N], moment [N m]) and
     /// "NODE:x|y|z|rx|ry|rz" (displacement [m], rotation [rad]); ports: a ports file (JSON);
     /// remove_springs: labels of dummy springs; imposed: "NODE[:COMPONENTS]". route:
-    /// "lambda" or "direct"; dcoef [s].
-    #[pyo3(signature = (reference = None, load_steps = 10, inputs = Vec::new(), outputs = Vec::new(), ports = None, remove_springs = Vec::new(), imposed = None, route = "lambda", dcoef = None))]
+    /// "lambda" or "direct"; dcoef [s]. solver: "dense" (QZ: every eigenvalue), "sparse"
+    /// (shift-invert Krylov–Schur on the sparse linearization: only the modes `count` (the
+    /// lowest N, default 10) or `band` (FMIN, FMAX) [Hz] ask for, no dense n x n matrix) or
+    /// "auto" (sparse from 400 equations on, as `romdyn --solver auto`); `tolerance`: the
+    /// sparse route's largest true relative residual of a mode.
+    #[pyo3(signature = (reference = None, load_steps = 10, inputs = Vec::new(), outputs = Vec::new(), ports = None, remove_springs = Vec::new(), imposed = None, route = "lambda", dcoef = None, solver = "auto", count = None, band = None, tolerance = 1e-10))]
     #[allow(clippy::too_many_arguments)]
-    fn study(&self, py: Python<'_>, reference: Option<&Bound<'_, PyAny>>, load_steps: usize, inputs: Vec<String>, outputs: Vec<String>, ports: Option<PathBuf>, remove_springs: Vec<u32>, imposed: Option<String>, route: &str, dcoef: Option<f64>) -> PyResult<StudyPy> {
+    fn study(&self, py: Python<'_>, reference: Option<&Bound<'_, PyAny>>, load_steps: usize, inputs: Vec<String>, outputs: Vec<String>, ports: Option<PathBuf>, remove_springs: Vec<u32>, imposed: Option<String>, route: &str, dcoef: Option<f64>, solver: &str, count: Option<usize>, band: Option<(f64, f64)>, tolerance: f64) -> PyResult<StudyPy> {
         let reference = options::reference(reference, load_steps)?;
         let ports = options::ports(&inputs, &outputs, ports.as_deref(), &remove_springs, imposed.as_deref())?;
-        let eigen = options::eigen(route, dcoef)?;
+        let eigen = EigenSettings { target: options::sparse_target(count, band)?, tolerance, ..options::eigen(route, dcoef, solver)? };
         let study = py.detach(|| {
             let m = self.read()?;
             Study::of_model(m.model, &m.problem, reference, &ports, eigen, None).map_err(|e| e.in_file(&self.name))
@@ -135,40 +138,26 @@ impl Model {
 
     /// The lowest `count` dynamic modes, or those with natural frequency |λ|/2π in `band`
     /// (FMIN, FMAX) [Hz], by the sparse shift-invert Krylov–Schur solver (issue 13): the
-    /// linearization stays sparse, so models too large for the dense eigenanalysis of
-    /// `study()` can be analysed. Every mode returned has a true relative residual below
-    /// `tolerance`. Returns {"eigenvalues" [rad/s] (complex), "kind", "freq_hz" (|Im λ|/2π),
-    /// "undamped_hz" (|λ|/2π), "damping", "error" [rad/s], "certified" (every shift window's
-    /// right and adjoint runs agreed and the windows cover the band), "max_residual",
-    /// "note" (why not certified, or None), "windows" (shifts used)}. `reference` and
-    /// `load_steps` as for `study()`.
+    /// study of `study(solver="sparse", count=…|band=…)` without ports, so models too large
+    /// for the dense eigenanalysis can be analysed. Every mode returned has a true relative
+    /// residual below `tolerance`. Returns {"eigenvalues" [rad/s] (complex), "kind",
+    /// "freq_hz" (|Im λ|/2π), "undamped_hz" (|λ|/2π), "damping", "error" [rad/s], "certified"
+    /// (every shift window's right and adjoint runs agreed and the windows cover the band),
+    /// "max_residual", "note" (why not certified, or None), "windows" (shifts used),
+    /// "warnings"}. `reference` and `load_steps` as for `study()`.
     #[pyo3(signature = (count = None, band = None, reference = None, load_steps = 10, tolerance = 1e-10))]
     fn sparse_modes<'py>(&self, py: Python<'py>, count: Option<usize>, band: Option<(f64, f64)>, reference: Option<&Bound<'_, PyAny>>, load_steps: usize, tolerance: f64) -> PyResult<Bound<'py, PyDict>> {
-        use romdyn::linear::krylov::{sparse_modes, ModeTarget, SparseEigenSettings};
-        let target = match (count, band) {
-            (Some(n), None) if n > 0 => ModeTarget::Lowest(n),
-            (None, Some((fmin_hz, fmax_hz))) if fmin_hz.is_finite() && fmax_hz.is_finite() && 0.0 <= fmin_hz && fmin_hz < fmax_hz => ModeTarget::Band { fmin_hz, fmax_hz },
-            (None, Some(b)) => return Err(options::bad("band", format!("{b:?}: expected (FMIN, FMAX) [Hz] with 0 <= FMIN < FMAX"))),
-            _ => return Err(options::bad("count", "give exactly one of count (a positive number of modes) and band (FMIN, FMAX) [Hz]")),
-        };
-        if !(tolerance > 0.0 && tolerance < 1.0) {
-            return Err(options::bad("tolerance", format!("{tolerance}: expected a relative residual in (0, 1)")));
+        if count.is_none() == band.is_none() {
+            return Err(options::bad("count", "give exactly one of count (a positive number of modes) and band (FMIN, FMAX) [Hz]"));
         }
-        let reference = options::reference(reference, load_steps)?;
-        let settings = SparseEigenSettings { tolerance, ..SparseEigenSettings::default() };
-        let found = py
-            .detach(|| -> Result<_, StudyError> {
-                let m = self.read()?;
-                let state = romdyn::analysis::reference_state(&m.model, &m.problem, reference).map_err(|source| StudyError::Reference { file: Some(self.name.clone()), source })?;
-                let dae = romdyn::dae::linearize_sparse(&m.model, &state, &[], &[]).map_err(|e| StudyError::Application(format!("{}: {e}", self.name.display())))?;
-                sparse_modes(&dae, target, &settings).map_err(|e| StudyError::Application(format!("{}: sparse eigenanalysis: {e}", self.name.display())))
-            })
-            .map_err(py_err)?;
-        let d = modes_dict(py, &found.modal)?;
-        d.set_item("certified", found.certified)?;
-        d.set_item("max_residual", found.max_residual)?;
-        d.set_item("note", found.note.clone())?;
-        d.set_item("windows", found.windows.len())?;
+        let study = self.study(py, reference, load_steps, Vec::new(), Vec::new(), None, Vec::new(), None, "lambda", None, "sparse", count, band, tolerance)?;
+        let Some(run) = study.study.sparse_run() else { return Err(RomdynError::new_err("the sparse route was not taken")) };
+        let d = modes_dict(py, study.study.modal())?;
+        d.set_item("certified", run.certified)?;
+        d.set_item("max_residual", run.max_residual)?;
+        d.set_item("note", run.note.clone())?;
+        d.set_item("windows", run.windows)?;
+        d.set_item("warnings", study.warnings())?;
         Ok(d)
     }
 
@@ -235,7 +224,8 @@ impl StudyPy {
     }
 
     /// The linear DAE `F_yd Δẏ + F_y Δy = B̃ u`, `z = C̃ Δy` (paper eqs. 38, 39): "Fyd", "Fy",
-    /// "B", "C", "unknowns", "inputs", "outputs" (names with units).
+    /// "B", "C", "unknowns", "inputs", "outputs" (names with units). Dense n x n arrays, also
+    /// on the sparse route (converted on this call).
     fn linear<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let dae = self.study.dae();
         let (fyd, fy) = dae.jacobians.derivatives();
@@ -260,19 +250,24 @@ impl StudyPy {
         let request = options::request(count, band, modes, residualize, by, below_band, damping)?;
         let form = options::form(form)?;
         let rom = py.detach(|| self.study.reduce(&request)).map_err(py_err)?;
-        if form == RomForm::Descriptor && rom.descriptor.c_rate.is_some() {
-            return Err(RomdynError::new_err("form='descriptor': velocity outputs need z = C x + C_v x', which the descriptor form has no place for; use form='ordinary'"));
-        }
+        rom.check_form(form).map_err(py_err)?;
         let export = rom.export(&self.study, form);
         let summary = rom.summary(&self.study, None);
         Ok(Rom { export, rom, summary })
     }
 
     /// Frequency response of the full model at `freq_hz` [Hz]: complex array (frequencies,
-    /// outputs, inputs), in the outputs' units per input unit.
+    /// outputs, inputs), in the outputs' units per input unit (on the sparse route by a sparse
+    /// LU per frequency).
     fn frequency_response<'py>(&self, py: Python<'py>, freq_hz: Vec<f64>) -> PyResult<Bound<'py, PyArray3<Complex64>>> {
-        let h = py.detach(|| full_frequency_response(self.study.dae(), &freq_hz));
-        responses(py, &h, self.study.dae().num_outputs(), self.study.dae().num_inputs())
+        let h = py.detach(|| self.study.full_frequency_response(&freq_hz)).map_err(py_err)?;
+        responses(py, &h, self.study.output_names().len(), self.study.input_names().len())
+    }
+
+    /// "dense" or "sparse": the route the eigenanalysis took.
+    #[getter]
+    fn solver(&self) -> &'static str {
+        if self.study.sparse_run().is_some() { "sparse" } else { "dense" }
     }
 }
 

@@ -10,7 +10,8 @@ use romdyn::analysis::Reference;
 use romdyn::dae::{NodeInput, NodeOutput};
 use romdyn::linear::EigenRoute;
 use romdyn::rom::{ModalDamping, ModeSelection, Ranking};
-use romdyn::study::{BelowBand, EigenSettings, Ports, Residualization, RomForm, RomRequest};
+use romdyn::linear::krylov::ModeTarget;
+use romdyn::study::{BelowBand, EigenSettings, Ports, Residualization, RomForm, RomRequest, Solver};
 use romdyn::sweep::SweepOptions;
 
 use crate::py_err;
@@ -39,13 +40,31 @@ pub fn ports(inputs: &[String], outputs: &[String], file: Option<&Path>, remove_
     Ports::from_parts(file, &inputs, &outputs, remove_springs, imposed).map_err(py_err)
 }
 
-pub fn eigen(route: &str, dcoef: Option<f64>) -> PyResult<EigenSettings> {
+pub fn eigen(route: &str, dcoef: Option<f64>, solver: &str) -> PyResult<EigenSettings> {
     let route = match route {
         "lambda" => EigenRoute::Lambda,
         "direct" => EigenRoute::Direct,
         r => return Err(bad("route", format!("'{r}': expected \"lambda\" or \"direct\""))),
     };
-    Ok(EigenSettings { route, dcoef })
+    let solver = match solver {
+        "auto" => Solver::Auto,
+        "dense" => Solver::Dense,
+        "sparse" => Solver::Sparse,
+        s => return Err(bad("solver", format!("'{s}': expected \"auto\", \"dense\" or \"sparse\""))),
+    };
+    Ok(EigenSettings { route, dcoef, solver, ..EigenSettings::default() })
+}
+
+/// The modes the sparse route computes: `count` lowest or those in `band` (FMIN, FMAX) [Hz];
+/// neither: `None` (the library's default).
+pub fn sparse_target(count: Option<usize>, band: Option<(f64, f64)>) -> PyResult<Option<ModeTarget>> {
+    match (count, band) {
+        (None, None) => Ok(None),
+        (Some(n), None) if n > 0 => Ok(Some(ModeTarget::Lowest(n))),
+        (None, Some((fmin_hz, fmax_hz))) if fmin_hz.is_finite() && fmax_hz.is_finite() && 0.0 <= fmin_hz && fmin_hz < fmax_hz => Ok(Some(ModeTarget::Band { fmin_hz, fmax_hz })),
+        (None, Some(b)) => Err(bad("band", format!("{b:?}: expected (FMIN, FMAX) [Hz] with 0 <= FMIN < FMAX"))),
+        _ => Err(bad("count", "give at most one of count (a positive number of modes) and band (FMIN, FMAX) [Hz]")),
+    }
 }
 
 pub fn form(f: &str) -> PyResult<RomForm> {
@@ -109,7 +128,7 @@ fn get<'py, T: FromPyObjectOwned<'py>>(d: &Bound<'py, PyDict>, key: &str) -> PyR
 
 /// Keys a sweep's options dict may hold (those of `Model.study` and `Study.reduce`, plus
 /// "lowest" and "continuation").
-const KEYS: [&str; 19] = ["reference", "load_steps", "inputs", "outputs", "ports", "remove_springs", "imposed", "route", "dcoef", "count", "band", "modes", "residualize", "by", "below_band", "damping", "form", "lowest", "continuation"];
+const KEYS: [&str; 20] = ["reference", "load_steps", "inputs", "outputs", "ports", "remove_springs", "imposed", "route", "dcoef", "solver", "count", "band", "modes", "residualize", "by", "below_band", "damping", "form", "lowest", "continuation"];
 
 /// A sweep's options dict.
 pub fn sweep(d: &Bound<'_, PyDict>) -> PyResult<SweepOptions> {
@@ -123,7 +142,7 @@ pub fn sweep(d: &Bound<'_, PyDict>) -> PyResult<SweepOptions> {
     let reference = reference(d.get_item("reference")?.as_ref(), load_steps)?;
     let ports_file: Option<std::path::PathBuf> = get(d, "ports")?;
     let ports = ports(&get::<Vec<String>>(d, "inputs")?.unwrap_or_default(), &get::<Vec<String>>(d, "outputs")?.unwrap_or_default(), ports_file.as_deref(), &get::<Vec<u32>>(d, "remove_springs")?.unwrap_or_default(), get::<String>(d, "imposed")?.as_deref())?;
-    let eigen = eigen(&get::<String>(d, "route")?.unwrap_or_else(|| "lambda".into()), get(d, "dcoef")?)?;
+    let eigen = eigen(&get::<String>(d, "route")?.unwrap_or_else(|| "lambda".into()), get(d, "dcoef")?, &get::<String>(d, "solver")?.unwrap_or_else(|| "auto".into()))?;
     let rom = request(
         get(d, "count")?,
         get(d, "band")?,

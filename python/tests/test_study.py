@@ -114,3 +114,25 @@ def test_sparse_modes_equal_the_closed_form_and_the_dense_study(examples):
     assert np.allclose(np.unique(np.round(sparse["undamped_hz"], 9))[:2], np.unique(np.round(dyn, 9))[:2], rtol=1e-9)
     with pytest.raises(ValueError, match="count"):
         pendulum.sparse_modes()
+
+
+def test_study_solver_sparse_gives_the_dense_modes_static_gain_and_response(examples):
+    # The README beam (138 equations, so "auto" is dense): the same study on both routes of
+    # the library's Study. The dense route is the one checked against paper eq. 73 above.
+    beam = romdyn.Model(examples / "simply_supported_beam.mbd")
+    kw = dict(reference="static", inputs=["5:Fy"], outputs=["5:y"])
+    dense, sparse = beam.study(**kw), beam.study(solver="sparse", count=3, **kw)
+    assert (dense.solver, sparse.solver) == ("dense", "sparse")
+    rd, rs = dense.reduce(count=1), sparse.reduce(count=1, residualize=True)
+    # Same kept pair to 1e-9; the sparse ROM's static gain (modes not kept corrected by one
+    # sparse static solve) is the full model's, dense LU, to 1e-9.
+    assert np.allclose(np.sort(rs.full_eigenvalues.imag), np.sort(rd.full_eigenvalues.imag), rtol=1e-9)
+    assert rs.rom_static_gain[0, 0] == pytest.approx(rd.full_static_gain[0, 0], rel=1e-9)
+    assert rs.full_static_gain[0, 0] == pytest.approx(rd.full_static_gain[0, 0], rel=1e-9)
+    # The full model's response, dense LU vs sparse LU at each frequency [Hz], to 1e-9.
+    f = [5.0, 20.0, 100.0, 150.0, 300.0]
+    assert np.allclose(sparse.frequency_response(f), dense.frequency_response(f), rtol=1e-9, atol=0)
+    # Model.sparse_modes is that study without ports.
+    assert np.allclose(np.sort(beam.sparse_modes(count=3, reference="static")["eigenvalues"].imag), np.sort(sparse.modes()["eigenvalues"].imag), rtol=1e-12)
+    with pytest.raises(ValueError, match="solver"):
+        beam.study(solver="bogus")

@@ -2,14 +2,38 @@
 
 use std::path::PathBuf;
 
+use std::io::IsTerminal;
+
 use clap::{Args, ValueEnum};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use romdyn::analysis::Reference;
 use romdyn::dae::{NodeInput, NodeOutput};
 use romdyn::input::eigen_pencil::PencilPorts;
 use romdyn::linear::EigenRoute;
 use romdyn::rom::{ModalDamping, ModeSelection, Ranking};
 use romdyn::input::mbdyn::read_model;
-use romdyn::study::{BelowBand, EigenSettings, FrequencyGrid, Ports, Study, StudyError};
+use romdyn::study::{BelowBand, EigenSettings, FrequencyGrid, Ports, RomRequest, Solver, Study, StudyError};
+
+/// Which eigensolver (`--solver`).
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum SolverArg {
+    /// Sparse from 400 equations on, dense below (where the complete dense spectrum costs about a second or less) and with --by dominance
+    Auto,
+    /// QZ on the whole (deflated) pencil: every eigenvalue, zero and infinite ones labelled; n x n matrices
+    Dense,
+    /// Shift-invert Krylov–Schur on the sparse linearization: only the modes asked for (--count, --band, --modes; else the 10 lowest), certified or warned about; memory grows with the non-zeros
+    Sparse,
+}
+
+impl From<SolverArg> for Solver {
+    fn from(s: SolverArg) -> Self {
+        match s {
+            SolverArg::Auto => Solver::Auto,
+            SolverArg::Dense => Solver::Dense,
+            SolverArg::Sparse => Solver::Sparse,
+        }
+    }
+}
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
 pub enum Route {
@@ -66,13 +90,21 @@ pub struct PencilArgs {
     /// dCoef of the Λ form [s], positive and finite (default: the file's, else ‖F_yd‖/‖F_y‖)
     #[arg(long, value_name = "C", allow_negative_numbers = true)]
     pub dcoef: Option<f64>,
+    /// Eigensolver: dense QZ (every eigenvalue), sparse shift-invert Krylov–Schur (only the modes asked for, no n x n matrix; a progress bar on a terminal), or auto: sparse from 400 equations on, dense below or with --by dominance
+    #[arg(long, value_enum, default_value = "auto")]
+    pub solver: SolverArg,
 }
 
 impl PencilArgs {
     /// The study these arguments describe: a model file linearized at its reference, or a
     /// pencil file.
-    pub fn study(&self) -> Result<Study, StudyError> {
-        let eigen = self.eigen();
+    /// `request`: the ROM (or the modes of `eig`) the study is for, which tells the sparse
+    /// route which modes to compute.
+    pub fn study(&self, request: Option<&RomRequest>) -> Result<Study, StudyError> {
+        let eigen = match request {
+            Some(r) => self.eigen().for_request(r),
+            None => self.eigen(),
+        };
         match (&self.pencil, &self.model) {
             (Some(path), _) => {
                 let ports = PencilPorts { input_rows: self.input_rows.clone(), output_cols: self.output_cols.clone() };
@@ -80,7 +112,10 @@ impl PencilArgs {
             }
             (None, Some(path)) => {
                 let m = read_model(path)?;
-                let (study, _) = Study::of_model(m.model, &m.problem, self.reference.reference(), &self.ports()?, eigen, None).map_err(|e| e.in_file(path))?;
+                let progress = SolverProgress::new();
+                let result = Study::of_model_with_progress(m.model, &m.problem, self.reference.reference(), &self.ports()?, eigen, None, &|line| progress.report(line));
+                progress.finish();
+                let (study, _) = result.map_err(|e| e.in_file(path))?;
                 Ok(study)
             }
             // clap requires one of them.
@@ -89,13 +124,34 @@ impl PencilArgs {
     }
 
     pub fn eigen(&self) -> EigenSettings {
-        EigenSettings { route: self.route.into(), dcoef: self.dcoef }
+        EigenSettings { route: self.route.into(), dcoef: self.dcoef, solver: self.solver.into(), ..EigenSettings::default() }
     }
 
     /// The model's ports: --input/--output alone, or with a ports file, --remove-spring or
     /// --imposed the whole application.
     pub fn ports(&self) -> Result<Ports, StudyError> {
         Ports::from_parts(self.ports.as_deref(), &self.inputs, &self.outputs, &self.remove_spring, self.imposed.as_deref())
+    }
+}
+
+/// A spinner with the sparse solver's last report, on stderr, drawn only on a terminal and
+/// only once the solver reports (the dense route and short solves show nothing).
+struct SolverProgress(ProgressBar);
+
+impl SolverProgress {
+    fn new() -> Self {
+        let bar = if std::io::stderr().is_terminal() { ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr()) } else { ProgressBar::hidden() };
+        bar.set_style(ProgressStyle::with_template("{spinner} sparse eigenanalysis {elapsed}: {msg}").unwrap_or_else(|_| ProgressStyle::default_spinner()));
+        SolverProgress(bar)
+    }
+
+    fn report(&self, line: &str) {
+        self.0.set_message(line.to_string());
+        self.0.tick();
+    }
+
+    fn finish(&self) {
+        self.0.finish_and_clear();
     }
 }
 

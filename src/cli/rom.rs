@@ -7,7 +7,7 @@ use clap::{Args, ValueEnum};
 use romdyn::output::frequency_plot::FrequencyResponses;
 use romdyn::output::rom_file::RomExport;
 use romdyn::output::mimo_plot::MimoPlot;
-use romdyn::rom::{full_frequency_response, ModalDamping, ModeSelection};
+use romdyn::rom::{ModalDamping, ModeSelection};
 use romdyn::study::{ReducedModel, Residualization, RomForm, RomRequest, Study, Warning};
 
 use super::args::{parse_band, parse_damping, BelowBandArg, By, FrequencyArgs, PencilArgs, SelectionArgs};
@@ -130,6 +130,12 @@ fn print_study(study: &Study) {
     print_warnings(study.warnings());
 }
 
+/// A ROM's warnings that the study's did not already print.
+fn print_rom_warnings(study: &Study, rom: &ReducedModel) {
+    let new: Vec<Warning> = rom.warnings.iter().filter(|w| !study.warnings().contains(w)).cloned().collect();
+    print_warnings(&new);
+}
+
 /// Writes PREFIX.csv, PREFIX.svg and PREFIX.png.
 fn write_bode_files(r: &FrequencyResponses, prefix: &Path) -> Result<()> {
     let [csv, svg, png] = r.write_files(prefix, "Frequency response").with_context(|| format!("writing {}.{{csv,svg,png}}", prefix.display()))?;
@@ -141,24 +147,22 @@ pub fn run(a: RomArgs) -> Result<()> {
     if let Some(path) = &a.file {
         RomExport::check_path(path)?;
     }
-    let study = a.pencil.study()?;
     let request = a.rom.request();
+    let study = a.pencil.study(Some(&request))?;
     let rom = study.reduce(&request)?;
+    rom.check_form(a.rom.form())?;
     let freq = study.frequencies(&a.freq.grid(), &nonzero(&rom.descriptor.eigenvalues))?;
     eprint!("{}", study.modal_report().to_text_dynamic(12));
     print_study(&study);
-    let comparison = study.compare(&rom, freq);
+    let comparison = study.compare(&rom, freq)?;
     eprint!("{}", rom.summary(&study, Some(&comparison.accuracy())));
-    print_warnings(&rom.warnings);
+    print_rom_warnings(&study, &rom);
     let removed = study.removed_springs();
     if !removed.is_empty() {
         eprintln!("removed from the full model and the ROM (their force fed back, A + B_e K C_e): {}", removed.join(", "));
         eprint!("{}", free_eigenvalues(&rom.descriptor.eigenvalues, |l| study.free_real_mode_label(l)));
     }
-    let export = match a.rom.form() {
-        RomForm::Descriptor if rom.descriptor.c_rate.is_some() => anyhow::bail!("--form descriptor: velocity outputs need z = C x + C_v x', which the descriptor export has no place for; use --form ordinary (its C and D carry them)"),
-        form => rom.export(&study, form),
-    };
+    let export = rom.export(&study, a.rom.form());
     match &a.file {
         Some(path) => {
             export.write(path).with_context(|| format!("writing {}", path.display()))?;
@@ -204,18 +208,17 @@ fn write_application_files(a: &RomArgs, study: &Study, rom: &ReducedModel) -> Re
     let wrote = |p: [PathBuf; 3]| eprintln!("wrote {}, {}, {}", p[0].display(), p[1].display(), p[2].display());
     if let Some(prefix) = &a.grid {
         let freq = study.frequencies(&a.freq.grid(), &nonzero(&rom.descriptor.eigenvalues))?;
-        let dae = study.dae();
         // The imposed displacements (last outputs) are inputs of the transmissibility, not
         // responses: the grid shows the other outputs.
-        let no = dae.num_outputs() - study.imposed_len();
+        let no = study.output_names().len() - study.imposed_len();
         let rows = |h: Vec<faer::Mat<faer::c64>>| h.into_iter().map(|m| m.get(..no, ..).to_owned()).collect::<Vec<_>>();
         let plot = MimoPlot {
             title: "Transfer matrix |z/u|".into(),
-            full: rows(full_frequency_response(dae, &freq)),
+            full: rows(study.full_frequency_response(&freq)?),
             rom: Some(rows(rom.ordinary.frequency_response(&freq))),
             freq_hz: freq,
-            inputs: dae.input_names.clone(),
-            outputs: dae.output_names[..no].to_vec(),
+            inputs: study.input_names().to_vec(),
+            outputs: study.output_names()[..no].to_vec(),
             diagonal: a.diagonal,
         };
         wrote(plot.write_files(prefix).with_context(|| format!("writing {}.{{csv,svg,png}}", prefix.display()))?);
@@ -248,19 +251,22 @@ pub fn run_freq(a: FreqArgs) -> Result<()> {
         (None, Some((fmin_hz, fmax_hz))) => Some(ModeSelection::Band { fmin_hz: *fmin_hz, fmax_hz: *fmax_hz }),
         (None, None) => None,
     };
-    let study = a.pencil.study()?;
+    let request = selection.map(|sel| {
+        let residualization = if a.residualize { Residualization::Dropped } else { Residualization::None };
+        let mut request = RomRequest::new(sel).residualize(residualization).ranked_by(a.by.into());
+        request.damping = a.damping.clone();
+        request
+    });
+    let study = a.pencil.study(request.as_ref())?;
     print_study(&study);
-    let curves = match selection {
-        Some(sel) => {
-            let residualization = if a.residualize { Residualization::Dropped } else { Residualization::None };
-            let mut request = RomRequest::new(sel).residualize(residualization).ranked_by(a.by.into());
-            request.damping = a.damping.clone();
-            let rom = study.reduce(&request)?;
-            print_warnings(&rom.warnings);
+    let curves = match &request {
+        Some(request) => {
+            let rom = study.reduce(request)?;
+            print_rom_warnings(&study, &rom);
             let freq = study.frequencies(&a.freq.grid(), &nonzero(&rom.descriptor.eigenvalues))?;
-            study.compare(&rom, freq).responses(&study, "ROM")
+            study.compare(&rom, freq)?.responses(&study, "ROM")
         }
-        None => study.full_responses(study.frequencies(&a.freq.grid(), &[])?),
+        None => study.full_responses(study.frequencies(&a.freq.grid(), &[])?)?,
     };
     write_bode_files(&curves, &a.prefix)
 }

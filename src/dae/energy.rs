@@ -29,8 +29,13 @@ pub struct ModalEnergy {
 
 impl ModalEnergy {
     pub fn new(model: &Model, dae: &LinearDae) -> Self {
-        let dofs = DofMap::new(model);
         let (fyd, _) = dae.jacobians.derivatives();
+        Self::from_fyd_diagonal(model, &(0..fyd.nrows()).map(|k| fyd[(k, k)]).collect::<Vec<_>>())
+    }
+
+    /// The same from the diagonal of `F_/ẏ` alone (a sparse linearization's).
+    pub fn from_fyd_diagonal(model: &Model, fyd: &[f64]) -> Self {
+        let dofs = DofMap::new(model);
         let mut terms = Vec::new();
         for (i, node) in model.nodes.iter().enumerate() {
             if dofs.node_kind[i] != NodeKind::Dynamic {
@@ -38,7 +43,7 @@ impl ModalEnergy {
             }
             let f = dofs.node_first[i];
             for (k, component) in COMPONENTS.iter().enumerate() {
-                terms.push((node.label, *component, f + k, (-fyd[(f + k, f + k)]).max(0.0)));
+                terms.push((node.label, *component, f + k, (-fyd[f + k]).max(0.0)));
             }
         }
         ModalEnergy { terms }

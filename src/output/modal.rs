@@ -45,6 +45,10 @@ pub struct ModalReport {
     pub units: &'static str,
     pub counts: Counts,
     pub eigenvalues: Vec<ModeRow>,
+    /// How the modes were found when not by the dense eigenanalysis of the whole pencil
+    /// (the sparse route: which modes, certified or not, largest residual).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub note: Option<String>,
 }
 
 #[derive(Serialize, Debug, Clone)]
@@ -101,7 +105,31 @@ impl ModalReport {
                 infinite: modal.count(ModeKind::Infinite),
             },
             eigenvalues,
+            note: None,
         }
+    }
+
+    /// The same report with a second header line (`None`: none).
+    pub fn with_note(mut self, note: Option<String>) -> Self {
+        self.note = note;
+        self
+    }
+
+    /// The rows `kept` (0-based, in table order) renumbered from 1, partners and counts
+    /// following: the table of a selection of modes.
+    pub fn only(&self, kept: &[usize]) -> Self {
+        let mut kept = kept.to_vec();
+        kept.sort_unstable();
+        kept.dedup();
+        let new_index = |old: usize| kept.iter().position(|&k| k + 1 == old).map(|p| p + 1);
+        let eigenvalues: Vec<ModeRow> = kept
+            .iter()
+            .filter_map(|&k| self.eigenvalues.get(k))
+            .map(|r| ModeRow { index: new_index(r.index).unwrap_or(r.index), partner: r.partner.and_then(new_index), ..r.clone() })
+            .collect();
+        let count = |kind| eigenvalues.iter().filter(|r| r.kind == kind).count();
+        let counts = Counts { dynamic: count(ModeKind::Dynamic), zero: count(ModeKind::Zero), infinite: count(ModeKind::Infinite) };
+        ModalReport { equations: self.equations, dcoef: self.dcoef, route: self.route, units: self.units, counts, eigenvalues, note: self.note.clone() }
     }
 
     /// Attaches kinetic-energy shares (one list per mode, in table order).
@@ -168,6 +196,9 @@ impl ModalReport {
             "# {} equations, route {:?}, dCoef {:e} s; {} dynamic, {} zero, {} infinite; freq = |Im λ|/2π (MBDyn's), undamped = |λ|/2π\n",
             self.equations, self.route, self.dcoef, self.counts.dynamic, self.counts.zero, self.counts.infinite
         );
+        if let Some(note) = &self.note {
+            s += &format!("# {note}\n");
+        }
         let labels = self.eigenvalues.iter().any(|r| r.label.is_some());
         let energy_column = match (labels, self.eigenvalues.iter().any(|r| r.description.is_some())) {
             (true, _) => format!("  {:<36}  kinetic energy", "label"),

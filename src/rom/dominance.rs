@@ -31,13 +31,18 @@ fn norm(v: impl Iterator<Item = c64>) -> f64 {
 
 impl Dominance {
     pub fn new(dae: &LinearDae, modal: &ModalAnalysis) -> Self {
+        Self::of_ports(&dae.b, &dae.c, modal)
+    }
+
+    /// The same from `B̃` and `C̃` alone (a sparse linearization's).
+    pub fn of_ports(b: &faer::Mat<f64>, c: &faer::Mat<f64>, modal: &ModalAnalysis) -> Self {
         let units = mode_units(modal);
         let mode_value = |i: usize| {
             let m = &modal.modes[i];
             let (Some(v), Some(u)) = (&m.right, &m.left) else { return 0.0 };
             let n = v.nrows();
-            let cv = norm((0..dae.c.nrows()).map(|r| (0..n).fold(c64::new(0.0, 0.0), |s, k| s + v[k] * dae.c[(r, k)])));
-            let ub = norm((0..dae.b.ncols()).map(|c| (0..n).fold(c64::new(0.0, 0.0), |s, k| s + u[k] * dae.b[(k, c)])));
+            let cv = norm((0..c.nrows()).map(|r| (0..n).fold(c64::new(0.0, 0.0), |s, k| s + v[k] * c[(r, k)])));
+            let ub = norm((0..b.ncols()).map(|j| (0..n).fold(c64::new(0.0, 0.0), |s, k| s + u[k] * b[(k, j)])));
             let l = m.lambda.norm();
             if l > 0.0 { cv * ub / l } else { 0.0 }
         };

@@ -14,7 +14,8 @@ use crate::model::{InitialValueProblem, Label, Model};
 use crate::rom::{full_frequency_response, transmissibility, with_spring_ports, without_elements, ImposedModel, SpringFeedback};
 
 use super::checks::{equilibrium_warning, port_warnings};
-use super::{EigenSettings, ReducedModel, Study, StudyError};
+use super::linear::LinearModel;
+use super::{EigenSettings, ReducedModel, Solver, Study, StudyError};
 
 /// What the application adds to a linearization.
 #[derive(Clone, Debug, Default)]
@@ -82,6 +83,12 @@ impl Study {
 
     /// [`Study::from_application`] at a given reference solution.
     pub fn from_application_state(model: Model, problem: &InitialValueProblem, state: State, app: &Application, eigen: EigenSettings) -> Result<Self, StudyError> {
+        Self::application_state(model, problem, state, app, eigen, &super::setup::quiet)
+    }
+
+    /// [`Study::from_application_state`] with the sparse solver's progress reports. Springs
+    /// to remove and imposed motion take the dense route (their corrections are dense).
+    pub(super) fn application_state(model: Model, problem: &InitialValueProblem, state: State, app: &Application, eigen: EigenSettings, progress: &dyn Fn(&str)) -> Result<Self, StudyError> {
         let mut inputs = app.inputs.clone();
         let mut outputs = app.outputs.clone();
         let mut imposed = 0;
@@ -91,6 +98,16 @@ impl Study {
                 outputs.push(NodeOutput { node: *node, component: k }.port());
             }
             imposed = comps.len();
+        }
+        let applied = |parts, projected, feedback| Applied { projected, feedback, parts, imposed, names: app.names.clone() };
+        if app.remove_springs.is_empty() && app.imposed.is_none() {
+            let mut study = Self::from_model_ports(model, problem, state, &inputs, &outputs, eigen, progress)?;
+            study.application = Some(applied(Vec::new(), None, None));
+            // The labels need the application's names: the warnings stay, the study is the same.
+            return Ok(study);
+        }
+        if eigen.solver == Solver::Sparse {
+            return Err(StudyError::Option { option: "--solver", message: "sparse: removing dummy springs and imposing motion are done on the dense linear model only (use --solver dense or auto)".into() });
         }
         let dae = linearize_ports(&model, &state, &inputs, &outputs, None)?;
         let parts = app.remove_springs.iter().map(|&l| element_part(&model, &state, l)).collect::<Result<Vec<_>, _>>()?;
@@ -103,10 +120,9 @@ impl Study {
             (Some(p), Some(f))
         };
         let free = without_elements(&dae, &parts);
-        let applied = Applied { projected, feedback, parts, imposed, names: app.names.clone() };
         let mut warnings: Vec<_> = equilibrium_warning(&model, &state, problem.tolerance).into_iter().collect();
         warnings.extend(port_warnings(&free, &modal));
-        Ok(Study { dae: free, modal, model: Some(model), warnings, reference_time: Some(state.t), application: Some(applied) })
+        Ok(Study { linear: LinearModel::from_dense(free, false), modal, sparse: None, model: Some(model), warnings, reference_time: Some(state.t), application: Some(applied(parts, projected, feedback)) })
     }
 
     /// One label per mode ("table pitch (ry) 93 %") from the kinetic-energy shares and the
@@ -128,14 +144,14 @@ impl Study {
     /// without a model or when the free model has no real eigenvalue near `lambda`.
     pub fn free_real_mode_label(&self, lambda: f64) -> Option<String> {
         let model = self.model.as_ref()?;
-        let (lambda, v) = self.dae.real_mode_near(lambda)?;
+        let (lambda, v) = self.linear.dense().real_mode_near(lambda)?;
         let right = faer::Col::from_fn(v.nrows(), |i| c64::new(v[i], 0.0));
         let mode = crate::linear::Mode { lambda: c64::new(lambda, 0.0), right: Some(right), left: None, partner: None, ..self.modal.modes.first()?.clone() };
         let mut names = model.node_names.clone();
         if let Some(a) = &self.application {
             names.extend(a.names.iter().map(|(k, v)| (*k, v.clone())));
         }
-        real_mode_label(&ModalEnergy::new(model, &self.dae).shares(&mode), &names, &model.gravity, lambda)
+        real_mode_label(&ModalEnergy::new(model, self.linear.dense()).shares(&mode), &names, &model.gravity, lambda)
     }
 
     /// The elements removed from the full model and the ROMs ("deformable hinge 902").
@@ -160,10 +176,11 @@ impl Study {
     pub fn transmissibility(&self, rom: &ReducedModel, freq_hz: &[f64]) -> Result<Transmissibility, StudyError> {
         let n = self.imposed_count()?;
         let eq100 = |h: Vec<Mat<c64>>| h.iter().zip(freq_hz).map(|(m, f)| transmissibility(m, n).ok_or(StudyError::SingularImposedMotion(*f))).collect::<Result<Vec<_>, _>>();
-        let full = eq100(full_frequency_response(&self.dae, freq_hz))?;
+        let dae = self.linear.dense();
+        let full = eq100(full_frequency_response(dae, freq_hz))?;
         let rom_t = eq100(rom.ordinary.frequency_response(freq_hz))?;
-        let no = self.dae.num_outputs() - n;
-        Ok(Transmissibility { freq_hz: freq_hz.to_vec(), outputs: self.dae.output_names[..no].to_vec(), imposed: self.dae.output_names[no..].to_vec(), full, rom: rom_t })
+        let no = dae.num_outputs() - n;
+        Ok(Transmissibility { freq_hz: freq_hz.to_vec(), outputs: dae.output_names[..no].to_vec(), imposed: dae.output_names[no..].to_vec(), full, rom: rom_t })
     }
 
     /// The proper state-space model from the imposed displacements to the other outputs.

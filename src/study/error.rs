@@ -29,6 +29,13 @@ pub enum StudyError {
     Eigen(#[from] EigenError),
     #[error(transparent)]
     Rom(#[from] RomError),
+    /// (Its message, not its source: printed once.)
+    #[error("sparse eigenanalysis: {0}")]
+    Krylov(crate::linear::krylov::KrylovError),
+    #[error("full model: {0}")]
+    SparseSolve(crate::linear::SparseSolveError),
+    #[error("mode selection: the sparse route computed {target} and found {found} mode(s), fewer than the selection needs{note}; --solver dense computes every mode")]
+    SparseModes { found: usize, target: String, note: String },
     #[error("a ROM needs inputs and outputs: give --input NODE:COMP and --output NODE:COMP for a model, --input-row I and --output-col J for an .m pencil")]
     NoPorts,
     #[error("give a MODEL file or --pencil FILE")]
@@ -49,6 +56,18 @@ pub enum StudyError {
     DampingOfDroppedMode(usize),
     #[error("mode {0} is both kept and residualized")]
     KeptAndResidualized(usize),
+}
+
+impl From<crate::linear::krylov::KrylovError> for StudyError {
+    fn from(e: crate::linear::krylov::KrylovError) -> Self {
+        StudyError::Krylov(e)
+    }
+}
+
+impl From<crate::linear::SparseSolveError> for StudyError {
+    fn from(e: crate::linear::SparseSolveError) -> Self {
+        StudyError::SparseSolve(e)
+    }
 }
 
 impl From<MbdynError> for StudyError {

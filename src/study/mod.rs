@@ -26,9 +26,11 @@ mod application;
 mod checks;
 mod error;
 mod export;
+mod linear;
 mod reduce;
 mod response;
 mod setup;
+mod solver;
 mod summary;
 mod warning;
 
@@ -39,4 +41,5 @@ pub use export::RomForm;
 pub use reduce::{BelowBand, KeptMode, ReducedModel, Residualization, RomRequest, StaticGains};
 pub use response::{Comparison, FrequencyGrid, GridAccuracy};
 pub use setup::{checked_reference_state, EigenSettings, Linearization, Ports, Study};
+pub use solver::{needs_every_mode, sparse_target, Solver, SparseRun, SPARSE_DEFAULT_COUNT};
 pub use warning::Warning;

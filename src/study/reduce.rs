@@ -4,7 +4,7 @@
 
 use faer::Mat;
 
-use crate::rom::{null_direction, select_dominant_modes, select_modes, DampingChange, DescriptorRom, Dominance, ModalDamping, ModeSelection, OrdinaryRom, Ranking, Selection};
+use crate::rom::{null_direction, select_dominant_modes, select_modes, with_static_correction, DampingChange, DescriptorRom, Dominance, ModalDamping, ModeSelection, OrdinaryRom, Ranking, Selection};
 
 use super::{Study, StudyError, Warning};
 
@@ -137,7 +137,29 @@ pub struct ReducedModel {
     pub static_gains: StaticGains,
     /// Modes whose ROM eigenvalues modal damping moved.
     pub damping: Vec<DampingChange>,
+    /// The ordinary ROM's `D` carries the static correction of the modes it does not keep
+    /// (the sparse route's `--residualize`: full model's static gain minus the kept modes'):
+    /// the descriptor form, which has no `D`, cannot carry it.
+    pub static_correction: bool,
     pub warnings: Vec<Warning>,
+}
+
+impl ReducedModel {
+    /// Refuses a form that cannot hold this ROM: the descriptor form has no place for rate
+    /// outputs' `C_v` nor for a static correction's `D`.
+    pub fn check_form(&self, form: super::RomForm) -> Result<(), StudyError> {
+        if form != super::RomForm::Descriptor {
+            return Ok(());
+        }
+        let message = if self.descriptor.c_rate.is_some() {
+            "descriptor: velocity outputs need z = C x + C_v x', which the descriptor export has no place for; use the ordinary form (its C and D carry them)"
+        } else if self.static_correction {
+            "descriptor: the sparse route's --residualize is a static correction of the ordinary ROM's D, which the descriptor form has no place for; use the ordinary form, or --solver dense"
+        } else {
+            return Ok(());
+        };
+        Err(StudyError::Option { option: "--form", message: message.into() })
+    }
 }
 
 /// Static residualization must only take modes above this frequency [Hz].
@@ -152,21 +174,32 @@ fn top_of_interest(study: &Study, request: &RomRequest, sel: &Selection) -> f64 
 impl Study {
     /// Dominance of every dynamic mode for the DAE's inputs and outputs.
     pub fn dominance(&self) -> Dominance {
-        Dominance::new(&self.dae, &self.modal)
+        Dominance::of_ports(self.linear.b(), self.linear.c(), &self.modal)
     }
 
     /// Builds the ROM that `request` describes.
     pub fn reduce(&self, request: &RomRequest) -> Result<ReducedModel, StudyError> {
-        let (dae, modal) = (&self.dae, &self.modal);
-        if dae.num_inputs() == 0 || dae.num_outputs() == 0 {
+        let modal = &self.modal;
+        if self.linear.input_names().is_empty() || self.linear.output_names().is_empty() {
             return Err(StudyError::NoPorts);
         }
+        let sparse = self.sparse.is_some();
+        if sparse && super::solver::needs_every_mode(request) {
+            return Err(StudyError::Option { option: "--by", message: "dominance ranks every mode of the model, and the sparse route computed only the modes asked for (use --solver dense or auto)".into() });
+        }
         let dominance = self.dominance();
-        let mut sel = match request.ranking {
-            Ranking::Frequency => select_modes(modal, &request.selection)?,
-            Ranking::Dominance => select_dominant_modes(modal, &dominance, &request.selection)?,
+        let mut sel = match (request.ranking, &self.sparse) {
+            (Ranking::Frequency, None) => select_modes(modal, &request.selection)?,
+            // The sparse route has only the modes it found: say so, not "the model has".
+            (Ranking::Frequency, Some(run)) => select_modes(modal, &request.selection).map_err(|_| StudyError::SparseModes {
+                found: crate::rom::mode_units(modal).len(),
+                target: run.describe_target(),
+                note: run.note.clone().map_or(String::new(), |n| format!(" (not certified: {n})")),
+            })?,
+            (Ranking::Dominance, _) => select_dominant_modes(modal, &dominance, &request.selection)?,
         };
-        let mut warnings = Vec::new();
+        // A ROM from modes that may be incomplete carries the warning itself.
+        let mut warnings: Vec<Warning> = self.linear_warnings().into_iter().filter(|w| matches!(w, Warning::SparseNotCertified { .. })).collect();
         let mut candidates = match &request.residualization {
             Residualization::None => Vec::new(),
             Residualization::Dropped => sel.dropped.clone(),
@@ -200,14 +233,14 @@ impl Study {
             warnings.push(Warning::Invisible { modes: invisible });
         }
 
-        // Dummy springs (paper eqs. 92–95): projected with the springs present, then their
-        // force fed back with a plus sign (`A + B_e K C_e`, see `rom::springs`).
-        let applied = self.application.as_ref();
-        let projected = applied.and_then(|a| a.projected.as_ref()).unwrap_or(dae);
-        let mut descriptor = DescriptorRom::project(projected, modal, &sel, !sel.dropped.is_empty())?;
-        if let Some(fb) = applied.and_then(|a| a.feedback.as_ref()) {
-            descriptor = descriptor.without_springs(fb)?;
+        // The sparse route's --residualize: the kept modes' projection, its D corrected to the
+        // full model's static gain less the static part of the modes below the band.
+        let corrected = sparse && request.residualization == Residualization::Dropped;
+        let below_dropped: Vec<usize> = if corrected && request.below_band == BelowBand::Drop { below.iter().copied().filter(|i| !sel.kept.contains(i)).collect() } else { Vec::new() };
+        if corrected {
+            sel.dropped.clear();
         }
+        let mut descriptor = self.project(&sel)?;
         let damping = match &request.damping {
             Some(d) => {
                 for &i in &sel.kept {
@@ -229,18 +262,28 @@ impl Study {
             }
             None => Vec::new(),
         };
-        let ordinary = descriptor.to_ordinary()?;
-        let full = match crate::rom::full_static_gain(dae) {
-            Ok(g) => Ok(g),
-            Err(e) => Err(match null_direction(&dae.static_matrix()) {
-                Some(x) => format!("{e}: unrestrained motion along {}", self.describe_direction(&x)),
-                None => e.to_string(),
-            }),
-        };
-        let static_gains = StaticGains { input_names: dae.input_names.clone(), output_names: dae.output_names.clone(), full, rom: rigid_body_modes(&ordinary.eigenvalues).map_or_else(|| ordinary.static_gain().map_err(|e| e.to_string()), Err) };
+        let mut ordinary = descriptor.to_ordinary()?;
+        let full = self.full_static_gain();
+        let full_ok = full.is_ok();
+        if corrected && let Ok(full) = &full {
+            let target = if below_dropped.is_empty() {
+                full.clone()
+            } else {
+                // Their static part: G(kept ∪ below) − G(kept), both undamped projections.
+                let mut with_below = Selection { kept: sel.kept.iter().chain(&below_dropped).copied().collect(), dropped: Vec::new() };
+                with_below.kept.sort_unstable();
+                let only_kept = Selection { kept: sel.kept.clone(), dropped: Vec::new() };
+                let g = |s: &Selection| -> Result<Mat<f64>, StudyError> { Ok(self.project(s)?.to_ordinary()?.static_gain()?) };
+                full - (g(&with_below)? - g(&only_kept)?)
+            };
+            ordinary = with_static_correction(&ordinary, &target)?;
+        }
+        let static_gains = StaticGains { input_names: self.linear.input_names().to_vec(), output_names: self.linear.output_names().to_vec(), full, rom: rigid_body_modes(&ordinary.eigenvalues).map_or_else(|| ordinary.static_gain().map_err(|e| e.to_string()), Err) };
         if let Some((rel, channel)) = static_gains.largest_relative_difference() {
             let all_residualized = request.residualization == Residualization::Dropped && relevant.is_empty();
-            let reason = if all_residualized && rel > 1e-9 {
+            let reason = if corrected && rel > 1e-9 {
+                Some(if below_dropped.is_empty() { "the static correction did not reach the full model's static gain (an ill-conditioned static matrix?)".to_string() } else { "modes below the frequencies of interest were not residualized (see above)".to_string() })
+            } else if all_residualized && rel > 1e-9 {
                 Some("every dropped dynamic mode is residualized: the rest of the static response comes from the full model's infinite eigenvalues (algebraic or massless unknowns, not representable by modes) or is lost to rounding in an ill-conditioned static matrix".to_string())
             } else if request.residualization == Residualization::Dropped && rel > 1e-9 {
                 Some("modes below the frequencies of interest were not residualized (see above)".to_string())
@@ -258,15 +301,49 @@ impl Study {
             .filter(|u| sel.kept.contains(&u[0]))
             .map(|u| KeptMode { indices: u.iter().map(|i| i + 1).collect(), lambda: modal.modes[u[0]].lambda, dominance: dominance.relative(u[0]) })
             .collect();
-        Ok(ReducedModel { selection: sel, kept_modes, descriptor, ordinary, static_gains, damping, warnings })
+        Ok(ReducedModel { selection: sel, kept_modes, descriptor, ordinary, static_gains, damping, static_correction: corrected && full_ok, warnings })
     }
+
+    /// The descriptor ROM of `sel` (kept and residualized modes): by sparse products on the
+    /// sparse route, else dense, with the dummy springs' feedback (paper eqs. 92–95: projected
+    /// with the springs present, their force fed back with a plus sign, `A + B_e K C_e`, see
+    /// `rom::springs`).
+    fn project(&self, sel: &Selection) -> Result<DescriptorRom, StudyError> {
+        let residualize = !sel.dropped.is_empty();
+        if let (Some(_), Some(sparse)) = (&self.sparse, self.linear.sparse()) {
+            return Ok(DescriptorRom::project_sparse(sparse, &self.modal, sel, residualize)?);
+        }
+        let applied = self.application.as_ref();
+        let projected = applied.and_then(|a| a.projected.as_ref()).unwrap_or(self.linear.dense());
+        let mut descriptor = DescriptorRom::project(projected, &self.modal, sel, residualize)?;
+        if let Some(fb) = applied.and_then(|a| a.feedback.as_ref()) {
+            descriptor = descriptor.without_springs(fb)?;
+        }
+        Ok(descriptor)
+    }
+
+    /// The full model's static gain `C̃ S⁻¹ B̃` (by sparse LU on the sparse route), or why it
+    /// does not exist (with the free direction on the dense route).
+    pub fn full_static_gain(&self) -> Result<Mat<f64>, String> {
+        if self.sparse.is_some()
+            && let Some(g) = self.linear.sparse_static_gain()
+        {
+            return g.map_err(|e| format!("{e}: an unrestrained motion, or a load path the supports do not close"));
+        }
+        let dae = self.linear.dense();
+        crate::rom::full_static_gain(dae).map_err(|e| match null_direction(&dae.static_matrix()) {
+            Some(x) => format!("{e}: unrestrained motion along {}", self.describe_direction(&x)),
+            None => e.to_string(),
+        })
+    }
+
 
     /// The largest components of a direction in the unknowns, e.g. "node 2 x, node 2 y"
     /// (multipliers left out).
     pub(super) fn describe_direction(&self, x: &[f64]) -> String {
-        let mut idx: Vec<usize> = (0..x.len()).filter(|i| !self.dae.multipliers.contains(i) && x[*i].abs() > 1e-3).collect();
+        let mut idx: Vec<usize> = (0..x.len()).filter(|i| !self.linear.multipliers().contains(i) && x[*i].abs() > 1e-3).collect();
         idx.sort_by(|&a, &b| x[b].abs().total_cmp(&x[a].abs()));
-        let names: Vec<&str> = idx.iter().take(6).map(|&i| self.dae.unknown_names.get(i).map_or("?", String::as_str)).collect();
+        let names: Vec<&str> = idx.iter().take(6).map(|&i| self.linear.unknown_names().get(i).map_or("?", String::as_str)).collect();
         names.join(", ")
     }
 }

@@ -3,16 +3,21 @@
 use std::path::Path;
 
 use crate::analysis::{reference_state, static_state_from, Reference};
-use crate::dae::{linearize, EnergyShare, ModalEnergy, NodeInput, NodeOutput, State};
+use crate::dae::ports::{InputPort, OutputPort};
+use crate::dae::{linearize_sparse, EnergyShare, ModalEnergy, NodeInput, NodeOutput, State};
 use crate::input::eigen_pencil::PencilPorts;
 use crate::input::mbdyn::read_model;
 use crate::input::pencil::read_pencil_file;
-use crate::linear::{EigenRoute, LinearDae, ModalAnalysis};
+use crate::linear::krylov::{sparse_modes_with_progress, ModeTarget, SparseEigenSettings};
+use crate::linear::{EigenRoute, LinearDae, ModalAnalysis, SparseLinearDae};
 use crate::model::{InitialValueProblem, Model};
 use crate::output::modal::ModalReport;
+use crate::rom::{select_modes, ModeSelection};
 
-use super::checks::{equilibrium_warning, port_warnings, unrestrained_motion};
-use super::{Application, StudyError, Warning};
+use super::checks::{equilibrium_warning, unrestrained_motion};
+use super::linear::LinearModel;
+use super::solver::{needs_every_mode, sparse_target, SparseRun, SPARSE_DEFAULT_COUNT};
+use super::{Application, RomRequest, Solver, StudyError, Warning};
 
 /// Where a model is linearized and which inputs and outputs the linear DAE has.
 #[derive(Clone, Debug)]
@@ -111,24 +116,48 @@ pub struct EigenSettings {
     /// dCoef of the Λ form [s]; `None`: the file's (MBDyn's eigenanalysis parameter h/2), else
     /// `‖F_yd‖/‖F_y‖`.
     pub dcoef: Option<f64>,
+    /// Dense QZ, sparse shift-invert Krylov–Schur, or chosen by size.
+    pub solver: Solver,
+    /// The modes the sparse route computes (`None`: the lowest [`SPARSE_DEFAULT_COUNT`]); the
+    /// dense route computes every mode.
+    pub target: Option<ModeTarget>,
+    /// The request needs every dynamic mode (ranking by dominance): `Auto` takes the dense
+    /// route, `Sparse` refuses.
+    pub every_mode: bool,
+    /// Largest true relative residual of a mode from the sparse route.
+    pub tolerance: f64,
 }
 
 impl Default for EigenSettings {
     fn default() -> Self {
-        EigenSettings { route: EigenRoute::Lambda, dcoef: None }
+        EigenSettings { route: EigenRoute::Lambda, dcoef: None, solver: Solver::Auto, target: None, every_mode: false, tolerance: SparseEigenSettings::default().tolerance }
+    }
+}
+
+impl EigenSettings {
+    /// The same settings with the sparse target and the every-mode flag of `request`.
+    pub fn for_request(mut self, request: &RomRequest) -> Self {
+        self.target = Some(sparse_target(request));
+        self.every_mode = needs_every_mode(request);
+        self
     }
 }
 
 /// A linear DAE with its eigenanalysis: the starting point of every ROM.
 pub struct Study {
-    pub(super) dae: LinearDae,
+    pub(super) linear: LinearModel,
     pub(super) modal: ModalAnalysis,
+    /// What the sparse eigensolver certified (`None`: the dense route).
+    pub(super) sparse: Option<SparseRun>,
     pub(super) model: Option<Model>,
     pub(super) warnings: Vec<Warning>,
     pub(super) reference_time: Option<f64>,
     /// Ports, names, removed springs and imposed motion (paper §8), when given.
     pub(super) application: Option<super::application::Applied>,
 }
+
+/// No progress reports.
+pub(super) fn quiet(_: &str) {}
 
 impl Study {
     /// Reads an MBDyn input file and linearizes it at `lin.reference`.
@@ -147,11 +176,19 @@ impl Study {
     /// Linearizes a model at a given reference solution (`lin.reference` says only how it
     /// was found).
     pub fn from_model_state(model: Model, problem: &InitialValueProblem, state: State, lin: &Linearization, eigen: EigenSettings) -> Result<Self, StudyError> {
-        let dae = linearize(&model, &state, &lin.inputs, &lin.outputs, None)?;
+        let inputs: Vec<_> = lin.inputs.iter().map(NodeInput::port).collect();
+        let outputs: Vec<_> = lin.outputs.iter().map(NodeOutput::port).collect();
+        Self::from_model_ports(model, problem, state, &inputs, &outputs, eigen, &quiet)
+    }
+
+    /// The sparse linearization with these ports and its eigenanalysis; `progress` gets the
+    /// sparse solver's reports.
+    pub(super) fn from_model_ports(model: Model, problem: &InitialValueProblem, state: State, inputs: &[InputPort], outputs: &[OutputPort], eigen: EigenSettings, progress: &dyn Fn(&str)) -> Result<Self, StudyError> {
+        let sparse = linearize_sparse(&model, &state, inputs, outputs)?;
         let equilibrium = equilibrium_warning(&model, &state, problem.tolerance);
         // The Λ form's dCoef: the file's eigenanalysis parameter (h/2) when it gives one.
         let file_dcoef = problem.eigenanalysis.as_ref().and_then(|e| e.dcoef);
-        let mut study = Self::from_dae(dae, Some(model), EigenSettings { dcoef: eigen.dcoef.or(file_dcoef), ..eigen })?;
+        let mut study = Self::from_linear(LinearModel::from_sparse(sparse), Some(model), EigenSettings { dcoef: eigen.dcoef.or(file_dcoef), ..eigen }, progress)?;
         study.warnings.splice(0..0, equilibrium);
         study.reference_time = Some(state.t);
         Ok(study)
@@ -162,6 +199,12 @@ impl Study {
     /// found from `start` when given (a sweep's continuation, see [`checked_reference_state`]).
     /// Returns the study and the reference solution it was linearized at.
     pub fn of_model(model: Model, problem: &InitialValueProblem, reference: Reference, ports: &Ports, eigen: EigenSettings, start: Option<&State>) -> Result<(Self, State), StudyError> {
+        Self::of_model_with_progress(model, problem, reference, ports, eigen, start, &quiet)
+    }
+
+    /// [`Study::of_model`] with the sparse eigensolver's progress reports (a line per
+    /// Krylov–Schur restart) sent to `progress`.
+    pub fn of_model_with_progress(model: Model, problem: &InitialValueProblem, reference: Reference, ports: &Ports, eigen: EigenSettings, start: Option<&State>, progress: &dyn Fn(&str)) -> Result<(Self, State), StudyError> {
         let (inputs, outputs) = match ports {
             Ports::Nodes { inputs, outputs } => (inputs.clone(), outputs.clone()),
             Ports::Application(_) => (Vec::new(), Vec::new()),
@@ -170,8 +213,12 @@ impl Study {
         lin.validate(problem)?;
         let state = checked_reference_state(&model, problem, reference, start)?;
         let study = match ports {
-            Ports::Nodes { .. } => Self::from_model_state(model, problem, state.clone(), &lin, eigen)?,
-            Ports::Application(app) => Self::from_application_state(model, problem, state.clone(), app, eigen)?,
+            Ports::Nodes { inputs, outputs } => {
+                let inputs: Vec<_> = inputs.iter().map(NodeInput::port).collect();
+                let outputs: Vec<_> = outputs.iter().map(NodeOutput::port).collect();
+                Self::from_model_ports(model, problem, state.clone(), &inputs, &outputs, eigen, progress)?
+            }
+            Ports::Application(app) => Self::application_state(model, problem, state.clone(), app, eigen, progress)?,
         };
         Ok((study, state))
     }
@@ -185,19 +232,49 @@ impl Study {
 
     /// Eigenanalysis of a given linear DAE; `model` (when it is a model's linearization)
     /// gives the modes' kinetic-energy shares.
+    /// `Solver::Auto` keeps a DAE without its constraint structure (a pencil file) on the
+    /// dense route: the sparse solver's shift at 0 would meet the zero eigenvalues of MBDyn's
+    /// constrained variables (eq. 30), which it removes only where the structure is known.
     pub fn from_dae(dae: LinearDae, model: Option<Model>, eigen: EigenSettings) -> Result<Self, StudyError> {
+        let eigen = if eigen.solver == Solver::Auto && dae.constraint_form.is_none() { EigenSettings { solver: Solver::Dense, ..eigen } } else { eigen };
+        let sparse = eigen.solver.is_sparse(dae.dim(), eigen.every_mode)?;
+        Self::from_linear(LinearModel::from_dense(dae, sparse), model, eigen, &quiet)
+    }
+
+    /// Eigenanalysis of the study's linear model on the route `eigen.solver` picks.
+    fn from_linear(linear: LinearModel, model: Option<Model>, eigen: EigenSettings, progress: &dyn Fn(&str)) -> Result<Self, StudyError> {
         if let Some(c) = eigen.dcoef {
             if !(c.is_finite() && c > 0.0) {
                 return Err(StudyError::Option { option: "--dcoef", message: format!("dCoef must be a positive finite time step coefficient [s], got {c}") });
             }
         }
-        let modal = ModalAnalysis::of_dae(&dae, eigen.route, eigen.dcoef).map_err(|e| e.with_unknown_names(&dae.unknown_names))?;
-        let warnings = port_warnings(&dae, &modal);
-        Ok(Study { dae, modal, model, warnings, reference_time: None, application: None })
+        if !(eigen.tolerance > 0.0 && eigen.tolerance < 1.0) {
+            return Err(StudyError::Option { option: "--tolerance", message: format!("the sparse route's residual tolerance must be in (0, 1), got {}", eigen.tolerance) });
+        }
+        let sparse_dae = match linear.sparse() {
+            Some(s) if eigen.solver.is_sparse(s.dim(), eigen.every_mode)? => Some(s),
+            _ => None,
+        };
+        let (modal, sparse) = match sparse_dae {
+            Some(s) => {
+                let target = eigen.target.unwrap_or(ModeTarget::Lowest(SPARSE_DEFAULT_COUNT));
+                let settings = SparseEigenSettings { tolerance: eigen.tolerance, route: eigen.route, dcoef: eigen.dcoef, ..SparseEigenSettings::default() };
+                let found = sparse_modes_with_progress(s, target, &settings, progress)?;
+                let run = SparseRun::new(target, eigen.tolerance, &found);
+                (found.modal, Some(run))
+            }
+            None => {
+                let dae = linear.dense();
+                (ModalAnalysis::of_dae(dae, eigen.route, eigen.dcoef).map_err(|e| e.with_unknown_names(&dae.unknown_names))?, None)
+            }
+        };
+        let mut study = Study { linear, modal, sparse, model, warnings: Vec::new(), reference_time: None, application: None };
+        study.warnings = study.linear_warnings();
+        Ok(study)
     }
 
     /// What the user must know about the linear model: reference not in equilibrium, ports
-    /// that move nothing.
+    /// that move nothing, a sparse eigenanalysis that is not certified.
     pub fn warnings(&self) -> &[Warning] {
         &self.warnings
     }
@@ -207,12 +284,40 @@ impl Study {
         self.reference_time
     }
 
-    /// The linear DAE `F_yd Δẏ + F_y Δy = B̃ u`, `z = C̃ Δy`.
+    /// The dense linear DAE `F_yd Δẏ + F_y Δy = B̃ u`, `z = C̃ Δy`; on the sparse route it is
+    /// converted from the sparse one on this call (n x n matrices: prefer
+    /// [`Study::sparse_dae`] there).
     pub fn dae(&self) -> &LinearDae {
-        &self.dae
+        self.linear.dense()
     }
 
-    /// All eigenvalues with right and adjoint vectors and labels.
+    /// The sparse linear DAE (`None` for a pencil file or a model with springs removed).
+    pub fn sparse_dae(&self) -> Option<&SparseLinearDae> {
+        self.linear.sparse()
+    }
+
+    /// Number of equations (= unknowns).
+    pub fn equations(&self) -> usize {
+        self.linear.dim()
+    }
+
+    /// Input names with units.
+    pub fn input_names(&self) -> &[String] {
+        self.linear.input_names()
+    }
+
+    /// Output names with units.
+    pub fn output_names(&self) -> &[String] {
+        self.linear.output_names()
+    }
+
+    /// What the sparse eigensolver certified (`None` on the dense route).
+    pub fn sparse_run(&self) -> Option<&SparseRun> {
+        self.sparse.as_ref()
+    }
+
+    /// The eigenanalysis: every eigenvalue with right and adjoint vectors and labels (dense
+    /// route), or the modes asked for (sparse route).
     pub fn modal(&self) -> &ModalAnalysis {
         &self.modal
     }
@@ -224,20 +329,39 @@ impl Study {
 
     /// Kinetic-energy shares of every mode (empty lists without a model).
     pub fn energy(&self) -> Vec<Vec<EnergyShare>> {
-        match &self.model {
-            Some(model) => {
-                let energy = ModalEnergy::new(model, &self.dae);
-                self.modal.modes.iter().map(|m| energy.shares(m)).collect()
-            }
+        match self.modal_energy() {
+            Some(energy) => self.modal.modes.iter().map(|m| energy.shares(m)).collect(),
             None => vec![Vec::new(); self.modal.modes.len()],
         }
     }
 
+    /// The diagonal mass terms of the model's dynamic nodes (`None` without a model).
+    pub(super) fn modal_energy(&self) -> Option<ModalEnergy> {
+        self.model.as_ref().map(|model| ModalEnergy::from_fyd_diagonal(model, &self.linear.fyd_diagonal()))
+    }
+
     /// The modal table with kinetic-energy shares, and a label column when nodes have names
-    /// (in the model file or a ports file) or ports are given.
+    /// (in the model file or a ports file) or ports are given; on the sparse route the modes
+    /// asked for.
     pub fn modal_report(&self) -> ModalReport {
-        let report = ModalReport::new(&self.modal, self.dae.dim()).with_energy(self.energy());
+        let report = ModalReport::new(&self.modal, self.linear.dim()).with_energy(self.energy());
         let named = self.model.as_ref().is_some_and(|m| !m.node_names.is_empty());
-        if self.application.is_some() || named { report.with_labels(self.mode_labels()) } else { report }
+        let report = if self.application.is_some() || named { report.with_labels(self.mode_labels()) } else { report };
+        report.with_note(self.sparse.as_ref().map(|r| r.header()))
+    }
+
+    /// The modal table of the modes `selection` keeps (`romdyn eig --count|--band`), the same
+    /// rows on both routes; `None`: every mode of [`Study::modal_report`].
+    /// On the sparse route `None` means the modes it was asked for.
+    pub fn modal_report_of(&self, selection: Option<&ModeSelection>) -> Result<ModalReport, StudyError> {
+        let asked = self.sparse.as_ref().map(|r| r.selection());
+        let Some(selection) = selection.or(asked.as_ref()) else { return Ok(self.modal_report()) };
+        let kept = match select_modes(&self.modal, selection) {
+            Ok(sel) => sel.kept,
+            // Fewer modes found than asked: the table shows them, the warning says why.
+            Err(_) if self.sparse.as_ref().is_some_and(|r| !r.certified) => return Ok(self.modal_report()),
+            Err(e) => return Err(e.into()),
+        };
+        Ok(self.modal_report().only(&kept))
     }
 }

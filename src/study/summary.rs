@@ -3,7 +3,7 @@
 
 use faer::Mat;
 
-use crate::dae::{describe, ModalEnergy};
+use crate::dae::describe;
 
 use super::{GridAccuracy, ReducedModel, StaticGains, Study};
 
@@ -64,13 +64,13 @@ impl ReducedModel {
     /// The summary: states, kept modes with frequency, damping and dominant node
     /// components, modal damping applied, static gains, accuracy on `grid` (when computed).
     pub fn summary(&self, study: &Study, accuracy: Option<&GridAccuracy>) -> String {
-        let energy = study.model().map(|m| ModalEnergy::new(m, study.dae()));
+        let energy = study.modal_energy();
         let states = self.ordinary.a.nrows();
-        let mut s = format!(
-            "ROM: {states} states from {} kept mode(s), {} statically residualized state(s) folded into D\n",
-            self.kept_modes.len(),
-            self.descriptor.static_states
-        );
+        let mut s = if self.static_correction {
+            format!("ROM: {states} states from {} kept mode(s), the modes not kept statically corrected in D (full model's static gain by sparse LU)\n", self.kept_modes.len())
+        } else {
+            format!("ROM: {states} states from {} kept mode(s), {} statically residualized state(s) folded into D\n", self.kept_modes.len(), self.descriptor.static_states)
+        };
         s += &format!("  {:>7}  {:>12}  {:>14}  {:>8}  {:>9}  description\n", "mode", "freq [Hz]", "undamped [Hz]", "damping", "dominance");
         for k in &self.kept_modes {
             let m = &study.modal().modes[k.indices[0] - 1];

@@ -23,6 +23,8 @@ pub enum Warning {
     StaticGain { relative: f64, channel: String, reason: String },
     /// A real kept mode could not take modal damping.
     DampingNotApplied { mode: usize, reason: String },
+    /// The sparse eigensolver could not certify that it found every mode asked for.
+    SparseNotCertified { target: String, reason: String, damping_covered: f64 },
 }
 
 fn modes_hz(m: &[(usize, f64)]) -> String {
@@ -51,6 +53,10 @@ impl fmt::Display for Warning {
             ),
             Warning::StaticGain { relative, channel, reason } => write!(f, "the ROM's static gain differs from the full model's by {relative:.2e} (relative, {channel}): {reason}"),
             Warning::DampingNotApplied { mode, reason } => write!(f, "modal damping not applied to mode {mode}: {reason}"),
+            Warning::SparseNotCertified { target, reason, damping_covered } => write!(
+                f,
+                "the sparse eigenanalysis of {target} is not certified: {reason} (shift windows cover damping ratios up to {damping_covered:.2}); a mode may be missing from the table and the ROM: check with --solver dense, or narrow the band"
+            ),
         }
     }
 }

@@ -51,14 +51,13 @@ pub fn overrides(names: &[String], values: &[f64]) -> SetOverrides {
 /// and resolves includes). `start`: the previous point's reference solution (continuation).
 pub fn run_point(text: &str, name: &Path, names: &[String], values: &[f64], options: &SweepOptions, start: Option<&State>) -> Result<PointResult, StudyError> {
     let m = read_model_text(text, name, &overrides(names, values))?;
-    let (study, state) = Study::of_model(m.model, &m.problem, options.reference, &options.ports, options.eigen, start).map_err(|e| e.in_file(name))?;
+    let eigen = options.eigen.for_request(&options.rom);
+    let (study, state) = Study::of_model(m.model, &m.problem, options.reference, &options.ports, eigen, start).map_err(|e| e.in_file(name))?;
     let rom = study.reduce(&options.rom)?;
+    rom.check_form(options.form)?;
     let modes = lowest_modes(study.modal(), options.modes);
     let mut warnings: Vec<String> = study.warnings().iter().map(|w| w.to_string()).collect();
     warnings.extend(rom.warnings.iter().map(|w| w.to_string()));
-    if options.form == RomForm::Descriptor && rom.descriptor.c_rate.is_some() {
-        return Err(StudyError::Option { option: "--form", message: "descriptor: velocity outputs need z = C x + C_v x', which the descriptor export has no place for; use the ordinary form (its C and D carry them)".into() });
-    }
     Ok(PointResult { rom: rom.export(&study, options.form), modes, warnings, state })
 }
 

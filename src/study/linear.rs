@@ -1,0 +1,105 @@
+//! The linear DAE of a study: kept sparse as assembled, its dense copy built only when the
+//! dense route asks for it (issue 13 point 1: on the sparse route memory grows with the
+//! non-zeros, not with n²).
+
+use std::sync::OnceLock;
+
+use faer::{c64, Mat};
+
+use crate::linear::{LinearDae, SparseLinearDae};
+
+/// `F_yd Δẏ + F_y Δy = B̃ u`, `z = C̃ Δy`, sparse, dense, or both.
+pub(super) struct LinearModel {
+    sparse: Option<SparseLinearDae>,
+    dense: OnceLock<LinearDae>,
+}
+
+impl LinearModel {
+    pub fn from_sparse(sparse: SparseLinearDae) -> Self {
+        LinearModel { sparse: Some(sparse), dense: OnceLock::new() }
+    }
+
+    /// A dense DAE (a pencil file, a DAE with springs removed); `with_sparse` also keeps its
+    /// sparse copy for the sparse route.
+    pub fn from_dense(dense: LinearDae, with_sparse: bool) -> Self {
+        let sparse = with_sparse.then(|| SparseLinearDae::from_dense(&dense));
+        LinearModel { sparse, dense: OnceLock::from(dense) }
+    }
+
+    /// The sparse DAE, when the study has one.
+    pub fn sparse(&self) -> Option<&SparseLinearDae> {
+        self.sparse.as_ref()
+    }
+
+    /// The dense DAE, converted from the sparse one on first use (n x n: the dense route only).
+    pub fn dense(&self) -> &LinearDae {
+        self.dense.get_or_init(|| match &self.sparse {
+            Some(s) => s.to_dense(),
+            None => unreachable!("a study's linear model is built from a sparse or a dense DAE"),
+        })
+    }
+
+    /// The dense DAE only if it exists already.
+    fn dense_if_built(&self) -> Option<&LinearDae> {
+        self.dense.get()
+    }
+
+    pub fn dim(&self) -> usize {
+        self.sparse.as_ref().map_or_else(|| self.dense().dim(), |s| s.dim())
+    }
+
+    pub fn b(&self) -> &Mat<f64> {
+        self.sparse.as_ref().map_or_else(|| &self.dense().b, |s| &s.b)
+    }
+
+    pub fn c(&self) -> &Mat<f64> {
+        self.sparse.as_ref().map_or_else(|| &self.dense().c, |s| &s.c)
+    }
+
+    pub fn input_names(&self) -> &[String] {
+        self.sparse.as_ref().map_or_else(|| &self.dense().input_names[..], |s| &s.input_names[..])
+    }
+
+    pub fn output_names(&self) -> &[String] {
+        self.sparse.as_ref().map_or_else(|| &self.dense().output_names[..], |s| &s.output_names[..])
+    }
+
+    pub fn unknown_names(&self) -> &[String] {
+        self.sparse.as_ref().map_or_else(|| &self.dense().unknown_names[..], |s| &s.unknown_names[..])
+    }
+
+    pub fn multipliers(&self) -> &[usize] {
+        self.sparse.as_ref().map_or_else(|| &self.dense().multipliers[..], |s| &s.multipliers[..])
+    }
+
+    /// `F_yd[k, k]` of every unknown (the dynamic nodes' masses sit on the momentum rows).
+    pub fn fyd_diagonal(&self) -> Vec<f64> {
+        match (self.dense_if_built(), &self.sparse) {
+            (Some(d), _) => {
+                let (fyd, _) = d.jacobians.derivatives();
+                (0..fyd.nrows()).map(|k| fyd[(k, k)]).collect()
+            }
+            (None, Some(s)) => {
+                let mut diag = vec![0.0; s.dim()];
+                s.fyd.triplets().filter(|&(i, j, _)| i == j).for_each(|(i, _, v)| diag[i] += v);
+                diag
+            }
+            (None, None) => unreachable!("a study's linear model is built from a sparse or a dense DAE"),
+        }
+    }
+
+    /// The full model's static gain `C̃ S⁻¹ B̃` on the sparse route, by one sparse LU
+    /// checked by its residual.
+    pub fn sparse_static_gain(&self) -> Option<Result<Mat<f64>, crate::linear::SparseSolveError>> {
+        self.sparse.as_ref().map(|s| s.static_gain())
+    }
+
+    /// The full model's frequency response at `freq_hz` [Hz] (outputs × inputs): by sparse
+    /// solves with one symbolic factorization when the study is on the sparse route.
+    pub fn frequency_response(&self, freq_hz: &[f64], sparse_route: bool) -> Result<Vec<Mat<c64>>, crate::linear::SparseSolveError> {
+        match (&self.sparse, sparse_route) {
+            (Some(s), true) => s.frequency_response(freq_hz),
+            _ => Ok(crate::rom::full_frequency_response(self.dense(), freq_hz)),
+        }
+    }
+}
