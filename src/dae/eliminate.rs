@@ -153,26 +153,39 @@ impl Eliminated {
             row_start[k + 1] += row_start[k];
         }
         let row: Vec<(usize, usize)> = row_entries.iter().map(|&(_, q, e)| (q, e)).collect();
-        // Reduced entries: those of J_Rq, then the products' (r, q), duplicates shared.
-        let mut products = Vec::new();
+        drop(row_entries);
+        // Reduced entries: those of J_Rq, then the products' (r, q), duplicates shared. The
+        // set-up's temporaries are sized exactly and freed as soon as they are read: they
+        // set the run's peak memory on large models (1000-beam cantilever).
+        let n_products: usize = column.iter().map(|&(_, _, k)| row_start[k + 1] - row_start[k]).sum();
+        let mut red_keys_rows = Vec::with_capacity(direct.len() + n_products);
+        let mut red_keys_cols = Vec::with_capacity(direct.len() + n_products);
+        for &(r, c, _) in &direct {
+            red_keys_rows.push(r);
+            red_keys_cols.push(c);
+        }
+        let direct_entries: Vec<usize> = direct.iter().map(|d| d.2).collect();
+        drop(direct);
+        let mut products = Vec::with_capacity(n_products);
         for &(r, a, k) in &column {
             for &(q, b) in &row[row_start[k]..row_start[k + 1]] {
-                products.push((r, q, a, b, k));
+                red_keys_rows.push(r);
+                red_keys_cols.push(q);
+                products.push((a, b, k));
             }
         }
-        let red_keys_rows: Vec<usize> = direct.iter().map(|d| d.0).chain(products.iter().map(|p| p.0)).collect();
-        let red_keys_cols: Vec<usize> = direct.iter().map(|d| d.1).chain(products.iter().map(|p| p.1)).collect();
-        let (reduced_of, reduced_keys) = distinct(kept_rows.len(), &red_keys_rows, &red_keys_cols);
-        let (red_rows, red_cols): (Vec<usize>, Vec<usize>) = reduced_keys.into_iter().unzip();
         drop(keys);
+        let (reduced_of, reduced_keys) = distinct(kept_rows.len(), &red_keys_rows, &red_keys_cols);
+        drop((red_keys_rows, red_keys_cols));
+        let (red_rows, red_cols): (Vec<usize>, Vec<usize>) = reduced_keys.into_iter().unzip();
         let inner = Factored::new(kept_rows.len(), &red_rows, &red_cols, path)?;
         let storage = inner.positions();
         let storage_len = storage.iter().max().map_or(0, |&m| m + 1);
         let mut storage_of = vec![usize::MAX; compact.len()];
-        for (&(_, _, e), &t) in direct.iter().zip(&reduced_of) {
+        for (&e, &t) in direct_entries.iter().zip(&reduced_of) {
             storage_of[e] = storage[t];
         }
-        let products = products.iter().zip(&reduced_of[direct.len()..]).map(|(&(_, _, a, b, k), &t)| (storage[t], a, b, k)).collect();
+        let products = products.iter().zip(&reduced_of[direct_entries.len()..]).map(|(&(a, b, k), &t)| (storage[t], a, b, k)).collect();
         let target = entry_of.iter().map(|&e| if compact[e] == usize::MAX { storage_of[e] } else { storage_len + compact[e] }).collect();
         Ok(Some(Eliminated {
             target,
