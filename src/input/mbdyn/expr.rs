@@ -448,7 +448,7 @@ impl<'a> Evaluator<'a> {
     /// structural nodes' private data, `model::drive`; the rest is refused by name.
     fn model_function(&mut self, name: &str, span: Span) -> Result<TypedValue, MbdynError> {
         let what = format!("model::{name}");
-        let no_reads = |e: &Self| e.err(span, format!("{what} reads the model's state: romdyn evaluates it in string drives during the run only (not in 'set:', 'remark:' or a card's numbers)"));
+        let no_reads = |e: &Self| e.err(span, format!("{what} reads the model's state, which is not available here"));
         let real = |e: &Self, v: &TypedValue| v.real().ok_or_else(|| e.err(span, format!("{what} takes numbers, found a string")));
         if super::model_namespace::is_previous_step(name) {
             return Err(self.err(span, format!("{what} reads the previous time step's state, which romdyn does not keep: not supported")));

@@ -125,7 +125,7 @@ fn label(x: f64, what: &str) -> Result<Label, String> {
 }
 
 fn node<'r>(reads: &'r dyn NodeStates, l: Label, call: &str) -> Result<&'r NodeKinematics, String> {
-    reads.structural_node(l).ok_or_else(|| format!("{call}: there is no structural node {l} (dummy nodes are not read)"))
+    reads.structural_node(l).ok_or_else(|| format!("{call}: there is no structural node {l} (dummy nodes are not read; while the file is read, only the nodes above this statement are)"))
 }
 
 /// Evaluates the state function `name` on node labels `args`.
