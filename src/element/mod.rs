@@ -11,6 +11,7 @@
 mod anchor;
 mod axial_rotation;
 mod beam;
+mod beam_slider;
 mod body;
 mod cardano;
 mod central_gravity;
@@ -29,6 +30,7 @@ mod joint;
 mod scalar_function;
 
 pub use beam::{shape as beam_shape, Beam3, BeamError, BeamNode, SectionLaw, SectionOrientation};
+pub use beam_slider::{BeamSlider, SliderBeam, SliderKind};
 pub use body::RigidBody;
 pub use cardano::CardanoHinge;
 pub use central_gravity::CentralGravity;

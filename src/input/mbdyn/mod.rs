@@ -9,6 +9,7 @@
 //! [`Model`]: crate::model::Model
 //! [`InitialValueProblem`]: crate::model::InitialValueProblem
 
+mod beam_slider;
 mod beams;
 mod control;
 mod cursor;
