@@ -28,6 +28,7 @@ mod internal_force;
 mod invariant_hinge;
 mod joint;
 mod scalar_function;
+mod screw;
 
 pub use beam::{shape as beam_shape, Beam3, BeamError, BeamNode, SectionLaw, SectionOrientation};
 pub use beam_slider::{BeamSlider, SliderBeam, SliderKind};
@@ -49,3 +50,4 @@ pub use anchor::Anchor;
 pub use axial_rotation::AxialRotation;
 pub use joint::{Joint, JointKind};
 pub use scalar_function::ScalarFunction;
+pub use screw::Screw;

@@ -31,6 +31,7 @@ mod parser;
 mod problem;
 mod references;
 mod scalar_functions;
+mod screw;
 mod value;
 
 pub use diagnostic::MbdynError;
