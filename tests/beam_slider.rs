@@ -183,3 +183,25 @@ fn beam_slider_cards_romdyn_cannot_honour_are_refused_by_name() {
     let err = parse_text(&t, &path("beam_slider.mbd")).and_then(|d| build(&d)).err().unwrap();
     assert!(err.to_string().contains("differs from that of node 3"), "{err}");
 }
+
+#[test]
+fn a_slider_written_off_its_initial_node_and_off_the_line_starts_at_the_nearest_point() {
+    // beam_slider.mbd with bead 10 written .5 m down the line and 1 mm below it, its
+    // `initial node` still 1: romdyn starts its abscissa at the nearest point of the line,
+    // s = .5 m (MBDyn's derivatives phase solves for it from the initial node on), and its
+    // initial assembly puts the node on the line (MBDyn's beam slider takes no part in
+    // MBDyn's assembly). Then s(1) = .5 + v₀ + g sin(A)/2 = 3.9525 m, as the closed form.
+    let text = std::fs::read_to_string(path("beam_slider.mbd")).unwrap();
+    let written = "structural: 10, dynamic, reference, 1, 0., 0., 0.,";
+    assert!(text.contains(written));
+    let t = text.replace(written, "structural: 10, dynamic, reference, 1, .5, 0., -.001,");
+    let m = parse_text(&t, &path("beam_slider.mbd")).and_then(|d| build(&d)).unwrap_or_else(|e| panic!("{e}"));
+    let report = run(&m.model, &m.problem, &mut ()).unwrap();
+    let assembly = report.assembly;
+    assert!((assembly.moved_position - 1e-3).abs() < 1e-9, "assembly moved the nodes by {} m", assembly.moved_position);
+    let asm = Assembler::new(&m.model);
+    let x = report.final_state.node_frame(&asm.dofs, m.model.node_index(10).unwrap()).kin.x;
+    let a = std::f64::consts::PI / 6.0;
+    let want = (0.5 + 1.0 + 9.81 * a.sin() / 2.0) * Vec3::new(a.cos(), 0.0, -a.sin());
+    assert!((x - want).norm() < 1e-8, "node 10 at {x}, closed form {want}");
+}
