@@ -92,7 +92,7 @@ pub fn linear_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq:
     }
     let Some(kind) = c.accept_any(&KINDS) else {
         if let Some(k) = c.peek_keyword().and_then(|w| UNSUPPORTED.iter().find(|u| super::parser::same_keyword(u, w))) {
-            let rods = if k.starts_with("scalar function elastic") { "; 'scalar function elastic' only for a rod's 1-D law" } else { "" };
+            let rods = if k.starts_with("scalar function elastic") { "; 'scalar function elastic' only for a rod and a deformable hinge" } else { "" };
             return Err(c.error(format!("constitutive law '{k}' is not supported by romdyn (supported: linear elastic, linear viscous, linear viscoelastic, each isotropic or generic{rods})")));
         }
         return Err(c.error(format!("expected a constitutive law ({}), found {}", KINDS.join(", "), c.found())));
