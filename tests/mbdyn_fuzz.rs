@@ -35,6 +35,7 @@ const WORDS: &[&str] = &[
     "condense", "structural nodes", "rigid bodies", "joints", "forces", "beams", "initial time", "final time", "time step", "method", "ms",
     "crank nicolson", "implicit euler", "bdf", "order", "tolerance", "max iterations", "eigenanalysis", "list", "parameter", "output matrices",
     "use lapack", "balance", "abort after", "real", "integer", "bool", "string", "ifndef", "pi", "e", "sin", "sqrt", "log", "atan2", "x", "L",
+    "beam slider", "type", "classic", "spherical", "spline", "same", "initial beam", "initial node", "smearing", "hinge", "screw", "pitch",
 ];
 
 const SYMBOLS: &[&str] = &[":", ",", ";", "(", ")", "[", "]", "+", "-", "*", "/", "%", "^", "=", "==", "!", "&&", "||", "::", "~|", "<", ">=", "\"", "#", "/*", "*/"];
@@ -124,7 +125,9 @@ fn random_statements_in_valid_blocks_never_panic() {
 fn mutated_examples_never_panic() {
     let examples: Vec<String> = ["pendulum", "inverted_pendulum", "double_pendulum", "mass_on_springs", "spatial_mechanism"]
         .iter()
-        .map(|f| std::fs::read_to_string(format!("examples/{f}.mbd")).unwrap())
+        .map(|f| format!("examples/{f}.mbd"))
+        .chain(["beam_slider", "screw"].iter().map(|f| format!("tests/mbdyn_files/{f}.mbd")))
+        .map(|f| std::fs::read_to_string(f).unwrap())
         .collect();
     let n = run(
         |r| {

@@ -195,8 +195,11 @@ impl JacobianSink for Jacobian<'_> {
                 }
             }
             Col::Multiplier(k) => {
+                // A multiplier is algebraic in eq. 30; any other own unknown (a velocity
+                // constraint's, a coordinate) is a `y` like a position, with its row's
+                // coefficient (the row of a holonomic constraint is `Φ/c`).
                 let j = self.first + k;
-                self.out.push(i, j, if scaled && self.dofs.is_multiplier(j) { a } else { self.c.b } * v)
+                self.out.push(i, j, if scaled && self.dofs.is_multiplier(j) { a } else { b } * v)
             }
         }
     }

@@ -14,9 +14,13 @@ pub struct DofMap {
     /// Number of unknowns (= equations).
     pub len: usize,
     /// Whether each unknown is a Lagrange multiplier of a holonomic constraint (the
-    /// unknowns of velocity-level constraints are not: they follow the node unknowns'
-    /// coefficients in both constraint forms).
+    /// unknowns of velocity-level constraints and elements' coordinates are not: they
+    /// follow the node unknowns' coefficients in both constraint forms).
     multiplier: Vec<bool>,
+    /// Whether each unknown is an element's coordinate ([`Element::is_coordinate`]).
+    ///
+    /// [`Element::is_coordinate`]: crate::element::Element::is_coordinate
+    coordinate: Vec<bool>,
 }
 
 /// What one unknown (and the equation with the same index) belongs to.
@@ -45,13 +49,14 @@ impl DofMap {
             first += k;
             element_nodes.push(e.nodes().iter().map(|l| model.node_index(*l).unwrap_or(usize::MAX)).collect());
         }
-        let mut multiplier = vec![false; first];
+        let (mut multiplier, mut coordinate) = (vec![false; first], vec![false; first]);
         for ((&f, &k), e) in element_first.iter().zip(&element_len).zip(&model.elements) {
-            for (j, m) in multiplier[f..f + k].iter_mut().enumerate() {
-                *m = !e.is_velocity_constraint(j);
+            for j in 0..k {
+                coordinate[f + j] = e.is_coordinate(j);
+                multiplier[f + j] = !e.is_velocity_constraint(j) && !coordinate[f + j];
             }
         }
-        DofMap { node_first, node_kind: model.nodes.iter().map(|n| n.kind).collect(), element_first, element_len, element_nodes, len: first, multiplier }
+        DofMap { node_first, node_kind: model.nodes.iter().map(|n| n.kind).collect(), element_first, element_len, element_nodes, len: first, multiplier, coordinate }
     }
 
     /// First equilibrium row of a node (after the momentum definitions of a dynamic node).
@@ -83,6 +88,12 @@ impl DofMap {
     /// is then divided by dCoef in the form of eq. 30).
     pub fn is_multiplier(&self, i: usize) -> bool {
         self.multiplier[i]
+    }
+
+    /// Whether unknown `i` is an element's coordinate (a beam slider's abscissa): it moves
+    /// with the configuration, like a node's position.
+    pub fn is_coordinate(&self, i: usize) -> bool {
+        self.coordinate[i]
     }
 
     /// "node 2 x", "node 2 gz", "node 2 beta_y", "revolute hinge 3 m x".

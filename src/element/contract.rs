@@ -147,6 +147,15 @@ pub trait Element: Send + Sync {
     fn reads_state(&self) -> bool {
         false
     }
+    /// Whether its own unknown `k` is a coordinate rather than a multiplier (the abscissa of
+    /// a beam slider along its beams): a configuration unknown like a node's, updated as
+    /// `y += c δ` with Jacobian coefficient `c`, and set by the initial assembly; its
+    /// equation `k` is not divided by dCoef. The element's holonomic rows may depend on
+    /// it: in the form of eq. 30 the assembler gives those entries the coefficient of the
+    /// row's position entries, so the element writes the plain derivative `Φ_/s`.
+    fn is_coordinate(&self, _k: usize) -> bool {
+        false
+    }
     /// Adds its contribution to `F(y, ẏ, t)`.
     fn residual(&self, s: &dyn ElementState, out: &mut dyn ResidualSink);
     /// Adds its derivatives; the assembler forms `J(c)` from them.

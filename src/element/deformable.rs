@@ -101,35 +101,49 @@ impl Element for DeformableHinge {
     }
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
         let p = Pair::new(&self.a, &self.b, st);
-        let theta = rotation_vector(&(p.q_a.transpose() * p.q_b));
-        let w = p.q_a.transpose() * (p.omega_b - p.omega_a);
-        let m = p.q_a * (self.law.stiffness * theta + self.law.viscosity * w);
-        add_vec(out, Row::moment(p.slot_b), &m);
-        if let Some(a) = p.slot_a {
-            add_vec(out, Row::moment(a), &(-m));
-        }
+        let (theta, w) = hinge_strains(&p);
+        add_hinge_moment(out, &p, &(self.law.stiffness * theta + self.law.viscosity * w));
     }
     fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
         let p = Pair::new(&self.a, &self.b, st);
-        let (qa, qt) = (p.q_a, p.q_a.transpose());
-        let theta = rotation_vector(&(qt * p.q_b));
-        let w = qt * (p.omega_b - p.omega_a);
+        let (theta, w) = hinge_strains(&p);
         let (k, c) = (self.law.stiffness, self.law.viscosity);
-        let m = qa * (k * theta + c * w);
-        // δθ = Γ⁻¹(θ) Q_aᵀ (δθ_b − δθ_a), δw = Q_aᵀ (δω_b − δω_a) + Q_aᵀ [(ω_b − ω_a)×] δθ_a,
-        // δm = −[m×] δθ_a + Q_a (K δθ + C δw).
-        let d_rel = qa * k * inverse_rotation_jacobian(&theta) * qt;
-        let d_omega = qa * c * qt;
-        let d_theta_a = -skew(&m) - d_rel + d_omega * skew(&(p.omega_b - p.omega_a));
-        let (b, sa) = (p.slot_b, p.slot_a);
-        for (sign, slot) in [(1.0, Some(b)), (-1.0, sa)] {
-            let Some(s) = slot else { continue };
-            add_block(out, Row::moment(s), Col::rotation(b), &(sign * d_rel));
-            add_block(out, Row::moment(s), Col::angular_velocity(b), &(sign * d_omega));
-            if let Some(a) = sa {
-                add_block(out, Row::moment(s), Col::rotation(a), &(sign * d_theta_a));
-                add_block(out, Row::moment(s), Col::angular_velocity(a), &(-sign * d_omega));
-            }
+        add_hinge_jacobian(out, &p, &(k * theta + c * w), &theta, &k, &c);
+    }
+}
+
+/// A hinge's relative rotation vector `θ = rotvec(Q_aᵀ Q_b)` and rate `w = Q_aᵀ (ω_b − ω_a)`.
+pub(super) fn hinge_strains(p: &Pair) -> (Vec3, Vec3) {
+    let qt = p.q_a.transpose();
+    (rotation_vector(&(qt * p.q_b)), qt * (p.omega_b - p.omega_a))
+}
+
+/// The moment `Q_a φ` on B and `−Q_a φ` on A, `φ` the law's moment in frame A.
+pub(super) fn add_hinge_moment(out: &mut dyn ResidualSink, p: &Pair, phi: &Vec3) {
+    let m = p.q_a * phi;
+    add_vec(out, Row::moment(p.slot_b), &m);
+    if let Some(a) = p.slot_a {
+        add_vec(out, Row::moment(a), &(-m));
+    }
+}
+
+/// The Jacobian of [`add_hinge_moment`] for a law `φ(θ, w)` with `K = ∂φ/∂θ`, `C = ∂φ/∂w`.
+pub(super) fn add_hinge_jacobian(out: &mut dyn JacobianSink, p: &Pair, phi: &Vec3, theta: &Vec3, k: &Mat3, c: &Mat3) {
+    let (qa, qt) = (p.q_a, p.q_a.transpose());
+    let m = qa * phi;
+    // δθ = Γ⁻¹(θ) Q_aᵀ (δθ_b − δθ_a), δw = Q_aᵀ (δω_b − δω_a) + Q_aᵀ [(ω_b − ω_a)×] δθ_a,
+    // δm = −[m×] δθ_a + Q_a (K δθ + C δw).
+    let d_rel = qa * k * inverse_rotation_jacobian(theta) * qt;
+    let d_omega = qa * c * qt;
+    let d_theta_a = -skew(&m) - d_rel + d_omega * skew(&(p.omega_b - p.omega_a));
+    let (b, sa) = (p.slot_b, p.slot_a);
+    for (sign, slot) in [(1.0, Some(b)), (-1.0, sa)] {
+        let Some(s) = slot else { continue };
+        add_block(out, Row::moment(s), Col::rotation(b), &(sign * d_rel));
+        add_block(out, Row::moment(s), Col::angular_velocity(b), &(sign * d_omega));
+        if let Some(a) = sa {
+            add_block(out, Row::moment(s), Col::rotation(a), &(sign * d_theta_a));
+            add_block(out, Row::moment(s), Col::angular_velocity(a), &(-sign * d_omega));
         }
     }
 }

@@ -56,6 +56,9 @@ impl Element for DrivenElement {
     fn is_velocity_constraint(&self, k: usize) -> bool {
         self.inner.is_velocity_constraint(k)
     }
+    fn is_coordinate(&self, k: usize) -> bool {
+        self.inner.is_coordinate(k)
+    }
     fn residual(&self, s: &dyn ElementState, out: &mut dyn ResidualSink) {
         if self.active(s) {
             self.inner.residual(s, out);
@@ -75,7 +78,7 @@ impl Element for DrivenElement {
         for k in 0..self.inner.multipliers().len() {
             // ∂(−λ_k)/∂λ_k = −1 on a row the assembler scales as a constraint row (velocity
             // constraints' rows are never scaled).
-            let scale = if self.inner.is_velocity_constraint(k) { 1.0 } else { s.constraint_row_scale() };
+            let scale = if self.inner.is_velocity_constraint(k) || self.inner.is_coordinate(k) { 1.0 } else { s.constraint_row_scale() };
             out.add(Row::Constraint(k), Col::Multiplier(k), if active { 0.0 } else { -scale });
         }
     }

@@ -459,6 +459,15 @@ pub fn initial_assembly(model: &Model, st: &mut State, settings: &InitialAssembl
             st.yp[f + 3 + c] = u.w[i][c];
         }
     }
+    // Elements' coordinates (a beam slider's abscissa) are configuration: kept with their
+    // rates, where multipliers are left to the derivatives phase.
+    for (k, &e) in problem.layout.elements.iter().enumerate() {
+        let (el, at) = (problem.layout.element(k), problem.layout.first[k] - 6 * n);
+        for j in (0..el.multipliers().len()).filter(|&j| el.is_coordinate(j)) {
+            st.y[dofs.element_first[e] + j] = u.lambda[at + j];
+            st.yp[dofs.element_first[e] + j] = u.lambda_dot[at + j];
+        }
+    }
     Ok(report)
 }
 

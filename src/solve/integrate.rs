@@ -197,12 +197,15 @@ pub fn constraint_rate(asm: &Assembler, st: &State) -> Option<(String, f64)> {
                 m.y[i] += s * st.yp[i];
             }
         }
+        for i in (0..dofs.len).filter(|&i| dofs.is_coordinate(i)) {
+            m.y[i] += s * st.yp[i];
+        }
         m.t += s;
         asm.residual(&m, ConstraintForm::Plain, 1.0)
     };
     let now = asm.residual(st, ConstraintForm::Plain, 1.0);
     let own = dofs.element_first.iter().zip(&dofs.element_len).flat_map(|(&f, &k)| f..f + k);
-    let velocity = own.filter(|&i| !dofs.is_multiplier(i)).map(|i| (i, now[i]));
+    let velocity = own.filter(|&i| !dofs.is_multiplier(i) && !dofs.is_coordinate(i)).map(|i| (i, now[i]));
     // Forward in time (a drive may start with a kink at the initial time), second order,
     // D(ε) = (−3 Φ(0) + 4 Φ(ε) − Φ(2ε)) / (2ε), extrapolated to third order as
     // (4 D(ε) − D(2ε)) / 3: D's own error, ε² Φ'''/3, is 8e-6 per s for a point turning at

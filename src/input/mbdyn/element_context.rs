@@ -32,6 +32,8 @@ pub struct ElementContext<'a> {
     pub frames: &'a Frames,
     pub drives: &'a Drives,
     pub laws: &'a Laws,
+    /// The node labels of the beams read so far (a beam slider names them).
+    pub beams: &'a super::beam_slider::BeamNodes,
     /// The statement being read (cards must come before it).
     pub seq: usize,
 }

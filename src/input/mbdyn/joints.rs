@@ -14,19 +14,19 @@ use super::drives::template_vec3;
 use super::element_context::ElementContext;
 use super::laws::{linear_law, rest_strain, three, LinearLaw};
 use super::references::{Context, Frame, OtherSide};
-use crate::element::{Anchor, AxialRotation, ImposedVelocity, VelocityKind, CardanoHinge, DeformableJoint, DrivenJoint, InvariantDeformableHinge, VectorDrive, DeformableDisplacement, DeformableHinge, Distance, Drive, Element, Joint, Rod, RodViscosity};
+use crate::element::{Anchor, AxialRotation, FunctionHinge, ImposedVelocity, VelocityKind, CardanoHinge, DeformableJoint, DrivenJoint, InvariantDeformableHinge, VectorDrive, DeformableDisplacement, DeformableHinge, Distance, Drive, Element, Joint, Rod, RodViscosity};
 use crate::kinematics::{Mat3, Vec3};
 use crate::model::{Label, StructuralNode};
 
-const SUPPORTED: [&str; 37] = [
-    "linear velocity", "angular velocity", "revolute rotation", "cardano hinge", "universal hinge", "cardano pin", "universal pin", "cardano rotation", "universal rotation", "axial rotation", "drive displacement", "drive displacement pin", "imposed displacement", "imposed displacement pin", "drive hinge", "deformable joint", "deformable axial joint", "invariant deformable hinge", "clamp", "revolute hinge", "plane hinge", "revolute pin", "plane pin", "spherical hinge", "spherical pin", "total joint", "total pin joint",
+const SUPPORTED: [&str; 39] = [
+    "beam slider", "screw", "linear velocity", "angular velocity", "revolute rotation", "cardano hinge", "universal hinge", "cardano pin", "universal pin", "cardano rotation", "universal rotation", "axial rotation", "drive displacement", "drive displacement pin", "imposed displacement", "imposed displacement pin", "drive hinge", "deformable joint", "deformable axial joint", "invariant deformable hinge", "clamp", "revolute hinge", "plane hinge", "revolute pin", "plane pin", "spherical hinge", "spherical pin", "total joint", "total pin joint",
     "deformable displacement joint", "deformable displacement hinge", "deformable hinge", "rod", "rod with offset", "in line", "in plane", "prismatic",
     "distance", "distance with offset",
 ];
 
 /// MBDyn joints romdyn names in its "not supported" error.
-const OTHER_JOINTS: [&str; 14] = [
-    "angular acceleration", "beam slider", "brake",
+const OTHER_JOINTS: [&str; 13] = [
+    "angular acceleration", "brake",
     "coincidence", "gimbal rotation", "imposed orientation",
     "invariant deformable displacement joint", "invariant deformable joint", "linear acceleration", "modal",
     "plane displacement", "plane displacement pin", "point contact", "rod bezier",
@@ -76,12 +76,14 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
     let Some(kind) = c.accept_any(&SUPPORTED) else {
         if let Some(w) = c.peek_keyword() {
             let name = OTHER_JOINTS.iter().find(|o| super::parser::same_keyword(o, w)).copied().unwrap_or(w);
-            return Err(c.error(format!("joint type '{name}' is not supported by romdyn (supported: axial rotation, linear velocity, angular velocity, revolute rotation, cardano hinge, cardano pin, cardano rotation (and universal …), drive displacement, drive displacement pin, drive hinge, imposed displacement, imposed displacement pin, clamp, revolute hinge, revolute pin, spherical hinge, spherical pin, total joint, total pin joint, deformable displacement joint, deformable hinge, invariant deformable hinge, deformable joint, deformable axial joint, rod, in line, in plane, prismatic, distance)")));
+            return Err(c.error(format!("joint type '{name}' is not supported by romdyn (supported: axial rotation, beam slider, screw, linear velocity, angular velocity, revolute rotation, cardano hinge, cardano pin, cardano rotation (and universal …), drive displacement, drive displacement pin, drive hinge, imposed displacement, imposed displacement pin, clamp, revolute hinge, revolute pin, spherical hinge, spherical pin, total joint, total pin joint, deformable displacement joint, deformable hinge, invariant deformable hinge, deformable joint, deformable axial joint, rod, in line, in plane, prismatic, distance)")));
         }
         return Err(c.error(format!("expected a joint type, found {}", c.found())));
     };
     let element: Box<dyn Element> = match kind {
         "clamp" => Box::new(clamp(label, c, ctx)?),
+        "beam slider" => Box::new(super::beam_slider::beam_slider(label, c, ctx)?),
+        "screw" => Box::new(super::screw::screw(label, c, ctx)?),
         "revolute hinge" | "plane hinge" | "spherical hinge" => {
             let revolute = kind != "spherical hinge";
             // MBDyn reads both offsets whether or not `position` is written (joint.cc,
@@ -169,6 +171,12 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             let a = side(c, ctx, "node 1", position, None)?;
             let b = side(c, ctx, "node 2", position, Some(&a))?;
             let law_span = c.here();
+            if hinge {
+                if let Some(functions) = function_law(c, ctx)? {
+                    orientation_description(c)?;
+                    return Ok(Box::new(FunctionHinge { label, a: a.anchor(), b: b.anchor(), functions }));
+                }
+            }
             let law = linear_law(c, 3, ctx.laws, ctx.drives, ctx.seq)?;
             if hinge {
                 orientation_description(c)?;
@@ -213,6 +221,27 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
         _ => Box::new(rod(kind == "rod with offset", label, c, ctx)?),
     };
     Ok(element)
+}
+
+/// `scalar function elastic isotropic, F` (one function for the three components) or
+/// `scalar function elastic orthotropic, {F_1 | null}, {F_2 | null}, {F_3 | null}`
+/// (ScalarFunctionsImpl.cc: `null` a zero component), for a 3-D law; `None` for another law.
+fn function_law(c: &mut Cursor, ctx: &ElementContext) -> Result<Option<[Option<crate::element::ScalarFunction>; 3]>, MbdynError> {
+    let functions = &ctx.drives.functions;
+    if c.accept("scalar function elastic isotropic") || c.accept("scalar function elastic") {
+        let f = super::scalar_functions::scalar_function(c, functions, ctx.seq)?;
+        return Ok(Some([Some(f.clone()), Some(f.clone()), Some(f)]));
+    }
+    if c.accept("scalar function elastic orthotropic") {
+        let mut out: [Option<crate::element::ScalarFunction>; 3] = [None, None, None];
+        for f in out.iter_mut() {
+            if !c.accept("null") {
+                *f = Some(super::scalar_functions::scalar_function(c, functions, ctx.seq)?);
+            }
+        }
+        return Ok(Some(out));
+    }
+    Ok(None)
 }
 
 /// The optional `orientation description, …` (output only).

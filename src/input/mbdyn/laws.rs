@@ -43,9 +43,10 @@ const KINDS: [&str; 9] = [
     "linear viscoelastic generic", "linear viscoelastic isotropic", "linear viscoelastic",
 ];
 
-const UNSUPPORTED: [&str; 16] = [
+const UNSUPPORTED: [&str; 18] = [
     "linear elastic generic axial torsion coupling", "cubic elastic generic", "inverse square elastic", "log elastic", "linear elastic bistop",
-    "double linear elastic", "isotropic hardening elastic", "scalar function elastic", "linear time variant viscoelastic generic",
+    "double linear elastic", "isotropic hardening elastic", "scalar function elastic", "scalar function elastic isotropic",
+    "scalar function elastic orthotropic", "linear time variant viscoelastic generic",
     "cubic viscoelastic generic", "double linear viscoelastic", "turbulent viscoelastic", "linear viscoelastic bistop", "shock absorber",
     "symbolic elastic", "nlsf elastic",
 ];
@@ -91,7 +92,8 @@ pub fn linear_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq:
     }
     let Some(kind) = c.accept_any(&KINDS) else {
         if let Some(k) = c.peek_keyword().and_then(|w| UNSUPPORTED.iter().find(|u| super::parser::same_keyword(u, w))) {
-            return Err(c.error(format!("constitutive law '{k}' is not supported by romdyn (supported: linear elastic, linear viscous, linear viscoelastic, each isotropic or generic)")));
+            let rods = if k.starts_with("scalar function elastic") { "; 'scalar function elastic' only for a rod and a deformable hinge" } else { "" };
+            return Err(c.error(format!("constitutive law '{k}' is not supported by romdyn (supported: linear elastic, linear viscous, linear viscoelastic, each isotropic or generic{rods})")));
         }
         return Err(c.error(format!("expected a constitutive law ({}), found {}", KINDS.join(", "), c.found())));
     };

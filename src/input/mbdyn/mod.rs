@@ -9,6 +9,7 @@
 //! [`Model`]: crate::model::Model
 //! [`InitialValueProblem`]: crate::model::InitialValueProblem
 
+mod beam_slider;
 mod beams;
 mod control;
 mod cursor;
@@ -32,6 +33,7 @@ mod parser;
 mod problem;
 mod references;
 mod scalar_functions;
+mod screw;
 mod value;
 
 pub use diagnostic::MbdynError;

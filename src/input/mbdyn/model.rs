@@ -175,9 +175,10 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
     let mut gravity: Option<Span> = None;
     let mut central = None;
     let mut bodies = Vec::new();
+    let mut beams = super::beam_slider::BeamNodes::new();
     for st in block(doc, "elements").map_or(&[][..], |b| &b.statements) {
         let mut c = Cursor::new(st, src);
-        let ctx = ElementContext { nodes: &nodes, frames: &cards.frames, drives: &cards.drives, laws: &cards.laws, seq: st.seq };
+        let ctx = ElementContext { nodes: &nodes, frames: &cards.frames, drives: &cards.drives, laws: &cards.laws, beams: &beams, seq: st.seq };
         let label_span = c.here();
         let parsed = element(st, &mut c, &ctx)?;
         let parsed = match &st.driven {
@@ -223,6 +224,9 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
                 let space = label_space(&st.keyword);
                 if let Some(prev) = labels.insert((space, e.label()), st.span) {
                     return Err(src.error(label_span, format!("{space} {} is defined twice (first at line {})", e.label(), prev.line)));
+                }
+                if let ("beam", &[n1, n2, n3]) = (space, &on[..]) {
+                    beams.insert(e.label(), [n1, n2, n3]);
                 }
                 b.boxed_element(e);
             }
