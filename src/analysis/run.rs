@@ -19,7 +19,7 @@ use super::observer::{Derivatives, EigenDone, RunObserver, RunStart, StepDone};
 use crate::dae::{Assembler, State};
 use crate::linear::ModeKind;
 use crate::model::{AbortAfter, InitialValueProblem, Model};
-use crate::solve::{constraint_rate, initial_assembly, initial_derivatives_with, AssemblyReport, Integrator, NewtonSettings};
+use crate::solve::{constraint_rate, initial_assembly, initial_derivatives_in, AssemblyReport, Integrator, NewtonSettings, NewtonWorkspace};
 
 
 /// One eigenanalysis in the report.
@@ -150,7 +150,10 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
 
     let derivative_settings = NewtonSettings { tolerance: problem.derivatives_tolerance, norm: problem.residual_norm, increment_tolerance: problem.increment_tolerance, max_iterations: problem.derivatives_max_iterations };
     report.inconsistent_velocity = constraint_rate(&asm, &state).filter(|(_, rate)| rate.abs() > problem.tolerance);
-    let done = derivatives(&asm, &mut state, problem, &derivative_settings).map_err(RunError::Derivatives)?;
+    // One Newton workspace for the derivatives and the steps: the sparsity pattern, the
+    // momenta's elimination and the symbolic factorization are built once.
+    let mut workspace = NewtonWorkspace::new();
+    let done = derivatives(&asm, &mut state, problem, &derivative_settings, &mut workspace).map_err(RunError::Derivatives)?;
     report.derivatives_iterations = done.iterations;
     observed(observer.derivatives(&Derivatives { time: state.t, iterations: done.iterations, residual_norm: done.residual_norm }))?;
     observed(observer.step(&step_done(&asm, 0, problem.time_step, (done.iterations, done.residual_norm), &state)))?;
@@ -182,7 +185,7 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
     eigenanalyses_due(&state, observer, &mut report)?;
 
     let settings = NewtonSettings { tolerance: problem.tolerance, norm: problem.residual_norm, increment_tolerance: problem.increment_tolerance, max_iterations: problem.max_iterations };
-    let mut integrator = Integrator::new(&asm, state, problem.method, problem.time_step, settings);
+    let mut integrator = Integrator::with_workspace(&asm, state, problem.method, problem.time_step, settings, workspace);
     for step in 1..=steps {
         let r = integrator.step().map_err(|failure| RunError::Step { step, steps, time: failure.time, failure })?;
         report.steps = step;
@@ -199,7 +202,7 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
 /// coefficients MBDyn tries after it in turn (each from the state as given) until one
 /// converges; the first failure is reported when none does (MBDyn would instead accept the
 /// smallest residual with a raised tolerance).
-fn derivatives(asm: &Assembler, state: &mut State, problem: &InitialValueProblem, settings: &NewtonSettings) -> Result<crate::solve::Convergence, crate::solve::NewtonFailure> {
+fn derivatives(asm: &Assembler, state: &mut State, problem: &InitialValueProblem, settings: &NewtonSettings, workspace: &mut NewtonWorkspace) -> Result<crate::solve::Convergence, crate::solve::NewtonFailure> {
     let initial = problem.derivatives_coefficient * problem.time_step;
     let coefficients: Vec<f64> = match problem.derivatives_coefficient_auto {
         Some(auto) => auto.sequence(initial).collect(),
@@ -208,7 +211,7 @@ fn derivatives(asm: &Assembler, state: &mut State, problem: &InitialValueProblem
     let mut first_failure = None;
     for dcoef in coefficients {
         let mut trial = state.clone();
-        match initial_derivatives_with(asm, &mut trial, settings, dcoef) {
+        match initial_derivatives_in(asm, &mut trial, settings, dcoef, workspace) {
             Ok(done) => {
                 *state = trial;
                 return Ok(done);

@@ -98,8 +98,16 @@ pub struct Integrator<'a, 'm> {
 
 impl<'a, 'm> Integrator<'a, 'm> {
     pub fn new(asm: &'a Assembler<'m>, state: State, method: Method, h: f64, settings: NewtonSettings) -> Self {
+        Self::with_workspace(asm, state, method, h, settings, NewtonWorkspace::new())
+    }
+
+    /// As [`Integrator::new`], reusing the workspace of an earlier Newton iteration on the
+    /// same model (the derivatives phase's): its sparsity pattern, elimination and symbolic
+    /// factorization are kept when the steps' Jacobian has the same triplet positions, so
+    /// they are built once per run (on large models their set-up is the run's peak memory).
+    pub fn with_workspace(asm: &'a Assembler<'m>, state: State, method: Method, h: f64, settings: NewtonSettings, workspace: NewtonWorkspace) -> Self {
         let multiplier_increment = vec![0.0; asm.dofs.len];
-        Integrator { asm, method, h, settings, state, workspace: NewtonWorkspace::new(), previous: None, multiplier_increment }
+        Integrator { asm, method, h, settings, state, workspace, previous: None, multiplier_increment }
     }
 
     /// Number of symbolic factorizations so far (1 for a fixed sparsity pattern).
@@ -172,9 +180,15 @@ impl<'a, 'm> Integrator<'a, 'm> {
 /// given, the momenta from their definitions at those velocities. Constraint
 /// rows and the equilibrium of static nodes therefore must already hold to the tolerance.
 pub fn initial_derivatives_with(asm: &Assembler, st: &mut State, settings: &NewtonSettings, dcoef: f64) -> Result<Convergence, NewtonFailure> {
+    initial_derivatives_in(asm, st, settings, dcoef, &mut NewtonWorkspace::new())
+}
+
+/// [`initial_derivatives_with`] in a given Newton workspace, which keeps its sparsity
+/// pattern and factorization for the steps that follow ([`Integrator::with_workspace`]).
+pub fn initial_derivatives_in(asm: &Assembler, st: &mut State, settings: &NewtonSettings, dcoef: f64, workspace: &mut NewtonWorkspace) -> Result<Convergence, NewtonFailure> {
     let form = asm.model.constraint_form;
     momenta_from_definitions(asm, st, form);
-    newton(asm, st, Update::Derivatives { dcoef, form }, settings, &mut NewtonWorkspace::new())
+    newton(asm, st, Update::Derivatives { dcoef, form }, settings, workspace)
 }
 
 /// [`initial_derivatives_with`] at dCoef = 1e-6 s · 1e-3 (MBDyn's default derivatives
