@@ -19,7 +19,7 @@ use super::observer::{Derivatives, EigenDone, RunObserver, RunStart, StepDone};
 use crate::dae::{Assembler, State};
 use crate::linear::ModeKind;
 use crate::model::{AbortAfter, InitialValueProblem, Model};
-use crate::solve::{constraint_rate, initial_assembly, initial_derivatives_in, AssemblyReport, Integrator, NewtonSettings, NewtonWorkspace};
+use crate::solve::{constraint_rate, initial_assembly, initial_derivatives_in, momentum_velocity_change, AssemblyReport, DerivativeMomenta, Integrator, NewtonSettings, NewtonWorkspace};
 
 
 /// One eigenanalysis in the report.
@@ -51,6 +51,11 @@ pub struct RunReport {
     /// `Φ_/q q̇` [m/s or rad/s], when it exceeds the tolerance: the velocities written in the
     /// file are not consistent, and the first step changes them (as in MBDyn).
     pub inconsistent_velocity: Option<(String, f64)>,
+    /// The largest change of a written velocity that the momenta left by the derivatives
+    /// phase imply, with its name, [m/s or rad/s], when it exceeds the tolerance: MBDyn's
+    /// derivatives phase keeps Newton's momenta, about dCoef times the node's force off
+    /// their definitions, and the steps start from the momenta (as in MBDyn).
+    pub momentum_velocity_change: Option<(String, f64)>,
     /// Requested eigenanalysis times the run did not reach [s].
     pub eigen_times_not_reached: Vec<f64>,
     pub final_state: State,
@@ -139,6 +144,7 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
         eigenanalyses: Vec::new(),
         assembly,
         inconsistent_velocity: None,
+        momentum_velocity_change: None,
         eigen_times_not_reached: times.to_vec(),
         final_state: state.clone(),
     };
@@ -153,8 +159,17 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
     // One Newton workspace for the derivatives and the steps: the sparsity pattern, the
     // momenta's elimination and the symbolic factorization are built once.
     let mut workspace = NewtonWorkspace::new();
-    let done = derivatives(&asm, &mut state, problem, &derivative_settings, &mut workspace).map_err(RunError::Derivatives)?;
+    let done = derivatives(&asm, &mut state, problem, &derivative_settings, &mut workspace).map_err(|mut failure| {
+        // Velocities that violate a joint cannot be changed by the derivatives phase, which
+        // holds them: name the joint, whichever row ended the iteration.
+        if let Some((equation, rate)) = &report.inconsistent_velocity {
+            let violation = format!("the written velocities violate {equation} ({rate:.3e})");
+            failure.reason = Some(failure.reason.take().map_or(violation.clone(), |r| format!("{r}; {violation}")));
+        }
+        RunError::Derivatives(failure)
+    })?;
     report.derivatives_iterations = done.iterations;
+    report.momentum_velocity_change = momentum_velocity_change(&asm, &state).filter(|(_, dv)| dv.abs() > problem.tolerance);
     observed(observer.derivatives(&Derivatives { time: state.t, iterations: done.iterations, residual_norm: done.residual_norm }))?;
     observed(observer.step(&step_done(&asm, 0, problem.time_step, (done.iterations, done.residual_norm), &state)))?;
     if matches!(problem.abort_after, Some(AbortAfter::Derivatives | AbortAfter::DummySteps)) {
@@ -211,7 +226,7 @@ fn derivatives(asm: &Assembler, state: &mut State, problem: &InitialValueProblem
     let mut first_failure = None;
     for dcoef in coefficients {
         let mut trial = state.clone();
-        match initial_derivatives_in(asm, &mut trial, settings, dcoef, workspace) {
+        match initial_derivatives_in(asm, &mut trial, settings, dcoef, DerivativeMomenta::AsNewton, workspace) {
             Ok(done) => {
                 *state = trial;
                 return Ok(done);
