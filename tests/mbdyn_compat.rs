@@ -509,3 +509,23 @@ fn the_derivatives_phase_keeps_newtons_momenta_as_mbdyn_and_says_what_they_chang
     // dCoef · F / m = 1e-2 m/s along x, to rounding.
     assert!(velocity.ends_with("velocity x") && (change - 1e-2).abs() < 1e-12, "{velocity}: {change}");
 }
+
+#[test]
+fn where_mbdyns_momenta_leave_the_derivatives_above_the_tolerance_romdyn_sets_them_and_says_so() {
+    // absolute_force_direction.mbd with `derivatives coefficient: 1.` (dCoef = h = 10 ms) and
+    // its derivatives tolerance 1e-6: the momenta Newton leaves are dCoef·F = 1e-2 kg m/s off
+    // m v, above the tolerance (MBDyn 1.7.3 stops on this file: "An error occurred during the
+    // execution of MBDyn"). romdyn then sets them from their definitions, converges, starts
+    // from rest (x = t²/2 = 6.05e-3 m after 0.11 s, closed form, to the Newton tolerance) and
+    // reports MBDyn's way's failure.
+    let m = rewritten("absolute_force_direction.mbd", &[("derivatives max iterations: 10;", "derivatives max iterations: 10; derivatives coefficient: 1.;")]);
+    let report = run(&m.model, &m.problem, &mut ()).unwrap_or_else(|e| panic!("{e}"));
+    let failure = report.mbdyn_momenta_failure.clone().expect("MBDyn's momenta do not converge here");
+    assert!(failure.contains("linear momentum x definition (1.000e-2)"), "{failure}");
+    assert!(report.momentum_velocity_change.is_none(), "{:?}", report.momentum_velocity_change);
+    let asm = romdyn::dae::Assembler::new(&m.model);
+    for k in 0..3 {
+        let x = report.final_state.node_frame(&asm.dofs, k).kin.x;
+        assert!((x[0] - 6.05e-3).abs() < 1e-12, "node {}: {x:?}", k + 1);
+    }
+}

@@ -56,6 +56,11 @@ pub struct RunReport {
     /// derivatives phase keeps Newton's momenta, about dCoef times the node's force off
     /// their definitions, and the steps start from the momenta (as in MBDyn).
     pub momentum_velocity_change: Option<(String, f64)>,
+    /// Why the derivatives phase did not converge with MBDyn's momenta (Newton's, kept), when
+    /// it then converged with the momenta set from their definitions (romdyn's): the
+    /// residual dCoef·ṗ they leave stayed above the derivatives tolerance at every
+    /// coefficient tried, where MBDyn stops (or, with `auto`, raises its tolerance).
+    pub mbdyn_momenta_failure: Option<String>,
     /// Requested eigenanalysis times the run did not reach [s].
     pub eigen_times_not_reached: Vec<f64>,
     pub final_state: State,
@@ -145,6 +150,7 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
         assembly,
         inconsistent_velocity: None,
         momentum_velocity_change: None,
+        mbdyn_momenta_failure: None,
         eigen_times_not_reached: times.to_vec(),
         final_state: state.clone(),
     };
@@ -159,7 +165,7 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
     // One Newton workspace for the derivatives and the steps: the sparsity pattern, the
     // momenta's elimination and the symbolic factorization are built once.
     let mut workspace = NewtonWorkspace::new();
-    let done = derivatives(&asm, &mut state, problem, &derivative_settings, &mut workspace).map_err(|mut failure| {
+    let (done, mbdyn_momenta_failure) = derivatives(&asm, &mut state, problem, &derivative_settings, &mut workspace).map_err(|mut failure| {
         // Velocities that violate a joint cannot be changed by the derivatives phase, which
         // holds them: name the joint, whichever row ended the iteration.
         if let Some((equation, rate)) = &report.inconsistent_velocity {
@@ -169,6 +175,7 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
         RunError::Derivatives(failure)
     })?;
     report.derivatives_iterations = done.iterations;
+    report.mbdyn_momenta_failure = mbdyn_momenta_failure.map(|f| f.to_string());
     report.momentum_velocity_change = momentum_velocity_change(&asm, &state).filter(|(_, dv)| dv.abs() > problem.tolerance);
     observed(observer.derivatives(&Derivatives { time: state.t, iterations: done.iterations, residual_norm: done.residual_norm }))?;
     observed(observer.step(&step_done(&asm, 0, problem.time_step, (done.iterations, done.residual_norm), &state)))?;
@@ -215,24 +222,29 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
 
 /// The initial derivatives at the file's derivatives coefficient, and with `auto` at the
 /// coefficients MBDyn tries after it in turn (each from the state as given) until one
-/// converges; the first failure is reported when none does (MBDyn would instead accept the
+/// converges, with MBDyn's momenta ([`DerivativeMomenta::AsNewton`]); when none converges,
+/// the same coefficients with the momenta from their definitions (romdyn's), whose
+/// residual has no dCoef·ṗ floor, returning MBDyn's way's first failure with the result.
+/// The first failure is reported when nothing converges (MBDyn would instead accept the
 /// smallest residual with a raised tolerance).
-fn derivatives(asm: &Assembler, state: &mut State, problem: &InitialValueProblem, settings: &NewtonSettings, workspace: &mut NewtonWorkspace) -> Result<crate::solve::Convergence, crate::solve::NewtonFailure> {
+fn derivatives(asm: &Assembler, state: &mut State, problem: &InitialValueProblem, settings: &NewtonSettings, workspace: &mut NewtonWorkspace) -> Result<(crate::solve::Convergence, Option<crate::solve::NewtonFailure>), crate::solve::NewtonFailure> {
     let initial = problem.derivatives_coefficient * problem.time_step;
     let coefficients: Vec<f64> = match problem.derivatives_coefficient_auto {
         Some(auto) => auto.sequence(initial).collect(),
         None => vec![initial],
     };
     let mut first_failure = None;
-    for dcoef in coefficients {
-        let mut trial = state.clone();
-        match initial_derivatives_in(asm, &mut trial, settings, dcoef, DerivativeMomenta::AsNewton, workspace) {
-            Ok(done) => {
-                *state = trial;
-                return Ok(done);
-            }
-            Err(failure) => {
-                first_failure.get_or_insert(failure);
+    for momenta in [DerivativeMomenta::AsNewton, DerivativeMomenta::FromDefinitions] {
+        for &dcoef in &coefficients {
+            let mut trial = state.clone();
+            match initial_derivatives_in(asm, &mut trial, settings, dcoef, momenta, workspace) {
+                Ok(done) => {
+                    *state = trial;
+                    return Ok((done, first_failure));
+                }
+                Err(failure) => {
+                    first_failure.get_or_insert(failure);
+                }
             }
         }
     }
