@@ -19,7 +19,7 @@ use super::observer::{Derivatives, EigenDone, RunObserver, RunStart, StepDone};
 use crate::dae::{Assembler, State};
 use crate::linear::ModeKind;
 use crate::model::{AbortAfter, InitialValueProblem, Model};
-use crate::solve::{constraint_rate, initial_assembly, initial_derivatives_with, AssemblyReport, Integrator, NewtonSettings};
+use crate::solve::{constraint_rate, initial_assembly, initial_derivatives_in, momentum_velocity_change, AssemblyReport, DerivativeMomenta, Integrator, NewtonSettings, NewtonWorkspace};
 
 
 /// One eigenanalysis in the report.
@@ -51,6 +51,16 @@ pub struct RunReport {
     /// `Φ_/q q̇` [m/s or rad/s], when it exceeds the tolerance: the velocities written in the
     /// file are not consistent, and the first step changes them (as in MBDyn).
     pub inconsistent_velocity: Option<(String, f64)>,
+    /// The largest change of a written velocity that the momenta left by the derivatives
+    /// phase imply, with its name, [m/s or rad/s], when it exceeds the tolerance: MBDyn's
+    /// derivatives phase keeps Newton's momenta, about dCoef times the node's force off
+    /// their definitions, and the steps start from the momenta (as in MBDyn).
+    pub momentum_velocity_change: Option<(String, f64)>,
+    /// Why the derivatives phase did not converge with MBDyn's momenta (Newton's, kept), when
+    /// it then converged with the momenta set from their definitions (romdyn's): the
+    /// residual dCoef·ṗ they leave stayed above the derivatives tolerance at every
+    /// coefficient tried, where MBDyn stops (or, with `auto`, raises its tolerance).
+    pub mbdyn_momenta_failure: Option<String>,
     /// Requested eigenanalysis times the run did not reach [s].
     pub eigen_times_not_reached: Vec<f64>,
     pub final_state: State,
@@ -139,6 +149,8 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
         eigenanalyses: Vec::new(),
         assembly,
         inconsistent_velocity: None,
+        momentum_velocity_change: None,
+        mbdyn_momenta_failure: None,
         eigen_times_not_reached: times.to_vec(),
         final_state: state.clone(),
     };
@@ -150,8 +162,21 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
 
     let derivative_settings = NewtonSettings { tolerance: problem.derivatives_tolerance, norm: problem.residual_norm, increment_tolerance: problem.increment_tolerance, max_iterations: problem.derivatives_max_iterations };
     report.inconsistent_velocity = constraint_rate(&asm, &state).filter(|(_, rate)| rate.abs() > problem.tolerance);
-    let done = derivatives(&asm, &mut state, problem, &derivative_settings).map_err(RunError::Derivatives)?;
+    // One Newton workspace for the derivatives and the steps: the sparsity pattern, the
+    // momenta's elimination and the symbolic factorization are built once.
+    let mut workspace = NewtonWorkspace::new();
+    let (done, mbdyn_momenta_failure) = derivatives(&asm, &mut state, problem, &derivative_settings, &mut workspace).map_err(|mut failure| {
+        // Velocities that violate a joint cannot be changed by the derivatives phase, which
+        // holds them: name the joint, whichever row ended the iteration.
+        if let Some((equation, rate)) = &report.inconsistent_velocity {
+            let violation = format!("the written velocities violate {equation} ({rate:.3e})");
+            failure.reason = Some(failure.reason.take().map_or(violation.clone(), |r| format!("{r}; {violation}")));
+        }
+        RunError::Derivatives(failure)
+    })?;
     report.derivatives_iterations = done.iterations;
+    report.mbdyn_momenta_failure = mbdyn_momenta_failure.map(|f| f.to_string());
+    report.momentum_velocity_change = momentum_velocity_change(&asm, &state).filter(|(_, dv)| dv.abs() > problem.tolerance);
     observed(observer.derivatives(&Derivatives { time: state.t, iterations: done.iterations, residual_norm: done.residual_norm }))?;
     observed(observer.step(&step_done(&asm, 0, problem.time_step, (done.iterations, done.residual_norm), &state)))?;
     if matches!(problem.abort_after, Some(AbortAfter::Derivatives | AbortAfter::DummySteps)) {
@@ -182,7 +207,7 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
     eigenanalyses_due(&state, observer, &mut report)?;
 
     let settings = NewtonSettings { tolerance: problem.tolerance, norm: problem.residual_norm, increment_tolerance: problem.increment_tolerance, max_iterations: problem.max_iterations };
-    let mut integrator = Integrator::new(&asm, state, problem.method, problem.time_step, settings);
+    let mut integrator = Integrator::with_workspace(&asm, state, problem.method, problem.time_step, settings, workspace);
     for step in 1..=steps {
         let r = integrator.step().map_err(|failure| RunError::Step { step, steps, time: failure.time, failure })?;
         report.steps = step;
@@ -197,24 +222,29 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
 
 /// The initial derivatives at the file's derivatives coefficient, and with `auto` at the
 /// coefficients MBDyn tries after it in turn (each from the state as given) until one
-/// converges; the first failure is reported when none does (MBDyn would instead accept the
+/// converges, with MBDyn's momenta ([`DerivativeMomenta::AsNewton`]); when none converges,
+/// the same coefficients with the momenta from their definitions (romdyn's), whose
+/// residual has no dCoef·ṗ floor, returning MBDyn's way's first failure with the result.
+/// The first failure is reported when nothing converges (MBDyn would instead accept the
 /// smallest residual with a raised tolerance).
-fn derivatives(asm: &Assembler, state: &mut State, problem: &InitialValueProblem, settings: &NewtonSettings) -> Result<crate::solve::Convergence, crate::solve::NewtonFailure> {
+fn derivatives(asm: &Assembler, state: &mut State, problem: &InitialValueProblem, settings: &NewtonSettings, workspace: &mut NewtonWorkspace) -> Result<(crate::solve::Convergence, Option<crate::solve::NewtonFailure>), crate::solve::NewtonFailure> {
     let initial = problem.derivatives_coefficient * problem.time_step;
     let coefficients: Vec<f64> = match problem.derivatives_coefficient_auto {
         Some(auto) => auto.sequence(initial).collect(),
         None => vec![initial],
     };
     let mut first_failure = None;
-    for dcoef in coefficients {
-        let mut trial = state.clone();
-        match initial_derivatives_with(asm, &mut trial, settings, dcoef) {
-            Ok(done) => {
-                *state = trial;
-                return Ok(done);
-            }
-            Err(failure) => {
-                first_failure.get_or_insert(failure);
+    for momenta in [DerivativeMomenta::AsNewton, DerivativeMomenta::FromDefinitions] {
+        for &dcoef in &coefficients {
+            let mut trial = state.clone();
+            match initial_derivatives_in(asm, &mut trial, settings, dcoef, momenta, workspace) {
+                Ok(done) => {
+                    *state = trial;
+                    return Ok((done, first_failure));
+                }
+                Err(failure) => {
+                    first_failure.get_or_insert(failure);
+                }
             }
         }
     }

@@ -115,5 +115,11 @@ pub fn run(a: RunArgs) -> Result<()> {
     if let Some((equation, rate)) = &report.inconsistent_velocity {
         eprintln!("warning: the initial velocities do not satisfy the joints ({equation} changes at {rate:.3e} per s); they are kept for the initial derivatives, as in MBDyn, and the first step changes them");
     }
+    if let Some(failure) = &report.mbdyn_momenta_failure {
+        eprintln!("warning: the derivatives phase did not converge with the momenta of its Newton iterations, which MBDyn keeps ({failure}); romdyn set them from their definitions at the written velocities and converged, so the motion starts from those velocities; where MBDyn's own iteration does not converge either it stops, or with `derivatives coefficient: auto` raises its tolerance");
+    }
+    if let Some((velocity, change)) = &report.momentum_velocity_change {
+        eprintln!("warning: the derivatives phase keeps Newton's momenta, as MBDyn's does, and they start the motion as from a written velocity changed by more than the tolerance ({velocity} by {change:.3e}; about the derivatives coefficient dCoef times the acceleration: a smaller `derivatives coefficient` reduces it)");
+    }
     Ok(())
 }

@@ -21,8 +21,9 @@ struct Pivot {
 pub(super) struct Eliminated {
     /// Where each triplet goes: below `storage_len`, the factorization's storage index (an
     /// entry of `J_Rq`); else `storage_len +` its entry in `entries` (pivots, `J_Mq`, `J_Rp`).
-    /// One index per triplet keeps the memory near the whole system's (8 bytes a triplet).
-    target: Vec<usize>,
+    /// One 32-bit index per triplet (4 bytes a triplet: the set-up refuses patterns whose
+    /// indices would not fit, and the whole system is solved instead).
+    target: Vec<u32>,
     storage_len: usize,
     entries: Vec<f64>,
     pivots: Vec<Pivot>,
@@ -30,8 +31,9 @@ pub(super) struct Eliminated {
     /// Original equation of each reduced equation, original unknown of each reduced unknown.
     kept_rows: Vec<usize>,
     kept_cols: Vec<usize>,
-    /// `(storage index, entry (r, p), entry (m, q), pivot)`: terms of `J_Rp J_Mq / c`.
-    products: Vec<(usize, usize, usize, usize)>,
+    /// `(storage index, entry (r, p), entry (m, q), pivot)`: terms of `J_Rp J_Mq / c`
+    /// (32-bit, as `target`).
+    products: Vec<[u32; 4]>,
     /// `(reduced equation, entry, pivot)`: entries of `J_Rp`, for the right-hand side.
     column: Vec<(usize, usize, usize)>,
     /// Entries of `J_Mq` by pivot: `row[row_start[k]..row_start[k + 1]]` holds
@@ -42,9 +44,18 @@ pub(super) struct Eliminated {
     x: Vec<f64>,
 }
 
+/// Whether every triplet index and entry number of a pattern with `len` triplets fits the
+/// set-up's 32-bit indices.
+fn fits_u32(len: usize) -> bool {
+    len < u32::MAX as usize
+}
+
 /// The distinct `(row, col)` pairs of an `n`x`n` pattern in order of first appearance, and
 /// the distinct entry of each pair: a bucket sort by row and a column marker, no hashing.
-fn distinct(n: usize, rows: &[usize], cols: &[usize]) -> (Vec<usize>, Vec<(usize, usize)>) {
+/// The per-triplet arrays are 32-bit (the caller checks [`fits_u32`] on `rows.len()`): they
+/// are the set-up's peak, 8 bytes a triplet instead of 16.
+fn distinct(n: usize, rows: &[usize], cols: &[usize]) -> (Vec<u32>, Vec<(usize, usize)>) {
+    debug_assert!(fits_u32(rows.len()));
     let mut start = vec![0usize; n + 1];
     for &r in rows {
         start[r + 1] += 1;
@@ -53,36 +64,39 @@ fn distinct(n: usize, rows: &[usize], cols: &[usize]) -> (Vec<usize>, Vec<(usize
         start[i + 1] += start[i];
     }
     let mut fill = start.clone();
-    let mut by_row = vec![0usize; rows.len()];
+    let mut by_row = vec![0u32; rows.len()];
     for (k, &r) in rows.iter().enumerate() {
-        by_row[fill[r]] = k;
+        by_row[fill[r]] = k as u32;
         fill[r] += 1;
     }
+    drop(fill);
     // first[k]: the earliest triplet with k's pair (bucket order is triplet order).
-    let mut first = vec![0usize; rows.len()];
-    let mut seen = vec![usize::MAX; n];
+    let mut first = vec![0u32; rows.len()];
+    let mut seen = vec![u32::MAX; n];
     for i in 0..n {
         let bucket = &by_row[start[i]..start[i + 1]];
         for &k in bucket {
-            let c = cols[k];
-            if seen[c] == usize::MAX {
+            let c = cols[k as usize];
+            if seen[c] == u32::MAX {
                 seen[c] = k;
             }
-            first[k] = seen[c];
+            first[k as usize] = seen[c];
         }
         for &k in bucket {
-            seen[cols[k]] = usize::MAX;
+            seen[cols[k as usize]] = u32::MAX;
         }
     }
     drop(by_row);
-    // Number the pairs in order of first appearance, in place: first[k] ≤ k is numbered.
-    let mut keys = Vec::new();
+    // Number the pairs in order of first appearance, in place: first[k] ≤ k is numbered
+    // (the pairs counted first, so that their list is allocated once, exactly).
+    let n_keys = first.iter().enumerate().filter(|&(k, &f)| f as usize == k).count();
+    let mut keys = Vec::with_capacity(n_keys);
     for k in 0..rows.len() {
-        first[k] = if first[k] == k {
+        first[k] = if first[k] as usize == k {
             keys.push((rows[k], cols[k]));
-            keys.len() - 1
+            (keys.len() - 1) as u32
         } else {
-            first[first[k]]
+            first[first[k] as usize]
         };
     }
     let entry_of = first;
@@ -94,6 +108,9 @@ impl Eliminated {
     /// unknown (the elimination would not be one diagonal step) or lacks its pivot.
     pub(super) fn new(j: &Triplets, pairs: &[(usize, usize)], path: LuPath) -> Result<Option<Self>, SparseError> {
         let n = j.n;
+        if !fits_u32(j.rows.len()) || !fits_u32(n) {
+            return Ok(None);
+        }
         let mut pivot_of_row = vec![usize::MAX; n];
         let mut pivot_of_col = vec![usize::MAX; n];
         for (k, &(m, p)) in pairs.iter().enumerate() {
@@ -118,14 +135,18 @@ impl Eliminated {
         let row_map = reduced_index(&mut kept_rows, &pivot_of_row);
         let col_map = reduced_index(&mut kept_cols, &pivot_of_col);
         let mut pivots: Vec<Pivot> = pairs.iter().map(|&(row, col)| Pivot { row, col, entry: usize::MAX }).collect();
-        let (mut direct, mut column, mut row_entries) = (Vec::new(), Vec::new(), Vec::new());
+        // Entries of J_Rq by their number (their reduced row and column are read from
+        // `keys` later), counted first and allocated exactly.
+        let n_direct = keys.iter().filter(|&&(r, c)| pivot_of_row[r] == usize::MAX && pivot_of_col[c] == usize::MAX).count();
+        let mut direct_entries: Vec<u32> = Vec::with_capacity(n_direct);
+        let (mut column, mut row_entries) = (Vec::new(), Vec::new());
         // Entries other than J_Rq's, numbered compactly.
         let mut compact = vec![usize::MAX; keys.len()];
         let mut others = 0;
         for (e, &(r, c)) in keys.iter().enumerate() {
             let (k, l) = (pivot_of_row[r], pivot_of_col[c]);
             if k == usize::MAX && l == usize::MAX {
-                direct.push((row_map[r], col_map[c], e));
+                direct_entries.push(e as u32);
                 continue;
             }
             compact[e] = others;
@@ -158,20 +179,24 @@ impl Eliminated {
         // set-up's temporaries are sized exactly and freed as soon as they are read: they
         // set the run's peak memory on large models (1000-beam cantilever).
         let n_products: usize = column.iter().map(|&(_, _, k)| row_start[k + 1] - row_start[k]).sum();
-        let mut red_keys_rows = Vec::with_capacity(direct.len() + n_products);
-        let mut red_keys_cols = Vec::with_capacity(direct.len() + n_products);
-        for &(r, c, _) in &direct {
-            red_keys_rows.push(r);
-            red_keys_cols.push(c);
+        if !fits_u32(n_direct + n_products) {
+            return Ok(None);
         }
-        let direct_entries: Vec<usize> = direct.iter().map(|d| d.2).collect();
-        drop(direct);
-        let mut products = Vec::with_capacity(n_products);
+        let mut red_keys_rows = Vec::with_capacity(n_direct + n_products);
+        let mut red_keys_cols = Vec::with_capacity(n_direct + n_products);
+        for &e in &direct_entries {
+            let (r, c) = keys[e as usize];
+            red_keys_rows.push(row_map[r]);
+            red_keys_cols.push(col_map[c]);
+        }
+        // The products' storage indices (first component) are filled in once the reduced
+        // pattern is factored, in place.
+        let mut products: Vec<[u32; 4]> = Vec::with_capacity(n_products);
         for &(r, a, k) in &column {
             for &(q, b) in &row[row_start[k]..row_start[k + 1]] {
                 red_keys_rows.push(r);
                 red_keys_cols.push(q);
-                products.push((a, b, k));
+                products.push([0, a as u32, b as u32, k as u32]);
             }
         }
         drop(keys);
@@ -179,14 +204,27 @@ impl Eliminated {
         drop((red_keys_rows, red_keys_cols));
         let (red_rows, red_cols): (Vec<usize>, Vec<usize>) = reduced_keys.into_iter().unzip();
         let inner = Factored::new(kept_rows.len(), &red_rows, &red_cols, path)?;
+        drop((red_rows, red_cols));
         let storage = inner.positions();
         let storage_len = storage.iter().max().map_or(0, |&m| m + 1);
+        if !fits_u32(storage_len + others) {
+            return Ok(None);
+        }
         let mut storage_of = vec![usize::MAX; compact.len()];
         for (&e, &t) in direct_entries.iter().zip(&reduced_of) {
-            storage_of[e] = storage[t];
+            storage_of[e as usize] = storage[t as usize];
         }
-        let products = products.iter().zip(&reduced_of[direct_entries.len()..]).map(|(&(a, b, k), &t)| (storage[t], a, b, k)).collect();
-        let target = entry_of.iter().map(|&e| if compact[e] == usize::MAX { storage_of[e] } else { storage_len + compact[e] }).collect();
+        for (p, &t) in products.iter_mut().zip(&reduced_of[direct_entries.len()..]) {
+            p[0] = storage[t as usize] as u32;
+        }
+        drop(reduced_of);
+        let target = entry_of
+            .iter()
+            .map(|&e| {
+                let e = e as usize;
+                (if compact[e] == usize::MAX { storage_of[e] } else { storage_len + compact[e] }) as u32
+            })
+            .collect();
         Ok(Some(Eliminated {
             target,
             storage_len,
@@ -218,6 +256,7 @@ impl Eliminated {
         self.entries.iter_mut().for_each(|v| *v = 0.0);
         let len = self.storage_len;
         for (&t, &v) in self.target.iter().zip(values) {
+            let t = t as usize;
             if t >= len {
                 self.entries[t - len] += v;
             }
@@ -243,12 +282,13 @@ impl Eliminated {
         self.inner.solve_with(
             |storage| {
                 for (&t, &v) in target.iter().zip(values) {
+                    let t = t as usize;
                     if t < len {
                         storage[t] += v;
                     }
                 }
-                for &(at, a, b, k) in products {
-                    storage[at] -= entries[a] * entries[b] * inverse[k];
+                for &[at, a, b, k] in products {
+                    storage[at as usize] -= entries[a as usize] * entries[b as usize] * inverse[k as usize];
                 }
             },
             y,

@@ -176,21 +176,35 @@ enum Solver {
     Eliminated { reduced: Box<Eliminated>, direct: Option<Factored> },
 }
 
+/// A triplet's position as one number, `row · 2³² + col` (8 bytes a triplet where the two
+/// indices took 16: the pattern's copy lives as long as Newton's workspace).
+fn position_key(row: usize, col: usize) -> u64 {
+    ((row as u64) << 32) | col as u64
+}
+
 /// A sparsity pattern: the triplet positions it was made from and its solver.
 struct Pattern {
-    rows: Vec<usize>,
-    cols: Vec<usize>,
+    positions: Vec<u64>,
     solver: Solver,
 }
 
 impl Pattern {
     fn new(j: &Triplets, path: LuPath, eliminate: &[(usize, usize)]) -> Result<Self, SparseError> {
+        if j.n > u32::MAX as usize {
+            return Err(SparseError::Structure(format!("{} unknowns: more than the 2^32 the sparse solver indexes", j.n)));
+        }
         let reduced = if eliminate.is_empty() { None } else { Eliminated::new(j, eliminate, path)? };
         let solver = match reduced {
             Some(r) => Solver::Eliminated { reduced: Box::new(r), direct: None },
             None => Solver::Direct(Factored::new(j.n, &j.rows, &j.cols, path)?),
         };
-        Ok(Pattern { rows: j.rows.clone(), cols: j.cols.clone(), solver })
+        let positions = j.rows.iter().zip(&j.cols).map(|(&r, &c)| position_key(r, c)).collect();
+        Ok(Pattern { positions, solver })
+    }
+
+    /// Whether `j`'s triplets sit at the positions this pattern was made from.
+    fn is_pattern_of(&self, j: &Triplets) -> bool {
+        self.positions.len() == j.rows.len() && self.positions.iter().zip(j.rows.iter().zip(&j.cols)).all(|(&p, (&r, &c))| p == position_key(r, c))
     }
 
     /// Assembles `j`'s values, factors and solves `J x = rhs` in place.
@@ -267,7 +281,7 @@ impl SparseLu {
 
     /// Solves `J x = rhs` in place.
     pub fn solve(&mut self, j: &Triplets, rhs: &mut [f64]) -> Result<(), SparseError> {
-        let same = matches!(&self.pattern, Some(p) if p.rows == j.rows && p.cols == j.cols);
+        let same = matches!(&self.pattern, Some(p) if p.is_pattern_of(j));
         if !same {
             self.pattern = Some(Pattern::new(j, self.path, &self.eliminate)?);
             self.symbolic_factorizations += 1;

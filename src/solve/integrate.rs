@@ -3,11 +3,11 @@
 //! Newton with `δy = b₀ δẏ` (eqs. 3–5). Orientations are re-based at every step, so each
 //! node's `g` is measured from its orientation at the previous step.
 
-use super::newton::{momenta_from_definitions, newton, Convergence, NewtonFailure, NewtonSettings, NewtonWorkspace, Update};
+use super::newton::{momenta_from_definitions, newton, Convergence, DerivativeMomenta, NewtonFailure, NewtonSettings, NewtonWorkspace, Update};
 use crate::dae::{Assembler, State};
 use crate::kinematics::{gibbs_from_rotation, gibbs_g, Mat3, Vec3};
 use crate::linear::ConstraintForm;
-use crate::model::Method;
+use crate::model::{Method, NodeKind};
 
 /// Coefficients `(a₁, a₂, b₀, b₁, b₂)` for step `h` (the `b`'s include `h`).
 fn coefficients(method: Method, h: f64, first_step: bool) -> [f64; 5] {
@@ -98,8 +98,16 @@ pub struct Integrator<'a, 'm> {
 
 impl<'a, 'm> Integrator<'a, 'm> {
     pub fn new(asm: &'a Assembler<'m>, state: State, method: Method, h: f64, settings: NewtonSettings) -> Self {
+        Self::with_workspace(asm, state, method, h, settings, NewtonWorkspace::new())
+    }
+
+    /// As [`Integrator::new`], reusing the workspace of an earlier Newton iteration on the
+    /// same model (the derivatives phase's): its sparsity pattern, elimination and symbolic
+    /// factorization are kept when the steps' Jacobian has the same triplet positions, so
+    /// they are built once per run (on large models their set-up is the run's peak memory).
+    pub fn with_workspace(asm: &'a Assembler<'m>, state: State, method: Method, h: f64, settings: NewtonSettings, workspace: NewtonWorkspace) -> Self {
         let multiplier_increment = vec![0.0; asm.dofs.len];
-        Integrator { asm, method, h, settings, state, workspace: NewtonWorkspace::new(), previous: None, multiplier_increment }
+        Integrator { asm, method, h, settings, state, workspace, previous: None, multiplier_increment }
     }
 
     /// Number of symbolic factorizations so far (1 for a fixed sparsity pattern).
@@ -169,12 +177,73 @@ impl<'a, 'm> Integrator<'a, 'm> {
 /// Initial derivatives as MBDyn's derivatives phase computes them (stepsol.cc,
 /// `DerivativeSolver`): Newton with dCoef = `dcoef` for the momenta's derivatives and the
 /// multipliers, every node's position, orientation, velocity and angular velocity held as
-/// given, the momenta from their definitions at those velocities. Constraint
-/// rows and the equilibrium of static nodes therefore must already hold to the tolerance.
+/// given, the momenta from their definitions at those velocities
+/// ([`DerivativeMomenta::FromDefinitions`]). Constraint rows and the equilibrium of static
+/// nodes therefore must already hold to the tolerance.
 pub fn initial_derivatives_with(asm: &Assembler, st: &mut State, settings: &NewtonSettings, dcoef: f64) -> Result<Convergence, NewtonFailure> {
+    initial_derivatives_in(asm, st, settings, dcoef, DerivativeMomenta::FromDefinitions, &mut NewtonWorkspace::new())
+}
+
+/// The derivatives phase with the momenta left as `momenta` says (MBDyn's files:
+/// [`DerivativeMomenta::AsNewton`]), in a given Newton workspace, which keeps its sparsity
+/// pattern and factorization for the steps that follow ([`Integrator::with_workspace`]).
+/// The momenta start from their definitions at the given velocities, as MBDyn's bodies set
+/// them (body.cc, `SetValue`).
+pub fn initial_derivatives_in(asm: &Assembler, st: &mut State, settings: &NewtonSettings, dcoef: f64, momenta: DerivativeMomenta, workspace: &mut NewtonWorkspace) -> Result<Convergence, NewtonFailure> {
     let form = asm.model.constraint_form;
     momenta_from_definitions(asm, st, form);
-    newton(asm, st, Update::Derivatives { dcoef, form }, settings, &mut NewtonWorkspace::new())
+    newton(asm, st, Update::Derivatives { dcoef, form, momenta }, settings, workspace)
+}
+
+/// The largest change of a node's velocity that its momenta imply, with its name ("node 3
+/// velocity x", "node 3 angular velocity parameter z"), in m/s or (for the orientation
+/// parameters' rates, ≈ angular velocity) rad/s. The steps integrate momenta, not
+/// velocities: momenta off their definitions `p(v)` at the state's velocities (what MBDyn's
+/// derivatives phase leaves, [`DerivativeMomenta::AsNewton`]) start the motion as from
+/// velocities `v + δ` with `p(v + δ) = p`, i.e. `δ = −B⁻¹ r` per dynamic node, `r` its six
+/// momentum-definition residuals and `B = ∂r/∂v̇-part` their (affine) dependence on its six
+/// velocity unknowns, measured by unit changes of those. Directions without inertia (a point
+/// mass's rotations) are left out (least-squares solution of `B`).
+pub fn momentum_velocity_change(asm: &Assembler, st: &State) -> Option<(String, f64)> {
+    let dofs = &asm.dofs;
+    let form = asm.model.constraint_form;
+    let dynamic: Vec<usize> = (0..dofs.node_first.len()).filter(|&i| dofs.node_kind[i] == NodeKind::Dynamic).collect();
+    if dynamic.is_empty() {
+        return None;
+    }
+    let r0 = asm.residual(st, form, 1.0);
+    let mut blocks = vec![nalgebra::Matrix6::<f64>::zeros(); dynamic.len()];
+    for k in 0..6 {
+        let mut moved = st.clone();
+        for &i in &dynamic {
+            moved.yp[dofs.node_first[i] + k] += 1.0;
+        }
+        let r = asm.residual(&moved, form, 1.0);
+        for (b, &i) in blocks.iter_mut().zip(&dynamic) {
+            let f = dofs.node_first[i];
+            for row in 0..6 {
+                b[(row, k)] = r[f + row] - r0[f + row];
+            }
+        }
+    }
+    const NAMES: [&str; 6] = ["velocity x", "velocity y", "velocity z", "angular velocity parameter x", "angular velocity parameter y", "angular velocity parameter z"];
+    let mut worst: Option<(String, f64)> = None;
+    for (b, &i) in blocks.iter().zip(&dynamic) {
+        let f = dofs.node_first[i];
+        let r = nalgebra::Vector6::from_iterator((0..6).map(|row| r0[f + row]));
+        if r.iter().all(|&x| x == 0.0) {
+            continue;
+        }
+        let svd = b.svd(true, true);
+        let eps = 1e-12 * svd.singular_values.max();
+        let Ok(delta) = svd.solve(&r, eps) else { continue };
+        for (k, d) in (-delta).iter().enumerate() {
+            if worst.as_ref().is_none_or(|(_, w)| d.abs() > w.abs()) {
+                worst = Some((format!("node {} {}", asm.model.nodes[i].label, NAMES[k]), *d));
+            }
+        }
+    }
+    worst
 }
 
 /// [`initial_derivatives_with`] at dCoef = 1e-6 s · 1e-3 (MBDyn's default derivatives

@@ -33,10 +33,24 @@ pub enum Update {
     /// derivatives are put back to their values at entry: MBDyn's derivatives phase solves
     /// for momenta, their derivatives and the multipliers only (strnode.cc,
     /// `StructNode::DerivativesUpdate`: "forza configurazione e velocita' al valore
-    /// iniziale"). The momenta are then set from their definitions at the held velocities
-    /// (MBDyn keeps the Newton values, off by m·dCoef·(acceleration), a residual floor that
-    /// can sit above a tight tolerance).
-    Derivatives { dcoef: f64, form: ConstraintForm },
+    /// iniziale"). What the momenta keep is `momenta`.
+    Derivatives { dcoef: f64, form: ConstraintForm, momenta: DerivativeMomenta },
+}
+
+/// What the derivatives phase leaves in the momenta.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DerivativeMomenta {
+    /// Newton's values, `p = p(v) + dCoef Σ δṗ` (stepsol.cc, `DerivativeSolver::UpdateDof`:
+    /// a differential unknown moves by dCoef times its derivative's increment, and only the
+    /// nodes' kinematics are put back): MBDyn's. Off their definitions `p(v)` at the held
+    /// velocities by about dCoef times the node's force, a residual the iteration cannot
+    /// reduce (it fails where that exceeds the tolerance, as MBDyn does), and the steps
+    /// integrate the momenta: the motion is as from velocities changed by about dCoef times
+    /// the accelerations (see [`crate::solve::momentum_velocity_change`]).
+    AsNewton,
+    /// Set from their definitions at the held velocities after every iteration, so that the
+    /// motion starts from the velocities as given: romdyn's own, for models built in Rust.
+    FromDefinitions,
 }
 
 /// A Newton iteration that did not converge.
@@ -117,7 +131,7 @@ pub fn momenta_from_definitions(asm: &Assembler, st: &mut State, form: Constrain
 pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &NewtonSettings, ws: &mut NewtonWorkspace) -> Result<Convergence, NewtonFailure> {
     let (coef, form, dcoef) = match update {
         Update::Static => (Coefficients::static_analysis(), ConstraintForm::Plain, 1.0),
-        Update::Dynamic { dcoef, form } | Update::Derivatives { dcoef, form } => (Coefficients::newton(dcoef, form), form, dcoef),
+        Update::Dynamic { dcoef, form } | Update::Derivatives { dcoef, form, .. } => (Coefficients::newton(dcoef, form), form, dcoef),
     };
     // Node unknowns x, g and their derivatives, held by the derivatives phase.
     let held: Vec<(usize, f64, f64)> = match update {
@@ -175,7 +189,7 @@ pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &Newton
         for (i, d) in f.iter().enumerate() {
             match update {
                 Update::Static => st.y[i] += d,
-                Update::Dynamic { dcoef, form } | Update::Derivatives { dcoef, form } => {
+                Update::Dynamic { dcoef, form } | Update::Derivatives { dcoef, form, .. } => {
                     if form == ConstraintForm::Scaled && asm.dofs.is_multiplier(i) {
                         st.y[i] += d;
                     } else {
@@ -190,7 +204,9 @@ pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &Newton
                 st.y[i] = y;
                 st.yp[i] = yp;
             }
-            momenta_from_definitions(asm, st, form);
+            if matches!(update, Update::Derivatives { momenta: DerivativeMomenta::FromDefinitions, .. }) {
+                momenta_from_definitions(asm, st, form);
+            }
         }
         if held.is_empty() && settings.increment_tolerance > 0.0 && step <= settings.increment_tolerance && norm <= 1e3 * settings.tolerance {
             return Ok(Convergence { iterations: iteration + 1, residual_norm: norm });
