@@ -77,6 +77,12 @@ fn ham_sas_free_model_has_rigid_body_modes_and_the_inverted_pendulum_instability
     assert!(labels.iter().all(|l| l.contains("spring box") && l.contains("table") && l.ends_with(", unstable")), "{labels:?}");
     // No static gain is printed for a free ROM.
     assert!(rom.static_gains.rom.is_err());
+    // Nor for the full free model, which says why in words a person recognizes: the whole
+    // isolator moves rigidly (the example's 11 bodies, CASES C6; the clamped ground node
+    // 100 at rest), not "node 14 gz, node 12 gz, …", the legs and little pendulums that the
+    // free direction's largest entries (equal rotations about z of every node) used to name.
+    let why = rom.static_gains.full.as_ref().unwrap_err();
+    assert!(why.contains("unrestrained rigid-body motion of the whole model (its 11 nodes but node 100, at rest, move together)"), "{why}");
 }
 
 #[test]
