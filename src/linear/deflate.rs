@@ -150,8 +150,9 @@ impl DynamicPart {
         let k1 = mm.transpose() * fy_dd.mul_dense(&nn.to_owned());
         // Step 3: index-1 part by the SVD of E₁.
         let s = nd - m;
-        let svd = e1.svd().ok()?;
-        let sv: Vec<f64> = (0..s).map(|i| svd.S()[i]).collect();
+        // Singular values first: U and V are needed only when E₁ is rank deficient.
+        let mut sv: Vec<f64> = e1.singular_values().ok()?;
+        sv.truncate(s);
         let top = sv.first().copied().unwrap_or(0.0);
         let negligible = s as f64 * f64::EPSILON * top;
         let rank = sv.iter().take_while(|&&x| x > negligible).count();
@@ -164,11 +165,13 @@ impl DynamicPart {
         if rank == 0 || (!full_rank && sv[..rank].iter().any(|&x| x < f64::EPSILON.sqrt() * top)) {
             return None;
         }
-        let (u, v) = (svd.U(), svd.V());
-        let a_t = u.transpose() * &k1 * v;
-        let (a11, a12) = (a_t.submatrix(0, 0, rank, rank), a_t.submatrix(0, rank, rank, s - rank));
-        let (a21, a22) = (a_t.submatrix(rank, 0, s - rank, rank), a_t.submatrix(rank, rank, s - rank, s - rank));
         let (e2, k2, x2, y2) = if rank < s {
+            let svd = e1.svd().ok()?;
+            let sv: Vec<f64> = (0..s).map(|i| svd.S()[i]).collect();
+            let (u, v) = (svd.U(), svd.V());
+            let a_t = u.transpose() * &k1 * v;
+            let (a11, a12) = (a_t.submatrix(0, 0, rank, rank), a_t.submatrix(0, rank, rank, s - rank));
+            let (a21, a22) = (a_t.submatrix(rank, 0, s - rank, rank), a_t.submatrix(rank, rank, s - rank, s - rank));
             let lu = a22.full_piv_lu();
             let uu = lu.U();
             let (big, small) = (0..s - rank).map(|i| uu[(i, i)].abs()).fold((0.0f64, f64::INFINITY), |(b, sm), x| (b.max(x), sm.min(x)));
@@ -181,10 +184,12 @@ impl DynamicPart {
             let k2 = a11 - a12 * &g21;
             let x2 = v.subcols(0, rank) - v.subcols(rank, s - rank) * &g21;
             let y2 = u.subcols(0, rank) - u.subcols(rank, s - rank) * &g12t;
-            (Mat::from_fn(rank, rank, |i, j| if i == j { sv[i] } else { 0.0 }), k2, x2, y2)
+            (Mat::from_fn(rank, rank, |i, j| if i == j { sv[i] } else { 0.0 }), k2, Some(x2), Some(y2))
         } else {
-            (e1.clone(), k1.clone(), Mat::identity(s, s), Mat::identity(s, s))
+            // Full rank: no index-1 part, the dynamic part is (E₁, K₁) itself (X₂ = Y₂ = I).
+            (e1, k1, None, None)
         };
+        let times = |q: faer::MatRef<'_, f64>, x: Option<Mat<f64>>| x.map_or_else(|| q.to_owned(), |x| q * x);
         Some(DynamicPart {
             e: e2,
             k: k2,
@@ -203,8 +208,8 @@ impl DynamicPart {
             r_g,
             q_h1: q_h.subcols(0, m).to_owned(),
             r_h,
-            nx2: nn * &x2,
-            my2: mm * &y2,
+            nx2: times(nn, x2),
+            my2: times(mm, y2),
         })
     }
 

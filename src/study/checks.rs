@@ -31,10 +31,78 @@ pub(super) fn unrestrained_motion(model: &Model) -> Option<String> {
     let st = State::initial(model, &asm.dofs);
     let dae = linearize(model, &st, &[], &[], None).ok()?;
     let x = null_direction(&dae.static_matrix())?;
-    let mut idx: Vec<usize> = (0..x.len()).filter(|i| !dae.multipliers.contains(i) && x[*i].abs() > 1e-3).collect();
+    let text = largest_components(&x, &dae.unknown_names, &dae.multipliers);
+    (!text.is_empty()).then_some(text)
+}
+
+/// The largest components of a direction in the unknowns, e.g. "node 2 x, node 2 y"
+/// (multipliers left out).
+pub(super) fn largest_components(x: &[f64], names: &[String], multipliers: &[usize]) -> String {
+    let mut idx: Vec<usize> = (0..x.len()).filter(|i| !multipliers.contains(i) && x[*i].abs() > 1e-3).collect();
     idx.sort_by(|&a, &b| x[b].abs().total_cmp(&x[a].abs()));
-    let names: Vec<&str> = idx.iter().take(6).map(|&i| dae.unknown_names[i].as_str()).collect();
-    (!names.is_empty()).then(|| names.join(", "))
+    let names: Vec<&str> = idx.iter().take(6).map(|&i| names.get(i).map_or("?", String::as_str)).collect();
+    names.join(", ")
+}
+
+/// A free direction `x` of a static matrix (unknowns as the model numbers them) in words a
+/// person recognizes, when its node components are a rigid-body motion of all the nodes
+/// that move in it (`t + θ × p` and `θ`, least squares to 1e-2 of `‖x‖`: the reference
+/// positions, not the deformed ones, set the lever arms): "rigid-body motion of the whole
+/// model (its 11 nodes but node 100, at rest, move together), here rotation about z, …"
+/// (one direction of what may be a larger free space); `None` otherwise.
+pub(super) fn whole_model_rigid_motion(model: &Model, x: &[f64]) -> Option<String> {
+    let dofs = crate::dae::DofMap::new(model);
+    if dofs.len != x.len() || model.nodes.len() < 2 {
+        return None;
+    }
+    // Nodes at rest in this direction (a clamped ground node) are left out.
+    let top = x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let moving: Vec<usize> = (0..model.nodes.len()).filter(|&k| (0..6).any(|c| x[dofs.node_first[k] + c].abs() > 1e-9 * top)).collect();
+    if moving.len() < 2 {
+        return None;
+    }
+    let at_rest: Vec<String> = (0..model.nodes.len()).filter(|k| !moving.contains(k)).map(|k| model.nodes[k].label.to_string()).collect();
+    let centre = moving.iter().fold([0.0; 3], |c, &k| { let p = &model.nodes[k].position; [c[0] + p[0], c[1] + p[1], c[2] + p[2]] }).map(|c| c / moving.len() as f64);
+    let size = moving.iter().map(|&k| (0..3).map(|i| (model.nodes[k].position[i] - centre[i]).powi(2)).sum::<f64>().sqrt()).fold(0.0, f64::max).max(f64::MIN_POSITIVE);
+    // Rows: the 6 motion unknowns of every node; columns: translations x, y, z and rotations
+    // about x, y, z (scaled by the model's size so both have lengths' units).
+    let mut rows: Vec<(usize, [f64; 6])> = Vec::new();
+    for &k in &moving {
+        let node = &model.nodes[k];
+        let p: Vec<f64> = (0..3).map(|i| node.position[i] - centre[i]).collect();
+        let first = dofs.node_first[k];
+        for c in 0..3 {
+            let mut r = [0.0; 6];
+            r[c] = 1.0;
+            // (θ × p)_c = θ_{c+1} p_{c+2} − θ_{c+2} p_{c+1}
+            r[3 + (c + 1) % 3] = p[(c + 2) % 3] / size;
+            r[3 + (c + 2) % 3] = -p[(c + 1) % 3] / size;
+            rows.push((first + c, r));
+            let mut g = [0.0; 6];
+            g[3 + c] = 1.0 / size;
+            rows.push((first + 3 + c, g));
+        }
+    }
+    let r = Mat::from_fn(rows.len(), 6, |i, j| rows[i].1[j]);
+    let b = Mat::from_fn(rows.len(), 1, |i, _| x[rows[i].0]);
+    let norm = b.norm_l2();
+    if norm == 0.0 {
+        return None;
+    }
+    use faer::linalg::solvers::SolveLstsq;
+    let coef = r.qr().solve_lstsq(&b);
+    if (&r * &coef - &b).norm_l2() > 1e-2 * norm {
+        return None;
+    }
+    const MOTIONS: [&str; 6] = ["translation along x", "translation along y", "translation along z", "rotation about x", "rotation about y", "rotation about z"];
+    let big = (0..6).map(|j| coef[(j, 0)].abs()).fold(0.0, f64::max);
+    let parts: Vec<&str> = (0..6).filter(|&j| coef[(j, 0)].abs() > 0.1 * big).map(|j| MOTIONS[j]).collect();
+    let rest = match at_rest.len() {
+        0 => String::new(),
+        1 => format!(" but node {}, at rest", at_rest[0]),
+        _ => format!(" but nodes {}, at rest", at_rest.join(", ")),
+    };
+    Some(format!("rigid-body motion of the whole model (its {} nodes{rest}, move together), here {}", moving.len(), parts.join(", ")))
 }
 
 /// Channels (output, input) of the full model whose response is exactly zero at every

@@ -39,7 +39,7 @@ pub use checks::zero_channels;
 pub use error::StudyError;
 pub use export::RomForm;
 pub use reduce::{BelowBand, KeptMode, ReducedModel, Residualization, RomRequest, StaticGains};
-pub use response::{Comparison, FrequencyGrid, GridAccuracy};
+pub use response::{ChannelError, Comparison, FrequencyGrid, GridAccuracy};
 pub use setup::{checked_reference_state, EigenSettings, Linearization, Ports, Study};
 pub use solver::{needs_every_mode, sparse_target, Solver, SparseRun, SPARSE_DEFAULT_COUNT};
 pub use warning::Warning;

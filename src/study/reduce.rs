@@ -332,7 +332,10 @@ impl Study {
         }
         let dae = self.linear.dense();
         crate::rom::full_static_gain(dae).map_err(|e| match null_direction(&dae.static_matrix()) {
-            Some(x) => format!("{e}: unrestrained motion along {}", self.describe_direction(&x)),
+            Some(x) => match self.model.as_ref().and_then(|m| super::checks::whole_model_rigid_motion(m, &x)) {
+                Some(rigid) => format!("{e}: unrestrained {rigid}"),
+                None => format!("{e}: unrestrained motion along {}", self.describe_direction(&x)),
+            },
             None => e.to_string(),
         })
     }
@@ -341,10 +344,7 @@ impl Study {
     /// The largest components of a direction in the unknowns, e.g. "node 2 x, node 2 y"
     /// (multipliers left out).
     pub(super) fn describe_direction(&self, x: &[f64]) -> String {
-        let mut idx: Vec<usize> = (0..x.len()).filter(|i| !self.linear.multipliers().contains(i) && x[*i].abs() > 1e-3).collect();
-        idx.sort_by(|&a, &b| x[b].abs().total_cmp(&x[a].abs()));
-        let names: Vec<&str> = idx.iter().take(6).map(|&i| self.linear.unknown_names().get(i).map_or("?", String::as_str)).collect();
-        names.join(", ")
+        super::checks::largest_components(x, self.linear.unknown_names(), self.linear.multipliers())
     }
 }
 

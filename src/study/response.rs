@@ -35,6 +35,30 @@ pub struct GridAccuracy {
     /// The highest frequency [Hz] below which the relative error stays within 1 % (`None`:
     /// not even at the lowest).
     pub within_1_percent_up_to_hz: Option<f64>,
+    /// The worst port pair on its own scale (the normwise figure above hides channels far
+    /// below the largest, e.g. a vertical sensor's 1e-7 m/N next to a horizontal 1e-1 m/N).
+    pub worst_channel: Option<ChannelError>,
+}
+
+/// One port pair's largest relative error `|H_rom − H_full|_ij / |H_full|_ij` over the grid
+/// points where `|H_full|_ij` is above [`ChannelError::NEGLIGIBLE`] of that channel's largest.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ChannelError {
+    pub output: usize,
+    pub input: usize,
+    pub relative: f64,
+    pub at_hz: f64,
+}
+
+impl ChannelError {
+    /// Points where a channel is below this fraction of its own largest (a zero of the
+    /// transfer function, or a channel zero to rounding) are not compared.
+    pub const NEGLIGIBLE: f64 = 1e-6;
+    /// Above this relative error a channel is reported as a warning: off by half its own
+    /// size (a missing static part gives 0.9 and more; the truncation error of a 0-2 Hz ROM
+    /// of examples/ham_sas.mbd with --residualize reaches 0.12 on its smallest cross pair,
+    /// 1e-9 m/N, at 3.5 Hz, above its band).
+    pub const WARN: f64 = 0.5;
 }
 
 /// The full model's and a ROM's responses on one grid.
@@ -61,7 +85,35 @@ impl Comparison {
             largest_relative_error: worst,
             at_hz: self.freq_hz[k],
             within_1_percent_up_to_hz: good.checked_sub(1).map(|g| self.freq_hz[g]),
+            worst_channel: self.worst_channel(),
         }
+    }
+
+    /// [`GridAccuracy::worst_channel`].
+    fn worst_channel(&self) -> Option<ChannelError> {
+        let (no, ni) = (self.full.first()?.nrows(), self.full.first()?.ncols());
+        let overall = self.full.iter().map(|f| f.norm_max()).fold(0.0, f64::max);
+        let mut worst: Option<ChannelError> = None;
+        for i in 0..no {
+            for j in 0..ni {
+                let big = self.full.iter().map(|f| f[(i, j)].norm()).fold(0.0, f64::max);
+                // Channels zero to rounding against the whole matrix have no scale of their own.
+                if !(big > 1e-12 * overall) {
+                    continue;
+                }
+                for (k, (f, r)) in self.full.iter().zip(&self.rom).enumerate() {
+                    let h = f[(i, j)].norm();
+                    if h <= ChannelError::NEGLIGIBLE * big {
+                        continue;
+                    }
+                    let e = (r[(i, j)] - f[(i, j)]).norm() / h;
+                    if worst.as_ref().is_none_or(|w| e > w.relative || e.is_nan()) {
+                        worst = Some(ChannelError { output: i, input: j, relative: e, at_hz: self.freq_hz[k] });
+                    }
+                }
+            }
+        }
+        worst
     }
 }
 

@@ -107,6 +107,18 @@ impl ReducedModel {
                 a.largest_relative_error,
                 fmt_hz(a.at_hz)
             );
+            if let Some(c) = &a.worst_channel {
+                let name = |names: &[String], k: usize| names.get(k).cloned().unwrap_or_else(|| (k + 1).to_string());
+                let channel = format!("{} / {}", name(&self.static_gains.output_names, c.output), name(&self.static_gains.input_names, c.input));
+                s += &format!("worst port pair on its own scale: {channel}, relative error {:.2e} at {} Hz\n", c.relative, fmt_hz(c.at_hz));
+                if c.relative > super::ChannelError::WARN {
+                    s += &format!(
+                        "warning: the ROM's {channel} response is off by {:.1e} (relative, on its own scale) at {} Hz: a small channel's static part can come from modes the ROM neither keeps nor residualizes (--residualize folds them into D)\n",
+                        c.relative,
+                        fmt_hz(c.at_hz)
+                    );
+                }
+            }
         }
         s
     }
