@@ -190,8 +190,8 @@ fn drive_and_law_errors() {
         (force("meter, 0., forever"), "m.mbd:6:52: error: drive caller 'meter' is not supported by romdyn"),
         // 53. An undefined drive caller.
         (force("reference, 4"), "m.mbd:6:52: error: drive caller 4 is not defined"),
-        // 54. Different drives on different components of one force.
-        (force("component, const, 1., time, inactive").replace("1., 0., 0., component", "component"), "m.mbd:6:40: error: romdyn's force is one direction times one drive"),
+        // 54. (Different drives on different components of one force: a sum since issue 12's
+        // state drives, tests/mbdyn_state_drives.rs.)
         // 55. Time-varying gravity with different drives on its components.
         (model("structural nodes: 2; gravity;", NODES, "gravity: component, const, 1., ramp, 1., 0., 1., 0., inactive;"), "m.mbd:6:10: error: romdyn's time-varying gravity is one direction times one drive"),
         // 55b. Driven elements: hints, a label that is not the wrapped element's, `existing`.

@@ -387,13 +387,13 @@ fn forces_and_couples_read_directions_in_the_node_frame() {
     let mut b = ModelBuilder::new();
     nodes(&mut b);
     let c = |v| Drive::Const(v);
-    b.element(Force { label: 1, node: 2, frame: ForceFrame::Absolute, direction: Vec3::new(1.0, 0.0, 0.0), offset: Vec3::new(0.1, 0.0, 0.0), drive: c(3.0) });
-    b.element(Force { label: 2, node: 2, frame: ForceFrame::Absolute, direction: Vec3::new(1.0, 0.0, 0.0), offset: Vec3::zeros(), drive: c(3.0) });
-    b.element(Force { label: 3, node: 2, frame: ForceFrame::Follower, direction: Vec3::new(1.0, 0.0, 2.0), offset: Vec3::zeros(), drive: c(1.0) });
+    b.element(Force::new(1, 2, ForceFrame::Absolute, Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.1, 0.0, 0.0), c(3.0)));
+    b.element(Force::new(2, 2, ForceFrame::Absolute, Vec3::new(1.0, 0.0, 0.0), Vec3::zeros(), c(3.0)));
+    b.element(Force::new(3, 2, ForceFrame::Follower, Vec3::new(1.0, 0.0, 2.0), Vec3::zeros(), c(1.0)));
     // MBDyn's older syntax: unit direction, arm, drive.
-    b.element(Force { label: 4, node: 2, frame: ForceFrame::Absolute, direction: Vec3::new(0.0, 0.0, 1.0), offset: Vec3::new(0.1, 0.0, 0.0), drive: c(5.0) });
-    b.element(Couple { label: 5, node: 3, frame: ForceFrame::Follower, direction: Vec3::new(0.0, 0.0, 1.0), drive: Drive::Sine { t0: 0.0, omega: 2.0, amplitude: 1.0, cycles: None, v0: 0.0 } });
-    b.element(Couple { label: 6, node: 2, frame: ForceFrame::Absolute, direction: Vec3::new(1.0, 2.0, 0.0), drive: c(1.0) });
+    b.element(Force::new(4, 2, ForceFrame::Absolute, Vec3::new(0.0, 0.0, 1.0), Vec3::new(0.1, 0.0, 0.0), c(5.0)));
+    b.element(Couple::new(5, 3, ForceFrame::Follower, Vec3::new(0.0, 0.0, 1.0), Drive::Sine { t0: 0.0, omega: 2.0, amplitude: 1.0, cycles: None, v0: 0.0 }));
+    b.element(Couple::new(6, 2, ForceFrame::Absolute, Vec3::new(1.0, 2.0, 0.0), c(1.0)));
     assert_same_physics(&text, b.build().unwrap());
 }
 

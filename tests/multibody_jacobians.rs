@@ -42,8 +42,8 @@ fn every_element(form: ConstraintForm) -> Model {
     b.element(Rod { label: 12, a: node(1, &mut n), b: node(3, &mut n), axial_stiffness: 1e3, length: 0.7, viscous: None, elastic: None });
     let drive = Drive::Sine { t0: 0.0, omega: 3.0, amplitude: 2.0, cycles: None, v0: 0.5 };
     for (label, frame) in [(13, ForceFrame::Absolute), (14, ForceFrame::Follower)] {
-        b.element(Force { label, node: 3, frame, direction: n.vec(), offset: n.vec(), drive: drive.clone() });
-        b.element(Couple { label: label + 10, node: 2, frame, direction: n.vec(), drive: drive.clone() });
+        b.element(Force::new(label, 3, frame, n.vec(), n.vec(), drive.clone()));
+        b.element(Couple::new(label + 10, 2, frame, n.vec(), drive.clone()));
     }
     let random_law = |n: &mut Noise, viscous: bool| {
         let a = nalgebra::Matrix6::from_fn(|_, _| n.next());

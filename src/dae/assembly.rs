@@ -37,7 +37,11 @@ pub struct Assembler<'m> {
 
 /// What one element reads; its nodes are looked up through its slots (no allocation).
 struct Context<'a> {
+    model: &'a Model,
     frames: &'a [NodeFrame],
+    /// The frames drives reading the model's state see (`frames` but in a
+    /// finite-difference check of the Jacobian, which holds those drives fixed).
+    read_frames: &'a [NodeFrame],
     slots: &'a [usize],
     multipliers: &'a [f64],
     t: f64,
@@ -64,6 +68,9 @@ impl ElementState for Context<'_> {
     }
     fn constraint_row_scale(&self) -> f64 {
         self.constraint_scale
+    }
+    fn structural_node(&self, label: crate::element::Label) -> Option<&NodeKinematics> {
+        self.model.node_index(label).map(|i| &self.read_frames[i].kin)
     }
 }
 
@@ -207,7 +214,9 @@ impl<'m> Assembler<'m> {
     fn context<'a>(&'a self, frames: &'a [NodeFrame], st: &'a State, e: usize, constraint_scale: f64) -> Context<'a> {
         let first = self.dofs.element_first[e];
         Context {
+            model: self.model,
             frames,
+            read_frames: frames,
             slots: &self.dofs.element_nodes[e],
             multipliers: &st.y[first..first + self.dofs.element_len[e]],
             t: st.t,
@@ -308,10 +317,12 @@ impl<'m> Assembler<'m> {
 
     /// The contribution of one element alone, as `(equation, value)` entries (for the
     /// finite-difference check), with the nodes' frames at `st` given.
-    pub(crate) fn element_residual(&self, st: &State, frames: &[NodeFrame], e: usize, form: ConstraintForm, dcoef: f64) -> Vec<(usize, f64)> {
+    /// Drives reading the model's state read `read_frames` (the unperturbed state in a
+    /// finite-difference check: their derivatives are in no Jacobian, as in MBDyn).
+    pub(crate) fn element_residual(&self, st: &State, frames: &[NodeFrame], read_frames: &[NodeFrame], e: usize, form: ConstraintForm, dcoef: f64) -> Vec<(usize, f64)> {
         let mut entries = Vec::new();
         let scale = if form == ConstraintForm::Scaled { 1.0 / dcoef } else { 1.0 };
-        let ctx = self.context(frames, st, e, scale);
+        let ctx = Context { read_frames, ..self.context(frames, st, e, scale) };
         let mut sink = Residual { dofs: &self.dofs, slots: &self.dofs.element_nodes[e], first: self.dofs.element_first[e], constraint_scale: scale, put: |i, v| entries.push((i, v)) };
         self.model.elements[e].residual(&ctx, &mut sink);
         entries

@@ -22,6 +22,10 @@ pub struct JacobianMismatch {
     pub finite_difference: f64,
     /// `|analytic − fd| / max(max |J_element|, 1)`.
     pub relative_error: f64,
+    /// The element's drives read the model's state: the finite differences hold them at the
+    /// checked state, since their derivatives are in no Jacobian (as in MBDyn, see
+    /// [`crate::element::TimeFunction`]).
+    pub drive_held: bool,
 }
 
 impl JacobianMismatch {
@@ -47,6 +51,7 @@ pub fn check_jacobians(asm: &Assembler, st: &State, dcoef: f64, form: Constraint
     let dofs = &asm.dofs;
     let mut st = st.clone();
     let mut frames = asm.frames(&st);
+    let held = frames.clone();
     let mut out = Vec::new();
     for (e, el) in asm.model.elements.iter().enumerate() {
         let unknowns = element_unknowns(dofs, e);
@@ -61,7 +66,7 @@ pub fn check_jacobians(asm: &Assembler, st: &State, dcoef: f64, form: Constraint
             }
         }
         let scale = analytic.iter().fold(1.0f64, |a, v| a.max(v.abs()));
-        let mut worst = JacobianMismatch { element: format!("{} {}", el.type_name(), el.label()), equation: String::new(), unknown: String::new(), analytic: 0.0, finite_difference: 0.0, relative_error: 0.0 };
+        let mut worst = JacobianMismatch { element: format!("{} {}", el.type_name(), el.label()), equation: String::new(), unknown: String::new(), analytic: 0.0, finite_difference: 0.0, relative_error: 0.0, drive_held: el.reads_state() };
         for (c, &(j, node)) in unknowns.iter().enumerate() {
             let multiplier = dofs.is_multiplier(j);
             let moves_y_by_h = multiplier && form == ConstraintForm::Scaled;
@@ -76,7 +81,7 @@ pub fn check_jacobians(asm: &Assembler, st: &State, dcoef: f64, form: Constraint
                 }
                 let saved = node.map(|n| std::mem::replace(&mut frames[n], st.node_frame(dofs, n)));
                 let mut f = vec![0.0; m];
-                for (i, v) in asm.element_residual(&st, &frames, e, form, dcoef) {
+                for (i, v) in asm.element_residual(&st, &frames, &held, e, form, dcoef) {
                     if let Some(&r) = local.get(&i) {
                         f[r] += v;
                     }
@@ -94,7 +99,7 @@ pub fn check_jacobians(asm: &Assembler, st: &State, dcoef: f64, form: Constraint
                 let err = (a - fd).abs() / scale;
                 if err > worst.relative_error || (err.is_nan() && !worst.relative_error.is_nan()) {
                     let i = unknowns[r].0;
-                    worst = JacobianMismatch { element: worst.element.clone(), equation: dofs.equation_name(asm.model, i), unknown: dofs.unknown_name(asm.model, j), analytic: a, finite_difference: fd, relative_error: err };
+                    worst = JacobianMismatch { element: worst.element.clone(), equation: dofs.equation_name(asm.model, i), unknown: dofs.unknown_name(asm.model, j), analytic: a, finite_difference: fd, relative_error: err, drive_held: worst.drive_held };
                 }
             }
         }

@@ -85,6 +85,19 @@ impl NodeOutput {
     }
 }
 
+/// Errors when an element's drive reads the model's state: its Jacobian, as MBDyn's, holds
+/// the drive's value fixed, so `F_/y` and `F_/ẏ` would miss the drive's derivatives (a
+/// drag force's damping, say) and the modes would look right while being wrong.
+fn linearizable(model: &Model) -> Result<(), PortError> {
+    match model.elements.iter().find(|e| e.reads_state()) {
+        Some(e) => Err(PortError::Invalid(
+            format!("{} {}", e.type_name(), e.label()),
+            "a drive of this element reads the model's state (model:: functions in a string drive); its derivatives are in no Jacobian (as in MBDyn), so romdyn does not linearize this model".into(),
+        )),
+        None => Ok(()),
+    }
+}
+
 /// Linearizes `model` at `state` (re-based first so that rotations are measured by `g`).
 /// With `dcoef = Some(c)` the Jacobians are assembled as `J(±c)` (eqs. 13–14), otherwise
 /// `F_/ẏ` and `F_/y` directly; both routes agree to rounding.
@@ -97,6 +110,7 @@ pub fn linearize(model: &Model, state: &State, inputs: &[NodeInput], outputs: &[
 /// [`linearize`] with inputs and outputs at points of nodes along any direction, rates
 /// included (`B̃`, `C̃`, `C̃_v` by [`PortMap`]).
 pub fn linearize_ports(model: &Model, state: &State, inputs: &[InputPort], outputs: &[OutputPort], dcoef: Option<f64>) -> Result<LinearDae, PortError> {
+    linearizable(model)?;
     let asm = Assembler::new(model);
     let mut st = state.clone();
     st.rebase(&asm.dofs);
@@ -127,6 +141,7 @@ pub fn linearize_ports(model: &Model, state: &State, inputs: &[InputPort], outpu
 /// [`linearize_ports`] keeping `F_/ẏ` and `F_/y` sparse as assembled ([`SparseLinearDae`]:
 /// memory proportional to the non-zeros, not to n²).
 pub fn linearize_sparse(model: &Model, state: &State, inputs: &[InputPort], outputs: &[OutputPort]) -> Result<SparseLinearDae, PortError> {
+    linearizable(model)?;
     let asm = Assembler::new(model);
     let mut st = state.clone();
     st.rebase(&asm.dofs);

@@ -27,6 +27,9 @@ impl AxialRotation {
 const RATE: usize = 5;
 
 impl Element for AxialRotation {
+    fn reads_state(&self) -> bool {
+        self.omega.reads_state()
+    }
     fn label(&self) -> Label {
         self.hinge.label
     }
@@ -48,7 +51,7 @@ impl Element for AxialRotation {
         self.hinge.residual(st, out);
         let p = Pair::new(&self.hinge.a, &self.hinge.b, st);
         let e3 = p.q_a.column(2).into_owned();
-        out.add(Row::Constraint(RATE), e3.dot(&(p.omega_b - p.omega_a)) - self.omega.value(st.time()));
+        out.add(Row::Constraint(RATE), e3.dot(&(p.omega_b - p.omega_a)) - self.omega.value_in(st));
         p.add_moment(out, &(e3 * st.multiplier(RATE)));
     }
     fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {

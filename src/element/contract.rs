@@ -53,6 +53,12 @@ pub trait ElementState {
     fn constraint_row_scale(&self) -> f64 {
         1.0
     }
+    /// Any structural node of the model by label, at the state being assembled (what a
+    /// drive reading the model's state sees, MBDyn's `model::position(N)`, …); `None` where
+    /// the caller has no model (a unit test of one element).
+    fn structural_node(&self, _label: Label) -> Option<&NodeKinematics> {
+        None
+    }
 }
 
 /// Where an element adds its residual.
@@ -132,6 +138,13 @@ pub trait Element: Send + Sync {
     /// rotation`): never divided by dCoef, and its unknown is an ordinary algebraic unknown
     /// (Jacobian coefficient `c`, updated as `y += c δ`) in both constraint forms.
     fn is_velocity_constraint(&self, _k: usize) -> bool {
+        false
+    }
+    /// Whether a drive of the element reads the model's state (MBDyn's `model::` functions
+    /// in a `string` drive): its residual then depends on nodes through the drive, and its
+    /// Jacobian, as MBDyn's, holds the drive's value fixed (see
+    /// [`crate::element::TimeFunction`]).
+    fn reads_state(&self) -> bool {
         false
     }
     /// Adds its contribution to `F(y, ẏ, t)`.

@@ -287,6 +287,9 @@ pub struct Distance {
 }
 
 impl Element for Distance {
+    fn reads_state(&self) -> bool {
+        self.length.reads_state()
+    }
     fn label(&self) -> Label {
         self.label
     }
@@ -302,7 +305,7 @@ impl Element for Distance {
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
         let p = Pair::new(&self.a, &self.b, st);
         let l = p.d.norm();
-        out.add(Row::Constraint(0), l - self.length.value(st.time()));
+        out.add(Row::Constraint(0), l - self.length.value_in(st));
         let f = st.multiplier(0) * p.d / l;
         add_pair_force(out, &p, &f);
     }

@@ -4,21 +4,49 @@
 use std::fmt;
 use std::sync::Arc;
 
+use super::contract::ElementState;
+
+/// The evaluation of a [`TimeFunction`]: the time, and the model's state when the caller
+/// has one (an element's residual).
+type Evaluation = dyn Fn(f64, Option<&dyn ElementState>) -> f64 + Send + Sync;
+
 /// A function of time given as text by the input (MBDyn's `string` drive, an expression of
 /// `Time` for its math parser): the text names it in messages and decides equality; the
 /// reader supplies the evaluation.
+///
+/// An expression may also read the model's state (MBDyn's `model::position(N)`, …,
+/// modelns.cc): MBDyn's `StringDriveCaller::dGet` evaluates it at every call, and its
+/// elements call it in every residual assembly, so it reads the current Newton iterate
+/// (`StructNode::GetXCurr`), and no element adds its derivative to the Jacobian. romdyn
+/// does the same: [`Drive::value_in`] passes the element's [`ElementState`], whose
+/// [`ElementState::structural_node`] is the iterate being assembled; the elements'
+/// Jacobians hold the drive's value fixed. The converged solution is the same; Newton
+/// converges more slowly where the dependence is strong, and a linearization misses it
+/// (romdyn refuses to linearize such a model, see [`Drive::reads_state`]).
 #[derive(Clone)]
 pub struct TimeFunction {
     pub text: String,
-    f: Arc<dyn Fn(f64) -> f64 + Send + Sync>,
+    f: Arc<Evaluation>,
+    reads_state: bool,
 }
 
 impl TimeFunction {
     pub fn new(text: impl Into<String>, f: impl Fn(f64) -> f64 + Send + Sync + 'static) -> Self {
-        TimeFunction { text: text.into(), f: Arc::new(f) }
+        TimeFunction { text: text.into(), f: Arc::new(move |t, _| f(t)), reads_state: false }
+    }
+    /// An expression that reads the model's state: `f(t, None)` is called where no state
+    /// exists (it should then give NaN).
+    pub fn reading_state(text: impl Into<String>, f: impl Fn(f64, Option<&dyn ElementState>) -> f64 + Send + Sync + 'static) -> Self {
+        TimeFunction { text: text.into(), f: Arc::new(f), reads_state: true }
     }
     pub fn value(&self, t: f64) -> f64 {
-        (self.f)(t)
+        (self.f)(t, None)
+    }
+    pub fn value_at(&self, t: f64, state: Option<&dyn ElementState>) -> f64 {
+        (self.f)(t, state)
+    }
+    pub fn reads_state(&self) -> bool {
+        self.reads_state
     }
 }
 
@@ -77,10 +105,75 @@ pub enum Drive {
     Expression(TimeFunction),
     /// A scalar function of time (MBDyn's `scalar function` drive caller).
     Function(super::ScalarFunction),
+    /// One channel of a fixed step file driver (MBDyn's `file` drive caller).
+    Sampled(SampledChannel),
+}
+
+/// One channel of MBDyn's fixed step file driver (fixedstep.cc, `ServePending`) times an
+/// amplitude: samples `v_k` at `t0 + k dt`, interpolated linearly (or held, `const`) between
+/// them; before the first and after the last, zero (`pad zeros`, MBDyn's default) or the
+/// first and last sample.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SampledChannel {
+    pub t0: f64,
+    pub dt: f64,
+    pub values: Arc<Vec<f64>>,
+    pub linear: bool,
+    pub pad_zeros: bool,
+    pub amplitude: f64,
+}
+
+impl SampledChannel {
+    pub fn value(&self, t: f64) -> f64 {
+        let (v, n) = (&self.values, self.values.len());
+        let Some(&last) = v.last() else { return 0.0 };
+        let tt = t - self.t0;
+        let x = if tt < 0.0 {
+            if self.pad_zeros { 0.0 } else { v[0] }
+        } else if tt > self.dt * (n - 1) as f64 {
+            if self.pad_zeros { 0.0 } else { last }
+        } else {
+            let j = ((tt / self.dt).floor() as usize).min(n - 1);
+            if !self.linear || j == n - 1 {
+                v[j]
+            } else {
+                let t1 = self.t0 + j as f64 * self.dt;
+                let t2 = t1 + self.dt;
+                v[j + 1] * ((t - t1) / self.dt) + v[j] * ((t2 - t) / self.dt)
+            }
+        };
+        self.amplitude * x
+    }
 }
 
 impl Drive {
+    /// The value at time `t`, without the model's state (a drive that reads it gives NaN).
     pub fn value(&self, t: f64) -> f64 {
+        self.value_at(t, None)
+    }
+
+    /// The value in an element's residual: at its time, reading the state it is assembled
+    /// at (see [`TimeFunction`]).
+    pub fn value_in(&self, st: &dyn ElementState) -> f64 {
+        self.value_at(st.time(), Some(st))
+    }
+
+    /// Whether the drive reads the model's state (MBDyn's `model::` functions in a `string`
+    /// drive): its derivatives with respect to the state are in no Jacobian, as in MBDyn,
+    /// so a linearization of a model that holds one would be wrong.
+    pub fn reads_state(&self) -> bool {
+        match self {
+            Drive::Expression(f) => f.reads_state(),
+            Drive::Sum(drives) => drives.iter().any(Drive::reads_state),
+            Drive::Product(a, b) => a.reads_state() || b.reads_state(),
+            Drive::FrequencySweep { omega, amplitude, .. } => omega.reads_state() || amplitude.reads_state(),
+            Drive::Periodic { f, .. } => f.reads_state(),
+            _ => false,
+        }
+    }
+
+    /// The value at time `t` with the model's state, if any.
+    pub fn value_at(&self, t: f64, state: Option<&dyn ElementState>) -> f64 {
         match self {
             Drive::Const(v) => *v,
             Drive::Time => t,
@@ -98,15 +191,15 @@ impl Drive {
                 v0 + a + d
             }
             Drive::DoubleStep { t0, t1, value, v0 } => v0 + if (*t0..=*t1).contains(&t) { *value } else { 0.0 },
-            Drive::Sum(drives) => drives.iter().map(|d| d.value(t)).sum(),
-            Drive::Product(a, b) => a.value(t) * b.value(t),
+            Drive::Sum(drives) => drives.iter().map(|d| d.value_at(t, state)).sum(),
+            Drive::Product(a, b) => a.value_at(t, state) * b.value_at(t, state),
             Drive::FrequencySweep { t0, omega, amplitude, v0, t1, v1 } => {
                 if t < *t0 {
                     *v0
                 } else if t > *t1 {
                     *v1
                 } else {
-                    v0 + amplitude.value(t) * (omega.value(t) * (t - t0)).sin()
+                    v0 + amplitude.value_at(t, state) * (omega.value_at(t, state) * (t - t0)).sin()
                 }
             }
             Drive::Periodic { t0, period, f } => {
@@ -114,11 +207,12 @@ impl Drive {
                     0.0
                 } else {
                     let s = t - t0;
-                    f.value(s - period * (s / period).floor())
+                    f.value_at(s - period * (s / period).floor(), state)
                 }
             }
-            Drive::Expression(f) => f.value(t),
+            Drive::Expression(f) => f.value_at(t, state),
             Drive::Function(f) => f.value(t),
+            Drive::Sampled(c) => c.value(t),
         }
     }
 }

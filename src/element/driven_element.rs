@@ -24,7 +24,7 @@ pub struct DrivenElement {
 
 impl DrivenElement {
     fn active(&self, s: &dyn ElementState) -> bool {
-        self.drive.value(s.time()) != 0.0
+        self.drive.value_in(s) != 0.0
     }
 }
 
@@ -38,6 +38,9 @@ impl JacobianSink for Zeros<'_> {
 }
 
 impl Element for DrivenElement {
+    fn reads_state(&self) -> bool {
+        self.drive.reads_state() || self.inner.reads_state()
+    }
     fn label(&self) -> Label {
         self.inner.label()
     }

@@ -22,11 +22,14 @@ pub struct DrivenGravity {
 
 impl DrivenGravity {
     fn field(&self, st: &dyn ElementState) -> Vec3 {
-        self.direction * (self.drive.value(st.time()) * st.load_factor())
+        self.direction * (self.drive.value_in(st) * st.load_factor())
     }
 }
 
 impl Element for DrivenGravity {
+    fn reads_state(&self) -> bool {
+        self.drive.reads_state()
+    }
     fn label(&self) -> Label {
         self.label
     }

@@ -26,6 +26,14 @@ impl VectorDrive {
     pub fn value(&self, t: f64) -> Vec3 {
         self.0.iter().map(|(v, d)| v * d.value(t)).sum()
     }
+    /// The value in an element's residual (drives may read the state, see [`Drive::value_in`]).
+    pub fn value_in(&self, st: &dyn super::ElementState) -> Vec3 {
+        self.0.iter().map(|(v, d)| v * d.value_in(st)).sum()
+    }
+    /// Whether a drive reads the model's state.
+    pub fn reads_state(&self) -> bool {
+        self.0.iter().any(|(_, d)| d.reads_state())
+    }
     pub fn is_zero(&self) -> bool {
         self.0.iter().all(|(v, d)| *v == Vec3::zeros() || *d == Drive::Const(0.0))
     }
@@ -115,6 +123,9 @@ impl DrivenJoint {
 }
 
 impl Element for DrivenJoint {
+    fn reads_state(&self) -> bool {
+        self.position.reads_state() || self.rotation.reads_state() || self.velocity.reads_state() || self.angular_velocity.reads_state()
+    }
     fn label(&self) -> Label {
         self.joint.label
     }

@@ -39,6 +39,9 @@ impl ImposedVelocity {
 }
 
 impl Element for ImposedVelocity {
+    fn reads_state(&self) -> bool {
+        self.value.reads_state()
+    }
     fn label(&self) -> Label {
         self.label
     }
@@ -63,7 +66,7 @@ impl Element for ImposedVelocity {
             VelocityKind::Linear => (n.xdot, Row::force(0)),
             VelocityKind::Angular => (n.omega, Row::moment(0)),
         };
-        out.add(Row::Constraint(0), e.dot(&rate) - self.value.value(st.time()));
+        out.add(Row::Constraint(0), e.dot(&rate) - self.value.value_in(st));
         add_vec(out, rows, &(e * st.multiplier(0)));
     }
     fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {

@@ -42,10 +42,13 @@ pub struct TotalInternalForce {
 }
 
 fn scaled(v: &VectorDrive, st: &dyn ElementState) -> Vec3 {
-    v.value(st.time()) * st.load_factor()
+    v.value_in(st) * st.load_factor()
 }
 
 impl Element for InternalForce {
+    fn reads_state(&self) -> bool {
+        self.value.reads_state()
+    }
     fn label(&self) -> Label {
         self.label
     }
@@ -88,6 +91,9 @@ impl Element for InternalForce {
 }
 
 impl Element for InternalCouple {
+    fn reads_state(&self) -> bool {
+        self.value.reads_state()
+    }
     fn label(&self) -> Label {
         self.label
     }
@@ -116,6 +122,9 @@ impl Element for InternalCouple {
 }
 
 impl Element for TotalInternalForce {
+    fn reads_state(&self) -> bool {
+        self.force.reads_state() || self.moment.reads_state()
+    }
     fn label(&self) -> Label {
         self.label
     }

@@ -36,7 +36,7 @@ pub use contract::{Col, Element, ElementState, JacobianSink, Label, NodeKinemati
 pub use deformable::{DeformableDisplacement, DeformableHinge, Distance, LinearViscoelastic, Rod, RodViscosity};
 pub use deformable_joint::DeformableJoint;
 pub use invariant_hinge::InvariantDeformableHinge;
-pub use drive::{Drive, TimeFunction};
+pub use drive::{Drive, SampledChannel, TimeFunction};
 pub use driven_element::DrivenElement;
 pub use driven_gravity::DrivenGravity;
 pub use driven_joint::{DrivenJoint, VectorDrive};

@@ -13,7 +13,11 @@ pub fn jacobian_check_text(elements: &[JacobianMismatch], tolerance: f64, time: 
     for e in elements {
         let status = if e.within(tolerance) { "ok" } else { "FAIL" };
         let entry = if e.equation.is_empty() { "none: analytic and finite differences agree exactly".to_string() } else { format!("d({})/d({})", e.equation, e.unknown) };
-        s += &format!("{status:<6}  {:<24}  {:>9.2e}  {:>14.6e}  {:>14.6e}  {entry}\n", e.element, e.relative_error, e.analytic, e.finite_difference);
+        let name = if e.drive_held { format!("{} *", e.element) } else { e.element.clone() };
+        s += &format!("{status:<6}  {name:<24}  {:>9.2e}  {:>14.6e}  {:>14.6e}  {entry}\n", e.relative_error, e.analytic, e.finite_difference);
+    }
+    if elements.iter().any(|e| e.drive_held) {
+        s += "* a drive of the element reads the model's state (model:: functions): the differences hold it at this state, its derivatives are in no Jacobian (as in MBDyn)\n";
     }
     let failed: Vec<&JacobianMismatch> = elements.iter().filter(|e| !e.within(tolerance)).collect();
     match failed.first() {

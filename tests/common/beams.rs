@@ -82,7 +82,7 @@ pub fn simply_supported(d: &BeamData, elements: usize, n_axial: f64, f_mid: f64)
 /// A constant absolute force [N] on a node (nothing when zero).
 fn force(b: &mut ModelBuilder, label: Label, node: Label, f: Vec3) {
     if f != Vec3::zeros() {
-        b.element(Force { label, node, frame: ForceFrame::Absolute, direction: f, offset: Vec3::zeros(), drive: Drive::Const(1.0) });
+        b.element(Force::new(label, node, ForceFrame::Absolute, f, Vec3::zeros(), Drive::Const(1.0)));
     }
 }
 

@@ -15,11 +15,11 @@ use super::parser::{known, Block};
 use crate::model::{InitialAssembly, OrientationOutput};
 
 /// Entity kinds counted in control data and found in the model.
-pub const COUNTED: [&str; 7] = ["structural nodes", "rigid bodies", "joints", "forces", "beams", "gravity", "automatic structural elements"];
+pub const COUNTED: [&str; 8] = ["structural nodes", "rigid bodies", "joints", "forces", "beams", "gravity", "automatic structural elements", "file drivers"];
 
 /// Counters of entities romdyn does not support: a non-zero count is an error.
-const UNSUPPORTED_COUNTERS: [&str; 18] = [
-    "abstract nodes", "electric nodes", "hydraulic nodes", "parameter nodes", "thermal nodes", "file drivers", "aerodynamic elements", "aeromodals",
+const UNSUPPORTED_COUNTERS: [&str; 17] = [
+    "abstract nodes", "electric nodes", "hydraulic nodes", "parameter nodes", "thermal nodes", "aerodynamic elements", "aeromodals",
     "air properties", "bulk elements", "electric bulk elements", "electric elements", "external elements", "genels", "hydraulic elements",
     "loadable elements", "output elements", "induced velocity elements",
 ];

@@ -25,6 +25,11 @@ impl<'a> Cursor<'a> {
         self.st
     }
 
+    /// The input file `span` is in.
+    pub fn source_path(&self, span: Span) -> Option<&'a std::path::Path> {
+        self.sources.files.get(span.file).map(|(p, _)| p.as_path())
+    }
+
     /// Where the next argument is (the ';' when none is left).
     pub fn here(&self) -> Span {
         self.st.args.get(self.pos).map_or(self.st.end, |a| a.span)

@@ -8,29 +8,30 @@
 //! and the 3-vector template drive callers (§Template Drive): `null`, `single`,
 //! `component`, `array`.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 use std::sync::Mutex;
 
 use super::cursor::Cursor;
 use super::diagnostic::{MbdynError, Sources, Span};
 use super::expr::{Evaluator, Variable, Variables};
-use super::lexer::tokenize;
+use super::lexer::{tokenize, Token};
+use super::model_namespace::{node_private_data, Live, Reads};
 use super::parser::Statement;
 use super::value::TypedValue;
-use crate::element::{Drive, ScalarFunction, TimeFunction};
+use crate::element::{Drive, ElementState, TimeFunction};
 use crate::kinematics::{Mat3, Vec3};
 
 /// Drive callers romdyn evaluates.
-const SUPPORTED: [&str; 27] = [
-    "const", "null", "unit", "one", "time", "direct", "ramp", "step", "sine", "cosine", "piecewise linear", "linear", "parabolic", "cubic", "exponential",
+const SUPPORTED: [&str; 29] = [
+    "file", "node", "const", "null", "unit", "one", "time", "direct", "ramp", "step", "sine", "cosine", "piecewise linear", "linear", "parabolic", "cubic", "exponential",
     "tanh", "double ramp", "double step", "array", "mult", "frequency sweep", "periodic", "string", "reference", "zero", "constant", "scalar function",
 ];
 
 /// MBDyn drive callers romdyn cannot represent (named in the error): they read the model's
-/// state, files, random numbers or the step counter.
-const UNSUPPORTED: [&str; 13] = [
-    "closest next", "discrete filter", "dof", "drive", "element", "ginac", "file", "fourier series", "meter", "node", "postponed", "random", "sample and hold",
+/// state outside the math parser, random numbers or the step counter.
+const UNSUPPORTED: [&str; 11] = [
+    "closest next", "discrete filter", "dof", "drive", "element", "ginac", "fourier series", "meter", "postponed", "random", "sample and hold",
 ];
 
 /// Nesting of drive callers inside drive callers romdyn follows.
@@ -43,6 +44,11 @@ pub struct Drives {
     pub variables: Variables,
     /// The `scalar function:` cards (which `scalar function` drives and laws use).
     pub functions: super::scalar_functions::ScalarFunctions,
+    /// Labels of the structural nodes the file declares (not the dummy ones): the nodes the
+    /// `model::` functions of a string drive may read.
+    pub structural_nodes: HashSet<u32>,
+    /// The `drivers` block's file drivers (which `file` drive callers read).
+    pub file_drivers: super::file_drivers::FileDrivers,
 }
 
 /// Reads a `drive caller: LABEL, [name, "…",] DRIVE;` card.
@@ -55,7 +61,22 @@ pub fn drive_caller_card(st: &Statement, c: &mut Cursor, drives: &mut Drives) ->
     if c.accept("name") {
         c.string("drive caller name")?;
     }
+    c.accept("deferred");
     let d = drive(c, drives, st.seq)?;
+    // `output, {yes | no | value, FLAG | derivative, FLAG …}` (drive_.cc,
+    // `DriveCallerRead::ReadOutput`) asks for MBDyn's .drv file, which romdyn does not write.
+    if c.accept("output") {
+        let mut keyed = false;
+        for kw in ["value", "derivative"] {
+            if c.accept(kw) {
+                keyed = true;
+                c.flag(&format!("drive caller output {kw}"))?;
+            }
+        }
+        if !keyed {
+            c.flag("drive caller output")?;
+        }
+    }
     c.finish()?;
     drives.table.insert(label, (d, st.seq, st.span));
     Ok(())
@@ -124,6 +145,8 @@ fn nested_drive(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) -> Re
             }
             if terms.len() == 1 { terms.remove(0) } else { Drive::Sum(terms) }
         }
+        "file" => super::file_drivers::file_drive(c, &drives.file_drivers, seq)?,
+        "node" => node_drive(c, drives, &inner)?,
         "scalar function" => Drive::Function(super::scalar_functions::scalar_function(c, &drives.functions, seq)?),
         "mult" => {
             let a = inner(c)?;
@@ -149,7 +172,7 @@ fn nested_drive(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) -> Re
         "string" => {
             let span = c.here();
             let text = c.string("the expression (a string in double quotes)")?;
-            Drive::Expression(string_drive(&text, &drives.variables, drives.functions.defined_before(seq)).map_err(|m| c.error_at(span, format!("string drive \"{text}\": {m}")))?)
+            Drive::Expression(string_drive(&text, drives, seq).map_err(|m| c.error_at(span, format!("string drive \"{text}\": {m}")))?)
         }
         "ramp" => {
             let slope = c.real("ramp slope")?;
@@ -200,28 +223,71 @@ fn nested_drive(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) -> Re
 /// with `Time` (and `Var`, the argument MBDyn passes, here the time) set to `t`; checked at
 /// t = 0 so that errors show when the file is read. A value that cannot be computed later
 /// (out of a function's domain) is NaN, which the Newton iteration reports.
-/// `model::sf::NAME(x)` calls the scalar functions defined before the drive.
-fn string_drive(text: &str, variables: &Variables, functions: HashMap<String, ScalarFunction>) -> Result<TimeFunction, String> {
+/// `model::sf::NAME(x)` calls the scalar functions defined before the drive,
+/// `model::drive(LABEL, x)` the drive caller cards defined before it; the `model::`
+/// functions of the nodes' state read the state the drive is evaluated in (see
+/// [`TimeFunction`]); the check at t = 0 only checks their node labels against the
+/// structural nodes the file declares (each read is 0 there, and out-of-domain arguments
+/// of built-in functions are not errors).
+fn string_drive(text: &str, drives: &Drives, seq: usize) -> Result<TimeFunction, String> {
     let mut sources = Sources::default();
     sources.files.push(("string drive".into(), text.to_string()));
     let tokens = tokenize(text, 0, &sources).map_err(|e| e.message)?;
     if tokens.is_empty() {
         return Err("the expression is empty".into());
     }
-    let evaluate = move |vars: &mut Variables, tokens: &[super::lexer::Spanned], sources: &Sources, t: f64| -> Result<f64, String> {
+    let functions = drives.functions.defined_before(seq);
+    let table: HashMap<u32, Drive> = drives.table.iter().filter(|(_, (_, s, _))| *s < seq).map(|(l, (d, _, _))| (*l, d.clone())).collect();
+    let reads_state = tokens.windows(3).any(|w| w[0].token == Token::Word("model".into()) && w[1].token == Token::Symbol("::") && w[2].token != Token::Word("sf".into()));
+    let evaluate = move |vars: &mut Variables, tokens: &[super::lexer::Spanned], sources: &Sources, t: f64, reads: Option<Reads>, state: Option<&dyn ElementState>| -> Result<f64, String> {
         for name in ["Time", "Var"] {
             vars.0.insert(name.into(), Variable { value: TypedValue::Real(t), constant: false, declared: None });
         }
-        let v = Evaluator::new(tokens, vars, sources, Span::default()).with_functions(&functions).evaluate().map_err(|e| e.message)?;
+        let mut e = Evaluator::new(tokens, vars, sources, Span::default()).with_functions(&functions).with_drives(&table);
+        if let Some(reads) = reads {
+            e = e.with_reads(reads, state);
+        }
+        let v = e.evaluate().map_err(|e| e.message)?;
         v.real().ok_or_else(|| "the expression gives a string, not a number".to_string())
     };
-    let mut vars = variables.clone();
-    evaluate(&mut vars, &tokens, &sources, 0.0)?;
+    let mut vars = drives.variables.clone();
+    evaluate(&mut vars, &tokens, &sources, 0.0, reads_state.then_some(Reads::Labels(&drives.structural_nodes)), None)?;
     let state = Mutex::new(vars);
-    Ok(TimeFunction::new(text, move |t| {
+    let run = move |t: f64, st: Option<&dyn ElementState>| {
         let mut vars = state.lock().unwrap_or_else(|e| e.into_inner());
-        evaluate(&mut vars, &tokens, &sources, t).unwrap_or(f64::NAN)
-    }))
+        match (reads_state, st) {
+            (false, _) => evaluate(&mut vars, &tokens, &sources, t, None, None),
+            (true, None) => Ok(f64::NAN),
+            (true, Some(st)) => evaluate(&mut vars, &tokens, &sources, t, Some(Reads::Nodes(&Live(st))), Some(st)),
+        }
+        .unwrap_or(f64::NAN)
+    };
+    Ok(if reads_state { TimeFunction::reading_state(text, run) } else { TimeFunction::new(text, move |t| run(t, None)) })
+}
+
+/// `node, LABEL, structural, string, "NAME[i]", DRIVE` (drive_.cc, `NodeDCR::Read`;
+/// privdrive.h, `PrivDriveCaller::dGet`): DRIVE of the node's private data (the names of
+/// [`node_private_data`]), read from the state the drive is evaluated in, as a `model::`
+/// function in a string drive (see [`TimeFunction`]).
+fn node_drive(c: &mut Cursor, drives: &Drives, inner: &dyn Fn(&mut Cursor) -> Result<Drive, MbdynError>) -> Result<Drive, MbdynError> {
+    let label = c.label("node label")?;
+    let at = c.here();
+    if c.keyword("the node type (romdyn reads structural nodes)", &["structural"]).is_err() {
+        return Err(c.error_at(at, format!("node drive caller: romdyn reads structural nodes only, found {}", c.found())));
+    }
+    if c.accept("index") {
+        return Err(c.error("node drive caller: 'index' (deprecated in MBDyn) is not supported by romdyn: write 'string, \"NAME[i]\"'"));
+    }
+    c.keyword("'string' and the private data name", &["string"])?;
+    let name_at = c.here();
+    let data = c.string("the private data name, e.g. \"X[3]\"")?;
+    node_private_data(label as f64, &data, Reads::Labels(&drives.structural_nodes)).map_err(|m| c.error_at(name_at, format!("node drive caller: {m}")))?;
+    let f = inner(c)?;
+    let text = format!("node, {label}, structural, string, \"{data}\", {f:?}");
+    Ok(Drive::Expression(TimeFunction::reading_state(text, move |_, st| {
+        let Some(st) = st else { return f64::NAN };
+        node_private_data(label as f64, &data, Reads::Nodes(&Live(st))).map_or(f64::NAN, |x| f.value_at(x, Some(st)))
+    })))
 }
 
 /// Cycles of `sine`/`cosine` as full periods before the phase freezes. Sine: `N > 0` ends

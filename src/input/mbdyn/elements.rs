@@ -11,7 +11,7 @@ use super::drives::{single_term, template_vec3};
 use super::joints::joint;
 use super::parser::{known, Statement};
 use super::references::Frame;
-use crate::element::{Couple, Drive, Element, Force, ForceFrame, RigidBody};
+use crate::element::{Couple, Drive, Element, Force, ForceFrame, RigidBody, VectorDrive};
 use crate::kinematics::{Mat3, Vec3};
 use crate::model::Label;
 
@@ -188,10 +188,8 @@ fn force(couple: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Re
         ForceFrame::Follower => on.relative_vector(c, &format!("{what} direction")),
     };
     let mut offset = Vec3::zeros();
-    let mut value_span = c.here();
     let terms = if c.accept("position") {
         offset = on.relative_position(c, "arm [m]")?;
-        value_span = c.here();
         template_vec3(c, ctx.drives, ctx.seq, &basis, &direction)?
     } else if couple {
         template_vec3(c, ctx.drives, ctx.seq, &basis, &direction)?
@@ -202,11 +200,16 @@ fn force(couple: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Re
         offset = on.relative_position(c, "arm [m]")?;
         vec![(dir, super::drives::drive(c, ctx.drives, ctx.seq)?)]
     };
-    let (direction, drive) = single_term(terms).ok_or_else(|| c.error_at(value_span, format!("romdyn's {what} is one direction times one drive: this value combines components with different drives")))?;
+    // Terms that add up to one direction times one drive are merged; components with
+    // different drives stay a sum.
+    let value = VectorDrive(match single_term(terms.clone()) {
+        Some(term) => vec![term],
+        None => terms,
+    });
     if frame == ForceFrame::Follower {
         c.accept("output relative");
     }
-    Ok(if couple { Box::new(Couple { label, node: n.label, frame, direction, drive }) } else { Box::new(Force { label, node: n.label, frame, direction, offset, drive }) })
+    Ok(if couple { Box::new(Couple { label, node: n.label, frame, value }) } else { Box::new(Force { label, node: n.label, frame, value, offset }) })
 }
 
 /// `gravity: [uniform,] VALUE` with a 3-vector template drive in the global frame (a

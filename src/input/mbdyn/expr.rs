@@ -10,6 +10,7 @@ use std::collections::{BTreeMap, HashMap};
 use super::diagnostic::{MbdynError, Sources, Span};
 use super::functions::{call, constants, is_function, FUNCTIONS, UNSUPPORTED_FUNCTIONS};
 use super::lexer::{Spanned, Token};
+pub use super::model_namespace::Reads;
 use super::value::{Type, TypedValue};
 
 /// A variable of the math parser.
@@ -78,11 +79,36 @@ pub struct Evaluator<'a> {
     /// The scalar functions `model::sf::NAME(x)` calls (string drives; `None` while the file is
     /// read, where `set:` runs before the `scalar function:` cards are read).
     functions: Option<&'a std::collections::HashMap<String, crate::element::ScalarFunction>>,
+    /// What `model::` state functions read (`None`: they are refused).
+    reads: Option<Reads<'a>>,
+    /// The element state a string drive is evaluated in, passed on to `model::drive`.
+    state: Option<&'a dyn crate::element::ElementState>,
+    /// The `drive caller:` cards `model::drive(LABEL, x)` calls.
+    drives: Option<&'a HashMap<crate::element::Label, crate::element::Drive>>,
+    /// A check before any state exists: out-of-domain arguments of built-in functions give
+    /// NaN instead of an error (the placeholder values of the reads cause them).
+    lenient: bool,
 }
 
 impl<'a> Evaluator<'a> {
     pub fn new(tokens: &'a [Spanned], vars: &'a mut Variables, sources: &'a Sources, end: Span) -> Self {
-        Evaluator { tokens, pos: 0, vars, sources, end, depth: 0, overrides: None, functions: None }
+        Evaluator { tokens, pos: 0, vars, sources, end, depth: 0, overrides: None, functions: None, reads: None, state: None, drives: None, lenient: false }
+    }
+
+    /// Makes the `model::` state functions read `reads`; `state` is the element state of a
+    /// string drive's evaluation (`None` while the file is read). A check (`Reads::Labels`)
+    /// is lenient with the domains of built-in functions.
+    pub fn with_reads(mut self, reads: Reads<'a>, state: Option<&'a dyn crate::element::ElementState>) -> Self {
+        self.lenient = matches!(reads, Reads::Labels(_));
+        self.reads = Some(reads);
+        self.state = state;
+        self
+    }
+
+    /// Makes `model::drive(LABEL, x)` call these drive callers.
+    pub fn with_drives(mut self, drives: &'a HashMap<crate::element::Label, crate::element::Drive>) -> Self {
+        self.drives = Some(drives);
+        self
     }
 
     /// Makes `model::sf::NAME(x)` call these scalar functions (modelns.cc: the
@@ -377,8 +403,12 @@ impl<'a> Evaluator<'a> {
                             self.pos += 1;
                             return self.scalar_function(&f, span);
                         }
-                        ("model", _) => return Err(self.err(span, "the 'model' namespace reads run-time values of nodes and elements and is not supported by romdyn")),
-                        (ns, _) => return Err(self.err(span, format!("unknown namespace '{ns}' (romdyn knows 'default' and 'model::sf')"))),
+                        ("model", Some(f)) => {
+                            self.pos += 1;
+                            return self.model_function(&f, span);
+                        }
+                        ("model", None) => return Err(self.err(span, "model:: expects a function name")),
+                        (ns, _) => return Err(self.err(span, format!("unknown namespace '{ns}' (romdyn knows 'default' and 'model')"))),
                     }
                 }
                 if self.symbol() == Some("(") {
@@ -390,6 +420,79 @@ impl<'a> Evaluator<'a> {
                 }
             }
             other => Err(self.err(span, format!("expected a value (a number, a variable, a function call or '('), found {}", describe(other)))),
+        }
+    }
+
+    /// The arguments of a call whose '(' is next, as values.
+    fn arguments(&mut self, what: &str, span: Span) -> Result<Vec<TypedValue>, MbdynError> {
+        if !self.eat("(") {
+            return Err(self.err(span, format!("{what}: expected '(' and the arguments")));
+        }
+        let mut args = Vec::new();
+        if self.eat(")") {
+            return Ok(args);
+        }
+        loop {
+            args.push(self.statements()?);
+            if self.eat(",") {
+                continue;
+            }
+            if self.eat(")") {
+                return Ok(args);
+            }
+            return Err(self.err(span, format!("unbalanced parenthesis in the call of '{what}': expected ',' or ')'")));
+        }
+    }
+
+    /// `model::NAME…` other than `model::sf::` (modelns.cc): the state functions, the
+    /// structural nodes' private data, `model::drive`; the rest is refused by name.
+    fn model_function(&mut self, name: &str, span: Span) -> Result<TypedValue, MbdynError> {
+        let what = format!("model::{name}");
+        let no_reads = |e: &Self| e.err(span, format!("{what} reads the model's state, which is not available here"));
+        let real = |e: &Self, v: &TypedValue| v.real().ok_or_else(|| e.err(span, format!("{what} takes numbers, found a string")));
+        if super::model_namespace::is_previous_step(name) {
+            return Err(self.err(span, format!("{what} reads the previous time step's state, which romdyn does not keep: not supported")));
+        }
+        if let Some(n) = super::model_namespace::arity(name) {
+            let args = self.arguments(&what, span)?;
+            if args.len() != n {
+                return Err(self.err(span, format!("{what} takes {n} node label(s), found {} argument(s)", args.len())));
+            }
+            let labels = args.iter().map(|a| real(self, a)).collect::<Result<Vec<f64>, _>>()?;
+            let reads = self.reads.ok_or_else(|| no_reads(self))?;
+            return super::model_namespace::state_function(name, &labels, reads).map(TypedValue::Real).map_err(self.at(span));
+        }
+        match name {
+            "node" => {
+                let kind = if self.eat("::") { self.word(0).map(str::to_string) } else { None };
+                if kind.as_deref() != Some("structural") {
+                    return Err(self.err(span, "model::node:: reads structural nodes only in romdyn: expected model::node::structural(LABEL, \"NAME[i]\")"));
+                }
+                self.pos += 1;
+                let what = "model::node::structural";
+                let args = self.arguments(what, span)?;
+                let [label, TypedValue::Str(data)] = &args[..] else {
+                    return Err(self.err(span, format!("{what} takes a node label and a private data name in double quotes, e.g. (1, \"X[3]\")")));
+                };
+                let label = real(self, label)?;
+                let reads = self.reads.ok_or_else(|| no_reads(self))?;
+                super::model_namespace::node_private_data(label, data, reads).map(TypedValue::Real).map_err(self.at(span))
+            }
+            "drive" => {
+                let args = self.arguments(&what, span)?;
+                if args.len() != 2 {
+                    return Err(self.err(span, format!("{what} takes a drive caller label and its argument, found {} argument(s)", args.len())));
+                }
+                let (label, x) = (real(self, &args[0])?, real(self, &args[1])?);
+                let (Some(table), Some(reads)) = (self.drives, self.reads) else {
+                    return Err(self.err(span, "model::drive: romdyn calls drive callers in string drives only"));
+                };
+                super::model_namespace::drive(table, label, x, reads, self.state).map(TypedValue::Real).map_err(self.at(span))
+            }
+            "element" => Err(self.err(span, "model::element:: reads elements' private data, which romdyn does not support")),
+            "current" => Err(self.err(span, "model::current reads the data an element card publishes while it is read (a distance's or a rod's length), which romdyn does not support")),
+            "drivep" => Err(self.err(span, "model::drivep (a drive caller's derivative) is not supported by romdyn")),
+            _ => Err(self.err(span, format!("unknown function '{what}' of the model namespace"))),
         }
     }
 
@@ -452,7 +555,10 @@ impl<'a> Evaluator<'a> {
             return Err(self.err(span, format!("'{name}' takes {want} argument(s), found {}", args.len())));
         }
         let reals = args.iter().map(|a| a.real().ok_or_else(|| self.err(span, format!("'{name}' takes numbers, found a string")))).collect::<Result<Vec<f64>, _>>()?;
-        call(name, &reals).map_err(self.at(span))
+        match call(name, &reals) {
+            Err(_) if self.lenient => Ok(TypedValue::Real(f64::NAN)),
+            result => result.map_err(self.at(span)),
+        }
     }
 }
 

@@ -70,6 +70,19 @@ struct Cards {
 fn cards(doc: &Document) -> Result<Cards, MbdynError> {
     let mut out = Cards::default();
     out.drives.variables = doc.variables.clone();
+    // The structural nodes `model::` functions of string drives may read (drive callers are
+    // read before the nodes): `structural: LABEL, KIND, …` with KIND not `dummy`.
+    for st in block(doc, "nodes").map_or(&[][..], |b| &b.statements).iter().filter(|st| same_keyword(&st.keyword, "structural")) {
+        let dummy = st.args.get(1).and_then(|a| a.keyword.as_deref()).is_some_and(|k| same_keyword(k, "dummy"));
+        if let Some(super::parser::Arg { value: super::parser::Value::Number(x), .. }) = st.args.first()
+            && !dummy
+            && *x >= 0.0
+            && x.fract() == 0.0
+            && *x <= u32::MAX as f64
+        {
+            out.drives.structural_nodes.insert(*x as u32);
+        }
+    }
     for st in doc.cards.iter().filter(|st| known(&st.keyword, &["reference"]).is_some()) {
         if let Some(super::parser::Arg { value: super::parser::Value::Number(x), .. }) = st.args.first()
             && *x >= 0.0
@@ -78,6 +91,13 @@ fn cards(doc: &Document) -> Result<Cards, MbdynError> {
         {
             out.frames.announce(*x as u32, st.span);
         }
+    }
+    for st in block(doc, "drivers").map_or(&[][..], |b| &b.statements) {
+        let mut c = Cursor::new(st, &doc.sources);
+        if !same_keyword(&st.keyword, "file") {
+            return Err(c.error_at(st.span, format!("'{}' in the drivers block is not supported by romdyn (supported: file)", st.keyword)));
+        }
+        super::file_drivers::file_driver(st, &mut c, &mut out.drives.file_drivers)?;
     }
     for st in &doc.cards {
         let mut c = Cursor::new(st, &doc.sources);
@@ -111,9 +131,6 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
         }
     }
     block_order(doc)?;
-    if let Some(st) = block(doc, "drivers").and_then(|b| b.statements.first()) {
-        return Err(src.error(st.span, "file drivers are not supported by romdyn"));
-    }
     // The data block is optional: MBDyn's problem defaults to the initial value problem.
     if let Some(data_block) = block(doc, "data") {
         data(data_block, src)?;
@@ -151,6 +168,9 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
     }
     let mut found: HashMap<&'static str, (usize, Span)> = HashMap::new();
     found.insert("structural nodes", (nodes.0.len(), block(doc, "nodes").map_or(first, |b| b.span)));
+    if let Some(b) = block(doc, "drivers") {
+        found.insert("file drivers", (cards.drives.file_drivers.len(), b.span));
+    }
     let mut labels: HashMap<(&'static str, u32), Span> = HashMap::new();
     let mut gravity: Option<Span> = None;
     let mut central = None;

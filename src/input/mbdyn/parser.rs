@@ -9,7 +9,7 @@
 use std::path::{Path, PathBuf};
 
 use super::diagnostic::{MbdynError, Sources, Span};
-use super::expr::{describe, Evaluator, SetOverrides, Variables};
+use super::expr::{describe, Evaluator, Reads, SetOverrides, Variables};
 use super::lexer::{tokenize, Spanned, Token};
 use super::value::TypedValue;
 
@@ -82,8 +82,35 @@ pub fn known<'k>(keyword: &str, known: &[&'k str]) -> Option<&'k str> {
     known.iter().copied().find(|k| same_keyword(k, keyword))
 }
 
+/// The structural nodes as written so far, for the `model` namespace's state functions in
+/// `set:`, `remark:` and the numbers of later statements (MBDyn evaluates them while it
+/// reads, on the nodes it has read: `StructNode::GetXCurr` is the written position then).
+/// Built with the same readers as the model; a statement they refuse adds nothing here
+/// (the model's build reports it).
+#[derive(Default)]
+struct NodesSoFar {
+    frames: super::references::Frames,
+    nodes: super::nodes::Nodes,
+    known: std::collections::HashMap<u32, crate::element::NodeKinematics>,
+}
+
+impl NodesSoFar {
+    fn read(&mut self, st: &Statement, sources: &Sources, in_nodes_block: bool) {
+        let mut c = super::cursor::Cursor::new(st, sources);
+        if known(&st.keyword, &["reference"]).is_some() {
+            let _ = super::references::reference(st, &mut c, &mut self.frames);
+        } else if in_nodes_block && same_keyword(&st.keyword, "structural") && super::nodes::node_statement(st, &mut c, &self.frames, &mut self.nodes).is_ok() {
+            if let Some(e) = self.nodes.0.last().filter(|e| !e.dummy) {
+                let n = &e.node;
+                self.known.insert(n.label, crate::element::NodeKinematics { x: n.position, r: n.orientation, xdot: n.velocity, omega: n.angular_velocity });
+            }
+        }
+    }
+}
+
 struct Reader {
     doc: Document,
+    nodes_so_far: NodesSoFar,
     stack: Vec<PathBuf>,
     open: Option<Block>,
     seq: usize,
@@ -117,7 +144,7 @@ pub fn parse_text_with(text: &str, name: &Path, overrides: &SetOverrides) -> Res
 
 impl Reader {
     fn new(overrides: &SetOverrides) -> Self {
-        Reader { doc: Document::default(), stack: Vec::new(), open: None, seq: 0, overrides: overrides.clone() }
+        Reader { doc: Document::default(), nodes_so_far: NodesSoFar::default(), stack: Vec::new(), open: None, seq: 0, overrides: overrides.clone() }
     }
 
     fn finish(mut self, path: &Path) -> Result<Document, MbdynError> {
@@ -185,7 +212,7 @@ impl Reader {
                 if body.is_empty() {
                     return Err(self.doc.sources.error(end, "set: expected an expression, e.g. 'set: real L = 1.;'"));
                 }
-                Evaluator::new(body, &mut self.doc.variables, &self.doc.sources, end).with_overrides(&self.overrides).evaluate()?;
+                Evaluator::new(body, &mut self.doc.variables, &self.doc.sources, end).with_overrides(&self.overrides).with_reads(Reads::Nodes(&self.nodes_so_far.known), None).evaluate()?;
                 return Ok(());
             }
             Some(kw @ ("begin" | "end")) => return self.block(kw, body, first.span, end),
@@ -200,6 +227,8 @@ impl Reader {
         }
         let args = self.args(body, end)?;
         let st = Statement { keyword, span: first.span, args, end, seq: self.seq, driven: None };
+        let in_nodes_block = self.open.as_ref().is_some_and(|b| same_keyword(&b.name, "nodes"));
+        self.nodes_so_far.read(&st, &self.doc.sources, in_nodes_block);
         if known(&st.keyword, &CARDS).is_some() {
             self.doc.cards.push(st);
             return Ok(());
@@ -303,7 +332,7 @@ impl Reader {
         if phrase {
             return Ok(Arg { value: Value::Word(lower.clone()), span, keyword: Some(lower), text });
         }
-        let value = match Evaluator::new(p, &mut self.doc.variables, &self.doc.sources, end).evaluate()? {
+        let value = match Evaluator::new(p, &mut self.doc.variables, &self.doc.sources, end).with_reads(Reads::Nodes(&self.nodes_so_far.known), None).evaluate()? {
             TypedValue::Str(s) => Value::Str(s),
             v => Value::Number(v.real().unwrap_or(0.0)),
         };
