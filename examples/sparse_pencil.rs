@@ -10,24 +10,38 @@
 //! cargo run --release --example sparse_pencil -- solve DIR COUNT [REPEAT]
 //!     reads DIR/E.mtx, DIR/K.mtx, runs sparse_modes(Lowest(COUNT)) REPEAT times on
 //!     E ẏ + K y = 0 and prints the fastest wall time [s] and the eigenvalues [rad/s]
-//!     (Im λ ≥ 0 of each pair), one "re im" line each.
+//!     (Im λ ≥ 0 of each pair), one "re im" line each; with SPARSE_PENCIL_PROGRESS set,
+//!     the solver's progress lines (operator applications, restarts) on stderr.
 //! ```
+//!
+//! The files are written and read by romdyn's Matrix Market code
+//! (`output::matrix_market::write_sparse_matrix`, `input::matrix_market::read_sparse_matrix`).
 
 #[allow(dead_code)]
 #[path = "../tests/common/models.rs"]
 mod models;
 
-use std::io::{BufRead, BufWriter, Write};
+use std::io::Write;
 use std::path::Path;
 
 use anyhow::{bail, Context, Result};
 use faer::Mat;
 use romdyn::dae::{linearize_sparse, Assembler, State};
-use romdyn::linear::krylov::{shift_invert_pencil, sparse_modes, ModeTarget, SparseEigenSettings};
-use romdyn::linear::{ConstraintForm, SparseLinearDae, SparseMatrix};
+use romdyn::linear::krylov::{shift_invert_pencil, sparse_modes_with_progress, ModeTarget, SparseEigenSettings};
+use romdyn::input::matrix_market::read_sparse_matrix;
+use romdyn::linear::{ConstraintForm, SparseLinearDae};
+use romdyn::output::matrix_market::write_sparse_matrix;
 use romdyn::solve::{static_solution, NewtonSettings};
 
 fn main() -> Result<()> {
+    match run() {
+        // `| head`: the reader went away; what it took is complete lines.
+        Err(e) if e.downcast_ref::<std::io::Error>().is_some_and(|e| e.kind() == std::io::ErrorKind::BrokenPipe) => Ok(()),
+        other => other,
+    }
+}
+
+fn run() -> Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     match args.iter().map(String::as_str).collect::<Vec<_>>().as_slice() {
         ["export", n, dir] => export(n.parse().context("N: a number of links")?, Path::new(dir)),
@@ -45,14 +59,14 @@ fn export(n: u32, dir: &Path) -> Result<()> {
     let dae = linearize_sparse(&model, &st, &[], &[])?;
     let (e, k) = shift_invert_pencil(&dae)?;
     std::fs::create_dir_all(dir)?;
-    write_matrix_market(&dir.join("E.mtx"), &e)?;
-    write_matrix_market(&dir.join("K.mtx"), &k)?;
+    write_sparse_matrix(&dir.join("E.mtx"), &e)?;
+    write_sparse_matrix(&dir.join("K.mtx"), &k)?;
     println!("{} equations, nnz(E) = {}, nnz(K) = {}", e.nrows(), e.nnz(), k.nnz());
     Ok(())
 }
 
 fn solve(dir: &Path, count: usize, repeat: usize) -> Result<()> {
-    let (e, k) = (read_matrix_market(&dir.join("E.mtx"))?, read_matrix_market(&dir.join("K.mtx"))?);
+    let (e, k) = (read_sparse_matrix(&dir.join("E.mtx"))?, read_sparse_matrix(&dir.join("K.mtx"))?);
     let n = e.nrows();
     if k.nrows() != n || e.ncols() != n || k.ncols() != n {
         bail!("E.mtx and K.mtx must be square and of one size");
@@ -73,7 +87,12 @@ fn solve(dir: &Path, count: usize, repeat: usize) -> Result<()> {
     let mut result = None;
     for _ in 0..repeat.max(1) {
         let start = std::time::Instant::now();
-        let r = sparse_modes(&dae, ModeTarget::Lowest(count), &SparseEigenSettings::default())?;
+        let verbose = std::env::var_os("SPARSE_PENCIL_PROGRESS").is_some();
+        let r = sparse_modes_with_progress(&dae, ModeTarget::Lowest(count), &SparseEigenSettings::default(), &|line| {
+            if verbose {
+                eprintln!("{line}");
+            }
+        })?;
         best = best.min(start.elapsed().as_secs_f64());
         result = Some(r);
     }
@@ -85,39 +104,4 @@ fn solve(dir: &Path, count: usize, repeat: usize) -> Result<()> {
         writeln!(out, "{:.17e} {:.17e}", m.lambda.re, m.lambda.im)?;
     }
     Ok(())
-}
-
-/// Matrix Market coordinate real general (1-based indices).
-fn write_matrix_market(path: &Path, m: &SparseMatrix) -> Result<()> {
-    let mut w = BufWriter::new(std::fs::File::create(path).with_context(|| format!("{}", path.display()))?);
-    writeln!(w, "%%MatrixMarket matrix coordinate real general")?;
-    writeln!(w, "{} {} {}", m.nrows(), m.ncols(), m.nnz())?;
-    for (i, j, v) in m.triplets() {
-        writeln!(w, "{} {} {:e}", i + 1, j + 1, v)?;
-    }
-    Ok(w.flush()?)
-}
-
-fn read_matrix_market(path: &Path) -> Result<SparseMatrix> {
-    let name = path.display().to_string();
-    let file = std::io::BufReader::new(std::fs::File::open(path).with_context(|| name.clone())?);
-    let mut lines = file.lines().enumerate().filter(|(_, l)| l.as_ref().map_or(true, |l| !l.starts_with('%')));
-    let (_, size) = lines.next().with_context(|| format!("{name}: no size line"))?;
-    let size: Vec<usize> = size?.split_whitespace().map(str::parse).collect::<Result<_, _>>().with_context(|| format!("{name}: size line"))?;
-    let [nrows, ncols, nnz] = size[..] else { bail!("{name}: the size line must be \"rows cols entries\"") };
-    let mut entries = Vec::with_capacity(nnz.min(1 << 26));
-    for (no, line) in lines {
-        let line = line?;
-        let f: Vec<&str> = line.split_whitespace().collect();
-        let [i, j, v] = f[..] else { bail!("{name}:{}: expected \"row col value\"", no + 1) };
-        let (i, j): (usize, usize) = (i.parse()?, j.parse()?);
-        if i == 0 || j == 0 {
-            bail!("{name}:{}: indices start at 1", no + 1);
-        }
-        entries.push((i - 1, j - 1, v.parse::<f64>()?));
-    }
-    if entries.len() != nnz {
-        bail!("{name}: {} entries, the size line says {nnz}", entries.len());
-    }
-    SparseMatrix::from_triplets(nrows, ncols, entries).with_context(|| format!("{name}: an index is out of range"))
 }

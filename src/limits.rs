@@ -10,6 +10,10 @@ pub const MAX_INPUT_BYTES: u64 = 256 << 20;
 /// matrix). Dense eigenanalysis of such a pencil already takes hours.
 pub const MAX_DENSE_ENTRIES: usize = 50_000_000;
 
+/// Largest row or column count of a sparse matrix read from a file (5e7: its row
+/// pointers alone take 400 MB).
+pub const MAX_SPARSE_DIMENSION: usize = 50_000_000;
+
 /// Most time steps of one run (1e8): `(final time − initial time) / time step`.
 pub const MAX_TIME_STEPS: f64 = 1e8;
 

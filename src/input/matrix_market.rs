@@ -1,12 +1,13 @@
 //! Matrix Market files (`coordinate` or `array`; `real`, `integer` or `pattern`;
-//! `general`, `symmetric` or `skew-symmetric`) read into dense matrices.
+//! `general`, `symmetric` or `skew-symmetric`) read into dense or sparse matrices.
 
 use std::path::{Path, PathBuf};
 
 use faer::Mat;
 
 use super::text_file::{read_text_file, TextFileError};
-use crate::limits::check_dense;
+use crate::limits::{check_dense, MAX_SPARSE_DIMENSION};
+use crate::linear::SparseMatrix;
 
 /// A malformed Matrix Market file.
 #[derive(Debug, thiserror::Error)]
@@ -32,6 +33,66 @@ pub fn read_matrix(file: &Path) -> Result<Mat<f64>, MatrixMarketError> {
 
 /// Parses the text of a Matrix Market file (`file` names it in errors).
 pub fn parse_matrix(text: &str, file: &Path) -> Result<Mat<f64>, MatrixMarketError> {
+    struct Dense(Mat<f64>);
+    impl Entries for Dense {
+        fn start(&mut self, nrows: usize, ncols: usize, _: usize, _: usize) -> Result<(), String> {
+            check_dense(nrows, ncols, || "the matrix".into()).map_err(|e| e.to_string())?;
+            self.0 = Mat::zeros(nrows, ncols);
+            Ok(())
+        }
+        fn add(&mut self, i: usize, j: usize, v: f64) {
+            self.0[(i, j)] += v;
+        }
+    }
+    let mut m = Dense(Mat::zeros(0, 0));
+    parse_entries(text, file, &mut m)?;
+    Ok(m.0)
+}
+
+/// Reads a Matrix Market file into a sparse matrix (duplicates summed, as for a dense one).
+pub fn read_sparse_matrix(file: &Path) -> Result<SparseMatrix, MatrixMarketError> {
+    let text = read_text_file(file)?;
+    parse_sparse_matrix(&text, file)
+}
+
+/// Parses the text of a Matrix Market file into a sparse matrix: memory in proportion to
+/// the entries present and the row count, which must be at most
+/// [`MAX_SPARSE_DIMENSION`] (checked before anything is allocated).
+pub fn parse_sparse_matrix(text: &str, file: &Path) -> Result<SparseMatrix, MatrixMarketError> {
+    struct Sparse<'a> {
+        text: &'a str,
+        size: (usize, usize),
+        entries: Vec<(usize, usize, f64)>,
+    }
+    impl Entries for Sparse<'_> {
+        fn start(&mut self, nrows: usize, ncols: usize, expected: usize, _: usize) -> Result<(), String> {
+            if nrows.max(ncols) > MAX_SPARSE_DIMENSION {
+                return Err(format!("the matrix is {nrows} x {ncols}, more than romdyn's budget of {MAX_SPARSE_DIMENSION} rows or columns for a sparse matrix"));
+            }
+            self.size = (nrows, ncols);
+            // Each entry takes a line of at least 4 bytes: the declared count is not
+            // trusted beyond the text.
+            self.entries.reserve(expected.min(self.text.len() / 4));
+            Ok(())
+        }
+        fn add(&mut self, i: usize, j: usize, v: f64) {
+            self.entries.push((i, j, v));
+        }
+    }
+    let mut m = Sparse { text, size: (0, 0), entries: Vec::new() };
+    parse_entries(text, file, &mut m)?;
+    SparseMatrix::from_triplets(m.size.0, m.size.1, m.entries).ok_or_else(|| unreachable!("indices are checked against the size line"))
+}
+
+/// Where the entries of a Matrix Market file go: `start(rows, cols, entries, size line)`
+/// once the size line is read (an error message for the size line), then `add(i, j, v)`
+/// per entry (0-based, symmetric storage expanded).
+trait Entries {
+    fn start(&mut self, nrows: usize, ncols: usize, expected: usize, line: usize) -> Result<(), String>;
+    fn add(&mut self, i: usize, j: usize, v: f64);
+}
+
+fn parse_entries(text: &str, file: &Path, sink: &mut dyn Entries) -> Result<(), MatrixMarketError> {
     let err = |line: usize, column: usize, message: String| MatrixMarketError::Syntax { file: file.to_path_buf(), line, column, message };
     let mut lines = text.lines().enumerate().map(|(i, l)| (i + 1, l));
     let (_, header) = lines.next().ok_or_else(|| err(1, 1, "empty file: expected a '%%MatrixMarket matrix ...' header".into()))?;
@@ -66,15 +127,15 @@ pub fn parse_matrix(text: &str, file: &Path) -> Result<Mat<f64>, MatrixMarketErr
     if symmetry != Symmetry::General && nrows != ncols {
         return Err(err(size_line, 1, format!("a {} matrix must be square, the size line declares {nrows} x {ncols}", words[4])));
     }
-    check_dense(nrows, ncols, || "the matrix".into()).map_err(|e| err(size_line, 1, e.to_string()))?;
     let expected = if coordinate {
-        size[2]
+        Some(size[2])
     } else if symmetry == Symmetry::General {
-        nrows * ncols
+        nrows.checked_mul(ncols)
     } else {
-        ncols * (ncols + 1) / 2 - if symmetry == Symmetry::Skew { ncols } else { 0 }
+        ncols.checked_mul(ncols + 1).map(|x| x / 2 - if symmetry == Symmetry::Skew { ncols } else { 0 })
     };
-    let mut m = Mat::<f64>::zeros(nrows, ncols);
+    let expected = expected.ok_or_else(|| err(size_line, 1, format!("an array of {nrows} x {ncols} entries is too large")))?;
+    sink.start(nrows, ncols, expected, size_line).map_err(|e| err(size_line, 1, e))?;
     let mut count = 0;
     // Column-major; symmetric storage lists the lower triangle, skew-symmetric the strict one.
     let (mut i_arr, mut j_arr) = (usize::from(symmetry == Symmetry::Skew), 0usize);
@@ -116,12 +177,12 @@ pub fn parse_matrix(text: &str, file: &Path) -> Result<Mat<f64>, MatrixMarketErr
             }
             (i, j, v)
         };
-        m[(i, j)] += v;
+        sink.add(i, j, v);
         if i != j {
             match symmetry {
                 Symmetry::General => {}
-                Symmetry::Symmetric => m[(j, i)] += v,
-                Symmetry::Skew => m[(j, i)] -= v,
+                Symmetry::Symmetric => sink.add(j, i, v),
+                Symmetry::Skew => sink.add(j, i, -v),
             }
         }
         count += 1;
@@ -130,7 +191,7 @@ pub fn parse_matrix(text: &str, file: &Path) -> Result<Mat<f64>, MatrixMarketErr
         let last = text.lines().count();
         return Err(err(last, 1, format!("found {count} entries, the size line declares {expected}")));
     }
-    Ok(m)
+    Ok(())
 }
 
 /// 1-based column of the `k`-th (1-based) whitespace-separated field of `line`.
@@ -210,7 +271,33 @@ mod tests {
         for (text, want) in cases {
             let got = parse(text).err().unwrap_or_default();
             assert!(got.starts_with(want), "{text:?}\n got: {got}\nwant: {want}");
+            // The sparse reader gives the same errors.
+            let got = parse_sparse_matrix(text, Path::new("m.mtx")).err().map(|e| e.to_string()).unwrap_or_default();
+            assert!(got.starts_with(want), "sparse {text:?}\n got: {got}\nwant: {want}");
         }
+    }
+
+    /// The sparse reader gives the dense reader's matrix (duplicates summed, symmetric
+    /// storage expanded), and refuses a size it could not hold before allocating.
+    #[test]
+    fn sparse_reader_matches_the_dense_one_and_checks_sizes() -> Result<(), String> {
+        for text in [
+            "%%MatrixMarket matrix coordinate real symmetric\n% comment\n3 3 3\n1 1 4\n2 1 -1\n3 2 2.5\n",
+            "%%MatrixMarket matrix coordinate real general\n2 3 3\n1 3 1\n1 3 2\n2 1 -7e-3\n",
+            "%%MatrixMarket matrix coordinate real skew-symmetric\n2 2 1\n2 1 5\n",
+            "%%MatrixMarket matrix array real general\n2 2\n1\n0\n3\n4\n",
+        ] {
+            let sparse = parse_sparse_matrix(text, Path::new("m.mtx")).map_err(|e| e.to_string())?;
+            assert_eq!(sparse.to_dense(), parse(text)?, "{text:?}");
+        }
+        let huge = parse_sparse_matrix("%%MatrixMarket matrix coordinate real general\n50000001 1 0\n", Path::new("m.mtx")).err().map(|e| e.to_string()).unwrap_or_default();
+        assert!(huge.starts_with("m.mtx:2:1: the matrix is 50000001 x 1, more than romdyn's budget of 50000000 rows"), "{huge}");
+        let ok = parse_sparse_matrix("%%MatrixMarket matrix coordinate real general\n50000000 1 0\n", Path::new("m.mtx")).map_err(|e| e.to_string())?;
+        assert_eq!((ok.nrows(), ok.nnz()), (50_000_000, 0));
+        // A declared entry count far beyond the text is not reserved.
+        let lie = parse_sparse_matrix("%%MatrixMarket matrix coordinate real general\n2 2 4000000000000\n1 1 1\n", Path::new("m.mtx")).err().map(|e| e.to_string()).unwrap_or_default();
+        assert!(lie.starts_with("m.mtx:3:1: found 1 entries, the size line declares 4000000000000"), "{lie}");
+        Ok(())
     }
 
 }

@@ -102,6 +102,22 @@ impl SparseMatrix {
         out
     }
 
+    /// `M v` of a real `v`.
+    pub fn mul_real(&self, v: &Col<f64>) -> Col<f64> {
+        Col::from_fn(self.nrows, |i| (self.start[i]..self.start[i + 1]).map(|k| v[self.col[k]] * self.val[k]).sum())
+    }
+
+    /// `Mᵀ v` of a real `v`.
+    pub fn mul_t_real(&self, v: &Col<f64>) -> Col<f64> {
+        let mut out = Col::<f64>::zeros(self.ncols);
+        for i in 0..self.nrows {
+            for k in self.start[i]..self.start[i + 1] {
+                out[self.col[k]] += v[i] * self.val[k];
+            }
+        }
+        out
+    }
+
     /// `M X` for a dense `X`.
     pub fn mul_dense(&self, x: &Mat<f64>) -> Mat<f64> {
         let mut out = Mat::<f64>::zeros(self.nrows, x.ncols());

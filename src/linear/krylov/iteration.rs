@@ -1,18 +1,168 @@
 //! Krylov–Schur iteration (Stewart, "A Krylov–Schur algorithm for large eigenproblems",
 //! SIAM J. Matrix Anal. Appl. 23, 2001) for the eigenvalues θ of largest modulus of an
 //! operator applied to vectors: Arnoldi expansion with full reorthogonalization (classical
-//! Gram–Schmidt twice), Schur form of the Rayleigh quotient sorted by |θ|, truncation to the
-//! wanted Schur vectors, and locking of the converged leading ones (their coupling to the
-//! residual vector is set to zero once below the tolerance).
+//! Gram–Schmidt twice, as two block projections through faer's matrix products), Schur form
+//! of the Rayleigh quotient sorted by |θ|, truncation to the wanted Schur vectors, and
+//! locking of the converged leading ones (their coupling to the residual vector is set to
+//! zero once below the tolerance).
+//!
+//! The basis is complex for a complex operator and real for a real one (a real shift of
+//! the real pencil): a real basis holds each complex pair with its conjugate, at a quarter
+//! of the arithmetic per entry and one real solve per operator application instead of
+//! two. Its restart keeps a real orthonormal basis of the wanted invariant subspace of the
+//! Rayleigh quotient (conjugate pairs kept whole) in place of the complex Schur vectors.
 
-use faer::{c64, Col, Mat};
+use faer::{c64, Col, ColRef, Mat, MatRef};
 
 use super::schur::{schur, sort_schur};
 use super::KrylovError;
 
+/// The entries of a Krylov basis: `f64` (real operator) or `c64`.
+pub(super) trait Scalar: faer::traits::ComplexField<Real = f64> + Copy + Send + Sync + 'static {
+    /// The real basis: wanted θ are counted with `Im θ ≥ 0` only (their conjugates come along).
+    const REAL: bool;
+    fn to_c64(self) -> c64;
+    /// `z` (its real part for a real basis).
+    fn from_c64(z: c64) -> Self;
+    fn times(self, f: f64) -> Self;
+    /// Eigenvalues and unit eigenvectors of a small dense matrix (faer's dense eigensolver).
+    fn eigen(h: &Mat<Self>) -> Option<(Vec<c64>, Mat<c64>)>;
+    /// An orthonormal basis of the span of the leading `keep` columns of `y` (eigenvectors
+    /// or Schur vectors for the diagonal `theta`, in order), with `keep` columns (complex:
+    /// their QR, so that leading columns span leading vectors) or, for a real basis, a real
+    /// one of the nearest count that does not split a conjugate pair; `None` if there is
+    /// none.
+    fn kept_basis(y: &Mat<c64>, theta: &[c64], keep: usize) -> Option<Mat<Self>>;
+}
+
+impl Scalar for c64 {
+    const REAL: bool = false;
+    fn to_c64(self) -> c64 {
+        self
+    }
+    fn from_c64(z: c64) -> Self {
+        z
+    }
+    fn times(self, f: f64) -> Self {
+        self * f
+    }
+    fn eigen(h: &Mat<c64>) -> Option<(Vec<c64>, Mat<c64>)> {
+        let e = h.eigen().ok()?;
+        Some((e.S().column_vector().iter().copied().collect(), e.U().to_owned()))
+    }
+    fn kept_basis(y: &Mat<c64>, _: &[c64], keep: usize) -> Option<Mat<c64>> {
+        let qr = y.subcols(0, keep).qr();
+        let r = qr.R();
+        let d0 = r[(0, 0)].norm();
+        (0..keep).all(|i| r[(i, i)].norm() > 1e-6 * d0).then(|| qr.compute_thin_Q())
+    }
+}
+
+impl Scalar for f64 {
+    const REAL: bool = true;
+    fn to_c64(self) -> c64 {
+        c64::new(self, 0.0)
+    }
+    fn from_c64(z: c64) -> Self {
+        z.re
+    }
+    fn times(self, f: f64) -> Self {
+        self * f
+    }
+    fn eigen(h: &Mat<f64>) -> Option<(Vec<c64>, Mat<c64>)> {
+        let e = h.eigen().ok()?;
+        Some((e.S().column_vector().iter().copied().collect(), e.U().to_owned()))
+    }
+    fn kept_basis(y: &Mat<c64>, theta: &[c64], keep: usize) -> Option<Mat<f64>> {
+        // span(Y_k) of a conjugate-closed set of eigenvalues of a real matrix is the
+        // complexification of a real subspace of dimension k, spanned by [Re Y_k, Im Y_k]:
+        // its first k columns of a column-pivoted QR, when the rank is k (the cut does not
+        // split a pair: R[k, k] ≈ 0).
+        let size = y.nrows();
+        // The nearest cuts first: keep, keep + 1, keep - 1, keep + 2, ...
+        let cuts = (0..2 * size).map(|d| if d % 2 == 0 { keep + d / 2 } else { keep.wrapping_sub(d / 2 + 1) });
+        for k in cuts {
+            if k == 0 || k >= size || !closed_under_conjugation(&theta[..k], theta) {
+                continue;
+            }
+            let parts = Mat::<f64>::from_fn(size, 2 * k, |i, j| if j < k { y[(i, j)].re } else { y[(i, j - k)].im });
+            let qr = parts.col_piv_qr();
+            let r = qr.R();
+            let d = |i: usize| if i < r.nrows().min(r.ncols()) { r[(i, i)].abs() } else { 0.0 };
+            if d(k - 1) > 1e-6 * d(0) && d(k) <= 1e-8 * d(0) {
+                return Some(qr.compute_Q().subcols(0, k).to_owned());
+            }
+        }
+        None
+    }
+}
+
+/// `theta` is closed under conjugation (to `1e-8` relative, or `1e-12` of the largest: the
+/// rounding of the eigenvalues near 0 is relative to the matrix).
+fn closed_under_conjugation(theta: &[c64], all: &[c64]) -> bool {
+    let k = theta.len();
+    let top = all.iter().map(|x| x.norm()).fold(0.0, f64::max);
+    let mut used = vec![false; k];
+    for i in 0..k {
+        if used[i] {
+            continue;
+        }
+        let x = theta[i];
+        let tol = 1e-8 * x.norm() + 1e-12 * top;
+        if x.im.abs() <= tol {
+            used[i] = true;
+            continue;
+        }
+        match (i + 1..k).find(|&j| !used[j] && (theta[j] - x.conj()).norm() <= tol) {
+            Some(j) => {
+                used[i] = true;
+                used[j] = true;
+            }
+            None => return false,
+        }
+    }
+    true
+}
+
+/// The Ritz values of the Rayleigh quotient `square` sorted by `key` (decreasing, stable),
+/// their unit eigenvectors, and the sorted Schur vectors when the Schur form was used.
+struct Ritz {
+    theta: Vec<c64>,
+    y: Mat<c64>,
+    schur: Option<Mat<c64>>,
+}
+
+/// Eigenvectors by faer's dense eigensolver (its Hessenberg QR with aggressive early
+/// deflation), or from the sorted Schur form of `schur.rs` when `schur_form` (or when that
+/// fails).
+fn ritz<T: Scalar>(square: &Mat<T>, key: &dyn Fn(c64) -> f64, schur_form: bool) -> Result<Ritz, KrylovError> {
+    let size = square.nrows();
+    if !schur_form {
+        if let Some((theta, y)) = T::eigen(square) {
+            if theta.iter().all(|x| x.re.is_finite() && x.im.is_finite()) {
+                let mut order: Vec<usize> = (0..size).collect();
+                order.sort_by(|&a, &b| key(theta[b]).total_cmp(&key(theta[a])));
+                let y = Mat::<c64>::from_fn(size, size, |i, j| y[(i, order[j])]);
+                return Ok(Ritz { theta: order.iter().map(|&i| theta[i]).collect(), y, schur: None });
+            }
+        }
+    }
+    let complex = Mat::<c64>::from_fn(size, size, |i, j| square[(i, j)].to_c64());
+    let (mut t, mut z) = schur(&complex).ok_or_else(|| KrylovError::Breakdown("the Schur form of the Rayleigh quotient did not converge".into()))?;
+    sort_schur(&mut t, &mut z, key);
+    let mut y = Mat::<c64>::zeros(size, size);
+    for i in 0..size {
+        let e = &z * triangular_eigenvector(&t, i);
+        let ne = e.norm_l2();
+        y.col_mut(i).copy_from(&(e / ne));
+    }
+    Ok(Ritz { theta: (0..size).map(|i| t[(i, i)]).collect(), y, schur: Some(z) })
+}
+
 /// What one run is asked for.
 pub(super) struct Settings {
-    /// Number of wanted θ (largest |θ|).
+    /// Number of wanted θ (largest |θ|); for a real basis, of those with `Im θ ≥ 0`
+    /// (`Im λ ≥ 0`: the others are their conjugates).
     pub wanted: usize,
     /// Largest basis size.
     pub basis: usize,
@@ -21,9 +171,6 @@ pub(super) struct Settings {
     pub max_restarts: usize,
     /// Seed of the start vector.
     pub seed: u64,
-    /// Want only θ with `Im θ ≥ 0` (`Im λ ≥ 0`): for a real operator the others are their
-    /// conjugates, so the basis need not hold them.
-    pub upper_half: bool,
 }
 
 /// A converged Ritz pair of the operator, `x` of unit norm.
@@ -39,9 +186,12 @@ pub(super) struct Run {
     pub next: Option<f64>,
     /// Every wanted pair converged.
     pub complete: bool,
+    /// Operator applications and restarts of the run.
+    pub applications: usize,
+    pub restarts: usize,
 }
 
-fn pseudo_random(n: usize, seed: u64) -> Col<c64> {
+fn pseudo_random<T: Scalar>(n: usize, seed: u64) -> Col<T> {
     let mut x = 0x9E37_79B9_7F4A_7C15u64 ^ seed.wrapping_mul(0xBF58_476D_1CE4_E5B9);
     let mut next = move || {
         x ^= x << 13;
@@ -49,18 +199,25 @@ fn pseudo_random(n: usize, seed: u64) -> Col<c64> {
         x ^= x << 17;
         (x >> 11) as f64 / (1u64 << 53) as f64 - 0.5
     };
-    Col::from_fn(n, |_| c64::new(next(), next()))
+    Col::from_fn(n, |_| T::from_c64(c64::new(next(), next())))
 }
 
-/// `w` with its components along `v[:, 0..cols]` removed (classical Gram–Schmidt, a
-/// second pass when needed); the coefficients removed and the norm left.
-fn orthogonalize(v: &Mat<c64>, cols: usize, w: &mut Col<c64>) -> (Col<c64>, f64) {
+fn scale<T: Scalar>(w: &mut Col<T>, f: f64) {
+    for x in w.iter_mut() {
+        *x = x.times(f);
+    }
+}
+
+/// `w` with its components along `v[:, 0..cols]` removed (classical Gram–Schmidt as two
+/// block projections `c = Vᴴ w`, `w ← w − V c`, a second pass when needed); the
+/// coefficients removed and the norm left.
+fn orthogonalize<T: Scalar>(v: &Mat<T>, cols: usize, w: &mut Col<T>) -> (Col<T>, f64) {
     use faer::linalg::matmul::matmul;
     use faer::{Accum, Par};
     let basis = v.subcols(0, cols);
-    let mut h = Col::<c64>::zeros(cols);
-    let mut c = Col::<c64>::zeros(cols);
-    let (one, minus_one) = (c64::new(1.0, 0.0), c64::new(-1.0, 0.0));
+    let mut h = Col::<T>::zeros(cols);
+    let mut c = Col::<T>::zeros(cols);
+    let (one, minus_one) = (T::from_c64(c64::new(1.0, 0.0)), T::from_c64(c64::new(-1.0, 0.0)));
     // Sequential products: these matrix-vector products are too small to gain from threads.
     // A second pass only when the first removed most of `w` (Kahan–Parlett "twice is
     // enough": a norm kept above 1/√2 of the input is orthogonal to working accuracy).
@@ -95,23 +252,43 @@ fn triangular_eigenvector(t: &Mat<c64>, i: usize) -> Col<c64> {
     y
 }
 
+/// `V y` for a basis `v` of either kind and a complex `y`.
+fn combine<T: Scalar>(v: MatRef<'_, T>, y: ColRef<'_, c64>) -> Col<c64> {
+    if T::REAL {
+        let re = Col::<T>::from_fn(y.nrows(), |i| T::from_c64(c64::new(y[i].re, 0.0)));
+        let im = Col::<T>::from_fn(y.nrows(), |i| T::from_c64(c64::new(y[i].im, 0.0)));
+        let (a, b) = (v * &re, v * &im);
+        Col::from_fn(v.nrows(), |i| c64::new(a[i].to_c64().re, b[i].to_c64().re))
+    } else {
+        let y = Col::<T>::from_fn(y.nrows(), |i| T::from_c64(y[i]));
+        let x = v * &y;
+        Col::from_fn(v.nrows(), |i| x[i].to_c64())
+    }
+}
+
 /// Runs Krylov–Schur on `op` (dimension `n`); `progress` is told the number of converged
 /// pairs after each restart.
-pub(super) fn krylov_schur(n: usize, op: &dyn Fn(&Col<c64>) -> Col<c64>, s: &Settings, progress: &dyn Fn(usize)) -> Result<Run, KrylovError> {
+pub(super) fn krylov_schur<T: Scalar>(n: usize, op: &dyn Fn(&Col<T>) -> Col<T>, s: &Settings, progress: &dyn Fn(usize)) -> Result<Run, KrylovError> {
     let m = s.basis.min(n).max(1);
     let wanted = s.wanted.min(m.saturating_sub(1)).max(1).min(n);
-    let mut v = Mat::<c64>::zeros(n, m + 1);
-    let mut h = Mat::<c64>::zeros(m + 1, m);
+    let mut v = Mat::<T>::zeros(n, m + 1);
+    let mut h = Mat::<T>::zeros(m + 1, m);
+    let zero = T::from_c64(c64::new(0.0, 0.0));
+    let mut applications = 0;
+    let apply = |x: &Col<T>, count: &mut usize| {
+        *count += 1;
+        op(x)
+    };
     // Start vector: random, then T³ applied so the (index ≤ 3) components at θ = 0 of the
     // infinite eigenvalues are gone before the Krylov space is built.
-    let mut x = pseudo_random(n, s.seed);
+    let mut x = pseudo_random::<T>(n, s.seed);
     for _ in 0..3 {
-        x = op(&x);
+        x = apply(&x, &mut applications);
         let nx = x.norm_l2();
         if !(nx > 0.0 && nx.is_finite()) {
             return Err(KrylovError::Breakdown("the start vector is in the operator's null space".into()));
         }
-        x /= nx;
+        scale(&mut x, 1.0 / nx);
     }
     v.col_mut(0).copy_from(&x);
     let mut kept = 0;
@@ -120,28 +297,28 @@ pub(super) fn krylov_schur(n: usize, op: &dyn Fn(&Col<c64>) -> Col<c64>, s: &Set
         // Arnoldi expansion from column `kept`.
         let mut size = m;
         for j in kept..m {
-            let mut w = op(&v.col(j).to_owned());
-            if !w.iter().all(|x| x.re.is_finite() && x.im.is_finite()) {
+            let mut w = apply(&v.col(j).to_owned(), &mut applications);
+            if !w.iter().all(|x| x.to_c64().re.is_finite() && x.to_c64().im.is_finite()) {
                 return Err(KrylovError::Breakdown("the operator returned non-finite values".into()));
             }
             let (c, mut beta) = orthogonalize(&v, j + 1, &mut w);
             for i in 0..=j {
                 h[(i, j)] = c[i];
             }
-            let scale = c.norm_l2().max(beta);
-            if beta <= 1e-12 * scale {
+            let scale_c = c.norm_l2().max(beta);
+            if beta <= 1e-12 * scale_c {
                 // Invariant subspace: continue with a fresh direction (coupling zero), purified
                 // like the start vector. When the purified fresh vectors lie in the basis
                 // too, the finite spectrum the operator reaches is exhausted: stop there.
-                h[(j + 1, j)] = c64::new(0.0, 0.0);
+                h[(j + 1, j)] = zero;
                 let mut fresh = None;
                 for attempt in 0..3u64 {
-                    let mut f = pseudo_random(n, s.seed + 1000 + 7 * j as u64 + attempt);
+                    let mut f = pseudo_random::<T>(n, s.seed + 1000 + 7 * j as u64 + attempt);
                     for _ in 0..3 {
-                        f = op(&f);
+                        f = apply(&f, &mut applications);
                         let nf = f.norm_l2();
                         if nf > 0.0 {
-                            f /= nf;
+                            scale(&mut f, 1.0 / nf);
                         }
                     }
                     let nb = orthogonalize(&v, j + 1, &mut f).1;
@@ -161,56 +338,90 @@ pub(super) fn krylov_schur(n: usize, op: &dyn Fn(&Col<c64>) -> Col<c64>, s: &Set
                     }
                 }
             } else {
-                h[(j + 1, j)] = c64::new(beta, 0.0);
+                h[(j + 1, j)] = T::from_c64(c64::new(beta, 0.0));
             }
-            let col = &w / beta;
-            v.col_mut(j + 1).copy_from(&col);
+            scale(&mut w, 1.0 / beta);
+            v.col_mut(j + 1).copy_from(&w);
         }
         let square = h.submatrix(0, 0, size, size).to_owned();
-        let (mut t, mut z) = schur(&square).ok_or_else(|| KrylovError::Breakdown("the Schur form of the Rayleigh quotient did not converge".into()))?;
-        // Wanted first (by decreasing |θ|), then the others (by decreasing |θ|).
-        let upper = s.upper_half;
-        sort_schur(&mut t, &mut z, |x| {
+        // Wanted first (by decreasing |θ|), then the others (by decreasing |θ|). A real
+        // basis keeps both of a pair, the one with Im θ ≥ 0 first.
+        let key = |x: c64| {
             let m = x.norm() / (1.0 + x.norm());
-            if !upper || x.im >= -1e-8 * x.norm() { 1.0 + m } else { m }
-        });
-        // Residual row bᵀ = h[size, :] Z.
-        let b: Vec<c64> = (0..size).map(|j| (0..size).fold(c64::new(0.0, 0.0), |acc, i| acc + h[(size, i)] * z[(i, j)])).collect();
-        let residual_of = |i: usize| {
-            let y = triangular_eigenvector(&t, i);
-            let r = (0..=i).fold(c64::new(0.0, 0.0), |acc, l| acc + b[l] * y[l]).norm();
-            r / (y.norm_l2() * t[(i, i)].norm())
+            if T::REAL { m + if x.im >= -1e-8 * x.norm() { 1e-14 } else { 0.0 } } else { 1.0 + m }
         };
-        let want = wanted.min(size);
-        let converged = (0..want).take_while(|&i| residual_of(i) <= s.tolerance).count();
-        progress(converged);
+        let mut r = ritz(&square, &key, false)?;
+        let theta = r.theta.clone();
+        // Residual of the Ritz pair i: |h[size, :] yᵢ| / |θᵢ| (‖yᵢ‖ = 1).
+        let residual_of = |r: &Ritz, i: usize| (0..size).fold(c64::new(0.0, 0.0), |acc, l| acc + h[(size, l)].to_c64() * r.y[(l, i)]).norm() / theta[i].norm();
+        // The wanted leading entries: `wanted` of them, or for a real basis as many as hold
+        // `wanted` with Im θ ≥ 0, a pair whole.
+        let upper = |i: usize| theta[i].im >= -1e-8 * theta[i].norm();
+        let want = if T::REAL {
+            let mut count = 0;
+            let mut k = 0;
+            while k < size && count < wanted {
+                count += usize::from(upper(k));
+                k += 1;
+            }
+            if k < size && k > 0 && theta[k - 1].im.abs() > 1e-8 * theta[k - 1].norm() && (theta[k] - theta[k - 1].conj()).norm() <= 1e-8 * theta[k].norm() {
+                k += 1;
+            }
+            k
+        } else {
+            wanted.min(size)
+        };
+        let converged = (0..want).take_while(|&i| residual_of(&r, i) <= s.tolerance).count();
+        progress((0..converged).filter(|&i| !T::REAL || upper(i)).count());
         if converged >= want || restarts >= s.max_restarts || size < m {
-            let basis = v.subcols(0, size) * &z;
+            let basis = v.subcols(0, size);
             let pairs = (0..converged)
+                .filter(|&i| !T::REAL || upper(i))
                 .map(|i| {
-                    let y = triangular_eigenvector(&t, i);
-                    let x = &basis * &y;
+                    let x = combine(basis, r.y.col(i));
                     let nx = x.norm_l2();
-                    RitzPair { theta: t[(i, i)], x: x / nx }
+                    RitzPair { theta: theta[i], x: x / nx }
                 })
                 .collect();
-            let next = (size > want).then(|| t[(want, want)].norm());
-            return Ok(Run { pairs, next, complete: converged >= want });
+            let next = (size > want).then(|| theta[want].norm());
+            return Ok(Run { pairs, next, complete: converged >= want, applications, restarts });
         }
-        // Restart: keep the leading Schur vectors (wanted plus half the rest).
+        // Restart: keep the leading Ritz vectors (wanted plus half the rest) as an
+        // orthonormal basis Q of their invariant subspace, checked: ‖H Q − Q S‖ small with
+        // S = Qᴴ H Q; else the sorted Schur vectors (complex QR iteration of schur.rs).
         let keep = (want + (size - want) / 2).min(size - 1).max(want);
-        let new_basis = v.subcols(0, size) * z.subcols(0, keep);
+        let invariant = |q: &Mat<T>| {
+            let hq = &square * q;
+            let s = q.adjoint() * &hq;
+            let e = (&hq - q * &s).norm_l2();
+            (e <= 1e-12 * square.norm_l2()).then_some(s)
+        };
+        let mut q = T::kept_basis(r.schur.as_ref().unwrap_or(&r.y), &theta, keep);
+        let mut rq = q.as_ref().and_then(|q| invariant(q));
+        if rq.is_none() && r.schur.is_none() {
+            r = ritz(&square, &key, true)?;
+            q = T::kept_basis(r.schur.as_ref().unwrap_or(&r.y), &r.theta, keep);
+            rq = q.as_ref().map(|q| q.adjoint() * (&square * q));
+        }
+        let (Some(q), Some(rq)) = (q, rq) else {
+            return Err(KrylovError::Breakdown("no basis of the kept Ritz vectors (a conjugate pair split at every cut)".into()));
+        };
+        let keep = q.ncols();
+        let new_basis = v.subcols(0, size) * &q;
         let last = v.col(size).to_owned();
         v.subcols_mut(0, keep).copy_from(&new_basis);
         v.col_mut(keep).copy_from(&last);
-        h.fill(c64::new(0.0, 0.0));
+        // The Rayleigh quotient S = Qᴴ H Q and the residual row h[size, :] Q.
+        let bq = h.submatrix(size, 0, 1, size) * &q;
+        h.fill(zero);
         for j in 0..keep {
-            for i in 0..=j {
-                h[(i, j)] = t[(i, j)];
+            for i in 0..keep {
+                h[(i, j)] = rq[(i, j)];
             }
-            // Locking: a converged leading Schur vector no longer couples to the residual.
-            let locked = j < converged && b[j].norm() <= s.tolerance * t[(j, j)].norm();
-            h[(keep, j)] = if locked { c64::new(0.0, 0.0) } else { b[j] };
+            // Locking (complex basis, whose S is triangular): a converged leading Schur
+            // vector no longer couples to the residual.
+            let locked = !T::REAL && j < converged && bq[(0, j)].to_c64().norm() <= s.tolerance * rq[(j, j)].to_c64().norm();
+            h[(keep, j)] = if locked { zero } else { bq[(0, j)] };
         }
         kept = keep;
         restarts += 1;

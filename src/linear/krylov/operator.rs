@@ -80,6 +80,20 @@ impl<'a> ShiftInvert<'a> {
         }
     }
 
+    /// `T x` (or the `Tᵀ`-side product) of a real vector for a real shift; `None` for a
+    /// complex shift.
+    pub fn apply_real(&self, x: &Col<f64>, transpose: bool) -> Option<Col<f64>> {
+        let Factor::Real(lu) = &self.factor else { return None };
+        let ex = if transpose { self.pencil.e.mul_t_real(x) } else { self.pencil.e.mul_real(x) };
+        let mut x = ex;
+        if transpose {
+            lu.solve_transpose_in_place(x.as_mat_mut());
+        } else {
+            lu.solve_in_place(x.as_mat_mut());
+        }
+        Some(x)
+    }
+
     /// `T x = (K + σ E)⁻¹ E x`, or `Tᵀ`-side `(K + σ E)⁻ᵀ Eᵀ x` for the left vectors.
     pub fn apply(&self, x: &Col<c64>, transpose: bool) -> Col<c64> {
         let ex = if transpose { self.pencil.e.mul_t_complex(x) } else { self.pencil.e.mul_complex(x) };

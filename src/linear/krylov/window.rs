@@ -74,22 +74,36 @@ pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted:
     // N = 1000 (17012 equations) 3x+1 ran in 0.65 of the time of 2x+1 (4x+1: 0.71, its
     // Schur forms of the 97-wide Rayleigh quotient cost more than the saved restarts).
     let basis = (3 * wanted + 1).max(wanted + 20).min(n);
-    // A real shift of the real pencil: the eigenvalues below the real axis are the
-    // conjugates of those above, so only Im λ ≥ 0 is asked for.
-    let upper_half = sigma.im == 0.0;
-    let settings = |seed| Settings { wanted, basis, tolerance: s.krylov_tolerance, max_restarts: s.max_restarts, seed, upper_half };
+    // A real basis holds both of each complex pair: twice the wanted count, and a basis of
+    // twice that plus one as ARPACK's default (ncv = 2 nev + 1).
+    let real_basis = (4 * wanted + 1).max(2 * wanted + 20).min(n);
+    let real_settings = |seed| Settings { wanted, basis: real_basis, tolerance: s.krylov_tolerance, max_restarts: s.max_restarts, seed };
+    let settings = |seed| Settings { wanted, basis, tolerance: s.krylov_tolerance, max_restarts: s.max_restarts, seed };
     let report = |side: &'static str| move |k: usize| progress(&format!("shift {sigma}: {side} {k}/{wanted} converged"));
     // The two runs are independent (one factorization, read only): the adjoint run goes
     // to a second thread while this one does the right run and reports progress. Its own
     // progress is not reported (the caller's callback need not be thread-safe); both take
-    // about as long.
+    // about as long. A real shift of the real pencil runs in real arithmetic (the
+    // eigenvalues below the real axis are the conjugates of those above).
+    let run = |transpose: bool, seed: u64, progress: &dyn Fn(usize)| -> Result<Run, KrylovError> {
+        if sigma.im == 0.0 {
+            let apply = |x: &Col<f64>| op.apply_real(x, transpose).unwrap_or_else(|| unreachable!("a real shift has a real factorization"));
+            krylov_schur::<f64>(n, &apply, &real_settings(seed), progress)
+        } else {
+            krylov_schur::<c64>(n, &|x| op.apply(x, transpose), &settings(seed), progress)
+        }
+    };
     let (right_run, left_run) = std::thread::scope(|scope| {
-        let left = scope.spawn(|| krylov_schur(n, &|x| op.apply(x, true), &settings(2), &|_| {}));
-        let right = krylov_schur(n, &|x| op.apply(x, false), &settings(1), &report("right"));
+        let left = scope.spawn(|| run(true, 2, &|_| {}));
+        let right = run(false, 1, &report("right"));
         let left = left.join().unwrap_or_else(|_| Err(KrylovError::Breakdown("the adjoint Krylov run panicked".into())));
         (right, left)
     });
     let (right_run, left_run) = (right_run?, left_run?);
+    progress(&format!(
+        "shift {sigma}: {} + {} operator applications, {} + {} restarts (right + adjoint run)",
+        right_run.applications, left_run.applications, right_run.restarts, left_run.restarts
+    ));
     let (right, right_all) = lambdas(&op, &right_run, false);
     let (left, left_all) = lambdas(&op, &left_run, true);
     // Radius of the disc each run covers: the farthest converged eigenvalue (everything
