@@ -13,17 +13,12 @@
 //! match"). `initial beam` (default 1) and `initial node` (default 2) count from 1 in the
 //! list and in the beam; the smearing factor is in `[0, 0.4]`.
 
-use std::collections::HashMap;
-
 use super::cursor::Cursor;
 use super::diagnostic::MbdynError;
 use super::element_context::ElementContext;
 use crate::element::{BeamSlider, Element, NodeKinematics, SliderBeam, SliderKind};
 use crate::kinematics::{Mat3, Vec3};
 use crate::model::Label;
-
-/// The node labels of each `beam3` read so far, by beam label.
-pub type BeamNodes = HashMap<Label, [Label; 3]>;
 
 fn orientation(c: &mut Cursor, ctx: &ElementContext, node: Label, what: &str, same: bool) -> Result<(), MbdynError> {
     if c.accept("orientation") || c.accept("hinge") {

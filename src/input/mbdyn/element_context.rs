@@ -27,13 +27,16 @@ pub enum Parsed {
 }
 
 /// Everything an element statement can refer to.
+/// The node labels of each `beam3` read so far, by beam label.
+pub type BeamNodes = std::collections::HashMap<crate::model::Label, [crate::model::Label; 3]>;
+
 pub struct ElementContext<'a> {
     pub nodes: &'a Nodes,
     pub frames: &'a Frames,
     pub drives: &'a Drives,
     pub laws: &'a Laws,
     /// The node labels of the beams read so far (a beam slider names them).
-    pub beams: &'a super::beam_slider::BeamNodes,
+    pub beams: &'a BeamNodes,
     /// The statement being read (cards must come before it).
     pub seq: usize,
 }

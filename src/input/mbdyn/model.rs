@@ -175,7 +175,7 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
     let mut gravity: Option<Span> = None;
     let mut central = None;
     let mut bodies = Vec::new();
-    let mut beams = super::beam_slider::BeamNodes::new();
+    let mut beams = super::element_context::BeamNodes::new();
     for st in block(doc, "elements").map_or(&[][..], |b| &b.statements) {
         let mut c = Cursor::new(st, src);
         let ctx = ElementContext { nodes: &nodes, frames: &cards.frames, drives: &cards.drives, laws: &cards.laws, beams: &beams, seq: st.seq };
