@@ -35,9 +35,11 @@ mod references;
 mod scalar_functions;
 mod screw;
 mod value;
+mod written_nodes;
 
 pub use diagnostic::MbdynError;
 pub use expr::{SetOverrides, Variable, Variables};
 pub use model::{build, read_model, read_model_text, read_model_with, MbdynModel};
-pub use parser::{parse_file, parse_file_with, parse_text, parse_text_with, Document};
+pub use parser::Document;
+pub use written_nodes::{parse_file, parse_file_with, parse_text, parse_text_with};
 pub use value::TypedValue;

@@ -6,12 +6,14 @@
 //! Every argument is evaluated when its statement is read, in file order, as MBDyn does:
 //! a `set:` further down does not change values above it.
 
+use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
 use super::diagnostic::{MbdynError, Sources, Span};
 use super::expr::{describe, Evaluator, Reads, SetOverrides, Variables};
 use super::lexer::{tokenize, Spanned, Token};
 use super::value::TypedValue;
+use crate::element::NodeKinematics;
 
 /// An evaluated argument.
 #[derive(Clone, Debug, PartialEq)]
@@ -82,69 +84,48 @@ pub fn known<'k>(keyword: &str, known: &[&'k str]) -> Option<&'k str> {
     known.iter().copied().find(|k| same_keyword(k, keyword))
 }
 
-/// The structural nodes as written so far, for the `model` namespace's state functions in
+/// What the layer above the parser learns from each statement as it is read, and gives back:
+/// the structural nodes written so far, for the `model` namespace's state functions in
 /// `set:`, `remark:` and the numbers of later statements (MBDyn evaluates them while it
 /// reads, on the nodes it has read: `StructNode::GetXCurr` is the written position then).
-/// Built with the same readers as the model; a statement they refuse adds nothing here
-/// (the model's build reports it).
-#[derive(Default)]
-struct NodesSoFar {
-    frames: super::references::Frames,
-    nodes: super::nodes::Nodes,
-    known: std::collections::HashMap<u32, crate::element::NodeKinematics>,
-}
-
-impl NodesSoFar {
-    fn read(&mut self, st: &Statement, sources: &Sources, in_nodes_block: bool) {
-        let mut c = super::cursor::Cursor::new(st, sources);
-        if known(&st.keyword, &["reference"]).is_some() {
-            let _ = super::references::reference(st, &mut c, &mut self.frames);
-        } else if in_nodes_block && same_keyword(&st.keyword, "structural") && super::nodes::node_statement(st, &mut c, &self.frames, &mut self.nodes).is_ok() {
-            if let Some(e) = self.nodes.0.last().filter(|e| !e.dummy) {
-                let n = &e.node;
-                self.known.insert(n.label, crate::element::NodeKinematics { x: n.position, r: n.orientation, xdot: n.velocity, omega: n.angular_velocity });
-            }
-        }
-    }
+/// Implemented by [`super::written_nodes::WrittenNodes`] with the node readers, so the parser
+/// does not depend on them.
+pub trait StatementObserver {
+    /// A statement just read (`in_nodes_block`: inside `begin: nodes;`).
+    fn statement(&mut self, st: &Statement, sources: &Sources, in_nodes_block: bool);
+    /// The structural nodes written so far, by label.
+    fn nodes(&self) -> &HashMap<u32, NodeKinematics>;
 }
 
 struct Reader {
     doc: Document,
-    nodes_so_far: NodesSoFar,
+    observer: Box<dyn StatementObserver>,
     stack: Vec<PathBuf>,
     open: Option<Block>,
     seq: usize,
     overrides: SetOverrides,
 }
 
-/// Reads and parses an MBDyn input file (and its includes).
-pub fn parse_file(path: &Path) -> Result<Document, MbdynError> {
-    parse_file_with(path, &SetOverrides::new())
-}
-
-/// Parses text as if it were the file `name` (includes resolve relative to its folder).
-pub fn parse_text(text: &str, name: &Path) -> Result<Document, MbdynError> {
-    parse_text_with(text, name, &SetOverrides::new())
-}
-
-/// [`parse_file`] with `set:` variables overridden (a design point); a name the file never
-/// declares is an error.
-pub fn parse_file_with(path: &Path, overrides: &SetOverrides) -> Result<Document, MbdynError> {
-    let mut r = Reader::new(overrides);
+/// Reads and parses an MBDyn input file (and its includes), telling `observer` of each
+/// statement; `set:` variables overridden by `overrides` (a name the file never declares is
+/// an error).
+pub fn parse_file_observed(path: &Path, overrides: &SetOverrides, observer: Box<dyn StatementObserver>) -> Result<Document, MbdynError> {
+    let mut r = Reader::new(overrides, observer);
     r.read(path, None)?;
     r.finish(path)
 }
 
-/// [`parse_text`] with `set:` variables overridden (a design point).
-pub fn parse_text_with(text: &str, name: &Path, overrides: &SetOverrides) -> Result<Document, MbdynError> {
-    let mut r = Reader::new(overrides);
+/// [`parse_file_observed`] on text, as if it were the file `name` (includes resolve relative
+/// to its folder).
+pub fn parse_text_observed(text: &str, name: &Path, overrides: &SetOverrides, observer: Box<dyn StatementObserver>) -> Result<Document, MbdynError> {
+    let mut r = Reader::new(overrides, observer);
     r.read_text(text.to_string(), name)?;
     r.finish(name)
 }
 
 impl Reader {
-    fn new(overrides: &SetOverrides) -> Self {
-        Reader { doc: Document::default(), nodes_so_far: NodesSoFar::default(), stack: Vec::new(), open: None, seq: 0, overrides: overrides.clone() }
+    fn new(overrides: &SetOverrides, observer: Box<dyn StatementObserver>) -> Self {
+        Reader { doc: Document::default(), observer, stack: Vec::new(), open: None, seq: 0, overrides: overrides.clone() }
     }
 
     fn finish(mut self, path: &Path) -> Result<Document, MbdynError> {
@@ -212,7 +193,7 @@ impl Reader {
                 if body.is_empty() {
                     return Err(self.doc.sources.error(end, "set: expected an expression, e.g. 'set: real L = 1.;'"));
                 }
-                Evaluator::new(body, &mut self.doc.variables, &self.doc.sources, end).with_overrides(&self.overrides).with_reads(Reads::Nodes(&self.nodes_so_far.known), None).evaluate()?;
+                Evaluator::new(body, &mut self.doc.variables, &self.doc.sources, end).with_overrides(&self.overrides).with_reads(Reads::Nodes(self.observer.nodes()), None).evaluate()?;
                 return Ok(());
             }
             Some(kw @ ("begin" | "end")) => return self.block(kw, body, first.span, end),
@@ -228,7 +209,7 @@ impl Reader {
         let args = self.args(body, end)?;
         let st = Statement { keyword, span: first.span, args, end, seq: self.seq, driven: None };
         let in_nodes_block = self.open.as_ref().is_some_and(|b| same_keyword(&b.name, "nodes"));
-        self.nodes_so_far.read(&st, &self.doc.sources, in_nodes_block);
+        self.observer.statement(&st, &self.doc.sources, in_nodes_block);
         if known(&st.keyword, &CARDS).is_some() {
             self.doc.cards.push(st);
             return Ok(());
@@ -332,7 +313,7 @@ impl Reader {
         if phrase {
             return Ok(Arg { value: Value::Word(lower.clone()), span, keyword: Some(lower), text });
         }
-        let value = match Evaluator::new(p, &mut self.doc.variables, &self.doc.sources, end).with_reads(Reads::Nodes(&self.nodes_so_far.known), None).evaluate()? {
+        let value = match Evaluator::new(p, &mut self.doc.variables, &self.doc.sources, end).with_reads(Reads::Nodes(self.observer.nodes()), None).evaluate()? {
             TypedValue::Str(s) => Value::Str(s),
             v => Value::Number(v.real().unwrap_or(0.0)),
         };
