@@ -236,18 +236,19 @@ mod tests {
     /// The values of MBDyn's own test `tests/namespaces/model` (node 1 at the origin, node 2
     /// at (1, 2, 3)): its remarks expect position 3.74166, position2 14, distance 3.74166.
     #[test]
-    fn state_functions_give_the_values_of_mbdyns_test() {
+    fn state_functions_give_the_values_of_mbdyns_test() -> Result<(), String> {
         let nodes: HashMap<Label, NodeKinematics> = [(1, kin([0.0; 3], [0.0; 3], [0.0; 3])), (2, kin([1.0, 2.0, 3.0], [0.5, 0.0, 0.0], [0.0, 0.0, 2.0]))].into();
         let r = Reads::Nodes(&nodes);
-        assert!((state_function("position", &[2.0], r).unwrap() - 14f64.sqrt()).abs() < 1e-15);
-        assert_eq!(state_function("position2", &[2.0], r).unwrap(), 14.0);
-        assert_eq!(state_function("ydistance", &[1.0, 2.0], r).unwrap(), 2.0);
-        assert!((state_function("zunitvec", &[1.0, 2.0], r).unwrap() - 3.0 / 14f64.sqrt()).abs() < 1e-15);
-        assert_eq!(state_function("xvelocity", &[2.0], r).unwrap(), 0.5);
-        assert_eq!(state_function("angvrel", &[1.0, 2.0], r).unwrap(), 2.0);
-        assert_eq!(node_private_data(2.0, "X[3]", r).unwrap(), 3.0);
-        assert!(state_function("position", &[7.0], r).unwrap_err().contains("no structural node 7"));
-        assert!(state_function("zunitvec", &[1.0, 1.0], r).unwrap_err().contains("null distance"));
+        assert!((state_function("position", &[2.0], r)? - 14f64.sqrt()).abs() < 1e-15);
+        assert_eq!(state_function("position2", &[2.0], r)?, 14.0);
+        assert_eq!(state_function("ydistance", &[1.0, 2.0], r)?, 2.0);
+        assert!((state_function("zunitvec", &[1.0, 2.0], r)? - 3.0 / 14f64.sqrt()).abs() < 1e-15);
+        assert_eq!(state_function("xvelocity", &[2.0], r)?, 0.5);
+        assert_eq!(state_function("angvrel", &[1.0, 2.0], r)?, 2.0);
+        assert_eq!(node_private_data(2.0, "X[3]", r)?, 3.0);
+        assert!(matches!(state_function("position", &[7.0], r), Err(e) if e.contains("no structural node 7")));
+        assert!(matches!(state_function("zunitvec", &[1.0, 1.0], r), Err(e) if e.contains("null distance")));
         assert!(node_private_data(2.0, "E[1]", r).is_err());
+        Ok(())
     }
 }
