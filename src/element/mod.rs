@@ -31,7 +31,7 @@ mod joint;
 mod scalar_function;
 mod screw;
 
-pub use beam::{shape as beam_shape, Beam3, BeamError, BeamNode, SectionLaw, SectionOrientation};
+pub use beam::{shape as beam_shape, Beam2, Beam3, BeamError, BeamNode, SectionLaw, SectionOrientation};
 pub use beam_slider::{BeamSlider, SliderBeam, SliderKind};
 pub use body::RigidBody;
 pub use cardano::CardanoHinge;

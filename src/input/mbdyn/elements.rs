@@ -49,6 +49,9 @@ pub fn label_space(keyword: &str) -> &'static str {
 pub fn element(st: &Statement, c: &mut Cursor, ctx: &ElementContext) -> Result<Parsed, MbdynError> {
     let kinds = ["body", "joint", "force", "couple", "gravity", "beam", "beam2", "beam3", "automatic structural", "inertia", "output"];
     let Some(kind) = known(&st.keyword, &kinds) else {
+        if known(&st.keyword, &["hbeam", "hbeam2"]).is_some() {
+            return Err(c.error_at(st.span, super::beams::HBEAM_REFUSED));
+        }
         let name = known(&st.keyword, &OTHER_TYPES).unwrap_or(&st.keyword);
         return Err(c.error_at(st.span, format!("element type '{name}' is not supported by romdyn")));
     };
