@@ -203,9 +203,10 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             // joint.cc: offsets after `position` are read and ignored; a 1-D law.
             let a = side(c, ctx, "node 1", Position::IfKeyword, None)?;
             let b = side(c, ctx, "node 2", Position::IfKeyword, Some(&a))?;
-            let law = linear_law(c, 1, ctx.laws, ctx.drives, ctx.seq)?;
+            let law = super::laws::axial_law(c, ctx.laws, ctx.drives, ctx.seq)?;
             let (k, v) = (law.stiffness[(0, 0)], law.viscosity[(0, 0)]);
-            Box::new(DeformableJoint::axial(label, a.anchor(), b.anchor(), k, v, law.prestrain[0], law.prestress[0]))
+            let [elastic, viscous] = law.functions;
+            Box::new(DeformableJoint::axial(label, a.anchor(), b.anchor(), k, v, law.prestrain[0], law.prestress[0]).with_axial_functions(elastic, viscous))
         }
         "invariant deformable hinge" => {
             let a = side(c, ctx, "node 1", Position::IfKeyword, None)?;

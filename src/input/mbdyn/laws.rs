@@ -4,7 +4,10 @@
 //! viscoelastic generic` (viscosity or `proportional, FACTOR`), with the optional
 //! `prestress` and constant `prestrain`; `reference, LABEL` to a `constitutive law:` card.
 //! Laws are read for 1 (rod), 3 (deformable displacement joint and hinge) or 6 (beams)
-//! dimensions.
+//! dimensions. The 1-D `nlsf elastic`, `nlsf viscous` and `nlsf viscoelastic` laws
+//! (constltp_nlsf.cc: `f = k (ε − ε_p) + f′(ε − ε_p) + c ε̇ + f″(ε̇) + f_p`, each scalar
+//! function or `null`) are read by [`axial_law`] for the deformable axial joint, and refused
+//! by name elsewhere.
 
 use std::collections::HashMap;
 
@@ -14,7 +17,7 @@ use super::cursor::Cursor;
 use super::diagnostic::{MbdynError, Span};
 use super::drives::{single_term, template_vec3, Drives};
 use super::parser::Statement;
-use crate::element::Drive;
+use crate::element::{Drive, ScalarFunction};
 use crate::kinematics::{Mat3, Vec3};
 
 /// A linear (visco)elastic law in `dim` dimensions: `f = K (ε − ε_p) + C ε̇ + f_p`.
@@ -24,6 +27,8 @@ pub struct LinearLaw {
     pub viscosity: DMatrix<f64>,
     pub prestrain: DVector<f64>,
     pub prestress: DVector<f64>,
+    /// An `nlsf` law's `f′(ε − ε_p)` and `f″(ε̇)` (1-D).
+    pub functions: [Option<ScalarFunction>; 2],
 }
 
 impl LinearLaw {
@@ -43,13 +48,15 @@ const KINDS: [&str; 9] = [
     "linear viscoelastic generic", "linear viscoelastic isotropic", "linear viscoelastic",
 ];
 
-const UNSUPPORTED: [&str; 18] = [
+const UNSUPPORTED: [&str; 19] = [
     "linear elastic generic axial torsion coupling", "cubic elastic generic", "inverse square elastic", "log elastic", "linear elastic bistop",
     "double linear elastic", "isotropic hardening elastic", "scalar function elastic", "scalar function elastic isotropic",
     "scalar function elastic orthotropic", "linear time variant viscoelastic generic",
     "cubic viscoelastic generic", "double linear viscoelastic", "turbulent viscoelastic", "linear viscoelastic bistop", "shock absorber",
-    "symbolic elastic", "nlsf elastic",
+    "symbolic elastic", "symbolic viscous", "symbolic viscoelastic",
 ];
+
+const NLSF: [&str; 3] = ["nlsf viscoelastic", "nlsf elastic", "nlsf viscous"];
 
 /// The `constitutive law:` cards read so far.
 #[derive(Default)]
@@ -72,14 +79,62 @@ pub fn constitutive_law_card(st: &Statement, c: &mut Cursor, laws: &mut Laws, dr
     if ![1, 3, 6].contains(&dim) {
         return Err(c.error_at(dim_span, format!("a constitutive law has dimension 1, 3 or 6, found {dim}")));
     }
-    let law = linear_law(c, dim, laws, drives, st.seq)?;
+    let law = read_law(c, dim, laws, drives, st.seq)?;
     c.finish()?;
     laws.table.insert(label, (law, st.seq, st.span));
     Ok(())
 }
 
-/// A constitutive law of dimension `dim` at statement `seq`.
+/// A linear constitutive law of dimension `dim` at statement `seq` (an `nlsf` law is refused
+/// by name).
 pub fn linear_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq: usize) -> Result<LinearLaw, MbdynError> {
+    let span = c.here();
+    let law = read_law(c, dim, laws, drives, seq)?;
+    if law.functions.iter().any(Option::is_some) {
+        return Err(c.error_at(span, "an 'nlsf' constitutive law is supported by romdyn only on a deformable axial joint"));
+    }
+    Ok(law)
+}
+
+/// A 1-D law at statement `seq`, linear or `nlsf` (the deformable axial joint's).
+pub fn axial_law(c: &mut Cursor, laws: &Laws, drives: &Drives, seq: usize) -> Result<LinearLaw, MbdynError> {
+    read_law(c, 1, laws, drives, seq)
+}
+
+/// `nlsf …` after its keyword: `{K | null}, {F | null}` for the elastic part, `{C |
+/// proportional, FACTOR}, {F | null}` for the viscous part (constltp_nlsf.cc,
+/// `NLSFViscoElasticCLR`).
+fn nlsf(c: &mut Cursor, kind: &str, dim: usize, drives: &Drives, seq: usize) -> Result<LinearLaw, MbdynError> {
+    if dim != 1 {
+        return Err(c.error(format!("constitutive law '{kind}' is supported by romdyn in 1-D only (a deformable axial joint), not in {dim}-D")));
+    }
+    let function = |c: &mut Cursor| -> Result<Option<ScalarFunction>, MbdynError> {
+        if c.accept("null") {
+            return Ok(None);
+        }
+        super::scalar_functions::scalar_function(c, &drives.functions, seq).map(Some)
+    };
+    let (mut k, mut v, mut functions) = (0.0, 0.0, [None, None]);
+    if kind != "nlsf viscous" {
+        k = if c.accept("null") { 0.0 } else { c.real("stiffness [per unit strain]")? };
+        functions[0] = function(c)?;
+    }
+    if kind != "nlsf elastic" {
+        v = if kind == "nlsf viscoelastic" && c.accept("proportional") {
+            k * c.real("proportional damping factor [s]")?
+        } else if c.accept("null") {
+            0.0
+        } else {
+            c.real("viscosity [per unit strain rate]")?
+        };
+        functions[1] = function(c)?;
+    }
+    let one = |x: f64| DMatrix::from_element(1, 1, x);
+    Ok(LinearLaw { stiffness: one(k), viscosity: one(v), prestrain: DVector::zeros(1), prestress: DVector::zeros(1), functions })
+}
+
+/// A constitutive law of dimension `dim` at statement `seq`, `nlsf` included.
+fn read_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq: usize) -> Result<LinearLaw, MbdynError> {
     let span = c.here();
     if c.accept("reference") {
         let label = c.label("constitutive law label")?;
@@ -89,6 +144,11 @@ pub fn linear_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq:
             Some((_, _, at)) => Err(c.error_at(span, format!("constitutive law {label} is used before its definition (line {})", at.line))),
             None => Err(c.error_at(span, format!("constitutive law {label} is not defined"))),
         };
+    }
+    if let Some(kind) = c.accept_any(&NLSF) {
+        let mut law = nlsf(c, kind, dim, drives, seq)?;
+        prestress_and_prestrain(c, &mut law, dim, drives, seq)?;
+        return Ok(law);
     }
     let Some(kind) = c.accept_any(&KINDS) else {
         if let Some(k) = c.peek_keyword().and_then(|w| UNSUPPORTED.iter().find(|u| super::parser::same_keyword(u, w))) {
@@ -109,14 +169,20 @@ pub fn linear_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq:
         let v = if c.accept("proportional") { &k * c.real("proportional damping factor [s]")? } else { read(c, "viscosity")? };
         (k, v)
     };
-    let mut law = LinearLaw { stiffness, viscosity, prestrain: DVector::zeros(dim), prestress: DVector::zeros(dim) };
+    let mut law = LinearLaw { stiffness, viscosity, prestrain: DVector::zeros(dim), prestress: DVector::zeros(dim), functions: [None, None] };
+    prestress_and_prestrain(c, &mut law, dim, drives, seq)?;
+    Ok(law)
+}
+
+/// The optional `prestress, …` and `prestrain, …` after a law.
+fn prestress_and_prestrain(c: &mut Cursor, law: &mut LinearLaw, dim: usize, drives: &Drives, seq: usize) -> Result<(), MbdynError> {
     if c.accept("prestress") {
         law.prestress = if dim == 3 { DVector::from_column_slice(c.vec3_values("prestress")?.as_slice()) } else { vector(c, dim, "prestress")? };
     }
     if c.accept("prestrain") {
         law.prestrain = prestrain(c, dim, drives, seq)?;
     }
-    Ok(law)
+    Ok(())
 }
 
 /// A constant prestrain (a template drive caller that does not change in time).
