@@ -152,8 +152,16 @@ fn read_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq: usize
     }
     let Some(kind) = c.accept_any(&KINDS) else {
         if let Some(k) = c.peek_keyword().and_then(|w| UNSUPPORTED.iter().find(|u| super::parser::same_keyword(u, w))) {
-            let rods = if k.starts_with("scalar function elastic") { "; 'scalar function elastic' only for a rod and a deformable hinge" } else { "" };
-            return Err(c.error(format!("constitutive law '{k}' is not supported by romdyn (supported: linear elastic, linear viscous, linear viscoelastic, each isotropic or generic{rods})")));
+            let rods = if k.starts_with("scalar function elastic") {
+                "; 'scalar function elastic' only for a rod and a deformable hinge"
+            } else if k.ends_with("bistop") {
+                "; a bistop law's force is referred to the strain at the instant its activating drive turns non-zero, history MBDyn keeps in the law and romdyn's elements do not hold"
+            } else if k.starts_with("symbolic") {
+                "; a symbolic law needs its expression's derivative, which MBDyn takes with GiNaC (MBDyn 1.7.3 built without it refuses it too) and romdyn's math parser does not"
+            } else {
+                ""
+            };
+            return Err(c.error(format!("constitutive law '{k}' is not supported by romdyn (supported: linear elastic, linear viscous, linear viscoelastic, each isotropic or generic; nlsf in 1-D on a deformable axial joint{rods})")));
         }
         return Err(c.error(format!("expected a constitutive law ({}), found {}", KINDS.join(", "), c.found())));
     };
