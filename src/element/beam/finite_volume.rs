@@ -10,7 +10,7 @@
 use nalgebra::{Matrix6, SMatrix, Vector6};
 
 use super::law::SectionLaw;
-use crate::element::contract::{Col, JacobianSink, ResidualSink, Row};
+use crate::element::contract::{Col, JacobianSink, ResidualSink, Row, SectionState};
 use crate::kinematics::{skew, Mat3, Vec3};
 
 pub const POSITION: usize = 0;
@@ -34,6 +34,12 @@ pub fn local_forces(law: &SectionLaw, strain: &Vec3, curvature: &Vec3, rates: Op
         out += law.viscosity * stack(strain_rate, curvature_rate);
     }
     out
+}
+
+/// What `.act`/`.bst` write of a point at `p` with frame `r`: local forces `f`, strain and
+/// curvature.
+pub fn section_state(p: &Vec3, r: &Mat3, strain: &Vec3, curvature: &Vec3, f: &Vector6<f64>) -> SectionState {
+    SectionState { position: *p, orientation: *r, strain: *strain, curvature: *curvature, force: f.fixed_rows::<3>(0).into(), moment: f.fixed_rows::<3>(3).into() }
 }
 
 /// One evaluation point's state and derivatives, as the assembly needs them.

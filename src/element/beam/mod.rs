@@ -174,10 +174,7 @@ impl Element for Beam3 {
         let (_, ks) = self.evaluate(st);
         ks.iter()
             .enumerate()
-            .map(|(s, k)| {
-                let f = self.local_forces(s, k);
-                SectionState { position: k.p, orientation: k.r, strain: k.strain, curvature: k.curvature, force: f.fixed_rows::<3>(0).into(), moment: f.fixed_rows::<3>(3).into() }
-            })
+            .map(|(s, k)| finite_volume::section_state(&k.p, &k.r, &k.strain, &k.curvature, &self.local_forces(s, k)))
             .collect()
     }
 

@@ -152,8 +152,7 @@ impl Element for Beam2 {
     /// curvatures, in the section frame.
     fn sections(&self, st: &dyn ElementState) -> Vec<SectionState> {
         let k = self.evaluate(st);
-        let f = self.local_forces(&k);
-        vec![SectionState { position: k.p, orientation: k.r, strain: k.strain, curvature: k.curvature, force: f.fixed_rows::<3>(0).into(), moment: f.fixed_rows::<3>(3).into() }]
+        vec![finite_volume::section_state(&k.p, &k.r, &k.strain, &k.curvature, &self.local_forces(&k))]
     }
 
     fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
