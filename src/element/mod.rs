@@ -28,6 +28,7 @@ mod imposed_velocity;
 mod internal_force;
 mod invariant_hinge;
 mod joint;
+pub mod private_data;
 mod scalar_function;
 mod screw;
 
