@@ -50,13 +50,17 @@ fn element_and_dof_drives_give_the_closed_forms_and_mbdyns_motion() {
         ("node 4 θz [deg]", euler123(&kin(3).r)[2].to_degrees(), theta(-0.3), -5.4409469345925210e+00),
         ("node 4 ωz", kin(3).omega[2], spin(-0.3), 1.1421517043033101e-01),
         ("node 3 x", kin(2).x[0], x3, -9.5490435395668066e-02),
+        // The gears: node 5 free at 1 rad/s, node 6 imposed at −2 times its hinge's rz.
+        ("node 5 θz [deg]", euler123(&kin(4).r)[2].to_degrees(), 1f64.to_degrees(), 5.7295782347691102e+01),
+        ("node 6 θz [deg]", euler123(&kin(5).r)[2].to_degrees(), -2f64.to_degrees(), -1.1459156469538645e+02),
+        ("node 6 ωz", kin(5).omega[2], -2.0, -1.9999997031273253e+00),
     ];
     for (what, x, exact, mbdyn) in cases {
         eprintln!("{what}: {x:.15e}, closed form {exact:.15e}, MBDyn {mbdyn:.15e}");
         // ms with ρ∞ = 0.6 and h = 1 ms on these smooth motions: measured 7e-7 relative
         // to the amplitude (θ of node 2: 9.06824 deg against 9.06824); 1e-5 of the value
         // or of the amplitude (0.3 m, 0.25 rad = 14 deg).
-        let scale = if what.contains("deg") { 14.0 } else { 0.3 };
+        let scale = if what.contains("θz") { 14.0 } else { 0.3 };
         assert!((x - exact).abs() < 1e-5 * scale, "{what}: {x} against the closed form {exact}");
         // Same method, steps and Newton iterations as MBDyn (each converged to 1e-10 with
         // the drives' derivatives missing from the Jacobian in both): measured to 1e-13
@@ -79,7 +83,7 @@ fn jacobians_hold_element_and_dof_drives_at_the_checked_state() {
     let report = run(&m.model, &m.problem, &mut ()).unwrap();
     let asm = Assembler::new(&m.model);
     let checks = check_jacobians(&asm, &report.final_state, 1e-3, m.model.constraint_form);
-    for name in ["follower couple 2", "follower couple 4", "absolute force 3"] {
+    for name in ["follower couple 2", "follower couple 4", "absolute force 3", "total joint 6"] {
         let c = checks.iter().find(|c| c.element == name).unwrap_or_else(|| panic!("{name}: {checks:?}"));
         assert!(c.drive_held, "{c:?}");
     }
@@ -98,7 +102,7 @@ fn a_model_whose_drives_read_elements_is_not_linearized() {
         Err(e) => e.to_string(),
         Ok(_) => panic!("the torsional spring's stiffness is in no Jacobian: the linearization would be wrong"),
     };
-    assert!(e.contains("follower couple 2") && e.contains("reads the model's state"), "{e}");
+    assert!(e.contains("reads the model's state") && e.contains("element drive callers"), "{e}");
 }
 
 #[test]
@@ -119,7 +123,7 @@ fn bad_element_and_dof_drives_and_binds_name_the_place_and_the_problem() {
         ("element, 2, joint, string, \"rz\", linear", "element, 2, body, string, \"rz\", linear", "private data \"rz\" of body 2"),
         // MBDyn 1.7.3 on this file with the drive caller card above joint 4: "unable to find
         // Joint(4) at line …".
-        ("drive caller: 1, element, 4", "drive caller: 1, element, 5", "there is no joint 5"),
+        ("drive caller: 1, element, 4", "drive caller: 1, element, 15", "there is no joint 15"),
         ("bind: 2, joint, 1, string", "bind: 7, joint, 1, string", "no joint 7 above this statement"),
         ("bind: 2, joint, 1, string", "bind: 2, joint, 3, string", "there is no parameter node 3"),
         ("parameter: 1, element;", "parameter: 1, value, 2.;", "parameter nodes 'value' are not supported"),

@@ -535,8 +535,10 @@ fn drive_hinge(label: Label, c: &mut Cursor, ctx: &ElementContext, span: super::
 /// The driven joint, unless its holonomic constraints fail at t = 0 in the initial
 /// configuration (see [`assembled`]).
 fn driven_assembled(j: DrivenJoint, ctx: &ElementContext, c: &Cursor, span: super::diagnostic::Span) -> Result<DrivenJoint, MbdynError> {
+    // A drive that reads the model's state has no value before the run (the initial
+    // assembly makes such a joint hold).
     if j.reads_state() {
-        return Err(c.error_at(span, "a drive of this joint reads the model's state (model:: functions, node drive callers): romdyn evaluates such drives in forces, couples, distance, axial rotation and velocity joints, not in imposed-motion joints"));
+        return Ok(j);
     }
     let at = j.joint_at(0.0);
     assembled(at.clone(), &anchor_global(&at.a, ctx), &anchor_global(&at.b, ctx), c, span)?;
