@@ -2,7 +2,8 @@
 //! honour: `linear elastic [isotropic]`, `linear elastic generic`, `linear viscous
 //! [isotropic]`, `linear viscous generic`, `linear viscoelastic [isotropic]`, `linear
 //! viscoelastic generic` (viscosity or `proportional, FACTOR`), with the optional
-//! `prestress` and constant `prestrain`; `reference, LABEL` to a `constitutive law:` card.
+//! `prestress` and `prestrain` (constant; a drive on a rod); `reference, LABEL` to a
+//! `constitutive law:` card.
 //! Laws are read for 1 (rod), 3 (deformable displacement joint and hinge) or 6 (beams)
 //! dimensions.
 
@@ -78,13 +79,25 @@ pub fn constitutive_law_card(st: &Statement, c: &mut Cursor, laws: &mut Laws, dr
     Ok(())
 }
 
-/// A constitutive law of dimension `dim` at statement `seq`.
+/// A constitutive law of dimension `dim` at statement `seq`; a prestrain that changes in
+/// time is refused.
 pub fn linear_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq: usize) -> Result<LinearLaw, MbdynError> {
+    let span = c.here();
+    let (law, varying) = law_with_prestrain_drive(c, dim, laws, drives, seq)?;
+    if varying.is_some() {
+        return Err(c.error_at(span, "a time-varying prestrain is supported by romdyn on rods only"));
+    }
+    Ok(law)
+}
+
+/// A 1-D law whose prestrain may be a drive that changes in time (or reads the model's
+/// state): the law with its constant prestrain zero, and that drive.
+pub fn law_with_prestrain_drive(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq: usize) -> Result<(LinearLaw, Option<Drive>), MbdynError> {
     let span = c.here();
     if c.accept("reference") {
         let label = c.label("constitutive law label")?;
         return match laws.table.get(&label) {
-            Some((l, s, _)) if *s < seq && l.dim() == dim => Ok(l.clone()),
+            Some((l, s, _)) if *s < seq && l.dim() == dim => Ok((l.clone(), None)),
             Some((l, s, _)) if *s < seq => Err(c.error_at(span, format!("constitutive law {label} has dimension {}, this element needs {dim}", l.dim()))),
             Some((_, _, at)) => Err(c.error_at(span, format!("constitutive law {label} is used before its definition (line {})", at.line))),
             None => Err(c.error_at(span, format!("constitutive law {label} is not defined"))),
@@ -113,10 +126,44 @@ pub fn linear_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq:
     if c.accept("prestress") {
         law.prestress = if dim == 3 { DVector::from_column_slice(c.vec3_values("prestress")?.as_slice()) } else { vector(c, dim, "prestress")? };
     }
+    let mut varying = None;
     if c.accept("prestrain") {
-        law.prestrain = prestrain(c, dim, drives, seq)?;
+        let span = c.here();
+        if dim == 1 {
+            // A 1-D template drive caller (tpldrive_impl.cc, ReadDC1D): `[single |
+            // component,] DRIVE` with no value before the drive (SingleTDCR<doublereal>
+            // reads none), `null`, `zero`, `array, N, …`.
+            match template_1d(c, drives, seq, 0)? {
+                Drive::Const(x) => law.prestrain[0] = x,
+                d => varying = Some(d),
+            }
+        } else {
+            law.prestrain = prestrain(c, dim, drives, seq)?;
+        }
+        if varying.as_ref().is_some_and(|_| law.stiffness[(0, 0)] == 0.0) {
+            return Err(c.error_at(span, "a prestrain needs a stiffness"));
+        }
     }
-    Ok(law)
+    Ok((law, varying))
+}
+
+/// A 1-D template drive caller as one drive.
+fn template_1d(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) -> Result<Drive, MbdynError> {
+    if c.accept("null") || c.accept("zero") {
+        return Ok(Drive::Const(0.0));
+    }
+    if c.accept("array") {
+        if depth >= 8 {
+            return Err(c.error("template drive callers nested in 'array' more than 8 deep"));
+        }
+        let n = c.count("number of template drive callers")?;
+        let terms = (0..n).map(|_| template_1d(c, drives, seq, depth + 1)).collect::<Result<Vec<_>, _>>()?;
+        return Ok(if terms.iter().all(|d| matches!(d, Drive::Const(_))) { Drive::Const(terms.iter().map(|d| d.value(0.0)).sum()) } else { Drive::Sum(terms) });
+    }
+    if !c.accept("single") {
+        c.accept("component");
+    }
+    super::drives::drive(c, drives, seq)
 }
 
 /// A constant prestrain (a template drive caller that does not change in time).
@@ -131,7 +178,7 @@ fn prestrain(c: &mut Cursor, dim: usize, drives: &Drives, seq: usize) -> Result<
         };
     }
     c.accept("single");
-    let v = if dim == 1 { DVector::from_element(1, c.real("prestrain")?) } else { vector(c, dim, "prestrain")? };
+    let v = vector(c, dim, "prestrain")?;
     let d = super::drives::drive(c, drives, seq)?;
     if !constant(&d) {
         return Err(c.error_at(span, "a time-varying prestrain is not supported by romdyn"));
