@@ -149,3 +149,18 @@ fn bad_element_and_dof_drives_and_binds_name_the_place_and_the_problem() {
     let e = from_text(&twice).err().unwrap();
     assert!(e.contains("parameter node 1 is already bound"), "{e}");
 }
+
+/// `model::sf::NAME(x)` and `model::drive(LABEL, x)` in `set:` call the cards read above
+/// the statement, as MBDyn's reader does (its tests/namespaces/model: "model::drive(LABEL,
+/// 2.) expected: 21" for `linear, 1., 10.`); a card below is not defined there yet.
+#[test]
+fn set_calls_the_scalar_function_and_drive_caller_cards_above_it() {
+    let base = text();
+    let cards = "scalar function: \"f\", const, 3.;\nset: real A = model::sf::f(0.);\ndrive caller: 99, linear, 1., 10.;\nset: real B = model::drive(99, 2.);\nbegin: nodes;";
+    let doc = parse_text(&base.replacen("begin: nodes;", cards, 1), &path("element_drives.mbd")).unwrap_or_else(|e| panic!("{e}"));
+    let value = |name: &str| doc.variables.0.get(name).and_then(|v| v.value.real());
+    assert_eq!((value("A"), value("B")), (Some(3.0), Some(21.0)));
+    let below = base.replacen("begin: nodes;", "set: real B = model::drive(99, 2.);\ndrive caller: 99, linear, 1., 10.;\nbegin: nodes;", 1);
+    let e = parse_text(&below, &path("element_drives.mbd")).err().map(|e| e.to_string()).unwrap_or_default();
+    assert!(e.contains("drive caller 99 is not defined"), "{e}");
+}

@@ -53,6 +53,13 @@ pub struct Drives {
     pub private: super::element_reads::PrivateReads,
 }
 
+impl Drives {
+    /// The drive caller cards of statements before `seq`, by label.
+    pub fn defined_before(&self, seq: usize) -> HashMap<u32, Drive> {
+        self.table.iter().filter(|(_, (_, s, _))| *s < seq).map(|(l, (d, _, _))| (*l, d.clone())).collect()
+    }
+}
+
 /// Reads a `drive caller: LABEL, [name, "…",] DRIVE;` card.
 pub fn drive_caller_card(st: &Statement, c: &mut Cursor, drives: &mut Drives) -> Result<(), MbdynError> {
     let span = c.here();
@@ -242,7 +249,7 @@ fn string_drive(text: &str, drives: &Drives, seq: usize) -> Result<TimeFunction,
         return Err("the expression is empty".into());
     }
     let functions = drives.functions.defined_before(seq);
-    let table: HashMap<u32, Drive> = drives.table.iter().filter(|(_, (_, s, _))| *s < seq).map(|(l, (d, _, _))| (*l, d.clone())).collect();
+    let table = drives.defined_before(seq);
     let reads_state = tokens.windows(3).any(|w| w[0].token == Token::Word("model".into()) && w[1].token == Token::Symbol("::") && w[2].token != Token::Word("sf".into()));
     let evaluate = move |vars: &mut Variables, tokens: &[super::lexer::Spanned], sources: &Sources, var: f64, reads: Option<Reads>, state: Option<&dyn ElementState>| -> Result<f64, String> {
         // MBDyn's `StringDriveCaller::dGet(dVar)` sets `Var`; `Time` is the simulation's
