@@ -28,6 +28,8 @@ mod imposed_velocity;
 mod internal_force;
 mod invariant_hinge;
 mod joint;
+mod prestrained_rod;
+pub mod private_data;
 mod scalar_function;
 mod screw;
 
@@ -51,5 +53,6 @@ pub use internal_force::{InternalCouple, InternalForce, TotalInternalForce};
 pub use anchor::Anchor;
 pub use axial_rotation::AxialRotation;
 pub use joint::{Joint, JointKind};
+pub use prestrained_rod::PrestrainedRod;
 pub use scalar_function::ScalarFunction;
 pub use screw::Screw;
