@@ -252,7 +252,7 @@ impl Element for Rod {
 
 /// Residual of a force `f` along the line of the points: `f` at `p_b` on B, `−f` at `p_a`
 /// on A (rods, distance joints; [`add_pair_force_jacobian`] is its Jacobian).
-fn add_pair_force(out: &mut dyn ResidualSink, p: &Pair, f: &Vec3) {
+pub(super) fn add_pair_force(out: &mut dyn ResidualSink, p: &Pair, f: &Vec3) {
     add_vec(out, Row::force(p.slot_b), f);
     add_vec(out, Row::moment(p.slot_b), &p.f_b.cross(f));
     if let Some(a) = p.slot_a {
@@ -264,7 +264,7 @@ fn add_pair_force(out: &mut dyn ResidualSink, p: &Pair, f: &Vec3) {
 /// Jacobian of a force `f(d)` (with `∂f/∂d = kd`) applied at the point `f_b` of node b and,
 /// opposite, at `f_a` of node a, `d` being the distance vector between the points:
 /// `δd = δx_b − [f_b×] δθ_b − δx_a + [f_a×] δθ_a`. Returns those `δd` blocks.
-fn add_pair_force_jacobian(out: &mut dyn JacobianSink, p: &Pair, f: &Vec3, kd: &Mat3) -> Vec<([Col; 3], Mat3)> {
+pub(super) fn add_pair_force_jacobian(out: &mut dyn JacobianSink, p: &Pair, f: &Vec3, kd: &Mat3) -> Vec<([Col; 3], Mat3)> {
     let (fx, fax, fbx) = (skew(f), skew(&p.f_a), skew(&p.f_b));
     let mut dd = vec![(Col::position(p.slot_b), Mat3::identity()), (Col::rotation(p.slot_b), -fbx)];
     if let Some(a) = p.slot_a {
@@ -285,67 +285,4 @@ fn add_pair_force_jacobian(out: &mut dyn JacobianSink, p: &Pair, f: &Vec3, kd: &
         add_block(out, Row::moment(a), Col::rotation(a), &(-fx * fax));
     }
     dd
-}
-
-/// Distance constraint between two points: `Φ = |p_b − p_a| − L(t)` (MBDyn's `distance`
-/// joint, one multiplier λ here where MBDyn's own formulation carries four unknowns; the
-/// motion is the same), reaction `F = λ e` along `e = (p_b − p_a)/|p_b − p_a|` at each
-/// point, equal and opposite.
-#[derive(Clone, Debug)]
-pub struct Distance {
-    pub label: Label,
-    pub a: Anchor,
-    pub b: Anchor,
-    /// Imposed distance L(t) [m].
-    pub length: super::Drive,
-}
-
-impl Element for Distance {
-    fn reads_state(&self) -> bool {
-        self.length.reads_state()
-    }
-    fn label(&self) -> Label {
-        self.label
-    }
-    fn type_name(&self) -> &'static str {
-        "distance"
-    }
-    fn nodes(&self) -> Vec<Label> {
-        node_labels(&self.a, &self.b)
-    }
-    fn multipliers(&self) -> Vec<String> {
-        vec!["f".into()]
-    }
-    fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
-        let p = Pair::new(&self.a, &self.b, st);
-        let l = p.d.norm();
-        out.add(Row::Constraint(0), l - self.length.value_in(st));
-        let f = st.multiplier(0) * p.d / l;
-        add_pair_force(out, &p, &f);
-    }
-    fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
-        let p = Pair::new(&self.a, &self.b, st);
-        let (l, lambda) = (p.d.norm(), st.multiplier(0));
-        let e = p.d / l;
-        let f = lambda * e;
-        let kd = lambda / l * (Mat3::identity() - e * e.transpose());
-        let b = p.slot_b;
-        // The constraint row: eᵀ δd.
-        for (c, m) in add_pair_force_jacobian(out, &p, &f, &kd) {
-            let row = e.transpose() * m;
-            for (j, col) in c.iter().enumerate() {
-                out.add(Row::Constraint(0), *col, row[j]);
-            }
-        }
-        // ∂F/∂λ = e.
-        let (mb, ma) = (p.f_b.cross(&e), p.f_a.cross(&e));
-        for i in 0..3 {
-            out.add(Row::Equilibrium { slot: b, comp: i }, Col::Multiplier(0), e[i]);
-            out.add(Row::Equilibrium { slot: b, comp: 3 + i }, Col::Multiplier(0), mb[i]);
-            if let Some(a) = p.slot_a {
-                out.add(Row::Equilibrium { slot: a, comp: i }, Col::Multiplier(0), -e[i]);
-                out.add(Row::Equilibrium { slot: a, comp: 3 + i }, Col::Multiplier(0), -ma[i]);
-            }
-        }
-    }
 }

@@ -152,7 +152,9 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             if !(l > 0.0) || l0 == 0.0 {
                 return Err(c.error_at(l_span, format!("distance: MBDyn's distance joint needs a positive distance (imposed {l} m, initial {l0:.6e} m)")));
             }
-            Box::new(Distance { label, a: a.anchor(), b: b.anchor(), length })
+            // MBDyn's SetInitialValue: the unit direction between the points as written.
+            let direction = (b.global().0 - a.global().0) / l0;
+            Box::new(Distance { label, a: a.anchor(), b: b.anchor(), length, direction })
         }
         "prismatic" => {
             let orientation = |c: &mut Cursor, n: &StructuralNode, other: Option<&Side>| -> Result<Mat3, MbdynError> {
