@@ -612,3 +612,47 @@ fn gimbal_rotation_transmits_rotation_homokinetically_as_mbdyn() {
     let kin = report.final_state.node_frame(&asm.dofs, 2).kin;
     assert!((euler_deg(&kin.r)[2] - 5.7295782347692636e+01).abs() < 1e-8);
 }
+
+#[test]
+fn the_deprecated_pin_is_the_spherical_pin() {
+    // joint.cc reads `pin` and `spherical pin` with one reader (`case PIN: case
+    // SPHERICALPIN`): compat_spherical.mbd with `pin` gives the same run to the last bit.
+    let (spherical, pin) = (read("compat_spherical.mbd"), rewritten("compat_spherical.mbd", &[("spherical pin,", "pin,")]));
+    let (a, b) = (run(&spherical.model, &spherical.problem, &mut ()).unwrap(), run(&pin.model, &pin.problem, &mut ()).unwrap());
+    assert_eq!(a.final_state.y, b.final_state.y);
+    assert!(pin.model.elements.iter().any(|e| e.label() == 1 && e.type_name() == "spherical hinge"));
+}
+
+#[test]
+fn the_revolute_hinge_chain_takes_mbdyns_newton_iterations() {
+    // revolute_chain.mbd: the 10-link chain with revolute hinges, their position constraint
+    // in the global frame as MBDyn's planej.cc (before, in node 1's frame: 1795 iterations,
+    // MBDyn's count on the total-joint chain). MBDyn 1.7.3 (1727489e) on this file: 1508
+    // Newton iterations over 1000 steps, 1 derivatives iteration, and the final x, y, ẋ, ẏ of
+    // nodes 1–10 below (its .mov, output precision 16). romdyn: 1536 (its Jacobians are exact
+    // where MBDyn's drop terms): to 3 %; positions and velocities to 1e-6 relative (issue 12's
+    // acceptance; measured 5.0e-8 m).
+    let want: [[f64; 4]; 10] = [
+        [-8.6540736852381756e-02, -5.0106894386382918e-02, 2.4842890957304756e-01, -4.2906975219616317e-01],
+        [-1.8627732208190581e-01, -4.2853373396244628e-02, 2.2819243360686539e-01, -7.0724157167768464e-01],
+        [-2.8158476641319646e-01, -1.2579770124779212e-02, 2.2348601996430312e-01, -7.2205792171712579e-01],
+        [-3.7335715614891762e-01, 2.7142119082499010e-02, 3.2553540762813210e-01, -4.8628815126275748e-01],
+        [-4.6444625084215518e-01, 6.8406835584207792e-02, 4.0516491424690509e-01, -3.1051363308281299e-01],
+        [-5.6380170669537322e-01, 7.9742328171615598e-02, 4.1317201804667286e-01, -2.4033041276177489e-01],
+        [-6.5711015570010411e-01, 4.3776603594853164e-02, 3.9187310861308600e-01, -1.8507397507950454e-01],
+        [-7.3946836036558505e-01, -1.2943111886439389e-02, 3.5438213298998922e-01, -1.3063653785928800e-01],
+        [-8.1253435855101597e-01, -8.1217264456549060e-02, 3.3873405522569405e-01, -1.1389022075283081e-01],
+        [-8.6897040015363702e-01, -1.6377011545654316e-01, 3.4143570107971172e-01, -1.1573715708420530e-01],
+    ];
+    let m = read("revolute_chain.mbd");
+    let report = run(&m.model, &m.problem, &mut ()).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(report.steps, 1000);
+    let iterations = report.newton_iterations as f64;
+    assert!((iterations - 1508.0).abs() <= 0.03 * 1508.0, "romdyn {iterations} Newton iterations, MBDyn 1.7.3 1508");
+    let asm = Assembler::new(&m.model);
+    for (k, w) in want.iter().enumerate() {
+        let kin = report.final_state.node_frame(&asm.dofs, k + 1).kin;
+        let (dx, dv) = ((kin.x[0] - w[0]).hypot(kin.x[1] - w[1]) / w[0].hypot(w[1]), (kin.xdot[0] - w[2]).hypot(kin.xdot[1] - w[3]) / w[2].hypot(w[3]));
+        assert!(dx < 1e-6 && dv < 1e-6, "node {}: position {dx:.1e}, velocity {dv:.1e} from MBDyn", k + 1);
+    }
+}
