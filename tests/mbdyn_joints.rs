@@ -656,3 +656,36 @@ fn the_revolute_hinge_chain_takes_mbdyns_newton_iterations() {
         assert!(dx < 1e-6 && dv < 1e-6, "node {}: position {dx:.1e}, velocity {dv:.1e} from MBDyn", k + 1);
     }
 }
+
+#[test]
+fn revolute_rotation_constraints_keep_their_rank_past_half_a_turn() {
+    // The hinge's rotation rows (MBDyn's planej.cc: e₃ₐ · e₂ᵦ, −e₃ₐ · e₁ᵦ) at a relative
+    // rotation of π about the axis: closed form ∂/∂θ_b = (−1, 0, 0) and (0, −1, 0) (the skew
+    // part's rows were zero there). Then rotor_half_turn.mbd: θ = t²/2 = 3.38 rad, ω = t = 2.6
+    // rad/s at t = 2.6 s (ms: 1e-9 rad); MBDyn 1.7.3 (1727489e) on the same file: Euler 123 z
+    // −1.6634026490697812e+02 deg, ω_z = 2.6000000001008177 rad/s.
+    let half = *nalgebra::Rotation3::from_axis_angle(&Vec3::z_axis(), std::f64::consts::PI).matrix();
+    let mut b = ModelBuilder::new();
+    b.static_node(1, Vec3::zeros(), half);
+    b.element(Joint::revolute_hinge(1, Anchor::Ground { position: Vec3::zeros(), orientation: Mat3::identity() }, Anchor::Node { label: 1, offset: Vec3::zeros(), orientation: Mat3::identity() }));
+    let model = b.build().unwrap();
+    let asm = Assembler::new(&model);
+    let st = State::initial(&model, &asm.dofs);
+    let j = asm.jacobian(&st, romdyn::dae::Coefficients::static_analysis());
+    let first = asm.dofs.element_first[0];
+    let entry = |row: usize, col: usize| (0..j.values.len()).filter(|&k| j.rows[k] == row && j.cols[k] == col).map(|k| j.values[k]).sum::<f64>();
+    for (row, want) in [(first + 3, [-1.0, 0.0, 0.0]), (first + 4, [0.0, -1.0, 0.0])] {
+        for (c, w) in want.iter().enumerate() {
+            assert!((entry(row, 3 + c) - w).abs() < 1e-12, "row {row} col {c}: {}", entry(row, 3 + c));
+        }
+    }
+    let m = read("rotor_half_turn.mbd");
+    let report = run(&m.model, &m.problem, &mut ()).unwrap();
+    let asm = Assembler::new(&m.model);
+    let kin = report.final_state.node_frame(&asm.dofs, 1).kin;
+    let turned = 2.6f64 * 2.6 / 2.0 - 2.0 * std::f64::consts::PI;
+    let z = kin.r[(1, 0)].atan2(kin.r[(0, 0)]);
+    assert!((z - turned).abs() < 1e-8, "turned {z} rad, closed form {turned}");
+    assert!((z.to_degrees() - -1.6634026490697812e+02).abs() < 1e-9, "{} deg against MBDyn", z.to_degrees());
+    assert!((kin.omega - Vec3::new(0.0, 0.0, 2.6)).norm() < 1e-9, "ω = {}", kin.omega);
+}

@@ -99,6 +99,32 @@ impl Joint {
         self.kind == JointKind::RevoluteHinge
     }
 
+    /// Whether the two rotation constraints are MBDyn's `e₃ₐ · e₂ᵦ = 0`, `−e₃ₐ · e₁ᵦ = 0`
+    /// (planej.cc; in frame A, `M₃₂` and `−M₃₁`) rather than the skew part of `M`: the skew
+    /// part's rows lose their rank where the free relative rotation about axis 3 passes
+    /// half a turn (`M = R_z(π)`: `P = ½ (tr M I − M)` has zero rows x and y), and
+    /// MBDyn's `tests/joints/screw/screw_test_1.mbd` stopped there (t = 2.51 s, θ = π).
+    fn axis_rotation(&self) -> bool {
+        matches!(self.kind, JointKind::RevoluteHinge | JointKind::RevoluteRotation)
+    }
+
+    /// The rotation constraint `r(M)`, its derivative `P` (`δr = P δη` for `δM = [δη×] M`)
+    /// and `K` (`δ(Pᵀ λ_r) = K δη`).
+    fn rotation_rows(&self, m: &Mat3, lambda_r: &Vec3) -> (Vec3, Mat3, Mat3) {
+        if !self.axis_rotation() {
+            let r = axial_of_skew_part(m);
+            return (r, skew_part_jacobian(m), -(lambda_r * r.transpose() + 0.5 * m.transpose() * skew(lambda_r)));
+        }
+        // δM_ij = δη · (m_j × e_i), m_j = M e_j; δ(m_j × e₃) = [e₃×][m_j×] δη.
+        let (m1, m2, e3) = (m.column(0).into_owned(), m.column(1).into_owned(), Vec3::z());
+        let r = Vec3::new(m[(2, 1)], -m[(2, 0)], 0.0);
+        let (gx, gy) = (m2.cross(&e3), -m1.cross(&e3));
+        let pm = Mat3::from_rows(&[gx.transpose(), gy.transpose(), Vec3::zeros().transpose()]);
+        let e3x = skew(&e3);
+        let k = lambda_r[0] * e3x * skew(&m2) - lambda_r[1] * e3x * skew(&m1);
+        (r, pm, k)
+    }
+
     fn locked(&self) -> impl Iterator<Item = (bool, usize)> + '_ {
         let p = (0..3).filter(|&k| self.position_locked[k]).map(|k| (true, k));
         let r = (0..3).filter(|&k| self.rotation_locked[k]).map(|k| (false, k));
@@ -146,21 +172,21 @@ impl Element for Joint {
         let p = Pair::new(&self.a, &self.b, st);
         let m_rel = p.q_a.transpose() * p.q_b;
         let c = if self.global_position() { p.d } else { p.q_a.transpose() * p.d };
-        let r = axial_of_skew_part(&m_rel);
+        let (lambda_p, lambda_r) = lambdas(self, st);
+        let (r, pm, _) = self.rotation_rows(&m_rel, &lambda_r);
         for (k, (is_pos, comp)) in self.locked().enumerate() {
             out.add(Row::Constraint(k), if is_pos { c[comp] } else { r[comp] });
         }
-        let (lambda_p, lambda_r) = lambdas(self, st);
         p.add_force(out, &(if self.global_position() { lambda_p } else { p.q_a * lambda_p }));
-        p.add_moment(out, &(p.q_a * skew_part_jacobian(&m_rel).transpose() * lambda_r));
+        p.add_moment(out, &(p.q_a * pm.transpose() * lambda_r));
     }
 
     fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
         let p = Pair::new(&self.a, &self.b, st);
         let (b, qt) = (p.slot_b, p.q_a.transpose());
         let m_rel = qt * p.q_b;
-        let (pm, r) = (skew_part_jacobian(&m_rel), axial_of_skew_part(&m_rel));
         let (lambda_p, lambda_r) = lambdas(self, st);
+        let (_, pm, k) = self.rotation_rows(&m_rel, &lambda_r);
         let global = self.global_position();
         let force = if global { lambda_p } else { p.q_a * lambda_p };
 
@@ -192,9 +218,8 @@ impl Element for Joint {
         }
 
         // The moment reaction m = Q_a Pᵀ λ_r: δm = −[m×] δθ_a + Q_a K Q_aᵀ (δθ_b − δθ_a),
-        // K = −(λ_r rᵀ + ½ Mᵀ [λ_r×]).
+        // K from `rotation_rows`.
         let moment = ptq * lambda_r;
-        let k = -(lambda_r * r.transpose() + 0.5 * m_rel.transpose() * skew(&lambda_r));
         let qkq = p.q_a * k * qt;
         add_block(out, Row::moment(b), Col::rotation(b), &qkq);
         if let Some(a) = p.slot_a {
