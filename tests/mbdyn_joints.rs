@@ -689,3 +689,12 @@ fn revolute_rotation_constraints_keep_their_rank_past_half_a_turn() {
     assert!((z.to_degrees() - -1.6634026490697812e+02).abs() < 1e-9, "{} deg against MBDyn", z.to_degrees());
     assert!((kin.omega - Vec3::new(0.0, 0.0, 2.6)).norm() < 1e-9, "ω = {}", kin.omega);
 }
+
+#[test]
+fn plane_displacement_is_refused_naming_mbdyns_own_refusal() {
+    // MBDyn 1.7.3 on tests/joints/planed/planedisp: "PlaneDispJoint(2): unsupported; use an
+    // InPlane and a RevoluteRotation" (joint.cc). romdyn refuses it at its file:line:col.
+    let text = common::mbdyn::file("structural nodes: 2; joints: 2;", "structural: 1, static, null, eye, null, null;\nstructural: 2, static, null, eye, null, null;", "joint: 1, clamp, 1, node, node;\njoint: 2, plane displacement, 1, 2;");
+    let err = parse_text(&text, Path::new("planedisp.mbd")).and_then(|d| build(&d)).err().expect("refused").to_string();
+    assert!(err.contains("planedisp.mbd:") && err.contains("'plane displacement'") && err.contains("nor by MBDyn 1.7.3") && err.contains("'in plane' and a 'revolute rotation'"), "{err}");
+}
