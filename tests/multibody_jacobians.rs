@@ -32,8 +32,8 @@ fn every_element(form: ConstraintForm) -> Model {
     b.element(Joint::in_line(32, node(2, &mut n), node(3, &mut n)));
     b.element(Joint::in_plane(33, Anchor::Ground { position: n.vec(), orientation: n.rotation() }, node(3, &mut n)));
     b.element(Joint::prismatic(34, node(1, &mut n), node(2, &mut n)));
-    b.element(romdyn::element::Distance { label: 35, a: node(2, &mut n), b: node(3, &mut n), length: Drive::Ramp { slope: 0.1, t0: 0.0, t1: 9.0, v0: 0.5 } });
-    b.element(romdyn::element::Distance { label: 36, a: Anchor::Ground { position: n.vec(), orientation: n.rotation() }, b: node(1, &mut n), length: Drive::Const(0.7) });
+    b.element(romdyn::element::Distance { label: 35, a: node(2, &mut n), b: node(3, &mut n), length: Drive::Ramp { slope: 0.1, t0: 0.0, t1: 9.0, v0: 0.5 }, direction: Vec3::new(0.6, 0.0, 0.8) });
+    b.element(romdyn::element::Distance { label: 36, a: Anchor::Ground { position: n.vec(), orientation: n.rotation() }, b: node(1, &mut n), length: Drive::Const(0.7), direction: Vec3::new(0.0, -1.0, 0.0) });
     let law = LinearViscoelastic { stiffness: n.matrix() * 100.0, viscosity: n.matrix() * 3.0 };
     b.element(DeformableDisplacement { label: 8, a: node(2, &mut n), b: node(3, &mut n), law: law.clone(), rest: n.vec() });
     b.element(DeformableDisplacement { label: 9, a: Anchor::Ground { position: n.vec(), orientation: n.rotation() }, b: node(3, &mut n), law: law.clone(), rest: Vec3::zeros() });

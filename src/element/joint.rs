@@ -5,7 +5,8 @@
 //! is `p_b = x_b + R_b o_b`, `Q_b = R_b H_b`. Constraints, in frame A:
 //! position `c = Q_aᵀ (p_b − p_a)`, rotation `r = ax(Q_aᵀ Q_b)` (zero for aligned frames,
 //! `(0, 0, sin φ)` for a rotation φ about the common z axis). Each locked component adds a
-//! multiplier; the reactions `Φ_/qᵀ λ` are a force `F = Q_a λ_p` at `p_b` and a moment
+//! multiplier (the revolute hinge's position constraint is global instead, `p_b − p_a`, with
+//! `F = λ_p`, as MBDyn's planej.cc); the reactions `Φ_/qᵀ λ` are a force `F = Q_a λ_p` at `p_b` and a moment
 //! `m = Q_a Pᵀ λ_r` with `P = ½ (tr M I − M)`, `M = Q_aᵀ Q_b`, equal and opposite on A.
 
 use super::anchor::{node_labels, Anchor, Pair};
@@ -91,6 +92,39 @@ impl Joint {
         Joint { label, kind: JointKind::TotalJoint, a, b, position_locked, rotation_locked }
     }
 
+    /// Whether the position constraint and its reaction are in the global frame, `p_b − p_a
+    /// = 0` with `F = λ_p` (MBDyn's revolute hinge, planej.cc), rather than in frame A.
+    /// The same zero set; the Newton iterates differ where frame A turns.
+    fn global_position(&self) -> bool {
+        self.kind == JointKind::RevoluteHinge
+    }
+
+    /// Whether the two rotation constraints are MBDyn's `e₃ₐ · e₂ᵦ = 0`, `−e₃ₐ · e₁ᵦ = 0`
+    /// (planej.cc; in frame A, `M₃₂` and `−M₃₁`) rather than the skew part of `M`: the skew
+    /// part's rows lose their rank where the free relative rotation about axis 3 passes
+    /// half a turn (`M = R_z(π)`: `P = ½ (tr M I − M)` has zero rows x and y), and
+    /// MBDyn's `tests/joints/screw/screw_test_1.mbd` stopped there (t = 2.51 s, θ = π).
+    fn axis_rotation(&self) -> bool {
+        matches!(self.kind, JointKind::RevoluteHinge | JointKind::RevoluteRotation)
+    }
+
+    /// The rotation constraint `r(M)`, its derivative `P` (`δr = P δη` for `δM = [δη×] M`)
+    /// and `K` (`δ(Pᵀ λ_r) = K δη`).
+    fn rotation_rows(&self, m: &Mat3, lambda_r: &Vec3) -> (Vec3, Mat3, Mat3) {
+        if !self.axis_rotation() {
+            let r = axial_of_skew_part(m);
+            return (r, skew_part_jacobian(m), -(lambda_r * r.transpose() + 0.5 * m.transpose() * skew(lambda_r)));
+        }
+        // δM_ij = δη · (m_j × e_i), m_j = M e_j; δ(m_j × e₃) = [e₃×][m_j×] δη.
+        let (m1, m2, e3) = (m.column(0).into_owned(), m.column(1).into_owned(), Vec3::z());
+        let r = Vec3::new(m[(2, 1)], -m[(2, 0)], 0.0);
+        let (gx, gy) = (m2.cross(&e3), -m1.cross(&e3));
+        let pm = Mat3::from_rows(&[gx.transpose(), gy.transpose(), Vec3::zeros().transpose()]);
+        let e3x = skew(&e3);
+        let k = lambda_r[0] * e3x * skew(&m2) - lambda_r[1] * e3x * skew(&m1);
+        (r, pm, k)
+    }
+
     fn locked(&self) -> impl Iterator<Item = (bool, usize)> + '_ {
         let p = (0..3).filter(|&k| self.position_locked[k]).map(|k| (true, k));
         let r = (0..3).filter(|&k| self.rotation_locked[k]).map(|k| (false, k));
@@ -141,26 +175,27 @@ impl Element for Joint {
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
         let p = Pair::new(&self.a, &self.b, st);
         let m_rel = p.q_a.transpose() * p.q_b;
-        let c = p.q_a.transpose() * p.d;
-        let r = axial_of_skew_part(&m_rel);
+        let c = if self.global_position() { p.d } else { p.q_a.transpose() * p.d };
+        let (lambda_p, lambda_r) = lambdas(self, st);
+        let (r, pm, _) = self.rotation_rows(&m_rel, &lambda_r);
         for (k, (is_pos, comp)) in self.locked().enumerate() {
             out.add(Row::Constraint(k), if is_pos { c[comp] } else { r[comp] });
         }
-        let (lambda_p, lambda_r) = lambdas(self, st);
-        p.add_force(out, &(p.q_a * lambda_p));
-        p.add_moment(out, &(p.q_a * skew_part_jacobian(&m_rel).transpose() * lambda_r));
+        p.add_force(out, &(if self.global_position() { lambda_p } else { p.q_a * lambda_p }));
+        p.add_moment(out, &(p.q_a * pm.transpose() * lambda_r));
     }
 
     fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
         let p = Pair::new(&self.a, &self.b, st);
         let (b, qt) = (p.slot_b, p.q_a.transpose());
         let m_rel = qt * p.q_b;
-        let (pm, r) = (skew_part_jacobian(&m_rel), axial_of_skew_part(&m_rel));
         let (lambda_p, lambda_r) = lambdas(self, st);
-        let force = p.q_a * lambda_p;
+        let (_, pm, k) = self.rotation_rows(&m_rel, &lambda_r);
+        let global = self.global_position();
+        let force = if global { lambda_p } else { p.q_a * lambda_p };
 
         // Constraint rows: ∂c/∂q from the anchors, ∂r/∂θ_b = P Q_aᵀ = −∂r/∂θ_a.
-        let dc = p.strain_derivatives();
+        let dc = if global { global_position_derivatives(&p) } else { p.strain_derivatives() };
         let mut dr = vec![(Col::rotation(b), pm * qt)];
         if let Some(a) = p.slot_a {
             dr.push((Col::rotation(a), -pm * qt));
@@ -174,17 +209,21 @@ impl Element for Joint {
         }
 
         // The force reaction F = Q_a λ_p: geometric terms, then its multiplier columns.
-        p.add_force_jacobian(out, &force, &[]);
+        if global {
+            add_global_force_jacobian(&p, out, &force);
+        } else {
+            p.add_force_jacobian(out, &force, &[]);
+        }
         let ptq = p.q_a * pm.transpose();
         for (col, (is_pos, comp)) in self.locked().enumerate() {
-            let (df, dm) = if is_pos { (p.q_a.column(comp).into_owned(), Vec3::zeros()) } else { (Vec3::zeros(), ptq.column(comp).into_owned()) };
+            let df = if global { Vec3::ith(comp, 1.0) } else { p.q_a.column(comp).into_owned() };
+            let (df, dm) = if is_pos { (df, Vec3::zeros()) } else { (Vec3::zeros(), ptq.column(comp).into_owned()) };
             p.add_reaction_column(out, Col::Multiplier(col), &df, &dm);
         }
 
         // The moment reaction m = Q_a Pᵀ λ_r: δm = −[m×] δθ_a + Q_a K Q_aᵀ (δθ_b − δθ_a),
-        // K = −(λ_r rᵀ + ½ Mᵀ [λ_r×]).
+        // K from `rotation_rows`.
         let moment = ptq * lambda_r;
-        let k = -(lambda_r * r.transpose() + 0.5 * m_rel.transpose() * skew(&lambda_r));
         let qkq = p.q_a * k * qt;
         add_block(out, Row::moment(b), Col::rotation(b), &qkq);
         if let Some(a) = p.slot_a {
@@ -193,5 +232,27 @@ impl Element for Joint {
             add_block(out, Row::moment(a), Col::rotation(b), &(-qkq));
             add_block(out, Row::moment(a), Col::rotation(a), &(-d_theta_a));
         }
+    }
+}
+
+/// `∂(p_b − p_a)/∂q` blocks: `δd = δx_b − [f_b×] δθ_b − δx_a + [f_a×] δθ_a`.
+fn global_position_derivatives(p: &Pair) -> Vec<([Col; 3], Mat3)> {
+    let mut v = vec![(Col::position(p.slot_b), Mat3::identity()), (Col::rotation(p.slot_b), -skew(&p.f_b))];
+    if let Some(a) = p.slot_a {
+        v.push((Col::position(a), -Mat3::identity()));
+        v.push((Col::rotation(a), skew(&p.f_a)));
+    }
+    v
+}
+
+/// Geometric terms of [`Pair::add_force`] for a force fixed in the global frame: the arms
+/// `f_b` (on B) and `h = p_b − x_a` (on A) turn and move, the force does not.
+fn add_global_force_jacobian(p: &Pair, out: &mut dyn JacobianSink, force: &Vec3) {
+    let (b, fx, fbx) = (p.slot_b, skew(force), skew(&p.f_b));
+    add_block(out, Row::moment(b), Col::rotation(b), &(fx * fbx));
+    if let Some(a) = p.slot_a {
+        add_block(out, Row::moment(a), Col::position(b), &fx);
+        add_block(out, Row::moment(a), Col::rotation(b), &(-fx * fbx));
+        add_block(out, Row::moment(a), Col::position(a), &(-fx));
     }
 }

@@ -14,20 +14,20 @@ use super::drives::template_vec3;
 use super::element_context::ElementContext;
 use super::laws::{linear_law, rest_strain, three, LinearLaw};
 use super::references::{Context, Frame, OtherSide};
-use crate::element::{Anchor, AxialRotation, FunctionHinge, ImposedVelocity, VelocityKind, CardanoHinge, DeformableJoint, DrivenJoint, InvariantDeformableHinge, VectorDrive, DeformableDisplacement, DeformableHinge, Distance, Drive, Element, Joint, Rod, RodViscosity};
+use crate::element::{Anchor, AxialRotation, GimbalRotation, FunctionHinge, ImposedVelocity, VelocityKind, CardanoHinge, DeformableJoint, DrivenJoint, InvariantDeformableHinge, VectorDrive, DeformableDisplacement, DeformableHinge, Distance, Drive, Element, Joint, Rod, RodViscosity};
 use crate::kinematics::{Mat3, Vec3};
 use crate::model::{Label, StructuralNode};
 
-const SUPPORTED: [&str; 39] = [
-    "beam slider", "screw", "linear velocity", "angular velocity", "revolute rotation", "cardano hinge", "universal hinge", "cardano pin", "universal pin", "cardano rotation", "universal rotation", "axial rotation", "drive displacement", "drive displacement pin", "imposed displacement", "imposed displacement pin", "drive hinge", "deformable joint", "deformable axial joint", "invariant deformable hinge", "clamp", "revolute hinge", "plane hinge", "revolute pin", "plane pin", "spherical hinge", "spherical pin", "total joint", "total pin joint",
+const SUPPORTED: [&str; 41] = [
+    "gimbal rotation", "pin", "beam slider", "screw", "linear velocity", "angular velocity", "revolute rotation", "cardano hinge", "universal hinge", "cardano pin", "universal pin", "cardano rotation", "universal rotation", "axial rotation", "drive displacement", "drive displacement pin", "imposed displacement", "imposed displacement pin", "drive hinge", "deformable joint", "deformable axial joint", "invariant deformable hinge", "clamp", "revolute hinge", "plane hinge", "revolute pin", "plane pin", "spherical hinge", "spherical pin", "total joint", "total pin joint",
     "deformable displacement joint", "deformable displacement hinge", "deformable hinge", "rod", "rod with offset", "in line", "in plane", "prismatic",
     "distance", "distance with offset",
 ];
 
 /// MBDyn joints romdyn names in its "not supported" error.
-const OTHER_JOINTS: [&str; 13] = [
+const OTHER_JOINTS: [&str; 12] = [
     "angular acceleration", "brake",
-    "coincidence", "gimbal rotation", "imposed orientation",
+    "coincidence", "imposed orientation",
     "invariant deformable displacement joint", "invariant deformable joint", "linear acceleration", "modal",
     "plane displacement", "plane displacement pin", "point contact", "rod bezier",
 ];
@@ -76,7 +76,11 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
     let Some(kind) = c.accept_any(&SUPPORTED) else {
         if let Some(w) = c.peek_keyword() {
             let name = OTHER_JOINTS.iter().find(|o| super::parser::same_keyword(o, w)).copied().unwrap_or(w);
-            return Err(c.error(format!("joint type '{name}' is not supported by romdyn (supported: axial rotation, beam slider, screw, linear velocity, angular velocity, revolute rotation, cardano hinge, cardano pin, cardano rotation (and universal …), drive displacement, drive displacement pin, drive hinge, imposed displacement, imposed displacement pin, clamp, revolute hinge, revolute pin, spherical hinge, spherical pin, total joint, total pin joint, deformable displacement joint, deformable hinge, invariant deformable hinge, deformable joint, deformable axial joint, rod, in line, in plane, prismatic, distance)")));
+            if name == "plane displacement" {
+                // joint.cc: "PlaneDispJoint: unsupported; use an InPlane and a RevoluteRotation".
+                return Err(c.error("joint type 'plane displacement' is not supported by romdyn, nor by MBDyn 1.7.3 (its reader stops: \"unsupported; use an InPlane and a RevoluteRotation\"): write an 'in plane' and a 'revolute rotation'"));
+            }
+            return Err(c.error(format!("joint type '{name}' is not supported by romdyn (supported: axial rotation, beam slider, screw, linear velocity, angular velocity, revolute rotation, gimbal rotation, cardano hinge, cardano pin, cardano rotation (and universal …), drive displacement, drive displacement pin, drive hinge, imposed displacement, imposed displacement pin, clamp, revolute hinge, revolute pin, spherical hinge, spherical pin (or pin), total joint, total pin joint, deformable displacement joint, deformable hinge, invariant deformable hinge, deformable joint, deformable axial joint, rod, in line, in plane, prismatic, distance)")));
         }
         return Err(c.error(format!("expected a joint type, found {}", c.found())));
     };
@@ -112,6 +116,9 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             let hinge = assembled(Joint::revolute_hinge(label, a.anchor(), b.anchor()), &a.global(), &b.global(), c, span)?;
             Box::new(AxialRotation::new(label, hinge.a, hinge.b, omega))
         }
+        // `pin` is MBDyn's deprecated name of the spherical pin (joint.cc: `case PIN: case
+        // SPHERICALPIN`, the same reader).
+        "pin" => Box::new(pin("spherical pin", label, c, ctx, span)?),
         "revolute pin" | "plane pin" | "spherical pin" => Box::new(pin(kind, label, c, ctx, span)?),
         "total joint" | "total pin joint" => Box::new(total(kind == "total pin joint", label, c, ctx, span)?),
         "drive displacement" | "drive displacement pin" | "imposed displacement" | "imposed displacement pin" => Box::new(drive_displacement(kind, label, c, ctx, span)?),
@@ -136,6 +143,16 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             (a.offset, b.offset) = (Vec3::zeros(), Vec3::zeros());
             Box::new(assembled(Joint::revolute_rotation(label, a.anchor(), b.anchor()), &a.global(), &b.global(), c, span)?)
         }
+        "gimbal rotation" => {
+            // joint.cc, as `revolute rotation`: offsets after `position` read and ignored,
+            // orientations, the orientation description.
+            let mut a = side(c, ctx, "node 1", Position::IfKeyword, None)?;
+            let mut b = side(c, ctx, "node 2", Position::IfKeyword, Some(&a))?;
+            orientation_description(c)?;
+            (a.offset, b.offset) = (Vec3::zeros(), Vec3::zeros());
+            let ((_, qa), (_, qb)) = (a.global(), b.global());
+            Box::new(GimbalRotation { label, a: a.anchor(), b: b.anchor(), angles: GimbalRotation::angles_of(&(qa.transpose() * qb)) })
+        }
         "cardano hinge" | "universal hinge" | "cardano pin" | "universal pin" | "cardano rotation" | "universal rotation" => Box::new(cardano(kind, label, c, ctx, span)?),
         "in line" | "in plane" => Box::new(in_line_or_plane(kind == "in line", label, c, ctx, span)?),
         "distance" | "distance with offset" => {
@@ -152,7 +169,9 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             if !(l > 0.0) || l0 == 0.0 {
                 return Err(c.error_at(l_span, format!("distance: MBDyn's distance joint needs a positive distance (imposed {l} m, initial {l0:.6e} m)")));
             }
-            Box::new(Distance { label, a: a.anchor(), b: b.anchor(), length })
+            // MBDyn's SetInitialValue: the unit direction between the points as written.
+            let direction = (b.global().0 - a.global().0) / l0;
+            Box::new(Distance { label, a: a.anchor(), b: b.anchor(), length, direction })
         }
         "prismatic" => {
             let orientation = |c: &mut Cursor, n: &StructuralNode, other: Option<&Side>| -> Result<Mat3, MbdynError> {
