@@ -16,7 +16,9 @@
 # ok|failed|timeout, romdyn's first error message without its file:line:col, worst position
 # and eigenvalue differences (KEEP=0 deletes each run's output files once compared, keeping
 # stdout and stderr); the end of the run prints the counts and romdyn's refusals
-# grouped by message.
+# grouped by message. MBDYN_OUTPUTS=DIR keeps MBDyn's runs in DIR and reuses them on the
+# next call (a file's MBDyn run is redone only when DIR/NAME.mbdyn/state is missing): MBDyn
+# does not change between romdyn's versions, so re-measuring romdyn then costs romdyn's runs.
 #
 # Output, per file:
 #   FILE  mbdyn: ok|failed (last message)  romdyn: ok|failed (first error line)
@@ -71,9 +73,14 @@ files() {
 while IFS= read -r f; do
     rel=${f#"$folder"/}; name=$(echo "${rel%.mbd}" | tr '/ ' '__')
     dir=$(dirname "$f"); base=$(basename "$f")
-    m="$out/$name.mbdyn"; r="$out/$name.romdyn"
+    m="${MBDYN_OUTPUTS:-$out}/$name.mbdyn"; r="$out/$name.romdyn"
     mkdir -p "$m" "$r"
-    mstate=$( (cd "$dir" && timeout "$limit" "$mbdyn" -f "$base" -o "$m/$name" > "$m/stdout" 2>&1 < /dev/null); rc=$?; [ $rc -eq 0 ] && echo ok || { [ $rc -eq 124 ] && echo timeout || echo failed; })
+    if [ -n "${MBDYN_OUTPUTS:-}" ] && [ -s "$m/state" ]; then
+        mstate=$(cat "$m/state")
+    else
+        mstate=$( (cd "$dir" && timeout "$limit" "$mbdyn" -f "$base" -o "$m/$name" > "$m/stdout" 2>&1 < /dev/null); rc=$?; [ $rc -eq 0 ] && echo ok || { [ $rc -eq 124 ] && echo timeout || echo failed; })
+        echo "$mstate" > "$m/state"
+    fi
     rstate=$( (cd "$dir" && timeout "$limit" "$romdyn" run "$base" -o "$r/$name" > "$r/stdout" 2> "$r/stderr" < /dev/null); rc=$?; [ $rc -eq 0 ] && echo ok || { [ $rc -eq 124 ] && echo timeout || echo failed; })
     ms=$mstate; [ "$mstate" = failed ] && ms="failed ($(grep -v '^$' "$m/stdout" | grep -iv 'aborting' | tail -1))"
     rerr=$(grep -m1 -E 'error' "$r/stderr" | tr '\t' ' ' | sed -E 's/^[^ ]*:[0-9]+:[0-9]+: //; s/^error: //')
@@ -98,7 +105,8 @@ while IFS= read -r f; do
     fi
     echo "  worst: position $worst_x, eigenvalue $worst_l"
     [ "$rstate" = failed ] || rerr=""
-    [ "${KEEP:-1}" = 0 ] && find "$m" "$r" -type f ! -name stdout ! -name stderr -delete
+    [ "${KEEP:-1}" = 0 ] && find "$r" -type f ! -name stdout ! -name stderr -delete
+    [ "${KEEP:-1}" = 0 ] && [ -z "${MBDYN_OUTPUTS:-}" ] && find "$m" -type f ! -name stdout ! -name stderr ! -name state -delete
     printf '%s\t%s\t%s\t%s\t%s\t%s\n' "$name" "$mstate" "$rstate" "$rerr" "$worst_x" "$worst_l" >> "$out/summary.tsv"
 done < <(files)
 echo

@@ -220,7 +220,19 @@ fn reference_out_of_equilibrium_and_unrestrained_motion_are_reported() {
     let file = write_model(&dir, "free.mbd", &free);
     let (ok, _, err) = romdyn(&["eig", file.to_str().unwrap(), "--static"]);
     assert!(!ok);
+    // Two unconnected free nodes: no rigid motion of the whole model, so the components.
     assert!(err.contains("unrestrained rigid-body motion along node"), "{err}");
+    // The two nodes held together by a 6-D spring and nothing else: the free direction is a
+    // rigid motion of both nodes together, named as such rather than as node components.
+    let spring = "joint: 2, deformable joint,\n        1, null, hinge, reference, node, eye,\n        2, 0., L, 0., hinge, reference, node, eye,\n        linear elastic generic, diag, 1.e4, 1.e4, 1.e4, 1.e4, 1.e4, 1.e4;";
+    let floating = pendulum.replace("    joint: 1, clamp, 1, node, node;\n", "").replace("joint: 2, revolute hinge,\n        1, position, null,\n        2, position, 0., L, 0.;", spring).replace("joints: 2;", "joints: 1;");
+    assert!(floating.contains("deformable joint") && !floating.contains("clamp, 1"));
+    let file = write_model(&dir, "floating.mbd", &floating);
+    let (ok, _, err) = romdyn(&["eig", file.to_str().unwrap(), "--static"]);
+    assert!(!ok);
+    assert!(err.contains("unrestrained rigid-body motion of the whole model (its 2 nodes move together)"), "{err}");
+    // The solver's failure is told once (it was repeated as the error's source too).
+    assert_eq!(err.matches("Newton failed").count(), 1, "{err}");
     std::fs::remove_dir_all(&dir).ok();
 }
 

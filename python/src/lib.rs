@@ -170,7 +170,7 @@ impl Model {
             .detach(|| -> Result<NodeHistories, StudyError> {
                 let m = self.read()?;
                 let mut h = NodeHistories::default();
-                run(&m.model, &m.problem, &mut h).map_err(|source| StudyError::Reference { file: Some(self.name.clone()), source })?;
+                run(&m.model, &m.problem, &mut h).map_err(|cause| StudyError::Reference { file: Some(self.name.clone()), cause })?;
                 Ok(h)
             })
             .map_err(py_err)?;

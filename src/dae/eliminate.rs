@@ -7,7 +7,7 @@
 //! and beams a band half as wide. Exact algebra: the same Newton increment as the whole
 //! system's, up to rounding.
 
-use super::sparse::{Factored, LuPath, SparseError, Triplets};
+use super::factored::{Factored, LuPath, SparseError, Triplets};
 
 /// One eliminated unknown `p` and its equation `m`, with the pivot's entry.
 #[derive(Clone, Copy, Debug)]

@@ -21,6 +21,7 @@ mod dofs;
 mod element_part;
 mod eliminate;
 mod energy;
+mod factored;
 mod linearize;
 pub mod ports;
 mod sparse;

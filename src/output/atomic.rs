@@ -15,8 +15,9 @@ use std::path::{Path, PathBuf};
 /// An output file could not be written.
 #[derive(Debug, thiserror::Error)]
 pub enum OutputError {
-    #[error("{path}: cannot {operation}: {source}")]
-    Io { path: PathBuf, operation: &'static str, source: std::io::Error },
+    /// (`cause` is in the message and deliberately not an error `source`: `{:#}` would print it twice.)
+    #[error("{path}: cannot {operation}: {cause}")]
+    Io { path: PathBuf, operation: &'static str, cause: std::io::Error },
     #[error("{path}: {message}")]
     Invalid { path: PathBuf, message: String },
 }
@@ -38,7 +39,7 @@ pub struct AtomicFile {
 impl AtomicFile {
     /// Creates the temporary file (and the target's directory).
     pub fn create(path: &Path) -> Result<Self, OutputError> {
-        let io = |operation, source| OutputError::Io { path: path.to_path_buf(), operation, source };
+        let io = |operation, source| OutputError::Io { path: path.to_path_buf(), operation, cause: source };
         if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
             std::fs::create_dir_all(dir).map_err(|e| io("create its directory", e))?;
         }
@@ -67,12 +68,12 @@ impl AtomicFile {
     pub fn write_with(&mut self, write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>) -> Result<(), OutputError> {
         let path = self.path.clone();
         let out = self.out.as_mut().ok_or_else(|| OutputError::Invalid { path: path.clone(), message: "written after commit".into() })?;
-        write(out).map_err(|source| OutputError::Io { path, operation: "write", source })
+        write(out).map_err(|source| OutputError::Io { path, operation: "write", cause: source })
     }
 
     /// Flushes and syncs the temporary file (it stays under its temporary name).
     fn sync(&mut self) -> Result<(), OutputError> {
-        let io = |operation, source| OutputError::Io { path: self.path.clone(), operation, source };
+        let io = |operation, source| OutputError::Io { path: self.path.clone(), operation, cause: source };
         if let Some(out) = self.out.take() {
             let file = out.into_inner().map_err(|e| io("write", e.into_error()))?;
             file.sync_all().map_err(|e| io("sync", e))?;
@@ -81,7 +82,7 @@ impl AtomicFile {
     }
 
     fn rename(&self) -> Result<(), OutputError> {
-        std::fs::rename(&self.tmp, &self.path).map_err(|source| OutputError::Io { path: self.path.clone(), operation: "rename the temporary file onto it", source })
+        std::fs::rename(&self.tmp, &self.path).map_err(|source| OutputError::Io { path: self.path.clone(), operation: "rename the temporary file onto it", cause: source })
     }
 
     /// Flushes, syncs and renames the file onto its target.
@@ -114,7 +115,7 @@ pub fn commit_set(mut files: Vec<AtomicFile>, journal: &Path) -> Result<(), Outp
     for f in files.iter_mut() {
         f.sync()?;
     }
-    let io = |operation, source| OutputError::Io { path: journal.to_path_buf(), operation, source };
+    let io = |operation, source| OutputError::Io { path: journal.to_path_buf(), operation, cause: source };
     let mut text = String::new();
     for f in &files {
         let (Some(tmp), Some(target)) = (f.tmp.to_str(), f.path.to_str()) else {
@@ -157,16 +158,16 @@ pub fn recover_set(journal: &Path) -> Result<bool, OutputError> {
     let text = match std::fs::read_to_string(journal) {
         Ok(t) => t,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(false),
-        Err(source) => return Err(OutputError::Io { path: journal.to_path_buf(), operation: "read the commit journal", source }),
+        Err(source) => return Err(OutputError::Io { path: journal.to_path_buf(), operation: "read the commit journal", cause: source }),
     };
     for line in text.lines() {
         if let Some((tmp, target)) = line.split_once('\t') {
             if Path::new(tmp).exists() {
-                std::fs::rename(tmp, target).map_err(|source| OutputError::Io { path: target.into(), operation: "complete an interrupted commit", source })?;
+                std::fs::rename(tmp, target).map_err(|source| OutputError::Io { path: target.into(), operation: "complete an interrupted commit", cause: source })?;
             }
         }
     }
-    std::fs::remove_file(journal).map_err(|source| OutputError::Io { path: journal.to_path_buf(), operation: "remove the commit journal", source })?;
+    std::fs::remove_file(journal).map_err(|source| OutputError::Io { path: journal.to_path_buf(), operation: "remove the commit journal", cause: source })?;
     Ok(true)
 }
 

@@ -64,7 +64,7 @@ pub fn write_figure(figure: &impl Figure, size: (u32, u32), svg_path: &Path, png
     let result = figure
         .draw(BitMapBackend::new(&tmp, size).into_drawing_area())
         .map_err(|m| invalid(png_path, m))
-        .and_then(|_| std::fs::rename(&tmp, png_path).map_err(|e| OutputError::Io { path: png_path.to_path_buf(), operation: "rename the temporary file onto it", source: e }));
+        .and_then(|_| std::fs::rename(&tmp, png_path).map_err(|e| OutputError::Io { path: png_path.to_path_buf(), operation: "rename the temporary file onto it", cause: e }));
     if result.is_err() {
         let _ = std::fs::remove_file(&tmp);
     }

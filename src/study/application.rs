@@ -77,13 +77,13 @@ impl Study {
     /// that of the model as written (dummy springs present), the study's full model and its
     /// ROMs have the springs removed.
     pub fn from_application(model: Model, problem: &InitialValueProblem, reference: Reference, app: &Application, eigen: EigenSettings) -> Result<Self, StudyError> {
-        let state = reference_state(&model, problem, reference).map_err(|source| StudyError::Reference { file: None, source })?;
+        let state = reference_state(&model, problem, reference).map_err(|source| StudyError::Reference { file: None, cause: source })?;
         Self::from_application_state(model, problem, state, app, eigen)
     }
 
     /// [`Study::from_application`] at a given reference solution.
     pub fn from_application_state(model: Model, problem: &InitialValueProblem, state: State, app: &Application, eigen: EigenSettings) -> Result<Self, StudyError> {
-        Self::application_state(model, problem, state, app, eigen, &super::setup::quiet)
+        Self::application_state(model, problem, state, app, eigen, &|_: &str| {})
     }
 
     /// [`Study::from_application_state`] with the sparse solver's progress reports. Springs

@@ -24,15 +24,19 @@ pub(super) fn equilibrium_warning(model: &Model, state: &State, tolerance: f64) 
     (v > accepted).then(|| Warning::NotInEquilibrium { residual: v, equation: asm.dofs.equation_name(model, i), tolerance: accepted })
 }
 
-/// The free direction of a model whose static matrix at its initial state is singular,
-/// named by its largest node components ("node 2 x, node 2 y").
+/// The free direction of a model whose static matrix at its initial state is singular, in
+/// words a person recognizes: the whole model's rigid-body motion when it is one
+/// ([`whole_model_rigid_motion`]), else its largest node components ("node 2 x, node 2 y").
 pub(super) fn unrestrained_motion(model: &Model) -> Option<String> {
     let asm = Assembler::new(model);
     let st = State::initial(model, &asm.dofs);
     let dae = linearize(model, &st, &[], &[], None).ok()?;
     let x = null_direction(&dae.static_matrix())?;
+    if let Some(rigid) = whole_model_rigid_motion(model, &x) {
+        return Some(rigid);
+    }
     let text = largest_components(&x, &dae.unknown_names, &dae.multipliers);
-    (!text.is_empty()).then_some(text)
+    (!text.is_empty()).then(|| format!("rigid-body motion along {text}"))
 }
 
 /// The largest components of a direction in the unknowns, e.g. "node 2 x, node 2 y"
@@ -102,7 +106,8 @@ pub(super) fn whole_model_rigid_motion(model: &Model, x: &[f64]) -> Option<Strin
         1 => format!(" but node {}, at rest", at_rest[0]),
         _ => format!(" but nodes {}, at rest", at_rest.join(", ")),
     };
-    Some(format!("rigid-body motion of the whole model (its {} nodes{rest}, move together), here {}", moving.len(), parts.join(", ")))
+    let together = if at_rest.is_empty() { format!("its {} nodes move together", moving.len()) } else { format!("its {} nodes{rest}, move together", moving.len()) };
+    Some(format!("rigid-body motion of the whole model ({together}), here {}", parts.join(", ")))
 }
 
 /// Channels (output, input) of the full model whose response is exactly zero at every

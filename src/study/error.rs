@@ -17,10 +17,10 @@ pub enum StudyError {
     Model(#[from] Box<MbdynError>),
     #[error(transparent)]
     Pencil(#[from] PencilError),
-    #[error("{}reference solution: {source}", file.as_ref().map(|f| format!("{}: ", f.display())).unwrap_or_default())]
-    Reference { file: Option<PathBuf>, source: RunError },
-    #[error("static equilibrium: unrestrained rigid-body motion along {motion} (the model needs more supports or joints); {source}")]
-    Unrestrained { motion: String, source: RunError },
+    #[error("{}reference solution: {cause}", file.as_ref().map(|f| format!("{}: ", f.display())).unwrap_or_default())]
+    Reference { file: Option<PathBuf>, cause: RunError },
+    #[error("static equilibrium: unrestrained {motion} (the model needs more supports or joints); {cause}")]
+    Unrestrained { motion: String, cause: RunError },
     #[error("{option}: {message}")]
     Option { option: &'static str, message: String },
     #[error(transparent)]
@@ -80,7 +80,7 @@ impl StudyError {
     /// Names the model file in a reference-solution failure.
     pub fn in_file(self, path: &Path) -> Self {
         match self {
-            StudyError::Reference { file: None, source } => StudyError::Reference { file: Some(path.to_path_buf()), source },
+            StudyError::Reference { file: None, cause } => StudyError::Reference { file: Some(path.to_path_buf()), cause },
             e => e,
         }
     }

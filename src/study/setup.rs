@@ -103,8 +103,8 @@ pub fn checked_reference_state(model: &Model, problem: &InitialValueProblem, ref
     result.map_err(|source| {
         let motion = matches!(reference, Reference::Static { .. }).then(|| unrestrained_motion(model)).flatten();
         match motion {
-            Some(motion) => StudyError::Unrestrained { motion, source },
-            None => StudyError::Reference { file: None, source },
+            Some(motion) => StudyError::Unrestrained { motion, cause: source },
+            None => StudyError::Reference { file: None, cause: source },
         }
     })
 }
