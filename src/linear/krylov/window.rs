@@ -35,6 +35,11 @@ pub(super) struct WindowResult {
     pub shift: c64,
     pub radius: f64,
     pub agreed: bool,
+    /// Radius of the largest disc `|λ − σ| < clean` (at most `radius`) holding no
+    /// disagreement and no rejected pair: where the two runs' check holds when `agreed` is
+    /// false (disagreements far out, e.g. Ritz values of the infinite eigenvalues' defective
+    /// θ = 0 cluster once the finite spectrum is exhausted).
+    pub clean: f64,
     pub pairs: Vec<Eigenpair>,
     /// Pairs that converged in the operator but failed the true-residual test.
     pub rejected: usize,
@@ -119,14 +124,22 @@ pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted:
     let mut pairs = Vec::new();
     let mut rejected = 0;
     let mut agreed = true;
+    // Nearest distance to σ of a disagreement or a rejected pair.
+    let mut trouble = f64::INFINITY;
+    let mut flag = |l: c64, agreed: &mut bool| {
+        if inside(l) {
+            *agreed = false;
+        }
+        trouble = trouble.min((l - sigma).norm());
+    };
     for (lr, v29) in &right {
         let best = left.iter().enumerate().filter(|(i, _)| !used[*i]).min_by(|a, b| (a.1 .0 - lr).norm().total_cmp(&(b.1 .0 - lr).norm()));
         let Some((i, (ll, u29))) = best else {
-            agreed &= !inside(*lr);
+            flag(*lr, &mut agreed);
             continue;
         };
         if (ll - lr).norm() > 1e-6 * (lr - sigma).norm().max(lr.norm() * 1e-3) {
-            agreed &= !inside(*lr);
+            flag(*lr, &mut agreed);
             continue;
         }
         used[i] = true;
@@ -145,7 +158,7 @@ pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted:
             .unwrap_or_else(|| unreachable!("the Ritz value is finite"));
         if !(rr <= s.tolerance && rl <= s.tolerance) {
             rejected += 1;
-            agreed &= !inside(lambda);
+            flag(lambda, &mut agreed);
             continue;
         }
         let (v, u) = (pencil.to_dae(v29, lambda), pencil.to_dae(u29, lambda));
@@ -161,11 +174,12 @@ pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted:
     }
     // A left eigenvalue inside the disc without a right partner is a disagreement.
     for (i, (ll, _)) in left.iter().enumerate() {
-        if !used[i] && inside(*ll) {
-            agreed = false;
+        if !used[i] {
+            flag(*ll, &mut agreed);
         }
     }
-    Ok(WindowResult { shift: sigma, radius, agreed, pairs, rejected })
+    let clean = radius.min(trouble * (1.0 - 1e-6));
+    Ok(WindowResult { shift: sigma, radius, agreed, clean, pairs, rejected })
 }
 
 /// `F_yd x` and `F_y x` (or `F_ydᵀ x`, `F_yᵀ x`) of the DAE's vector of an eq. 29 vector
