@@ -357,7 +357,7 @@ fn rods_from_nodes_with_offsets_and_prestrain() {
         NODES,
         "joint: 1, rod, 1, 3, from nodes, linear elastic, 1000.;
          joint: 2, rod, 1, position, 0., 0., 0.5, 3, position, reference, global, 0., 1., 0.5, 1.5, linear elastic generic, 200.;
-         joint: 3, rod with offset, 2, null, 3, null, 2., linear elastic, 100., prestrain, single, 0.1, const, 1.;",
+         joint: 3, rod with offset, 2, null, 3, null, 2., linear elastic, 100., prestrain, single, const, 0.1;",
     );
     let mut b = ModelBuilder::new();
     nodes(&mut b);

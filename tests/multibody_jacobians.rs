@@ -6,7 +6,7 @@ mod common;
 
 use common::fixtures::{Noise, WrongSpring};
 use romdyn::dae::{check_jacobians, Assembler, State};
-use romdyn::element::{Anchor, Beam3, BeamNode, SectionLaw, SectionOrientation, Couple, DeformableDisplacement, DeformableHinge, Drive, Force, ForceFrame, Joint, LinearViscoelastic, RigidBody, Rod};
+use romdyn::element::{Anchor, Beam2, Beam3, DeformableJoint, ScalarFunction, BeamNode, SectionLaw, SectionOrientation, Couple, DeformableDisplacement, DeformableHinge, Drive, Force, ForceFrame, Joint, LinearViscoelastic, RigidBody, Rod};
 use romdyn::kinematics::{Mat3, Vec3};
 use romdyn::linear::ConstraintForm;
 use romdyn::model::{Model, ModelBuilder};
@@ -59,6 +59,15 @@ fn every_element(form: ConstraintForm) -> Model {
     let (bn, laws) = (beam_nodes(&mut n, &b), [random_law(&mut n, true), random_law(&mut n, true)]);
     let viscous = Beam3::new(31, bn, [SectionOrientation::Given(n.rotation()), SectionOrientation::Given(n.rotation())], laws).unwrap();
     b.element(elastic).element(viscous);
+    // A deformable axial joint with nlsf terms f′(θ₃ − θ_p) = θ³ − θ and f″(ω₃) = exp(2 ω₃).
+    let (elastic, viscous) = (ScalarFunction::Sub(Box::new(ScalarFunction::Pow(3.0)), Box::new(ScalarFunction::Multilinear { points: vec![(-1.0, -1.0), (1.0, 1.0)], extrapolate: true })), ScalarFunction::Exp { multiplier: 1.0, base: std::f64::consts::E, coefficient: 2.0 });
+    b.element(DeformableJoint::axial(42, node(2, &mut n), node(3, &mut n), 30.0, 2.0, 0.1, 0.5).with_axial_functions(Some(elastic), Some(viscous)));
+    // beam2 on nodes 1 and 3 (both state perturbations turn them by about 0.5 rad apart).
+    let two = |n: &mut Noise, b: &ModelBuilder, i: usize| { let m = &b.nodes()[i]; BeamNode::new(m.label, m.position, m.orientation, 0.3 * n.vec()).with_orientation(n.rotation()) };
+    let (n1, n3) = (two(&mut n, &b, 0), two(&mut n, &b, 2));
+    b.element(Beam2::new(40, [n1, n3], SectionOrientation::FromNodes, random_law(&mut n, false)).unwrap());
+    let (n2, n3) = (two(&mut n, &b, 1), two(&mut n, &b, 2));
+    b.element(Beam2::new(41, [n2, n3], SectionOrientation::Given(n.rotation()), random_law(&mut n, false)).unwrap());
     b.gravity(Vec3::new(0.3, -9.81, 0.2)).constraint_form(form);
     b.build().unwrap()
 }

@@ -92,7 +92,7 @@ fn linearizable(model: &Model) -> Result<(), PortError> {
     match model.elements.iter().find(|e| e.reads_state()) {
         Some(e) => Err(PortError::Invalid(
             format!("{} {}", e.type_name(), e.label()),
-            "a drive of this element reads the model's state (model:: functions in a string drive); its derivatives are in no Jacobian (as in MBDyn), so romdyn does not linearize this model".into(),
+            "a drive of this element reads the model's state (model:: functions in a string drive, node, dof or element drive callers); its derivatives are in no Jacobian (as in MBDyn), so romdyn does not linearize this model".into(),
         )),
         None => Ok(()),
     }

@@ -33,6 +33,15 @@ impl Element for AxialRotation {
     fn label(&self) -> Label {
         self.hinge.label
     }
+    /// `rz` the hinge's relative rotation, `wz` the imposed Ω(t) (planej.cc,
+    /// `AxialRotationJoint::dGetPrivData`: `dGet()`, not the measured spin).
+    fn private_data(&self, name: &str) -> Option<super::private_data::PrivateDatum> {
+        if name == "wz" {
+            let omega = self.omega.clone();
+            return Some(std::sync::Arc::new(move |st: &dyn ElementState| Some(omega.value_in(st))));
+        }
+        super::private_data::joint_private_datum(&self.hinge, name)
+    }
     fn type_name(&self) -> &'static str {
         "axial rotation"
     }

@@ -160,6 +160,12 @@ pub trait Element: Send + Sync {
     fn residual(&self, s: &dyn ElementState, out: &mut dyn ResidualSink);
     /// Adds its derivatives; the assembler forms `J(c)` from them.
     fn jacobian(&self, s: &dyn ElementState, out: &mut dyn JacobianSink);
+    /// Its private datum `name` (MBDyn's `iGetPrivDataIdx`/`dGetPrivData`), which the
+    /// `element` and `dof` drive callers read, if romdyn computes it (see
+    /// [`super::private_data`]).
+    fn private_data(&self, _name: &str) -> Option<super::private_data::PrivateDatum> {
+        None
+    }
     /// Internal forces and deformation at the element's evaluation points (beams), for
     /// output; none for other elements.
     fn sections(&self, _s: &dyn ElementState) -> Vec<SectionState> {

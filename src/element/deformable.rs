@@ -252,7 +252,7 @@ impl Element for Rod {
 
 /// Residual of a force `f` along the line of the points: `f` at `p_b` on B, `−f` at `p_a`
 /// on A (rods, distance joints; [`add_pair_force_jacobian`] is its Jacobian).
-fn add_pair_force(out: &mut dyn ResidualSink, p: &Pair, f: &Vec3) {
+pub(super) fn add_pair_force(out: &mut dyn ResidualSink, p: &Pair, f: &Vec3) {
     add_vec(out, Row::force(p.slot_b), f);
     add_vec(out, Row::moment(p.slot_b), &p.f_b.cross(f));
     if let Some(a) = p.slot_a {
@@ -264,7 +264,7 @@ fn add_pair_force(out: &mut dyn ResidualSink, p: &Pair, f: &Vec3) {
 /// Jacobian of a force `f(d)` (with `∂f/∂d = kd`) applied at the point `f_b` of node b and,
 /// opposite, at `f_a` of node a, `d` being the distance vector between the points:
 /// `δd = δx_b − [f_b×] δθ_b − δx_a + [f_a×] δθ_a`. Returns those `δd` blocks.
-fn add_pair_force_jacobian(out: &mut dyn JacobianSink, p: &Pair, f: &Vec3, kd: &Mat3) -> Vec<([Col; 3], Mat3)> {
+pub(super) fn add_pair_force_jacobian(out: &mut dyn JacobianSink, p: &Pair, f: &Vec3, kd: &Mat3) -> Vec<([Col; 3], Mat3)> {
     let (fx, fax, fbx) = (skew(f), skew(&p.f_a), skew(&p.f_b));
     let mut dd = vec![(Col::position(p.slot_b), Mat3::identity()), (Col::rotation(p.slot_b), -fbx)];
     if let Some(a) = p.slot_a {

@@ -4,7 +4,9 @@
 //! frame A, generalized force `φ = K (k − k_p) + C k̇ + φ_p`; the force `Q_a φ₁₋₃` acts at
 //! `p_b` and the moment `Q_a φ₄₋₆` on B, both opposite on A. Also MBDyn's `deformable axial
 //! joint` (vehj4.cc): the law only on the rotation about axis 3 of frame A; and the
-//! `deformable hinge` with prestrain or prestress: the law only on the rotation.
+//! `deformable hinge` with prestrain or prestress: the law only on the rotation. The axial
+//! joint also takes MBDyn's `nlsf` 1-D laws (constltp_nlsf.cc): `M = k (θ₃ − θ_p) + f′(θ₃ −
+//! θ_p) + c ω₃ + f″(ω₃) + M_p` with scalar functions `f′`, `f″`.
 
 use nalgebra::{Matrix6, SMatrix, Vector6};
 
@@ -12,6 +14,7 @@ use super::anchor::{node_labels, Anchor, Pair};
 use super::beam::SectionLaw;
 use super::contract::{add_block, Col, Element, ElementState, JacobianSink, Label, ResidualSink, Row};
 use super::deformable::inverse_rotation_jacobian;
+use super::ScalarFunction;
 use crate::kinematics::{rotation_vector, skew, Mat3, Vec3};
 
 type Block = ([Col; 3], SMatrix<f64, 6, 3>);
@@ -24,12 +27,14 @@ pub struct DeformableJoint {
     b: Anchor,
     law: SectionLaw,
     name: &'static str,
+    /// The axial joint's nonlinear terms `f′(θ₃ − θ_p)` and `f″(ω₃)`.
+    functions: [Option<ScalarFunction>; 2],
 }
 
 impl DeformableJoint {
     /// The 6-D `deformable joint`; `law` in frame A, strains `[ε₁ ε₂ ε₃ θ₁ θ₂ θ₃]`.
     pub fn new(label: Label, a: Anchor, b: Anchor, law: SectionLaw) -> Self {
-        DeformableJoint { label, a, b, law, name: "deformable joint" }
+        DeformableJoint { label, a, b, law, name: "deformable joint", functions: [None, None] }
     }
     /// MBDyn's `deformable hinge` with a `prestrain` `θ_p` and a `prestress` `M_p`: moment
     /// `Q_a (K (θ − θ_p) + C w + M_p)`, the 6-D law's rotation block alone.
@@ -40,7 +45,7 @@ impl DeformableJoint {
             six.prestrain[3 + k] = prestrain[k];
             six.prestress[3 + k] = prestress[k];
         }
-        DeformableJoint { label, a, b, law: six, name: "deformable hinge" }
+        DeformableJoint { label, a, b, law: six, name: "deformable hinge", functions: [None, None] }
     }
     /// The `deformable axial joint`: moment `M = k (θ₃ − θ_p) + c ω₃ + M_p` about axis 3 of
     /// frame A, `θ₃` the third component of `rotvec(Q_aᵀ Q_b)`, `ω₃ = e₃ₐ · (ω_b − ω_a)`.
@@ -49,11 +54,36 @@ impl DeformableJoint {
         let mut law = SectionLaw::viscoelastic(one(stiffness), one(viscosity));
         law.prestrain[5] = prestrain;
         law.prestress[5] = prestress;
-        DeformableJoint { label, a, b, law, name: "deformable axial joint" }
+        DeformableJoint { label, a, b, law, name: "deformable axial joint", functions: [None, None] }
+    }
+    /// The axial joint with MBDyn's `nlsf` terms: `f′(θ₃ − θ_p)` (`elastic`) and `f″(ω₃)`
+    /// (`viscous`) added to its moment.
+    pub fn with_axial_functions(mut self, elastic: Option<ScalarFunction>, viscous: Option<ScalarFunction>) -> Self {
+        self.functions = [elastic, viscous];
+        self
     }
 
-    /// Generalized force `φ` in frame A, relative rotation vector `θ`, relative angular velocity.
-    fn phi(&self, p: &Pair) -> (Vector6<f64>, Vec3, Vec3) {
+    /// The law at strain `k` and rate `k̇`: `φ` and its derivatives `K = ∂φ/∂k`, `C = ∂φ/∂k̇`.
+    fn law_at(&self, k: &Vector6<f64>, k_rate: &Vector6<f64>) -> (Vector6<f64>, Matrix6<f64>, Matrix6<f64>) {
+        let l = &self.law;
+        let mut phi = l.stiffness * (k - l.prestrain) + l.viscosity * k_rate + l.prestress;
+        let (mut kk, mut cc) = (l.stiffness, l.viscosity);
+        if let Some(f) = &self.functions[0] {
+            let (v, d) = f.value_and_derivative(k[5] - l.prestrain[5]);
+            phi[5] += v;
+            kk[(5, 5)] += d;
+        }
+        if let Some(f) = &self.functions[1] {
+            let (v, d) = f.value_and_derivative(k_rate[5]);
+            phi[5] += v;
+            cc[(5, 5)] += d;
+        }
+        (phi, kk, cc)
+    }
+
+    /// Generalized force `φ` in frame A and its derivatives `K`, `C`, relative rotation vector
+    /// `θ`, relative angular velocity.
+    fn phi(&self, p: &Pair) -> (Vector6<f64>, Matrix6<f64>, Matrix6<f64>, Vec3, Vec3) {
         let qt = p.q_a.transpose();
         let theta = rotation_vector(&(qt * p.q_b));
         let w = p.omega_b - p.omega_a;
@@ -61,8 +91,8 @@ impl DeformableJoint {
         let k = Vector6::new(e[0], e[1], e[2], theta[0], theta[1], theta[2]);
         let w_a = qt * w;
         let k_rate = Vector6::new(e_rate[0], e_rate[1], e_rate[2], w_a[0], w_a[1], w_a[2]);
-        let l = &self.law;
-        (l.stiffness * (k - l.prestrain) + l.viscosity * k_rate + l.prestress, theta, w)
+        let (phi, kk, cc) = self.law_at(&k, &k_rate);
+        (phi, kk, cc, theta, w)
     }
 }
 
@@ -95,8 +125,8 @@ impl Element for DeformableJoint {
     }
     fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
         let p = Pair::new(&self.a, &self.b, st);
-        let (phi, theta, w) = self.phi(&p);
-        let (k, c) = (&self.law.stiffness, &self.law.viscosity);
+        let (phi, k, c, theta, w) = self.phi(&p);
+        let (k, c) = (&k, &c);
         let qt = p.q_a.transpose();
         // δθ = Γ⁻¹(θ) Q_aᵀ (δθ_b − δθ_a); δ(Q_aᵀ w) = Q_aᵀ (δω_b − δω_a) + Q_aᵀ [w×] δθ_a.
         let d_rel = inverse_rotation_jacobian(&theta) * qt;

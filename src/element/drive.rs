@@ -34,6 +34,13 @@ impl TimeFunction {
     pub fn new(text: impl Into<String>, f: impl Fn(f64) -> f64 + Send + Sync + 'static) -> Self {
         TimeFunction { text: text.into(), f: Arc::new(move |t, _| f(t)), reads_state: false }
     }
+    /// A function of its argument that may also read the time of the state it is evaluated
+    /// in (MBDyn's `string` drive: `Var` the argument, `Time` the simulation's time, which
+    /// differ inside a `dof`, `element` or `periodic` drive caller), but not the model's
+    /// state: no linearization is refused for it.
+    pub fn of_argument(text: impl Into<String>, f: impl Fn(f64, Option<&dyn ElementState>) -> f64 + Send + Sync + 'static) -> Self {
+        TimeFunction { text: text.into(), f: Arc::new(f), reads_state: false }
+    }
     /// An expression that reads the model's state: `f(t, None)` is called where no state
     /// exists (it should then give NaN).
     pub fn reading_state(text: impl Into<String>, f: impl Fn(f64, Option<&dyn ElementState>) -> f64 + Send + Sync + 'static) -> Self {

@@ -89,18 +89,28 @@ impl DrivenJoint {
         v.chain(w)
     }
 
-    /// The joint with its anchors where they are at time `t`.
+    /// The joint with its anchors where they are at time `t` (drives that read the model's
+    /// state give NaN here: see [`Self::joint_in`]).
     pub fn joint_at(&self, t: f64) -> Joint {
+        self.placed(self.position.value(t), self.rotation.value(t))
+    }
+
+    /// The joint with its anchors where the drives put them in the state `st` (at its time,
+    /// reading the state as MBDyn's drive callers do, their derivatives in no Jacobian).
+    pub fn joint_in(&self, st: &dyn ElementState) -> Joint {
+        self.placed(self.position.value_in(st), self.rotation.value_in(st))
+    }
+
+    fn placed(&self, d: Vec3, theta: Vec3) -> Joint {
         let mut j = self.joint.clone();
         if !self.position.0.is_empty() {
-            let d = self.position.value(t);
             match &mut j.a {
                 Anchor::Node { offset, orientation, .. } => *offset += *orientation * d,
                 Anchor::Ground { position, orientation } => *position += *orientation * d,
             }
         }
         if !self.rotation.0.is_empty() {
-            let back = nalgebra::Rotation3::new(self.rotation.value(t)).into_inner().transpose();
+            let back = nalgebra::Rotation3::new(theta).into_inner().transpose();
             match &mut j.b {
                 Anchor::Node { orientation, .. } | Anchor::Ground { orientation, .. } => *orientation *= back,
             }
@@ -129,6 +139,9 @@ impl Element for DrivenJoint {
     fn label(&self) -> Label {
         self.joint.label
     }
+    fn private_data(&self, name: &str) -> Option<super::private_data::PrivateDatum> {
+        super::private_data::joint_private_datum(&self.joint, name)
+    }
     fn type_name(&self) -> &'static str {
         self.name
     }
@@ -147,8 +160,7 @@ impl Element for DrivenJoint {
         k >= self.holonomic()
     }
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
-        let t = st.time();
-        let j = self.joint_at(t);
+        let j = self.joint_in(st);
         j.residual(st, out);
         if self.rates().next().is_none() {
             return;
@@ -156,7 +168,7 @@ impl Element for DrivenJoint {
         let p = Pair::new(&j.a, &j.b, st);
         let qt = p.q_a.transpose();
         let (v, w) = (qt * p.u, qt * (p.omega_b - p.omega_a));
-        let (v0, w0) = (self.velocity.value(t), self.angular_velocity.value(t));
+        let (v0, w0) = (self.velocity.value_in(st), self.angular_velocity.value_in(st));
         for (i, r) in self.rates().enumerate() {
             let value = match r {
                 Rate::Linear(k) => v[k] - v0[k],
@@ -169,7 +181,7 @@ impl Element for DrivenJoint {
         p.add_moment(out, &moment);
     }
     fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
-        let j = self.joint_at(st.time());
+        let j = self.joint_in(st);
         j.jacobian(st, out);
         if self.rates().next().is_none() {
             return;

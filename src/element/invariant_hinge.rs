@@ -22,7 +22,7 @@ pub struct InvariantDeformableHinge {
 /// `Γ(φ)`: `exp((φ + δφ)×) = exp((Γ(φ) δφ)×) exp(φ×)` to first order,
 /// `I + (1 − cos φ)/φ² [φ×] + (φ − sin φ)/φ³ [φ×]²` (the inverse of
 /// `inverse_rotation_jacobian`).
-fn rotation_jacobian(phi: &Vec3) -> Mat3 {
+pub(super) fn rotation_jacobian(phi: &Vec3) -> Mat3 {
     let x = phi.norm();
     let (a, b) = if x < 1e-4 { (0.5 - x * x / 24.0, 1.0 / 6.0 - x * x / 120.0) } else { ((1.0 - x.cos()) / (x * x), (x - x.sin()) / (x * x * x)) };
     let t = skew(phi);

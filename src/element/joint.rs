@@ -134,6 +134,10 @@ impl Element for Joint {
         self.locked().map(|(p, k)| format!("{} {}", if p { "f" } else { "m" }, ["x", "y", "z"][k])).collect()
     }
 
+    fn private_data(&self, name: &str) -> Option<super::private_data::PrivateDatum> {
+        super::private_data::joint_private_datum(self, name)
+    }
+
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
         let p = Pair::new(&self.a, &self.b, st);
         let m_rel = p.q_a.transpose() * p.q_b;

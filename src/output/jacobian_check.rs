@@ -17,7 +17,7 @@ pub fn jacobian_check_text(elements: &[JacobianMismatch], tolerance: f64, time: 
         s += &format!("{status:<6}  {name:<24}  {:>9.2e}  {:>14.6e}  {:>14.6e}  {entry}\n", e.relative_error, e.analytic, e.finite_difference);
     }
     if elements.iter().any(|e| e.drive_held) {
-        s += "* a drive of the element reads the model's state (model:: functions): the differences hold it at this state, its derivatives are in no Jacobian (as in MBDyn)\n";
+        s += "* a drive of the element reads the model's state (model:: functions, node, dof or element drive callers): the differences hold it at this state, its derivatives are in no Jacobian (as in MBDyn)\n";
     }
     let failed: Vec<&JacobianMismatch> = elements.iter().filter(|e| !e.within(tolerance)).collect();
     match failed.first() {

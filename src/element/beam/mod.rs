@@ -7,17 +7,21 @@
 //! `−` on the volume after it, with arms `p_s − x_i` about the nodes. The beam carries no
 //! inertia: lump masses on its nodes with rigid bodies (see [`shape::volume_fractions`]).
 
+mod finite_volume;
 mod law;
 mod section;
 pub mod shape;
+mod two_node;
 
 pub use law::SectionLaw;
+pub use two_node::Beam2;
 
 use nalgebra::{SMatrix, Vector6};
 
-use super::contract::{Col, Element, ElementState, JacobianSink, Label, ResidualSink, Row, SectionState};
-use crate::kinematics::{gibbs_from_rotation, gibbs_rotation, skew, Mat3, Vec3};
-use section::{combine, put, NodeTerms, SectionKinematics, SectionReference, Tangent, POSITION};
+use super::contract::{Element, ElementState, JacobianSink, Label, ResidualSink, SectionState};
+use crate::kinematics::{gibbs_from_rotation, gibbs_rotation, Mat3, Vec3};
+use finite_volume::PointTangents;
+use section::{combine, NodeTerms, SectionKinematics, SectionReference};
 
 /// One end or the middle of a beam: a node with its initial position and orientation (they
 /// define the unstrained configuration), the offset of the reference line from the node and
@@ -62,6 +66,8 @@ pub enum BeamError {
     ZeroLength(Label, &'static str),
     #[error("beam {0}: the orientation of evaluation point {1} is not a rotation matrix")]
     BadOrientation(Label, &'static str),
+    #[error("beam {0}: a viscous or viscoelastic section law on a {1} is not supported by romdyn (elastic laws only)")]
+    Viscous(Label, &'static str),
 }
 
 /// Three-node beam (MBDyn's `beam3`).
@@ -126,19 +132,9 @@ impl Beam3 {
 
     /// Local generalized forces `[F; M] = K ([ε; κ] − e_p) + V [ε̇; κ̇] + f_p`.
     fn local_forces(&self, s: usize, k: &SectionKinematics) -> Vector6<f64> {
-        let law = &self.laws[s];
-        let mut out = law.stiffness * (stack(&k.strain, &k.curvature) - law.prestrain) + law.prestress;
-        if self.viscous {
-            out += law.viscosity * stack(&k.strain_rate, &k.curvature_rate);
-        }
-        out
+        let rates = self.viscous.then_some((&k.strain_rate, &k.curvature_rate));
+        finite_volume::local_forces(&self.laws[s], &k.strain, &k.curvature, rates)
     }
-
-}
-
-/// `[a; b]`.
-fn stack(a: &Vec3, b: &Vec3) -> Vector6<f64> {
-    Vector6::new(a.x, a.y, a.z, b.x, b.y, b.z)
 }
 
 /// Orientation at ξ interpolated from three frames, relative to the middle one:
@@ -164,21 +160,11 @@ impl Element for Beam3 {
     }
 
     /// Node `s` (the volume before point `s`) receives `F_s` and `M_s + (p_s − x_s) × F_s`;
-    /// node `s + 1` the opposite with arm `p_s − x_{s+1}`. The residual holds `−` what a
-    /// node receives.
+    /// node `s + 1` the opposite with arm `p_s − x_{s+1}` ([`finite_volume`]).
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
         let (terms, ks) = self.evaluate(st);
         for (s, k) in ks.iter().enumerate() {
-            let f = self.local_forces(s, k);
-            let force = k.r * Vec3::new(f[0], f[1], f[2]);
-            let moment = k.r * Vec3::new(f[3], f[4], f[5]);
-            for (node, sign) in [(s, -1.0), (s + 1, 1.0)] {
-                let m = moment + (k.p - terms.x(node)).cross(&force);
-                for c in 0..3 {
-                    out.add(Row::Equilibrium { slot: node, comp: c }, sign * force[c]);
-                    out.add(Row::Equilibrium { slot: node, comp: 3 + c }, sign * m[c]);
-                }
-            }
+            finite_volume::add_point_residual(out, s, &k.p, &k.r, &self.local_forces(s, k), terms.x());
         }
     }
 
@@ -188,10 +174,7 @@ impl Element for Beam3 {
         let (_, ks) = self.evaluate(st);
         ks.iter()
             .enumerate()
-            .map(|(s, k)| {
-                let f = self.local_forces(s, k);
-                SectionState { position: k.p, orientation: k.r, strain: k.strain, curvature: k.curvature, force: f.fixed_rows::<3>(0).into(), moment: f.fixed_rows::<3>(3).into() }
-            })
+            .map(|(s, k)| finite_volume::section_state(&k.p, &k.r, &k.strain, &k.curvature, &self.local_forces(s, k)))
             .collect()
     }
 
@@ -201,44 +184,10 @@ impl Element for Beam3 {
         let mut jac = ElementJacobian::zeros();
         for (s, k) in ks.iter().enumerate() {
             let d = k.tangents(&terms, &node_tangents);
-            let law = &self.laws[s];
-            let f = self.local_forces(s, k);
-            let (fl, ml) = (Vec3::new(f[0], f[1], f[2]), Vec3::new(f[3], f[4], f[5]));
-            let (force, moment) = (k.r * fl, k.r * ml);
-            // δ(local forces) = K [δε; δκ] + V [δε̇; δκ̇].
-            let block = |m: &nalgebra::Matrix6<f64>, i: usize, j: usize| -> Mat3 { m.fixed_view::<3, 3>(i, j).into() };
-            let (kk, vv) = (&law.stiffness, &law.viscosity);
-            let mut dfl = block(kk, 0, 0) * d.dstrain + block(kk, 0, 3) * d.dcurvature;
-            let mut dml = block(kk, 3, 0) * d.dstrain + block(kk, 3, 3) * d.dcurvature;
-            if self.viscous {
-                dfl += block(vv, 0, 0) * d.dstrain_rate + block(vv, 0, 3) * d.dcurvature_rate;
-                dml += block(vv, 3, 0) * d.dstrain_rate + block(vv, 3, 3) * d.dcurvature_rate;
-            }
-            let dforce = k.r * dfl - skew(&force) * d.dtheta;
-            let dmoment = k.r * dml - skew(&moment) * d.dtheta;
-            for (node, sign) in [(s, -1.0), (s + 1, 1.0)] {
-                let arm = k.p - terms.x(node);
-                let mut darm = d.dp;
-                put(&mut darm, node, POSITION, &-Mat3::identity());
-                let dm: Tangent = dmoment + skew(&arm) * dforce - skew(&force) * darm;
-                let mut rows = jac.fixed_view_mut::<3, 36>(6 * node, 0);
-                rows += sign * dforce;
-                let mut rows = jac.fixed_view_mut::<3, 36>(6 * node + 3, 0);
-                rows += sign * dm;
-            }
+            let rates = self.viscous.then_some((&d.dstrain_rate, &d.dcurvature_rate));
+            let point = PointTangents { dp: &d.dp, dtheta: &d.dtheta, dstrain: &d.dstrain, dcurvature: &d.dcurvature, rates };
+            finite_volume::add_point_jacobian(&mut jac, s, &k.p, &k.r, &self.local_forces(s, k), &self.laws[s], &point, terms.x());
         }
-        let kinds = if self.viscous { 4 } else { 2 };
-        for node in 0..3 {
-            for (half, rows) in [Row::force(node), Row::moment(node)].into_iter().enumerate() {
-                let r = 6 * node + 3 * half;
-                for slot in 0..3 {
-                    let cols = [Col::position(slot), Col::rotation(slot), Col::velocity(slot), Col::angular_velocity(slot)];
-                    for (kind, c) in cols.into_iter().enumerate().take(kinds) {
-                        let block: Mat3 = jac.fixed_view::<3, 3>(r, 12 * slot + 3 * kind).into();
-                        out.add_block(rows, c, &block);
-                    }
-                }
-            }
-        }
+        finite_volume::scatter_jacobian(&jac, self.viscous, out);
     }
 }

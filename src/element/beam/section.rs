@@ -25,16 +25,10 @@ use crate::kinematics::{gibbs_from_rotation, gibbs_g, gibbs_g_inverse, gibbs_g_i
 /// Derivative of a 3-vector with respect to the element's node perturbations.
 pub type Tangent = SMatrix<f64, 3, 36>;
 
-pub const POSITION: usize = 0;
+pub use super::finite_volume::{put, POSITION};
 pub const ROTATION: usize = 1;
 pub const VELOCITY: usize = 2;
 pub const ANGULAR_VELOCITY: usize = 3;
-
-/// `t[:, block(node, kind)] += m`.
-pub fn put(t: &mut Tangent, node: usize, kind: usize, m: &Mat3) {
-    let mut v = t.fixed_view_mut::<3, 3>(0, 12 * node + 3 * kind);
-    v += m;
-}
 
 fn single(node: usize, kind: usize, m: &Mat3) -> Tangent {
     let mut t = Tangent::zeros();
@@ -109,8 +103,9 @@ impl NodeTerms {
         NodeTerms { t, x: std::array::from_fn(|i| n[i].x), a, y, g, gamma, omega, rates }
     }
 
-    pub fn x(&self, i: usize) -> Vec3 {
-        self.x[i]
+    /// The nodes' positions `x_i`.
+    pub fn x(&self) -> &[Vec3; 3] {
+        &self.x
     }
 
     /// `∂y_i`, `∂g_i` (and `∂ẏ_i`, `∂ġ_i` when viscous).

@@ -1,8 +1,9 @@
 //! `beam3` (input manual, "Elements", §Three-node beam element): three nodes with offsets
 //! (and optional orientations), then for evaluation points I and II a section orientation
 //! (global, or `from nodes`) and a 6-D constitutive law, `same` repeating point I's.
-//! `beam:` is the same card as `beam3` (MBDyn reads both with one reader); `beam2` is named
-//! as not supported.
+//! `beam:` is the same card as `beam3` (MBDyn reads both with one reader). `beam2`: two
+//! nodes with offsets (and optional orientations), one section orientation (global, or
+//! `from nodes`) and one 6-D law (elastic: a viscous one is refused).
 
 use nalgebra::{Matrix6, Vector6};
 
@@ -10,8 +11,16 @@ use super::cursor::Cursor;
 use super::diagnostic::MbdynError;
 use super::element_context::{ElementContext, Parsed};
 use super::laws::{linear_law, LinearLaw};
-use crate::element::{Beam3, BeamNode, SectionLaw, SectionOrientation};
+use crate::element::{Beam2, Beam3, BeamNode, SectionLaw, SectionOrientation};
 use crate::model::Label;
+
+/// Why `hbeam` is refused. MBDyn's hbeam.cc is a two-node beam whose position and
+/// orientation follow the screw motion from node 1's pose to node 2's (strains from the
+/// relative pose's SE(3) logarithm); the input manual calls it experimental, "only for
+/// development purposes", its reader takes node 1's absolute orientation for both nodes'
+/// beam frames when none is given (the frames are then wrong for nodes not at `eye`), and
+/// its viscoelastic variant is not built.
+pub const HBEAM_REFUSED: &str = "element type 'hbeam' is not supported by romdyn: MBDyn's manual calls it experimental (for development only); use beam2, whose curvature is exact for a uniformly bent element";
 
 /// Flags of `custom output` (input manual, §default beam output).
 const CUSTOM_OUTPUT: [&str; 14] = [
@@ -49,22 +58,37 @@ pub(super) fn section_law(law: &LinearLaw) -> SectionLaw {
     s
 }
 
+/// `custom output, FLAGS…` (NetCDF only, input manual: romdyn writes its own).
+fn custom_output(c: &mut Cursor) -> Result<(), MbdynError> {
+    if c.accept("custom output") {
+        c.keyword("a custom output flag", &CUSTOM_OUTPUT)?;
+        while c.accept_any(&CUSTOM_OUTPUT).is_some() {}
+    }
+    Ok(())
+}
+
 /// `beam3: LABEL, NODE_1, …, NODE_3, …, R_I, LAW_I, {same | R_II}, {same | LAW_II}
-/// [, custom output, FLAGS…]`.
+/// [, custom output, FLAGS…]`; `beam2: LABEL, NODE_1, …, NODE_2, …, R_I, LAW_I [, custom
+/// output, FLAGS…]`.
 pub fn beam(keyword: &str, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Parsed, MbdynError> {
+    if keyword == "beam2" {
+        let nodes = [beam_node(c, ctx, "node 1")?, beam_node(c, ctx, "node 2")?];
+        let orientation = section_orientation(c, ctx, "orientation of section I")?;
+        let law = linear_law(c, 6, ctx.laws, ctx.drives, ctx.seq)?;
+        custom_output(c)?;
+        let span = c.statement().span;
+        let beam = Beam2::new(label, nodes, orientation, section_law(&law)).map_err(|e| c.error_at(span, e.to_string()))?;
+        return Ok(Parsed::Element(Box::new(beam)));
+    }
     if keyword != "beam3" && keyword != "beam" {
-        return Err(c.error_at(c.statement().span, format!("element type '{keyword}' ({keyword} {label}) is not supported by romdyn (supported: beam3)")));
+        return Err(c.error_at(c.statement().span, format!("element type '{keyword}' ({keyword} {label}) is not supported by romdyn (supported: beam2, beam3)")));
     }
     let nodes = [beam_node(c, ctx, "node 1")?, beam_node(c, ctx, "node 2")?, beam_node(c, ctx, "node 3")?];
     let orientation_i = section_orientation(c, ctx, "orientation of section I")?;
     let law_i = linear_law(c, 6, ctx.laws, ctx.drives, ctx.seq)?;
     let orientation_ii = if c.accept("same") { orientation_i.clone() } else { section_orientation(c, ctx, "orientation of section II")? };
     let law_ii = if c.accept("same") { law_i.clone() } else { linear_law(c, 6, ctx.laws, ctx.drives, ctx.seq)? };
-    if c.accept("custom output") {
-        // The flags select NetCDF output only (input manual): romdyn writes its own.
-        c.keyword("a custom output flag", &CUSTOM_OUTPUT)?;
-        while c.accept_any(&CUSTOM_OUTPUT).is_some() {}
-    }
+    custom_output(c)?;
     let span = c.statement().span;
     let beam = Beam3::new(label, nodes, [orientation_i, orientation_ii], [section_law(&law_i), section_law(&law_ii)]).map_err(|e| c.error_at(span, e.to_string()))?;
     Ok(Parsed::Element(Box::new(beam)))

@@ -15,18 +15,19 @@ use super::parser::{known, Block};
 use crate::model::{InitialAssembly, OrientationOutput};
 
 /// Entity kinds counted in control data and found in the model.
-pub const COUNTED: [&str; 8] = ["structural nodes", "rigid bodies", "joints", "forces", "beams", "gravity", "automatic structural elements", "file drivers"];
+pub const COUNTED: [&str; 9] = ["structural nodes", "parameter nodes", "rigid bodies", "joints", "forces", "beams", "gravity", "automatic structural elements", "file drivers"];
 
 /// Counters of entities romdyn does not support: a non-zero count is an error.
-const UNSUPPORTED_COUNTERS: [&str; 17] = [
-    "abstract nodes", "electric nodes", "hydraulic nodes", "parameter nodes", "thermal nodes", "aerodynamic elements", "aeromodals",
+const UNSUPPORTED_COUNTERS: [&str; 16] = [
+    "abstract nodes", "electric nodes", "hydraulic nodes", "thermal nodes", "aerodynamic elements", "aeromodals",
     "air properties", "bulk elements", "electric bulk elements", "electric elements", "external elements", "genels", "hydraulic elements",
     "loadable elements", "output elements", "induced velocity elements",
 ];
 
 /// Settings of MBDyn's numerics and output: accepted, ignored.
-const IGNORED: [&str; 16] = [
-    "use automatic differentiation", "title", "print", "make restart file", "select timeout", "output units", "output meter",
+const IGNORED: [&str; 17] = [
+    // `inertia: N` counts the inertia cards, which only write output (elements.rs).
+    "inertia", "use automatic differentiation", "title", "print", "make restart file", "select timeout", "output units", "output meter",
     "output precision", "output results", "default aerodynamic output", "default beam output", "default scale", "finite difference jacobian meter",
     "loadable path", "model name", "epsilon",
 ];

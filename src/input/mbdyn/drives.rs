@@ -23,15 +23,15 @@ use crate::element::{Drive, ElementState, TimeFunction};
 use crate::kinematics::{Mat3, Vec3};
 
 /// Drive callers romdyn evaluates.
-const SUPPORTED: [&str; 29] = [
-    "file", "node", "const", "null", "unit", "one", "time", "direct", "ramp", "step", "sine", "cosine", "piecewise linear", "linear", "parabolic", "cubic", "exponential",
+const SUPPORTED: [&str; 31] = [
+    "file", "node", "dof", "element", "const", "null", "unit", "one", "time", "direct", "ramp", "step", "sine", "cosine", "piecewise linear", "linear", "parabolic", "cubic", "exponential",
     "tanh", "double ramp", "double step", "array", "mult", "frequency sweep", "periodic", "string", "reference", "zero", "constant", "scalar function",
 ];
 
 /// MBDyn drive callers romdyn cannot represent (named in the error): they read the model's
 /// state outside the math parser, random numbers or the step counter.
-const UNSUPPORTED: [&str; 11] = [
-    "closest next", "discrete filter", "dof", "drive", "element", "ginac", "fourier series", "meter", "postponed", "random", "sample and hold",
+const UNSUPPORTED: [&str; 9] = [
+    "closest next", "discrete filter", "drive", "ginac", "fourier series", "meter", "postponed", "random", "sample and hold",
 ];
 
 /// Nesting of drive callers inside drive callers romdyn follows.
@@ -49,6 +49,15 @@ pub struct Drives {
     pub structural_nodes: HashSet<u32>,
     /// The `drivers` block's file drivers (which `file` drive callers read).
     pub file_drivers: super::file_drivers::FileDrivers,
+    /// Parameter nodes, `bind`s and the reads of `dof` and `element` drive callers.
+    pub private: super::element_reads::PrivateReads,
+}
+
+impl Drives {
+    /// The drive caller cards of statements before `seq`, by label.
+    pub fn defined_before(&self, seq: usize) -> HashMap<u32, Drive> {
+        self.table.iter().filter(|(_, (_, s, _))| *s < seq).map(|(l, (d, _, _))| (*l, d.clone())).collect()
+    }
 }
 
 /// Reads a `drive caller: LABEL, [name, "…",] DRIVE;` card.
@@ -147,6 +156,8 @@ fn nested_drive(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) -> Re
         }
         "file" => super::file_drivers::file_drive(c, &drives.file_drivers, seq)?,
         "node" => node_drive(c, drives, &inner)?,
+        "dof" => super::element_reads::dof_drive(c, &drives.structural_nodes, &inner)?,
+        "element" => super::element_reads::element_drive(c, &drives.private, seq, &inner)?,
         "scalar function" => Drive::Function(super::scalar_functions::scalar_function(c, &drives.functions, seq)?),
         "mult" => {
             let a = inner(c)?;
@@ -220,7 +231,8 @@ fn nested_drive(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) -> Re
 }
 
 /// The expression of a `string` drive as a function of time: the math parser on its tokens
-/// with `Time` (and `Var`, the argument MBDyn passes, here the time) set to `t`; checked at
+/// with `Var` the argument MBDyn passes and `Time` the state's time (the argument where the
+/// drive is evaluated without a state, see [`TimeFunction::of_argument`]); checked at
 /// t = 0 so that errors show when the file is read. A value that cannot be computed later
 /// (out of a function's domain) is NaN, which the Newton iteration reports.
 /// `model::sf::NAME(x)` calls the scalar functions defined before the drive,
@@ -237,11 +249,15 @@ fn string_drive(text: &str, drives: &Drives, seq: usize) -> Result<TimeFunction,
         return Err("the expression is empty".into());
     }
     let functions = drives.functions.defined_before(seq);
-    let table: HashMap<u32, Drive> = drives.table.iter().filter(|(_, (_, s, _))| *s < seq).map(|(l, (d, _, _))| (*l, d.clone())).collect();
+    let table = drives.defined_before(seq);
     let reads_state = tokens.windows(3).any(|w| w[0].token == Token::Word("model".into()) && w[1].token == Token::Symbol("::") && w[2].token != Token::Word("sf".into()));
-    let evaluate = move |vars: &mut Variables, tokens: &[super::lexer::Spanned], sources: &Sources, t: f64, reads: Option<Reads>, state: Option<&dyn ElementState>| -> Result<f64, String> {
-        for name in ["Time", "Var"] {
-            vars.0.insert(name.into(), Variable { value: TypedValue::Real(t), constant: false, declared: None });
+    let evaluate = move |vars: &mut Variables, tokens: &[super::lexer::Spanned], sources: &Sources, var: f64, reads: Option<Reads>, state: Option<&dyn ElementState>| -> Result<f64, String> {
+        // MBDyn's `StringDriveCaller::dGet(dVar)` sets `Var`; `Time` is the simulation's
+        // time, which is the argument unless a drive passes another value (a dof, element
+        // or node drive caller's datum, `model::drive(L, x)`, a periodic drive's phase).
+        let time = state.map_or(var, |s| s.time());
+        for (name, value) in [("Time", time), ("Var", var)] {
+            vars.0.insert(name.into(), Variable { value: TypedValue::Real(value), constant: false, declared: None });
         }
         let mut e = Evaluator::new(tokens, vars, sources, Span::default()).with_functions(&functions).with_drives(&table);
         if let Some(reads) = reads {
@@ -256,13 +272,13 @@ fn string_drive(text: &str, drives: &Drives, seq: usize) -> Result<TimeFunction,
     let run = move |t: f64, st: Option<&dyn ElementState>| {
         let mut vars = state.lock().unwrap_or_else(|e| e.into_inner());
         match (reads_state, st) {
-            (false, _) => evaluate(&mut vars, &tokens, &sources, t, None, None),
+            (false, st) => evaluate(&mut vars, &tokens, &sources, t, None, st),
             (true, None) => Ok(f64::NAN),
             (true, Some(st)) => evaluate(&mut vars, &tokens, &sources, t, Some(Reads::Nodes(&Live(st))), Some(st)),
         }
         .unwrap_or(f64::NAN)
     };
-    Ok(if reads_state { TimeFunction::reading_state(text, run) } else { TimeFunction::new(text, move |t| run(t, None)) })
+    Ok(if reads_state { TimeFunction::reading_state(text, run) } else { TimeFunction::of_argument(text, run) })
 }
 
 /// `node, LABEL, structural, string, "NAME[i]", DRIVE` (drive_.cc, `NodeDCR::Read`;

@@ -49,6 +49,9 @@ pub fn label_space(keyword: &str) -> &'static str {
 pub fn element(st: &Statement, c: &mut Cursor, ctx: &ElementContext) -> Result<Parsed, MbdynError> {
     let kinds = ["body", "joint", "force", "couple", "gravity", "beam", "beam2", "beam3", "automatic structural", "inertia", "output"];
     let Some(kind) = known(&st.keyword, &kinds) else {
+        if known(&st.keyword, &["hbeam", "hbeam2"]).is_some() {
+            return Err(c.error_at(st.span, super::beams::HBEAM_REFUSED));
+        }
         let name = known(&st.keyword, &OTHER_TYPES).unwrap_or(&st.keyword);
         return Err(c.error_at(st.span, format!("element type '{name}' is not supported by romdyn")));
     };
@@ -162,6 +165,9 @@ fn body(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<RigidBody,
 fn force(couple: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<dyn Element>, MbdynError> {
     let what = if couple { "couple" } else { "force" };
     let span = c.here();
+    if !couple && let Some(k) = c.accept_any(&["absolute internal displacement", "absolute displacement"]) {
+        return super::forces::displacement(k == "absolute internal displacement", label, c, ctx);
+    }
     match c.accept_any(&["absolute internal", "conservative internal", "follower internal", "total internal"]) {
         Some("follower internal") => return super::forces::internal(couple, ForceFrame::Follower, label, c, ctx),
         Some("total internal") if !couple => return super::forces::total_internal(label, c, ctx),
@@ -174,7 +180,7 @@ fn force(couple: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Re
     }
     let unsupported = ["absolute displacement", "absolute internal displacement", "abstract", "abstract internal", "modal", "external structural", "external modal", "external structural mapping", "external modal mapping"];
     if let Some(k) = c.accept_any(&unsupported) {
-        return Err(c.error_at(span, format!("{what} type '{k}' is not supported by romdyn (supported: absolute, follower, absolute internal, follower internal, total internal)")));
+        return Err(c.error_at(span, format!("{what} type '{k}' is not supported by romdyn (supported: absolute, follower, absolute internal, follower internal, total internal, absolute displacement, absolute internal displacement)")));
     }
     let frame = match c.keyword(&format!("the {what} type"), &["absolute", "conservative", "follower"])? {
         "follower" => ForceFrame::Follower,

@@ -1,6 +1,7 @@
 //! Forces and couples between two nodes (input manual, §Structural internal force,
 //! §Structural internal couple; strforce.cc, `ReadStructuralForce`; force.cc, `ReadForce`):
-//! `{absolute | follower} internal` forces and couples and the `total internal` force.
+//! `{absolute | follower} internal` forces and couples, the `total internal` force, and the
+//! `absolute [internal] displacement` forces.
 //! `total` (one node) is refused as MBDyn 1.7.3 refuses it (force.cc builds only the
 //! internal one).
 
@@ -9,7 +10,7 @@ use super::diagnostic::MbdynError;
 use super::drives::{drive, template_vec3};
 use super::element_context::ElementContext;
 use super::references::{Context, Frame, OtherSide};
-use crate::element::{Element, ForceFrame, InternalCouple, InternalForce, TotalInternalForce, VectorDrive};
+use crate::element::{Element, Force, ForceFrame, InternalCouple, InternalForce, TotalInternalForce, VectorDrive};
 use crate::kinematics::{Mat3, Vec3};
 use crate::model::Label;
 
@@ -75,4 +76,19 @@ pub fn total_internal(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Res
     let force = value(c, "force")?;
     let moment = value(c, "moment")?;
     Ok(Box::new(TotalInternalForce { label, nodes: [l1, l2], force_orientation, moment_orientation, arm, force, moment }))
+}
+
+/// `absolute displacement, NODE, VALUE` and `absolute internal displacement, NODE_1, NODE_2,
+/// VALUE` (strforce.cc, `AbsoluteDispForce`, `AbsoluteInternalDispForce`): VALUE in the
+/// global frame on the node's position equations (on node 1, and its opposite on node 2),
+/// no arm and no moment: romdyn's absolute force and absolute internal force with null arms.
+pub fn displacement(internal: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<dyn Element>, MbdynError> {
+    let n1 = ctx.node(c, "node 1 of the force")?;
+    let n2 = if internal { Some(ctx.node(c, "node 2 of the force")?) } else { None };
+    let on1 = ctx.on(n1);
+    let value = VectorDrive(template_vec3(c, ctx.drives, ctx.seq, &Mat3::identity(), &|c: &mut Cursor| on1.vector_in(c, "force value", Frame::global()))?);
+    Ok(match n2 {
+        Some(n2) => Box::new(InternalForce { label, nodes: [n1.label, n2.label], frame: ForceFrame::Absolute, arms: [Vec3::zeros(); 2], value }),
+        None => Box::new(Force { label, node: n1.label, frame: ForceFrame::Absolute, value, offset: Vec3::zeros() }),
+    })
 }

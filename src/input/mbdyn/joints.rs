@@ -203,9 +203,10 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             // joint.cc: offsets after `position` are read and ignored; a 1-D law.
             let a = side(c, ctx, "node 1", Position::IfKeyword, None)?;
             let b = side(c, ctx, "node 2", Position::IfKeyword, Some(&a))?;
-            let law = linear_law(c, 1, ctx.laws, ctx.drives, ctx.seq)?;
+            let law = super::laws::axial_law(c, ctx.laws, ctx.drives, ctx.seq)?;
             let (k, v) = (law.stiffness[(0, 0)], law.viscosity[(0, 0)]);
-            Box::new(DeformableJoint::axial(label, a.anchor(), b.anchor(), k, v, law.prestrain[0], law.prestress[0]))
+            let [elastic, viscous] = law.functions;
+            Box::new(DeformableJoint::axial(label, a.anchor(), b.anchor(), k, v, law.prestrain[0], law.prestress[0]).with_axial_functions(elastic, viscous))
         }
         "invariant deformable hinge" => {
             let a = side(c, ctx, "node 1", Position::IfKeyword, None)?;
@@ -218,7 +219,7 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             }
             Box::new(InvariantDeformableHinge { label, a: a.anchor(), b: b.anchor(), law: three(&law) })
         }
-        _ => Box::new(rod(kind == "rod with offset", label, c, ctx)?),
+        _ => rod(kind == "rod with offset", label, c, ctx)?,
     };
     Ok(element)
 }
@@ -535,8 +536,10 @@ fn drive_hinge(label: Label, c: &mut Cursor, ctx: &ElementContext, span: super::
 /// The driven joint, unless its holonomic constraints fail at t = 0 in the initial
 /// configuration (see [`assembled`]).
 fn driven_assembled(j: DrivenJoint, ctx: &ElementContext, c: &Cursor, span: super::diagnostic::Span) -> Result<DrivenJoint, MbdynError> {
+    // A drive that reads the model's state has no value before the run (the initial
+    // assembly makes such a joint hold).
     if j.reads_state() {
-        return Err(c.error_at(span, "a drive of this joint reads the model's state (model:: functions, node drive callers): romdyn evaluates such drives in forces, couples, distance, axial rotation and velocity joints, not in imposed-motion joints"));
+        return Ok(j);
     }
     let at = j.joint_at(0.0);
     assembled(at.clone(), &anchor_global(&at.a, ctx), &anchor_global(&at.b, ctx), c, span)?;
@@ -547,7 +550,7 @@ fn driven_assembled(j: DrivenJoint, ctx: &ElementContext, c: &Cursor, span: supe
 /// offset, NODE1, O1, NODE2, O2, …` (input manual, §Rod): `F = EA (l − l₀)/l₀` plus,
 /// with a viscous or viscoelastic law, `C ε̇`; a
 /// prestrain `ε_p` and a prestress `F_p` shift the rest length to `l₀ (1 + ε_p − F_p/EA)`.
-fn rod(offsets: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Rod, MbdynError> {
+fn rod(offsets: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<dyn Element>, MbdynError> {
     let position = if offsets { Position::Always } else { Position::IfKeyword };
     let a = side(c, ctx, "node 1", position, None)?;
     let b = side(c, ctx, "node 2", position, Some(&a))?;
@@ -564,9 +567,9 @@ fn rod(offsets: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Res
     // `scalar function elastic [isotropic | orthotropic], FUNCTION`: N = f(ε).
     if c.accept("scalar function elastic isotropic") || c.accept("scalar function elastic orthotropic") || c.accept("scalar function elastic") {
         let f = super::scalar_functions::scalar_function(c, &ctx.drives.functions, ctx.seq)?;
-        return Ok(Rod { label, a: a.anchor(), b: b.anchor(), axial_stiffness: 0.0, length: l0, viscous: None, elastic: Some(f) });
+        return Ok(Box::new(Rod { label, a: a.anchor(), b: b.anchor(), axial_stiffness: 0.0, length: l0, viscous: None, elastic: Some(f) }));
     }
-    let law: LinearLaw = linear_law(c, 1, ctx.laws, ctx.drives, ctx.seq)?;
+    let (law, prestrain): (LinearLaw, _) = super::laws::law_with_prestrain_drive(c, 1, ctx.laws, ctx.drives, ctx.seq)?;
     let (ea, viscosity) = (law.stiffness[(0, 0)], law.viscosity[(0, 0)]);
     if ea < 0.0 || viscosity < 0.0 || ea + viscosity == 0.0 {
         return Err(c.error_at(law_span, format!("rod: the axial stiffness EA [N] and viscosity [N s] must not be negative, nor both zero (found {ea}, {viscosity})")));
@@ -580,7 +583,11 @@ fn rod(offsets: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Res
     }
     // The viscous part acts on MBDyn's strain rate d·ḋ/(l l₀) (rodj.cc, ViscoElasticRod).
     let viscous = (viscosity > 0.0).then_some(RodViscosity { coefficient: viscosity, length: l0 });
-    Ok(Rod { label, a: a.anchor(), b: b.anchor(), axial_stiffness: ea * rest / l0, length: rest, viscous, elastic: None })
+    let rod = Rod { label, a: a.anchor(), b: b.anchor(), axial_stiffness: ea * rest / l0, length: rest, viscous, elastic: None };
+    Ok(match prestrain {
+        Some(prestrain) => Box::new(crate::element::PrestrainedRod { rod, prestrain, strain_length: l0 }),
+        None => Box::new(rod),
+    })
 }
 
 /// The joint as read: MBDyn's initial assembly (`solve::initial_assembly`, run before every

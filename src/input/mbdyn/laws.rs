@@ -2,9 +2,13 @@
 //! honour: `linear elastic [isotropic]`, `linear elastic generic`, `linear viscous
 //! [isotropic]`, `linear viscous generic`, `linear viscoelastic [isotropic]`, `linear
 //! viscoelastic generic` (viscosity or `proportional, FACTOR`), with the optional
-//! `prestress` and constant `prestrain`; `reference, LABEL` to a `constitutive law:` card.
+//! `prestress` and `prestrain` (constant; a drive on a rod); `reference, LABEL` to a
+//! `constitutive law:` card.
 //! Laws are read for 1 (rod), 3 (deformable displacement joint and hinge) or 6 (beams)
-//! dimensions.
+//! dimensions. The 1-D `nlsf elastic`, `nlsf viscous` and `nlsf viscoelastic` laws
+//! (constltp_nlsf.cc: `f = k (ε − ε_p) + f′(ε − ε_p) + c ε̇ + f″(ε̇) + f_p`, each scalar
+//! function or `null`) are read by [`axial_law`] for the deformable axial joint, and refused
+//! by name elsewhere.
 
 use std::collections::HashMap;
 
@@ -14,7 +18,7 @@ use super::cursor::Cursor;
 use super::diagnostic::{MbdynError, Span};
 use super::drives::{single_term, template_vec3, Drives};
 use super::parser::Statement;
-use crate::element::Drive;
+use crate::element::{Drive, ScalarFunction};
 use crate::kinematics::{Mat3, Vec3};
 
 /// A linear (visco)elastic law in `dim` dimensions: `f = K (ε − ε_p) + C ε̇ + f_p`.
@@ -24,6 +28,8 @@ pub struct LinearLaw {
     pub viscosity: DMatrix<f64>,
     pub prestrain: DVector<f64>,
     pub prestress: DVector<f64>,
+    /// An `nlsf` law's `f′(ε − ε_p)` and `f″(ε̇)` (1-D).
+    pub functions: [Option<ScalarFunction>; 2],
 }
 
 impl LinearLaw {
@@ -43,13 +49,15 @@ const KINDS: [&str; 9] = [
     "linear viscoelastic generic", "linear viscoelastic isotropic", "linear viscoelastic",
 ];
 
-const UNSUPPORTED: [&str; 18] = [
+const UNSUPPORTED: [&str; 19] = [
     "linear elastic generic axial torsion coupling", "cubic elastic generic", "inverse square elastic", "log elastic", "linear elastic bistop",
     "double linear elastic", "isotropic hardening elastic", "scalar function elastic", "scalar function elastic isotropic",
     "scalar function elastic orthotropic", "linear time variant viscoelastic generic",
     "cubic viscoelastic generic", "double linear viscoelastic", "turbulent viscoelastic", "linear viscoelastic bistop", "shock absorber",
-    "symbolic elastic", "nlsf elastic",
+    "symbolic elastic", "symbolic viscous", "symbolic viscoelastic",
 ];
+
+const NLSF: [&str; 3] = ["nlsf viscoelastic", "nlsf elastic", "nlsf viscous"];
 
 /// The `constitutive law:` cards read so far.
 #[derive(Default)]
@@ -72,28 +80,111 @@ pub fn constitutive_law_card(st: &Statement, c: &mut Cursor, laws: &mut Laws, dr
     if ![1, 3, 6].contains(&dim) {
         return Err(c.error_at(dim_span, format!("a constitutive law has dimension 1, 3 or 6, found {dim}")));
     }
-    let law = linear_law(c, dim, laws, drives, st.seq)?;
+    let law_span = c.here();
+    let (law, varying) = read_law(c, dim, laws, drives, st.seq)?;
+    if varying.is_some() {
+        return Err(c.error_at(law_span, "a time-varying prestrain is supported by romdyn on rods only, written on the rod's own law"));
+    }
     c.finish()?;
     laws.table.insert(label, (law, st.seq, st.span));
     Ok(())
 }
 
-/// A constitutive law of dimension `dim` at statement `seq`.
+/// A linear constitutive law of dimension `dim` at statement `seq` (an `nlsf` law and a
+/// prestrain that changes in time are refused by name).
 pub fn linear_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq: usize) -> Result<LinearLaw, MbdynError> {
+    let span = c.here();
+    let (law, varying) = law_with_prestrain_drive(c, dim, laws, drives, seq)?;
+    if varying.is_some() {
+        return Err(c.error_at(span, "a time-varying prestrain is supported by romdyn on rods only"));
+    }
+    Ok(law)
+}
+
+/// A linear law whose prestrain may be a drive that changes in time (or reads the model's
+/// state; 1-D, a rod's): the law with its constant prestrain zero, and that drive. An
+/// `nlsf` law is refused by name.
+pub fn law_with_prestrain_drive(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq: usize) -> Result<(LinearLaw, Option<Drive>), MbdynError> {
+    let span = c.here();
+    let (law, varying) = read_law(c, dim, laws, drives, seq)?;
+    if law.functions.iter().any(Option::is_some) {
+        return Err(c.error_at(span, "an 'nlsf' constitutive law is supported by romdyn only on a deformable axial joint"));
+    }
+    Ok((law, varying))
+}
+
+/// A 1-D law at statement `seq`, linear or `nlsf` (the deformable axial joint's).
+pub fn axial_law(c: &mut Cursor, laws: &Laws, drives: &Drives, seq: usize) -> Result<LinearLaw, MbdynError> {
+    let span = c.here();
+    let (law, varying) = read_law(c, 1, laws, drives, seq)?;
+    if varying.is_some() {
+        return Err(c.error_at(span, "a time-varying prestrain is supported by romdyn on rods only"));
+    }
+    Ok(law)
+}
+
+/// `nlsf …` after its keyword: `{K | null}, {F | null}` for the elastic part, `{C |
+/// proportional, FACTOR}, {F | null}` for the viscous part (constltp_nlsf.cc,
+/// `NLSFViscoElasticCLR`).
+fn nlsf(c: &mut Cursor, kind: &str, dim: usize, drives: &Drives, seq: usize) -> Result<LinearLaw, MbdynError> {
+    if dim != 1 {
+        return Err(c.error(format!("constitutive law '{kind}' is supported by romdyn in 1-D only (a deformable axial joint), not in {dim}-D")));
+    }
+    let function = |c: &mut Cursor| -> Result<Option<ScalarFunction>, MbdynError> {
+        if c.accept("null") {
+            return Ok(None);
+        }
+        super::scalar_functions::scalar_function(c, &drives.functions, seq).map(Some)
+    };
+    let (mut k, mut v, mut functions) = (0.0, 0.0, [None, None]);
+    if kind != "nlsf viscous" {
+        k = if c.accept("null") { 0.0 } else { c.real("stiffness [per unit strain]")? };
+        functions[0] = function(c)?;
+    }
+    if kind != "nlsf elastic" {
+        v = if kind == "nlsf viscoelastic" && c.accept("proportional") {
+            k * c.real("proportional damping factor [s]")?
+        } else if c.accept("null") {
+            0.0
+        } else {
+            c.real("viscosity [per unit strain rate]")?
+        };
+        functions[1] = function(c)?;
+    }
+    let one = |x: f64| DMatrix::from_element(1, 1, x);
+    Ok(LinearLaw { stiffness: one(k), viscosity: one(v), prestrain: DVector::zeros(1), prestress: DVector::zeros(1), functions })
+}
+
+/// A constitutive law of dimension `dim` at statement `seq`, `nlsf` included, with the drive
+/// of a 1-D prestrain that changes in time.
+fn read_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq: usize) -> Result<(LinearLaw, Option<Drive>), MbdynError> {
     let span = c.here();
     if c.accept("reference") {
         let label = c.label("constitutive law label")?;
         return match laws.table.get(&label) {
-            Some((l, s, _)) if *s < seq && l.dim() == dim => Ok(l.clone()),
+            Some((l, s, _)) if *s < seq && l.dim() == dim => Ok((l.clone(), None)),
             Some((l, s, _)) if *s < seq => Err(c.error_at(span, format!("constitutive law {label} has dimension {}, this element needs {dim}", l.dim()))),
             Some((_, _, at)) => Err(c.error_at(span, format!("constitutive law {label} is used before its definition (line {})", at.line))),
             None => Err(c.error_at(span, format!("constitutive law {label} is not defined"))),
         };
     }
+    if let Some(kind) = c.accept_any(&NLSF) {
+        let mut law = nlsf(c, kind, dim, drives, seq)?;
+        let varying = prestress_and_prestrain(c, &mut law, dim, drives, seq)?;
+        return Ok((law, varying));
+    }
     let Some(kind) = c.accept_any(&KINDS) else {
         if let Some(k) = c.peek_keyword().and_then(|w| UNSUPPORTED.iter().find(|u| super::parser::same_keyword(u, w))) {
-            let rods = if k.starts_with("scalar function elastic") { "; 'scalar function elastic' only for a rod and a deformable hinge" } else { "" };
-            return Err(c.error(format!("constitutive law '{k}' is not supported by romdyn (supported: linear elastic, linear viscous, linear viscoelastic, each isotropic or generic{rods})")));
+            let rods = if k.starts_with("scalar function elastic") {
+                "; 'scalar function elastic' only for a rod and a deformable hinge"
+            } else if k.ends_with("bistop") {
+                "; a bistop law's force is referred to the strain at the instant its activating drive turns non-zero, history MBDyn keeps in the law and romdyn's elements do not hold"
+            } else if k.starts_with("symbolic") {
+                "; a symbolic law needs its expression's derivative, which MBDyn takes with GiNaC (MBDyn 1.7.3 built without it refuses it too) and romdyn's math parser does not"
+            } else {
+                ""
+            };
+            return Err(c.error(format!("constitutive law '{k}' is not supported by romdyn (supported: linear elastic, linear viscous, linear viscoelastic, each isotropic or generic; nlsf in 1-D on a deformable axial joint{rods})")));
         }
         return Err(c.error(format!("expected a constitutive law ({}), found {}", KINDS.join(", "), c.found())));
     };
@@ -109,14 +200,73 @@ pub fn linear_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq:
         let v = if c.accept("proportional") { &k * c.real("proportional damping factor [s]")? } else { read(c, "viscosity")? };
         (k, v)
     };
-    let mut law = LinearLaw { stiffness, viscosity, prestrain: DVector::zeros(dim), prestress: DVector::zeros(dim) };
+    let mut law = LinearLaw { stiffness, viscosity, prestrain: DVector::zeros(dim), prestress: DVector::zeros(dim), functions: [None, None] };
+    let varying = prestress_and_prestrain(c, &mut law, dim, drives, seq)?;
+    Ok((law, varying))
+}
+
+/// The optional `prestress, …` and `prestrain, …` after a law, into `law`; a 1-D prestrain
+/// that changes in time is returned as its drive (`law`'s constant prestrain stays zero).
+fn prestress_and_prestrain(c: &mut Cursor, law: &mut LinearLaw, dim: usize, drives: &Drives, seq: usize) -> Result<Option<Drive>, MbdynError> {
     if c.accept("prestress") {
         law.prestress = if dim == 3 { DVector::from_column_slice(c.vec3_values("prestress")?.as_slice()) } else { vector(c, dim, "prestress")? };
     }
+    let mut varying = None;
     if c.accept("prestrain") {
-        law.prestrain = prestrain(c, dim, drives, seq)?;
+        let span = c.here();
+        if dim == 1 {
+            // A 1-D template drive caller (tpldrive_impl.cc, ReadDC1D): `[single |
+            // component,] DRIVE` with no value before the drive (SingleTDCR<doublereal>
+            // reads none), `null`, `zero`, `array, N, …`.
+            match template_1d(c, drives, seq, 0)? {
+                Drive::Const(x) => law.prestrain[0] = x,
+                d => varying = Some(d),
+            }
+        } else {
+            law.prestrain = prestrain(c, dim, drives, seq)?;
+        }
+        if varying.as_ref().is_some_and(|_| law.stiffness[(0, 0)] == 0.0) {
+            return Err(c.error_at(span, "a prestrain needs a stiffness"));
+        }
     }
-    Ok(law)
+    let mut varying = None;
+    if c.accept("prestrain") {
+        let span = c.here();
+        if dim == 1 {
+            // A 1-D template drive caller (tpldrive_impl.cc, ReadDC1D): `[single |
+            // component,] DRIVE` with no value before the drive (SingleTDCR<doublereal>
+            // reads none), `null`, `zero`, `array, N, …`.
+            match template_1d(c, drives, seq, 0)? {
+                Drive::Const(x) => law.prestrain[0] = x,
+                d => varying = Some(d),
+            }
+        } else {
+            law.prestrain = prestrain(c, dim, drives, seq)?;
+        }
+        if varying.as_ref().is_some_and(|_| law.stiffness[(0, 0)] == 0.0) {
+            return Err(c.error_at(span, "a prestrain needs a stiffness"));
+        }
+    }
+    Ok(varying)
+}
+
+/// A 1-D template drive caller as one drive.
+fn template_1d(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) -> Result<Drive, MbdynError> {
+    if c.accept("null") || c.accept("zero") {
+        return Ok(Drive::Const(0.0));
+    }
+    if c.accept("array") {
+        if depth >= 8 {
+            return Err(c.error("template drive callers nested in 'array' more than 8 deep"));
+        }
+        let n = c.count("number of template drive callers")?;
+        let terms = (0..n).map(|_| template_1d(c, drives, seq, depth + 1)).collect::<Result<Vec<_>, _>>()?;
+        return Ok(if terms.iter().all(|d| matches!(d, Drive::Const(_))) { Drive::Const(terms.iter().map(|d| d.value(0.0)).sum()) } else { Drive::Sum(terms) });
+    }
+    if !c.accept("single") {
+        c.accept("component");
+    }
+    super::drives::drive(c, drives, seq)
 }
 
 /// A constant prestrain (a template drive caller that does not change in time).
@@ -131,7 +281,7 @@ fn prestrain(c: &mut Cursor, dim: usize, drives: &Drives, seq: usize) -> Result<
         };
     }
     c.accept("single");
-    let v = if dim == 1 { DVector::from_element(1, c.real("prestrain")?) } else { vector(c, dim, "prestrain")? };
+    let v = vector(c, dim, "prestrain")?;
     let d = super::drives::drive(c, drives, seq)?;
     if !constant(&d) {
         return Err(c.error_at(span, "a time-varying prestrain is not supported by romdyn"));

@@ -17,6 +17,7 @@ mod diagnostic;
 mod drives;
 mod driven;
 mod element_context;
+mod element_reads;
 mod elements;
 mod expr;
 mod file_drivers;

@@ -84,6 +84,7 @@ fn cards(doc: &Document) -> Result<Cards, MbdynError> {
             out.drives.structural_nodes.insert(*x as u32);
         }
     }
+    out.drives.private.scan_parameter_nodes(block(doc, "nodes").map_or(&[][..], |b| &b.statements));
     for st in doc.cards.iter().filter(|st| known(&st.keyword, &["reference"]).is_some()) {
         if let Some(super::parser::Arg { value: super::parser::Value::Number(x), .. }) = st.args.first()
             && *x >= 0.0
@@ -140,8 +141,14 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
     let mut problem = initial_value(block(doc, "initial value"), src, &cards.drives)?;
     let (counts, control_output, assembly) = control_data(block(doc, "control data"), src)?;
     let mut nodes = Nodes::default();
+    let mut parameter_nodes = HashMap::new();
     for st in block(doc, "nodes").map_or(&[][..], |b| &b.statements) {
-        node_statement(st, &mut Cursor::new(st, src), &cards.frames, &mut nodes)?;
+        let mut c = Cursor::new(st, src);
+        if known(&st.keyword, &["parameter"]).is_some() {
+            super::element_reads::parameter_node(&mut c, &mut parameter_nodes)?;
+        } else {
+            node_statement(st, &mut c, &cards.frames, &mut nodes)?;
+        }
     }
     problem.output = Some(MotionOutput {
         nodes: nodes
@@ -169,6 +176,7 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
     }
     let mut found: HashMap<&'static str, (usize, Span)> = HashMap::new();
     found.insert("structural nodes", (nodes.0.len(), block(doc, "nodes").map_or(first, |b| b.span)));
+    found.insert("parameter nodes", (parameter_nodes.len(), block(doc, "nodes").map_or(first, |b| b.span)));
     if let Some(b) = block(doc, "drivers") {
         found.insert("file drivers", (cards.drives.file_drivers.len(), b.span));
     }
@@ -177,8 +185,24 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
     let mut central = None;
     let mut bodies = Vec::new();
     let mut beams = super::element_context::BeamNodes::new();
+    // Elements are kept until the block ends: a `bind` reads the ones above it.
+    let mut built: Vec<(&'static str, Span, usize, Box<dyn crate::element::Element>)> = Vec::new();
+    let mut output_only = std::collections::HashSet::new();
     for st in block(doc, "elements").map_or(&[][..], |b| &b.statements) {
         let mut c = Cursor::new(st, src);
+        if super::element_reads::is_bind(&st.keyword) {
+            let defined = built.iter().map(|(space, _, _, e)| (*space, e.label())).chain(output_only.iter().copied()).collect();
+            super::element_reads::bind(&mut c, &cards.drives.private, &defined)?;
+            continue;
+        }
+        if known(&st.keyword, &["inertia"]).is_some()
+            && let Some(super::parser::Arg { value: super::parser::Value::Number(x), .. }) = st.args.first()
+            && *x >= 0.0
+            && x.fract() == 0.0
+            && *x <= u32::MAX as f64
+        {
+            output_only.insert(("inertia", *x as u32));
+        }
         let ctx = ElementContext { nodes: &nodes, frames: &cards.frames, drives: &cards.drives, laws: &cards.laws, beams: &beams, seq: st.seq };
         let label_span = c.here();
         let parsed = element(st, &mut c, &ctx)?;
@@ -229,10 +253,15 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
                 if let ("beam", &[n1, n2, n3]) = (space, &on[..]) {
                     beams.insert(e.label(), [n1, n2, n3]);
                 }
-                b.boxed_element(e);
+                built.push((space, st.span, st.seq, e));
             }
             Parsed::Ignored => {}
         }
+    }
+    let defined = built.iter().map(|(space, at, seq, e)| ((*space, e.label()), (e.as_ref(), *at, *seq))).collect();
+    cards.drives.private.resolve(src, &defined)?;
+    for (.., e) in built {
+        b.boxed_element(e);
     }
     // A central or time-varying field acts on every body at its node (gravity.cc, body.cc).
     if let Some(field) = central {

@@ -91,10 +91,16 @@ pub fn known<'k>(keyword: &str, known: &[&'k str]) -> Option<&'k str> {
 /// Implemented by [`super::written_nodes::WrittenNodes`] with the node readers, so the parser
 /// does not depend on them.
 pub trait StatementObserver {
-    /// A statement just read (`in_nodes_block`: inside `begin: nodes;`).
-    fn statement(&mut self, st: &Statement, sources: &Sources, in_nodes_block: bool);
+    /// A statement just read (`in_nodes_block`: inside `begin: nodes;`), with the
+    /// variables as they stand after it.
+    fn statement(&mut self, st: &Statement, sources: &Sources, in_nodes_block: bool, variables: &Variables);
     /// The structural nodes written so far, by label.
     fn nodes(&self) -> &HashMap<u32, NodeKinematics>;
+    /// The `scalar function:` cards read so far, by name (`model::sf::NAME(x)` in `set:`:
+    /// MBDyn reads a card when it meets it).
+    fn functions(&self) -> &HashMap<String, crate::element::ScalarFunction>;
+    /// The `drive caller:` cards read so far, by label (`model::drive(LABEL, x)` there).
+    fn drives(&self) -> &HashMap<u32, crate::element::Drive>;
 }
 
 struct Reader {
@@ -193,7 +199,7 @@ impl Reader {
                 if body.is_empty() {
                     return Err(self.doc.sources.error(end, "set: expected an expression, e.g. 'set: real L = 1.;'"));
                 }
-                Evaluator::new(body, &mut self.doc.variables, &self.doc.sources, end).with_overrides(&self.overrides).with_reads(Reads::Nodes(self.observer.nodes()), None).evaluate()?;
+                Evaluator::new(body, &mut self.doc.variables, &self.doc.sources, end).with_overrides(&self.overrides).with_reads(Reads::Nodes(self.observer.nodes()), None).with_functions(self.observer.functions()).with_drives(self.observer.drives()).evaluate()?;
                 return Ok(());
             }
             Some(kw @ ("begin" | "end")) => return self.block(kw, body, first.span, end),
@@ -209,7 +215,7 @@ impl Reader {
         let args = self.args(body, end)?;
         let st = Statement { keyword, span: first.span, args, end, seq: self.seq, driven: None };
         let in_nodes_block = self.open.as_ref().is_some_and(|b| same_keyword(&b.name, "nodes"));
-        self.observer.statement(&st, &self.doc.sources, in_nodes_block);
+        self.observer.statement(&st, &self.doc.sources, in_nodes_block, &self.doc.variables);
         if known(&st.keyword, &CARDS).is_some() {
             self.doc.cards.push(st);
             return Ok(());
@@ -313,7 +319,7 @@ impl Reader {
         if phrase {
             return Ok(Arg { value: Value::Word(lower.clone()), span, keyword: Some(lower), text });
         }
-        let value = match Evaluator::new(p, &mut self.doc.variables, &self.doc.sources, end).with_reads(Reads::Nodes(self.observer.nodes()), None).evaluate()? {
+        let value = match Evaluator::new(p, &mut self.doc.variables, &self.doc.sources, end).with_reads(Reads::Nodes(self.observer.nodes()), None).with_functions(self.observer.functions()).with_drives(self.observer.drives()).evaluate()? {
             TypedValue::Str(s) => Value::Str(s),
             v => Value::Number(v.real().unwrap_or(0.0)),
         };

@@ -1,13 +1,15 @@
 //! The reader's entry points: parse an MBDyn file while keeping the structural nodes written
 //! so far, which the `model` namespace's state functions read at read time (`set:`,
-//! `remark:`, the numbers of later statements), as MBDyn does.
+//! `remark:`, the numbers of later statements), as MBDyn does, and the scalar function and
+//! drive caller cards read so far, which `model::sf::NAME(x)` and `model::drive(LABEL, x)`
+//! call there.
 
 use std::collections::HashMap;
 use std::path::Path;
 
 use super::cursor::Cursor;
 use super::diagnostic::{MbdynError, Sources};
-use super::expr::SetOverrides;
+use super::expr::{SetOverrides, Variables};
 use super::nodes::{node_statement, Nodes};
 use super::parser::{known, parse_file_observed, parse_text_observed, same_keyword, Document, Statement, StatementObserver};
 use super::references::{reference, Frames};
@@ -21,13 +23,29 @@ pub struct WrittenNodes {
     frames: Frames,
     nodes: Nodes,
     known: HashMap<u32, NodeKinematics>,
+    /// The scalar function cards read so far, in `drives.functions` (a card the model's
+    /// build refuses is left out).
+    visible: HashMap<String, crate::element::ScalarFunction>,
+    /// The drive caller cards read so far (one the model's build refuses is left out).
+    drives: super::drives::Drives,
+    drive_table: HashMap<u32, crate::element::Drive>,
 }
 
 impl StatementObserver for WrittenNodes {
-    fn statement(&mut self, st: &Statement, sources: &Sources, in_nodes_block: bool) {
+    fn statement(&mut self, st: &Statement, sources: &Sources, in_nodes_block: bool, variables: &Variables) {
         let mut c = Cursor::new(st, sources);
+        if known(&st.keyword, &["drive caller"]).is_some() {
+            self.drives.variables = variables.clone();
+            self.drives.structural_nodes = self.known.keys().copied().collect();
+            if super::drives::drive_caller_card(st, &mut c, &mut self.drives).is_ok() {
+                self.drive_table = self.drives.defined_before(st.seq + 1);
+            }
+            return;
+        }
         if known(&st.keyword, &["reference"]).is_some() {
             let _ = reference(st, &mut c, &mut self.frames);
+        } else if known(&st.keyword, &["scalar function"]).is_some() && super::scalar_functions::scalar_function_card(&mut c, &mut self.drives.functions, st.seq).is_ok() {
+            self.visible = self.drives.functions.defined_before(st.seq + 1);
         } else if in_nodes_block && same_keyword(&st.keyword, "structural") && node_statement(st, &mut c, &self.frames, &mut self.nodes).is_ok() {
             if let Some(e) = self.nodes.0.last().filter(|e| !e.dummy) {
                 let n = &e.node;
@@ -37,6 +55,12 @@ impl StatementObserver for WrittenNodes {
     }
     fn nodes(&self) -> &HashMap<u32, NodeKinematics> {
         &self.known
+    }
+    fn functions(&self) -> &HashMap<String, crate::element::ScalarFunction> {
+        &self.visible
+    }
+    fn drives(&self) -> &HashMap<u32, crate::element::Drive> {
+        &self.drive_table
     }
 }
 

@@ -1,0 +1,114 @@
+//! What every finite-volume beam does with its evaluation points, whatever its number of
+//! nodes (Ghiringhelli, Masarati, Mantegazza, AIAA J. 38(1), 2000): the section law gives
+//! the local generalized forces, and the point between nodes `s` and `s + 1` loads node `s`'s
+//! volume with `+(F, M + (p − x_s) × F)` and node `s + 1`'s with the opposite (arm `p −
+//! x_{s+1}`); the residual holds `−` what a node receives. The Jacobian is built per point
+//! from the derivatives of its position, frame, strains and curvatures with respect to the
+//! element's perturbations: a `3 × C` matrix with columns `12 i + 3 k + c` for node `i`,
+//! kind `k` (0 position, 1 rotation δθ, 2 velocity, 3 angular velocity), component `c`.
+
+use nalgebra::{Matrix6, SMatrix, Vector6};
+
+use super::law::SectionLaw;
+use crate::element::contract::{Col, JacobianSink, ResidualSink, Row, SectionState};
+use crate::kinematics::{skew, Mat3, Vec3};
+
+pub const POSITION: usize = 0;
+
+/// `t[:, block(node, kind)] += m`.
+pub fn put<const C: usize>(t: &mut SMatrix<f64, 3, C>, node: usize, kind: usize, m: &Mat3) {
+    let mut v = t.fixed_view_mut::<3, 3>(0, 12 * node + 3 * kind);
+    v += m;
+}
+
+/// `[a; b]`.
+pub fn stack(a: &Vec3, b: &Vec3) -> Vector6<f64> {
+    Vector6::new(a.x, a.y, a.z, b.x, b.y, b.z)
+}
+
+/// Local generalized forces `[F; M] = K ([ε; κ] − e_p) + V [ε̇; κ̇] + f_p` (rates only when
+/// `rates` is given).
+pub fn local_forces(law: &SectionLaw, strain: &Vec3, curvature: &Vec3, rates: Option<(&Vec3, &Vec3)>) -> Vector6<f64> {
+    let mut out = law.stiffness * (stack(strain, curvature) - law.prestrain) + law.prestress;
+    if let Some((strain_rate, curvature_rate)) = rates {
+        out += law.viscosity * stack(strain_rate, curvature_rate);
+    }
+    out
+}
+
+/// What `.act`/`.bst` write of a point at `p` with frame `r`: local forces `f`, strain and
+/// curvature.
+pub fn section_state(p: &Vec3, r: &Mat3, strain: &Vec3, curvature: &Vec3, f: &Vector6<f64>) -> SectionState {
+    SectionState { position: *p, orientation: *r, strain: *strain, curvature: *curvature, force: f.fixed_rows::<3>(0).into(), moment: f.fixed_rows::<3>(3).into() }
+}
+
+/// One evaluation point's state and derivatives, as the assembly needs them.
+pub struct PointTangents<'a, const C: usize> {
+    pub dp: &'a SMatrix<f64, 3, C>,
+    /// Virtual rotation of the section frame.
+    pub dtheta: &'a SMatrix<f64, 3, C>,
+    pub dstrain: &'a SMatrix<f64, 3, C>,
+    pub dcurvature: &'a SMatrix<f64, 3, C>,
+    /// `(∂ε̇, ∂κ̇)` when the law is viscous.
+    pub rates: Option<(&'a SMatrix<f64, 3, C>, &'a SMatrix<f64, 3, C>)>,
+}
+
+/// The loads of the point between nodes `s` and `s + 1` at `p` with frame `r` and local
+/// forces `f`, added to the residual.
+pub fn add_point_residual(out: &mut dyn ResidualSink, s: usize, p: &Vec3, r: &Mat3, f: &Vector6<f64>, x: &[Vec3]) {
+    let force = r * Vec3::new(f[0], f[1], f[2]);
+    let moment = r * Vec3::new(f[3], f[4], f[5]);
+    for (node, sign) in [(s, -1.0), (s + 1, 1.0)] {
+        let m = moment + (p - x[node]).cross(&force);
+        for c in 0..3 {
+            out.add(Row::Equilibrium { slot: node, comp: c }, sign * force[c]);
+            out.add(Row::Equilibrium { slot: node, comp: 3 + c }, sign * m[c]);
+        }
+    }
+}
+
+/// The derivative of [`add_point_residual`], added to rows `6 s .. 6 s + 12` of `jac`:
+/// `δ(local) = K [δε; δκ] + V [δε̇; δκ̇]`, `δF = R δF_l − [F×] δθ`, and the arm's `δp − δx`.
+#[allow(clippy::too_many_arguments)]
+pub fn add_point_jacobian<const R: usize, const C: usize>(jac: &mut SMatrix<f64, R, C>, s: usize, p: &Vec3, r: &Mat3, f: &Vector6<f64>, law: &SectionLaw, d: &PointTangents<C>, x: &[Vec3]) {
+    let (force, moment) = (r * Vec3::new(f[0], f[1], f[2]), r * Vec3::new(f[3], f[4], f[5]));
+    let block = |m: &Matrix6<f64>, i: usize, j: usize| -> Mat3 { m.fixed_view::<3, 3>(i, j).into() };
+    let (kk, vv) = (&law.stiffness, &law.viscosity);
+    let mut dfl = block(kk, 0, 0) * d.dstrain + block(kk, 0, 3) * d.dcurvature;
+    let mut dml = block(kk, 3, 0) * d.dstrain + block(kk, 3, 3) * d.dcurvature;
+    if let Some((dstrain_rate, dcurvature_rate)) = d.rates {
+        dfl += block(vv, 0, 0) * dstrain_rate + block(vv, 0, 3) * dcurvature_rate;
+        dml += block(vv, 3, 0) * dstrain_rate + block(vv, 3, 3) * dcurvature_rate;
+    }
+    let dforce = r * dfl - skew(&force) * d.dtheta;
+    let dmoment = r * dml - skew(&moment) * d.dtheta;
+    for (node, sign) in [(s, -1.0), (s + 1, 1.0)] {
+        let arm = p - x[node];
+        let mut darm = *d.dp;
+        put(&mut darm, node, POSITION, &-Mat3::identity());
+        let dm = dmoment + skew(&arm) * dforce - skew(&force) * darm;
+        let mut rows = jac.fixed_view_mut::<3, C>(6 * node, 0);
+        rows += sign * dforce;
+        let mut rows = jac.fixed_view_mut::<3, C>(6 * node + 3, 0);
+        rows += sign * dm;
+    }
+}
+
+/// Hands the element Jacobian (rows `6 i + …` node `i`'s force and moment, columns as the
+/// tangents') to the sink: positions and rotations, and velocities when `viscous`.
+pub fn scatter_jacobian<const R: usize, const C: usize>(jac: &SMatrix<f64, R, C>, viscous: bool, out: &mut dyn JacobianSink) {
+    let kinds = if viscous { 4 } else { 2 };
+    let nodes = R / 6;
+    for node in 0..nodes {
+        for (half, rows) in [Row::force(node), Row::moment(node)].into_iter().enumerate() {
+            let r = 6 * node + 3 * half;
+            for slot in 0..nodes {
+                let cols = [Col::position(slot), Col::rotation(slot), Col::velocity(slot), Col::angular_velocity(slot)];
+                for (kind, c) in cols.into_iter().enumerate().take(kinds) {
+                    let block: Mat3 = jac.fixed_view::<3, 3>(r, 12 * slot + 3 * kind).into();
+                    out.add_block(rows, c, &block);
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,179 @@
+//! The 2-node finite-volume beam (MBDyn's `beam2`): one evaluation point in the middle,
+//! linear interpolation of the reference line, each node's volume the half next to it
+//! (the loads of [`super::finite_volume`]).
+//!
+//! Node `i` has position `x_i`, orientation `R_i` (initially `R_i⁰`), offset `f_i`; the
+//! reference line passes through `y_i = x_i + R_i f_i`. With the nodes' rotations from the
+//! initial configuration `Δ_i = R_i R_i⁰ᵀ` and their relative rotation vector
+//! `θ = rotvec(Δ_1ᵀ Δ_2)` (frame `Δ_1`), the section frame is the one halfway between
+//! them, `R_s = Δ_1 exp(θ/2) R_s⁰` (the same seen from either node: objective and
+//! symmetric), and
+//!
+//! - `p = (y_1 + y_2)/2`, `p′ = (y_2 − y_1)/ℓ` (`ℓ` the initial `|y_2 − y_1|`);
+//! - strain `ε = R_sᵀ p′ − ε⁰`, `ε⁰ = R_s⁰ᵀ p′⁰` (the initial state is unstrained);
+//! - curvature `κ = R_s⁰ᵀ θ / ℓ`, exact for a uniformly bent or twisted element whatever
+//!   its rotation (`θ` below π per element).
+//!
+//! MBDyn's beam2.cc interpolates the rotation increments of each step instead (as its
+//! beam3, README "Beams"); for a planar bending by any angle its midpoint frame and
+//! curvature, accumulated in small steps, are these. Viscous section laws are refused.
+
+use nalgebra::{SMatrix, Vector6};
+
+use super::finite_volume::{self, put, PointTangents, POSITION};
+use super::{BeamError, BeamNode, SectionLaw, SectionOrientation};
+use crate::element::contract::{Element, ElementState, JacobianSink, Label, ResidualSink, SectionState};
+use crate::element::deformable::inverse_rotation_jacobian;
+use crate::element::invariant_hinge::rotation_jacobian;
+use crate::kinematics::{rotation_vector, skew, Mat3, Vec3};
+
+const ROTATION: usize = 1;
+
+/// Derivative of a 3-vector with respect to the element's 24 node perturbations.
+type Tangent = SMatrix<f64, 3, 24>;
+
+/// Two-node beam (MBDyn's `beam2`).
+#[derive(Clone, Debug)]
+pub struct Beam2 {
+    pub label: Label,
+    nodes: [Label; 2],
+    offsets: [Vec3; 2],
+    /// Node orientations in the initial configuration.
+    initial: [Mat3; 2],
+    /// `R_s⁰`.
+    orientation: Mat3,
+    /// `ℓ` [m].
+    length: f64,
+    /// `ε⁰`.
+    initial_strain: Vec3,
+    law: SectionLaw,
+}
+
+/// The evaluation point's state.
+struct Point {
+    x: [Vec3; 2],
+    a: [Vec3; 2],
+    p: Vec3,
+    pp: Vec3,
+    r: Mat3,
+    /// `D = Γ⁻¹(θ) Δ_1ᵀ`: `δθ = D (δθ_2 − δθ_1)`.
+    d: Mat3,
+    /// `H = ½ Δ_1 Γ(θ/2) D`: the section frame turns by `δθ_1 + H (δθ_2 − δθ_1)`.
+    h: Mat3,
+    strain: Vec3,
+    curvature: Vec3,
+}
+
+/// The frame halfway from `a` to `b`: `a exp(rotvec(aᵀ b)/2)`, and `rotvec(aᵀ b)`.
+fn halfway(a: &Mat3, b: &Mat3) -> (Mat3, Vec3) {
+    let theta = rotation_vector(&(a.transpose() * b));
+    (a * nalgebra::Rotation3::new(theta / 2.0).into_inner(), theta)
+}
+
+impl Beam2 {
+    /// A beam on two nodes, unstrained in their initial configuration.
+    pub fn new(label: Label, nodes: [BeamNode; 2], orientation: SectionOrientation, law: SectionLaw) -> Result<Self, BeamError> {
+        if law.is_viscous() {
+            return Err(BeamError::Viscous(label, "beam2"));
+        }
+        let y: [Vec3; 2] = std::array::from_fn(|i| nodes[i].initial_position + nodes[i].initial_orientation * nodes[i].offset);
+        let chord = y[1] - y[0];
+        let length = chord.norm();
+        if length <= f64::EPSILON * (y[0].norm() + y[1].norm() + 1.0) {
+            return Err(BeamError::ZeroLength(label, "I"));
+        }
+        let r0 = match orientation {
+            SectionOrientation::Given(r) => r,
+            SectionOrientation::FromNodes => {
+                let frames: [Mat3; 2] = std::array::from_fn(|i| nodes[i].initial_orientation * nodes[i].orientation);
+                halfway(&frames[0], &frames[1]).0
+            }
+        };
+        if ((r0.transpose() * r0) - Mat3::identity()).norm() > 1e-9 || r0.determinant() < 0.0 {
+            return Err(BeamError::BadOrientation(label, "I"));
+        }
+        Ok(Beam2 {
+            label,
+            nodes: std::array::from_fn(|i| nodes[i].label),
+            offsets: std::array::from_fn(|i| nodes[i].offset),
+            initial: std::array::from_fn(|i| nodes[i].initial_orientation),
+            orientation: r0,
+            length,
+            initial_strain: r0.transpose() * (chord / length),
+            law,
+        })
+    }
+
+    fn evaluate(&self, st: &dyn ElementState) -> Point {
+        let n = [st.node(0), st.node(1)];
+        let delta: [Mat3; 2] = std::array::from_fn(|i| n[i].r * self.initial[i].transpose());
+        let a: [Vec3; 2] = std::array::from_fn(|i| n[i].r * self.offsets[i]);
+        let y: [Vec3; 2] = std::array::from_fn(|i| n[i].x + a[i]);
+        let (mid, theta) = halfway(&delta[0], &delta[1]);
+        let r = mid * self.orientation;
+        let pp = (y[1] - y[0]) / self.length;
+        let d = inverse_rotation_jacobian(&theta) * delta[0].transpose();
+        let h = 0.5 * delta[0] * rotation_jacobian(&(theta / 2.0)) * d;
+        Point {
+            x: [n[0].x, n[1].x],
+            a,
+            p: 0.5 * (y[0] + y[1]),
+            pp,
+            r,
+            d,
+            h,
+            strain: r.transpose() * pp - self.initial_strain,
+            curvature: self.orientation.transpose() * theta / self.length,
+        }
+    }
+
+    fn local_forces(&self, k: &Point) -> Vector6<f64> {
+        finite_volume::local_forces(&self.law, &k.strain, &k.curvature, None)
+    }
+}
+
+impl Element for Beam2 {
+    fn label(&self) -> Label {
+        self.label
+    }
+    fn type_name(&self) -> &'static str {
+        "beam2"
+    }
+    fn nodes(&self) -> Vec<Label> {
+        self.nodes.to_vec()
+    }
+
+    fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
+        let k = self.evaluate(st);
+        finite_volume::add_point_residual(out, 0, &k.p, &k.r, &self.local_forces(&k), &k.x);
+    }
+
+    /// The evaluation point: forces and moments `K ([ε; κ] − e_p) + f_p`, strains and
+    /// curvatures, in the section frame.
+    fn sections(&self, st: &dyn ElementState) -> Vec<SectionState> {
+        let k = self.evaluate(st);
+        vec![finite_volume::section_state(&k.p, &k.r, &k.strain, &k.curvature, &self.local_forces(&k))]
+    }
+
+    fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
+        let k = self.evaluate(st);
+        let mut dy = [Tangent::zeros(); 2];
+        for (i, d) in dy.iter_mut().enumerate() {
+            put(d, i, POSITION, &Mat3::identity());
+            put(d, i, ROTATION, &-skew(&k.a[i]));
+        }
+        let dp = 0.5 * (dy[0] + dy[1]);
+        let dpp = (dy[1] - dy[0]) / self.length;
+        let (mut drel, mut dtheta) = (Tangent::zeros(), Tangent::zeros());
+        put(&mut drel, 0, ROTATION, &-k.d);
+        put(&mut drel, 1, ROTATION, &k.d);
+        put(&mut dtheta, 0, ROTATION, &(Mat3::identity() - k.h));
+        put(&mut dtheta, 1, ROTATION, &k.h);
+        let dstrain = k.r.transpose() * (dpp + skew(&k.pp) * dtheta);
+        let dcurvature = self.orientation.transpose() * drel / self.length;
+        let point = PointTangents { dp: &dp, dtheta: &dtheta, dstrain: &dstrain, dcurvature: &dcurvature, rates: None };
+        let mut jac = SMatrix::<f64, 12, 24>::zeros();
+        finite_volume::add_point_jacobian(&mut jac, 0, &k.p, &k.r, &self.local_forces(&k), &self.law, &point, &k.x);
+        finite_volume::scatter_jacobian(&jac, false, out);
+    }
+}

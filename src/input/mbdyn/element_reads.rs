@@ -1,0 +1,225 @@
+//! Drive callers that read a node's degree of freedom or an element's private data during
+//! the run (input manual: "General", §Dof drive, §Element drive; "Nodes", §Parameter Node;
+//! "Elements", §Bind): `dof, NODE, structural, INDEX, {algebraic | differential}, DRIVE`,
+//! `element, LABEL, TYPE, string, "NAME", DRIVE`, and the `parameter: LABEL, element;`
+//! nodes with their `bind: ELEMENT, TYPE, PARAMETER, string, "NAME";` (output only: MBDyn
+//! 1.7.3 refuses the `dof` drive caller on a parameter node).
+//!
+//! Drive caller cards are read before the elements block (see `model.rs`), so an `element`
+//! read is a cell filled once the elements are read, from the element defined above the
+//! drive caller, as MBDyn requires. The drive evaluates `DRIVE` at the value read from the
+//! state it is evaluated in, as MBDyn's `DofDriveCaller`/`ElementDriveCaller` (`dGet(value)`:
+//! `Var` is the value, `Time` stays the time), with no Jacobian of the read (see
+//! [`TimeFunction`]).
+
+use std::cell::RefCell;
+use std::collections::{HashMap, HashSet};
+use std::sync::{Arc, OnceLock};
+
+use super::cursor::Cursor;
+use super::diagnostic::{MbdynError, Sources, Span};
+use super::parser::{known, same_keyword, Statement};
+use crate::element::private_data::PrivateDatum;
+use crate::element::{Drive, Element, ElementState, TimeFunction};
+use crate::model::Label;
+
+type Cell = Arc<OnceLock<PrivateDatum>>;
+
+/// What an `element` drive caller reads, waiting for the elements block.
+struct Request {
+    /// The element's label space and label.
+    element: (&'static str, Label),
+    name: String,
+    span: Span,
+    /// The reading statement's position in the input.
+    seq: usize,
+    cell: Cell,
+}
+
+/// The parameter nodes, their bindings and the reads of `element` drive callers.
+#[derive(Default)]
+pub struct PrivateReads {
+    /// `parameter: LABEL, element;` nodes (from a scan of the nodes block, which is read
+    /// after the drive caller cards).
+    parameters: HashSet<Label>,
+    /// Where each parameter node was bound.
+    bound: RefCell<HashMap<Label, Span>>,
+    requests: RefCell<Vec<Request>>,
+}
+
+/// Element types a `bind` or an `element` drive caller names, as label spaces
+/// (`elements::label_space`).
+const ELEMENT_TYPES: [&str; 6] = ["joint", "body", "force", "couple", "beam", "inertia"];
+
+fn space_of(kind: &'static str) -> &'static str {
+    match kind {
+        "couple" => "force",
+        k => k,
+    }
+}
+
+impl PrivateReads {
+    /// Announces the parameter nodes of the nodes block (`parameter: LABEL, element, …`).
+    pub fn scan_parameter_nodes(&mut self, nodes: &[Statement]) {
+        for st in nodes.iter().filter(|st| same_keyword(&st.keyword, "parameter")) {
+            let element = st.args.get(1).and_then(|a| a.keyword.as_deref()).is_some_and(|k| same_keyword(k, "element"));
+            if let Some(super::parser::Arg { value: super::parser::Value::Number(x), .. }) = st.args.first()
+                && element
+                && *x >= 0.0
+                && x.fract() == 0.0
+                && *x <= u32::MAX as f64
+            {
+                self.parameters.insert(*x as u32);
+            }
+        }
+    }
+
+    /// After the elements block: fills every read from the element it names, which must
+    /// be defined above the drive caller (MBDyn's `ElementDCR::Read` finds it while reading:
+    /// "unable to find Joint(…)"), and have the datum.
+    pub fn resolve(&self, src: &Sources, elements: &HashMap<(&'static str, Label), (&dyn Element, Span, usize)>) -> Result<(), MbdynError> {
+        for r in self.requests.borrow().iter() {
+            let (space, label) = r.element;
+            let message = match elements.get(&(space, label)) {
+                None => format!("element drive caller: there is no {space} {label}"),
+                Some((_, at, seq)) if *seq >= r.seq => format!("element drive caller: {space} {label} is not defined above it (line {}); MBDyn reads the element first", at.line),
+                Some((e, ..)) => match e.private_data(&r.name) {
+                    Some(d) => {
+                        let _ = r.cell.set(d);
+                        continue;
+                    }
+                    None => format!("element drive caller: romdyn does not compute the private data \"{}\" of {} {label} ({COMPUTED})", r.name, e.type_name()),
+                },
+            };
+            return Err(src.error(r.span, message));
+        }
+        Ok(())
+    }
+
+    fn request(&self, element: (&'static str, Label), name: String, span: Span, seq: usize, cell: Cell) {
+        self.requests.borrow_mut().push(Request { element, name, span, seq, cell });
+    }
+}
+
+/// The private data romdyn computes, for messages.
+const COMPUTED: &str = "it computes \"rz\", \"wz\" of revolute hinges, revolute rotations and axial rotations, and \"px\" … \"pz\", \"rx\" … \"rz\", \"wx\" … \"wz\" of total joints";
+
+/// `parameter: LABEL, element;` in the nodes block; the other kinds (`value`, `sample and
+/// hold`, `beam strain gage`) are refused by name.
+pub fn parameter_node(c: &mut Cursor, seen: &mut HashMap<Label, Span>) -> Result<(), MbdynError> {
+    let at = c.here();
+    let label = c.label("parameter node label")?;
+    if let Some(prev) = seen.insert(label, at) {
+        return Err(c.error_at(at, format!("parameter node {label} is defined twice (first at line {})", prev.line)));
+    }
+    if c.accept("name") {
+        c.string("node name")?;
+    }
+    let kind_at = c.here();
+    if !c.accept("element") {
+        let what = c.accept_any(&["value", "sample and hold", "beam strain gage"]).map_or_else(|| "without 'element'".to_string(), |k| format!("'{k}'"));
+        return Err(c.error_at(kind_at, format!("parameter nodes {what} are not supported by romdyn (supported: 'parameter: LABEL, element;', bound to an element's private data)")));
+    }
+    if c.accept("output") {
+        c.flag("output flag")?;
+    }
+    c.finish()
+}
+
+/// `bind: ELEMENT, TYPE, PARAMETER, {string | name}, "NAME";` (dataman4.cc: the element
+/// must be defined above, the parameter node exist and be bound once). It only makes the
+/// parameter node write the datum to MBDyn's `.prm` output, which romdyn does not write:
+/// MBDyn 1.7.3 refuses the `dof` drive caller on a parameter node (below), the one way a
+/// drive could read it.
+pub fn bind(c: &mut Cursor, reads: &PrivateReads, defined: &HashSet<(&'static str, Label)>) -> Result<(), MbdynError> {
+    let el_at = c.here();
+    let label = c.label("element label")?;
+    let kind = c.keyword("the element type", &ELEMENT_TYPES)?;
+    if !defined.contains(&(space_of(kind), label)) {
+        return Err(c.error_at(el_at, format!("bind: there is no {kind} {label} above this statement")));
+    }
+    let p_at = c.here();
+    let p = c.label("parameter node label")?;
+    if !reads.parameters.contains(&p) {
+        return Err(c.error_at(p_at, format!("bind: there is no parameter node {p} ('parameter: {p}, element;' in the nodes block)")));
+    }
+    if c.accept("string") || c.accept("name") {
+        c.string("the private data name")?;
+    } else {
+        c.accept("index");
+        c.label("the private data index")?;
+    }
+    c.finish()?;
+    if let Some(at) = reads.bound.borrow_mut().insert(p, p_at) {
+        return Err(c.error_at(p_at, format!("bind: parameter node {p} is already bound (line {})", at.line)));
+    }
+    Ok(())
+}
+
+/// `dof, NODE, TYPE, …, DRIVE` after the keyword.
+pub fn dof_drive(c: &mut Cursor, structural: &HashSet<Label>, inner: &dyn Fn(&mut Cursor) -> Result<Drive, MbdynError>) -> Result<Drive, MbdynError> {
+    let at = c.here();
+    let label = c.label("node label")?;
+    let kind_at = c.here();
+    match c.accept_any(&["parameter", "structural"]) {
+        Some("parameter") => Err(c.error_at(
+            kind_at,
+            format!("dof drive caller on parameter node {label}: MBDyn 1.7.3 refuses it (\"Parameter({label}) must have dofs\", dataman3.cc ReadScalarDof: a parameter node owns no degree of freedom); read the element's private data with 'element, LABEL, TYPE, string, \"NAME\", DRIVE'"),
+        )),
+        Some(_) => {
+            if !structural.contains(&label) {
+                return Err(c.error_at(at, format!("dof drive caller: the file declares no structural node {label} (dummy nodes have no degrees of freedom)")));
+            }
+            let i_at = c.here();
+            let i = c.integer("the degree of freedom (1 to 6)")?;
+            if !(1..=6).contains(&i) {
+                return Err(c.error_at(i_at, format!("dof drive caller: a structural node has degrees of freedom 1 to 6, found {i}")));
+            }
+            if i > 3 {
+                return Err(c.error_at(i_at, "dof drive caller: romdyn reads a structural node's positions (1 to 3); degrees of freedom 4 to 6 are MBDyn's incremental orientation parameters (use 'node, N, structural, string, \"Phi[i]\"' for the rotation vector)"));
+            }
+            let order = c.keyword("'algebraic' (position) or 'differential' (velocity)", &["algebraic", "differential"])?;
+            let (k, differential) = ((i - 1) as usize, order == "differential");
+            let f = inner(c)?;
+            let text = format!("dof, {label}, structural, {i}, {order}, {f:?}");
+            Ok(Drive::Expression(TimeFunction::reading_state(text, move |_, st| {
+                let Some(n) = st.and_then(|s| s.structural_node(label)) else { return f64::NAN };
+                let x = if differential { n.xdot[k] } else { n.x[k] };
+                f.value_at(x, st)
+            })))
+        }
+        None => {
+            let what = c.peek_keyword().map_or_else(|| c.found(), |w| format!("'{w}'"));
+            Err(c.error_at(kind_at, format!("dof drive caller: romdyn reads parameter and structural nodes, found {what} (abstract, electric, hydraulic and thermal nodes are not supported)")))
+        }
+    }
+}
+
+/// `element, LABEL, TYPE, string, "NAME", DRIVE` after the keyword.
+pub fn element_drive(c: &mut Cursor, reads: &PrivateReads, seq: usize, inner: &dyn Fn(&mut Cursor) -> Result<Drive, MbdynError>) -> Result<Drive, MbdynError> {
+    let at = c.here();
+    let label = c.label("element label")?;
+    let kind = c.keyword("the element type", &ELEMENT_TYPES)?;
+    let name_at = c.here();
+    if !(c.accept("string") || c.accept("name")) {
+        return Err(c.error_at(name_at, "element drive caller: romdyn reads the private data by name ('string, \"NAME\"'), not by index or implied"));
+    }
+    let name = c.string("the private data name")?;
+    let f = inner(c)?;
+    let cell: Cell = Arc::default();
+    reads.request((space_of(kind), label), name.clone(), at, seq, cell.clone());
+    Ok(reading(format!("element, {label}, {kind}, string, \"{name}\", {f:?}"), cell, f))
+}
+
+/// `f` of the datum in `cell`, read from the state the drive is evaluated in.
+fn reading(text: String, cell: Cell, f: Drive) -> Drive {
+    Drive::Expression(TimeFunction::reading_state(text, move |_, st: Option<&dyn ElementState>| {
+        let (Some(st), Some(datum)) = (st, cell.get()) else { return f64::NAN };
+        datum(st).map_or(f64::NAN, |x| f.value_at(x, Some(st)))
+    }))
+}
+
+/// Whether `keyword` is the `bind` statement.
+pub fn is_bind(keyword: &str) -> bool {
+    known(keyword, &["bind"]).is_some()
+}
