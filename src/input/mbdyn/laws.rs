@@ -229,24 +229,6 @@ fn prestress_and_prestrain(c: &mut Cursor, law: &mut LinearLaw, dim: usize, driv
             return Err(c.error_at(span, "a prestrain needs a stiffness"));
         }
     }
-    let mut varying = None;
-    if c.accept("prestrain") {
-        let span = c.here();
-        if dim == 1 {
-            // A 1-D template drive caller (tpldrive_impl.cc, ReadDC1D): `[single |
-            // component,] DRIVE` with no value before the drive (SingleTDCR<doublereal>
-            // reads none), `null`, `zero`, `array, N, …`.
-            match template_1d(c, drives, seq, 0)? {
-                Drive::Const(x) => law.prestrain[0] = x,
-                d => varying = Some(d),
-            }
-        } else {
-            law.prestrain = prestrain(c, dim, drives, seq)?;
-        }
-        if varying.as_ref().is_some_and(|_| law.stiffness[(0, 0)] == 0.0) {
-            return Err(c.error_at(span, "a prestrain needs a stiffness"));
-        }
-    }
     Ok(varying)
 }
 
