@@ -20,5 +20,5 @@ pub use dae::{coefficient_from_derivatives, derivatives_from_coefficient, Constr
 pub use eigen::{ModalAnalysis, Mode};
 pub use eigen_error::EigenError;
 pub use route::EigenRoute;
-pub use sparse::SparseMatrix;
+pub use sparse::{SparseMatrix, SparseScalar};
 pub use sparse_dae::{SparseLinearDae, SparseSolveError};

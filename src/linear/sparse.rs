@@ -1,7 +1,28 @@
 //! Compressed-row sparse real matrices: the products that eigenvector lifts, residuals and
 //! normalizations need, in time proportional to the non-zeros.
 
-use faer::{c64, Col, Mat};
+use faer::{c64, Col, ColMut, ColRef, Mat};
+
+/// The entries of the vectors a [`SparseMatrix`] multiplies: `f64` or `c64`.
+pub trait SparseScalar: faer::traits::ComplexField + Copy + Default + std::ops::Add<Output = Self> + std::ops::Mul<f64, Output = Self> {}
+impl SparseScalar for f64 {}
+impl SparseScalar for c64 {}
+
+/// The entries of a column stored contiguously (every owned `Col`, every column of a `Mat`).
+pub(crate) fn contiguous<T>(v: ColRef<'_, T>) -> &[T] {
+    match v.try_as_col_major() {
+        Some(c) => c.as_slice(),
+        None => unreachable!("owned columns and the columns of owned matrices are contiguous"),
+    }
+}
+
+/// [`contiguous`] of a mutable column.
+pub(crate) fn contiguous_mut<T>(v: ColMut<'_, T>) -> &mut [T] {
+    match v.try_as_col_major_mut() {
+        Some(c) => c.as_slice_mut(),
+        None => unreachable!("owned columns and the columns of owned matrices are contiguous"),
+    }
+}
 
 /// A real sparse matrix in compressed-row form (exact zeros are not stored).
 #[derive(Clone, Debug)]
@@ -84,36 +105,79 @@ impl SparseMatrix {
         self.val.iter().map(|x| x * x).sum::<f64>().sqrt()
     }
 
+    /// `out = M v` (slices of the matrix's column and row counts), for real or complex
+    /// vectors, without allocating.
+    pub fn mul_into<T: SparseScalar>(&self, v: &[T], out: &mut [T]) {
+        assert!(v.len() == self.ncols && out.len() == self.nrows, "M v: sizes");
+        for (i, o) in out.iter_mut().enumerate() {
+            let mut s = T::default();
+            for k in self.start[i]..self.start[i + 1] {
+                s = s + v[self.col[k]] * self.val[k];
+            }
+            *o = s;
+        }
+    }
+
+    /// `out = Mᵀ v`, without allocating.
+    pub fn mul_t_into<T: SparseScalar>(&self, v: &[T], out: &mut [T]) {
+        assert!(v.len() == self.nrows && out.len() == self.ncols, "Mᵀ v: sizes");
+        out.fill(T::default());
+        for (i, &x) in v.iter().enumerate() {
+            for k in self.start[i]..self.start[i + 1] {
+                out[self.col[k]] = out[self.col[k]] + x * self.val[k];
+            }
+        }
+    }
+
+    /// `(M v_a, M v_b)` (or with `Mᵀ`) for `v = v_a + v_b`, `v_b` the entries of `v` where
+    /// `split` is true: both in one pass over the matrix.
+    pub fn mul_split(&self, v: &Col<c64>, split: &[bool], transpose: bool) -> (Col<c64>, Col<c64>) {
+        let len = if transpose { self.ncols } else { self.nrows };
+        let (mut a, mut b) = (Col::<c64>::zeros(len), Col::<c64>::zeros(len));
+        let (x, pa, pb) = (contiguous(v.as_ref()), contiguous_mut(a.as_mut()), contiguous_mut(b.as_mut()));
+        assert!(x.len() == if transpose { self.nrows } else { self.ncols } && split.len() == x.len(), "split product: sizes");
+        for i in 0..self.nrows {
+            for k in self.start[i]..self.start[i + 1] {
+                let j = self.col[k];
+                if transpose {
+                    let out = if split[i] { &mut *pb } else { &mut *pa };
+                    out[j] += x[i] * self.val[k];
+                } else {
+                    let out = if split[j] { &mut *pb } else { &mut *pa };
+                    out[i] += x[j] * self.val[k];
+                }
+            }
+        }
+        (a, b)
+    }
+
     /// `M v`.
     pub fn mul_complex(&self, v: &Col<c64>) -> Col<c64> {
-        Col::from_fn(self.nrows, |i| {
-            (self.start[i]..self.start[i + 1]).fold(c64::new(0.0, 0.0), |s, k| s + v[self.col[k]] * self.val[k])
-        })
+        self.mul_col(v, false)
     }
 
     /// `Mᵀ v`.
     pub fn mul_t_complex(&self, v: &Col<c64>) -> Col<c64> {
-        let mut out = Col::<c64>::zeros(self.ncols);
-        for i in 0..self.nrows {
-            for k in self.start[i]..self.start[i + 1] {
-                out[self.col[k]] += v[i] * self.val[k];
-            }
-        }
-        out
+        self.mul_col(v, true)
     }
 
     /// `M v` of a real `v`.
     pub fn mul_real(&self, v: &Col<f64>) -> Col<f64> {
-        Col::from_fn(self.nrows, |i| (self.start[i]..self.start[i + 1]).map(|k| v[self.col[k]] * self.val[k]).sum())
+        self.mul_col(v, false)
     }
 
     /// `Mᵀ v` of a real `v`.
     pub fn mul_t_real(&self, v: &Col<f64>) -> Col<f64> {
-        let mut out = Col::<f64>::zeros(self.ncols);
-        for i in 0..self.nrows {
-            for k in self.start[i]..self.start[i + 1] {
-                out[self.col[k]] += v[i] * self.val[k];
-            }
+        self.mul_col(v, true)
+    }
+
+    fn mul_col<T: SparseScalar>(&self, v: &Col<T>, transpose: bool) -> Col<T> {
+        let mut out = Col::<T>::zeros(if transpose { self.ncols } else { self.nrows });
+        let x = contiguous(v.as_ref());
+        if transpose {
+            self.mul_t_into(x, contiguous_mut(out.as_mut()));
+        } else {
+            self.mul_into(x, contiguous_mut(out.as_mut()));
         }
         out
     }

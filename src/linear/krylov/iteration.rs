@@ -12,7 +12,8 @@
 //! two. Its restart keeps a real orthonormal basis of the wanted invariant subspace of the
 //! Rayleigh quotient (conjugate pairs kept whole) in place of the complex Schur vectors.
 
-use faer::{c64, Col, ColRef, Mat, MatRef};
+use faer::reborrow::{Reborrow, ReborrowMut};
+use faer::{c64, Col, ColMut, ColRef, Mat, MatRef};
 
 use super::schur::{schur, sort_schur};
 use super::KrylovError;
@@ -173,7 +174,7 @@ pub(super) struct Settings {
     pub seed: u64,
 }
 
-/// A converged Ritz pair of the operator, `x` of unit norm.
+/// A converged Ritz pair of the operator, `x` of unit norm and purified (`T x / θ`).
 pub(super) struct RitzPair {
     pub theta: c64,
     pub x: Col<c64>,
@@ -208,31 +209,72 @@ fn scale<T: Scalar>(w: &mut Col<T>, f: f64) {
     }
 }
 
-/// `w` with its components along `v[:, 0..cols]` removed (classical Gram–Schmidt as two
-/// block projections `c = Vᴴ w`, `w ← w − V c`, a second pass when needed); the
-/// coefficients removed and the norm left.
-fn orthogonalize<T: Scalar>(v: &Mat<T>, cols: usize, w: &mut Col<T>) -> (Col<T>, f64) {
+/// A unit random vector with `T³` applied, so that its (index ≤ 3) components at θ = 0 of the
+/// infinite eigenvalues are gone; `None` when it vanishes.
+fn purified<T: Scalar>(op: &mut dyn FnMut(ColRef<'_, T>, ColMut<'_, T>), n: usize, seed: u64, applications: &mut usize) -> Option<Col<T>> {
+    let mut x = pseudo_random::<T>(n, seed);
+    let mut y = Col::<T>::zeros(n);
+    for _ in 0..3 {
+        op(x.as_ref(), y.as_mut());
+        *applications += 1;
+        std::mem::swap(&mut x, &mut y);
+        let nx = x.norm_l2();
+        if !(nx > 0.0 && nx.is_finite()) {
+            return None;
+        }
+        scale(&mut x, 1.0 / nx);
+    }
+    Some(x)
+}
+
+/// `w` with its components along the columns of `basis` removed (classical Gram–Schmidt as
+/// two block projections `c = Vᴴ w`, `w ← w − V c`, a second pass when needed); the
+/// coefficients removed are written to `h`, `c` is scratch of the same length; returns the
+/// norm left.
+fn orthogonalize<T: Scalar>(basis: MatRef<'_, T>, mut w: ColMut<'_, T>, mut h: ColMut<'_, T>, mut c: ColMut<'_, T>) -> f64 {
     use faer::linalg::matmul::matmul;
     use faer::{Accum, Par};
-    let basis = v.subcols(0, cols);
-    let mut h = Col::<T>::zeros(cols);
-    let mut c = Col::<T>::zeros(cols);
     let (one, minus_one) = (T::from_c64(c64::new(1.0, 0.0)), T::from_c64(c64::new(-1.0, 0.0)));
     // Sequential products: these matrix-vector products are too small to gain from threads.
     // A second pass only when the first removed most of `w` (Kahan–Parlett "twice is
     // enough": a norm kept above 1/√2 of the input is orthogonal to working accuracy).
     let mut before = w.norm_l2();
-    for _ in 0..2 {
-        matmul(c.as_mat_mut(), Accum::Replace, basis.adjoint(), w.as_mat(), one, Par::Seq);
-        matmul(w.as_mat_mut(), Accum::Add, basis, c.as_mat(), minus_one, Par::Seq);
-        h += &c;
+    for pass in 0..2 {
+        let target = if pass == 0 { h.rb_mut() } else { c.rb_mut() };
+        matmul(target.as_mat_mut(), Accum::Replace, basis.adjoint(), w.rb().as_mat(), one, Par::Seq);
+        let coef = if pass == 0 { h.rb() } else { c.rb() };
+        matmul(w.rb_mut().as_mat_mut(), Accum::Add, basis, coef.as_mat(), minus_one, Par::Seq);
+        if pass == 1 {
+            h += c.rb();
+        }
         let after = w.norm_l2();
         if after > std::f64::consts::FRAC_1_SQRT_2 * before {
-            return (h, after);
+            return after;
         }
         before = after;
     }
-    (h, w.norm_l2())
+    w.norm_l2()
+}
+
+/// `V[:, 0..k] ← V[:, 0..size] Q` (`k` = Q's columns) and `V[:, k] ← V[:, size]`, in place:
+/// by blocks of rows through a `rows x k` scratch, not an `n x k` copy of the new basis (at
+/// 10⁵ unknowns that copy was 59 MB per run).
+fn restart_basis<T: Scalar>(v: &mut Mat<T>, size: usize, q: &Mat<T>) {
+    use faer::linalg::matmul::matmul;
+    use faer::{Accum, Par};
+    const ROWS: usize = 512;
+    let (n, keep) = (v.nrows(), q.ncols());
+    let mut block = Mat::<T>::zeros(ROWS.min(n), keep);
+    let one = T::from_c64(c64::new(1.0, 0.0));
+    for r0 in (0..n).step_by(ROWS) {
+        let rows = ROWS.min(n - r0);
+        let mut b = block.as_mut().submatrix_mut(0, 0, rows, keep);
+        matmul(b.rb_mut(), Accum::Replace, v.as_ref().submatrix(r0, 0, rows, size), q.as_ref(), one, Par::Seq);
+        v.as_mut().submatrix_mut(r0, 0, rows, keep).copy_from(b.rb());
+        for i in r0..r0 + rows {
+            v[(i, keep)] = v[(i, size)];
+        }
+    }
 }
 
 /// Eigenvector `y` of the upper triangular `t` for its diagonal entry `i` (`y[i] = 1`).
@@ -268,44 +310,39 @@ fn combine<T: Scalar>(v: MatRef<'_, T>, y: ColRef<'_, c64>) -> Col<c64> {
 
 /// Runs Krylov–Schur on `op` (dimension `n`); `progress` is told the number of converged
 /// pairs after each restart.
-pub(super) fn krylov_schur<T: Scalar>(n: usize, op: &dyn Fn(&Col<T>) -> Col<T>, s: &Settings, progress: &dyn Fn(usize)) -> Result<Run, KrylovError> {
+pub(super) fn krylov_schur<T: Scalar>(n: usize, op: &mut dyn FnMut(ColRef<'_, T>, ColMut<'_, T>), s: &Settings, progress: &dyn Fn(usize)) -> Result<Run, KrylovError> {
     let m = s.basis.min(n).max(1);
     let wanted = s.wanted.min(m.saturating_sub(1)).max(1).min(n);
     let mut v = Mat::<T>::zeros(n, m + 1);
     let mut h = Mat::<T>::zeros(m + 1, m);
     let zero = T::from_c64(c64::new(0.0, 0.0));
     let mut applications = 0;
-    let apply = |x: &Col<T>, count: &mut usize| {
-        *count += 1;
-        op(x)
+    // Coefficients of one Gram–Schmidt step and their scratch.
+    let (mut coef, mut scratch) = (Col::<T>::zeros(m + 1), Col::<T>::zeros(m + 1));
+    let Some(x) = purified(op, n, s.seed, &mut applications) else {
+        return Err(KrylovError::Breakdown("the start vector is in the operator's null space".into()));
     };
-    // Start vector: random, then T³ applied so the (index ≤ 3) components at θ = 0 of the
-    // infinite eigenvalues are gone before the Krylov space is built.
-    let mut x = pseudo_random::<T>(n, s.seed);
-    for _ in 0..3 {
-        x = apply(&x, &mut applications);
-        let nx = x.norm_l2();
-        if !(nx > 0.0 && nx.is_finite()) {
-            return Err(KrylovError::Breakdown("the start vector is in the operator's null space".into()));
-        }
-        scale(&mut x, 1.0 / nx);
-    }
     v.col_mut(0).copy_from(&x);
+    drop(x);
     let mut kept = 0;
     let mut restarts = 0;
     loop {
         // Arnoldi expansion from column `kept`.
         let mut size = m;
         for j in kept..m {
-            let mut w = apply(&v.col(j).to_owned(), &mut applications);
-            if !w.iter().all(|x| x.to_c64().re.is_finite() && x.to_c64().im.is_finite()) {
+            let (done, mut rest) = v.as_mut().split_at_col_mut(j + 1);
+            let done = done.rb();
+            let mut w = rest.rb_mut().col_mut(0);
+            op(done.col(j), w.rb_mut());
+            applications += 1;
+            if !w.rb().iter().all(|x| x.to_c64().re.is_finite() && x.to_c64().im.is_finite()) {
                 return Err(KrylovError::Breakdown("the operator returned non-finite values".into()));
             }
-            let (c, mut beta) = orthogonalize(&v, j + 1, &mut w);
+            let mut beta = orthogonalize(done, w.rb_mut(), coef.subrows_mut(0, j + 1), scratch.subrows_mut(0, j + 1));
             for i in 0..=j {
-                h[(i, j)] = c[i];
+                h[(i, j)] = coef[i];
             }
-            let scale_c = c.norm_l2().max(beta);
+            let scale_c = coef.subrows(0, j + 1).norm_l2().max(beta);
             if beta <= 1e-12 * scale_c {
                 // Invariant subspace: continue with a fresh direction (coupling zero), purified
                 // like the start vector. When the purified fresh vectors lie in the basis
@@ -313,15 +350,8 @@ pub(super) fn krylov_schur<T: Scalar>(n: usize, op: &dyn Fn(&Col<T>) -> Col<T>, 
                 h[(j + 1, j)] = zero;
                 let mut fresh = None;
                 for attempt in 0..3u64 {
-                    let mut f = pseudo_random::<T>(n, s.seed + 1000 + 7 * j as u64 + attempt);
-                    for _ in 0..3 {
-                        f = apply(&f, &mut applications);
-                        let nf = f.norm_l2();
-                        if nf > 0.0 {
-                            scale(&mut f, 1.0 / nf);
-                        }
-                    }
-                    let nb = orthogonalize(&v, j + 1, &mut f).1;
+                    let Some(mut f) = purified(op, n, s.seed + 1000 + 7 * j as u64 + attempt, &mut applications) else { continue };
+                    let nb = orthogonalize(done, f.as_mut(), coef.subrows_mut(0, j + 1), scratch.subrows_mut(0, j + 1));
                     if nb > 1e-8 && nb.is_finite() {
                         fresh = Some((f, nb));
                         break;
@@ -329,7 +359,7 @@ pub(super) fn krylov_schur<T: Scalar>(n: usize, op: &dyn Fn(&Col<T>) -> Col<T>, 
                 }
                 match fresh {
                     Some((f, nb)) => {
-                        w = f;
+                        w.copy_from(&f);
                         beta = nb;
                     }
                     None => {
@@ -340,8 +370,9 @@ pub(super) fn krylov_schur<T: Scalar>(n: usize, op: &dyn Fn(&Col<T>) -> Col<T>, 
             } else {
                 h[(j + 1, j)] = T::from_c64(c64::new(beta, 0.0));
             }
-            scale(&mut w, 1.0 / beta);
-            v.col_mut(j + 1).copy_from(&w);
+            for x in w.iter_mut() {
+                *x = x.times(1.0 / beta);
+            }
         }
         let square = h.submatrix(0, 0, size, size).to_owned();
         // Wanted first (by decreasing |θ|), then the others (by decreasing |θ|). A real
@@ -378,7 +409,16 @@ pub(super) fn krylov_schur<T: Scalar>(n: usize, op: &dyn Fn(&Col<T>) -> Col<T>, 
             let pairs = (0..converged)
                 .filter(|&i| !T::REAL || upper(i))
                 .map(|i| {
-                    let x = combine(basis, r.y.col(i));
+                    // x = V y purified, x ← T x / θ, by the Krylov relation T V = V H +
+                    // v_size h[size, :]: T x / θ = x + v_size (h[size, :] y) / θ, without
+                    // applying T (it removes the components along θ = 0, the infinite
+                    // eigenvalues, as an application would).
+                    let y = r.y.col(i);
+                    let mut x = combine(basis, y);
+                    let g = (0..size).fold(c64::new(0.0, 0.0), |acc, l| acc + h[(size, l)].to_c64() * y[l]) / theta[i];
+                    for (k, xk) in x.iter_mut().enumerate() {
+                        *xk += v[(k, size)].to_c64() * g;
+                    }
                     let nx = x.norm_l2();
                     RitzPair { theta: theta[i], x: x / nx }
                 })
@@ -407,10 +447,7 @@ pub(super) fn krylov_schur<T: Scalar>(n: usize, op: &dyn Fn(&Col<T>) -> Col<T>, 
             return Err(KrylovError::Breakdown("no basis of the kept Ritz vectors (a conjugate pair split at every cut)".into()));
         };
         let keep = q.ncols();
-        let new_basis = v.subcols(0, size) * &q;
-        let last = v.col(size).to_owned();
-        v.subcols_mut(0, keep).copy_from(&new_basis);
-        v.col_mut(keep).copy_from(&last);
+        restart_basis(&mut v, size, &q);
         // The Rayleigh quotient S = Qᴴ H Q and the residual row h[size, :] Q.
         let bq = h.submatrix(size, 0, 1, size) * &q;
         h.fill(zero);

@@ -3,25 +3,45 @@
 //! formed. `T v = θ v` with `θ = −1/(λ − σ)`: the eigenvalues nearest the shift are the
 //! largest θ, the infinite ones map to θ = 0. A real shift is factored in real arithmetic,
 //! a complex one in complex arithmetic.
+//!
+//! The Krylov iterations apply `T` in place ([`ShiftInvert::apply_into`]: `E x` written
+//! straight into the output column, the LU solved on it with the caller's [`Workspace`]),
+//! so an application allocates nothing. faer's solve permutes the right-hand side's rows
+//! before and after the triangular solves; it is handed as an `n x 1` column-major matrix
+//! (column stride `n`), for which that permutation is one gather per entry (a column view
+//! with stride 0 took faer's row-by-row path, 90 instructions an entry: 56 % of the solve
+//! at N = 1000).
 
-use faer::linalg::solvers::Solve;
-use faer::sparse::linalg::solvers::Lu;
+use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, SymbolicLu};
 use faer::sparse::{SparseColMat, Triplet};
-use faer::{c64, Col, Mat};
+use faer::reborrow::ReborrowMut;
+use faer::{c64, Col, ColMut, ColRef, Conj, Mat, MatMut, Par};
 
 use super::pencil::Pencil;
 use super::KrylovError;
+use crate::linear::sparse::{contiguous, contiguous_mut};
 
 enum Factor {
-    Real(Lu<usize, f64>),
-    Complex(Lu<usize, c64>),
+    Real(NumericLu<usize, f64>),
+    Complex(NumericLu<usize, c64>),
 }
 
 /// One factorization of `K + σ E` and the operator it gives.
 pub(super) struct ShiftInvert<'a> {
     pub sigma: c64,
     pencil: &'a Pencil,
+    symbolic: SymbolicLu<usize>,
     factor: Factor,
+    /// Scratch of one solve with two real or one complex right-hand side.
+    scratch: StackReq,
+}
+
+/// The scratch one caller's solves use (one per thread: the factorization is shared, read
+/// only), and the real and imaginary parts of a complex vector for a real factorization.
+pub(super) struct Workspace {
+    stack: MemBuffer,
+    parts: Mat<f64>,
 }
 
 /// Largest relative residual of the test solve that accepts a factorization.
@@ -33,20 +53,31 @@ impl<'a> ShiftInvert<'a> {
     pub fn new(pencil: &'a Pencil, sigma: c64) -> Result<Self, KrylovError> {
         let n = pencil.dim();
         let singular = || KrylovError::Singular(sigma);
-        let factor = if sigma.im == 0.0 {
+        let (symbolic, factor, scratch) = if sigma.im == 0.0 {
             let t: Vec<Triplet<usize, usize, f64>> = pencil.k.triplets().map(|(i, j, v)| Triplet::new(i, j, v)).chain(pencil.e.triplets().map(|(i, j, v)| Triplet::new(i, j, sigma.re * v))).collect();
             let a = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &t).map_err(|_| singular())?;
-            Factor::Real(a.sp_lu().map_err(|_| singular())?)
+            let symbolic = factorize_symbolic_lu(a.symbolic(), Default::default()).map_err(|_| singular())?;
+            let mut numeric = NumericLu::new();
+            let mut buf = MemBuffer::try_new(symbolic.factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default())).map_err(|_| singular())?;
+            symbolic.factorize_numeric_lu(&mut numeric, a.as_ref(), Par::Seq, MemStack::new(&mut buf), Default::default()).map_err(|_| singular())?;
+            let scratch = symbolic.solve_in_place_scratch::<f64>(2, Par::Seq);
+            (symbolic, Factor::Real(numeric), scratch)
         } else {
             let t: Vec<Triplet<usize, usize, c64>> =
                 pencil.k.triplets().map(|(i, j, v)| Triplet::new(i, j, c64::new(v, 0.0))).chain(pencil.e.triplets().map(|(i, j, v)| Triplet::new(i, j, sigma * v))).collect();
             let a = SparseColMat::<usize, c64>::try_new_from_triplets(n, n, &t).map_err(|_| singular())?;
-            Factor::Complex(a.sp_lu().map_err(|_| singular())?)
+            let symbolic = factorize_symbolic_lu(a.symbolic(), Default::default()).map_err(|_| singular())?;
+            let mut numeric = NumericLu::new();
+            let mut buf = MemBuffer::try_new(symbolic.factorize_numeric_lu_scratch::<c64>(Par::Seq, Default::default())).map_err(|_| singular())?;
+            symbolic.factorize_numeric_lu(&mut numeric, a.as_ref(), Par::Seq, MemStack::new(&mut buf), Default::default()).map_err(|_| singular())?;
+            let scratch = symbolic.solve_in_place_scratch::<c64>(1, Par::Seq);
+            (symbolic, Factor::Complex(numeric), scratch)
         };
-        let op = ShiftInvert { sigma, pencil, factor };
+        let op = ShiftInvert { sigma, pencil, symbolic, factor, scratch };
         // A test solve against a fixed right-hand side: ‖A x − r‖ / (‖A‖ ‖x‖ + ‖r‖).
         let r = Col::<c64>::from_fn(n, |i| c64::new(1.0 + (i % 7) as f64 * 0.1, (i % 3) as f64 * 0.2));
-        let x = op.solve(&r, false);
+        let mut x = r.clone();
+        op.solve_in_place(x.as_mut(), false, &mut op.workspace());
         let ax = op.shifted(&x, false);
         let res = (0..n).map(|i| (ax[i] - r[i]).norm_sqr()).sum::<f64>().sqrt();
         let norm_a = pencil.k.norm_l2() + sigma.norm() * pencil.e.norm_l2();
@@ -57,51 +88,81 @@ impl<'a> ShiftInvert<'a> {
         Ok(op)
     }
 
+    /// A workspace for [`Self::apply_into`] and [`Self::solve_in_place`].
+    pub fn workspace(&self) -> Workspace {
+        let parts = if matches!(self.factor, Factor::Real(_)) { Mat::zeros(self.pencil.dim(), 2) } else { Mat::zeros(0, 2) };
+        Workspace { stack: MemBuffer::new(self.scratch), parts }
+    }
+
     /// `(K + σ E) x` (or `(K + σ E)ᵀ x`).
     fn shifted(&self, x: &Col<c64>, transpose: bool) -> Col<c64> {
         let (kx, ex) = if transpose { (self.pencil.k.mul_t_complex(x), self.pencil.e.mul_t_complex(x)) } else { (self.pencil.k.mul_complex(x), self.pencil.e.mul_complex(x)) };
         Col::from_fn(x.nrows(), |i| kx[i] + self.sigma * ex[i])
     }
 
-    /// `(K + σ E)⁻¹ r` (or `⁻ᵀ`).
-    pub fn solve(&self, r: &Col<c64>, transpose: bool) -> Col<c64> {
-        let n = r.nrows();
-        match &self.factor {
-            Factor::Real(lu) => {
-                let rhs = Mat::<f64>::from_fn(n, 2, |i, j| if j == 0 { r[i].re } else { r[i].im });
-                let x = if transpose { lu.solve_transpose(&rhs) } else { lu.solve(&rhs) };
-                Col::from_fn(n, |i| c64::new(x[(i, 0)], x[(i, 1)]))
-            }
-            Factor::Complex(lu) => {
-                let rhs = Mat::<c64>::from_fn(n, 1, |i, _| r[i]);
-                let x = if transpose { lu.solve_transpose(&rhs) } else { lu.solve(&rhs) };
-                Col::from_fn(n, |i| x[(i, 0)])
-            }
-        }
+    /// `x ← (K + σ E)⁻¹ x` (or `⁻ᵀ`), for a real or complex `x` (a complex one for a real
+    /// factorization goes through its real and imaginary parts).
+    pub fn solve_in_place<T: Entry>(&self, x: ColMut<'_, T>, transpose: bool, ws: &mut Workspace) {
+        T::solve_in_place(self, x, transpose, ws);
     }
 
-    /// `T x` (or the `Tᵀ`-side product) of a real vector for a real shift; `None` for a
-    /// complex shift.
-    pub fn apply_real(&self, x: &Col<f64>, transpose: bool) -> Option<Col<f64>> {
-        let Factor::Real(lu) = &self.factor else { return None };
-        let ex = if transpose { self.pencil.e.mul_t_real(x) } else { self.pencil.e.mul_real(x) };
-        let mut x = ex;
+    /// `out = T x = (K + σ E)⁻¹ E x`, or the `Tᵀ`-side `(K + σ E)⁻ᵀ Eᵀ x` for the left
+    /// vectors; a real `x` needs a real shift.
+    pub fn apply_into<T: Entry>(&self, x: ColRef<'_, T>, mut out: ColMut<'_, T>, transpose: bool, ws: &mut Workspace) {
+        let (x, o) = (contiguous(x), contiguous_mut(out.rb_mut()));
         if transpose {
-            lu.solve_transpose_in_place(x.as_mat_mut());
+            self.pencil.e.mul_t_into(x, o);
         } else {
-            lu.solve_in_place(x.as_mat_mut());
+            self.pencil.e.mul_into(x, o);
         }
-        Some(x)
-    }
-
-    /// `T x = (K + σ E)⁻¹ E x`, or `Tᵀ`-side `(K + σ E)⁻ᵀ Eᵀ x` for the left vectors.
-    pub fn apply(&self, x: &Col<c64>, transpose: bool) -> Col<c64> {
-        let ex = if transpose { self.pencil.e.mul_t_complex(x) } else { self.pencil.e.mul_complex(x) };
-        self.solve(&ex, transpose)
+        T::solve_in_place(self, out, transpose, ws);
     }
 
     /// λ of an eigenvalue θ of T: `λ = σ − 1/θ`.
     pub fn lambda(&self, theta: c64) -> c64 {
         self.sigma - c64::new(1.0, 0.0) / theta
+    }
+}
+
+/// The entries the operator applies to: `f64` (a real shift only) or `c64`.
+pub(super) trait Entry: crate::linear::SparseScalar {
+    fn solve_in_place(op: &ShiftInvert, x: ColMut<'_, Self>, transpose: bool, ws: &mut Workspace);
+}
+
+/// `rhs ← A⁻¹ rhs` (or `A⁻ᵀ`) by faer's LU, `rhs` an `n x k` column-major block.
+fn lu_solve<T: faer::traits::ComplexField>(symbolic: &SymbolicLu<usize>, numeric: &NumericLu<usize, T>, rhs: MatMut<'_, T>, transpose: bool, ws: &mut MemBuffer) {
+    let lu = LuRef::new_unchecked(symbolic, numeric);
+    if transpose {
+        lu.solve_transpose_in_place_with_conj(Conj::No, rhs, Par::Seq, MemStack::new(ws));
+    } else {
+        lu.solve_in_place_with_conj(Conj::No, rhs, Par::Seq, MemStack::new(ws));
+    }
+}
+
+impl Entry for f64 {
+    fn solve_in_place(op: &ShiftInvert, x: ColMut<'_, f64>, transpose: bool, ws: &mut Workspace) {
+        let Factor::Real(numeric) = &op.factor else { unreachable!("a real vector is solved with the factorization of a real shift") };
+        let n = x.nrows();
+        lu_solve(&op.symbolic, numeric, MatMut::from_column_major_slice_mut(contiguous_mut(x), n, 1), transpose, &mut ws.stack);
+    }
+}
+
+impl Entry for c64 {
+    fn solve_in_place(op: &ShiftInvert, mut x: ColMut<'_, c64>, transpose: bool, ws: &mut Workspace) {
+        let n = x.nrows();
+        match &op.factor {
+            Factor::Real(numeric) => {
+                let parts = &mut ws.parts;
+                for i in 0..n {
+                    parts[(i, 0)] = x[i].re;
+                    parts[(i, 1)] = x[i].im;
+                }
+                lu_solve(&op.symbolic, numeric, parts.as_mut(), transpose, &mut ws.stack);
+                for i in 0..n {
+                    x[i] = c64::new(parts[(i, 0)], parts[(i, 1)]);
+                }
+            }
+            Factor::Complex(numeric) => lu_solve(&op.symbolic, numeric, MatMut::from_column_major_slice_mut(contiguous_mut(x), n, 1), transpose, &mut ws.stack),
+        }
     }
 }

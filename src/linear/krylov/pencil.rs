@@ -49,6 +49,12 @@ impl Pencil {
         }
     }
 
+    /// The entries moved from `F_yd` (constraint rows, multiplier columns): the DAE's vectors
+    /// there are the eq. 29 ones divided by λ.
+    pub fn moved(&self) -> &[bool] {
+        &self.moved
+    }
+
     pub fn dim(&self) -> usize {
         self.k.nrows()
     }

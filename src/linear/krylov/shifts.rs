@@ -20,7 +20,7 @@
 use faer::{c64, Col};
 
 use super::pencil::Pencil;
-use super::window::{window, Eigenpair};
+use super::window::{window, Eigenpair, PairVectors};
 use super::{KrylovError, SparseEigenSettings};
 use crate::linear::classify::{classify, Classification};
 use crate::linear::eigen::{conjugate_mode, normalize, sort_units, ModalAnalysis, Mode};
@@ -92,8 +92,7 @@ fn merge(into: &mut Vec<Eigenpair>, new: Vec<Eigenpair>) {
     for p in new {
         let same = into.iter().position(|q| {
             let close = (q.lambda - p.lambda).norm() <= 1e-7 * q.lambda.norm().max(1e-300);
-            let overlap = (0..p.right.nrows()).fold(c64::new(0.0, 0.0), |s, i| s + q.right[i].conj() * p.right[i]).norm() / (q.right.norm_l2() * p.right.norm_l2());
-            close && overlap > 0.99
+            close && (0..p.right.nrows()).fold(c64::new(0.0, 0.0), |s, i| s + q.right[i].conj() * p.right[i]).norm() / (q.right.norm_l2() * p.right.norm_l2()) > 0.99
         });
         match same {
             Some(i) if into[i].residual_right.max(into[i].residual_left) <= p.residual_right.max(p.residual_left) => {}
@@ -123,21 +122,31 @@ fn lowest(dae: &SparseLinearDae, pencil: &Pencil, count: usize, s: &SparseEigenS
                 Err(e) => return Err(e),
             };
             let mut pairs = Vec::new();
-            merge(&mut pairs, w.pairs.clone());
+            merge(&mut pairs, w.pairs);
             let reach = w.radius - sigma.abs();
             let inside: Vec<Eigenpair> = pairs.into_iter().filter(|p| p.lambda.norm() <= reach * (1.0 + 1e-9)).collect();
             let units = inside.len();
+            // When the runs disagree (or a pair was rejected) only farther out than the
+            // `count` lowest modes, the disc short of the first disagreement still holds
+            // the same eigenvalues in both runs: the `count` lowest are certified in it.
+            let clean_reach = w.clean - sigma.abs();
+            let clean_units = inside.iter().filter(|p| p.lambda.norm() < clean_reach).count();
+            let clean_count = !(w.agreed && w.rejected == 0) && clean_units >= count;
             if units >= count || w.radius.is_infinite() || wanted >= n {
-                let window = ShiftWindow { shift: w.shift, radius: w.radius, agreed: w.agreed, found: units, rejected: w.rejected };
                 let mut note = None;
-                if !w.agreed {
-                    note = Some("the right and adjoint Krylov runs found different eigenvalues".to_string());
-                } else if w.rejected > 0 {
-                    note = Some(format!("{} converged pair(s) failed the true-residual test", w.rejected));
-                } else if units < count {
-                    note = Some(format!("only {units} mode(s) exist or were found, {count} asked"));
-                }
-                let certified = w.agreed && w.rejected == 0;
+                let (radius, certified) = if clean_count {
+                    (w.clean, true)
+                } else {
+                    if !w.agreed {
+                        note = Some(format!("the right and adjoint Krylov runs found different eigenvalues at |λ − σ| = {:.6e} rad/s", w.clean / (1.0 - 1e-6)));
+                    } else if w.rejected > 0 {
+                        note = Some(format!("{} converged pair(s) failed the true-residual test", w.rejected));
+                    } else if units < count {
+                        note = Some(format!("only {units} mode(s) exist or were found, {count} asked"));
+                    }
+                    (w.radius, w.agreed && w.rejected == 0 && (units >= count || w.radius.is_infinite()))
+                };
+                let window = ShiftWindow { shift: w.shift, radius, agreed: w.agreed || clean_count, found: units, rejected: w.rejected };
                 return finish(dae, inside, vec![window], certified, 1.0, note, s);
             }
             if wanted >= n {
@@ -253,21 +262,15 @@ fn pairs_from(pairs: &mut Vec<Eigenpair>, windows: &mut Vec<ShiftWindow>, w: sup
     merge(pairs, w.pairs);
 }
 
-/// Labels, normalizes and sorts the pairs as the dense route does.
+/// Sorts the labelled pairs as the dense route does, each complex pair with its conjugate.
 fn finish(dae: &SparseLinearDae, pairs: Vec<Eigenpair>, windows: Vec<ShiftWindow>, certified: bool, damping_covered: f64, note: Option<String>, s: &SparseEigenSettings) -> Result<SparseModalAnalysis, KrylovError> {
-    let (nyd, ny) = (dae.fyd.norm_l2(), dae.fy.norm_l2());
-    let dcoef = s.dcoef.unwrap_or(if nyd > 0.0 && ny > 0.0 && (nyd / ny).is_finite() { nyd / ny } else { 1.0 });
-    let mu_scale = if nyd > 0.0 && ny > 0.0 { ny / nyd } else { 1.0 };
+    let scales = Scales::new(dae, s);
     let mut max_residual: f64 = 0.0;
     let mut units = Vec::with_capacity(pairs.len());
     for p in pairs {
         max_residual = max_residual.max(p.residual_right).max(p.residual_left);
-        let real = p.lambda.im.abs() <= 1e-9 * p.lambda.norm();
-        let (lambda, v, u) = if real { (c64::new(p.lambda.re, 0.0), real_part(&p.right), real_part(&p.left)) } else { (p.lambda, p.right, p.left) };
-        let class = label(dae, lambda, &v, &u, s.route, mu_scale, dcoef);
-        let (_, error) = class.lambda_and_error(s.route, mu_scale, dcoef);
-        let (v, u) = normalize(&v, &u, |x| dae.fyd.mul_complex(x), nyd);
-        let mode = Mode { lambda, kind: class.kind, error, classification: class, right: Some(v), left: Some(u), partner: None };
+        let real = p.lambda.im == 0.0;
+        let mode = Mode { lambda: p.lambda, kind: p.classification.kind, error: p.error, classification: p.classification, right: Some(p.right), left: Some(p.left), partner: None };
         if real {
             units.push(vec![mode]);
         } else {
@@ -275,45 +278,86 @@ fn finish(dae: &SparseLinearDae, pairs: Vec<Eigenpair>, windows: Vec<ShiftWindow
             units.push(vec![mode, partner]);
         }
     }
-    let modal = ModalAnalysis { route: s.route, dcoef, modes: sort_units(units) };
+    let modal = ModalAnalysis { route: s.route, dcoef: scales.dcoef, modes: sort_units(units) };
     Ok(SparseModalAnalysis { modal, windows, certified, damping_covered, max_residual, note: if certified { None } else { note } })
 }
 
-/// The vector of a real eigenvalue made real (its phase removed).
-fn real_part(v: &Col<c64>) -> Col<c64> {
-    let big = v.iter().copied().fold(c64::new(0.0, 0.0), |a, x| if x.norm() > a.norm() { x } else { a });
-    let phase = if big.norm() > 0.0 { big.conj() / big.norm() } else { c64::new(1.0, 0.0) };
-    Col::from_fn(v.nrows(), |i| c64::new((v[i] * phase).re, 0.0))
+/// The norms and scales the labels (eqs. 32–35) use: `‖F_yd‖_F`, `‖F_y‖_F`, the Direct
+/// route's `μ = λ/σ` scale and the Λ route's dCoef.
+pub(super) struct Scales {
+    pub nyd: f64,
+    pub ny: f64,
+    pub mu_scale: f64,
+    pub dcoef: f64,
+    pub route: EigenRoute,
+}
+
+impl Scales {
+    pub fn new(dae: &SparseLinearDae, s: &SparseEigenSettings) -> Self {
+        let (nyd, ny) = (dae.fyd.norm_l2(), dae.fy.norm_l2());
+        let dcoef = s.dcoef.unwrap_or(if nyd > 0.0 && ny > 0.0 && (nyd / ny).is_finite() { nyd / ny } else { 1.0 });
+        let mu_scale = if nyd > 0.0 && ny > 0.0 { ny / nyd } else { 1.0 };
+        Scales { nyd, ny, mu_scale, dcoef, route: s.route }
+    }
+}
+
+impl Eigenpair {
+    /// The accepted pair (`Im λ ≥ 0`) labelled as the dense route labels it, its vectors
+    /// normalized as it does: a real λ gets real vectors (their phase removed).
+    pub(super) fn new(dae: &SparseLinearDae, lambda: c64, mut w: PairVectors, residual_right: f64, residual_left: f64, sc: &Scales) -> Self {
+        let real = lambda.im.abs() <= 1e-9 * lambda.norm();
+        let lambda = if real {
+            // The phase of the largest entry removed (the products are linear in the vector,
+            // the matrices real), then the real parts.
+            let phase = |x: &Col<c64>| {
+                let big = x.iter().copied().fold(c64::new(0.0, 0.0), |a, e| if e.norm() > a.norm() { e } else { a });
+                if big.norm() > 0.0 { big.conj() / big.norm() } else { c64::new(1.0, 0.0) }
+            };
+            let (pv, pu) = (phase(&w.v), phase(&w.u));
+            let re = |x: &mut Col<c64>, p: c64| x.iter_mut().for_each(|e| *e = c64::new((*e * p).re, 0.0));
+            re(&mut w.v, pv);
+            re(&mut w.fydv, pv);
+            re(&mut w.fyv, pv);
+            re(&mut w.u, pu);
+            re(&mut w.ufyd, pu);
+            re(&mut w.ufy, pu);
+            c64::new(lambda.re, 0.0)
+        } else {
+            lambda
+        };
+        let classification = label(lambda, &w, sc);
+        let (_, error) = classification.lambda_and_error(sc.route, sc.mu_scale, sc.dcoef);
+        let (right, left) = normalize(&w.v, &w.u, |x| dae.fyd.mul_complex(x), sc.nyd);
+        Eigenpair { lambda, right, left, residual_right, residual_left, classification, error }
+    }
 }
 
 /// The label of eqs. 32–35 on the route's (unbalanced) pencil with the pair's vectors.
-fn label(dae: &SparseLinearDae, lambda: c64, v: &Col<c64>, u: &Col<c64>, route: EigenRoute, mu_scale: f64, dcoef: f64) -> Classification {
-    let (fydv, fyv) = (dae.fyd.mul_complex(v), dae.fy.mul_complex(v));
-    let (ufyd, ufy) = (dae.fyd.mul_t_complex(u), dae.fy.mul_t_complex(u));
-    let n = v.nrows();
+fn label(lambda: c64, w: &PairVectors, sc: &Scales) -> Classification {
+    let n = w.v.nrows();
     let comb = |a: &Col<c64>, ca: f64, b: &Col<c64>, cb: f64| Col::from_fn(n, |i| a[i] * ca + b[i] * cb);
-    let (nyd, ny) = (dae.fyd.norm_l2(), dae.fy.norm_l2());
-    let (mu, w, norms) = match route {
+    let (nyd, ny, mu_scale, dcoef) = (sc.nyd, sc.ny, sc.mu_scale, sc.dcoef);
+    let (mu, vectors, norms) = match sc.route {
         // A = F_y, B = −σ F_yd, μ = λ/σ.
         EigenRoute::Direct => {
-            let w = EigenVectors { av: fyv.clone(), bv: comb(&fydv, -mu_scale, &fydv, 0.0), ua: ufy.clone(), ub: comb(&ufyd, -mu_scale, &ufyd, 0.0), v: v.clone(), u: u.clone() };
-            (lambda / mu_scale, w, (ny, mu_scale * nyd))
+            let vectors = EigenVectors { av: w.fyv.clone(), bv: comb(&w.fydv, -mu_scale, &w.fydv, 0.0), ua: w.ufy.clone(), ub: comb(&w.ufyd, -mu_scale, &w.ufyd, 0.0), v: w.v.clone(), u: w.u.clone() };
+            (lambda / mu_scale, vectors, (ny, mu_scale * nyd))
         }
         // A = J* = F_yd − c F_y, B = −J = −(F_yd + c F_y), Λ = (cλ + 1)/(cλ − 1) (eq. 18).
         EigenRoute::Lambda => {
-            let w = EigenVectors {
-                av: comb(&fydv, 1.0, &fyv, -dcoef),
-                bv: comb(&fydv, -1.0, &fyv, -dcoef),
-                ua: comb(&ufyd, 1.0, &ufy, -dcoef),
-                ub: comb(&ufyd, -1.0, &ufy, -dcoef),
-                v: v.clone(),
-                u: u.clone(),
+            let vectors = EigenVectors {
+                av: comb(&w.fydv, 1.0, &w.fyv, -dcoef),
+                bv: comb(&w.fydv, -1.0, &w.fyv, -dcoef),
+                ua: comb(&w.ufyd, 1.0, &w.ufy, -dcoef),
+                ub: comb(&w.ufyd, -1.0, &w.ufy, -dcoef),
+                v: w.v.clone(),
+                u: w.u.clone(),
             };
             // ‖J*‖, ‖J‖ bounded by the triangle inequality (the sparse sum is not formed).
             let nj = nyd + dcoef * ny;
-            ((lambda * dcoef + 1.0) / (lambda * dcoef - 1.0), w, (nj, nj))
+            ((lambda * dcoef + 1.0) / (lambda * dcoef - 1.0), vectors, (nj, nj))
         }
     };
-    let sc = 1.0 / (1.0 + mu.norm_sqr()).sqrt();
-    classify(mu * sc, sc, Some(&w), norms, route)
+    let scale = 1.0 / (1.0 + mu.norm_sqr()).sqrt();
+    classify(mu * scale, scale, Some(&vectors), norms, sc.route)
 }

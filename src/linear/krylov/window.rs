@@ -8,7 +8,9 @@ use faer::{c64, Col};
 use super::iteration::{krylov_schur, RitzPair, Run, Settings};
 use super::operator::ShiftInvert;
 use super::pencil::Pencil;
+use super::shifts::Scales;
 use super::{KrylovError, SparseEigenSettings};
+use crate::linear::Classification;
 use crate::linear::SparseLinearDae;
 
 /// An eigenpair of the DAE's pencil `λ F_yd + F_y` (the DAE's own constraint form), its
@@ -21,6 +23,9 @@ pub(super) struct Eigenpair {
     /// True relative residuals `‖(λ F_yd + F_y) v‖ / ((|λ| ‖F_yd‖ + ‖F_y‖) ‖v‖)`, and of `uᵀ`.
     pub residual_right: f64,
     pub residual_left: f64,
+    /// The label of eqs. 32–35 and the error estimate of λ it gives.
+    pub classification: Classification,
+    pub error: f64,
 }
 
 /// What one shift found: accepted pairs, the radius of the disc `|λ − σ| ≤ radius` in which
@@ -30,35 +35,31 @@ pub(super) struct WindowResult {
     pub shift: c64,
     pub radius: f64,
     pub agreed: bool,
+    /// Radius of the largest disc `|λ − σ| < clean` (at most `radius`) holding no
+    /// disagreement and no rejected pair: where the two runs' check holds when `agreed` is
+    /// false (disagreements far out, e.g. Ritz values of the infinite eigenvalues' defective
+    /// θ = 0 cluster once the finite spectrum is exhausted).
+    pub clean: f64,
     pub pairs: Vec<Eigenpair>,
     /// Pairs that converged in the operator but failed the true-residual test.
     pub rejected: usize,
 }
 
-/// `‖(λ F_yd + F_y) x‖ / ((|λ| ‖F_yd‖ + ‖F_y‖) ‖x‖)`, or with the transposes.
-pub(super) fn true_residual(dae: &SparseLinearDae, lambda: c64, x: &Col<c64>, transpose: bool) -> f64 {
-    let (a, b) = if transpose { (dae.fyd.mul_t_complex(x), dae.fy.mul_t_complex(x)) } else { (dae.fyd.mul_complex(x), dae.fy.mul_complex(x)) };
-    let r = Col::from_fn(x.nrows(), |i| lambda * a[i] + b[i]).norm_l2();
-    r / ((lambda.norm() * dae.fyd.norm_l2() + dae.fy.norm_l2()) * x.norm_l2())
-}
-
 /// θ at or below this fraction of the largest are the infinite eigenvalues (θ = 0).
 const NULL_THETA: f64 = 1e-8;
 
-/// The pairs of one run with their eigenvalues λ, purified (`x ← T x / θ` removes the
-/// components along the infinite eigenvalues); `exhausted` when the run reached θ ≈ 0.
-fn lambdas(op: &ShiftInvert, run: &Run, transpose: bool) -> (Vec<(c64, Col<c64>)>, bool) {
+/// The pairs of one run with their eigenvalues λ (the run purified the vectors);
+/// `exhausted` when the run reached θ ≈ 0.
+fn lambdas(op: &ShiftInvert, run: Run) -> (Vec<(c64, Col<c64>)>, bool) {
     let top = run.pairs.first().map_or(0.0, |p| p.theta.norm());
     let mut out = Vec::new();
     let mut exhausted = false;
-    for RitzPair { theta, x } in &run.pairs {
+    for RitzPair { theta, x } in run.pairs {
         if theta.norm() <= NULL_THETA * top {
             exhausted = true;
             break;
         }
-        let y = op.apply(x, transpose);
-        let scale = c64::new(1.0, 0.0) / (*theta * y.norm_l2() / theta.norm());
-        out.push((op.lambda(*theta), Col::from_fn(y.nrows(), |i| y[i] * scale)));
+        out.push((op.lambda(theta), x));
     }
     // All wanted pairs converged and nothing but θ ≈ 0 (or nothing) is left.
     exhausted |= run.complete && run.next.is_none_or(|t| t <= NULL_THETA * top);
@@ -68,6 +69,7 @@ fn lambdas(op: &ShiftInvert, run: &Run, transpose: bool) -> (Vec<(c64, Col<c64>)
 /// Runs both Krylov–Schur iterations at `sigma` for `wanted` eigenvalues.
 pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted: usize, s: &SparseEigenSettings, progress: &dyn Fn(&str)) -> Result<WindowResult, KrylovError> {
     let n = pencil.dim();
+    let scales = Scales::new(dae, s);
     let op = ShiftInvert::new(pencil, sigma)?;
     // Basis of three times the wanted count: measured on the 20 lowest modes of the hanging
     // chain (callgrind, 24 wanted), 2x+1 took 11 restart cycles per run, 3x+1 four; at
@@ -86,11 +88,11 @@ pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted:
     // about as long. A real shift of the real pencil runs in real arithmetic (the
     // eigenvalues below the real axis are the conjugates of those above).
     let run = |transpose: bool, seed: u64, progress: &dyn Fn(usize)| -> Result<Run, KrylovError> {
+        let mut ws = op.workspace();
         if sigma.im == 0.0 {
-            let apply = |x: &Col<f64>| op.apply_real(x, transpose).unwrap_or_else(|| unreachable!("a real shift has a real factorization"));
-            krylov_schur::<f64>(n, &apply, &real_settings(seed), progress)
+            krylov_schur::<f64>(n, &mut |x, out| op.apply_into(x, out, transpose, &mut ws), &real_settings(seed), progress)
         } else {
-            krylov_schur::<c64>(n, &|x| op.apply(x, transpose), &settings(seed), progress)
+            krylov_schur::<c64>(n, &mut |x, out| op.apply_into(x, out, transpose, &mut ws), &settings(seed), progress)
         }
     };
     let (right_run, left_run) = std::thread::scope(|scope| {
@@ -104,8 +106,8 @@ pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted:
         "shift {sigma}: {} + {} operator applications, {} + {} restarts (right + adjoint run)",
         right_run.applications, left_run.applications, right_run.restarts, left_run.restarts
     ));
-    let (right, right_all) = lambdas(&op, &right_run, false);
-    let (left, left_all) = lambdas(&op, &left_run, true);
+    let (right, right_all) = lambdas(&op, right_run);
+    let (left, left_all) = lambdas(&op, left_run);
     // Radius of the disc each run covers: the farthest converged eigenvalue (everything
     // when the run exhausted the finite spectrum).
     let reach = |l: &[(c64, Col<c64>)], all: bool| {
@@ -122,14 +124,22 @@ pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted:
     let mut pairs = Vec::new();
     let mut rejected = 0;
     let mut agreed = true;
+    // Nearest distance to σ of a disagreement or a rejected pair.
+    let mut trouble = f64::INFINITY;
+    let mut flag = |l: c64, agreed: &mut bool| {
+        if inside(l) {
+            *agreed = false;
+        }
+        trouble = trouble.min((l - sigma).norm());
+    };
     for (lr, v29) in &right {
         let best = left.iter().enumerate().filter(|(i, _)| !used[*i]).min_by(|a, b| (a.1 .0 - lr).norm().total_cmp(&(b.1 .0 - lr).norm()));
         let Some((i, (ll, u29))) = best else {
-            agreed &= !inside(*lr);
+            flag(*lr, &mut agreed);
             continue;
         };
         if (ll - lr).norm() > 1e-6 * (lr - sigma).norm().max(lr.norm() * 1e-3) {
-            agreed &= !inside(*lr);
+            flag(*lr, &mut agreed);
             continue;
         }
         used[i] = true;
@@ -137,34 +147,93 @@ pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted:
         let (kv, ev) = (pencil.k.mul_complex(v29), pencil.e.mul_complex(v29));
         let (ukv, uev) = u29.iter().zip(kv.iter().zip(ev.iter())).fold((c64::new(0.0, 0.0), c64::new(0.0, 0.0)), |(a, b), (u, (k, e))| (a + u * k, b + u * e));
         let rq = -ukv / uev;
-        let candidates = [*lr, rq];
-        let (lambda, v, u, rr, rl) = candidates
-            .iter()
+        // The DAE's products of both vectors, split by the moved entries, serve every
+        // candidate λ, the labels and the normalization.
+        let (right_products, left_products) = (DaeProducts::new(dae, pencil.moved(), v29, false), DaeProducts::new(dae, pencil.moved(), u29, true));
+        let (lambda, rr, rl) = [*lr, rq]
+            .into_iter()
             .filter(|l| l.re.is_finite() && l.im.is_finite())
-            .map(|&l| {
-                let (v, u) = (pencil.to_dae(v29, l), pencil.to_dae(u29, l));
-                let (rr, rl) = (true_residual(dae, l, &v, false), true_residual(dae, l, &u, true));
-                (l, v, u, rr, rl)
-            })
-            .min_by(|a, b| a.3.max(a.4).total_cmp(&b.3.max(b.4)))
+            .map(|l| (l, right_products.residual(l), left_products.residual(l)))
+            .min_by(|a, b| a.1.max(a.2).total_cmp(&b.1.max(b.2)))
             .unwrap_or_else(|| unreachable!("the Ritz value is finite"));
         if !(rr <= s.tolerance && rl <= s.tolerance) {
             rejected += 1;
-            agreed &= !inside(lambda);
+            flag(lambda, &mut agreed);
             continue;
         }
-        let (lambda, right, left) = if lambda.im < 0.0 { (lambda.conj(), conj(&v), conj(&u)) } else { (lambda, v, u) };
-        pairs.push(Eigenpair { lambda, right, left, residual_right: rr, residual_left: rl });
+        let (v, u) = (pencil.to_dae(v29, lambda), pencil.to_dae(u29, lambda));
+        let ((fydv, fyv), (ufyd, ufy)) = (right_products.at(lambda), left_products.at(lambda));
+        let mut vectors = PairVectors { v, u, fydv, fyv, ufyd, ufy };
+        let lambda = if lambda.im < 0.0 {
+            vectors.map(|x| x.conj());
+            lambda.conj()
+        } else {
+            lambda
+        };
+        pairs.push(Eigenpair::new(dae, lambda, vectors, rr, rl, &scales));
     }
     // A left eigenvalue inside the disc without a right partner is a disagreement.
     for (i, (ll, _)) in left.iter().enumerate() {
-        if !used[i] && inside(*ll) {
-            agreed = false;
+        if !used[i] {
+            flag(*ll, &mut agreed);
         }
     }
-    Ok(WindowResult { shift: sigma, radius, agreed, pairs, rejected })
+    let clean = radius.min(trouble * (1.0 - 1e-6));
+    Ok(WindowResult { shift: sigma, radius, agreed, clean, pairs, rejected })
 }
 
-fn conj(v: &Col<c64>) -> Col<c64> {
-    Col::from_fn(v.nrows(), |i| v[i].conj())
+/// `F_yd x` and `F_y x` (or `F_ydᵀ x`, `F_yᵀ x`) of the DAE's vector of an eq. 29 vector
+/// `x29` at any λ: the moved entries are `x29/λ` (eq. 30, see `pencil.rs`), so each product
+/// is `a + b/λ` with `a`, `b` the products of the unmoved and moved parts.
+struct DaeProducts {
+    fyd: (Col<c64>, Col<c64>),
+    fy: (Col<c64>, Col<c64>),
+    /// `‖x29‖²` on the unmoved and the moved entries.
+    norm2: (f64, f64),
+    norms: (f64, f64),
+}
+
+impl DaeProducts {
+    fn new(dae: &SparseLinearDae, moved: &[bool], x29: &Col<c64>, transpose: bool) -> Self {
+        let norm2 = x29.iter().zip(moved).fold((0.0, 0.0), |(a, b), (x, &m)| if m { (a, b + x.norm_sqr()) } else { (a + x.norm_sqr(), b) });
+        DaeProducts { fyd: dae.fyd.mul_split(x29, moved, transpose), fy: dae.fy.mul_split(x29, moved, transpose), norm2, norms: (dae.fyd.norm_l2(), dae.fy.norm_l2()) }
+    }
+
+    /// `(F_yd x, F_y x)` at λ.
+    fn at(&self, lambda: c64) -> (Col<c64>, Col<c64>) {
+        let inv = c64::new(1.0, 0.0) / lambda;
+        let part = |(a, b): &(Col<c64>, Col<c64>)| if self.norm2.1 == 0.0 { a.clone() } else { Col::from_fn(a.nrows(), |i| a[i] + b[i] * inv) };
+        (part(&self.fyd), part(&self.fy))
+    }
+
+    /// The true relative residual `‖(λ F_yd + F_y) x‖ / ((|λ| ‖F_yd‖ + ‖F_y‖) ‖x‖)` at λ.
+    fn residual(&self, lambda: c64) -> f64 {
+        let inv = c64::new(1.0, 0.0) / lambda;
+        let ((da, db), (ya, yb)) = (&self.fyd, &self.fy);
+        let r2 = (0..da.nrows()).map(|i| (lambda * da[i] + db[i] + ya[i] + yb[i] * inv).norm_sqr()).sum::<f64>();
+        let nx = (self.norm2.0 + self.norm2.1 * inv.norm_sqr()).sqrt();
+        r2.sqrt() / ((lambda.norm() * self.norms.0 + self.norms.1) * nx)
+    }
+}
+
+/// A pair's vectors of the DAE's pencil and their products: `F_yd v`, `F_y v`, `F_ydᵀ u`,
+/// `F_yᵀ u`.
+pub(super) struct PairVectors {
+    pub v: Col<c64>,
+    pub u: Col<c64>,
+    pub fydv: Col<c64>,
+    pub fyv: Col<c64>,
+    pub ufyd: Col<c64>,
+    pub ufy: Col<c64>,
+}
+
+impl PairVectors {
+    /// Every vector mapped entrywise by `f` (a conjugation, or a phase: the matrices are real).
+    pub fn map(&mut self, f: impl Fn(c64) -> c64) {
+        for x in [&mut self.v, &mut self.u, &mut self.fydv, &mut self.fyv, &mut self.ufyd, &mut self.ufy] {
+            for e in x.iter_mut() {
+                *e = f(*e);
+            }
+        }
+    }
 }
