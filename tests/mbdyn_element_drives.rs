@@ -4,16 +4,13 @@
 //! with those drives held (their derivatives are in no Jacobian, as in MBDyn), the refusal
 //! to linearize, parameter nodes and `bind`, and the errors.
 
-use std::path::{Path, PathBuf};
+mod common;
 
+use common::mbdyn::{assert_jacobians_after_run, assert_not_linearized, read_test_file, test_file as path};
 use romdyn::analysis::run;
-use romdyn::dae::{check_jacobians, linearize, Assembler};
+use romdyn::dae::Assembler;
 use romdyn::input::mbdyn::{build, parse_text, read_model, MbdynModel};
 use romdyn::kinematics::euler123;
-
-fn path(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files").join(name)
-}
 
 fn text() -> String {
     std::fs::read_to_string(path("element_drives.mbd")).unwrap_or_else(|e| panic!("element_drives.mbd: {e}"))
@@ -78,31 +75,17 @@ fn element_and_dof_drives_give_the_closed_forms_and_mbdyns_motion() {
 /// checked (the drives' own derivatives are in no Jacobian, as in MBDyn).
 #[test]
 fn jacobians_hold_element_and_dof_drives_at_the_checked_state() {
-    let mut m = read_model(&path("element_drives.mbd")).unwrap_or_else(|e| panic!("{e}"));
-    m.problem.final_time = 0.2;
-    let report = run(&m.model, &m.problem, &mut ()).unwrap();
-    let asm = Assembler::new(&m.model);
-    let checks = check_jacobians(&asm, &report.final_state, 1e-3, m.model.constraint_form);
+    let checks = assert_jacobians_after_run(&mut read_test_file("element_drives.mbd"), Some(0.2), 1e-3);
     for name in ["follower couple 2", "follower couple 4", "absolute force 3", "total joint 6"] {
         let c = checks.iter().find(|c| c.element == name).unwrap_or_else(|| panic!("{name}: {checks:?}"));
         assert!(c.drive_held, "{c:?}");
-    }
-    for c in &checks {
-        // Central differences on the library's elements: about 1e-9 (analysis::check).
-        assert!(c.within(1e-7), "{c:?}");
     }
 }
 
 #[test]
 fn a_model_whose_drives_read_elements_is_not_linearized() {
-    let m = read_model(&path("element_drives.mbd")).unwrap_or_else(|e| panic!("{e}"));
-    let asm = Assembler::new(&m.model);
-    let st = romdyn::dae::State::initial(&m.model, &asm.dofs);
-    let e = match linearize(&m.model, &st, &[], &[], None) {
-        Err(e) => e.to_string(),
-        Ok(_) => panic!("the torsional spring's stiffness is in no Jacobian: the linearization would be wrong"),
-    };
-    assert!(e.contains("reads the model's state") && e.contains("element drive callers"), "{e}");
+    let why = "the torsional spring's stiffness is in no Jacobian: the linearization would be wrong";
+    assert_not_linearized(&read_test_file("element_drives.mbd"), &["reads the model's state", "element drive callers"], why);
 }
 
 #[test]

@@ -3,15 +3,12 @@
 //! 1.7.3, the rods' Jacobians against finite differences, and the 1-D syntax as MBDyn's
 //! reader takes it.
 
-use std::path::{Path, PathBuf};
+mod common;
 
+use common::mbdyn::{assert_jacobians_after_run, read_test_file, test_file as path};
 use romdyn::analysis::run;
-use romdyn::dae::{check_jacobians, Assembler};
+use romdyn::dae::Assembler;
 use romdyn::input::mbdyn::{build, parse_text, read_model};
-
-fn path(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files").join(name)
-}
 
 #[test]
 fn driven_prestrain_gives_the_closed_forms_and_mbdyns_motion() {
@@ -50,19 +47,11 @@ fn driven_prestrain_gives_the_closed_forms_and_mbdyns_motion() {
 
 #[test]
 fn prestrained_rod_jacobians_match_finite_differences() {
-    let mut m = read_model(&path("rod_prestrain.mbd")).unwrap_or_else(|e| panic!("{e}"));
-    m.problem.final_time = 0.3;
-    let report = run(&m.model, &m.problem, &mut ()).unwrap();
-    let asm = Assembler::new(&m.model);
-    let checks = check_jacobians(&asm, &report.final_state, 1e-3, m.model.constraint_form);
+    let checks = assert_jacobians_after_run(&mut read_test_file("rod_prestrain.mbd"), Some(0.3), 1e-3);
     let rods: Vec<_> = checks.iter().filter(|c| c.element.starts_with("rod")).collect();
     assert_eq!(rods.len(), 3, "{checks:?}");
     // The state-reading prestrain of rod 4 is held (as MBDyn's Jacobian holds it).
     assert!(rods.iter().any(|c| c.drive_held) && rods.iter().any(|c| !c.drive_held), "{rods:?}");
-    for c in &checks {
-        // Central differences on the library's elements: about 1e-9 (analysis::check).
-        assert!(c.within(1e-7), "{c:?}");
-    }
 }
 
 #[test]

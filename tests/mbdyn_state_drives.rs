@@ -3,16 +3,13 @@
 //! 1.7.3, the elements' Jacobians against finite differences with those drives held (their
 //! derivatives are in no Jacobian, as in MBDyn), the refusal to linearize, and the errors.
 
-use std::path::{Path, PathBuf};
+mod common;
 
+use common::mbdyn::{assert_jacobians_after_run, assert_not_linearized, read_test_file, test_file as path};
 use romdyn::analysis::run;
-use romdyn::dae::{check_jacobians, linearize, Assembler};
+use romdyn::dae::Assembler;
 use romdyn::input::mbdyn::{build, parse_text, read_model, MbdynModel};
 use romdyn::kinematics::euler123;
-
-fn path(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files").join(name)
-}
 
 fn text(name: &str) -> String {
     std::fs::read_to_string(path(name)).unwrap_or_else(|e| panic!("{name}: {e}"))
@@ -72,11 +69,7 @@ fn jacobians_hold_state_reading_drives_at_the_checked_state() {
             "end: elements;",
             "    force: 10, follower, 1, position, 0.1, 0.2, 0.3, 1., 2., 3.,\n        string, \"2. + model::distance(4, 1)*model::xvelocity(2) + model::yangle(1)\";\nend: elements;",
         );
-    let mut m = from_text(&t).unwrap();
-    m.problem.final_time = 0.2;
-    let report = run(&m.model, &m.problem, &mut ()).unwrap();
-    let asm = Assembler::new(&m.model);
-    let checks = check_jacobians(&asm, &report.final_state, 1e-3, m.model.constraint_form);
+    let checks = assert_jacobians_after_run(&mut from_text(&t).unwrap(), Some(0.2), 1e-3);
     let force = checks.iter().find(|c| c.element == "follower force 10").unwrap();
     // The follower force depends on node 1's rotation: a non-zero block, c ∂f/∂θ with c = 1e-3 s.
     eprintln!("{force:?}");
@@ -89,14 +82,8 @@ fn jacobians_hold_state_reading_drives_at_the_checked_state() {
 
 #[test]
 fn a_model_whose_drives_read_the_state_is_not_linearized() {
-    let m = read_model(&path("state_drives.mbd")).unwrap_or_else(|e| panic!("{e}"));
-    let asm = Assembler::new(&m.model);
-    let st = romdyn::dae::State::initial(&m.model, &asm.dofs);
-    let e = match linearize(&m.model, &st, &[], &[], None) {
-        Err(e) => e.to_string(),
-        Ok(_) => panic!("the drag's damping is in no Jacobian: the linearization would be wrong"),
-    };
-    assert!(e.contains("absolute force 1") && e.contains("reads the model's state"), "{e}");
+    let why = "the drag's damping is in no Jacobian: the linearization would be wrong";
+    assert_not_linearized(&read_test_file("state_drives.mbd"), &["absolute force 1", "reads the model's state"], why);
 }
 
 #[test]

@@ -47,3 +47,45 @@ pub fn assert_same_physics(text: &str, expected: Model) {
     }
 }
 
+
+/// A file of `tests/mbdyn_files/`.
+pub fn test_file(name: &str) -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files").join(name)
+}
+
+/// The model of a file of `tests/mbdyn_files/`.
+pub fn read_test_file(name: &str) -> MbdynModel {
+    romdyn::input::mbdyn::read_model(&test_file(name)).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Runs `m` up to `final_time` (the file's own when `None`) and checks every element's
+/// Jacobian at the last state against central differences of its residual
+/// (`dae::check_jacobians` with the coefficient `dcoef`), each within 1e-7 (central
+/// differences on the library's elements: about 1e-9, `analysis::check`). Returns the
+/// checks for the caller's own assertions (which element, drives held).
+pub fn assert_jacobians_after_run(m: &mut MbdynModel, final_time: Option<f64>, dcoef: f64) -> Vec<romdyn::dae::JacobianMismatch> {
+    if let Some(t) = final_time {
+        m.problem.final_time = t;
+    }
+    let report = romdyn::analysis::run(&m.model, &m.problem, &mut ()).unwrap_or_else(|e| panic!("{e}"));
+    let asm = Assembler::new(&m.model);
+    let checks = romdyn::dae::check_jacobians(&asm, &report.final_state, dcoef, m.model.constraint_form);
+    for c in &checks {
+        assert!(c.within(1e-7), "{c:?}");
+    }
+    checks
+}
+
+/// Linearizing `m` at its initial state is refused with an error containing every one of
+/// `needles`; `why` says what a linearization would get wrong.
+pub fn assert_not_linearized(m: &MbdynModel, needles: &[&str], why: &str) {
+    let asm = Assembler::new(&m.model);
+    let st = State::initial(&m.model, &asm.dofs);
+    let e = match romdyn::dae::linearize(&m.model, &st, &[], &[], None) {
+        Err(e) => e.to_string(),
+        Ok(_) => panic!("{why}"),
+    };
+    for n in needles {
+        assert!(e.contains(n), "{n:?} not in: {e}");
+    }
+}
