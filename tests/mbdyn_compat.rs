@@ -172,6 +172,31 @@ fn dummy_nodes_and_output_flags_select_the_mov_rows() {
     }
 }
 
+/// `output precision: N` (dataman3.cc; output.cc writes scientific notation with N digits
+/// after the point, 6 by default): the `.mov` numbers carry N digits; without it romdyn
+/// writes 12; beyond 30 is refused naming the place.
+#[test]
+fn output_precision_sets_the_mov_digits() {
+    let digits_of = |m: &MbdynModel, name: &str| {
+        let dir = temp_dir(name);
+        let prefix = dir.join("dummy_output");
+        let mut files = RunFiles::create(&prefix, "dummy_output.mbd", &m.model, &m.problem).unwrap();
+        let report = run(&m.model, &m.problem, &mut files).unwrap();
+        files.finish(&report).unwrap();
+        let mov = std::fs::read_to_string(dir.join("dummy_output.mov")).unwrap();
+        let first = mov.split_whitespace().nth(1).unwrap().to_string();
+        // "d.ddd…e±x": the digits between the point and the exponent.
+        first.split(['e', 'E']).next().unwrap().split('.').nth(1).map_or(0, str::len)
+    };
+    assert_eq!(digits_of(&read("dummy_output.mbd"), "precision-default"), 12);
+    let m = rewritten("dummy_output.mbd", &[("    output frequency: 2;\n", "    output frequency: 2;\n    output precision: 16;\n")]);
+    assert_eq!(m.problem.output.as_ref().unwrap().precision, Some(16));
+    assert_eq!(digits_of(&m, "precision-16"), 16);
+    let t = text("dummy_output.mbd").replace("    output frequency: 2;\n", "    output frequency: 2;\n    output precision: 31;\n");
+    let e = parse_text(&t, &path("dummy_output.mbd")).and_then(|d| build(&d)).err().expect("31 digits refused");
+    assert!(e.to_string().contains("dummy_output.mbd:30:23") && e.to_string().contains("at most 30 digits, found 31"), "{e}");
+}
+
 #[test]
 fn files_without_a_method_get_mbdyn_defaults() {
     // solver.cc (Solver::ReadData) and solver_impl.h: ms with ρ∞ = 0, tolerance 1e-6 on the

@@ -121,7 +121,7 @@ fn motion_history_has_mbdyn_mov_layout() {
     let settings = NewtonSettings::default();
     initial_derivatives(&asm, &mut st, &settings).unwrap();
     let path = std::env::temp_dir().join(format!("romdyn-mov-{}.mov", std::process::id()));
-    let mut mov = MotionWriter::create(&path, OrientationOutput::Euler123Degrees).unwrap();
+    let mut mov = MotionWriter::create(&path, OrientationOutput::Euler123Degrees, 12).unwrap();
     let mut int = Integrator::new(&asm, st, Method::Ms { rho: 0.6 }, 1e-3, settings);
     for _ in 0..10 {
         int.step().unwrap();

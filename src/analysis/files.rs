@@ -72,7 +72,7 @@ impl RunFiles {
             }
         }
         let out = StepLog::create(&prefixed_path(prefix, "out"), input)?;
-        let mov = MotionWriter::create(&prefixed_path(prefix, "mov"), OrientationOutput::Euler123Degrees)?;
+        let mov = MotionWriter::create(&prefixed_path(prefix, "mov"), OrientationOutput::Euler123Degrees, problem.output.as_ref().map_or(MotionOutput::DEFAULT_DIGITS, MotionOutput::digits))?;
         let mut log = AtomicFile::create(&prefixed_path(prefix, "log"))?;
         log.write_with(|w| write_model_log(w, input, model))?;
         Ok(RunFiles { prefix: prefix.to_path_buf(), input: input.to_string(), eigen_count, out, mov, motion: problem.output.clone(), beams: None, has_beams: None, staged: vec![log] })

@@ -235,4 +235,18 @@ pub struct WrittenNode {
 pub struct MotionOutput {
     pub nodes: Vec<WrittenNode>,
     pub every: usize,
+    /// Digits after the decimal point of each number (MBDyn's `output precision`, which
+    /// writes scientific notation with that many; MBDyn's default is 6); `None`: romdyn's
+    /// default, [`MotionOutput::DEFAULT_DIGITS`].
+    pub precision: Option<usize>,
+}
+
+impl MotionOutput {
+    /// Digits after the decimal point when the file sets none: 12, enough for a
+    /// double's 16 significant digits to within 1e-12 relative.
+    pub const DEFAULT_DIGITS: usize = 12;
+
+    pub fn digits(&self) -> usize {
+        self.precision.unwrap_or(Self::DEFAULT_DIGITS)
+    }
 }

@@ -23,6 +23,8 @@ use crate::model::{Label, MotionOutput, NodeSource};
 pub struct MotionWriter {
     file: AtomicFile,
     orientation: OrientationOutput,
+    /// Digits after the decimal point ([`MotionOutput::digits`]).
+    digits: usize,
 }
 
 /// Euler angles `[a, b, c]` of `R = R_i(a) R_j(b) R_k(c)` for the axis sequences 3-1-3 and
@@ -74,8 +76,9 @@ pub fn motion_rows(output: &MotionOutput, nodes: &[(Label, NodeKinematics)]) -> 
 }
 
 impl MotionWriter {
-    pub fn create(path: &Path, orientation: OrientationOutput) -> Result<Self, OutputError> {
-        Ok(MotionWriter { file: AtomicFile::create(path)?, orientation })
+    /// Numbers in scientific notation with `digits` after the decimal point.
+    pub fn create(path: &Path, orientation: OrientationOutput, digits: usize) -> Result<Self, OutputError> {
+        Ok(MotionWriter { file: AtomicFile::create(path)?, orientation, digits })
     }
 
     /// Appends one output instant: a line per node, orientations in the writer's form.
@@ -86,18 +89,19 @@ impl MotionWriter {
 
     /// Appends one output instant: a line per row, each with its own orientation form.
     pub fn write_rows(&mut self, rows: &[(Label, NodeKinematics, OrientationOutput)]) -> Result<(), OutputError> {
+        let d = self.digits;
         self.file.write_with(|out| {
             for (label, k, how) in rows {
                 write!(out, "{label}")?;
                 for c in k.x.iter() {
-                    write!(out, " {c:.12e}")?;
+                    write!(out, " {c:.d$e}")?;
                 }
                 for c in orientation_values(&k.r, *how) {
-                    write!(out, " {c:.12e}")?;
+                    write!(out, " {c:.d$e}")?;
                 }
                 for v in [k.xdot, k.omega] {
                     for c in v.iter() {
-                        write!(out, " {c:.12e}")?;
+                        write!(out, " {c:.d$e}")?;
                     }
                 }
                 writeln!(out)?;

@@ -25,10 +25,10 @@ const UNSUPPORTED_COUNTERS: [&str; 16] = [
 ];
 
 /// Settings of MBDyn's numerics and output: accepted, ignored.
-const IGNORED: [&str; 17] = [
+const IGNORED: [&str; 16] = [
     // `inertia: N` counts the inertia cards, which only write output (elements.rs).
     "inertia", "use automatic differentiation", "title", "print", "make restart file", "select timeout", "output units", "output meter",
-    "output precision", "output results", "default aerodynamic output", "default beam output", "default scale", "finite difference jacobian meter",
+    "output results", "default aerodynamic output", "default beam output", "default scale", "finite difference jacobian meter",
     "loadable path", "model name", "epsilon",
 ];
 
@@ -78,11 +78,17 @@ pub struct ControlOutput {
     /// Output every this many steps.
     pub every: usize,
     pub orientation: OrientationOutput,
+    /// `output precision: N`: digits after the decimal point in the `.mov` file.
+    pub precision: Option<usize>,
 }
+
+/// Largest `output precision` romdyn writes (a double's exact decimal expansion needs at
+/// most 17 significant digits; more only repeats them).
+const MAX_OUTPUT_PRECISION: usize = 30;
 
 impl Default for ControlOutput {
     fn default() -> Self {
-        ControlOutput { structural_nodes: true, every: 1, orientation: OrientationOutput::Euler123Degrees }
+        ControlOutput { structural_nodes: true, every: 1, orientation: OrientationOutput::Euler123Degrees, precision: None }
     }
 }
 
@@ -134,6 +140,13 @@ pub fn control_data(block: Option<&Block>, sources: &Sources) -> Result<(Counts,
                 return Err(c.error_at(span, "the output frequency must be at least 1 step"));
             }
             output.every = n;
+        } else if known(&st.keyword, &["output precision"]).is_some() {
+            let span = c.here();
+            let n = c.count("output precision (digits)")?;
+            if n > MAX_OUTPUT_PRECISION {
+                return Err(c.error_at(span, format!("the output precision must be at most {MAX_OUTPUT_PRECISION} digits, found {n}")));
+            }
+            output.precision = Some(n);
         } else if known(&st.keyword, &["default orientation"]).is_some() {
             output.orientation = orientation_kind(&mut c)?;
         } else if let Some(kind) = known(&st.keyword, &COUNTED) {

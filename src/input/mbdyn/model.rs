@@ -162,6 +162,7 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
             })
             .collect(),
         every: control_output.every,
+        precision: control_output.precision,
     });
     problem.assembly = assembly;
     problem.assembly.nodes = nodes.0.iter().filter(|n| !n.dummy).filter_map(|n| n.assembly.map(|a| (n.node.label, a))).collect();
