@@ -698,3 +698,41 @@ fn plane_displacement_is_refused_naming_mbdyns_own_refusal() {
     let err = parse_text(&text, Path::new("planedisp.mbd")).and_then(|d| build(&d)).err().expect("refused").to_string();
     assert!(err.contains("planedisp.mbd:") && err.contains("'plane displacement'") && err.contains("nor by MBDyn 1.7.3") && err.contains("'in plane' and a 'revolute rotation'"), "{err}");
 }
+
+/// Total joints whose position and rotation orientations differ (`total_joint_two_frames.mbd`,
+/// after MBDyn's tests/eig/joints/totaljoint): one frame carries both kinds of constraint
+/// when all three of one kind are constrained, the same constraint manifold.
+#[test]
+fn total_joints_with_two_frames_constrain_each_kind_in_its_own_frame() {
+    let m = read("total_joint_two_frames.mbd");
+    let report = run(&m.model, &m.problem, &mut ()).unwrap();
+    let mut im: Vec<f64> = report.eigenanalyses[0].dynamic.iter().filter(|l| l.im > 0.0).map(|l| l.im).collect();
+    im.sort_by(f64::total_cmp);
+    // Closed forms in the file's header: sqrt(k/J) about x and y for node 2, sqrt(k/m)
+    // along y and along (1, 0, −1)/√2 for node 1. MBDyn 1.7.3 (1727489e) on this file,
+    // mb_0.m (alpha printed to 7 digits, eigenvalues rebuilt as scripts/compare_mbdyn.sh
+    // does): 31.622779992, 44.721377080, 63.245549937, 70.710679912 rad/s.
+    let exact = [1000f64.sqrt(), 2000f64.sqrt(), 4000f64.sqrt(), 5000f64.sqrt()];
+    let mbdyn = [31.622779992, 44.721377080, 63.245549937, 70.710679912];
+    assert_eq!(im.len(), 4, "{im:?}");
+    for ((x, e), mb) in im.iter().zip(exact).zip(mbdyn) {
+        // romdyn's eigenanalysis of the linearization at rest: rounding (1e-12 measured).
+        assert!((x - e).abs() < 1e-9 * e, "{x} against the closed form {e}");
+        // MBDyn's J(±c) pencil with parameter 1e-6 and 7 printed digits: 4e-7 measured; 1e-6.
+        assert!((x - mb).abs() < 1e-6 * e, "{x} against MBDyn {mb}");
+    }
+    // The Jacobians of the two total joints against central differences, moved off rest.
+    let asm = Assembler::new(&m.model);
+    let mut st = State::initial(&m.model, &asm.dofs);
+    let mut noise = Noise(5);
+    st.y.iter_mut().chain(st.yp.iter_mut()).for_each(|v| *v += 1e-2 * noise.next());
+    for c in check_jacobians(&asm, &st, 1e-3, m.model.constraint_form) {
+        assert!(c.within(1e-7), "{c:?}");
+    }
+    // A partial constraint of each kind in different frames is still refused, naming the card.
+    let t = std::fs::read_to_string(path("total_joint_two_frames.mbd")).unwrap();
+    let partial = t.replacen("		orientation constraint, active, active, active,", "		orientation constraint, active, active, inactive,", 1);
+    assert_ne!(partial, t);
+    let e = parse_text(&partial, &path("total_joint_two_frames.mbd")).and_then(|d| build(&d)).err().expect("refused").to_string();
+    assert!(e.contains("total_joint_two_frames.mbd:80:12") && e.contains("one constraint frame"), "{e}");
+}

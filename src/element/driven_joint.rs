@@ -34,6 +34,10 @@ impl VectorDrive {
     pub fn reads_state(&self) -> bool {
         self.0.iter().any(|(_, d)| d.reads_state())
     }
+    /// The same drives with each vector turned by `m` (the value in another frame).
+    pub fn turned(self, m: &crate::kinematics::Mat3) -> Self {
+        VectorDrive(self.0.into_iter().map(|(v, d)| (m * v, d)).collect())
+    }
     pub fn is_zero(&self) -> bool {
         self.0.iter().all(|(v, d)| *v == Vec3::zeros() || *d == Drive::Const(0.0))
     }

@@ -433,8 +433,9 @@ fn total_side<'a>(c: &mut Cursor, on: &Context, node: Option<&'a StructuralNode>
 /// active components of relative position and rotation are locked, or their rates imposed
 /// (`velocity`, `angular velocity`), in the frame of node 1 (total joint) or in the absolute
 /// frame (total pin joint), each to its component of the imposed-value template drive.
-/// romdyn's total joint has one frame per side, so where both kinds of constraint are active
-/// the position and rotation orientations of that frame must agree; a time-varying imposed
+/// romdyn's total joint has one frame per side: where both kinds of constraint are active
+/// and side A's position and rotation orientations differ, [`one_constraint_frame`] maps one
+/// onto the other when all three of one kind are constrained; a time-varying imposed
 /// rotation needs all three rotations locked.
 fn total(pin: bool, label: Label, c: &mut Cursor, ctx: &ElementContext, span: super::diagnostic::Span) -> Result<DrivenJoint, MbdynError> {
     let node = ctx.node(c, if pin { "the node" } else { "node 1" })?;
@@ -456,24 +457,51 @@ fn total(pin: bool, label: Label, c: &mut Cursor, ctx: &ElementContext, span: su
     let any_rot = rotation.holonomic.contains(&true) || rotation.rate.contains(&true);
     // A: where the constraints are written (the ground of a pin joint, node 1 otherwise).
     let (a, b) = if pin { (second, first) } else { (first, second) };
-    if any_pos && any_rot && (a.position - a.rotation).norm() > 1e-12 {
-        return Err(c.error_at(span, "romdyn's total joint uses one constraint frame: with both position and orientation constraints active, 'position orientation' and 'rotation orientation' must be the same"));
-    }
     let imposed_rotation = rotation.on(&rotation.holonomic);
     if !imposed_rotation.is_zero() && rotation.holonomic != [true; 3] {
         return Err(c.error_at(span, "a non-zero imposed relative rotation is supported by romdyn's total joint only with all three rotation components locked"));
     }
-    let qa = if any_pos { a.position } else { a.rotation };
-    let qb = if any_rot { b.rotation } else { b.position };
+    let frames = if any_pos && any_rot { one_constraint_frame(&a, &b, &position, &rotation) } else { None };
+    let (qa, qb, position_turn, rotation_turn) = match frames {
+        Some(f) => f,
+        None if any_pos && any_rot && (a.position - a.rotation).norm() > 1e-12 => {
+            return Err(c.error_at(
+                span,
+                "romdyn's total joint uses one constraint frame: with 'position orientation' and 'rotation orientation' different, either all three position components or all three rotation components must be constrained, all of one kind (held, or their rate imposed)",
+            ));
+        }
+        None => (if any_pos { a.position } else { a.rotation }, if any_rot { b.rotation } else { b.position }, Mat3::identity(), Mat3::identity()),
+    };
     let name = if pin { "total pin joint" } else { "total joint" };
     let mut j = DrivenJoint::new(Joint::total(label, a.anchor(&qa), b.anchor(&qb), position.holonomic, rotation.holonomic), name);
-    j.position = position.on(&position.holonomic);
-    j.rotation = imposed_rotation;
+    j.position = position.on(&position.holonomic).turned(&position_turn);
+    j.rotation = imposed_rotation.turned(&rotation_turn);
     j.velocity_locked = position.rate;
-    j.velocity = position.on(&position.rate);
+    j.velocity = position.on(&position.rate).turned(&position_turn);
     j.angular_velocity_locked = rotation.rate;
-    j.angular_velocity = rotation.on(&rotation.rate);
+    j.angular_velocity = rotation.on(&rotation.rate).turned(&rotation_turn);
     driven_assembled(j, ctx, c, span)
+}
+
+/// The one constraint frame of a total joint whose side A has different position and
+/// rotation orientations `H_p`, `H_r`, when the constraints allow it exactly: `(Q_a, Q_b,
+/// turn of the position values, turn of the rotation values)`, `None` when they do not.
+/// - All three rotations held (or all three angular-velocity components imposed): the frame
+///   is `H_p` and B's rotation frame becomes `H_b H_rᵀ H_p`, so that `Q_aᵀ Q_b` is unchanged
+///   and `exp(Θ)` in `H_r` reads `exp(T Θ)`, `T = H_pᵀ H_r`; imposed angular velocities turn
+///   by `T` likewise (the same constraint manifold, the reaction moment in another basis).
+/// - Otherwise, all three positions held (or all three velocities imposed): the frame is
+///   `H_r`, and the imposed position `D` in `H_p` is `S D` in it, `S = H_rᵀ H_p` (and `V`).
+fn one_constraint_frame(a: &TotalSide, b: &TotalSide, position: &Constraint, rotation: &Constraint) -> Option<(Mat3, Mat3, Mat3, Mat3)> {
+    let all_of_one_kind = |k: &Constraint| (k.holonomic == [true; 3] && k.rate == [false; 3]) || (k.rate == [true; 3] && k.holonomic == [false; 3]);
+    if all_of_one_kind(rotation) {
+        let t = a.position.transpose() * a.rotation;
+        Some((a.position, b.rotation * t.transpose(), Mat3::identity(), t))
+    } else if all_of_one_kind(position) {
+        Some((a.rotation, b.rotation, a.rotation.transpose() * a.position, Mat3::identity()))
+    } else {
+        None
+    }
 }
 
 /// One `position constraint` or `orientation constraint`: components held (holonomic) or
