@@ -35,12 +35,12 @@ impl Element for AxialRotation {
     }
     /// `rz` the hinge's relative rotation, `wz` the imposed Ω(t) (planej.cc,
     /// `AxialRotationJoint::dGetPrivData`: `dGet()`, not the measured spin).
-    fn private_data(&self, name: &str) -> Option<super::private_data::PrivateDatum> {
+    fn private_data(&self, name: &str) -> Option<super::contract::PrivateDatum> {
         if name == "wz" {
             let omega = self.omega.clone();
             return Some(std::sync::Arc::new(move |st: &dyn ElementState| Some(omega.value_in(st))));
         }
-        super::private_data::joint_private_datum(&self.hinge, name)
+        self.hinge.private_datum(name)
     }
     fn type_name(&self) -> &'static str {
         "axial rotation"

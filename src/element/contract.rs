@@ -38,6 +38,10 @@ pub enum Col {
 }
 
 /// What an element reads: its nodes' kinematics, its multipliers, the time and gravity.
+/// One private datum of an element ([`super::private_data`]): its value at a state, `None`
+/// where the state lacks a node it reads.
+pub type PrivateDatum = std::sync::Arc<dyn Fn(&dyn ElementState) -> Option<f64> + Send + Sync>;
+
 pub trait ElementState {
     fn node(&self, slot: usize) -> &NodeKinematics;
     fn multiplier(&self, k: usize) -> f64;
@@ -163,7 +167,7 @@ pub trait Element: Send + Sync {
     /// Its private datum `name` (MBDyn's `iGetPrivDataIdx`/`dGetPrivData`), which the
     /// `element` and `dof` drive callers read, if romdyn computes it (see
     /// [`super::private_data`]).
-    fn private_data(&self, _name: &str) -> Option<super::private_data::PrivateDatum> {
+    fn private_data(&self, _name: &str) -> Option<PrivateDatum> {
         None
     }
     /// Internal forces and deformation at the element's evaluation points (beams), for

@@ -143,8 +143,8 @@ impl Element for DrivenJoint {
     fn label(&self) -> Label {
         self.joint.label
     }
-    fn private_data(&self, name: &str) -> Option<super::private_data::PrivateDatum> {
-        super::private_data::joint_private_datum(&self.joint, name)
+    fn private_data(&self, name: &str) -> Option<super::contract::PrivateDatum> {
+        self.joint.private_datum(name)
     }
     fn type_name(&self) -> &'static str {
         self.name

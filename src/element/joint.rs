@@ -168,8 +168,8 @@ impl Element for Joint {
         self.locked().map(|(p, k)| format!("{} {}", if p { "f" } else { "m" }, ["x", "y", "z"][k])).collect()
     }
 
-    fn private_data(&self, name: &str) -> Option<super::private_data::PrivateDatum> {
-        super::private_data::joint_private_datum(self, name)
+    fn private_data(&self, name: &str) -> Option<super::contract::PrivateDatum> {
+        self.private_datum(name)
     }
 
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {

@@ -14,8 +14,7 @@ use super::contract::{ElementState, Label, NodeKinematics};
 use super::joint::{Joint, JointKind};
 use crate::kinematics::{rotation_vector, Vec3};
 
-/// One private datum: its value at a state, `None` where the state lacks a node it reads.
-pub type PrivateDatum = Arc<dyn Fn(&dyn ElementState) -> Option<f64> + Send + Sync>;
+pub use super::contract::PrivateDatum;
 
 /// The nodes an element connects, copied by label from the state a drive reads, in the
 /// element's slot order: the element's own kinematics helpers then apply unchanged.
@@ -62,21 +61,20 @@ enum JointDatum {
     AngularVelocityInB,
 }
 
-/// The names of the private data romdyn computes for `joint`, for messages.
-pub fn joint_private_data_names(kind: JointKind) -> &'static str {
-    match kind {
-        JointKind::RevoluteHinge | JointKind::RevoluteRotation => "\"rz\", \"wz\"",
-        JointKind::TotalJoint => "\"px\", \"py\", \"pz\", \"rx\", \"ry\", \"rz\", \"wx\", \"wy\", \"wz\"",
-        _ => "none",
-    }
-}
-
 /// The private datum `name` of a joint, if romdyn computes it: a revolute hinge's (or
 /// revolute rotation's) `rz`, `wz` (planej.cc, `PlaneHingeJoint::dGetPrivData`), a total
 /// joint's `p*`, `r*`, `w*` (totalj.cc). MBDyn counts the turns of `rz`/`r*` across steps
 /// (its `NTheta`, `Unwrap`); romdyn has no element history and gives the rotation vector's
 /// component, the same while the relative rotation stays below π.
-pub fn joint_private_datum(joint: &Joint, name: &str) -> Option<PrivateDatum> {
+impl Joint {
+    pub fn private_datum(&self, name: &str) -> Option<PrivateDatum> {
+        joint_private_datum(self, name)
+    }
+}
+
+/// [`Joint::private_datum`].
+
+fn joint_private_datum(joint: &Joint, name: &str) -> Option<PrivateDatum> {
     let axis = |c: u8| match c {
         b'x' => Some(0),
         b'y' => Some(1),
