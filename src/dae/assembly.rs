@@ -311,6 +311,16 @@ impl<'m> Assembler<'m> {
         }
     }
 
+    /// Every element whose residual is not differentiable at `st` ([`Element::non_smooth`]),
+    /// as "in line 3: …".
+    ///
+    /// [`Element::non_smooth`]: crate::element::Element::non_smooth
+    pub fn non_smooth_elements(&self, st: &State) -> Vec<String> {
+        let frames = self.frames(st);
+        let named = |(e, el): (usize, &Box<dyn crate::element::Element>)| el.non_smooth(&self.context(&frames, st, e, 1.0)).map(|why| format!("{} {}: {why}", el.type_name(), el.label()));
+        self.model.elements.iter().enumerate().filter_map(named).collect()
+    }
+
     /// Internal forces and deformation of every element that has evaluation points (beams),
     /// as `(element index, sections)`.
     pub fn section_states(&self, st: &State) -> Vec<(usize, Vec<SectionState>)> {

@@ -181,6 +181,12 @@ pub trait Element: Send + Sync {
     fn assembly_form(&self) -> Option<&dyn Element> {
         None
     }
+    /// Why its residual is not differentiable at this state, if it is not (a friction state
+    /// at zero sliding velocity past its breakaway deflection): a linearization there takes
+    /// a one-sided derivative, and an eigenanalysis reports it.
+    fn non_smooth(&self, _s: &dyn ElementState) -> Option<String> {
+        None
+    }
     /// Adds its contribution to `F(y, ẏ, t)`.
     fn residual(&self, s: &dyn ElementState, out: &mut dyn ResidualSink);
     /// Adds its derivatives; the assembler forms `J(c)` from them.

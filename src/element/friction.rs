@@ -122,6 +122,9 @@ pub struct InLineFriction {
 /// Index of the friction state among the element's unknowns.
 const STATE: usize = 2;
 
+/// Sliding speed below which the joint is at rest for [`Element::non_smooth`] [m/s].
+const STILL: f64 = 1e-6;
+
 impl InLineFriction {
     /// `joint` must be an in line joint (two multipliers).
     pub fn new(joint: Joint, preload: f64, model: ModLugre) -> Self {
@@ -176,6 +179,16 @@ impl Element for InLineFriction {
     }
     fn assembly_form(&self) -> Option<&dyn Element> {
         Some(&self.joint)
+    }
+    fn non_smooth(&self, st: &dyn ElementState) -> Option<String> {
+        let p = Pair::new(&self.joint.a, &self.joint.b, st);
+        let (_, v, _) = self.sliding(&p, st);
+        let z = st.multiplier(STATE);
+        // α(z, ±0) ≠ 0: the term α |v| z σ₀ / μ(|v|) has a kink in v at v = 0. "At v = 0":
+        // below 1e-6 m/s, the velocity a converged step at rest leaves (Newton's tolerance
+        // over a bristle's stiffness and damping), below which any motion crosses the kink.
+        let alpha = self.model.alpha(z, 0.0).0.max(self.model.alpha(z, -f64::MIN_POSITIVE).0);
+        (v.abs() < STILL && alpha != 0.0).then(|| format!("its friction state z = {z:e} m is past the breakaway deflection at sliding velocity {v:.1e} m/s (at rest), where the modlugre state equation is not differentiable"))
     }
     fn private_data(&self, name: &str) -> Option<super::private_data::PrivateDatum> {
         self.joint.private_data(name)
