@@ -150,13 +150,6 @@ impl InLineFriction {
             (norm, [l[0] / norm, l[1] / norm])
         }
     }
-
-    /// The friction force along `e₃` on node 2 [N] (MBDyn's `.jnt` column 14).
-    pub fn friction_force(&self, st: &dyn ElementState) -> f64 {
-        let p = Pair::new(&self.joint.a, &self.joint.b, st);
-        let (_, v, _) = self.sliding(&p, st);
-        self.model.coefficient(st.multiplier(STATE), st.rate(STATE), v) * self.normal_force(st).0
-    }
 }
 
 impl Element for InLineFriction {
@@ -213,7 +206,7 @@ impl Element for InLineFriction {
         let p = Pair::new(&self.joint.a, &self.joint.b, st);
         let (e3, v, w) = self.sliding(&p, st);
         let (z, zdot) = (st.multiplier(STATE), st.rate(STATE));
-        let (n, dn) = (self.normal_force(st).0, self.normal_force(st).1);
+        let (n, dn) = self.normal_force(st);
         let m = &self.model;
         let f = m.coefficient(z, zdot, v);
         let psi = m.state_equation(z, v);
