@@ -33,6 +33,9 @@ pub struct EigenSummary {
     pub dynamic: Vec<c64>,
     pub zero: usize,
     pub infinite: usize,
+    /// Elements at a point where their residual is not differentiable (the linearization
+    /// took a one-sided derivative there), with why.
+    pub non_smooth: Vec<String>,
 }
 
 /// What a run did.
@@ -198,6 +201,7 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
                 dynamic: e.dynamic_eigenvalues(),
                 zero: e.modal.count(ModeKind::Zero),
                 infinite: e.modal.count(ModeKind::Infinite),
+                non_smooth: asm.non_smooth_elements(state),
             });
             next_eigen += 1;
         }

@@ -118,6 +118,11 @@ pub fn run(a: RunArgs) -> Result<()> {
     if let Some(failure) = &report.mbdyn_momenta_failure {
         eprintln!("warning: the derivatives phase did not converge with the momenta of its Newton iterations, which MBDyn keeps ({failure}); romdyn set them from their definitions at the written velocities and converged, so the motion starts from those velocities; where MBDyn's own iteration does not converge either it stops, or with `derivatives coefficient: auto` raises its tolerance");
     }
+    for e in &report.eigenanalyses {
+        for why in &e.non_smooth {
+            eprintln!("warning: eigenanalysis {} at t = {} s: {why}; the linearization takes a one-sided derivative there, and its eigenvalues describe only motion to that side", e.index, e.time);
+        }
+    }
     if let Some((velocity, change)) = &report.momentum_velocity_change {
         eprintln!("warning: the derivatives phase keeps Newton's momenta, as MBDyn's does, and they start the motion as from a written velocity changed by more than the tolerance ({velocity} by {change:.3e}; about the derivatives coefficient dCoef times the acceleration: a smaller `derivatives coefficient` reduces it)");
     }

@@ -44,6 +44,8 @@ struct Context<'a> {
     read_frames: &'a [NodeFrame],
     slots: &'a [usize],
     multipliers: &'a [f64],
+    /// Time derivatives of the element's own unknowns.
+    rates: &'a [f64],
     t: f64,
     load: f64,
     gravity: Vec3,
@@ -56,6 +58,9 @@ impl ElementState for Context<'_> {
     }
     fn multiplier(&self, k: usize) -> f64 {
         self.multipliers[k]
+    }
+    fn rate(&self, k: usize) -> f64 {
+        self.rates[k]
     }
     fn time(&self) -> f64 {
         self.t
@@ -165,7 +170,7 @@ impl JacobianSink for Jacobian<'_> {
                     let (n, fr) = (self.slots[slot], &self.frames[self.slots[slot]]);
                     (a * mrow * fr.g_matrix + b * mrow * fr.rate_derivative, self.dofs.node_first[n] + 3)
                 }
-                Col::Multiplier(_) => unreachable!("node_block returns node columns only"),
+                Col::Multiplier(_) | Col::Rate(_) => unreachable!("node_block returns node columns only"),
             };
             for k in 0..3 {
                 self.out.push(r, first + k, values[k]);
@@ -201,6 +206,7 @@ impl JacobianSink for Jacobian<'_> {
                 let j = self.first + k;
                 self.out.push(i, j, if scaled && self.dofs.is_multiplier(j) { a } else { b } * v)
             }
+            Col::Rate(k) => self.out.push(i, self.first + k, a * v),
         }
     }
 }
@@ -222,6 +228,7 @@ impl<'m> Assembler<'m> {
             read_frames: frames,
             slots: &self.dofs.element_nodes[e],
             multipliers: &st.y[first..first + self.dofs.element_len[e]],
+            rates: &st.yp[first..first + self.dofs.element_len[e]],
             t: st.t,
             load: st.load,
             gravity: self.model.gravity,
@@ -302,6 +309,16 @@ impl<'m> Assembler<'m> {
                 out.push(first + 9 + k, first + 6 + j, c.b * vx[(k, j)]);
             }
         }
+    }
+
+    /// Every element whose residual is not differentiable at `st` ([`Element::non_smooth`]),
+    /// as "in line 3: …".
+    ///
+    /// [`Element::non_smooth`]: crate::element::Element::non_smooth
+    pub fn non_smooth_elements(&self, st: &State) -> Vec<String> {
+        let frames = self.frames(st);
+        let named = |(e, el): (usize, &Box<dyn crate::element::Element>)| el.non_smooth(&self.context(&frames, st, e, 1.0)).map(|why| format!("{} {}: {why}", el.type_name(), el.label()));
+        self.model.elements.iter().enumerate().filter_map(named).collect()
     }
 
     /// Internal forces and deformation of every element that has evaluation points (beams),

@@ -5,7 +5,8 @@
 //! multipliers — so the central difference of `F` is column `j` of `J(c)`. The step makes
 //! `y_j` move by about `1e-6 (1 + |y_j|)` whatever `c` is (a step of `c h` with a small `c`
 //! would drown the difference of a stiff element's residual in rounding), and `ẏ_j` by at
-//! least `1e-6 (1 + |ẏ_j|)`.
+//! least `1e-6 (1 + |ẏ_j|)`. An element's differential state (a friction model's bristle
+//! deflection, about 1e-4 m) moves by `1e-6 (1e-6 + |y_j|)`, relative to its own size.
 
 use std::collections::HashMap;
 
@@ -70,7 +71,15 @@ pub fn check_jacobians(asm: &Assembler, st: &State, dcoef: f64, form: Constraint
         for (c, &(j, node)) in unknowns.iter().enumerate() {
             let multiplier = dofs.is_multiplier(j);
             let moves_y_by_h = multiplier && form == ConstraintForm::Scaled;
-            let h = if moves_y_by_h { 1e-6 * (1.0 + st.y[j].abs()) } else { 1e-6 * (1.0 + st.yp[j].abs()).max((1.0 + st.y[j].abs()) / dcoef) };
+            let h = if moves_y_by_h {
+                1e-6 * (1.0 + st.y[j].abs())
+            } else if dofs.is_state(j) {
+                // An element's state (a bristle deflection of 1e-4 m whose friction law
+                // bends within a fraction of that) moves relative to its own size.
+                1e-6 * (1e-6 + st.yp[j].abs()).max((1e-6 + st.y[j].abs()) / dcoef)
+            } else {
+                1e-6 * (1.0 + st.yp[j].abs()).max((1.0 + st.y[j].abs()) / dcoef)
+            };
             let (y0, yp0) = (st.y[j], st.yp[j]);
             let mut residual_at = |sign: f64| {
                 if multiplier {

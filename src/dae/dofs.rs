@@ -21,6 +21,10 @@ pub struct DofMap {
     ///
     /// [`Element::is_coordinate`]: crate::element::Element::is_coordinate
     coordinate: Vec<bool>,
+    /// Whether each unknown is an element's differential state ([`Element::is_state`]).
+    ///
+    /// [`Element::is_state`]: crate::element::Element::is_state
+    state: Vec<bool>,
 }
 
 /// What one unknown (and the equation with the same index) belongs to.
@@ -49,14 +53,15 @@ impl DofMap {
             first += k;
             element_nodes.push(e.nodes().iter().map(|l| model.node_index(*l).unwrap_or(usize::MAX)).collect());
         }
-        let (mut multiplier, mut coordinate) = (vec![false; first], vec![false; first]);
+        let (mut multiplier, mut coordinate, mut state) = (vec![false; first], vec![false; first], vec![false; first]);
         for ((&f, &k), e) in element_first.iter().zip(&element_len).zip(&model.elements) {
             for j in 0..k {
                 coordinate[f + j] = e.is_coordinate(j);
-                multiplier[f + j] = !e.is_velocity_constraint(j) && !coordinate[f + j];
+                state[f + j] = e.is_state(j);
+                multiplier[f + j] = !e.is_velocity_constraint(j) && !coordinate[f + j] && !state[f + j];
             }
         }
-        DofMap { node_first, node_kind: model.nodes.iter().map(|n| n.kind).collect(), element_first, element_len, element_nodes, len: first, multiplier, coordinate }
+        DofMap { node_first, node_kind: model.nodes.iter().map(|n| n.kind).collect(), element_first, element_len, element_nodes, len: first, multiplier, coordinate, state }
     }
 
     /// First equilibrium row of a node (after the momentum definitions of a dynamic node).
@@ -94,6 +99,11 @@ impl DofMap {
     /// with the configuration, like a node's position.
     pub fn is_coordinate(&self, i: usize) -> bool {
         self.coordinate[i]
+    }
+
+    /// Whether unknown `i` is an element's differential state (a friction model's `z`).
+    pub fn is_state(&self, i: usize) -> bool {
+        self.state[i]
     }
 
     /// "node 2 x", "node 2 gz", "node 2 beta_y", "revolute hinge 3 m x".

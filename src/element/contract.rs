@@ -33,8 +33,11 @@ pub enum Col {
     Rotation { slot: usize, comp: usize },
     Velocity { slot: usize, comp: usize },
     AngularVelocity { slot: usize, comp: usize },
-    /// The element's own multiplier `k`.
+    /// The element's own unknown `k` (a multiplier, a coordinate or a state).
     Multiplier(usize),
+    /// The time derivative of the element's own unknown `k`, a differential state
+    /// ([`Element::is_state`]): its entries go to `F_/ẏ`.
+    Rate(usize),
 }
 
 /// What an element reads: its nodes' kinematics, its multipliers, the time and gravity.
@@ -45,6 +48,12 @@ pub type PrivateDatum = std::sync::Arc<dyn Fn(&dyn ElementState) -> Option<f64> 
 pub trait ElementState {
     fn node(&self, slot: usize) -> &NodeKinematics;
     fn multiplier(&self, k: usize) -> f64;
+    /// The time derivative of the element's own unknown `k`; read only for a differential
+    /// state ([`Element::is_state`]), zero where the caller integrates none (the initial
+    /// assembly).
+    fn rate(&self, _k: usize) -> f64 {
+        0.0
+    }
     fn time(&self) -> f64;
     /// Gravity [m/s²], already multiplied by the load factor.
     fn gravity(&self) -> Vec3;
@@ -159,6 +168,28 @@ pub trait Element: Send + Sync {
     /// row's position entries, so the element writes the plain derivative `Φ_/s`.
     fn is_coordinate(&self, _k: usize) -> bool {
         false
+    }
+    /// Whether its own unknown `k` is a differential state of the element, with its own
+    /// first-order equation `k`, `ψ(z, ż, q, q̇, λ) = 0` (a LuGre friction model's bristle
+    /// deflection, MBDyn's `DofOrder::DIFFERENTIAL` dof of friction.cc): integrated like a
+    /// node's position (`ż += δ`, `z += c δ`, Jacobian entries on `ż` ([`Col::Rate`]) with
+    /// coefficient 1 and on `z` ([`Col::Multiplier`]) with `c`), its equation not divided
+    /// by dCoef, and left out of the initial assembly ([`Element::assembly_form`]). It
+    /// starts at zero.
+    fn is_state(&self, _k: usize) -> bool {
+        false
+    }
+    /// The element the initial assembly uses in this one's place, when they differ (a joint
+    /// with friction: the joint alone, as MBDyn's `InitialAssRes` of a joint with friction
+    /// leaves the friction out). Its unknowns must be this element's first ones.
+    fn assembly_form(&self) -> Option<&dyn Element> {
+        None
+    }
+    /// Why its residual is not differentiable at this state, if it is not (a friction state
+    /// at zero sliding velocity past its breakaway deflection): a linearization there takes
+    /// a one-sided derivative, and an eigenanalysis reports it.
+    fn non_smooth(&self, _s: &dyn ElementState) -> Option<String> {
+        None
     }
     /// Adds its contribution to `F(y, ẏ, t)`.
     fn residual(&self, s: &dyn ElementState, out: &mut dyn ResidualSink);

@@ -82,6 +82,7 @@ impl<'m> Layout<'m> {
         let mut len = 6 * model.nodes.len();
         let (mut elements, mut slots, mut first) = (Vec::new(), Vec::new(), Vec::new());
         for (i, e) in model.elements.iter().enumerate().filter(|(_, e)| in_assembly(e.as_ref())) {
+            let e = e.assembly_form().unwrap_or(e.as_ref());
             elements.push(i);
             slots.push(e.nodes().iter().map(|l| model.node_index(*l).unwrap_or(usize::MAX)).collect());
             first.push(len);
@@ -92,8 +93,10 @@ impl<'m> Layout<'m> {
     fn nodes(&self) -> usize {
         self.model.nodes.len()
     }
+    /// The `k`-th element of the assembly, in its assembly form ([`Element::assembly_form`]).
     fn element(&self, k: usize) -> &dyn Element {
-        self.model.elements[self.elements[k]].as_ref()
+        let e = self.model.elements[self.elements[k]].as_ref();
+        e.assembly_form().unwrap_or(e)
     }
     /// The name of row `i` of the position (`derivative = false`) or velocity rows.
     fn row_name(&self, i: usize, derivative: bool) -> String {

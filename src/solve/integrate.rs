@@ -274,7 +274,7 @@ pub fn constraint_rate(asm: &Assembler, st: &State) -> Option<(String, f64)> {
     };
     let now = asm.residual(st, ConstraintForm::Plain, 1.0);
     let own = dofs.element_first.iter().zip(&dofs.element_len).flat_map(|(&f, &k)| f..f + k);
-    let velocity = own.filter(|&i| !dofs.is_multiplier(i) && !dofs.is_coordinate(i)).map(|i| (i, now[i]));
+    let velocity = own.filter(|&i| !dofs.is_multiplier(i) && !dofs.is_coordinate(i) && !dofs.is_state(i)).map(|i| (i, now[i]));
     // Forward in time (a drive may start with a kink at the initial time), second order,
     // D(ε) = (−3 Φ(0) + 4 Φ(ε) − Φ(2ε)) / (2ε), extrapolated to third order as
     // (4 D(ε) − D(2ε)) / 3: D's own error, ε² Φ'''/3, is 8e-6 per s for a point turning at

@@ -97,8 +97,8 @@ pub fn beam_slider(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result
     } else {
         0.0
     };
-    if c.peek_keyword().is_some_and(|w| w == "friction") {
-        return Err(c.error("joint friction is not supported by romdyn"));
+    if super::friction::follows(c) {
+        return Err(super::friction::refuse(c, "beam slider"));
     }
     let initial = 2.0 * (initial_beam as f64 - 1.0) + initial_node as f64 - 2.0;
     let mut slider = BeamSlider { label, node: node.label, offset, orientation: frame, kind, beams, initial, smearing };

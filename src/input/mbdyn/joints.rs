@@ -14,7 +14,7 @@ use super::drives::template_vec3;
 use super::element_context::ElementContext;
 use super::laws::{linear_law, rest_strain, three, LinearLaw};
 use super::references::{Context, Frame, OtherSide};
-use crate::element::{Anchor, AxialRotation, GimbalRotation, FunctionHinge, ImposedVelocity, VelocityKind, CardanoHinge, DeformableJoint, DrivenJoint, InvariantDeformableHinge, VectorDrive, DeformableDisplacement, DeformableHinge, Distance, Drive, Element, Joint, Rod, RodViscosity};
+use crate::element::{Anchor, AxialRotation, GimbalRotation, FunctionHinge, ImposedVelocity, VelocityKind, CardanoHinge, DeformableJoint, DrivenJoint, InvariantDeformableHinge, VectorDrive, DeformableDisplacement, DeformableHinge, Distance, Drive, Element, InLineFriction, Joint, Rod, RodViscosity};
 use crate::kinematics::{Mat3, Vec3};
 use crate::model::{Label, StructuralNode};
 
@@ -97,8 +97,8 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             if revolute && c.accept("initial theta") {
                 c.real("initial theta [rad]")?;
             }
-            if c.peek_keyword().is_some_and(|w| w == "friction") {
-                return Err(c.error("joint friction is not supported by romdyn"));
+            if super::friction::follows(c) {
+                return Err(super::friction::refuse(c, kind));
             }
             let j = if revolute { Joint::revolute_hinge(label, a.anchor(), b.anchor()) } else { Joint::spherical_hinge(label, a.anchor(), b.anchor()) };
             Box::new(assembled(j, &a.global(), &b.global(), c, span)?)
@@ -109,8 +109,8 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             let a = side(c, ctx, "node 1", Position::Always, None)?;
             let b = side(c, ctx, "node 2", Position::Always, Some(&a))?;
             let omega = super::drives::drive(c, ctx.drives, ctx.seq)?;
-            if c.peek_keyword().is_some_and(|w| w == "friction") {
-                return Err(c.error("joint friction is not supported by romdyn"));
+            if super::friction::follows(c) {
+                return Err(super::friction::refuse(c, "axial rotation"));
             }
             orientation_description(c)?;
             let hinge = assembled(Joint::revolute_hinge(label, a.anchor(), b.anchor()), &a.global(), &b.global(), c, span)?;
@@ -154,7 +154,7 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             Box::new(GimbalRotation { label, a: a.anchor(), b: b.anchor(), angles: GimbalRotation::angles_of(&(qa.transpose() * qb)) })
         }
         "cardano hinge" | "universal hinge" | "cardano pin" | "universal pin" | "cardano rotation" | "universal rotation" => Box::new(cardano(kind, label, c, ctx, span)?),
-        "in line" | "in plane" => Box::new(in_line_or_plane(kind == "in line", label, c, ctx, span)?),
+        "in line" | "in plane" => in_line_or_plane(kind == "in line", label, c, ctx, span)?,
         "distance" | "distance with offset" => {
             // `distance, NODE_1, [position, O_1,] NODE_2, [position, O_2,] {DRIVE | from nodes}`;
             // the deprecated `distance with offset` always reads both offsets.
@@ -277,7 +277,9 @@ fn orientation_description(c: &mut Cursor) -> Result<(), MbdynError> {
 /// offset, O]` (B's point in the plane through P normal to N, normalized): input manual,
 /// §In line, §In plane. The plane's frame has N as axis 3 (axes 1 and 2 any pair normal to
 /// it: the constraint does not depend on them).
-fn in_line_or_plane(line: bool, label: Label, c: &mut Cursor, ctx: &ElementContext, span: super::diagnostic::Span) -> Result<Joint, MbdynError> {
+///
+/// An in line joint without offset may carry `friction` ([`super::friction`]).
+fn in_line_or_plane(line: bool, label: Label, c: &mut Cursor, ctx: &ElementContext, span: super::diagnostic::Span) -> Result<Box<dyn Element>, MbdynError> {
     let na = ctx.node(c, "node 1")?;
     let on = ctx.on(na);
     c.accept("position");
@@ -295,16 +297,26 @@ fn in_line_or_plane(line: bool, label: Label, c: &mut Cursor, ctx: &ElementConte
     };
     let a = Side { node: na, offset: p, orientation };
     let nb = ctx.node(c, "node 2")?;
-    let offset = if c.accept("offset") { Context { other: Some(a.other()), ..ctx.on(nb) }.relative_position(c, "offset of node 2 [m]")? } else { Vec3::zeros() };
-    if c.peek_keyword().is_some_and(|w| w == "friction") {
-        return Err(c.error("joint friction is not supported by romdyn"));
-    }
+    let has_offset = c.accept("offset");
+    let offset = if has_offset { Context { other: Some(a.other()), ..ctx.on(nb) }.relative_position(c, "offset of node 2 [m]")? } else { Vec3::zeros() };
+    let friction = match (super::friction::follows(c), line, has_offset) {
+        (false, ..) => None,
+        (true, true, false) => Some(super::friction::in_line_friction(c, ctx)?),
+        // joint.cc reads the friction of an in line joint with offset and drops it
+        // (`InLineWithOffsetJoint`, "TODO: friction to add").
+        (true, true, true) => return Err(c.error("joint friction on an 'in line' joint with offset is not supported by romdyn, nor applied by MBDyn 1.7.3 (its reader reads it and drops it): remove the offset or the friction")),
+        (true, false, _) => return Err(super::friction::refuse(c, "in plane")),
+    };
     let b = Side { node: nb, offset, orientation: Mat3::identity() };
     let (frame_b_point, _) = b.global();
     let (pa, qa) = a.global();
     let j = if line { Joint::in_line(label, a.anchor(), b.anchor()) } else { Joint::in_plane(label, a.anchor(), b.anchor()) };
     // Only position components are locked: B's frame orientation does not matter.
-    assembled(j, &(pa, qa), &(frame_b_point, qa), c, span)
+    let j = assembled(j, &(pa, qa), &(frame_b_point, qa), c, span)?;
+    Ok(match friction {
+        Some((preload, model)) => Box::new(InLineFriction::new(j, preload, model)),
+        None => Box::new(j),
+    })
 }
 
 /// `clamp, NODE, [position,] {node | POSITION}, [orientation,] {node | ORIENTATION}`.

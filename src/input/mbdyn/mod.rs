@@ -22,6 +22,7 @@ mod elements;
 mod expr;
 mod file_drivers;
 mod forces;
+mod friction;
 mod functions;
 mod joints;
 mod laws;

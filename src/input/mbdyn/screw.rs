@@ -29,8 +29,8 @@ pub fn screw(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Screw
     };
     c.keyword("'pitch'", &["pitch"])?;
     let pitch = c.real("pitch [m]")?;
-    if c.peek_keyword().is_some_and(|w| w == "friction") {
-        return Err(c.error("joint friction is not supported by romdyn"));
+    if super::friction::follows(c) {
+        return Err(super::friction::refuse(c, "screw"));
     }
     // Initial relative rotation about the axis and displacement along it (screwjoint.cc).
     let (r1, r2) = (n1.orientation, n2.orientation);

@@ -1,0 +1,61 @@
+//! `friction, [preload, P,] MODEL, SHAPE` after a joint (input manual, §Friction; joint.cc
+//! and friction.cc `ParseFriction`, `ParseShapeCoefficient`). romdyn reads the `modlugre`
+//! model with the `simple` shape function on an `in line` joint without offset; every other
+//! combination is refused by name.
+
+use super::cursor::Cursor;
+use super::diagnostic::MbdynError;
+use super::element_context::ElementContext;
+use crate::element::ModLugre;
+
+/// Friction models and shape functions MBDyn 1.7.3 reads (friction.cc).
+const MODELS: [&str; 2] = ["modlugre", "discrete coulomb"];
+const SHAPES: [&str; 3] = ["simple", "simple plane hinge", "screw joint"];
+
+/// Whether the next word is `friction`.
+pub fn follows(c: &Cursor) -> bool {
+    c.peek_keyword().is_some_and(|w| w == "friction")
+}
+
+/// The clean refusal of friction on a joint romdyn reads it on nowhere (`joint` in MBDyn's
+/// words: "plane hinge", "beam slider", …).
+pub fn refuse(c: &Cursor, joint: &str) -> MbdynError {
+    c.error(format!("joint friction on a '{joint}' joint is not supported by romdyn (supported: modlugre friction with the simple shape function on an 'in line' joint without offset)"))
+}
+
+/// Reads `friction, [preload, P,] modlugre, σ₀, σ₁, σ₂, κ, "FUNCTION", simple` and returns
+/// the preload [N] (0 if absent, as joint.cc) and the model.
+pub fn in_line_friction(c: &mut Cursor, ctx: &ElementContext) -> Result<(f64, ModLugre), MbdynError> {
+    c.keyword("friction", &["friction"])?;
+    let preload = if c.accept("preload") { c.real("preload (least normal force) [N]")? } else { 0.0 };
+    let span = c.here();
+    let model = c.keyword("a friction model", &MODELS)?;
+    if model != "modlugre" {
+        return Err(c.error_at(span, format!("friction model '{model}' is not supported by romdyn (supported: modlugre; discrete coulomb switches its equations between stick and slip, which romdyn's fixed-structure Newton and its linearization do not model)")));
+    }
+    let sigma0 = positive(c, "modlugre sigma0 (bristle stiffness per unit normal force) [1/m]")?;
+    let sigma1 = c.real("modlugre sigma1 (bristle damping per unit normal force) [s/m]")?;
+    let sigma2 = c.real("modlugre sigma2 (viscous friction per unit normal force) [s/m]")?;
+    let kappa_span = c.here();
+    let kappa = c.real("modlugre kappa (breakaway fraction, 0 < kappa < 1)")?;
+    if !(kappa > 0.0 && kappa < 1.0) {
+        return Err(c.error_at(kappa_span, format!("modlugre: kappa must be between 0 and 1 (exclusive), found {kappa}")));
+    }
+    let static_friction = super::scalar_functions::scalar_function(c, &ctx.drives.functions, ctx.seq)?;
+    let span = c.here();
+    let shape = c.keyword("a friction shape function", &SHAPES)?;
+    if shape != "simple" {
+        return Err(c.error_at(span, format!("friction shape function '{shape}' is not supported by romdyn on an 'in line' joint (supported: simple)")));
+    }
+    Ok((preload, ModLugre { sigma0, sigma1, sigma2, kappa, static_friction }))
+}
+
+fn positive(c: &mut Cursor, what: &str) -> Result<f64, MbdynError> {
+    let span = c.here();
+    let x = c.real(what)?;
+    if x > 0.0 {
+        Ok(x)
+    } else {
+        Err(c.error_at(span, format!("{what} must be positive, found {x}")))
+    }
+}
