@@ -118,6 +118,9 @@ pub fn run(a: RunArgs) -> Result<()> {
     if let Some(failure) = &report.mbdyn_momenta_failure {
         eprintln!("warning: the derivatives phase did not converge with the momenta of its Newton iterations, which MBDyn keeps ({failure}); romdyn set them from their definitions at the written velocities and converged, so the motion starts from those velocities; where MBDyn's own iteration does not converge either it stops, or with `derivatives coefficient: auto` raises its tolerance");
     }
+    if let Some((dcoef, tolerance)) = report.derivatives_tolerance_raised {
+        eprintln!("warning: the derivatives phase converged at no derivatives coefficient; as MBDyn does with `derivatives coefficient: auto`, it was accepted at the coefficient with the smallest residual (dCoef = {dcoef:.3e} s) with its tolerance raised to {tolerance:.3e}: the initial accelerations and reactions are not to be trusted (a joint that does not hold to round-off after the initial assembly, divided by dCoef, typically leaves this residual)");
+    }
     if let Some((velocity, change)) = &report.momentum_velocity_change {
         eprintln!("warning: the derivatives phase keeps Newton's momenta, as MBDyn's does, and they start the motion as from a written velocity changed by more than the tolerance ({velocity} by {change:.3e}; about the derivatives coefficient dCoef times the acceleration: a smaller `derivatives coefficient` reduces it)");
     }
