@@ -95,3 +95,27 @@ fn with_more_iterations_romdyns_assembly_converges_where_mbdyns_crawls() {
     // 1e-9 rad: the assembly's tolerance 1e-6 on the residual over K = 1e3 N m/rad.
     assert!((report.assembly.moved_rotation - rotation).abs() <= 1e-9, "{:?} against {rotation}", report.assembly);
 }
+
+#[test]
+fn a_distance_with_offset_keeps_written_velocities_that_hold_where_mbdyn_1_7_3_changes_them() {
+    // Reduced from MBDyn's tests/joints/distance/distancewithoffset, whose comment says its
+    // growing length "only works with new distance joint (#371) … and yields incorrect
+    // solution" with the old one, which MBDyn 1.7.3 has: on distance_offset_rate.mbd its
+    // initial assembly ("Iteration(0) 0.0886851", "Iteration(1) 1.45353e-17") ignores the
+    // length's rate V0 and makes the offset point's velocity zero, splitting the written
+    // (0, 0, 1) m/s into v = (0, 0, 0.5) m/s and ω = (0, 0.5, 0) rad/s (its .mov at t = 0),
+    // and at t = 0.01 s its node is at z = 1.001357142203403e+01 m turned by
+    // 2.046278445346182e-01 deg about y. The written velocity satisfies the joint
+    // (d/dt |p₂ − p₁| = V0), so no force acts: the closed form is z = L + V0 t = 10.01 m, no
+    // rotation, v = V0. romdyn keeps it (the collection file differed from MBDyn by 3.6e-4
+    // for this reason).
+    let m = read_model(&path("distance_offset_rate.mbd")).unwrap_or_else(|e| panic!("{e}"));
+    let report = run(&m.model, &m.problem, &mut ()).unwrap_or_else(|e| panic!("{e}"));
+    assert!(report.assembly.moved_velocity == 0.0 && report.assembly.moved_angular_velocity == 0.0, "{:?}", report.assembly);
+    let kin = report.final_state.node_frame(&Assembler::new(&m.model).dofs, 1).kin;
+    // Closed form to 1e-9 m and 1e-8 m/s (romdyn measured: 1e-13 m, 1.7e-10 m/s).
+    assert!((kin.x[2] - 10.01).abs() <= 1e-9 && kin.x[0].abs() <= 1e-9, "x = {:?}", kin.x);
+    assert!((kin.xdot[2] - 1.0).abs() <= 1e-8 && kin.omega.norm() <= 1e-8, "v = {:?}, ω = {:?}", kin.xdot, kin.omega);
+    // MBDyn 1.7.3's 3.57 mm more and 0.2 deg are its assembly's, not the model's.
+    assert!((1.001357142203403e+01 - kin.x[2]).abs() > 3e-3);
+}
