@@ -64,6 +64,12 @@ pub struct RunReport {
     /// residual dCoef·ṗ they leave stayed above the derivatives tolerance at every
     /// coefficient tried, where MBDyn stops (or, with `auto`, raises its tolerance).
     pub mbdyn_momenta_failure: Option<String>,
+    /// With `derivatives coefficient: auto`, when no coefficient converged: the coefficient
+    /// dCoef [s] of the smallest residual and the derivatives tolerance raised to 1.01 times
+    /// that residual, with which the derivatives were accepted as MBDyn accepts them
+    /// (stepsol.cc, `DerivativeSolver::Advance`: "choose those coefficient with smallest
+    /// residual error and increase the tolerance, so it will converge in any case").
+    pub derivatives_tolerance_raised: Option<(f64, f64)>,
     /// Requested eigenanalysis times the run did not reach [s].
     pub eigen_times_not_reached: Vec<f64>,
     pub final_state: State,
@@ -154,6 +160,7 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
         inconsistent_velocity: None,
         momentum_velocity_change: None,
         mbdyn_momenta_failure: None,
+        derivatives_tolerance_raised: None,
         eigen_times_not_reached: times.to_vec(),
         final_state: state.clone(),
     };
@@ -178,7 +185,11 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
         RunError::Derivatives(failure)
     })?;
     report.derivatives_iterations = done.iterations;
-    report.mbdyn_momenta_failure = mbdyn_momenta_failure.map(|f| f.to_string());
+    match mbdyn_momenta_failure {
+        DerivativesFallback::None => {}
+        DerivativesFallback::MomentaFromDefinitions(f) => report.mbdyn_momenta_failure = Some(f.to_string()),
+        DerivativesFallback::ToleranceRaised { dcoef, tolerance } => report.derivatives_tolerance_raised = Some((dcoef, tolerance)),
+    }
     report.momentum_velocity_change = momentum_velocity_change(&asm, &state).filter(|(_, dv)| dv.abs() > problem.tolerance);
     observed(observer.derivatives(&Derivatives { time: state.t, iterations: done.iterations, residual_norm: done.residual_norm }))?;
     observed(observer.step(&step_done(&asm, 0, problem.time_step, (done.iterations, done.residual_norm), &state)))?;
@@ -224,32 +235,66 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
     Ok(report)
 }
 
+/// How [`derivatives`] converged when the file's own settings did not.
+enum DerivativesFallback {
+    None,
+    /// With the momenta from their definitions (romdyn's), after MBDyn's way failed so.
+    MomentaFromDefinitions(crate::solve::NewtonFailure),
+    /// MBDyn's last chance with `auto`: at `dcoef` [s] with the tolerance raised.
+    ToleranceRaised { dcoef: f64, tolerance: f64 },
+}
+
 /// The initial derivatives at the file's derivatives coefficient, and with `auto` at the
 /// coefficients MBDyn tries after it in turn (each from the state as given) until one
-/// converges, with MBDyn's momenta ([`DerivativeMomenta::AsNewton`]); when none converges,
-/// the same coefficients with the momenta from their definitions (romdyn's), whose
-/// residual has no dCoef·ṗ floor, returning MBDyn's way's first failure with the result.
-/// The first failure is reported when nothing converges (MBDyn would instead accept the
-/// smallest residual with a raised tolerance).
-fn derivatives(asm: &Assembler, state: &mut State, problem: &InitialValueProblem, settings: &NewtonSettings, workspace: &mut NewtonWorkspace) -> Result<(crate::solve::Convergence, Option<crate::solve::NewtonFailure>), crate::solve::NewtonFailure> {
+/// converges, with MBDyn's momenta ([`DerivativeMomenta::AsNewton`]). With `auto`, when
+/// none converges, MBDyn's last chance: the coefficient of the smallest final residual
+/// again, with the tolerance raised to 1.01 times that residual (stepsol.cc,
+/// `DerivativeSolver::Advance`), which converges unless the residual is not finite.
+/// Without `auto`, the same coefficient with the momenta from their definitions (romdyn's),
+/// whose residual has no dCoef·ṗ floor, returning MBDyn's way's failure with the result;
+/// MBDyn stops there. The first failure is reported when nothing converges.
+fn derivatives(asm: &Assembler, state: &mut State, problem: &InitialValueProblem, settings: &NewtonSettings, workspace: &mut NewtonWorkspace) -> Result<(crate::solve::Convergence, DerivativesFallback), crate::solve::NewtonFailure> {
     let initial = problem.derivatives_coefficient * problem.time_step;
     let coefficients: Vec<f64> = match problem.derivatives_coefficient_auto {
         Some(auto) => auto.sequence(initial).collect(),
         None => vec![initial],
     };
-    let mut first_failure = None;
-    for momenta in [DerivativeMomenta::AsNewton, DerivativeMomenta::FromDefinitions] {
-        for &dcoef in &coefficients {
-            let mut trial = state.clone();
-            match initial_derivatives_in(asm, &mut trial, settings, dcoef, momenta, workspace) {
-                Ok(done) => {
-                    *state = trial;
-                    return Ok((done, first_failure));
-                }
-                Err(failure) => {
-                    first_failure.get_or_insert(failure);
-                }
+    let mut first_failure: Option<crate::solve::NewtonFailure> = None;
+    // The coefficient with the smallest final residual (MBDyn's dCoefBest, dResErrMin).
+    let mut best: Option<(f64, f64)> = None;
+    for &dcoef in &coefficients {
+        let mut trial = state.clone();
+        match initial_derivatives_in(asm, &mut trial, settings, dcoef, DerivativeMomenta::AsNewton, workspace) {
+            Ok(done) => {
+                *state = trial;
+                return Ok((done, DerivativesFallback::None));
             }
+            Err(failure) => {
+                if failure.residual_norm.is_finite() && best.is_none_or(|(_, r)| failure.residual_norm < r) {
+                    best = Some((dcoef, failure.residual_norm));
+                }
+                first_failure.get_or_insert(failure);
+            }
+        }
+    }
+    if problem.derivatives_coefficient_auto.is_some() {
+        if let Some((dcoef, residual)) = best {
+            let tolerance = 1.01 * residual;
+            let raised = NewtonSettings { tolerance, ..*settings };
+            let mut trial = state.clone();
+            if let Ok(done) = initial_derivatives_in(asm, &mut trial, &raised, dcoef, DerivativeMomenta::AsNewton, workspace) {
+                *state = trial;
+                return Ok((done, DerivativesFallback::ToleranceRaised { dcoef, tolerance }));
+            }
+        }
+        return Err(first_failure.unwrap_or_else(|| unreachable!("at least one coefficient is tried")));
+    }
+    for &dcoef in &coefficients {
+        let mut trial = state.clone();
+        if let Ok(done) = initial_derivatives_in(asm, &mut trial, settings, dcoef, DerivativeMomenta::FromDefinitions, workspace) {
+            *state = trial;
+            let failure = first_failure.unwrap_or_else(|| unreachable!("MBDyn's way failed first"));
+            return Ok((done, DerivativesFallback::MomentaFromDefinitions(failure)));
         }
     }
     Err(first_failure.unwrap_or_else(|| unreachable!("at least one coefficient is tried")))
