@@ -15,6 +15,11 @@ use romdyn::study::{parse_imposed, Application, EigenSettings, RomRequest, Study
 const BAND: ModeSelection = ModeSelection::Band { fmin_hz: 0.0, fmax_hz: 2.0 };
 
 fn main() {
+    // For instruction counts (callgrind): ROMDYN_BENCH_SEQ=1 keeps faer's products on the
+    // calling thread, so that the timed functions' inclusive counts hold all their work.
+    if std::env::var_os("ROMDYN_BENCH_SEQ").is_some() {
+        faer::set_global_parallelism(faer::Par::Seq);
+    }
     divan::main();
 }
 

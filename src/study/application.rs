@@ -143,11 +143,11 @@ impl Study {
             let (p, f) = with_spring_ports(&dae, &parts);
             (Some(p), Some(f))
         };
-        let free = without_elements(&dae, &parts);
+        let free = LinearModel::from_dense(without_elements(&dae, &parts), false);
         let mut warnings: Vec<_> = equilibrium_warning(&model, &state, problem.tolerance).into_iter().collect();
         warnings.extend(port_warnings(&free, &modal));
         let applied = applied(app, parts, projected, feedback);
-        Ok(Study { linear: LinearModel::from_dense(free, false), modal, sparse: None, model: Some(model), warnings, reference_time: Some(state.t), application: Some(applied) })
+        Ok(Study { linear: free, modal, sparse: None, model: Some(model), warnings, reference_time: Some(state.t), application: Some(applied) })
     }
 
     /// One label per mode ("table pitch (ry) 93 %") from the kinetic-energy shares and the
