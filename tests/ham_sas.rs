@@ -146,3 +146,27 @@ fn ham_sas_lvdt_rom_names_the_port_pairs_its_normwise_error_hides() {
         }
     }
 }
+
+/// The speed work on the eigenanalysis and ROM (issue 11's benchmark) must not move any
+/// eigenvalue, label or error estimate. Source: romdyn 265f71c's own output on the same
+/// file, `romdyn eig examples/ham_sas.mbd --static --load-steps 1 --ports
+/// examples/ham_sas_ports.json --json --all`, recorded in tests/data/ham_sas_eig_265f71c.json.
+/// Tolerances: λ to 1e-12 relative (rounding of the same QZ), the error estimate to 1e-9
+/// relative, kinds and labels exactly.
+#[test]
+fn ham_sas_eigenanalysis_is_that_of_265f71c() {
+    let recorded: serde_json::Value = serde_json::from_str(&std::fs::read_to_string("tests/data/ham_sas_eig_265f71c.json").unwrap()).unwrap();
+    let recorded = recorded["eigenvalues"].as_array().unwrap();
+    let s = study();
+    let labels = s.mode_labels();
+    let modes = &s.modal().modes;
+    assert_eq!(modes.len(), recorded.len());
+    for (i, (m, r)) in modes.iter().zip(recorded).enumerate() {
+        let lambda = faer::c64::new(r["re"].as_f64().unwrap(), r["im"].as_f64().unwrap());
+        assert!((m.lambda - lambda).norm() <= 1e-12 * lambda.norm(), "mode {}: {} vs recorded {lambda}", i + 1, m.lambda);
+        assert_eq!(m.kind.name(), r["kind"].as_str().unwrap(), "mode {}", i + 1);
+        let error = r["error"].as_f64().unwrap();
+        assert!((m.error - error).abs() <= 1e-9 * error, "mode {}: error {} vs recorded {error}", i + 1, m.error);
+        assert_eq!(labels[i].as_deref(), r["label"].as_str(), "mode {}", i + 1);
+    }
+}

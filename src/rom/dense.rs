@@ -9,13 +9,20 @@ pub(crate) fn equilibration(m: &Mat<f64>) -> (Vec<f64>, Vec<f64>) {
     let n = m.nrows();
     let (mut row, mut col) = (vec![1.0; n], vec![1.0; n]);
     let pow2 = |s: f64| if s > 0.0 && s.is_finite() { (-s.log2().round()).exp2() } else { 1.0 };
+    // Zeros change no maximum: the sweeps run over the non-zeros (a static matrix has few).
+    let entries: Vec<(usize, usize, f64)> = (0..m.ncols()).flat_map(|j| (0..n).map(move |i| (i, j))).map(|(i, j)| (i, j, m[(i, j)])).filter(|e| e.2 != 0.0).collect();
+    let mut big = vec![0.0f64; n];
     for _ in 0..4 {
-        for i in 0..n {
-            row[i] *= pow2((0..n).map(|j| (row[i] * m[(i, j)] * col[j]).abs()).fold(0.0, f64::max));
+        big.iter_mut().for_each(|b| *b = 0.0);
+        for &(i, j, v) in &entries {
+            big[i] = big[i].max((row[i] * v * col[j]).abs());
         }
-        for j in 0..n {
-            col[j] *= pow2((0..n).map(|i| (row[i] * m[(i, j)] * col[j]).abs()).fold(0.0, f64::max));
+        row.iter_mut().zip(&big).for_each(|(r, &b)| *r *= pow2(b));
+        big.iter_mut().for_each(|b| *b = 0.0);
+        for &(i, j, v) in &entries {
+            big[j] = big[j].max((row[i] * v * col[j]).abs());
         }
+        col.iter_mut().zip(&big).for_each(|(c, &b)| *c *= pow2(b));
     }
     (row, col)
 }

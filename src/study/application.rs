@@ -48,6 +48,25 @@ pub fn parse_imposed(s: &str) -> Result<(Label, Vec<usize>), String> {
     Ok((node, list))
 }
 
+/// The application's ports with the imposed node's components appended (forces as inputs,
+/// displacements as outputs).
+fn application_ports(app: &Application) -> (Vec<InputPort>, Vec<OutputPort>) {
+    let mut inputs = app.inputs.clone();
+    let mut outputs = app.outputs.clone();
+    if let Some((node, comps)) = &app.imposed {
+        for &k in comps {
+            inputs.push(NodeInput { node: *node, component: k }.port());
+            outputs.push(NodeOutput { node: *node, component: k }.port());
+        }
+    }
+    (inputs, outputs)
+}
+
+fn applied(app: &Application, parts: Vec<ElementPart>, projected: Option<LinearDae>, feedback: Option<SpringFeedback>) -> Applied {
+    let imposed = app.imposed.as_ref().map_or(0, |(_, c)| c.len());
+    Applied { projected, feedback, parts, imposed, names: app.names.clone() }
+}
+
 /// What a study keeps of its application.
 pub(super) struct Applied {
     /// The DAE the ROM is projected from: the springs present, their coordinates as the last
@@ -89,27 +108,32 @@ impl Study {
     /// [`Study::from_application_state`] with the sparse solver's progress reports. Springs
     /// to remove and imposed motion take the dense route (their corrections are dense).
     pub(super) fn application_state(model: Model, problem: &InitialValueProblem, state: State, app: &Application, eigen: EigenSettings, progress: &dyn Fn(&str)) -> Result<Self, StudyError> {
-        let mut inputs = app.inputs.clone();
-        let mut outputs = app.outputs.clone();
-        let mut imposed = 0;
-        if let Some((node, comps)) = &app.imposed {
-            for &k in comps {
-                inputs.push(NodeInput { node: *node, component: k }.port());
-                outputs.push(NodeOutput { node: *node, component: k }.port());
-            }
-            imposed = comps.len();
-        }
-        let applied = |parts, projected, feedback| Applied { projected, feedback, parts, imposed, names: app.names.clone() };
+        let (inputs, outputs) = application_ports(app);
         if app.remove_springs.is_empty() && app.imposed.is_none() {
             let mut study = Self::from_model_ports(model, problem, state, &inputs, &outputs, eigen, progress)?;
-            study.application = Some(applied(Vec::new(), None, None));
+            study.application = Some(applied(app, Vec::new(), None, None));
             // The labels need the application's names: the warnings stay, the study is the same.
             return Ok(study);
         }
         if eigen.solver == Solver::Sparse {
             return Err(StudyError::Option { option: "--solver", message: "sparse: removing dummy springs and imposing motion are done on the dense linear model only (use --solver dense or auto)".into() });
         }
-        let dae = linearize_ports(&model, &state, &inputs, &outputs, None)?;
+        let dae = Self::linearize_application(&model, &state, app)?;
+        Self::from_application_dae(model, problem, state, dae, app, eigen)
+    }
+
+    /// The dense linearization with the application's ports (imposed components last), the
+    /// DAE [`Study::from_application_dae`] starts from.
+    pub fn linearize_application(model: &Model, state: &State, app: &Application) -> Result<LinearDae, StudyError> {
+        let (inputs, outputs) = application_ports(app);
+        Ok(linearize_ports(model, state, &inputs, &outputs, None)?)
+    }
+
+    /// The study of an application with springs to remove or imposed motion, from its
+    /// linearization `dae` ([`Study::linearize_application`]): the eigenanalysis of the model
+    /// as written, the springs' ports and feedback, the free model and its warnings (the
+    /// steps `romdyn rom` runs after linearizing, timed by `benches/ham_sas.rs`).
+    pub fn from_application_dae(model: Model, problem: &InitialValueProblem, state: State, dae: LinearDae, app: &Application, eigen: EigenSettings) -> Result<Self, StudyError> {
         let parts = app.remove_springs.iter().map(|&l| element_part(&model, &state, l)).collect::<Result<Vec<_>, _>>()?;
         let file_dcoef = problem.eigenanalysis.as_ref().and_then(|e| e.dcoef);
         let modal = ModalAnalysis::of_dae(&dae, eigen.route, eigen.dcoef.or(file_dcoef)).map_err(|e| e.with_unknown_names(&dae.unknown_names))?;
@@ -119,10 +143,11 @@ impl Study {
             let (p, f) = with_spring_ports(&dae, &parts);
             (Some(p), Some(f))
         };
-        let free = without_elements(&dae, &parts);
+        let free = LinearModel::from_dense(without_elements(&dae, &parts), false);
         let mut warnings: Vec<_> = equilibrium_warning(&model, &state, problem.tolerance).into_iter().collect();
         warnings.extend(port_warnings(&free, &modal));
-        Ok(Study { linear: LinearModel::from_dense(free, false), modal, sparse: None, model: Some(model), warnings, reference_time: Some(state.t), application: Some(applied(parts, projected, feedback)) })
+        let applied = applied(app, parts, projected, feedback);
+        Ok(Study { linear: free, modal, sparse: None, model: Some(model), warnings, reference_time: Some(state.t), application: Some(applied) })
     }
 
     /// One label per mode ("table pitch (ry) 93 %") from the kinetic-energy shares and the

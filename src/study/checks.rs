@@ -8,6 +8,7 @@ use crate::linear::{LinearDae, ModalAnalysis, ModeKind};
 use crate::model::Model;
 use crate::rom::{full_static_gain, null_direction};
 
+use super::linear::LinearModel;
 use super::{Study, Warning};
 
 /// `F(ẏ = 0, y)` at the reference: nonzero when gravity or loads are unbalanced or the
@@ -121,12 +122,16 @@ pub fn zero_channels(dae: &LinearDae, modal: &ModalAnalysis) -> Vec<Vec<bool>> {
 fn zero_channels_of(b: &Mat<f64>, c: &Mat<f64>, modal: &ModalAnalysis, gain: Option<&Mat<f64>>) -> Vec<Vec<bool>> {
     let (no, ni) = (c.nrows(), b.ncols());
     let mut residue = Mat::<f64>::zeros(no, ni);
+    // The non-zeros of C̃'s rows and B̃'s columns (a port touches a few unknowns): the sums
+    // below skip only zero terms, so they are those over every unknown.
+    let nonzeros = |len: usize, at: &dyn Fn(usize) -> f64| -> Vec<(usize, f64)> { (0..len).map(|k| (k, at(k))).filter(|e| e.1 != 0.0).collect() };
+    let c_rows: Vec<Vec<(usize, f64)>> = (0..no).map(|r| nonzeros(c.ncols(), &|k| c[(r, k)])).collect();
+    let b_cols: Vec<Vec<(usize, f64)>> = (0..ni).map(|j| nonzeros(b.nrows(), &|k| b[(k, j)])).collect();
     for i in modal.of_kind(ModeKind::Dynamic) {
         let m = &modal.modes[i];
         let (Some(v), Some(u)) = (&m.right, &m.left) else { continue };
-        let n = v.nrows();
-        let cv: Vec<c64> = (0..no).map(|r| (0..n).fold(c64::new(0.0, 0.0), |s, k| s + v[k] * c[(r, k)])).collect();
-        let ub: Vec<c64> = (0..ni).map(|j| (0..n).fold(c64::new(0.0, 0.0), |s, k| s + u[k] * b[(k, j)])).collect();
+        let cv: Vec<c64> = c_rows.iter().map(|row| row.iter().fold(c64::new(0.0, 0.0), |s, &(k, x)| s + v[k] * x)).collect();
+        let ub: Vec<c64> = b_cols.iter().map(|col| col.iter().fold(c64::new(0.0, 0.0), |s, &(k, x)| s + u[k] * x)).collect();
         for r in 0..no {
             for c in 0..ni {
                 residue[(r, c)] = residue[(r, c)].max((cv[r] * ub[c]).norm() / m.lambda.norm().max(f64::MIN_POSITIVE));
@@ -148,9 +153,12 @@ fn zero_channels_of(b: &Mat<f64>, c: &Mat<f64>, modal: &ModalAnalysis, gain: Opt
         .collect()
 }
 
-/// Inputs whose every response is zero, outputs that see no input.
-pub(super) fn port_warnings(dae: &LinearDae, modal: &ModalAnalysis) -> Vec<Warning> {
-    channel_warnings(&zero_channels(dae, modal), &dae.input_names, &dae.output_names)
+/// Inputs whose every response is zero, outputs that see no input (the dense DAE of
+/// `linear`, its static gain computed once there).
+pub(super) fn port_warnings(linear: &LinearModel, modal: &ModalAnalysis) -> Vec<Warning> {
+    let dae = linear.dense();
+    let zero = zero_channels_of(&dae.b, &dae.c, modal, linear.dense_static_gain().ok());
+    channel_warnings(&zero, &dae.input_names, &dae.output_names)
 }
 
 fn channel_warnings(zero: &[Vec<bool>], inputs: &[String], outputs: &[String]) -> Vec<Warning> {
@@ -177,16 +185,19 @@ impl Study {
     /// sparse eigenanalysis that is not certified.
     pub(super) fn linear_warnings(&self) -> Vec<Warning> {
         let mut w = match &self.sparse {
-            None => port_warnings(self.linear.dense(), &self.modal),
+            None => port_warnings(&self.linear, &self.modal),
             Some(_) => {
                 let gain = self.linear.sparse_static_gain().and_then(Result::ok);
                 let zero = zero_channels_of(self.linear.b(), self.linear.c(), &self.modal, gain.as_ref());
                 channel_warnings(&zero, self.linear.input_names(), self.linear.output_names())
             }
         };
-        if let Some(run) = self.sparse.as_ref().filter(|r| !r.certified) {
-            w.push(Warning::SparseNotCertified { target: run.describe_target(), reason: run.note.clone().unwrap_or_else(|| "no reason given".into()), damping_covered: run.damping_covered });
-        }
+        w.extend(self.sparse_warning());
         w
+    }
+
+    /// The warning that the sparse eigenanalysis is not certified, when it is not.
+    pub(super) fn sparse_warning(&self) -> Option<Warning> {
+        self.sparse.as_ref().filter(|r| !r.certified).map(|run| Warning::SparseNotCertified { target: run.describe_target(), reason: run.note.clone().unwrap_or_else(|| "no reason given".into()), damping_covered: run.damping_covered })
     }
 }

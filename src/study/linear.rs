@@ -12,18 +12,21 @@ use crate::linear::{LinearDae, SparseLinearDae};
 pub(super) struct LinearModel {
     sparse: Option<SparseLinearDae>,
     dense: OnceLock<LinearDae>,
+    /// [`crate::rom::full_static_gain`] of the dense DAE (its error's text), computed once:
+    /// the port warnings and every ROM's static gains need it.
+    dense_gain: OnceLock<Result<Mat<f64>, String>>,
 }
 
 impl LinearModel {
     pub fn from_sparse(sparse: SparseLinearDae) -> Self {
-        LinearModel { sparse: Some(sparse), dense: OnceLock::new() }
+        LinearModel { sparse: Some(sparse), dense: OnceLock::new(), dense_gain: OnceLock::new() }
     }
 
     /// A dense DAE (a pencil file, a DAE with springs removed); `with_sparse` also keeps its
     /// sparse copy for the sparse route.
     pub fn from_dense(dense: LinearDae, with_sparse: bool) -> Self {
         let sparse = with_sparse.then(|| SparseLinearDae::from_dense(&dense));
-        LinearModel { sparse, dense: OnceLock::from(dense) }
+        LinearModel { sparse, dense: OnceLock::from(dense), dense_gain: OnceLock::new() }
     }
 
     /// The sparse DAE, when the study has one.
@@ -86,6 +89,12 @@ impl LinearModel {
             }
             (None, None) => unreachable!("a study's linear model is built from a sparse or a dense DAE"),
         }
+    }
+
+    /// The full model's static gain `C̃ S⁻¹ B̃` of the dense DAE by
+    /// [`crate::rom::full_static_gain`] (the text of its error), computed on first use only.
+    pub fn dense_static_gain(&self) -> Result<&Mat<f64>, &str> {
+        self.dense_gain.get_or_init(|| crate::rom::full_static_gain(self.dense()).map_err(|e| e.to_string())).as_ref().map_err(String::as_str)
     }
 
     /// The full model's static gain `C̃ S⁻¹ B̃` on the sparse route, by one sparse LU

@@ -199,7 +199,7 @@ impl Study {
             (Ranking::Dominance, _) => select_dominant_modes(modal, &dominance, &request.selection)?,
         };
         // A ROM from modes that may be incomplete carries the warning itself.
-        let mut warnings: Vec<Warning> = self.linear_warnings().into_iter().filter(|w| matches!(w, Warning::SparseNotCertified { .. })).collect();
+        let mut warnings: Vec<Warning> = self.sparse_warning().into_iter().collect();
         let mut candidates = match &request.residualization {
             Residualization::None => Vec::new(),
             Residualization::Dropped => sel.dropped.clone(),
@@ -331,7 +331,7 @@ impl Study {
             return g.map_err(|e| format!("{e}: an unrestrained motion, or a load path the supports do not close"));
         }
         let dae = self.linear.dense();
-        crate::rom::full_static_gain(dae).map_err(|e| match null_direction(&dae.static_matrix()) {
+        self.linear.dense_static_gain().cloned().map_err(|e| match null_direction(&dae.static_matrix()) {
             Some(x) => match self.model.as_ref().and_then(|m| super::checks::whole_model_rigid_motion(m, &x)) {
                 Some(rigid) => format!("{e}: unrestrained {rigid}"),
                 None => format!("{e}: unrestrained motion along {}", self.describe_direction(&x)),
