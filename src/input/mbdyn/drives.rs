@@ -54,6 +54,10 @@ pub struct Drives {
 }
 
 impl Drives {
+    /// Forgets the `drive caller:` cards (to read them again with other variables).
+    pub fn clear_cards(&mut self) {
+        self.table.clear();
+    }
     /// The drive caller cards of statements before `seq`, by label.
     pub fn defined_before(&self, seq: usize) -> HashMap<u32, Drive> {
         self.table.iter().filter(|(_, (_, s, _))| *s < seq).map(|(l, (d, _, _))| (*l, d.clone())).collect()

@@ -10,7 +10,7 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
 use super::diagnostic::{MbdynError, Sources, Span};
-use super::expr::{describe, Evaluator, Reads, SetOverrides, Variables};
+use super::expr::{describe, staticize_evals, Evaluator, Reads, SetOverrides, Variables};
 use super::lexer::{tokenize, Spanned, Token};
 use super::value::TypedValue;
 use crate::element::NodeKinematics;
@@ -320,6 +320,11 @@ impl Reader {
             return Ok(Arg { value: Value::Word(lower.clone()), span, keyword: Some(lower), text });
         }
         let value = match Evaluator::new(p, &mut self.doc.variables, &self.doc.sources, end).with_reads(Reads::Nodes(self.observer.nodes()), None).with_functions(self.observer.functions()).with_drives(self.observer.drives()).evaluate()? {
+            // A string written as such may be a string drive's expression: its `TYPE_eval`
+            // calls take their values now (see [`staticize_evals`]).
+            TypedValue::Str(s) if matches!(p, [Spanned { token: Token::Str(_), .. }]) => {
+                Value::Str(staticize_evals(&s, &mut self.doc.variables, Some(Reads::Nodes(self.observer.nodes())), Some(self.observer.drives())).unwrap_or(s))
+            }
             TypedValue::Str(s) => Value::Str(s),
             v => Value::Number(v.real().unwrap_or(0.0)),
         };
@@ -396,7 +401,7 @@ fn statement_end(tokens: &[Spanned]) -> Result<usize, Option<Span>> {
     Err(open.first().copied())
 }
 
-fn token_text(t: &Token) -> String {
+pub fn token_text(t: &Token) -> String {
     match t {
         Token::Integer(i) => i.to_string(),
         Token::Real(x) => x.to_string(),
