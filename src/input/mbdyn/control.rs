@@ -47,8 +47,11 @@ fn assembly_statement(keyword: &str, c: &mut Cursor, a: &mut InitialAssembly) ->
         "tolerance" | "initial tolerance" => {
             let span = c.here();
             a.tolerance = c.real("initial assembly tolerance")?;
-            if !(a.tolerance > 0.0) {
-                return Err(c.error_at(span, format!("the initial assembly tolerance must be positive, found {}", a.tolerance)));
+            // dataman3.cc reads any real; its assembly (dataman2.cc, `InitialJointAssembly`)
+            // passes when `sqrt(|F|²/(1 + |X|²)) <= tolerance`: with 0, only when the joints
+            // hold exactly (romdyn's test is the same), with a negative one never.
+            if !(a.tolerance >= 0.0) {
+                return Err(c.error_at(span, format!("the initial assembly tolerance must not be negative, found {} (MBDyn 1.7.3 reads it, but its assembly test 'residual <= tolerance' can then never pass)", a.tolerance)));
             }
         }
         "max iterations" | "max initial iterations" => a.max_iterations = c.count("initial assembly max iterations")?,

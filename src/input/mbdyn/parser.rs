@@ -158,6 +158,16 @@ impl Reader {
         if text.starts_with('\u{feff}') {
             text.drain(..'\u{feff}'.len_utf8());
         }
+        let preprocess = text.lines().position(|l| l.trim() == "#beginpreprocess").map(|k| k + 1);
+        self.read_tokens(text, path).map_err(|mut e| {
+            if let Some(line) = preprocess.filter(|&l| e.file == path && e.line >= l) {
+                e.message = python_preprocessor_note(&e.message, line);
+            }
+            e
+        })
+    }
+
+    fn read_tokens(&mut self, text: String, path: &Path) -> Result<(), MbdynError> {
         let file = self.doc.sources.files.len();
         self.doc.sources.files.push((path.to_path_buf(), text));
         self.stack.push(path.to_path_buf());
@@ -379,6 +389,18 @@ impl Reader {
             None => Err(src.error(span, format!("end: {name} without a matching 'begin: {name};'"))),
         }
     }
+}
+
+/// An error in a file of MBDyn's Python preprocessor (contrib/PythonPreprocessor: Python
+/// between `#beginpreprocess` and `#endpreprocess`, which its MBDynPreprocess.py expands
+/// into MBDyn input). To MBDyn's reader the directive is a comment and the Python after it
+/// is read as input, where it stops too.
+fn python_preprocessor_note(message: &str, line: usize) -> String {
+    format!(
+        "{message}; this file is the input of MBDyn's Python preprocessor ('#beginpreprocess' at line {line} starts Python code, contrib/PythonPreprocessor), \
+         which romdyn does not read, nor does MBDyn 1.7.3 (its reader takes the directive for a comment and stops on the Python code): \
+         run 'python MBDynPreprocess.py FILE > FILE.mbd' first and give romdyn its output"
+    )
 }
 
 /// Index of the ';' that ends the first statement (semicolons inside parentheses separate
