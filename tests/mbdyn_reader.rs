@@ -63,3 +63,77 @@ fn a_bad_eval_argument_is_reported_where_it_is_written() {
     };
     assert!(e.contains("m.mbd:1:15") && e.contains("cannot cast the string"), "{e}");
 }
+
+#[test]
+fn the_drive_drive_caller_composes_two_drives_as_mbdyn() {
+    // drive_composition.mbd; closed forms x(1) = 1/12 and 1/2 − sin(2)/4 (the file's
+    // header); MBDyn 1.7.3 (1727489e, `mbdyn -f drive_composition.mbd`, last .mov rows):
+    // 8.333353121875209e-02 and 2.726756253407116e-01.
+    let m = read("drive_composition.mbd");
+    let report = run(&m.model, &m.problem, &mut ()).unwrap_or_else(|e| panic!("{e}"));
+    let asm = romdyn::dae::Assembler::new(&m.model);
+    let cases = [(1.0 / 12.0, 8.333353121875209e-02), (0.5 - 2f64.sin() / 4.0, 2.726756253407116e-01)];
+    for (k, (exact, mbdyn)) in cases.into_iter().enumerate() {
+        let x = report.final_state.node_frame(&asm.dofs, k).kin.x[0];
+        // ms (ρ∞ = 0.6, h = 1 ms) on smooth forces: 1e-5 relative to the closed form; the
+        // same method and steps as MBDyn: to the Newton tolerance.
+        assert!((x - exact).abs() < 1e-5 * exact, "node {}: {x} against the closed form {exact}", k + 1);
+        assert!((x - mbdyn).abs() < 1e-9, "node {}: {x} against MBDyn {mbdyn}", k + 1);
+    }
+}
+
+/// A free unit body at the origin with `elements`, 0.1 s in 10 steps.
+fn free_body(elements: &str, counters: &str) -> String {
+    format!(
+        "begin: data; problem: initial value; end: data;
+begin: initial value; initial time: 0.; final time: 0.1; time step: 1.e-2; tolerance: 1.e-10; max iterations: 10; derivatives tolerance: 1.e-6; derivatives max iterations: 10; end: initial value;
+begin: control data; structural nodes: 1; rigid bodies: 1; {counters} end: control data;
+begin: nodes; structural: 1, dynamic, null, eye, null, null; end: nodes;
+begin: elements; body: 1, 1, 1., null, diag, 1., 1., 1.; {elements} end: elements;"
+    )
+}
+
+#[test]
+fn an_internal_couple_on_one_node_cancels_as_in_mbdyn() {
+    // strforce.cc, `ReadStructuralForce`: the two nodes of an internal couple are not
+    // compared (MBDyn's tests/forces/force/force-old has `follower internal, 1, 1., 0., 0.,
+    // 2, …`, node 2 read as 1); the couple and its reaction act on the same node and
+    // cancel: the body stays at rest, while the same couple alone turns it (ω = M t).
+    let couple = "couple: 1, follower internal, 1, 1, 0., 0., 2., const, 1.;";
+    let m = read_text(&free_body(couple, "forces: 1;")).unwrap_or_else(|e| panic!("{e}"));
+    let report = run(&m.model, &m.problem, &mut ()).unwrap_or_else(|e| panic!("{e}"));
+    let asm = romdyn::dae::Assembler::new(&m.model);
+    let w = report.final_state.node_frame(&asm.dofs, 0).kin.omega;
+    assert!(w.norm() < 1e-12, "ω = {w}");
+    let alone = read_text(&free_body("couple: 1, follower, 1, 0., 0., 2., const, 1.;", "forces: 1;")).unwrap_or_else(|e| panic!("{e}"));
+    let report = run(&alone.model, &alone.problem, &mut ()).unwrap_or_else(|e| panic!("{e}"));
+    let w = report.final_state.node_frame(&asm.dofs, 0).kin.omega;
+    // To 1e-6: what the derivatives phase leaves at its tolerance (2e-8 here).
+    assert!((w[2] - 2.0 * report.final_state.t).abs() < 1e-6, "ω = {w}");
+}
+
+#[test]
+fn an_initial_assembly_tolerance_of_zero_is_read_as_mbdyn_reads_it() {
+    // dataman3.cc reads `tolerance: 0` (and the deprecated `initial tolerance`); the
+    // assembly passes only on an exact residual, which a free body has (no joints).
+    assert!(read_text(&free_body("", "initial tolerance: 0;")).is_ok());
+    let e = read_text(&free_body("", "tolerance: -1.e-6;")).err().unwrap_or_default();
+    assert!(e.contains("must not be negative") && e.contains("MBDyn 1.7.3"), "{e}");
+}
+
+#[test]
+fn a_python_preprocessor_source_is_named_as_such() {
+    // contrib/PythonPreprocessor/examples/LateralBuckling2_v2.mbd begins so; MBDyn 1.7.3
+    // stops there too ("<begin> expected at line 5").
+    let e = read_text("#beginpreprocess\nfrom MBDynLib import *\n#endpreprocess\nbegin: data; problem: initial value; end: data;").err().unwrap_or_default();
+    assert!(e.contains("m.mbd:2:22") && e.contains("Python preprocessor") && e.contains("MBDynPreprocess.py"), "{e}");
+}
+
+#[test]
+fn extra_arguments_of_a_structural_node_say_mbdyn_stops_too() {
+    // strnode.cc, `ReadStructNode`: "semicolon expected" (a2m/samples/bipendolo.mbd writes
+    // the assembly stiffnesses without the `assembly` keyword).
+    let t = free_body("", "").replace("null, null; end: nodes", "null, null, 0, 0, 1; end: nodes");
+    let e = read_text(&t).err().unwrap_or_default();
+    assert!(e.contains("unexpected extra argument") && e.contains("semicolon expected"), "{e}");
+}
