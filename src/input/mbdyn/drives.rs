@@ -1,7 +1,8 @@
 //! Drive callers (input manual, "General", §Drives and Drive Callers) mapped onto
 //! romdyn's [`Drive`]: a plain number, `const`, `null`, `unit`, `time`, `direct`, `ramp`,
 //! `step`, `sine`, `cosine`, `piecewise linear`, `linear`, `parabolic`, `cubic`,
-//! `exponential`, `tanh`, `double ramp`, `double step`, `array`, `mult`, `frequency sweep`,
+//! `exponential`, `tanh`, `double ramp`, `double step`, `array`, `mult`, `drive` (one drive
+//! of another's value), `frequency sweep`,
 //! `periodic`, `string` (an expression of `Time` for the math parser, evaluated with the
 //! file's variables as they stand at the end of the input, as MBDyn evaluates it during the
 //! run), and `reference, LABEL` to a `drive caller:` card;
