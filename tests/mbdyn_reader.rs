@@ -137,3 +137,11 @@ fn extra_arguments_of_a_structural_node_say_mbdyn_stops_too() {
     let e = read_text(&t).err().unwrap_or_default();
     assert!(e.contains("unexpected extra argument") && e.contains("semicolon expected"), "{e}");
 }
+
+#[test]
+fn joint_regularizations_are_refused_with_what_they_would_change() {
+    // MBDyn's tests/stiff/pendulum_reg, tests/joints/total/totalhint: jointreg.cc's
+    // Tikhonov regularization relaxes the joint's constraint equations.
+    let e = read_text(&free_body("", "joint regularizations: 1;")).err().unwrap_or_default();
+    assert!(e.contains("m.mbd:3:") && e.contains("joint regularizations") && e.contains("constraint equations"), "{e}");
+}

@@ -153,6 +153,12 @@ pub fn control_data(block: Option<&Block>, sources: &Sources) -> Result<(Counts,
         } else if let Some(kind) = known(&st.keyword, &["model", "rigid body kinematics"]) {
             let what = if kind == "model" { "'model: static' (dynamic nodes treated as static)" } else { "'rigid body kinematics' (a moving reference frame)" };
             return Err(c.error_at(st.span, format!("{what} changes the physics and is not supported by romdyn")));
+        } else if known(&st.keyword, &["joint regularizations"]).is_some() {
+            // jointreg.cc: a `joint regularization: LABEL, tikhonov, C;` card adds C λ/dCoef
+            // to each constraint equation of joint LABEL (`TikhonovRegularization::AssRes`,
+            // its Jacobian −C/dCoef on the multipliers), so the joint holds only
+            // approximately; `dynamic` and `jacobian` change the iteration matrix alone.
+            return Err(c.error_at(st.span, "joint regularizations (jointreg.cc: 'tikhonov' adds C·λ to each of the joint's constraint equations, relaxing the joint; 'dynamic' and 'jacobian' change the Newton matrix) are not supported by romdyn, whose joints hold exactly: remove the 'joint regularization' cards and this counter"));
         } else {
             return Err(c.error_at(st.span, format!("statement '{}' in control data is not supported by romdyn", st.keyword)));
         }
