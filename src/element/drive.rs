@@ -102,6 +102,9 @@ pub enum Drive {
     Sum(Vec<Drive>),
     /// The product of two drives (MBDyn's `mult`).
     Product(Box<Drive>, Box<Drive>),
+    /// `f(g(x))`: the first drive of the second's value (MBDyn's `drive` drive caller,
+    /// ddrive.h, `DriveDriveCaller::dGet`).
+    Compose(Box<Drive>, Box<Drive>),
     /// `f_i` before `t_i`, `f_i + A(t) sin(ω(t) (t − t_i))` on `[t_i, t_f]`, `f_f` after
     /// (MBDyn's `frequency sweep`).
     FrequencySweep { t0: f64, omega: Box<Drive>, amplitude: Box<Drive>, v0: f64, t1: f64, v1: f64 },
@@ -172,7 +175,7 @@ impl Drive {
         match self {
             Drive::Expression(f) => f.reads_state(),
             Drive::Sum(drives) => drives.iter().any(Drive::reads_state),
-            Drive::Product(a, b) => a.reads_state() || b.reads_state(),
+            Drive::Product(a, b) | Drive::Compose(a, b) => a.reads_state() || b.reads_state(),
             Drive::FrequencySweep { omega, amplitude, .. } => omega.reads_state() || amplitude.reads_state(),
             Drive::Periodic { f, .. } => f.reads_state(),
             _ => false,
@@ -200,6 +203,7 @@ impl Drive {
             Drive::DoubleStep { t0, t1, value, v0 } => v0 + if (*t0..=*t1).contains(&t) { *value } else { 0.0 },
             Drive::Sum(drives) => drives.iter().map(|d| d.value_at(t, state)).sum(),
             Drive::Product(a, b) => a.value_at(t, state) * b.value_at(t, state),
+            Drive::Compose(f, g) => f.value_at(g.value_at(t, state), state),
             Drive::FrequencySweep { t0, omega, amplitude, v0, t1, v1 } => {
                 if t < *t0 {
                     *v0
@@ -291,6 +295,9 @@ mod tests {
         let sum = Drive::Sum(vec![Drive::Const(1.0), Drive::Time]);
         let product = Drive::Product(Box::new(Drive::Const(2.0)), Box::new(Drive::Time));
         assert_eq!((sum.value(3.0), product.value(3.0)), (4.0, 6.0));
+        // drive, f, g: f(g(t)); here (2 t)² at t = 3.
+        let square = Drive::Expression(TimeFunction::new("Var^2", |x| x * x));
+        assert_eq!(Drive::Compose(Box::new(square), Box::new(product)).value(3.0), 36.0);
         // frequency sweep from t = 1 with ω = t rad/s, A = 2, to t = 3, then 7.
         let fs = Drive::FrequencySweep { t0: 1.0, omega: Box::new(Drive::Time), amplitude: Box::new(Drive::Const(2.0)), v0: 0.5, t1: 3.0, v1: 7.0 };
         assert_eq!((fs.value(0.0), fs.value(4.0)), (0.5, 7.0));

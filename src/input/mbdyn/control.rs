@@ -47,8 +47,11 @@ fn assembly_statement(keyword: &str, c: &mut Cursor, a: &mut InitialAssembly) ->
         "tolerance" | "initial tolerance" => {
             let span = c.here();
             a.tolerance = c.real("initial assembly tolerance")?;
-            if !(a.tolerance > 0.0) {
-                return Err(c.error_at(span, format!("the initial assembly tolerance must be positive, found {}", a.tolerance)));
+            // dataman3.cc reads any real; its assembly (dataman2.cc, `InitialJointAssembly`)
+            // passes when `sqrt(|F|²/(1 + |X|²)) <= tolerance`: with 0, only when the joints
+            // hold exactly (romdyn's test is the same), with a negative one never.
+            if !(a.tolerance >= 0.0) {
+                return Err(c.error_at(span, format!("the initial assembly tolerance must not be negative, found {} (MBDyn 1.7.3 reads it, but its assembly test 'residual <= tolerance' can then never pass)", a.tolerance)));
             }
         }
         "max iterations" | "max initial iterations" => a.max_iterations = c.count("initial assembly max iterations")?,
@@ -163,6 +166,12 @@ pub fn control_data(block: Option<&Block>, sources: &Sources) -> Result<(Counts,
         } else if let Some(kind) = known(&st.keyword, &["model", "rigid body kinematics"]) {
             let what = if kind == "model" { "'model: static' (dynamic nodes treated as static)" } else { "'rigid body kinematics' (a moving reference frame)" };
             return Err(c.error_at(st.span, format!("{what} changes the physics and is not supported by romdyn")));
+        } else if known(&st.keyword, &["joint regularizations"]).is_some() {
+            // jointreg.cc: a `joint regularization: LABEL, tikhonov, C;` card adds C λ/dCoef
+            // to each constraint equation of joint LABEL (`TikhonovRegularization::AssRes`,
+            // its Jacobian −C/dCoef on the multipliers), so the joint holds only
+            // approximately; `dynamic` and `jacobian` change the iteration matrix alone.
+            return Err(c.error_at(st.span, "joint regularizations (jointreg.cc: 'tikhonov' adds C·λ to each of the joint's constraint equations, relaxing the joint; 'dynamic' and 'jacobian' change the Newton matrix) are not supported by romdyn, whose joints hold exactly: remove the 'joint regularization' cards and this counter"));
         } else {
             return Err(c.error_at(st.span, format!("statement '{}' in control data is not supported by romdyn", st.keyword)));
         }

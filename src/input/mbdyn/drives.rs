@@ -1,7 +1,8 @@
 //! Drive callers (input manual, "General", §Drives and Drive Callers) mapped onto
 //! romdyn's [`Drive`]: a plain number, `const`, `null`, `unit`, `time`, `direct`, `ramp`,
 //! `step`, `sine`, `cosine`, `piecewise linear`, `linear`, `parabolic`, `cubic`,
-//! `exponential`, `tanh`, `double ramp`, `double step`, `array`, `mult`, `frequency sweep`,
+//! `exponential`, `tanh`, `double ramp`, `double step`, `array`, `mult`, `drive` (one drive
+//! of another's value), `frequency sweep`,
 //! `periodic`, `string` (an expression of `Time` for the math parser, evaluated with the
 //! file's variables as they stand at the end of the input, as MBDyn evaluates it during the
 //! run), and `reference, LABEL` to a `drive caller:` card;
@@ -23,15 +24,15 @@ use crate::element::{Drive, ElementState, TimeFunction};
 use crate::kinematics::{Mat3, Vec3};
 
 /// Drive callers romdyn evaluates.
-const SUPPORTED: [&str; 31] = [
-    "file", "node", "dof", "element", "const", "null", "unit", "one", "time", "direct", "ramp", "step", "sine", "cosine", "piecewise linear", "linear", "parabolic", "cubic", "exponential",
+const SUPPORTED: [&str; 32] = [
+    "drive", "file", "node", "dof", "element", "const", "null", "unit", "one", "time", "direct", "ramp", "step", "sine", "cosine", "piecewise linear", "linear", "parabolic", "cubic", "exponential",
     "tanh", "double ramp", "double step", "array", "mult", "frequency sweep", "periodic", "string", "reference", "zero", "constant", "scalar function",
 ];
 
 /// MBDyn drive callers romdyn cannot represent (named in the error): they read the model's
 /// state outside the math parser, random numbers or the step counter.
-const UNSUPPORTED: [&str; 9] = [
-    "closest next", "discrete filter", "drive", "ginac", "fourier series", "meter", "postponed", "random", "sample and hold",
+const UNSUPPORTED: [&str; 8] = [
+    "closest next", "discrete filter", "ginac", "fourier series", "meter", "postponed", "random", "sample and hold",
 ];
 
 /// Nesting of drive callers inside drive callers romdyn follows.
@@ -54,6 +55,10 @@ pub struct Drives {
 }
 
 impl Drives {
+    /// Forgets the `drive caller:` cards (to read them again with other variables).
+    pub fn clear_cards(&mut self) {
+        self.table.clear();
+    }
     /// The drive caller cards of statements before `seq`, by label.
     pub fn defined_before(&self, seq: usize) -> HashMap<u32, Drive> {
         self.table.iter().filter(|(_, (_, s, _))| *s < seq).map(|(l, (d, _, _))| (*l, d.clone())).collect()
@@ -162,6 +167,11 @@ fn nested_drive(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) -> Re
         "mult" => {
             let a = inner(c)?;
             Drive::Product(Box::new(a), Box::new(inner(c)?))
+        }
+        // `drive, F, G` (drive_.cc, `DriveDCR::Read`): F of G's value.
+        "drive" => {
+            let f = inner(c)?;
+            Drive::Compose(Box::new(f), Box::new(inner(c)?))
         }
         "frequency sweep" => {
             let t0 = c.real("initial time [s]")?;

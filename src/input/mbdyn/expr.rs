@@ -479,11 +479,17 @@ impl<'a> Evaluator<'a> {
                 super::model_namespace::node_private_data(label, data, reads).map(TypedValue::Real).map_err(self.at(span))
             }
             "drive" => {
+                // `model::drive(LABEL [, x])`: without x (modelns.cc of MBDyn's development
+                // version; 1.7.3 needs x) the drive at the current time, 0 while reading.
                 let args = self.arguments(&what, span)?;
-                if args.len() != 2 {
-                    return Err(self.err(span, format!("{what} takes a drive caller label and its argument, found {} argument(s)", args.len())));
+                if !(1..=2).contains(&args.len()) {
+                    return Err(self.err(span, format!("{what} takes a drive caller label and its optional argument, found {} argument(s)", args.len())));
                 }
-                let (label, x) = (real(self, &args[0])?, real(self, &args[1])?);
+                let label = real(self, &args[0])?;
+                let x = match args.get(1) {
+                    Some(x) => real(self, x)?,
+                    None => self.state.map_or(0.0, |s| s.time()),
+                };
                 let (Some(table), Some(reads)) = (self.drives, self.reads) else {
                     return Err(self.err(span, "model::drive: romdyn calls drive callers in string drives only"));
                 };
@@ -539,7 +545,12 @@ impl<'a> Evaluator<'a> {
                 return Err(self.err(span, format!("unbalanced parenthesis in the call of '{name}': expected ',' or ')'")));
             }
         }
-        if let Some(ty) = Type::from_name(name) {
+        // `bool_eval(x)`, `integer_eval`, `real_eval`, `string_eval` (mathp.cc of MBDyn's
+        // development version, `mp_eval`; not in 1.7.3): the cast of x, computed when the
+        // expression is read. Here every expression is evaluated as it is read, so it is
+        // the cast; a string drive's text is staticized when its card is read
+        // ([`staticize_evals`]).
+        if let Some(ty) = eval_type(name).or_else(|| Type::from_name(name)) {
             if args.len() != 1 {
                 return Err(self.err(span, format!("the cast '{name}(…)' takes 1 argument, found {}", args.len())));
             }
@@ -571,4 +582,63 @@ pub fn describe(t: &Token) -> String {
         Token::Str(s) => format!("the string \"{s}\""),
         Token::Symbol(c) => format!("'{c}'"),
     }
+}
+
+/// The type of a `TYPE_eval` function (mathp.cc, development version: `bool_eval`,
+/// `integer_eval`, `real_eval`, `string_eval`).
+pub fn eval_type(name: &str) -> Option<Type> {
+    name.strip_suffix("_eval").and_then(Type::from_name)
+}
+
+/// A string drive's text with each `TYPE_eval(EXPR)` replaced by its value now (mathp.cc,
+/// development version: `MathParser::readfunc` evaluates an `_eval` call while it parses the
+/// expression and keeps the value, so later `set:` statements do not change it, while the
+/// rest of the expression reads the variables when the drive is called). `None` when the
+/// text has no `_eval` call, or one that cannot be evaluated here (it is then evaluated
+/// with the rest, and its error, if any, reported there).
+pub fn staticize_evals(text: &str, vars: &mut Variables, reads: Option<Reads<'_>>, drives: Option<&HashMap<crate::element::Label, crate::element::Drive>>) -> Option<String> {
+    if !text.contains("_eval") {
+        return None;
+    }
+    let mut sources = Sources::default();
+    sources.files.push(("string drive".into(), text.to_string()));
+    let tokens = super::lexer::tokenize(text, 0, &sources).ok()?;
+    let mut out: Vec<String> = Vec::new();
+    let mut k = 0;
+    let mut changed = false;
+    while k < tokens.len() {
+        let is_eval = matches!(&tokens[k].token, Token::Word(w) if eval_type(w).is_some()) && tokens.get(k + 1).is_some_and(|t| t.token == Token::Symbol("("));
+        if is_eval {
+            let mut depth = 0usize;
+            let close = (k + 1..tokens.len()).find(|&j| {
+                match tokens[j].token {
+                    Token::Symbol("(") => depth += 1,
+                    Token::Symbol(")") => depth -= 1,
+                    _ => {}
+                }
+                depth == 0
+            })?;
+            let mut e = Evaluator::new(&tokens[k..=close], vars, &sources, Span::default());
+            if let Some(r) = reads {
+                e = e.with_reads(r, None);
+            }
+            if let Some(d) = drives {
+                e = e.with_drives(d);
+            }
+            let literal = match e.evaluate().ok()? {
+                TypedValue::Real(x) if x.is_finite() => format!("({x:?})"),
+                TypedValue::Int(i) => format!("({i})"),
+                TypedValue::Bool(b) => (if b { "TRUE" } else { "FALSE" }).to_string(),
+                TypedValue::Str(s) if !s.contains('"') => format!("\"{s}\""),
+                _ => return None,
+            };
+            out.push(literal);
+            changed = true;
+            k = close + 1;
+        } else {
+            out.push(super::parser::token_text(&tokens[k].token));
+            k += 1;
+        }
+    }
+    changed.then(|| out.join(" "))
 }

@@ -244,7 +244,12 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
             Parsed::Body(_) => unreachable!("bodies are turned into elements above"),
             Parsed::Element(e) => {
                 let on = e.nodes();
-                if let Some(n) = on.iter().enumerate().find(|(k, n)| on[..*k].contains(n)).map(|(_, n)| n) {
+                // strforce.cc, `ReadStructuralForce`, reads the two nodes of an absolute or
+                // follower internal force or couple without comparing them: on one node the
+                // pair acts on it twice (a couple cancels, a force leaves the moment of its
+                // two arms), as in MBDyn's tests/forces/force/force-old.
+                let one_node_allowed = matches!(e.type_name(), "absolute internal force" | "follower internal force" | "absolute internal couple" | "follower internal couple");
+                if let Some(n) = on.iter().enumerate().find(|(k, n)| on[..*k].contains(n)).map(|(_, n)| n).filter(|_| !one_node_allowed) {
                     return Err(src.error(label_span, format!("{} {} connects node {n} to itself", e.type_name(), e.label())));
                 }
                 let space = label_space(&st.keyword);

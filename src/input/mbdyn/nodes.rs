@@ -80,7 +80,12 @@ pub fn node_statement(st: &Statement, c: &mut Cursor, frames: &Frames, nodes: &m
         _ => return Err(c.error_at(kind_span, format!("'{kind}' structural nodes are not supported by romdyn (supported: static, dynamic, dummy)"))),
     };
     let (output, assembly) = settings(c)?;
-    c.finish()?;
+    // strnode.cc, `ReadStructNode`: after the settings, anything but ';' stops MBDyn too
+    // (e.g. the initial-assembly stiffnesses written without the `assembly` keyword).
+    c.finish().map_err(|mut e| {
+        e.message.push_str(&format!(" (after the velocities a structural node takes only 'assembly, …', 'scale, …', 'output, …', 'accelerations, …'); MBDyn 1.7.3 does not read it either (its reader stops: \"ReadStructNode({label}): semicolon expected\")"));
+        e
+    })?;
     nodes.0.push(NodeEntry { node, dummy, span: st.span, source, output, orientation, assembly, name });
     Ok(())
 }

@@ -10,7 +10,7 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
 use super::diagnostic::{MbdynError, Sources, Span};
-use super::expr::{describe, Evaluator, Reads, SetOverrides, Variables};
+use super::expr::{describe, staticize_evals, Evaluator, Reads, SetOverrides, Variables};
 use super::lexer::{tokenize, Spanned, Token};
 use super::value::TypedValue;
 use crate::element::NodeKinematics;
@@ -158,6 +158,16 @@ impl Reader {
         if text.starts_with('\u{feff}') {
             text.drain(..'\u{feff}'.len_utf8());
         }
+        let preprocess = text.lines().position(|l| l.trim() == "#beginpreprocess").map(|k| k + 1);
+        self.read_tokens(text, path).map_err(|mut e| {
+            if let Some(line) = preprocess.filter(|&l| e.file == path && e.line >= l) {
+                e.message = python_preprocessor_note(&e.message, line);
+            }
+            e
+        })
+    }
+
+    fn read_tokens(&mut self, text: String, path: &Path) -> Result<(), MbdynError> {
         let file = self.doc.sources.files.len();
         self.doc.sources.files.push((path.to_path_buf(), text));
         self.stack.push(path.to_path_buf());
@@ -320,6 +330,11 @@ impl Reader {
             return Ok(Arg { value: Value::Word(lower.clone()), span, keyword: Some(lower), text });
         }
         let value = match Evaluator::new(p, &mut self.doc.variables, &self.doc.sources, end).with_reads(Reads::Nodes(self.observer.nodes()), None).with_functions(self.observer.functions()).with_drives(self.observer.drives()).evaluate()? {
+            // A string written as such may be a string drive's expression: its `TYPE_eval`
+            // calls take their values now (see [`staticize_evals`]).
+            TypedValue::Str(s) if matches!(p, [Spanned { token: Token::Str(_), .. }]) => {
+                Value::Str(staticize_evals(&s, &mut self.doc.variables, Some(Reads::Nodes(self.observer.nodes())), Some(self.observer.drives())).unwrap_or(s))
+            }
             TypedValue::Str(s) => Value::Str(s),
             v => Value::Number(v.real().unwrap_or(0.0)),
         };
@@ -376,6 +391,18 @@ impl Reader {
     }
 }
 
+/// An error in a file of MBDyn's Python preprocessor (contrib/PythonPreprocessor: Python
+/// between `#beginpreprocess` and `#endpreprocess`, which its MBDynPreprocess.py expands
+/// into MBDyn input). To MBDyn's reader the directive is a comment and the Python after it
+/// is read as input, where it stops too.
+fn python_preprocessor_note(message: &str, line: usize) -> String {
+    format!(
+        "{message}; this file is the input of MBDyn's Python preprocessor ('#beginpreprocess' at line {line} starts Python code, contrib/PythonPreprocessor), \
+         which romdyn does not read, nor does MBDyn 1.7.3 (its reader takes the directive for a comment and stops on the Python code): \
+         run 'python MBDynPreprocess.py FILE > FILE.mbd' first and give romdyn its output"
+    )
+}
+
 /// Index of the ';' that ends the first statement (semicolons inside parentheses separate
 /// expressions of a statement list, `(real a = 1.; 2.*a)`). Errors with the span of an
 /// unclosed '(' (also when a ':' shows that the next statement began inside it), or with
@@ -396,7 +423,7 @@ fn statement_end(tokens: &[Spanned]) -> Result<usize, Option<Span>> {
     Err(open.first().copied())
 }
 
-fn token_text(t: &Token) -> String {
+pub fn token_text(t: &Token) -> String {
     match t {
         Token::Integer(i) => i.to_string(),
         Token::Real(x) => x.to_string(),

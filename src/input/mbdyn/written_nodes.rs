@@ -29,17 +29,29 @@ pub struct WrittenNodes {
     /// The drive caller cards read so far (one the model's build refuses is left out).
     drives: super::drives::Drives,
     drive_table: HashMap<u32, crate::element::Drive>,
+    /// The drive caller cards read so far (read again when the variables change).
+    drive_cards: Vec<Statement>,
 }
 
 impl StatementObserver for WrittenNodes {
     fn statement(&mut self, st: &Statement, sources: &Sources, in_nodes_block: bool, variables: &Variables) {
         let mut c = Cursor::new(st, sources);
         if known(&st.keyword, &["drive caller"]).is_some() {
-            self.drives.variables = variables.clone();
+            // A string drive reads the variables as they stand when it is called (MBDyn's
+            // `StringDriveCaller` keeps the parsed expression, not the values): after a
+            // `set:` changed them, the cards read so far are read again with the new values.
+            if variables.0 != self.drives.variables.0 {
+                self.drives.variables = variables.clone();
+                self.drives.clear_cards();
+                for old in &self.drive_cards {
+                    let _ = super::drives::drive_caller_card(old, &mut Cursor::new(old, sources), &mut self.drives);
+                }
+            }
             self.drives.structural_nodes = self.known.keys().copied().collect();
             if super::drives::drive_caller_card(st, &mut c, &mut self.drives).is_ok() {
-                self.drive_table = self.drives.defined_before(st.seq + 1);
+                self.drive_cards.push(st.clone());
             }
+            self.drive_table = self.drives.defined_before(st.seq + 1);
             return;
         }
         if known(&st.keyword, &["reference"]).is_some() {
