@@ -309,25 +309,23 @@ fn triangular_eigenvector(t: &Mat<c64>, i: usize) -> Col<c64> {
     y
 }
 
-/// `V Y` for a basis `v` of either kind and the complex columns `ys` of `y`, as one
-/// sequential matrix product (a real basis: `V [Re Y, Im Y]`), not one matrix–vector
-/// product per column (the runs are already one thread each).
+/// `V y` for a basis `v` of either kind and each complex column `ys` of `y`.
 fn combine_all<T: Scalar>(v: MatRef<'_, T>, y: &Mat<c64>, ys: &[usize]) -> Vec<Col<c64>> {
-    use faer::linalg::matmul::matmul;
-    use faer::{Accum, Par};
-    let (n, k) = (v.nrows(), ys.len());
-    let one = T::from_c64(c64::new(1.0, 0.0));
-    if T::REAL {
-        let parts = Mat::<T>::from_fn(y.nrows(), 2 * k, |i, j| T::from_c64(c64::new(if j < k { y[(i, ys[j])].re } else { y[(i, ys[j - k])].im }, 0.0)));
-        let mut x = Mat::<T>::zeros(n, 2 * k);
-        matmul(x.as_mut(), Accum::Replace, v, parts.as_ref(), one, Par::Seq);
-        (0..k).map(|j| Col::from_fn(n, |i| c64::new(x[(i, j)].to_c64().re, x[(i, j + k)].to_c64().re))).collect()
-    } else {
-        let parts = Mat::<T>::from_fn(y.nrows(), k, |i, j| T::from_c64(y[(i, ys[j])]));
-        let mut x = Mat::<T>::zeros(n, k);
-        matmul(x.as_mut(), Accum::Replace, v, parts.as_ref(), one, Par::Seq);
-        (0..k).map(|j| Col::from_fn(n, |i| x[(i, j)].to_c64())).collect()
-    }
+    ys.iter()
+        .map(|&c| {
+            let y = y.col(c);
+            if T::REAL {
+                let re = Col::<T>::from_fn(y.nrows(), |i| T::from_c64(c64::new(y[i].re, 0.0)));
+                let im = Col::<T>::from_fn(y.nrows(), |i| T::from_c64(c64::new(y[i].im, 0.0)));
+                let (a, b) = (v * &re, v * &im);
+                Col::from_fn(v.nrows(), |i| c64::new(a[i].to_c64().re, b[i].to_c64().re))
+            } else {
+                let y = Col::<T>::from_fn(y.nrows(), |i| T::from_c64(y[i]));
+                let x = v * &y;
+                Col::from_fn(v.nrows(), |i| x[i].to_c64())
+            }
+        })
+        .collect()
 }
 
 /// Runs Krylov–Schur on `op` (dimension `n`); `progress` is told the number of converged
@@ -429,8 +427,7 @@ pub(super) fn krylov_schur<T: Scalar>(n: usize, op: &mut dyn FnMut(ColRef<'_, T>
         if converged >= want || restarts >= s.max_restarts || size < m {
             let basis = v.subcols(0, size);
             let chosen: Vec<usize> = (0..converged).filter(|&i| !T::REAL || upper(i)).collect();
-            // By eight vectors: the product's scratch stays small next to the basis.
-            let vectors: Vec<Col<c64>> = chosen.chunks(8).flat_map(|ys| combine_all(basis, &r.y, ys)).collect();
+            let vectors = combine_all(basis, &r.y, &chosen);
             let pairs = chosen
                 .iter()
                 .zip(vectors)
