@@ -15,7 +15,9 @@
 use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::{c64, Col, ColMut, ColRef, Mat, MatRef};
 
+use super::gram_schmidt::orthogonalize_real;
 use super::schur::{schur, sort_schur};
+use crate::linear::sparse::{contiguous, contiguous_mut};
 use super::KrylovError;
 
 /// The entries of a Krylov basis: `f64` (real operator) or `c64`.
@@ -34,6 +36,11 @@ pub(super) trait Scalar: faer::traits::ComplexField<Real = f64> + Copy + Send + 
     /// one of the nearest count that does not split a conjugate pair; `None` if there is
     /// none.
     fn kept_basis(y: &Mat<c64>, theta: &[c64], keep: usize) -> Option<Mat<Self>>;
+    /// [`orthogonalize`]: `w` with its components along `basis` removed, the coefficients
+    /// in `h`, `c` scratch; the norm left.
+    fn orthogonalize(basis: MatRef<'_, Self>, w: ColMut<'_, Self>, h: ColMut<'_, Self>, c: ColMut<'_, Self>) -> f64 {
+        orthogonalize(basis, w, h, c)
+    }
 }
 
 impl Scalar for c64 {
@@ -95,6 +102,14 @@ impl Scalar for f64 {
             }
         }
         None
+    }
+    /// The row-blocked real kernels of `gram_schmidt.rs` (three reads of the basis, not four).
+    fn orthogonalize(basis: MatRef<'_, f64>, mut w: ColMut<'_, f64>, mut h: ColMut<'_, f64>, mut c: ColMut<'_, f64>) -> f64 {
+        let cols: Vec<&[f64]> = (0..basis.ncols()).map(|k| contiguous(basis.col(k))).collect();
+        match orthogonalize_real(&cols, contiguous_mut(w.rb_mut()), contiguous_mut(h.rb_mut()), contiguous_mut(c.rb_mut())) {
+            Some(left) => left,
+            None => orthogonalize(basis, w, h, c),
+        }
     }
 }
 
@@ -294,18 +309,23 @@ fn triangular_eigenvector(t: &Mat<c64>, i: usize) -> Col<c64> {
     y
 }
 
-/// `V y` for a basis `v` of either kind and a complex `y`.
-fn combine<T: Scalar>(v: MatRef<'_, T>, y: ColRef<'_, c64>) -> Col<c64> {
-    if T::REAL {
-        let re = Col::<T>::from_fn(y.nrows(), |i| T::from_c64(c64::new(y[i].re, 0.0)));
-        let im = Col::<T>::from_fn(y.nrows(), |i| T::from_c64(c64::new(y[i].im, 0.0)));
-        let (a, b) = (v * &re, v * &im);
-        Col::from_fn(v.nrows(), |i| c64::new(a[i].to_c64().re, b[i].to_c64().re))
-    } else {
-        let y = Col::<T>::from_fn(y.nrows(), |i| T::from_c64(y[i]));
-        let x = v * &y;
-        Col::from_fn(v.nrows(), |i| x[i].to_c64())
-    }
+/// `V y` for a basis `v` of either kind and each complex column `ys` of `y`.
+fn combine_all<T: Scalar>(v: MatRef<'_, T>, y: &Mat<c64>, ys: &[usize]) -> Vec<Col<c64>> {
+    ys.iter()
+        .map(|&c| {
+            let y = y.col(c);
+            if T::REAL {
+                let re = Col::<T>::from_fn(y.nrows(), |i| T::from_c64(c64::new(y[i].re, 0.0)));
+                let im = Col::<T>::from_fn(y.nrows(), |i| T::from_c64(c64::new(y[i].im, 0.0)));
+                let (a, b) = (v * &re, v * &im);
+                Col::from_fn(v.nrows(), |i| c64::new(a[i].to_c64().re, b[i].to_c64().re))
+            } else {
+                let y = Col::<T>::from_fn(y.nrows(), |i| T::from_c64(y[i]));
+                let x = v * &y;
+                Col::from_fn(v.nrows(), |i| x[i].to_c64())
+            }
+        })
+        .collect()
 }
 
 /// Runs Krylov–Schur on `op` (dimension `n`); `progress` is told the number of converged
@@ -338,7 +358,7 @@ pub(super) fn krylov_schur<T: Scalar>(n: usize, op: &mut dyn FnMut(ColRef<'_, T>
             if !w.rb().iter().all(|x| x.to_c64().re.is_finite() && x.to_c64().im.is_finite()) {
                 return Err(KrylovError::Breakdown("the operator returned non-finite values".into()));
             }
-            let mut beta = orthogonalize(done, w.rb_mut(), coef.subrows_mut(0, j + 1), scratch.subrows_mut(0, j + 1));
+            let mut beta = T::orthogonalize(done, w.rb_mut(), coef.subrows_mut(0, j + 1), scratch.subrows_mut(0, j + 1));
             for i in 0..=j {
                 h[(i, j)] = coef[i];
             }
@@ -351,7 +371,7 @@ pub(super) fn krylov_schur<T: Scalar>(n: usize, op: &mut dyn FnMut(ColRef<'_, T>
                 let mut fresh = None;
                 for attempt in 0..3u64 {
                     let Some(mut f) = purified(op, n, s.seed + 1000 + 7 * j as u64 + attempt, &mut applications) else { continue };
-                    let nb = orthogonalize(done, f.as_mut(), coef.subrows_mut(0, j + 1), scratch.subrows_mut(0, j + 1));
+                    let nb = T::orthogonalize(done, f.as_mut(), coef.subrows_mut(0, j + 1), scratch.subrows_mut(0, j + 1));
                     if nb > 1e-8 && nb.is_finite() {
                         fresh = Some((f, nb));
                         break;
@@ -406,15 +426,17 @@ pub(super) fn krylov_schur<T: Scalar>(n: usize, op: &mut dyn FnMut(ColRef<'_, T>
         progress((0..converged).filter(|&i| !T::REAL || upper(i)).count());
         if converged >= want || restarts >= s.max_restarts || size < m {
             let basis = v.subcols(0, size);
-            let pairs = (0..converged)
-                .filter(|&i| !T::REAL || upper(i))
-                .map(|i| {
+            let chosen: Vec<usize> = (0..converged).filter(|&i| !T::REAL || upper(i)).collect();
+            let vectors = combine_all(basis, &r.y, &chosen);
+            let pairs = chosen
+                .iter()
+                .zip(vectors)
+                .map(|(&i, mut x)| {
                     // x = V y purified, x ← T x / θ, by the Krylov relation T V = V H +
                     // v_size h[size, :]: T x / θ = x + v_size (h[size, :] y) / θ, without
                     // applying T (it removes the components along θ = 0, the infinite
                     // eigenvalues, as an application would).
                     let y = r.y.col(i);
-                    let mut x = combine(basis, y);
                     let g = (0..size).fold(c64::new(0.0, 0.0), |acc, l| acc + h[(size, l)].to_c64() * y[l]) / theta[i];
                     for (k, xk) in x.iter_mut().enumerate() {
                         *xk += v[(k, size)].to_c64() * g;

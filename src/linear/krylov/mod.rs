@@ -3,6 +3,7 @@
 //! checked by its true residual, and the count of modes in the band checked by two
 //! independent Krylov spaces per shift.
 
+mod gram_schmidt;
 mod iteration;
 mod operator;
 mod pencil;

@@ -133,6 +133,11 @@ fn lowest(dae: &SparseLinearDae, pencil: &Pencil, count: usize, s: &SparseEigenS
             let clean_units = inside.iter().filter(|p| p.lambda.norm() < clean_reach).count();
             let clean_count = !(w.agreed && w.rejected == 0) && clean_units >= count;
             if units >= count || w.radius.is_infinite() || wanted >= n {
+                // Certified in the clean disc only: the pairs beyond it (between the first
+                // disagreement or rejected pair and the runs' reach) are not returned, so
+                // every mode of a certified result lies in its window.
+                let inside: Vec<Eigenpair> = if clean_count { inside.into_iter().filter(|p| p.lambda.norm() < clean_reach).collect() } else { inside };
+                let units = inside.len();
                 let mut note = None;
                 let (radius, certified) = if clean_count {
                     (w.clean, true)
