@@ -636,7 +636,7 @@ pub fn staticize_evals(text: &str, vars: &mut Variables, reads: Option<Reads<'_>
             changed = true;
             k = close + 1;
         } else {
-            out.push(super::parser::token_text(&tokens[k].token));
+            out.push(tokens[k].token.text());
             k += 1;
         }
     }

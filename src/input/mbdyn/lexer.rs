@@ -17,6 +17,19 @@ pub enum Token {
     Symbol(&'static str),
 }
 
+impl Token {
+    /// The token as it could be written in a file (strings quoted).
+    pub fn text(&self) -> String {
+        match self {
+            Token::Integer(i) => i.to_string(),
+            Token::Real(x) => x.to_string(),
+            Token::Word(w) => w.clone(),
+            Token::Str(s) => format!("\"{s}\""),
+            Token::Symbol(s) => s.to_string(),
+        }
+    }
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct Spanned {
     pub token: Token,

@@ -256,7 +256,7 @@ impl Reader {
         }
         let Some(comma) = comma else { return Err(self.doc.sources.error(body[colon].span, expected)) };
         let inner = &body[comma + 1..];
-        let inner_words: Vec<String> = inner.iter().take_while(|t| t.token != Token::Symbol(":")).map(|t| token_text(&t.token).to_lowercase()).collect();
+        let inner_words: Vec<String> = inner.iter().take_while(|t| t.token != Token::Symbol(":")).map(|t| t.token.text().to_lowercase()).collect();
         match inner_words.join(" ").as_str() {
             "existing" => return Err(self.doc.sources.error(inner[0].span, "driven: wrapping an 'existing' element is not supported by romdyn (write the element's card inside the driven card)")),
             "driven" => return Err(self.doc.sources.error(inner[0].span, "driven: a driven element cannot wrap another driven element")),
@@ -318,7 +318,7 @@ impl Reader {
     }
 
     fn piece(&mut self, p: &[Spanned], span: Span, end: Span) -> Result<Arg, MbdynError> {
-        let text = p.iter().map(|t| token_text(&t.token)).collect::<Vec<_>>().join(" ");
+        let text = p.iter().map(|t| t.token.text()).collect::<Vec<_>>().join(" ");
         let Some(first) = p.first() else {
             return Ok(Arg { value: Value::Empty, span, keyword: None, text });
         };
@@ -421,14 +421,4 @@ fn statement_end(tokens: &[Spanned]) -> Result<usize, Option<Span>> {
         }
     }
     Err(open.first().copied())
-}
-
-pub fn token_text(t: &Token) -> String {
-    match t {
-        Token::Integer(i) => i.to_string(),
-        Token::Real(x) => x.to_string(),
-        Token::Word(w) => w.clone(),
-        Token::Str(s) => format!("\"{s}\""),
-        Token::Symbol(s) => s.to_string(),
-    }
 }

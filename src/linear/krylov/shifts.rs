@@ -20,7 +20,7 @@
 use faer::{c64, Col};
 
 use super::pencil::Pencil;
-use super::window::{window, Eigenpair, PairVectors};
+use super::window::{window, Eigenpair, PairVectors, Scales};
 use super::{KrylovError, SparseEigenSettings};
 use crate::linear::classify::{classify, Classification};
 use crate::linear::eigen::{conjugate_mode, normalize, sort_units, ModalAnalysis, Mode};
@@ -285,25 +285,6 @@ fn finish(dae: &SparseLinearDae, pairs: Vec<Eigenpair>, windows: Vec<ShiftWindow
     }
     let modal = ModalAnalysis { route: s.route, dcoef: scales.dcoef, modes: sort_units(units) };
     Ok(SparseModalAnalysis { modal, windows, certified, damping_covered, max_residual, note: if certified { None } else { note } })
-}
-
-/// The norms and scales the labels (eqs. 32–35) use: `‖F_yd‖_F`, `‖F_y‖_F`, the Direct
-/// route's `μ = λ/σ` scale and the Λ route's dCoef.
-pub(super) struct Scales {
-    pub nyd: f64,
-    pub ny: f64,
-    pub mu_scale: f64,
-    pub dcoef: f64,
-    pub route: EigenRoute,
-}
-
-impl Scales {
-    pub fn new(dae: &SparseLinearDae, s: &SparseEigenSettings) -> Self {
-        let (nyd, ny) = (dae.fyd.norm_l2(), dae.fy.norm_l2());
-        let dcoef = s.dcoef.unwrap_or(if nyd > 0.0 && ny > 0.0 && (nyd / ny).is_finite() { nyd / ny } else { 1.0 });
-        let mu_scale = if nyd > 0.0 && ny > 0.0 { ny / nyd } else { 1.0 };
-        Scales { nyd, ny, mu_scale, dcoef, route: s.route }
-    }
 }
 
 impl Eigenpair {

@@ -8,9 +8,9 @@ use faer::{c64, Col};
 use super::iteration::{krylov_schur, RitzPair, Run, Settings};
 use super::operator::ShiftInvert;
 use super::pencil::Pencil;
-use super::shifts::Scales;
 use super::{KrylovError, SparseEigenSettings};
 use crate::linear::Classification;
+use crate::linear::route::EigenRoute;
 use crate::linear::SparseLinearDae;
 
 /// An eigenpair of the DAE's pencil `λ F_yd + F_y` (the DAE's own constraint form), its
@@ -239,5 +239,24 @@ impl PairVectors {
                 *e = f(*e);
             }
         }
+    }
+}
+
+/// The norms and scales the labels (eqs. 32–35) use: `‖F_yd‖_F`, `‖F_y‖_F`, the Direct
+/// route's `μ = λ/σ` scale and the Λ route's dCoef.
+pub(super) struct Scales {
+    pub nyd: f64,
+    pub ny: f64,
+    pub mu_scale: f64,
+    pub dcoef: f64,
+    pub route: EigenRoute,
+}
+
+impl Scales {
+    pub fn new(dae: &SparseLinearDae, s: &SparseEigenSettings) -> Self {
+        let (nyd, ny) = (dae.fyd.norm_l2(), dae.fy.norm_l2());
+        let dcoef = s.dcoef.unwrap_or(if nyd > 0.0 && ny > 0.0 && (nyd / ny).is_finite() { nyd / ny } else { 1.0 });
+        let mu_scale = if nyd > 0.0 && ny > 0.0 { ny / nyd } else { 1.0 };
+        Scales { nyd, ny, mu_scale, dcoef, route: s.route }
     }
 }
