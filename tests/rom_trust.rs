@@ -355,6 +355,19 @@ fn full_model_and_rom_phases_agree_where_magnitudes_agree() {
     }
 }
 
+/// One input and one output: the summary's normwise line is the pair's own error, so no
+/// second "worst port pair" line nor its warning (the README main command: the full model's
+/// antiresonance at 293 Hz, outside the ROM, gives the 1.1e2 of the normwise line).
+#[test]
+fn a_siso_rom_summary_reports_its_one_pair_once() {
+    let (ok, out, err) = romdyn(&["rom", "examples/simply_supported_beam.mbd", "--static", "--input", "5:Fy", "--output", "5:y", "--count", "1", "--residualize-modes", "7"]);
+    assert!(ok, "{err}");
+    // Without -o the ROM goes to stdout as JSON and the summary to stderr.
+    let all = format!("{out}{err}");
+    assert!(all.contains("largest relative error 1.10e2 at 293.4382 Hz"), "{all}");
+    assert!(!all.contains("worst port pair") && !all.contains("on its own scale"), "{all}");
+}
+
 /// Point 9: one modal-table row per pair (`--all`: every eigenvalue), the frequency column
 /// as MBDyn's |Im λ|/2π next to the undamped |λ|/2π, zero and infinite rows without
 /// damping or energy.

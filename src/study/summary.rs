@@ -107,7 +107,9 @@ impl ReducedModel {
                 a.largest_relative_error,
                 fmt_hz(a.at_hz)
             );
-            if let Some(c) = &a.worst_channel {
+            // With one input and one output the pair is the whole response: the line above.
+            let pairs = self.static_gains.output_names.len() * self.static_gains.input_names.len();
+            if let Some(c) = a.worst_channel.as_ref().filter(|_| pairs > 1) {
                 let name = |names: &[String], k: usize| names.get(k).cloned().unwrap_or_else(|| (k + 1).to_string());
                 let channel = format!("{} / {}", name(&self.static_gains.output_names, c.output), name(&self.static_gains.input_names, c.input));
                 s += &format!("worst port pair on its own scale: {channel}, relative error {:.2e} at {} Hz\n", c.relative, fmt_hz(c.at_hz));
