@@ -55,6 +55,22 @@ fn real_eval_freezes_a_string_drive_when_its_card_is_read() {
     }
 }
 
+/// The text around a frozen `_eval` keeps its literals' types: `1./2.` stays real division
+/// (MBDyn types `1/2` as integer, 0), so `"1./2.*real_eval(2.*VAL)"` is drive 2's 5.5 again.
+#[test]
+fn a_staticized_string_drive_keeps_its_real_literals() {
+    let t = std::fs::read_to_string(path("eval_functions.mbd")).unwrap();
+    let changed = t.replacen("drive caller: 2, string, \"real_eval(VAL)\";", "drive caller: 2, string, \"1./2.*real_eval(2.*VAL)\";", 1);
+    assert_ne!(changed, t);
+    let m = parse_text(&changed, &path("eval_functions.mbd")).and_then(|d| build(&d)).unwrap_or_else(|e| panic!("{e}"));
+    let report = run(&m.model, &m.problem, &mut ()).unwrap_or_else(|e| panic!("{e}"));
+    let asm = romdyn::dae::Assembler::new(&m.model);
+    let t = report.final_state.t;
+    // Unit mass from rest under 5.5 N: x = F t²/2 at t = 1.1 s, to the Newton tolerance (as above).
+    let x = report.final_state.node_frame(&asm.dofs, 1).kin.x[0];
+    assert!((x - 5.5 * t * t / 2.0).abs() < 1e-8, "node 2: x = {x}, want F = 5.5 N");
+}
+
 #[test]
 fn a_bad_eval_argument_is_reported_where_it_is_written() {
     let e = match read_text("set: real x = real_eval(\"a\");") {

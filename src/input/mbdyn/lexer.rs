@@ -18,11 +18,13 @@ pub enum Token {
 }
 
 impl Token {
-    /// The token as it could be written in a file (strings quoted).
+    /// The token as it could be written in a file (strings quoted), read back as the same
+    /// token: a real keeps its dot or exponent (`{:?}`: "3.0", "1e-7"), since `3` would read
+    /// as an integer, with MBDyn's integer arithmetic (`1/2` is 0).
     pub fn text(&self) -> String {
         match self {
             Token::Integer(i) => i.to_string(),
-            Token::Real(x) => x.to_string(),
+            Token::Real(x) => format!("{x:?}"),
             Token::Word(w) => w.clone(),
             Token::Str(s) => format!("\"{s}\""),
             Token::Symbol(s) => s.to_string(),
