@@ -85,8 +85,8 @@ pub struct ControlOutput {
     pub precision: Option<usize>,
 }
 
-/// Largest `output precision` romdyn writes (a double's exact decimal expansion needs at
-/// most 17 significant digits; more only repeats them).
+/// Largest `output precision` romdyn writes (17 significant digits already identify a
+/// double; this only bounds a file's request).
 const MAX_OUTPUT_PRECISION: usize = 30;
 
 impl Default for ControlOutput {
