@@ -309,23 +309,18 @@ fn triangular_eigenvector(t: &Mat<c64>, i: usize) -> Col<c64> {
     y
 }
 
-/// `V y` for a basis `v` of either kind and each complex column `ys` of `y`.
-fn combine_all<T: Scalar>(v: MatRef<'_, T>, y: &Mat<c64>, ys: &[usize]) -> Vec<Col<c64>> {
-    ys.iter()
-        .map(|&c| {
-            let y = y.col(c);
-            if T::REAL {
-                let re = Col::<T>::from_fn(y.nrows(), |i| T::from_c64(c64::new(y[i].re, 0.0)));
-                let im = Col::<T>::from_fn(y.nrows(), |i| T::from_c64(c64::new(y[i].im, 0.0)));
-                let (a, b) = (v * &re, v * &im);
-                Col::from_fn(v.nrows(), |i| c64::new(a[i].to_c64().re, b[i].to_c64().re))
-            } else {
-                let y = Col::<T>::from_fn(y.nrows(), |i| T::from_c64(y[i]));
-                let x = v * &y;
-                Col::from_fn(v.nrows(), |i| x[i].to_c64())
-            }
-        })
-        .collect()
+/// `V y` for a basis `v` of either kind and a complex `y`.
+fn combine<T: Scalar>(v: MatRef<'_, T>, y: ColRef<'_, c64>) -> Col<c64> {
+    if T::REAL {
+        let re = Col::<T>::from_fn(y.nrows(), |i| T::from_c64(c64::new(y[i].re, 0.0)));
+        let im = Col::<T>::from_fn(y.nrows(), |i| T::from_c64(c64::new(y[i].im, 0.0)));
+        let (a, b) = (v * &re, v * &im);
+        Col::from_fn(v.nrows(), |i| c64::new(a[i].to_c64().re, b[i].to_c64().re))
+    } else {
+        let y = Col::<T>::from_fn(y.nrows(), |i| T::from_c64(y[i]));
+        let x = v * &y;
+        Col::from_fn(v.nrows(), |i| x[i].to_c64())
+    }
 }
 
 /// Runs Krylov–Schur on `op` (dimension `n`); `progress` is told the number of converged
@@ -426,17 +421,15 @@ pub(super) fn krylov_schur<T: Scalar>(n: usize, op: &mut dyn FnMut(ColRef<'_, T>
         progress((0..converged).filter(|&i| !T::REAL || upper(i)).count());
         if converged >= want || restarts >= s.max_restarts || size < m {
             let basis = v.subcols(0, size);
-            let chosen: Vec<usize> = (0..converged).filter(|&i| !T::REAL || upper(i)).collect();
-            let vectors = combine_all(basis, &r.y, &chosen);
-            let pairs = chosen
-                .iter()
-                .zip(vectors)
-                .map(|(&i, mut x)| {
+            let pairs = (0..converged)
+                .filter(|&i| !T::REAL || upper(i))
+                .map(|i| {
                     // x = V y purified, x ← T x / θ, by the Krylov relation T V = V H +
                     // v_size h[size, :]: T x / θ = x + v_size (h[size, :] y) / θ, without
                     // applying T (it removes the components along θ = 0, the infinite
                     // eigenvalues, as an application would).
                     let y = r.y.col(i);
+                    let mut x = combine(basis, y);
                     let g = (0..size).fold(c64::new(0.0, 0.0), |acc, l| acc + h[(size, l)].to_c64() * y[l]) / theta[i];
                     for (k, xk) in x.iter_mut().enumerate() {
                         *xk += v[(k, size)].to_c64() * g;
