@@ -33,9 +33,16 @@ pub(crate) fn equilibration(m: &Mat<f64>) -> (Vec<f64>, Vec<f64>) {
 /// `K ~ 1e7` and unit constraint gradients has singular values near `1/K` while being
 /// perfectly determined.
 pub(crate) fn solve_nonsingular(m: &Mat<f64>, r: &Mat<f64>) -> Option<Mat<f64>> {
+    solve_or_free_direction(m, r).ok()
+}
+
+/// [`solve_nonsingular`], or when `m` is numerically singular the direction it leaves free
+/// from the same factorization ([`super::null_space::free_direction`]; `None` inside when
+/// it could not be formed).
+pub(crate) fn solve_or_free_direction(m: &Mat<f64>, r: &Mat<f64>) -> Result<Mat<f64>, Option<Vec<f64>>> {
     let n = m.nrows();
     if n == 0 {
-        return Some(Mat::zeros(0, r.ncols()));
+        return Ok(Mat::zeros(0, r.ncols()));
     }
     let (dr, dc) = equilibration(m);
     let scaled = Mat::from_fn(n, n, |i, j| dr[i] * m[(i, j)] * dc[j]);
@@ -43,11 +50,11 @@ pub(crate) fn solve_nonsingular(m: &Mat<f64>, r: &Mat<f64>) -> Option<Mat<f64>> 
     let u = lu.U();
     let (big, small) = (0..n).map(|i| u[(i, i)].abs()).fold((0.0f64, f64::INFINITY), |(b, s), x| (b.max(x), s.min(x)));
     if !(small > big * n as f64 * f64::EPSILON) {
-        return None;
+        return Err(super::null_space::free_direction(&lu, &dc));
     }
     // M x = R  ⇔  (D_r M D_c)(D_c⁻¹ x) = D_r R.
     let x = lu.solve(Mat::from_fn(n, r.ncols(), |i, j| dr[i] * r[(i, j)]));
-    Some(Mat::from_fn(n, r.ncols(), |i, j| dc[i] * x[(i, j)]))
+    Ok(Mat::from_fn(n, r.ncols(), |i, j| dc[i] * x[(i, j)]))
 }
 
 /// Complex copy of a real matrix.

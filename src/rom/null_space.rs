@@ -1,12 +1,15 @@
 //! The direction a singular static matrix leaves free: rigid-body motion of an
 //! unrestrained model.
 
+use faer::linalg::solvers::FullPivLu;
 use faer::Mat;
 
 use super::dense::equilibration;
 
-/// When `m` is numerically singular (smallest singular value of the equilibrated matrix
-/// below `n ε` times the largest), the null direction in `m`'s unknowns (largest entry 1).
+/// When `m` is numerically singular (the smallest pivot of the full-pivoting LU of the
+/// equilibrated matrix at or below `n ε` times the largest, the test of
+/// [`super::dense::solve_nonsingular`]), a direction it leaves free, in `m`'s unknowns
+/// (largest entry 1).
 pub fn null_direction(m: &Mat<f64>) -> Option<Vec<f64>> {
     let n = m.nrows();
     if n == 0 {
@@ -14,14 +17,67 @@ pub fn null_direction(m: &Mat<f64>) -> Option<Vec<f64>> {
     }
     let (dr, dc) = equilibration(m);
     let scaled = Mat::from_fn(n, n, |i, j| dr[i] * m[(i, j)] * dc[j]);
-    let svd = scaled.svd().ok()?;
-    let s = svd.S();
-    let (big, small) = (s[0], s[n - 1]);
-    if small > big * n as f64 * f64::EPSILON * 16.0 {
-        return None;
+    free_direction(&scaled.full_piv_lu(), &dc)
+}
+
+/// A null direction of `D_r M D_c = Pᵀ L U Qᵀ` from its factors, mapped back to `M`'s
+/// unknowns by `D_c`; `None` when no pivot is at or below `n ε` times the largest.
+///
+/// With full pivoting every pivot after the first negligible one `u_kk` is at most `|u_kk|`
+/// and the trailing block `U[k.., k..]` is negligible: `y = (−U₁₁⁻¹ U[..k, k], 1, 0, …)`
+/// gives `U y ≈ 0`, and `x = D_c Q y` the free direction (one of them when `M` has a
+/// larger null space: rigid-body motion of a free model).
+pub(crate) fn free_direction(lu: &FullPivLu<f64>, dc: &[f64]) -> Option<Vec<f64>> {
+    let u = lu.U();
+    let n = u.nrows();
+    let big = (0..n).map(|i| u[(i, i)].abs()).fold(0.0f64, f64::max);
+    let tiny = big * n as f64 * f64::EPSILON;
+    let k = (0..n).find(|&i| !(u[(i, i)].abs() > tiny))?;
+    let mut y = vec![0.0; n];
+    y[k] = 1.0;
+    for i in (0..k).rev() {
+        let s: f64 = (i + 1..=k).map(|j| u[(i, j)] * y[j]).sum();
+        y[i] = -s / u[(i, i)];
     }
-    let v = svd.V();
-    let x: Vec<f64> = (0..n).map(|i| dc[i] * v[(i, n - 1)]).collect();
+    // (L U)[a, b] = (D_r M D_c)[P[a], Q[b]] (faer's reconstruction), so x[Q[b]] = y[b].
+    let q = lu.Q().arrays().0;
+    let mut x = vec![0.0; n];
+    for (b, &yb) in y.iter().enumerate() {
+        x[q[b]] = dc[q[b]] * yb;
+    }
     let top = x.iter().fold(0.0f64, |a, b| a.max(b.abs()));
-    (top > 0.0).then(|| x.iter().map(|e| e / top).collect())
+    (top > 0.0 && top.is_finite()).then(|| x.iter().map(|e| e / top).collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A rank-deficient matrix with a known null vector (closed form): the direction found
+    /// is that vector (up to its sign and scale) to rounding, and a nonsingular matrix has
+    /// none.
+    #[test]
+    fn the_free_direction_of_a_singular_matrix_is_its_null_vector() {
+        // M = [[2, -1, 0], [-1, 2, -1], [0, -1, 1]] * stiffness-like scales: rows sum to
+        // zero after the scaling below, so M x = 0 for x = D⁻¹ (1, 1, 1) with D = diag(s).
+        let s = [1e3, 1.0, 1e-4];
+        let k = Mat::from_fn(3, 3, |i, j| match (i, j) {
+            (0, 0) => 1.0,
+            (0, 1) | (1, 0) => -1.0,
+            (1, 1) => 2.0,
+            (1, 2) | (2, 1) => -1.0,
+            (2, 2) => 1.0,
+            _ => 0.0,
+        });
+        let m = Mat::from_fn(3, 3, |i, j| 7.0 * k[(i, j)] * s[j]);
+        let x = null_direction(&m).expect("singular");
+        let exact: Vec<f64> = s.iter().map(|v| 1.0 / v).collect();
+        let top = exact.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+        let sign = x[2].signum();
+        for i in 0..3 {
+            assert!((sign * x[i] - exact[i] / top).abs() <= 1e-12, "{x:?}");
+        }
+        let regular = Mat::from_fn(3, 3, |i, j| if i == j { 2.0 } else { 1.0 });
+        assert!(null_direction(&regular).is_none());
+    }
 }

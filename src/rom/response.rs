@@ -2,7 +2,7 @@
 
 use faer::{c64, Mat};
 
-use super::dense::{solve_nonsingular, transfer_with_rates};
+use super::dense::{solve_or_free_direction, transfer_with_rates};
 use super::RomError;
 use crate::linear::LinearDae;
 
@@ -39,6 +39,12 @@ pub fn full_frequency_response(dae: &LinearDae, freq_hz: &[f64]) -> Vec<Mat<c64>
 /// constraint rows and multiplier columns of eq. 30 restored). Fails when `S` is singular:
 /// free-floating models, or a pencil in the form of eq. 30 whose multipliers are unknown.
 pub fn full_static_gain(dae: &LinearDae) -> Result<Mat<f64>, RomError> {
-    let x = solve_nonsingular(&dae.static_matrix(), &dae.b).ok_or(RomError::SingularStatic("the static matrix of the full model"))?;
+    full_static_gain_or_free_direction(dae).map_err(|e| e.0)
+}
+
+/// [`full_static_gain`], with the direction a singular `S` leaves free in the unknowns
+/// (largest entry 1) from the same factorization, when it could be formed.
+pub fn full_static_gain_or_free_direction(dae: &LinearDae) -> Result<Mat<f64>, (RomError, Option<Vec<f64>>)> {
+    let x = solve_or_free_direction(&dae.static_matrix(), &dae.b).map_err(|free| (RomError::SingularStatic("the static matrix of the full model"), free))?;
     Ok(&dae.c * &x)
 }

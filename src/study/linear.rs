@@ -12,9 +12,9 @@ use crate::linear::{LinearDae, SparseLinearDae};
 pub(super) struct LinearModel {
     sparse: Option<SparseLinearDae>,
     dense: OnceLock<LinearDae>,
-    /// [`crate::rom::full_static_gain`] of the dense DAE (its error's text), computed once:
-    /// the port warnings and every ROM's static gains need it.
-    dense_gain: OnceLock<Result<Mat<f64>, String>>,
+    /// [`crate::rom::full_static_gain`] of the dense DAE (its error's text and the free
+    /// direction), computed once: the port warnings and every ROM's static gains need it.
+    dense_gain: OnceLock<Result<Mat<f64>, (String, Option<Vec<f64>>)>>,
 }
 
 impl LinearModel {
@@ -94,7 +94,17 @@ impl LinearModel {
     /// The full model's static gain `C̃ S⁻¹ B̃` of the dense DAE by
     /// [`crate::rom::full_static_gain`] (the text of its error), computed on first use only.
     pub fn dense_static_gain(&self) -> Result<&Mat<f64>, &str> {
-        self.dense_gain.get_or_init(|| crate::rom::full_static_gain(self.dense()).map_err(|e| e.to_string())).as_ref().map_err(String::as_str)
+        self.dense_gain_or_free_direction().as_ref().map_err(|e| e.0.as_str())
+    }
+
+    /// When the dense static matrix is singular, the direction it leaves free (largest
+    /// entry 1), from the factorization [`LinearModel::dense_static_gain`] tried.
+    pub fn dense_free_direction(&self) -> Option<&[f64]> {
+        self.dense_gain_or_free_direction().as_ref().err().and_then(|e| e.1.as_deref())
+    }
+
+    fn dense_gain_or_free_direction(&self) -> &Result<Mat<f64>, (String, Option<Vec<f64>>)> {
+        self.dense_gain.get_or_init(|| crate::rom::full_static_gain_or_free_direction(self.dense()).map_err(|(e, free)| (e.to_string(), free)))
     }
 
     /// The full model's static gain `C̃ S⁻¹ B̃` on the sparse route, by one sparse LU

@@ -4,7 +4,7 @@
 
 use faer::Mat;
 
-use crate::rom::{null_direction, select_dominant_modes, select_modes, with_static_correction, DampingChange, DescriptorRom, Dominance, ModalDamping, ModeSelection, OrdinaryRom, Ranking, Selection};
+use crate::rom::{select_dominant_modes, select_modes, with_static_correction, DampingChange, DescriptorRom, Dominance, ModalDamping, ModeSelection, OrdinaryRom, Ranking, Selection};
 
 use super::{Study, StudyError, Warning};
 
@@ -330,11 +330,10 @@ impl Study {
         {
             return g.map_err(|e| format!("{e}: an unrestrained motion, or a load path the supports do not close"));
         }
-        let dae = self.linear.dense();
-        self.linear.dense_static_gain().cloned().map_err(|e| match null_direction(&dae.static_matrix()) {
-            Some(x) => match self.model.as_ref().and_then(|m| super::checks::whole_model_rigid_motion(m, &x)) {
+        self.linear.dense_static_gain().cloned().map_err(|e| match self.linear.dense_free_direction() {
+            Some(x) => match self.model.as_ref().and_then(|m| super::checks::whole_model_rigid_motion(m, x)) {
                 Some(rigid) => format!("{e}: unrestrained {rigid}"),
-                None => format!("{e}: unrestrained motion along {}", self.describe_direction(&x)),
+                None => format!("{e}: unrestrained motion along {}", self.describe_direction(x)),
             },
             None => e.to_string(),
         })
