@@ -72,11 +72,14 @@ impl PartialEq for StepDrive {
 
 impl StepDrive {
     pub fn new(kind: StepKind) -> Self {
-        let memory = match &kind {
-            StepKind::SampleAndHold { initial, .. } => Memory { held: *initial, ..Memory::default() },
-            StepKind::DiscreteFilter { a, b, .. } => Memory { held: 0.0, outputs: vec![0.0; a.len()], inputs: vec![0.0; b.len()] },
-        };
+        let memory = initial_memory(&kind);
         StepDrive(Arc::new(Shared { kind, memory: Mutex::new((memory.clone(), memory, None)) }))
+    }
+
+    /// Back to the memory before the first step (a new run of the same model).
+    pub fn reset(&self) {
+        let memory = initial_memory(&self.0.kind);
+        *self.lock() = (memory.clone(), memory, None);
     }
 
     pub fn kind(&self) -> &StepKind {
@@ -131,6 +134,13 @@ impl StepDrive {
                 push_front(&mut current.inputs, input.value_at(t_new, Some(&advanced)));
             }
         }
+    }
+}
+
+fn initial_memory(kind: &StepKind) -> Memory {
+    match kind {
+        StepKind::SampleAndHold { initial, .. } => Memory { held: *initial, ..Memory::default() },
+        StepKind::DiscreteFilter { a, b, .. } => Memory { held: 0.0, outputs: vec![0.0; a.len()], inputs: vec![0.0; b.len()] },
     }
 }
 
