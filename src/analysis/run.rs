@@ -144,6 +144,10 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
     let clock = Instant::now();
     let observed = |r: Result<(), ObserverError>| r.map_err(RunError::Observer);
     let asm = Assembler::new(model);
+    // A model run again starts its step drives from their initial memory.
+    for d in &model.step_drives {
+        d.reset();
+    }
     let mut state = State::initial(model, &asm.dofs);
     state.t = problem.initial_time;
     let assembly = if problem.abort_after == Some(AbortAfter::Input) { AssemblyReport::default() } else { initial_assembly(model, &mut state, &problem.assembly).map_err(RunError::Assembly)? };

@@ -236,6 +236,22 @@ impl<'m> Assembler<'m> {
         }
     }
 
+    /// Advances the memory of the model's step drives ([`crate::element::StepDrive`]) at
+    /// the start of step `step` (1 for the first), whose time is `t_new`, from the accepted
+    /// state `st` (MBDyn's `DriveHandler::SetTime` with a new step number). The drives read
+    /// the model's nodes as in a residual; node slot `i` is the model's node `i`.
+    pub fn begin_step(&self, st: &State, step: usize, t_new: f64) {
+        if self.model.step_drives.is_empty() {
+            return;
+        }
+        let frames = self.frames(st);
+        let slots: Vec<usize> = (0..frames.len()).collect();
+        let ctx = Context { model: self.model, frames: &frames, read_frames: &frames, slots: &slots, multipliers: &[], rates: &[], t: st.t, load: st.load, gravity: self.model.gravity, constraint_scale: 1.0 };
+        for d in &self.model.step_drives {
+            d.begin_step(step, t_new, &ctx);
+        }
+    }
+
     /// `F(y, ẏ, t)`; constraint rows are divided by `dcoef` in the form of eq. 30.
     pub fn residual(&self, st: &State, form: ConstraintForm, dcoef: f64) -> Vec<f64> {
         let frames = self.frames(st);

@@ -117,6 +117,9 @@ pub enum Drive {
     Function(super::ScalarFunction),
     /// One channel of a fixed step file driver (MBDyn's `file` drive caller).
     Sampled(SampledChannel),
+    /// A drive with a memory of the accepted steps (MBDyn's `sample and hold`, `discrete
+    /// filter`).
+    Stepped(super::step_drive::StepDrive),
 }
 
 /// One channel of MBDyn's fixed step file driver (fixedstep.cc, `ServePending`) times an
@@ -178,6 +181,7 @@ impl Drive {
             Drive::Product(a, b) | Drive::Compose(a, b) => a.reads_state() || b.reads_state(),
             Drive::FrequencySweep { omega, amplitude, .. } => omega.reads_state() || amplitude.reads_state(),
             Drive::Periodic { f, .. } => f.reads_state(),
+            Drive::Stepped(s) => s.reads_state(),
             _ => false,
         }
     }
@@ -224,6 +228,7 @@ impl Drive {
             Drive::Expression(f) => f.value_at(t, state),
             Drive::Function(f) => f.value(t),
             Drive::Sampled(c) => c.value(t),
+            Drive::Stepped(s) => s.value_at(t, state),
         }
     }
 }

@@ -35,6 +35,7 @@ mod prestrained_rod;
 pub mod private_data;
 mod scalar_function;
 mod screw;
+mod step_drive;
 
 pub use beam::{shape as beam_shape, Beam2, Beam3, BeamError, BeamNode, SectionLaw, SectionOrientation};
 pub use beam_slider::{BeamSlider, SliderBeam, SliderKind};
@@ -62,3 +63,4 @@ pub use joint::{Joint, JointKind};
 pub use prestrained_rod::PrestrainedRod;
 pub use scalar_function::ScalarFunction;
 pub use screw::Screw;
+pub use step_drive::{StepDrive, StepKind};

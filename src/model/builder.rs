@@ -25,11 +25,12 @@ pub struct ModelBuilder {
     gravity: Option<Vec3>,
     form: ConstraintForm,
     node_names: std::collections::BTreeMap<Label, String>,
+    step_drives: Vec<crate::element::StepDrive>,
 }
 
 impl Default for ModelBuilder {
     fn default() -> Self {
-        ModelBuilder { nodes: Vec::new(), elements: Vec::new(), gravity: None, form: ConstraintForm::Scaled, node_names: Default::default() }
+        ModelBuilder { nodes: Vec::new(), elements: Vec::new(), gravity: None, form: ConstraintForm::Scaled, node_names: Default::default(), step_drives: Vec::new() }
     }
 }
 
@@ -57,6 +58,12 @@ impl ModelBuilder {
     /// from them).
     pub fn nodes(&self) -> &[StructuralNode] {
         &self.nodes
+    }
+
+    /// Drives with memory the elements use: their memory advances at every step.
+    pub fn step_drives(&mut self, drives: Vec<crate::element::StepDrive>) -> &mut Self {
+        self.step_drives.extend(drives);
+        self
     }
 
     pub fn element(&mut self, element: impl Element + 'static) -> &mut Self {
@@ -118,6 +125,7 @@ impl ModelBuilder {
             has_gravity: self.gravity.is_some(),
             constraint_form: self.form,
             node_names: self.node_names,
+            step_drives: self.step_drives,
         })
     }
 }

@@ -57,6 +57,9 @@ pub struct Model {
     /// Names of nodes given in the input (MBDyn's `name, "…"` after a node label), for mode
     /// labels; a ports file's `names` take precedence.
     pub node_names: std::collections::BTreeMap<Label, String>,
+    /// Drives with a memory of the accepted steps, updated once at the start of every
+    /// time step ([`crate::element::StepDrive::begin_step`]).
+    pub step_drives: Vec<crate::element::StepDrive>,
     /// Index in `nodes` of each node label.
     node_indices: HashMap<Label, usize>,
 }

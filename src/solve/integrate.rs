@@ -94,6 +94,8 @@ pub struct Integrator<'a, 'm> {
     /// `b₀ λ_k + b₁ λ_{k−1} + b₂ λ_{k−2} − a₂ Λ_{k−1}` (MBDyn's `XPrime` of an algebraic
     /// unknown, stepsol.cc): the multiplier's predictor needs it.
     multiplier_increment: Vec<f64>,
+    /// Steps accepted so far (the step drives' memory is advanced once per step number).
+    accepted: usize,
 }
 
 impl<'a, 'm> Integrator<'a, 'm> {
@@ -107,7 +109,7 @@ impl<'a, 'm> Integrator<'a, 'm> {
     /// they are built once per run (on large models their set-up is the run's peak memory).
     pub fn with_workspace(asm: &'a Assembler<'m>, state: State, method: Method, h: f64, settings: NewtonSettings, workspace: NewtonWorkspace) -> Self {
         let multiplier_increment = vec![0.0; asm.dofs.len];
-        Integrator { asm, method, h, settings, state, workspace, previous: None, multiplier_increment }
+        Integrator { asm, method, h, settings, state, workspace, previous: None, multiplier_increment, accepted: 0 }
     }
 
     /// Number of symbolic factorizations so far (1 for a fixed sparsity pattern).
@@ -141,6 +143,9 @@ impl<'a, 'm> Integrator<'a, 'm> {
         let dofs = &self.asm.dofs;
         let form = self.asm.model.constraint_form;
         let current = self.snapshot();
+        // The step drives' memory from the accepted state, at the new time (a failed
+        // attempt is redone from the same memory: the step number is the same).
+        self.asm.begin_step(&self.state, self.accepted + 1, self.state.t + self.h);
         self.state.rebase(dofs);
         let [a1, a2, b0, b1, b2] = coefficients(self.method, self.h, self.previous.is_none());
         let (y1, yp1) = (self.state.y.clone(), self.state.yp.clone());
@@ -170,6 +175,7 @@ impl<'a, 'm> Integrator<'a, 'm> {
             }
         }
         self.previous = Some(current);
+        self.accepted += 1;
         Ok(StepRecord { t: self.state.t, iterations: done.iterations, residual_norm: done.residual_norm })
     }
 }

@@ -3,7 +3,8 @@
 //! `step`, `sine`, `cosine`, `piecewise linear`, `linear`, `parabolic`, `cubic`,
 //! `exponential`, `tanh`, `double ramp`, `double step`, `array`, `mult`, `drive` (one drive
 //! of another's value), `frequency sweep`,
-//! `periodic`, `string` (an expression of `Time` for the math parser, evaluated with the
+//! `periodic`, `sample and hold` and `discrete filter` (with a memory of the steps,
+//! [`StepDrive`]), `string` (an expression of `Time` for the math parser, evaluated with the
 //! file's variables as they stand at the end of the input, as MBDyn evaluates it during the
 //! run), and `reference, LABEL` to a `drive caller:` card;
 //! and the 3-vector template drive callers (§Template Drive): `null`, `single`,
@@ -20,20 +21,18 @@ use super::lexer::{tokenize, Token};
 use super::model_namespace::{node_private_data, Live, Reads};
 use super::parser::Statement;
 use super::value::TypedValue;
-use crate::element::{Drive, ElementState, TimeFunction};
+use crate::element::{Drive, ElementState, StepDrive, StepKind, TimeFunction};
 use crate::kinematics::{Mat3, Vec3};
 
 /// Drive callers romdyn evaluates.
-const SUPPORTED: [&str; 32] = [
-    "drive", "file", "node", "dof", "element", "const", "null", "unit", "one", "time", "direct", "ramp", "step", "sine", "cosine", "piecewise linear", "linear", "parabolic", "cubic", "exponential",
+const SUPPORTED: [&str; 34] = [
+    "sample and hold", "discrete filter", "drive", "file", "node", "dof", "element", "const", "null", "unit", "one", "time", "direct", "ramp", "step", "sine", "cosine", "piecewise linear", "linear", "parabolic", "cubic", "exponential",
     "tanh", "double ramp", "double step", "array", "mult", "frequency sweep", "periodic", "string", "reference", "zero", "constant", "scalar function",
 ];
 
 /// MBDyn drive callers romdyn cannot represent (named in the error): they read the model's
 /// state outside the math parser, random numbers or the step counter.
-const UNSUPPORTED: [&str; 8] = [
-    "closest next", "discrete filter", "ginac", "fourier series", "meter", "postponed", "random", "sample and hold",
-];
+const UNSUPPORTED: [&str; 6] = ["closest next", "ginac", "fourier series", "meter", "postponed", "random"];
 
 /// Nesting of drive callers inside drive callers romdyn follows.
 const MAX_DEPTH: usize = 16;
@@ -52,12 +51,19 @@ pub struct Drives {
     pub file_drivers: super::file_drivers::FileDrivers,
     /// Parameter nodes, `bind`s and the reads of `dof` and `element` drive callers.
     pub private: super::element_reads::PrivateReads,
+    /// The drives with a memory of the steps read so far (`sample and hold`, `discrete
+    /// filter`), which the model advances at every step.
+    pub stepped: Mutex<Vec<StepDrive>>,
 }
 
 impl Drives {
     /// Forgets the `drive caller:` cards (to read them again with other variables).
     pub fn clear_cards(&mut self) {
         self.table.clear();
+    }
+    /// The drives with memory read so far (emptied).
+    pub fn take_stepped(&self) -> Vec<StepDrive> {
+        std::mem::take(&mut *self.stepped.lock().unwrap_or_else(|e| e.into_inner()))
     }
     /// The drive caller cards of statements before `seq`, by label.
     pub fn defined_before(&self, seq: usize) -> HashMap<u32, Drive> {
@@ -159,6 +165,20 @@ fn nested_drive(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) -> Re
             }
             if terms.len() == 1 { terms.remove(0) } else { Drive::Sum(terms) }
         }
+        "sample and hold" => {
+            // drive_.cc, `SHDCR::Read`: FUNCTION, TRIGGER [, initial value, V0].
+            let function = inner(c)?;
+            let trigger = inner(c)?;
+            let initial = if c.accept("initial value") { c.real("initial value of the sample and hold")? } else { 0.0 };
+            stepped(drives, StepKind::SampleAndHold { function, trigger, initial })
+        }
+        "discrete filter" => {
+            // drive_.cc, `DiscreteFilterDCR::Read`: n_a, a_1…, b_0, n_b, b_1…, INPUT.
+            let a = coefficients(c, "a")?;
+            let b0 = c.real("discrete filter direct coefficient b_0")?;
+            let b = coefficients(c, "b")?;
+            stepped(drives, StepKind::DiscreteFilter { a, b0, b, input: inner(c)? })
+        }
         "file" => super::file_drivers::file_drive(c, &drives.file_drivers, seq)?,
         "node" => node_drive(c, drives, &inner)?,
         "dof" => super::element_reads::dof_drive(c, &drives.structural_nodes, &inner)?,
@@ -238,6 +258,23 @@ fn nested_drive(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) -> Re
             }
         }
     })
+}
+
+/// A drive with memory, registered for the model to advance at every step.
+fn stepped(drives: &Drives, kind: StepKind) -> Drive {
+    let d = StepDrive::new(kind);
+    drives.stepped.lock().unwrap_or_else(|e| e.into_inner()).push(d.clone());
+    Drive::Stepped(d)
+}
+
+/// `n, c_1, …, c_n` of a discrete filter (`n` ≥ 0).
+fn coefficients(c: &mut Cursor, name: &str) -> Result<Vec<f64>, MbdynError> {
+    let n = c.count(&format!("discrete filter: number of coefficients {name}"))?;
+    let mut v = Vec::with_capacity(n.min(64));
+    for i in 1..=n {
+        v.push(c.real(&format!("discrete filter coefficient {name}_{i}"))?);
+    }
+    Ok(v)
 }
 
 /// The expression of a `string` drive as a function of time: the math parser on its tokens

@@ -279,6 +279,7 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
         }
     }
     check_counts(doc, &counts, &found)?;
+    b.step_drives(cards.drives.take_stepped());
     let model = b.build().map_err(|e| src.error(first, e.to_string()))?;
     Ok(MbdynModel { model, problem })
 }
