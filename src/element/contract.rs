@@ -216,6 +216,11 @@ pub trait Element: Send + Sync {
     fn latch(&self, _now: &dyn ElementState, _before: &dyn ElementState) -> Option<Latched> {
         None
     }
+    /// The element with a hint's drive in place of its own (MBDyn's `SetValue` with hints,
+    /// when a driven element switches on), `None` where the hint does not apply to it.
+    fn hinted(&self, _hint: &super::HintValue) -> Option<Box<dyn Element>> {
+        None
+    }
     /// Adds its contribution to `F(y, ẏ, t)`.
     fn residual(&self, s: &dyn ElementState, out: &mut dyn ResidualSink);
     /// Adds its derivatives; the assembler forms `J(c)` from them.

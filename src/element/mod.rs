@@ -49,7 +49,7 @@ pub use distance::Distance;
 pub use deformable_joint::DeformableJoint;
 pub use invariant_hinge::InvariantDeformableHinge;
 pub use drive::{Drive, SampledChannel, TimeFunction};
-pub use driven_element::DrivenElement;
+pub use driven_element::{DrivenElement, Hint, HintValue};
 pub use driven_gravity::DrivenGravity;
 pub use driven_joint::{DrivenJoint, VectorDrive};
 pub use force::{Couple, Force, ForceFrame};

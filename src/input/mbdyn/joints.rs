@@ -492,6 +492,8 @@ fn total(pin: bool, label: Label, c: &mut Cursor, ctx: &ElementContext, span: su
     j.velocity = position.on(&position.rate).turned(&position_turn);
     j.angular_velocity_locked = rotation.rate;
     j.angular_velocity = rotation.on(&rotation.rate).turned(&rotation_turn);
+    (j.hint_position_held, j.hint_position_turn, j.hint_rotation_turn) = (position.holonomic, position_turn, rotation_turn);
+    j.hint_rotation_held = rotation.holonomic == [true; 3];
     driven_assembled(j, ctx, c, span)
 }
 
