@@ -30,7 +30,10 @@ pub fn wrap(head: &Statement, parsed: Parsed, src: &Sources, ctx: &ElementContex
                 // driven.cc: the driving element's label must match the wrapped one's.
                 return Err(c.error_at(label_span, format!("driven element {label} wraps {} {}: the labels must match", inner.type_name(), inner.label())));
             }
-            if (0..inner.multipliers().len()).any(|k| inner.is_coordinate(k)) {
+            // A distance joint's coordinates are its direction, which its constraint
+            // determines (linearly) once it is on again: held at the written direction while
+            // it is off (MBDyn holds them at zero), they are solved for at the switch-on.
+            if inner.type_name() != "distance" && (0..inner.multipliers().len()).any(|k| inner.is_coordinate(k)) {
                 // Switched off, its coordinate (the abscissa) would be held at its initial value.
                 return Err(c.error_at(head.span, format!("driven: a driven {} is not supported by romdyn (switched off, its abscissa would return to its initial value)", inner.type_name())));
             }
