@@ -196,6 +196,9 @@ fn hints_romdyn_cannot_build_are_refused_at_the_hint() {
         ("\"drive{model::distance_prev(5, 6)}\"", "\"offset{1}\"", "hint \"offset{1}\" is not supported by romdyn"),
         ("\"drive3{0., 0., 1., ramp, 1., .2, 1., model::zanglerel(3, 4)}\"", "\"drive{1.}\"", "hint 1 does not apply to a drive hinge"),
         ("model::distance_prev(5, 6)", "model::distance_prev(5, 9)", "no structural node 9"),
+        // A hint reading the state, on an element it does not apply to (checked with each
+        // `model::` read 0).
+        ("\"drive{model::distance_prev(5, 6)}\"", "\"position-drive3{1., 0., 0., model::xposition(6)}\"", "hint 1 does not apply to a distance"),
     ];
     for (old, new, expected) in cases {
         let t = std::fs::read_to_string(path("driven_hints.mbd")).unwrap().replace(old, new);

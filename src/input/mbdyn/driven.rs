@@ -16,12 +16,13 @@ pub fn wrap(head: &Statement, parsed: Parsed, src: &Sources, ctx: &ElementContex
     let drive = super::drives::drive(&mut c, ctx.drives, ctx.seq)?;
     // Hints re-set the element's drives from the model's state when it switches on
     // (SimulationEntity::Hints, the joints' `SetValue`; see [`super::hints`]).
-    let mut hints = Vec::new();
-    let hint_span = c.here();
+    let (mut hints, mut probes) = (Vec::new(), Vec::new());
     while c.accept("hint") {
         let at = c.here();
         let text = c.string("hint text, e.g. \"drive{…}\"")?;
-        hints.push(super::hints::hint(&text, at, src, ctx.drives, ctx.seq)?);
+        let (hint, probe) = super::hints::hint(&text, at, src, ctx.drives, ctx.seq)?;
+        hints.push(hint);
+        probes.push((probe, at));
     }
     c.finish()?;
     match parsed {
@@ -40,9 +41,7 @@ pub fn wrap(head: &Statement, parsed: Parsed, src: &Sources, ctx: &ElementContex
             if inner.has_events() {
                 return Err(c.error_at(head.span, format!("driven: a driven {} with events of its own (a bistop law) is not supported by romdyn", inner.type_name())));
             }
-            if !hints.is_empty() {
-                check_hints_apply(&*inner, &hints, src, hint_span, ctx)?;
-            }
+            check_hints_apply(&*inner, &probes, src)?;
             Ok(Parsed::Element(Box::new(DrivenElement { drive, inner, hints })))
         }
         Parsed::Ignored => Ok(Parsed::Ignored),
@@ -50,42 +49,16 @@ pub fn wrap(head: &Statement, parsed: Parsed, src: &Sources, ctx: &ElementContex
     }
 }
 
-/// Each hint applies to the element: built with the `model::` reads 0 (as checked), the
-/// element takes its drive.
-fn check_hints_apply(inner: &dyn crate::element::Element, hints: &[crate::element::Hint], src: &Sources, at: super::diagnostic::Span, ctx: &ElementContext) -> Result<(), MbdynError> {
-    let probe = Probe;
+/// Each hint applies to the element: its drive as the read-time check built it (each
+/// `model::` read 0) is taken by the element re-set by the hints before it.
+fn check_hints_apply(inner: &dyn crate::element::Element, probes: &[(crate::element::HintValue, super::diagnostic::Span)], src: &Sources) -> Result<(), MbdynError> {
     let mut element: Option<Box<dyn crate::element::Element>> = None;
-    for (k, h) in hints.iter().enumerate() {
-        let Ok(value) = h(&probe, &probe) else { continue };
+    for (k, (value, at)) in probes.iter().enumerate() {
         let base = element.as_deref().unwrap_or(inner);
-        match base.hinted(&value) {
+        match base.hinted(value) {
             Some(e) => element = Some(e),
-            None => return Err(src.error(at, format!("driven: hint {} does not apply to a {} in romdyn (\"drive{{…}}\" applies to a distance joint, \"drive3{{…}}\" to a drive hinge, \"position-drive3{{…}}\" to a total joint or total pin joint, \"orientation-drive3{{…}}\" to one with all rotations held)", k + 1, base.type_name()))),
+            None => return Err(src.error(*at, format!("driven: hint {} does not apply to a {} in romdyn (\"drive{{…}}\" applies to a distance joint, \"drive3{{…}}\" to a drive hinge, \"position-drive3{{…}}\" to a total joint or total pin joint, \"orientation-drive3{{…}}\" to one with all rotations held)", k + 1, base.type_name()))),
         }
     }
-    let _ = ctx;
     Ok(())
 }
-
-/// A state with no nodes, at t = 0 (hints read 0 from `model::` there: see [`check_hints_apply`]).
-struct Probe;
-
-impl crate::element::ElementState for Probe {
-    fn node(&self, _slot: usize) -> &crate::element::NodeKinematics {
-        &ORIGIN
-    }
-    fn multiplier(&self, _k: usize) -> f64 {
-        0.0
-    }
-    fn time(&self) -> f64 {
-        0.0
-    }
-    fn gravity(&self) -> crate::kinematics::Vec3 {
-        crate::kinematics::Vec3::zeros()
-    }
-    fn load_factor(&self) -> f64 {
-        1.0
-    }
-}
-
-static ORIGIN: std::sync::LazyLock<crate::element::NodeKinematics> = std::sync::LazyLock::new(|| crate::element::NodeKinematics { x: crate::kinematics::Vec3::zeros(), r: crate::kinematics::Mat3::identity(), xdot: crate::kinematics::Vec3::zeros(), omega: crate::kinematics::Vec3::zeros() });

@@ -31,8 +31,9 @@ enum Kind {
 
 const KINDS: [(&str, Kind); 4] = [("drive{", Kind::Drive), ("drive3{", Kind::Drive3), ("position-drive3{", Kind::PositionDrive3), ("orientation-drive3{", Kind::OrientationDrive3)];
 
-/// The hint `text` written at `at`: checked now, built at each switch-on.
-pub fn hint(text: &str, at: Span, src: &Sources, drives: &Drives, seq: usize) -> Result<Hint, MbdynError> {
+/// The hint `text` written at `at`: checked now, built at each switch-on. With it, its
+/// drive as the check built it (each `model::` read 0), to check that it applies.
+pub fn hint(text: &str, at: Span, src: &Sources, drives: &Drives, seq: usize) -> Result<(Hint, HintValue), MbdynError> {
     let lower = text.trim().to_lowercase();
     let found = KINDS.iter().find(|(p, _)| lower.starts_with(p)).filter(|_| lower.ends_with('}'));
     let Some(&(prefix, kind)) = found else {
@@ -42,8 +43,9 @@ pub fn hint(text: &str, at: Span, src: &Sources, drives: &Drives, seq: usize) ->
     let body = trimmed[prefix.len()..trimmed.len() - 1].to_string();
     let program = Program { kind, body, drives: Mutex::new(drives.for_hints()), seq };
     let labels = drives.structural_nodes.clone();
-    program.build(Reads::Labels(&labels), Some(Reads::Labels(&labels))).map_err(|m| src.error(at, format!("driven: hint \"{text}\": {m}")))?;
-    Ok(Arc::new(move |now: &dyn ElementState, before: &dyn ElementState| program.build(Reads::Nodes(&Live(now)), Some(Reads::Nodes(&Live(before))))))
+    let probe = program.build(Reads::Labels(&labels), Some(Reads::Labels(&labels))).map_err(|m| src.error(at, format!("driven: hint \"{text}\": {m}")))?;
+    let build: Hint = Arc::new(move |now: &dyn ElementState, before: &dyn ElementState| program.build(Reads::Nodes(&Live(now)), Some(Reads::Nodes(&Live(before)))));
+    Ok((build, probe))
 }
 
 /// A hint's text and what it reads.
