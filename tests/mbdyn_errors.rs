@@ -195,7 +195,8 @@ fn drive_and_law_errors() {
         // 55. Time-varying gravity with different drives on its components.
         (model("structural nodes: 2; gravity;", NODES, "gravity: component, const, 1., ramp, 1., 0., 1., 0., inactive;"), "m.mbd:6:10: error: romdyn's time-varying gravity is one direction times one drive"),
         // 55b. Driven elements: hints, a label that is not the wrapped element's, `existing`.
-        (model("structural nodes: 2; joints: 1;", NODES, "driven: 1, const, 1., hint, \"drive{1.}\", joint: 1, spherical hinge, 1, null, 2, null;"), "m.mbd:6:23: error: driven: hints (which re-set the element from the model's state when it switches on) are not supported by romdyn"),
+        (model("structural nodes: 2; joints: 1;", NODES, "driven: 1, const, 1., hint, \"drive{1.}\", joint: 1, spherical hinge, 1, null, 2, null;"), "m.mbd:6:29: error: driven: hint 1 does not apply to a spherical hinge in romdyn"),
+        (model("structural nodes: 2; joints: 1;", NODES, "driven: 1, const, 1., hint, \"offset{1}\", joint: 1, spherical hinge, 1, null, 2, null;"), "m.mbd:6:29: error: driven: hint \"offset{1}\" is not supported by romdyn"),
         (model("structural nodes: 2; joints: 1;", NODES, "driven: 2, const, 1., joint: 1, spherical hinge, 1, null, 2, null;"), "m.mbd:6:9: error: driven element 2 wraps spherical hinge 1: the labels must match"),
         (model("structural nodes: 2; joints: 1;", NODES, "joint: 1, spherical hinge, 1, null, 2, null; driven: 1, const, 1., existing: joint, 1;"), "m.mbd:6:68: error: driven: wrapping an 'existing' element is not supported by romdyn"),
         // 56. A constitutive law romdyn does not have, and one of the wrong dimension.

@@ -493,9 +493,9 @@ fn driven_element_jacobians_match_finite_differences_on_and_off() {
         assert_jacobians(|n| {
             let drive = Drive::Const(on);
             vec![
-                Box::new(DrivenElement { drive: drive.clone(), inner: Box::new(Joint::spherical_hinge(1, node(2, n), node(3, n))) }),
-                Box::new(DrivenElement { drive: drive.clone(), inner: Box::new(Joint::prismatic(2, ground(n), node(2, n))) }),
-                Box::new(DrivenElement { drive, inner: Box::new(AxialRotation::new(3, node(1, n), node(3, n), Drive::Const(2.0))) }),
+                Box::new(DrivenElement { drive: drive.clone(), inner: Box::new(Joint::spherical_hinge(1, node(2, n), node(3, n))), hints: Vec::new() }),
+                Box::new(DrivenElement { drive: drive.clone(), inner: Box::new(Joint::prismatic(2, ground(n), node(2, n))), hints: Vec::new() }),
+                Box::new(DrivenElement { drive, inner: Box::new(AxialRotation::new(3, node(1, n), node(3, n), Drive::Const(2.0))), hints: Vec::new() }),
             ]
         });
     }

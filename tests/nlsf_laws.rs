@@ -41,7 +41,7 @@ fn an_nlsf_spring_rests_at_its_closed_form_and_an_nlsf_brake_follows_its_ode() {
 
 /// An `nlsf` law with scalar functions anywhere but on a deformable axial joint, or of 3 or 6
 /// dimensions, is refused naming it (an `nlsf` law without functions is a linear one); so
-/// are bistop and symbolic laws, with the reason.
+/// are bistop laws off rods and symbolic laws, with the reason.
 #[test]
 fn nlsf_laws_elsewhere_or_in_3d_are_refused_by_name() {
     let nodes = "structural: 1, static, null, eye, null, null; structural: 2, dynamic, 1., 0., 0., eye, null, null;";
@@ -49,7 +49,8 @@ fn nlsf_laws_elsewhere_or_in_3d_are_refused_by_name() {
         ("joint: 2, rod, 1, 2, from nodes, nlsf viscoelastic, 1., null, 0., \"f\";", "only on a deformable axial joint"),
         ("joint: 2, deformable hinge, 1, null, 2, null, nlsf viscous, null, null, null;", "in 1-D only"),
         // Refused with the reason (constltp_impl.h's BiStopCLWrapper; MBDyn 1.7.3 here has no GiNaC).
-        ("joint: 2, rod, 1, 2, from nodes, linear viscoelastic bistop, 1.e3, 1.e2, initial status, inactive, const, 1., const, 0.;", "strain at the instant its activating drive"),
+        // A bistop law on a rod only (tests/mbdyn_events.rs).
+        ("joint: 2, deformable hinge, 1, null, 2, null, linear viscoelastic bistop, 1.e3, 1.e2, initial status, inactive, const, 1., const, 0.;", "in 1-D only (a rod)"),
         ("joint: 2, rod, 1, 2, from nodes, symbolic viscous, epsilon prime, \"w\", expression, \"w\";", "GiNaC"),
     ];
     for (element, message) in cases {

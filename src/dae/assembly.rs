@@ -50,6 +50,7 @@ struct Context<'a> {
     load: f64,
     gravity: Vec3,
     constraint_scale: f64,
+    latched: Option<&'a (dyn std::any::Any + Send + Sync)>,
 }
 
 impl ElementState for Context<'_> {
@@ -76,6 +77,9 @@ impl ElementState for Context<'_> {
     }
     fn structural_node(&self, label: crate::element::Label) -> Option<&NodeKinematics> {
         self.model.node_index(label).map(|i| &self.read_frames[i].kin)
+    }
+    fn latched(&self) -> Option<&(dyn std::any::Any + Send + Sync)> {
+        self.latched
     }
 }
 
@@ -233,6 +237,30 @@ impl<'m> Assembler<'m> {
             load: st.load,
             gravity: self.model.gravity,
             constraint_scale,
+            latched: st.latched.get(e).and_then(|l| l.as_deref()),
+        }
+    }
+
+    /// Whether an element of the model has events ([`crate::element::Element::latch`]).
+    pub fn has_events(&self) -> bool {
+        self.model.elements.iter().any(|e| e.has_events())
+    }
+
+    /// The elements' events of a step: each element with events latches its data from
+    /// `now` (the predicted state at the step's time) and `before` (the accepted state of
+    /// the previous step) into `now`.
+    pub fn latch_events(&self, now: &mut State, before: &State) {
+        let (frames, before_frames) = (self.frames(now), self.frames(before));
+        let mut changed = Vec::new();
+        for (e, el) in self.model.elements.iter().enumerate().filter(|(_, el)| el.has_events()) {
+            let ctx = self.context(&frames, now, e, 1.0);
+            let prev = self.context(&before_frames, before, e, 1.0);
+            if let Some(l) = el.latch(&ctx, &prev) {
+                changed.push((e, l));
+            }
+        }
+        for (e, l) in changed {
+            now.latched[e] = Some(l);
         }
     }
 
@@ -246,7 +274,7 @@ impl<'m> Assembler<'m> {
         }
         let frames = self.frames(st);
         let slots: Vec<usize> = (0..frames.len()).collect();
-        let ctx = Context { model: self.model, frames: &frames, read_frames: &frames, slots: &slots, multipliers: &[], rates: &[], t: st.t, load: st.load, gravity: self.model.gravity, constraint_scale: 1.0 };
+        let ctx = Context { model: self.model, frames: &frames, read_frames: &frames, slots: &slots, multipliers: &[], rates: &[], t: st.t, load: st.load, gravity: self.model.gravity, constraint_scale: 1.0, latched: None };
         for d in &self.model.step_drives {
             d.begin_step(step, t_new, &ctx);
         }

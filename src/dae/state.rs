@@ -14,6 +14,9 @@ pub struct State {
     pub y: Vec<f64>,
     pub yp: Vec<f64>,
     pub r_ref: Vec<Mat3>,
+    /// Per element, the data of its last event ([`crate::element::Element::latch`]); `None`
+    /// before any.
+    pub latched: Vec<Option<crate::element::Latched>>,
 }
 
 /// A node's kinematics with the maps of its orientation parameters.
@@ -44,7 +47,7 @@ impl State {
                 yp[f + 3 + k] = n.angular_velocity[k];
             }
         }
-        State { t: 0.0, load: 1.0, y, yp, r_ref: model.nodes.iter().map(|n| n.orientation).collect() }
+        State { t: 0.0, load: 1.0, y, yp, r_ref: model.nodes.iter().map(|n| n.orientation).collect(), latched: vec![None; model.elements.len()] }
     }
 
     /// Kinematics of node `i`.

@@ -45,6 +45,12 @@ pub enum Col {
 /// where the state lacks a node it reads.
 pub type PrivateDatum = std::sync::Arc<dyn Fn(&dyn ElementState) -> Option<f64> + Send + Sync>;
 
+/// Data an element re-sets at an event and holds until the next one (a driven element's
+/// drives re-set by its hints when it switches on, a bistop law's status and reference
+/// strain): kept in the state ([`crate::dae::State::latched`]), set by
+/// [`Element::latch`] once per step, never inside Newton's iterations.
+pub type Latched = std::sync::Arc<dyn std::any::Any + Send + Sync>;
+
 pub trait ElementState {
     fn node(&self, slot: usize) -> &NodeKinematics;
     fn multiplier(&self, k: usize) -> f64;
@@ -70,6 +76,11 @@ pub trait ElementState {
     /// drive reading the model's state sees, MBDyn's `model::position(N)`, …); `None` where
     /// the caller has no model (a unit test of one element).
     fn structural_node(&self, _label: Label) -> Option<&NodeKinematics> {
+        None
+    }
+    /// The element's data of its last event ([`Element::latch`]), `None` before any (the
+    /// element's data as read).
+    fn latched(&self) -> Option<&(dyn std::any::Any + Send + Sync)> {
         None
     }
 }
@@ -189,6 +200,25 @@ pub trait Element: Send + Sync {
     /// at zero sliding velocity past its breakaway deflection): a linearization there takes
     /// a one-sided derivative, and an eigenanalysis reports it.
     fn non_smooth(&self, _s: &dyn ElementState) -> Option<String> {
+        None
+    }
+    /// Whether the element has events ([`Element::latch`]).
+    fn has_events(&self) -> bool {
+        false
+    }
+    /// Once per step, after the predictor and before Newton (where MBDyn's `AfterPredict`
+    /// switches a driven element on, and a bistop law's first `Update` of the step
+    /// activates it): `now` is the predicted state at the step's time, `before` the accepted
+    /// state of the previous step (what MBDyn's `model::…_prev` functions read); both carry
+    /// the data of the element's last event. Returns the data that replace them, `None` to
+    /// keep them. Residuals and Jacobians (Newton's and a linearization's) hold the latched
+    /// data fixed: they are constants of the state, as MBDyn's element members are.
+    fn latch(&self, _now: &dyn ElementState, _before: &dyn ElementState) -> Option<Latched> {
+        None
+    }
+    /// The element with a hint's drive in place of its own (MBDyn's `SetValue` with hints,
+    /// when a driven element switches on), `None` where the hint does not apply to it.
+    fn hinted(&self, _hint: &super::HintValue) -> Option<Box<dyn Element>> {
         None
     }
     /// Adds its contribution to `F(y, ẏ, t)`.

@@ -41,6 +41,14 @@ pub struct Distance {
 }
 
 impl Distance {
+    /// The joint with a hint's `drive{…}` as its distance (MBDyn's `DistanceJoint::SetValue`).
+    pub fn with_hint(&self, hint: &super::HintValue) -> Option<Self> {
+        match hint {
+            super::HintValue::Drive(d) => Some(Distance { length: d.clone(), ..self.clone() }),
+            _ => None,
+        }
+    }
+
     /// The direction unknown `v = v₀ + w`.
     fn direction_at(&self, st: &dyn ElementState) -> Vec3 {
         self.direction + Vec3::new(st.multiplier(0), st.multiplier(1), st.multiplier(2))
@@ -53,6 +61,9 @@ impl Element for Distance {
     }
     fn label(&self) -> Label {
         self.label
+    }
+    fn hinted(&self, hint: &super::HintValue) -> Option<Box<dyn Element>> {
+        self.with_hint(hint).map(|j| Box::new(j) as Box<dyn Element>)
     }
     fn type_name(&self) -> &'static str {
         "distance"

@@ -12,19 +12,82 @@
 //! The Jacobian keeps one sparsity pattern in both states: switched off, the wrapped
 //! element's entries are written as zeros; switched on, the `(λ_k, λ_k)` diagonal is
 //! written as a zero.
+//!
+//! Hints (input manual, §Driven Element, "hint"; driven.cc, `DrivenElem::AfterPredict`):
+//! when the element switches on (its drive non-zero at a step, zero at the step before), each
+//! hint's drive is built from the model's state and replaces the wrapped element's (MBDyn
+//! parses the hint's text then, so its `model::` calls take their values at that instant:
+//! the predicted state at the step's time, `model::…_prev` the previous step's). That is an
+//! event ([`Element::latch`]): the re-set element is kept in the state, and Newton's
+//! Jacobian and a linearization see its drives as functions of time alone. An element
+//! switched on at the initial time keeps its own drives, as MBDyn's (its constructor sets
+//! the element active without hints).
 
-use super::contract::{Col, Element, ElementState, JacobianSink, Label, ResidualSink, Row, SectionState};
-use super::Drive;
+use std::sync::Arc;
+
+use super::contract::{Col, Element, ElementState, JacobianSink, Label, Latched, ResidualSink, Row, SectionState};
+use super::{Drive, VectorDrive};
+
+/// A hint's drive, built when the element switches on.
+#[derive(Clone, Debug, PartialEq)]
+pub enum HintValue {
+    /// `drive{…}`: a scalar drive (a distance joint's distance).
+    Drive(Drive),
+    /// `drive3{…}`: a 3-vector drive (a drive hinge's rotation).
+    Drive3(VectorDrive),
+    /// `position-drive3{…}`: a total joint's imposed position.
+    PositionDrive3(VectorDrive),
+    /// `orientation-drive3{…}`: a total joint's imposed rotation.
+    OrientationDrive3(VectorDrive),
+}
+
+/// A hint: its drive from the predicted state at the step's time (`now`) and the previous
+/// step's (`before`), or why it cannot be built.
+pub type Hint = Arc<dyn Fn(&dyn ElementState, &dyn ElementState) -> Result<HintValue, String> + Send + Sync>;
 
 pub struct DrivenElement {
     /// The element's switch: on where `drive(t) ≠ 0`.
     pub drive: Drive,
     pub inner: Box<dyn Element>,
+    /// Hints applied, in order, when it switches on.
+    pub hints: Vec<Hint>,
+}
+
+/// A driven element's data after its last event.
+struct Switched {
+    active: bool,
+    /// The element its hints re-set (`None`: the element as read), or why they failed (its
+    /// residual is then NaN, and Newton stops on it).
+    element: Result<Option<Arc<dyn Element>>, String>,
 }
 
 impl DrivenElement {
     fn active(&self, s: &dyn ElementState) -> bool {
         self.drive.value_in(s) != 0.0
+    }
+
+    fn switched<'s>(s: &'s dyn ElementState) -> Option<&'s Switched> {
+        s.latched().and_then(|l| l.downcast_ref::<Switched>())
+    }
+
+    /// The wrapped element as its last switch-on's hints left it.
+    fn element<'s>(&'s self, s: &'s dyn ElementState) -> Result<&'s dyn Element, &'s str> {
+        match Self::switched(s).map(|w| &w.element) {
+            Some(Ok(Some(e))) => Ok(e.as_ref()),
+            Some(Err(m)) => Err(m.as_str()),
+            _ => Ok(self.inner.as_ref()),
+        }
+    }
+
+    /// The wrapped element re-set by each hint in turn.
+    fn apply_hints(&self, now: &dyn ElementState, before: &dyn ElementState) -> Result<Option<Arc<dyn Element>>, String> {
+        let mut element: Option<Box<dyn Element>> = None;
+        for (k, hint) in self.hints.iter().enumerate() {
+            let value = hint(now, before).map_err(|m| format!("{} {}: hint {}: {m}", self.inner.type_name(), self.inner.label(), k + 1))?;
+            let base: &dyn Element = element.as_deref().unwrap_or(self.inner.as_ref());
+            element = Some(base.hinted(&value).ok_or_else(|| format!("{} {}: hint {} does not apply to it", self.inner.type_name(), self.inner.label(), k + 1))?);
+        }
+        Ok(element.map(Arc::from))
     }
 }
 
@@ -59,9 +122,28 @@ impl Element for DrivenElement {
     fn is_coordinate(&self, k: usize) -> bool {
         self.inner.is_coordinate(k)
     }
+    fn has_events(&self) -> bool {
+        !self.hints.is_empty()
+    }
+    fn latch(&self, now: &dyn ElementState, before: &dyn ElementState) -> Option<Latched> {
+        let was = Self::switched(now).map_or_else(|| self.active(before), |w| w.active);
+        let is = self.active(now);
+        if is == was {
+            return None;
+        }
+        let element = if is {
+            self.apply_hints(now, before)
+        } else {
+            Self::switched(now).map_or(Ok(None), |w| w.element.clone())
+        };
+        Some(Arc::new(Switched { active: is, element }))
+    }
     fn residual(&self, s: &dyn ElementState, out: &mut dyn ResidualSink) {
         if self.active(s) {
-            self.inner.residual(s, out);
+            match self.element(s) {
+                Ok(e) => e.residual(s, out),
+                Err(_) => out.add(Row::Constraint(0), f64::NAN),
+            }
         } else {
             for k in 0..self.inner.multipliers().len() {
                 out.add(Row::Constraint(k), -s.multiplier(k));
@@ -70,10 +152,11 @@ impl Element for DrivenElement {
     }
     fn jacobian(&self, s: &dyn ElementState, out: &mut dyn JacobianSink) {
         let active = self.active(s);
+        let inner = self.element(s).unwrap_or(self.inner.as_ref());
         if active {
-            self.inner.jacobian(s, out);
+            inner.jacobian(s, out);
         } else {
-            self.inner.jacobian(s, &mut Zeros(out));
+            inner.jacobian(s, &mut Zeros(out));
         }
         for k in 0..self.inner.multipliers().len() {
             // ∂(−λ_k)/∂λ_k = −1 on a row the assembler scales as a constraint row (velocity
@@ -83,6 +166,9 @@ impl Element for DrivenElement {
         }
     }
     fn sections(&self, s: &dyn ElementState) -> Vec<SectionState> {
-        if self.active(s) { self.inner.sections(s) } else { Vec::new() }
+        match self.element(s) {
+            Ok(e) if self.active(s) => e.sections(s),
+            _ => Vec::new(),
+        }
     }
 }

@@ -58,6 +58,14 @@ pub struct DrivenJoint {
     /// Components of the relative angular velocity held at `angular_velocity(t)` [rad/s].
     pub angular_velocity_locked: [bool; 3],
     pub angular_velocity: VectorDrive,
+    /// How a hint's position and rotation drives become [`Self::position`] and
+    /// [`Self::rotation`], as the reader made the card's: the components held, and the turns
+    /// into the constraint frame (identity, all held, unless the reader says otherwise).
+    pub hint_position_held: [bool; 3],
+    pub hint_position_turn: crate::kinematics::Mat3,
+    pub hint_rotation_turn: crate::kinematics::Mat3,
+    /// Whether all three rotations are held (romdyn imposes a rotation only so).
+    pub hint_rotation_held: bool,
 }
 
 /// Which reaction a velocity constraint has.
@@ -80,7 +88,32 @@ impl DrivenJoint {
             velocity: VectorDrive::default(),
             angular_velocity_locked: [false; 3],
             angular_velocity: VectorDrive::default(),
+            hint_position_held: [true; 3],
+            hint_position_turn: crate::kinematics::Mat3::identity(),
+            hint_rotation_turn: crate::kinematics::Mat3::identity(),
+            hint_rotation_held: false,
         }
+    }
+
+    /// The joint with a drive of a hint in place of the card's (MBDyn's
+    /// `TotalJoint::SetValue`, `TotalPinJoint::SetValue`: `position-drive3` and
+    /// `orientation-drive3` replace the imposed position and rotation; `DriveHingeJoint::SetValue`:
+    /// `drive3` the drive hinge's rotation). `None` where the hint does not apply.
+    pub fn with_hint(&self, hint: &super::HintValue) -> Option<Self> {
+        use super::HintValue;
+        let mut j = self.clone();
+        let total = matches!(self.name, "total joint" | "total pin joint");
+        match hint {
+            HintValue::PositionDrive3(v) if total => {
+                let held = self.hint_position_held;
+                let mask = |x: &Vec3| Vec3::from_fn(|k, _| if held[k] { x[k] } else { 0.0 });
+                j.position = VectorDrive(v.0.iter().map(|(x, d)| (mask(x), d.clone())).filter(|(x, _)| *x != Vec3::zeros()).collect()).turned(&self.hint_position_turn);
+            }
+            HintValue::OrientationDrive3(v) if total && self.hint_rotation_held => j.rotation = v.clone().turned(&self.hint_rotation_turn),
+            HintValue::Drive3(v) if self.name == "drive hinge" => j.rotation = v.clone(),
+            _ => return None,
+        }
+        Some(j)
     }
 
     fn holonomic(&self) -> usize {
@@ -142,6 +175,9 @@ impl Element for DrivenJoint {
     }
     fn label(&self) -> Label {
         self.joint.label
+    }
+    fn hinted(&self, hint: &super::HintValue) -> Option<Box<dyn Element>> {
+        self.with_hint(hint).map(|j| Box::new(j) as Box<dyn Element>)
     }
     fn private_data(&self, name: &str) -> Option<super::contract::PrivateDatum> {
         self.joint.private_datum(name)

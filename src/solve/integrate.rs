@@ -96,6 +96,9 @@ pub struct Integrator<'a, 'm> {
     multiplier_increment: Vec<f64>,
     /// Steps accepted so far (the step drives' memory is advanced once per step number).
     accepted: usize,
+    /// Whether an element has events, latched after each prediction
+    /// ([`crate::element::Element::latch`]).
+    events: bool,
 }
 
 impl<'a, 'm> Integrator<'a, 'm> {
@@ -109,7 +112,7 @@ impl<'a, 'm> Integrator<'a, 'm> {
     /// they are built once per run (on large models their set-up is the run's peak memory).
     pub fn with_workspace(asm: &'a Assembler<'m>, state: State, method: Method, h: f64, settings: NewtonSettings, workspace: NewtonWorkspace) -> Self {
         let multiplier_increment = vec![0.0; asm.dofs.len];
-        Integrator { asm, method, h, settings, state, workspace, previous: None, multiplier_increment, accepted: 0 }
+        Integrator { asm, method, h, settings, state, workspace, previous: None, multiplier_increment, accepted: 0, events: asm.has_events() }
     }
 
     /// Number of symbolic factorizations so far (1 for a fixed sparsity pattern).
@@ -146,6 +149,7 @@ impl<'a, 'm> Integrator<'a, 'm> {
         // The step drives' memory from the accepted state, at the new time (a failed
         // attempt is redone from the same memory: the step number is the same).
         self.asm.begin_step(&self.state, self.accepted + 1, self.state.t + self.h);
+        let accepted = self.events.then(|| self.state.clone());
         self.state.rebase(dofs);
         let [a1, a2, b0, b1, b2] = coefficients(self.method, self.h, self.previous.is_none());
         let (y1, yp1) = (self.state.y.clone(), self.state.yp.clone());
@@ -167,6 +171,11 @@ impl<'a, 'm> Integrator<'a, 'm> {
             self.state.y[i] = a1 * y1[i] + a2 * y2[i] + b0 * ypred + b1 * yp1[i] + b2 * yp2[i];
         }
         self.state.t += self.h;
+        if let Some(before) = &accepted {
+            // Events at the predicted state, as MBDyn's AfterPredict (module documentation
+            // of `Element::latch`): Newton then sees the latched data fixed.
+            self.asm.latch_events(&mut self.state, before);
+        }
         let done = newton(self.asm, &mut self.state, Update::Dynamic { dcoef: b0, form }, &self.settings, &mut self.workspace)?;
         if form == ConstraintForm::Scaled {
             for i in (0..dofs.len).filter(|&i| dofs.is_multiplier(i)) {
@@ -197,6 +206,12 @@ pub fn initial_derivatives_with(asm: &Assembler, st: &mut State, settings: &Newt
 /// them (body.cc, `SetValue`).
 pub fn initial_derivatives_in(asm: &Assembler, st: &mut State, settings: &NewtonSettings, dcoef: f64, momenta: DerivativeMomenta, workspace: &mut NewtonWorkspace) -> Result<Convergence, NewtonFailure> {
     let form = asm.model.constraint_form;
+    if asm.has_events() {
+        // The events at the initial time (MBDyn's derivatives phase assembles the residual
+        // there first: a bistop law whose activating drive is already non-zero activates).
+        let before = st.clone();
+        asm.latch_events(st, &before);
+    }
     momenta_from_definitions(asm, st, form);
     newton(asm, st, Update::Derivatives { dcoef, form, momenta }, settings, workspace)
 }

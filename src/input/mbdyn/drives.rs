@@ -65,6 +65,12 @@ impl Drives {
     pub fn take_stepped(&self) -> Vec<StepDrive> {
         std::mem::take(&mut *self.stepped.lock().unwrap_or_else(|e| e.into_inner()))
     }
+    /// What a hint's drive, parsed during the run, reads (input manual, §Driven Element):
+    /// the `drive caller:` cards, the variables and the structural nodes' labels as now; no
+    /// scalar functions, file drivers or element reads (refused in a hint).
+    pub fn for_hints(&self) -> Drives {
+        Drives { table: self.table.clone(), variables: self.variables.clone(), structural_nodes: self.structural_nodes.clone(), ..Drives::default() }
+    }
     /// The drive caller cards of statements before `seq`, by label.
     pub fn defined_before(&self, seq: usize) -> HashMap<u32, Drive> {
         self.table.iter().filter(|(_, (_, s, _))| *s < seq).map(|(l, (d, _, _))| (*l, d.clone())).collect()

@@ -88,11 +88,13 @@ pub struct Evaluator<'a> {
     /// A check before any state exists: out-of-domain arguments of built-in functions give
     /// NaN instead of an error (the placeholder values of the reads cause them).
     lenient: bool,
+    /// What `model::…_prev` functions read (the previous step's state, in a hint).
+    previous: Option<Reads<'a>>,
 }
 
 impl<'a> Evaluator<'a> {
     pub fn new(tokens: &'a [Spanned], vars: &'a mut Variables, sources: &'a Sources, end: Span) -> Self {
-        Evaluator { tokens, pos: 0, vars, sources, end, depth: 0, overrides: None, functions: None, reads: None, state: None, drives: None, lenient: false }
+        Evaluator { tokens, pos: 0, vars, sources, end, depth: 0, overrides: None, functions: None, reads: None, state: None, drives: None, lenient: false, previous: None }
     }
 
     /// Makes the `model::` state functions read `reads`; `state` is the element state of a
@@ -102,6 +104,13 @@ impl<'a> Evaluator<'a> {
         self.lenient = matches!(reads, Reads::Labels(_));
         self.reads = Some(reads);
         self.state = state;
+        self
+    }
+
+    /// Makes the `model::…_prev` functions read `previous` (a hint's drive, parsed when a
+    /// driven element switches on: the previous step's state).
+    pub fn with_previous(mut self, previous: Reads<'a>) -> Self {
+        self.previous = Some(previous);
         self
     }
 
@@ -451,7 +460,17 @@ impl<'a> Evaluator<'a> {
         let no_reads = |e: &Self| e.err(span, format!("{what} reads the model's state, which is not available here"));
         let real = |e: &Self, v: &TypedValue| v.real().ok_or_else(|| e.err(span, format!("{what} takes numbers, found a string")));
         if super::model_namespace::is_previous_step(name) {
-            return Err(self.err(span, format!("{what} reads the previous time step's state, which romdyn does not keep: not supported")));
+            let Some(previous) = self.previous else {
+                return Err(self.err(span, format!("{what} reads the previous time step's state, which romdyn keeps only for a driven element's hints: not supported here")));
+            };
+            let stem = name.trim_end_matches("_prev");
+            let n = super::model_namespace::arity(stem).unwrap_or(1);
+            let args = self.arguments(&what, span)?;
+            if args.len() != n {
+                return Err(self.err(span, format!("{what} takes {n} node label(s), found {} argument(s)", args.len())));
+            }
+            let labels = args.iter().map(|a| real(self, a)).collect::<Result<Vec<f64>, _>>()?;
+            return super::model_namespace::state_function(stem, &labels, previous).map(TypedValue::Real).map_err(self.at(span));
         }
         if let Some(n) = super::model_namespace::arity(name) {
             let args = self.arguments(&what, span)?;

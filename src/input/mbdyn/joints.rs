@@ -492,6 +492,8 @@ fn total(pin: bool, label: Label, c: &mut Cursor, ctx: &ElementContext, span: su
     j.velocity = position.on(&position.rate).turned(&position_turn);
     j.angular_velocity_locked = rotation.rate;
     j.angular_velocity = rotation.on(&rotation.rate).turned(&rotation_turn);
+    (j.hint_position_held, j.hint_position_turn, j.hint_rotation_turn) = (position.holonomic, position_turn, rotation_turn);
+    j.hint_rotation_held = rotation.holonomic == [true; 3];
     driven_assembled(j, ctx, c, span)
 }
 
@@ -643,6 +645,12 @@ fn rod(offsets: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Res
     // The viscous part acts on MBDyn's strain rate d·ḋ/(l l₀) (rodj.cc, ViscoElasticRod).
     let viscous = (viscosity > 0.0).then_some(RodViscosity { coefficient: viscosity, length: l0 });
     let rod = Rod { label, a: a.anchor(), b: b.anchor(), axial_stiffness: ea * rest / l0, length: rest, viscous, elastic: None };
+    if let Some(b) = law.bistop {
+        if prestrain.is_some() {
+            return Err(c.error_at(law_span, "rod: a bistop law with a prestrain that changes in time is not supported by romdyn"));
+        }
+        return Ok(Box::new(crate::element::BistopRod { rod, strain_length: l0, initially_active: b.initially_active, activate: b.activate, deactivate: b.deactivate }));
+    }
     Ok(match prestrain {
         Some(prestrain) => Box::new(crate::element::PrestrainedRod { rod, prestrain, strain_length: l0 }),
         None => Box::new(rod),

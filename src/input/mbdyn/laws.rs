@@ -30,6 +30,18 @@ pub struct LinearLaw {
     pub prestress: DVector<f64>,
     /// An `nlsf` law's `f′(ε − ε_p)` and `f″(ε̇)` (1-D).
     pub functions: [Option<ScalarFunction>; 2],
+    /// A `linear elastic bistop` or `linear viscoelastic bistop` law's switch (1-D, rods).
+    pub bistop: Option<Bistop>,
+}
+
+/// The switch of MBDyn's bistop laws (constltp_impl.h, `BiStopCLWrapper`): the law acts
+/// from the instant `activate` is non-zero, on the strain from that instant's strain, until
+/// `deactivate` is non-zero.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Bistop {
+    pub initially_active: bool,
+    pub activate: Drive,
+    pub deactivate: Drive,
 }
 
 impl LinearLaw {
@@ -49,13 +61,16 @@ const KINDS: [&str; 9] = [
     "linear viscoelastic generic", "linear viscoelastic isotropic", "linear viscoelastic",
 ];
 
-const UNSUPPORTED: [&str; 19] = [
-    "linear elastic generic axial torsion coupling", "cubic elastic generic", "inverse square elastic", "log elastic", "linear elastic bistop",
+const UNSUPPORTED: [&str; 17] = [
+    "linear elastic generic axial torsion coupling", "cubic elastic generic", "inverse square elastic", "log elastic",
     "double linear elastic", "isotropic hardening elastic", "scalar function elastic", "scalar function elastic isotropic",
     "scalar function elastic orthotropic", "linear time variant viscoelastic generic",
-    "cubic viscoelastic generic", "double linear viscoelastic", "turbulent viscoelastic", "linear viscoelastic bistop", "shock absorber",
+    "cubic viscoelastic generic", "double linear viscoelastic", "turbulent viscoelastic", "shock absorber",
     "symbolic elastic", "symbolic viscous", "symbolic viscoelastic",
 ];
+
+/// Where a bistop law is read elsewhere than on a rod.
+const BISTOP_ON_RODS: &str = "a bistop constitutive law is supported by romdyn on a rod only (its status and reference strain are the rod's events)";
 
 const NLSF: [&str; 3] = ["nlsf viscoelastic", "nlsf elastic", "nlsf viscous"];
 
@@ -95,6 +110,9 @@ pub fn constitutive_law_card(st: &Statement, c: &mut Cursor, laws: &mut Laws, dr
 pub fn linear_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq: usize) -> Result<LinearLaw, MbdynError> {
     let span = c.here();
     let (law, varying) = law_with_prestrain_drive(c, dim, laws, drives, seq)?;
+    if law.bistop.is_some() {
+        return Err(c.error_at(span, BISTOP_ON_RODS));
+    }
     if varying.is_some() {
         return Err(c.error_at(span, "a time-varying prestrain is supported by romdyn on rods only"));
     }
@@ -117,10 +135,41 @@ pub fn law_with_prestrain_drive(c: &mut Cursor, dim: usize, laws: &Laws, drives:
 pub fn axial_law(c: &mut Cursor, laws: &Laws, drives: &Drives, seq: usize) -> Result<LinearLaw, MbdynError> {
     let span = c.here();
     let (law, varying) = read_law(c, 1, laws, drives, seq)?;
+    if law.bistop.is_some() {
+        return Err(c.error_at(span, BISTOP_ON_RODS));
+    }
     if varying.is_some() {
         return Err(c.error_at(span, "a time-varying prestrain is supported by romdyn on rods only"));
     }
     Ok(law)
+}
+
+const BISTOP: [&str; 2] = ["linear viscoelastic bistop", "linear elastic bistop"];
+
+/// `linear [visco]elastic bistop, E, [E′,] [initial status, {active | inactive | BOOL},]
+/// ACTIVATING_DRIVE, DEACTIVATING_DRIVE` after its keyword (constltp_impl.cc,
+/// `LinearBiStopCLR::Read`); the prestress and prestrain follow.
+fn bistop(c: &mut Cursor, kind: &str, dim: usize, drives: &Drives, seq: usize) -> Result<LinearLaw, MbdynError> {
+    if dim != 1 {
+        return Err(c.error(format!("constitutive law '{kind}' is supported by romdyn in 1-D only (a rod), not in {dim}-D")));
+    }
+    let k = c.real("stiffness [per unit strain]")?;
+    let v = if kind == "linear viscoelastic bistop" { c.real("viscosity [per unit strain rate]")? } else { 0.0 };
+    let mut initially_active = false;
+    if c.accept("initial status") {
+        initially_active = if c.accept("active") {
+            true
+        } else if c.accept("inactive") {
+            false
+        } else {
+            c.real("initial status (active, inactive or a boolean)")? != 0.0
+        };
+    }
+    let activate = super::drives::drive(c, drives, seq)?;
+    let deactivate = super::drives::drive(c, drives, seq)?;
+    let one = |x: f64| DMatrix::from_element(1, 1, x);
+    let bistop = Some(Bistop { initially_active, activate, deactivate });
+    Ok(LinearLaw { stiffness: one(k), viscosity: one(v), prestrain: DVector::zeros(1), prestress: DVector::zeros(1), functions: [None, None], bistop })
 }
 
 /// `nlsf …` after its keyword: `{K | null}, {F | null}` for the elastic part, `{C |
@@ -152,7 +201,7 @@ fn nlsf(c: &mut Cursor, kind: &str, dim: usize, drives: &Drives, seq: usize) -> 
         functions[1] = function(c)?;
     }
     let one = |x: f64| DMatrix::from_element(1, 1, x);
-    Ok(LinearLaw { stiffness: one(k), viscosity: one(v), prestrain: DVector::zeros(1), prestress: DVector::zeros(1), functions })
+    Ok(LinearLaw { stiffness: one(k), viscosity: one(v), prestrain: DVector::zeros(1), prestress: DVector::zeros(1), functions, bistop: None })
 }
 
 /// A constitutive law of dimension `dim` at statement `seq`, `nlsf` included, with the drive
@@ -173,12 +222,15 @@ fn read_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq: usize
         let varying = prestress_and_prestrain(c, &mut law, dim, drives, seq)?;
         return Ok((law, varying));
     }
+    if let Some(kind) = c.accept_any(&BISTOP) {
+        let mut law = bistop(c, kind, dim, drives, seq)?;
+        let varying = prestress_and_prestrain(c, &mut law, dim, drives, seq)?;
+        return Ok((law, varying));
+    }
     let Some(kind) = c.accept_any(&KINDS) else {
         if let Some(k) = c.peek_keyword().and_then(|w| UNSUPPORTED.iter().find(|u| super::parser::same_keyword(u, w))) {
             let rods = if k.starts_with("scalar function elastic") {
                 "; 'scalar function elastic' only for a rod and a deformable hinge"
-            } else if k.ends_with("bistop") {
-                "; a bistop law's force is referred to the strain at the instant its activating drive turns non-zero, history MBDyn keeps in the law and romdyn's elements do not hold"
             } else if k.starts_with("symbolic") {
                 "; a symbolic law needs its expression's derivative, which MBDyn takes with GiNaC (MBDyn 1.7.3 built without it refuses it too) and romdyn's math parser does not"
             } else {
@@ -200,7 +252,7 @@ fn read_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq: usize
         let v = if c.accept("proportional") { &k * c.real("proportional damping factor [s]")? } else { read(c, "viscosity")? };
         (k, v)
     };
-    let mut law = LinearLaw { stiffness, viscosity, prestrain: DVector::zeros(dim), prestress: DVector::zeros(dim), functions: [None, None] };
+    let mut law = LinearLaw { stiffness, viscosity, prestrain: DVector::zeros(dim), prestress: DVector::zeros(dim), functions: [None, None], bistop: None };
     let varying = prestress_and_prestrain(c, &mut law, dim, drives, seq)?;
     Ok((law, varying))
 }

@@ -24,6 +24,7 @@ mod file_drivers;
 mod forces;
 mod friction;
 mod functions;
+mod hints;
 mod joints;
 mod laws;
 mod lexer;
