@@ -35,6 +35,8 @@ mod prestrained_rod;
 pub mod private_data;
 mod scalar_function;
 mod screw;
+mod tikhonov;
+mod total_equation;
 
 pub use beam::{shape as beam_shape, Beam2, Beam3, BeamError, BeamNode, SectionLaw, SectionOrientation};
 pub use beam_slider::{BeamSlider, SliderBeam, SliderKind};
@@ -62,3 +64,5 @@ pub use joint::{Joint, JointKind};
 pub use prestrained_rod::PrestrainedRod;
 pub use scalar_function::ScalarFunction;
 pub use screw::Screw;
+pub use tikhonov::Tikhonov;
+pub use total_equation::{TotalEquation, TotalReaction};

@@ -404,16 +404,16 @@ fn anchor_global(anchor: &Anchor, ctx: &ElementContext) -> (Vec3, Mat3) {
 
 /// One side of a total joint: a node (or the ground, `node: None`, with an absolute
 /// position), the offset and the position and rotation orientations.
-struct TotalSide<'a> {
-    node: Option<&'a StructuralNode>,
-    offset: Vec3,
-    position: Mat3,
-    rotation: Mat3,
+pub(super) struct TotalSide<'a> {
+    pub(super) node: Option<&'a StructuralNode>,
+    pub(super) offset: Vec3,
+    pub(super) position: Mat3,
+    pub(super) rotation: Mat3,
 }
 
 impl TotalSide<'_> {
     /// The anchor with frame `q`.
-    fn anchor(&self, q: &Mat3) -> Anchor {
+    pub(super) fn anchor(&self, q: &Mat3) -> Anchor {
         match self.node {
             Some(n) => Anchor::Node { label: n.label, offset: self.offset, orientation: *q },
             None => Anchor::Ground { position: self.offset, orientation: *q },
@@ -422,7 +422,7 @@ impl TotalSide<'_> {
 }
 
 /// `[position, OFFSET] [, position orientation, R] [, rotation orientation, R]`.
-fn total_side<'a>(c: &mut Cursor, on: &Context, node: Option<&'a StructuralNode>) -> Result<TotalSide<'a>, MbdynError> {
+pub(super) fn total_side<'a>(c: &mut Cursor, on: &Context, node: Option<&'a StructuralNode>) -> Result<TotalSide<'a>, MbdynError> {
     let ground = node.is_none();
     let offset = match (c.accept("position"), ground) {
         (false, _) => Vec3::zeros(),
@@ -449,7 +449,7 @@ fn total_side<'a>(c: &mut Cursor, on: &Context, node: Option<&'a StructuralNode>
 /// and side A's position and rotation orientations differ, [`one_constraint_frame`] maps one
 /// onto the other when all three of one kind are constrained; a time-varying imposed
 /// rotation needs all three rotations locked.
-fn total(pin: bool, label: Label, c: &mut Cursor, ctx: &ElementContext, span: super::diagnostic::Span) -> Result<DrivenJoint, MbdynError> {
+pub(super) fn total(pin: bool, label: Label, c: &mut Cursor, ctx: &ElementContext, span: super::diagnostic::Span) -> Result<DrivenJoint, MbdynError> {
     let node = ctx.node(c, if pin { "the node" } else { "node 1" })?;
     let first = total_side(c, &ctx.on(node), Some(node))?;
     let second = if pin {

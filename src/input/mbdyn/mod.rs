@@ -35,6 +35,7 @@ mod parser;
 mod problem;
 mod references;
 mod scalar_functions;
+mod total_equation;
 mod screw;
 mod value;
 mod written_nodes;
