@@ -59,6 +59,9 @@ impl Element for DrivenElement {
     fn is_coordinate(&self, k: usize) -> bool {
         self.inner.is_coordinate(k)
     }
+    fn constraint_rows_read_multipliers(&self) -> bool {
+        self.inner.constraint_rows_read_multipliers()
+    }
     fn residual(&self, s: &dyn ElementState, out: &mut dyn ResidualSink) {
         if self.active(s) {
             self.inner.residual(s, out);

@@ -51,6 +51,9 @@ impl Element for Tikhonov {
     fn reads_state(&self) -> bool {
         self.inner.reads_state()
     }
+    fn constraint_rows_read_multipliers(&self) -> bool {
+        true
+    }
     fn non_smooth(&self, s: &dyn ElementState) -> Option<String> {
         self.inner.non_smooth(s)
     }
