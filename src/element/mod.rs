@@ -9,6 +9,7 @@
 //! the static solver and the linearization use nothing else.
 
 mod anchor;
+mod angular_acceleration;
 mod axial_rotation;
 mod beam;
 mod beam_slider;
@@ -59,6 +60,7 @@ pub use gimbal::GimbalRotation;
 pub use imposed_velocity::{ImposedVelocity, VelocityKind};
 pub use internal_force::{InternalCouple, InternalForce, TotalInternalForce};
 pub use anchor::Anchor;
+pub use angular_acceleration::AngularAcceleration;
 pub use axial_rotation::AxialRotation;
 pub use joint::{Joint, JointKind};
 pub use prestrained_rod::PrestrainedRod;

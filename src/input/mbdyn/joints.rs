@@ -14,19 +14,19 @@ use super::drives::template_vec3;
 use super::element_context::ElementContext;
 use super::laws::{linear_law, rest_strain, three, LinearLaw};
 use super::references::{Context, Frame, OtherSide};
-use crate::element::{Anchor, AxialRotation, GimbalRotation, FunctionHinge, ImposedVelocity, VelocityKind, CardanoHinge, DeformableJoint, DrivenJoint, InvariantDeformableHinge, VectorDrive, DeformableDisplacement, DeformableHinge, Distance, Drive, Element, InLineFriction, Joint, Rod, RodViscosity};
+use crate::element::{Anchor, AngularAcceleration, AxialRotation, GimbalRotation, FunctionHinge, ImposedVelocity, VelocityKind, CardanoHinge, DeformableJoint, DrivenJoint, InvariantDeformableHinge, VectorDrive, DeformableDisplacement, DeformableHinge, Distance, Drive, Element, InLineFriction, Joint, Rod, RodViscosity};
 use crate::kinematics::{Mat3, Vec3};
 use crate::model::{Label, StructuralNode};
 
-const SUPPORTED: [&str; 41] = [
-    "gimbal rotation", "pin", "beam slider", "screw", "linear velocity", "angular velocity", "revolute rotation", "cardano hinge", "universal hinge", "cardano pin", "universal pin", "cardano rotation", "universal rotation", "axial rotation", "drive displacement", "drive displacement pin", "imposed displacement", "imposed displacement pin", "drive hinge", "deformable joint", "deformable axial joint", "invariant deformable hinge", "clamp", "revolute hinge", "plane hinge", "revolute pin", "plane pin", "spherical hinge", "spherical pin", "total joint", "total pin joint",
+const SUPPORTED: [&str; 42] = [
+    "angular acceleration", "gimbal rotation", "pin", "beam slider", "screw", "linear velocity", "angular velocity", "revolute rotation", "cardano hinge", "universal hinge", "cardano pin", "universal pin", "cardano rotation", "universal rotation", "axial rotation", "drive displacement", "drive displacement pin", "imposed displacement", "imposed displacement pin", "drive hinge", "deformable joint", "deformable axial joint", "invariant deformable hinge", "clamp", "revolute hinge", "plane hinge", "revolute pin", "plane pin", "spherical hinge", "spherical pin", "total joint", "total pin joint",
     "deformable displacement joint", "deformable displacement hinge", "deformable hinge", "rod", "rod with offset", "in line", "in plane", "prismatic",
     "distance", "distance with offset",
 ];
 
 /// MBDyn joints romdyn names in its "not supported" error.
-const OTHER_JOINTS: [&str; 12] = [
-    "angular acceleration", "brake",
+const OTHER_JOINTS: [&str; 11] = [
+    "brake",
     "coincidence", "imposed orientation",
     "invariant deformable displacement joint", "invariant deformable joint", "linear acceleration", "modal",
     "plane displacement", "plane displacement pin", "point contact", "rod bezier",
@@ -80,7 +80,7 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
                 // joint.cc: "PlaneDispJoint: unsupported; use an InPlane and a RevoluteRotation".
                 return Err(c.error("joint type 'plane displacement' is not supported by romdyn, nor by MBDyn 1.7.3 (its reader stops: \"unsupported; use an InPlane and a RevoluteRotation\"): write an 'in plane' and a 'revolute rotation'"));
             }
-            return Err(c.error(format!("joint type '{name}' is not supported by romdyn (supported: axial rotation, beam slider, screw, linear velocity, angular velocity, revolute rotation, gimbal rotation, cardano hinge, cardano pin, cardano rotation (and universal …), drive displacement, drive displacement pin, drive hinge, imposed displacement, imposed displacement pin, clamp, revolute hinge, revolute pin, spherical hinge, spherical pin (or pin), total joint, total pin joint, deformable displacement joint, deformable hinge, invariant deformable hinge, deformable joint, deformable axial joint, rod, in line, in plane, prismatic, distance)")));
+            return Err(c.error(format!("joint type '{name}' is not supported by romdyn (supported: angular acceleration, axial rotation, beam slider, screw, linear velocity, angular velocity, revolute rotation, gimbal rotation, cardano hinge, cardano pin, cardano rotation (and universal …), drive displacement, drive displacement pin, drive hinge, imposed displacement, imposed displacement pin, clamp, revolute hinge, revolute pin, spherical hinge, spherical pin (or pin), total joint, total pin joint, deformable displacement joint, deformable hinge, invariant deformable hinge, deformable joint, deformable axial joint, rod, in line, in plane, prismatic, distance)")));
         }
         return Err(c.error(format!("expected a joint type, found {}", c.found())));
     };
@@ -134,6 +134,21 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             let value = super::drives::drive(c, ctx.drives, ctx.seq)?;
             let kind = if kind == "linear velocity" { VelocityKind::Linear } else { VelocityKind::Angular };
             Box::new(ImposedVelocity { label, node: n.label, kind, direction: d, value })
+        }
+        "angular acceleration" => {
+            // joint.cc: NODE, a unit direction relative to the node (normalized), a drive.
+            let n = ctx.node(c, "the node")?;
+            let d_span = c.here();
+            let d = ctx.on(n).relative_vector(c, "direction")?;
+            let d = d.try_normalize(0.0).ok_or_else(|| c.error_at(d_span, "angular acceleration: the direction is null"))?;
+            let value = super::drives::drive(c, ctx.drives, ctx.seq)?;
+            let w0 = (n.orientation * d).dot(&n.angular_velocity);
+            if w0 != 0.0 {
+                // accj.cc's `SetValue` starts its state at the node's (R d) · ω; romdyn
+                // starts an element's states at zero.
+                return Err(c.error_at(d_span, format!("angular acceleration: node {} starts with an angular velocity of {w0:e} rad/s about the direction; romdyn's angular acceleration starts from rest about it", n.label)));
+            }
+            Box::new(AngularAcceleration::new(label, n.label, d, value))
         }
         "revolute rotation" => {
             // joint.cc: offsets after `position` read and ignored; the orientation description.

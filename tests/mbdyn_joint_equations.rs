@@ -1,5 +1,7 @@
-//! `total equation` with its `total internal reaction`, and the Tikhonov `joint
-//! regularization` (issue 12, MBDyn's tests/joints/total/totaleq and tests/stiff/pendulum_reg):
+//! Joints whose equations are more than a holonomic constraint with its reaction (issue 12):
+//! the `total equation` with its `total internal reaction` (MBDyn's
+//! tests/joints/total/totaleq), the Tikhonov `joint regularization` (tests/stiff/pendulum_reg)
+//! and the `angular acceleration` (tests/joints/angularacceleration):
 //! analytic Jacobians against central finite differences of the residual (1e-6 relative, as
 //! tests/mbdyn_joints.rs), test files of `tests/mbdyn_files/` in MBDyn's style checked
 //! against closed forms and against MBDyn 1.7.3's output on the same files (recorded here
@@ -12,7 +14,7 @@ use std::path::{Path, PathBuf};
 use common::fixtures::Noise;
 use romdyn::analysis::run;
 use romdyn::dae::{check_jacobians, Assembler, State};
-use romdyn::element::{Anchor, Drive, DrivenJoint, Element, Joint, Tikhonov, TotalEquation, TotalReaction, VectorDrive};
+use romdyn::element::{Anchor, AngularAcceleration, Drive, DrivenJoint, Element, Joint, Tikhonov, TotalEquation, TotalReaction, VectorDrive};
 use romdyn::input::mbdyn::{build, parse_text, read_model, MbdynModel};
 use romdyn::kinematics::Vec3;
 use romdyn::linear::ConstraintForm;
@@ -200,6 +202,8 @@ fn bad_total_equation_and_regularization_cards_are_named() {
         (text(1, 1, "joint regularization: 1, dynamic, 1e-6;"), "m.mbd:7:"),
         (text(1, 1, "joint regularization: 1, tikhonov, list, 1e-6, 1e-6;"), "m.mbd:7:"),
         (text(1, 1, "joint regularization: 7, tikhonov;"), "m.mbd:7:"),
+        (text(2, 0, "joint: 2, angular acceleration, 2, 0., 0., 0., const, 1.;"), "m.mbd:7:"),
+        (text(2, 0, "joint: 2, angular acceleration, 2, 0., 0., 1., const, 1.;").replace("1., 0., 0., eye, null, null", "1., 0., 0., eye, null, 0., 0., 2."), "m.mbd:7:"),
     ];
     let wants = [
         "total equation 2 is not defined above",
@@ -209,6 +213,8 @@ fn bad_total_equation_and_regularization_cards_are_named() {
         "joint regularization 'dynamic' is not supported by romdyn",
         "'list' gives 2 values, clamp 1 has 6 equations",
         "there is no joint 7 above",
+        "angular acceleration: the direction is null",
+        "angular acceleration: node 2 starts with an angular velocity of 2e0 rad/s about the direction",
     ];
     for ((t, at), want) in cases.iter().zip(wants) {
         let got = error_of(t);
@@ -227,4 +233,37 @@ fn tikhonov_default_compliance_is_mbdyns_and_the_card_is_counted() {
     assert_ne!(default, res("joint regularization: 1, tikhonov, 2e-6;"));
     assert_eq!(default, res("joint regularization: 1, tikhonov, list, 1e-6, 1e-6, 1e-6, 1e-6, 1e-6, 1e-6;"));
     assert!(error_of(&text(1, 0, "joint regularization: 1, tikhonov;")).contains("joint regularizations"));
+}
+
+#[test]
+fn angular_acceleration_jacobian_matches_finite_differences() {
+    assert_jacobians(|n| {
+        let sine = Drive::Sine { t0: 0.0, omega: 3.0, amplitude: 2.0, cycles: None, v0: 0.4 };
+        vec![Box::new(AngularAcceleration::new(1, 2, n.vec().normalize(), sine)), Box::new(AngularAcceleration::new(2, 3, n.vec().normalize(), Drive::Const(0.7)))]
+    });
+}
+
+#[test]
+fn angular_acceleration_spins_the_body_up_as_the_closed_form_and_mbdyn() {
+    // angular_acceleration.mbd at t = 0.95 s: α = A sin(W t) about z from rest, W = π/0.1:
+    // ω_z = A/W (1 − cos W t) = 2 A/W = 0.3183099 rad/s, angle A/W (t − sin(W t)/W)
+    // (closed form; ms(0.6) with h = 1 ms: 3.1e-5 rad/s and 3.2e-5 rad measured), and the
+    // moment the joint applies, −m about z with m = −J α = 10 N m (J = 1 kg m²).
+    let m = read("angular_acceleration.mbd");
+    let report = run(&m.model, &m.problem, &mut ()).unwrap();
+    let asm = Assembler::new(&m.model);
+    let kin = report.final_state.node_frame(&asm.dofs, 0).kin;
+    let (a, w, t) = (10.0, std::f64::consts::PI / 0.1, 0.95);
+    let (omega, angle) = (a / w * (1.0 - (w * t).cos()), a / w * (t - (w * t).sin() / w));
+    let turned = kin.r[(1, 0)].atan2(kin.r[(0, 0)]);
+    assert!((kin.omega[2] - omega).abs() < 1e-4 * omega, "ω_z {} against the closed form {omega}", kin.omega[2]);
+    assert!((turned - angle).abs() < 1e-4, "angle {turned} against the closed form {angle}");
+    // MBDyn 1.7.3 (1727489e) on the same file, t = 0.95 s: .mov ω_z = 3.1827875932615102e-01
+    // rad/s, Euler 1-2-3 angle z = 1.7904644619001118e+01 deg; .jnt of joint 2: m =
+    // 1.0000000000000078e+01 N m (agreement measured 2.5e-15 rad/s, 2.2e-10 deg).
+    assert!((kin.omega[2] - 3.1827875932615102e-01).abs() < 1e-12, "ω_z {} against MBDyn", kin.omega[2]);
+    assert!((turned.to_degrees() - 1.7904644619001118e+01).abs() < 1e-8, "angle {} deg against MBDyn", turned.to_degrees());
+    let e = m.model.elements.iter().position(|e| e.type_name() == "angular acceleration").unwrap();
+    let moment = report.final_state.y[asm.dofs.element_first[e] + 1];
+    assert!((moment - 1.0000000000000078e+01).abs() < 1e-6, "moment {moment} N m against MBDyn's and −J α = 10");
 }
