@@ -38,6 +38,7 @@ mod scalar_function;
 mod screw;
 mod tikhonov;
 mod total_equation;
+mod viscous_body;
 
 pub use beam::{shape as beam_shape, Beam2, Beam3, BeamError, BeamNode, SectionLaw, SectionOrientation};
 pub use beam_slider::{BeamSlider, SliderBeam, SliderKind};
@@ -68,3 +69,4 @@ pub use scalar_function::ScalarFunction;
 pub use screw::Screw;
 pub use tikhonov::Tikhonov;
 pub use total_equation::{TotalEquation, TotalReaction};
+pub use viscous_body::ViscousBody;

@@ -14,12 +14,12 @@ use super::drives::template_vec3;
 use super::element_context::ElementContext;
 use super::laws::{linear_law, rest_strain, three, LinearLaw};
 use super::references::{Context, Frame, OtherSide};
-use crate::element::{Anchor, AngularAcceleration, AxialRotation, GimbalRotation, FunctionHinge, ImposedVelocity, VelocityKind, CardanoHinge, DeformableJoint, DrivenJoint, InvariantDeformableHinge, VectorDrive, DeformableDisplacement, DeformableHinge, Distance, Drive, Element, InLineFriction, Joint, Rod, RodViscosity};
+use crate::element::{Anchor, AngularAcceleration, ViscousBody, AxialRotation, GimbalRotation, FunctionHinge, ImposedVelocity, VelocityKind, CardanoHinge, DeformableJoint, DrivenJoint, InvariantDeformableHinge, VectorDrive, DeformableDisplacement, DeformableHinge, Distance, Drive, Element, InLineFriction, Joint, Rod, RodViscosity};
 use crate::kinematics::{Mat3, Vec3};
 use crate::model::{Label, StructuralNode};
 
-const SUPPORTED: [&str; 42] = [
-    "angular acceleration", "gimbal rotation", "pin", "beam slider", "screw", "linear velocity", "angular velocity", "revolute rotation", "cardano hinge", "universal hinge", "cardano pin", "universal pin", "cardano rotation", "universal rotation", "axial rotation", "drive displacement", "drive displacement pin", "imposed displacement", "imposed displacement pin", "drive hinge", "deformable joint", "deformable axial joint", "invariant deformable hinge", "clamp", "revolute hinge", "plane hinge", "revolute pin", "plane pin", "spherical hinge", "spherical pin", "total joint", "total pin joint",
+const SUPPORTED: [&str; 43] = [
+    "viscous body", "angular acceleration", "gimbal rotation", "pin", "beam slider", "screw", "linear velocity", "angular velocity", "revolute rotation", "cardano hinge", "universal hinge", "cardano pin", "universal pin", "cardano rotation", "universal rotation", "axial rotation", "drive displacement", "drive displacement pin", "imposed displacement", "imposed displacement pin", "drive hinge", "deformable joint", "deformable axial joint", "invariant deformable hinge", "clamp", "revolute hinge", "plane hinge", "revolute pin", "plane pin", "spherical hinge", "spherical pin", "total joint", "total pin joint",
     "deformable displacement joint", "deformable displacement hinge", "deformable hinge", "rod", "rod with offset", "in line", "in plane", "prismatic",
     "distance", "distance with offset",
 ];
@@ -80,7 +80,7 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
                 // joint.cc: "PlaneDispJoint: unsupported; use an InPlane and a RevoluteRotation".
                 return Err(c.error("joint type 'plane displacement' is not supported by romdyn, nor by MBDyn 1.7.3 (its reader stops: \"unsupported; use an InPlane and a RevoluteRotation\"): write an 'in plane' and a 'revolute rotation'"));
             }
-            return Err(c.error(format!("joint type '{name}' is not supported by romdyn (supported: angular acceleration, axial rotation, beam slider, screw, linear velocity, angular velocity, revolute rotation, gimbal rotation, cardano hinge, cardano pin, cardano rotation (and universal …), drive displacement, drive displacement pin, drive hinge, imposed displacement, imposed displacement pin, clamp, revolute hinge, revolute pin, spherical hinge, spherical pin (or pin), total joint, total pin joint, deformable displacement joint, deformable hinge, invariant deformable hinge, deformable joint, deformable axial joint, rod, in line, in plane, prismatic, distance)")));
+            return Err(c.error(format!("joint type '{name}' is not supported by romdyn (supported: viscous body, angular acceleration, axial rotation, beam slider, screw, linear velocity, angular velocity, revolute rotation, gimbal rotation, cardano hinge, cardano pin, cardano rotation (and universal …), drive displacement, drive displacement pin, drive hinge, imposed displacement, imposed displacement pin, clamp, revolute hinge, revolute pin, spherical hinge, spherical pin (or pin), total joint, total pin joint, deformable displacement joint, deformable hinge, invariant deformable hinge, deformable joint, deformable axial joint, rod, in line, in plane, prismatic, distance)")));
         }
         return Err(c.error(format!("expected a joint type, found {}", c.found())));
     };
@@ -134,6 +134,19 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             let value = super::drives::drive(c, ctx.drives, ctx.seq)?;
             let kind = if kind == "linear velocity" { VelocityKind::Linear } else { VelocityKind::Angular };
             Box::new(ImposedVelocity { label, node: n.label, kind, direction: d, value })
+        }
+        "viscous body" => {
+            // joint.cc: NODE, [position,] OFFSET, [orientation | hinge, R,] a 6-D viscous law.
+            let n = side(c, ctx, "the node", Position::Always, None)?;
+            let span = c.here();
+            let law = linear_law(c, 6, ctx.laws, ctx.drives, ctx.seq)?;
+            let viscous_only = law.stiffness.iter().all(|&k| k == 0.0) && law.prestrain.iter().chain(law.prestress.iter()).all(|&k| k == 0.0) && law.functions.iter().all(Option::is_none);
+            if !viscous_only {
+                return Err(c.error_at(span, "viscous body: needs a viscous constitutive law (joint.cc), no stiffness, prestrain or prestress"));
+            }
+            orientation_description(c)?;
+            let viscosity = nalgebra::Matrix6::from_fn(|i, j| law.viscosity[(i, j)]);
+            Box::new(ViscousBody { label, node: n.node.label, offset: n.offset, orientation: n.orientation, viscosity })
         }
         "angular acceleration" => {
             // joint.cc: NODE, a unit direction relative to the node (normalized), a drive.
