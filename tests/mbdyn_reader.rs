@@ -155,9 +155,13 @@ fn extra_arguments_of_a_structural_node_say_mbdyn_stops_too() {
 }
 
 #[test]
-fn joint_regularizations_are_refused_with_what_they_would_change() {
+fn joint_regularizations_are_counted_and_the_unsupported_kinds_named() {
     // MBDyn's tests/stiff/pendulum_reg, tests/joints/total/totalhint: jointreg.cc's
-    // Tikhonov regularization relaxes the joint's constraint equations.
+    // Tikhonov regularization is read (tests/total_equation.rs); the counter must match the
+    // cards, and 'dynamic' and 'jacobian' (which change MBDyn's Newton matrix) are refused.
     let e = read_text(&free_body("", "joint regularizations: 1;")).err().unwrap_or_default();
-    assert!(e.contains("m.mbd:3:") && e.contains("joint regularizations") && e.contains("constraint equations"), "{e}");
+    assert!(e.contains("m.mbd:3:") && e.contains("control data declares 1 joint regularizations, the model has 0"), "{e}");
+    let clamp = "joint: 2, clamp, 1, node, node; joint regularization: 2, jacobian;";
+    let e = read_text(&free_body(clamp, "joints: 1; joint regularizations: 1;")).err().unwrap_or_default();
+    assert!(e.contains("m.mbd:5:") && e.contains("joint regularization 'jacobian' is not supported by romdyn"), "{e}");
 }

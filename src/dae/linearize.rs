@@ -7,7 +7,7 @@ use std::str::FromStr;
 use super::ports::{Direction, Excitation, InputPort, Measurement, OutputPort, Point, PortError, PortMap};
 use super::{Assembler, Coefficients, State};
 use crate::kinematics::Vec3;
-use crate::linear::{Jacobians, LinearDae, SparseLinearDae, SparseMatrix};
+use crate::linear::{ConstraintForm, Jacobians, LinearDae, SparseLinearDae, SparseMatrix};
 use crate::model::{Label, Model};
 
 const FORCES: [&str; 6] = ["Fx", "Fy", "Fz", "Mx", "My", "Mz"];
@@ -98,6 +98,19 @@ fn linearizable(model: &Model) -> Result<(), PortError> {
     }
 }
 
+/// The constraint form of the linearization: the model's, but eq. 29 for a model whose
+/// constraint rows read their multipliers (a joint regularization, `Φ − C λ`): in the form of
+/// eq. 30 that row's `λ` entry goes as `1/c` in `J(c)`, which no pencil `λ F_/ẏ + F_/y`
+/// holds, while eq. 29 holds it exactly (`−C` in `F_/y`: the joint a spring of stiffness
+/// `1/C`).
+fn linearization_form(model: &Model) -> ConstraintForm {
+    if model.elements.iter().any(|e| e.constraint_rows_read_multipliers()) {
+        ConstraintForm::Plain
+    } else {
+        model.constraint_form
+    }
+}
+
 /// Linearizes `model` at `state` (re-based first so that rotations are measured by `g`).
 /// With `dcoef = Some(c)` the Jacobians are assembled as `J(±c)` (eqs. 13–14), otherwise
 /// `F_/ẏ` and `F_/y` directly; both routes agree to rounding.
@@ -114,7 +127,7 @@ pub fn linearize_ports(model: &Model, state: &State, inputs: &[InputPort], outpu
     let asm = Assembler::new(model);
     let mut st = state.clone();
     st.rebase(&asm.dofs);
-    let form = model.constraint_form;
+    let form = linearization_form(model);
     let coef = |a, b| Coefficients { a, b, form, dcoef: dcoef.unwrap_or(1.0) };
     let jacobians = match dcoef {
         None => Jacobians::Derivatives { fyd: asm.jacobian(&st, coef(1.0, 0.0)).to_dense(), fy: asm.jacobian(&st, coef(0.0, 1.0)).to_dense() },
@@ -145,7 +158,7 @@ pub fn linearize_sparse(model: &Model, state: &State, inputs: &[InputPort], outp
     let asm = Assembler::new(model);
     let mut st = state.clone();
     st.rebase(&asm.dofs);
-    let form = model.constraint_form;
+    let form = linearization_form(model);
     let n = asm.dofs.len;
     let sparse = |a: f64, b: f64| {
         let t = asm.jacobian(&st, Coefficients { a, b, form, dcoef: 1.0 });

@@ -221,6 +221,13 @@ pub trait Element: Send + Sync {
     fn hinted(&self, _hint: &super::HintValue) -> Option<Box<dyn Element>> {
         None
     }
+    /// Whether its constraint rows depend on its own multipliers (a joint regularization:
+    /// `Φ − C λ`). Their multiplier entries in `J(c)` then go as `1/c` in the form of eq. 30,
+    /// which no pencil `λ F_/ẏ + F_/y` holds: [`crate::dae::linearize`] linearizes such a
+    /// model in the form of eq. 29.
+    fn constraint_rows_read_multipliers(&self) -> bool {
+        false
+    }
     /// Adds its contribution to `F(y, ẏ, t)`.
     fn residual(&self, s: &dyn ElementState, out: &mut dyn ResidualSink);
     /// Adds its derivatives; the assembler forms `J(c)` from them.

@@ -138,6 +138,9 @@ impl Element for DrivenElement {
         };
         Some(Arc::new(Switched { active: is, element }))
     }
+    fn constraint_rows_read_multipliers(&self) -> bool {
+        self.inner.constraint_rows_read_multipliers()
+    }
     fn residual(&self, s: &dyn ElementState, out: &mut dyn ResidualSink) {
         if self.active(s) {
             match self.element(s) {

@@ -9,6 +9,7 @@
 //! the static solver and the linearization use nothing else.
 
 mod anchor;
+mod angular_acceleration;
 mod axial_rotation;
 mod beam;
 mod beam_slider;
@@ -37,6 +38,9 @@ pub mod private_data;
 mod scalar_function;
 mod screw;
 mod step_drive;
+mod tikhonov;
+mod total_equation;
+mod viscous_body;
 
 pub use beam::{shape as beam_shape, Beam2, Beam3, BeamError, BeamNode, SectionLaw, SectionOrientation};
 pub use beam_slider::{BeamSlider, SliderBeam, SliderKind};
@@ -60,9 +64,13 @@ pub use gimbal::GimbalRotation;
 pub use imposed_velocity::{ImposedVelocity, VelocityKind};
 pub use internal_force::{InternalCouple, InternalForce, TotalInternalForce};
 pub use anchor::Anchor;
+pub use angular_acceleration::AngularAcceleration;
 pub use axial_rotation::AxialRotation;
 pub use joint::{Joint, JointKind};
 pub use prestrained_rod::PrestrainedRod;
 pub use scalar_function::ScalarFunction;
 pub use screw::Screw;
 pub use step_drive::{StepDrive, StepKind};
+pub use tikhonov::Tikhonov;
+pub use total_equation::{TotalEquation, TotalReaction};
+pub use viscous_body::ViscousBody;

@@ -15,7 +15,7 @@ use super::parser::{known, Block};
 use crate::model::{InitialAssembly, OrientationOutput};
 
 /// Entity kinds counted in control data and found in the model.
-pub const COUNTED: [&str; 9] = ["structural nodes", "parameter nodes", "rigid bodies", "joints", "forces", "beams", "gravity", "automatic structural elements", "file drivers"];
+pub const COUNTED: [&str; 10] = ["structural nodes", "parameter nodes", "rigid bodies", "joints", "joint regularizations", "forces", "beams", "gravity", "automatic structural elements", "file drivers"];
 
 /// Counters of entities romdyn does not support: a non-zero count is an error.
 const UNSUPPORTED_COUNTERS: [&str; 16] = [
@@ -166,12 +166,6 @@ pub fn control_data(block: Option<&Block>, sources: &Sources) -> Result<(Counts,
         } else if let Some(kind) = known(&st.keyword, &["model", "rigid body kinematics"]) {
             let what = if kind == "model" { "'model: static' (dynamic nodes treated as static)" } else { "'rigid body kinematics' (a moving reference frame)" };
             return Err(c.error_at(st.span, format!("{what} changes the physics and is not supported by romdyn")));
-        } else if known(&st.keyword, &["joint regularizations"]).is_some() {
-            // jointreg.cc: a `joint regularization: LABEL, tikhonov, C;` card adds C λ/dCoef
-            // to each constraint equation of joint LABEL (`TikhonovRegularization::AssRes`,
-            // its Jacobian −C/dCoef on the multipliers), so the joint holds only
-            // approximately; `dynamic` and `jacobian` change the iteration matrix alone.
-            return Err(c.error_at(st.span, "joint regularizations (jointreg.cc: 'tikhonov' adds C·λ to each of the joint's constraint equations, relaxing the joint; 'dynamic' and 'jacobian' change the Newton matrix) are not supported by romdyn, whose joints hold exactly: remove the 'joint regularization' cards and this counter"));
         } else {
             return Err(c.error_at(st.span, format!("statement '{}' in control data is not supported by romdyn", st.keyword)));
         }

@@ -22,6 +22,12 @@ pub enum Parsed {
     DrivenGravity { direction: Vec3, drive: crate::element::Drive },
     /// A rigid body (which a central gravity field acts on).
     Body(crate::element::RigidBody),
+    /// A `total equation`, waiting for the reactions that apply its multipliers.
+    TotalEquation(crate::element::DrivenJoint),
+    /// A `total internal reaction` of the total equation `equation`.
+    TotalReaction { reaction: crate::element::TotalReaction, equation: crate::model::Label, span: super::diagnostic::Span },
+    /// A `joint regularization: JOINT, tikhonov, …` of a joint defined above.
+    Regularization { joint: crate::model::Label, c: super::total_equation::Compliance, span: super::diagnostic::Span },
     /// A card that does not change the model.
     Ignored,
 }

@@ -16,16 +16,17 @@ use crate::kinematics::{Mat3, Vec3};
 use crate::model::Label;
 
 /// Element types of MBDyn romdyn names in its "not supported" error.
-const OTHER_TYPES: [&str; 23] = [
+const OTHER_TYPES: [&str; 22] = [
     "aerodynamic beam2", "aerodynamic beam3", "aerodynamic body", "aeromodal", "aircraft instruments", "air properties", "induced velocity",
     "electric", "hydraulic", "thermal", "rtai output", "stream output", "stream motion output", "bind", "bulk", "genel", "loadable",
-    "user defined", "joint regularization", "plate", "shell4eas", "shell4easans", "membrane4eas",
+    "user defined", "plate", "shell4eas", "shell4easans", "membrane4eas",
 ];
 
 /// The element kind counted in control data, by element keyword.
 pub fn counted_kind(keyword: &str) -> Option<&'static str> {
-    match known(keyword, &["body", "joint", "force", "couple", "beam", "beam2", "beam3", "gravity", "automatic structural"])? {
+    match known(keyword, &["body", "joint", "joint regularization", "force", "couple", "beam", "beam2", "beam3", "gravity", "automatic structural"])? {
         "body" => Some("rigid bodies"),
+        "joint regularization" => Some("joint regularizations"),
         "joint" => Some("joints"),
         "force" | "couple" => Some("forces"),
         "gravity" => Some("gravity"),
@@ -47,7 +48,7 @@ pub fn label_space(keyword: &str) -> &'static str {
 
 /// One statement of the `elements` block (after the label for labelled elements).
 pub fn element(st: &Statement, c: &mut Cursor, ctx: &ElementContext) -> Result<Parsed, MbdynError> {
-    let kinds = ["body", "joint", "force", "couple", "gravity", "beam", "beam2", "beam3", "automatic structural", "inertia", "output"];
+    let kinds = ["body", "joint", "joint regularization", "force", "couple", "gravity", "beam", "beam2", "beam3", "automatic structural", "inertia", "output"];
     let Some(kind) = known(&st.keyword, &kinds) else {
         if known(&st.keyword, &["hbeam", "hbeam2"]).is_some() {
             return Err(c.error_at(st.span, super::beams::HBEAM_REFUSED));
@@ -69,7 +70,11 @@ pub fn element(st: &Statement, c: &mut Cursor, ctx: &ElementContext) -> Result<P
     }
     let parsed = match kind {
         "body" => Parsed::Body(body(label, c, ctx)?),
-        "joint" => Parsed::Element(joint(label, c, ctx)?),
+        "joint" => match super::total_equation::parts(label, c, ctx)? {
+            Some(parsed) => parsed,
+            None => Parsed::Element(joint(label, c, ctx)?),
+        },
+        "joint regularization" => super::total_equation::regularization(label, c)?,
         "force" | "couple" => Parsed::Element(force(kind == "couple", label, c, ctx)?),
         "automatic structural" => {
             ctx.node_with_label(c, label)?;

@@ -14,19 +14,19 @@ use super::drives::template_vec3;
 use super::element_context::ElementContext;
 use super::laws::{linear_law, rest_strain, three, LinearLaw};
 use super::references::{Context, Frame, OtherSide};
-use crate::element::{Anchor, AxialRotation, GimbalRotation, FunctionHinge, ImposedVelocity, VelocityKind, CardanoHinge, DeformableJoint, DrivenJoint, InvariantDeformableHinge, VectorDrive, DeformableDisplacement, DeformableHinge, Distance, Drive, Element, InLineFriction, Joint, Rod, RodViscosity};
+use crate::element::{Anchor, AngularAcceleration, ViscousBody, AxialRotation, GimbalRotation, FunctionHinge, ImposedVelocity, VelocityKind, CardanoHinge, DeformableJoint, DrivenJoint, InvariantDeformableHinge, VectorDrive, DeformableDisplacement, DeformableHinge, Distance, Drive, Element, InLineFriction, Joint, Rod, RodViscosity};
 use crate::kinematics::{Mat3, Vec3};
 use crate::model::{Label, StructuralNode};
 
-const SUPPORTED: [&str; 41] = [
-    "gimbal rotation", "pin", "beam slider", "screw", "linear velocity", "angular velocity", "revolute rotation", "cardano hinge", "universal hinge", "cardano pin", "universal pin", "cardano rotation", "universal rotation", "axial rotation", "drive displacement", "drive displacement pin", "imposed displacement", "imposed displacement pin", "drive hinge", "deformable joint", "deformable axial joint", "invariant deformable hinge", "clamp", "revolute hinge", "plane hinge", "revolute pin", "plane pin", "spherical hinge", "spherical pin", "total joint", "total pin joint",
+const SUPPORTED: [&str; 43] = [
+    "viscous body", "angular acceleration", "gimbal rotation", "pin", "beam slider", "screw", "linear velocity", "angular velocity", "revolute rotation", "cardano hinge", "universal hinge", "cardano pin", "universal pin", "cardano rotation", "universal rotation", "axial rotation", "drive displacement", "drive displacement pin", "imposed displacement", "imposed displacement pin", "drive hinge", "deformable joint", "deformable axial joint", "invariant deformable hinge", "clamp", "revolute hinge", "plane hinge", "revolute pin", "plane pin", "spherical hinge", "spherical pin", "total joint", "total pin joint",
     "deformable displacement joint", "deformable displacement hinge", "deformable hinge", "rod", "rod with offset", "in line", "in plane", "prismatic",
     "distance", "distance with offset",
 ];
 
 /// MBDyn joints romdyn names in its "not supported" error.
-const OTHER_JOINTS: [&str; 12] = [
-    "angular acceleration", "brake",
+const OTHER_JOINTS: [&str; 11] = [
+    "brake",
     "coincidence", "imposed orientation",
     "invariant deformable displacement joint", "invariant deformable joint", "linear acceleration", "modal",
     "plane displacement", "plane displacement pin", "point contact", "rod bezier",
@@ -80,7 +80,7 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
                 // joint.cc: "PlaneDispJoint: unsupported; use an InPlane and a RevoluteRotation".
                 return Err(c.error("joint type 'plane displacement' is not supported by romdyn, nor by MBDyn 1.7.3 (its reader stops: \"unsupported; use an InPlane and a RevoluteRotation\"): write an 'in plane' and a 'revolute rotation'"));
             }
-            return Err(c.error(format!("joint type '{name}' is not supported by romdyn (supported: axial rotation, beam slider, screw, linear velocity, angular velocity, revolute rotation, gimbal rotation, cardano hinge, cardano pin, cardano rotation (and universal …), drive displacement, drive displacement pin, drive hinge, imposed displacement, imposed displacement pin, clamp, revolute hinge, revolute pin, spherical hinge, spherical pin (or pin), total joint, total pin joint, deformable displacement joint, deformable hinge, invariant deformable hinge, deformable joint, deformable axial joint, rod, in line, in plane, prismatic, distance)")));
+            return Err(c.error(format!("joint type '{name}' is not supported by romdyn (supported: viscous body, angular acceleration, axial rotation, beam slider, screw, linear velocity, angular velocity, revolute rotation, gimbal rotation, cardano hinge, cardano pin, cardano rotation (and universal …), drive displacement, drive displacement pin, drive hinge, imposed displacement, imposed displacement pin, clamp, revolute hinge, revolute pin, spherical hinge, spherical pin (or pin), total joint, total pin joint, deformable displacement joint, deformable hinge, invariant deformable hinge, deformable joint, deformable axial joint, rod, in line, in plane, prismatic, distance)")));
         }
         return Err(c.error(format!("expected a joint type, found {}", c.found())));
     };
@@ -134,6 +134,34 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             let value = super::drives::drive(c, ctx.drives, ctx.seq)?;
             let kind = if kind == "linear velocity" { VelocityKind::Linear } else { VelocityKind::Angular };
             Box::new(ImposedVelocity { label, node: n.label, kind, direction: d, value })
+        }
+        "viscous body" => {
+            // joint.cc: NODE, [position,] OFFSET, [orientation | hinge, R,] a 6-D viscous law.
+            let n = side(c, ctx, "the node", Position::Always, None)?;
+            let span = c.here();
+            let law = linear_law(c, 6, ctx.laws, ctx.drives, ctx.seq)?;
+            let viscous_only = law.stiffness.iter().all(|&k| k == 0.0) && law.prestrain.iter().chain(law.prestress.iter()).all(|&k| k == 0.0) && law.functions.iter().all(Option::is_none);
+            if !viscous_only {
+                return Err(c.error_at(span, "viscous body: needs a viscous constitutive law (joint.cc), no stiffness, prestrain or prestress"));
+            }
+            orientation_description(c)?;
+            let viscosity = nalgebra::Matrix6::from_fn(|i, j| law.viscosity[(i, j)]);
+            Box::new(ViscousBody { label, node: n.node.label, offset: n.offset, orientation: n.orientation, viscosity })
+        }
+        "angular acceleration" => {
+            // joint.cc: NODE, a unit direction relative to the node (normalized), a drive.
+            let n = ctx.node(c, "the node")?;
+            let d_span = c.here();
+            let d = ctx.on(n).relative_vector(c, "direction")?;
+            let d = d.try_normalize(0.0).ok_or_else(|| c.error_at(d_span, "angular acceleration: the direction is null"))?;
+            let value = super::drives::drive(c, ctx.drives, ctx.seq)?;
+            let w0 = (n.orientation * d).dot(&n.angular_velocity);
+            if w0 != 0.0 {
+                // accj.cc's `SetValue` starts its state at the node's (R d) · ω; romdyn
+                // starts an element's states at zero.
+                return Err(c.error_at(d_span, format!("angular acceleration: node {} starts with an angular velocity of {w0:e} rad/s about the direction; romdyn's angular acceleration starts from rest about it", n.label)));
+            }
+            Box::new(AngularAcceleration::new(label, n.label, d, value))
         }
         "revolute rotation" => {
             // joint.cc: offsets after `position` read and ignored; the orientation description.
@@ -404,16 +432,16 @@ fn anchor_global(anchor: &Anchor, ctx: &ElementContext) -> (Vec3, Mat3) {
 
 /// One side of a total joint: a node (or the ground, `node: None`, with an absolute
 /// position), the offset and the position and rotation orientations.
-struct TotalSide<'a> {
-    node: Option<&'a StructuralNode>,
-    offset: Vec3,
-    position: Mat3,
-    rotation: Mat3,
+pub(super) struct TotalSide<'a> {
+    pub(super) node: Option<&'a StructuralNode>,
+    pub(super) offset: Vec3,
+    pub(super) position: Mat3,
+    pub(super) rotation: Mat3,
 }
 
 impl TotalSide<'_> {
     /// The anchor with frame `q`.
-    fn anchor(&self, q: &Mat3) -> Anchor {
+    pub(super) fn anchor(&self, q: &Mat3) -> Anchor {
         match self.node {
             Some(n) => Anchor::Node { label: n.label, offset: self.offset, orientation: *q },
             None => Anchor::Ground { position: self.offset, orientation: *q },
@@ -422,7 +450,7 @@ impl TotalSide<'_> {
 }
 
 /// `[position, OFFSET] [, position orientation, R] [, rotation orientation, R]`.
-fn total_side<'a>(c: &mut Cursor, on: &Context, node: Option<&'a StructuralNode>) -> Result<TotalSide<'a>, MbdynError> {
+pub(super) fn total_side<'a>(c: &mut Cursor, on: &Context, node: Option<&'a StructuralNode>) -> Result<TotalSide<'a>, MbdynError> {
     let ground = node.is_none();
     let offset = match (c.accept("position"), ground) {
         (false, _) => Vec3::zeros(),
@@ -449,7 +477,7 @@ fn total_side<'a>(c: &mut Cursor, on: &Context, node: Option<&'a StructuralNode>
 /// and side A's position and rotation orientations differ, [`one_constraint_frame`] maps one
 /// onto the other when all three of one kind are constrained; a time-varying imposed
 /// rotation needs all three rotations locked.
-fn total(pin: bool, label: Label, c: &mut Cursor, ctx: &ElementContext, span: super::diagnostic::Span) -> Result<DrivenJoint, MbdynError> {
+pub(super) fn total(pin: bool, label: Label, c: &mut Cursor, ctx: &ElementContext, span: super::diagnostic::Span) -> Result<DrivenJoint, MbdynError> {
     let node = ctx.node(c, if pin { "the node" } else { "node 1" })?;
     let first = total_side(c, &ctx.on(node), Some(node))?;
     let second = if pin {

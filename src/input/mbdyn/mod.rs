@@ -36,6 +36,7 @@ mod parser;
 mod problem;
 mod references;
 mod scalar_functions;
+mod total_equation;
 mod screw;
 mod value;
 mod written_nodes;

@@ -189,6 +189,7 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
     // Elements are kept until the block ends: a `bind` reads the ones above it.
     let mut built: Vec<(&'static str, Span, usize, Box<dyn crate::element::Element>)> = Vec::new();
     let mut output_only = std::collections::HashSet::new();
+    let mut pending = super::total_equation::Pending::default();
     for st in block(doc, "elements").map_or(&[][..], |b| &b.statements) {
         let mut c = Cursor::new(st, src);
         if super::element_reads::is_bind(&st.keyword) {
@@ -261,9 +262,23 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
                 }
                 built.push((space, st.span, st.seq, e));
             }
+            Parsed::TotalEquation(j) => {
+                if let Some(prev) = labels.insert(("joint", crate::element::Element::label(&j)), st.span) {
+                    return Err(src.error(label_span, format!("joint {} is defined twice (first at line {})", crate::element::Element::label(&j), prev.line)));
+                }
+                pending.equation(j, st.span, st.seq);
+            }
+            Parsed::TotalReaction { reaction, equation, span } => {
+                if let Some(prev) = labels.insert(("joint", reaction.label), st.span) {
+                    return Err(src.error(label_span, format!("joint {} is defined twice (first at line {})", reaction.label, prev.line)));
+                }
+                pending.reaction(src, reaction, equation, span)?;
+            }
+            Parsed::Regularization { joint, c, span } => pending.regularization(joint, c, span),
             Parsed::Ignored => {}
         }
     }
+    pending.finish(src, &mut built)?;
     let defined = built.iter().map(|(space, at, seq, e)| ((*space, e.label()), (e.as_ref(), *at, *seq))).collect();
     cards.drives.private.resolve(src, &defined)?;
     for (.., e) in built {
