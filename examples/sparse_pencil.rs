@@ -7,11 +7,13 @@
 //!     linear::krylov::sparse_modes factors and iterates on (the chain of the tests and of
 //!     benches/sparse_eigen.rs linearized at rest in MBDyn's form, eq. 30, then mapped to
 //!     eq. 29), Matrix Market coordinate real general, 17 N + 12 rows.
-//! cargo run --release --example sparse_pencil -- solve DIR COUNT [REPEAT]
+//! cargo run --release --example sparse_pencil -- solve DIR COUNT [REPEAT] [--right-only]
 //!     reads DIR/E.mtx, DIR/K.mtx, runs sparse_modes(Lowest(COUNT)) REPEAT times on
 //!     E ẏ + K y = 0 and prints the fastest wall time [s] and the eigenvalues [rad/s]
 //!     (Im λ ≥ 0 of each pair), one "re im" line each; with SPARSE_PENCIL_PROGRESS set,
 //!     the solver's progress lines (operator applications, restarts) on stderr.
+//!     `--right-only`: right vectors only (`SparseEigenSettings::left_vectors = false`, the
+//!     work scipy's eigs does: no adjoint run, so the result is not certified).
 //! ```
 //!
 //! The files are written and read by romdyn's Matrix Market code
@@ -42,12 +44,15 @@ fn main() -> Result<()> {
 }
 
 fn run() -> Result<()> {
-    let args: Vec<String> = std::env::args().skip(1).collect();
+    let mut args: Vec<String> = std::env::args().skip(1).collect();
+    let right_only = args.iter().any(|a| a == "--right-only");
+    args.retain(|a| a != "--right-only");
+    let settings = SparseEigenSettings { left_vectors: !right_only, ..Default::default() };
     match args.iter().map(String::as_str).collect::<Vec<_>>().as_slice() {
         ["export", n, dir] => export(n.parse().context("N: a number of links")?, Path::new(dir)),
-        ["solve", dir, count] => solve(Path::new(dir), count.parse().context("COUNT: a number of modes")?, 1),
-        ["solve", dir, count, repeat] => solve(Path::new(dir), count.parse().context("COUNT: a number of modes")?, repeat.parse().context("REPEAT: a number of runs")?),
-        _ => bail!("usage: sparse_pencil export N DIR | sparse_pencil solve DIR COUNT [REPEAT]"),
+        ["solve", dir, count] => solve(Path::new(dir), count.parse().context("COUNT: a number of modes")?, 1, &settings),
+        ["solve", dir, count, repeat] => solve(Path::new(dir), count.parse().context("COUNT: a number of modes")?, repeat.parse().context("REPEAT: a number of runs")?, &settings),
+        _ => bail!("usage: sparse_pencil export N DIR | sparse_pencil solve DIR COUNT [REPEAT] [--right-only]"),
     }
 }
 
@@ -65,7 +70,7 @@ fn export(n: u32, dir: &Path) -> Result<()> {
     Ok(())
 }
 
-fn solve(dir: &Path, count: usize, repeat: usize) -> Result<()> {
+fn solve(dir: &Path, count: usize, repeat: usize, settings: &SparseEigenSettings) -> Result<()> {
     let (e, k) = (read_sparse_matrix(&dir.join("E.mtx"))?, read_sparse_matrix(&dir.join("K.mtx"))?);
     let n = e.nrows();
     if k.nrows() != n || e.ncols() != n || k.ncols() != n {
@@ -91,7 +96,7 @@ fn solve(dir: &Path, count: usize, repeat: usize) -> Result<()> {
         drop(result.take());
         let start = std::time::Instant::now();
         let verbose = std::env::var_os("SPARSE_PENCIL_PROGRESS").is_some();
-        let r = sparse_modes_with_progress(&dae, ModeTarget::Lowest(count), &SparseEigenSettings::default(), &|line| {
+        let r = sparse_modes_with_progress(&dae, ModeTarget::Lowest(count), settings, &|line| {
             if verbose {
                 eprintln!("{line}");
             }

@@ -221,3 +221,44 @@ fn a_wide_band_of_the_chain_takes_several_shifts_and_misses_none() {
     assert!(s.windows.len() >= 3, "{:?}", s.windows);
     assert_band("chain N = 30 modes 4-25", &modal, &s, 3, 24);
 }
+
+/// Right vectors only (`SparseEigenSettings::left_vectors = false`, the work scipy's `eigs`
+/// does): the right Krylov run alone gives the same 20 lowest modes of the 1712-equation
+/// chain as the dense route (1e-9 relative, `assert_matches_dense`) and as the two-sided
+/// run (the same right vectors: |v₁ᴴ v₂| = 1 to 1e-8 for unit vectors), each right vector's
+/// true residual `‖(λ F_yd + F_y) v‖ / ((|λ| ‖F_yd‖ + ‖F_y‖) ‖v‖)` recomputed here below the
+/// 1e-10 tolerance, no left vectors, and the result not certified, saying why (no adjoint
+/// run checked the count).
+#[test]
+fn right_vectors_only_give_the_same_modes_without_certifying_the_count() {
+    let (dense, sparse) = models(&hanging_chain(100, ConstraintForm::Scaled));
+    let modal = ModalAnalysis::of_dae(&dense, EigenRoute::Lambda, None).unwrap();
+    let both = sparse_modes(&sparse, ModeTarget::Lowest(20), &SparseEigenSettings::default()).unwrap();
+    let right = sparse_modes(&sparse, ModeTarget::Lowest(20), &SparseEigenSettings { left_vectors: false, ..Default::default() }).unwrap();
+    assert!(!right.certified);
+    assert!(right.note.as_deref().is_some_and(|n| n.contains("right vectors only")), "{:?}", right.note);
+    assert!(right.windows.iter().all(|w| !w.agreed), "{:?}", right.windows);
+    // The dense route's 20 lowest units, each found (imaginary parts to 1e-9 relative, the
+    // real parts to the dense error estimate, as `assert_matches_dense`, which also asks for
+    // left vectors), every returned mode dynamic.
+    let units: Vec<_> = right.modal.modes.iter().filter(|m| m.lambda.im >= 0.0).collect();
+    assert!(units.iter().all(|m| m.kind == ModeKind::Dynamic));
+    for (d, e) in dense_units_with_error(&modal).into_iter().take(20) {
+        let l = units.iter().map(|m| m.lambda).min_by(|a, b| (a - d).norm().total_cmp(&(b - d).norm())).unwrap();
+        assert!((d.im - l.im).abs() <= 1e-9 * d.norm() && (d.re - l.re).abs() <= (1e-9 * d.norm()).max(e), "dense {d} vs sparse {l}");
+    }
+    assert!(right.max_residual <= 1e-10, "{:e}", right.max_residual);
+    let (nyd, ny) = (sparse.fyd.norm_l2(), sparse.fy.norm_l2());
+    for m in right.modal.modes.iter().take(40) {
+        assert!(m.left.is_none());
+        let v = m.right.as_ref().unwrap();
+        let (a, b) = (sparse.fyd.mul_complex(v), sparse.fy.mul_complex(v));
+        let r = faer::Col::from_fn(v.nrows(), |i| m.lambda * a[i] + b[i]).norm_l2() / ((m.lambda.norm() * nyd + ny) * v.norm_l2());
+        assert!(r <= 1e-10, "λ = {}: residual {r:e}", m.lambda);
+        let twin = both.modal.modes.iter().min_by(|x, y| (x.lambda - m.lambda).norm().total_cmp(&(y.lambda - m.lambda).norm())).unwrap();
+        assert!((twin.lambda - m.lambda).norm() <= 1e-9 * m.lambda.norm(), "{} vs {}", twin.lambda, m.lambda);
+        let w = twin.right.as_ref().unwrap();
+        let overlap = (0..v.nrows()).fold(c64::new(0.0, 0.0), |s, i| s + w[i].conj() * v[i]).norm() / (v.norm_l2() * w.norm_l2());
+        assert!((overlap - 1.0).abs() <= 1e-8, "λ = {}: overlap {overlap}", m.lambda);
+    }
+}

@@ -64,6 +64,13 @@ fn chordal_to(alpha: c64, beta: f64, p: f64) -> f64 {
 
 /// Labels one eigenvalue `(α, β)` of `A v = μ B v`; `norms = (‖A‖_F, ‖B‖_F)`.
 pub(crate) fn classify(alpha: c64, beta: f64, vectors: Option<&EigenVectors>, norms: (f64, f64), route: EigenRoute) -> Classification {
+    let uncertainty = vectors.map_or(f64::INFINITY, |w| chordal_uncertainty(alpha, beta, w, norms));
+    classify_given(alpha, beta, uncertainty, route)
+}
+
+/// [`classify`] with the chordal uncertainty δχ given (the sparse route's right vectors
+/// alone: their backward error with the condition number taken as 1).
+pub(crate) fn classify_given(alpha: c64, beta: f64, uncertainty: f64, route: EigenRoute) -> Classification {
     let nrm = (alpha.norm_sqr() + beta * beta).sqrt();
     let (zero_point, inf_point) = match route {
         EigenRoute::Direct => (0.0, None),
@@ -75,7 +82,6 @@ pub(crate) fn classify(alpha: c64, beta: f64, vectors: Option<&EigenVectors>, no
         None => beta.abs() / nrm,
         Some(p) => chordal_to(alpha, beta, p),
     };
-    let uncertainty = vectors.map_or(f64::INFINITY, |w| chordal_uncertainty(alpha, beta, w, norms));
     let kind = if to_infinity <= uncertainty && to_infinity <= to_zero {
         ModeKind::Infinite
     } else if to_zero <= uncertainty {

@@ -30,11 +30,18 @@ pub struct SparseEigenSettings {
     pub route: crate::linear::EigenRoute,
     /// dCoef of the Λ route's labels; `None`: `‖F_yd‖_F / ‖F_y‖_F` as for the dense route.
     pub dcoef: Option<f64>,
+    /// Left (adjoint) vectors and the count check by the adjoint run (the default). `false`:
+    /// right vectors only, from the right Krylov run alone (half the work: scipy's `eigs`
+    /// does the same), each pair still checked by its true right residual; the modes have
+    /// no left vectors, their error estimates take the condition number as 1 (a lower
+    /// bound), and the result is never `certified` (no second Krylov space checks the
+    /// count).
+    pub left_vectors: bool,
 }
 
 impl Default for SparseEigenSettings {
     fn default() -> Self {
-        SparseEigenSettings { tolerance: 1e-10, krylov_tolerance: 1e-12, per_shift: 40, max_restarts: 200, route: crate::linear::EigenRoute::Lambda, dcoef: None }
+        SparseEigenSettings { tolerance: 1e-10, krylov_tolerance: 1e-12, per_shift: 40, max_restarts: 200, route: crate::linear::EigenRoute::Lambda, dcoef: None, left_vectors: true }
     }
 }
 

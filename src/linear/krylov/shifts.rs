@@ -22,7 +22,7 @@ use faer::{c64, Col};
 use super::pencil::Pencil;
 use super::window::{window, Eigenpair, PairVectors, Scales};
 use super::{KrylovError, SparseEigenSettings};
-use crate::linear::classify::{classify, Classification};
+use crate::linear::classify::{classify, classify_given, Classification};
 use crate::linear::eigen::{conjugate_mode, normalize, sort_units, ModalAnalysis, Mode};
 use crate::linear::route::{EigenRoute, EigenVectors};
 use crate::linear::SparseLinearDae;
@@ -41,6 +41,8 @@ pub enum ModeTarget {
 pub struct ShiftWindow {
     pub shift: c64,
     pub radius: f64,
+    /// The right and adjoint runs found the same eigenvalues in the disc (`false` when
+    /// there was no adjoint run: [`SparseEigenSettings::left_vectors`]).
     pub agreed: bool,
     /// Accepted modes of the window (a complex pair once).
     pub found: usize,
@@ -131,7 +133,7 @@ fn lowest(dae: &SparseLinearDae, pencil: &Pencil, count: usize, s: &SparseEigenS
             // the same eigenvalues in both runs: the `count` lowest are certified in it.
             let clean_reach = w.clean - sigma.abs();
             let clean_units = inside.iter().filter(|p| p.lambda.norm() < clean_reach).count();
-            let clean_count = !(w.agreed && w.rejected == 0) && clean_units >= count;
+            let clean_count = w.checked && !(w.agreed && w.rejected == 0) && clean_units >= count;
             if units >= count || w.radius.is_infinite() || wanted >= n {
                 // Certified in the clean disc only: the pairs beyond it (between the first
                 // disagreement or rejected pair and the runs' reach) are not returned, so
@@ -142,16 +144,18 @@ fn lowest(dae: &SparseLinearDae, pencil: &Pencil, count: usize, s: &SparseEigenS
                 let (radius, certified) = if clean_count {
                     (w.clean, true)
                 } else {
-                    if !w.agreed {
+                    if !w.checked {
+                        note = Some("right vectors only: no adjoint Krylov run checked the count".to_string());
+                    } else if !w.agreed {
                         note = Some(format!("the right and adjoint Krylov runs found different eigenvalues at |λ − σ| = {:.6e} rad/s", w.clean / (1.0 - 1e-6)));
                     } else if w.rejected > 0 {
                         note = Some(format!("{} converged pair(s) failed the true-residual test", w.rejected));
                     } else if units < count {
                         note = Some(format!("only {units} mode(s) exist or were found, {count} asked"));
                     }
-                    (w.radius, w.agreed && w.rejected == 0 && (units >= count || w.radius.is_infinite()))
+                    (w.radius, w.checked && w.agreed && w.rejected == 0 && (units >= count || w.radius.is_infinite()))
                 };
-                let window = ShiftWindow { shift: w.shift, radius, agreed: w.agreed || clean_count, found: units, rejected: w.rejected };
+                let window = ShiftWindow { shift: w.shift, radius, agreed: w.checked && (w.agreed || clean_count), found: units, rejected: w.rejected };
                 return finish(dae, inside, vec![window], certified, 1.0, note, s);
             }
             if wanted >= n {
@@ -249,8 +253,10 @@ fn band(dae: &SparseLinearDae, pencil: &Pencil, fmin: f64, fmax: f64, s: &Sparse
     let zeta = damping_covered(&windows, w1, w2);
     let agreed = windows.iter().all(|w| w.agreed);
     let rejected: usize = windows.iter().map(|w| w.rejected).sum();
-    let certified = agreed && rejected == 0 && zeta >= 0.0;
-    let note = if !agreed {
+    let certified = s.left_vectors && agreed && rejected == 0 && zeta >= 0.0;
+    let note = if !s.left_vectors {
+        Some("right vectors only: no adjoint Krylov run checked the count".to_string())
+    } else if !agreed {
         Some("the right and adjoint Krylov runs found different eigenvalues in a window".to_string())
     } else if rejected > 0 {
         Some(format!("{rejected} converged pair(s) failed the true-residual test"))
@@ -263,7 +269,7 @@ fn band(dae: &SparseLinearDae, pencil: &Pencil, fmin: f64, fmax: f64, s: &Sparse
 }
 
 fn pairs_from(pairs: &mut Vec<Eigenpair>, windows: &mut Vec<ShiftWindow>, w: super::window::WindowResult) {
-    windows.push(ShiftWindow { shift: w.shift, radius: w.radius, agreed: w.agreed, found: w.pairs.len(), rejected: w.rejected });
+    windows.push(ShiftWindow { shift: w.shift, radius: w.radius, agreed: w.checked && w.agreed, found: w.pairs.len(), rejected: w.rejected });
     merge(pairs, w.pairs);
 }
 
@@ -275,7 +281,7 @@ fn finish(dae: &SparseLinearDae, pairs: Vec<Eigenpair>, windows: Vec<ShiftWindow
     for p in pairs {
         max_residual = max_residual.max(p.residual_right).max(p.residual_left);
         let real = p.lambda.im == 0.0;
-        let mode = Mode { lambda: p.lambda, kind: p.classification.kind, error: p.error, classification: p.classification, right: Some(p.right), left: Some(p.left), partner: None };
+        let mode = Mode { lambda: p.lambda, kind: p.classification.kind, error: p.error, classification: p.classification, right: Some(p.right), left: p.left, partner: None };
         if real {
             units.push(vec![mode]);
         } else {
@@ -314,7 +320,41 @@ impl Eigenpair {
         let classification = label(lambda, &w, sc);
         let (_, error) = classification.lambda_and_error(sc.route, sc.mu_scale, sc.dcoef);
         let (right, left) = normalize(&w.v, &w.u, |x| dae.fyd.mul_complex(x), sc.nyd);
-        Eigenpair { lambda, right, left, residual_right, residual_left, classification, error }
+        Eigenpair { lambda, right, left: Some(left), residual_right, residual_left, classification, error }
+    }
+
+    /// The accepted pair (`Im λ ≥ 0`) without a left vector: the label of eqs. 32–35 with
+    /// the uncertainty of its true right residual and the condition number taken as 1 (a
+    /// lower bound: the left vector that gives κ is not there), `v` normalized as the dense
+    /// route normalizes it (unit norm, its largest entry real).
+    pub(super) fn right_only(lambda: c64, v: Col<c64>, residual_right: f64, sc: &Scales) -> Self {
+        let real = lambda.im.abs() <= 1e-9 * lambda.norm();
+        let lambda = if real { c64::new(lambda.re, 0.0) } else { lambda };
+        let big = v.iter().copied().fold(c64::new(0.0, 0.0), |a, e| if e.norm() > a.norm() { e } else { a });
+        let phase = if big.norm() > 0.0 { big.conj() / big.norm() } else { c64::new(1.0, 0.0) };
+        let nv = v.norm_l2();
+        let right = Col::from_fn(v.nrows(), |i| {
+            let e = v[i] * phase / nv;
+            if real { c64::new(e.re, 0.0) } else { e }
+        });
+        let (mu, (na, nb)) = route_mu(lambda, sc);
+        let scale = 1.0 / (1.0 + mu.norm_sqr()).sqrt();
+        let uncertainty = residual_right.max(f64::EPSILON / 2.0) * (na * na + nb * nb).sqrt();
+        let classification = classify_given(mu * scale, scale, uncertainty, sc.route);
+        let (_, error) = classification.lambda_and_error(sc.route, sc.mu_scale, sc.dcoef);
+        Eigenpair { lambda, right, left: None, residual_right, residual_left: 0.0, classification, error }
+    }
+}
+
+/// The route's eigenvalue μ of λ and the norms `(‖A‖, ‖B‖)` of its pencil, as [`label`]
+/// takes them.
+fn route_mu(lambda: c64, sc: &Scales) -> (c64, (f64, f64)) {
+    match sc.route {
+        EigenRoute::Direct => (lambda / sc.mu_scale, (sc.ny, sc.mu_scale * sc.nyd)),
+        EigenRoute::Lambda => {
+            let nj = sc.nyd + sc.dcoef * sc.ny;
+            ((lambda * sc.dcoef + 1.0) / (lambda * sc.dcoef - 1.0), (nj, nj))
+        }
     }
 }
 

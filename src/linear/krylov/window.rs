@@ -19,8 +19,10 @@ use crate::linear::SparseLinearDae;
 pub(super) struct Eigenpair {
     pub lambda: c64,
     pub right: Col<c64>,
-    pub left: Col<c64>,
-    /// True relative residuals `‖(λ F_yd + F_y) v‖ / ((|λ| ‖F_yd‖ + ‖F_y‖) ‖v‖)`, and of `uᵀ`.
+    /// `None` when only right vectors were asked ([`SparseEigenSettings::left_vectors`]).
+    pub left: Option<Col<c64>>,
+    /// True relative residuals `‖(λ F_yd + F_y) v‖ / ((|λ| ‖F_yd‖ + ‖F_y‖) ‖v‖)`, and of `uᵀ`
+    /// (0 without a left vector).
     pub residual_right: f64,
     pub residual_left: f64,
     /// The label of eqs. 32–35 and the error estimate of λ it gives.
@@ -35,6 +37,8 @@ pub(super) struct WindowResult {
     pub shift: c64,
     pub radius: f64,
     pub agreed: bool,
+    /// The adjoint run was made (the agreement is a check); `false` for right vectors only.
+    pub checked: bool,
     /// Radius of the largest disc `|λ − σ| < clean` (at most `radius`) holding no
     /// disagreement and no rejected pair: where the two runs' check holds when `agreed` is
     /// false (disagreements far out, e.g. Ritz values of the infinite eigenvalues' defective
@@ -99,6 +103,9 @@ pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted:
             krylov_schur::<c64>(n, &mut |x, out| op.apply_into(x, out, transpose, &mut ws), &settings(seed), progress)
         }
     };
+    if !s.left_vectors {
+        return right_only(dae, pencil, &op, run(false, 1, &report("right"))?, s, &scales, progress);
+    }
     let (right_run, left_run) = std::thread::scope(|scope| {
         let left = scope.spawn(|| run(true, 2, &|_| {}));
         let right = run(false, 1, &report("right"));
@@ -183,7 +190,41 @@ pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted:
         }
     }
     let clean = radius.min(trouble * (1.0 - 1e-6));
-    Ok(WindowResult { shift: sigma, radius, agreed, clean, pairs, rejected })
+    Ok(WindowResult { shift: sigma, radius, agreed, checked: true, clean, pairs, rejected })
+}
+
+/// The window of the right run alone ([`SparseEigenSettings::left_vectors`] false): every
+/// pair checked by its true right residual at the Ritz value; the disc is the run's reach,
+/// `agreed` since nothing disagrees, but not `checked`.
+fn right_only(dae: &SparseLinearDae, pencil: &Pencil, op: &ShiftInvert, run: Run, s: &SparseEigenSettings, scales: &Scales, progress: &dyn Fn(&str)) -> Result<WindowResult, KrylovError> {
+    let sigma = op.sigma;
+    progress(&format!("shift {sigma}: {} operator applications, {} restarts (right run only)", run.applications, run.restarts));
+    let (right, all) = lambdas(op, run);
+    let radius = if all { f64::INFINITY } else { right.iter().map(|(x, _)| (x - sigma).norm()).fold(0.0, f64::max) };
+    let mut pairs = Vec::new();
+    let mut rejected = 0;
+    let mut trouble = f64::INFINITY;
+    for (lr, v29) in &right {
+        let products = DaeProducts::new(dae, pencil.moved(), v29, false);
+        let rr = products.residual(*lr);
+        if !(rr <= s.tolerance) {
+            rejected += 1;
+            trouble = trouble.min((lr - sigma).norm());
+            continue;
+        }
+        let (mut v, (mut fydv, mut fyv)) = (pencil.to_dae(v29, *lr), products.at(*lr));
+        let lambda = if lr.im < 0.0 {
+            for x in [&mut v, &mut fydv, &mut fyv] {
+                x.iter_mut().for_each(|e| *e = e.conj());
+            }
+            lr.conj()
+        } else {
+            *lr
+        };
+        pairs.push(Eigenpair::right_only(lambda, v, rr, scales));
+    }
+    let clean = radius.min(trouble * (1.0 - 1e-6));
+    Ok(WindowResult { shift: sigma, radius, agreed: true, checked: false, clean, pairs, rejected })
 }
 
 /// `F_yd x` and `F_y x` (or `F_ydᵀ x`, `F_yᵀ x`) of the DAE's vector of an eq. 29 vector
