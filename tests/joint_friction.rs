@@ -154,10 +154,10 @@ fn friction_romdyn_cannot_honour_is_refused_by_name() {
         assert!(message.contains("in_line_friction.mbd:"), "no file:line:col in {message}");
     }
     // Friction on the other joints MBDyn gives it to is refused naming the joint.
-    let hinge = "joint: 3, revolute hinge, 1, null, hinge, eye, 2, null, hinge, eye, friction, 0.1, preload, 1., modlugre, 2000, 2.8, 0., 0.71, \"mu\", simple;\n";
+    let hinge = "joint: 3, spherical hinge, 1, null, 2, null, friction, 0.1, preload, 1., modlugre, 2000, 2.8, 0., 0.71, \"mu\", simple;\n";
     let with_hinge = text.replace("\tbody: 2,", &format!("\t{hinge}\tbody: 2,")).replace("joints: 2;", "joints: 3;");
     let err = parse_text(&with_hinge, &path("in_line_friction.mbd")).and_then(|d| build(&d)).err().unwrap();
-    assert!(err.to_string().contains("joint friction on a 'revolute hinge' joint is not supported"), "{err}");
+    assert!(err.to_string().contains("joint friction on a 'spherical hinge' joint is not supported"), "{err}");
 }
 
 /// in_line_friction.mbd pulled by `force` with an eigenanalysis at t = 1.9 s and Newton's

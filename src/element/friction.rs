@@ -73,7 +73,7 @@ impl ModLugre {
     }
 
     /// `(α, α_/z, α_/v)`.
-    fn alpha(&self, z: f64, v: f64) -> (f64, f64, f64) {
+    pub(super) fn alpha(&self, z: f64, v: f64) -> (f64, f64, f64) {
         let (fs, dfs) = self.fs(v);
         let zss = fs / self.sigma0;
         let zba = self.kappa * zss;

@@ -1,6 +1,7 @@
 //! `friction, [preload, P,] MODEL, SHAPE` after a joint (input manual, §Friction; joint.cc
 //! and friction.cc `ParseFriction`, `ParseShapeCoefficient`). romdyn reads the `modlugre`
-//! model with the `simple` shape function on an `in line` joint without offset; every other
+//! model with the `simple` shape function on an `in line` joint without offset and on a
+//! `revolute hinge`; every other
 //! combination is refused by name.
 
 use super::cursor::Cursor;
@@ -20,13 +21,28 @@ pub fn follows(c: &Cursor) -> bool {
 /// The clean refusal of friction on a joint romdyn reads it on nowhere (`joint` in MBDyn's
 /// words: "plane hinge", "beam slider", …).
 pub fn refuse(c: &Cursor, joint: &str) -> MbdynError {
-    c.error(format!("joint friction on a '{joint}' joint is not supported by romdyn (supported: modlugre friction with the simple shape function on an 'in line' joint without offset)"))
+    c.error(format!("joint friction on a '{joint}' joint is not supported by romdyn (supported: modlugre friction with the simple shape function on an 'in line' joint without offset and on a 'revolute hinge')"))
 }
 
 /// Reads `friction, [preload, P,] modlugre, σ₀, σ₁, σ₂, κ, "FUNCTION", simple` and returns
 /// the preload [N] (0 if absent, as joint.cc) and the model.
 pub fn in_line_friction(c: &mut Cursor, ctx: &ElementContext) -> Result<(f64, ModLugre), MbdynError> {
     c.keyword("friction", &["friction"])?;
+    preload_and_model(c, ctx, "in line")
+}
+
+/// Reads a revolute hinge's `friction, r, [preload, P,] modlugre, …, simple` (input manual,
+/// §Revolute hinge; joint.cc reads the radius first) and returns the radius [m], the preload
+/// [N] and the model.
+pub fn revolute_hinge_friction(c: &mut Cursor, ctx: &ElementContext) -> Result<(f64, f64, ModLugre), MbdynError> {
+    c.keyword("friction", &["friction"])?;
+    let radius = positive(c, "friction radius (of the hinge's contact circle) [m]")?;
+    let (preload, model) = preload_and_model(c, ctx, "revolute hinge")?;
+    Ok((radius, preload, model))
+}
+
+/// `[preload, P,] modlugre, σ₀, σ₁, σ₂, κ, "FUNCTION", simple` on a `joint`.
+fn preload_and_model(c: &mut Cursor, ctx: &ElementContext, joint: &str) -> Result<(f64, ModLugre), MbdynError> {
     let preload = if c.accept("preload") { c.real("preload (least normal force) [N]")? } else { 0.0 };
     let span = c.here();
     let model = c.keyword("a friction model", &MODELS)?;
@@ -45,7 +61,7 @@ pub fn in_line_friction(c: &mut Cursor, ctx: &ElementContext) -> Result<(f64, Mo
     let span = c.here();
     let shape = c.keyword("a friction shape function", &SHAPES)?;
     if shape != "simple" {
-        return Err(c.error_at(span, format!("friction shape function '{shape}' is not supported by romdyn on an 'in line' joint (supported: simple)")));
+        return Err(c.error_at(span, format!("friction shape function '{shape}' is not supported by romdyn on an '{joint}' joint (supported: simple)")));
     }
     Ok((preload, ModLugre { sigma0, sigma1, sigma2, kappa, static_friction }))
 }
