@@ -36,6 +36,7 @@ mod prestrained_rod;
 pub mod private_data;
 mod scalar_function;
 mod screw;
+mod screw_friction;
 
 pub use beam::{shape as beam_shape, Beam2, Beam3, BeamError, BeamNode, SectionLaw, SectionOrientation};
 pub use beam_slider::{BeamSlider, SliderBeam, SliderKind};
@@ -54,6 +55,7 @@ pub use driven_joint::{DrivenJoint, VectorDrive};
 pub use force::{Couple, Force, ForceFrame};
 pub use friction::{InLineFriction, ModLugre};
 pub use hinge_friction::RevoluteHingeFriction;
+pub use screw_friction::ScrewFriction;
 pub use function_hinge::FunctionHinge;
 pub use gimbal::GimbalRotation;
 pub use imposed_velocity::{ImposedVelocity, VelocityKind};

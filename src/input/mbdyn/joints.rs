@@ -87,7 +87,7 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
     let element: Box<dyn Element> = match kind {
         "clamp" => Box::new(clamp(label, c, ctx)?),
         "beam slider" => Box::new(super::beam_slider::beam_slider(label, c, ctx)?),
-        "screw" => Box::new(super::screw::screw(label, c, ctx)?),
+        "screw" => super::screw::screw(label, c, ctx)?,
         "revolute hinge" | "plane hinge" | "spherical hinge" => {
             let revolute = kind != "spherical hinge";
             // MBDyn reads both offsets whether or not `position` is written (joint.cc,
