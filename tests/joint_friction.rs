@@ -154,50 +154,69 @@ fn friction_romdyn_cannot_honour_is_refused_by_name() {
         assert!(message.contains("in_line_friction.mbd:"), "no file:line:col in {message}");
     }
     // Friction on the other joints MBDyn gives it to is refused naming the joint.
-    let hinge = "joint: 3, revolute hinge, 1, null, hinge, eye, 2, null, hinge, eye, friction, 0.1, preload, 1., modlugre, 2000, 2.8, 0., 0.71, \"mu\", simple;\n";
+    let hinge = "joint: 3, spherical hinge, 1, null, 2, null, friction, 0.1, preload, 1., modlugre, 2000, 2.8, 0., 0.71, \"mu\", simple;\n";
     let with_hinge = text.replace("\tbody: 2,", &format!("\t{hinge}\tbody: 2,")).replace("joints: 2;", "joints: 3;");
     let err = parse_text(&with_hinge, &path("in_line_friction.mbd")).and_then(|d| build(&d)).err().unwrap();
-    assert!(err.to_string().contains("joint friction on a 'revolute hinge' joint is not supported"), "{err}");
+    assert!(err.to_string().contains("joint friction on a 'spherical hinge' joint is not supported"), "{err}");
 }
 
-/// in_line_friction.mbd pulled by `force` with an eigenanalysis at t = 1.9 s, node 2's
-/// rotations locked by a prismatic joint when `prismatic`: its dynamic eigenvalues and the
-/// elements it reports not differentiable there.
-fn eigenanalysis_at_rest(force: f64, prismatic: bool) -> (Vec<romdyn::c64>, Vec<String>) {
-    let mut text = std::fs::read_to_string(path("in_line_friction.mbd")).unwrap().replace("\tfinal time: 2.;", "\tfinal time: 2.;\n\teigenanalysis: 1.9, parameter, 1.e-3;");
+/// in_line_friction.mbd pulled by `force` with an eigenanalysis at t = 1.9 s and Newton's
+/// `tolerance`, node 2's rotations locked by a prismatic joint when `prismatic`: its dynamic
+/// eigenvalues, the elements it reports not differentiable there and those whose
+/// linearization depends on reaction multipliers.
+fn eigenanalysis_at_rest(force: f64, prismatic: bool, tolerance: &str) -> (Vec<romdyn::c64>, Vec<String>, Vec<String>) {
+    let original = std::fs::read_to_string(path("in_line_friction.mbd")).unwrap();
+    let mut text = original.replace("\tfinal time: 2.;", "\tfinal time: 2.;\n\teigenanalysis: 1.9, parameter, 1.e-3;").replace("\ttolerance: 1e-6;", &format!("\ttolerance: {tolerance};"));
+    assert!(text.contains(&format!("\ttolerance: {tolerance};")) && text.contains("eigenanalysis"));
     if prismatic {
         text = text.replace("joints: 2;", "joints: 3;").replace("\tbody: 2,", "\tjoint: 3, prismatic, 1, orientation, eye, 2, orientation, eye;\n\tbody: 2,");
     }
     let m = read_model_text(&text, &path("in_line_friction.mbd"), &SetOverrides::from([("F".to_string(), force)])).unwrap_or_else(|e| panic!("{e}"));
     let report = run(&m.model, &m.problem, &mut ()).unwrap_or_else(|e| panic!("{e}"));
     let e = &report.eigenanalyses[0];
-    (e.dynamic.clone(), e.non_smooth.clone())
+    (e.dynamic.clone(), e.non_smooth.clone(), e.reaction_dependent.clone())
 }
 
 #[test]
 fn sticking_friction_linearizes_to_the_bristle_spring_and_damper() {
     // F = 8 N, at rest in stick (α = 0): the linearized friction is the bristle spring σ₀ N
     // and damper σ₁ N along the line, so the block's mode is λ = −c/(2M) ± j √(k/M −
-    // (c/2M)²), k = 2000 · 98.1 N/m, c = 2.8 · 98.1 N s/m (closed form; 1e-9 relative, the
-    // eigensolver's accuracy). MBDyn 1.7.3 on the same file (F = 8, `eigenanalysis: 1.9,
-    // parameter, 1.e-3, use lapack`, output precision 16; eig_0.m's alpha/beta mapped by
-    // λ = 2/c (μ − 1)/(μ + 1)) gives −13.734000000031 ± 139.396475005641j, the closed form
-    // to 2e-12, with node 2's rotations free. romdyn gives the closed form with them locked
-    // (a prismatic joint), and 1.6e-6 off with them free (−13.734044 ± 139.396697j, for
-    // any dCoef and rotational inertia): the six zero eigenvalues of the free rotations
-    // disturb romdyn's eigenanalysis there, not found yet; recorded by the 2e-6 below.
+    // (c/2M)²), k = 2000 · 98.1 N/m, c = 2.8 · 98.1 N s/m (closed form). MBDyn 1.7.3 on the
+    // same file (F = 8, `eigenanalysis: 1.9, parameter, 1.e-3, use lapack`, output precision
+    // 16; eig_0.m's alpha/beta mapped by λ = 2/c (μ − 1)/(μ + 1)) gives −13.734000000031 ±
+    // 139.396475005641j, the closed form to 2e-12, with node 2's rotations free.
     let (k, c, m): (f64, f64, f64) = (2000.0 * 98.1, 2.8 * 98.1, 10.0);
     let expected = romdyn::c64::new(-c / (2.0 * m), (k / m - (c / (2.0 * m)).powi(2)).sqrt());
     let nearest = |eigenvalues: &[romdyn::c64]| *eigenvalues.iter().filter(|l| l.im > 1.0).min_by(|a, b| (**a - expected).norm().total_cmp(&(**b - expected).norm())).unwrap_or_else(|| panic!("no oscillating mode in {eigenvalues:?}"));
-    for (prismatic, tolerance) in [(true, 1e-9), (false, 2e-6)] {
-        let (eigenvalues, non_smooth) = eigenanalysis_at_rest(8.0, prismatic);
+    // Why romdyn was 1.6e-6 off with the file's tolerance 1e-6 and the rotations free: the
+    // normal force is the joint's reaction multiplier as integrated, 98.100315 N instead of
+    // M g at t = 1.9 s. 653 of the 2001 steps are accepted on their predictor (residual
+    // already below 1e-6, no Newton iteration; MBDyn 1.7.3 accepts the same number), and
+    // runs of them let the vertical momentum drift from a round-off seed (1.9e-7 kg m/s at t = 1.901 s),
+    // within the tolerance, whose derivative the reaction balances. The rotations play no
+    // part: locked, the reaction is 98.10127 N at t = 1.6 s (clean at 1.9 s by chance).
+    // MBDyn's reaction stays at 98.1 to 4e-13 (its .jnt) on the same file; why its
+    // predictor-accepted steps do not drift was not found. Newton continued past the
+    // tolerance at the eigenanalysis step does not help (the drift is in the steps' history:
+    // the step's exact solution has the same reaction). So: with the tolerance at 1e-10 the
+    // reaction is M g to ~1e-9 N and both agree with the closed form to 1e-9 (the
+    // eigensolver's accuracy); at the file's 1e-6 the eigenanalysis warns that its friction
+    // linearization depends on the reaction multipliers' values.
+    for prismatic in [true, false] {
+        let (eigenvalues, non_smooth, reaction_dependent) = eigenanalysis_at_rest(8.0, prismatic, "1e-10");
         assert!(non_smooth.is_empty(), "{non_smooth:?}");
+        assert!(reaction_dependent.len() == 1 && reaction_dependent[0].starts_with("in line 2: its friction force and stiffness scale with the normal force"), "{reaction_dependent:?}");
         let found = nearest(&eigenvalues);
-        assert!((found - expected).norm() < tolerance * expected.norm(), "rotations locked {prismatic}: λ = {found}, closed form {expected}");
+        assert!((found - expected).norm() < 1e-9 * expected.norm(), "rotations locked {prismatic}: λ = {found}, closed form {expected} ({:e} relative)", (found - expected).norm() / expected.norm());
     }
+    let (eigenvalues, _, reaction_dependent) = eigenanalysis_at_rest(8.0, false, "1e-6");
+    assert_eq!(reaction_dependent.len(), 1, "{reaction_dependent:?}");
+    assert!(reaction_dependent[0].contains("9.810031"), "the noisy reaction: {reaction_dependent:?}");
+    let off = (nearest(&eigenvalues) - expected).norm() / expected.norm();
+    assert!(off > 1e-6 && off < 2e-6, "{off:e}: the measured 1.6e-6 the warning names");
     // F = 25 N (between κ μ N = 20.9 N and μ N = 29.4 N): the block comes to rest with the
     // bristles past their breakaway deflection (z = F/(σ₀ N) = 1.27e-4 m > 1.065e-4 m),
     // where the state equation has a kink in v: the eigenanalysis says so.
-    let (_, non_smooth) = eigenanalysis_at_rest(25.0, false);
+    let (_, non_smooth, _) = eigenanalysis_at_rest(25.0, false, "1e-6");
     assert!(non_smooth.len() == 1 && non_smooth[0].starts_with("in line 2: its friction state"), "{non_smooth:?}");
 }

@@ -36,6 +36,10 @@ pub struct EigenSummary {
     /// Elements at a point where their residual is not differentiable (the linearization
     /// took a one-sided derivative there), with why.
     pub non_smooth: Vec<String>,
+    /// Elements whose linearization depends on the values of reaction multipliers (a
+    /// friction force proportional to a normal reaction), with why: the eigenvalues carry
+    /// the multipliers' integration noise (`Element::reaction_dependence`).
+    pub reaction_dependent: Vec<String>,
 }
 
 /// What a run did.
@@ -217,6 +221,7 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
                 zero: e.modal.count(ModeKind::Zero),
                 infinite: e.modal.count(ModeKind::Infinite),
                 non_smooth: asm.non_smooth_elements(state),
+                reaction_dependent: asm.reaction_dependent_elements(state),
             });
             next_eigen += 1;
         }

@@ -122,6 +122,9 @@ pub fn run(a: RunArgs) -> Result<()> {
         for why in &e.non_smooth {
             eprintln!("warning: eigenanalysis {} at t = {} s: {why}; the linearization takes a one-sided derivative there, and its eigenvalues describe only motion to that side", e.index, e.time);
         }
+        for why in &e.reaction_dependent {
+            eprintln!("warning: eigenanalysis {} at t = {} s: {why}", e.index, e.time);
+        }
     }
     if let Some((dcoef, tolerance)) = report.derivatives_tolerance_raised {
         eprintln!("warning: the derivatives phase converged at no derivatives coefficient; as MBDyn does with `derivatives coefficient: auto`, it was accepted at the coefficient with the smallest residual (dCoef = {dcoef:.3e} s) with its tolerance raised to {tolerance:.3e}: the initial accelerations and reactions are not to be trusted (typically a joint that does not hold to round-off after the initial assembly, divided by dCoef, or the momenta's dCoef·ṗ left by Newton)");

@@ -365,6 +365,16 @@ impl<'m> Assembler<'m> {
         self.model.elements.iter().enumerate().filter_map(named).collect()
     }
 
+    /// Every element whose Jacobian at `st` depends on reaction multipliers' values
+    /// ([`Element::reaction_dependence`]), as "in line 3: …".
+    ///
+    /// [`Element::reaction_dependence`]: crate::element::Element::reaction_dependence
+    pub fn reaction_dependent_elements(&self, st: &State) -> Vec<String> {
+        let frames = self.frames(st);
+        let named = |(e, el): (usize, &Box<dyn crate::element::Element>)| el.reaction_dependence(&self.context(&frames, st, e, 1.0)).map(|why| format!("{} {}: {why}", el.type_name(), el.label()));
+        self.model.elements.iter().enumerate().filter_map(named).collect()
+    }
+
     /// Internal forces and deformation of every element that has evaluation points (beams),
     /// as `(element index, sections)`.
     pub fn section_states(&self, st: &State) -> Vec<(usize, Vec<SectionState>)> {

@@ -228,6 +228,13 @@ pub trait Element: Send + Sync {
     fn constraint_rows_read_multipliers(&self) -> bool {
         false
     }
+    /// Why its Jacobian at this state depends on the values of joint reaction multipliers,
+    /// if it does (a friction force proportional to the normal reaction `|λ|`): those are
+    /// the integrator's, which steps accepted within the tolerance without a Newton
+    /// iteration leave noisy, and an eigenanalysis warns that its eigenvalues carry it.
+    fn reaction_dependence(&self, _s: &dyn ElementState) -> Option<String> {
+        None
+    }
     /// Adds its contribution to `F(y, ẏ, t)`.
     fn residual(&self, s: &dyn ElementState, out: &mut dyn ResidualSink);
     /// Adds its derivatives; the assembler forms `J(c)` from them.

@@ -73,7 +73,7 @@ impl ModLugre {
     }
 
     /// `(α, α_/z, α_/v)`.
-    fn alpha(&self, z: f64, v: f64) -> (f64, f64, f64) {
+    pub(super) fn alpha(&self, z: f64, v: f64) -> (f64, f64, f64) {
         let (fs, dfs) = self.fs(v);
         let zss = fs / self.sigma0;
         let zba = self.kappa * zss;
@@ -182,6 +182,17 @@ impl Element for InLineFriction {
         // over a bristle's stiffness and damping), below which any motion crosses the kink.
         let alpha = self.model.alpha(z, 0.0).0.max(self.model.alpha(z, -f64::MIN_POSITIVE).0);
         (v.abs() < STILL && alpha != 0.0).then(|| format!("its friction state z = {z:e} m is past the breakaway deflection at sliding velocity {v:.1e} m/s (at rest), where the modlugre state equation is not differentiable"))
+    }
+    fn reaction_dependence(&self, st: &dyn ElementState) -> Option<String> {
+        // Above the preload the friction force f N and its stiffness σ₀ N scale with the
+        // reaction multipliers' values. Their integration noise: a step accepted on its
+        // predictor (no Newton iteration, its residual already below the tolerance; MBDyn
+        // does the same) leaves the multipliers and the momenta as extrapolated, and runs of
+        // such steps let a constrained direction's momentum drift within the tolerance (on
+        // tests/joint_friction.rs's block, up to 1.9e-7 kg m/s vertically at tolerance 1e-6), whose
+        // derivative the reaction balances (3e-4 N of 98.1 N at t = 1.9 s).
+        let (n, dn) = self.normal_force(st);
+        (dn != [0.0; 2]).then(|| format!("its friction force and stiffness scale with the normal force |λ| = {n:.9e} N, the joint's reaction multipliers as integrated, which steps accepted within the tolerance without a Newton iteration leave noisy (up to 1e-5 relative on a block resting on a line at tolerance 1e-6, its bristle eigenvalue then 1.6e-6 off the closed form); the eigenvalues carry that noise, which a tighter `tolerance` narrows"))
     }
     fn private_data(&self, name: &str) -> Option<super::private_data::PrivateDatum> {
         self.joint.private_data(name)

@@ -14,7 +14,7 @@ use super::drives::template_vec3;
 use super::element_context::ElementContext;
 use super::laws::{linear_law, rest_strain, three, LinearLaw};
 use super::references::{Context, Frame, OtherSide};
-use crate::element::{Anchor, AngularAcceleration, ViscousBody, AxialRotation, GimbalRotation, FunctionHinge, ImposedVelocity, VelocityKind, CardanoHinge, DeformableJoint, DrivenJoint, InvariantDeformableHinge, VectorDrive, DeformableDisplacement, DeformableHinge, Distance, Drive, Element, InLineFriction, Joint, Rod, RodViscosity};
+use crate::element::{Anchor, AngularAcceleration, ViscousBody, RevoluteHingeFriction, AxialRotation, GimbalRotation, FunctionHinge, ImposedVelocity, VelocityKind, CardanoHinge, DeformableJoint, DrivenJoint, InvariantDeformableHinge, VectorDrive, DeformableDisplacement, DeformableHinge, Distance, Drive, Element, InLineFriction, Joint, Rod, RodViscosity};
 use crate::kinematics::{Mat3, Vec3};
 use crate::model::{Label, StructuralNode};
 
@@ -87,7 +87,7 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
     let element: Box<dyn Element> = match kind {
         "clamp" => Box::new(clamp(label, c, ctx)?),
         "beam slider" => Box::new(super::beam_slider::beam_slider(label, c, ctx)?),
-        "screw" => Box::new(super::screw::screw(label, c, ctx)?),
+        "screw" => super::screw::screw(label, c, ctx)?,
         "revolute hinge" | "plane hinge" | "spherical hinge" => {
             let revolute = kind != "spherical hinge";
             // MBDyn reads both offsets whether or not `position` is written (joint.cc,
@@ -97,11 +97,17 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             if revolute && c.accept("initial theta") {
                 c.real("initial theta [rad]")?;
             }
-            if super::friction::follows(c) {
-                return Err(super::friction::refuse(c, kind));
-            }
+            let friction = match (super::friction::follows(c), kind) {
+                (false, _) => None,
+                (true, "revolute hinge" | "plane hinge") => Some(super::friction::revolute_hinge_friction(c, ctx)?),
+                (true, _) => return Err(super::friction::refuse(c, kind)),
+            };
             let j = if revolute { Joint::revolute_hinge(label, a.anchor(), b.anchor()) } else { Joint::spherical_hinge(label, a.anchor(), b.anchor()) };
-            Box::new(assembled(j, &a.global(), &b.global(), c, span)?)
+            let j = assembled(j, &a.global(), &b.global(), c, span)?;
+            match friction {
+                Some((radius, preload, model)) => Box::new(RevoluteHingeFriction::new(j, radius, preload, model)),
+                None => Box::new(j),
+            }
         }
         "axial rotation" => {
             // Input manual §Axial rotation; joint.cc reads both offsets with `position`

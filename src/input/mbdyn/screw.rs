@@ -3,17 +3,17 @@
 //! `P` and frame `R` (axis 3 the screw axis), node 2's point `Q` (relative to node 2,
 //! `reference, other node` meaning node 1's joint frame), the pitch [m per turn]. MBDyn reads
 //! `P` and `R` whether or not their keywords are written (MBDYN_X_COMPATIBLE_INPUT).
-//! `friction` is refused.
+//! `friction, modlugre, …, screw joint, …` after the pitch: [`ScrewFriction`].
 
 use super::cursor::Cursor;
 use super::diagnostic::MbdynError;
 use super::element_context::ElementContext;
 use super::references::{Context, Frame, OtherSide};
-use crate::element::{Anchor, Screw};
+use crate::element::{Anchor, Element, Screw, ScrewFriction};
 use crate::kinematics::{rotation_vector, Vec3};
 use crate::model::Label;
 
-pub fn screw(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Screw, MbdynError> {
+pub fn screw(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<dyn Element>, MbdynError> {
     let n1 = ctx.node(c, "node 1")?;
     let on1 = ctx.on(n1);
     c.accept("position");
@@ -29,20 +29,22 @@ pub fn screw(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Screw
     };
     c.keyword("'pitch'", &["pitch"])?;
     let pitch = c.real("pitch [m]")?;
-    if super::friction::follows(c) {
-        return Err(super::friction::refuse(c, "screw"));
-    }
+    let friction = if super::friction::follows(c) { Some(super::friction::screw_friction(c, ctx)?) } else { None };
     // Initial relative rotation about the axis and displacement along it (screwjoint.cc).
     let (r1, r2) = (n1.orientation, n2.orientation);
     let e = r1 * h * Vec3::z();
     let d0 = e.dot(&(n2.position + r2 * q - n1.position - r1 * p));
     let theta0 = (h * Vec3::z()).dot(&rotation_vector(&(r1.transpose() * r2)));
-    Ok(Screw {
+    let screw = Screw {
         label,
         a: Anchor::Node { label: n1.label, offset: p, orientation: h },
         b: Anchor::Node { label: n2.label, offset: q, orientation: h },
         pitch,
         theta0,
         d0,
+    };
+    Ok(match friction {
+        Some((model, radius, half_thread_angle)) => Box::new(ScrewFriction::new(screw, model, radius, half_thread_angle)),
+        None => Box::new(screw),
     })
 }
