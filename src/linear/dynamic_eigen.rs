@@ -102,27 +102,17 @@ impl ModalAnalysis {
         units.extend((0..part.infinities).map(|_| vec![deflated_mode(ModeKind::Infinite, route)]));
         let r = part.dim();
         if r > 0 {
-            // Labels and error estimates on the whole pencil, as the undeflated route has
-            // them: its balanced sparse copy is built on a second thread while QZ runs, and
-            // the left vectors are lifted there while the right ones are lifted here (the
-            // same arithmetic as in sequence).
-            let (mut found, with, right, left, whole, fyd_sparse) = std::thread::scope(|scope| {
-                let whole = scope.spawn(|| (WholePencil::new(&fyd, &fy, route, dcoef), SparseMatrix::from_dense(&fyd)));
-                let qz = qz_modes(&part, route, dcoef);
-                let (whole, fyd_sparse) = join(whole);
-                let mut found = qz?;
-                let with: Vec<(usize, Col<c64>, Col<c64>)> = found.iter_mut().enumerate().filter_map(|(i, f)| f.1.take().map(|(v, u)| (i, v, u))).collect();
-                let lambdas: Vec<c64> = with.iter().map(|w| found[w.0].0.lambda).collect();
-                let gather = |left: bool| Mat::from_fn(r, with.len(), |i, j| if left { with[j].2[i] } else { with[j].1[i] });
-                let (zr, zl) = (gather(false), gather(true));
-                let (part_ref, lambdas_left) = (&part, lambdas.clone());
-                let left = scope.spawn(move || part_ref.left(&zl, &lambdas_left));
-                let right = part.right(&zr, &lambdas);
-                let with: Vec<usize> = with.iter().map(|w| w.0).collect();
-                Ok::<_, EigenError>((found, with, right, join(left), whole, fyd_sparse))
-            })?;
+            let mut found = qz_modes(&part, route, dcoef)?;
+            let with: Vec<(usize, Col<c64>, Col<c64>)> = found.iter_mut().enumerate().filter_map(|(i, f)| f.1.take().map(|(v, u)| (i, v, u))).collect();
+            let lambdas: Vec<c64> = with.iter().map(|w| found[w.0].0.lambda).collect();
+            let gather = |left: bool| Mat::from_fn(r, with.len(), |i, j| if left { with[j].2[i] } else { with[j].1[i] });
+            let (zr, zl) = (gather(false), gather(true));
+            let (right, left) = (part.right(&zr, &lambdas), part.left(&zl, &lambdas));
+            // Labels and error estimates on the whole pencil, as the undeflated route has them.
+            let whole = WholePencil::new(&fyd, &fy, route, dcoef);
+            let fyd_sparse = SparseMatrix::from_dense(&fyd);
             let fyd_norm = fyd_sparse.norm_l2();
-            for (j, &i) in with.iter().enumerate() {
+            for (j, &(i, _, _)) in with.iter().enumerate() {
                 let v = Col::from_fn(dae.dim(), |k| right[(k, j)]);
                 let u = Col::from_fn(dae.dim(), |k| left[(k, j)]);
                 let mode = &mut found[i].0;
@@ -147,11 +137,6 @@ impl ModalAnalysis {
         }
         Ok(ModalAnalysis { route, dcoef, modes: sort_units(units) })
     }
-}
-
-/// The result of a scoped thread (its panic, if any, carried on).
-fn join<T>(handle: std::thread::ScopedJoinHandle<'_, T>) -> T {
-    handle.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic))
 }
 
 /// A mode of the dynamic part with its reduced right and left vectors (`None` for λ = 0

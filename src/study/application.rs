@@ -136,24 +136,14 @@ impl Study {
     pub fn from_application_dae(model: Model, problem: &InitialValueProblem, state: State, dae: LinearDae, app: &Application, eigen: EigenSettings) -> Result<Self, StudyError> {
         let parts = app.remove_springs.iter().map(|&l| element_part(&model, &state, l)).collect::<Result<Vec<_>, _>>()?;
         let file_dcoef = problem.eigenanalysis.as_ref().and_then(|e| e.dcoef);
-        // The free model and its static gain (an LU the port warnings and every ROM need) do
-        // not depend on the eigenanalysis: built on a second thread while QZ runs.
-        let (modal, (free, projected, feedback)) = std::thread::scope(|scope| {
-            let free = scope.spawn(|| {
-                let (projected, feedback) = if parts.is_empty() {
-                    (None, None)
-                } else {
-                    let (p, f) = with_spring_ports(&dae, &parts);
-                    (Some(p), Some(f))
-                };
-                let free = LinearModel::from_dense(without_elements(&dae, &parts), false);
-                let _ = free.dense_static_gain();
-                (free, projected, feedback)
-            });
-            let modal = ModalAnalysis::of_dae(&dae, eigen.route, eigen.dcoef.or(file_dcoef));
-            (modal, free.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic)))
-        });
-        let modal = modal.map_err(|e| e.with_unknown_names(&dae.unknown_names))?;
+        let modal = ModalAnalysis::of_dae(&dae, eigen.route, eigen.dcoef.or(file_dcoef)).map_err(|e| e.with_unknown_names(&dae.unknown_names))?;
+        let (projected, feedback) = if parts.is_empty() {
+            (None, None)
+        } else {
+            let (p, f) = with_spring_ports(&dae, &parts);
+            (Some(p), Some(f))
+        };
+        let free = LinearModel::from_dense(without_elements(&dae, &parts), false);
         let mut warnings: Vec<_> = equilibrium_warning(&model, &state, problem.tolerance).into_iter().collect();
         warnings.extend(port_warnings(&free, &modal));
         let applied = applied(app, parts, projected, feedback);
