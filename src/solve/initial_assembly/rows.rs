@@ -12,7 +12,9 @@ use crate::model::Model;
 /// beams, not bodies, forces and couples (elman.cc: `ToBeUsedInAssembly`).
 fn in_assembly(e: &dyn Element) -> bool {
     let t = e.type_name();
-    !(t == "body" || t.ends_with("force") || t.ends_with("couple") || t.contains("gravity"))
+    // A viscous body holds nothing: its force −C v on the written velocity would only be
+    // balanced by the assembly's position springs (1 N/m), moving the node by C v.
+    !(t == "body" || t.ends_with("force") || t.ends_with("couple") || t.contains("gravity") || t == "viscous body")
 }
 
 /// The assembly problem's numbering: 6 rows per node, then each element's multipliers.
