@@ -262,3 +262,33 @@ fn right_vectors_only_give_the_same_modes_without_certifying_the_count() {
         assert!((overlap - 1.0).abs() <= 1e-8, "λ = {}: overlap {overlap}", m.lambda);
     }
 }
+
+/// Sparse eigenanalyses run on every worker of the global rayon pool at once (what a
+/// parameter sweep's points do on a large model) finish. The adjoint Krylov run must then
+/// stay on the worker: on a thread of its own, its faer products wait for the pool's
+/// workers, which all wait for it (measured: `romdyn::sweep`'s pendulum test hung in
+/// faer's matmul this way after the dense eigenanalysis had been given such a thread).
+/// A watchdog aborts the test binary after 300 s instead of hanging CI.
+#[test]
+fn sparse_eigenanalyses_on_every_rayon_worker_at_once_finish() {
+    use rayon::prelude::*;
+    use std::sync::atomic::{AtomicBool, Ordering};
+    use std::sync::Arc;
+    let (_, sparse) = models(&hanging_chain(100, ConstraintForm::Scaled));
+    let done = Arc::new(AtomicBool::new(false));
+    let watch = done.clone();
+    std::thread::spawn(move || {
+        for _ in 0..300 {
+            std::thread::sleep(std::time::Duration::from_secs(1));
+            if watch.load(Ordering::SeqCst) {
+                return;
+            }
+        }
+        eprintln!("sparse eigenanalyses on the rayon workers did not finish in 300 s (deadlock)");
+        std::process::abort();
+    });
+    let jobs = 2 * rayon::current_num_threads().max(2);
+    let counts: Vec<usize> = (0..jobs).into_par_iter().map(|_| sparse_modes(&sparse, ModeTarget::Lowest(4), &SparseEigenSettings::default()).unwrap().modal.modes.len()).collect();
+    done.store(true, Ordering::SeqCst);
+    assert!(counts.iter().all(|&c| c == counts[0] && c >= 4), "{counts:?}");
+}

@@ -106,12 +106,17 @@ pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted:
     if !s.left_vectors {
         return right_only(dae, pencil, &op, run(false, 1, &report("right"))?, s, &scales, progress);
     }
-    let (right_run, left_run) = std::thread::scope(|scope| {
+    // On a worker of the rayon pool (a sweep's point) both runs stay on it: a thread of its
+    // own would call faer's parallel products from outside the pool and wait for its
+    // workers, which all wait for it (tests/sparse_eigen.rs, the rayon-workers test).
+    let (right_run, left_run) = if rayon::current_thread_index().is_some() {
+        (run(false, 1, &report("right")), run(true, 2, &|_| {}))
+    } else { std::thread::scope(|scope| {
         let left = scope.spawn(|| run(true, 2, &|_| {}));
         let right = run(false, 1, &report("right"));
         let left = left.join().unwrap_or_else(|_| Err(KrylovError::Breakdown("the adjoint Krylov run panicked".into())));
         (right, left)
-    });
+    }) };
     let (right_run, left_run) = (right_run?, left_run?);
     progress(&format!(
         "shift {sigma}: {} + {} operator applications, {} + {} restarts (right + adjoint run)",
