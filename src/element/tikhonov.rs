@@ -11,7 +11,7 @@
 //! romdyn's constraint rows and reactions are the transposes of each other (`Φ` and
 //! `Φ_/qᵀ λ`, as MBDyn's with its opposite sign), so the same `C` gives MBDyn's spring.
 
-use super::contract::{Col, Element, ElementState, JacobianSink, Label, PrivateDatum, ResidualSink, Row, SectionState};
+use super::contract::{Col, Element, ElementState, JacobianSink, Label, Latched, PrivateDatum, ResidualSink, Row, SectionState};
 
 pub struct Tikhonov {
     pub inner: Box<dyn Element>,
@@ -79,5 +79,23 @@ impl Element for Tikhonov {
     }
     fn sections(&self, s: &dyn ElementState) -> Vec<SectionState> {
         self.inner.sections(s)
+    }
+    // A regularized driven element keeps its events and hints (MBDyn's
+    // tests/joints/total/totalhint: without these the hint never applied and the joint,
+    // switched on with its written null drive, pulled the node to the origin).
+    fn has_events(&self) -> bool {
+        self.inner.has_events()
+    }
+    fn latch(&self, now: &dyn ElementState, before: &dyn ElementState) -> Option<Latched> {
+        self.inner.latch(now, before)
+    }
+    fn hinted(&self, hint: &super::HintValue) -> Option<Box<dyn Element>> {
+        self.inner.hinted(hint).map(|inner| Box::new(Tikhonov { inner, c: self.c.clone() }) as Box<dyn Element>)
+    }
+    fn assembly_form(&self) -> Option<&dyn Element> {
+        self.inner.assembly_form()
+    }
+    fn reaction_dependence(&self, s: &dyn ElementState) -> Option<String> {
+        self.inner.reaction_dependence(s)
     }
 }
