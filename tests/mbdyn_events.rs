@@ -209,6 +209,12 @@ fn hints_romdyn_cannot_build_are_refused_at_the_hint() {
     let t = std::fs::read_to_string(path("bistop_rod.mbd")).unwrap().replace("joint: 2, rod, 1, 2, L,", "joint: 2, deformable axial joint, 1, 2,");
     let e = parse_text(&t, &path("bistop_rod.mbd")).and_then(|d| build(&d)).err().unwrap();
     assert!(e.message.contains("bistop") && e.line > 0, "{}", e.message);
+    // A driven joint with friction: its friction state would have to be frozen while off
+    // (before this refusal the run failed at the switch-on, in the friction state's row).
+    let t = std::fs::read_to_string(path("revolute_hinge_friction.mbd")).unwrap().replacen("\tjoint: 2, revolute hinge,", "\tdriven: 2, string, \"Time > .1\",\n\tjoint: 2, revolute hinge,", 1);
+    assert!(t.contains("driven: 2"));
+    let e = parse_text(&t, &path("revolute_hinge_friction.mbd")).and_then(|d| build(&d)).err().unwrap();
+    assert!(e.message.contains("states of its own (joint friction)") && e.line > 0, "{}", e.message);
 }
 
 /// A driven total joint with hints that is also regularized (MBDyn's

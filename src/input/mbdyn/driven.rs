@@ -38,6 +38,11 @@ pub fn wrap(head: &Statement, parsed: Parsed, src: &Sources, ctx: &ElementContex
                 // Switched off, its coordinate (the abscissa) would be held at its initial value.
                 return Err(c.error_at(head.span, format!("driven: a driven {} is not supported by romdyn (switched off, its abscissa would return to its initial value)", inner.type_name())));
             }
+            if (0..inner.multipliers().len()).any(|k| inner.is_state(k)) {
+                // Its own differential states (a friction model's bristle deflection) would have
+                // to be frozen while it is off and restarted when it switches on.
+                return Err(c.error_at(head.span, format!("driven: a driven {} with states of its own (joint friction) is not supported by romdyn", inner.type_name())));
+            }
             if inner.has_events() {
                 return Err(c.error_at(head.span, format!("driven: a driven {} with events of its own (a bistop law) is not supported by romdyn", inner.type_name())));
             }
