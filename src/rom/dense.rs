@@ -1,6 +1,6 @@
 //! Small dense helpers shared by the ROM code.
 
-use faer::linalg::solvers::Solve;
+use faer::linalg::solvers::{FullPivLu, Solve};
 use faer::{c64, Mat};
 
 /// Row and column scale factors (powers of two) that bring every row's and column's largest
@@ -37,7 +37,7 @@ pub(crate) fn solve_nonsingular(m: &Mat<f64>, r: &Mat<f64>) -> Option<Mat<f64>> 
 }
 
 /// [`solve_nonsingular`], or when `m` is numerically singular the direction it leaves free
-/// from the same factorization ([`super::null_space::free_direction`]; `None` inside when
+/// from the same factorization ([`free_direction`]; `None` inside when
 /// it could not be formed).
 pub(crate) fn solve_or_free_direction(m: &Mat<f64>, r: &Mat<f64>) -> Result<Mat<f64>, Option<Vec<f64>>> {
     let n = m.nrows();
@@ -50,7 +50,7 @@ pub(crate) fn solve_or_free_direction(m: &Mat<f64>, r: &Mat<f64>) -> Result<Mat<
     let u = lu.U();
     let (big, small) = (0..n).map(|i| u[(i, i)].abs()).fold((0.0f64, f64::INFINITY), |(b, s), x| (b.max(x), s.min(x)));
     if !(small > big * n as f64 * f64::EPSILON) {
-        return Err(super::null_space::free_direction(&lu, &dc));
+        return Err(free_direction(&lu, &dc));
     }
     // M x = R  ⇔  (D_r M D_c)(D_c⁻¹ x) = D_r R.
     let x = lu.solve(Mat::from_fn(n, r.ncols(), |i, j| dr[i] * r[(i, j)]));
@@ -89,4 +89,33 @@ pub(crate) fn transfer_with_rates(omega: f64, p: &Mat<f64>, q: &Mat<f64>, b: &Ma
         h += &to_complex(d);
     }
     h
+}
+
+/// A null direction of `D_r M D_c = Pᵀ L U Qᵀ` from its factors, mapped back to `M`'s
+/// unknowns by `D_c`; `None` when no pivot is at or below `n ε` times the largest.
+///
+/// With full pivoting every pivot after the first negligible one `u_kk` is at most `|u_kk|`
+/// and the trailing block `U[k.., k..]` is negligible: `y = (−U₁₁⁻¹ U[..k, k], 1, 0, …)`
+/// gives `U y ≈ 0`, and `x = D_c Q y` the free direction (one of them when `M` has a
+/// larger null space: rigid-body motion of a free model).
+pub(crate) fn free_direction(lu: &FullPivLu<f64>, dc: &[f64]) -> Option<Vec<f64>> {
+    let u = lu.U();
+    let n = u.nrows();
+    let big = (0..n).map(|i| u[(i, i)].abs()).fold(0.0f64, f64::max);
+    let tiny = big * n as f64 * f64::EPSILON;
+    let k = (0..n).find(|&i| !(u[(i, i)].abs() > tiny))?;
+    let mut y = vec![0.0; n];
+    y[k] = 1.0;
+    for i in (0..k).rev() {
+        let s: f64 = (i + 1..=k).map(|j| u[(i, j)] * y[j]).sum();
+        y[i] = -s / u[(i, i)];
+    }
+    // (L U)[a, b] = (D_r M D_c)[P[a], Q[b]] (faer's reconstruction), so x[Q[b]] = y[b].
+    let q = lu.Q().arrays().0;
+    let mut x = vec![0.0; n];
+    for (b, &yb) in y.iter().enumerate() {
+        x[q[b]] = dc[q[b]] * yb;
+    }
+    let top = x.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+    (top > 0.0 && top.is_finite()).then(|| x.iter().map(|e| e / top).collect())
 }

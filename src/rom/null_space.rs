@@ -1,10 +1,9 @@
 //! The direction a singular static matrix leaves free: rigid-body motion of an
 //! unrestrained model.
 
-use faer::linalg::solvers::FullPivLu;
 use faer::Mat;
 
-use super::dense::equilibration;
+use super::dense::{equilibration, free_direction};
 
 /// When `m` is numerically singular (the smallest pivot of the full-pivoting LU of the
 /// equilibrated matrix at or below `n ε` times the largest, the test of
@@ -18,35 +17,6 @@ pub fn null_direction(m: &Mat<f64>) -> Option<Vec<f64>> {
     let (dr, dc) = equilibration(m);
     let scaled = Mat::from_fn(n, n, |i, j| dr[i] * m[(i, j)] * dc[j]);
     free_direction(&scaled.full_piv_lu(), &dc)
-}
-
-/// A null direction of `D_r M D_c = Pᵀ L U Qᵀ` from its factors, mapped back to `M`'s
-/// unknowns by `D_c`; `None` when no pivot is at or below `n ε` times the largest.
-///
-/// With full pivoting every pivot after the first negligible one `u_kk` is at most `|u_kk|`
-/// and the trailing block `U[k.., k..]` is negligible: `y = (−U₁₁⁻¹ U[..k, k], 1, 0, …)`
-/// gives `U y ≈ 0`, and `x = D_c Q y` the free direction (one of them when `M` has a
-/// larger null space: rigid-body motion of a free model).
-pub(crate) fn free_direction(lu: &FullPivLu<f64>, dc: &[f64]) -> Option<Vec<f64>> {
-    let u = lu.U();
-    let n = u.nrows();
-    let big = (0..n).map(|i| u[(i, i)].abs()).fold(0.0f64, f64::max);
-    let tiny = big * n as f64 * f64::EPSILON;
-    let k = (0..n).find(|&i| !(u[(i, i)].abs() > tiny))?;
-    let mut y = vec![0.0; n];
-    y[k] = 1.0;
-    for i in (0..k).rev() {
-        let s: f64 = (i + 1..=k).map(|j| u[(i, j)] * y[j]).sum();
-        y[i] = -s / u[(i, i)];
-    }
-    // (L U)[a, b] = (D_r M D_c)[P[a], Q[b]] (faer's reconstruction), so x[Q[b]] = y[b].
-    let q = lu.Q().arrays().0;
-    let mut x = vec![0.0; n];
-    for (b, &yb) in y.iter().enumerate() {
-        x[q[b]] = dc[q[b]] * yb;
-    }
-    let top = x.iter().fold(0.0f64, |a, b| a.max(b.abs()));
-    (top > 0.0 && top.is_finite()).then(|| x.iter().map(|e| e / top).collect())
 }
 
 #[cfg(test)]

@@ -27,7 +27,7 @@ pub enum Parsed {
     /// A `total internal reaction` of the total equation `equation`.
     TotalReaction { reaction: crate::element::TotalReaction, equation: crate::model::Label, span: super::diagnostic::Span },
     /// A `joint regularization: JOINT, tikhonov, …` of a joint defined above.
-    Regularization { joint: crate::model::Label, c: super::total_equation::Compliance, span: super::diagnostic::Span },
+    Regularization { joint: crate::model::Label, c: Compliance, span: super::diagnostic::Span },
     /// A card that does not change the model.
     Ignored,
 }
@@ -67,3 +67,10 @@ impl<'a> ElementContext<'a> {
     }
 }
 
+/// The compliances of a regularization, one a joint equation.
+#[derive(Clone, Debug)]
+pub enum Compliance {
+    /// One value for every equation.
+    All(f64),
+    List(Vec<f64>),
+}

@@ -12,6 +12,7 @@
 //! - `joint regularization: L, {tikhonov | dynamic | jacobian} [, {list, C_1, …, C_n | C}];`
 //!   on the joint L defined above (C defaults to 1e-6 for every equation, as MBDyn's).
 
+use super::element_context::Compliance;
 use std::collections::HashMap;
 
 use super::cursor::Cursor;
@@ -21,14 +22,6 @@ use super::references::{Frame, OtherSide};
 use crate::element::{DrivenJoint, Element, Tikhonov, TotalEquation, TotalReaction};
 use crate::kinematics::Mat3;
 use crate::model::Label;
-
-/// The compliances of a regularization, one a joint equation.
-#[derive(Clone, Debug)]
-pub enum Compliance {
-    /// One value for every equation.
-    All(f64),
-    List(Vec<f64>),
-}
 
 /// The `total equation` / `total internal reaction` card of a `joint` statement, or `None`
 /// for another joint type (read by `joints::joint`).
