@@ -111,7 +111,7 @@ pub fn cluster_label(shares: &[EnergyShare], names: &std::collections::BTreeMap<
     let group: Vec<&EnergyShare> = shares.iter().filter(|s| s.component == top.component && s.share >= 0.5 * top.share).collect();
     let name = |n: u32| names.get(&n).cloned().unwrap_or_else(|| format!("node {n}"));
     let listed: Vec<String> = group.iter().map(|s| name(s.node)).collect();
-    let who = if listed.len() == 1 { listed[0].clone() } else { common_words(&group.iter().map(|s| names.get(&s.node)).collect::<Vec<_>>()).map_or_else(|| listed.join(", "), |w| format!("{w}s")) };
+    let who = if listed.len() == 1 { listed[0].clone() } else { common_words(&group.iter().map(|s| names.get(&s.node)).collect::<Vec<_>>()).map_or_else(|| listed.join(", "), plural) };
     let share: f64 = group.iter().map(|s| s.share).sum();
     Some(format!("{who} {}, 1 of {count} modes at {} Hz", motion_words(top.component, share, gravity)?, significant(freq_hz, 4)))
 }
@@ -126,6 +126,15 @@ fn common_words(names: &[Option<&String>]) -> Option<String> {
     (n > 0 && names.iter().all(|s| s.split_whitespace().count() > n)).then(|| first[..n].join(" "))
 }
 
+/// "little pendulums", "masses".
+fn plural(word: String) -> String {
+    if ["s", "x", "sh", "ch"].iter().any(|e| word.ends_with(e)) {
+        format!("{word}es")
+    } else {
+        format!("{word}s")
+    }
+}
+
 /// `x` with `digits` significant digits ("15.91", "0.004957").
 fn significant(x: f64, digits: i32) -> String {
     if !(x.is_finite() && x > 0.0) {
@@ -133,4 +142,120 @@ fn significant(x: f64, digits: i32) -> String {
     }
     let decimals = (digits - 1 - x.log10().floor() as i32).max(0) as usize;
     format!("{x:.decimals$}")
+}
+
+#[cfg(test)]
+mod tests {
+    //! Closed form: four identical masses `m` on identical springs `k` along x (gravity
+    //! along −z) and a fifth on a spring `k5`. `M = m I`, `K = diag(k, k, k, k, k5)`: the
+    //! eigenvalues are `±i √(k/m)`, four-fold, and `±i √(k5/m)`; the first cluster's
+    //! invariant subspace is span{e₁…e₄}, so its shares are exactly 1/4 per mass whatever
+    //! basis of it the eigensolver returns.
+    use super::*;
+    use crate::dae::mode_label;
+    use crate::kinematics::Vec3;
+    use crate::linear::{Classification, ModeKind};
+    use faer::Col;
+
+    const M: f64 = 2.0;
+    const K: f64 = 800.0;
+    const K5: f64 = 1800.0;
+
+    fn mode(lambda: c64, v: Vec<c64>) -> Mode {
+        let classification = Classification { kind: ModeKind::Dynamic, alpha: lambda, beta: 1.0, to_zero: 1.0, to_infinity: 1.0, uncertainty: 0.0 };
+        Mode { lambda, kind: ModeKind::Dynamic, error: 0.0, classification, right: Some(Col::from_fn(v.len(), |i| v[i])), left: None, partner: None }
+    }
+
+    /// The four cluster vectors `E Q` (columns of `q`, 4 x 4) at ±iω, then the fifth mass.
+    fn modes(q: &[[c64; 4]; 4], lambda: c64) -> Vec<Mode> {
+        let mut out = Vec::new();
+        for sign in [1.0, -1.0] {
+            for c in 0..4 {
+                let v: Vec<c64> = (0..5).map(|r| if r < 4 { if sign > 0.0 { q[r][c] } else { q[r][c].conj() } } else { c64::new(0.0, 0.0) }).collect();
+                out.push(mode(if sign > 0.0 { lambda } else { lambda.conj() }, v));
+            }
+        }
+        let w5 = (K5 / M).sqrt();
+        let e5: Vec<c64> = (0..5).map(|r| c64::new(if r == 4 { 1.0 } else { 0.0 }, 0.0)).collect();
+        out.push(mode(c64::new(0.0, w5), e5.clone()));
+        out.push(mode(c64::new(0.0, -w5), e5));
+        out
+    }
+
+    fn energy() -> ModalEnergy {
+        ModalEnergy { terms: (0..5).map(|n| (n as u32 + 1, "x", n, M)).collect() }
+    }
+
+    fn names() -> std::collections::BTreeMap<u32, String> {
+        (1..=5).map(|n| (n, format!("mass {n}"))).collect()
+    }
+
+    fn labels(modes: &[Mode]) -> Vec<String> {
+        let e = energy();
+        let gravity = Vec3::new(0.0, 0.0, -9.81);
+        let mut out: Vec<String> = modes.iter().map(|m| mode_label(&e.shares(m), &names(), &gravity).unwrap()).collect();
+        for c in degenerate_clusters(modes) {
+            let shares = e.subspace_shares(&c.iter().map(|&i| &modes[i]).collect::<Vec<_>>());
+            for &i in &c {
+                out[i] = cluster_label(&shares, &names(), &gravity, c.len(), modes[i].freq_hz()).unwrap();
+            }
+        }
+        out
+    }
+
+    /// A unitary 4 x 4 matrix from Gram–Schmidt on fixed pseudo-random complex entries
+    /// (a linear congruential sequence), its columns also scaled by 0.3…1.2 (any basis).
+    fn rotation(seed: u64, scaled: bool) -> [[c64; 4]; 4] {
+        let mut x = seed;
+        let mut next = || {
+            x = x.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (x >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        let mut cols: Vec<Vec<c64>> = (0..4).map(|_| (0..4).map(|_| c64::new(next(), next())).collect()).collect();
+        for c in 0..4 {
+            for p in 0..c {
+                let dot: c64 = (0..4).map(|r| cols[p][r].conj() * cols[c][r]).sum();
+                for r in 0..4 {
+                    let sub = dot * cols[p][r];
+                    cols[c][r] -= sub;
+                }
+            }
+            let n = norm(&cols[c]);
+            let scale = if scaled { 0.3 + 0.3 * c as f64 } else { 1.0 };
+            cols[c].iter_mut().for_each(|z| *z *= scale / n);
+        }
+        std::array::from_fn(|r| std::array::from_fn(|c| cols[c][r]))
+    }
+
+    #[test]
+    fn a_fourfold_cluster_is_labelled_alike_in_any_basis() {
+        let omega = (K / M).sqrt();
+        let lambda = c64::new(0.0, omega);
+        let identity: [[c64; 4]; 4] = std::array::from_fn(|r| std::array::from_fn(|c| c64::new(if r == c { 1.0 } else { 0.0 }, 0.0)));
+        let plain = modes(&identity, lambda);
+        assert_eq!(degenerate_clusters(&plain), vec![vec![0, 1, 2, 3], vec![4, 5, 6, 7]]);
+        // Closed form: f = √(k/m)/2π = 3.183 Hz; 1/4 of the energy per mass, 100 % together.
+        let expected = "masses horizontal (x) 100 %, 1 of 4 modes at 3.183 Hz";
+        let reference = labels(&plain);
+        assert!(reference[..8].iter().all(|l| l == expected), "{reference:?}");
+        let shares = energy().subspace_shares(&plain[..4].iter().collect::<Vec<_>>());
+        assert_eq!(shares.len(), 4);
+        assert!(shares.iter().all(|s| (s.share - 0.25).abs() < 1e-14), "{shares:?}");
+        // The non-degenerate mode keeps its own label.
+        assert_eq!(reference[8], "mass 5 horizontal (x) 100 %");
+        for (seed, scaled) in [(1, false), (7, true), (42, false)] {
+            let q = rotation(seed, scaled);
+            let rotated = modes(&q, lambda);
+            // One rotated vector alone would name one mass with an arbitrary share.
+            let alone = mode_label(&energy().shares(&rotated[0]), &names(), &Vec3::new(0.0, 0.0, -9.81)).unwrap();
+            assert!(!alone.ends_with("100 %"), "{alone}");
+            assert_eq!(labels(&rotated), reference, "seed {seed}");
+            let shares = energy().subspace_shares(&rotated[..4].iter().collect::<Vec<_>>());
+            assert!(shares.iter().all(|s| (s.share - 0.25).abs() < 1e-12), "{shares:?}");
+            // A split of the cluster by rounding (1e-12 relative) changes nothing.
+            let mut split = rotated.clone();
+            split.iter_mut().take(8).enumerate().for_each(|(i, m)| m.lambda *= 1.0 + 1e-12 * i as f64);
+            assert_eq!(labels(&split), reference, "seed {seed}");
+        }
+    }
 }
