@@ -9,7 +9,7 @@ use super::DofMap;
 use crate::linear::{LinearDae, Mode};
 use crate::model::{Model, NodeKind};
 
-const COMPONENTS: [&str; 6] = ["x", "y", "z", "rx", "ry", "rz"];
+pub(super) const COMPONENTS: [&str; 6] = ["x", "y", "z", "rx", "ry", "rz"];
 
 /// One node component's share of a mode's kinetic energy.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
@@ -24,7 +24,7 @@ pub struct EnergyShare {
 /// share out the kinetic energy of any number of modes.
 pub struct ModalEnergy {
     /// `(node label, component, unknown index, mass)`.
-    terms: Vec<(u32, &'static str, usize, f64)>,
+    pub(super) terms: Vec<(u32, &'static str, usize, f64)>,
 }
 
 impl ModalEnergy {
@@ -88,7 +88,13 @@ pub fn describe(shares: &[EnergyShare]) -> String {
 pub fn mode_label(shares: &[EnergyShare], names: &std::collections::BTreeMap<u32, String>, gravity: &crate::kinematics::Vec3) -> Option<String> {
     let top = shares.iter().max_by(|a, b| a.share.total_cmp(&b.share))?;
     let node = names.get(&top.node).cloned().unwrap_or_else(|| format!("node {}", top.node));
-    let k = COMPONENTS.iter().position(|c| *c == top.component)?;
+    Some(format!("{node} {}", motion_words(top.component, top.share, gravity)?))
+}
+
+/// "yaw (rz) 93 %" (with gravity) or "rz 93 %" (without): the direction words of
+/// [`mode_label`] for node component `component` holding `share` of the energy.
+pub(super) fn motion_words(component: &str, share: f64, gravity: &crate::kinematics::Vec3) -> Option<String> {
+    let k = COMPONENTS.iter().position(|c| *c == component)?;
     let vertical = (gravity.norm() > 0.0).then(|| gravity.iamax());
     let word = match vertical {
         None => None,
@@ -104,10 +110,10 @@ pub fn mode_label(shares: &[EnergyShare], names: &std::collections::BTreeMap<u32
             })
         }
     };
-    let pct = 100.0 * top.share;
+    let pct = 100.0 * share;
     Some(match word {
-        Some(w) => format!("{node} {w} ({}) {pct:.0} %", top.component),
-        None => format!("{node} {} {pct:.0} %", top.component),
+        Some(w) => format!("{w} ({component}) {pct:.0} %"),
+        None => format!("{component} {pct:.0} %"),
     })
 }
 

@@ -17,6 +17,7 @@
 mod assembly;
 mod band;
 mod check;
+mod cluster;
 mod dofs;
 mod element_part;
 mod eliminate;
@@ -29,6 +30,7 @@ mod state;
 
 pub use assembly::{Assembler, Coefficients};
 pub use check::{check_jacobians, JacobianMismatch};
+pub use cluster::{cluster_label, degenerate_clusters, CLUSTER_RELATIVE_GAP};
 pub use dofs::DofMap;
 pub use element_part::{element_part, ElementPart, ElementPartError};
 pub use energy::{describe, kinetic_energy_shares, mode_label, real_mode_label, EnergyShare, ModalEnergy};

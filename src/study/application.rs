@@ -8,7 +8,7 @@ use faer::{c64, Mat};
 
 use crate::analysis::{reference_state, Reference};
 use crate::dae::ports::{InputPort, OutputPort};
-use crate::dae::{element_part, linearize_ports, mode_label, real_mode_label, ElementPart, ModalEnergy, NodeInput, NodeOutput, State};
+use crate::dae::{cluster_label, degenerate_clusters, element_part, linearize_ports, mode_label, real_mode_label, ElementPart, ModalEnergy, NodeInput, NodeOutput, State};
 use crate::linear::{LinearDae, ModalAnalysis};
 use crate::model::{InitialValueProblem, Label, Model};
 use crate::rom::{full_frequency_response, transmissibility, with_spring_ports, without_elements, ImposedModel, SpringFeedback};
@@ -151,7 +151,9 @@ impl Study {
     }
 
     /// One label per mode ("table pitch (ry) 93 %") from the kinetic-energy shares and the
-    /// node names; `None` for modes without shares.
+    /// node names; `None` for modes without shares. A member of a cluster of degenerate
+    /// modes gets the cluster's label ([`cluster_label`]: "little pendulums yaw (rz) 88 %, 1
+    /// of 4 modes at 15.91 Hz"), the same for every member and for any basis of the cluster.
     pub fn mode_labels(&self) -> Vec<Option<String>> {
         let mut names = self.model.as_ref().map(|m| m.node_names.clone()).unwrap_or_default();
         if let Some(a) = &self.application {
@@ -159,7 +161,14 @@ impl Study {
         }
         let names = &names;
         let gravity = self.model.as_ref().map(|m| m.gravity).unwrap_or_default();
-        self.energy().iter().map(|s| mode_label(s, names, &gravity)).collect()
+        let energy = self.energy();
+        let mut labels: Vec<_> = energy.iter().map(|s| mode_label(s, names, &gravity)).collect();
+        for cluster in degenerate_clusters(&self.modal.modes) {
+            for &i in &cluster {
+                labels[i] = cluster_label(&energy[i], names, &gravity, cluster.len(), self.modal.modes[i].freq_hz());
+            }
+        }
+        labels
     }
 
     /// A label for a real eigenvalue `lambda` [rad/s] of the free model (the study's full

@@ -4,7 +4,7 @@ use std::path::Path;
 
 use crate::analysis::{reference_state, static_state_from, Reference};
 use crate::dae::ports::{InputPort, OutputPort};
-use crate::dae::{linearize_sparse, EnergyShare, ModalEnergy, NodeInput, NodeOutput, State};
+use crate::dae::{degenerate_clusters, linearize_sparse, EnergyShare, ModalEnergy, NodeInput, NodeOutput, State};
 use crate::input::eigen_pencil::PencilPorts;
 use crate::input::mbdyn::read_model;
 use crate::input::pencil::read_pencil_file;
@@ -327,10 +327,20 @@ impl Study {
         self.model.as_ref()
     }
 
-    /// Kinetic-energy shares of every mode (empty lists without a model).
+    /// Kinetic-energy shares of every mode (empty lists without a model); a member of a
+    /// cluster of degenerate modes ([`degenerate_clusters`]) has the cluster's shares
+    /// ([`ModalEnergy::subspace_shares`]), which do not depend on the basis the eigensolver chose.
     pub fn energy(&self) -> Vec<Vec<EnergyShare>> {
         match self.modal_energy() {
-            Some(energy) => self.modal.modes.iter().map(|m| energy.shares(m)).collect(),
+            Some(energy) => {
+                let modes = &self.modal.modes;
+                let mut out: Vec<_> = modes.iter().map(|m| energy.shares(m)).collect();
+                for cluster in degenerate_clusters(modes) {
+                    let shares = energy.subspace_shares(&cluster.iter().map(|&i| &modes[i]).collect::<Vec<_>>());
+                    cluster.iter().for_each(|&i| out[i] = shares.clone());
+                }
+                out
+            }
             None => vec![Vec::new(); self.modal.modes.len()],
         }
     }
