@@ -13,13 +13,14 @@ mod common;
 use std::path::{Path, PathBuf};
 
 use common::fixtures::Noise;
+use common::mbdyn::assert_jacobians;
 use romdyn::analysis::run;
-use romdyn::dae::{check_jacobians, Assembler, State};
-use romdyn::element::{Anchor, AngularAcceleration, ViscousBody, Drive, DrivenJoint, Element, Joint, Tikhonov, TotalEquation, TotalReaction, VectorDrive};
+use romdyn::dae::Assembler;
+use romdyn::element::{Anchor, AngularAcceleration, ViscousBody, Drive, DrivenJoint, Joint, Tikhonov, TotalEquation, TotalReaction, VectorDrive};
 use romdyn::input::mbdyn::{build, parse_text, read_model, MbdynModel};
 use romdyn::kinematics::Vec3;
-use romdyn::linear::ConstraintForm;
-use romdyn::model::{Model, ModelBuilder};
+
+
 
 fn path(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files").join(name)
@@ -31,39 +32,6 @@ fn read(name: &str) -> MbdynModel {
 
 fn node(label: u32, n: &mut Noise) -> Anchor {
     Anchor::Node { label, offset: n.vec(), orientation: n.rotation() }
-}
-
-/// Nodes 1 (static), 2 and 3 (dynamic) at random positions, orientations and velocities,
-/// with the given elements.
-fn model_with(form: ConstraintForm, elements: impl FnOnce(&mut Noise) -> Vec<Box<dyn Element>>) -> Model {
-    let mut n = Noise(4242);
-    let mut b = ModelBuilder::new();
-    b.static_node(1, n.vec(), n.rotation()).dynamic_node(2, n.vec(), n.rotation(), n.vec(), n.vec()).dynamic_node(3, n.vec(), n.rotation(), n.vec(), n.vec());
-    for e in elements(&mut n) {
-        b.boxed_element(e);
-    }
-    b.constraint_form(form);
-    b.build().unwrap()
-}
-
-/// Every element's worst Jacobian entry at a random state (unknowns, derivatives,
-/// multipliers all perturbed), both constraint forms, below 1e-6.
-fn assert_jacobians(elements: impl Fn(&mut Noise) -> Vec<Box<dyn Element>>) {
-    for form in [ConstraintForm::Plain, ConstraintForm::Scaled] {
-        let model = model_with(form, &elements);
-        let asm = Assembler::new(&model);
-        let mut st = State::initial(&model, &asm.dofs);
-        let mut n = Noise(99);
-        st.t = 0.3;
-        for x in st.y.iter_mut().chain(st.yp.iter_mut()) {
-            *x += 0.5 * n.next();
-        }
-        let mismatches = check_jacobians(&asm, &st, 0.37, form);
-        assert!(!mismatches.is_empty(), "{form:?}: no entry compared");
-        for w in mismatches {
-            assert!(w.relative_error < 1e-6, "{form:?}: {} d({})/d({}): analytic {:e}, fd {:e} (error {:e})", w.element, w.equation, w.unknown, w.analytic, w.finite_difference, w.relative_error);
-        }
-    }
 }
 
 /// A total equation between `a` and `b` locking position x, z and rotation y, x and z

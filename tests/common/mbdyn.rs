@@ -2,7 +2,9 @@
 
 use std::path::Path;
 
-use romdyn::dae::{Assembler, State};
+use romdyn::dae::{check_jacobians, Assembler, State};
+use romdyn::element::Element;
+use romdyn::model::ModelBuilder;
 use romdyn::input::mbdyn::{build, parse_text, MbdynModel};
 use romdyn::linear::ConstraintForm;
 use romdyn::model::Model;
@@ -87,5 +89,38 @@ pub fn assert_not_linearized(m: &MbdynModel, needles: &[&str], why: &str) {
     };
     for n in needles {
         assert!(e.contains(n), "{n:?} not in: {e}");
+    }
+}
+
+/// Nodes 1 (static), 2 and 3 (dynamic) at random positions, orientations and velocities,
+/// with the given elements.
+pub fn model_with(form: ConstraintForm, elements: impl FnOnce(&mut Noise) -> Vec<Box<dyn Element>>) -> romdyn::model::Model {
+    let mut n = Noise(4242);
+    let mut b = ModelBuilder::new();
+    b.static_node(1, n.vec(), n.rotation()).dynamic_node(2, n.vec(), n.rotation(), n.vec(), n.vec()).dynamic_node(3, n.vec(), n.rotation(), n.vec(), n.vec());
+    for e in elements(&mut n) {
+        b.boxed_element(e);
+    }
+    b.constraint_form(form);
+    b.build().unwrap()
+}
+
+/// Every element's worst Jacobian entry at a random state (unknowns, derivatives,
+/// multipliers all perturbed), both constraint forms, below 1e-6.
+pub fn assert_jacobians(elements: impl Fn(&mut Noise) -> Vec<Box<dyn Element>>) {
+    for form in [ConstraintForm::Plain, ConstraintForm::Scaled] {
+        let model = model_with(form, &elements);
+        let asm = Assembler::new(&model);
+        let mut st = State::initial(&model, &asm.dofs);
+        let mut n = Noise(99);
+        st.t = 0.3;
+        for x in st.y.iter_mut().chain(st.yp.iter_mut()) {
+            *x += 0.5 * n.next();
+        }
+        let mismatches = check_jacobians(&asm, &st, 0.37, form);
+        assert!(!mismatches.is_empty(), "{form:?}: no entry compared");
+        for w in mismatches {
+            assert!(w.relative_error < 1e-6, "{form:?}: {} d({})/d({}): analytic {:e}, fd {:e} (error {:e})", w.element, w.equation, w.unknown, w.analytic, w.finite_difference, w.relative_error);
+        }
     }
 }
