@@ -22,6 +22,7 @@
 //! fallback whenever a residual is not at rounding level.
 
 use faer::{c64, Col, Mat};
+use rayon::prelude::*;
 
 use super::balance::balance_pencil;
 use super::classify::{classify, Classification, ModeKind};
@@ -102,26 +103,34 @@ impl ModalAnalysis {
         units.extend((0..part.infinities).map(|_| vec![deflated_mode(ModeKind::Infinite, route)]));
         let r = part.dim();
         if r > 0 {
-            let mut found = qz_modes(&part, route, dcoef)?;
+            // QZ and the whole pencil the labels are decided on do not depend on each other:
+            // rayon::join runs them on both cores when one is free (inside a busy pool, as
+            // a sweep's point, one after the other on the same worker: no thread waits).
+            let (found, whole) = rayon::join(|| qz_modes(&part, route, dcoef), || WholePencil::new(&fyd, &fy, route, dcoef));
+            let mut found = found?;
             let with: Vec<(usize, Col<c64>, Col<c64>)> = found.iter_mut().enumerate().filter_map(|(i, f)| f.1.take().map(|(v, u)| (i, v, u))).collect();
             let lambdas: Vec<c64> = with.iter().map(|w| found[w.0].0.lambda).collect();
             let gather = |left: bool| Mat::from_fn(r, with.len(), |i, j| if left { with[j].2[i] } else { with[j].1[i] });
-            let (zr, zl) = (gather(false), gather(true));
-            let (right, left) = (part.right(&zr, &lambdas), part.left(&zl, &lambdas));
-            // Labels and error estimates on the whole pencil, as the undeflated route has them.
-            let whole = WholePencil::new(&fyd, &fy, route, dcoef);
-            let fyd_sparse = SparseMatrix::from_dense(&fyd);
-            let fyd_norm = fyd_sparse.norm_l2();
-            for (j, &(i, _, _)) in with.iter().enumerate() {
-                let v = Col::from_fn(dae.dim(), |k| right[(k, j)]);
-                let u = Col::from_fn(dae.dim(), |k| left[(k, j)]);
+            let (right, left) = rayon::join(|| part.right(&gather(false), &lambdas), || part.left(&gather(true), &lambdas));
+            // Labels and error estimates on the whole pencil, as the undeflated route has them:
+            // each mode on its own, in parallel.
+            let labelled: Vec<(Classification, f64, Option<(Col<c64>, Col<c64>)>)> = (0..with.len())
+                .into_par_iter()
+                .map(|j| {
+                    let v = Col::from_fn(dae.dim(), |k| right[(k, j)]);
+                    let u = Col::from_fn(dae.dim(), |k| left[(k, j)]);
+                    let class = whole.classify(found[with[j].0].0.lambda, &v, &u, route, dcoef);
+                    let error = class.lambda_and_error(route, whole.mu_scale, dcoef).1;
+                    let vectors = (class.kind != ModeKind::Infinite).then(|| normalize(&v, &u, |x| whole.fyd.mul_complex(x), whole.fyd_norm));
+                    (class, error, vectors)
+                })
+                .collect();
+            for (&(i, _, _), (class, error, vectors)) in with.iter().zip(labelled) {
                 let mode = &mut found[i].0;
-                let class = whole.classify(mode.lambda, &v, &u, route, dcoef);
-                mode.error = class.lambda_and_error(route, whole.mu_scale, dcoef).1;
+                mode.error = error;
                 mode.kind = class.kind;
                 mode.classification = class;
-                if mode.kind != ModeKind::Infinite {
-                    let (v, u) = normalize(&v, &u, |x| fyd_sparse.mul_complex(x), fyd_norm);
+                if let Some((v, u)) = vectors {
                     mode.right = Some(v);
                     mode.left = Some(u);
                 }
@@ -196,6 +205,9 @@ struct WholePencil {
     col: Vec<f64>,
     norms: (f64, f64),
     mu_scale: f64,
+    /// `F_yd` itself (unbalanced) and its 2-norm, for the vectors' normalization.
+    fyd: SparseMatrix,
+    fyd_norm: f64,
 }
 
 impl WholePencil {
@@ -203,7 +215,9 @@ impl WholePencil {
         let (a, b, mu_scale) = route_pencil(fy, fyd, route, dcoef);
         let bal = balance_pencil(&a, &b);
         let norms = (bal.a.norm_l2(), bal.b.norm_l2());
-        WholePencil { a: SparseMatrix::from_dense(&bal.a), b: SparseMatrix::from_dense(&bal.b), row: bal.row, col: bal.col, norms, mu_scale }
+        let fyd = SparseMatrix::from_dense(fyd);
+        let fyd_norm = fyd.norm_l2();
+        WholePencil { a: SparseMatrix::from_dense(&bal.a), b: SparseMatrix::from_dense(&bal.b), row: bal.row, col: bal.col, norms, mu_scale, fyd, fyd_norm }
     }
 
     /// Label of the eigenvalue `lambda` with right and left vectors `v`, `u` of `λ F_yd + F_y`.

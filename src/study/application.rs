@@ -136,14 +136,24 @@ impl Study {
     pub fn from_application_dae(model: Model, problem: &InitialValueProblem, state: State, dae: LinearDae, app: &Application, eigen: EigenSettings) -> Result<Self, StudyError> {
         let parts = app.remove_springs.iter().map(|&l| element_part(&model, &state, l)).collect::<Result<Vec<_>, _>>()?;
         let file_dcoef = problem.eigenanalysis.as_ref().and_then(|e| e.dcoef);
-        let modal = ModalAnalysis::of_dae(&dae, eigen.route, eigen.dcoef.or(file_dcoef)).map_err(|e| e.with_unknown_names(&dae.unknown_names))?;
-        let (projected, feedback) = if parts.is_empty() {
-            (None, None)
-        } else {
-            let (p, f) = with_spring_ports(&dae, &parts);
-            (Some(p), Some(f))
-        };
-        let free = LinearModel::from_dense(without_elements(&dae, &parts), false);
+        // The eigenanalysis of the model as written and the free model (springs removed, its
+        // static gain) do not depend on each other: both cores when one is free.
+        let (modal, (projected, feedback, free)) = rayon::join(
+            || ModalAnalysis::of_dae(&dae, eigen.route, eigen.dcoef.or(file_dcoef)),
+            || {
+                let (projected, feedback) = if parts.is_empty() {
+                    (None, None)
+                } else {
+                    let (p, f) = with_spring_ports(&dae, &parts);
+                    (Some(p), Some(f))
+                };
+                let free = LinearModel::from_dense(without_elements(&dae, &parts), false);
+                // Filled now, read by the port warnings and every ROM's static gain.
+                let _ = free.dense_static_gain();
+                (projected, feedback, free)
+            },
+        );
+        let modal = modal.map_err(|e| e.with_unknown_names(&dae.unknown_names))?;
         let mut warnings: Vec<_> = equilibrium_warning(&model, &state, problem.tolerance).into_iter().collect();
         warnings.extend(port_warnings(&free, &modal));
         let applied = applied(app, parts, projected, feedback);
