@@ -116,6 +116,8 @@ impl Figure for MimoPlot {
             let mut chart = ChartBuilder::on(area)
                 .caption(&title, (FONT, 15))
                 .margin(6)
+                // Room for half the last frequency label ("100") in the rightmost column.
+                .margin_right(16)
                 .x_label_area_size(30)
                 .y_label_area_size(58)
                 .build_cartesian_2d((flo..fhi).log_scale(), (lo..hi).log_scale())
