@@ -217,6 +217,17 @@ fn hints_romdyn_cannot_build_are_refused_at_the_hint() {
     assert!(e.message.contains("states of its own (joint friction)") && e.line > 0, "{}", e.message);
 }
 
+/// A hint whose drive cannot be built when its element switches on (here `asin` of the
+/// distance, 1 m or more, out of its domain at t = 0.5 s; the read-time check, with each
+/// `model::` read 0, cannot see it) stops the run with the hint's own reason: before, the
+/// element's residual was NaN and the failure said only "the residual is not finite".
+#[test]
+fn a_hint_that_fails_at_the_switch_on_is_named_in_the_failure() {
+    let m = rewritten("driven_hints.mbd", &[("\"drive{model::distance_prev(5, 6)}\"", "\"drive{asin(model::distance_prev(5, 6))}\"")]);
+    let e = run(&m.model, &m.problem, &mut ()).err().expect("the run must fail at the switch-on").to_string();
+    assert!(e.contains("distance 6: hint 1") && e.contains("asin(") && e.contains("out of domain"), "{e}");
+}
+
 /// A driven total joint with hints that is also regularized (MBDyn's
 /// tests/joints/total/totalhint does this): the regularization must keep the driven
 /// element's events. Joint 20 lifts node 2 by a half cosine to z = 1 m and tilts it to

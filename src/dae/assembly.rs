@@ -375,6 +375,15 @@ impl<'m> Assembler<'m> {
         self.model.elements.iter().enumerate().filter_map(named).collect()
     }
 
+    /// Why each element that cannot evaluate its residual at `st` cannot
+    /// ([`Element::failure`]), each naming its element.
+    ///
+    /// [`Element::failure`]: crate::element::Element::failure
+    pub fn element_failures(&self, st: &State) -> Vec<String> {
+        let frames = self.frames(st);
+        self.model.elements.iter().enumerate().filter_map(|(e, el)| el.failure(&self.context(&frames, st, e, 1.0))).collect()
+    }
+
     /// Internal forces and deformation of every element that has evaluation points (beams),
     /// as `(element index, sections)`.
     pub fn section_states(&self, st: &State) -> Vec<(usize, Vec<SectionState>)> {

@@ -235,6 +235,12 @@ pub trait Element: Send + Sync {
     fn reaction_dependence(&self, _s: &dyn ElementState) -> Option<String> {
         None
     }
+    /// Why its residual cannot be evaluated at this state, if it cannot (a driven element
+    /// whose hints could not be built when it switched on: its residual is NaN there), so
+    /// that Newton's failure names the reason instead of a bare "not finite".
+    fn failure(&self, _s: &dyn ElementState) -> Option<String> {
+        None
+    }
     /// Adds its contribution to `F(y, ẏ, t)`.
     fn residual(&self, s: &dyn ElementState, out: &mut dyn ResidualSink);
     /// Adds its derivatives; the assembler forms `J(c)` from them.

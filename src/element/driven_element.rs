@@ -168,6 +168,13 @@ impl Element for DrivenElement {
             out.add(Row::Constraint(k), Col::Multiplier(k), if active { 0.0 } else { -scale });
         }
     }
+    fn failure(&self, s: &dyn ElementState) -> Option<String> {
+        match self.element(s) {
+            Err(why) if self.active(s) => Some(why.to_string()),
+            Ok(e) if self.active(s) => e.failure(s),
+            _ => None,
+        }
+    }
     fn sections(&self, s: &dyn ElementState) -> Vec<SectionState> {
         match self.element(s) {
             Ok(e) if self.active(s) => e.sections(s),

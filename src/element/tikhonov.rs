@@ -98,4 +98,7 @@ impl Element for Tikhonov {
     fn reaction_dependence(&self, s: &dyn ElementState) -> Option<String> {
         self.inner.reaction_dependence(s)
     }
+    fn failure(&self, s: &dyn ElementState) -> Option<String> {
+        self.inner.failure(s)
+    }
 }

@@ -159,7 +159,11 @@ pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &Newton
             return Ok(Convergence { iterations: iteration, residual_norm: norm });
         }
         if !norm.is_finite() || iteration == settings.max_iterations {
-            return Err(fail(st, iteration, &f, (!norm.is_finite()).then(|| "the residual is not finite".to_string())));
+            let not_finite = || match asm.element_failures(st) {
+                why if why.is_empty() => "the residual is not finite".to_string(),
+                why => format!("the residual is not finite: {}", why.join("; ")),
+            };
+            return Err(fail(st, iteration, &f, (!norm.is_finite()).then(not_finite)));
         }
         asm.jacobian_into(st, coef, &mut ws.jacobian);
         let j = &mut ws.jacobian;
