@@ -7,25 +7,21 @@
 //! shared/tools/build-mbdyn.sh), `mbdyn -f FILE -o out` on the file named, with `output
 //! precision: 15;` added to control data so that the .mov carries 16 digits.
 
+mod common;
+
+use common::mbdyn::rewritten_test_file as rewritten;
+
 use std::path::{Path, PathBuf};
 
 use romdyn::analysis::{run, RunError};
 use romdyn::dae::{Assembler, State};
-use romdyn::input::mbdyn::{build, parse_text, read_model, MbdynModel};
+use romdyn::input::mbdyn::{read_model, MbdynModel};
 use romdyn::kinematics::euler123;
 
 fn path(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files").join(name)
 }
 
-fn rewritten(name: &str, replacements: &[(&str, &str)]) -> MbdynModel {
-    let mut t = std::fs::read_to_string(path(name)).unwrap_or_else(|e| panic!("{name}: {e}"));
-    for (old, new) in replacements {
-        assert!(t.contains(old), "{name} does not contain {old:?}");
-        t = t.replace(old, new);
-    }
-    parse_text(&t, &path(name)).and_then(|d| build(&d)).unwrap_or_else(|e| panic!("{e}"))
-}
 
 /// `(x, y, Euler angle 3 [deg], ẋ, ẏ, ω_z)` of node `k` (1-based label k + 1) of `st`.
 fn planar(m: &MbdynModel, st: &State, k: usize) -> [f64; 6] {

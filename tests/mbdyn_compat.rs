@@ -7,6 +7,8 @@
 
 mod common;
 
+use common::mbdyn::rewritten_test_file as rewritten;
+
 use std::path::{Path, PathBuf};
 
 use common::mbdyn::residual;
@@ -30,14 +32,6 @@ fn read(name: &str) -> MbdynModel {
 
 /// The file's text with each `(old, new)` replaced; every `old` must occur (so a test cannot
 /// pass by replacing nothing).
-fn rewritten(name: &str, replacements: &[(&str, &str)]) -> MbdynModel {
-    let mut t = text(name);
-    for (old, new) in replacements {
-        assert!(t.contains(old), "{name} does not contain {old:?}");
-        t = t.replace(old, new);
-    }
-    parse_text(&t, &path(name)).and_then(|d| build(&d)).unwrap_or_else(|e| panic!("{e}"))
-}
 
 /// Same nodes, same residual at three noisy states and times (1e-12 relative), same problem.
 fn assert_same(a: &MbdynModel, b: &MbdynModel) {

@@ -8,6 +8,8 @@
 
 mod common;
 
+use common::mbdyn::rewritten_test_file as rewritten;
+
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -24,15 +26,6 @@ fn path(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files").join(name)
 }
 
-/// The file's text with each `(old, new)` replaced (every `old` must occur).
-fn rewritten(name: &str, replacements: &[(&str, &str)]) -> MbdynModel {
-    let mut t = std::fs::read_to_string(path(name)).unwrap();
-    for (old, new) in replacements {
-        assert!(t.contains(old), "{name} does not contain {old:?}");
-        t = t.replace(old, new);
-    }
-    parse_text(&t, &path(name)).and_then(|d| build(&d)).unwrap_or_else(|e| panic!("{e}"))
-}
 
 /// The model of `name` run to `final_time` (its `final time:` line replaced): the final
 /// state's kinematics of each node by label, the state, and the model.

@@ -7,6 +7,8 @@
 
 mod common;
 
+use common::mbdyn::rewritten_test_file as rewritten;
+
 use std::path::{Path, PathBuf};
 
 use common::fixtures::Noise;
@@ -27,15 +29,6 @@ fn read(name: &str) -> MbdynModel {
     read_model(&path(name)).unwrap_or_else(|e| panic!("{e}"))
 }
 
-/// The file's text with each `(old, new)` replaced (every `old` must occur).
-fn rewritten(name: &str, replacements: &[(&str, &str)]) -> MbdynModel {
-    let mut t = std::fs::read_to_string(path(name)).unwrap();
-    for (old, new) in replacements {
-        assert!(t.contains(old), "{name} does not contain {old:?}");
-        t = t.replace(old, new);
-    }
-    parse_text(&t, &path(name)).and_then(|d| build(&d)).unwrap_or_else(|e| panic!("{e}"))
-}
 
 fn node(label: u32, n: &mut Noise) -> Anchor {
     Anchor::Node { label, offset: n.vec(), orientation: n.rotation() }

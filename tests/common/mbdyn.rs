@@ -55,6 +55,17 @@ pub fn test_file(name: &str) -> std::path::PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files").join(name)
 }
 
+/// The model of a file of `tests/mbdyn_files/` with each `(old, new)` of its text replaced
+/// (every `old` must occur).
+pub fn rewritten_test_file(name: &str, replacements: &[(&str, &str)]) -> MbdynModel {
+    let mut t = std::fs::read_to_string(test_file(name)).unwrap_or_else(|e| panic!("{name}: {e}"));
+    for (old, new) in replacements {
+        assert!(t.contains(old), "{name} does not contain {old:?}");
+        t = t.replace(old, new);
+    }
+    parse_text(&t, &test_file(name)).and_then(|d| build(&d)).unwrap_or_else(|e| panic!("{e}"))
+}
+
 /// The model of a file of `tests/mbdyn_files/`.
 pub fn read_test_file(name: &str) -> MbdynModel {
     romdyn::input::mbdyn::read_model(&test_file(name)).unwrap_or_else(|e| panic!("{e}"))
