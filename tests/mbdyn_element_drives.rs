@@ -70,6 +70,28 @@ fn element_and_dof_drives_give_the_closed_forms_and_mbdyns_motion() {
     assert_eq!(report.newton_iterations + report.derivatives_iterations, 3002);
 }
 
+/// A driven element's private data are its wrapped element's, as MBDyn's `DrivenElem`
+/// forwards them (romdyn refused the read before: "private data not computed"). The same
+/// file with the hinge of node 2 inside `driven: 2, const, 1., …`: MBDyn 1.7.3 on that file
+/// gives node 2 θz = 9.0682448938937572 deg at t = 1 s, the undriven file's value, and so
+/// must romdyn (the closed form and MBDyn, tolerances as above).
+#[test]
+fn a_driven_elements_private_data_are_the_wrapped_elements() {
+    let old = "    joint: 2, revolute hinge,\n        1, reference, node, null,";
+    let t = text();
+    assert!(t.contains(old));
+    let m = from_text(&t.replace(old, &format!("    driven: 2, const, 1.,\n{old}"))).unwrap_or_else(|e| panic!("{e}"));
+    let report = run(&m.model, &m.problem, &mut ()).unwrap();
+    let asm = Assembler::new(&m.model);
+    let theta = euler123(&report.final_state.node_frame(&asm.dofs, 1).kin.r)[2].to_degrees();
+    let (c, k): (f64, f64) = (0.8, 4.0);
+    let (w, zeta) = (k.sqrt(), c / (2.0 * k.sqrt()));
+    let wd = w * (1.0 - zeta * zeta).sqrt();
+    let exact = (0.5 / wd * (-zeta * w).exp() * wd.sin()).to_degrees();
+    assert!((theta - exact).abs() < 1e-5 * 14.0, "θz {theta} against the closed form {exact}");
+    assert!((theta - 9.0682448938937572).abs() < 1e-10 * 14.0, "θz {theta} against MBDyn");
+}
+
 /// A follower couple with the drives of the hinge's rotation and spin: the element's
 /// Jacobian equals central differences of its residual with the drives held at the state
 /// checked (the drives' own derivatives are in no Jacobian, as in MBDyn).

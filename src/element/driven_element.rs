@@ -25,7 +25,8 @@
 
 use std::sync::Arc;
 
-use super::contract::{Col, Element, ElementState, JacobianSink, Label, Latched, ResidualSink, Row, SectionState};
+use super::contract::{Col, Element, ElementState, JacobianSink, Latched, PrivateDatum, ResidualSink, Row, SectionState};
+use super::wrapper::ElementWrapper;
 use super::{Drive, VectorDrive};
 
 /// A hint's drive, built when the element switches on.
@@ -79,6 +80,16 @@ impl DrivenElement {
         }
     }
 
+    /// The element acting now (as its hints left it), `None` while switched off or when its
+    /// hints failed.
+    fn acting<'s>(&'s self, s: &'s dyn ElementState) -> Option<&'s dyn Element> {
+        if self.active(s) {
+            self.element(s).ok()
+        } else {
+            None
+        }
+    }
+
     /// The wrapped element re-set by each hint in turn.
     fn apply_hints(&self, now: &dyn ElementState, before: &dyn ElementState) -> Result<Option<Arc<dyn Element>>, String> {
         let mut element: Option<Box<dyn Element>> = None;
@@ -100,27 +111,23 @@ impl JacobianSink for Zeros<'_> {
     }
 }
 
-impl Element for DrivenElement {
+/// The wrapped element's contract ([`ElementWrapper`]) but for what switching changes: the
+/// residual, Jacobian and sections (nothing while off), the events (its hints), and what
+/// depends on the element acting (non-smoothness, reaction dependence, failures).
+impl ElementWrapper for DrivenElement {
+    fn inner(&self) -> &dyn Element {
+        self.inner.as_ref()
+    }
+    /// A driven element is not hinted itself (its hints re-set the element it wraps).
+    fn hinted(&self, _hint: &HintValue) -> Option<Box<dyn Element>> {
+        None
+    }
     fn reads_state(&self) -> bool {
         self.drive.reads_state() || self.inner.reads_state()
     }
-    fn label(&self) -> Label {
-        self.inner.label()
-    }
-    fn type_name(&self) -> &'static str {
-        self.inner.type_name()
-    }
-    fn nodes(&self) -> Vec<Label> {
-        self.inner.nodes()
-    }
-    fn multipliers(&self) -> Vec<String> {
-        self.inner.multipliers()
-    }
-    fn is_velocity_constraint(&self, k: usize) -> bool {
-        self.inner.is_velocity_constraint(k)
-    }
-    fn is_coordinate(&self, k: usize) -> bool {
-        self.inner.is_coordinate(k)
+    /// The initial assembly sees the driven element itself (switched as at the initial time).
+    fn assembly_form(&self) -> Option<&dyn Element> {
+        None
     }
     fn has_events(&self) -> bool {
         !self.hints.is_empty()
@@ -138,8 +145,18 @@ impl Element for DrivenElement {
         };
         Some(Arc::new(Switched { active: is, element }))
     }
-    fn constraint_rows_read_multipliers(&self) -> bool {
-        self.inner.constraint_rows_read_multipliers()
+    fn non_smooth(&self, s: &dyn ElementState) -> Option<String> {
+        self.acting(s).and_then(|e| e.non_smooth(s))
+    }
+    fn reaction_dependence(&self, s: &dyn ElementState) -> Option<String> {
+        self.acting(s).and_then(|e| e.reaction_dependence(s))
+    }
+    fn failure(&self, s: &dyn ElementState) -> Option<String> {
+        match self.element(s) {
+            Err(why) if self.active(s) => Some(why.to_string()),
+            Ok(e) if self.active(s) => e.failure(s),
+            _ => None,
+        }
     }
     fn residual(&self, s: &dyn ElementState, out: &mut dyn ResidualSink) {
         if self.active(s) {
@@ -168,17 +185,11 @@ impl Element for DrivenElement {
             out.add(Row::Constraint(k), Col::Multiplier(k), if active { 0.0 } else { -scale });
         }
     }
-    fn failure(&self, s: &dyn ElementState) -> Option<String> {
-        match self.element(s) {
-            Err(why) if self.active(s) => Some(why.to_string()),
-            Ok(e) if self.active(s) => e.failure(s),
-            _ => None,
-        }
+    /// MBDyn's `DrivenElem` reads the wrapped element's private data whether on or off.
+    fn private_data(&self, name: &str) -> Option<PrivateDatum> {
+        self.inner.private_data(name)
     }
     fn sections(&self, s: &dyn ElementState) -> Vec<SectionState> {
-        match self.element(s) {
-            Ok(e) if self.active(s) => e.sections(s),
-            _ => Vec::new(),
-        }
+        self.acting(s).map(|e| e.sections(s)).unwrap_or_default()
     }
 }

@@ -42,6 +42,7 @@ mod step_drive;
 mod tikhonov;
 mod total_equation;
 mod viscous_body;
+mod wrapper;
 mod screw_friction;
 
 pub use beam::{shape as beam_shape, Beam2, Beam3, BeamError, BeamNode, SectionLaw, SectionOrientation};
@@ -50,6 +51,7 @@ pub use bistop_rod::{BistopRod, BistopStatus};
 pub use body::RigidBody;
 pub use cardano::CardanoHinge;
 pub use central_gravity::CentralGravity;
+pub use wrapper::ElementWrapper;
 pub use contract::{Col, Element, ElementState, JacobianSink, Label, Latched, NodeKinematics, ResidualSink, Row, SectionState};
 pub use deformable::{DeformableDisplacement, DeformableHinge, LinearViscoelastic, Rod, RodViscosity};
 pub use distance::Distance;

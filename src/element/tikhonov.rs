@@ -11,7 +11,8 @@
 //! romdyn's constraint rows and reactions are the transposes of each other (`Φ` and
 //! `Φ_/qᵀ λ`, as MBDyn's with its opposite sign), so the same `C` gives MBDyn's spring.
 
-use super::contract::{Col, Element, ElementState, JacobianSink, Label, Latched, PrivateDatum, ResidualSink, Row, SectionState};
+use super::contract::{Col, Element, ElementState, JacobianSink, ResidualSink, Row};
+use super::wrapper::ElementWrapper;
 
 pub struct Tikhonov {
     pub inner: Box<dyn Element>,
@@ -26,36 +27,17 @@ impl Tikhonov {
     }
 }
 
-impl Element for Tikhonov {
-    fn label(&self) -> Label {
-        self.inner.label()
+/// The rest of the contract, events and hints included, is the wrapped element's
+/// ([`ElementWrapper`]): a regularized driven element keeps its hints.
+impl ElementWrapper for Tikhonov {
+    fn inner(&self) -> &dyn Element {
+        self.inner.as_ref()
     }
-    fn type_name(&self) -> &'static str {
-        self.inner.type_name()
-    }
-    fn nodes(&self) -> Vec<Label> {
-        self.inner.nodes()
-    }
-    fn multipliers(&self) -> Vec<String> {
-        self.inner.multipliers()
-    }
-    fn is_velocity_constraint(&self, k: usize) -> bool {
-        self.inner.is_velocity_constraint(k)
-    }
-    fn is_coordinate(&self, k: usize) -> bool {
-        self.inner.is_coordinate(k)
-    }
-    fn is_state(&self, k: usize) -> bool {
-        self.inner.is_state(k)
-    }
-    fn reads_state(&self) -> bool {
-        self.inner.reads_state()
+    fn hinted(&self, hint: &super::HintValue) -> Option<Box<dyn Element>> {
+        self.inner.hinted(hint).map(|inner| Box::new(Tikhonov { inner, c: self.c.clone() }) as Box<dyn Element>)
     }
     fn constraint_rows_read_multipliers(&self) -> bool {
         true
-    }
-    fn non_smooth(&self, s: &dyn ElementState) -> Option<String> {
-        self.inner.non_smooth(s)
     }
     fn residual(&self, s: &dyn ElementState, out: &mut dyn ResidualSink) {
         self.inner.residual(s, out);
@@ -73,32 +55,5 @@ impl Element for Tikhonov {
                 out.add(Row::Constraint(k), Col::Multiplier(k), -c * s.constraint_row_scale());
             }
         }
-    }
-    fn private_data(&self, name: &str) -> Option<PrivateDatum> {
-        self.inner.private_data(name)
-    }
-    fn sections(&self, s: &dyn ElementState) -> Vec<SectionState> {
-        self.inner.sections(s)
-    }
-    // A regularized driven element keeps its events and hints (MBDyn's
-    // tests/joints/total/totalhint: without these the hint never applied and the joint,
-    // switched on with its written null drive, pulled the node to the origin).
-    fn has_events(&self) -> bool {
-        self.inner.has_events()
-    }
-    fn latch(&self, now: &dyn ElementState, before: &dyn ElementState) -> Option<Latched> {
-        self.inner.latch(now, before)
-    }
-    fn hinted(&self, hint: &super::HintValue) -> Option<Box<dyn Element>> {
-        self.inner.hinted(hint).map(|inner| Box::new(Tikhonov { inner, c: self.c.clone() }) as Box<dyn Element>)
-    }
-    fn assembly_form(&self) -> Option<&dyn Element> {
-        self.inner.assembly_form()
-    }
-    fn reaction_dependence(&self, s: &dyn ElementState) -> Option<String> {
-        self.inner.reaction_dependence(s)
-    }
-    fn failure(&self, s: &dyn ElementState) -> Option<String> {
-        self.inner.failure(s)
     }
 }

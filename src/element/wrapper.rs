@@ -1,0 +1,143 @@
+//! Elements that wrap another element and change part of its behaviour (a driven element,
+//! a joint regularization). [`ElementWrapper`] forwards every method of the [`Element`]
+//! contract to the wrapped element unless the wrapper overrides it, so a wrapper states
+//! only what it changes and cannot silently drop the rest: a regularized driven joint that
+//! lost its events and hints (MBDyn's tests/joints/total/totalhint ran 0.79 m off) was
+//! exactly such a missing forward.
+//!
+//! A method added to [`Element`] must be added here too, with its forward in the trait
+//! and in the blanket `impl Element`; otherwise wrappers fall back to its default.
+
+use super::contract::{Element, ElementState, JacobianSink, Label, Latched, PrivateDatum, ResidualSink, SectionState};
+use super::HintValue;
+
+/// An element built around another one. Each method forwards to [`ElementWrapper::inner`]
+/// by default; `hinted` has no default because a hinted element must be wrapped again
+/// (forwarding would return the bare inner element, without the wrapper).
+pub trait ElementWrapper: Send + Sync {
+    /// The wrapped element.
+    fn inner(&self) -> &dyn Element;
+    /// As [`Element::hinted`]: the wrapper around the hinted inner element, or `None`.
+    fn hinted(&self, hint: &HintValue) -> Option<Box<dyn Element>>;
+
+    fn label(&self) -> Label {
+        self.inner().label()
+    }
+    fn type_name(&self) -> &'static str {
+        self.inner().type_name()
+    }
+    fn nodes(&self) -> Vec<Label> {
+        self.inner().nodes()
+    }
+    fn multipliers(&self) -> Vec<String> {
+        self.inner().multipliers()
+    }
+    fn is_velocity_constraint(&self, k: usize) -> bool {
+        self.inner().is_velocity_constraint(k)
+    }
+    fn reads_state(&self) -> bool {
+        self.inner().reads_state()
+    }
+    fn is_coordinate(&self, k: usize) -> bool {
+        self.inner().is_coordinate(k)
+    }
+    fn is_state(&self, k: usize) -> bool {
+        self.inner().is_state(k)
+    }
+    fn assembly_form(&self) -> Option<&dyn Element> {
+        self.inner().assembly_form()
+    }
+    fn non_smooth(&self, s: &dyn ElementState) -> Option<String> {
+        self.inner().non_smooth(s)
+    }
+    fn has_events(&self) -> bool {
+        self.inner().has_events()
+    }
+    fn latch(&self, now: &dyn ElementState, before: &dyn ElementState) -> Option<Latched> {
+        self.inner().latch(now, before)
+    }
+    fn constraint_rows_read_multipliers(&self) -> bool {
+        self.inner().constraint_rows_read_multipliers()
+    }
+    fn reaction_dependence(&self, s: &dyn ElementState) -> Option<String> {
+        self.inner().reaction_dependence(s)
+    }
+    fn failure(&self, s: &dyn ElementState) -> Option<String> {
+        self.inner().failure(s)
+    }
+    fn residual(&self, s: &dyn ElementState, out: &mut dyn ResidualSink) {
+        self.inner().residual(s, out)
+    }
+    fn jacobian(&self, s: &dyn ElementState, out: &mut dyn JacobianSink) {
+        self.inner().jacobian(s, out)
+    }
+    fn private_data(&self, name: &str) -> Option<PrivateDatum> {
+        self.inner().private_data(name)
+    }
+    fn sections(&self, s: &dyn ElementState) -> Vec<SectionState> {
+        self.inner().sections(s)
+    }
+}
+
+impl<W: ElementWrapper> Element for W {
+    fn label(&self) -> Label {
+        ElementWrapper::label(self)
+    }
+    fn type_name(&self) -> &'static str {
+        ElementWrapper::type_name(self)
+    }
+    fn nodes(&self) -> Vec<Label> {
+        ElementWrapper::nodes(self)
+    }
+    fn multipliers(&self) -> Vec<String> {
+        ElementWrapper::multipliers(self)
+    }
+    fn is_velocity_constraint(&self, k: usize) -> bool {
+        ElementWrapper::is_velocity_constraint(self, k)
+    }
+    fn reads_state(&self) -> bool {
+        ElementWrapper::reads_state(self)
+    }
+    fn is_coordinate(&self, k: usize) -> bool {
+        ElementWrapper::is_coordinate(self, k)
+    }
+    fn is_state(&self, k: usize) -> bool {
+        ElementWrapper::is_state(self, k)
+    }
+    fn assembly_form(&self) -> Option<&dyn Element> {
+        ElementWrapper::assembly_form(self)
+    }
+    fn non_smooth(&self, s: &dyn ElementState) -> Option<String> {
+        ElementWrapper::non_smooth(self, s)
+    }
+    fn has_events(&self) -> bool {
+        ElementWrapper::has_events(self)
+    }
+    fn latch(&self, now: &dyn ElementState, before: &dyn ElementState) -> Option<Latched> {
+        ElementWrapper::latch(self, now, before)
+    }
+    fn hinted(&self, hint: &HintValue) -> Option<Box<dyn Element>> {
+        ElementWrapper::hinted(self, hint)
+    }
+    fn constraint_rows_read_multipliers(&self) -> bool {
+        ElementWrapper::constraint_rows_read_multipliers(self)
+    }
+    fn reaction_dependence(&self, s: &dyn ElementState) -> Option<String> {
+        ElementWrapper::reaction_dependence(self, s)
+    }
+    fn failure(&self, s: &dyn ElementState) -> Option<String> {
+        ElementWrapper::failure(self, s)
+    }
+    fn residual(&self, s: &dyn ElementState, out: &mut dyn ResidualSink) {
+        ElementWrapper::residual(self, s, out)
+    }
+    fn jacobian(&self, s: &dyn ElementState, out: &mut dyn JacobianSink) {
+        ElementWrapper::jacobian(self, s, out)
+    }
+    fn private_data(&self, name: &str) -> Option<PrivateDatum> {
+        ElementWrapper::private_data(self, name)
+    }
+    fn sections(&self, s: &dyn ElementState) -> Vec<SectionState> {
+        ElementWrapper::sections(self, s)
+    }
+}
