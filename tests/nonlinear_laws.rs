@@ -275,11 +275,30 @@ fn nonlinear_laws_where_romdyn_or_mbdyn_has_none_are_refused_by_name() {
         ("joint: 2, rod, 1, 2, from nodes, nlsf viscoelastic, 1., null, 0., \"f\";", "'nlsf viscoelastic' is not supported by romdyn on a rod"),
         ("joint: 2, deformable displacement joint, 1, null, 2, null, scalar function elastic, \"f\";", "in 1-D only"),
         ("joint: 2, deformable joint, 1, null, 2, null, scalar function elastic, \"f\";", "in 6-D write 'scalar function elastic isotropic'"),
+        ("joint: 2, deformable hinge, 1, 2, scalar function elastic, \"f\";", "in 3-D write 'scalar function elastic isotropic'"),
         ("joint: 2, deformable displacement joint, 1, null, 2, null, nlsf elastic, eye, \"f\", null;", "expected"),
     ];
     for (element, message) in cases {
         let text = common::mbdyn::file("structural nodes: 2; joints: 1;", nodes, element).replace("begin: elements;", "scalar function: \"f\", pow, 3.;\nbegin: elements;");
         let err = read_model_text(&text, std::path::Path::new("m.mbd"), &SetOverrides::default()).err().unwrap_or_else(|| panic!("accepted: {element}")).to_string();
         assert!(err.contains(message) && err.starts_with("m.mbd:"), "{element}: {err}");
+    }
+}
+
+/// A 1-D `scalar function elastic` law on a `constitutive law:` card is the inline one (a rod
+/// by `reference`), and on a deformable axial joint it is `nlsf elastic, null, F` (MBDyn's
+/// 1-D `isotropic` and `orthotropic` read one function alike).
+#[test]
+fn one_d_scalar_function_laws_by_reference_and_on_axial_joints_are_the_inline_laws() {
+    let nodes = "structural: 1, static, null, eye, null, null; structural: 2, dynamic, 1., .2, 0., eye, .1, .2, .3, .4, .5, .6;";
+    let with = |element: &str| {
+        common::mbdyn::file("structural nodes: 2; joints: 2;", nodes, &format!("joint: 1, clamp, 1, node, node; {element}"))
+            .replace("begin: elements;", "scalar function: \"f\", exp, coefficient, 2., .5;\nconstitutive law: 7, 1, scalar function elastic, \"f\";\nbegin: elements;")
+    };
+    let inline = common::mbdyn::read(&with("joint: 2, rod, 1, 2, from nodes, scalar function elastic, \"f\";")).model;
+    common::mbdyn::assert_same_physics(&with("joint: 2, rod, 1, 2, from nodes, reference, 7;"), inline);
+    let nlsf = || common::mbdyn::read(&with("joint: 2, deformable axial joint, 1, 2, nlsf elastic, null, \"f\";")).model;
+    for law in ["scalar function elastic isotropic, \"f\"", "scalar function elastic orthotropic, \"f\"", "reference, 7"] {
+        common::mbdyn::assert_same_physics(&with(&format!("joint: 2, deformable axial joint, 1, 2, {law};")), nlsf());
     }
 }

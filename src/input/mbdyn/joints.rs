@@ -14,7 +14,7 @@ use super::drives::template_vec3;
 use super::element_context::ElementContext;
 use super::laws::{linear_law, nonlinear_law, rest_strain, three, LinearLaw};
 use super::references::{Context, Frame, OtherSide};
-use crate::element::{Anchor, AngularAcceleration, ViscousBody, RevoluteHingeFriction, AxialRotation, GimbalRotation, FunctionHinge, ImposedVelocity, VelocityKind, CardanoHinge, DeformableJoint, DrivenJoint, InvariantDeformableHinge, VectorDrive, DeformableDisplacement, DeformableHinge, Distance, Drive, Element, InLineFriction, Joint, Rod, RodViscosity};
+use crate::element::{Anchor, AngularAcceleration, ViscousBody, RevoluteHingeFriction, AxialRotation, GimbalRotation, ImposedVelocity, VelocityKind, CardanoHinge, DeformableJoint, DrivenJoint, InvariantDeformableHinge, VectorDrive, DeformableDisplacement, DeformableHinge, Distance, Drive, Element, InLineFriction, Joint, Rod, RodViscosity};
 use crate::kinematics::{Mat3, Vec3};
 use crate::model::{Label, StructuralNode};
 
@@ -224,12 +224,6 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             let a = side(c, ctx, "node 1", position, None)?;
             let b = side(c, ctx, "node 2", position, Some(&a))?;
             let law_span = c.here();
-            if hinge {
-                if let Some(functions) = function_law(c, ctx)? {
-                    orientation_description(c)?;
-                    return Ok(Box::new(FunctionHinge { label, a: a.anchor(), b: b.anchor(), functions }));
-                }
-            }
             let law = nonlinear_law(c, 3, ctx.laws, ctx.drives, ctx.seq)?;
             let v = |d: &nalgebra::DVector<f64>| Vec3::new(d[0], d[1], d[2]);
             if hinge {
@@ -277,27 +271,6 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
         _ => rod(kind == "rod with offset", label, c, ctx)?,
     };
     Ok(element)
-}
-
-/// `scalar function elastic isotropic, F` (one function for the three components) or
-/// `scalar function elastic orthotropic, {F_1 | null}, {F_2 | null}, {F_3 | null}`
-/// (ScalarFunctionsImpl.cc: `null` a zero component), for a 3-D law; `None` for another law.
-fn function_law(c: &mut Cursor, ctx: &ElementContext) -> Result<Option<[Option<crate::element::ScalarFunction>; 3]>, MbdynError> {
-    let functions = &ctx.drives.functions;
-    if c.accept("scalar function elastic isotropic") || c.accept("scalar function elastic") {
-        let f = super::scalar_functions::scalar_function(c, functions, ctx.seq)?;
-        return Ok(Some([Some(f.clone()), Some(f.clone()), Some(f)]));
-    }
-    if c.accept("scalar function elastic orthotropic") {
-        let mut out: [Option<crate::element::ScalarFunction>; 3] = [None, None, None];
-        for f in out.iter_mut() {
-            if !c.accept("null") {
-                *f = Some(super::scalar_functions::scalar_function(c, functions, ctx.seq)?);
-            }
-        }
-        return Ok(Some(out));
-    }
-    Ok(None)
 }
 
 /// The optional `orientation description, …` (output only).
