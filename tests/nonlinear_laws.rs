@@ -18,7 +18,7 @@ use common::fixtures::Noise;
 use common::mbdyn::{assert_jacobians, assert_jacobians_after_run, read_test_file};
 use romdyn::analysis::run;
 use romdyn::dae::Assembler;
-use romdyn::element::{Anchor, Beam2, Beam3, BeamNode, DeformableJoint, Element, LawFunctions, LinearViscoelastic, NodeKinematics, ScalarFunction, SectionLaw, SectionOrientation};
+use romdyn::element::{Anchor, Beam2, Beam3, BeamNode, DeformableJoint, Element, LawFunctions, LinearViscoelastic, NlsfRod, NodeKinematics, ScalarFunction, SectionLaw, SectionOrientation};
 use romdyn::input::mbdyn::{read_model_text, MbdynModel, SetOverrides};
 use romdyn::kinematics::{rotation_vector, Vec3};
 
@@ -88,6 +88,9 @@ fn nonlinear_law_jacobians_match_finite_differences() {
         e.push(Box::new(Beam3::new(8, nodes, [SectionOrientation::FromNodes, SectionOrientation::FromNodes], laws).unwrap()));
         let nodes = [bn(2, n), bn(3, n)];
         e.push(Box::new(Beam2::new(9, nodes, SectionOrientation::FromNodes, law6(n, false, functions(6, 2, false))).unwrap()));
+        // Rods with 1-D nlsf laws, with offsets.
+        e.push(Box::new(NlsfRod { label: 10, a: node(2, n), b: node(3, n), length: 0.8, stiffness: 20.0, viscosity: 3.0, prestrain: 0.05, prestress: 2.0, elastic: some_function(0), viscous: some_function(1) }));
+        e.push(Box::new(NlsfRod { label: 11, a: ground(n), b: node(2, n), length: 1.3, stiffness: 0.0, viscosity: 0.0, prestrain: 0.0, prestress: 0.0, elastic: some_function(3), viscous: some_function(0) }));
         e
     });
 }
@@ -264,15 +267,15 @@ fn nonlinear_beams_stretch_and_bend_as_the_closed_form_and_mbdyn() {
 }
 
 /// What is still refused names the law and where it is accepted: nonlinear laws on elements
-/// that take linear ones only, `nlsf` on a rod, and the bare `scalar function elastic` in 3-D
-/// and 6-D (MBDyn 1.7.3 registers it in 1-D only).
+/// that take linear ones only, `nlsf` on a rod with a prestrain that changes in time, and the
+/// bare `scalar function elastic` in 3-D and 6-D (MBDyn 1.7.3 registers it in 1-D only).
 #[test]
 fn nonlinear_laws_where_romdyn_or_mbdyn_has_none_are_refused_by_name() {
     let nodes = "structural: 1, static, null, eye, null, null; structural: 2, dynamic, 1., 0., 0., eye, null, null;";
     let cases = [
         ("joint: 2, invariant deformable hinge, 1, 2, nlsf elastic, eye, null, null, \"f\";", "constitutive law 'nlsf elastic' is supported by romdyn on the deformable displacement joint"),
         ("joint: 2, viscous body, 2, null, nlsf viscous, eye, null, null, null, null, null, \"f\";", "'nlsf viscous' is supported by romdyn on"),
-        ("joint: 2, rod, 1, 2, from nodes, nlsf viscoelastic, 1., null, 0., \"f\";", "'nlsf viscoelastic' is not supported by romdyn on a rod"),
+        ("joint: 2, rod, 1, 2, from nodes, nlsf elastic, 1., \"f\", prestrain, sine, 0., 1., 1., forever, 0.;", "prestrain that changes in time on an 'nlsf elastic' law"),
         ("joint: 2, deformable displacement joint, 1, null, 2, null, scalar function elastic, \"f\";", "in 1-D only"),
         ("joint: 2, deformable joint, 1, null, 2, null, scalar function elastic, \"f\";", "in 6-D write 'scalar function elastic isotropic'"),
         ("joint: 2, deformable hinge, 1, 2, scalar function elastic, \"f\";", "in 3-D write 'scalar function elastic isotropic'"),
@@ -283,6 +286,27 @@ fn nonlinear_laws_where_romdyn_or_mbdyn_has_none_are_refused_by_name() {
         let err = read_model_text(&text, std::path::Path::new("m.mbd"), &SetOverrides::default()).err().unwrap_or_else(|| panic!("accepted: {element}")).to_string();
         assert!(err.contains(message) && err.starts_with("m.mbd:"), "{element}: {err}");
     }
+}
+
+/// `tests/mbdyn_files/nlsf_rod.mbd`: a rod with `nlsf elastic` (prestrain, prestress) rests
+/// where the law equals the load, one with `nlsf viscous` brakes a mass as `dv/dt = −v − v³`;
+/// MBDyn 1.7.3 on the same file.
+#[test]
+fn nlsf_rods_rest_and_brake_as_the_closed_form_and_mbdyn() {
+    let mut m = read_test_file("nlsf_rod.mbd");
+    let nodes = ran(&m);
+    // (ε − .1) + (ε − .1)³ + .101 = 2.101: ε = 1.1, Newton's tolerance bounds it.
+    close(at(&nodes, 2).x, [2.1, 0.0, 0.0], 1e-9, "node 2 (nlsf elastic rod)");
+    // The brake, from x = 1 m: ms ρ∞ = 0.6 at h = 1 ms, 1.8e-6 m from the closed form.
+    let (v, x) = cubic_damper(2.0, 1.0);
+    close(at(&nodes, 3).x, [1.0 + x, 2.0, 0.0], 5e-6, "node 3 (nlsf viscous rod)");
+    close(at(&nodes, 3).xdot, [v, 0.0, 0.0], 2e-6, "node 3 velocity");
+    // MBDyn 1.7.3: node 2 at 2.1000000000000001 m; node 3 at 1.7718586345940497 m,
+    // 3.4844324456015929e-01 m/s. romdyn measured 2e-15 m from it: 1e-12 bounds it.
+    close(at(&nodes, 2).x, [2.1000000000000001, 0.0, 0.0], 1e-12, "node 2 against MBDyn");
+    close(at(&nodes, 3).x, [1.7718586345940497, 2.0, 0.0], 1e-12, "node 3 against MBDyn");
+    close(at(&nodes, 3).xdot, [3.4844324456015929e-01, 0.0, 0.0], 1e-12, "node 3 velocity against MBDyn");
+    assert_jacobians_after_run(&mut m, None, 0.1);
 }
 
 /// A 1-D `scalar function elastic` law on a `constitutive law:` card is the inline one (a rod

@@ -640,10 +640,21 @@ fn rod(offsets: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Res
         return Ok(Box::new(Rod { label, a: a.anchor(), b: b.anchor(), axial_stiffness: 0.0, length: l0, viscous: None, elastic: Some(f) }));
     }
     let (law, prestrain): (LinearLaw, _) = super::laws::law_with_prestrain_drive(c, 1, ctx.laws, ctx.drives, ctx.seq)?;
-    if law.nonlinear.is_some() {
+    match law.nonlinear {
         // A `scalar function elastic` law of a `constitutive law:` card.
-        let f = law.functions.elastic[0].clone();
-        return Ok(Box::new(Rod { label, a: a.anchor(), b: b.anchor(), axial_stiffness: 0.0, length: l0, viscous: None, elastic: f }));
+        Some(kind) if kind.starts_with("scalar function") => {
+            let f = law.functions.elastic[0].clone();
+            return Ok(Box::new(Rod { label, a: a.anchor(), b: b.anchor(), axial_stiffness: 0.0, length: l0, viscous: None, elastic: f }));
+        }
+        Some(kind) => {
+            if prestrain.is_some() {
+                return Err(c.error_at(law_span, format!("rod: a prestrain that changes in time on an '{kind}' law is not supported by romdyn")));
+            }
+            let (elastic, viscous) = (law.functions.elastic[0].clone(), law.functions.viscous[0].clone());
+            let (stiffness, viscosity, prestrain, prestress) = (law.stiffness[(0, 0)], law.viscosity[(0, 0)], law.prestrain[0], law.prestress[0]);
+            return Ok(Box::new(crate::element::NlsfRod { label, a: a.anchor(), b: b.anchor(), length: l0, stiffness, viscosity, prestrain, prestress, elastic, viscous }));
+        }
+        None => {}
     }
     let (ea, viscosity) = (law.stiffness[(0, 0)], law.viscosity[(0, 0)]);
     if ea < 0.0 || viscosity < 0.0 || ea + viscosity == 0.0 {

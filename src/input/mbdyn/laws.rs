@@ -82,7 +82,7 @@ const NLSF: [&str; 3] = ["nlsf viscoelastic", "nlsf elastic", "nlsf viscous"];
 const FUNCTION_ELASTIC: [&str; 3] = ["scalar function elastic isotropic", "scalar function elastic orthotropic", "scalar function elastic"];
 
 /// The elements that take a nonlinear law, for messages.
-const NONLINEAR_ELEMENTS: &str = "the deformable displacement joint, deformable hinge, deformable joint, deformable axial joint, beam3 and beam2 (and 'scalar function elastic' on a rod)";
+const NONLINEAR_ELEMENTS: &str = "the deformable displacement joint, deformable hinge, deformable joint, deformable axial joint, rod, beam3 and beam2";
 
 /// The `constitutive law:` cards read so far.
 #[derive(Default)]
@@ -140,16 +140,11 @@ pub fn nonlinear_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, s
     Ok(law)
 }
 
-/// A linear law whose prestrain may be a drive that changes in time (or reads the model's
-/// state; 1-D, a rod's): the law with its constant prestrain zero, and that drive; or a
-/// `scalar function elastic` law. An `nlsf` law is refused by name.
+/// A 1-D law whose prestrain may be a drive that changes in time (or reads the model's
+/// state; a rod's): the law with its constant prestrain zero, and that drive; linear, `nlsf`
+/// or `scalar function elastic`.
 pub fn law_with_prestrain_drive(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq: usize) -> Result<(LinearLaw, Option<Drive>), MbdynError> {
-    let span = c.here();
-    let (law, varying) = read_law(c, dim, laws, drives, seq)?;
-    if let Some(kind) = law.nonlinear.filter(|k| k.starts_with("nlsf")) {
-        return Err(c.error_at(span, format!("constitutive law '{kind}' is not supported by romdyn on a rod (supported on {NONLINEAR_ELEMENTS})")));
-    }
-    Ok((law, varying))
+    read_law(c, dim, laws, drives, seq)
 }
 
 /// A 1-D law at statement `seq`, linear or nonlinear (the deformable axial joint's).
