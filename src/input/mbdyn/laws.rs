@@ -24,7 +24,8 @@ use super::parser::Statement;
 use crate::element::{Drive, LawFunctions, ScalarFunction};
 use crate::kinematics::{Mat3, Vec3};
 
-/// A linear (visco)elastic law in `dim` dimensions: `f = K (ε − ε_p) + C ε̇ + f_p`.
+/// A (visco)elastic law in `dim` dimensions: `f = K (ε − ε_p) + C ε̇ + f_p`, plus a nonlinear
+/// law's per-component functions.
 #[derive(Clone, Debug, PartialEq)]
 pub struct LinearLaw {
     pub stiffness: DMatrix<f64>,
@@ -279,7 +280,7 @@ fn read_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq: usize
             };
             return Err(c.error(format!("constitutive law '{k}' is not supported by romdyn (supported: linear elastic, linear viscous, linear viscoelastic, each isotropic or generic; nlsf elastic, viscous, viscoelastic; scalar function elastic isotropic, orthotropic{rods})")));
         }
-        return Err(c.error(format!("expected a constitutive law ({}), found {}", KINDS.join(", "), c.found())));
+        return Err(c.error(format!("expected a constitutive law ({}, {}, {}, {}), found {}", KINDS.join(", "), NLSF.join(", "), FUNCTION_ELASTIC.join(", "), BISTOP.join(", "), c.found())));
     };
     let generic = kind.ends_with("generic");
     let read = |c: &mut Cursor, what: &str| if generic { matrix(c, dim, what) } else { Ok(DMatrix::identity(dim, dim) * c.real(what)?) };
