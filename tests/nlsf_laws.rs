@@ -39,15 +39,15 @@ fn an_nlsf_spring_rests_at_its_closed_form_and_an_nlsf_brake_follows_its_ode() {
     assert!((w - 1.0087540760317331).abs() < 1e-9, "brake {w} rad/s against MBDyn's");
 }
 
-/// An `nlsf` law with scalar functions anywhere but on a deformable axial joint, or of 3 or 6
-/// dimensions, is refused naming it (an `nlsf` law without functions is a linear one); so
-/// are bistop laws off rods and symbolic laws, with the reason.
+/// An `nlsf` law on an element that takes linear laws only (an invariant deformable hinge),
+/// or on a rod with a prestrain that changes in time, is refused naming it (3-D and 6-D laws: `tests/nonlinear_laws.rs`); so are bistop
+/// laws off rods and symbolic laws, with the reason.
 #[test]
 fn nlsf_laws_elsewhere_or_in_3d_are_refused_by_name() {
     let nodes = "structural: 1, static, null, eye, null, null; structural: 2, dynamic, 1., 0., 0., eye, null, null;";
     let cases = [
-        ("joint: 2, rod, 1, 2, from nodes, nlsf viscoelastic, 1., null, 0., \"f\";", "only on a deformable axial joint"),
-        ("joint: 2, deformable hinge, 1, null, 2, null, nlsf viscous, null, null, null;", "in 1-D only"),
+        ("joint: 2, rod, 1, 2, from nodes, nlsf viscoelastic, 1., null, 0., \"f\", prestrain, ramp, 1., 0., 1., 0.;", "prestrain that changes in time on an 'nlsf viscoelastic' law"),
+        ("joint: 2, invariant deformable hinge, 1, 2, nlsf viscous, null, null, null, \"f\";", "'nlsf viscous' is supported by romdyn on the deformable displacement joint"),
         // Refused with the reason (constltp_impl.h's BiStopCLWrapper; MBDyn 1.7.3 here has no GiNaC).
         // A bistop law on a rod only (tests/mbdyn_events.rs).
         ("joint: 2, deformable hinge, 1, null, 2, null, linear viscoelastic bistop, 1.e3, 1.e2, initial status, inactive, const, 1., const, 0.;", "in 1-D only (a rod)"),

@@ -201,7 +201,7 @@ impl Rod {
 }
 
 /// `ḋ = u + ω_a × d` of a pair, and its derivatives `∂ḋ/∂(v, ω, θ)` of both sides.
-fn distance_rate(p: &Pair) -> (Vec3, Vec<([Col; 3], Mat3)>) {
+pub(super) fn distance_rate(p: &Pair) -> (Vec3, Vec<([Col; 3], Mat3)>) {
     let (b, fbx, wbx) = (p.slot_b, skew(&p.f_b), skew(&p.omega_b));
     let mut blocks = vec![(Col::velocity(b), Mat3::identity()), (Col::angular_velocity(b), -fbx), (Col::rotation(b), -wbx * fbx)];
     if let Some(a) = p.slot_a {

@@ -6,7 +6,10 @@
 //! joint` (vehj4.cc): the law only on the rotation about axis 3 of frame A; and the
 //! `deformable hinge` with prestrain or prestress: the law only on the rotation. The axial
 //! joint also takes MBDyn's `nlsf` 1-D laws (constltp_nlsf.cc): `M = k (θ₃ − θ_p) + f′(θ₃ −
-//! θ_p) + c ω₃ + f″(ω₃) + M_p` with scalar functions `f′`, `f″`.
+//! θ_p) + c ω₃ + f″(ω₃) + M_p` with scalar functions `f′`, `f″`; each variant takes the
+//! `nlsf` and `scalar function elastic` laws of its dimension ([`LawFunctions`] in its
+//! [`SectionLaw`]), and so does the `deformable displacement joint` with such a law (the
+//! law only on the position part).
 
 use nalgebra::{Matrix6, SMatrix, Vector6};
 
@@ -14,7 +17,7 @@ use super::anchor::{node_labels, Anchor, Pair};
 use super::beam::SectionLaw;
 use super::contract::{add_block, Col, Element, ElementState, JacobianSink, Label, ResidualSink, Row};
 use super::deformable::inverse_rotation_jacobian;
-use super::ScalarFunction;
+use super::{LawFunctions, ScalarFunction};
 use crate::kinematics::{rotation_vector, skew, Mat3, Vec3};
 
 type Block = ([Col; 3], SMatrix<f64, 6, 3>);
@@ -27,14 +30,12 @@ pub struct DeformableJoint {
     b: Anchor,
     law: SectionLaw,
     name: &'static str,
-    /// The axial joint's nonlinear terms `f′(θ₃ − θ_p)` and `f″(ω₃)`.
-    functions: [Option<ScalarFunction>; 2],
 }
 
 impl DeformableJoint {
     /// The 6-D `deformable joint`; `law` in frame A, strains `[ε₁ ε₂ ε₃ θ₁ θ₂ θ₃]`.
     pub fn new(label: Label, a: Anchor, b: Anchor, law: SectionLaw) -> Self {
-        DeformableJoint { label, a, b, law, name: "deformable joint", functions: [None, None] }
+        DeformableJoint { label, a, b, law, name: "deformable joint" }
     }
     /// MBDyn's `deformable hinge` with a `prestrain` `θ_p` and a `prestress` `M_p`: moment
     /// `Q_a (K (θ − θ_p) + C w + M_p)`, the 6-D law's rotation block alone.
@@ -45,7 +46,7 @@ impl DeformableJoint {
             six.prestrain[3 + k] = prestrain[k];
             six.prestress[3 + k] = prestress[k];
         }
-        DeformableJoint { label, a, b, law: six, name: "deformable hinge", functions: [None, None] }
+        DeformableJoint { label, a, b, law: six, name: "deformable hinge" }
     }
     /// The `deformable axial joint`: moment `M = k (θ₃ − θ_p) + c ω₃ + M_p` about axis 3 of
     /// frame A, `θ₃` the third component of `rotvec(Q_aᵀ Q_b)`, `ω₃ = e₃ₐ · (ω_b − ω_a)`.
@@ -54,31 +55,36 @@ impl DeformableJoint {
         let mut law = SectionLaw::viscoelastic(one(stiffness), one(viscosity));
         law.prestrain[5] = prestrain;
         law.prestress[5] = prestress;
-        DeformableJoint { label, a, b, law, name: "deformable axial joint", functions: [None, None] }
+        DeformableJoint { label, a, b, law, name: "deformable axial joint" }
+    }
+    /// MBDyn's `deformable displacement joint` with a nonlinear law: force `Q_a φ` at `p_b`,
+    /// `φ = K (ε − ε_p) + C ε̇ + f_p` plus the law's functions, `ε = Q_aᵀ (p_b − p_a)` (the
+    /// 6-D joint's position part; no moment).
+    pub fn displacement(label: Label, a: Anchor, b: Anchor, law: &super::LinearViscoelastic, prestrain: Vec3, prestress: Vec3) -> Self {
+        let block = |m: &Mat3| Matrix6::from_fn(|i, j| if i < 3 && j < 3 { m[(i, j)] } else { 0.0 });
+        let mut six = SectionLaw::viscoelastic(block(&law.stiffness), block(&law.viscosity));
+        for k in 0..3 {
+            six.prestrain[k] = prestrain[k];
+            six.prestress[k] = prestress[k];
+        }
+        DeformableJoint { label, a, b, law: six, name: "deformable displacement joint" }
     }
     /// The axial joint with MBDyn's `nlsf` terms: `f′(θ₃ − θ_p)` (`elastic`) and `f″(ω₃)`
     /// (`viscous`) added to its moment.
     pub fn with_axial_functions(mut self, elastic: Option<ScalarFunction>, viscous: Option<ScalarFunction>) -> Self {
-        self.functions = [elastic, viscous];
+        self.law.functions = LawFunctions { elastic: vec![elastic], viscous: vec![viscous] }.placed(5, 6);
+        self
+    }
+    /// The joint with the nonlinear terms `functions` of its 6-D law (components `[ε₁ ε₂ ε₃
+    /// θ₁ θ₂ θ₃]`; [`LawFunctions::placed`] puts a hinge's or an axial joint's there).
+    pub fn with_functions(mut self, functions: LawFunctions) -> Self {
+        self.law.functions = functions;
         self
     }
 
     /// The law at strain `k` and rate `k̇`: `φ` and its derivatives `K = ∂φ/∂k`, `C = ∂φ/∂k̇`.
     fn law_at(&self, k: &Vector6<f64>, k_rate: &Vector6<f64>) -> (Vector6<f64>, Matrix6<f64>, Matrix6<f64>) {
-        let l = &self.law;
-        let mut phi = l.stiffness * (k - l.prestrain) + l.viscosity * k_rate + l.prestress;
-        let (mut kk, mut cc) = (l.stiffness, l.viscosity);
-        if let Some(f) = &self.functions[0] {
-            let (v, d) = f.value_and_derivative(k[5] - l.prestrain[5]);
-            phi[5] += v;
-            kk[(5, 5)] += d;
-        }
-        if let Some(f) = &self.functions[1] {
-            let (v, d) = f.value_and_derivative(k_rate[5]);
-            phi[5] += v;
-            cc[(5, 5)] += d;
-        }
-        (phi, kk, cc)
+        self.law.evaluate(k, Some(k_rate))
     }
 
     /// Generalized force `φ` in frame A and its derivatives `K`, `C`, relative rotation vector

@@ -2,7 +2,9 @@
 //! law (ScalarFunctionsImpl.cc, `ScalarFunctionIsotropicCL`, `…OrthotropicCL`): each
 //! component of the moment a function of the same component of the relative rotation
 //! vector, `φ_i = F_i(θ_i)` (`F_i = F` for all three when isotropic, zero where orthotropic
-//! writes `null`), `θ = rotvec(Q_aᵀ Q_b)` in frame A as the linear hinge's (vehj.cc).
+//! writes `null`), `θ = rotvec(Q_aᵀ Q_b)` in frame A as the linear hinge's (vehj.cc). The
+//! MBDyn reader builds these laws, with the `nlsf` ones, as [`super::DeformableJoint::hinge`]
+//! with [`super::LawFunctions`] (the same moment).
 
 use super::anchor::{node_labels, Anchor, Pair};
 use super::contract::{Element, ElementState, JacobianSink, Label, ResidualSink};

@@ -27,13 +27,15 @@ pub fn stack(a: &Vec3, b: &Vec3) -> Vector6<f64> {
 }
 
 /// Local generalized forces `[F; M] = K ([ε; κ] − e_p) + V [ε̇; κ̇] + f_p` (rates only when
-/// `rates` is given).
+/// `rates` is given), with a nonlinear law's function terms.
 pub fn local_forces(law: &SectionLaw, strain: &Vec3, curvature: &Vec3, rates: Option<(&Vec3, &Vec3)>) -> Vector6<f64> {
-    let mut out = law.stiffness * (stack(strain, curvature) - law.prestrain) + law.prestress;
-    if let Some((strain_rate, curvature_rate)) = rates {
-        out += law.viscosity * stack(strain_rate, curvature_rate);
-    }
-    out
+    law_at(law, strain, curvature, rates).0
+}
+
+/// The local generalized forces and the law's tangents `∂/∂[ε; κ]`, `∂/∂[ε̇; κ̇]` there.
+pub fn law_at(law: &SectionLaw, strain: &Vec3, curvature: &Vec3, rates: Option<(&Vec3, &Vec3)>) -> (Vector6<f64>, Matrix6<f64>, Matrix6<f64>) {
+    let rate = rates.map(|(strain_rate, curvature_rate)| stack(strain_rate, curvature_rate));
+    law.evaluate(&stack(strain, curvature), rate.as_ref())
 }
 
 /// What `.act`/`.bst` write of a point at `p` with frame `r`: local forces `f`, strain and
@@ -68,12 +70,13 @@ pub fn add_point_residual(out: &mut dyn ResidualSink, s: usize, p: &Vec3, r: &Ma
 }
 
 /// The derivative of [`add_point_residual`], added to rows `6 s .. 6 s + 12` of `jac`:
-/// `δ(local) = K [δε; δκ] + V [δε̇; δκ̇]`, `δF = R δF_l − [F×] δθ`, and the arm's `δp − δx`.
+/// `δ(local) = K [δε; δκ] + V [δε̇; δκ̇]` (`K`, `V` the law's tangents there, [`law_at`]),
+/// `δF = R δF_l − [F×] δθ`, and the arm's `δp − δx`.
 #[allow(clippy::too_many_arguments)]
-pub fn add_point_jacobian<const R: usize, const C: usize>(jac: &mut SMatrix<f64, R, C>, s: usize, p: &Vec3, r: &Mat3, f: &Vector6<f64>, law: &SectionLaw, d: &PointTangents<C>, x: &[Vec3]) {
+pub fn add_point_jacobian<const R: usize, const C: usize>(jac: &mut SMatrix<f64, R, C>, s: usize, p: &Vec3, r: &Mat3, law: &(Vector6<f64>, Matrix6<f64>, Matrix6<f64>), d: &PointTangents<C>, x: &[Vec3]) {
+    let (f, kk, vv) = law;
     let (force, moment) = (r * Vec3::new(f[0], f[1], f[2]), r * Vec3::new(f[3], f[4], f[5]));
     let block = |m: &Matrix6<f64>, i: usize, j: usize| -> Mat3 { m.fixed_view::<3, 3>(i, j).into() };
-    let (kk, vv) = (&law.stiffness, &law.viscosity);
     let mut dfl = block(kk, 0, 0) * d.dstrain + block(kk, 0, 3) * d.dcurvature;
     let mut dml = block(kk, 3, 0) * d.dstrain + block(kk, 3, 3) * d.dcurvature;
     if let Some((dstrain_rate, dcurvature_rate)) = d.rates {

@@ -16,7 +16,7 @@ mod two_node;
 pub use law::SectionLaw;
 pub use two_node::Beam2;
 
-use nalgebra::{SMatrix, Vector6};
+use nalgebra::{Matrix6, SMatrix, Vector6};
 
 use super::contract::{Element, ElementState, JacobianSink, Label, ResidualSink, SectionState};
 use crate::kinematics::{gibbs_from_rotation, gibbs_rotation, Mat3, Vec3};
@@ -132,8 +132,13 @@ impl Beam3 {
 
     /// Local generalized forces `[F; M] = K ([ε; κ] − e_p) + V [ε̇; κ̇] + f_p`.
     fn local_forces(&self, s: usize, k: &SectionKinematics) -> Vector6<f64> {
+        self.law_at(s, k).0
+    }
+
+    /// The local forces and the law's tangents at point `s`.
+    fn law_at(&self, s: usize, k: &SectionKinematics) -> (Vector6<f64>, Matrix6<f64>, Matrix6<f64>) {
         let rates = self.viscous.then_some((&k.strain_rate, &k.curvature_rate));
-        finite_volume::local_forces(&self.laws[s], &k.strain, &k.curvature, rates)
+        finite_volume::law_at(&self.laws[s], &k.strain, &k.curvature, rates)
     }
 }
 
@@ -186,7 +191,7 @@ impl Element for Beam3 {
             let d = k.tangents(&terms, &node_tangents);
             let rates = self.viscous.then_some((&d.dstrain_rate, &d.dcurvature_rate));
             let point = PointTangents { dp: &d.dp, dtheta: &d.dtheta, dstrain: &d.dstrain, dcurvature: &d.dcurvature, rates };
-            finite_volume::add_point_jacobian(&mut jac, s, &k.p, &k.r, &self.local_forces(s, k), &self.laws[s], &point, terms.x());
+            finite_volume::add_point_jacobian(&mut jac, s, &k.p, &k.r, &self.law_at(s, k), &point, terms.x());
         }
         finite_volume::scatter_jacobian(&jac, self.viscous, out);
     }

@@ -173,7 +173,7 @@ impl Element for Beam2 {
         let dcurvature = self.orientation.transpose() * drel / self.length;
         let point = PointTangents { dp: &dp, dtheta: &dtheta, dstrain: &dstrain, dcurvature: &dcurvature, rates: None };
         let mut jac = SMatrix::<f64, 12, 24>::zeros();
-        finite_volume::add_point_jacobian(&mut jac, 0, &k.p, &k.r, &self.local_forces(&k), &self.law, &point, &k.x);
+        finite_volume::add_point_jacobian(&mut jac, 0, &k.p, &k.r, &finite_volume::law_at(&self.law, &k.strain, &k.curvature, None), &point, &k.x);
         finite_volume::scatter_jacobian(&jac, false, out);
     }
 }

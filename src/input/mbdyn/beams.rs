@@ -10,7 +10,7 @@ use nalgebra::{Matrix6, Vector6};
 use super::cursor::Cursor;
 use super::diagnostic::MbdynError;
 use super::element_context::{ElementContext, Parsed};
-use super::laws::{linear_law, LinearLaw};
+use super::laws::{nonlinear_law, LinearLaw};
 use crate::element::{Beam2, Beam3, BeamNode, SectionLaw, SectionOrientation};
 use crate::model::Label;
 
@@ -52,7 +52,7 @@ fn section_orientation(c: &mut Cursor, ctx: &ElementContext, what: &str) -> Resu
 pub(super) fn section_law(law: &LinearLaw) -> SectionLaw {
     let m = |d: &nalgebra::DMatrix<f64>| Matrix6::from_fn(|i, j| d[(i, j)]);
     let v = |d: &nalgebra::DVector<f64>| Vector6::from_fn(|i, _| d[i]);
-    let mut s = SectionLaw::viscoelastic(m(&law.stiffness), m(&law.viscosity));
+    let mut s = SectionLaw::viscoelastic(m(&law.stiffness), m(&law.viscosity)).with_functions(law.functions.clone());
     s.prestrain = v(&law.prestrain);
     s.prestress = v(&law.prestress);
     s
@@ -74,7 +74,7 @@ pub fn beam(keyword: &str, label: Label, c: &mut Cursor, ctx: &ElementContext) -
     if keyword == "beam2" {
         let nodes = [beam_node(c, ctx, "node 1")?, beam_node(c, ctx, "node 2")?];
         let orientation = section_orientation(c, ctx, "orientation of section I")?;
-        let law = linear_law(c, 6, ctx.laws, ctx.drives, ctx.seq)?;
+        let law = nonlinear_law(c, 6, ctx.laws, ctx.drives, ctx.seq)?;
         custom_output(c)?;
         let span = c.statement().span;
         let beam = Beam2::new(label, nodes, orientation, section_law(&law)).map_err(|e| c.error_at(span, e.to_string()))?;
@@ -85,9 +85,9 @@ pub fn beam(keyword: &str, label: Label, c: &mut Cursor, ctx: &ElementContext) -
     }
     let nodes = [beam_node(c, ctx, "node 1")?, beam_node(c, ctx, "node 2")?, beam_node(c, ctx, "node 3")?];
     let orientation_i = section_orientation(c, ctx, "orientation of section I")?;
-    let law_i = linear_law(c, 6, ctx.laws, ctx.drives, ctx.seq)?;
+    let law_i = nonlinear_law(c, 6, ctx.laws, ctx.drives, ctx.seq)?;
     let orientation_ii = if c.accept("same") { orientation_i.clone() } else { section_orientation(c, ctx, "orientation of section II")? };
-    let law_ii = if c.accept("same") { law_i.clone() } else { linear_law(c, 6, ctx.laws, ctx.drives, ctx.seq)? };
+    let law_ii = if c.accept("same") { law_i.clone() } else { nonlinear_law(c, 6, ctx.laws, ctx.drives, ctx.seq)? };
     custom_output(c)?;
     let span = c.statement().span;
     let beam = Beam3::new(label, nodes, [orientation_i, orientation_ii], [section_law(&law_i), section_law(&law_ii)]).map_err(|e| c.error_at(span, e.to_string()))?;

@@ -12,9 +12,9 @@ use super::cursor::Cursor;
 use super::diagnostic::MbdynError;
 use super::drives::template_vec3;
 use super::element_context::ElementContext;
-use super::laws::{linear_law, rest_strain, three, LinearLaw};
+use super::laws::{linear_law, nonlinear_law, rest_strain, three, LinearLaw};
 use super::references::{Context, Frame, OtherSide};
-use crate::element::{Anchor, AngularAcceleration, ViscousBody, RevoluteHingeFriction, AxialRotation, GimbalRotation, FunctionHinge, ImposedVelocity, VelocityKind, CardanoHinge, DeformableJoint, DrivenJoint, InvariantDeformableHinge, VectorDrive, DeformableDisplacement, DeformableHinge, Distance, Drive, Element, InLineFriction, Joint, Rod, RodViscosity};
+use crate::element::{Anchor, AngularAcceleration, ViscousBody, RevoluteHingeFriction, AxialRotation, GimbalRotation, ImposedVelocity, VelocityKind, CardanoHinge, DeformableJoint, DrivenJoint, InvariantDeformableHinge, VectorDrive, DeformableDisplacement, DeformableHinge, Distance, Drive, Element, InLineFriction, Joint, Rod, RodViscosity};
 use crate::kinematics::{Mat3, Vec3};
 use crate::model::{Label, StructuralNode};
 
@@ -146,7 +146,7 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             let n = side(c, ctx, "the node", Position::Always, None)?;
             let span = c.here();
             let law = linear_law(c, 6, ctx.laws, ctx.drives, ctx.seq)?;
-            let viscous_only = law.stiffness.iter().all(|&k| k == 0.0) && law.prestrain.iter().chain(law.prestress.iter()).all(|&k| k == 0.0) && law.functions.iter().all(Option::is_none);
+            let viscous_only = law.stiffness.iter().all(|&k| k == 0.0) && law.prestrain.iter().chain(law.prestress.iter()).all(|&k| k == 0.0);
             if !viscous_only {
                 return Err(c.error_at(span, "viscous body: needs a viscous constitutive law (joint.cc), no stiffness, prestrain or prestress"));
             }
@@ -224,21 +224,18 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             let a = side(c, ctx, "node 1", position, None)?;
             let b = side(c, ctx, "node 2", position, Some(&a))?;
             let law_span = c.here();
-            if hinge {
-                if let Some(functions) = function_law(c, ctx)? {
-                    orientation_description(c)?;
-                    return Ok(Box::new(FunctionHinge { label, a: a.anchor(), b: b.anchor(), functions }));
-                }
-            }
-            let law = linear_law(c, 3, ctx.laws, ctx.drives, ctx.seq)?;
+            let law = nonlinear_law(c, 3, ctx.laws, ctx.drives, ctx.seq)?;
+            let v = |d: &nalgebra::DVector<f64>| Vec3::new(d[0], d[1], d[2]);
             if hinge {
                 orientation_description(c)?;
-                let v = |d: &nalgebra::DVector<f64>| Vec3::new(d[0], d[1], d[2]);
-                if law.prestrain.iter().chain(law.prestress.iter()).any(|x| *x != 0.0) {
-                    Box::new(DeformableJoint::hinge(label, a.anchor(), b.anchor(), &three(&law), v(&law.prestrain), v(&law.prestress)))
+                if law.nonlinear.is_some() || law.prestrain.iter().chain(law.prestress.iter()).any(|x| *x != 0.0) {
+                    Box::new(DeformableJoint::hinge(label, a.anchor(), b.anchor(), &three(&law), v(&law.prestrain), v(&law.prestress)).with_functions(law.functions.placed(3, 6)))
                 } else {
                     Box::new(DeformableHinge { label, a: a.anchor(), b: b.anchor(), law: three(&law) })
                 }
+            } else if law.nonlinear.is_some() {
+                // A nonlinear law keeps its prestrain and prestress apart (no rest strain).
+                Box::new(DeformableJoint::displacement(label, a.anchor(), b.anchor(), &three(&law), v(&law.prestrain), v(&law.prestress)).with_functions(law.functions.placed(0, 6)))
             } else {
                 let rest = rest_strain(&law).ok_or_else(|| c.error_at(law_span, "a prestress needs an invertible stiffness matrix in romdyn (it becomes a rest strain)"))?;
                 Box::new(DeformableDisplacement { label, a: a.anchor(), b: b.anchor(), law: three(&law), rest })
@@ -248,7 +245,7 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             // joint.cc: both offsets read, `position` optional; a 6-D law.
             let a = side(c, ctx, "node 1", Position::Always, None)?;
             let b = side(c, ctx, "node 2", Position::Always, Some(&a))?;
-            let law = super::beams::section_law(&linear_law(c, 6, ctx.laws, ctx.drives, ctx.seq)?);
+            let law = super::beams::section_law(&nonlinear_law(c, 6, ctx.laws, ctx.drives, ctx.seq)?);
             orientation_description(c)?;
             Box::new(DeformableJoint::new(label, a.anchor(), b.anchor(), law))
         }
@@ -258,8 +255,7 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             let b = side(c, ctx, "node 2", Position::IfKeyword, Some(&a))?;
             let law = super::laws::axial_law(c, ctx.laws, ctx.drives, ctx.seq)?;
             let (k, v) = (law.stiffness[(0, 0)], law.viscosity[(0, 0)]);
-            let [elastic, viscous] = law.functions;
-            Box::new(DeformableJoint::axial(label, a.anchor(), b.anchor(), k, v, law.prestrain[0], law.prestress[0]).with_axial_functions(elastic, viscous))
+            Box::new(DeformableJoint::axial(label, a.anchor(), b.anchor(), k, v, law.prestrain[0], law.prestress[0]).with_functions(law.functions.placed(5, 6)))
         }
         "invariant deformable hinge" => {
             let a = side(c, ctx, "node 1", Position::IfKeyword, None)?;
@@ -275,27 +271,6 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
         _ => rod(kind == "rod with offset", label, c, ctx)?,
     };
     Ok(element)
-}
-
-/// `scalar function elastic isotropic, F` (one function for the three components) or
-/// `scalar function elastic orthotropic, {F_1 | null}, {F_2 | null}, {F_3 | null}`
-/// (ScalarFunctionsImpl.cc: `null` a zero component), for a 3-D law; `None` for another law.
-fn function_law(c: &mut Cursor, ctx: &ElementContext) -> Result<Option<[Option<crate::element::ScalarFunction>; 3]>, MbdynError> {
-    let functions = &ctx.drives.functions;
-    if c.accept("scalar function elastic isotropic") || c.accept("scalar function elastic") {
-        let f = super::scalar_functions::scalar_function(c, functions, ctx.seq)?;
-        return Ok(Some([Some(f.clone()), Some(f.clone()), Some(f)]));
-    }
-    if c.accept("scalar function elastic orthotropic") {
-        let mut out: [Option<crate::element::ScalarFunction>; 3] = [None, None, None];
-        for f in out.iter_mut() {
-            if !c.accept("null") {
-                *f = Some(super::scalar_functions::scalar_function(c, functions, ctx.seq)?);
-            }
-        }
-        return Ok(Some(out));
-    }
-    Ok(None)
 }
 
 /// The optional `orientation description, …` (output only).
@@ -665,6 +640,22 @@ fn rod(offsets: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Res
         return Ok(Box::new(Rod { label, a: a.anchor(), b: b.anchor(), axial_stiffness: 0.0, length: l0, viscous: None, elastic: Some(f) }));
     }
     let (law, prestrain): (LinearLaw, _) = super::laws::law_with_prestrain_drive(c, 1, ctx.laws, ctx.drives, ctx.seq)?;
+    match law.nonlinear {
+        // A `scalar function elastic` law of a `constitutive law:` card.
+        Some(kind) if kind.starts_with("scalar function") => {
+            let f = law.functions.elastic[0].clone();
+            return Ok(Box::new(Rod { label, a: a.anchor(), b: b.anchor(), axial_stiffness: 0.0, length: l0, viscous: None, elastic: f }));
+        }
+        Some(kind) => {
+            if prestrain.is_some() {
+                return Err(c.error_at(law_span, format!("rod: a prestrain that changes in time on an '{kind}' law is not supported by romdyn")));
+            }
+            let (elastic, viscous) = (law.functions.elastic[0].clone(), law.functions.viscous[0].clone());
+            let (stiffness, viscosity, prestrain, prestress) = (law.stiffness[(0, 0)], law.viscosity[(0, 0)], law.prestrain[0], law.prestress[0]);
+            return Ok(Box::new(crate::element::NlsfRod { label, a: a.anchor(), b: b.anchor(), length: l0, stiffness, viscosity, prestrain, prestress, elastic, viscous }));
+        }
+        None => {}
+    }
     let (ea, viscosity) = (law.stiffness[(0, 0)], law.viscosity[(0, 0)]);
     if ea < 0.0 || viscosity < 0.0 || ea + viscosity == 0.0 {
         return Err(c.error_at(law_span, format!("rod: the axial stiffness EA [N] and viscosity [N s] must not be negative, nor both zero (found {ea}, {viscosity})")));

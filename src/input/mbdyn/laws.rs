@@ -5,10 +5,13 @@
 //! `prestress` and `prestrain` (constant; a drive on a rod); `reference, LABEL` to a
 //! `constitutive law:` card.
 //! Laws are read for 1 (rod), 3 (deformable displacement joint and hinge) or 6 (beams)
-//! dimensions. The 1-D `nlsf elastic`, `nlsf viscous` and `nlsf viscoelastic` laws
-//! (constltp_nlsf.cc: `f = k (ε − ε_p) + f′(ε − ε_p) + c ε̇ + f″(ε̇) + f_p`, each scalar
-//! function or `null`) are read by [`axial_law`] for the deformable axial joint, and refused
-//! by name elsewhere.
+//! dimensions. The nonlinear laws `nlsf elastic`, `nlsf viscous` and `nlsf viscoelastic`
+//! (constltp_nlsf.cc: `f_i = Σ_j k_ij (ε_j − ε_p,j) + f′_i(ε_i − ε_p,i) + Σ_j c_ij ε̇_j +
+//! f″_i(ε̇_i) + f_p,i`, each scalar function or `null`) and `scalar function elastic
+//! [isotropic | orthotropic]` (ScalarFunctionsImpl.cc: `f_i = F_i(ε_i)`, no prestrain or
+//! prestress) are read in every dimension; [`nonlinear_law`] and [`axial_law`] take them
+//! (deformable displacement joint, deformable hinge, deformable joint, beams; deformable
+//! axial joint), [`linear_law`] refuses them by name.
 
 use std::collections::HashMap;
 
@@ -18,18 +21,21 @@ use super::cursor::Cursor;
 use super::diagnostic::{MbdynError, Span};
 use super::drives::{single_term, template_vec3, Drives};
 use super::parser::Statement;
-use crate::element::{Drive, ScalarFunction};
+use crate::element::{Drive, LawFunctions, ScalarFunction};
 use crate::kinematics::{Mat3, Vec3};
 
-/// A linear (visco)elastic law in `dim` dimensions: `f = K (ε − ε_p) + C ε̇ + f_p`.
+/// A (visco)elastic law in `dim` dimensions: `f = K (ε − ε_p) + C ε̇ + f_p`, plus a nonlinear
+/// law's per-component functions.
 #[derive(Clone, Debug, PartialEq)]
 pub struct LinearLaw {
     pub stiffness: DMatrix<f64>,
     pub viscosity: DMatrix<f64>,
     pub prestrain: DVector<f64>,
     pub prestress: DVector<f64>,
-    /// An `nlsf` law's `f′(ε − ε_p)` and `f″(ε̇)` (1-D).
-    pub functions: [Option<ScalarFunction>; 2],
+    /// A nonlinear law's per-component `f′_i(ε_i − ε_p,i)` and `f″_i(ε̇_i)` (empty when linear).
+    pub functions: LawFunctions,
+    /// The keyword of a nonlinear law (`nlsf …`, `scalar function elastic …`), for messages.
+    pub nonlinear: Option<&'static str>,
     /// A `linear elastic bistop` or `linear viscoelastic bistop` law's switch (1-D, rods).
     pub bistop: Option<Bistop>,
 }
@@ -61,10 +67,9 @@ const KINDS: [&str; 9] = [
     "linear viscoelastic generic", "linear viscoelastic isotropic", "linear viscoelastic",
 ];
 
-const UNSUPPORTED: [&str; 17] = [
+const UNSUPPORTED: [&str; 14] = [
     "linear elastic generic axial torsion coupling", "cubic elastic generic", "inverse square elastic", "log elastic",
-    "double linear elastic", "isotropic hardening elastic", "scalar function elastic", "scalar function elastic isotropic",
-    "scalar function elastic orthotropic", "linear time variant viscoelastic generic",
+    "double linear elastic", "isotropic hardening elastic", "linear time variant viscoelastic generic",
     "cubic viscoelastic generic", "double linear viscoelastic", "turbulent viscoelastic", "shock absorber",
     "symbolic elastic", "symbolic viscous", "symbolic viscoelastic",
 ];
@@ -73,6 +78,12 @@ const UNSUPPORTED: [&str; 17] = [
 const BISTOP_ON_RODS: &str = "a bistop constitutive law is supported by romdyn on a rod only (its status and reference strain are the rod's events)";
 
 const NLSF: [&str; 3] = ["nlsf viscoelastic", "nlsf elastic", "nlsf viscous"];
+
+/// The `scalar function elastic` laws, longest first.
+const FUNCTION_ELASTIC: [&str; 3] = ["scalar function elastic isotropic", "scalar function elastic orthotropic", "scalar function elastic"];
+
+/// The elements that take a nonlinear law, for messages.
+const NONLINEAR_ELEMENTS: &str = "the deformable displacement joint, deformable hinge, deformable joint, deformable axial joint, rod, beam3 and beam2";
 
 /// The `constitutive law:` cards read so far.
 #[derive(Default)]
@@ -105,11 +116,22 @@ pub fn constitutive_law_card(st: &Statement, c: &mut Cursor, laws: &mut Laws, dr
     Ok(())
 }
 
-/// A linear constitutive law of dimension `dim` at statement `seq` (an `nlsf` law and a
+/// A linear constitutive law of dimension `dim` at statement `seq` (a nonlinear law and a
 /// prestrain that changes in time are refused by name).
 pub fn linear_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq: usize) -> Result<LinearLaw, MbdynError> {
     let span = c.here();
-    let (law, varying) = law_with_prestrain_drive(c, dim, laws, drives, seq)?;
+    let law = nonlinear_law(c, dim, laws, drives, seq)?;
+    if let Some(kind) = law.nonlinear {
+        return Err(c.error_at(span, format!("constitutive law '{kind}' is supported by romdyn on {NONLINEAR_ELEMENTS}, not on this element")));
+    }
+    Ok(law)
+}
+
+/// A constitutive law of dimension `dim` at statement `seq`, linear or nonlinear (`nlsf`,
+/// `scalar function elastic`); a prestrain that changes in time is refused by name.
+pub fn nonlinear_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq: usize) -> Result<LinearLaw, MbdynError> {
+    let span = c.here();
+    let (law, varying) = read_law(c, dim, laws, drives, seq)?;
     if law.bistop.is_some() {
         return Err(c.error_at(span, BISTOP_ON_RODS));
     }
@@ -119,19 +141,14 @@ pub fn linear_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq:
     Ok(law)
 }
 
-/// A linear law whose prestrain may be a drive that changes in time (or reads the model's
-/// state; 1-D, a rod's): the law with its constant prestrain zero, and that drive. An
-/// `nlsf` law is refused by name.
+/// A 1-D law whose prestrain may be a drive that changes in time (or reads the model's
+/// state; a rod's): the law with its constant prestrain zero, and that drive; linear, `nlsf`
+/// or `scalar function elastic`.
 pub fn law_with_prestrain_drive(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq: usize) -> Result<(LinearLaw, Option<Drive>), MbdynError> {
-    let span = c.here();
-    let (law, varying) = read_law(c, dim, laws, drives, seq)?;
-    if law.functions.iter().any(Option::is_some) {
-        return Err(c.error_at(span, "an 'nlsf' constitutive law is supported by romdyn only on a deformable axial joint"));
-    }
-    Ok((law, varying))
+    read_law(c, dim, laws, drives, seq)
 }
 
-/// A 1-D law at statement `seq`, linear or `nlsf` (the deformable axial joint's).
+/// A 1-D law at statement `seq`, linear or nonlinear (the deformable axial joint's).
 pub fn axial_law(c: &mut Cursor, laws: &Laws, drives: &Drives, seq: usize) -> Result<LinearLaw, MbdynError> {
     let span = c.here();
     let (law, varying) = read_law(c, 1, laws, drives, seq)?;
@@ -169,39 +186,63 @@ fn bistop(c: &mut Cursor, kind: &str, dim: usize, drives: &Drives, seq: usize) -
     let deactivate = super::drives::drive(c, drives, seq)?;
     let one = |x: f64| DMatrix::from_element(1, 1, x);
     let bistop = Some(Bistop { initially_active, activate, deactivate });
-    Ok(LinearLaw { stiffness: one(k), viscosity: one(v), prestrain: DVector::zeros(1), prestress: DVector::zeros(1), functions: [None, None], bistop })
+    Ok(LinearLaw { stiffness: one(k), viscosity: one(v), prestrain: DVector::zeros(1), prestress: DVector::zeros(1), functions: LawFunctions::default(), nonlinear: None, bistop })
 }
 
-/// `nlsf …` after its keyword: `{K | null}, {F | null}` for the elastic part, `{C |
-/// proportional, FACTOR}, {F | null}` for the viscous part (constltp_nlsf.cc,
-/// `NLSFViscoElasticCLR`).
-fn nlsf(c: &mut Cursor, kind: &str, dim: usize, drives: &Drives, seq: usize) -> Result<LinearLaw, MbdynError> {
-    if dim != 1 {
-        return Err(c.error(format!("constitutive law '{kind}' is supported by romdyn in 1-D only (a deformable axial joint), not in {dim}-D")));
-    }
-    let function = |c: &mut Cursor| -> Result<Option<ScalarFunction>, MbdynError> {
-        if c.accept("null") {
-            return Ok(None);
-        }
-        super::scalar_functions::scalar_function(c, &drives.functions, seq).map(Some)
+/// `nlsf …` after its keyword: `K, {F_1 | null}, …, {F_dim | null}` for the elastic part,
+/// `{C | proportional, FACTOR}, {F_1 | null}, …` for the viscous part (`K`, `C` a number in
+/// 1-D, a matrix in 3-D and 6-D, `null` zero; `proportional` only in `nlsf viscoelastic`):
+/// constltp_nlsf.cc, `NLSFViscoElasticCLR`.
+///
+/// MBDyn 1.7.3 adds a viscous function `f″_i` in 3-D and 6-D only when the law also has an
+/// elastic part (its `Update` tests the elastic flag there, the viscous one in 1-D): a 3-D or
+/// 6-D law with viscous functions and no elastic part drops them there. romdyn applies the
+/// manual's formula in every dimension.
+fn nlsf(c: &mut Cursor, kind: &'static str, dim: usize, drives: &Drives, seq: usize) -> Result<LinearLaw, MbdynError> {
+    let functions = |c: &mut Cursor| -> Result<Vec<Option<ScalarFunction>>, MbdynError> {
+        (0..dim).map(|_| if c.accept("null") { Ok(None) } else { super::scalar_functions::scalar_function(c, &drives.functions, seq).map(Some) }).collect()
     };
-    let (mut k, mut v, mut functions) = (0.0, 0.0, [None, None]);
+    let coefficients = |c: &mut Cursor, what: &str| -> Result<DMatrix<f64>, MbdynError> {
+        if dim == 1 && c.accept("null") {
+            return Ok(DMatrix::zeros(1, 1));
+        }
+        matrix(c, dim, what)
+    };
+    let zero = DMatrix::zeros(dim, dim);
+    let (mut k, mut v) = (zero.clone(), zero);
+    let mut f = LawFunctions { elastic: vec![None; dim], viscous: vec![None; dim] };
     if kind != "nlsf viscous" {
-        k = if c.accept("null") { 0.0 } else { c.real("stiffness [per unit strain]")? };
-        functions[0] = function(c)?;
+        k = coefficients(c, if dim == 1 { "stiffness [per unit strain]" } else { "stiffness matrix" })?;
+        f.elastic = functions(c)?;
     }
     if kind != "nlsf elastic" {
         v = if kind == "nlsf viscoelastic" && c.accept("proportional") {
-            k * c.real("proportional damping factor [s]")?
-        } else if c.accept("null") {
-            0.0
+            &k * c.real("proportional damping factor [s]")?
         } else {
-            c.real("viscosity [per unit strain rate]")?
+            coefficients(c, if dim == 1 { "viscosity [per unit strain rate]" } else { "viscosity matrix" })?
         };
-        functions[1] = function(c)?;
+        f.viscous = functions(c)?;
     }
-    let one = |x: f64| DMatrix::from_element(1, 1, x);
-    Ok(LinearLaw { stiffness: one(k), viscosity: one(v), prestrain: DVector::zeros(1), prestress: DVector::zeros(1), functions, bistop: None })
+    Ok(LinearLaw { stiffness: k, viscosity: v, prestrain: DVector::zeros(dim), prestress: DVector::zeros(dim), functions: f, nonlinear: Some(kind), bistop: None })
+}
+
+/// `scalar function elastic [isotropic | orthotropic], …` after its keyword
+/// (ScalarFunctionsImpl.cc): in 1-D one function, whichever word follows (MBDyn's 1-D
+/// orthotropic reader is the isotropic one); in 3-D and 6-D `isotropic, F` (`F` on every
+/// component) or `orthotropic, {F_1 | null}, …, {F_dim | null}`. No prestrain or prestress.
+fn function_elastic(c: &mut Cursor, kind: &'static str, dim: usize, drives: &Drives, seq: usize) -> Result<LinearLaw, MbdynError> {
+    if dim > 1 && kind == "scalar function elastic" {
+        return Err(c.error(format!("constitutive law 'scalar function elastic' is registered by MBDyn 1.7.3 in 1-D only (ScalarFunctionsImpl.cc); in {dim}-D write 'scalar function elastic isotropic' or 'scalar function elastic orthotropic'")));
+    }
+    let function = |c: &mut Cursor| super::scalar_functions::scalar_function(c, &drives.functions, seq);
+    let elastic = if dim == 1 || kind == "scalar function elastic isotropic" {
+        vec![Some(function(c)?); dim]
+    } else {
+        (0..dim).map(|_| if c.accept("null") { Ok(None) } else { function(c).map(Some) }).collect::<Result<_, _>>()?
+    };
+    let zero = DMatrix::zeros(dim, dim);
+    let functions = LawFunctions { elastic, viscous: vec![None; dim] };
+    Ok(LinearLaw { stiffness: zero.clone(), viscosity: zero, prestrain: DVector::zeros(dim), prestress: DVector::zeros(dim), functions, nonlinear: Some(kind), bistop: None })
 }
 
 /// A constitutive law of dimension `dim` at statement `seq`, `nlsf` included, with the drive
@@ -222,6 +263,9 @@ fn read_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq: usize
         let varying = prestress_and_prestrain(c, &mut law, dim, drives, seq)?;
         return Ok((law, varying));
     }
+    if let Some(kind) = c.accept_any(&FUNCTION_ELASTIC) {
+        return Ok((function_elastic(c, kind, dim, drives, seq)?, None));
+    }
     if let Some(kind) = c.accept_any(&BISTOP) {
         let mut law = bistop(c, kind, dim, drives, seq)?;
         let varying = prestress_and_prestrain(c, &mut law, dim, drives, seq)?;
@@ -229,16 +273,14 @@ fn read_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq: usize
     }
     let Some(kind) = c.accept_any(&KINDS) else {
         if let Some(k) = c.peek_keyword().and_then(|w| UNSUPPORTED.iter().find(|u| super::parser::same_keyword(u, w))) {
-            let rods = if k.starts_with("scalar function elastic") {
-                "; 'scalar function elastic' only for a rod and a deformable hinge"
-            } else if k.starts_with("symbolic") {
+            let rods = if k.starts_with("symbolic") {
                 "; a symbolic law needs its expression's derivative, which MBDyn takes with GiNaC (MBDyn 1.7.3 built without it refuses it too) and romdyn's math parser does not"
             } else {
                 ""
             };
-            return Err(c.error(format!("constitutive law '{k}' is not supported by romdyn (supported: linear elastic, linear viscous, linear viscoelastic, each isotropic or generic; nlsf in 1-D on a deformable axial joint{rods})")));
+            return Err(c.error(format!("constitutive law '{k}' is not supported by romdyn (supported: linear elastic, linear viscous, linear viscoelastic, each isotropic or generic; nlsf elastic, viscous, viscoelastic; scalar function elastic isotropic, orthotropic{rods})")));
         }
-        return Err(c.error(format!("expected a constitutive law ({}), found {}", KINDS.join(", "), c.found())));
+        return Err(c.error(format!("expected a constitutive law ({}, {}, {}, {}), found {}", KINDS.join(", "), NLSF.join(", "), FUNCTION_ELASTIC.join(", "), BISTOP.join(", "), c.found())));
     };
     let generic = kind.ends_with("generic");
     let read = |c: &mut Cursor, what: &str| if generic { matrix(c, dim, what) } else { Ok(DMatrix::identity(dim, dim) * c.real(what)?) };
@@ -252,7 +294,7 @@ fn read_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq: usize
         let v = if c.accept("proportional") { &k * c.real("proportional damping factor [s]")? } else { read(c, "viscosity")? };
         (k, v)
     };
-    let mut law = LinearLaw { stiffness, viscosity, prestrain: DVector::zeros(dim), prestress: DVector::zeros(dim), functions: [None, None], bistop: None };
+    let mut law = LinearLaw { stiffness, viscosity, prestrain: DVector::zeros(dim), prestress: DVector::zeros(dim), functions: LawFunctions::default(), nonlinear: None, bistop: None };
     let varying = prestress_and_prestrain(c, &mut law, dim, drives, seq)?;
     Ok((law, varying))
 }
