@@ -218,10 +218,13 @@ fn problem_errors() {
         (iv("frobnicate: 1;"), "m.mbd:3:3: error: statement 'frobnicate' in the initial value block is not supported by romdyn"),
         // 58. An integration method romdyn does not have.
         (iv("method: hope, .6;"), "m.mbd:3:11: error: integration method 'hope' is not supported by romdyn"),
-        // 58b. Methods MBDyn 1.7.3 itself does not know ("Unknown integration method", measured
-        // with `method: bathe, .6;` and `method: hybrid, ms, .6;` on default_pendulum.mbd).
-        (iv("method: bathe, .6;"), "m.mbd:3:11: error: integration method 'bathe' is not known to MBDyn 1.7.3"),
-        (iv("method: hybrid, ms, .6;"), "m.mbd:3:11: error: integration method 'hybrid' is not known to MBDyn 1.7.3"),
+        // 58b. Methods of later MBDyn versions that MBDyn 1.7.3 does not know ("Unknown
+        // integration method") and romdyn does not have (`Bathe` and `hybrid` it has), and the
+        // hybrid method with a default romdyn does not have.
+        (iv("method: msstc3, .6;"), "m.mbd:3:11: error: integration method 'msstc3' is not known to MBDyn 1.7.3"),
+        (iv("method: hybrid, hope, .6;"), "m.mbd:3:19: error: integration method 'hope' (the hybrid method's default) is not supported by romdyn"),
+        (iv("method: hybrid, bdf;"), "m.mbd:3:19: error: expected the hybrid method's default method (implicit euler, crank nicolson, crank nicholson, ms, ms2, hope)"),
+        (iv("method: bathe, 1.5;"), "m.mbd:3:18: error: the asymptotic spectral radius must be between 0 and 1, found 1.5"),
         // 59. A spectral radius out of range.
         (iv("method: ms, 1.5;"), "m.mbd:3:15: error: the asymptotic spectral radius must be between 0 and 1, found 1.5"),
         // 60. Eigenanalysis times out of order, and an unknown option.

@@ -505,6 +505,15 @@ fn integration_methods() {
     assert_eq!(method("bdf, order, 1"), Method::ImplicitEuler);
     assert_eq!(method("ms, .6, .0"), Method::Ms { rho: 0.6 });
     assert_eq!(method("ms, const, .3"), Method::Ms { rho: 0.3 });
+    // Of later MBDyn versions (their input manual, §Method; solver.cc): `Bathe, ρ [, ρ_alg]`,
+    // and `hybrid, DEFAULT [, ρ [, ρ_alg]]`, every unknown with DEFAULT after a
+    // Crank–Nicolson first step (ρ 0 when not given).
+    assert_eq!(method("Bathe, 0.6"), Method::Bathe { rho: 0.6 });
+    assert_eq!(method("bathe, const, .3, .0"), Method::Bathe { rho: 0.3 });
+    assert_eq!(method("hybrid, ms, .6"), Method::Ms { rho: 0.6 });
+    assert_eq!(method("hybrid, ms2"), Method::Ms { rho: 0.0 });
+    assert_eq!(method("hybrid, crank nicolson"), Method::CrankNicolson);
+    assert_eq!(method("hybrid, implicit euler, .6, .6"), Method::HybridImplicitEuler);
 }
 
 #[test]
