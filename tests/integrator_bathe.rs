@@ -1,7 +1,7 @@
 //! MBDyn's `Bathe` integrator (later MBDyn versions, stepsol.cc `TunableBatheSolver`; issue
 //! 12 point 3) against the closed forms of the ρ∞-Bathe method: a linear oscillator stepped
 //! by romdyn equals the method's amplification matrix applied step by step, and a pendulum
-//! converges to a reference solution at second order.
+//! converges to a reference solution at second order; and its `hybrid, implicit euler`.
 
 mod common;
 
@@ -166,3 +166,32 @@ fn with_rho_one_a_step_is_two_trapezoidal_half_steps() {
     assert!((bathe - trapezoidal).abs() < 1e-9, "{bathe} against {trapezoidal}");
 }
 
+
+#[test]
+fn hybrid_implicit_euler_starts_with_a_trapezoidal_step() {
+    // MBDyn's `hybrid, implicit euler` (later MBDyn, solver.cc): a Crank–Nicolson first step,
+    // `(I − hA/2)⁻¹ (I + hA/2)`, then implicit Euler, `(I − hA)⁻¹`; the oscillator as those
+    // matrices to 1e-12 relative (the plain `implicit euler` differs from the first step on).
+    let (m, k, c, x0, v0) = (2.0, 100.0, 1.0, 0.1, -0.3);
+    let a = Matrix2::new(0.0, 1.0 / m, -k, -c / m);
+    let h: f64 = 0.05;
+    let i: Matrix2<f64> = Matrix2::identity();
+    let trapezoidal = (i - 0.5 * h * a).try_inverse().unwrap() * (i + 0.5 * h * a);
+    let euler = (i - h * a).try_inverse().unwrap();
+    let settings = NewtonSettings { tolerance: 1e-13, increment_tolerance: 1e-15, max_iterations: 10, ..Default::default() };
+    for (method, first) in [(Method::HybridImplicitEuler, trapezoidal), (Method::ImplicitEuler, euler)] {
+        let model = oscillator(m, k, c, x0, v0);
+        let asm = Assembler::new(&model);
+        let mut st = State::initial(&model, &asm.dofs);
+        initial_derivatives_with(&asm, &mut st, &settings, 1e-9).unwrap();
+        let f = asm.dofs.node_first[0];
+        let mut y = Vector2::new(st.y[f], st.y[f + 6]);
+        let mut int = Integrator::new(&asm, st, method, h, settings);
+        for step in 1..=20 {
+            int.step().unwrap();
+            y = if step == 1 { first * y } else { euler * y };
+            let got = Vector2::new(int.state.y[f], int.state.y[f + 6]);
+            assert!((got - y).norm() < 1e-12 * Vector2::new(x0, m * v0).norm(), "{method:?}, step {step}: romdyn {got:?}, closed form {y:?}");
+        }
+    }
+}
