@@ -168,9 +168,9 @@ fn model_errors() {
         (model("structural nodes: 2; rigid bodies: 1;", NODES, "body: 1, 2, -1., null, eye;"), "m.mbd:6:13: error: negative mass -1"),
         // 46. Extra arguments.
         (model("structural nodes: 2; rigid bodies: 1;", NODES, "body: 1, 2, 1., null, eye, 7.;"), "m.mbd:6:28: error: unexpected extra argument the number 7 in 'body'"),
-        // 47. A driven total joint imposing a rotation with only some rotations locked (its
+        // 47. A driven total joint with only some rotations locked (its
         // remnant is element history: tests/mbdyn_joints.rs runs the joint itself).
-        (model("structural nodes: 2; joints: 1;", NODES, "driven: 1, const, 1., joint: 1, total joint, 1, 2, position, 0., 1., 0., orientation constraint, active, inactive, inactive, 1., 0., 0., const, .5;"), "m.mbd:6:1: error: driven: a driven total joint with events of its own (a bistop law, a total joint imposing some rotation components only) is not supported by romdyn"),
+        (model("structural nodes: 2; joints: 1;", NODES, "driven: 1, const, 1., joint: 1, total joint, 1, 2, position, 0., 1., 0., orientation constraint, active, inactive, inactive, 1., 0., 0., const, .5;"), "m.mbd:6:1: error: driven: a driven total joint with events of its own (a bistop law, a total joint locking some rotation components only) is not supported by romdyn"),
     ];
     check(&cases);
 }

@@ -750,14 +750,16 @@ fn partial_imposed_rotation_jacobians_match_finite_differences() {
 }
 
 #[test]
-fn partial_imposed_rotations_turn_as_the_closed_form_and_mbdyn() {
+fn partial_rotation_locks_turn_as_the_closed_form_and_mbdyn() {
     // total_joint_partial_rotation.mbd at t = 1 s. MBDyn 1.7.3 (1727489e) on the same file,
     // .mov (Euler 1-2-3 angles [deg], angular velocity [rad/s]):
     //   node 2: rz = 5.729577951308232e+01, ω_z = 1.900206657701962e-10;
     //   node 3: (−8.595717718449890e+01, −2.873799590725513e+01, 3.063552560400624e+01),
     //           (3.385343733315137, 1.141747870550197, −6.595298244926470e-01);
     //   node 4: (−9.138510682728405e+01, 2.219105823728551e+01, −2.159911892784433e+01),
-    //           (3.352423840183900, −8.181902096418520e-01, 4.904291908790889e-01).
+    //           (3.352423840183900, −8.181902096418520e-01, 4.904291908790889e-01);
+    //   node 5: (−1.249581615029010e+02, 3.040478990732576e+01, 5.508886696940485e+01),
+    //           (1.760707588114319, −1.255065836445735, −8.374622308903965e-03).
     let m = read("total_joint_partial_rotation.mbd");
     let report = run(&m.model, &m.problem, &mut ()).unwrap();
     let asm = Assembler::new(&m.model);
@@ -772,13 +774,16 @@ fn partial_imposed_rotations_turn_as_the_closed_form_and_mbdyn() {
     assert!(kin(2).omega.norm() < 1e-9, "rotor: ω = {}", kin(2).omega);
     assert!(kin(2).x.norm() < 1e-12);
 
-    // Nodes 3 and 4 swing about their free axis while turned: the remnant decides the
-    // reaction's direction (with it frozen at zero the Euler angles end 6 to 15 deg away).
-    // Against MBDyn to 1e-7 deg and 1e-7 rad/s (measured 1.7e-8 deg, 4.4e-9 rad/s: Newton's
-    // 1e-10 stopping differences over 1000 steps of a swing).
+    // Nodes 3 and 4 swing about their free axis while turned, node 5 tumbles with one
+    // rotation held at zero: the remnant decides the reaction's direction (with it frozen at
+    // zero nodes 3 and 4 end 6 to 15 deg away; node 5 in the skew-part form romdyn used
+    // before, the same zero set with the reaction normal to it, 0.85 deg away). Against MBDyn
+    // to 1e-7 deg and 1e-7 rad/s (measured 3.4e-8 deg, 4.4e-9 rad/s: Newton's 1e-10
+    // stopping differences over 1000 steps of a swing).
     let mbdyn = [
         (3, Vec3::new(-8.595717718449890e+01, -2.873799590725513e+01, 3.063552560400624e+01), Vec3::new(3.385343733315137e+00, 1.141747870550197e+00, -6.595298244926470e-01)),
         (4, Vec3::new(-9.138510682728405e+01, 2.219105823728551e+01, -2.159911892784433e+01), Vec3::new(3.352423840183900e+00, -8.181902096418520e-01, 4.904291908790889e-01)),
+        (5, Vec3::new(-1.249581615029010e+02, 3.040478990732576e+01, 5.508886696940485e+01), Vec3::new(1.760707588114319e+00, -1.255065836445735e+00, -8.374622308903965e-03)),
     ];
     for (label, e, w) in mbdyn {
         let k = kin(label);
@@ -787,4 +792,5 @@ fn partial_imposed_rotations_turn_as_the_closed_form_and_mbdyn() {
     }
     // The joints' points stay where they are held.
     assert!((kin(3).x - Vec3::new(0.0, 0.0, 1.0)).norm() < 1e-12 && (kin(4).x - Vec3::new(2.0, 0.0, 0.0)).norm() < 1e-12);
+    assert!((kin(5).x - Vec3::new(0.0, 0.0, 4.0)).norm() < 1e-12);
 }
