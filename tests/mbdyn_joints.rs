@@ -15,10 +15,11 @@ use common::fixtures::Noise;
 use common::mbdyn::assert_jacobians;
 use romdyn::analysis::run;
 use romdyn::dae::{check_jacobians, Assembler, State};
-use romdyn::element::{Anchor, AxialRotation, CardanoHinge, Distance, GimbalRotation, ImposedVelocity, VelocityKind, DeformableJoint, Drive, DrivenElement, DrivenJoint, Element, InvariantDeformableHinge, Joint, LinearViscoelastic, SectionLaw, VectorDrive};
+use romdyn::element::{RotationRemnant, Anchor, AxialRotation, CardanoHinge, Distance, GimbalRotation, ImposedVelocity, VelocityKind, DeformableJoint, Drive, DrivenElement, DrivenJoint, Element, InvariantDeformableHinge, Joint, LinearViscoelastic, SectionLaw, VectorDrive};
 use romdyn::input::mbdyn::{build, parse_text, read_model, MbdynModel};
 use romdyn::kinematics::{Mat3, Vec3};
 
+use romdyn::linear::ConstraintForm;
 use romdyn::model::ModelBuilder;
 
 fn path(name: &str) -> PathBuf {
@@ -698,4 +699,91 @@ fn total_joints_with_two_frames_constrain_each_kind_in_its_own_frame() {
     assert_ne!(partial, t);
     let e = parse_text(&partial, &path("total_joint_two_frames.mbd")).and_then(|d| build(&d)).err().expect("refused").to_string();
     assert!(e.contains("total_joint_two_frames.mbd:80:12") && e.contains("one constraint frame"), "{e}");
+}
+
+/// A total joint (two nodes) and a total pin joint with some rotations locked to imposed
+/// values, in MBDyn's form with the remnant of the free components.
+fn partial_rotation_joints(n: &mut Noise) -> Vec<Box<dyn Element>> {
+    let mut two = DrivenJoint::new(Joint::total(1, node(2, n), node(3, n), [true, false, true], [false, true, true]), "total joint");
+    two.rotation = VectorDrive(vector_drive(n).0.into_iter().map(|(v, d)| (Vec3::new(0.0, v.y, v.z), d)).collect());
+    two.position = vector_drive(n);
+    two.rotation_remnant = true;
+    let mut pin = DrivenJoint::new(Joint::total(2, ground(n), node(2, n), [true; 3], [false, false, true]), "total pin joint");
+    pin.rotation = VectorDrive(vector_drive(n).0.into_iter().map(|(v, d)| (Vec3::new(0.0, 0.0, v.z), d)).collect());
+    pin.rotation_remnant = true;
+    // With a velocity constraint beside the locked rotations.
+    pin.angular_velocity_locked = [true, false, false];
+    pin.angular_velocity = vector_drive(n);
+    vec![Box::new(two), Box::new(pin)]
+}
+
+#[test]
+fn partial_imposed_rotation_jacobians_match_finite_differences() {
+    // Without a remnant (before the first convergence) …
+    assert_jacobians(partial_rotation_joints);
+    // … and with one latched on each joint (a constant of the state, as MBDyn's member).
+    for form in [ConstraintForm::Plain, ConstraintForm::Scaled] {
+        let model = common::mbdyn::model_with(form, partial_rotation_joints);
+        let asm = Assembler::new(&model);
+        let mut st = State::initial(&model, &asm.dofs);
+        let mut n = Noise(17);
+        st.t = 0.3;
+        for x in st.y.iter_mut().chain(st.yp.iter_mut()) {
+            *x += 0.5 * n.next();
+        }
+        for (e, r) in [(0, Vec3::new(0.7, 0.0, 0.0)), (1, Vec3::new(-0.4, 0.9, 0.0))] {
+            st.latched[e] = Some(std::sync::Arc::new(RotationRemnant(r)));
+        }
+        let checks = check_jacobians(&asm, &st, 0.37, form);
+        assert!(!checks.is_empty());
+        for w in checks {
+            assert!(w.relative_error < 1e-6, "{form:?}: {} d({})/d({}): analytic {:e}, fd {:e}", w.element, w.equation, w.unknown, w.analytic, w.finite_difference);
+        }
+    }
+}
+
+#[test]
+fn partial_rotation_locks_turn_as_the_closed_form_and_mbdyn() {
+    // total_joint_partial_rotation.mbd at t = 1 s. MBDyn 1.7.3 (1727489e) on the same file,
+    // .mov (Euler 1-2-3 angles [deg], angular velocity [rad/s]):
+    //   node 2: rz = 5.729577951308232e+01, ω_z = 1.900206657701962e-10;
+    //   node 3: (−8.595717718449890e+01, −2.873799590725513e+01, 3.063552560400624e+01),
+    //           (3.385343733315137, 1.141747870550197, −6.595298244926470e-01);
+    //   node 4: (−9.138510682728405e+01, 2.219105823728551e+01, −2.159911892784433e+01),
+    //           (3.352423840183900, −8.181902096418520e-01, 4.904291908790889e-01);
+    //   node 5: (−1.249581615029010e+02, 3.040478990732576e+01, 5.508886696940485e+01),
+    //           (1.760707588114319, −1.255065836445735, −8.374622308903965e-03).
+    let m = read("total_joint_partial_rotation.mbd");
+    let report = run(&m.model, &m.problem, &mut ()).unwrap();
+    let asm = Assembler::new(&m.model);
+    let kin = |label: u32| report.final_state.node_frame(&asm.dofs, m.model.node_index(label).unwrap()).kin;
+    assert!((report.final_state.t - 1.0).abs() < 1e-12);
+
+    // Node 2, driven about z with x and y free and nothing to turn it about them: closed form
+    // R = R_z(0.5 (1 − cos πt)), 1 rad at t = 1 s (to Newton's tolerance on the scaled rows,
+    // 1e-10 dCoef), at rest there (θ̇ = 0.5 π sin π = 0; the integrated ω to 2e-10 rad/s,
+    // MBDyn's 1.9e-10).
+    assert!((rotation_vector_of(&kin(2).r) - Vec3::new(0.0, 0.0, 1.0)).norm() < 1e-12, "rotor: {}", rotation_vector_of(&kin(2).r));
+    assert!(kin(2).omega.norm() < 1e-9, "rotor: ω = {}", kin(2).omega);
+    assert!(kin(2).x.norm() < 1e-12);
+
+    // Nodes 3 and 4 swing about their free axis while turned, node 5 tumbles with one
+    // rotation held at zero: the remnant decides the reaction's direction (with it frozen at
+    // zero nodes 3 and 4 end 6 to 15 deg away; node 5 in the skew-part form romdyn used
+    // before, the same zero set with the reaction normal to it, 0.85 deg away). Against MBDyn
+    // to 1e-7 deg and 1e-7 rad/s (measured 3.4e-8 deg, 4.4e-9 rad/s: Newton's 1e-10
+    // stopping differences over 1000 steps of a swing).
+    let mbdyn = [
+        (3, Vec3::new(-8.595717718449890e+01, -2.873799590725513e+01, 3.063552560400624e+01), Vec3::new(3.385343733315137e+00, 1.141747870550197e+00, -6.595298244926470e-01)),
+        (4, Vec3::new(-9.138510682728405e+01, 2.219105823728551e+01, -2.159911892784433e+01), Vec3::new(3.352423840183900e+00, -8.181902096418520e-01, 4.904291908790889e-01)),
+        (5, Vec3::new(-1.249581615029010e+02, 3.040478990732576e+01, 5.508886696940485e+01), Vec3::new(1.760707588114319e+00, -1.255065836445735e+00, -8.374622308903965e-03)),
+    ];
+    for (label, e, w) in mbdyn {
+        let k = kin(label);
+        assert!((euler_deg(&k.r) - e).norm() < 1e-7, "node {label}: {} deg against MBDyn {e}", euler_deg(&k.r));
+        assert!((k.omega - w).norm() < 1e-7, "node {label}: ω {} against MBDyn {w}", k.omega);
+    }
+    // The joints' points stay where they are held.
+    assert!((kin(3).x - Vec3::new(0.0, 0.0, 1.0)).norm() < 1e-12 && (kin(4).x - Vec3::new(2.0, 0.0, 0.0)).norm() < 1e-12);
+    assert!((kin(5).x - Vec3::new(0.0, 0.0, 4.0)).norm() < 1e-12);
 }

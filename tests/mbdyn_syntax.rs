@@ -9,7 +9,7 @@ mod common;
 use common::mbdyn::{assert_same_physics, file, read, variables};
 
 use romdyn::dae::{Assembler, State};
-use romdyn::element::{Anchor, Couple, DeformableDisplacement, DeformableHinge, Drive, Force, ForceFrame, Joint, LinearViscoelastic, RigidBody, Rod};
+use romdyn::element::{Anchor, Couple, DrivenJoint, DeformableDisplacement, DeformableHinge, Drive, Force, ForceFrame, Joint, LinearViscoelastic, RigidBody, Rod};
 use romdyn::kinematics::{Mat3, Vec3};
 use romdyn::linear::ConstraintForm;
 use romdyn::model::{AbortAfter, Method, ModelBuilder};
@@ -316,7 +316,11 @@ fn total_joint_and_total_pin_joint() {
     let mut b = ModelBuilder::new();
     nodes(&mut b);
     let r2t = rz(std::f64::consts::FRAC_PI_2).transpose();
-    b.element(Joint::total(1, node_anchor(2, r2t * Vec3::new(-1.0, 1.5, 0.5), r2t), node_anchor(3, Vec3::zeros(), Mat3::identity()), [true, false, true], [true, true, false]));
+    // Two rotations locked, not three: MBDyn's rows with the remnant of the free one (zero
+    // before the first convergence).
+    let mut j1 = DrivenJoint::new(Joint::total(1, node_anchor(2, r2t * Vec3::new(-1.0, 1.5, 0.5), r2t), node_anchor(3, Vec3::zeros(), Mat3::identity()), [true, false, true], [true, true, false]), "total joint");
+    j1.rotation_remnant = true;
+    b.element(j1);
     // The node's point is imposed 0.1 above the fixed point (0, 2, 0.5): the fixed point
     // moves to (0, 2, 0.6), where the node's point (0, 2, 0.5) + 0.1 z is.
     b.element(Joint::total(2, Anchor::Ground { position: Vec3::new(0.0, 2.0, 0.6), orientation: Mat3::identity() }, node_anchor(3, Vec3::new(0.0, 0.0, 0.1), Mat3::identity()), [true; 3], [false; 3]));
@@ -505,6 +509,15 @@ fn integration_methods() {
     assert_eq!(method("bdf, order, 1"), Method::ImplicitEuler);
     assert_eq!(method("ms, .6, .0"), Method::Ms { rho: 0.6 });
     assert_eq!(method("ms, const, .3"), Method::Ms { rho: 0.3 });
+    // Of later MBDyn versions (their input manual, §Method; solver.cc): `Bathe, ρ [, ρ_alg]`,
+    // and `hybrid, DEFAULT [, ρ [, ρ_alg]]`, every unknown with DEFAULT after a
+    // Crank–Nicolson first step (ρ 0 when not given).
+    assert_eq!(method("Bathe, 0.6"), Method::Bathe { rho: 0.6 });
+    assert_eq!(method("bathe, const, .3, .0"), Method::Bathe { rho: 0.3 });
+    assert_eq!(method("hybrid, ms, .6"), Method::Ms { rho: 0.6 });
+    assert_eq!(method("hybrid, ms2"), Method::Ms { rho: 0.0 });
+    assert_eq!(method("hybrid, crank nicolson"), Method::CrankNicolson);
+    assert_eq!(method("hybrid, implicit euler, .6, .6"), Method::HybridImplicitEuler);
 }
 
 #[test]

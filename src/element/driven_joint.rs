@@ -12,11 +12,22 @@
 //! with the same zero set. Velocity constraints (not divided by dCoef): `(Q_aᵀ u)_k = V_k(t)`
 //! with `u = ẋ_b + ω_b × f_b − ẋ_a − ω_a × (p_b − x_a)`, reaction `Q_a λ` at `p_b`, and
 //! `(Q_aᵀ (ω_b − ω_a))_k = W_k(t)`, reaction moment `Q_a μ`.
+//!
+//! Some rotation components locked, not all three ([`DrivenJoint::rotation_remnant`]): MBDyn's
+//! rows are the locked components of `Θ_Δ = rotvec(Q_aᵀ Q_b R₀ᵀ)`, `R₀ = exp(Θ_l(t) + r)`,
+//! `Θ_l` the imposed rotation on the locked components and `r` the remnant, whose free
+//! components add up `Θ_Δ`'s free components at every converged solution (zero at the
+//! start), so that `Θ_Δ` stays small; the reaction moment is `Q_a μ` (totalj.cc,
+//! `TotalJoint::AssRes`, `AfterConvergence`: "correct ThetaDrv to keep ThetaDelta small").
+//! The remnant is kept as the element's latched data ([`Element::latch`]).
 
 use super::anchor::Pair;
 use super::contract::{add_block, Col, Element, ElementState, JacobianSink, Label, ResidualSink, Row};
+use super::contract::Latched;
+use super::deformable::inverse_rotation_jacobian;
 use super::{Anchor, Drive, Joint};
-use crate::kinematics::{skew, Vec3};
+use crate::kinematics::{rotation_vector, skew, Vec3};
+use std::sync::Arc;
 
 /// A 3-vector function of time `Σ v_k d_k(t)` (MBDyn's template drive caller).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -64,9 +75,18 @@ pub struct DrivenJoint {
     pub hint_position_held: [bool; 3],
     pub hint_position_turn: crate::kinematics::Mat3,
     pub hint_rotation_turn: crate::kinematics::Mat3,
-    /// Whether all three rotations are held (romdyn imposes a rotation only so).
+    /// Whether all three rotations are held (a hint's imposed rotation applies only so).
     pub hint_rotation_held: bool,
+    /// Whether the locked rotation components (some, not all three) are MBDyn's, with the
+    /// remnant of the free ones (module documentation), rather than the skew part of the
+    /// relative rotation.
+    pub rotation_remnant: bool,
 }
+
+/// The remnant `r` of a joint with some rotation components locked (module documentation),
+/// in frame A [rad], as of its last converged solution.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RotationRemnant(pub Vec3);
 
 /// Which reaction a velocity constraint has.
 #[derive(Clone, Copy)]
@@ -92,6 +112,7 @@ impl DrivenJoint {
             hint_position_turn: crate::kinematics::Mat3::identity(),
             hint_rotation_turn: crate::kinematics::Mat3::identity(),
             hint_rotation_held: false,
+            rotation_remnant: false,
         }
     }
 
@@ -146,7 +167,7 @@ impl DrivenJoint {
                 Anchor::Ground { position, orientation } => *position += *orientation * d,
             }
         }
-        if !self.rotation.0.is_empty() {
+        if !self.rotation.0.is_empty() || theta != Vec3::zeros() {
             let back = nalgebra::Rotation3::new(theta).into_inner().transpose();
             match &mut j.b {
                 Anchor::Node { orientation, .. } | Anchor::Ground { orientation, .. } => *orientation *= back,
@@ -166,6 +187,71 @@ impl DrivenJoint {
             }
         }
         (p.q_a * lambda, p.q_a * mu)
+    }
+
+    /// The locked rotation components, in order (their rows follow the position rows).
+    fn locked_rotations(&self) -> impl Iterator<Item = usize> + '_ {
+        (0..3).filter(|&k| self.joint.rotation_locked[k])
+    }
+
+    /// In MBDyn's form with the remnant: the joint placed with `R₀ = exp(Θ_l(t) + r)`, its
+    /// holonomic position part alone, and `Θ_Δ = rotvec(Q_aᵀ Q_b R₀ᵀ)` with the frames.
+    fn remnant_parts(&self, st: &dyn ElementState, remnant: &Vec3) -> (Joint, Pair, Vec3) {
+        let j = self.placed(self.position.value_in(st), self.rotation.value_in(st) + remnant);
+        let p = Pair::new(&j.a, &j.b, st);
+        let theta = rotation_vector(&(p.q_a.transpose() * p.q_b));
+        let mut positions = j;
+        positions.rotation_locked = [false; 3];
+        (positions, p, theta)
+    }
+
+    /// The remnant the state carries (zero before the first convergence).
+    fn remnant(st: &dyn ElementState) -> Vec3 {
+        st.latched().and_then(|l| l.downcast_ref::<RotationRemnant>()).map_or(Vec3::zeros(), |r| r.0)
+    }
+
+    /// The reaction moment `Q_a μ` of the locked rotations, `μ` their multipliers.
+    fn remnant_moment(&self, p: &Pair, st: &dyn ElementState) -> Vec3 {
+        let first = self.joint.multipliers().len() - self.locked_rotations().count();
+        let mut mu = Vec3::zeros();
+        for (i, k) in self.locked_rotations().enumerate() {
+            mu[k] = st.multiplier(first + i);
+        }
+        p.q_a * mu
+    }
+
+    fn remnant_residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
+        let (positions, p, theta) = self.remnant_parts(st, &Self::remnant(st));
+        positions.residual(st, out);
+        let first = positions.multipliers().len();
+        for (i, k) in self.locked_rotations().enumerate() {
+            out.add(Row::Constraint(first + i), theta[k]);
+        }
+        p.add_moment(out, &self.remnant_moment(&p, st));
+    }
+
+    fn remnant_jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
+        let (positions, p, theta) = self.remnant_parts(st, &Self::remnant(st));
+        positions.jacobian(st, out);
+        let first = positions.multipliers().len();
+        // δΘ_Δ = Γ⁻¹(Θ_Δ) Q_aᵀ (δθ_b − δθ_a) (a left turn of Q_aᵀ Q_b R₀ᵀ by Q_aᵀ (δθ_b − δθ_a)).
+        let d = inverse_rotation_jacobian(&theta) * p.q_a.transpose();
+        let b = p.slot_b;
+        for (i, k) in self.locked_rotations().enumerate() {
+            for c in 0..3 {
+                out.add(Row::Constraint(first + i), Col::rotation(b)[c], d[(k, c)]);
+                if let Some(a) = p.slot_a {
+                    out.add(Row::Constraint(first + i), Col::rotation(a)[c], -d[(k, c)]);
+                }
+            }
+            p.add_reaction_column(out, Col::Multiplier(first + i), &Vec3::zeros(), &p.q_a.column(k).into_owned());
+        }
+        // δ(Q_a μ) = −[(Q_a μ)×] δθ_a.
+        if let Some(a) = p.slot_a {
+            let m = skew(&self.remnant_moment(&p, st));
+            add_block(out, Row::moment(b), Col::rotation(a), &(-m));
+            add_block(out, Row::moment(a), Col::rotation(a), &m);
+        }
     }
 }
 
@@ -199,9 +285,30 @@ impl Element for DrivenJoint {
     fn is_velocity_constraint(&self, k: usize) -> bool {
         k >= self.holonomic()
     }
+    fn has_events(&self) -> bool {
+        self.rotation_remnant
+    }
+    /// The remnant after the last converged solution `before` (MBDyn's `AfterConvergence`):
+    /// `Θ_Δ`'s free components there added; zero at the first latch (the derivatives
+    /// phase's, before any convergence).
+    fn latch(&self, _now: &dyn ElementState, before: &dyn ElementState) -> Option<Latched> {
+        if !self.rotation_remnant {
+            return None;
+        }
+        let Some(used) = before.latched().and_then(|l| l.downcast_ref::<RotationRemnant>()).map(|r| r.0) else {
+            return Some(Arc::new(RotationRemnant(Vec3::zeros())));
+        };
+        let (_, _, theta) = self.remnant_parts(before, &used);
+        let free = Vec3::from_fn(|k, _| if self.joint.rotation_locked[k] { 0.0 } else { theta[k] });
+        Some(Arc::new(RotationRemnant(used + free)))
+    }
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
         let j = self.joint_in(st);
-        j.residual(st, out);
+        if self.rotation_remnant {
+            self.remnant_residual(st, out);
+        } else {
+            j.residual(st, out);
+        }
         if self.rates().next().is_none() {
             return;
         }
@@ -222,7 +329,11 @@ impl Element for DrivenJoint {
     }
     fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
         let j = self.joint_in(st);
-        j.jacobian(st, out);
+        if self.rotation_remnant {
+            self.remnant_jacobian(st, out);
+        } else {
+            j.jacobian(st, out);
+        }
         if self.rates().next().is_none() {
             return;
         }

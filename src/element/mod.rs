@@ -62,7 +62,7 @@ pub use invariant_hinge::InvariantDeformableHinge;
 pub use drive::{Drive, SampledChannel, TimeFunction};
 pub use driven_element::{DrivenElement, Hint, HintValue};
 pub use driven_gravity::DrivenGravity;
-pub use driven_joint::{DrivenJoint, VectorDrive};
+pub use driven_joint::{DrivenJoint, VectorDrive, RotationRemnant};
 pub use force::{Couple, Force, ForceFrame};
 pub use friction::{InLineFriction, ModLugre};
 pub use hinge_friction::RevoluteHingeFriction;

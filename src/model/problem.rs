@@ -12,6 +12,16 @@ pub enum Method {
     /// MBDyn's two-step "ms" family with asymptotic spectral radius `rho` in [0, 1]
     /// (METHOD §5; `rho = 1`: two-step trapezoidal rule, `rho = 0`: BDF2).
     Ms { rho: f64 },
+    /// MBDyn's `Bathe` (later MBDyn versions, stepsol.cc `TunableBatheSolver`; Noh and
+    /// Bathe's ρ∞-Bathe method): each step in two implicit sub-steps, the trapezoidal rule
+    /// over `γh` and `y_k = y_{k−1} + h (q₀ ẏ_{k−1} + q₁ ẏ_{k−1+γ} + q₂ ẏ_k)` over the step, with
+    /// asymptotic spectral radius `rho` in [0, 1] and `γ = (2 − √(2 + 2ρ))/(1 − ρ)` (½ at
+    /// ρ = 1), for which both sub-steps have dCoef `γh/2` (see `solve::integrate`).
+    Bathe { rho: f64 },
+    /// MBDyn's `hybrid, implicit euler` (later MBDyn versions, stepsol_impl.cc
+    /// `HybridStepIntegrator`, with no element choosing another method for its unknowns):
+    /// a Crank–Nicolson first step (solver.cc), then implicit Euler.
+    HybridImplicitEuler,
 }
 
 /// Which matrices an eigenanalysis writes besides the eigenvalues.

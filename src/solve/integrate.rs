@@ -2,6 +2,11 @@
 //! `y_k = a₁ y_{k−1} + a₂ y_{k−2} + b₀ ẏ_k + b₁ ẏ_{k−1} + b₂ ẏ_{k−2}` (eq. 2), corrected by
 //! Newton with `δy = b₀ δẏ` (eqs. 3–5). Orientations are re-based at every step, so each
 //! node's `g` is measured from its orientation at the previous step.
+//!
+//! MBDyn's `Bathe` method (later MBDyn versions, stepsol.cc `TunableBatheSolver`, the
+//! ρ∞-Bathe method of Noh and Bathe, Computers & Structures 212 (2019) 299–310) steps in two
+//! sub-steps, each a Newton solve of the same kind with its own dCoef, orientations re-based
+//! between them ([`BatheCoefficients`]).
 
 use super::newton::{momenta_from_definitions, newton, Convergence, DerivativeMomenta, NewtonFailure, NewtonSettings, NewtonWorkspace, Update};
 use crate::dae::{Assembler, State};
@@ -13,7 +18,9 @@ use crate::model::{Method, NodeKind};
 fn coefficients(method: Method, h: f64, first_step: bool) -> [f64; 5] {
     match method {
         Method::ImplicitEuler => [1.0, 0.0, h, 0.0, 0.0],
-        Method::Ms { .. } if first_step => [1.0, 0.0, h / 2.0, h / 2.0, 0.0],
+        Method::Ms { .. } | Method::HybridImplicitEuler if first_step => [1.0, 0.0, h / 2.0, h / 2.0, 0.0],
+        Method::HybridImplicitEuler => [1.0, 0.0, h, 0.0, 0.0],
+        Method::Bathe { .. } => unreachable!("a Bathe step is two sub-steps (Integrator::bathe_step)"),
         Method::CrankNicolson => [1.0, 0.0, h / 2.0, h / 2.0, 0.0],
         Method::Ms { rho } => {
             let den = 4.0 - (1.0 - rho).powi(2);
@@ -43,7 +50,7 @@ impl Predictor {
         match method {
             _ if !two_step => Predictor::Constant,
             Method::Ms { .. } => Predictor::CubicHermite { h },
-            Method::ImplicitEuler | Method::CrankNicolson => Predictor::Linear,
+            Method::ImplicitEuler | Method::CrankNicolson | Method::HybridImplicitEuler | Method::Bathe { .. } => Predictor::Linear,
         }
     }
 
@@ -60,7 +67,45 @@ impl Predictor {
 /// `dCoef = b₀` of the regular steps of `method` with step `h` [s]: the coefficient of
 /// `J(c) = F_/ẏ + c F_/y` that Newton uses (eq. 5).
 pub fn newton_dcoef(method: Method, h: f64) -> f64 {
-    coefficients(method, h, false)[2]
+    match method {
+        // Both sub-steps have the same, `γh/2`.
+        Method::Bathe { rho } => BatheCoefficients::new(rho, h).first,
+        _ => coefficients(method, h, false)[2],
+    }
+}
+
+/// The two sub-steps of MBDyn's `Bathe` method (stepsol.cc, `TunableBatheSolver`) for the
+/// asymptotic spectral radius `ρ` and the step `h`. The first sub-step is the trapezoidal
+/// rule over `γh`, `y_s = y_{k−1} + (γh/2)(ẏ_s + ẏ_{k−1})`, from the predictor `ẏ_s =
+/// ẏ_{k−1}`, at time `t_{k−1} + γh`; the second is `y_k = y_{k−1} + b₀ ẏ_k + b₁ ẏ_s + b₂
+/// ẏ_{k−1}` (Noh and Bathe's `h (q₂, q₁, q₀)`), from the cubic Hermite predictor through
+/// `(y_{k−1}, ẏ_{k−1})` and `(y_s, ẏ_s)`. A multiplier of the form of eq. 30 is predicted as its
+/// last value (MBDyn's algebraic predictor), any other unknown is integrated alike.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BatheCoefficients {
+    /// `γ = (2 − √(2 + 2ρ))/(1 − ρ) = 2/(2 + √(2 + 2ρ))`: `2 − √2` at ρ = 0, ½ at ρ = 1.
+    pub gamma: f64,
+    /// `γh/2`, the first sub-step's dCoef (and the second's).
+    pub first: f64,
+    /// `(b₀, b₁, b₂) = h ((1 − γ)/D, (1 + ρ)/(2D), (2γρ − ρ + 1)/(2D))`, `D = 2 − γ(1 − ρ)`.
+    pub b: [f64; 3],
+    /// `ẏ_k ≈ m₀ (y_s − y_{k−1}) + n₀ ẏ_s + n₁ ẏ_{k−1}`: `(m₀, n₀, n₁)` with `α = (1 − γ)/γ`,
+    /// `m₀ = −6α²(1 + α)/((1 − γ)h)`, `n₀ = 1 + 4α + 3α²`, `n₁ = α(2 + 3α)`.
+    pub predictor: [f64; 3],
+}
+
+impl BatheCoefficients {
+    pub fn new(rho: f64, h: f64) -> Self {
+        let gamma = 2.0 / (2.0 + (2.0 + 2.0 * rho).sqrt());
+        let d = 2.0 - gamma * (1.0 - rho);
+        let alpha = (1.0 - gamma) / gamma;
+        BatheCoefficients {
+            gamma,
+            first: gamma * h / 2.0,
+            b: [h * (1.0 - gamma) / d, h * (1.0 + rho) / (2.0 * d), h * (2.0 * gamma * rho - rho + 1.0) / (2.0 * d)],
+            predictor: [-6.0 * alpha * alpha * (1.0 + alpha) / ((1.0 - gamma) * h), 1.0 + 4.0 * alpha + 3.0 * alpha * alpha, alpha * (2.0 + 3.0 * alpha)],
+        }
+    }
 }
 
 /// The solution two steps back, with each node's orientation and angular velocity.
@@ -143,6 +188,9 @@ impl<'a, 'm> Integrator<'a, 'm> {
 
     /// One step of size `h`: predict, then correct with Newton.
     pub fn step(&mut self) -> Result<StepRecord, NewtonFailure> {
+        if let Method::Bathe { rho } = self.method {
+            return self.bathe_step(rho);
+        }
         let dofs = &self.asm.dofs;
         let form = self.asm.model.constraint_form;
         let current = self.snapshot();
@@ -186,6 +234,53 @@ impl<'a, 'm> Integrator<'a, 'm> {
         self.previous = Some(current);
         self.accepted += 1;
         Ok(StepRecord { t: self.state.t, iterations: done.iterations, residual_norm: done.residual_norm })
+    }
+
+    /// One step of MBDyn's `Bathe` method ([`BatheCoefficients`]): two Newton solves, each
+    /// after its own prediction and events (MBDyn's `AfterPredict` and `AfterConvergence` per
+    /// sub-step), the orientations re-based between them.
+    fn bathe_step(&mut self, rho: f64) -> Result<StepRecord, NewtonFailure> {
+        let dofs = &self.asm.dofs;
+        let form = self.asm.model.constraint_form;
+        let c = BatheCoefficients::new(rho, self.h);
+        let start = self.snapshot();
+        let t0 = self.state.t;
+        self.asm.begin_step(&self.state, self.accepted + 1, t0 + self.h);
+        let held = |i: usize| form == ConstraintForm::Scaled && dofs.is_multiplier(i);
+
+        // First sub-step: the trapezoidal rule over γh.
+        let before = self.events.then(|| self.state.clone());
+        self.state.rebase(dofs);
+        let (y0, yp0) = (self.state.y.clone(), self.state.yp.clone());
+        for i in (0..dofs.len).filter(|&i| !held(i)) {
+            self.state.y[i] = y0[i] + c.first * 2.0 * yp0[i];
+        }
+        self.state.t = t0 + c.gamma * self.h;
+        if let Some(before) = &before {
+            self.asm.latch_events(&mut self.state, before);
+        }
+        let first = newton(self.asm, &mut self.state, Update::Dynamic { dcoef: c.first, form }, &self.settings, &mut self.workspace)?;
+
+        // Second sub-step, over the whole step.
+        let before = self.events.then(|| self.state.clone());
+        self.state.rebase(dofs);
+        let (ys, yps) = (self.state.y.clone(), self.state.yp.clone());
+        let (y0, yp0) = self.past_in_current_frames(&start);
+        let [m0, n0, n1] = c.predictor;
+        let [b0, b1, b2] = c.b;
+        for i in (0..dofs.len).filter(|&i| !held(i)) {
+            let yp = m0 * (ys[i] - y0[i]) + n0 * yps[i] + n1 * yp0[i];
+            self.state.yp[i] = yp;
+            self.state.y[i] = y0[i] + b0 * yp + b1 * yps[i] + b2 * yp0[i];
+        }
+        self.state.t = t0 + self.h;
+        if let Some(before) = &before {
+            self.asm.latch_events(&mut self.state, before);
+        }
+        let second = newton(self.asm, &mut self.state, Update::Dynamic { dcoef: b0, form }, &self.settings, &mut self.workspace)?;
+        self.previous = Some(start);
+        self.accepted += 1;
+        Ok(StepRecord { t: self.state.t, iterations: first.iterations + second.iterations, residual_norm: second.residual_norm })
     }
 }
 
@@ -328,6 +423,17 @@ mod tests {
         let predicted = p.derivative(u(-h), u(-2.0 * h), v(-h) - v(-2.0 * h));
         assert!((predicted - b).abs() < 1e-9, "{predicted} against {b}");
         assert_eq!(Predictor::Constant.derivative(2.0, 5.0, 1.0), 2.0);
+
+        // Bathe's second predictor through (−γh, v, u) and (0, v, u), extrapolating u to
+        // (1 − γ)h: exact for cubics (t measured from the first sub-step's time).
+        for rho in [0.0, 0.3, 0.6, 1.0] {
+            let c = super::BatheCoefficients::new(rho, h);
+            let g = c.gamma * h;
+            let [m0, n0, n1] = c.predictor;
+            let predicted = m0 * (v(0.0) - v(-g)) + n0 * u(0.0) + n1 * u(-g);
+            let exact = u(h - g);
+            assert!((predicted - exact).abs() < 1e-9 * exact.abs().max(1.0), "ρ = {rho}: {predicted} against {exact}");
+        }
         assert_eq!(Predictor::Linear.derivative(2.0, 5.0, 1.0), -1.0);
     }
 }

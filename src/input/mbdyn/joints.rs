@@ -456,8 +456,8 @@ pub(super) fn total_side<'a>(c: &mut Cursor, on: &Context, node: Option<&'a Stru
 /// frame (total pin joint), each to its component of the imposed-value template drive.
 /// romdyn's total joint has one frame per side: where both kinds of constraint are active
 /// and side A's position and rotation orientations differ, [`one_constraint_frame`] maps one
-/// onto the other when all three of one kind are constrained; a time-varying imposed
-/// rotation needs all three rotations locked.
+/// onto the other when all three of one kind are constrained. Some rotations locked, not all
+/// three: MBDyn's rows, with the remnant of the free ones (`DrivenJoint::rotation_remnant`).
 pub(super) fn total(pin: bool, label: Label, c: &mut Cursor, ctx: &ElementContext, span: super::diagnostic::Span) -> Result<DrivenJoint, MbdynError> {
     let node = ctx.node(c, if pin { "the node" } else { "node 1" })?;
     let first = total_side(c, &ctx.on(node), Some(node))?;
@@ -479,9 +479,9 @@ pub(super) fn total(pin: bool, label: Label, c: &mut Cursor, ctx: &ElementContex
     // A: where the constraints are written (the ground of a pin joint, node 1 otherwise).
     let (a, b) = if pin { (second, first) } else { (first, second) };
     let imposed_rotation = rotation.on(&rotation.holonomic);
-    if !imposed_rotation.is_zero() && rotation.holonomic != [true; 3] {
-        return Err(c.error_at(span, "a non-zero imposed relative rotation is supported by romdyn's total joint only with all three rotation components locked"));
-    }
+    // Some rotations locked, not all three: MBDyn's rows with the remnant of the free
+    // components (totalj.cc; `DrivenJoint::rotation_remnant`), whatever the imposed value.
+    let rotation_remnant = rotation.holonomic.contains(&true) && rotation.holonomic != [true; 3];
     let frames = if any_pos && any_rot { one_constraint_frame(&a, &b, &position, &rotation) } else { None };
     let (qa, qb, position_turn, rotation_turn) = match frames {
         Some(f) => f,
@@ -503,6 +503,7 @@ pub(super) fn total(pin: bool, label: Label, c: &mut Cursor, ctx: &ElementContex
     j.angular_velocity = rotation.on(&rotation.rate).turned(&rotation_turn);
     (j.hint_position_held, j.hint_position_turn, j.hint_rotation_turn) = (position.holonomic, position_turn, rotation_turn);
     j.hint_rotation_held = rotation.holonomic == [true; 3];
+    j.rotation_remnant = rotation_remnant;
     driven_assembled(j, ctx, c, span)
 }
 

@@ -222,30 +222,49 @@ fn derivatives_coefficient(c: &mut Cursor, a: &mut InitialValueProblem) -> Resul
 }
 
 /// `ms, RHO [, ALG_RHO]` (radii as drive callers, evaluated at the initial time),
-/// `crank nicolson`, `implicit euler`, `bdf [, order, {1 | 2}]`.
+/// `crank nicolson`, `implicit euler`, `bdf [, order, {1 | 2}]`; of later MBDyn versions
+/// (their input manual, §Method; solver.cc `Solver::ReadData`): `Bathe, RHO [, ALG_RHO]`
+/// and `hybrid, {implicit euler | crank nicolson | ms | ms2 | hope} [, RHO [, ALG_RHO]]`.
 fn method(c: &mut Cursor, drives: &Drives, t0: f64, seq: usize) -> Result<Method, MbdynError> {
+    const SUPPORTED: &str = "supported: ms, crank nicolson, implicit euler, bdf, Bathe, hybrid";
     let span = c.here();
     if let Some(m) = c.accept_any(&["hope", "third order", "thirdorder"]) {
-        return Err(c.error_at(span, format!("integration method '{m}' is not supported by romdyn (supported: ms, crank nicolson, implicit euler, bdf)")));
+        return Err(c.error_at(span, format!("integration method '{m}' is not supported by romdyn ({SUPPORTED})")));
     }
-    // Methods of later MBDyn versions: without MBDyn 1.7.3's definition to compare with,
-    // romdyn does not guess their coefficients.
-    if let Some(m) = c.accept_any(&["bathe", "hybrid", "dirk33", "dirk43", "dirk54", "msstc3", "msstc4", "msstc5", "mssth3", "mssth4", "mssth5", "ss2", "ss3", "ss4", "ss5"]) {
-        return Err(c.error_at(span, format!("integration method '{m}' is not known to MBDyn 1.7.3 (its reader stops with \"Unknown integration method\") and is not supported by romdyn (supported: ms, crank nicolson, implicit euler, bdf)")));
+    // Methods of later MBDyn versions romdyn does not implement.
+    if let Some(m) = c.accept_any(&["dirk33", "dirk43", "dirk54", "ms3", "ms4", "msstc3", "msstc4", "msstc5", "mssth3", "mssth4", "mssth5", "ss2", "ss3", "ss4", "ss5"]) {
+        return Err(c.error_at(span, format!("integration method '{m}' is not known to MBDyn 1.7.3 (its reader stops with \"Unknown integration method\") and is not supported by romdyn ({SUPPORTED})")));
     }
+    // The asymptotic spectral radius, then the algebraic one (romdyn integrates all unknowns
+    // with one formula: read and not used).
+    let radius = |c: &mut Cursor| -> Result<f64, MbdynError> {
+        let rho_span = c.here();
+        let rho = drive(c, drives, seq)?.value(t0);
+        if !(0.0..=1.0).contains(&rho) {
+            return Err(c.error_at(rho_span, format!("the asymptotic spectral radius must be between 0 and 1, found {rho}")));
+        }
+        if !c.is_done() {
+            drive(c, drives, seq)?;
+        }
+        Ok(rho)
+    };
     // `crank nicholson` is MBDyn's deprecated spelling (solver.cc, Solver::ReadData).
-    Ok(match c.keyword("an integration method", &["ms", "crank nicolson", "crank nicholson", "implicit euler", "bdf"])? {
-        "ms" => {
-            let rho_span = c.here();
-            let rho = drive(c, drives, seq)?.value(t0);
-            if !(0.0..=1.0).contains(&rho) {
-                return Err(c.error_at(rho_span, format!("the asymptotic spectral radius must be between 0 and 1, found {rho}")));
+    Ok(match c.keyword("an integration method", &["ms", "crank nicolson", "crank nicholson", "implicit euler", "bdf", "bathe", "hybrid"])? {
+        "ms" => Method::Ms { rho: radius(c)? },
+        "bathe" => Method::Bathe { rho: radius(c)? },
+        "hybrid" => {
+            // Every unknown with the default method (only a loadable module of later MBDyn
+            // versions chooses another for its own), after a Crank–Nicolson first step
+            // (solver.cc): the radius is 0 when not given.
+            let span = c.here();
+            let default = c.keyword("the hybrid method's default method", &["implicit euler", "crank nicolson", "crank nicholson", "ms", "ms2", "hope"])?;
+            let rho = if c.is_done() { 0.0 } else { radius(c)? };
+            match default {
+                "implicit euler" => Method::HybridImplicitEuler,
+                "crank nicolson" | "crank nicholson" => Method::CrankNicolson,
+                "hope" => return Err(c.error_at(span, format!("integration method 'hope' (the hybrid method's default) is not supported by romdyn ({SUPPORTED})"))),
+                _ => Method::Ms { rho },
             }
-            if !c.is_done() {
-                // The algebraic radius: romdyn integrates all unknowns with one formula.
-                drive(c, drives, seq)?;
-            }
-            Method::Ms { rho }
         }
         "crank nicolson" | "crank nicholson" => Method::CrankNicolson,
         "implicit euler" => Method::ImplicitEuler,
