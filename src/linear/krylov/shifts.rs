@@ -23,7 +23,7 @@ use super::pencil::Pencil;
 use super::window::{window, Eigenpair, PairVectors, Scales};
 use super::{KrylovError, SparseEigenSettings};
 use crate::linear::classify::{classify, classify_given, Classification};
-use crate::linear::eigen::{conjugate_mode, normalize, sort_units, ModalAnalysis, Mode};
+use crate::linear::eigen::{conjugate_mode, largest_entry, normalize, sort_units, ModalAnalysis, Mode};
 use crate::linear::route::{EigenRoute, EigenVectors};
 use crate::linear::SparseLinearDae;
 
@@ -302,7 +302,7 @@ impl Eigenpair {
             // The phase of the largest entry removed (the products are linear in the vector,
             // the matrices real), then the real parts.
             let phase = |x: &Col<c64>| {
-                let big = x.iter().copied().fold(c64::new(0.0, 0.0), |a, e| if e.norm() > a.norm() { e } else { a });
+                let big = largest_entry(x);
                 if big.norm() > 0.0 { big.conj() / big.norm() } else { c64::new(1.0, 0.0) }
             };
             let (pv, pu) = (phase(&w.v), phase(&w.u));
@@ -330,7 +330,7 @@ impl Eigenpair {
     pub(super) fn right_only(lambda: c64, v: Col<c64>, residual_right: f64, sc: &Scales) -> Self {
         let real = lambda.im.abs() <= 1e-9 * lambda.norm();
         let lambda = if real { c64::new(lambda.re, 0.0) } else { lambda };
-        let big = v.iter().copied().fold(c64::new(0.0, 0.0), |a, e| if e.norm() > a.norm() { e } else { a });
+        let big = largest_entry(&v);
         let phase = if big.norm() > 0.0 { big.conj() / big.norm() } else { c64::new(1.0, 0.0) };
         let nv = v.norm_l2();
         let right = Col::from_fn(v.nrows(), |i| {

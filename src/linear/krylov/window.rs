@@ -87,8 +87,10 @@ pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted:
     // applications, 5 restarts, 5521 columns: the Gram–Schmidt sweeps, which are memory
     // bound at 10⁵ unknowns, read 20 % less (N = 6000: 0.8 of the wall time).
     let real_basis = (2 * wanted + 20).min(n);
-    let real_settings = |seed| Settings { wanted, basis: real_basis, tolerance: s.krylov_tolerance, max_restarts: s.max_restarts, seed };
-    let settings = |seed| Settings { wanted, basis, tolerance: s.krylov_tolerance, max_restarts: s.max_restarts, seed };
+    // The right run alone has both cores: its sweeps over the basis go on two threads.
+    let parallel = !s.left_vectors && rayon::current_num_threads() > 1;
+    let real_settings = |seed| Settings { wanted, basis: real_basis, tolerance: s.krylov_tolerance, max_restarts: s.max_restarts, seed, parallel };
+    let settings = |seed| Settings { wanted, basis, tolerance: s.krylov_tolerance, max_restarts: s.max_restarts, seed, parallel };
     let report = |side: &'static str| move |k: usize| progress(&format!("shift {sigma}: {side} {k}/{wanted} converged"));
     // The two runs are independent (one factorization, read only): the adjoint run goes
     // to a second thread while this one does the right run and reports progress. Its own
@@ -137,7 +139,6 @@ pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted:
     let inside = |l: c64| (l - sigma).norm() <= radius * (1.0 + 1e-9);
     // Match each right eigenvalue with the nearest unused left one.
     let mut used = vec![false; left.len()];
-    let mut pairs = Vec::new();
     let mut rejected = 0;
     let mut agreed = true;
     // Nearest distance to σ of a disagreement or a rejected pair.
@@ -148,6 +149,7 @@ pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted:
         }
         trouble = trouble.min((l - sigma).norm());
     };
+    let mut matched = Vec::new();
     for (lr, v29) in &right {
         let best = left.iter().enumerate().filter(|(i, _)| !used[*i]).min_by(|a, b| (a.1 .0 - lr).norm().total_cmp(&(b.1 .0 - lr).norm()));
         let Some((i, (ll, u29))) = best else {
@@ -159,6 +161,11 @@ pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted:
             continue;
         }
         used[i] = true;
+        matched.push((*lr, v29, u29));
+    }
+    // Each matched pair's residuals, vectors and label: independent of the others, on the
+    // pool's threads (both runs are done).
+    let evaluated = map_pairs(&matched, |&(lr, v29, u29)| {
         // Two-sided Rayleigh quotient on eq. 29: λ = −(uᵀ K v)/(uᵀ E v).
         let (kv, ev) = (pencil.k.mul_complex(v29), pencil.e.mul_complex(v29));
         let (ukv, uev) = u29.iter().zip(kv.iter().zip(ev.iter())).fold((c64::new(0.0, 0.0), c64::new(0.0, 0.0)), |(a, b), (u, (k, e))| (a + u * k, b + u * e));
@@ -166,16 +173,14 @@ pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted:
         // The DAE's products of both vectors, split by the moved entries, serve every
         // candidate λ, the labels and the normalization.
         let (right_products, left_products) = (DaeProducts::new(dae, pencil.moved(), v29, false), DaeProducts::new(dae, pencil.moved(), u29, true));
-        let (lambda, rr, rl) = [*lr, rq]
+        let (lambda, rr, rl) = [lr, rq]
             .into_iter()
             .filter(|l| l.re.is_finite() && l.im.is_finite())
             .map(|l| (l, right_products.residual(l), left_products.residual(l)))
             .min_by(|a, b| a.1.max(a.2).total_cmp(&b.1.max(b.2)))
             .unwrap_or_else(|| unreachable!("the Ritz value is finite"));
         if !(rr <= s.tolerance && rl <= s.tolerance) {
-            rejected += 1;
-            flag(lambda, &mut agreed);
-            continue;
+            return Err(lambda);
         }
         let (v, u) = (pencil.to_dae(v29, lambda), pencil.to_dae(u29, lambda));
         let ((fydv, fyv), (ufyd, ufy)) = (right_products.at(lambda), left_products.at(lambda));
@@ -186,7 +191,17 @@ pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted:
         } else {
             lambda
         };
-        pairs.push(Eigenpair::new(dae, lambda, vectors, rr, rl, &scales));
+        Ok(Eigenpair::new(dae, lambda, vectors, rr, rl, &scales))
+    });
+    let mut pairs = Vec::new();
+    for e in evaluated {
+        match e {
+            Ok(p) => pairs.push(p),
+            Err(lambda) => {
+                rejected += 1;
+                flag(lambda, &mut agreed);
+            }
+        }
     }
     // A left eigenvalue inside the disc without a right partner is a disagreement.
     for (i, (ll, _)) in left.iter().enumerate() {
@@ -206,16 +221,11 @@ fn right_only(dae: &SparseLinearDae, pencil: &Pencil, op: &ShiftInvert, run: Run
     progress(&format!("shift {sigma}: {} operator applications, {} restarts (right run only)", run.applications, run.restarts));
     let (right, all) = lambdas(op, run);
     let radius = if all { f64::INFINITY } else { right.iter().map(|(x, _)| (x - sigma).norm()).fold(0.0, f64::max) };
-    let mut pairs = Vec::new();
-    let mut rejected = 0;
-    let mut trouble = f64::INFINITY;
-    for (lr, v29) in &right {
+    let evaluated = map_pairs(&right, |(lr, v29)| {
         let products = DaeProducts::new(dae, pencil.moved(), v29, false);
         let rr = products.residual(*lr);
         if !(rr <= s.tolerance) {
-            rejected += 1;
-            trouble = trouble.min((lr - sigma).norm());
-            continue;
+            return Err(*lr);
         }
         let (mut v, (mut fydv, mut fyv)) = (pencil.to_dae(v29, *lr), products.at(*lr));
         let lambda = if lr.im < 0.0 {
@@ -226,10 +236,35 @@ fn right_only(dae: &SparseLinearDae, pencil: &Pencil, op: &ShiftInvert, run: Run
         } else {
             *lr
         };
-        pairs.push(Eigenpair::right_only(lambda, v, rr, scales));
+        Ok(Eigenpair::right_only(lambda, v, rr, scales))
+    });
+    let mut pairs = Vec::new();
+    let mut rejected = 0;
+    let mut trouble = f64::INFINITY;
+    for e in evaluated {
+        match e {
+            Ok(p) => pairs.push(p),
+            Err(lr) => {
+                rejected += 1;
+                trouble = trouble.min((lr - sigma).norm());
+            }
+        }
     }
     let clean = radius.min(trouble * (1.0 - 1e-6));
     Ok(WindowResult { shift: sigma, radius, agreed: true, checked: false, clean, pairs, rejected })
+}
+
+/// `f` of every item, in order: on the rayon pool's threads when the vectors are long enough
+/// for the hand-over to pay (from the calling thread outside the pool rayon waits for its
+/// workers, which wait for nothing here; on a worker, the items may be stolen or run on it).
+fn map_pairs<I: Sync, R: Send>(items: &[I], f: impl Fn(&I) -> R + Sync + Send) -> Vec<R> {
+    use rayon::prelude::*;
+    let long = items.len() > 1 && rayon::current_num_threads() > 1;
+    if long {
+        items.par_iter().with_max_len(1).map(f).collect()
+    } else {
+        items.iter().map(f).collect()
+    }
 }
 
 /// `F_yd x` and `F_y x` (or `F_ydᵀ x`, `F_yᵀ x`) of the DAE's vector of an eq. 29 vector
