@@ -151,6 +151,16 @@ impl SparseMatrix {
         (a, b)
     }
 
+    /// `uᵀ M v` (no conjugation), without forming `M v`.
+    pub fn bilinear(&self, u: &Col<c64>, v: &Col<c64>) -> c64 {
+        let (u, v) = (contiguous(u.as_ref()), contiguous(v.as_ref()));
+        assert!(u.len() == self.nrows && v.len() == self.ncols, "uᵀ M v: sizes");
+        (0..self.nrows).fold(c64::new(0.0, 0.0), |acc, i| {
+            let mv = (self.start[i]..self.start[i + 1]).fold(c64::new(0.0, 0.0), |s, k| s + v[self.col[k]] * self.val[k]);
+            acc + u[i] * mv
+        })
+    }
+
     /// `M v`.
     pub fn mul_complex(&self, v: &Col<c64>) -> Col<c64> {
         self.mul_col(v, false)

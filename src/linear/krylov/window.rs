@@ -88,7 +88,7 @@ pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted:
     // bound at 10⁵ unknowns, read 20 % less (N = 6000: 0.8 of the wall time).
     let real_basis = (2 * wanted + 20).min(n);
     // The right run alone has both cores: its sweeps over the basis go on two threads.
-    let parallel = !s.left_vectors && rayon::current_num_threads() > 1;
+    let parallel = !s.left_vectors && n >= PARALLEL_FROM && rayon::current_num_threads() > 1;
     let real_settings = |seed| Settings { wanted, basis: real_basis, tolerance: s.krylov_tolerance, max_restarts: s.max_restarts, seed, parallel };
     let settings = |seed| Settings { wanted, basis, tolerance: s.krylov_tolerance, max_restarts: s.max_restarts, seed, parallel };
     let report = |side: &'static str| move |k: usize| progress(&format!("shift {sigma}: {side} {k}/{wanted} converged"));
@@ -125,7 +125,7 @@ pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted:
         right_run.applications, left_run.applications, right_run.restarts, left_run.restarts
     ));
     let (right, right_all) = lambdas(&op, right_run);
-    let (left, left_all) = lambdas(&op, left_run);
+    let (mut left, left_all) = lambdas(&op, left_run);
     // Radius of the disc each run covers: the farthest converged eigenvalue (everything
     // when the run exhausted the finite spectrum).
     let reach = |l: &[(c64, Col<c64>)], all: bool| {
@@ -150,29 +150,30 @@ pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted:
         trouble = trouble.min((l - sigma).norm());
     };
     let mut matched = Vec::new();
-    for (lr, v29) in &right {
-        let best = left.iter().enumerate().filter(|(i, _)| !used[*i]).min_by(|a, b| (a.1 .0 - lr).norm().total_cmp(&(b.1 .0 - lr).norm()));
-        let Some((i, (ll, u29))) = best else {
-            flag(*lr, &mut agreed);
+    for (lr, v29) in right {
+        let best = left.iter().enumerate().filter(|(i, _)| !used[*i]).min_by(|a, b| (a.1 .0 - lr).norm().total_cmp(&(b.1 .0 - lr).norm())).map(|(i, (ll, _))| (i, *ll));
+        let Some((i, ll)) = best else {
+            flag(lr, &mut agreed);
             continue;
         };
         if (ll - lr).norm() > 1e-6 * (lr - sigma).norm().max(lr.norm() * 1e-3) {
-            flag(*lr, &mut agreed);
+            flag(lr, &mut agreed);
             continue;
         }
         used[i] = true;
-        matched.push((*lr, v29, u29));
+        // The vectors move on (the matched left one's place keeps its eigenvalue only), so
+        // each is freed once its pair is evaluated.
+        let u29 = std::mem::replace(&mut left[i].1, Col::zeros(0));
+        matched.push((lr, v29, u29));
     }
     // Each matched pair's residuals, vectors and label: independent of the others, on the
     // pool's threads (both runs are done).
-    let evaluated = map_pairs(&matched, |&(lr, v29, u29)| {
+    let evaluated = map_pairs(n, matched, |(lr, v29, u29)| {
         // Two-sided Rayleigh quotient on eq. 29: λ = −(uᵀ K v)/(uᵀ E v).
-        let (kv, ev) = (pencil.k.mul_complex(v29), pencil.e.mul_complex(v29));
-        let (ukv, uev) = u29.iter().zip(kv.iter().zip(ev.iter())).fold((c64::new(0.0, 0.0), c64::new(0.0, 0.0)), |(a, b), (u, (k, e))| (a + u * k, b + u * e));
-        let rq = -ukv / uev;
+        let rq = -pencil.k.bilinear(&u29, &v29) / pencil.e.bilinear(&u29, &v29);
         // The DAE's products of both vectors, split by the moved entries, serve every
         // candidate λ, the labels and the normalization.
-        let (right_products, left_products) = (DaeProducts::new(dae, pencil.moved(), v29, false), DaeProducts::new(dae, pencil.moved(), u29, true));
+        let (right_products, left_products) = (DaeProducts::new(dae, pencil.moved(), &v29, false), DaeProducts::new(dae, pencil.moved(), &u29, true));
         let (lambda, rr, rl) = [lr, rq]
             .into_iter()
             .filter(|l| l.re.is_finite() && l.im.is_finite())
@@ -182,8 +183,10 @@ pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted:
         if !(rr <= s.tolerance && rl <= s.tolerance) {
             return Err(lambda);
         }
-        let (v, u) = (pencil.to_dae(v29, lambda), pencil.to_dae(u29, lambda));
+        let (v, u) = (pencil.to_dae(&v29, lambda), pencil.to_dae(&u29, lambda));
+        drop((v29, u29));
         let ((fydv, fyv), (ufyd, ufy)) = (right_products.at(lambda), left_products.at(lambda));
+        drop((right_products, left_products));
         let mut vectors = PairVectors { v, u, fydv, fyv, ufyd, ufy };
         let lambda = if lambda.im < 0.0 {
             vectors.map(|x| x.conj());
@@ -221,21 +224,14 @@ fn right_only(dae: &SparseLinearDae, pencil: &Pencil, op: &ShiftInvert, run: Run
     progress(&format!("shift {sigma}: {} operator applications, {} restarts (right run only)", run.applications, run.restarts));
     let (right, all) = lambdas(op, run);
     let radius = if all { f64::INFINITY } else { right.iter().map(|(x, _)| (x - sigma).norm()).fold(0.0, f64::max) };
-    let evaluated = map_pairs(&right, |(lr, v29)| {
-        let products = DaeProducts::new(dae, pencil.moved(), v29, false);
-        let rr = products.residual(*lr);
+    let evaluated = map_pairs(pencil.dim(), right, |(lr, v29)| {
+        let rr = DaeProducts::new(dae, pencil.moved(), &v29, false).residual(lr);
         if !(rr <= s.tolerance) {
-            return Err(*lr);
+            return Err(lr);
         }
-        let (mut v, (mut fydv, mut fyv)) = (pencil.to_dae(v29, *lr), products.at(*lr));
-        let lambda = if lr.im < 0.0 {
-            for x in [&mut v, &mut fydv, &mut fyv] {
-                x.iter_mut().for_each(|e| *e = e.conj());
-            }
-            lr.conj()
-        } else {
-            *lr
-        };
+        let v = pencil.to_dae(&v29, lr);
+        drop(v29);
+        let (v, lambda) = if lr.im < 0.0 { (Col::from_fn(v.nrows(), |i| v[i].conj()), lr.conj()) } else { (v, lr) };
         Ok(Eigenpair::right_only(lambda, v, rr, scales))
     });
     let mut pairs = Vec::new();
@@ -254,16 +250,21 @@ fn right_only(dae: &SparseLinearDae, pencil: &Pencil, op: &ShiftInvert, run: Run
     Ok(WindowResult { shift: sigma, radius, agreed: true, checked: false, clean, pairs, rejected })
 }
 
-/// `f` of every item, in order: on the rayon pool's threads when the vectors are long enough
-/// for the hand-over to pay (from the calling thread outside the pool rayon waits for its
-/// workers, which wait for nothing here; on a worker, the items may be stolen or run on it).
-fn map_pairs<I: Sync, R: Send>(items: &[I], f: impl Fn(&I) -> R + Sync + Send) -> Vec<R> {
+/// Vectors from this length on are long enough for the hand-over to other threads to pay
+/// (measured on the hanging chain: at 1712 equations two threads were slower than one, at
+/// 17012 faster).
+pub(super) const PARALLEL_FROM: usize = 4096;
+
+/// `f` of every item (taken by value, so what it holds is freed as it goes), in order: on
+/// the rayon pool's threads when the vectors (of length `n`) are long enough (from the
+/// calling thread outside the pool rayon waits for its workers, which wait for nothing
+/// here; on a worker, the items may be stolen or run on it).
+fn map_pairs<I: Send, R: Send>(n: usize, items: Vec<I>, f: impl Fn(I) -> R + Sync + Send) -> Vec<R> {
     use rayon::prelude::*;
-    let long = items.len() > 1 && rayon::current_num_threads() > 1;
-    if long {
-        items.par_iter().with_max_len(1).map(f).collect()
+    if items.len() > 1 && n >= PARALLEL_FROM && rayon::current_num_threads() > 1 {
+        items.into_par_iter().with_max_len(1).map(f).collect()
     } else {
-        items.iter().map(f).collect()
+        items.into_iter().map(f).collect()
     }
 }
 
