@@ -14,7 +14,7 @@
 
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, SymbolicLu};
-use faer::sparse::{SparseColMat, Triplet};
+use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use faer::reborrow::ReborrowMut;
 use faer::{c64, Col, ColMut, ColRef, Conj, Mat, MatMut, Par};
 
@@ -54,8 +54,8 @@ impl<'a> ShiftInvert<'a> {
         let n = pencil.dim();
         let singular = || KrylovError::Singular(sigma);
         let (symbolic, factor, scratch) = if sigma.im == 0.0 {
-            let t: Vec<Triplet<usize, usize, f64>> = pencil.k.triplets().map(|(i, j, v)| Triplet::new(i, j, v)).chain(pencil.e.triplets().map(|(i, j, v)| Triplet::new(i, j, sigma.re * v))).collect();
-            let a = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &t).map_err(|_| singular())?;
+            let (col_ptr, row_idx, values) = pencil.k.csc_sum(&pencil.e, |v| v, |v| sigma.re * v, |x, y| x + y);
+            let a = SparseColMat::<usize, f64>::new(SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx), values);
             let symbolic = factorize_symbolic_lu(a.symbolic(), Default::default()).map_err(|_| singular())?;
             let mut numeric = NumericLu::new();
             let mut buf = MemBuffer::try_new(symbolic.factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default())).map_err(|_| singular())?;
@@ -63,9 +63,8 @@ impl<'a> ShiftInvert<'a> {
             let scratch = symbolic.solve_in_place_scratch::<f64>(2, Par::Seq);
             (symbolic, Factor::Real(numeric), scratch)
         } else {
-            let t: Vec<Triplet<usize, usize, c64>> =
-                pencil.k.triplets().map(|(i, j, v)| Triplet::new(i, j, c64::new(v, 0.0))).chain(pencil.e.triplets().map(|(i, j, v)| Triplet::new(i, j, sigma * v))).collect();
-            let a = SparseColMat::<usize, c64>::try_new_from_triplets(n, n, &t).map_err(|_| singular())?;
+            let (col_ptr, row_idx, values) = pencil.k.csc_sum(&pencil.e, |v| c64::new(v, 0.0), |v| sigma * v, |x, y| x + y);
+            let a = SparseColMat::<usize, c64>::new(SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx), values);
             let symbolic = factorize_symbolic_lu(a.symbolic(), Default::default()).map_err(|_| singular())?;
             let mut numeric = NumericLu::new();
             let mut buf = MemBuffer::try_new(symbolic.factorize_numeric_lu_scratch::<c64>(Par::Seq, Default::default())).map_err(|_| singular())?;

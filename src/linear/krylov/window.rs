@@ -173,7 +173,8 @@ pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted:
         let rq = -pencil.k.bilinear(&u29, &v29) / pencil.e.bilinear(&u29, &v29);
         // The DAE's products of both vectors, split by the moved entries, serve every
         // candidate λ, the labels and the normalization.
-        let (right_products, left_products) = (DaeProducts::new(dae, pencil.moved(), &v29, false), DaeProducts::new(dae, pencil.moved(), &u29, true));
+        let norms = (scales.nyd, scales.ny);
+        let (right_products, left_products) = (DaeProducts::new(dae, pencil.moved(), &v29, false, norms), DaeProducts::new(dae, pencil.moved(), &u29, true, norms));
         let (lambda, rr, rl) = [lr, rq]
             .into_iter()
             .filter(|l| l.re.is_finite() && l.im.is_finite())
@@ -225,7 +226,7 @@ fn right_only(dae: &SparseLinearDae, pencil: &Pencil, op: &ShiftInvert, run: Run
     let (right, all) = lambdas(op, run);
     let radius = if all { f64::INFINITY } else { right.iter().map(|(x, _)| (x - sigma).norm()).fold(0.0, f64::max) };
     let evaluated = map_pairs(pencil.dim(), right, |(lr, v29)| {
-        let rr = DaeProducts::new(dae, pencil.moved(), &v29, false).residual(lr);
+        let rr = right_residual(dae, pencil.moved(), &v29, lr, (scales.nyd, scales.ny));
         if !(rr <= s.tolerance) {
             return Err(lr);
         }
@@ -279,10 +280,32 @@ struct DaeProducts {
     norms: (f64, f64),
 }
 
+/// `‖x29‖²` on the unmoved and the moved entries.
+fn split_norms(x29: &Col<c64>, moved: &[bool]) -> (f64, f64) {
+    x29.iter().zip(moved).fold((0.0, 0.0), |(a, b), (x, &m)| if m { (a, b + x.norm_sqr()) } else { (a + x.norm_sqr(), b) })
+}
+
+/// [`DaeProducts::residual`] of the right vector of an eq. 29 vector at λ, row by row in one
+/// pass over the matrices, no product kept (the same sums in the same order; the right run
+/// alone needs nothing else). `norms`: `(‖F_yd‖_F, ‖F_y‖_F)`.
+fn right_residual(dae: &SparseLinearDae, moved: &[bool], x29: &Col<c64>, lambda: c64, norms: (f64, f64)) -> f64 {
+    let x = crate::linear::sparse::contiguous(x29.as_ref());
+    assert!(x.len() == dae.fyd.ncols() && x.len() == dae.fy.ncols() && moved.len() == x.len() && dae.fyd.nrows() == dae.fy.nrows(), "residual: sizes");
+    let norm2 = split_norms(x29, moved);
+    let inv = c64::new(1.0, 0.0) / lambda;
+    let r2 = (0..dae.fyd.nrows())
+        .map(|i| {
+            let ((da, db), (ya, yb)) = (dae.fyd.row_split(i, x, moved), dae.fy.row_split(i, x, moved));
+            (lambda * da + db + ya + yb * inv).norm_sqr()
+        })
+        .sum::<f64>();
+    let nx = (norm2.0 + norm2.1 * inv.norm_sqr()).sqrt();
+    r2.sqrt() / ((lambda.norm() * norms.0 + norms.1) * nx)
+}
+
 impl DaeProducts {
-    fn new(dae: &SparseLinearDae, moved: &[bool], x29: &Col<c64>, transpose: bool) -> Self {
-        let norm2 = x29.iter().zip(moved).fold((0.0, 0.0), |(a, b), (x, &m)| if m { (a, b + x.norm_sqr()) } else { (a + x.norm_sqr(), b) });
-        DaeProducts { fyd: dae.fyd.mul_split(x29, moved, transpose), fy: dae.fy.mul_split(x29, moved, transpose), norm2, norms: (dae.fyd.norm_l2(), dae.fy.norm_l2()) }
+    fn new(dae: &SparseLinearDae, moved: &[bool], x29: &Col<c64>, transpose: bool, norms: (f64, f64)) -> Self {
+        DaeProducts { fyd: dae.fyd.mul_split(x29, moved, transpose), fy: dae.fy.mul_split(x29, moved, transpose), norm2: split_norms(x29, moved), norms }
     }
 
     /// `(F_yd x, F_y x)` at λ.
