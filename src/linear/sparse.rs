@@ -232,6 +232,48 @@ impl SparseMatrix {
         (col_ptr, row_idx, val)
     }
 
+    /// The matrix whose row `i` is row `order[i]` of this one (`order` a permutation).
+    pub fn rows_in_order(&self, order: &[usize]) -> SparseMatrix {
+        assert!(order.len() == self.nrows, "rows_in_order: a row each");
+        let mut start = Vec::with_capacity(self.nrows + 1);
+        let (mut col, mut val) = (Vec::with_capacity(self.val.len()), Vec::with_capacity(self.val.len()));
+        start.push(0);
+        for &r in order {
+            col.extend_from_slice(&self.col[self.start[r]..self.start[r + 1]]);
+            val.extend_from_slice(&self.val[self.start[r]..self.start[r + 1]]);
+            start.push(col.len());
+        }
+        SparseMatrix { nrows: self.nrows, ncols: self.ncols, start, col, val }
+    }
+
+    /// The matrix whose row `i` is column `order[i]` of this one, its entries by increasing
+    /// row of this one: [`Self::mul_into`] with it sums as [`Self::mul_t_into`] does.
+    pub fn transpose_rows_in_order(&self, order: &[usize]) -> SparseMatrix {
+        assert!(order.len() == self.ncols, "transpose_rows_in_order: a column each");
+        let mut place = vec![0usize; self.ncols];
+        for (i, &c) in order.iter().enumerate() {
+            place[c] = i;
+        }
+        let mut start = vec![0usize; self.ncols + 1];
+        for &c in &self.col {
+            start[place[c] + 1] += 1;
+        }
+        for i in 0..self.ncols {
+            start[i + 1] += start[i];
+        }
+        let mut next = start.clone();
+        let (mut col, mut val) = (vec![0usize; self.val.len()], vec![0.0; self.val.len()]);
+        for r in 0..self.nrows {
+            for k in self.start[r]..self.start[r + 1] {
+                let p = next[place[self.col[k]]];
+                next[place[self.col[k]]] += 1;
+                col[p] = r;
+                val[p] = self.val[k];
+            }
+        }
+        SparseMatrix { nrows: self.ncols, ncols: self.nrows, start, col, val }
+    }
+
     /// `uᵀ M v` (no conjugation), without forming `M v`.
     pub fn bilinear(&self, u: &Col<c64>, v: &Col<c64>) -> c64 {
         let (u, v) = (contiguous(u.as_ref()), contiguous(v.as_ref()));
@@ -345,6 +387,27 @@ mod tests {
             assert_eq!(col_ptr, a.symbolic().col_ptr());
             assert_eq!(row_idx, a.symbolic().row_idx());
             assert_eq!(val, a.val());
+        }
+    }
+
+    /// The reordered rows, and the transpose's, multiply as the matrix and its transpose do
+    /// (bit for bit: the same sums in the same order).
+    #[test]
+    fn reordered_rows_multiply_as_the_matrix() {
+        let m = SparseMatrix::from_triplets(4, 3, [(0, 0, 2.0), (0, 2, -1.0), (1, 1, 0.3), (2, 1, 5.0), (3, 2, 4.0), (3, 0, 1.5), (2, 2, 0.7)]).unwrap();
+        let (x3, x4) = ([0.1, -0.7, 1.3], [0.5, 2.0, -1.1, 0.9]);
+        let (mut y, mut yt) = ([0.0; 4], [0.0; 3]);
+        m.mul_into(&x3, &mut y);
+        m.mul_t_into(&x4, &mut yt);
+        let (rows, cols) = ([2, 0, 3, 1], [1, 2, 0]);
+        let (mut p, mut pt) = ([0.0; 4], [0.0; 3]);
+        m.rows_in_order(&rows).mul_into(&x3, &mut p);
+        m.transpose_rows_in_order(&cols).mul_into(&x4, &mut pt);
+        for i in 0..4 {
+            assert_eq!(p[i].to_bits(), y[rows[i]].to_bits());
+        }
+        for i in 0..3 {
+            assert_eq!(pt[i].to_bits(), yt[cols[i]].to_bits());
         }
     }
 }

@@ -13,6 +13,7 @@
 //! at N = 1000).
 
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::sparse::linalg::lu::simplicial::{self, SimplicialLu};
 use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, SymbolicLu};
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use faer::reborrow::ReborrowMut;
@@ -21,10 +22,75 @@ use faer::{c64, Col, ColMut, ColRef, Conj, Mat, MatMut, Par};
 use super::pencil::Pencil;
 use super::KrylovError;
 use crate::linear::sparse::{contiguous, contiguous_mut};
+use crate::linear::SparseMatrix;
 
 enum Factor {
     Real(NumericLu<usize, f64>),
+    /// A real simplicial LU held whole: [`Simplicial`].
+    RealSimplicial(Box<Simplicial>),
     Complex(NumericLu<usize, c64>),
+}
+
+/// faer's simplicial LU `P_r A P_cᵀ = L U` with its permutations in the open, so that an
+/// application of the operator permutes no more than it must: faer's solve gathers the
+/// right-hand side by `P_r` into scratch and copies it back, solves, then does the same by
+/// `P_c⁻¹` (four passes over the vector, a third of the solve at 10⁵ unknowns); here `E`'s
+/// rows are stored in `P_r`'s order (and `Eᵀ`'s in `P_c`'s for the transposed operator), so
+/// the product lands permuted, and one gather writes the result. The same factorization
+/// (faer's own simplicial routine on the same column order), the same sums: the same bits.
+struct Simplicial {
+    lu: SimplicialLu<usize, f64>,
+    row_fwd: Vec<usize>,
+    row_inv: Vec<usize>,
+    col_fwd: Vec<usize>,
+    col_inv: Vec<usize>,
+    /// Row `i`: row `row_fwd[i]` of `E`.
+    e_rows: SparseMatrix,
+    /// Row `i`: column `col_fwd[i]` of `E`.
+    et_rows: SparseMatrix,
+}
+
+impl Simplicial {
+    /// `x ← A⁻¹ x` (or `A⁻ᵀ`) for the columns of `x` (column-major), `t` scratch of the same size.
+    fn solve(&self, mut x: MatMut<'_, f64>, transpose: bool, t: &mut Mat<f64>) {
+        let (first, last) = if transpose { (&self.col_fwd, &self.row_inv) } else { (&self.row_fwd, &self.col_inv) };
+        for c in 0..x.ncols() {
+            for (i, &p) in first.iter().enumerate() {
+                t[(i, c)] = x[(p, c)];
+            }
+        }
+        self.triangular(t.as_mut().submatrix_mut(0, 0, x.nrows(), x.ncols()), transpose);
+        for c in 0..x.ncols() {
+            for (i, &p) in last.iter().enumerate() {
+                x[(i, c)] = t[(p, c)];
+            }
+        }
+    }
+
+    /// `L U` (or `Uᵀ Lᵀ`) solved in place.
+    fn triangular(&self, t: MatMut<'_, f64>, transpose: bool) {
+        use faer::sparse::linalg::triangular_solve as ts;
+        let (l, u) = (self.lu.l_factor_unsorted(), self.lu.u_factor_unsorted());
+        let mut t = t;
+        if transpose {
+            ts::solve_upper_triangular_transpose_in_place(u, Conj::No, t.rb_mut(), Par::Seq);
+            ts::solve_unit_lower_triangular_transpose_in_place(l, Conj::No, t.rb_mut(), Par::Seq);
+        } else {
+            ts::solve_unit_lower_triangular_in_place(l, Conj::No, t.rb_mut(), Par::Seq);
+            ts::solve_upper_triangular_in_place(u, Conj::No, t.rb_mut(), Par::Seq);
+        }
+    }
+
+    /// `out = A⁻¹ E x` (or `A⁻ᵀ Eᵀ x`), `t` scratch of length n.
+    fn apply(&self, x: &[f64], out: &mut [f64], transpose: bool, t: &mut [f64]) {
+        let n = x.len();
+        let (rows, last) = if transpose { (&self.et_rows, &self.row_inv) } else { (&self.e_rows, &self.col_inv) };
+        rows.mul_into(x, t);
+        self.triangular(MatMut::from_column_major_slice_mut(t, n, 1), transpose);
+        for (o, &p) in out.iter_mut().zip(last.iter()) {
+            *o = t[p];
+        }
+    }
 }
 
 /// One factorization of `K + σ E` and the operator it gives.
@@ -42,6 +108,8 @@ pub(super) struct ShiftInvert<'a> {
 pub(super) struct Workspace {
     stack: MemBuffer,
     parts: Mat<f64>,
+    /// Scratch of [`Simplicial`]'s solves (two columns).
+    t: Mat<f64>,
 }
 
 /// Largest relative residual of the test solve that accepts a factorization.
@@ -57,11 +125,26 @@ impl<'a> ShiftInvert<'a> {
             let (col_ptr, row_idx, values) = pencil.k.csc_sum(&pencil.e, |v| v, |v| sigma.re * v, |x, y| x + y);
             let a = SparseColMat::<usize, f64>::new(SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx), values);
             let symbolic = factorize_symbolic_lu(a.symbolic(), Default::default()).map_err(|_| singular())?;
-            let mut numeric = NumericLu::new();
-            let mut buf = MemBuffer::try_new(symbolic.factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default())).map_err(|_| singular())?;
-            symbolic.factorize_numeric_lu(&mut numeric, a.as_ref(), Par::Seq, MemStack::new(&mut buf), Default::default()).map_err(|_| singular())?;
+            let numeric_scratch = symbolic.factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default());
             let scratch = symbolic.solve_in_place_scratch::<f64>(2, Par::Seq);
-            (symbolic, Factor::Real(numeric), scratch)
+            // faer chose its simplicial factorization when its numeric scratch is the
+            // simplicial one (the supernodal one adds arrays of A's non-zeros): then the
+            // same routine is called here, keeping the factors and permutations at hand.
+            if numeric_scratch == simplicial::factorize_simplicial_numeric_lu_scratch::<usize, f64>(n, n) {
+                let mut buf = MemBuffer::try_new(numeric_scratch).map_err(|_| singular())?;
+                let (mut row_fwd, mut row_inv) = (vec![0usize; n], vec![0usize; n]);
+                let mut lu = SimplicialLu::new();
+                simplicial::factorize_simplicial_numeric_lu(&mut row_fwd, &mut row_inv, &mut lu, a.as_ref(), symbolic.col_perm(), MemStack::new(&mut buf)).map_err(|_| singular())?;
+                let (col_fwd, col_inv) = symbolic.col_perm().arrays();
+                let (col_fwd, col_inv) = (col_fwd.to_vec(), col_inv.to_vec());
+                let (e_rows, et_rows) = (pencil.e.rows_in_order(&row_fwd), pencil.e.transpose_rows_in_order(&col_fwd));
+                (symbolic, Factor::RealSimplicial(Box::new(Simplicial { lu, row_fwd, row_inv, col_fwd, col_inv, e_rows, et_rows })), scratch)
+            } else {
+                let mut numeric = NumericLu::new();
+                let mut buf = MemBuffer::try_new(numeric_scratch).map_err(|_| singular())?;
+                symbolic.factorize_numeric_lu(&mut numeric, a.as_ref(), Par::Seq, MemStack::new(&mut buf), Default::default()).map_err(|_| singular())?;
+                (symbolic, Factor::Real(numeric), scratch)
+            }
         } else {
             let (col_ptr, row_idx, values) = pencil.k.csc_sum(&pencil.e, |v| c64::new(v, 0.0), |v| sigma * v, |x, y| x + y);
             let a = SparseColMat::<usize, c64>::new(SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx), values);
@@ -89,8 +172,11 @@ impl<'a> ShiftInvert<'a> {
 
     /// A workspace for [`Self::apply_into`] and [`Self::solve_in_place`].
     pub fn workspace(&self) -> Workspace {
-        let parts = if matches!(self.factor, Factor::Real(_)) { Mat::zeros(self.pencil.dim(), 2) } else { Mat::zeros(0, 2) };
-        Workspace { stack: MemBuffer::new(self.scratch), parts }
+        let n = self.pencil.dim();
+        let real = !matches!(self.factor, Factor::Complex(_));
+        let parts = if real { Mat::zeros(n, 2) } else { Mat::zeros(0, 2) };
+        let t = if matches!(self.factor, Factor::RealSimplicial(_)) { Mat::zeros(n, 2) } else { Mat::zeros(0, 2) };
+        Workspace { stack: MemBuffer::new(self.scratch), parts, t }
     }
 
     /// `(K + σ E) x` (or `(K + σ E)ᵀ x`).
@@ -108,6 +194,9 @@ impl<'a> ShiftInvert<'a> {
     /// `out = T x = (K + σ E)⁻¹ E x`, or the `Tᵀ`-side `(K + σ E)⁻ᵀ Eᵀ x` for the left
     /// vectors; a real `x` needs a real shift.
     pub fn apply_into<T: Entry>(&self, x: ColRef<'_, T>, mut out: ColMut<'_, T>, transpose: bool, ws: &mut Workspace) {
+        if T::apply_fused(self, x, out.rb_mut(), transpose, ws) {
+            return;
+        }
         let (x, o) = (contiguous(x), contiguous_mut(out.rb_mut()));
         if transpose {
             self.pencil.e.mul_t_into(x, o);
@@ -126,6 +215,11 @@ impl<'a> ShiftInvert<'a> {
 /// The entries the operator applies to: `f64` (a real shift only) or `c64`.
 pub(super) trait Entry: crate::linear::SparseScalar {
     fn solve_in_place(op: &ShiftInvert, x: ColMut<'_, Self>, transpose: bool, ws: &mut Workspace);
+    /// [`ShiftInvert::apply_into`] by [`Simplicial::apply`] when the factorization is one;
+    /// `false` (nothing done) otherwise.
+    fn apply_fused(_: &ShiftInvert, _: ColRef<'_, Self>, _: ColMut<'_, Self>, _: bool, _: &mut Workspace) -> bool {
+        false
+    }
 }
 
 /// `rhs ← A⁻¹ rhs` (or `A⁻ᵀ`) by faer's LU, `rhs` an `n x k` column-major block.
@@ -140,9 +234,19 @@ fn lu_solve<T: faer::traits::ComplexField>(symbolic: &SymbolicLu<usize>, numeric
 
 impl Entry for f64 {
     fn solve_in_place(op: &ShiftInvert, x: ColMut<'_, f64>, transpose: bool, ws: &mut Workspace) {
-        let Factor::Real(numeric) = &op.factor else { unreachable!("a real vector is solved with the factorization of a real shift") };
         let n = x.nrows();
-        lu_solve(&op.symbolic, numeric, MatMut::from_column_major_slice_mut(contiguous_mut(x), n, 1), transpose, &mut ws.stack);
+        let rhs = MatMut::from_column_major_slice_mut(contiguous_mut(x), n, 1);
+        match &op.factor {
+            Factor::Real(numeric) => lu_solve(&op.symbolic, numeric, rhs, transpose, &mut ws.stack),
+            Factor::RealSimplicial(f) => f.solve(rhs, transpose, &mut ws.t),
+            Factor::Complex(_) => unreachable!("a real vector is solved with the factorization of a real shift"),
+        }
+    }
+    fn apply_fused(op: &ShiftInvert, x: ColRef<'_, f64>, out: ColMut<'_, f64>, transpose: bool, ws: &mut Workspace) -> bool {
+        let Factor::RealSimplicial(f) = &op.factor else { return false };
+        let t = contiguous_mut(ws.t.col_mut(0));
+        f.apply(contiguous(x), contiguous_mut(out), transpose, t);
+        true
     }
 }
 
@@ -150,13 +254,17 @@ impl Entry for c64 {
     fn solve_in_place(op: &ShiftInvert, mut x: ColMut<'_, c64>, transpose: bool, ws: &mut Workspace) {
         let n = x.nrows();
         match &op.factor {
-            Factor::Real(numeric) => {
+            Factor::Real(_) | Factor::RealSimplicial(_) => {
                 let parts = &mut ws.parts;
                 for i in 0..n {
                     parts[(i, 0)] = x[i].re;
                     parts[(i, 1)] = x[i].im;
                 }
-                lu_solve(&op.symbolic, numeric, parts.as_mut(), transpose, &mut ws.stack);
+                match &op.factor {
+                    Factor::Real(numeric) => lu_solve(&op.symbolic, numeric, parts.as_mut(), transpose, &mut ws.stack),
+                    Factor::RealSimplicial(f) => f.solve(parts.as_mut(), transpose, &mut ws.t),
+                    Factor::Complex(_) => unreachable!("matched above"),
+                }
                 for i in 0..n {
                     x[i] = c64::new(parts[(i, 0)], parts[(i, 1)]);
                 }
