@@ -85,7 +85,14 @@ pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted:
     // 6000): ARPACK's default 2 nev + 1 (97 columns) takes 125 applications and 1 restart
     // per run, 6878 basis columns orthogonalized against; 2 nev + 20 (68 columns) 121
     // applications, 5 restarts, 5521 columns: the Gram–Schmidt sweeps, which are memory
-    // bound at 10⁵ unknowns, read 20 % less (N = 6000: 0.8 of the wall time).
+    // bound at 10⁵ unknowns, read 20 % less (N = 6000: 0.8 of the wall time). Re-measured
+    // with the delayed reorthogonalization (2026-12-02, N = 1000, columns swept per run):
+    // 24 wanted (both runs) 2 nev + 10 / 20 / 30 / 40: 133 / 121 / 113 / 131 applications,
+    // 12 / 5 / 2 / 2 restarts, 5577 / 5403 / 5227 / 6928 columns; 20 wanted (the right run
+    // alone) 2 nev + 20 / 30: 103 / 105 applications, 4 / 2 restarts, 3950 / 4383 columns;
+    // 5 and 10 modes favour 2 nev + 20 over 30 as well. Kept at 20 more. Keeping fewer
+    // Ritz vectors at a restart (the wanted ones and a third or a quarter of the rest, or
+    // none of the rest) took more applications and columns.
     let real_basis = (2 * wanted + 20).min(n);
     // The right run alone has both cores: its sweeps over the basis go on two threads.
     let parallel = !s.left_vectors && n >= PARALLEL_FROM && rayon::current_num_threads() > 1;
