@@ -40,15 +40,9 @@ impl Sweeper {
         (n / 2) & !7
     }
 
-    /// Both halves' work, on two threads when `parallel`. From outside the pool rayon's
-    /// `join` hands both to its workers and waits for them (no worker waits on this thread);
-    /// on a worker the second half may be stolen or run here.
+    /// Both halves' work, on two threads when `parallel` ([`both`]).
     fn both<A: Send, B: Send>(self, a: impl FnOnce() -> A + Send, b: impl FnOnce() -> B + Send) -> (A, B) {
-        if self.parallel {
-            rayon::join(a, b)
-        } else {
-            (a(), b())
-        }
+        both(self.parallel, a, b)
     }
 
     /// `out = Vᵀ w` (`cols` the columns of `V`); returns `wᵀw`.
@@ -184,6 +178,26 @@ impl Sweeper {
         }
         Some(left2.sqrt())
     }
+}
+
+/// `(a(), b())`, with `b` on another thread of the rayon pool when `parallel`: the calling
+/// thread runs `a` itself and then waits for `b` (`rayon::in_place_scope`). Outside the pool
+/// that wait blocks this thread only, and no worker waits on it; on a worker (a sweep's
+/// point) the wait runs other work of the pool meanwhile, so no worker blocks (the
+/// deadlock of `tests/sparse_eigen.rs`' rayon-workers test cannot form). `rayon::join`
+/// from outside the pool hands both halves to the workers, and when the second worker is
+/// asleep the first one often runs both (measured: one worker had 2.6 times the other's
+/// samples).
+pub(super) fn both<A: Send, B: Send>(parallel: bool, a: impl FnOnce() -> A + Send, b: impl FnOnce() -> B + Send) -> (A, B) {
+    if !parallel {
+        return (a(), b());
+    }
+    let mut rb = None;
+    let ra = rayon::in_place_scope(|s| {
+        s.spawn(|_| rb = Some(b()));
+        a()
+    });
+    (ra, rb.unwrap_or_else(|| unreachable!("the scope waits for its spawned half")))
 }
 
 /// The kernels this processor runs. Each takes a block of rows `r0..r0 + len` of the

@@ -16,7 +16,7 @@
 use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::{c64, Col, ColMut, ColRef, Mat, MatRef};
 
-use super::gram_schmidt::Sweeper;
+use super::gram_schmidt::{both, Sweeper};
 use super::schur::{schur, sort_schur};
 use crate::linear::sparse::{contiguous, contiguous_mut};
 use super::KrylovError;
@@ -332,12 +332,7 @@ fn restart_basis<T: Scalar>(v: &mut Mat<T>, size: usize, q: &Mat<T>, parallel: b
         }
     };
     let (top, bottom) = v.as_mut().split_at_row_mut(Sweeper::mid(n));
-    if parallel {
-        rayon::join(|| half(top), || half(bottom));
-    } else {
-        half(top);
-        half(bottom);
-    }
+    both(parallel, || half(top), || half(bottom));
 }
 
 /// Eigenvector `y` of the upper triangular `t` for its diagonal entry `i` (`y[i] = 1`).
@@ -396,14 +391,9 @@ fn ritz_vectors<T: Scalar>(v: &Mat<T>, size: usize, y: &Mat<c64>, g: &[c64], par
         }
     };
     let (mut top, mut bottom): (Vec<&mut [c64]>, Vec<&mut [c64]>) = out.iter_mut().map(|x| contiguous_mut(x.as_mut()).split_at_mut(mid)).unzip();
-    let (a, b) = if parallel { rayon::join(|| fill(0, &mut top), || fill(mid, &mut bottom)) } else { (fill(0, &mut top), fill(mid, &mut bottom)) };
+    let (a, b) = both(parallel, || fill(0, &mut top), || fill(mid, &mut bottom));
     let inv: Vec<f64> = a.iter().zip(&b).map(|(x, y)| 1.0 / (x + y).sqrt()).collect();
-    if parallel {
-        rayon::join(|| scale(&mut top, &inv), || scale(&mut bottom, &inv));
-    } else {
-        scale(&mut top, &inv);
-        scale(&mut bottom, &inv);
-    }
+    both(parallel, || scale(&mut top, &inv), || scale(&mut bottom, &inv));
     out
 }
 
