@@ -13,17 +13,23 @@ memory = the process's maximum resident set):
   no adjoint run, so the count is not certified): the work scipy does;
 - romdyn, right + left: the same with right and left vectors (true residuals of both
   <= 1e-10, the count checked by the right and the adjoint Krylov runs: certified);
-- scipy: SuperLU of K + sigma E (sigma = 0) and scipy.sparse.linalg.eigs on the operator
-  T = (K + sigma E)^-1 E, which='LM', tol=1e-12 (romdyn's Krylov tolerance), k = 2 COUNT
-  (the chain's modes are complex pairs: COUNT modes are 2 COUNT eigenvalues). This is
-  eigs(sigma=...) mode 3 with bmat='I'; eigs' own sigma=..., M=E route would use E as an
-  inner product (bmat='G'), which needs a symmetric semi-definite E, and E is neither.
-  lambda = sigma - 1/theta. Right vectors only.
+- scipy, right: SuperLU of K + sigma E (sigma = 0) and scipy.sparse.linalg.eigs on the
+  operator T = (K + sigma E)^-1 E, which='LM', tol=1e-12 (romdyn's Krylov tolerance),
+  k = 2 COUNT (the chain's modes are complex pairs: COUNT modes are 2 COUNT eigenvalues).
+  This is eigs(sigma=...) mode 3 with bmat='I'; eigs' own sigma=..., M=E route would use E
+  as an inner product (bmat='G'), which needs a symmetric semi-definite E, and E is
+  neither. lambda = sigma - 1/theta. Right vectors only;
+- scipy, right + left: the same, then eigs again on the transposed pencil's operator
+  (K + sigma E)^-T E^T (SuperLU's transposed solves of the same factorization), whose
+  eigenvectors are the left vectors: the work romdyn's right + left column does (romdyn
+  also checks each pair's residuals and that the two runs agree; scipy does not).
 
-The COUNT lowest modes (Im lambda >= 0, by |lambda|) of all three must agree to 1e-9
-relative. The ratios are romdyn's time over scipy's: right only (the same work) and
-right + left.
-Timings: the solve only (reading the files excluded), fastest of --repeat runs.
+The COUNT lowest modes (Im lambda >= 0, by |lambda|) of all must agree to 1e-9 relative
+(scipy's left run's eigenvalues too). The ratios are romdyn's time over scipy's on the same
+work: right only over scipy right, right + left over scipy right + left.
+Timings: the solve only (reading the files excluded), fastest of --repeat runs; the
+header line gives the load average, worth reading first: other work on the machine slows
+scipy's threaded BLAS more than romdyn.
 
     python3 scripts/bench_eigen.py                 # N = 100, 1000, 6000
     python3 scripts/bench_eigen.py --sizes 100 --repeat 5
@@ -52,34 +58,46 @@ def timed(cmd):
 
 
 def parse(out):
-    """(seconds, [complex eigenvalues]) from a worker's output."""
+    """(seconds, [complex eigenvalues], [left run's eigenvalues]) from a worker's output."""
     lines = out.strip().splitlines()
     t = float(re.match(r"time ([0-9.eE+-]+) s", lines[0]).group(1))
-    lam = [complex(float(a), float(b)) for a, b in (l.split() for l in lines[1:])]
-    return t, lam
+    rest = lines[1:]
+    cut = rest.index("left") if "left" in rest else len(rest)
+    value = lambda ls: [complex(float(a), float(b)) for a, b in (l.split() for l in ls)]
+    return t, value(rest[:cut]), value(rest[cut + 1:])
 
 
-def scipy_worker(directory, count, repeat):
+def scipy_worker(directory, count, repeat, left):
     import numpy as np
     from scipy.io import mmread
     from scipy.sparse.linalg import LinearOperator, eigs, splu
 
     e = mmread(os.path.join(directory, "E.mtx")).tocsr()
     k = mmread(os.path.join(directory, "K.mtx")).tocsr()
+    et = e.transpose().tocsr()
     n = e.shape[0]
     sigma = 0.0
-    best, lam = float("inf"), None
+    best, lam, lam_left = float("inf"), None, None
     for _ in range(repeat):
         start = time.perf_counter()
         lu = splu((k + sigma * e).tocsc())
         op = LinearOperator((n, n), matvec=lambda x: lu.solve(e @ x), dtype=float)
-        # Right vectors, as the docstring says (romdyn returns right and left vectors).
+        # Right vectors, as the docstring says.
         theta, _vectors = eigs(op, k=2 * count, which="LM", tol=1e-12, return_eigenvectors=True)
         lam = sigma - 1.0 / theta
+        if left:
+            # Left vectors: the transposed pencil's operator, the same factorization.
+            op_t = LinearOperator((n, n), matvec=lambda x: lu.solve(et @ x, trans="T"), dtype=float)
+            theta_t, _left_vectors = eigs(op_t, k=2 * count, which="LM", tol=1e-12, return_eigenvectors=True)
+            lam_left = sigma - 1.0 / theta_t
         best = min(best, time.perf_counter() - start)
     print(f"time {best:.6f} s")
     for x in lam[lam.imag >= 0]:
         print(f"{x.real:.17e} {x.imag:.17e}")
+    if left:
+        print("left")
+        for x in lam_left[lam_left.imag >= 0]:
+            print(f"{x.real:.17e} {x.imag:.17e}")
 
 
 def lowest(lam, count):
@@ -93,38 +111,40 @@ def main():
     ap.add_argument("--repeat", type=int, default=3, help="runs per solver, fastest kept")
     ap.add_argument("--workdir", default="/tmp/romdyn_bench_eigen", help="where the .mtx files go")
     ap.add_argument("--no-build", action="store_true", help="use the example binary as built")
-    ap.add_argument("--scipy-worker", nargs=3, metavar=("DIR", "COUNT", "REPEAT"), help=argparse.SUPPRESS)
+    ap.add_argument("--scipy-worker", nargs=4, metavar=("DIR", "COUNT", "REPEAT", "LEFT"), help=argparse.SUPPRESS)
     a = ap.parse_args()
     if a.scipy_worker:
-        scipy_worker(a.scipy_worker[0], int(a.scipy_worker[1]), int(a.scipy_worker[2]))
+        scipy_worker(a.scipy_worker[0], int(a.scipy_worker[1]), int(a.scipy_worker[2]), a.scipy_worker[3] == "left")
         return
     if not a.no_build:
         subprocess.run(["cargo", "build", "--release", "--example", "sparse_pencil"], cwd=ROOT, check=True)
     print(f"# {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC, load average {os.getloadavg()[0]:.2f}, {os.cpu_count()} cores")
     print(f"# {a.count} lowest modes, fastest of {a.repeat}; memory: peak resident set of the process")
-    print(f"{'N':>6} {'equations':>9} | {'right [s]':>10} {'MB':>6} | {'r+l [s]':>10} {'MB':>6} | {'scipy [s]':>10} {'MB':>6} | {'right/scipy':>11} {'r+l/scipy':>9} | max rel. diff")
+    print(f"{'N':>6} {'equations':>9} | {'right [s]':>10} {'MB':>6} | {'r+l [s]':>10} {'MB':>6} | {'scipy [s]':>10} {'MB':>6} | {'sp r+l [s]':>10} {'MB':>6} | {'right/scipy':>11} {'r+l/sp r+l':>10} | max rel. diff")
     failed = False
     for n in a.sizes:
         d = Path(a.workdir) / f"chain{n}"
         if not (d / "K.mtx").exists():
             subprocess.run([EXE, "export", str(n), d], check=True, capture_output=True)
         out, mem_o = timed([EXE, "solve", d, str(a.count), str(a.repeat), "--right-only"])
-        t_o, lam_o = parse(out)
+        t_o, lam_o, _ = parse(out)
         out, mem_r = timed([EXE, "solve", d, str(a.count), str(a.repeat)])
-        t_r, lam_r = parse(out)
+        t_r, lam_r, _ = parse(out)
         if "certified true" not in out.splitlines()[0]:
             print(f"romdyn's result for N = {n} is not certified: {out.splitlines()[0]}")
             failed = True
-        out, mem_s = timed([sys.executable, __file__, "--scipy-worker", str(d), str(a.count), str(a.repeat)])
-        t_s, lam_s = parse(out)
-        o, r, s = lowest(lam_o, a.count), lowest(lam_r, a.count), lowest(lam_s, a.count)
-        if min(len(o), len(r), len(s)) < a.count:
-            print(f"N = {n}: romdyn found {len(o)} (right only), {len(r)} (right + left), scipy {len(s)} of {a.count} modes")
+        out, mem_s = timed([sys.executable, __file__, "--scipy-worker", str(d), str(a.count), str(a.repeat), "right"])
+        t_s, lam_s, _ = parse(out)
+        out, mem_sl = timed([sys.executable, __file__, "--scipy-worker", str(d), str(a.count), str(a.repeat), "left"])
+        t_sl, lam_sl, lam_sl_left = parse(out)
+        o, r, s, sl, sll = (lowest(x, a.count) for x in (lam_o, lam_r, lam_s, lam_sl, lam_sl_left))
+        if min(len(o), len(r), len(s), len(sl), len(sll)) < a.count:
+            print(f"N = {n}: romdyn found {len(o)} (right only), {len(r)} (right + left), scipy {len(s)}, {len(sl)} and {len(sll)} (right + left) of {a.count} modes")
             failed = True
             continue
-        diff = max(abs(x - y) / abs(y) for x, y in [*zip(r, s), *zip(o, s)])
+        diff = max(abs(x - y) / abs(y) for x, y in [*zip(r, s), *zip(o, s), *zip(sl, s), *zip(sll, s)])
         failed |= diff > 1e-9
-        print(f"{n:>6} {17 * n + 12:>9} | {t_o:>10.4f} {mem_o:>6.0f} | {t_r:>10.4f} {mem_r:>6.0f} | {t_s:>10.4f} {mem_s:>6.0f} | {t_o / t_s:>11.2f} {t_r / t_s:>9.2f} | {diff:.1e}")
+        print(f"{n:>6} {17 * n + 12:>9} | {t_o:>10.4f} {mem_o:>6.0f} | {t_r:>10.4f} {mem_r:>6.0f} | {t_s:>10.4f} {mem_s:>6.0f} | {t_sl:>10.4f} {mem_sl:>6.0f} | {t_o / t_s:>11.2f} {t_r / t_sl:>10.2f} | {diff:.1e}")
     sys.exit(1 if failed else 0)
 
 

@@ -292,3 +292,36 @@ fn sparse_eigenanalyses_on_every_rayon_worker_at_once_finish() {
     done.store(true, Ordering::SeqCst);
     assert!(counts.iter().all(|&c| c == counts[0] && c >= 4), "{counts:?}");
 }
+
+/// The same with right vectors only on a model large enough (5112 equations, from
+/// `PARALLEL_FROM` = 4096 on) for the right run to split its sweeps, Ritz vectors and
+/// restarts over two threads of the pool (`rayon::in_place_scope` from a worker: the
+/// waiting worker runs other work meanwhile): every point finishes, with the same modes.
+#[test]
+fn right_only_eigenanalyses_with_split_sweeps_on_every_rayon_worker_at_once_finish() {
+    use rayon::prelude::*;
+    use std::sync::atomic::{AtomicBool, Ordering};
+    use std::sync::Arc;
+    let (_, sparse) = models(&hanging_chain(300, ConstraintForm::Scaled));
+    assert!(sparse.dim() >= 4096);
+    let done = Arc::new(AtomicBool::new(false));
+    let watch = done.clone();
+    std::thread::spawn(move || {
+        for _ in 0..300 {
+            std::thread::sleep(std::time::Duration::from_secs(1));
+            if watch.load(Ordering::SeqCst) {
+                return;
+            }
+        }
+        eprintln!("right-only sparse eigenanalyses on the rayon workers did not finish in 300 s (deadlock)");
+        std::process::abort();
+    });
+    let settings = SparseEigenSettings { left_vectors: false, ..Default::default() };
+    let alone = sparse_modes(&sparse, ModeTarget::Lowest(4), &settings).unwrap();
+    let jobs = 2 * rayon::current_num_threads().max(2);
+    let results: Vec<Vec<c64>> = (0..jobs).into_par_iter().map(|_| sparse_modes(&sparse, ModeTarget::Lowest(4), &settings).unwrap().modal.modes.iter().map(|m| m.lambda).collect()).collect();
+    done.store(true, Ordering::SeqCst);
+    let expected: Vec<c64> = alone.modal.modes.iter().map(|m| m.lambda).collect();
+    assert!(expected.len() >= 8, "{expected:?}");
+    assert!(results.iter().all(|r| *r == expected), "the same modes on every worker as alone");
+}

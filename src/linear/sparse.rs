@@ -151,6 +151,139 @@ impl SparseMatrix {
         (a, b)
     }
 
+    /// Row `i` of `M v_a` and of `M v_b` for `v = v_a + v_b`, `v_b` the entries of `v` where
+    /// `split` is true (the sums of [`Self::mul_split`] without the transpose, in its order).
+    #[inline]
+    pub fn row_split(&self, i: usize, v: &[c64], split: &[bool]) -> (c64, c64) {
+        let (mut a, mut b) = (c64::new(0.0, 0.0), c64::new(0.0, 0.0));
+        for k in self.start[i]..self.start[i + 1] {
+            let j = self.col[k];
+            if split[j] {
+                b += v[j] * self.val[k];
+            } else {
+                a += v[j] * self.val[k];
+            }
+        }
+        (a, b)
+    }
+
+    /// `a(self) + b(other)` entrywise, in faer's compressed-column layout: column pointers,
+    /// row indices (ascending in each column) and values, on the union of the two patterns
+    /// with explicit zeros kept and the entries present in both combined by
+    /// `add(a(self), b(other))`: what faer's `try_new_from_triplets` makes of the triplets
+    /// of `self` then `other` (each position has at most one term from each, so the sum is
+    /// the same either way), by two counting passes instead of a sort.
+    pub fn csc_sum<T: Copy>(&self, other: &SparseMatrix, a: impl Fn(f64) -> T, b: impl Fn(f64) -> T, add: impl Fn(T, T) -> T) -> (Vec<usize>, Vec<usize>, Vec<T>) {
+        assert!(self.nrows == other.nrows && self.ncols == other.ncols, "csc_sum: sizes");
+        let (m, n) = (self.nrows, self.ncols);
+        // Pass 1: entries per column of the union (a column seen in row i is marked i + 1).
+        let mut mark = vec![0usize; n];
+        let mut count = vec![0usize; n + 1];
+        for i in 0..m {
+            for mat in [self, other] {
+                for &j in &mat.col[mat.start[i]..mat.start[i + 1]] {
+                    if mark[j] != i + 1 {
+                        mark[j] = i + 1;
+                        count[j + 1] += 1;
+                    }
+                }
+            }
+        }
+        for j in 0..n {
+            count[j + 1] += count[j];
+        }
+        let col_ptr = count.clone();
+        let nnz = col_ptr[n];
+        // Pass 2: rows in order, so each column's row indices come ascending.
+        let (mut row_idx, mut val): (Vec<usize>, Vec<Option<T>>) = (vec![0; nnz], vec![None; nnz]);
+        let mut next = count;
+        let mut slot = vec![usize::MAX; n];
+        mark.fill(0);
+        for i in 0..m {
+            for k in self.start[i]..self.start[i + 1] {
+                let j = self.col[k];
+                let p = next[j];
+                next[j] += 1;
+                row_idx[p] = i;
+                val[p] = Some(a(self.val[k]));
+                mark[j] = i + 1;
+                slot[j] = p;
+            }
+            for k in other.start[i]..other.start[i + 1] {
+                let j = other.col[k];
+                let x = b(other.val[k]);
+                if mark[j] == i + 1 {
+                    let p = slot[j];
+                    val[p] = Some(match val[p] {
+                        Some(y) => add(y, x),
+                        None => x,
+                    });
+                } else {
+                    let p = next[j];
+                    next[j] += 1;
+                    row_idx[p] = i;
+                    val[p] = Some(x);
+                    mark[j] = i + 1;
+                    slot[j] = p;
+                }
+            }
+        }
+        let val = val.into_iter().map(|x| x.unwrap_or_else(|| unreachable!("every counted place is filled"))).collect();
+        (col_ptr, row_idx, val)
+    }
+
+    /// The matrix whose row `i` is row `order[i]` of this one (`order` a permutation).
+    pub fn rows_in_order(&self, order: &[usize]) -> SparseMatrix {
+        assert!(order.len() == self.nrows, "rows_in_order: a row each");
+        let mut start = Vec::with_capacity(self.nrows + 1);
+        let (mut col, mut val) = (Vec::with_capacity(self.val.len()), Vec::with_capacity(self.val.len()));
+        start.push(0);
+        for &r in order {
+            col.extend_from_slice(&self.col[self.start[r]..self.start[r + 1]]);
+            val.extend_from_slice(&self.val[self.start[r]..self.start[r + 1]]);
+            start.push(col.len());
+        }
+        SparseMatrix { nrows: self.nrows, ncols: self.ncols, start, col, val }
+    }
+
+    /// The matrix whose row `i` is column `order[i]` of this one, its entries by increasing
+    /// row of this one: [`Self::mul_into`] with it sums as [`Self::mul_t_into`] does.
+    pub fn transpose_rows_in_order(&self, order: &[usize]) -> SparseMatrix {
+        assert!(order.len() == self.ncols, "transpose_rows_in_order: a column each");
+        let mut place = vec![0usize; self.ncols];
+        for (i, &c) in order.iter().enumerate() {
+            place[c] = i;
+        }
+        let mut start = vec![0usize; self.ncols + 1];
+        for &c in &self.col {
+            start[place[c] + 1] += 1;
+        }
+        for i in 0..self.ncols {
+            start[i + 1] += start[i];
+        }
+        let mut next = start.clone();
+        let (mut col, mut val) = (vec![0usize; self.val.len()], vec![0.0; self.val.len()]);
+        for r in 0..self.nrows {
+            for k in self.start[r]..self.start[r + 1] {
+                let p = next[place[self.col[k]]];
+                next[place[self.col[k]]] += 1;
+                col[p] = r;
+                val[p] = self.val[k];
+            }
+        }
+        SparseMatrix { nrows: self.ncols, ncols: self.nrows, start, col, val }
+    }
+
+    /// `uᵀ M v` (no conjugation), without forming `M v`.
+    pub fn bilinear(&self, u: &Col<c64>, v: &Col<c64>) -> c64 {
+        let (u, v) = (contiguous(u.as_ref()), contiguous(v.as_ref()));
+        assert!(u.len() == self.nrows && v.len() == self.ncols, "uᵀ M v: sizes");
+        (0..self.nrows).fold(c64::new(0.0, 0.0), |acc, i| {
+            let mv = (self.start[i]..self.start[i + 1]).fold(c64::new(0.0, 0.0), |s, k| s + v[self.col[k]] * self.val[k]);
+            acc + u[i] * mv
+        })
+    }
+
     /// `M v`.
     pub fn mul_complex(&self, v: &Col<c64>) -> Col<c64> {
         self.mul_col(v, false)
@@ -231,5 +364,50 @@ impl SparseMatrix {
             }
         }
         m
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use faer::sparse::{SparseColMat, Triplet};
+
+    /// `csc_sum` is what faer's `try_new_from_triplets` makes of the triplets of both
+    /// matrices (independent code): same column pointers, row indices and values, with a
+    /// position in both, positions in one only, an explicit zero from a zero factor and an
+    /// empty row and column.
+    #[test]
+    fn csc_sum_matches_faers_triplets() {
+        let k = SparseMatrix::from_triplets(4, 4, [(0, 0, 2.0), (0, 3, -1.0), (2, 1, 5.0), (3, 3, 4.0), (3, 0, 1.5)]).unwrap();
+        let e = SparseMatrix::from_triplets(4, 4, [(0, 0, 0.5), (2, 2, 3.0), (3, 0, -2.0), (1, 3, 7.0)]).unwrap();
+        for sigma in [0.0, -0.25] {
+            let (col_ptr, row_idx, val) = k.csc_sum(&e, |v| v, |v| sigma * v, |x, y| x + y);
+            let t: Vec<Triplet<usize, usize, f64>> = k.triplets().map(|(i, j, v)| Triplet::new(i, j, v)).chain(e.triplets().map(|(i, j, v)| Triplet::new(i, j, sigma * v))).collect();
+            let a = SparseColMat::<usize, f64>::try_new_from_triplets(4, 4, &t).unwrap();
+            assert_eq!(col_ptr, a.symbolic().col_ptr());
+            assert_eq!(row_idx, a.symbolic().row_idx());
+            assert_eq!(val, a.val());
+        }
+    }
+
+    /// The reordered rows, and the transpose's, multiply as the matrix and its transpose do
+    /// (bit for bit: the same sums in the same order).
+    #[test]
+    fn reordered_rows_multiply_as_the_matrix() {
+        let m = SparseMatrix::from_triplets(4, 3, [(0, 0, 2.0), (0, 2, -1.0), (1, 1, 0.3), (2, 1, 5.0), (3, 2, 4.0), (3, 0, 1.5), (2, 2, 0.7)]).unwrap();
+        let (x3, x4) = ([0.1, -0.7, 1.3], [0.5, 2.0, -1.1, 0.9]);
+        let (mut y, mut yt) = ([0.0; 4], [0.0; 3]);
+        m.mul_into(&x3, &mut y);
+        m.mul_t_into(&x4, &mut yt);
+        let (rows, cols) = ([2, 0, 3, 1], [1, 2, 0]);
+        let (mut p, mut pt) = ([0.0; 4], [0.0; 3]);
+        m.rows_in_order(&rows).mul_into(&x3, &mut p);
+        m.transpose_rows_in_order(&cols).mul_into(&x4, &mut pt);
+        for i in 0..4 {
+            assert_eq!(p[i].to_bits(), y[rows[i]].to_bits());
+        }
+        for i in 0..3 {
+            assert_eq!(pt[i].to_bits(), yt[cols[i]].to_bits());
+        }
     }
 }

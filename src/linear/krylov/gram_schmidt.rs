@@ -12,55 +12,196 @@
 //! load of `w` when projecting, four columns per load and store of `w` when subtracting), plain loops
 //! otherwise.
 
-/// Rows per block of the fused sweep: 512 rows of a 97-column basis are 388 KiB (the
-/// second-level cache holds 1 MiB here).
+/// Rows per block of the fused sweeps: 512 rows of a 97-column basis are 388 KiB (the
+/// second-level cache holds 2 MiB here), the blocks of the one or two vectors 4 KiB each.
 const ROWS: usize = 512;
-/// Rows per block of the single passes (the block of `w`, 32 KiB, stays in the cache while
-/// the columns stream past it).
-const LONG_ROWS: usize = 4096;
-/// `w` with its components along the orthonormal columns `cols` removed; the coefficients
-/// removed are written to `h`, `c` is scratch of the same length; returns the norm left.
-/// A second pass only when the first removed more than `1 − 1/√2` of `w` (Kahan–Parlett
-/// "twice is enough"), as the general code in `iteration.rs` does. `None` (and `w`, `h`
-/// untouched) when `‖w‖²` overflows: the caller then takes faer's scaled norms.
-pub(super) fn orthogonalize_real(cols: &[&[f64]], w: &mut [f64], h: &mut [f64], c: &mut [f64]) -> Option<f64> {
-    let n = w.len();
-    let k = cols.len();
-    let (h, c) = (&mut h[..k], &mut c[..k]);
-    let kernels = Kernels::detect();
-    let before2 = kernels.dot(w, w);
-    if !before2.is_finite() {
-        return None;
-    }
-    h.fill(0.0);
-    for r0 in (0..n).step_by(LONG_ROWS) {
-        kernels.project(cols, w, h, r0, (r0 + LONG_ROWS).min(n));
-    }
-    // w ← w − V h and c = Vᵀ w, block by block.
-    c.fill(0.0);
-    let mut after2 = 0.0;
-    for r0 in (0..n).step_by(ROWS) {
-        let r1 = (r0 + ROWS).min(n);
-        kernels.subtract(cols, h, w, r0, r1);
-        kernels.project(cols, w, c, r0, r1);
-        after2 += kernels.dot(&w[r0..r1], &w[r0..r1]);
-    }
-    if after2 > 0.5 * before2 {
-        return Some(after2.sqrt());
-    }
-    let mut left2 = 0.0;
-    for r0 in (0..n).step_by(LONG_ROWS) {
-        let r1 = (r0 + LONG_ROWS).min(n);
-        kernels.subtract(cols, c, w, r0, r1);
-        left2 += kernels.dot(&w[r0..r1], &w[r0..r1]);
-    }
-    for (a, b) in h.iter_mut().zip(c.iter()) {
-        *a += b;
-    }
-    Some(left2.sqrt())
+/// Rows per block of the plain projections (the block of `w`, 16 KiB, or of `u` and `w`,
+/// stays in the first-level cache while the columns stream past it).
+const LONG_ROWS: usize = 2048;
+
+/// The sweeps over a real basis, each one read of the basis. The rows go in two fixed
+/// halves (split at [`Sweeper::mid`]), on two rayon threads when `parallel` (one Krylov run
+/// alone: at 10⁵ unknowns the sweeps wait on memory, and one core draws about half of what
+/// two draw here, 12 against 24 GB/s), else one after the other; the partial sums of the
+/// halves are always added in the same order, so the results are the same bits either way.
+#[derive(Clone, Copy)]
+pub(super) struct Sweeper {
+    kernels: Kernels,
+    parallel: bool,
 }
 
-/// The kernels this processor runs.
+impl Sweeper {
+    pub fn new(parallel: bool) -> Self {
+        Sweeper { kernels: Kernels::detect(), parallel }
+    }
+
+    /// The first row of the second half.
+    pub fn mid(n: usize) -> usize {
+        (n / 2) & !7
+    }
+
+    /// Both halves' work, on two threads when `parallel` ([`both`]).
+    fn both<A: Send, B: Send>(self, a: impl FnOnce() -> A + Send, b: impl FnOnce() -> B + Send) -> (A, B) {
+        both(self.parallel, a, b)
+    }
+
+    /// `out = Vᵀ w` (`cols` the columns of `V`); returns `wᵀw`.
+    pub fn project(self, cols: &[&[f64]], w: &[f64], out: &mut [f64]) -> f64 {
+        let (n, k) = (w.len(), cols.len());
+        let mid = Self::mid(n);
+        let half = |r0: usize, r1: usize| {
+            let mut o = vec![0.0; k];
+            let mut ww = 0.0;
+            for b0 in (r0..r1).step_by(LONG_ROWS) {
+                let b1 = (b0 + LONG_ROWS).min(r1);
+                self.kernels.project(cols, &w[b0..b1], &mut o, b0);
+                ww += self.kernels.dot(&w[b0..b1], &w[b0..b1]);
+            }
+            (o, ww)
+        };
+        let ((o0, w0), (o1, w1)) = self.both(|| half(0, mid), || half(mid, n));
+        for (j, o) in out[..k].iter_mut().enumerate() {
+            *o = o0[j] + o1[j];
+        }
+        w0 + w1
+    }
+
+    /// `w ← w − V coef`; returns the new `wᵀw`.
+    pub fn subtract(self, cols: &[&[f64]], coef: &[f64], w: &mut [f64]) -> f64 {
+        let mid = Self::mid(w.len());
+        let half = |r0: usize, w: &mut [f64]| {
+            let mut ww = 0.0;
+            let len = w.len();
+            for b in (0..len).step_by(LONG_ROWS) {
+                let blk = &mut w[b..(b + LONG_ROWS).min(len)];
+                self.kernels.subtract(cols, coef, blk, r0 + b);
+                ww += self.kernels.dot(blk, blk);
+            }
+            ww
+        };
+        let (w0, w1) = w.split_at_mut(mid);
+        let (a, b) = self.both(|| half(0, w0), || half(mid, w1));
+        a + b
+    }
+
+    /// `s = Vᵀ u`, `z = Vᵀ w` in one read of `V`; returns `(uᵀu, uᵀw)`.
+    pub fn project_pair(self, cols: &[&[f64]], u: &[f64], w: &[f64], s: &mut [f64], z: &mut [f64]) -> (f64, f64) {
+        let (n, k) = (w.len(), cols.len());
+        let mid = Self::mid(n);
+        let half = |r0: usize, r1: usize| {
+            let (mut sp, mut zp) = (vec![0.0; k], vec![0.0; k]);
+            let (mut uu, mut uw) = (0.0, 0.0);
+            for b0 in (r0..r1).step_by(LONG_ROWS) {
+                let b1 = (b0 + LONG_ROWS).min(r1);
+                self.kernels.project_pair(cols, &u[b0..b1], &w[b0..b1], &mut sp, &mut zp, b0);
+                uu += self.kernels.dot(&u[b0..b1], &u[b0..b1]);
+                uw += self.kernels.dot(&u[b0..b1], &w[b0..b1]);
+            }
+            (sp, zp, uu, uw)
+        };
+        let ((s0, z0, uu0, uw0), (s1, z1, uu1, uw1)) = self.both(|| half(0, mid), || half(mid, n));
+        for j in 0..k {
+            s[j] = s0[j] + s1[j];
+            z[j] = z0[j] + z1[j];
+        }
+        (uu0 + uu1, uw0 + uw1)
+    }
+
+    /// `u ← (u − V s)/α` and then `w ← (w − V g[..k] − u g[k])/α` (`k` the columns of `V`),
+    /// row block by row block in one read of `V`; returns the new `wᵀw`.
+    pub fn update_pair(self, cols: &[&[f64]], s: &[f64], g: &[f64], alpha: f64, u: &mut [f64], w: &mut [f64]) -> f64 {
+        let k = cols.len();
+        let (gk, inv) = (g[k], 1.0 / alpha);
+        let mid = Self::mid(w.len());
+        let half = |r0: usize, u: &mut [f64], w: &mut [f64]| {
+            let mut ww = 0.0;
+            for b in (0..w.len()).step_by(ROWS) {
+                let e = (b + ROWS).min(w.len());
+                let (ub, wb) = (&mut u[b..e], &mut w[b..e]);
+                self.kernels.subtract_pair(cols, &s[..k], &g[..k], ub, wb, r0 + b);
+                for (x, y) in ub.iter_mut().zip(wb.iter_mut()) {
+                    *x *= inv;
+                    *y = (*y - *x * gk) * inv;
+                }
+                ww += self.kernels.dot(wb, wb);
+            }
+            ww
+        };
+        let ((u0, u1), (w0, w1)) = (u.split_at_mut(mid), w.split_at_mut(mid));
+        let (a, b) = self.both(|| half(0, u0, w0), || half(mid, u1, w1));
+        a + b
+    }
+
+    /// `w` with its components along the orthonormal columns `cols` removed; the
+    /// coefficients removed are written to `h`, `c` is scratch of the same length; returns
+    /// the norm left. Classical Gram–Schmidt twice, the first pass's subtraction and the
+    /// second pass's projection fused block by block (three reads of the basis, not four);
+    /// the second pass only when the first removed more than `1 − 1/√2` of `w`
+    /// (Kahan–Parlett "twice is enough"), as the general code in `iteration.rs` does. `None`
+    /// (and `w`, `h` untouched) when `‖w‖²` overflows: the caller then takes faer's scaled
+    /// norms.
+    pub fn orthogonalize(self, cols: &[&[f64]], w: &mut [f64], h: &mut [f64], c: &mut [f64]) -> Option<f64> {
+        let k = cols.len();
+        let (h, c) = (&mut h[..k], &mut c[..k]);
+        let before2 = self.kernels.dot(w, w);
+        if !before2.is_finite() {
+            return None;
+        }
+        self.project(cols, w, h);
+        // w ← w − V h and c = Vᵀ w, block by block.
+        let mid = Self::mid(w.len());
+        let hh: &[f64] = h;
+        let half = |r0: usize, w: &mut [f64]| {
+            let mut cp = vec![0.0; k];
+            let mut ww = 0.0;
+            let len = w.len();
+            for b in (0..len).step_by(ROWS) {
+                let blk = &mut w[b..(b + ROWS).min(len)];
+                self.kernels.subtract(cols, hh, blk, r0 + b);
+                self.kernels.project(cols, blk, &mut cp, r0 + b);
+                ww += self.kernels.dot(blk, blk);
+            }
+            (cp, ww)
+        };
+        let (w0, w1) = w.split_at_mut(mid);
+        let ((c0, a0), (c1, a1)) = self.both(|| half(0, w0), || half(mid, w1));
+        for j in 0..k {
+            c[j] = c0[j] + c1[j];
+        }
+        let after2 = a0 + a1;
+        if after2 > 0.5 * before2 {
+            return Some(after2.sqrt());
+        }
+        let left2 = self.subtract(cols, c, w);
+        for (a, b) in h.iter_mut().zip(c.iter()) {
+            *a += b;
+        }
+        Some(left2.sqrt())
+    }
+}
+
+/// `(a(), b())`, with `b` on another thread of the rayon pool when `parallel`: the calling
+/// thread runs `a` itself and then waits for `b` (`rayon::in_place_scope`). Outside the pool
+/// that wait blocks this thread only, and no worker waits on it; on a worker (a sweep's
+/// point) the wait runs other work of the pool meanwhile, so no worker blocks (the
+/// deadlock of `tests/sparse_eigen.rs`' rayon-workers test cannot form). `rayon::join`
+/// from outside the pool hands both halves to the workers, and when the second worker is
+/// asleep the first one often runs both (measured: one worker had 2.6 times the other's
+/// samples).
+pub(super) fn both<A: Send, B: Send>(parallel: bool, a: impl FnOnce() -> A + Send, b: impl FnOnce() -> B + Send) -> (A, B) {
+    if !parallel {
+        return (a(), b());
+    }
+    let mut rb = None;
+    let ra = rayon::in_place_scope(|s| {
+        s.spawn(|_| rb = Some(b()));
+        a()
+    });
+    (ra, rb.unwrap_or_else(|| unreachable!("the scope waits for its spawned half")))
+}
+
+/// The kernels this processor runs. Each takes a block of rows `r0..r0 + len` of the
+/// columns and the same rows of the vectors (`len` their length).
 #[derive(Clone, Copy)]
 struct Kernels {
     #[cfg(target_arch = "x86_64")]
@@ -84,24 +225,57 @@ impl Kernels {
         portable::dot(a, b)
     }
 
-    /// `out[j] += Σ_{r0 ≤ i < r1} cols[j][i] w[i]`.
-    fn project(self, cols: &[&[f64]], w: &[f64], out: &mut [f64], r0: usize, r1: usize) {
+    /// `out[j] += Σ_i cols[j][r0 + i] w[i]`.
+    fn project(self, cols: &[&[f64]], w: &[f64], out: &mut [f64], r0: usize) {
+        let cols = &cols[..out.len().min(cols.len())];
+        assert!(cols.iter().all(|c| c.len() >= r0 + w.len()), "project: column shorter than the block");
         #[cfg(target_arch = "x86_64")]
         if self.avx2 {
-            // SAFETY: as in `dot`; the slices are bounds-checked inside.
-            return unsafe { avx2::project(cols, w, out, r0, r1) };
+            // SAFETY: the processor has AVX2 and FMA (checked in `detect`); every column
+            // holds the rows r0..r0 + w.len() (asserted) and `out` one entry per column.
+            return unsafe { avx2::project(cols, w, out, r0) };
         }
-        portable::project(cols, w, out, r0, r1)
+        portable::project(cols, w, out, r0)
     }
 
-    /// `w[i] −= Σ_j cols[j][i] coef[j]` for `r0 ≤ i < r1`.
-    fn subtract(self, cols: &[&[f64]], coef: &[f64], w: &mut [f64], r0: usize, r1: usize) {
+    /// `w[i] −= Σ_j cols[j][r0 + i] coef[j]`.
+    fn subtract(self, cols: &[&[f64]], coef: &[f64], w: &mut [f64], r0: usize) {
+        let cols = &cols[..coef.len().min(cols.len())];
+        assert!(cols.iter().all(|c| c.len() >= r0 + w.len()), "subtract: column shorter than the block");
         #[cfg(target_arch = "x86_64")]
         if self.avx2 {
-            // SAFETY: as in `dot`.
-            return unsafe { avx2::subtract(cols, coef, w, r0, r1) };
+            // SAFETY: as in `project` (`coef` has an entry per column of `cols`).
+            return unsafe { avx2::subtract(cols, coef, w, r0) };
         }
-        portable::subtract(cols, coef, w, r0, r1)
+        portable::subtract(cols, coef, w, r0)
+    }
+
+    /// `s[j] += Σ_i cols[j][r0 + i] u[i]`, `z[j] += Σ_i cols[j][r0 + i] w[i]`.
+    fn project_pair(self, cols: &[&[f64]], u: &[f64], w: &[f64], s: &mut [f64], z: &mut [f64], r0: usize) {
+        let k = cols.len().min(s.len()).min(z.len());
+        let cols = &cols[..k];
+        assert!(u.len() == w.len() && cols.iter().all(|c| c.len() >= r0 + w.len()), "project_pair: sizes");
+        #[cfg(target_arch = "x86_64")]
+        if self.avx2 {
+            // SAFETY: as in `project`, for both vectors (of one length, asserted).
+            return unsafe { avx2::project_pair(cols, u, w, s, z, r0) };
+        }
+        portable::project(cols, u, s, r0);
+        portable::project(cols, w, z, r0);
+    }
+
+    /// `u[i] −= Σ_j cols[j][r0 + i] s[j]`, `w[i] −= Σ_j cols[j][r0 + i] g[j]`.
+    fn subtract_pair(self, cols: &[&[f64]], s: &[f64], g: &[f64], u: &mut [f64], w: &mut [f64], r0: usize) {
+        let k = cols.len().min(s.len()).min(g.len());
+        let cols = &cols[..k];
+        assert!(u.len() == w.len() && cols.iter().all(|c| c.len() >= r0 + w.len()), "subtract_pair: sizes");
+        #[cfg(target_arch = "x86_64")]
+        if self.avx2 {
+            // SAFETY: as in `project_pair`.
+            return unsafe { avx2::subtract_pair(cols, s, g, u, w, r0) };
+        }
+        portable::subtract(cols, s, u, r0);
+        portable::subtract(cols, g, w, r0);
     }
 }
 
@@ -110,16 +284,16 @@ mod portable {
         a.iter().zip(b).map(|(x, y)| x * y).sum()
     }
 
-    pub fn project(cols: &[&[f64]], w: &[f64], out: &mut [f64], r0: usize, r1: usize) {
-        let w = &w[r0..r1];
+    pub fn project(cols: &[&[f64]], w: &[f64], out: &mut [f64], r0: usize) {
         for (o, col) in out.iter_mut().zip(cols) {
-            *o += dot(&col[r0..r1], w);
+            *o += dot(&col[r0..r0 + w.len()], w);
         }
     }
 
-    pub fn subtract(cols: &[&[f64]], coef: &[f64], w: &mut [f64], r0: usize, r1: usize) {
+    pub fn subtract(cols: &[&[f64]], coef: &[f64], w: &mut [f64], r0: usize) {
+        let len = w.len();
         for (col, &f) in cols.iter().zip(coef) {
-            for (x, v) in w[r0..r1].iter_mut().zip(&col[r0..r1]) {
+            for (x, v) in w.iter_mut().zip(&col[r0..r0 + len]) {
                 *x -= v * f;
             }
         }
@@ -162,20 +336,27 @@ mod avx2 {
         s
     }
 
+    /// Pointers to rows `r0..` of four columns `j..j + 4`.
+    fn four(cols: &[&[f64]], j: usize, r0: usize) -> [*const f64; 4] {
+        [cols[j][r0..].as_ptr(), cols[j + 1][r0..].as_ptr(), cols[j + 2][r0..].as_ptr(), cols[j + 3][r0..].as_ptr()]
+    }
+
     /// # Safety
-    /// The processor has AVX2 and FMA.
+    /// The processor has AVX2 and FMA; every column holds rows `r0..r0 + w.len()`, `out` an
+    /// entry per column.
     #[target_feature(enable = "avx2,fma")]
-    pub unsafe fn project(cols: &[&[f64]], w: &[f64], out: &mut [f64], r0: usize, r1: usize) {
-        assert!(r1 <= w.len() && cols.iter().all(|c| c.len() >= r1) && out.len() >= cols.len());
+    pub unsafe fn project(cols: &[&[f64]], w: &[f64], out: &mut [f64], r0: usize) {
+        let len = w.len();
         let pw = w.as_ptr();
         let mut j = 0;
         while j + 4 <= cols.len() {
-            let p = [cols[j].as_ptr(), cols[j + 1].as_ptr(), cols[j + 2].as_ptr(), cols[j + 3].as_ptr()];
+            let p = four(cols, j, r0);
             let mut acc = [_mm256_setzero_pd(); 4];
-            let mut i = r0;
-            // SAFETY: i + 4 ≤ r1 ≤ the length of w and of every column (asserted).
+            let mut i = 0;
+            // SAFETY: i + 4 ≤ len, the rows r0 + i.. r0 + i + 4 of every column exist (the
+            // caller's guarantee) and w[i..i + 4] too.
             unsafe {
-                while i + 4 <= r1 {
+                while i + 4 <= len {
                     let x = _mm256_loadu_pd(pw.add(i));
                     for l in 0..4 {
                         acc[l] = _mm256_fmadd_pd(_mm256_loadu_pd(p[l].add(i)), x, acc[l]);
@@ -185,8 +366,8 @@ mod avx2 {
             }
             for l in 0..4 {
                 let mut s = hsum(acc[l]);
-                for r in i..r1 {
-                    s += cols[j + l][r] * w[r];
+                for r in i..len {
+                    s += cols[j + l][r0 + r] * w[r];
                 }
                 out[j + l] += s;
             }
@@ -194,26 +375,70 @@ mod avx2 {
         }
         for jj in j..cols.len() {
             // SAFETY: the caller's guarantee.
-            out[jj] += unsafe { dot(&cols[jj][r0..r1], &w[r0..r1]) };
+            out[jj] += unsafe { dot(&cols[jj][r0..r0 + len], w) };
         }
     }
 
     /// # Safety
-    /// The processor has AVX2 and FMA.
+    /// As [`project`], `u` as long as `w`, `s` and `z` an entry per column.
     #[target_feature(enable = "avx2,fma")]
-    pub unsafe fn subtract(cols: &[&[f64]], coef: &[f64], w: &mut [f64], r0: usize, r1: usize) {
-        assert!(r1 <= w.len() && cols.iter().all(|c| c.len() >= r1) && coef.len() >= cols.len());
+    pub unsafe fn project_pair(cols: &[&[f64]], u: &[f64], w: &[f64], s: &mut [f64], z: &mut [f64], r0: usize) {
+        let len = w.len();
+        let (pu, pw) = (u.as_ptr(), w.as_ptr());
+        let mut j = 0;
+        while j + 4 <= cols.len() {
+            let p = four(cols, j, r0);
+            let (mut a, mut b) = ([_mm256_setzero_pd(); 4], [_mm256_setzero_pd(); 4]);
+            let mut i = 0;
+            // SAFETY: as in `project`, u[i..i + 4] exists as w[i..i + 4] does.
+            unsafe {
+                while i + 4 <= len {
+                    let (x, y) = (_mm256_loadu_pd(pu.add(i)), _mm256_loadu_pd(pw.add(i)));
+                    for l in 0..4 {
+                        let v = _mm256_loadu_pd(p[l].add(i));
+                        a[l] = _mm256_fmadd_pd(v, x, a[l]);
+                        b[l] = _mm256_fmadd_pd(v, y, b[l]);
+                    }
+                    i += 4;
+                }
+            }
+            for l in 0..4 {
+                let (mut sa, mut sb) = (hsum(a[l]), hsum(b[l]));
+                for r in i..len {
+                    sa += cols[j + l][r0 + r] * u[r];
+                    sb += cols[j + l][r0 + r] * w[r];
+                }
+                s[j + l] += sa;
+                z[j + l] += sb;
+            }
+            j += 4;
+        }
+        for jj in j..cols.len() {
+            let c = &cols[jj][r0..r0 + len];
+            // SAFETY: the caller's guarantee.
+            unsafe {
+                s[jj] += dot(c, u);
+                z[jj] += dot(c, w);
+            }
+        }
+    }
+
+    /// # Safety
+    /// As [`project`], `coef` an entry per column.
+    #[target_feature(enable = "avx2,fma")]
+    pub unsafe fn subtract(cols: &[&[f64]], coef: &[f64], w: &mut [f64], r0: usize) {
+        let len = w.len();
         let pw = w.as_mut_ptr();
         // Four columns at a time down the block: four sequential streams of the basis, the
         // block of w in the first-level cache.
         let mut j = 0;
         while j + 4 <= cols.len() {
-            let p = [cols[j].as_ptr(), cols[j + 1].as_ptr(), cols[j + 2].as_ptr(), cols[j + 3].as_ptr()];
+            let p = four(cols, j, r0);
             let f = [_mm256_set1_pd(coef[j]), _mm256_set1_pd(coef[j + 1]), _mm256_set1_pd(coef[j + 2]), _mm256_set1_pd(coef[j + 3])];
-            let mut i = r0;
-            // SAFETY: every access is to rows i..i + 4 ≤ r1 (asserted in bounds).
+            let mut i = 0;
+            // SAFETY: every access is to rows i..i + 4 ≤ len of w and r0 + i.. of the columns.
             unsafe {
-                while i + 4 <= r1 {
+                while i + 4 <= len {
                     let mut x = _mm256_loadu_pd(pw.add(i));
                     for l in 0..4 {
                         x = _mm256_fnmadd_pd(_mm256_loadu_pd(p[l].add(i)), f[l], x);
@@ -222,15 +447,58 @@ mod avx2 {
                     i += 4;
                 }
             }
-            for r in i..r1 {
-                w[r] -= cols[j][r] * coef[j] + cols[j + 1][r] * coef[j + 1] + cols[j + 2][r] * coef[j + 2] + cols[j + 3][r] * coef[j + 3];
+            for r in i..len {
+                let q = r0 + r;
+                w[r] -= cols[j][q] * coef[j] + cols[j + 1][q] * coef[j + 1] + cols[j + 2][q] * coef[j + 2] + cols[j + 3][q] * coef[j + 3];
             }
             j += 4;
         }
         for jj in j..cols.len() {
             let f = coef[jj];
-            for (x, v) in w[r0..r1].iter_mut().zip(&cols[jj][r0..r1]) {
+            for (x, v) in w.iter_mut().zip(&cols[jj][r0..r0 + len]) {
                 *x -= v * f;
+            }
+        }
+    }
+
+    /// # Safety
+    /// As [`project_pair`], `s` and `g` an entry per column.
+    #[target_feature(enable = "avx2,fma")]
+    pub unsafe fn subtract_pair(cols: &[&[f64]], s: &[f64], g: &[f64], u: &mut [f64], w: &mut [f64], r0: usize) {
+        let len = w.len();
+        let (pu, pw) = (u.as_mut_ptr(), w.as_mut_ptr());
+        let mut j = 0;
+        while j + 4 <= cols.len() {
+            let p = four(cols, j, r0);
+            let fs = [_mm256_set1_pd(s[j]), _mm256_set1_pd(s[j + 1]), _mm256_set1_pd(s[j + 2]), _mm256_set1_pd(s[j + 3])];
+            let fg = [_mm256_set1_pd(g[j]), _mm256_set1_pd(g[j + 1]), _mm256_set1_pd(g[j + 2]), _mm256_set1_pd(g[j + 3])];
+            let mut i = 0;
+            // SAFETY: as in `subtract`, for u as for w (one length).
+            unsafe {
+                while i + 4 <= len {
+                    let (mut x, mut y) = (_mm256_loadu_pd(pu.add(i)), _mm256_loadu_pd(pw.add(i)));
+                    for l in 0..4 {
+                        let v = _mm256_loadu_pd(p[l].add(i));
+                        x = _mm256_fnmadd_pd(v, fs[l], x);
+                        y = _mm256_fnmadd_pd(v, fg[l], y);
+                    }
+                    _mm256_storeu_pd(pu.add(i), x);
+                    _mm256_storeu_pd(pw.add(i), y);
+                    i += 4;
+                }
+            }
+            for r in i..len {
+                let q = r0 + r;
+                u[r] -= cols[j][q] * s[j] + cols[j + 1][q] * s[j + 1] + cols[j + 2][q] * s[j + 2] + cols[j + 3][q] * s[j + 3];
+                w[r] -= cols[j][q] * g[j] + cols[j + 1][q] * g[j + 1] + cols[j + 2][q] * g[j + 2] + cols[j + 3][q] * g[j + 3];
+            }
+            j += 4;
+        }
+        for jj in j..cols.len() {
+            let c = &cols[jj][r0..r0 + len];
+            for ((x, y), v) in u.iter_mut().zip(w.iter_mut()).zip(c) {
+                *x -= v * s[jj];
+                *y -= v * g[jj];
             }
         }
     }
@@ -252,32 +520,86 @@ mod tests {
             .collect()
     }
 
+    fn orthonormal(n: usize, k: usize) -> (faer::Mat<f64>, Vec<Vec<f64>>) {
+        let a = faer::Mat::<f64>::from_fn(n, k, |i, j| random(1, (i * 131 + j) as u64)[0]);
+        let q = a.qr().compute_thin_Q();
+        let cols: Vec<Vec<f64>> = (0..k).map(|j| (0..n).map(|i| q[(i, j)]).collect()).collect();
+        (q, cols)
+    }
+
     /// Against faer's QR (independent code): the coefficients are `Qᵀ w` and what is left
-    /// is orthogonal to `Q`, to rounding, for sizes that exercise every remainder path.
+    /// is orthogonal to `Q`, to rounding, for sizes that exercise every remainder path, on
+    /// one thread and on two (the same bits).
     #[test]
     fn removes_the_span_of_an_orthonormal_basis() {
-        for (n, k) in [(1, 1), (37, 5), (300, 13), (1000, 97)] {
-            let a = faer::Mat::<f64>::from_fn(n, k, |i, j| random(1, (i * 131 + j) as u64)[0]);
-            let q = a.qr().compute_thin_Q();
-            let cols: Vec<Vec<f64>> = (0..k).map(|j| (0..n).map(|i| q[(i, j)]).collect()).collect();
+        for (n, k) in [(1, 1), (37, 5), (300, 13), (1000, 97), (5000, 30)] {
+            let (q, cols) = orthonormal(n, k);
             let refs: Vec<&[f64]> = cols.iter().map(|c| c.as_slice()).collect();
             let w0 = random(n, 7);
-            let mut w = w0.clone();
-            let (mut h, mut c) = (vec![0.0; k + 3], vec![0.0; k + 3]);
-            let left = orthogonalize_real(&refs, &mut w, &mut h, &mut c).unwrap_or(f64::NAN);
-            let norm = w.iter().map(|x| x * x).sum::<f64>().sqrt();
-            assert!((left - norm).abs() <= 1e-12 * (1.0 + norm), "n = {n}, k = {k}");
-            for j in 0..k {
-                let qw0: f64 = (0..n).map(|i| q[(i, j)] * w0[i]).sum();
-                let qw: f64 = (0..n).map(|i| q[(i, j)] * w[i]).sum();
-                assert!((h[j] - qw0).abs() < 1e-12, "coefficient {j}: {} vs {qw0}", h[j]);
-                assert!(qw.abs() < 1e-13, "left part not orthogonal to column {j}: {qw:e}");
+            let mut runs = Vec::new();
+            for parallel in [false, true] {
+                let mut w = w0.clone();
+                let (mut h, mut c) = (vec![0.0; k + 3], vec![0.0; k + 3]);
+                let left = Sweeper::new(parallel).orthogonalize(&refs, &mut w, &mut h, &mut c).unwrap_or(f64::NAN);
+                let norm = w.iter().map(|x| x * x).sum::<f64>().sqrt();
+                assert!((left - norm).abs() <= 1e-12 * (1.0 + norm), "n = {n}, k = {k}");
+                for j in 0..k {
+                    let qw0: f64 = (0..n).map(|i| q[(i, j)] * w0[i]).sum();
+                    let qw: f64 = (0..n).map(|i| q[(i, j)] * w[i]).sum();
+                    assert!((h[j] - qw0).abs() < 1e-12, "coefficient {j}: {} vs {qw0}", h[j]);
+                    assert!(qw.abs() < 1e-13, "left part not orthogonal to column {j}: {qw:e}");
+                }
+                // w0 = Q h + w.
+                for i in 0..n {
+                    let back: f64 = (0..k).map(|j| q[(i, j)] * h[j]).sum::<f64>() + w[i];
+                    assert!((back - w0[i]).abs() < 1e-12);
+                }
+                runs.push((w, h, left));
             }
-            // w0 = Q h + w.
-            for i in 0..n {
-                let back: f64 = (0..k).map(|j| q[(i, j)] * h[j]).sum::<f64>() + w[i];
-                assert!((back - w0[i]).abs() < 1e-12);
+            assert!(runs[0] == runs[1], "n = {n}, k = {k}: one thread and two differ");
+        }
+    }
+
+    /// The sweeps of the delayed reorthogonalization against plain loops: `s = Vᵀ u`,
+    /// `z = Vᵀ w`, `uᵀu`, `uᵀw`, then `u ← (u − V s)/α`, `w ← (w − V g[..k] − u g[k])/α` and
+    /// the new `wᵀw`; one thread and two give the same bits.
+    #[test]
+    fn pair_sweeps_match_plain_loops() {
+        for (n, k) in [(3, 1), (37, 5), (1000, 13), (5000, 30)] {
+            let (_, cols) = orthonormal(n, k);
+            let refs: Vec<&[f64]> = cols.iter().map(|c| c.as_slice()).collect();
+            let (u0, w0) = (random(n, 11), random(n, 12));
+            let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+            let s_ref: Vec<f64> = refs.iter().map(|c| dot(c, &u0)).collect();
+            let z_ref: Vec<f64> = refs.iter().map(|c| dot(c, &w0)).collect();
+            let g: Vec<f64> = (0..=k).map(|j| 0.3 + 0.1 * j as f64).collect();
+            let alpha = 0.9;
+            let u_ref: Vec<f64> = (0..n).map(|i| (u0[i] - (0..k).map(|j| refs[j][i] * s_ref[j]).sum::<f64>()) / alpha).collect();
+            let w_ref: Vec<f64> = (0..n).map(|i| (w0[i] - (0..k).map(|j| refs[j][i] * g[j]).sum::<f64>() - u_ref[i] * g[k]) / alpha).collect();
+            let mut runs = Vec::new();
+            for parallel in [false, true] {
+                let sw = Sweeper::new(parallel);
+                let (mut s, mut z) = (vec![0.0; k], vec![0.0; k]);
+                let (uu, uw) = sw.project_pair(&refs, &u0, &w0, &mut s, &mut z);
+                assert!((uu - dot(&u0, &u0)).abs() < 1e-10 && (uw - dot(&u0, &w0)).abs() < 1e-10);
+                for j in 0..k {
+                    assert!((s[j] - s_ref[j]).abs() < 1e-12 && (z[j] - z_ref[j]).abs() < 1e-12, "n = {n}, column {j}");
+                }
+                let (mut u, mut w) = (u0.clone(), w0.clone());
+                let ww = sw.update_pair(&refs, &s, &g, alpha, &mut u, &mut w);
+                assert!((ww - dot(&w, &w)).abs() <= 1e-12 * ww.max(1.0));
+                for i in 0..n {
+                    assert!((u[i] - u_ref[i]).abs() < 1e-12 && (w[i] - w_ref[i]).abs() < 1e-12, "n = {n}, row {i}");
+                }
+                let mut g2 = vec![0.0; k];
+                let w2 = sw.project(&refs, &w0, &mut g2);
+                assert!((w2 - dot(&w0, &w0)).abs() < 1e-10 && g2.iter().zip(&z_ref).all(|(a, b)| (a - b).abs() < 1e-12));
+                let mut w3 = w0.clone();
+                let left = sw.subtract(&refs, &g2, &mut w3);
+                assert!((left - dot(&w3, &w3)).abs() <= 1e-12 * left.max(1.0) && refs.iter().all(|c| dot(c, &w3).abs() < 1e-12));
+                runs.push((s, z, u, w, ww, w3));
             }
+            assert!(runs[0] == runs[1], "n = {n}, k = {k}: one thread and two differ");
         }
     }
 }

@@ -1,7 +1,8 @@
 //! Krylov–Schur iteration (Stewart, "A Krylov–Schur algorithm for large eigenproblems",
 //! SIAM J. Matrix Anal. Appl. 23, 2001) for the eigenvalues θ of largest modulus of an
 //! operator applied to vectors: Arnoldi expansion with full reorthogonalization (classical
-//! Gram–Schmidt twice, as two block projections through faer's matrix products), Schur form
+//! Gram–Schmidt twice; for a real basis with the second pass delayed to the next step, below),
+//! Schur form
 //! of the Rayleigh quotient sorted by |θ|, truncation to the wanted Schur vectors, and
 //! locking of the converged leading ones (their coupling to the residual vector is set to
 //! zero once below the tolerance).
@@ -15,7 +16,7 @@
 use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::{c64, Col, ColMut, ColRef, Mat, MatRef};
 
-use super::gram_schmidt::orthogonalize_real;
+use super::gram_schmidt::{both, Sweeper};
 use super::schur::{schur, sort_schur};
 use crate::linear::sparse::{contiguous, contiguous_mut};
 use super::KrylovError;
@@ -38,9 +39,19 @@ pub(super) trait Scalar: faer::traits::ComplexField<Real = f64> + Copy + Send + 
     fn kept_basis(y: &Mat<c64>, theta: &[c64], keep: usize) -> Option<Mat<Self>>;
     /// [`orthogonalize`]: `w` with its components along `basis` removed, the coefficients
     /// in `h`, `c` scratch; the norm left.
-    fn orthogonalize(basis: MatRef<'_, Self>, w: ColMut<'_, Self>, h: ColMut<'_, Self>, c: ColMut<'_, Self>) -> f64 {
+    fn orthogonalize(_: Sweeper, basis: MatRef<'_, Self>, w: ColMut<'_, Self>, h: ColMut<'_, Self>, c: ColMut<'_, Self>) -> f64 {
         orthogonalize(basis, w, h, c)
     }
+    /// The Arnoldi expansion of `a` from column `kept` to its full size; returns the size
+    /// reached (smaller when the finite spectrum is exhausted).
+    fn expand(a: &mut Arnoldi<Self>, op: &mut dyn FnMut(ColRef<'_, Self>, ColMut<'_, Self>), kept: usize) -> Result<usize, KrylovError> {
+        expand_classic(a, op, kept)
+    }
+    /// The coefficients of the Ritz vectors `V y` in the basis's arithmetic: `y` itself, or
+    /// for a real basis the real and imaginary parts of each `y` as two columns.
+    fn ritz_coefficients(y: &Mat<c64>) -> Mat<Self>;
+    /// Entry `(r, i)` of the Ritz vectors from `V` times [`Self::ritz_coefficients`].
+    fn ritz_entry(p: MatRef<'_, Self>, r: usize, i: usize) -> c64;
 }
 
 impl Scalar for c64 {
@@ -63,6 +74,12 @@ impl Scalar for c64 {
         let r = qr.R();
         let d0 = r[(0, 0)].norm();
         (0..keep).all(|i| r[(i, i)].norm() > 1e-6 * d0).then(|| qr.compute_thin_Q())
+    }
+    fn ritz_coefficients(y: &Mat<c64>) -> Mat<c64> {
+        y.clone()
+    }
+    fn ritz_entry(p: MatRef<'_, c64>, r: usize, i: usize) -> c64 {
+        p[(r, i)]
     }
 }
 
@@ -104,13 +121,29 @@ impl Scalar for f64 {
         None
     }
     /// The row-blocked real kernels of `gram_schmidt.rs` (three reads of the basis, not four).
-    fn orthogonalize(basis: MatRef<'_, f64>, mut w: ColMut<'_, f64>, mut h: ColMut<'_, f64>, mut c: ColMut<'_, f64>) -> f64 {
-        let cols: Vec<&[f64]> = (0..basis.ncols()).map(|k| contiguous(basis.col(k))).collect();
-        match orthogonalize_real(&cols, contiguous_mut(w.rb_mut()), contiguous_mut(h.rb_mut()), contiguous_mut(c.rb_mut())) {
+    fn orthogonalize(sweeper: Sweeper, basis: MatRef<'_, f64>, mut w: ColMut<'_, f64>, mut h: ColMut<'_, f64>, mut c: ColMut<'_, f64>) -> f64 {
+        let cols = columns(basis, basis.ncols());
+        match sweeper.orthogonalize(&cols, contiguous_mut(w.rb_mut()), contiguous_mut(h.rb_mut()), contiguous_mut(c.rb_mut())) {
             Some(left) => left,
             None => orthogonalize(basis, w, h, c),
         }
     }
+    /// Classical Gram–Schmidt with the second pass delayed ([`expand_delayed`]): two reads
+    /// of the basis per operator application instead of three.
+    fn expand(a: &mut Arnoldi<f64>, op: &mut dyn FnMut(ColRef<'_, f64>, ColMut<'_, f64>), kept: usize) -> Result<usize, KrylovError> {
+        expand_delayed(a, op, kept)
+    }
+    fn ritz_coefficients(y: &Mat<c64>) -> Mat<f64> {
+        Mat::from_fn(y.nrows(), 2 * y.ncols(), |i, j| if j % 2 == 0 { y[(i, j / 2)].re } else { y[(i, j / 2)].im })
+    }
+    fn ritz_entry(p: MatRef<'_, f64>, r: usize, i: usize) -> c64 {
+        c64::new(p[(r, 2 * i)], p[(r, 2 * i + 1)])
+    }
+}
+
+/// The first `k` columns of a real matrix as slices.
+fn columns(v: MatRef<'_, f64>, k: usize) -> Vec<&[f64]> {
+    (0..k).map(|j| contiguous(v.col(j))).collect()
 }
 
 /// `theta` is closed under conjugation (to `1e-8` relative, or `1e-12` of the largest: the
@@ -187,6 +220,9 @@ pub(super) struct Settings {
     pub max_restarts: usize,
     /// Seed of the start vector.
     pub seed: u64,
+    /// The real basis's sweeps, the Ritz vectors and the restarts' rotations on two rayon
+    /// threads (one run alone; see `gram_schmidt.rs`'s `Sweeper`).
+    pub parallel: bool,
 }
 
 /// A converged Ritz pair of the operator, `x` of unit norm and purified (`T x / θ`).
@@ -273,23 +309,30 @@ fn orthogonalize<T: Scalar>(basis: MatRef<'_, T>, mut w: ColMut<'_, T>, mut h: C
 
 /// `V[:, 0..k] ← V[:, 0..size] Q` (`k` = Q's columns) and `V[:, k] ← V[:, size]`, in place:
 /// by blocks of rows through a `rows x k` scratch, not an `n x k` copy of the new basis (at
-/// 10⁵ unknowns that copy was 59 MB per run).
-fn restart_basis<T: Scalar>(v: &mut Mat<T>, size: usize, q: &Mat<T>) {
+/// 10⁵ unknowns that copy was 59 MB per run); the two halves of the rows on two threads when
+/// `parallel`.
+fn restart_basis<T: Scalar>(v: &mut Mat<T>, size: usize, q: &Mat<T>, parallel: bool) {
     use faer::linalg::matmul::matmul;
     use faer::{Accum, Par};
     const ROWS: usize = 512;
     let (n, keep) = (v.nrows(), q.ncols());
-    let mut block = Mat::<T>::zeros(ROWS.min(n), keep);
     let one = T::from_c64(c64::new(1.0, 0.0));
-    for r0 in (0..n).step_by(ROWS) {
-        let rows = ROWS.min(n - r0);
-        let mut b = block.as_mut().submatrix_mut(0, 0, rows, keep);
-        matmul(b.rb_mut(), Accum::Replace, v.as_ref().submatrix(r0, 0, rows, size), q.as_ref(), one, Par::Seq);
-        v.as_mut().submatrix_mut(r0, 0, rows, keep).copy_from(b.rb());
-        for i in r0..r0 + rows {
-            v[(i, keep)] = v[(i, size)];
+    let half = |mut v: faer::MatMut<'_, T>| {
+        let rows_all = v.nrows();
+        let mut block = Mat::<T>::zeros(ROWS.min(rows_all), keep);
+        for r0 in (0..rows_all).step_by(ROWS) {
+            let rows = ROWS.min(rows_all - r0);
+            let mut b = block.as_mut().submatrix_mut(0, 0, rows, keep);
+            matmul(b.rb_mut(), Accum::Replace, v.rb().submatrix(r0, 0, rows, size), q.as_ref(), one, Par::Seq);
+            v.rb_mut().submatrix_mut(r0, 0, rows, keep).copy_from(b.rb());
+            for i in r0..r0 + rows {
+                let x = v[(i, size)];
+                v[(i, keep)] = x;
+            }
         }
-    }
+    };
+    let (top, bottom) = v.as_mut().split_at_row_mut(Sweeper::mid(n));
+    both(parallel, || half(top), || half(bottom));
 }
 
 /// Eigenvector `y` of the upper triangular `t` for its diagonal entry `i` (`y[i] = 1`).
@@ -309,18 +352,273 @@ fn triangular_eigenvector(t: &Mat<c64>, i: usize) -> Col<c64> {
     y
 }
 
-/// `V y` for a basis `v` of either kind and a complex `y`.
-fn combine<T: Scalar>(v: MatRef<'_, T>, y: ColRef<'_, c64>) -> Col<c64> {
-    if T::REAL {
-        let re = Col::<T>::from_fn(y.nrows(), |i| T::from_c64(c64::new(y[i].re, 0.0)));
-        let im = Col::<T>::from_fn(y.nrows(), |i| T::from_c64(c64::new(y[i].im, 0.0)));
-        let (a, b) = (v * &re, v * &im);
-        Col::from_fn(v.nrows(), |i| c64::new(a[i].to_c64().re, b[i].to_c64().re))
+/// The purified unit Ritz vectors `x_i = V y_i + v_size g_i` (`V` the first `size` columns
+/// of `v`, `y_i` the columns of `y`), all in one sweep over the basis: row block by row
+/// block, `V`'s block times the coefficients (faer's product), the two halves of the rows
+/// on two threads when `parallel`. (One matrix–vector product per vector read the whole
+/// basis again for each: 48 reads of 55 MB at 10⁵ unknowns.)
+fn ritz_vectors<T: Scalar>(v: &Mat<T>, size: usize, y: &Mat<c64>, g: &[c64], parallel: bool) -> Vec<Col<c64>> {
+    use faer::linalg::matmul::matmul;
+    use faer::{Accum, Par};
+    const ROWS: usize = 512;
+    let (n, q) = (v.nrows(), y.ncols());
+    let coef = T::ritz_coefficients(y);
+    let one = T::from_c64(c64::new(1.0, 0.0));
+    let mut out: Vec<Col<c64>> = (0..q).map(|_| Col::zeros(n)).collect();
+    let mid = Sweeper::mid(n);
+    // Each half: its rows of every vector, and the partial squared norms.
+    let fill = |r0: usize, parts: &mut [&mut [c64]]| {
+        let rows_all = parts.first().map_or(0, |p| p.len());
+        let mut block = Mat::<T>::zeros(ROWS.min(rows_all), coef.ncols());
+        let mut norm2 = vec![0.0; q];
+        for b0 in (0..rows_all).step_by(ROWS) {
+            let rows = ROWS.min(rows_all - b0);
+            let mut p = block.as_mut().submatrix_mut(0, 0, rows, coef.ncols());
+            matmul(p.rb_mut(), Accum::Replace, v.as_ref().submatrix(r0 + b0, 0, rows, size), coef.as_ref(), one, Par::Seq);
+            for (i, part) in parts.iter_mut().enumerate() {
+                for r in 0..rows {
+                    let x = T::ritz_entry(p.rb(), r, i) + v[(r0 + b0 + r, size)].to_c64() * g[i];
+                    part[b0 + r] = x;
+                    norm2[i] += x.norm_sqr();
+                }
+            }
+        }
+        norm2
+    };
+    let scale = |parts: &mut [&mut [c64]], inv: &[f64]| {
+        for (part, &f) in parts.iter_mut().zip(inv) {
+            part.iter_mut().for_each(|x| *x *= f);
+        }
+    };
+    let (mut top, mut bottom): (Vec<&mut [c64]>, Vec<&mut [c64]>) = out.iter_mut().map(|x| contiguous_mut(x.as_mut()).split_at_mut(mid)).unzip();
+    let (a, b) = both(parallel, || fill(0, &mut top), || fill(mid, &mut bottom));
+    let inv: Vec<f64> = a.iter().zip(&b).map(|(x, y)| 1.0 / (x + y).sqrt()).collect();
+    both(parallel, || scale(&mut top, &inv), || scale(&mut bottom, &inv));
+    out
+}
+
+/// The state of an Arnoldi expansion: the basis `v` (`n x (m + 1)`), the Hessenberg matrix
+/// `h` (`(m + 1) x m`), the scratch of the Gram–Schmidt steps.
+pub(super) struct Arnoldi<T: Scalar> {
+    n: usize,
+    m: usize,
+    v: Mat<T>,
+    h: Mat<T>,
+    coef: Col<T>,
+    scratch: Col<T>,
+    applications: usize,
+    seed: u64,
+    sweeper: Sweeper,
+}
+
+fn all_finite<T: Scalar>(w: ColRef<'_, T>) -> Result<(), KrylovError> {
+    if w.iter().all(|x| x.to_c64().re.is_finite() && x.to_c64().im.is_finite()) {
+        Ok(())
     } else {
-        let y = Col::<T>::from_fn(y.nrows(), |i| T::from_c64(y[i]));
-        let x = v * &y;
-        Col::from_fn(v.nrows(), |i| x[i].to_c64())
+        Err(KrylovError::Breakdown("the operator returned non-finite values".into()))
     }
+}
+
+/// `w ← T v_j` into column `j + 1`.
+fn apply<T: Scalar>(a: &mut Arnoldi<T>, op: &mut dyn FnMut(ColRef<'_, T>, ColMut<'_, T>), j: usize) -> Result<(), KrylovError> {
+    let (done, mut rest) = a.v.as_mut().split_at_col_mut(j + 1);
+    op(done.rb().col(j), rest.rb_mut().col_mut(0));
+    a.applications += 1;
+    all_finite(rest.rb().col(0))
+}
+
+/// A fresh unit direction in column `col`, orthogonal to the columns before it: a random
+/// vector purified like the start vector (coupling zero, an invariant subspace was
+/// reached); `false` when the purified fresh vectors lie in the basis too (the finite
+/// spectrum the operator reaches is exhausted).
+fn fresh_direction<T: Scalar>(a: &mut Arnoldi<T>, op: &mut dyn FnMut(ColRef<'_, T>, ColMut<'_, T>), col: usize) -> bool {
+    let j = col - 1;
+    for attempt in 0..3u64 {
+        let Some(mut f) = purified(op, a.n, a.seed + 1000 + 7 * j as u64 + attempt, &mut a.applications) else { continue };
+        let nb = T::orthogonalize(a.sweeper, a.v.as_ref().subcols(0, col), f.as_mut(), a.coef.subrows_mut(0, col), a.scratch.subrows_mut(0, col));
+        if nb > 1e-8 && nb.is_finite() {
+            let mut w = a.v.col_mut(col);
+            w.copy_from(&f);
+            for x in w.iter_mut() {
+                *x = x.times(1.0 / nb);
+            }
+            return true;
+        }
+    }
+    false
+}
+
+/// Column `j + 1` holds `T v_j` (with `h[.., j]` already holding `add` of its coefficients
+/// when `add`): orthogonalized against columns `0..=j` by classical Gram–Schmidt twice, its
+/// coefficients added to `h[.., j]`, normalized; `Some(j + 1)` (the size reached) when the
+/// finite spectrum is exhausted.
+fn complete_step<T: Scalar>(a: &mut Arnoldi<T>, op: &mut dyn FnMut(ColRef<'_, T>, ColMut<'_, T>), j: usize, add: bool) -> Option<usize> {
+    let zero = T::from_c64(c64::new(0.0, 0.0));
+    let beta = {
+        let (done, mut rest) = a.v.as_mut().split_at_col_mut(j + 1);
+        T::orthogonalize(a.sweeper, done.rb(), rest.rb_mut().col_mut(0), a.coef.subrows_mut(0, j + 1), a.scratch.subrows_mut(0, j + 1))
+    };
+    for i in 0..=j {
+        let before = if add { a.h[(i, j)] } else { zero };
+        a.h[(i, j)] = before + a.coef[i];
+    }
+    let scale_c = (0..=j).map(|i| a.h[(i, j)].to_c64().norm_sqr()).sum::<f64>().sqrt().max(beta);
+    if beta <= 1e-12 * scale_c {
+        // Invariant subspace: continue with a fresh direction (coupling zero).
+        a.h[(j + 1, j)] = zero;
+        if !fresh_direction(a, op, j + 1) {
+            return Some(j + 1);
+        }
+    } else {
+        a.h[(j + 1, j)] = T::from_c64(c64::new(beta, 0.0));
+        for x in a.v.col_mut(j + 1).iter_mut() {
+            *x = x.times(1.0 / beta);
+        }
+    }
+    None
+}
+
+/// Arnoldi with classical Gram–Schmidt twice at each step (three or four reads of the basis).
+fn expand_classic<T: Scalar>(a: &mut Arnoldi<T>, op: &mut dyn FnMut(ColRef<'_, T>, ColMut<'_, T>), kept: usize) -> Result<usize, KrylovError> {
+    for j in kept..a.m {
+        apply(a, op, j)?;
+        if let Some(size) = complete_step(a, op, j, false) {
+            return Ok(size);
+        }
+    }
+    Ok(a.m)
+}
+
+/// Column `j` holds `u`, the once-orthogonalized unit vector of step `j − 1` (`T v_{j−1} =
+/// V_j h + β₁ u`, `h` in `h[0..j, j − 1]`): orthogonalized again by classical Gram–Schmidt
+/// twice, `u = V_j s + α v_j`, so `T v_{j−1} = V_j (h + β₁ s) + β₁ α v_j`; `Some(j)` (the
+/// size reached) when the finite spectrum is exhausted.
+fn finish_delayed(a: &mut Arnoldi<f64>, op: &mut dyn FnMut(ColRef<'_, f64>, ColMut<'_, f64>), j: usize, beta1: f64) -> Option<usize> {
+    let alpha = {
+        let (done, mut rest) = a.v.as_mut().split_at_col_mut(j);
+        f64::orthogonalize(a.sweeper, done.rb(), rest.rb_mut().col_mut(0), a.coef.subrows_mut(0, j), a.scratch.subrows_mut(0, j))
+    };
+    for i in 0..j {
+        a.h[(i, j - 1)] += beta1 * a.coef[i];
+    }
+    let beta = beta1 * alpha;
+    let scale_c = (0..j).map(|i| a.h[(i, j - 1)] * a.h[(i, j - 1)]).sum::<f64>().sqrt().max(beta);
+    if beta <= 1e-12 * scale_c {
+        a.h[(j, j - 1)] = 0.0;
+        if !fresh_direction(a, op, j) {
+            return Some(j);
+        }
+    } else {
+        a.h[(j, j - 1)] = beta;
+        for x in a.v.col_mut(j).iter_mut() {
+            *x /= alpha;
+        }
+    }
+    None
+}
+
+/// Arnoldi on a real basis with the second Gram–Schmidt pass delayed by one step (DCGS2:
+/// Świrydowicz, Langou, Ananthan, Yang, Thomas, "Low synchronization Gram–Schmidt and
+/// generalized minimal residual algorithms", Numer. Linear Algebra Appl. 28, 2021; Bielich
+/// et al., "Low-synch Gram–Schmidt with delayed reorthogonalization for Krylov solvers",
+/// Parallel Comput. 112, 2022). At 10⁵ unknowns every pass over the basis is a read from
+/// memory, and with classical Gram–Schmidt twice nearly every step takes its second pass
+/// (118 of 118 on the hanging chain): three reads a step. Here the operator is applied to
+/// `u`, the vector of the previous step orthogonalized once; one sweep then gives both
+/// `s = V_jᵀ u` (the delayed second pass of `u`) and `z = V_jᵀ w` for `w = T u`, and a second
+/// sweep writes `v_j = (u − V_j s)/α` and `w` orthogonalized once against `[V_j, v_j]`: two
+/// reads a step. With `α² = uᵀu − sᵀs`, by linearity
+/// `T v_j = (w − T V_j s)/α = (w − V_{j+1} H s)/α` (the Arnoldi relation of the earlier
+/// columns, `H = h[0..=j, 0..j]` once column `j − 1` is corrected as in [`finish_delayed`]),
+/// so with `g = [V_j, v_j]ᵀ w = [z; (uᵀw − sᵀz)/α]` the new column of `h` is `(g − H s)/α`
+/// and `T v_j − V_{j+1} (g − H s)/α = (w − V_{j+1} g)/α`. When `u` was far from orthogonal
+/// (`α² < uᵀu/2`, where the Pythagorean `α` would lose digits) or nearly in the basis,
+/// column `j` is finished by the classical passes and `T` applied again.
+fn expand_delayed(a: &mut Arnoldi<f64>, op: &mut dyn FnMut(ColRef<'_, f64>, ColMut<'_, f64>), kept: usize) -> Result<usize, KrylovError> {
+    let m = a.m;
+    let sw = a.sweeper;
+    let (mut s, mut z, mut g) = (vec![0.0; m + 1], vec![0.0; m + 1], vec![0.0; m + 1]);
+    // β₁ of column j when it holds the once-orthogonalized u of the previous step.
+    let mut pending: Option<f64> = None;
+    let mut j = kept;
+    while j < m {
+        apply(a, op, j)?;
+        let (beta1, add) = if let Some(b1) = pending {
+            let (uu, uw) = {
+                let cols = columns(a.v.as_ref(), j);
+                sw.project_pair(&cols, contiguous(a.v.col(j)), contiguous(a.v.col(j + 1)), &mut s[..j], &mut z[..j])
+            };
+            let ss: f64 = s[..j].iter().map(|x| x * x).sum();
+            let alpha2 = uu - ss;
+            let corrected = (0..j).map(|i| (a.h[(i, j - 1)] + b1 * s[i]).powi(2)).sum::<f64>().sqrt();
+            let alpha = alpha2.max(0.0).sqrt();
+            if !(alpha2.is_finite() && uw.is_finite() && alpha2 >= 0.5 * uu && b1 * alpha > 1e-12 * corrected.max(b1 * alpha)) {
+                if let Some(size) = finish_delayed(a, op, j, b1) {
+                    return Ok(size);
+                }
+                pending = None;
+                continue;
+            }
+            for i in 0..j {
+                a.h[(i, j - 1)] += b1 * s[i];
+            }
+            a.h[(j, j - 1)] = b1 * alpha;
+            g[..j].copy_from_slice(&z[..j]);
+            g[j] = (uw - s[..j].iter().zip(&z[..j]).map(|(x, y)| x * y).sum::<f64>()) / alpha;
+            for i in 0..=j {
+                let hs: f64 = (0..j).map(|l| a.h[(i, l)] * s[l]).sum();
+                a.h[(i, j)] = (g[i] - hs) / alpha;
+            }
+            let (done, mut rest) = a.v.as_mut().split_at_col_mut(j);
+            let cols = columns(done.rb(), j);
+            let (mut uc, mut wc) = rest.rb_mut().split_at_col_mut(1);
+            (sw.update_pair(&cols, &s[..j], &g[..=j], alpha, contiguous_mut(uc.rb_mut().col_mut(0)), contiguous_mut(wc.rb_mut().col_mut(0))).sqrt(), true)
+        } else {
+            // Column j is orthonormal to the others: one pass, its second one delayed.
+            let (done, mut rest) = a.v.as_mut().split_at_col_mut(j + 1);
+            let cols = columns(done.rb(), j + 1);
+            let w = contiguous_mut(rest.rb_mut().col_mut(0));
+            if sw.project(&cols, w, &mut g[..=j]).is_finite() {
+                for i in 0..=j {
+                    a.h[(i, j)] = g[i];
+                }
+                (sw.subtract(&cols, &g[..=j], w).sqrt(), true)
+            } else {
+                (f64::NAN, false)
+            }
+        };
+        if !beta1.is_finite() {
+            // Overflow: the classical passes with faer's scaled norms (added to the
+            // coefficients already in h[.., j] when a pass was made).
+            pending = None;
+            if let Some(size) = complete_step(a, op, j, add) {
+                return Ok(size);
+            }
+            j += 1;
+            continue;
+        }
+        let hn = (0..=j).map(|i| a.h[(i, j)] * a.h[(i, j)]).sum::<f64>().sqrt();
+        if beta1 <= 1e-12 * hn.max(beta1) {
+            // Invariant subspace (a second pass only makes the norm smaller).
+            a.h[(j + 1, j)] = 0.0;
+            pending = None;
+            if !fresh_direction(a, op, j + 1) {
+                return Ok(j + 1);
+            }
+        } else {
+            for x in a.v.col_mut(j + 1).iter_mut() {
+                *x /= beta1;
+            }
+            pending = Some(beta1);
+        }
+        j += 1;
+    }
+    if let Some(b1) = pending {
+        if let Some(size) = finish_delayed(a, op, m, b1) {
+            return Ok(size);
+        }
+    }
+    Ok(m)
 }
 
 /// Runs Krylov–Schur on `op` (dimension `n`); `progress` is told the number of converged
@@ -328,67 +626,19 @@ fn combine<T: Scalar>(v: MatRef<'_, T>, y: ColRef<'_, c64>) -> Col<c64> {
 pub(super) fn krylov_schur<T: Scalar>(n: usize, op: &mut dyn FnMut(ColRef<'_, T>, ColMut<'_, T>), s: &Settings, progress: &dyn Fn(usize)) -> Result<Run, KrylovError> {
     let m = s.basis.min(n).max(1);
     let wanted = s.wanted.min(m.saturating_sub(1)).max(1).min(n);
-    let mut v = Mat::<T>::zeros(n, m + 1);
-    let mut h = Mat::<T>::zeros(m + 1, m);
     let zero = T::from_c64(c64::new(0.0, 0.0));
-    let mut applications = 0;
-    // Coefficients of one Gram–Schmidt step and their scratch.
-    let (mut coef, mut scratch) = (Col::<T>::zeros(m + 1), Col::<T>::zeros(m + 1));
-    let Some(x) = purified(op, n, s.seed, &mut applications) else {
+    let mut a = Arnoldi { n, m, v: Mat::<T>::zeros(n, m + 1), h: Mat::<T>::zeros(m + 1, m), coef: Col::zeros(m + 1), scratch: Col::zeros(m + 1), applications: 0, seed: s.seed, sweeper: Sweeper::new(s.parallel) };
+    let Some(x) = purified(op, n, s.seed, &mut a.applications) else {
         return Err(KrylovError::Breakdown("the start vector is in the operator's null space".into()));
     };
-    v.col_mut(0).copy_from(&x);
+    a.v.col_mut(0).copy_from(&x);
     drop(x);
     let mut kept = 0;
     let mut restarts = 0;
     loop {
         // Arnoldi expansion from column `kept`.
-        let mut size = m;
-        for j in kept..m {
-            let (done, mut rest) = v.as_mut().split_at_col_mut(j + 1);
-            let done = done.rb();
-            let mut w = rest.rb_mut().col_mut(0);
-            op(done.col(j), w.rb_mut());
-            applications += 1;
-            if !w.rb().iter().all(|x| x.to_c64().re.is_finite() && x.to_c64().im.is_finite()) {
-                return Err(KrylovError::Breakdown("the operator returned non-finite values".into()));
-            }
-            let mut beta = T::orthogonalize(done, w.rb_mut(), coef.subrows_mut(0, j + 1), scratch.subrows_mut(0, j + 1));
-            for i in 0..=j {
-                h[(i, j)] = coef[i];
-            }
-            let scale_c = coef.subrows(0, j + 1).norm_l2().max(beta);
-            if beta <= 1e-12 * scale_c {
-                // Invariant subspace: continue with a fresh direction (coupling zero), purified
-                // like the start vector. When the purified fresh vectors lie in the basis
-                // too, the finite spectrum the operator reaches is exhausted: stop there.
-                h[(j + 1, j)] = zero;
-                let mut fresh = None;
-                for attempt in 0..3u64 {
-                    let Some(mut f) = purified(op, n, s.seed + 1000 + 7 * j as u64 + attempt, &mut applications) else { continue };
-                    let nb = T::orthogonalize(done, f.as_mut(), coef.subrows_mut(0, j + 1), scratch.subrows_mut(0, j + 1));
-                    if nb > 1e-8 && nb.is_finite() {
-                        fresh = Some((f, nb));
-                        break;
-                    }
-                }
-                match fresh {
-                    Some((f, nb)) => {
-                        w.copy_from(&f);
-                        beta = nb;
-                    }
-                    None => {
-                        size = j + 1;
-                        break;
-                    }
-                }
-            } else {
-                h[(j + 1, j)] = T::from_c64(c64::new(beta, 0.0));
-            }
-            for x in w.iter_mut() {
-                *x = x.times(1.0 / beta);
-            }
-        }
+        let size = T::expand(&mut a, op, kept)?;
+        let (v, h) = (&mut a.v, &mut a.h);
         let square = h.submatrix(0, 0, size, size).to_owned();
         // Wanted first (by decreasing |θ|), then the others (by decreasing |θ|). A real
         // basis keeps both of a pair, the one with Im θ ≥ 0 first.
@@ -420,26 +670,17 @@ pub(super) fn krylov_schur<T: Scalar>(n: usize, op: &mut dyn FnMut(ColRef<'_, T>
         let converged = (0..want).take_while(|&i| residual_of(&r, i) <= s.tolerance).count();
         progress((0..converged).filter(|&i| !T::REAL || upper(i)).count());
         if converged >= want || restarts >= s.max_restarts || size < m {
-            let basis = v.subcols(0, size);
-            let pairs = (0..converged)
-                .filter(|&i| !T::REAL || upper(i))
-                .map(|i| {
-                    // x = V y purified, x ← T x / θ, by the Krylov relation T V = V H +
-                    // v_size h[size, :]: T x / θ = x + v_size (h[size, :] y) / θ, without
-                    // applying T (it removes the components along θ = 0, the infinite
-                    // eigenvalues, as an application would).
-                    let y = r.y.col(i);
-                    let mut x = combine(basis, y);
-                    let g = (0..size).fold(c64::new(0.0, 0.0), |acc, l| acc + h[(size, l)].to_c64() * y[l]) / theta[i];
-                    for (k, xk) in x.iter_mut().enumerate() {
-                        *xk += v[(k, size)].to_c64() * g;
-                    }
-                    let nx = x.norm_l2();
-                    RitzPair { theta: theta[i], x: x / nx }
-                })
-                .collect();
+            // x = V y purified, x ← T x / θ, by the Krylov relation T V = V H +
+            // v_size h[size, :]: T x / θ = x + v_size (h[size, :] y) / θ, without applying T
+            // (it removes the components along θ = 0, the infinite eigenvalues, as an
+            // application would).
+            let chosen: Vec<usize> = (0..converged).filter(|&i| !T::REAL || upper(i)).collect();
+            let y = Mat::<c64>::from_fn(size, chosen.len(), |l, c| r.y[(l, chosen[c])]);
+            let g: Vec<c64> = chosen.iter().map(|&i| (0..size).fold(c64::new(0.0, 0.0), |acc, l| acc + h[(size, l)].to_c64() * r.y[(l, i)]) / theta[i]).collect();
+            let xs = ritz_vectors(v, size, &y, &g, s.parallel);
+            let pairs = chosen.iter().zip(xs).map(|(&i, x)| RitzPair { theta: theta[i], x }).collect();
             let next = (size > want).then(|| theta[want].norm());
-            return Ok(Run { pairs, next, complete: converged >= want, applications, restarts });
+            return Ok(Run { pairs, next, complete: converged >= want, applications: a.applications, restarts });
         }
         // Restart: keep the leading Ritz vectors (wanted plus half the rest) as an
         // orthonormal basis Q of their invariant subspace, checked: ‖H Q − Q S‖ small with
@@ -462,7 +703,7 @@ pub(super) fn krylov_schur<T: Scalar>(n: usize, op: &mut dyn FnMut(ColRef<'_, T>
             return Err(KrylovError::Breakdown("no basis of the kept Ritz vectors (a conjugate pair split at every cut)".into()));
         };
         let keep = q.ncols();
-        restart_basis(&mut v, size, &q);
+        restart_basis(v, size, &q, s.parallel);
         // The Rayleigh quotient S = Qᴴ H Q and the residual row h[size, :] Q.
         let bq = h.submatrix(size, 0, 1, size) * &q;
         h.fill(zero);

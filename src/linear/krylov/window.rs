@@ -85,10 +85,27 @@ pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted:
     // 6000): ARPACK's default 2 nev + 1 (97 columns) takes 125 applications and 1 restart
     // per run, 6878 basis columns orthogonalized against; 2 nev + 20 (68 columns) 121
     // applications, 5 restarts, 5521 columns: the Gram–Schmidt sweeps, which are memory
-    // bound at 10⁵ unknowns, read 20 % less (N = 6000: 0.8 of the wall time).
-    let real_basis = (2 * wanted + 20).min(n);
-    let real_settings = |seed| Settings { wanted, basis: real_basis, tolerance: s.krylov_tolerance, max_restarts: s.max_restarts, seed };
-    let settings = |seed| Settings { wanted, basis, tolerance: s.krylov_tolerance, max_restarts: s.max_restarts, seed };
+    // bound at 10⁵ unknowns, read 20 % less (N = 6000: 0.8 of the wall time). Re-measured
+    // with the delayed reorthogonalization (2026-12-02, N = 1000, columns swept per run):
+    // 24 wanted (both runs) 2 nev + 10 / 20 / 30 / 40: 133 / 121 / 113 / 131 applications,
+    // 12 / 5 / 2 / 2 restarts, 5577 / 5403 / 5227 / 6928 columns; 20 wanted (the right run
+    // alone) 2 nev + 20 / 30: 103 / 105 applications, 4 / 2 restarts, 3950 / 4383 columns;
+    // 5 and 10 modes favour 2 nev + 20 over 30 as well. Kept at 20 more. Keeping fewer
+    // Ritz vectors at a restart (the wanted ones and a third or a quarter of the rest, or
+    // none of the rest) took more applications and columns. When the basis fits in the
+    // second-level cache (2 MiB a core here) its sweeps cost little and the restarts' dense
+    // work (the Rayleigh quotient's eigenvectors, the basis rotation) dominates: there 20
+    // columns more again, fewer restarts (callgrind, the whole 1712-equation chain solve:
+    // right only 192 M -> 142 M instructions, 4 -> 1 restart, 103 applications; right +
+    // left 525 M -> 413 M, 5 -> 2 restarts, 121 -> 131 applications each). At 17012
+    // equations (11 MB) the instructions fell too (right only 1.02e9 -> 0.93e9) but the
+    // sweeps read 22 % more of a basis beyond that cache: not taken there.
+    let roomy = 2 * wanted + 40;
+    let real_basis = (2 * wanted + if n * roomy * std::mem::size_of::<f64>() <= 2 << 20 { 40 } else { 20 }).min(n);
+    // The right run alone has both cores: its sweeps over the basis go on two threads.
+    let parallel = !s.left_vectors && n >= PARALLEL_FROM && rayon::current_num_threads() > 1;
+    let real_settings = |seed| Settings { wanted, basis: real_basis, tolerance: s.krylov_tolerance, max_restarts: s.max_restarts, seed, parallel };
+    let settings = |seed| Settings { wanted, basis, tolerance: s.krylov_tolerance, max_restarts: s.max_restarts, seed, parallel };
     let report = |side: &'static str| move |k: usize| progress(&format!("shift {sigma}: {side} {k}/{wanted} converged"));
     // The two runs are independent (one factorization, read only): the adjoint run goes
     // to a second thread while this one does the right run and reports progress. Its own
@@ -123,7 +140,7 @@ pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted:
         right_run.applications, left_run.applications, right_run.restarts, left_run.restarts
     ));
     let (right, right_all) = lambdas(&op, right_run);
-    let (left, left_all) = lambdas(&op, left_run);
+    let (mut left, left_all) = lambdas(&op, left_run);
     // Radius of the disc each run covers: the farthest converged eigenvalue (everything
     // when the run exhausted the finite spectrum).
     let reach = |l: &[(c64, Col<c64>)], all: bool| {
@@ -137,7 +154,6 @@ pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted:
     let inside = |l: c64| (l - sigma).norm() <= radius * (1.0 + 1e-9);
     // Match each right eigenvalue with the nearest unused left one.
     let mut used = vec![false; left.len()];
-    let mut pairs = Vec::new();
     let mut rejected = 0;
     let mut agreed = true;
     // Nearest distance to σ of a disagreement or a rejected pair.
@@ -148,37 +164,46 @@ pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted:
         }
         trouble = trouble.min((l - sigma).norm());
     };
-    for (lr, v29) in &right {
-        let best = left.iter().enumerate().filter(|(i, _)| !used[*i]).min_by(|a, b| (a.1 .0 - lr).norm().total_cmp(&(b.1 .0 - lr).norm()));
-        let Some((i, (ll, u29))) = best else {
-            flag(*lr, &mut agreed);
+    let mut matched = Vec::new();
+    for (lr, v29) in right {
+        let best = left.iter().enumerate().filter(|(i, _)| !used[*i]).min_by(|a, b| (a.1 .0 - lr).norm().total_cmp(&(b.1 .0 - lr).norm())).map(|(i, (ll, _))| (i, *ll));
+        let Some((i, ll)) = best else {
+            flag(lr, &mut agreed);
             continue;
         };
         if (ll - lr).norm() > 1e-6 * (lr - sigma).norm().max(lr.norm() * 1e-3) {
-            flag(*lr, &mut agreed);
+            flag(lr, &mut agreed);
             continue;
         }
         used[i] = true;
+        // The vectors move on (the matched left one's place keeps its eigenvalue only), so
+        // each is freed once its pair is evaluated.
+        let u29 = std::mem::replace(&mut left[i].1, Col::zeros(0));
+        matched.push((lr, v29, u29));
+    }
+    // Each matched pair's residuals, vectors and label, one after the other: on the pool's
+    // threads they took 5 % less time at N = 6000 but the threads' glibc arenas kept what
+    // the pairs' vectors had used (peak over three solves 254 -> 422 MB).
+    let evaluated = map_pairs(false, matched, |(lr, v29, u29)| {
         // Two-sided Rayleigh quotient on eq. 29: λ = −(uᵀ K v)/(uᵀ E v).
-        let (kv, ev) = (pencil.k.mul_complex(v29), pencil.e.mul_complex(v29));
-        let (ukv, uev) = u29.iter().zip(kv.iter().zip(ev.iter())).fold((c64::new(0.0, 0.0), c64::new(0.0, 0.0)), |(a, b), (u, (k, e))| (a + u * k, b + u * e));
-        let rq = -ukv / uev;
+        let rq = -pencil.k.bilinear(&u29, &v29) / pencil.e.bilinear(&u29, &v29);
         // The DAE's products of both vectors, split by the moved entries, serve every
         // candidate λ, the labels and the normalization.
-        let (right_products, left_products) = (DaeProducts::new(dae, pencil.moved(), v29, false), DaeProducts::new(dae, pencil.moved(), u29, true));
-        let (lambda, rr, rl) = [*lr, rq]
+        let norms = (scales.nyd, scales.ny);
+        let (right_products, left_products) = (DaeProducts::new(dae, pencil.moved(), &v29, false, norms), DaeProducts::new(dae, pencil.moved(), &u29, true, norms));
+        let (lambda, rr, rl) = [lr, rq]
             .into_iter()
             .filter(|l| l.re.is_finite() && l.im.is_finite())
             .map(|l| (l, right_products.residual(l), left_products.residual(l)))
             .min_by(|a, b| a.1.max(a.2).total_cmp(&b.1.max(b.2)))
             .unwrap_or_else(|| unreachable!("the Ritz value is finite"));
         if !(rr <= s.tolerance && rl <= s.tolerance) {
-            rejected += 1;
-            flag(lambda, &mut agreed);
-            continue;
+            return Err(lambda);
         }
-        let (v, u) = (pencil.to_dae(v29, lambda), pencil.to_dae(u29, lambda));
+        let (v, u) = (pencil.to_dae(&v29, lambda), pencil.to_dae(&u29, lambda));
+        drop((v29, u29));
         let ((fydv, fyv), (ufyd, ufy)) = (right_products.at(lambda), left_products.at(lambda));
+        drop((right_products, left_products));
         let mut vectors = PairVectors { v, u, fydv, fyv, ufyd, ufy };
         let lambda = if lambda.im < 0.0 {
             vectors.map(|x| x.conj());
@@ -186,7 +211,17 @@ pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted:
         } else {
             lambda
         };
-        pairs.push(Eigenpair::new(dae, lambda, vectors, rr, rl, &scales));
+        Ok(Eigenpair::new(dae, lambda, vectors, rr, rl, &scales))
+    });
+    let mut pairs = Vec::new();
+    for e in evaluated {
+        match e {
+            Ok(p) => pairs.push(p),
+            Err(lambda) => {
+                rejected += 1;
+                flag(lambda, &mut agreed);
+            }
+        }
     }
     // A left eigenvalue inside the disc without a right partner is a disagreement.
     for (i, (ll, _)) in left.iter().enumerate() {
@@ -206,30 +241,51 @@ fn right_only(dae: &SparseLinearDae, pencil: &Pencil, op: &ShiftInvert, run: Run
     progress(&format!("shift {sigma}: {} operator applications, {} restarts (right run only)", run.applications, run.restarts));
     let (right, all) = lambdas(op, run);
     let radius = if all { f64::INFINITY } else { right.iter().map(|(x, _)| (x - sigma).norm()).fold(0.0, f64::max) };
+    // On the pool's threads (the right run alone has both cores): 6 % less time at
+    // N = 6000, for 38 MB more at the peak over three solves (170 -> 208 MB; the threads'
+    // arenas keep what the pairs' vectors used).
+    let evaluated = map_pairs(pencil.dim() >= PARALLEL_FROM, right, |(lr, v29)| {
+        let rr = right_residual(dae, pencil.moved(), &v29, lr, (scales.nyd, scales.ny));
+        if !(rr <= s.tolerance) {
+            return Err(lr);
+        }
+        let v = pencil.to_dae(&v29, lr);
+        drop(v29);
+        let (v, lambda) = if lr.im < 0.0 { (Col::from_fn(v.nrows(), |i| v[i].conj()), lr.conj()) } else { (v, lr) };
+        Ok(Eigenpair::right_only(lambda, v, rr, scales))
+    });
     let mut pairs = Vec::new();
     let mut rejected = 0;
     let mut trouble = f64::INFINITY;
-    for (lr, v29) in &right {
-        let products = DaeProducts::new(dae, pencil.moved(), v29, false);
-        let rr = products.residual(*lr);
-        if !(rr <= s.tolerance) {
-            rejected += 1;
-            trouble = trouble.min((lr - sigma).norm());
-            continue;
-        }
-        let (mut v, (mut fydv, mut fyv)) = (pencil.to_dae(v29, *lr), products.at(*lr));
-        let lambda = if lr.im < 0.0 {
-            for x in [&mut v, &mut fydv, &mut fyv] {
-                x.iter_mut().for_each(|e| *e = e.conj());
+    for e in evaluated {
+        match e {
+            Ok(p) => pairs.push(p),
+            Err(lr) => {
+                rejected += 1;
+                trouble = trouble.min((lr - sigma).norm());
             }
-            lr.conj()
-        } else {
-            *lr
-        };
-        pairs.push(Eigenpair::right_only(lambda, v, rr, scales));
+        }
     }
     let clean = radius.min(trouble * (1.0 - 1e-6));
     Ok(WindowResult { shift: sigma, radius, agreed: true, checked: false, clean, pairs, rejected })
+}
+
+/// Vectors from this length on are long enough for the hand-over to other threads to pay
+/// (measured on the hanging chain: at 1712 equations two threads were slower than one, at
+/// 17012 faster).
+pub(super) const PARALLEL_FROM: usize = 4096;
+
+/// `f` of every item (taken by value, so what it holds is freed as it goes), in order: on
+/// the rayon pool's threads when `parallel` (from the calling thread outside the pool rayon
+/// waits for its workers, which wait for nothing here; on a worker, the items may be
+/// stolen or run on it).
+fn map_pairs<I: Send, R: Send>(parallel: bool, items: Vec<I>, f: impl Fn(I) -> R + Sync + Send) -> Vec<R> {
+    use rayon::prelude::*;
+    if parallel && items.len() > 1 && rayon::current_num_threads() > 1 {
+        items.into_par_iter().with_max_len(1).map(f).collect()
+    } else {
+        items.into_iter().map(f).collect()
+    }
 }
 
 /// `F_yd x` and `F_y x` (or `F_ydᵀ x`, `F_yᵀ x`) of the DAE's vector of an eq. 29 vector
@@ -243,10 +299,32 @@ struct DaeProducts {
     norms: (f64, f64),
 }
 
+/// `‖x29‖²` on the unmoved and the moved entries.
+fn split_norms(x29: &Col<c64>, moved: &[bool]) -> (f64, f64) {
+    x29.iter().zip(moved).fold((0.0, 0.0), |(a, b), (x, &m)| if m { (a, b + x.norm_sqr()) } else { (a + x.norm_sqr(), b) })
+}
+
+/// [`DaeProducts::residual`] of the right vector of an eq. 29 vector at λ, row by row in one
+/// pass over the matrices, no product kept (the same sums in the same order; the right run
+/// alone needs nothing else). `norms`: `(‖F_yd‖_F, ‖F_y‖_F)`.
+fn right_residual(dae: &SparseLinearDae, moved: &[bool], x29: &Col<c64>, lambda: c64, norms: (f64, f64)) -> f64 {
+    let x = crate::linear::sparse::contiguous(x29.as_ref());
+    assert!(x.len() == dae.fyd.ncols() && x.len() == dae.fy.ncols() && moved.len() == x.len() && dae.fyd.nrows() == dae.fy.nrows(), "residual: sizes");
+    let norm2 = split_norms(x29, moved);
+    let inv = c64::new(1.0, 0.0) / lambda;
+    let r2 = (0..dae.fyd.nrows())
+        .map(|i| {
+            let ((da, db), (ya, yb)) = (dae.fyd.row_split(i, x, moved), dae.fy.row_split(i, x, moved));
+            (lambda * da + db + ya + yb * inv).norm_sqr()
+        })
+        .sum::<f64>();
+    let nx = (norm2.0 + norm2.1 * inv.norm_sqr()).sqrt();
+    r2.sqrt() / ((lambda.norm() * norms.0 + norms.1) * nx)
+}
+
 impl DaeProducts {
-    fn new(dae: &SparseLinearDae, moved: &[bool], x29: &Col<c64>, transpose: bool) -> Self {
-        let norm2 = x29.iter().zip(moved).fold((0.0, 0.0), |(a, b), (x, &m)| if m { (a, b + x.norm_sqr()) } else { (a + x.norm_sqr(), b) });
-        DaeProducts { fyd: dae.fyd.mul_split(x29, moved, transpose), fy: dae.fy.mul_split(x29, moved, transpose), norm2, norms: (dae.fyd.norm_l2(), dae.fy.norm_l2()) }
+    fn new(dae: &SparseLinearDae, moved: &[bool], x29: &Col<c64>, transpose: bool, norms: (f64, f64)) -> Self {
+        DaeProducts { fyd: dae.fyd.mul_split(x29, moved, transpose), fy: dae.fy.mul_split(x29, moved, transpose), norm2: split_norms(x29, moved), norms }
     }
 
     /// `(F_yd x, F_y x)` at λ.
