@@ -24,7 +24,7 @@
 //! clear gap in `Σ`, a singular `A₂₂`) returns `None`, and the caller runs QZ on the whole
 //! pencil.
 
-use faer::{c64, Col, Mat};
+use faer::{c64, Mat};
 
 use super::balance::balance_pencil;
 use super::dae::ConstraintForm;
@@ -37,9 +37,11 @@ pub(super) struct DynamicPart {
     /// Eigenvalues deflated at λ = 0 (step 1) and at λ = ∞ (steps 2–3).
     pub zeros: usize,
     pub infinities: usize,
-    /// `E₁` was nonsingular with a margin (no index-1 part): the pencil is then regular,
-    /// since `det(λ E₁ + K₁)` has the leading coefficient `det E₁ ≠ 0`. (With an index-1
-    /// part, `A₂₂`'s pivots are only checked against each other, which does not prove it.)
+    /// The pencil is proven regular: `E₁` nonsingular with a margin (no index-1 part), since
+    /// `det(λ E₁ + K₁)` has the leading coefficient `det E₁ ≠ 0`; or, with an index-1 part,
+    /// `A₂₂` certified nonsingular by [`super::certified_lu`] (leading coefficient
+    /// `± det A₂₂ det Σ`). A full-pivoting LU's pivots of `A₂₂`, only checked against each
+    /// other, do not prove it.
     pub regular: bool,
     n: usize,
     scaled: bool,
@@ -104,20 +106,6 @@ fn provably_full_rank(e1: &Mat<f64>) -> bool {
     1.0 / inv_f > FULL_RANK_MARGIN * negligible
 }
 
-/// `x` with `R x = b` for upper triangular `R`.
-fn back_substitute(r: &Mat<f64>, b: &Col<c64>) -> Col<c64> {
-    let m = r.nrows();
-    let mut x = b.clone();
-    for i in (0..m).rev() {
-        let mut s = x[i];
-        for j in i + 1..m {
-            s -= x[j] * r[(i, j)];
-        }
-        x[i] = s / r[(i, i)];
-    }
-    x
-}
-
 impl DynamicPart {
     /// Deflates the pencil `λ F_yd + F_y` whose constraint rows and multipliers are
     /// `multipliers` (each index both); `None` when the structure is not there.
@@ -176,11 +164,13 @@ impl DynamicPart {
         let s = nd - m;
         // A full rank with the margin below proven by bounds costs one LU; otherwise the
         // singular values decide (U and V are needed only when E₁ is rank deficient).
-        let rank = if provably_full_rank(&e1) {
-            s
+        let (rank, svd) = if provably_full_rank(&e1) {
+            (s, None)
         } else {
-            let mut sv: Vec<f64> = e1.singular_values().ok()?;
-            sv.truncate(s);
+            // One SVD with its vectors: bounds that do not prove a full rank mostly mean a
+            // rank deficiency, where U and V are needed (the 1712-equation chain: 200 of 700).
+            let svd = e1.svd().ok()?;
+            let sv: Vec<f64> = (0..s).map(|i| svd.S()[i]).collect();
             let top = sv.first().copied().unwrap_or(0.0);
             let negligible = s as f64 * f64::EPSILON * top;
             let rank = sv.iter().take_while(|&&x| x > negligible).count();
@@ -193,31 +183,42 @@ impl DynamicPart {
             if rank == 0 || (!full_rank && sv[..rank].iter().any(|&x| x < f64::EPSILON.sqrt() * top)) {
                 return None;
             }
-            rank
+            (rank, Some((svd, sv)))
         };
-        let (e2, k2, x2, y2) = if rank < s {
-            let svd = e1.svd().ok()?;
-            let sv: Vec<f64> = (0..s).map(|i| svd.S()[i]).collect();
-            let (u, v) = (svd.U(), svd.V());
-            let a_t = u.transpose() * &k1 * v;
-            let (a11, a12) = (a_t.submatrix(0, 0, rank, rank), a_t.submatrix(0, rank, rank, s - rank));
-            let (a21, a22) = (a_t.submatrix(rank, 0, s - rank, rank), a_t.submatrix(rank, rank, s - rank, s - rank));
-            let lu = a22.full_piv_lu();
-            let uu = lu.U();
-            let (big, small) = (0..s - rank).map(|i| uu[(i, i)].abs()).fold((0.0f64, f64::INFINITY), |(b, sm), x| (b.max(x), sm.min(x)));
-            if !(small > big * (s - rank) as f64 * f64::EPSILON) {
-                return None;
+        // With an index-1 part, `A₂₂` proven nonsingular by a certified LU makes the pencil
+        // regular too: `det(λ E₁ + K₁) = ± det A₂₂ det(λ Σ + K₂)`, leading coefficient
+        // `± det A₂₂ det Σ ≠ 0`.
+        let (e2, k2, x2, y2, a22_certified) = match svd.filter(|_| rank < s) {
+            Some((svd, sv)) => {
+                let (u, v) = (svd.U(), svd.V());
+                let a_t = u.transpose() * &k1 * v;
+                let (a11, a12) = (a_t.submatrix(0, 0, rank, rank), a_t.submatrix(0, rank, rank, s - rank));
+                let (a21, a22) = (a_t.submatrix(rank, 0, s - rank, rank), a_t.submatrix(rank, rank, s - rank, s - rank));
+                let tolerance = (s - rank) as f64 * f64::EPSILON;
+                // Negligible against the whole K₁ (= ‖Uᵀ K₁ V‖_F), not against A₂₂ itself:
+                // a singular pencil leaves A₂₂ at rounding level, nonsingular relative to
+                // itself (tests/reliability.rs, a common null vector).
+                let k1_norm = a_t.norm_l2();
+                use faer::linalg::solvers::Solve;
+                let (g21, g12t, certified) = match super::certified_lu::certified_partial_lu(a22, tolerance, k1_norm) {
+                    Some(lu) => (lu.solve(a21.to_owned()), lu.solve_transpose(a12.transpose().to_owned()), true),
+                    None => {
+                        let lu = a22.full_piv_lu();
+                        let uu = lu.U();
+                        let (big, small) = (0..s - rank).map(|i| uu[(i, i)].abs()).fold((0.0f64, f64::INFINITY), |(b, sm), x| (b.max(x), sm.min(x)));
+                        if !(small > big * tolerance) {
+                            return None;
+                        }
+                        (lu.solve(a21.to_owned()), lu.solve_transpose(a12.transpose().to_owned()), false)
+                    }
+                };
+                let k2 = a11 - a12 * &g21;
+                let x2 = v.subcols(0, rank) - v.subcols(rank, s - rank) * &g21;
+                let y2 = u.subcols(0, rank) - u.subcols(rank, s - rank) * &g12t;
+                (Mat::from_fn(rank, rank, |i, j| if i == j { sv[i] } else { 0.0 }), k2, Some(x2), Some(y2), certified)
             }
-            use faer::linalg::solvers::Solve;
-            let g21 = lu.solve(a21.to_owned());
-            let g12t = lu.solve_transpose(a12.transpose().to_owned());
-            let k2 = a11 - a12 * &g21;
-            let x2 = v.subcols(0, rank) - v.subcols(rank, s - rank) * &g21;
-            let y2 = u.subcols(0, rank) - u.subcols(rank, s - rank) * &g12t;
-            (Mat::from_fn(rank, rank, |i, j| if i == j { sv[i] } else { 0.0 }), k2, Some(x2), Some(y2))
-        } else {
             // Full rank: no index-1 part, the dynamic part is (E₁, K₁) itself (X₂ = Y₂ = I).
-            (e1, k1, None, None)
+            None => (e1, k1, None, None, false),
         };
         let times = |q: faer::MatRef<'_, f64>, x: Option<Mat<f64>>| x.map_or_else(|| q.to_owned(), |x| q * x);
         Some(DynamicPart {
@@ -225,7 +226,7 @@ impl DynamicPart {
             k: k2,
             zeros: if scaled { 2 * m } else { 0 },
             infinities: if scaled { s - rank } else { 2 * m + s - rank },
-            regular: rank == s,
+            regular: rank == s || a22_certified,
             n,
             scaled,
             row_scale: bal.row.clone(),
@@ -277,15 +278,12 @@ impl DynamicPart {
         };
         let p = Mat::from_fn(x_d.nrows(), x_d.ncols(), |i, j| -(fy[(i, j)] + lambda[j] * fyd[(i, j)]));
         let (q1, r) = if transpose { (&self.q_g1, &self.r_g) } else { (&self.q_h1, &self.r_h) };
-        let rhs = real_times_complex(q1.transpose(), &p);
-        let mut x = Mat::<c64>::zeros(m, x_d.ncols());
-        for j in 0..x_d.ncols() {
-            let col = back_substitute(r, &Col::from_fn(m, |i| rhs[(i, j)]));
-            for i in 0..m {
-                x[(i, j)] = col[i];
-            }
+        // R⁻¹ (Q₁ᵀ P) on the real and imaginary parts, each one blocked triangular solve.
+        let (mut re, mut im) = real_times_complex_parts(q1.transpose(), &p);
+        for part in [&mut re, &mut im] {
+            faer::linalg::triangular_solve::solve_upper_triangular_in_place(r.as_ref(), part.as_mut(), faer::get_global_parallelism());
         }
-        x
+        Mat::from_fn(m, x_d.ncols(), |i, j| c64::new(re[(i, j)], im[(i, j)]))
     }
 
     /// Scatters `D` and multiplier parts into whole vectors, maps the form of eq. 29 back
@@ -307,8 +305,13 @@ impl DynamicPart {
 
 /// `M Z` for real `M` and complex `Z` (two real products).
 fn real_times_complex(m: faer::MatRef<'_, f64>, z: &Mat<c64>) -> Mat<c64> {
+    let (a, b) = real_times_complex_parts(m, z);
+    Mat::from_fn(a.nrows(), a.ncols(), |i, j| c64::new(a[(i, j)], b[(i, j)]))
+}
+
+/// The real and imaginary parts of `M Z` for real `M` and complex `Z`.
+fn real_times_complex_parts(m: faer::MatRef<'_, f64>, z: &Mat<c64>) -> (Mat<f64>, Mat<f64>) {
     let re = Mat::<f64>::from_fn(z.nrows(), z.ncols(), |i, j| z[(i, j)].re);
     let im = Mat::<f64>::from_fn(z.nrows(), z.ncols(), |i, j| z[(i, j)].im);
-    let (a, b) = (m * &re, m * &im);
-    Mat::from_fn(a.nrows(), a.ncols(), |i, j| c64::new(a[(i, j)], b[(i, j)]))
+    (m * &re, m * &im)
 }

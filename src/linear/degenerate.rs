@@ -13,7 +13,8 @@
 //!   has no eigenvalues to label. A regular pencil has at most n values of `s` where
 //!   `F_y + s F_yd` is singular, so the pencil is declared singular when, after
 //!   balancing, this matrix is numerically rank deficient (smallest pivot of a
-//!   full-pivoting LU below `10 n ε` of the largest) at two unrelated shifts `s`. An
+//!   full-pivoting LU below `10 n ε` of the largest) at two unrelated shifts `s` (a partial-pivoting LU that
+//!   proves the matrix nonsingular, [`super::certified_lu`], settles it faster). An
 //!   unknown or equation without any entry is named.
 
 use faer::Mat;
@@ -69,9 +70,21 @@ pub(crate) fn prepare(jacobians: &Jacobians, dcoef: Option<f64>) -> Result<Prepa
     Ok(prepared)
 }
 
-/// [`prepare`] without the check for a singular pencil (for a caller that proves
-/// regularity otherwise: the deflation of `super::deflate`).
-pub(crate) fn prepare_unchecked(jacobians: &Jacobians, dcoef: Option<f64>) -> Result<Prepared, EigenError> {
+/// [`prepare`] without the check for a singular pencil.
+fn prepare_unchecked(jacobians: &Jacobians, dcoef: Option<f64>) -> Result<Prepared, EigenError> {
+    let scale = pencil_scale(jacobians, dcoef)?;
+    let scaled = |m: &Mat<f64>| m * faer::Scale(scale);
+    let jacobians = match jacobians {
+        Jacobians::Derivatives { fyd, fy } => Jacobians::Derivatives { fyd: scaled(fyd), fy: scaled(fy) },
+        Jacobians::Coefficient { j, jstar, dcoef } => Jacobians::Coefficient { j: scaled(j), jstar: scaled(jstar), dcoef: *dcoef },
+    };
+    Ok(Prepared { jacobians, scale })
+}
+
+/// The checks of [`prepare`] but the singular pencil's, and the power of two it scales the
+/// pencil by (1 for ordinary magnitudes), without copying the matrices (for a caller that
+/// proves regularity otherwise: the deflation of `super::deflate`).
+pub(crate) fn pencil_scale(jacobians: &Jacobians, dcoef: Option<f64>) -> Result<f64, EigenError> {
     let non_finite = |what: &str, m: &Mat<f64>| first_non_finite(m).map(|(i, j, x)| EigenError::NonFinite(format!("{what} entry ({}, {}) is {x}", i + 1, j + 1)));
     let (a, b, names) = match jacobians {
         Jacobians::Derivatives { fyd, fy } => (fyd, fy, ["F_yd", "F_y"]),
@@ -91,26 +104,28 @@ pub(crate) fn prepare_unchecked(jacobians: &Jacobians, dcoef: Option<f64>) -> Re
     // Pencils of ordinary magnitudes are left exactly as they are.
     let ordinary = largest <= 2f64.powi(400) && smallest >= 2f64.powi(-400);
     let scale = if largest > 0.0 && !ordinary { (-((largest.log2() + smallest.log2()) / 2.0).round()).exp2() } else { 1.0 };
-    let scaled = |m: &Mat<f64>| m * faer::Scale(scale);
-    let jacobians = match jacobians {
-        Jacobians::Derivatives { fyd, fy } => Jacobians::Derivatives { fyd: scaled(fyd), fy: scaled(fy) },
+    match jacobians {
         Jacobians::Coefficient { j, jstar, dcoef } => {
             if !dcoef_ok(*dcoef) {
                 return Err(EigenError::InvalidDcoef(*dcoef));
             }
-            Jacobians::Coefficient { j: scaled(j), jstar: scaled(jstar), dcoef: *dcoef }
+            // F_y = (J − J*)/(2 dCoef) of the scaled matrices, checked entry by entry.
+            let c = *dcoef;
+            let overflow = (0..j.ncols()).flat_map(|col| (0..j.nrows()).map(move |row| (row, col))).find(|&(row, col)| !((j[(row, col)] * scale - jstar[(row, col)] * scale) * (0.5 / c)).is_finite());
+            if let Some((row, col)) = overflow {
+                let x = (j[(row, col)] * scale - jstar[(row, col)] * scale) * (0.5 / c);
+                return Err(EigenError::NonFinite(format!("F_y = (J(+c) - J(-c))/(2 dCoef) (eq. 16; dCoef too small for these matrices) entry ({}, {}) is {x}", row + 1, col + 1)));
+            }
         }
-    };
-    let (fyd, fy) = jacobians.derivatives();
-    if let Some(e) = non_finite("F_y = (J(+c) - J(-c))/(2 dCoef) (eq. 16; dCoef too small for these matrices)", &fy) {
-        return Err(e);
-    }
-    if let (Some(c), Jacobians::Derivatives { .. }) = (dcoef, &jacobians) {
-        if !(max_abs(&fyd) + c * max_abs(&fy)).is_finite() {
-            return Err(EigenError::NonFinite(format!("J = F_yd + dCoef F_y overflows with dCoef = {c} s")));
+        Jacobians::Derivatives { fyd, fy } => {
+            if let Some(c) = dcoef {
+                if !(max_abs(fyd) * scale + c * max_abs(fy) * scale).is_finite() {
+                    return Err(EigenError::NonFinite(format!("J = F_yd + dCoef F_y overflows with dCoef = {c} s")));
+                }
+            }
         }
     }
-    Ok(Prepared { jacobians, scale })
+    Ok(scale)
 }
 
 /// Errors when `λ F_yd + F_y` is singular for every λ (see the module doc).
@@ -138,6 +153,10 @@ fn check_regular(fyd: &Mat<f64>, fy: &Mat<f64>) -> Result<(), EigenError> {
     // Two shifts with no relation to each other or to simple eigenvalues (0, ±1, ±2, …).
     for s in [0.734_918_251_3, -1.618_033_988_7] {
         let m = a + b * faer::Scale(s * ratio);
+        // The fast partial-pivoting LU decides only when it proves `m` nonsingular.
+        if super::certified_lu::certified_partial_lu(m.as_ref(), tolerance, 0.0).is_some() {
+            return Ok(());
+        }
         let lu = m.full_piv_lu();
         let u = lu.U();
         let pivots: Vec<f64> = (0..n).map(|k| u[(k, k)].abs()).collect();

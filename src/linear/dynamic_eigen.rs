@@ -84,10 +84,18 @@ impl ModalAnalysis {
         // refused too: a pencil whose dynamic part has a nonsingular E₁ is regular
         // (det(λ F_yd + F_y) = ± det R_G det R_H det(λ E₁ + K₁), up to the eq. 30 factor
         // λ^2m, with leading coefficient ≠ 0), any other is checked (two LUs).
-        if super::degenerate::prepare_unchecked(jacobians, dcoef)?.scale != 1.0 {
+        if super::degenerate::pencil_scale(jacobians, dcoef)? != 1.0 {
             return Self::compute_with_dcoef(jacobians, route, dcoef);
         }
-        let (fyd, fy) = jacobians.derivatives();
+        // F_yd and F_y as stored (Derivatives), or formed once from J, J* (eq. 16).
+        let formed;
+        let (fyd, fy) = match jacobians {
+            super::dae::Jacobians::Derivatives { fyd, fy } => (fyd, fy),
+            super::dae::Jacobians::Coefficient { .. } => {
+                formed = jacobians.derivatives();
+                (&formed.0, &formed.1)
+            }
+        };
         let Some(part) = DynamicPart::new(&fyd, &fy, dae.constraint_form, &dae.multipliers) else {
             return Self::compute_with_dcoef(jacobians, route, dcoef);
         };

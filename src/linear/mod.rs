@@ -3,6 +3,7 @@
 //! (eqs. 32–35).
 
 mod balance;
+mod certified_lu;
 mod classify;
 mod dae;
 mod degenerate;
@@ -22,3 +23,4 @@ pub use eigen_error::EigenError;
 pub use route::EigenRoute;
 pub use sparse::{SparseMatrix, SparseScalar};
 pub use sparse_dae::{SparseLinearDae, SparseSolveError};
+pub(crate) use certified_lu::certified_partial_lu;

@@ -27,8 +27,9 @@ pub(crate) fn equilibration(m: &Mat<f64>) -> (Vec<f64>, Vec<f64>) {
     (row, col)
 }
 
-/// `M⁻¹ R` by LU with full pivoting of the equilibrated `D_r M D_c`, or `None` when it is
-/// numerically singular (smallest pivot below `n ε` times the largest). Equilibration
+/// `M⁻¹ R` by LU of the equilibrated `D_r M D_c`, or `None` when it is numerically singular
+/// (smallest pivot of an LU with full pivoting below `n ε` times the largest; a
+/// partial-pivoting LU that proves the matrix nonsingular answers first). Equilibration
 /// matters for multibody static matrices: a saddle point `[K Φᵀ; Φ 0]` with stiffness
 /// `K ~ 1e7` and unit constraint gradients has singular values near `1/K` while being
 /// perfectly determined.
@@ -46,6 +47,13 @@ pub(crate) fn solve_or_free_direction(m: &Mat<f64>, r: &Mat<f64>) -> Result<Mat<
     }
     let (dr, dc) = equilibration(m);
     let scaled = Mat::from_fn(n, n, |i, j| dr[i] * m[(i, j)] * dc[j]);
+    let rhs = || Mat::from_fn(n, r.ncols(), |i, j| dr[i] * r[(i, j)]);
+    // A partial-pivoting LU that proves `D_r M D_c` nonsingular (blocked: 10 times faster
+    // at n = 1712) answers; only a doubtful matrix goes to full pivoting's rank test.
+    if let Some(lu) = crate::linear::certified_partial_lu(scaled.as_ref(), n as f64 * f64::EPSILON, 0.0) {
+        let x = lu.solve(rhs());
+        return Ok(Mat::from_fn(n, r.ncols(), |i, j| dc[i] * x[(i, j)]));
+    }
     let lu = scaled.full_piv_lu();
     let u = lu.U();
     let (big, small) = (0..n).map(|i| u[(i, i)].abs()).fold((0.0f64, f64::INFINITY), |(b, s), x| (b.max(x), s.min(x)));
@@ -53,7 +61,7 @@ pub(crate) fn solve_or_free_direction(m: &Mat<f64>, r: &Mat<f64>) -> Result<Mat<
         return Err(free_direction(&lu, &dc));
     }
     // M x = R  ⇔  (D_r M D_c)(D_c⁻¹ x) = D_r R.
-    let x = lu.solve(Mat::from_fn(n, r.ncols(), |i, j| dr[i] * r[(i, j)]));
+    let x = lu.solve(rhs());
     Ok(Mat::from_fn(n, r.ncols(), |i, j| dc[i] * x[(i, j)]))
 }
 
