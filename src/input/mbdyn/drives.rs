@@ -3,8 +3,8 @@
 //! `step`, `sine`, `cosine`, `piecewise linear`, `linear`, `parabolic`, `cubic`,
 //! `exponential`, `tanh`, `double ramp`, `double step`, `array`, `mult`, `drive` (one drive
 //! of another's value), `frequency sweep`,
-//! `periodic`, `sample and hold` and `discrete filter` (with a memory of the steps,
-//! [`StepDrive`]), `string` (an expression of `Time` for the math parser, evaluated with the
+//! `periodic`, `fourier series`, `sample and hold`, `discrete filter`, `meter`, `closest
+//! next` and `random` (with a memory of the steps, [`StepDrive`]; see `counter_drives`), `string` (an expression of `Time` for the math parser, evaluated with the
 //! file's variables as they stand at the end of the input, as MBDyn evaluates it during the
 //! run), and `reference, LABEL` to a `drive caller:` card;
 //! and the 3-vector template drive callers (§Template Drive): `null`, `single`,
@@ -25,14 +25,15 @@ use crate::element::{Drive, ElementState, StepDrive, StepKind, TimeFunction};
 use crate::kinematics::{Mat3, Vec3};
 
 /// Drive callers romdyn evaluates.
-const SUPPORTED: [&str; 34] = [
+const SUPPORTED: [&str; 38] = [
+    "meter", "closest next", "random", "fourier series",
     "sample and hold", "discrete filter", "drive", "file", "node", "dof", "element", "const", "null", "unit", "one", "time", "direct", "ramp", "step", "sine", "cosine", "piecewise linear", "linear", "parabolic", "cubic", "exponential",
     "tanh", "double ramp", "double step", "array", "mult", "frequency sweep", "periodic", "string", "reference", "zero", "constant", "scalar function",
 ];
 
-/// MBDyn drive callers romdyn cannot represent (named in the error): they read the model's
-/// state outside the math parser, random numbers or the step counter.
-const UNSUPPORTED: [&str; 6] = ["closest next", "ginac", "fourier series", "meter", "postponed", "random"];
+/// MBDyn drive callers romdyn does not read (named in the error): `ginac` needs GiNaC,
+/// `postponed` a drive caller card defined later.
+const UNSUPPORTED: [&str; 2] = ["ginac", "postponed"];
 
 /// Nesting of drive callers inside drive callers romdyn follows.
 const MAX_DEPTH: usize = 16;
@@ -54,6 +55,9 @@ pub struct Drives {
     /// The drives with a memory of the steps read so far (`sample and hold`, `discrete
     /// filter`), which the model advances at every step.
     pub stepped: Mutex<Vec<StepDrive>>,
+    /// The numbers the `random` drives draw, and the drives created so far (their order).
+    pub random: std::sync::Arc<crate::element::c_rand::RandomDraws>,
+    pub created: std::sync::atomic::AtomicUsize,
 }
 
 impl Drives {
@@ -199,6 +203,10 @@ fn nested_drive(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) -> Re
             let f = inner(c)?;
             Drive::Compose(Box::new(f), Box::new(inner(c)?))
         }
+        "meter" => super::counter_drives::meter(c, drives)?,
+        "closest next" => super::counter_drives::closest_next(c, drives, &inner)?,
+        "random" => super::counter_drives::random(c, drives, seq)?,
+        "fourier series" => super::counter_drives::fourier_series(c)?,
         "frequency sweep" => {
             let t0 = c.real("initial time [s]")?;
             let omega = Box::new(inner(c)?);
@@ -258,7 +266,7 @@ fn nested_drive(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) -> Re
         _ => {
             let label = c.label("drive caller label")?;
             match drives.table.get(&label) {
-                Some((d, s, _)) if *s < seq => d.clone(),
+                Some((d, s, _)) if *s < seq => super::counter_drives::copied(d, drives, seq),
                 Some((_, _, at)) => return Err(c.error_at(span, format!("drive caller {label} is used before its definition (line {})", at.line))),
                 None => return Err(c.error_at(span, format!("drive caller {label} is not defined"))),
             }
