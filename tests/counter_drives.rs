@@ -16,7 +16,11 @@ fn text() -> String {
 }
 
 fn from_text(t: &str) -> Result<MbdynModel, String> {
-    parse_text(t, &path("counter_drives.mbd")).and_then(|d| build(&d)).map_err(|e| e.to_string())
+    from_named_text(t, "counter_drives.mbd")
+}
+
+fn from_named_text(t: &str, name: &str) -> Result<MbdynModel, String> {
+    parse_text(t, &path(name)).and_then(|d| build(&d)).map_err(|e| e.to_string())
 }
 
 /// (x, ẋ) of each node at the end of a run.
@@ -140,5 +144,51 @@ fn bad_counter_drives_name_the_place_and_what_was_expected() {
             Ok(_) => panic!("{new} must be refused"),
         };
         assert!(e.contains("counter_drives.mbd:") && e.contains(expected), "{new}: {e}");
+    }
+}
+
+#[test]
+fn postponed_drives_are_copies_of_later_cards_as_in_mbdyn() {
+    let m = read_test_file("postponed_drives.mbd");
+    let end = final_x(&m);
+    // MBDyn 1.7.3 on tests/mbdyn_files/postponed_drives.mbd, `output precision: 16`, last
+    // row of its .mov (t = 0.2 s): x and ẋ of nodes 1 to 3. romdyn measured within 6e-18;
+    // asserted to 1e-14. Node 1's numbers need its copy's draws after every card's and
+    // every `reference` copy's (made when MBDyn first calls the force): with the copy's
+    // draws at the force's place (before card 2's copy) ẋ would be 0.1507 m/s instead of
+    // 0.1818 (the same arithmetic in Python on glibc's rand()).
+    let mbdyn = [
+        (1.6284719118791556e-02, 1.8184453861633368e-01),
+        (6.4865714898428310e-04, -8.5271242650868107e-04),
+        (1.6167538409379473e-01, 1.1859242877837679e+00),
+    ];
+    for (k, (&(x, v), (mx, mv))) in end.iter().zip(mbdyn).enumerate() {
+        eprintln!("node {}: x {x:.16e} (MBDyn {mx:.16e}), ẋ {v:.16e} (MBDyn {mv:.16e})", k + 1);
+        assert!((x - mx).abs() < 1e-14 && (v - mv).abs() < 1e-14, "node {}: {x}, {v} against MBDyn {mx}, {mv}", k + 1);
+    }
+    // Node 3's postponed fourier series is counter_drives.mbd's drive caller 3.
+    let base = final_x(&read_test_file("counter_drives.mbd"));
+    assert_eq!(end[2], base[2]);
+    // `method: ms, postponed, 7` took card 7's radius 1 (Crank-Nicolson): 0.6 would
+    // change the motion.
+    let text = std::fs::read_to_string(path("postponed_drives.mbd")).unwrap();
+    let other = final_x(&from_named_text(&text.replacen("drive caller: 7, const, 1.;", "drive caller: 7, const, 0.6;", 1), "postponed_drives.mbd").unwrap());
+    assert!((other[2].0 - end[2].0).abs() > 1e-6, "{other:?}");
+
+    // A postponed drive caller needs the card; inside a card, one read before it.
+    let cases = [
+        ("postponed, 1;", "postponed, 11;", "no drive caller card 11"),
+        ("drive caller: 2, random, 1., 0., 0., forever, seed, 7;", "drive caller: 2, postponed, 3;", "no drive caller card 3 is read before"),
+        // The collection's drives/drivecallers/postponed makes the radius a drive of a
+        // joint's rotation, which MBDyn evaluates at every step; romdyn's is fixed.
+        ("drive caller: 7, const, 1.;", "drive caller: 7, node, 1, structural, string, \"X[1]\", linear, 1., 0.;", "spectral radius reads the model's state"),
+    ];
+    for (old, new, expected) in cases {
+        assert!(text.contains(old), "{old}");
+        let e = match from_named_text(&text.replacen(old, new, 1), "postponed_drives.mbd") {
+            Err(e) => e,
+            Ok(_) => panic!("{new} must be refused"),
+        };
+        assert!(e.contains("postponed_drives.mbd:") && e.contains(expected), "{new}: {e}");
     }
 }

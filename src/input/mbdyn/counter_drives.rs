@@ -79,9 +79,10 @@ fn new_random(drives: &Drives, seq: usize, amplitude: f64, mean: f64, t0: f64, t
     stepped(drives, StepKind::Random { amplitude, mean, t0, t1, steps, draws, id })
 }
 
-/// A drive caller card used by `reference` read at statement `seq`: MBDyn copies it
-/// (`pCopy`), and a copied `random` drive is a new one, which draws its own numbers.
-/// The other drives with memory stay shared.
+/// A drive caller card used by `reference` read at statement `seq`, or by `postponed`
+/// (`seq` = `usize::MAX`: MBDyn copies the card when the drive is first called, in the run,
+/// after every drive was read): MBDyn copies it (`pCopy`), and a copied `random` drive is
+/// a new one, which draws its own numbers. The other drives with memory stay shared.
 pub fn copied(d: &Drive, drives: &Drives, seq: usize) -> Drive {
     let copy = |d: &Drive| copied(d, drives, seq);
     match d {

@@ -25,15 +25,15 @@ use crate::element::{Drive, ElementState, StepDrive, StepKind, TimeFunction};
 use crate::kinematics::{Mat3, Vec3};
 
 /// Drive callers romdyn evaluates.
-const SUPPORTED: [&str; 38] = [
-    "meter", "closest next", "random", "fourier series",
+const SUPPORTED: [&str; 39] = [
+    "postponed", "meter", "closest next", "random", "fourier series",
     "sample and hold", "discrete filter", "drive", "file", "node", "dof", "element", "const", "null", "unit", "one", "time", "direct", "ramp", "step", "sine", "cosine", "piecewise linear", "linear", "parabolic", "cubic", "exponential",
     "tanh", "double ramp", "double step", "array", "mult", "frequency sweep", "periodic", "string", "reference", "zero", "constant", "scalar function",
 ];
 
-/// MBDyn drive callers romdyn does not read (named in the error): `ginac` needs GiNaC,
-/// `postponed` a drive caller card defined later.
-const UNSUPPORTED: [&str; 2] = ["ginac", "postponed"];
+/// MBDyn drive callers romdyn does not read (named in the error): `ginac` needs GiNaC
+/// (MBDyn 1.7.3 built without it refuses it too).
+const UNSUPPORTED: [&str; 1] = ["ginac"];
 
 /// Nesting of drive callers inside drive callers romdyn follows.
 const MAX_DEPTH: usize = 16;
@@ -207,6 +207,20 @@ fn nested_drive(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) -> Re
         "closest next" => super::counter_drives::closest_next(c, drives, &inner)?,
         "random" => super::counter_drives::random(c, drives, seq)?,
         "fourier series" => super::counter_drives::fourier_series(c)?,
+        // `postponed, LABEL` (drive_.cc, `PostponedDriveCaller::Check`): a copy of the
+        // drive caller card LABEL, which may come later in the file. MBDyn resolves it when
+        // first called; romdyn reads the cards before the problem and element blocks, so
+        // there it resolves any card; inside a card it needs a card read before.
+        "postponed" => {
+            let label = c.label("drive caller label")?;
+            match drives.table.get(&label) {
+                // A random drive copied at its first call draws after all those read.
+                Some((d, _, _)) => super::counter_drives::copied(d, drives, usize::MAX),
+                None => {
+                    return Err(c.error_at(span, format!("postponed drive caller {label}: no drive caller card {label} is read before this one (romdyn resolves a postponed drive caller inside a drive caller card when it reads the card)")));
+                }
+            }
+        }
         "frequency sweep" => {
             let t0 = c.real("initial time [s]")?;
             let omega = Box::new(inner(c)?);
