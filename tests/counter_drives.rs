@@ -192,3 +192,40 @@ fn postponed_drives_are_copies_of_later_cards_as_in_mbdyn() {
         assert!(e.contains("postponed_drives.mbd:") && e.contains(expected), "{new}: {e}");
     }
 }
+
+#[test]
+fn template_drive_caller_cards_are_copied_as_in_mbdyn() {
+    let end = final_x(&read_test_file("template_drive_cards.mbd"));
+    // MBDyn 1.7.3 on tests/mbdyn_files/template_drive_cards.mbd, `output precision: 16`,
+    // last row of its .mov (t = 0.2 s): x and ẋ of nodes 1 to 5. romdyn measured within
+    // 6e-18; asserted to 1e-14.
+    let mbdyn = [
+        (3.1000000000000003e-03, 2.0000000000000000e-02),
+        (7.9000000000000008e-03, 8.0000000000000002e-02),
+        (1.6167538409379473e-01, 1.1859242877837679e+00),
+        (1.0015217595551316e-02, 1.3377596813655107e-01),
+        (2.9370438880466712e-03, 3.7998281107463070e-03),
+    ];
+    for (k, (&(x, v), (mx, mv))) in end.iter().zip(mbdyn).enumerate() {
+        eprintln!("node {}: x {x:.16e} (MBDyn {mx:.16e}), ẋ {v:.16e} (MBDyn {mv:.16e})", k + 1);
+        assert!((x - mx).abs() < 1e-14 && (v - mv).abs() < 1e-14, "node {}: {x}, {v} against MBDyn {mx}, {mv}", k + 1);
+    }
+    let base = final_x(&read_test_file("counter_drives.mbd"));
+    assert_eq!(end[..3], base[..3]);
+
+    let text = std::fs::read_to_string(path("template_drive_cards.mbd")).unwrap();
+    let cases = [
+        ("template drive caller: 8, \"3\",", "template drive caller: 8, \"3x3\",", "dimension 3x3 are not supported"),
+        ("reference, 9;", "reference, 10;", "template drive caller 10 is not defined"),
+        ("template drive caller: 9, 3,", "template drive caller: 8, 3,", "template drive caller 8 is defined twice"),
+        ("single, 1., 0., 0., reference, 3;", "single, 1., 0., reference, 3;", "template drive caller vector"),
+    ];
+    for (old, new, expected) in cases {
+        assert!(text.contains(old), "{old}");
+        let e = match from_named_text(&text.replacen(old, new, 1), "template_drive_cards.mbd") {
+            Err(e) => e,
+            Ok(_) => panic!("{new} must be refused"),
+        };
+        assert!(e.contains("template_drive_cards.mbd:") && e.contains(expected), "{new}: {e}");
+    }
+}

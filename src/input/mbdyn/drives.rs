@@ -58,12 +58,15 @@ pub struct Drives {
     /// The numbers the `random` drives draw, and the drives created so far (their order).
     pub random: std::sync::Arc<crate::element::c_rand::RandomDraws>,
     pub created: std::sync::atomic::AtomicUsize,
+    /// The 3-vector `template drive caller:` cards: their terms, statement, place.
+    templates: HashMap<u32, (Vec<(Vec3, Drive)>, usize, Span)>,
 }
 
 impl Drives {
     /// Forgets the `drive caller:` cards (to read them again with other variables).
     pub fn clear_cards(&mut self) {
         self.table.clear();
+        self.templates.clear();
     }
     /// The drives with memory read so far (emptied).
     pub fn take_stepped(&self) -> Vec<StepDrive> {
@@ -109,6 +112,27 @@ pub fn drive_caller_card(st: &Statement, c: &mut Cursor, drives: &mut Drives) ->
     }
     c.finish()?;
     drives.table.insert(label, (d, st.seq, st.span));
+    Ok(())
+}
+
+/// Reads a `template drive caller: LABEL, {"3" | 3}, TPL_DRIVE_CALLER;` card (input manual
+/// §Template Drive Caller; mbpar.cc): romdyn reads the 3-vector ones, whose vectors are given
+/// as numbers (the frame of the element that uses the card by `reference, LABEL`, as MBDyn's
+/// card keeps them).
+pub fn template_drive_caller_card(st: &Statement, c: &mut Cursor, drives: &mut Drives) -> Result<(), MbdynError> {
+    let span = c.here();
+    let label = c.label("template drive caller label")?;
+    if let Some((_, _, at)) = drives.templates.get(&label) {
+        return Err(c.error_at(span, format!("template drive caller {label} is defined twice (first at line {})", at.line)));
+    }
+    let dim_span = c.here();
+    let dim = if c.next_is_number() { c.integer("the dimension (\"3\" or 3)")?.to_string() } else { c.string("the dimension (\"3\" or 3)")? };
+    if dim != "3" {
+        return Err(c.error_at(dim_span, format!("template drive caller cards of dimension {dim} are not supported by romdyn (it reads 3-vector ones)")));
+    }
+    let terms = template_terms(c, drives, st.seq, &Mat3::identity(), &|c: &mut Cursor| c.vec3_values("template drive caller vector"), 0)?;
+    c.finish()?;
+    drives.templates.insert(label, (terms, st.seq, st.span));
     Ok(())
 }
 
@@ -445,7 +469,15 @@ fn template_terms(c: &mut Cursor, drives: &Drives, seq: usize, basis: &Mat3, dir
         return Ok(terms);
     }
     if c.accept("reference") {
-        return Err(c.error("'reference, …' here names a template drive caller card, which romdyn does not support; to give the vector in another frame write 'single, reference, FRAME, x, y, z, DRIVE'"));
+        // A `template drive caller:` card, copied (MBDyn's `pCopy`), its vectors in the
+        // element's frame.
+        let span = c.here();
+        let label = c.label("template drive caller label (a 'template drive caller:' card; to give the vector in another frame write 'single, reference, FRAME, x, y, z, DRIVE')")?;
+        return match drives.templates.get(&label) {
+            Some((terms, s, _)) if *s < seq => Ok(terms.iter().map(|(v, d)| (basis * v, super::counter_drives::copied(d, drives, seq))).collect()),
+            Some((_, _, at)) => Err(c.error_at(span, format!("template drive caller {label} is used before its definition (line {})", at.line))),
+            None => Err(c.error_at(span, format!("template drive caller {label} is not defined"))),
+        };
     }
     c.accept("single");
     let dir = direction(c)?;
