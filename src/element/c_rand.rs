@@ -133,7 +133,7 @@ impl RandomDraws {
         } else {
             // Draws before step `last`, then those of the drives created before this one at it.
             let before: usize = plan.steps.iter().map(|s| (last - 1) / s).sum();
-            let now = plan.steps[..order].iter().filter(|s| last % **s == 0).count();
+            let now = plan.steps[..order].iter().filter(|s| last.is_multiple_of(**s)).count();
             (plan.end.0, plan.end.1 + before + now)
         };
         let base = d.number(seed, at);

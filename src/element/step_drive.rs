@@ -116,7 +116,7 @@ impl StepDrive {
         match &self.0.kind {
             StepKind::SampleAndHold { .. } => m.held,
             StepKind::DiscreteFilter { a, b0, b, input } => b0 * input.value_at(t, state) + history(a, b, m),
-            StepKind::Meter { t0, t1, steps } => f64::from(u8::from((*t0..=*t1).contains(&t) && m.step % steps == 0)),
+            StepKind::Meter { t0, t1, steps } => f64::from(u8::from((*t0..=*t1).contains(&t) && m.step.is_multiple_of(*steps))),
             StepKind::ClosestNext { t0, t1, .. } => {
                 let time = state.map_or(t, |s| s.time());
                 f64::from(u8::from((*t0..=*t1).contains(&t) && time >= m.next))

@@ -59,8 +59,11 @@ pub struct Drives {
     pub random: std::sync::Arc<crate::element::c_rand::RandomDraws>,
     pub created: std::sync::atomic::AtomicUsize,
     /// The 3-vector `template drive caller:` cards: their terms, statement, place.
-    templates: HashMap<u32, (Vec<(Vec3, Drive)>, usize, Span)>,
+    templates: HashMap<u32, TemplateCard>,
 }
+
+/// A 3-vector template drive caller card: its terms, statement and place.
+type TemplateCard = (Vec<(Vec3, Drive)>, usize, Span);
 
 impl Drives {
     /// Forgets the `drive caller:` cards (to read them again with other variables).
