@@ -235,3 +235,42 @@ fn template_drive_caller_cards_are_copied_as_in_mbdyn() {
         assert!(e.contains("template_drive_cards.mbd:") && e.contains(expected), "{new}: {e}");
     }
 }
+
+/// The times of the steps `m` writes to the `.mov` (the `.out`'s `Out` column, as MBDyn's)
+/// after checking that node 1 has that many rows.
+fn written_times(m: &MbdynModel, name: &str) -> Vec<f64> {
+    let dir = common::cli::temp_dir(name);
+    let prefix = dir.join("counter_drives");
+    let mut files = romdyn::analysis::RunFiles::create(&prefix, "counter_drives.mbd", &m.model, &m.problem).unwrap();
+    let report = run(&m.model, &m.problem, &mut files).unwrap();
+    files.finish(&report).unwrap();
+    let out = std::fs::read_to_string(dir.join("counter_drives.out")).unwrap();
+    let written: Vec<f64> = out.lines().filter(|l| l.starts_with("Step ") && l.ends_with(" 1")).map(|l| l.split_whitespace().nth(2).unwrap().parse().unwrap()).collect();
+    let mov = std::fs::read_to_string(dir.join("counter_drives.mov")).unwrap();
+    assert_eq!(mov.lines().filter(|l| l.split_whitespace().next() == Some("1")).count(), written.len(), "{out}");
+    written
+}
+
+#[test]
+fn an_output_meter_chooses_the_written_steps() {
+    // `output meter: DRIVE` in control data (dataman2.cc `DataManager::Output`: a step is
+    // written when the drive is not 0). A meter every 3 steps: steps 0, 3, …, 18 of 20 (7
+    // rows); MBDyn's own drives/drivecallers/meter and closestnext (output meter: meter
+    // every 10 steps, closest next every 0.01 s, at 1 ms) give 101 and 102 rows in MBDyn
+    // 1.7.3 and in romdyn, equal to MBDyn's 7 printed digits (5e-8) throughout.
+    let t = text().replacen("    output precision: 16;", "    output precision: 16;\n    output meter: meter, 0., forever, steps, 3;", 1);
+    let m = from_text(&t).unwrap();
+    let times = written_times(&m, "meter");
+    assert!(times.len() == 7 && times.iter().enumerate().all(|(k, t)| (t - 0.03 * k as f64).abs() < 1e-12), "{times:?}");
+    // A closest next every 0.045 s: steps 0 and 1 (its start, reached at step 0 and moved
+    // on only at step 2), then the first steps past 0.045, 0.09, 0.135, 0.18: 5, 9 or 10
+    // (whether 9 steps of 0.01 reach 0.09 is a matter of rounding), 14, 18 or 19.
+    let t = text().replacen("    output precision: 16;", "    output precision: 16;\n    output meter: closest next, 0., forever, const, 0.045;", 1);
+    let times = written_times(&from_text(&t).unwrap(), "closest");
+    let steps: Vec<usize> = times.iter().map(|t| (t / 0.01).round() as usize).collect();
+    assert!(steps.len() == 6 && steps[..3] == [0, 1, 5] && [9, 10].contains(&steps[3]) && steps[4] == 14 && [18, 19].contains(&steps[5]), "{steps:?}");
+    // With `output frequency` too, MBDyn stops: romdyn as well.
+    let t = text().replacen("    output precision: 16;", "    output frequency: 2;\n    output meter: meter, 0., forever, steps, 3;", 1);
+    let e = from_text(&t).err().expect("refused");
+    assert!(e.contains("counter_drives.mbd:") && e.contains("already given"), "{e}");
+}

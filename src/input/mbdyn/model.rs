@@ -117,6 +117,27 @@ fn cards(doc: &Document) -> Result<Cards, MbdynError> {
     Ok(out)
 }
 
+/// `output meter: DRIVE` in control data (dataman3.cc, case OUTPUTMETER): the drive that
+/// decides which steps are written; with `output frequency` MBDyn stops ("Output
+/// meter/frequency already defined"), and so does romdyn.
+fn output_meter(cd: Option<&Block>, src: &super::diagnostic::Sources, drives: &Drives) -> Result<Option<crate::element::Drive>, MbdynError> {
+    let mut meter = None;
+    let mut seen: Option<Span> = None;
+    for st in cd.map_or(&[][..], |b| &b.statements) {
+        let Some(k) = known(&st.keyword, &["output meter", "output frequency"]) else { continue };
+        if let Some(first) = seen {
+            return Err(src.error(st.span, format!("'{k}': the output meter or frequency is already given (line {}), as MBDyn says", first.line)));
+        }
+        seen = Some(st.span);
+        if k == "output meter" {
+            let mut c = Cursor::new(st, src);
+            meter = Some(super::drives::drive(&mut c, drives, st.seq)?);
+            c.finish()?;
+        }
+    }
+    Ok(meter)
+}
+
 /// Builds the model from a parsed document.
 pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
     let src = &doc.sources;
@@ -163,6 +184,7 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
             })
             .collect(),
         every: control_output.every,
+        meter: output_meter(block(doc, "control data"), src, &cards.drives)?,
         precision: control_output.precision,
     });
     problem.assembly = assembly;
