@@ -188,7 +188,7 @@ fn drive_and_law_errors() {
         // 51. Piecewise linear points out of order.
         (force("piecewise linear, 2, 1., 0., 0.5, 1."), "m.mbd:6:81: error: piecewise linear: the points must increase, 0.5 does not follow 1"),
         // 52. A drive caller romdyn cannot represent.
-        (force("meter, 0., forever"), "m.mbd:6:52: error: drive caller 'meter' is not supported by romdyn"),
+        (force("ginac, \"t\""), "m.mbd:6:52: error: drive caller 'ginac' is not supported by romdyn"),
         // 53. An undefined drive caller.
         (force("reference, 4"), "m.mbd:6:52: error: drive caller 4 is not defined"),
         // 54. (Different drives on different components of one force: a sum since issue 12's

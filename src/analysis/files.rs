@@ -98,10 +98,11 @@ impl RunObserver for RunFiles {
     }
 
     fn step(&mut self, e: &StepDone) -> Result<(), ObserverError> {
-        self.out.step(&StepLine { step: e.step, time: e.time, time_step: e.time_step, iterations: e.iterations, residual_norm: e.residual_norm })?;
+        let written = self.motion.as_ref().is_none_or(|m| m.meter.as_ref().map_or(e.step % m.every.max(1) == 0, |d| d.value(e.time) != 0.0));
+        self.out.step(&StepLine { step: e.step, time: e.time, time_step: e.time_step, iterations: e.iterations, residual_norm: e.residual_norm, written })?;
         match &self.motion {
             None => self.mov.write_step(&e.node_kinematics())?,
-            Some(m) if e.step % m.every.max(1) == 0 => self.mov.write_rows(&motion_rows(m, &e.node_kinematics()))?,
+            Some(m) if written => self.mov.write_rows(&motion_rows(m, &e.node_kinematics()))?,
             Some(_) => {}
         }
         if self.has_beams == Some(false) {

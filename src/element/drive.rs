@@ -108,6 +108,10 @@ pub enum Drive {
     /// `f_i` before `t_i`, `f_i + A(t) sin(ω(t) (t − t_i))` on `[t_i, t_f]`, `f_f` after
     /// (MBDyn's `frequency sweep`).
     FrequencySweep { t0: f64, omega: Box<Drive>, amplitude: Box<Drive>, v0: f64, t1: f64, v1: f64 },
+    /// `v0 + a₀/2 + Σ_k (a_k cos(kω(t − t0)) + b_k sin(kω(t − t0)))` on `t0 ≤ t < t1`,
+    /// `v0` elsewhere (MBDyn's `fourier series`, drive_.h `FourierSeriesDriveCaller::dGet`:
+    /// back to `v0`, not held, after the last cycle); `terms` holds `a₀/2, a₁, b₁, …`.
+    FourierSeries { t0: f64, omega: f64, terms: Vec<f64>, t1: f64, v0: f64 },
     /// 0 before `t0`, then `f` of the time since the start of the current period (MBDyn's
     /// `periodic`).
     Periodic { t0: f64, period: f64, f: Box<Drive> },
@@ -217,6 +221,17 @@ impl Drive {
                     v0 + amplitude.value_at(t, state) * (omega.value_at(t, state) * (t - t0)).sin()
                 }
             }
+            Drive::FourierSeries { t0, omega, terms, t1, v0 } => {
+                if t < *t0 || t >= *t1 {
+                    return *v0;
+                }
+                let s = t - t0;
+                let series: f64 = terms[1..].chunks(2).enumerate().map(|(k, ab)| {
+                    let theta = (k + 1) as f64 * omega * s;
+                    ab[0] * theta.cos() + ab.get(1).map_or(0.0, |b| b * theta.sin())
+                }).sum();
+                v0 + terms.first().copied().unwrap_or(0.0) + series
+            }
             Drive::Periodic { t0, period, f } => {
                 if t < *t0 {
                     0.0
@@ -312,5 +327,11 @@ mod tests {
         assert_eq!([0.5, 1.5, 3.5].map(|t| p.value(t)), [0.0, 0.5, 0.5]);
         let f = Drive::Expression(TimeFunction::new("2*Time", |t| 2.0 * t));
         assert_eq!(f.value(1.5), 3.0);
+        // fourier series from t = 1, ω = 2, a₀ = 3, a₁ = 1, b₁ = 0, a₂ = 0, b₂ = 4, one
+        // cycle (to 1 + π), on 0.5: 0.5 + 1.5 + cos 2s + 4 sin 4s with s = t − 1.
+        let fs = Drive::FourierSeries { t0: 1.0, omega: 2.0, terms: vec![1.5, 1.0, 0.0, 0.0, 4.0], t1: 1.0 + std::f64::consts::PI, v0: 0.5 };
+        let s = 0.3f64;
+        assert!((fs.value(1.0 + s) - (2.0 + (2.0 * s).cos() + 4.0 * (4.0 * s).sin())).abs() < 1e-15);
+        assert_eq!((fs.value(0.9), fs.value(1.0), fs.value(5.0)), (0.5, 3.0, 0.5));
     }
 }

@@ -41,6 +41,7 @@ pub mod private_data;
 mod scalar_function;
 mod screw;
 mod step_drive;
+pub mod c_rand;
 mod tikhonov;
 mod total_equation;
 mod viscous_body;

@@ -40,6 +40,21 @@ pub enum StepKind {
     /// correctly for any length; MBDyn's shift loop (`x[i] = x[i − 1]` upwards) repeats
     /// the newest entry for histories longer than 2, which romdyn does not copy.
     DiscreteFilter { a: Vec<f64>, b0: f64, b: Vec<f64>, input: Drive },
+    /// `meter, T0, {forever | T1} [, steps, N]` (drive.h, `MyMeter`): 1 on `[T0, T1]` at
+    /// the steps whose number is a multiple of N (step 0 the initial state), else 0.
+    Meter { t0: f64, t1: f64, steps: usize },
+    /// `closest next, T0, {forever | T1}, INCREMENT` (drive.h, `MyClosestNext::Set`): a
+    /// threshold from T0; at the start of a step, if the last step had reached it, it
+    /// moves on by INCREMENT (at the new time) until it passes the new time; else a step
+    /// that reaches it is marked. The value on `[T0, T1]` is 1 when the time has reached
+    /// the threshold, else 0. An increment that is not positive stops the threshold
+    /// (MBDyn would loop for ever): the drive is 0 from then on.
+    ClosestNext { t0: f64, t1: f64, increment: Drive },
+    /// `random, A, M, T0, {forever | T1} [, steps, N] [, seed, {time | S}]`
+    /// (drive_.h, `RandDriveCaller::dGet`): `M + A (2 ((base + r) mod RAND_MAX)/RAND_MAX − 1)`
+    /// on `[T0, T1]`, M elsewhere, with `r` the drive's last draw (see
+    /// [`super::c_rand::RandomDraws`]).
+    Random { amplitude: f64, mean: f64, t0: f64, t1: f64, steps: usize, draws: Arc<super::c_rand::RandomDraws>, id: usize },
 }
 
 /// The memory of a [`StepDrive`].
@@ -50,6 +65,11 @@ struct Memory {
     /// Past outputs `y_{k−1}, y_{k−2}, …` and inputs `ũ_0, ũ_1, …` (discrete filter).
     outputs: Vec<f64>,
     inputs: Vec<f64>,
+    /// The step number (meter, random; 0 before the first step).
+    step: usize,
+    /// The threshold and whether it must move on (closest next).
+    next: f64,
+    must_move: bool,
 }
 
 #[derive(Debug)]
@@ -96,6 +116,20 @@ impl StepDrive {
         match &self.0.kind {
             StepKind::SampleAndHold { .. } => m.held,
             StepKind::DiscreteFilter { a, b0, b, input } => b0 * input.value_at(t, state) + history(a, b, m),
+            StepKind::Meter { t0, t1, steps } => f64::from(u8::from((*t0..=*t1).contains(&t) && m.step.is_multiple_of(*steps))),
+            StepKind::ClosestNext { t0, t1, .. } => {
+                let time = state.map_or(t, |s| s.time());
+                f64::from(u8::from((*t0..=*t1).contains(&t) && time >= m.next))
+            }
+            StepKind::Random { amplitude, mean, t0, t1, draws, id, .. } => {
+                if !(*t0..=*t1).contains(&t) {
+                    return *mean;
+                }
+                let (base, r) = draws.numbers(*id, m.step);
+                let max = super::c_rand::RAND_MAX;
+                let x = ((u64::from(base) + u64::from(r)) % u64::from(max)) as f64;
+                mean + amplitude * (2.0 * x / f64::from(max) - 1.0)
+            }
         }
     }
 
@@ -103,7 +137,7 @@ impl StepDrive {
     /// filter's direct term does.
     pub fn reads_state(&self) -> bool {
         match &self.0.kind {
-            StepKind::SampleAndHold { .. } => false,
+            StepKind::SampleAndHold { .. } | StepKind::Meter { .. } | StepKind::ClosestNext { .. } | StepKind::Random { .. } => false,
             StepKind::DiscreteFilter { b0, input, .. } => *b0 != 0.0 && input.reads_state(),
         }
     }
@@ -133,6 +167,26 @@ impl StepDrive {
                 push_front(&mut current.outputs, y_previous);
                 push_front(&mut current.inputs, input.value_at(t_new, Some(&advanced)));
             }
+            StepKind::Meter { .. } | StepKind::Random { .. } => current.step = step,
+            StepKind::ClosestNext { increment, .. } => {
+                if current.must_move {
+                    // MBDyn's `do … while (Time >= next)`, here with a bound.
+                    for _ in 0..1_000_000 {
+                        let dt = increment.value_at(t_new, Some(&advanced));
+                        if !(dt > 0.0) {
+                            current.next = f64::INFINITY;
+                            break;
+                        }
+                        current.next += dt;
+                        if t_new < current.next {
+                            break;
+                        }
+                    }
+                    current.must_move = false;
+                } else if t_new >= current.next {
+                    current.must_move = true;
+                }
+            }
         }
     }
 }
@@ -140,7 +194,9 @@ impl StepDrive {
 fn initial_memory(kind: &StepKind) -> Memory {
     match kind {
         StepKind::SampleAndHold { initial, .. } => Memory { held: *initial, ..Memory::default() },
-        StepKind::DiscreteFilter { a, b, .. } => Memory { held: 0.0, outputs: vec![0.0; a.len()], inputs: vec![0.0; b.len()] },
+        StepKind::DiscreteFilter { a, b, .. } => Memory { outputs: vec![0.0; a.len()], inputs: vec![0.0; b.len()], ..Memory::default() },
+        StepKind::ClosestNext { t0, .. } => Memory { next: *t0, ..Memory::default() },
+        StepKind::Meter { .. } | StepKind::Random { .. } => Memory::default(),
     }
 }
 
@@ -231,5 +287,56 @@ mod tests {
             seen.push(s.value_at(k as f64, None));
         }
         assert_eq!(seen, [-1.0, -1.0, 2.0, 2.0, 2.0]);
+    }
+
+    /// The values at steps 0..=n, each step tried twice (first at another time).
+    fn run(d: &StepDrive, n: usize, h: f64) -> Vec<f64> {
+        let mut seen = vec![d.value_at(0.0, Some(&Clock(0.0)))];
+        for k in 1..=n {
+            let t = k as f64 * h;
+            d.begin_step(k, t - 0.5 * h, &Clock(t - h));
+            d.begin_step(k, t, &Clock(t - h));
+            seen.push(d.value_at(t, Some(&Clock(t))));
+        }
+        seen
+    }
+
+    #[test]
+    fn a_meter_is_one_every_n_steps_within_its_times() {
+        // drive.h `MyMeter`: 1 at the step numbers that are multiples of N, from step 0.
+        let m = StepDrive::new(StepKind::Meter { t0: 0.0, t1: f64::INFINITY, steps: 3 });
+        assert_eq!(run(&m, 7, 1.0), [1.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 0.0]);
+        let m = StepDrive::new(StepKind::Meter { t0: 1.5, t1: 5.5, steps: 2 });
+        assert_eq!(run(&m, 7, 1.0), [0.0, 0.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.0]);
+    }
+
+    #[test]
+    fn closest_next_marks_the_first_step_past_each_threshold() {
+        // Thresholds 0.013 + k 0.0237 s, steps of 0.01 s: the steps that first reach
+        // 0.013, 0.0367, 0.0604, 0.0841, 0.1078, 0.1315, 0.1552, 0.1789 are 2, 4, 7, 9, 11,
+        // 14, 16, 18 (MBDyn 1.7.3's .drv file of tests/mbdyn_files/counter_drives.mbd's
+        // drive caller 2 shows the same); a threshold moves on the step after it is reached.
+        let c = StepDrive::new(StepKind::ClosestNext { t0: 0.013, t1: f64::INFINITY, increment: Drive::Const(0.0237) });
+        let ones: Vec<usize> = run(&c, 20, 0.01).iter().enumerate().filter(|(_, v)| **v == 1.0).map(|(k, _)| k).collect();
+        assert_eq!(ones, [2, 4, 7, 9, 11, 14, 16, 18]);
+        // A threshold at the initial time is reached at step 0 and step 1 (it moves on at step 2).
+        let c = StepDrive::new(StepKind::ClosestNext { t0: 0.0, t1: f64::INFINITY, increment: Drive::Const(2.5) });
+        assert_eq!(run(&c, 6, 1.0), [1.0, 1.0, 0.0, 1.0, 0.0, 1.0, 0.0]);
+    }
+
+    #[test]
+    fn a_random_drive_holds_each_draw_for_its_steps() {
+        // srand(7), one drive every 2 steps: base r0, first r1, then r2 at step 2, r3 at 4.
+        let draws = Arc::new(super::super::c_rand::RandomDraws::new(1));
+        let id = draws.register((0, 0), Some(7), 2);
+        let d = StepDrive::new(StepKind::Random { amplitude: 2.0, mean: 1.0, t0: 0.0, t1: 3.5, steps: 2, draws, id });
+        let r = [1045618677u64, 1863967299, 1272579899, 461085871];
+        let max = 2147483647u64;
+        let v = |k: usize| 1.0 + 2.0 * (2.0 * ((r[0] + r[k]) % max) as f64 / max as f64 - 1.0);
+        // MBDyn 1.7.3's .drv file for `drive caller: 4, random, 2., 1., 0.02, 0.07, steps, 2,
+        // seed, 7, output, yes;`, the only random drive of its file: −0.68201866544877121
+        // at steps 2 and 3.
+        assert!((v(2) + 0.682_018_665_448_771_21).abs() < 1e-15);
+        assert_eq!(run(&d, 5, 1.0), [v(1), v(1), v(2), v(2), 1.0, 1.0]);
     }
 }

@@ -245,6 +245,10 @@ pub struct WrittenNode {
 pub struct MotionOutput {
     pub nodes: Vec<WrittenNode>,
     pub every: usize,
+    /// MBDyn's `output meter: DRIVE` (dataman2.cc, `DataManager::Output`): a step's rows
+    /// are written when the drive is not 0 at its time (step 0 included), instead of every
+    /// `every`-th step.
+    pub meter: Option<crate::element::Drive>,
     /// Digits after the decimal point of each number (MBDyn's `output precision`, which
     /// writes scientific notation with that many; MBDyn's default is 6); `None`: romdyn's
     /// default, [`MotionOutput::DEFAULT_DIGITS`].

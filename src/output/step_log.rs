@@ -27,6 +27,9 @@ pub struct StepLine {
     pub time_step: f64,
     pub iterations: usize,
     pub residual_norm: f64,
+    /// Whether the step's rows were written to the `.mov` (MBDyn's `Out` column: the output
+    /// meter or frequency).
+    pub written: bool,
 }
 
 /// A `.out` file being written.
@@ -57,7 +60,7 @@ impl StepLog {
                 writeln!(w, "# Key for lines starting with \"Step\":")?;
                 writeln!(w, "# Step Time TStep NIter ResErr SolErr SolConv Out")?;
             }
-            writeln!(w, "Step {} {:.12e} {:.12e} {} {:.6e} 0 0 1", s.step, s.time, s.time_step, s.iterations, s.residual_norm)
+            writeln!(w, "Step {} {:.12e} {:.12e} {} {:.6e} 0 0 {}", s.step, s.time, s.time_step, s.iterations, s.residual_norm, u8::from(s.written))
         })
     }
 

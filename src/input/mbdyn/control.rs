@@ -25,9 +25,9 @@ const UNSUPPORTED_COUNTERS: [&str; 16] = [
 ];
 
 /// Settings of MBDyn's numerics and output: accepted, ignored.
-const IGNORED: [&str; 16] = [
+const IGNORED: [&str; 15] = [
     // `inertia: N` counts the inertia cards, which only write output (elements.rs).
-    "inertia", "use automatic differentiation", "title", "print", "make restart file", "select timeout", "output units", "output meter",
+    "inertia", "use automatic differentiation", "title", "print", "make restart file", "select timeout", "output units",
     "output results", "default aerodynamic output", "default beam output", "default scale", "finite difference jacobian meter",
     "loadable path", "model name", "epsilon",
 ];
@@ -162,6 +162,9 @@ pub fn control_data(block: Option<&Block>, sources: &Sources) -> Result<(Counts,
             }
         } else if known(&st.keyword, &IGNORED).is_some() {
             // MBDyn's assembly and output settings: romdyn uses its own.
+            c.skip_rest();
+        } else if known(&st.keyword, &["output meter"]).is_some() {
+            // A drive caller, read with the cards (model.rs, `output_meter`).
             c.skip_rest();
         } else if let Some(kind) = known(&st.keyword, &["model", "rigid body kinematics"]) {
             let what = if kind == "model" { "'model: static' (dynamic nodes treated as static)" } else { "'rigid body kinematics' (a moving reference frame)" };

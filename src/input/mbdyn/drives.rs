@@ -3,8 +3,8 @@
 //! `step`, `sine`, `cosine`, `piecewise linear`, `linear`, `parabolic`, `cubic`,
 //! `exponential`, `tanh`, `double ramp`, `double step`, `array`, `mult`, `drive` (one drive
 //! of another's value), `frequency sweep`,
-//! `periodic`, `sample and hold` and `discrete filter` (with a memory of the steps,
-//! [`StepDrive`]), `string` (an expression of `Time` for the math parser, evaluated with the
+//! `periodic`, `fourier series`, `sample and hold`, `discrete filter`, `meter`, `closest
+//! next` and `random` (with a memory of the steps, [`StepDrive`]; see `counter_drives`), `string` (an expression of `Time` for the math parser, evaluated with the
 //! file's variables as they stand at the end of the input, as MBDyn evaluates it during the
 //! run), and `reference, LABEL` to a `drive caller:` card;
 //! and the 3-vector template drive callers (§Template Drive): `null`, `single`,
@@ -25,14 +25,15 @@ use crate::element::{Drive, ElementState, StepDrive, StepKind, TimeFunction};
 use crate::kinematics::{Mat3, Vec3};
 
 /// Drive callers romdyn evaluates.
-const SUPPORTED: [&str; 34] = [
+const SUPPORTED: [&str; 39] = [
+    "postponed", "meter", "closest next", "random", "fourier series",
     "sample and hold", "discrete filter", "drive", "file", "node", "dof", "element", "const", "null", "unit", "one", "time", "direct", "ramp", "step", "sine", "cosine", "piecewise linear", "linear", "parabolic", "cubic", "exponential",
     "tanh", "double ramp", "double step", "array", "mult", "frequency sweep", "periodic", "string", "reference", "zero", "constant", "scalar function",
 ];
 
-/// MBDyn drive callers romdyn cannot represent (named in the error): they read the model's
-/// state outside the math parser, random numbers or the step counter.
-const UNSUPPORTED: [&str; 6] = ["closest next", "ginac", "fourier series", "meter", "postponed", "random"];
+/// MBDyn drive callers romdyn does not read (named in the error): `ginac` needs GiNaC
+/// (MBDyn 1.7.3 built without it refuses it too).
+const UNSUPPORTED: [&str; 1] = ["ginac"];
 
 /// Nesting of drive callers inside drive callers romdyn follows.
 const MAX_DEPTH: usize = 16;
@@ -54,12 +55,21 @@ pub struct Drives {
     /// The drives with a memory of the steps read so far (`sample and hold`, `discrete
     /// filter`), which the model advances at every step.
     pub stepped: Mutex<Vec<StepDrive>>,
+    /// The numbers the `random` drives draw, and the drives created so far (their order).
+    pub random: std::sync::Arc<crate::element::c_rand::RandomDraws>,
+    pub created: std::sync::atomic::AtomicUsize,
+    /// The 3-vector `template drive caller:` cards: their terms, statement, place.
+    templates: HashMap<u32, TemplateCard>,
 }
+
+/// A 3-vector template drive caller card: its terms, statement and place.
+type TemplateCard = (Vec<(Vec3, Drive)>, usize, Span);
 
 impl Drives {
     /// Forgets the `drive caller:` cards (to read them again with other variables).
     pub fn clear_cards(&mut self) {
         self.table.clear();
+        self.templates.clear();
     }
     /// The drives with memory read so far (emptied).
     pub fn take_stepped(&self) -> Vec<StepDrive> {
@@ -105,6 +115,27 @@ pub fn drive_caller_card(st: &Statement, c: &mut Cursor, drives: &mut Drives) ->
     }
     c.finish()?;
     drives.table.insert(label, (d, st.seq, st.span));
+    Ok(())
+}
+
+/// Reads a `template drive caller: LABEL, {"3" | 3}, TPL_DRIVE_CALLER;` card (input manual
+/// §Template Drive Caller; mbpar.cc): romdyn reads the 3-vector ones, whose vectors are given
+/// as numbers (the frame of the element that uses the card by `reference, LABEL`, as MBDyn's
+/// card keeps them).
+pub fn template_drive_caller_card(st: &Statement, c: &mut Cursor, drives: &mut Drives) -> Result<(), MbdynError> {
+    let span = c.here();
+    let label = c.label("template drive caller label")?;
+    if let Some((_, _, at)) = drives.templates.get(&label) {
+        return Err(c.error_at(span, format!("template drive caller {label} is defined twice (first at line {})", at.line)));
+    }
+    let dim_span = c.here();
+    let dim = if c.next_is_number() { c.integer("the dimension (\"3\" or 3)")?.to_string() } else { c.string("the dimension (\"3\" or 3)")? };
+    if dim != "3" {
+        return Err(c.error_at(dim_span, format!("template drive caller cards of dimension {dim} are not supported by romdyn (it reads 3-vector ones)")));
+    }
+    let terms = template_terms(c, drives, st.seq, &Mat3::identity(), &|c: &mut Cursor| c.vec3_values("template drive caller vector"), 0)?;
+    c.finish()?;
+    drives.templates.insert(label, (terms, st.seq, st.span));
     Ok(())
 }
 
@@ -199,6 +230,24 @@ fn nested_drive(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) -> Re
             let f = inner(c)?;
             Drive::Compose(Box::new(f), Box::new(inner(c)?))
         }
+        "meter" => super::counter_drives::meter(c, drives)?,
+        "closest next" => super::counter_drives::closest_next(c, drives, &inner)?,
+        "random" => super::counter_drives::random(c, drives, seq)?,
+        "fourier series" => super::counter_drives::fourier_series(c)?,
+        // `postponed, LABEL` (drive_.cc, `PostponedDriveCaller::Check`): a copy of the
+        // drive caller card LABEL, which may come later in the file. MBDyn resolves it when
+        // first called; romdyn reads the cards before the problem and element blocks, so
+        // there it resolves any card; inside a card it needs a card read before.
+        "postponed" => {
+            let label = c.label("drive caller label")?;
+            match drives.table.get(&label) {
+                // A random drive copied at its first call draws after all those read.
+                Some((d, _, _)) => super::counter_drives::copied(d, drives, usize::MAX),
+                None => {
+                    return Err(c.error_at(span, format!("postponed drive caller {label}: no drive caller card {label} is read before this one (romdyn resolves a postponed drive caller inside a drive caller card when it reads the card)")));
+                }
+            }
+        }
         "frequency sweep" => {
             let t0 = c.real("initial time [s]")?;
             let omega = Box::new(inner(c)?);
@@ -258,7 +307,7 @@ fn nested_drive(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) -> Re
         _ => {
             let label = c.label("drive caller label")?;
             match drives.table.get(&label) {
-                Some((d, s, _)) if *s < seq => d.clone(),
+                Some((d, s, _)) if *s < seq => super::counter_drives::copied(d, drives, seq),
                 Some((_, _, at)) => return Err(c.error_at(span, format!("drive caller {label} is used before its definition (line {})", at.line))),
                 None => return Err(c.error_at(span, format!("drive caller {label} is not defined"))),
             }
@@ -423,7 +472,15 @@ fn template_terms(c: &mut Cursor, drives: &Drives, seq: usize, basis: &Mat3, dir
         return Ok(terms);
     }
     if c.accept("reference") {
-        return Err(c.error("'reference, …' here names a template drive caller card, which romdyn does not support; to give the vector in another frame write 'single, reference, FRAME, x, y, z, DRIVE'"));
+        // A `template drive caller:` card, copied (MBDyn's `pCopy`), its vectors in the
+        // element's frame.
+        let span = c.here();
+        let label = c.label("template drive caller label (a 'template drive caller:' card; to give the vector in another frame write 'single, reference, FRAME, x, y, z, DRIVE')")?;
+        return match drives.templates.get(&label) {
+            Some((terms, s, _)) if *s < seq => Ok(terms.iter().map(|(v, d)| (basis * v, super::counter_drives::copied(d, drives, seq))).collect()),
+            Some((_, _, at)) => Err(c.error_at(span, format!("template drive caller {label} is used before its definition (line {})", at.line))),
+            None => Err(c.error_at(span, format!("template drive caller {label} is not defined"))),
+        };
     }
     c.accept("single");
     let dir = direction(c)?;

@@ -12,6 +12,7 @@
 mod beam_slider;
 mod beams;
 mod control;
+mod counter_drives;
 mod cursor;
 mod diagnostic;
 mod drives;

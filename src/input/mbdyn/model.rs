@@ -106,6 +106,7 @@ fn cards(doc: &Document) -> Result<Cards, MbdynError> {
         match known(&st.keyword, &CARDS) {
             Some("reference") => reference(st, &mut c, &mut out.frames)?,
             Some("drive caller") => drive_caller_card(st, &mut c, &mut out.drives)?,
+            Some("template drive caller") => super::drives::template_drive_caller_card(st, &mut c, &mut out.drives)?,
             Some("constitutive law") => constitutive_law_card(st, &mut c, &mut out.laws, &out.drives)?,
             Some("scalar function") => super::scalar_functions::scalar_function_card(&mut c, &mut out.drives.functions, st.seq)?,
             Some("setenv" | "print symbol table") => {}
@@ -114,6 +115,27 @@ fn cards(doc: &Document) -> Result<Cards, MbdynError> {
         }
     }
     Ok(out)
+}
+
+/// `output meter: DRIVE` in control data (dataman3.cc, case OUTPUTMETER): the drive that
+/// decides which steps are written; with `output frequency` MBDyn stops ("Output
+/// meter/frequency already defined"), and so does romdyn.
+fn output_meter(cd: Option<&Block>, src: &super::diagnostic::Sources, drives: &Drives) -> Result<Option<crate::element::Drive>, MbdynError> {
+    let mut meter = None;
+    let mut seen: Option<Span> = None;
+    for st in cd.map_or(&[][..], |b| &b.statements) {
+        let Some(k) = known(&st.keyword, &["output meter", "output frequency"]) else { continue };
+        if let Some(first) = seen {
+            return Err(src.error(st.span, format!("'{k}': the output meter or frequency is already given (line {}), as MBDyn says", first.line)));
+        }
+        seen = Some(st.span);
+        if k == "output meter" {
+            let mut c = Cursor::new(st, src);
+            meter = Some(super::drives::drive(&mut c, drives, st.seq)?);
+            c.finish()?;
+        }
+    }
+    Ok(meter)
 }
 
 /// Builds the model from a parsed document.
@@ -162,6 +184,7 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
             })
             .collect(),
         every: control_output.every,
+        meter: output_meter(block(doc, "control data"), src, &cards.drives)?,
         precision: control_output.precision,
     });
     problem.assembly = assembly;

@@ -239,7 +239,11 @@ fn method(c: &mut Cursor, drives: &Drives, t0: f64, seq: usize) -> Result<Method
     // with one formula: read and not used).
     let radius = |c: &mut Cursor| -> Result<f64, MbdynError> {
         let rho_span = c.here();
-        let rho = drive(c, drives, seq)?.value(t0);
+        let d = drive(c, drives, seq)?;
+        if d.reads_state() {
+            return Err(c.error_at(rho_span, "the asymptotic spectral radius reads the model's state (MBDyn evaluates it at every step): romdyn takes the radius's value at the initial time and does not support that"));
+        }
+        let rho = d.value(t0);
         if !(0.0..=1.0).contains(&rho) {
             return Err(c.error_at(rho_span, format!("the asymptotic spectral radius must be between 0 and 1, found {rho}")));
         }
