@@ -101,7 +101,7 @@ impl RunObserver for RunFiles {
         self.out.step(&StepLine { step: e.step, time: e.time, time_step: e.time_step, iterations: e.iterations, residual_norm: e.residual_norm })?;
         match &self.motion {
             None => self.mov.write_step(&e.node_kinematics())?,
-            Some(m) if e.step % m.every.max(1) == 0 => self.mov.write_rows(&motion_rows(m, &e.node_kinematics()))?,
+            Some(m) if e.step % m.every.max(1) == 0 => self.mov.write_rows(&motion_rows(m, &e.node_kinematics(), &e.node_accelerations(m)))?,
             Some(_) => {}
         }
         if self.has_beams == Some(false) {

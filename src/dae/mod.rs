@@ -14,6 +14,7 @@
 //!
 //! [`ConstraintForm`]: crate::linear::ConstraintForm
 
+mod accelerations;
 mod assembly;
 mod band;
 mod check;
@@ -28,6 +29,7 @@ pub mod ports;
 mod sparse;
 mod state;
 
+pub use accelerations::node_accelerations;
 pub use assembly::{Assembler, Coefficients};
 pub use check::{check_jacobians, JacobianMismatch};
 pub use cluster::{cluster_label, degenerate_clusters, CLUSTER_RELATIVE_GAP};

@@ -237,6 +237,10 @@ pub struct WrittenNode {
     /// that is not written may still be the base of one that is.
     pub written: bool,
     pub orientation: OrientationOutput,
+    /// Whether its rows end with the linear and angular accelerations (MBDyn's
+    /// `accelerations, yes` on a dynamic node or `default output: accelerations`; a dummy
+    /// node's follow its base, a relative frame's both nodes).
+    pub accelerations: bool,
 }
 
 /// The motion file's rows: nodes in file order, every `every`-th step (MBDyn's `output

@@ -83,6 +83,9 @@ pub struct ControlOutput {
     pub orientation: OrientationOutput,
     /// `output precision: N`: digits after the decimal point in the `.mov` file.
     pub precision: Option<usize>,
+    /// `default output: accelerations`: dynamic nodes write their accelerations unless
+    /// their card says otherwise (dataman3.cc; `all` does not set it).
+    pub accelerations: bool,
 }
 
 /// Largest `output precision` romdyn writes (17 significant digits already identify a
@@ -91,13 +94,13 @@ const MAX_OUTPUT_PRECISION: usize = 30;
 
 impl Default for ControlOutput {
     fn default() -> Self {
-        ControlOutput { structural_nodes: true, every: 1, orientation: OrientationOutput::Euler123Degrees, precision: None }
+        ControlOutput { structural_nodes: true, every: 1, orientation: OrientationOutput::Euler123Degrees, precision: None, accelerations: false }
     }
 }
 
 /// `default output: {all | none | structural nodes | …} …` (dataman3.cc, case
 /// DEFAULTOUTPUT): `all` and `none` set every kind, a kind's name switches it on; only the
-/// structural nodes' flag matters for romdyn's files.
+/// structural nodes' and the accelerations' flags matter for romdyn's files.
 fn default_output(c: &mut Cursor, out: &mut ControlOutput) -> Result<(), MbdynError> {
     const KINDS: [&str; 27] = [
         "all", "none", "reference frames", "accelerations", "drive callers", "structural nodes", "electric nodes", "thermal nodes", "abstract nodes",
@@ -107,6 +110,7 @@ fn default_output(c: &mut Cursor, out: &mut ControlOutput) -> Result<(), MbdynEr
     while !c.is_done() {
         match c.keyword("an output kind", &KINDS)? {
             "all" | "structural nodes" => out.structural_nodes = true,
+            "accelerations" => out.accelerations = true,
             "none" => out.structural_nodes = false,
             _ => {}
         }

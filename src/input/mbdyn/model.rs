@@ -19,7 +19,7 @@ use super::parser::{known, same_keyword, Block, Document, CARDS};
 use super::written_nodes::{parse_file_with, parse_text_with};
 use super::problem::{data, initial_value};
 use super::references::{reference, Frames};
-use crate::model::{InitialValueProblem, Model, ModelBuilder, MotionOutput, WrittenNode};
+use crate::model::{InitialValueProblem, Model, ModelBuilder, MotionOutput, NodeKind, NodeSource, WrittenNode};
 
 /// A model file: the model and the initial-value problem it asks for.
 pub struct MbdynModel {
@@ -150,17 +150,21 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
             node_statement(st, &mut c, &cards.frames, &mut nodes)?;
         }
     }
+    // strnode.cc: a dynamic node computes its accelerations when it is output and asks for
+    // them (or `default output: accelerations`); an offset dummy node when its base does, a
+    // relative-frame one when both its nodes do.
+    let mut written: Vec<WrittenNode> = Vec::with_capacity(nodes.0.len());
+    for n in &nodes.0 {
+        let output = n.output.unwrap_or(control_output.structural_nodes);
+        let accelerations = match &n.source {
+            NodeSource::Node(_) => n.node.kind == NodeKind::Dynamic && output && n.accelerations.unwrap_or(control_output.accelerations),
+            NodeSource::Offset { base, .. } => written[*base].accelerations,
+            NodeSource::RelativeFrame { base, reference } => written[*base].accelerations && written[*reference].accelerations,
+        };
+        written.push(WrittenNode { label: n.node.label, source: n.source.clone(), written: output, orientation: n.orientation.unwrap_or(control_output.orientation), accelerations });
+    }
     problem.output = Some(MotionOutput {
-        nodes: nodes
-            .0
-            .iter()
-            .map(|n| WrittenNode {
-                label: n.node.label,
-                source: n.source.clone(),
-                written: n.output.unwrap_or(control_output.structural_nodes),
-                orientation: n.orientation.unwrap_or(control_output.orientation),
-            })
-            .collect(),
+        nodes: written,
         every: control_output.every,
         precision: control_output.precision,
     });

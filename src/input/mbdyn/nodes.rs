@@ -2,7 +2,8 @@
 //! {static | dynamic}, [position,] X, [orientation,] R, [velocity,] V, [angular velocity,]
 //! W` (each optionally in a `reference`), or `at reference, LABEL`; then the optional
 //! `assembly`, `scale`, `output` and `accelerations` settings (`assembly` sets the node's
-//! initial-assembly penalties, `scale` is ignored, `output` selects the node's `.mov` rows).
+//! initial-assembly penalties, `scale` is ignored, `output` selects the node's `.mov` rows,
+//! `accelerations, yes` on a dynamic node appends its accelerations to them).
 //! A node label may be followed by `name, "…"`. `dummy` nodes carry no unknowns: they are
 //! counted, kept out of the model, and written to the motion file from their base node
 //! (which may itself be a dummy node). `output: structural, LABEL | range, A, B, …;` turns
@@ -31,6 +32,9 @@ pub struct NodeEntry {
     pub assembly: Option<NodeAssembly>,
     /// `name, "…"` after the label.
     pub name: Option<String>,
+    /// `accelerations, yes | no` (dynamic nodes only; `None`: the `default output` of
+    /// control data).
+    pub accelerations: Option<bool>,
 }
 
 /// The structural nodes, in file order.
@@ -79,14 +83,14 @@ pub fn node_statement(st: &Statement, c: &mut Cursor, frames: &Frames, nodes: &m
         }
         _ => return Err(c.error_at(kind_span, format!("'{kind}' structural nodes are not supported by romdyn (supported: static, dynamic, dummy)"))),
     };
-    let (output, assembly) = settings(c)?;
+    let (output, assembly, accelerations) = settings(c, kind)?;
     // strnode.cc, `ReadStructNode`: after the settings, anything but ';' stops MBDyn too
     // (e.g. the initial-assembly stiffnesses written without the `assembly` keyword).
     c.finish().map_err(|mut e| {
         e.message.push_str(&format!(" (after the velocities a structural node takes only 'assembly, …', 'scale, …', 'output, …', 'accelerations, …'); MBDyn 1.7.3 does not read it either (its reader stops: \"ReadStructNode({label}): semicolon expected\")"));
         e
     })?;
-    nodes.0.push(NodeEntry { node, dummy, span: st.span, source, output, orientation, assembly, name });
+    nodes.0.push(NodeEntry { node, dummy, span: st.span, source, output, orientation, assembly, name, accelerations });
     Ok(())
 }
 
@@ -208,11 +212,14 @@ fn dummy(c: &mut Cursor, ctx: &Context, label: Label, nodes: &Nodes) -> Result<(
     }
 }
 
-/// `assembly, …`, `scale, …`, `output, …`, `accelerations, …`: the node's output flag and
-/// initial-assembly settings, returned (`scale`, a residual scaling, is ignored).
-fn settings(c: &mut Cursor) -> Result<(Option<bool>, Option<NodeAssembly>), MbdynError> {
+/// `assembly, …`, `scale, …`, `output, …`, `accelerations, …`: the node's output flag,
+/// initial-assembly settings and accelerations flag, returned (`scale`, a residual scaling,
+/// is ignored). MBDyn 1.7.3 reads `accelerations` on dynamic nodes only (strnode.cc,
+/// `ReadStructNode`); on the others its reader stops at the keyword, and so does romdyn's.
+fn settings(c: &mut Cursor, kind: &str) -> Result<(Option<bool>, Option<NodeAssembly>, Option<bool>), MbdynError> {
     let mut output = None;
     let mut assembly = None;
+    let mut accelerations = None;
     loop {
         if c.accept("assembly") {
             let position_stiffness = c.real("position initial stiffness")?;
@@ -224,10 +231,16 @@ fn settings(c: &mut Cursor) -> Result<(Option<bool>, Option<NodeAssembly>), Mbdy
             }
         } else if c.accept("output") {
             output = Some(c.flag("output flag")?);
-        } else if c.accept("accelerations") {
-            c.flag("accelerations flag")?;
+        } else if let (span, true) = (c.here(), c.accept("accelerations")) {
+            if kind != "dynamic" {
+                return Err(c.error_at(span, format!("'accelerations' is read on dynamic structural nodes only, not on a {kind} node (MBDyn 1.7.3 stops there too: \"semicolon expected\"; its static nodes have no momenta to differentiate, a dummy node writes accelerations when its base node does)")));
+            }
+            if accelerations.is_some() {
+                return Err(c.error_at(span, "'accelerations' is set twice for this node (MBDyn 1.7.3 refuses it too: \"accelerations\" already set)"));
+            }
+            accelerations = Some(c.flag("accelerations flag")?);
         } else {
-            return Ok((output, assembly));
+            return Ok((output, assembly, accelerations));
         }
     }
 }
