@@ -320,13 +320,21 @@ impl<'m> Assembler<'m> {
 
     /// A dynamic node's own terms: `β`, `γ` in the momentum definitions; `β̇` and
     /// `γ̇ + ẋ × β` in the equilibrium.
+    ///
+    /// A displacement-only node ([`Model::displacement_nodes`]) holds its orientation: a
+    /// static one has `g` as moment equation, a dynamic one `γ̇ + g` as angular equilibrium
+    /// (its angular momentum definition reads `γ = 0`, no element puts inertia there).
     fn node_residual(&self, st: &State, i: usize, fr: &NodeFrame, f: &mut [f64]) {
+        let first = self.dofs.node_first[i];
+        let displacement = self.dofs.node_displacement[i];
         if self.dofs.node_kind[i] != NodeKind::Dynamic {
+            if displacement {
+                (0..3).for_each(|k| f[first + 3 + k] += st.y[first + 3 + k]);
+            }
             return;
         }
-        let first = self.dofs.node_first[i];
         let (beta, _) = st.momenta(&self.dofs, i);
-        let gyro = fr.kin.xdot.cross(&beta);
+        let gyro = if displacement { Vec3::new(st.y[first + 3], st.y[first + 4], st.y[first + 5]) } else { fr.kin.xdot.cross(&beta) };
         for k in 0..3 {
             f[first + k] += st.y[first + 6 + k];
             f[first + 3 + k] += st.y[first + 9 + k];
@@ -336,10 +344,23 @@ impl<'m> Assembler<'m> {
     }
 
     fn node_jacobian(&self, st: &State, i: usize, fr: &NodeFrame, c: Coefficients, out: &mut Triplets) {
+        let first = self.dofs.node_first[i];
+        if self.dofs.node_displacement[i] {
+            let row = if self.dofs.node_kind[i] == NodeKind::Dynamic { first + 9 } else { first + 3 };
+            (0..3).for_each(|k| out.push(row + k, first + 3 + k, c.b));
+            if self.dofs.node_kind[i] == NodeKind::Dynamic {
+                for k in 0..3 {
+                    out.push(first + k, first + 6 + k, c.b);
+                    out.push(first + 3 + k, first + 9 + k, c.b);
+                    out.push(first + 6 + k, first + 6 + k, c.a);
+                    out.push(first + 9 + k, first + 9 + k, c.a);
+                }
+            }
+            return;
+        }
         if self.dofs.node_kind[i] != NodeKind::Dynamic {
             return;
         }
-        let first = self.dofs.node_first[i];
         let (beta, _) = st.momenta(&self.dofs, i);
         let (bx, vx) = (skew(&beta), skew(&fr.kin.xdot));
         for k in 0..3 {

@@ -174,6 +174,9 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
     for n in nodes.structural() {
         b.node(n.clone());
     }
+    for n in nodes.0.iter().filter(|n| n.displacement) {
+        b.displacement_node(n.node.label);
+    }
     for n in &nodes.0 {
         if let Some(name) = &n.name {
             b.node_name(n.node.label, name.clone());

@@ -35,6 +35,8 @@ pub struct NodeEntry {
     /// `accelerations, yes | no` (dynamic nodes only; `None`: the `default output` of
     /// control data).
     pub accelerations: Option<bool>,
+    /// A `static displacement` or `dynamic displacement` node (no rotations).
+    pub displacement: bool,
 }
 
 /// The structural nodes, in file order.
@@ -81,16 +83,21 @@ pub fn node_statement(st: &Statement, c: &mut Cursor, frames: &Frames, nodes: &m
             let (node, source, orientation) = dummy(c, &ctx, label, nodes)?;
             (node, true, source, orientation)
         }
-        _ => return Err(c.error_at(kind_span, format!("'{kind}' structural nodes are not supported by romdyn (supported: static, dynamic, dummy)"))),
+        "static displacement" | "dynamic displacement" => {
+            let node = displacement(c, &ctx, label, if kind == "static displacement" { NodeKind::Static } else { NodeKind::Dynamic })?;
+            (node, false, NodeSource::Node(label), None)
+        }
+        _ => return Err(c.error_at(kind_span, format!("'{kind}' structural nodes are not supported by romdyn (supported: static, dynamic, dummy, static displacement, dynamic displacement)"))),
     };
     let (output, assembly, accelerations) = settings(c, kind)?;
+    let displacement = kind.ends_with("displacement");
     // strnode.cc, `ReadStructNode`: after the settings, anything but ';' stops MBDyn too
     // (e.g. the initial-assembly stiffnesses written without the `assembly` keyword).
     c.finish().map_err(|mut e| {
         e.message.push_str(&format!(" (after the velocities a structural node takes only 'assembly, …', 'scale, …', 'output, …', 'accelerations, …'); MBDyn 1.7.3 does not read it either (its reader stops: \"ReadStructNode({label}): semicolon expected\")"));
         e
     })?;
-    nodes.0.push(NodeEntry { node, dummy, span: st.span, source, output, orientation, assembly, name, accelerations });
+    nodes.0.push(NodeEntry { node, dummy, span: st.span, source, output, orientation, assembly, name, accelerations, displacement });
     Ok(())
 }
 
@@ -143,6 +150,19 @@ fn structural(c: &mut Cursor, ctx: &Context, label: Label, kind: NodeKind) -> Re
     Ok((StructuralNode { label, kind, position, orientation, velocity, angular_velocity }, od))
 }
 
+/// `static displacement | dynamic displacement, [position,] X, [velocity,] V` (strnode.cc,
+/// `ReadStructNode` with `bDisp`): a point without orientation (kept the identity).
+fn displacement(c: &mut Cursor, ctx: &Context, label: Label, kind: NodeKind) -> Result<StructuralNode, MbdynError> {
+    if c.accept("at reference") {
+        return Err(c.error("'at reference' on a displacement node is not supported by romdyn (write its position and velocity)"));
+    }
+    c.accept("position");
+    let position = ctx.position(c, "node position [m]")?;
+    c.accept("velocity");
+    let velocity = ctx.velocity(c, "node velocity [m/s]", &position)?;
+    Ok(StructuralNode { label, kind, position, orientation: crate::kinematics::Mat3::identity(), velocity, angular_velocity: crate::kinematics::Vec3::zeros() })
+}
+
 fn orientation_description(c: &mut Cursor) -> Result<Option<OrientationOutput>, MbdynError> {
     if c.accept("orientation description") {
         return orientation_kind(c).map(Some);
@@ -170,6 +190,9 @@ fn dummy(c: &mut Cursor, ctx: &Context, label: Label, nodes: &Nodes) -> Result<(
     let Some(base) = nodes.0.iter().position(|n| n.node.label == base_label) else {
         return Err(c.error_at(span, format!("structural node {base_label} is not defined (a dummy node must follow its base node)")));
     };
+    if nodes.0[base].displacement {
+        return Err(c.error_at(span, format!("structural node {base_label} is a displacement node (no orientation): a dummy node needs a base with rotations (MBDyn 1.7.3 reads the base as a 6-DoF StructNode)")));
+    }
     let b = &nodes.0[base].node;
     let on_base = Context { node: Some(Frame::of_node(b)), ..*ctx };
     match c.keyword("the dummy node type", &["offset", "relative frame"])? {
@@ -193,6 +216,9 @@ fn dummy(c: &mut Cursor, ctx: &Context, label: Label, nodes: &Nodes) -> Result<(
             let Some(reference) = nodes.0.iter().position(|n| n.node.label == reference_label) else {
                 return Err(c.error_at(r, format!("structural node {reference_label} is not defined")));
             };
+            if nodes.0[reference].displacement {
+                return Err(c.error_at(r, format!("structural node {reference_label} is a displacement node (no orientation): a relative frame needs a node with rotations")));
+            }
             if let Some(k) = c.accept_any(&["position", "orientation", "pivot node"]) {
                 return Err(c.error(format!("'{k}' of a relative-frame dummy node is not supported by romdyn (supported: dummy, BASE, relative frame, REFERENCE)")));
             }
@@ -224,7 +250,9 @@ fn settings(c: &mut Cursor, kind: &str) -> Result<(Option<bool>, Option<NodeAsse
         if c.accept("assembly") {
             let position_stiffness = c.real("position initial stiffness")?;
             let velocity_stiffness = c.real("velocity initial stiffness")?;
-            assembly = Some(NodeAssembly { position_stiffness, velocity_stiffness, omega_rotates: c.flag("omega rotates")? });
+            // strnode.cc: a displacement node has no `omega rotates` flag.
+            let omega_rotates = if kind.ends_with("displacement") { false } else { c.flag("omega rotates")? };
+            assembly = Some(NodeAssembly { position_stiffness, velocity_stiffness, omega_rotates });
         } else if c.accept("scale") {
             if !c.accept("default") {
                 c.real("residual scale factor")?;
@@ -232,7 +260,7 @@ fn settings(c: &mut Cursor, kind: &str) -> Result<(Option<bool>, Option<NodeAsse
         } else if c.accept("output") {
             output = Some(c.flag("output flag")?);
         } else if let (span, true) = (c.here(), c.accept("accelerations")) {
-            if kind != "dynamic" {
+            if kind != "dynamic" && kind != "dynamic displacement" {
                 return Err(c.error_at(span, format!("'accelerations' is read on dynamic structural nodes only, not on a {kind} node (MBDyn 1.7.3 stops there too: \"semicolon expected\"; its static nodes have no momenta to differentiate, a dummy node writes accelerations when its base node does)")));
             }
             if accelerations.is_some() {
