@@ -64,6 +64,14 @@ fn displacement_nodes_follow_closed_forms_and_mbdyn() {
     for (l, x) in mbdyn {
         assert!((kin(l).x - Vec3::from(x)).norm() < 1e-11, "node {l}: {} against MBDyn {x:?}", kin(l).x);
     }
+    // Accelerations (`accelerations, yes` on nodes 1 and 4; strnode.cc: β̇/m): node 1's
+    // (0, 0, 4/2 − 9.81) to 1e-12; node 4's as MBDyn 1.7.3's last row, measured 3.4e-9; 1e-8.
+    let wanted: Vec<bool> = m.model.nodes.iter().map(|n| n.label == 1 || n.label == 4).collect();
+    let acc = romdyn::dae::node_accelerations(&asm, &report.final_state, &wanted);
+    let (a1, w1) = acc[m.model.node_index(1).unwrap()].unwrap();
+    assert!((a1 - Vec3::new(0.0, 0.0, -7.81)).norm() < 1e-12 && w1 == Vec3::zeros(), "node 1: {a1} {w1}");
+    let (a4, _) = acc[m.model.node_index(4).unwrap()].unwrap();
+    assert!((a4 - Vec3::new(4.7898355874939824e+00, 0.0, -9.0086056396510337e+00)).norm() < 1e-8, "node 4: {a4}");
     // The elements' Jacobians (rods, distance, bodies, forces) at the last state.
     let mut m = read_test_file("displacement_nodes.mbd");
     assert_jacobians_after_run(&mut m, Some(0.1), 1e-3);
