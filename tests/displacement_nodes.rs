@@ -155,3 +155,45 @@ fn elements_that_need_rotations_are_refused_on_displacement_nodes() {
         assert!(e.contains(at) && e.contains(what), "{nodes} {elements}: {e}");
     }
 }
+
+/// A dynamic displacement node between two prestressed rods (EA = 200 N, l₀ = 1.9 m, 2 m
+/// each side, no gravity): axial `ω² = 2 EA/(l₀ m)`, lateral `ω² = 2 T/(l m)` with the
+/// tension `T = EA (l − l₀)/l₀`, twice each; the held rotations add no finite mode (both
+/// constraint forms, both routes; 1e-9 relative, the eigensolver's round-off).
+#[test]
+fn a_displacement_node_between_rods_has_the_string_modes() {
+    use romdyn::dae::{linearize, State};
+    use romdyn::linear::{ConstraintForm, EigenRoute, ModalAnalysis, ModeKind};
+    let text = "begin: data; problem: initial value; end: data;
+begin: initial value; initial time: 0.; final time: 0.01; time step: 1.e-3; end: initial value;
+begin: control data; skip initial joint assembly; structural nodes: 3; rigid bodies: 1; joints: 4; end: control data;
+begin: nodes;
+    structural: 3, static, null, eye, null, null;
+    structural: 5, dynamic displacement, 0., 0., -2., null;
+    structural: 7, static, 0., 0., -4., eye, null, null;
+end: nodes;
+begin: elements;
+    body: 5, 5, 1.;
+    joint: 1, clamp, 3, node, node;
+    joint: 2, clamp, 7, node, node;
+    joint: 3, rod, 3, 5, 1.9, linear elastic, 200.;
+    joint: 4, rod, 7, 5, 1.9, linear elastic, 200.;
+end: elements;";
+    let tension = 200.0 * 0.1 / 1.9;
+    let (axial, lateral) = ((2.0 * 200.0 / 1.9f64).sqrt(), (2.0 * tension / 2.0f64).sqrt());
+    for form in [ConstraintForm::Plain, ConstraintForm::Scaled] {
+        let mut m = common::mbdyn::read(text);
+        m.model.constraint_form = form;
+        let asm = Assembler::new(&m.model);
+        let dae = linearize(&m.model, &State::initial(&m.model, &asm.dofs), &[], &[], None).unwrap();
+        for route in [EigenRoute::Direct, EigenRoute::Lambda] {
+            let modal = ModalAnalysis::compute(&dae.jacobians, route).unwrap();
+            assert_eq!(modal.count(ModeKind::Dynamic), 6, "{form:?} {route:?}");
+            let mut im: Vec<f64> = modal.modes.iter().filter(|md| md.kind == ModeKind::Dynamic && md.lambda.im > 0.0).map(|md| md.lambda.im).collect();
+            im.sort_by(f64::total_cmp);
+            for (got, want) in im.iter().zip([lateral, lateral, axial]) {
+                assert!((got - want).abs() < 1e-9 * want, "{form:?} {route:?}: {got} against {want}");
+            }
+        }
+    }
+}
