@@ -27,11 +27,12 @@ pub struct ModelBuilder {
     node_names: std::collections::BTreeMap<Label, String>,
     step_drives: Vec<crate::element::StepDrive>,
     displacement_nodes: std::collections::BTreeSet<Label>,
+    frame_motion: Option<std::sync::Arc<crate::element::FrameMotion>>,
 }
 
 impl Default for ModelBuilder {
     fn default() -> Self {
-        ModelBuilder { nodes: Vec::new(), elements: Vec::new(), gravity: None, form: ConstraintForm::Scaled, node_names: Default::default(), step_drives: Vec::new(), displacement_nodes: Default::default() }
+        ModelBuilder { nodes: Vec::new(), elements: Vec::new(), gravity: None, form: ConstraintForm::Scaled, node_names: Default::default(), step_drives: Vec::new(), displacement_nodes: Default::default(), frame_motion: None }
     }
 }
 
@@ -101,6 +102,12 @@ impl ModelBuilder {
         self
     }
 
+    /// The moving reference frame ([`Model::frame_motion`]).
+    pub fn frame_motion(&mut self, f: std::sync::Arc<crate::element::FrameMotion>) -> &mut Self {
+        self.frame_motion = Some(f);
+        self
+    }
+
     pub fn build(self) -> Result<Model, ModelError> {
         let mut seen = std::collections::HashSet::new();
         for n in &self.nodes {
@@ -134,6 +141,7 @@ impl ModelBuilder {
             node_names: self.node_names,
             step_drives: self.step_drives,
             displacement_nodes: self.displacement_nodes,
+            frame_motion: self.frame_motion,
         })
     }
 }

@@ -66,6 +66,9 @@ pub struct Model {
     /// so they move as 3-DoF points; only elements that read positions and write forces
     /// may connect to them (the reader's check).
     pub displacement_nodes: std::collections::BTreeSet<Label>,
+    /// The moving reference frame of MBDyn's `rigid body kinematics`: its `2 W × β` and
+    /// `W × γ` on every dynamic node's equilibrium (the bodies carry their own terms).
+    pub frame_motion: Option<std::sync::Arc<crate::element::FrameMotion>>,
     /// Index in `nodes` of each node label.
     node_indices: HashMap<Label, usize>,
 }

@@ -167,9 +167,11 @@ pub fn control_data(block: Option<&Block>, sources: &Sources) -> Result<(Counts,
         } else if known(&st.keyword, &IGNORED).is_some() {
             // MBDyn's assembly and output settings: romdyn uses its own.
             c.skip_rest();
-        } else if let Some(kind) = known(&st.keyword, &["model", "rigid body kinematics"]) {
-            let what = if kind == "model" { "'model: static' (dynamic nodes treated as static)" } else { "'rigid body kinematics' (a moving reference frame)" };
-            return Err(c.error_at(st.span, format!("{what} changes the physics and is not supported by romdyn")));
+        } else if known(&st.keyword, &["rigid body kinematics"]).is_some() {
+            // Read with the drive callers (`super::rbk`, from `super::model`).
+            c.skip_rest();
+        } else if known(&st.keyword, &["model"]).is_some() {
+            return Err(c.error_at(st.span, "'model: static' (dynamic nodes treated as static) changes the physics and is not supported by romdyn"));
         } else {
             return Err(c.error_at(st.span, format!("statement '{}' in control data is not supported by romdyn", st.keyword)));
         }

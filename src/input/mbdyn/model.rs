@@ -140,6 +140,13 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
     let cards = cards(doc)?;
     let mut problem = initial_value(block(doc, "initial value"), src, &cards.drives)?;
     let (counts, control_output, assembly) = control_data(block(doc, "control data"), src)?;
+    // `rigid body kinematics:` (the last one, as control data re-reads a repeated statement).
+    let mut frame_motion = None;
+    for st in block(doc, "control data").map_or(&[][..], |b| &b.statements).iter().filter(|st| same_keyword(&st.keyword, "rigid body kinematics")) {
+        let mut c = Cursor::new(st, src);
+        frame_motion = Some(std::sync::Arc::new(super::rbk::rigid_body_kinematics(&mut c, &cards.drives, &cards.frames, st.seq)?));
+        c.finish()?;
+    }
     let mut nodes = Nodes::default();
     let mut parameter_nodes = HashMap::new();
     for st in block(doc, "nodes").map_or(&[][..], |b| &b.statements) {
@@ -173,6 +180,9 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
     let mut b = ModelBuilder::new();
     for n in nodes.structural() {
         b.node(n.clone());
+    }
+    if let Some(f) = &frame_motion {
+        b.frame_motion(f.clone());
     }
     for n in nodes.0.iter().filter(|n| n.displacement) {
         b.displacement_node(n.node.label);
@@ -220,8 +230,9 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
             None => parsed,
         };
         let parsed = match parsed {
-            Parsed::Body(body) => {
+            Parsed::Body(mut body) => {
                 bodies.push((body.label, body.node, body.mass, body.offset));
+                body.frame = frame_motion.clone();
                 Parsed::Element(Box::new(body))
             }
             p => p,
