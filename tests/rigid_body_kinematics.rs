@@ -133,3 +133,18 @@ begin: elements; end: elements;";
     let e = parse_text(text, Path::new("t.mbd")).and_then(|d| build(&d)).err().expect("refused").to_string();
     assert!(e.contains("t.mbd:3:") && e.contains("null rigid body kinematics"), "{e}");
 }
+
+/// A mass on a dynamic displacement node in the turning frame keeps the closed form (node 2
+/// of the file as a 3-DoF point: relative equilibrium at (1, 0, 0); 1e-12). MBDyn 1.7.3
+/// does not: its `Mass::AssVecRBK_int` (body.cc) puts only `m A` in the residual (it computes
+/// `s₀ = m x` and leaves `Ẇ × s₀ + W × (W × s₀)` out, which its Jacobian has), so the rod
+/// pulls the point in: (0.88269, 0.46348, 0) at 1 s. romdyn follows the physics here.
+#[test]
+fn a_mass_on_a_displacement_node_feels_the_turning_frame() {
+    let m = rewritten_test_file("rigid_body_kinematics.mbd", &[
+        ("structural: 2, dynamic, 1., 0., 0., eye, null, null;", "structural: 2, dynamic displacement, 1., 0., 0., null;"),
+        ("body: 2, 2, 1., null, diag, 0.01, 0.01, 0.01;", "body: 2, 2, 1.;"),
+    ]);
+    let rows = final_positions(&m);
+    assert!((at(&rows, 2).0 - Vec3::x()).norm() < 1e-12, "node 2 {}", at(&rows, 2).0);
+}
