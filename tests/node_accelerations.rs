@@ -119,3 +119,22 @@ begin: elements; end: elements;");
         assert!(s.contains("t.mbd:6:") && s.contains(&format!("not on a {kind} node")), "{s}");
     }
 }
+
+/// A relative-frame dummy node's rows have no orientation columns, as MBDyn 1.7.3 writes
+/// them (`x v ω` then `ẍ ω̇`: 15 numbers after the label in the test file's last row, as in
+/// MBDyn's .mov); the other nodes keep theirs.
+#[test]
+fn relative_frame_rows_have_no_orientation_columns() {
+    let m = read_test_file("node_accelerations.mbd");
+    let dir = std::env::temp_dir().join(format!("romdyn_rf_rows_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("t.mov");
+    let all = run_rows(&m);
+    let mut w = romdyn::output::motion::MotionWriter::create(&path, romdyn::model::OrientationOutput::Euler123Degrees, 6).unwrap();
+    w.write_rows(&all[all.len() - 1]).unwrap();
+    w.finish().unwrap();
+    let text = std::fs::read_to_string(&path).unwrap();
+    let words: Vec<(String, usize)> = text.lines().map(|l| (l.split_whitespace().next().unwrap().to_string(), l.split_whitespace().count() - 1)).collect();
+    assert_eq!(words, [("1", 18), ("2", 18), ("3", 12), ("4", 18), ("5", 15), ("6", 12)].map(|(l, n)| (l.to_string(), n)));
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -211,6 +211,10 @@ pub enum OrientationOutput {
     RotationVector,
     /// The nine entries of R by rows.
     Matrix,
+    /// No orientation columns: MBDyn 1.7.3's rows of a relative-frame dummy node, whose
+    /// orientation description it reads only after an `orientation` (strnode.cc,
+    /// `ReadStructNode`) and otherwise leaves unknown, which its `Output` writes as nothing.
+    Unwritten,
 }
 
 /// Where a written node's motion comes from.

@@ -51,6 +51,7 @@ fn orientation_values(r: &Mat3, how: OrientationOutput) -> Vec<f64> {
         OrientationOutput::Euler321Degrees => euler321(r).map(f64::to_degrees).iter().copied().collect(),
         OrientationOutput::RotationVector => rotation_vector(r).iter().copied().collect(),
         OrientationOutput::Matrix => (0..9).map(|k| r[(k / 3, k % 3)]).collect(),
+        OrientationOutput::Unwritten => Vec::new(),
     }
 }
 

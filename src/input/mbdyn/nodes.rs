@@ -222,7 +222,10 @@ fn dummy(c: &mut Cursor, ctx: &Context, label: Label, nodes: &Nodes) -> Result<(
             if let Some(k) = c.accept_any(&["position", "orientation", "pivot node"]) {
                 return Err(c.error(format!("'{k}' of a relative-frame dummy node is not supported by romdyn (supported: dummy, BASE, relative frame, REFERENCE)")));
             }
-            let od = orientation_description(c)?;
+            // MBDyn 1.7.3 reads no `orientation description` here (only after an
+            // `orientation`, which romdyn refuses) and writes the rows without orientation
+            // columns; romdyn still takes one, and then writes the orientation.
+            let od = Some(orientation_description(c)?.unwrap_or(OrientationOutput::Unwritten));
             let f = &nodes.0[reference].node;
             let (rt, d) = (f.orientation.transpose(), b.position - f.position);
             let node = StructuralNode {
