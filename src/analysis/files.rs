@@ -102,7 +102,7 @@ impl RunObserver for RunFiles {
         self.out.step(&StepLine { step: e.step, time: e.time, time_step: e.time_step, iterations: e.iterations, residual_norm: e.residual_norm, written })?;
         match &self.motion {
             None => self.mov.write_step(&e.node_kinematics())?,
-            Some(m) if written => self.mov.write_rows(&motion_rows(m, &e.node_kinematics()))?,
+            Some(m) if written => self.mov.write_rows(&motion_rows(m, &e.node_kinematics(), &e.node_accelerations(m)))?,
             Some(_) => {}
         }
         if self.has_beams == Some(false) {

@@ -53,6 +53,28 @@ impl StepDone<'_> {
     pub fn node_kinematics(&self) -> Vec<(Label, NodeKinematics)> {
         self.model.nodes.iter().enumerate().map(|(i, n)| (n.label, self.state.node_frame(&self.assembler.dofs, i).kin)).collect()
     }
+
+    /// The accelerations of the dynamic nodes whose rows (or a written dummy node's rows)
+    /// `output` writes with accelerations ([`crate::dae::node_accelerations`]).
+    pub fn node_accelerations(&self, output: &crate::model::MotionOutput) -> Vec<(Label, crate::output::motion::Accelerations)> {
+        use crate::model::NodeSource;
+        // The model nodes under each written entry with accelerations, through its dummy bases.
+        let mut wanted = vec![false; self.model.nodes.len()];
+        let mut stack: Vec<usize> = (0..output.nodes.len()).filter(|&k| output.nodes[k].written && output.nodes[k].accelerations).collect();
+        while let Some(k) = stack.pop() {
+            match &output.nodes[k].source {
+                NodeSource::Node(l) => {
+                    if let Some(i) = self.model.node_index(*l) {
+                        wanted[i] = true;
+                    }
+                }
+                NodeSource::Offset { base, .. } => stack.push(*base),
+                NodeSource::RelativeFrame { base, reference } => stack.extend([*base, *reference]),
+            }
+        }
+        let acc = crate::dae::node_accelerations(self.assembler, self.state, &wanted);
+        self.model.nodes.iter().zip(acc).filter_map(|(n, a)| a.map(|a| (n.label, a))).collect()
+    }
 }
 
 /// An eigenanalysis was done.

@@ -320,26 +320,64 @@ impl<'m> Assembler<'m> {
 
     /// A dynamic node's own terms: `β`, `γ` in the momentum definitions; `β̇` and
     /// `γ̇ + ẋ × β` in the equilibrium.
+    ///
+    /// A displacement-only node ([`Model::displacement_nodes`]) holds its orientation: a
+    /// static one has `g` as moment equation, a dynamic one `γ̇ + g` as angular equilibrium
+    /// (its angular momentum definition reads `γ = 0`, no element puts inertia there).
     fn node_residual(&self, st: &State, i: usize, fr: &NodeFrame, f: &mut [f64]) {
+        let first = self.dofs.node_first[i];
+        let displacement = self.dofs.node_displacement[i];
         if self.dofs.node_kind[i] != NodeKind::Dynamic {
+            if displacement {
+                (0..3).for_each(|k| f[first + 3 + k] += st.y[first + 3 + k]);
+            }
             return;
         }
-        let first = self.dofs.node_first[i];
-        let (beta, _) = st.momenta(&self.dofs, i);
-        let gyro = fr.kin.xdot.cross(&beta);
+        let (beta, gamma) = st.momenta(&self.dofs, i);
+        let gyro = if displacement { Vec3::new(st.y[first + 3], st.y[first + 4], st.y[first + 5]) } else { fr.kin.xdot.cross(&beta) };
+        // A moving frame (`rigid body kinematics`): 2 W × β and W × γ (autostr.cc).
+        let (lin, ang) = match &self.model.frame_motion {
+            Some(m) => {
+                let w = m.at(st.t).w;
+                (2.0 * w.cross(&beta), w.cross(&gamma))
+            }
+            None => (Vec3::zeros(), Vec3::zeros()),
+        };
         for k in 0..3 {
             f[first + k] += st.y[first + 6 + k];
             f[first + 3 + k] += st.y[first + 9 + k];
-            f[first + 6 + k] += st.yp[first + 6 + k];
-            f[first + 9 + k] += st.yp[first + 9 + k] + gyro[k];
+            f[first + 6 + k] += st.yp[first + 6 + k] + lin[k];
+            f[first + 9 + k] += st.yp[first + 9 + k] + gyro[k] + ang[k];
         }
     }
 
     fn node_jacobian(&self, st: &State, i: usize, fr: &NodeFrame, c: Coefficients, out: &mut Triplets) {
+        let first = self.dofs.node_first[i];
+        if let (Some(m), NodeKind::Dynamic) = (&self.model.frame_motion, self.dofs.node_kind[i]) {
+            let wx = skew(&m.at(st.t).w);
+            for k in 0..3 {
+                for j in 0..3 {
+                    out.push(first + 6 + k, first + 6 + j, 2.0 * c.b * wx[(k, j)]);
+                    out.push(first + 9 + k, first + 9 + j, c.b * wx[(k, j)]);
+                }
+            }
+        }
+        if self.dofs.node_displacement[i] {
+            let row = if self.dofs.node_kind[i] == NodeKind::Dynamic { first + 9 } else { first + 3 };
+            (0..3).for_each(|k| out.push(row + k, first + 3 + k, c.b));
+            if self.dofs.node_kind[i] == NodeKind::Dynamic {
+                for k in 0..3 {
+                    out.push(first + k, first + 6 + k, c.b);
+                    out.push(first + 3 + k, first + 9 + k, c.b);
+                    out.push(first + 6 + k, first + 6 + k, c.a);
+                    out.push(first + 9 + k, first + 9 + k, c.a);
+                }
+            }
+            return;
+        }
         if self.dofs.node_kind[i] != NodeKind::Dynamic {
             return;
         }
-        let first = self.dofs.node_first[i];
         let (beta, _) = st.momenta(&self.dofs, i);
         let (bx, vx) = (skew(&beta), skew(&fr.kin.xdot));
         for k in 0..3 {

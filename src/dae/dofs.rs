@@ -7,6 +7,8 @@ use crate::model::{Model, NodeKind};
 pub struct DofMap {
     pub node_first: Vec<usize>,
     pub node_kind: Vec<NodeKind>,
+    /// Whether each node is displacement-only ([`Model::displacement_nodes`]).
+    pub node_displacement: Vec<bool>,
     pub element_first: Vec<usize>,
     pub element_len: Vec<usize>,
     /// Node index of each slot of each element.
@@ -61,7 +63,7 @@ impl DofMap {
                 multiplier[f + j] = !e.is_velocity_constraint(j) && !coordinate[f + j] && !state[f + j];
             }
         }
-        DofMap { node_first, node_kind: model.nodes.iter().map(|n| n.kind).collect(), element_first, element_len, element_nodes, len: first, multiplier, coordinate, state }
+        DofMap { node_first, node_kind: model.nodes.iter().map(|n| n.kind).collect(), node_displacement: model.nodes.iter().map(|n| model.displacement_nodes.contains(&n.label)).collect(), element_first, element_len, element_nodes, len: first, multiplier, coordinate, state }
     }
 
     /// First equilibrium row of a node (after the momentum definitions of a dynamic node).

@@ -6,7 +6,10 @@
 //! - Node unknowns: static `[x, g]`, dynamic `[x, g, β, γ]`; `R = R(g) R_ref`, `ω = G(g) ġ`,
 //!   `R_ref` re-based every step so that `g = 0` at a converged solution.
 //! - Node equations: dynamic rows 0–5 are the momentum definitions, rows 6–11 the force and
-//!   moment equilibrium (`β̇ − f`, `γ̇ + ẋ × β − m`); static rows 0–5 the equilibrium.
+//!   moment equilibrium (`β̇ − f`, `γ̇ + ẋ × β − m`); static rows 0–5 the equilibrium. A
+//!   displacement-only node's rotation rows hold `g = 0` (static: the moment rows read `g`;
+//!   dynamic: `γ = 0` and `γ̇ + g`); a moving frame (`Model::frame_motion`) adds `2 W × β`
+//!   and `W × γ` to the equilibrium.
 //! - Multipliers follow the [`ConstraintForm`]: `Scaled` (eq. 30, MBDyn's): algebraic
 //!   unknowns updated by `δ` with Jacobian coefficient 1, constraint rows `Φ/c` with Jacobian
 //!   `Φ_/q`; `Plain` (eq. 29): treated like `y` (coefficient `c`), rows `Φ` with `c Φ_/q`.
@@ -14,6 +17,7 @@
 //!
 //! [`ConstraintForm`]: crate::linear::ConstraintForm
 
+mod accelerations;
 mod assembly;
 mod band;
 mod check;
@@ -28,6 +32,7 @@ pub mod ports;
 mod sparse;
 mod state;
 
+pub use accelerations::node_accelerations;
 pub use assembly::{Assembler, Coefficients};
 pub use check::{check_jacobians, JacobianMismatch};
 pub use cluster::{cluster_label, degenerate_clusters, CLUSTER_RELATIVE_GAP};

@@ -22,11 +22,14 @@ pub struct RigidBody {
     pub offset: Vec3,
     /// Inertia about the centre of mass, node frame [kg m²].
     pub inertia: Mat3,
+    /// The model's moving reference frame (MBDyn's `rigid body kinematics`): its transport
+    /// terms act on the body ([`super::frame_motion`]).
+    pub frame: Option<std::sync::Arc<super::FrameMotion>>,
 }
 
 impl RigidBody {
     pub fn new(label: Label, node: Label, mass: f64, offset: Vec3, inertia: Mat3) -> Self {
-        RigidBody { label, node, mass, offset, inertia }
+        RigidBody { label, node, mass, offset, inertia, frame: None }
     }
 
     /// Inertia about the node, node frame.
@@ -56,6 +59,9 @@ impl Element for RigidBody {
         let j = n.r * self.inertia_about_node() * n.r.transpose();
         add_vec(out, Row::linear_momentum(0), &(-(self.mass * n.xdot + n.omega.cross(&s))));
         add_vec(out, Row::angular_momentum(0), &(-(s.cross(&n.xdot) + j * n.omega)));
+        if let Some(f) = &self.frame {
+            super::frame_motion::body_residual(&f.at(st.time()), self.mass, &s, &j, st, out);
+        }
     }
 
     fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
@@ -72,5 +78,8 @@ impl Element for RigidBody {
         add_block(out, ang, Col::velocity(0), &(-sx));
         add_block(out, ang, Col::angular_velocity(0), &(-j));
         add_block(out, ang, Col::rotation(0), &(-skew(&n.xdot) * sx + skew(&(j * n.omega)) - j * skew(&n.omega)));
+        if let Some(f) = &self.frame {
+            super::frame_motion::body_jacobian(&f.at(st.time()), self.mass, &s, &j, st, out);
+        }
     }
 }

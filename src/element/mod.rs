@@ -26,6 +26,7 @@ mod driven_element;
 mod driven_gravity;
 mod driven_joint;
 mod force;
+pub mod frame_motion;
 mod friction;
 mod hinge_friction;
 mod function_hinge;
@@ -52,6 +53,7 @@ pub use beam::{shape as beam_shape, Beam2, Beam3, BeamError, BeamNode, SectionLa
 pub use beam_slider::{BeamSlider, SliderBeam, SliderKind};
 pub use bistop_rod::{BistopRod, BistopStatus};
 pub use body::RigidBody;
+pub use frame_motion::{FrameMotion, FrameState};
 pub use cardano::CardanoHinge;
 pub use central_gravity::CentralGravity;
 pub use wrapper::ElementWrapper;

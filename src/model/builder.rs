@@ -26,11 +26,13 @@ pub struct ModelBuilder {
     form: ConstraintForm,
     node_names: std::collections::BTreeMap<Label, String>,
     step_drives: Vec<crate::element::StepDrive>,
+    displacement_nodes: std::collections::BTreeSet<Label>,
+    frame_motion: Option<std::sync::Arc<crate::element::FrameMotion>>,
 }
 
 impl Default for ModelBuilder {
     fn default() -> Self {
-        ModelBuilder { nodes: Vec::new(), elements: Vec::new(), gravity: None, form: ConstraintForm::Scaled, node_names: Default::default(), step_drives: Vec::new() }
+        ModelBuilder { nodes: Vec::new(), elements: Vec::new(), gravity: None, form: ConstraintForm::Scaled, node_names: Default::default(), step_drives: Vec::new(), displacement_nodes: Default::default(), frame_motion: None }
     }
 }
 
@@ -94,6 +96,18 @@ impl ModelBuilder {
         self
     }
 
+    /// Marks node `label` as displacement-only ([`Model::displacement_nodes`]).
+    pub fn displacement_node(&mut self, label: Label) -> &mut Self {
+        self.displacement_nodes.insert(label);
+        self
+    }
+
+    /// The moving reference frame ([`Model::frame_motion`]).
+    pub fn frame_motion(&mut self, f: std::sync::Arc<crate::element::FrameMotion>) -> &mut Self {
+        self.frame_motion = Some(f);
+        self
+    }
+
     pub fn build(self) -> Result<Model, ModelError> {
         let mut seen = std::collections::HashSet::new();
         for n in &self.nodes {
@@ -126,6 +140,8 @@ impl ModelBuilder {
             constraint_form: self.form,
             node_names: self.node_names,
             step_drives: self.step_drives,
+            displacement_nodes: self.displacement_nodes,
+            frame_motion: self.frame_motion,
         })
     }
 }

@@ -60,6 +60,15 @@ pub struct Model {
     /// Drives with a memory of the accepted steps, updated once at the start of every
     /// time step ([`crate::element::StepDrive::begin_step`]).
     pub step_drives: Vec<crate::element::StepDrive>,
+    /// Nodes without rotations (MBDyn's `static displacement` and `dynamic displacement`
+    /// nodes): their orientation stays the initial one, `g = 0` is their moment equation
+    /// (static) or, with `γ = 0` as angular momentum, their angular equilibrium (dynamic),
+    /// so they move as 3-DoF points; only elements that read positions and write forces
+    /// may connect to them (the reader's check).
+    pub displacement_nodes: std::collections::BTreeSet<Label>,
+    /// The moving reference frame of MBDyn's `rigid body kinematics`: its `2 W × β` and
+    /// `W × γ` on every dynamic node's equilibrium (the bodies carry their own terms).
+    pub frame_motion: Option<std::sync::Arc<crate::element::FrameMotion>>,
     /// Index in `nodes` of each node label.
     node_indices: HashMap<Label, usize>,
 }

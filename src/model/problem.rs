@@ -211,6 +211,10 @@ pub enum OrientationOutput {
     RotationVector,
     /// The nine entries of R by rows.
     Matrix,
+    /// No orientation columns: MBDyn 1.7.3's rows of a relative-frame dummy node, whose
+    /// orientation description it reads only after an `orientation` (strnode.cc,
+    /// `ReadStructNode`) and otherwise leaves unknown, which its `Output` writes as nothing.
+    Unwritten,
 }
 
 /// Where a written node's motion comes from.
@@ -237,6 +241,10 @@ pub struct WrittenNode {
     /// that is not written may still be the base of one that is.
     pub written: bool,
     pub orientation: OrientationOutput,
+    /// Whether its rows end with the linear and angular accelerations (MBDyn's
+    /// `accelerations, yes` on a dynamic node or `default output: accelerations`; a dummy
+    /// node's follow its base, a relative frame's both nodes).
+    pub accelerations: bool,
 }
 
 /// The motion file's rows: nodes in file order, every `every`-th step (MBDyn's `output

@@ -1,13 +1,14 @@
 //! Node histories in MBDyn's `.mov` layout: one line per node per output instant,
 //!
 //! ```text
-//! label  x y z  o1 o2 o3  vx vy vz  wx wy wz
+//! label  x y z  o1 o2 o3  vx vy vz  wx wy wz  [ax ay az  dwx dwy dwz]
 //! ```
 //!
 //! positions [m], orientation as Euler 1-2-3 angles [deg] (MBDyn's default), Euler 3-1-3 or
 //! 3-2-1 angles [deg], a rotation vector [rad] or the nine entries of R by rows (MBDyn's
 //! `orientation description`, strnode.cc `StructNode::Output`), velocities [m/s] and angular
-//! velocities [rad/s] in the global frame; no header, so Octave's `load` reads it. Dummy
+//! velocities [rad/s] in the global frame, for nodes that ask for them (MBDyn's `accelerations,
+//! yes`) the accelerations [m/s²] and angular accelerations [rad/s²]; no header, so Octave's `load` reads it. Dummy
 //! nodes are rows computed from their base node, as MBDyn writes them. The file is written to a temporary name
 //! and renamed when the run finishes.
 
@@ -50,29 +51,53 @@ fn orientation_values(r: &Mat3, how: OrientationOutput) -> Vec<f64> {
         OrientationOutput::Euler321Degrees => euler321(r).map(f64::to_degrees).iter().copied().collect(),
         OrientationOutput::RotationVector => rotation_vector(r).iter().copied().collect(),
         OrientationOutput::Matrix => (0..9).map(|k| r[(k / 3, k % 3)]).collect(),
+        OrientationOutput::Unwritten => Vec::new(),
     }
 }
 
-/// The rows `output` asks for, from the kinematics of the model's nodes: each written
-/// entry's label, kinematics and orientation form, dummy nodes computed from their bases.
-pub fn motion_rows(output: &MotionOutput, nodes: &[(Label, NodeKinematics)]) -> Vec<(Label, NodeKinematics, OrientationOutput)> {
-    let mut all: Vec<NodeKinematics> = Vec::with_capacity(output.nodes.len());
+/// Linear and angular acceleration [m/s², rad/s²], global frame.
+pub type Accelerations = (Vec3, Vec3);
+
+/// One row of the motion file: label, kinematics, orientation form and, for a node that
+/// asks for them, its accelerations.
+pub type MotionRow = (Label, NodeKinematics, OrientationOutput, Option<Accelerations>);
+
+/// The rows `output` asks for, from the kinematics (and, where known, accelerations) of
+/// the model's nodes: each written entry's label, kinematics, orientation form and
+/// accelerations, dummy nodes computed from their bases (strnode.cc, the dummy nodes'
+/// `Update_int`: the offset point's `a_b + ω̇ × f + ω × (ω × f)`, and the relative frame's
+/// derivatives of its velocities).
+pub fn motion_rows(output: &MotionOutput, nodes: &[(Label, NodeKinematics)], accelerations: &[(Label, Accelerations)]) -> Vec<MotionRow> {
+    let mut all: Vec<(NodeKinematics, Option<Accelerations>)> = Vec::with_capacity(output.nodes.len());
     for n in &output.nodes {
         let k = match &n.source {
-            NodeSource::Node(label) => nodes.iter().find(|(l, _)| l == label).map(|(_, k)| k.clone()),
-            NodeSource::Offset { base, offset, orientation } => all.get(*base).map(|b| {
+            NodeSource::Node(label) => nodes.iter().find(|(l, _)| l == label).map(|(_, k)| (k.clone(), accelerations.iter().find(|(l, _)| l == label).map(|(_, a)| *a))),
+            NodeSource::Offset { base, offset, orientation } => all.get(*base).map(|(b, ba)| {
                 let arm = b.r * offset;
-                NodeKinematics { x: b.x + arm, r: b.r * orientation, xdot: b.xdot + b.omega.cross(&arm), omega: b.omega }
+                let k = NodeKinematics { x: b.x + arm, r: b.r * orientation, xdot: b.xdot + b.omega.cross(&arm), omega: b.omega };
+                (k, ba.map(|(a, wd)| (a + wd.cross(&arm) + b.omega.cross(&b.omega.cross(&arm)), wd)))
             }),
-            NodeSource::RelativeFrame { base, reference } => all.get(*base).zip(all.get(*reference)).map(|(b, f)| {
-                let (rt, d) = (f.r.transpose(), b.x - f.x);
-                NodeKinematics { x: rt * d, r: rt * b.r, xdot: rt * (b.xdot - f.xdot - f.omega.cross(&d)), omega: rt * (b.omega - f.omega) }
+            NodeSource::RelativeFrame { base, reference } => all.get(*base).zip(all.get(*reference)).map(|((b, ba), (f, fa))| {
+                let (rt, d, w) = (f.r.transpose(), b.x - f.x, f.omega);
+                let k = NodeKinematics { x: rt * d, r: rt * b.r, xdot: rt * (b.xdot - f.xdot - w.cross(&d)), omega: rt * (b.omega - w) };
+                // d/dt of R_fᵀ (ḋ − ω_f × d) and R_fᵀ (ω_b − ω_f).
+                let acc = ba.zip(*fa).map(|((ab, wdb), (af, wdf))| {
+                    let dd = b.xdot - f.xdot;
+                    (rt * (ab - af - wdf.cross(&d) - 2.0 * w.cross(&dd) + w.cross(&w.cross(&d))), rt * (wdb - wdf - w.cross(&b.omega)))
+                });
+                (k, acc)
             }),
         };
         // A source that is missing (a bug upstream) writes nothing rather than a wrong row.
-        all.push(k.unwrap_or(NodeKinematics { x: Vec3::repeat(f64::NAN), r: Mat3::repeat(f64::NAN), xdot: Vec3::repeat(f64::NAN), omega: Vec3::repeat(f64::NAN) }));
+        all.push(k.unwrap_or((NodeKinematics { x: Vec3::repeat(f64::NAN), r: Mat3::repeat(f64::NAN), xdot: Vec3::repeat(f64::NAN), omega: Vec3::repeat(f64::NAN) }, None)));
     }
-    output.nodes.iter().zip(all).filter(|(n, k)| n.written && k.x[0].is_finite()).map(|(n, k)| (n.label, k, n.orientation)).collect()
+    output
+        .nodes
+        .iter()
+        .zip(all)
+        .filter(|(n, (k, _))| n.written && k.x[0].is_finite())
+        .map(|(n, (k, a))| (n.label, k, n.orientation, a.filter(|_| n.accelerations)))
+        .collect()
 }
 
 impl MotionWriter {
@@ -83,15 +108,15 @@ impl MotionWriter {
 
     /// Appends one output instant: a line per node, orientations in the writer's form.
     pub fn write_step(&mut self, nodes: &[(Label, NodeKinematics)]) -> Result<(), OutputError> {
-        let rows: Vec<_> = nodes.iter().map(|(l, k)| (*l, k.clone(), self.orientation)).collect();
+        let rows: Vec<_> = nodes.iter().map(|(l, k)| (*l, k.clone(), self.orientation, None)).collect();
         self.write_rows(&rows)
     }
 
     /// Appends one output instant: a line per row, each with its own orientation form.
-    pub fn write_rows(&mut self, rows: &[(Label, NodeKinematics, OrientationOutput)]) -> Result<(), OutputError> {
+    pub fn write_rows(&mut self, rows: &[MotionRow]) -> Result<(), OutputError> {
         let d = self.digits;
         self.file.write_with(|out| {
-            for (label, k, how) in rows {
+            for (label, k, how, acc) in rows {
                 write!(out, "{label}")?;
                 for c in k.x.iter() {
                     write!(out, " {c:.d$e}")?;
@@ -99,7 +124,8 @@ impl MotionWriter {
                 for c in orientation_values(&k.r, *how) {
                     write!(out, " {c:.d$e}")?;
                 }
-                for v in [k.xdot, k.omega] {
+                let acc = acc.iter().flat_map(|(a, wd)| [*a, *wd]);
+                for v in [k.xdot, k.omega].into_iter().chain(acc) {
                     for c in v.iter() {
                         write!(out, " {c:.d$e}")?;
                     }

@@ -83,6 +83,9 @@ pub struct ControlOutput {
     pub orientation: OrientationOutput,
     /// `output precision: N`: digits after the decimal point in the `.mov` file.
     pub precision: Option<usize>,
+    /// `default output: accelerations`: dynamic nodes write their accelerations unless
+    /// their card says otherwise (dataman3.cc; `all` does not set it).
+    pub accelerations: bool,
 }
 
 /// Largest `output precision` romdyn writes (17 significant digits already identify a
@@ -91,13 +94,13 @@ const MAX_OUTPUT_PRECISION: usize = 30;
 
 impl Default for ControlOutput {
     fn default() -> Self {
-        ControlOutput { structural_nodes: true, every: 1, orientation: OrientationOutput::Euler123Degrees, precision: None }
+        ControlOutput { structural_nodes: true, every: 1, orientation: OrientationOutput::Euler123Degrees, precision: None, accelerations: false }
     }
 }
 
 /// `default output: {all | none | structural nodes | …} …` (dataman3.cc, case
 /// DEFAULTOUTPUT): `all` and `none` set every kind, a kind's name switches it on; only the
-/// structural nodes' flag matters for romdyn's files.
+/// structural nodes' and the accelerations' flags matter for romdyn's files.
 fn default_output(c: &mut Cursor, out: &mut ControlOutput) -> Result<(), MbdynError> {
     const KINDS: [&str; 27] = [
         "all", "none", "reference frames", "accelerations", "drive callers", "structural nodes", "electric nodes", "thermal nodes", "abstract nodes",
@@ -107,6 +110,7 @@ fn default_output(c: &mut Cursor, out: &mut ControlOutput) -> Result<(), MbdynEr
     while !c.is_done() {
         match c.keyword("an output kind", &KINDS)? {
             "all" | "structural nodes" => out.structural_nodes = true,
+            "accelerations" => out.accelerations = true,
             "none" => out.structural_nodes = false,
             _ => {}
         }
@@ -166,9 +170,11 @@ pub fn control_data(block: Option<&Block>, sources: &Sources) -> Result<(Counts,
         } else if known(&st.keyword, &["output meter"]).is_some() {
             // A drive caller, read with the cards (model.rs, `output_meter`).
             c.skip_rest();
-        } else if let Some(kind) = known(&st.keyword, &["model", "rigid body kinematics"]) {
-            let what = if kind == "model" { "'model: static' (dynamic nodes treated as static)" } else { "'rigid body kinematics' (a moving reference frame)" };
-            return Err(c.error_at(st.span, format!("{what} changes the physics and is not supported by romdyn")));
+        } else if known(&st.keyword, &["rigid body kinematics"]).is_some() {
+            // Read with the drive callers (`super::rbk`, from `super::model`).
+            c.skip_rest();
+        } else if known(&st.keyword, &["model"]).is_some() {
+            return Err(c.error_at(st.span, "'model: static' (dynamic nodes treated as static) changes the physics and is not supported by romdyn"));
         } else {
             return Err(c.error_at(st.span, format!("statement '{}' in control data is not supported by romdyn", st.keyword)));
         }

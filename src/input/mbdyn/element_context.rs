@@ -49,12 +49,25 @@ pub struct ElementContext<'a> {
 
 impl<'a> ElementContext<'a> {
     /// A structural node label that names a node with unknowns.
+    /// A node with rotations: a displacement node is refused (MBDyn 1.7.3 reads the node of
+    /// every element but those of [`ElementContext::point_node`] as a 6-DoF `StructNode`).
     pub fn node(&self, c: &mut Cursor, what: &str) -> Result<&'a StructuralNode, MbdynError> {
+        let span = c.here();
+        let (n, displacement) = self.point_node(c, what)?;
+        if displacement {
+            return Err(c.error_at(span, format!("structural node {} is a displacement node (no rotations): only bodies (a mass), rods and distance joints without offsets and the 'absolute displacement' forces connect to it, as in MBDyn 1.7.3", n.label)));
+        }
+        Ok(n)
+    }
+    /// A structural node with unknowns, with whether it is a displacement node (for the
+    /// elements MBDyn 1.7.3 reads as `StructDispNode`: body, rod and distance without
+    /// offsets, the displacement forces).
+    pub fn point_node(&self, c: &mut Cursor, what: &str) -> Result<(&'a StructuralNode, bool), MbdynError> {
         let span = c.here();
         let label = c.label(what)?;
         match self.nodes.find(label) {
             Some(n) if n.dummy => Err(c.error_at(span, format!("structural node {label} is a dummy node (output only): romdyn cannot connect elements to it"))),
-            Some(n) => Ok(&n.node),
+            Some(n) => Ok((&n.node, n.displacement)),
             None => Err(c.error_at(span, format!("structural node {label} is not defined"))),
         }
     }

@@ -102,7 +102,11 @@ impl ElementContext<'_> {
 /// `condense, N, …` with N such masses, lumped into one rigid body about their common
 /// centre of mass (input manual, §Body).
 fn body(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<RigidBody, MbdynError> {
-    let n = ctx.node(c, "node of the body")?;
+    let span = c.here();
+    let (n, point) = ctx.point_node(c, "node of the body")?;
+    if point && n.kind == crate::model::NodeKind::Static {
+        return Err(c.error_at(span, format!("body {label}: structural node {} is a static displacement node; a mass needs a dynamic displacement node (MBDyn 1.7.3: \"illegal structural node type\")", n.label)));
+    }
     let on = ctx.on(n);
     if c.accept("variable mass") {
         return Err(c.error("variable-mass bodies are not supported by romdyn"));
@@ -125,6 +129,11 @@ fn body(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<RigidBody,
         let mass = c.real("mass [kg]")?;
         if mass < 0.0 && !allow_negative {
             return Err(c.error_at(span, format!("negative mass {mass} (write 'allow negative mass' if intended)")));
+        }
+        // body.cc, `ReadBody`: on a displacement node each part is its mass alone.
+        if point {
+            parts.push((mass, Vec3::zeros(), Mat3::zeros()));
+            continue;
         }
         let cm = on.relative_position(c, "centre of mass offset [m]")?;
         let j_span = c.here();

@@ -83,8 +83,8 @@ pub fn total_internal(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Res
 /// global frame on the node's position equations (on node 1, and its opposite on node 2),
 /// no arm and no moment: romdyn's absolute force and absolute internal force with null arms.
 pub fn displacement(internal: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<dyn Element>, MbdynError> {
-    let n1 = ctx.node(c, "node 1 of the force")?;
-    let n2 = if internal { Some(ctx.node(c, "node 2 of the force")?) } else { None };
+    let n1 = ctx.point_node(c, "node 1 of the force")?.0;
+    let n2 = if internal { Some(ctx.point_node(c, "node 2 of the force")?.0) } else { None };
     let on1 = ctx.on(n1);
     let value = VectorDrive(template_vec3(c, ctx.drives, ctx.seq, &Mat3::identity(), &|c: &mut Cursor| on1.vector_in(c, "force value", Frame::global()))?);
     Ok(match n2 {

@@ -63,6 +63,27 @@ enum Position {
 
 fn side<'a>(c: &mut Cursor, ctx: &ElementContext<'a>, what: &str, position: Position, other: Option<&Side>) -> Result<Side<'a>, MbdynError> {
     let node = ctx.node(c, what)?;
+    side_of(c, ctx, node, what, position, other)
+}
+
+/// [`side`] of a rod or distance joint, whose nodes may be displacement nodes when they
+/// take no offset (joint.cc, cases DISTANCE and ROD: "invalid StructNode … for node #1").
+/// A displacement node on either side makes both offsets refused (MBDyn 1.7.3 requires
+/// both nodes with rotations as soon as one offset is written; a rod with an offset on its
+/// 6-DoF node and a displacement node at the other end stops it with a segmentation fault).
+fn point_side<'a>(c: &mut Cursor, ctx: &ElementContext<'a>, what: &str, position: Position, other: Option<(&Side, bool)>) -> Result<(Side<'a>, bool), MbdynError> {
+    let span = c.here();
+    let (node, displacement) = ctx.point_node(c, what)?;
+    let side = side_of(c, ctx, node, what, position, other.map(|o| o.0))?;
+    let offset = |s: &Side| s.offset != Vec3::zeros() || s.orientation != Mat3::identity() || position == Position::Always;
+    let (other_displacement, other_offset) = other.map_or((false, false), |(o, d)| (d, offset(o)));
+    if (displacement || other_displacement) && (offset(&side) || other_offset) {
+        return Err(c.error_at(span, "a rod or distance joint with an offset needs two nodes with rotations, and one of its nodes is a displacement node (MBDyn 1.7.3: \"invalid StructNode\"; for a rod it stops with a segmentation fault)"));
+    }
+    Ok((side, displacement))
+}
+
+fn side_of<'a>(c: &mut Cursor, ctx: &ElementContext<'a>, node: &'a StructuralNode, what: &str, position: Position, other: Option<&Side>) -> Result<Side<'a>, MbdynError> {
     let on = Context { other: other.map(Side::other), ..ctx.on(node) };
     let written = c.accept("position") || c.peek_keyword().is_some_and(|w| w == "null");
     let offset = if written || position == Position::Always { on.relative_position(c, &format!("offset of {what} [m]"))? } else { Vec3::zeros() };
@@ -193,8 +214,8 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             // `distance, NODE_1, [position, O_1,] NODE_2, [position, O_2,] {DRIVE | from nodes}`;
             // the deprecated `distance with offset` always reads both offsets.
             let position = if kind == "distance" { Position::IfKeyword } else { Position::Always };
-            let a = side(c, ctx, "node 1", position, None)?;
-            let b = side(c, ctx, "node 2", position, Some(&a))?;
+            let (a, da) = point_side(c, ctx, "node 1", position, None)?;
+            let (b, _) = point_side(c, ctx, "node 2", position, Some((&a, da)))?;
             let l0 = (b.global().0 - a.global().0).norm();
             let l_span = c.here();
             let length = if c.accept("from nodes") { Drive::Const(l0) } else { super::drives::drive(c, ctx.drives, ctx.seq)? };
@@ -623,8 +644,8 @@ fn driven_assembled(j: DrivenJoint, ctx: &ElementContext, c: &Cursor, span: supe
 /// prestrain `ε_p` and a prestress `F_p` shift the rest length to `l₀ (1 + ε_p − F_p/EA)`.
 fn rod(offsets: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<dyn Element>, MbdynError> {
     let position = if offsets { Position::Always } else { Position::IfKeyword };
-    let a = side(c, ctx, "node 1", position, None)?;
-    let b = side(c, ctx, "node 2", position, Some(&a))?;
+    let (a, da) = point_side(c, ctx, "node 1", position, None)?;
+    let (b, _) = point_side(c, ctx, "node 2", position, Some((&a, da)))?;
     let distance = (b.global().0 - a.global().0).norm();
     let span = c.here();
     if distance == 0.0 {

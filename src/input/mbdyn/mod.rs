@@ -35,6 +35,7 @@ mod nodes;
 mod orientation;
 mod parser;
 mod problem;
+mod rbk;
 mod references;
 mod scalar_functions;
 mod total_equation;

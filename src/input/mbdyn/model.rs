@@ -19,7 +19,7 @@ use super::parser::{known, same_keyword, Block, Document, CARDS};
 use super::written_nodes::{parse_file_with, parse_text_with};
 use super::problem::{data, initial_value};
 use super::references::{reference, Frames};
-use crate::model::{InitialValueProblem, Model, ModelBuilder, MotionOutput, WrittenNode};
+use crate::model::{InitialValueProblem, Model, ModelBuilder, MotionOutput, NodeKind, NodeSource, WrittenNode};
 
 /// A model file: the model and the initial-value problem it asks for.
 pub struct MbdynModel {
@@ -162,6 +162,13 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
     let cards = cards(doc)?;
     let mut problem = initial_value(block(doc, "initial value"), src, &cards.drives)?;
     let (counts, control_output, assembly) = control_data(block(doc, "control data"), src)?;
+    // `rigid body kinematics:` (the last one, as control data re-reads a repeated statement).
+    let mut frame_motion = None;
+    for st in block(doc, "control data").map_or(&[][..], |b| &b.statements).iter().filter(|st| same_keyword(&st.keyword, "rigid body kinematics")) {
+        let mut c = Cursor::new(st, src);
+        frame_motion = Some(std::sync::Arc::new(super::rbk::rigid_body_kinematics(&mut c, &cards.drives, &cards.frames, st.seq)?));
+        c.finish()?;
+    }
     let mut nodes = Nodes::default();
     let mut parameter_nodes = HashMap::new();
     for st in block(doc, "nodes").map_or(&[][..], |b| &b.statements) {
@@ -172,17 +179,21 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
             node_statement(st, &mut c, &cards.frames, &mut nodes)?;
         }
     }
+    // strnode.cc: a dynamic node computes its accelerations when it is output and asks for
+    // them (or `default output: accelerations`); an offset dummy node when its base does, a
+    // relative-frame one when both its nodes do.
+    let mut written: Vec<WrittenNode> = Vec::with_capacity(nodes.0.len());
+    for n in &nodes.0 {
+        let output = n.output.unwrap_or(control_output.structural_nodes);
+        let accelerations = match &n.source {
+            NodeSource::Node(_) => n.node.kind == NodeKind::Dynamic && output && n.accelerations.unwrap_or(control_output.accelerations),
+            NodeSource::Offset { base, .. } => written[*base].accelerations,
+            NodeSource::RelativeFrame { base, reference } => written[*base].accelerations && written[*reference].accelerations,
+        };
+        written.push(WrittenNode { label: n.node.label, source: n.source.clone(), written: output, orientation: n.orientation.unwrap_or(control_output.orientation), accelerations });
+    }
     problem.output = Some(MotionOutput {
-        nodes: nodes
-            .0
-            .iter()
-            .map(|n| WrittenNode {
-                label: n.node.label,
-                source: n.source.clone(),
-                written: n.output.unwrap_or(control_output.structural_nodes),
-                orientation: n.orientation.unwrap_or(control_output.orientation),
-            })
-            .collect(),
+        nodes: written,
         every: control_output.every,
         meter: output_meter(block(doc, "control data"), src, &cards.drives)?,
         precision: control_output.precision,
@@ -192,6 +203,12 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
     let mut b = ModelBuilder::new();
     for n in nodes.structural() {
         b.node(n.clone());
+    }
+    if let Some(f) = &frame_motion {
+        b.frame_motion(f.clone());
+    }
+    for n in nodes.0.iter().filter(|n| n.displacement) {
+        b.displacement_node(n.node.label);
     }
     for n in &nodes.0 {
         if let Some(name) = &n.name {
@@ -236,8 +253,9 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
             None => parsed,
         };
         let parsed = match parsed {
-            Parsed::Body(body) => {
+            Parsed::Body(mut body) => {
                 bodies.push((body.label, body.node, body.mass, body.offset));
+                body.frame = frame_motion.clone();
                 Parsed::Element(Box::new(body))
             }
             p => p,

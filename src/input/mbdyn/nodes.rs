@@ -2,7 +2,8 @@
 //! {static | dynamic}, [position,] X, [orientation,] R, [velocity,] V, [angular velocity,]
 //! W` (each optionally in a `reference`), or `at reference, LABEL`; then the optional
 //! `assembly`, `scale`, `output` and `accelerations` settings (`assembly` sets the node's
-//! initial-assembly penalties, `scale` is ignored, `output` selects the node's `.mov` rows).
+//! initial-assembly penalties, `scale` is ignored, `output` selects the node's `.mov` rows,
+//! `accelerations, yes` on a dynamic node appends its accelerations to them).
 //! A node label may be followed by `name, "…"`. `dummy` nodes carry no unknowns: they are
 //! counted, kept out of the model, and written to the motion file from their base node
 //! (which may itself be a dummy node). `output: structural, LABEL | range, A, B, …;` turns
@@ -31,6 +32,11 @@ pub struct NodeEntry {
     pub assembly: Option<NodeAssembly>,
     /// `name, "…"` after the label.
     pub name: Option<String>,
+    /// `accelerations, yes | no` (dynamic nodes only; `None`: the `default output` of
+    /// control data).
+    pub accelerations: Option<bool>,
+    /// A `static displacement` or `dynamic displacement` node (no rotations).
+    pub displacement: bool,
 }
 
 /// The structural nodes, in file order.
@@ -77,16 +83,21 @@ pub fn node_statement(st: &Statement, c: &mut Cursor, frames: &Frames, nodes: &m
             let (node, source, orientation) = dummy(c, &ctx, label, nodes)?;
             (node, true, source, orientation)
         }
-        _ => return Err(c.error_at(kind_span, format!("'{kind}' structural nodes are not supported by romdyn (supported: static, dynamic, dummy)"))),
+        "static displacement" | "dynamic displacement" => {
+            let node = displacement(c, &ctx, label, if kind == "static displacement" { NodeKind::Static } else { NodeKind::Dynamic })?;
+            (node, false, NodeSource::Node(label), None)
+        }
+        _ => return Err(c.error_at(kind_span, format!("'{kind}' structural nodes are not supported by romdyn (supported: static, dynamic, dummy, static displacement, dynamic displacement)"))),
     };
-    let (output, assembly) = settings(c)?;
+    let (output, assembly, accelerations) = settings(c, kind)?;
+    let displacement = kind.ends_with("displacement");
     // strnode.cc, `ReadStructNode`: after the settings, anything but ';' stops MBDyn too
     // (e.g. the initial-assembly stiffnesses written without the `assembly` keyword).
     c.finish().map_err(|mut e| {
         e.message.push_str(&format!(" (after the velocities a structural node takes only 'assembly, …', 'scale, …', 'output, …', 'accelerations, …'); MBDyn 1.7.3 does not read it either (its reader stops: \"ReadStructNode({label}): semicolon expected\")"));
         e
     })?;
-    nodes.0.push(NodeEntry { node, dummy, span: st.span, source, output, orientation, assembly, name });
+    nodes.0.push(NodeEntry { node, dummy, span: st.span, source, output, orientation, assembly, name, accelerations, displacement });
     Ok(())
 }
 
@@ -139,6 +150,19 @@ fn structural(c: &mut Cursor, ctx: &Context, label: Label, kind: NodeKind) -> Re
     Ok((StructuralNode { label, kind, position, orientation, velocity, angular_velocity }, od))
 }
 
+/// `static displacement | dynamic displacement, [position,] X, [velocity,] V` (strnode.cc,
+/// `ReadStructNode` with `bDisp`): a point without orientation (kept the identity).
+fn displacement(c: &mut Cursor, ctx: &Context, label: Label, kind: NodeKind) -> Result<StructuralNode, MbdynError> {
+    if c.accept("at reference") {
+        return Err(c.error("'at reference' on a displacement node is not supported by romdyn (write its position and velocity)"));
+    }
+    c.accept("position");
+    let position = ctx.position(c, "node position [m]")?;
+    c.accept("velocity");
+    let velocity = ctx.velocity(c, "node velocity [m/s]", &position)?;
+    Ok(StructuralNode { label, kind, position, orientation: crate::kinematics::Mat3::identity(), velocity, angular_velocity: crate::kinematics::Vec3::zeros() })
+}
+
 fn orientation_description(c: &mut Cursor) -> Result<Option<OrientationOutput>, MbdynError> {
     if c.accept("orientation description") {
         return orientation_kind(c).map(Some);
@@ -166,6 +190,9 @@ fn dummy(c: &mut Cursor, ctx: &Context, label: Label, nodes: &Nodes) -> Result<(
     let Some(base) = nodes.0.iter().position(|n| n.node.label == base_label) else {
         return Err(c.error_at(span, format!("structural node {base_label} is not defined (a dummy node must follow its base node)")));
     };
+    if nodes.0[base].displacement {
+        return Err(c.error_at(span, format!("structural node {base_label} is a displacement node (no orientation): a dummy node needs a base with rotations (MBDyn 1.7.3 reads the base as a 6-DoF StructNode)")));
+    }
     let b = &nodes.0[base].node;
     let on_base = Context { node: Some(Frame::of_node(b)), ..*ctx };
     match c.keyword("the dummy node type", &["offset", "relative frame"])? {
@@ -189,10 +216,16 @@ fn dummy(c: &mut Cursor, ctx: &Context, label: Label, nodes: &Nodes) -> Result<(
             let Some(reference) = nodes.0.iter().position(|n| n.node.label == reference_label) else {
                 return Err(c.error_at(r, format!("structural node {reference_label} is not defined")));
             };
+            if nodes.0[reference].displacement {
+                return Err(c.error_at(r, format!("structural node {reference_label} is a displacement node (no orientation): a relative frame needs a node with rotations")));
+            }
             if let Some(k) = c.accept_any(&["position", "orientation", "pivot node"]) {
                 return Err(c.error(format!("'{k}' of a relative-frame dummy node is not supported by romdyn (supported: dummy, BASE, relative frame, REFERENCE)")));
             }
-            let od = orientation_description(c)?;
+            // MBDyn 1.7.3 reads no `orientation description` here (only after an
+            // `orientation`, which romdyn refuses) and writes the rows without orientation
+            // columns; romdyn still takes one, and then writes the orientation.
+            let od = Some(orientation_description(c)?.unwrap_or(OrientationOutput::Unwritten));
             let f = &nodes.0[reference].node;
             let (rt, d) = (f.orientation.transpose(), b.position - f.position);
             let node = StructuralNode {
@@ -208,26 +241,37 @@ fn dummy(c: &mut Cursor, ctx: &Context, label: Label, nodes: &Nodes) -> Result<(
     }
 }
 
-/// `assembly, …`, `scale, …`, `output, …`, `accelerations, …`: the node's output flag and
-/// initial-assembly settings, returned (`scale`, a residual scaling, is ignored).
-fn settings(c: &mut Cursor) -> Result<(Option<bool>, Option<NodeAssembly>), MbdynError> {
+/// `assembly, …`, `scale, …`, `output, …`, `accelerations, …`: the node's output flag,
+/// initial-assembly settings and accelerations flag, returned (`scale`, a residual scaling,
+/// is ignored). MBDyn 1.7.3 reads `accelerations` on dynamic nodes only (strnode.cc,
+/// `ReadStructNode`); on the others its reader stops at the keyword, and so does romdyn's.
+fn settings(c: &mut Cursor, kind: &str) -> Result<(Option<bool>, Option<NodeAssembly>, Option<bool>), MbdynError> {
     let mut output = None;
     let mut assembly = None;
+    let mut accelerations = None;
     loop {
         if c.accept("assembly") {
             let position_stiffness = c.real("position initial stiffness")?;
             let velocity_stiffness = c.real("velocity initial stiffness")?;
-            assembly = Some(NodeAssembly { position_stiffness, velocity_stiffness, omega_rotates: c.flag("omega rotates")? });
+            // strnode.cc: a displacement node has no `omega rotates` flag.
+            let omega_rotates = if kind.ends_with("displacement") { false } else { c.flag("omega rotates")? };
+            assembly = Some(NodeAssembly { position_stiffness, velocity_stiffness, omega_rotates });
         } else if c.accept("scale") {
             if !c.accept("default") {
                 c.real("residual scale factor")?;
             }
         } else if c.accept("output") {
             output = Some(c.flag("output flag")?);
-        } else if c.accept("accelerations") {
-            c.flag("accelerations flag")?;
+        } else if let (span, true) = (c.here(), c.accept("accelerations")) {
+            if kind != "dynamic" && kind != "dynamic displacement" {
+                return Err(c.error_at(span, format!("'accelerations' is read on dynamic structural nodes only, not on a {kind} node (MBDyn 1.7.3 stops there too: \"semicolon expected\"; its static nodes have no momenta to differentiate, a dummy node writes accelerations when its base node does)")));
+            }
+            if accelerations.is_some() {
+                return Err(c.error_at(span, "'accelerations' is set twice for this node (MBDyn 1.7.3 refuses it too: \"accelerations\" already set)"));
+            }
+            accelerations = Some(c.flag("accelerations flag")?);
         } else {
-            return Ok((output, assembly));
+            return Ok((output, assembly, accelerations));
         }
     }
 }
