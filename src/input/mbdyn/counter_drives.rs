@@ -2,13 +2,37 @@
 //! `MeterDCR`, `ClosestNextDCR`, `RandomDCR`; input manual §Meter drive, §Closest next
 //! drive, §Random drive), and the `fourier series` (`FourierSeriesDCR`).
 
-use std::sync::atomic::Ordering;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex};
 
 use super::cursor::Cursor;
 use super::diagnostic::MbdynError;
-use super::drives::Drives;
-use crate::element::c_rand::time_seed;
+use crate::element::c_rand::{time_seed, RandomDraws};
 use crate::element::{Drive, StepDrive, StepKind};
+
+/// The drives with a memory of the steps read so far (`sample and hold`, `discrete filter`,
+/// the counters and `random`), which the model advances at every step, and the numbers the
+/// `random` drives draw with the count of drives created so far (their order).
+#[derive(Default)]
+pub struct StepDrives {
+    stepped: Mutex<Vec<StepDrive>>,
+    random: Arc<RandomDraws>,
+    created: AtomicUsize,
+}
+
+impl StepDrives {
+    /// A drive with memory, registered for the model to advance at every step.
+    pub fn register(&self, kind: StepKind) -> Drive {
+        let d = StepDrive::new(kind);
+        self.stepped.lock().unwrap_or_else(|e| e.into_inner()).push(d.clone());
+        Drive::Stepped(d)
+    }
+
+    /// The drives registered so far (emptied).
+    pub fn take(&self) -> Vec<StepDrive> {
+        std::mem::take(&mut *self.stepped.lock().unwrap_or_else(|e| e.into_inner()))
+    }
+}
 
 /// `{forever | T1}`.
 fn final_time(c: &mut Cursor) -> Result<f64, MbdynError> {
@@ -26,18 +50,18 @@ fn steps(c: &mut Cursor) -> Result<usize, MbdynError> {
 }
 
 /// `meter, T0, {forever | T1} [, steps, N]`.
-pub fn meter(c: &mut Cursor, drives: &Drives) -> Result<Drive, MbdynError> {
+pub fn meter(c: &mut Cursor, drives: &StepDrives) -> Result<Drive, MbdynError> {
     let t0 = c.real("initial time [s]")?;
     let t1 = final_time(c)?;
     let mut n = 1;
     while c.accept("steps") {
         n = steps(c)?;
     }
-    Ok(stepped(drives, StepKind::Meter { t0, t1, steps: n }))
+    Ok(drives.register(StepKind::Meter { t0, t1, steps: n }))
 }
 
 /// `closest next, T0, {forever | T1}, INCREMENT`.
-pub fn closest_next(c: &mut Cursor, drives: &Drives, inner: &dyn Fn(&mut Cursor) -> Result<Drive, MbdynError>) -> Result<Drive, MbdynError> {
+pub fn closest_next(c: &mut Cursor, drives: &StepDrives, inner: &dyn Fn(&mut Cursor) -> Result<Drive, MbdynError>) -> Result<Drive, MbdynError> {
     let t0 = c.real("initial time [s]")?;
     let t1 = final_time(c)?;
     let at = c.here();
@@ -47,13 +71,13 @@ pub fn closest_next(c: &mut Cursor, drives: &Drives, inner: &dyn Fn(&mut Cursor)
     {
         return Err(c.error_at(at, format!("closest next: the increment must be positive, found {dt}")));
     }
-    Ok(stepped(drives, StepKind::ClosestNext { t0, t1, increment }))
+    Ok(drives.register(StepKind::ClosestNext { t0, t1, increment }))
 }
 
 /// `random, A, M, T0, {forever | T1} [, steps, N] [, seed, {time | S}]` (either optional
 /// entry in any order, as MBDyn reads them); `seed` seeds the generator of all the random
 /// drives read from here on, `srand(S)` (S as a C `unsigned int`), `time` with the clock.
-pub fn random(c: &mut Cursor, drives: &Drives, seq: usize) -> Result<Drive, MbdynError> {
+pub fn random(c: &mut Cursor, drives: &StepDrives, seq: usize) -> Result<Drive, MbdynError> {
     let amplitude = c.real("amplitude")?;
     let mean = c.real("mean value")?;
     let t0 = c.real("initial time [s]")?;
@@ -72,18 +96,18 @@ pub fn random(c: &mut Cursor, drives: &Drives, seq: usize) -> Result<Drive, Mbdy
 }
 
 #[allow(clippy::too_many_arguments)]
-fn new_random(drives: &Drives, seq: usize, amplitude: f64, mean: f64, t0: f64, t1: f64, steps: usize, seed: Option<u32>) -> Drive {
+fn new_random(drives: &StepDrives, seq: usize, amplitude: f64, mean: f64, t0: f64, t1: f64, steps: usize, seed: Option<u32>) -> Drive {
     let order = drives.created.fetch_add(1, Ordering::Relaxed);
     let draws = drives.random.clone();
     let id = draws.register((seq, order), seed, steps);
-    stepped(drives, StepKind::Random { amplitude, mean, t0, t1, steps, draws, id })
+    drives.register(StepKind::Random { amplitude, mean, t0, t1, steps, draws, id })
 }
 
 /// A drive caller card used by `reference` read at statement `seq`, or by `postponed`
 /// (`seq` = `usize::MAX`: MBDyn copies the card when the drive is first called, in the run,
 /// after every drive was read): MBDyn copies it (`pCopy`), and a copied `random` drive is
 /// a new one, which draws its own numbers. The other drives with memory stay shared.
-pub fn copied(d: &Drive, drives: &Drives, seq: usize) -> Drive {
+pub fn copied(d: &Drive, drives: &StepDrives, seq: usize) -> Drive {
     let copy = |d: &Drive| copied(d, drives, seq);
     match d {
         Drive::Stepped(s) => match s.kind() {
@@ -133,10 +157,4 @@ pub fn fourier_series(c: &mut Cursor) -> Result<Drive, MbdynError> {
     }
     let t1 = if cycles == 0 { f64::INFINITY } else { t0 + 2.0 * std::f64::consts::PI / omega * cycles as f64 };
     Ok(Drive::FourierSeries { t0, omega, terms, t1, v0: c.real("initial value")? })
-}
-
-fn stepped(drives: &Drives, kind: StepKind) -> Drive {
-    let d = StepDrive::new(kind);
-    drives.stepped.lock().unwrap_or_else(|e| e.into_inner()).push(d.clone());
-    Drive::Stepped(d)
 }

@@ -52,12 +52,8 @@ pub struct Drives {
     pub file_drivers: super::file_drivers::FileDrivers,
     /// Parameter nodes, `bind`s and the reads of `dof` and `element` drive callers.
     pub private: super::element_reads::PrivateReads,
-    /// The drives with a memory of the steps read so far (`sample and hold`, `discrete
-    /// filter`), which the model advances at every step.
-    pub stepped: Mutex<Vec<StepDrive>>,
-    /// The numbers the `random` drives draw, and the drives created so far (their order).
-    pub random: std::sync::Arc<crate::element::c_rand::RandomDraws>,
-    pub created: std::sync::atomic::AtomicUsize,
+    /// The drives with a memory of the steps, which the model advances at every step.
+    pub steps: super::counter_drives::StepDrives,
     /// The 3-vector `template drive caller:` cards: their terms, statement, place.
     templates: HashMap<u32, TemplateCard>,
 }
@@ -73,7 +69,7 @@ impl Drives {
     }
     /// The drives with memory read so far (emptied).
     pub fn take_stepped(&self) -> Vec<StepDrive> {
-        std::mem::take(&mut *self.stepped.lock().unwrap_or_else(|e| e.into_inner()))
+        self.steps.take()
     }
     /// What a hint's drive, parsed during the run, reads (input manual, §Driven Element):
     /// the `drive caller:` cards, the variables and the structural nodes' labels as now; no
@@ -207,14 +203,14 @@ fn nested_drive(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) -> Re
             let function = inner(c)?;
             let trigger = inner(c)?;
             let initial = if c.accept("initial value") { c.real("initial value of the sample and hold")? } else { 0.0 };
-            stepped(drives, StepKind::SampleAndHold { function, trigger, initial })
+            drives.steps.register(StepKind::SampleAndHold { function, trigger, initial })
         }
         "discrete filter" => {
             // drive_.cc, `DiscreteFilterDCR::Read`: n_a, a_1…, b_0, n_b, b_1…, INPUT.
             let a = coefficients(c, "a")?;
             let b0 = c.real("discrete filter direct coefficient b_0")?;
             let b = coefficients(c, "b")?;
-            stepped(drives, StepKind::DiscreteFilter { a, b0, b, input: inner(c)? })
+            drives.steps.register(StepKind::DiscreteFilter { a, b0, b, input: inner(c)? })
         }
         "file" => super::file_drivers::file_drive(c, &drives.file_drivers, seq)?,
         "node" => node_drive(c, drives, &inner)?,
@@ -230,9 +226,9 @@ fn nested_drive(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) -> Re
             let f = inner(c)?;
             Drive::Compose(Box::new(f), Box::new(inner(c)?))
         }
-        "meter" => super::counter_drives::meter(c, drives)?,
-        "closest next" => super::counter_drives::closest_next(c, drives, &inner)?,
-        "random" => super::counter_drives::random(c, drives, seq)?,
+        "meter" => super::counter_drives::meter(c, &drives.steps)?,
+        "closest next" => super::counter_drives::closest_next(c, &drives.steps, &inner)?,
+        "random" => super::counter_drives::random(c, &drives.steps, seq)?,
         "fourier series" => super::counter_drives::fourier_series(c)?,
         // `postponed, LABEL` (drive_.cc, `PostponedDriveCaller::Check`): a copy of the
         // drive caller card LABEL, which may come later in the file. MBDyn resolves it when
@@ -242,7 +238,7 @@ fn nested_drive(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) -> Re
             let label = c.label("drive caller label")?;
             match drives.table.get(&label) {
                 // A random drive copied at its first call draws after all those read.
-                Some((d, _, _)) => super::counter_drives::copied(d, drives, usize::MAX),
+                Some((d, _, _)) => super::counter_drives::copied(d, &drives.steps, usize::MAX),
                 None => {
                     return Err(c.error_at(span, format!("postponed drive caller {label}: no drive caller card {label} is read before this one (romdyn resolves a postponed drive caller inside a drive caller card when it reads the card)")));
                 }
@@ -307,19 +303,12 @@ fn nested_drive(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) -> Re
         _ => {
             let label = c.label("drive caller label")?;
             match drives.table.get(&label) {
-                Some((d, s, _)) if *s < seq => super::counter_drives::copied(d, drives, seq),
+                Some((d, s, _)) if *s < seq => super::counter_drives::copied(d, &drives.steps, seq),
                 Some((_, _, at)) => return Err(c.error_at(span, format!("drive caller {label} is used before its definition (line {})", at.line))),
                 None => return Err(c.error_at(span, format!("drive caller {label} is not defined"))),
             }
         }
     })
-}
-
-/// A drive with memory, registered for the model to advance at every step.
-fn stepped(drives: &Drives, kind: StepKind) -> Drive {
-    let d = StepDrive::new(kind);
-    drives.stepped.lock().unwrap_or_else(|e| e.into_inner()).push(d.clone());
-    Drive::Stepped(d)
 }
 
 /// `n, c_1, …, c_n` of a discrete filter (`n` ≥ 0).
@@ -477,7 +466,7 @@ fn template_terms(c: &mut Cursor, drives: &Drives, seq: usize, basis: &Mat3, dir
         let span = c.here();
         let label = c.label("template drive caller label (a 'template drive caller:' card; to give the vector in another frame write 'single, reference, FRAME, x, y, z, DRIVE')")?;
         return match drives.templates.get(&label) {
-            Some((terms, s, _)) if *s < seq => Ok(terms.iter().map(|(v, d)| (basis * v, super::counter_drives::copied(d, drives, seq))).collect()),
+            Some((terms, s, _)) if *s < seq => Ok(terms.iter().map(|(v, d)| (basis * v, super::counter_drives::copied(d, &drives.steps, seq))).collect()),
             Some((_, _, at)) => Err(c.error_at(span, format!("template drive caller {label} is used before its definition (line {})", at.line))),
             None => Err(c.error_at(span, format!("template drive caller {label} is not defined"))),
         };
