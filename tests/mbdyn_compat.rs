@@ -432,7 +432,7 @@ fn chain_100_derivatives(coefficient: &str) -> MbdynModel {
 fn derivatives_coefficient_auto_retries_as_mbdyn() {
     // MBDyn 1.7.3 on this file (scripts/bench_vs_mbdyn.sh's chain_100): at the coefficient
     // 1e-6 (dCoef 1e-9 s) the hinges' rounding, about 1.4e-15 m at x = 8.3 m, divided by
-    // dCoef leaves a residual above 1e-6 and 10 iterations fail; with `auto` it prints
+    // dCoef leaves a residual above 1e-6 and 10 iterations fail (romdyn's did too); with `auto` it prints
     // "Derivatives(1/13) t=0 coef=1e-05 tol=1e-06" and converges in 1 iteration with error
     // 4.42469e-07 (its .out). stepsol.cc DerivativeSolver::Advance: coef × 10 up to 6 times,
     // then coef / 10 up to 6 times.
@@ -441,15 +441,19 @@ fn derivatives_coefficient_auto_retries_as_mbdyn() {
     assert_eq!(sequence.len(), 13);
     assert!(sequence.iter().zip(expected).all(|(a, b)| (a - b).abs() <= 1e-12 * b), "{sequence:?}");
 
+    // romdyn's derivatives phase judges the hinges' rows by their violation (tests/
+    // derivatives_phase.rs), not by it divided by dCoef: at 1e-6 it converges in 1 iteration
+    // where MBDyn 1.7.3 stops, so `auto` needs no retry.
     let fixed = chain_100_derivatives("derivatives coefficient: 1.e-6;");
     assert!(fixed.problem.derivatives_coefficient_auto.is_none());
-    let failure = run(&fixed.model, &fixed.problem, &mut ()).expect_err("dCoef = 1e-9 s stays above the tolerance");
-    assert!(failure.to_string().contains("initial derivatives"), "{failure}");
+    let report = run(&fixed.model, &fixed.problem, &mut ()).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(report.derivatives_iterations, 1);
 
     let auto = chain_100_derivatives("derivatives coefficient: auto;");
     assert_eq!(auto.problem.derivatives_coefficient_auto, Some(romdyn::model::AutoCoefficient { retries: 6, factor: 10.0 }));
     let report = run(&auto.model, &auto.problem, &mut ()).unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!(report.derivatives_iterations, 1, "MBDyn: 1 iteration at coef 1e-5");
+    assert_eq!(report.derivatives_iterations, 1, "MBDyn: 1 iteration at coef 1e-5; romdyn at its first, 1e-6");
+    assert!(report.derivatives_tolerance_raised.is_none());
 
     let custom = chain_100_derivatives("derivatives coefficient: 1.e-7, auto, max iterations, 2, factor, 3.;");
     assert_eq!((custom.problem.derivatives_coefficient, custom.problem.derivatives_coefficient_auto), (1e-7, Some(romdyn::model::AutoCoefficient { retries: 2, factor: 3.0 })));
@@ -475,8 +479,11 @@ fn a_chain_of_total_joints_takes_mbdyns_newton_iterations() {
     // revolute-hinge file MBDyn takes 1508 where romdyn takes 1795: MBDyn's hinge reactions
     // are global and its ms predictor extrapolates them consistently with the momenta, a
     // reaction in a turning frame it does not; romdyn's joints are all of the second kind.
-    // Tolerances: the iteration count to 1 % (a rounding can move one step's count), the
-    // positions and velocities to 1e-6 relative (issue 12's acceptance).
+    // Tolerances: the positions and velocities to 1e-6 relative (issue 12's acceptance).
+    // romdyn now takes 1771 iterations: its derivatives phase no longer turns the joints'
+    // rounding-level violations at t = 0 into accelerations `Φ/c²` (tests/derivatives_phase.rs),
+    // which MBDyn's does and which cost it 24 iterations in the first steps (romdyn's count
+    // was MBDyn's 1795 before). The count to 1 % of 1771, and never above MBDyn's.
     let want: [[f64; 4]; 10] = [
         [-8.6540740162471874e-02, -5.0106888669452586e-02, 2.4842889544906790e-01, -4.2906979316987681e-01],
         [-1.8627732598513463e-01, -4.2853375835018533e-02, 2.2819244622744883e-01, -7.0724155938220046e-01],
@@ -494,7 +501,7 @@ fn a_chain_of_total_joints_takes_mbdyns_newton_iterations() {
     assert_eq!(report.steps, 1000);
     assert_eq!(report.derivatives_iterations, 1, "MBDyn 1.7.3: 1 derivatives iteration");
     let iterations = report.newton_iterations as f64;
-    assert!((iterations - 1795.0).abs() <= 0.01 * 1795.0, "romdyn {iterations} Newton iterations, MBDyn 1.7.3 1795");
+    assert!((iterations - 1771.0).abs() <= 0.01 * 1771.0 && iterations <= 1795.0, "romdyn {iterations} Newton iterations, 1771 expected (MBDyn 1.7.3 1795)");
     let asm = romdyn::dae::Assembler::new(&m.model);
     for (k, w) in want.iter().enumerate() {
         let kin = report.final_state.node_frame(&asm.dofs, k + 1).kin;
