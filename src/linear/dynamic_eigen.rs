@@ -83,7 +83,8 @@ impl ModalAnalysis {
         // take the dense route, which rescales them exactly. Singular pencils (det ≡ 0) are
         // refused too: a pencil whose dynamic part has a nonsingular E₁ is regular
         // (det(λ F_yd + F_y) = ± det R_G det R_H det(λ E₁ + K₁), up to the eq. 30 factor
-        // λ^2m, with leading coefficient ≠ 0), any other is checked (two LUs).
+        // λ^2m, with leading coefficient ≠ 0), as is one whose index-1 block A₂₂ is certified
+        // nonsingular ([`DynamicPart::regular`]); any other is checked (up to two LUs).
         if super::degenerate::pencil_scale(jacobians, dcoef)? != 1.0 {
             return Self::compute_with_dcoef(jacobians, route, dcoef);
         }

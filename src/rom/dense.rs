@@ -47,21 +47,22 @@ pub(crate) fn solve_or_free_direction(m: &Mat<f64>, r: &Mat<f64>) -> Result<Mat<
     }
     let (dr, dc) = equilibration(m);
     let scaled = Mat::from_fn(n, n, |i, j| dr[i] * m[(i, j)] * dc[j]);
-    let rhs = || Mat::from_fn(n, r.ncols(), |i, j| dr[i] * r[(i, j)]);
-    // A partial-pivoting LU that proves `D_r M D_c` nonsingular (blocked: 10 times faster
-    // at n = 1712) answers; only a doubtful matrix goes to full pivoting's rank test.
-    if let Some(lu) = crate::linear::certified_partial_lu(scaled.as_ref(), n as f64 * f64::EPSILON, 0.0) {
-        let x = lu.solve(rhs());
-        return Ok(Mat::from_fn(n, r.ncols(), |i, j| dc[i] * x[(i, j)]));
-    }
-    let lu = scaled.full_piv_lu();
-    let u = lu.U();
-    let (big, small) = (0..n).map(|i| u[(i, i)].abs()).fold((0.0f64, f64::INFINITY), |(b, s), x| (b.max(x), s.min(x)));
-    if !(small > big * n as f64 * f64::EPSILON) {
-        return Err(free_direction(&lu, &dc));
-    }
-    // M x = R  ⇔  (D_r M D_c)(D_c⁻¹ x) = D_r R.
-    let x = lu.solve(rhs());
+    // M x = R  ⇔  (D_r M D_c)(D_c⁻¹ x) = D_r R. A partial-pivoting LU that proves `D_r M D_c`
+    // nonsingular (blocked: 10 times faster at n = 1712) answers; only a doubtful matrix
+    // goes to full pivoting's rank test.
+    let rhs = Mat::from_fn(n, r.ncols(), |i, j| dr[i] * r[(i, j)]);
+    let x = match crate::linear::certified_partial_lu(scaled.as_ref(), n as f64 * f64::EPSILON, 0.0) {
+        Some(lu) => lu.solve(rhs),
+        None => {
+            let lu = scaled.full_piv_lu();
+            let u = lu.U();
+            let (big, small) = (0..n).map(|i| u[(i, i)].abs()).fold((0.0f64, f64::INFINITY), |(b, s), x| (b.max(x), s.min(x)));
+            if !(small > big * n as f64 * f64::EPSILON) {
+                return Err(free_direction(&lu, &dc));
+            }
+            lu.solve(rhs)
+        }
+    };
     Ok(Mat::from_fn(n, r.ncols(), |i, j| dc[i] * x[(i, j)]))
 }
 

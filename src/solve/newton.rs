@@ -154,16 +154,15 @@ pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &Newton
     };
     for iteration in 0..=settings.max_iterations {
         let mut f = asm.residual(st, form, dcoef);
-        let norm = match update {
-            // The derivatives phase holds the positions, so it judges a holonomic row by the
-            // violation `Φ` itself, not `Φ/c`: at MBDyn's `derivatives coefficient: 1e-10`
-            // (c = 1e-13 s) a hinge offset's 4.2e-17 m of rounding reads 4.2e-4 and no
-            // iteration could reduce it. A violation above the tolerance still stops it.
-            Update::Derivatives { .. } if form == ConstraintForm::Scaled => {
-                measure(&f.iter().enumerate().map(|(i, &x)| if asm.dofs.is_multiplier(i) { x * dcoef } else { x }).collect::<Vec<f64>>())
-            }
-            _ => measure(&f),
+        // The derivatives phase holds the positions, so it judges a holonomic row by the
+        // violation `Φ` itself, not `Φ/c`: at MBDyn's `derivatives coefficient: 1e-10`
+        // (c = 1e-13 s) a hinge offset's 4.2e-17 m of rounding reads 4.2e-4 and no iteration
+        // could reduce it. A violation above the tolerance still stops it, named by `Φ`.
+        let judged: std::borrow::Cow<[f64]> = match update {
+            Update::Derivatives { .. } if form == ConstraintForm::Scaled => f.iter().enumerate().map(|(i, &x)| if asm.dofs.is_multiplier(i) { x * dcoef } else { x }).collect(),
+            _ => std::borrow::Cow::Borrowed(&f),
         };
+        let norm = measure(&judged);
         if norm <= settings.tolerance {
             return Ok(Convergence { iterations: iteration, residual_norm: norm });
         }
@@ -172,8 +171,9 @@ pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &Newton
                 why if why.is_empty() => "the residual is not finite".to_string(),
                 why => format!("the residual is not finite: {}", why.join("; ")),
             };
-            return Err(fail(st, iteration, &f, (!norm.is_finite()).then(not_finite)));
+            return Err(fail(st, iteration, &judged, (!norm.is_finite()).then(not_finite)));
         }
+        drop(judged);
         asm.jacobian_into(st, coef, &mut ws.jacobian);
         let j = &mut ws.jacobian;
         let residual = f.clone();
