@@ -170,17 +170,28 @@ impl StepDrive {
             StepKind::Meter { .. } | StepKind::Random { .. } => current.step = step,
             StepKind::ClosestNext { increment, .. } => {
                 if current.must_move {
-                    // MBDyn's `do … while (Time >= next)`, here with a bound.
-                    for _ in 0..1_000_000 {
-                        let dt = increment.value_at(t_new, Some(&advanced));
-                        if !(dt > 0.0) {
-                            current.next = f64::INFINITY;
-                            break;
+                    // MBDyn's `do … while (Time >= next)`, adding the increment (the same
+                    // value each time: it is evaluated at the same time and state) one at a
+                    // time, as MBDyn rounds; past 1000 additions the rest in one jump.
+                    let dt = increment.value_at(t_new, Some(&advanced));
+                    if dt > 0.0 {
+                        let mut added = 0;
+                        loop {
+                            current.next += dt;
+                            added += 1;
+                            if t_new < current.next {
+                                break;
+                            }
+                            if added == 1000 {
+                                current.next += ((t_new - current.next) / dt).floor() * dt;
+                                while current.next <= t_new {
+                                    current.next += dt;
+                                }
+                                break;
+                            }
                         }
-                        current.next += dt;
-                        if t_new < current.next {
-                            break;
-                        }
+                    } else {
+                        current.next = f64::INFINITY;
                     }
                     current.must_move = false;
                 } else if t_new >= current.next {
@@ -321,6 +332,11 @@ mod tests {
         assert_eq!(ones, [2, 4, 7, 9, 11, 14, 16, 18]);
         // A threshold at the initial time is reached at step 0 and step 1 (it moves on at step 2).
         let c = StepDrive::new(StepKind::ClosestNext { t0: 0.0, t1: f64::INFINITY, increment: Drive::Const(2.5) });
+        assert_eq!(run(&c, 6, 1.0), [1.0, 1.0, 0.0, 1.0, 0.0, 1.0, 0.0]);
+        // An increment 1e7 times smaller than the step: each move passes 1e7 thresholds at
+        // once, and the pattern is the same (bounding the additions at 1e6 left the
+        // threshold behind the time, reading 1 at every step).
+        let c = StepDrive::new(StepKind::ClosestNext { t0: 0.0, t1: f64::INFINITY, increment: Drive::Const(1e-7) });
         assert_eq!(run(&c, 6, 1.0), [1.0, 1.0, 0.0, 1.0, 0.0, 1.0, 0.0]);
     }
 

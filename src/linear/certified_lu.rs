@@ -13,8 +13,20 @@
 //! `tolerance` times the largest and that bound is too; any doubt sends the caller to its
 //! full-pivoting test, so refusals are decided as before.
 
-use faer::linalg::solvers::{PartialPivLu, Solve};
+use faer::linalg::solvers::{FullPivLu, PartialPivLu, Solve};
 use faer::{Mat, MatRef};
+
+/// Largest and smallest absolute diagonal entry of a triangular factor (its pivots).
+fn pivot_range(u: MatRef<'_, f64>) -> (f64, f64) {
+    (0..u.nrows().min(u.ncols())).map(|k| u[(k, k)].abs()).fold((0.0f64, f64::INFINITY), |(b, s), x| (b.max(x), s.min(x)))
+}
+
+/// The callers' fallback rank test: a full-pivoting (rank-revealing) LU's smallest pivot
+/// above `tolerance` times its largest. `false` for NaN pivots.
+pub(crate) fn full_pivots_nonsingular(lu: &FullPivLu<f64>, tolerance: f64) -> bool {
+    let (big, small) = pivot_range(lu.U());
+    small > tolerance * big
+}
 
 /// The partial-pivoting LU of `m` when it certifies `m` as numerically nonsingular:
 /// smallest pivot and the inverse-iteration bound of `σ_min` both above `tolerance` times
@@ -28,8 +40,7 @@ pub(crate) fn certified_partial_lu(m: MatRef<'_, f64>, tolerance: f64, reference
         return None;
     }
     let lu = m.partial_piv_lu();
-    let u = lu.U();
-    let (big, small) = (0..n).map(|k| u[(k, k)].abs()).fold((0.0f64, f64::INFINITY), |(b, s), x| (b.max(x), s.min(x)));
+    let (big, small) = pivot_range(lu.U());
     let big = big.max(reference);
     if !(big.is_finite() && small > tolerance * big) {
         return None;

@@ -204,9 +204,7 @@ impl DynamicPart {
                     Some(lu) => (lu.solve(a21.to_owned()), lu.solve_transpose(a12.transpose().to_owned()), true),
                     None => {
                         let lu = a22.full_piv_lu();
-                        let uu = lu.U();
-                        let (big, small) = (0..s - rank).map(|i| uu[(i, i)].abs()).fold((0.0f64, f64::INFINITY), |(b, sm), x| (b.max(x), sm.min(x)));
-                        if !(small > big * tolerance) {
+                        if !super::certified_lu::full_pivots_nonsingular(&lu, tolerance) {
                             return None;
                         }
                         (lu.solve(a21.to_owned()), lu.solve_transpose(a12.transpose().to_owned()), false)

@@ -157,12 +157,7 @@ fn check_regular(fyd: &Mat<f64>, fy: &Mat<f64>) -> Result<(), EigenError> {
         if super::certified_lu::certified_partial_lu(m.as_ref(), tolerance, 0.0).is_some() {
             return Ok(());
         }
-        let lu = m.full_piv_lu();
-        let u = lu.U();
-        let pivots: Vec<f64> = (0..n).map(|k| u[(k, k)].abs()).collect();
-        let largest = pivots.iter().copied().fold(0.0, f64::max);
-        let smallest = pivots.iter().copied().fold(f64::INFINITY, f64::min);
-        if smallest > tolerance * largest {
+        if super::certified_lu::full_pivots_nonsingular(&m.full_piv_lu(), tolerance) {
             return Ok(());
         }
     }

@@ -23,4 +23,4 @@ pub use eigen_error::EigenError;
 pub use route::EigenRoute;
 pub use sparse::{SparseMatrix, SparseScalar};
 pub use sparse_dae::{SparseLinearDae, SparseSolveError};
-pub(crate) use certified_lu::certified_partial_lu;
+pub(crate) use certified_lu::{certified_partial_lu, full_pivots_nonsingular};

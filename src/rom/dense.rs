@@ -55,9 +55,7 @@ pub(crate) fn solve_or_free_direction(m: &Mat<f64>, r: &Mat<f64>) -> Result<Mat<
         Some(lu) => lu.solve(rhs),
         None => {
             let lu = scaled.full_piv_lu();
-            let u = lu.U();
-            let (big, small) = (0..n).map(|i| u[(i, i)].abs()).fold((0.0f64, f64::INFINITY), |(b, s), x| (b.max(x), s.min(x)));
-            if !(small > big * n as f64 * f64::EPSILON) {
+            if !crate::linear::full_pivots_nonsingular(&lu, n as f64 * f64::EPSILON) {
                 return Err(free_direction(&lu, &dc));
             }
             lu.solve(rhs)
