@@ -3,12 +3,14 @@
 //! checked by its true residual, and the count of modes in the band checked by two
 //! independent Krylov spaces per shift.
 
+mod arnoldi;
 mod gram_schmidt;
 mod iteration;
 mod operator;
 mod pencil;
 mod schur;
 mod shifts;
+mod sweep_kernels;
 mod window;
 
 pub use shifts::{sparse_modes, sparse_modes_with_progress, ModeTarget, ShiftWindow, SparseModalAnalysis};
