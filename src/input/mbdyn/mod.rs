@@ -27,6 +27,7 @@ mod friction;
 mod functions;
 mod hints;
 mod joints;
+mod total_joint;
 mod laws;
 mod lexer;
 mod model;

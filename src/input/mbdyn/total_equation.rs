@@ -30,7 +30,7 @@ pub fn parts(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Optio
     match c.accept_any(&["total equation", "total internal reaction"]) {
         None => Ok(None),
         Some("total equation") => {
-            let j = super::joints::total(false, label, c, ctx, span)?;
+            let j = super::total_joint::total(false, label, c, ctx, span)?;
             if j.velocity_locked.contains(&true) || j.angular_velocity_locked.contains(&true) {
                 return Err(c.error_at(span, "total equation: 'velocity' and 'angular velocity' constraints are not supported by romdyn (position and rotation constraints are)"));
             }
@@ -56,10 +56,10 @@ fn statuses(c: &mut Cursor, kind: &str) -> Result<[bool; 3], MbdynError> {
 
 fn reaction(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Parsed, MbdynError> {
     let node = ctx.node(c, "node 1")?;
-    let first = super::joints::total_side(c, &ctx.on(node), Some(node))?;
+    let first = super::total_joint::total_side(c, &ctx.on(node), Some(node))?;
     let node_b = ctx.node(c, "node 2")?;
     let other = OtherSide { frame: Frame::of_node(node), offset: first.offset, orientation: first.position };
-    let second = super::joints::total_side(c, &super::references::Context { other: Some(other), ..ctx.on(node_b) }, Some(node_b))?;
+    let second = super::total_joint::total_side(c, &super::references::Context { other: Some(other), ..ctx.on(node_b) }, Some(node_b))?;
     let position_active = statuses(c, "position constraint")?;
     let rotation_active = statuses(c, "orientation constraint")?;
     let span = c.here();
