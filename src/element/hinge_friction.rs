@@ -11,18 +11,35 @@
 //! (its three position multipliers; the norm is the same in any frame), `f = σ₀ z + σ₁ ż +
 //! σ₂ v` the friction coefficient, and the friction moment `M` acting along `−e₃` on node 1
 //! and `+e₃` on node 2.
+//!
+//! The same element is MBDyn's `brake` (input manual, §Brake; brake.cc): the friction
+//! moment alone, with no constraint of its own (a revolute hinge between the same nodes
+//! holds the rest), and the normal force given by a drive, `N = max(N(t), preload)`
+//! (brake.cc `modF`; no absolute value).
 
 use super::anchor::{node_labels, Pair};
 use super::contract::{add_block, add_vec, Col, Element, ElementState, JacobianSink, Label, ResidualSink, Row};
 use super::friction::ModLugre;
 use super::joint::{Joint, JointKind};
+use super::Drive;
 use crate::kinematics::{skew, Vec3};
 
+/// Where the friction's normal force comes from.
+#[derive(Clone, Debug)]
+pub enum HingeNormalForce {
+    /// The hinge's reaction `|F|` (a `revolute hinge` with `friction`).
+    Reaction,
+    /// A drive `N(t)` [N], the hinge's constraint left out (a `brake`).
+    Brake(Drive),
+}
+
 /// A revolute hinge with `modlugre` friction. Unknowns: the hinge's five multipliers (three
-/// forces, two moments), then the friction state `z` [m].
+/// forces, two moments), then the friction state `z` [m]; a brake has only `z` (the joint
+/// then gives only the frames).
 #[derive(Clone, Debug)]
 pub struct RevoluteHingeFriction {
     joint: Joint,
+    normal: HingeNormalForce,
     /// The contact radius `r` [m]: the sliding velocity is `r` times the relative angular
     /// velocity, and the moment `r` times the friction force.
     radius: f64,
@@ -31,8 +48,6 @@ pub struct RevoluteHingeFriction {
     model: ModLugre,
 }
 
-/// Index of the friction state among the element's unknowns.
-const STATE: usize = 5;
 
 /// Sliding speed below which the joint is at rest for [`Element::non_smooth`] [m/s].
 const STILL: f64 = 1e-6;
@@ -41,7 +56,23 @@ impl RevoluteHingeFriction {
     /// `joint` must be a revolute hinge (five multipliers).
     pub fn new(joint: Joint, radius: f64, preload: f64, model: ModLugre) -> Self {
         debug_assert_eq!(joint.kind, JointKind::RevoluteHinge);
-        RevoluteHingeFriction { joint, radius, preload, model }
+        RevoluteHingeFriction { joint, normal: HingeNormalForce::Reaction, radius, preload, model }
+    }
+
+    /// MBDyn's `brake` between the frames of `frames` (a revolute hinge's anchors; its
+    /// constraint is not applied), pressed by `normal_force(t)` [N].
+    pub fn brake(frames: Joint, radius: f64, preload: f64, model: ModLugre, normal_force: Drive) -> Self {
+        RevoluteHingeFriction { joint: frames, normal: HingeNormalForce::Brake(normal_force), radius, preload, model }
+    }
+
+    fn is_brake(&self) -> bool {
+        matches!(self.normal, HingeNormalForce::Brake(_))
+    }
+
+    /// Index of the friction state among the element's unknowns (after the hinge's five
+    /// multipliers, or alone for a brake).
+    fn state_index(&self) -> usize {
+        if self.is_brake() { 0 } else { 5 }
     }
 
     /// Hinge axis `e₃`, sliding velocity `v = r (ω₁ − ω₂)·e₃` and `ω₁ − ω₂`.
@@ -54,6 +85,9 @@ impl RevoluteHingeFriction {
     /// `N = max(|F|, preload)` and `∂N/∂λ` over the three force multipliers (zero below the
     /// preload, as planej.cc).
     fn normal_force(&self, st: &dyn ElementState) -> (f64, [f64; 3]) {
+        if let HingeNormalForce::Brake(drive) = &self.normal {
+            return (drive.value_in(st).max(self.preload), [0.0; 3]);
+        }
         let l = Vec3::new(st.multiplier(0), st.multiplier(1), st.multiplier(2));
         let norm = l.norm();
         if norm < self.preload || norm == 0.0 {
@@ -69,26 +103,30 @@ impl Element for RevoluteHingeFriction {
         self.joint.label
     }
     fn type_name(&self) -> &'static str {
-        "revolute hinge"
+        if self.is_brake() { "brake" } else { "revolute hinge" }
     }
     fn nodes(&self) -> Vec<Label> {
         node_labels(&self.joint.a, &self.joint.b)
     }
     fn multipliers(&self) -> Vec<String> {
-        let mut m = self.joint.multipliers();
+        let mut m = if self.is_brake() { Vec::new() } else { self.joint.multipliers() };
         m.push("friction state z".to_string());
         m
     }
     fn is_state(&self, k: usize) -> bool {
-        k == STATE
+        k == self.state_index()
+    }
+    fn reads_state(&self) -> bool {
+        matches!(&self.normal, HingeNormalForce::Brake(d) if d.reads_state())
     }
     fn assembly_form(&self) -> Option<&dyn Element> {
-        Some(&self.joint)
+        // A brake is left out of the initial assembly (its type name), as brake.cc adds nothing there.
+        (!self.is_brake()).then_some(&self.joint as &dyn Element)
     }
     fn non_smooth(&self, st: &dyn ElementState) -> Option<String> {
         let p = Pair::new(&self.joint.a, &self.joint.b, st);
         let (_, v, _) = self.sliding(&p);
-        let z = st.multiplier(STATE);
+        let z = st.multiplier(self.state_index());
         let alpha = self.model.alpha(z, 0.0).0.max(self.model.alpha(z, -f64::MIN_POSITIVE).0);
         (v.abs() < STILL && alpha != 0.0).then(|| format!("its friction state z = {z:e} m is past the breakaway deflection at sliding velocity {v:.1e} m/s (at rest), where the modlugre state equation is not differentiable"))
     }
@@ -101,11 +139,14 @@ impl Element for RevoluteHingeFriction {
     }
 
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
-        self.joint.residual(st, out);
+        let state = self.state_index();
+        if !self.is_brake() {
+            self.joint.residual(st, out);
+        }
         let p = Pair::new(&self.joint.a, &self.joint.b, st);
         let (e3, v, _) = self.sliding(&p);
-        let (z, zdot) = (st.multiplier(STATE), st.rate(STATE));
-        out.add(Row::Constraint(STATE), zdot + self.model.state_equation(z, v).value);
+        let (z, zdot) = (st.multiplier(state), st.rate(state));
+        out.add(Row::Constraint(state), zdot + self.model.state_equation(z, v).value);
         // Applied moment +e₃ M on node 2, −e₃ M on node 1; residual rows are `… − M`.
         let moment = e3 * (self.model.coefficient(z, zdot, v) * self.normal_force(st).0 * self.radius);
         add_vec(out, Row::moment(p.slot_b), &(-moment));
@@ -115,10 +156,13 @@ impl Element for RevoluteHingeFriction {
     }
 
     fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
-        self.joint.jacobian(st, out);
+        let state = self.state_index();
+        if !self.is_brake() {
+            self.joint.jacobian(st, out);
+        }
         let p = Pair::new(&self.joint.a, &self.joint.b, st);
         let (e3, v, w) = self.sliding(&p);
-        let (z, zdot) = (st.multiplier(STATE), st.rate(STATE));
+        let (z, zdot) = (st.multiplier(state), st.rate(state));
         let (n, dn) = self.normal_force(st);
         let (m, r) = (&self.model, self.radius);
         let f = m.coefficient(z, zdot, v);
@@ -136,15 +180,17 @@ impl Element for RevoluteHingeFriction {
             }
         }
         // State row: δψ = δż + ψ_/z δz + ψ_/v δv.
-        let row = Row::Constraint(STATE);
-        out.add(row, Col::Rate(STATE), 1.0);
-        out.add(row, Col::Multiplier(STATE), psi.d_z);
+        let row = Row::Constraint(state);
+        out.add(row, Col::Rate(state), 1.0);
+        out.add(row, Col::Multiplier(state), psi.d_z);
         for &(col, d) in &dv {
             out.add(row, col, psi.d_v * d);
         }
         // δM = r [N (σ₀ δz + σ₁ δż + σ₂ δv) + f ∂N/∂λ δλ]; node 1's row is +e₃ M, node 2's −.
-        let mut dmoment: Vec<(Col, f64)> = vec![(Col::Multiplier(STATE), r * n * m.sigma0), (Col::Rate(STATE), r * n * m.sigma1)];
-        dmoment.extend((0..3).map(|k| (Col::Multiplier(k), r * f * dn[k])));
+        let mut dmoment: Vec<(Col, f64)> = vec![(Col::Multiplier(state), r * n * m.sigma0), (Col::Rate(state), r * n * m.sigma1)];
+        if !self.is_brake() {
+            dmoment.extend((0..3).map(|k| (Col::Multiplier(k), r * f * dn[k])));
+        }
         dmoment.extend(dv.iter().map(|&(col, d)| (col, r * n * m.sigma2 * d)));
         for (col, d) in dmoment {
             for k in 0..3 {

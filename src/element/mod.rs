@@ -68,7 +68,7 @@ pub use driven_gravity::DrivenGravity;
 pub use driven_joint::{DrivenJoint, VectorDrive, RotationRemnant};
 pub use force::{Couple, Force, ForceFrame};
 pub use friction::{InLineFriction, ModLugre};
-pub use hinge_friction::RevoluteHingeFriction;
+pub use hinge_friction::{HingeNormalForce, RevoluteHingeFriction};
 pub use screw_friction::ScrewFriction;
 pub use function_hinge::FunctionHinge;
 pub use gimbal::GimbalRotation;

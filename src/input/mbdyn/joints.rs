@@ -19,15 +19,14 @@ use crate::element::{Anchor, AngularAcceleration, ViscousBody, RevoluteHingeFric
 use crate::kinematics::{Mat3, Vec3};
 use crate::model::{Label, StructuralNode};
 
-const SUPPORTED: [&str; 43] = [
-    "viscous body", "angular acceleration", "gimbal rotation", "pin", "beam slider", "screw", "linear velocity", "angular velocity", "revolute rotation", "cardano hinge", "universal hinge", "cardano pin", "universal pin", "cardano rotation", "universal rotation", "axial rotation", "drive displacement", "drive displacement pin", "imposed displacement", "imposed displacement pin", "drive hinge", "deformable joint", "deformable axial joint", "invariant deformable hinge", "clamp", "revolute hinge", "plane hinge", "revolute pin", "plane pin", "spherical hinge", "spherical pin", "total joint", "total pin joint",
+const SUPPORTED: [&str; 44] = [
+    "brake", "viscous body", "angular acceleration", "gimbal rotation", "pin", "beam slider", "screw", "linear velocity", "angular velocity", "revolute rotation", "cardano hinge", "universal hinge", "cardano pin", "universal pin", "cardano rotation", "universal rotation", "axial rotation", "drive displacement", "drive displacement pin", "imposed displacement", "imposed displacement pin", "drive hinge", "deformable joint", "deformable axial joint", "invariant deformable hinge", "clamp", "revolute hinge", "plane hinge", "revolute pin", "plane pin", "spherical hinge", "spherical pin", "total joint", "total pin joint",
     "deformable displacement joint", "deformable displacement hinge", "deformable hinge", "rod", "rod with offset", "in line", "in plane", "prismatic",
     "distance", "distance with offset",
 ];
 
 /// MBDyn joints romdyn names in its "not supported" error.
-const OTHER_JOINTS: [&str; 11] = [
-    "brake",
+const OTHER_JOINTS: [&str; 10] = [
     "coincidence", "imposed orientation",
     "invariant deformable displacement joint", "invariant deformable joint", "linear acceleration", "modal",
     "plane displacement", "plane displacement pin", "point contact", "rod bezier",
@@ -102,7 +101,7 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
                 // joint.cc: "PlaneDispJoint: unsupported; use an InPlane and a RevoluteRotation".
                 return Err(c.error("joint type 'plane displacement' is not supported by romdyn, nor by MBDyn 1.7.3 (its reader stops: \"unsupported; use an InPlane and a RevoluteRotation\"): write an 'in plane' and a 'revolute rotation'"));
             }
-            return Err(c.error(format!("joint type '{name}' is not supported by romdyn (supported: viscous body, angular acceleration, axial rotation, beam slider, screw, linear velocity, angular velocity, revolute rotation, gimbal rotation, cardano hinge, cardano pin, cardano rotation (and universal …), drive displacement, drive displacement pin, drive hinge, imposed displacement, imposed displacement pin, clamp, revolute hinge, revolute pin, spherical hinge, spherical pin (or pin), total joint, total pin joint, deformable displacement joint, deformable hinge, invariant deformable hinge, deformable joint, deformable axial joint, rod, in line, in plane, prismatic, distance)")));
+            return Err(c.error(format!("joint type '{name}' is not supported by romdyn (supported: brake, viscous body, angular acceleration, axial rotation, beam slider, screw, linear velocity, angular velocity, revolute rotation, gimbal rotation, cardano hinge, cardano pin, cardano rotation (and universal …), drive displacement, drive displacement pin, drive hinge, imposed displacement, imposed displacement pin, clamp, revolute hinge, revolute pin, spherical hinge, spherical pin (or pin), total joint, total pin joint, deformable displacement joint, deformable hinge, invariant deformable hinge, deformable joint, deformable axial joint, rod, in line, in plane, prismatic, distance)")));
         }
         return Err(c.error(format!("expected a joint type, found {}", c.found())));
     };
@@ -130,6 +129,18 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
                 Some((radius, preload, model)) => Box::new(RevoluteHingeFriction::new(j, radius, preload, model)),
                 None => Box::new(j),
             }
+        }
+        "brake" => {
+            // Input manual §Brake; joint.cc reads the two sides as a revolute hinge's, then
+            // `friction, r, [preload, P,] MODEL, SHAPE` (required) and the normal force.
+            let a = side(c, ctx, "node 1", Position::Always, None)?;
+            let b = side(c, ctx, "node 2", Position::Always, Some(&a))?;
+            if !super::friction::follows(c) {
+                return Err(c.error("brake: expected 'friction' (a brake is its friction: 'friction, RADIUS, [preload, P,] modlugre, …, simple, NORMAL_FORCE_DRIVE')"));
+            }
+            let (radius, preload, model) = super::friction::revolute_hinge_friction(c, ctx)?;
+            let normal = super::drives::drive(c, ctx.drives, ctx.seq)?;
+            Box::new(RevoluteHingeFriction::brake(Joint::revolute_hinge(label, a.anchor(), b.anchor()), radius, preload, model, normal))
         }
         "axial rotation" => {
             // Input manual §Axial rotation; joint.cc reads both offsets with `position`
