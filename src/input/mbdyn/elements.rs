@@ -109,7 +109,7 @@ fn body(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Parsed, Mb
     }
     let on = ctx.on(n);
     if c.accept("variable mass") {
-        return super::variable_body::variable_body(label, n, point, c, ctx);
+        return super::variable_body::variable_body(label, n, point, span, c, ctx);
     }
     let mut allow_negative = c.accept("allow negative mass");
     let count = if c.accept("condense") {

@@ -5,7 +5,7 @@
 //! [`crate::element::VariableBody`].
 
 use super::cursor::Cursor;
-use super::diagnostic::MbdynError;
+use super::diagnostic::{MbdynError, Span};
 use super::drives::{drive, template_vec3};
 use super::element_context::{ElementContext, Parsed};
 use super::templates::{template, TemplateDim};
@@ -14,15 +14,14 @@ use crate::kinematics::Mat3;
 use crate::model::{Label, NodeKind, StructuralNode};
 
 /// Reads what follows `variable mass` on the body `label` of node `n` (`point`: a
-/// displacement node).
-pub fn variable_body(label: Label, n: &StructuralNode, point: bool, c: &mut Cursor, ctx: &ElementContext) -> Result<Parsed, MbdynError> {
-    let keyword = c.here();
+/// displacement node; `node_span`: where the node is named).
+pub fn variable_body(label: Label, n: &StructuralNode, point: bool, node_span: Span, c: &mut Cursor, ctx: &ElementContext) -> Result<Parsed, MbdynError> {
     if point || n.kind != NodeKind::Dynamic {
-        return Err(c.error_at(keyword, format!("variable body {label}: structural node {} is not a dynamic node; a variable-mass body needs one (MBDyn 1.7.3: \"illegal structural node type\")", n.label)));
+        return Err(c.error_at(node_span, format!("variable body {label}: structural node {} is not a dynamic node; a variable-mass body needs one (MBDyn 1.7.3: \"illegal structural node type\")", n.label)));
     }
     let differentiable = |c: &Cursor, span, what: &str, drives: Vec<&Drive>| {
         match drives.into_iter().find(|d| d.time_derivative(0.0).is_none()) {
-            Some(d) => Err(c.error_at(span, format!("variable body {label}: the {what} must be differentiable in time; romdyn differentiates const, time, linear/parabolic/cubic, ramp, step, sine, cosine, exponential, tanh and their sums and products, not {d:?}"))),
+            Some(_) => Err(c.error_at(span, format!("variable body {label}: the {what} must be differentiable in time; romdyn differentiates const, time, linear/parabolic/cubic, ramp, step, sine, cosine, exponential, tanh and their sums and products, not this one"))),
             None => Ok(()),
         }
     };
