@@ -61,8 +61,9 @@ impl TemplateDim {
 /// One term of a template drive caller: its value (entries by rows) times a drive.
 pub type Term = (Vec<f64>, Drive);
 
-/// Nesting of `reference` inside cards is by copy, so only `array` nests; it holds single
-/// terms (tpldrive_impl.cc, `ArrayTDCR`), so no depth limit is needed.
+/// Reads a template drive caller of dimension `dim`: its terms. An `array` holds single
+/// terms only (tpldrive_impl.cc, `ArrayTDCR`) and `reference` copies a card read before, so
+/// nothing nests.
 pub fn template(c: &mut Cursor, drives: &Drives, seq: usize, dim: TemplateDim) -> Result<Vec<Term>, MbdynError> {
     let (rows, cols) = dim.shape();
     let n = rows * cols;
