@@ -16,7 +16,8 @@
 //! from MBDyn 1.7.3's code, where its frames mix: it writes `J = R (J_m + J_g − m [d×]²) Rᵀ`
 //! with the global offset `d` inside, and adds `J̇_m ω` with the node-frame `J̇_m`; romdyn
 //! uses the node-frame offset and turns `J̇_m` to the global frame. Both agree when the
-//! offset is zero or the node unrotated, and for an inertia whose rate is isotropic.
+//! offset is zero or the node unrotated, and for an inertia whose rate is isotropic;
+//! [`VariableBody::mbdyn_frames`] gives MBDyn's (tests compare the rest with it).
 //! MBDyn's Jacobian leaves out the `ṁ` terms; romdyn's is the full derivative of the
 //! residual above.
 
@@ -42,6 +43,11 @@ pub struct VariableBody {
     pub inertia_mass: MatrixTerms,
     /// Geometry-related inertia about the centre of mass, node frame [kg m²].
     pub inertia_geometry: MatrixTerms,
+    /// MBDyn 1.7.3's frames (body_vm.cc): `J = R (J_m + J_g − m [d×]²) Rᵀ` with the global
+    /// offset `d` inside, and `J̇_m ω` with the node-frame `J̇_m`. Not read from files (the
+    /// reader sets `false`); tests set it to compare the rest of the residual with MBDyn's
+    /// numbers where the two differ. The Jacobian follows either choice.
+    pub mbdyn_frames: bool,
 }
 
 /// The body's drives and their rates at one time.
@@ -93,7 +99,7 @@ struct Global {
     j_m_rate: Mat3,
 }
 
-fn global(now: &Now, st: &dyn ElementState) -> Global {
+fn global(now: &Now, st: &dyn ElementState, mbdyn_frames: bool) -> Global {
     let n = st.node(0);
     let d = n.r * now.x_cm;
     let d_rate = n.r * now.x_cm_rate;
@@ -103,8 +109,8 @@ fn global(now: &Now, st: &dyn ElementState) -> Global {
         d_rate,
         v_cm: n.xdot + n.omega.cross(&d) + d_rate,
         s: now.m * d,
-        j: n.r * now.j_cm * n.r.transpose() - now.m * dx * dx,
-        j_m_rate: n.r * now.j_m_rate * n.r.transpose(),
+        j: if mbdyn_frames { n.r * (now.j_cm - now.m * dx * dx) * n.r.transpose() } else { n.r * now.j_cm * n.r.transpose() - now.m * dx * dx },
+        j_m_rate: if mbdyn_frames { now.j_m_rate } else { n.r * now.j_m_rate * n.r.transpose() },
     }
 }
 
@@ -122,7 +128,7 @@ impl Element for VariableBody {
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
         let now = self.now(st.time());
         let n = st.node(0);
-        let b = global(&now, st);
+        let b = global(&now, st, self.mbdyn_frames);
         let g = st.gravity();
         add_vec(out, Row::linear_momentum(0), &(-now.m * b.v_cm));
         add_vec(out, Row::angular_momentum(0), &(-(b.s.cross(&n.xdot) + b.j * n.omega)));
@@ -134,7 +140,7 @@ impl Element for VariableBody {
     fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
         let now = self.now(st.time());
         let n = st.node(0);
-        let b = global(&now, st);
+        let b = global(&now, st, self.mbdyn_frames);
         let (m, mp) = (now.m, now.m_rate);
         let (dx, wx, vx) = (skew(&b.d), skew(&n.omega), skew(&n.xdot));
         let i = Mat3::identity();
@@ -150,7 +156,14 @@ impl Element for VariableBody {
         let sx = skew(&b.s);
         add_block(out, ang, cv, &(-sx));
         add_block(out, ang, cw, &(-b.j));
-        add_block(out, ang, cth, &(-vx * sx + skew(&(b.j * n.omega)) - b.j * wx));
+        let mut j_omega_theta = b.j * wx - skew(&(b.j * n.omega));
+        if self.mbdyn_frames {
+            // J = R A Rᵀ, A = J_cm − m [d×]² with δd = −[d×] δθ: R δA Rᵀ ω =
+            // −m R ([(d × u)×] + [d×][u×]) [d×] δθ, u = Rᵀ ω.
+            let u = n.r.transpose() * n.omega;
+            j_omega_theta -= m * n.r * (skew(&b.d.cross(&u)) + dx * skew(&u)) * dx;
+        }
+        add_block(out, ang, cth, &(-vx * sx - j_omega_theta));
         // −(m g + ṁ v_cm).
         add_block(out, force, cv, &(-mp * i));
         add_block(out, force, cw, &(mp * dx));
@@ -159,7 +172,8 @@ impl Element for VariableBody {
         let g = st.gravity();
         let (vcmx, drx) = (skew(&b.v_cm), skew(&b.d_rate));
         let jr = b.j_m_rate;
-        add_block(out, moment, cth, &(-skew(&g) * sx + skew(&(jr * n.omega)) - jr * wx - mp * vcmx * dx - mp * dx * vcm_theta + m * vx * drx));
+        let jr_theta = if self.mbdyn_frames { Mat3::zeros() } else { skew(&(jr * n.omega)) - jr * wx };
+        add_block(out, moment, cth, &(-skew(&g) * sx + jr_theta - mp * vcmx * dx - mp * dx * vcm_theta + m * vx * drx));
         add_block(out, moment, cw, &(-jr + mp * dx * dx));
         add_block(out, moment, cv, &(-mp * dx + m * drx));
     }

@@ -39,5 +39,5 @@ pub fn variable_body(label: Label, n: &StructuralNode, point: bool, node_span: S
     };
     let inertia_mass = inertia(c, "mass-related inertia drive")?;
     let inertia_geometry = inertia(c, "geometry-related inertia drive")?;
-    Ok(Parsed::Element(Box::new(VariableBody { label, node: n.label, mass, offset, inertia_mass, inertia_geometry })))
+    Ok(Parsed::Element(Box::new(VariableBody { label, node: n.label, mass, offset, inertia_mass, inertia_geometry, mbdyn_frames: false })))
 }
