@@ -56,10 +56,10 @@ pub struct Drives {
     /// The drives with a memory of the steps, which the model advances at every step.
     pub steps: super::counter_drives::StepDrives,
     /// The 3-vector `template drive caller:` cards: their terms, statement, place.
-    templates: HashMap<u32, TemplateCard>,
+    pub(super) templates: HashMap<u32, TemplateCard>,
     /// The `template drive caller:` cards of dimension 1, 6, 3x3, 6x6, by dimension and
     /// label (MBDyn keeps one table per dimension: a label may name one card of each).
-    other_templates: HashMap<(TemplateDim, u32), (Vec<Term>, usize, Span)>,
+    pub(super) other_templates: HashMap<(TemplateDim, u32), (Vec<Term>, usize, Span)>,
 }
 
 /// A 3-vector template drive caller card: its terms, statement and place.
@@ -71,24 +71,6 @@ impl Drives {
         self.table.clear();
         self.templates.clear();
         self.other_templates.clear();
-    }
-    /// A copy of the `template drive caller:` card `label` of dimension `dim`, for a
-    /// statement at `seq` (MBDyn's `pCopy`), or why there is none.
-    pub fn template_card(&self, dim: TemplateDim, label: u32, seq: usize) -> Result<Vec<Term>, String> {
-        match self.other_templates.get(&(dim, label)) {
-            Some((terms, s, _)) if *s < seq => Ok(terms.iter().map(|(v, d)| (v.clone(), super::counter_drives::copied(d, &self.steps, seq))).collect()),
-            Some((_, _, at)) => Err(format!("template drive caller {label} (dimension {}) is used before its definition (line {})", dim.name(), at.line)),
-            None => Err(format!("template drive caller {label} of dimension {} is not defined{}", dim.name(), self.other_dims_of(label, Some(dim)))),
-        }
-    }
-    /// ", (it is defined with dimension …)" when `label` names cards of other dimensions.
-    fn other_dims_of(&self, label: u32, except: Option<TemplateDim>) -> String {
-        let mut dims: Vec<&str> = self.other_templates.keys().filter(|(d, l)| *l == label && Some(*d) != except).map(|(d, _)| d.name()).collect();
-        if except.is_some() && self.templates.contains_key(&label) {
-            dims.push("3");
-        }
-        dims.sort();
-        if dims.is_empty() { String::new() } else { format!(" (there is one of dimension {})", dims.join(", ")) }
     }
     /// The drives with memory read so far (emptied).
     pub fn take_stepped(&self) -> Vec<StepDrive> {
@@ -134,43 +116,6 @@ pub fn drive_caller_card(st: &Statement, c: &mut Cursor, drives: &mut Drives) ->
     }
     c.finish()?;
     drives.table.insert(label, (d, st.seq, st.span));
-    Ok(())
-}
-
-/// Reads a `template drive caller: LABEL, [name, "NAME",] DIM, TPL_DRIVE_CALLER;` card
-/// (input manual §Template Drive Caller; mbpar.cc): DIM is `1`, `3`, `6` (numbers or
-/// strings) or `"3x3"`, `"6x6"` (strings), anything else is refused as MBDyn 1.7.3 refuses
-/// it. The 3-vector ones' vectors are given as numbers (the frame of the element that uses
-/// the card by `reference, LABEL`, as MBDyn's card keeps them); the other dimensions are
-/// read by [`super::templates::template`].
-pub fn template_drive_caller_card(st: &Statement, c: &mut Cursor, drives: &mut Drives) -> Result<(), MbdynError> {
-    let span = c.here();
-    let label = c.label("template drive caller label")?;
-    if c.accept("name") {
-        c.string("template drive caller name")?;
-    }
-    let dim_span = c.here();
-    let what = "the dimension (1, 3, 6, \"3x3\" or \"6x6\")";
-    let (dim, numeric) = if c.next_is_number() { (c.integer(what)?.to_string(), true) } else { (c.string(what)?, false) };
-    let other = TemplateDim::from_name(&dim).filter(|d| !numeric || !matches!(d, TemplateDim::Mat3x3 | TemplateDim::Mat6x6));
-    if dim != "3" && other.is_none() {
-        return Err(c.error_at(dim_span, format!("template drive caller {label}: unsupported dimension {dim} (MBDyn 1.7.3 reads 1, 3, 6, \"3x3\", \"6x6\")")));
-    }
-    if let Some(d) = other {
-        if let Some((_, _, at)) = drives.other_templates.get(&(d, label)) {
-            return Err(c.error_at(span, format!("template drive caller {label} of dimension {} is defined twice (first at line {})", d.name(), at.line)));
-        }
-        let terms = super::templates::template(c, drives, st.seq, d)?;
-        c.finish()?;
-        drives.other_templates.insert((d, label), (terms, st.seq, st.span));
-        return Ok(());
-    }
-    if let Some((_, _, at)) = drives.templates.get(&label) {
-        return Err(c.error_at(span, format!("template drive caller {label} is defined twice (first at line {})", at.line)));
-    }
-    let terms = template_terms(c, drives, st.seq, &Mat3::identity(), &|c: &mut Cursor| c.vec3_values("template drive caller vector"), 0)?;
-    c.finish()?;
-    drives.templates.insert(label, (terms, st.seq, st.span));
     Ok(())
 }
 
@@ -471,7 +416,7 @@ pub fn template_vec3(c: &mut Cursor, drives: &Drives, seq: usize, basis: &Mat3, 
 /// Nesting of `array` template drive callers romdyn follows.
 const MAX_ARRAY_DEPTH: usize = 8;
 
-fn template_terms(c: &mut Cursor, drives: &Drives, seq: usize, basis: &Mat3, direction: &dyn Fn(&mut Cursor) -> Result<Vec3, MbdynError>, depth: usize) -> Result<Vec<(Vec3, Drive)>, MbdynError> {
+pub(super) fn template_terms(c: &mut Cursor, drives: &Drives, seq: usize, basis: &Mat3, direction: &dyn Fn(&mut Cursor) -> Result<Vec3, MbdynError>, depth: usize) -> Result<Vec<(Vec3, Drive)>, MbdynError> {
     // `zero` is the deprecated name of `null` (tpldrive_impl.cc, ZeroTDCR).
     if c.accept("null") || c.accept("zero") {
         return Ok(vec![(Vec3::zeros(), Drive::Const(0.0))]);
@@ -507,7 +452,7 @@ fn template_terms(c: &mut Cursor, drives: &Drives, seq: usize, basis: &Mat3, dir
         return match drives.templates.get(&label) {
             Some((terms, s, _)) if *s < seq => Ok(terms.iter().map(|(v, d)| (basis * v, super::counter_drives::copied(d, &drives.steps, seq))).collect()),
             Some((_, _, at)) => Err(c.error_at(span, format!("template drive caller {label} is used before its definition (line {})", at.line))),
-            None => Err(c.error_at(span, format!("template drive caller {label} is not defined{}", drives.other_dims_of(label, None)))),
+            None => Err(c.error_at(span, format!("template drive caller {label} is not defined{}", super::templates::other_dims_of(drives, label, None)))),
         };
     }
     c.accept("single");

@@ -106,7 +106,7 @@ fn cards(doc: &Document) -> Result<Cards, MbdynError> {
         match known(&st.keyword, &CARDS) {
             Some("reference") => reference(st, &mut c, &mut out.frames)?,
             Some("drive caller") => drive_caller_card(st, &mut c, &mut out.drives)?,
-            Some("template drive caller") => super::drives::template_drive_caller_card(st, &mut c, &mut out.drives)?,
+            Some("template drive caller") => super::templates::template_drive_caller_card(st, &mut c, &mut out.drives)?,
             Some("constitutive law") => constitutive_law_card(st, &mut c, &mut out.laws, &out.drives)?,
             Some("scalar function") => super::scalar_functions::scalar_function_card(&mut c, &mut out.drives.functions, st.seq)?,
             Some("setenv" | "print symbol table") => {}

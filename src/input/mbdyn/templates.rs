@@ -1,7 +1,7 @@
-//! Template drive callers of dimension 1, 6, 3x3 and 6x6 (input manual, "General",
-//! §Template Drive; MBDyn's tpldrive_impl.cc and mbpar.cc, `GetTplDriveCaller`,
-//! `GetVec6`, `GetMat3x3`, `GetMat6x6`). The 3-vector ones, read with frames, are in
-//! [`super::drives`].
+//! `template drive caller:` cards of every dimension, and the template drive callers of
+//! dimension 1, 6, 3x3 and 6x6 (input manual, "General", §Template Drive; MBDyn's
+//! tpldrive_impl.cc and mbpar.cc, `GetTplDriveCaller`, `GetVec6`, `GetMat3x3`,
+//! `GetMat6x6`). The 3-vector ones, read with frames, are in [`super::drives`].
 //!
 //! A template drive caller is a sum of `value · drive` terms:
 //! - `null` (`zero`, deprecated): no term (the zero value);
@@ -16,7 +16,9 @@
 use super::cursor::Cursor;
 use super::diagnostic::MbdynError;
 use super::drives::{drive, Drives};
+use super::parser::Statement;
 use crate::element::Drive;
+use crate::kinematics::Mat3;
 
 /// The dimension of a template drive caller other than the 3-vector.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -60,6 +62,66 @@ impl TemplateDim {
 
 /// One term of a template drive caller: its value (entries by rows) times a drive.
 pub type Term = (Vec<f64>, Drive);
+
+/// Reads a `template drive caller: LABEL, [name, "NAME",] DIM, TPL_DRIVE_CALLER;` card
+/// (input manual §Template Drive Caller; mbpar.cc): DIM is `1`, `3`, `6` (numbers or
+/// strings) or `"3x3"`, `"6x6"` (strings), anything else is refused as MBDyn 1.7.3 refuses
+/// it. The 3-vector ones' vectors are given as numbers (the frame of the element that uses
+/// the card by `reference, LABEL`, as MBDyn's card keeps them); the other dimensions are
+/// read by [`template`].
+pub fn template_drive_caller_card(st: &Statement, c: &mut Cursor, drives: &mut Drives) -> Result<(), MbdynError> {
+    let span = c.here();
+    let label = c.label("template drive caller label")?;
+    if c.accept("name") {
+        c.string("template drive caller name")?;
+    }
+    let dim_span = c.here();
+    let what = "the dimension (1, 3, 6, \"3x3\" or \"6x6\")";
+    let (dim, numeric) = if c.next_is_number() { (c.integer(what)?.to_string(), true) } else { (c.string(what)?, false) };
+    let other = TemplateDim::from_name(&dim).filter(|d| !numeric || !matches!(d, TemplateDim::Mat3x3 | TemplateDim::Mat6x6));
+    if dim != "3" && other.is_none() {
+        return Err(c.error_at(dim_span, format!("template drive caller {label}: unsupported dimension {dim} (MBDyn 1.7.3 reads 1, 3, 6, \"3x3\", \"6x6\")")));
+    }
+    if let Some(d) = other {
+        if let Some((_, _, at)) = drives.other_templates.get(&(d, label)) {
+            return Err(c.error_at(span, format!("template drive caller {label} of dimension {} is defined twice (first at line {})", d.name(), at.line)));
+        }
+        let terms = template(c, drives, st.seq, d)?;
+        c.finish()?;
+        drives.other_templates.insert((d, label), (terms, st.seq, st.span));
+        return Ok(());
+    }
+    if let Some((_, _, at)) = drives.templates.get(&label) {
+        return Err(c.error_at(span, format!("template drive caller {label} is defined twice (first at line {})", at.line)));
+    }
+    let terms = super::drives::template_terms(c, drives, st.seq, &Mat3::identity(), &|c: &mut Cursor| c.vec3_values("template drive caller vector"), 0)?;
+    c.finish()?;
+    drives.templates.insert(label, (terms, st.seq, st.span));
+    Ok(())
+}
+
+impl Drives {
+    /// A copy of the `template drive caller:` card `label` of dimension `dim`, for a
+    /// statement at `seq` (MBDyn's `pCopy`), or why there is none.
+    pub fn template_card(&self, dim: TemplateDim, label: u32, seq: usize) -> Result<Vec<Term>, String> {
+        match self.other_templates.get(&(dim, label)) {
+            Some((terms, s, _)) if *s < seq => Ok(terms.iter().map(|(v, d)| (v.clone(), super::counter_drives::copied(d, &self.steps, seq))).collect()),
+            Some((_, _, at)) => Err(format!("template drive caller {label} (dimension {}) is used before its definition (line {})", dim.name(), at.line)),
+            None => Err(format!("template drive caller {label} of dimension {} is not defined{}", dim.name(), other_dims_of(self, label, Some(dim)))),
+        }
+    }
+}
+
+/// ", (there is one of dimension …)" when `label` names cards of other dimensions than
+/// `except` (those of dimension 3 too when `except` is one of the others).
+pub fn other_dims_of(drives: &Drives, label: u32, except: Option<TemplateDim>) -> String {
+    let mut dims: Vec<&str> = drives.other_templates.keys().filter(|(d, l)| *l == label && Some(*d) != except).map(|(d, _)| d.name()).collect();
+    if except.is_some() && drives.templates.contains_key(&label) {
+        dims.push("3");
+    }
+    dims.sort();
+    if dims.is_empty() { String::new() } else { format!(" (there is one of dimension {})", dims.join(", ")) }
+}
 
 /// Reads a template drive caller of dimension `dim`: its terms. An `array` holds single
 /// terms only (tpldrive_impl.cc, `ArrayTDCR`) and `reference` copies a card read before, so
