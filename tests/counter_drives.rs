@@ -221,7 +221,7 @@ fn template_drive_caller_cards_are_copied_as_in_mbdyn() {
 
     let text = std::fs::read_to_string(path("template_drive_cards.mbd")).unwrap();
     let cases = [
-        ("template drive caller: 8, \"3\",", "template drive caller: 8, \"3x3\",", "dimension 3x3 are not supported"),
+        ("template drive caller: 8, \"3\",", "template drive caller: 8, \"4\",", "template drive caller 8: unsupported dimension 4"),
         ("reference, 9;", "reference, 10;", "template drive caller 10 is not defined"),
         ("template drive caller: 9, 3,", "template drive caller: 8, 3,", "template drive caller 8 is defined twice"),
         ("single, 1., 0., 0., reference, 3;", "single, 1., 0., reference, 3;", "template drive caller vector"),

@@ -15,6 +15,8 @@ mod beam;
 mod beam_slider;
 mod bistop_rod;
 mod body;
+mod drive_rate;
+mod variable_body;
 mod cardano;
 mod central_gravity;
 mod contract;
@@ -53,6 +55,7 @@ pub use beam::{shape as beam_shape, Beam2, Beam3, BeamError, BeamNode, SectionLa
 pub use beam_slider::{BeamSlider, SliderBeam, SliderKind};
 pub use bistop_rod::{BistopRod, BistopStatus};
 pub use body::RigidBody;
+pub use variable_body::VariableBody;
 pub use frame_motion::{FrameMotion, FrameState};
 pub use cardano::CardanoHinge;
 pub use central_gravity::CentralGravity;

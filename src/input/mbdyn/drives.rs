@@ -8,7 +8,7 @@
 //! file's variables as they stand at the end of the input, as MBDyn evaluates it during the
 //! run), and `reference, LABEL` to a `drive caller:` card;
 //! and the 3-vector template drive callers (§Template Drive): `null`, `single`,
-//! `component`, `array`.
+//! `component`, `array` (the other dimensions in [`super::templates`]).
 
 use std::collections::{HashMap, HashSet};
 
@@ -20,6 +20,7 @@ use super::expr::{Evaluator, Variable, Variables};
 use super::lexer::{tokenize, Token};
 use super::model_namespace::{node_private_data, Live, Reads};
 use super::parser::Statement;
+use super::templates::{TemplateDim, Term};
 use super::value::TypedValue;
 use crate::element::{Drive, ElementState, StepDrive, StepKind, TimeFunction};
 use crate::kinematics::{Mat3, Vec3};
@@ -55,7 +56,10 @@ pub struct Drives {
     /// The drives with a memory of the steps, which the model advances at every step.
     pub steps: super::counter_drives::StepDrives,
     /// The 3-vector `template drive caller:` cards: their terms, statement, place.
-    templates: HashMap<u32, TemplateCard>,
+    pub(super) templates: HashMap<u32, TemplateCard>,
+    /// The `template drive caller:` cards of dimension 1, 6, 3x3, 6x6, by dimension and
+    /// label (MBDyn keeps one table per dimension: a label may name one card of each).
+    pub(super) other_templates: HashMap<(TemplateDim, u32), (Vec<Term>, usize, Span)>,
 }
 
 /// A 3-vector template drive caller card: its terms, statement and place.
@@ -66,6 +70,7 @@ impl Drives {
     pub fn clear_cards(&mut self) {
         self.table.clear();
         self.templates.clear();
+        self.other_templates.clear();
     }
     /// The drives with memory read so far (emptied).
     pub fn take_stepped(&self) -> Vec<StepDrive> {
@@ -111,27 +116,6 @@ pub fn drive_caller_card(st: &Statement, c: &mut Cursor, drives: &mut Drives) ->
     }
     c.finish()?;
     drives.table.insert(label, (d, st.seq, st.span));
-    Ok(())
-}
-
-/// Reads a `template drive caller: LABEL, {"3" | 3}, TPL_DRIVE_CALLER;` card (input manual
-/// §Template Drive Caller; mbpar.cc): romdyn reads the 3-vector ones, whose vectors are given
-/// as numbers (the frame of the element that uses the card by `reference, LABEL`, as MBDyn's
-/// card keeps them).
-pub fn template_drive_caller_card(st: &Statement, c: &mut Cursor, drives: &mut Drives) -> Result<(), MbdynError> {
-    let span = c.here();
-    let label = c.label("template drive caller label")?;
-    if let Some((_, _, at)) = drives.templates.get(&label) {
-        return Err(c.error_at(span, format!("template drive caller {label} is defined twice (first at line {})", at.line)));
-    }
-    let dim_span = c.here();
-    let dim = if c.next_is_number() { c.integer("the dimension (\"3\" or 3)")?.to_string() } else { c.string("the dimension (\"3\" or 3)")? };
-    if dim != "3" {
-        return Err(c.error_at(dim_span, format!("template drive caller cards of dimension {dim} are not supported by romdyn (it reads 3-vector ones)")));
-    }
-    let terms = template_terms(c, drives, st.seq, &Mat3::identity(), &|c: &mut Cursor| c.vec3_values("template drive caller vector"), 0)?;
-    c.finish()?;
-    drives.templates.insert(label, (terms, st.seq, st.span));
     Ok(())
 }
 
@@ -432,7 +416,7 @@ pub fn template_vec3(c: &mut Cursor, drives: &Drives, seq: usize, basis: &Mat3, 
 /// Nesting of `array` template drive callers romdyn follows.
 const MAX_ARRAY_DEPTH: usize = 8;
 
-fn template_terms(c: &mut Cursor, drives: &Drives, seq: usize, basis: &Mat3, direction: &dyn Fn(&mut Cursor) -> Result<Vec3, MbdynError>, depth: usize) -> Result<Vec<(Vec3, Drive)>, MbdynError> {
+pub(super) fn template_terms(c: &mut Cursor, drives: &Drives, seq: usize, basis: &Mat3, direction: &dyn Fn(&mut Cursor) -> Result<Vec3, MbdynError>, depth: usize) -> Result<Vec<(Vec3, Drive)>, MbdynError> {
     // `zero` is the deprecated name of `null` (tpldrive_impl.cc, ZeroTDCR).
     if c.accept("null") || c.accept("zero") {
         return Ok(vec![(Vec3::zeros(), Drive::Const(0.0))]);
@@ -468,7 +452,7 @@ fn template_terms(c: &mut Cursor, drives: &Drives, seq: usize, basis: &Mat3, dir
         return match drives.templates.get(&label) {
             Some((terms, s, _)) if *s < seq => Ok(terms.iter().map(|(v, d)| (basis * v, super::counter_drives::copied(d, &drives.steps, seq))).collect()),
             Some((_, _, at)) => Err(c.error_at(span, format!("template drive caller {label} is used before its definition (line {})", at.line))),
-            None => Err(c.error_at(span, format!("template drive caller {label} is not defined"))),
+            None => Err(c.error_at(span, format!("template drive caller {label} is not defined{}", super::templates::other_dims_of(drives, label, None)))),
         };
     }
     c.accept("single");

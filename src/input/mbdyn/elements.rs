@@ -69,7 +69,7 @@ pub fn element(st: &Statement, c: &mut Cursor, ctx: &ElementContext) -> Result<P
         c.string(&format!("{kind} name"))?;
     }
     let parsed = match kind {
-        "body" => Parsed::Body(body(label, c, ctx)?),
+        "body" => body(label, c, ctx)?,
         "joint" => match super::total_equation::parts(label, c, ctx)? {
             Some(parsed) => parsed,
             None => Parsed::Element(joint(label, c, ctx)?),
@@ -101,7 +101,7 @@ impl ElementContext<'_> {
 /// `body: LABEL, NODE, [allow negative mass,] MASS, CM, J [, orientation, R]`, or
 /// `condense, N, …` with N such masses, lumped into one rigid body about their common
 /// centre of mass (input manual, §Body).
-fn body(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<RigidBody, MbdynError> {
+fn body(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Parsed, MbdynError> {
     let span = c.here();
     let (n, point) = ctx.point_node(c, "node of the body")?;
     if point && n.kind == crate::model::NodeKind::Static {
@@ -109,7 +109,7 @@ fn body(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<RigidBody,
     }
     let on = ctx.on(n);
     if c.accept("variable mass") {
-        return Err(c.error("variable-mass bodies are not supported by romdyn"));
+        return super::variable_body::variable_body(label, n, point, span, c, ctx);
     }
     let mut allow_negative = c.accept("allow negative mass");
     let count = if c.accept("condense") {
@@ -165,7 +165,7 @@ fn body(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<RigidBody,
         let d = o - cm;
         j + *m * (d.dot(&d) * Mat3::identity() - d * d.transpose())
     });
-    Ok(RigidBody::new(label, n.label, mass, cm, inertia.sum()))
+    Ok(Parsed::Body(RigidBody::new(label, n.label, mass, cm, inertia.sum())))
 }
 
 /// `force: LABEL, {absolute | follower}, NODE, position, ARM, VALUE` and

@@ -39,9 +39,11 @@ mod problem;
 mod rbk;
 mod references;
 mod scalar_functions;
+mod templates;
 mod total_equation;
 mod screw;
 mod value;
+mod variable_body;
 mod written_nodes;
 
 pub use diagnostic::MbdynError;

@@ -106,7 +106,7 @@ fn cards(doc: &Document) -> Result<Cards, MbdynError> {
         match known(&st.keyword, &CARDS) {
             Some("reference") => reference(st, &mut c, &mut out.frames)?,
             Some("drive caller") => drive_caller_card(st, &mut c, &mut out.drives)?,
-            Some("template drive caller") => super::drives::template_drive_caller_card(st, &mut c, &mut out.drives)?,
+            Some("template drive caller") => super::templates::template_drive_caller_card(st, &mut c, &mut out.drives)?,
             Some("constitutive law") => constitutive_law_card(st, &mut c, &mut out.laws, &out.drives)?,
             Some("scalar function") => super::scalar_functions::scalar_function_card(&mut c, &mut out.drives.functions, st.seq)?,
             Some("setenv" | "print symbol table") => {}
@@ -225,6 +225,8 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
     let mut gravity: Option<Span> = None;
     let mut central = None;
     let mut bodies = Vec::new();
+    // Variable-mass bodies weigh in a uniform field only.
+    let mut variable_bodies = Vec::new();
     let mut beams = super::element_context::BeamNodes::new();
     // Elements are kept until the block ends: a `bind` reads the ones above it.
     let mut built: Vec<(&'static str, Span, usize, Box<dyn crate::element::Element>)> = Vec::new();
@@ -257,6 +259,13 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
                 bodies.push((body.label, body.node, body.mass, body.offset));
                 body.frame = frame_motion.clone();
                 Parsed::Element(Box::new(body))
+            }
+            Parsed::Element(e) if e.type_name() == "variable body" => {
+                if frame_motion.is_some() {
+                    return Err(src.error(st.span, "a variable-mass body in a model with 'rigid body kinematics' is not supported by romdyn"));
+                }
+                variable_bodies.push(st.span);
+                Parsed::Element(e)
             }
             p => p,
         };
@@ -326,6 +335,9 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
         b.boxed_element(e);
     }
     // A central or time-varying field acts on every body at its node (gravity.cc, body.cc).
+    if let (Some(_), Some(at)) = (&central, variable_bodies.first()) {
+        return Err(src.error(*at, "a variable-mass body in a central or time-varying gravity field is not supported by romdyn (only in a uniform one)"));
+    }
     if let Some(field) = central {
         for (label, node, mass, offset) in bodies {
             b.boxed_element(match &field {

@@ -9,13 +9,14 @@ use crate::kinematics::{Mat3, Vec3};
 use crate::model::Model;
 
 /// Whether MBDyn uses an element in its initial assembly: joints (deformable ones too) and
-/// beams, not bodies, forces and couples (elman.cc: `ToBeUsedInAssembly`).
+/// beams, not bodies (variable-mass ones too), forces and couples (elman.cc:
+/// `ToBeUsedInAssembly`).
 fn in_assembly(e: &dyn Element) -> bool {
     let t = e.type_name();
     // A viscous body holds nothing: its force −C v on the written velocity would only be
     // balanced by the assembly's position springs (1 N/m), moving the node by C v. A brake
     // adds nothing there either (brake.cc has no initial assembly rows).
-    !(t == "body" || t.ends_with("force") || t.ends_with("couple") || t.contains("gravity") || t == "viscous body" || t == "brake")
+    !(t == "body" || t == "variable body" || t.ends_with("force") || t.ends_with("couple") || t.contains("gravity") || t == "viscous body" || t == "brake")
 }
 
 /// The assembly problem's numbering: 6 rows per node, then each element's multipliers.
