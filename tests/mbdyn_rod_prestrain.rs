@@ -64,11 +64,39 @@ fn one_dimensional_prestrain_is_read_as_mbdyns_reader_reads_it() {
     let line = base.lines().position(|l| l.contains("prestrain, single, const, .1;")).unwrap() + 1;
     assert!(e.contains(&format!("rod_prestrain.mbd:{line}:")) && e.contains("unexpected extra argument 'const'"), "{e}");
     // `component`, a plain drive, `null` and `array` are the other forms.
-    for form in ["component, const, .1", "const, .1", ".1", "array, 2, const, .05, single, const, .05"] {
+    for form in ["component, const, .1", "const, .1", ".1", "array, 2, const, .05, const, .05"] {
         let m = read(&base.replace("single, const, .1", form)).unwrap_or_else(|e| panic!("{form}: {e}"));
         assert_eq!(m.model.elements.len(), 8, "{form}");
     }
+    // An `array`'s items are drive callers, not template drive callers (tpldrive_impl.cc
+    // `ArrayTDCR::Read`: `GetT`, which reads nothing in 1-D, then `GetDriveCaller`): MBDyn
+    // 1.7.3 stops on `single` there ("var \"single\" not found"), and so does romdyn.
+    let e = read(&base.replace("single, const, .1", "array, 2, const, .05, single, const, .05")).err().unwrap();
+    assert!(e.contains(&format!("rod_prestrain.mbd:{line}:")) && e.contains("found 'single'"), "{e}");
     // A time-varying prestrain elsewhere is refused by name.
     let e = read(&base.replace("joint: 1, clamp, 1, node, node;", "joint: 1, deformable axial joint, 1, null, 2, null, linear elastic, 1., prestrain, cosine, 0., 2., -.25, forever, 0.;")).err().unwrap();
     assert!(e.contains("time-varying prestrain is supported by romdyn on rods only"), "{e}");
+}
+
+#[test]
+fn a_one_dimensional_reference_names_a_template_card_not_a_drive_caller() {
+    // mbpar.cc `GetTplDriveCaller`: `reference, LABEL` in a template drive caller copies the
+    // `template drive caller:` card of that dimension. Here label 5 names both a dimension-1
+    // card (0.1) and a drive caller card (0.7): MBDyn 1.7.3 on this text keeps node 3 at rest
+    // at z = 3.1000000000000001 (the closed form of the file's header, prestrain 0.1); romdyn
+    // took the drive caller before, and node 3 ended at 3.4547 m with no message.
+    let base = std::fs::read_to_string(path("rod_prestrain.mbd")).unwrap();
+    let text = base
+        .replacen("begin: elements;\n", "template drive caller: 5, 1, const, .1;\ndrive caller: 5, const, .7;\n\nbegin: elements;\n", 1)
+        .replace("prestrain, single, const, .1;", "prestrain, reference, 5;");
+    assert!(text.contains("reference, 5;") && text.contains("template drive caller: 5"));
+    let m = romdyn::input::mbdyn::read_model_text(&text, &path("rod_prestrain.mbd"), &Default::default()).unwrap_or_else(|e| panic!("{e}"));
+    let report = run(&m.model, &m.problem, &mut ()).unwrap();
+    let asm = Assembler::new(&m.model);
+    let z3 = report.final_state.node_frame(&asm.dofs, 2).kin.x[2];
+    // At rest where it starts, as in the first test (1e-10 of the 0.25 m scale there).
+    assert!((z3 - 3.1).abs() < 2.5e-11, "node 3 z = {z3}, closed form and MBDyn 1.7.3: 3.1");
+    // A missing card is an error at the label.
+    let e = parse_text(&text.replace("prestrain, reference, 5;", "prestrain, reference, 6;"), &path("rod_prestrain.mbd")).and_then(|d| build(&d)).err().unwrap().to_string();
+    assert!(e.contains("template drive caller 6 of dimension 1 is not defined"), "{e}");
 }

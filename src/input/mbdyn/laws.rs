@@ -312,7 +312,7 @@ fn prestress_and_prestrain(c: &mut Cursor, law: &mut LinearLaw, dim: usize, driv
             // A 1-D template drive caller (tpldrive_impl.cc, ReadDC1D): `[single |
             // component,] DRIVE` with no value before the drive (SingleTDCR<doublereal>
             // reads none), `null`, `zero`, `array, N, …`.
-            match template_1d(c, drives, seq, 0)? {
+            match template_1d(c, drives, seq)? {
                 Drive::Const(x) => law.prestrain[0] = x,
                 d => varying = Some(d),
             }
@@ -326,23 +326,25 @@ fn prestress_and_prestrain(c: &mut Cursor, law: &mut LinearLaw, dim: usize, driv
     Ok(varying)
 }
 
-/// A 1-D template drive caller as one drive.
-fn template_1d(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) -> Result<Drive, MbdynError> {
-    if c.accept("null") || c.accept("zero") {
-        return Ok(Drive::Const(0.0));
-    }
-    if c.accept("array") {
-        if depth >= 8 {
-            return Err(c.error("template drive callers nested in 'array' more than 8 deep"));
-        }
-        let n = c.count("number of template drive callers")?;
-        let terms = (0..n).map(|_| template_1d(c, drives, seq, depth + 1)).collect::<Result<Vec<_>, _>>()?;
-        return Ok(if terms.iter().all(|d| matches!(d, Drive::Const(_))) { Drive::Const(terms.iter().map(|d| d.value(0.0)).sum()) } else { Drive::Sum(terms) });
-    }
-    if !c.accept("single") {
-        c.accept("component");
-    }
-    super::drives::drive(c, drives, seq)
+/// A 1-D template drive caller as one drive (`null`, `single`, `component`, `array`, and
+/// `reference, LABEL` to a dimension-1 `template drive caller:` card, as mbpar.cc's
+/// `GetTplDriveCaller` reads it: not a `drive caller:` card).
+fn template_1d(c: &mut Cursor, drives: &Drives, seq: usize) -> Result<Drive, MbdynError> {
+    let terms = super::templates::template(c, drives, seq, super::templates::TemplateDim::Scalar)?;
+    let mut scaled: Vec<Drive> = terms
+        .into_iter()
+        .map(|(v, d)| match (v[0], d) {
+            (f, d) if f == 1.0 => d,
+            (f, Drive::Const(x)) => Drive::Const(f * x),
+            (f, d) => Drive::Product(Box::new(Drive::Const(f)), Box::new(d)),
+        })
+        .collect();
+    Ok(match scaled.len() {
+        0 => Drive::Const(0.0),
+        1 => scaled.remove(0),
+        _ if scaled.iter().all(|d| matches!(d, Drive::Const(_))) => Drive::Const(scaled.iter().map(|d| d.value(0.0)).sum()),
+        _ => Drive::Sum(scaled),
+    })
 }
 
 /// A constant prestrain (a template drive caller that does not change in time).
