@@ -150,7 +150,7 @@ fn model_errors() {
         (model("structural nodes: 2; rigid bodies: 1;", NODES, "body: 1, 7, 1., null, eye;"), "m.mbd:6:10: error: structural node 7 is not defined"),
         // 40. Unsupported element and joint types are named.
         (model("structural nodes: 2;", NODES, "aerodynamic body: 1, 2;"), "m.mbd:6:1: error: element type 'aerodynamic body' is not supported by romdyn"),
-        (model("structural nodes: 2; joints: 1;", NODES, "joint: 1, brake, 1, 2;"), "m.mbd:6:11: error: joint type 'brake' is not supported by romdyn"),
+        (model("structural nodes: 2; joints: 1;", NODES, "joint: 1, point contact, 1, 2;"), "m.mbd:6:11: error: joint type 'point contact' is not supported by romdyn"),
         (model("structural nodes: 2; rigid bodies: 1;", NODES, "driven: 1, string, \"Time > 1.\", body: 1, 2, 1., null, eye;"), "m.mbd:6:1: error: driven: romdyn switches joints, forces and beams on and off, not bodies or gravity"),
         // 41. Beams: the two-node beam is not supported; a 3-node beam needs a length, a
         // section orientation before 'same', and a 6-D law.

@@ -186,7 +186,7 @@ fn model_level_errors_name_the_statement() {
         (with("body: 1, 1, 2., null, eye;", "body: 1, 3, 2., null, eye;"), "structural node 3 is not defined"),
         (with("body: 1, 1, 2., null, eye;", "body: 1, 1, 2., null, eye; body: 1, 1, 2., null, eye;").replace("rigid bodies: 1", "rigid bodies: 2"), "body 1 is defined twice"),
         (with("body: 1, 1, 2., null, eye;", "aerodynamic body: 1, 1;"), "element type 'aerodynamic body' is not supported by romdyn"),
-        (with("body: 1, 1, 2., null, eye;", "body: 1, 1, 2., null, eye; joint: 2, brake, 1;"), "joint type 'brake' is not supported by romdyn"),
+        (with("body: 1, 1, 2., null, eye;", "body: 1, 1, 2., null, eye; joint: 2, point contact, 1;"), "joint type 'point contact' is not supported by romdyn"),
         (with("dynamic", "flying"), "expected the node type (static, dynamic, dummy, modal, static displacement, dynamic displacement), found 'flying'"),
         (with("null, eye, null, null", "null, euler123, 1, 2, null, null"), "expected node orientation: angle about z [rad] (a number), found 'null'"),
         (with("null, eye, null, null", "null, 1, 1., 0., 0., 2, 2., 0., 0., null, null"), "the two vectors are null or parallel"),
