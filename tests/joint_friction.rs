@@ -9,10 +9,10 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
-use common::fixtures::Noise;
+use common::fixtures::{smooth_model, Noise};
 use romdyn::analysis::run;
 use romdyn::dae::{check_jacobians, Assembler, State};
-use romdyn::element::{Anchor, InLineFriction, Joint, ModLugre, ScalarFunction};
+use romdyn::element::{Anchor, InLineFriction, Joint};
 use romdyn::input::mbdyn::{build, parse_text, read_model_text, SetOverrides};
 use romdyn::kinematics::Vec3;
 use romdyn::linear::ConstraintForm;
@@ -20,13 +20,6 @@ use romdyn::model::ModelBuilder;
 
 fn path(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files").join(name)
-}
-
-/// A friction model whose transition band `(1 − κ) μ/σ₀` (about 0.06 m) is wide against the
-/// check's steps (1e-6 m), so that central differences resolve its half sine wave, with a
-/// speed-dependent static coefficient (so that `μ'` enters) and viscous friction.
-fn smooth_model() -> ModLugre {
-    ModLugre { sigma0: 3.0, sigma1: 0.4, sigma2: 0.2, kappa: 0.6, static_friction: ScalarFunction::Multilinear { points: vec![(0.0, 0.6), (2.0, 0.3)], extrapolate: true } }
 }
 
 #[test]

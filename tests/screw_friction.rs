@@ -10,22 +10,16 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
-use common::fixtures::Noise;
+use common::fixtures::{smooth_model, Noise};
 use romdyn::analysis::run;
 use romdyn::dae::{check_jacobians, Assembler, State};
-use romdyn::element::{Anchor, ModLugre, ScalarFunction, Screw, ScrewFriction};
+use romdyn::element::{Anchor, Screw, ScrewFriction};
 use romdyn::input::mbdyn::{build, parse_text, read_model_text, SetOverrides};
 use romdyn::linear::ConstraintForm;
 use romdyn::model::ModelBuilder;
 
 fn path(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files").join(name)
-}
-
-/// As tests/joint_friction.rs: a transition band wide against the check's steps, a
-/// speed-dependent static coefficient and viscous friction.
-fn smooth_model() -> ModLugre {
-    ModLugre { sigma0: 3.0, sigma1: 0.4, sigma2: 0.2, kappa: 0.6, static_friction: ScalarFunction::Multilinear { points: vec![(0.0, 0.6), (2.0, 0.3)], extrapolate: true } }
 }
 
 /// The thread: radius 0.7 m, half thread angle 0.4 rad, pitch 0.3 m.

@@ -1,4 +1,5 @@
-//! Deterministic noise for random states, and an element with a deliberately wrong Jacobian.
+//! Deterministic noise for random states, an element with a deliberately wrong Jacobian, and
+//! a friction model for Jacobian checks.
 
 use romdyn::element::{Col, Element, ElementState, JacobianSink, ResidualSink, Row};
 use romdyn::kinematics::{gibbs_rotation, Mat3, Vec3};
@@ -44,4 +45,12 @@ impl Element for WrongSpring {
     fn jacobian(&self, _: &dyn ElementState, out: &mut dyn JacobianSink) {
         out.add(Row::Equilibrium { slot: 0, comp: 1 }, Col::Position { slot: 0, comp: 1 }, 20.0);
     }
+}
+
+/// A modlugre friction model whose transition band `(1 − κ) μ/σ₀` (about 0.06 m) is wide
+/// against a Jacobian check's steps (1e-6 m), so that central differences resolve its half
+/// sine wave, with a speed-dependent static coefficient (so that `μ'` enters) and viscous
+/// friction (tests/joint_friction.rs, hinge_friction.rs, screw_friction.rs, brake.rs).
+pub fn smooth_model() -> romdyn::element::ModLugre {
+    romdyn::element::ModLugre { sigma0: 3.0, sigma1: 0.4, sigma2: 0.2, kappa: 0.6, static_friction: romdyn::element::ScalarFunction::Multilinear { points: vec![(0.0, 0.6), (2.0, 0.3)], extrapolate: true } }
 }
