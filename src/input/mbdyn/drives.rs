@@ -20,7 +20,7 @@ use super::expr::{Evaluator, Variable, Variables};
 use super::lexer::{tokenize, Token};
 use super::model_namespace::{node_private_data, Live, Reads};
 use super::parser::Statement;
-use super::templates::{TemplateDim, Term};
+use super::template_dim::{TemplateDim, Term};
 use super::value::TypedValue;
 use crate::element::{Drive, ElementState, StepDrive, StepKind, TimeFunction};
 use crate::kinematics::{Mat3, Vec3};
@@ -452,7 +452,7 @@ pub(super) fn template_terms(c: &mut Cursor, drives: &Drives, seq: usize, basis:
         return match drives.templates.get(&label) {
             Some((terms, s, _)) if *s < seq => Ok(terms.iter().map(|(v, d)| (basis * v, super::counter_drives::copied(d, &drives.steps, seq))).collect()),
             Some((_, _, at)) => Err(c.error_at(span, format!("template drive caller {label} is used before its definition (line {})", at.line))),
-            None => Err(c.error_at(span, format!("template drive caller {label} is not defined{}", super::templates::other_dims_of(drives, label, None)))),
+            None => Err(c.error_at(span, format!("template drive caller {label} is not defined{}", other_dims_of(drives, label, None)))),
         };
     }
     c.accept("single");
@@ -474,4 +474,15 @@ pub fn single_term(terms: Vec<(Vec3, Drive)>) -> Option<(Vec3, Drive)> {
         return Some((terms.iter().map(|(v, _)| *v).sum(), first.clone()));
     }
     None
+}
+
+/// ", (there is one of dimension …)" when `label` names cards of other dimensions than
+/// `except` (those of dimension 3 too when `except` is one of the others).
+pub fn other_dims_of(drives: &Drives, label: u32, except: Option<TemplateDim>) -> String {
+    let mut dims: Vec<&str> = drives.other_templates.keys().filter(|(d, l)| *l == label && Some(*d) != except).map(|(d, _)| d.name()).collect();
+    if except.is_some() && drives.templates.contains_key(&label) {
+        dims.push("3");
+    }
+    dims.sort();
+    if dims.is_empty() { String::new() } else { format!(" (there is one of dimension {})", dims.join(", ")) }
 }

@@ -124,7 +124,6 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
                 (true, _) => return Err(super::friction::refuse(c, kind)),
             };
             let j = if revolute { Joint::revolute_hinge(label, a.anchor(), b.anchor()) } else { Joint::spherical_hinge(label, a.anchor(), b.anchor()) };
-            let j = assembled(j, &a.global(), &b.global(), c, span)?;
             match friction {
                 Some((radius, preload, model)) => Box::new(RevoluteHingeFriction::new(j, radius, preload, model)),
                 None => Box::new(j),
@@ -152,16 +151,16 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
                 return Err(super::friction::refuse(c, "axial rotation"));
             }
             orientation_description(c)?;
-            let hinge = assembled(Joint::revolute_hinge(label, a.anchor(), b.anchor()), &a.global(), &b.global(), c, span)?;
+            let hinge = Joint::revolute_hinge(label, a.anchor(), b.anchor());
             Box::new(AxialRotation::new(label, hinge.a, hinge.b, omega))
         }
         // `pin` is MBDyn's deprecated name of the spherical pin (joint.cc: `case PIN: case
         // SPHERICALPIN`, the same reader).
-        "pin" => Box::new(pin("spherical pin", label, c, ctx, span)?),
-        "revolute pin" | "plane pin" | "spherical pin" => Box::new(pin(kind, label, c, ctx, span)?),
+        "pin" => Box::new(pin("spherical pin", label, c, ctx)?),
+        "revolute pin" | "plane pin" | "spherical pin" => Box::new(pin(kind, label, c, ctx)?),
         "total joint" | "total pin joint" => Box::new(total(kind == "total pin joint", label, c, ctx, span)?),
-        "drive displacement" | "drive displacement pin" | "imposed displacement" | "imposed displacement pin" => Box::new(drive_displacement(kind, label, c, ctx, span)?),
-        "drive hinge" => Box::new(drive_hinge(label, c, ctx, span)?),
+        "drive displacement" | "drive displacement pin" | "imposed displacement" | "imposed displacement pin" => Box::new(drive_displacement(kind, label, c, ctx)?),
+        "drive hinge" => Box::new(drive_hinge(label, c, ctx)?),
         "linear velocity" | "angular velocity" => {
             // joint.cc: NODE, a unit direction relative to the node (normalized), a drive.
             // drvj.cc turns the angular one's with the node (R d) and uses the linear one's
@@ -208,7 +207,7 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             let mut b = side(c, ctx, "node 2", Position::IfKeyword, Some(&a))?;
             orientation_description(c)?;
             (a.offset, b.offset) = (Vec3::zeros(), Vec3::zeros());
-            Box::new(assembled(Joint::revolute_rotation(label, a.anchor(), b.anchor()), &a.global(), &b.global(), c, span)?)
+            Box::new(Joint::revolute_rotation(label, a.anchor(), b.anchor()))
         }
         "gimbal rotation" => {
             // joint.cc, as `revolute rotation`: offsets after `position` read and ignored,
@@ -220,8 +219,8 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             let ((_, qa), (_, qb)) = (a.global(), b.global());
             Box::new(GimbalRotation { label, a: a.anchor(), b: b.anchor(), angles: GimbalRotation::angles_of(&(qa.transpose() * qb)) })
         }
-        "cardano hinge" | "universal hinge" | "cardano pin" | "universal pin" | "cardano rotation" | "universal rotation" => Box::new(cardano(kind, label, c, ctx, span)?),
-        "in line" | "in plane" => in_line_or_plane(kind == "in line", label, c, ctx, span)?,
+        "cardano hinge" | "universal hinge" | "cardano pin" | "universal pin" | "cardano rotation" | "universal rotation" => Box::new(cardano(kind, label, c, ctx)?),
+        "in line" | "in plane" => in_line_or_plane(kind == "in line", label, c, ctx)?,
         "distance" | "distance with offset" => {
             // `distance, NODE_1, [position, O_1,] NODE_2, [position, O_2,] {DRIVE | from nodes}`;
             // the deprecated `distance with offset` always reads both offsets.
@@ -249,7 +248,7 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             let a = Side { node: na, offset: Vec3::zeros(), orientation: orientation(c, na, None)? };
             let nb = ctx.node(c, "node 2")?;
             let b = Side { node: nb, offset: Vec3::zeros(), orientation: orientation(c, nb, Some(&a))? };
-            Box::new(assembled(Joint::prismatic(label, a.anchor(), b.anchor()), &a.global(), &b.global(), c, span)?)
+            Box::new(Joint::prismatic(label, a.anchor(), b.anchor()))
         }
         "deformable displacement joint" | "deformable displacement hinge" | "deformable hinge" => {
             let hinge = kind == "deformable hinge";
@@ -321,7 +320,7 @@ fn orientation_description(c: &mut Cursor) -> Result<(), MbdynError> {
 /// it: the constraint does not depend on them).
 ///
 /// An in line joint without offset may carry `friction` ([`super::friction`]).
-fn in_line_or_plane(line: bool, label: Label, c: &mut Cursor, ctx: &ElementContext, span: super::diagnostic::Span) -> Result<Box<dyn Element>, MbdynError> {
+fn in_line_or_plane(line: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<dyn Element>, MbdynError> {
     let na = ctx.node(c, "node 1")?;
     let on = ctx.on(na);
     c.accept("position");
@@ -350,11 +349,8 @@ fn in_line_or_plane(line: bool, label: Label, c: &mut Cursor, ctx: &ElementConte
         (true, false, _) => return Err(super::friction::refuse(c, "in plane")),
     };
     let b = Side { node: nb, offset, orientation: Mat3::identity() };
-    let (frame_b_point, _) = b.global();
-    let (pa, qa) = a.global();
     let j = if line { Joint::in_line(label, a.anchor(), b.anchor()) } else { Joint::in_plane(label, a.anchor(), b.anchor()) };
     // Only position components are locked: B's frame orientation does not matter.
-    let j = assembled(j, &(pa, qa), &(frame_b_point, qa), c, span)?;
     Ok(match friction {
         Some((preload, model)) => Box::new(InLineFriction::new(j, preload, model)),
         None => Box::new(j),
@@ -363,7 +359,6 @@ fn in_line_or_plane(line: bool, label: Label, c: &mut Cursor, ctx: &ElementConte
 
 /// `clamp, NODE, [position,] {node | POSITION}, [orientation,] {node | ORIENTATION}`.
 fn clamp(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Joint, MbdynError> {
-    let span = c.here();
     let n = ctx.node(c, "clamped node")?;
     let on = Context { node: Some(Frame::of_node(n)), ..ctx.global() };
     c.accept("position");
@@ -371,7 +366,7 @@ fn clamp(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Joint, Mb
     c.accept("orientation");
     let orientation = if c.accept("node") || c.is_done() { n.orientation } else { on.orientation(c, "clamp orientation")? };
     let j = Joint::clamp(label, n.label, position, orientation);
-    assembled(j, &(position, orientation), &(n.position, n.orientation), c, span)
+    Ok(j)
 }
 
 /// `revolute pin, NODE, [position,] OFFSET [, {orientation | hinge}, R], [position,] PIN [,
@@ -379,15 +374,14 @@ fn clamp(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Joint, Mb
 /// space. Both `position` keywords are optional and `hinge` is the older word for
 /// `orientation` (joint.cc, MBDYN_X_COMPATIBLE_INPUT); a spherical pin reads its
 /// orientations and ignores them.
-fn pin(kind: &str, label: Label, c: &mut Cursor, ctx: &ElementContext, span: super::diagnostic::Span) -> Result<Joint, MbdynError> {
+fn pin(kind: &str, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Joint, MbdynError> {
     let revolute = kind != "spherical pin";
     let (a, b) = pin_frames(revolute, c, ctx)?;
     if revolute && c.accept("initial theta") {
         c.real("initial theta [rad]")?;
     }
-    let Anchor::Ground { position, orientation } = a else { unreachable!("pin_frames returns a ground anchor") };
     let j = if revolute { Joint::revolute_hinge(label, a, b.anchor()) } else { Joint::spherical_hinge(label, a, b.anchor()) };
-    assembled(j, &(position, orientation), &b.global(), c, span)
+    Ok(j)
 }
 
 /// The node side and the frame fixed in space of a pin (`oriented`: both orientations kept;
@@ -409,7 +403,7 @@ fn pin_frames<'a>(oriented: bool, c: &mut Cursor, ctx: &ElementContext<'a>) -> R
 /// hinges), `cardano pin`/`universal pin` (as the revolute pin), `cardano rotation`/`universal
 /// rotation` (offsets after `position` read and ignored, joint.cc): input manual §Cardano
 /// hinge, §Cardano pin, §Cardano rotation.
-fn cardano(kind: &'static str, label: Label, c: &mut Cursor, ctx: &ElementContext, span: super::diagnostic::Span) -> Result<CardanoHinge, MbdynError> {
+fn cardano(kind: &'static str, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<CardanoHinge, MbdynError> {
     let (a, b, with_position) = if kind.ends_with("pin") {
         let (a, b) = pin_frames(true, c, ctx)?;
         (a, b.anchor(), true)
@@ -426,22 +420,7 @@ fn cardano(kind: &'static str, label: Label, c: &mut Cursor, ctx: &ElementContex
         (a.anchor(), b.anchor(), true)
     };
     let j = CardanoHinge::new(label, a.clone(), b.clone(), with_position, kind);
-    let (ga, gb) = (anchor_global(&a, ctx), anchor_global(&b, ctx));
-    if with_position {
-        assembled(Joint::spherical_hinge(label, a, b), &ga, &gb, c, span)?;
-    }
     Ok(j)
-}
-
-/// Global point and frame of an anchor in the initial configuration.
-fn anchor_global(anchor: &Anchor, ctx: &ElementContext) -> (Vec3, Mat3) {
-    match anchor {
-        Anchor::Ground { position, orientation } => (*position, *orientation),
-        Anchor::Node { label, offset, orientation } => match ctx.nodes.find(*label) {
-            Some(n) => (n.node.position + n.node.orientation * offset, n.node.orientation * orientation),
-            None => (Vec3::zeros(), Mat3::identity()),
-        },
-    }
 }
 
 /// `drive displacement, NODE_1, [position,] O_1, NODE_2, [position,] O_2, VALUE` (B's point at
@@ -450,7 +429,7 @@ fn anchor_global(anchor: &Anchor, ctx: &ElementContext) -> (Vec3, Mat3) {
 /// displacement`/`imposed displacement pin` with the same arguments (joint.cc reads them as
 /// total joints with all three positions locked to the template drive VALUE, whatever the
 /// manual's "along a direction" says).
-fn drive_displacement(kind: &'static str, label: Label, c: &mut Cursor, ctx: &ElementContext, span: super::diagnostic::Span) -> Result<DrivenJoint, MbdynError> {
+fn drive_displacement(kind: &'static str, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<DrivenJoint, MbdynError> {
     let pin = kind.ends_with("pin");
     let first = side(c, ctx, if pin { "the node" } else { "node 1" }, Position::Always, None)?;
     let (a, b, basis) = if pin {
@@ -470,31 +449,18 @@ fn drive_displacement(kind: &'static str, label: Label, c: &mut Cursor, ctx: &El
     };
     let mut j = DrivenJoint::new(Joint::total(label, a, b, [true; 3], [false; 3]), kind);
     j.position = VectorDrive(value);
-    driven_assembled(j, ctx, c, span)
+    Ok(j)
 }
 
 /// `drive hinge, NODE_1 [, orientation, R_1], NODE_2 [, orientation, R_2], VALUE`: the
 /// relative rotation vector of the two hinge frames imposed (input manual §Drive hinge;
 /// drvhinge.cc: `rotvec(R_1ᵀ R_2) = Θ(t)`).
-fn drive_hinge(label: Label, c: &mut Cursor, ctx: &ElementContext, span: super::diagnostic::Span) -> Result<DrivenJoint, MbdynError> {
+fn drive_hinge(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<DrivenJoint, MbdynError> {
     let a = side(c, ctx, "node 1", Position::IfKeyword, None)?;
     let b = side(c, ctx, "node 2", Position::IfKeyword, Some(&a))?;
     let value = template_vec3(c, ctx.drives, ctx.seq, &Mat3::identity(), &|c: &mut Cursor| c.vec3_values("imposed relative rotation [rad]"))?;
     let mut j = DrivenJoint::new(Joint::total(label, a.anchor(), b.anchor(), [false; 3], [true; 3]), "drive hinge");
     j.rotation = VectorDrive(value);
-    driven_assembled(j, ctx, c, span)
-}
-
-/// The driven joint, unless its holonomic constraints fail at t = 0 in the initial
-/// configuration (see [`assembled`]).
-pub(super) fn driven_assembled(j: DrivenJoint, ctx: &ElementContext, c: &Cursor, span: super::diagnostic::Span) -> Result<DrivenJoint, MbdynError> {
-    // A drive that reads the model's state has no value before the run (the initial
-    // assembly makes such a joint hold).
-    if j.reads_state() {
-        return Ok(j);
-    }
-    let at = j.joint_at(0.0);
-    assembled(at.clone(), &anchor_global(&at.a, ctx), &anchor_global(&at.b, ctx), c, span)?;
     Ok(j)
 }
 
@@ -564,8 +530,3 @@ fn rod(offsets: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Res
     })
 }
 
-/// The joint as read: MBDyn's initial assembly (`solve::initial_assembly`, run before every
-/// analysis) makes it hold, or names it when it cannot (or when the assembly is skipped).
-fn assembled(j: Joint, _a: &(Vec3, Mat3), _b: &(Vec3, Mat3), _c: &Cursor, _span: super::diagnostic::Span) -> Result<Joint, MbdynError> {
-    Ok(j)
-}

@@ -39,6 +39,7 @@ mod problem;
 mod rbk;
 mod references;
 mod scalar_functions;
+mod template_dim;
 mod templates;
 mod total_equation;
 mod screw;

@@ -15,53 +15,10 @@
 
 use super::cursor::Cursor;
 use super::diagnostic::MbdynError;
-use super::drives::{drive, Drives};
+use super::drives::{drive, other_dims_of, Drives};
+pub use super::template_dim::{TemplateDim, Term};
 use super::parser::Statement;
-use crate::element::Drive;
 use crate::kinematics::Mat3;
-
-/// The dimension of a template drive caller other than the 3-vector.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum TemplateDim {
-    Scalar,
-    Vec6,
-    Mat3x3,
-    Mat6x6,
-}
-
-impl TemplateDim {
-    /// The dimension as a card writes it (`1`, `6`, `"3x3"`, `"6x6"`).
-    pub fn name(self) -> &'static str {
-        match self {
-            TemplateDim::Scalar => "1",
-            TemplateDim::Vec6 => "6",
-            TemplateDim::Mat3x3 => "3x3",
-            TemplateDim::Mat6x6 => "6x6",
-        }
-    }
-    /// Rows and columns of the value.
-    fn shape(self) -> (usize, usize) {
-        match self {
-            TemplateDim::Scalar => (1, 1),
-            TemplateDim::Vec6 => (6, 1),
-            TemplateDim::Mat3x3 => (3, 3),
-            TemplateDim::Mat6x6 => (6, 6),
-        }
-    }
-    /// The dimension a card names, `None` for "3" and anything else.
-    pub fn from_name(name: &str) -> Option<Self> {
-        match name.to_ascii_lowercase().as_str() {
-            "1" => Some(TemplateDim::Scalar),
-            "6" => Some(TemplateDim::Vec6),
-            "3x3" => Some(TemplateDim::Mat3x3),
-            "6x6" => Some(TemplateDim::Mat6x6),
-            _ => None,
-        }
-    }
-}
-
-/// One term of a template drive caller: its value (entries by rows) times a drive.
-pub type Term = (Vec<f64>, Drive);
 
 /// Reads a `template drive caller: LABEL, [name, "NAME",] DIM, TPL_DRIVE_CALLER;` card
 /// (input manual §Template Drive Caller; mbpar.cc): DIM is `1`, `3`, `6` (numbers or
@@ -110,17 +67,6 @@ impl Drives {
             None => Err(format!("template drive caller {label} of dimension {} is not defined{}", dim.name(), other_dims_of(self, label, Some(dim)))),
         }
     }
-}
-
-/// ", (there is one of dimension …)" when `label` names cards of other dimensions than
-/// `except` (those of dimension 3 too when `except` is one of the others).
-pub fn other_dims_of(drives: &Drives, label: u32, except: Option<TemplateDim>) -> String {
-    let mut dims: Vec<&str> = drives.other_templates.keys().filter(|(d, l)| *l == label && Some(*d) != except).map(|(d, _)| d.name()).collect();
-    if except.is_some() && drives.templates.contains_key(&label) {
-        dims.push("3");
-    }
-    dims.sort();
-    if dims.is_empty() { String::new() } else { format!(" (there is one of dimension {})", dims.join(", ")) }
 }
 
 /// Reads a template drive caller of dimension `dim`: its terms. An `array` holds single

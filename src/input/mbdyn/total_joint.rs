@@ -6,7 +6,6 @@ use super::cursor::Cursor;
 use super::diagnostic::MbdynError;
 use super::drives::template_vec3;
 use super::element_context::ElementContext;
-use super::joints::driven_assembled;
 use super::references::{Context, Frame, OtherSide};
 use crate::element::{Anchor, DrivenJoint, Joint, VectorDrive};
 use crate::kinematics::{Mat3, Vec3};
@@ -105,7 +104,7 @@ pub(super) fn total(pin: bool, label: Label, c: &mut Cursor, ctx: &ElementContex
     (j.hint_position_held, j.hint_position_turn, j.hint_rotation_turn) = (position.holonomic, position_turn, rotation_turn);
     j.hint_rotation_held = rotation.holonomic == [true; 3];
     j.rotation_remnant = rotation_remnant;
-    driven_assembled(j, ctx, c, span)
+    Ok(j)
 }
 
 /// The one constraint frame of a total joint whose side A has different position and

@@ -2,15 +2,232 @@
 //! direction is the operator applied to the last basis vector, orthogonalized against the
 //! basis by classical Gram–Schmidt twice; for a real basis the second pass of a step is
 //! delayed and done together with the next step's first (one sweep over the basis instead
-//! of two), and a breakdown restarts from a fresh random direction.
+//! of two), and a breakdown restarts from a fresh random direction. The basis's entries
+//! ([`Scalar`]: `f64` for a real operator, `c64`) choose the expansion and the real or
+//! complex arithmetic of the restart.
 
 use faer::reborrow::{Reborrow, ReborrowMut};
-use faer::{c64, Col, ColMut, ColRef, Mat};
+use faer::{c64, Col, ColMut, ColRef, Mat, MatRef};
 
 use super::gram_schmidt::Sweeper;
-use super::iteration::{columns, purified, Scalar};
 use crate::linear::sparse::{contiguous, contiguous_mut};
 use super::KrylovError;
+
+/// The entries of a Krylov basis: `f64` (real operator) or `c64`.
+pub(super) trait Scalar: faer::traits::ComplexField<Real = f64> + Copy + Send + Sync + 'static {
+    /// The real basis: wanted θ are counted with `Im θ ≥ 0` only (their conjugates come along).
+    const REAL: bool;
+    fn to_c64(self) -> c64;
+    /// `z` (its real part for a real basis).
+    fn from_c64(z: c64) -> Self;
+    fn times(self, f: f64) -> Self;
+    /// Eigenvalues and unit eigenvectors of a small dense matrix (faer's dense eigensolver).
+    fn eigen(h: &Mat<Self>) -> Option<(Vec<c64>, Mat<c64>)>;
+    /// An orthonormal basis of the span of the leading `keep` columns of `y` (eigenvectors
+    /// or Schur vectors for the diagonal `theta`, in order), with `keep` columns (complex:
+    /// their QR, so that leading columns span leading vectors) or, for a real basis, a real
+    /// one of the nearest count that does not split a conjugate pair; `None` if there is
+    /// none.
+    fn kept_basis(y: &Mat<c64>, theta: &[c64], keep: usize) -> Option<Mat<Self>>;
+    /// [`orthogonalize`]: `w` with its components along `basis` removed, the coefficients
+    /// in `h`, `c` scratch; the norm left.
+    fn orthogonalize(_: Sweeper, basis: MatRef<'_, Self>, w: ColMut<'_, Self>, h: ColMut<'_, Self>, c: ColMut<'_, Self>) -> f64 {
+        orthogonalize(basis, w, h, c)
+    }
+    /// The Arnoldi expansion of `a` from column `kept` to its full size; returns the size
+    /// reached (smaller when the finite spectrum is exhausted).
+    fn expand(a: &mut Arnoldi<Self>, op: &mut dyn FnMut(ColRef<'_, Self>, ColMut<'_, Self>), kept: usize) -> Result<usize, KrylovError> {
+        expand_classic(a, op, kept)
+    }
+    /// The coefficients of the Ritz vectors `V y` in the basis's arithmetic: `y` itself, or
+    /// for a real basis the real and imaginary parts of each `y` as two columns.
+    fn ritz_coefficients(y: &Mat<c64>) -> Mat<Self>;
+    /// Entry `(r, i)` of the Ritz vectors from `V` times [`Self::ritz_coefficients`].
+    fn ritz_entry(p: MatRef<'_, Self>, r: usize, i: usize) -> c64;
+}
+
+impl Scalar for c64 {
+    const REAL: bool = false;
+    fn to_c64(self) -> c64 {
+        self
+    }
+    fn from_c64(z: c64) -> Self {
+        z
+    }
+    fn times(self, f: f64) -> Self {
+        self * f
+    }
+    fn eigen(h: &Mat<c64>) -> Option<(Vec<c64>, Mat<c64>)> {
+        let e = h.eigen().ok()?;
+        Some((e.S().column_vector().iter().copied().collect(), e.U().to_owned()))
+    }
+    fn kept_basis(y: &Mat<c64>, _: &[c64], keep: usize) -> Option<Mat<c64>> {
+        let qr = y.subcols(0, keep).qr();
+        let r = qr.R();
+        let d0 = r[(0, 0)].norm();
+        (0..keep).all(|i| r[(i, i)].norm() > 1e-6 * d0).then(|| qr.compute_thin_Q())
+    }
+    fn ritz_coefficients(y: &Mat<c64>) -> Mat<c64> {
+        y.clone()
+    }
+    fn ritz_entry(p: MatRef<'_, c64>, r: usize, i: usize) -> c64 {
+        p[(r, i)]
+    }
+}
+
+impl Scalar for f64 {
+    const REAL: bool = true;
+    fn to_c64(self) -> c64 {
+        c64::new(self, 0.0)
+    }
+    fn from_c64(z: c64) -> Self {
+        z.re
+    }
+    fn times(self, f: f64) -> Self {
+        self * f
+    }
+    fn eigen(h: &Mat<f64>) -> Option<(Vec<c64>, Mat<c64>)> {
+        let e = h.eigen().ok()?;
+        Some((e.S().column_vector().iter().copied().collect(), e.U().to_owned()))
+    }
+    fn kept_basis(y: &Mat<c64>, theta: &[c64], keep: usize) -> Option<Mat<f64>> {
+        // span(Y_k) of a conjugate-closed set of eigenvalues of a real matrix is the
+        // complexification of a real subspace of dimension k, spanned by [Re Y_k, Im Y_k]:
+        // its first k columns of a column-pivoted QR, when the rank is k (the cut does not
+        // split a pair: R[k, k] ≈ 0).
+        let size = y.nrows();
+        // The nearest cuts first: keep, keep + 1, keep - 1, keep + 2, ...
+        let cuts = (0..2 * size).map(|d| if d % 2 == 0 { keep + d / 2 } else { keep.wrapping_sub(d / 2 + 1) });
+        for k in cuts {
+            if k == 0 || k >= size || !closed_under_conjugation(&theta[..k], theta) {
+                continue;
+            }
+            let parts = Mat::<f64>::from_fn(size, 2 * k, |i, j| if j < k { y[(i, j)].re } else { y[(i, j - k)].im });
+            let qr = parts.col_piv_qr();
+            let r = qr.R();
+            let d = |i: usize| if i < r.nrows().min(r.ncols()) { r[(i, i)].abs() } else { 0.0 };
+            if d(k - 1) > 1e-6 * d(0) && d(k) <= 1e-8 * d(0) {
+                return Some(qr.compute_Q().subcols(0, k).to_owned());
+            }
+        }
+        None
+    }
+    /// The row-blocked real kernels of `gram_schmidt.rs` (three reads of the basis, not four).
+    fn orthogonalize(sweeper: Sweeper, basis: MatRef<'_, f64>, mut w: ColMut<'_, f64>, mut h: ColMut<'_, f64>, mut c: ColMut<'_, f64>) -> f64 {
+        let cols = columns(basis, basis.ncols());
+        match sweeper.orthogonalize(&cols, contiguous_mut(w.rb_mut()), contiguous_mut(h.rb_mut()), contiguous_mut(c.rb_mut())) {
+            Some(left) => left,
+            None => orthogonalize(basis, w, h, c),
+        }
+    }
+    /// Classical Gram–Schmidt with the second pass delayed ([`expand_delayed`]): two reads
+    /// of the basis per operator application instead of three.
+    fn expand(a: &mut Arnoldi<f64>, op: &mut dyn FnMut(ColRef<'_, f64>, ColMut<'_, f64>), kept: usize) -> Result<usize, KrylovError> {
+        expand_delayed(a, op, kept)
+    }
+    fn ritz_coefficients(y: &Mat<c64>) -> Mat<f64> {
+        Mat::from_fn(y.nrows(), 2 * y.ncols(), |i, j| if j % 2 == 0 { y[(i, j / 2)].re } else { y[(i, j / 2)].im })
+    }
+    fn ritz_entry(p: MatRef<'_, f64>, r: usize, i: usize) -> c64 {
+        c64::new(p[(r, 2 * i)], p[(r, 2 * i + 1)])
+    }
+}
+
+/// The first `k` columns of a real matrix as slices.
+pub(super) fn columns(v: MatRef<'_, f64>, k: usize) -> Vec<&[f64]> {
+    (0..k).map(|j| contiguous(v.col(j))).collect()
+}
+
+fn pseudo_random<T: Scalar>(n: usize, seed: u64) -> Col<T> {
+    let mut x = 0x9E37_79B9_7F4A_7C15u64 ^ seed.wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    let mut next = move || {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        (x >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    };
+    Col::from_fn(n, |_| T::from_c64(c64::new(next(), next())))
+}
+
+fn scale<T: Scalar>(w: &mut Col<T>, f: f64) {
+    for x in w.iter_mut() {
+        *x = x.times(f);
+    }
+}
+
+/// A unit random vector with `T³` applied, so that its (index ≤ 3) components at θ = 0 of the
+/// infinite eigenvalues are gone; `None` when it vanishes.
+pub(super) fn purified<T: Scalar>(op: &mut dyn FnMut(ColRef<'_, T>, ColMut<'_, T>), n: usize, seed: u64, applications: &mut usize) -> Option<Col<T>> {
+    let mut x = pseudo_random::<T>(n, seed);
+    let mut y = Col::<T>::zeros(n);
+    for _ in 0..3 {
+        op(x.as_ref(), y.as_mut());
+        *applications += 1;
+        std::mem::swap(&mut x, &mut y);
+        let nx = x.norm_l2();
+        if !(nx > 0.0 && nx.is_finite()) {
+            return None;
+        }
+        scale(&mut x, 1.0 / nx);
+    }
+    Some(x)
+}
+
+/// `w` with its components along the columns of `basis` removed (classical Gram–Schmidt as
+/// two block projections `c = Vᴴ w`, `w ← w − V c`, a second pass when needed); the
+/// coefficients removed are written to `h`, `c` is scratch of the same length; returns the
+/// norm left.
+fn orthogonalize<T: Scalar>(basis: MatRef<'_, T>, mut w: ColMut<'_, T>, mut h: ColMut<'_, T>, mut c: ColMut<'_, T>) -> f64 {
+    use faer::linalg::matmul::matmul;
+    use faer::{Accum, Par};
+    let (one, minus_one) = (T::from_c64(c64::new(1.0, 0.0)), T::from_c64(c64::new(-1.0, 0.0)));
+    // Sequential products: these matrix-vector products are too small to gain from threads.
+    // A second pass only when the first removed most of `w` (Kahan–Parlett "twice is
+    // enough": a norm kept above 1/√2 of the input is orthogonal to working accuracy).
+    let mut before = w.norm_l2();
+    for pass in 0..2 {
+        let target = if pass == 0 { h.rb_mut() } else { c.rb_mut() };
+        matmul(target.as_mat_mut(), Accum::Replace, basis.adjoint(), w.rb().as_mat(), one, Par::Seq);
+        let coef = if pass == 0 { h.rb() } else { c.rb() };
+        matmul(w.rb_mut().as_mat_mut(), Accum::Add, basis, coef.as_mat(), minus_one, Par::Seq);
+        if pass == 1 {
+            h += c.rb();
+        }
+        let after = w.norm_l2();
+        if after > std::f64::consts::FRAC_1_SQRT_2 * before {
+            return after;
+        }
+        before = after;
+    }
+    w.norm_l2()
+}
+
+/// `theta` is closed under conjugation (to `1e-8` relative, or `1e-12` of the largest: the
+/// rounding of the eigenvalues near 0 is relative to the matrix).
+fn closed_under_conjugation(theta: &[c64], all: &[c64]) -> bool {
+    let k = theta.len();
+    let top = all.iter().map(|x| x.norm()).fold(0.0, f64::max);
+    let mut used = vec![false; k];
+    for i in 0..k {
+        if used[i] {
+            continue;
+        }
+        let x = theta[i];
+        let tol = 1e-8 * x.norm() + 1e-12 * top;
+        if x.im.abs() <= tol {
+            used[i] = true;
+            continue;
+        }
+        match (i + 1..k).find(|&j| !used[j] && (theta[j] - x.conj()).norm() <= tol) {
+            Some(j) => {
+                used[i] = true;
+                used[j] = true;
+            }
+            None => return false,
+        }
+    }
+    true
+}
 
 /// The state of an Arnoldi expansion: the basis `v` (`n x (m + 1)`), the Hessenberg matrix
 /// `h` (`(m + 1) x m`), the scratch of the Gram–Schmidt steps.
@@ -94,7 +311,7 @@ fn complete_step<T: Scalar>(a: &mut Arnoldi<T>, op: &mut dyn FnMut(ColRef<'_, T>
 }
 
 /// Arnoldi with classical Gram–Schmidt twice at each step (three or four reads of the basis).
-pub(super) fn expand_classic<T: Scalar>(a: &mut Arnoldi<T>, op: &mut dyn FnMut(ColRef<'_, T>, ColMut<'_, T>), kept: usize) -> Result<usize, KrylovError> {
+fn expand_classic<T: Scalar>(a: &mut Arnoldi<T>, op: &mut dyn FnMut(ColRef<'_, T>, ColMut<'_, T>), kept: usize) -> Result<usize, KrylovError> {
     for j in kept..a.m {
         apply(a, op, j)?;
         if let Some(size) = complete_step(a, op, j, false) {
@@ -149,7 +366,7 @@ fn finish_delayed(a: &mut Arnoldi<f64>, op: &mut dyn FnMut(ColRef<'_, f64>, ColM
 /// and `T v_j − V_{j+1} (g − H s)/α = (w − V_{j+1} g)/α`. When `u` was far from orthogonal
 /// (`α² < uᵀu/2`, where the Pythagorean `α` would lose digits) or nearly in the basis,
 /// column `j` is finished by the classical passes and `T` applied again.
-pub(super) fn expand_delayed(a: &mut Arnoldi<f64>, op: &mut dyn FnMut(ColRef<'_, f64>, ColMut<'_, f64>), kept: usize) -> Result<usize, KrylovError> {
+fn expand_delayed(a: &mut Arnoldi<f64>, op: &mut dyn FnMut(ColRef<'_, f64>, ColMut<'_, f64>), kept: usize) -> Result<usize, KrylovError> {
     let m = a.m;
     let sw = a.sweeper;
     let (mut s, mut z, mut g) = (vec![0.0; m + 1], vec![0.0; m + 1], vec![0.0; m + 1]);
