@@ -7,6 +7,7 @@ mod common;
 
 use std::path::Path;
 
+use common::cli::{romdyn, romdyn_at, temp_dir};
 use common::fixtures::Noise;
 use romdyn::analysis::run;
 use romdyn::dae::{check_jacobians, Assembler, State};
@@ -58,6 +59,44 @@ fn with_the_incremental_update_the_cantilever_example_gives_mbdyn_s_positions() 
     assert!(incremental < 1e-9, "incremental: {incremental:e} m from MBDyn");
     let default = largest(BeamUpdate::PathIndependent);
     assert!((8.3e-6..8.5e-6).contains(&default), "path independent: {default:e} m from MBDyn");
+}
+
+#[test]
+fn run_takes_beam_update_incremental_and_refuses_an_unknown_update() {
+    // tests/mbdyn_files/beam3_tip_couple.mbd as written (H = 1, one step), node 5's row of the
+    // .mov at t = 1 s; MBDyn 1.7.3: tip x 0.66458978410585801 m (tests/beam_rotation.rs).
+    let dir = temp_dir("beam-update-incremental");
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files/beam3_tip_couple.mbd");
+    let tip_x = |update: &str| {
+        let (ok, _, err) = romdyn_at(&dir, &["run", file.to_str().unwrap(), "-o", update, "--beam-update", update]);
+        assert!(ok, "{err}");
+        let mov = std::fs::read_to_string(dir.join(format!("{update}.mov"))).unwrap();
+        let last = mov.lines().last().unwrap().split_whitespace().map(|c| c.parse::<f64>().unwrap()).collect::<Vec<_>>();
+        assert_eq!(last[0], 5.0);
+        last[1]
+    };
+    let incremental = tip_x("incremental");
+    assert!((incremental - 0.66458978410585801).abs() < 1e-11, "incremental: tip x {incremental}");
+    // The default, path independent: 0.664630 m (tests/beam_rotation.rs).
+    let default = tip_x("path-independent");
+    assert!((default - 0.664630).abs() < 1e-6, "path independent: tip x {default}");
+    let (ok, _, err) = romdyn(&["run", file.to_str().unwrap(), "--beam-update", "stepwise"]);
+    assert!(!ok && err.contains("incremental") && err.contains("path-independent"), "{err}");
+}
+
+#[test]
+fn the_incremental_update_refuses_a_viscous_section_law() {
+    let mut b = ModelBuilder::new();
+    b.static_node(1, Vec3::zeros(), nalgebra::Matrix3::identity()).static_node(2, Vec3::new(0.5, 0.0, 0.0), nalgebra::Matrix3::identity()).static_node(3, Vec3::new(1.0, 0.0, 0.0), nalgebra::Matrix3::identity());
+    let nodes = [0, 1, 2].map(|i| BeamNode::new(i as u32 + 1, Vec3::new(0.5 * i as f64, 0.0, 0.0), nalgebra::Matrix3::identity(), Vec3::zeros()));
+    let law = SectionLaw::viscoelastic(nalgebra::Matrix6::identity(), nalgebra::Matrix6::identity());
+    let beam = Beam3::new(7, nodes, [SectionOrientation::FromNodes, SectionOrientation::FromNodes], [law.clone(), law]).unwrap();
+    let message = beam.clone().with_update(BeamUpdate::Incremental).unwrap_err().to_string();
+    assert!(message.contains("beam 7") && message.contains("viscous"), "{message}");
+    b.element(beam);
+    let mut model = b.build().unwrap();
+    assert!(model.set_beam_update(BeamUpdate::Incremental).unwrap_err().contains("beam 7"));
+    model.set_beam_update(BeamUpdate::PathIndependent).unwrap();
 }
 
 /// MBDyn 1.7.3, `mbdyn -f cantilever.mbd -o out` on examples/cantilever.mbd with
