@@ -3,6 +3,8 @@
 //! interpolates the nodes' rotation increments of each step and accumulates the section
 //! frame and curvature, and romdyn with this update gives MBDyn's numbers on the same files.
 
+#![allow(clippy::excessive_precision)] // MBDyn's numbers as it prints them (17 digits)
+
 mod common;
 
 use std::path::Path;
