@@ -11,7 +11,7 @@ use std::path::Path;
 
 use common::cli::{romdyn, romdyn_at, temp_dir};
 use common::fixtures::Noise;
-use romdyn::analysis::run;
+use romdyn::analysis::{reference_state, run, Reference};
 use romdyn::dae::{check_jacobians, Assembler, State};
 use romdyn::element::{Beam3, BeamNode, BeamUpdate, SectionLaw, SectionOrientation};
 use romdyn::input::mbdyn::{read_model_text, SetOverrides};
@@ -46,6 +46,24 @@ fn with_the_incremental_update_the_tip_couple_equilibrium_follows_mbdyn_s_load_p
     for (h, mbdyn, tolerance) in [(1.0, 0.66458978410585801, 1e-11), (0.1, 0.66493938405041575, 3e-6), (0.01, 0.66494703856909065, 1e-10)] {
         let x = final_positions("tests/mbdyn_files/beam3_tip_couple.mbd", &[("H", h)], BeamUpdate::Incremental)[4].x;
         assert!((x - mbdyn).abs() < tolerance, "H = {h}: tip x {x:.15} m, MBDyn 1.7.3 {mbdyn:.15} m");
+    }
+}
+
+#[test]
+fn a_static_equilibrium_with_the_incremental_update_is_mbdyn_s_single_step() {
+    // The static solver ramps the loads without time steps, so no history is latched: the
+    // whole load is one step from the initial configuration. The tip couple held constant
+    // (`const, M` in place of the ramp) at the initial time, 1 or 10 load increments: MBDyn
+    // 1.7.3's one-step tip x, 0.66458978410585801 m (the ramp reaches M at its one step).
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files/beam3_tip_couple.mbd");
+    let text = std::fs::read_to_string(&path).unwrap().replace("ramp, M, 0., 1., 0.", "const, M");
+    let mut m = read_model_text(&text, &path, &SetOverrides::new()).unwrap_or_else(|e| panic!("{e}"));
+    m.model.set_beam_update(BeamUpdate::Incremental).unwrap();
+    let asm = Assembler::new(&m.model);
+    for load_steps in [1, 10] {
+        let st = reference_state(&m.model, &m.problem, Reference::Static { load_steps }).unwrap_or_else(|e| panic!("{e}"));
+        let x = st.node_frame(&asm.dofs, 4).kin.x.x;
+        assert!((x - 0.66458978410585801).abs() < 1e-11, "{load_steps} load steps: tip x {x:.15} m");
     }
 }
 
