@@ -9,7 +9,7 @@ mod common;
 
 use std::path::Path;
 
-use common::cli::{romdyn, romdyn_at, temp_dir};
+use common::cli::{romdyn, romdyn_at, temp_dir, write_file};
 use common::fixtures::Noise;
 use romdyn::analysis::{reference_state, run, Reference};
 use romdyn::dae::{check_jacobians, Assembler, State};
@@ -103,6 +103,11 @@ fn run_takes_beam_update_incremental_and_refuses_an_unknown_update() {
     assert!((default - 0.664630).abs() < 1e-6, "path independent: tip x {default}");
     let (ok, _, err) = romdyn(&["run", file.to_str().unwrap(), "--beam-update", "stepwise"]);
     assert!(!ok && err.contains("incremental") && err.contains("path-independent"), "{err}");
+    // A driven beam3 keeps the default update and is refused with the incremental one.
+    let text = std::fs::read_to_string(&file).unwrap().replace("    beam3: 2, 3, null", "    driven: 2, const, 1., beam3: 2, 3, null");
+    let driven = write_file(&dir, "driven.mbd", &text);
+    let (ok, _, err) = romdyn_at(&dir, &["run", &driven, "-o", "driven", "--beam-update", "incremental"]);
+    assert!(!ok && err.contains("beam3 2") && err.contains("driven"), "{err}");
 }
 
 #[test]
