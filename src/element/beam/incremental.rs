@@ -1,5 +1,6 @@
 //! MBDyn's incremental update of the 3-node beam, opt-in ([`BeamUpdate::Incremental`];
-//! MBDyn 1.7.3 beam.cc, `AfterPredict`, `AssStiffnessVec` and `AfterConvergence`).
+//! MBDyn 1.7.3 beam.cc, `AfterPredict`, `AssStiffnessVec` and `AfterConvergence`), and of
+//! the 2-node beam alike (beam2.cc: one point at the middle, linear interpolation).
 //!
 //! At each step the nodes' rotation increments are interpolated, not their total rotations:
 //! after the predictor, with `R_i,prev` the nodes' converged orientations of the previous
@@ -34,21 +35,22 @@ pub enum BeamUpdate {
     Incremental,
 }
 
-/// The per-step history of an incremental beam3, latched after each prediction.
+/// The per-step history of an incremental beam on `N` nodes with `S` evaluation points,
+/// latched after each prediction.
 #[derive(Clone, Debug)]
-pub struct StepHistory {
+pub struct StepHistory<const N: usize, const S: usize> {
     /// `P_i`: the base of Newton's rotation parameters (the predicted orientations).
-    pub base: [Mat3; 3],
+    pub base: [Mat3; N],
     /// `R_s,ref` per evaluation point.
-    pub frames: [Mat3; 2],
+    pub frames: [Mat3; S],
     /// `κ_ref` per evaluation point [1/m].
-    pub curvatures: [Vec3; 2],
+    pub curvatures: [Vec3; S],
 }
 
-impl StepHistory {
+impl<const N: usize, const S: usize> StepHistory<N, S> {
     /// The history a state carries, `initial` where it carries none.
-    pub fn of(st: &dyn ElementState, initial: impl FnOnce() -> StepHistory) -> StepHistory {
-        st.latched().and_then(|l| l.downcast_ref::<StepHistory>()).cloned().unwrap_or_else(initial)
+    pub fn of(st: &dyn ElementState, initial: impl FnOnce() -> Self) -> Self {
+        st.latched().and_then(|l| l.downcast_ref::<Self>()).cloned().unwrap_or_else(initial)
     }
 
     pub fn latched(self) -> Latched {

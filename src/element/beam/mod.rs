@@ -141,12 +141,12 @@ impl Beam3 {
     }
 
     /// The history of the incremental update before any step: the initial configuration.
-    fn initial_history(&self) -> StepHistory {
+    fn initial_history(&self) -> StepHistory<3, 2> {
         StepHistory { base: self.initial, frames: [self.sections[0].orientation, self.sections[1].orientation], curvatures: [Vec3::zeros(); 2] }
     }
 
     /// Node terms and points of the incremental update with history `h`.
-    fn evaluate_incremental(&self, st: &dyn ElementState, h: &StepHistory) -> (NodeTerms, [SectionKinematics; 2]) {
+    fn evaluate_incremental(&self, st: &dyn ElementState, h: &StepHistory<3, 2>) -> (NodeTerms, [SectionKinematics; 2]) {
         let terms = NodeTerms::incremental(st, &self.offsets, &h.base);
         let k = std::array::from_fn(|s| {
             let reference = SectionReference { orientation: h.frames[s], accumulated_curvature: Some(h.curvatures[s]), ..self.sections[s].clone() };
@@ -212,7 +212,7 @@ impl Element for Beam3 {
         let (_, converged) = self.evaluate_incremental(before, &StepHistory::of(before, || self.initial_history()));
         let previous = StepHistory { base: std::array::from_fn(|i| before.node(i).r), frames: [converged[0].r, converged[1].r], curvatures: [converged[0].curvature, converged[1].curvature] };
         let (_, predicted) = self.evaluate_incremental(now, &previous);
-        Some(StepHistory { base: std::array::from_fn(|i| now.node(i).r), frames: [predicted[0].r, predicted[1].r], curvatures: [predicted[0].curvature, predicted[1].curvature] }.latched())
+        Some(StepHistory::<3, 2> { base: std::array::from_fn(|i| now.node(i).r), frames: [predicted[0].r, predicted[1].r], curvatures: [predicted[0].curvature, predicted[1].curvature] }.latched())
     }
 
     fn beam_update(&self, update: BeamUpdate) -> Option<Result<Box<dyn Element>, String>> {
