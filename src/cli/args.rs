@@ -36,7 +36,7 @@ impl From<SolverArg> for Solver {
     }
 }
 
-/// How 3-node beams follow their nodes' rotations (`--beam-update`).
+/// How beams (beam3, beam2) follow their nodes' rotations (`--beam-update`).
 #[derive(Clone, Copy, Debug, Default, ValueEnum)]
 pub enum BeamUpdateArg {
     /// Total rotations interpolated relative to the middle node: the beam is a function of the state, and a static equilibrium does not depend on load steps (default)
@@ -55,7 +55,7 @@ impl From<BeamUpdateArg> for BeamUpdate {
     }
 }
 
-/// Reads an MBDyn file with its 3-node beams' rotation update set to `update`.
+/// Reads an MBDyn file with its beams' rotation update set to `update`.
 pub fn read_model_with_beams(path: &std::path::Path, update: BeamUpdateArg) -> anyhow::Result<romdyn::input::mbdyn::MbdynModel> {
     let mut m = read_model(path)?;
     m.model.set_beam_update(update.into()).map_err(|e| anyhow::anyhow!("{}: --beam-update: {e}", path.display()))?;
@@ -120,7 +120,7 @@ pub struct PencilArgs {
     /// Eigensolver: dense QZ (every eigenvalue), sparse shift-invert Krylov–Schur (only the modes asked for, no n x n matrix; a progress bar on a terminal), or auto: sparse from 400 equations on, dense below or with --by dominance
     #[arg(long, value_enum, default_value = "auto")]
     pub solver: SolverArg,
-    /// Rotation update of 3-node beams: path-independent (default), or MBDyn 1.7.3's incremental one (per time step; a static equilibrium takes it as one step from the initial configuration)
+    /// Rotation update of beam3 and beam2: path-independent (default), or MBDyn 1.7.3's incremental one (per time step; a static equilibrium takes it as one step from the initial configuration)
     #[arg(long = "beam-update", value_enum, default_value = "path-independent")]
     pub beam_update: BeamUpdateArg,
 }

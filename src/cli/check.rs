@@ -19,7 +19,7 @@ pub struct CheckArgs {
     /// Largest accepted max |analytic - fd| / max(max |J_element|, 1)
     #[arg(long, default_value_t = JACOBIAN_CHECK_TOLERANCE)]
     pub tolerance: f64,
-    /// Rotation update of 3-node beams: path-independent (default), or MBDyn 1.7.3's incremental one
+    /// Rotation update of beam3 and beam2: path-independent (default), or MBDyn 1.7.3's incremental one
     #[arg(long = "beam-update", value_enum, default_value = "path-independent")]
     pub beam_update: super::args::BeamUpdateArg,
 }

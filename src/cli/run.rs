@@ -17,7 +17,7 @@ pub struct RunArgs {
     /// Output prefix: writes PREFIX.out, .mov, .log and PREFIX.m/.json (PREFIX_K.m/.json for several eigenanalyses); an existing directory DIR means DIR/NAME with NAME the file's stem [default: NAME in the current directory, NAME the file's stem]
     #[arg(short = 'o', long = "out", value_name = "PREFIX")]
     pub prefix: Option<PathBuf>,
-    /// Rotation update of 3-node beams: path-independent (default), or MBDyn 1.7.3's incremental one (MBDyn's numbers; path dependent)
+    /// Rotation update of beam3 and beam2: path-independent (default), or MBDyn 1.7.3's incremental one (MBDyn's numbers; path dependent)
     #[arg(long = "beam-update", value_enum, default_value = "path-independent")]
     pub beam_update: super::args::BeamUpdateArg,
 }

@@ -251,7 +251,7 @@ pub trait Element: Send + Sync {
     fn private_data(&self, _name: &str) -> Option<PrivateDatum> {
         None
     }
-    /// The element with a 3-node beam's rotation update set to `update`
+    /// The element with a beam's (beam3, beam2) rotation update set to `update`
     /// ([`super::BeamUpdate`]): `None` for elements it does not concern, an error where
     /// the element cannot take it.
     fn beam_update(&self, _update: super::BeamUpdate) -> Option<Result<Box<dyn Element>, String>> {

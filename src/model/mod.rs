@@ -74,7 +74,7 @@ pub struct Model {
 }
 
 impl Model {
-    /// Sets the rotation update of every 3-node beam ([`crate::element::BeamUpdate`];
+    /// Sets the rotation update of every beam3 and beam2 ([`crate::element::BeamUpdate`];
     /// path independent unless asked): an error names a beam that cannot take it.
     pub fn set_beam_update(&mut self, update: crate::element::BeamUpdate) -> Result<(), String> {
         for e in self.elements.iter_mut() {

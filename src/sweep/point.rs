@@ -26,7 +26,7 @@ pub struct SweepOptions {
     /// Each static equilibrium starts from the previous design point's (the points then run
     /// one after the other).
     pub continuation: bool,
-    /// The rotation update of the model's 3-node beams ([`crate::element::BeamUpdate`]).
+    /// The rotation update of the model's beams (beam3, beam2; [`crate::element::BeamUpdate`]).
     pub beam_update: crate::element::BeamUpdate,
 }
 

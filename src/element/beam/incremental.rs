@@ -22,7 +22,7 @@ use std::sync::Arc;
 use crate::element::contract::{ElementState, Latched};
 use crate::kinematics::{Mat3, Vec3};
 
-/// How a 3-node beam's section frames and curvatures follow its nodes' rotations.
+/// How a beam's (beam3, beam2) section frames and curvatures follow its nodes' rotations.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum BeamUpdate {
     /// Total rotations interpolated relative to the middle node: a function of the state
