@@ -25,6 +25,7 @@ fn pendulum_options() -> SweepOptions {
         form: RomForm::Ordinary,
         modes: 1,
         continuation: false,
+        beam_update: romdyn::element::BeamUpdate::PathIndependent,
     }
 }
 

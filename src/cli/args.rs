@@ -7,6 +7,7 @@ use std::io::IsTerminal;
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use romdyn::analysis::Reference;
+use romdyn::element::BeamUpdate;
 use romdyn::dae::{NodeInput, NodeOutput};
 use romdyn::input::eigen_pencil::PencilPorts;
 use romdyn::linear::EigenRoute;
@@ -33,6 +34,32 @@ impl From<SolverArg> for Solver {
             SolverArg::Sparse => Solver::Sparse,
         }
     }
+}
+
+/// How beams (beam3, beam2) follow their nodes' rotations (`--beam-update`).
+#[derive(Clone, Copy, Debug, Default, ValueEnum)]
+pub enum BeamUpdateArg {
+    /// Total rotations interpolated relative to the middle node: the beam is a function of the state, and a static equilibrium does not depend on load steps (default)
+    #[default]
+    PathIndependent,
+    /// MBDyn 1.7.3's beam.cc: rotation increments interpolated per time step, section frames and curvatures accumulated (MBDyn's numbers; path dependent; elastic section laws only)
+    Incremental,
+}
+
+impl From<BeamUpdateArg> for BeamUpdate {
+    fn from(u: BeamUpdateArg) -> Self {
+        match u {
+            BeamUpdateArg::PathIndependent => BeamUpdate::PathIndependent,
+            BeamUpdateArg::Incremental => BeamUpdate::Incremental,
+        }
+    }
+}
+
+/// Reads an MBDyn file with its beams' rotation update set to `update`.
+pub fn read_model_with_beams(path: &std::path::Path, update: BeamUpdateArg) -> anyhow::Result<romdyn::input::mbdyn::MbdynModel> {
+    let mut m = read_model(path)?;
+    m.model.set_beam_update(update.into()).map_err(|e| anyhow::anyhow!("{}: --beam-update: {e}", path.display()))?;
+    Ok(m)
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -93,6 +120,9 @@ pub struct PencilArgs {
     /// Eigensolver: dense QZ (every eigenvalue), sparse shift-invert Krylov–Schur (only the modes asked for, no n x n matrix; a progress bar on a terminal), or auto: sparse from 400 equations on, dense below or with --by dominance
     #[arg(long, value_enum, default_value = "auto")]
     pub solver: SolverArg,
+    /// Rotation update of beam3 and beam2: path-independent (default), or MBDyn 1.7.3's incremental one (per time step; a static equilibrium takes it as one step from the initial configuration)
+    #[arg(long = "beam-update", value_enum, default_value = "path-independent")]
+    pub beam_update: BeamUpdateArg,
 }
 
 impl PencilArgs {
@@ -111,7 +141,8 @@ impl PencilArgs {
                 Study::from_pencil_file(path, &ports, eigen)
             }
             (None, Some(path)) => {
-                let m = read_model(path)?;
+                let mut m = read_model(path)?;
+                m.model.set_beam_update(self.beam_update.into()).map_err(|message| StudyError::Option { option: "--beam-update", message: format!("{}: {message}", path.display()) })?;
                 let progress = SolverProgress::new();
                 let result = Study::of_model_with_progress(m.model, &m.problem, self.reference.reference(), &self.ports()?, eigen, None, &|line| progress.report(line));
                 progress.finish();

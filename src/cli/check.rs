@@ -6,7 +6,6 @@ use std::path::PathBuf;
 use anyhow::{Context, Result};
 use clap::Args;
 use romdyn::analysis::{check_model_jacobians, JACOBIAN_CHECK_TOLERANCE};
-use romdyn::input::mbdyn::read_model;
 
 use super::args::ReferenceArgs;
 
@@ -20,10 +19,13 @@ pub struct CheckArgs {
     /// Largest accepted max |analytic - fd| / max(max |J_element|, 1)
     #[arg(long, default_value_t = JACOBIAN_CHECK_TOLERANCE)]
     pub tolerance: f64,
+    /// Rotation update of beam3 and beam2: path-independent (default), or MBDyn 1.7.3's incremental one
+    #[arg(long = "beam-update", value_enum, default_value = "path-independent")]
+    pub beam_update: super::args::BeamUpdateArg,
 }
 
 pub fn run(a: CheckArgs) -> Result<()> {
-    let m = read_model(&a.file)?;
+    let m = super::args::read_model_with_beams(&a.file, a.beam_update)?;
     let check = check_model_jacobians(&m.model, &m.problem, a.reference.reference(), a.tolerance).with_context(|| format!("{}: reference solution", a.file.display()))?;
     print!("{}", check.to_text());
     let failed = check.failures().count();

@@ -66,6 +66,7 @@ pub fn run(a: SweepArgs) -> Result<()> {
         form: a.rom.form(),
         modes: a.lowest,
         continuation: a.continuation,
+        beam_update: a.pencil.beam_update.into(),
     };
     let bar = if std::io::stderr().is_terminal() { ProgressBar::new(points.len() as u64) } else { ProgressBar::hidden() };
     bar.set_style(ProgressStyle::with_template("{bar:30} {pos}/{len} design points eta {eta}").unwrap_or_else(|_| ProgressStyle::default_bar()));

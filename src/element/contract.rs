@@ -251,6 +251,12 @@ pub trait Element: Send + Sync {
     fn private_data(&self, _name: &str) -> Option<PrivateDatum> {
         None
     }
+    /// The element with a beam's (beam3, beam2) rotation update set to `update`
+    /// ([`super::BeamUpdate`]): `None` for elements it does not concern, an error where
+    /// the element cannot take it.
+    fn beam_update(&self, _update: super::BeamUpdate) -> Option<Result<Box<dyn Element>, String>> {
+        None
+    }
     /// Internal forces and deformation at the element's evaluation points (beams), for
     /// output; none for other elements.
     fn sections(&self, _s: &dyn ElementState) -> Vec<SectionState> {

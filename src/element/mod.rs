@@ -51,7 +51,7 @@ mod viscous_body;
 mod wrapper;
 mod screw_friction;
 
-pub use beam::{shape as beam_shape, Beam2, Beam3, BeamError, BeamNode, SectionLaw, SectionOrientation};
+pub use beam::{shape as beam_shape, Beam2, Beam3, BeamError, BeamUpdate, BeamNode, SectionLaw, SectionOrientation};
 pub use beam_slider::{BeamSlider, SliderBeam, SliderKind};
 pub use bistop_rod::{BistopRod, BistopStatus};
 pub use body::RigidBody;

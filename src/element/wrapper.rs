@@ -9,7 +9,7 @@
 //! and in the blanket `impl Element`; otherwise wrappers fall back to its default.
 
 use super::contract::{Element, ElementState, JacobianSink, Label, Latched, PrivateDatum, ResidualSink, SectionState};
-use super::HintValue;
+use super::{BeamUpdate, HintValue};
 
 /// An element built around another one. Each method forwards to [`ElementWrapper::inner`]
 /// by default; `hinted` has no default because a hinted element must be wrapped again
@@ -77,6 +77,15 @@ pub trait ElementWrapper: Send + Sync {
     fn sections(&self, s: &dyn ElementState) -> Vec<SectionState> {
         self.inner().sections(s)
     }
+    /// A wrapped beam keeps the default update: the wrapper would have to rebuild itself
+    /// around the changed beam, and a driven element with events is refused (driven.rs).
+    fn beam_update(&self, update: BeamUpdate) -> Option<Result<Box<dyn Element>, String>> {
+        let _ = self.inner().beam_update(update)?;
+        if update == BeamUpdate::PathIndependent {
+            return None;
+        }
+        Some(Err(format!("{} {}: the incremental beam update of a wrapped (driven) beam is not supported by romdyn", self.type_name(), self.label())))
+    }
 }
 
 impl<W: ElementWrapper> Element for W {
@@ -139,5 +148,8 @@ impl<W: ElementWrapper> Element for W {
     }
     fn sections(&self, s: &dyn ElementState) -> Vec<SectionState> {
         ElementWrapper::sections(self, s)
+    }
+    fn beam_update(&self, update: BeamUpdate) -> Option<Result<Box<dyn Element>, String>> {
+        ElementWrapper::beam_update(self, update)
     }
 }

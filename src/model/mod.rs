@@ -74,6 +74,17 @@ pub struct Model {
 }
 
 impl Model {
+    /// Sets the rotation update of every beam3 and beam2 ([`crate::element::BeamUpdate`];
+    /// path independent unless asked): an error names a beam that cannot take it.
+    pub fn set_beam_update(&mut self, update: crate::element::BeamUpdate) -> Result<(), String> {
+        for e in self.elements.iter_mut() {
+            if let Some(changed) = e.beam_update(update) {
+                *e = changed?;
+            }
+        }
+        Ok(())
+    }
+
     /// Index of the node with this label.
     pub fn node_index(&self, label: Label) -> Option<usize> {
         self.node_indices.get(&label).copied()

@@ -26,6 +26,8 @@ pub struct SweepOptions {
     /// Each static equilibrium starts from the previous design point's (the points then run
     /// one after the other).
     pub continuation: bool,
+    /// The rotation update of the model's beams (beam3, beam2; [`crate::element::BeamUpdate`]).
+    pub beam_update: crate::element::BeamUpdate,
 }
 
 /// What a design point gives.
@@ -50,7 +52,8 @@ pub fn overrides(names: &[String], values: &[f64]) -> SetOverrides {
 /// Runs one design point on the text of the MBDyn file `name` (the name only labels messages
 /// and resolves includes). `start`: the previous point's reference solution (continuation).
 pub fn run_point(text: &str, name: &Path, names: &[String], values: &[f64], options: &SweepOptions, start: Option<&State>) -> Result<PointResult, StudyError> {
-    let m = read_model_text(text, name, &overrides(names, values))?;
+    let mut m = read_model_text(text, name, &overrides(names, values))?;
+    m.model.set_beam_update(options.beam_update).map_err(|message| StudyError::Option { option: "beam update", message: format!("{}: {message}", name.display()) })?;
     let eigen = options.eigen.for_request(&options.rom);
     let (study, state) = Study::of_model(m.model, &m.problem, options.reference, &options.ports, eigen, start).map_err(|e| e.in_file(name))?;
     let rom = study.reduce(&options.rom)?;

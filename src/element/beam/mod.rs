@@ -8,19 +8,22 @@
 //! inertia: lump masses on its nodes with rigid bodies (see [`shape::volume_fractions`]).
 
 mod finite_volume;
+mod incremental;
 mod law;
 mod section;
 pub mod shape;
 mod two_node;
 
+pub use incremental::BeamUpdate;
 pub use law::SectionLaw;
 pub use two_node::Beam2;
 
 use nalgebra::{Matrix6, SMatrix, Vector6};
 
-use super::contract::{Element, ElementState, JacobianSink, Label, ResidualSink, SectionState};
+use super::contract::{Element, ElementState, JacobianSink, Label, Latched, ResidualSink, SectionState};
 use crate::kinematics::{gibbs_from_rotation, gibbs_rotation, Mat3, Vec3};
 use finite_volume::PointTangents;
+use incremental::StepHistory;
 use section::{combine, NodeTerms, SectionKinematics, SectionReference};
 
 /// One end or the middle of a beam: a node with its initial position and orientation (they
@@ -68,6 +71,8 @@ pub enum BeamError {
     BadOrientation(Label, &'static str),
     #[error("beam {0}: a viscous or viscoelastic section law on a {1} is not supported by romdyn (elastic laws only)")]
     Viscous(Label, &'static str),
+    #[error("beam {0}: the incremental beam update with a viscous or viscoelastic section law is not supported by romdyn (elastic laws only; the default path-independent update takes them)")]
+    IncrementalViscous(Label),
 }
 
 /// Three-node beam (MBDyn's `beam3`).
@@ -81,6 +86,7 @@ pub struct Beam3 {
     sections: [SectionReference; 2],
     laws: [SectionLaw; 2],
     viscous: bool,
+    update: BeamUpdate,
 }
 
 const POINT_NAMES: [&str; 2] = ["I", "II"];
@@ -110,7 +116,7 @@ impl Beam3 {
             if ((r0.transpose() * r0) - Mat3::identity()).norm() > 1e-9 || r0.determinant() < 0.0 {
                 return Err(BeamError::BadOrientation(label, POINT_NAMES[k]));
             }
-            sections.push(SectionReference { xi, orientation: r0, dsdxi, initial_strain: r0.transpose() * tangent });
+            sections.push(SectionReference { xi, orientation: r0, dsdxi, initial_strain: r0.transpose() * tangent, accumulated_curvature: None });
         }
         let viscous = laws.iter().any(SectionLaw::is_viscous);
         Ok(Beam3 {
@@ -121,10 +127,38 @@ impl Beam3 {
             sections: [sections[0].clone(), sections[1].clone()],
             laws,
             viscous,
+            update: BeamUpdate::PathIndependent,
         })
     }
 
+    /// The beam with `update` ([`BeamUpdate`]); the incremental update refuses viscous laws.
+    pub fn with_update(mut self, update: BeamUpdate) -> Result<Self, BeamError> {
+        if update == BeamUpdate::Incremental && self.viscous {
+            return Err(BeamError::IncrementalViscous(self.label));
+        }
+        self.update = update;
+        Ok(self)
+    }
+
+    /// The history of the incremental update before any step: the initial configuration.
+    fn initial_history(&self) -> StepHistory<3, 2> {
+        StepHistory { base: self.initial, frames: [self.sections[0].orientation, self.sections[1].orientation], curvatures: [Vec3::zeros(); 2] }
+    }
+
+    /// Node terms and points of the incremental update with history `h`.
+    fn evaluate_incremental(&self, st: &dyn ElementState, h: &StepHistory<3, 2>) -> (NodeTerms, [SectionKinematics; 2]) {
+        let terms = NodeTerms::incremental(st, &self.offsets, &h.base);
+        let k = std::array::from_fn(|s| {
+            let reference = SectionReference { orientation: h.frames[s], accumulated_curvature: Some(h.curvatures[s]), ..self.sections[s].clone() };
+            SectionKinematics::new(&terms, &reference)
+        });
+        (terms, k)
+    }
+
     fn evaluate(&self, st: &dyn ElementState) -> (NodeTerms, [SectionKinematics; 2]) {
+        if self.update == BeamUpdate::Incremental {
+            return self.evaluate_incremental(st, &StepHistory::of(st, || self.initial_history()));
+        }
         let terms = NodeTerms::new(st, &self.offsets, &self.initial, self.viscous);
         let k = [SectionKinematics::new(&terms, &self.sections[0]), SectionKinematics::new(&terms, &self.sections[1])];
         (terms, k)
@@ -162,6 +196,27 @@ impl Element for Beam3 {
     }
     fn nodes(&self) -> Vec<Label> {
         self.nodes.to_vec()
+    }
+
+    fn has_events(&self) -> bool {
+        self.update == BeamUpdate::Incremental
+    }
+
+    /// The incremental update's history of the step ([`incremental`]): the converged
+    /// frames and curvatures of `before` (MBDyn's `AfterConvergence`), advanced by the
+    /// predicted increments to `now` (`AfterPredict`).
+    fn latch(&self, now: &dyn ElementState, before: &dyn ElementState) -> Option<Latched> {
+        if self.update != BeamUpdate::Incremental {
+            return None;
+        }
+        let (_, converged) = self.evaluate_incremental(before, &StepHistory::of(before, || self.initial_history()));
+        let previous = StepHistory { base: std::array::from_fn(|i| before.node(i).r), frames: [converged[0].r, converged[1].r], curvatures: [converged[0].curvature, converged[1].curvature] };
+        let (_, predicted) = self.evaluate_incremental(now, &previous);
+        Some(StepHistory::<3, 2> { base: std::array::from_fn(|i| now.node(i).r), frames: [predicted[0].r, predicted[1].r], curvatures: [predicted[0].curvature, predicted[1].curvature] }.latched())
+    }
+
+    fn beam_update(&self, update: BeamUpdate) -> Option<Result<Box<dyn Element>, String>> {
+        Some(self.clone().with_update(update).map(|b| Box::new(b) as Box<dyn Element>).map_err(|e| e.to_string()))
     }
 
     /// Node `s` (the volume before point `s`) receives `F_s` and `M_s + (p_s − x_s) × F_s`;

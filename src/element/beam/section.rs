@@ -13,6 +13,15 @@
 //! - rates `ε̇ = R_sᵀ (ṗ′ + p′ × ω_s)`, `κ̇ = R_s⁰ᵀ (∂(Gᵀg′)/∂g ġ + Gᵀ ġ′)`, with
 //!   `ġ_i = Γ(g_i) Tᵀ (ω_i − ω_2)` and `ω_s = ω_2 + T G(g) ġ`.
 //!
+//! With MBDyn's incremental update ([`NodeTerms::incremental`], the opt-in
+//! [`super::BeamUpdate::Incremental`]) the rotations are instead interpolated from fixed
+//! per-step node orientations `P_i` (the predicted ones, or the previous converged ones
+//! for the predictor step): `T = I`, `R(g_i) = R_i P_iᵀ` for all three nodes, `R_s = R(g)
+//! R_s,ref` and `κ = R_s,refᵀ Gᵀ(g) g′ + κ_ref` (MBDyn 1.7.3 beam.cc, `AfterPredict` and
+//! `AssStiffnessVec`: `R_sᵀ G(g) g′` is the same vector), with `R_s,ref`, `κ_ref` the
+//! per-step history in [`SectionReference::orientation`] and
+//! [`SectionReference::accumulated_curvature`].
+//!
 //! Each derivative is a 3x36 [`Tangent`]: columns `12 i + 3 k + c` for node `i`, kind `k`
 //! (0 position, 1 rotation δθ, 2 velocity, 3 angular velocity), component `c`.
 
@@ -46,13 +55,19 @@ pub struct SectionReference {
     pub dsdxi: f64,
     /// `ε⁰ = R_s⁰ᵀ p′⁰` (axis 1 for a beam straight along its section axis).
     pub initial_strain: Vec3,
+    /// `κ_ref`, added to the curvature: the history of the incremental update (`None` for
+    /// the path-independent beam).
+    pub accumulated_curvature: Option<Vec3>,
 }
 
 /// Per-element values shared by both evaluation points (no derivatives: the residual
 /// needs none; [`NodeTerms::tangents`] adds them for the Jacobian).
 pub struct NodeTerms {
-    /// `T = R_2 R_2⁰ᵀ`.
+    /// `T = R_2 R_2⁰ᵀ` (identity for the incremental update).
     t: Mat3,
+    /// Whether the rotations are relative to the middle node (`g_2 = 0`), else to fixed
+    /// per-step orientations ([`NodeTerms::incremental`]).
+    middle_relative: bool,
     x: [Vec3; 3],
     /// `a_i = R_i f_i`.
     a: [Vec3; 3],
@@ -100,7 +115,19 @@ impl NodeTerms {
             }
             NodeRates { ydot, gdot }
         });
-        NodeTerms { t, x: std::array::from_fn(|i| n[i].x), a, y, g, gamma, omega, rates }
+        NodeTerms { t, middle_relative: true, x: std::array::from_fn(|i| n[i].x), a, y, g, gamma, omega, rates }
+    }
+
+    /// The node terms of MBDyn's incremental update: `R(g_i) = R_i P_iᵀ` for all three
+    /// nodes, `T = I` (no rates: viscous laws are refused with this update).
+    pub fn incremental(st: &dyn ElementState, offsets: &[Vec3; 3], base: &[Mat3; 3]) -> Self {
+        let n = [st.node(0), st.node(1), st.node(2)];
+        let a: [Vec3; 3] = std::array::from_fn(|i| n[i].r * offsets[i]);
+        let y = std::array::from_fn(|i| n[i].x + a[i]);
+        let g: [Vec3; 3] = std::array::from_fn(|i| gibbs_from_rotation(&(n[i].r * base[i].transpose())));
+        let gamma = std::array::from_fn(|i| gibbs_g_inverse(&g[i]));
+        let omega = std::array::from_fn(|i| n[i].omega);
+        NodeTerms { t: Mat3::identity(), middle_relative: false, x: std::array::from_fn(|i| n[i].x), a, y, g, gamma, omega, rates: None }
     }
 
     /// The nodes' positions `x_i`.
@@ -117,11 +144,18 @@ impl NodeTerms {
             d
         });
         let mut dg = [Tangent::zeros(); 3];
-        for i in [0, 2] {
-            // δg_i = Γ(g_i) Tᵀ (δθ_i − δθ_2).
-            let m = self.gamma[i] * tt;
-            put(&mut dg[i], i, ROTATION, &m);
-            put(&mut dg[i], 1, ROTATION, &-m);
+        if self.middle_relative {
+            for i in [0, 2] {
+                // δg_i = Γ(g_i) Tᵀ (δθ_i − δθ_2).
+                let m = self.gamma[i] * tt;
+                put(&mut dg[i], i, ROTATION, &m);
+                put(&mut dg[i], 1, ROTATION, &-m);
+            }
+        } else {
+            for (i, d) in dg.iter_mut().enumerate() {
+                // δg_i = Γ(g_i) δθ_i (the base P_i is fixed).
+                put(d, i, ROTATION, &self.gamma[i]);
+            }
         }
         let rates = self.rates.as_ref().map(|_| {
             let omega = &self.omega;
@@ -213,7 +247,10 @@ impl SectionKinematics {
         let tg = node.t * gm;
         let strain = rt * pp - reference.initial_strain;
         let dgt_gp = gibbs_gt_derivative(&g, &gp);
-        let curvature = r0t * gibbs_gt_apply(&g, &gp);
+        let mut curvature = r0t * gibbs_gt_apply(&g, &gp);
+        if let Some(kappa_ref) = &reference.accumulated_curvature {
+            curvature += kappa_ref;
+        }
         let mut s = SectionKinematics { p, r, strain, curvature, strain_rate: Vec3::zeros(), curvature_rate: Vec3::zeros(), nv, nd, pp, g, gp, gm, tg, r0t, dgt_gp, rates: None };
         if let Some(rates) = &node.rates {
             let ppd = combine(&nd, &rates.ydot);
@@ -235,7 +272,9 @@ impl SectionKinematics {
         let (dp, dpp) = (combine_t(nv, &nt.dy), combine_t(nd, &nt.dy));
         let (dg, dgp) = (combine_t(nv, &nt.dg), combine_t(nd, &nt.dg));
         let mut dtheta = self.tg * dg;
-        put(&mut dtheta, 1, ROTATION, &Mat3::identity());
+        if node.middle_relative {
+            put(&mut dtheta, 1, ROTATION, &Mat3::identity());
+        }
         let dstrain = rt * (dpp + skew(pp) * dtheta);
         let dcurvature = self.r0t * (self.dgt_gp * dg + gm.transpose() * dgp);
         let mut s = SectionTangents { dp, dtheta, dstrain, dcurvature, dstrain_rate: Tangent::zeros(), dcurvature_rate: Tangent::zeros() };

@@ -17,15 +17,21 @@
 //! MBDyn's beam2.cc interpolates the rotation increments of each step instead (as its
 //! beam3, README "Beams"); for a planar bending by any angle its midpoint frame and
 //! curvature, accumulated in small steps, are these. Viscous section laws are refused.
+//!
+//! With the opt-in [`BeamUpdate::Incremental`] the beam follows beam2.cc (MBDyn 1.7.3,
+//! `AfterPredict`, `AssStiffnessVec`; [`super::incremental`]): with per-step node bases
+//! `P_i`, `R(g_i) = R_i P_iᵀ`, `g = (g_1 + g_2)/2`, `g′ = (g_2 − g_1)/ℓ`, the section frame
+//! `R_s = R(g) R_s,ref` and the curvature `κ = R_s,refᵀ Gᵀ(g) g′ + κ_ref`.
 
 use nalgebra::{SMatrix, Vector6};
 
 use super::finite_volume::{self, put, PointTangents, POSITION};
-use super::{BeamError, BeamNode, SectionLaw, SectionOrientation};
-use crate::element::contract::{Element, ElementState, JacobianSink, Label, ResidualSink, SectionState};
+use super::incremental::StepHistory;
+use super::{BeamError, BeamNode, BeamUpdate, SectionLaw, SectionOrientation};
+use crate::element::contract::{Element, ElementState, JacobianSink, Label, Latched, ResidualSink, SectionState};
 use crate::element::deformable::inverse_rotation_jacobian;
 use crate::element::invariant_hinge::rotation_jacobian;
-use crate::kinematics::{rotation_vector, skew, Mat3, Vec3};
+use crate::kinematics::{gibbs_from_rotation, gibbs_g, gibbs_g_inverse, gibbs_gt_apply, gibbs_gt_derivative, gibbs_rotation, rotation_vector, skew, Mat3, Vec3};
 
 const ROTATION: usize = 1;
 
@@ -47,6 +53,7 @@ pub struct Beam2 {
     /// `ε⁰`.
     initial_strain: Vec3,
     law: SectionLaw,
+    update: BeamUpdate,
 }
 
 /// The evaluation point's state.
@@ -62,6 +69,16 @@ struct Point {
     h: Mat3,
     strain: Vec3,
     curvature: Vec3,
+    /// The incremental update's terms, when it is on.
+    incremental: Option<IncrementalTerms>,
+}
+
+/// What the incremental update's derivatives reuse: `g`, `g′`, `Γ(g_i)` and `R_s,ref`.
+struct IncrementalTerms {
+    g: Vec3,
+    gp: Vec3,
+    gamma: [Mat3; 2],
+    frame: Mat3,
 }
 
 /// The frame halfway from `a` to `b`: `a exp(rotvec(aᵀ b)/2)`, and `rotvec(aᵀ b)`.
@@ -101,10 +118,49 @@ impl Beam2 {
             length,
             initial_strain: r0.transpose() * (chord / length),
             law,
+            update: BeamUpdate::PathIndependent,
         })
     }
 
+    /// The beam with `update` ([`BeamUpdate`]).
+    pub fn with_update(mut self, update: BeamUpdate) -> Self {
+        self.update = update;
+        self
+    }
+
+    /// The history of the incremental update before any step: the initial configuration.
+    fn initial_history(&self) -> StepHistory<2, 1> {
+        StepHistory { base: self.initial, frames: [self.orientation], curvatures: [Vec3::zeros()] }
+    }
+
+    /// The point of the incremental update with history `h`.
+    fn evaluate_incremental(&self, st: &dyn ElementState, h: &StepHistory<2, 1>) -> Point {
+        let n = [st.node(0), st.node(1)];
+        let a: [Vec3; 2] = std::array::from_fn(|i| n[i].r * self.offsets[i]);
+        let y: [Vec3; 2] = std::array::from_fn(|i| n[i].x + a[i]);
+        let gi: [Vec3; 2] = std::array::from_fn(|i| gibbs_from_rotation(&(n[i].r * h.base[i].transpose())));
+        let (g, gp) = (0.5 * (gi[0] + gi[1]), (gi[1] - gi[0]) / self.length);
+        let frame = h.frames[0];
+        let r = gibbs_rotation(&g) * frame;
+        let pp = (y[1] - y[0]) / self.length;
+        Point {
+            x: [n[0].x, n[1].x],
+            a,
+            p: 0.5 * (y[0] + y[1]),
+            pp,
+            r,
+            d: Mat3::zeros(),
+            h: Mat3::zeros(),
+            strain: r.transpose() * pp - self.initial_strain,
+            curvature: frame.transpose() * gibbs_gt_apply(&g, &gp) + h.curvatures[0],
+            incremental: Some(IncrementalTerms { g, gp, gamma: std::array::from_fn(|i| gibbs_g_inverse(&gi[i])), frame }),
+        }
+    }
+
     fn evaluate(&self, st: &dyn ElementState) -> Point {
+        if self.update == BeamUpdate::Incremental {
+            return self.evaluate_incremental(st, &StepHistory::of(st, || self.initial_history()));
+        }
         let n = [st.node(0), st.node(1)];
         let delta: [Mat3; 2] = std::array::from_fn(|i| n[i].r * self.initial[i].transpose());
         let a: [Vec3; 2] = std::array::from_fn(|i| n[i].r * self.offsets[i]);
@@ -124,6 +180,7 @@ impl Beam2 {
             h,
             strain: r.transpose() * pp - self.initial_strain,
             curvature: self.orientation.transpose() * theta / self.length,
+            incremental: None,
         }
     }
 
@@ -141,6 +198,25 @@ impl Element for Beam2 {
     }
     fn nodes(&self) -> Vec<Label> {
         self.nodes.to_vec()
+    }
+
+    fn has_events(&self) -> bool {
+        self.update == BeamUpdate::Incremental
+    }
+
+    /// The incremental update's history of the step, as [`super::Beam3`]'s.
+    fn latch(&self, now: &dyn ElementState, before: &dyn ElementState) -> Option<Latched> {
+        if self.update != BeamUpdate::Incremental {
+            return None;
+        }
+        let converged = self.evaluate_incremental(before, &StepHistory::of(before, || self.initial_history()));
+        let previous = StepHistory { base: [before.node(0).r, before.node(1).r], frames: [converged.r], curvatures: [converged.curvature] };
+        let predicted = self.evaluate_incremental(now, &previous);
+        Some(StepHistory { base: [now.node(0).r, now.node(1).r], frames: [predicted.r], curvatures: [predicted.curvature] }.latched())
+    }
+
+    fn beam_update(&self, update: BeamUpdate) -> Option<Result<Box<dyn Element>, String>> {
+        Some(Ok(Box::new(self.clone().with_update(update))))
     }
 
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
@@ -164,13 +240,27 @@ impl Element for Beam2 {
         }
         let dp = 0.5 * (dy[0] + dy[1]);
         let dpp = (dy[1] - dy[0]) / self.length;
-        let (mut drel, mut dtheta) = (Tangent::zeros(), Tangent::zeros());
-        put(&mut drel, 0, ROTATION, &-k.d);
-        put(&mut drel, 1, ROTATION, &k.d);
-        put(&mut dtheta, 0, ROTATION, &(Mat3::identity() - k.h));
-        put(&mut dtheta, 1, ROTATION, &k.h);
+        let (dtheta, dcurvature) = match &k.incremental {
+            // δg_i = Γ(g_i) δθ_i; δθ_s = G(g) δg; δκ = R_s,refᵀ (∂(Gᵀ(g) g′)/∂g δg + Gᵀ(g) δg′).
+            Some(inc) => {
+                let (mut dg, mut dgp) = (Tangent::zeros(), Tangent::zeros());
+                for i in 0..2 {
+                    put(&mut dg, i, ROTATION, &(0.5 * inc.gamma[i]));
+                    put(&mut dgp, i, ROTATION, &(if i == 0 { -1.0 } else { 1.0 } / self.length * inc.gamma[i]));
+                }
+                let gm = gibbs_g(&inc.g);
+                (gm * dg, inc.frame.transpose() * (gibbs_gt_derivative(&inc.g, &inc.gp) * dg + gm.transpose() * dgp))
+            }
+            None => {
+                let (mut drel, mut dtheta) = (Tangent::zeros(), Tangent::zeros());
+                put(&mut drel, 0, ROTATION, &-k.d);
+                put(&mut drel, 1, ROTATION, &k.d);
+                put(&mut dtheta, 0, ROTATION, &(Mat3::identity() - k.h));
+                put(&mut dtheta, 1, ROTATION, &k.h);
+                (dtheta, self.orientation.transpose() * drel / self.length)
+            }
+        };
         let dstrain = k.r.transpose() * (dpp + skew(&k.pp) * dtheta);
-        let dcurvature = self.orientation.transpose() * drel / self.length;
         let point = PointTangents { dp: &dp, dtheta: &dtheta, dstrain: &dstrain, dcurvature: &dcurvature, rates: None };
         let mut jac = SMatrix::<f64, 12, 24>::zeros();
         finite_volume::add_point_jacobian(&mut jac, 0, &k.p, &k.r, &finite_volume::law_at(&self.law, &k.strain, &k.curvature, None), &point, &k.x);

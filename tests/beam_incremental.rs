@@ -1,0 +1,232 @@
+//! The opt-in incremental update of the three-node beam (`BeamUpdate::Incremental`,
+//! `--beam-update incremental`; README "beam.cc is incremental"): MBDyn 1.7.3's beam.cc
+//! interpolates the nodes' rotation increments of each step and accumulates the section
+//! frame and curvature, and romdyn with this update gives MBDyn's numbers on the same files.
+
+#![allow(clippy::excessive_precision)] // MBDyn's numbers as it prints them (17 digits)
+
+mod common;
+
+use std::path::Path;
+
+use common::cli::{romdyn, romdyn_at, temp_dir, write_file};
+use common::fixtures::Noise;
+use romdyn::analysis::{reference_state, run, Reference};
+use romdyn::dae::{check_jacobians, Assembler, State};
+use romdyn::element::{Beam2, Beam3, BeamNode, BeamUpdate, SectionLaw, SectionOrientation};
+use romdyn::input::mbdyn::{read_model_text, SetOverrides};
+use romdyn::kinematics::Vec3;
+use romdyn::linear::ConstraintForm;
+use romdyn::model::ModelBuilder;
+
+/// The final positions of every node of `file` (relative to the crate) with `overrides`
+/// and the beam update `update`.
+fn final_positions(file: &str, overrides: &[(&str, f64)], update: BeamUpdate) -> Vec<Vec3> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(file);
+    let text = std::fs::read_to_string(&path).unwrap();
+    let overrides = SetOverrides::from_iter(overrides.iter().map(|(k, v)| (k.to_string(), *v)));
+    let mut m = read_model_text(&text, &path, &overrides).unwrap_or_else(|e| panic!("{e}"));
+    m.model.set_beam_update(update).unwrap();
+    let report = run(&m.model, &m.problem, &mut ()).unwrap_or_else(|e| panic!("{e}"));
+    let asm = Assembler::new(&m.model);
+    (0..m.model.nodes.len()).map(|i| report.final_state.node_frame(&asm.dofs, i).kin.x).collect()
+}
+
+#[test]
+fn with_the_incremental_update_the_tip_couple_equilibrium_follows_mbdyn_s_load_path() {
+    // MBDyn 1.7.3 on tests/mbdyn_files/beam3_tip_couple.mbd (`mbdyn -f … -o out` with `H` set
+    // in the file, node 5's row of out.mov at t = 1 s; tests/beam_rotation.rs): tip x [m].
+    // romdyn with the incremental update, measured: 0.664589784106918 (1 step, 1.1e-12 m
+    // from MBDyn), 0.664941099009948 (10 steps, 1.7e-6 m), 0.664947038593803 (100 steps,
+    // 2.5e-11 m); the path-independent default gives 0.664630 for all three. With 10 steps
+    // the tips of steps 1 and 2 equal MBDyn's to 2.3e-15 m and part at step 3 (5.4e-7 m),
+    // the first whose predictor reads two past rates: after step 2 node 5's angular
+    // velocity is MBDyn's 0.19003 rad/s and romdyn's 0.25924 with equal positions (README:
+    // the nodes' rotation update, not the beam's).
+    for (h, mbdyn, tolerance) in [(1.0, 0.66458978410585801, 1e-11), (0.1, 0.66493938405041575, 3e-6), (0.01, 0.66494703856909065, 1e-10)] {
+        let x = final_positions("tests/mbdyn_files/beam3_tip_couple.mbd", &[("H", h)], BeamUpdate::Incremental)[4].x;
+        assert!((x - mbdyn).abs() < tolerance, "H = {h}: tip x {x:.15} m, MBDyn 1.7.3 {mbdyn:.15} m");
+    }
+}
+
+#[test]
+fn a_static_equilibrium_with_the_incremental_update_is_mbdyn_s_single_step() {
+    // The static solver ramps the loads without time steps, so no history is latched: the
+    // whole load is one step from the initial configuration. The tip couple held constant
+    // (`const, M` in place of the ramp) at the initial time, 1 or 10 load increments: MBDyn
+    // 1.7.3's one-step tip x, 0.66458978410585801 m (the ramp reaches M at its one step).
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files/beam3_tip_couple.mbd");
+    let text = std::fs::read_to_string(&path).unwrap().replace("ramp, M, 0., 1., 0.", "const, M");
+    let mut m = read_model_text(&text, &path, &SetOverrides::new()).unwrap_or_else(|e| panic!("{e}"));
+    m.model.set_beam_update(BeamUpdate::Incremental).unwrap();
+    let asm = Assembler::new(&m.model);
+    for load_steps in [1, 10] {
+        let st = reference_state(&m.model, &m.problem, Reference::Static { load_steps }).unwrap_or_else(|e| panic!("{e}"));
+        let x = st.node_frame(&asm.dofs, 4).kin.x.x;
+        assert!((x - 0.66458978410585801).abs() < 1e-11, "{load_steps} load steps: tip x {x:.15} m");
+    }
+}
+
+#[test]
+fn with_the_incremental_update_the_cantilever_example_gives_mbdyn_s_positions() {
+    // Largest distance of a node from MBDyn's at t = 0.1 s, measured: 3.6e-10 m with the
+    // incremental update, 8.41e-6 m with the path-independent default (README).
+    let mbdyn: Vec<Vec3> = MBDYN_CANTILEVER.iter().map(|(_, p)| Vec3::new(p[0], p[1], p[2])).collect();
+    let largest = |update| {
+        let x = final_positions("examples/cantilever.mbd", &[], update);
+        x.iter().zip(&mbdyn).map(|(a, b)| (a - b).norm()).fold(0.0, f64::max)
+    };
+    let incremental = largest(BeamUpdate::Incremental);
+    assert!(incremental < 1e-9, "incremental: {incremental:e} m from MBDyn");
+    let default = largest(BeamUpdate::PathIndependent);
+    assert!((8.3e-6..8.5e-6).contains(&default), "path independent: {default:e} m from MBDyn");
+}
+
+#[test]
+fn run_takes_beam_update_incremental_and_refuses_an_unknown_update() {
+    // tests/mbdyn_files/beam3_tip_couple.mbd as written (H = 1, one step), node 5's row of the
+    // .mov at t = 1 s; MBDyn 1.7.3: tip x 0.66458978410585801 m (tests/beam_rotation.rs).
+    let dir = temp_dir("beam-update-incremental");
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files/beam3_tip_couple.mbd");
+    let tip_x = |update: &str| {
+        let (ok, _, err) = romdyn_at(&dir, &["run", file.to_str().unwrap(), "-o", update, "--beam-update", update]);
+        assert!(ok, "{err}");
+        let mov = std::fs::read_to_string(dir.join(format!("{update}.mov"))).unwrap();
+        let last = mov.lines().last().unwrap().split_whitespace().map(|c| c.parse::<f64>().unwrap()).collect::<Vec<_>>();
+        assert_eq!(last[0], 5.0);
+        last[1]
+    };
+    let incremental = tip_x("incremental");
+    assert!((incremental - 0.66458978410585801).abs() < 1e-11, "incremental: tip x {incremental}");
+    // The default, path independent: 0.664630 m (tests/beam_rotation.rs).
+    let default = tip_x("path-independent");
+    assert!((default - 0.664630).abs() < 1e-6, "path independent: tip x {default}");
+    let (ok, _, err) = romdyn(&["run", file.to_str().unwrap(), "--beam-update", "stepwise"]);
+    assert!(!ok && err.contains("incremental") && err.contains("path-independent"), "{err}");
+    // A driven beam3 keeps the default update and is refused with the incremental one.
+    let text = std::fs::read_to_string(&file).unwrap().replace("    beam3: 2, 3, null", "    driven: 2, const, 1., beam3: 2, 3, null");
+    let driven = write_file(&dir, "driven.mbd", &text);
+    let (ok, _, err) = romdyn_at(&dir, &["run", &driven, "-o", "driven", "--beam-update", "incremental"]);
+    assert!(!ok && err.contains("beam3 2") && err.contains("driven"), "{err}");
+}
+
+#[test]
+fn the_incremental_update_refuses_a_viscous_section_law() {
+    let mut b = ModelBuilder::new();
+    b.static_node(1, Vec3::zeros(), nalgebra::Matrix3::identity()).static_node(2, Vec3::new(0.5, 0.0, 0.0), nalgebra::Matrix3::identity()).static_node(3, Vec3::new(1.0, 0.0, 0.0), nalgebra::Matrix3::identity());
+    let nodes = [0, 1, 2].map(|i| BeamNode::new(i as u32 + 1, Vec3::new(0.5 * i as f64, 0.0, 0.0), nalgebra::Matrix3::identity(), Vec3::zeros()));
+    let law = SectionLaw::viscoelastic(nalgebra::Matrix6::identity(), nalgebra::Matrix6::identity());
+    let beam = Beam3::new(7, nodes, [SectionOrientation::FromNodes, SectionOrientation::FromNodes], [law.clone(), law]).unwrap();
+    let message = beam.clone().with_update(BeamUpdate::Incremental).unwrap_err().to_string();
+    assert!(message.contains("beam 7") && message.contains("viscous"), "{message}");
+    b.element(beam);
+    let mut model = b.build().unwrap();
+    assert!(model.set_beam_update(BeamUpdate::Incremental).unwrap_err().contains("beam 7"));
+    model.set_beam_update(BeamUpdate::PathIndependent).unwrap();
+}
+
+/// MBDyn 1.7.3, `mbdyn -f cantilever.mbd -o out` on examples/cantilever.mbd with
+/// `output precision: 16;` added to its control data: each node's position in the last
+/// 21 rows of out.mov (t = 0.1 s, the 1000th step).
+const MBDYN_CANTILEVER: [(u32, [f64; 3]); 21] = [
+    (1, [0.0000000000000000e+00, 0.0000000000000000e+00, 0.0000000000000000e+00]),
+    (2, [4.9999518038280219e-02, -2.3033813251018340e-04, 0.0000000000000000e+00]),
+    (3, [9.9995256131927959e-02, -8.8699112657301580e-04, 0.0000000000000000e+00]),
+    (4, [1.4998466660654955e-01, -1.9210692229529201e-03, 0.0000000000000000e+00]),
+    (5, [1.9996582836780305e-01, -3.2972723500672911e-03, 0.0000000000000000e+00]),
+    (6, [2.4993727070526753e-01, -4.9904641383024823e-03, 0.0000000000000000e+00]),
+    (7, [2.9989715854181465e-01, -6.9958015654957338e-03, 0.0000000000000000e+00]),
+    (8, [3.4984338361923811e-01, -9.3164360867407613e-03, 0.0000000000000000e+00]),
+    (9, [3.9977339525537808e-01, -1.1963027395890145e-02, 0.0000000000000000e+00]),
+    (10, [4.4968444364902005e-01, -1.4945753791534559e-02, 0.0000000000000000e+00]),
+    (11, [4.9957399230523758e-01, -1.8268724710865349e-02, 0.0000000000000000e+00]),
+    (12, [5.4943973209584152e-01, -2.1931697778061785e-02, 0.0000000000000000e+00]),
+    (13, [5.9927997236760433e-01, -2.5926643742885801e-02, 0.0000000000000000e+00]),
+    (14, [6.4909345793024298e-01, -3.0242519003689697e-02, 0.0000000000000000e+00]),
+    (15, [6.9887952439867718e-01, -3.4863912380989508e-02, 0.0000000000000000e+00]),
+    (16, [7.4863797872407833e-01, -3.9773791624106207e-02, 0.0000000000000000e+00]),
+    (17, [7.9836930073108692e-01, -4.4951190228563261e-02, 0.0000000000000000e+00]),
+    (18, [8.4807465328541587e-01, -5.0372314556645655e-02, 0.0000000000000000e+00]),
+    (19, [8.9775675211860095e-01, -5.6002430194357584e-02, 0.0000000000000000e+00]),
+    (20, [9.4741986199027228e-01, -6.1797693592292133e-02, 0.0000000000000000e+00]),
+    (21, [9.9707223747364382e-01, -6.7684010788759838e-02, 0.0000000000000000e+00]),
+];
+
+/// `st` with every unknown and rate moved by `size` times a random number.
+fn moved(st: &State, size: f64, n: &mut Noise) -> State {
+    let mut out = st.clone();
+    for x in out.y.iter_mut().chain(out.yp.iter_mut()) {
+        *x += size * n.next();
+    }
+    out
+}
+
+#[test]
+fn the_incremental_beam3_and_beam2_jacobians_match_finite_differences_with_a_latched_history() {
+    for form in [ConstraintForm::Plain, ConstraintForm::Scaled] {
+        let mut n = Noise(4242);
+        let mut b = ModelBuilder::new();
+        b.static_node(1, n.vec(), n.rotation()).dynamic_node(2, n.vec(), n.rotation(), n.vec(), n.vec()).dynamic_node(3, n.vec(), n.rotation(), n.vec(), n.vec());
+        let law = |n: &mut Noise| {
+            let a = nalgebra::Matrix6::from_fn(|_, _| n.next());
+            let mut law = SectionLaw::viscoelastic(1e3 * (a * a.transpose() + nalgebra::Matrix6::identity()), nalgebra::Matrix6::zeros());
+            law.prestrain = 1e-2 * nalgebra::Vector6::from_fn(|_, _| n.next());
+            law.prestress = nalgebra::Vector6::from_fn(|_, _| n.next());
+            law
+        };
+        let nodes = [0, 1, 2].map(|i| {
+            let m = &b.nodes()[i];
+            BeamNode::new(m.label, m.position, m.orientation, 0.3 * n.vec()).with_orientation(n.rotation())
+        });
+        let laws = [law(&mut n), law(&mut n)];
+        let beam = Beam3::new(30, nodes, [SectionOrientation::FromNodes, SectionOrientation::Given(n.rotation())], laws).unwrap();
+        b.element(beam.with_update(BeamUpdate::Incremental).unwrap()).constraint_form(form);
+        let ends = [0, 2].map(|i| {
+            let m = &b.nodes()[i];
+            BeamNode::new(m.label, m.position, m.orientation, 0.3 * n.vec()).with_orientation(n.rotation())
+        });
+        b.element(Beam2::new(31, ends, SectionOrientation::FromNodes, law(&mut n)).unwrap().with_update(BeamUpdate::Incremental));
+        let model = b.build().unwrap();
+        let asm = Assembler::new(&model);
+        assert!(asm.has_events());
+        // Two steps of history: each latched from a converged state `before` to a predicted
+        // one `now`, every orientation moved by up to about 0.3 rad each time.
+        let start = State::initial(&model, &asm.dofs);
+        let mut first = moved(&start, 0.3, &mut n);
+        asm.latch_events(&mut first, &start);
+        let converged = moved(&first, 0.1, &mut n);
+        let mut second = moved(&converged, 0.3, &mut n);
+        asm.latch_events(&mut second, &converged);
+        assert!(second.latched[0].is_some() && second.latched[1].is_some());
+        // Newton's iterate: away from the prediction.
+        let mut checked = moved(&second, 0.2, &mut n);
+        checked.t = 0.4;
+        // The history matters: the residual differs from the initial history's.
+        let mut fresh = checked.clone();
+        fresh.latched = vec![None; 2];
+        let (r, r0) = (asm.residual(&checked, ConstraintForm::Plain, 1.0), asm.residual(&fresh, ConstraintForm::Plain, 1.0));
+        let change = r.iter().zip(&r0).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+        let size = r.iter().map(|a| a.abs()).fold(0.0, f64::max);
+        assert!(change > 1e-2 * size, "{form:?}: the history changes the residual by {change:e} only (largest entry {size:e})");
+        let worst = check_jacobians(&asm, &checked, 0.37, form);
+        for w in &worst {
+            eprintln!("{form:?}: {} worst relative error {:e}", w.element, w.relative_error);
+            assert!(w.relative_error < 1e-6, "{form:?}: {} d({})/d({}): analytic {:e}, fd {:e} (error {:e})", w.element, w.equation, w.unknown, w.analytic, w.finite_difference, w.relative_error);
+        }
+    }
+}
+
+#[test]
+fn with_the_incremental_update_beam2_follows_mbdyn_s_load_path() {
+    // MBDyn 1.7.3 on tests/mbdyn_files/beam2_tip_couple.mbd (tests/beam2.rs), tip x, y [m]:
+    // romdyn with the incremental update, measured: 2e-16 m from MBDyn in 1 step, 1.07e-5 m
+    // in 10 (steps 1 and 2 equal MBDyn's to 2.2e-15 m, step 3 parts by 2.4e-6 m: the same
+    // predictor difference as beam3's, not the beam's), 1.4e-10 m in 100; the
+    // path-independent default gives the exact polygon at any step, 5.6e-3 m from MBDyn's
+    // one step.
+    for (h, mbdyn, tolerance) in [(1.0, [0.66408072228358794, 0.62595307543082024], 1e-12), (0.1, [0.66879666471425070, 0.62322796243159206], 2e-5), (0.01, [0.66890873831301589, 0.62315368821288930], 1e-9)] {
+        let x = final_positions("tests/mbdyn_files/beam2_tip_couple.mbd", &[("H", h)], BeamUpdate::Incremental)[4];
+        let d = (x - Vec3::new(mbdyn[0], mbdyn[1], 0.0)).norm();
+        assert!(d < tolerance, "H = {h}: tip {x:?}, {d:e} m from MBDyn 1.7.3's {mbdyn:?}");
+    }
+}
