@@ -8,6 +8,7 @@
 #   scripts/compare_mbdyn.sh FOLDER [OUTDIR]
 #   MBDYN=/path/to/mbdyn ROMDYN=target/release/romdyn scripts/compare_mbdyn.sh examples
 #   TIMEOUT=60 scripts/compare_mbdyn.sh /work/mbdyn-collection   (see mbdyn_collection.sh)
+#   ROMDYN_ARGS="--beam-update incremental" scripts/compare_mbdyn.sh examples
 #
 # The files are FOLDER/*.mbd, or the paths listed in FOLDER/list.txt when it exists (MBDyn
 # input files often have no extension). Each program runs in the file's own directory (so
@@ -26,6 +27,8 @@
 #   eig  Re Im (mbdyn)  Re Im (romdyn)  |Δλ|/|λ|         (eigenvalues with Im > 1e-3 rad/s, by Im: numerically split zero eigenvalues, |λ| ≈ 1e-6, are not modes)
 #   worst: position RELDIFF, eigenvalue RELDIFF
 set -u
+# Extra options of `romdyn run` (e.g. MBDyn's incremental beams), split on spaces.
+read -r -a romdyn_args <<< "${ROMDYN_ARGS:-}"
 folder=${1:?usage: compare_mbdyn.sh FOLDER [OUTDIR]}
 out=${2:-$(mktemp -d /tmp/compare_mbdyn.XXXXXX)}
 mbdyn=${MBDYN:-$HOME/mbdyn/bin/mbdyn}
@@ -81,7 +84,7 @@ while IFS= read -r f; do
         mstate=$( (cd "$dir" && timeout "$limit" "$mbdyn" -f "$base" -o "$m/$name" > "$m/stdout" 2>&1 < /dev/null); rc=$?; [ $rc -eq 0 ] && echo ok || { [ $rc -eq 124 ] && echo timeout || echo failed; })
         echo "$mstate" > "$m/state"
     fi
-    rstate=$( (cd "$dir" && timeout "$limit" "$romdyn" run "$base" -o "$r/$name" > "$r/stdout" 2> "$r/stderr" < /dev/null); rc=$?; [ $rc -eq 0 ] && echo ok || { [ $rc -eq 124 ] && echo timeout || echo failed; })
+    rstate=$( (cd "$dir" && timeout "$limit" "$romdyn" run "$base" ${romdyn_args[@]+"${romdyn_args[@]}"} -o "$r/$name" > "$r/stdout" 2> "$r/stderr" < /dev/null); rc=$?; [ $rc -eq 0 ] && echo ok || { [ $rc -eq 124 ] && echo timeout || echo failed; })
     ms=$mstate; [ "$mstate" = failed ] && ms="failed ($(grep -v '^$' "$m/stdout" | grep -iv 'aborting' | tail -1))"
     rerr=$(grep -m1 -E 'error' "$r/stderr" | tr '\t' ' ' | sed -E 's/^[^ ]*:[0-9]+:[0-9]+: //; s/^error: //')
     [ -z "$rerr" ] && rerr=$(head -1 "$r/stderr")
