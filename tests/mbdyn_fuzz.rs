@@ -36,6 +36,7 @@ const WORDS: &[&str] = &[
     "crank nicolson", "implicit euler", "bdf", "order", "tolerance", "max iterations", "eigenanalysis", "list", "parameter", "output matrices",
     "use lapack", "balance", "abort after", "real", "integer", "bool", "string", "ifndef", "pi", "e", "sin", "sqrt", "log", "atan2", "x", "L",
     "beam slider", "type", "classic", "spherical", "spline", "same", "initial beam", "initial node", "smearing", "hinge", "screw", "pitch",
+    "brake", "friction", "preload", "modlugre", "simple", "template drive caller", "variable body", "3x3", "6x6",
 ];
 
 const SYMBOLS: &[&str] = &[":", ",", ";", "(", ")", "[", "]", "+", "-", "*", "/", "%", "^", "=", "==", "!", "&&", "||", "::", "~|", "<", ">=", "\"", "#", "/*", "*/"];
@@ -126,7 +127,7 @@ fn mutated_examples_never_panic() {
     let examples: Vec<String> = ["pendulum", "inverted_pendulum", "double_pendulum", "mass_on_springs", "spatial_mechanism"]
         .iter()
         .map(|f| format!("examples/{f}.mbd"))
-        .chain(["beam_slider", "screw"].iter().map(|f| format!("tests/mbdyn_files/{f}.mbd")))
+        .chain(["beam_slider", "screw", "brake", "variable_mass_body", "rod_prestrain", "template_drive_cards"].iter().map(|f| format!("tests/mbdyn_files/{f}.mbd")))
         .map(|f| std::fs::read_to_string(f).unwrap())
         .collect();
     let n = run(
