@@ -127,8 +127,8 @@ fn get<'py, T: FromPyObjectOwned<'py>>(d: &Bound<'py, PyDict>, key: &str) -> PyR
 }
 
 /// Keys a sweep's options dict may hold (those of `Model.study` and `Study.reduce`, plus
-/// "lowest" and "continuation").
-const KEYS: [&str; 20] = ["reference", "load_steps", "inputs", "outputs", "ports", "remove_springs", "imposed", "route", "dcoef", "solver", "count", "band", "modes", "residualize", "by", "below_band", "damping", "form", "lowest", "continuation"];
+/// "lowest", "continuation" and "beam_update", the CLI's `--beam-update`).
+const KEYS: [&str; 21] = ["beam_update", "reference", "load_steps", "inputs", "outputs", "ports", "remove_springs", "imposed", "route", "dcoef", "solver", "count", "band", "modes", "residualize", "by", "below_band", "damping", "form", "lowest", "continuation"];
 
 /// A sweep's options dict.
 pub fn sweep(d: &Bound<'_, PyDict>) -> PyResult<SweepOptions> {
@@ -161,5 +161,10 @@ pub fn sweep(d: &Bound<'_, PyDict>) -> PyResult<SweepOptions> {
     if continuation && !matches!(reference, Reference::Static { .. }) {
         return Err(bad("continuation", "needs reference=\"static\" (it starts each static equilibrium from the previous point's)"));
     }
-    Ok(SweepOptions { reference, ports, eigen, rom, form, modes, continuation })
+    let beam_update = match get::<String>(d, "beam_update")?.as_deref() {
+        None | Some("path-independent") => romdyn::element::BeamUpdate::PathIndependent,
+        Some("incremental") => romdyn::element::BeamUpdate::Incremental,
+        Some(u) => return Err(bad("beam_update", format!("'{u}': expected \"path-independent\" (default) or \"incremental\" (MBDyn 1.7.3's beam update)"))),
+    };
+    Ok(SweepOptions { reference, ports, eigen, rom, form, modes, continuation, beam_update })
 }

@@ -31,6 +31,14 @@ def test_failing_point_is_reported_and_the_others_kept(examples):
     assert np.allclose(r.modes[[0, 2], 0].imag, [omega(1.0, 1.0), omega(1.0, 2.0)], rtol=1e-6)
 
 
+def test_beam_update_option_is_checked(examples):
+    # The CLI's --beam-update; the pendulum has no beams, so both updates give its closed form.
+    r = romdyn.sweep(examples / "pendulum.mbd", set={"L": [1.0]}, beam_update="incremental", **OPTIONS)
+    assert r.ok.all() and np.allclose(r.modes[:, 0].imag, omega(np.array([1.0])), rtol=1e-6, atol=0)
+    with pytest.raises(Exception, match="beam_update.*'sideways'"):
+        romdyn.sweep(examples / "pendulum.mbd", set={"L": [1.0]}, beam_update="sideways", **OPTIONS)
+
+
 def test_dask_local_cluster_gives_byte_identical_arrays(examples):
     distributed = pytest.importorskip("distributed")
     local = romdyn.sweep(examples / "pendulum.mbd", set={"L": "0.5:4:8", "M": [1.0, -1.0]}, **OPTIONS)
