@@ -55,6 +55,18 @@ pub fn test_file(name: &str) -> std::path::PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files").join(name)
 }
 
+/// Each changed text of the file `name` of `tests/mbdyn_files/` (`original` its text) is
+/// refused with a message that holds `expected` and names the file (`name:line:col`).
+pub fn assert_refused(name: &str, original: &str, cases: &[(String, &str)]) {
+    for (changed, expected) in cases {
+        assert_ne!(changed, original, "{expected}: the change did not apply");
+        let err = parse_text(changed, &test_file(name)).and_then(|d| build(&d)).err().unwrap_or_else(|| panic!("accepted, expected {expected}"));
+        let message = err.to_string();
+        assert!(message.contains(expected), "{message}");
+        assert!(message.contains(&format!("{name}:")), "no file:line:col in {message}");
+    }
+}
+
 /// The model of a file of `tests/mbdyn_files/` with each `(old, new)` of its text replaced
 /// (every `old` must occur).
 pub fn rewritten_test_file(name: &str, replacements: &[(&str, &str)]) -> MbdynModel {
