@@ -22,7 +22,9 @@ from ._sweep import SweepResult, sweep
 __all__ = ["Model", "Study", "Rom", "RomdynError", "ModelError", "load", "sweep", "SweepResult"]
 
 
-def load(path, set=None):
+def load(path, set=None, beam_update=None):
     """Reads the MBDyn input file ``path``; ``set`` maps ``set:`` variables to the values
-    replacing the file's (its SI units). Same as ``Model(path, set=set)``."""
-    return Model(path, set=set)
+    replacing the file's (its SI units); ``beam_update``: "path-independent" (default) or
+    "incremental" (MBDyn 1.7.3's beam update, the CLI's ``--beam-update``). Same as
+    ``Model(path, set=set, beam_update=beam_update)``."""
+    return Model(path, set=set, beam_update=beam_update)

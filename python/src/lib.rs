@@ -53,6 +53,8 @@ struct Model {
     text: String,
     name: PathBuf,
     overrides: SetOverrides,
+    /// The beams' rotation update (the CLI's `--beam-update`).
+    beam_update: romdyn::element::BeamUpdate,
     #[pyo3(get)]
     /// Labels of the structural nodes.
     nodes: Vec<u32>,
@@ -63,34 +65,40 @@ struct Model {
 
 impl Model {
     fn read(&self) -> Result<MbdynModel, StudyError> {
-        Ok(read_model_text(&self.text, &self.name, &self.overrides)?)
+        let mut m = read_model_text(&self.text, &self.name, &self.overrides)?;
+        m.model.set_beam_update(self.beam_update).map_err(|message| StudyError::Option { option: "beam_update", message: format!("{}: {message}", self.name.display()) })?;
+        Ok(m)
     }
 
-    fn new_checked(text: String, name: PathBuf, overrides: SetOverrides) -> PyResult<Self> {
-        let m = read_model_text(&text, &name, &overrides).map_err(|e| ModelError::new_err(e.to_string()))?;
+    fn new_checked(text: String, name: PathBuf, overrides: SetOverrides, beam_update: Option<&str>) -> PyResult<Self> {
+        let beam_update = options::beam_update(beam_update)?;
+        let mut m = read_model_text(&text, &name, &overrides).map_err(|e| ModelError::new_err(e.to_string()))?;
+        m.model.set_beam_update(beam_update).map_err(|e| ModelError::new_err(format!("{}: beam_update: {e}", name.display())))?;
         let nodes = m.model.nodes.iter().map(|n| n.label).collect();
         let equations = romdyn::dae::Assembler::new(&m.model).dofs.len;
-        Ok(Model { text, name, overrides, nodes, equations })
+        Ok(Model { text, name, overrides, beam_update, nodes, equations })
     }
 }
 
 #[pymethods]
 impl Model {
     /// Reads the MBDyn input file `path`; `set` maps `set:` variables of the file to the values
-    /// that replace theirs (SI units of the file). Raises ModelError with file:line:col.
+    /// that replace theirs (SI units of the file); `beam_update`: "path-independent" (default)
+    /// or "incremental" (MBDyn 1.7.3's, the CLI's `--beam-update`). Raises ModelError with
+    /// file:line:col.
     #[new]
-    #[pyo3(signature = (path, set = None))]
-    fn new(path: PathBuf, set: Option<SetOverrides>) -> PyResult<Self> {
+    #[pyo3(signature = (path, set = None, beam_update = None))]
+    fn new(path: PathBuf, set: Option<SetOverrides>, beam_update: Option<&str>) -> PyResult<Self> {
         let text = romdyn::input::text_file::read_text_file(&path).map_err(|e| ModelError::new_err(format!("{}: error: {}", path.display(), e.message)))?;
-        Self::new_checked(text, path, set.unwrap_or_default())
+        Self::new_checked(text, path, set.unwrap_or_default(), beam_update)
     }
 
     /// A model from the text of an MBDyn input file; `name` labels messages and resolves
     /// includes.
     #[staticmethod]
-    #[pyo3(signature = (text, name = "model.mbd".into(), set = None))]
-    fn from_text(text: String, name: PathBuf, set: Option<SetOverrides>) -> PyResult<Self> {
-        Self::new_checked(text, name, set.unwrap_or_default())
+    #[pyo3(signature = (text, name = "model.mbd".into(), set = None, beam_update = None))]
+    fn from_text(text: String, name: PathBuf, set: Option<SetOverrides>, beam_update: Option<&str>) -> PyResult<Self> {
+        Self::new_checked(text, name, set.unwrap_or_default(), beam_update)
     }
 
     /// The file's text (a sweep's work unit).

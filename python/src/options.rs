@@ -67,6 +67,16 @@ pub fn sparse_target(count: Option<usize>, band: Option<(f64, f64)>) -> PyResult
     }
 }
 
+/// The CLI's `--beam-update`: None or "path-independent" (default), "incremental" (MBDyn
+/// 1.7.3's beam update of beam3 and beam2).
+pub fn beam_update(u: Option<&str>) -> PyResult<romdyn::element::BeamUpdate> {
+    match u {
+        None | Some("path-independent") => Ok(romdyn::element::BeamUpdate::PathIndependent),
+        Some("incremental") => Ok(romdyn::element::BeamUpdate::Incremental),
+        Some(u) => Err(bad("beam_update", format!("'{u}': expected \"path-independent\" (default) or \"incremental\" (MBDyn 1.7.3's beam update)"))),
+    }
+}
+
 pub fn form(f: &str) -> PyResult<RomForm> {
     match f {
         "ordinary" => Ok(RomForm::Ordinary),
@@ -161,10 +171,6 @@ pub fn sweep(d: &Bound<'_, PyDict>) -> PyResult<SweepOptions> {
     if continuation && !matches!(reference, Reference::Static { .. }) {
         return Err(bad("continuation", "needs reference=\"static\" (it starts each static equilibrium from the previous point's)"));
     }
-    let beam_update = match get::<String>(d, "beam_update")?.as_deref() {
-        None | Some("path-independent") => romdyn::element::BeamUpdate::PathIndependent,
-        Some("incremental") => romdyn::element::BeamUpdate::Incremental,
-        Some(u) => return Err(bad("beam_update", format!("'{u}': expected \"path-independent\" (default) or \"incremental\" (MBDyn 1.7.3's beam update)"))),
-    };
+    let beam_update = beam_update(get::<String>(d, "beam_update")?.as_deref())?;
     Ok(SweepOptions { reference, ports, eigen, rom, form, modes, continuation, beam_update })
 }
