@@ -252,8 +252,8 @@ pub trait Element: Send + Sync {
         None
     }
     /// The element with a beam's (beam3, beam2) rotation update set to `update`
-    /// ([`super::BeamUpdate`]): `None` for elements it does not concern, an error where
-    /// the element cannot take it.
+    /// ([`super::BeamUpdate`]): `None` for elements it does not concern or that have it
+    /// already, an error where the element cannot take it.
     fn beam_update(&self, _update: super::BeamUpdate) -> Option<Result<Box<dyn Element>, String>> {
         None
     }

@@ -62,8 +62,10 @@ struct Now {
     j_m_rate: Mat3,
 }
 
+/// `ḋ(t)`; NaN for a drive romdyn does not differentiate (the reader refuses those; a body
+/// built through the library with one has a NaN residual, named by [`Element::failure`]).
 fn rate(d: &Drive, t: f64) -> f64 {
-    d.time_derivative(t).expect("the reader admits only drives romdyn differentiates")
+    d.time_derivative(t).unwrap_or(f64::NAN)
 }
 
 impl VariableBody {
@@ -80,8 +82,9 @@ impl VariableBody {
         }
     }
 
-    /// Whether every drive has a derivative romdyn computes.
-    pub fn differentiable(&self) -> bool {
+    /// Whether every drive has a derivative romdyn computes (which drive kinds do does not
+    /// depend on the time).
+    fn differentiable(&self) -> bool {
         let t = 0.0;
         self.mass.time_derivative(t).is_some()
             && self.offset.iter().all(|(_, d)| d.time_derivative(t).is_some())
@@ -123,6 +126,9 @@ impl Element for VariableBody {
     }
     fn nodes(&self) -> Vec<Label> {
         vec![self.node]
+    }
+    fn failure(&self, _s: &dyn ElementState) -> Option<String> {
+        (!self.differentiable()).then(|| format!("variable body {}: a drive of its mass, centre of mass or inertia has no time derivative romdyn computes (its rate is NaN)", self.label))
     }
 
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {

@@ -80,10 +80,10 @@ pub trait ElementWrapper: Send + Sync {
     /// A wrapped beam keeps the default update: the wrapper would have to rebuild itself
     /// around the changed beam, and a driven element with events is refused (driven.rs).
     fn beam_update(&self, update: BeamUpdate) -> Option<Result<Box<dyn Element>, String>> {
-        let _ = self.inner().beam_update(update)?;
         if update == BeamUpdate::PathIndependent {
             return None;
         }
+        let _ = self.inner().beam_update(update)?;
         Some(Err(format!("{} {}: the incremental beam update of a wrapped (driven) beam is not supported by romdyn", self.type_name(), self.label())))
     }
 }

@@ -25,6 +25,17 @@ pub(super) fn equilibrium_warning(model: &Model, state: &State, tolerance: f64) 
     (v > accepted).then(|| Warning::NotInEquilibrium { residual: v, equation: asm.dofs.equation_name(model, i), tolerance: accepted })
 }
 
+/// The warning of a static reference with incremental beams ([`Warning::IncrementalBeamsStatic`]):
+/// beams whose per-step history is latched (`has_events`) take their static equilibrium as
+/// one step.
+pub(super) fn incremental_beams_warning(model: &Model, reference: crate::analysis::Reference) -> Option<Warning> {
+    if !matches!(reference, crate::analysis::Reference::Static { .. }) {
+        return None;
+    }
+    let beams = model.elements.iter().filter(|e| e.type_name().starts_with("beam") && e.has_events()).count();
+    (beams > 0).then_some(Warning::IncrementalBeamsStatic { beams })
+}
+
 /// The free direction of a model whose static matrix at its initial state is singular, in
 /// words a person recognizes: the whole model's rigid-body motion when it is one
 /// ([`whole_model_rigid_motion`]), else its largest node components ("node 2 x, node 2 y").

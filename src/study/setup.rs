@@ -14,7 +14,7 @@ use crate::model::{InitialValueProblem, Model};
 use crate::output::modal::ModalReport;
 use crate::rom::{select_modes, ModeSelection};
 
-use super::checks::{equilibrium_warning, unrestrained_motion};
+use super::checks::{equilibrium_warning, incremental_beams_warning, unrestrained_motion};
 use super::linear::LinearModel;
 use super::solver::{needs_every_mode, sparse_target, SparseRun, SPARSE_DEFAULT_COUNT};
 use super::{Application, RomRequest, Solver, StudyError, Warning};
@@ -170,7 +170,10 @@ impl Study {
     pub fn from_model(model: Model, problem: &InitialValueProblem, lin: &Linearization, eigen: EigenSettings) -> Result<Self, StudyError> {
         lin.validate(problem)?;
         let state = checked_reference_state(&model, problem, lin.reference, None)?;
-        Self::from_model_state(model, problem, state, lin, eigen)
+        let beams = incremental_beams_warning(&model, lin.reference);
+        let mut study = Self::from_model_state(model, problem, state, lin, eigen)?;
+        study.warnings.splice(0..0, beams);
+        Ok(study)
     }
 
     /// Linearizes a model at a given reference solution (`lin.reference` says only how it
@@ -212,7 +215,8 @@ impl Study {
         let lin = Linearization { reference, inputs, outputs };
         lin.validate(problem)?;
         let state = checked_reference_state(&model, problem, reference, start)?;
-        let study = match ports {
+        let beams = incremental_beams_warning(&model, reference);
+        let mut study = match ports {
             Ports::Nodes { inputs, outputs } => {
                 let inputs: Vec<_> = inputs.iter().map(NodeInput::port).collect();
                 let outputs: Vec<_> = outputs.iter().map(NodeOutput::port).collect();
@@ -220,6 +224,7 @@ impl Study {
             }
             Ports::Application(app) => Self::application_state(model, problem, state.clone(), app, eigen, progress)?,
         };
+        study.warnings.splice(0..0, beams);
         Ok((study, state))
     }
 

@@ -25,6 +25,9 @@ pub enum Warning {
     DampingNotApplied { mode: usize, reason: String },
     /// The sparse eigensolver could not certify that it found every mode asked for.
     SparseNotCertified { target: String, reason: String, damping_covered: f64 },
+    /// A static reference of beams with MBDyn's incremental update: the whole load is one
+    /// step from the initial configuration, whatever the load steps.
+    IncrementalBeamsStatic { beams: usize },
 }
 
 fn modes_hz(m: &[(usize, f64)]) -> String {
@@ -56,6 +59,10 @@ impl fmt::Display for Warning {
             Warning::SparseNotCertified { target, reason, damping_covered } => write!(
                 f,
                 "the sparse eigenanalysis of {target} is not certified: {reason} (shift windows cover damping ratios up to {damping_covered:.2}); a mode may be missing from the table and the ROM: check with --solver dense, or narrow the band"
+            ),
+            Warning::IncrementalBeamsStatic { beams } => write!(
+                f,
+                "{beams} beam(s) use MBDyn's incremental update (--beam-update incremental): their static equilibrium takes the whole load as one step from the initial configuration, whatever --load-steps (MBDyn 1.7.3's one-step result), and differs from the path-independent beams' by the discretization of large rotations; linearize after a time integration (--at) to follow a load path, or use the default update"
             ),
         }
     }

@@ -216,6 +216,9 @@ impl Element for Beam3 {
     }
 
     fn beam_update(&self, update: BeamUpdate) -> Option<Result<Box<dyn Element>, String>> {
+        if update == self.update {
+            return None;
+        }
         Some(self.clone().with_update(update).map(|b| Box::new(b) as Box<dyn Element>).map_err(|e| e.to_string()))
     }
 

@@ -216,6 +216,9 @@ impl Element for Beam2 {
     }
 
     fn beam_update(&self, update: BeamUpdate) -> Option<Result<Box<dyn Element>, String>> {
+        if update == self.update {
+            return None;
+        }
         Some(Ok(Box::new(self.clone().with_update(update))))
     }
 

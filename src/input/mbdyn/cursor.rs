@@ -218,6 +218,43 @@ impl<'a> Cursor<'a> {
     }
 }
 
+impl Cursor<'_> {
+    /// A 6x6 matrix (mbpar.cc `GetMat6x6`): `null`, `default` (zero), `eye`, `diag, 6
+    /// values`, `sym, 21 values` (upper triangle by rows), or 36 values by rows (optionally
+    /// after `matr`), then an optional `scale, FACTOR`. MBDyn's `anba` layout is refused by
+    /// name.
+    pub fn mat6x6(&mut self, what: &str) -> Result<nalgebra::Matrix6<f64>, MbdynError> {
+        if self.accept("null") || self.accept("default") {
+            return Ok(nalgebra::Matrix6::zeros());
+        }
+        let mut m = nalgebra::Matrix6::zeros();
+        if self.accept("eye") {
+            m = nalgebra::Matrix6::identity();
+        } else if self.accept("diag") {
+            for i in 0..6 {
+                m[(i, i)] = self.real(what)?;
+            }
+        } else if self.accept("sym") {
+            for i in 0..6 {
+                for j in i..6 {
+                    m[(i, j)] = self.real(what)?;
+                    m[(j, i)] = m[(i, j)];
+                }
+            }
+        } else if self.peek_keyword().is_some_and(|k| k.eq_ignore_ascii_case("anba")) {
+            return Err(self.error("the 'anba' layout of a 6x6 matrix is not supported by romdyn (write the 36 entries by rows, in MBDyn's axes)"));
+        } else {
+            self.accept("matr");
+            for i in 0..6 {
+                for j in 0..6 {
+                    m[(i, j)] = self.real(what)?;
+                }
+            }
+        }
+        Ok(m * self.scale()?)
+    }
+}
+
 /// Whether `text` is a single identifier.
 fn is_name(text: &str) -> bool {
     text.chars().next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_') && text.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')

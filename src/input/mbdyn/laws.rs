@@ -378,7 +378,8 @@ fn vector(c: &mut Cursor, dim: usize, what: &str) -> Result<DVector<f64>, MbdynE
     Ok(v)
 }
 
-/// A `dim × dim` matrix (a scalar for 1D; `Mat3x3` or `Mat6x6` forms otherwise).
+/// A `dim × dim` matrix (a scalar for 1D; MBDyn's `Mat3x3` or `Mat6x6` forms otherwise,
+/// [`Cursor::mat3x3`], [`Cursor::mat6x6`]).
 fn matrix(c: &mut Cursor, dim: usize, what: &str) -> Result<DMatrix<f64>, MbdynError> {
     match dim {
         1 => Ok(DMatrix::from_element(1, 1, c.real(what)?)),
@@ -386,36 +387,10 @@ fn matrix(c: &mut Cursor, dim: usize, what: &str) -> Result<DMatrix<f64>, MbdynE
             let m = c.mat3x3(what)?;
             Ok(DMatrix::from_fn(3, 3, |i, j| m[(i, j)]))
         }
+        // Dimension 6 (a law has dimension 1, 3 or 6).
         _ => {
-            if c.accept("eye") {
-                return Ok(DMatrix::identity(dim, dim));
-            }
-            if c.accept("null") {
-                return Ok(DMatrix::zeros(dim, dim));
-            }
-            if c.accept("diag") {
-                return Ok(DMatrix::from_diagonal(&vector(c, dim, what)?));
-            }
-            if c.accept("anba") {
-                return Err(c.error("the 'anba' 6x6 matrix layout is not supported by romdyn; give the matrix in MBDyn's axes"));
-            }
-            let mut m = DMatrix::zeros(dim, dim);
-            if c.accept("sym") {
-                for i in 0..dim {
-                    for j in i..dim {
-                        m[(i, j)] = c.real(what)?;
-                        m[(j, i)] = m[(i, j)];
-                    }
-                }
-            } else {
-                c.accept("matr");
-                for i in 0..dim {
-                    for j in 0..dim {
-                        m[(i, j)] = c.real(what)?;
-                    }
-                }
-            }
-            Ok(m)
+            let m = c.mat6x6(what)?;
+            Ok(DMatrix::from_fn(6, 6, |i, j| m[(i, j)]))
         }
     }
 }

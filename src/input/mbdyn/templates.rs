@@ -155,7 +155,7 @@ fn value(c: &mut Cursor, dim: TemplateDim) -> Result<Vec<f64>, MbdynError> {
             scale(c, &mut v)?;
             Ok(v)
         }
-        TemplateDim::Mat6x6 => mat6x6(c, &what),
+        TemplateDim::Mat6x6 => Ok(c.mat6x6(&what)?.transpose().iter().copied().collect()),
     }
 }
 
@@ -167,36 +167,3 @@ fn scale(c: &mut Cursor, v: &mut [f64]) -> Result<(), MbdynError> {
     Ok(())
 }
 
-/// A 6x6 matrix by rows: `null`, `default` (zero), `eye`, `diag, 6 values`, `sym, 21
-/// values` (upper triangle by rows), or 36 values (optionally after `matr`), then an
-/// optional `scale, FACTOR`. MBDyn's `anba` layout is refused by name.
-fn mat6x6(c: &mut Cursor, what: &str) -> Result<Vec<f64>, MbdynError> {
-    if c.accept("null") || c.accept("default") {
-        return Ok(vec![0.0; 36]);
-    }
-    let mut m = vec![0.0; 36];
-    if c.accept("eye") {
-        (0..6).for_each(|i| m[7 * i] = 1.0);
-    } else if c.accept("diag") {
-        for i in 0..6 {
-            m[7 * i] = c.real(what)?;
-        }
-    } else if c.accept("sym") {
-        for i in 0..6 {
-            for j in i..6 {
-                let x = c.real(what)?;
-                m[6 * i + j] = x;
-                m[6 * j + i] = x;
-            }
-        }
-    } else if c.peek_keyword().is_some_and(|k| k.eq_ignore_ascii_case("anba")) {
-        return Err(c.error("the 'anba' layout of a 6x6 matrix is not supported by romdyn (write the 36 entries by rows)"));
-    } else {
-        c.accept("matr");
-        for x in m.iter_mut() {
-            *x = c.real(what)?;
-        }
-    }
-    scale(c, &mut m)?;
-    Ok(m)
-}
