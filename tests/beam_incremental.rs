@@ -38,7 +38,7 @@ fn with_the_incremental_update_the_tip_couple_equilibrium_follows_mbdyn_s_load_p
     // in the file, node 5's row of out.mov at t = 1 s; tests/beam_rotation.rs): tip x [m].
     // romdyn with the incremental update, measured: 0.664589784106918 (1 step, 1.1e-12 m
     // from MBDyn), 0.664941099009948 (10 steps, 1.7e-6 m), 0.664947038593803 (100 steps,
-    // 2.5e-11 m); the path-independent default gives 0.664630 for all three. With 10 steps
+    // 2.5e-11 m); the path-independent update (the library's default) gives 0.664630 for all three. With 10 steps
     // the tips of steps 1 and 2 equal MBDyn's to 2.3e-15 m and part at step 3 (5.4e-7 m),
     // the first whose predictor reads two past rates: after step 2 node 5's angular
     // velocity is MBDyn's 0.19003 rad/s and romdyn's 0.25924 with equal positions (README:
@@ -70,7 +70,7 @@ fn a_static_equilibrium_with_the_incremental_update_is_mbdyn_s_single_step() {
 #[test]
 fn with_the_incremental_update_the_cantilever_example_gives_mbdyn_s_positions() {
     // Largest distance of a node from MBDyn's at t = 0.1 s, measured: 3.6e-10 m with the
-    // incremental update, 8.41e-6 m with the path-independent default (README).
+    // incremental update, 8.41e-6 m with the path-independent one (README).
     let mbdyn: Vec<Vec3> = MBDYN_CANTILEVER.iter().map(|(_, p)| Vec3::new(p[0], p[1], p[2])).collect();
     let largest = |update| {
         let x = final_positions("examples/cantilever.mbd", &[], update);
@@ -98,16 +98,45 @@ fn run_takes_beam_update_incremental_and_refuses_an_unknown_update() {
     };
     let incremental = tip_x("incremental");
     assert!((incremental - 0.66458978410585801).abs() < 1e-11, "incremental: tip x {incremental}");
-    // The default, path independent: 0.664630 m (tests/beam_rotation.rs).
+    // Path independent: 0.664630 m (tests/beam_rotation.rs).
     let default = tip_x("path-independent");
     assert!((default - 0.664630).abs() < 1e-6, "path independent: tip x {default}");
     let (ok, _, err) = romdyn(&["run", file.to_str().unwrap(), "--beam-update", "stepwise"]);
     assert!(!ok && err.contains("incremental") && err.contains("path-independent"), "{err}");
-    // A driven beam3 keeps the default update and is refused with the incremental one.
+    // A driven beam3 keeps the path-independent update and is refused with the incremental one.
     let text = std::fs::read_to_string(&file).unwrap().replace("    beam3: 2, 3, null", "    driven: 2, const, 1., beam3: 2, 3, null");
     let driven = write_file(&dir, "driven.mbd", &text);
     let (ok, _, err) = romdyn_at(&dir, &["run", &driven, "-o", "driven", "--beam-update", "incremental"]);
     assert!(!ok && err.contains("beam3 2") && err.contains("driven"), "{err}");
+}
+
+#[test]
+fn run_s_default_is_mbdyn_s_update_where_a_beam_can_take_it() {
+    // `romdyn run` without --beam-update (auto) on tests/mbdyn_files/beam3_tip_couple.mbd:
+    // MBDyn 1.7.3's tip x 0.66458978410585801 m (previous test), not the path-independent
+    // 0.664630 m. A driven beam3 cannot take the incremental update: with the default it
+    // runs, warned by name, and keeps the path-independent update (the drive is const 1).
+    let dir = temp_dir("beam-update-auto");
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files/beam3_tip_couple.mbd");
+    let tip_x = |file: &str, prefix: &str| {
+        let (ok, _, err) = romdyn_at(&dir, &["run", file, "-o", prefix]);
+        assert!(ok, "{err}");
+        let mov = std::fs::read_to_string(dir.join(format!("{prefix}.mov"))).unwrap();
+        let last = mov.lines().last().unwrap().split_whitespace().map(|c| c.parse::<f64>().unwrap()).collect::<Vec<_>>();
+        assert_eq!(last[0], 5.0);
+        (last[1], err)
+    };
+    let (x, err) = tip_x(file.to_str().unwrap(), "auto");
+    assert!((x - 0.66458978410585801).abs() < 1e-11, "auto: tip x {x}");
+    assert!(!err.contains("warning"), "{err}");
+    let text = std::fs::read_to_string(&file).unwrap().replace("    beam3: 2, 3, null", "    driven: 2, const, 1., beam3: 2, 3, null");
+    let driven = write_file(&dir, "driven.mbd", &text);
+    let (x, err) = tip_x(&driven, "driven");
+    // Only beam 2 is driven: beam 1 takes MBDyn's update, so the tip lies between the two
+    // updates' tips (measured 0.6646042682 m).
+    assert!(x > 0.66459 && x < 0.66463, "driven, auto: tip x {x}");
+    assert_eq!(err.matches("warning: beam3").count(), 1, "{err}");
+    assert!(err.contains("warning: beam3 2") && err.contains("keeps the path-independent update"), "{err}");
 }
 
 #[test]

@@ -24,7 +24,8 @@ __all__ = ["Model", "Study", "Rom", "RomdynError", "ModelError", "load", "sweep"
 
 def load(path, set=None, beam_update=None):
     """Reads the MBDyn input file ``path``; ``set`` maps ``set:`` variables to the values
-    replacing the file's (its SI units); ``beam_update``: "path-independent" (default) or
-    "incremental" (MBDyn 1.7.3's beam update, the CLI's ``--beam-update``). Same as
+    replacing the file's (its SI units); ``beam_update``: "auto" (default: MBDyn 1.7.3's beam
+    update in ``run()`` and at a reference time, path independent otherwise), "path-independent"
+    or "incremental" (the CLI's ``--beam-update``). Same as
     ``Model(path, set=set, beam_update=beam_update)``."""
     return Model(path, set=set, beam_update=beam_update)

@@ -46,6 +46,15 @@ fn modes_dict<'py>(py: Python<'py>, modal: &romdyn::linear::ModalAnalysis) -> Py
     Ok(d)
 }
 
+/// Each message as a Python `UserWarning` (beams the `auto` update leaves path independent).
+fn warn_all(py: Python<'_>, messages: &[String]) -> PyResult<()> {
+    for message in messages {
+        let text = std::ffi::CString::new(format!("{message} (beam_update=\"path-independent\" silences this)")).unwrap_or_default();
+        PyErr::warn(py, &py.get_type::<pyo3::exceptions::PyUserWarning>(), &text, 1)?;
+    }
+    Ok(())
+}
+
 /// An MBDyn input file, its text kept (with `set:` overrides) and read again for each
 /// study: `Model(path, set={"L": 2.0})`.
 #[pyclass(module = "romdyn._romdyn", frozen)]
@@ -54,7 +63,7 @@ struct Model {
     name: PathBuf,
     overrides: SetOverrides,
     /// The beams' rotation update (the CLI's `--beam-update`).
-    beam_update: romdyn::element::BeamUpdate,
+    beam_update: romdyn::model::BeamUpdateChoice,
     #[pyo3(get)]
     /// Labels of the structural nodes.
     nodes: Vec<u32>,
@@ -64,16 +73,18 @@ struct Model {
 }
 
 impl Model {
-    fn read(&self) -> Result<MbdynModel, StudyError> {
+    /// The model read again, its beams' update set for a time integration (`integrates`) or
+    /// not; with why beams the `auto` update leaves path independent do so.
+    fn read(&self, integrates: bool) -> Result<(MbdynModel, Vec<String>), StudyError> {
         let mut m = read_model_text(&self.text, &self.name, &self.overrides)?;
-        m.model.set_beam_update(self.beam_update).map_err(|message| StudyError::Option { option: "beam_update", message: format!("{}: {message}", self.name.display()) })?;
-        Ok(m)
+        let kept = m.model.choose_beam_update(self.beam_update, integrates).map_err(|message| StudyError::Option { option: "beam_update", message: format!("{}: {message}", self.name.display()) })?;
+        Ok((m, kept))
     }
 
     fn new_checked(text: String, name: PathBuf, overrides: SetOverrides, beam_update: Option<&str>) -> PyResult<Self> {
         let beam_update = options::beam_update(beam_update)?;
         let mut m = read_model_text(&text, &name, &overrides).map_err(|e| ModelError::new_err(e.to_string()))?;
-        m.model.set_beam_update(beam_update).map_err(|e| ModelError::new_err(format!("{}: beam_update: {e}", name.display())))?;
+        m.model.choose_beam_update(beam_update, false).map_err(|e| ModelError::new_err(format!("{}: beam_update: {e}", name.display())))?;
         let nodes = m.model.nodes.iter().map(|n| n.label).collect();
         let equations = romdyn::dae::Assembler::new(&m.model).dofs.len;
         Ok(Model { text, name, overrides, beam_update, nodes, equations })
@@ -83,8 +94,10 @@ impl Model {
 #[pymethods]
 impl Model {
     /// Reads the MBDyn input file `path`; `set` maps `set:` variables of the file to the values
-    /// that replace theirs (SI units of the file); `beam_update`: "path-independent" (default)
-    /// or "incremental" (MBDyn 1.7.3's, the CLI's `--beam-update`). Raises ModelError with
+    /// that replace theirs (SI units of the file); `beam_update`: "auto" (default: MBDyn 1.7.3's
+    /// incremental update in `run()` and at a reference time, path independent at a static or
+    /// the initial reference; a beam that cannot take it warns), "path-independent" or
+    /// "incremental" (the CLI's `--beam-update`). Raises ModelError with
     /// file:line:col.
     #[new]
     #[pyo3(signature = (path, set = None, beam_update = None))]
@@ -137,11 +150,14 @@ impl Model {
         let reference = options::reference(reference, load_steps)?;
         let ports = options::ports(&inputs, &outputs, ports.as_deref(), &remove_springs, imposed.as_deref())?;
         let eigen = EigenSettings { target: options::sparse_target(count, band)?, tolerance, ..options::eigen(route, dcoef, solver)? };
+        let integrates = matches!(reference, romdyn::analysis::Reference::At(_));
         let study = py.detach(|| {
-            let m = self.read()?;
-            Study::of_model(m.model, &m.problem, reference, &ports, eigen, None).map_err(|e| e.in_file(&self.name))
+            let (m, kept) = self.read(integrates)?;
+            Ok((Study::of_model(m.model, &m.problem, reference, &ports, eigen, None).map_err(|e| e.in_file(&self.name))?, kept))
         });
-        Ok(StudyPy { study: study.map_err(py_err)?.0 })
+        let ((study, _), kept) = study.map_err(py_err)?;
+        warn_all(py, &kept)?;
+        Ok(StudyPy { study })
     }
 
     /// The lowest `count` dynamic modes, or those with natural frequency |λ|/2π in `band`
@@ -174,14 +190,15 @@ impl Model {
     /// 3), "orientation" (steps, nodes, 3, 3: node frame to global), "velocity" [m/s],
     /// "angular_velocity" [rad/s] (steps, nodes, 3)}; step 0 is the initial state.
     fn run<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let h = py
-            .detach(|| -> Result<NodeHistories, StudyError> {
-                let m = self.read()?;
+        let (h, kept) = py
+            .detach(|| -> Result<(NodeHistories, Vec<String>), StudyError> {
+                let (m, kept) = self.read(true)?;
                 let mut h = NodeHistories::default();
                 run(&m.model, &m.problem, &mut h).map_err(|cause| StudyError::Reference { file: Some(self.name.clone()), cause })?;
-                Ok(h)
+                Ok((h, kept))
             })
             .map_err(py_err)?;
+        warn_all(py, &kept)?;
         let (nt, nn) = (h.time.len(), h.labels.len());
         let d = PyDict::new(py);
         d.set_item("time", h.time.into_pyarray(py))?;

@@ -69,11 +69,14 @@ pub fn sparse_target(count: Option<usize>, band: Option<(f64, f64)>) -> PyResult
 
 /// The CLI's `--beam-update`: None or "path-independent" (default), "incremental" (MBDyn
 /// 1.7.3's beam update of beam3 and beam2).
-pub fn beam_update(u: Option<&str>) -> PyResult<romdyn::element::BeamUpdate> {
+pub fn beam_update(u: Option<&str>) -> PyResult<romdyn::model::BeamUpdateChoice> {
+    use romdyn::element::BeamUpdate;
+    use romdyn::model::BeamUpdateChoice;
     match u {
-        None | Some("path-independent") => Ok(romdyn::element::BeamUpdate::PathIndependent),
-        Some("incremental") => Ok(romdyn::element::BeamUpdate::Incremental),
-        Some(u) => Err(bad("beam_update", format!("'{u}': expected \"path-independent\" (default) or \"incremental\" (MBDyn 1.7.3's beam update)"))),
+        None | Some("auto") => Ok(BeamUpdateChoice::Auto),
+        Some("path-independent") => Ok(BeamUpdateChoice::Every(BeamUpdate::PathIndependent)),
+        Some("incremental") => Ok(BeamUpdateChoice::Every(BeamUpdate::Incremental)),
+        Some(u) => Err(bad("beam_update", format!("'{u}': expected \"auto\" (default: MBDyn 1.7.3's incremental update in a time integration, path independent otherwise), \"path-independent\" or \"incremental\""))),
     }
 }
 
@@ -171,6 +174,6 @@ pub fn sweep(d: &Bound<'_, PyDict>) -> PyResult<SweepOptions> {
     if continuation && !matches!(reference, Reference::Static { .. }) {
         return Err(bad("continuation", "needs reference=\"static\" (it starts each static equilibrium from the previous point's)"));
     }
-    let beam_update = beam_update(get::<String>(d, "beam_update")?.as_deref())?;
+    let beam_update = beam_update(get::<String>(d, "beam_update")?.as_deref())?.without_time_integration();
     Ok(SweepOptions { reference, ports, eigen, rom, form, modes, continuation, beam_update })
 }

@@ -85,17 +85,20 @@ def test_run_keeps_the_hinge_constraint(examples):
 def test_beam_update_is_the_clis(examples, romdyn_cli, tmp_path):
     # examples/cantilever.mbd with MBDyn's incremental beam update, in Python and in the CLI
     # (`romdyn run --beam-update incremental`, .mov with 16 digits): the same final tip, to
-    # the .mov's 13 printed digits; the default path-independent beam ends 8.4e-6 m from it
-    # (README, the two discretizations), so the option is applied.
+    # the .mov's 13 printed digits, and the default ("auto": MBDyn's update in a run) the
+    # same; the path-independent beam ends 8.4e-6 m from it (README, the two
+    # discretizations), so the option is applied.
     subprocess.run([romdyn_cli, "run", examples / "cantilever.mbd", "--beam-update", "incremental", "-o", tmp_path / "c"], check=True, capture_output=True)
     rows = [line.split() for line in (tmp_path / "c.mov").read_text().splitlines()]
     tip_cli = np.array([float(x) for x in rows[-1][1:4]])
     assert rows[-1][0] == "21"
-    incremental = romdyn.load(examples / "cantilever.mbd", beam_update="incremental").run()
-    default = romdyn.Model(examples / "cantilever.mbd").run()
-    tip = incremental["position"][-1, list(incremental["labels"]).index(21)]
-    assert np.allclose(tip, tip_cli, rtol=0, atol=1e-11)
-    assert np.abs(default["position"][-1, list(default["labels"]).index(21)] - tip).max() > 1e-6
+    tip = {}
+    for update in ["incremental", None, "path-independent"]:
+        h = romdyn.load(examples / "cantilever.mbd", beam_update=update).run()
+        tip[update] = h["position"][-1, list(h["labels"]).index(21)]
+    assert np.allclose(tip["incremental"], tip_cli, rtol=0, atol=1e-11)
+    assert np.allclose(tip[None], tip_cli, rtol=0, atol=1e-11)
+    assert np.abs(tip["path-independent"] - tip_cli).max() > 1e-6
     with pytest.raises(ValueError, match="beam_update.*'sideways'"):
         romdyn.Model(examples / "cantilever.mbd", beam_update="sideways")
 

@@ -8,6 +8,7 @@ use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use romdyn::analysis::Reference;
 use romdyn::element::BeamUpdate;
+use romdyn::model::BeamUpdateChoice;
 use romdyn::dae::{NodeInput, NodeOutput};
 use romdyn::input::eigen_pencil::PencilPorts;
 use romdyn::linear::EigenRoute;
@@ -37,28 +38,43 @@ impl From<SolverArg> for Solver {
 }
 
 /// How beams (beam3, beam2) follow their nodes' rotations (`--beam-update`).
-#[derive(Clone, Copy, Debug, Default, ValueEnum)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
 pub enum BeamUpdateArg {
-    /// Total rotations interpolated relative to the middle node: the beam is a function of the state, and a static equilibrium does not depend on load steps (default)
+    /// MBDyn's incremental update where the result comes from a time integration (`run`, a reference at a time), path independent for a static equilibrium and in sweeps; beams the incremental update cannot take (viscoelastic, driven sections) stay path independent with a warning (default)
     #[default]
+    Auto,
+    /// Total rotations interpolated relative to the middle node: the beam is a function of the state, and a static equilibrium does not depend on load steps
     PathIndependent,
     /// MBDyn 1.7.3's beam.cc: rotation increments interpolated per time step, section frames and curvatures accumulated (MBDyn's numbers; path dependent; elastic section laws only)
     Incremental,
 }
 
-impl From<BeamUpdateArg> for BeamUpdate {
+impl From<BeamUpdateArg> for BeamUpdateChoice {
     fn from(u: BeamUpdateArg) -> Self {
         match u {
-            BeamUpdateArg::PathIndependent => BeamUpdate::PathIndependent,
-            BeamUpdateArg::Incremental => BeamUpdate::Incremental,
+            BeamUpdateArg::Auto => BeamUpdateChoice::Auto,
+            BeamUpdateArg::PathIndependent => BeamUpdateChoice::Every(BeamUpdate::PathIndependent),
+            BeamUpdateArg::Incremental => BeamUpdateChoice::Every(BeamUpdate::Incremental),
         }
     }
 }
 
-/// Reads an MBDyn file with its beams' rotation update set to `update`.
-pub fn read_model_with_beams(path: &std::path::Path, update: BeamUpdateArg) -> anyhow::Result<romdyn::input::mbdyn::MbdynModel> {
+impl BeamUpdateArg {
+    /// Sets the beams' update of `model`, for a result from a time integration
+    /// (`integrates`) or not; beams that `auto` leaves path independent are warned on stderr.
+    pub fn apply(self, model: &mut romdyn::model::Model, integrates: bool) -> Result<(), String> {
+        for why in model.choose_beam_update(self.into(), integrates)? {
+            eprintln!("warning: {why} (--beam-update path-independent silences this)");
+        }
+        Ok(())
+    }
+}
+
+/// Reads an MBDyn file with its beams' rotation update set for a time integration
+/// (`integrates`) or not.
+pub fn read_model_with_beams(path: &std::path::Path, update: BeamUpdateArg, integrates: bool) -> anyhow::Result<romdyn::input::mbdyn::MbdynModel> {
     let mut m = read_model(path)?;
-    m.model.set_beam_update(update.into()).map_err(|e| anyhow::anyhow!("{}: --beam-update: {e}", path.display()))?;
+    update.apply(&mut m.model, integrates).map_err(|e| anyhow::anyhow!("{}: --beam-update: {e}", path.display()))?;
     Ok(m)
 }
 
@@ -120,8 +136,8 @@ pub struct PencilArgs {
     /// Eigensolver: dense QZ (every eigenvalue), sparse shift-invert Krylov–Schur (only the modes asked for, no n x n matrix; a progress bar on a terminal), or auto: sparse from 400 equations on, dense below or with --by dominance
     #[arg(long, value_enum, default_value = "auto")]
     pub solver: SolverArg,
-    /// Rotation update of beam3 and beam2: path-independent (default), or MBDyn 1.7.3's incremental one (per time step; a static equilibrium takes it as one step from the initial configuration)
-    #[arg(long = "beam-update", value_enum, default_value = "path-independent")]
+    /// Rotation update of beam3 and beam2: auto (MBDyn's incremental one for a reference at a time, --at; path independent for --static and in sweeps), path-independent, or incremental (per time step; a static equilibrium takes it as one step from the initial configuration)
+    #[arg(long = "beam-update", value_enum, default_value = "auto")]
     pub beam_update: BeamUpdateArg,
 }
 
@@ -142,7 +158,8 @@ impl PencilArgs {
             }
             (None, Some(path)) => {
                 let mut m = read_model(path)?;
-                m.model.set_beam_update(self.beam_update.into()).map_err(|message| StudyError::Option { option: "--beam-update", message: format!("{}: {message}", path.display()) })?;
+                let integrates = matches!(self.reference.reference(), romdyn::analysis::Reference::At(_));
+                self.beam_update.apply(&mut m.model, integrates).map_err(|message| StudyError::Option { option: "--beam-update", message: format!("{}: {message}", path.display()) })?;
                 let progress = SolverProgress::new();
                 let result = Study::of_model_with_progress(m.model, &m.problem, self.reference.reference(), &self.ports()?, eigen, None, &|line| progress.report(line));
                 progress.finish();

@@ -19,13 +19,14 @@ pub struct CheckArgs {
     /// Largest accepted max |analytic - fd| / max(max |J_element|, 1)
     #[arg(long, default_value_t = JACOBIAN_CHECK_TOLERANCE)]
     pub tolerance: f64,
-    /// Rotation update of beam3 and beam2: path-independent (default), or MBDyn 1.7.3's incremental one
-    #[arg(long = "beam-update", value_enum, default_value = "path-independent")]
+    /// Rotation update of beam3 and beam2: auto (default: MBDyn 1.7.3's incremental one for a reference at a time, --at, path independent otherwise), path-independent, or incremental
+    #[arg(long = "beam-update", value_enum, default_value = "auto")]
     pub beam_update: super::args::BeamUpdateArg,
 }
 
 pub fn run(a: CheckArgs) -> Result<()> {
-    let m = super::args::read_model_with_beams(&a.file, a.beam_update)?;
+    let integrates = matches!(a.reference.reference(), romdyn::analysis::Reference::At(_));
+    let m = super::args::read_model_with_beams(&a.file, a.beam_update, integrates)?;
     let check = check_model_jacobians(&m.model, &m.problem, a.reference.reference(), a.tolerance).with_context(|| format!("{}: reference solution", a.file.display()))?;
     print!("{}", check.to_text());
     let failed = check.failures().count();

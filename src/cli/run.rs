@@ -17,8 +17,8 @@ pub struct RunArgs {
     /// Output prefix: writes PREFIX.out, .mov, .log and PREFIX.m/.json (PREFIX_K.m/.json for several eigenanalyses); an existing directory DIR means DIR/NAME with NAME the file's stem [default: NAME in the current directory, NAME the file's stem]
     #[arg(short = 'o', long = "out", value_name = "PREFIX")]
     pub prefix: Option<PathBuf>,
-    /// Rotation update of beam3 and beam2: path-independent (default), or MBDyn 1.7.3's incremental one (MBDyn's numbers; path dependent)
-    #[arg(long = "beam-update", value_enum, default_value = "path-independent")]
+    /// Rotation update of beam3 and beam2: auto (default: MBDyn 1.7.3's incremental one, MBDyn's numbers, where a beam can take it), incremental (every beam, or an error), or path-independent (the beam a function of the state)
+    #[arg(long = "beam-update", value_enum, default_value = "auto")]
     pub beam_update: super::args::BeamUpdateArg,
 }
 
@@ -95,7 +95,7 @@ fn print_summary(file: &str, r: &RunReport, written: &[PathBuf]) {
 }
 
 pub fn run(a: RunArgs) -> Result<()> {
-    let m = super::args::read_model_with_beams(&a.file, a.beam_update)?;
+    let m = super::args::read_model_with_beams(&a.file, a.beam_update, true)?;
     let input = a.file.display().to_string();
     if m.model.nodes.is_empty() {
         anyhow::bail!("{input}: the model has no structural nodes: nothing to run, no file written");

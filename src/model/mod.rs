@@ -1,10 +1,12 @@
 //! The model description, independent of any file format: structural nodes, elements
 //! addressed by label, gravity, and the constraint form.
 
+mod beam_update;
 mod builder;
 mod problem;
 mod summary;
 
+pub use beam_update::BeamUpdateChoice;
 pub use builder::{ModelBuilder, ModelError};
 pub use problem::{AbortAfter, AutoCoefficient, EigenOutput, EigenRequest, InitialAssembly, InitialValueProblem, Method, MotionOutput, NodeAssembly, NodeSource, OrientationOutput, ResidualNorm, WrittenNode};
 pub use summary::Summary;

@@ -71,7 +71,7 @@ pub enum BeamError {
     BadOrientation(Label, &'static str),
     #[error("beam {0}: a viscous or viscoelastic section law on a {1} is not supported by romdyn (elastic laws only)")]
     Viscous(Label, &'static str),
-    #[error("beam {0}: the incremental beam update with a viscous or viscoelastic section law is not supported by romdyn (elastic laws only; the default path-independent update takes them)")]
+    #[error("beam {0}: the incremental beam update with a viscous or viscoelastic section law is not supported by romdyn (elastic laws only; the path-independent update takes them)")]
     IncrementalViscous(Label),
 }
 
