@@ -8,7 +8,7 @@
 #   scripts/compare_mbdyn.sh FOLDER [OUTDIR]
 #   MBDYN=/path/to/mbdyn ROMDYN=target/release/romdyn scripts/compare_mbdyn.sh examples
 #   TIMEOUT=60 scripts/compare_mbdyn.sh /work/mbdyn-collection   (see mbdyn_collection.sh)
-#   ROMDYN_ARGS="--beam-update incremental" scripts/compare_mbdyn.sh examples
+#   ROMDYN_ARGS="--beam-update path-independent" scripts/compare_mbdyn.sh examples
 #
 # The files are FOLDER/*.mbd, or the paths listed in FOLDER/list.txt when it exists (MBDyn
 # input files often have no extension). Each program runs in the file's own directory (so
