@@ -150,7 +150,7 @@ impl Model {
         let reference = options::reference(reference, load_steps)?;
         let ports = options::ports(&inputs, &outputs, ports.as_deref(), &remove_springs, imposed.as_deref())?;
         let eigen = EigenSettings { target: options::sparse_target(count, band)?, tolerance, ..options::eigen(route, dcoef, solver)? };
-        let integrates = matches!(reference, romdyn::analysis::Reference::At(_));
+        let integrates = reference.integrates();
         let study = py.detach(|| {
             let (m, kept) = self.read(integrates)?;
             Ok((Study::of_model(m.model, &m.problem, reference, &ports, eigen, None).map_err(|e| e.in_file(&self.name))?, kept))

@@ -22,6 +22,14 @@ pub enum Reference {
     Static { load_steps: usize },
 }
 
+impl Reference {
+    /// Whether the state comes from integrating the file's problem in time (`At`), which
+    /// decides the beams' `auto` update ([`crate::model::BeamUpdateChoice`]).
+    pub fn integrates(&self) -> bool {
+        matches!(self, Reference::At(_))
+    }
+}
+
 /// The state at `reference`.
 pub fn reference_state(model: &Model, problem: &InitialValueProblem, reference: Reference) -> Result<State, RunError> {
     let mut p = problem.clone();

@@ -38,7 +38,7 @@ impl From<SolverArg> for Solver {
 }
 
 /// How beams (beam3, beam2) follow their nodes' rotations (`--beam-update`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
+#[derive(Clone, Copy, Debug, Default, ValueEnum)]
 pub enum BeamUpdateArg {
     /// MBDyn's incremental update where the result comes from a time integration (`run`, a reference at a time), path independent for a static equilibrium and in sweeps; beams the incremental update cannot take (viscoelastic, driven sections) stay path independent with a warning (default)
     #[default]
@@ -158,7 +158,7 @@ impl PencilArgs {
             }
             (None, Some(path)) => {
                 let mut m = read_model(path)?;
-                let integrates = matches!(self.reference.reference(), romdyn::analysis::Reference::At(_));
+                let integrates = self.reference.reference().integrates();
                 self.beam_update.apply(&mut m.model, integrates).map_err(|message| StudyError::Option { option: "--beam-update", message: format!("{}: {message}", path.display()) })?;
                 let progress = SolverProgress::new();
                 let result = Study::of_model_with_progress(m.model, &m.problem, self.reference.reference(), &self.ports()?, eigen, None, &|line| progress.report(line));

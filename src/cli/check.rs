@@ -25,7 +25,7 @@ pub struct CheckArgs {
 }
 
 pub fn run(a: CheckArgs) -> Result<()> {
-    let integrates = matches!(a.reference.reference(), romdyn::analysis::Reference::At(_));
+    let integrates = a.reference.reference().integrates();
     let m = super::args::read_model_with_beams(&a.file, a.beam_update, integrates)?;
     let check = check_model_jacobians(&m.model, &m.problem, a.reference.reference(), a.tolerance).with_context(|| format!("{}: reference solution", a.file.display()))?;
     print!("{}", check.to_text());
