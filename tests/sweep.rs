@@ -25,7 +25,7 @@ fn pendulum_options() -> SweepOptions {
         form: RomForm::Ordinary,
         modes: 1,
         continuation: false,
-        beam_update: romdyn::element::BeamUpdate::PathIndependent,
+        beam_update: romdyn::model::BeamUpdateChoice::Every(romdyn::element::BeamUpdate::PathIndependent),
     }
 }
 
@@ -207,4 +207,36 @@ fn cli_sweep_writes_the_others_and_exits_1_on_a_failed_point() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.code() == Some(1) && stderr.contains("--set LEN: the file declares no variable 'LEN'"), "{stderr}");
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_sweep_at_a_reference_time_takes_the_beam_update_eig_takes() {
+    // examples/cantilever.mbd (ten beam3, tip force P applied at t = 0) swept over P, the
+    // reference at t = 2 ms of its time integration. `romdyn eig --at T` on the same file
+    // takes MBDyn's incremental beam update (the default `auto`, tests/beam_incremental.rs);
+    // a sweep's point must give the same modes (to round-off, 1e-12 relative: the same
+    // computation), and the path-independent update other ones (measured: first mode 1e-7
+    // to 1e-5 relative apart), or a sweep point and `eig` on the same file would part
+    // without a message.
+    use romdyn::element::BeamUpdate;
+    use romdyn::model::BeamUpdateChoice;
+    let options = |beam_update| SweepOptions {
+        reference: Reference::At(0.002),
+        ports: Ports::Nodes { inputs: vec!["21:Fy".parse().unwrap()], outputs: vec!["21:y".parse().unwrap()] },
+        rom: RomRequest::new(ModeSelection::Lowest(1)),
+        modes: 2,
+        beam_update,
+        ..pendulum_options()
+    };
+    let first = |choice| {
+        let r = run("cantilever.mbd", &["P=500,1000"], &options(choice));
+        r.results.iter().map(|p| p.as_ref().unwrap().modes[0]).collect::<Vec<_>>()
+    };
+    let (auto, incremental, independent) = (first(BeamUpdateChoice::Auto), first(BeamUpdateChoice::Every(BeamUpdate::Incremental)), first(BeamUpdateChoice::Every(BeamUpdate::PathIndependent)));
+    for k in 0..2 {
+        assert!((auto[k] - incremental[k]).norm() < 1e-12 * auto[k].norm(), "point {k}: auto {} vs incremental {}", auto[k], incremental[k]);
+        let apart = (auto[k] - independent[k]).norm() / auto[k].norm();
+        eprintln!("point {k}: first mode {} rad/s, path independent {apart:e} relative apart", auto[k]);
+        assert!(apart > 1e-10, "point {k}: the path-independent update gave the same mode {}", independent[k]);
+    }
 }

@@ -174,6 +174,6 @@ pub fn sweep(d: &Bound<'_, PyDict>) -> PyResult<SweepOptions> {
     if continuation && !matches!(reference, Reference::Static { .. }) {
         return Err(bad("continuation", "needs reference=\"static\" (it starts each static equilibrium from the previous point's)"));
     }
-    let beam_update = beam_update(get::<String>(d, "beam_update")?.as_deref())?.without_time_integration();
+    let beam_update = beam_update(get::<String>(d, "beam_update")?.as_deref())?;
     Ok(SweepOptions { reference, ports, eigen, rom, form, modes, continuation, beam_update })
 }

@@ -40,7 +40,7 @@ impl From<SolverArg> for Solver {
 /// How beams (beam3, beam2) follow their nodes' rotations (`--beam-update`).
 #[derive(Clone, Copy, Debug, Default, ValueEnum)]
 pub enum BeamUpdateArg {
-    /// MBDyn's incremental update where the result comes from a time integration (`run`, a reference at a time), path independent for a static equilibrium and in sweeps; beams the incremental update cannot take (viscoelastic, driven sections) stay path independent with a warning (default)
+    /// MBDyn's incremental update where the result comes from a time integration (`run`, a reference at a time), path independent for a static equilibrium or the initial configuration (in sweeps too); beams the incremental update cannot take (viscoelastic, driven sections) stay path independent with a warning (default)
     #[default]
     Auto,
     /// Total rotations interpolated relative to the middle node: the beam is a function of the state, and a static equilibrium does not depend on load steps
@@ -136,7 +136,7 @@ pub struct PencilArgs {
     /// Eigensolver: dense QZ (every eigenvalue), sparse shift-invert Krylov–Schur (only the modes asked for, no n x n matrix; a progress bar on a terminal), or auto: sparse from 400 equations on, dense below or with --by dominance
     #[arg(long, value_enum, default_value = "auto")]
     pub solver: SolverArg,
-    /// Rotation update of beam3 and beam2: auto (MBDyn's incremental one for a reference at a time, --at; path independent for --static and in sweeps), path-independent, or incremental (per time step; a static equilibrium takes it as one step from the initial configuration)
+    /// Rotation update of beam3 and beam2: auto (MBDyn's incremental one for a reference at a time, --at; path independent for --static and the initial configuration), path-independent, or incremental (per time step; a static equilibrium takes it as one step from the initial configuration)
     #[arg(long = "beam-update", value_enum, default_value = "auto")]
     pub beam_update: BeamUpdateArg,
 }

@@ -66,7 +66,7 @@ pub fn run(a: SweepArgs) -> Result<()> {
         form: a.rom.form(),
         modes: a.lowest,
         continuation: a.continuation,
-        beam_update: romdyn::model::BeamUpdateChoice::from(a.pencil.beam_update).without_time_integration(),
+        beam_update: romdyn::model::BeamUpdateChoice::from(a.pencil.beam_update),
     };
     let bar = if std::io::stderr().is_terminal() { ProgressBar::new(points.len() as u64) } else { ProgressBar::hidden() };
     bar.set_style(ProgressStyle::with_template("{bar:30} {pos}/{len} design points eta {eta}").unwrap_or_else(|_| ProgressStyle::default_bar()));

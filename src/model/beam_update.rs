@@ -20,8 +20,8 @@ pub enum BeamUpdateChoice {
 }
 
 impl BeamUpdateChoice {
-    /// The update a study that is not a time integration uses (a sweep's: its points are
-    /// compared with each other, and continuation starts each from the previous one).
+    /// The update a study that is not a time integration uses (a static equilibrium or the
+    /// initial configuration: it must not depend on load steps).
     pub fn without_time_integration(self) -> BeamUpdate {
         match self {
             BeamUpdateChoice::Auto => BeamUpdate::PathIndependent,

@@ -26,8 +26,11 @@ pub struct SweepOptions {
     /// Each static equilibrium starts from the previous design point's (the points then run
     /// one after the other).
     pub continuation: bool,
-    /// The rotation update of the model's beams (beam3, beam2; [`crate::element::BeamUpdate`]).
-    pub beam_update: crate::element::BeamUpdate,
+    /// The rotation update of the model's beams (beam3, beam2): `Auto` is MBDyn's incremental
+    /// update at a reference reached by a time integration (`--at T`), as `romdyn eig` on
+    /// the same file, and path independent at a static or initial one
+    /// ([`crate::model::BeamUpdateChoice`]).
+    pub beam_update: crate::model::BeamUpdateChoice,
 }
 
 /// What a design point gives.
@@ -53,13 +56,14 @@ pub fn overrides(names: &[String], values: &[f64]) -> SetOverrides {
 /// and resolves includes). `start`: the previous point's reference solution (continuation).
 pub fn run_point(text: &str, name: &Path, names: &[String], values: &[f64], options: &SweepOptions, start: Option<&State>) -> Result<PointResult, StudyError> {
     let mut m = read_model_text(text, name, &overrides(names, values))?;
-    m.model.set_beam_update(options.beam_update).map_err(|message| StudyError::Option { option: "beam update", message: format!("{}: {message}", name.display()) })?;
+    let kept = m.model.choose_beam_update(options.beam_update, options.reference.integrates()).map_err(|message| StudyError::Option { option: "beam update", message: format!("{}: {message}", name.display()) })?;
     let eigen = options.eigen.for_request(&options.rom);
     let (study, state) = Study::of_model(m.model, &m.problem, options.reference, &options.ports, eigen, start).map_err(|e| e.in_file(name))?;
     let rom = study.reduce(&options.rom)?;
     rom.check_form(options.form)?;
     let modes = lowest_modes(study.modal(), options.modes);
-    let mut warnings: Vec<String> = study.warnings().iter().map(|w| w.to_string()).collect();
+    let mut warnings = kept;
+    warnings.extend(study.warnings().iter().map(|w| w.to_string()));
     warnings.extend(rom.warnings.iter().map(|w| w.to_string()));
     Ok(PointResult { rom: rom.export(&study, options.form), modes, warnings, state })
 }
