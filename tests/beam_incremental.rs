@@ -36,15 +36,15 @@ fn final_positions(file: &str, overrides: &[(&str, f64)], update: BeamUpdate) ->
 fn with_the_incremental_update_the_tip_couple_equilibrium_follows_mbdyn_s_load_path() {
     // MBDyn 1.7.3 on tests/mbdyn_files/beam3_tip_couple.mbd (`mbdyn -f … -o out` with `H` set
     // in the file, node 5's row of out.mov at t = 1 s; tests/beam_rotation.rs): tip x [m].
-    // romdyn with the incremental update, measured: 0.664589784106918 (1 step, 1.1e-12 m
-    // from MBDyn), 0.664941099009948 (10 steps, 1.7e-6 m), 0.664947038593803 (100 steps,
-    // 2.5e-11 m); the path-independent update (the library's default) gives 0.664630 for all three. With 10 steps
-    // the tips of steps 1 and 2 equal MBDyn's to 2.3e-15 m and part at step 3 (5.4e-7 m),
-    // the first whose predictor reads two past rates: after step 2 node 5's angular
-    // velocity is MBDyn's 0.19003 rad/s and romdyn's 0.25924 with equal positions (README:
-    // the nodes' rotation update, not the beam's).
-    for (h, mbdyn, tolerance) in [(1.0, 0.66458978410585801, 1e-11), (0.1, 0.66493938405041575, 3e-6), (0.01, 0.66494703856909065, 1e-10)] {
+    // romdyn with the incremental update, measured: 0.66458978410691827 (1 step, 1.1e-12 m
+    // from MBDyn), 0.66493938405041619 (10 steps, 4.4e-16 m), 0.66494703856909121 (100
+    // steps, 5.6e-16 m); the path-independent update (the library's default) gives 0.664630
+    // for all three. Until the integrator updated the nodes' rotations as MBDyn does
+    // (2026-12-03, tests/rotation_update.rs) 10 steps were 1.7e-6 m off: the tips parted at
+    // step 3, the first whose predictor reads the angular velocity Newton's update left.
+    for (h, mbdyn, tolerance) in [(1.0, 0.66458978410585801, 1e-11), (0.1, 0.66493938405041575, 1e-13), (0.01, 0.66494703856909065, 1e-13)] {
         let x = final_positions("tests/mbdyn_files/beam3_tip_couple.mbd", &[("H", h)], BeamUpdate::Incremental)[4].x;
+        eprintln!("H = {h}: tip x {x:.17} m, {:e} m from MBDyn 1.7.3", (x - mbdyn).abs());
         assert!((x - mbdyn).abs() < tolerance, "H = {h}: tip x {x:.15} m, MBDyn 1.7.3 {mbdyn:.15} m");
     }
 }
@@ -248,14 +248,15 @@ fn the_incremental_beam3_and_beam2_jacobians_match_finite_differences_with_a_lat
 #[test]
 fn with_the_incremental_update_beam2_follows_mbdyn_s_load_path() {
     // MBDyn 1.7.3 on tests/mbdyn_files/beam2_tip_couple.mbd (tests/beam2.rs), tip x, y [m]:
-    // romdyn with the incremental update, measured: 2e-16 m from MBDyn in 1 step, 1.07e-5 m
-    // in 10 (steps 1 and 2 equal MBDyn's to 2.2e-15 m, step 3 parts by 2.4e-6 m: the same
-    // predictor difference as beam3's, not the beam's), 1.4e-10 m in 100; the
+    // romdyn with the incremental update, measured: 2.2e-16 m from MBDyn in 1 step, 9.4e-16
+    // m in 10, 1.6e-16 m in 100 (1.07e-5 and 1.4e-10 m before the nodes' rotation update was
+    // MBDyn's, 2026-12-03); the
     // path-independent default gives the exact polygon at any step, 5.6e-3 m from MBDyn's
     // one step.
-    for (h, mbdyn, tolerance) in [(1.0, [0.66408072228358794, 0.62595307543082024], 1e-12), (0.1, [0.66879666471425070, 0.62322796243159206], 2e-5), (0.01, [0.66890873831301589, 0.62315368821288930], 1e-9)] {
+    for (h, mbdyn, tolerance) in [(1.0, [0.66408072228358794, 0.62595307543082024], 1e-12), (0.1, [0.66879666471425070, 0.62322796243159206], 1e-13), (0.01, [0.66890873831301589, 0.62315368821288930], 1e-13)] {
         let x = final_positions("tests/mbdyn_files/beam2_tip_couple.mbd", &[("H", h)], BeamUpdate::Incremental)[4];
         let d = (x - Vec3::new(mbdyn[0], mbdyn[1], 0.0)).norm();
+        eprintln!("H = {h}: tip {x:?}, {d:e} m from MBDyn 1.7.3");
         assert!(d < tolerance, "H = {h}: tip {x:?}, {d:e} m from MBDyn 1.7.3's {mbdyn:?}");
     }
 }

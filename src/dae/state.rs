@@ -1,8 +1,11 @@
-//! The state `(t, y, ẏ)` plus each node's reference orientation `R_ref`.
+//! The state `(t, y, ẏ)` plus each node's reference orientation `R_ref`, and inside a time
+//! step its predicted rotation `g_ref` and angular velocity `W_ref` (as MBDyn's strnode.cc:
+//! after the prediction the orientation parameters measure Newton's correction from the
+//! predicted orientation, [`State::after_predict`]).
 
 use super::DofMap;
 use crate::element::NodeKinematics;
-use crate::kinematics::{gibbs_g, gibbs_rate_derivative, gibbs_rotation, Mat3, Vec3};
+use crate::kinematics::{gibbs_compose, gibbs_g, gibbs_rate_derivative, gibbs_rotation, skew, Mat3, Vec3};
 use crate::model::{Model, NodeKind};
 
 /// A point on the solution: time, unknowns, their derivatives, reference orientations.
@@ -14,6 +17,14 @@ pub struct State {
     pub y: Vec<f64>,
     pub yp: Vec<f64>,
     pub r_ref: Vec<Mat3>,
+    /// Per node, the predicted rotation's parameters `g_ref`, `R = R(g) R(g_ref) R_ref`,
+    /// during a time step's Newton iteration ([`State::after_predict`]), zero elsewhere
+    /// ([`State::rebase`]).
+    pub g_ref: Vec<Vec3>,
+    /// Per node, the angular velocity `W_ref` [rad/s] that `ω = G(g) ġ + R(g) W_ref` adds to
+    /// the parameters' rate: the predicted one during a time step's Newton iteration, zero
+    /// elsewhere.
+    pub w_ref: Vec<Vec3>,
     /// Per element, the data of its last event ([`crate::element::Element::latch`]); `None`
     /// before any.
     pub latched: Vec<Option<crate::element::Latched>>,
@@ -47,19 +58,29 @@ impl State {
                 yp[f + 3 + k] = n.angular_velocity[k];
             }
         }
-        State { t: 0.0, load: 1.0, y, yp, r_ref: model.nodes.iter().map(|n| n.orientation).collect(), latched: vec![None; model.elements.len()] }
+        State { t: 0.0, load: 1.0, y, yp, r_ref: model.nodes.iter().map(|n| n.orientation).collect(), g_ref: vec![Vec3::zeros(); model.nodes.len()], w_ref: vec![Vec3::zeros(); model.nodes.len()], latched: vec![None; model.elements.len()] }
     }
 
-    /// Kinematics of node `i`.
+    /// Kinematics of node `i`: `R = R(g) R(g_ref) R_ref`, `ω = G(g) ġ + R(g) W_ref`
+    /// (strnode.cc, `StructNode::Update`), and `∂ω/∂g = ∂(G ġ)/∂g − [R(g) W_ref]× G(g)`.
+    /// `R(g) R(g_ref)` is computed as `R(g ∘ g_ref)` ([`gibbs_compose`]): Newton's correction
+    /// of a node held still cancels the predicted round-off exactly, where the product of
+    /// the matrices would leave an ulp in the orientation every step, which a stiff element
+    /// turns into a residual floor.
     pub fn node_frame(&self, dofs: &DofMap, i: usize) -> NodeFrame {
         let f = dofs.node_first[i];
         let (g, gdot) = (vec3(&self.y, f + 3), vec3(&self.yp, f + 3));
         let g_matrix = gibbs_g(&g);
-        NodeFrame {
-            kin: NodeKinematics { x: vec3(&self.y, f), r: gibbs_rotation(&g) * self.r_ref[i], xdot: vec3(&self.yp, f), omega: g_matrix * gdot },
-            g_matrix,
-            rate_derivative: gibbs_rate_derivative(&g, &gdot),
+        let rotation = gibbs_rotation(&g);
+        let total = if self.g_ref[i] == Vec3::zeros() { rotation } else { gibbs_rotation(&gibbs_compose(&g, &self.g_ref[i])) };
+        let mut omega = g_matrix * gdot;
+        let mut rate_derivative = gibbs_rate_derivative(&g, &gdot);
+        if self.w_ref[i] != Vec3::zeros() {
+            let carried = rotation * self.w_ref[i];
+            omega += carried;
+            rate_derivative -= skew(&carried) * g_matrix;
         }
+        NodeFrame { kin: NodeKinematics { x: vec3(&self.y, f), r: total * self.r_ref[i], xdot: vec3(&self.yp, f), omega }, g_matrix, rate_derivative }
     }
 
     /// Momenta `(β, γ)` of a dynamic node (zero for static nodes).
@@ -70,16 +91,37 @@ impl State {
         }
     }
 
-    /// Re-bases every node's orientation: `R_ref ← R(g) R_ref`, `g ← 0`, `ġ ← ω`
-    /// (since `G(0) = I`).
+    /// Re-bases every node's orientation: `R_ref ← R(g) R(g_ref) R_ref`, `g ← 0`, `ġ ← ω`
+    /// (since `G(0) = I`), `g_ref ← 0`, `W_ref ← 0`; the kinematics are unchanged.
     pub fn rebase(&mut self, dofs: &DofMap) {
         for i in 0..self.r_ref.len() {
             let fr = self.node_frame(dofs, i);
             self.r_ref[i] = fr.kin.r;
+            self.g_ref[i] = Vec3::zeros();
+            self.w_ref[i] = Vec3::zeros();
             let f = dofs.node_first[i] + 3;
             for k in 0..3 {
                 self.y[f + k] = 0.0;
                 self.yp[f + k] = fr.kin.omega[k];
+            }
+        }
+    }
+
+    /// After a time step's prediction, as MBDyn's `StructNode::AfterPredict` (strnode.cc):
+    /// every node's predicted rotation and angular velocity become the references,
+    /// `g_ref ← g ∘ g_ref`, `W_ref ← ω` (from a re-based state `g_ref = 0`, `W_ref = 0`:
+    /// `R_ref` stays the last step's), and `g ← 0`, `ġ ← 0`, so that Newton's increments compose with the predicted
+    /// orientation (`R = R(δg) R_pred`) instead of adding to its parameters; the kinematics
+    /// are unchanged.
+    pub fn after_predict(&mut self, dofs: &DofMap) {
+        for i in 0..self.r_ref.len() {
+            let fr = self.node_frame(dofs, i);
+            let f = dofs.node_first[i] + 3;
+            self.g_ref[i] = gibbs_compose(&vec3(&self.y, f), &self.g_ref[i]);
+            self.w_ref[i] = fr.kin.omega;
+            for k in 0..3 {
+                self.y[f + k] = 0.0;
+                self.yp[f + k] = 0.0;
             }
         }
     }

@@ -5,7 +5,7 @@ mod gibbs;
 mod gibbs_derivatives;
 
 pub use gibbs_derivatives::{gibbs_g_inverse, gibbs_g_inverse_derivative, gibbs_gt_apply, gibbs_gt_derivative, gibbs_gt_derivative_in_a, gibbs_gt_second_derivative};
-pub use gibbs::{axial_of_skew_part, euler123, gibbs_from_rotation, gibbs_g, gibbs_rotation, gibbs_rate_derivative, rotation_vector, skew_part_jacobian};
+pub use gibbs::{axial_of_skew_part, euler123, gibbs_compose, gibbs_from_rotation, gibbs_g, gibbs_rotation, gibbs_rate_derivative, rotation_vector, skew_part_jacobian};
 
 /// 3-vector.
 pub type Vec3 = nalgebra::Vector3<f64>;

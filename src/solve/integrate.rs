@@ -218,6 +218,7 @@ impl<'a, 'm> Integrator<'a, 'm> {
             self.state.yp[i] = ypred;
             self.state.y[i] = a1 * y1[i] + a2 * y2[i] + b0 * ypred + b1 * yp1[i] + b2 * yp2[i];
         }
+        self.state.after_predict(dofs);
         self.state.t += self.h;
         if let Some(before) = &accepted {
             // Events at the predicted state, as MBDyn's AfterPredict (module documentation
@@ -231,6 +232,7 @@ impl<'a, 'm> Integrator<'a, 'm> {
                 self.multiplier_increment[i] = b0 * self.state.y[i] + b1 * y1[i] + b2 * y2[i] - a2 * previous;
             }
         }
+        self.state.rebase(dofs);
         self.previous = Some(current);
         self.accepted += 1;
         Ok(StepRecord { t: self.state.t, iterations: done.iterations, residual_norm: done.residual_norm })
@@ -255,6 +257,7 @@ impl<'a, 'm> Integrator<'a, 'm> {
         for i in (0..dofs.len).filter(|&i| !held(i)) {
             self.state.y[i] = y0[i] + c.first * 2.0 * yp0[i];
         }
+        self.state.after_predict(dofs);
         self.state.t = t0 + c.gamma * self.h;
         if let Some(before) = &before {
             self.asm.latch_events(&mut self.state, before);
@@ -273,11 +276,13 @@ impl<'a, 'm> Integrator<'a, 'm> {
             self.state.yp[i] = yp;
             self.state.y[i] = y0[i] + b0 * yp + b1 * yps[i] + b2 * yp0[i];
         }
+        self.state.after_predict(dofs);
         self.state.t = t0 + self.h;
         if let Some(before) = &before {
             self.asm.latch_events(&mut self.state, before);
         }
         let second = newton(self.asm, &mut self.state, Update::Dynamic { dcoef: b0, form }, &self.settings, &mut self.workspace)?;
+        self.state.rebase(dofs);
         self.previous = Some(start);
         self.accepted += 1;
         Ok(StepRecord { t: self.state.t, iterations: first.iterations + second.iterations, residual_norm: second.residual_norm })
