@@ -96,6 +96,13 @@ fn model_element_reads_a_body_written_above() {
     assert_eq!(v.real("V"), Some(0.0));
     assert!((v.real("E").unwrap() - 0.5 * 0.01 * 14.0).abs() < 1e-15, "{:?}", v.real("E"));
     assert_eq!(v.real("M"), Some(0.01));
+    // With an offset centre of mass and a spin (body.cc): v_G = v + ω × R x_G =
+    // (−1, −1, −3), E = ½ (m v_G·v_G + Ωᵀ J Ω) = ½ (0.01 · 11 + 3 · 2²) = 6.055; MBDyn
+    // 1.7.3 remarks "E", 6.055 on the same lines (measured 2026-12-03).
+    let spinning = "structural: 1, static, null, eye, null, null;\nstructural: 2, dynamic, 1., 2., 3., eye, -1., -2., -3., 0., 0., 2.;";
+    let body = "joint: 1, clamp, 1, node, node;\nbody: 2, 2, 1.e-2, 0.5, 0., 0., diag, 1., 2., 3.;\nset: real E = model::element::body(2, \"E\");";
+    let v = variables(&file("structural nodes: 2; joints: 1; rigid bodies: 1;", spinning, body));
+    assert!((v.real("E").unwrap() - 6.055).abs() < 1e-13, "{:?}", v.real("E"));
     // In a card's numbers: a force of the body's mass times 100.
     let force = "force: 2, absolute, 2, position, null, 0., 0., 1., const, 100.*model::element::body(2, \"m\");";
     let m = common::mbdyn::read(&file("structural nodes: 2; joints: 1; rigid bodies: 1; forces: 1;", nodes, &format!("joint: 1, clamp, 1, node, node;\nbody: 2, 2, 1.e-2, null, eye;\n{force}")));
