@@ -531,3 +531,23 @@ fn control_data_settings_are_accepted_and_beams_are_counted() {
     ));
     assert_eq!(m.model.nodes.len(), 1);
 }
+
+// ---------------------------------------------------------------- model: static
+
+/// `model: static` (dataman3.cc; body.cc `ReadBody`): bodies become static bodies, which
+/// only weigh, and need static nodes (MBDyn 1.7.3: "illegal structural node type … in
+/// static model analysis"); nothing else changes (MBDyn's `andrewssqueezer_assembler`).
+#[test]
+fn static_model_takes_bodies_on_static_nodes_only() {
+    let nodes = |kind: &str| format!("structural: 1, {kind}, 0., 0., 1., eye, null, null;");
+    let elements = "body: 1, 1, 2., null, eye;\ngravity: uniform, 0., 0., -1., const, 9.81;";
+    let control = "model: static; structural nodes: 1; rigid bodies: 1; gravity;";
+    let m = read(&file(control, &nodes("static"), elements));
+    assert_eq!(m.model.elements.len(), 1);
+    let text = file(control, &nodes("dynamic"), elements);
+    let e = romdyn::input::mbdyn::parse_text(&text, std::path::Path::new("m.mbd")).and_then(|d| romdyn::input::mbdyn::build(&d)).err().map(|e| e.to_string()).unwrap_or_default();
+    assert!(e.contains("m.mbd:7:1:") && e.contains("structural node 1 is dynamic") && e.contains("static model"), "{e}");
+    let text = file("model: dynamic; structural nodes: 1;", &nodes("static"), "");
+    let e = romdyn::input::mbdyn::parse_text(&text, std::path::Path::new("m.mbd")).and_then(|d| romdyn::input::mbdyn::build(&d)).err().map(|e| e.to_string()).unwrap_or_default();
+    assert!(e.contains("m.mbd:2:") && e.contains("expected the model type (static)"), "{e}");
+}

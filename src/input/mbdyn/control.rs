@@ -174,7 +174,9 @@ pub fn control_data(block: Option<&Block>, sources: &Sources) -> Result<(Counts,
             // Read with the drive callers (`super::rbk`, from `super::model`).
             c.skip_rest();
         } else if known(&st.keyword, &["model"]).is_some() {
-            return Err(c.error_at(st.span, "'model: static' (dynamic nodes treated as static) changes the physics and is not supported by romdyn"));
+            // dataman3.cc: `model: static` makes every body a static body (on a static
+            // node; see model.rs), nothing else.
+            c.keyword("the model type", &["static"])?;
         } else {
             return Err(c.error_at(st.span, format!("statement '{}' in control data is not supported by romdyn", st.keyword)));
         }

@@ -11,6 +11,8 @@ pub struct Cursor<'a> {
     st: &'a Statement,
     pos: usize,
     sources: &'a Sources,
+    /// What the part of the card being read publishes to `model::current` ([`Cursor::publish`]).
+    current: Vec<(&'static str, f64)>,
 }
 
 /// Largest count romdyn reads for a list (points of a drive, eigenanalysis times, …).
@@ -18,11 +20,21 @@ const MAX_COUNT: f64 = 1.0e6;
 
 impl<'a> Cursor<'a> {
     pub fn new(st: &'a Statement, sources: &'a Sources) -> Self {
-        Cursor { st, pos: 0, sources }
+        Cursor { st, pos: 0, sources, current: Vec::new() }
     }
 
     pub fn statement(&self) -> &'a Statement {
         self.st
+    }
+
+    /// Publishes `data` to `model::current("NAME")` in the arguments read until
+    /// [`Cursor::withdraw`] (MBDyn's `PushCurrData` … `PopCurrData` around part of a card).
+    pub fn publish(&mut self, data: &[(&'static str, f64)]) {
+        self.current = data.to_vec();
+    }
+    /// Ends [`Cursor::publish`].
+    pub fn withdraw(&mut self) {
+        self.current.clear();
     }
 
     /// The input file `span` is in.
@@ -50,12 +62,13 @@ impl<'a> Cursor<'a> {
             Value::Word(w) => format!("'{w}'"),
             Value::Str(s) => format!("the string \"{s}\""),
             Value::Empty => "an empty field".into(),
+            Value::Current(_) => format!("'{}'", a.text),
         }
     }
 
     /// Whether the next argument is a number (or an empty field).
     pub fn next_is_number(&self) -> bool {
-        matches!(self.st.args.get(self.pos).map(|a| &a.value), Some(Value::Number(_) | Value::Empty))
+        matches!(self.st.args.get(self.pos).map(|a| &a.value), Some(Value::Number(_) | Value::Empty | Value::Current(_)))
     }
 
     /// The next argument read as a keyword, if it can be one.
@@ -92,6 +105,10 @@ impl<'a> Cursor<'a> {
             Some(Value::Number(x)) if x.is_finite() => *x,
             Some(Value::Number(x)) => return Err(self.error(format!("expected {what} (a finite number), found {x}"))),
             Some(Value::Empty) => default,
+            Some(Value::Current(d)) => match d.evaluate(self.sources, &self.current)? {
+                x if x.is_finite() => x,
+                x => return Err(self.error(format!("expected {what} (a finite number), found {x}"))),
+            },
             Some(Value::Word(_)) if self.st.args.get(self.pos).is_some_and(|a| is_name(&a.text)) => {
                 let name = self.st.args.get(self.pos).map_or("", |a| a.text.as_str());
                 return Err(self.error(format!("expected {what} (a number), found '{name}', which is neither a number nor a defined variable")));

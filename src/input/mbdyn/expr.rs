@@ -5,7 +5,10 @@
 //! one. Expressions are evaluated as they are read, so later `set:` statements do not
 //! change earlier values.
 
+mod current;
 mod model_calls;
+
+pub use current::{reads_current, Deferred};
 
 use std::collections::{BTreeMap, HashMap};
 
@@ -92,11 +95,18 @@ pub struct Evaluator<'a> {
     lenient: bool,
     /// What `model::…_prev` functions read (the previous step's state, in a hint).
     previous: Option<Reads<'a>>,
+    /// The data the element card being read publishes to `model::current("NAME")`
+    /// (MBDyn's `DataManager::PushCurrData`: a distance's drive, a rod's law); empty
+    /// elsewhere.
+    current: &'a [(&'static str, f64)],
+    /// The elements `model::element::TYPE(LABEL, "NAME")` reads (`None` outside the reading
+    /// of the file: refused).
+    elements: Option<&'a super::model_namespace::ElementsRead>,
 }
 
 impl<'a> Evaluator<'a> {
     pub fn new(tokens: &'a [Spanned], vars: &'a mut Variables, sources: &'a Sources, end: Span) -> Self {
-        Evaluator { tokens, pos: 0, vars, sources, end, depth: 0, overrides: None, functions: None, reads: None, state: None, drives: None, lenient: false, previous: None }
+        Evaluator { tokens, pos: 0, vars, sources, end, depth: 0, overrides: None, functions: None, reads: None, state: None, drives: None, lenient: false, previous: None, current: &[], elements: None }
     }
 
     /// Makes the `model::` state functions read `reads`; `state` is the element state of a
@@ -113,6 +123,20 @@ impl<'a> Evaluator<'a> {
     /// driven element switches on: the previous step's state).
     pub fn with_previous(mut self, previous: Reads<'a>) -> Self {
         self.previous = Some(previous);
+        self
+    }
+
+    /// Makes `model::current("NAME")` read `current` (what the element card being read
+    /// publishes, see [`Deferred`]).
+    pub fn with_current(mut self, current: &'a [(&'static str, f64)]) -> Self {
+        self.current = current;
+        self
+    }
+
+    /// Makes `model::element::TYPE(LABEL, "NAME")` read these elements (while the file is
+    /// read).
+    pub fn with_elements(mut self, elements: &'a super::model_namespace::ElementsRead) -> Self {
+        self.elements = Some(elements);
         self
     }
 

@@ -229,7 +229,10 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             let (b, _) = point_side(c, ctx, "node 2", position, Some((&a, da)))?;
             let l0 = (b.global().0 - a.global().0).norm();
             let l_span = c.here();
+            // joint.cc: the drive reads `model::current("L")`, the length as written.
+            c.publish(&[("L", l0)]);
             let length = if c.accept("from nodes") { Drive::Const(l0) } else { super::drives::drive(c, ctx.drives, ctx.seq)? };
+            c.withdraw();
             let t0 = 0.0;
             let l = length.value(t0);
             if !(l > 0.0) || l0 == 0.0 {
@@ -482,12 +485,16 @@ fn rod(offsets: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Res
         return Err(c.error_at(span, format!("rod length must be positive, found {l0}")));
     }
     let law_span = c.here();
+    // joint.cc: the law reads `model::current("L0")`, the length as input, and
+    // `model::current("L")`, the distance between the points as written.
+    c.publish(&[("L0", l0), ("L", distance)]);
     // `scalar function elastic [isotropic | orthotropic], FUNCTION`: N = f(ε).
     if c.accept("scalar function elastic isotropic") || c.accept("scalar function elastic orthotropic") || c.accept("scalar function elastic") {
         let f = super::scalar_functions::scalar_function(c, &ctx.drives.functions, ctx.seq)?;
         return Ok(Box::new(Rod { label, a: a.anchor(), b: b.anchor(), axial_stiffness: 0.0, length: l0, viscous: None, elastic: Some(f) }));
     }
     let (law, prestrain): (LinearLaw, _) = super::laws::law_with_prestrain_drive(c, 1, ctx.laws, ctx.drives, ctx.seq)?;
+    c.withdraw();
     match law.nonlinear {
         // A `scalar function elastic` law of a `constitutive law:` card.
         Some(kind) if kind.starts_with("scalar function") => {

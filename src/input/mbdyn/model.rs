@@ -162,6 +162,8 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
     let cards = cards(doc)?;
     let mut problem = initial_value(block(doc, "initial value"), src, &cards.drives)?;
     let (counts, control_output, assembly) = control_data(block(doc, "control data"), src)?;
+    // `model: static` (dataman3.cc): bodies are static bodies, on static nodes.
+    let static_model = block(doc, "control data").is_some_and(|b| b.statements.iter().any(|st| same_keyword(&st.keyword, "model")));
     // `rigid body kinematics:` (the last one, as control data re-reads a repeated statement).
     let mut frame_motion = None;
     for st in block(doc, "control data").map_or(&[][..], |b| &b.statements).iter().filter(|st| same_keyword(&st.keyword, "rigid body kinematics")) {
@@ -256,11 +258,19 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
         };
         let parsed = match parsed {
             Parsed::Body(mut body) => {
+                // body.cc (ReadBody): in a static model a body needs a static node and only
+                // weighs (`StaticBody`), as romdyn's body on a static node.
+                if static_model && nodes.find(body.node).is_some_and(|n| n.node.kind == NodeKind::Dynamic) {
+                    return Err(src.error(st.span, format!("body {}: structural node {} is dynamic, and 'model: static' needs static nodes for bodies (MBDyn 1.7.3: \"illegal structural node type … in static model analysis\")", body.label, body.node)));
+                }
                 bodies.push((body.label, body.node, body.mass, body.offset));
                 body.frame = frame_motion.clone();
                 Parsed::Element(Box::new(body))
             }
             Parsed::Element(e) if e.type_name() == "variable body" => {
+                if static_model {
+                    return Err(src.error(st.span, "a variable-mass body in a static model ('model: static') is not supported by romdyn"));
+                }
                 if frame_motion.is_some() {
                     return Err(src.error(st.span, "a variable-mass body in a model with 'rigid body kinematics' is not supported by romdyn"));
                 }

@@ -9,7 +9,7 @@
 
 use std::collections::HashMap;
 
-use crate::element::{Drive, ElementState, Label, NodeKinematics};
+use crate::element::{Drive, Element, ElementState, Label, NodeKinematics};
 use crate::kinematics::{rotation_vector, Vec3};
 
 /// The structural nodes a `model::` function reads, by label.
@@ -198,6 +198,66 @@ pub fn node_private_data(label_arg: f64, data: &str, reads: Reads) -> Result<f64
         _ => n.r.transpose() * n.omega,
     };
     Ok(v[i - 1])
+}
+
+/// The elements read so far, by label space (`elements::label_space`) and label: the
+/// element, or why romdyn could not read it while reading the file.
+pub type ElementsRead = HashMap<(&'static str, Label), Result<Box<dyn Element>, String>>;
+
+/// The model's state while the file is read: the nodes as written, time 0 and no gravity
+/// (MBDyn links the gravity element to the bodies once it has read every element).
+struct AsWritten<'r> {
+    nodes: &'r dyn NodeStates,
+    none: NodeKinematics,
+}
+
+impl ElementState for AsWritten<'_> {
+    fn node(&self, _slot: usize) -> &NodeKinematics {
+        &self.none
+    }
+    fn multiplier(&self, _k: usize) -> f64 {
+        0.0
+    }
+    fn time(&self) -> f64 {
+        0.0
+    }
+    fn gravity(&self) -> Vec3 {
+        Vec3::zeros()
+    }
+    fn load_factor(&self) -> f64 {
+        1.0
+    }
+    fn structural_node(&self, label: Label) -> Option<&NodeKinematics> {
+        self.nodes.structural_node(label)
+    }
+}
+
+/// `model::element::TYPE(LABEL, "NAME")` while the file is read (modelns.cc, `model_elem`:
+/// `Elem::dGetPrivData` of the element `LABEL` read above): the private data romdyn
+/// computes ([`crate::element::private_data`], a body's "E", "V", "m") at the nodes as
+/// written.
+pub fn element_private_data(kind: &str, label_arg: f64, data: &str, elements: &ElementsRead, reads: Reads) -> Result<f64, String> {
+    let call = format!("model::element::{kind}({label_arg}, \"{data}\")");
+    let l = label(label_arg, &call).map_err(|m| m.replace("node label", "element label"))?;
+    let space = match kind {
+        "body" | "joint" | "force" | "beam" => kind,
+        "couple" => "force",
+        _ => return Err(format!("{call}: romdyn reads the private data of bodies and joints (element types body, joint, force, couple, beam)")),
+    };
+    let element = match elements.get(&(space, l)) {
+        None => return Err(format!("{call}: there is no {space} {l} above this statement (MBDyn: \"unable to find\")")),
+        Some(Err(why)) => return Err(format!("{call}: romdyn could not read {space} {l} while reading the file: {why}")),
+        Some(Ok(e)) => e,
+    };
+    let Some(datum) = element.private_data(data) else {
+        return Err(format!("{call}: romdyn does not compute the private data \"{data}\" of {} {l} (it computes a body's \"E\", \"V\", \"m\", a revolute hinge's \"rz\", \"wz\", a total joint's \"px\" … \"wz\")", element.type_name()));
+    };
+    let nodes = match reads {
+        Reads::Nodes(n) => n,
+        Reads::Labels(_) => return Ok(0.0),
+    };
+    let none = NodeKinematics { x: Vec3::zeros(), r: crate::kinematics::Mat3::identity(), xdot: Vec3::zeros(), omega: Vec3::zeros() };
+    datum(&AsWritten { nodes, none }).ok_or_else(|| format!("{call}: a node of {space} {l} is not among the nodes read"))
 }
 
 /// `model::drive(LABEL, x)`: the `drive caller:` card `LABEL` at `x` (modelns.cc,

@@ -10,7 +10,7 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
 use super::diagnostic::{MbdynError, Sources, Span};
-use super::expr::{describe, staticize_evals, Evaluator, Reads, SetOverrides, Variables};
+use super::expr::{describe, reads_current, staticize_evals, Deferred, Evaluator, Reads, SetOverrides, Variables};
 use super::lexer::{tokenize, Spanned, Token};
 use super::value::TypedValue;
 use crate::element::NodeKinematics;
@@ -24,6 +24,9 @@ pub enum Value {
     Str(String),
     /// An empty field (`1., , 3.`): MBDyn reads it as the default value, or zero.
     Empty,
+    /// An argument of an element card that calls `model::current`, evaluated when the card
+    /// reads it (see [`Deferred`]).
+    Current(Box<Deferred>),
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -101,6 +104,8 @@ pub trait StatementObserver {
     fn functions(&self) -> &HashMap<String, crate::element::ScalarFunction>;
     /// The `drive caller:` cards read so far, by label (`model::drive(LABEL, x)` there).
     fn drives(&self) -> &HashMap<u32, crate::element::Drive>;
+    /// The bodies and joints read so far (`model::element::TYPE(LABEL, "NAME")` there).
+    fn elements(&self) -> &super::model_namespace::ElementsRead;
 }
 
 struct Reader {
@@ -110,6 +115,9 @@ struct Reader {
     open: Option<Block>,
     seq: usize,
     overrides: SetOverrides,
+    /// The statement being read is an element card: an argument that calls
+    /// `model::current` waits for the card's reader ([`Deferred`]).
+    element_card: bool,
 }
 
 /// Reads and parses an MBDyn input file (and its includes), telling `observer` of each
@@ -131,7 +139,7 @@ pub fn parse_text_observed(text: &str, name: &Path, overrides: &SetOverrides, ob
 
 impl Reader {
     fn new(overrides: &SetOverrides, observer: Box<dyn StatementObserver>) -> Self {
-        Reader { doc: Document::default(), observer, stack: Vec::new(), open: None, seq: 0, overrides: overrides.clone() }
+        Reader { doc: Document::default(), observer, stack: Vec::new(), open: None, seq: 0, overrides: overrides.clone(), element_card: false }
     }
 
     fn finish(mut self, path: &Path) -> Result<Document, MbdynError> {
@@ -209,7 +217,7 @@ impl Reader {
                 if body.is_empty() {
                     return Err(self.doc.sources.error(end, "set: expected an expression, e.g. 'set: real L = 1.;'"));
                 }
-                Evaluator::new(body, &mut self.doc.variables, &self.doc.sources, end).with_overrides(&self.overrides).with_reads(Reads::Nodes(self.observer.nodes()), None).with_functions(self.observer.functions()).with_drives(self.observer.drives()).evaluate()?;
+                Evaluator::new(body, &mut self.doc.variables, &self.doc.sources, end).with_overrides(&self.overrides).with_reads(Reads::Nodes(self.observer.nodes()), None).with_functions(self.observer.functions()).with_drives(self.observer.drives()).with_elements(self.observer.elements()).evaluate()?;
                 return Ok(());
             }
             Some(kw @ ("begin" | "end")) => return self.block(kw, body, first.span, end),
@@ -222,8 +230,10 @@ impl Reader {
         if known(&keyword, &["driven"]).is_some() {
             return self.driven(first.span, body, end, path);
         }
-        let args = self.args(body, end)?;
-        let st = Statement { keyword, span: first.span, args, end, seq: self.seq, driven: None };
+        self.element_card = known(&keyword, &CARDS).is_none() && self.open.as_ref().is_some_and(|b| same_keyword(&b.name, "elements"));
+        let args = self.args(body, end);
+        self.element_card = false;
+        let st = Statement { keyword, span: first.span, args: args?, end, seq: self.seq, driven: None };
         let in_nodes_block = self.open.as_ref().is_some_and(|b| same_keyword(&b.name, "nodes"));
         self.observer.statement(&st, &self.doc.sources, in_nodes_block, &self.doc.variables);
         if known(&st.keyword, &CARDS).is_some() {
@@ -329,7 +339,11 @@ impl Reader {
         if phrase {
             return Ok(Arg { value: Value::Word(lower.clone()), span, keyword: Some(lower), text });
         }
-        let value = match Evaluator::new(p, &mut self.doc.variables, &self.doc.sources, end).with_reads(Reads::Nodes(self.observer.nodes()), None).with_functions(self.observer.functions()).with_drives(self.observer.drives()).evaluate()? {
+        if self.element_card && reads_current(p) {
+            let value = Value::Current(Box::new(Deferred::new(p, end, &self.doc.variables)));
+            return Ok(Arg { value, span, keyword: None, text });
+        }
+        let value = match Evaluator::new(p, &mut self.doc.variables, &self.doc.sources, end).with_reads(Reads::Nodes(self.observer.nodes()), None).with_functions(self.observer.functions()).with_drives(self.observer.drives()).with_elements(self.observer.elements()).evaluate()? {
             // A string written as such may be a string drive's expression: its `TYPE_eval`
             // calls take their values now (see [`staticize_evals`]).
             TypedValue::Str(s) if matches!(p, [Spanned { token: Token::Str(_), .. }]) => {

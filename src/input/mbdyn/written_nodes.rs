@@ -31,6 +31,10 @@ pub struct WrittenNodes {
     drive_table: HashMap<u32, crate::element::Drive>,
     /// The drive caller cards read so far (read again when the variables change).
     drive_cards: Vec<Statement>,
+    /// The bodies and joints read so far (`model::element::…`), built with the model's
+    /// readers (without the constitutive law cards: a joint that names one is kept as the
+    /// reason it could not be read).
+    elements: super::model_namespace::ElementsRead,
 }
 
 impl StatementObserver for WrittenNodes {
@@ -54,6 +58,10 @@ impl StatementObserver for WrittenNodes {
             self.drive_table = self.drives.defined_before(st.seq + 1);
             return;
         }
+        if !in_nodes_block && known(&st.keyword, &["body", "joint"]).is_some() {
+            self.element(st, sources);
+            return;
+        }
         if known(&st.keyword, &["reference"]).is_some() {
             let _ = reference(st, &mut c, &mut self.frames);
         } else if known(&st.keyword, &["scalar function"]).is_some() && super::scalar_functions::scalar_function_card(&mut c, &mut self.drives.functions, st.seq).is_ok() {
@@ -73,6 +81,29 @@ impl StatementObserver for WrittenNodes {
     }
     fn drives(&self) -> &HashMap<u32, crate::element::Drive> {
         &self.drive_table
+    }
+    fn elements(&self) -> &super::model_namespace::ElementsRead {
+        &self.elements
+    }
+}
+
+impl WrittenNodes {
+    /// Reads a body or joint card as the model does, for `model::element::…` further down.
+    fn element(&mut self, st: &Statement, sources: &Sources) {
+        let Some(super::parser::Arg { value: super::parser::Value::Number(x), .. }) = st.args.first() else { return };
+        if *x < 0.0 || x.fract() != 0.0 || *x > u32::MAX as f64 {
+            return;
+        }
+        let laws = super::laws::Laws::default();
+        let beams = super::element_context::BeamNodes::new();
+        let ctx = super::element_context::ElementContext { nodes: &self.nodes, frames: &self.frames, drives: &self.drives, laws: &laws, beams: &beams, seq: st.seq };
+        let built = match super::elements::element(st, &mut Cursor::new(st, sources), &ctx) {
+            Ok(super::element_context::Parsed::Element(e)) => Ok(e),
+            Ok(super::element_context::Parsed::Body(b)) => Ok(Box::new(b) as Box<dyn crate::element::Element>),
+            Ok(_) => Err("it is not an element with private data".to_string()),
+            Err(e) => Err(e.message),
+        };
+        self.elements.insert((super::elements::label_space(&st.keyword), *x as u32), built);
     }
 }
 

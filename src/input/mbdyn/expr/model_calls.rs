@@ -69,8 +69,41 @@ impl Evaluator<'_> {
                 };
                 model_namespace::drive(table, label, x, reads, self.state).map(TypedValue::Real).map_err(self.at(span))
             }
-            "element" => Err(self.err(span, "model::element:: reads elements' private data, which romdyn does not support")),
-            "current" => Err(self.err(span, "model::current reads the data an element card publishes while it is read (a distance's or a rod's length), which romdyn does not support")),
+            "element" => {
+                // modelns.cc `model_elem`: `model::element::TYPE(LABEL, "NAME")`.
+                let kind = if self.eat("::") { self.word(0).map(str::to_string) } else { None };
+                let Some(kind) = kind else {
+                    return Err(self.err(span, "model::element:: expects an element type, e.g. model::element::body(LABEL, \"E\")"));
+                };
+                self.pos += 1;
+                let what = format!("model::element::{kind}");
+                let args = self.arguments(&what, span)?;
+                let [label, TypedValue::Str(data)] = &args[..] else {
+                    return Err(self.err(span, format!("{what} takes an element label and a private data name in double quotes, e.g. (1, \"E\")")));
+                };
+                let label = real(self, label)?;
+                let Some(elements) = self.elements else {
+                    return Err(self.err(span, format!("{what}: romdyn reads an element's private data while it reads the file ('const', 'set:', a card's numbers), not in a string drive during the run (the 'element' drive caller reads it there)")));
+                };
+                let reads = self.reads.ok_or_else(|| no_reads(self))?;
+                model_namespace::element_private_data(&kind, label, data, elements, reads).map(TypedValue::Real).map_err(self.at(span))
+            }
+            "current" => {
+                // modelns.cc `model_curr`: a name the card being read publishes (see
+                // [`super::Deferred`]).
+                let args = self.arguments(&what, span)?;
+                let [TypedValue::Str(data)] = &args[..] else {
+                    return Err(self.err(span, "model::current takes the name of a datum in double quotes, e.g. model::current(\"L\")"));
+                };
+                match self.current.iter().find(|(n, _)| n == data) {
+                    Some((_, v)) => Ok(TypedValue::Real(*v)),
+                    None if self.current.is_empty() => Err(self.err(span, format!("model::current(\"{data}\") is not defined here: MBDyn publishes \"L\" while it reads a distance joint's drive, and \"L0\" and \"L\" while it reads a rod's constitutive law"))),
+                    None => {
+                        let names = self.current.iter().map(|(n, _)| format!("\"{n}\"")).collect::<Vec<_>>().join(" and ");
+                        Err(self.err(span, format!("model::current(\"{data}\") is not defined: this part of the card publishes {names}")))
+                    }
+                }
+            }
             "drivep" => Err(self.err(span, "model::drivep (a drive caller's derivative) is not supported by romdyn")),
             _ => Err(self.err(span, format!("unknown function '{what}' of the model namespace"))),
         }
