@@ -207,3 +207,48 @@ fn sticking_friction_linearizes_to_the_bristle_spring_and_damper() {
     let (_, non_smooth, _) = eigenanalysis_at_rest(25.0, false, "1e-6");
     assert!(non_smooth.len() == 1 && non_smooth[0].starts_with("in line 2: its friction state"), "{non_smooth:?}");
 }
+
+/// stick_slip_kink.mbd with the sliding direction `dir` and time step `dt`: the run's result,
+/// and on success the block's (node 3's) final x.
+fn stick_slip(dir: f64, dt: f64) -> Result<f64, romdyn::analysis::RunError> {
+    let overrides = SetOverrides::from([("DIR".to_string(), dir), ("DT".to_string(), dt)]);
+    let m = read_model_text(&std::fs::read_to_string(path("stick_slip_kink.mbd")).unwrap(), &path("stick_slip_kink.mbd"), &overrides).unwrap_or_else(|e| panic!("{e}"));
+    let report = run(&m.model, &m.problem, &mut ())?;
+    let asm = Assembler::new(&m.model);
+    assert!((report.final_state.t - 1.0).abs() < 1e-9, "ended at {}", report.final_state.t);
+    Ok(report.final_state.node_frame(&asm.dofs, m.model.node_index(3).unwrap()).kin.x.x)
+}
+
+#[test]
+fn a_block_breaking_away_stops_where_mbdyn_does_and_names_the_kink_newton_cycles_across() {
+    // The block sticks, then breaks away. At a 2 ms step Newton's iterates of the step that
+    // breaks away cycle across v = 0, where the state equation has a kink.
+    // MBDyn 1.7.3 (1727489e) on stick_slip_kink.mbd with DIR = -1 (sliding speed v > 0,
+    // where its Jacobian is the exact derivative, as romdyn's): "Max iterations number 50
+    // has been reached during Step=190, Time=0.38". With DIR = 1 (v < 0) MBDyn's derivative
+    // of f_s(v) = μ(|v|) sign v has the wrong sign (friction.cc `fsd` multiplies μ'(|v|) by
+    // sign v once more), its iterates take another path and it stops at Step=191; romdyn's
+    // Jacobian is the exact one in both directions and stops at step 190 in both.
+    for dir in [-1.0, 1.0] {
+        match stick_slip(dir, 2e-3) {
+            Err(romdyn::analysis::RunError::Step { step, failure, .. }) => {
+                assert_eq!(step, 190, "DIR {dir}: {failure}");
+                // Its last iterates alternate between sliding velocities 0.0706 and -0.0611
+                // m/s (romdyn, measured), across v = 0 with z past the breakaway deflection.
+                let why = failure.reason.as_deref().unwrap_or_default();
+                assert!(why.starts_with("its last 4 iterates cross a point where the residual is not differentiable"), "{why}");
+                assert!(why.contains("in line 3: its sliding velocity went from") && why.contains("m/s across 0 with its friction state"), "{why}");
+            }
+            other => panic!("DIR {dir}: {other:?}"),
+        }
+    }
+    // At a 1 ms step both directions run to t = 1 s in both programs. MBDyn 1.7.3, same
+    // file with DIR and DT set, .mov node 3 at t = 1 s: x -1.0654706664011040 (DIR = -1,
+    // romdyn measured 4.1e-11 m from it) and 1.0654712176095871 (DIR = 1: 5.5e-7 m from its
+    // own mirror image, its wrong-signed derivative stopping Newton at other points within
+    // its tolerance of 1e-6 N; romdyn's runs are mirror images).
+    for (dir, mbdyn, tolerance) in [(-1.0, -1.0654706664011040, 1e-9), (1.0, 1.0654712176095871, 1e-6)] {
+        let x = stick_slip(dir, 1e-3).unwrap_or_else(|e| panic!("DIR {dir}: {e}"));
+        assert!((x - mbdyn).abs() < tolerance, "DIR {dir}: romdyn {x}, MBDyn {mbdyn}");
+    }
+}

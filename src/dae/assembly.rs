@@ -403,6 +403,18 @@ impl<'m> Assembler<'m> {
         self.model.elements.iter().enumerate().filter_map(named).collect()
     }
 
+    /// Every element whose residual is not differentiable somewhere between `from` and `to`
+    /// ([`Element::kink_crossed`]), as "in line 3: …".
+    ///
+    /// [`Element::kink_crossed`]: crate::element::Element::kink_crossed
+    pub fn kinks_crossed(&self, from: &State, to: &State) -> Vec<String> {
+        let (frames_from, frames_to) = (self.frames(from), self.frames(to));
+        let named = |(e, el): (usize, &Box<dyn crate::element::Element>)| {
+            el.kink_crossed(&self.context(&frames_from, from, e, 1.0), &self.context(&frames_to, to, e, 1.0)).map(|why| format!("{} {}: {why}", el.type_name(), el.label()))
+        };
+        self.model.elements.iter().enumerate().filter_map(named).collect()
+    }
+
     /// Every element whose Jacobian at `st` depends on reaction multipliers' values
     /// ([`Element::reaction_dependence`]), as "in line 3: …".
     ///

@@ -202,6 +202,13 @@ pub trait Element: Send + Sync {
     fn non_smooth(&self, _s: &dyn ElementState) -> Option<String> {
         None
     }
+    /// Why its residual is not differentiable somewhere between the states `from` and `to`
+    /// (a friction coefficient's kink that the sliding speed crosses), if it is not: when
+    /// Newton fails with its last iterates on the two sides of such a point, its failure
+    /// names it, since Newton's iterates can cycle across a kink instead of converging.
+    fn kink_crossed(&self, _from: &dyn ElementState, _to: &dyn ElementState) -> Option<String> {
+        None
+    }
     /// Whether the element has events ([`Element::latch`]).
     fn has_events(&self) -> bool {
         false

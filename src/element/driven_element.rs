@@ -148,6 +148,9 @@ impl ElementWrapper for DrivenElement {
     fn non_smooth(&self, s: &dyn ElementState) -> Option<String> {
         self.acting(s).and_then(|e| e.non_smooth(s))
     }
+    fn kink_crossed(&self, from: &dyn ElementState, to: &dyn ElementState) -> Option<String> {
+        self.acting(to).and_then(|e| e.kink_crossed(from, to))
+    }
     fn reaction_dependence(&self, s: &dyn ElementState) -> Option<String> {
         self.acting(s).and_then(|e| e.reaction_dependence(s))
     }

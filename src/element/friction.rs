@@ -103,6 +103,28 @@ impl ModLugre {
         }
     }
 
+    /// The points where the state equation is not differentiable that the state crosses from
+    /// `(v_a, z_a)` to `(v_b, z_b)` (sliding velocity and friction state), as a sentence:
+    /// `v = 0` with `z` past the breakaway deflection on either side (the kink of `α |v| z
+    /// σ₀/μ(|v|)`, as [`Element::non_smooth`]), and the kinks of `μ(|v|)`
+    /// ([`ScalarFunction::kinks`]), where `f_s'` jumps and with it the derivative in `v` by
+    /// `α z σ₀ v Δμ'/μ²`. Newton's iterates on the two sides of such a point can cycle
+    /// (tests/joint_friction.rs, stick_slip_kink.mbd).
+    pub fn kink_crossed(&self, (v_a, z_a): (f64, f64), (v_b, z_b): (f64, f64)) -> Option<String> {
+        let mut why = Vec::new();
+        let past_breakaway = |z: f64| self.alpha(z, 0.0).0.max(self.alpha(z, -f64::MIN_POSITIVE).0) != 0.0;
+        if sign(v_a) != sign(v_b) && (past_breakaway(z_a) || past_breakaway(z_b)) {
+            why.push(format!("its sliding velocity went from {v_a:.6e} to {v_b:.6e} m/s across 0 with its friction state (z = {z_a:.6e}, {z_b:.6e} m) past the breakaway deflection, where the modlugre state equation's α |v| z σ₀/μ(|v|) has a kink"));
+        }
+        let (lo, hi) = (v_a.abs().min(v_b.abs()), v_a.abs().max(v_b.abs()));
+        if let Some(x) = self.static_friction.kinks().into_iter().find(|&x| lo < x && x < hi) {
+            let slope = |s: f64| self.static_friction.derivative(s);
+            let h = 1e-9 * x.abs().max(1e-9);
+            why.push(format!("its sliding speed |v| went from {:.6e} to {:.6e} m/s across {x:e} m/s, a kink of its static friction coefficient μ(|v|) (slope {:.6e} below, {:.6e} above), where the friction state equation is not differentiable (a `cubic spline` μ has no such point)", v_a.abs(), v_b.abs(), slope(x - h), slope(x + h)));
+        }
+        (!why.is_empty()).then(|| why.join(", and "))
+    }
+
     /// The friction coefficient `f = σ₀ z + σ₁ ż + σ₂ v`.
     pub fn coefficient(&self, z: f64, zdot: f64, v: f64) -> f64 {
         self.sigma0 * z + self.sigma1 * zdot + self.sigma2 * v
@@ -182,6 +204,10 @@ impl Element for InLineFriction {
         // over a bristle's stiffness and damping), below which any motion crosses the kink.
         let alpha = self.model.alpha(z, 0.0).0.max(self.model.alpha(z, -f64::MIN_POSITIVE).0);
         (v.abs() < STILL && alpha != 0.0).then(|| format!("its friction state z = {z:e} m is past the breakaway deflection at sliding velocity {v:.1e} m/s (at rest), where the modlugre state equation is not differentiable"))
+    }
+    fn kink_crossed(&self, from: &dyn ElementState, to: &dyn ElementState) -> Option<String> {
+        let v = |st: &dyn ElementState| (self.sliding(&Pair::new(&self.joint.a, &self.joint.b, st), st).1, st.multiplier(STATE));
+        self.model.kink_crossed(v(from), v(to))
     }
     fn reaction_dependence(&self, st: &dyn ElementState) -> Option<String> {
         // Above the preload the friction force f N and its stiffness σ₀ N scale with the
@@ -295,5 +321,25 @@ mod tests {
             assert!((e.d_z - fz).abs() <= 1e-5 * (1.0 + fz.abs()), "z {z} v {v}: {} vs {fz}", e.d_z);
             assert!((e.d_v - fv).abs() <= 1e-5 * (1.0 + fv.abs()), "z {z} v {v}: {} vs {fv}", e.d_v);
         }
+    }
+
+    /// The points where the state equation is not differentiable, named when two states lie
+    /// on their two sides: a kink of `μ(|v|)` in either sliding direction, and `v = 0` only
+    /// with `z` past the breakaway deflection.
+    #[test]
+    fn kinks_crossed_between_two_states_are_named() {
+        let mut m = model();
+        m.static_friction = ScalarFunction::Multilinear { points: vec![(0.0, 0.6), (0.1, 0.3), (1.0, 0.3)], extrapolate: true };
+        let slip = 2.0 * 0.6 / 2000.0;
+        for sign in [1.0, -1.0] {
+            let why = m.kink_crossed((sign * 0.05, sign * slip), (sign * 0.2, sign * slip)).unwrap();
+            assert!(why.contains("across 1e-1 m/s, a kink of its static friction coefficient μ(|v|) (slope -3.000000e0 below, 0.000000e0 above)"), "{why}");
+            assert!(!why.contains("across 0"), "{why}");
+        }
+        assert_eq!(m.kink_crossed((0.02, slip), (0.08, slip)), None);
+        let why = m.kink_crossed((0.05, slip), (-0.05, slip)).unwrap();
+        assert!(why.starts_with("its sliding velocity went from 5.000000e-2 to -5.000000e-2 m/s across 0"), "{why}");
+        // In stick (|z| below κ μ/σ₀ on both sides) the state equation is smooth at v = 0.
+        assert_eq!(m.kink_crossed((0.05, 1e-5), (-0.05, 1e-5)), None);
     }
 }

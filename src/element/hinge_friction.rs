@@ -130,6 +130,10 @@ impl Element for RevoluteHingeFriction {
         let alpha = self.model.alpha(z, 0.0).0.max(self.model.alpha(z, -f64::MIN_POSITIVE).0);
         (v.abs() < STILL && alpha != 0.0).then(|| format!("its friction state z = {z:e} m is past the breakaway deflection at sliding velocity {v:.1e} m/s (at rest), where the modlugre state equation is not differentiable"))
     }
+    fn kink_crossed(&self, from: &dyn ElementState, to: &dyn ElementState) -> Option<String> {
+        let v = |st: &dyn ElementState| (self.sliding(&Pair::new(&self.joint.a, &self.joint.b, st)).1, st.multiplier(self.state_index()));
+        self.model.kink_crossed(v(from), v(to))
+    }
     fn reaction_dependence(&self, st: &dyn ElementState) -> Option<String> {
         let (n, dn) = self.normal_force(st);
         (dn != [0.0; 3]).then(|| format!("its friction moment and stiffness scale with the normal force |F| = {n:.9e} N, the hinge's reaction multipliers as integrated, which steps accepted within the tolerance without a Newton iteration leave noisy; the eigenvalues carry that noise, which a tighter `tolerance` narrows"))

@@ -48,6 +48,46 @@ impl ScalarFunction {
         self.value_and_derivative(x).1
     }
 
+    /// The abscissas where the derivative jumps (a multilinear's interior points where the
+    /// slope changes, the ends of a function held at its end values), increasing: there
+    /// `f` is not differentiable, [`Self::value_and_derivative`] returns the slope of the
+    /// interval to the right, and Newton's iterates that cross such a point can cycle.
+    pub fn kinks(&self) -> Vec<f64> {
+        let mut out = match self {
+            ScalarFunction::Const(_) | ScalarFunction::Exp { .. } | ScalarFunction::Log { .. } | ScalarFunction::Pow(_) => Vec::new(),
+            ScalarFunction::Multilinear { points, extrapolate } => {
+                let n = points.len();
+                let slope = |i: usize| (points[i + 1].1 - points[i].1) / (points[i + 1].0 - points[i].0);
+                // Slopes equal to rounding (0.4/0.8 against 0.5/1) make no kink.
+                let jumps = |a: f64, b: f64| (a - b).abs() > 1e-9 * a.abs().max(b.abs());
+                let mut k: Vec<f64> = (1..n - 1).filter(|&i| jumps(slope(i - 1), slope(i))).map(|i| points[i].0).collect();
+                if !extrapolate {
+                    if slope(0) != 0.0 {
+                        k.insert(0, points[0].0);
+                    }
+                    if slope(n - 2) != 0.0 {
+                        k.push(points[n - 1].0);
+                    }
+                }
+                k
+            }
+            ScalarFunction::CubicSpline { points, coefficients, extrapolate } => {
+                let n = points.len();
+                if *extrapolate {
+                    Vec::new()
+                } else {
+                    [(points[0].0, coefficients[0].0), (points[n - 1].0, coefficients[n - 1].0)].into_iter().filter(|&(_, b)| b != 0.0).map(|(x, _)| x).collect()
+                }
+            }
+            // Outside [a, b] without extrapolation the value is NaN (not a kink).
+            ScalarFunction::Chebychev { .. } => Vec::new(),
+            ScalarFunction::Sum(f, g) | ScalarFunction::Sub(f, g) | ScalarFunction::Mul(f, g) | ScalarFunction::Div(f, g) => f.kinks().into_iter().chain(g.kinks()).collect(),
+        };
+        out.sort_by(f64::total_cmp);
+        out.dedup();
+        out
+    }
+
     /// `(f(x), f'(x))`. Out of a function's domain (a logarithm of a non-positive number,
     /// a division by zero) the value is NaN, which Newton reports as a non-finite residual.
     pub fn value_and_derivative(&self, x: f64) -> (f64, f64) {
@@ -215,5 +255,21 @@ mod tests {
         let parabola = F::cubic_spline(vec![(0.0, 0.0), (1.0, 1.0), (3.0, 9.0)], false);
         assert!((parabola.value(2.0) - 4.0).abs() < 1e-12 && parabola.value(5.0) == 9.0);
         assert!(F::Chebychev { a: 0.0, b: 1.0, coefficients: vec![1.0], extrapolate: false }.value(2.0).is_nan());
+    }
+
+    #[test]
+    fn kinks_are_where_the_slope_jumps() {
+        // Interior points where the slope changes (not 0.5, on a straight run), the ends
+        // when held at their values with a slope inside (not the flat end at 1.2).
+        // Not at 2, where the slope is 0.5 on both sides within rounding.
+        let points = vec![(0.0, 0.6), (0.1, 0.3), (0.5, 0.3), (1.2, 0.3), (2.0, 0.7), (3.0, 1.2)];
+        assert_eq!(F::Multilinear { points: points.clone(), extrapolate: true }.kinks(), vec![0.1, 1.2]);
+        assert_eq!(F::Multilinear { points, extrapolate: false }.kinks(), vec![0.0, 0.1, 1.2, 3.0]);
+        let spline = |extrapolate| F::cubic_spline(vec![(1.0, 1.0), (2.0, 4.0), (3.0, 9.0)], extrapolate);
+        assert!(spline(true).kinks().is_empty());
+        assert_eq!(spline(false).kinks(), vec![1.0, 3.0]);
+        let ramp = || Box::new(F::Multilinear { points: vec![(0.0, 0.0), (1.0, 1.0), (2.0, 1.0)], extrapolate: true });
+        assert_eq!(F::Sum(ramp(), Box::new(F::Mul(ramp(), Box::new(F::Pow(2.0))))).kinks(), vec![1.0]);
+        assert!(F::Const(0.3).kinks().is_empty());
     }
 }

@@ -96,6 +96,10 @@ impl Element for ScrewFriction {
         let alpha = self.model.alpha(z, 0.0).0.max(self.model.alpha(z, -f64::MIN_POSITIVE).0);
         (v.abs() < STILL && alpha != 0.0).then(|| format!("its friction state z = {z:e} m is past the breakaway deflection at sliding velocity {v:.1e} m/s (at rest), where the modlugre state equation is not differentiable"))
     }
+    fn kink_crossed(&self, from: &dyn ElementState, to: &dyn ElementState) -> Option<String> {
+        let v = |st: &dyn ElementState| (self.sliding(&Pair::new(&self.screw.a, &self.screw.b, st), st.multiplier(1)).2, st.multiplier(STATE));
+        self.model.kink_crossed(v(from), v(to))
+    }
     fn reaction_dependence(&self, st: &dyn ElementState) -> Option<String> {
         let lambda = st.multiplier(1);
         (lambda != 0.0).then(|| format!("its friction moment and stiffness scale with the screw's reaction λ = {lambda:.9e} N as integrated, which steps accepted within the tolerance without a Newton iteration leave noisy; the eigenvalues carry that noise, which a tighter `tolerance` narrows"))

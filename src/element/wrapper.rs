@@ -50,6 +50,9 @@ pub trait ElementWrapper: Send + Sync {
     fn non_smooth(&self, s: &dyn ElementState) -> Option<String> {
         self.inner().non_smooth(s)
     }
+    fn kink_crossed(&self, from: &dyn ElementState, to: &dyn ElementState) -> Option<String> {
+        self.inner().kink_crossed(from, to)
+    }
     fn has_events(&self) -> bool {
         self.inner().has_events()
     }
@@ -118,6 +121,9 @@ impl<W: ElementWrapper> Element for W {
     }
     fn non_smooth(&self, s: &dyn ElementState) -> Option<String> {
         ElementWrapper::non_smooth(self, s)
+    }
+    fn kink_crossed(&self, from: &dyn ElementState, to: &dyn ElementState) -> Option<String> {
+        ElementWrapper::kink_crossed(self, from, to)
     }
     fn has_events(&self) -> bool {
         ElementWrapper::has_events(self)

@@ -98,6 +98,30 @@ fn limit_rotation_step(asm: &Assembler, delta: &mut [f64]) {
     }
 }
 
+/// How many of the last iterates a failure looks at for kinks they cross: three suffice
+/// for a cycle of two or three iterates.
+const KINK_ITERATES: usize = 4;
+
+/// Why Newton's last iterates may cycle: the points where an element's residual is not
+/// differentiable ([`crate::element::Element::kink_crossed`]) that consecutive iterates
+/// cross, each element once. Newton on a piecewise smooth residual can jump from one side
+/// of such a point to the other without converging on either (the modlugre friction's
+/// multilinear `μ(|v|)` at its kink, tests/joint_friction.rs).
+fn kinks_crossed(asm: &Assembler, iterates: &std::collections::VecDeque<State>) -> Option<String> {
+    let mut named: Vec<String> = Vec::new();
+    for (a, b) in iterates.iter().zip(iterates.iter().skip(1)) {
+        for why in asm.kinks_crossed(a, b) {
+            let element = why.split(':').next().unwrap_or_default().to_string();
+            if !named.iter().any(|n| n.split(':').next() == Some(&element)) {
+                named.push(why);
+            }
+        }
+    }
+    (!named.is_empty()).then(|| {
+        format!("its last {} iterates cross a point where the residual is not differentiable, across which Newton's iterates can cycle instead of converging: {}; a smaller `time step` starts each step's Newton closer to its solution", iterates.len(), named.join("; "))
+    })
+}
+
 /// What Newton keeps from one iteration (and one step) to the next: the sparse LU with its
 /// symbolic factorization, and the Jacobian's storage.
 #[derive(Default)]
@@ -152,7 +176,12 @@ pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &Newton
         let reason = [reason, singular.borrow().clone()].into_iter().flatten().reduce(|a, b| format!("{a}; {b}"));
         NewtonFailure { time: st.t, iteration, residual_norm: measure(f), worst_equation: asm.dofs.equation_name(asm.model, i), worst_value: f[i], reason }
     };
+    // The last iterates, kept for a failure to name the kinks they cross (see below).
+    let mut last_iterates: std::collections::VecDeque<State> = std::collections::VecDeque::new();
     for iteration in 0..=settings.max_iterations {
+        if iteration + KINK_ITERATES > settings.max_iterations {
+            last_iterates.push_back(st.clone());
+        }
         let mut f = asm.residual(st, form, dcoef);
         // The derivatives phase holds the positions, so it judges a holonomic row by the
         // violation `Φ` itself, not `Φ/c`: at MBDyn's `derivatives coefficient: 1e-10`
@@ -171,7 +200,8 @@ pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &Newton
                 why if why.is_empty() => "the residual is not finite".to_string(),
                 why => format!("the residual is not finite: {}", why.join("; ")),
             };
-            return Err(fail(st, iteration, &judged, (!norm.is_finite()).then(not_finite)));
+            let reason = if norm.is_finite() { kinks_crossed(asm, &last_iterates) } else { Some(not_finite()) };
+            return Err(fail(st, iteration, &judged, reason));
         }
         drop(judged);
         asm.jacobian_into(st, coef, &mut ws.jacobian);
