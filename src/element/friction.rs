@@ -103,6 +103,13 @@ impl ModLugre {
         }
     }
 
+    /// Whether the friction state `z` is past the breakaway deflection at rest, in either
+    /// sliding direction (`α ≠ 0` for `v = 0` or just below): there the state equation's
+    /// `α |v| z σ₀/μ(|v|)` has a kink at `v = 0`.
+    pub fn past_breakaway(&self, z: f64) -> bool {
+        self.alpha(z, 0.0).0.max(self.alpha(z, -f64::MIN_POSITIVE).0) != 0.0
+    }
+
     /// The points where the state equation is not differentiable that the state crosses from
     /// `(v_a, z_a)` to `(v_b, z_b)` (sliding velocity and friction state), as a sentence:
     /// `v = 0` with `z` past the breakaway deflection on either side (the kink of `α |v| z
@@ -112,8 +119,7 @@ impl ModLugre {
     /// (tests/joint_friction.rs, stick_slip_kink.mbd).
     pub fn kink_crossed(&self, (v_a, z_a): (f64, f64), (v_b, z_b): (f64, f64)) -> Option<String> {
         let mut why = Vec::new();
-        let past_breakaway = |z: f64| self.alpha(z, 0.0).0.max(self.alpha(z, -f64::MIN_POSITIVE).0) != 0.0;
-        if sign(v_a) != sign(v_b) && (past_breakaway(z_a) || past_breakaway(z_b)) {
+        if sign(v_a) != sign(v_b) && (self.past_breakaway(z_a) || self.past_breakaway(z_b)) {
             why.push(format!("its sliding velocity went from {v_a:.6e} to {v_b:.6e} m/s across 0 with its friction state (z = {z_a:.6e}, {z_b:.6e} m) past the breakaway deflection, where the modlugre state equation's α |v| z σ₀/μ(|v|) has a kink"));
         }
         let (lo, hi) = (v_a.abs().min(v_b.abs()), v_a.abs().max(v_b.abs()));
@@ -202,8 +208,7 @@ impl Element for InLineFriction {
         // α(z, ±0) ≠ 0: the term α |v| z σ₀ / μ(|v|) has a kink in v at v = 0. "At v = 0":
         // below 1e-6 m/s, the velocity a converged step at rest leaves (Newton's tolerance
         // over a bristle's stiffness and damping), below which any motion crosses the kink.
-        let alpha = self.model.alpha(z, 0.0).0.max(self.model.alpha(z, -f64::MIN_POSITIVE).0);
-        (v.abs() < STILL && alpha != 0.0).then(|| format!("its friction state z = {z:e} m is past the breakaway deflection at sliding velocity {v:.1e} m/s (at rest), where the modlugre state equation is not differentiable"))
+        (v.abs() < STILL && self.model.past_breakaway(z)).then(|| format!("its friction state z = {z:e} m is past the breakaway deflection at sliding velocity {v:.1e} m/s (at rest), where the modlugre state equation is not differentiable"))
     }
     fn kink_crossed(&self, from: &dyn ElementState, to: &dyn ElementState) -> Option<String> {
         let v = |st: &dyn ElementState| (self.sliding(&Pair::new(&self.joint.a, &self.joint.b, st), st).1, st.multiplier(STATE));

@@ -127,8 +127,7 @@ impl Element for RevoluteHingeFriction {
         let p = Pair::new(&self.joint.a, &self.joint.b, st);
         let (_, v, _) = self.sliding(&p);
         let z = st.multiplier(self.state_index());
-        let alpha = self.model.alpha(z, 0.0).0.max(self.model.alpha(z, -f64::MIN_POSITIVE).0);
-        (v.abs() < STILL && alpha != 0.0).then(|| format!("its friction state z = {z:e} m is past the breakaway deflection at sliding velocity {v:.1e} m/s (at rest), where the modlugre state equation is not differentiable"))
+        (v.abs() < STILL && self.model.past_breakaway(z)).then(|| format!("its friction state z = {z:e} m is past the breakaway deflection at sliding velocity {v:.1e} m/s (at rest), where the modlugre state equation is not differentiable"))
     }
     fn kink_crossed(&self, from: &dyn ElementState, to: &dyn ElementState) -> Option<String> {
         let v = |st: &dyn ElementState| (self.sliding(&Pair::new(&self.joint.a, &self.joint.b, st)).1, st.multiplier(self.state_index()));

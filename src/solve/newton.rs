@@ -107,7 +107,7 @@ const KINK_ITERATES: usize = 4;
 /// cross, each element once. Newton on a piecewise smooth residual can jump from one side
 /// of such a point to the other without converging on either (the modlugre friction's
 /// multilinear `μ(|v|)` at its kink, tests/joint_friction.rs).
-fn kinks_crossed(asm: &Assembler, iterates: &std::collections::VecDeque<State>) -> Option<String> {
+fn kinks_crossed(asm: &Assembler, iterates: &[State]) -> Option<String> {
     let mut named: Vec<String> = Vec::new();
     for (a, b) in iterates.iter().zip(iterates.iter().skip(1)) {
         for why in asm.kinks_crossed(a, b) {
@@ -177,10 +177,10 @@ pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &Newton
         NewtonFailure { time: st.t, iteration, residual_norm: measure(f), worst_equation: asm.dofs.equation_name(asm.model, i), worst_value: f[i], reason }
     };
     // The last iterates, kept for a failure to name the kinks they cross (see below).
-    let mut last_iterates: std::collections::VecDeque<State> = std::collections::VecDeque::new();
+    let mut last_iterates: Vec<State> = Vec::new();
     for iteration in 0..=settings.max_iterations {
         if iteration + KINK_ITERATES > settings.max_iterations {
-            last_iterates.push_back(st.clone());
+            last_iterates.push(st.clone());
         }
         let mut f = asm.residual(st, form, dcoef);
         // The derivatives phase holds the positions, so it judges a holonomic row by the
