@@ -15,7 +15,8 @@
 # `include:` and file drivers find their neighbours), limited to TIMEOUT seconds (600).
 # OUTDIR/summary.tsv gets one line a file: name, mbdyn ok|failed|timeout, romdyn
 # ok|failed|timeout, romdyn's first error message without its file:line:col, worst position
-# and eigenvalue differences (KEEP=0 deletes each run's output files once compared, keeping
+# and eigenvalue differences, the worst eigenvalue difference beyond what MBDyn's printed
+# digits allow (KEEP=0 deletes each run's output files once compared, keeping
 # stdout and stderr); the end of the run prints the counts and romdyn's refusals
 # grouped by message. MBDYN_OUTPUTS=DIR keeps MBDyn's runs in DIR and reuses them on the
 # next call (a file's MBDyn run is redone only when DIR/NAME.mbdyn/state is missing): MBDyn
@@ -24,8 +25,9 @@
 # Output, per file:
 #   FILE  mbdyn: ok|failed (last message)  romdyn: ok|failed (first error line)
 #   node LABEL  x y z (mbdyn)  x y z (romdyn)  |Δx|/max(|x|, 1)
-#   eig  Re Im (mbdyn)  Re Im (romdyn)  |Δλ|/|λ|         (eigenvalues with Im > 1e-3 rad/s, by Im: numerically split zero eigenvalues, |λ| ≈ 1e-6, are not modes)
-#   worst: position RELDIFF, eigenvalue RELDIFF
+#   eig  Re Im (mbdyn, ±U relative by its printed digits)  Re Im (romdyn, the nearest)  |Δλ|/|λ|  [(within MBDyn's printed digits)]
+#                                                        (eigenvalues with Im > 1e-3 rad/s, by Im: numerically split zero eigenvalues, |λ| ≈ 1e-6, are not modes)
+#   worst: position RELDIFF, eigenvalue RELDIFF (RELDIFF beyond MBDyn's printed digits)
 set -u
 # Extra options of `romdyn run` (e.g. MBDyn's incremental beams), split on spaces.
 read -r -a romdyn_args <<< "${ROMDYN_ARGS:-}"
@@ -44,9 +46,19 @@ last_positions() {
 }
 
 # Eigenvalues λ = (1/dCoef)(Λ − 1)/(Λ + 1), Λ = (αr + j αi)/β, from an eigenanalysis .m
-# file's dCoef and alpha rows; those with Im λ > 0, sorted by Im λ.
+# file's dCoef and alpha rows; those with Im λ > 0, sorted by Im λ: "Re Im BOUND", BOUND the
+# largest change of λ the rounding of the printed αr, αi, β (half a unit of their last
+# digit) allows: |dλ/dΛ| |ΔΛ| = 2 |ΔΛ| / (dCoef |Λ + 1|²), |ΔΛ| ≤ (|Δαr| + |Δαi| + |Λ| |Δβ|)/|β|.
+# MBDyn 1.7.3 prints 7 digits unless the file says `results output precision` (eigenanalysis)
+# or `output precision` (control data); with a small `parameter`, Λ ≈ 1 and the bound is
+# large: on eig/joints/revolutehinge (parameter 1e-6) ±0.82 rad/s, its damping −6.531 s⁻¹
+# printed against −6.6666666697 with 16 digits (the closed form −C/(2J) = −20/3).
 eigenvalues() {
     awk '
+        function half_unit(s,   n, parts, m, e, p) {
+            n = split(s, parts, /[eE]/); m = parts[1]; e = (n > 1) ? parts[2] + 0 : 0
+            p = index(m, "."); return 0.5 * 10 ^ (e - ((p > 0) ? length(m) - p : 0))
+        }
         /^dCoef *=/ { v = $0; sub(/^dCoef *= */, "", v); sub(/;.*/, "", v); dcoef = v + 0 }
         /^alpha *= *\[/ { inside = 1; sub(/^alpha *= *\[/, "") }
         inside {
@@ -55,10 +67,34 @@ eigenvalues() {
             if (n >= 3) {
                 ar = a[1]; ai = a[2]; b = a[3]
                 d = dcoef * ((ar + b) ^ 2 + ai ^ 2)
-                if (d != 0 && b != 0) { re = (ar ^ 2 + ai ^ 2 - b ^ 2) / d; im = 2 * ai * b / d; if (im > 1e-3) printf "%.10e %.10e\n", re, im }
+                if (d != 0 && b != 0) {
+                    re = (ar ^ 2 + ai ^ 2 - b ^ 2) / d; im = 2 * ai * b / d
+                    ab = (b < 0) ? -b : b
+                    dl = (half_unit(a[1]) + half_unit(a[2]) + sqrt(ar ^ 2 + ai ^ 2) / ab * half_unit(a[3])) / ab
+                    if (im > 1e-3) printf "%.10e %.10e %.3e\n", re, im, 2 * dl * b ^ 2 / d
+                }
             }
             if (last) inside = 0
         }' "$1" | sort -g -k2
+}
+
+# Pairs each eigenvalue of the first list ("Re Im BOUND" rows) with the nearest not yet
+# paired one of the second: "Re Im BOUND Re Im". Pairing by rank went astray where one
+# program reports a numerically split zero pair (a free body's rigid motion, |λ| ≈ √ε ω)
+# above the Im > 1e-3 rad/s filter and the other not (eig/eigfree).
+pair_nearest() {
+    awk 'FNR == NR { m[++nm] = $0; next } { r[++nr] = $0; used[nr] = 0 }
+        END {
+            for (i = 1; i <= nm; i++) {
+                split(m[i], a, " "); best = 0
+                for (j = 1; j <= nr; j++) {
+                    if (used[j]) continue
+                    split(r[j], b, " "); d = (a[1] - b[1]) ^ 2 + (a[2] - b[2]) ^ 2
+                    if (best == 0 || d < bestd) { best = j; bestd = d }
+                }
+                if (best) { used[best] = 1; split(r[best], b, " "); print a[1], a[2], a[3], b[1], b[2] }
+            }
+        }' "$1" "$2"
 }
 
 limit=${TIMEOUT:-600}
@@ -90,7 +126,7 @@ while IFS= read -r f; do
     [ -z "$rerr" ] && rerr=$(head -1 "$r/stderr")
     rs=$rstate; [ "$rstate" = failed ] && rs="failed ($rerr)"
     echo "$name  mbdyn: $ms  romdyn: $rs"
-    worst_x=0; worst_l=0
+    worst_x=0; worst_l=0; worst_beyond=0
     if [ -s "$m/$name.mov" ] && [ -s "$r/$name.mov" ]; then
         while read -r label mx my mz rx ry rz; do
             d=$(awk -v a="$mx" -v b="$my" -v c="$mz" -v p="$rx" -v q="$ry" -v s="$rz" 'BEGIN { n = sqrt(a*a + b*b + c*c); if (n < 1) n = 1; printf "%.2e", sqrt((a-p)^2 + (b-q)^2 + (c-s)^2) / n }')
@@ -100,17 +136,20 @@ while IFS= read -r f; do
     fi
     me=$(ls "$m"/*.m 2>/dev/null | head -1); re=$(ls "$r"/*.m 2>/dev/null | head -1)
     if [ -n "$me" ] && [ -n "$re" ]; then
-        while read -r a b c d; do
+        while read -r a b u c d _; do
             rel=$(awk -v a="$a" -v b="$b" -v c="$c" -v d="$d" 'BEGIN { n = sqrt(a*a + b*b); if (n == 0) n = 1; printf "%.2e", sqrt((a-c)^2 + (b-d)^2) / n }')
-            echo "  eig  $a $b (mbdyn)  $c $d (romdyn)  $rel"
+            digits=$(awk -v a="$a" -v b="$b" -v u="$u" 'BEGIN { n = sqrt(a*a + b*b); if (n == 0) n = 1; printf "%.2e", u / n }')
+            within=""; awk -v r="$rel" -v u="$digits" 'BEGIN { exit !(r + 0 <= u + 0) }' && within="  (within MBDyn's printed digits)"
+            echo "  eig  $a $b (mbdyn, ±$digits relative by its printed digits)  $c $d (romdyn, the nearest)  $rel$within"
             worst_l=$(awk -v x="$worst_l" -v y="$rel" 'BEGIN { print (y + 0 > x + 0) ? y : x }')
-        done < <(paste -d' ' <(eigenvalues "$me") <(eigenvalues "$re") | awk 'NF == 4')
+            [ -z "$within" ] && worst_beyond=$(awk -v x="$worst_beyond" -v y="$rel" 'BEGIN { print (y + 0 > x + 0) ? y : x }')
+        done < <(pair_nearest <(eigenvalues "$me") <(eigenvalues "$re"))
     fi
-    echo "  worst: position $worst_x, eigenvalue $worst_l"
+    echo "  worst: position $worst_x, eigenvalue $worst_l ($worst_beyond beyond MBDyn's printed digits)"
     [ "$rstate" = failed ] || rerr=""
     [ "${KEEP:-1}" = 0 ] && find "$r" -type f ! -name stdout ! -name stderr -delete
     [ "${KEEP:-1}" = 0 ] && [ -z "${MBDYN_OUTPUTS:-}" ] && find "$m" -type f ! -name stdout ! -name stderr ! -name state -delete
-    printf '%s\t%s\t%s\t%s\t%s\t%s\n' "$name" "$mstate" "$rstate" "$rerr" "$worst_x" "$worst_l" >> "$out/summary.tsv"
+    printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$name" "$mstate" "$rstate" "$rerr" "$worst_x" "$worst_l" "$worst_beyond" >> "$out/summary.tsv"
 done < <(files)
 echo
 echo "files: $(wc -l < "$out/summary.tsv")"

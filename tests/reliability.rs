@@ -302,7 +302,7 @@ fn stale_temporaries_of_dead_processes_are_removed_by_the_next_run() {
     let d = folder("stale", &[("p.mbd", PENDULUM), (".p.mov.tmp-4194305-12345", "half a run")]);
     let o = romdyn_in(&d, &["run", "p.mbd"]);
     assert_eq!(o.code, Some(0), "{}", o.stderr);
-    assert_eq!(listing(&d), ["p.json", "p.log", "p.m", "p.mbd", "p.mov", "p.out"]);
+    assert_eq!(listing(&d), ["p.log", "p.mbd", "p.mov", "p.out", "p_0.json", "p_0.m"]);
     std::fs::remove_dir_all(&d).ok();
 }
 

@@ -32,7 +32,8 @@ fn run_writes_the_mbdyn_files_with_their_layouts() {
     assert!(ok, "{err}");
     assert!(out.contains("100 steps to t = 0.1 s"), "{out}");
     assert!(out.contains("eigenanalysis 0 at t = 0 s (dCoef = 0.5 s): 2 dynamic"), "{out}");
-    assert_eq!(listing(&dir), ["pendulum.json", "pendulum.log", "pendulum.m", "pendulum.mbd", "pendulum.mov", "pendulum.out"]);
+    // MBDyn 1.7.3 names the one analysis's file `PREFIX_0.m` too (solver.cc `Eig`, run here).
+    assert_eq!(listing(&dir), ["pendulum.log", "pendulum.mbd", "pendulum.mov", "pendulum.out", "pendulum_0.json", "pendulum_0.m"]);
 
     // .out: derivatives line, key, `Step` + 8 columns for steps 0..=100, t = k h (1e-12 s), an
     // eigenvalue table of all 29 modes, the end line.
@@ -71,7 +72,7 @@ fn run_writes_the_mbdyn_files_with_their_layouts() {
     }
 
     // .m: MBDyn's variables and sizes; alpha gives ±3.130527 j (CASES C2, 1e-6 relative).
-    let m = read_octave_script(&dir.join("pendulum.m")).unwrap();
+    let m = read_octave_script(&dir.join("pendulum_0.m")).unwrap();
     let names: Vec<&str> = m.variables.iter().map(|v| v.0.as_str()).collect();
     assert_eq!(names, ["dTime", "dCoef", "Aplus", "Aminus", "labels", "idx", "X0", "alpha", "VL", "VR"]);
     let size = |n: &str| m.get(n).map(|v| (v.rows, v.cols)).unwrap();
@@ -87,7 +88,7 @@ fn run_writes_the_mbdyn_files_with_their_layouts() {
     assert!(swing.iter().all(|l| l.0.abs() < 1e-9) && swing[0].1 < 0.0 && swing[1].1 > 0.0, "{swing:?}");
 
     // .json: the same analysis.
-    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.join("pendulum.json")).unwrap()).unwrap();
+    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.join("pendulum_0.json")).unwrap()).unwrap();
     assert_eq!((json["dCoef"].as_f64(), json["equations"].as_u64(), json["counts"]["dynamic"].as_u64()), (Some(0.5), Some(29), Some(2)));
     assert!((json["eigenvalues"][0]["im"].as_f64().unwrap() - OMEGA).abs() / OMEGA < 1e-6);
     assert_eq!((json["Aplus"].as_array().unwrap().len(), json["VR"][0].as_array().unwrap().len(), json["alpha"].as_array().unwrap().len()), (29, 29, 29));
@@ -117,7 +118,7 @@ fn pendulum_period_read_from_the_mov_matches_cases_c2() {
     assert_eq!(c.len(), 2, "{c:?}");
     let period = c[1] - c[0];
     assert!((period - 2.008325).abs() / 2.008325 < 1e-5, "period {period} s");
-    assert!(!dir.join("out/swing.m").exists(), "no eigenanalysis requested");
+    assert!(!listing(&dir.join("out")).iter().any(|f| f.ends_with(".m") || f.ends_with(".json")), "no eigenanalysis requested");
     std::fs::remove_dir_all(&dir).ok();
 }
 
@@ -144,6 +145,46 @@ fn several_eigenanalyses_are_numbered_and_a_time_after_the_end_is_reported() {
     assert!(a.from_sparse && (a.rows, a.cols) == (29, 29) && !m.variables.iter().any(|v| v.0 == "VR"));
     assert_eq!(m.get("dTime").and_then(|v| v.scalar()).map(|t| (t - 0.02).abs() < 1e-12), Some(true));
     std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn the_analyses_files_take_the_suffix_width_and_format_as_mbdyn() {
+    // MBDyn 1.7.3 (solver.cc `Eig`): `_` then K; `suffix width, N` pads K with zeros to N
+    // digits; `compute` to ⌊log₁₀ count⌋ + 1 (so 10 analyses give `_00`); `suffix format`
+    // is a printf format of K; a width other than 0 wins over a format.
+    let cases = [
+        ("", 2, vec!["p_0.m", "p_1.m"]),
+        ("suffix width, 3,", 2, vec!["p_000.m", "p_001.m"]),
+        ("suffix width, compute,", 2, vec!["p_0.m", "p_1.m"]),
+        ("suffix width, compute,", 10, vec!["p_00.m", "p_09.m"]),
+        ("suffix format, \"mode-%02d\",", 2, vec!["p_mode-00.m", "p_mode-01.m"]),
+        ("suffix format, \"%-3d\", suffix width, 2,", 2, vec!["p_00.m", "p_01.m"]),
+    ];
+    for (k, (option, count, expected)) in cases.into_iter().enumerate() {
+        let dir = temp_dir(&format!("run-suffix-{k}"));
+        let times = (0..count).map(|i| format!("{}", i as f64 * 1e-3)).collect::<Vec<_>>().join(", ");
+        let eigen = format!("    eigenanalysis: list, {count}, {times}, {option} output matrices;");
+        let file = write_file(&dir, "p.mbd", &pendulum_variant(&[(FINAL_TIME, "    final time: 0.01;"), (EIGENANALYSIS, &eigen)]));
+        let (ok, _, err) = romdyn_at(&dir, &["run", &file]);
+        assert!(ok, "{option}: {err}");
+        let files = listing(&dir);
+        for f in &expected {
+            assert!(files.contains(&f.to_string()), "{option}: {f} in {files:?}");
+            assert!(files.contains(&f.replace(".m", ".json")), "{option}: {f} json in {files:?}");
+        }
+        assert_eq!(files.iter().filter(|f| f.ends_with(".m")).count(), count, "{option}: {files:?}");
+        std::fs::remove_dir_all(&dir).ok();
+    }
+    // A format that is not one integer conversion is refused where it is written.
+    for (format, message) in [("%s", "found 's' after '%'"), ("%d-%d", "more than one conversion"), ("k", "no integer conversion"), ("a/%d", "path separator")] {
+        let dir = temp_dir("run-suffix-bad");
+        let eigen = format!("    eigenanalysis: 0., suffix format, \"{format}\", output matrices;");
+        let file = write_file(&dir, "p.mbd", &pendulum_variant(&[(FINAL_TIME, "    final time: 0.01;"), (EIGENANALYSIS, &eigen)]));
+        let (ok, _, err) = romdyn_at(&dir, &["run", &file]);
+        assert!(!ok && err.contains("p.mbd:") && err.contains("suffix format: the format") && err.contains(message), "{format}: {err}");
+        assert_eq!(listing(&dir), ["p.mbd"], "{format}: nothing written");
+        std::fs::remove_dir_all(&dir).ok();
+    }
 }
 
 #[test]
@@ -183,7 +224,7 @@ fn rom_from_the_m_file_reproduces_the_pendulum_eigenvalues_and_static_gain() {
     assert!(ok, "{err}");
     // Node 2 starts at unknown 6 (0-based): its moment about z is equation 6 + 6 + 5 + 1 = 18
     // and its rotation about z is unknown 6 + 5 + 1 = 12 (1-based).
-    let pencil = dir.join("pendulum.m").to_string_lossy().into_owned();
+    let pencil = dir.join("pendulum_0.m").to_string_lossy().into_owned();
     let rom = dir.join("rom.json").to_string_lossy().into_owned();
     let (ok, _, err) = romdyn(&["rom", "--pencil", &pencil, "--input-row", "18", "--output-col", "12", "--count", "1", "-o", &rom]);
     assert!(ok, "{err}");

@@ -11,7 +11,7 @@ use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 const PENDULUM: &str = include_str!("../examples/pendulum.mbd");
-const SET: [&str; 5] = ["p.json", "p.log", "p.m", "p.mov", "p.out"];
+const SET: [&str; 5] = ["p.log", "p.mov", "p.out", "p_0.json", "p_0.m"];
 
 fn folder(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("romdyn-kill-{name}-{}", std::process::id()));

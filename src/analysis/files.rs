@@ -1,9 +1,9 @@
 //! The files of a run, named after a prefix as MBDyn names them: `PREFIX.out` (step log),
 //! `PREFIX.mov` (node motion), `PREFIX.log` (model log), for models with beams `PREFIX.act`
 //! (internal forces) and `PREFIX.bst` (strains and curvatures), and for each eigenanalysis
-//! `STEM.m` (Octave script) and `STEM.json` (romdyn's JSON), where STEM is PREFIX for a
-//! single analysis and `PREFIX_K` (K its 0-based number, zero-padded to the width of the
-//! largest, MBDyn's `suffix width, compute`) when there are several.
+//! `PREFIX_K.m` (Octave script) and `PREFIX_K.json` (romdyn's JSON), K its 0-based number
+//! as MBDyn 1.7.3 writes it for one analysis or several (`_0` unless the file's `suffix
+//! width` or `suffix format` says otherwise; [`EigenFileSuffix`]).
 //!
 //! Every file is written under a temporary name; [`RunFiles::finish`] puts them all in
 //! place after a successful run, as one set ([`commit_set`]: while the journal
@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 
 use super::observer::{Derivatives, EigenDone, ObserverError, RunObserver, StepDone};
 use super::run::RunReport;
-use crate::model::{InitialValueProblem, Model, MotionOutput};
+use crate::model::{EigenFileSuffix, InitialValueProblem, Model, MotionOutput};
 use crate::output::atomic::{commit_set, recover_set, AtomicFile, OutputError};
 use crate::output::beam_sections::BeamSectionWriter;
 use crate::output::eigen_json::eigen_json;
@@ -24,14 +24,10 @@ use crate::output::motion::{motion_rows, MotionWriter, OrientationOutput};
 use crate::output::prefixed_path;
 use crate::output::step_log::{StepLine, StepLog};
 
-/// `PREFIX` for one analysis, `PREFIX_K` (zero-padded) for analysis K of `count`.
-pub fn eigen_file_stem(prefix: &Path, index: usize, count: usize) -> PathBuf {
-    if count <= 1 {
-        return prefix.to_path_buf();
-    }
-    let width = (count - 1).to_string().len();
+/// `PREFIX_K` for analysis K of `count`, K written as `suffix` says.
+pub fn eigen_file_stem(prefix: &Path, suffix: &EigenFileSuffix, index: usize, count: usize) -> PathBuf {
     let mut s = prefix.as_os_str().to_owned();
-    s.push(format!("_{index:0width$}"));
+    s.push(suffix.suffix(index, count));
     PathBuf::from(s)
 }
 
@@ -47,6 +43,7 @@ pub struct RunFiles {
     prefix: PathBuf,
     input: String,
     eigen_count: usize,
+    eigen_suffix: EigenFileSuffix,
     out: StepLog,
     mov: MotionWriter,
     /// The nodes and steps the file asks for (`None`: every node, every step).
@@ -63,8 +60,9 @@ impl RunFiles {
     pub fn create(prefix: &Path, input: &str, model: &Model, problem: &InitialValueProblem) -> Result<Self, OutputError> {
         recover_set(&journal_path(prefix))?;
         let eigen_count = problem.eigenanalysis.as_ref().map_or(0, |r| r.times.len());
+        let eigen_suffix = problem.eigenanalysis.as_ref().map_or(EigenFileSuffix::Plain, |r| r.file_suffix.clone());
         // A directory in the way of any file of the set is found before the run.
-        let stems = (0..eigen_count.max(1)).map(|k| eigen_file_stem(prefix, k, eigen_count));
+        let stems = (0..eigen_count).map(|k| eigen_file_stem(prefix, &eigen_suffix, k, eigen_count));
         let eigen_files = stems.flat_map(|s| [prefixed_path(&s, "m"), prefixed_path(&s, "json")]);
         for path in ["out", "mov", "log", "act", "bst"].map(|e| prefixed_path(prefix, e)).into_iter().chain(eigen_files) {
             if path.is_dir() {
@@ -75,7 +73,7 @@ impl RunFiles {
         let mov = MotionWriter::create(&prefixed_path(prefix, "mov"), OrientationOutput::Euler123Degrees, problem.output.as_ref().map_or(MotionOutput::DEFAULT_DIGITS, MotionOutput::digits))?;
         let mut log = AtomicFile::create(&prefixed_path(prefix, "log"))?;
         log.write_with(|w| write_model_log(w, input, model))?;
-        Ok(RunFiles { prefix: prefix.to_path_buf(), input: input.to_string(), eigen_count, out, mov, motion: problem.output.clone(), beams: None, has_beams: None, staged: vec![log] })
+        Ok(RunFiles { prefix: prefix.to_path_buf(), input: input.to_string(), eigen_count, eigen_suffix, out, mov, motion: problem.output.clone(), beams: None, has_beams: None, staged: vec![log] })
     }
 
     /// Ends the step log and puts every file in place; returns their paths.
@@ -133,7 +131,7 @@ impl RunObserver for RunFiles {
             a.aplus.nrows()
         );
         self.out.eigenvalues(&title, &rows)?;
-        let stem = eigen_file_stem(&self.prefix, a.index, self.eigen_count);
+        let stem = eigen_file_stem(&self.prefix, &self.eigen_suffix, a.index, self.eigen_count);
         let mut m = AtomicFile::create(&prefixed_path(&stem, "m"))?;
         m.write_with(|w| write_eigen_m(w, &self.input, &file))?;
         let mut json = AtomicFile::create(&prefixed_path(&stem, "json"))?;

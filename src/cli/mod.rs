@@ -31,8 +31,8 @@ enum Command {
     /// final time [s]; at each 'eigenanalysis' time J(+c) and J(-c) (c = the file's 'parameter', else
     /// 0.5 s as MBDyn) and their eigenvalues λ [rad/s]. Files (MBDyn layouts, SI units): PREFIX.out
     /// step log, PREFIX.mov node motion (m, deg, m/s, rad/s), PREFIX.log model log, and per
-    /// eigenanalysis PREFIX.m (Octave: dTime, dCoef, Aplus, Aminus, alpha, VR, VL, geometry) and
-    /// PREFIX.json. Files appear only when the run succeeds; a Newton failure names the step, the
+    /// eigenanalysis K (0, 1, …) PREFIX_K.m (Octave: dTime, dCoef, Aplus, Aminus, alpha, VR, VL,
+    /// geometry) and PREFIX_K.json, K as the file's 'suffix width'/'suffix format' say. Files appear only when the run succeeds; a Newton failure names the step, the
     /// residual norm and the worst equation, and exits with status 1.
     Run(run::RunArgs),
     /// Check every element's Jacobian against finite differences of its residual

@@ -14,7 +14,7 @@ pub struct RunArgs {
     /// MBDyn input file (its 'initial value' block sets times [s], method, step, tolerance, max iterations and eigenanalyses)
     #[arg(value_name = "FILE")]
     pub file: PathBuf,
-    /// Output prefix: writes PREFIX.out, .mov, .log and PREFIX.m/.json (PREFIX_K.m/.json for several eigenanalyses); an existing directory DIR means DIR/NAME with NAME the file's stem [default: NAME in the current directory, NAME the file's stem]
+    /// Output prefix: writes PREFIX.out, .mov, .log and PREFIX_K.m/.json for eigenanalysis K (0, 1, …; as MBDyn names them); an existing directory DIR means DIR/NAME with NAME the file's stem [default: NAME in the current directory, NAME the file's stem]
     #[arg(short = 'o', long = "out", value_name = "PREFIX")]
     pub prefix: Option<PathBuf>,
     /// Rotation update of beam3 and beam2: auto (default: MBDyn 1.7.3's incremental one, MBDyn's numbers, where a beam can take it), incremental (every beam, or an error), or path-independent (the beam a function of the state)

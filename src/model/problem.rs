@@ -49,6 +49,99 @@ pub struct EigenRequest {
     /// Modes above this natural frequency are not reported [Hz].
     pub upper_frequency_hz: Option<f64>,
     pub output: EigenOutput,
+    /// How the analyses' files are numbered (`suffix width`, `suffix format`).
+    pub file_suffix: EigenFileSuffix,
+}
+
+/// The number in the name of an eigenanalysis's files: MBDyn 1.7.3 writes analysis K
+/// (0-based) as `PREFIX_K.m`, one analysis or several (solver.cc `Eig`), `_` then K as
+/// the file asks.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub enum EigenFileSuffix {
+    /// K as it is (MBDyn's default).
+    #[default]
+    Plain,
+    /// K zero-padded to this many digits (`suffix width, N`; 0 is `Plain`).
+    Width(usize),
+    /// `suffix width, compute`: zero-padded to ⌊log₁₀ count⌋ + 1 digits, count the number
+    /// of analyses (MBDyn's formula: 10 analyses give `_00` … `_09`).
+    Compute,
+    /// `suffix format, "…"`: a printf format with one integer conversion (`%d`, `%03d`,
+    /// `%-4i`, …; `%%` is a percent sign), checked by [`EigenFileSuffix::format`].
+    Format(String),
+}
+
+impl EigenFileSuffix {
+    /// `_` and the number of analysis `index` of `count`.
+    pub fn suffix(&self, index: usize, count: usize) -> String {
+        let width = match self {
+            EigenFileSuffix::Plain | EigenFileSuffix::Format(_) => 0,
+            EigenFileSuffix::Width(w) => *w,
+            EigenFileSuffix::Compute => count.max(1).ilog10() as usize + 1,
+        };
+        match self {
+            EigenFileSuffix::Format(f) if width == 0 => format!("_{}", Self::format(f, index).unwrap_or_else(|_| index.to_string())),
+            _ => format!("_{index:0width$}"),
+        }
+    }
+
+    /// `format` (a printf format with exactly one `d` or `i` conversion, flags `-0+ ` and a
+    /// width allowed, no path separator) applied to `value`; `Err` says what is wrong with the format.
+    pub fn format(format: &str, value: usize) -> Result<String, String> {
+        if format.contains(['/', '\\']) {
+            return Err(format!("the format \"{format}\" has a path separator: the files stay beside the output prefix"));
+        }
+        let mut out = String::new();
+        let mut converted = false;
+        let mut chars = format.chars().peekable();
+        while let Some(ch) = chars.next() {
+            if ch != '%' {
+                out.push(ch);
+                continue;
+            }
+            if chars.peek() == Some(&'%') {
+                chars.next();
+                out.push('%');
+                continue;
+            }
+            let mut flags = String::new();
+            while let Some(&f) = chars.peek().filter(|f| "-0+ ".contains(**f)) {
+                flags.push(f);
+                chars.next();
+            }
+            let mut digits = String::new();
+            while let Some(&d) = chars.peek().filter(|d| d.is_ascii_digit()) {
+                digits.push(d);
+                chars.next();
+            }
+            match chars.next() {
+                Some('d' | 'i') if !converted => converted = true,
+                Some('d' | 'i') => return Err(format!("the format \"{format}\" has more than one conversion; it takes one integer")),
+                other => {
+                    let found = other.map_or("the end of the format".to_string(), |c| format!("'{c}'"));
+                    return Err(format!("the format \"{format}\" takes one integer conversion (%d or %i, with flags -0+ and a width), found {found} after '%'"));
+                }
+            }
+            let width: usize = digits.parse().unwrap_or(0);
+            if width > 64 {
+                return Err(format!("the format \"{format}\" asks for a width of {width} characters, more than 64"));
+            }
+            let sign = if flags.contains('+') { "+" } else if flags.contains(' ') { " " } else { "" };
+            let number = format!("{sign}{value}");
+            if flags.contains('-') {
+                out.push_str(&format!("{number:<width$}"));
+            } else if flags.contains('0') {
+                out.push_str(sign);
+                out.push_str(&format!("{value:0w$}", w = width.saturating_sub(sign.len())));
+            } else {
+                out.push_str(&format!("{number:>width$}"));
+            }
+        }
+        if !converted {
+            return Err(format!("the format \"{format}\" has no integer conversion (%d or %i) for the analysis number"));
+        }
+        Ok(out)
+    }
 }
 
 /// Where MBDyn's `abort after` stops a run.
@@ -270,5 +363,22 @@ impl MotionOutput {
 
     pub fn digits(&self) -> usize {
         self.precision.unwrap_or(Self::DEFAULT_DIGITS)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::EigenFileSuffix;
+
+    #[test]
+    fn suffix_format_renders_as_printf() {
+        // C printf of 7 with each format (the C standard's flags: '-' left, '0' zeros, '+' and ' ' sign).
+        for (format, expected) in [("%d", "7"), ("%i", "7"), ("%03d", "007"), ("%5d", "    7"), ("%-3d|", "7  |"), ("%+d", "+7"), ("% 03d", " 07"), ("m%%%d", "m%7")] {
+            assert_eq!(EigenFileSuffix::format(format, 7).as_deref(), Ok(expected), "{format}");
+        }
+        assert_eq!(EigenFileSuffix::Compute.suffix(9, 10), "_09");
+        assert_eq!(EigenFileSuffix::Compute.suffix(99, 100), "_099");
+        assert_eq!(EigenFileSuffix::Compute.suffix(8, 9), "_8");
+        assert_eq!(EigenFileSuffix::Width(0).suffix(3, 4), "_3");
     }
 }
