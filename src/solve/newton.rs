@@ -151,6 +151,21 @@ pub fn momenta_from_definitions(asm: &Assembler, st: &mut State, form: Constrain
     }
 }
 
+/// How Newton's residual norm went, for a failure: diverged (it grew a thousandfold past
+/// its smallest, or ended not finite) or stalled above the tolerance, with the norms by
+/// iteration (the first two and the last four when there are more than eight).
+fn norm_history(norms: &[f64], tolerance: f64) -> String {
+    let smallest = norms.iter().copied().filter(|x| x.is_finite()).fold(f64::INFINITY, f64::min);
+    let last = norms.last().copied().unwrap_or(f64::NAN);
+    let shown: Vec<String> = norms.iter().enumerate().map(|(k, x)| format!("{k}: {x:.1e}")).collect();
+    let shown = if shown.len() > 8 { format!("{}, …, {}", shown[..2].join(", "), shown[shown.len() - 4..].join(", ")) } else { shown.join(", ") };
+    if !last.is_finite() || last > 1e3 * smallest {
+        format!("the iterates diverged (residual norm by iteration {shown})")
+    } else {
+        format!("the residual norm stalled above the tolerance {tolerance:.1e} (by iteration {shown})")
+    }
+}
+
 /// Iterates to convergence.
 pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &NewtonSettings, ws: &mut NewtonWorkspace) -> Result<Convergence, NewtonFailure> {
     let (coef, form, dcoef) = match update {
@@ -176,8 +191,10 @@ pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &Newton
         let reason = [reason, singular.borrow().clone()].into_iter().flatten().reduce(|a, b| format!("{a}; {b}"));
         NewtonFailure { time: st.t, iteration, residual_norm: measure(f), worst_equation: asm.dofs.equation_name(asm.model, i), worst_value: f[i], reason }
     };
-    // The last iterates, kept for a failure to name the kinks they cross (see below).
+    // The last iterates, kept for a failure to name the kinks they cross (see below), and
+    // every iteration's residual norm, for a failure to say how Newton went.
     let mut last_iterates: Vec<State> = Vec::new();
+    let mut norms: Vec<f64> = Vec::new();
     for iteration in 0..=settings.max_iterations {
         if iteration + KINK_ITERATES > settings.max_iterations {
             last_iterates.push(st.clone());
@@ -192,6 +209,7 @@ pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &Newton
             _ => std::borrow::Cow::Borrowed(&f),
         };
         let norm = measure(&judged);
+        norms.push(norm);
         if norm <= settings.tolerance {
             return Ok(Convergence { iterations: iteration, residual_norm: norm });
         }
@@ -201,7 +219,8 @@ pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &Newton
                 why => format!("the residual is not finite: {}", why.join("; ")),
             };
             let reason = if norm.is_finite() { kinks_crossed(asm, &last_iterates) } else { Some(not_finite()) };
-            return Err(fail(st, iteration, &judged, reason));
+            let history = Some(norm_history(&norms, settings.tolerance));
+            return Err(fail(st, iteration, &judged, [reason, history].into_iter().flatten().reduce(|a, b| format!("{a}; {b}"))));
         }
         drop(judged);
         asm.jacobian_into(st, coef, &mut ws.jacobian);
