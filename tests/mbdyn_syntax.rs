@@ -426,9 +426,16 @@ fn drive_callers_follow_the_manual_formulas() {
         ("ramp, 2., 1., 3., 0.5", 2.0, 2.5),
         ("ramp, 2., 1., 3., 0.5", 9.0, 4.5),
         ("ramp, 2., 1., forever, 0.5", 9.0, 16.5),
-        // step: v0 + value from t0 on.
+        // step: v0 + value after t0, (v0 + value)/2 at t0 itself (MBDyn 1.7.3, drive_.h).
         ("step, 1., 3., -1.", 0.9, -1.0),
-        ("step, 1., 3., -1.", 1.0, 2.0),
+        ("step, 1., 3., -1.", 1.0, 1.0),
+        ("step, 1., 3., -1.", 1.1, 2.0),
+        // double step: v0 + value on (t0, t1), (v0 + value)/2 at t0 and t1, v0 outside.
+        ("double step, 1., 2., 3., -1.", 0.9, -1.0),
+        ("double step, 1., 2., 3., -1.", 1.0, 1.0),
+        ("double step, 1., 2., 3., -1.", 1.5, 2.0),
+        ("double step, 1., 2., 3., -1.", 2.0, 1.0),
+        ("double step, 1., 2., 3., -1.", 2.1, -1.0),
         // sine: one = half a period, then held (ends at 0); half = a quarter (held at A).
         ("sine, 0., pi, 2., one, 0.", 0.5, 2.0),
         ("sine, 0., pi, 2., one, 0.", 10.0, 0.0),

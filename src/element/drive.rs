@@ -78,7 +78,8 @@ pub enum Drive {
     Time,
     /// `v0` before `t0`, `v0 + slope (t − t0)` until `t1`, constant after.
     Ramp { slope: f64, t0: f64, t1: f64, v0: f64 },
-    /// `v0` before `t0`, `v0 + value` from `t0` on.
+    /// `v0` before `t0`, `v0 + value` after, `(v0 + value)/2` at `t0` itself (MBDyn 1.7.3's
+    /// `step`, drive_.h `StepDriveCaller::dGet`: half the sum, not `v0 + value/2`).
     Step { t0: f64, value: f64, v0: f64 },
     /// `v0 + A sin(ω (t − t0))` from `t0` on, for `cycles` periods (`None`: forever), then
     /// held at its final value.
@@ -96,7 +97,9 @@ pub enum Drive {
     /// Ramp `a` on `[a_t0, a_t1]`, held, then ramp `d` on `[d_t0, d_t1]`, held (MBDyn's
     /// `double ramp`).
     DoubleRamp { a_slope: f64, a_t0: f64, a_t1: f64, d_slope: f64, d_t0: f64, d_t1: f64, v0: f64 },
-    /// `v0 + value` on `[t0, t1]`, `v0` elsewhere (MBDyn's `double step`).
+    /// `v0 + value` on `(t0, t1)`, `v0` outside `[t0, t1]`, `(v0 + value)/2` at `t0` and at
+    /// `t1` (MBDyn 1.7.3's `double step`, drive_.h `DoubleStepDriveCaller::dGet`). A step
+    /// at the initial time therefore acts with half its value in the derivatives phase.
     DoubleStep { t0: f64, t1: f64, value: f64, v0: f64 },
     /// The sum of the drives (MBDyn's `array`).
     Sum(Vec<Drive>),
@@ -196,7 +199,7 @@ impl Drive {
             Drive::Const(v) => *v,
             Drive::Time => t,
             Drive::Ramp { slope, t0, t1, v0 } => v0 + slope * (t.clamp(*t0, *t1) - t0),
-            Drive::Step { t0, value, v0 } => v0 + if t >= *t0 { *value } else { 0.0 },
+            Drive::Step { t0, value, v0 } => at_step(t > *t0, t < *t0, *value, *v0),
             Drive::Sine { t0, omega, amplitude, cycles, v0 } => v0 + amplitude * periodic(t, *t0, *omega, *cycles).sin(),
             Drive::Cosine { t0, omega, amplitude, cycles, v0 } => v0 + amplitude * (1.0 - periodic(t, *t0, *omega, *cycles).cos()),
             Drive::PiecewiseLinear(points) => piecewise(points, t),
@@ -208,7 +211,7 @@ impl Drive {
                 let d = if t < *d_t0 { 0.0 } else { d_slope * (t.min(*d_t1) - d_t0) };
                 v0 + a + d
             }
-            Drive::DoubleStep { t0, t1, value, v0 } => v0 + if (*t0..=*t1).contains(&t) { *value } else { 0.0 },
+            Drive::DoubleStep { t0, t1, value, v0 } => at_step(t > *t0 && t < *t1, t < *t0 || t > *t1, *value, *v0),
             Drive::Sum(drives) => drives.iter().map(|d| d.value_at(t, state)).sum(),
             Drive::Product(a, b) => a.value_at(t, state) * b.value_at(t, state),
             Drive::Compose(f, g) => f.value_at(g.value_at(t, state), state),
@@ -245,6 +248,19 @@ impl Drive {
             Drive::Sampled(c) => c.value(t),
             Drive::Stepped(s) => s.value_at(t, state),
         }
+    }
+}
+
+/// A step's value: `v0 + value` where it is on, `v0` where it is off, and where it is
+/// neither (exactly at a step time) `(v0 + value)/2`, as MBDyn's step drives test `on`
+/// first, then `off`.
+fn at_step(on: bool, off: bool, value: f64, v0: f64) -> f64 {
+    if on {
+        v0 + value
+    } else if off {
+        v0
+    } else {
+        (v0 + value) / 2.0
     }
 }
 
@@ -286,7 +302,8 @@ mod tests {
         let ramp = Drive::Ramp { slope: 2.0, t0: 1.0, t1: 3.0, v0: 1.0 };
         assert_eq!([ramp.value(0.0), ramp.value(2.0), ramp.value(5.0)], [1.0, 3.0, 5.0]);
         let step = Drive::Step { t0: 1.0, value: 4.0, v0: -1.0 };
-        assert_eq!([step.value(0.5), step.value(1.0)], [-1.0, 3.0]);
+        // At the step time itself MBDyn 1.7.3 takes half of v0 + value (drive_.h).
+        assert_eq!([step.value(0.5), step.value(1.0), step.value(1.5)], [-1.0, 1.5, 3.0]);
         let pi = std::f64::consts::PI;
         let sine = Drive::Sine { t0: 0.0, omega: pi, amplitude: 2.0, cycles: Some(1.0), v0: 0.0 };
         assert!((sine.value(0.5) - 2.0).abs() < 1e-15 && sine.value(10.0).abs() < 1e-12);
@@ -311,7 +328,7 @@ mod tests {
         let dr = Drive::DoubleRamp { a_slope: 1.0, a_t0: 1.0, a_t1: 2.0, d_slope: -2.0, d_t0: 3.0, d_t1: 4.0, v0: 0.0 };
         assert_eq!([0.0, 1.5, 2.5, 3.5, 5.0].map(|t| dr.value(t)), [0.0, 0.5, 1.0, 0.0, -1.0]);
         let ds = Drive::DoubleStep { t0: 1.0, t1: 2.0, value: 3.0, v0: 1.0 };
-        assert_eq!([0.5, 1.0, 2.0, 2.5].map(|t| ds.value(t)), [1.0, 4.0, 4.0, 1.0]);
+        assert_eq!([0.5, 1.0, 1.5, 2.0, 2.5].map(|t| ds.value(t)), [1.0, 2.0, 4.0, 2.0, 1.0]);
         let sum = Drive::Sum(vec![Drive::Const(1.0), Drive::Time]);
         let product = Drive::Product(Box::new(Drive::Const(2.0)), Box::new(Drive::Time));
         assert_eq!((sum.value(3.0), product.value(3.0)), (4.0, 6.0));
