@@ -49,7 +49,7 @@ pub fn check_model_jacobians(model: &Model, problem: &InitialValueProblem, refer
     let mut state = reference_state(model, problem, reference)?;
     let asm = Assembler::new(model);
     state.rebase(&asm.dofs);
-    let dcoef = newton_dcoef(problem.method, problem.time_step);
+    let dcoef = newton_dcoef(super::run::method_at(&asm, problem, &state, state.t)?, problem.time_step);
     let elements = check_jacobians(&asm, &state, dcoef, model.constraint_form);
     Ok(JacobianCheck { time: state.t, dcoef, tolerance, elements })
 }

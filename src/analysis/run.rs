@@ -18,7 +18,7 @@ use super::error::{ObserverError, RunError};
 use super::observer::{Derivatives, EigenDone, RunObserver, RunStart, StepDone};
 use crate::dae::{Assembler, State};
 use crate::linear::ModeKind;
-use crate::model::{AbortAfter, InitialValueProblem, Model};
+use crate::model::{AbortAfter, InitialValueProblem, Method, Model};
 use crate::solve::{constraint_rate, initial_assembly, initial_derivatives_in, momentum_velocity_change, AssemblyReport, DerivativeMomenta, Integrator, NewtonSettings, NewtonWorkspace};
 
 
@@ -233,6 +233,7 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
     let settings = NewtonSettings { tolerance: problem.tolerance, norm: problem.residual_norm, increment_tolerance: problem.increment_tolerance, max_iterations: problem.max_iterations };
     let mut integrator = Integrator::with_workspace(&asm, state, problem.method, problem.time_step, settings, workspace);
     for step in 1..=steps {
+        integrator.method = method_at(&asm, problem, &integrator.state, integrator.state.t + problem.time_step)?;
         let r = integrator.step().map_err(|failure| RunError::Step { step, steps, time: failure.time, failure })?;
         report.steps = step;
         report.newton_iterations += r.iterations;
@@ -242,6 +243,27 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
     report.final_state = integrator.state;
     report.wall_time = clock.elapsed();
     Ok(report)
+}
+
+/// The integration method of the step to time `t`, from the solution `st` before it: the
+/// file's, with a varying spectral radius evaluated there (MBDyn's
+/// `MultistepSolver::SetCoef`, after `DataManager::SetTime` to the step's time and before
+/// the prediction). A radius outside [0, 1] beyond round-off (or not a number) stops the run.
+pub fn method_at(asm: &Assembler, problem: &InitialValueProblem, st: &State, t: f64) -> Result<Method, RunError> {
+    let Some(drive) = &problem.varying_radius else {
+        return Ok(problem.method);
+    };
+    let rho = asm.drive_value(drive, st, t);
+    // MBDyn checks no range; romdyn stops outside [0, 1] beyond round-off (a linear drive
+    // reaching 1 at an accumulated time reads 1 + 4e-16).
+    if !(-1e-9..=1.0 + 1e-9).contains(&rho) {
+        return Err(RunError::Problem(format!("the method's asymptotic spectral radius is {rho} at t = {t} s, not between 0 and 1")));
+    }
+    Ok(match problem.method {
+        Method::Ms { .. } => Method::Ms { rho },
+        Method::Bathe { .. } => Method::Bathe { rho },
+        other => other,
+    })
 }
 
 /// How [`derivatives`] converged when the file's own settings did not.

@@ -280,6 +280,16 @@ impl<'m> Assembler<'m> {
         }
     }
 
+    /// A drive's value at time `t` reading the model's nodes at `st` (node slot `i` is the
+    /// model's node `i`), as a drive outside every element reads it: the integration
+    /// method's spectral radius before a step (MBDyn's `MultistepSolver::SetCoef`).
+    pub fn drive_value(&self, drive: &crate::element::Drive, st: &State, t: f64) -> f64 {
+        let frames = self.frames(st);
+        let slots: Vec<usize> = (0..frames.len()).collect();
+        let ctx = Context { model: self.model, frames: &frames, read_frames: &frames, slots: &slots, multipliers: &[], rates: &[], t, load: st.load, gravity: self.model.gravity, constraint_scale: 1.0, latched: None };
+        drive.value_in(&ctx)
+    }
+
     /// `F(y, ẏ, t)`; constraint rows are divided by `dcoef` in the form of eq. 30.
     pub fn residual(&self, st: &State, form: ConstraintForm, dcoef: f64) -> Vec<f64> {
         let frames = self.frames(st);

@@ -194,6 +194,12 @@ pub struct InitialValueProblem {
     pub final_time: f64,
     pub time_step: f64,
     pub method: Method,
+    /// The method's asymptotic spectral radius when the file gives a drive that varies (of
+    /// time or of the model's state: MBDyn's `ms, DRIVE`, `Bathe, DRIVE`): evaluated before
+    /// each regular step at its new time with the last solution, as MBDyn's
+    /// `MultistepSolver::SetCoef`; `method` holds its value at the initial time (NaN when it
+    /// reads the state). `None`: the radius is constant.
+    pub varying_radius: Option<crate::element::Drive>,
     /// Newton converges when the residual's norm is below this (N, N m, …).
     pub tolerance: f64,
     /// The norm of that test.
@@ -274,6 +280,7 @@ impl Default for InitialValueProblem {
             final_time: 0.0,
             time_step: 1e-3,
             method: Method::Ms { rho: 0.6 },
+            varying_radius: None,
             tolerance: 1e-6,
             residual_norm: ResidualNorm::Max,
             increment_tolerance: 1e-12,

@@ -11,6 +11,7 @@ use super::diagnostic::{MbdynError, Sources};
 use super::drives::{drive, Drives};
 use super::parser::{known, Block};
 use crate::model::{AbortAfter, AutoCoefficient, EigenFileSuffix, EigenOutput, EigenRequest, InitialValueProblem, Method, ResidualNorm};
+use crate::element::Drive;
 
 /// Reads the `data` block.
 pub fn data(block: &Block, sources: &Sources) -> Result<(), MbdynError> {
@@ -65,6 +66,7 @@ pub fn mbdyn_defaults() -> InitialValueProblem {
         final_time: 0.0,
         time_step: 1.0,
         method: Method::Ms { rho: 0.0 },
+        varying_radius: None,
         tolerance: 1e-6,
         max_iterations: 1,
         derivatives_tolerance: 1e-6,
@@ -102,7 +104,7 @@ pub fn initial_value(block: Option<&Block>, sources: &Sources, drives: &Drives) 
                 a.max_iterations = c.count("maximum number of iterations")?;
                 c.accept("at most");
             }
-            Some("method") => a.method = method(&mut c, drives, a.initial_time, st.seq)?,
+            Some("method") => (a.method, a.varying_radius) = method(&mut c, drives, a.initial_time, st.seq)?,
             Some("eigenanalysis") => {
                 if let Some(first) = eigen_span.replace(st.span) {
                     return Err(c.error_at(st.span, format!("'eigenanalysis' appears twice (first at line {}): use 'list' for several times", first.line)));
@@ -225,7 +227,7 @@ fn derivatives_coefficient(c: &mut Cursor, a: &mut InitialValueProblem) -> Resul
 /// `crank nicolson`, `implicit euler`, `bdf [, order, {1 | 2}]`; of later MBDyn versions
 /// (their input manual, §Method; solver.cc `Solver::ReadData`): `Bathe, RHO [, ALG_RHO]`
 /// and `hybrid, {implicit euler | crank nicolson | ms | ms2 | hope} [, RHO [, ALG_RHO]]`.
-fn method(c: &mut Cursor, drives: &Drives, t0: f64, seq: usize) -> Result<Method, MbdynError> {
+fn method(c: &mut Cursor, drives: &Drives, t0: f64, seq: usize) -> Result<(Method, Option<Drive>), MbdynError> {
     const SUPPORTED: &str = "supported: ms, crank nicolson, implicit euler, bdf, Bathe, hybrid";
     let span = c.here();
     if let Some(m) = c.accept_any(&["hope", "third order", "thirdorder"]) {
@@ -236,16 +238,19 @@ fn method(c: &mut Cursor, drives: &Drives, t0: f64, seq: usize) -> Result<Method
         return Err(c.error_at(span, format!("integration method '{m}' is not known to MBDyn 1.7.3 (its reader stops with \"Unknown integration method\") and is not supported by romdyn ({SUPPORTED})")));
     }
     // The asymptotic spectral radius, then the algebraic one (romdyn integrates all unknowns
-    // with one formula: read and not used).
-    let radius = |c: &mut Cursor| -> Result<f64, MbdynError> {
+    // with one formula: read and not used). A radius that varies is evaluated before every
+    // step (`varying`; MBDyn's `MultistepSolver::SetCoef`), one that reads the model's state
+    // from the solution; its value at the initial time is checked here when it can be.
+    let mut varying: Option<Drive> = None;
+    let mut radius = |c: &mut Cursor| -> Result<f64, MbdynError> {
         let rho_span = c.here();
         let d = drive(c, drives, seq)?;
-        if d.reads_state() {
-            return Err(c.error_at(rho_span, "the asymptotic spectral radius reads the model's state (MBDyn evaluates it at every step): romdyn takes the radius's value at the initial time and does not support that"));
-        }
-        let rho = d.value(t0);
-        if !(0.0..=1.0).contains(&rho) {
+        let rho = if d.reads_state() { f64::NAN } else { d.value(t0) };
+        if !rho.is_nan() && !(0.0..=1.0).contains(&rho) {
             return Err(c.error_at(rho_span, format!("the asymptotic spectral radius must be between 0 and 1, found {rho}")));
+        }
+        if !matches!(d, Drive::Const(_)) {
+            varying = Some(d);
         }
         if !c.is_done() {
             drive(c, drives, seq)?;
@@ -253,7 +258,7 @@ fn method(c: &mut Cursor, drives: &Drives, t0: f64, seq: usize) -> Result<Method
         Ok(rho)
     };
     // `crank nicholson` is MBDyn's deprecated spelling (solver.cc, Solver::ReadData).
-    Ok(match c.keyword("an integration method", &["ms", "crank nicolson", "crank nicholson", "implicit euler", "bdf", "bathe", "hybrid"])? {
+    let method = match c.keyword("an integration method", &["ms", "crank nicolson", "crank nicholson", "implicit euler", "bdf", "bathe", "hybrid"])? {
         "ms" => Method::Ms { rho: radius(c)? },
         "bathe" => Method::Bathe { rho: radius(c)? },
         "hybrid" => {
@@ -276,14 +281,15 @@ fn method(c: &mut Cursor, drives: &Drives, t0: f64, seq: usize) -> Result<Method
             if c.accept("order") {
                 let span = c.here();
                 match c.integer("BDF order (1 or 2)")? {
-                    1 => return Ok(Method::ImplicitEuler),
+                    1 => return Ok((Method::ImplicitEuler, None)),
                     2 => {}
                     k => return Err(c.error_at(span, format!("BDF order must be 1 or 2, found {k}"))),
                 }
             }
             Method::Ms { rho: 0.0 }
         }
-    })
+    };
+    Ok((method, varying))
 }
 
 /// `eigenanalysis: {WHEN | list, N, WHEN…} [, option …]` (input manual, §Eigenanalysis).
