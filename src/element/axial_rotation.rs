@@ -38,7 +38,7 @@ impl Element for AxialRotation {
     fn private_data(&self, name: &str) -> Option<super::contract::PrivateDatum> {
         if name == "wz" {
             let omega = self.omega.clone();
-            return Some(std::sync::Arc::new(move |st: &dyn ElementState| Some(omega.value_in(st))));
+            return Some(super::contract::PrivateDatum::new(move |st: &dyn ElementState| Some(omega.value_in(st))));
         }
         self.hinge.private_datum(name)
     }

@@ -56,17 +56,17 @@ impl Element for RigidBody {
     fn private_data(&self, name: &str) -> Option<super::contract::PrivateDatum> {
         let (node, body) = (self.node, self.clone());
         let datum: super::contract::PrivateDatum = match name {
-            "E" => std::sync::Arc::new(move |st: &dyn ElementState| {
+            "E" => super::contract::PrivateDatum::new(move |st: &dyn ElementState| {
                 let n = st.structural_node(node)?;
                 let v = n.xdot + n.omega.cross(&(n.r * body.offset));
                 let w = n.r.transpose() * n.omega;
                 Some(0.5 * (body.mass * v.dot(&v) + w.dot(&(body.inertia * w))))
             }),
-            "V" => std::sync::Arc::new(move |st: &dyn ElementState| {
+            "V" => super::contract::PrivateDatum::new(move |st: &dyn ElementState| {
                 let n = st.structural_node(node)?;
                 Some(-body.mass * (n.x + n.r * body.offset).dot(&st.gravity()))
             }),
-            "m" => std::sync::Arc::new(move |_: &dyn ElementState| Some(body.mass)),
+            "m" => super::contract::PrivateDatum::new(move |_: &dyn ElementState| Some(body.mass)),
             _ => return None,
         };
         Some(datum)

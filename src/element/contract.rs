@@ -42,8 +42,35 @@ pub enum Col {
 
 /// What an element reads: its nodes' kinematics, its multipliers, the time and gravity.
 /// One private datum of an element ([`super::private_data`]): its value at a state, `None`
-/// where the state lacks a node it reads.
-pub type PrivateDatum = std::sync::Arc<dyn Fn(&dyn ElementState) -> Option<f64> + Send + Sync>;
+/// where the state lacks a node it reads, and the memory it keeps across steps, if any (a
+/// rotation counted across turns), which the run advances with the model's step drives.
+#[derive(Clone)]
+pub struct PrivateDatum {
+    read: std::sync::Arc<dyn Fn(&dyn ElementState) -> Option<f64> + Send + Sync>,
+    memory: Option<super::StepDrive>,
+}
+
+impl PrivateDatum {
+    /// A datum that is a function of the state alone.
+    pub fn new(read: impl Fn(&dyn ElementState) -> Option<f64> + Send + Sync + 'static) -> Self {
+        PrivateDatum { read: std::sync::Arc::new(read), memory: None }
+    }
+
+    /// A datum that is the value of `memory` (a drive with a memory of the accepted steps).
+    pub fn remembering(memory: super::StepDrive) -> Self {
+        let m = memory.clone();
+        PrivateDatum { read: std::sync::Arc::new(move |st: &dyn ElementState| Some(m.value_at(st.time(), Some(st))).filter(|v| !v.is_nan())), memory: Some(memory) }
+    }
+
+    pub fn value(&self, st: &dyn ElementState) -> Option<f64> {
+        (self.read)(st)
+    }
+
+    /// The memory the run must advance at every step (the model's step drives).
+    pub fn memory(&self) -> Option<&super::StepDrive> {
+        self.memory.as_ref()
+    }
+}
 
 /// Data an element re-sets at an event and holds until the next one (a driven element's
 /// drives re-set by its hints when it switches on, a bistop law's status and reference

@@ -86,7 +86,7 @@ pub use nlsf_rod::NlsfRod;
 pub use prestrained_rod::PrestrainedRod;
 pub use scalar_function::ScalarFunction;
 pub use screw::Screw;
-pub use step_drive::{StepDrive, StepKind};
+pub use step_drive::{RotationRead, StepDrive, StepKind, Turns};
 pub use tikhonov::Tikhonov;
 pub use total_equation::{TotalEquation, TotalReaction};
 pub use viscous_body::ViscousBody;

@@ -12,6 +12,7 @@ use std::sync::Arc;
 use super::anchor::{Anchor, Pair};
 use super::contract::{ElementState, Label, NodeKinematics};
 use super::joint::{Joint, JointKind};
+use super::step_drive::{RotationRead, StepDrive, StepKind, Turns};
 use crate::kinematics::{rotation_vector, Vec3};
 
 pub use super::contract::PrivateDatum;
@@ -92,16 +93,27 @@ fn joint_private_datum(joint: &Joint, name: &str) -> Option<PrivateDatum> {
     };
     let (a, b) = (joint.a.clone(), joint.b.clone());
     let labels: Vec<Label> = [&a, &b].into_iter().filter_map(|x| if let Anchor::Node { label, .. } = x { Some(*label) } else { None }).collect();
-    Some(Arc::new(move |st: &dyn ElementState| {
+    let read = move |st: &dyn ElementState, datum: JointDatum| -> Option<Vec3> {
         let nodes = ByLabel::read(&labels, st)?;
         let p = Pair::new(&a, &b, &nodes);
         Some(match datum {
-            JointDatum::Position(k) => (p.q_a.transpose() * p.d)[k],
-            JointDatum::Rotation(k) => rotation_vector(&(p.q_a.transpose() * p.q_b))[k],
-            JointDatum::AngularVelocityInA(k) => (p.q_a.transpose() * (p.omega_b - p.omega_a))[k],
-            JointDatum::AngularVelocityInB => (p.q_b.transpose() * (p.omega_b - p.omega_a))[2],
+            JointDatum::Position(_) => p.q_a.transpose() * p.d,
+            JointDatum::Rotation(_) => rotation_vector(&(p.q_a.transpose() * p.q_b)),
+            JointDatum::AngularVelocityInA(_) => p.q_a.transpose() * (p.omega_b - p.omega_a),
+            JointDatum::AngularVelocityInB => p.q_b.transpose() * (p.omega_b - p.omega_a),
         })
-    }))
+    };
+    Some(match datum {
+        // Counted across turns, as MBDyn: a revolute hinge's angle (planej.cc `NTheta`), a
+        // total joint's rotation vector (totalj.cc `Unwrap`).
+        JointDatum::Rotation(k) => {
+            let counting = if joint.kind == JointKind::TotalJoint { Turns::Vector(k) } else { Turns::Hinge };
+            let rotation = RotationRead(Arc::new(move |st: &dyn ElementState| read(st, datum)));
+            PrivateDatum::remembering(StepDrive::new(StepKind::Turns { rotation, counting }))
+        }
+        JointDatum::Position(k) | JointDatum::AngularVelocityInA(k) => PrivateDatum::new(move |st: &dyn ElementState| read(st, datum).map(|v| v[k])),
+        JointDatum::AngularVelocityInB => PrivateDatum::new(move |st: &dyn ElementState| read(st, datum).map(|v| v[2])),
+    })
 }
 
 #[cfg(test)]
@@ -147,7 +159,7 @@ mod tests {
         let w = |z| NodeKinematics { x: Vec3::zeros(), r: Mat3::identity(), xdot: Vec3::zeros(), omega: Vec3::new(0.0, 0.0, z) };
         let n2 = NodeKinematics { x: Vec3::new(1.0, 0.0, 0.0), r: about_z(1.0), ..w(2.0) };
         let st = Nodes(vec![(1, w(0.5)), (2, n2)]);
-        let read = |j: &Joint, name: &str| joint_private_datum(j, name).and_then(|d| d(&st)).ok_or(format!("no datum {name}"));
+        let read = |j: &Joint, name: &str| joint_private_datum(j, name).and_then(|d| d.value(&st)).ok_or(format!("no datum {name}"));
         assert!((read(&hinge, "rz")? - 0.7).abs() < 1e-15);
         assert!((read(&hinge, "wz")? - 1.5).abs() < 1e-15);
         assert!((read(&total, "px")? - 0.3f64.cos()).abs() < 1e-15 && (read(&total, "py")? + 0.3f64.sin()).abs() < 1e-15);
@@ -155,7 +167,7 @@ mod tests {
         assert!((read(&total, "wz")? - 1.5).abs() < 1e-15);
         assert!(joint_private_datum(&hinge, "Fx").is_none() && joint_private_datum(&total, "vx").is_none());
         // A state without node 2 (a unit test of one element) has no value.
-        assert!(joint_private_datum(&hinge, "rz").and_then(|d| d(&Nodes(vec![(1, w(0.0))]))).is_none());
+        assert!(joint_private_datum(&hinge, "rz").and_then(|d| d.value(&Nodes(vec![(1, w(0.0))]))).is_none());
         Ok(())
     }
 }

@@ -55,7 +55,35 @@ pub enum StepKind {
     /// on `[T0, T1]`, M elsewhere, with `r` the drive's last draw (see
     /// [`super::c_rand::RandomDraws`]).
     Random { amplitude: f64, mean: f64, t0: f64, t1: f64, steps: usize, draws: Arc<super::c_rand::RandomDraws>, id: usize },
+    /// A joint's relative rotation counted across turns (its private data `rz`, `r*`): the
+    /// memory holds the value at the last accepted step, a state's value is on the branch
+    /// nearest to it. [`Turns::Hinge`] is a revolute hinge's angle (planej.cc `NTheta`,
+    /// `dThetaWrapped`), [`Turns::Vector`] a total joint's rotation vector (totalj.cc
+    /// `ThetaDeltaTrue`, `Unwrap`); before the first step, the rotation as read.
+    Turns { rotation: RotationRead, counting: Turns },
 }
+
+/// A joint's relative rotation vector at a state (`None` where the state lacks a node).
+#[derive(Clone)]
+pub struct RotationRead(pub Arc<dyn Fn(&dyn ElementState) -> Option<Vec3> + Send + Sync>);
+
+impl std::fmt::Debug for RotationRead {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("RotationRead")
+    }
+}
+
+/// How [`StepKind::Turns`] counts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Turns {
+    /// The z component as an angle: `2π (n + m) + θ`, n the turns counted at the accepted
+    /// steps, m = ±1 when θ jumped by more than π from the last accepted value.
+    Hinge,
+    /// The vector, component `k`, by MBDyn's `Unwrap(previous, v)`: `v` scaled to the norm
+    /// nearest the previous one's (signed along it) by whole turns of 2π.
+    Vector(usize),
+}
+
 
 /// The memory of a [`StepDrive`].
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -70,6 +98,9 @@ struct Memory {
     /// The threshold and whether it must move on (closest next).
     next: f64,
     must_move: bool,
+    /// The rotation at the last accepted step, counted across turns, and for a hinge the
+    /// turns counted and the angle as read (`None` before the first step).
+    turned: Option<(Vec3, i64)>,
 }
 
 #[derive(Debug)]
@@ -130,6 +161,7 @@ impl StepDrive {
                 let x = ((u64::from(base) + u64::from(r)) % u64::from(max)) as f64;
                 mean + amplitude * (2.0 * x / f64::from(max) - 1.0)
             }
+            StepKind::Turns { rotation, counting } => state.and_then(|st| (rotation.0)(st)).map_or(f64::NAN, |v| turned(*counting, m.turned, v).0),
         }
     }
 
@@ -139,6 +171,7 @@ impl StepDrive {
         match &self.0.kind {
             StepKind::SampleAndHold { .. } | StepKind::Meter { .. } | StepKind::ClosestNext { .. } | StepKind::Random { .. } => false,
             StepKind::DiscreteFilter { b0, input, .. } => *b0 != 0.0 && input.reads_state(),
+            StepKind::Turns { .. } => true,
         }
     }
 
@@ -168,6 +201,15 @@ impl StepDrive {
                 push_front(&mut current.inputs, input.value_at(t_new, Some(&advanced)));
             }
             StepKind::Meter { .. } | StepKind::Random { .. } => current.step = step,
+            // MBDyn's `AfterConvergence` of the accepted step.
+            StepKind::Turns { rotation, counting } => {
+                if let Some(v) = (rotation.0)(previous) {
+                    current.turned = Some(match counting {
+                        Turns::Hinge => (v, turned(*counting, current.turned, v).1),
+                        Turns::Vector(_) => (unwrap(current.turned.map(|t| t.0), v), 0),
+                    });
+                }
+            }
             StepKind::ClosestNext { increment, .. } => {
                 if current.must_move {
                     // MBDyn's `do … while (Time >= next)`, adding the increment (the same
@@ -207,8 +249,43 @@ fn initial_memory(kind: &StepKind) -> Memory {
         StepKind::SampleAndHold { initial, .. } => Memory { held: *initial, ..Memory::default() },
         StepKind::DiscreteFilter { a, b, .. } => Memory { outputs: vec![0.0; a.len()], inputs: vec![0.0; b.len()], ..Memory::default() },
         StepKind::ClosestNext { t0, .. } => Memory { next: *t0, ..Memory::default() },
-        StepKind::Meter { .. } | StepKind::Random { .. } => Memory::default(),
+        StepKind::Meter { .. } | StepKind::Random { .. } | StepKind::Turns { .. } => Memory::default(),
     }
+}
+
+/// The value of a [`StepKind::Turns`] at the rotation vector `v` read at a state, with the
+/// memory `last` of the accepted steps, and for a hinge the turns counted with it.
+fn turned(counting: Turns, last: Option<(Vec3, i64)>, v: Vec3) -> (f64, i64) {
+    match counting {
+        Turns::Hinge => {
+            let theta = v[2];
+            let Some((read, turns)) = last else { return (theta, 0) };
+            let jump = theta - read[2];
+            let n = turns + i64::from(jump < -std::f64::consts::PI) - i64::from(jump > std::f64::consts::PI);
+            (2.0 * std::f64::consts::PI * n as f64 + theta, n)
+        }
+        Turns::Vector(k) => (unwrap(last.map(|t| t.0), v)[k], 0),
+    }
+}
+
+/// MBDyn's `Unwrap(previous, v)` (matvec3.cc): `v` with its norm θ replaced by the
+/// `±θ + 2πj` nearest the previous norm (negative when `v` points against `previous`),
+/// unchanged when there is no previous value or it is zero.
+fn unwrap(previous: Option<Vec3>, v: Vec3) -> Vec3 {
+    let (theta, Some(p)) = (v.norm(), previous) else { return v };
+    let before = p.norm();
+    if theta == 0.0 || before <= f64::EPSILON {
+        return v;
+    }
+    let start = if p.dot(&v) < 0.0 { -theta } else { theta };
+    let mut t = start;
+    while t - before > std::f64::consts::PI {
+        t -= 2.0 * std::f64::consts::PI;
+    }
+    while before - t > std::f64::consts::PI {
+        t += 2.0 * std::f64::consts::PI;
+    }
+    if t == start { v } else { v * (t / start) }
 }
 
 fn history(a: &[f64], b: &[f64], m: &Memory) -> f64 {
@@ -273,6 +350,34 @@ mod tests {
         fn load_factor(&self) -> f64 {
             1.0
         }
+    }
+
+    #[test]
+    fn a_rotation_turning_past_pi_is_counted_across_turns_as_mbdyn() {
+        // A rotation about z by the clock's time θ = t [rad], read as the rotation vector
+        // (wrapped to (−π, π]), advanced in steps of 1 rad to 10 rad: the hinge's angle and
+        // the vector's z component keep growing (planej.cc NTheta, matvec3.cc Unwrap), and
+        // backwards they come down again.
+        let wrap = |t: f64| (t + std::f64::consts::PI).rem_euclid(2.0 * std::f64::consts::PI) - std::f64::consts::PI;
+        let rotation = RotationRead(Arc::new(move |st: &dyn ElementState| Some(Vec3::new(0.0, 0.0, wrap(st.time())))));
+        for counting in [Turns::Hinge, Turns::Vector(2)] {
+            let d = StepDrive::new(StepKind::Turns { rotation: rotation.clone(), counting });
+            // Before the first step: the rotation as read.
+            assert!((d.value_at(0.0, Some(&Clock(4.0))) - wrap(4.0)).abs() < 1e-15);
+            let path: Vec<f64> = (0..=10).map(f64::from).chain((0..10).rev().map(f64::from)).collect();
+            for (k, w) in path.windows(2).enumerate() {
+                d.begin_step(k + 1, w[1], &Clock(w[0]));
+                // A Newton iterate 0.9 rad on: the branch nearest the accepted value.
+                let v = d.value_at(w[1], Some(&Clock(w[1])));
+                assert!((v - w[1]).abs() < 1e-12, "{counting:?}: at {} read {v}", w[1]);
+            }
+            d.reset();
+            assert!((d.value_at(0.0, Some(&Clock(4.0))) - wrap(4.0)).abs() < 1e-15, "reset forgets the turns");
+        }
+        // Unwrap keeps the direction's sign: a vector read against the previous one is the
+        // same rotation with the norm continued through π (θ = 3.0 then −3.0 + 2π = 3.28).
+        let v = unwrap(Some(Vec3::new(0.0, 0.0, 3.0)), Vec3::new(0.0, 0.0, -(2.0 * std::f64::consts::PI - 3.28)));
+        assert!((v[2] - 3.28).abs() < 1e-12, "{v:?}");
     }
 
     #[test]

@@ -20,7 +20,7 @@ use super::cursor::Cursor;
 use super::diagnostic::{MbdynError, Sources, Span};
 use super::parser::{known, same_keyword, Statement};
 use crate::element::private_data::PrivateDatum;
-use crate::element::{Drive, Element, ElementState, TimeFunction};
+use crate::element::{Drive, Element, ElementState, StepDrive, TimeFunction};
 use crate::model::Label;
 
 type Cell = Arc<OnceLock<PrivateDatum>>;
@@ -76,8 +76,10 @@ impl PrivateReads {
 
     /// After the elements block: fills every read from the element it names, which must
     /// be defined above the drive caller (MBDyn's `ElementDCR::Read` finds it while reading:
-    /// "unable to find Joint(…)"), and have the datum.
-    pub fn resolve(&self, src: &Sources, elements: &HashMap<(&'static str, Label), (&dyn Element, Span, usize)>) -> Result<(), MbdynError> {
+    /// "unable to find Joint(…)"), and have the datum. Returns the memories of the data that
+    /// keep one (rotations counted across turns), for the run to advance at every step.
+    pub fn resolve(&self, src: &Sources, elements: &HashMap<(&'static str, Label), (&dyn Element, Span, usize)>) -> Result<Vec<StepDrive>, MbdynError> {
+        let mut memories = Vec::new();
         for r in self.requests.borrow().iter() {
             let (space, label) = r.element;
             let message = match elements.get(&(space, label)) {
@@ -85,6 +87,7 @@ impl PrivateReads {
                 Some((_, at, seq)) if *seq >= r.seq => format!("element drive caller: {space} {label} is not defined above it (line {}); MBDyn reads the element first", at.line),
                 Some((e, ..)) => match e.private_data(&r.name) {
                     Some(d) => {
+                        memories.extend(d.memory().cloned());
                         let _ = r.cell.set(d);
                         continue;
                     }
@@ -93,7 +96,7 @@ impl PrivateReads {
             };
             return Err(src.error(r.span, message));
         }
-        Ok(())
+        Ok(memories)
     }
 
     fn request(&self, element: (&'static str, Label), name: String, span: Span, seq: usize, cell: Cell) {
@@ -215,7 +218,7 @@ pub fn element_drive(c: &mut Cursor, reads: &PrivateReads, seq: usize, inner: &d
 fn reading(text: String, cell: Cell, f: Drive) -> Drive {
     Drive::Expression(TimeFunction::reading_state(text, move |_, st: Option<&dyn ElementState>| {
         let (Some(st), Some(datum)) = (st, cell.get()) else { return f64::NAN };
-        datum(st).map_or(f64::NAN, |x| f.value_at(x, Some(st)))
+        datum.value(st).map_or(f64::NAN, |x| f.value_at(x, Some(st)))
     }))
 }
 

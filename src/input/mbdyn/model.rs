@@ -340,7 +340,7 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
     }
     pending.finish(src, &mut built)?;
     let defined = built.iter().map(|(space, at, seq, e)| ((*space, e.label()), (e.as_ref(), *at, *seq))).collect();
-    cards.drives.private.resolve(src, &defined)?;
+    let memories = cards.drives.private.resolve(src, &defined)?;
     for (.., e) in built {
         b.boxed_element(e);
     }
@@ -358,6 +358,7 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
     }
     check_counts(doc, &counts, &found)?;
     b.step_drives(cards.drives.take_stepped());
+    b.step_drives(memories);
     let model = b.build().map_err(|e| src.error(first, e.to_string()))?;
     Ok(MbdynModel { model, problem })
 }

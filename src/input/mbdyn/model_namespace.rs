@@ -257,7 +257,7 @@ pub fn element_private_data(kind: &str, label_arg: f64, data: &str, elements: &E
         Reads::Labels(_) => return Ok(0.0),
     };
     let none = NodeKinematics { x: Vec3::zeros(), r: crate::kinematics::Mat3::identity(), xdot: Vec3::zeros(), omega: Vec3::zeros() };
-    datum(&AsWritten { nodes, none }).ok_or_else(|| format!("{call}: a node of {space} {l} is not among the nodes read"))
+    datum.value(&AsWritten { nodes, none }).ok_or_else(|| format!("{call}: a node of {space} {l} is not among the nodes read"))
 }
 
 /// `model::drive(LABEL, x)`: the `drive caller:` card `LABEL` at `x` (modelns.cc,
