@@ -90,18 +90,23 @@ fn joint_private_datum(joint: &Joint, name: &str) -> Option<PrivateDatum> {
         (JointKind::TotalJoint, [b'w', c]) => JointDatum::AngularVelocityInA(axis(*c)?),
         _ => return None,
     };
-    let (a, b) = (joint.a.clone(), joint.b.clone());
-    let labels: Vec<Label> = [&a, &b].into_iter().filter_map(|x| if let Anchor::Node { label, .. } = x { Some(*label) } else { None }).collect();
-    Some(Arc::new(move |st: &dyn ElementState| {
-        let nodes = ByLabel::read(&labels, st)?;
-        let p = Pair::new(&a, &b, &nodes);
-        Some(match datum {
-            JointDatum::Position(k) => (p.q_a.transpose() * p.d)[k],
-            JointDatum::Rotation(k) => rotation_vector(&(p.q_a.transpose() * p.q_b))[k],
-            JointDatum::AngularVelocityInA(k) => (p.q_a.transpose() * (p.omega_b - p.omega_a))[k],
-            JointDatum::AngularVelocityInB => (p.q_b.transpose() * (p.omega_b - p.omega_a))[2],
-        })
+    Some(of_pair(&joint.a, &joint.b, move |p| match datum {
+        JointDatum::Position(k) => (p.q_a.transpose() * p.d)[k],
+        JointDatum::Rotation(k) => rotation_vector(&(p.q_a.transpose() * p.q_b))[k],
+        JointDatum::AngularVelocityInA(k) => (p.q_a.transpose() * (p.omega_b - p.omega_a))[k],
+        JointDatum::AngularVelocityInB => (p.q_b.transpose() * (p.omega_b - p.omega_a))[2],
     }))
+}
+
+/// A datum `f` of the pair of anchors `a`, `b` (a joint's or a rod's two sides), read from
+/// the state by node label.
+pub(super) fn of_pair(a: &Anchor, b: &Anchor, f: impl Fn(&Pair) -> f64 + Send + Sync + 'static) -> PrivateDatum {
+    let (a, b) = (a.clone(), b.clone());
+    let labels: Vec<Label> = [&a, &b].into_iter().filter_map(|x| if let Anchor::Node { label, .. } = x { Some(*label) } else { None }).collect();
+    Arc::new(move |st: &dyn ElementState| {
+        let nodes = ByLabel::read(&labels, st)?;
+        Some(f(&Pair::new(&a, &b, &nodes)))
+    })
 }
 
 #[cfg(test)]
