@@ -42,9 +42,6 @@ impl Element for AxialRotation {
         }
         self.hinge.private_datum(name)
     }
-    fn private_datum_counts_turns(&self, name: &str) -> bool {
-        self.hinge.private_datum_counts_turns(name)
-    }
     fn type_name(&self) -> &'static str {
         "axial rotation"
     }

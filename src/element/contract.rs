@@ -258,13 +258,6 @@ pub trait Element: Send + Sync {
     fn private_data(&self, _name: &str) -> Option<PrivateDatum> {
         None
     }
-    /// Whether its private datum `name` is an angle whose turns MBDyn counts across the
-    /// accepted steps (a hinge's `rz`, planej.cc `NTheta`; a total joint's `r*`, totalj.cc
-    /// `Unwrap(ThetaDeltaTrue, …)`): the reader then unwraps it (see
-    /// [`super::private_data::Turns`]).
-    fn private_datum_counts_turns(&self, _name: &str) -> bool {
-        false
-    }
     /// The element with a beam's (beam3, beam2) rotation update set to `update`
     /// ([`super::BeamUpdate`]): `None` for elements it does not concern or that have it
     /// already, an error where the element cannot take it.

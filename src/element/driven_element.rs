@@ -192,9 +192,6 @@ impl ElementWrapper for DrivenElement {
     fn private_data(&self, name: &str) -> Option<PrivateDatum> {
         self.inner.private_data(name)
     }
-    fn private_datum_counts_turns(&self, name: &str) -> bool {
-        self.inner.private_datum_counts_turns(name)
-    }
     fn sections(&self, s: &dyn ElementState) -> Vec<SectionState> {
         self.acting(s).map(|e| e.sections(s)).unwrap_or_default()
     }

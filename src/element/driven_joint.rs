@@ -268,9 +268,6 @@ impl Element for DrivenJoint {
     fn private_data(&self, name: &str) -> Option<super::contract::PrivateDatum> {
         self.joint.private_datum(name)
     }
-    fn private_datum_counts_turns(&self, name: &str) -> bool {
-        self.joint.private_datum_counts_turns(name)
-    }
     fn type_name(&self) -> &'static str {
         self.name
     }

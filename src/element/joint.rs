@@ -171,9 +171,6 @@ impl Element for Joint {
     fn private_data(&self, name: &str) -> Option<super::contract::PrivateDatum> {
         self.private_datum(name)
     }
-    fn private_datum_counts_turns(&self, name: &str) -> bool {
-        Joint::private_datum_counts_turns(self, name)
-    }
 
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
         let p = Pair::new(&self.a, &self.b, st);

@@ -70,29 +70,6 @@ impl Joint {
     pub fn private_datum(&self, name: &str) -> Option<PrivateDatum> {
         joint_private_datum(self, name)
     }
-
-    /// Whether MBDyn counts the turns of the datum `name` across steps: the relative
-    /// rotations `rz` (hinges) and `r*` (total joints) (see [`Turns`]).
-    pub fn private_datum_counts_turns(&self, name: &str) -> bool {
-        match (self.kind, name.as_bytes()) {
-            (JointKind::RevoluteHinge | JointKind::RevoluteRotation, b"rz") => true,
-            (JointKind::TotalJoint, [b'r', c]) => b"xyz".contains(c),
-            _ => false,
-        }
-    }
-}
-
-/// An angle datum whose turns a reader counts across the accepted steps, as MBDyn does
-/// (planej.cc `NTheta`; totalj.cc `Unwrap`, of the rotation vector there: the same as
-/// unwrapping its component while the joint turns about one axis). The reader registers
-/// it as a [`super::StepKind::Turns`] and reads [`super::StepDrive::unwrapped`].
-#[derive(Clone)]
-pub struct Turns(pub PrivateDatum);
-
-impl std::fmt::Debug for Turns {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str("Turns")
-    }
 }
 
 /// [`Joint::private_datum`].

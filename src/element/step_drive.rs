@@ -55,11 +55,6 @@ pub enum StepKind {
     /// on `[T0, T1]`, M elsewhere, with `r` the drive's last draw (see
     /// [`super::c_rand::RandomDraws`]).
     Random { amplitude: f64, mean: f64, t0: f64, t1: f64, steps: usize, draws: Arc<super::c_rand::RandomDraws>, id: usize },
-    /// Not a drive: the turns of an angle datum MBDyn counts across the accepted steps (a
-    /// hinge's `rz`, planej.cc `NTheta`; a total joint's `r*`, totalj.cc
-    /// `Unwrap(ThetaDeltaTrue, …)`, updated in `AfterConvergence`). The memory is the angle
-    /// unwrapped at the last accepted state; [`StepDrive::unwrapped`] continues it.
-    Turns(super::private_data::Turns),
 }
 
 /// The memory of a [`StepDrive`].
@@ -72,8 +67,6 @@ struct Memory {
     inputs: Vec<f64>,
     /// The step number (meter, random; 0 before the first step).
     step: usize,
-    /// The angle unwrapped at the last accepted state (turns; none before the first step).
-    angle: Option<f64>,
     /// The threshold and whether it must move on (closest next).
     next: f64,
     must_move: bool,
@@ -137,23 +130,14 @@ impl StepDrive {
                 let x = ((u64::from(base) + u64::from(r)) % u64::from(max)) as f64;
                 mean + amplitude * (2.0 * x / f64::from(max) - 1.0)
             }
-            StepKind::Turns(_) => m.angle.unwrap_or(0.0),
         }
-    }
-
-    /// `raw`, an angle in (−π, π], plus the whole turns that bring it nearest to the angle
-    /// unwrapped at the last accepted state ([`StepKind::Turns`]; `raw` before the first
-    /// step), as MBDyn adds `2π NTheta` (one turn a step at most there; the same while a
-    /// step turns less than π).
-    pub fn unwrapped(&self, raw: f64) -> f64 {
-        unwrap(self.lock().0.angle, raw)
     }
 
     /// Whether the value within a step depends on the state being assembled: only a
     /// filter's direct term does.
     pub fn reads_state(&self) -> bool {
         match &self.0.kind {
-            StepKind::SampleAndHold { .. } | StepKind::Meter { .. } | StepKind::ClosestNext { .. } | StepKind::Random { .. } | StepKind::Turns(_) => false,
+            StepKind::SampleAndHold { .. } | StepKind::Meter { .. } | StepKind::ClosestNext { .. } | StepKind::Random { .. } => false,
             StepKind::DiscreteFilter { b0, input, .. } => *b0 != 0.0 && input.reads_state(),
         }
     }
@@ -184,11 +168,6 @@ impl StepDrive {
                 push_front(&mut current.inputs, input.value_at(t_new, Some(&advanced)));
             }
             StepKind::Meter { .. } | StepKind::Random { .. } => current.step = step,
-            StepKind::Turns(angle) => {
-                if let Some(a) = (angle.0)(previous) {
-                    current.angle = Some(unwrap(current.angle, a));
-                }
-            }
             StepKind::ClosestNext { increment, .. } => {
                 if current.must_move {
                     // MBDyn's `do … while (Time >= next)`, adding the increment (the same
@@ -228,14 +207,8 @@ fn initial_memory(kind: &StepKind) -> Memory {
         StepKind::SampleAndHold { initial, .. } => Memory { held: *initial, ..Memory::default() },
         StepKind::DiscreteFilter { a, b, .. } => Memory { outputs: vec![0.0; a.len()], inputs: vec![0.0; b.len()], ..Memory::default() },
         StepKind::ClosestNext { t0, .. } => Memory { next: *t0, ..Memory::default() },
-        StepKind::Meter { .. } | StepKind::Random { .. } | StepKind::Turns(_) => Memory::default(),
+        StepKind::Meter { .. } | StepKind::Random { .. } => Memory::default(),
     }
-}
-
-/// `raw` plus the whole turns nearest to `previous` (see [`StepDrive::unwrapped`]).
-fn unwrap(previous: Option<f64>, raw: f64) -> f64 {
-    let turn = 2.0 * std::f64::consts::PI;
-    previous.map_or(raw, |p| raw + turn * ((p - raw) / turn).round())
 }
 
 fn history(a: &[f64], b: &[f64], m: &Memory) -> f64 {

@@ -77,9 +77,6 @@ pub trait ElementWrapper: Send + Sync {
     fn private_data(&self, name: &str) -> Option<PrivateDatum> {
         self.inner().private_data(name)
     }
-    fn private_datum_counts_turns(&self, name: &str) -> bool {
-        self.inner().private_datum_counts_turns(name)
-    }
     fn sections(&self, s: &dyn ElementState) -> Vec<SectionState> {
         self.inner().sections(s)
     }
@@ -154,9 +151,6 @@ impl<W: ElementWrapper> Element for W {
     }
     fn private_data(&self, name: &str) -> Option<PrivateDatum> {
         ElementWrapper::private_data(self, name)
-    }
-    fn private_datum_counts_turns(&self, name: &str) -> bool {
-        ElementWrapper::private_datum_counts_turns(self, name)
     }
     fn sections(&self, s: &dyn ElementState) -> Vec<SectionState> {
         ElementWrapper::sections(self, s)

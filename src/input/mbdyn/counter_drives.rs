@@ -23,14 +23,9 @@ pub struct StepDrives {
 impl StepDrives {
     /// A drive with memory, registered for the model to advance at every step.
     pub fn register(&self, kind: StepKind) -> Drive {
-        Drive::Stepped(self.register_memory(kind))
-    }
-
-    /// A memory of the steps (a drive's, or the turns of an angle), registered likewise.
-    pub fn register_memory(&self, kind: StepKind) -> StepDrive {
         let d = StepDrive::new(kind);
         self.stepped.lock().unwrap_or_else(|e| e.into_inner()).push(d.clone());
-        d
+        Drive::Stepped(d)
     }
 
     /// The drives registered so far (emptied).

@@ -125,9 +125,8 @@ impl PrivateReads {
     /// After the elements block: fills every read from the element it names, which must
     /// be defined above the drive caller (MBDyn's `ElementDCR::Read` finds it while reading:
     /// "unable to find Joint(…)"), and have the datum.
-    /// A string drive's reads fill from an element anywhere in the elements block. An angle
-    /// whose turns MBDyn counts is read unwrapped, its memory registered in `steps`.
-    pub fn resolve(&self, src: &Sources, elements: &HashMap<(&'static str, Label), (&dyn Element, Span, usize)>, steps: &super::counter_drives::StepDrives) -> Result<(), MbdynError> {
+    /// A string drive's reads fill from an element anywhere in the elements block.
+    pub fn resolve(&self, src: &Sources, elements: &HashMap<(&'static str, Label), (&dyn Element, Span, usize)>) -> Result<(), MbdynError> {
         for r in self.requests.borrow().iter() {
             let ((space, label), who) = (r.element, &r.who);
             let message = match elements.get(&(space, label)) {
@@ -139,7 +138,6 @@ impl PrivateReads {
                 Some((_, at, seq)) if r.above.is_some_and(|s| *seq >= s) => format!("{who}: {space} {label} is not defined above it (line {}); MBDyn reads the element first", at.line),
                 Some((e, ..)) => match e.private_data(&r.name) {
                     Some(d) => {
-                        let d = if e.private_datum_counts_turns(&r.name) { counting_turns(d, steps) } else { d };
                         let _ = r.cell.set(d);
                         continue;
                     }
@@ -174,13 +172,6 @@ impl PrivateReads {
     pub fn for_hints() -> Self {
         PrivateReads { in_hint: true, ..Self::default() }
     }
-}
-
-/// `angle` read with the turns counted across the accepted steps (see
-/// [`crate::element::private_data::Turns`]).
-fn counting_turns(angle: PrivateDatum, steps: &super::counter_drives::StepDrives) -> PrivateDatum {
-    let memory = steps.register_memory(crate::element::StepKind::Turns(crate::element::private_data::Turns(angle.clone())));
-    Arc::new(move |st: &dyn ElementState| angle(st).map(|a| memory.unwrapped(a)))
 }
 
 /// The private data romdyn computes, for messages.

@@ -340,7 +340,7 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
     }
     pending.finish(src, &mut built)?;
     let defined = built.iter().map(|(space, at, seq, e)| ((*space, e.label()), (e.as_ref(), *at, *seq))).collect();
-    cards.drives.private.resolve(src, &defined, &cards.drives.steps)?;
+    cards.drives.private.resolve(src, &defined)?;
     for (.., e) in built {
         b.boxed_element(e);
     }
