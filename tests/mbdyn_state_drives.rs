@@ -92,7 +92,7 @@ fn bad_model_namespace_calls_name_the_place_and_the_problem() {
     let cases = [
         ("-K*model::xposition(2)", "-K*model::xposition(12)", "the file declares no structural node 12"),
         ("-K*model::xposition(2)", "-K*model::xposition_prev(2)", "previous time step"),
-        ("-K*model::xposition(2)", "-K*model::element::joint(5, \\\"L\\\")", "not in a string drive during the run"),
+        ("-K*model::xposition(2)", "-K*model::element::joint(5, \\\"L\\\")", "romdyn does not compute the private data \"L\" of clamp 5"),
         ("-K*model::xposition(2)", "-K*model::xposition(2, 3)", "takes 1 node label(s), found 2"),
         ("-K*model::xposition(2)", "-K*model::unitvec(2, 3)", "unknown function 'model::unitvec'"),
         ("model::node::structural(3, \\\"X[2]\\\")", "model::node::structural(3, \\\"E[2]\\\")", "Euler angles"),

@@ -221,6 +221,15 @@ impl Element for Rod {
     fn nodes(&self) -> Vec<Label> {
         node_labels(&self.a, &self.b)
     }
+    /// rodj.cc, `Rod::dGetPrivData`: "L" the distance `l = |d|` between the points, "LPrime"
+    /// its rate `d·ḋ/l` (MBDyn's `dL0 dEpsilonPrime`).
+    fn private_data(&self, name: &str) -> Option<super::contract::PrivateDatum> {
+        match name {
+            "L" => Some(super::private_data::of_pair(&self.a, &self.b, |p| p.d.norm())),
+            "LPrime" => Some(super::private_data::of_pair(&self.a, &self.b, |p| p.d.dot(&distance_rate(p).0) / p.d.norm())),
+            _ => None,
+        }
+    }
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
         let p = Pair::new(&self.a, &self.b, st);
         let (fe, _) = self.force(&p.d);

@@ -64,9 +64,9 @@ enum JointDatum {
 
 /// The private datum `name` of a joint, if romdyn computes it: a revolute hinge's (or
 /// revolute rotation's) `rz`, `wz` (planej.cc, `PlaneHingeJoint::dGetPrivData`), a total
-/// joint's `p*`, `r*`, `w*` (totalj.cc). MBDyn counts the turns of `rz`/`r*` across steps
-/// (its `NTheta`, `Unwrap`); romdyn has no element history and gives the rotation vector's
-/// component, the same while the relative rotation stays below π.
+/// joint's `p*`, `r*`, `w*` (totalj.cc). The rotations `rz`/`r*` are counted across the
+/// turns of the accepted steps, as MBDyn's `NTheta` and `Unwrap`: the datum carries that
+/// memory ([`PrivateDatum::memory`], a [`StepKind::Turns`]).
 impl Joint {
     pub fn private_datum(&self, name: &str) -> Option<PrivateDatum> {
         joint_private_datum(self, name)
@@ -113,6 +113,17 @@ fn joint_private_datum(joint: &Joint, name: &str) -> Option<PrivateDatum> {
         }
         JointDatum::Position(k) | JointDatum::AngularVelocityInA(k) => PrivateDatum::new(move |st: &dyn ElementState| read(st, datum).map(|v| v[k])),
         JointDatum::AngularVelocityInB => PrivateDatum::new(move |st: &dyn ElementState| read(st, datum).map(|v| v[2])),
+    })
+}
+
+/// A datum `f` of the pair of anchors `a`, `b` (a joint's or a rod's two sides), read from
+/// the state by node label.
+pub(super) fn of_pair(a: &Anchor, b: &Anchor, f: impl Fn(&Pair) -> f64 + Send + Sync + 'static) -> PrivateDatum {
+    let (a, b) = (a.clone(), b.clone());
+    let labels: Vec<Label> = [&a, &b].into_iter().filter_map(|x| if let Anchor::Node { label, .. } = x { Some(*label) } else { None }).collect();
+    PrivateDatum::new(move |st: &dyn ElementState| {
+        let nodes = ByLabel::read(&labels, st)?;
+        Some(f(&Pair::new(&a, &b, &nodes)))
     })
 }
 

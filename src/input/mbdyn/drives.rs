@@ -16,6 +16,7 @@ use std::sync::Mutex;
 
 use super::cursor::Cursor;
 use super::diagnostic::{MbdynError, Sources, Span};
+use super::element_reads::RunElements;
 use super::expr::{Evaluator, Variable, Variables};
 use super::lexer::{tokenize, Token};
 use super::model_namespace::{node_private_data, Live, Reads};
@@ -80,7 +81,7 @@ impl Drives {
     /// the `drive caller:` cards, the variables and the structural nodes' labels as now; no
     /// scalar functions, file drivers or element reads (refused in a hint).
     pub fn for_hints(&self) -> Drives {
-        Drives { table: self.table.clone(), variables: self.variables.clone(), structural_nodes: self.structural_nodes.clone(), ..Drives::default() }
+        Drives { table: self.table.clone(), variables: self.variables.clone(), structural_nodes: self.structural_nodes.clone(), private: super::element_reads::PrivateReads::for_hints(), ..Drives::default() }
     }
     /// The drive caller cards of statements before `seq`, by label.
     pub fn defined_before(&self, seq: usize) -> HashMap<u32, Drive> {
@@ -248,7 +249,7 @@ fn nested_drive(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) -> Re
         "string" => {
             let span = c.here();
             let text = c.string("the expression (a string in double quotes)")?;
-            Drive::Expression(string_drive(&text, drives, seq).map_err(|m| c.error_at(span, format!("string drive \"{text}\": {m}")))?)
+            Drive::Expression(string_drive(&text, drives, seq, span).map_err(|m| c.error_at(span, format!("string drive \"{text}\": {m}")))?)
         }
         "ramp" => {
             let slope = c.real("ramp slope")?;
@@ -315,8 +316,10 @@ fn coefficients(c: &mut Cursor, name: &str) -> Result<Vec<f64>, MbdynError> {
 /// functions of the nodes' state read the state the drive is evaluated in (see
 /// [`TimeFunction`]); the check at t = 0 only checks their node labels against the
 /// structural nodes the file declares (each read is 0 there, and out-of-domain arguments
-/// of built-in functions are not errors).
-fn string_drive(text: &str, drives: &Drives, seq: usize) -> Result<TimeFunction, String> {
+/// of built-in functions are not errors). `model::element::TYPE(LABEL, "NAME")` reads the
+/// element's private datum at that state too: the check notes the reads, which are filled
+/// after the elements block (see [`super::element_reads`]).
+fn string_drive(text: &str, drives: &Drives, seq: usize, span: Span) -> Result<TimeFunction, String> {
     let mut sources = Sources::default();
     sources.files.push(("string drive".into(), text.to_string()));
     let tokens = tokenize(text, 0, &sources).map_err(|e| e.message)?;
@@ -326,7 +329,7 @@ fn string_drive(text: &str, drives: &Drives, seq: usize) -> Result<TimeFunction,
     let functions = drives.functions.defined_before(seq);
     let table = drives.defined_before(seq);
     let reads_state = tokens.windows(3).any(|w| w[0].token == Token::Word("model".into()) && w[1].token == Token::Symbol("::") && w[2].token != Token::Word("sf".into()));
-    let evaluate = move |vars: &mut Variables, tokens: &[super::lexer::Spanned], sources: &Sources, var: f64, reads: Option<Reads>, state: Option<&dyn ElementState>| -> Result<f64, String> {
+    let evaluate = move |vars: &mut Variables, tokens: &[super::lexer::Spanned], sources: &Sources, var: f64, reads: Option<Reads>, state: Option<&dyn ElementState>, elements: Option<RunElements>| -> Result<f64, String> {
         // MBDyn's `StringDriveCaller::dGet(dVar)` sets `Var`; `Time` is the simulation's
         // time, which is the argument unless a drive passes another value (a dof, element
         // or node drive caller's datum, `model::drive(L, x)`, a periodic drive's phase).
@@ -338,18 +341,24 @@ fn string_drive(text: &str, drives: &Drives, seq: usize) -> Result<TimeFunction,
         if let Some(reads) = reads {
             e = e.with_reads(reads, state);
         }
+        if let Some(elements) = elements {
+            e = e.with_run_elements(elements);
+        }
         let v = e.evaluate().map_err(|e| e.message)?;
         v.real().ok_or_else(|| "the expression gives a string, not a number".to_string())
     };
     let mut vars = drives.variables.clone();
-    evaluate(&mut vars, &tokens, &sources, 0.0, reads_state.then_some(Reads::Labels(&drives.structural_nodes)), None)?;
+    let noted = std::cell::RefCell::new(Vec::new());
+    evaluate(&mut vars, &tokens, &sources, 0.0, reads_state.then_some(Reads::Labels(&drives.structural_nodes)), None, Some(RunElements::Note(&noted)))?;
+    let noted = noted.into_inner();
+    drives.private.string_reads(text, span, &noted)?;
     let state = Mutex::new(vars);
     let run = move |t: f64, st: Option<&dyn ElementState>| {
         let mut vars = state.lock().unwrap_or_else(|e| e.into_inner());
         match (reads_state, st) {
-            (false, st) => evaluate(&mut vars, &tokens, &sources, t, None, st),
+            (false, st) => evaluate(&mut vars, &tokens, &sources, t, None, st, None),
             (true, None) => Ok(f64::NAN),
-            (true, Some(st)) => evaluate(&mut vars, &tokens, &sources, t, Some(Reads::Nodes(&Live(st))), Some(st)),
+            (true, Some(st)) => evaluate(&mut vars, &tokens, &sources, t, Some(Reads::Nodes(&Live(st))), Some(st), Some(RunElements::Read(&noted, st))),
         }
         .unwrap_or(f64::NAN)
     };

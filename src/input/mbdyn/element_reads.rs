@@ -11,6 +11,11 @@
 //! state it is evaluated in, as MBDyn's `DofDriveCaller`/`ElementDriveCaller` (`dGet(value)`:
 //! `Var` is the value, `Time` stays the time), with no Jacobian of the read (see
 //! [`TimeFunction`]).
+//!
+//! `model::element::TYPE(LABEL, "NAME")` inside a `string` drive ([`RunElements`]) is such a
+//! cell too, filled from an element anywhere in the elements block: MBDyn's modelns.cc
+//! (`model_elem`) looks the element up when the expression is evaluated, during the run,
+//! and stops there ("model::element: unable to find …") if it does not exist.
 
 use std::cell::RefCell;
 use std::collections::{HashMap, HashSet};
@@ -31,9 +36,50 @@ struct Request {
     element: (&'static str, Label),
     name: String,
     span: Span,
-    /// The reading statement's position in the input.
-    seq: usize,
+    /// The reading statement's position in the input, where the element must be defined
+    /// above it (an `element` drive caller); `None` where it may be anywhere (a string drive).
+    above: Option<usize>,
+    /// Who reads, for messages.
+    who: String,
     cell: Cell,
+}
+
+/// A `model::element::TYPE(LABEL, "NAME")` of a string drive: the element, the datum's name
+/// and the cell that holds the datum once the elements are read.
+pub struct StringRead {
+    element: (&'static str, Label),
+    name: String,
+    cell: Cell,
+}
+
+/// What `model::element::…` reads inside a string drive.
+#[derive(Clone, Copy)]
+pub enum RunElements<'a> {
+    /// The drive's check while the file is read: each read is noted, and gives 0.
+    Note(&'a RefCell<Vec<StringRead>>),
+    /// During the run: the noted reads, filled after the elements block, at this state.
+    Read(&'a [StringRead], &'a dyn ElementState),
+}
+
+/// `model::element::KIND(LABEL, "NAME")` in a string drive (modelns.cc `model_elem`:
+/// `dGetPrivData` of the element at evaluation time).
+pub fn string_read(kind: &str, label_arg: f64, name: &str, run: RunElements) -> Result<f64, String> {
+    let call = format!("model::element::{kind}({label_arg}, \"{name}\")");
+    let element = super::model_namespace::element_key(kind, label_arg, &call)?;
+    match run {
+        RunElements::Note(noted) => {
+            let mut noted = noted.borrow_mut();
+            if !noted.iter().any(|r| r.element == element && r.name == name) {
+                noted.push(StringRead { element, name: name.to_string(), cell: Arc::default() });
+            }
+            Ok(0.0)
+        }
+        RunElements::Read(reads, st) => {
+            let read = reads.iter().find(|r| r.element == element && r.name == name);
+            let datum = read.and_then(|r| r.cell.get()).ok_or_else(|| format!("{call}: not among the reads romdyn found when it checked the drive (a label or name that changes during the run is not supported)"))?;
+            datum.value(st).ok_or_else(|| format!("{call}: a node of the element is not in the state"))
+        }
+    }
 }
 
 /// The parameter nodes, their bindings and the reads of `element` drive callers.
@@ -45,6 +91,8 @@ pub struct PrivateReads {
     /// Where each parameter node was bound.
     bound: RefCell<HashMap<Label, Span>>,
     requests: RefCell<Vec<Request>>,
+    /// The reads of a hint's drive (parsed during the run).
+    in_hint: bool,
 }
 
 /// Element types a `bind` or an `element` drive caller names, as label spaces
@@ -76,22 +124,27 @@ impl PrivateReads {
 
     /// After the elements block: fills every read from the element it names, which must
     /// be defined above the drive caller (MBDyn's `ElementDCR::Read` finds it while reading:
-    /// "unable to find Joint(…)"), and have the datum. Returns the memories of the data that
-    /// keep one (rotations counted across turns), for the run to advance at every step.
+    /// "unable to find Joint(…)"), and have the datum; a string drive's reads fill from an
+    /// element anywhere in the elements block. Returns the memories of the data that keep
+    /// one (rotations counted across turns), for the run to advance at every step.
     pub fn resolve(&self, src: &Sources, elements: &HashMap<(&'static str, Label), (&dyn Element, Span, usize)>) -> Result<Vec<StepDrive>, MbdynError> {
         let mut memories = Vec::new();
         for r in self.requests.borrow().iter() {
-            let (space, label) = r.element;
+            let ((space, label), who) = (r.element, &r.who);
             let message = match elements.get(&(space, label)) {
-                None => format!("element drive caller: there is no {space} {label}"),
-                Some((_, at, seq)) if *seq >= r.seq => format!("element drive caller: {space} {label} is not defined above it (line {}); MBDyn reads the element first", at.line),
+                None if r.above.is_some() => format!("{who}: there is no {space} {label}"),
+                None => {
+                    let mbdyn = space[..1].to_uppercase() + &space[1..];
+                    format!("{who}: there is no {space} {label} in the elements block (MBDyn stops at the drive's first evaluation: \"model::element: unable to find {mbdyn}({label})\")")
+                }
+                Some((_, at, seq)) if r.above.is_some_and(|s| *seq >= s) => format!("{who}: {space} {label} is not defined above it (line {}); MBDyn reads the element first", at.line),
                 Some((e, ..)) => match e.private_data(&r.name) {
                     Some(d) => {
                         memories.extend(d.memory().cloned());
                         let _ = r.cell.set(d);
                         continue;
                     }
-                    None => format!("element drive caller: romdyn does not compute the private data \"{}\" of {} {label} ({COMPUTED})", r.name, e.type_name()),
+                    None => format!("{who}: romdyn does not compute the private data \"{}\" of {} {label} ({COMPUTED})", r.name, e.type_name()),
                 },
             };
             return Err(src.error(r.span, message));
@@ -100,12 +153,32 @@ impl PrivateReads {
     }
 
     fn request(&self, element: (&'static str, Label), name: String, span: Span, seq: usize, cell: Cell) {
-        self.requests.borrow_mut().push(Request { element, name, span, seq, cell });
+        self.requests.borrow_mut().push(Request { element, name, span, above: Some(seq), who: "element drive caller".into(), cell });
+    }
+
+    /// Notes the `model::element::…` reads of the string drive `text` written at `span`, to
+    /// be filled by [`Self::resolve`]. A hint's drive, parsed during the run, cannot have
+    /// them (no elements block follows).
+    pub fn string_reads(&self, text: &str, span: Span, reads: &[StringRead]) -> Result<(), String> {
+        if self.in_hint && !reads.is_empty() {
+            return Err("model::element::… in a hint's drive is not supported by romdyn (it reads elements' private data in drives of the input file)".into());
+        }
+        for r in reads {
+            let (space, label) = r.element;
+            let who = format!("string drive \"{text}\": model::element::{space}({label}, \"{}\")", r.name);
+            self.requests.borrow_mut().push(Request { element: r.element, name: r.name.clone(), span, above: None, who, cell: r.cell.clone() });
+        }
+        Ok(())
+    }
+
+    /// The reads of a hint's drives (see [`Self::string_reads`]).
+    pub fn for_hints() -> Self {
+        PrivateReads { in_hint: true, ..Self::default() }
     }
 }
 
 /// The private data romdyn computes, for messages.
-const COMPUTED: &str = "it computes \"rz\", \"wz\" of revolute hinges, revolute rotations and axial rotations, and \"px\" … \"pz\", \"rx\" … \"rz\", \"wx\" … \"wz\" of total joints";
+const COMPUTED: &str = "it computes a body's \"E\", \"V\", \"m\", a rod's \"L\", \"LPrime\", \"rz\", \"wz\" of revolute hinges, revolute rotations and axial rotations, and \"px\" … \"pz\", \"rx\" … \"rz\", \"wx\" … \"wz\" of total joints and total pin joints";
 
 /// `parameter: LABEL, element;` in the nodes block; the other kinds (`value`, `sample and
 /// hold`, `beam strain gage`) are refused by name.

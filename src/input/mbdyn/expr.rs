@@ -102,11 +102,13 @@ pub struct Evaluator<'a> {
     /// The elements `model::element::TYPE(LABEL, "NAME")` reads (`None` outside the reading
     /// of the file: refused).
     elements: Option<&'a super::model_namespace::ElementsRead>,
+    /// What `model::element::…` reads in a string drive (its check, or the run).
+    run_elements: Option<super::element_reads::RunElements<'a>>,
 }
 
 impl<'a> Evaluator<'a> {
     pub fn new(tokens: &'a [Spanned], vars: &'a mut Variables, sources: &'a Sources, end: Span) -> Self {
-        Evaluator { tokens, pos: 0, vars, sources, end, depth: 0, overrides: None, functions: None, reads: None, state: None, drives: None, lenient: false, previous: None, current: &[], elements: None }
+        Evaluator { tokens, pos: 0, vars, sources, end, depth: 0, overrides: None, functions: None, reads: None, state: None, drives: None, lenient: false, previous: None, current: &[], elements: None, run_elements: None }
     }
 
     /// Makes the `model::` state functions read `reads`; `state` is the element state of a
@@ -137,6 +139,13 @@ impl<'a> Evaluator<'a> {
     /// read).
     pub fn with_elements(mut self, elements: &'a super::model_namespace::ElementsRead) -> Self {
         self.elements = Some(elements);
+        self
+    }
+
+    /// Makes `model::element::TYPE(LABEL, "NAME")` note or read the elements' private data
+    /// of a string drive (see [`super::element_reads::RunElements`]).
+    pub fn with_run_elements(mut self, run: super::element_reads::RunElements<'a>) -> Self {
+        self.run_elements = Some(run);
         self
     }
 

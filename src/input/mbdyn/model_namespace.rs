@@ -238,12 +238,7 @@ impl ElementState for AsWritten<'_> {
 /// written.
 pub fn element_private_data(kind: &str, label_arg: f64, data: &str, elements: &ElementsRead, reads: Reads) -> Result<f64, String> {
     let call = format!("model::element::{kind}({label_arg}, \"{data}\")");
-    let l = label(label_arg, &call).map_err(|m| m.replace("node label", "element label"))?;
-    let space = match kind {
-        "body" | "joint" | "force" | "beam" => kind,
-        "couple" => "force",
-        _ => return Err(format!("{call}: romdyn reads the private data of bodies and joints (element types body, joint, force, couple, beam)")),
-    };
+    let (space, l) = element_key(kind, label_arg, &call)?;
     let element = match elements.get(&(space, l)) {
         None => return Err(format!("{call}: there is no {space} {l} above this statement (MBDyn: \"unable to find\")")),
         Some(Err(why)) => return Err(format!("{call}: romdyn could not read {space} {l} while reading the file: {why}")),
@@ -258,6 +253,20 @@ pub fn element_private_data(kind: &str, label_arg: f64, data: &str, elements: &E
     };
     let none = NodeKinematics { x: Vec3::zeros(), r: crate::kinematics::Mat3::identity(), xdot: Vec3::zeros(), omega: Vec3::zeros() };
     datum.value(&AsWritten { nodes, none }).ok_or_else(|| format!("{call}: a node of {space} {l} is not among the nodes read"))
+}
+
+/// The label space (`elements::label_space`) and label `model::element::KIND(LABEL, …)`
+/// names; `call` is the call as written, for messages.
+pub fn element_key(kind: &str, label_arg: f64, call: &str) -> Result<(&'static str, Label), String> {
+    let l = label(label_arg, call).map_err(|m| m.replace("node label", "element label"))?;
+    let space = match kind {
+        "body" => "body",
+        "joint" => "joint",
+        "force" | "couple" => "force",
+        "beam" => "beam",
+        _ => return Err(format!("{call}: romdyn reads the private data of bodies and joints (element types body, joint, force, couple, beam)")),
+    };
+    Ok((space, l))
 }
 
 /// `model::drive(LABEL, x)`: the `drive caller:` card `LABEL` at `x` (modelns.cc,

@@ -82,8 +82,12 @@ impl Evaluator<'_> {
                     return Err(self.err(span, format!("{what} takes an element label and a private data name in double quotes, e.g. (1, \"E\")")));
                 };
                 let label = real(self, label)?;
+                if let Some(run) = self.run_elements {
+                    // A string drive: the element's datum at the state of the evaluation.
+                    return super::super::element_reads::string_read(&kind, label, data, run).map(TypedValue::Real).map_err(self.at(span));
+                }
                 let Some(elements) = self.elements else {
-                    return Err(self.err(span, format!("{what}: romdyn reads an element's private data while it reads the file ('const', 'set:', a card's numbers), not in a string drive during the run (the 'element' drive caller reads it there)")));
+                    return Err(self.err(span, format!("{what}: romdyn reads an element's private data while it reads the file ('const', 'set:', a card's numbers) and in string drives of the input file, not here")));
                 };
                 let reads = self.reads.ok_or_else(|| no_reads(self))?;
                 model_namespace::element_private_data(&kind, label, data, elements, reads).map(TypedValue::Real).map_err(self.at(span))
