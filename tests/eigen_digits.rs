@@ -11,14 +11,8 @@
 mod common;
 
 use common::cli::{romdyn_at, temp_dir, write_file};
+use common::lambda_of_alpha;
 use romdyn::input::octave_m::read_octave_script;
-
-/// λ from an `alpha` row: Λ = (αr + j αi)/β, λ = (1/dCoef)(Λ − 1)/(Λ + 1).
-fn lambda_of_alpha(row: [f64; 3], dcoef: f64) -> (f64, f64) {
-    let (ar, ai, b) = (row[0], row[1], row[2]);
-    let d = dcoef * ((ar + b).powi(2) + ai * ai);
-    ((ar * ar + ai * ai - b * b) / d, 2.0 * ai * b / d)
-}
 
 #[test]
 fn the_damped_hinge_eigenvalue_read_back_from_the_m_file_is_the_closed_form_and_mbdyns() {

@@ -6,19 +6,12 @@ mod common;
 
 use std::path::Path;
 
+use common::lambda_of_alpha;
 use common::cli::{romdyn_at, listing, pendulum_variant, romdyn, temp_dir, write_file, DISPLACED_NODE, EIGENANALYSIS, FINAL_TIME, PENDULUM_NODE};
 use romdyn::input::octave_m::read_octave_script;
 
 /// ω = sqrt((g/L)/(1 + J/(m L²))) = 3.130527 rad/s (eq. 82, CASES C2).
 const OMEGA: f64 = 3.130527;
-
-/// λ from MBDyn's alpha row: Λ = (αr + j αi)/β, λ = (1/dCoef)(Λ − 1)/(Λ + 1) (MBDyn manual,
-/// eigenanalysis output).
-fn lambda_of_alpha(row: [f64; 3], dcoef: f64) -> (f64, f64) {
-    let (ar, ai, b) = (row[0], row[1], row[2]);
-    let d = dcoef * ((ar + b).powi(2) + ai * ai);
-    ((ar * ar + ai * ai - b * b) / d, 2.0 * ai * b / d)
-}
 
 #[test]
 fn run_writes_the_mbdyn_files_with_their_layouts() {

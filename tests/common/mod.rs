@@ -102,3 +102,11 @@ pub fn mass_chain() -> LinearDae {
     }
 }
 
+
+/// λ from an MBDyn eigenanalysis file's `alpha` row: Λ = (αr + j αi)/β,
+/// λ = (1/dCoef)(Λ − 1)/(Λ + 1) (MBDyn manual, eigenanalysis output): (Re λ, Im λ) [rad/s].
+pub fn lambda_of_alpha(row: [f64; 3], dcoef: f64) -> (f64, f64) {
+    let (ar, ai, b) = (row[0], row[1], row[2]);
+    let d = dcoef * ((ar + b).powi(2) + ai * ai);
+    ((ar * ar + ai * ai - b * b) / d, 2.0 * ai * b / d)
+}
