@@ -16,7 +16,7 @@ use std::sync::Mutex;
 
 use super::cursor::Cursor;
 use super::diagnostic::{MbdynError, Sources, Span};
-use super::element_reads::RunElements;
+use super::expr::element_calls::RunElements;
 use super::expr::{Evaluator, Variable, Variables};
 use super::lexer::{tokenize, Token};
 use super::model_namespace::{node_private_data, Live, Reads};

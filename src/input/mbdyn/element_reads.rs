@@ -12,23 +12,22 @@
 //! `Var` is the value, `Time` stays the time), with no Jacobian of the read (see
 //! [`TimeFunction`]).
 //!
-//! `model::element::TYPE(LABEL, "NAME")` inside a `string` drive ([`RunElements`]) is such a
+//! `model::element::TYPE(LABEL, "NAME")` inside a `string` drive ([`super::expr::element_calls`]) is such a
 //! cell too, filled from an element anywhere in the elements block: MBDyn's modelns.cc
 //! (`model_elem`) looks the element up when the expression is evaluated, during the run,
 //! and stops there ("model::element: unable to find …") if it does not exist.
 
 use std::cell::RefCell;
 use std::collections::{HashMap, HashSet};
-use std::sync::{Arc, OnceLock};
+use std::sync::Arc;
 
 use super::cursor::Cursor;
 use super::diagnostic::{MbdynError, Sources, Span};
 use super::parser::{known, same_keyword, Statement};
-use crate::element::private_data::PrivateDatum;
 use crate::element::{Drive, Element, ElementState, StepDrive, TimeFunction};
 use crate::model::Label;
 
-type Cell = Arc<OnceLock<PrivateDatum>>;
+use super::expr::element_calls::{Cell, StringRead};
 
 /// What an `element` drive caller reads, waiting for the elements block.
 struct Request {
@@ -42,44 +41,6 @@ struct Request {
     /// Who reads, for messages.
     who: String,
     cell: Cell,
-}
-
-/// A `model::element::TYPE(LABEL, "NAME")` of a string drive: the element, the datum's name
-/// and the cell that holds the datum once the elements are read.
-pub struct StringRead {
-    element: (&'static str, Label),
-    name: String,
-    cell: Cell,
-}
-
-/// What `model::element::…` reads inside a string drive.
-#[derive(Clone, Copy)]
-pub enum RunElements<'a> {
-    /// The drive's check while the file is read: each read is noted, and gives 0.
-    Note(&'a RefCell<Vec<StringRead>>),
-    /// During the run: the noted reads, filled after the elements block, at this state.
-    Read(&'a [StringRead], &'a dyn ElementState),
-}
-
-/// `model::element::KIND(LABEL, "NAME")` in a string drive (modelns.cc `model_elem`:
-/// `dGetPrivData` of the element at evaluation time).
-pub fn string_read(kind: &str, label_arg: f64, name: &str, run: RunElements) -> Result<f64, String> {
-    let call = format!("model::element::{kind}({label_arg}, \"{name}\")");
-    let element = super::model_namespace::element_key(kind, label_arg, &call)?;
-    match run {
-        RunElements::Note(noted) => {
-            let mut noted = noted.borrow_mut();
-            if !noted.iter().any(|r| r.element == element && r.name == name) {
-                noted.push(StringRead { element, name: name.to_string(), cell: Arc::default() });
-            }
-            Ok(0.0)
-        }
-        RunElements::Read(reads, st) => {
-            let read = reads.iter().find(|r| r.element == element && r.name == name);
-            let datum = read.and_then(|r| r.cell.get()).ok_or_else(|| format!("{call}: not among the reads romdyn found when it checked the drive (a label or name that changes during the run is not supported)"))?;
-            datum.value(st).ok_or_else(|| format!("{call}: a node of the element is not in the state"))
-        }
-    }
 }
 
 /// The parameter nodes, their bindings and the reads of `element` drive callers.

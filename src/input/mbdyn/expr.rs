@@ -6,6 +6,7 @@
 //! change earlier values.
 
 mod current;
+pub mod element_calls;
 mod model_calls;
 
 pub use current::{reads_current, Deferred};
@@ -103,7 +104,7 @@ pub struct Evaluator<'a> {
     /// of the file: refused).
     elements: Option<&'a super::model_namespace::ElementsRead>,
     /// What `model::element::…` reads in a string drive (its check, or the run).
-    run_elements: Option<super::element_reads::RunElements<'a>>,
+    run_elements: Option<element_calls::RunElements<'a>>,
 }
 
 impl<'a> Evaluator<'a> {
@@ -143,8 +144,8 @@ impl<'a> Evaluator<'a> {
     }
 
     /// Makes `model::element::TYPE(LABEL, "NAME")` note or read the elements' private data
-    /// of a string drive (see [`super::element_reads::RunElements`]).
-    pub fn with_run_elements(mut self, run: super::element_reads::RunElements<'a>) -> Self {
+    /// of a string drive (see [`element_calls::RunElements`]).
+    pub fn with_run_elements(mut self, run: element_calls::RunElements<'a>) -> Self {
         self.run_elements = Some(run);
         self
     }

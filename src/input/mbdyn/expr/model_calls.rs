@@ -84,7 +84,7 @@ impl Evaluator<'_> {
                 let label = real(self, label)?;
                 if let Some(run) = self.run_elements {
                     // A string drive: the element's datum at the state of the evaluation.
-                    return super::super::element_reads::string_read(&kind, label, data, run).map(TypedValue::Real).map_err(self.at(span));
+                    return super::element_calls::string_read(&kind, label, data, run).map(TypedValue::Real).map_err(self.at(span));
                 }
                 let Some(elements) = self.elements else {
                     return Err(self.err(span, format!("{what}: romdyn reads an element's private data while it reads the file ('const', 'set:', a card's numbers) and in string drives of the input file, not here")));
