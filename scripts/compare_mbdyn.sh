@@ -26,7 +26,7 @@
 #   FILE  mbdyn: ok|failed (last message)  romdyn: ok|failed (first error line)
 #   node LABEL  x y z (mbdyn)  x y z (romdyn)  |Δx|/max(|x|, 1)
 #   eig  Re Im (mbdyn, ±U relative by its printed digits)  Re Im (romdyn, the nearest)  |Δλ|/|λ|  [(within MBDyn's printed digits)]
-#                                                        (eigenvalues with Im > 1e-3 rad/s, by Im: numerically split zero eigenvalues, |λ| ≈ 1e-6, are not modes)
+#                                                        (eigenvalues with Im > 1e-3 rad/s and > 1e-3 |λ|, by Im: numerically split zero or real eigenvalues are not modes)
 #   worst: position RELDIFF, eigenvalue RELDIFF (RELDIFF beyond MBDyn's printed digits)
 set -u
 # Extra options of `romdyn run` (e.g. MBDyn's incremental beams), split on spaces.
@@ -46,7 +46,9 @@ last_positions() {
 }
 
 # Eigenvalues λ = (1/dCoef)(Λ − 1)/(Λ + 1), Λ = (αr + j αi)/β, from an eigenanalysis .m
-# file's dCoef and alpha rows; those with Im λ > 0, sorted by Im λ: "Re Im BOUND", BOUND the
+# file's dCoef and alpha rows; the modes, Im λ > 1e-3 rad/s and > 1e-3 |λ| (a real eigenvalue
+# that round-off split into a pair, −6.07e4 ± 3.2j rad/s in MBDyn's croce_shaker_v1 where
+# romdyn's is real, is not one), sorted by Im λ: "Re Im BOUND", BOUND the
 # largest change of λ the rounding of the printed αr, αi, β (half a unit of their last
 # digit) allows: |dλ/dΛ| |ΔΛ| = 2 |ΔΛ| / (dCoef |Λ + 1|²), |ΔΛ| ≤ (|Δαr| + |Δαi| + |Λ| |Δβ|)/|β|.
 # MBDyn 1.7.3 prints 7 digits unless the file says `results output precision` (eigenanalysis)
@@ -71,29 +73,39 @@ eigenvalues() {
                     re = (ar ^ 2 + ai ^ 2 - b ^ 2) / d; im = 2 * ai * b / d
                     ab = (b < 0) ? -b : b
                     dl = (half_unit(a[1]) + half_unit(a[2]) + sqrt(ar ^ 2 + ai ^ 2) / ab * half_unit(a[3])) / ab
-                    if (im > 1e-3) printf "%.10e %.10e %.3e\n", re, im, 2 * dl * b ^ 2 / d
+                    if (im > 1e-3 && im > 1e-3 * sqrt(re ^ 2 + im ^ 2)) printf "%.10e %.10e %.3e\n", re, im, 2 * dl * b ^ 2 / d
                 }
             }
             if (last) inside = 0
         }' "$1" | sort -g -k2
 }
 
-# Pairs each eigenvalue of the first list ("Re Im BOUND" rows) with the nearest not yet
-# paired one of the second: "Re Im BOUND Re Im". Pairing by rank went astray where one
-# program reports a numerically split zero pair (a free body's rigid motion, |λ| ≈ √ε ω)
-# above the Im > 1e-3 rad/s filter and the other not (eig/eigfree).
+# Pairs the eigenvalues of the first list ("Re Im BOUND" rows) with those of the second,
+# the closest pair (relative to the first's modulus) first, then the closest of the rest:
+# "Re Im BOUND Re Im", in the first list's order; one left without a partner prints "-"
+# for it. Pairing by rank went astray where one program reports a numerically split zero
+# pair (a free body's rigid motion, |λ| ≈ √ε ω) above the Im > 1e-3 rad/s filter and the
+# other not (eig/eigfree), or a huge eigenvalue of a nearly singular pencil (−2e6 rad/s in
+# croce_analisi_modale_smorzato's MBDyn run) the other does not have.
 pair_nearest() {
-    awk 'FNR == NR { m[++nm] = $0; next } { r[++nr] = $0; used[nr] = 0 }
+    awk 'FNR == NR { m[++nm] = $0; next } { r[++nr] = $0 }
         END {
-            for (i = 1; i <= nm; i++) {
-                split(m[i], a, " "); best = 0
-                for (j = 1; j <= nr; j++) {
-                    if (used[j]) continue
-                    split(r[j], b, " "); d = (a[1] - b[1]) ^ 2 + (a[2] - b[2]) ^ 2
-                    if (best == 0 || d < bestd) { best = j; bestd = d }
+            for (i = 1; i <= nm; i++) { split(m[i], a, " "); mr[i] = a[1]; mi[i] = a[2]; mn[i] = sqrt(a[1] ^ 2 + a[2] ^ 2); if (mn[i] == 0) mn[i] = 1 }
+            for (j = 1; j <= nr; j++) { split(r[j], b, " "); rr[j] = b[1]; ri[j] = b[2] }
+            left = (nm < nr) ? nm : nr
+            while (left-- > 0) {
+                best = 0
+                for (i = 1; i <= nm; i++) {
+                    if (i in partner) continue
+                    for (j = 1; j <= nr; j++) {
+                        if (j in taken) continue
+                        d = sqrt((mr[i] - rr[j]) ^ 2 + (mi[i] - ri[j]) ^ 2) / mn[i]
+                        if (best == 0 || d < bestd) { best = i; bj = j; bestd = d }
+                    }
                 }
-                if (best) { used[best] = 1; split(r[best], b, " "); print a[1], a[2], a[3], b[1], b[2] }
+                partner[best] = bj; taken[bj] = 1
             }
+            for (i = 1; i <= nm; i++) print m[i], (i in partner) ? rr[partner[i]] " " ri[partner[i]] : "- -"
         }' "$1" "$2"
 }
 
@@ -137,6 +149,7 @@ while IFS= read -r f; do
     me=$(ls "$m"/*.m 2>/dev/null | head -1); re=$(ls "$r"/*.m 2>/dev/null | head -1)
     if [ -n "$me" ] && [ -n "$re" ]; then
         while read -r a b u c d _; do
+            if [ "$c" = - ]; then echo "  eig  $a $b (mbdyn, ±$u by its printed digits)  (no romdyn eigenvalue left to pair)"; continue; fi
             rel=$(awk -v a="$a" -v b="$b" -v c="$c" -v d="$d" 'BEGIN { n = sqrt(a*a + b*b); if (n == 0) n = 1; printf "%.2e", sqrt((a-c)^2 + (b-d)^2) / n }')
             digits=$(awk -v a="$a" -v b="$b" -v u="$u" 'BEGIN { n = sqrt(a*a + b*b); if (n == 0) n = 1; printf "%.2e", u / n }')
             within=""; awk -v r="$rel" -v u="$digits" 'BEGIN { exit !(r + 0 <= u + 0) }' && within="  (within MBDyn's printed digits)"
