@@ -60,7 +60,7 @@ impl RunFiles {
     pub fn create(prefix: &Path, input: &str, model: &Model, problem: &InitialValueProblem) -> Result<Self, OutputError> {
         recover_set(&journal_path(prefix))?;
         let eigen_count = problem.eigenanalysis.as_ref().map_or(0, |r| r.times.len());
-        let eigen_suffix = problem.eigenanalysis.as_ref().map_or(EigenFileSuffix::Plain, |r| r.file_suffix.clone());
+        let eigen_suffix = problem.eigenanalysis.as_ref().map_or_else(EigenFileSuffix::default, |r| r.file_suffix.clone());
         // A directory in the way of any file of the set is found before the run.
         let stems = (0..eigen_count).map(|k| eigen_file_stem(prefix, &eigen_suffix, k, eigen_count));
         let eigen_files = stems.flat_map(|s| [prefixed_path(&s, "m"), prefixed_path(&s, "json")]);

@@ -272,22 +272,26 @@ impl<'m> Assembler<'m> {
         if self.model.step_drives.is_empty() {
             return;
         }
-        let frames = self.frames(st);
-        let slots: Vec<usize> = (0..frames.len()).collect();
-        let ctx = Context { model: self.model, frames: &frames, read_frames: &frames, slots: &slots, multipliers: &[], rates: &[], t: st.t, load: st.load, gravity: self.model.gravity, constraint_scale: 1.0, latched: None };
-        for d in &self.model.step_drives {
-            d.begin_step(step, t_new, &ctx);
-        }
+        self.with_all_nodes(st, st.t, |ctx| {
+            for d in &self.model.step_drives {
+                d.begin_step(step, t_new, ctx);
+            }
+        });
     }
 
-    /// A drive's value at time `t` reading the model's nodes at `st` (node slot `i` is the
-    /// model's node `i`), as a drive outside every element reads it: the integration
-    /// method's spectral radius before a step (MBDyn's `MultistepSolver::SetCoef`).
-    pub fn drive_value(&self, drive: &crate::element::Drive, st: &State, t: f64) -> f64 {
+    /// `f` of a state that reads every node of the model at `st` at time `t` (node slot `i`
+    /// is the model's node `i`): what a drive outside every element reads.
+    fn with_all_nodes<R>(&self, st: &State, t: f64, f: impl FnOnce(&Context) -> R) -> R {
         let frames = self.frames(st);
         let slots: Vec<usize> = (0..frames.len()).collect();
-        let ctx = Context { model: self.model, frames: &frames, read_frames: &frames, slots: &slots, multipliers: &[], rates: &[], t, load: st.load, gravity: self.model.gravity, constraint_scale: 1.0, latched: None };
-        drive.value_in(&ctx)
+        f(&Context { model: self.model, frames: &frames, read_frames: &frames, slots: &slots, multipliers: &[], rates: &[], t, load: st.load, gravity: self.model.gravity, constraint_scale: 1.0, latched: None })
+    }
+
+    /// A drive's value at time `t` reading the model's nodes at `st`, as a drive outside
+    /// every element reads it ([`Self::with_all_nodes`]): the integration
+    /// method's spectral radius before a step (MBDyn's `MultistepSolver::SetCoef`).
+    pub fn drive_value(&self, drive: &crate::element::Drive, st: &State, t: f64) -> f64 {
+        self.with_all_nodes(st, t, |ctx| drive.value_in(ctx))
     }
 
     /// `F(y, ẏ, t)`; constraint rows are divided by `dcoef` in the form of eq. 30.

@@ -91,40 +91,39 @@ fn joint_private_datum(joint: &Joint, name: &str) -> Option<PrivateDatum> {
         (JointKind::TotalJoint, [b'w', c]) => JointDatum::AngularVelocityInA(axis(*c)?),
         _ => return None,
     };
-    let (a, b) = (joint.a.clone(), joint.b.clone());
-    let labels: Vec<Label> = [&a, &b].into_iter().filter_map(|x| if let Anchor::Node { label, .. } = x { Some(*label) } else { None }).collect();
-    let read = move |st: &dyn ElementState, datum: JointDatum| -> Option<Vec3> {
-        let nodes = ByLabel::read(&labels, st)?;
-        let p = Pair::new(&a, &b, &nodes);
-        Some(match datum {
-            JointDatum::Position(_) => p.q_a.transpose() * p.d,
-            JointDatum::Rotation(_) => rotation_vector(&(p.q_a.transpose() * p.q_b)),
-            JointDatum::AngularVelocityInA(_) => p.q_a.transpose() * (p.omega_b - p.omega_a),
-            JointDatum::AngularVelocityInB => p.q_b.transpose() * (p.omega_b - p.omega_a),
-        })
+    let vector = move |p: &Pair| match datum {
+        JointDatum::Position(_) => p.q_a.transpose() * p.d,
+        JointDatum::Rotation(_) => rotation_vector(&(p.q_a.transpose() * p.q_b)),
+        JointDatum::AngularVelocityInA(_) => p.q_a.transpose() * (p.omega_b - p.omega_a),
+        JointDatum::AngularVelocityInB => p.q_b.transpose() * (p.omega_b - p.omega_a),
     };
     Some(match datum {
         // Counted across turns, as MBDyn: a revolute hinge's angle (planej.cc `NTheta`), a
         // total joint's rotation vector (totalj.cc `Unwrap`).
         JointDatum::Rotation(k) => {
             let counting = if joint.kind == JointKind::TotalJoint { Turns::Vector(k) } else { Turns::Hinge };
-            let rotation = RotationRead(Arc::new(move |st: &dyn ElementState| read(st, datum)));
+            let rotation = RotationRead(Arc::new(pair_reader(&joint.a, &joint.b, vector)));
             PrivateDatum::remembering(StepDrive::new(StepKind::Turns { rotation, counting }))
         }
-        JointDatum::Position(k) | JointDatum::AngularVelocityInA(k) => PrivateDatum::new(move |st: &dyn ElementState| read(st, datum).map(|v| v[k])),
-        JointDatum::AngularVelocityInB => PrivateDatum::new(move |st: &dyn ElementState| read(st, datum).map(|v| v[2])),
+        JointDatum::Position(k) | JointDatum::AngularVelocityInA(k) => of_pair(&joint.a, &joint.b, move |p| vector(p)[k]),
+        JointDatum::AngularVelocityInB => of_pair(&joint.a, &joint.b, move |p| vector(p)[2]),
     })
 }
 
-/// A datum `f` of the pair of anchors `a`, `b` (a joint's or a rod's two sides), read from
-/// the state by node label.
-pub(super) fn of_pair(a: &Anchor, b: &Anchor, f: impl Fn(&Pair) -> f64 + Send + Sync + 'static) -> PrivateDatum {
+/// `f` of the pair of anchors `a`, `b` (a joint's or a rod's two sides), read from the state
+/// by node label; `None` where the state lacks one of the nodes.
+fn pair_reader<T>(a: &Anchor, b: &Anchor, f: impl Fn(&Pair) -> T + Send + Sync + 'static) -> impl Fn(&dyn ElementState) -> Option<T> + Send + Sync + 'static {
     let (a, b) = (a.clone(), b.clone());
     let labels: Vec<Label> = [&a, &b].into_iter().filter_map(|x| if let Anchor::Node { label, .. } = x { Some(*label) } else { None }).collect();
-    PrivateDatum::new(move |st: &dyn ElementState| {
+    move |st: &dyn ElementState| {
         let nodes = ByLabel::read(&labels, st)?;
         Some(f(&Pair::new(&a, &b, &nodes)))
-    })
+    }
+}
+
+/// A datum `f` of the pair of anchors `a`, `b` ([`pair_reader`]).
+pub(super) fn of_pair(a: &Anchor, b: &Anchor, f: impl Fn(&Pair) -> f64 + Send + Sync + 'static) -> PrivateDatum {
+    PrivateDatum::new(pair_reader(a, b, f))
 }
 
 #[cfg(test)]

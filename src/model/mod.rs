@@ -8,7 +8,7 @@ mod summary;
 
 pub use beam_update::BeamUpdateChoice;
 pub use builder::{ModelBuilder, ModelError};
-pub use problem::{AbortAfter, AutoCoefficient, EigenFileSuffix, EigenOutput, EigenRequest, InitialAssembly, InitialValueProblem, Method, MotionOutput, NodeAssembly, NodeSource, OrientationOutput, ResidualNorm, WrittenNode};
+pub use problem::{AbortAfter, AutoCoefficient, EigenFileSuffix, EigenOutput, EigenRequest, InitialAssembly, InitialValueProblem, Method, MotionOutput, NodeAssembly, NodeSource, OrientationOutput, ResidualNorm, SuffixWidth, WrittenNode};
 pub use summary::Summary;
 
 use std::collections::HashMap;

@@ -55,32 +55,39 @@ pub struct EigenRequest {
 
 /// The number in the name of an eigenanalysis's files: MBDyn 1.7.3 writes analysis K
 /// (0-based) as `PREFIX_K.m`, one analysis or several (solver.cc `Eig`), `_` then K as
-/// the file asks.
+/// the file asks. Both settings are kept as written; a width (not 0) wins over a format,
+/// whichever comes first, as in MBDyn.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
-pub enum EigenFileSuffix {
-    /// K as it is (MBDyn's default).
-    #[default]
-    Plain,
-    /// K zero-padded to this many digits (`suffix width, N`; 0 is `Plain`).
-    Width(usize),
-    /// `suffix width, compute`: zero-padded to ⌊log₁₀ count⌋ + 1 digits, count the number
-    /// of analyses (MBDyn's formula: 10 analyses give `_00` … `_09`).
-    Compute,
+pub struct EigenFileSuffix {
+    /// `suffix width, N` (0: none).
+    pub width: SuffixWidth,
     /// `suffix format, "…"`: a printf format with one integer conversion (`%d`, `%03d`,
     /// `%-4i`, …; `%%` is a percent sign), checked by [`EigenFileSuffix::format`].
-    Format(String),
+    pub format: Option<String>,
+}
+
+/// `suffix width`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum SuffixWidth {
+    /// K zero-padded to this many digits (0: K as it is, MBDyn's default).
+    #[default]
+    None,
+    Digits(usize),
+    /// `compute`: zero-padded to ⌊log₁₀ count⌋ + 1 digits, count the number of analyses
+    /// (MBDyn's formula: 10 analyses give `_00` … `_09`).
+    Compute,
 }
 
 impl EigenFileSuffix {
     /// `_` and the number of analysis `index` of `count`.
     pub fn suffix(&self, index: usize, count: usize) -> String {
-        let width = match self {
-            EigenFileSuffix::Plain | EigenFileSuffix::Format(_) => 0,
-            EigenFileSuffix::Width(w) => *w,
-            EigenFileSuffix::Compute => count.max(1).ilog10() as usize + 1,
+        let width = match self.width {
+            SuffixWidth::None => 0,
+            SuffixWidth::Digits(w) => w,
+            SuffixWidth::Compute => count.max(1).ilog10() as usize + 1,
         };
-        match self {
-            EigenFileSuffix::Format(f) if width == 0 => format!("_{}", Self::format(f, index).unwrap_or_else(|_| index.to_string())),
+        match &self.format {
+            Some(f) if width == 0 => format!("_{}", Self::format(f, index).unwrap_or_else(|_| index.to_string())),
             _ => format!("_{index:0width$}"),
         }
     }
@@ -375,7 +382,7 @@ impl MotionOutput {
 
 #[cfg(test)]
 mod tests {
-    use super::EigenFileSuffix;
+    use super::{EigenFileSuffix, SuffixWidth};
 
     #[test]
     fn suffix_format_renders_as_printf() {
@@ -383,9 +390,14 @@ mod tests {
         for (format, expected) in [("%d", "7"), ("%i", "7"), ("%03d", "007"), ("%5d", "    7"), ("%-3d|", "7  |"), ("%+d", "+7"), ("% 03d", " 07"), ("m%%%d", "m%7")] {
             assert_eq!(EigenFileSuffix::format(format, 7).as_deref(), Ok(expected), "{format}");
         }
-        assert_eq!(EigenFileSuffix::Compute.suffix(9, 10), "_09");
-        assert_eq!(EigenFileSuffix::Compute.suffix(99, 100), "_099");
-        assert_eq!(EigenFileSuffix::Compute.suffix(8, 9), "_8");
-        assert_eq!(EigenFileSuffix::Width(0).suffix(3, 4), "_3");
+        let compute = EigenFileSuffix { width: SuffixWidth::Compute, format: None };
+        assert_eq!(compute.suffix(9, 10), "_09");
+        assert_eq!(compute.suffix(99, 100), "_099");
+        assert_eq!(compute.suffix(8, 9), "_8");
+        assert_eq!(EigenFileSuffix { width: SuffixWidth::Digits(0), format: None }.suffix(3, 4), "_3");
+        // A width wins over a format; a width of 0 leaves the format.
+        let format = Some("m%d".to_string());
+        assert_eq!(EigenFileSuffix { width: SuffixWidth::Digits(2), format: format.clone() }.suffix(3, 4), "_03");
+        assert_eq!(EigenFileSuffix { width: SuffixWidth::Digits(0), format }.suffix(3, 4), "_m3");
     }
 }

@@ -152,8 +152,9 @@ pub fn momenta_from_definitions(asm: &Assembler, st: &mut State, form: Constrain
 }
 
 /// How Newton's residual norm went, for a failure: diverged (it grew a thousandfold past
-/// its smallest, or ended not finite) or stalled above the tolerance, with the norms by
-/// iteration (the first two and the last four when there are more than eight).
+/// its smallest, or ended not finite), still falling at its last iteration (the iterations
+/// ran out), or stalled above the tolerance, with the norms by iteration (the first two
+/// and the last four when there are more than eight).
 fn norm_history(norms: &[f64], tolerance: f64) -> String {
     let smallest = norms.iter().copied().filter(|x| x.is_finite()).fold(f64::INFINITY, f64::min);
     let last = norms.last().copied().unwrap_or(f64::NAN);
@@ -161,6 +162,8 @@ fn norm_history(norms: &[f64], tolerance: f64) -> String {
     let shown = if shown.len() > 8 { format!("{}, …, {}", shown[..2].join(", "), shown[shown.len() - 4..].join(", ")) } else { shown.join(", ") };
     if !last.is_finite() || last > 1e3 * smallest {
         format!("the iterates diverged (residual norm by iteration {shown})")
+    } else if last <= smallest {
+        format!("the residual norm was still falling, above the tolerance {tolerance:.1e}, when the iterations ran out (by iteration {shown})")
     } else {
         format!("the residual norm stalled above the tolerance {tolerance:.1e} (by iteration {shown})")
     }

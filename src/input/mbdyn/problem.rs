@@ -10,7 +10,7 @@ use crate::limits::readable;
 use super::diagnostic::{MbdynError, Sources};
 use super::drives::{drive, Drives};
 use super::parser::{known, Block};
-use crate::model::{AbortAfter, AutoCoefficient, EigenFileSuffix, EigenOutput, EigenRequest, InitialValueProblem, Method, ResidualNorm};
+use crate::model::{AbortAfter, AutoCoefficient, EigenFileSuffix, EigenOutput, EigenRequest, InitialValueProblem, Method, ResidualNorm, SuffixWidth};
 use crate::element::Drive;
 
 /// Reads the `data` block.
@@ -313,7 +313,7 @@ fn eigenanalysis(c: &mut Cursor) -> Result<EigenRequest, MbdynError> {
     } else {
         vec![c.real("eigenanalysis time [s] (or list)")?]
     };
-    let mut r = EigenRequest { times, dcoef: None, lower_frequency_hz: None, upper_frequency_hz: None, output: EigenOutput::default(), file_suffix: EigenFileSuffix::Plain };
+    let mut r = EigenRequest { times, dcoef: None, lower_frequency_hz: None, upper_frequency_hz: None, output: EigenOutput::default(), file_suffix: EigenFileSuffix::default() };
     let options = [
         "output matrices", "output full matrices", "output sparse matrices", "output eigenvectors", "output geometry", "parameter", "lower frequency limit",
         "upper frequency limit", "use lapack", "use arpack", "use jdqz", "use external", "balance", "suffix width", "suffix format",
@@ -346,20 +346,13 @@ fn eigenanalysis(c: &mut Cursor) -> Result<EigenRequest, MbdynError> {
             "balance" => {
                 c.keyword("a balancing", &["no", "scale", "permute", "all"])?;
             }
-            // MBDyn: a width (not 0) wins over a format, whichever comes first (solver.cc `Eig`).
-            "suffix width" => {
-                let width = if c.accept("compute") { EigenFileSuffix::Compute } else { EigenFileSuffix::Width(c.count("suffix width")?) };
-                if !matches!((&r.file_suffix, &width), (EigenFileSuffix::Format(_), EigenFileSuffix::Width(0))) {
-                    r.file_suffix = width;
-                }
-            }
+            // Kept apart: a width (not 0) wins over a format, whichever comes first (solver.cc `Eig`).
+            "suffix width" => r.file_suffix.width = if c.accept("compute") { SuffixWidth::Compute } else { SuffixWidth::Digits(c.count("suffix width")?) },
             "suffix format" => {
                 let span = c.here();
                 let format = c.string("suffix format (a printf format with one %d)")?;
                 EigenFileSuffix::format(&format, 0).map_err(|m| c.error_at(span, format!("suffix format: {m}")))?;
-                if matches!(r.file_suffix, EigenFileSuffix::Plain | EigenFileSuffix::Width(0) | EigenFileSuffix::Format(_)) {
-                    r.file_suffix = EigenFileSuffix::Format(format);
-                }
+                r.file_suffix.format = Some(format);
             }
             _ => {
                 c.count("output precision (digits)")?;
