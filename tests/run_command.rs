@@ -193,19 +193,50 @@ fn a_bad_file_gives_file_line_column_and_writes_nothing() {
 }
 
 #[test]
-fn a_failing_run_names_step_residual_and_worst_equation_and_leaves_no_output() {
-    // Released at 1 rad, one Newton iteration per step cannot reach 1e-9.
+fn a_failing_run_names_step_residual_and_worst_equation_and_keeps_what_converged() {
+    // Released at 1 rad, one Newton iteration per step cannot reach 1e-9: step 1 fails, and
+    // the files hold step 0 (the initial derivatives), with the failure as the .out file's
+    // last line (issue 30, finding 7: MBDyn leaves what converged for the user to look at).
     let dir = temp_dir("run-fail");
     let node = "    structural: 2, dynamic, L*sin(1.), -L*cos(1.), 0., euler123, 0., 0., 1., null, null;";
     let file = write_file(&dir, "fail.mbd", &pendulum_variant(&[(PENDULUM_NODE, node), ("    max iterations: 10;", "    max iterations: 1;")]));
     let (ok, out, err) = romdyn_at(&dir, &["run", &file]);
     assert!(!ok, "{out}");
-    assert!(err.contains("the run failed; no output file was written"), "{err}");
+    assert!(err.contains("the run failed; the files hold the solution up to the last converged step 0 (t = 0 s)"), "{err}");
     assert!(err.contains("step 1 of 2001 (t = 0.001 s): Newton failed at t = 0.001 s, iteration 1: residual norm"), "{err}");
     let worst = err.split("; worst equation: ").nth(1).unwrap_or("");
     assert!(["node 1 ", "node 2 ", "clamp 1 ", "revolute hinge 2 "].iter().any(|p| worst.starts_with(p)), "{err}");
     assert_eq!(err.matches("Newton failed").count(), 1, "{err}");
-    assert_eq!(listing(&dir), ["fail.mbd"], "no output and no temporary file");
+    // The eigenanalysis at t = 0 came before the failure: its files are kept with the rest.
+    assert_eq!(listing(&dir), ["fail.log", "fail.mbd", "fail.mov", "fail.out", "fail_0.json", "fail_0.m"], "the converged part, no temporary file");
+    let out_file = std::fs::read_to_string(dir.join("fail.out")).unwrap();
+    let last = out_file.lines().last().unwrap();
+    assert!(last.starts_with("# Simulation FAILED after 0 converged steps") && last.contains("Newton failed at t = 0.001 s"), "{last}");
+    // Both nodes at t = 0, one row each.
+    assert_eq!(std::fs::read_to_string(dir.join("fail.mov")).unwrap().lines().count(), 2);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn a_run_that_fails_mid_way_writes_every_converged_step_and_exits_non_zero() {
+    // A couple whose drive stops being a number after 10 ms (the square root of a negative
+    // time difference): step 11 cannot converge. The files hold steps 0..10, as MBDyn's hold
+    // what it computed before it stopped.
+    let dir = temp_dir("run-fail-mid");
+    let couple = "    body: 3, 2, M, null, diag, J, J, J;\n    couple: 4, absolute, 2, single, 0., 0., 1., string, \"sqrt(0.0105 - Time)\";";
+    let text = pendulum_variant(&[("    body: 3, 2, M, null, diag, J, J, J;", couple), ("    rigid bodies: 1;", "    rigid bodies: 1;\n    forces: 1;")]);
+    let file = write_file(&dir, "mid.mbd", &text);
+    let (ok, out, err) = romdyn_at(&dir, &["run", &file]);
+    assert!(!ok, "{out}");
+    assert!(err.contains("the files hold the solution up to the last converged step 10 (t = 0.01 s)"), "{err}");
+    assert!(err.contains("step 11 of 2001"), "{err}");
+    let out_file = std::fs::read_to_string(dir.join("mid.out")).unwrap();
+    assert_eq!(out_file.lines().filter(|l| l.starts_with("Step ")).count(), 11, "steps 0..10");
+    assert!(out_file.lines().last().unwrap().starts_with("# Simulation FAILED after 10 converged steps (last converged time 1.000000000000e-2"), "{out_file}");
+    // 11 times (0, 1, …, 10 ms) of 2 nodes.
+    assert_eq!(std::fs::read_to_string(dir.join("mid.mov")).unwrap().lines().count(), 22);
+    // The eigenanalysis at t = 0 was done before the failure: its files are kept too.
+    assert_eq!(listing(&dir), ["mid.log", "mid.mbd", "mid.mov", "mid.out", "mid_0.json", "mid_0.m"]);
     std::fs::remove_dir_all(&dir).ok();
 }
 

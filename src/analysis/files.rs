@@ -8,7 +8,10 @@
 //! Every file is written under a temporary name; [`RunFiles::finish`] puts them all in
 //! place after a successful run, as one set ([`commit_set`]: while the journal
 //! `.NAME.romdyn-commit` exists beside them, the set is incomplete; the next run with the
-//! same prefix completes it). A failed or interrupted run drops them: no output file appears.
+//! same prefix completes it). A run that stops on a failure (a step whose Newton iteration
+//! did not converge, say) puts in place what it wrote up to its last converged step, with
+//! the failure as the `.out` file's last line ([`RunFiles::finish_failed`]), as MBDyn leaves
+//! its files for the user to see where the motion went; an interrupted run drops them.
 
 use std::path::{Path, PathBuf};
 
@@ -53,6 +56,9 @@ pub struct RunFiles {
     /// Whether step 0 showed elements with evaluation points (then every step is written).
     has_beams: Option<bool>,
     staged: Vec<AtomicFile>,
+    /// The last converged step written: number, time [s]; Newton iterations so far.
+    last_step: Option<(usize, f64)>,
+    iterations: usize,
 }
 
 impl RunFiles {
@@ -73,12 +79,26 @@ impl RunFiles {
         let mov = MotionWriter::create(&prefixed_path(prefix, "mov"), OrientationOutput::Euler123Degrees, problem.output.as_ref().map_or(MotionOutput::DEFAULT_DIGITS, MotionOutput::digits))?;
         let mut log = AtomicFile::create(&prefixed_path(prefix, "log"))?;
         log.write_with(|w| write_model_log(w, input, model))?;
-        Ok(RunFiles { prefix: prefix.to_path_buf(), input: input.to_string(), eigen_count, eigen_suffix, out, mov, motion: problem.output.clone(), beams: None, has_beams: None, staged: vec![log] })
+        Ok(RunFiles { prefix: prefix.to_path_buf(), input: input.to_string(), eigen_count, eigen_suffix, out, mov, motion: problem.output.clone(), beams: None, has_beams: None, staged: vec![log], last_step: None, iterations: 0 })
     }
 
     /// Ends the step log and puts every file in place; returns their paths.
     pub fn finish(mut self, report: &RunReport) -> Result<Vec<PathBuf>, OutputError> {
         self.out.end(report.final_state.t, report.steps, report.newton_iterations)?;
+        self.commit()
+    }
+
+    /// After a run that stopped on `why`: the `.out` file's last line says so, and the files
+    /// written up to the last converged step are put in place (nothing when no step
+    /// converged, the initial derivatives' step 0 included). Returns their paths and the
+    /// last converged step's number and time [s].
+    pub fn finish_failed(mut self, why: &str) -> Result<Option<(Vec<PathBuf>, usize, f64)>, OutputError> {
+        let Some((step, time)) = self.last_step else { return Ok(None) };
+        self.out.failed(time, step, self.iterations, why)?;
+        Ok(Some((self.commit()?, step, time)))
+    }
+
+    fn commit(self) -> Result<Vec<PathBuf>, OutputError> {
         let mut files = vec![self.out.into_file(), self.mov.into_file()];
         if let Some(b) = self.beams {
             files.extend(b.into_files());
@@ -96,6 +116,8 @@ impl RunObserver for RunFiles {
     }
 
     fn step(&mut self, e: &StepDone) -> Result<(), ObserverError> {
+        self.last_step = Some((e.step, e.time));
+        self.iterations += e.iterations;
         let written = self.motion.as_ref().is_none_or(|m| m.meter.as_ref().map_or(e.step % m.every.max(1) == 0, |d| d.value(e.time) != 0.0));
         self.out.step(&StepLine { step: e.step, time: e.time, time_step: e.time_step, iterations: e.iterations, residual_norm: e.residual_norm, written })?;
         match &self.motion {

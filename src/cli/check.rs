@@ -1,5 +1,6 @@
 //! `romdyn check`: every element's analytic Jacobian against finite differences of its
-//! residual at the model's reference solution.
+//! residual at the model's reference solution, then the whole model's assembled `F_/ẏ`,
+//! `F_/y` against differences of the whole residual.
 
 use std::path::PathBuf;
 
@@ -32,6 +33,9 @@ pub fn run(a: CheckArgs) -> Result<()> {
     let failed = check.failures().count();
     if failed > 0 {
         anyhow::bail!("{}: {failed} of {} elements have Jacobians that disagree with their residuals", a.file.display(), check.elements.len());
+    }
+    if !check.passed() {
+        anyhow::bail!("{}: the whole model's assembled Jacobians disagree with the differences of its residual", a.file.display());
     }
     Ok(())
 }

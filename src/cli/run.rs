@@ -80,7 +80,8 @@ fn print_summary(file: &str, r: &RunReport, written: &[PathBuf]) {
         const SHOWN: usize = 10;
         for l in e.dynamic.iter().take(SHOWN) {
             let (f, zeta) = (l.norm() / (2.0 * std::f64::consts::PI), if l.norm() > 0.0 { -l.re / l.norm() } else { 0.0 });
-            println!("  λ = {:.6}{:+.6}j rad/s  (f = {f:.6} Hz, ζ = {:.4})", l.re, l.im, if zeta.abs() < 5e-5 { 0.0 } else { zeta });
+            // freq = |Im λ|/2π as `eig` and MBDyn's .out print it; undamped = |λ|/2π.
+            println!("  λ = {:.6}{:+.6}j rad/s  (freq = {:.6} Hz, undamped = {f:.6} Hz, ζ = {:.4})", l.re, l.im, l.im.abs() / (2.0 * std::f64::consts::PI), if zeta.abs() < 5e-5 { 0.0 } else { zeta });
         }
         if e.dynamic.len() > SHOWN {
             println!("  … {} more (all of them in the .m and .json files)", e.dynamic.len() - SHOWN);
@@ -111,7 +112,25 @@ pub fn run(a: RunArgs) -> Result<()> {
     let result = run_problem(&m.model, &m.problem, &mut observers);
     let (progress, files) = observers;
     progress.bar.finish_and_clear();
-    let report = result.with_context(|| format!("{input}: the run failed; no output file was written"))?;
+    let report = match result {
+        Ok(report) => report,
+        Err(error) => {
+            // What converged is kept for the user to see where the motion went (as MBDyn
+            // leaves its files); the exit status says the run failed.
+            let why = error.to_string();
+            return match files.finish_failed(&why).with_context(|| format!("{input}: the run failed ({why}), and its output files could not be put in place"))? {
+                Some((written, step, time)) => {
+                    let names: Vec<String> = written.iter().map(|p| p.display().to_string()).collect();
+                    Err(anyhow::Error::new(error).context(format!(
+                        "{input}: the run failed; the files hold the solution up to the last converged step {step} (t = {} s), with the failure as the .out file's last line: {}",
+                        seconds(time),
+                        names.join(", ")
+                    )))
+                }
+                None => Err(anyhow::Error::new(error).context(format!("{input}: the run failed before any step converged; no output file was written"))),
+            };
+        }
+    };
     let written = files.finish(&report)?;
     print_summary(&input, &report, &written);
     if let Some((equation, rate)) = &report.inconsistent_velocity {

@@ -46,7 +46,7 @@ fn is_deformable(type_name: &str) -> bool {
     ["deformable", "rod", "beam"].iter().any(|w| type_name.contains(w))
 }
 
-/// Factors the element with label `label` at `state` (re-based first). MBDyn numbers joints,
+/// Factors the element with label `label` at `state` (in the linearization form, [`State::linearization_base`]). MBDyn numbers joints,
 /// bodies and forces separately, so a label may name several elements: deformable ones
 /// (deformable joints and hinges, rods, beams) are tried first, and the first that factors
 /// is taken.
@@ -55,7 +55,7 @@ pub fn element_part(model: &Model, state: &State, label: Label) -> Result<Elemen
     let mut candidates: Vec<usize> = (0..model.elements.len()).filter(|&e| model.elements[e].label() == label).collect();
     candidates.sort_by_key(|&e| !is_deformable(model.elements[e].type_name()));
     let mut st = state.clone();
-    st.rebase(&asm.dofs);
+    st.linearization_base(&asm.dofs);
     let mut first_error = None;
     for &e in &candidates {
         match factor(&asm, &st, e) {

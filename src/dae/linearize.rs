@@ -111,7 +111,8 @@ fn linearization_form(model: &Model) -> ConstraintForm {
     }
 }
 
-/// Linearizes `model` at `state` (re-based first so that rotations are measured by `g`).
+/// Linearizes `model` at `state` (in [`State::linearization_base`]: rotations measured by `g`
+/// from the moving reference, angular velocities carried in `W_ref`).
 /// With `dcoef = Some(c)` the Jacobians are assembled as `J(±c)` (eqs. 13–14), otherwise
 /// `F_/ẏ` and `F_/y` directly; both routes agree to rounding.
 pub fn linearize(model: &Model, state: &State, inputs: &[NodeInput], outputs: &[NodeOutput], dcoef: Option<f64>) -> Result<LinearDae, PortError> {
@@ -126,7 +127,7 @@ pub fn linearize_ports(model: &Model, state: &State, inputs: &[InputPort], outpu
     linearizable(model)?;
     let asm = Assembler::new(model);
     let mut st = state.clone();
-    st.rebase(&asm.dofs);
+    st.linearization_base(&asm.dofs);
     let form = linearization_form(model);
     let coef = |a, b| Coefficients { a, b, form, dcoef: dcoef.unwrap_or(1.0) };
     let jacobians = match dcoef {
@@ -157,7 +158,7 @@ pub fn linearize_sparse(model: &Model, state: &State, inputs: &[InputPort], outp
     linearizable(model)?;
     let asm = Assembler::new(model);
     let mut st = state.clone();
-    st.rebase(&asm.dofs);
+    st.linearization_base(&asm.dofs);
     let form = linearization_form(model);
     let n = asm.dofs.len;
     let sparse = |a: f64, b: f64| {

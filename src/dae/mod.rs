@@ -18,6 +18,7 @@
 //! [`ConstraintForm`]: crate::linear::ConstraintForm
 
 mod accelerations;
+mod assembled_check;
 mod assembly;
 mod band;
 mod check;
@@ -33,6 +34,7 @@ mod sparse;
 mod state;
 
 pub use accelerations::node_accelerations;
+pub use assembled_check::{check_assembled, AssembledMismatch};
 pub use assembly::{Assembler, Coefficients};
 pub use check::{check_jacobians, JacobianMismatch};
 pub use cluster::{cluster_label, degenerate_clusters, CLUSTER_RELATIVE_GAP};

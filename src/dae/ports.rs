@@ -155,7 +155,7 @@ pub enum PortError {
     Invalid(String, String),
 }
 
-/// The model's nodes at the reference configuration (re-based: `g = 0`), to build `B̃`
+/// The model's nodes at the reference configuration ([`State::linearization_base`]: `g = 0`, `ġ = 0`, ω in `W_ref`), to build `B̃`
 /// columns and `C̃` rows from.
 pub struct PortMap<'m> {
     model: &'m Model,
@@ -170,11 +170,11 @@ pub struct OutputRow {
 }
 
 impl<'m> PortMap<'m> {
-    /// `state` is re-based here (a copy), so rotations are measured by `g` from `R_ref`.
+    /// `state` is put in the linearization form here (a copy), so rotations are measured by `g` from `R_ref`.
     pub fn new(model: &'m Model, state: &State) -> Self {
         let dofs = DofMap::new(model);
         let mut st = state.clone();
-        st.rebase(&dofs);
+        st.linearization_base(&dofs);
         let frames = (0..model.nodes.len()).map(|i| st.node_frame(&dofs, i)).collect();
         PortMap { model, dofs, frames }
     }

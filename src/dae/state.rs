@@ -107,6 +107,26 @@ impl State {
         }
     }
 
+    /// The form the model is linearized in: re-based ([`State::rebase`]), then every node's
+    /// angular velocity carried in `W_ref` with `ġ = 0`, as the integrator carries it after a
+    /// prediction ([`State::after_predict`]; MBDyn's eigenanalysis assembles its Jacobians in
+    /// that form). A perturbation `δg` then turns the moving reference,
+    /// `R = R(δg) R₀(t)`, so `ω = G(δg) δġ + R(δg) ω₀` and `∂ω/∂g = −[ω₀]×`: the small
+    /// motion relative to a steady spin or a uniform rotation. In the re-based form
+    /// (`ġ = ω₀`, `W_ref = 0`) the same perturbation gives `∂(G ġ)/∂g = −½[ω₀]×` (the
+    /// parameters' rate read as a fixed rate), which halves the gyroscopic coupling `δg × ω₀`
+    /// of a spinning body. The kinematics are unchanged.
+    pub fn linearization_base(&mut self, dofs: &DofMap) {
+        self.rebase(dofs);
+        for i in 0..self.r_ref.len() {
+            let f = dofs.node_first[i] + 3;
+            self.w_ref[i] = vec3(&self.yp, f);
+            for k in 0..3 {
+                self.yp[f + k] = 0.0;
+            }
+        }
+    }
+
     /// After a time step's prediction, as MBDyn's `StructNode::AfterPredict` (strnode.cc):
     /// every node's predicted rotation and angular velocity become the references,
     /// `g_ref ← g ∘ g_ref`, `W_ref ← ω` (from a re-based state `g_ref = 0`, `W_ref = 0`:

@@ -1,10 +1,10 @@
 //! The report of a Jacobian check (`romdyn check`): one row per element with its worst
 //! entry, then a summary line.
 
-use crate::dae::JacobianMismatch;
+use crate::dae::{AssembledMismatch, JacobianMismatch};
 
 /// The report as text. An element passes when its relative error is at most `tolerance`.
-pub fn jacobian_check_text(elements: &[JacobianMismatch], tolerance: f64, time: f64, dcoef: f64) -> String {
+pub fn jacobian_check_text(elements: &[JacobianMismatch], assembled: &[AssembledMismatch], tolerance: f64, time: f64, dcoef: f64) -> String {
     let mut s = format!(
         "# Jacobian check at t = {time} s, dCoef = {dcoef:e} s: each element's J(c) = F/y' + c F/y against central differences of its residual\n\
          # error = |analytic - fd| / max(max |J_element|, 1); tolerance {tolerance:e}\n"
@@ -19,6 +19,13 @@ pub fn jacobian_check_text(elements: &[JacobianMismatch], tolerance: f64, time: 
     if elements.iter().any(|e| e.drive_held) {
         s += "* a drive of the element reads the model's state (model:: functions, node, dof or element drive callers): the differences hold it at this state, its derivatives are in no Jacobian (as in MBDyn)\n";
     }
+    s += "# the whole model's F/y' and F/y (every element and the nodes' own rows, as the linearization assembles them) against central differences of the whole residual\n";
+    s += "# error = (|analytic - fd| - rounding of the differences) / max |row of the matrix|\n";
+    for m in assembled {
+        let status = if m.within(tolerance) { "ok" } else { "FAIL" };
+        let entry = if m.equation.is_empty() { "none: analytic and finite differences agree within rounding".to_string() } else { format!("d({})/d({})", m.equation, m.unknown) };
+        s += &format!("{status:<6}  {:<24}  {:>9.2e}  {:>14.6e}  {:>14.6e}  {entry}\n", format!("whole model {}", m.matrix), m.relative_error, m.analytic, m.finite_difference);
+    }
     let failed: Vec<&JacobianMismatch> = elements.iter().filter(|e| !e.within(tolerance)).collect();
     match failed.first() {
         None => s += &format!("{} elements checked: all agree within {tolerance:e}\n", elements.len()),
@@ -31,6 +38,11 @@ pub fn jacobian_check_text(elements: &[JacobianMismatch], tolerance: f64, time: 
                 worst.relative_error
             )
         }
+    }
+    let whole: Vec<&AssembledMismatch> = assembled.iter().filter(|m| !m.within(tolerance)).collect();
+    if !whole.is_empty() {
+        let names: Vec<String> = whole.iter().map(|m| format!("{} (error {:.2e} at d({})/d({}))", m.matrix, m.relative_error, m.equation, m.unknown)).collect();
+        s += &format!("the whole model's {} disagree with the differences of its residual beyond {tolerance:e}\n", names.join(" and "));
     }
     s
 }

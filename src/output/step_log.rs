@@ -82,7 +82,12 @@ impl StepLog {
         self.file.write_with(|w| writeln!(w, "# End of simulation at time {time:.12e} after {steps} steps; total iterations: {iterations}"))
     }
 
-    /// Puts the file in place.
+    /// The last line of a run that stopped: why, after how many converged steps.
+    pub fn failed(&mut self, time: f64, steps: usize, iterations: usize, why: &str) -> Result<(), OutputError> {
+        let why = why.replace('\n', " ");
+        self.file.write_with(|w| writeln!(w, "# Simulation FAILED after {steps} converged steps (last converged time {time:.12e}; total iterations: {iterations}): {why}"))
+    }
+
     /// The file, to be put in place with the rest of its set.
     pub fn into_file(self) -> AtomicFile {
         self.file

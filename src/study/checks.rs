@@ -11,13 +11,26 @@ use crate::rom::{full_static_gain, null_direction};
 use super::linear::LinearModel;
 use super::{Study, Warning};
 
-/// `F(ẏ = 0, y)` at the reference: nonzero when gravity or loads are unbalanced or the
-/// model moves; a warning when its max norm exceeds what Newton accepts as converged
-/// (1e3 times the problem's tolerance, with a small increment).
+/// Whether the reference is an equilibrium or a steady motion, the states whose small
+/// perturbations the linear model describes: `F` in the linearization form
+/// ([`State::linearization_base`]: angular velocities carried in `W_ref`, `ġ = 0`) with the
+/// nodes' velocities and angular velocities held and every other rate (momenta, element
+/// states) set to zero. That residual vanishes at rest and in a steady motion (a rotor
+/// spinning about its axis of symmetry, a uniform translation), where the Jacobians do not
+/// change along the motion; elsewhere the model accelerates and the eigenvalues are those of
+/// the Jacobians frozen at that instant ([`Warning::NotInEquilibrium`]). A warning when its
+/// max norm exceeds what Newton accepts as converged (1e3 times the problem's tolerance,
+/// with a small increment).
 pub(super) fn equilibrium_warning(model: &Model, state: &State, tolerance: f64) -> Option<Warning> {
     let asm = Assembler::new(model);
     let mut st = state.clone();
-    st.yp.iter_mut().for_each(|x| *x = 0.0);
+    st.linearization_base(&asm.dofs);
+    let velocities: Vec<usize> = asm.dofs.node_first.iter().flat_map(|&f| f..f + 3).collect();
+    for (i, x) in st.yp.iter_mut().enumerate() {
+        if !velocities.contains(&i) {
+            *x = 0.0;
+        }
+    }
     // Plain constraint rows (eq. 29): the multipliers are in y, as in the static analysis.
     let f = asm.residual(&st, crate::linear::ConstraintForm::Plain, 1.0);
     let (i, v) = f.iter().enumerate().fold((0, 0.0f64), |(bi, bv), (i, x)| if x.abs() > bv { (i, x.abs()) } else { (bi, bv) });

@@ -6,8 +6,9 @@ use std::fmt;
 /// A warning about the linear model or a ROM built from it.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Warning {
-    /// The reference solution is not an equilibrium: `F(ẏ = 0, y) ≠ 0` (unbalanced gravity
-    /// or loads, motion at `--at`).
+    /// The reference solution is neither an equilibrium nor a steady motion: `F` with the
+    /// velocities held and the accelerations zero is not (unbalanced gravity or loads, an
+    /// accelerating motion at `--at`); the eigenvalues are the frozen Jacobians'.
     NotInEquilibrium { residual: f64, equation: String, tolerance: f64 },
     /// An input moves no unknown of the model statically (e.g. a force on a clamped node).
     InputMovesNothing { input: String },
@@ -39,7 +40,7 @@ impl fmt::Display for Warning {
         match self {
             Warning::NotInEquilibrium { residual, equation, tolerance } => write!(
                 f,
-                "the reference solution is not an equilibrium: the residual with zero derivatives is {residual:.3e} (tolerance {tolerance:.1e}) at '{equation}'; the linear model describes small motions about an accelerating or moving state (use --static for the static equilibrium)"
+                "the reference solution is neither an equilibrium nor a steady motion: with its velocities held and its accelerations set to zero the residual is {residual:.3e} (tolerance {tolerance:.1e}) at '{equation}'. The eigenvalues are those of the Jacobians frozen at this instant (as MBDyn's eigenanalysis computes them), not the frequencies and damping of small motions about this trajectory, which follow a time-varying linear system (a swinging pendulum's frozen eigenvalues take the centripetal tension as a stiffness); the ROM is the frozen system's. Use --static for the static equilibrium, or a reference at rest or in steady motion (a uniform spin about an axis of symmetry)"
             ),
             Warning::InputMovesNothing { input } => write!(f, "no output responds to input {input} (a load on a clamped node, or in a direction the outputs do not see?): every response to it is exactly zero"),
             Warning::OutputSeesNothing { output } => write!(f, "output {output} responds to no input (a clamped node, or a direction the inputs do not move?): its every response is exactly zero"),

@@ -1,0 +1,95 @@
+//! Finite-difference check of the assembled `F_/ẏ` and `F_/y` (eqs. 13–16) against the whole
+//! residual `F(y, ẏ, t)`, at a state put in the form the model is linearized in
+//! ([`State::linearization_base`]: a spinning node's angular velocity carried in `W_ref`).
+//!
+//! The element-by-element check ([`super::check_jacobians`]) sees one element at a time;
+//! this one sees what the linearization sees: the nodes' own rows (momentum definitions,
+//! `γ̇ + ẋ × β`), every element summed, and the map from the orientation parameters to
+//! `R` and `ω`. Column `j` of `F_/ẏ` is compared with `(F(ẏ_j + h) − F(ẏ_j − h))/2h`, column
+//! `j` of `F_/y` with the same in `y_j`, in the plain constraint form (eq. 29: multipliers in
+//! `y`), whatever form the model integrates with.
+
+use std::collections::BTreeMap;
+
+use super::{Assembler, Coefficients, State};
+use crate::linear::ConstraintForm;
+
+/// The worst entry of one assembled matrix.
+#[derive(Clone, Debug, Default)]
+pub struct AssembledMismatch {
+    /// `"F/y'"` or `"F/y"`.
+    pub matrix: &'static str,
+    pub equation: String,
+    pub unknown: String,
+    pub analytic: f64,
+    pub finite_difference: f64,
+    /// `(|analytic − fd| − rounding) / max(max |row of the matrix|, |F_i| ε)`: the
+    /// difference beyond the central difference's own rounding, relative to the equation's
+    /// size.
+    pub relative_error: f64,
+}
+
+impl AssembledMismatch {
+    pub fn within(&self, tolerance: f64) -> bool {
+        self.relative_error <= tolerance
+    }
+}
+
+/// Checks `F_/ẏ` and `F_/y` of the whole model at `state` (put in the linearization form
+/// here, a copy); returns the worst entry of each.
+pub fn check_assembled(asm: &Assembler, state: &State) -> [AssembledMismatch; 2] {
+    let mut st = state.clone();
+    st.linearization_base(&asm.dofs);
+    let n = asm.dofs.len;
+    let form = ConstraintForm::Plain;
+    let f0 = asm.residual(&st, form, 1.0);
+    let mut out = [AssembledMismatch { matrix: "F/y'", ..Default::default() }, AssembledMismatch { matrix: "F/y", ..Default::default() }];
+    for (which, (a, b)) in [(1.0, 0.0), (0.0, 1.0)].into_iter().enumerate() {
+        let (cols, row_size) = columns(asm, &st, a, b);
+        let worst = &mut out[which];
+        for j in 0..n {
+            let value = if which == 0 { st.yp[j] } else { st.y[j] };
+            let h = 1e-6 * (1.0 + value.abs());
+            let mut at = |s: f64| {
+                let v = if which == 0 { &mut st.yp[j] } else { &mut st.y[j] };
+                *v = value + s * h;
+                let f = asm.residual(&st, form, 1.0);
+                let v = if which == 0 { &mut st.yp[j] } else { &mut st.y[j] };
+                *v = value;
+                f
+            };
+            let (fp, fm) = (at(1.0), at(-1.0));
+            for i in 0..n {
+                let fd = (fp[i] - fm[i]) / (2.0 * h);
+                let analytic = cols[j].get(&i).copied().unwrap_or(0.0);
+                // Rounding of the two residuals, each to a few ulps of its size.
+                let rounding = 16.0 * f64::EPSILON * (fp[i].abs() + fm[i].abs() + f0[i].abs()) / (2.0 * h);
+                let scale = row_size[i].max(f64::EPSILON * f0[i].abs()).max(f64::MIN_POSITIVE);
+                let err = ((analytic - fd).abs() - rounding).max(0.0) / scale;
+                let err = if err.is_nan() { f64::INFINITY } else { err };
+                if err > worst.relative_error {
+                    *worst = AssembledMismatch { matrix: worst.matrix, equation: asm.dofs.equation_name(asm.model, i), unknown: asm.dofs.unknown_name(asm.model, j), analytic, finite_difference: fd, relative_error: err };
+                }
+            }
+        }
+    }
+    out
+}
+
+/// The columns of `a F_/ẏ + b F_/y` (plain form) as sorted `row → value` maps, duplicate
+/// triplets summed, and each row's largest entry.
+fn columns(asm: &Assembler, st: &State, a: f64, b: f64) -> (Vec<BTreeMap<usize, f64>>, Vec<f64>) {
+    let n = asm.dofs.len;
+    let t = asm.jacobian(st, Coefficients { a, b, form: ConstraintForm::Plain, dcoef: 1.0 });
+    let mut cols: Vec<BTreeMap<usize, f64>> = vec![BTreeMap::new(); n];
+    for k in 0..t.values.len() {
+        *cols[t.cols[k]].entry(t.rows[k]).or_insert(0.0) += t.values[k];
+    }
+    let mut row_size = vec![0.0f64; n];
+    for c in &cols {
+        for (&i, &v) in c {
+            row_size[i] = row_size[i].max(v.abs());
+        }
+    }
+    (cols, row_size)
+}
