@@ -35,7 +35,16 @@ fn the_check_names_the_wrong_element_its_entry_and_both_values() {
     let text = check.to_text();
     assert!(text.contains("FAIL    wrong spring 99"), "{text}");
     assert!(text.contains("d(node 2 force y equilibrium)/d(node 2 y)"), "{text}");
-    assert!(text.trim_end().ends_with("1 of 4 elements disagree beyond 1e-6 (worst: wrong spring 99, error 5.21e-3)"), "{text}");
+    assert!(text.contains("\n1 of 4 elements disagree beyond 1e-6 (worst: wrong spring 99, error 5.21e-3)\n"), "{text}");
+    // The whole model's F/y, which sums the wrong spring's 20 N/m with the rest, disagrees
+    // with the whole residual's differences at the same entry (the spring's closed form:
+    // 10 N/m); F/y' does not involve the spring.
+    assert!(text.contains("FAIL    whole model F/y  ") && text.contains("ok      whole model F/y'"), "{text}");
+    let [fyd, fy] = &check.assembled;
+    assert!(fyd.within(1e-6) && !fy.within(1e-6), "{text}");
+    assert_eq!((fy.equation.as_str(), fy.unknown.as_str()), ("node 2 force y equilibrium", "node 2 y"), "{text}");
+    assert!((fy.analytic - fy.finite_difference - 10.0).abs() < 1e-6, "{fy:?}");
+    assert!(text.trim_end().ends_with("the whole model's F/y (error 5.00e-1 at d(node 2 force y equilibrium)/d(node 2 y)) disagree with the differences of its residual beyond 1e-6"), "{text}");
 }
 
 #[test]

@@ -20,7 +20,7 @@ pub fn jacobian_check_text(elements: &[JacobianMismatch], assembled: &[Assembled
         s += "* a drive of the element reads the model's state (model:: functions, node, dof or element drive callers): the differences hold it at this state, its derivatives are in no Jacobian (as in MBDyn)\n";
     }
     s += "# the whole model's F/y' and F/y (every element and the nodes' own rows, as the linearization assembles them) against central differences of the whole residual\n";
-    s += "# error = (|analytic - fd| - rounding of the differences) / max |row of the matrix|\n";
+    s += "# error = (|analytic - fd| - rounding of the differences) / max(max |row|, max |column|, 1e-9 max |matrix|)\n";
     for m in assembled {
         let status = if m.within(tolerance) { "ok" } else { "FAIL" };
         let entry = if m.equation.is_empty() { "none: analytic and finite differences agree within rounding".to_string() } else { format!("d({})/d({})", m.equation, m.unknown) };
