@@ -249,3 +249,30 @@ fn a_swinging_pendulum_is_no_steady_motion_and_its_frozen_eigenvalues_are_said_t
     assert!(!err.contains("neither an equilibrium"), "{err}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// The whole model's assembled `F/y'` and `F/y` against differences of its whole residual
+/// ([`romdyn::dae::check_assembled`]) at `reference`, within `romdyn check`'s tolerance.
+fn assert_whole_model_jacobians(name: &str, reference: Reference) {
+    use romdyn::analysis::{reference_state, JACOBIAN_CHECK_TOLERANCE};
+    use romdyn::dae::{check_assembled, Assembler};
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files").join(name);
+    let m = romdyn::input::mbdyn::read_model(&path).unwrap_or_else(|e| panic!("{e}"));
+    let state = reference_state(&m.model, &m.problem, reference).unwrap_or_else(|e| panic!("{name}: {e}"));
+    let asm = Assembler::new(&m.model);
+    for worst in check_assembled(&asm, &state) {
+        assert!(worst.within(JACOBIAN_CHECK_TOLERANCE), "{name} at {reference:?}: {worst:?}");
+    }
+}
+
+#[test]
+fn the_whole_models_jacobians_hold_at_moving_states() {
+    // Moving references of the test files, where the nodes' angular velocities carried in
+    // W_ref enter every rotation's derivatives: a conical pendulum and a gimbal's shafts
+    // turning, a free top spinning and nutating, rotor blades in their rotating frame.
+    assert_whole_model_jacobians("conical_pendulum.mbd", Reference::At(0.5));
+    assert_whole_model_jacobians("gimbal_shafts.mbd", Reference::At(0.5));
+    assert_whole_model_jacobians("spinning_top.mbd", Reference::At(0.5));
+    assert_whole_model_jacobians("rotating_blades.mbd", Reference::Initial);
+    assert_whole_model_jacobians("hinged_blade_derivatives.mbd", Reference::Initial);
+    assert_whole_model_jacobians("revolute_chain.mbd", Reference::At(0.5));
+}
