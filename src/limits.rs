@@ -20,6 +20,12 @@ pub const MAX_TIME_STEPS: f64 = 1e8;
 /// Most points of a frequency grid (1e6).
 pub const MAX_FREQUENCY_POINTS: usize = 1_000_000;
 
+/// Lowest and highest frequency of a response [Hz] (1e-30 and 1e30 Hz): beyond, `ω²`
+/// times a pencil's entries leaves the range of doubles for ordinary models (responses of
+/// NaN or 0), and a plot's log axis cannot span the decades (the plotting library looped
+/// without end on 1e-160 to 1e160 Hz).
+pub const FREQUENCY_RANGE_HZ: (f64, f64) = (1e-30, 1e30);
+
 /// Most load increments of a static solution (1e5).
 pub const MAX_LOAD_STEPS: usize = 100_000;
 

@@ -128,6 +128,10 @@ impl Study {
                 if !(f.is_finite() && f > 0.0) {
                     return option(name, format!("a frequency of a log-spaced grid must be positive and finite [Hz], got {f}"));
                 }
+                let (lo, hi) = crate::limits::FREQUENCY_RANGE_HZ;
+                if !(lo..=hi).contains(&f) {
+                    return option(name, format!("{} Hz is outside romdyn's frequency range, {lo:e} to {hi:e} Hz (beyond, the responses leave the range of doubles)", crate::limits::readable(f)));
+                }
             }
         }
         if grid.points < 2 {
