@@ -8,7 +8,7 @@ use std::sync::Once;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::atomic::{write_atomic_bytes, OutputError};
+use super::atomic::{AtomicFile, OutputError};
 
 pub const FONT: &str = "dejavu-sans";
 
@@ -52,23 +52,36 @@ fn ensure_font() {
 
 /// Renders `figure` at `size` pixels to an SVG and a PNG file.
 pub fn write_figure(figure: &impl Figure, size: (u32, u32), svg_path: &Path, png_path: &Path) -> Result<(), OutputError> {
+    let [svg, png] = stage_figure(figure, size, svg_path, png_path)?;
+    svg.commit()?;
+    png.commit()
+}
+
+/// Renders `figure` at `size` pixels to an SVG and a PNG file under temporary names, to be
+/// put in place with the rest of a set ([`super::atomic::commit_set`]). Both are
+/// [`AtomicFile`]s: a signal or an error removes them, and a killed process's are swept by
+/// the next one writing in their folder. The PNG is rendered into memory and encoded here
+/// (the plotting library's own encoder writes to a path of its own).
+pub fn stage_figure(figure: &impl Figure, size: (u32, u32), svg_path: &Path, png_path: &Path) -> Result<[AtomicFile; 2], OutputError> {
     ensure_font();
     let invalid = |path: &Path, message: String| OutputError::Invalid { path: path.to_path_buf(), message };
-    let mut svg = String::new();
-    figure.draw(SVGBackend::with_string(&mut svg, size).into_drawing_area()).map_err(|m| invalid(svg_path, m))?;
-    write_atomic_bytes(svg_path, svg.as_bytes())?;
-    // The PNG encoder writes to a path: render to a temporary file beside the target,
-    // then rename it into place.
-    let name = png_path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
-    let tmp = png_path.with_file_name(format!(".{name}.tmp-{}.png", std::process::id()));
-    let result = figure
-        .draw(BitMapBackend::new(&tmp, size).into_drawing_area())
-        .map_err(|m| invalid(png_path, m))
-        .and_then(|_| std::fs::rename(&tmp, png_path).map_err(|e| OutputError::Io { path: png_path.to_path_buf(), operation: "rename the temporary file onto it", cause: e }));
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result
+    let mut svg_text = String::new();
+    figure.draw(SVGBackend::with_string(&mut svg_text, size).into_drawing_area()).map_err(|m| invalid(svg_path, m))?;
+    let mut svg = AtomicFile::create(svg_path)?;
+    svg.write_with(|w| w.write_all(svg_text.as_bytes()))?;
+    let (width, height) = size;
+    let mut rgb = vec![0u8; width as usize * height as usize * 3];
+    figure.draw(BitMapBackend::with_buffer(&mut rgb, size).into_drawing_area()).map_err(|m| invalid(png_path, m))?;
+    let mut png = AtomicFile::create(png_path)?;
+    png.write_with(|w| {
+        let mut encoder = png::Encoder::new(w, width, height);
+        encoder.set_color(png::ColorType::Rgb);
+        encoder.set_depth(png::BitDepth::Eight);
+        let mut writer = encoder.write_header().map_err(std::io::Error::other)?;
+        writer.write_image_data(&rgb).map_err(std::io::Error::other)?;
+        writer.finish().map_err(std::io::Error::other)
+    })?;
+    Ok([svg, png])
 }
 
 #[cfg(test)]
