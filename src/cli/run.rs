@@ -107,6 +107,8 @@ pub fn run(a: RunArgs) -> Result<()> {
         Some(p) => p.clone(),
         None => stem,
     };
+    romdyn::output::atomic::check_prefix("-o", &prefix)?;
+    romdyn::output::atomic::check_output_paths(&[("-o", romdyn::output::prefixed_path(&prefix, "out"))])?;
     let files = RunFiles::create(&prefix, &input, &m.model, &m.problem).with_context(|| format!("starting the output files {}.*", prefix.display()))?;
     let mut observers = (Progress::new(), files);
     let result = run_problem(&m.model, &m.problem, &mut observers);

@@ -7,6 +7,8 @@ use anyhow::{bail, Context, Result};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use romdyn::input::text_file::read_text_file;
+use romdyn::output::atomic::{check_output_paths, check_prefix, write_set};
+use romdyn::output::prefixed_path;
 use romdyn::sweep::{check_parameters, grid, sweep, Parameter, SweepOptions};
 
 use super::args::PencilArgs;
@@ -77,6 +79,15 @@ pub fn run(a: SweepArgs) -> Result<()> {
     {
         bail!("--against {name}: not a swept parameter (--set gives {})", a.set.iter().map(|p| p.name.as_str()).collect::<Vec<_>>().join(", "));
     }
+    // Every output path checked before any work; written as one set at the end.
+    let mut outputs: Vec<(&str, PathBuf)> = Vec::new();
+    outputs.extend(a.file.iter().map(|p| ("-o", p.clone())));
+    outputs.extend(a.table.iter().map(|p| ("--table", p.clone())));
+    if let Some(prefix) = &a.plot {
+        check_prefix("--plot", prefix)?;
+        outputs.extend(["svg", "png"].map(|e| ("--plot", prefixed_path(prefix, e))));
+    }
+    check_output_paths(&outputs)?;
     let points = grid(&a.set).map_err(anyhow::Error::msg)?;
     // The mode arrays hold points x lowest values of each kind: checked before allocating.
     if points.len().saturating_mul(a.lowest) > romdyn::limits::MAX_DENSE_ENTRIES {
@@ -109,20 +120,25 @@ pub fn run(a: SweepArgs) -> Result<()> {
             eprintln!("warning: design point {} ({}): {w}", k + 1, results.describe_point(k));
         }
     }
-    match &a.table {
-        Some(p) => {
-            results.write_modes_csv(p).with_context(|| format!("writing {}", p.display()))?;
-            eprintln!("wrote {}", p.display());
-        }
-        None => print!("{}", results.modes_csv()),
+    if a.table.is_none() {
+        print!("{}", results.modes_csv());
     }
-    if let Some(p) = &a.file {
-        results.write_arrays(p).with_context(|| format!("writing {}", p.display()))?;
-        eprintln!("wrote {} ({} design points, point_ok marks the failed ones)", p.display(), results.points.len());
-    }
-    if let Some(prefix) = &a.plot {
-        let [svg, png] = results.write_plot(prefix, a.against.as_deref()).with_context(|| format!("writing {}.{{svg,png}}", prefix.display()))?;
-        eprintln!("wrote {}, {}", svg.display(), png.display());
+    if let Some((_, first)) = outputs.first() {
+        let journal = romdyn::analysis::journal_path(first);
+        let ((), written) = write_set(&journal, || -> Result<()> {
+            if let Some(p) = &a.table {
+                results.write_modes_csv(p).with_context(|| format!("writing {}", p.display()))?;
+            }
+            if let Some(p) = &a.file {
+                results.write_arrays(p).with_context(|| format!("writing {}", p.display()))?;
+            }
+            if let Some(prefix) = &a.plot {
+                results.write_plot(prefix, a.against.as_deref()).with_context(|| format!("writing {}.{{svg,png}}", prefix.display()))?;
+            }
+            Ok(())
+        })?;
+        let names: Vec<String> = written.iter().map(|p| p.display().to_string()).collect();
+        eprintln!("wrote {} ({} design points; in the arrays point_ok marks the failed ones)", names.join(", "), results.points.len());
     }
     if !failed.is_empty() {
         bail!("{} of {} design points failed (listed above); the outputs hold the others, point_ok = 0 and point_errors mark the failed ones", failed.len(), results.points.len());

@@ -7,10 +7,22 @@
 //! `.NAME.romdyn-commit` lists the renames, the renames are done and the journal removed.
 //! A process killed during the renames leaves the journal: the set is incomplete while it
 //! exists, and [`recover_set`] (run by the next run with the same prefix) completes it.
+//! The journal and the renames are done holding an advisory lock on the folder, so two
+//! processes writing the same names put whole sets in place, one after the other.
+//!
+//! A command that writes several files through writers that each commit their own
+//! (`rom`, `freq`, `sweep`) runs them inside [`write_set`]: there every commit on the thread
+//! is deferred, and the files are put in place together at the end, or none of them.
 
+use std::cell::RefCell;
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
+
+thread_local! {
+    /// The files whose commit [`write_set`] defers on this thread (`None` outside it).
+    static DEFERRED: RefCell<Option<Vec<AtomicFile>>> = const { RefCell::new(None) };
+}
 
 /// An output file could not be written.
 #[derive(Debug, thiserror::Error)]
@@ -85,8 +97,19 @@ impl AtomicFile {
         std::fs::rename(&self.tmp, &self.path).map_err(|source| OutputError::Io { path: self.path.clone(), operation: "rename the temporary file onto it", cause: source })
     }
 
-    /// Flushes, syncs and renames the file onto its target.
+    /// Flushes, syncs and renames the file onto its target; inside [`write_set`], keeps it
+    /// for the set instead.
     pub fn commit(mut self) -> Result<(), OutputError> {
+        let deferred = DEFERRED.with(|d| match d.borrow_mut().as_mut() {
+            Some(files) => {
+                files.push(std::mem::replace(&mut self, AtomicFile { path: PathBuf::new(), tmp: PathBuf::new(), out: None }));
+                true
+            }
+            None => false,
+        });
+        if deferred {
+            return Ok(());
+        }
         self.sync()?;
         let _guard = super::cleanup::commit_guard();
         self.rename()?;
@@ -127,6 +150,7 @@ pub fn commit_set(mut files: Vec<AtomicFile>, journal: &Path) -> Result<(), Outp
         text.push_str(&format!("{tmp}\t{target}\n"));
     }
     let _guard = super::cleanup::commit_guard();
+    let _folder = lock_folder(journal);
     write_journal(journal, &text).map_err(|e| io("write the commit journal", e))?;
     for k in 0..files.len() {
         if let Err(e) = files[k].rename() {
@@ -142,6 +166,80 @@ pub fn commit_set(mut files: Vec<AtomicFile>, journal: &Path) -> Result<(), Outp
         f.committed();
     }
     std::fs::remove_file(journal).map_err(|e| io("remove the commit journal", e))
+}
+
+/// An exclusive advisory lock on the folder of `journal` (released when dropped), so that
+/// two processes' sets in one folder are put in place one after the other; `None` where the
+/// folder cannot be locked (the set is then put in place without it).
+fn lock_folder(journal: &Path) -> Option<File> {
+    let dir = journal.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let folder = File::open(dir).ok()?;
+    folder.lock().ok()?;
+    Some(folder)
+}
+
+/// Runs `write` with every [`AtomicFile::commit`] on this thread deferred, then puts the
+/// files it wrote in place together ([`commit_set`], journal `journal`): after an error of
+/// `write` or of the commit, none of them is (their temporaries are removed). Returns
+/// `write`'s value and the paths put in place.
+pub fn write_set<T, E: From<OutputError>>(journal: &Path, write: impl FnOnce() -> Result<T, E>) -> Result<(T, Vec<PathBuf>), E> {
+    let outer = DEFERRED.with(|d| d.borrow_mut().replace(Vec::new()));
+    let result = write();
+    let files = DEFERRED.with(|d| std::mem::replace(&mut *d.borrow_mut(), outer)).unwrap_or_default();
+    let value = result?;
+    let paths: Vec<PathBuf> = files.iter().map(|f| f.path.clone()).collect();
+    if let Some(k) = (1..paths.len()).find(|&k| paths[..k].contains(&paths[k])) {
+        return Err(OutputError::Invalid { path: paths[k].clone(), message: "two outputs of this command would be this one file: name them apart".into() }.into());
+    }
+    if !files.is_empty() {
+        commit_set(files, journal)?;
+    }
+    Ok((value, paths))
+}
+
+/// Checks, before any computation, the files a command will write, each with the option
+/// that names it: none is a directory or a special file (a device, FIFO or socket: `-o
+/// /dev/null` would have made `/dev/null.csv`), none is named by an empty or hidden-only
+/// name (`-o dir/` would have made `dir/.csv`), and no two are the same file.
+pub fn check_output_paths(outputs: &[(&str, PathBuf)]) -> Result<(), OutputError> {
+    let invalid = |path: &Path, message: String| Err(OutputError::Invalid { path: path.to_path_buf(), message });
+    for (k, (option, path)) in outputs.iter().enumerate() {
+        let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+        if name.is_empty() || name.starts_with('.') && !name[1..].contains('.') || path.to_string_lossy().ends_with('/') {
+            return invalid(path, format!("{option}: names no file (a prefix such as DIR/NAME is needed)"));
+        }
+        if let Ok(meta) = std::fs::metadata(path) {
+            if meta.is_dir() {
+                return invalid(path, format!("{option}: is a directory: cannot write a file there"));
+            }
+            if !meta.is_file() {
+                return invalid(path, format!("{option}: is a special file (a device, FIFO or socket): romdyn writes regular files only"));
+            }
+        }
+        let same = |a: &Path, b: &Path| a == b || match (a.parent().map(absolute_dir), b.parent().map(absolute_dir)) {
+            (Some(Some(x)), Some(Some(y))) => x == y && a.file_name() == b.file_name(),
+            _ => false,
+        };
+        if let Some((other, _)) = outputs[..k].iter().find(|(_, p)| same(p, path)) {
+            return invalid(path, format!("{other} and {option} would both write this file: name them apart"));
+        }
+    }
+    Ok(())
+}
+
+/// The canonical form of an output's folder (`None` while it does not exist).
+fn absolute_dir(dir: &Path) -> Option<PathBuf> {
+    std::fs::canonicalize(if dir.as_os_str().is_empty() { Path::new(".") } else { dir }).ok()
+}
+
+/// Refuses a prefix that is a special file (`-o /dev/null`), whose files would land beside
+/// it (`/dev/null.out`): the user meant to throw the output away, which a regular file does
+/// not do either.
+pub fn check_prefix(option: &str, prefix: &Path) -> Result<(), OutputError> {
+    match std::fs::metadata(prefix) {
+        Ok(meta) if !meta.is_file() && !meta.is_dir() => Err(OutputError::Invalid { path: prefix.to_path_buf(), message: format!("{option}: is a special file (a device, FIFO or socket): romdyn writes regular files named after a prefix, not into it") }),
+        _ => Ok(()),
+    }
 }
 
 fn write_journal(journal: &Path, text: &str) -> std::io::Result<()> {

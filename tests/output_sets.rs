@@ -1,0 +1,138 @@
+//! Issue 32, point 3: the files of `sweep` (and, through the same `output::atomic::write_set`,
+//! of `rom` and `freq`) are one set, complete or absent: paths checked before any work,
+//! two outputs that would be one file refused, special files refused, the set put in place
+//! together at the end (SIGTERM leaves nothing, SIGKILL a complete set or none).
+
+#![cfg(unix)]
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+const PENDULUM: &str = include_str!("../examples/pendulum.mbd");
+const SET: [&str; 4] = ["p.csv", "p.mat", "p.png", "p.svg"];
+
+fn folder(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("romdyn-sets-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    std::fs::write(d.join("p.mbd"), PENDULUM).unwrap();
+    d
+}
+
+/// The folder's files but the model.
+fn outputs(d: &Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(d).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).filter(|n| n != "p.mbd").collect();
+    v.sort();
+    v
+}
+
+/// `romdyn sweep` of the pendulum over `points` lengths, writing `p.mat`, `p.csv` and
+/// `p.{svg,png}` (extra arguments after).
+fn sweep(d: &Path, points: usize, extra: &[&str]) -> Command {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_romdyn"));
+    let set = format!("L=1:2:{points}");
+    c.args(["sweep", "p.mbd", "--set", &set, "--input", "2:Mz", "--output", "2:rz", "--count", "1", "--lowest", "1", "--jobs", "1"]).args(extra).current_dir(d);
+    c
+}
+
+fn interrupted(d: &Path, after: Duration, signal: &str) -> (Option<i32>, bool) {
+    // 20 000 points: a few seconds of work before the writing.
+    let mut child = sweep(d, 20_000, &["-o", "p.mat", "--table", "p.csv", "--plot", "p"]).stdout(Stdio::null()).stderr(Stdio::null()).spawn().unwrap();
+    let start = Instant::now();
+    while start.elapsed() < after && child.try_wait().unwrap().is_none() {
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    let ended = child.try_wait().unwrap().is_some();
+    if !ended {
+        assert!(Command::new("kill").args([signal, &child.id().to_string()]).status().unwrap().success());
+    }
+    (child.wait().unwrap().code(), ended)
+}
+
+#[test]
+fn a_sweep_stopped_by_sigterm_leaves_no_file_and_by_sigkill_a_complete_set_or_none() {
+    let d = folder("sweep-signals");
+    for ms in [30, 300, 1500] {
+        let (code, ended) = interrupted(&d, Duration::from_millis(ms), "-TERM");
+        if ended {
+            assert_eq!(outputs(&d), SET, "the sweep ended first: its set is whole");
+            outputs(&d).iter().for_each(|f| std::fs::remove_file(d.join(f)).unwrap());
+            continue;
+        }
+        assert!(matches!(code, Some(143) | None), "after {ms} ms: status {code:?}");
+        assert_eq!(outputs(&d), Vec::<String>::new(), "SIGTERM after {ms} ms");
+    }
+    for ms in [20, 400, 2000] {
+        let (_, ended) = interrupted(&d, Duration::from_millis(ms), "-KILL");
+        let journal = d.join(".p.csv.romdyn-commit");
+        if journal.exists() {
+            assert!(romdyn::output::atomic::recover_set(&journal).unwrap());
+        }
+        let left = outputs(&d);
+        let set: Vec<String> = left.iter().filter(|n| !n.starts_with('.')).cloned().collect();
+        assert!(set.is_empty() || set == SET, "SIGKILL after {ms} ms (ended: {ended}): {left:?}");
+        // The next sweep writing there removes what the killed one left under temporary names.
+        let o = sweep(&d, 3, &["--table", "q.csv"]).output().unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let hidden: Vec<String> = outputs(&d).into_iter().filter(|n| n.starts_with('.')).collect();
+        assert!(hidden.is_empty(), "after {ms} ms: {hidden:?}");
+        outputs(&d).iter().for_each(|f| std::fs::remove_file(d.join(f)).unwrap());
+    }
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[test]
+fn output_paths_are_checked_before_any_work() {
+    let d = folder("sweep-paths");
+    let refused = |extra: &[&str], message: &str| {
+        let before = outputs(&d);
+        let o = sweep(&d, 2, extra).output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr).into_owned();
+        assert_eq!(o.status.code(), Some(1), "{extra:?}: {err}");
+        assert!(err.contains(message), "{extra:?}: expected {message:?} in {err}");
+        assert!(!err.contains("design point"), "refused before the sweep: {err}");
+        assert_eq!(outputs(&d), before, "{extra:?}: nothing written");
+    };
+    // Two options naming one file (one output silently overwrote the other).
+    refused(&["-o", "p.mat", "--table", "p.mat"], "-o and --table would both write this file");
+    refused(&["--table", "p.svg", "--plot", "p"], "--table and --plot would both write this file");
+    // A prefix naming a folder (it wrote hidden files dir/.svg, dir/.png).
+    std::fs::create_dir(d.join("dir")).unwrap();
+    refused(&["--plot", "dir/"], "--plot: names no file");
+    // A directory in the way of a later output, found before the first is written.
+    std::fs::create_dir(d.join("p.png")).unwrap();
+    refused(&["--table", "p.csv", "--plot", "p"], "p.png: --plot: is a directory");
+    std::fs::remove_dir(d.join("p.png")).unwrap();
+    std::fs::remove_dir(d.join("dir")).unwrap();
+    // A special file: a FIFO where the table would go (as -o /dev/null made /dev/null.csv).
+    assert!(Command::new("mkfifo").arg(d.join("p.csv")).status().unwrap().success());
+    let o = sweep(&d, 2, &["--table", "p.csv"]).output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.code() == Some(1) && err.contains("--table: is a special file"), "{err}");
+    std::fs::remove_file(d.join("p.csv")).unwrap();
+    // The plot prefix itself a special file.
+    assert!(Command::new("mkfifo").arg(d.join("p")).status().unwrap().success());
+    let o = sweep(&d, 2, &["--plot", "p"]).output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.code() == Some(1) && err.contains("--plot: is a special file"), "{err}");
+    std::fs::remove_dir_all(&d).ok();
+}
+
+#[test]
+fn a_runs_prefix_must_name_a_regular_file() {
+    let d = folder("run-prefix");
+    let run = |prefix: &str| {
+        let o = Command::new(env!("CARGO_BIN_EXE_romdyn")).args(["run", "p.mbd", "-o", prefix]).current_dir(&d).output().unwrap();
+        (o.status.code(), String::from_utf8_lossy(&o.stderr).into_owned())
+    };
+    // `-o /dev/null` as root made /dev/null.out and its siblings: a FIFO stands for it here.
+    assert!(Command::new("mkfifo").arg(d.join("sink")).status().unwrap().success());
+    let (code, err) = run("sink");
+    assert!(code == Some(1) && err.contains("sink: -o: is a special file"), "{err}");
+    // A prefix ending in '/' that is no folder made hidden files nodir/.out, ….
+    let (code, err) = run("nodir/");
+    assert!(code == Some(1) && err.contains("-o: names no file"), "{err}");
+    assert_eq!(outputs(&d), ["sink"]);
+    std::fs::remove_dir_all(&d).ok();
+}
