@@ -276,3 +276,40 @@ fn the_whole_models_jacobians_hold_at_moving_states() {
     assert_whole_model_jacobians("hinged_blade_derivatives.mbd", Reference::Initial);
     assert_whole_model_jacobians("revolute_chain.mbd", Reference::At(0.5));
 }
+
+#[test]
+fn a_top_in_steady_precession_nutates_at_the_closed_form_frequency_in_its_precessing_frame() {
+    // precessing_top.mbd: the top written in the frame turning with its precession (MBDyn's
+    // `rigid body kinematics`), where the steady precession is a steady spin about a fixed
+    // axis. Closed form (file header): the Routh potential's U''(θ₀)/I1, for M = 2 kg,
+    // L = 0.3 m, JTC = 0.02, JP = 0.05 kg m², θ₀ = 0.5 rad, Ω_p = 2 rad/s.
+    let (m, l, jtc, jp, g, th, op): (f64, f64, f64, f64, f64, f64, f64) = (2.0, 0.3, 0.02, 0.05, 9.81, 0.5, 2.0);
+    let (i1, mgl, (s, c)) = (jtc + m * l * l, m * g * l, th.sin_cos());
+    let w3 = (mgl + i1 * op * op * c) / (jp * op);
+    let b = jp * w3;
+    let a = i1 * op * s * s + b * c;
+    // U = f²/(2 I1) + M g L cos θ with f = (a − b cos θ)/sin θ: f(θ₀) = I1 Ω_p sin θ₀,
+    // f' = (b − a cos θ)/sin² θ, f'' = a/sin θ − 2 cos θ (b − a cos θ)/sin³ θ.
+    let (f0, f1, f2) = (i1 * op * s, (b - a * c) / (s * s), a / s - 2.0 * c * (b - a * c) / (s * s * s));
+    let nutation = (((f1 * f1 + f0 * f2) / i1 - mgl * c) / i1).sqrt();
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files/precessing_top.mbd");
+    let (im, warnings) = whirl(&file);
+    // 1e-8 relative (12.995257419810 rad/s); the spin and precession angles' drifts are zero
+    // eigenvalues.
+    assert_close(&im, &[nutation], 1e-8, "nutation about the steady precession");
+    assert!(warnings.iter().all(|w| !matches!(w, Warning::NotInEquilibrium { .. })), "{warnings:?}");
+
+    // The same motion written in the inertial frame: the top's axis turns with the
+    // precession, its angular momentum changes, and the frozen Jacobians' eigenvalues are not
+    // the nutation: the warning says so.
+    let dir = temp_dir("precessing-top");
+    let inertial = variant(
+        &dir,
+        "inertial.mbd",
+        &model_file("precessing_top.mbd"),
+        &[("    rigid body kinematics: const, angular velocity, 0., 0., OMEGA_P;\n", ""), ("        0., -S_REL*sin(TH), S_REL*cos(TH);", "        0., -S_REL*sin(TH), S_REL*cos(TH) + OMEGA_P;")],
+    );
+    let (im, warnings) = whirl(&inertial);
+    assert!(warnings.iter().any(|w| matches!(w, Warning::NotInEquilibrium { .. })), "{im:?} {warnings:?}");
+    std::fs::remove_dir_all(&dir).ok();
+}
