@@ -136,3 +136,89 @@ fn a_runs_prefix_must_name_a_regular_file() {
     assert_eq!(outputs(&d), ["sink"]);
     std::fs::remove_dir_all(&d).ok();
 }
+
+const BEAM: &str = include_str!("../examples/simply_supported_beam.mbd");
+
+/// `romdyn ARGS` on the README beam (`b.mbd` in `d`), its static equilibrium, input 5:Fy,
+/// output 5:y.
+fn beam_command(d: &Path, args: &[&str]) -> Command {
+    std::fs::write(d.join("b.mbd"), BEAM).unwrap();
+    let mut c = Command::new(env!("CARGO_BIN_EXE_romdyn"));
+    c.args([args[0], "b.mbd", "--static", "--input", "5:Fy", "--output", "5:y"]).args(&args[1..]).current_dir(d);
+    c
+}
+
+/// The folder's files but the models.
+fn files(d: &Path) -> Vec<String> {
+    outputs(d).into_iter().filter(|n| n != "b.mbd").collect()
+}
+
+#[test]
+fn rom_and_freq_check_their_outputs_before_any_work_and_write_them_as_one_set() {
+    let d = folder("rom-paths");
+    let refused = |args: &[&str], message: &str| {
+        let before = files(&d);
+        let o = beam_command(&d, args).output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr).into_owned();
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {err}");
+        assert!(err.contains(message), "{args:?}: expected {message:?} in {err}");
+        assert!(!err.contains("equations, route"), "refused before the eigenanalysis: {err}");
+        assert_eq!(files(&d), before, "{args:?}: nothing written");
+    };
+    refused(&["rom", "--count", "1", "--bode", "p", "--grid", "p"], "--bode and --grid would both write this file");
+    refused(&["rom", "--count", "1", "-o", "p.mat", "--imposed-out", "p.mat"], "-o and --imposed-out would both write this file");
+    std::fs::create_dir(d.join("p.png")).unwrap();
+    refused(&["rom", "--count", "1", "-o", "p.mat", "--bode", "p"], "p.png: --bode: is a directory");
+    refused(&["freq", "-o", "p"], "p.png: -o: is a directory");
+    std::fs::remove_dir(d.join("p.png")).unwrap();
+    refused(&["freq", "-o", "dir/"], "-o: names no file");
+    // Written: the ROM file and the Bode set together.
+    let o = beam_command(&d, &["rom", "--count", "1", "-o", "p.mat", "--bode", "p"]).output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(err.contains("wrote p.mat\nwrote p.csv, p.svg, p.png"), "{err}");
+    assert_eq!(files(&d), ["p.csv", "p.mat", "p.png", "p.svg"]);
+    std::fs::remove_dir_all(&d).ok();
+}
+
+/// Starts `args` on the beam, waits `after`, sends `signal`: (exit code, ended first).
+fn interrupted_beam(d: &Path, args: &[&str], after: Duration, signal: &str) -> (Option<i32>, bool) {
+    let mut child = beam_command(d, args).stdout(Stdio::null()).stderr(Stdio::null()).spawn().unwrap();
+    let start = Instant::now();
+    while start.elapsed() < after && child.try_wait().unwrap().is_none() {
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    let ended = child.try_wait().unwrap().is_some();
+    if !ended {
+        assert!(Command::new("kill").args([signal, &child.id().to_string()]).status().unwrap().success());
+    }
+    (child.wait().unwrap().code(), ended)
+}
+
+#[test]
+fn rom_and_freq_stopped_by_a_signal_leave_a_complete_set_or_none() {
+    let d = folder("rom-signals");
+    // 200 000 frequencies: the responses and the plots take long enough to be interrupted.
+    let rom: &[&str] = &["rom", "--count", "1", "-o", "p.mat", "--bode", "p", "--points", "200000"];
+    let freq: &[&str] = &["freq", "-o", "p", "--points", "200000"];
+    let rom_set = ["p.csv", "p.mat", "p.png", "p.svg"];
+    let freq_set = ["p.csv", "p.png", "p.svg"];
+    for (args, set) in [(rom, &rom_set[..]), (freq, &freq_set[..])] {
+        for (signal, ms) in [("-TERM", 100), ("-TERM", 1200), ("-KILL", 300), ("-KILL", 2500)] {
+            let (code, ended) = interrupted_beam(&d, args, Duration::from_millis(ms), signal);
+            // A set whose renames a SIGKILL cut is completed from its journal.
+            for j in files(&d).into_iter().filter(|n| n.ends_with(".romdyn-commit")) {
+                assert!(romdyn::output::atomic::recover_set(&d.join(j)).unwrap());
+            }
+            let left = files(&d);
+            let shown: Vec<String> = left.iter().filter(|n| !n.starts_with('.')).cloned().collect();
+            assert!(shown.is_empty() || shown == set, "{} {signal} after {ms} ms (ended {ended}): {left:?}", args[0]);
+            if signal == "-TERM" && !ended {
+                assert!(matches!(code, Some(143) | None), "status {code:?}");
+                assert!(left.is_empty(), "SIGTERM leaves no temporary: {left:?}");
+            }
+            left.iter().for_each(|f| std::fs::remove_file(d.join(f)).unwrap());
+        }
+    }
+    std::fs::remove_dir_all(&d).ok();
+}

@@ -4,6 +4,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
+use romdyn::output::atomic::{check_output_paths, check_prefix, write_set};
 use romdyn::output::frequency_plot::FrequencyResponses;
 use romdyn::output::rom_file::RomExport;
 use romdyn::output::mimo_plot::MimoPlot;
@@ -136,17 +137,62 @@ fn print_rom_warnings(study: &Study, rom: &ReducedModel) {
     print_warnings(&new);
 }
 
-/// Writes PREFIX.csv, PREFIX.svg and PREFIX.png.
-fn write_bode_files(r: &FrequencyResponses, prefix: &Path) -> Result<()> {
+/// Writes PREFIX.csv, PREFIX.svg and PREFIX.png (into the command's set); returns the line
+/// that says so.
+fn write_bode_files(r: &FrequencyResponses, prefix: &Path) -> Result<String> {
     let [csv, svg, png] = r.write_files(prefix, "Frequency response").with_context(|| format!("writing {}.{{csv,svg,png}}", prefix.display()))?;
-    eprintln!("wrote {}, {}, {}", csv.display(), svg.display(), png.display());
+    Ok(format!("wrote {}, {}, {}", csv.display(), svg.display(), png.display()))
+}
+
+/// PREFIX.csv, PREFIX.svg and PREFIX.png of option `option`, for the checks before any work.
+fn plot_files(option: &'static str, prefix: &Path) -> Result<[(&'static str, PathBuf); 3]> {
+    check_prefix(option, prefix)?;
+    Ok(["csv", "svg", "png"].map(|e| (option, romdyn::output::prefixed_path(prefix, e))))
+}
+
+/// Runs `write` (whose lines say what it wrote) with the command's files as one set
+/// ([`write_set`]): all of them in place at the end, or none; then prints the lines.
+fn write_outputs(outputs: &[(&str, PathBuf)], write: impl FnOnce() -> Result<Vec<String>>) -> Result<()> {
+    let Some((_, first)) = outputs.first() else {
+        write()?;
+        return Ok(());
+    };
+    let (lines, _) = write_set(&romdyn::analysis::journal_path(first), write)?;
+    for l in lines {
+        eprintln!("{l}");
+    }
     Ok(())
 }
 
-pub fn run(a: RomArgs) -> Result<()> {
+/// Every file `rom` will write, each with its option.
+fn rom_outputs(a: &RomArgs) -> Result<Vec<(&'static str, PathBuf)>> {
+    let mut out = Vec::new();
     if let Some(path) = &a.file {
         RomExport::check_path(path)?;
+        out.push(("-o", path.clone()));
     }
+    if let Some(prefix) = &a.bode {
+        out.extend(plot_files("--bode", prefix)?);
+    }
+    if let Some(prefix) = &a.grid {
+        out.extend(plot_files("--grid", prefix)?);
+    }
+    if let Some(prefix) = &a.transmissibility {
+        out.extend(plot_files("--transmissibility", prefix)?);
+        if !a.diagonal {
+            out.extend(plot_files("--transmissibility", &romdyn::output::prefixed_path(prefix, "diagonal"))?);
+        }
+    }
+    if let Some(path) = &a.imposed_out {
+        RomExport::check_path(path)?;
+        out.push(("--imposed-out", path.clone()));
+    }
+    check_output_paths(&out)?;
+    Ok(out)
+}
+
+pub fn run(a: RomArgs) -> Result<()> {
+    let outputs = rom_outputs(&a)?;
     let request = a.rom.request();
     let study = a.pencil.study(Some(&request))?;
     let rom = study.reduce(&request)?;
@@ -163,17 +209,21 @@ pub fn run(a: RomArgs) -> Result<()> {
         eprint!("{}", free_eigenvalues(&rom.descriptor.eigenvalues, |l| study.free_real_mode_label(l)));
     }
     let export = rom.export(&study, a.rom.form());
-    match &a.file {
-        Some(path) => {
+    if a.file.is_none() {
+        println!("{}", serde_json::to_string_pretty(&export.to_json())?);
+    }
+    write_outputs(&outputs, || {
+        let mut lines = Vec::new();
+        if let Some(path) = &a.file {
             export.write(path).with_context(|| format!("writing {}", path.display()))?;
-            eprintln!("wrote {}", path.display());
+            lines.push(format!("wrote {}", path.display()));
         }
-        None => println!("{}", serde_json::to_string_pretty(&export.to_json())?),
-    }
-    if let Some(prefix) = &a.bode {
-        write_bode_files(&comparison.responses(&study, "ROM"), prefix)?;
-    }
-    write_application_files(&a, &study, &rom)
+        if let Some(prefix) = &a.bode {
+            lines.push(write_bode_files(&comparison.responses(&study, "ROM"), prefix)?);
+        }
+        lines.extend(write_application_files(&a, &study, &rom)?);
+        Ok(lines)
+    })
 }
 
 /// The eigenvalues that set a default frequency grid: rigid-body (zero) ones of a ROM whose
@@ -203,9 +253,10 @@ fn free_eigenvalues(eig: &[faer::c64], label: impl Fn(f64) -> Option<String>) ->
     s
 }
 
-/// --grid, --transmissibility, --imposed-out.
-fn write_application_files(a: &RomArgs, study: &Study, rom: &ReducedModel) -> Result<()> {
-    let wrote = |p: [PathBuf; 3]| eprintln!("wrote {}, {}, {}", p[0].display(), p[1].display(), p[2].display());
+/// --grid, --transmissibility, --imposed-out; returns the lines that say what was written.
+fn write_application_files(a: &RomArgs, study: &Study, rom: &ReducedModel) -> Result<Vec<String>> {
+    let mut lines = Vec::new();
+    let mut wrote = |p: [PathBuf; 3]| lines.push(format!("wrote {}, {}, {}", p[0].display(), p[1].display(), p[2].display()));
     if let Some(prefix) = &a.grid {
         let freq = study.frequencies(&a.freq.grid(), &nonzero(&rom.descriptor.eigenvalues))?;
         // The imposed displacements (last outputs) are inputs of the transmissibility, not
@@ -240,12 +291,14 @@ fn write_application_files(a: &RomArgs, study: &Study, rom: &ReducedModel) -> Re
         let eig: Vec<String> = m.rom.eigenvalues.iter().map(|l| format!("{:.6}{:+.6}j", l.re, l.im)).collect();
         eprintln!("imposed-motion model: {} states, eigenvalues {}", m.rom.a.nrows(), eig.join(", "));
         study.imposed_export(&m).write(path).with_context(|| format!("writing {}", path.display()))?;
-        eprintln!("wrote {}", path.display());
+        lines.push(format!("wrote {}", path.display()));
     }
-    Ok(())
+    Ok(lines)
 }
 
 pub fn run_freq(a: FreqArgs) -> Result<()> {
+    let outputs = plot_files("-o", &a.prefix)?;
+    check_output_paths(&outputs)?;
     let selection = match (&a.count, &a.band) {
         (Some(n), _) => Some(ModeSelection::Lowest(*n)),
         (None, Some((fmin_hz, fmax_hz))) => Some(ModeSelection::Band { fmin_hz: *fmin_hz, fmax_hz: *fmax_hz }),
@@ -268,5 +321,5 @@ pub fn run_freq(a: FreqArgs) -> Result<()> {
         }
         None => study.full_responses(study.frequencies(&a.freq.grid(), &[])?)?,
     };
-    write_bode_files(&curves, &a.prefix)
+    write_outputs(&outputs, || Ok(vec![write_bode_files(&curves, &a.prefix)?]))
 }
