@@ -222,3 +222,50 @@ fn rom_and_freq_stopped_by_a_signal_leave_a_complete_set_or_none() {
     }
     std::fs::remove_dir_all(&d).ok();
 }
+
+/// A tmpfs of `kib` KiB mounted on a fresh folder, unmounted when dropped; `None` (with a
+/// message) where mounting is not allowed (not root, or a container without the right).
+struct SmallDisk(PathBuf);
+
+impl SmallDisk {
+    fn mount(name: &str, kib: usize) -> Option<SmallDisk> {
+        let d = std::env::temp_dir().join(format!("romdyn-full-{name}-{}", std::process::id()));
+        let _ = std::fs::create_dir_all(&d);
+        let ok = Command::new("mount").args(["-t", "tmpfs", "-o", &format!("size={kib}k"), "tmpfs"]).arg(&d).stderr(Stdio::null()).status().is_ok_and(|s| s.success());
+        if !ok {
+            eprintln!("skipped: cannot mount a tmpfs on {} here (needs root and the right to mount)", d.display());
+            let _ = std::fs::remove_dir(&d);
+            return None;
+        }
+        Some(SmallDisk(d))
+    }
+}
+
+impl Drop for SmallDisk {
+    fn drop(&mut self) {
+        let _ = Command::new("umount").arg(&self.0).status();
+        let _ = std::fs::remove_dir(&self.0);
+    }
+}
+
+#[test]
+fn a_full_disk_leaves_a_complete_set_or_none() {
+    // 96 KiB: the CSV (30 KB) and the SVG (35 KB) fit, the PNG (157 KB) does not; before,
+    // freq left the CSV and the SVG, a set that looked complete but for its plot.
+    let Some(disk) = SmallDisk::mount("freq", 96) else { return };
+    let d = &disk.0;
+    std::fs::write(d.join("p.mbd"), PENDULUM).unwrap();
+    let run = |args: &[&str]| {
+        let o = Command::new(env!("CARGO_BIN_EXE_romdyn")).args(args).current_dir(d).output().unwrap();
+        (o.status.code(), String::from_utf8_lossy(&o.stderr).into_owned())
+    };
+    let (code, err) = run(&["freq", "p.mbd", "--static", "--input", "2:Fx", "--output", "2:x", "-o", "p"]);
+    assert!(code == Some(1) && err.contains("No space left on device"), "{err}");
+    assert_eq!(outputs(d), Vec::<String>::new(), "freq: none of the set, no temporary");
+    let (code, err) = run(&["rom", "p.mbd", "--static", "--input", "2:Fx", "--output", "2:x", "--count", "1", "-o", "p.json", "--bode", "p"]);
+    assert!(code == Some(1) && err.contains("No space left on device"), "{err}");
+    assert_eq!(outputs(d), Vec::<String>::new(), "rom: none of the set, no temporary");
+    let (code, err) = run(&["sweep", "p.mbd", "--set", "L=1:2:50", "--input", "2:Mz", "--output", "2:rz", "--count", "1", "--lowest", "1", "--table", "p.csv", "--plot", "p"]);
+    assert!(code == Some(1) && err.contains("No space left on device"), "{err}");
+    assert_eq!(outputs(d), Vec::<String>::new(), "sweep: none of the set, no temporary");
+}
