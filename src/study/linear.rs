@@ -59,6 +59,11 @@ impl LinearModel {
         self.sparse.as_ref().map_or_else(|| &self.dense().c, |s| &s.c)
     }
 
+    /// `C̃_v` of rate outputs (velocity sensors), if any.
+    pub fn c_rate(&self) -> Option<&Mat<f64>> {
+        self.sparse.as_ref().map_or_else(|| self.dense().c_rate.as_ref(), |s| s.c_rate.as_ref())
+    }
+
     pub fn input_names(&self) -> &[String] {
         self.sparse.as_ref().map_or_else(|| &self.dense().input_names[..], |s| &s.input_names[..])
     }
