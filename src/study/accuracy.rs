@@ -110,11 +110,10 @@ impl Study {
                 list.join(", ")
             );
         }
-        let residualized = rom.static_correction || rom.residualization != Residualization::None;
-        if residualized {
-            "the dropped modes are already residualized (--residualize was given) and the difference remains: keep more modes as dynamic modes".to_string()
-        } else {
-            "the modes the ROM drops carry it: keep more modes, or --residualize (folds the modes dropped above the band into D)".to_string()
+        match (&rom.residualization, rom.static_correction) {
+            (Residualization::Dropped, _) | (_, true) => "the dropped modes are already residualized (--residualize was given) and the difference remains: keep more modes as dynamic modes (a wider band or a larger --count)".to_string(),
+            (Residualization::Modes(_), false) => "keep more modes, or residualize every dropped mode (--residualize instead of --residualize-modes)".to_string(),
+            (Residualization::None, false) => "the modes the ROM drops carry it: keep more modes, or --residualize (folds the modes dropped above the band into D)".to_string(),
         }
     }
 }
