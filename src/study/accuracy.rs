@@ -86,7 +86,9 @@ impl Study {
         }
         let name = |names: &[String], k: usize| names.get(k).cloned().unwrap_or_else(|| (k + 1).to_string());
         let channel = format!("{} / {}", name(outputs, worst.output), name(inputs, worst.input));
-        Some(Warning::ResponseDeparts { response, channel, relative: worst.relative, at_hz: worst.at_hz, top_hz: top, advice: self.departure_advice(rom) })
+        let k = c.freq_hz.iter().position(|&f| f == worst.at_hz).unwrap_or(0);
+        let (full, reduced) = (c.full[k][(worst.output, worst.input)].norm(), c.rom[k][(worst.output, worst.input)].norm());
+        Some(Warning::ResponseDeparts { response, channel, relative: worst.relative, at_hz: worst.at_hz, full, rom: reduced, top_hz: top, advice: self.departure_advice(rom) })
     }
 
     /// What to do about a departure, from what the ROM left out and what the user already

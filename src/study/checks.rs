@@ -138,9 +138,26 @@ pub fn zero_channels(dae: &LinearDae, modal: &ModalAnalysis) -> Vec<Vec<bool>> {
 
 /// [`zero_channels`] from `B̃`, `C̃`, `C̃_v`, the modes and the full static gain (`None`: none).
 pub(super) fn zero_channels_of(b: &Mat<f64>, c: &Mat<f64>, c_rate: Option<&Mat<f64>>, modal: &ModalAnalysis, gain: Option<&Mat<f64>>) -> Vec<Vec<bool>> {
+    let sums = modal_sums(b, c, c_rate, modal);
+    zero_from_sums(&sums, gain)
+}
+
+/// Per channel (outputs × inputs), over the dynamic modes: the largest static contribution
+/// `|(C̃_i v)(uᵀ B̃_j)| / |λ|` above the vectors' rounding, the largest aligned bound
+/// `‖C̃_i‖ ‖v‖ ‖u‖ ‖B̃_j‖ / |λ|`, and the sum of every mode's contribution `Σ |…| / |λ|`.
+pub(super) struct ModalSums {
+    residue: Mat<f64>,
+    bound: Mat<f64>,
+    /// `Σ_k |(C̃_i v_k)(u_kᵀ B̃_j)| / |λ_k|`: the size of the terms whose sum is the static
+    /// gain (their cancellation sets its rounding).
+    pub absolute: Mat<f64>,
+}
+
+pub(super) fn modal_sums(b: &Mat<f64>, c: &Mat<f64>, c_rate: Option<&Mat<f64>>, modal: &ModalAnalysis) -> ModalSums {
     let (no, ni) = (c.nrows(), b.ncols());
     let mut residue = Mat::<f64>::zeros(no, ni);
     let mut bound = Mat::<f64>::zeros(no, ni);
+    let mut absolute = Mat::<f64>::zeros(no, ni);
     // The non-zeros of C̃'s rows and B̃'s columns (a port touches a few unknowns): the sums
     // below skip only zero terms, so they are those over every unknown.
     let nonzeros = |len: usize, at: &dyn Fn(usize) -> f64| -> Vec<(usize, f64)> { (0..len).map(|k| (k, at(k))).filter(|e| e.1 != 0.0).collect() };
@@ -163,6 +180,7 @@ pub(super) fn zero_channels_of(b: &Mat<f64>, c: &Mat<f64>, c_rate: Option<&Mat<f
                 let aligned = (c_norm[r] + m.lambda.norm() * rate_norm[r]) * nv * nu * b_norm[c] / lam;
                 bound[(r, c)] = bound[(r, c)].max(aligned);
                 let contribution = (cv[r] * ub[c]).norm() / lam;
+                absolute[(r, c)] += contribution;
                 // Below the vectors' own rounding: not a contribution.
                 if contribution > 1e-10 * aligned {
                     residue[(r, c)] = residue[(r, c)].max(contribution);
@@ -170,6 +188,12 @@ pub(super) fn zero_channels_of(b: &Mat<f64>, c: &Mat<f64>, c_rate: Option<&Mat<f
             }
         }
     }
+    ModalSums { residue, bound, absolute }
+}
+
+fn zero_from_sums(sums: &ModalSums, gain: Option<&Mat<f64>>) -> Vec<Vec<bool>> {
+    let (residue, bound) = (&sums.residue, &sums.bound);
+    let (no, ni) = (residue.nrows(), residue.ncols());
     let max_res = residue.norm_max();
     let max_gain = gain.map_or(0.0, |g| g.norm_max());
     let max_bound = bound.norm_max();
@@ -232,11 +256,17 @@ impl Study {
     /// [`zero_channels`] of the study's full model (outputs × inputs; the static gain by
     /// sparse LU on the sparse route): the channels whose every response is zero to rounding.
     pub fn zero_channels(&self) -> Vec<Vec<bool>> {
+        self.channel_sums().0
+    }
+
+    /// [`Study::zero_channels`] and the modal sums it came from.
+    pub(super) fn channel_sums(&self) -> (Vec<Vec<bool>>, ModalSums) {
+        let sums = modal_sums(self.linear.b(), self.linear.c(), self.linear.c_rate(), &self.modal);
         if self.sparse.is_none() {
-            return zero_channels_of(self.linear.b(), self.linear.c(), self.linear.c_rate(), &self.modal, self.linear.dense_static_gain().ok());
+            return (zero_from_sums(&sums, self.linear.dense_static_gain().ok()), sums);
         }
         let gain = self.linear.sparse_static_gain().and_then(Result::ok);
-        zero_channels_of(self.linear.b(), self.linear.c(), self.linear.c_rate(), &self.modal, gain.as_ref())
+        (zero_from_sums(&sums, gain.as_ref()), sums)
     }
 
     /// The warning that the sparse eigenanalysis is not certified, when it is not.

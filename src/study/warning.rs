@@ -27,7 +27,8 @@ pub enum Warning {
     SparseNotCertified { target: String, reason: String, damping_covered: f64 },
     /// The ROM's response departs from the full model's on the response grid, within the
     /// frequencies of interest (its channel on its own scale).
-    ResponseDeparts { response: Response, channel: String, relative: f64, at_hz: f64, top_hz: f64, advice: String },
+    /// `full` and `rom`: the two magnitudes there (the channel's units).
+    ResponseDeparts { response: Response, channel: String, relative: f64, at_hz: f64, full: f64, rom: f64, top_hz: f64, advice: String },
     /// With an imposed motion, the ROM's transmissibility could not be formed (its imposed
     /// block is singular at a grid frequency), so it was not checked.
     TransmissibilityUnavailable { reason: String, top_hz: f64 },
@@ -75,9 +76,9 @@ impl fmt::Display for Warning {
                 f,
                 "the sparse eigenanalysis of {target} is not certified: {reason} (shift windows cover damping ratios up to {damping_covered:.2}); a mode may be missing from the table and the ROM: check with --solver dense, or narrow the band"
             ),
-            Warning::ResponseDeparts { response, channel, relative, at_hz, top_hz, advice } => write!(
+            Warning::ResponseDeparts { response, channel, relative, at_hz, full, rom, top_hz, advice } => write!(
                 f,
-                "the ROM's {} {channel} departs from the full model's by {relative:.2e} (relative, on its own scale) at {at_hz:.4} Hz, within the frequencies of interest (up to {top_hz:.4} Hz): {advice}",
+                "the ROM's {} {channel} departs from the full model's by {relative:.2e} (relative, on its own scale) at {at_hz:.4} Hz (|ROM| {rom:.3e}, |full| {full:.3e}), within the frequencies of interest (up to {top_hz:.4} Hz): {advice}",
                 match response {
                     Response::Inputs => "response",
                     Response::Transmissibility => "transmissibility (eq. 100)",
