@@ -12,14 +12,42 @@ times and dCoef in s.
 >>> rom = study.reduce(count=1)
 >>> sys = rom.to_control()          # python-control StateSpace with input/output names
 
+Warnings: every warning the CLI prints is raised with ``warnings.warn`` under
+``RomdynWarning`` (a ``UserWarning``): ``ReferenceWarning`` (not an equilibrium, beams'
+update), ``PortWarning`` (an input that moves nothing, an output that sees nothing),
+``EigenanalysisWarning`` (sparse route not certified), ``ModeSelectionWarning`` (modes below
+the band, modes that add nothing, damping not applied) and ``AccuracyWarning`` with
+``StaticGainWarning``, ``ResponseWarning`` and ``TransmissibilityWarning`` (the ROM departs
+from the full model: ``Study.reduce()`` runs the CLI's check on the response grid). Filter
+them as any warning, e.g. ``warnings.simplefilter("error", romdyn.AccuracyWarning)``.
+
 Errors carry the CLI's messages: ``ModelError`` (a subclass of ``RomdynError``) for an
 input file reads ``FILE:LINE:COLUMN: error: ...`` with the line and a caret.
 """
 
-from ._romdyn import Model, ModelError, Rom, RomdynError, Study
+from ._romdyn import (
+    AccuracyWarning,
+    EigenanalysisWarning,
+    Model,
+    ModelError,
+    ModeSelectionWarning,
+    PortWarning,
+    ReferenceWarning,
+    ResponseWarning,
+    Rom,
+    RomdynError,
+    RomdynWarning,
+    StaticGainWarning,
+    Study,
+    TransmissibilityWarning,
+)
 from ._sweep import SweepResult, sweep
 
-__all__ = ["Model", "Study", "Rom", "RomdynError", "ModelError", "load", "sweep", "SweepResult"]
+__all__ = [
+    "Model", "Study", "Rom", "RomdynError", "ModelError", "load", "sweep", "SweepResult",
+    "RomdynWarning", "ReferenceWarning", "PortWarning", "EigenanalysisWarning", "ModeSelectionWarning",
+    "AccuracyWarning", "StaticGainWarning", "ResponseWarning", "TransmissibilityWarning",
+]
 
 
 def load(path, set=None, beam_update=None):

@@ -6,6 +6,7 @@
 
 mod convert;
 mod options;
+mod warnings;
 
 use std::path::PathBuf;
 
@@ -16,7 +17,7 @@ use pyo3::types::PyDict;
 use romdyn::analysis::{run, NodeHistories};
 use romdyn::input::mbdyn::{read_model_text, MbdynModel, SetOverrides};
 use romdyn::output::rom_file::RomExport;
-use romdyn::study::{EigenSettings, ReducedModel, Study, StudyError};
+use romdyn::study::{EigenSettings, FrequencyGrid, ReducedModel, Study, StudyError};
 
 use convert::{complex_vec, mat, responses};
 
@@ -44,15 +45,6 @@ fn modes_dict<'py>(py: Python<'py>, modal: &romdyn::linear::ModalAnalysis) -> Py
     d.set_item("damping", modal.modes.iter().map(|m| m.damping()).collect::<Vec<_>>().into_pyarray(py))?;
     d.set_item("error", modal.modes.iter().map(|m| m.error).collect::<Vec<_>>().into_pyarray(py))?;
     Ok(d)
-}
-
-/// Each message as a Python `UserWarning` (beams the `auto` update leaves path independent).
-fn warn_all(py: Python<'_>, messages: &[String]) -> PyResult<()> {
-    for message in messages {
-        let text = std::ffi::CString::new(format!("{message} (beam_update=\"path-independent\" silences this)")).unwrap_or_default();
-        PyErr::warn(py, &py.get_type::<pyo3::exceptions::PyUserWarning>(), &text, 1)?;
-    }
-    Ok(())
 }
 
 /// An MBDyn input file, its text kept (with `set:` overrides) and read again for each
@@ -156,7 +148,9 @@ impl Model {
             Ok((Study::of_model(m.model, &m.problem, reference, &ports, eigen, None).map_err(|e| e.in_file(&self.name))?, kept))
         });
         let ((study, _), kept) = study.map_err(py_err)?;
-        warn_all(py, &kept)?;
+        warnings::warn_beam_notes(py, &kept)?;
+        // The study's warnings, as `romdyn eig|rom` prints them.
+        warnings::warn_all(py, study.warnings())?;
         Ok(StudyPy { study })
     }
 
@@ -198,7 +192,7 @@ impl Model {
                 Ok((h, kept))
             })
             .map_err(py_err)?;
-        warn_all(py, &kept)?;
+        warnings::warn_beam_notes(py, &kept)?;
         let (nt, nn) = (h.time.len(), h.labels.len());
         let d = PyDict::new(py);
         d.set_item("time", h.time.into_pyarray(py))?;
@@ -269,15 +263,35 @@ impl StudyPy {
     /// matter), band (FMIN, FMAX) [Hz] or modes (1-based modal-table indices); residualize:
     /// True (the dropped modes) or a list of modes; below_band "drop"|"keep"|"refuse";
     /// damping: ζ for every kept mode or {mode: ζ}; form "ordinary"|"descriptor".
-    #[pyo3(signature = (count = None, band = None, modes = None, residualize = None, by = "frequency", below_band = "drop", damping = None, form = "ordinary"))]
+    ///
+    /// Runs the CLI's accuracy check: every response (and with an imposed motion the
+    /// transmissibility, eq. 100) against the full model on a log grid of `points`
+    /// frequencies from `fmin` to `fmax` [Hz] (defaults: a decade around the ROM's modes, as
+    /// `romdyn rom`). The ROM's warnings (static gain, modes below the band, responses that
+    /// depart within the frequencies of interest, …) are raised with `warnings.warn` under
+    /// `romdyn.RomdynWarning` (e.g. `romdyn.TransmissibilityWarning`) and kept in
+    /// `Rom.warnings`; `Rom.summary` holds the accuracy lines.
+    #[pyo3(signature = (count = None, band = None, modes = None, residualize = None, by = "frequency", below_band = "drop", damping = None, form = "ordinary", fmin = None, fmax = None, points = 400))]
     #[allow(clippy::too_many_arguments)]
-    fn reduce(&self, py: Python<'_>, count: Option<usize>, band: Option<(f64, f64)>, modes: Option<Vec<usize>>, residualize: Option<&Bound<'_, PyAny>>, by: &str, below_band: &str, damping: Option<&Bound<'_, PyAny>>, form: &str) -> PyResult<Rom> {
+    fn reduce(&self, py: Python<'_>, count: Option<usize>, band: Option<(f64, f64)>, modes: Option<Vec<usize>>, residualize: Option<&Bound<'_, PyAny>>, by: &str, below_band: &str, damping: Option<&Bound<'_, PyAny>>, form: &str, fmin: Option<f64>, fmax: Option<f64>, points: usize) -> PyResult<Rom> {
         let request = options::request(count, band, modes, residualize, by, below_band, damping)?;
         let form = options::form(form)?;
-        let rom = py.detach(|| self.study.reduce(&request)).map_err(py_err)?;
-        rom.check_form(form).map_err(py_err)?;
+        let grid = FrequencyGrid { fmin_hz: fmin, fmax_hz: fmax, points };
+        let (mut rom, check) = py
+            .detach(|| -> Result<_, StudyError> {
+                let rom = self.study.reduce(&request)?;
+                rom.check_form(form)?;
+                let check = self.study.check_rom(&rom, &grid)?;
+                Ok((rom, check))
+            })
+            .map_err(py_err)?;
         let export = rom.export(&self.study, form);
-        let summary = rom.summary(&self.study, None);
+        let summary = rom.summary(&self.study, Some(&check));
+        // The ROM's warnings the study did not already raise, then the check's (the CLI's order).
+        let study_warnings = self.study.warnings();
+        rom.warnings.extend(check.warnings);
+        let new: Vec<_> = rom.warnings.iter().filter(|w| !study_warnings.contains(w)).cloned().collect();
+        warnings::warn_all(py, &new)?;
         Ok(Rom { export, rom, summary })
     }
 
@@ -379,7 +393,8 @@ impl Rom {
     fn rom_static_gain<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray2<f64>>> {
         self.export.rom_static_gain.as_ref().map(|m| mat(py, m))
     }
-    /// The ROM's warnings.
+    /// The ROM's warnings, the accuracy check's included (`reduce()` raised each with its
+    /// `romdyn.RomdynWarning` category, but those the study had raised already).
     #[getter]
     fn warnings(&self) -> Vec<String> {
         self.rom.warnings.iter().map(|w| w.to_string()).collect()
@@ -478,6 +493,7 @@ fn _romdyn(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Rom>()?;
     m.add("RomdynError", m.py().get_type::<RomdynError>())?;
     m.add("ModelError", m.py().get_type::<ModelError>())?;
+    warnings::register(m)?;
     m.add_function(wrap_pyfunction!(check_parameters, m)?)?;
     m.add_function(wrap_pyfunction!(parse_set, m)?)?;
     m.add_function(wrap_pyfunction!(grid, m)?)?;

@@ -9,7 +9,7 @@ use romdyn::output::frequency_plot::FrequencyResponses;
 use romdyn::output::rom_file::RomExport;
 use romdyn::output::mimo_plot::MimoPlot;
 use romdyn::rom::{ModalDamping, ModeSelection};
-use romdyn::study::{ReducedModel, Residualization, RomForm, RomRequest, Study, Warning};
+use romdyn::study::{ReducedModel, Residualization, RomCheck, RomForm, RomRequest, Study, Warning};
 
 use super::args::{parse_band, parse_damping, BelowBandArg, By, FrequencyArgs, PencilArgs, SelectionArgs};
 
@@ -197,12 +197,14 @@ pub fn run(a: RomArgs) -> Result<()> {
     let study = a.pencil.study(Some(&request))?;
     let rom = study.reduce(&request)?;
     rom.check_form(a.rom.form())?;
-    let freq = study.frequencies(&a.freq.grid(), &nonzero(&rom.descriptor.eigenvalues))?;
+    // Every response asked for against the full model on the grid (the library's check,
+    // the same Python's reduce() runs).
+    let check = study.check_rom(&rom, &a.freq.grid())?;
     eprint!("{}", study.modal_report().to_text_dynamic(12));
     print_study(&study);
-    let comparison = study.compare(&rom, freq)?;
-    eprint!("{}", rom.summary(&study, Some(&comparison.accuracy())));
+    eprint!("{}", rom.summary(&study, Some(&check)));
     print_rom_warnings(&study, &rom);
+    print_warnings(&check.warnings);
     let removed = study.removed_springs();
     if !removed.is_empty() {
         eprintln!("removed from the full model and the ROM (their force fed back, A + B_e K C_e): {}", removed.join(", "));
@@ -219,18 +221,11 @@ pub fn run(a: RomArgs) -> Result<()> {
             lines.push(format!("wrote {}", path.display()));
         }
         if let Some(prefix) = &a.bode {
-            lines.push(write_bode_files(&comparison.responses(&study, "ROM"), prefix)?);
+            lines.push(write_bode_files(&check.comparison.responses(&study, "ROM"), prefix)?);
         }
-        lines.extend(write_application_files(&a, &study, &rom)?);
+        lines.extend(write_application_files(&a, &study, &rom, &check)?);
         Ok(lines)
     })
-}
-
-/// The eigenvalues that set a default frequency grid: rigid-body (zero) ones of a ROM whose
-/// dummy springs were removed would stretch it down to rounding.
-fn nonzero(eig: &[faer::c64]) -> Vec<faer::c64> {
-    let big = eig.iter().map(|l| l.norm()).fold(0.0, f64::max);
-    eig.iter().copied().filter(|l| l.norm() > 1e-6 * big).collect()
 }
 
 /// The eigenvalues of a ROM whose dummy springs were removed: rigid-body, unstable and
@@ -254,19 +249,19 @@ fn free_eigenvalues(eig: &[faer::c64], label: impl Fn(f64) -> Option<String>) ->
 }
 
 /// --grid, --transmissibility, --imposed-out; returns the lines that say what was written.
-fn write_application_files(a: &RomArgs, study: &Study, rom: &ReducedModel) -> Result<Vec<String>> {
+fn write_application_files(a: &RomArgs, study: &Study, rom: &ReducedModel, check: &RomCheck) -> Result<Vec<String>> {
     let mut lines = Vec::new();
     let mut wrote = |p: [PathBuf; 3]| lines.push(format!("wrote {}, {}, {}", p[0].display(), p[1].display(), p[2].display()));
     if let Some(prefix) = &a.grid {
-        let freq = study.frequencies(&a.freq.grid(), &nonzero(&rom.descriptor.eigenvalues))?;
+        let freq = check.comparison.freq_hz.clone();
         // The imposed displacements (last outputs) are inputs of the transmissibility, not
         // responses: the grid shows the other outputs.
         let no = study.output_names().len() - study.imposed_len();
         let rows = |h: Vec<faer::Mat<faer::c64>>| h.into_iter().map(|m| m.get(..no, ..).to_owned()).collect::<Vec<_>>();
         let plot = MimoPlot {
             title: "Transfer matrix |z/u|".into(),
-            full: rows(study.full_frequency_response(&freq)?),
-            rom: Some(rows(rom.ordinary.frequency_response(&freq))),
+            full: rows(check.comparison.full.clone()),
+            rom: Some(rows(check.comparison.rom.clone())),
             freq_hz: freq,
             inputs: study.input_names().to_vec(),
             outputs: study.output_names()[..no].to_vec(),
@@ -275,8 +270,11 @@ fn write_application_files(a: &RomArgs, study: &Study, rom: &ReducedModel) -> Re
         wrote(plot.write_files(prefix).with_context(|| format!("writing {}.{{csv,svg,png}}", prefix.display()))?);
     }
     if let Some(prefix) = &a.transmissibility {
-        let freq = study.frequencies(&a.freq.grid(), &nonzero(&rom.descriptor.eigenvalues))?;
-        let t = study.transmissibility(rom, &freq)?;
+        // The checked transmissibility, or the error that kept it from being formed.
+        let t = match &check.transmissibility {
+            Some((t, _)) => t.clone(),
+            None => study.transmissibility(rom, &check.comparison.freq_hz)?,
+        };
         let mut plot = MimoPlot { title: "Transmissibility |z/z_e| (eq. 100)".into(), freq_hz: t.freq_hz, inputs: t.imposed, outputs: t.outputs, full: t.full, rom: Some(t.rom), diagonal: a.diagonal };
         wrote(plot.write_files(prefix).with_context(|| format!("writing {}.{{csv,svg,png}}", prefix.display()))?);
         // The diagonal alone (x/x, y/y, …: paper Fig. 11) beside the whole matrix.
@@ -316,8 +314,9 @@ pub fn run_freq(a: FreqArgs) -> Result<()> {
         Some(request) => {
             let rom = study.reduce(request)?;
             print_rom_warnings(&study, &rom);
-            let freq = study.frequencies(&a.freq.grid(), &nonzero(&rom.descriptor.eigenvalues))?;
-            study.compare(&rom, freq)?.responses(&study, "ROM")
+            let check = study.check_rom(&rom, &a.freq.grid())?;
+            print_warnings(&check.warnings);
+            check.comparison.responses(&study, "ROM")
         }
         None => study.full_responses(study.frequencies(&a.freq.grid(), &[])?)?,
     };

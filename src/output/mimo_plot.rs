@@ -10,8 +10,9 @@ use faer::{c64, Mat};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::atomic::{write_atomic_bytes, OutputError};
-use super::bode::log_tick_label;
+use super::atomic::OutputError;
+use super::bode::{log_tick_label, CurveStyle, ResponseCurve};
+use super::response_csv::write_response_csv;
 use super::figure::{write_figure, Figure, COLORS, FONT};
 use super::prefixed_path;
 
@@ -58,28 +59,31 @@ impl MimoPlot {
         }).collect()
     }
 
-    /// Writes `PREFIX.csv`, `PREFIX.svg`, `PREFIX.png`.
+    /// The panels' curves, full model then ROM for each pair, for the CSV.
+    fn curves(&self) -> Vec<ResponseCurve> {
+        let curve = |label: &str, style, h: &[Mat<c64>], i: usize, j: usize| ResponseCurve {
+            label: label.into(),
+            input: self.inputs[j].clone(),
+            output: self.outputs[i].clone(),
+            freq_hz: self.freq_hz.clone(),
+            values: h.iter().map(|m| m[(i, j)]).collect(),
+            style,
+        };
+        let mut curves = Vec::new();
+        for (i, j) in self.panels() {
+            curves.push(curve("full model", CurveStyle::Full, &self.full, i, j));
+            if let Some(r) = &self.rom {
+                curves.push(curve("ROM", CurveStyle::Rom, r, i, j));
+            }
+        }
+        curves
+    }
+
+    /// Writes `PREFIX.csv` (complex values, magnitude and phase of every panel's curves: the
+    /// layout of [`write_response_csv`]), `PREFIX.svg`, `PREFIX.png`.
     pub fn write_files(&self, prefix: &Path) -> Result<[PathBuf; 3], OutputError> {
         let paths = [prefixed_path(prefix, "csv"), prefixed_path(prefix, "svg"), prefixed_path(prefix, "png")];
-        let mut csv = String::from("# magnitude |H| in SI units (output unit / input unit); frequency in Hz\nfrequency_hz");
-        for (i, j) in self.panels() {
-            csv += &format!(",\"full |{} / {}|\"", self.outputs[i], self.inputs[j]);
-            if self.rom.is_some() {
-                csv += &format!(",\"ROM |{} / {}|\"", self.outputs[i], self.inputs[j]);
-            }
-        }
-        csv += "\n";
-        for (k, f) in self.freq_hz.iter().enumerate() {
-            csv += &format!("{f:e}");
-            for (i, j) in self.panels() {
-                csv += &format!(",{:e}", self.full[k][(i, j)].norm());
-                if let Some(r) = &self.rom {
-                    csv += &format!(",{:e}", r[k][(i, j)].norm());
-                }
-            }
-            csv += "\n";
-        }
-        write_atomic_bytes(&paths[0], csv.as_bytes())?;
+        write_response_csv(&self.curves(), &paths[0])?;
         write_figure(self, self.size(), &paths[1], &paths[2])?;
         Ok(paths)
     }

@@ -24,7 +24,7 @@ pub use imposed::{transmissibility, ImposedModel};
 pub use springs::{with_spring_ports, without_elements, SpringFeedback};
 pub use null_space::null_direction;
 pub use ordinary::OrdinaryRom;
-pub use response::{frequency_grid, full_frequency_response, full_static_gain, full_static_gain_or_free_direction, log_frequencies};
+pub use response::{frequency_grid, full_frequency_response, full_static_gain, full_static_gain_and_scale, full_static_gain_or_free_direction, log_frequencies};
 pub use select::{select_dominant_modes, select_modes, ModeSelection, Ranking, Selection};
 pub use units::{mode_units, unit_of, REAL_PAIR_TOLERANCE};
 pub use static_correction::with_static_correction;

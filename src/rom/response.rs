@@ -45,6 +45,16 @@ pub fn full_static_gain(dae: &LinearDae) -> Result<Mat<f64>, RomError> {
 /// [`full_static_gain`], with the direction a singular `S` leaves free in the unknowns
 /// (largest entry 1) from the same factorization, when it could be formed.
 pub fn full_static_gain_or_free_direction(dae: &LinearDae) -> Result<Mat<f64>, (RomError, Option<Vec<f64>>)> {
+    full_static_gain_and_scale(dae).map(|(g, _)| g)
+}
+
+/// [`full_static_gain_or_free_direction`] and, per channel (outputs × inputs), the scale
+/// its rounding is relative to: `Σ_k |C̃_ik| · max_m |x_mj|`, `x = S⁻¹ B̃` over the unknowns
+/// that are not multipliers. An LU's rounding is relative to the whole solution, not to one
+/// small entry of it (a node beside a clamp reads 1e-3 of the tip's deflection).
+pub fn full_static_gain_and_scale(dae: &LinearDae) -> Result<(Mat<f64>, Mat<f64>), (RomError, Option<Vec<f64>>)> {
     let x = solve_or_free_direction(&dae.static_matrix(), &dae.b).map_err(|free| (RomError::SingularStatic("the static matrix of the full model"), free))?;
-    Ok(&dae.c * &x)
+    let largest: Vec<f64> = (0..x.ncols()).map(|j| (0..x.nrows()).filter(|m| !dae.multipliers.contains(m)).map(|m| x[(m, j)].abs()).fold(0.0, f64::max)).collect();
+    let scale = Mat::from_fn(dae.c.nrows(), x.ncols(), |i, j| (0..dae.c.ncols()).map(|k| dae.c[(i, k)].abs()).sum::<f64>() * largest[j]);
+    Ok((&dae.c * &x, scale))
 }

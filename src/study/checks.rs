@@ -136,41 +136,87 @@ pub(super) fn whole_model_rigid_motion(model: &Model, x: &[f64]) -> Option<Strin
 }
 
 /// Channels (output, input) of the full model whose response is exactly zero at every
-/// frequency: zero static gain and zero residue `(C̃_i v)(uᵀ B̃_j)` in every dynamic mode
-/// (to 1e-12 of the largest static gain and 1e-10 of the largest residue).
+/// frequency: zero static gain and zero residue `((C̃_i + λ C̃_v,i) v)(uᵀ B̃_j)` in every
+/// dynamic mode (a rate output `z = C̃ Δy + C̃_v Δẏ` reads the mode through `λ C̃_v`: its
+/// `C̃` row is zero, its response is not). Zero means, against the largest channel, 1e-12 of
+/// the largest static gain and 1e-10 of the largest residue; and, for a model whose every
+/// channel is rounding (a force on a clamped ground node alone gives 1e-22 m/N), against the
+/// channel's own rounding floor: a mode's residue below 1e-10 of `‖C̃_i‖ ‖v‖ ‖u‖ ‖B̃_j‖` (what
+/// the vectors would give were they aligned; the eigenvectors are accurate to about 1e-12 of
+/// their norms), a static gain below 1e-12 of that bound's largest over the modes, `/|λ|`
+/// (the modes' `uᵀ F_yd v = 1` give it the channel's units).
 pub fn zero_channels(dae: &LinearDae, modal: &ModalAnalysis) -> Vec<Vec<bool>> {
-    zero_channels_of(&dae.b, &dae.c, modal, full_static_gain(dae).ok().as_ref())
+    zero_channels_of(&dae.b, &dae.c, dae.c_rate.as_ref(), modal, full_static_gain(dae).ok().as_ref())
 }
 
-/// [`zero_channels`] from `B̃`, `C̃`, the modes and the full static gain (`None`: none).
-fn zero_channels_of(b: &Mat<f64>, c: &Mat<f64>, modal: &ModalAnalysis, gain: Option<&Mat<f64>>) -> Vec<Vec<bool>> {
+/// [`zero_channels`] from `B̃`, `C̃`, `C̃_v`, the modes and the full static gain (`None`: none).
+pub(super) fn zero_channels_of(b: &Mat<f64>, c: &Mat<f64>, c_rate: Option<&Mat<f64>>, modal: &ModalAnalysis, gain: Option<&Mat<f64>>) -> Vec<Vec<bool>> {
+    let sums = modal_sums(b, c, c_rate, modal);
+    zero_from_sums(&sums, gain)
+}
+
+/// Per channel (outputs × inputs), over the dynamic modes: the largest static contribution
+/// `|(C̃_i v)(uᵀ B̃_j)| / |λ|` above the vectors' rounding, the largest aligned bound
+/// `‖C̃_i‖ ‖v‖ ‖u‖ ‖B̃_j‖ / |λ|`, and the sum of every mode's contribution `Σ |…| / |λ|`.
+pub(super) struct ModalSums {
+    residue: Mat<f64>,
+    bound: Mat<f64>,
+    /// `Σ_k |(C̃_i v_k)(u_kᵀ B̃_j)| / |λ_k|`: the size of the terms whose sum is the static
+    /// gain (their cancellation sets its rounding).
+    pub absolute: Mat<f64>,
+}
+
+pub(super) fn modal_sums(b: &Mat<f64>, c: &Mat<f64>, c_rate: Option<&Mat<f64>>, modal: &ModalAnalysis) -> ModalSums {
     let (no, ni) = (c.nrows(), b.ncols());
     let mut residue = Mat::<f64>::zeros(no, ni);
+    let mut bound = Mat::<f64>::zeros(no, ni);
+    let mut absolute = Mat::<f64>::zeros(no, ni);
     // The non-zeros of C̃'s rows and B̃'s columns (a port touches a few unknowns): the sums
     // below skip only zero terms, so they are those over every unknown.
     let nonzeros = |len: usize, at: &dyn Fn(usize) -> f64| -> Vec<(usize, f64)> { (0..len).map(|k| (k, at(k))).filter(|e| e.1 != 0.0).collect() };
     let c_rows: Vec<Vec<(usize, f64)>> = (0..no).map(|r| nonzeros(c.ncols(), &|k| c[(r, k)])).collect();
+    let rate_rows: Vec<Vec<(usize, f64)>> = (0..no).map(|r| c_rate.map_or(Vec::new(), |cv| nonzeros(cv.ncols(), &|k| cv[(r, k)]))).collect();
     let b_cols: Vec<Vec<(usize, f64)>> = (0..ni).map(|j| nonzeros(b.nrows(), &|k| b[(k, j)])).collect();
+    let l2 = |e: &[(usize, f64)]| e.iter().map(|x| x.1 * x.1).sum::<f64>().sqrt();
+    let (c_norm, rate_norm, b_norm): (Vec<f64>, Vec<f64>, Vec<f64>) = (c_rows.iter().map(|r| l2(r)).collect(), rate_rows.iter().map(|r| l2(r)).collect(), b_cols.iter().map(|r| l2(r)).collect());
+    let vec_norm = |x: &faer::Col<c64>| x.iter().map(|z| z.norm_sqr()).sum::<f64>().sqrt();
     for i in modal.of_kind(ModeKind::Dynamic) {
         let m = &modal.modes[i];
         let (Some(v), Some(u)) = (&m.right, &m.left) else { continue };
-        let cv: Vec<c64> = c_rows.iter().map(|row| row.iter().fold(c64::new(0.0, 0.0), |s, &(k, x)| s + v[k] * x)).collect();
+        let lam = m.lambda.norm().max(f64::MIN_POSITIVE);
+        let (nv, nu) = (vec_norm(v), vec_norm(u));
+        let read = |row: &[(usize, f64)]| row.iter().fold(c64::new(0.0, 0.0), |s, &(k, x)| s + v[k] * x);
+        let cv: Vec<c64> = c_rows.iter().zip(&rate_rows).map(|(row, rate)| read(row) + m.lambda * read(rate)).collect();
         let ub: Vec<c64> = b_cols.iter().map(|col| col.iter().fold(c64::new(0.0, 0.0), |s, &(k, x)| s + u[k] * x)).collect();
         for r in 0..no {
             for c in 0..ni {
-                residue[(r, c)] = residue[(r, c)].max((cv[r] * ub[c]).norm() / m.lambda.norm().max(f64::MIN_POSITIVE));
+                let aligned = (c_norm[r] + m.lambda.norm() * rate_norm[r]) * nv * nu * b_norm[c] / lam;
+                bound[(r, c)] = bound[(r, c)].max(aligned);
+                let contribution = (cv[r] * ub[c]).norm() / lam;
+                absolute[(r, c)] += contribution;
+                // Below the vectors' own rounding: not a contribution.
+                if contribution > 1e-10 * aligned {
+                    residue[(r, c)] = residue[(r, c)].max(contribution);
+                }
             }
         }
     }
+    ModalSums { residue, bound, absolute }
+}
+
+fn zero_from_sums(sums: &ModalSums, gain: Option<&Mat<f64>>) -> Vec<Vec<bool>> {
+    let (residue, bound) = (&sums.residue, &sums.bound);
+    let (no, ni) = (residue.nrows(), residue.ncols());
     let max_res = residue.norm_max();
     let max_gain = gain.map_or(0.0, |g| g.norm_max());
+    let max_bound = bound.norm_max();
     (0..no)
         .map(|r| {
             (0..ni)
                 .map(|c| {
                     let modal_zero = residue[(r, c)] <= 1e-10 * max_res;
-                    let static_zero = gain.is_none_or(|g| g[(r, c)].abs() <= 1e-12 * max_gain);
-                    modal_zero && static_zero && (max_res > 0.0 || max_gain > 0.0)
+                    let static_zero = gain.is_none_or(|g| g[(r, c)].abs() <= 1e-12 * max_gain || g[(r, c)].abs() <= 1e-12 * bound[(r, c)]);
+                    modal_zero && static_zero && (max_res > 0.0 || max_gain > 0.0 || max_bound > 0.0)
                 })
                 .collect()
         })
@@ -185,7 +231,7 @@ pub(super) fn port_warnings(linear: &LinearModel, modal: &ModalAnalysis) -> Vec<
         // No port pair to judge: the full static gain (one n x n factorization) is not needed.
         return Vec::new();
     }
-    let zero = zero_channels_of(&dae.b, &dae.c, modal, linear.dense_static_gain().ok());
+    let zero = zero_channels_of(&dae.b, &dae.c, dae.c_rate.as_ref(), modal, linear.dense_static_gain().ok());
     channel_warnings(&zero, &dae.input_names, &dae.output_names)
 }
 
@@ -214,14 +260,26 @@ impl Study {
     pub(super) fn linear_warnings(&self) -> Vec<Warning> {
         let mut w = match &self.sparse {
             None => port_warnings(&self.linear, &self.modal),
-            Some(_) => {
-                let gain = self.linear.sparse_static_gain().and_then(Result::ok);
-                let zero = zero_channels_of(self.linear.b(), self.linear.c(), &self.modal, gain.as_ref());
-                channel_warnings(&zero, self.linear.input_names(), self.linear.output_names())
-            }
+            Some(_) => channel_warnings(&self.zero_channels(), self.linear.input_names(), self.linear.output_names()),
         };
         w.extend(self.sparse_warning());
         w
+    }
+
+    /// [`zero_channels`] of the study's full model (outputs × inputs; the static gain by
+    /// sparse LU on the sparse route): the channels whose every response is zero to rounding.
+    pub fn zero_channels(&self) -> Vec<Vec<bool>> {
+        self.channel_sums().0
+    }
+
+    /// [`Study::zero_channels`] and the modal sums it came from.
+    pub(super) fn channel_sums(&self) -> (Vec<Vec<bool>>, ModalSums) {
+        let sums = modal_sums(self.linear.b(), self.linear.c(), self.linear.c_rate(), &self.modal);
+        if self.sparse.is_none() {
+            return (zero_from_sums(&sums, self.linear.dense_static_gain().ok()), sums);
+        }
+        let gain = self.linear.sparse_static_gain().and_then(Result::ok);
+        (zero_from_sums(&sums, gain.as_ref()), sums)
     }
 
     /// The warning that the sparse eigenanalysis is not certified, when it is not.

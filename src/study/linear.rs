@@ -14,7 +14,8 @@ pub(super) struct LinearModel {
     dense: OnceLock<LinearDae>,
     /// [`crate::rom::full_static_gain`] of the dense DAE (its error's text and the free
     /// direction), computed once: the port warnings and every ROM's static gains need it.
-    dense_gain: OnceLock<Result<Mat<f64>, (String, Option<Vec<f64>>)>>,
+    /// With the rounding scale of each channel ([`crate::rom::full_static_gain_and_scale`]).
+    dense_gain: OnceLock<Result<(Mat<f64>, Mat<f64>), (String, Option<Vec<f64>>)>>,
 }
 
 impl LinearModel {
@@ -59,6 +60,11 @@ impl LinearModel {
         self.sparse.as_ref().map_or_else(|| &self.dense().c, |s| &s.c)
     }
 
+    /// `C̃_v` of rate outputs (velocity sensors), if any.
+    pub fn c_rate(&self) -> Option<&Mat<f64>> {
+        self.sparse.as_ref().map_or_else(|| self.dense().c_rate.as_ref(), |s| s.c_rate.as_ref())
+    }
+
     pub fn input_names(&self) -> &[String] {
         self.sparse.as_ref().map_or_else(|| &self.dense().input_names[..], |s| &s.input_names[..])
     }
@@ -94,7 +100,12 @@ impl LinearModel {
     /// The full model's static gain `C̃ S⁻¹ B̃` of the dense DAE by
     /// [`crate::rom::full_static_gain`] (the text of its error), computed on first use only.
     pub fn dense_static_gain(&self) -> Result<&Mat<f64>, &str> {
-        self.dense_gain_or_free_direction().as_ref().map_err(|e| e.0.as_str())
+        self.dense_gain_or_free_direction().as_ref().map(|g| &g.0).map_err(|e| e.0.as_str())
+    }
+
+    /// The rounding scale of each channel of [`LinearModel::dense_static_gain`].
+    pub fn dense_static_gain_scale(&self) -> Option<&Mat<f64>> {
+        self.dense_gain_or_free_direction().as_ref().ok().map(|g| &g.1)
     }
 
     /// When the dense static matrix is singular, the direction it leaves free (largest
@@ -103,8 +114,8 @@ impl LinearModel {
         self.dense_gain_or_free_direction().as_ref().err().and_then(|e| e.1.as_deref())
     }
 
-    fn dense_gain_or_free_direction(&self) -> &Result<Mat<f64>, (String, Option<Vec<f64>>)> {
-        self.dense_gain.get_or_init(|| crate::rom::full_static_gain_or_free_direction(self.dense()).map_err(|(e, free)| (e.to_string(), free)))
+    fn dense_gain_or_free_direction(&self) -> &Result<(Mat<f64>, Mat<f64>), (String, Option<Vec<f64>>)> {
+        self.dense_gain.get_or_init(|| crate::rom::full_static_gain_and_scale(self.dense()).map_err(|(e, free)| (e.to_string(), free)))
     }
 
     /// The full model's static gain `C̃ S⁻¹ B̃` on the sparse route, by one sparse LU

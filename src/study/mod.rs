@@ -22,6 +22,7 @@
 //! on a model's linear DAE), corrections of the full model go in before the eigenanalysis
 //! ([`Study::from_dae`] again), corrections of a ROM are fields of [`RomRequest`].
 
+mod accuracy;
 mod application;
 mod checks;
 mod error;
@@ -34,6 +35,7 @@ mod solver;
 mod summary;
 mod warning;
 
+pub use accuracy::RomCheck;
 pub use application::{parse_imposed, Application, Transmissibility};
 pub use checks::zero_channels;
 pub use error::StudyError;
@@ -42,4 +44,4 @@ pub use reduce::{BelowBand, KeptMode, ReducedModel, Residualization, RomRequest,
 pub use response::{ChannelError, Comparison, FrequencyGrid, GridAccuracy};
 pub use setup::{checked_reference_state, EigenSettings, Linearization, Ports, Study};
 pub use solver::{needs_every_mode, sparse_target, Solver, SparseRun, SPARSE_DEFAULT_COUNT};
-pub use warning::Warning;
+pub use warning::{Response, Warning};

@@ -91,17 +91,29 @@ impl Comparison {
 
     /// [`GridAccuracy::worst_channel`].
     fn worst_channel(&self) -> Option<ChannelError> {
+        self.worst_channel_up_to(f64::INFINITY, &|_, _| false)
+    }
+
+    /// The worst port pair on its own scale over the grid points at or below `top_hz`, the
+    /// pairs `(output, input)` for which `skip` holds left out.
+    pub(super) fn worst_channel_up_to(&self, top_hz: f64, skip: &dyn Fn(usize, usize) -> bool) -> Option<ChannelError> {
         let (no, ni) = (self.full.first()?.nrows(), self.full.first()?.ncols());
         let overall = self.full.iter().map(|f| f.norm_max()).fold(0.0, f64::max);
         let mut worst: Option<ChannelError> = None;
         for i in 0..no {
             for j in 0..ni {
+                if skip(i, j) {
+                    continue;
+                }
                 let big = self.full.iter().map(|f| f[(i, j)].norm()).fold(0.0, f64::max);
                 // Channels zero to rounding against the whole matrix have no scale of their own.
                 if !(big > 1e-12 * overall) {
                     continue;
                 }
                 for (k, (f, r)) in self.full.iter().zip(&self.rom).enumerate() {
+                    if self.freq_hz[k] > top_hz {
+                        break;
+                    }
                     let h = f[(i, j)].norm();
                     if h <= ChannelError::NEGLIGIBLE * big {
                         continue;

@@ -5,7 +5,7 @@ use faer::Mat;
 
 use crate::dae::describe;
 
-use super::{GridAccuracy, ReducedModel, StaticGains, Study};
+use super::{GridAccuracy, ReducedModel, RomCheck, StaticGains, Study};
 
 /// A frequency [Hz] with 4 decimals in 1e-3..1e5, scientific outside.
 fn fmt_hz(f: f64) -> String {
@@ -26,7 +26,7 @@ fn gain_table(g: &StaticGains) -> String {
         s += &format!("  {n:>width$}");
     }
     s += "\n";
-    let big = g.full.as_ref().map_or(0.0, |m| m.norm_max());
+    let big = g.full.as_ref().map_or(0.0, |m| (0..m.nrows()).flat_map(|i| (0..m.ncols()).map(move |j| (i, j))).filter(|&(i, j)| !g.is_zero(i, j)).map(|(i, j)| m[(i, j)].abs()).fold(0.0, f64::max));
     let cell = |m: &Mat<f64>, i: usize, j: usize| format!("  {:>width$}", format!("{:.6e}", m[(i, j)]));
     for (i, out) in g.output_names.iter().enumerate() {
         s += &format!("{out}\n");
@@ -45,7 +45,13 @@ fn gain_table(g: &StaticGains) -> String {
             for j in 0..g.input_names.len() {
                 let f = full[(i, j)];
                 // Entries zero to rounding have no meaningful relative difference.
-                let text = if f.abs() > StaticGains::ZERO * big { format!("{:.1e}", (rom[(i, j)] - f) / f.abs()) } else { "(zero)".into() };
+                let text = if g.is_zero(i, j) {
+                    "(rounding)".into()
+                } else if f.abs() > StaticGains::ZERO * big {
+                    format!("{:.1e}", (rom[(i, j)] - f) / f.abs())
+                } else {
+                    "(zero)".into()
+                };
                 s += &format!("  {text:>width$}");
             }
             s += "\n";
@@ -60,10 +66,32 @@ fn gain_table(g: &StaticGains) -> String {
     s
 }
 
+/// A response's accuracy on the grid: the normwise line, and with more than one port pair the
+/// worst pair on its own scale.
+fn accuracy_lines(what: &str, a: &GridAccuracy, pairs: usize, outputs: &[String], inputs: &[String]) -> String {
+    let ok = a.within_1_percent_up_to_hz.map_or("nowhere on the grid".to_string(), |f| format!("up to {} Hz", fmt_hz(f)));
+    let mut s = format!(
+        "{what} on {}–{} Hz ({} points): largest relative error {:.2e} at {} Hz; within 1 % {ok}\n",
+        fmt_hz(a.fmin_hz),
+        fmt_hz(a.fmax_hz),
+        a.points,
+        a.largest_relative_error,
+        fmt_hz(a.at_hz)
+    );
+    // With one input and one output the pair is the whole response: the line above.
+    if let Some(c) = a.worst_channel.as_ref().filter(|_| pairs > 1) {
+        let name = |names: &[String], k: usize| names.get(k).cloned().unwrap_or_else(|| (k + 1).to_string());
+        let channel = format!("{} / {}", name(outputs, c.output), name(inputs, c.input));
+        s += &format!("worst port pair on its own scale: {channel}, relative error {:.2e} at {} Hz\n", c.relative, fmt_hz(c.at_hz));
+    }
+    s
+}
+
 impl ReducedModel {
     /// The summary: states, kept modes with frequency, damping and dominant node
-    /// components, modal damping applied, static gains, accuracy on `grid` (when computed).
-    pub fn summary(&self, study: &Study, accuracy: Option<&GridAccuracy>) -> String {
+    /// components, modal damping applied, static gains, accuracy of every response on the
+    /// check's grid (when checked; its warnings are the check's, printed with the others).
+    pub fn summary(&self, study: &Study, check: Option<&RomCheck>) -> String {
         let energy = study.modal_energy();
         let states = self.ordinary.a.nrows();
         let mut s = if self.static_correction {
@@ -97,29 +125,11 @@ impl ReducedModel {
         if let (Some(share), Some((rel, channel))) = (self.static_gains.kept_share(), self.static_gains.largest_relative_difference()) {
             s += &format!("the ROM keeps {:.4} % of the full model's static gain (Frobenius norms); largest relative difference {rel:.1e} ({channel})\n", 100.0 * share);
         }
-        if let Some(a) = accuracy {
-            let ok = a.within_1_percent_up_to_hz.map_or("nowhere on the grid".to_string(), |f| format!("up to {} Hz", fmt_hz(f)));
-            s += &format!(
-                "frequency response on {}–{} Hz ({} points): largest relative error {:.2e} at {} Hz; within 1 % {ok}\n",
-                fmt_hz(a.fmin_hz),
-                fmt_hz(a.fmax_hz),
-                a.points,
-                a.largest_relative_error,
-                fmt_hz(a.at_hz)
-            );
-            // With one input and one output the pair is the whole response: the line above.
+        if let Some(check) = check {
             let pairs = self.static_gains.output_names.len() * self.static_gains.input_names.len();
-            if let Some(c) = a.worst_channel.as_ref().filter(|_| pairs > 1) {
-                let name = |names: &[String], k: usize| names.get(k).cloned().unwrap_or_else(|| (k + 1).to_string());
-                let channel = format!("{} / {}", name(&self.static_gains.output_names, c.output), name(&self.static_gains.input_names, c.input));
-                s += &format!("worst port pair on its own scale: {channel}, relative error {:.2e} at {} Hz\n", c.relative, fmt_hz(c.at_hz));
-                if c.relative > super::ChannelError::WARN {
-                    s += &format!(
-                        "warning: the ROM's {channel} response is off by {:.1e} (relative, on its own scale) at {} Hz: a small channel's static part can come from modes the ROM neither keeps nor residualizes (--residualize folds them into D)\n",
-                        c.relative,
-                        fmt_hz(c.at_hz)
-                    );
-                }
+            s += &accuracy_lines("frequency response", &check.accuracy, pairs, &self.static_gains.output_names, &self.static_gains.input_names);
+            if let Some((t, a)) = &check.transmissibility {
+                s += &accuracy_lines("transmissibility z/z_e (eq. 100)", a, t.outputs.len() * t.imposed.len(), &t.outputs, &t.imposed);
             }
         }
         s

@@ -26,9 +26,25 @@ pub enum Warning {
     DampingNotApplied { mode: usize, reason: String },
     /// The sparse eigensolver could not certify that it found every mode asked for.
     SparseNotCertified { target: String, reason: String, damping_covered: f64 },
+    /// The ROM's response departs from the full model's on the response grid, within the
+    /// frequencies of interest (its channel on its own scale).
+    /// `full` and `rom`: the two magnitudes there (the channel's units).
+    ResponseDeparts { response: Response, channel: String, relative: f64, at_hz: f64, full: f64, rom: f64, top_hz: f64, advice: String },
+    /// With an imposed motion, the ROM's transmissibility could not be formed (its imposed
+    /// block is singular at a grid frequency), so it was not checked.
+    TransmissibilityUnavailable { reason: String, top_hz: f64 },
     /// A static reference of beams with MBDyn's incremental update: the whole load is one
     /// step from the initial configuration, whatever the load steps.
     IncrementalBeamsStatic { beams: usize },
+}
+
+/// Which of a ROM's responses a [`Warning::ResponseDeparts`] is about.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Response {
+    /// The transfer matrix from the inputs (forces, moments) to the outputs.
+    Inputs,
+    /// The transmissibility `z/z_e` from the imposed motion (eq. 100).
+    Transmissibility,
 }
 
 fn modes_hz(m: &[(usize, f64)]) -> String {
@@ -42,8 +58,8 @@ impl fmt::Display for Warning {
                 f,
                 "the reference solution is neither an equilibrium nor a steady motion: with its velocities held and its accelerations set to zero the residual is {residual:.3e} (tolerance {tolerance:.1e}) at '{equation}'. The eigenvalues are those of the Jacobians frozen at this instant (as MBDyn's eigenanalysis computes them), not the frequencies and damping of small motions about this trajectory, which follow a time-varying linear system (a swinging pendulum's frozen eigenvalues take the centripetal tension as a stiffness); the ROM is the frozen system's. Use --static for the static equilibrium, or a reference at rest or in steady motion (a uniform spin about an axis of symmetry; a motion steady in a turning frame, a top's precession or a rotor's blades, once the model is written in that frame with MBDyn's `rigid body kinematics`)"
             ),
-            Warning::InputMovesNothing { input } => write!(f, "no output responds to input {input} (a load on a clamped node, or in a direction the outputs do not see?): every response to it is exactly zero"),
-            Warning::OutputSeesNothing { output } => write!(f, "output {output} responds to no input (a clamped node, or a direction the inputs do not move?): its every response is exactly zero"),
+            Warning::InputMovesNothing { input } => write!(f, "no output responds to input {input} (a load on a clamped node, or in a direction the outputs do not see?): every response to it is zero (to rounding)"),
+            Warning::OutputSeesNothing { output } => write!(f, "output {output} responds to no input (a clamped node, or a direction the inputs do not move?): its every response is zero (to rounding)"),
             Warning::BelowBandDropped { modes, top_hz } => write!(
                 f,
                 "mode(s) {} lie below the frequencies of interest (up to {top_hz:.4} Hz) and were dropped, not statically residualized: static residualization is valid only for modes above the band (--below-band keep keeps them, refuse stops)",
@@ -60,6 +76,18 @@ impl fmt::Display for Warning {
             Warning::SparseNotCertified { target, reason, damping_covered } => write!(
                 f,
                 "the sparse eigenanalysis of {target} is not certified: {reason} (shift windows cover damping ratios up to {damping_covered:.2}); a mode may be missing from the table and the ROM: check with --solver dense, or narrow the band"
+            ),
+            Warning::ResponseDeparts { response, channel, relative, at_hz, full, rom, top_hz, advice } => write!(
+                f,
+                "the ROM's {} {channel} departs from the full model's by {relative:.2e} (relative, on its own scale) at {at_hz:.4} Hz (|ROM| {rom:.3e}, |full| {full:.3e}), within the frequencies of interest (up to {top_hz:.4} Hz): {advice}",
+                match response {
+                    Response::Inputs => "response",
+                    Response::Transmissibility => "transmissibility (eq. 100)",
+                }
+            ),
+            Warning::TransmissibilityUnavailable { reason, top_hz } => write!(
+                f,
+                "the ROM's transmissibility (eq. 100) could not be checked against the full model's (frequencies of interest up to {top_hz:.4} Hz): {reason}"
             ),
             Warning::IncrementalBeamsStatic { beams } => write!(
                 f,

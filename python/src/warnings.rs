@@ -1,0 +1,67 @@
+//! romdyn's warnings as Python warnings: every study and ROM warning the CLI prints is raised
+//! through `warnings.warn` with a category under `romdyn.RomdynWarning` (a `UserWarning`),
+//! so that it can be filtered (`warnings.simplefilter("error", romdyn.AccuracyWarning)`) and
+//! tested (`pytest.warns(romdyn.TransmissibilityWarning)`).
+
+use pyo3::prelude::*;
+use pyo3::types::PyType;
+use romdyn::study::{Response, Warning};
+
+pyo3::create_exception!(_romdyn, RomdynWarning, pyo3::exceptions::PyUserWarning, "Base of romdyn's warnings: what a user must know about a study or a ROM that is not an error.");
+pyo3::create_exception!(_romdyn, ReferenceWarning, RomdynWarning, "The reference solution: not an equilibrium (the linear model is the frozen-time Jacobian), beams' update.");
+pyo3::create_exception!(_romdyn, PortWarning, RomdynWarning, "An input that moves nothing or an output that sees nothing (zero to rounding).");
+pyo3::create_exception!(_romdyn, EigenanalysisWarning, RomdynWarning, "The sparse eigenanalysis is not certified: a mode may be missing.");
+pyo3::create_exception!(_romdyn, ModeSelectionWarning, RomdynWarning, "Modes below the band dropped or kept, kept modes that add no response, damping not applied.");
+pyo3::create_exception!(_romdyn, AccuracyWarning, RomdynWarning, "The ROM departs from the full model (static gain, frequency response, transmissibility).");
+pyo3::create_exception!(_romdyn, StaticGainWarning, AccuracyWarning, "The ROM's static gain differs from the full model's beyond rounding.");
+pyo3::create_exception!(_romdyn, ResponseWarning, AccuracyWarning, "The ROM's frequency response departs from the full model's within the frequencies of interest.");
+pyo3::create_exception!(_romdyn, TransmissibilityWarning, AccuracyWarning, "The ROM's transmissibility (eq. 100) departs from the full model's, or could not be checked.");
+
+/// The Python category of a warning.
+fn category<'py>(py: Python<'py>, w: &Warning) -> Bound<'py, PyType> {
+    match w {
+        Warning::NotInEquilibrium { .. } | Warning::IncrementalBeamsStatic { .. } => py.get_type::<ReferenceWarning>(),
+        Warning::InputMovesNothing { .. } | Warning::OutputSeesNothing { .. } => py.get_type::<PortWarning>(),
+        Warning::SparseNotCertified { .. } => py.get_type::<EigenanalysisWarning>(),
+        Warning::BelowBandDropped { .. } | Warning::BelowBandKept { .. } | Warning::Invisible { .. } | Warning::DampingNotApplied { .. } => py.get_type::<ModeSelectionWarning>(),
+        Warning::StaticGain { .. } => py.get_type::<StaticGainWarning>(),
+        Warning::ResponseDeparts { response: Response::Inputs, .. } => py.get_type::<ResponseWarning>(),
+        Warning::ResponseDeparts { response: Response::Transmissibility, .. } | Warning::TransmissibilityUnavailable { .. } => py.get_type::<TransmissibilityWarning>(),
+    }
+}
+
+fn warn_text(py: Python<'_>, category: &Bound<'_, PyType>, text: &str) -> PyResult<()> {
+    let text = std::ffi::CString::new(text.replace('\0', " ")).unwrap_or_default();
+    PyErr::warn(py, category, &text, 1)
+}
+
+/// Raises each warning with its category (`warnings.warn`: an error when filtered so).
+pub fn warn_all(py: Python<'_>, warnings: &[Warning]) -> PyResult<()> {
+    for w in warnings {
+        warn_text(py, &category(py, w), &w.to_string())?;
+    }
+    Ok(())
+}
+
+/// Each note on beams the `auto` update leaves path independent, as a [`ReferenceWarning`].
+pub fn warn_beam_notes(py: Python<'_>, messages: &[String]) -> PyResult<()> {
+    for message in messages {
+        warn_text(py, &py.get_type::<ReferenceWarning>(), &format!("{message} (beam_update=\"path-independent\" silences this)"))?;
+    }
+    Ok(())
+}
+
+/// Adds the categories to the module.
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    m.add("RomdynWarning", py.get_type::<RomdynWarning>())?;
+    m.add("ReferenceWarning", py.get_type::<ReferenceWarning>())?;
+    m.add("PortWarning", py.get_type::<PortWarning>())?;
+    m.add("EigenanalysisWarning", py.get_type::<EigenanalysisWarning>())?;
+    m.add("ModeSelectionWarning", py.get_type::<ModeSelectionWarning>())?;
+    m.add("AccuracyWarning", py.get_type::<AccuracyWarning>())?;
+    m.add("StaticGainWarning", py.get_type::<StaticGainWarning>())?;
+    m.add("ResponseWarning", py.get_type::<ResponseWarning>())?;
+    m.add("TransmissibilityWarning", py.get_type::<TransmissibilityWarning>())?;
+    Ok(())
+}
