@@ -1,6 +1,16 @@
 //! MBDyn's scalar functions (input manual, §Scalar functions; ScalarFunctionsImpl.cc):
 //! differentiable functions of one variable that drives (`scalar function` drive caller)
 //! and constitutive laws (`scalar function elastic`) evaluate.
+//!
+//! The operands of `sum`, `sub`, `mul` and `div` are shared (`Arc`), as MBDyn shares the
+//! named functions (ScalarFunctionsImpl.cc keeps pointers): a chain of N cards each adding
+//! the previous function to itself takes memory linear in N, and [`ScalarFunction::cost`]
+//! counts the 2^N evaluations one call makes, which the reader refuses past its budget.
+
+use std::collections::HashMap;
+use std::sync::Arc;
+
+use super::drive::EvaluationCost;
 
 /// `f(x)` with its derivative.
 #[derive(Clone, Debug, PartialEq)]
@@ -27,10 +37,10 @@ pub enum ScalarFunction {
     /// `Σ c_k T_k(ξ)`, `ξ = (2x − (a + b))/(b − a)`, on `[a, b]`; continued linearly
     /// outside (with the end slopes) when `extrapolate`.
     Chebychev { a: f64, b: f64, coefficients: Vec<f64>, extrapolate: bool },
-    Sum(Box<ScalarFunction>, Box<ScalarFunction>),
-    Sub(Box<ScalarFunction>, Box<ScalarFunction>),
-    Mul(Box<ScalarFunction>, Box<ScalarFunction>),
-    Div(Box<ScalarFunction>, Box<ScalarFunction>),
+    Sum(Arc<ScalarFunction>, Arc<ScalarFunction>),
+    Sub(Arc<ScalarFunction>, Arc<ScalarFunction>),
+    Mul(Arc<ScalarFunction>, Arc<ScalarFunction>),
+    Div(Arc<ScalarFunction>, Arc<ScalarFunction>),
 }
 
 impl ScalarFunction {
@@ -42,6 +52,27 @@ impl ScalarFunction {
 
     pub fn value(&self, x: f64) -> f64 {
         self.value_and_derivative(x).0
+    }
+
+    /// What one evaluation costs (its depth and the evaluations it makes, see
+    /// [`EvaluationCost`]), counted over the shared operands once each: linear in the
+    /// number of distinct functions, not in the (possibly exponential) count it returns.
+    pub fn cost(&self) -> EvaluationCost {
+        fn walk(f: &ScalarFunction, memo: &mut HashMap<*const ScalarFunction, EvaluationCost>) -> EvaluationCost {
+            let (ScalarFunction::Sum(a, b) | ScalarFunction::Sub(a, b) | ScalarFunction::Mul(a, b) | ScalarFunction::Div(a, b)) = f else { return EvaluationCost::LEAF };
+            let mut part = |g: &Arc<ScalarFunction>| {
+                let key = Arc::as_ptr(g);
+                if let Some(&c) = memo.get(&key) {
+                    return c;
+                }
+                let c = walk(g, memo);
+                memo.insert(key, c);
+                c
+            };
+            let (ca, cb) = (part(a), part(b));
+            EvaluationCost::around([ca, cb])
+        }
+        walk(self, &mut HashMap::new())
     }
 
     pub fn derivative(&self, x: f64) -> f64 {
@@ -232,8 +263,8 @@ mod tests {
             (F::Multilinear { points: vec![(0.0, 0.0), (1.0, 1.0)], extrapolate: false }, 2.5, 1.0),
             // T₀ + 2 T₁ + 3 T₂ on [0, 2] at x = 1.5 (ξ = 0.5): 1 + 1 + 3 (2·0.25 − 1) = 0.5.
             (F::Chebychev { a: 0.0, b: 2.0, coefficients: vec![1.0, 2.0, 3.0], extrapolate: true }, 1.5, 0.5),
-            (F::Div(Box::new(F::Pow(2.0)), Box::new(F::Const(4.0))), 3.0, 2.25),
-            (F::Sub(Box::new(F::Pow(2.0)), Box::new(F::Mul(Box::new(F::Const(2.0)), Box::new(F::Pow(1.0))))), 3.0, 3.0),
+            (F::Div(Arc::new(F::Pow(2.0)), Arc::new(F::Const(4.0))), 3.0, 2.25),
+            (F::Sub(Arc::new(F::Pow(2.0)), Arc::new(F::Mul(Arc::new(F::Const(2.0)), Arc::new(F::Pow(1.0))))), 3.0, 3.0),
         ];
         for (f, x, want) in &cases {
             let (v, d) = f.value_and_derivative(*x);
@@ -268,8 +299,8 @@ mod tests {
         let spline = |extrapolate| F::cubic_spline(vec![(1.0, 1.0), (2.0, 4.0), (3.0, 9.0)], extrapolate);
         assert!(spline(true).kinks().is_empty());
         assert_eq!(spline(false).kinks(), vec![1.0, 3.0]);
-        let ramp = || Box::new(F::Multilinear { points: vec![(0.0, 0.0), (1.0, 1.0), (2.0, 1.0)], extrapolate: true });
-        assert_eq!(F::Sum(ramp(), Box::new(F::Mul(ramp(), Box::new(F::Pow(2.0))))).kinks(), vec![1.0]);
+        let ramp = || std::sync::Arc::new(F::Multilinear { points: vec![(0.0, 0.0), (1.0, 1.0), (2.0, 1.0)], extrapolate: true });
+        assert_eq!(F::Sum(ramp(), Arc::new(F::Mul(ramp(), Arc::new(F::Pow(2.0))))).kinks(), vec![1.0]);
         assert!(F::Const(0.3).kinks().is_empty());
     }
 }
