@@ -247,6 +247,25 @@ fn chebychev(a: f64, b: f64, c: &[f64], extrapolate: bool, x: f64) -> (f64, f64)
 #[cfg(test)]
 mod tests {
     use super::ScalarFunction as F;
+    use std::sync::Arc;
+
+    /// 40 functions, each the sum of the previous one with itself, shared: the cost walk
+    /// visits each once and counts 2^41 − 1 evaluations (T_k = 1 + 2 T_{k−1}, T_0 = 1) at
+    /// depth 41; the value at any x is 2^40 (1 doubled 40 times), here for 20 of them.
+    #[test]
+    fn shared_operands_are_counted_with_their_repetitions() {
+        let mut f = Arc::new(F::Const(1.0));
+        for _ in 0..40 {
+            f = Arc::new(F::Sum(f.clone(), f));
+        }
+        let cost = f.cost();
+        assert_eq!((cost.depth, cost.terms), (41, (1u64 << 41) - 1));
+        let mut g = Arc::new(F::Const(1.0));
+        for _ in 0..20 {
+            g = Arc::new(F::Sum(g.clone(), g));
+        }
+        assert_eq!(g.value(0.3), (1u64 << 20) as f64);
+    }
 
     #[test]
     fn scalar_functions_follow_the_manual_and_their_derivatives_differences() {

@@ -71,6 +71,11 @@ impl<'a> Cursor<'a> {
         matches!(self.st.args.get(self.pos).map(|a| &a.value), Some(Value::Number(_) | Value::Empty | Value::Current(_)))
     }
 
+    /// How many arguments are read.
+    pub fn position(&self) -> usize {
+        self.pos
+    }
+
     /// The next argument's text as written, if there is one.
     pub fn peek_text(&self) -> Option<&'a str> {
         self.st.args.get(self.pos).map(|a| a.text.as_str())

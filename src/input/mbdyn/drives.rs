@@ -276,10 +276,14 @@ fn unchecked_drive(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) ->
         "element" => super::element_reads::element_drive(c, &drives.private, seq, &inner)?,
         "scalar function" => {
             let name = c.peek_text().unwrap_or_default().to_string();
+            let first = c.position();
             let f = super::scalar_functions::scalar_function(c, &drives.functions, seq)?;
             let origin = format!("scalar function drive caller {name} at {}", place(c, span));
             let cost = EvaluationCost::around([f.cost()]);
-            Drive::Expression(TimeFunction::new(format!("scalar function, {name}"), move |t| {
+            // The text decides equality (two forces with equal drives add up): a card's name
+            // is unique, a definition written inline is told apart by its place.
+            let text = if c.position() > first + 1 { format!("scalar function, {name}, defined at {}", place(c, span)) } else { format!("scalar function, {name}") };
+            Drive::Expression(TimeFunction::new(text, move |t| {
                 let v = f.value(t);
                 if !v.is_finite() {
                     note_evaluation_failure(t, || format!("{origin}: its value at {t} is {v}"));
