@@ -244,3 +244,31 @@ fn a_mode_damped_twice_and_an_actuator_on_one_node_are_refused() {
     assert_eq!(listing(&d), before);
     std::fs::remove_dir_all(&d).ok();
 }
+
+/// 64 string drives (the depth limit), each with its call in five parentheses: 7
+/// expression levels a drive, 448 in all, over the 200 the evaluators of one thread may
+/// nest (about 5 KB of stack a level). Before that bound a sweep's 2 MiB worker threads
+/// overflowed their stack (SIGABRT, as the probe's Python `romdyn.sweep`); now every
+/// design point fails with the drive where the bound is crossed, and nothing is written.
+#[test]
+fn deeply_nested_string_drives_fail_cleanly_in_a_sweep() {
+    let mut cards = String::from("set: real P = 1.;\ndrive caller: 1, string, \"Time\";\n");
+    for k in 2..=MAX_EVALUATION_DEPTH {
+        let _ = writeln!(cards, "drive caller: {k}, string, \"(((((model::drive({}, Time)))))) + 1.\";", k - 1);
+    }
+    let text = model(&cards, &format!("reference, {MAX_EVALUATION_DEPTH}"), 0.01, 1e-3).replace("body: 1, 1, 1.,", "body: 1, 1, P,");
+    let d = folder("sweep-nesting", &[("c.mbd", &text)]);
+    let before = listing(&d);
+    // Drive k is on line k + 2; the evaluation from drive 64 down crosses 200 levels in
+    // drive 31 (measured: 6 counted levels a drive, 34 drives; the failure named is the
+    // innermost, where the bound is crossed): line 33, its string at column 27.
+    let (code, stdout, stderr) = romdyn_in(&d, &["sweep", "c.mbd", "--set", "P=1,2,3", "--input", "1:Fx", "--output", "1:x", "--count", "1", "--jobs", "3"]);
+    assert_eq!(code, Some(1), "exit status (a stack overflow aborts with none)\nstdout: {stdout}\nstderr: {stderr}");
+    assert!(!stderr.contains("overflow"), "{stderr}");
+    for point in 1..=3 {
+        assert!(stderr.contains(&format!("design point {point} (P = {point}) failed")), "{stderr}");
+    }
+    assert!(stderr.contains("at c.mbd:33:27: expressions nested more than 200 levels deep"), "{stderr}");
+    assert_eq!(listing(&d), before, "files left behind");
+    std::fs::remove_dir_all(&d).ok();
+}
