@@ -42,7 +42,7 @@ pub struct WrittenNodes {
 }
 
 impl StatementObserver for WrittenNodes {
-    fn statement(&mut self, st: &Statement, sources: &Sources, in_nodes_block: bool, _variables: &Variables) {
+    fn statement(&mut self, st: &Statement, sources: &Sources, in_nodes_block: bool, variables: &Variables) {
         let mut c = Cursor::new(st, sources);
         if known(&st.keyword, &["drive caller"]).is_some() {
             // Read when a `model::drive` call needs it ([`StatementObserver::refresh_drives`]):
@@ -52,6 +52,14 @@ impl StatementObserver for WrittenNodes {
             return;
         }
         if !in_nodes_block && known(&st.keyword, &["body", "joint"]).is_some() {
+            // The element's drives may name the cards read so far: those not read yet are
+            // read with the variables as they stand (the others keep theirs until a
+            // `model::drive` call refreshes them).
+            if self.cards_read < self.drive_cards.len() && self.read_with != Some(variables.generation()) {
+                self.drives.variables = variables.shared();
+                self.read_with = None;
+            }
+            self.catch_up(sources);
             self.element(st, sources);
             return;
         }
@@ -127,8 +135,6 @@ impl WrittenNodes {
 
     /// Reads a body or joint card as the model does, for `model::element::…` further down.
     fn element(&mut self, st: &Statement, sources: &Sources) {
-        // The element's drives may name the cards read so far.
-        self.catch_up(sources);
         let Some(super::parser::Arg { value: super::parser::Value::Number(x), .. }) = st.args.first() else { return };
         if *x < 0.0 || x.fract() != 0.0 || *x > u32::MAX as f64 {
             return;
