@@ -29,6 +29,22 @@ pub const FREQUENCY_RANGE_HZ: (f64, f64) = (1e-30, 1e30);
 /// Most load increments of a static solution (1e5).
 pub const MAX_LOAD_STEPS: usize = 100_000;
 
+/// Deepest chain of `include:` files (a file including a file including …): 100. Each
+/// level holds a file open in the reader; real inputs nest two or three.
+pub const MAX_INCLUDE_DEPTH: usize = 100;
+
+/// Deepest nesting of evaluations one drive or scalar function makes (64): drive callers
+/// inside drive callers, references to `drive caller:` cards, `model::drive` and
+/// `model::sf` calls of a `string` drive, operands of `sum`/`sub`/`mul`/`div` scalar
+/// functions. Each level takes stack; without a bound a chain of 2000 string drives, each
+/// calling the previous one, overflowed the stack (issue 32).
+pub const MAX_EVALUATION_DEPTH: usize = 64;
+
+/// Most evaluations one call of a drive or scalar function makes, repetitions counted
+/// (1e5): a `sum` of a function with itself doubles them, so 25 such cards would make 3e7
+/// per call, at every residual.
+pub const MAX_EVALUATION_TERMS: u64 = 100_000;
+
 /// A number for a message: plain when it reads well, else in exponent form (`1e308`,
 /// `1e-320`); an overflowed count reads "more than 1.8e308".
 pub fn readable(x: f64) -> String {

@@ -17,7 +17,7 @@ use romdyn::model::ModelBuilder;
 
 /// `F(x) = 10 x + x³`.
 fn stiffening() -> ScalarFunction {
-    ScalarFunction::Sum(Box::new(ScalarFunction::Multilinear { points: vec![(0.0, 0.0), (1.0, 10.0)], extrapolate: true }), Box::new(ScalarFunction::Pow(3.0)))
+    ScalarFunction::Sum(std::sync::Arc::new(ScalarFunction::Multilinear { points: vec![(0.0, 0.0), (1.0, 10.0)], extrapolate: true }), std::sync::Arc::new(ScalarFunction::Pow(3.0)))
 }
 
 #[test]

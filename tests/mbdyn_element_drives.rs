@@ -163,7 +163,7 @@ fn set_calls_the_scalar_function_and_drive_caller_cards_above_it() {
     let base = text();
     let cards = "scalar function: \"f\", const, 3.;\nset: real A = model::sf::f(0.);\ndrive caller: 99, linear, 1., 10.;\nset: real B = model::drive(99, 2.);\nbegin: nodes;";
     let doc = parse_text(&base.replacen("begin: nodes;", cards, 1), &path("element_drives.mbd")).unwrap_or_else(|e| panic!("{e}"));
-    let value = |name: &str| doc.variables.0.get(name).and_then(|v| v.value.real());
+    let value = |name: &str| doc.variables.real(name);
     assert_eq!((value("A"), value("B")), (Some(3.0), Some(21.0)));
     let below = base.replacen("begin: nodes;", "set: real B = model::drive(99, 2.);\ndrive caller: 99, linear, 1., 10.;\nbegin: nodes;", 1);
     let e = parse_text(&below, &path("element_drives.mbd")).err().map(|e| e.to_string()).unwrap_or_default();

@@ -6,6 +6,7 @@
 //! For a longer local run: `ROMDYN_FUZZ_SECONDS=60 ROMDYN_FUZZ_SEED=7 cargo test --test
 //! mbdyn_fuzz`.
 
+use std::fmt::Write;
 use std::path::Path;
 use std::time::{Duration, Instant};
 
@@ -171,4 +172,57 @@ fn mutated_examples_never_panic() {
         "mutated example",
     );
     assert!(n > 100, "only {n} inputs");
+}
+
+/// Drive caller and scalar function cards that name earlier cards at random (issue 32's
+/// grammar: `reference`, `array`, `mult`, `drive`, string drives calling `model::drive` and
+/// `model::sf`, `sum`/`sub`/`mul`/`div` of functions), up to 300 cards, so that chains
+/// deeper than the limits and doubling trees come up; `set:` cards then evaluate the last
+/// drive and function while the file is read. A stack overflow aborts the test process,
+/// an unbounded tree exhausts its memory: the limits must stop both with an error.
+#[test]
+fn random_chains_of_drives_and_functions_never_panic() {
+    let n = run(
+        |r| {
+            let cards = 1 + r.below(300);
+            let mut s = String::from("scalar function: \"f0\", const, 1.;\ndrive caller: 1, sine, 0., 1., 1., forever, 0.;\n");
+            for k in 1..cards {
+                // A card k' < k, mostly the previous one (deep chains) or any (trees).
+                let earlier = |r: &mut Rng| if r.below(3) == 0 { r.below(k) } else { k - 1 };
+                let (a, b) = (earlier(r), earlier(r));
+                let f = match r.below(6) {
+                    0 => format!("sum, \"f{a}\", \"f{b}\""),
+                    1 => format!("mul, \"f{a}\", \"f{a}\""),
+                    2 => format!("div, \"f{a}\", \"f{b}\""),
+                    3 => format!("sub, \"f{a}\", \"f{b}\""),
+                    4 => format!("linear, 0., {a}., 1., {b}."),
+                    _ => format!("const, {}", r.pick(NUMBERS)),
+                };
+                let _ = writeln!(s, "scalar function: \"f{k}\", {f};");
+                let (a, b) = (a + 1, b + 1);
+                let d = match r.below(8) {
+                    0 => format!("reference, {a}"),
+                    1 => format!("array, 2, reference, {a}, reference, {b}"),
+                    2 => format!("mult, reference, {a}, reference, {b}"),
+                    3 => format!("drive, reference, {a}, reference, {b}"),
+                    4 => format!("string, \"model::drive({a}, Time) + model::drive({b}, 2.*Time)\""),
+                    5 => format!("string, \"model::sf::f{k}(Time) * {}\"", r.pick(NUMBERS)),
+                    6 => format!("scalar function, \"f{k}\""),
+                    _ => format!("array, 3, reference, {a}, reference, {b}, const, {}", r.pick(NUMBERS)),
+                };
+                let _ = writeln!(s, "drive caller: {}, {d};", k + 1);
+            }
+            let _ = writeln!(s, "set: real x = model::drive({cards}, 0.5);\nset: real y = model::sf::f{}(0.5);", cards - 1);
+            format!(
+                "begin: data; problem: initial value; end: data;\n{s}\
+                 begin: initial value; initial time: 0.; final time: 1.; time step: 1.e-2; end: initial value;\n\
+                 begin: control data; structural nodes: 1; rigid bodies: 1; forces: 1; end: control data;\n\
+                 begin: nodes; structural: 1, dynamic, null, eye, null, null; end: nodes;\n\
+                 begin: elements; body: 1, 1, 1., null, eye; force: 1, absolute, 1, position, null, 1., 0., 0., reference, {cards}; end: elements;"
+            )
+        },
+        0x6A09_E667_F3BC_C908,
+        "drive and function chain",
+    );
+    assert!(n > 20, "only {n} inputs");
 }

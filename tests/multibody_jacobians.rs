@@ -60,7 +60,7 @@ fn every_element(form: ConstraintForm) -> Model {
     let viscous = Beam3::new(31, bn, [SectionOrientation::Given(n.rotation()), SectionOrientation::Given(n.rotation())], laws).unwrap();
     b.element(elastic).element(viscous);
     // A deformable axial joint with nlsf terms f′(θ₃ − θ_p) = θ³ − θ and f″(ω₃) = exp(2 ω₃).
-    let (elastic, viscous) = (ScalarFunction::Sub(Box::new(ScalarFunction::Pow(3.0)), Box::new(ScalarFunction::Multilinear { points: vec![(-1.0, -1.0), (1.0, 1.0)], extrapolate: true })), ScalarFunction::Exp { multiplier: 1.0, base: std::f64::consts::E, coefficient: 2.0 });
+    let (elastic, viscous) = (ScalarFunction::Sub(std::sync::Arc::new(ScalarFunction::Pow(3.0)), std::sync::Arc::new(ScalarFunction::Multilinear { points: vec![(-1.0, -1.0), (1.0, 1.0)], extrapolate: true })), ScalarFunction::Exp { multiplier: 1.0, base: std::f64::consts::E, coefficient: 2.0 });
     b.element(DeformableJoint::axial(42, node(2, &mut n), node(3, &mut n), 30.0, 2.0, 0.1, 0.5).with_axial_functions(Some(elastic), Some(viscous)));
     // beam2 on nodes 1 and 3 (both state perturbations turn them by about 0.5 rad apart).
     let two = |n: &mut Noise, b: &ModelBuilder, i: usize| { let m = &b.nodes()[i]; BeamNode::new(m.label, m.position, m.orientation, 0.3 * n.vec()).with_orientation(n.rotation()) };

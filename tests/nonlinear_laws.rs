@@ -24,7 +24,7 @@ use romdyn::kinematics::{rotation_vector, Vec3};
 
 /// `F(x) = 10 x + x³`.
 fn stiffening() -> ScalarFunction {
-    ScalarFunction::Sum(Box::new(ScalarFunction::Multilinear { points: vec![(0.0, 0.0), (1.0, 10.0)], extrapolate: true }), Box::new(ScalarFunction::Pow(3.0)))
+    ScalarFunction::Sum(std::sync::Arc::new(ScalarFunction::Multilinear { points: vec![(0.0, 0.0), (1.0, 10.0)], extrapolate: true }), std::sync::Arc::new(ScalarFunction::Pow(3.0)))
 }
 
 /// A few functions with nonzero first and second derivatives.
@@ -33,7 +33,7 @@ fn some_function(k: usize) -> Option<ScalarFunction> {
         0 => Some(stiffening()),
         1 => Some(ScalarFunction::Exp { multiplier: 0.5, base: std::f64::consts::E, coefficient: 0.8 }),
         2 => None,
-        _ => Some(ScalarFunction::Sub(Box::new(ScalarFunction::Pow(3.0)), Box::new(ScalarFunction::Multilinear { points: vec![(-1.0, 2.0), (1.0, -2.0)], extrapolate: true }))),
+        _ => Some(ScalarFunction::Sub(std::sync::Arc::new(ScalarFunction::Pow(3.0)), std::sync::Arc::new(ScalarFunction::Multilinear { points: vec![(-1.0, 2.0), (1.0, -2.0)], extrapolate: true }))),
     }
 }
 

@@ -336,6 +336,9 @@ pub fn parse_damping(s: &str) -> Result<ModalDamping, String> {
     for item in s.split(',') {
         let (k, z) = item.split_once('=').ok_or_else(|| format!("'{item}': expected MODE=ZETA, e.g. 1=0.02"))?;
         let k: usize = k.trim().parse().map_err(|_| format!("'{k}' is not a modal-table index"))?;
+        if let Some((_, first)) = list.iter().find(|(j, _)| *j == k) {
+            return Err(format!("mode {k} is given a damping ratio twice ({first} and {}): give each modal-table index once", z.trim()));
+        }
         list.push((k, zeta(z)?));
     }
     Ok(ModalDamping::PerMode(list))

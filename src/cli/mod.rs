@@ -62,8 +62,23 @@ enum Command {
     Sweep(sweep::SweepArgs),
 }
 
+/// `romdyn help --help` (or `-h`) as `romdyn help help`, and `romdyn help eig --help` as
+/// `romdyn help eig`: clap's `help` subcommand takes no flags and exited 2 (issue 32).
+fn help_flags_of_help(mut args: Vec<std::ffi::OsString>) -> Vec<std::ffi::OsString> {
+    if args.get(1).is_some_and(|a| a == "help") {
+        let flag = |a: &std::ffi::OsString| a == "--help" || a == "-h";
+        if args[2..].iter().any(flag) {
+            args.retain(|a| !flag(a));
+            if args.len() == 2 {
+                args.push("help".into());
+            }
+        }
+    }
+    args
+}
+
 pub fn run() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = Cli::parse_from(help_flags_of_help(std::env::args_os().collect()));
     let result = match cli.command {
         Command::Run(a) => run::run(a),
         Command::Check(a) => check::run(a),

@@ -1,10 +1,70 @@
 //! Scalar functions of time that drive forces and couples (MBDyn's drive callers, input
 //! manual "General", §Drive Caller: the formulas are the manual's).
 
+use std::cell::RefCell;
 use std::fmt;
 use std::sync::Arc;
 
 use super::contract::ElementState;
+
+/// What one evaluation of a drive or a scalar function costs: how deep its evaluations
+/// nest (the stack it takes: a `reference`, a `model::drive` or `model::sf` call, an
+/// operand each add a level) and how many evaluations it makes, repetitions counted (its
+/// time: `sum` of a function with itself doubles it). The reader refuses a drive or
+/// function over [`crate::limits::MAX_EVALUATION_DEPTH`] or
+/// [`crate::limits::MAX_EVALUATION_TERMS`], where it is written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct EvaluationCost {
+    pub depth: usize,
+    pub terms: u64,
+}
+
+impl EvaluationCost {
+    /// An evaluation that calls no other.
+    pub const LEAF: EvaluationCost = EvaluationCost { depth: 1, terms: 1 };
+
+    /// One evaluation that makes each of `parts` once.
+    pub fn around(parts: impl IntoIterator<Item = EvaluationCost>) -> EvaluationCost {
+        parts.into_iter().fold(Self::LEAF, |acc, p| EvaluationCost { depth: acc.depth.max(p.depth.saturating_add(1)), terms: acc.terms.saturating_add(p.terms) })
+    }
+
+    /// Why this cost is over romdyn's budget, if it is (`what` names the drive or function).
+    pub fn over_budget(&self, what: &str) -> Option<String> {
+        use crate::limits::{MAX_EVALUATION_DEPTH, MAX_EVALUATION_TERMS};
+        if self.depth > MAX_EVALUATION_DEPTH {
+            Some(format!("{what} nests {} evaluations deep (drive callers, references to drive caller cards, model::drive and model::sf calls, scalar function operands), more than romdyn's limit of {MAX_EVALUATION_DEPTH}", self.depth))
+        } else if self.terms > MAX_EVALUATION_TERMS {
+            Some(format!("{what} makes {} evaluations each time it is called (each use of a drive or scalar function counts, repetitions included), more than romdyn's limit of {MAX_EVALUATION_TERMS}", self.terms))
+        } else {
+            None
+        }
+    }
+}
+
+thread_local! {
+    /// The last drive evaluation that failed or gave a value that is not finite, with its
+    /// time ([`note_evaluation_failure`]).
+    static FAILURE: RefCell<Option<(f64, String)>> = const { RefCell::new(None) };
+}
+
+/// Notes that a drive's evaluation at time `t` failed (`why`: the drive, where it is
+/// written, and what went wrong), for the failure of the Newton iteration the value spoils
+/// to name ([`take_evaluation_failure`]). The first note at a time is kept (a drive that
+/// calls a failing one fails after it).
+pub fn note_evaluation_failure(t: f64, why: impl FnOnce() -> String) {
+    FAILURE.with(|f| {
+        let mut f = f.borrow_mut();
+        if f.as_ref().is_none_or(|(at, _)| *at != t) {
+            *f = Some((t, why()));
+        }
+    });
+}
+
+/// The note of [`note_evaluation_failure`] made at time `t` on this thread, if any
+/// (taken: the next call gives `None`).
+pub fn take_evaluation_failure(t: f64) -> Option<String> {
+    FAILURE.with(|f| f.borrow_mut().take()).filter(|(at, _)| *at == t).map(|(_, why)| why)
+}
 
 /// The evaluation of a [`TimeFunction`]: the time, and the model's state when the caller
 /// has one (an element's residual).
@@ -28,23 +88,34 @@ pub struct TimeFunction {
     pub text: String,
     f: Arc<Evaluation>,
     reads_state: bool,
+    /// What one evaluation costs (the drives and functions it calls included).
+    cost: EvaluationCost,
 }
 
 impl TimeFunction {
     pub fn new(text: impl Into<String>, f: impl Fn(f64) -> f64 + Send + Sync + 'static) -> Self {
-        TimeFunction { text: text.into(), f: Arc::new(move |t, _| f(t)), reads_state: false }
+        TimeFunction { text: text.into(), f: Arc::new(move |t, _| f(t)), reads_state: false, cost: EvaluationCost::LEAF }
+    }
+    /// The same function, declared to cost `cost` per evaluation (the drives and
+    /// functions its evaluation calls).
+    pub fn with_cost(mut self, cost: EvaluationCost) -> Self {
+        self.cost = cost;
+        self
+    }
+    pub fn cost(&self) -> EvaluationCost {
+        self.cost
     }
     /// A function of its argument that may also read the time of the state it is evaluated
     /// in (MBDyn's `string` drive: `Var` the argument, `Time` the simulation's time, which
     /// differ inside a `dof`, `element` or `periodic` drive caller), but not the model's
     /// state: no linearization is refused for it.
     pub fn of_argument(text: impl Into<String>, f: impl Fn(f64, Option<&dyn ElementState>) -> f64 + Send + Sync + 'static) -> Self {
-        TimeFunction { text: text.into(), f: Arc::new(f), reads_state: false }
+        TimeFunction { text: text.into(), f: Arc::new(f), reads_state: false, cost: EvaluationCost::LEAF }
     }
     /// An expression that reads the model's state: `f(t, None)` is called where no state
     /// exists (it should then give NaN).
     pub fn reading_state(text: impl Into<String>, f: impl Fn(f64, Option<&dyn ElementState>) -> f64 + Send + Sync + 'static) -> Self {
-        TimeFunction { text: text.into(), f: Arc::new(f), reads_state: true }
+        TimeFunction { text: text.into(), f: Arc::new(f), reads_state: true, cost: EvaluationCost::LEAF }
     }
     pub fn value(&self, t: f64) -> f64 {
         (self.f)(t, None)
@@ -190,6 +261,28 @@ impl Drive {
             Drive::Periodic { f, .. } => f.reads_state(),
             Drive::Stepped(s) => s.reads_state(),
             _ => false,
+        }
+    }
+
+    /// What one evaluation costs (see [`EvaluationCost`]); walks the drive (bounded: the
+    /// reader checks every drive it builds, so the parts are within budget).
+    pub fn cost(&self) -> EvaluationCost {
+        use super::step_drive::StepKind;
+        let around = |parts: &[&Drive]| EvaluationCost::around(parts.iter().map(|d| d.cost()));
+        match self {
+            Drive::Sum(drives) => EvaluationCost::around(drives.iter().map(Drive::cost)),
+            Drive::Product(a, b) | Drive::Compose(a, b) => around(&[a, b]),
+            Drive::FrequencySweep { omega, amplitude, .. } => around(&[omega, amplitude]),
+            Drive::Periodic { f, .. } => around(&[f]),
+            Drive::Expression(f) => f.cost(),
+            Drive::Function(f) => EvaluationCost::around([f.cost()]),
+            Drive::Stepped(s) => match s.kind() {
+                StepKind::SampleAndHold { function, trigger, .. } => around(&[function, trigger]),
+                StepKind::DiscreteFilter { input, .. } => around(&[input]),
+                StepKind::ClosestNext { increment, .. } => around(&[increment]),
+                _ => EvaluationCost::LEAF,
+            },
+            _ => EvaluationCost::LEAF,
         }
     }
 

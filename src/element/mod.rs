@@ -65,7 +65,7 @@ pub use deformable::{DeformableDisplacement, DeformableHinge, LinearViscoelastic
 pub use distance::Distance;
 pub use deformable_joint::DeformableJoint;
 pub use invariant_hinge::InvariantDeformableHinge;
-pub use drive::{Drive, SampledChannel, TimeFunction};
+pub use drive::{note_evaluation_failure, take_evaluation_failure, Drive, EvaluationCost, SampledChannel, TimeFunction};
 pub use driven_element::{DrivenElement, Hint, HintValue};
 pub use driven_gravity::DrivenGravity;
 pub use driven_joint::{DrivenJoint, VectorDrive, RotationRemnant};

@@ -1,6 +1,16 @@
 //! MBDyn's scalar functions (input manual, §Scalar functions; ScalarFunctionsImpl.cc):
 //! differentiable functions of one variable that drives (`scalar function` drive caller)
 //! and constitutive laws (`scalar function elastic`) evaluate.
+//!
+//! The operands of `sum`, `sub`, `mul` and `div` are shared (`Arc`), as MBDyn shares the
+//! named functions (ScalarFunctionsImpl.cc keeps pointers): a chain of N cards each adding
+//! the previous function to itself takes memory linear in N, and [`ScalarFunction::cost`]
+//! counts the 2^N evaluations one call makes, which the reader refuses past its budget.
+
+use std::collections::HashMap;
+use std::sync::Arc;
+
+use super::drive::EvaluationCost;
 
 /// `f(x)` with its derivative.
 #[derive(Clone, Debug, PartialEq)]
@@ -27,10 +37,10 @@ pub enum ScalarFunction {
     /// `Σ c_k T_k(ξ)`, `ξ = (2x − (a + b))/(b − a)`, on `[a, b]`; continued linearly
     /// outside (with the end slopes) when `extrapolate`.
     Chebychev { a: f64, b: f64, coefficients: Vec<f64>, extrapolate: bool },
-    Sum(Box<ScalarFunction>, Box<ScalarFunction>),
-    Sub(Box<ScalarFunction>, Box<ScalarFunction>),
-    Mul(Box<ScalarFunction>, Box<ScalarFunction>),
-    Div(Box<ScalarFunction>, Box<ScalarFunction>),
+    Sum(Arc<ScalarFunction>, Arc<ScalarFunction>),
+    Sub(Arc<ScalarFunction>, Arc<ScalarFunction>),
+    Mul(Arc<ScalarFunction>, Arc<ScalarFunction>),
+    Div(Arc<ScalarFunction>, Arc<ScalarFunction>),
 }
 
 impl ScalarFunction {
@@ -42,6 +52,27 @@ impl ScalarFunction {
 
     pub fn value(&self, x: f64) -> f64 {
         self.value_and_derivative(x).0
+    }
+
+    /// What one evaluation costs (its depth and the evaluations it makes, see
+    /// [`EvaluationCost`]), counted over the shared operands once each: linear in the
+    /// number of distinct functions, not in the (possibly exponential) count it returns.
+    pub fn cost(&self) -> EvaluationCost {
+        fn walk(f: &ScalarFunction, memo: &mut HashMap<*const ScalarFunction, EvaluationCost>) -> EvaluationCost {
+            let (ScalarFunction::Sum(a, b) | ScalarFunction::Sub(a, b) | ScalarFunction::Mul(a, b) | ScalarFunction::Div(a, b)) = f else { return EvaluationCost::LEAF };
+            let mut part = |g: &Arc<ScalarFunction>| {
+                let key = Arc::as_ptr(g);
+                if let Some(&c) = memo.get(&key) {
+                    return c;
+                }
+                let c = walk(g, memo);
+                memo.insert(key, c);
+                c
+            };
+            let (ca, cb) = (part(a), part(b));
+            EvaluationCost::around([ca, cb])
+        }
+        walk(self, &mut HashMap::new())
     }
 
     pub fn derivative(&self, x: f64) -> f64 {
@@ -216,6 +247,25 @@ fn chebychev(a: f64, b: f64, c: &[f64], extrapolate: bool, x: f64) -> (f64, f64)
 #[cfg(test)]
 mod tests {
     use super::ScalarFunction as F;
+    use std::sync::Arc;
+
+    /// 40 functions, each the sum of the previous one with itself, shared: the cost walk
+    /// visits each once and counts 2^41 − 1 evaluations (T_k = 1 + 2 T_{k−1}, T_0 = 1) at
+    /// depth 41; the value at any x is 2^40 (1 doubled 40 times), here for 20 of them.
+    #[test]
+    fn shared_operands_are_counted_with_their_repetitions() {
+        let mut f = Arc::new(F::Const(1.0));
+        for _ in 0..40 {
+            f = Arc::new(F::Sum(f.clone(), f));
+        }
+        let cost = f.cost();
+        assert_eq!((cost.depth, cost.terms), (41, (1u64 << 41) - 1));
+        let mut g = Arc::new(F::Const(1.0));
+        for _ in 0..20 {
+            g = Arc::new(F::Sum(g.clone(), g));
+        }
+        assert_eq!(g.value(0.3), (1u64 << 20) as f64);
+    }
 
     #[test]
     fn scalar_functions_follow_the_manual_and_their_derivatives_differences() {
@@ -232,8 +282,8 @@ mod tests {
             (F::Multilinear { points: vec![(0.0, 0.0), (1.0, 1.0)], extrapolate: false }, 2.5, 1.0),
             // T₀ + 2 T₁ + 3 T₂ on [0, 2] at x = 1.5 (ξ = 0.5): 1 + 1 + 3 (2·0.25 − 1) = 0.5.
             (F::Chebychev { a: 0.0, b: 2.0, coefficients: vec![1.0, 2.0, 3.0], extrapolate: true }, 1.5, 0.5),
-            (F::Div(Box::new(F::Pow(2.0)), Box::new(F::Const(4.0))), 3.0, 2.25),
-            (F::Sub(Box::new(F::Pow(2.0)), Box::new(F::Mul(Box::new(F::Const(2.0)), Box::new(F::Pow(1.0))))), 3.0, 3.0),
+            (F::Div(Arc::new(F::Pow(2.0)), Arc::new(F::Const(4.0))), 3.0, 2.25),
+            (F::Sub(Arc::new(F::Pow(2.0)), Arc::new(F::Mul(Arc::new(F::Const(2.0)), Arc::new(F::Pow(1.0))))), 3.0, 3.0),
         ];
         for (f, x, want) in &cases {
             let (v, d) = f.value_and_derivative(*x);
@@ -268,8 +318,8 @@ mod tests {
         let spline = |extrapolate| F::cubic_spline(vec![(1.0, 1.0), (2.0, 4.0), (3.0, 9.0)], extrapolate);
         assert!(spline(true).kinks().is_empty());
         assert_eq!(spline(false).kinks(), vec![1.0, 3.0]);
-        let ramp = || Box::new(F::Multilinear { points: vec![(0.0, 0.0), (1.0, 1.0), (2.0, 1.0)], extrapolate: true });
-        assert_eq!(F::Sum(ramp(), Box::new(F::Mul(ramp(), Box::new(F::Pow(2.0))))).kinks(), vec![1.0]);
+        let ramp = || std::sync::Arc::new(F::Multilinear { points: vec![(0.0, 0.0), (1.0, 1.0), (2.0, 1.0)], extrapolate: true });
+        assert_eq!(F::Sum(ramp(), Arc::new(F::Mul(ramp(), Arc::new(F::Pow(2.0))))).kinks(), vec![1.0]);
         assert!(F::Const(0.3).kinks().is_empty());
     }
 }

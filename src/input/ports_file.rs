@@ -157,6 +157,10 @@ impl Spec {
         if self.node.is_some() || self.offset.is_some() {
             return Err("pairs take \"from\"/\"to\" with \"at\" or \"from_offset\"/\"to_offset\"".into());
         }
+        if from == to {
+            let instead = if self.kind == "actuator" { "a 'force' or a 'moment' input on the node" } else { "a 'displacement' output of the node" };
+            return Err(format!("a '{}' port acts between two nodes, \"from\" and \"to\" are both node {from} (for one node use {instead})", self.kind));
+        }
         let side = |node, off: Option<[f64; 3]>| match (self.at, off) {
             (Some(_), Some(_)) => Err("give \"at\" or the offsets, not both".to_string()),
             (Some(a), None) => Ok(Point { node, location: Location::At(vec3(a)) }),

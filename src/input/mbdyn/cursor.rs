@@ -71,6 +71,16 @@ impl<'a> Cursor<'a> {
         matches!(self.st.args.get(self.pos).map(|a| &a.value), Some(Value::Number(_) | Value::Empty | Value::Current(_)))
     }
 
+    /// How many arguments are read.
+    pub fn position(&self) -> usize {
+        self.pos
+    }
+
+    /// The next argument's text as written, if there is one.
+    pub fn peek_text(&self) -> Option<&'a str> {
+        self.st.args.get(self.pos).map(|a| a.text.as_str())
+    }
+
     /// The next argument read as a keyword, if it can be one.
     pub fn peek_keyword(&self) -> Option<&'a str> {
         self.st.args.get(self.pos).and_then(|a| a.keyword.as_deref())

@@ -45,12 +45,26 @@ impl std::error::Error for MbdynError {}
 #[derive(Default, Debug)]
 pub struct Sources {
     pub files: Vec<(PathBuf, String)>,
+    /// Where each line starts, by file, made at a file's first error: an error costs
+    /// O(log lines), not O(file) (the reader makes and drops errors as it goes, and a
+    /// file of N cards with one each read in O(N²)).
+    line_starts: std::sync::Mutex<std::collections::HashMap<usize, std::sync::Arc<Vec<usize>>>>,
 }
 
 impl Sources {
     pub fn error(&self, span: Span, message: impl Into<String>) -> MbdynError {
-        let (file, text) = self.files.get(span.file).cloned().unwrap_or_default();
-        let source_line = text.lines().nth(span.line.saturating_sub(1)).unwrap_or("").to_string();
-        MbdynError { file, line: span.line, column: span.column, message: message.into(), source_line }
+        let Some((file, text)) = self.files.get(span.file) else {
+            return MbdynError { file: PathBuf::new(), line: span.line, column: span.column, message: message.into(), source_line: String::new() };
+        };
+        let starts = {
+            let mut index = self.line_starts.lock().unwrap_or_else(|e| e.into_inner());
+            let starts = index.entry(span.file).or_insert_with(|| std::sync::Arc::new(std::iter::once(0).chain(text.match_indices('\n').map(|(k, _)| k + 1)).collect()));
+            starts.clone()
+        };
+        let source_line = match starts.get(span.line.saturating_sub(1)) {
+            Some(&a) => text[a..].lines().next().unwrap_or("").to_string(),
+            _ => String::new(),
+        };
+        MbdynError { file: file.clone(), line: span.line, column: span.column, message: message.into(), source_line }
     }
 }

@@ -12,7 +12,7 @@
 
 use std::collections::{HashMap, HashSet};
 
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex, RwLock};
 
 use super::cursor::Cursor;
 use super::diagnostic::{MbdynError, Sources, Span};
@@ -23,7 +23,7 @@ use super::model_namespace::{node_private_data, Live, Reads};
 use super::parser::Statement;
 use super::template_dim::{TemplateDim, Term};
 use super::value::TypedValue;
-use crate::element::{Drive, ElementState, StepDrive, StepKind, TimeFunction};
+use crate::element::{note_evaluation_failure, Drive, ElementState, EvaluationCost, StepDrive, StepKind, TimeFunction};
 use crate::kinematics::{Mat3, Vec3};
 
 /// Drive callers romdyn evaluates.
@@ -40,10 +40,56 @@ const UNSUPPORTED: [&str; 1] = ["ginac"];
 /// Nesting of drive callers inside drive callers romdyn follows.
 const MAX_DEPTH: usize = 16;
 
+/// A `drive caller:` card: its drive, statement and place.
+#[derive(Clone)]
+struct DriveCard {
+    drive: Arc<Drive>,
+    seq: usize,
+    span: Span,
+}
+
+/// The `drive caller:` cards, by label, shared (an `Arc`) with the views string drives
+/// keep ([`DrivesBefore`]): a string drive does not copy the table (which made N cards
+/// O(N²) to read).
+#[derive(Clone, Default)]
+pub struct DriveTable(Arc<RwLock<HashMap<u32, DriveCard>>>);
+
+impl DriveTable {
+    fn get(&self, label: u32) -> Option<DriveCard> {
+        self.0.read().unwrap_or_else(|e| e.into_inner()).get(&label).cloned()
+    }
+    fn insert(&self, label: u32, card: DriveCard) {
+        self.0.write().unwrap_or_else(|e| e.into_inner()).insert(label, card);
+    }
+    /// The costs of the cards before statement `seq` (a `model::drive` whose label is
+    /// computed may call any of them).
+    fn costs_before(&self, seq: usize) -> Vec<EvaluationCost> {
+        self.0.read().unwrap_or_else(|e| e.into_inner()).values().filter(|d| d.seq < seq).map(|d| d.drive.cost()).collect()
+    }
+    /// The cards a statement at `seq` sees.
+    pub fn before(&self, seq: usize) -> DrivesBefore {
+        DrivesBefore { table: self.clone(), seq }
+    }
+}
+
+/// The `drive caller:` cards a statement sees: those before it (`model::drive(LABEL, x)`).
+#[derive(Clone, Default)]
+pub struct DrivesBefore {
+    table: DriveTable,
+    seq: usize,
+}
+
+impl DrivesBefore {
+    /// The drive of card `label`, if it comes before the statement.
+    pub fn get(&self, label: u32) -> Option<Arc<Drive>> {
+        self.table.get(label).filter(|d| d.seq < self.seq).map(|d| d.drive)
+    }
+}
+
 /// The `drive caller:` cards read so far, and the variables `string` drives evaluate with.
 #[derive(Default)]
 pub struct Drives {
-    table: HashMap<u32, (Drive, usize, Span)>,
+    table: DriveTable,
     pub variables: Variables,
     /// The `scalar function:` cards (which `scalar function` drives and laws use).
     pub functions: super::scalar_functions::ScalarFunctions,
@@ -69,7 +115,8 @@ type TemplateCard = (Vec<(Vec3, Drive)>, usize, Span);
 impl Drives {
     /// Forgets the `drive caller:` cards (to read them again with other variables).
     pub fn clear_cards(&mut self) {
-        self.table.clear();
+        // A new table: the string drives read so far keep the old one.
+        self.table = DriveTable::default();
         self.templates.clear();
         self.other_templates.clear();
     }
@@ -83,18 +130,24 @@ impl Drives {
     pub fn for_hints(&self) -> Drives {
         Drives { table: self.table.clone(), variables: self.variables.clone(), structural_nodes: self.structural_nodes.clone(), private: super::element_reads::PrivateReads::for_hints(), ..Drives::default() }
     }
-    /// The drive caller cards of statements before `seq`, by label.
-    pub fn defined_before(&self, seq: usize) -> HashMap<u32, Drive> {
-        self.table.iter().filter(|(_, (_, s, _))| *s < seq).map(|(l, (d, _, _))| (*l, d.clone())).collect()
+    /// The drive caller cards of statements before `seq`, shared.
+    pub fn defined_before(&self, seq: usize) -> DrivesBefore {
+        self.table.before(seq)
     }
 }
 
-/// Reads a `drive caller: LABEL, [name, "…",] DRIVE;` card.
-pub fn drive_caller_card(st: &Statement, c: &mut Cursor, drives: &mut Drives) -> Result<(), MbdynError> {
+/// `FILE:LINE:COLUMN` of `span`, for messages of the run.
+fn place(c: &Cursor, span: Span) -> String {
+    let file = c.source_path(span).map_or_else(|| "input".to_string(), |p| p.display().to_string());
+    format!("{file}:{}:{}", span.line, span.column)
+}
+
+/// Reads a `drive caller: LABEL, [name, "…",] DRIVE;` card; returns its label.
+pub fn drive_caller_card(st: &Statement, c: &mut Cursor, drives: &mut Drives) -> Result<u32, MbdynError> {
     let span = c.here();
     let label = c.label("drive caller label")?;
-    if let Some((_, _, at)) = drives.table.get(&label) {
-        return Err(c.error_at(span, format!("drive caller {label} is defined twice (first at line {})", at.line)));
+    if let Some(card) = drives.table.get(label) {
+        return Err(c.error_at(span, format!("drive caller {label} is defined twice (first at line {})", card.span.line)));
     }
     if c.accept("name") {
         c.string("drive caller name")?;
@@ -116,8 +169,8 @@ pub fn drive_caller_card(st: &Statement, c: &mut Cursor, drives: &mut Drives) ->
         }
     }
     c.finish()?;
-    drives.table.insert(label, (d, st.seq, st.span));
-    Ok(())
+    drives.table.insert(label, DriveCard { drive: Arc::new(d), seq: st.seq, span: st.span });
+    Ok(label)
 }
 
 /// One drive caller; `seq` is the reading statement's position (for `reference, LABEL`).
@@ -125,7 +178,19 @@ pub fn drive(c: &mut Cursor, drives: &Drives, seq: usize) -> Result<Drive, Mbdyn
     nested_drive(c, drives, seq, 0)
 }
 
+/// A drive caller inside `depth` others, refused where it is written when one call of it
+/// would cost more than romdyn's budget ([`EvaluationCost`]; `reference`, `array` and
+/// `model::drive` could otherwise nest without bound or double at every card).
 fn nested_drive(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) -> Result<Drive, MbdynError> {
+    let span = c.here();
+    let d = unchecked_drive(c, drives, seq, depth)?;
+    match d.cost().over_budget("this drive caller") {
+        Some(why) => Err(c.error_at(span, why)),
+        None => Ok(d),
+    }
+}
+
+fn unchecked_drive(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) -> Result<Drive, MbdynError> {
     if depth > MAX_DEPTH {
         return Err(c.error(format!("drive callers nested more than {MAX_DEPTH} deep")));
     }
@@ -178,8 +243,16 @@ fn nested_drive(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) -> Re
                 return Err(c.error_at(span, "array: at least one drive caller is needed"));
             }
             let mut terms = Vec::with_capacity(n.min(64));
+            let mut cost = 0u64;
             for _ in 0..n {
-                terms.push(inner(c)?);
+                let at = c.here();
+                let term = inner(c)?;
+                // Checked as the terms come: their copies are not all made before the check.
+                cost = cost.saturating_add(term.cost().terms);
+                if let Some(why) = (EvaluationCost { depth: 1, terms: cost.saturating_add(1) }).over_budget("this array drive caller") {
+                    return Err(c.error_at(at, why));
+                }
+                terms.push(term);
             }
             if terms.len() == 1 { terms.remove(0) } else { Drive::Sum(terms) }
         }
@@ -201,7 +274,23 @@ fn nested_drive(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) -> Re
         "node" => node_drive(c, drives, &inner)?,
         "dof" => super::element_reads::dof_drive(c, &drives.structural_nodes, &inner)?,
         "element" => super::element_reads::element_drive(c, &drives.private, seq, &inner)?,
-        "scalar function" => Drive::Function(super::scalar_functions::scalar_function(c, &drives.functions, seq)?),
+        "scalar function" => {
+            let name = c.peek_text().unwrap_or_default().to_string();
+            let first = c.position();
+            let f = super::scalar_functions::scalar_function(c, &drives.functions, seq)?;
+            let origin = format!("scalar function drive caller {name} at {}", place(c, span));
+            let cost = EvaluationCost::around([f.cost()]);
+            // The text decides equality (two forces with equal drives add up): a card's name
+            // is unique, a definition written inline is told apart by its place.
+            let text = if c.position() > first + 1 { format!("scalar function, {name}, defined at {}", place(c, span)) } else { format!("scalar function, {name}") };
+            Drive::Expression(TimeFunction::new(text, move |t| {
+                let v = f.value(t);
+                if !v.is_finite() {
+                    note_evaluation_failure(t, || format!("{origin}: its value at {t} is {v}"));
+                }
+                v
+            }).with_cost(cost))
+        }
         "mult" => {
             let a = inner(c)?;
             Drive::Product(Box::new(a), Box::new(inner(c)?))
@@ -221,9 +310,9 @@ fn nested_drive(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) -> Re
         // there it resolves any card; inside a card it needs a card read before.
         "postponed" => {
             let label = c.label("drive caller label")?;
-            match drives.table.get(&label) {
+            match drives.table.get(label) {
                 // A random drive copied at its first call draws after all those read.
-                Some((d, _, _)) => super::counter_drives::copied(d, &drives.steps, usize::MAX),
+                Some(card) => super::counter_drives::copied(&card.drive, &drives.steps, usize::MAX),
                 None => {
                     return Err(c.error_at(span, format!("postponed drive caller {label}: no drive caller card {label} is read before this one (romdyn resolves a postponed drive caller inside a drive caller card when it reads the card)")));
                 }
@@ -249,7 +338,8 @@ fn nested_drive(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) -> Re
         "string" => {
             let span = c.here();
             let text = c.string("the expression (a string in double quotes)")?;
-            Drive::Expression(string_drive(&text, drives, seq, span).map_err(|m| c.error_at(span, format!("string drive \"{text}\": {m}")))?)
+            let origin = format!("string drive \"{text}\" at {}", place(c, span));
+            Drive::Expression(string_drive(&text, drives, seq, span, origin).map_err(|m| c.error_at(span, format!("string drive \"{text}\": {m}")))?)
         }
         "ramp" => {
             let slope = c.real("ramp slope")?;
@@ -287,9 +377,9 @@ fn nested_drive(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) -> Re
         }
         _ => {
             let label = c.label("drive caller label")?;
-            match drives.table.get(&label) {
-                Some((d, s, _)) if *s < seq => super::counter_drives::copied(d, &drives.steps, seq),
-                Some((_, _, at)) => return Err(c.error_at(span, format!("drive caller {label} is used before its definition (line {})", at.line))),
+            match drives.table.get(label) {
+                Some(card) if card.seq < seq => super::counter_drives::copied(&card.drive, &drives.steps, seq),
+                Some(card) => return Err(c.error_at(span, format!("drive caller {label} is used before its definition (line {})", card.span.line))),
                 None => return Err(c.error_at(span, format!("drive caller {label} is not defined"))),
             }
         }
@@ -319,15 +409,25 @@ fn coefficients(c: &mut Cursor, name: &str) -> Result<Vec<f64>, MbdynError> {
 /// of built-in functions are not errors). `model::element::TYPE(LABEL, "NAME")` reads the
 /// element's private datum at that state too: the check notes the reads, which are filled
 /// after the elements block (see [`super::element_reads`]).
-fn string_drive(text: &str, drives: &Drives, seq: usize, span: Span) -> Result<TimeFunction, String> {
+///
+/// A value that is not finite where the check computes it (`10.^400.`, `1e309`) is an
+/// error there; one that fails or is not finite during the run is noted with `origin`
+/// (the drive and its `FILE:LINE:COLUMN`), which the Newton iteration's failure names
+/// ([`note_evaluation_failure`]). The drive's cost counts the drives and functions its
+/// `model::drive` and `model::sf` calls reach ([`call_costs`]).
+fn string_drive(text: &str, drives: &Drives, seq: usize, span: Span, origin: String) -> Result<TimeFunction, String> {
     let mut sources = Sources::default();
     sources.files.push(("string drive".into(), text.to_string()));
     let tokens = tokenize(text, 0, &sources).map_err(|e| e.message)?;
     if tokens.is_empty() {
         return Err("the expression is empty".into());
     }
-    let functions = drives.functions.defined_before(seq);
+    let functions = drives.functions.before(seq);
     let table = drives.defined_before(seq);
+    let cost = EvaluationCost::around(call_costs(&tokens, &functions, &drives.table, seq));
+    if let Some(why) = cost.over_budget("the drive") {
+        return Err(why);
+    }
     let reads_state = tokens.windows(3).any(|w| w[0].token == Token::Word("model".into()) && w[1].token == Token::Symbol("::") && w[2].token != Token::Word("sf".into()));
     let evaluate = move |vars: &mut Variables, tokens: &[super::lexer::Spanned], sources: &Sources, var: f64, reads: Option<Reads>, state: Option<&dyn ElementState>, elements: Option<RunElements>| -> Result<f64, String> {
         // MBDyn's `StringDriveCaller::dGet(dVar)` sets `Var`; `Time` is the simulation's
@@ -335,7 +435,7 @@ fn string_drive(text: &str, drives: &Drives, seq: usize, span: Span) -> Result<T
         // or node drive caller's datum, `model::drive(L, x)`, a periodic drive's phase).
         let time = state.map_or(var, |s| s.time());
         for (name, value) in [("Time", time), ("Var", var)] {
-            vars.0.insert(name.into(), Variable { value: TypedValue::Real(value), constant: false, declared: None });
+            vars.insert(name.into(), Variable { value: TypedValue::Real(value), constant: false, declared: None });
         }
         let mut e = Evaluator::new(tokens, vars, sources, Span::default()).with_functions(&functions).with_drives(&table);
         if let Some(reads) = reads {
@@ -349,20 +449,68 @@ fn string_drive(text: &str, drives: &Drives, seq: usize, span: Span) -> Result<T
     };
     let mut vars = drives.variables.clone();
     let noted = std::cell::RefCell::new(Vec::new());
-    evaluate(&mut vars, &tokens, &sources, 0.0, reads_state.then_some(Reads::Labels(&drives.structural_nodes)), None, Some(RunElements::Note(&noted)))?;
+    let first = evaluate(&mut vars, &tokens, &sources, 0.0, reads_state.then_some(Reads::Labels(&drives.structural_nodes)), None, Some(RunElements::Note(&noted)))?;
+    // With the state's reads at their placeholder 0, a value may be out of range only there.
+    if !first.is_finite() && !reads_state {
+        return Err(format!("the value at Time = 0 is {first}, not a finite number"));
+    }
     let noted = noted.into_inner();
     drives.private.string_reads(text, span, &noted)?;
     let state = Mutex::new(vars);
     let run = move |t: f64, st: Option<&dyn ElementState>| {
         let mut vars = state.lock().unwrap_or_else(|e| e.into_inner());
-        match (reads_state, st) {
+        let value = match (reads_state, st) {
             (false, st) => evaluate(&mut vars, &tokens, &sources, t, None, st, None),
-            (true, None) => Ok(f64::NAN),
+            // No state to read: NaN by design (see [`TimeFunction::reading_state`]).
+            (true, None) => return f64::NAN,
             (true, Some(st)) => evaluate(&mut vars, &tokens, &sources, t, Some(Reads::Nodes(&Live(st))), Some(st), Some(RunElements::Read(&noted, st))),
+        };
+        let time = st.map_or(t, |s| s.time());
+        match value {
+            Ok(v) if v.is_finite() => v,
+            Ok(v) => {
+                note_evaluation_failure(time, || format!("{origin}: the value at Time = {time} is {v}"));
+                v
+            }
+            Err(why) => {
+                note_evaluation_failure(time, || format!("{origin}: {why} at Time = {time}"));
+                f64::NAN
+            }
         }
-        .unwrap_or(f64::NAN)
     };
-    Ok(if reads_state { TimeFunction::reading_state(text, run) } else { TimeFunction::of_argument(text, run) })
+    let f = if reads_state { TimeFunction::reading_state(text, run) } else { TimeFunction::of_argument(text, run) };
+    Ok(f.with_cost(cost))
+}
+
+/// The costs of what a string drive's `model::drive(LABEL, …)` and `model::sf::NAME(…)`
+/// calls reach, one per call: the card `LABEL` where it is written as a number, every card
+/// before the drive where it is computed.
+fn call_costs(tokens: &[super::lexer::Spanned], functions: &super::scalar_functions::FunctionsBefore, table: &DriveTable, seq: usize) -> Vec<EvaluationCost> {
+    let word = |k: usize, w: &str| tokens.get(k).is_some_and(|t| t.token == Token::Word(w.into()));
+    let symbol = |k: usize, s: &'static str| tokens.get(k).is_some_and(|t| t.token == Token::Symbol(s));
+    let mut costs = Vec::new();
+    for k in 0..tokens.len() {
+        if !(word(k, "model") && symbol(k + 1, "::")) {
+            continue;
+        }
+        if word(k + 2, "drive") && symbol(k + 3, "(") {
+            let literal = match tokens.get(k + 4).map(|t| &t.token) {
+                Some(Token::Integer(l)) if symbol(k + 5, ",") || symbol(k + 5, ")") => u32::try_from(*l).ok(),
+                Some(Token::Real(x)) if (symbol(k + 5, ",") || symbol(k + 5, ")")) && x.fract() == 0.0 && (0.0..=u32::MAX as f64).contains(x) => Some(*x as u32),
+                _ => None,
+            };
+            match literal {
+                Some(l) => costs.extend(table.get(l).filter(|d| d.seq < seq).map(|d| d.drive.cost())),
+                // Any card before may be called: the deepest and the dearest.
+                None => costs.push(table.costs_before(seq).into_iter().fold(EvaluationCost::LEAF, |a, b| EvaluationCost { depth: a.depth.max(b.depth), terms: a.terms.max(b.terms) })),
+            }
+        } else if word(k + 2, "sf") && symbol(k + 3, "::") {
+            if let Some(Token::Word(name)) = tokens.get(k + 4).map(|t| &t.token) {
+                costs.extend(functions.get(name).map(|(_, c)| c));
+            }
+        }
+    }
+    costs
 }
 
 /// `node, LABEL, structural, string, "NAME[i]", DRIVE` (drive_.cc, `NodeDCR::Read`;
@@ -384,10 +532,11 @@ fn node_drive(c: &mut Cursor, drives: &Drives, inner: &dyn Fn(&mut Cursor) -> Re
     node_private_data(label as f64, &data, Reads::Labels(&drives.structural_nodes)).map_err(|m| c.error_at(name_at, format!("node drive caller: {m}")))?;
     let f = inner(c)?;
     let text = format!("node, {label}, structural, string, \"{data}\", {f:?}");
+    let cost = EvaluationCost::around([f.cost()]);
     Ok(Drive::Expression(TimeFunction::reading_state(text, move |_, st| {
         let Some(st) = st else { return f64::NAN };
         node_private_data(label as f64, &data, Reads::Nodes(&Live(st))).map_or(f64::NAN, |x| f.value_at(x, Some(st)))
-    })))
+    }).with_cost(cost)))
 }
 
 /// Cycles of `sine`/`cosine` as full periods before the phase freezes. Sine: `N > 0` ends

@@ -29,25 +29,71 @@ pub struct Variable {
 }
 
 /// The symbol table: predefined constants plus everything declared so far.
+///
+/// Two layers: a shared, read-only base (an `Arc`, see [`Variables::shared`]) and the
+/// variables declared or assigned on top of it. A `string` drive evaluates on its own
+/// copy (it sets `Time` and `Var`, and its statements may assign), and a copy of a
+/// shared table costs O(1), not O(variables): a file of N drives and N `set:` cards reads
+/// in O(N), not O(N²) (issue 32). `generation` counts the changes, so that "have the
+/// variables changed since" costs O(1) too.
 #[derive(Clone, Debug)]
-pub struct Variables(pub HashMap<String, Variable>);
+pub struct Variables {
+    base: std::sync::Arc<HashMap<String, Variable>>,
+    own: HashMap<String, Variable>,
+    generation: u64,
+}
 
 impl Default for Variables {
     fn default() -> Self {
-        Variables(constants().into_iter().map(|(n, value)| (n.to_string(), Variable { value, constant: true, declared: None })).collect())
+        let own = constants().into_iter().map(|(n, value)| (n.to_string(), Variable { value, constant: true, declared: None })).collect();
+        Variables { base: Default::default(), own, generation: 0 }
     }
 }
 
 impl Variables {
     pub fn get(&self, name: &str) -> Option<&Variable> {
-        self.0.get(name)
+        self.own.get(name).or_else(|| self.base.get(name))
+    }
+    /// Declares `name` (or replaces its value).
+    pub fn insert(&mut self, name: String, var: Variable) {
+        self.generation += 1;
+        self.own.insert(name, var);
+    }
+    /// Assigns a value to a declared variable (nothing if `name` is not one).
+    pub fn set_value(&mut self, name: &str, value: TypedValue) {
+        if let Some(v) = self.own.get_mut(name) {
+            v.value = value;
+        } else if let Some(v) = self.base.get(name) {
+            let var = Variable { value, ..v.clone() };
+            self.own.insert(name.to_string(), var);
+        } else {
+            return;
+        }
+        self.generation += 1;
+    }
+    /// Counts the changes made to this table (to tell cheaply whether it changed).
+    pub fn generation(&self) -> u64 {
+        self.generation
+    }
+    /// Every variable, by name (those declared on top of the base hide the base's).
+    pub fn iter(&self) -> impl Iterator<Item = (&String, &Variable)> {
+        self.own.iter().chain(self.base.iter().filter(|(n, _)| !self.own.contains_key(*n)))
+    }
+    /// The same variables as a shared base: its clones cost O(1) (one O(variables) copy
+    /// here, when the table has its own variables).
+    pub fn shared(&self) -> Variables {
+        if self.own.is_empty() {
+            return Variables { base: self.base.clone(), own: HashMap::new(), generation: self.generation };
+        }
+        let all: HashMap<String, Variable> = self.iter().map(|(n, v)| (n.clone(), v.clone())).collect();
+        Variables { base: std::sync::Arc::new(all), own: HashMap::new(), generation: self.generation }
     }
     /// Errors (about the whole `file`) unless every name is a variable the file declares with
     /// `set:` (a swept or overridden name).
     pub fn check_declared<'n>(&self, names: impl IntoIterator<Item = &'n String>, file: &std::path::Path) -> Result<(), MbdynError> {
         for name in names {
             if self.get(name).is_none_or(|v| v.declared.is_none()) {
-                let mut declared: Vec<&str> = self.0.iter().filter(|(_, v)| v.declared.is_some()).map(|(n, _)| n.as_str()).collect();
+                let mut declared: Vec<&str> = self.iter().filter(|(_, v)| v.declared.is_some()).map(|(n, _)| n.as_str()).collect();
                 declared.sort_unstable();
                 let list = if declared.is_empty() { "none".to_string() } else { declared.join(", ") };
                 let message = format!("--set {name}: the file declares no variable '{name}' with 'set:' (its variables: {list})");
@@ -59,7 +105,7 @@ impl Variables {
 
     /// The numeric value of a variable (`None` if undefined or a string).
     pub fn real(&self, name: &str) -> Option<f64> {
-        self.0.get(name).and_then(|v| v.value.real())
+        self.get(name).and_then(|v| v.value.real())
     }
 }
 
@@ -73,6 +119,17 @@ pub type SetOverrides = BTreeMap<String, f64>;
 /// stack frames; real files nest a handful).
 const MAX_DEPTH: usize = 100;
 
+/// Nesting levels of all the evaluators running on a thread (a string drive's
+/// `model::drive` call evaluates another drive's expression inside this one's): their
+/// stack adds up, so their levels count together (see [`Evaluator::enter`]). A level with
+/// its drive call takes about 5 KB of stack: 64 chained string drives of 7 levels each
+/// overflowed the 2 MiB stack of a sweep's worker thread before 400 levels, 320 ran.
+const MAX_NESTED_DEPTH: usize = 2 * MAX_DEPTH;
+
+thread_local! {
+    static NESTED_DEPTH: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
+}
+
 /// Recursive-descent evaluator over one expression's tokens.
 pub struct Evaluator<'a> {
     tokens: &'a [Spanned],
@@ -84,13 +141,13 @@ pub struct Evaluator<'a> {
     overrides: Option<&'a SetOverrides>,
     /// The scalar functions `model::sf::NAME(x)` calls (string drives; `None` while the file is
     /// read, where `set:` runs before the `scalar function:` cards are read).
-    functions: Option<&'a std::collections::HashMap<String, crate::element::ScalarFunction>>,
+    functions: Option<&'a super::scalar_functions::FunctionsBefore>,
     /// What `model::` state functions read (`None`: they are refused).
     reads: Option<Reads<'a>>,
     /// The element state a string drive is evaluated in, passed on to `model::drive`.
     state: Option<&'a dyn crate::element::ElementState>,
     /// The `drive caller:` cards `model::drive(LABEL, x)` calls.
-    drives: Option<&'a HashMap<crate::element::Label, crate::element::Drive>>,
+    drives: Option<&'a super::drives::DrivesBefore>,
     /// A check before any state exists: out-of-domain arguments of built-in functions give
     /// NaN instead of an error (the placeholder values of the reads cause them).
     lenient: bool,
@@ -151,7 +208,7 @@ impl<'a> Evaluator<'a> {
     }
 
     /// Makes `model::drive(LABEL, x)` call these drive callers.
-    pub fn with_drives(mut self, drives: &'a HashMap<crate::element::Label, crate::element::Drive>) -> Self {
+    pub fn with_drives(mut self, drives: &'a super::drives::DrivesBefore) -> Self {
         self.drives = Some(drives);
         self
     }
@@ -159,7 +216,7 @@ impl<'a> Evaluator<'a> {
     /// Makes `model::sf::NAME(x)` call these scalar functions (modelns.cc: the
     /// `scalar function:` cards, the only part of the `model` namespace without run-time
     /// state).
-    pub fn with_functions(mut self, functions: &'a std::collections::HashMap<String, crate::element::ScalarFunction>) -> Self {
+    pub fn with_functions(mut self, functions: &'a super::scalar_functions::FunctionsBefore) -> Self {
         self.functions = Some(functions);
         self
     }
@@ -222,12 +279,25 @@ impl<'a> Evaluator<'a> {
             false
         }
     }
+    /// One level deeper: at most [`MAX_DEPTH`] in this expression, and
+    /// [`MAX_NESTED_DEPTH`] with those of the expressions that called it.
     fn enter(&mut self) -> Result<(), MbdynError> {
         self.depth += 1;
+        let nested = NESTED_DEPTH.with(|d| {
+            d.set(d.get() + 1);
+            d.get()
+        });
         if self.depth > MAX_DEPTH {
             return Err(self.err(self.span(), format!("expression nested more than {MAX_DEPTH} levels deep")));
         }
+        if nested > MAX_NESTED_DEPTH {
+            return Err(self.err(self.span(), format!("expressions nested more than {MAX_NESTED_DEPTH} levels deep, counting those of the string drives that call this one through model::drive")));
+        }
         Ok(())
+    }
+    fn leave(&mut self) {
+        self.depth -= 1;
+        NESTED_DEPTH.with(|d| d.set(d.get().saturating_sub(1)));
     }
     fn at(&self, span: Span) -> impl Fn(String) -> MbdynError + '_ {
         move |m| self.sources.error(span, m)
@@ -239,7 +309,7 @@ impl<'a> Evaluator<'a> {
         while self.eat(";") {
             v = self.statement()?;
         }
-        self.depth -= 1;
+        self.leave();
         Ok(v)
     }
 
@@ -306,7 +376,7 @@ impl<'a> Evaluator<'a> {
             None => ty.zero(),
         };
         let value = self.overridden(&name, ty, span, value)?;
-        self.vars.0.insert(name, super::expr::Variable { value: value.clone(), constant, declared: Some(span) });
+        self.vars.insert(name, super::expr::Variable { value: value.clone(), constant, declared: Some(span) });
         Ok(value)
     }
 
@@ -318,9 +388,7 @@ impl<'a> Evaluator<'a> {
         };
         let value = value.cast(ty).map_err(|m| self.sources.error(span, m))?;
         let value = self.overridden(name, ty, span, value)?;
-        if let Some(var) = self.vars.0.get_mut(name) {
-            var.value = value.clone();
-        }
+        self.vars.set_value(name, value.clone());
         Ok(value)
     }
 
@@ -352,7 +420,7 @@ impl<'a> Evaluator<'a> {
         if self.eat("!") {
             self.enter()?;
             let v = self.not()?;
-            self.depth -= 1;
+            self.leave();
             return Ok(TypedValue::Bool(!v.truth().map_err(self.at(span))?));
         }
         self.relational()
@@ -397,7 +465,7 @@ impl<'a> Evaluator<'a> {
             self.pos += 1;
             self.enter()?;
             let v = self.unary()?;
-            self.depth -= 1;
+            self.leave();
             return if op == "-" { v.negate().map_err(self.at(span)) } else { Ok(v) };
         }
         let base = self.primary()?;
@@ -406,7 +474,7 @@ impl<'a> Evaluator<'a> {
             self.pos += 1;
             self.enter()?;
             let exponent = self.unary()?;
-            self.depth -= 1;
+            self.leave();
             return base.power(&exponent).map_err(self.at(span));
         }
         Ok(base)
@@ -532,6 +600,14 @@ impl<'a> Evaluator<'a> {
     }
 }
 
+/// An evaluator that stops (an error) leaves its levels behind: they are given back here.
+impl Drop for Evaluator<'_> {
+    fn drop(&mut self) {
+        let depth = self.depth;
+        NESTED_DEPTH.with(|d| d.set(d.get().saturating_sub(depth)));
+    }
+}
+
 /// "the number 3", "the word 'x'", … for messages.
 pub fn describe(t: &Token) -> String {
     match t {
@@ -555,7 +631,7 @@ pub fn eval_type(name: &str) -> Option<Type> {
 /// rest of the expression reads the variables when the drive is called). `None` when the
 /// text has no `_eval` call, or one that cannot be evaluated here (it is then evaluated
 /// with the rest, and its error, if any, reported there).
-pub fn staticize_evals(text: &str, vars: &mut Variables, reads: Option<Reads<'_>>, drives: Option<&HashMap<crate::element::Label, crate::element::Drive>>) -> Option<String> {
+pub fn staticize_evals(text: &str, vars: &mut Variables, reads: Option<Reads<'_>>, drives: Option<&super::drives::DrivesBefore>) -> Option<String> {
     if !text.contains("_eval") {
         return None;
     }

@@ -70,7 +70,7 @@ struct Cards {
 
 fn cards(doc: &Document) -> Result<Cards, MbdynError> {
     let mut out = Cards::default();
-    out.drives.variables = doc.variables.clone();
+    out.drives.variables = doc.variables.shared();
     // The structural nodes `model::` functions of string drives may read (drive callers are
     // read before the nodes): `structural: LABEL, KIND, …` with KIND not `dummy`.
     for st in block(doc, "nodes").map_or(&[][..], |b| &b.statements).iter().filter(|st| same_keyword(&st.keyword, "structural")) {
@@ -105,7 +105,9 @@ fn cards(doc: &Document) -> Result<Cards, MbdynError> {
         let mut c = Cursor::new(st, &doc.sources);
         match known(&st.keyword, &CARDS) {
             Some("reference") => reference(st, &mut c, &mut out.frames)?,
-            Some("drive caller") => drive_caller_card(st, &mut c, &mut out.drives)?,
+            Some("drive caller") => {
+                drive_caller_card(st, &mut c, &mut out.drives)?;
+            }
             Some("template drive caller") => super::templates::template_drive_caller_card(st, &mut c, &mut out.drives)?,
             Some("constitutive law") => constitutive_law_card(st, &mut c, &mut out.laws, &out.drives)?,
             Some("scalar function") => super::scalar_functions::scalar_function_card(&mut c, &mut out.drives.functions, st.seq)?,

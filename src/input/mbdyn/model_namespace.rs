@@ -9,7 +9,7 @@
 
 use std::collections::HashMap;
 
-use crate::element::{Drive, Element, ElementState, Label, NodeKinematics};
+use crate::element::{Element, ElementState, Label, NodeKinematics};
 use crate::kinematics::{rotation_vector, Vec3};
 
 /// The structural nodes a `model::` function reads, by label.
@@ -271,10 +271,10 @@ pub fn element_key(kind: &str, label_arg: f64, call: &str) -> Result<(&'static s
 
 /// `model::drive(LABEL, x)`: the `drive caller:` card `LABEL` at `x` (modelns.cc,
 /// `DriveCaller::dGet(x)`), reading the same state.
-pub fn drive(table: &HashMap<Label, Drive>, label_arg: f64, x: f64, reads: Reads, state: Option<&dyn ElementState>) -> Result<f64, String> {
+pub fn drive(table: &super::drives::DrivesBefore, label_arg: f64, x: f64, reads: Reads, state: Option<&dyn ElementState>) -> Result<f64, String> {
     let call = format!("model::drive({label_arg}, {x})");
     let l = label(label_arg, &call)?;
-    let Some(d) = table.get(&l) else { return Err(format!("{call}: drive caller {l} is not defined before this expression")) };
+    let Some(d) = table.get(l) else { return Err(format!("{call}: drive caller {l} is not defined before this expression")) };
     Ok(match reads {
         Reads::Labels(_) => 0.0,
         Reads::Nodes(_) => d.value_at(x, state),

@@ -14,6 +14,7 @@ use super::expr::{describe, reads_current, staticize_evals, Deferred, Evaluator,
 use super::lexer::{tokenize, Spanned, Token};
 use super::value::TypedValue;
 use crate::element::NodeKinematics;
+use crate::limits::MAX_INCLUDE_DEPTH;
 
 /// An evaluated argument.
 #[derive(Clone, Debug, PartialEq)]
@@ -101,9 +102,14 @@ pub trait StatementObserver {
     fn nodes(&self) -> &HashMap<u32, NodeKinematics>;
     /// The `scalar function:` cards read so far, by name (`model::sf::NAME(x)` in `set:`:
     /// MBDyn reads a card when it meets it).
-    fn functions(&self) -> &HashMap<String, crate::element::ScalarFunction>;
+    fn functions(&self) -> &super::scalar_functions::FunctionsBefore;
     /// The `drive caller:` cards read so far, by label (`model::drive(LABEL, x)` there).
-    fn drives(&self) -> &HashMap<u32, crate::element::Drive>;
+    fn drives(&self) -> &super::drives::DrivesBefore;
+    /// Makes [`StatementObserver::drives`] current for `variables` (the string drives of
+    /// the cards read so far evaluate with the variables as they stand), before an
+    /// evaluation calls `model::drive`: done only then, so that a file of N `set:` and
+    /// N drive caller cards reads in O(N).
+    fn refresh_drives(&mut self, variables: &Variables, sources: &Sources);
     /// The bodies and joints read so far (`model::element::TYPE(LABEL, "NAME")` there).
     fn elements(&self) -> &super::model_namespace::ElementsRead;
 }
@@ -111,7 +117,9 @@ pub trait StatementObserver {
 struct Reader {
     doc: Document,
     observer: Box<dyn StatementObserver>,
-    stack: Vec<PathBuf>,
+    /// The files being read, outermost first, each as given and canonical (for include
+    /// loops: canonicalized once each, not at every include).
+    stack: Vec<(PathBuf, PathBuf)>,
     open: Option<Block>,
     seq: usize,
     overrides: SetOverrides,
@@ -178,7 +186,7 @@ impl Reader {
     fn read_tokens(&mut self, text: String, path: &Path) -> Result<(), MbdynError> {
         let file = self.doc.sources.files.len();
         self.doc.sources.files.push((path.to_path_buf(), text));
-        self.stack.push(path.to_path_buf());
+        self.stack.push((path.to_path_buf(), canonical(path)));
         let tokens = tokenize(&self.doc.sources.files[file].1, file, &self.doc.sources)?;
         let mut start = 0;
         while start < tokens.len() {
@@ -216,6 +224,9 @@ impl Reader {
             Some("set") => {
                 if body.is_empty() {
                     return Err(self.doc.sources.error(end, "set: expected an expression, e.g. 'set: real L = 1.;'"));
+                }
+                if calls_model_drive(body) {
+                    self.observer.refresh_drives(&self.doc.variables, &self.doc.sources);
                 }
                 Evaluator::new(body, &mut self.doc.variables, &self.doc.sources, end).with_overrides(&self.overrides).with_reads(Reads::Nodes(self.observer.nodes()), None).with_functions(self.observer.functions()).with_drives(self.observer.drives()).with_elements(self.observer.elements()).evaluate()?;
                 return Ok(());
@@ -343,6 +354,9 @@ impl Reader {
             let value = Value::Current(Box::new(Deferred::new(p, end, &self.doc.variables)));
             return Ok(Arg { value, span, keyword: None, text });
         }
+        if calls_model_drive(p) {
+            self.observer.refresh_drives(&self.doc.variables, &self.doc.sources);
+        }
         let value = match Evaluator::new(p, &mut self.doc.variables, &self.doc.sources, end).with_reads(Reads::Nodes(self.observer.nodes()), None).with_functions(self.observer.functions()).with_drives(self.observer.drives()).with_elements(self.observer.elements()).evaluate()? {
             // A string written as such may be a string drive's expression: its `TYPE_eval`
             // calls take their values now (see [`staticize_evals`]).
@@ -363,9 +377,14 @@ impl Reader {
             _ => return Err(src.error(body.first().map_or(end, |t| t.span), "include: expected a file name in double quotes")),
         };
         let target = path.parent().unwrap_or(Path::new(".")).join(&name);
-        let canonical = |p: &Path| std::fs::canonicalize(p).unwrap_or_else(|_| p.to_path_buf());
-        if self.stack.iter().any(|p| canonical(p) == canonical(&target)) {
+        let target_canonical = canonical(&target);
+        if self.stack.iter().any(|(_, p)| *p == target_canonical) {
             return Err(src.error(span, format!("include loop: \"{name}\" is already being read")));
+        }
+        // Each level is a few stack frames and a file held: a chain without end would
+        // overflow the stack (a 5000-deep chain took over a minute, issue 32).
+        if self.stack.len() >= MAX_INCLUDE_DEPTH {
+            return Err(src.error(span, format!("include: \"{name}\" would make a chain of {} files (a file including a file including …), more than romdyn's limit of {MAX_INCLUDE_DEPTH}", self.stack.len() + 1)));
         }
         self.read(&target, Some(body[0].span))
     }
@@ -415,6 +434,18 @@ fn python_preprocessor_note(message: &str, line: usize) -> String {
          which romdyn does not read, nor does MBDyn 1.7.3 (its reader takes the directive for a comment and stops on the Python code): \
          run 'python MBDynPreprocess.py FILE > FILE.mbd' first and give romdyn its output"
     )
+}
+
+/// `path` with links and `..` resolved, or as given where it cannot be (a missing file:
+/// reading it reports that).
+fn canonical(path: &Path) -> PathBuf {
+    std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf())
+}
+
+/// Whether the tokens call `model::drive` (in a string too: a string drive's `_eval`).
+fn calls_model_drive(tokens: &[Spanned]) -> bool {
+    tokens.windows(3).any(|w| matches!((&w[0].token, &w[1].token, &w[2].token), (Token::Word(m), Token::Symbol("::"), Token::Word(d)) if m == "model" && d == "drive"))
+        || tokens.iter().any(|t| matches!(&t.token, Token::Str(s) if s.contains("_eval")))
 }
 
 /// Index of the ';' that ends the first statement (semicolons inside parentheses separate

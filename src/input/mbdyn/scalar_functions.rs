@@ -3,30 +3,63 @@
 //! `pow`, `linear`, `cubic spline`, `multilinear`, `chebychev`, `sum`, `sub`, `mul`, `div`.
 
 use std::collections::HashMap;
+use std::sync::{Arc, RwLock};
 
 use super::cursor::Cursor;
 use super::diagnostic::{MbdynError, Span};
-use crate::element::ScalarFunction;
+use crate::element::{EvaluationCost, ScalarFunction};
 
-/// The scalar functions defined so far, by name, with the statement defining them.
-#[derive(Default)]
+/// A card: the function (shared by every use), its statement, its place and its cost.
+type Card = (Arc<ScalarFunction>, usize, Span, EvaluationCost);
+
+/// The scalar functions defined so far, by name, with the statement defining them. The
+/// table is shared (an `Arc`) with the views string drives keep ([`FunctionsBefore`]):
+/// a drive does not copy the table (which made N drives O(N²)).
+#[derive(Clone, Default)]
 pub struct ScalarFunctions {
-    table: HashMap<String, (ScalarFunction, usize, Span)>,
+    table: Arc<RwLock<HashMap<String, Card>>>,
+}
+
+/// The scalar functions a statement sees: those of cards before it (`model::sf::NAME`).
+#[derive(Clone, Default)]
+pub struct FunctionsBefore {
+    functions: ScalarFunctions,
+    seq: usize,
+}
+
+impl FunctionsBefore {
+    /// The function `name`, if a card before the statement defines it, with its cost.
+    pub fn get(&self, name: &str) -> Option<(Arc<ScalarFunction>, EvaluationCost)> {
+        self.functions.card(name).filter(|c| c.1 < self.seq).map(|c| (c.0, c.3))
+    }
 }
 
 impl ScalarFunctions {
-    /// The functions defined before statement `seq`, by name (what `sf::NAME` sees).
-    pub fn defined_before(&self, seq: usize) -> HashMap<String, ScalarFunction> {
-        self.table.iter().filter(|(_, (_, s, _))| *s < seq).map(|(n, (f, _, _))| (n.clone(), f.clone())).collect()
+    fn card(&self, name: &str) -> Option<Card> {
+        self.table.read().unwrap_or_else(|e| e.into_inner()).get(name).cloned()
+    }
+
+    /// The functions defined before statement `seq` (what `sf::NAME` sees), shared.
+    pub fn before(&self, seq: usize) -> FunctionsBefore {
+        FunctionsBefore { functions: self.clone(), seq }
     }
 
     /// The function `name` as defined before statement `seq`.
-    pub fn get(&self, c: &Cursor, span: Span, name: &str, seq: usize) -> Result<ScalarFunction, MbdynError> {
-        match self.table.get(name) {
-            Some((f, s, _)) if *s < seq => Ok(f.clone()),
-            Some((_, _, at)) => Err(c.error_at(span, format!("scalar function \"{name}\" is used before its definition (line {})", at.line))),
+    pub fn get(&self, c: &Cursor, span: Span, name: &str, seq: usize) -> Result<Arc<ScalarFunction>, MbdynError> {
+        match self.card(name) {
+            Some((f, s, _, _)) if s < seq => Ok(f),
+            Some((_, _, at, _)) => Err(c.error_at(span, format!("scalar function \"{name}\" is used before its definition (line {})", at.line))),
             None => Err(c.error_at(span, format!("scalar function \"{name}\" is not defined"))),
         }
+    }
+}
+
+/// Errors at `span` when `f` costs more than romdyn's budget (see [`EvaluationCost`]).
+fn within_budget(c: &Cursor, span: Span, name: &str, f: &ScalarFunction) -> Result<EvaluationCost, MbdynError> {
+    let cost = f.cost();
+    match cost.over_budget(&format!("scalar function \"{name}\"")) {
+        Some(why) => Err(c.error_at(span, why)),
+        None => Ok(cost),
     }
 }
 
@@ -36,24 +69,28 @@ const TYPES: [&str; 12] = ["const", "exp", "log", "pow", "linear", "multilinear"
 pub fn scalar_function_card(c: &mut Cursor, functions: &mut ScalarFunctions, seq: usize) -> Result<(), MbdynError> {
     let span = c.here();
     let name = c.string("the scalar function's name")?;
-    if let Some((_, _, at)) = functions.table.get(&name) {
+    if let Some((_, _, at, _)) = functions.card(&name) {
         return Err(c.error_at(span, format!("scalar function \"{name}\" is defined twice (first at line {})", at.line)));
     }
     let f = definition(c, functions, seq)?;
     c.finish()?;
-    functions.table.insert(name, (f, seq, c.statement().span));
+    let cost = within_budget(c, span, &name, &f)?;
+    functions.table.write().unwrap_or_else(|e| e.into_inner()).insert(name, (Arc::new(f), seq, c.statement().span, cost));
     Ok(())
 }
 
 /// `"NAME"` of a defined function, or an inline `"NAME", TYPE, ARGS` definition (the
 /// `scalar function` drive caller and constitutive laws).
+/// The function is a shallow copy: its operands stay shared.
 pub fn scalar_function(c: &mut Cursor, functions: &ScalarFunctions, seq: usize) -> Result<ScalarFunction, MbdynError> {
     let span = c.here();
     let name = c.string("the scalar function's name")?;
     if c.peek_keyword().is_some_and(|w| TYPES.iter().any(|t| super::parser::same_keyword(t, w))) {
-        return definition(c, functions, seq);
+        let f = definition(c, functions, seq)?;
+        within_budget(c, span, &name, &f)?;
+        return Ok(f);
     }
-    functions.get(c, span, &name, seq)
+    functions.get(c, span, &name, seq).map(|f| (*f).clone())
 }
 
 fn definition(c: &mut Cursor, functions: &ScalarFunctions, seq: usize) -> Result<ScalarFunction, MbdynError> {
@@ -111,10 +148,10 @@ fn definition(c: &mut Cursor, functions: &ScalarFunctions, seq: usize) -> Result
             ScalarFunction::cubic_spline(points(c, 3)?, extrapolate)
         }
         _ => {
-            let operand = |c: &mut Cursor| -> Result<Box<ScalarFunction>, MbdynError> {
+            let operand = |c: &mut Cursor| -> Result<Arc<ScalarFunction>, MbdynError> {
                 let at = c.here();
                 let name = c.string("the name of a scalar function")?;
-                Ok(Box::new(functions.get(c, at, &name, seq + 1)?))
+                functions.get(c, at, &name, seq + 1)
             };
             let (f, g) = (operand(c)?, operand(c)?);
             match kind {

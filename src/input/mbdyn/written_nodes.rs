@@ -18,19 +18,23 @@ use crate::element::NodeKinematics;
 /// The structural nodes as written so far (MBDyn's `StructNode::GetXCurr` while it reads is
 /// the written position). Built with the same readers as the model; a statement they refuse
 /// adds nothing here (the model's build reports it).
-#[derive(Default)]
 pub struct WrittenNodes {
     frames: Frames,
     nodes: Nodes,
     known: HashMap<u32, NodeKinematics>,
     /// The scalar function cards read so far, in `drives.functions` (a card the model's
-    /// build refuses is left out).
-    visible: HashMap<String, crate::element::ScalarFunction>,
+    /// build refuses is left out): a view of the shared table.
+    visible: super::scalar_functions::FunctionsBefore,
     /// The drive caller cards read so far (one the model's build refuses is left out).
     drives: super::drives::Drives,
-    drive_table: HashMap<u32, crate::element::Drive>,
+    drive_table: super::drives::DrivesBefore,
     /// The drive caller cards read so far (read again when the variables change).
     drive_cards: Vec<Statement>,
+    /// The generation of the variables the cards were read with
+    /// ([`Variables::generation`]), `None` before any.
+    read_with: Option<u64>,
+    /// How many of `drive_cards` are read.
+    cards_read: usize,
     /// The bodies and joints read so far (`model::element::…`), built with the model's
     /// readers (without the constitutive law cards: a joint that names one is kept as the
     /// reason it could not be read).
@@ -41,34 +45,32 @@ impl StatementObserver for WrittenNodes {
     fn statement(&mut self, st: &Statement, sources: &Sources, in_nodes_block: bool, variables: &Variables) {
         let mut c = Cursor::new(st, sources);
         if known(&st.keyword, &["drive caller"]).is_some() {
-            // A string drive reads the variables as they stand when it is called (MBDyn's
-            // `StringDriveCaller` keeps the parsed expression, not the values): after a
-            // `set:` changed them, the cards read so far are read again with the new values.
-            if variables.0 != self.drives.variables.0 {
-                self.drives.variables = variables.clone();
-                self.drives.clear_cards();
-                for old in &self.drive_cards {
-                    let _ = super::drives::drive_caller_card(old, &mut Cursor::new(old, sources), &mut self.drives);
-                }
-            }
-            self.drives.structural_nodes = self.known.keys().copied().collect();
-            if super::drives::drive_caller_card(st, &mut c, &mut self.drives).is_ok() {
-                self.drive_cards.push(st.clone());
-            }
-            self.drive_table = self.drives.defined_before(st.seq + 1);
+            // Read when a `model::drive` call needs it ([`StatementObserver::refresh_drives`]):
+            // most files never call one while they are read, and reading each card here with
+            // the variables as they stand made N cards and N `set:` O(N²) to read.
+            self.drive_cards.push(st.clone());
             return;
         }
         if !in_nodes_block && known(&st.keyword, &["body", "joint"]).is_some() {
+            // The element's drives may name the cards read so far: those not read yet are
+            // read with the variables as they stand (the others keep theirs until a
+            // `model::drive` call refreshes them).
+            if self.cards_read < self.drive_cards.len() && self.read_with != Some(variables.generation()) {
+                self.drives.variables = variables.shared();
+                self.read_with = None;
+            }
+            self.catch_up(sources);
             self.element(st, sources);
             return;
         }
         if known(&st.keyword, &["reference"]).is_some() {
             let _ = reference(st, &mut c, &mut self.frames);
-        } else if known(&st.keyword, &["scalar function"]).is_some() && super::scalar_functions::scalar_function_card(&mut c, &mut self.drives.functions, st.seq).is_ok() {
-            self.visible = self.drives.functions.defined_before(st.seq + 1);
+        } else if known(&st.keyword, &["scalar function"]).is_some() {
+            let _ = super::scalar_functions::scalar_function_card(&mut c, &mut self.drives.functions, st.seq);
         } else if in_nodes_block && same_keyword(&st.keyword, "structural") && node_statement(st, &mut c, &self.frames, &mut self.nodes).is_ok() {
             if let Some(e) = self.nodes.0.last().filter(|e| !e.dummy) {
                 let n = &e.node;
+                self.drives.structural_nodes.insert(n.label);
                 self.known.insert(n.label, NodeKinematics { x: n.position, r: n.orientation, xdot: n.velocity, omega: n.angular_velocity });
             }
         }
@@ -76,18 +78,61 @@ impl StatementObserver for WrittenNodes {
     fn nodes(&self) -> &HashMap<u32, NodeKinematics> {
         &self.known
     }
-    fn functions(&self) -> &HashMap<String, crate::element::ScalarFunction> {
+    fn functions(&self) -> &super::scalar_functions::FunctionsBefore {
         &self.visible
     }
-    fn drives(&self) -> &HashMap<u32, crate::element::Drive> {
+    fn drives(&self) -> &super::drives::DrivesBefore {
         &self.drive_table
+    }
+    /// A string drive reads the variables as they stand when it is called (MBDyn's
+    /// `StringDriveCaller` keeps the parsed expression, not the values): after a `set:`
+    /// changed them, the cards read so far are read again with the new values.
+    fn refresh_drives(&mut self, variables: &Variables, sources: &Sources) {
+        if self.read_with != Some(variables.generation()) {
+            // One copy of the variables, shared by every string drive read with them.
+            self.drives.variables = variables.shared();
+            self.read_with = Some(variables.generation());
+            self.drives.clear_cards();
+            self.drive_table = self.drives.defined_before(usize::MAX);
+            self.cards_read = 0;
+        }
+        self.catch_up(sources);
     }
     fn elements(&self) -> &super::model_namespace::ElementsRead {
         &self.elements
     }
 }
 
+impl Default for WrittenNodes {
+    fn default() -> Self {
+        let drives = super::drives::Drives::default();
+        WrittenNodes {
+            frames: Frames::default(),
+            nodes: Nodes::default(),
+            known: HashMap::new(),
+            visible: drives.functions.before(usize::MAX),
+            drive_table: drives.defined_before(usize::MAX),
+            drives,
+            drive_cards: Vec::new(),
+            read_with: None,
+            cards_read: 0,
+            elements: Default::default(),
+        }
+    }
+}
+
 impl WrittenNodes {
+    /// Reads the drive caller cards not read yet (with the variables of the last refresh).
+    fn catch_up(&mut self, sources: &Sources) {
+        if self.cards_read == self.drive_cards.len() {
+            return;
+        }
+        for old in &self.drive_cards[self.cards_read..] {
+            let _ = super::drives::drive_caller_card(old, &mut Cursor::new(old, sources), &mut self.drives);
+        }
+        self.cards_read = self.drive_cards.len();
+    }
+
     /// Reads a body or joint card as the model does, for `model::element::…` further down.
     fn element(&mut self, st: &Statement, sources: &Sources) {
         let Some(super::parser::Arg { value: super::parser::Value::Number(x), .. }) = st.args.first() else { return };

@@ -49,7 +49,7 @@ impl Deferred {
         let mut vars = self.variables.clone();
         let at = self.tokens.first().map_or(self.end, |t| t.span);
         let v = Evaluator::new(&self.tokens, &mut vars, sources, self.end).with_current(current).evaluate()?;
-        if vars.0 != self.variables.0 {
+        if vars.generation() != self.variables.generation() {
             return Err(sources.error(at, "an argument that reads model::current cannot declare or assign variables in romdyn (write the assignment in a 'set:' statement)"));
         }
         v.real().ok_or_else(|| sources.error(at, "expected a number, found a string"))

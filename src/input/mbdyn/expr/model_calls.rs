@@ -120,7 +120,7 @@ impl Evaluator<'_> {
         let Some(functions) = self.functions else {
             return Err(self.err(span, format!("{what}: romdyn calls scalar functions in string drives only (it evaluates 'set:' while reading, before the scalar function cards)")));
         };
-        let Some(f) = functions.get(name) else {
+        let Some((f, _)) = functions.get(name) else {
             return Err(self.err(span, format!("{what}: scalar function \"{name}\" is not defined before this drive")));
         };
         if !self.eat("(") {
