@@ -111,6 +111,20 @@ fn chordal_uncertainty(alpha: c64, beta: f64, w: &EigenVectors, (na, nb): (f64, 
     if d.is_finite() { d } else { f64::INFINITY }
 }
 
+/// The label a mode is given: the evidence's ([`Classification::kind`]), except that an
+/// eigenvalue whose error estimate `error` (absolute, rad/s) is not below its own modulus is
+/// never labelled dynamic: its value says nothing, not even its order of magnitude (issue
+/// 30: a 1.414e6 rad/s mode printed as a "dynamic" 158.75 rad/s one with error 1.3e2).
+/// It is labelled infinite when `c |λ| ≥ 1` (beyond the Λ form's "Nyquist" limit 1/c,
+/// eq. 23), zero otherwise; the evidence keeps `kind = Dynamic`, which is how a study tells
+/// these modes apart and warns about them.
+pub(crate) fn resolved_kind(class: &Classification, lambda: c64, error: f64, dcoef: f64) -> ModeKind {
+    if class.kind != ModeKind::Dynamic || error < lambda.norm() {
+        return class.kind;
+    }
+    if dcoef * lambda.norm() >= 1.0 { ModeKind::Infinite } else { ModeKind::Zero }
+}
+
 impl Classification {
     /// The continuous-time eigenvalue λ [rad/s] and its estimated absolute error.
     ///
