@@ -152,3 +152,22 @@ impl Classification {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_eigenvalue_not_above_its_error_is_never_dynamic() {
+        // Issue 30: 158.75 rad/s with error 1.3e2 is dynamic (the error is below |λ|); with
+        // the Rayleigh quotient's 1.4e6 as its error it is not: infinite beyond 1/c, zero below.
+        let class = Classification { kind: ModeKind::Dynamic, alpha: c64::new(1.0, 0.0), beta: 1.0, to_zero: 1.0, to_infinity: 1.0, uncertainty: 0.0 };
+        let lambda = c64::new(0.0, 158.75);
+        assert_eq!(resolved_kind(&class, lambda, 1.3e2, 1e12), ModeKind::Dynamic);
+        assert_eq!(resolved_kind(&class, lambda, 1.4e6, 1e12), ModeKind::Infinite);
+        assert_eq!(resolved_kind(&class, lambda, 1.4e6, 1e-9), ModeKind::Zero);
+        assert_eq!(resolved_kind(&class, lambda, f64::INFINITY, 1e-9), ModeKind::Zero);
+        let zero = Classification { kind: ModeKind::Zero, ..class };
+        assert_eq!(resolved_kind(&zero, lambda, 1.0, 1e-9), ModeKind::Zero);
+    }
+}

@@ -309,6 +309,23 @@ impl ModalAnalysis {
     pub fn count(&self, kind: ModeKind) -> usize {
         self.of_kind(kind).count()
     }
+
+    /// Modes (one per pair) whose values say nothing: the chordal test would have labelled
+    /// them dynamic, but their error estimate is not below |λ|, so they carry the label
+    /// zero or infinite instead ([`super::classify::resolved_kind`]).
+    pub fn unresolved(&self) -> impl Iterator<Item = (usize, &Mode)> + '_ {
+        self.modes.iter().enumerate().filter(|(_, m)| m.kind != ModeKind::Dynamic && m.classification.kind == ModeKind::Dynamic && m.lambda.im >= 0.0)
+    }
+
+    /// Modes (one per pair) labelled zero by the chordal test although their own error
+    /// estimate is below |λ|: maybe slow real modes of a model whose stiffnesses or masses
+    /// span many decades (issue 30: 7e-4 rad/s modes of a 1e18 stiffness ratio). Eigenvalues
+    /// the constraint structure fixes at zero are not among them.
+    pub fn doubtful_zeros(&self) -> impl Iterator<Item = (usize, &Mode)> + '_ {
+        self.modes.iter().enumerate().filter(|(_, m)| {
+            m.kind == ModeKind::Zero && m.classification.uncertainty > 0.0 && m.lambda.norm() > 0.0 && m.error < m.lambda.norm() && m.lambda.im >= 0.0
+        })
+    }
 }
 
 /// The Λ form's default dCoef for a pencil without its constraint structure:
