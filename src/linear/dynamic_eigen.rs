@@ -116,7 +116,16 @@ impl ModalAnalysis {
             // QZ and the whole pencil the labels are decided on do not depend on each other:
             // rayon::join runs them on both cores when one is free (inside a busy pool, as
             // a sweep's point, one after the other on the same worker: no thread waits).
-            let (found, whole) = rayon::join(|| qz_modes(&part, route, dcoef), || WholePencil::new(&fyd, &fy, route, dcoef));
+            // QZ's sweeps are bounded (faer: 30 r per eigenvalue, then rotated retries,
+            // `super::eigen::qz`); should it still not converge on the route's pencil, the
+            // other route's pencil of the same dynamic part (a different Möbius image of the
+            // spectrum, so different clusters) is tried before giving up. The labels are
+            // decided on the whole pencil of `route` either way.
+            let other = match route {
+                EigenRoute::Direct => EigenRoute::Lambda,
+                EigenRoute::Lambda => EigenRoute::Direct,
+            };
+            let (found, whole) = rayon::join(|| qz_modes(&part, route, dcoef).or_else(|_| qz_modes(&part, other, dcoef)), || WholePencil::new(&fyd, &fy, route, dcoef));
             let mut found = found?;
             let with: Vec<(usize, Col<c64>, Col<c64>)> = found.iter_mut().enumerate().filter_map(|(i, f)| f.1.take().map(|(v, u)| (i, v, u))).collect();
             let lambdas: Vec<c64> = with.iter().map(|w| found[w.0].0.lambda).collect();
@@ -235,7 +244,6 @@ fn spectral_dcoef(part: &DynamicPart) -> Option<f64> {
     let log_k: f64 = kept.iter().map(|x| x.ln()).sum();
     let log_e: f64 = pe.iter().map(|x| x.ln()).sum();
     let omega = ((log_k - log_e) / kept.len() as f64).exp();
-    if std::env::var_os("ROMDYN_DEBUG_DCOEF").is_some() { eprintln!("r {r} kept {} log_k {log_k} log_e {log_e} topk {top_k} tope {top_e} omega {omega} mink {:?} mine {:?}", kept.len(), pk.iter().copied().fold(f64::INFINITY, f64::min), pe.iter().copied().fold(f64::INFINITY, f64::min)); }
     let c = 1.0 / omega;
     (c.is_normal() && c > 0.0).then_some(c)
 }
