@@ -114,8 +114,8 @@ pub fn checked_reference_state(model: &Model, problem: &InitialValueProblem, ref
 pub struct EigenSettings {
     pub route: EigenRoute,
     /// dCoef of the Λ form [s]; `None`: the file's (MBDyn's eigenanalysis parameter h/2), else
-    /// on the dense route `1/sqrt(ω_lo ω_hi)` of a band asked for, else the reciprocal of the
-    /// geometric mean of the dynamic part's |λ| (issue 30).
+    /// the reciprocal of the geometric mean of the dynamic part's |λ| (issue 30; the
+    /// undeflated pencil: its balanced norms).
     pub dcoef: Option<f64>,
     /// Dense QZ, sparse shift-invert Krylov–Schur, or chosen by size.
     pub solver: Solver,
@@ -271,8 +271,7 @@ impl Study {
             }
             None => {
                 let dae = linear.dense();
-                let dcoef = eigen.dcoef.or_else(|| eigen.target.and_then(band_dcoef));
-                (ModalAnalysis::of_dae(dae, eigen.route, dcoef).map_err(|e| e.with_unknown_names(&dae.unknown_names))?, None)
+                (ModalAnalysis::of_dae(dae, eigen.route, eigen.dcoef).map_err(|e| e.with_unknown_names(&dae.unknown_names))?, None)
             }
         };
         let mut study = Study { linear, modal, sparse, model, warnings: Vec::new(), reference_time: None, application: None };
@@ -380,23 +379,5 @@ impl Study {
             Err(e) => return Err(e.into()),
         };
         Ok(self.modal_report().only(&kept))
-    }
-}
-
-/// The Λ form's dCoef for a band of interest (issue 30: chosen from the frequencies asked
-/// about, not from matrix norms): `c = 1/sqrt(ω_lo ω_hi)` with `ω_hi = 2π f_max` and
-/// `ω_lo = 2π max(f_min, 1e-3 f_max)`, which maps the band's logarithmic centre to `|Λ| = 1`
-/// (eq. 23) and keeps every mode of the band within three decades of it. `None` for a count
-/// of modes (the eigenanalysis then centres Λ on the spectrum itself) or a band without a
-/// positive top.
-fn band_dcoef(target: ModeTarget) -> Option<f64> {
-    match target {
-        ModeTarget::Band { fmin_hz, fmax_hz } if fmax_hz > 0.0 && fmax_hz.is_finite() => {
-            let two_pi = 2.0 * std::f64::consts::PI;
-            let (lo, hi) = (two_pi * fmin_hz.max(1e-3 * fmax_hz), two_pi * fmax_hz);
-            let c = 1.0 / (lo * hi).sqrt();
-            c.is_normal().then_some(c)
-        }
-        _ => None,
     }
 }
