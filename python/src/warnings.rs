@@ -10,9 +10,9 @@ use romdyn::study::{Response, Warning};
 pyo3::create_exception!(_romdyn, RomdynWarning, pyo3::exceptions::PyUserWarning, "Base of romdyn's warnings: what a user must know about a study or a ROM that is not an error.");
 pyo3::create_exception!(_romdyn, ReferenceWarning, RomdynWarning, "The reference solution: not an equilibrium (the linear model is the frozen-time Jacobian), beams' update.");
 pyo3::create_exception!(_romdyn, PortWarning, RomdynWarning, "An input that moves nothing or an output that sees nothing (zero to rounding).");
-pyo3::create_exception!(_romdyn, EigenanalysisWarning, RomdynWarning, "The sparse eigenanalysis is not certified: a mode may be missing.");
+pyo3::create_exception!(_romdyn, EigenanalysisWarning, RomdynWarning, "The eigenanalysis: the sparse route not certified (a mode may be missing), eigenvalues not resolved in double precision, zeros the error estimate doubts.");
 pyo3::create_exception!(_romdyn, ModeSelectionWarning, RomdynWarning, "Modes below the band dropped or kept, kept modes that add no response, damping not applied.");
-pyo3::create_exception!(_romdyn, AccuracyWarning, RomdynWarning, "The ROM departs from the full model (static gain, frequency response, transmissibility).");
+pyo3::create_exception!(_romdyn, AccuracyWarning, RomdynWarning, "The ROM departs from the full model (static gain, frequency response, transmissibility, eigenvalues of its exported A).");
 pyo3::create_exception!(_romdyn, StaticGainWarning, AccuracyWarning, "The ROM's static gain differs from the full model's beyond rounding.");
 pyo3::create_exception!(_romdyn, ResponseWarning, AccuracyWarning, "The ROM's frequency response departs from the full model's within the frequencies of interest.");
 pyo3::create_exception!(_romdyn, TransmissibilityWarning, AccuracyWarning, "The ROM's transmissibility (eq. 100) departs from the full model's, or could not be checked.");
@@ -22,7 +22,8 @@ fn category<'py>(py: Python<'py>, w: &Warning) -> Bound<'py, PyType> {
     match w {
         Warning::NotInEquilibrium { .. } | Warning::IncrementalBeamsStatic { .. } => py.get_type::<ReferenceWarning>(),
         Warning::InputMovesNothing { .. } | Warning::OutputSeesNothing { .. } => py.get_type::<PortWarning>(),
-        Warning::SparseNotCertified { .. } => py.get_type::<EigenanalysisWarning>(),
+        Warning::SparseNotCertified { .. } | Warning::UnresolvedEigenvalues { .. } | Warning::DoubtfulZeros { .. } => py.get_type::<EigenanalysisWarning>(),
+        Warning::RomEigenvalues { .. } => py.get_type::<AccuracyWarning>(),
         Warning::BelowBandDropped { .. } | Warning::BelowBandKept { .. } | Warning::Invisible { .. } | Warning::DampingNotApplied { .. } => py.get_type::<ModeSelectionWarning>(),
         Warning::StaticGain { .. } => py.get_type::<StaticGainWarning>(),
         Warning::ResponseDeparts { response: Response::Inputs, .. } => py.get_type::<ResponseWarning>(),

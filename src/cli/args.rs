@@ -130,7 +130,7 @@ pub struct PencilArgs {
     /// Eigenanalysis route (lambda by default: its pencil has no infinite eigenvalues, on which faer's QZ can stall)
     #[arg(long, value_enum, default_value = "lambda")]
     pub route: Route,
-    /// dCoef of the Λ form [s], positive and finite (default: the file's, else ‖F_yd‖/‖F_y‖)
+    /// dCoef of the Λ form [s], positive and finite (default: the file's, else 1/the geometric mean of the dynamic part's |λ|: the spectrum's logarithmic centre at |Λ| = 1)
     #[arg(long, value_name = "C", allow_negative_numbers = true)]
     pub dcoef: Option<f64>,
     /// Eigensolver: dense QZ (every eigenvalue), sparse shift-invert Krylov–Schur (only the modes asked for, no n x n matrix; a progress bar on a terminal), or auto: sparse from 400 equations on, dense below or with --by dominance

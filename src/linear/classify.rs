@@ -111,6 +111,20 @@ fn chordal_uncertainty(alpha: c64, beta: f64, w: &EigenVectors, (na, nb): (f64, 
     if d.is_finite() { d } else { f64::INFINITY }
 }
 
+/// The label a mode is given: the evidence's ([`Classification::kind`]), except that an
+/// eigenvalue whose error estimate `error` (absolute, rad/s) is not below its own modulus is
+/// never labelled dynamic: its value says nothing, not even its order of magnitude (issue
+/// 30: a 1.414e6 rad/s mode printed as a "dynamic" 158.75 rad/s one with error 1.3e2).
+/// It is labelled infinite when `c |λ| ≥ 1` (beyond the Λ form's "Nyquist" limit 1/c,
+/// eq. 23), zero otherwise; the evidence keeps `kind = Dynamic`, which is how a study tells
+/// these modes apart and warns about them.
+pub(crate) fn resolved_kind(class: &Classification, lambda: c64, error: f64, dcoef: f64) -> ModeKind {
+    if class.kind != ModeKind::Dynamic || error < lambda.norm() {
+        return class.kind;
+    }
+    if dcoef * lambda.norm() >= 1.0 { ModeKind::Infinite } else { ModeKind::Zero }
+}
+
 impl Classification {
     /// The continuous-time eigenvalue λ [rad/s] and its estimated absolute error.
     ///
@@ -136,5 +150,24 @@ impl Classification {
                 (lambda, if dl.is_finite() { dl } else { f64::INFINITY })
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_eigenvalue_not_above_its_error_is_never_dynamic() {
+        // Issue 30: 158.75 rad/s with error 1.3e2 is dynamic (the error is below |λ|); with
+        // the Rayleigh quotient's 1.4e6 as its error it is not: infinite beyond 1/c, zero below.
+        let class = Classification { kind: ModeKind::Dynamic, alpha: c64::new(1.0, 0.0), beta: 1.0, to_zero: 1.0, to_infinity: 1.0, uncertainty: 0.0 };
+        let lambda = c64::new(0.0, 158.75);
+        assert_eq!(resolved_kind(&class, lambda, 1.3e2, 1e12), ModeKind::Dynamic);
+        assert_eq!(resolved_kind(&class, lambda, 1.4e6, 1e12), ModeKind::Infinite);
+        assert_eq!(resolved_kind(&class, lambda, 1.4e6, 1e-9), ModeKind::Zero);
+        assert_eq!(resolved_kind(&class, lambda, f64::INFINITY, 1e-9), ModeKind::Zero);
+        let zero = Classification { kind: ModeKind::Zero, ..class };
+        assert_eq!(resolved_kind(&zero, lambda, 1.0, 1e-9), ModeKind::Zero);
     }
 }

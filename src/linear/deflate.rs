@@ -174,13 +174,18 @@ impl DynamicPart {
             let top = sv.first().copied().unwrap_or(0.0);
             let negligible = s as f64 * f64::EPSILON * top;
             let rank = sv.iter().take_while(|&&x| x > negligible).count();
-            // The structural zeros sit at rounding level; a singular value between that and
-            // sqrt(ε) of the largest would make the rank a guess: leave the pencil whole. A
-            // full-rank E₁ whose smallest singular value is still FULL_RANK_MARGIN above the
-            // rounding level has no rank to guess (masses of 1e5 kg next to inertias of 1e-4
-            // kg m², examples/ham_sas.mbd: 1.1e-8 of the largest, 3.7e5 above rounding).
-            let full_rank = rank == s && sv.last().is_some_and(|&x| x > FULL_RANK_MARGIN * negligible);
-            if rank == 0 || (!full_rank && sv[..rank].iter().any(|&x| x < f64::EPSILON.sqrt() * top)) {
+            // The structural zeros sit at rounding level. A full rank is clear when the
+            // smallest singular value is FULL_RANK_MARGIN above that level (masses of 1e5 kg
+            // next to inertias of 1e-4 kg m², examples/ham_sas.mbd: 1.1e-8 of the largest,
+            // 3.7e5 above rounding); a deficient rank when a gap of four decades separates the
+            // singular values kept from those dropped and the kept ones stand a decade above
+            // rounding. Anything else makes the rank a guess: leave the pencil whole. (The
+            // earlier test, any kept value below sqrt(ε) of the largest, refused lumped beams,
+            // whose rotary inertias ρA ℓ³/12 sit 5e-10 of the masses' singular values above
+            // six exact zeros on 32 elements, and sent the whole 786-equation pencil to QZ:
+            // issue 30.)
+            let clear = if rank == s { sv[s - 1] > FULL_RANK_MARGIN * negligible } else { rank > 0 && sv[rank - 1] > 10.0 * negligible && sv[rank] <= 1e-4 * sv[rank - 1] };
+            if !clear {
                 return None;
             }
             (rank, Some((svd, sv)))

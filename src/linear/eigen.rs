@@ -232,9 +232,10 @@ impl ModalAnalysis {
         }
         let prepared = super::degenerate::prepare(jacobians, dcoef)?;
         let jacobians = &prepared.jacobians;
-        let (fyd, _fy) = jacobians.derivatives();
+        let (fyd, fy) = jacobians.derivatives();
         let dcoef = match (jacobians, dcoef) {
             (Jacobians::Derivatives { .. }, Some(c)) => c,
+            (Jacobians::Derivatives { .. }, None) => balanced_dcoef(&fyd, &fy).unwrap_or_else(|| jacobians.dcoef()),
             _ => jacobians.dcoef(),
         };
         // Pencil A v = μ B v in the route's variable μ.
@@ -272,14 +273,21 @@ impl ModalAnalysis {
             if !(lambda.re.is_finite() && lambda.im.is_finite()) {
                 lambda = c64::new(f64::INFINITY, 0.0);
             }
+            // The two-sided Rayleigh quotient on the unbalanced pencil of eq. 10 bounds the
+            // error from below whatever the route and dCoef (see `rayleigh_distance`).
+            let error = match &vectors {
+                Some(w) if class.kind == ModeKind::Dynamic => error.max(rayleigh_distance(lambda, &balanced.unscale_right(&w.v), &balanced.unscale_left(&w.u), &fyd, &fy)),
+                _ => error,
+            };
+            let kind = super::classify::resolved_kind(&class, lambda, error, dcoef);
             let (right, left) = match vectors {
-                Some(w) if class.kind != ModeKind::Infinite => {
+                Some(w) if kind != ModeKind::Infinite => {
                     let (v, u) = normalize(&balanced.unscale_right(&w.v), &balanced.unscale_left(&w.u), |x| mul_real_complex(&fyd, x), fyd_norm);
                     (Some(v), Some(u))
                 }
                 _ => (None, None),
             };
-            let mode = Mode { lambda, kind: class.kind, error, classification: class, right, left, partner: None };
+            let mode = Mode { lambda, kind, error, classification: class, right, left, partner: None };
             if pair {
                 let partner = conjugate_mode(&mode);
                 units.push(vec![mode, partner]);
@@ -301,6 +309,47 @@ impl ModalAnalysis {
     pub fn count(&self, kind: ModeKind) -> usize {
         self.of_kind(kind).count()
     }
+
+    /// Modes (one per pair) whose values say nothing: the chordal test would have labelled
+    /// them dynamic, but their error estimate is not below |λ|, so they carry the label
+    /// zero or infinite instead ([`super::classify::resolved_kind`]).
+    pub fn unresolved(&self) -> impl Iterator<Item = (usize, &Mode)> + '_ {
+        self.modes.iter().enumerate().filter(|(_, m)| m.kind != ModeKind::Dynamic && m.classification.kind == ModeKind::Dynamic && m.lambda.im >= 0.0)
+    }
+
+    /// Modes (one per pair) labelled zero by the chordal test although their own error
+    /// estimate is below |λ|: maybe slow real modes of a model whose stiffnesses or masses
+    /// span many decades (issue 30: 7e-4 rad/s modes of a 1e18 stiffness ratio). Eigenvalues
+    /// the constraint structure fixes at zero are not among them.
+    pub fn doubtful_zeros(&self) -> impl Iterator<Item = (usize, &Mode)> + '_ {
+        self.modes.iter().enumerate().filter(|(_, m)| {
+            m.kind == ModeKind::Zero && m.classification.uncertainty > 0.0 && m.lambda.norm() > 0.0 && m.error < m.lambda.norm() && m.lambda.im >= 0.0
+        })
+    }
+}
+
+/// The Λ form's default dCoef for a pencil without its constraint structure:
+/// `‖F_yd‖/‖F_y‖` after the rows and columns of `(F_y, F_yd)` are equilibrated (powers of two,
+/// [`balance_pencil`]), so that units and the stiffest entry do not decide it. `None` when
+/// either norm vanishes.
+fn balanced_dcoef(fyd: &Mat<f64>, fy: &Mat<f64>) -> Option<f64> {
+    let b = balance_pencil(fy, fyd);
+    let c = b.b.norm_l2() / b.a.norm_l2();
+    (c.is_normal() && c > 0.0).then_some(c)
+}
+
+/// `|λ_R − λ|` with `λ_R = −uᵀ F_y v / uᵀ F_yd v`, the two-sided Rayleigh quotient of the
+/// right and left vectors on the pencil of eq. 10 itself: independent of the route, of
+/// dCoef and of row and column scaling, and second-order accurate in the vectors. An
+/// eigenvalue that eq. 23 moved off its own vectors (Λ rounded next to ±1 when `c |λ|` is
+/// far from 1) shows here. `∞` when `uᵀ F_yd v` vanishes.
+pub(super) fn rayleigh_distance(lambda: c64, v: &Col<c64>, u: &Col<c64>, fyd: &Mat<f64>, fy: &Mat<f64>) -> f64 {
+    if !(lambda.re.is_finite() && lambda.im.is_finite()) {
+        return 0.0;
+    }
+    let (num, den) = (dot_t(u, &mul_real_complex(fy, v)), dot_t(u, &mul_real_complex(fyd, v)));
+    let d = (-num / den - lambda).norm();
+    if d.is_finite() { d } else { f64::INFINITY }
 }
 
 pub(super) fn conjugate_mode(m: &Mode) -> Mode {

@@ -263,6 +263,7 @@ impl Study {
             Some(_) => channel_warnings(&self.zero_channels(), self.linear.input_names(), self.linear.output_names()),
         };
         w.extend(self.sparse_warning());
+        w.extend(label_warnings(&self.modal));
         w
     }
 
@@ -286,4 +287,18 @@ impl Study {
     pub(super) fn sparse_warning(&self) -> Option<Warning> {
         self.sparse.as_ref().filter(|r| !r.certified).map(|run| Warning::SparseNotCertified { target: run.describe_target(), reason: run.note.clone().unwrap_or_else(|| "no reason given".into()), damping_covered: run.damping_covered })
     }
+}
+
+/// Warnings about labels the error estimates decided (issue 30, finding 4).
+fn label_warnings(modal: &crate::linear::ModalAnalysis) -> Vec<Warning> {
+    let unresolved: Vec<_> = modal.unresolved().map(|(i, m)| (i + 1, m.lambda, m.error, m.kind.name())).collect();
+    let zeros: Vec<_> = modal.doubtful_zeros().map(|(i, m)| (i + 1, m.lambda, m.error)).collect();
+    let mut w = Vec::new();
+    if !unresolved.is_empty() {
+        w.push(Warning::UnresolvedEigenvalues { modes: unresolved });
+    }
+    if !zeros.is_empty() {
+        w.push(Warning::DoubtfulZeros { modes: zeros });
+    }
+    w
 }

@@ -385,6 +385,14 @@ impl Study {
             .filter(|u| sel.kept.contains(&u[0]))
             .map(|u| KeptMode { indices: u.iter().map(|i| i + 1).collect(), lambda: modal.modes[u[0]].lambda, dominance: dominance.relative(u[0]) })
             .collect();
+        // The ROM's own eigenvalues (those of the exported A) must be the kept modes' that the
+        // summary reports (issue 30: a summary at 25.27 Hz next to an A with ±1.414e6j).
+        // Removed springs and modal damping move them on purpose.
+        let springs_removed = self.application.as_ref().is_some_and(|a| a.feedback.is_some());
+        if !springs_removed && request.damping.is_none() {
+            let exported: Vec<faer::c64> = if ordinary.a.nrows() == 0 { Vec::new() } else { ordinary.a.as_ref().eigenvalues().unwrap_or_default() };
+            warnings.extend(rom_eigenvalue_mismatch(modal, &sel.kept, &exported));
+        }
         Ok(ReducedModel { selection: sel, kept_modes, descriptor, ordinary, static_gains, damping, static_correction: corrected && full_ok, residualization: request.residualization.clone(), interest_top_hz: top, warnings })
     }
 
@@ -445,4 +453,54 @@ fn rigid_body_modes(eigenvalues: &[faer::c64]) -> Option<String> {
     let big = eigenvalues.iter().map(|l| l.norm()).fold(0.0, f64::max);
     let zero = eigenvalues.iter().filter(|l| l.norm() <= 1e-6 * big).count();
     (zero > 0).then(|| format!("the ROM has {zero} zero (rigid-body) eigenvalues"))
+}
+
+/// The kept modes whose reported λ has no eigenvalue of the ROM's ordinary `A` within
+/// `max(10 × its error estimate, 1e-8 |λ|)`: a [`Warning::RomEigenvalues`] naming the worst.
+fn rom_eigenvalue_mismatch(modal: &crate::linear::ModalAnalysis, kept: &[usize], exported: &[faer::c64]) -> Option<Warning> {
+    let mut worst: Option<(f64, usize, faer::c64, faer::c64)> = None;
+    let mut count = 0;
+    for &i in kept {
+        let m = &modal.modes[i];
+        let Some(near) = exported.iter().copied().min_by(|a, b| (a - m.lambda).norm().total_cmp(&(b - m.lambda).norm())) else { continue };
+        let off = (near - m.lambda).norm();
+        let allowed = (10.0 * m.error).max(1e-8 * m.lambda.norm());
+        if !(off <= allowed) {
+            count += 1;
+            let rel = off / m.lambda.norm().max(near.norm());
+            if worst.is_none_or(|w| rel > w.0) {
+                worst = Some((rel, i + 1, m.lambda, near));
+            }
+        }
+    }
+    worst.map(|(relative, mode, reported, exported)| Warning::RomEigenvalues { modes: count, mode, reported, exported, relative })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::linear::{Classification, EigenRoute, ModalAnalysis, Mode, ModeKind};
+    use faer::c64;
+
+    fn mode(lambda: c64, error: f64) -> Mode {
+        let classification = Classification { kind: ModeKind::Dynamic, alpha: lambda, beta: 1.0, to_zero: 1.0, to_infinity: 1.0, uncertainty: 0.0 };
+        Mode { lambda, kind: ModeKind::Dynamic, error, classification, right: None, left: None, partner: None }
+    }
+
+    #[test]
+    fn rom_eigenvalues_that_differ_from_the_reported_ones_are_named() {
+        // Issue 30: a mode reported at 158.75 rad/s (25.27 Hz, error 1.3e2) whose exported A
+        // has ±1.414e6j must be flagged; one within 10x its error estimate must not.
+        let modal = ModalAnalysis { route: EigenRoute::Lambda, dcoef: 1.0, modes: vec![mode(c64::new(0.0, 158.75), 1.3e2), mode(c64::new(0.0, 10.0), 1e-9)] };
+        let exported = [c64::new(0.0, 1.414e6), c64::new(0.0, -1.414e6)];
+        match rom_eigenvalue_mismatch(&modal, &[0], &exported) {
+            Some(Warning::RomEigenvalues { modes, mode, relative, .. }) => {
+                assert_eq!((modes, mode), (1, 1));
+                // |1.414e6 − 158.75| / 1.414e6.
+                assert!((relative - (1.414e6 - 158.75) / 1.414e6).abs() < 1e-12, "{relative}");
+            }
+            other => panic!("{other:?}"),
+        }
+        assert!(rom_eigenvalue_mismatch(&modal, &[1], &[c64::new(0.0, 10.0 + 5e-9), c64::new(0.0, -10.0 - 5e-9)]).is_none());
+    }
 }

@@ -114,7 +114,8 @@ pub fn checked_reference_state(model: &Model, problem: &InitialValueProblem, ref
 pub struct EigenSettings {
     pub route: EigenRoute,
     /// dCoef of the Λ form [s]; `None`: the file's (MBDyn's eigenanalysis parameter h/2), else
-    /// `‖F_yd‖/‖F_y‖`.
+    /// the reciprocal of the geometric mean of the dynamic part's |λ| (issue 30; the
+    /// undeflated pencil: its balanced norms).
     pub dcoef: Option<f64>,
     /// Dense QZ, sparse shift-invert Krylov–Schur, or chosen by size.
     pub solver: Solver,

@@ -113,7 +113,8 @@ impl ReducedModel {
             s += &format!(
                 "modal damping (ROM only): mode {}: ζ {:.4} -> {:.4}, λ {:.6}{:+.6}j -> {:.6}{:+.6}j rad/s\n",
                 d.mode + 1,
-                -d.before.re / d.before.norm(),
+                // As the table above: a ratio that rounds to zero prints without a sign.
+                { let z = -d.before.re / d.before.norm(); if z.abs() < 5e-5 { 0.0 } else { z } },
                 -d.after.re / d.after.norm(),
                 d.before.re,
                 d.before.im,

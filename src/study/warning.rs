@@ -33,6 +33,15 @@ pub enum Warning {
     /// With an imposed motion, the ROM's transmissibility could not be formed (its imposed
     /// block is singular at a grid frequency), so it was not checked.
     TransmissibilityUnavailable { reason: String, top_hz: f64 },
+    /// Eigenvalues whose error estimate is not below their modulus, labelled zero or infinite
+    /// instead of dynamic: `(mode number, λ [rad/s], error [rad/s], label)`.
+    UnresolvedEigenvalues { modes: Vec<(usize, faer::c64, f64, &'static str)> },
+    /// Eigenvalues labelled zero by the eigenanalysis' uncertainty although their error
+    /// estimate is below |λ|: `(mode number, λ [rad/s], error [rad/s])`.
+    DoubtfulZeros { modes: Vec<(usize, faer::c64, f64)> },
+    /// Kept modes whose reported eigenvalue the ROM's exported `A` does not have (`modes` of
+    /// them; the worst: its number, the reported and nearest exported λ, relative gap).
+    RomEigenvalues { modes: usize, mode: usize, reported: faer::c64, exported: faer::c64, relative: f64 },
     /// A static reference of beams with MBDyn's incremental update: the whole load is one
     /// step from the initial configuration, whatever the load steps.
     IncrementalBeamsStatic { beams: usize },
@@ -88,6 +97,28 @@ impl fmt::Display for Warning {
             Warning::TransmissibilityUnavailable { reason, top_hz } => write!(
                 f,
                 "the ROM's transmissibility (eq. 100) could not be checked against the full model's (frequencies of interest up to {top_hz:.4} Hz): {reason}"
+            ),
+            Warning::UnresolvedEigenvalues { modes } => write!(
+                f,
+                "{} eigenvalue(s) are not resolved in double precision: {}; each error estimate is not below |λ|, so the value says nothing (not even its order of magnitude) and the mode is not listed as dynamic. Masses or stiffnesses spanning many decades, or a dCoef far from 1/|λ| (--dcoef), cause this: rescale the model or give --dcoef near 1/|λ| of the modes of interest",
+                modes.len(),
+                modes.iter().map(|(k, l, e, kind)| format!("mode {k} λ = {:.4e}{:+.4e}j rad/s ± {e:.1e}, labelled {kind}", l.re, l.im)).collect::<Vec<_>>().join(", ")
+            ),
+            Warning::DoubtfulZeros { modes } => write!(
+                f,
+                "{} eigenvalue(s) are labelled zero by the eigenanalysis' uncertainty although their own error estimate is smaller than |λ|: {}; they may be slow real modes (stiffnesses or masses spanning many decades): check them with --dcoef near 1/|λ| or --route direct",
+                modes.len(),
+                modes.iter().map(|(k, l, e)| format!("mode {k} |λ| = {:.4e} rad/s ± {e:.1e}", l.norm())).collect::<Vec<_>>().join(", ")
+            ),
+            Warning::RomEigenvalues { modes, mode, reported, exported, relative } => write!(
+                f,
+                "the ROM's matrices do not have the eigenvalues its summary reports for {modes} kept mode(s): mode {mode} is reported at λ = {:.6e}{:+.6e}j rad/s ({:.4} Hz) but the nearest eigenvalue of the exported A is {:.6e}{:+.6e}j rad/s ({:.4} Hz), {relative:.1e} relative; trust the exported matrices' eigenvalues, and check the mode's error estimate in `romdyn eig`",
+                reported.re,
+                reported.im,
+                reported.norm() / (2.0 * std::f64::consts::PI),
+                exported.re,
+                exported.im,
+                exported.norm() / (2.0 * std::f64::consts::PI)
             ),
             Warning::IncrementalBeamsStatic { beams } => write!(
                 f,

@@ -1,6 +1,7 @@
 //! Test helpers shared by the validation tests.
 #![allow(dead_code)]
 
+pub mod beam_family;
 pub mod beams;
 pub mod cli;
 pub mod fixtures;
