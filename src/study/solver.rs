@@ -90,10 +90,14 @@ pub fn needs_every_mode(request: &RomRequest) -> bool {
 #[derive(Clone, Debug)]
 pub struct SparseRun {
     pub target: ModeTarget,
-    /// Every shift window's right and adjoint runs agreed, no converged pair failed its
-    /// residual test and the windows cover the band.
+    /// The lowest modes: the argument-principle count finds no eigenvalue below the
+    /// returned ones that is not listed. A band: every shift window's right and adjoint
+    /// runs agreed, no converged pair failed its residual test and the windows cover the
+    /// band.
     pub certified: bool,
     pub note: Option<String>,
+    /// What certifies the modes, when they are certified.
+    pub certificate: Option<String>,
     /// Largest true relative residual of a returned pair (right or left).
     pub max_residual: f64,
     /// Damping ratio up to which the windows cover the band.
@@ -105,7 +109,7 @@ pub struct SparseRun {
 
 impl SparseRun {
     pub(super) fn new(target: ModeTarget, tolerance: f64, s: &SparseModalAnalysis) -> Self {
-        SparseRun { target, certified: s.certified, note: s.note.clone(), max_residual: s.max_residual, damping_covered: s.damping_covered, windows: s.windows.len(), tolerance }
+        SparseRun { target, certified: s.certified, note: s.note.clone(), certificate: s.certificate.clone(), max_residual: s.max_residual, damping_covered: s.damping_covered, windows: s.windows.len(), tolerance }
     }
 
     /// The modes asked for, as a selection of the modal table.
@@ -118,7 +122,7 @@ impl SparseRun {
 
     /// The modal table's second header line.
     pub fn header(&self) -> String {
-        let certified = if self.certified { "certified (right and adjoint Krylov runs agree in every shift window)".to_string() } else { format!("NOT certified: {}", self.note.as_deref().unwrap_or("see the warning")) };
+        let certified = if self.certified { format!("certified ({})", self.certificate.as_deref().unwrap_or("right and adjoint Krylov runs agree in every shift window")) } else { format!("NOT certified: {}", self.note.as_deref().unwrap_or("see the warning")) };
         format!(
             "sparse route (shift-invert Krylov–Schur, {} shift window(s)): {}, {certified}; largest true residual {:.1e} (tolerance {:.0e}); the zero and infinite eigenvalues are not computed",
             self.windows,

@@ -4,6 +4,8 @@
 //! independent Krylov spaces per shift.
 
 mod arnoldi;
+mod clusters;
+mod count;
 mod gram_schmidt;
 mod iteration;
 mod operator;
