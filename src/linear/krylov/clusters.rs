@@ -167,11 +167,14 @@ pub(super) fn pair_clusters(pencil: &Pencil, sigma: c64, right: &[(c64, Col<c64>
             Some(p) => {
                 // Two clusters of one eigenvalue (Ritz values far from the shift spread
                 // wider than CLUSTER) refine to the same eigenspace: keep it once, by the
-                // refined eigenvalue (the two-sided quotient of the first pair).
+                // refined eigenvalue (the two-sided quotient of the first pair; refined ones
+                // agree to ~1e-12, distinct eigenvalues within 1e-6 share a cluster). Had
+                // the first cluster missed a direction the second has, the count finds it
+                // missing and the next round's random starts supply it.
                 let rq = |(_, v, u): &(c64, Col<c64>, Col<c64>)| -dot_t(u, &pencil.k.mul_complex(v)) / dot_t(u, &pencil.e.mul_complex(v));
                 let Some(first) = p.first() else { continue };
                 let l = rq(first);
-                if refined.iter().any(|&x: &c64| (x - l).norm() <= 1e-9 * l.norm()) {
+                if refined.iter().any(|&x: &c64| (x - l).norm() <= 1e-6 * l.norm()) {
                     continue;
                 }
                 refined.push(l);

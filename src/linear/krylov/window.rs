@@ -259,7 +259,16 @@ pub(super) fn evaluate(dae: &SparseLinearDae, pencil: &Pencil, scales: &Scales, 
         drop((v29, u29));
         let ((fydv, fyv), (ufyd, ufy)) = (right_products.at(lambda), left_products.at(lambda));
         drop((right_products, left_products));
-        let mut vectors = PairVectors { v, u, fydv, fyv, ufyd, ufy };
+        let vectors = PairVectors { v, u, fydv, fyv, ufyd, ufy };
+        // The residuals against the scale of the entries they sum (`(|λ| |F_yd| + |F_y|) |v|`,
+        // and from the left): the norm-wise test above lets the largest stiffness (a beam's
+        // EA = 1e8 N) hide a wrong pair, which this one does not (the 64-element cantilever's
+        // spurious 4.3 + 14296j rad/s, made of an axial mode's refined subspace, passed the
+        // norm-wise test and failed this one).
+        if !(entrywise_residual(dae, lambda, &vectors.v, &vectors.fydv, &vectors.fyv, false) <= s.tolerance && entrywise_residual(dae, lambda, &vectors.u, &vectors.ufyd, &vectors.ufy, true) <= s.tolerance) {
+            return Err(lambda);
+        }
+        let mut vectors = vectors;
         let lambda = if lambda.im < 0.0 {
             vectors.map(|x| x.conj());
             lambda.conj()
@@ -305,6 +314,16 @@ fn right_only(dae: &SparseLinearDae, pencil: &Pencil, op: &ShiftInvert, run: Run
     }
     let clean = radius.min(trouble * (1.0 - 1e-6));
     Ok(WindowResult { shift: sigma, radius, agreed: true, checked: false, clean, pairs, rejected })
+}
+
+/// `‖(λ F_yd + F_y) x‖ / ‖(|λ| |F_yd| + |F_y|) |x|‖` (transposed for a left vector), from the
+/// products `F_yd x`, `F_y x` already formed.
+fn entrywise_residual(dae: &SparseLinearDae, lambda: c64, x: &Col<c64>, dx: &Col<c64>, yx: &Col<c64>, transpose: bool) -> f64 {
+    let ax: Vec<f64> = x.iter().map(|e| e.norm()).collect();
+    let (d, k) = (dae.fyd.abs_mul(&ax, transpose), dae.fy.abs_mul(&ax, transpose));
+    let r = (0..dx.nrows()).map(|i| (lambda * dx[i] + yx[i]).norm_sqr()).sum::<f64>().sqrt();
+    let scale = (0..dx.nrows()).map(|i| (lambda.norm() * d[i] + k[i]).powi(2)).sum::<f64>().sqrt();
+    r / scale
 }
 
 /// Vectors from this length on are long enough for the hand-over to other threads to pay
