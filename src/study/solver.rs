@@ -50,7 +50,7 @@ impl Solver {
             Solver::Auto => Ok(!every_mode && equations >= Self::AUTO_SPARSE_FROM),
             Solver::Sparse if every_mode => Err(StudyError::Option {
                 option: "--solver",
-                message: "sparse: ranking by dominance compares every mode of the model, and the sparse route computes only the modes asked for (use --solver dense, or --by frequency)".into(),
+                message: "sparse: ranking a --count by dominance compares every mode of the model, and the sparse route computes only the modes asked for (use --solver dense, --by frequency, or --band F1:F2 --by dominance: dominance of the modes in a band)".into(),
             }),
             Solver::Sparse => Ok(true),
         }
@@ -81,9 +81,12 @@ pub fn sparse_target(request: &RomRequest) -> ModeTarget {
     }
 }
 
-/// Whether a request needs every dynamic mode (only the dense route has them).
+/// Whether a request needs every dynamic mode (only the dense route has them): ranking by
+/// dominance of a `--count` or index selection compares every mode of the model. Dominance
+/// in a band (`--band F1:F2 --by dominance`) ranks the modes of the band only, which the
+/// sparse route finds (and certifies) like any band: it needs no other mode.
 pub fn needs_every_mode(request: &RomRequest) -> bool {
-    request.ranking == Ranking::Dominance
+    request.ranking == Ranking::Dominance && !matches!(request.selection, ModeSelection::Band { .. })
 }
 
 /// What the sparse eigensolver returned besides the modes.
