@@ -138,27 +138,33 @@ fn with_conjugate(l: c64) -> Vec<c64> {
 }
 
 /// Radius of the disc `|λ| < R` the count is made in: in the first gap of the spectrum
-/// found (relative 1e-6) at or above the `count`-th lowest pair, at the geometric mean of
-/// the gap's ends (the circle stays as far as it can from the eigenvalues it separates);
-/// `known` are eigenvalues seen but not paired (their magnitudes). `None`: fewer than
-/// `count` pairs.
+/// found at or above the `count`-th lowest pair that is wider than ten times the error
+/// estimates of its two ends (and 1e-6 relative), at the geometric mean of its ends (the
+/// circle stays as far as it can from the eigenvalues it separates, and an eigenvalue is
+/// on the side its estimate puts it); `known` are eigenvalues seen but not paired (their
+/// magnitudes, error unknown: taken as 1e-6 relative). `None`: fewer than `count` pairs.
 fn count_radius(pairs: &[Eigenpair], known: &[f64], count: usize) -> Option<f64> {
     let mut mags: Vec<f64> = pairs.iter().map(|p| p.lambda.norm()).collect();
     mags.sort_by(f64::total_cmp);
-    let mut a = *mags.get(count.checked_sub(1)?)?;
-    let mut all: Vec<f64> = mags.iter().chain(known).copied().collect();
-    all.sort_by(f64::total_cmp);
-    for &x in &all {
-        if x <= a {
+    let first = *mags.get(count.checked_sub(1)?)?;
+    let mut all: Vec<(f64, f64)> = pairs.iter().map(|p| (p.lambda.norm(), p.error.min(p.lambda.norm()))).chain(known.iter().map(|&k| (k, 1e-6 * k))).collect();
+    all.sort_by(|x, y| x.0.total_cmp(&y.0));
+    let mut a: (f64, f64) = (first, 0.0);
+    for &(x, e) in &all {
+        if x < first {
             continue;
         }
-        if x <= a * (1.0 + 1e-6) {
-            a = x;
+        if x <= a.0 {
+            a.1 = a.1.max(e);
             continue;
         }
-        return Some((a * x).sqrt());
+        if x - a.0 <= (10.0 * (a.1 + e)).max(1e-6 * a.0) {
+            a = (x, e);
+            continue;
+        }
+        return Some((a.0 * x).sqrt());
     }
-    Some(a * 1.05)
+    Some(a.0 * 1.05)
 }
 
 /// The `count` lowest modes at the factored real shift `op`: both Krylov runs, the vectors
