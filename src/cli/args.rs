@@ -19,7 +19,7 @@ use romdyn::study::{BelowBand, EigenSettings, FrequencyGrid, Ports, RomRequest, 
 /// Which eigensolver (`--solver`).
 #[derive(Clone, Copy, Debug, ValueEnum)]
 pub enum SolverArg {
-    /// Sparse from 400 equations on, dense below (where the complete dense spectrum costs about a second or less) and with --by dominance
+    /// Sparse from 400 equations on, dense below (where the complete dense spectrum costs about a second or less) and for --count with --by dominance (a --band ranked by dominance stays sparse)
     Auto,
     /// QZ on the whole (deflated) pencil: every eigenvalue, zero and infinite ones labelled; n x n matrices
     Dense,
@@ -133,7 +133,7 @@ pub struct PencilArgs {
     /// dCoef of the Λ form [s], positive and finite (default: the file's, else 1/the geometric mean of the dynamic part's |λ|: the spectrum's logarithmic centre at |Λ| = 1)
     #[arg(long, value_name = "C", allow_negative_numbers = true)]
     pub dcoef: Option<f64>,
-    /// Eigensolver: dense QZ (every eigenvalue), sparse shift-invert Krylov–Schur (only the modes asked for, no n x n matrix; a progress bar on a terminal), or auto: sparse from 400 equations on, dense below or with --by dominance
+    /// Eigensolver: dense QZ (every eigenvalue), sparse shift-invert Krylov–Schur (only the modes asked for, no n x n matrix; a progress bar on a terminal), or auto: sparse from 400 equations on, dense below or for --count with --by dominance (--band with --by dominance stays sparse)
     #[arg(long, value_enum, default_value = "auto")]
     pub solver: SolverArg,
     /// Rotation update of beam3 and beam2: auto (MBDyn's incremental one for a reference at a time, --at; path independent for --static and the initial configuration), path-independent, or incremental (per time step; a static equilibrium takes it as one step from the initial configuration)

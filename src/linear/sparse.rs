@@ -129,6 +129,28 @@ impl SparseMatrix {
         }
     }
 
+    /// `|M| x` (or `|M|ᵀ x`): the moduli of the entries times `x` (the bound of the
+    /// rounding of `M x`, entry by entry).
+    pub fn abs_mul(&self, x: &[f64], transpose: bool) -> Vec<f64> {
+        let mut out = vec![0.0; if transpose { self.ncols } else { self.nrows }];
+        for i in 0..self.nrows {
+            for k in self.start[i]..self.start[i + 1] {
+                let (j, a) = (self.col[k], self.val[k].abs());
+                if transpose {
+                    out[j] += a * x[i];
+                } else {
+                    out[i] += a * x[j];
+                }
+            }
+        }
+        out
+    }
+
+    /// The largest number of stored entries in a row.
+    pub fn max_row_len(&self) -> usize {
+        (0..self.nrows).map(|i| self.start[i + 1] - self.start[i]).max().unwrap_or(0)
+    }
+
     /// `(M v_a, M v_b)` (or with `Mᵀ`) for `v = v_a + v_b`, `v_b` the entries of `v` where
     /// `split` is true: both in one pass over the matrix.
     pub fn mul_split(&self, v: &Col<c64>, split: &[bool], transpose: bool) -> (Col<c64>, Col<c64>) {

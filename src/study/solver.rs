@@ -50,7 +50,7 @@ impl Solver {
             Solver::Auto => Ok(!every_mode && equations >= Self::AUTO_SPARSE_FROM),
             Solver::Sparse if every_mode => Err(StudyError::Option {
                 option: "--solver",
-                message: "sparse: ranking by dominance compares every mode of the model, and the sparse route computes only the modes asked for (use --solver dense, or --by frequency)".into(),
+                message: "sparse: ranking a --count by dominance compares every mode of the model, and the sparse route computes only the modes asked for (use --solver dense, --by frequency, or --band F1:F2 --by dominance: dominance of the modes in a band)".into(),
             }),
             Solver::Sparse => Ok(true),
         }
@@ -81,19 +81,26 @@ pub fn sparse_target(request: &RomRequest) -> ModeTarget {
     }
 }
 
-/// Whether a request needs every dynamic mode (only the dense route has them).
+/// Whether a request needs every dynamic mode (only the dense route has them): ranking by
+/// dominance of a `--count` or index selection compares every mode of the model. Dominance
+/// in a band (`--band F1:F2 --by dominance`) ranks the modes of the band only, which the
+/// sparse route finds (and certifies) like any band: it needs no other mode.
 pub fn needs_every_mode(request: &RomRequest) -> bool {
-    request.ranking == Ranking::Dominance
+    request.ranking == Ranking::Dominance && !matches!(request.selection, ModeSelection::Band { .. })
 }
 
 /// What the sparse eigensolver returned besides the modes.
 #[derive(Clone, Debug)]
 pub struct SparseRun {
     pub target: ModeTarget,
-    /// Every shift window's right and adjoint runs agreed, no converged pair failed its
-    /// residual test and the windows cover the band.
+    /// The lowest modes: the argument-principle count finds no eigenvalue below the
+    /// returned ones that is not listed. A band: every shift window's right and adjoint
+    /// runs agreed, no converged pair failed its residual test and the windows cover the
+    /// band.
     pub certified: bool,
     pub note: Option<String>,
+    /// What certifies the modes, when they are certified.
+    pub certificate: Option<String>,
     /// Largest true relative residual of a returned pair (right or left).
     pub max_residual: f64,
     /// Damping ratio up to which the windows cover the band.
@@ -105,7 +112,7 @@ pub struct SparseRun {
 
 impl SparseRun {
     pub(super) fn new(target: ModeTarget, tolerance: f64, s: &SparseModalAnalysis) -> Self {
-        SparseRun { target, certified: s.certified, note: s.note.clone(), max_residual: s.max_residual, damping_covered: s.damping_covered, windows: s.windows.len(), tolerance }
+        SparseRun { target, certified: s.certified, note: s.note.clone(), certificate: s.certificate.clone(), max_residual: s.max_residual, damping_covered: s.damping_covered, windows: s.windows.len(), tolerance }
     }
 
     /// The modes asked for, as a selection of the modal table.
@@ -118,7 +125,7 @@ impl SparseRun {
 
     /// The modal table's second header line.
     pub fn header(&self) -> String {
-        let certified = if self.certified { "certified (right and adjoint Krylov runs agree in every shift window)".to_string() } else { format!("NOT certified: {}", self.note.as_deref().unwrap_or("see the warning")) };
+        let certified = if self.certified { format!("certified ({})", self.certificate.as_deref().unwrap_or("right and adjoint Krylov runs agree in every shift window")) } else { format!("NOT certified: {}", self.note.as_deref().unwrap_or("see the warning")) };
         format!(
             "sparse route (shift-invert Krylov–Schur, {} shift window(s)): {}, {certified}; largest true residual {:.1e} (tolerance {:.0e}); the zero and infinite eigenvalues are not computed",
             self.windows,

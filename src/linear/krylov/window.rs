@@ -5,6 +5,7 @@
 
 use faer::{c64, Col};
 
+use super::clusters::pair_clusters;
 use super::iteration::{krylov_schur, RitzPair, Run, Settings};
 use super::operator::ShiftInvert;
 use super::pencil::Pencil;
@@ -72,9 +73,53 @@ fn lambdas(op: &ShiftInvert, run: Run) -> (Vec<(c64, Col<c64>)>, bool) {
 
 /// Runs both Krylov–Schur iterations at `sigma` for `wanted` eigenvalues.
 pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted: usize, s: &SparseEigenSettings, progress: &dyn Fn(&str)) -> Result<WindowResult, KrylovError> {
-    let n = pencil.dim();
     let scales = Scales::new(dae, s);
     let op = ShiftInvert::new(pencil, sigma)?;
+    if !s.left_vectors {
+        let run = krylov_run(pencil, &op, wanted, s, false, 1, progress)?;
+        return right_only(dae, pencil, &op, run, s, &scales, progress);
+    }
+    let sides = krylov_sides(dae, pencil, &op, wanted, s, 0, progress)?;
+    // Radius of the disc each run covers: the farthest converged eigenvalue (everything
+    // when the run exhausted the finite spectrum).
+    let radius = sides.reach(sigma);
+    let inside = |l: c64| (l - sigma).norm() <= radius * (1.0 + 1e-9);
+    let mut agreed = true;
+    let mut rejected = sides.rejected;
+    // Nearest distance to σ of a disagreement or a rejected pair.
+    let mut trouble = sides.trouble;
+    if trouble.is_finite() && inside(sigma + trouble) {
+        agreed = false;
+    }
+    let mut flag = |l: c64, agreed: &mut bool| {
+        if inside(l) {
+            *agreed = false;
+        }
+        trouble = trouble.min((l - sigma).norm());
+    };
+    let clusters = pair_clusters(pencil, sigma, &sides.right, &sides.left, 1);
+    for l in &clusters.unmatched {
+        flag(*l, &mut agreed);
+    }
+    let mut pairs = Vec::new();
+    for e in evaluate(dae, pencil, &scales, s, clusters.pairs) {
+        match e {
+            Ok(p) => pairs.push(p),
+            Err(lambda) => {
+                rejected += 1;
+                flag(lambda, &mut agreed);
+            }
+        }
+    }
+    let clean = radius.min(trouble * (1.0 - 1e-6));
+    Ok(WindowResult { shift: sigma, radius, agreed, checked: true, clean, pairs, rejected })
+}
+
+/// One Krylov–Schur run on `T` (`transpose` false: right vectors) or `Tᵀ` (left vectors)
+/// with the start vector of `seed`.
+pub(super) fn krylov_run(pencil: &Pencil, op: &ShiftInvert, wanted: usize, s: &SparseEigenSettings, transpose: bool, seed: u64, progress: &dyn Fn(&str)) -> Result<Run, KrylovError> {
+    let n = pencil.dim();
+    let sigma = op.sigma;
     // Basis of three times the wanted count: measured on the 20 lowest modes of the hanging
     // chain (callgrind, 24 wanted), 2x+1 took 11 restart cycles per run, 3x+1 four; at
     // N = 1000 (17012 equations) 3x+1 ran in 0.65 of the time of 2x+1 (4x+1: 0.71, its
@@ -106,85 +151,95 @@ pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted:
     let parallel = !s.left_vectors && n >= PARALLEL_FROM && rayon::current_num_threads() > 1;
     let real_settings = |seed| Settings { wanted, basis: real_basis, tolerance: s.krylov_tolerance, max_restarts: s.max_restarts, seed, parallel };
     let settings = |seed| Settings { wanted, basis, tolerance: s.krylov_tolerance, max_restarts: s.max_restarts, seed, parallel };
-    let report = |side: &'static str| move |k: usize| progress(&format!("shift {sigma}: {side} {k}/{wanted} converged"));
+    let side = if transpose { "adjoint" } else { "right" };
+    let report = move |k: usize| progress(&format!("shift {sigma}: {side} {k}/{wanted} converged"));
+    // A real shift of the real pencil runs in real arithmetic (the eigenvalues below the
+    // real axis are the conjugates of those above).
+    let mut ws = op.workspace();
+    if sigma.im == 0.0 {
+        krylov_schur::<f64>(n, &mut |x, out| op.apply_into(x, out, transpose, &mut ws), &real_settings(seed), &report)
+    } else {
+        krylov_schur::<c64>(n, &mut |x, out| op.apply_into(x, out, transpose, &mut ws), &settings(seed), &report)
+    }
+}
+
+/// The converged pairs of both runs at one shift as eigenpairs of eq. 29 (`Im λ ≥ 0`), each
+/// checked by its own true residual (right: `(λ E + K) v`, left: `uᵀ (λ E + K)`).
+pub(super) struct Sides {
+    pub right: Vec<(c64, Col<c64>)>,
+    pub left: Vec<(c64, Col<c64>)>,
+    right_reach: f64,
+    left_reach: f64,
+    /// Pairs that converged in the operator but failed their true residual.
+    pub rejected: usize,
+    /// Nearest distance to σ of a rejected pair.
+    pub trouble: f64,
+}
+
+impl Sides {
+    /// Radius of the disc about σ both runs covered.
+    pub fn reach(&self, _sigma: c64) -> f64 {
+        self.right_reach.min(self.left_reach)
+    }
+}
+
+/// Both runs at the factored shift, with the start vectors of `round` (each round its own).
+pub(super) fn krylov_sides(dae: &SparseLinearDae, pencil: &Pencil, op: &ShiftInvert, wanted: usize, s: &SparseEigenSettings, round: u64, progress: &dyn Fn(&str)) -> Result<Sides, KrylovError> {
+    let sigma = op.sigma;
+    let (seed_right, seed_left) = (2 * round + 1, 2 * round + 2);
     // The two runs are independent (one factorization, read only): the adjoint run goes
     // to a second thread while this one does the right run and reports progress. Its own
     // progress is not reported (the caller's callback need not be thread-safe); both take
-    // about as long. A real shift of the real pencil runs in real arithmetic (the
-    // eigenvalues below the real axis are the conjugates of those above).
-    let run = |transpose: bool, seed: u64, progress: &dyn Fn(usize)| -> Result<Run, KrylovError> {
-        let mut ws = op.workspace();
-        if sigma.im == 0.0 {
-            krylov_schur::<f64>(n, &mut |x, out| op.apply_into(x, out, transpose, &mut ws), &real_settings(seed), progress)
-        } else {
-            krylov_schur::<c64>(n, &mut |x, out| op.apply_into(x, out, transpose, &mut ws), &settings(seed), progress)
-        }
-    };
-    if !s.left_vectors {
-        return right_only(dae, pencil, &op, run(false, 1, &report("right"))?, s, &scales, progress);
-    }
-    // On a worker of the rayon pool (a sweep's point) both runs stay on it: a thread of its
-    // own would call faer's parallel products from outside the pool and wait for its
-    // workers, which all wait for it (tests/sparse_eigen.rs, the rayon-workers test).
+    // about as long. On a worker of the rayon pool (a sweep's point) both runs stay on it:
+    // a thread of its own would call faer's parallel products from outside the pool and
+    // wait for its workers, which all wait for it (tests/sparse_eigen.rs, the rayon-workers
+    // test).
     let (right_run, left_run) = if rayon::current_thread_index().is_some() {
-        (run(false, 1, &report("right")), run(true, 2, &|_| {}))
-    } else { std::thread::scope(|scope| {
-        let left = scope.spawn(|| run(true, 2, &|_| {}));
-        let right = run(false, 1, &report("right"));
-        let left = left.join().unwrap_or_else(|_| Err(KrylovError::Breakdown("the adjoint Krylov run panicked".into())));
-        (right, left)
-    }) };
+        (krylov_run(pencil, op, wanted, s, false, seed_right, progress), krylov_run(pencil, op, wanted, s, true, seed_left, &|_| {}))
+    } else {
+        std::thread::scope(|scope| {
+            let left = scope.spawn(|| krylov_run(pencil, op, wanted, s, true, seed_left, &|_| {}));
+            let right = krylov_run(pencil, op, wanted, s, false, seed_right, progress);
+            let left = left.join().unwrap_or_else(|_| Err(KrylovError::Breakdown("the adjoint Krylov run panicked".into())));
+            (right, left)
+        })
+    };
     let (right_run, left_run) = (right_run?, left_run?);
     progress(&format!(
         "shift {sigma}: {} + {} operator applications, {} + {} restarts (right + adjoint run)",
         right_run.applications, left_run.applications, right_run.restarts, left_run.restarts
     ));
-    let (right, right_all) = lambdas(&op, right_run);
-    let (mut left, left_all) = lambdas(&op, left_run);
-    // Radius of the disc each run covers: the farthest converged eigenvalue (everything
-    // when the run exhausted the finite spectrum).
-    let reach = |l: &[(c64, Col<c64>)], all: bool| {
-        if all {
-            f64::INFINITY
-        } else {
-            l.iter().map(|(x, _)| (x - sigma).norm()).fold(0.0, f64::max)
-        }
-    };
-    let radius = reach(&right, right_all).min(reach(&left, left_all));
-    let inside = |l: c64| (l - sigma).norm() <= radius * (1.0 + 1e-9);
-    // Match each right eigenvalue with the nearest unused left one.
-    let mut used = vec![false; left.len()];
+    let (right, right_all) = lambdas(op, right_run);
+    let (left, left_all) = lambdas(op, left_run);
+    let reach = |l: &[(c64, Col<c64>)], all: bool| if all { f64::INFINITY } else { l.iter().map(|(x, _)| (x - sigma).norm()).fold(0.0, f64::max) };
+    let (right_reach, left_reach) = (reach(&right, right_all), reach(&left, left_all));
+    let norms = (dae.fyd.norm_l2(), dae.fy.norm_l2());
     let mut rejected = 0;
-    let mut agreed = true;
-    // Nearest distance to σ of a disagreement or a rejected pair.
     let mut trouble = f64::INFINITY;
-    let mut flag = |l: c64, agreed: &mut bool| {
-        if inside(l) {
-            *agreed = false;
+    let mut keep = |list: Vec<(c64, Col<c64>)>, transpose: bool| -> Vec<(c64, Col<c64>)> {
+        let mut out = Vec::new();
+        for (l, x) in list {
+            let r = if transpose { DaeProducts::new(dae, pencil.moved(), &x, true, norms).residual(l) } else { right_residual(dae, pencil.moved(), &x, l, norms) };
+            if r <= s.tolerance {
+                out.push(if l.im < 0.0 { (l.conj(), Col::from_fn(x.nrows(), |i| x[i].conj())) } else { (l, x) });
+            } else {
+                rejected += 1;
+                trouble = trouble.min((l - sigma).norm());
+            }
         }
-        trouble = trouble.min((l - sigma).norm());
+        out
     };
-    let mut matched = Vec::new();
-    for (lr, v29) in right {
-        let best = left.iter().enumerate().filter(|(i, _)| !used[*i]).min_by(|a, b| (a.1 .0 - lr).norm().total_cmp(&(b.1 .0 - lr).norm())).map(|(i, (ll, _))| (i, *ll));
-        let Some((i, ll)) = best else {
-            flag(lr, &mut agreed);
-            continue;
-        };
-        if (ll - lr).norm() > 1e-6 * (lr - sigma).norm().max(lr.norm() * 1e-3) {
-            flag(lr, &mut agreed);
-            continue;
-        }
-        used[i] = true;
-        // The vectors move on (the matched left one's place keeps its eigenvalue only), so
-        // each is freed once its pair is evaluated.
-        let u29 = std::mem::replace(&mut left[i].1, Col::zeros(0));
-        matched.push((lr, v29, u29));
-    }
-    // Each matched pair's residuals, vectors and label, one after the other: on the pool's
-    // threads they took 5 % less time at N = 6000 but the threads' glibc arenas kept what
-    // the pairs' vectors had used (peak over three solves 254 -> 422 MB).
-    let evaluated = map_pairs(false, matched, |(lr, v29, u29)| {
+    let right = keep(right, false);
+    let left = keep(left, true);
+    Ok(Sides { right, left, right_reach, left_reach, rejected, trouble })
+}
+
+/// Each pair's residuals, vectors and label, one after the other (on the pool's threads
+/// they took 5 % less time at N = 6000 but the threads' glibc arenas kept what the pairs'
+/// vectors had used: peak over three solves 254 -> 422 MB). `Err(λ)`: the pair failed the
+/// true-residual test.
+pub(super) fn evaluate(dae: &SparseLinearDae, pencil: &Pencil, scales: &Scales, s: &SparseEigenSettings, matched: Vec<(c64, Col<c64>, Col<c64>)>) -> Vec<Result<Eigenpair, c64>> {
+    map_pairs(false, matched, |(lr, v29, u29)| {
         // Two-sided Rayleigh quotient on eq. 29: λ = −(uᵀ K v)/(uᵀ E v).
         let rq = -pencil.k.bilinear(&u29, &v29) / pencil.e.bilinear(&u29, &v29);
         // The DAE's products of both vectors, split by the moved entries, serve every
@@ -204,33 +259,24 @@ pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted:
         drop((v29, u29));
         let ((fydv, fyv), (ufyd, ufy)) = (right_products.at(lambda), left_products.at(lambda));
         drop((right_products, left_products));
-        let mut vectors = PairVectors { v, u, fydv, fyv, ufyd, ufy };
+        let vectors = PairVectors { v, u, fydv, fyv, ufyd, ufy };
+        // The residuals against the scale of the entries they sum (`(|λ| |F_yd| + |F_y|) |v|`,
+        // and from the left): the norm-wise test above lets the largest stiffness (a beam's
+        // EA = 1e8 N) hide a wrong pair, which this one does not (the 64-element cantilever's
+        // spurious 4.3 + 14296j rad/s, made of an axial mode's refined subspace, passed the
+        // norm-wise test and failed this one).
+        if !(entrywise_residual(dae, lambda, &vectors.v, &vectors.fydv, &vectors.fyv, false) <= s.tolerance && entrywise_residual(dae, lambda, &vectors.u, &vectors.ufyd, &vectors.ufy, true) <= s.tolerance) {
+            return Err(lambda);
+        }
+        let mut vectors = vectors;
         let lambda = if lambda.im < 0.0 {
             vectors.map(|x| x.conj());
             lambda.conj()
         } else {
             lambda
         };
-        Ok(Eigenpair::new(dae, lambda, vectors, rr, rl, &scales))
-    });
-    let mut pairs = Vec::new();
-    for e in evaluated {
-        match e {
-            Ok(p) => pairs.push(p),
-            Err(lambda) => {
-                rejected += 1;
-                flag(lambda, &mut agreed);
-            }
-        }
-    }
-    // A left eigenvalue inside the disc without a right partner is a disagreement.
-    for (i, (ll, _)) in left.iter().enumerate() {
-        if !used[i] {
-            flag(*ll, &mut agreed);
-        }
-    }
-    let clean = radius.min(trouble * (1.0 - 1e-6));
-    Ok(WindowResult { shift: sigma, radius, agreed, checked: true, clean, pairs, rejected })
+        Ok(Eigenpair::new(dae, lambda, vectors, rr, rl, (lr - rq).norm(), scales))
+    })
 }
 
 /// The window of the right run alone ([`SparseEigenSettings::left_vectors`] false): every
@@ -268,6 +314,16 @@ fn right_only(dae: &SparseLinearDae, pencil: &Pencil, op: &ShiftInvert, run: Run
     }
     let clean = radius.min(trouble * (1.0 - 1e-6));
     Ok(WindowResult { shift: sigma, radius, agreed: true, checked: false, clean, pairs, rejected })
+}
+
+/// `‖(λ F_yd + F_y) x‖ / ‖(|λ| |F_yd| + |F_y|) |x|‖` (transposed for a left vector), from the
+/// products `F_yd x`, `F_y x` already formed.
+fn entrywise_residual(dae: &SparseLinearDae, lambda: c64, x: &Col<c64>, dx: &Col<c64>, yx: &Col<c64>, transpose: bool) -> f64 {
+    let ax: Vec<f64> = x.iter().map(|e| e.norm()).collect();
+    let (d, k) = (dae.fyd.abs_mul(&ax, transpose), dae.fy.abs_mul(&ax, transpose));
+    let r = (0..dx.nrows()).map(|i| (lambda * dx[i] + yx[i]).norm_sqr()).sum::<f64>().sqrt();
+    let scale = (0..dx.nrows()).map(|i| (lambda.norm() * d[i] + k[i]).powi(2)).sum::<f64>().sqrt();
+    r / scale
 }
 
 /// Vectors from this length on are long enough for the hand-over to other threads to pay

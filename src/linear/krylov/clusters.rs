@@ -1,0 +1,255 @@
+//! Right and left vectors put together, eigenvalue by eigenvalue, including repeated ones.
+//!
+//! A symmetric beam section bends alike in two planes: each bending eigenvalue is double.
+//! A single-vector Krylov space holds one vector of such an eigenspace (the second only
+//! through rounding), and the right run and the adjoint run each pick their own: matching
+//! a right vector with the left vector of the nearest eigenvalue can pair the y-bending
+//! right vector with the z-bending left one, whose `uᵀ E v ≈ 0` makes the error estimate
+//! (and the ROM's projection) meaningless. Here the vectors of one eigenvalue (all within
+//! [`CLUSTER`] of each other) are gathered from both runs (and from every round of
+//! [`super::shifts`]' search), each side reduced to a basis of the eigenspace it found; a
+//! cluster with as many independent right as left vectors becomes that many pairs,
+//! bi-orthogonal in `E` (the two-sided Rayleigh–Ritz of the small pencil
+//! `(Uᵀ K V, Uᵀ E V)`); any other cluster is reported unmatched.
+
+use faer::linalg::solvers::DenseSolveCore;
+use faer::{c64, Col, Mat};
+
+use super::pencil::Pencil;
+
+/// Ritz values closer than this, relative to their distance from the shift (or to |λ|),
+/// are one cluster. Those far from the shift are only that accurate (the cantilever's
+/// 5733 rad/s pair came out of the runs with real parts from −0.004 to 0.03 rad/s); the
+/// cluster's inverse iteration sorts out what it holds, distinct eigenvalues included.
+pub(super) const CLUSTER: f64 = 1e-5;
+
+/// After the inverse iteration, a vector whose part outside the span of those kept is below
+/// this fraction of its norm adds nothing to the eigenspace: it collapsed onto it. Each
+/// solve next to λ adds noise of relative size ε κ(K + μ E) in every direction (measured
+/// up to ~1e-3 on the shear-stiff cantilever, GA = 1e8 N, far from the shift), which a
+/// smaller threshold took for more directions; the random and found starts of a repeated
+/// eigenvalue keep parts of order 1 along each of its directions.
+const NEW_DIRECTION: f64 = 2e-2;
+
+/// Pairs `(λ, v, u)` of eq. 29 ready for [`super::window::evaluate`], and the eigenvalues
+/// of clusters whose two sides found different numbers of vectors (one entry per vector
+/// one side has and the other lacks).
+pub(super) struct Clusters {
+    pub pairs: Vec<(c64, Col<c64>, Col<c64>)>,
+    pub unmatched: Vec<c64>,
+}
+
+/// Smallest `|uᵀ E v|` of unit vectors, relative to `‖E v‖`, that pairs them (a left and a
+/// right vector of different eigenvectors of one eigenvalue give rounding, ~1e-16).
+const FACING: f64 = 1e-8;
+
+/// Orthonormal basis of the span of `vectors` (modified Gram–Schmidt, twice), dropping
+/// the vectors that repeat a direction already kept.
+fn basis(vectors: &[&Col<c64>]) -> Vec<Col<c64>> {
+    let mut q: Vec<Col<c64>> = Vec::new();
+    for v in vectors {
+        let nv = v.norm_l2();
+        if !(nv > 0.0) {
+            continue;
+        }
+        let mut w = (*v).clone();
+        for _ in 0..2 {
+            for b in &q {
+                let d = b.iter().zip(w.iter()).fold(c64::new(0.0, 0.0), |s, (x, y)| s + x.conj() * y);
+                for i in 0..w.nrows() {
+                    w[i] -= b[i] * d;
+                }
+            }
+        }
+        let nw = w.norm_l2();
+        if nw > NEW_DIRECTION * nv {
+            q.push(Col::from_fn(w.nrows(), |i| w[i] / nw));
+        }
+    }
+    q
+}
+
+/// Inverse iterations per completed eigenspace.
+const INVERSE_ITERATIONS: usize = 3;
+
+/// Most start vectors a cluster's inverse iteration takes from the Krylov runs.
+const MAX_STARTS: usize = 8;
+
+/// Orthonormal bases of λ's right and left eigenspaces by inverse subspace iteration with
+/// the operator factored at `μ = λ + δ`, `|δ|` a millionth of |λ − σ| or ten times the
+/// cluster's `width` (the Ritz values' spread about λ), whichever is larger (each iteration
+/// shrinks the parts along the other eigenvalues by `|δ|/gap`, below 1e-5 on a beam's
+/// bending pairs, so after [`INVERSE_ITERATIONS`] only the eigenspace of the cluster is
+/// left and [`basis`] drops the starts that collapsed onto a direction already kept: the
+/// bases' sizes are the multiplicity each side sees). The vectors come out as accurate as
+/// the factorization allows, also those of Ritz pairs far from the shift. `None` when μ
+/// cannot be factored.
+fn refine(pencil: &Pencil, lambda: c64, sigma: c64, width: f64, starts: &[&Col<c64>], extra: usize) -> Option<(Vec<Col<c64>>, Vec<Col<c64>>)> {
+    let d = (1e-6 * (lambda - sigma).norm().max(lambda.norm() * 1e-3)).max(10.0 * width).max(f64::MIN_POSITIVE);
+    let mu = lambda + c64::new(d * std::f64::consts::FRAC_1_SQRT_2, d * std::f64::consts::FRAC_1_SQRT_2);
+    let op = super::operator::ShiftInvert::new(pencil, mu).ok()?;
+    let mut ws = op.workspace();
+    let n = pencil.dim();
+    let mut seed = 0x9E37_79B9_7F4A_7C15u64 ^ (lambda.im.to_bits().rotate_left(17));
+    let mut random = || {
+        Col::<c64>::from_fn(n, |_| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            c64::new((seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5, 0.0)
+        })
+    };
+    let randoms: Vec<Col<c64>> = (0..extra).map(|_| random()).collect();
+    let mut side = |transpose: bool| {
+        let mut q: Vec<Col<c64>> = starts.iter().map(|x| (*x).clone()).chain(randoms.iter().cloned()).collect();
+        for _ in 0..INVERSE_ITERATIONS {
+            let next: Vec<Col<c64>> = q
+                .iter()
+                .map(|x| {
+                    let mut out = Col::<c64>::zeros(n);
+                    op.apply_into(x.as_ref(), out.as_mut(), transpose, &mut ws);
+                    out
+                })
+                .collect();
+            q = basis(&next.iter().collect::<Vec<_>>());
+        }
+        q
+    };
+    let qr = side(false);
+    let ql = side(true);
+    Some((qr, ql))
+}
+
+/// `xᵀ y` (no conjugation).
+fn dot_t(x: &Col<c64>, y: &Col<c64>) -> c64 {
+    x.iter().zip(y.iter()).fold(c64::new(0.0, 0.0), |s, (a, b)| s + a * b)
+}
+
+/// Groups the right and left pairs (`Im λ ≥ 0`, each an eigenpair that passed its own
+/// residual) by eigenvalue and pairs their vectors.
+pub(super) fn pair_clusters(pencil: &Pencil, sigma: c64, right: &[(c64, Col<c64>)], left: &[(c64, Col<c64>)], extra: usize) -> Clusters {
+    // Every candidate, sorted by λ's distance to σ; a cluster is a run of candidates each
+    // within CLUSTER of the cluster's first.
+    let mut all: Vec<(c64, bool, usize)> = right.iter().enumerate().map(|(i, p)| (p.0, false, i)).chain(left.iter().enumerate().map(|(i, p)| (p.0, true, i))).collect();
+    all.sort_by(|a, b| (a.0 - sigma).norm().total_cmp(&(b.0 - sigma).norm()).then(a.0.im.total_cmp(&b.0.im)));
+    let close = |a: c64, b: c64| (a - b).norm() <= CLUSTER * (a - sigma).norm().max(a.norm() * 1e-3).max(f64::MIN_POSITIVE);
+    let mut used = vec![false; all.len()];
+    let mut out = Clusters { pairs: Vec::new(), unmatched: Vec::new() };
+    let mut refined: Vec<c64> = Vec::new();
+    for i in 0..all.len() {
+        if used[i] {
+            continue;
+        }
+        let head = all[i].0;
+        let members: Vec<usize> = (i..all.len()).filter(|&j| !used[j] && close(head, all[j].0)).collect();
+        for &j in &members {
+            used[j] = true;
+        }
+        let rights: Vec<&Col<c64>> = members.iter().filter(|&&j| !all[j].1).map(|&j| &right[all[j].2].1).collect();
+        let lefts: Vec<&Col<c64>> = members.iter().filter(|&&j| all[j].1).map(|&j| &left[all[j].2].1).collect();
+        // The cluster's eigenvalue: the first right Ritz value (else the left one).
+        let lambda = members.iter().find(|&&j| !all[j].1).map_or(head, |&j| all[j].0);
+        // Both sides' eigenspaces by inverse subspace iteration next to λ, started from every
+        // vector either run found of it and `extra` random ones (a direction of a repeated
+        // eigenvalue that neither run saw).
+        let starts: Vec<&Col<c64>> = rights.iter().chain(&lefts).copied().take(MAX_STARTS).collect();
+        let width = members.iter().map(|&j| (all[j].0 - lambda).norm()).fold(0.0, f64::max);
+        let Some((qr, ql)) = refine(pencil, lambda, sigma, width, &starts, extra) else {
+            out.unmatched.push(lambda);
+            continue;
+        };
+        if qr.len() != ql.len() || qr.is_empty() {
+            out.unmatched.extend(std::iter::repeat_n(lambda, qr.len().abs_diff(ql.len()).max(1)));
+            continue;
+        }
+        let m = qr.len();
+        match pairs_of(pencil, lambda, qr, ql) {
+            Some(p) => {
+                // Two clusters of one eigenvalue (Ritz values far from the shift spread
+                // wider than CLUSTER) refine to the same eigenspace: keep it once, by the
+                // refined eigenvalue (the two-sided quotient of the first pair; refined ones
+                // agree to ~1e-12, distinct eigenvalues within 1e-6 share a cluster). Had
+                // the first cluster missed a direction the second has, the count finds it
+                // missing and the next round's random starts supply it.
+                let rq = |(_, v, u): &(c64, Col<c64>, Col<c64>)| -dot_t(u, &pencil.k.mul_complex(v)) / dot_t(u, &pencil.e.mul_complex(v));
+                let Some(first) = p.first() else { continue };
+                let l = rq(first);
+                if refined.iter().any(|&x: &c64| (x - l).norm() <= 1e-6 * l.norm()) {
+                    continue;
+                }
+                refined.push(l);
+                out.pairs.extend(p)
+            }
+            // Uᵀ E V singular: the two sides found different vectors of the eigenspace.
+            None => out.unmatched.extend(std::iter::repeat_n(lambda, m)),
+        }
+    }
+    out
+}
+
+/// The pairs of one balanced cluster: `V = Q_r Z`, `U = Q_l M⁻ᵀ Z⁻ᵀ` with `M = Q_lᵀ E Q_r`
+/// and `Z` the eigenvectors of `G = −M⁻¹ Q_lᵀ K Q_r`, whose eigenvalues are the cluster's λ
+/// (so `Uᵀ E V = I`, `Uᵀ K V = −diag λ`);
+/// an exactly repeated eigenvalue (`G` a multiple of the identity to rounding) keeps
+/// `Z = I`. `None` when `M` is singular.
+fn pairs_of(pencil: &Pencil, lambda: c64, qr: Vec<Col<c64>>, ql: Vec<Col<c64>>) -> Option<Vec<(c64, Col<c64>, Col<c64>)>> {
+    let m = qr.len();
+    if m == 1 {
+        let (v, u) = (qr.into_iter().next()?, ql.into_iter().next()?);
+        let ev = pencil.e.mul_complex(&v);
+        if !(dot_t(&u, &ev).norm() > FACING * ev.norm_l2()) {
+            return None;
+        }
+        return Some(vec![(lambda, v, u)]);
+    }
+    let (ev, _): (Vec<Col<c64>>, Vec<()>) = qr.iter().map(|v| (pencil.e.mul_complex(v), ())).unzip();
+    let me = Mat::<c64>::from_fn(m, m, |i, j| dot_t(&ql[i], &ev[j]));
+    // A direction one side kept from the iteration's noise faces nothing on the other side:
+    // M's singular values split into those of the eigenspace (alike: the 64-element
+    // cantilever's double bending modes gave equal pairs) and ~1e-6 of them. Only the
+    // dominant singular subspaces are kept (`Q_r V_k`, `Q_l conj(U_k)`).
+    let svd = me.svd().ok()?;
+    let sv: Vec<f64> = (0..m).map(|i| svd.S()[i].re).collect();
+    let top = sv.iter().copied().fold(0.0, f64::max);
+    let k = sv.iter().filter(|&&x| x > 1e-3 * top).count();
+    if k == 0 {
+        return None;
+    }
+    if k < m {
+        let n = qr[0].nrows();
+        let (u, v) = (svd.U(), svd.V());
+        let qr2: Vec<Col<c64>> = (0..k).map(|c| Col::from_fn(n, |i| (0..m).fold(c64::new(0.0, 0.0), |acc, j| acc + qr[j][i] * v[(j, c)]))).collect();
+        let ql2: Vec<Col<c64>> = (0..k).map(|c| Col::from_fn(n, |i| (0..m).fold(c64::new(0.0, 0.0), |acc, j| acc + ql[j][i] * u[(j, c)].conj()))).collect();
+        return pairs_of(pencil, lambda, qr2, ql2);
+    }
+    let (ev, kv): (Vec<Col<c64>>, Vec<Col<c64>>) = qr.iter().map(|v| (pencil.e.mul_complex(v), pencil.k.mul_complex(v))).unzip();
+    let me = Mat::<c64>::from_fn(m, m, |i, j| dot_t(&ql[i], &ev[j]));
+    let mk = Mat::<c64>::from_fn(m, m, |i, j| dot_t(&ql[i], &kv[j]));
+    // M's smallest singular value against its largest: the two bases must face each other.
+    let sv = me.singular_values().ok()?;
+    let (big, small) = (sv.iter().copied().fold(0.0, f64::max), sv.iter().copied().fold(f64::INFINITY, f64::min));
+    let scale = ev.iter().map(|x| x.norm_l2()).fold(0.0, f64::max);
+    if !(small > 1e-8 * big && small > FACING * scale) {
+        return None;
+    }
+    let minv = me.partial_piv_lu().inverse();
+    let g = -(&minv * &mk);
+    let e = g.eigen().ok()?;
+    let mu: Vec<c64> = e.S().column_vector().iter().copied().collect();
+    let mean = mu.iter().fold(c64::new(0.0, 0.0), |s, x| s + x) / m as f64;
+    let spread = mu.iter().map(|x| (x - mean).norm()).fold(0.0, f64::max);
+    let repeated = spread <= 1e-9 * mean.norm().max(lambda.norm());
+    let z = if repeated { Mat::<c64>::identity(m, m) } else { e.U().to_owned() };
+    let zinv = z.partial_piv_lu().inverse();
+    // U = Q_l (Z⁻¹ M⁻¹)ᵀ.
+    let w = &zinv * &minv;
+    let n = qr[0].nrows();
+    let mut pairs = Vec::with_capacity(m);
+    for k in 0..m {
+        let v = Col::from_fn(n, |i| (0..m).fold(c64::new(0.0, 0.0), |s, j| s + qr[j][i] * z[(j, k)]));
+        let u = Col::from_fn(n, |i| (0..m).fold(c64::new(0.0, 0.0), |s, j| s + ql[j][i] * w[(k, j)]));
+        let l = if repeated { lambda } else { mu[k] };
+        pairs.push((l, v, u));
+    }
+    Some(pairs)
+}
