@@ -36,9 +36,9 @@ fn sweep(d: &Path, points: usize, extra: &[&str]) -> Command {
     c
 }
 
-fn interrupted(d: &Path, after: Duration, signal: &str) -> (Option<i32>, bool) {
-    // 20 000 points: a few seconds of work before the writing.
-    let mut child = sweep(d, 20_000, &["-o", "p.mat", "--table", "p.csv", "--plot", "p"]).stdout(Stdio::null()).stderr(Stdio::null()).spawn().unwrap();
+/// Starts `command`, waits `after`, sends `signal`: (exit code, whether it ended first).
+fn interrupted(mut command: Command, after: Duration, signal: &str) -> (Option<i32>, bool) {
+    let mut child = command.stdout(Stdio::null()).stderr(Stdio::null()).spawn().unwrap();
     let start = Instant::now();
     while start.elapsed() < after && child.try_wait().unwrap().is_none() {
         std::thread::sleep(Duration::from_millis(5));
@@ -50,11 +50,17 @@ fn interrupted(d: &Path, after: Duration, signal: &str) -> (Option<i32>, bool) {
     (child.wait().unwrap().code(), ended)
 }
 
+/// The long sweep the signal tests stop: 20 000 points, a few seconds of work before the
+/// writing.
+fn long_sweep(d: &Path) -> Command {
+    sweep(d, 20_000, &["-o", "p.mat", "--table", "p.csv", "--plot", "p"])
+}
+
 #[test]
 fn a_sweep_stopped_by_sigterm_leaves_no_file_and_by_sigkill_a_complete_set_or_none() {
     let d = folder("sweep-signals");
     for ms in [30, 300, 1500] {
-        let (code, ended) = interrupted(&d, Duration::from_millis(ms), "-TERM");
+        let (code, ended) = interrupted(long_sweep(&d), Duration::from_millis(ms), "-TERM");
         if ended {
             assert_eq!(outputs(&d), SET, "the sweep ended first: its set is whole");
             outputs(&d).iter().for_each(|f| std::fs::remove_file(d.join(f)).unwrap());
@@ -64,7 +70,7 @@ fn a_sweep_stopped_by_sigterm_leaves_no_file_and_by_sigkill_a_complete_set_or_no
         assert_eq!(outputs(&d), Vec::<String>::new(), "SIGTERM after {ms} ms");
     }
     for ms in [20, 400, 2000] {
-        let (_, ended) = interrupted(&d, Duration::from_millis(ms), "-KILL");
+        let (_, ended) = interrupted(long_sweep(&d), Duration::from_millis(ms), "-KILL");
         let journal = d.join(".p.csv.romdyn-commit");
         if journal.exists() {
             assert!(romdyn::output::atomic::recover_set(&journal).unwrap());
@@ -181,20 +187,6 @@ fn rom_and_freq_check_their_outputs_before_any_work_and_write_them_as_one_set() 
     std::fs::remove_dir_all(&d).ok();
 }
 
-/// Starts `args` on the beam, waits `after`, sends `signal`: (exit code, ended first).
-fn interrupted_beam(d: &Path, args: &[&str], after: Duration, signal: &str) -> (Option<i32>, bool) {
-    let mut child = beam_command(d, args).stdout(Stdio::null()).stderr(Stdio::null()).spawn().unwrap();
-    let start = Instant::now();
-    while start.elapsed() < after && child.try_wait().unwrap().is_none() {
-        std::thread::sleep(Duration::from_millis(5));
-    }
-    let ended = child.try_wait().unwrap().is_some();
-    if !ended {
-        assert!(Command::new("kill").args([signal, &child.id().to_string()]).status().unwrap().success());
-    }
-    (child.wait().unwrap().code(), ended)
-}
-
 #[test]
 fn rom_and_freq_stopped_by_a_signal_leave_a_complete_set_or_none() {
     let d = folder("rom-signals");
@@ -205,7 +197,7 @@ fn rom_and_freq_stopped_by_a_signal_leave_a_complete_set_or_none() {
     let freq_set = ["p.csv", "p.png", "p.svg"];
     for (args, set) in [(rom, &rom_set[..]), (freq, &freq_set[..])] {
         for (signal, ms) in [("-TERM", 100), ("-TERM", 1200), ("-KILL", 300), ("-KILL", 2500)] {
-            let (code, ended) = interrupted_beam(&d, args, Duration::from_millis(ms), signal);
+            let (code, ended) = interrupted(beam_command(&d, args), Duration::from_millis(ms), signal);
             // A set whose renames a SIGKILL cut is completed from its journal.
             for j in files(&d).into_iter().filter(|n| n.ends_with(".romdyn-commit")) {
                 assert!(romdyn::output::atomic::recover_set(&d.join(j)).unwrap());
