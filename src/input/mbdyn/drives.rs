@@ -12,8 +12,10 @@
 
 use std::collections::{HashMap, HashSet};
 
-use std::sync::{Arc, Mutex, RwLock};
+use std::sync::{Arc, Mutex};
 
+use super::card_tables::{DriveCard, DriveTable};
+pub use super::card_tables::DrivesBefore;
 use super::cursor::Cursor;
 use super::diagnostic::{MbdynError, Sources, Span};
 use super::expr::element_calls::RunElements;
@@ -39,52 +41,6 @@ const UNSUPPORTED: [&str; 1] = ["ginac"];
 
 /// Nesting of drive callers inside drive callers romdyn follows.
 const MAX_DEPTH: usize = 16;
-
-/// A `drive caller:` card: its drive, statement and place.
-#[derive(Clone)]
-struct DriveCard {
-    drive: Arc<Drive>,
-    seq: usize,
-    span: Span,
-}
-
-/// The `drive caller:` cards, by label, shared (an `Arc`) with the views string drives
-/// keep ([`DrivesBefore`]): a string drive does not copy the table (which made N cards
-/// O(N²) to read).
-#[derive(Clone, Default)]
-pub struct DriveTable(Arc<RwLock<HashMap<u32, DriveCard>>>);
-
-impl DriveTable {
-    fn get(&self, label: u32) -> Option<DriveCard> {
-        self.0.read().unwrap_or_else(|e| e.into_inner()).get(&label).cloned()
-    }
-    fn insert(&self, label: u32, card: DriveCard) {
-        self.0.write().unwrap_or_else(|e| e.into_inner()).insert(label, card);
-    }
-    /// The costs of the cards before statement `seq` (a `model::drive` whose label is
-    /// computed may call any of them).
-    fn costs_before(&self, seq: usize) -> Vec<EvaluationCost> {
-        self.0.read().unwrap_or_else(|e| e.into_inner()).values().filter(|d| d.seq < seq).map(|d| d.drive.cost()).collect()
-    }
-    /// The cards a statement at `seq` sees.
-    pub fn before(&self, seq: usize) -> DrivesBefore {
-        DrivesBefore { table: self.clone(), seq }
-    }
-}
-
-/// The `drive caller:` cards a statement sees: those before it (`model::drive(LABEL, x)`).
-#[derive(Clone, Default)]
-pub struct DrivesBefore {
-    table: DriveTable,
-    seq: usize,
-}
-
-impl DrivesBefore {
-    /// The drive of card `label`, if it comes before the statement.
-    pub fn get(&self, label: u32) -> Option<Arc<Drive>> {
-        self.table.get(label).filter(|d| d.seq < self.seq).map(|d| d.drive)
-    }
-}
 
 /// The `drive caller:` cards read so far, and the variables `string` drives evaluate with.
 #[derive(Default)]

@@ -141,13 +141,13 @@ pub struct Evaluator<'a> {
     overrides: Option<&'a SetOverrides>,
     /// The scalar functions `model::sf::NAME(x)` calls (string drives; `None` while the file is
     /// read, where `set:` runs before the `scalar function:` cards are read).
-    functions: Option<&'a super::scalar_functions::FunctionsBefore>,
+    functions: Option<&'a super::card_tables::FunctionsBefore>,
     /// What `model::` state functions read (`None`: they are refused).
     reads: Option<Reads<'a>>,
     /// The element state a string drive is evaluated in, passed on to `model::drive`.
     state: Option<&'a dyn crate::element::ElementState>,
     /// The `drive caller:` cards `model::drive(LABEL, x)` calls.
-    drives: Option<&'a super::drives::DrivesBefore>,
+    drives: Option<&'a super::card_tables::DrivesBefore>,
     /// A check before any state exists: out-of-domain arguments of built-in functions give
     /// NaN instead of an error (the placeholder values of the reads cause them).
     lenient: bool,
@@ -208,7 +208,7 @@ impl<'a> Evaluator<'a> {
     }
 
     /// Makes `model::drive(LABEL, x)` call these drive callers.
-    pub fn with_drives(mut self, drives: &'a super::drives::DrivesBefore) -> Self {
+    pub fn with_drives(mut self, drives: &'a super::card_tables::DrivesBefore) -> Self {
         self.drives = Some(drives);
         self
     }
@@ -216,7 +216,7 @@ impl<'a> Evaluator<'a> {
     /// Makes `model::sf::NAME(x)` call these scalar functions (modelns.cc: the
     /// `scalar function:` cards, the only part of the `model` namespace without run-time
     /// state).
-    pub fn with_functions(mut self, functions: &'a super::scalar_functions::FunctionsBefore) -> Self {
+    pub fn with_functions(mut self, functions: &'a super::card_tables::FunctionsBefore) -> Self {
         self.functions = Some(functions);
         self
     }
@@ -631,7 +631,7 @@ pub fn eval_type(name: &str) -> Option<Type> {
 /// rest of the expression reads the variables when the drive is called). `None` when the
 /// text has no `_eval` call, or one that cannot be evaluated here (it is then evaluated
 /// with the rest, and its error, if any, reported there).
-pub fn staticize_evals(text: &str, vars: &mut Variables, reads: Option<Reads<'_>>, drives: Option<&super::drives::DrivesBefore>) -> Option<String> {
+pub fn staticize_evals(text: &str, vars: &mut Variables, reads: Option<Reads<'_>>, drives: Option<&super::card_tables::DrivesBefore>) -> Option<String> {
     if !text.contains("_eval") {
         return None;
     }

@@ -11,6 +11,7 @@
 
 mod beam_slider;
 mod beams;
+mod card_tables;
 mod control;
 mod counter_drives;
 mod cursor;

@@ -271,7 +271,7 @@ pub fn element_key(kind: &str, label_arg: f64, call: &str) -> Result<(&'static s
 
 /// `model::drive(LABEL, x)`: the `drive caller:` card `LABEL` at `x` (modelns.cc,
 /// `DriveCaller::dGet(x)`), reading the same state.
-pub fn drive(table: &super::drives::DrivesBefore, label_arg: f64, x: f64, reads: Reads, state: Option<&dyn ElementState>) -> Result<f64, String> {
+pub fn drive(table: &super::card_tables::DrivesBefore, label_arg: f64, x: f64, reads: Reads, state: Option<&dyn ElementState>) -> Result<f64, String> {
     let call = format!("model::drive({label_arg}, {x})");
     let l = label(label_arg, &call)?;
     let Some(d) = table.get(l) else { return Err(format!("{call}: drive caller {l} is not defined before this expression")) };

@@ -102,9 +102,9 @@ pub trait StatementObserver {
     fn nodes(&self) -> &HashMap<u32, NodeKinematics>;
     /// The `scalar function:` cards read so far, by name (`model::sf::NAME(x)` in `set:`:
     /// MBDyn reads a card when it meets it).
-    fn functions(&self) -> &super::scalar_functions::FunctionsBefore;
+    fn functions(&self) -> &super::card_tables::FunctionsBefore;
     /// The `drive caller:` cards read so far, by label (`model::drive(LABEL, x)` there).
-    fn drives(&self) -> &super::drives::DrivesBefore;
+    fn drives(&self) -> &super::card_tables::DrivesBefore;
     /// Makes [`StatementObserver::drives`] current for `variables` (the string drives of
     /// the cards read so far evaluate with the variables as they stand), before an
     /// evaluation calls `model::drive`: done only then, so that a file of N `set:` and

@@ -2,48 +2,15 @@
 //! ScalarFunctionsImpl.cc, the `…SFR::Read` readers): `const` (the default), `exp`, `log`,
 //! `pow`, `linear`, `cubic spline`, `multilinear`, `chebychev`, `sum`, `sub`, `mul`, `div`.
 
-use std::collections::HashMap;
-use std::sync::{Arc, RwLock};
+use std::sync::Arc;
 
 use super::cursor::Cursor;
 use super::diagnostic::{MbdynError, Span};
 use crate::element::{EvaluationCost, ScalarFunction};
 
-/// A card: the function (shared by every use), its statement, its place and its cost.
-type Card = (Arc<ScalarFunction>, usize, Span, EvaluationCost);
-
-/// The scalar functions defined so far, by name, with the statement defining them. The
-/// table is shared (an `Arc`) with the views string drives keep ([`FunctionsBefore`]):
-/// a drive does not copy the table (which made N drives O(N²)).
-#[derive(Clone, Default)]
-pub struct ScalarFunctions {
-    table: Arc<RwLock<HashMap<String, Card>>>,
-}
-
-/// The scalar functions a statement sees: those of cards before it (`model::sf::NAME`).
-#[derive(Clone, Default)]
-pub struct FunctionsBefore {
-    functions: ScalarFunctions,
-    seq: usize,
-}
-
-impl FunctionsBefore {
-    /// The function `name`, if a card before the statement defines it, with its cost.
-    pub fn get(&self, name: &str) -> Option<(Arc<ScalarFunction>, EvaluationCost)> {
-        self.functions.card(name).filter(|c| c.1 < self.seq).map(|c| (c.0, c.3))
-    }
-}
+pub use super::card_tables::{FunctionsBefore, ScalarFunctions};
 
 impl ScalarFunctions {
-    fn card(&self, name: &str) -> Option<Card> {
-        self.table.read().unwrap_or_else(|e| e.into_inner()).get(name).cloned()
-    }
-
-    /// The functions defined before statement `seq` (what `sf::NAME` sees), shared.
-    pub fn before(&self, seq: usize) -> FunctionsBefore {
-        FunctionsBefore { functions: self.clone(), seq }
-    }
-
     /// The function `name` as defined before statement `seq`.
     pub fn get(&self, c: &Cursor, span: Span, name: &str, seq: usize) -> Result<Arc<ScalarFunction>, MbdynError> {
         match self.card(name) {

@@ -24,10 +24,10 @@ pub struct WrittenNodes {
     known: HashMap<u32, NodeKinematics>,
     /// The scalar function cards read so far, in `drives.functions` (a card the model's
     /// build refuses is left out): a view of the shared table.
-    visible: super::scalar_functions::FunctionsBefore,
+    visible: super::card_tables::FunctionsBefore,
     /// The drive caller cards read so far (one the model's build refuses is left out).
     drives: super::drives::Drives,
-    drive_table: super::drives::DrivesBefore,
+    drive_table: super::card_tables::DrivesBefore,
     /// The drive caller cards read so far (read again when the variables change).
     drive_cards: Vec<Statement>,
     /// The generation of the variables the cards were read with
@@ -78,10 +78,10 @@ impl StatementObserver for WrittenNodes {
     fn nodes(&self) -> &HashMap<u32, NodeKinematics> {
         &self.known
     }
-    fn functions(&self) -> &super::scalar_functions::FunctionsBefore {
+    fn functions(&self) -> &super::card_tables::FunctionsBefore {
         &self.visible
     }
-    fn drives(&self) -> &super::drives::DrivesBefore {
+    fn drives(&self) -> &super::card_tables::DrivesBefore {
         &self.drive_table
     }
     /// A string drive reads the variables as they stand when it is called (MBDyn's

@@ -1,0 +1,94 @@
+//! The tables of the cards read so far that expressions look into while the file is read
+//! (`model::sf::NAME(x)`, `model::drive(LABEL, x)` in `set:` and string drives): scalar
+//! functions by name, drive callers by label, each shared (an `Arc`) with the views a
+//! statement keeps of the cards before it. Below the readers that fill them
+//! (`scalar_functions`, `drives`) and the evaluator that reads them (`expr`), so that
+//! neither imports the other through them.
+
+use std::collections::HashMap;
+use std::sync::{Arc, RwLock};
+
+use super::diagnostic::Span;
+use crate::element::{Drive, EvaluationCost, ScalarFunction};
+
+/// A card: the function (shared by every use), its statement, its place and its cost.
+pub(super) type Card = (Arc<ScalarFunction>, usize, Span, EvaluationCost);
+
+/// The scalar functions defined so far, by name, with the statement defining them. The
+/// table is shared (an `Arc`) with the views string drives keep ([`FunctionsBefore`]):
+/// a drive does not copy the table (which made N drives O(N²)).
+#[derive(Clone, Default)]
+pub struct ScalarFunctions {
+    pub(super) table: Arc<RwLock<HashMap<String, Card>>>,
+}
+
+/// The scalar functions a statement sees: those of cards before it (`model::sf::NAME`).
+#[derive(Clone, Default)]
+pub struct FunctionsBefore {
+    functions: ScalarFunctions,
+    seq: usize,
+}
+
+impl FunctionsBefore {
+    /// The function `name`, if a card before the statement defines it, with its cost.
+    pub fn get(&self, name: &str) -> Option<(Arc<ScalarFunction>, EvaluationCost)> {
+        self.functions.card(name).filter(|c| c.1 < self.seq).map(|c| (c.0, c.3))
+    }
+}
+
+impl ScalarFunctions {
+    pub(super) fn card(&self, name: &str) -> Option<Card> {
+        self.table.read().unwrap_or_else(|e| e.into_inner()).get(name).cloned()
+    }
+
+    /// The functions defined before statement `seq` (what `sf::NAME` sees), shared.
+    pub fn before(&self, seq: usize) -> FunctionsBefore {
+        FunctionsBefore { functions: self.clone(), seq }
+    }
+}
+
+/// A `drive caller:` card: its drive, statement and place.
+#[derive(Clone)]
+pub(super) struct DriveCard {
+    pub(super) drive: Arc<Drive>,
+    pub(super) seq: usize,
+    pub(super) span: Span,
+}
+
+/// The `drive caller:` cards, by label, shared (an `Arc`) with the views string drives
+/// keep ([`DrivesBefore`]): a string drive does not copy the table (which made N cards
+/// O(N²) to read).
+#[derive(Clone, Default)]
+pub struct DriveTable(Arc<RwLock<HashMap<u32, DriveCard>>>);
+
+impl DriveTable {
+    pub(super) fn get(&self, label: u32) -> Option<DriveCard> {
+        self.0.read().unwrap_or_else(|e| e.into_inner()).get(&label).cloned()
+    }
+    pub(super) fn insert(&self, label: u32, card: DriveCard) {
+        self.0.write().unwrap_or_else(|e| e.into_inner()).insert(label, card);
+    }
+    /// The costs of the cards before statement `seq` (a `model::drive` whose label is
+    /// computed may call any of them).
+    pub(super) fn costs_before(&self, seq: usize) -> Vec<EvaluationCost> {
+        self.0.read().unwrap_or_else(|e| e.into_inner()).values().filter(|d| d.seq < seq).map(|d| d.drive.cost()).collect()
+    }
+    /// The cards a statement at `seq` sees.
+    pub fn before(&self, seq: usize) -> DrivesBefore {
+        DrivesBefore { table: self.clone(), seq }
+    }
+}
+
+/// The `drive caller:` cards a statement sees: those before it (`model::drive(LABEL, x)`).
+#[derive(Clone, Default)]
+pub struct DrivesBefore {
+    table: DriveTable,
+    seq: usize,
+}
+
+impl DrivesBefore {
+    /// The drive of card `label`, if it comes before the statement.
+    pub fn get(&self, label: u32) -> Option<Arc<Drive>> {
+        self.table.get(label).filter(|d| d.seq < self.seq).map(|d| d.drive)
+    }
+}
