@@ -128,8 +128,10 @@ pub(crate) fn pencil_scale(jacobians: &Jacobians, dcoef: Option<f64>) -> Result<
     Ok(scale)
 }
 
-/// Errors when `λ F_yd + F_y` is singular for every λ (see the module doc).
-fn check_regular(fyd: &Mat<f64>, fy: &Mat<f64>) -> Result<(), EigenError> {
+/// Errors when an unknown or an equation has no entry in `F_yd` nor `F_y`: the pencil is
+/// then singular for every λ. Cheap (one pass over the entries), so it comes before any
+/// factorization: a 2000 x 2000 pencil of zeros was refused only after 18 s and 690 MB.
+pub(crate) fn check_no_empty_lines(fyd: &Mat<f64>, fy: &Mat<f64>) -> Result<(), EigenError> {
     let n = fyd.nrows();
     let empty_col = (0..n).find(|&j| (0..n).all(|i| fyd[(i, j)] == 0.0 && fy[(i, j)] == 0.0));
     let empty_row = (0..n).find(|&i| (0..n).all(|j| fyd[(i, j)] == 0.0 && fy[(i, j)] == 0.0));
@@ -143,6 +145,13 @@ fn check_regular(fyd: &Mat<f64>, fy: &Mat<f64>) -> Result<(), EigenError> {
         }
         return Err(EigenError::Singular { detail: what.join(", "), unknowns: empty_col.into_iter().collect(), unknown_names: Vec::new() });
     }
+    Ok(())
+}
+
+/// Errors when `λ F_yd + F_y` is singular for every λ (see the module doc).
+fn check_regular(fyd: &Mat<f64>, fy: &Mat<f64>) -> Result<(), EigenError> {
+    check_no_empty_lines(fyd, fy)?;
+    let n = fyd.nrows();
     let balanced = balance_pencil(fy, fyd);
     let (a, b) = (&balanced.a, &balanced.b);
     let ratio = {

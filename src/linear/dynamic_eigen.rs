@@ -97,6 +97,9 @@ impl ModalAnalysis {
                 (&formed.0, &formed.1)
             }
         };
+        // An unknown or equation with no entry at all: singular for every λ, said before any
+        // factorization.
+        super::degenerate::check_no_empty_lines(fyd, fy)?;
         let Some(part) = DynamicPart::new(&fyd, &fy, dae.constraint_form, &dae.multipliers) else {
             return Self::compute_with_dcoef(jacobians, route, dcoef);
         };
