@@ -8,6 +8,9 @@ use std::fmt::Write;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
+mod common;
+
+use common::cli::{listing, temp_dir, write_file};
 use romdyn::input::mbdyn::parse_text;
 use romdyn::limits::{MAX_EVALUATION_DEPTH, MAX_EVALUATION_TERMS, MAX_INCLUDE_DEPTH};
 
@@ -26,20 +29,13 @@ fn model(cards: &str, force: &str, final_time: f64, step: f64) -> String {
     )
 }
 
+/// A fresh folder holding `files`.
 fn folder(name: &str, files: &[(&str, &str)]) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("romdyn-reader-limits-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
+    let d = temp_dir(&format!("reader-limits-{name}"));
     for (f, text) in files {
-        std::fs::write(d.join(f), text).unwrap();
+        write_file(&d, f, text);
     }
     d
-}
-
-fn listing(d: &Path) -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir(d).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
-    v.sort();
-    v
 }
 
 /// Runs romdyn with `args` in `d`: (exit status, stdout, stderr).

@@ -481,7 +481,14 @@ fn run_point<'py>(py: Python<'py>, text: &str, name: PathBuf, names: Vec<String>
 #[pyo3(signature = (text, name, names, points, options, threads = None))]
 fn run_points<'py>(py: Python<'py>, text: &str, name: PathBuf, names: Vec<String>, points: Vec<Vec<f64>>, options: &Bound<'py, PyDict>, threads: Option<usize>) -> PyResult<Vec<Bound<'py, PyDict>>> {
     let options = options::sweep(options)?;
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads.unwrap_or(0)).build().map_err(|e| RomdynError::new_err(e.to_string()))?;
+    romdyn::sweep::check_lowest(options.modes, points.len()).map_err(|e| pyo3::exceptions::PyValueError::new_err(format!("lowest: {e}")))?;
+    // The CLI's --jobs bounds: 0 refused, more threads than cores reduced with a warning.
+    let (threads, reduced) = romdyn::sweep::worker_threads(threads).map_err(|e| pyo3::exceptions::PyValueError::new_err(format!("threads: {e}")))?;
+    if let Some(w) = reduced {
+        let text = std::ffi::CString::new(format!("threads: {w}")).unwrap_or_default();
+        PyErr::warn(py, &py.get_type::<warnings::RomdynWarning>(), &text, 1)?;
+    }
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().map_err(|e| RomdynError::new_err(e.to_string()))?;
     let results = py.detach(|| pool.install(|| romdyn::sweep::sweep(text, &name, &names, points, &options, &|| {})));
     results.results.into_iter().map(|r| convert::point(py, r.map_err(|e| e.message))).collect()
 }

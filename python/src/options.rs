@@ -167,9 +167,8 @@ pub fn sweep(d: &Bound<'_, PyDict>) -> PyResult<SweepOptions> {
     )?;
     let form = form(&get::<String>(d, "form")?.unwrap_or_else(|| "ordinary".into()))?;
     let modes = get(d, "lowest")?.unwrap_or(4);
-    if modes == 0 {
-        return Err(bad("lowest", "need at least 1 mode"));
-    }
+    // The CLI's --lowest bounds (the points' count is checked with them in run_points).
+    romdyn::sweep::check_lowest(modes, 1).map_err(|e| bad("lowest", &e))?;
     let continuation = get(d, "continuation")?.unwrap_or(false);
     if continuation && !matches!(reference, Reference::Static { .. }) {
         return Err(bad("continuation", "needs reference=\"static\" (it starts each static equilibrium from the previous point's)"));

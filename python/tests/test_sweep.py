@@ -48,3 +48,17 @@ def test_dask_local_cluster_gives_byte_identical_arrays(examples):
         assert getattr(local, name).tobytes() == getattr(remote, name).tobytes(), name
     assert local.errors == remote.errors and sum(1 for e in remote.errors if e) == 8
     assert remote.inputs == ["node 2 Mz [N m]"]
+
+
+def test_threads_and_lowest_are_bounded_as_the_cli_bounds_jobs_and_lowest(examples):
+    # The CLI's --jobs and --lowest checks (romdyn::sweep::worker_threads, check_lowest).
+    path = examples / "pendulum.mbd"
+    options = dict(OPTIONS, lowest=1)
+    with pytest.raises(ValueError, match="threads: 0: need at least 1 job"):
+        romdyn.sweep(path, set={"L": "1:2:2"}, threads=0, **options)
+    with pytest.raises(ValueError, match="lowest: 20000: at most 10000 modes"):
+        romdyn.sweep(path, set={"L": "1:2:2"}, **dict(OPTIONS, lowest=20000))
+    # More threads than cores: reduced to the cores, with a RomdynWarning, and the sweep runs.
+    with pytest.warns(romdyn.RomdynWarning, match="threads: 1000: this machine runs"):
+        r = romdyn.sweep(path, set={"L": "1:2:2"}, threads=1000, **options)
+    assert r.ok.all()

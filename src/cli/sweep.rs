@@ -9,7 +9,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use romdyn::input::text_file::read_text_file;
 use romdyn::output::atomic::{check_output_paths, check_prefix, write_set};
 use romdyn::output::prefixed_path;
-use romdyn::sweep::{check_parameters, grid, sweep, Parameter, SweepOptions};
+use romdyn::sweep::{check_lowest, check_parameters, grid, sweep, worker_threads, Parameter, SweepOptions};
 
 use super::args::PencilArgs;
 use super::rom::RomChoiceArgs;
@@ -46,34 +46,12 @@ pub struct SweepArgs {
     pub jobs: Option<usize>,
 }
 
-/// Most modes per design point in a sweep's table and arrays.
-const MAX_LOWEST: usize = 10_000;
-
-/// The worker threads for `--jobs`: at least 1, at most the cores this process may use
-/// (more only share the same cores and multiply the memory: 1000 jobs made a 0.35 s sweep
-/// take 66 s), which `None` takes.
-fn jobs(requested: Option<usize>) -> Result<usize> {
-    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    match requested {
-        None => Ok(cores),
-        Some(0) => bail!("--jobs 0: need at least 1 job"),
-        Some(n) if n > cores => {
-            eprintln!("warning: --jobs {n}: this machine runs {cores} threads at once; using {cores}");
-            Ok(cores)
-        }
-        Some(n) => Ok(n),
-    }
-}
-
 pub fn run(a: SweepArgs) -> Result<()> {
     let Some(path) = a.pencil.model.clone().filter(|_| a.pencil.pencil.is_none()) else { bail!("romdyn sweep needs a MODEL file (MBDyn input), not --pencil") };
-    if a.lowest == 0 {
-        bail!("--lowest: need at least 1 mode");
+    let (jobs, reduced) = worker_threads(a.jobs).map_err(|e| anyhow::anyhow!("--jobs {e}"))?;
+    if let Some(w) = reduced {
+        eprintln!("warning: --jobs {w}");
     }
-    if a.lowest > MAX_LOWEST {
-        bail!("--lowest {}: at most {MAX_LOWEST} modes in a sweep's table and arrays", a.lowest);
-    }
-    let jobs = jobs(a.jobs)?;
     if let Some(name) = &a.against
         && !a.set.iter().any(|p| &p.name == name)
     {
@@ -90,9 +68,7 @@ pub fn run(a: SweepArgs) -> Result<()> {
     check_output_paths(&outputs)?;
     let points = grid(&a.set).map_err(anyhow::Error::msg)?;
     // The mode arrays hold points x lowest values of each kind: checked before allocating.
-    if points.len().saturating_mul(a.lowest) > romdyn::limits::MAX_DENSE_ENTRIES {
-        bail!("--lowest {} over {} design points: {} values per mode array, more than romdyn's budget of {} (romdyn::limits::MAX_DENSE_ENTRIES)", a.lowest, points.len(), points.len() as u128 * a.lowest as u128, romdyn::limits::MAX_DENSE_ENTRIES);
-    }
+    check_lowest(a.lowest, points.len()).map_err(|e| anyhow::anyhow!("--lowest {e}"))?;
     let text = read_text_file(&path).map_err(|e| anyhow::anyhow!("{}: {}", path.display(), e.message))?;
     let names: Vec<String> = a.set.iter().map(|p| p.name.clone()).collect();
     check_parameters(&text, &path, &names)?;
