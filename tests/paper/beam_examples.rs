@@ -2,7 +2,7 @@
 //! `examples/cantilever.mbd`) give the numbers of the same models built through the Rust API
 //! (CASES C4, C5), including under a load set by a driver file before `include:`.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

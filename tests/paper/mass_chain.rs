@@ -2,7 +2,7 @@
 //! springs between masses i and i+1 for i < 49, a rigid constraint x50 − x49 = 0 (form of
 //! eq. 29); force on mass 50, output x50.
 
-mod common;
+use crate::common;
 
 use common::{rel, with_coefficient};
 use romdyn::c64;

@@ -5,7 +5,7 @@
 //! nodes (1 − 1/√3)/2 of its mass, its middle node 1/√3, same rod inertia) gives 309.80
 //! rad/s at N = 0 and a two-mode static error of 0.208 % (measured), outside §7.1's 0.2 %.
 
-mod common;
+use crate::common;
 
 use common::beams::{node_label, simply_supported, TABLE3};
 use common::rel;

@@ -1,7 +1,7 @@
 //! CASES C5: a cantilever under a tip force, large deflection (elastica), and its free
 //! vibration after release, with 3-node finite-volume beams.
 
-mod common;
+use crate::common;
 
 use common::beams::{cantilever, node_label, BeamData};
 use common::rel;

@@ -1,6 +1,6 @@
 //! CASES C1: two rigidly connected masses (paper §6.1, Tables 1–2, eqs. 24–31).
 
-mod common;
+use crate::common;
 
 use common::{rel, two_masses, with_coefficient};
 use romdyn::c64;

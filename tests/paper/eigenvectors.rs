@@ -1,7 +1,6 @@
 //! Right and adjoint eigenvectors satisfy eqs. 10 and 11, with the normalization the ROM
 //! projection relies on.
 
-mod common;
 
 use faer::{c64, Col, Mat};
 use romdyn::linear::{EigenRoute, Jacobians, ModalAnalysis, ModeKind};

@@ -1,7 +1,7 @@
 //! Nonlinear time response: pendulum periods (CASES C2, own addition) and a torque-free
 //! spinning body (issue 3).
 
-mod common;
+use crate::common;
 
 use common::models::pendulum;
 use romdyn::dae::{Assembler, State};

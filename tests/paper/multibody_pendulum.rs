@@ -1,6 +1,6 @@
 //! CASES C2 and C3: the simple and the inverted pendulum (paper §7.2, eqs. 82 and 87).
 
-mod common;
+use crate::common;
 
 use common::models::{pendulum, G, J, L, M};
 use romdyn::c64;

@@ -4,7 +4,7 @@
 //! difference, rounding of an ill-conditioned static matrix is not a warning, and the advice
 //! checks what the user already asked for.
 
-mod common;
+use crate::common;
 
 use common::cli::{romdyn, temp_dir, write_file};
 use faer::c64;
