@@ -5,7 +5,7 @@
 //! along a line against the closed form (stick: bristle deflection F/(σ₀ N); slip:
 //! acceleration (F − μ N)/M) and MBDyn 1.7.3, and the reader's refusals.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 

@@ -2,7 +2,7 @@
 //! 12, point 3): its analytic Jacobian against central finite differences of its residual,
 //! its rest against the closed form, its swing against energy conservation and MBDyn 1.7.3.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

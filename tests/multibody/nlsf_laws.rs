@@ -3,7 +3,7 @@
 //! axial joints (`tests/mbdyn_files/nlsf_axial.mbd`). The joint's Jacobian with both terms is
 //! checked against finite differences in `tests/multibody_jacobians.rs`.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

@@ -2,7 +2,7 @@
 //! differences of its residual (both constraint forms, with the angle past several turns),
 //! and two screws under gravity against the closed form and MBDyn 1.7.3.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

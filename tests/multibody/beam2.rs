@@ -7,7 +7,7 @@
 //! MBDyn 1.7.3 (built by shared/tools/build-mbdyn.sh): `mbdyn -f tests/mbdyn_files/FILE.mbd
 //! -o out`, rows of `out.mov` and `out.act` at t = 1 s (the files ask for 16 digits).
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

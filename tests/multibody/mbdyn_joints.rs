@@ -5,7 +5,7 @@
 //! and against MBDyn 1.7.3's output on the same file (recorded here with the file's name;
 //! MBDyn is never run by the tests).
 
-mod common;
+use crate::common;
 
 use common::mbdyn::rewritten_test_file as rewritten;
 

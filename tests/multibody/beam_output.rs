@@ -1,7 +1,7 @@
 //! Beam internal forces: at a static solution against statics, and written by `romdyn run`
 //! in MBDyn's `.act` layout (with romdyn's `.bst` strains).
 
-mod common;
+use crate::common;
 
 use common::beams::{simply_supported, TABLE3};
 use common::cli::{example_variant, listing, romdyn_at, temp_dir, write_file};

@@ -10,7 +10,7 @@
 //! equilibrium (residual 7.5 in its angular momentum definition; measured 2026-12-06 with
 //! `State::linearization_base` reduced to `State::rebase`).
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 

@@ -4,7 +4,7 @@
 //! viscoelastic generic` (`diag`). Each file's residual equals that of the same beam built
 //! through the Rust API, at random states (1e-12 relative).
 
-mod common;
+use crate::common;
 
 use common::mbdyn::{assert_same_physics, file};
 use nalgebra::{Matrix6, Vector6};

@@ -5,7 +5,7 @@
 //! drive above and below the preload; node 1 a node or the ground), a spinning wheel braked
 //! to rest against the closed form and MBDyn 1.7.3, and the reader.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 

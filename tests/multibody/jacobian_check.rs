@@ -1,7 +1,7 @@
 //! `romdyn check` and its library function: every element's Jacobian against finite
 //! differences at a model's reference solution; a deliberately wrong element is caught.
 
-mod common;
+use crate::common;
 
 use common::cli::{pendulum_variant, romdyn, temp_dir, write_file, DISPLACED_NODE, PENDULUM_NODE};
 use common::fixtures::WrongSpring;

@@ -2,7 +2,7 @@
 //! a random state (random orientation parameters, velocities, momenta, multipliers), in both
 //! constraint forms. Tolerance: 1e-6 relative to the element's largest entry (issue 3).
 
-mod common;
+use crate::common;
 
 use common::fixtures::{Noise, WrongSpring};
 use romdyn::dae::{check_jacobians, Assembler, State};

@@ -5,7 +5,7 @@
 
 #![allow(clippy::excessive_precision)] // MBDyn's numbers as it prints them (17 digits)
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

@@ -6,7 +6,7 @@
 //! screw against the closed form (slip: the angular acceleration of the energy balance;
 //! stick: the self-locking friction coefficient) and MBDyn 1.7.3, and the reader.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 

@@ -3,7 +3,7 @@
 //! by romdyn equals the method's amplification matrix applied step by step, and a pendulum
 //! converges to a reference solution at second order; and its `hybrid, implicit euler`.
 
-mod common;
+use crate::common;
 
 use common::models::{pendulum, G, J, L, M};
 use nalgebra::{Matrix2, Vector2};

@@ -4,7 +4,7 @@
 //! of two beams against the closed form and MBDyn 1.7.3, a bead on a parabola whose
 //! linearization gives `sqrt(g/R)`, and the reader's refusals.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 

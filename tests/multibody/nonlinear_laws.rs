@@ -12,7 +12,7 @@
 //! `out.mov` (t = 1 s; the files write rotation vectors, `default orientation: orientation
 //! vector`, with 16 digits).
 
-mod common;
+use crate::common;
 
 use common::fixtures::Noise;
 use common::mbdyn::{assert_jacobians, assert_jacobians_after_run, read_test_file};

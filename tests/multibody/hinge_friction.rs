@@ -6,7 +6,7 @@
 //! (stick: turned by C/(σ₀ N R²) on its bristles; slip: angular acceleration (C − μ N R)/J;
 //! the stick's bristle mode) and MBDyn 1.7.3, and the reader.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 

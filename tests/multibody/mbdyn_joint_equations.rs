@@ -8,7 +8,7 @@
 //! against closed forms and against MBDyn 1.7.3's output on the same files (recorded here
 //! with the file's name; MBDyn is never run by the tests), and the errors of bad cards.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 
