@@ -3,7 +3,7 @@
 //! 1.7.3, the rods' Jacobians against finite differences, and the 1-D syntax as MBDyn's
 //! reader takes it.
 
-mod common;
+use crate::common;
 
 use common::mbdyn::{assert_jacobians_after_run, read_test_file, test_file as path};
 use romdyn::analysis::run;

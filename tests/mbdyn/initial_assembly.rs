@@ -7,7 +7,7 @@
 //! shared/tools/build-mbdyn.sh), `mbdyn -f FILE -o out` on the file named, with `output
 //! precision: 15;` added to control data so that the .mov carries 16 digits.
 
-mod common;
+use crate::common;
 
 use common::mbdyn::rewritten_test_file as rewritten;
 

@@ -4,7 +4,7 @@
 //! residual compared with the same model built through the Rust API from the manual's
 //! formulas, at pseudo-random states).
 
-mod common;
+use crate::common;
 
 use common::mbdyn::{assert_same_physics, file, read, variables};
 

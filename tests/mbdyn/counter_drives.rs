@@ -3,7 +3,7 @@
 //! `tests/mbdyn_files/counter_drives.mbd` against closed forms and MBDyn 1.7.3, retried
 //! steps, a second run, and the errors.
 
-mod common;
+use crate::common;
 
 use common::mbdyn::{read_test_file, test_file as path};
 use romdyn::analysis::run;

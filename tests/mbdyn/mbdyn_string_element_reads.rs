@@ -3,7 +3,7 @@
 //! evaluated): `tests/mbdyn_files/string_element_reads.mbd` against closed forms and MBDyn
 //! 1.7.3, the Jacobians with those drives held, the refusal to linearize, and the errors.
 
-mod common;
+use crate::common;
 
 use common::mbdyn::{assert_jacobians_after_run, assert_not_linearized, read_test_file, test_file as path};
 use romdyn::analysis::run;

@@ -3,7 +3,7 @@
 //! 1.7.3, the elements' Jacobians against finite differences with those drives held (their
 //! derivatives are in no Jacobian, as in MBDyn), the refusal to linearize, and the errors.
 
-mod common;
+use crate::common;
 
 use common::mbdyn::{assert_jacobians_after_run, assert_not_linearized, read_test_file, test_file as path};
 use romdyn::analysis::run;

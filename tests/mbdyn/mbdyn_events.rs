@@ -6,7 +6,7 @@
 //! same file of `tests/mbdyn_files/` (written for romdyn in MBDyn's style, recorded here
 //! with `output precision: 16`; MBDyn is never run by the tests).
 
-mod common;
+use crate::common;
 
 use common::mbdyn::rewritten_test_file as rewritten;
 

@@ -2,7 +2,7 @@
 //! the period read back from the `.mov`, the eigenvalues read back from the `.m`, and what a
 //! bad file or a failing run leaves behind.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

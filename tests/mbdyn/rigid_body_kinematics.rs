@@ -2,7 +2,7 @@
 //! `tests/mbdyn_files/rigid_body_kinematics.mbd` against closed forms and MBDyn 1.7.3, the
 //! bodies' and nodes' frame terms against finite differences.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

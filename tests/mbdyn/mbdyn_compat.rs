@@ -5,7 +5,7 @@
 //! numbers the construct must produce (closed forms, stated next to each assertion). What
 //! MBDyn's reader does is cited from its source (mbdyn/base, mbdyn/struct) per construct.
 
-mod common;
+use crate::common;
 
 use common::mbdyn::rewritten_test_file as rewritten;
 

@@ -1,7 +1,7 @@
 //! Node accelerations in the motion file (MBDyn's `accelerations, yes`, issue 12):
 //! `tests/mbdyn_files/node_accelerations.mbd` against closed forms and MBDyn 1.7.3.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

@@ -5,7 +5,7 @@
 //! `tests/mbdyn_files/model_current.mbd` against MBDyn 1.7.3 and closed forms, the values
 //! MBDyn's `tests/namespaces/model` expects, and the errors.
 
-mod common;
+use crate::common;
 
 use common::mbdyn::{file, test_file as path, variables};
 use romdyn::analysis::run;

@@ -8,7 +8,7 @@
 //! the pencil's eigenvalues Λ lie within 1e-4 of 1, so `λ = (Λ − 1)/((Λ + 1) dCoef)` loses
 //! about 4 of them (`scripts/compare_mbdyn.sh` prints the bound this leaves on each λ).
 
-mod common;
+use crate::common;
 
 use common::cli::{romdyn_at, temp_dir, write_file};
 use common::lambda_of_alpha;
@@ -17,7 +17,7 @@ use romdyn::input::octave_m::read_octave_script;
 #[test]
 fn the_damped_hinge_eigenvalue_read_back_from_the_m_file_is_the_closed_form_and_mbdyns() {
     let dir = temp_dir("eigen-digits");
-    let file = write_file(&dir, "damped_hinge_eig.mbd", include_str!("mbdyn_files/damped_hinge_eig.mbd"));
+    let file = write_file(&dir, "damped_hinge_eig.mbd", include_str!("../mbdyn_files/damped_hinge_eig.mbd"));
     let (ok, _, err) = romdyn_at(&dir, &["run", &file]);
     assert!(ok, "{err}");
     let m = read_octave_script(&dir.join("damped_hinge_eig_0.m")).unwrap();

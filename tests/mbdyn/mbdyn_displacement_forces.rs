@@ -1,7 +1,7 @@
 //! MBDyn's `absolute displacement` and `absolute internal displacement` forces (issue 12,
 //! point 3): `tests/mbdyn_files/displacement_forces.mbd` against closed forms and MBDyn 1.7.3.
 
-mod common;
+use crate::common;
 
 use common::mbdyn::{assert_jacobians_after_run, read_test_file};
 use romdyn::analysis::run;

@@ -3,7 +3,7 @@
 //! test), with a file of `tests/mbdyn_files/` written in MBDyn's style where the construct
 //! changes a model's numbers.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 

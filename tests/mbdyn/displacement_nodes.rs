@@ -3,7 +3,7 @@
 //! and MBDyn 1.7.3, the nodes' own Jacobian rows against finite differences, and the
 //! elements MBDyn refuses on them.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

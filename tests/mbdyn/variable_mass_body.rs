@@ -6,7 +6,7 @@
 //! MBDyn numbers: MBDyn 1.7.3 (built from github:alex-marinov/mbdyn), `mbdyn -f
 //! variable_mass_body.mbd -o out`, its .mov at t = 1 s (`output precision: 16`).
 
-mod common;
+use crate::common;
 
 use common::mbdyn::{assert_jacobians, read_test_file, test_file};
 use romdyn::analysis::run;

@@ -3,7 +3,7 @@
 //! `eig(Aminus, Aplus)` must give the eigenvalues of the `alpha` rows and CASES C2.
 //! Runs only when `octave-cli` (or `octave`) is on PATH; CI does not install it.
 
-mod common;
+use crate::common;
 
 use std::process::Command;
 

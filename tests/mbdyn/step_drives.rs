@@ -3,7 +3,7 @@
 //! 1.7.3, a second run of the same model, the elements' Jacobians with the drives held, what
 //! a linearization sees, and the errors.
 
-mod common;
+use crate::common;
 
 use common::mbdyn::{assert_jacobians_after_run, assert_not_linearized, read_test_file, test_file as path};
 use romdyn::analysis::run;
