@@ -4,7 +4,7 @@
 //! the same modal-table rows and warnings, the ROM's static gain and the full model's
 //! frequency response.
 
-mod common;
+use crate::common;
 
 use common::beams::{node_label, simply_supported, TABLE3};
 use common::models::hanging_chain;

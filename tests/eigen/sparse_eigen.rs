@@ -4,7 +4,7 @@
 //! relative, same labels, no spurious modes in MBDyn's constraint form (eq. 30), bands by one
 //! complex shift or several shifts, none missed.
 
-mod common;
+use crate::common;
 
 use common::beams::{simply_supported, TABLE3};
 use common::models::{hanging_chain, pendulum};

@@ -5,7 +5,7 @@
 //! against EJ = 1e3 N m²: the norm-wise residuals and error estimates that labelled its
 //! bending modes "zero" before), with torsion modes in between.
 
-mod common;
+use crate::common;
 
 use common::cli::{romdyn, temp_dir, write_file};
 

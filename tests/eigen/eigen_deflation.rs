@@ -4,7 +4,7 @@
 //! every finite eigenvalue to 1e-9 relative, the same labels, vectors whose true residual
 //! is at rounding level, and ROMs with the same static gain and frequency response.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

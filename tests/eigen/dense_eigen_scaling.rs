@@ -2,7 +2,7 @@
 //! is accurate on flexible beams whatever EA/EJ, gives the same physical eigenvalues and labels
 //! in any units, and never shows a mode of an extremely scaled model as a wrong "dynamic" one.
 
-mod common;
+use crate::common;
 
 use common::beam_family::{beam_inertia, cantilever};
 

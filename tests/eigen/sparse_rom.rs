@@ -4,7 +4,7 @@
 //! route (`ModalAnalysis::of_dae`, dense projection, dense static gain): same static gain and
 //! frequency response at 5 frequencies to 1e-8.
 
-mod common;
+use crate::common;
 
 use common::beams::{simply_supported, TABLE3};
 use common::models::hanging_chain;

@@ -1,7 +1,7 @@
 //! The sparse linear model (issue 13 points 1 and 3): the same numbers as the dense one,
 //! static gain by one sparse solve, and the sparse static correction of a truncated ROM.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 
