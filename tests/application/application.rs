@@ -2,7 +2,7 @@
 //! (eqs. 92–95), imposed motion and transmissibility (eqs. 96–100), each against a closed
 //! form.
 
-mod common;
+use crate::common;
 
 use faer::c64;
 use romdyn::dae::ports::{Direction, Excitation, InputPort, Measurement, OutputPort, Point, PortMap};

@@ -1,7 +1,7 @@
 //! Linearizing a model file at a later time (`eig --at`, `analysis::reference_state`): the
 //! file's problem is integrated up to that time first.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

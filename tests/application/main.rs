@@ -1,0 +1,11 @@
+//! The paper's application tools (§8) as a user runs them: ports at points of bodies,
+//! dummy-spring removal, imposed motion and transmissibility (`application`), design-point
+//! sweeps, Bode and line plots, and linearizing at a later time of a run.
+
+#[path = "../common/mod.rs"]
+mod common;
+
+mod application;
+mod bode_plot;
+mod reference_solution;
+mod sweep;
