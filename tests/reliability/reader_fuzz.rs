@@ -14,7 +14,7 @@ use romdyn::input::matrix_market::parse_matrix;
 use romdyn::input::octave_m::parse_octave_script;
 use romdyn::input::pencil::parse_pencil;
 
-mod common;
+use crate::common;
 
 use common::fuzz::Rng;
 

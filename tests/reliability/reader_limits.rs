@@ -8,7 +8,7 @@ use std::fmt::Write;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
-mod common;
+use crate::common;
 
 use common::cli::{listing, temp_dir, write_file};
 use romdyn::input::mbdyn::parse_text;

@@ -12,7 +12,7 @@ use std::time::{Duration, Instant};
 
 use romdyn::input::mbdyn::{build, parse_text};
 
-mod common;
+use crate::common;
 
 use common::fuzz::Rng;
 

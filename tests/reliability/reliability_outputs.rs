@@ -2,7 +2,7 @@
 //! `romdyn` binary in a folder of its own, asserting the exit status, the message and what
 //! the folder holds afterwards.
 
-mod common;
+use crate::common;
 
 use common::cli::{listing, romdyn_at, temp_dir, write_file};
 

@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-const PENDULUM: &str = include_str!("../examples/pendulum.mbd");
+const PENDULUM: &str = include_str!("../../examples/pendulum.mbd");
 const SET: [&str; 4] = ["p.csv", "p.mat", "p.png", "p.svg"];
 
 fn folder(name: &str) -> PathBuf {
@@ -143,7 +143,7 @@ fn a_runs_prefix_must_name_a_regular_file() {
     std::fs::remove_dir_all(&d).ok();
 }
 
-const BEAM: &str = include_str!("../examples/simply_supported_beam.mbd");
+const BEAM: &str = include_str!("../../examples/simply_supported_beam.mbd");
 
 /// `romdyn ARGS` on the README beam (`b.mbd` in `d`), its static equilibrium, input 5:Fy,
 /// output 5:y.

@@ -6,7 +6,7 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
-const PENDULUM: &str = include_str!("../examples/pendulum.mbd");
+const PENDULUM: &str = include_str!("../../examples/pendulum.mbd");
 
 /// A fresh folder with the given files.
 fn folder(name: &str, files: &[(&str, &str)]) -> PathBuf {

@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-const PENDULUM: &str = include_str!("../examples/pendulum.mbd");
+const PENDULUM: &str = include_str!("../../examples/pendulum.mbd");
 const SET: [&str; 5] = ["p.log", "p.mov", "p.out", "p_0.json", "p_0.m"];
 
 fn folder(name: &str) -> PathBuf {
