@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Planar model of tests/mbdyn_files/beam3_tip_couple.mbd (two beam3 elements, static
 nodes, tip couple ramped over [0, 1] s, method ms 0.6) in the two formulations of the
-three-node beam's rotation field (tests/beam_rotation.rs):
+three-node beam's rotation field (tests/multibody/beam_rotation.rs):
 
 - romdyn: total rotation interpolated relative to the middle node,
   phi_s = phi_2 + 2 atan(sum N_i tan((phi_i - phi_2)/2)), kappa = d phi_s / ds;
@@ -13,7 +13,7 @@ three-node beam's rotation field (tests/beam_rotation.rs):
   kappa = kappa_prev + (N'.g_ref)/(1 + (N.g_ref)^2/4) + (N'.g)/(1 + (N.g)^2/4).
 
 Prints the tip's final position for 1, 10 and 100 load steps; MBDyn 1.7.3's numbers are
-in tests/beam_rotation.rs. A reference check only: never run by cargo test.
+in tests/multibody/beam_rotation.rs. A reference check only: never run by cargo test.
 Usage: python3 scripts/beam3_planar_model.py
 """
 import math

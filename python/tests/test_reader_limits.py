@@ -1,6 +1,6 @@
 """Issue 32, finding 1 in Python: inputs that crashed the interpreter (a stack overflow in
 Model.run() and romdyn.sweep, 2^N memory) raise a romdyn error naming FILE:LINE:COLUMN,
-and the interpreter carries on. The inputs are generated here, as in tests/reader_limits.rs."""
+and the interpreter carries on. The inputs are generated here, as in tests/reliability/reader_limits.rs."""
 
 import pytest
 

@@ -116,7 +116,7 @@ impl ModLugre {
     /// σ₀/μ(|v|)`, as [`Element::non_smooth`]), and the kinks of `μ(|v|)`
     /// ([`ScalarFunction::kinks`]), where `f_s'` jumps and with it the derivative in `v` by
     /// `α z σ₀ v Δμ'/μ²`. Newton's iterates on the two sides of such a point can cycle
-    /// (tests/joint_friction.rs, stick_slip_kink.mbd).
+    /// (tests/multibody/joint_friction.rs, stick_slip_kink.mbd).
     pub fn kink_crossed(&self, (v_a, z_a): (f64, f64), (v_b, z_b): (f64, f64)) -> Option<String> {
         let mut why = Vec::new();
         if sign(v_a) != sign(v_b) && (self.past_breakaway(z_a) || self.past_breakaway(z_b)) {
@@ -220,7 +220,7 @@ impl Element for InLineFriction {
         // predictor (no Newton iteration, its residual already below the tolerance; MBDyn
         // does the same) leaves the multipliers and the momenta as extrapolated, and runs of
         // such steps let a constrained direction's momentum drift within the tolerance (on
-        // tests/joint_friction.rs's block, up to 1.9e-7 kg m/s vertically at tolerance 1e-6), whose
+        // tests/multibody/joint_friction.rs's block, up to 1.9e-7 kg m/s vertically at tolerance 1e-6), whose
         // derivative the reaction balances (3e-4 N of 98.1 N at t = 1.9 s).
         let (n, dn) = self.normal_force(st);
         (dn != [0.0; 2]).then(|| format!("its friction force and stiffness scale with the normal force |λ| = {n:.9e} N, the joint's reaction multipliers as integrated, which steps accepted within the tolerance without a Newton iteration leave noisy (up to 1e-5 relative on a block resting on a line at tolerance 1e-6, its bristle eigenvalue then 1.6e-6 off the closed form); the eigenvalues carry that noise, which a tighter `tolerance` narrows"))

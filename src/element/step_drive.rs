@@ -36,7 +36,7 @@ pub enum StepKind {
     /// `ũ_0 = u(t_k)` at the previous state, `ũ_1 = ũ_0` of the previous step, …: the
     /// `bᵢ` act on the input one step later than the manual's formula says
     /// (`y_k = … + (b₀ + b₁) u_k + b₂ u_{k−1}` for a function of time), which is what
-    /// MBDyn 1.7.3's numbers show (tests/step_drives.rs). romdyn shifts the histories
+    /// MBDyn 1.7.3's numbers show (tests/mbdyn/step_drives.rs). romdyn shifts the histories
     /// correctly for any length; MBDyn's shift loop (`x[i] = x[i − 1]` upwards) repeats
     /// the newest entry for histories longer than 2, which romdyn does not copy.
     DiscreteFilter { a: Vec<f64>, b0: f64, b: Vec<f64>, input: Drive },

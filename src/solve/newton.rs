@@ -106,7 +106,7 @@ const KINK_ITERATES: usize = 4;
 /// differentiable ([`crate::element::Element::kink_crossed`]) that consecutive iterates
 /// cross, each element once. Newton on a piecewise smooth residual can jump from one side
 /// of such a point to the other without converging on either (the modlugre friction's
-/// multilinear `μ(|v|)` at its kink, tests/joint_friction.rs).
+/// multilinear `μ(|v|)` at its kink, tests/multibody/joint_friction.rs).
 fn kinks_crossed(asm: &Assembler, iterates: &[State]) -> Option<String> {
     let mut named: Vec<String> = Vec::new();
     for (a, b) in iterates.iter().zip(iterates.iter().skip(1)) {

@@ -213,7 +213,7 @@ fn cli_sweep_writes_the_others_and_exits_1_on_a_failed_point() {
 fn a_sweep_at_a_reference_time_takes_the_beam_update_eig_takes() {
     // examples/cantilever.mbd (ten beam3, tip force P applied at t = 0) swept over P, the
     // reference at t = 2 ms of its time integration. `romdyn eig --at T` on the same file
-    // takes MBDyn's incremental beam update (the default `auto`, tests/beam_incremental.rs);
+    // takes MBDyn's incremental beam update (the default `auto`, tests/multibody/beam_incremental.rs);
     // a sweep's point must give the same modes (to round-off, 1e-12 relative: the same
     // computation), and the path-independent update other ones (measured: first mode
     // 1.6e-8 and 4.0e-8 relative apart at P = 500 and 1000 N, above the 1e-10 asserted), or

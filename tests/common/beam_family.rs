@@ -1,6 +1,6 @@
 //! The beam family of issue 30 (finding 3) in MBDyn syntax: a cantilever of N `beam3`
 //! elements with a tip mass, every node dynamic and free in 3-D; shared by
-//! tests/dense_eigen_scaling.rs and benches/dense_beam_family.rs.
+//! tests/eigen/dense_eigen_scaling.rs and benches/dense_beam_family.rs.
 
 /// Lumped masses and inertias of the beam file below, node by node: `(m, J_x, J_y, J_z)`.
 pub fn beam_inertia(elements: usize) -> Vec<[f64; 4]> {

@@ -1,4 +1,4 @@
-//! Helpers of the bounded fuzz tests (tests/mbdyn_fuzz.rs, tests/reader_fuzz.rs): the time
+//! Helpers of the bounded fuzz tests (tests/reliability/mbdyn_fuzz.rs, tests/reliability/reader_fuzz.rs): the time
 //! budget and seed from the environment, and a seeded xorshift generator.
 
 use std::time::Duration;

@@ -2,7 +2,7 @@
 //! pendulum chain written as an MBDyn file (100 links of 0.1 kg, 0.1 m, hanging under
 //! gravity from a clamped node; `scripts/bench_vs_mbdyn.sh`'s chain, hanging), and the
 //! option's errors. The dense route is validated against QZ on the whole pencil and the
-//! paper's cases elsewhere (tests/eigen_deflation.rs, tests/sparse_eigen.rs).
+//! paper's cases elsewhere (tests/eigen/eigen_deflation.rs, tests/eigen/sparse_eigen.rs).
 
 use std::path::{Path, PathBuf};
 use std::process::Command;

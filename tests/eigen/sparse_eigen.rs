@@ -1,6 +1,6 @@
 //! Shift-invert Krylov–Schur eigenanalysis of sparse linear DAEs (issue 13 point 2) against
 //! the dense route (`ModalAnalysis::of_dae`, itself validated against QZ on the whole pencil
-//! in tests/eigen_deflation.rs and against the paper's cases): same eigenvalues to 1e-9
+//! in tests/eigen/eigen_deflation.rs and against the paper's cases): same eigenvalues to 1e-9
 //! relative, same labels, no spurious modes in MBDyn's constraint form (eq. 30), bands by one
 //! complex shift or several shifts, none missed.
 

@@ -1,6 +1,6 @@
 //! The Study's sparse route (issue 13 point 4) against its dense route on the same model:
 //! the same modes for `--count` and `--band` (the dense route is validated against QZ on the
-//! whole pencil and the paper's cases in tests/eigen_deflation.rs, tests/sparse_eigen.rs),
+//! whole pencil and the paper's cases in tests/eigen/eigen_deflation.rs, tests/eigen/sparse_eigen.rs),
 //! the same modal-table rows and warnings, the ROM's static gain and the full model's
 //! frequency response.
 
@@ -41,8 +41,8 @@ fn assert_same_modes(what: &str, dense: &[(c64, f64)], sparse: &[(c64, f64)]) {
 
 #[test]
 fn the_862_equation_chain_has_the_same_20_lowest_modes_and_rom_on_both_routes() {
-    // 50 links (the 1712-equation chain is compared in tests/sparse_eigen.rs and through the
-    // CLI in tests/sparse_cli.rs; the dense ROM residualizing every other mode costs minutes
+    // 50 links (the 1712-equation chain is compared in tests/eigen/sparse_eigen.rs and through the
+    // CLI in tests/eigen/sparse_cli.rs; the dense ROM residualizing every other mode costs minutes
     // there).
     let request = RomRequest::new(ModeSelection::Lowest(20)).residualize(Residualization::Dropped);
     let dense = study(hanging_chain(50, ConstraintForm::Scaled), "50:Fx", "50:x", Solver::Dense, &request);
@@ -96,7 +96,7 @@ fn a_band_of_the_beam_gives_the_same_modes_and_rom_on_both_routes() {
     assert!(ud.len() >= 2, "{ud:?}");
     assert_same_modes("beam band", &ud, &us);
     // The ROM of the band without residualization: same warning kinds, same static gain
-    // (the truncated projection's, 1e-8 as tests/sparse_rom.rs).
+    // (the truncated projection's, 1e-8 as tests/eigen/sparse_rom.rs).
     let (rd, rs) = (dense.reduce(&request).unwrap(), sparse.reduce(&request).unwrap());
     let kinds = |w: &[Warning]| w.iter().map(std::mem::discriminant).collect::<Vec<_>>();
     assert_eq!(kinds(&rd.warnings), kinds(&rs.warnings), "{:?} vs {:?}", rd.warnings, rs.warnings);

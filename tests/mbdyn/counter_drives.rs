@@ -186,7 +186,7 @@ fn postponed_drives_are_copies_of_later_cards_as_in_mbdyn() {
         ("postponed, 1;", "postponed, 11;", "no drive caller card 11"),
         ("drive caller: 2, random, 1., 0., 0., forever, seed, 7;", "drive caller: 2, postponed, 3;", "no drive caller card 3 is read before"),
         // (A radius reading the model's state through `postponed` is evaluated at every
-        // step since 2026-12-03: tests/varying_radius.rs.)
+        // step since 2026-12-03: tests/mbdyn/varying_radius.rs.)
     ];
     for (old, new, expected) in cases {
         assert!(text.contains(old), "{old}");

@@ -481,7 +481,7 @@ fn a_chain_of_total_joints_takes_mbdyns_newton_iterations() {
     // reaction in a turning frame it does not; romdyn's joints are all of the second kind.
     // Tolerances: the positions and velocities to 1e-6 relative (issue 12's acceptance).
     // romdyn now takes 1771 iterations: its derivatives phase no longer turns the joints'
-    // rounding-level violations at t = 0 into accelerations `Φ/c²` (tests/derivatives_phase.rs),
+    // rounding-level violations at t = 0 into accelerations `Φ/c²` (tests/mbdyn/derivatives_phase.rs),
     // which MBDyn's does and which cost it 24 iterations in the first steps (romdyn's count
     // was MBDyn's 1795 before). The count to 1 % of 1771, and never above MBDyn's.
     let want: [[f64; 4]; 10] = [

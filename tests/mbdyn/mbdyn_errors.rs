@@ -162,7 +162,7 @@ fn model_errors() {
         // (`model: static` is read as MBDyn's: a body on a dynamic node is refused there.)
         (model("structural nodes: 2; model: static; rigid bodies: 1;", NODES, "body: 2, 2, 1., null, eye;"), "m.mbd:6:1: error: body 2: structural node 2 is dynamic, and 'model: static' needs static nodes for bodies"),
         (model("structural nodes: 2; genels: 1;", NODES, ""), "m.mbd:2:51: error: control data declares genels, which romdyn does not support"),
-        // 43. (A joint that does not hold as written is now assembled: tests/initial_assembly.rs.)
+        // 43. (A joint that does not hold as written is now assembled: tests/mbdyn/initial_assembly.rs.)
         // 44. A dummy node cannot carry elements.
         (model("structural nodes: 3; rigid bodies: 1;", &format!("{NODES} structural: 3, dummy, 2, offset, null, eye;"), "body: 1, 3, 1., null, eye;"), "m.mbd:6:10: error: structural node 3 is a dummy node"),
         // 45. Negative mass needs 'allow negative mass'.
@@ -170,7 +170,7 @@ fn model_errors() {
         // 46. Extra arguments.
         (model("structural nodes: 2; rigid bodies: 1;", NODES, "body: 1, 2, 1., null, eye, 7.;"), "m.mbd:6:28: error: unexpected extra argument the number 7 in 'body'"),
         // 47. A driven total joint with only some rotations locked (its
-        // remnant is element history: tests/mbdyn_joints.rs runs the joint itself).
+        // remnant is element history: tests/multibody/mbdyn_joints.rs runs the joint itself).
         (model("structural nodes: 2; joints: 1;", NODES, "driven: 1, const, 1., joint: 1, total joint, 1, 2, position, 0., 1., 0., orientation constraint, active, inactive, inactive, 1., 0., 0., const, .5;"), "m.mbd:6:1: error: driven: a driven total joint with events of its own (a bistop law, a total joint locking some rotation components only) is not supported by romdyn"),
     ];
     check(&cases);
@@ -193,7 +193,7 @@ fn drive_and_law_errors() {
         // 53. An undefined drive caller.
         (force("reference, 4"), "m.mbd:6:52: error: drive caller 4 is not defined"),
         // 54. (Different drives on different components of one force: a sum since issue 12's
-        // state drives, tests/mbdyn_state_drives.rs.)
+        // state drives, tests/mbdyn/mbdyn_state_drives.rs.)
         // 55. Time-varying gravity with different drives on its components.
         (model("structural nodes: 2; gravity;", NODES, "gravity: component, const, 1., ramp, 1., 0., 1., 0., inactive;"), "m.mbd:6:10: error: romdyn's time-varying gravity is one direction times one drive"),
         // 55b. Driven elements: hints, a label that is not the wrapped element's, `existing`.

@@ -2,7 +2,7 @@
 //! step after the predictor: `Element::latch`): the `linear viscoelastic bistop` law on a
 //! rod, and driven elements' hints. Each: the analytic Jacobian against central finite
 //! differences of the residual in the changed state (1e-6 relative to the element's largest
-//! entry, as tests/multibody_jacobians.rs), closed forms, and MBDyn 1.7.3's output on the
+//! entry, as tests/multibody/multibody_jacobians.rs), closed forms, and MBDyn 1.7.3's output on the
 //! same file of `tests/mbdyn_files/` (written for romdyn in MBDyn's style, recorded here
 //! with `output precision: 16`; MBDyn is never run by the tests).
 

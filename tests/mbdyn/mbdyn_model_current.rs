@@ -119,7 +119,7 @@ fn model_element_errors_name_the_element_and_the_datum() {
         ("set: real x = model::element::body(2, \"Q\");", "does not compute the private data \"Q\" of body 2"),
         ("set: real x = model::element::aerodynamic(2, \"E\");", "romdyn reads the private data of bodies and joints"),
         // In a string drive the element may be anywhere in the elements block (read during
-        // the run, tests/mbdyn_string_element_reads.rs), but must exist.
+        // the run, tests/mbdyn/mbdyn_string_element_reads.rs), but must exist.
         ("force: 2, absolute, 2, position, null, 0., 0., 1., string, \"model::element::body(3, \\\"E\\\")\";", "there is no body 3 in the elements block"),
     ];
     for (statement, expected) in cases {

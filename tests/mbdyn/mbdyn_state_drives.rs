@@ -111,7 +111,7 @@ fn bad_model_namespace_calls_name_the_place_and_the_problem() {
         assert!(e.contains(&format!("state_drives.mbd:{line}:")) && e.contains(expected), "{new}: {e}");
     }
     // An imposed-motion joint whose drive reads the state is read (evaluated at the
-    // iterate, as MBDyn's: tests/mbdyn_element_drives.rs checks one against MBDyn 1.7.3).
+    // iterate, as MBDyn's: tests/mbdyn/mbdyn_element_drives.rs checks one against MBDyn 1.7.3).
     let m = from_text(&base.replace("joint: 5, clamp, 5, node, node;", "joint: 5, drive displacement pin, 5, null, null, 1., 0., 0., string, \"model::xposition(2)\";")).unwrap();
     assert!(m.model.elements.iter().any(|e| e.type_name() == "drive displacement pin" && e.reads_state()));
     // `set:` while the file is read sees the nodes above it only (MBDyn reads in order).

@@ -104,7 +104,7 @@ fn bad_element_reads_in_string_drives_name_the_place_and_the_problem() {
 
 /// A body's potential energy "V" read during the run includes the gravity field (MBDyn
 /// links the gravity element to the bodies after the elements block; while the file is read
-/// "V" is 0, tests/mbdyn_model_current.rs): a 2 kg body falling from z = 1 m, pushed along
+/// "V" is 0, tests/mbdyn/mbdyn_model_current.rs): a 2 kg body falling from z = 1 m, pushed along
 /// x by `V = m g z`: ẍ = g z = g (1 − g t²/2), x(1 s) = g (1/2 − g/24).
 #[test]
 fn a_bodys_potential_energy_read_during_the_run_includes_gravity() {

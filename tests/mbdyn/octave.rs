@@ -37,7 +37,7 @@ printf('%.15e\\n', pick(from_alpha), pick(from_qz));
 #[test]
 fn octave_loads_the_m_file_and_its_qz_gives_the_pendulum_eigenvalues() {
     let Some(exe) = octave() else {
-        eprintln!("skipped: octave is not on PATH (the .m files are checked without it in tests/run_command.rs)");
+        eprintln!("skipped: octave is not on PATH (the .m files are checked without it in tests/mbdyn/run_command.rs)");
         return;
     };
     for (name, option) in [("full", "output matrices"), ("sparse", "output sparse matrices")] {

@@ -2,7 +2,7 @@
 //! (bending with shear, axial, torsion) and of pure bending at large rotation, MBDyn 1.7.3's
 //! numbers on the same files, and the `.act` rows MBDyn writes for it (label and the one
 //! evaluation point's force and moment). Its Jacobian is checked against finite
-//! differences with every other element in `tests/multibody_jacobians.rs`.
+//! differences with every other element in `tests/multibody/multibody_jacobians.rs`.
 //!
 //! MBDyn 1.7.3 (built by shared/tools/build-mbdyn.sh): `mbdyn -f tests/mbdyn_files/FILE.mbd
 //! -o out`, rows of `out.mov` and `out.act` at t = 1 s (the files ask for 16 digits).

@@ -35,12 +35,12 @@ fn final_positions(file: &str, overrides: &[(&str, f64)], update: BeamUpdate) ->
 #[test]
 fn with_the_incremental_update_the_tip_couple_equilibrium_follows_mbdyn_s_load_path() {
     // MBDyn 1.7.3 on tests/mbdyn_files/beam3_tip_couple.mbd (`mbdyn -f … -o out` with `H` set
-    // in the file, node 5's row of out.mov at t = 1 s; tests/beam_rotation.rs): tip x [m].
+    // in the file, node 5's row of out.mov at t = 1 s; tests/multibody/beam_rotation.rs): tip x [m].
     // romdyn with the incremental update, measured: 0.66458978410691827 (1 step, 1.1e-12 m
     // from MBDyn), 0.66493938405041619 (10 steps, 4.4e-16 m), 0.66494703856909121 (100
     // steps, 5.6e-16 m); the path-independent update (the library's default) gives 0.664630
     // for all three. Until the integrator updated the nodes' rotations as MBDyn does
-    // (2026-12-03, tests/rotation_update.rs) 10 steps were 1.7e-6 m off: the tips parted at
+    // (2026-12-03, tests/multibody/rotation_update.rs) 10 steps were 1.7e-6 m off: the tips parted at
     // step 3, the first whose predictor reads the angular velocity Newton's update left.
     for (h, mbdyn, tolerance) in [(1.0, 0.66458978410585801, 1e-11), (0.1, 0.66493938405041575, 1e-13), (0.01, 0.66494703856909065, 1e-13)] {
         let x = final_positions("tests/mbdyn_files/beam3_tip_couple.mbd", &[("H", h)], BeamUpdate::Incremental)[4].x;
@@ -85,7 +85,7 @@ fn with_the_incremental_update_the_cantilever_example_gives_mbdyn_s_positions() 
 #[test]
 fn run_takes_beam_update_incremental_and_refuses_an_unknown_update() {
     // tests/mbdyn_files/beam3_tip_couple.mbd as written (H = 1, one step), node 5's row of the
-    // .mov at t = 1 s; MBDyn 1.7.3: tip x 0.66458978410585801 m (tests/beam_rotation.rs).
+    // .mov at t = 1 s; MBDyn 1.7.3: tip x 0.66458978410585801 m (tests/multibody/beam_rotation.rs).
     let dir = temp_dir("beam-update-incremental");
     let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files/beam3_tip_couple.mbd");
     let tip_x = |update: &str| {
@@ -98,7 +98,7 @@ fn run_takes_beam_update_incremental_and_refuses_an_unknown_update() {
     };
     let incremental = tip_x("incremental");
     assert!((incremental - 0.66458978410585801).abs() < 1e-11, "incremental: tip x {incremental}");
-    // Path independent: 0.664630 m (tests/beam_rotation.rs).
+    // Path independent: 0.664630 m (tests/multibody/beam_rotation.rs).
     let default = tip_x("path-independent");
     assert!((default - 0.664630).abs() < 1e-6, "path independent: tip x {default}");
     let (ok, _, err) = romdyn(&["run", file.to_str().unwrap(), "--beam-update", "stepwise"]);
@@ -247,7 +247,7 @@ fn the_incremental_beam3_and_beam2_jacobians_match_finite_differences_with_a_lat
 
 #[test]
 fn with_the_incremental_update_beam2_follows_mbdyn_s_load_path() {
-    // MBDyn 1.7.3 on tests/mbdyn_files/beam2_tip_couple.mbd (tests/beam2.rs), tip x, y [m]:
+    // MBDyn 1.7.3 on tests/mbdyn_files/beam2_tip_couple.mbd (tests/multibody/beam2.rs), tip x, y [m]:
     // romdyn with the incremental update, measured: 2.2e-16 m from MBDyn in 1 step, 9.4e-16
     // m in 10, 1.6e-16 m in 100 (1.07e-5 and 1.4e-10 m before the nodes' rotation update was
     // MBDyn's, 2026-12-03); the
@@ -265,7 +265,7 @@ fn with_the_incremental_update_beam2_follows_mbdyn_s_load_path() {
 fn a_static_reference_with_incremental_beams_is_warned() {
     // The static equilibrium of incremental beams is MBDyn's one step whatever the load
     // steps (previous test: 0.66458978410585801 m for 1 and 10), 4.1e-5 m from the
-    // path-independent one (0.664630 m, tests/beam_rotation.rs); a study at that reference
+    // path-independent one (0.664630 m, tests/multibody/beam_rotation.rs); a study at that reference
     // says so, naming the two beams of the file; with the default update it does not.
     let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files/beam3_tip_couple.mbd");
     let warned = |args: &[&str]| {

@@ -142,7 +142,7 @@ fn a_sticking_wheel_linearizes_to_the_bristle_spring_and_damper() {
     // friction is the torsional bristle spring k = σ₀ N R² and damper c = σ₁ N R² about the
     // axle, so the wheel's mode is λ = −c/(2J) ± j √(k/J − (c/2J)²) (closed form). At the
     // file's tolerance the normal force carries the integration noise (see
-    // tests/joint_friction.rs), so the tolerance is 1e-10 here and the closed form holds to
+    // tests/multibody/joint_friction.rs), so the tolerance is 1e-10 here and the closed form holds to
     // 1e-9 (the eigensolver's accuracy); the eigenanalysis names the dependence.
     let text = std::fs::read_to_string(path("revolute_hinge_friction.mbd")).unwrap();
     let changed = text.replace("\tfinal time: 2.;", "\tfinal time: 2.;\n\teigenanalysis: 1.9, parameter, 1.e-3;").replace("\ttolerance: 1e-6;", "\ttolerance: 1e-10;");

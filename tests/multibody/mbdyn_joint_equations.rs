@@ -4,7 +4,7 @@
 //! the `angular acceleration` (tests/joints/angularacceleration) and the `viscous body`
 //! (tests/joints/viscousbody):
 //! analytic Jacobians against central finite differences of the residual (1e-6 relative, as
-//! tests/mbdyn_joints.rs), test files of `tests/mbdyn_files/` in MBDyn's style checked
+//! tests/multibody/mbdyn_joints.rs), test files of `tests/mbdyn_files/` in MBDyn's style checked
 //! against closed forms and against MBDyn 1.7.3's output on the same files (recorded here
 //! with the file's name; MBDyn is never run by the tests), and the errors of bad cards.
 

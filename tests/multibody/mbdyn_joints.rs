@@ -1,6 +1,6 @@
 //! Joints and deformable elements of issue 12, point 3 (axial rotation, …): each one's
 //! analytic Jacobian against central finite differences of its residual (1e-6 relative to
-//! the element's largest entry, as tests/multibody_jacobians.rs), and a test file of
+//! the element's largest entry, as tests/multibody/multibody_jacobians.rs), and a test file of
 //! `tests/mbdyn_files/` in MBDyn's style whose numbers are checked against a closed form
 //! and against MBDyn 1.7.3's output on the same file (recorded here with the file's name;
 //! MBDyn is never run by the tests).

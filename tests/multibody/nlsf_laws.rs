@@ -1,7 +1,7 @@
 //! MBDyn's 1-D `nlsf` constitutive laws (input manual, §nlsf viscoelastic; constltp_nlsf.cc):
 //! `f = k (ε − ε_p) + f′(ε − ε_p) + c ε̇ + f″(ε̇) + f_p` with scalar functions, on deformable
 //! axial joints (`tests/mbdyn_files/nlsf_axial.mbd`). The joint's Jacobian with both terms is
-//! checked against finite differences in `tests/multibody_jacobians.rs`.
+//! checked against finite differences in `tests/multibody/multibody_jacobians.rs`.
 
 use crate::common;
 
@@ -40,7 +40,7 @@ fn an_nlsf_spring_rests_at_its_closed_form_and_an_nlsf_brake_follows_its_ode() {
 }
 
 /// An `nlsf` law on an element that takes linear laws only (an invariant deformable hinge),
-/// or on a rod with a prestrain that changes in time, is refused naming it (3-D and 6-D laws: `tests/nonlinear_laws.rs`); so are bistop
+/// or on a rod with a prestrain that changes in time, is refused naming it (3-D and 6-D laws: `tests/multibody/nonlinear_laws.rs`); so are bistop
 /// laws off rods and symbolic laws, with the reason.
 #[test]
 fn nlsf_laws_elsewhere_or_in_3d_are_refused_by_name() {
@@ -49,7 +49,7 @@ fn nlsf_laws_elsewhere_or_in_3d_are_refused_by_name() {
         ("joint: 2, rod, 1, 2, from nodes, nlsf viscoelastic, 1., null, 0., \"f\", prestrain, ramp, 1., 0., 1., 0.;", "prestrain that changes in time on an 'nlsf viscoelastic' law"),
         ("joint: 2, invariant deformable hinge, 1, 2, nlsf viscous, null, null, null, \"f\";", "'nlsf viscous' is supported by romdyn on the deformable displacement joint"),
         // Refused with the reason (constltp_impl.h's BiStopCLWrapper; MBDyn 1.7.3 here has no GiNaC).
-        // A bistop law on a rod only (tests/mbdyn_events.rs).
+        // A bistop law on a rod only (tests/mbdyn/mbdyn_events.rs).
         ("joint: 2, deformable hinge, 1, null, 2, null, linear viscoelastic bistop, 1.e3, 1.e2, initial status, inactive, const, 1., const, 0.;", "in 1-D only (a rod)"),
         ("joint: 2, rod, 1, 2, from nodes, symbolic viscous, epsilon prime, \"w\", expression, \"w\";", "GiNaC"),
     ];

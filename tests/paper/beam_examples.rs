@@ -82,7 +82,7 @@ fn full_model_static_gain_is_eq_73_in_the_form_of_eq_30() {
 fn rom_command_keeps_the_first_bending_mode_and_residualizes_the_third() {
     // Paper §7.1 / Fig. 7 through the CLI: the first pair kept, modal-table mode 7 (the third
     // bending pair) residualized; the static gain is the two-mode ROM's, 2.104747e-5 m/N
-    // (tests/beam_simply_supported.rs: −0.170 % from eq. 73's 2.108333e-5).
+    // (tests/paper/beam_simply_supported.rs: −0.170 % from eq. 73's 2.108333e-5).
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_romdyn"))
         .args(["rom", "examples/simply_supported_beam.mbd", "--static", "--input", "5:Fy", "--output", "5:y", "--count", "1", "--residualize-modes", "7", "--form", "descriptor"])
         .current_dir(env!("CARGO_MANIFEST_DIR"))
@@ -91,7 +91,7 @@ fn rom_command_keeps_the_first_bending_mode_and_residualizes_the_third() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{err}");
     assert!(err.contains("ROM: 2 states from 1 kept mode(s), 2 statically residualized state(s)"), "{err}");
-    // The kept pair: 309.927752 rad/s = 49.326534 Hz (tests/beam_simply_supported.rs).
+    // The kept pair: 309.927752 rad/s = 49.326534 Hz (tests/paper/beam_simply_supported.rs).
     assert!(err.lines().any(|l| l.trim_start().starts_with("1,2") && l.contains("49.326534")), "{err}");
     let row = |name: &str| err.lines().find(|l| l.trim_start().starts_with(name)).map(|l| l.split_whitespace().last().unwrap_or("").to_string());
     assert_eq!(row("full model").as_deref(), Some("2.108333e-5"), "{err}");

@@ -1,9 +1,9 @@
 //! Bounded fuzzing of the JSON pencil, Matrix Market and Octave `.m` readers, as
-//! tests/mbdyn_fuzz.rs does for the MBDyn reader: random mutations of valid files and
+//! tests/reliability/mbdyn_fuzz.rs does for the MBDyn reader: random mutations of valid files and
 //! random token streams of each format's words. Every input must give a value or an error,
 //! never a panic (a panic prints the input). Each generator runs for a fixed share of a
 //! few seconds (deterministic seeded xorshift); for a longer local run:
-//! `ROMDYN_FUZZ_SECONDS=60 ROMDYN_FUZZ_SEED=7 cargo test --test reader_fuzz`. The
+//! `ROMDYN_FUZZ_SECONDS=60 ROMDYN_FUZZ_SEED=7 cargo test --test reliability reader_fuzz`. The
 //! cargo-fuzz targets in fuzz/ cover the same readers with coverage guidance.
 
 use std::path::Path;
