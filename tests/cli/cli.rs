@@ -1,18 +1,6 @@
 //! The `romdyn` binary end to end on the shipped example (CASES C1).
 
-use std::path::PathBuf;
-use std::process::Command;
-
-fn romdyn(args: &[&str]) -> (bool, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_romdyn")).args(args).current_dir(env!("CARGO_MANIFEST_DIR")).output().unwrap();
-    (out.status.success(), String::from_utf8_lossy(&out.stdout).into(), String::from_utf8_lossy(&out.stderr).into())
-}
-
-fn temp_dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("romdyn-cli-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
+use crate::common::cli::{romdyn, temp_dir};
 
 #[test]
 fn eig_json_has_the_documented_fields_and_c1_eigenvalues() {

@@ -4,19 +4,8 @@
 //! option's errors. The dense route is validated against QZ on the whole pencil and the
 //! paper's cases elsewhere (tests/eigen/eigen_deflation.rs, tests/eigen/sparse_eigen.rs).
 
+use crate::common::cli::{romdyn, temp_dir};
 use std::path::{Path, PathBuf};
-use std::process::Command;
-
-fn romdyn(args: &[&str]) -> (bool, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_romdyn")).args(args).current_dir(env!("CARGO_MANIFEST_DIR")).output().unwrap();
-    (out.status.success(), String::from_utf8_lossy(&out.stdout).into(), String::from_utf8_lossy(&out.stderr).into())
-}
-
-fn temp_dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("romdyn-sparse-cli-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
 
 /// The N-link chain hanging along −y (17 N + 12 equations).
 fn chain_file(dir: &Path, n: usize) -> PathBuf {

@@ -8,19 +8,14 @@
 //! precision: 15;` added to control data so that the .mov carries 16 digits.
 
 use crate::common;
+use common::mbdyn::test_file as path;
 
 use common::mbdyn::rewritten_test_file as rewritten;
-
-use std::path::{Path, PathBuf};
 
 use romdyn::analysis::{run, RunError};
 use romdyn::dae::{Assembler, State};
 use romdyn::input::mbdyn::{read_model, MbdynModel};
 use romdyn::kinematics::euler123;
-
-fn path(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files").join(name)
-}
 
 
 /// `(x, y, Euler angle 3 [deg], ẋ, ẏ, ω_z)` of node `k` (1-based label k + 1) of `st`.

@@ -6,28 +6,21 @@
 //! MBDyn's reader does is cited from its source (mbdyn/base, mbdyn/struct) per construct.
 
 use crate::common;
+use common::mbdyn::{read_test_file as read, test_file as path};
 
 use common::mbdyn::rewritten_test_file as rewritten;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use common::mbdyn::residual;
 use common::cli::temp_dir;
 use romdyn::analysis::{run, RunFiles};
-use romdyn::input::mbdyn::{build, parse_text, read_model, MbdynModel};
+use romdyn::input::mbdyn::{build, parse_text, MbdynModel};
 use romdyn::kinematics::Vec3;
 use romdyn::model::{Method, OrientationOutput};
 
-fn path(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files").join(name)
-}
-
 fn text(name: &str) -> String {
     std::fs::read_to_string(path(name)).unwrap_or_else(|e| panic!("{name}: {e}"))
-}
-
-fn read(name: &str) -> MbdynModel {
-    read_model(&path(name)).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// The file's text with each `(old, new)` replaced; every `old` must occur (so a test cannot

@@ -7,10 +7,10 @@
 //! with `output precision: 16`; MBDyn is never run by the tests).
 
 use crate::common;
+use common::mbdyn::test_file as path;
 
 use common::mbdyn::rewritten_test_file as rewritten;
 
-use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use common::fixtures::Noise;
@@ -21,10 +21,6 @@ use romdyn::input::mbdyn::{build, parse_text, MbdynModel};
 use romdyn::kinematics::Mat3;
 use romdyn::linear::ConstraintForm;
 use romdyn::model::ModelBuilder;
-
-fn path(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files").join(name)
-}
 
 
 /// The model of `name` run to `final_time` (its `final time:` line replaced): the final

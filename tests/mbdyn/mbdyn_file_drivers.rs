@@ -2,15 +2,11 @@
 //! point 3): `tests/mbdyn_files/file_driver.mbd` against closed forms and MBDyn 1.7.3, and
 //! the errors for bad cards and bad data files.
 
-use std::path::{Path, PathBuf};
+use crate::common::mbdyn::test_file as path;
 
 use romdyn::analysis::run;
 use romdyn::dae::Assembler;
 use romdyn::input::mbdyn::{build, parse_text, read_model};
-
-fn path(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files").join(name)
-}
 
 fn text(name: &str) -> String {
     std::fs::read_to_string(path(name)).unwrap_or_else(|e| panic!("{name}: {e}"))

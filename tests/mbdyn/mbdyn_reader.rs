@@ -4,19 +4,12 @@
 //! changes a model's numbers.
 
 use crate::common;
+use common::mbdyn::{read_test_file as read, test_file as path};
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use romdyn::analysis::run;
-use romdyn::input::mbdyn::{build, parse_text, read_model, MbdynModel};
-
-fn path(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files").join(name)
-}
-
-fn read(name: &str) -> MbdynModel {
-    read_model(&path(name)).unwrap_or_else(|e| panic!("{e}"))
-}
+use romdyn::input::mbdyn::{build, parse_text, MbdynModel};
 
 fn read_text(text: &str) -> Result<MbdynModel, String> {
     parse_text(text, Path::new("m.mbd")).and_then(|d| build(&d)).map_err(|e| e.to_string())

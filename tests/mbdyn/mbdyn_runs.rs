@@ -7,15 +7,11 @@
 //! assembly's and derivatives' lines, which `output: iterations` prints; its .mov with
 //! `output precision: 15`).
 
-use std::path::{Path, PathBuf};
+use crate::common::mbdyn::test_file as path;
 
 use romdyn::analysis::{run, RunError};
 use romdyn::dae::Assembler;
 use romdyn::input::mbdyn::read_model;
-
-fn path(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files").join(name)
-}
 
 #[test]
 fn derivatives_that_meet_no_coefficient_are_accepted_at_the_best_one_as_mbdyn_accepts_them() {

@@ -8,18 +8,13 @@
 //! -o out`, rows of `out.mov` and `out.act` at t = 1 s (the files ask for 16 digits).
 
 use crate::common;
-
-use std::path::Path;
+use common::mbdyn::test_file as file;
 
 use common::cli::{listing, romdyn_at, temp_dir};
 use romdyn::analysis::run;
 use romdyn::dae::Assembler;
 use romdyn::input::mbdyn::{read_model_text, SetOverrides};
 use romdyn::kinematics::{rotation_vector, Vec3};
-
-fn file(name: &str) -> std::path::PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files").join(name)
-}
 
 /// Final positions and rotation vectors of the nodes `labels` of a file, with `H` set.
 fn final_nodes(name: &str, h: Option<f64>, labels: &[u32]) -> Vec<(Vec3, Vec3)> {

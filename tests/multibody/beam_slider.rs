@@ -5,8 +5,7 @@
 //! linearization gives `sqrt(g/R)`, and the reader's refusals.
 
 use crate::common;
-
-use std::path::{Path, PathBuf};
+use common::mbdyn::test_file as path;
 
 use common::fixtures::Noise;
 use romdyn::analysis::run;
@@ -16,10 +15,6 @@ use romdyn::input::mbdyn::{build, parse_text, read_model};
 use romdyn::kinematics::{Mat3, Vec3};
 use romdyn::linear::ConstraintForm;
 use romdyn::model::{Model, ModelBuilder};
-
-fn path(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files").join(name)
-}
 
 /// A slider on node 10 along two beams (nodes 1–3, 3–5) through random, slightly curved
 /// positions with random orientations and offsets.

@@ -7,8 +7,7 @@
 //! the stick's bristle mode) and MBDyn 1.7.3, and the reader.
 
 use crate::common;
-
-use std::path::{Path, PathBuf};
+use common::mbdyn::test_file as path;
 
 use common::fixtures::{smooth_model, Noise};
 use romdyn::analysis::run;
@@ -18,10 +17,6 @@ use romdyn::input::mbdyn::{read_model_text, SetOverrides};
 use romdyn::kinematics::Vec3;
 use romdyn::linear::ConstraintForm;
 use romdyn::model::ModelBuilder;
-
-fn path(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files").join(name)
-}
 
 #[test]
 fn revolute_hinge_friction_jacobian_matches_finite_differences() {

@@ -9,26 +9,19 @@
 //! with the file's name; MBDyn is never run by the tests), and the errors of bad cards.
 
 use crate::common;
+use common::mbdyn::{read_test_file as read, test_file as path};
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use common::fixtures::Noise;
 use common::mbdyn::assert_jacobians;
 use romdyn::analysis::run;
 use romdyn::dae::Assembler;
 use romdyn::element::{Anchor, AngularAcceleration, ViscousBody, Drive, DrivenJoint, Joint, Tikhonov, TotalEquation, TotalReaction, VectorDrive};
-use romdyn::input::mbdyn::{build, parse_text, read_model, read_model_text, MbdynModel, SetOverrides};
+use romdyn::input::mbdyn::{build, parse_text, read_model_text, MbdynModel, SetOverrides};
 use romdyn::kinematics::Vec3;
 
 
-
-fn path(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files").join(name)
-}
-
-fn read(name: &str) -> MbdynModel {
-    read_model(&path(name)).unwrap_or_else(|e| panic!("{e}"))
-}
 
 fn node(label: u32, n: &mut Noise) -> Anchor {
     Anchor::Node { label, offset: n.vec(), orientation: n.rotation() }

@@ -6,29 +6,22 @@
 //! MBDyn is never run by the tests).
 
 use crate::common;
+use common::mbdyn::{read_test_file as read, test_file as path};
 
 use common::mbdyn::rewritten_test_file as rewritten;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use common::fixtures::Noise;
 use common::mbdyn::assert_jacobians;
 use romdyn::analysis::run;
 use romdyn::dae::{check_jacobians, Assembler, State};
 use romdyn::element::{RotationRemnant, Anchor, AxialRotation, CardanoHinge, Distance, GimbalRotation, ImposedVelocity, VelocityKind, DeformableJoint, Drive, DrivenElement, DrivenJoint, Element, InvariantDeformableHinge, Joint, LinearViscoelastic, SectionLaw, VectorDrive};
-use romdyn::input::mbdyn::{build, parse_text, read_model, MbdynModel};
+use romdyn::input::mbdyn::{build, parse_text, MbdynModel};
 use romdyn::kinematics::{Mat3, Vec3};
 
 use romdyn::linear::ConstraintForm;
 use romdyn::model::ModelBuilder;
-
-fn path(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files").join(name)
-}
-
-fn read(name: &str) -> MbdynModel {
-    read_model(&path(name)).unwrap_or_else(|e| panic!("{e}"))
-}
 
 
 fn node(label: u32, n: &mut Noise) -> Anchor {

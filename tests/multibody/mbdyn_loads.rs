@@ -7,20 +7,12 @@
 //! shared/tools/build-mbdyn.sh), `mbdyn -f FILE -o out` on the file named, with `output
 //! precision: 15;` added to control data.
 
-use std::path::{Path, PathBuf};
+use crate::common::mbdyn::{read_test_file as read, test_file as path};
 
 use romdyn::analysis::{check_model_jacobians, run, Reference, JACOBIAN_CHECK_TOLERANCE};
 use romdyn::dae::Assembler;
-use romdyn::input::mbdyn::{build, parse_text, read_model, MbdynModel};
+use romdyn::input::mbdyn::{build, parse_text, MbdynModel};
 use romdyn::kinematics::euler123;
-
-fn path(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files").join(name)
-}
-
-fn read(name: &str) -> MbdynModel {
-    read_model(&path(name)).unwrap_or_else(|e| panic!("{e}"))
-}
 
 /// Position, Euler 1-2-3 angles [deg], velocity and angular velocity of every node after
 /// the file's run, as MBDyn's .mov writes them.

@@ -7,8 +7,7 @@
 //! stick: the self-locking friction coefficient) and MBDyn 1.7.3, and the reader.
 
 use crate::common;
-
-use std::path::{Path, PathBuf};
+use common::mbdyn::test_file as path;
 
 use common::fixtures::{smooth_model, Noise};
 use romdyn::analysis::run;
@@ -17,10 +16,6 @@ use romdyn::element::{Anchor, Screw, ScrewFriction};
 use romdyn::input::mbdyn::{read_model_text, SetOverrides};
 use romdyn::linear::ConstraintForm;
 use romdyn::model::ModelBuilder;
-
-fn path(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files").join(name)
-}
 
 /// The thread: radius 0.7 m, half thread angle 0.4 rad, pitch 0.3 m.
 const RADIUS: f64 = 0.7;

@@ -2,25 +2,14 @@
 //! happens now. Numbers are checked against closed forms or the full model on the same
 //! file; sources next to the assertions.
 
+use crate::common::cli::{romdyn, temp_dir};
 use std::path::PathBuf;
-use std::process::Command;
 
 use faer::Mat;
 use romdyn::analysis::Reference;
 use romdyn::linear::{EigenRoute, Jacobians, LinearDae};
 use romdyn::rom::{full_frequency_response, ModalDamping, ModeSelection, Ranking};
 use romdyn::study::{BelowBand, EigenSettings, Linearization, Residualization, RomRequest, Study, StudyError, Warning};
-
-fn romdyn(args: &[&str]) -> (bool, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_romdyn")).args(args).current_dir(env!("CARGO_MANIFEST_DIR")).output().unwrap();
-    (out.status.success(), String::from_utf8_lossy(&out.stdout).into(), String::from_utf8_lossy(&out.stderr).into())
-}
-
-fn temp_dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("romdyn-trust-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
 
 /// `M v' + D v + K x = B u`, `x' = v` as a first-order DAE `y = (x, v)`:
 /// `F = [x' − v; M v' + D v + K x − B u]`, so `F_yd = diag(I, M)`, `F_y = [[0, −I], [K, D]]`
