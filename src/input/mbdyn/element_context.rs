@@ -45,6 +45,8 @@ pub struct ElementContext<'a> {
     pub beams: &'a BeamNodes,
     /// The statement being read (cards must come before it).
     pub seq: usize,
+    /// `model: static` in control data: every node is static and bodies only weigh.
+    pub static_model: bool,
 }
 
 impl<'a> ElementContext<'a> {

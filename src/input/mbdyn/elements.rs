@@ -104,7 +104,9 @@ impl ElementContext<'_> {
 fn body(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Parsed, MbdynError> {
     let span = c.here();
     let (n, point) = ctx.point_node(c, "node of the body")?;
-    if point && n.kind == crate::model::NodeKind::Static {
+    // body.cc (ReadBody): a mass needs a dynamic displacement node, except in a static model,
+    // where every node is static and the mass only weighs (`StaticMass`).
+    if point && n.kind == crate::model::NodeKind::Static && !ctx.static_model {
         return Err(c.error_at(span, format!("body {label}: structural node {} is a static displacement node; a mass needs a dynamic displacement node (MBDyn 1.7.3: \"illegal structural node type\")", n.label)));
     }
     let on = ctx.on(n);

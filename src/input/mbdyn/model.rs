@@ -183,6 +183,14 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
             node_statement(st, &mut c, &cards.frames, &mut nodes)?;
         }
     }
+    // strnode.cc, `ReadStructNode`: in a static model MBDyn turns every dynamic node (and
+    // dynamic displacement node) into a static one, after reading it as written (its
+    // `accelerations` flag included): its bodies then only weigh (`StaticBody`, `StaticMass`).
+    if static_model {
+        for n in nodes.0.iter_mut().filter(|n| !n.dummy && n.node.kind == NodeKind::Dynamic) {
+            n.node.kind = NodeKind::Static;
+        }
+    }
     // strnode.cc: a dynamic node computes its accelerations when it is output and asks for
     // them (or `default output: accelerations`); an offset dummy node when its base does, a
     // relative-frame one when both its nodes do.
@@ -251,7 +259,7 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
         {
             output_only.insert(("inertia", *x as u32));
         }
-        let ctx = ElementContext { nodes: &nodes, frames: &cards.frames, drives: &cards.drives, laws: &cards.laws, beams: &beams, seq: st.seq };
+        let ctx = ElementContext { nodes: &nodes, frames: &cards.frames, drives: &cards.drives, laws: &cards.laws, beams: &beams, seq: st.seq, static_model };
         let label_span = c.here();
         let parsed = element(st, &mut c, &ctx)?;
         let parsed = match &st.driven {
@@ -260,19 +268,14 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
         };
         let parsed = match parsed {
             Parsed::Body(mut body) => {
-                // body.cc (ReadBody): in a static model a body needs a static node and only
-                // weighs (`StaticBody`), as romdyn's body on a static node.
-                if static_model && nodes.find(body.node).is_some_and(|n| n.node.kind == NodeKind::Dynamic) {
-                    return Err(src.error(st.span, format!("body {}: structural node {} is dynamic, and 'model: static' needs static nodes for bodies (MBDyn 1.7.3: \"illegal structural node type … in static model analysis\")", body.label, body.node)));
-                }
+                // body.cc (ReadBody): in a static model a body sits on a static node (every
+                // dynamic one has turned static above) and only weighs (`StaticBody`), as
+                // romdyn's body on a static node.
                 bodies.push((body.label, body.node, body.mass, body.offset));
                 body.frame = frame_motion.clone();
                 Parsed::Element(Box::new(body))
             }
             Parsed::Element(e) if e.type_name() == "variable body" => {
-                if static_model {
-                    return Err(src.error(st.span, "a variable-mass body in a static model ('model: static') is not supported by romdyn"));
-                }
                 if frame_motion.is_some() {
                     return Err(src.error(st.span, "a variable-mass body in a model with 'rigid body kinematics' is not supported by romdyn"));
                 }
