@@ -97,10 +97,39 @@ fn ham_sas_transmissibility_is_one_below_the_modes_and_the_rom_follows_the_full_
     // quasi-static limit of a suspension, k/(k − m ω²) → 1).
     assert!((t.full[0][(0, 0)].norm() - 1.0).abs() < 0.01, "{}", t.full[0][(0, 0)]);
     // Well inside the ROM's band (modes up to 2 Hz kept, nothing residualized) the ROM's eq. 100
-    // follows the full model's (1e-2 relative; at 0.5 Hz the truncation reaches 5 %).
+    // follows the full model's (1e-2 relative).
     for (k, f) in freqs.iter().enumerate() {
         let (a, b) = (t.full[k][(0, 0)], t.rom[k][(0, 0)]);
         assert!((a - b).norm() < 1e-2 * a.norm(), "{f} Hz: full {a}, ROM {b}");
+    }
+}
+
+/// The base's horizontal modes (0.0050 Hz, the dummy springs) have vectors dominated by the
+/// ground clamp's reaction moment, an unknown `F_yd` does not weigh: `uᵀ F_yd v = 6e-12` for
+/// unit vectors, exact but below the old rounding test `1e3 ε ‖u‖ ‖F_yd‖ ‖v‖`, so the left
+/// vectors were left unscaled and every ROM lost those modes (issue 30). The reference is the
+/// full model's own response, solved at each frequency without any eigenvector: a ROM that
+/// keeps every dynamic mode reproduces it (measured 3.3e-7; the old ROM 7.4e-2), and the
+/// 0-2 Hz ROM's transmissibility follows the full model's up to 5 Hz, through the isolation
+/// regime (measured within 1 % up to 9.7 Hz; the old ROM's was 60 times the full model's at
+/// 2 Hz, 4.8e-3 against 7.8e-5, and did not improve with more modes).
+#[test]
+fn ham_sas_rom_keeps_the_modes_whose_vectors_are_reaction_forces() {
+    let s = study();
+    let every = s.reduce(&RomRequest::new(ModeSelection::Lowest(66))).unwrap();
+    let freqs: Vec<f64> = (0..60).map(|k| 0.01 * 10f64.powf(k as f64 / 20.0)).collect();
+    let c = s.compare(&every, freqs.clone()).unwrap();
+    for (k, f) in freqs.iter().enumerate() {
+        let (full, rom) = (&c.full[k], &c.rom[k]);
+        let e = (rom - full).norm_l2() / full.norm_l2();
+        assert!(e < 1e-5, "{f} Hz: every dynamic mode kept, relative error {e:.2e}");
+    }
+    let band = s.reduce(&RomRequest::new(ModeSelection::Band { fmin_hz: 0.0, fmax_hz: 2.0 })).unwrap();
+    let freqs = [0.5, 1.0, 2.0, 5.0];
+    let t = s.transmissibility(&band, &freqs).unwrap();
+    for (k, f) in freqs.iter().enumerate() {
+        let (a, b) = (t.full[k][(0, 0)], t.rom[k][(0, 0)]);
+        assert!((a - b).norm() < 1e-2 * a.norm(), "{f} Hz: table x / node 1 x full {a}, ROM {b}");
     }
 }
 
@@ -141,10 +170,13 @@ fn ham_sas_lvdt_rom_names_the_port_pairs_its_normwise_error_hides() {
         } else {
             assert!(accuracy.largest_relative_error < 0.1, "{accuracy:?}");
             assert!(worst.relative > 1.0, "{worst:?}");
-            // Measured: LVDT V1 / H2, 14.6 at 0.25 Hz (the V/V pairs are 1-2 decades under too).
-            assert!(s.output_names()[worst.output].starts_with("LVDT V"), "{worst:?}");
+            // Measured: 14.6 at 0.25 Hz on a pair between a vertical and a horizontal port,
+            // LVDT V1 / H2 and its reciprocal twins (LVDT H4 / V4 since the slow base modes are
+            // kept, issue 30; the V/V pairs are 1-2 decades under too).
+            let vertical = s.output_names()[worst.output].starts_with("LVDT V") || s.input_names()[worst.input].starts_with('V');
+            assert!(vertical, "{worst:?}");
             let text = departs.join("\n");
-            assert!(text.contains("the ROM's response LVDT V") && text.contains("--residualize (folds"), "{text}");
+            assert!(text.contains("the ROM's response LVDT ") && text.contains("--residualize (folds"), "{text}");
         }
     }
 }

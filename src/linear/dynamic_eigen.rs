@@ -146,7 +146,7 @@ impl ModalAnalysis {
                     let error = class.lambda_and_error(route, whole.mu_scale, dcoef).1;
                     let error = error.max(whole.rayleigh_distance(lambda, &v, &u));
                     let kind = super::classify::resolved_kind(&class, lambda, error, dcoef);
-                    let vectors = (kind != ModeKind::Infinite).then(|| normalize(&v, &u, |x| whole.fyd.mul_complex(x), whole.fyd_norm));
+                    let vectors = (kind != ModeKind::Infinite).then(|| normalize(&v, &u, |x| whole.fyd.mul_complex(x), |a, b| whole.fyd.abs_bilinear(a, b)));
                     (class, kind, error, vectors)
                 })
                 .collect();
@@ -273,9 +273,8 @@ struct WholePencil {
     col: Vec<f64>,
     norms: (f64, f64),
     mu_scale: f64,
-    /// `F_yd` itself (unbalanced) and its 2-norm, for the vectors' normalization.
+    /// `F_yd` itself (unbalanced), for the vectors' normalization.
     fyd: SparseMatrix,
-    fyd_norm: f64,
     /// `F_y` itself (unbalanced), for the two-sided Rayleigh quotient.
     fy: SparseMatrix,
 }
@@ -286,8 +285,7 @@ impl WholePencil {
         let bal = balance_pencil(&a, &b);
         let norms = (bal.a.norm_l2(), bal.b.norm_l2());
         let (fyd, fy) = (SparseMatrix::from_dense(fyd), SparseMatrix::from_dense(fy));
-        let fyd_norm = fyd.norm_l2();
-        WholePencil { a: SparseMatrix::from_dense(&bal.a), b: SparseMatrix::from_dense(&bal.b), row: bal.row, col: bal.col, norms, mu_scale, fyd, fyd_norm, fy }
+        WholePencil { a: SparseMatrix::from_dense(&bal.a), b: SparseMatrix::from_dense(&bal.b), row: bal.row, col: bal.col, norms, mu_scale, fyd, fy }
     }
 
     /// `|λ_R − λ|` with `λ_R = −uᵀ F_y v / uᵀ F_yd v` the two-sided Rayleigh quotient of the

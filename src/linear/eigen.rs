@@ -16,6 +16,7 @@ use super::balance::balance_pencil;
 use super::classify::{classify, Classification, ModeKind};
 use super::route::{conj, dot_t, mul_real_complex, norm, EigenRoute, EigenVectors};
 use super::dae::Jacobians;
+use super::sparse::SparseMatrix;
 use super::eigen_error::EigenError;
 
 /// One eigenvalue with its vectors and label.
@@ -261,7 +262,7 @@ impl ModalAnalysis {
         let norms = (balanced.a.norm_l2(), balanced.b.norm_l2());
 
         let n = a.nrows();
-        let fyd_norm = fyd.norm_l2();
+        let fyd_sparse = SparseMatrix::from_dense(&fyd);
         let mut units: Vec<Vec<Mode>> = Vec::with_capacity(n);
         let mut k = 0;
         while k < n {
@@ -282,7 +283,7 @@ impl ModalAnalysis {
             let kind = super::classify::resolved_kind(&class, lambda, error, dcoef);
             let (right, left) = match vectors {
                 Some(w) if kind != ModeKind::Infinite => {
-                    let (v, u) = normalize(&balanced.unscale_right(&w.v), &balanced.unscale_left(&w.u), |x| mul_real_complex(&fyd, x), fyd_norm);
+                    let (v, u) = normalize(&balanced.unscale_right(&w.v), &balanced.unscale_left(&w.u), |x| mul_real_complex(&fyd, x), |a, b| fyd_sparse.abs_bilinear(a, b));
                     (Some(v), Some(u))
                 }
                 _ => (None, None),
@@ -377,16 +378,21 @@ pub(crate) fn largest_entry(v: &Col<c64>) -> c64 {
 }
 
 /// `v` to unit norm with its largest entry real positive; `u` so that `uᵀ F_yd v = 1`
-/// when that product is not negligible against `‖u‖ ‖F_yd‖ ‖v‖`, else to unit norm.
-/// `fyd_v` computes `F_yd x`; `fyd_norm` is `‖F_yd‖_F`.
-pub(super) fn normalize(v: &Col<c64>, u: &Col<c64>, fyd_v: impl Fn(&Col<c64>) -> Col<c64>, fyd_norm: f64) -> (Col<c64>, Col<c64>) {
+/// when that product is not rounding, else to unit norm. Rounding is judged against the
+/// magnitude of the product's own terms, `|u|ᵀ |F_yd| |v|` (`fyd_magnitude`), not against
+/// `‖u‖ ‖F_yd‖ ‖v‖`: vectors dominated by unknowns `F_yd` does not weigh (a clamp's reaction
+/// moment, 1e4 times the base's momentum in a slow mode of `examples/ham_sas.mbd`) have a
+/// small but exact product (6e-12 there), and a ROM that left them unscaled lost the mode
+/// (the base's horizontal modes, so its transmissibility was 60 times the full model's at
+/// 2 Hz however many modes it kept).
+pub(super) fn normalize(v: &Col<c64>, u: &Col<c64>, fyd_v: impl Fn(&Col<c64>) -> Col<c64>, fyd_magnitude: impl Fn(&Col<c64>, &Col<c64>) -> f64) -> (Col<c64>, Col<c64>) {
     let big = largest_entry(v);
     let phase = if big.norm() > 0.0 { big.conj() / big.norm() } else { c64::new(1.0, 0.0) };
     let nv = norm(v);
     let v = Col::from_fn(v.nrows(), |i| v[i] * phase / nv);
     let p = dot_t(u, &fyd_v(&v));
     let nu = norm(u);
-    let scale = if p.norm() > 1e3 * f64::EPSILON * nu * fyd_norm { c64::new(1.0, 0.0) / p } else { c64::new(1.0 / nu, 0.0) };
+    let scale = if p.norm() > 1e3 * f64::EPSILON * fyd_magnitude(u, &v) && p.norm() > 0.0 { c64::new(1.0, 0.0) / p } else { c64::new(1.0 / nu, 0.0) };
     let u = Col::from_fn(u.nrows(), |i| u[i] * scale);
     (v, u)
 }

@@ -513,7 +513,7 @@ impl Eigenpair {
         };
         let error = residual_error(dae, lambda, &w, spread);
         let classification = label_by_error(lambda, error, sc);
-        let (right, left) = normalize(&w.v, &w.u, |x| dae.fyd.mul_complex(x), sc.nyd);
+        let (right, left) = normalize(&w.v, &w.u, |x| dae.fyd.mul_complex(x), |a, b| dae.fyd.abs_bilinear(a, b));
         Eigenpair { lambda, right, left: Some(left), residual_right, residual_left, classification, error }
     }
 
