@@ -160,11 +160,14 @@ fn shell_commands(line: &str) -> Vec<Vec<String>> {
     commands.into_iter().filter(|w| !w.is_empty()).collect()
 }
 
+/// Lines shown under a command: where each is, and its text.
+type Shown = Vec<(String, String)>;
+
 /// A documented `romdyn` command: where it is, its arguments, and the output shown under it.
 struct DocCommand {
     at: String,
     args: Vec<String>,
-    shown: Vec<(String, String)>,
+    shown: Shown,
 }
 
 fn commands(doc: &Doc) -> Vec<DocCommand> {
@@ -177,7 +180,7 @@ fn commands(doc: &Doc) -> Vec<DocCommand> {
             continue;
         }
         // Command lines (continuations joined) with the lines shown after each.
-        let mut entries: Vec<(usize, String, Vec<(String, String)>)> = Vec::new();
+        let mut entries: Vec<(usize, String, Shown)> = Vec::new();
         let mut continued = false;
         for (n, line) in &b.lines {
             if continued {
