@@ -1,7 +1,7 @@
 //! HAM-SAS-like isolator (issue 11, CASES C6): eigenanalysis of its 144-equation linear
 //! model, and the whole chain from the file to the free ROM of its modes up to 2 Hz (dummy
 //! springs removed), the paper's real-size case. Goal: eigenanalysis + ROM under 20 ms
-//! (`eigen_and_rom`; measured 16.1–16.4 ms median, see README "Performance").
+//! (`eigen_and_rom`; measured 16.1–16.4 ms median, see docs/src/performance/overview.md).
 //! `cargo bench --bench ham_sas`.
 
 use romdyn::analysis::{reference_state, Reference};

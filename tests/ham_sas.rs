@@ -142,7 +142,7 @@ fn ham_sas_passes_the_jacobian_check() {
 
 #[test]
 fn ham_sas_lvdt_rom_names_the_port_pairs_its_normwise_error_hides() {
-    // README's 8 x 8 command (examples/ham_sas_control.json, dummy springs 901, 902
+    // The 8 x 8 command of docs/src/application/ports.md (examples/ham_sas_control.json, dummy springs 901, 902
     // removed, modes up to 2 Hz). The vertical sensor/actuator pairs (1e-7 m/N) sit six
     // decades under the horizontal ones (1e-1 m/N): without --residualize their static part,
     // which comes from stiff modes the ROM drops, is missing and they lie 1-2 decades under

@@ -337,7 +337,7 @@ fn lenient_inputs_are_refused_or_accepted_as_documented() {
     let o = romdyn_in(&d, &["eig", "p.mbd"]);
     assert_eq!(o.code, Some(1));
     assert!(o.stderr.contains("p.mbd:1:6: error: byte 0xE9 is not UTF-8 text"), "{}", o.stderr);
-    // A UTF-8 byte-order mark is accepted: the pendulum's ±3.130527 j rad/s (README, CASES C2).
+    // A UTF-8 byte-order mark is accepted: the pendulum's ±3.130527 j rad/s (CASES C2, docs/src/cases.md).
     std::fs::write(d.join("p.mbd"), format!("\u{feff}{PENDULUM}")).unwrap();
     let o = romdyn_in(&d, &["eig", "p.mbd"]);
     assert_eq!(o.code, Some(0), "{}", o.stderr);
