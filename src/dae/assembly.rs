@@ -443,9 +443,30 @@ impl<'m> Assembler<'m> {
     /// ([`Element::failure`]), each naming its element.
     ///
     /// [`Element::failure`]: crate::element::Element::failure
+    /// An element whose residual holds a value that is not finite without a reason of its
+    /// own is named with the first such equation (a constitutive law's scalar function out
+    /// of its domain, a drive gone NaN inside it).
     pub fn element_failures(&self, st: &State) -> Vec<String> {
         let frames = self.frames(st);
-        self.model.elements.iter().enumerate().filter_map(|(e, el)| el.failure(&self.context(&frames, st, e, 1.0))).collect()
+        let mut out = Vec::new();
+        for (e, el) in self.model.elements.iter().enumerate() {
+            let ctx = self.context(&frames, st, e, 1.0);
+            if let Some(why) = el.failure(&ctx) {
+                out.push(why);
+                continue;
+            }
+            let mut bad: Option<(usize, f64)> = None;
+            let mut sink = Residual { dofs: &self.dofs, slots: &self.dofs.element_nodes[e], first: self.dofs.element_first[e], constraint_scale: 1.0, put: |i, v: f64| {
+                if !v.is_finite() && bad.is_none() {
+                    bad = Some((i, v));
+                }
+            } };
+            el.residual(&ctx, &mut sink);
+            if let Some((i, v)) = bad {
+                out.push(format!("{} {}: its contribution to {} is {v}", el.type_name(), el.label(), self.dofs.equation_name(self.model, i)));
+            }
+        }
+        out
     }
 
     /// Internal forces and deformation of every element that has evaluation points (beams),
