@@ -10,7 +10,7 @@
 mod models;
 
 use romdyn::dae::{linearize_sparse, Assembler, State};
-use romdyn::linear::krylov::{sparse_modes, ModeTarget, SparseEigenSettings};
+use romdyn::eigen::krylov::{sparse_modes, ModeTarget, SparseEigenSettings};
 use romdyn::linear::{ConstraintForm, SparseLinearDae};
 use romdyn::solve::{static_solution, NewtonSettings};
 

@@ -4,7 +4,7 @@ mod common;
 
 use common::{rel, two_masses, with_coefficient};
 use romdyn::c64;
-use romdyn::linear::{EigenRoute, ModalAnalysis, ModeKind};
+use romdyn::eigen::{EigenRoute, ModalAnalysis, ModeKind};
 use romdyn::rom::{full_frequency_response, select_modes, DescriptorRom, ModeSelection};
 
 const DCOEFS: [f64; 5] = [1e-1, 1e-2, 1e-3, 1e-4, 1e-5];

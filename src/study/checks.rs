@@ -4,7 +4,8 @@
 use faer::{c64, Mat};
 
 use crate::dae::{linearize, Assembler, State};
-use crate::linear::{LinearDae, ModalAnalysis, ModeKind};
+use crate::eigen::{ModalAnalysis, ModeKind};
+use crate::linear::LinearDae;
 use crate::model::Model;
 use crate::rom::{full_static_gain, null_direction};
 
@@ -290,7 +291,7 @@ impl Study {
 }
 
 /// Warnings about labels the error estimates decided (issue 30, finding 4).
-fn label_warnings(modal: &crate::linear::ModalAnalysis) -> Vec<Warning> {
+fn label_warnings(modal: &crate::eigen::ModalAnalysis) -> Vec<Warning> {
     let unresolved: Vec<_> = modal.unresolved().map(|(i, m)| (i + 1, m.lambda, m.error, m.kind.name())).collect();
     let zeros: Vec<_> = modal.doubtful_zeros().map(|(i, m)| (i + 1, m.lambda, m.error)).collect();
     let mut w = Vec::new();

@@ -21,7 +21,7 @@ use faer::{c64, Col, ColMut, ColRef, Conj, Mat, MatMut, Par};
 
 use super::pencil::Pencil;
 use super::KrylovError;
-use crate::linear::sparse::{contiguous, contiguous_mut};
+use crate::linear::{contiguous, contiguous_mut};
 use crate::linear::SparseMatrix;
 
 enum Factor {
