@@ -31,7 +31,8 @@ use faer::Mat;
 use romdyn::dae::{linearize_sparse, Assembler, State};
 use romdyn::eigen::krylov::{shift_invert_pencil, sparse_modes_with_progress, ModeTarget, SparseEigenSettings};
 use romdyn::input::matrix_market::read_sparse_matrix;
-use romdyn::linear::{ConstraintForm, SparseLinearDae};
+use romdyn::linear::SparseLinearDae;
+use romdyn::model::ConstraintForm;
 use romdyn::output::matrix_market::write_sparse_matrix;
 use romdyn::solve::{static_solution, NewtonSettings};
 

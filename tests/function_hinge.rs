@@ -12,7 +12,7 @@ use romdyn::dae::{check_jacobians, Assembler, State};
 use romdyn::element::{Anchor, FunctionHinge, ScalarFunction};
 use romdyn::input::mbdyn::read_model;
 use romdyn::kinematics::euler123;
-use romdyn::linear::ConstraintForm;
+use romdyn::model::ConstraintForm;
 use romdyn::model::ModelBuilder;
 
 /// `F(x) = 10 x + x³`.

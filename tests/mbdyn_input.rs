@@ -5,7 +5,7 @@ use std::path::Path;
 use romdyn::dae::{check_jacobians, linearize, Assembler, State};
 use romdyn::input::mbdyn::{build, parse_text, read_model};
 use romdyn::eigen::{EigenRoute, ModalAnalysis, ModeKind};
-use romdyn::linear::ConstraintForm;
+use romdyn::model::ConstraintForm;
 use romdyn::model::Summary;
 use romdyn::solve::{initial_derivatives, NewtonSettings};
 

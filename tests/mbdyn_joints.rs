@@ -19,7 +19,7 @@ use romdyn::element::{RotationRemnant, Anchor, AxialRotation, CardanoHinge, Dist
 use romdyn::input::mbdyn::{build, parse_text, read_model, MbdynModel};
 use romdyn::kinematics::{Mat3, Vec3};
 
-use romdyn::linear::ConstraintForm;
+use romdyn::model::ConstraintForm;
 use romdyn::model::ModelBuilder;
 
 fn path(name: &str) -> PathBuf {

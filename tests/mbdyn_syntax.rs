@@ -11,7 +11,7 @@ use common::mbdyn::{assert_same_physics, file, read, variables};
 use romdyn::dae::{Assembler, State};
 use romdyn::element::{Anchor, Couple, DrivenJoint, DeformableDisplacement, DeformableHinge, Drive, Force, ForceFrame, Joint, LinearViscoelastic, RigidBody, Rod};
 use romdyn::kinematics::{Mat3, Vec3};
-use romdyn::linear::ConstraintForm;
+use romdyn::model::ConstraintForm;
 use romdyn::model::{AbortAfter, Method, ModelBuilder};
 
 fn rz(a: f64) -> Mat3 {

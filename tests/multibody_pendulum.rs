@@ -6,7 +6,7 @@ use common::models::{pendulum, G, J, L, M};
 use romdyn::c64;
 use romdyn::dae::{linearize, Assembler, State};
 use romdyn::eigen::{EigenRoute, ModalAnalysis, ModeKind};
-use romdyn::linear::ConstraintForm;
+use romdyn::model::ConstraintForm;
 use romdyn::model::Summary;
 use romdyn::rom::{select_modes, DescriptorRom, ModeSelection};
 use romdyn::solve::{static_solution, NewtonSettings};

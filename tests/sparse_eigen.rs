@@ -12,7 +12,8 @@ use faer::c64;
 use romdyn::dae::{linearize, linearize_sparse, Assembler, State};
 use romdyn::eigen::krylov::{sparse_modes, ModeTarget, SparseEigenSettings, SparseModalAnalysis};
 use romdyn::eigen::{EigenRoute, ModalAnalysis, ModeKind};
-use romdyn::linear::{ConstraintForm, LinearDae, SparseLinearDae};
+use romdyn::linear::{LinearDae, SparseLinearDae};
+use romdyn::model::ConstraintForm;
 use romdyn::model::Model;
 use romdyn::solve::{static_solution, NewtonSettings};
 

@@ -11,7 +11,7 @@ use common::models::hanging_chain;
 use romdyn::dae::{linearize, linearize_sparse, Assembler, NodeInput, NodeOutput, State};
 use romdyn::eigen::krylov::{sparse_modes, ModeTarget, SparseEigenSettings};
 use romdyn::eigen::{EigenRoute, ModalAnalysis};
-use romdyn::linear::ConstraintForm;
+use romdyn::model::ConstraintForm;
 use romdyn::model::Model;
 use romdyn::rom::{full_static_gain, select_modes, with_static_correction, DescriptorRom, ModeSelection};
 use romdyn::solve::{static_solution, NewtonSettings};

@@ -12,7 +12,7 @@ use faer::c64;
 use romdyn::analysis::Reference;
 use romdyn::eigen::krylov::ModeTarget;
 use romdyn::eigen::ModeKind;
-use romdyn::linear::ConstraintForm;
+use romdyn::model::ConstraintForm;
 use romdyn::model::{InitialValueProblem, Model};
 use romdyn::rom::ModeSelection;
 use romdyn::study::{EigenSettings, Ports, Residualization, RomRequest, Solver, Study, Warning};

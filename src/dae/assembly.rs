@@ -5,7 +5,7 @@ use super::state::NodeFrame;
 use super::{DofMap, State, Triplets};
 use crate::element::{Col, ElementState, JacobianSink, NodeKinematics, ResidualSink, Row, SectionState};
 use crate::kinematics::{skew, Mat3, Vec3};
-use crate::linear::ConstraintForm;
+use crate::model::ConstraintForm;
 use crate::model::{Model, NodeKind};
 
 /// Which combination of the two Jacobians to assemble: `a F_/ẏ + b F_/y`, in a given

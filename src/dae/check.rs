@@ -11,7 +11,7 @@
 use std::collections::HashMap;
 
 use super::{Assembler, Coefficients, State};
-use crate::linear::ConstraintForm;
+use crate::model::ConstraintForm;
 
 /// The worst disagreement found in one element.
 #[derive(Clone, Debug)]

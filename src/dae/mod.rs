@@ -15,7 +15,7 @@
 //!   `Φ_/q`; `Plain` (eq. 29): treated like `y` (coefficient `c`), rows `Φ` with `c Φ_/q`.
 //!   Static analysis solves `F(y, 0, t) = 0` with `F_/y` in the plain form.
 //!
-//! [`ConstraintForm`]: crate::linear::ConstraintForm
+//! [`ConstraintForm`]: crate::model::ConstraintForm
 
 mod accelerations;
 mod assembled_check;

@@ -6,7 +6,7 @@ mod dae;
 mod sparse;
 mod sparse_dae;
 
-pub use dae::{coefficient_from_derivatives, derivatives_from_coefficient, ConstraintForm, Jacobians, LinearDae};
+pub use dae::{coefficient_from_derivatives, derivatives_from_coefficient, Jacobians, LinearDae};
 pub use sparse::{SparseMatrix, SparseScalar};
 pub use sparse_dae::{SparseLinearDae, SparseSolveError};
 pub(crate) use sparse::{contiguous, contiguous_mut};

@@ -6,7 +6,8 @@ use faer::linalg::solvers::Solve;
 use faer::sparse::{SparseColMat, Triplet};
 use faer::{c64, Mat};
 
-use super::dae::{ConstraintForm, Jacobians, LinearDae};
+use super::dae::{Jacobians, LinearDae};
+use crate::model::ConstraintForm;
 use super::sparse::SparseMatrix;
 
 /// `F_yd Δẏ + F_y Δy = B̃ u`, `z = C̃ Δy` (eqs. 38–40), sparse.

@@ -1,9 +1,8 @@
 //! Building a model from Rust: nodes, elements and gravity, checked for consistency.
 
-use super::{Label, Model, NodeKind, StructuralNode};
+use super::{ConstraintForm, Label, Model, NodeKind, StructuralNode};
 use crate::element::Element;
 use crate::kinematics::{Mat3, Vec3};
-use crate::linear::ConstraintForm;
 
 /// An inconsistent model.
 #[derive(Debug, thiserror::Error)]

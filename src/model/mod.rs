@@ -3,11 +3,13 @@
 
 mod beam_update;
 mod builder;
+mod constraint_form;
 mod problem;
 mod summary;
 
 pub use beam_update::BeamUpdateChoice;
 pub use builder::{ModelBuilder, ModelError};
+pub use constraint_form::ConstraintForm;
 pub use problem::{AbortAfter, AutoCoefficient, EigenFileSuffix, EigenOutput, EigenRequest, InitialAssembly, InitialValueProblem, Method, MotionOutput, NodeAssembly, NodeSource, OrientationOutput, ResidualNorm, SuffixWidth, WrittenNode};
 pub use summary::Summary;
 
@@ -15,7 +17,6 @@ use std::collections::HashMap;
 
 use crate::element::Element;
 use crate::kinematics::{Mat3, Vec3};
-use crate::linear::ConstraintForm;
 
 pub use crate::element::Label;
 

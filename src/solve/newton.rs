@@ -1,7 +1,7 @@
 //! Newton's method on `F = 0` with `J δ = −F` (eq. 5), sparse LU with symbolic reuse.
 
 use crate::dae::{Assembler, Coefficients, SparseLu, State, Triplets};
-use crate::linear::ConstraintForm;
+use crate::model::ConstraintForm;
 use crate::model::{NodeKind, ResidualNorm};
 
 /// Convergence settings (residual in the units of each equation: N, N m, kg m/s, m).

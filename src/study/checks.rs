@@ -33,7 +33,7 @@ pub(super) fn equilibrium_warning(model: &Model, state: &State, tolerance: f64) 
         }
     }
     // Plain constraint rows (eq. 29): the multipliers are in y, as in the static analysis.
-    let f = asm.residual(&st, crate::linear::ConstraintForm::Plain, 1.0);
+    let f = asm.residual(&st, crate::model::ConstraintForm::Plain, 1.0);
     let (i, v) = f.iter().enumerate().fold((0, 0.0f64), |(bi, bv), (i, x)| if x.abs() > bv { (i, x.abs()) } else { (bi, bv) });
     let accepted = 1e3 * tolerance;
     (v > accepted).then(|| Warning::NotInEquilibrium { residual: v, equation: asm.dofs.equation_name(model, i), tolerance: accepted })

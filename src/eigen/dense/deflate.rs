@@ -27,7 +27,8 @@
 use faer::{c64, Mat};
 
 use super::balance::balance_pencil;
-use crate::linear::{ConstraintForm, SparseMatrix};
+use crate::linear::SparseMatrix;
+use crate::model::ConstraintForm;
 
 /// The dynamic part `λ E + K` of a pencil and what is needed to lift its vectors back.
 pub(super) struct DynamicPart {

@@ -11,7 +11,8 @@
 use faer::{c64, Col};
 
 use super::KrylovError;
-use crate::linear::{ConstraintForm, SparseLinearDae, SparseMatrix};
+use crate::linear::{SparseLinearDae, SparseMatrix};
+use crate::model::ConstraintForm;
 
 /// `λ E + K` in the form of eq. 29, and the map of its vectors back to the DAE's form.
 pub(super) struct Pencil {
