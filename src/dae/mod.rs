@@ -20,7 +20,6 @@
 mod accelerations;
 mod assembled_check;
 mod assembly;
-mod band;
 mod check;
 mod dofs;
 mod element_part;
