@@ -61,8 +61,8 @@ pub struct Model {
     /// labels; a ports file's `names` take precedence.
     pub node_names: std::collections::BTreeMap<Label, String>,
     /// Drives with a memory of the accepted steps, updated once at the start of every
-    /// time step ([`crate::element::StepDrive::begin_step`]).
-    pub step_drives: Vec<crate::element::StepDrive>,
+    /// time step ([`crate::element::drive::StepDrive::begin_step`]).
+    pub step_drives: Vec<crate::element::drive::StepDrive>,
     /// Nodes without rotations (MBDyn's `static displacement` and `dynamic displacement`
     /// nodes): their orientation stays the initial one, `g = 0` is their moment equation
     /// (static) or, with `γ = 0` as angular momentum, their angular equilibrium (dynamic),
