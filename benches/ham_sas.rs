@@ -8,7 +8,7 @@ use romdyn::analysis::{reference_state, Reference};
 use romdyn::dae::linearize;
 use romdyn::input::mbdyn::read_model;
 use romdyn::input::ports_file::read_ports_file;
-use romdyn::linear::{EigenRoute, ModalAnalysis};
+use romdyn::eigen::{EigenRoute, ModalAnalysis};
 use romdyn::rom::ModeSelection;
 use romdyn::study::{parse_imposed, Application, EigenSettings, RomRequest, Study};
 

@@ -16,7 +16,7 @@ use romdyn::dae::{check_jacobians, Assembler, State};
 use romdyn::element::{Beam2, Beam3, BeamNode, BeamUpdate, SectionLaw, SectionOrientation};
 use romdyn::input::mbdyn::{read_model_text, SetOverrides};
 use romdyn::kinematics::Vec3;
-use romdyn::linear::ConstraintForm;
+use romdyn::model::ConstraintForm;
 use romdyn::model::ModelBuilder;
 
 /// The final positions of every node of `file` (relative to the crate) with `overrides`

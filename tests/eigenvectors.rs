@@ -4,7 +4,8 @@
 mod common;
 
 use faer::{c64, Col, Mat};
-use romdyn::linear::{EigenRoute, Jacobians, ModalAnalysis, ModeKind};
+use romdyn::eigen::{EigenRoute, ModalAnalysis, ModeKind};
+use romdyn::linear::Jacobians;
 
 fn apply(m: &Mat<f64>, v: &Col<c64>, transpose: bool) -> Col<c64> {
     let n = m.nrows();

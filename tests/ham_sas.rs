@@ -4,7 +4,7 @@
 use romdyn::analysis::{check_model_jacobians, Reference};
 use romdyn::input::mbdyn::read_model;
 use romdyn::input::ports_file::read_ports_file;
-use romdyn::linear::ModeKind;
+use romdyn::eigen::ModeKind;
 use romdyn::rom::ModeSelection;
 use romdyn::study::{parse_imposed, Application, ChannelError, EigenSettings, FrequencyGrid, Residualization, RomRequest, Study, Warning};
 
@@ -52,7 +52,7 @@ fn ham_sas_free_model_has_rigid_body_modes_and_the_inverted_pendulum_instability
     // The full model without the dummy springs' Jacobian has them too; the ROM keeps the
     // grounded model's modes up to 2 Hz only, so its corrected eigenvalues approximate the
     // free ones (1e-2 relative).
-    let full = romdyn::linear::ModalAnalysis::compute(&s.dae().jacobians, romdyn::linear::EigenRoute::Lambda).unwrap();
+    let full = romdyn::eigen::ModalAnalysis::compute(&s.dae().jacobians, romdyn::eigen::EigenRoute::Lambda).unwrap();
     for p in &positive {
         let nearest = full.modes.iter().map(|m| m.lambda).min_by(|a, b| (a - faer::c64::new(*p, 0.0)).norm().total_cmp(&(b - faer::c64::new(*p, 0.0)).norm())).unwrap();
         assert!((nearest - faer::c64::new(*p, 0.0)).norm() < 1e-2 * p, "ROM {p}, full {nearest}");
@@ -190,7 +190,7 @@ fn ham_sas_lvdt_rom_names_the_port_pairs_its_normwise_error_hides() {
 ///
 /// Labels: romdyn b38fd32's output of the same command (tests/data/ham_sas_eig_b38fd32.json),
 /// exactly. They differ from 265f71c's for the modes of degenerate clusters only (issue 11
-/// point 5; eigenvalues within 1e-8 relative, `romdyn::dae::CLUSTER_RELATIVE_GAP`): 31–38
+/// point 5; eigenvalues within 1e-8 relative, `romdyn::eigen::CLUSTER_RELATIVE_GAP`): 31–38
 /// (little pendulums yaw, 4 modes at 15.91 Hz), 39–48 (IP legs horizontal, 5 at 29.12 Hz),
 /// 61–66 (IP legs yaw, 3 at 88.73 Hz), 77–86 (IP legs pitch, 5 at 1399 Hz), 101–110 and
 /// 113–116 (little pendulums horizontal, 5 and 2 at 3339 Hz), 117–126 and 129–132 (little
@@ -211,7 +211,7 @@ fn ham_sas_eigenanalysis_is_that_of_265f71c() {
     let labels = s.mode_labels();
     let modes = &s.modal().modes;
     assert_eq!(modes.len(), recorded.len());
-    let clusters = romdyn::dae::degenerate_clusters(modes);
+    let clusters = romdyn::eigen::degenerate_clusters(modes);
     let in_cluster = |i: usize| clusters.iter().any(|c| c.contains(&i));
     // The 62 modes listed above, in 16 clusters (8 per sign of Im λ).
     assert_eq!(clusters.len(), 16, "{clusters:?}");

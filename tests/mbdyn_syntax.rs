@@ -9,9 +9,10 @@ mod common;
 use common::mbdyn::{assert_same_physics, file, read, variables};
 
 use romdyn::dae::{Assembler, State};
-use romdyn::element::{Anchor, Couple, DrivenJoint, DeformableDisplacement, DeformableHinge, Drive, Force, ForceFrame, Joint, LinearViscoelastic, RigidBody, Rod};
+use romdyn::element::drive::Drive;
+use romdyn::element::{Anchor, Couple, DrivenJoint, DeformableDisplacement, DeformableHinge, Force, ForceFrame, Joint, LinearViscoelastic, RigidBody, Rod};
 use romdyn::kinematics::{Mat3, Vec3};
-use romdyn::linear::ConstraintForm;
+use romdyn::model::ConstraintForm;
 use romdyn::model::{AbortAfter, Method, ModelBuilder};
 
 fn rz(a: f64) -> Mat3 {

@@ -18,7 +18,8 @@ use common::fixtures::Noise;
 use common::mbdyn::{assert_jacobians, assert_jacobians_after_run, read_test_file};
 use romdyn::analysis::run;
 use romdyn::dae::Assembler;
-use romdyn::element::{Anchor, Beam2, Beam3, BeamNode, DeformableJoint, Element, LawFunctions, LinearViscoelastic, NlsfRod, NodeKinematics, ScalarFunction, SectionLaw, SectionOrientation};
+use romdyn::element::drive::ScalarFunction;
+use romdyn::element::{Anchor, Beam2, Beam3, BeamNode, DeformableJoint, Element, LawFunctions, LinearViscoelastic, NlsfRod, NodeKinematics, SectionLaw, SectionOrientation};
 use romdyn::input::mbdyn::{read_model_text, MbdynModel, SetOverrides};
 use romdyn::kinematics::{rotation_vector, Vec3};
 

@@ -159,7 +159,7 @@ fn a_force_on_the_clamped_ground_node_is_rounding_not_a_difference() {
 fn static_gain_rounding_of_a_stiff_beam_is_not_a_warning() {
     let lin = Linearization { reference: Reference::Static { load_steps: 10 }, inputs: vec!["21:Fy".parse().unwrap()], outputs: vec!["21:y".parse().unwrap()] };
     let study = Study::from_model_file("examples/cantilever.mbd".as_ref(), &lin, EigenSettings::default()).unwrap();
-    let lambdas: Vec<f64> = study.modal().modes.iter().filter(|m| m.kind == romdyn::linear::ModeKind::Dynamic).map(|m| m.lambda.norm()).collect();
+    let lambdas: Vec<f64> = study.modal().modes.iter().filter(|m| m.kind == romdyn::eigen::ModeKind::Dynamic).map(|m| m.lambda.norm()).collect();
     let spread = lambdas.iter().fold(0.0f64, |a, &b| a.max(b)) / lambdas.iter().fold(f64::INFINITY, |a, &b| a.min(b));
     assert!((5e3..5e4).contains(&spread), "{spread}");
     let every = study.reduce(&RomRequest::new(ModeSelection::Band { fmin_hz: 0.0, fmax_hz: 1e9 })).unwrap();

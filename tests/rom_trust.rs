@@ -7,7 +7,8 @@ use std::process::Command;
 
 use faer::Mat;
 use romdyn::analysis::Reference;
-use romdyn::linear::{EigenRoute, Jacobians, LinearDae};
+use romdyn::eigen::EigenRoute;
+use romdyn::linear::{Jacobians, LinearDae};
 use romdyn::rom::{full_frequency_response, ModalDamping, ModeSelection, Ranking};
 use romdyn::study::{BelowBand, EigenSettings, Linearization, Residualization, RomRequest, Study, StudyError, Warning};
 

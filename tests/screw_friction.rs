@@ -15,7 +15,7 @@ use romdyn::analysis::run;
 use romdyn::dae::{check_jacobians, Assembler, State};
 use romdyn::element::{Anchor, Screw, ScrewFriction};
 use romdyn::input::mbdyn::{read_model_text, SetOverrides};
-use romdyn::linear::ConstraintForm;
+use romdyn::model::ConstraintForm;
 use romdyn::model::ModelBuilder;
 
 fn path(name: &str) -> PathBuf {

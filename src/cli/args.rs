@@ -11,7 +11,7 @@ use romdyn::element::BeamUpdate;
 use romdyn::model::BeamUpdateChoice;
 use romdyn::dae::{NodeInput, NodeOutput};
 use romdyn::input::eigen_pencil::PencilPorts;
-use romdyn::linear::EigenRoute;
+use romdyn::eigen::EigenRoute;
 use romdyn::rom::{ModalDamping, ModeSelection, Ranking};
 use romdyn::input::mbdyn::read_model;
 use romdyn::study::{BelowBand, EigenSettings, FrequencyGrid, Ports, RomRequest, Solver, Study, StudyError};

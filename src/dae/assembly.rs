@@ -5,7 +5,7 @@ use super::state::NodeFrame;
 use super::{DofMap, State, Triplets};
 use crate::element::{Col, ElementState, JacobianSink, NodeKinematics, ResidualSink, Row, SectionState};
 use crate::kinematics::{skew, Mat3, Vec3};
-use crate::linear::ConstraintForm;
+use crate::model::ConstraintForm;
 use crate::model::{Model, NodeKind};
 
 /// Which combination of the two Jacobians to assemble: `a F_/ẏ + b F_/y`, in a given
@@ -264,7 +264,7 @@ impl<'m> Assembler<'m> {
         }
     }
 
-    /// Advances the memory of the model's step drives ([`crate::element::StepDrive`]) at
+    /// Advances the memory of the model's step drives ([`crate::element::drive::StepDrive`]) at
     /// the start of step `step` (1 for the first), whose time is `t_new`, from the accepted
     /// state `st` (MBDyn's `DriveHandler::SetTime` with a new step number). The drives read
     /// the model's nodes as in a residual; node slot `i` is the model's node `i`.
@@ -290,7 +290,7 @@ impl<'m> Assembler<'m> {
     /// A drive's value at time `t` reading the model's nodes at `st`, as a drive outside
     /// every element reads it ([`Self::with_all_nodes`]): the integration
     /// method's spectral radius before a step (MBDyn's `MultistepSolver::SetCoef`).
-    pub fn drive_value(&self, drive: &crate::element::Drive, st: &State, t: f64) -> f64 {
+    pub fn drive_value(&self, drive: &crate::element::drive::Drive, st: &State, t: f64) -> f64 {
         self.with_all_nodes(st, t, |ctx| drive.value_in(ctx))
     }
 

@@ -11,7 +11,8 @@ use super::drives::{single_term, template_vec3};
 use super::joints::joint;
 use super::parser::{known, Statement};
 use super::references::Frame;
-use crate::element::{Couple, Drive, Element, Force, ForceFrame, RigidBody, VectorDrive};
+use crate::element::drive::Drive;
+use crate::element::{Couple, Element, Force, ForceFrame, RigidBody, VectorDrive};
 use crate::kinematics::{Mat3, Vec3};
 use crate::model::Label;
 

@@ -122,7 +122,7 @@ fn cards(doc: &Document) -> Result<Cards, MbdynError> {
 /// `output meter: DRIVE` in control data (dataman3.cc, case OUTPUTMETER): the drive that
 /// decides which steps are written; with `output frequency` MBDyn stops ("Output
 /// meter/frequency already defined"), and so does romdyn.
-fn output_meter(cd: Option<&Block>, src: &super::diagnostic::Sources, drives: &Drives) -> Result<Option<crate::element::Drive>, MbdynError> {
+fn output_meter(cd: Option<&Block>, src: &super::diagnostic::Sources, drives: &Drives) -> Result<Option<crate::element::drive::Drive>, MbdynError> {
     let mut meter = None;
     let mut seen: Option<Span> = None;
     for st in cd.map_or(&[][..], |b| &b.statements) {
@@ -371,7 +371,7 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
 /// A gravity field romdyn applies body by body (a constant uniform field is the model's).
 enum Field {
     Central { origin: crate::kinematics::Vec3, gm: f64 },
-    Driven { direction: crate::kinematics::Vec3, drive: crate::element::Drive },
+    Driven { direction: crate::kinematics::Vec3, drive: crate::element::drive::Drive },
 }
 
 /// MBDyn's data manager reads `control data`, then `nodes`, `drivers` and `elements` in

@@ -9,7 +9,8 @@ use super::diagnostic::{MbdynError, Span};
 use super::drives::{drive, template_vec3};
 use super::element_context::{ElementContext, Parsed};
 use super::templates::{template, TemplateDim};
-use crate::element::{Drive, VariableBody};
+use crate::element::VariableBody;
+use crate::element::drive::Drive;
 use crate::kinematics::Mat3;
 use crate::model::{Label, NodeKind, StructuralNode};
 

@@ -228,7 +228,7 @@ impl Problem<'_> {
             let e = self.layout.element(k);
             row = format!("{row}, from {} {}", e.type_name(), e.label());
         }
-        match crate::element::take_evaluation_failure(self.t) {
+        match crate::element::drive::take_evaluation_failure(self.t) {
             Some(why) => format!("{row}; {why}"),
             None => row,
         }

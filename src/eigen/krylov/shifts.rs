@@ -33,9 +33,10 @@ use super::count::missing_in_disc;
 use super::operator::ShiftInvert;
 use super::window::{evaluate, krylov_sides, window, Eigenpair, PairVectors, Scales};
 use super::{KrylovError, SparseEigenSettings};
-use crate::linear::classify::{classify_given, Classification};
-use crate::linear::eigen::{conjugate_mode, largest_entry, normalize, sort_units, ModalAnalysis, Mode};
-use crate::linear::route::EigenRoute;
+use crate::eigen::classify::{classify_given, Classification};
+use crate::eigen::modes::{conjugate_mode, largest_entry, normalize, sort_units};
+use crate::eigen::{ModalAnalysis, Mode};
+use crate::eigen::route::EigenRoute;
 use crate::linear::SparseLinearDae;
 
 /// Which modes to compute.
@@ -526,7 +527,7 @@ impl Eigenpair {
         let lambda = if real { c64::new(lambda.re, 0.0) } else { lambda };
         let big = largest_entry(&v);
         let phase = if big.norm() > 0.0 { big.conj() / big.norm() } else { c64::new(1.0, 0.0) };
-        let nv = crate::linear::route::norm(&v);
+        let nv = crate::eigen::route::norm(&v);
         let right = Col::from_fn(v.nrows(), |i| {
             let e = v[i] * phase / nv;
             if real { c64::new(e.re, 0.0) } else { e }
@@ -558,7 +559,7 @@ fn residual_error(dae: &SparseLinearDae, lambda: c64, w: &PairVectors, spread: f
         let (d, k) = (dae.fyd.abs_mul(&ax, transpose), dae.fy.abs_mul(&ax, transpose));
         gamma * y.iter().enumerate().map(|(i, e)| e.norm() * (lambda.norm() * d[i] + k[i])).sum::<f64>()
     };
-    let denom = crate::linear::route::dot_t(&w.u, &w.fydv).norm();
+    let denom = crate::eigen::route::dot_t(&w.u, &w.fydv).norm();
     let e = spread + rounding(&w.v, &w.u, false).max(rounding(&w.u, &w.v, true)) / denom;
     if e.is_finite() { e } else { f64::INFINITY }
 }
@@ -576,7 +577,7 @@ fn label_by_error(lambda: c64, error: f64, sc: &Scales) -> Classification {
     };
     let scale = 1.0 / (1.0 + mu.norm_sqr()).sqrt();
     let mut c = classify_given(mu * scale, scale, dmu / (1.0 + mu.norm_sqr()), sc.route);
-    c.kind = if error < lambda.norm() { crate::linear::ModeKind::Dynamic } else { crate::linear::ModeKind::Zero };
+    c.kind = if error < lambda.norm() { crate::eigen::ModeKind::Dynamic } else { crate::eigen::ModeKind::Zero };
     c
 }
 

@@ -14,21 +14,21 @@
 
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::sparse::linalg::lu::simplicial::{self, SimplicialLu};
-use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, SymbolicLu};
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use faer::reborrow::ReborrowMut;
-use faer::{c64, Col, ColMut, ColRef, Conj, Mat, MatMut, Par};
+use faer::{c64, Col, ColMut, ColRef, Mat, MatMut, Par};
 
 use super::pencil::Pencil;
 use super::KrylovError;
-use crate::linear::sparse::{contiguous, contiguous_mut};
+use crate::linear::{contiguous, contiguous_mut};
 use crate::linear::SparseMatrix;
+use crate::lu::PatternLu;
 
 enum Factor {
-    Real(NumericLu<usize, f64>),
+    Real(PatternLu<f64>),
     /// A real simplicial LU held whole: [`Simplicial`].
     RealSimplicial(Box<Simplicial>),
-    Complex(NumericLu<usize, c64>),
+    Complex(PatternLu<c64>),
 }
 
 /// faer's simplicial LU `P_r A P_cᵀ = L U` with its permutations in the open, so that an
@@ -107,7 +107,6 @@ impl Simplicial {
 pub(super) struct ShiftInvert<'a> {
     pub sigma: c64,
     pencil: &'a Pencil,
-    symbolic: SymbolicLu<usize>,
     factor: Factor,
     /// Scratch of one solve with two real or one complex right-hand side.
     scratch: StackReq,
@@ -131,43 +130,41 @@ impl<'a> ShiftInvert<'a> {
     pub fn new(pencil: &'a Pencil, sigma: c64) -> Result<Self, KrylovError> {
         let n = pencil.dim();
         let singular = || KrylovError::Singular(sigma);
-        let (symbolic, factor, scratch) = if sigma.im == 0.0 {
+        let (factor, scratch) = if sigma.im == 0.0 {
             let (col_ptr, row_idx, values) = pencil.k.csc_sum(&pencil.e, |v| v, |v| sigma.re * v, |x, y| x + y);
             let a = SparseColMat::<usize, f64>::new(SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx), values);
-            let symbolic = factorize_symbolic_lu(a.symbolic(), Default::default()).map_err(|_| singular())?;
-            let numeric_scratch = symbolic.factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default());
-            let scratch = symbolic.solve_in_place_scratch::<f64>(2, Par::Seq);
+            let mut lu = PatternLu::<f64>::analyze(a.symbolic(), Par::Seq).map_err(|_| singular())?;
+            let numeric_scratch = lu.factor_scratch();
+            let scratch = lu.solve_scratch(2);
             // faer chose its simplicial factorization when its numeric scratch is the
             // simplicial one (the supernodal one adds arrays of A's non-zeros): then the
             // same routine is called here, keeping the factors and permutations at hand.
             if numeric_scratch == simplicial::factorize_simplicial_numeric_lu_scratch::<usize, f64>(n, n) {
                 let mut buf = MemBuffer::try_new(numeric_scratch).map_err(|_| singular())?;
                 let (mut row_fwd, mut row_inv) = (vec![0usize; n], vec![0usize; n]);
-                let mut lu = SimplicialLu::new();
-                simplicial::factorize_simplicial_numeric_lu(&mut row_fwd, &mut row_inv, &mut lu, a.as_ref(), symbolic.col_perm(), MemStack::new(&mut buf)).map_err(|_| singular())?;
-                let (col_fwd, col_inv) = symbolic.col_perm().arrays();
+                let mut simplicial_lu = SimplicialLu::new();
+                simplicial::factorize_simplicial_numeric_lu(&mut row_fwd, &mut row_inv, &mut simplicial_lu, a.as_ref(), lu.symbolic().col_perm(), MemStack::new(&mut buf)).map_err(|_| singular())?;
+                let (col_fwd, col_inv) = lu.symbolic().col_perm().arrays();
                 let (col_fwd, col_inv) = (col_fwd.to_vec(), col_inv.to_vec());
                 let (e_rows, et_rows) = (pencil.e.rows_in_order(&row_fwd), pencil.e.transpose_rows_in_order(&col_fwd));
-                let u = lu.u_factor_unsorted();
+                let u = simplicial_lu.u_factor_unsorted();
                 let u_recip = (0..n).map(|j| 1.0 / u.val()[u.symbolic().col_ptr()[j + 1] - 1]).collect();
-                (symbolic, Factor::RealSimplicial(Box::new(Simplicial { lu, row_fwd, row_inv, col_fwd, col_inv, e_rows, et_rows, u_recip })), scratch)
+                (Factor::RealSimplicial(Box::new(Simplicial { lu: simplicial_lu, row_fwd, row_inv, col_fwd, col_inv, e_rows, et_rows, u_recip })), scratch)
             } else {
-                let mut numeric = NumericLu::new();
                 let mut buf = MemBuffer::try_new(numeric_scratch).map_err(|_| singular())?;
-                symbolic.factorize_numeric_lu(&mut numeric, a.as_ref(), Par::Seq, MemStack::new(&mut buf), Default::default()).map_err(|_| singular())?;
-                (symbolic, Factor::Real(numeric), scratch)
+                lu.factor(a.as_ref(), MemStack::new(&mut buf)).map_err(|_| singular())?;
+                (Factor::Real(lu), scratch)
             }
         } else {
             let (col_ptr, row_idx, values) = pencil.k.csc_sum(&pencil.e, |v| c64::new(v, 0.0), |v| sigma * v, |x, y| x + y);
             let a = SparseColMat::<usize, c64>::new(SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx), values);
-            let symbolic = factorize_symbolic_lu(a.symbolic(), Default::default()).map_err(|_| singular())?;
-            let mut numeric = NumericLu::new();
-            let mut buf = MemBuffer::try_new(symbolic.factorize_numeric_lu_scratch::<c64>(Par::Seq, Default::default())).map_err(|_| singular())?;
-            symbolic.factorize_numeric_lu(&mut numeric, a.as_ref(), Par::Seq, MemStack::new(&mut buf), Default::default()).map_err(|_| singular())?;
-            let scratch = symbolic.solve_in_place_scratch::<c64>(1, Par::Seq);
-            (symbolic, Factor::Complex(numeric), scratch)
+            let mut lu = PatternLu::<c64>::analyze(a.symbolic(), Par::Seq).map_err(|_| singular())?;
+            let mut buf = MemBuffer::try_new(lu.factor_scratch()).map_err(|_| singular())?;
+            lu.factor(a.as_ref(), MemStack::new(&mut buf)).map_err(|_| singular())?;
+            let scratch = lu.solve_scratch(1);
+            (Factor::Complex(lu), scratch)
         };
-        let op = ShiftInvert { sigma, pencil, symbolic, factor, scratch };
+        let op = ShiftInvert { sigma, pencil, factor, scratch };
         // A test solve against a fixed right-hand side: ‖A x − r‖ / (‖A‖ ‖x‖ + ‖r‖).
         let r = Col::<c64>::from_fn(n, |i| c64::new(1.0 + (i % 7) as f64 * 0.1, (i % 3) as f64 * 0.2));
         let mut x = r.clone();
@@ -285,22 +282,12 @@ pub(super) trait Entry: crate::linear::SparseScalar {
     }
 }
 
-/// `rhs ← A⁻¹ rhs` (or `A⁻ᵀ`) by faer's LU, `rhs` an `n x k` column-major block.
-fn lu_solve<T: faer::traits::ComplexField>(symbolic: &SymbolicLu<usize>, numeric: &NumericLu<usize, T>, rhs: MatMut<'_, T>, transpose: bool, ws: &mut MemBuffer) {
-    let lu = LuRef::new_unchecked(symbolic, numeric);
-    if transpose {
-        lu.solve_transpose_in_place_with_conj(Conj::No, rhs, Par::Seq, MemStack::new(ws));
-    } else {
-        lu.solve_in_place_with_conj(Conj::No, rhs, Par::Seq, MemStack::new(ws));
-    }
-}
-
 impl Entry for f64 {
     fn solve_in_place(op: &ShiftInvert, x: ColMut<'_, f64>, transpose: bool, ws: &mut Workspace) {
         let n = x.nrows();
         let rhs = MatMut::from_column_major_slice_mut(contiguous_mut(x), n, 1);
         match &op.factor {
-            Factor::Real(numeric) => lu_solve(&op.symbolic, numeric, rhs, transpose, &mut ws.stack),
+            Factor::Real(lu) => lu.solve_in_place(rhs, transpose, MemStack::new(&mut ws.stack)),
             Factor::RealSimplicial(f) => f.solve(rhs, transpose, &mut ws.t),
             Factor::Complex(_) => unreachable!("a real vector is solved with the factorization of a real shift"),
         }
@@ -324,7 +311,7 @@ impl Entry for c64 {
                     parts[(i, 1)] = x[i].im;
                 }
                 match &op.factor {
-                    Factor::Real(numeric) => lu_solve(&op.symbolic, numeric, parts.as_mut(), transpose, &mut ws.stack),
+                    Factor::Real(lu) => lu.solve_in_place(parts.as_mut(), transpose, MemStack::new(&mut ws.stack)),
                     Factor::RealSimplicial(f) => f.solve(parts.as_mut(), transpose, &mut ws.t),
                     Factor::Complex(_) => unreachable!("matched above"),
                 }
@@ -332,7 +319,7 @@ impl Entry for c64 {
                     x[i] = c64::new(parts[(i, 0)], parts[(i, 1)]);
                 }
             }
-            Factor::Complex(numeric) => lu_solve(&op.symbolic, numeric, MatMut::from_column_major_slice_mut(contiguous_mut(x), n, 1), transpose, &mut ws.stack),
+            Factor::Complex(lu) => lu.solve_in_place(MatMut::from_column_major_slice_mut(contiguous_mut(x), n, 1), transpose, MemStack::new(&mut ws.stack)),
         }
     }
 }
@@ -340,6 +327,8 @@ impl Entry for c64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use faer::sparse::linalg::lu::factorize_symbolic_lu;
+    use faer::Conj;
 
     /// The four triangular loops against faer's own solves (independent code) on the
     /// simplicial LU of a random sparse matrix: the same bits.

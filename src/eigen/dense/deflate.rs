@@ -27,8 +27,8 @@
 use faer::{c64, Mat};
 
 use super::balance::balance_pencil;
-use super::dae::ConstraintForm;
-use super::sparse::SparseMatrix;
+use crate::linear::SparseMatrix;
+use crate::model::ConstraintForm;
 
 /// The dynamic part `λ E + K` of a pencil and what is needed to lift its vectors back.
 pub(super) struct DynamicPart {
@@ -39,7 +39,7 @@ pub(super) struct DynamicPart {
     pub infinities: usize,
     /// The pencil is proven regular: `E₁` nonsingular with a margin (no index-1 part), since
     /// `det(λ E₁ + K₁)` has the leading coefficient `det E₁ ≠ 0`; or, with an index-1 part,
-    /// `A₂₂` certified nonsingular by [`super::certified_lu`] (leading coefficient
+    /// `A₂₂` certified nonsingular by [`crate::lu::certified_partial_lu`] (leading coefficient
     /// `± det A₂₂ det Σ`). A full-pivoting LU's pivots of `A₂₂`, only checked against each
     /// other, do not prove it.
     pub regular: bool,
@@ -205,11 +205,11 @@ impl DynamicPart {
                 // itself (tests/reliability.rs, a common null vector).
                 let k1_norm = a_t.norm_l2();
                 use faer::linalg::solvers::Solve;
-                let (g21, g12t, certified) = match super::certified_lu::certified_partial_lu(a22, tolerance, k1_norm) {
+                let (g21, g12t, certified) = match crate::lu::certified_partial_lu(a22, tolerance, k1_norm) {
                     Some(lu) => (lu.solve(a21.to_owned()), lu.solve_transpose(a12.transpose().to_owned()), true),
                     None => {
                         let lu = a22.full_piv_lu();
-                        if !super::certified_lu::full_pivots_nonsingular(&lu, tolerance) {
+                        if !crate::lu::full_pivots_nonsingular(&lu, tolerance) {
                             return None;
                         }
                         (lu.solve(a21.to_owned()), lu.solve_transpose(a12.transpose().to_owned()), false)

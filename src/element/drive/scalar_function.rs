@@ -10,7 +10,7 @@
 use std::collections::HashMap;
 use std::sync::Arc;
 
-use super::drive::EvaluationCost;
+use super::EvaluationCost;
 
 /// `f(x)` with its derivative.
 #[derive(Clone, Debug, PartialEq)]

@@ -25,13 +25,13 @@ use faer::{c64, Col, Mat};
 use rayon::prelude::*;
 
 use super::balance::balance_pencil;
-use super::classify::{classify, Classification, ModeKind};
-use super::dae::LinearDae;
 use super::deflate::DynamicPart;
-use super::eigen::{conjugate_mode, normalize, qz, sort_units, ModalAnalysis, Mode, Products};
-use super::eigen_error::EigenError;
-use super::route::{EigenRoute, EigenVectors};
-use super::sparse::SparseMatrix;
+use super::qz::{qz, Products};
+use crate::eigen::classify::{classify, resolved_kind, Classification, ModeKind};
+use crate::eigen::modes::{conjugate_mode, normalize, sort_units};
+use crate::eigen::route::{dot_t, EigenRoute, EigenVectors};
+use crate::eigen::{EigenError, ModalAnalysis, Mode};
+use crate::linear::{Jacobians, LinearDae, SparseMatrix};
 
 /// A mode the deflation fixed exactly: λ = 0 or λ = ∞, in the route's variable μ
 /// (direct: μ = 0 or ∞; Λ form: Λ = −1 or Λ = 1).
@@ -91,8 +91,8 @@ impl ModalAnalysis {
         // F_yd and F_y as stored (Derivatives), or formed once from J, J* (eq. 16).
         let formed;
         let (fyd, fy) = match jacobians {
-            super::dae::Jacobians::Derivatives { fyd, fy } => (fyd, fy),
-            super::dae::Jacobians::Coefficient { .. } => {
+            Jacobians::Derivatives { fyd, fy } => (fyd, fy),
+            Jacobians::Coefficient { .. } => {
                 formed = jacobians.derivatives();
                 (&formed.0, &formed.1)
             }
@@ -107,8 +107,8 @@ impl ModalAnalysis {
             super::degenerate::prepare(jacobians, dcoef)?;
         }
         let dcoef = match (jacobians, dcoef) {
-            (super::dae::Jacobians::Derivatives { .. }, Some(c)) => c,
-            (super::dae::Jacobians::Derivatives { .. }, None) => spectral_dcoef(&part).unwrap_or_else(|| jacobians.dcoef()),
+            (Jacobians::Derivatives { .. }, Some(c)) => c,
+            (Jacobians::Derivatives { .. }, None) => spectral_dcoef(&part).unwrap_or_else(|| jacobians.dcoef()),
             _ => jacobians.dcoef(),
         };
         let mut units: Vec<Vec<Mode>> = Vec::with_capacity(fyd.nrows());
@@ -120,7 +120,7 @@ impl ModalAnalysis {
             // rayon::join runs them on both cores when one is free (inside a busy pool, as
             // a sweep's point, one after the other on the same worker: no thread waits).
             // QZ's sweeps are bounded (faer: 30 r per eigenvalue, then rotated retries,
-            // `super::eigen::qz`); should it still not converge on the route's pencil, the
+            // `super::qz::qz`); should it still not converge on the route's pencil, the
             // other route's pencil of the same dynamic part (a different Möbius image of the
             // spectrum, so different clusters) is tried before giving up. The labels are
             // decided on the whole pencil of `route` either way.
@@ -145,7 +145,7 @@ impl ModalAnalysis {
                     let class = whole.classify(lambda, &v, &u, route, dcoef);
                     let error = class.lambda_and_error(route, whole.mu_scale, dcoef).1;
                     let error = error.max(whole.rayleigh_distance(lambda, &v, &u));
-                    let kind = super::classify::resolved_kind(&class, lambda, error, dcoef);
+                    let kind = resolved_kind(&class, lambda, error, dcoef);
                     let vectors = (kind != ModeKind::Infinite).then(|| normalize(&v, &u, |x| whole.fyd.mul_complex(x), |a, b| whole.fyd.abs_bilinear(a, b)));
                     (class, kind, error, vectors)
                 })
@@ -299,7 +299,7 @@ impl WholePencil {
             return 0.0;
         }
         let (fyd_v, fy_v) = (self.fyd.mul_complex(v), self.fy.mul_complex(v));
-        let (num, den) = (super::route::dot_t(u, &fy_v), super::route::dot_t(u, &fyd_v));
+        let (num, den) = (dot_t(u, &fy_v), dot_t(u, &fyd_v));
         let d = (-num / den - lambda).norm();
         if d.is_finite() { d } else { f64::INFINITY }
     }

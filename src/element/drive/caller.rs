@@ -5,7 +5,7 @@ use std::cell::RefCell;
 use std::fmt;
 use std::sync::Arc;
 
-use super::contract::ElementState;
+use crate::element::ElementState;
 
 /// What one evaluation of a drive or a scalar function costs: how deep its evaluations
 /// nest (the stack it takes: a `reference`, a `model::drive` or `model::sf` call, an
@@ -197,7 +197,7 @@ pub enum Drive {
     Sampled(SampledChannel),
     /// A drive with a memory of the accepted steps (MBDyn's `sample and hold`, `discrete
     /// filter`).
-    Stepped(super::step_drive::StepDrive),
+    Stepped(super::StepDrive),
 }
 
 /// One channel of MBDyn's fixed step file driver (fixedstep.cc, `ServePending`) times an
@@ -267,7 +267,7 @@ impl Drive {
     /// What one evaluation costs (see [`EvaluationCost`]); walks the drive (bounded: the
     /// reader checks every drive it builds, so the parts are within budget).
     pub fn cost(&self) -> EvaluationCost {
-        use super::step_drive::StepKind;
+        use super::StepKind;
         let around = |parts: &[&Drive]| EvaluationCost::around(parts.iter().map(|d| d.cost()));
         match self {
             Drive::Sum(drives) => EvaluationCost::around(drives.iter().map(Drive::cost)),

@@ -10,8 +10,8 @@ use super::iteration::{krylov_schur, RitzPair, Run, Settings};
 use super::operator::ShiftInvert;
 use super::pencil::Pencil;
 use super::{KrylovError, SparseEigenSettings};
-use crate::linear::Classification;
-use crate::linear::route::EigenRoute;
+use crate::eigen::Classification;
+use crate::eigen::route::EigenRoute;
 use crate::linear::SparseLinearDae;
 
 /// An eigenpair of the DAE's pencil `λ F_yd + F_y` (the DAE's own constraint form), its
@@ -364,7 +364,7 @@ fn split_norms(x29: &Col<c64>, moved: &[bool]) -> (f64, f64) {
 /// pass over the matrices, no product kept (the same sums in the same order; the right run
 /// alone needs nothing else). `norms`: `(‖F_yd‖_F, ‖F_y‖_F)`.
 fn right_residual(dae: &SparseLinearDae, moved: &[bool], x29: &Col<c64>, lambda: c64, norms: (f64, f64)) -> f64 {
-    let x = crate::linear::sparse::contiguous(x29.as_ref());
+    let x = crate::linear::contiguous(x29.as_ref());
     assert!(x.len() == dae.fyd.ncols() && x.len() == dae.fy.ncols() && moved.len() == x.len() && dae.fyd.nrows() == dae.fy.nrows(), "residual: sizes");
     let norm2 = split_norms(x29, moved);
     let inv = c64::new(1.0, 0.0) / lambda;

@@ -12,7 +12,7 @@
 //! invertible) and, for one mode, are [`ModalEnergy::shares`]: `m_j |v_j|² / Σ m_i |v_i|²`.
 
 use super::energy::{motion_words, EnergyShare, ModalEnergy};
-use crate::linear::Mode;
+use super::Mode;
 use faer::c64;
 
 /// Two eigenvalues closer than this relative to their modulus belong to one cluster. The
@@ -152,9 +152,9 @@ mod tests {
     //! invariant subspace is span{e₁…e₄}, so its shares are exactly 1/4 per mass whatever
     //! basis of it the eigensolver returns.
     use super::*;
-    use crate::dae::mode_label;
+    use crate::eigen::mode_label;
     use crate::kinematics::Vec3;
-    use crate::linear::{Classification, ModeKind};
+    use crate::eigen::{Classification, ModeKind};
     use faer::Col;
 
     const M: f64 = 2.0;

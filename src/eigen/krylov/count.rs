@@ -20,11 +20,11 @@
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::lu::simplicial::{self, SimplicialLu};
-use faer::sparse::linalg::lu::{factorize_symbolic_lu, SymbolicLu};
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
-use faer::c64;
+use faer::{c64, Par};
 
 use super::pencil::Pencil;
+use crate::lu::PatternLu;
 
 /// Most factorizations one count may take.
 pub(super) const MAX_EVALUATIONS: usize = 4000;
@@ -39,10 +39,11 @@ pub(super) struct DiscCount {
     pub evaluations: usize,
 }
 
-/// The phase `arg det(K + λ E)` at any λ, through one symbolic analysis.
+/// The phase `arg det(K + λ E)` at any λ, through one symbolic analysis (its column
+/// ordering; each λ's simplicial factorization is taken here, for its pivots).
 struct DetPhase<'a> {
     pencil: &'a Pencil,
-    symbolic: SymbolicLu<usize>,
+    analysis: PatternLu<c64>,
     col_sign: f64,
     evaluations: usize,
 }
@@ -69,9 +70,9 @@ impl<'a> DetPhase<'a> {
         let n = pencil.dim();
         let (col_ptr, row_idx, _) = pencil.k.csc_sum(&pencil.e, |v| v, |v| v, |x, y| x + y);
         let pattern = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
-        let symbolic = factorize_symbolic_lu(pattern.as_ref(), Default::default()).ok()?;
-        let col_sign = permutation_sign(symbolic.col_perm().arrays().0);
-        Some(DetPhase { pencil, symbolic, col_sign, evaluations: 0 })
+        let analysis = PatternLu::analyze(pattern.as_ref(), Par::Seq).ok()?;
+        let col_sign = permutation_sign(analysis.symbolic().col_perm().arrays().0);
+        Some(DetPhase { pencil, analysis, col_sign, evaluations: 0 })
     }
 
     /// `det(K + λ E) / |det(K + λ E)|`, or `None` when the LU fails (λ on an eigenvalue).
@@ -83,7 +84,7 @@ impl<'a> DetPhase<'a> {
         let mut buf = MemBuffer::try_new(simplicial::factorize_simplicial_numeric_lu_scratch::<usize, c64>(n, n)).ok()?;
         let (mut row_fwd, mut row_inv) = (vec![0usize; n], vec![0usize; n]);
         let mut lu = SimplicialLu::<usize, c64>::new();
-        simplicial::factorize_simplicial_numeric_lu(&mut row_fwd, &mut row_inv, &mut lu, a.as_ref(), self.symbolic.col_perm(), MemStack::new(&mut buf)).ok()?;
+        simplicial::factorize_simplicial_numeric_lu(&mut row_fwd, &mut row_inv, &mut lu, a.as_ref(), self.analysis.symbolic().col_perm(), MemStack::new(&mut buf)).ok()?;
         let u = lu.u_factor_unsorted();
         let (ptr, val) = (u.symbolic().col_ptr(), u.val());
         let mut z = c64::new(self.col_sign * permutation_sign(&row_fwd), 0.0);

@@ -14,14 +14,14 @@
 //!   `F_y + s F_yd` is singular, so the pencil is declared singular when, after
 //!   balancing, this matrix is numerically rank deficient (smallest pivot of a
 //!   full-pivoting LU below `10 n ε` of the largest) at two unrelated shifts `s` (a partial-pivoting LU that
-//!   proves the matrix nonsingular, [`super::certified_lu`], settles it faster). An
+//!   proves the matrix nonsingular, [`crate::lu::certified_partial_lu`], settles it faster). An
 //!   unknown or equation without any entry is named.
 
 use faer::Mat;
 
 use super::balance::balance_pencil;
-use super::dae::Jacobians;
-use super::eigen_error::EigenError;
+use crate::eigen::EigenError;
+use crate::linear::Jacobians;
 
 /// The largest absolute entry of a matrix (NaN if any entry is NaN).
 fn max_abs(m: &Mat<f64>) -> f64 {
@@ -163,10 +163,10 @@ fn check_regular(fyd: &Mat<f64>, fy: &Mat<f64>) -> Result<(), EigenError> {
     for s in [0.734_918_251_3, -1.618_033_988_7] {
         let m = a + b * faer::Scale(s * ratio);
         // The fast partial-pivoting LU decides only when it proves `m` nonsingular.
-        if super::certified_lu::certified_partial_lu(m.as_ref(), tolerance, 0.0).is_some() {
+        if crate::lu::certified_partial_lu(m.as_ref(), tolerance, 0.0).is_some() {
             return Ok(());
         }
-        if super::certified_lu::full_pivots_nonsingular(&m.full_piv_lu(), tolerance) {
+        if crate::lu::full_pivots_nonsingular(&m.full_piv_lu(), tolerance) {
             return Ok(());
         }
     }

@@ -19,7 +19,7 @@
 
 use std::sync::{Arc, Mutex};
 
-use super::contract::{ElementState, Label, NodeKinematics};
+use crate::element::{ElementState, Label, NodeKinematics};
 use super::Drive;
 use crate::kinematics::Vec3;
 

@@ -31,7 +31,7 @@ pub struct SparseEigenSettings {
     pub per_shift: usize,
     pub max_restarts: usize,
     /// Route whose labels (eqs. 32–35) the modes get, as the dense eigenanalysis labels them.
-    pub route: crate::linear::EigenRoute,
+    pub route: crate::eigen::EigenRoute,
     /// dCoef of the Λ route's labels; `None`: `‖F_yd‖_F / ‖F_y‖_F` as for the dense route.
     pub dcoef: Option<f64>,
     /// Left (adjoint) vectors and the count check by the adjoint run (the default). `false`:
@@ -45,7 +45,7 @@ pub struct SparseEigenSettings {
 
 impl Default for SparseEigenSettings {
     fn default() -> Self {
-        SparseEigenSettings { tolerance: 1e-10, krylov_tolerance: 1e-12, per_shift: 40, max_restarts: 200, route: crate::linear::EigenRoute::Lambda, dcoef: None, left_vectors: true }
+        SparseEigenSettings { tolerance: 1e-10, krylov_tolerance: 1e-12, per_shift: 40, max_restarts: 200, route: crate::eigen::EigenRoute::Lambda, dcoef: None, left_vectors: true }
     }
 }
 

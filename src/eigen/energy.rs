@@ -5,8 +5,9 @@
 //! velocities are `λ v`; the share of component `k` of node `n` is
 //! `M_n,kk |v_k|² / Σ M_m,jj |v_j|²` (diagonal terms; `|λ|²` cancels).
 
-use super::DofMap;
-use crate::linear::{LinearDae, Mode};
+use super::Mode;
+use crate::dae::DofMap;
+use crate::linear::LinearDae;
 use crate::model::{Model, NodeKind};
 
 pub(super) const COMPONENTS: [&str; 6] = ["x", "y", "z", "rx", "ry", "rz"];

@@ -10,7 +10,7 @@ use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::{c64, Col, ColMut, ColRef, Mat, MatRef};
 
 use super::gram_schmidt::Sweeper;
-use crate::linear::sparse::{contiguous, contiguous_mut};
+use crate::linear::{contiguous, contiguous_mut};
 use super::KrylovError;
 
 /// The entries of a Krylov basis: `f64` (real operator) or `c64`.

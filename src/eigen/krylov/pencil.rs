@@ -3,7 +3,7 @@
 //! In MBDyn's form (eq. 30) the constraint rows `C` and the multipliers `L` sit in `F_yd`
 //! only, so `λ = 0` is an eigenvalue of multiplicity 2m (the constrained variables): a shift
 //! near zero would converge to that cluster first. Exactly as the dense deflation's first step
-//! ([`crate::linear::ModalAnalysis::of_dae`]), moving those rows and columns to `K` gives
+//! ([`crate::eigen::ModalAnalysis::of_dae`]), moving those rows and columns to `K` gives
 //! `P₃₀(λ) = Δ(λ) P₂₉(λ) Δ(λ)`, `Δ = diag(λ on C and L, 1 elsewhere)`: the 2m zeros leave,
 //! the constrained variables' eigenvalues become infinite (harmless for shift-invert, they map
 //! to θ = 0), and vectors map back as `v₃₀[L] = v₂₉[L]/λ`, `u₃₀[C] = u₂₉[C]/λ`.
@@ -11,7 +11,8 @@
 use faer::{c64, Col};
 
 use super::KrylovError;
-use crate::linear::{ConstraintForm, SparseLinearDae, SparseMatrix};
+use crate::linear::{SparseLinearDae, SparseMatrix};
+use crate::model::ConstraintForm;
 
 /// `λ E + K` in the form of eq. 29, and the map of its vectors back to the DAE's form.
 pub(super) struct Pencil {

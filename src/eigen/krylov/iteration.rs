@@ -19,7 +19,7 @@ use faer::{c64, Col, ColMut, ColRef, Mat};
 use super::arnoldi::{purified, Arnoldi, Scalar};
 use super::gram_schmidt::{both, Sweeper};
 use super::schur::{schur, sort_schur};
-use crate::linear::sparse::contiguous_mut;
+use crate::linear::contiguous_mut;
 use super::KrylovError;
 
 /// The Ritz values of the Rayleigh quotient `square` sorted by `key` (decreasing, stable),
