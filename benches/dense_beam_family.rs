@@ -13,7 +13,8 @@ use std::path::Path;
 
 use romdyn::dae::{linearize, Assembler, State};
 use romdyn::input::mbdyn::{build, parse_text};
-use romdyn::linear::{EigenRoute, LinearDae, ModalAnalysis};
+use romdyn::eigen::{EigenRoute, ModalAnalysis};
+use romdyn::linear::LinearDae;
 
 fn main() {
     divan::main();

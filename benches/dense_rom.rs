@@ -2,7 +2,8 @@
 //! (issue 2 benchmark): `cargo bench --bench dense_rom`.
 
 use faer::Mat;
-use romdyn::linear::{EigenRoute, Jacobians, LinearDae, ModalAnalysis};
+use romdyn::eigen::{EigenRoute, ModalAnalysis};
+use romdyn::linear::{Jacobians, LinearDae};
 use romdyn::rom::{select_modes, DescriptorRom, ModeSelection};
 
 fn main() {

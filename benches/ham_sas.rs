@@ -1,14 +1,14 @@
 //! HAM-SAS-like isolator (issue 11, CASES C6): eigenanalysis of its 144-equation linear
 //! model, and the whole chain from the file to the free ROM of its modes up to 2 Hz (dummy
 //! springs removed), the paper's real-size case. Goal: eigenanalysis + ROM under 20 ms
-//! (`eigen_and_rom`; measured 16.1–16.4 ms median, see README "Performance").
+//! (`eigen_and_rom`; measured 16.1–16.4 ms median, see docs/src/performance/overview.md).
 //! `cargo bench --bench ham_sas`.
 
 use romdyn::analysis::{reference_state, Reference};
 use romdyn::dae::linearize;
 use romdyn::input::mbdyn::read_model;
 use romdyn::input::ports_file::read_ports_file;
-use romdyn::linear::{EigenRoute, ModalAnalysis};
+use romdyn::eigen::{EigenRoute, ModalAnalysis};
 use romdyn::rom::ModeSelection;
 use romdyn::study::{parse_imposed, Application, EigenSettings, RomRequest, Study};
 

@@ -4,7 +4,8 @@
 
 use romdyn::dae::{linearize, Assembler, Coefficients, LuPath, SparseLu, State};
 use romdyn::kinematics::Vec3;
-use romdyn::linear::{ConstraintForm, EigenRoute, ModalAnalysis};
+use romdyn::eigen::{EigenRoute, ModalAnalysis};
+use romdyn::model::ConstraintForm;
 use romdyn::model::Model;
 use romdyn::rom::{select_modes, DescriptorRom, ModeSelection};
 use romdyn::solve::{initial_derivatives, static_solution, Integrator, Method, NewtonSettings};

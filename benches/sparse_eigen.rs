@@ -10,8 +10,9 @@
 mod models;
 
 use romdyn::dae::{linearize_sparse, Assembler, State};
-use romdyn::linear::krylov::{sparse_modes, ModeTarget, SparseEigenSettings};
-use romdyn::linear::{ConstraintForm, SparseLinearDae};
+use romdyn::eigen::krylov::{sparse_modes, ModeTarget, SparseEigenSettings};
+use romdyn::linear::SparseLinearDae;
+use romdyn::model::ConstraintForm;
 use romdyn::solve::{static_solution, NewtonSettings};
 
 fn main() {

@@ -11,7 +11,7 @@ mod beams;
 use std::path::Path;
 
 use romdyn::dae::{linearize, Assembler, State};
-use romdyn::linear::{EigenRoute, ModalAnalysis, ModeKind};
+use romdyn::eigen::{EigenRoute, ModalAnalysis, ModeKind};
 use romdyn::output::line_plot::{write_line_plot, write_series_csv, LinePlot, Series, SeriesStyle};
 use romdyn::solve::{static_solution, NewtonSettings};
 

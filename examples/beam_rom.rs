@@ -11,7 +11,8 @@ use std::path::Path;
 use romdyn::analysis::{reference_state, Reference};
 use romdyn::dae::linearize;
 use romdyn::input::mbdyn::read_model;
-use romdyn::linear::{EigenRoute, LinearDae, ModalAnalysis, ModeKind};
+use romdyn::eigen::{EigenRoute, ModalAnalysis, ModeKind};
+use romdyn::linear::LinearDae;
 use romdyn::output::frequency_plot::FrequencyResponses;
 use romdyn::rom::{log_frequencies, DescriptorRom, OrdinaryRom, Selection};
 

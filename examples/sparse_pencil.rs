@@ -4,7 +4,7 @@
 //! ```text
 //! cargo run --release --example sparse_pencil -- export N DIR
 //!     writes DIR/E.mtx and DIR/K.mtx: the pencil λ E + K of eq. 29 that
-//!     linear::krylov::sparse_modes factors and iterates on (the chain of the tests and of
+//!     eigen::krylov::sparse_modes factors and iterates on (the chain of the tests and of
 //!     benches/sparse_eigen.rs linearized at rest in MBDyn's form, eq. 30, then mapped to
 //!     eq. 29), Matrix Market coordinate real general, 17 N + 12 rows.
 //! cargo run --release --example sparse_pencil -- solve DIR COUNT [REPEAT] [--right-only]
@@ -29,9 +29,10 @@ use std::path::Path;
 use anyhow::{bail, Context, Result};
 use faer::Mat;
 use romdyn::dae::{linearize_sparse, Assembler, State};
-use romdyn::linear::krylov::{shift_invert_pencil, sparse_modes_with_progress, ModeTarget, SparseEigenSettings};
+use romdyn::eigen::krylov::{shift_invert_pencil, sparse_modes_with_progress, ModeTarget, SparseEigenSettings};
 use romdyn::input::matrix_market::read_sparse_matrix;
-use romdyn::linear::{ConstraintForm, SparseLinearDae};
+use romdyn::linear::SparseLinearDae;
+use romdyn::model::ConstraintForm;
 use romdyn::output::matrix_market::write_sparse_matrix;
 use romdyn::solve::{static_solution, NewtonSettings};
 

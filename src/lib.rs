@@ -3,7 +3,7 @@
 //! Data flows one way along the modules:
 //!
 //! ```text
-//! input -> model -> dae (assembly) -> solve -> linear (F_yd, F_y, eigen) -> rom -> output
+//! input -> model -> dae (assembly) -> solve -> linear (F_yd, F_y) -> eigen -> rom -> output
 //!   -> analysis (runs an initial-value problem with its eigenanalyses)
 //!   -> study (the ROM workflow: reference, linearization, modes, ROM, checks)
 //! ```
@@ -13,11 +13,13 @@
 
 pub mod analysis;
 pub mod dae;
+pub mod eigen;
 pub mod element;
 pub mod input;
 pub mod kinematics;
 pub mod limits;
 pub mod linear;
+pub mod lu;
 pub mod model;
 pub mod output;
 pub mod rom;

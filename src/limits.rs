@@ -1,6 +1,6 @@
 //! Size budgets: the largest sizes romdyn accepts from its inputs, checked before anything
 //! is allocated, so a declared size that cannot fit in memory gives a clear error instead
-//! of an allocation failure (an abort) or a run without end. README ("Limits") lists them.
+//! of an allocation failure (an abort) or a run without end. The book's Limits chapter (docs/src/limits.md) lists them.
 
 /// Largest input text file read [bytes] (256 MiB): an MBDyn file with its includes, a
 /// pencil, a Matrix Market or an Octave file each.

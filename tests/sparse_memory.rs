@@ -11,7 +11,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use common::models::hanging_chain;
 use romdyn::analysis::Reference;
-use romdyn::linear::ConstraintForm;
+use romdyn::model::ConstraintForm;
 use romdyn::model::InitialValueProblem;
 use romdyn::rom::ModeSelection;
 use romdyn::study::{EigenSettings, Ports, Residualization, RomRequest, Solver, Study};

@@ -35,7 +35,7 @@ pub(crate) fn py_err(e: StudyError) -> PyErr {
 /// The columns of a modal table shared by `Study.modes()` and `Model.sparse_modes()`:
 /// "eigenvalues" [rad/s], "kind", "freq_hz" (|Im λ|/2π), "undamped_hz" (|λ|/2π), "damping",
 /// "error" [rad/s].
-fn modes_dict<'py>(py: Python<'py>, modal: &romdyn::linear::ModalAnalysis) -> PyResult<Bound<'py, PyDict>> {
+fn modes_dict<'py>(py: Python<'py>, modal: &romdyn::eigen::ModalAnalysis) -> PyResult<Bound<'py, PyDict>> {
     let lam: Vec<_> = modal.modes.iter().map(|m| m.lambda).collect();
     let d = PyDict::new(py);
     d.set_item("eigenvalues", complex_vec(py, &lam))?;

@@ -8,9 +8,9 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use romdyn::analysis::Reference;
 use romdyn::dae::{NodeInput, NodeOutput};
-use romdyn::linear::EigenRoute;
+use romdyn::eigen::EigenRoute;
 use romdyn::rom::{ModalDamping, ModeSelection, Ranking};
-use romdyn::linear::krylov::ModeTarget;
+use romdyn::eigen::krylov::ModeTarget;
 use romdyn::study::{BelowBand, EigenSettings, Ports, Residualization, RomForm, RomRequest, Solver};
 use romdyn::sweep::SweepOptions;
 

@@ -86,7 +86,7 @@ def test_beam_update_is_the_clis(examples, romdyn_cli, tmp_path):
     # examples/cantilever.mbd with MBDyn's incremental beam update, in Python and in the CLI
     # (`romdyn run --beam-update incremental`, .mov with 16 digits): the same final tip, to
     # the .mov's 13 printed digits, and the default ("auto": MBDyn's update in a run) the
-    # same; the path-independent beam ends 8.4e-6 m from it (README, the two
+    # same; the path-independent beam ends 8.4e-6 m from it (docs/src/mbdyn/beams.md, the two
     # discretizations), so the option is applied.
     subprocess.run([romdyn_cli, "run", examples / "cantilever.mbd", "--beam-update", "incremental", "-o", tmp_path / "c"], check=True, capture_output=True)
     rows = [line.split() for line in (tmp_path / "c.mov").read_text().splitlines()]

@@ -5,9 +5,11 @@
 use faer::{c64, Mat};
 
 use super::error::RunError;
-use crate::dae::{linearize, DofMap, EnergyShare, ModalEnergy, State};
+use crate::dae::{linearize, DofMap, State};
+use crate::eigen::{EnergyShare, ModalEnergy};
 use crate::kinematics::rotation_vector;
-use crate::linear::{EigenRoute, Jacobians, LinearDae, ModalAnalysis, ModeKind};
+use crate::eigen::{EigenRoute, ModalAnalysis, ModeKind};
+use crate::linear::{Jacobians, LinearDae};
 use crate::model::{EigenOutput, EigenRequest, Model};
 use crate::output::eigen_file::{EigenFile, Geometry, MatrixLayout};
 

@@ -17,7 +17,7 @@ use super::eigen::Eigenanalysis;
 use super::error::{ObserverError, RunError};
 use super::observer::{Derivatives, EigenDone, RunObserver, RunStart, StepDone};
 use crate::dae::{Assembler, State};
-use crate::linear::ModeKind;
+use crate::eigen::ModeKind;
 use crate::model::{AbortAfter, InitialValueProblem, Method, Model};
 use crate::solve::{constraint_rate, initial_assembly, initial_derivatives_in, momentum_velocity_change, AssemblyReport, DerivativeMomenta, Integrator, NewtonSettings, NewtonWorkspace};
 

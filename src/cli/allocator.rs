@@ -3,7 +3,7 @@
 //! sizes are checked against `romdyn::limits` before anything is allocated; this catches
 //! what those budgets cannot see (a machine with less memory than a budget allows, a
 //! `ulimit -v`). Temporary output files of the interrupted command are removed by the next
-//! run in the same folder (README, "Output sets").
+//! run in the same folder (the book, docs/src/guide/run.md: "Output sets").
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::io::Write;

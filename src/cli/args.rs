@@ -11,7 +11,7 @@ use romdyn::element::BeamUpdate;
 use romdyn::model::BeamUpdateChoice;
 use romdyn::dae::{NodeInput, NodeOutput};
 use romdyn::input::eigen_pencil::PencilPorts;
-use romdyn::linear::EigenRoute;
+use romdyn::eigen::EigenRoute;
 use romdyn::rom::{ModalDamping, ModeSelection, Ranking};
 use romdyn::input::mbdyn::read_model;
 use romdyn::study::{BelowBand, EigenSettings, FrequencyGrid, Ports, RomRequest, Solver, Study, StudyError};
@@ -118,7 +118,7 @@ pub struct PencilArgs {
     /// ROM output of an .m pencil: unknown J (1-based column of Aplus/Aminus); a node's x,y,z displacements [m] are idx+1..idx+3 and its rotations [rad] idx+4..idx+6
     #[arg(long = "output-col", value_name = "J", requires = "pencil")]
     pub output_cols: Vec<usize>,
-    /// Ports file (JSON): named inputs and outputs at points of nodes (forces, moments, actuators; displacements, rotations, LVDTs, velocities), node names for mode labels, dummy springs to remove, an imposed motion (README, 'Ports')
+    /// Ports file (JSON): named inputs and outputs at points of nodes (forces, moments, actuators; displacements, rotations, LVDTs, velocities), node names for mode labels, dummy springs to remove, an imposed motion (the book's chapter Ports, docs/src/application/ports.md)
     #[arg(long, value_name = "FILE", conflicts_with = "pencil")]
     pub ports: Option<PathBuf>,
     /// Remove these deformable elements (dummy springs) from the full model and the ROM: their force is fed back, A + B_e K C_e (paper eqs. 92-95 with the sign of romdyn's applied-force inputs)

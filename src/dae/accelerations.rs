@@ -21,7 +21,7 @@
 
 use super::{Assembler, Coefficients, State};
 use crate::kinematics::{skew, Mat3, Vec3};
-use crate::linear::ConstraintForm;
+use crate::model::ConstraintForm;
 use crate::model::NodeKind;
 
 /// Linear and angular acceleration of node `i` (global frame) for every node `wanted`

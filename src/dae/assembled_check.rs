@@ -13,7 +13,7 @@
 use std::collections::BTreeMap;
 
 use super::{Assembler, Coefficients, State};
-use crate::linear::ConstraintForm;
+use crate::model::ConstraintForm;
 
 /// The worst entry of one assembled matrix.
 #[derive(Clone, Debug, Default)]

@@ -5,7 +5,7 @@ use super::state::NodeFrame;
 use super::{DofMap, State, Triplets};
 use crate::element::{Col, ElementState, JacobianSink, NodeKinematics, ResidualSink, Row, SectionState};
 use crate::kinematics::{skew, Mat3, Vec3};
-use crate::linear::ConstraintForm;
+use crate::model::ConstraintForm;
 use crate::model::{Model, NodeKind};
 
 /// Which combination of the two Jacobians to assemble: `a F_/ẏ + b F_/y`, in a given
@@ -264,7 +264,7 @@ impl<'m> Assembler<'m> {
         }
     }
 
-    /// Advances the memory of the model's step drives ([`crate::element::StepDrive`]) at
+    /// Advances the memory of the model's step drives ([`crate::element::drive::StepDrive`]) at
     /// the start of step `step` (1 for the first), whose time is `t_new`, from the accepted
     /// state `st` (MBDyn's `DriveHandler::SetTime` with a new step number). The drives read
     /// the model's nodes as in a residual; node slot `i` is the model's node `i`.
@@ -290,7 +290,7 @@ impl<'m> Assembler<'m> {
     /// A drive's value at time `t` reading the model's nodes at `st`, as a drive outside
     /// every element reads it ([`Self::with_all_nodes`]): the integration
     /// method's spectral radius before a step (MBDyn's `MultistepSolver::SetCoef`).
-    pub fn drive_value(&self, drive: &crate::element::Drive, st: &State, t: f64) -> f64 {
+    pub fn drive_value(&self, drive: &crate::element::drive::Drive, st: &State, t: f64) -> f64 {
         self.with_all_nodes(st, t, |ctx| drive.value_in(ctx))
     }
 
@@ -443,9 +443,30 @@ impl<'m> Assembler<'m> {
     /// ([`Element::failure`]), each naming its element.
     ///
     /// [`Element::failure`]: crate::element::Element::failure
+    /// An element whose residual holds a value that is not finite without a reason of its
+    /// own is named with the first such equation (a constitutive law's scalar function out
+    /// of its domain, a drive gone NaN inside it).
     pub fn element_failures(&self, st: &State) -> Vec<String> {
         let frames = self.frames(st);
-        self.model.elements.iter().enumerate().filter_map(|(e, el)| el.failure(&self.context(&frames, st, e, 1.0))).collect()
+        let mut out = Vec::new();
+        for (e, el) in self.model.elements.iter().enumerate() {
+            let ctx = self.context(&frames, st, e, 1.0);
+            if let Some(why) = el.failure(&ctx) {
+                out.push(why);
+                continue;
+            }
+            let mut bad: Option<(usize, f64)> = None;
+            let mut sink = Residual { dofs: &self.dofs, slots: &self.dofs.element_nodes[e], first: self.dofs.element_first[e], constraint_scale: 1.0, put: |i, v: f64| {
+                if !v.is_finite() && bad.is_none() {
+                    bad = Some((i, v));
+                }
+            } };
+            el.residual(&ctx, &mut sink);
+            if let Some((i, v)) = bad {
+                out.push(format!("{} {}: its contribution to {} is {v}", el.type_name(), el.label(), self.dofs.equation_name(self.model, i)));
+            }
+        }
+        out
     }
 
     /// Internal forces and deformation of every element that has evaluation points (beams),

@@ -11,7 +11,7 @@
 use std::collections::HashMap;
 
 use super::{Assembler, Coefficients, State};
-use crate::linear::ConstraintForm;
+use crate::model::ConstraintForm;
 
 /// The worst disagreement found in one element.
 #[derive(Clone, Debug)]
@@ -25,7 +25,7 @@ pub struct JacobianMismatch {
     pub relative_error: f64,
     /// The element's drives read the model's state: the finite differences hold them at the
     /// checked state, since their derivatives are in no Jacobian (as in MBDyn, see
-    /// [`crate::element::TimeFunction`]).
+    /// [`crate::element::drive::TimeFunction`]).
     pub drive_held: bool,
 }
 

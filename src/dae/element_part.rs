@@ -11,7 +11,7 @@
 use faer::Mat;
 
 use super::{Assembler, Coefficients, State};
-use crate::linear::ConstraintForm;
+use crate::model::ConstraintForm;
 use crate::model::{Label, Model};
 
 /// `B̃_e`, `C̃_e`, `K`, `C_v` of one element.

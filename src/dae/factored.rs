@@ -1,15 +1,13 @@
 //! The pieces of Newton's sparse LU: Jacobian triplets, the factorization of one pattern
 //! (banded after a reverse Cuthill–McKee renumbering when the band is narrow, faer's sparse
-//! LU otherwise) and its errors. [`super::sparse::SparseLu`] chooses and reuses them;
+//! LU otherwise: both from [`crate::lu`]) and its errors. [`super::sparse::SparseLu`] chooses and reuses them;
 //! [`super::eliminate`] factors its reduced system with them.
 
 use faer::dyn_stack::{MemBuffer, MemStack};
-use faer::reborrow::ReborrowMut;
-use faer::sparse::linalg::lu::{factorize_symbolic_lu, NumericLu, SymbolicLu};
 use faer::sparse::{Pair, SparseColMatRef, SymbolicSparseColMat};
-use faer::{Conj, Mat, MatMut, Par};
+use faer::{Mat, MatMut, Par};
 
-use super::band::{BandLu, BandOrdering};
+use crate::lu::{BandLu, BandOrdering, PatternLu};
 
 /// Entries `(row, col, value)` in a fixed order for a fixed model (duplicates are summed).
 #[derive(Clone, Debug, Default)]
@@ -76,7 +74,7 @@ pub const BAND_WORK_PER_ENTRY: usize = 256;
 /// The factorization a pattern uses, with where each triplet lands in its storage.
 enum Factorization {
     Band { ordering: BandOrdering, lu: BandLu, rhs: Vec<f64> },
-    General { csc: SymbolicSparseColMat<usize>, lu: SymbolicLu<usize>, numeric: NumericLu<usize, f64>, values: Vec<f64>, scratch: MemBuffer },
+    General { csc: SymbolicSparseColMat<usize>, lu: PatternLu<f64>, values: Vec<f64>, scratch: MemBuffer },
 }
 
 /// The factorization of one sparsity pattern: the storage index of each entry
@@ -107,10 +105,10 @@ impl Factored {
             .iter()
             .map(|p| ptr[p.col] + row_idx[ptr[p.col]..ptr[p.col + 1]].binary_search(&p.row).unwrap_or_else(|_| unreachable!("the pattern holds every triplet")))
             .collect();
-        let lu = factorize_symbolic_lu(csc.as_ref(), Default::default()).map_err(|e| structure(&e))?;
-        let req = lu.factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default()).or(lu.solve_in_place_scratch::<f64>(1, Par::Seq));
+        let lu = PatternLu::<f64>::analyze(csc.as_ref(), Par::Seq).map_err(|e| SparseError::Structure(e.to_string()))?;
+        let req = lu.factor_scratch().or(lu.solve_scratch(1));
         let values = vec![0.0; csc.row_idx().len()];
-        let factorization = Factorization::General { csc, lu, numeric: NumericLu::new(), values, scratch: MemBuffer::new(req) };
+        let factorization = Factorization::General { csc, lu, values, scratch: MemBuffer::new(req) };
         Ok(Factored { n, position, factorization })
     }
 
@@ -155,13 +153,11 @@ impl Factored {
                     rhs[i] = x[p];
                 }
             }
-            Factorization::General { csc, lu, numeric, values: stored, scratch } => {
+            Factorization::General { csc, lu, values: stored, scratch } => {
                 stored.iter_mut().for_each(|v| *v = 0.0);
                 assemble(stored);
-                let a = SparseColMatRef::new(csc.as_ref(), stored);
-                let factors = lu.factorize_numeric_lu(numeric, a, Par::Seq, MemStack::new(scratch), Default::default()).map_err(|_| SparseError::Singular)?;
-                let mut b = MatMut::from_column_major_slice_mut(rhs, self.n, 1);
-                factors.solve_in_place_with_conj(Conj::No, b.rb_mut(), Par::Seq, MemStack::new(scratch));
+                lu.factor(SparseColMatRef::new(csc.as_ref(), stored), MemStack::new(scratch)).map_err(|_| SparseError::Singular)?;
+                lu.solve_in_place(MatMut::from_column_major_slice_mut(rhs, self.n, 1), false, MemStack::new(scratch));
             }
         }
         Ok(())

@@ -7,7 +7,8 @@ use std::str::FromStr;
 use super::ports::{Direction, Excitation, InputPort, Measurement, OutputPort, Point, PortError, PortMap};
 use super::{Assembler, Coefficients, State};
 use crate::kinematics::Vec3;
-use crate::linear::{ConstraintForm, Jacobians, LinearDae, SparseLinearDae, SparseMatrix};
+use crate::linear::{Jacobians, LinearDae, SparseLinearDae, SparseMatrix};
+use crate::model::ConstraintForm;
 use crate::model::{Label, Model};
 
 const FORCES: [&str; 6] = ["Fx", "Fy", "Fz", "Mx", "My", "Mz"];

@@ -15,18 +15,15 @@
 //!   `Φ_/q`; `Plain` (eq. 29): treated like `y` (coefficient `c`), rows `Φ` with `c Φ_/q`.
 //!   Static analysis solves `F(y, 0, t) = 0` with `F_/y` in the plain form.
 //!
-//! [`ConstraintForm`]: crate::linear::ConstraintForm
+//! [`ConstraintForm`]: crate::model::ConstraintForm
 
 mod accelerations;
 mod assembled_check;
 mod assembly;
-mod band;
 mod check;
-mod cluster;
 mod dofs;
 mod element_part;
 mod eliminate;
-mod energy;
 mod factored;
 mod linearize;
 pub mod ports;
@@ -37,10 +34,8 @@ pub use accelerations::node_accelerations;
 pub use assembled_check::{check_assembled, AssembledMismatch};
 pub use assembly::{Assembler, Coefficients};
 pub use check::{check_jacobians, JacobianMismatch};
-pub use cluster::{cluster_label, degenerate_clusters, CLUSTER_RELATIVE_GAP};
 pub use dofs::DofMap;
 pub use element_part::{element_part, ElementPart, ElementPartError};
-pub use energy::{describe, kinetic_energy_shares, mode_label, real_mode_label, EnergyShare, ModalEnergy};
 pub use linearize::{linearize, linearize_ports, linearize_sparse, NodeInput, NodeOutput};
 pub use ports::{InputPort, OutputPort, PortError, PortMap};
 pub use sparse::{LuPath, SparseLu, Triplets, BAND_WORK_PER_ENTRY};

@@ -9,7 +9,7 @@
 //! romdyn starts an element's states at zero.
 
 use super::contract::{add_block, Col, Element, ElementState, JacobianSink, Label, ResidualSink, Row};
-use super::Drive;
+use super::drive::Drive;
 use crate::kinematics::skew;
 use crate::kinematics::Vec3;
 

@@ -5,7 +5,8 @@
 
 use super::contract::{add_block, Col, Element, ElementState, JacobianSink, Label, ResidualSink, Row};
 use super::anchor::Pair;
-use super::{Anchor, Drive, Joint};
+use super::{Anchor, Joint};
+use super::drive::Drive;
 use crate::kinematics::{skew, Vec3};
 
 /// A revolute hinge (5 holonomic constraints) driven at relative angular velocity `Ω(t)`

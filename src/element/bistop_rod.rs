@@ -18,7 +18,8 @@
 use super::anchor::{node_labels, Pair};
 use super::contract::{Col, Element, ElementState, JacobianSink, Label, Latched, ResidualSink, Row};
 use super::deformable::{add_pair_force, add_pair_force_jacobian};
-use super::{Drive, Rod};
+use super::Rod;
+use super::drive::Drive;
 use crate::kinematics::Mat3;
 
 /// A rod whose law switches on and off (module documentation).

@@ -40,14 +40,13 @@ pub enum Col {
     Rate(usize),
 }
 
-/// What an element reads: its nodes' kinematics, its multipliers, the time and gravity.
 /// One private datum of an element ([`super::private_data`]): its value at a state, `None`
 /// where the state lacks a node it reads, and the memory it keeps across steps, if any (a
 /// rotation counted across turns), which the run advances with the model's step drives.
 #[derive(Clone)]
 pub struct PrivateDatum {
     read: std::sync::Arc<dyn Fn(&dyn ElementState) -> Option<f64> + Send + Sync>,
-    memory: Option<super::StepDrive>,
+    memory: Option<super::drive::StepDrive>,
 }
 
 impl PrivateDatum {
@@ -57,7 +56,7 @@ impl PrivateDatum {
     }
 
     /// A datum that is the value of `memory` (a drive with a memory of the accepted steps).
-    pub fn remembering(memory: super::StepDrive) -> Self {
+    pub fn remembering(memory: super::drive::StepDrive) -> Self {
         let m = memory.clone();
         PrivateDatum { read: std::sync::Arc::new(move |st: &dyn ElementState| Some(m.value_at(st.time(), Some(st))).filter(|v| !v.is_nan())), memory: Some(memory) }
     }
@@ -67,7 +66,7 @@ impl PrivateDatum {
     }
 
     /// The memory the run must advance at every step (the model's step drives).
-    pub fn memory(&self) -> Option<&super::StepDrive> {
+    pub fn memory(&self) -> Option<&super::drive::StepDrive> {
         self.memory.as_ref()
     }
 }
@@ -78,6 +77,7 @@ impl PrivateDatum {
 /// [`Element::latch`] once per step, never inside Newton's iterations.
 pub type Latched = std::sync::Arc<dyn std::any::Any + Send + Sync>;
 
+/// What an element reads: its nodes' kinematics, its multipliers, the time and gravity.
 pub trait ElementState {
     fn node(&self, slot: usize) -> &NodeKinematics;
     fn multiplier(&self, k: usize) -> f64;
@@ -194,7 +194,7 @@ pub trait Element: Send + Sync {
     /// Whether a drive of the element reads the model's state (MBDyn's `model::` functions
     /// in a `string` drive): its residual then depends on nodes through the drive, and its
     /// Jacobian, as MBDyn's, holds the drive's value fixed (see
-    /// [`crate::element::TimeFunction`]).
+    /// [`crate::element::drive::TimeFunction`]).
     fn reads_state(&self) -> bool {
         false
     }

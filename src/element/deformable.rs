@@ -163,7 +163,7 @@ pub struct Rod {
     pub viscous: Option<RodViscosity>,
     /// A nonlinear elastic law `N = f(l/l₀ − 1)` [N] (MBDyn's `scalar function elastic`),
     /// in place of `EA`.
-    pub elastic: Option<super::ScalarFunction>,
+    pub elastic: Option<super::drive::ScalarFunction>,
 }
 
 /// The viscous part of a rod's law.

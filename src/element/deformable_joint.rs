@@ -17,7 +17,8 @@ use super::anchor::{node_labels, Anchor, Pair};
 use super::beam::SectionLaw;
 use super::contract::{add_block, Col, Element, ElementState, JacobianSink, Label, ResidualSink, Row};
 use super::deformable::inverse_rotation_jacobian;
-use super::{LawFunctions, ScalarFunction};
+use super::LawFunctions;
+use super::drive::ScalarFunction;
 use crate::kinematics::{rotation_vector, skew, Mat3, Vec3};
 
 type Block = ([Col; 3], SMatrix<f64, 6, 3>);

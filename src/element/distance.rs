@@ -35,7 +35,7 @@ pub struct Distance {
     pub a: Anchor,
     pub b: Anchor,
     /// Imposed distance L(t) [m].
-    pub length: super::Drive,
+    pub length: super::drive::Drive,
     /// The unit direction from A's point to B's as written, `v₀` (MBDyn's `SetInitialValue`).
     pub direction: Vec3,
 }

@@ -27,7 +27,8 @@ use std::sync::Arc;
 
 use super::contract::{Col, Element, ElementState, JacobianSink, Latched, PrivateDatum, ResidualSink, Row, SectionState};
 use super::wrapper::ElementWrapper;
-use super::{Drive, VectorDrive};
+use super::VectorDrive;
+use super::drive::Drive;
 
 /// A hint's drive, built when the element switches on.
 #[derive(Clone, Debug, PartialEq)]

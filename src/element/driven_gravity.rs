@@ -4,7 +4,7 @@
 //! moment `S = m R o` about the node, as the body adds a constant field (METHOD §5).
 
 use super::contract::{add_block, add_vec, Col, Element, ElementState, JacobianSink, Label, ResidualSink, Row};
-use super::Drive;
+use super::drive::Drive;
 use crate::kinematics::{skew, Vec3};
 
 #[derive(Clone, Debug)]

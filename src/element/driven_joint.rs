@@ -25,7 +25,8 @@ use super::anchor::Pair;
 use super::contract::{add_block, Col, Element, ElementState, JacobianSink, Label, ResidualSink, Row};
 use super::contract::Latched;
 use super::deformable::inverse_rotation_jacobian;
-use super::{Anchor, Drive, Joint};
+use super::{Anchor, Joint};
+use super::drive::Drive;
 use crate::kinematics::{rotation_vector, skew, Vec3};
 use std::sync::Arc;
 

@@ -2,7 +2,8 @@
 //! (direction fixed in the node frame), with a time drive.
 
 use super::contract::{add_block, add_vec, Col, Element, ElementState, JacobianSink, ResidualSink, Row};
-use super::{Drive, VectorDrive};
+use super::VectorDrive;
+use super::drive::Drive;
 use crate::kinematics::{skew, Vec3};
 use super::contract::Label;
 

@@ -91,7 +91,7 @@ pub fn body_jacobian(f: &FrameState, m: f64, s: &Vec3, j: &Mat3, st: &dyn Elemen
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::element::Drive;
+    use crate::element::drive::Drive;
 
     fn constant(v: Vec3) -> VectorDrive {
         VectorDrive(vec![(v, Drive::Const(1.0))])

@@ -30,7 +30,7 @@
 use super::anchor::{node_labels, Pair};
 use super::contract::{add_block, add_vec, Col, Element, ElementState, JacobianSink, Label, ResidualSink, Row};
 use super::joint::{Joint, JointKind};
-use super::scalar_function::ScalarFunction;
+use super::drive::ScalarFunction;
 use crate::kinematics::{skew, Vec3};
 
 /// MBDyn's `modlugre, σ₀, σ₁, σ₂, κ, "μ(|v|)"` (input manual, §Friction models).

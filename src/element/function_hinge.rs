@@ -9,7 +9,7 @@
 use super::anchor::{node_labels, Anchor, Pair};
 use super::contract::{Element, ElementState, JacobianSink, Label, ResidualSink};
 use super::deformable::{add_hinge_jacobian, add_hinge_moment, hinge_strains};
-use super::ScalarFunction;
+use super::drive::ScalarFunction;
 use crate::kinematics::{Mat3, Vec3};
 
 /// A deformable hinge whose moment components are functions of the rotation's.

@@ -21,7 +21,7 @@ use super::anchor::{node_labels, Pair};
 use super::contract::{add_block, add_vec, Col, Element, ElementState, JacobianSink, Label, ResidualSink, Row};
 use super::friction::ModLugre;
 use super::joint::{Joint, JointKind};
-use super::Drive;
+use super::drive::Drive;
 use crate::kinematics::{skew, Vec3};
 
 /// Where the friction's normal force comes from.

@@ -4,7 +4,7 @@
 //! with the reaction force `d λ` or moment `R d λ`.
 
 use super::contract::{add_block, add_vec, Col, Element, ElementState, JacobianSink, Label, ResidualSink, Row};
-use super::Drive;
+use super::drive::Drive;
 use crate::kinematics::{skew, Vec3};
 
 /// Which velocity is imposed.

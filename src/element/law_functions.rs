@@ -6,7 +6,7 @@
 //! law is the same function `f′` on every component, `orthotropic` one per component (or
 //! none), with no linear part.
 
-use super::ScalarFunction;
+use super::drive::ScalarFunction;
 
 /// `f′_i` and `f″_i` of each component (`None`: no term); both empty for a linear law.
 #[derive(Clone, Debug, Default, PartialEq)]

@@ -7,7 +7,7 @@
 use super::anchor::{node_labels, Anchor, Pair};
 use super::contract::{add_block, Element, ElementState, JacobianSink, Label, ResidualSink, Row};
 use super::deformable::{add_pair_force, add_pair_force_jacobian, distance_rate};
-use super::ScalarFunction;
+use super::drive::ScalarFunction;
 use crate::kinematics::{skew, Mat3, Vec3};
 
 /// A rod with MBDyn's 1-D `nlsf` law.

@@ -7,7 +7,8 @@
 use super::anchor::{node_labels, Pair};
 use super::contract::{Element, ElementState, JacobianSink, Label, ResidualSink};
 use super::deformable::{add_pair_force, add_pair_force_jacobian};
-use super::{Drive, Rod};
+use super::Rod;
+use super::drive::Drive;
 use crate::kinematics::Mat3;
 
 #[derive(Clone, Debug)]

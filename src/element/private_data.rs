@@ -5,14 +5,14 @@
 //!
 //! A datum is a function of the model's state, read through
 //! [`ElementState::structural_node`] from the state the reading drive is evaluated in (the
-//! current Newton iterate, as MBDyn's `GetXCurr`, see [`super::TimeFunction`]).
+//! current Newton iterate, as MBDyn's `GetXCurr`, see [`super::drive::TimeFunction`]).
 
 use std::sync::Arc;
 
 use super::anchor::{Anchor, Pair};
 use super::contract::{ElementState, Label, NodeKinematics};
 use super::joint::{Joint, JointKind};
-use super::step_drive::{RotationRead, StepDrive, StepKind, Turns};
+use super::drive::{RotationRead, StepDrive, StepKind, Turns};
 use crate::kinematics::{rotation_vector, Vec3};
 
 pub use super::contract::PrivateDatum;

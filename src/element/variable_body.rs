@@ -22,7 +22,7 @@
 //! residual above.
 
 use super::contract::{add_block, add_vec, Col, Element, ElementState, JacobianSink, Label, ResidualSink, Row};
-use super::Drive;
+use super::drive::Drive;
 use crate::kinematics::{skew, Mat3, Vec3};
 
 /// A sum of `matrix · drive(t)` terms (a 3x3 template drive caller).

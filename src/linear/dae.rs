@@ -2,6 +2,8 @@
 
 use faer::{Col, Mat};
 
+use crate::model::ConstraintForm;
+
 /// How the Jacobians of the DAE residual were supplied.
 ///
 /// Both carry the same information: `J(c) = F_yd + c F_y` is affine in `c`, so
@@ -12,26 +14,6 @@ pub enum Jacobians {
     Derivatives { fyd: Mat<f64>, fy: Mat<f64> },
     /// `J = F_yd + c F_y` and `J* = F_yd − c F_y` for a coefficient `c = dCoef` (eqs. 13–14).
     Coefficient { j: Mat<f64>, jstar: Mat<f64>, dcoef: f64 },
-}
-
-/// Which layout the constraint equations use; it decides how many eigenvalues of the
-/// constrained variables come out zero or infinite (paper §6.1, Table 2).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum ConstraintForm {
-    /// Eq. 29: multipliers are algebraic unknowns, constraint rows unscaled.
-    Plain,
-    /// Eq. 30: multipliers treated as derivatives, constraint rows divided by dCoef.
-    Scaled,
-}
-
-impl ConstraintForm {
-    pub fn name(self) -> &'static str {
-        match self {
-            ConstraintForm::Plain => "plain (eq. 29)",
-            ConstraintForm::Scaled => "scaled (eq. 30)",
-        }
-    }
 }
 
 /// A linear DAE with its input and output maps.

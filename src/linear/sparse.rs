@@ -306,6 +306,14 @@ impl SparseMatrix {
         })
     }
 
+    /// `|u|ᵀ |M| |v|`: the magnitude of the terms of `uᵀ M v`, whose rounding error is a few
+    /// ε times this.
+    pub fn abs_bilinear(&self, u: &Col<c64>, v: &Col<c64>) -> f64 {
+        let (u, v) = (contiguous(u.as_ref()), contiguous(v.as_ref()));
+        assert!(u.len() == self.nrows && v.len() == self.ncols, "|u|ᵀ |M| |v|: sizes");
+        (0..self.nrows).map(|i| u[i].norm() * (self.start[i]..self.start[i + 1]).map(|k| v[self.col[k]].norm() * self.val[k].abs()).sum::<f64>()).sum()
+    }
+
     /// `M v`.
     pub fn mul_complex(&self, v: &Col<c64>) -> Col<c64> {
         self.mul_col(v, false)

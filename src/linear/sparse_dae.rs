@@ -2,11 +2,14 @@
 //! non-zeros only, thin `B̃` and `C̃`. Memory grows with the non-zeros, not with n²; the
 //! dense route converts on demand ([`SparseLinearDae::to_dense`]).
 
-use faer::linalg::solvers::Solve;
+use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::{SparseColMat, Triplet};
 use faer::{c64, Mat};
 
-use super::dae::{ConstraintForm, Jacobians, LinearDae};
+use crate::lu::PatternLu;
+
+use super::dae::{Jacobians, LinearDae};
+use crate::model::ConstraintForm;
 use super::sparse::SparseMatrix;
 
 /// `F_yd Δẏ + F_y Δy = B̃ u`, `z = C̃ Δy` (eqs. 38–40), sparse.
@@ -112,8 +115,11 @@ impl SparseLinearDae {
         let t = self.static_triplets();
         let entries: Vec<Triplet<usize, usize, f64>> = t.iter().map(|&(i, j, v)| Triplet::new(i, j, v)).collect();
         let s = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &entries).map_err(|_| SparseSolveError::Singular(what))?;
-        let lu = s.sp_lu().map_err(|_| SparseSolveError::Singular(what))?;
-        let x = lu.solve(r);
+        let mut lu = PatternLu::<f64>::analyze(s.symbolic(), faer::get_global_parallelism()).map_err(|_| SparseSolveError::Singular(what))?;
+        let mut scratch = MemBuffer::try_new(lu.factor_scratch().or(lu.solve_scratch(r.ncols()))).map_err(|_| SparseSolveError::Singular(what))?;
+        lu.factor(s.as_ref(), MemStack::new(&mut scratch)).map_err(|_| SparseSolveError::Singular(what))?;
+        let mut x = r.clone();
+        lu.solve_in_place(x.as_mut(), false, MemStack::new(&mut scratch));
         // ‖S x − R‖ / (‖S‖ ‖x‖ + ‖R‖), column by column.
         let norm_s = t.iter().map(|e| e.2 * e.2).sum::<f64>().sqrt();
         let mut sx = Mat::<f64>::zeros(n, r.ncols());
@@ -147,7 +153,7 @@ impl SparseLinearDae {
         let rhs = Mat::from_fn(n, self.b.ncols(), |i, j| c64::new(self.b[(i, j)], 0.0));
         let rate = |i: usize, j: usize| self.c_rate.as_ref().map_or(0.0, |cv| cv[(i, j)]);
         let norm_p = |w: f64| (self.fy.norm_l2().powi(2) + (w * self.fyd.norm_l2()).powi(2)).sqrt();
-        let mut symbolic = None;
+        let mut factors: Option<(PatternLu<c64>, MemBuffer)> = None;
         let mut out = Vec::with_capacity(freq_hz.len());
         for &f in freq_hz {
             let w = 2.0 * std::f64::consts::PI * f;
@@ -160,16 +166,15 @@ impl SparseLinearDae {
                 entries[index(i, j)].val += c64::new(0.0, w * v);
             }
             let p = SparseColMat::<usize, c64>::try_new_from_triplets(n, n, &entries).map_err(|_| SparseSolveError::Singular(what))?;
-            let sym = match &symbolic {
-                Some(s) => faer::sparse::linalg::solvers::SymbolicLu::clone(s),
-                None => {
-                    let s = faer::sparse::linalg::solvers::SymbolicLu::try_new(p.symbolic()).map_err(|_| SparseSolveError::Singular(what))?;
-                    symbolic = Some(s.clone());
-                    s
-                }
-            };
-            let lu = faer::sparse::linalg::solvers::Lu::try_new_with_symbolic(sym, p.as_ref()).map_err(|_| SparseSolveError::Singular(what))?;
-            let x = lu.solve(&rhs);
+            if factors.is_none() {
+                let lu = PatternLu::<c64>::analyze(p.symbolic(), faer::get_global_parallelism()).map_err(|_| SparseSolveError::Singular(what))?;
+                let scratch = MemBuffer::try_new(lu.factor_scratch().or(lu.solve_scratch(rhs.ncols()))).map_err(|_| SparseSolveError::Singular(what))?;
+                factors = Some((lu, scratch));
+            }
+            let Some((lu, scratch)) = factors.as_mut() else { unreachable!("set above") };
+            lu.factor(p.as_ref(), MemStack::new(scratch)).map_err(|_| SparseSolveError::Singular(what))?;
+            let mut x = rhs.clone();
+            lu.solve_in_place(x.as_mut(), false, MemStack::new(scratch));
             let px = &p * &x;
             for k in 0..rhs.ncols() {
                 let res = (0..n).map(|i| (px[(i, k)] - rhs[(i, k)]).norm_sqr()).sum::<f64>().sqrt();

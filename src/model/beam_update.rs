@@ -1,8 +1,8 @@
 //! Which rotation update the beams take (the CLI's `--beam-update`, the Python package's
 //! `beam_update`): MBDyn's incremental one where a result comes from a time integration,
 //! so that an MBDyn file gives MBDyn's numbers, and the path-independent one where it is a
-//! static equilibrium, which must not depend on load steps (README, "beam.cc is
-//! incremental").
+//! static equilibrium, which must not depend on load steps (the book's Beams
+//! chapter, docs/src/mbdyn/beams.md: "beam.cc is incremental").
 
 use super::Model;
 use crate::element::BeamUpdate;

@@ -1,9 +1,8 @@
 //! Building a model from Rust: nodes, elements and gravity, checked for consistency.
 
-use super::{Label, Model, NodeKind, StructuralNode};
+use super::{ConstraintForm, Label, Model, NodeKind, StructuralNode};
 use crate::element::Element;
 use crate::kinematics::{Mat3, Vec3};
-use crate::linear::ConstraintForm;
 
 /// An inconsistent model.
 #[derive(Debug, thiserror::Error)]
@@ -25,7 +24,7 @@ pub struct ModelBuilder {
     gravity: Option<Vec3>,
     form: ConstraintForm,
     node_names: std::collections::BTreeMap<Label, String>,
-    step_drives: Vec<crate::element::StepDrive>,
+    step_drives: Vec<crate::element::drive::StepDrive>,
     displacement_nodes: std::collections::BTreeSet<Label>,
     frame_motion: Option<std::sync::Arc<crate::element::FrameMotion>>,
 }
@@ -63,7 +62,7 @@ impl ModelBuilder {
     }
 
     /// Drives with memory the elements use: their memory advances at every step.
-    pub fn step_drives(&mut self, drives: Vec<crate::element::StepDrive>) -> &mut Self {
+    pub fn step_drives(&mut self, drives: Vec<crate::element::drive::StepDrive>) -> &mut Self {
         self.step_drives.extend(drives);
         self
     }

@@ -3,11 +3,13 @@
 
 mod beam_update;
 mod builder;
+mod constraint_form;
 mod problem;
 mod summary;
 
 pub use beam_update::BeamUpdateChoice;
 pub use builder::{ModelBuilder, ModelError};
+pub use constraint_form::ConstraintForm;
 pub use problem::{AbortAfter, AutoCoefficient, EigenFileSuffix, EigenOutput, EigenRequest, InitialAssembly, InitialValueProblem, Method, MotionOutput, NodeAssembly, NodeSource, OrientationOutput, ResidualNorm, SuffixWidth, WrittenNode};
 pub use summary::Summary;
 
@@ -15,7 +17,6 @@ use std::collections::HashMap;
 
 use crate::element::Element;
 use crate::kinematics::{Mat3, Vec3};
-use crate::linear::ConstraintForm;
 
 pub use crate::element::Label;
 
@@ -60,8 +61,8 @@ pub struct Model {
     /// labels; a ports file's `names` take precedence.
     pub node_names: std::collections::BTreeMap<Label, String>,
     /// Drives with a memory of the accepted steps, updated once at the start of every
-    /// time step ([`crate::element::StepDrive::begin_step`]).
-    pub step_drives: Vec<crate::element::StepDrive>,
+    /// time step ([`crate::element::drive::StepDrive::begin_step`]).
+    pub step_drives: Vec<crate::element::drive::StepDrive>,
     /// Nodes without rotations (MBDyn's `static displacement` and `dynamic displacement`
     /// nodes): their orientation stays the initial one, `g = 0` is their moment equation
     /// (static) or, with `γ = 0` as angular momentum, their angular equilibrium (dynamic),

@@ -206,7 +206,7 @@ pub struct InitialValueProblem {
     /// each regular step at its new time with the last solution, as MBDyn's
     /// `MultistepSolver::SetCoef`; `method` holds its value at the initial time (NaN when it
     /// reads the state). `None`: the radius is constant.
-    pub varying_radius: Option<crate::element::Drive>,
+    pub varying_radius: Option<crate::element::drive::Drive>,
     /// Newton converges when the residual's norm is below this (N, N m, …).
     pub tolerance: f64,
     /// The norm of that test.
@@ -363,7 +363,7 @@ pub struct MotionOutput {
     /// MBDyn's `output meter: DRIVE` (dataman2.cc, `DataManager::Output`): a step's rows
     /// are written when the drive is not 0 at its time (step 0 included), instead of every
     /// `every`-th step.
-    pub meter: Option<crate::element::Drive>,
+    pub meter: Option<crate::element::drive::Drive>,
     /// Digits after the decimal point of each number (MBDyn's `output precision`, which
     /// writes scientific notation with that many; MBDyn's default is 6); `None`: romdyn's
     /// default, [`MotionOutput::DEFAULT_DIGITS`].

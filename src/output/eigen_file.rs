@@ -4,9 +4,9 @@
 
 use faer::{c64, Mat};
 
-use crate::dae::EnergyShare;
+use crate::eigen::EnergyShare;
 use crate::kinematics::Vec3;
-use crate::linear::{EigenRoute, ModalAnalysis, Mode};
+use crate::eigen::{EigenRoute, ModalAnalysis, Mode};
 use crate::model::Label;
 
 /// How `Aplus`/`Aminus` are written (`output full matrices` / `output sparse matrices`).

@@ -10,7 +10,8 @@ use super::atomic::OutputError;
 use super::bode::{write_bode, BodePlot, CurveStyle, ResponseCurve};
 use super::prefixed_path;
 use super::response_csv::write_response_csv;
-use crate::linear::{LinearDae, ModalAnalysis, ModeKind};
+use crate::eigen::{ModalAnalysis, ModeKind};
+use crate::linear::LinearDae;
 use crate::rom::{full_frequency_response, OrdinaryRom};
 
 /// Frequency responses sharing inputs, outputs and a grid [Hz].

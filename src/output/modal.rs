@@ -2,8 +2,8 @@
 
 use serde::Serialize;
 
-use crate::dae::{describe, EnergyShare};
-use crate::linear::{EigenRoute, ModalAnalysis, ModeKind};
+use crate::eigen::{describe, EnergyShare};
+use crate::eigen::{EigenRoute, ModalAnalysis, ModeKind};
 
 /// One row of the modal table (units: rad/s, Hz).
 #[derive(Serialize, Debug, Clone)]

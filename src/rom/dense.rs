@@ -51,11 +51,11 @@ pub(crate) fn solve_or_free_direction(m: &Mat<f64>, r: &Mat<f64>) -> Result<Mat<
     // nonsingular (blocked: 10 times faster at n = 1712) answers; only a doubtful matrix
     // goes to full pivoting's rank test.
     let rhs = Mat::from_fn(n, r.ncols(), |i, j| dr[i] * r[(i, j)]);
-    let x = match crate::linear::certified_partial_lu(scaled.as_ref(), n as f64 * f64::EPSILON, 0.0) {
+    let x = match crate::lu::certified_partial_lu(scaled.as_ref(), n as f64 * f64::EPSILON, 0.0) {
         Some(lu) => lu.solve(rhs),
         None => {
             let lu = scaled.full_piv_lu();
-            if !crate::linear::full_pivots_nonsingular(&lu, n as f64 * f64::EPSILON) {
+            if !crate::lu::full_pivots_nonsingular(&lu, n as f64 * f64::EPSILON) {
                 return Err(free_direction(&lu, &dc));
             }
             lu.solve(rhs)

@@ -6,7 +6,8 @@ use faer::{c64, Mat};
 use super::dense::transfer_with_rates;
 use super::select::Selection;
 use super::RomError;
-use crate::linear::{Jacobians, LinearDae, ModalAnalysis, Mode, SparseLinearDae};
+use crate::eigen::{ModalAnalysis, Mode};
+use crate::linear::{Jacobians, LinearDae, SparseLinearDae};
 
 /// The input and output maps of the full model, dense or sparse alike.
 struct Ports<'a> {

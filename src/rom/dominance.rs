@@ -10,7 +10,8 @@
 use faer::c64;
 
 use super::units::mode_units;
-use crate::linear::{LinearDae, ModalAnalysis};
+use crate::eigen::ModalAnalysis;
+use crate::linear::LinearDae;
 
 /// Dominance below this fraction of the largest unit's is "contributes nothing to these
 /// ports" (rounding of exactly-zero products is ~1e-16 relative).

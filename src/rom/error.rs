@@ -1,6 +1,6 @@
 //! Errors of ROM construction.
 
-use crate::linear::EigenError;
+use crate::eigen::EigenError;
 
 /// Why a ROM could not be built.
 #[derive(Debug, thiserror::Error)]

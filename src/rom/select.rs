@@ -1,7 +1,7 @@
 //! Choosing the modes a ROM keeps: by frequency band, by count, or by index, ranked by
 //! frequency or by dominance for the chosen ports.
 
-use crate::linear::ModalAnalysis;
+use crate::eigen::ModalAnalysis;
 
 use super::dominance::Dominance;
 use super::units::{mode_units, unit_of};
@@ -106,7 +106,8 @@ fn select(modal: &ModalAnalysis, sel: &ModeSelection, dominance: Option<&Dominan
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::linear::{EigenRoute, Jacobians};
+    use crate::eigen::EigenRoute;
+    use crate::linear::Jacobians;
     use faer::Mat;
 
     /// Issue 9 point 3: `x'' = a² x` (an inverted pendulum's linearization, a = 3.13 rad/s)

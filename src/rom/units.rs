@@ -2,7 +2,7 @@
 //! and so is a `±a` real pair, the two real eigenvalues of an undamped mechanical degree of
 //! freedom with negative stiffness (the inverted pendulum's ±3.13 rad/s, CASES C3).
 
-use crate::linear::{ModalAnalysis, ModeKind};
+use crate::eigen::{ModalAnalysis, ModeKind};
 
 /// Relative distance `|λ₁ + λ₂| / |λ₁|` under which two real eigenvalues form a `±a` pair
 /// (beyond the two eigenvalues' error estimates).

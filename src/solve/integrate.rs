@@ -11,7 +11,7 @@
 use super::newton::{momenta_from_definitions, newton, Convergence, DerivativeMomenta, NewtonFailure, NewtonSettings, NewtonWorkspace, Update};
 use crate::dae::{Assembler, State};
 use crate::kinematics::{gibbs_from_rotation, gibbs_g, Mat3, Vec3};
-use crate::linear::ConstraintForm;
+use crate::model::ConstraintForm;
 use crate::model::{Method, NodeKind};
 
 /// Coefficients `(a₁, a₂, b₀, b₁, b₂)` for step `h` (the `b`'s include `h`).

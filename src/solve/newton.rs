@@ -1,7 +1,7 @@
 //! Newton's method on `F = 0` with `J δ = −F` (eq. 5), sparse LU with symbolic reuse.
 
 use crate::dae::{Assembler, Coefficients, SparseLu, State, Triplets};
-use crate::linear::ConstraintForm;
+use crate::model::ConstraintForm;
 use crate::model::{NodeKind, ResidualNorm};
 
 /// Convergence settings (residual in the units of each equation: N, N m, kg m/s, m).
@@ -218,7 +218,7 @@ pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &Newton
         }
         if !norm.is_finite() || iteration == settings.max_iterations {
             // A drive whose value failed names itself and where it is written (issue 32).
-            let not_finite = || match asm.element_failures(st).into_iter().chain(crate::element::take_evaluation_failure(st.t)).collect::<Vec<_>>() {
+            let not_finite = || match asm.element_failures(st).into_iter().chain(crate::element::drive::take_evaluation_failure(st.t)).collect::<Vec<_>>() {
                 why if why.is_empty() => "the residual is not finite".to_string(),
                 why => format!("the residual is not finite: {}", why.join("; ")),
             };

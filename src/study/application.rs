@@ -8,8 +8,10 @@ use faer::{c64, Mat};
 
 use crate::analysis::{reference_state, Reference};
 use crate::dae::ports::{InputPort, OutputPort};
-use crate::dae::{cluster_label, degenerate_clusters, element_part, linearize_ports, mode_label, real_mode_label, ElementPart, ModalEnergy, NodeInput, NodeOutput, State};
-use crate::linear::{LinearDae, ModalAnalysis};
+use crate::dae::{element_part, linearize_ports, ElementPart, NodeInput, NodeOutput, State};
+use crate::eigen::{cluster_label, degenerate_clusters, mode_label, real_mode_label, ModalEnergy};
+use crate::eigen::ModalAnalysis;
+use crate::linear::LinearDae;
 use crate::model::{InitialValueProblem, Label, Model};
 use crate::rom::{full_frequency_response, transmissibility, with_spring_ports, without_elements, ImposedModel, SpringFeedback};
 
@@ -190,7 +192,7 @@ impl Study {
         let model = self.model.as_ref()?;
         let (lambda, v) = self.linear.dense().real_mode_near(lambda)?;
         let right = faer::Col::from_fn(v.nrows(), |i| c64::new(v[i], 0.0));
-        let mode = crate::linear::Mode { lambda: c64::new(lambda, 0.0), right: Some(right), left: None, partner: None, ..self.modal.modes.first()?.clone() };
+        let mode = crate::eigen::Mode { lambda: c64::new(lambda, 0.0), right: Some(right), left: None, partner: None, ..self.modal.modes.first()?.clone() };
         let mut names = model.node_names.clone();
         if let Some(a) = &self.application {
             names.extend(a.names.iter().map(|(k, v)| (*k, v.clone())));

@@ -4,7 +4,8 @@
 use faer::{c64, Mat};
 
 use crate::dae::{linearize, Assembler, State};
-use crate::linear::{LinearDae, ModalAnalysis, ModeKind};
+use crate::eigen::{ModalAnalysis, ModeKind};
+use crate::linear::LinearDae;
 use crate::model::Model;
 use crate::rom::{full_static_gain, null_direction};
 
@@ -32,7 +33,7 @@ pub(super) fn equilibrium_warning(model: &Model, state: &State, tolerance: f64) 
         }
     }
     // Plain constraint rows (eq. 29): the multipliers are in y, as in the static analysis.
-    let f = asm.residual(&st, crate::linear::ConstraintForm::Plain, 1.0);
+    let f = asm.residual(&st, crate::model::ConstraintForm::Plain, 1.0);
     let (i, v) = f.iter().enumerate().fold((0, 0.0f64), |(bi, bv), (i, x)| if x.abs() > bv { (i, x.abs()) } else { (bi, bv) });
     let accepted = 1e3 * tolerance;
     (v > accepted).then(|| Warning::NotInEquilibrium { residual: v, equation: asm.dofs.equation_name(model, i), tolerance: accepted })
@@ -290,7 +291,7 @@ impl Study {
 }
 
 /// Warnings about labels the error estimates decided (issue 30, finding 4).
-fn label_warnings(modal: &crate::linear::ModalAnalysis) -> Vec<Warning> {
+fn label_warnings(modal: &crate::eigen::ModalAnalysis) -> Vec<Warning> {
     let unresolved: Vec<_> = modal.unresolved().map(|(i, m)| (i + 1, m.lambda, m.error, m.kind.name())).collect();
     let zeros: Vec<_> = modal.doubtful_zeros().map(|(i, m)| (i + 1, m.lambda, m.error)).collect();
     let mut w = Vec::new();

@@ -6,7 +6,7 @@ use crate::analysis::RunError;
 use crate::dae::PortError;
 use crate::input::mbdyn::MbdynError;
 use crate::input::pencil::PencilError;
-use crate::linear::EigenError;
+use crate::eigen::EigenError;
 use crate::rom::RomError;
 
 /// A failure of [`super::Study`], with the file or option it concerns.
@@ -31,7 +31,7 @@ pub enum StudyError {
     Rom(#[from] RomError),
     /// (Its message, not its source: printed once.)
     #[error("sparse eigenanalysis: {0}")]
-    Krylov(crate::linear::krylov::KrylovError),
+    Krylov(crate::eigen::krylov::KrylovError),
     #[error("full model: {0}")]
     SparseSolve(crate::linear::SparseSolveError),
     #[error("mode selection: the sparse route computed {target} and found {found} mode(s), fewer than the selection needs{note}; --solver dense computes every mode")]
@@ -58,8 +58,8 @@ pub enum StudyError {
     KeptAndResidualized(usize),
 }
 
-impl From<crate::linear::krylov::KrylovError> for StudyError {
-    fn from(e: crate::linear::krylov::KrylovError) -> Self {
+impl From<crate::eigen::krylov::KrylovError> for StudyError {
+    fn from(e: crate::eigen::krylov::KrylovError) -> Self {
         StudyError::Krylov(e)
     }
 }

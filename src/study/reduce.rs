@@ -416,7 +416,7 @@ impl Study {
 
     /// `|λ|_max / |λ|_min` over the dynamic modes found (1 without two of them).
     pub fn modal_spread(&self) -> f64 {
-        let sizes = self.modal.of_kind(crate::linear::ModeKind::Dynamic).map(|i| self.modal.modes[i].lambda.norm()).filter(|l| *l > 0.0 && l.is_finite());
+        let sizes = self.modal.of_kind(crate::eigen::ModeKind::Dynamic).map(|i| self.modal.modes[i].lambda.norm()).filter(|l| *l > 0.0 && l.is_finite());
         let (lo, hi) = sizes.fold((f64::INFINITY, 0.0f64), |(lo, hi), l| (lo.min(l), hi.max(l)));
         if hi > 0.0 && lo.is_finite() { hi / lo } else { 1.0 }
     }
@@ -457,7 +457,7 @@ fn rigid_body_modes(eigenvalues: &[faer::c64]) -> Option<String> {
 
 /// The kept modes whose reported λ has no eigenvalue of the ROM's ordinary `A` within
 /// `max(10 × its error estimate, 1e-8 |λ|)`: a [`Warning::RomEigenvalues`] naming the worst.
-fn rom_eigenvalue_mismatch(modal: &crate::linear::ModalAnalysis, kept: &[usize], exported: &[faer::c64]) -> Option<Warning> {
+fn rom_eigenvalue_mismatch(modal: &crate::eigen::ModalAnalysis, kept: &[usize], exported: &[faer::c64]) -> Option<Warning> {
     let mut worst: Option<(f64, usize, faer::c64, faer::c64)> = None;
     let mut count = 0;
     for &i in kept {
@@ -479,7 +479,7 @@ fn rom_eigenvalue_mismatch(modal: &crate::linear::ModalAnalysis, kept: &[usize],
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::linear::{Classification, EigenRoute, ModalAnalysis, Mode, ModeKind};
+    use crate::eigen::{Classification, EigenRoute, ModalAnalysis, Mode, ModeKind};
     use faer::c64;
 
     fn mode(lambda: c64, error: f64) -> Mode {

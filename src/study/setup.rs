@@ -4,12 +4,14 @@ use std::path::Path;
 
 use crate::analysis::{reference_state, static_state_from, Reference};
 use crate::dae::ports::{InputPort, OutputPort};
-use crate::dae::{degenerate_clusters, linearize_sparse, EnergyShare, ModalEnergy, NodeInput, NodeOutput, State};
+use crate::dae::{linearize_sparse, NodeInput, NodeOutput, State};
+use crate::eigen::{degenerate_clusters, EnergyShare, ModalEnergy};
 use crate::input::eigen_pencil::PencilPorts;
 use crate::input::mbdyn::read_model;
 use crate::input::pencil::read_pencil_file;
-use crate::linear::krylov::{sparse_modes_with_progress, ModeTarget, SparseEigenSettings};
-use crate::linear::{EigenRoute, LinearDae, ModalAnalysis, SparseLinearDae};
+use crate::eigen::krylov::{sparse_modes_with_progress, ModeTarget, SparseEigenSettings};
+use crate::eigen::{EigenRoute, ModalAnalysis};
+use crate::linear::{LinearDae, SparseLinearDae};
 use crate::model::{InitialValueProblem, Model};
 use crate::output::modal::ModalReport;
 use crate::rom::{select_modes, ModeSelection};

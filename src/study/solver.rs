@@ -1,6 +1,6 @@
 //! Which eigensolver a [`super::Study`] uses, and what the sparse one certified.
 
-use crate::linear::krylov::{ModeTarget, SparseModalAnalysis};
+use crate::eigen::krylov::{ModeTarget, SparseModalAnalysis};
 use crate::rom::{ModeSelection, Ranking};
 
 use super::{Residualization, RomRequest, StudyError};
@@ -14,7 +14,7 @@ pub enum Solver {
     Auto,
     /// QZ on the whole (deflated) pencil: every eigenvalue, zero and infinite ones labelled.
     Dense,
-    /// Shift-invert Krylov–Schur on the sparse linearization (`linear::krylov`): only the
+    /// Shift-invert Krylov–Schur on the sparse linearization (`eigen::krylov`): only the
     /// modes asked for, no dense n x n matrix.
     Sparse,
 }

@@ -3,7 +3,7 @@
 
 use faer::Mat;
 
-use crate::dae::describe;
+use crate::eigen::describe;
 
 use super::{GridAccuracy, ReducedModel, RomCheck, StaticGains, Study};
 

@@ -8,7 +8,7 @@ use faer::c64;
 use crate::analysis::Reference;
 use crate::dae::State;
 use crate::input::mbdyn::{read_model_text, SetOverrides};
-use crate::linear::ModalAnalysis;
+use crate::eigen::ModalAnalysis;
 use crate::rom::mode_units;
 use crate::output::rom_file::RomExport;
 use crate::study::{EigenSettings, Ports, RomForm, RomRequest, Study, StudyError};

@@ -9,7 +9,8 @@ use romdyn::dae::ports::{Direction, Excitation, InputPort, Measurement, OutputPo
 use romdyn::dae::{element_part, linearize_ports, Assembler, State};
 use romdyn::element::{Anchor, DeformableDisplacement, DeformableHinge, Joint, LinearViscoelastic, RigidBody};
 use romdyn::kinematics::{Mat3, Vec3};
-use romdyn::linear::{EigenRoute, LinearDae, ModalAnalysis, ModeKind};
+use romdyn::eigen::{EigenRoute, ModalAnalysis, ModeKind};
+use romdyn::linear::LinearDae;
 use romdyn::model::{Model, ModelBuilder};
 use romdyn::rom::{full_frequency_response, select_modes, transmissibility, with_spring_ports, without_elements, DescriptorRom, ModeSelection};
 use romdyn::solve::{static_solution, NewtonSettings};

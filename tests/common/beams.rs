@@ -1,7 +1,9 @@
 //! Beam models of CASES C4/C5 built through the Rust API: 3-node finite-volume beams along
 //! x with masses lumped on the nodes by finite volumes.
 
-use romdyn::element::{Anchor, Beam3, BeamNode, Drive, Force, ForceFrame, Joint, RigidBody, SectionLaw, SectionOrientation};
+use romdyn::element::drive::Drive;
+
+use romdyn::element::{Anchor, Beam3, BeamNode, Force, ForceFrame, Joint, RigidBody, SectionLaw, SectionOrientation};
 use romdyn::kinematics::{Mat3, Vec3};
 use romdyn::model::{Label, Model, ModelBuilder};
 

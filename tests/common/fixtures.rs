@@ -52,5 +52,5 @@ impl Element for WrongSpring {
 /// sine wave, with a speed-dependent static coefficient (so that `μ'` enters) and viscous
 /// friction (tests/multibody/joint_friction.rs, hinge_friction.rs, screw_friction.rs, brake.rs).
 pub fn smooth_model() -> romdyn::element::ModLugre {
-    romdyn::element::ModLugre { sigma0: 3.0, sigma1: 0.4, sigma2: 0.2, kappa: 0.6, static_friction: romdyn::element::ScalarFunction::Multilinear { points: vec![(0.0, 0.6), (2.0, 0.3)], extrapolate: true } }
+    romdyn::element::ModLugre { sigma0: 3.0, sigma1: 0.4, sigma2: 0.2, kappa: 0.6, static_friction: romdyn::element::drive::ScalarFunction::Multilinear { points: vec![(0.0, 0.6), (2.0, 0.3)], extrapolate: true } }
 }

@@ -6,7 +6,7 @@ use romdyn::dae::{check_jacobians, Assembler, State};
 use romdyn::element::Element;
 use romdyn::model::ModelBuilder;
 use romdyn::input::mbdyn::{build, parse_text, MbdynModel};
-use romdyn::linear::ConstraintForm;
+use romdyn::model::ConstraintForm;
 use romdyn::model::Model;
 
 use super::fixtures::Noise;

@@ -2,7 +2,7 @@
 
 use romdyn::element::{Anchor, Joint, RigidBody};
 use romdyn::kinematics::{Mat3, Vec3};
-use romdyn::linear::ConstraintForm;
+use romdyn::model::ConstraintForm;
 use romdyn::model::{Model, ModelBuilder};
 
 /// CASES C2/C3 data (paper Table 4).

@@ -9,7 +9,8 @@
 //! plus one infinite eigenvalue (a zero row/column pair of F_yd, a 1 in F_y).
 
 use faer::Mat;
-use romdyn::linear::{EigenRoute, Jacobians, ModalAnalysis, ModeKind};
+use romdyn::eigen::{EigenRoute, ModalAnalysis, ModeKind};
+use romdyn::linear::Jacobians;
 
 struct Rng(u64);
 impl Rng {

@@ -9,7 +9,7 @@ use common::beam_family::{beam_inertia, cantilever};
 use common::mbdyn::read;
 use romdyn::c64;
 use romdyn::dae::{linearize, Assembler, State};
-use romdyn::linear::{EigenRoute, ModalAnalysis, ModeKind};
+use romdyn::eigen::{EigenRoute, ModalAnalysis, ModeKind};
 
 /// The default dense eigenanalysis of a model's initial configuration (the study's dense
 /// path: deflation, QZ, labels; dCoef chosen by the eigenanalysis itself).

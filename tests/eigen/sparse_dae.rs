@@ -9,7 +9,8 @@ use common::rel;
 use romdyn::analysis::{reference_state, Reference};
 use romdyn::dae::{linearize, linearize_sparse};
 use romdyn::input::mbdyn::read_model;
-use romdyn::linear::{EigenRoute, ModalAnalysis, SparseLinearDae};
+use romdyn::eigen::{EigenRoute, ModalAnalysis};
+use romdyn::linear::SparseLinearDae;
 use romdyn::rom::{full_frequency_response, full_static_gain, select_modes, with_static_correction, DescriptorRom, ModeSelection};
 
 fn beam() -> romdyn::input::mbdyn::MbdynModel {

@@ -10,8 +10,10 @@ use common::beams::{simply_supported, TABLE3};
 use common::models::{hanging_chain, pendulum};
 use faer::c64;
 use romdyn::dae::{linearize, linearize_sparse, Assembler, State};
-use romdyn::linear::krylov::{sparse_modes, ModeTarget, SparseEigenSettings, SparseModalAnalysis};
-use romdyn::linear::{ConstraintForm, EigenRoute, LinearDae, ModalAnalysis, ModeKind, SparseLinearDae};
+use romdyn::eigen::krylov::{sparse_modes, ModeTarget, SparseEigenSettings, SparseModalAnalysis};
+use romdyn::eigen::{EigenRoute, ModalAnalysis, ModeKind};
+use romdyn::linear::{LinearDae, SparseLinearDae};
+use romdyn::model::ConstraintForm;
 use romdyn::model::Model;
 use romdyn::solve::{static_solution, NewtonSettings};
 

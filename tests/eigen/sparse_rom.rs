@@ -9,8 +9,9 @@ use crate::common;
 use common::beams::{simply_supported, TABLE3};
 use common::models::hanging_chain;
 use romdyn::dae::{linearize, linearize_sparse, Assembler, NodeInput, NodeOutput, State};
-use romdyn::linear::krylov::{sparse_modes, ModeTarget, SparseEigenSettings};
-use romdyn::linear::{ConstraintForm, EigenRoute, ModalAnalysis};
+use romdyn::eigen::krylov::{sparse_modes, ModeTarget, SparseEigenSettings};
+use romdyn::eigen::{EigenRoute, ModalAnalysis};
+use romdyn::model::ConstraintForm;
 use romdyn::model::Model;
 use romdyn::rom::{full_static_gain, select_modes, with_static_correction, DescriptorRom, ModeSelection};
 use romdyn::solve::{static_solution, NewtonSettings};
@@ -58,7 +59,7 @@ fn compare(what: &str, model: &Model, input: &str, output: &str, keep: usize, fr
 fn between_modes(model: &Model) -> Vec<f64> {
     let dense = linearize(model, &at_rest(model), &[], &[], None).unwrap();
     let modal = ModalAnalysis::of_dae(&dense, EigenRoute::Lambda, None).unwrap();
-    let f: Vec<f64> = modal.of_kind(romdyn::linear::ModeKind::Dynamic).filter(|&k| modal.modes[k].lambda.im > 0.0).map(|k| modal.modes[k].freq_hz()).collect();
+    let f: Vec<f64> = modal.of_kind(romdyn::eigen::ModeKind::Dynamic).filter(|&k| modal.modes[k].lambda.im > 0.0).map(|k| modal.modes[k].freq_hz()).collect();
     let mut out = vec![0.5 * f[0]];
     out.extend((0..4).map(|k| 0.5 * (f[k] + f[k + 1])));
     out

@@ -8,7 +8,7 @@ use crate::common;
 use common::mbdyn::{read_test_file, test_file as path};
 use romdyn::analysis::run;
 use romdyn::dae::Assembler;
-use romdyn::element::c_rand::{CRand, RAND_MAX};
+use romdyn::element::drive::c_rand::{CRand, RAND_MAX};
 use romdyn::input::mbdyn::{build, parse_text, MbdynModel};
 
 fn text() -> String {

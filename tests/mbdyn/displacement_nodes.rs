@@ -163,7 +163,8 @@ fn elements_that_need_rotations_are_refused_on_displacement_nodes() {
 #[test]
 fn a_displacement_node_between_rods_has_the_string_modes() {
     use romdyn::dae::{linearize, State};
-    use romdyn::linear::{ConstraintForm, EigenRoute, ModalAnalysis, ModeKind};
+    use romdyn::eigen::{EigenRoute, ModalAnalysis, ModeKind};
+    use romdyn::model::ConstraintForm;
     let text = "begin: data; problem: initial value; end: data;
 begin: initial value; initial time: 0.; final time: 0.01; time step: 1.e-3; end: initial value;
 begin: control data; skip initial joint assembly; structural nodes: 3; rigid bodies: 1; joints: 4; end: control data;

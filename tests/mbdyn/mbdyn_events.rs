@@ -16,10 +16,11 @@ use std::sync::Arc;
 use common::fixtures::Noise;
 use romdyn::analysis::run;
 use romdyn::dae::{check_jacobians, Assembler, State};
-use romdyn::element::{Anchor, BistopRod, BistopStatus, Drive, NodeKinematics, Rod, RodViscosity};
+use romdyn::element::drive::Drive;
+use romdyn::element::{Anchor, BistopRod, BistopStatus, NodeKinematics, Rod, RodViscosity};
 use romdyn::input::mbdyn::{build, parse_text, MbdynModel};
 use romdyn::kinematics::Mat3;
-use romdyn::linear::ConstraintForm;
+use romdyn::model::ConstraintForm;
 use romdyn::model::ModelBuilder;
 
 

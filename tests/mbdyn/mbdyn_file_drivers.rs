@@ -40,7 +40,7 @@ fn file_driver_channels_give_the_closed_forms_and_mbdyns_motion() {
         // 0.5 s, 0.2 N every 0.1 s): an error of order h times the jump, below 2e-3 relative.
         assert!((x - exact).abs() < 2e-3 * exact, "node {}: {x} against the closed form {exact}", k + 1);
         // Same method and steps: MBDyn's derivatives phase moves node 1 by f dCoef t = 2e-9 m
-        // (its coefficient 1e-6 h, README); the others agree to the Newton tolerance.
+        // (its coefficient 1e-6 h, docs/src/mbdyn/integration.md); the others agree to the Newton tolerance.
         let tolerance = if k == 0 { 3e-9 } else { 1e-10 };
         assert!((x - mbdyn).abs() < tolerance, "node {}: {x} against MBDyn {mbdyn}", k + 1);
     }

@@ -4,7 +4,8 @@ use std::path::Path;
 
 use romdyn::dae::{check_jacobians, linearize, Assembler, State};
 use romdyn::input::mbdyn::{build, parse_text, read_model};
-use romdyn::linear::{ConstraintForm, EigenRoute, ModalAnalysis, ModeKind};
+use romdyn::eigen::{EigenRoute, ModalAnalysis, ModeKind};
+use romdyn::model::ConstraintForm;
 use romdyn::model::Summary;
 use romdyn::solve::{initial_derivatives, NewtonSettings};
 

@@ -157,7 +157,7 @@ fn a_mass_on_a_displacement_node_feels_the_turning_frame() {
 #[test]
 fn rotating_blades_have_the_centrifugal_frequencies() {
     use romdyn::dae::linearize;
-    use romdyn::linear::{EigenRoute, ModalAnalysis, ModeKind};
+    use romdyn::eigen::{EigenRoute, ModalAnalysis, ModeKind};
     let m = read_test_file("rotating_blades.mbd");
     let st = run(&m.model, &m.problem, &mut ()).unwrap().final_state;
     let dae = linearize(&m.model, &st, &[], &[], Some(5e-7)).unwrap();

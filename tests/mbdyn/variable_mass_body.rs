@@ -11,7 +11,8 @@ use crate::common;
 use common::mbdyn::{assert_jacobians, read_test_file, test_file};
 use romdyn::analysis::run;
 use romdyn::dae::Assembler;
-use romdyn::element::{Drive, VariableBody};
+use romdyn::element::VariableBody;
+use romdyn::element::drive::Drive;
 use romdyn::input::mbdyn::{build, parse_text};
 use romdyn::kinematics::{Mat3, Vec3};
 

@@ -1,4 +1,4 @@
-//! MBDyn's two-node beam `beam2` (README "Beams"): closed forms of the linear cantilever
+//! MBDyn's two-node beam `beam2` (docs/src/mbdyn/beams.md): closed forms of the linear cantilever
 //! (bending with shear, axial, torsion) and of pure bending at large rotation, MBDyn 1.7.3's
 //! numbers on the same files, and the `.act` rows MBDyn writes for it (label and the one
 //! evaluation point's force and moment). Its Jacobian is checked against finite

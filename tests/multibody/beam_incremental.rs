@@ -1,5 +1,5 @@
 //! The opt-in incremental update of the three-node beam (`BeamUpdate::Incremental`,
-//! `--beam-update incremental`; README "beam.cc is incremental"): MBDyn 1.7.3's beam.cc
+//! `--beam-update incremental`; docs/src/mbdyn/beams.md, "beam.cc is incremental"): MBDyn 1.7.3's beam.cc
 //! interpolates the nodes' rotation increments of each step and accumulates the section
 //! frame and curvature, and romdyn with this update gives MBDyn's numbers on the same files.
 
@@ -16,7 +16,7 @@ use romdyn::dae::{check_jacobians, Assembler, State};
 use romdyn::element::{Beam2, Beam3, BeamNode, BeamUpdate, SectionLaw, SectionOrientation};
 use romdyn::input::mbdyn::{read_model_text, SetOverrides};
 use romdyn::kinematics::Vec3;
-use romdyn::linear::ConstraintForm;
+use romdyn::model::ConstraintForm;
 use romdyn::model::ModelBuilder;
 
 /// The final positions of every node of `file` (relative to the crate) with `overrides`
@@ -70,7 +70,7 @@ fn a_static_equilibrium_with_the_incremental_update_is_mbdyn_s_single_step() {
 #[test]
 fn with_the_incremental_update_the_cantilever_example_gives_mbdyn_s_positions() {
     // Largest distance of a node from MBDyn's at t = 0.1 s, measured: 3.6e-10 m with the
-    // incremental update, 8.41e-6 m with the path-independent one (README).
+    // incremental update, 8.41e-6 m with the path-independent one (docs/src/mbdyn/beams.md).
     let mbdyn: Vec<Vec3> = MBDYN_CANTILEVER.iter().map(|(_, p)| Vec3::new(p[0], p[1], p[2])).collect();
     let largest = |update| {
         let x = final_positions("examples/cantilever.mbd", &[], update);

@@ -1,5 +1,5 @@
 //! The three-node beam at large rotation, and why romdyn's `beam3` differs there from
-//! MBDyn's (README, "MBDyn input files"): MBDyn 1.7.3's beam.cc is incremental. At each
+//! MBDyn's (docs/src/mbdyn/beams.md, "beam.cc is incremental"): MBDyn 1.7.3's beam.cc is incremental. At each
 //! step it interpolates the nodes' rotation increments (predicted `g_ref`, then Newton's
 //! correction `g` from the predicted orientation), composes the section frame
 //! `R_s = R(Σ N_i g_i) R(Σ N_i g_ref,i) R_s,prev` and accumulates the curvature

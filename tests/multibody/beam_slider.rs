@@ -13,7 +13,7 @@ use romdyn::dae::{check_jacobians, Assembler, State};
 use romdyn::element::{BeamSlider, SliderBeam, SliderKind};
 use romdyn::input::mbdyn::{build, parse_text, read_model};
 use romdyn::kinematics::{Mat3, Vec3};
-use romdyn::linear::ConstraintForm;
+use romdyn::model::ConstraintForm;
 use romdyn::model::{Model, ModelBuilder};
 
 /// A slider on node 10 along two beams (nodes 1–3, 3–5) through random, slightly curved

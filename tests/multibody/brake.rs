@@ -11,10 +11,11 @@ use common::mbdyn::test_file as path;
 use common::fixtures::{smooth_model, Noise};
 use romdyn::analysis::run;
 use romdyn::dae::{check_jacobians, Assembler, State};
-use romdyn::element::{Anchor, Drive, Joint, RevoluteHingeFriction};
+use romdyn::element::drive::Drive;
+use romdyn::element::{Anchor, Joint, RevoluteHingeFriction};
 use romdyn::input::mbdyn::{read_model_text, SetOverrides};
 use romdyn::kinematics::Vec3;
-use romdyn::linear::ConstraintForm;
+use romdyn::model::ConstraintForm;
 use romdyn::model::ModelBuilder;
 
 #[test]

@@ -9,10 +9,11 @@ use std::path::Path;
 use common::fixtures::Noise;
 use romdyn::analysis::{reference_state, run, Reference};
 use romdyn::dae::{check_jacobians, Assembler, State};
-use romdyn::element::{Anchor, FunctionHinge, ScalarFunction};
+use romdyn::element::drive::ScalarFunction;
+use romdyn::element::{Anchor, FunctionHinge};
 use romdyn::input::mbdyn::read_model;
 use romdyn::kinematics::euler123;
-use romdyn::linear::ConstraintForm;
+use romdyn::model::ConstraintForm;
 use romdyn::model::ModelBuilder;
 
 /// `F(x) = 10 x + x³`.

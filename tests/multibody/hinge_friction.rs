@@ -15,7 +15,7 @@ use romdyn::dae::{check_jacobians, Assembler, State};
 use romdyn::element::{Anchor, Joint, RevoluteHingeFriction};
 use romdyn::input::mbdyn::{read_model_text, SetOverrides};
 use romdyn::kinematics::Vec3;
-use romdyn::linear::ConstraintForm;
+use romdyn::model::ConstraintForm;
 use romdyn::model::ModelBuilder;
 
 #[test]

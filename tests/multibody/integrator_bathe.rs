@@ -11,7 +11,7 @@ use romdyn::analysis::run;
 use romdyn::dae::{Assembler, State};
 use romdyn::element::{Anchor, DeformableDisplacement, LinearViscoelastic, RigidBody};
 use romdyn::kinematics::{Mat3, Vec3};
-use romdyn::linear::ConstraintForm;
+use romdyn::model::ConstraintForm;
 use romdyn::model::ModelBuilder;
 use romdyn::solve::{initial_derivatives, initial_derivatives_with, Integrator, Method, NewtonSettings};
 

@@ -7,7 +7,7 @@ use common::cli::{pendulum_variant, romdyn, temp_dir, write_file, DISPLACED_NODE
 use common::fixtures::WrongSpring;
 use common::models::pendulum;
 use romdyn::analysis::{check_model_jacobians, Reference, JACOBIAN_CHECK_TOLERANCE};
-use romdyn::linear::ConstraintForm;
+use romdyn::model::ConstraintForm;
 use romdyn::model::{InitialValueProblem, Method, Model};
 use romdyn::solve::newton_dcoef;
 

@@ -14,7 +14,7 @@ use romdyn::dae::{check_jacobians, Assembler, State};
 use romdyn::element::{Anchor, InLineFriction, Joint};
 use romdyn::input::mbdyn::{build, parse_text, read_model_text, SetOverrides};
 use romdyn::kinematics::Vec3;
-use romdyn::linear::ConstraintForm;
+use romdyn::model::ConstraintForm;
 use romdyn::model::ModelBuilder;
 
 #[test]

@@ -17,7 +17,8 @@ use common::fixtures::Noise;
 use common::mbdyn::assert_jacobians;
 use romdyn::analysis::run;
 use romdyn::dae::Assembler;
-use romdyn::element::{Anchor, AngularAcceleration, ViscousBody, Drive, DrivenJoint, Joint, Tikhonov, TotalEquation, TotalReaction, VectorDrive};
+use romdyn::element::drive::Drive;
+use romdyn::element::{Anchor, AngularAcceleration, ViscousBody, DrivenJoint, Joint, Tikhonov, TotalEquation, TotalReaction, VectorDrive};
 use romdyn::input::mbdyn::{build, parse_text, read_model_text, MbdynModel, SetOverrides};
 use romdyn::kinematics::Vec3;
 

@@ -16,11 +16,12 @@ use common::fixtures::Noise;
 use common::mbdyn::assert_jacobians;
 use romdyn::analysis::run;
 use romdyn::dae::{check_jacobians, Assembler, State};
-use romdyn::element::{RotationRemnant, Anchor, AxialRotation, CardanoHinge, Distance, GimbalRotation, ImposedVelocity, VelocityKind, DeformableJoint, Drive, DrivenElement, DrivenJoint, Element, InvariantDeformableHinge, Joint, LinearViscoelastic, SectionLaw, VectorDrive};
+use romdyn::element::drive::Drive;
+use romdyn::element::{RotationRemnant, Anchor, AxialRotation, CardanoHinge, Distance, GimbalRotation, ImposedVelocity, VelocityKind, DeformableJoint, DrivenElement, DrivenJoint, Element, InvariantDeformableHinge, Joint, LinearViscoelastic, SectionLaw, VectorDrive};
 use romdyn::input::mbdyn::{build, parse_text, MbdynModel};
 use romdyn::kinematics::{Mat3, Vec3};
 
-use romdyn::linear::ConstraintForm;
+use romdyn::model::ConstraintForm;
 use romdyn::model::ModelBuilder;
 
 

@@ -6,9 +6,10 @@ use crate::common;
 
 use common::fixtures::{Noise, WrongSpring};
 use romdyn::dae::{check_jacobians, Assembler, State};
-use romdyn::element::{Anchor, Beam2, Beam3, DeformableJoint, ScalarFunction, BeamNode, SectionLaw, SectionOrientation, Couple, DeformableDisplacement, DeformableHinge, Drive, Force, ForceFrame, Joint, LinearViscoelastic, RigidBody, Rod};
+use romdyn::element::drive::{ScalarFunction, Drive};
+use romdyn::element::{Anchor, Beam2, Beam3, DeformableJoint, BeamNode, SectionLaw, SectionOrientation, Couple, DeformableDisplacement, DeformableHinge, Force, ForceFrame, Joint, LinearViscoelastic, RigidBody, Rod};
 use romdyn::kinematics::{Mat3, Vec3};
-use romdyn::linear::ConstraintForm;
+use romdyn::model::ConstraintForm;
 use romdyn::model::{Model, ModelBuilder};
 
 fn node(label: u32, n: &mut Noise) -> Anchor {

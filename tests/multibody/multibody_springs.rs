@@ -4,7 +4,7 @@ use romdyn::c64;
 use romdyn::dae::{linearize, Assembler, State};
 use romdyn::element::{Anchor, DeformableDisplacement, DeformableHinge, LinearViscoelastic, RigidBody};
 use romdyn::kinematics::{Mat3, Vec3};
-use romdyn::linear::{EigenRoute, ModalAnalysis, ModeKind};
+use romdyn::eigen::{EigenRoute, ModalAnalysis, ModeKind};
 use romdyn::model::{Model, ModelBuilder};
 use romdyn::solve::{static_solution, NewtonSettings};
 

@@ -18,7 +18,8 @@ use common::fixtures::Noise;
 use common::mbdyn::{assert_jacobians, assert_jacobians_after_run, read_test_file};
 use romdyn::analysis::run;
 use romdyn::dae::Assembler;
-use romdyn::element::{Anchor, Beam2, Beam3, BeamNode, DeformableJoint, Element, LawFunctions, LinearViscoelastic, NlsfRod, NodeKinematics, ScalarFunction, SectionLaw, SectionOrientation};
+use romdyn::element::drive::ScalarFunction;
+use romdyn::element::{Anchor, Beam2, Beam3, BeamNode, DeformableJoint, Element, LawFunctions, LinearViscoelastic, NlsfRod, NodeKinematics, SectionLaw, SectionOrientation};
 use romdyn::input::mbdyn::{read_model_text, MbdynModel, SetOverrides};
 use romdyn::kinematics::{rotation_vector, Vec3};
 
@@ -254,7 +255,7 @@ fn nonlinear_beams_stretch_and_bend_as_the_closed_form_and_mbdyn() {
     // MBDyn 1.7.3: stretched tips 1.2000000000000002 and 1.2 m; bent, beam3 tip
     // (9.5885100838405457e-01, 1.2448348585216877) m, 5.0000000027035840e-01 rad, beam2 tip
     // (9.5900669908770630e-01, 2.2448760604834535) m, 4.9999859187585599e-01 rad. MBDyn's beams
-    // accumulate the curvature step by step (README, "Beams"; tests/multibody/beam_rotation.rs), romdyn's
+    // accumulate the curvature step by step (docs/src/mbdyn/beams.md; tests/multibody/beam_rotation.rs), romdyn's
     // are functions of the nodes' state: measured 2.6e-7 m, 4.2e-8 rad (beam3) and 1.3e-6 m,
     // 1.4e-6 rad (beam2, whose own closed form romdyn meets to 1e-10 above) apart.
     close(at(&nodes, 9).x, [1.2000000000000002, 0.0, 0.0], 1e-12, "beam3 stretched against MBDyn");

@@ -14,7 +14,7 @@ use romdyn::analysis::run;
 use romdyn::dae::{check_jacobians, Assembler, State};
 use romdyn::element::{Anchor, Screw, ScrewFriction};
 use romdyn::input::mbdyn::{read_model_text, SetOverrides};
-use romdyn::linear::ConstraintForm;
+use romdyn::model::ConstraintForm;
 use romdyn::model::ModelBuilder;
 
 /// The thread: radius 0.7 m, half thread angle 0.4 rad, pitch 0.3 m.

@@ -12,7 +12,7 @@ use romdyn::dae::{check_jacobians, Assembler, State};
 use romdyn::element::{Anchor, Element, Screw};
 use romdyn::input::mbdyn::read_model;
 use romdyn::kinematics::{Mat3, Vec3};
-use romdyn::linear::ConstraintForm;
+use romdyn::model::ConstraintForm;
 use romdyn::model::ModelBuilder;
 
 #[test]

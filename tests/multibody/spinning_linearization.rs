@@ -16,7 +16,7 @@ use std::path::{Path, PathBuf};
 
 use common::cli::{romdyn, temp_dir, write_file};
 use romdyn::analysis::Reference;
-use romdyn::linear::ModeKind;
+use romdyn::eigen::ModeKind;
 use romdyn::study::{EigenSettings, Linearization, Study, Warning};
 
 fn model_file(name: &str) -> String {

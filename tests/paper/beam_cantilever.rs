@@ -39,7 +39,7 @@ fn upward_crossings(t: &[f64], y: &[f64]) -> Vec<f64> {
 #[test]
 fn released_cantilever_vibrates_stably_at_its_first_eigenfrequency() {
     use romdyn::dae::linearize;
-    use romdyn::linear::{EigenRoute, ModalAnalysis, ModeKind};
+    use romdyn::eigen::{EigenRoute, ModalAnalysis, ModeKind};
     use romdyn::solve::{initial_derivatives, Integrator, Method};
     let d = CANTILEVER;
     let elements = 10;

@@ -11,7 +11,7 @@ use common::rel;
 use romdyn::analysis::{reference_state, Reference};
 use romdyn::dae::{linearize, Assembler, State};
 use romdyn::input::mbdyn::{build, parse_text, MbdynModel};
-use romdyn::linear::{EigenRoute, ModalAnalysis, ModeKind};
+use romdyn::eigen::{EigenRoute, ModalAnalysis, ModeKind};
 use romdyn::model::Model;
 use romdyn::solve::{static_solution, NewtonSettings};
 

@@ -3,7 +3,8 @@
 
 
 use faer::{c64, Col, Mat};
-use romdyn::linear::{EigenRoute, Jacobians, ModalAnalysis, ModeKind};
+use romdyn::eigen::{EigenRoute, ModalAnalysis, ModeKind};
+use romdyn::linear::Jacobians;
 
 fn apply(m: &Mat<f64>, v: &Col<c64>, transpose: bool) -> Col<c64> {
     let n = m.nrows();
@@ -62,5 +63,52 @@ fn vectors_solve_the_right_and_adjoint_problems() {
                 assert_eq!(modal.modes[p].partner, Some(k));
             }
         }
+    }
+}
+
+/// A mode whose vectors are mostly an unknown `F_yd` does not weigh (a scaled reaction force
+/// `g = k x / S`, S = 1e-9, next to a decoupled heavy mass that makes ‖F_yd‖ = 1e6): its
+/// `uᵀ F_yd v` is small but exact, and the ROM must still scale `u` by it (issue 30: the old
+/// test against `1e3 ε ‖u‖ ‖F_yd‖ ‖v‖` left it unscaled, and the ROM lost the mode, as it
+/// lost the slow base modes of examples/ham_sas.mbd). Reference: the closed form
+/// `x/u = 1/(k − m ω²)` of the light oscillator (m = 1 kg, k = 4 N/m), 1e-9 relative.
+#[test]
+fn a_mode_carried_by_a_scaled_reaction_keeps_its_share_of_the_rom() {
+    use romdyn::linear::LinearDae;
+    use romdyn::rom::ModeSelection;
+    use romdyn::study::{EigenSettings, RomRequest, Study};
+    let (m, k, s, m2, k2) = (1.0, 4.0, 1e-9, 1e6, 1e8);
+    // Unknowns x, v, g (light oscillator), x2, v2 (heavy one). Rows: ẋ − v, m v̇ + S g − u,
+    // S g − k x, ẋ2 − v2, m2 v̇2 + k2 x2.
+    let mut fyd = Mat::<f64>::zeros(5, 5);
+    let mut fy = Mat::<f64>::zeros(5, 5);
+    fyd[(0, 0)] = 1.0;
+    fy[(0, 1)] = -1.0;
+    fyd[(1, 1)] = m;
+    fy[(1, 2)] = s;
+    fy[(2, 2)] = s;
+    fy[(2, 0)] = -k;
+    fyd[(3, 3)] = 1.0;
+    fy[(3, 4)] = -1.0;
+    fyd[(4, 4)] = m2;
+    fy[(4, 3)] = k2;
+    let mut b = Mat::<f64>::zeros(5, 1);
+    b[(1, 0)] = 1.0;
+    let mut c = Mat::<f64>::zeros(1, 5);
+    c[(0, 0)] = 1.0;
+    let names = |p: &str, n: usize| (0..n).map(|i| format!("{p}{i}")).collect::<Vec<_>>();
+    let dae = LinearDae { jacobians: Jacobians::Derivatives { fyd, fy }, b, c, unknown_names: names("y", 5), input_names: names("u", 1), output_names: names("z", 1), constraint_form: None, multipliers: Vec::new(), c_rate: None };
+    let study = Study::from_dae(dae, None, EigenSettings::default()).unwrap();
+    let light = study.modal().modes.iter().find(|md| (md.lambda.im - 2.0).abs() < 1e-9).expect("the light oscillator's +2j rad/s");
+    // The vector is the reaction's: |g| / |x| = k / S = 4e9.
+    let v = light.right.as_ref().unwrap();
+    assert!((v[2].norm() / v[0].norm() - k / s).abs() < 1e-6 * k / s);
+    let rom = study.reduce(&RomRequest::new(ModeSelection::Lowest(2))).unwrap();
+    let freqs = [0.05, 0.2, 0.5, 2.0];
+    let h = rom.ordinary.frequency_response(&freqs);
+    for (f, h) in freqs.iter().zip(&h) {
+        let w = 2.0 * std::f64::consts::PI * f;
+        let exact = 1.0 / (k - m * w * w);
+        assert!((h[(0, 0)].re - exact).abs() < 1e-9 * exact.abs() && h[(0, 0)].im.abs() < 1e-9 * exact.abs(), "{f} Hz: ROM {}, closed form {exact}", h[(0, 0)]);
     }
 }

@@ -4,7 +4,7 @@
 use romdyn::analysis::{check_model_jacobians, Reference};
 use romdyn::input::mbdyn::read_model;
 use romdyn::input::ports_file::read_ports_file;
-use romdyn::linear::ModeKind;
+use romdyn::eigen::ModeKind;
 use romdyn::rom::ModeSelection;
 use romdyn::study::{parse_imposed, Application, ChannelError, EigenSettings, FrequencyGrid, Residualization, RomRequest, Study, Warning};
 
@@ -52,7 +52,7 @@ fn ham_sas_free_model_has_rigid_body_modes_and_the_inverted_pendulum_instability
     // The full model without the dummy springs' Jacobian has them too; the ROM keeps the
     // grounded model's modes up to 2 Hz only, so its corrected eigenvalues approximate the
     // free ones (1e-2 relative).
-    let full = romdyn::linear::ModalAnalysis::compute(&s.dae().jacobians, romdyn::linear::EigenRoute::Lambda).unwrap();
+    let full = romdyn::eigen::ModalAnalysis::compute(&s.dae().jacobians, romdyn::eigen::EigenRoute::Lambda).unwrap();
     for p in &positive {
         let nearest = full.modes.iter().map(|m| m.lambda).min_by(|a, b| (a - faer::c64::new(*p, 0.0)).norm().total_cmp(&(b - faer::c64::new(*p, 0.0)).norm())).unwrap();
         assert!((nearest - faer::c64::new(*p, 0.0)).norm() < 1e-2 * p, "ROM {p}, full {nearest}");
@@ -97,10 +97,39 @@ fn ham_sas_transmissibility_is_one_below_the_modes_and_the_rom_follows_the_full_
     // quasi-static limit of a suspension, k/(k − m ω²) → 1).
     assert!((t.full[0][(0, 0)].norm() - 1.0).abs() < 0.01, "{}", t.full[0][(0, 0)]);
     // Well inside the ROM's band (modes up to 2 Hz kept, nothing residualized) the ROM's eq. 100
-    // follows the full model's (1e-2 relative; at 0.5 Hz the truncation reaches 5 %).
+    // follows the full model's (1e-2 relative).
     for (k, f) in freqs.iter().enumerate() {
         let (a, b) = (t.full[k][(0, 0)], t.rom[k][(0, 0)]);
         assert!((a - b).norm() < 1e-2 * a.norm(), "{f} Hz: full {a}, ROM {b}");
+    }
+}
+
+/// The base's horizontal modes (0.0050 Hz, the dummy springs) have vectors dominated by the
+/// ground clamp's reaction moment, an unknown `F_yd` does not weigh: `uᵀ F_yd v = 6e-12` for
+/// unit vectors, exact but below the old rounding test `1e3 ε ‖u‖ ‖F_yd‖ ‖v‖`, so the left
+/// vectors were left unscaled and every ROM lost those modes (issue 30). The reference is the
+/// full model's own response, solved at each frequency without any eigenvector: a ROM that
+/// keeps every dynamic mode reproduces it (measured 3.3e-7; the old ROM 7.4e-2), and the
+/// 0-2 Hz ROM's transmissibility follows the full model's up to 5 Hz, through the isolation
+/// regime (measured within 1 % up to 9.7 Hz; the old ROM's was 60 times the full model's at
+/// 2 Hz, 4.8e-3 against 7.8e-5, and did not improve with more modes).
+#[test]
+fn ham_sas_rom_keeps_the_modes_whose_vectors_are_reaction_forces() {
+    let s = study();
+    let every = s.reduce(&RomRequest::new(ModeSelection::Lowest(66))).unwrap();
+    let freqs: Vec<f64> = (0..60).map(|k| 0.01 * 10f64.powf(k as f64 / 20.0)).collect();
+    let c = s.compare(&every, freqs.clone()).unwrap();
+    for (k, f) in freqs.iter().enumerate() {
+        let (full, rom) = (&c.full[k], &c.rom[k]);
+        let e = (rom - full).norm_l2() / full.norm_l2();
+        assert!(e < 1e-5, "{f} Hz: every dynamic mode kept, relative error {e:.2e}");
+    }
+    let band = s.reduce(&RomRequest::new(ModeSelection::Band { fmin_hz: 0.0, fmax_hz: 2.0 })).unwrap();
+    let freqs = [0.5, 1.0, 2.0, 5.0];
+    let t = s.transmissibility(&band, &freqs).unwrap();
+    for (k, f) in freqs.iter().enumerate() {
+        let (a, b) = (t.full[k][(0, 0)], t.rom[k][(0, 0)]);
+        assert!((a - b).norm() < 1e-2 * a.norm(), "{f} Hz: table x / node 1 x full {a}, ROM {b}");
     }
 }
 
@@ -113,7 +142,7 @@ fn ham_sas_passes_the_jacobian_check() {
 
 #[test]
 fn ham_sas_lvdt_rom_names_the_port_pairs_its_normwise_error_hides() {
-    // README's 8 x 8 command (examples/ham_sas_control.json, dummy springs 901, 902
+    // The 8 x 8 command of docs/src/application/ports.md (examples/ham_sas_control.json, dummy springs 901, 902
     // removed, modes up to 2 Hz). The vertical sensor/actuator pairs (1e-7 m/N) sit six
     // decades under the horizontal ones (1e-1 m/N): without --residualize their static part,
     // which comes from stiff modes the ROM drops, is missing and they lie 1-2 decades under
@@ -141,10 +170,13 @@ fn ham_sas_lvdt_rom_names_the_port_pairs_its_normwise_error_hides() {
         } else {
             assert!(accuracy.largest_relative_error < 0.1, "{accuracy:?}");
             assert!(worst.relative > 1.0, "{worst:?}");
-            // Measured: LVDT V1 / H2, 14.6 at 0.25 Hz (the V/V pairs are 1-2 decades under too).
-            assert!(s.output_names()[worst.output].starts_with("LVDT V"), "{worst:?}");
+            // Measured: 14.6 at 0.25 Hz on a pair between a vertical and a horizontal port,
+            // LVDT V1 / H2 and its reciprocal twins (LVDT H4 / V4 since the slow base modes are
+            // kept, issue 30; the V/V pairs are 1-2 decades under too).
+            let vertical = s.output_names()[worst.output].starts_with("LVDT V") || s.input_names()[worst.input].starts_with('V');
+            assert!(vertical, "{worst:?}");
             let text = departs.join("\n");
-            assert!(text.contains("the ROM's response LVDT V") && text.contains("--residualize (folds"), "{text}");
+            assert!(text.contains("the ROM's response LVDT ") && text.contains("--residualize (folds"), "{text}");
         }
     }
 }
@@ -158,7 +190,7 @@ fn ham_sas_lvdt_rom_names_the_port_pairs_its_normwise_error_hides() {
 ///
 /// Labels: romdyn b38fd32's output of the same command (tests/data/ham_sas_eig_b38fd32.json),
 /// exactly. They differ from 265f71c's for the modes of degenerate clusters only (issue 11
-/// point 5; eigenvalues within 1e-8 relative, `romdyn::dae::CLUSTER_RELATIVE_GAP`): 31–38
+/// point 5; eigenvalues within 1e-8 relative, `romdyn::eigen::CLUSTER_RELATIVE_GAP`): 31–38
 /// (little pendulums yaw, 4 modes at 15.91 Hz), 39–48 (IP legs horizontal, 5 at 29.12 Hz),
 /// 61–66 (IP legs yaw, 3 at 88.73 Hz), 77–86 (IP legs pitch, 5 at 1399 Hz), 101–110 and
 /// 113–116 (little pendulums horizontal, 5 and 2 at 3339 Hz), 117–126 and 129–132 (little
@@ -179,7 +211,7 @@ fn ham_sas_eigenanalysis_is_that_of_265f71c() {
     let labels = s.mode_labels();
     let modes = &s.modal().modes;
     assert_eq!(modes.len(), recorded.len());
-    let clusters = romdyn::dae::degenerate_clusters(modes);
+    let clusters = romdyn::eigen::degenerate_clusters(modes);
     let in_cluster = |i: usize| clusters.iter().any(|c| c.contains(&i));
     // The 62 modes listed above, in 16 clusters (8 per sign of Im λ).
     assert_eq!(clusters.len(), 16, "{clusters:?}");

@@ -6,7 +6,8 @@ use crate::common;
 
 use common::{rel, with_coefficient};
 use romdyn::c64;
-use romdyn::linear::{EigenRoute, LinearDae, ModalAnalysis, ModeKind};
+use romdyn::eigen::{EigenRoute, ModalAnalysis, ModeKind};
+use romdyn::linear::LinearDae;
 use romdyn::rom::{full_static_gain, select_modes, DescriptorRom, ModeSelection};
 
 fn chain() -> LinearDae {

@@ -5,7 +5,7 @@ use crate::common;
 
 use common::models::pendulum;
 use romdyn::dae::{Assembler, State};
-use romdyn::linear::ConstraintForm;
+use romdyn::model::ConstraintForm;
 use romdyn::solve::{initial_derivatives, Integrator, Method, NewtonSettings};
 
 /// Period of the pendulum released from rest at `theta0`, from two successive downward

@@ -5,7 +5,8 @@ use crate::common;
 use common::models::{pendulum, G, J, L, M};
 use romdyn::c64;
 use romdyn::dae::{linearize, Assembler, State};
-use romdyn::linear::{ConstraintForm, EigenRoute, ModalAnalysis, ModeKind};
+use romdyn::eigen::{EigenRoute, ModalAnalysis, ModeKind};
+use romdyn::model::ConstraintForm;
 use romdyn::model::Summary;
 use romdyn::rom::{select_modes, DescriptorRom, ModeSelection};
 use romdyn::solve::{static_solution, NewtonSettings};
@@ -89,7 +90,7 @@ fn torque_to_angle_rom_and_mode_shape() {
 
 #[test]
 fn pendulum_mode_is_labelled_by_its_kinetic_energy() {
-    use romdyn::dae::{describe, kinetic_energy_shares};
+    use romdyn::eigen::{describe, kinetic_energy_shares};
     let (model, st) = equilibrium(false, ConstraintForm::Scaled);
     let dae = linearize(&model, &st, &[], &[], None).unwrap();
     let modal = ModalAnalysis::compute(&dae.jacobians, EigenRoute::Direct).unwrap();

@@ -159,7 +159,7 @@ fn a_force_on_the_clamped_ground_node_is_rounding_not_a_difference() {
 fn static_gain_rounding_of_a_stiff_beam_is_not_a_warning() {
     let lin = Linearization { reference: Reference::Static { load_steps: 10 }, inputs: vec!["21:Fy".parse().unwrap()], outputs: vec!["21:y".parse().unwrap()] };
     let study = Study::from_model_file("examples/cantilever.mbd".as_ref(), &lin, EigenSettings::default()).unwrap();
-    let lambdas: Vec<f64> = study.modal().modes.iter().filter(|m| m.kind == romdyn::linear::ModeKind::Dynamic).map(|m| m.lambda.norm()).collect();
+    let lambdas: Vec<f64> = study.modal().modes.iter().filter(|m| m.kind == romdyn::eigen::ModeKind::Dynamic).map(|m| m.lambda.norm()).collect();
     let spread = lambdas.iter().fold(0.0f64, |a, &b| a.max(b)) / lambdas.iter().fold(f64::INFINITY, |a, &b| a.min(b));
     assert!((5e3..5e4).contains(&spread), "{spread}");
     let every = study.reduce(&RomRequest::new(ModeSelection::Band { fmin_hz: 0.0, fmax_hz: 1e9 })).unwrap();
@@ -212,4 +212,31 @@ fn a_departure_advises_residualize_only_when_it_was_not_given() {
     let (ok, _, err) = romdyn(&["rom", "examples/cantilever.mbd", "--static", "--input", "21:Fy", "--output", "21:y", "--band", "0:60", "--residualize"]);
     assert!(ok, "{err}");
     assert!(!err.contains("departs"), "{err}");
+}
+
+/// A pair the full model holds at zero by symmetry (rounding, 1e-14, next to responses of
+/// order 1 in its row and column) has no scale of its own: a ROM's 2e-3 there is a small
+/// coupling against the responses around it, not a departure of 2e11 (README's HAM-SAS
+/// transmissibility command warned on such a pair, table x / node 1 y, at 3.13e10). Its
+/// error is measured on the smaller of its output's and input's largest responses; a pair
+/// of its own small scale (1e-7 in a row of 1e-7) keeps its own. By hand, from the matrices.
+#[test]
+fn a_pair_zero_by_symmetry_is_measured_against_its_row_and_column() {
+    use romdyn::study::{ChannelError, Comparison};
+    let m = |a: [[f64; 3]; 2]| faer::Mat::from_fn(2, 3, |i, j| c64::new(a[i][j], 0.0));
+    // Output 0 sees input 0 (1.0) and input 2 (1e-7, a weak but real coupling); output 1
+    // sees input 1 (2.0); the pairs (0, 1) and (1, 0) are zero but for rounding.
+    let full = m([[1.0, 1e-14, 1e-7], [3e-14, 2.0, 0.0]]);
+    let compare = |rom: [[f64; 3]; 2]| Comparison { freq_hz: vec![1.0], full: vec![full.clone()], rom: vec![m(rom)] }.accuracy().worst_channel.unwrap();
+    // The ROM couples (0, 1) by 2e-3: 2e-3 / min(row 0's 1.0, column 1's 2.0) = 2e-3.
+    let w = compare([[1.0, 2e-3, 1e-7], [0.0, 2.0, 0.0]]);
+    assert_eq!((w.output, w.input), (0, 1));
+    assert!((w.relative - 2e-3).abs() < 1e-13, "{w:?}");
+    assert!(w.relative < ChannelError::WARN);
+    // An invented coupling as large as the responses around it is a departure: 1.5 / 1.0.
+    let w = compare([[1.0, 1.5, 1e-7], [0.0, 2.0, 0.0]]);
+    assert!((w.output, w.input) == (0, 1) && (w.relative - 1.5).abs() < 1e-13 && w.relative > ChannelError::WARN, "{w:?}");
+    // The weak pair (0, 2) keeps its own scale: 2e-7 against 1e-7 is off by 1.0.
+    let w = compare([[1.0, 0.0, 2e-7], [0.0, 2.0, 0.0]]);
+    assert!((w.output, w.input) == (0, 2) && (w.relative - 1.0).abs() < 1e-9, "{w:?}");
 }

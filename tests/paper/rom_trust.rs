@@ -7,7 +7,8 @@ use std::path::PathBuf;
 
 use faer::Mat;
 use romdyn::analysis::Reference;
-use romdyn::linear::{EigenRoute, Jacobians, LinearDae};
+use romdyn::eigen::EigenRoute;
+use romdyn::linear::{Jacobians, LinearDae};
 use romdyn::rom::{full_frequency_response, ModalDamping, ModeSelection, Ranking};
 use romdyn::study::{BelowBand, EigenSettings, Linearization, Residualization, RomRequest, Study, StudyError, Warning};
 
@@ -151,10 +152,10 @@ fn count_and_dominance_agree_where_the_lowest_modes_dominate() {
     let (f, d) = (two(Ranking::Frequency), two(Ranking::Dominance));
     assert_ne!(f.selection.kept, d.selection.kept);
     assert!(f.warnings.iter().any(|w| matches!(w, Warning::Invisible { .. })));
-    // Dominance keeps the first and third bending pairs: 309.93 and 2659.17 rad/s (README table, paper §7.1 Fig. 7), 1e-3 relative.
+    // Dominance keeps the first and third bending pairs: 309.93 and 2659.17 rad/s (docs/src/cases.md, C4 table; paper §7.1 Fig. 7), 1e-3 relative.
     let w: Vec<f64> = d.kept_modes.iter().map(|k| k.lambda.im.abs()).collect();
     assert!((w[0] / 309.928 - 1.0).abs() < 1e-3 && (w[1] / 2659.169 - 1.0).abs() < 1e-3, "{w:?}");
-    // … whose ROM keeps the static gain to −0.170 % (README table; paper 0.2 %).
+    // … whose ROM keeps the static gain to −0.170 % (docs/src/cases.md, C4 table; paper 0.2 %).
     let g = d.static_gains.rom.as_ref().unwrap()[(0, 0)] / (1.0 / 48e3 + 1.0 / 4e6) - 1.0;
     assert!((g + 0.0017).abs() < 1e-4, "{g}");
 }
@@ -241,7 +242,7 @@ fn modal_damping_applies_to_the_rom_only_and_keeps_the_static_gain() {
     }
     let (g0, g1) = (plain.static_gains.rom.as_ref().unwrap()[(0, 0)], damped.static_gains.rom.as_ref().unwrap()[(0, 0)]);
     assert!((g1 / g0 - 1.0).abs() < 1e-9, "{g0} {g1}");
-    // The full model's first pair is still undamped (|Re λ| at rounding, README table 1.7e-9 rad/s).
+    // The full model's first pair is still undamped (|Re λ| at rounding: the modal table of docs/src/guide/getting-started.md).
     assert!(study.modal().modes[0].lambda.re.abs() < 1e-6);
     // At resonance the damped ROM's magnitude is its static gain / (2ζ) = 25 × static (SDOF closed form), 1 %.
     let f = w / (2.0 * std::f64::consts::PI);

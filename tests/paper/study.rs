@@ -18,7 +18,7 @@ fn beam_rom_through_the_study_keeps_the_paper_static_gains() {
     let first = study.reduce(&RomRequest::new(ModeSelection::Lowest(1))).unwrap();
     let full = first.static_gains.full.as_ref().unwrap()[(0, 0)];
     assert!((full / exact - 1.0).abs() < 1e-9, "{full}");
-    // Paper §7.1: one mode loses 1.6 % of the static gain (romdyn −1.570 %, README table).
+    // Paper §7.1: one mode loses 1.6 % of the static gain (romdyn −1.570 %, docs/src/cases.md, C4 table).
     let g = first.static_gains.rom.as_ref().unwrap()[(0, 0)];
     assert!((g / exact - 1.0 + 0.01570).abs() < 5e-5, "{g}");
     // Residualizing every dropped mode restores the full static gain (eqs. 57–63), 1e-9.

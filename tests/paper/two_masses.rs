@@ -4,7 +4,7 @@ use crate::common;
 
 use common::{rel, two_masses, with_coefficient};
 use romdyn::c64;
-use romdyn::linear::{EigenRoute, ModalAnalysis, ModeKind};
+use romdyn::eigen::{EigenRoute, ModalAnalysis, ModeKind};
 use romdyn::rom::{full_frequency_response, select_modes, DescriptorRom, ModeSelection};
 
 const DCOEFS: [f64; 5] = [1e-1, 1e-2, 1e-3, 1e-4, 1e-5];
@@ -122,7 +122,7 @@ fn full_static_gain_in_the_form_of_eq_30_restores_the_constraint() {
     // Eq. 30: the constraint row and the multiplier column live in F_yd, so F_y is singular;
     // with the multiplier known, the static matrix is eq. 29's F_y and the gain is 1/k =
     // 1e-3 m/N (CASES C1), to rounding. Without that knowledge there is no static gain.
-    use romdyn::linear::ConstraintForm;
+    use romdyn::model::ConstraintForm;
     use romdyn::rom::full_static_gain;
     let mut dae = two_masses(10.0, true);
     assert!(full_static_gain(&dae).is_err());

@@ -337,7 +337,7 @@ fn lenient_inputs_are_refused_or_accepted_as_documented() {
     let o = romdyn_in(&d, &["eig", "p.mbd"]);
     assert_eq!(o.code, Some(1));
     assert!(o.stderr.contains("p.mbd:1:6: error: byte 0xE9 is not UTF-8 text"), "{}", o.stderr);
-    // A UTF-8 byte-order mark is accepted: the pendulum's ±3.130527 j rad/s (README, CASES C2).
+    // A UTF-8 byte-order mark is accepted: the pendulum's ±3.130527 j rad/s (CASES C2, docs/src/cases.md).
     std::fs::write(d.join("p.mbd"), format!("\u{feff}{PENDULUM}")).unwrap();
     let o = romdyn_in(&d, &["eig", "p.mbd"]);
     assert_eq!(o.code, Some(0), "{}", o.stderr);
@@ -361,4 +361,30 @@ fn out_of_memory_is_a_message_not_an_abort() {
     assert_eq!(out.status.code(), Some(1), "{err}");
     assert!(err.contains("romdyn: error: out of memory: the system refused ") && !err.contains("memory allocation of"), "{err}");
     std::fs::remove_dir_all(&d).ok();
+}
+
+/// A constitutive law whose scalar function leaves its domain (`log` at zero rotation) gives
+/// a residual that is not finite: the failure names the element that put it there and the
+/// equation, in the initial assembly and in the derivatives' Newton alike (issue 32: both
+/// said only "the residual is not finite"). The law's reading is the test's own file,
+/// tests/mbdyn_files/function_hinge.mbd with a `log` in place of its cubic part and a second
+/// hinge, 5, carrying it.
+#[test]
+fn a_law_out_of_its_domain_is_named_by_its_element() {
+    let original = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files/function_hinge.mbd")).unwrap();
+    let text = original
+        .replace("scalar function: \"cubic part\", pow, 3.;", "scalar function: \"cubic part\", log, 10.;")
+        .replace("joints: 2;", "joints: 3;")
+        .replace(
+            "joint: 2, deformable hinge, 1, 2, scalar function elastic isotropic, \"stiffening\";",
+            "joint: 2, deformable hinge, 1, 2, linear elastic, 10.;\n    joint: 5, deformable hinge, 1, 2, scalar function elastic isotropic, \"stiffening\";",
+        );
+    let run = |text: &str| {
+        let m = romdyn::input::mbdyn::parse_text(text, Path::new("f.mbd")).and_then(|d| romdyn::input::mbdyn::build(&d)).unwrap_or_else(|e| panic!("{e}"));
+        romdyn::analysis::run(&m.model, &m.problem, &mut ()).err().map(|e| e.to_string()).unwrap_or_default()
+    };
+    let e = run(&text);
+    assert!(e.contains("initial assembly diverged") && e.contains("= NaN, from deformable hinge 5"), "{e}");
+    let e = run(&text.replace("    output precision: 15;", "    output precision: 15;\n    skip initial joint assembly;"));
+    assert!(e.contains("the residual is not finite: deformable hinge 5: its contribution to node 2 moment") && e.contains("is NaN"), "{e}");
 }

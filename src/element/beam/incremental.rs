@@ -14,8 +14,8 @@
 //! The history is the element's latched data ([`crate::element::Element::latch`]), so
 //! residuals and Jacobians hold it fixed, and a state without any (before the first step)
 //! reads the initial configuration: `P_i = R_i⁰`, `R_s,ref = R_s⁰`, `κ_ref = 0`. The
-//! equilibrium then depends on the load path and the predictor, as MBDyn's does (README,
-//! "beam.cc is incremental"); the path-independent beam is romdyn's default.
+//! equilibrium then depends on the load path and the predictor, as MBDyn's does (the book,
+//! docs/src/mbdyn/beams.md: "beam.cc is incremental"); the path-independent beam is romdyn's default.
 
 use std::sync::Arc;
 

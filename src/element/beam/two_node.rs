@@ -15,7 +15,7 @@
 //!   its rotation (`θ` below π per element).
 //!
 //! MBDyn's beam2.cc interpolates the rotation increments of each step instead (as its
-//! beam3, README "Beams"); for a planar bending by any angle its midpoint frame and
+//! beam3, the book's Beams chapter, docs/src/mbdyn/beams.md); for a planar bending by any angle its midpoint frame and
 //! curvature, accumulated in small steps, are these. Viscous section laws are refused.
 //!
 //! With the opt-in [`BeamUpdate::Incremental`] the beam follows beam2.cc (MBDyn 1.7.3,

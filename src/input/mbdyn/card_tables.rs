@@ -9,7 +9,7 @@ use std::collections::HashMap;
 use std::sync::{Arc, RwLock};
 
 use super::diagnostic::Span;
-use crate::element::{Drive, EvaluationCost, ScalarFunction};
+use crate::element::drive::{Drive, EvaluationCost, ScalarFunction};
 
 /// A card: the function (shared by every use), its statement, its place and its cost.
 pub(super) type Card = (Arc<ScalarFunction>, usize, Span, EvaluationCost);

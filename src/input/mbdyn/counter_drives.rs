@@ -7,8 +7,8 @@ use std::sync::{Arc, Mutex};
 
 use super::cursor::Cursor;
 use super::diagnostic::MbdynError;
-use crate::element::c_rand::{time_seed, RandomDraws};
-use crate::element::{Drive, StepDrive, StepKind};
+use crate::element::drive::c_rand::{time_seed, RandomDraws};
+use crate::element::drive::{Drive, StepDrive, StepKind};
 
 /// The drives with a memory of the steps read so far (`sample and hold`, `discrete filter`,
 /// the counters and `random`), which the model advances at every step, and the numbers the

@@ -25,7 +25,8 @@ use super::model_namespace::{node_private_data, Live, Reads};
 use super::parser::Statement;
 use super::template_dim::{TemplateDim, Term};
 use super::value::TypedValue;
-use crate::element::{note_evaluation_failure, Drive, ElementState, EvaluationCost, StepDrive, StepKind, TimeFunction};
+use crate::element::ElementState;
+use crate::element::drive::{note_evaluation_failure, Drive, EvaluationCost, StepDrive, StepKind, TimeFunction};
 use crate::kinematics::{Mat3, Vec3};
 
 /// Drive callers romdyn evaluates.

@@ -19,7 +19,7 @@ pub enum Parsed {
     /// A central gravity field: its centre [m] and `G M` [m³/s²].
     CentralGravity { origin: Vec3, gm: f64 },
     /// A uniform field varying in time: `direction · drive(t)` [m/s²].
-    DrivenGravity { direction: Vec3, drive: crate::element::Drive },
+    DrivenGravity { direction: Vec3, drive: crate::element::drive::Drive },
     /// A rigid body (which a central gravity field acts on).
     Body(crate::element::RigidBody),
     /// A `total equation`, waiting for the reactions that apply its multipliers.
@@ -45,6 +45,8 @@ pub struct ElementContext<'a> {
     pub beams: &'a BeamNodes,
     /// The statement being read (cards must come before it).
     pub seq: usize,
+    /// `model: static` in control data: every node is static and bodies only weigh.
+    pub static_model: bool,
 }
 
 impl<'a> ElementContext<'a> {

@@ -24,7 +24,8 @@ use std::sync::Arc;
 use super::cursor::Cursor;
 use super::diagnostic::{MbdynError, Sources, Span};
 use super::parser::{known, same_keyword, Statement};
-use crate::element::{Drive, Element, ElementState, StepDrive, TimeFunction};
+use crate::element::drive::{Drive, StepDrive, TimeFunction};
+use crate::element::{Element, ElementState};
 use crate::model::Label;
 
 use super::expr::element_calls::{Cell, StringRead};
@@ -219,7 +220,7 @@ pub fn dof_drive(c: &mut Cursor, structural: &HashSet<Label>, inner: &dyn Fn(&mu
             let (k, differential) = ((i - 1) as usize, order == "differential");
             let f = inner(c)?;
             let text = format!("dof, {label}, structural, {i}, {order}, {f:?}");
-            let cost = crate::element::EvaluationCost::around([f.cost()]);
+            let cost = crate::element::drive::EvaluationCost::around([f.cost()]);
             Ok(Drive::Expression(TimeFunction::reading_state(text, move |_, st| {
                 let Some(n) = st.and_then(|s| s.structural_node(label)) else { return f64::NAN };
                 let x = if differential { n.xdot[k] } else { n.x[k] };
@@ -251,7 +252,7 @@ pub fn element_drive(c: &mut Cursor, reads: &PrivateReads, seq: usize, inner: &d
 
 /// `f` of the datum in `cell`, read from the state the drive is evaluated in.
 fn reading(text: String, cell: Cell, f: Drive) -> Drive {
-    let cost = crate::element::EvaluationCost::around([f.cost()]);
+    let cost = crate::element::drive::EvaluationCost::around([f.cost()]);
     Drive::Expression(TimeFunction::reading_state(text, move |_, st: Option<&dyn ElementState>| {
         let (Some(st), Some(datum)) = (st, cell.get()) else { return f64::NAN };
         datum.value(st).map_or(f64::NAN, |x| f.value_at(x, Some(st)))

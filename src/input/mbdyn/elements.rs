@@ -11,7 +11,8 @@ use super::drives::{single_term, template_vec3};
 use super::joints::joint;
 use super::parser::{known, Statement};
 use super::references::Frame;
-use crate::element::{Couple, Drive, Element, Force, ForceFrame, RigidBody, VectorDrive};
+use crate::element::drive::Drive;
+use crate::element::{Couple, Element, Force, ForceFrame, RigidBody, VectorDrive};
 use crate::kinematics::{Mat3, Vec3};
 use crate::model::Label;
 
@@ -104,7 +105,9 @@ impl ElementContext<'_> {
 fn body(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Parsed, MbdynError> {
     let span = c.here();
     let (n, point) = ctx.point_node(c, "node of the body")?;
-    if point && n.kind == crate::model::NodeKind::Static {
+    // body.cc (ReadBody): a mass needs a dynamic displacement node, except in a static model,
+    // where every node is static and the mass only weighs (`StaticMass`).
+    if point && n.kind == crate::model::NodeKind::Static && !ctx.static_model {
         return Err(c.error_at(span, format!("body {label}: structural node {} is a static displacement node; a mass needs a dynamic displacement node (MBDyn 1.7.3: \"illegal structural node type\")", n.label)));
     }
     let on = ctx.on(n);

@@ -174,7 +174,7 @@ impl Samples {
 
 /// `file, LABEL [, CHANNEL] [, amplitude, A]` (drive_.cc, `FileDCR::Read`): a channel of a
 /// file driver read before the drive caller.
-pub fn file_drive(c: &mut Cursor, drivers: &FileDrivers, seq: usize) -> Result<crate::element::Drive, MbdynError> {
+pub fn file_drive(c: &mut Cursor, drivers: &FileDrivers, seq: usize) -> Result<crate::element::drive::Drive, MbdynError> {
     let span = c.here();
     let label = c.label("file driver label")?;
     let Some(d) = drivers.get(&label).filter(|d| d.seq < seq) else {
@@ -192,7 +192,7 @@ pub fn file_drive(c: &mut Cursor, drivers: &FileDrivers, seq: usize) -> Result<c
         return Err(c.error("expected the channel number before 'amplitude' (MBDyn reads a channel whenever an argument follows the driver's label)"));
     }
     let amplitude = if c.accept("amplitude") { c.real("amplitude")? } else { 1.0 };
-    Ok(crate::element::Drive::Sampled(crate::element::SampledChannel { t0: d.t0, dt: d.dt, values: d.channels[channel - 1].clone(), linear: d.linear, pad_zeros: d.pad_zeros, amplitude }))
+    Ok(crate::element::drive::Drive::Sampled(crate::element::drive::SampledChannel { t0: d.t0, dt: d.dt, values: d.channels[channel - 1].clone(), linear: d.linear, pad_zeros: d.pad_zeros, amplitude }))
 }
 
 #[cfg(test)]

@@ -15,7 +15,8 @@ use super::element_context::ElementContext;
 use super::total_joint::total;
 use super::laws::{linear_law, nonlinear_law, rest_strain, three, LinearLaw};
 use super::references::{Context, Frame, OtherSide};
-use crate::element::{Anchor, AngularAcceleration, ViscousBody, RevoluteHingeFriction, AxialRotation, GimbalRotation, ImposedVelocity, VelocityKind, CardanoHinge, DeformableJoint, DrivenJoint, InvariantDeformableHinge, VectorDrive, DeformableDisplacement, DeformableHinge, Distance, Drive, Element, InLineFriction, Joint, Rod, RodViscosity};
+use crate::element::drive::Drive;
+use crate::element::{Anchor, AngularAcceleration, ViscousBody, RevoluteHingeFriction, AxialRotation, GimbalRotation, ImposedVelocity, VelocityKind, CardanoHinge, DeformableJoint, DrivenJoint, InvariantDeformableHinge, VectorDrive, DeformableDisplacement, DeformableHinge, Distance, Element, InLineFriction, Joint, Rod, RodViscosity};
 use crate::kinematics::{Mat3, Vec3};
 use crate::model::{Label, StructuralNode};
 

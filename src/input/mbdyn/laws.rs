@@ -21,7 +21,8 @@ use super::cursor::Cursor;
 use super::diagnostic::{MbdynError, Span};
 use super::drives::{single_term, template_vec3, Drives};
 use super::parser::Statement;
-use crate::element::{Drive, LawFunctions, ScalarFunction};
+use crate::element::LawFunctions;
+use crate::element::drive::{Drive, ScalarFunction};
 use crate::kinematics::{Mat3, Vec3};
 
 /// A (visco)elastic law in `dim` dimensions: `f = K (ε − ε_p) + C ε̇ + f_p`, plus a nonlinear

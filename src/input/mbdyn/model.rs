@@ -122,7 +122,7 @@ fn cards(doc: &Document) -> Result<Cards, MbdynError> {
 /// `output meter: DRIVE` in control data (dataman3.cc, case OUTPUTMETER): the drive that
 /// decides which steps are written; with `output frequency` MBDyn stops ("Output
 /// meter/frequency already defined"), and so does romdyn.
-fn output_meter(cd: Option<&Block>, src: &super::diagnostic::Sources, drives: &Drives) -> Result<Option<crate::element::Drive>, MbdynError> {
+fn output_meter(cd: Option<&Block>, src: &super::diagnostic::Sources, drives: &Drives) -> Result<Option<crate::element::drive::Drive>, MbdynError> {
     let mut meter = None;
     let mut seen: Option<Span> = None;
     for st in cd.map_or(&[][..], |b| &b.statements) {
@@ -181,6 +181,14 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
             super::element_reads::parameter_node(&mut c, &mut parameter_nodes)?;
         } else {
             node_statement(st, &mut c, &cards.frames, &mut nodes)?;
+        }
+    }
+    // strnode.cc, `ReadStructNode`: in a static model MBDyn turns every dynamic node (and
+    // dynamic displacement node) into a static one, after reading it as written (its
+    // `accelerations` flag included): its bodies then only weigh (`StaticBody`, `StaticMass`).
+    if static_model {
+        for n in nodes.0.iter_mut().filter(|n| !n.dummy && n.node.kind == NodeKind::Dynamic) {
+            n.node.kind = NodeKind::Static;
         }
     }
     // strnode.cc: a dynamic node computes its accelerations when it is output and asks for
@@ -251,7 +259,7 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
         {
             output_only.insert(("inertia", *x as u32));
         }
-        let ctx = ElementContext { nodes: &nodes, frames: &cards.frames, drives: &cards.drives, laws: &cards.laws, beams: &beams, seq: st.seq };
+        let ctx = ElementContext { nodes: &nodes, frames: &cards.frames, drives: &cards.drives, laws: &cards.laws, beams: &beams, seq: st.seq, static_model };
         let label_span = c.here();
         let parsed = element(st, &mut c, &ctx)?;
         let parsed = match &st.driven {
@@ -260,19 +268,14 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
         };
         let parsed = match parsed {
             Parsed::Body(mut body) => {
-                // body.cc (ReadBody): in a static model a body needs a static node and only
-                // weighs (`StaticBody`), as romdyn's body on a static node.
-                if static_model && nodes.find(body.node).is_some_and(|n| n.node.kind == NodeKind::Dynamic) {
-                    return Err(src.error(st.span, format!("body {}: structural node {} is dynamic, and 'model: static' needs static nodes for bodies (MBDyn 1.7.3: \"illegal structural node type … in static model analysis\")", body.label, body.node)));
-                }
+                // body.cc (ReadBody): in a static model a body sits on a static node (every
+                // dynamic one has turned static above) and only weighs (`StaticBody`), as
+                // romdyn's body on a static node.
                 bodies.push((body.label, body.node, body.mass, body.offset));
                 body.frame = frame_motion.clone();
                 Parsed::Element(Box::new(body))
             }
             Parsed::Element(e) if e.type_name() == "variable body" => {
-                if static_model {
-                    return Err(src.error(st.span, "a variable-mass body in a static model ('model: static') is not supported by romdyn"));
-                }
                 if frame_motion.is_some() {
                     return Err(src.error(st.span, "a variable-mass body in a model with 'rigid body kinematics' is not supported by romdyn"));
                 }
@@ -368,7 +371,7 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
 /// A gravity field romdyn applies body by body (a constant uniform field is the model's).
 enum Field {
     Central { origin: crate::kinematics::Vec3, gm: f64 },
-    Driven { direction: crate::kinematics::Vec3, drive: crate::element::Drive },
+    Driven { direction: crate::kinematics::Vec3, drive: crate::element::drive::Drive },
 }
 
 /// MBDyn's data manager reads `control data`, then `nodes`, `drivers` and `elements` in

@@ -5,7 +5,7 @@
 //! When they are evaluated is the caller's business: while the file is read (`set:`,
 //! `remark:`) they see the nodes as written so far; in a `string` drive during the run they
 //! see the state being assembled (the current Newton iterate, as MBDyn's
-//! `StructNode::GetXCurr`; see [`crate::element::TimeFunction`]).
+//! `StructNode::GetXCurr`; see [`crate::element::drive::TimeFunction`]).
 
 use std::collections::HashMap;
 

@@ -11,7 +11,7 @@ use super::diagnostic::{MbdynError, Sources};
 use super::drives::{drive, Drives};
 use super::parser::{known, Block};
 use crate::model::{AbortAfter, AutoCoefficient, EigenFileSuffix, EigenOutput, EigenRequest, InitialValueProblem, Method, ResidualNorm, SuffixWidth};
-use crate::element::Drive;
+use crate::element::drive::Drive;
 
 /// Reads the `data` block.
 pub fn data(block: &Block, sources: &Sources) -> Result<(), MbdynError> {

@@ -13,7 +13,8 @@ use super::cursor::Cursor;
 use super::diagnostic::MbdynError;
 use super::drives::{template_vec3, Drives};
 use super::references::{Context, Frames};
-use crate::element::{Drive, FrameMotion, VectorDrive};
+use crate::element::drive::Drive;
+use crate::element::{FrameMotion, VectorDrive};
 use crate::kinematics::{Mat3, Vec3};
 
 const ITEMS: [&str; 6] = ["position", "orientation", "velocity", "angular velocity", "acceleration", "angular acceleration"];

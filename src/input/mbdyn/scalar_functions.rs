@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use super::cursor::Cursor;
 use super::diagnostic::{MbdynError, Span};
-use crate::element::{EvaluationCost, ScalarFunction};
+use crate::element::drive::{EvaluationCost, ScalarFunction};
 
 pub use super::card_tables::{FunctionsBefore, ScalarFunctions};
 

@@ -1,7 +1,7 @@
 //! The dimensions of MBDyn's template drive callers other than the 3-vector, and their
 //! terms (read in [`super::templates`], kept in [`super::drives::Drives`]).
 
-use crate::element::Drive;
+use crate::element::drive::Drive;
 
 /// The dimension of a template drive caller other than the 3-vector.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

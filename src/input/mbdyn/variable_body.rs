@@ -9,13 +9,19 @@ use super::diagnostic::{MbdynError, Span};
 use super::drives::{drive, template_vec3};
 use super::element_context::{ElementContext, Parsed};
 use super::templates::{template, TemplateDim};
-use crate::element::{Drive, VariableBody};
+use crate::element::VariableBody;
+use crate::element::drive::Drive;
 use crate::kinematics::Mat3;
 use crate::model::{Label, NodeKind, StructuralNode};
 
 /// Reads what follows `variable mass` on the body `label` of node `n` (`point`: a
 /// displacement node; `node_span`: where the node is named).
 pub fn variable_body(label: Label, n: &StructuralNode, point: bool, node_span: Span, c: &mut Cursor, ctx: &ElementContext) -> Result<Parsed, MbdynError> {
+    // body_vm.cc (ReadVariableBody): in a static model every node is static and MBDyn
+    // builds a `StaticVariableBody` (its weight only), which romdyn does not have.
+    if ctx.static_model && !point {
+        return Err(c.error_at(node_span, format!("variable body {label} in a static model ('model: static') is not supported by romdyn (MBDyn 1.7.3 runs it as a static variable body, its weight only)")));
+    }
     if point || n.kind != NodeKind::Dynamic {
         return Err(c.error_at(node_span, format!("variable body {label}: structural node {} is not a dynamic node; a variable-mass body needs one (MBDyn 1.7.3: \"illegal structural node type\")", n.label)));
     }

@@ -55,8 +55,8 @@ pub enum AssemblyError {
     NotConverged { iterations: usize, test: f64, tolerance: f64, worst: String, value: f64 },
     #[error("initial assembly: the Newton matrix is singular at iteration {iteration} (redundant joints, or a node no joint or penalty holds)")]
     Singular { iteration: usize },
-    #[error("initial assembly diverged at iteration {iteration} (the residual is not finite)")]
-    Diverged { iteration: usize },
+    #[error("initial assembly diverged at iteration {iteration}: the residual is not finite ({detail})")]
+    Diverged { iteration: usize, detail: String },
     #[error("{element}: its constraint {constraint} is violated by {value:.3e} in the configuration written in the file, and control data says 'skip initial joint assembly' (without it, MBDyn's initial assembly, which romdyn runs, would make the joint hold)")]
     Violated { element: String, constraint: String, value: f64 },
 }
@@ -211,6 +211,29 @@ impl Problem<'_> {
     }
 
     /// MBDyn's test and the worst row (`true`: a velocity row).
+    /// What is not finite: the first such equation, with the drive evaluation that failed
+    /// there, if one did (a scalar function or drive out of its domain, named where written).
+    fn not_finite(&self, u: &Unknowns, pos: &[f64], vel: &[f64]) -> String {
+        let first = |v: &[f64], derivative: bool| v.iter().position(|x| !x.is_finite()).map(|i| format!("{} = {}", self.layout.row_name(i, derivative), v[i]));
+        let unknowns = [&u.x, &u.g, &u.v, &u.w].iter().any(|v| v.iter().any(|x| !x.iter().all(|c| c.is_finite())));
+        let mut row = first(pos, false).or_else(|| first(vel, true)).unwrap_or_else(|| if unknowns { "the unknowns left the range of doubles".into() } else { "its norm overflows".into() });
+        // The element that put it there, each evaluated alone.
+        let kin = self.kinematics(u);
+        let culprit = (0..self.layout.elements.len()).find(|&k| {
+            let mut f = vec![0.0; self.layout.len];
+            self.element_residual(k, &kin, &u.lambda, self.t, &mut f);
+            f.iter().any(|x| !x.is_finite())
+        });
+        if let Some(k) = culprit {
+            let e = self.layout.element(k);
+            row = format!("{row}, from {} {}", e.type_name(), e.label());
+        }
+        match crate::element::drive::take_evaluation_failure(self.t) {
+            Some(why) => format!("{row}; {why}"),
+            None => row,
+        }
+    }
+
     fn test(&self, u: &Unknowns, pos: &[f64], vel: &[f64]) -> (f64, (usize, bool, f64)) {
         let sq = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>();
         let sq3 = |v: &[Vec3]| v.iter().map(|x| x.norm_squared()).sum::<f64>();
@@ -255,7 +278,7 @@ pub fn initial_assembly(model: &Model, st: &mut State, settings: &InitialAssembl
     let mut iterations = 0;
     while !(test <= settings.tolerance) {
         if !test.is_finite() {
-            return Err(AssemblyError::Diverged { iteration: iterations });
+            return Err(AssemblyError::Diverged { iteration: iterations, detail: problem.not_finite(&u, &pos, &vel) });
         }
         if iterations >= settings.max_iterations {
             let (row, derivative, value) = worst;

@@ -1,0 +1,144 @@
+//! Which node and component a mode moves: shares of its kinetic energy (issue 3, item 7).
+//!
+//! A dynamic node's momentum-definition rows of `F_/ẏ` hold `−M_n`, its 6x6 mass matrix
+//! (translation and rotation about the node). For a mode `v` with eigenvalue λ the nodal
+//! velocities are `λ v`; the share of component `k` of node `n` is
+//! `M_n,kk |v_k|² / Σ M_m,jj |v_j|²` (diagonal terms; `|λ|²` cancels).
+
+use super::Mode;
+use crate::dae::DofMap;
+use crate::linear::LinearDae;
+use crate::model::{Model, NodeKind};
+
+pub(super) const COMPONENTS: [&str; 6] = ["x", "y", "z", "rx", "ry", "rz"];
+
+/// One node component's share of a mode's kinetic energy.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct EnergyShare {
+    pub node: u32,
+    pub component: &'static str,
+    /// Fraction in [0, 1].
+    pub share: f64,
+}
+
+/// The diagonal mass terms of every dynamic node component, read once from `F_/ẏ`, to
+/// share out the kinetic energy of any number of modes.
+pub struct ModalEnergy {
+    /// `(node label, component, unknown index, mass)`.
+    pub(super) terms: Vec<(u32, &'static str, usize, f64)>,
+}
+
+impl ModalEnergy {
+    pub fn new(model: &Model, dae: &LinearDae) -> Self {
+        let (fyd, _) = dae.jacobians.derivatives();
+        Self::from_fyd_diagonal(model, &(0..fyd.nrows()).map(|k| fyd[(k, k)]).collect::<Vec<_>>())
+    }
+
+    /// The same from the diagonal of `F_/ẏ` alone (a sparse linearization's).
+    pub fn from_fyd_diagonal(model: &Model, fyd: &[f64]) -> Self {
+        let dofs = DofMap::new(model);
+        let mut terms = Vec::new();
+        for (i, node) in model.nodes.iter().enumerate() {
+            if dofs.node_kind[i] != NodeKind::Dynamic {
+                continue;
+            }
+            let f = dofs.node_first[i];
+            for (k, component) in COMPONENTS.iter().enumerate() {
+                terms.push((node.label, *component, f + k, (-fyd[f + k]).max(0.0)));
+            }
+        }
+        ModalEnergy { terms }
+    }
+
+    /// Kinetic-energy shares of a mode, largest first (empty without eigenvector or mass).
+    pub fn shares(&self, mode: &Mode) -> Vec<EnergyShare> {
+        let Some(v) = &mode.right else { return Vec::new() };
+        let mut out: Vec<EnergyShare> = self.terms.iter().map(|&(node, component, j, mass)| EnergyShare { node, component, share: mass * v[j].norm_sqr() }).collect();
+        let total: f64 = out.iter().map(|s| s.share).sum();
+        if total <= 0.0 {
+            return Vec::new();
+        }
+        out.iter_mut().for_each(|s| s.share /= total);
+        out.retain(|s| s.share > 0.0);
+        out.sort_by(|a, b| b.share.total_cmp(&a.share));
+        out
+    }
+}
+
+/// Kinetic-energy shares of one mode (for several modes, build one [`ModalEnergy`]).
+pub fn kinetic_energy_shares(model: &Model, dae: &LinearDae, mode: &Mode) -> Vec<EnergyShare> {
+    ModalEnergy::new(model, dae).shares(mode)
+}
+
+/// "node 3 rz 92 %, node 2 x 6 %": the components above 5 % (at least the largest).
+pub fn describe(shares: &[EnergyShare]) -> String {
+    shares
+        .iter()
+        .enumerate()
+        .filter(|(i, s)| *i == 0 || s.share >= 0.05)
+        .map(|(_, s)| format!("node {} {} {:.0} %", s.node, s.component, 100.0 * s.share))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// A one-line label a control engineer reads, "table pitch (ry) 93 %": the node component
+/// with the largest share of the mode's kinetic energy, named by its node's name (else
+/// "node N") and by the direction of its motion relative to gravity (`vertical`, `yaw` about
+/// the vertical, `horizontal`, and `roll`/`pitch` about the first/second horizontal axis);
+/// without gravity the axis letters only. `None` without shares.
+pub fn mode_label(shares: &[EnergyShare], names: &std::collections::BTreeMap<u32, String>, gravity: &crate::kinematics::Vec3) -> Option<String> {
+    let top = shares.iter().max_by(|a, b| a.share.total_cmp(&b.share))?;
+    let node = names.get(&top.node).cloned().unwrap_or_else(|| format!("node {}", top.node));
+    Some(format!("{node} {}", motion_words(top.component, top.share, gravity)?))
+}
+
+/// "yaw (rz) 93 %" (with gravity) or "rz 93 %" (without): the direction words of
+/// [`mode_label`] for node component `component` holding `share` of the energy.
+pub(super) fn motion_words(component: &str, share: f64, gravity: &crate::kinematics::Vec3) -> Option<String> {
+    let k = COMPONENTS.iter().position(|c| *c == component)?;
+    let vertical = (gravity.norm() > 0.0).then(|| gravity.iamax());
+    let word = match vertical {
+        None => None,
+        Some(v) => {
+            let axis = k % 3;
+            let horizontal: Vec<usize> = (0..3).filter(|&a| a != v).collect();
+            Some(match (k < 3, axis == v) {
+                (true, true) => "vertical",
+                (true, false) => "horizontal",
+                (false, true) => "yaw",
+                (false, false) if axis == horizontal[0] => "roll",
+                (false, false) => "pitch",
+            })
+        }
+    };
+    let pct = 100.0 * share;
+    Some(match word {
+        Some(w) => format!("{w} ({component}) {pct:.0} %"),
+        None => format!("{component} {pct:.0} %"),
+    })
+}
+
+/// A label for a real eigenvalue `lambda` [rad/s] (a `±a` pair of an unstable equilibrium,
+/// e.g. a free structure standing on its ground point) with its mode's kinetic-energy
+/// shares: "tipping (ry): base ry 48 %, spring box x 28 %, table x 23 %, unstable" when the
+/// largest share is a rotation about a horizontal axis (relative to gravity; the components
+/// above 5 % named), else [`mode_label`]'s words ("node 2 horizontal (x) 100 %, unstable");
+/// "unstable" for λ > 0 (the motion grows as e^{λt}), "stable" for λ < 0. `None` without
+/// shares.
+pub fn real_mode_label(shares: &[EnergyShare], names: &std::collections::BTreeMap<u32, String>, gravity: &crate::kinematics::Vec3, lambda: f64) -> Option<String> {
+    let top = shares.iter().max_by(|a, b| a.share.total_cmp(&b.share))?;
+    let k = COMPONENTS.iter().position(|c| *c == top.component)?;
+    let tipping = gravity.norm() > 0.0 && k >= 3 && k % 3 != gravity.iamax();
+    let head = if tipping {
+        let parts: Vec<String> = shares
+            .iter()
+            .enumerate()
+            .filter(|(i, s)| *i == 0 || s.share >= 0.05)
+            .map(|(_, s)| format!("{} {} {:.0} %", names.get(&s.node).cloned().unwrap_or_else(|| format!("node {}", s.node)), s.component, 100.0 * s.share))
+            .collect();
+        format!("tipping ({}): {}", top.component, parts.join(", "))
+    } else {
+        mode_label(shares, names, gravity)?
+    };
+    Some(format!("{head}, {}", if lambda > 0.0 { "unstable" } else { "stable" }))
+}

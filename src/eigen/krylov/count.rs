@@ -1,0 +1,194 @@
+//! How many eigenvalues the pencil `λ E + K` (eq. 29) has in a disc `|λ| < R`: the argument
+//! principle on `det(K + λ E)`, a polynomial in λ whose roots are exactly the finite
+//! eigenvalues (the constrained variables' and multipliers' infinite ones are no roots).
+//!
+//! The winding number of `g(λ) = det(K + λ E) / Π (λ − λᵢ)` around the circle `|λ| = R`,
+//! the `λᵢ` the eigenvalues already found inside it (each conjugate and each copy of a
+//! repeated one), is the number of eigenvalues inside that were *not* found: 0 proves the
+//! list complete, whatever the Krylov spaces saw. The pencil is real, so
+//! `g(λ̄) = conj g(λ)` and the winding is `Δ arg g / π` along the upper half circle from
+//! `λ = R` to `λ = −R`. `arg det` comes from a sparse LU with partial pivoting (backward
+//! stable: the phase is that of a nearby pencil, exact while the circle stays clear of the
+//! eigenvalues, which the caller ensures by drawing it in a gap of the spectrum found).
+//!
+//! Sampling: the half circle is cut into 16 arcs; an arc is accepted when the phase moves
+//! by at most π/4 over each of its halves (one bisection checks the step); otherwise both
+//! halves are refined. A root within the arc's length of the circle turns the phase by
+//! nearly π there, which cannot pass this test, so it is resolved by refinement. The count
+//! is given up (`None`) when an arc needs more than 40 bisections or the whole count more
+//! than [`MAX_EVALUATIONS`] factorizations, or a point cannot be factored.
+
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::sparse::linalg::lu::simplicial::{self, SimplicialLu};
+use faer::sparse::{SparseColMat, SymbolicSparseColMat};
+use faer::{c64, Par};
+
+use super::pencil::Pencil;
+use crate::lu::PatternLu;
+
+/// Most factorizations one count may take.
+pub(super) const MAX_EVALUATIONS: usize = 4000;
+
+/// The result of one count.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct DiscCount {
+    /// Eigenvalues inside the disc that are not among the given ones (negative: some given
+    /// ones are not eigenvalues inside, e.g. counted twice).
+    pub missing: i64,
+    /// Sparse LU factorizations taken.
+    pub evaluations: usize,
+}
+
+/// The phase `arg det(K + λ E)` at any λ, through one symbolic analysis (its column
+/// ordering; each λ's simplicial factorization is taken here, for its pivots).
+struct DetPhase<'a> {
+    pencil: &'a Pencil,
+    analysis: PatternLu<c64>,
+    col_sign: f64,
+    evaluations: usize,
+}
+
+/// `+1` or `−1`: the sign of the permutation `p` (its parity by cycles).
+fn permutation_sign(p: &[usize]) -> f64 {
+    let mut seen = vec![false; p.len()];
+    let mut transpositions = 0usize;
+    for start in 0..p.len() {
+        let mut len = 0usize;
+        let mut i = start;
+        while !seen[i] {
+            seen[i] = true;
+            i = p[i];
+            len += 1;
+        }
+        transpositions += len.saturating_sub(1);
+    }
+    if transpositions % 2 == 0 { 1.0 } else { -1.0 }
+}
+
+impl<'a> DetPhase<'a> {
+    fn new(pencil: &'a Pencil) -> Option<Self> {
+        let n = pencil.dim();
+        let (col_ptr, row_idx, _) = pencil.k.csc_sum(&pencil.e, |v| v, |v| v, |x, y| x + y);
+        let pattern = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
+        let analysis = PatternLu::analyze(pattern.as_ref(), Par::Seq).ok()?;
+        let col_sign = permutation_sign(analysis.symbolic().col_perm().arrays().0);
+        Some(DetPhase { pencil, analysis, col_sign, evaluations: 0 })
+    }
+
+    /// `det(K + λ E) / |det(K + λ E)|`, or `None` when the LU fails (λ on an eigenvalue).
+    fn unit(&mut self, lambda: c64) -> Option<c64> {
+        self.evaluations += 1;
+        let n = self.pencil.dim();
+        let (col_ptr, row_idx, values) = self.pencil.k.csc_sum(&self.pencil.e, |v| c64::new(v, 0.0), |v| lambda * v, |x, y| x + y);
+        let a = SparseColMat::<usize, c64>::new(SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx), values);
+        let mut buf = MemBuffer::try_new(simplicial::factorize_simplicial_numeric_lu_scratch::<usize, c64>(n, n)).ok()?;
+        let (mut row_fwd, mut row_inv) = (vec![0usize; n], vec![0usize; n]);
+        let mut lu = SimplicialLu::<usize, c64>::new();
+        simplicial::factorize_simplicial_numeric_lu(&mut row_fwd, &mut row_inv, &mut lu, a.as_ref(), self.analysis.symbolic().col_perm(), MemStack::new(&mut buf)).ok()?;
+        let u = lu.u_factor_unsorted();
+        let (ptr, val) = (u.symbolic().col_ptr(), u.val());
+        let mut z = c64::new(self.col_sign * permutation_sign(&row_fwd), 0.0);
+        for j in 0..n {
+            // faer's simplicial U keeps each column's diagonal entry last.
+            let d = val[ptr[j + 1] - 1];
+            let m = d.norm();
+            if !(m > 0.0 && m.is_finite()) {
+                return None;
+            }
+            z = z * (d / m);
+            z = z / z.norm();
+        }
+        Some(z)
+    }
+}
+
+/// `x` wrapped to `(−π, π]`.
+fn wrap(x: f64) -> f64 {
+    let tau = std::f64::consts::TAU;
+    let y = x - tau * (x / tau).round();
+    if y <= -std::f64::consts::PI { y + tau } else { y }
+}
+
+/// The number of eigenvalues of `λ E + K` inside `|λ| < radius` that are not in `found`
+/// (every eigenvalue inside with its conjugate and each copy of a repeated one), or `None`
+/// when the count cannot be resolved (see the module's sampling rules).
+pub(super) fn missing_in_disc(pencil: &Pencil, radius: f64, found: &[c64]) -> Option<DiscCount> {
+    if !(radius > 0.0 && radius.is_finite()) {
+        return None;
+    }
+    let mut det = DetPhase::new(pencil)?;
+    let found: Vec<c64> = found.to_vec();
+    let mut phase = |t: f64| -> Option<f64> {
+        let lambda = c64::new(radius * t.cos(), radius * t.sin());
+        let mut z = det.unit(lambda)?;
+        for &l in &found {
+            let d = lambda - l;
+            z = z * (d.conj() / d.norm());
+        }
+        Some(z.im.atan2(z.re))
+    };
+    const ARCS: usize = 16;
+    let pi = std::f64::consts::PI;
+    let ts: Vec<f64> = (0..=ARCS).map(|k| pi * k as f64 / ARCS as f64).collect();
+    let mut phases = Vec::with_capacity(ts.len());
+    for &t in &ts {
+        phases.push(phase(t)?);
+    }
+    let mut total = 0.0;
+    // Depth-first over the arcs: (a, b, φa, φb, depth).
+    let mut stack: Vec<(f64, f64, f64, f64, u32)> = (0..ARCS).rev().map(|k| (ts[k], ts[k + 1], phases[k], phases[k + 1], 0)).collect();
+    let mut evaluations = ts.len();
+    while let Some((a, b, pa, pb, depth)) = stack.pop() {
+        if depth > 40 || evaluations > MAX_EVALUATIONS {
+            return None;
+        }
+        let m = 0.5 * (a + b);
+        let pm = phase(m)?;
+        evaluations += 1;
+        let (d1, d2) = (wrap(pm - pa), wrap(pb - pm));
+        let step = pi / 4.0;
+        if d1.abs() <= step && d2.abs() <= step {
+            total += d1 + d2;
+        } else {
+            stack.push((m, b, pm, pb, depth + 1));
+            stack.push((a, m, pa, pm, depth + 1));
+        }
+    }
+    let winding = total / pi;
+    let missing = winding.round();
+    ((winding - missing).abs() < 0.25).then_some(DiscCount { missing: missing as i64, evaluations: det.evaluations })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::linear::{SparseLinearDae, SparseMatrix};
+
+    /// Three decoupled oscillators `ẋ = v, v̇ = −ωₖ² x` (ω = 1, 2, 2: a repeated pair) as a
+    /// first-order pencil `λ E + K`, E = I, K = [[0, −1], [ω², 0]] blocks: eigenvalues ±jωₖ
+    /// (closed form). The count inside |λ| < R is the number of ±jωₖ with ωₖ < R.
+    #[test]
+    fn counts_the_oscillators_inside_each_circle() {
+        let omegas = [1.0, 2.0, 2.0, 5.0];
+        let n = 2 * omegas.len();
+        let e = SparseMatrix::from_triplets(n, n, (0..n).map(|i| (i, i, 1.0))).unwrap();
+        let k = SparseMatrix::from_triplets(n, n, omegas.iter().enumerate().flat_map(|(i, w)| [(2 * i, 2 * i + 1, -1.0), (2 * i + 1, 2 * i, w * w)])).unwrap();
+        let names = (0..n).map(|i| format!("y{i}")).collect();
+        let dae = SparseLinearDae { fyd: e, fy: k, b: faer::Mat::zeros(n, 0), c: faer::Mat::zeros(0, n), c_rate: None, unknown_names: names, input_names: Vec::new(), output_names: Vec::new(), constraint_form: None, multipliers: Vec::new() };
+        let pencil = Pencil::new(&dae).unwrap();
+        let j = |w: f64| [c64::new(0.0, w), c64::new(0.0, -w)];
+        // Nothing given: the count itself (2 per oscillator inside).
+        for (radius, inside) in [(0.5, 0), (1.5, 2), (3.0, 6), (10.0, 8)] {
+            let c = missing_in_disc(&pencil, radius, &[]).unwrap();
+            assert_eq!(c.missing, inside, "R = {radius}");
+        }
+        // The ω = 1 pair and one copy of ω = 2 given: one copy (2 eigenvalues) missing.
+        let given: Vec<c64> = j(1.0).into_iter().chain(j(2.0)).collect();
+        assert_eq!(missing_in_disc(&pencil, 3.0, &given).unwrap().missing, 2);
+        let all: Vec<c64> = given.iter().copied().chain(j(2.0)).collect();
+        assert_eq!(missing_in_disc(&pencil, 3.0, &all).unwrap().missing, 0);
+        // A circle just outside an eigenvalue (R = 1.001 around ω = 1) is still resolved.
+        assert_eq!(missing_in_disc(&pencil, 1.001, &[]).unwrap().missing, 2);
+        assert_eq!(missing_in_disc(&pencil, 0.999, &[]).unwrap().missing, 0);
+    }
+}

@@ -1,0 +1,67 @@
+//! The pencil `λ E + K` the shift-invert solver works on: the form of eq. 29.
+//!
+//! In MBDyn's form (eq. 30) the constraint rows `C` and the multipliers `L` sit in `F_yd`
+//! only, so `λ = 0` is an eigenvalue of multiplicity 2m (the constrained variables): a shift
+//! near zero would converge to that cluster first. Exactly as the dense deflation's first step
+//! ([`crate::eigen::ModalAnalysis::of_dae`]), moving those rows and columns to `K` gives
+//! `P₃₀(λ) = Δ(λ) P₂₉(λ) Δ(λ)`, `Δ = diag(λ on C and L, 1 elsewhere)`: the 2m zeros leave,
+//! the constrained variables' eigenvalues become infinite (harmless for shift-invert, they map
+//! to θ = 0), and vectors map back as `v₃₀[L] = v₂₉[L]/λ`, `u₃₀[C] = u₂₉[C]/λ`.
+
+use faer::{c64, Col};
+
+use super::KrylovError;
+use crate::linear::{SparseLinearDae, SparseMatrix};
+use crate::model::ConstraintForm;
+
+/// `λ E + K` in the form of eq. 29, and the map of its vectors back to the DAE's form.
+pub(super) struct Pencil {
+    pub e: SparseMatrix,
+    pub k: SparseMatrix,
+    /// Constraint rows / multiplier columns moved from `F_yd` (form of eq. 30), else empty.
+    moved: Vec<bool>,
+}
+
+impl Pencil {
+    pub fn new(dae: &SparseLinearDae) -> Result<Self, KrylovError> {
+        let n = dae.dim();
+        let mut moved = vec![false; n];
+        if dae.constraint_form == Some(ConstraintForm::Scaled) {
+            for &k in &dae.multipliers {
+                if k >= n {
+                    return Err(KrylovError::Structure(format!("multiplier index {k} of a {n}-equation model")));
+                }
+                moved[k] = true;
+            }
+        }
+        if moved.iter().any(|&m| m) {
+            // Eq. 30 puts the constraint rows and multiplier columns in F_yd only, with F_yd[C, L] = 0.
+            if dae.fy.triplets().any(|(i, j, _)| moved[i] || moved[j]) || dae.fyd.triplets().any(|(i, j, _)| moved[i] && moved[j]) {
+                return Err(KrylovError::Structure(
+                    "the constraint rows and multiplier columns are not those of eq. 30 (entries in F_y or in F_yd[C, L]): the zero eigenvalues of the constrained variables cannot be removed".into(),
+                ));
+            }
+        }
+        let e = SparseMatrix::from_triplets(n, n, dae.fyd.triplets().filter(|&(i, j, _)| !(moved[i] || moved[j])));
+        let k = SparseMatrix::from_triplets(n, n, dae.fy.triplets().chain(dae.fyd.triplets().filter(|&(i, j, _)| moved[i] || moved[j])));
+        match (e, k) {
+            (Some(e), Some(k)) => Ok(Pencil { e, k, moved }),
+            _ => unreachable!("entries of an n x n model stay inside n x n"),
+        }
+    }
+
+    /// The entries moved from `F_yd` (constraint rows, multiplier columns): the DAE's vectors
+    /// there are the eq. 29 ones divided by λ.
+    pub fn moved(&self) -> &[bool] {
+        &self.moved
+    }
+
+    pub fn dim(&self) -> usize {
+        self.k.nrows()
+    }
+
+    /// A right (`left = false`) or left vector of eq. 29 as a vector of the DAE's pencil.
+    pub fn to_dae(&self, x: &Col<c64>, lambda: c64) -> Col<c64> {
+        Col::from_fn(x.nrows(), |i| if self.moved[i] { x[i] / lambda } else { x[i] })
+    }
+}
