@@ -80,7 +80,7 @@ fn help_flags_of_help(mut args: Vec<std::ffi::OsString>) -> Vec<std::ffi::OsStri
 pub fn run() -> ExitCode {
     let cli = Cli::parse_from(help_flags_of_help(std::env::args_os().collect()));
     // `ROMDYN_PARSE_ONLY=1 romdyn …` stops once the arguments parse (a usage error still exits
-    // 2): tests/docs_commands.rs checks the book's command lines against this parser.
+    // 2): tests/cli/docs_commands.rs checks the book's command lines against this parser.
     if std::env::var_os("ROMDYN_PARSE_ONLY").is_some() {
         return ExitCode::SUCCESS;
     }

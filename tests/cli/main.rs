@@ -1,9 +1,11 @@
 //! The front ends' contract: the `romdyn` command line end to end (CASES C1, outputs and
-//! errors), pencil files, and the library calls the Python package makes (node histories).
+//! errors), pencil files, the library calls the Python package makes (node histories), and
+//! the documentation's commands and shown output against the CLI (`docs_commands`).
 
 #[path = "../common/mod.rs"]
 mod common;
 
 mod cli;
+mod docs_commands;
 mod node_histories;
 mod pencil_input;

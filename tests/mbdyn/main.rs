@@ -1,8 +1,9 @@
 //! Compatibility with MBDyn's input language and runs: the reader (syntax, `set:`,
 //! `include:`, `model::` namespace, errors at file:line:column), drive callers, events,
 //! node kinds, the initial assembly and derivatives phase, `romdyn run` and the files MBDyn
-//! writes (`.mov`, `.out`, `.m` read back by Octave), each against MBDyn's manual or
-//! sources, closed forms or MBDyn 1.7.3's numbers on the files of `tests/mbdyn_files/`.
+//! writes (`.mov`, `.out`, `.m` read back by Octave), the FEM file of the modal element,
+//! each against MBDyn's manual or sources, closed forms or MBDyn 1.7.3's numbers on the
+//! files of `tests/mbdyn_files/`.
 
 #[path = "../common/mod.rs"]
 mod common;
@@ -12,6 +13,7 @@ mod derivatives_phase;
 mod displacement_nodes;
 mod eigen_digits;
 mod examples_run;
+mod fem_file;
 mod initial_assembly;
 mod mbdyn_compat;
 mod mbdyn_displacement_forces;

@@ -202,7 +202,7 @@ impl DynamicPart {
                 let tolerance = (s - rank) as f64 * f64::EPSILON;
                 // Negligible against the whole K₁ (= ‖Uᵀ K₁ V‖_F), not against A₂₂ itself:
                 // a singular pencil leaves A₂₂ at rounding level, nonsingular relative to
-                // itself (tests/reliability.rs, a common null vector).
+                // itself (tests/reliability/reliability.rs, a common null vector).
                 let k1_norm = a_t.norm_l2();
                 use faer::linalg::solvers::Solve;
                 let (g21, g12t, certified) = match crate::lu::certified_partial_lu(a22, tolerance, k1_norm) {

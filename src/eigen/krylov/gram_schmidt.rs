@@ -186,7 +186,7 @@ impl Sweeper {
 /// thread runs `a` itself and then waits for `b` (`rayon::in_place_scope`). Outside the pool
 /// that wait blocks this thread only, and no worker waits on it; on a worker (a sweep's
 /// point) the wait runs other work of the pool meanwhile, so no worker blocks (the
-/// deadlock of `tests/sparse_eigen.rs`' rayon-workers test cannot form). `rayon::join`
+/// deadlock of `tests/eigen/sparse_eigen.rs`' rayon-workers test cannot form). `rayon::join`
 /// from outside the pool hands both halves to the workers, and when the second worker is
 /// asleep the first one often runs both (measured: one worker had 2.6 times the other's
 /// samples).

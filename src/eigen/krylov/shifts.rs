@@ -605,7 +605,7 @@ mod tests {
     /// (10), beyond the 3 asked modes: the count is certified in the disc of radius 5, and
     /// the accepted pairs at 6 and 7 (beyond it, inside the reach) are not returned. This is
     /// the drop of accepted pairs beyond the shrunk disc, which the end-to-end cases of
-    /// `tests/sparse_eigen.rs` do not reach (there the disagreement is always the farthest
+    /// `tests/eigen/sparse_eigen.rs` do not reach (there the disagreement is always the farthest
     /// eigenvalue); without the drop this test fails.
     #[test]
     fn a_certified_count_returns_no_pair_beyond_the_first_disagreement() {

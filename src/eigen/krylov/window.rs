@@ -192,7 +192,7 @@ pub(super) fn krylov_sides(dae: &SparseLinearDae, pencil: &Pencil, op: &ShiftInv
     // progress is not reported (the caller's callback need not be thread-safe); both take
     // about as long. On a worker of the rayon pool (a sweep's point) both runs stay on it:
     // a thread of its own would call faer's parallel products from outside the pool and
-    // wait for its workers, which all wait for it (tests/sparse_eigen.rs, the rayon-workers
+    // wait for its workers, which all wait for it (tests/eigen/sparse_eigen.rs, the rayon-workers
     // test).
     let (right_run, left_run) = if rayon::current_thread_index().is_some() {
         (krylov_run(pencil, op, wanted, s, false, seed_right, progress), krylov_run(pencil, op, wanted, s, true, seed_left, &|_| {}))

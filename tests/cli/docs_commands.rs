@@ -33,8 +33,8 @@ enum Source {
 
 const GENERATED: &[(&str, Source)] = &[
     ("out/pendulum_0.m", Source::Command("run examples/pendulum.mbd -o out")),
-    ("chain_100.mbd", Source::Writer("tests/sparse_cli.rs", "chain_{n}.mbd")),
-    ("m.mbd", Source::Writer("tests/mbdyn_errors.rs", "m.mbd")),
+    ("chain_100.mbd", Source::Writer("tests/eigen/sparse_cli.rs", "chain_{n}.mbd")),
+    ("m.mbd", Source::Writer("tests/mbdyn/mbdyn_errors.rs", "m.mbd")),
 ];
 
 /// Options whose value is a file romdyn writes (not an input that must exist).
@@ -419,7 +419,7 @@ fn the_output_shown_for_the_cheapest_commands_is_what_romdyn_prints() {
     for (args, compare) in SHOWN {
         let shown: Vec<&DocCommand> = cmds.iter().filter(|c| c.args.join(" ") == *args && !c.shown.is_empty()).collect();
         if *compare {
-            assert!(!shown.is_empty(), "`romdyn {args}` with its output is no longer in the documentation: update SHOWN in tests/docs_commands.rs");
+            assert!(!shown.is_empty(), "`romdyn {args}` with its output is no longer in the documentation: update SHOWN in tests/cli/docs_commands.rs");
         }
         // Standard output and error into one file, interleaved as a terminal shows them
         // (romdyn's summaries go to standard error when standard output may carry JSON).
