@@ -159,7 +159,7 @@ impl PencilArgs {
             (None, Some(path)) => {
                 let mut m = read_model(path)?;
                 let integrates = self.reference.reference().integrates();
-                self.beam_update.apply(&mut m.model, integrates).map_err(|message| StudyError::Option { option: "--beam-update", message: format!("{}: {message}", path.display()) })?;
+                self.beam_update.apply(&mut m.model, integrates).map_err(|message| StudyError::Option { option: romdyn::study::Setting::BeamUpdate, message: format!("{}: {message}", path.display()) })?;
                 let progress = SolverProgress::new();
                 let result = Study::of_model_with_progress(m.model, &m.problem, self.reference.reference(), &self.ports()?, eigen, None, &|line| progress.report(line));
                 progress.finish();
