@@ -170,3 +170,6 @@ def test_a_bad_setting_is_named_as_python_spells_it(examples):
     study = model.study(inputs=["2:Mz"], outputs=["2:rz"])
     with pytest.raises(ValueError, match=r"^fmin: need FMIN < FMAX"):
         study.reduce(count=1, fmin=10.0, fmax=1.0)
+    # An empty band is refused by every front end (the CLI took FMIN = FMAX).
+    with pytest.raises(ValueError, match=r"^band: need 0 <= FMIN < FMAX"):
+        study.reduce(band=(2.0, 2.0))
