@@ -36,7 +36,7 @@ pub enum Col {
     /// The element's own unknown `k` (a multiplier, a coordinate or a state).
     Multiplier(usize),
     /// The time derivative of the element's own unknown `k`, a differential state
-    /// ([`Element::is_state`]): its entries go to `F_/ẏ`.
+    /// ([`UnknownKind::State`]): its entries go to `F_/ẏ`.
     Rate(usize),
 }
 
@@ -82,7 +82,7 @@ pub trait ElementState {
     fn node(&self, slot: usize) -> &NodeKinematics;
     fn multiplier(&self, k: usize) -> f64;
     /// The time derivative of the element's own unknown `k`; read only for a differential
-    /// state ([`Element::is_state`]), zero where the caller integrates none (the initial
+    /// state ([`UnknownKind::State`]), zero where the caller integrates none (the initial
     /// assembly).
     fn rate(&self, _k: usize) -> f64 {
         0.0
@@ -173,6 +173,38 @@ pub fn add_block(sink: &mut dyn JacobianSink, rows: [Row; 3], cols: [Col; 3], m:
     sink.add_block(rows, cols, m);
 }
 
+/// What an element's own unknown `k` is, with its equation `k`: it decides how the
+/// integrator updates the unknown, which coefficient its Jacobian column takes and whether
+/// the equation is divided by dCoef in the form of eq. 30 (paper §6.1). Algebraic kinds
+/// (multipliers) carry no time derivative of their own; differential kinds (coordinates,
+/// states) are integrated like a node's position.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum UnknownKind {
+    /// Algebraic: the Lagrange multiplier of a holonomic constraint `Φ(q, t) = 0`, updated
+    /// and scaled as the constraint form says (eqs. 29–30).
+    Multiplier,
+    /// Algebraic: the unknown of a velocity-level constraint `ψ(q, q̇, t) = 0` (MBDyn's
+    /// "differential" constraint equations, e.g. the imposed angular velocity of `axial
+    /// rotation`): its equation is never divided by dCoef, and the unknown is an ordinary
+    /// algebraic unknown (Jacobian coefficient `c`, updated as `y += c δ`) in both
+    /// constraint forms.
+    VelocityConstraint,
+    /// Differential: a coordinate rather than a multiplier (the abscissa of a beam slider
+    /// along its beams): a configuration unknown like a node's, updated as `y += c δ` with
+    /// Jacobian coefficient `c`, and set by the initial assembly; its equation is not
+    /// divided by dCoef. The element's holonomic rows may depend on it: in the form of
+    /// eq. 30 the assembler gives those entries the coefficient of the row's position
+    /// entries, so the element writes the plain derivative `Φ_/s`.
+    Coordinate,
+    /// Differential: a state of the element with its own first-order equation
+    /// `ψ(z, ż, q, q̇, λ) = 0` (a LuGre friction model's bristle deflection, MBDyn's
+    /// `DofOrder::DIFFERENTIAL` dof of friction.cc): integrated like a node's position
+    /// (`ż += δ`, `z += c δ`, Jacobian entries on `ż` ([`Col::Rate`]) with coefficient 1 and
+    /// on `z` ([`Col::Multiplier`]) with `c`), its equation not divided by dCoef, and left
+    /// out of the initial assembly ([`Element::assembly_form`]). It starts at zero.
+    State,
+}
+
 /// One element of the model.
 pub trait Element: Send + Sync {
     fn label(&self) -> Label;
@@ -184,37 +216,16 @@ pub trait Element: Send + Sync {
     fn multipliers(&self) -> Vec<String> {
         Vec::new()
     }
-    /// Whether its own equation `k` is a velocity-level constraint `ψ(q, q̇, t) = 0` (MBDyn's
-    /// "differential" constraint equations, e.g. the imposed angular velocity of `axial
-    /// rotation`): never divided by dCoef, and its unknown is an ordinary algebraic unknown
-    /// (Jacobian coefficient `c`, updated as `y += c δ`) in both constraint forms.
-    fn is_velocity_constraint(&self, _k: usize) -> bool {
-        false
+    /// What its own unknown `k` is ([`UnknownKind`]): a multiplier of a holonomic
+    /// constraint unless the element says otherwise.
+    fn unknown_kind(&self, _k: usize) -> UnknownKind {
+        UnknownKind::Multiplier
     }
     /// Whether a drive of the element reads the model's state (MBDyn's `model::` functions
     /// in a `string` drive): its residual then depends on nodes through the drive, and its
     /// Jacobian, as MBDyn's, holds the drive's value fixed (see
     /// [`crate::element::drive::TimeFunction`]).
     fn reads_state(&self) -> bool {
-        false
-    }
-    /// Whether its own unknown `k` is a coordinate rather than a multiplier (the abscissa of
-    /// a beam slider along its beams): a configuration unknown like a node's, updated as
-    /// `y += c δ` with Jacobian coefficient `c`, and set by the initial assembly; its
-    /// equation `k` is not divided by dCoef. The element's holonomic rows may depend on
-    /// it: in the form of eq. 30 the assembler gives those entries the coefficient of the
-    /// row's position entries, so the element writes the plain derivative `Φ_/s`.
-    fn is_coordinate(&self, _k: usize) -> bool {
-        false
-    }
-    /// Whether its own unknown `k` is a differential state of the element, with its own
-    /// first-order equation `k`, `ψ(z, ż, q, q̇, λ) = 0` (a LuGre friction model's bristle
-    /// deflection, MBDyn's `DofOrder::DIFFERENTIAL` dof of friction.cc): integrated like a
-    /// node's position (`ż += δ`, `z += c δ`, Jacobian entries on `ż` ([`Col::Rate`]) with
-    /// coefficient 1 and on `z` ([`Col::Multiplier`]) with `c`), its equation not divided
-    /// by dCoef, and left out of the initial assembly ([`Element::assembly_form`]). It
-    /// starts at zero.
-    fn is_state(&self, _k: usize) -> bool {
         false
     }
     /// The element the initial assembly uses in this one's place, when they differ (a joint

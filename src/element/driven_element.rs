@@ -29,6 +29,7 @@ use super::contract::{Col, Element, ElementState, JacobianSink, Latched, Private
 use super::wrapper::ElementWrapper;
 use super::VectorDrive;
 use super::drive::Drive;
+use super::UnknownKind;
 
 /// A hint's drive, built when the element switches on.
 #[derive(Clone, Debug, PartialEq)]
@@ -185,7 +186,7 @@ impl ElementWrapper for DrivenElement {
         for k in 0..self.inner.multipliers().len() {
             // ∂(−λ_k)/∂λ_k = −1 on a row the assembler scales as a constraint row (velocity
             // constraints' rows are never scaled).
-            let scale = if self.inner.is_velocity_constraint(k) || self.inner.is_coordinate(k) { 1.0 } else { s.constraint_row_scale() };
+            let scale = if matches!(self.inner.unknown_kind(k), UnknownKind::VelocityConstraint | UnknownKind::Coordinate) { 1.0 } else { s.constraint_row_scale() };
             out.add(Row::Constraint(k), Col::Multiplier(k), if active { 0.0 } else { -scale });
         }
     }

@@ -29,6 +29,7 @@ use super::{Anchor, Joint};
 use super::drive::Drive;
 use crate::kinematics::{rotation_vector, skew, Vec3};
 use std::sync::Arc;
+use super::UnknownKind;
 
 /// A 3-vector function of time `Σ v_k d_k(t)` (MBDyn's template drive caller).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -283,8 +284,8 @@ impl Element for DrivenJoint {
         }));
         m
     }
-    fn is_velocity_constraint(&self, k: usize) -> bool {
-        k >= self.holonomic()
+    fn unknown_kind(&self, k: usize) -> UnknownKind {
+        if k >= self.holonomic() { UnknownKind::VelocityConstraint } else { UnknownKind::Multiplier }
     }
     fn has_events(&self) -> bool {
         self.rotation_remnant

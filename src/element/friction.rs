@@ -32,6 +32,7 @@ use super::contract::{add_block, add_vec, Col, Element, ElementState, JacobianSi
 use super::joint::{Joint, JointKind};
 use super::drive::ScalarFunction;
 use crate::kinematics::{skew, Vec3};
+use super::UnknownKind;
 
 /// MBDyn's `modlugre, σ₀, σ₁, σ₂, κ, "μ(|v|)"` (input manual, §Friction models).
 #[derive(Clone, Debug)]
@@ -195,8 +196,8 @@ impl Element for InLineFriction {
         m.push("friction state z".to_string());
         m
     }
-    fn is_state(&self, k: usize) -> bool {
-        k == STATE
+    fn unknown_kind(&self, k: usize) -> UnknownKind {
+        if k == STATE { UnknownKind::State } else { UnknownKind::Multiplier }
     }
     fn assembly_form(&self) -> Option<&dyn Element> {
         Some(&self.joint)

@@ -23,6 +23,7 @@ use super::friction::ModLugre;
 use super::joint::{Joint, JointKind};
 use super::drive::Drive;
 use crate::kinematics::{skew, Vec3};
+use super::UnknownKind;
 
 /// Where the friction's normal force comes from.
 #[derive(Clone, Debug)]
@@ -113,8 +114,8 @@ impl Element for RevoluteHingeFriction {
         m.push("friction state z".to_string());
         m
     }
-    fn is_state(&self, k: usize) -> bool {
-        k == self.state_index()
+    fn unknown_kind(&self, k: usize) -> UnknownKind {
+        if k == self.state_index() { UnknownKind::State } else { UnknownKind::Multiplier }
     }
     fn reads_state(&self) -> bool {
         matches!(&self.normal, HingeNormalForce::Brake(d) if d.reads_state())

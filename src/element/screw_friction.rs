@@ -21,6 +21,7 @@ use super::contract::{add_block, add_vec, Col, Element, ElementState, JacobianSi
 use super::friction::ModLugre;
 use super::screw::Screw;
 use crate::kinematics::{skew, Vec3};
+use super::UnknownKind;
 
 /// A screw joint with `modlugre` friction. Unknowns: the screw's turned angle and reaction,
 /// then the friction state `z` [m].
@@ -80,11 +81,8 @@ impl Element for ScrewFriction {
         m.push("friction state z".to_string());
         m
     }
-    fn is_coordinate(&self, k: usize) -> bool {
-        self.screw.is_coordinate(k)
-    }
-    fn is_state(&self, k: usize) -> bool {
-        k == STATE
+    fn unknown_kind(&self, k: usize) -> UnknownKind {
+        if k == STATE { UnknownKind::State } else { self.screw.unknown_kind(k) }
     }
     fn assembly_form(&self) -> Option<&dyn Element> {
         Some(&self.screw)

@@ -10,6 +10,7 @@
 
 use super::contract::{Element, ElementState, JacobianSink, Label, Latched, PrivateDatum, ResidualSink, SectionState};
 use super::{BeamUpdate, HintValue};
+use super::UnknownKind;
 
 /// An element built around another one. Each method forwards to [`ElementWrapper::inner`]
 /// by default; `hinted` has no default because a hinted element must be wrapped again
@@ -32,17 +33,11 @@ pub trait ElementWrapper: Send + Sync {
     fn multipliers(&self) -> Vec<String> {
         self.inner().multipliers()
     }
-    fn is_velocity_constraint(&self, k: usize) -> bool {
-        self.inner().is_velocity_constraint(k)
+    fn unknown_kind(&self, k: usize) -> UnknownKind {
+        self.inner().unknown_kind(k)
     }
     fn reads_state(&self) -> bool {
         self.inner().reads_state()
-    }
-    fn is_coordinate(&self, k: usize) -> bool {
-        self.inner().is_coordinate(k)
-    }
-    fn is_state(&self, k: usize) -> bool {
-        self.inner().is_state(k)
     }
     fn assembly_form(&self) -> Option<&dyn Element> {
         self.inner().assembly_form()
@@ -104,17 +99,11 @@ impl<W: ElementWrapper> Element for W {
     fn multipliers(&self) -> Vec<String> {
         ElementWrapper::multipliers(self)
     }
-    fn is_velocity_constraint(&self, k: usize) -> bool {
-        ElementWrapper::is_velocity_constraint(self, k)
+    fn unknown_kind(&self, k: usize) -> UnknownKind {
+        ElementWrapper::unknown_kind(self, k)
     }
     fn reads_state(&self) -> bool {
         ElementWrapper::reads_state(self)
-    }
-    fn is_coordinate(&self, k: usize) -> bool {
-        ElementWrapper::is_coordinate(self, k)
-    }
-    fn is_state(&self, k: usize) -> bool {
-        ElementWrapper::is_state(self, k)
     }
     fn assembly_form(&self) -> Option<&dyn Element> {
         ElementWrapper::assembly_form(self)
