@@ -74,7 +74,7 @@ impl PrivateDatum {
 /// Data an element re-sets at an event and holds until the next one (a driven element's
 /// drives re-set by its hints when it switches on, a bistop law's status and reference
 /// strain): kept in the state ([`crate::dae::State::latched`]), set by
-/// [`Element::latch`] once per step, never inside Newton's iterations.
+/// [`Events::latch`] once per step, never inside Newton's iterations.
 pub type Latched = std::sync::Arc<dyn std::any::Any + Send + Sync>;
 
 /// What an element reads: its nodes' kinematics, its multipliers, the time and gravity.
@@ -105,7 +105,7 @@ pub trait ElementState {
     fn structural_node(&self, _label: Label) -> Option<&NodeKinematics> {
         None
     }
-    /// The element's data of its last event ([`Element::latch`]), `None` before any (the
+    /// The element's data of its last event ([`Events::latch`]), `None` before any (the
     /// element's data as read).
     fn latched(&self) -> Option<&(dyn std::any::Any + Send + Sync)> {
         None
@@ -205,6 +205,38 @@ pub enum UnknownKind {
     State,
 }
 
+/// The events of an element that has them ([`Element::events`]: beams with MBDyn's
+/// incremental update, driven elements and joints, bistop laws).
+pub trait Events {
+    /// Once per step, after the predictor and before Newton (where MBDyn's `AfterPredict`
+    /// switches a driven element on, and a bistop law's first `Update` of the step
+    /// activates it): `now` is the predicted state at the step's time, `before` the accepted
+    /// state of the previous step (what MBDyn's `model::…_prev` functions read); both carry
+    /// the data of the element's last event. Returns the data that replace them, `None` to
+    /// keep them. Residuals and Jacobians (Newton's and a linearization's) hold the latched
+    /// data fixed: they are constants of the state, as MBDyn's element members are.
+    fn latch(&self, now: &dyn ElementState, before: &dyn ElementState) -> Option<Latched>;
+}
+
+/// The irregularities of an element's residual ([`Element::non_smoothness`]): friction
+/// models (joint, hinge and screw friction) and the driven elements that wrap them.
+pub trait NonSmooth {
+    /// Why its residual is not differentiable at this state, if it is not (a friction state
+    /// at zero sliding velocity past its breakaway deflection): a linearization there takes
+    /// a one-sided derivative, and an eigenanalysis reports it.
+    fn non_smooth(&self, s: &dyn ElementState) -> Option<String>;
+    /// Why its residual is not differentiable somewhere between the states `from` and `to`
+    /// (a friction coefficient's kink that the sliding speed crosses), if it is not: when
+    /// Newton fails with its last iterates on the two sides of such a point, its failure
+    /// names it, since Newton's iterates can cycle across a kink instead of converging.
+    fn kink_crossed(&self, from: &dyn ElementState, to: &dyn ElementState) -> Option<String>;
+    /// Why its Jacobian at this state depends on the values of joint reaction multipliers,
+    /// if it does (a friction force proportional to the normal reaction `|λ|`): those are
+    /// the integrator's, which steps accepted within the tolerance without a Newton
+    /// iteration leave noisy, and an eigenanalysis warns that its eigenvalues carry it.
+    fn reaction_dependence(&self, s: &dyn ElementState) -> Option<String>;
+}
+
 /// One element of the model.
 pub trait Element: Send + Sync {
     fn label(&self) -> Label;
@@ -234,31 +266,15 @@ pub trait Element: Send + Sync {
     fn assembly_form(&self) -> Option<&dyn Element> {
         None
     }
-    /// Why its residual is not differentiable at this state, if it is not (a friction state
-    /// at zero sliding velocity past its breakaway deflection): a linearization there takes
-    /// a one-sided derivative, and an eigenanalysis reports it.
-    fn non_smooth(&self, _s: &dyn ElementState) -> Option<String> {
+    /// What makes its residual or Jacobian less regular than a smooth function of the
+    /// state, when something does ([`NonSmooth`]: friction's kinks and its dependence on
+    /// reaction values); `None` for most elements.
+    fn non_smoothness(&self) -> Option<&dyn NonSmooth> {
         None
     }
-    /// Why its residual is not differentiable somewhere between the states `from` and `to`
-    /// (a friction coefficient's kink that the sliding speed crosses), if it is not: when
-    /// Newton fails with its last iterates on the two sides of such a point, its failure
-    /// names it, since Newton's iterates can cycle across a kink instead of converging.
-    fn kink_crossed(&self, _from: &dyn ElementState, _to: &dyn ElementState) -> Option<String> {
-        None
-    }
-    /// Whether the element has events ([`Element::latch`]).
-    fn has_events(&self) -> bool {
-        false
-    }
-    /// Once per step, after the predictor and before Newton (where MBDyn's `AfterPredict`
-    /// switches a driven element on, and a bistop law's first `Update` of the step
-    /// activates it): `now` is the predicted state at the step's time, `before` the accepted
-    /// state of the previous step (what MBDyn's `model::…_prev` functions read); both carry
-    /// the data of the element's last event. Returns the data that replace them, `None` to
-    /// keep them. Residuals and Jacobians (Newton's and a linearization's) hold the latched
-    /// data fixed: they are constants of the state, as MBDyn's element members are.
-    fn latch(&self, _now: &dyn ElementState, _before: &dyn ElementState) -> Option<Latched> {
+    /// Its events, when it has any in this configuration ([`Events`]: data re-set once per
+    /// step and held); `None` for most elements.
+    fn events(&self) -> Option<&dyn Events> {
         None
     }
     /// The element with a hint's drive in place of its own (MBDyn's `SetValue` with hints,
@@ -272,13 +288,6 @@ pub trait Element: Send + Sync {
     /// model in the form of eq. 29.
     fn constraint_rows_read_multipliers(&self) -> bool {
         false
-    }
-    /// Why its Jacobian at this state depends on the values of joint reaction multipliers,
-    /// if it does (a friction force proportional to the normal reaction `|λ|`): those are
-    /// the integrator's, which steps accepted within the tolerance without a Newton
-    /// iteration leave noisy, and an eigenanalysis warns that its eigenvalues carry it.
-    fn reaction_dependence(&self, _s: &dyn ElementState) -> Option<String> {
-        None
     }
     /// Why its residual cannot be evaluated at this state, if it cannot (a driven element
     /// whose hints could not be built when it switched on: its residual is NaN there), so

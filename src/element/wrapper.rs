@@ -8,7 +8,7 @@
 //! A method added to [`Element`] must be added here too, with its forward in the trait
 //! and in the blanket `impl Element`; otherwise wrappers fall back to its default.
 
-use super::contract::{Element, ElementState, JacobianSink, Label, Latched, PrivateDatum, ResidualSink, SectionState};
+use super::contract::{Element, ElementState, Events, JacobianSink, NonSmooth, Label, PrivateDatum, ResidualSink, SectionState};
 use super::{BeamUpdate, HintValue};
 use super::UnknownKind;
 
@@ -42,23 +42,14 @@ pub trait ElementWrapper: Send + Sync {
     fn assembly_form(&self) -> Option<&dyn Element> {
         self.inner().assembly_form()
     }
-    fn non_smooth(&self, s: &dyn ElementState) -> Option<String> {
-        self.inner().non_smooth(s)
+    fn events(&self) -> Option<&dyn Events> {
+        self.inner().events()
     }
-    fn kink_crossed(&self, from: &dyn ElementState, to: &dyn ElementState) -> Option<String> {
-        self.inner().kink_crossed(from, to)
-    }
-    fn has_events(&self) -> bool {
-        self.inner().has_events()
-    }
-    fn latch(&self, now: &dyn ElementState, before: &dyn ElementState) -> Option<Latched> {
-        self.inner().latch(now, before)
+    fn non_smoothness(&self) -> Option<&dyn NonSmooth> {
+        self.inner().non_smoothness()
     }
     fn constraint_rows_read_multipliers(&self) -> bool {
         self.inner().constraint_rows_read_multipliers()
-    }
-    fn reaction_dependence(&self, s: &dyn ElementState) -> Option<String> {
-        self.inner().reaction_dependence(s)
     }
     fn failure(&self, s: &dyn ElementState) -> Option<String> {
         self.inner().failure(s)
@@ -108,26 +99,17 @@ impl<W: ElementWrapper> Element for W {
     fn assembly_form(&self) -> Option<&dyn Element> {
         ElementWrapper::assembly_form(self)
     }
-    fn non_smooth(&self, s: &dyn ElementState) -> Option<String> {
-        ElementWrapper::non_smooth(self, s)
+    fn events(&self) -> Option<&dyn Events> {
+        ElementWrapper::events(self)
     }
-    fn kink_crossed(&self, from: &dyn ElementState, to: &dyn ElementState) -> Option<String> {
-        ElementWrapper::kink_crossed(self, from, to)
-    }
-    fn has_events(&self) -> bool {
-        ElementWrapper::has_events(self)
-    }
-    fn latch(&self, now: &dyn ElementState, before: &dyn ElementState) -> Option<Latched> {
-        ElementWrapper::latch(self, now, before)
+    fn non_smoothness(&self) -> Option<&dyn NonSmooth> {
+        ElementWrapper::non_smoothness(self)
     }
     fn hinted(&self, hint: &HintValue) -> Option<Box<dyn Element>> {
         ElementWrapper::hinted(self, hint)
     }
     fn constraint_rows_read_multipliers(&self) -> bool {
         ElementWrapper::constraint_rows_read_multipliers(self)
-    }
-    fn reaction_dependence(&self, s: &dyn ElementState) -> Option<String> {
-        ElementWrapper::reaction_dependence(self, s)
     }
     fn failure(&self, s: &dyn ElementState) -> Option<String> {
         ElementWrapper::failure(self, s)

@@ -44,7 +44,7 @@ pub fn wrap(head: &Statement, parsed: Parsed, src: &Sources, ctx: &ElementContex
                 // to be frozen while it is off and restarted when it switches on.
                 return Err(c.error_at(head.span, format!("driven: a driven {} with states of its own (joint friction) is not supported by romdyn", inner.type_name())));
             }
-            if inner.has_events() {
+            if inner.events().is_some() {
                 return Err(c.error_at(head.span, format!("driven: a driven {} with events of its own (a bistop law, a total joint locking some rotation components only) is not supported by romdyn", inner.type_name())));
             }
             check_hints_apply(&*inner, &probes, src)?;
