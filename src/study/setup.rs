@@ -5,7 +5,7 @@ use std::path::Path;
 use crate::analysis::{reference_state, static_state_from, Reference};
 use crate::dae::ports::{InputPort, OutputPort};
 use crate::dae::{linearize_sparse, NodeInput, NodeOutput, State};
-use crate::eigen::{degenerate_clusters, EnergyShare, ModalEnergy};
+use crate::eigen::{dense_modes, energy_shares, EnergyShare, ModalEnergy};
 use crate::input::eigen_pencil::PencilPorts;
 use crate::input::mbdyn::read_model;
 use crate::input::pencil::read_pencil_file;
@@ -269,8 +269,7 @@ impl Study {
                 (found.modal, Some(run))
             }
             None => {
-                let dae = linear.dense();
-                (ModalAnalysis::of_dae(dae, eigen.route, eigen.dcoef).map_err(|e| e.with_unknown_names(&dae.unknown_names))?, None)
+                (dense_modes(linear.dense(), eigen.route, eigen.dcoef)?, None)
             }
         };
         let mut study = Study { linear, modal, sparse, model, warnings: Vec::new(), reference_time: None, application: None };
@@ -337,15 +336,7 @@ impl Study {
     /// ([`ModalEnergy::subspace_shares`]), which do not depend on the basis the eigensolver chose.
     pub fn energy(&self) -> Vec<Vec<EnergyShare>> {
         match self.modal_energy() {
-            Some(energy) => {
-                let modes = &self.modal.modes;
-                let mut out: Vec<_> = modes.iter().map(|m| energy.shares(m)).collect();
-                for cluster in degenerate_clusters(modes) {
-                    let shares = energy.subspace_shares(&cluster.iter().map(|&i| &modes[i]).collect::<Vec<_>>());
-                    cluster.iter().for_each(|&i| out[i] = shares.clone());
-                }
-                out
-            }
+            Some(energy) => energy_shares(&energy, &self.modal.modes),
             None => vec![Vec::new(); self.modal.modes.len()],
         }
     }
