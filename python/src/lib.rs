@@ -24,10 +24,13 @@ use convert::{complex_vec, mat, responses};
 pyo3::create_exception!(_romdyn, RomdynError, PyException, "A romdyn failure, with the message the CLI prints.");
 pyo3::create_exception!(_romdyn, ModelError, RomdynError, "An error in an MBDyn input file: 'FILE:LINE:COLUMN: error: ...' with the line and a caret.");
 
-/// The Python exception of a library error: input-file errors keep file:line:col.
+/// The Python exception of a library error: input-file errors keep file:line:col, a bad
+/// setting is a `ValueError` naming its keyword argument.
 pub(crate) fn py_err(e: StudyError) -> PyErr {
     match e {
         StudyError::Model(m) => ModelError::new_err(m.to_string()),
+        // A setting named as the caller wrote it (`dcoef`, not the CLI's `--dcoef`).
+        StudyError::Option { option, message } => pyo3::exceptions::PyValueError::new_err(format!("{}: {message}", option.python_name())),
         e => RomdynError::new_err(e.to_string()),
     }
 }
@@ -69,7 +72,7 @@ impl Model {
     /// not; with why beams the `auto` update leaves path independent do so.
     fn read(&self, integrates: bool) -> Result<(MbdynModel, Vec<String>), StudyError> {
         let mut m = read_model_text(&self.text, &self.name, &self.overrides)?;
-        let kept = m.model.choose_beam_update(self.beam_update, integrates).map_err(|message| StudyError::Option { option: "beam_update", message: format!("{}: {message}", self.name.display()) })?;
+        let kept = m.model.choose_beam_update(self.beam_update, integrates).map_err(|message| StudyError::Option { option: romdyn::study::Setting::BeamUpdate, message: format!("{}: {message}", self.name.display()) })?;
         Ok((m, kept))
     }
 

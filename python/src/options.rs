@@ -61,8 +61,7 @@ pub fn sparse_target(count: Option<usize>, band: Option<(f64, f64)>) -> PyResult
     match (count, band) {
         (None, None) => Ok(None),
         (Some(n), None) if n > 0 => Ok(Some(ModeTarget::Lowest(n))),
-        (None, Some((fmin_hz, fmax_hz))) if fmin_hz.is_finite() && fmax_hz.is_finite() && 0.0 <= fmin_hz && fmin_hz < fmax_hz => Ok(Some(ModeTarget::Band { fmin_hz, fmax_hz })),
-        (None, Some(b)) => Err(bad("band", format!("{b:?}: expected (FMIN, FMAX) [Hz] with 0 <= FMIN < FMAX"))),
+        (None, Some((fmin_hz, fmax_hz))) => ModeSelection::band(fmin_hz, fmax_hz).map(|_| Some(ModeTarget::Band { fmin_hz, fmax_hz })).map_err(|e| bad("band", e)),
         _ => Err(bad("count", "give at most one of count (a positive number of modes) and band (FMIN, FMAX) [Hz]")),
     }
 }
@@ -93,8 +92,7 @@ pub fn request(count: Option<usize>, band: Option<(f64, f64)>, modes: Option<Vec
     let selection = match (count, band, modes) {
         (Some(0), None, None) => return Err(bad("count", "a ROM keeps at least 1 mode")),
         (Some(n), None, None) => ModeSelection::Lowest(n),
-        (None, Some((a, b)), None) if a.is_finite() && b.is_finite() && 0.0 <= a && a <= b => ModeSelection::Band { fmin_hz: a, fmax_hz: b },
-        (None, Some((a, b)), None) => return Err(bad("band", format!("need 0 <= FMIN <= FMAX [Hz] (finite), got ({a}, {b})"))),
+        (None, Some((a, b)), None) => ModeSelection::band(a, b).map_err(|e| bad("band", e))?,
         (None, None, Some(list)) => ModeSelection::Indices(list),
         _ => return Err(bad("reduce", "give exactly one of count=N, band=(FMIN, FMAX) [Hz], modes=[I, ...]")),
     };

@@ -157,3 +157,19 @@ def test_study_solver_sparse_gives_the_dense_modes_static_gain_and_response(exam
     assert np.allclose(np.sort(beam.sparse_modes(count=3, reference="static")["eigenvalues"].imag), np.sort(sparse.modes()["eigenvalues"].imag), rtol=1e-12)
     with pytest.raises(ValueError, match="solver"):
         beam.study(solver="bogus")
+
+
+def test_a_bad_setting_is_named_as_python_spells_it(examples):
+    # Issue 31: the library's refusals named the CLI's flags ("--dcoef: ...") to Python users.
+    model = romdyn.Model(examples / "pendulum.mbd")
+    with pytest.raises(ValueError, match=r"^dcoef: dCoef must be a positive finite"):
+        model.study(inputs=["2:Mz"], outputs=["2:rz"], dcoef=-1.0)
+    # examples/pendulum.mbd integrates to 2 s.
+    with pytest.raises(ValueError, match=r"^reference: TIME 5(\.0)? s is after the file's final time 2 s"):
+        model.study(reference=5.0, inputs=["2:Mz"], outputs=["2:rz"])
+    study = model.study(inputs=["2:Mz"], outputs=["2:rz"])
+    with pytest.raises(ValueError, match=r"^fmin: need FMIN < FMAX"):
+        study.reduce(count=1, fmin=10.0, fmax=1.0)
+    # An empty band is refused by every front end (the CLI took FMIN = FMAX).
+    with pytest.raises(ValueError, match=r"^band: need 0 <= FMIN < FMAX"):
+        study.reduce(band=(2.0, 2.0))

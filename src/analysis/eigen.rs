@@ -1,12 +1,14 @@
 //! One eigenanalysis of a run, as MBDyn does it (manual, "Eigenanalysis"): `J(+c)` and
 //! `J(−c)` at the current solution (eqs. 13–14), QZ on the pencil in the Λ form (eq. 18),
-//! eigenvalues mapped back with eq. 23 and labelled (eqs. 32–35).
+//! eigenvalues mapped back with eq. 23 and labelled (eqs. 32–35). The pencil is solved and
+//! its modes' kinetic-energy shares taken by the same functions as `romdyn eig`'s
+//! ([`crate::eigen::dense_modes`], [`crate::eigen::energy_shares`]).
 
 use faer::{c64, Mat};
 
 use super::error::RunError;
 use crate::dae::{linearize, DofMap, State};
-use crate::eigen::{EnergyShare, ModalEnergy};
+use crate::eigen::{dense_modes, energy_shares, EnergyShare, ModalEnergy};
 use crate::kinematics::rotation_vector;
 use crate::eigen::{EigenRoute, ModalAnalysis, ModeKind};
 use crate::linear::{Jacobians, LinearDae};
@@ -56,13 +58,14 @@ impl Eigenanalysis {
         let fail = |message: String| RunError::Eigen { index, time: state.t, message };
         let dcoef = request.dcoef.unwrap_or(DEFAULT_DCOEF);
         let dae = linearize(model, state, &[], &[], Some(dcoef)).map_err(|e| fail(e.to_string()))?;
-        let modal = ModalAnalysis::of_dae(&dae, EigenRoute::Lambda, None).map_err(|e| fail(e.with_unknown_names(&dae.unknown_names).to_string()))?;
+        let modal = dense_modes(&dae, EigenRoute::Lambda, None).map_err(|e| fail(e.to_string()))?;
         let written = within_limits(&modal, request);
-        let shares = ModalEnergy::new(model, &dae);
-        let mut energy = vec![Vec::new(); modal.modes.len()];
-        for &k in &written {
-            if modal.modes[k].kind == ModeKind::Dynamic {
-                energy[k] = shares.shares(&modal.modes[k]);
+        // The shares `romdyn eig` prints (a degenerate cluster's members sharing theirs),
+        // written for the written dynamic modes.
+        let mut energy = energy_shares(&ModalEnergy::new(model, &dae), &modal.modes);
+        for (k, shares) in energy.iter_mut().enumerate() {
+            if modal.modes[k].kind != ModeKind::Dynamic || !written.contains(&k) {
+                shares.clear();
             }
         }
         let LinearDae { jacobians: Jacobians::Coefficient { j: aplus, jstar: aminus, .. }, unknown_names, .. } = dae else {

@@ -159,7 +159,7 @@ impl PencilArgs {
             (None, Some(path)) => {
                 let mut m = read_model(path)?;
                 let integrates = self.reference.reference().integrates();
-                self.beam_update.apply(&mut m.model, integrates).map_err(|message| StudyError::Option { option: "--beam-update", message: format!("{}: {message}", path.display()) })?;
+                self.beam_update.apply(&mut m.model, integrates).map_err(|message| StudyError::Option { option: romdyn::study::Setting::BeamUpdate, message: format!("{}: {message}", path.display()) })?;
                 let progress = SolverProgress::new();
                 let result = Study::of_model_with_progress(m.model, &m.problem, self.reference.reference(), &self.ports()?, eigen, None, &|line| progress.report(line));
                 progress.finish();
@@ -258,9 +258,7 @@ pub fn parse_band(s: &str) -> Result<(f64, f64), String> {
     let (a, b) = s.split_once(':').ok_or("expected FMIN:FMAX in Hz, e.g. 0.1:20")?;
     let a: f64 = a.trim().parse().map_err(|_| format!("FMIN '{a}' is not a number"))?;
     let b: f64 = b.trim().parse().map_err(|_| format!("FMAX '{b}' is not a number"))?;
-    if !(a.is_finite() && b.is_finite() && 0.0 <= a && a <= b) {
-        return Err(format!("need 0 <= FMIN <= FMAX (finite), got {a}:{b}"));
-    }
+    romdyn::rom::ModeSelection::band(a, b)?;
     Ok((a, b))
 }
 

@@ -243,7 +243,7 @@ impl<'m> Assembler<'m> {
 
     /// Whether an element of the model has events ([`crate::element::Element::latch`]).
     pub fn has_events(&self) -> bool {
-        self.model.elements.iter().any(|e| e.has_events())
+        self.model.elements.iter().any(|e| e.events().is_some())
     }
 
     /// The elements' events of a step: each element with events latches its data from
@@ -252,10 +252,10 @@ impl<'m> Assembler<'m> {
     pub fn latch_events(&self, now: &mut State, before: &State) {
         let (frames, before_frames) = (self.frames(now), self.frames(before));
         let mut changed = Vec::new();
-        for (e, el) in self.model.elements.iter().enumerate().filter(|(_, el)| el.has_events()) {
+        for (e, events) in self.model.elements.iter().enumerate().filter_map(|(e, el)| Some((e, el.events()?))) {
             let ctx = self.context(&frames, now, e, 1.0);
             let prev = self.context(&before_frames, before, e, 1.0);
-            if let Some(l) = el.latch(&ctx, &prev) {
+            if let Some(l) = events.latch(&ctx, &prev) {
                 changed.push((e, l));
             }
         }
@@ -413,7 +413,7 @@ impl<'m> Assembler<'m> {
     /// [`Element::non_smooth`]: crate::element::Element::non_smooth
     pub fn non_smooth_elements(&self, st: &State) -> Vec<String> {
         let frames = self.frames(st);
-        let named = |(e, el): (usize, &Box<dyn crate::element::Element>)| el.non_smooth(&self.context(&frames, st, e, 1.0)).map(|why| format!("{} {}: {why}", el.type_name(), el.label()));
+        let named = |(e, el): (usize, &Box<dyn crate::element::Element>)| el.non_smoothness().and_then(|n| n.non_smooth(&self.context(&frames, st, e, 1.0))).map(|why| format!("{} {}: {why}", el.type_name(), el.label()));
         self.model.elements.iter().enumerate().filter_map(named).collect()
     }
 
@@ -424,7 +424,7 @@ impl<'m> Assembler<'m> {
     pub fn kinks_crossed(&self, from: &State, to: &State) -> Vec<String> {
         let (frames_from, frames_to) = (self.frames(from), self.frames(to));
         let named = |(e, el): (usize, &Box<dyn crate::element::Element>)| {
-            el.kink_crossed(&self.context(&frames_from, from, e, 1.0), &self.context(&frames_to, to, e, 1.0)).map(|why| format!("{} {}: {why}", el.type_name(), el.label()))
+            el.non_smoothness().and_then(|n| n.kink_crossed(&self.context(&frames_from, from, e, 1.0), &self.context(&frames_to, to, e, 1.0))).map(|why| format!("{} {}: {why}", el.type_name(), el.label()))
         };
         self.model.elements.iter().enumerate().filter_map(named).collect()
     }
@@ -435,7 +435,7 @@ impl<'m> Assembler<'m> {
     /// [`Element::reaction_dependence`]: crate::element::Element::reaction_dependence
     pub fn reaction_dependent_elements(&self, st: &State) -> Vec<String> {
         let frames = self.frames(st);
-        let named = |(e, el): (usize, &Box<dyn crate::element::Element>)| el.reaction_dependence(&self.context(&frames, st, e, 1.0)).map(|why| format!("{} {}: {why}", el.type_name(), el.label()));
+        let named = |(e, el): (usize, &Box<dyn crate::element::Element>)| el.non_smoothness().and_then(|n| n.reaction_dependence(&self.context(&frames, st, e, 1.0))).map(|why| format!("{} {}: {why}", el.type_name(), el.label()));
         self.model.elements.iter().enumerate().filter_map(named).collect()
     }
 

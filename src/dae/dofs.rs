@@ -1,6 +1,7 @@
 //! Numbering of unknowns and equations; names for reports.
 
 use crate::model::{Model, NodeKind};
+use crate::element::UnknownKind;
 
 /// Where each node's and element's unknowns (and equations) start.
 #[derive(Clone, Debug)]
@@ -19,13 +20,13 @@ pub struct DofMap {
     /// unknowns of velocity-level constraints and elements' coordinates are not: they
     /// follow the node unknowns' coefficients in both constraint forms).
     multiplier: Vec<bool>,
-    /// Whether each unknown is an element's coordinate ([`Element::is_coordinate`]).
+    /// Whether each unknown is an element's coordinate ([`UnknownKind::Coordinate`]).
     ///
-    /// [`Element::is_coordinate`]: crate::element::Element::is_coordinate
+    /// [`UnknownKind::Coordinate`]: crate::element::UnknownKind::Coordinate
     coordinate: Vec<bool>,
-    /// Whether each unknown is an element's differential state ([`Element::is_state`]).
+    /// Whether each unknown is an element's differential state ([`UnknownKind::State`]).
     ///
-    /// [`Element::is_state`]: crate::element::Element::is_state
+    /// [`UnknownKind::State`]: crate::element::UnknownKind::State
     state: Vec<bool>,
 }
 
@@ -58,9 +59,10 @@ impl DofMap {
         let (mut multiplier, mut coordinate, mut state) = (vec![false; first], vec![false; first], vec![false; first]);
         for ((&f, &k), e) in element_first.iter().zip(&element_len).zip(&model.elements) {
             for j in 0..k {
-                coordinate[f + j] = e.is_coordinate(j);
-                state[f + j] = e.is_state(j);
-                multiplier[f + j] = !e.is_velocity_constraint(j) && !coordinate[f + j] && !state[f + j];
+                let kind = e.unknown_kind(j);
+                coordinate[f + j] = kind == UnknownKind::Coordinate;
+                state[f + j] = kind == UnknownKind::State;
+                multiplier[f + j] = kind == UnknownKind::Multiplier;
             }
         }
         DofMap { node_first, node_kind: model.nodes.iter().map(|n| n.kind).collect(), node_displacement: model.nodes.iter().map(|n| model.displacement_nodes.contains(&n.label)).collect(), element_first, element_len, element_nodes, len: first, multiplier, coordinate, state }

@@ -7,7 +7,9 @@
 //! - [`krylov`]: shift-invert Krylov–Schur on the sparse pencil, for the modes in a band;
 //! - [`ModalAnalysis`] / [`Mode`]: the result either solver gives, sorted and normalized alike;
 //! - [`kinetic_energy_shares`], [`degenerate_clusters`]: which node and component a mode
-//!   moves, and the labels of (nearly) repeated modes.
+//!   moves, and the labels of (nearly) repeated modes;
+//! - [`dense_modes`], [`energy_shares`]: the dense eigenanalysis and the modes' shares as
+//!   `romdyn run` and a [`crate::study::Study`] both take them.
 //!
 //! The linear DAE's types themselves live in [`crate::linear`].
 
@@ -18,6 +20,7 @@ mod energy;
 mod error;
 pub mod krylov;
 mod modes;
+mod pipeline;
 mod route;
 
 pub use classify::{Classification, ModeKind};
@@ -25,4 +28,5 @@ pub use cluster::{cluster_label, degenerate_clusters, CLUSTER_RELATIVE_GAP};
 pub use energy::{describe, kinetic_energy_shares, mode_label, real_mode_label, EnergyShare, ModalEnergy};
 pub use error::EigenError;
 pub use modes::{ModalAnalysis, Mode};
+pub use pipeline::{dense_modes, energy_shares};
 pub use route::EigenRoute;

@@ -12,6 +12,7 @@ use super::contract::{add_block, Col, Element, ElementState, JacobianSink, Label
 use super::drive::Drive;
 use crate::kinematics::skew;
 use crate::kinematics::Vec3;
+use super::UnknownKind;
 
 /// The state `w` and its equation `ẇ = α(t)`.
 const RATE: usize = 0;
@@ -73,11 +74,12 @@ impl Element for AngularAcceleration {
     fn multipliers(&self) -> Vec<String> {
         vec!["w".into(), "m".into()]
     }
-    fn is_state(&self, k: usize) -> bool {
-        k == RATE
-    }
-    fn is_velocity_constraint(&self, k: usize) -> bool {
-        k == MOMENT
+    fn unknown_kind(&self, k: usize) -> UnknownKind {
+        match k {
+            RATE => UnknownKind::State,
+            MOMENT => UnknownKind::VelocityConstraint,
+            _ => UnknownKind::Multiplier,
+        }
     }
     fn assembly_form(&self) -> Option<&dyn Element> {
         Some(&self.assembly)

@@ -8,6 +8,7 @@ use super::anchor::Pair;
 use super::{Anchor, Joint};
 use super::drive::Drive;
 use crate::kinematics::{skew, Vec3};
+use super::UnknownKind;
 
 /// A revolute hinge (5 holonomic constraints) driven at relative angular velocity `Ω(t)`
 /// about axis 3 of frame A (1 velocity constraint).
@@ -54,8 +55,8 @@ impl Element for AxialRotation {
         m.push("m axial".into());
         m
     }
-    fn is_velocity_constraint(&self, k: usize) -> bool {
-        k == RATE
+    fn unknown_kind(&self, k: usize) -> UnknownKind {
+        if k == RATE { UnknownKind::VelocityConstraint } else { UnknownKind::Multiplier }
     }
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
         self.hinge.residual(st, out);

@@ -6,7 +6,7 @@
 //! its local `s = S − 2k` is the beams' `ξ`), the line by each beam's interpolated offset
 //! points `p_j = x_j + R_j o_j`: `x(s) = Σ N_j(s) p_j`, tangent `l = Σ N_j′ p_j`. The
 //! slider's point is `x_c = x_b + R_b f`, its frame `R_b R` with axes `e₁ e₂ e₃`. Unknowns:
-//! the abscissa (a coordinate, [`Element::is_coordinate`]), the force `F` on the slider and,
+//! the abscissa (a coordinate, [`UnknownKind::Coordinate`]), the force `F` on the slider and,
 //! for `classic`, the moments `m₂ m₃`. Equations, as beamslider.cc:
 //!
 //! ```text
@@ -30,7 +30,7 @@
 //! `InitialAssRes`); romdyn's does, which agrees with it when the slider starts on the line.
 //!
 //! The contract has no element history, so the current beam is a function of the state, and
-//! the abscissa is a coordinate ([`Element::is_coordinate`]), not a multiplier: in the form
+//! the abscissa is a coordinate ([`UnknownKind::Coordinate`]), not a multiplier: in the form
 //! of eq. 30 an algebraic abscissa (MBDyn's) would enter the scaled constraint rows as
 //! `Φ_/s / c`, which no pair `F_/ẏ`, `F_/y` expresses, so the linearization needs it as a
 //! configuration unknown. Its equation, `l · F = 0`, is not divided by dCoef (MBDyn's is):
@@ -39,6 +39,7 @@
 use super::beam::shape;
 use super::contract::{Col, Element, ElementState, JacobianSink, Label, NodeKinematics, ResidualSink, Row};
 use crate::kinematics::{skew, Mat3, Vec3};
+use super::UnknownKind;
 
 /// Which rotation the slider constrains.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -319,8 +320,8 @@ impl Element for BeamSlider {
         v.extend(["m 2", "m 3"].iter().take(self.rotations()).map(|s| s.to_string()));
         v
     }
-    fn is_coordinate(&self, k: usize) -> bool {
-        k == 0
+    fn unknown_kind(&self, k: usize) -> UnknownKind {
+        if k == 0 { UnknownKind::Coordinate } else { UnknownKind::Multiplier }
     }
 
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {

@@ -21,6 +21,7 @@ use super::deformable::{add_pair_force, add_pair_force_jacobian};
 use super::Rod;
 use super::drive::Drive;
 use crate::kinematics::Mat3;
+use crate::element::Events;
 
 /// A rod whose law switches on and off (module documentation).
 #[derive(Clone, Debug)]
@@ -83,19 +84,8 @@ impl Element for BistopRod {
     fn reads_state(&self) -> bool {
         self.activate.reads_state() || self.deactivate.reads_state()
     }
-    fn has_events(&self) -> bool {
-        true
-    }
-    fn latch(&self, now: &dyn ElementState, _before: &dyn ElementState) -> Option<Latched> {
-        let old = self.status(now);
-        let mut new = old;
-        if !new.active && self.activate.value_in(now) != 0.0 {
-            new = BistopStatus { active: true, reference_strain: self.strain(now) };
-        }
-        if new.active && self.deactivate.value_in(now) != 0.0 {
-            new.active = false;
-        }
-        (new != old).then(|| std::sync::Arc::new(new) as Latched)
+    fn events(&self) -> Option<&dyn Events> {
+        Some(self)
     }
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
         let s = self.status(st);
@@ -113,6 +103,20 @@ impl Element for BistopRod {
         } else {
             self.active_jacobian(st, &s, &mut Zeros(out));
         }
+    }
+}
+
+impl Events for BistopRod {
+    fn latch(&self, now: &dyn ElementState, _before: &dyn ElementState) -> Option<Latched> {
+        let old = self.status(now);
+        let mut new = old;
+        if !new.active && self.activate.value_in(now) != 0.0 {
+            new = BistopStatus { active: true, reference_strain: self.strain(now) };
+        }
+        if new.active && self.deactivate.value_in(now) != 0.0 {
+            new.active = false;
+        }
+        (new != old).then(|| std::sync::Arc::new(new) as Latched)
     }
 }
 

@@ -36,7 +36,7 @@ pub enum Col {
     /// The element's own unknown `k` (a multiplier, a coordinate or a state).
     Multiplier(usize),
     /// The time derivative of the element's own unknown `k`, a differential state
-    /// ([`Element::is_state`]): its entries go to `F_/ẏ`.
+    /// ([`UnknownKind::State`]): its entries go to `F_/ẏ`.
     Rate(usize),
 }
 
@@ -74,7 +74,7 @@ impl PrivateDatum {
 /// Data an element re-sets at an event and holds until the next one (a driven element's
 /// drives re-set by its hints when it switches on, a bistop law's status and reference
 /// strain): kept in the state ([`crate::dae::State::latched`]), set by
-/// [`Element::latch`] once per step, never inside Newton's iterations.
+/// [`Events::latch`] once per step, never inside Newton's iterations.
 pub type Latched = std::sync::Arc<dyn std::any::Any + Send + Sync>;
 
 /// What an element reads: its nodes' kinematics, its multipliers, the time and gravity.
@@ -82,7 +82,7 @@ pub trait ElementState {
     fn node(&self, slot: usize) -> &NodeKinematics;
     fn multiplier(&self, k: usize) -> f64;
     /// The time derivative of the element's own unknown `k`; read only for a differential
-    /// state ([`Element::is_state`]), zero where the caller integrates none (the initial
+    /// state ([`UnknownKind::State`]), zero where the caller integrates none (the initial
     /// assembly).
     fn rate(&self, _k: usize) -> f64 {
         0.0
@@ -105,7 +105,7 @@ pub trait ElementState {
     fn structural_node(&self, _label: Label) -> Option<&NodeKinematics> {
         None
     }
-    /// The element's data of its last event ([`Element::latch`]), `None` before any (the
+    /// The element's data of its last event ([`Events::latch`]), `None` before any (the
     /// element's data as read).
     fn latched(&self) -> Option<&(dyn std::any::Any + Send + Sync)> {
         None
@@ -173,6 +173,70 @@ pub fn add_block(sink: &mut dyn JacobianSink, rows: [Row; 3], cols: [Col; 3], m:
     sink.add_block(rows, cols, m);
 }
 
+/// What an element's own unknown `k` is, with its equation `k`: it decides how the
+/// integrator updates the unknown, which coefficient its Jacobian column takes and whether
+/// the equation is divided by dCoef in the form of eq. 30 (paper §6.1). Algebraic kinds
+/// (multipliers) carry no time derivative of their own; differential kinds (coordinates,
+/// states) are integrated like a node's position.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum UnknownKind {
+    /// Algebraic: the Lagrange multiplier of a holonomic constraint `Φ(q, t) = 0`, updated
+    /// and scaled as the constraint form says (eqs. 29–30).
+    Multiplier,
+    /// Algebraic: the unknown of a velocity-level constraint `ψ(q, q̇, t) = 0` (MBDyn's
+    /// "differential" constraint equations, e.g. the imposed angular velocity of `axial
+    /// rotation`): its equation is never divided by dCoef, and the unknown is an ordinary
+    /// algebraic unknown (Jacobian coefficient `c`, updated as `y += c δ`) in both
+    /// constraint forms.
+    VelocityConstraint,
+    /// Differential: a coordinate rather than a multiplier (the abscissa of a beam slider
+    /// along its beams): a configuration unknown like a node's, updated as `y += c δ` with
+    /// Jacobian coefficient `c`, and set by the initial assembly; its equation is not
+    /// divided by dCoef. The element's holonomic rows may depend on it: in the form of
+    /// eq. 30 the assembler gives those entries the coefficient of the row's position
+    /// entries, so the element writes the plain derivative `Φ_/s`.
+    Coordinate,
+    /// Differential: a state of the element with its own first-order equation
+    /// `ψ(z, ż, q, q̇, λ) = 0` (a LuGre friction model's bristle deflection, MBDyn's
+    /// `DofOrder::DIFFERENTIAL` dof of friction.cc): integrated like a node's position
+    /// (`ż += δ`, `z += c δ`, Jacobian entries on `ż` ([`Col::Rate`]) with coefficient 1 and
+    /// on `z` ([`Col::Multiplier`]) with `c`), its equation not divided by dCoef, and left
+    /// out of the initial assembly ([`Element::assembly_form`]). It starts at zero.
+    State,
+}
+
+/// The events of an element that has them ([`Element::events`]: beams with MBDyn's
+/// incremental update, driven elements and joints, bistop laws).
+pub trait Events {
+    /// Once per step, after the predictor and before Newton (where MBDyn's `AfterPredict`
+    /// switches a driven element on, and a bistop law's first `Update` of the step
+    /// activates it): `now` is the predicted state at the step's time, `before` the accepted
+    /// state of the previous step (what MBDyn's `model::…_prev` functions read); both carry
+    /// the data of the element's last event. Returns the data that replace them, `None` to
+    /// keep them. Residuals and Jacobians (Newton's and a linearization's) hold the latched
+    /// data fixed: they are constants of the state, as MBDyn's element members are.
+    fn latch(&self, now: &dyn ElementState, before: &dyn ElementState) -> Option<Latched>;
+}
+
+/// The irregularities of an element's residual ([`Element::non_smoothness`]): friction
+/// models (joint, hinge and screw friction) and the driven elements that wrap them.
+pub trait NonSmooth {
+    /// Why its residual is not differentiable at this state, if it is not (a friction state
+    /// at zero sliding velocity past its breakaway deflection): a linearization there takes
+    /// a one-sided derivative, and an eigenanalysis reports it.
+    fn non_smooth(&self, s: &dyn ElementState) -> Option<String>;
+    /// Why its residual is not differentiable somewhere between the states `from` and `to`
+    /// (a friction coefficient's kink that the sliding speed crosses), if it is not: when
+    /// Newton fails with its last iterates on the two sides of such a point, its failure
+    /// names it, since Newton's iterates can cycle across a kink instead of converging.
+    fn kink_crossed(&self, from: &dyn ElementState, to: &dyn ElementState) -> Option<String>;
+    /// Why its Jacobian at this state depends on the values of joint reaction multipliers,
+    /// if it does (a friction force proportional to the normal reaction `|λ|`): those are
+    /// the integrator's, which steps accepted within the tolerance without a Newton
+    /// iteration leave noisy, and an eigenanalysis warns that its eigenvalues carry it.
+    fn reaction_dependence(&self, s: &dyn ElementState) -> Option<String>;
+}
+
 /// One element of the model.
 pub trait Element: Send + Sync {
     fn label(&self) -> Label;
@@ -184,12 +248,10 @@ pub trait Element: Send + Sync {
     fn multipliers(&self) -> Vec<String> {
         Vec::new()
     }
-    /// Whether its own equation `k` is a velocity-level constraint `ψ(q, q̇, t) = 0` (MBDyn's
-    /// "differential" constraint equations, e.g. the imposed angular velocity of `axial
-    /// rotation`): never divided by dCoef, and its unknown is an ordinary algebraic unknown
-    /// (Jacobian coefficient `c`, updated as `y += c δ`) in both constraint forms.
-    fn is_velocity_constraint(&self, _k: usize) -> bool {
-        false
+    /// What its own unknown `k` is ([`UnknownKind`]): a multiplier of a holonomic
+    /// constraint unless the element says otherwise.
+    fn unknown_kind(&self, _k: usize) -> UnknownKind {
+        UnknownKind::Multiplier
     }
     /// Whether a drive of the element reads the model's state (MBDyn's `model::` functions
     /// in a `string` drive): its residual then depends on nodes through the drive, and its
@@ -198,56 +260,21 @@ pub trait Element: Send + Sync {
     fn reads_state(&self) -> bool {
         false
     }
-    /// Whether its own unknown `k` is a coordinate rather than a multiplier (the abscissa of
-    /// a beam slider along its beams): a configuration unknown like a node's, updated as
-    /// `y += c δ` with Jacobian coefficient `c`, and set by the initial assembly; its
-    /// equation `k` is not divided by dCoef. The element's holonomic rows may depend on
-    /// it: in the form of eq. 30 the assembler gives those entries the coefficient of the
-    /// row's position entries, so the element writes the plain derivative `Φ_/s`.
-    fn is_coordinate(&self, _k: usize) -> bool {
-        false
-    }
-    /// Whether its own unknown `k` is a differential state of the element, with its own
-    /// first-order equation `k`, `ψ(z, ż, q, q̇, λ) = 0` (a LuGre friction model's bristle
-    /// deflection, MBDyn's `DofOrder::DIFFERENTIAL` dof of friction.cc): integrated like a
-    /// node's position (`ż += δ`, `z += c δ`, Jacobian entries on `ż` ([`Col::Rate`]) with
-    /// coefficient 1 and on `z` ([`Col::Multiplier`]) with `c`), its equation not divided
-    /// by dCoef, and left out of the initial assembly ([`Element::assembly_form`]). It
-    /// starts at zero.
-    fn is_state(&self, _k: usize) -> bool {
-        false
-    }
     /// The element the initial assembly uses in this one's place, when they differ (a joint
     /// with friction: the joint alone, as MBDyn's `InitialAssRes` of a joint with friction
     /// leaves the friction out). Its unknowns must be this element's first ones.
     fn assembly_form(&self) -> Option<&dyn Element> {
         None
     }
-    /// Why its residual is not differentiable at this state, if it is not (a friction state
-    /// at zero sliding velocity past its breakaway deflection): a linearization there takes
-    /// a one-sided derivative, and an eigenanalysis reports it.
-    fn non_smooth(&self, _s: &dyn ElementState) -> Option<String> {
+    /// What makes its residual or Jacobian less regular than a smooth function of the
+    /// state, when something does ([`NonSmooth`]: friction's kinks and its dependence on
+    /// reaction values); `None` for most elements.
+    fn non_smoothness(&self) -> Option<&dyn NonSmooth> {
         None
     }
-    /// Why its residual is not differentiable somewhere between the states `from` and `to`
-    /// (a friction coefficient's kink that the sliding speed crosses), if it is not: when
-    /// Newton fails with its last iterates on the two sides of such a point, its failure
-    /// names it, since Newton's iterates can cycle across a kink instead of converging.
-    fn kink_crossed(&self, _from: &dyn ElementState, _to: &dyn ElementState) -> Option<String> {
-        None
-    }
-    /// Whether the element has events ([`Element::latch`]).
-    fn has_events(&self) -> bool {
-        false
-    }
-    /// Once per step, after the predictor and before Newton (where MBDyn's `AfterPredict`
-    /// switches a driven element on, and a bistop law's first `Update` of the step
-    /// activates it): `now` is the predicted state at the step's time, `before` the accepted
-    /// state of the previous step (what MBDyn's `model::…_prev` functions read); both carry
-    /// the data of the element's last event. Returns the data that replace them, `None` to
-    /// keep them. Residuals and Jacobians (Newton's and a linearization's) hold the latched
-    /// data fixed: they are constants of the state, as MBDyn's element members are.
-    fn latch(&self, _now: &dyn ElementState, _before: &dyn ElementState) -> Option<Latched> {
+    /// Its events, when it has any in this configuration ([`Events`]: data re-set once per
+    /// step and held); `None` for most elements.
+    fn events(&self) -> Option<&dyn Events> {
         None
     }
     /// The element with a hint's drive in place of its own (MBDyn's `SetValue` with hints,
@@ -261,13 +288,6 @@ pub trait Element: Send + Sync {
     /// model in the form of eq. 29.
     fn constraint_rows_read_multipliers(&self) -> bool {
         false
-    }
-    /// Why its Jacobian at this state depends on the values of joint reaction multipliers,
-    /// if it does (a friction force proportional to the normal reaction `|λ|`): those are
-    /// the integrator's, which steps accepted within the tolerance without a Newton
-    /// iteration leave noisy, and an eigenanalysis warns that its eigenvalues carry it.
-    fn reaction_dependence(&self, _s: &dyn ElementState) -> Option<String> {
-        None
     }
     /// Why its residual cannot be evaluated at this state, if it cannot (a driven element
     /// whose hints could not be built when it switched on: its residual is NaN there), so

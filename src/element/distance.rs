@@ -2,7 +2,7 @@
 //! with the direction between them an unknown of its own.
 //!
 //! Unknowns: the unit direction `v = v₀ + w` from A's point to B's (`w` the change from the
-//! written direction `v₀`, three coordinates, [`Element::is_coordinate`]) and the tension `α`.
+//! written direction `v₀`, three coordinates, [`UnknownKind::Coordinate`]) and the tension `α`.
 //! Equations, none divided by dCoef (MBDyn writes them unscaled):
 //!
 //! ```text
@@ -17,7 +17,7 @@
 //! of rounding as a residual of 5.6e-4, above the tolerance, in every iteration.
 //!
 //! `α` is an algebraic unknown that is not a holonomic multiplier
-//! ([`Element::is_velocity_constraint`]: its equation is never divided by dCoef, and the
+//! ([`UnknownKind::VelocityConstraint`]: its equation is never divided by dCoef, and the
 //! unknown moves as `y += c δ`, the same Newton iterates as MBDyn's `α += δ` with MBDyn's
 //! Jacobian entries divided by c). The coordinates `w` move with the configuration (set by
 //! the initial assembly, with their rates `ẇ` on its velocity rows, as MBDyn's
@@ -27,6 +27,7 @@ use super::anchor::{node_labels, Anchor, Pair};
 use super::contract::{Col, Element, ElementState, JacobianSink, Label, ResidualSink, Row};
 use super::deformable::{add_pair_force, add_pair_force_jacobian};
 use crate::kinematics::{Mat3, Vec3};
+use super::UnknownKind;
 
 /// Distance `L(t)` between two points, MBDyn's four-unknown form (module documentation).
 #[derive(Clone, Debug)]
@@ -74,11 +75,12 @@ impl Element for Distance {
     fn multipliers(&self) -> Vec<String> {
         vec!["direction x".into(), "direction y".into(), "direction z".into(), "f".into()]
     }
-    fn is_coordinate(&self, k: usize) -> bool {
-        k < 3
-    }
-    fn is_velocity_constraint(&self, k: usize) -> bool {
-        k == 3
+    fn unknown_kind(&self, k: usize) -> UnknownKind {
+        match k {
+            0..3 => UnknownKind::Coordinate,
+            3 => UnknownKind::VelocityConstraint,
+            _ => UnknownKind::Multiplier,
+        }
     }
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
         let p = Pair::new(&self.a, &self.b, st);

@@ -29,6 +29,9 @@ use super::contract::{Col, Element, ElementState, JacobianSink, Latched, Private
 use super::wrapper::ElementWrapper;
 use super::VectorDrive;
 use super::drive::Drive;
+use super::UnknownKind;
+use crate::element::Events;
+use crate::element::NonSmooth;
 
 /// A hint's drive, built when the element switches on.
 #[derive(Clone, Debug, PartialEq)]
@@ -130,30 +133,11 @@ impl ElementWrapper for DrivenElement {
     fn assembly_form(&self) -> Option<&dyn Element> {
         None
     }
-    fn has_events(&self) -> bool {
-        !self.hints.is_empty()
+    fn events(&self) -> Option<&dyn Events> {
+        if !self.hints.is_empty() { Some(self) } else { None }
     }
-    fn latch(&self, now: &dyn ElementState, before: &dyn ElementState) -> Option<Latched> {
-        let was = Self::switched(now).map_or_else(|| self.active(before), |w| w.active);
-        let is = self.active(now);
-        if is == was {
-            return None;
-        }
-        let element = if is {
-            self.apply_hints(now, before)
-        } else {
-            Self::switched(now).map_or(Ok(None), |w| w.element.clone())
-        };
-        Some(Arc::new(Switched { active: is, element }))
-    }
-    fn non_smooth(&self, s: &dyn ElementState) -> Option<String> {
-        self.acting(s).and_then(|e| e.non_smooth(s))
-    }
-    fn kink_crossed(&self, from: &dyn ElementState, to: &dyn ElementState) -> Option<String> {
-        self.acting(to).and_then(|e| e.kink_crossed(from, to))
-    }
-    fn reaction_dependence(&self, s: &dyn ElementState) -> Option<String> {
-        self.acting(s).and_then(|e| e.reaction_dependence(s))
+    fn non_smoothness(&self) -> Option<&dyn NonSmooth> {
+        Some(self)
     }
     fn failure(&self, s: &dyn ElementState) -> Option<String> {
         match self.element(s) {
@@ -185,7 +169,7 @@ impl ElementWrapper for DrivenElement {
         for k in 0..self.inner.multipliers().len() {
             // ∂(−λ_k)/∂λ_k = −1 on a row the assembler scales as a constraint row (velocity
             // constraints' rows are never scaled).
-            let scale = if self.inner.is_velocity_constraint(k) || self.inner.is_coordinate(k) { 1.0 } else { s.constraint_row_scale() };
+            let scale = if matches!(self.inner.unknown_kind(k), UnknownKind::VelocityConstraint | UnknownKind::Coordinate) { 1.0 } else { s.constraint_row_scale() };
             out.add(Row::Constraint(k), Col::Multiplier(k), if active { 0.0 } else { -scale });
         }
     }
@@ -195,5 +179,33 @@ impl ElementWrapper for DrivenElement {
     }
     fn sections(&self, s: &dyn ElementState) -> Vec<SectionState> {
         self.acting(s).map(|e| e.sections(s)).unwrap_or_default()
+    }
+}
+
+impl NonSmooth for DrivenElement {
+    fn non_smooth(&self, s: &dyn ElementState) -> Option<String> {
+        self.acting(s).and_then(|e| e.non_smoothness()?.non_smooth(s))
+    }
+    fn kink_crossed(&self, from: &dyn ElementState, to: &dyn ElementState) -> Option<String> {
+        self.acting(to).and_then(|e| e.non_smoothness()?.kink_crossed(from, to))
+    }
+    fn reaction_dependence(&self, s: &dyn ElementState) -> Option<String> {
+        self.acting(s).and_then(|e| e.non_smoothness()?.reaction_dependence(s))
+    }
+}
+
+impl Events for DrivenElement {
+    fn latch(&self, now: &dyn ElementState, before: &dyn ElementState) -> Option<Latched> {
+        let was = Self::switched(now).map_or_else(|| self.active(before), |w| w.active);
+        let is = self.active(now);
+        if is == was {
+            return None;
+        }
+        let element = if is {
+            self.apply_hints(now, before)
+        } else {
+            Self::switched(now).map_or(Ok(None), |w| w.element.clone())
+        };
+        Some(Arc::new(Switched { active: is, element }))
     }
 }

@@ -29,6 +29,8 @@ use super::{Anchor, Joint};
 use super::drive::Drive;
 use crate::kinematics::{rotation_vector, skew, Vec3};
 use std::sync::Arc;
+use super::UnknownKind;
+use crate::element::Events;
 
 /// A 3-vector function of time `Σ v_k d_k(t)` (MBDyn's template drive caller).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -283,25 +285,11 @@ impl Element for DrivenJoint {
         }));
         m
     }
-    fn is_velocity_constraint(&self, k: usize) -> bool {
-        k >= self.holonomic()
+    fn unknown_kind(&self, k: usize) -> UnknownKind {
+        if k >= self.holonomic() { UnknownKind::VelocityConstraint } else { UnknownKind::Multiplier }
     }
-    fn has_events(&self) -> bool {
-        self.rotation_remnant
-    }
-    /// The remnant after the last converged solution `before` (MBDyn's `AfterConvergence`):
-    /// `Θ_Δ`'s free components there added; zero at the first latch (the derivatives
-    /// phase's, before any convergence).
-    fn latch(&self, _now: &dyn ElementState, before: &dyn ElementState) -> Option<Latched> {
-        if !self.rotation_remnant {
-            return None;
-        }
-        let Some(used) = before.latched().and_then(|l| l.downcast_ref::<RotationRemnant>()).map(|r| r.0) else {
-            return Some(Arc::new(RotationRemnant(Vec3::zeros())));
-        };
-        let (_, _, theta) = self.remnant_parts(before, &used);
-        let free = Vec3::from_fn(|k, _| if self.joint.rotation_locked[k] { 0.0 } else { theta[k] });
-        Some(Arc::new(RotationRemnant(used + free)))
+    fn events(&self) -> Option<&dyn Events> {
+        if self.rotation_remnant { Some(self) } else { None }
     }
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
         let j = self.joint_in(st);
@@ -373,5 +361,22 @@ impl Element for DrivenJoint {
             };
             p.add_reaction_column(out, Col::Multiplier(n + i), &df, &dm);
         }
+    }
+}
+
+impl Events for DrivenJoint {
+    /// The remnant after the last converged solution `before` (MBDyn's `AfterConvergence`):
+    /// `Θ_Δ`'s free components there added; zero at the first latch (the derivatives
+    /// phase's, before any convergence).
+    fn latch(&self, _now: &dyn ElementState, before: &dyn ElementState) -> Option<Latched> {
+        if !self.rotation_remnant {
+            return None;
+        }
+        let Some(used) = before.latched().and_then(|l| l.downcast_ref::<RotationRemnant>()).map(|r| r.0) else {
+            return Some(Arc::new(RotationRemnant(Vec3::zeros())));
+        };
+        let (_, _, theta) = self.remnant_parts(before, &used);
+        let free = Vec3::from_fn(|k, _| if self.joint.rotation_locked[k] { 0.0 } else { theta[k] });
+        Some(Arc::new(RotationRemnant(used + free)))
     }
 }

@@ -32,6 +32,8 @@ use super::contract::{add_block, add_vec, Col, Element, ElementState, JacobianSi
 use super::joint::{Joint, JointKind};
 use super::drive::ScalarFunction;
 use crate::kinematics::{skew, Vec3};
+use super::UnknownKind;
+use crate::element::NonSmooth;
 
 /// MBDyn's `modlugre, σ₀, σ₁, σ₂, κ, "μ(|v|)"` (input manual, §Friction models).
 #[derive(Clone, Debug)]
@@ -195,35 +197,14 @@ impl Element for InLineFriction {
         m.push("friction state z".to_string());
         m
     }
-    fn is_state(&self, k: usize) -> bool {
-        k == STATE
+    fn unknown_kind(&self, k: usize) -> UnknownKind {
+        if k == STATE { UnknownKind::State } else { UnknownKind::Multiplier }
     }
     fn assembly_form(&self) -> Option<&dyn Element> {
         Some(&self.joint)
     }
-    fn non_smooth(&self, st: &dyn ElementState) -> Option<String> {
-        let p = Pair::new(&self.joint.a, &self.joint.b, st);
-        let (_, v, _) = self.sliding(&p, st);
-        let z = st.multiplier(STATE);
-        // α(z, ±0) ≠ 0: the term α |v| z σ₀ / μ(|v|) has a kink in v at v = 0. "At v = 0":
-        // below 1e-6 m/s, the velocity a converged step at rest leaves (Newton's tolerance
-        // over a bristle's stiffness and damping), below which any motion crosses the kink.
-        (v.abs() < STILL && self.model.past_breakaway(z)).then(|| format!("its friction state z = {z:e} m is past the breakaway deflection at sliding velocity {v:.1e} m/s (at rest), where the modlugre state equation is not differentiable"))
-    }
-    fn kink_crossed(&self, from: &dyn ElementState, to: &dyn ElementState) -> Option<String> {
-        let v = |st: &dyn ElementState| (self.sliding(&Pair::new(&self.joint.a, &self.joint.b, st), st).1, st.multiplier(STATE));
-        self.model.kink_crossed(v(from), v(to))
-    }
-    fn reaction_dependence(&self, st: &dyn ElementState) -> Option<String> {
-        // Above the preload the friction force f N and its stiffness σ₀ N scale with the
-        // reaction multipliers' values. Their integration noise: a step accepted on its
-        // predictor (no Newton iteration, its residual already below the tolerance; MBDyn
-        // does the same) leaves the multipliers and the momenta as extrapolated, and runs of
-        // such steps let a constrained direction's momentum drift within the tolerance (on
-        // tests/multibody/joint_friction.rs's block, up to 1.9e-7 kg m/s vertically at tolerance 1e-6), whose
-        // derivative the reaction balances (3e-4 N of 98.1 N at t = 1.9 s).
-        let (n, dn) = self.normal_force(st);
-        (dn != [0.0; 2]).then(|| format!("its friction force and stiffness scale with the normal force |λ| = {n:.9e} N, the joint's reaction multipliers as integrated, which steps accepted within the tolerance without a Newton iteration leave noisy (up to 1e-5 relative on a block resting on a line at tolerance 1e-6, its bristle eigenvalue then 1.6e-6 off the closed form); the eigenvalues carry that noise, which a tighter `tolerance` narrows"))
+    fn non_smoothness(&self) -> Option<&dyn NonSmooth> {
+        Some(self)
     }
     fn private_data(&self, name: &str) -> Option<super::private_data::PrivateDatum> {
         self.joint.private_data(name)
@@ -288,6 +269,33 @@ impl Element for InLineFriction {
             add_block(out, Row::force(a), Col::rotation(a), &turn);
             add_block(out, Row::force(p.slot_b), Col::rotation(a), &(-turn));
         }
+    }
+}
+
+impl NonSmooth for InLineFriction {
+    fn non_smooth(&self, st: &dyn ElementState) -> Option<String> {
+        let p = Pair::new(&self.joint.a, &self.joint.b, st);
+        let (_, v, _) = self.sliding(&p, st);
+        let z = st.multiplier(STATE);
+        // α(z, ±0) ≠ 0: the term α |v| z σ₀ / μ(|v|) has a kink in v at v = 0. "At v = 0":
+        // below 1e-6 m/s, the velocity a converged step at rest leaves (Newton's tolerance
+        // over a bristle's stiffness and damping), below which any motion crosses the kink.
+        (v.abs() < STILL && self.model.past_breakaway(z)).then(|| format!("its friction state z = {z:e} m is past the breakaway deflection at sliding velocity {v:.1e} m/s (at rest), where the modlugre state equation is not differentiable"))
+    }
+    fn kink_crossed(&self, from: &dyn ElementState, to: &dyn ElementState) -> Option<String> {
+        let v = |st: &dyn ElementState| (self.sliding(&Pair::new(&self.joint.a, &self.joint.b, st), st).1, st.multiplier(STATE));
+        self.model.kink_crossed(v(from), v(to))
+    }
+    fn reaction_dependence(&self, st: &dyn ElementState) -> Option<String> {
+        // Above the preload the friction force f N and its stiffness σ₀ N scale with the
+        // reaction multipliers' values. Their integration noise: a step accepted on its
+        // predictor (no Newton iteration, its residual already below the tolerance; MBDyn
+        // does the same) leaves the multipliers and the momenta as extrapolated, and runs of
+        // such steps let a constrained direction's momentum drift within the tolerance (on
+        // tests/multibody/joint_friction.rs's block, up to 1.9e-7 kg m/s vertically at tolerance 1e-6), whose
+        // derivative the reaction balances (3e-4 N of 98.1 N at t = 1.9 s).
+        let (n, dn) = self.normal_force(st);
+        (dn != [0.0; 2]).then(|| format!("its friction force and stiffness scale with the normal force |λ| = {n:.9e} N, the joint's reaction multipliers as integrated, which steps accepted within the tolerance without a Newton iteration leave noisy (up to 1e-5 relative on a block resting on a line at tolerance 1e-6, its bristle eigenvalue then 1.6e-6 off the closed form); the eigenvalues carry that noise, which a tighter `tolerance` narrows"))
     }
 }
 

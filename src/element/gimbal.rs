@@ -7,7 +7,7 @@
 //!
 //! two Cardano joints 90° apart, each taking half the tilt about axis 2 (input manual
 //! §Gimbal rotation). The angles `θ = θ₀ + δθ`, `φ = φ₀ + δφ` are coordinates of the element
-//! ([`Element::is_coordinate`]: configuration unknowns with rates, set by the initial
+//! ([`UnknownKind::Coordinate`]: configuration unknowns with rates, set by the initial
 //! assembly), the unknowns their changes from the angles `θ₀`, `φ₀` of the relative
 //! orientation as written ([`GimbalRotation::angles_of`]; MBDyn starts from 0, and its
 //! initial assembly, "flawed" by gimbal.cc's own comment, fails on a tilted gimbal where
@@ -25,6 +25,7 @@
 use super::anchor::{node_labels, Anchor, Pair};
 use super::contract::{add_block, Col, Element, ElementState, JacobianSink, Label, ResidualSink, Row};
 use crate::kinematics::{axial_of_skew_part, skew, skew_part_jacobian, Mat3, Vec3};
+use super::UnknownKind;
 
 /// The gimbal's relative-rotation constraint (module documentation).
 #[derive(Clone, Debug)]
@@ -105,8 +106,8 @@ impl Element for GimbalRotation {
     fn multipliers(&self) -> Vec<String> {
         vec!["m x".into(), "m y".into(), "m z".into(), "theta".into(), "phi".into()]
     }
-    fn is_coordinate(&self, k: usize) -> bool {
-        k >= 3
+    fn unknown_kind(&self, k: usize) -> UnknownKind {
+        if k >= 3 { UnknownKind::Coordinate } else { UnknownKind::Multiplier }
     }
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
         let f = Frames::new(self, st);

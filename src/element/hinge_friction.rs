@@ -23,6 +23,8 @@ use super::friction::ModLugre;
 use super::joint::{Joint, JointKind};
 use super::drive::Drive;
 use crate::kinematics::{skew, Vec3};
+use super::UnknownKind;
+use crate::element::NonSmooth;
 
 /// Where the friction's normal force comes from.
 #[derive(Clone, Debug)]
@@ -113,8 +115,8 @@ impl Element for RevoluteHingeFriction {
         m.push("friction state z".to_string());
         m
     }
-    fn is_state(&self, k: usize) -> bool {
-        k == self.state_index()
+    fn unknown_kind(&self, k: usize) -> UnknownKind {
+        if k == self.state_index() { UnknownKind::State } else { UnknownKind::Multiplier }
     }
     fn reads_state(&self) -> bool {
         matches!(&self.normal, HingeNormalForce::Brake(d) if d.reads_state())
@@ -123,19 +125,8 @@ impl Element for RevoluteHingeFriction {
         // A brake is left out of the initial assembly (its type name), as brake.cc adds nothing there.
         (!self.is_brake()).then_some(&self.joint as &dyn Element)
     }
-    fn non_smooth(&self, st: &dyn ElementState) -> Option<String> {
-        let p = Pair::new(&self.joint.a, &self.joint.b, st);
-        let (_, v, _) = self.sliding(&p);
-        let z = st.multiplier(self.state_index());
-        (v.abs() < STILL && self.model.past_breakaway(z)).then(|| format!("its friction state z = {z:e} m is past the breakaway deflection at sliding velocity {v:.1e} m/s (at rest), where the modlugre state equation is not differentiable"))
-    }
-    fn kink_crossed(&self, from: &dyn ElementState, to: &dyn ElementState) -> Option<String> {
-        let v = |st: &dyn ElementState| (self.sliding(&Pair::new(&self.joint.a, &self.joint.b, st)).1, st.multiplier(self.state_index()));
-        self.model.kink_crossed(v(from), v(to))
-    }
-    fn reaction_dependence(&self, st: &dyn ElementState) -> Option<String> {
-        let (n, dn) = self.normal_force(st);
-        (dn != [0.0; 3]).then(|| format!("its friction moment and stiffness scale with the normal force |F| = {n:.9e} N, the hinge's reaction multipliers as integrated, which steps accepted within the tolerance without a Newton iteration leave noisy; the eigenvalues carry that noise, which a tighter `tolerance` narrows"))
+    fn non_smoothness(&self) -> Option<&dyn NonSmooth> {
+        Some(self)
     }
     fn private_data(&self, name: &str) -> Option<super::private_data::PrivateDatum> {
         self.joint.private_data(name)
@@ -209,5 +200,22 @@ impl Element for RevoluteHingeFriction {
             add_block(out, Row::moment(a), Col::rotation(a), &turn);
             add_block(out, Row::moment(p.slot_b), Col::rotation(a), &(-turn));
         }
+    }
+}
+
+impl NonSmooth for RevoluteHingeFriction {
+    fn non_smooth(&self, st: &dyn ElementState) -> Option<String> {
+        let p = Pair::new(&self.joint.a, &self.joint.b, st);
+        let (_, v, _) = self.sliding(&p);
+        let z = st.multiplier(self.state_index());
+        (v.abs() < STILL && self.model.past_breakaway(z)).then(|| format!("its friction state z = {z:e} m is past the breakaway deflection at sliding velocity {v:.1e} m/s (at rest), where the modlugre state equation is not differentiable"))
+    }
+    fn kink_crossed(&self, from: &dyn ElementState, to: &dyn ElementState) -> Option<String> {
+        let v = |st: &dyn ElementState| (self.sliding(&Pair::new(&self.joint.a, &self.joint.b, st)).1, st.multiplier(self.state_index()));
+        self.model.kink_crossed(v(from), v(to))
+    }
+    fn reaction_dependence(&self, st: &dyn ElementState) -> Option<String> {
+        let (n, dn) = self.normal_force(st);
+        (dn != [0.0; 3]).then(|| format!("its friction moment and stiffness scale with the normal force |F| = {n:.9e} N, the hinge's reaction multipliers as integrated, which steps accepted within the tolerance without a Newton iteration leave noisy; the eigenvalues carry that noise, which a tighter `tolerance` narrows"))
     }
 }

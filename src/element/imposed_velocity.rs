@@ -6,6 +6,7 @@
 use super::contract::{add_block, add_vec, Col, Element, ElementState, JacobianSink, Label, ResidualSink, Row};
 use super::drive::Drive;
 use crate::kinematics::{skew, Vec3};
+use super::UnknownKind;
 
 /// Which velocity is imposed.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -57,8 +58,8 @@ impl Element for ImposedVelocity {
     fn multipliers(&self) -> Vec<String> {
         vec![if self.kind == VelocityKind::Linear { "f" } else { "m" }.into()]
     }
-    fn is_velocity_constraint(&self, _k: usize) -> bool {
-        true
+    fn unknown_kind(&self, _k: usize) -> UnknownKind {
+        UnknownKind::VelocityConstraint
     }
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
         let (n, e) = (st.node(0), self.axis(st));

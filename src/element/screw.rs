@@ -6,7 +6,7 @@
 //!
 //! MBDyn counts the turns as element history (`unwrap`, `nTheta`, updated at each residual).
 //! The contract has none, so romdyn makes the turned angle an own coordinate `φ = θ − θ₀`
-//! ([`Element::is_coordinate`]), continuous through the state, with its own equation
+//! ([`UnknownKind::Coordinate`]), continuous through the state, with its own equation
 //! `e₃ · ax(M) = 0`, `M = Q_aᵀ Q_b R(e₃, θ₀ + φ)ᵀ` (`Q_b = R_b Q_a,node`: node 2's frame turned
 //! as node 1's hinge, as MBDyn's `R1h`): zero where node 2 has turned by `θ₀ + φ` about
 //! `e₃` relative to node 1 (modulo 2π: Newton follows the nearest branch, which moves at most
@@ -20,6 +20,7 @@
 use super::anchor::{node_labels, Anchor, Pair};
 use super::contract::{add_block, Col, Element, ElementState, JacobianSink, Label, ResidualSink, Row};
 use crate::kinematics::{axial_of_skew_part, skew, skew_part_jacobian, Mat3, Vec3};
+use super::UnknownKind;
 
 /// A screw joint of pitch `pitch` [m per turn] between frames `a` (axis 3 the screw axis) and
 /// `b`; `theta0` [rad] and `d0` [m] the initial relative rotation and displacement.
@@ -76,8 +77,8 @@ impl Element for Screw {
     fn multipliers(&self) -> Vec<String> {
         vec!["theta".into(), "f".into()]
     }
-    fn is_coordinate(&self, k: usize) -> bool {
-        k == 0
+    fn unknown_kind(&self, k: usize) -> UnknownKind {
+        if k == 0 { UnknownKind::Coordinate } else { UnknownKind::Multiplier }
     }
 
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {

@@ -21,6 +21,8 @@ use super::contract::{add_block, add_vec, Col, Element, ElementState, JacobianSi
 use super::friction::ModLugre;
 use super::screw::Screw;
 use crate::kinematics::{skew, Vec3};
+use super::UnknownKind;
+use crate::element::NonSmooth;
 
 /// A screw joint with `modlugre` friction. Unknowns: the screw's turned angle and reaction,
 /// then the friction state `z` [m].
@@ -80,28 +82,14 @@ impl Element for ScrewFriction {
         m.push("friction state z".to_string());
         m
     }
-    fn is_coordinate(&self, k: usize) -> bool {
-        self.screw.is_coordinate(k)
-    }
-    fn is_state(&self, k: usize) -> bool {
-        k == STATE
+    fn unknown_kind(&self, k: usize) -> UnknownKind {
+        if k == STATE { UnknownKind::State } else { self.screw.unknown_kind(k) }
     }
     fn assembly_form(&self) -> Option<&dyn Element> {
         Some(&self.screw)
     }
-    fn non_smooth(&self, st: &dyn ElementState) -> Option<String> {
-        let p = Pair::new(&self.screw.a, &self.screw.b, st);
-        let (_, _, v, _) = self.sliding(&p, st.multiplier(1));
-        let z = st.multiplier(STATE);
-        (v.abs() < STILL && self.model.past_breakaway(z)).then(|| format!("its friction state z = {z:e} m is past the breakaway deflection at sliding velocity {v:.1e} m/s (at rest), where the modlugre state equation is not differentiable"))
-    }
-    fn kink_crossed(&self, from: &dyn ElementState, to: &dyn ElementState) -> Option<String> {
-        let v = |st: &dyn ElementState| (self.sliding(&Pair::new(&self.screw.a, &self.screw.b, st), st.multiplier(1)).2, st.multiplier(STATE));
-        self.model.kink_crossed(v(from), v(to))
-    }
-    fn reaction_dependence(&self, st: &dyn ElementState) -> Option<String> {
-        let lambda = st.multiplier(1);
-        (lambda != 0.0).then(|| format!("its friction moment and stiffness scale with the screw's reaction λ = {lambda:.9e} N as integrated, which steps accepted within the tolerance without a Newton iteration leave noisy; the eigenvalues carry that noise, which a tighter `tolerance` narrows"))
+    fn non_smoothness(&self) -> Option<&dyn NonSmooth> {
+        Some(self)
     }
     fn private_data(&self, name: &str) -> Option<super::private_data::PrivateDatum> {
         self.screw.private_data(name)
@@ -171,5 +159,22 @@ impl Element for ScrewFriction {
             add_block(out, Row::moment(a), Col::rotation(a), &turn);
             add_block(out, Row::moment(p.slot_b), Col::rotation(a), &(-turn));
         }
+    }
+}
+
+impl NonSmooth for ScrewFriction {
+    fn non_smooth(&self, st: &dyn ElementState) -> Option<String> {
+        let p = Pair::new(&self.screw.a, &self.screw.b, st);
+        let (_, _, v, _) = self.sliding(&p, st.multiplier(1));
+        let z = st.multiplier(STATE);
+        (v.abs() < STILL && self.model.past_breakaway(z)).then(|| format!("its friction state z = {z:e} m is past the breakaway deflection at sliding velocity {v:.1e} m/s (at rest), where the modlugre state equation is not differentiable"))
+    }
+    fn kink_crossed(&self, from: &dyn ElementState, to: &dyn ElementState) -> Option<String> {
+        let v = |st: &dyn ElementState| (self.sliding(&Pair::new(&self.screw.a, &self.screw.b, st), st.multiplier(1)).2, st.multiplier(STATE));
+        self.model.kink_crossed(v(from), v(to))
+    }
+    fn reaction_dependence(&self, st: &dyn ElementState) -> Option<String> {
+        let lambda = st.multiplier(1);
+        (lambda != 0.0).then(|| format!("its friction moment and stiffness scale with the screw's reaction λ = {lambda:.9e} N as integrated, which steps accepted within the tolerance without a Newton iteration leave noisy; the eigenvalues carry that noise, which a tighter `tolerance` narrows"))
     }
 }

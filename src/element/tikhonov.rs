@@ -13,6 +13,7 @@
 
 use super::contract::{Col, Element, ElementState, JacobianSink, ResidualSink, Row};
 use super::wrapper::ElementWrapper;
+use super::UnknownKind;
 
 pub struct Tikhonov {
     pub inner: Box<dyn Element>,
@@ -23,7 +24,7 @@ pub struct Tikhonov {
 impl Tikhonov {
     /// Whether equation `k` is one the regularization relaxes (the holonomic ones).
     fn relaxed(&self, k: usize) -> bool {
-        !(self.inner.is_velocity_constraint(k) || self.inner.is_coordinate(k) || self.inner.is_state(k))
+        self.inner.unknown_kind(k) == UnknownKind::Multiplier
     }
 }
 

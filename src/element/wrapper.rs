@@ -8,8 +8,9 @@
 //! A method added to [`Element`] must be added here too, with its forward in the trait
 //! and in the blanket `impl Element`; otherwise wrappers fall back to its default.
 
-use super::contract::{Element, ElementState, JacobianSink, Label, Latched, PrivateDatum, ResidualSink, SectionState};
+use super::contract::{Element, ElementState, Events, JacobianSink, NonSmooth, Label, PrivateDatum, ResidualSink, SectionState};
 use super::{BeamUpdate, HintValue};
+use super::UnknownKind;
 
 /// An element built around another one. Each method forwards to [`ElementWrapper::inner`]
 /// by default; `hinted` has no default because a hinted element must be wrapped again
@@ -32,38 +33,23 @@ pub trait ElementWrapper: Send + Sync {
     fn multipliers(&self) -> Vec<String> {
         self.inner().multipliers()
     }
-    fn is_velocity_constraint(&self, k: usize) -> bool {
-        self.inner().is_velocity_constraint(k)
+    fn unknown_kind(&self, k: usize) -> UnknownKind {
+        self.inner().unknown_kind(k)
     }
     fn reads_state(&self) -> bool {
         self.inner().reads_state()
     }
-    fn is_coordinate(&self, k: usize) -> bool {
-        self.inner().is_coordinate(k)
-    }
-    fn is_state(&self, k: usize) -> bool {
-        self.inner().is_state(k)
-    }
     fn assembly_form(&self) -> Option<&dyn Element> {
         self.inner().assembly_form()
     }
-    fn non_smooth(&self, s: &dyn ElementState) -> Option<String> {
-        self.inner().non_smooth(s)
+    fn events(&self) -> Option<&dyn Events> {
+        self.inner().events()
     }
-    fn kink_crossed(&self, from: &dyn ElementState, to: &dyn ElementState) -> Option<String> {
-        self.inner().kink_crossed(from, to)
-    }
-    fn has_events(&self) -> bool {
-        self.inner().has_events()
-    }
-    fn latch(&self, now: &dyn ElementState, before: &dyn ElementState) -> Option<Latched> {
-        self.inner().latch(now, before)
+    fn non_smoothness(&self) -> Option<&dyn NonSmooth> {
+        self.inner().non_smoothness()
     }
     fn constraint_rows_read_multipliers(&self) -> bool {
         self.inner().constraint_rows_read_multipliers()
-    }
-    fn reaction_dependence(&self, s: &dyn ElementState) -> Option<String> {
-        self.inner().reaction_dependence(s)
     }
     fn failure(&self, s: &dyn ElementState) -> Option<String> {
         self.inner().failure(s)
@@ -104,41 +90,26 @@ impl<W: ElementWrapper> Element for W {
     fn multipliers(&self) -> Vec<String> {
         ElementWrapper::multipliers(self)
     }
-    fn is_velocity_constraint(&self, k: usize) -> bool {
-        ElementWrapper::is_velocity_constraint(self, k)
+    fn unknown_kind(&self, k: usize) -> UnknownKind {
+        ElementWrapper::unknown_kind(self, k)
     }
     fn reads_state(&self) -> bool {
         ElementWrapper::reads_state(self)
     }
-    fn is_coordinate(&self, k: usize) -> bool {
-        ElementWrapper::is_coordinate(self, k)
-    }
-    fn is_state(&self, k: usize) -> bool {
-        ElementWrapper::is_state(self, k)
-    }
     fn assembly_form(&self) -> Option<&dyn Element> {
         ElementWrapper::assembly_form(self)
     }
-    fn non_smooth(&self, s: &dyn ElementState) -> Option<String> {
-        ElementWrapper::non_smooth(self, s)
+    fn events(&self) -> Option<&dyn Events> {
+        ElementWrapper::events(self)
     }
-    fn kink_crossed(&self, from: &dyn ElementState, to: &dyn ElementState) -> Option<String> {
-        ElementWrapper::kink_crossed(self, from, to)
-    }
-    fn has_events(&self) -> bool {
-        ElementWrapper::has_events(self)
-    }
-    fn latch(&self, now: &dyn ElementState, before: &dyn ElementState) -> Option<Latched> {
-        ElementWrapper::latch(self, now, before)
+    fn non_smoothness(&self) -> Option<&dyn NonSmooth> {
+        ElementWrapper::non_smoothness(self)
     }
     fn hinted(&self, hint: &HintValue) -> Option<Box<dyn Element>> {
         ElementWrapper::hinted(self, hint)
     }
     fn constraint_rows_read_multipliers(&self) -> bool {
         ElementWrapper::constraint_rows_read_multipliers(self)
-    }
-    fn reaction_dependence(&self, s: &dyn ElementState) -> Option<String> {
-        ElementWrapper::reaction_dependence(self, s)
     }
     fn failure(&self, s: &dyn ElementState) -> Option<String> {
         ElementWrapper::failure(self, s)

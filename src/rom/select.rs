@@ -19,6 +19,18 @@ pub enum ModeSelection {
     Indices(Vec<usize>),
 }
 
+impl ModeSelection {
+    /// The band `[fmin, fmax]` [Hz], checked as every front end and the sparse route need it:
+    /// finite, `0 ≤ fmin < fmax` (an empty band holds no mode; the CLI took `fmin = fmax`
+    /// where Python and the Krylov solver refused it, issue 31).
+    pub fn band(fmin_hz: f64, fmax_hz: f64) -> Result<Self, String> {
+        if !(fmin_hz.is_finite() && fmax_hz.is_finite() && 0.0 <= fmin_hz && fmin_hz < fmax_hz) {
+            return Err(format!("need 0 <= FMIN < FMAX (finite, in Hz), got {fmin_hz}:{fmax_hz}"));
+        }
+        Ok(ModeSelection::Band { fmin_hz, fmax_hz })
+    }
+}
+
 /// How [`ModeSelection::Lowest`] and [`ModeSelection::Band`] rank the modes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Ranking {

@@ -46,7 +46,7 @@ pub(super) fn incremental_beams_warning(model: &Model, reference: crate::analysi
     if !matches!(reference, crate::analysis::Reference::Static { .. }) {
         return None;
     }
-    let beams = model.elements.iter().filter(|e| e.type_name().starts_with("beam") && e.has_events()).count();
+    let beams = model.elements.iter().filter(|e| e.type_name().starts_with("beam") && e.events().is_some()).count();
     (beams > 0).then_some(Warning::IncrementalBeamsStatic { beams })
 }
 

@@ -22,7 +22,7 @@ pub enum StudyError {
     #[error("static equilibrium: unrestrained {motion} (the model needs more supports or joints); {cause}")]
     Unrestrained { motion: String, cause: RunError },
     #[error("{option}: {message}")]
-    Option { option: &'static str, message: String },
+    Option { option: super::Setting, message: String },
     #[error(transparent)]
     Port(#[from] PortError),
     #[error(transparent)]

@@ -222,7 +222,7 @@ impl ReducedModel {
         } else {
             return Ok(());
         };
-        Err(StudyError::Option { option: "--form", message: message.into() })
+        Err(StudyError::Option { option: super::Setting::Form, message: message.into() })
     }
 }
 
@@ -249,7 +249,7 @@ impl Study {
         }
         let sparse = self.sparse.is_some();
         if sparse && super::solver::needs_every_mode(request) {
-            return Err(StudyError::Option { option: "--by", message: "dominance of a --count ranks every mode of the model, and the sparse route computed only the modes asked for (use --solver dense or auto, or --band F1:F2 --by dominance: dominance of the modes in a band)".into() });
+            return Err(StudyError::Option { option: super::Setting::Ranking, message: "dominance of a --count ranks every mode of the model, and the sparse route computed only the modes asked for (use --solver dense or auto, or --band F1:F2 --by dominance: dominance of the modes in a band)".into() });
         }
         let dominance = self.dominance();
         let mut sel = match (request.ranking, &self.sparse) {

@@ -5,7 +5,7 @@ use faer::{c64, Mat};
 use crate::output::frequency_plot::{default_band, FrequencyResponses};
 use crate::rom::frequency_grid;
 
-use super::{ReducedModel, Study, StudyError};
+use super::{ReducedModel, Setting, Study, StudyError};
 
 /// A log-spaced frequency grid [Hz]; missing ends default to a decade around the modes of
 /// interest.
@@ -150,7 +150,7 @@ impl Study {
     /// empty or reversed grid, a non-positive end (log spacing) and fewer than 2 points.
     pub fn frequencies(&self, grid: &FrequencyGrid, focus: &[c64]) -> Result<Vec<f64>, StudyError> {
         let option = |option, message: String| Err(StudyError::Option { option, message });
-        for (name, f) in [("--fmin", grid.fmin_hz), ("--fmax", grid.fmax_hz)] {
+        for (name, f) in [(Setting::Fmin, grid.fmin_hz), (Setting::Fmax, grid.fmax_hz)] {
             if let Some(f) = f {
                 if !(f.is_finite() && f > 0.0) {
                     return option(name, format!("a frequency of a log-spaced grid must be positive and finite [Hz], got {f}"));
@@ -162,7 +162,7 @@ impl Study {
             }
         }
         if grid.points < 2 {
-            return option("--points", format!("a frequency grid needs at least 2 points, got {}", grid.points));
+            return option(Setting::Points, format!("a frequency grid needs at least 2 points, got {}", grid.points));
         }
         let (lo, hi) = default_band(&self.modal, focus);
         let (a, b) = match (grid.fmin_hz, grid.fmax_hz) {
@@ -172,10 +172,10 @@ impl Study {
             (None, None) => (lo, hi),
         };
         if !(a < b) {
-            return option("--fmin", format!("need FMIN < FMAX, got --fmin {a} --fmax {b} Hz"));
+            return option(Setting::Fmin, format!("need FMIN < FMAX, got FMIN = {a} Hz, FMAX = {b} Hz"));
         }
         // The size budget (romdyn::limits::MAX_FREQUENCY_POINTS) is the grid's own check.
-        frequency_grid(a, b, grid.points).map_err(|e| StudyError::Option { option: "--points", message: e.to_string() })
+        frequency_grid(a, b, grid.points).map_err(|e| StudyError::Option { option: Setting::Points, message: e.to_string() })
     }
 
     /// The full model's frequency response `(C̃ + jω C̃_v)(jω F_yd + F_y)⁻¹ B̃` at `freq_hz`

@@ -5,7 +5,7 @@ use std::path::Path;
 use crate::analysis::{reference_state, static_state_from, Reference};
 use crate::dae::ports::{InputPort, OutputPort};
 use crate::dae::{linearize_sparse, NodeInput, NodeOutput, State};
-use crate::eigen::{degenerate_clusters, EnergyShare, ModalEnergy};
+use crate::eigen::{dense_modes, energy_shares, EnergyShare, ModalEnergy};
 use crate::input::eigen_pencil::PencilPorts;
 use crate::input::mbdyn::read_model;
 use crate::input::pencil::read_pencil_file;
@@ -19,7 +19,7 @@ use crate::rom::{select_modes, ModeSelection};
 use super::checks::{equilibrium_warning, incremental_beams_warning, unrestrained_motion};
 use super::linear::LinearModel;
 use super::solver::{needs_every_mode, sparse_target, SparseRun, SPARSE_DEFAULT_COUNT};
-use super::{Application, RomRequest, Solver, StudyError, Warning};
+use super::{Application, RomRequest, Setting, Solver, StudyError, Warning};
 
 /// Where a model is linearized and which inputs and outputs the linear DAE has.
 #[derive(Clone, Debug)]
@@ -36,20 +36,20 @@ impl Linearization {
     pub fn validate(&self, problem: &InitialValueProblem) -> Result<(), StudyError> {
         let option = |option, message: String| Err(StudyError::Option { option, message });
         match self.reference {
-            Reference::At(t) if !t.is_finite() => return option("--at", format!("TIME must be a finite time [s], got {t}")),
-            Reference::At(t) if t < problem.initial_time => return option("--at", format!("TIME {t} s is before the file's initial time {} s", problem.initial_time)),
-            Reference::At(t) if t > problem.final_time => return option("--at", format!("TIME {t} s is after the file's final time {} s (the file's problem ends there)", problem.final_time)),
-            Reference::Static { load_steps: 0 } => return option("--load-steps", "need at least 1 load increment".into()),
+            Reference::At(t) if !t.is_finite() => return option(Setting::ReferenceTime, format!("TIME must be a finite time [s], got {t}")),
+            Reference::At(t) if t < problem.initial_time => return option(Setting::ReferenceTime, format!("TIME {t} s is before the file's initial time {} s", problem.initial_time)),
+            Reference::At(t) if t > problem.final_time => return option(Setting::ReferenceTime, format!("TIME {t} s is after the file's final time {} s (the file's problem ends there)", problem.final_time)),
+            Reference::Static { load_steps: 0 } => return option(Setting::LoadSteps, "need at least 1 load increment".into()),
             _ => {}
         }
         for (k, p) in self.inputs.iter().enumerate() {
             if self.inputs[..k].contains(p) {
-                return option("--input", format!("{} is given twice", p.name()));
+                return option(Setting::Inputs, format!("{} is given twice", p.name()));
             }
         }
         for (k, p) in self.outputs.iter().enumerate() {
             if self.outputs[..k].contains(p) {
-                return option("--output", format!("{} is given twice", p.name()));
+                return option(Setting::Outputs, format!("{} is given twice", p.name()));
             }
         }
         Ok(())
@@ -170,13 +170,10 @@ impl Study {
     }
 
     /// Linearizes a model at `lin.reference` of `problem` (the Rust API's entry).
+    /// The same checks as every door ([`Study::of_model`]).
     pub fn from_model(model: Model, problem: &InitialValueProblem, lin: &Linearization, eigen: EigenSettings) -> Result<Self, StudyError> {
-        lin.validate(problem)?;
-        let state = checked_reference_state(&model, problem, lin.reference, None)?;
-        let beams = incremental_beams_warning(&model, lin.reference);
-        let mut study = Self::from_model_state(model, problem, state, lin, eigen)?;
-        study.warnings.splice(0..0, beams);
-        Ok(study)
+        let ports = Ports::Nodes { inputs: lin.inputs.clone(), outputs: lin.outputs.clone() };
+        Self::of_model(model, problem, lin.reference, &ports, eigen, None).map(|(study, _)| study)
     }
 
     /// Linearizes a model at a given reference solution (`lin.reference` says only how it
@@ -253,11 +250,11 @@ impl Study {
     fn from_linear(linear: LinearModel, model: Option<Model>, eigen: EigenSettings, progress: &dyn Fn(&str)) -> Result<Self, StudyError> {
         if let Some(c) = eigen.dcoef {
             if !(c.is_finite() && c > 0.0) {
-                return Err(StudyError::Option { option: "--dcoef", message: format!("dCoef must be a positive finite time step coefficient [s], got {c}") });
+                return Err(StudyError::Option { option: Setting::Dcoef, message: format!("dCoef must be a positive finite time step coefficient [s], got {c}") });
             }
         }
         if !(eigen.tolerance > 0.0 && eigen.tolerance < 1.0) {
-            return Err(StudyError::Option { option: "--tolerance", message: format!("the sparse route's residual tolerance must be in (0, 1), got {}", eigen.tolerance) });
+            return Err(StudyError::Option { option: Setting::Tolerance, message: format!("the sparse route's residual tolerance must be in (0, 1), got {}", eigen.tolerance) });
         }
         let sparse_dae = match linear.sparse() {
             Some(s) if eigen.solver.is_sparse(s.dim(), eigen.every_mode)? => Some(s),
@@ -272,8 +269,7 @@ impl Study {
                 (found.modal, Some(run))
             }
             None => {
-                let dae = linear.dense();
-                (ModalAnalysis::of_dae(dae, eigen.route, eigen.dcoef).map_err(|e| e.with_unknown_names(&dae.unknown_names))?, None)
+                (dense_modes(linear.dense(), eigen.route, eigen.dcoef)?, None)
             }
         };
         let mut study = Study { linear, modal, sparse, model, warnings: Vec::new(), reference_time: None, application: None };
@@ -340,15 +336,7 @@ impl Study {
     /// ([`ModalEnergy::subspace_shares`]), which do not depend on the basis the eigensolver chose.
     pub fn energy(&self) -> Vec<Vec<EnergyShare>> {
         match self.modal_energy() {
-            Some(energy) => {
-                let modes = &self.modal.modes;
-                let mut out: Vec<_> = modes.iter().map(|m| energy.shares(m)).collect();
-                for cluster in degenerate_clusters(modes) {
-                    let shares = energy.subspace_shares(&cluster.iter().map(|&i| &modes[i]).collect::<Vec<_>>());
-                    cluster.iter().for_each(|&i| out[i] = shares.clone());
-                }
-                out
-            }
+            Some(energy) => energy_shares(&energy, &self.modal.modes),
             None => vec![Vec::new(); self.modal.modes.len()],
         }
     }

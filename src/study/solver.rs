@@ -49,7 +49,7 @@ impl Solver {
             Solver::Dense => Ok(false),
             Solver::Auto => Ok(!every_mode && equations >= Self::AUTO_SPARSE_FROM),
             Solver::Sparse if every_mode => Err(StudyError::Option {
-                option: "--solver",
+                option: super::Setting::Solver,
                 message: "sparse: ranking a --count by dominance compares every mode of the model, and the sparse route computes only the modes asked for (use --solver dense, --by frequency, or --band F1:F2 --by dominance: dominance of the modes in a band)".into(),
             }),
             Solver::Sparse => Ok(true),

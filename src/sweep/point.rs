@@ -56,7 +56,7 @@ pub fn overrides(names: &[String], values: &[f64]) -> SetOverrides {
 /// and resolves includes). `start`: the previous point's reference solution (continuation).
 pub fn run_point(text: &str, name: &Path, names: &[String], values: &[f64], options: &SweepOptions, start: Option<&State>) -> Result<PointResult, StudyError> {
     let mut m = read_model_text(text, name, &overrides(names, values))?;
-    let kept = m.model.choose_beam_update(options.beam_update, options.reference.integrates()).map_err(|message| StudyError::Option { option: "beam update", message: format!("{}: {message}", name.display()) })?;
+    let kept = m.model.choose_beam_update(options.beam_update, options.reference.integrates()).map_err(|message| StudyError::Option { option: crate::study::Setting::BeamUpdate, message: format!("{}: {message}", name.display()) })?;
     let eigen = options.eigen.for_request(&options.rom);
     let (study, state) = Study::of_model(m.model, &m.problem, options.reference, &options.ports, eigen, start).map_err(|e| e.in_file(name))?;
     let rom = study.reduce(&options.rom)?;

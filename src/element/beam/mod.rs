@@ -25,6 +25,7 @@ use crate::kinematics::{gibbs_from_rotation, gibbs_rotation, Mat3, Vec3};
 use finite_volume::PointTangents;
 use incremental::StepHistory;
 use section::{combine, NodeTerms, SectionKinematics, SectionReference};
+use crate::element::Events;
 
 /// One end or the middle of a beam: a node with its initial position and orientation (they
 /// define the unstrained configuration), the offset of the reference line from the node and
@@ -198,22 +199,10 @@ impl Element for Beam3 {
         self.nodes.to_vec()
     }
 
-    fn has_events(&self) -> bool {
-        self.update == BeamUpdate::Incremental
+    fn events(&self) -> Option<&dyn Events> {
+        if self.update == BeamUpdate::Incremental { Some(self) } else { None }
     }
 
-    /// The incremental update's history of the step ([`incremental`]): the converged
-    /// frames and curvatures of `before` (MBDyn's `AfterConvergence`), advanced by the
-    /// predicted increments to `now` (`AfterPredict`).
-    fn latch(&self, now: &dyn ElementState, before: &dyn ElementState) -> Option<Latched> {
-        if self.update != BeamUpdate::Incremental {
-            return None;
-        }
-        let (_, converged) = self.evaluate_incremental(before, &StepHistory::of(before, || self.initial_history()));
-        let previous = StepHistory { base: std::array::from_fn(|i| before.node(i).r), frames: [converged[0].r, converged[1].r], curvatures: [converged[0].curvature, converged[1].curvature] };
-        let (_, predicted) = self.evaluate_incremental(now, &previous);
-        Some(StepHistory::<3, 2> { base: std::array::from_fn(|i| now.node(i).r), frames: [predicted[0].r, predicted[1].r], curvatures: [predicted[0].curvature, predicted[1].curvature] }.latched())
-    }
 
     fn beam_update(&self, update: BeamUpdate) -> Option<Result<Box<dyn Element>, String>> {
         if update == self.update {
@@ -252,5 +241,20 @@ impl Element for Beam3 {
             finite_volume::add_point_jacobian(&mut jac, s, &k.p, &k.r, &self.law_at(s, k), &point, terms.x());
         }
         finite_volume::scatter_jacobian(&jac, self.viscous, out);
+    }
+}
+
+impl Events for Beam3 {
+    /// The incremental update's history of the step ([`incremental`]): the converged
+    /// frames and curvatures of `before` (MBDyn's `AfterConvergence`), advanced by the
+    /// predicted increments to `now` (`AfterPredict`).
+    fn latch(&self, now: &dyn ElementState, before: &dyn ElementState) -> Option<Latched> {
+        if self.update != BeamUpdate::Incremental {
+            return None;
+        }
+        let (_, converged) = self.evaluate_incremental(before, &StepHistory::of(before, || self.initial_history()));
+        let previous = StepHistory { base: std::array::from_fn(|i| before.node(i).r), frames: [converged[0].r, converged[1].r], curvatures: [converged[0].curvature, converged[1].curvature] };
+        let (_, predicted) = self.evaluate_incremental(now, &previous);
+        Some(StepHistory::<3, 2> { base: std::array::from_fn(|i| now.node(i).r), frames: [predicted[0].r, predicted[1].r], curvatures: [predicted[0].curvature, predicted[1].curvature] }.latched())
     }
 }

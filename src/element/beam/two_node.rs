@@ -32,6 +32,7 @@ use crate::element::contract::{Element, ElementState, JacobianSink, Label, Latch
 use crate::element::deformable::inverse_rotation_jacobian;
 use crate::element::invariant_hinge::rotation_jacobian;
 use crate::kinematics::{gibbs_from_rotation, gibbs_g, gibbs_g_inverse, gibbs_gt_apply, gibbs_gt_derivative, gibbs_rotation, rotation_vector, skew, Mat3, Vec3};
+use crate::element::Events;
 
 const ROTATION: usize = 1;
 
@@ -200,20 +201,10 @@ impl Element for Beam2 {
         self.nodes.to_vec()
     }
 
-    fn has_events(&self) -> bool {
-        self.update == BeamUpdate::Incremental
+    fn events(&self) -> Option<&dyn Events> {
+        if self.update == BeamUpdate::Incremental { Some(self) } else { None }
     }
 
-    /// The incremental update's history of the step, as [`super::Beam3`]'s.
-    fn latch(&self, now: &dyn ElementState, before: &dyn ElementState) -> Option<Latched> {
-        if self.update != BeamUpdate::Incremental {
-            return None;
-        }
-        let converged = self.evaluate_incremental(before, &StepHistory::of(before, || self.initial_history()));
-        let previous = StepHistory { base: [before.node(0).r, before.node(1).r], frames: [converged.r], curvatures: [converged.curvature] };
-        let predicted = self.evaluate_incremental(now, &previous);
-        Some(StepHistory { base: [now.node(0).r, now.node(1).r], frames: [predicted.r], curvatures: [predicted.curvature] }.latched())
-    }
 
     fn beam_update(&self, update: BeamUpdate) -> Option<Result<Box<dyn Element>, String>> {
         if update == self.update {
@@ -268,5 +259,18 @@ impl Element for Beam2 {
         let mut jac = SMatrix::<f64, 12, 24>::zeros();
         finite_volume::add_point_jacobian(&mut jac, 0, &k.p, &k.r, &finite_volume::law_at(&self.law, &k.strain, &k.curvature, None), &point, &k.x);
         finite_volume::scatter_jacobian(&jac, false, out);
+    }
+}
+
+impl Events for Beam2 {
+    /// The incremental update's history of the step, as [`super::Beam3`]'s.
+    fn latch(&self, now: &dyn ElementState, before: &dyn ElementState) -> Option<Latched> {
+        if self.update != BeamUpdate::Incremental {
+            return None;
+        }
+        let converged = self.evaluate_incremental(before, &StepHistory::of(before, || self.initial_history()));
+        let previous = StepHistory { base: [before.node(0).r, before.node(1).r], frames: [converged.r], curvatures: [converged.curvature] };
+        let predicted = self.evaluate_incremental(now, &previous);
+        Some(StepHistory { base: [now.node(0).r, now.node(1).r], frames: [predicted.r], curvatures: [predicted.curvature] }.latched())
     }
 }

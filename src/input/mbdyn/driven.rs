@@ -7,6 +7,7 @@ use super::diagnostic::{MbdynError, Sources};
 use super::element_context::{ElementContext, Parsed};
 use super::parser::Statement;
 use crate::element::DrivenElement;
+use crate::element::UnknownKind;
 
 /// Wraps the element `parsed`, read from the statement `head` is the `driven` head of.
 pub fn wrap(head: &Statement, parsed: Parsed, src: &Sources, ctx: &ElementContext) -> Result<Parsed, MbdynError> {
@@ -34,16 +35,16 @@ pub fn wrap(head: &Statement, parsed: Parsed, src: &Sources, ctx: &ElementContex
             // A distance joint's coordinates are its direction, which its constraint
             // determines (linearly) once it is on again: held at the written direction while
             // it is off (MBDyn holds them at zero), they are solved for at the switch-on.
-            if inner.type_name() != "distance" && (0..inner.multipliers().len()).any(|k| inner.is_coordinate(k)) {
+            if inner.type_name() != "distance" && (0..inner.multipliers().len()).any(|k| inner.unknown_kind(k) == UnknownKind::Coordinate) {
                 // Switched off, its coordinate (the abscissa) would be held at its initial value.
                 return Err(c.error_at(head.span, format!("driven: a driven {} is not supported by romdyn (switched off, its abscissa would return to its initial value)", inner.type_name())));
             }
-            if (0..inner.multipliers().len()).any(|k| inner.is_state(k)) {
+            if (0..inner.multipliers().len()).any(|k| inner.unknown_kind(k) == UnknownKind::State) {
                 // Its own differential states (a friction model's bristle deflection) would have
                 // to be frozen while it is off and restarted when it switches on.
                 return Err(c.error_at(head.span, format!("driven: a driven {} with states of its own (joint friction) is not supported by romdyn", inner.type_name())));
             }
-            if inner.has_events() {
+            if inner.events().is_some() {
                 return Err(c.error_at(head.span, format!("driven: a driven {} with events of its own (a bistop law, a total joint locking some rotation components only) is not supported by romdyn", inner.type_name())));
             }
             check_hints_apply(&*inner, &probes, src)?;

@@ -22,6 +22,7 @@ use super::references::{Frame, OtherSide};
 use crate::element::{DrivenJoint, Element, Tikhonov, TotalEquation, TotalReaction};
 use crate::kinematics::Mat3;
 use crate::model::Label;
+use crate::element::UnknownKind;
 
 /// The `total equation` / `total internal reaction` card of a `joint` statement, or `None`
 /// for another joint type (read by `joints::joint`).
@@ -157,7 +158,7 @@ impl Pending {
             if n == 0 {
                 return Err(src.error(span, format!("joint regularization {label}: {} {label} has no equations to regularize", inner.type_name())));
             }
-            if let Some(k) = (0..n).find(|&k| inner.is_velocity_constraint(k) || inner.is_coordinate(k) || inner.is_state(k)) {
+            if let Some(k) = (0..n).find(|&k| inner.unknown_kind(k) != UnknownKind::Multiplier) {
                 return Err(src.error(span, format!("joint regularization {label}: equation {} of {} {label} is not a holonomic constraint; romdyn regularizes holonomic constraints only", k + 1, inner.type_name())));
             }
             let c = match compliance {

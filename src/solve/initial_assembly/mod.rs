@@ -29,6 +29,7 @@ use crate::dae::{SparseLu, State, Triplets};
 use crate::element::NodeKinematics;
 use crate::kinematics::{gibbs_g, gibbs_rotation, Mat3, Vec3};
 use crate::model::{InitialAssembly, Model, NodeAssembly};
+use crate::element::UnknownKind;
 
 mod rows;
 use rows::{Ctx, Jacobian, Layout, Residual, Unknowns, VelocityProbe};
@@ -331,7 +332,7 @@ pub fn initial_assembly(model: &Model, st: &mut State, settings: &InitialAssembl
     // rates, where multipliers are left to the derivatives phase.
     for (k, &e) in problem.layout.elements.iter().enumerate() {
         let (el, at) = (problem.layout.element(k), problem.layout.first[k] - 6 * n);
-        for j in (0..el.multipliers().len()).filter(|&j| el.is_coordinate(j)) {
+        for j in (0..el.multipliers().len()).filter(|&j| el.unknown_kind(j) == UnknownKind::Coordinate) {
             st.y[dofs.element_first[e] + j] = u.lambda[at + j];
             st.yp[dofs.element_first[e] + j] = u.lambda_dot[at + j];
         }

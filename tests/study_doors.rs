@@ -1,0 +1,81 @@
+//! Every door into a study runs the same checks (issue 31): the reference checked against
+//! the file's problem (a `--at` time after its final time is refused, naming the setting),
+//! an unrestrained model named (a static reference of a model with a free rigid-body
+//! motion says which), and the beams' incremental update warned about at a static
+//! reference. `Study::from_application` skipped all three.
+
+use std::path::Path;
+
+use romdyn::analysis::Reference;
+use romdyn::dae::{NodeInput, NodeOutput};
+use romdyn::input::mbdyn::{read_model, MbdynModel};
+use romdyn::model::BeamUpdateChoice;
+use romdyn::study::{Application, EigenSettings, Linearization, Ports, Setting, Study, StudyError, Warning};
+
+fn model(relative: &str, replace: &[(&str, &str)]) -> MbdynModel {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(relative);
+    let mut text = std::fs::read_to_string(&path).unwrap();
+    for (a, b) in replace {
+        assert!(text.contains(a), "{a}");
+        text = text.replace(a, b);
+    }
+    romdyn::input::mbdyn::parse_text(&text, &path).and_then(|d| romdyn::input::mbdyn::build(&d)).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The four library doors, each on the same model, reference and node ports.
+fn every_door(make: &dyn Fn() -> MbdynModel, reference: Reference, input: &str, output: &str) -> Vec<(&'static str, Result<Study, StudyError>)> {
+    let inputs = vec![input.parse::<NodeInput>().unwrap()];
+    let outputs = vec![output.parse::<NodeOutput>().unwrap()];
+    let app = Application { inputs: inputs.iter().map(NodeInput::port).collect(), outputs: outputs.iter().map(NodeOutput::port).collect(), names: Default::default(), remove_springs: Vec::new(), imposed: None };
+    let lin = Linearization { reference, inputs: inputs.clone(), outputs: outputs.clone() };
+    let eigen = EigenSettings::default;
+    let (a, b, c, d) = (make(), make(), make(), make());
+    vec![
+        ("from_model", Study::from_model(a.model, &a.problem, &lin, eigen())),
+        ("from_application", Study::from_application(b.model, &b.problem, reference, &app, eigen())),
+        ("of_model (node ports)", Study::of_model(c.model, &c.problem, reference, &Ports::Nodes { inputs, outputs }, eigen(), None).map(|(s, _)| s)),
+        ("of_model (application)", Study::of_model(d.model, &d.problem, reference, &Ports::Application(app), eigen(), None).map(|(s, _)| s)),
+    ]
+}
+
+#[test]
+fn a_reference_time_after_the_problem_is_refused_at_every_door() {
+    // examples/pendulum.mbd integrates to 2 s.
+    let make = || model("examples/pendulum.mbd", &[]);
+    for (door, result) in every_door(&make, Reference::At(5.0), "2:Mz", "2:rz") {
+        match result {
+            Err(StudyError::Option { option: Setting::ReferenceTime, message }) => assert!(message.contains("after the file's final time 2 s"), "{door}: {message}"),
+            Err(e) => panic!("{door}: {e}"),
+            Ok(_) => panic!("{door}: accepted a reference time after the final time"),
+        }
+    }
+}
+
+#[test]
+fn an_unrestrained_model_is_named_at_every_door() {
+    // The pendulum with its clamp removed and the hinge replaced by a 6-D spring: the two
+    // nodes float together (tests/rom_trust.rs has the CLI's message).
+    let spring = "joint: 2, deformable joint,\n        1, null, hinge, reference, node, eye,\n        2, 0., L, 0., hinge, reference, node, eye,\n        linear elastic generic, diag, 1.e4, 1.e4, 1.e4, 1.e4, 1.e4, 1.e4;";
+    let make = || model("examples/pendulum.mbd", &[("    joint: 1, clamp, 1, node, node;\n", ""), ("joint: 2, revolute hinge,\n        1, position, null,\n        2, position, 0., L, 0.;", spring), ("joints: 2;", "joints: 1;")]);
+    for (door, result) in every_door(&make, Reference::Static { load_steps: 1 }, "2:Fx", "2:x") {
+        match result {
+            Err(StudyError::Unrestrained { motion, .. }) => assert!(motion.contains("rigid-body motion of the whole model"), "{door}: {motion}"),
+            Err(e) => panic!("{door}: {e}"),
+            Ok(_) => panic!("{door}: a floating model found a static equilibrium"),
+        }
+    }
+}
+
+#[test]
+fn incremental_beams_at_a_static_reference_are_warned_at_every_door() {
+    let make = || {
+        let mut m = model("tests/mbdyn_files/beam3_tip_couple.mbd", &[]);
+        m.model.choose_beam_update(BeamUpdateChoice::Every(romdyn::element::BeamUpdate::Incremental), false).unwrap();
+        m
+    };
+    let last = make().model.nodes.last().unwrap().label;
+    for (door, result) in every_door(&make, Reference::Static { load_steps: 10 }, &format!("{last}:Fy"), &format!("{last}:y")) {
+        let study = result.unwrap_or_else(|e| panic!("{door}: {e}"));
+        assert!(study.warnings().iter().any(|w| matches!(w, Warning::IncrementalBeamsStatic { beams: 2 })), "{door}: {:?}", study.warnings());
+    }
+}
