@@ -1,6 +1,7 @@
 //! The front ends' contract: the `romdyn` command line end to end (CASES C1, outputs and
-//! errors), pencil files, the library calls the Python package makes (node histories), and
-//! the documentation's commands and shown output against the CLI (`docs_commands`).
+//! errors), pencil files, the library calls the Python package makes (node histories, every
+//! door into a study running the same checks), and the documentation's commands and shown
+//! output against the CLI (`docs_commands`).
 
 #[path = "../common/mod.rs"]
 mod common;
@@ -9,3 +10,4 @@ mod cli;
 mod docs_commands;
 mod node_histories;
 mod pencil_input;
+mod study_doors;

@@ -54,7 +54,7 @@ fn a_reference_time_after_the_problem_is_refused_at_every_door() {
 #[test]
 fn an_unrestrained_model_is_named_at_every_door() {
     // The pendulum with its clamp removed and the hinge replaced by a 6-D spring: the two
-    // nodes float together (tests/rom_trust.rs has the CLI's message).
+    // nodes float together (tests/paper/rom_trust.rs has the CLI's message).
     let spring = "joint: 2, deformable joint,\n        1, null, hinge, reference, node, eye,\n        2, 0., L, 0., hinge, reference, node, eye,\n        linear elastic generic, diag, 1.e4, 1.e4, 1.e4, 1.e4, 1.e4, 1.e4;";
     let make = || model("examples/pendulum.mbd", &[("    joint: 1, clamp, 1, node, node;\n", ""), ("joint: 2, revolute hinge,\n        1, position, null,\n        2, position, 0., L, 0.;", spring), ("joints: 2;", "joints: 1;")]);
     for (door, result) in every_door(&make, Reference::Static { load_steps: 1 }, "2:Fx", "2:x") {
