@@ -475,7 +475,7 @@ impl<'m> Assembler<'m> {
         let frames = self.frames(st);
         let mut out = Vec::new();
         for (e, el) in self.model.elements.iter().enumerate() {
-            let sections = el.sections(&self.context(&frames, st, e, 1.0));
+            let sections = el.outputs().map(|o| o.sections(&self.context(&frames, st, e, 1.0))).unwrap_or_default();
             if !sections.is_empty() {
                 out.push((e, sections));
             }

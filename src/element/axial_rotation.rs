@@ -9,6 +9,7 @@ use super::{Anchor, Joint};
 use super::drive::Drive;
 use crate::kinematics::{skew, Vec3};
 use super::UnknownKind;
+use crate::element::Outputs;
 
 /// A revolute hinge (5 holonomic constraints) driven at relative angular velocity `Ω(t)`
 /// about axis 3 of frame A (1 velocity constraint).
@@ -35,14 +36,8 @@ impl Element for AxialRotation {
     fn label(&self) -> Label {
         self.hinge.label
     }
-    /// `rz` the hinge's relative rotation, `wz` the imposed Ω(t) (planej.cc,
-    /// `AxialRotationJoint::dGetPrivData`: `dGet()`, not the measured spin).
-    fn private_data(&self, name: &str) -> Option<super::contract::PrivateDatum> {
-        if name == "wz" {
-            let omega = self.omega.clone();
-            return Some(super::contract::PrivateDatum::new(move |st: &dyn ElementState| Some(omega.value_in(st))));
-        }
-        self.hinge.private_datum(name)
+    fn outputs(&self) -> Option<&dyn Outputs> {
+        Some(self)
     }
     fn type_name(&self) -> &'static str {
         "axial rotation"
@@ -87,5 +82,17 @@ impl Element for AxialRotation {
             add_block(out, Row::moment(p.slot_b), Col::rotation(a), &k);
             add_block(out, Row::moment(a), Col::rotation(a), &(-k));
         }
+    }
+}
+
+impl Outputs for AxialRotation {
+    /// `rz` the hinge's relative rotation, `wz` the imposed Ω(t) (planej.cc,
+    /// `AxialRotationJoint::dGetPrivData`: `dGet()`, not the measured spin).
+    fn private_data(&self, name: &str) -> Option<super::contract::PrivateDatum> {
+        if name == "wz" {
+            let omega = self.omega.clone();
+            return Some(super::contract::PrivateDatum::new(move |st: &dyn ElementState| Some(omega.value_in(st))));
+        }
+        self.hinge.private_datum(name)
     }
 }

@@ -10,6 +10,7 @@
 use super::contract::{add_block, add_vec, Col, Element, ElementState, JacobianSink, ResidualSink, Row};
 use crate::kinematics::{skew, Mat3, Vec3};
 use super::contract::Label;
+use crate::element::Outputs;
 
 /// A rigid body attached to a node.
 #[derive(Clone, Debug)]
@@ -49,27 +50,8 @@ impl Element for RigidBody {
     fn nodes(&self) -> Vec<Label> {
         vec![self.node]
     }
-    /// body.cc, `Body::dGetPrivData`: "E" the kinetic energy `½ (m v_G·v_G + Ωᵀ J_cm Ω)`
-    /// (v_G the centre of mass's velocity, Ω the angular velocity in the node frame), "V"
-    /// the potential energy `−m x_G·g` (zero without gravity, and while MBDyn reads the
-    /// file, before it links the gravity element), "m" the mass.
-    fn private_data(&self, name: &str) -> Option<super::contract::PrivateDatum> {
-        let (node, body) = (self.node, self.clone());
-        let datum: super::contract::PrivateDatum = match name {
-            "E" => super::contract::PrivateDatum::new(move |st: &dyn ElementState| {
-                let n = st.structural_node(node)?;
-                let v = n.xdot + n.omega.cross(&(n.r * body.offset));
-                let w = n.r.transpose() * n.omega;
-                Some(0.5 * (body.mass * v.dot(&v) + w.dot(&(body.inertia * w))))
-            }),
-            "V" => super::contract::PrivateDatum::new(move |st: &dyn ElementState| {
-                let n = st.structural_node(node)?;
-                Some(-body.mass * (n.x + n.r * body.offset).dot(&st.gravity()))
-            }),
-            "m" => super::contract::PrivateDatum::new(move |_: &dyn ElementState| Some(body.mass)),
-            _ => return None,
-        };
-        Some(datum)
+    fn outputs(&self) -> Option<&dyn Outputs> {
+        Some(self)
     }
 
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
@@ -103,5 +85,30 @@ impl Element for RigidBody {
         if let Some(f) = &self.frame {
             super::frame_motion::body_jacobian(&f.at(st.time()), self.mass, &s, &j, st, out);
         }
+    }
+}
+
+impl Outputs for RigidBody {
+    /// body.cc, `Body::dGetPrivData`: "E" the kinetic energy `½ (m v_G·v_G + Ωᵀ J_cm Ω)`
+    /// (v_G the centre of mass's velocity, Ω the angular velocity in the node frame), "V"
+    /// the potential energy `−m x_G·g` (zero without gravity, and while MBDyn reads the
+    /// file, before it links the gravity element), "m" the mass.
+    fn private_data(&self, name: &str) -> Option<super::contract::PrivateDatum> {
+        let (node, body) = (self.node, self.clone());
+        let datum: super::contract::PrivateDatum = match name {
+            "E" => super::contract::PrivateDatum::new(move |st: &dyn ElementState| {
+                let n = st.structural_node(node)?;
+                let v = n.xdot + n.omega.cross(&(n.r * body.offset));
+                let w = n.r.transpose() * n.omega;
+                Some(0.5 * (body.mass * v.dot(&v) + w.dot(&(body.inertia * w))))
+            }),
+            "V" => super::contract::PrivateDatum::new(move |st: &dyn ElementState| {
+                let n = st.structural_node(node)?;
+                Some(-body.mass * (n.x + n.r * body.offset).dot(&st.gravity()))
+            }),
+            "m" => super::contract::PrivateDatum::new(move |_: &dyn ElementState| Some(body.mass)),
+            _ => return None,
+        };
+        Some(datum)
     }
 }

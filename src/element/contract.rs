@@ -237,6 +237,22 @@ pub trait NonSmooth {
     fn reaction_dependence(&self, s: &dyn ElementState) -> Option<String>;
 }
 
+/// What an element reports beyond its equations ([`Element::outputs`]); each part has a
+/// default, so an element states only what it has.
+pub trait Outputs {
+    /// Its private datum `name` (MBDyn's `iGetPrivDataIdx`/`dGetPrivData`), which the
+    /// `element` and `dof` drive callers read, if romdyn computes it (see
+    /// [`super::private_data`]).
+    fn private_data(&self, _name: &str) -> Option<PrivateDatum> {
+        None
+    }
+    /// Internal forces and deformation at the element's evaluation points (beams), for
+    /// output; none for other elements.
+    fn sections(&self, _s: &dyn ElementState) -> Vec<SectionState> {
+        Vec::new()
+    }
+}
+
 /// One element of the model.
 pub trait Element: Send + Sync {
     fn label(&self) -> Label;
@@ -299,10 +315,9 @@ pub trait Element: Send + Sync {
     fn residual(&self, s: &dyn ElementState, out: &mut dyn ResidualSink);
     /// Adds its derivatives; the assembler forms `J(c)` from them.
     fn jacobian(&self, s: &dyn ElementState, out: &mut dyn JacobianSink);
-    /// Its private datum `name` (MBDyn's `iGetPrivDataIdx`/`dGetPrivData`), which the
-    /// `element` and `dof` drive callers read, if romdyn computes it (see
-    /// [`super::private_data`]).
-    fn private_data(&self, _name: &str) -> Option<PrivateDatum> {
+    /// What it reports beyond its equations, when it reports anything ([`Outputs`]: private
+    /// data that drive callers read, a beam's sections); `None` for most elements.
+    fn outputs(&self) -> Option<&dyn Outputs> {
         None
     }
     /// The element with a beam's (beam3, beam2) rotation update set to `update`
@@ -310,11 +325,6 @@ pub trait Element: Send + Sync {
     /// already, an error where the element cannot take it.
     fn beam_update(&self, _update: super::BeamUpdate) -> Option<Result<Box<dyn Element>, String>> {
         None
-    }
-    /// Internal forces and deformation at the element's evaluation points (beams), for
-    /// output; none for other elements.
-    fn sections(&self, _s: &dyn ElementState) -> Vec<SectionState> {
-        Vec::new()
     }
 }
 

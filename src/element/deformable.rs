@@ -6,6 +6,7 @@ use super::contract::{add_block, add_vec, Col, Element, ElementState, JacobianSi
 use super::anchor::{node_labels, Anchor, Pair};
 use crate::kinematics::{rotation_vector, skew, Mat3, Vec3};
 use super::contract::Label;
+use crate::element::Outputs;
 
 /// `φ = K ε + C ε̇` with 3x3 stiffness and viscosity matrices (linear elastic when `C = 0`).
 #[derive(Clone, Debug, PartialEq)]
@@ -221,14 +222,8 @@ impl Element for Rod {
     fn nodes(&self) -> Vec<Label> {
         node_labels(&self.a, &self.b)
     }
-    /// rodj.cc, `Rod::dGetPrivData`: "L" the distance `l = |d|` between the points, "LPrime"
-    /// its rate `d·ḋ/l` (MBDyn's `dL0 dEpsilonPrime`).
-    fn private_data(&self, name: &str) -> Option<super::contract::PrivateDatum> {
-        match name {
-            "L" => Some(super::private_data::of_pair(&self.a, &self.b, |p| p.d.norm())),
-            "LPrime" => Some(super::private_data::of_pair(&self.a, &self.b, |p| p.d.dot(&distance_rate(p).0) / p.d.norm())),
-            _ => None,
-        }
+    fn outputs(&self) -> Option<&dyn Outputs> {
+        Some(self)
     }
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
         let p = Pair::new(&self.a, &self.b, st);
@@ -255,6 +250,18 @@ impl Element for Rod {
                 add_block(out, Row::force(a), *c, &(-block));
                 add_block(out, Row::moment(a), *c, &(-skew(&p.f_a) * block));
             }
+        }
+    }
+}
+
+impl Outputs for Rod {
+    /// rodj.cc, `Rod::dGetPrivData`: "L" the distance `l = |d|` between the points, "LPrime"
+    /// its rate `d·ḋ/l` (MBDyn's `dL0 dEpsilonPrime`).
+    fn private_data(&self, name: &str) -> Option<super::contract::PrivateDatum> {
+        match name {
+            "L" => Some(super::private_data::of_pair(&self.a, &self.b, |p| p.d.norm())),
+            "LPrime" => Some(super::private_data::of_pair(&self.a, &self.b, |p| p.d.dot(&distance_rate(p).0) / p.d.norm())),
+            _ => None,
         }
     }
 }

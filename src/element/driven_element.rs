@@ -32,6 +32,7 @@ use super::drive::Drive;
 use super::UnknownKind;
 use crate::element::Events;
 use crate::element::NonSmooth;
+use crate::element::Outputs;
 
 /// A hint's drive, built when the element switches on.
 #[derive(Clone, Debug, PartialEq)]
@@ -173,12 +174,18 @@ impl ElementWrapper for DrivenElement {
             out.add(Row::Constraint(k), Col::Multiplier(k), if active { 0.0 } else { -scale });
         }
     }
+    fn outputs(&self) -> Option<&dyn Outputs> {
+        Some(self)
+    }
+}
+
+impl Outputs for DrivenElement {
     /// MBDyn's `DrivenElem` reads the wrapped element's private data whether on or off.
     fn private_data(&self, name: &str) -> Option<PrivateDatum> {
-        self.inner.private_data(name)
+        self.inner.outputs()?.private_data(name)
     }
     fn sections(&self, s: &dyn ElementState) -> Vec<SectionState> {
-        self.acting(s).map(|e| e.sections(s)).unwrap_or_default()
+        self.acting(s).and_then(|e| e.outputs()).map(|o| o.sections(s)).unwrap_or_default()
     }
 }
 

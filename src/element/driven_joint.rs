@@ -31,6 +31,7 @@ use crate::kinematics::{rotation_vector, skew, Vec3};
 use std::sync::Arc;
 use super::UnknownKind;
 use crate::element::Events;
+use crate::element::Outputs;
 
 /// A 3-vector function of time `Σ v_k d_k(t)` (MBDyn's template drive caller).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -268,8 +269,8 @@ impl Element for DrivenJoint {
     fn hinted(&self, hint: &super::HintValue) -> Option<Box<dyn Element>> {
         self.with_hint(hint).map(|j| Box::new(j) as Box<dyn Element>)
     }
-    fn private_data(&self, name: &str) -> Option<super::contract::PrivateDatum> {
-        self.joint.private_datum(name)
+    fn outputs(&self) -> Option<&dyn Outputs> {
+        Some(self)
     }
     fn type_name(&self) -> &'static str {
         self.name
@@ -361,6 +362,12 @@ impl Element for DrivenJoint {
             };
             p.add_reaction_column(out, Col::Multiplier(n + i), &df, &dm);
         }
+    }
+}
+
+impl Outputs for DrivenJoint {
+    fn private_data(&self, name: &str) -> Option<super::contract::PrivateDatum> {
+        self.joint.private_datum(name)
     }
 }
 

@@ -34,6 +34,7 @@ use super::drive::ScalarFunction;
 use crate::kinematics::{skew, Vec3};
 use super::UnknownKind;
 use crate::element::NonSmooth;
+use crate::element::Outputs;
 
 /// MBDyn's `modlugre, σ₀, σ₁, σ₂, κ, "μ(|v|)"` (input manual, §Friction models).
 #[derive(Clone, Debug)]
@@ -206,8 +207,8 @@ impl Element for InLineFriction {
     fn non_smoothness(&self) -> Option<&dyn NonSmooth> {
         Some(self)
     }
-    fn private_data(&self, name: &str) -> Option<super::private_data::PrivateDatum> {
-        self.joint.private_data(name)
+    fn outputs(&self) -> Option<&dyn Outputs> {
+        Some(self)
     }
 
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
@@ -269,6 +270,12 @@ impl Element for InLineFriction {
             add_block(out, Row::force(a), Col::rotation(a), &turn);
             add_block(out, Row::force(p.slot_b), Col::rotation(a), &(-turn));
         }
+    }
+}
+
+impl Outputs for InLineFriction {
+    fn private_data(&self, name: &str) -> Option<super::private_data::PrivateDatum> {
+        self.joint.private_data(name)
     }
 }
 

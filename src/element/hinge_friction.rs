@@ -25,6 +25,7 @@ use super::drive::Drive;
 use crate::kinematics::{skew, Vec3};
 use super::UnknownKind;
 use crate::element::NonSmooth;
+use crate::element::Outputs;
 
 /// Where the friction's normal force comes from.
 #[derive(Clone, Debug)]
@@ -128,8 +129,8 @@ impl Element for RevoluteHingeFriction {
     fn non_smoothness(&self) -> Option<&dyn NonSmooth> {
         Some(self)
     }
-    fn private_data(&self, name: &str) -> Option<super::private_data::PrivateDatum> {
-        self.joint.private_data(name)
+    fn outputs(&self) -> Option<&dyn Outputs> {
+        Some(self)
     }
 
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
@@ -200,6 +201,12 @@ impl Element for RevoluteHingeFriction {
             add_block(out, Row::moment(a), Col::rotation(a), &turn);
             add_block(out, Row::moment(p.slot_b), Col::rotation(a), &(-turn));
         }
+    }
+}
+
+impl Outputs for RevoluteHingeFriction {
+    fn private_data(&self, name: &str) -> Option<super::private_data::PrivateDatum> {
+        self.joint.private_data(name)
     }
 }
 

@@ -13,6 +13,7 @@ use super::anchor::{node_labels, Anchor, Pair};
 use super::contract::{add_block, Col, Element, ElementState, JacobianSink, ResidualSink, Row};
 use crate::kinematics::{axial_of_skew_part, skew, skew_part_jacobian, Mat3, Vec3};
 use super::contract::Label;
+use crate::element::Outputs;
 
 /// Which joint, for names and counts.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -168,8 +169,8 @@ impl Element for Joint {
         self.locked().map(|(p, k)| format!("{} {}", if p { "f" } else { "m" }, ["x", "y", "z"][k])).collect()
     }
 
-    fn private_data(&self, name: &str) -> Option<super::contract::PrivateDatum> {
-        self.private_datum(name)
+    fn outputs(&self) -> Option<&dyn Outputs> {
+        Some(self)
     }
 
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
@@ -232,6 +233,12 @@ impl Element for Joint {
             add_block(out, Row::moment(a), Col::rotation(b), &(-qkq));
             add_block(out, Row::moment(a), Col::rotation(a), &(-d_theta_a));
         }
+    }
+}
+
+impl Outputs for Joint {
+    fn private_data(&self, name: &str) -> Option<super::contract::PrivateDatum> {
+        self.private_datum(name)
     }
 }
 

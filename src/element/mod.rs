@@ -56,7 +56,7 @@ pub use frame_motion::{FrameMotion, FrameState};
 pub use cardano::CardanoHinge;
 pub use central_gravity::CentralGravity;
 pub use wrapper::ElementWrapper;
-pub use contract::{Col, Element, ElementState, Events, JacobianSink, Label, Latched, NodeKinematics, NonSmooth, ResidualSink, Row, SectionState, UnknownKind};
+pub use contract::{Col, Element, ElementState, Events, JacobianSink, Label, Latched, NodeKinematics, NonSmooth, Outputs, ResidualSink, Row, SectionState, UnknownKind};
 pub use deformable::{DeformableDisplacement, DeformableHinge, LinearViscoelastic, Rod, RodViscosity};
 pub use distance::Distance;
 pub use deformable_joint::DeformableJoint;

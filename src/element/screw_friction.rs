@@ -23,6 +23,7 @@ use super::screw::Screw;
 use crate::kinematics::{skew, Vec3};
 use super::UnknownKind;
 use crate::element::NonSmooth;
+use crate::element::Outputs;
 
 /// A screw joint with `modlugre` friction. Unknowns: the screw's turned angle and reaction,
 /// then the friction state `z` [m].
@@ -91,8 +92,8 @@ impl Element for ScrewFriction {
     fn non_smoothness(&self) -> Option<&dyn NonSmooth> {
         Some(self)
     }
-    fn private_data(&self, name: &str) -> Option<super::private_data::PrivateDatum> {
-        self.screw.private_data(name)
+    fn outputs(&self) -> Option<&dyn Outputs> {
+        Some(self)
     }
 
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
@@ -159,6 +160,12 @@ impl Element for ScrewFriction {
             add_block(out, Row::moment(a), Col::rotation(a), &turn);
             add_block(out, Row::moment(p.slot_b), Col::rotation(a), &(-turn));
         }
+    }
+}
+
+impl Outputs for ScrewFriction {
+    fn private_data(&self, name: &str) -> Option<super::private_data::PrivateDatum> {
+        self.screw.outputs()?.private_data(name)
     }
 }
 

@@ -8,7 +8,7 @@
 //! A method added to [`Element`] must be added here too, with its forward in the trait
 //! and in the blanket `impl Element`; otherwise wrappers fall back to its default.
 
-use super::contract::{Element, ElementState, Events, JacobianSink, NonSmooth, Label, PrivateDatum, ResidualSink, SectionState};
+use super::contract::{Element, ElementState, Events, JacobianSink, Label, NonSmooth, Outputs, ResidualSink};
 use super::{BeamUpdate, HintValue};
 use super::UnknownKind;
 
@@ -48,6 +48,9 @@ pub trait ElementWrapper: Send + Sync {
     fn non_smoothness(&self) -> Option<&dyn NonSmooth> {
         self.inner().non_smoothness()
     }
+    fn outputs(&self) -> Option<&dyn Outputs> {
+        self.inner().outputs()
+    }
     fn constraint_rows_read_multipliers(&self) -> bool {
         self.inner().constraint_rows_read_multipliers()
     }
@@ -59,12 +62,6 @@ pub trait ElementWrapper: Send + Sync {
     }
     fn jacobian(&self, s: &dyn ElementState, out: &mut dyn JacobianSink) {
         self.inner().jacobian(s, out)
-    }
-    fn private_data(&self, name: &str) -> Option<PrivateDatum> {
-        self.inner().private_data(name)
-    }
-    fn sections(&self, s: &dyn ElementState) -> Vec<SectionState> {
-        self.inner().sections(s)
     }
     /// A wrapped beam keeps the default update: the wrapper would have to rebuild itself
     /// around the changed beam, and a driven element with events is refused (driven.rs).
@@ -105,6 +102,9 @@ impl<W: ElementWrapper> Element for W {
     fn non_smoothness(&self) -> Option<&dyn NonSmooth> {
         ElementWrapper::non_smoothness(self)
     }
+    fn outputs(&self) -> Option<&dyn Outputs> {
+        ElementWrapper::outputs(self)
+    }
     fn hinted(&self, hint: &HintValue) -> Option<Box<dyn Element>> {
         ElementWrapper::hinted(self, hint)
     }
@@ -119,12 +119,6 @@ impl<W: ElementWrapper> Element for W {
     }
     fn jacobian(&self, s: &dyn ElementState, out: &mut dyn JacobianSink) {
         ElementWrapper::jacobian(self, s, out)
-    }
-    fn private_data(&self, name: &str) -> Option<PrivateDatum> {
-        ElementWrapper::private_data(self, name)
-    }
-    fn sections(&self, s: &dyn ElementState) -> Vec<SectionState> {
-        ElementWrapper::sections(self, s)
     }
     fn beam_update(&self, update: BeamUpdate) -> Option<Result<Box<dyn Element>, String>> {
         ElementWrapper::beam_update(self, update)

@@ -8,7 +8,7 @@ use std::path::Path;
 
 use romdyn::analysis::Reference;
 use romdyn::dae::{NodeInput, NodeOutput};
-use romdyn::input::mbdyn::{read_model, MbdynModel};
+use romdyn::input::mbdyn::MbdynModel;
 use romdyn::model::BeamUpdateChoice;
 use romdyn::study::{Application, EigenSettings, Linearization, Ports, Setting, Study, StudyError, Warning};
 

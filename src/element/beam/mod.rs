@@ -26,6 +26,7 @@ use finite_volume::PointTangents;
 use incremental::StepHistory;
 use section::{combine, NodeTerms, SectionKinematics, SectionReference};
 use crate::element::Events;
+use crate::element::Outputs;
 
 /// One end or the middle of a beam: a node with its initial position and orientation (they
 /// define the unstrained configuration), the offset of the reference line from the node and
@@ -220,14 +221,8 @@ impl Element for Beam3 {
         }
     }
 
-    /// Points I and II: forces and moments `K ([ε; κ] − e_p) + V [ε̇; κ̇] + f_p`, strains and
-    /// curvatures, all in the section frame.
-    fn sections(&self, st: &dyn ElementState) -> Vec<SectionState> {
-        let (_, ks) = self.evaluate(st);
-        ks.iter()
-            .enumerate()
-            .map(|(s, k)| finite_volume::section_state(&k.p, &k.r, &k.strain, &k.curvature, &self.local_forces(s, k)))
-            .collect()
+    fn outputs(&self) -> Option<&dyn Outputs> {
+        Some(self)
     }
 
     fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
@@ -241,6 +236,18 @@ impl Element for Beam3 {
             finite_volume::add_point_jacobian(&mut jac, s, &k.p, &k.r, &self.law_at(s, k), &point, terms.x());
         }
         finite_volume::scatter_jacobian(&jac, self.viscous, out);
+    }
+}
+
+impl Outputs for Beam3 {
+    /// Points I and II: forces and moments `K ([ε; κ] − e_p) + V [ε̇; κ̇] + f_p`, strains and
+    /// curvatures, all in the section frame.
+    fn sections(&self, st: &dyn ElementState) -> Vec<SectionState> {
+        let (_, ks) = self.evaluate(st);
+        ks.iter()
+            .enumerate()
+            .map(|(s, k)| finite_volume::section_state(&k.p, &k.r, &k.strain, &k.curvature, &self.local_forces(s, k)))
+            .collect()
     }
 }
 

@@ -33,6 +33,7 @@ use crate::element::deformable::inverse_rotation_jacobian;
 use crate::element::invariant_hinge::rotation_jacobian;
 use crate::kinematics::{gibbs_from_rotation, gibbs_g, gibbs_g_inverse, gibbs_gt_apply, gibbs_gt_derivative, gibbs_rotation, rotation_vector, skew, Mat3, Vec3};
 use crate::element::Events;
+use crate::element::Outputs;
 
 const ROTATION: usize = 1;
 
@@ -218,11 +219,8 @@ impl Element for Beam2 {
         finite_volume::add_point_residual(out, 0, &k.p, &k.r, &self.local_forces(&k), &k.x);
     }
 
-    /// The evaluation point: forces and moments `K ([ε; κ] − e_p) + f_p`, strains and
-    /// curvatures, in the section frame.
-    fn sections(&self, st: &dyn ElementState) -> Vec<SectionState> {
-        let k = self.evaluate(st);
-        vec![finite_volume::section_state(&k.p, &k.r, &k.strain, &k.curvature, &self.local_forces(&k))]
+    fn outputs(&self) -> Option<&dyn Outputs> {
+        Some(self)
     }
 
     fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
@@ -259,6 +257,15 @@ impl Element for Beam2 {
         let mut jac = SMatrix::<f64, 12, 24>::zeros();
         finite_volume::add_point_jacobian(&mut jac, 0, &k.p, &k.r, &finite_volume::law_at(&self.law, &k.strain, &k.curvature, None), &point, &k.x);
         finite_volume::scatter_jacobian(&jac, false, out);
+    }
+}
+
+impl Outputs for Beam2 {
+    /// The evaluation point: forces and moments `K ([ε; κ] − e_p) + f_p`, strains and
+    /// curvatures, in the section frame.
+    fn sections(&self, st: &dyn ElementState) -> Vec<SectionState> {
+        let k = self.evaluate(st);
+        vec![finite_volume::section_state(&k.p, &k.r, &k.strain, &k.curvature, &self.local_forces(&k))]
     }
 }
 

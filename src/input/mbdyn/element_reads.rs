@@ -100,7 +100,7 @@ impl PrivateReads {
                     format!("{who}: there is no {space} {label} in the elements block (MBDyn stops at the drive's first evaluation: \"model::element: unable to find {mbdyn}({label})\")")
                 }
                 Some((_, at, seq)) if r.above.is_some_and(|s| *seq >= s) => format!("{who}: {space} {label} is not defined above it (line {}); MBDyn reads the element first", at.line),
-                Some((e, ..)) => match e.private_data(&r.name) {
+                Some((e, ..)) => match e.outputs().and_then(|o| o.private_data(&r.name)) {
                     Some(d) => {
                         memories.extend(d.memory().cloned());
                         let _ = r.cell.set(d);

@@ -244,7 +244,7 @@ pub fn element_private_data(kind: &str, label_arg: f64, data: &str, elements: &E
         Some(Err(why)) => return Err(format!("{call}: romdyn could not read {space} {l} while reading the file: {why}")),
         Some(Ok(e)) => e,
     };
-    let Some(datum) = element.private_data(data) else {
+    let Some(datum) = element.outputs().and_then(|o| o.private_data(data)) else {
         return Err(format!("{call}: romdyn does not compute the private data \"{data}\" of {} {l} (it computes a body's \"E\", \"V\", \"m\", a revolute hinge's \"rz\", \"wz\", a total joint's \"px\" … \"wz\")", element.type_name()));
     };
     let nodes = match reads {
