@@ -19,8 +19,8 @@ use faer::c64;
 /// A malformed measurement file: `FILE:LINE:COLUMN: message`.
 #[derive(Debug, thiserror::Error)]
 pub enum MeasuredError {
-    #[error("{}: {source}", path.display())]
-    Read { path: PathBuf, source: std::io::Error },
+    #[error("{}: {cause}", path.display())]
+    Read { path: PathBuf, cause: std::io::Error },
     #[error("{}:{line}:{column}: {message}", path.display())]
     At { path: PathBuf, line: usize, column: usize, message: String },
 }
@@ -55,7 +55,7 @@ fn header(cell: &str) -> Option<(String, String, String)> {
 
 /// Reads a measured response, refusing a malformed file with its line and column.
 pub fn read_measured(path: &Path) -> Result<MeasuredResponse, MeasuredError> {
-    let text = std::fs::read_to_string(path).map_err(|e| MeasuredError::Read { path: path.to_path_buf(), source: e })?;
+    let text = std::fs::read_to_string(path).map_err(|e| MeasuredError::Read { path: path.to_path_buf(), cause: e })?;
     let at = |line: usize, column: usize, message: String| MeasuredError::At { path: path.to_path_buf(), line, column, message };
     let mut lines = text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
     let Some((hl, head)) = lines.next() else { return Err(at(1, 1, "no header line: expected 'frequency [Hz],O/I re [UNIT],O/I im [UNIT],...'".into())) };
