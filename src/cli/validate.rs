@@ -35,7 +35,7 @@ pub struct ValidateArgs {
     /// Excitation
     #[arg(long, value_enum, default_value = "random")]
     pub signal: SignalArg,
-    /// RMS of each input [N or N m], one validation per value (the linearity range; default: one, a static response of 1e-3 of the model's size or 1e-3 rad)
+    /// RMS of each input [N or N m], one validation per value (the linearity range; default: one, a static response of 1e-4 of the model's size or 1e-4 rad)
     #[arg(long, value_name = "A1,A2,...", value_delimiter = ',')]
     pub amplitudes: Vec<f64>,
     /// Excited and compared band [Hz] (default: 0 to twice the ROM's highest frequency of interest)
