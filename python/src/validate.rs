@@ -4,7 +4,7 @@
 
 use std::path::PathBuf;
 
-use numpy::{IntoPyArray, PyArray2};
+use numpy::{IntoPyArray, PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use romdyn::study::{EigenSettings, Study};

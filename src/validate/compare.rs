@@ -36,6 +36,9 @@ pub struct Channel {
     pub full_error: Option<(f64, f64)>,
     /// Time-domain fit of the ROM to the nonlinear run (NRMSE, 1 = perfect).
     pub fit: f64,
+    /// RMS of the nonlinear output's change from the reference over the compared samples
+    /// (the amplitude the linearity limit is about), in the output's unit.
+    pub output_rms: f64,
 }
 
 impl Channel {
@@ -94,7 +97,8 @@ impl AmplitudeRun {
                 }
                 let (full, romh) = grid.as_ref().map(|(f, r)| (f.iter().map(|m| m[(i, j)]).collect::<Vec<_>>(), r.iter().map(|m| m[(i, j)]).collect::<Vec<_>>())).unwrap_or_default();
                 let fit = nrmse(&yi[lead..], &rom_y[i][lead..]);
-                channels.push(Channel { input: ins[j].clone(), output: outs[i].clone(), rom_error: worst_error(&estimate, &romh, plan.coherence), full_error: worst_error(&estimate, &full, plan.coherence), estimate, full, rom: romh, fit });
+                let output_rms = (yi[lead..].iter().map(|v| v * v).sum::<f64>() / (yi.len() - lead) as f64).sqrt();
+                channels.push(Channel { input: ins[j].clone(), output: outs[i].clone(), rom_error: worst_error(&estimate, &romh, plan.coherence), full_error: worst_error(&estimate, &full, plan.coherence), estimate, full, rom: romh, fit, output_rms });
             }
             time.push(TimeRecord { input: ins[j].clone(), u, nonlinear: y, rom: rom_y });
         }
@@ -175,7 +179,7 @@ impl Validation {
             for c in &run.channels {
                 let err = |e: Option<(f64, f64)>| e.map_or("no bin above the coherence threshold".to_string(), |(e, f)| format!("{:.3} % at {f:.4} Hz", 100.0 * e));
                 let high = c.estimate.coherence.iter().filter(|g| **g >= p.coherence).count();
-                s += &format!("  {} / {}: ROM vs estimate {}; full model vs estimate {}; fit (NRMSE) {:.4}; {high} of {} bins coherent\n", c.output, c.input, err(c.rom_error), err(c.full_error), c.fit, c.estimate.freq_hz.len());
+                s += &format!("  {} / {}: ROM vs estimate {}; full model vs estimate {}; fit (NRMSE) {:.4}; output RMS {:.4e}; {high} of {} bins coherent\n", c.output, c.input, err(c.rom_error), err(c.full_error), c.fit, c.output_rms, c.estimate.freq_hz.len());
             }
         }
         for m in &self.measured {
