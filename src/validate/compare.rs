@@ -202,7 +202,7 @@ impl Validation {
     pub fn verdict(&self) -> String {
         let p = &self.plan;
         if self.represents {
-            format!("verdict: the ROM represents the nonlinear model in {:.4}..{:.4} Hz (error <= {} % where coherence >= {}, fit >= {})", p.band_hz.0, p.band_hz.1, 100.0 * p.tolerance, p.coherence, p.fit)
+            format!("verdict: the ROM represents the nonlinear model in {:.4}..{:.4} Hz (error <= {} % plus twice the estimate's random error where coherence >= {}, fit >= {})", p.band_hz.0, p.band_hz.1, 100.0 * p.tolerance, p.coherence, p.fit)
         } else {
             format!("verdict: the ROM does NOT represent the nonlinear model in {:.4}..{:.4} Hz (needs error <= {} % plus twice the estimate's random error where coherence >= {}, and fit >= {}): see the channels above", p.band_hz.0, p.band_hz.1, 100.0 * p.tolerance, p.coherence, p.fit)
         }

@@ -79,6 +79,13 @@ struct ValidationFigure<'a>(&'a Validation);
 /// At most this many channels are drawn (a person reads 1–6).
 pub const MAX_PLOTTED_CHANNELS: usize = 6;
 
+/// A log axis's tick label: only 1, 2 and 5 times a power of ten (plotters labels every
+/// minor tick, which overlap above the first decade's middle).
+fn log_tick(x: &f64) -> String {
+    let mantissa = x / 10f64.powf(x.log10().floor());
+    if [1.0, 2.0, 5.0].iter().any(|d| (mantissa - d).abs() < 1e-6) { format!("{x}") } else { String::new() }
+}
+
 fn log_span(v: impl Iterator<Item = f64>) -> (f64, f64) {
     let (lo, hi) = v.filter(|x| x.is_finite() && *x > 0.0).fold((f64::INFINITY, 0.0f64), |(a, b), x| (a.min(x), b.max(x)));
     if !lo.is_finite() { (1e-12, 1.0) } else if hi <= lo { (lo / 2.0, hi * 2.0) } else { (lo / 1.5, hi * 1.5) }
@@ -100,8 +107,9 @@ impl Figure for ValidationFigure<'_> {
             let mags = |h: &[faer::c64]| h.iter().map(|x| x.norm()).collect::<Vec<_>>();
             let (m0, m1) = log_span(mags(&c.estimate.h).into_iter().chain(mags(&c.full)).chain(mags(&c.rom)));
             let mut measured = v.measured.iter().filter(|m| m.name == format!("{}/{}", 1 + run.channels.iter().position(|x| std::ptr::eq(x, *c)).unwrap_or(0) % run.time[0].nonlinear.len(), 1 + run.channels.iter().position(|x| std::ptr::eq(x, *c)).unwrap_or(0) / run.time[0].nonlinear.len()));
+            // The full model under the ROM, wider, so both show where they agree.
             let curves: Vec<(&str, &[faer::c64], &[f64], usize)> = {
-                let mut v = vec![("H1 estimate", &c.estimate.h[..], &f[..], 0), ("full linear model", &c.full[..], &f[..], 2), ("ROM", &c.rom[..], &f[..], 1)];
+                let mut v = vec![("full linear model", &c.full[..], &f[..], 2), ("H1 estimate", &c.estimate.h[..], &f[..], 0), ("ROM", &c.rom[..], &f[..], 1)];
                 if let Some(m) = measured.next() {
                     v.push(("measured", &m.measured[..], &m.freq_hz[..], 3));
                 }
@@ -109,17 +117,17 @@ impl Figure for ValidationFigure<'_> {
             };
             let mut mag = ChartBuilder::on(&panels[0]).caption(format!("{} / {}", c.output, c.input), (FONT, 18)).margin(8).x_label_area_size(30).y_label_area_size(80)
                 .build_cartesian_2d((f0..f1).log_scale(), (m0..m1).log_scale()).map_err(|e| err(&e))?;
-            mag.configure_mesh().y_desc(format!("|z/u| [{}]", unit_ratio(&c.output, &c.input))).label_style((FONT, 14)).axis_desc_style((FONT, 16)).light_line_style(RGBColor(235, 235, 235)).draw().map_err(|e| err(&e))?;
+            mag.configure_mesh().x_label_formatter(&log_tick).y_desc(format!("|z/u| [{}]", unit_ratio(&c.output, &c.input))).label_style((FONT, 14)).axis_desc_style((FONT, 16)).light_line_style(RGBColor(235, 235, 235)).draw().map_err(|e| err(&e))?;
             let mut phase = ChartBuilder::on(&panels[1]).margin(8).x_label_area_size(30).y_label_area_size(80).build_cartesian_2d((f0..f1).log_scale(), -180.0..180.0).map_err(|e| err(&e))?;
-            phase.configure_mesh().y_desc("phase [deg]").label_style((FONT, 14)).axis_desc_style((FONT, 16)).light_line_style(RGBColor(235, 235, 235)).draw().map_err(|e| err(&e))?;
+            phase.configure_mesh().x_label_formatter(&log_tick).y_desc("phase [deg]").label_style((FONT, 14)).axis_desc_style((FONT, 16)).light_line_style(RGBColor(235, 235, 235)).draw().map_err(|e| err(&e))?;
             for (label, h, fr, color) in &curves {
-                let style = ShapeStyle { color: COLORS[*color].to_rgba(), filled: false, stroke_width: if *color == 0 { 3 } else { 2 } };
+                let style = ShapeStyle { color: COLORS[*color].to_rgba(), filled: false, stroke_width: match *color { 2 => 5, 0 => 3, _ => 2 } };
                 mag.draw_series(LineSeries::new(fr.iter().zip(h.iter()).map(|(f, h)| (*f, h.norm())), style)).map_err(|e| err(&e))?.label(*label).legend(move |(x, y)| PathElement::new(vec![(x - 5, y), (x + 15, y)], style));
                 phase.draw_series(fr.iter().zip(h.iter()).map(|(f, h)| Circle::new((*f, h.arg().to_degrees()), 2, style.filled()))).map_err(|e| err(&e))?;
             }
             mag.configure_series_labels().position(SeriesLabelPosition::LowerLeft).label_font((FONT, 14)).background_style(WHITE.mix(0.85)).border_style(BLACK).draw().map_err(|e| err(&e))?;
             let mut coh = ChartBuilder::on(&panels[2]).margin(8).x_label_area_size(40).y_label_area_size(80).build_cartesian_2d((f0..f1).log_scale(), 0.0..1.05).map_err(|e| err(&e))?;
-            coh.configure_mesh().x_desc("frequency [Hz]").y_desc("coherence").label_style((FONT, 14)).axis_desc_style((FONT, 16)).light_line_style(RGBColor(235, 235, 235)).draw().map_err(|e| err(&e))?;
+            coh.configure_mesh().x_label_formatter(&log_tick).x_desc("frequency [Hz]").y_desc("coherence").label_style((FONT, 14)).axis_desc_style((FONT, 16)).light_line_style(RGBColor(235, 235, 235)).draw().map_err(|e| err(&e))?;
             coh.draw_series(LineSeries::new(f.iter().zip(&c.estimate.coherence).map(|(f, g)| (*f, *g)), COLORS[0].stroke_width(2))).map_err(|e| err(&e))?;
             let t = v.plan.coherence;
             coh.draw_series(LineSeries::new([(f0, t), (f1, t)], COLORS[1].stroke_width(1))).map_err(|e| err(&e))?;
