@@ -41,7 +41,7 @@ pub struct ValidateArgs {
     /// Excited and compared band [Hz] (default: 0 to twice the ROM's highest frequency of interest)
     #[arg(long, value_name = "FMIN:FMAX", value_parser = parse_band)]
     pub validation_band: Option<(f64, f64)>,
-    /// Frequency resolution of the estimate [Hz] (default: the lowest kept mode's frequency / 20)
+    /// Frequency resolution of the estimate [Hz] (default: the lowest kept mode's frequency / 20, or 1/8 of the narrowest damped kept mode's half-power bandwidth if finer, at most 8 times finer)
     #[arg(long, value_name = "HZ")]
     pub resolution: Option<f64>,
     /// Welch segments averaged (half overlap); the run lasts (N + 2)/2 segments

@@ -20,6 +20,9 @@ pub fn nrmse(y: &[f64], y_hat: &[f64]) -> f64 {
     if spread > 0.0 { 1.0 - err / spread } else if err == 0.0 { 1.0 } else { f64::NEG_INFINITY }
 }
 
+/// Relative output RMS below which a channel is not excited ([`AmplitudeRun::represents`]).
+pub const SILENT: f64 = 1e-6;
+
 /// One input/output pair at one amplitude.
 #[derive(Clone, Debug)]
 pub struct Channel {
@@ -39,6 +42,8 @@ pub struct Channel {
     /// RMS of the nonlinear output's change from the reference over the compared samples
     /// (the amplitude the linearity limit is about), in the output's unit.
     pub output_rms: f64,
+    /// The ROM's, likewise.
+    pub rom_rms: f64,
 }
 
 impl Channel {
@@ -46,7 +51,12 @@ impl Channel {
     /// the threshold.
     /// A bin passes when its error is within the tolerance plus twice the estimate's random
     /// error there ([`magnitude_random_error`]: the estimate, not the ROM, is that uncertain).
-    pub fn represents(&self, plan: &Plan) -> bool {
+    /// `silent`: the output's RMS below which a channel is taken as not excited (a pair the
+    /// model does not couple): it passes when the ROM's output is as silent.
+    pub fn represents(&self, plan: &Plan, silent: f64) -> bool {
+        if self.output_rms <= silent {
+            return self.rom_rms <= silent;
+        }
         let e = &self.estimate;
         let coherent: Vec<usize> = (0..self.rom.len()).filter(|&k| e.coherence[k] >= plan.coherence).collect();
         let within = |k: &usize| (self.rom[*k] - e.h[*k]).norm() / e.h[*k].norm() <= plan.tolerance + 2.0 * magnitude_random_error(e.coherence[*k], e.averages);
@@ -97,16 +107,24 @@ impl AmplitudeRun {
                 }
                 let (full, romh) = grid.as_ref().map(|(f, r)| (f.iter().map(|m| m[(i, j)]).collect::<Vec<_>>(), r.iter().map(|m| m[(i, j)]).collect::<Vec<_>>())).unwrap_or_default();
                 let fit = nrmse(&yi[lead..], &rom_y[i][lead..]);
-                let output_rms = (yi[lead..].iter().map(|v| v * v).sum::<f64>() / (yi.len() - lead) as f64).sqrt();
-                channels.push(Channel { input: ins[j].clone(), output: outs[i].clone(), rom_error: worst_error(&estimate, &romh, plan.coherence), full_error: worst_error(&estimate, &full, plan.coherence), estimate, full, rom: romh, fit, output_rms });
+                let rms = |y: &[f64]| (y.iter().map(|v| v * v).sum::<f64>() / y.len().max(1) as f64).sqrt();
+                let (output_rms, rom_rms) = (rms(&yi[lead..]), rms(&rom_y[i][lead..]));
+                channels.push(Channel { input: ins[j].clone(), output: outs[i].clone(), rom_error: worst_error(&estimate, &romh, plan.coherence), full_error: worst_error(&estimate, &full, plan.coherence), estimate, full, rom: romh, fit, output_rms, rom_rms });
             }
             time.push(TimeRecord { input: ins[j].clone(), u, nonlinear: y, rom: rom_y });
         }
         Ok(AmplitudeRun { amplitude, channels, time })
     }
 
+    /// Every channel is described; a channel whose output RMS is below [`SILENT`] times the
+    /// run's largest of the same unit counts as not excited.
     pub fn represents(&self, plan: &Plan) -> bool {
-        self.channels.iter().all(|c| c.represents(plan))
+        self.channels.iter().all(|c| c.represents(plan, self.silent(c)))
+    }
+
+    fn silent(&self, c: &Channel) -> f64 {
+        let unit = |s: &str| s.rsplit_once('[').map(|x| x.1.to_string());
+        SILENT * self.channels.iter().filter(|d| unit(&d.output) == unit(&c.output)).map(|d| d.output_rms.max(d.rom_rms)).fold(0.0, f64::max)
     }
 }
 

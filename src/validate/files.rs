@@ -82,8 +82,10 @@ pub const MAX_PLOTTED_CHANNELS: usize = 6;
 /// A log axis's tick label: only 1, 2 and 5 times a power of ten (plotters labels every
 /// minor tick, which overlap above the first decade's middle).
 fn log_tick(x: &f64) -> String {
-    let mantissa = x / 10f64.powf(x.log10().floor());
-    if [1.0, 2.0, 5.0].iter().any(|d| (mantissa - d).abs() < 1e-6) { format!("{x}") } else { String::new() }
+    // Rounded to 3 digits first: plotters' ticks are 0.09999999999999998 rather than 0.1.
+    let Ok(v) = format!("{x:.2e}").parse::<f64>() else { return String::new() };
+    let mantissa = v / 10f64.powf(v.log10().floor());
+    if [1.0, 2.0, 5.0].iter().any(|d| (mantissa - d).abs() < 1e-6) { format!("{v}") } else { String::new() }
 }
 
 fn log_span(v: impl Iterator<Item = f64>) -> (f64, f64) {
@@ -117,7 +119,7 @@ impl Figure for ValidationFigure<'_> {
             };
             let mut mag = ChartBuilder::on(&panels[0]).caption(format!("{} / {}", c.output, c.input), (FONT, 18)).margin(8).x_label_area_size(30).y_label_area_size(80)
                 .build_cartesian_2d((f0..f1).log_scale(), (m0..m1).log_scale()).map_err(|e| err(&e))?;
-            mag.configure_mesh().x_label_formatter(&log_tick).y_desc(format!("|z/u| [{}]", unit_ratio(&c.output, &c.input))).label_style((FONT, 14)).axis_desc_style((FONT, 16)).light_line_style(RGBColor(235, 235, 235)).draw().map_err(|e| err(&e))?;
+            mag.configure_mesh().x_label_formatter(&log_tick).y_label_formatter(&log_tick).y_desc(format!("|z/u| [{}]", unit_ratio(&c.output, &c.input))).label_style((FONT, 14)).axis_desc_style((FONT, 16)).light_line_style(RGBColor(235, 235, 235)).draw().map_err(|e| err(&e))?;
             let mut phase = ChartBuilder::on(&panels[1]).margin(8).x_label_area_size(30).y_label_area_size(80).build_cartesian_2d((f0..f1).log_scale(), -180.0..180.0).map_err(|e| err(&e))?;
             phase.configure_mesh().x_label_formatter(&log_tick).y_desc("phase [deg]").label_style((FONT, 14)).axis_desc_style((FONT, 16)).light_line_style(RGBColor(235, 235, 235)).draw().map_err(|e| err(&e))?;
             for (label, h, fr, color) in &curves {
