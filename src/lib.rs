@@ -26,6 +26,7 @@ pub mod rom;
 pub mod solve;
 pub mod study;
 pub mod sweep;
+pub mod validate;
 
 /// Complex scalar used throughout (re-exported from faer).
 pub use faer::c64;

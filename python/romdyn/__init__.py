@@ -40,11 +40,12 @@ from ._romdyn import (
     StaticGainWarning,
     Study,
     TransmissibilityWarning,
+    validate,
 )
 from ._sweep import SweepResult, sweep
 
 __all__ = [
-    "Model", "Study", "Rom", "RomdynError", "ModelError", "load", "sweep", "SweepResult",
+    "Model", "Study", "Rom", "RomdynError", "ModelError", "load", "sweep", "SweepResult", "validate",
     "RomdynWarning", "ReferenceWarning", "PortWarning", "EigenanalysisWarning", "ModeSelectionWarning",
     "AccuracyWarning", "StaticGainWarning", "ResponseWarning", "TransmissibilityWarning",
 ]

@@ -6,6 +6,7 @@
 
 mod convert;
 mod options;
+mod validate;
 mod warnings;
 
 use std::path::PathBuf;
@@ -509,5 +510,6 @@ fn _romdyn(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(grid, m)?)?;
     m.add_function(wrap_pyfunction!(run_point, m)?)?;
     m.add_function(wrap_pyfunction!(run_points, m)?)?;
+    m.add_function(wrap_pyfunction!(validate::validate, m)?)?;
     Ok(())
 }

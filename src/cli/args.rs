@@ -156,19 +156,23 @@ impl PencilArgs {
                 let ports = PencilPorts { input_rows: self.input_rows.clone(), output_cols: self.output_cols.clone() };
                 Study::from_pencil_file(path, &ports, eigen)
             }
-            (None, Some(path)) => {
-                let mut m = read_model(path)?;
-                let integrates = self.reference.reference().integrates();
-                self.beam_update.apply(&mut m.model, integrates).map_err(|message| StudyError::Option { option: romdyn::study::Setting::BeamUpdate, message: format!("{}: {message}", path.display()) })?;
-                let progress = SolverProgress::new();
-                let result = Study::of_model_with_progress(m.model, &m.problem, self.reference.reference(), &self.ports()?, eigen, None, &|line| progress.report(line));
-                progress.finish();
-                let (study, _) = result.map_err(|e| e.in_file(path))?;
-                Ok(study)
-            }
+            (None, Some(path)) => Ok(self.model_study(path, eigen)?.0),
             // clap requires one of them.
             (None, None) => Err(StudyError::NoSource),
         }
+    }
+
+    /// The study of the model file `path` with the reference solution it was linearized at
+    /// and the file's problem (`romdyn validate` runs the model from there).
+    pub fn model_study(&self, path: &std::path::Path, eigen: EigenSettings) -> Result<(Study, romdyn::dae::State, romdyn::model::InitialValueProblem), StudyError> {
+        let mut m = read_model(path)?;
+        let integrates = self.reference.reference().integrates();
+        self.beam_update.apply(&mut m.model, integrates).map_err(|message| StudyError::Option { option: romdyn::study::Setting::BeamUpdate, message: format!("{}: {message}", path.display()) })?;
+        let progress = SolverProgress::new();
+        let result = Study::of_model_with_progress(m.model, &m.problem, self.reference.reference(), &self.ports()?, eigen, None, &|line| progress.report(line));
+        progress.finish();
+        let (study, state) = result.map_err(|e| e.in_file(path))?;
+        Ok((study, state, m.problem))
     }
 
     pub fn eigen(&self) -> EigenSettings {

@@ -7,6 +7,7 @@ mod eig;
 mod rom;
 mod run;
 mod sweep;
+mod validate;
 
 use std::process::ExitCode;
 
@@ -60,6 +61,17 @@ enum Command {
     /// error and the others are kept (exit status 1). Units: the file's (SI); frequencies in Hz,
     /// eigenvalues in rad/s.
     Sweep(sweep::SweepArgs),
+    /// Validate a ROM against the nonlinear model (and measurements): H1 estimate of the direct response to a band-limited input, full model, ROM, time-domain fit and a verdict
+    ///
+    /// Excites the model through each ROM input with a small low-pass filtered random signal (or a
+    /// multisine or chirp) from the ROM's reference solution, integrates it with the file's method
+    /// at a step of 1/(80 x the band's top), measures each output as the nonlinear quantity its
+    /// row of C linearizes, and estimates each input/output pair by H1 with Welch averaging (Hann
+    /// windows, half overlap) and coherence. Prints per channel the largest ROM-vs-estimate error
+    /// where coherence is high, the ROM's time-domain fit (NRMSE) and a verdict; with several
+    /// --amplitudes the linearity limit. Units: SI (inputs N or N m, outputs m, rad, m/s, rad/s;
+    /// frequencies Hz, times s).
+    Validate(validate::ValidateArgs),
 }
 
 /// `romdyn help --help` (or `-h`) as `romdyn help help`, and `romdyn help eig --help` as
@@ -91,6 +103,7 @@ pub fn run() -> ExitCode {
         Command::Rom(a) => rom::run(a),
         Command::Freq(a) => rom::run_freq(a),
         Command::Sweep(a) => sweep::run(a),
+        Command::Validate(a) => validate::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

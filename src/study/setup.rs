@@ -331,6 +331,11 @@ impl Study {
         self.model.as_ref()
     }
 
+    /// The model, to run it in time with loads added and removed again (`romdyn validate`).
+    pub(crate) fn model_mut(&mut self) -> Option<&mut Model> {
+        self.model.as_mut()
+    }
+
     /// Kinetic-energy shares of every mode (empty lists without a model); a member of a
     /// cluster of degenerate modes ([`degenerate_clusters`]) has the cluster's shares
     /// ([`ModalEnergy::subspace_shares`]), which do not depend on the basis the eigensolver chose.

@@ -9,3 +9,4 @@ mod application;
 mod bode_plot;
 mod reference_solution;
 mod sweep;
+mod validate;

@@ -1,0 +1,177 @@
+//! The settings of a validation ([`ValidateOptions`], checked here so every front end refuses
+//! the same things the same way) and what they become for one ROM ([`Plan`]: band, step,
+//! Welch segments, amplitudes), with defaults from the ROM's kept modes and static gain.
+
+use std::path::PathBuf;
+
+use crate::dae::ports::OutputPort;
+use crate::study::{ReducedModel, Study};
+
+use super::signal::{SignalKind, SignalSpec};
+use super::ValidateError;
+
+/// Samples per period of the band's top frequency: the input's linear interpolation then
+/// lowers |H| by `(π f dt)²/3 ≤ 0.05 %` there; the integrator's period error, which an undamped mode's ringing accumulates over the run, stays near 1e-4.
+pub const SAMPLES_PER_PERIOD: f64 = 80.0;
+/// Welch bins per lowest kept natural frequency (frequency resolution `f₁/20`).
+pub const BINS_BELOW_FIRST_MODE: f64 = 20.0;
+/// Welch bins per half-power bandwidth of the most lightly damped kept mode.
+pub const BINS_PER_BANDWIDTH: f64 = 8.0;
+/// Modes damped less than this (ζ) are treated as undamped by the resolution rule.
+pub const MIN_DAMPING: f64 = 1e-3;
+/// Default static response of a displacement output: this fraction of the model's size (an
+/// undamped mode's ringing grows the dynamic response some ten times above it, and at 1e-3
+/// the README beam's fit already fell from 0.95 to 0.71 by the model's nonlinearity).
+pub const STATIC_FRACTION: f64 = 1e-4;
+
+/// How a ROM is validated. Every field has a default ([`ValidateOptions::default`]).
+#[derive(Clone, Debug)]
+pub struct ValidateOptions {
+    pub signal: SignalKind,
+    /// RMS values of each input [N or N m], one validation per value (the linearity range);
+    /// empty: one, chosen so the static response is [`STATIC_FRACTION`] of the model's size.
+    pub amplitudes: Vec<f64>,
+    /// Excited and compared band [Hz] (default: 0 to twice the ROM's top frequency of interest).
+    pub band_hz: Option<(f64, f64)>,
+    /// Welch frequency resolution [Hz] (default: the lowest kept mode's frequency / 20, or an
+    /// eighth of the narrowest damped kept mode's half-power bandwidth if finer, down to 1/8 of
+    /// the former).
+    pub resolution_hz: Option<f64>,
+    /// Number of Welch segments averaged (half overlap).
+    pub averages: usize,
+    /// Integration step and sampling period [s] (default: 1/(80 × the band's top)).
+    pub time_step: Option<f64>,
+    pub seed: u64,
+    /// Bins with coherence at or above this are compared.
+    pub coherence: f64,
+    /// Largest relative error |H_ROM − H1|/|H1| the verdict accepts.
+    pub tolerance: f64,
+    /// Smallest time-domain fit (NRMSE, 1 = perfect) the verdict accepts.
+    pub fit: f64,
+    /// A measured frequency response to compare with ([`super::read_measured`]).
+    pub measured: Option<PathBuf>,
+}
+
+impl Default for ValidateOptions {
+    fn default() -> Self {
+        ValidateOptions { signal: SignalKind::Random, amplitudes: Vec::new(), band_hz: None, resolution_hz: None, averages: 8, time_step: None, seed: 1, coherence: 0.95, tolerance: 0.1, fit: 0.5, measured: None }
+    }
+}
+
+fn positive(option: &'static str, v: Option<f64>, what: &str) -> Result<(), ValidateError> {
+    match v {
+        Some(x) if !(x > 0.0 && x.is_finite()) => Err(ValidateError::Option { option, message: format!("{what} must be positive and finite, got {x}") }),
+        _ => Ok(()),
+    }
+}
+
+impl ValidateOptions {
+    /// Refuses settings out of range, naming the option.
+    pub fn check(&self) -> Result<(), ValidateError> {
+        for a in &self.amplitudes {
+            positive("--amplitudes", Some(*a), "an RMS input amplitude [N or N m]")?;
+        }
+        if let Some((lo, hi)) = self.band_hz {
+            if !(lo >= 0.0 && hi > lo && hi.is_finite()) {
+                return Err(ValidateError::Option { option: "--validation-band", message: format!("need 0 <= FMIN < FMAX [Hz], got {lo}:{hi}") });
+            }
+        }
+        positive("--resolution", self.resolution_hz, "the frequency resolution [Hz]")?;
+        positive("--time-step", self.time_step, "the time step [s]")?;
+        if self.averages < 2 || self.averages > 1000 {
+            return Err(ValidateError::Option { option: "--averages", message: format!("need 2 to 1000 Welch segments (coherence is 1 with one), got {}", self.averages) });
+        }
+        let unit = |option, v: f64, what| if (0.0..=1.0).contains(&v) { Ok(()) } else { Err(ValidateError::Option { option, message: format!("{what} must be in [0, 1], got {v}") }) };
+        unit("--coherence", self.coherence, "the coherence threshold")?;
+        unit("--fit", self.fit, "the NRMSE fit threshold")?;
+        positive("--tolerance", Some(self.tolerance), "the relative error tolerance")
+    }
+}
+
+/// What the options become for one ROM.
+#[derive(Clone, Debug)]
+pub struct Plan {
+    pub kind: SignalKind,
+    pub band_hz: (f64, f64),
+    /// Integration step = sampling period [s].
+    pub dt: f64,
+    /// Samples per Welch segment (a power of two).
+    pub segment: usize,
+    /// Samples of each run (the first at the reference).
+    pub samples: usize,
+    /// Samples before the estimate starts (the fade-in and the start's transient).
+    pub lead_in: usize,
+    /// Per amplitude level, the RMS of each input [N or N m].
+    pub amplitudes: Vec<Vec<f64>>,
+    pub seed: u64,
+    pub coherence: f64,
+    pub tolerance: f64,
+    pub fit: f64,
+}
+
+/// Most samples of one run: 2²⁴ steps would take hours.
+const MAX_SAMPLES: usize = 1 << 24;
+
+impl Plan {
+    pub fn new(study: &Study, rom: &ReducedModel, outputs: &[OutputPort], o: &ValidateOptions) -> Result<Self, ValidateError> {
+        o.check()?;
+        let kept_hz: Vec<f64> = rom.kept_modes.iter().map(|m| m.lambda.norm() / (2.0 * std::f64::consts::PI)).filter(|f| *f > 0.0).collect();
+        let band_hz = match o.band_hz {
+            Some(b) => b,
+            None if rom.interest_top_hz > 0.0 => (0.0, 2.0 * rom.interest_top_hz),
+            None => return Err(ValidateError::Option { option: "--validation-band", message: "the ROM keeps no oscillating mode to take the band from: give FMIN:FMAX [Hz]".into() }),
+        };
+        let dt = o.time_step.unwrap_or(1.0 / (SAMPLES_PER_PERIOD * band_hz.1));
+        let lowest = kept_hz.iter().copied().fold(band_hz.1, f64::min);
+        // A damped kept mode's half-power bandwidth `B_r = |Re λ|/π` [Hz] over 8: Hann's
+        // resolution bias at its peak, about (1/3)(1.5 Δf/B_r)² (Bendat and Piersol §9.2.3),
+        // stays near 1 %. Modes with ζ < 1e-3 (undamped) leave it to the frequency rule.
+        let bandwidth = rom.kept_modes.iter().filter(|m| -m.lambda.re > MIN_DAMPING * m.lambda.norm()).map(|m| -m.lambda.re / std::f64::consts::PI).fold(f64::INFINITY, f64::min);
+        // At most 8 times finer than the frequency rule: a run at most 8 times longer.
+        let by_frequency = lowest / BINS_BELOW_FIRST_MODE;
+        let resolution = o.resolution_hz.unwrap_or(by_frequency.min(bandwidth / BINS_PER_BANDWIDTH).max(by_frequency / 8.0));
+        let segment = ((1.0 / (resolution * dt)).ceil().max(64.0) as usize).next_power_of_two();
+        let lead_in = segment / 2;
+        let samples = lead_in + (o.averages + 1) * segment / 2;
+        if segment > MAX_SAMPLES || samples > MAX_SAMPLES {
+            return Err(ValidateError::Option { option: "--resolution", message: format!("{samples} steps of {dt:.3e} s for a resolution of {resolution:.3e} Hz: more than {MAX_SAMPLES}; a coarser --resolution, fewer --averages or a larger --time-step") });
+        }
+        if 1.0 / (2.0 * dt) <= band_hz.1 {
+            return Err(ValidateError::Option { option: "--time-step", message: format!("{dt} s samples up to {:.4} Hz only, below the band's top {} Hz", 0.5 / dt, band_hz.1) });
+        }
+        let amplitudes = if o.amplitudes.is_empty() { vec![default_amplitudes(study, rom, outputs)?] } else { o.amplitudes.iter().map(|a| vec![*a; rom.ordinary.b.ncols()]).collect() };
+        Ok(Plan { kind: o.signal, band_hz, dt, segment, samples, lead_in, amplitudes, seed: o.seed, coherence: o.coherence, tolerance: o.tolerance, fit: o.fit })
+    }
+
+    /// The signal of input `j` at RMS `rms`.
+    pub fn signal(&self, j: usize, rms: f64) -> SignalSpec {
+        SignalSpec { kind: self.kind, samples: self.samples, dt: self.dt, band_hz: self.band_hz, rms, fade: self.lead_in / 2, segment: self.segment, seed: self.seed.wrapping_add(j as u64) }
+    }
+}
+
+/// Per input, the RMS whose static response (the ROM's static gain) is at most
+/// [`STATIC_FRACTION`] of the model's size on a displacement output, that fraction of a
+/// radian on a rotation, and for rates that times 2π × the band's top.
+fn default_amplitudes(study: &Study, rom: &ReducedModel, outputs: &[OutputPort]) -> Result<Vec<f64>, ValidateError> {
+    let size = study.model().map_or(1.0, |m| {
+        let n = m.nodes.len().max(1) as f64;
+        let centre = m.nodes.iter().fold(crate::kinematics::Vec3::zeros(), |a, n| a + n.position) / n;
+        2.0 * m.nodes.iter().map(|n| (n.position - centre).norm()).fold(0.0, f64::max)
+    });
+    let size = if size > 0.0 { size } else { 1.0 };
+    let gain = rom.ordinary.static_gain().map_err(|e| ValidateError::Option { option: "--amplitudes", message: format!("the ROM has no static gain to size the input by ({e}): give the inputs' RMS [N or N m]") })?;
+    (0..gain.ncols()).map(|j| {
+        let scale = |i: usize| match outputs[i].unit() {
+            "m" => STATIC_FRACTION * size,
+            "rad" => STATIC_FRACTION,
+            "m/s" => STATIC_FRACTION * size * 2.0 * std::f64::consts::PI * rom.interest_top_hz,
+            _ => STATIC_FRACTION * 2.0 * std::f64::consts::PI * rom.interest_top_hz,
+        };
+        let a = (0..gain.nrows()).map(|i| scale(i) / gain[(i, j)].abs()).fold(f64::INFINITY, f64::min);
+        if a.is_finite() && a > 0.0 {
+            Ok(a)
+        } else {
+            Err(ValidateError::Option { option: "--amplitudes", message: format!("input {} has no static response at the outputs to size it by: give the inputs' RMS [N or N m]", j + 1) })
+        }
+    }).collect()
+}
