@@ -13,7 +13,6 @@ use romdyn::dae::{NodeInput, NodeOutput};
 use romdyn::input::eigen_pencil::PencilPorts;
 use romdyn::eigen::EigenRoute;
 use romdyn::rom::{ModalDamping, ModeSelection, Ranking};
-use romdyn::input::mbdyn::read_model;
 use romdyn::study::{BelowBand, EigenSettings, FrequencyGrid, Ports, RomRequest, Solver, Study, StudyError};
 
 /// Which eigensolver (`--solver`).
@@ -72,8 +71,9 @@ impl BeamUpdateArg {
 
 /// Reads an MBDyn file with its beams' rotation update set for a time integration
 /// (`integrates`) or not.
-pub fn read_model_with_beams(path: &std::path::Path, update: BeamUpdateArg, integrates: bool) -> anyhow::Result<romdyn::input::mbdyn::MbdynModel> {
-    let mut m = read_model(path)?;
+pub fn read_model_with_beams(path: &std::path::Path, set: &[romdyn::sweep::Parameter], update: BeamUpdateArg, integrates: bool) -> anyhow::Result<romdyn::input::mbdyn::MbdynModel> {
+    let overrides = romdyn::sweep::single_values(set).map_err(|e| anyhow::anyhow!("--set {e}"))?;
+    let mut m = romdyn::input::mbdyn::read_model_with(path, &overrides)?;
     update.apply(&mut m.model, integrates).map_err(|e| anyhow::anyhow!("{}: --beam-update: {e}", path.display()))?;
     Ok(m)
 }
@@ -118,6 +118,9 @@ pub struct PencilArgs {
     /// ROM output of an .m pencil: unknown J (1-based column of Aplus/Aminus); a node's x,y,z displacements [m] are idx+1..idx+3 and its rotations [rad] idx+4..idx+6
     #[arg(long = "output-col", value_name = "J", requires = "pencil")]
     pub output_cols: Vec<usize>,
+    /// A `set:` variable of the file given another value, NAME=VALUE in the file's (SI) units, replacing what its `set:` gives NAME; repeatable. romdyn sweep also takes NAME=A:B:N (N equally spaced values from A to B) or NAME=V1,V2,... and runs their full grid (the first varies slowest)
+    #[arg(long = "set", value_name = "NAME=VALUE", conflicts_with = "pencil")]
+    pub set: Vec<romdyn::sweep::Parameter>,
     /// Ports file (JSON): named inputs and outputs at points of nodes (forces, moments, actuators; displacements, rotations, LVDTs, velocities), node names for mode labels, dummy springs to remove, an imposed motion (the book's chapter Ports, docs/src/application/ports.md)
     #[arg(long, value_name = "FILE", conflicts_with = "pencil")]
     pub ports: Option<PathBuf>,
@@ -165,7 +168,8 @@ impl PencilArgs {
     /// The study of the model file `path` with the reference solution it was linearized at
     /// and the file's problem (`romdyn validate` runs the model from there).
     pub fn model_study(&self, path: &std::path::Path, eigen: EigenSettings) -> Result<(Study, romdyn::dae::State, romdyn::model::InitialValueProblem), StudyError> {
-        let mut m = read_model(path)?;
+        let overrides = romdyn::sweep::single_values(&self.set).map_err(|message| StudyError::Option { option: romdyn::study::Setting::Set, message })?;
+        let mut m = romdyn::input::mbdyn::read_model_with(path, &overrides)?;
         let integrates = self.reference.reference().integrates();
         self.beam_update.apply(&mut m.model, integrates).map_err(|message| StudyError::Option { option: romdyn::study::Setting::BeamUpdate, message: format!("{}: {message}", path.display()) })?;
         let progress = SolverProgress::new();

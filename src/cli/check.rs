@@ -23,11 +23,14 @@ pub struct CheckArgs {
     /// Rotation update of beam3 and beam2: auto (default: MBDyn 1.7.3's incremental one for a reference at a time, --at, path independent otherwise), path-independent, or incremental
     #[arg(long = "beam-update", value_enum, default_value = "auto")]
     pub beam_update: super::args::BeamUpdateArg,
+    /// A `set:` variable of the file given another value, NAME=VALUE in the file's (SI) units, replacing what its `set:` gives NAME; repeatable
+    #[arg(long = "set", value_name = "NAME=VALUE")]
+    pub set: Vec<romdyn::sweep::Parameter>,
 }
 
 pub fn run(a: CheckArgs) -> Result<()> {
     let integrates = a.reference.reference().integrates();
-    let m = super::args::read_model_with_beams(&a.file, a.beam_update, integrates)?;
+    let m = super::args::read_model_with_beams(&a.file, &a.set, a.beam_update, integrates)?;
     let check = check_model_jacobians(&m.model, &m.problem, a.reference.reference(), a.tolerance).with_context(|| format!("{}: reference solution", a.file.display()))?;
     print!("{}", check.to_text());
     let failed = check.failures().count();

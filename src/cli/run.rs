@@ -20,6 +20,9 @@ pub struct RunArgs {
     /// Rotation update of beam3 and beam2: auto (default: MBDyn 1.7.3's incremental one, MBDyn's numbers, where a beam can take it), incremental (every beam, or an error), or path-independent (the beam a function of the state)
     #[arg(long = "beam-update", value_enum, default_value = "auto")]
     pub beam_update: super::args::BeamUpdateArg,
+    /// A `set:` variable of the file given another value, NAME=VALUE in the file's (SI) units, replacing what its `set:` gives NAME; repeatable
+    #[arg(long = "set", value_name = "NAME=VALUE")]
+    pub set: Vec<romdyn::sweep::Parameter>,
 }
 
 /// A progress bar on stderr (hidden when stderr is not a terminal).
@@ -96,7 +99,7 @@ fn print_summary(file: &str, r: &RunReport, written: &[PathBuf]) {
 }
 
 pub fn run(a: RunArgs) -> Result<()> {
-    let m = super::args::read_model_with_beams(&a.file, a.beam_update, true)?;
+    let m = super::args::read_model_with_beams(&a.file, &a.set, a.beam_update, true)?;
     let input = a.file.display().to_string();
     if m.model.nodes.is_empty() {
         anyhow::bail!("{input}: the model has no structural nodes: nothing to run, no file written");

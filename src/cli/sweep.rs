@@ -9,16 +9,13 @@ use indicatif::{ProgressBar, ProgressStyle};
 use romdyn::input::text_file::read_text_file;
 use romdyn::output::atomic::{check_output_paths, check_prefix, write_set};
 use romdyn::output::prefixed_path;
-use romdyn::sweep::{check_lowest, check_parameters, grid, sweep, worker_threads, Parameter, SweepOptions};
+use romdyn::sweep::{check_lowest, check_parameters, grid, sweep, worker_threads, SweepOptions};
 
 use super::args::PencilArgs;
 use super::rom::RomChoiceArgs;
 
 #[derive(Args, Debug)]
 pub struct SweepArgs {
-    /// A swept `set:` variable of the file: NAME=A:B:N (N equally spaced values from A to B) or NAME=V1,V2,...; several --set make their full grid (the first varies slowest). Values are in the file's (SI) units and replace what the file's `set:` gives NAME
-    #[arg(long = "set", value_name = "NAME=A:B:N|NAME=V1,...", required = true)]
-    pub set: Vec<Parameter>,
     #[command(flatten)]
     pub pencil: PencilArgs,
     #[command(flatten)]
@@ -53,9 +50,9 @@ pub fn run(a: SweepArgs) -> Result<()> {
         eprintln!("warning: --jobs {w}");
     }
     if let Some(name) = &a.against
-        && !a.set.iter().any(|p| &p.name == name)
+        && !a.pencil.set.iter().any(|p| &p.name == name)
     {
-        bail!("--against {name}: not a swept parameter (--set gives {})", a.set.iter().map(|p| p.name.as_str()).collect::<Vec<_>>().join(", "));
+        bail!("--against {name}: not a swept parameter (--set gives {})", a.pencil.set.iter().map(|p| p.name.as_str()).collect::<Vec<_>>().join(", "));
     }
     // Every output path checked before any work; written as one set at the end.
     let mut outputs: Vec<(&str, PathBuf)> = Vec::new();
@@ -66,11 +63,11 @@ pub fn run(a: SweepArgs) -> Result<()> {
         outputs.extend(["svg", "png"].map(|e| ("--plot", prefixed_path(prefix, e))));
     }
     check_output_paths(&outputs)?;
-    let points = grid(&a.set).map_err(anyhow::Error::msg)?;
+    let points = grid(&a.pencil.set).map_err(anyhow::Error::msg)?;
     // The mode arrays hold points x lowest values of each kind: checked before allocating.
     check_lowest(a.lowest, points.len()).map_err(|e| anyhow::anyhow!("--lowest {e}"))?;
     let text = read_text_file(&path).map_err(|e| anyhow::anyhow!("{}: {}", path.display(), e.message))?;
-    let names: Vec<String> = a.set.iter().map(|p| p.name.clone()).collect();
+    let names: Vec<String> = a.pencil.set.iter().map(|p| p.name.clone()).collect();
     check_parameters(&text, &path, &names)?;
     let options = SweepOptions {
         reference: a.pencil.reference.reference(),

@@ -21,6 +21,8 @@ pub enum Setting {
     Fmax,
     Points,
     BeamUpdate,
+    /// A `set:` variable of the file given another value (`--set NAME=VALUE`, `set={…}`).
+    Set,
 }
 
 impl Setting {
@@ -41,6 +43,7 @@ impl Setting {
             Setting::Fmax => "--fmax",
             Setting::Points => "--points",
             Setting::BeamUpdate => "--beam-update",
+            Setting::Set => "--set",
         }
     }
 
@@ -61,6 +64,7 @@ impl Setting {
             Setting::Fmax => "fmax",
             Setting::Points => "points",
             Setting::BeamUpdate => "beam_update",
+            Setting::Set => "set",
         }
     }
 }

@@ -48,6 +48,22 @@ impl std::str::FromStr for Parameter {
     }
 }
 
+/// The values `--set NAME=VALUE` gives a single run (eig, rom, validate, run, …): one value
+/// per variable, each variable once.
+pub fn single_values(parameters: &[Parameter]) -> Result<crate::input::mbdyn::SetOverrides, String> {
+    let mut out = crate::input::mbdyn::SetOverrides::new();
+    for p in parameters {
+        if out.contains_key(&p.name) {
+            return Err(format!("{}: the variable is given twice", p.name));
+        }
+        let [value] = p.values[..] else {
+            return Err(format!("{}: {} values; one run takes one value, NAME=VALUE (romdyn sweep runs a grid)", p.name, p.values.len()));
+        };
+        out.insert(p.name.clone(), value);
+    }
+    Ok(out)
+}
+
 /// The design points of several parameters: their full grid, the first parameter varying
 /// slowest (as nested loops in the order given). Each point lists one value per parameter.
 pub fn grid(parameters: &[Parameter]) -> Result<Vec<Vec<f64>>, String> {

@@ -17,7 +17,7 @@ use std::path::{Path, PathBuf};
 
 use rayon::prelude::*;
 
-pub use grid::{grid, Parameter, MAX_POINTS};
+pub use grid::{grid, single_values, Parameter, MAX_POINTS};
 pub use output::StackError;
 pub use point::{lowest_modes, overrides, run_point, PointResult, SweepOptions};
 

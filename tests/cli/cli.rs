@@ -130,3 +130,30 @@ fn eig_and_rom_on_an_mbdyn_model() {
     assert!(!ok && err.contains("'2:Qz': expected NODE:COMPONENT with COMPONENT one of Fx|Fy|Fz|Mx|My|Mz"), "{err}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `--set NAME=VALUE` on every command that reads a model (issue 37: only `sweep` had it, so
+/// one ROM of a changed parameter meant editing the file). The compound pendulum of
+/// examples/pendulum.mbd at L = 4 m: ω = √(m g L / (m L² + J)) = 1.565997 rad/s (m = 1 kg,
+/// J = 1e-3 kg m², g = 9.81 m/s²), to the 7 printed digits; a range is refused outside sweep.
+#[test]
+fn set_gives_one_run_another_value() {
+    let omega = (9.81f64 * 4.0 / (16.0 + 1e-3)).sqrt();
+    assert!((omega - 1.565997).abs() < 1e-6);
+    let (ok, out, err) = romdyn(&["eig", "examples/pendulum.mbd", "--set", "L=4"]);
+    assert!(ok, "{err}");
+    assert!(out.contains("±1.565997e0"), "{out}");
+    let dir = temp_dir("set_run");
+    let prefix = dir.join("p");
+    let (ok, _, err) = romdyn(&["rom", "examples/pendulum.mbd", "--set", "L=4", "--input", "2:Mz", "--output", "2:rz", "--count", "1"]);
+    assert!(ok && err.contains("±1.565997e0"), "{err}");
+    let (ok, _, err) = romdyn(&["run", "examples/pendulum.mbd", "--set", "L=4", "-o", prefix.to_str().unwrap()]);
+    assert!(ok, "{err}");
+    // The run's eigenanalysis at t = 0 (the file asks for one) sees the longer pendulum too.
+    let m = std::fs::read_to_string(dir.join("p_0.json")).unwrap();
+    assert!(m.contains("1.56599"), "{m}");
+    let (ok, _, err) = romdyn(&["eig", "examples/pendulum.mbd", "--set", "L=1:2:3"]);
+    assert!(!ok && err.contains("--set: L: 3 values; one run takes one value"), "{err}");
+    let (ok, _, err) = romdyn(&["check", "examples/pendulum.mbd", "--set", "Q=1"]);
+    assert!(!ok && err.contains("--set Q: the file declares no variable 'Q'"), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}
