@@ -21,6 +21,8 @@ pub enum ModelError {
 pub struct ModelBuilder {
     nodes: Vec<StructuralNode>,
     elements: Vec<Box<dyn Element>>,
+    /// Where each element is written ("file:line:col"), when it comes from a file.
+    element_origins: Vec<Option<String>>,
     gravity: Option<Vec3>,
     form: ConstraintForm,
     node_names: std::collections::BTreeMap<Label, String>,
@@ -31,7 +33,7 @@ pub struct ModelBuilder {
 
 impl Default for ModelBuilder {
     fn default() -> Self {
-        ModelBuilder { nodes: Vec::new(), elements: Vec::new(), gravity: None, form: ConstraintForm::Scaled, node_names: Default::default(), step_drives: Vec::new(), displacement_nodes: Default::default(), frame_motion: None }
+        ModelBuilder { nodes: Vec::new(), elements: Vec::new(), element_origins: Vec::new(), gravity: None, form: ConstraintForm::Scaled, node_names: Default::default(), step_drives: Vec::new(), displacement_nodes: Default::default(), frame_motion: None }
     }
 }
 
@@ -68,12 +70,20 @@ impl ModelBuilder {
     }
 
     pub fn element(&mut self, element: impl Element + 'static) -> &mut Self {
-        self.elements.push(Box::new(element));
-        self
+        self.boxed_element(Box::new(element))
     }
 
     pub fn boxed_element(&mut self, element: Box<dyn Element>) -> &mut Self {
         self.elements.push(element);
+        self.element_origins.push(None);
+        self
+    }
+
+    /// An element read from a file, with where it is written (`file:line:col`), which
+    /// messages about it at run time name.
+    pub fn element_from(&mut self, element: Box<dyn Element>, origin: String) -> &mut Self {
+        self.elements.push(element);
+        self.element_origins.push(Some(origin));
         self
     }
 
@@ -134,6 +144,7 @@ impl ModelBuilder {
             node_indices,
             nodes: self.nodes,
             elements: self.elements,
+            element_origins: self.element_origins,
             gravity: self.gravity.unwrap_or_else(Vec3::zeros),
             has_gravity: self.gravity.is_some(),
             constraint_form: self.form,

@@ -51,6 +51,9 @@ pub struct StructuralNode {
 pub struct Model {
     pub nodes: Vec<StructuralNode>,
     pub elements: Vec<Box<dyn Element>>,
+    /// Where each element of `elements` is written (`file:line:col`), when it was read from a
+    /// file: run-time messages name it ([`Model::element_name`]).
+    pub element_origins: Vec<Option<String>>,
     /// Uniform gravity field [m/s²] (zero when absent).
     pub gravity: Vec3,
     pub has_gravity: bool,
@@ -77,6 +80,15 @@ pub struct Model {
 }
 
 impl Model {
+    /// `TYPE LABEL (file:line:col)` of element `e`, as run-time messages name it.
+    pub fn element_name(&self, e: usize) -> String {
+        let el = &self.elements[e];
+        match self.element_origins.get(e).and_then(Option::as_ref) {
+            Some(at) => format!("{} {} ({at})", el.type_name(), el.label()),
+            None => format!("{} {}", el.type_name(), el.label()),
+        }
+    }
+
     /// Sets the rotation update of every beam3 and beam2 ([`crate::element::BeamUpdate`];
     /// path independent unless asked): an error names a beam that cannot take it.
     pub fn set_beam_update(&mut self, update: crate::element::BeamUpdate) -> Result<(), String> {

@@ -366,7 +366,7 @@ fn out_of_memory_is_a_message_not_an_abort() {
 /// A constitutive law whose scalar function leaves its domain (`log` at zero rotation) gives
 /// a residual that is not finite: the failure names the element that put it there and the
 /// equation, in the initial assembly and in the derivatives' Newton alike (issue 32: both
-/// said only "the residual is not finite"). The law's reading is the test's own file,
+/// said only "the residual is not finite"), and where the element is written. The file:
 /// tests/mbdyn_files/function_hinge.mbd with a `log` in place of its cubic part and a second
 /// hinge, 5, carrying it.
 #[test]
@@ -383,8 +383,11 @@ fn a_law_out_of_its_domain_is_named_by_its_element() {
         let m = romdyn::input::mbdyn::parse_text(text, Path::new("f.mbd")).and_then(|d| romdyn::input::mbdyn::build(&d)).unwrap_or_else(|e| panic!("{e}"));
         romdyn::analysis::run(&m.model, &m.problem, &mut ()).err().map(|e| e.to_string()).unwrap_or_default()
     };
+    // Where hinge 5 is written: its line, column 5 (after the indentation).
+    let line = text.lines().position(|l| l.contains("joint: 5,")).unwrap() + 1;
     let e = run(&text);
-    assert!(e.contains("initial assembly diverged") && e.contains("= NaN, from deformable hinge 5"), "{e}");
-    let e = run(&text.replace("    output precision: 15;", "    output precision: 15;\n    skip initial joint assembly;"));
-    assert!(e.contains("the residual is not finite: deformable hinge 5: its contribution to node 2 moment") && e.contains("is NaN"), "{e}");
+    assert!(e.contains("initial assembly diverged") && e.contains(&format!("= NaN, from deformable hinge 5 (f.mbd:{line}:5)")), "{e}");
+    let skipped = text.replace("    output precision: 15;", "    output precision: 15;\n    skip initial joint assembly;");
+    let e = run(&skipped);
+    assert!(e.contains(&format!("the residual is not finite: deformable hinge 5 (f.mbd:{}:5): its contribution to node 2 moment", line + 1)) && e.contains("is NaN"), "{e}");
 }

@@ -346,8 +346,9 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
     pending.finish(src, &mut built)?;
     let defined = built.iter().map(|(space, at, seq, e)| ((*space, e.label()), (e.as_ref(), *at, *seq))).collect();
     let memories = cards.drives.private.resolve(src, &defined)?;
-    for (.., e) in built {
-        b.boxed_element(e);
+    for (_, at, _, e) in built {
+        let origin = src.error(at, "");
+        b.element_from(e, format!("{}:{}:{}", origin.file.display(), origin.line, origin.column));
     }
     // A central or time-varying field acts on every body at its node (gravity.cc, body.cc).
     if let (Some(_), Some(at)) = (&central, variable_bodies.first()) {

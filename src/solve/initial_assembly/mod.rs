@@ -226,8 +226,7 @@ impl Problem<'_> {
             f.iter().any(|x| !x.is_finite())
         });
         if let Some(k) = culprit {
-            let e = self.layout.element(k);
-            row = format!("{row}, from {} {}", e.type_name(), e.label());
+            row = format!("{row}, from {}", self.layout.model.element_name(self.layout.elements[k]));
         }
         match crate::element::drive::take_evaluation_failure(self.t) {
             Some(why) => format!("{row}; {why}"),
