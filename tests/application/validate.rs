@@ -51,6 +51,38 @@ fn mass_spring_damper_estimate_matches_the_closed_form() {
     assert!(v.represents, "{}", v.summary());
 }
 
+/// The same oscillator and closed form excited by the two other signals of `--signal`: a
+/// Schroeder-phased multisine at the estimator's bins and a linear chirp repeated every Welch
+/// segment. Both are deterministic and periodic per segment, so the estimate has no random
+/// error once the fade-in's transient (decay time 2M/C = 4 s against 91 s segments) has
+/// died: within 4 % at every bin with coherence ≥ 0.9. Measured: 3.6 % at most, at the
+/// 1.125 Hz peak (the Hann window's resolution bias there, (1/3)(1.5 Δf / B_r)² with
+/// B_r = C/(2π M) = 0.080 Hz, is 1.4 %), and a plateau of 1.3 % from 0.8 to 1.07 Hz that
+/// the same bias does not explain (issue 33's note: not yet understood).
+#[test]
+fn multisine_and_chirp_estimates_match_the_closed_form() {
+    use romdyn::validate::signal::SignalKind;
+    for signal in [SignalKind::Multisine, SignalKind::Chirp] {
+        let options = ValidateOptions { signal, resolution_hz: Some(0.011), averages: 8, ..ValidateOptions::default() };
+        let v = validated(MASSES, Reference::Initial, "3:Fx", "3:x", RomRequest::new(ModeSelection::Indices(vec![3])), &options);
+        let c = &v.runs[0].channels[0];
+        let (m, k, damping) = (2.0, 100.0, 1.0);
+        let mut compared = 0;
+        for (i, f) in c.estimate.freq_hz.iter().enumerate() {
+            let w = 2.0 * std::f64::consts::PI * f;
+            let exact = c64::new(1.0, 0.0) / c64::new(k - m * w * w, damping * w);
+            if c.estimate.coherence[i] < 0.9 {
+                continue;
+            }
+            let err = (c.estimate.h[i] - exact).norm() / exact.norm();
+            assert!(err <= 0.04, "{signal:?}, {f} Hz: |H1 - H| / |H| = {err:.4} (coherence {})", c.estimate.coherence[i]);
+            compared += 1;
+        }
+        assert!(compared > c.estimate.freq_hz.len() / 2, "{signal:?}: {compared} of {} bins coherent", c.estimate.freq_hz.len());
+        assert!(v.represents, "{signal:?}: {}", v.summary());
+    }
+}
+
 /// The paper's Fig. 7 (§7.1): the simply supported beam's mid-span response to a mid-span
 /// force, one nonlinear run per ROM with the same signal (band 0–100 Hz): the 1-mode, the
 /// 2-mode (modes 1 and 7, the third bending) and the 1-mode with mode 7 statically
