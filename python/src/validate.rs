@@ -54,12 +54,19 @@ pub fn validate<'py>(py: Python<'py>, model: &Model, reference: Option<&Bound<'_
     let opts = ValidateOptions { signal: signal_of(signal)?, amplitudes, band_hz: validation_band, resolution_hz: resolution, averages, time_step, seed, coherence, tolerance, fit, measured };
     opts.check().map_err(validate_err)?;
     let integrates = reference.integrates();
-    let (v, t0) = py.detach(|| -> Result<_, ValidateError> {
-        let (m, _) = model.read(integrates)?;
+    let (v, t0, warnings, notes) = py.detach(|| -> Result<_, ValidateError> {
+        let (m, notes) = model.read(integrates)?;
         let (mut study, state) = Study::of_model(m.model, &m.problem, reference, &ports, EigenSettings::default().for_request(&request), None).map_err(|e| e.in_file(&model.name))?;
         let rom = study.reduce(&request)?;
-        Ok((validate_rom(&mut study, &m.problem, &state, &ports, &rom, &opts, &mut |_, _| {})?, state.t))
+        let warnings: Vec<_> = study.warnings().iter().chain(&rom.warnings).cloned().collect();
+        Ok((validate_rom(&mut study, &m.problem, &state, &ports, &rom, &opts, &mut |_, _| {})?, state.t, warnings, notes))
     }).map_err(validate_err)?;
+    // What the CLI prints, as Python warnings: the study's and the ROM's, then the verdict's.
+    crate::warnings::warn_beam_notes(py, &notes)?;
+    crate::warnings::warn_all(py, &warnings)?;
+    if let Some(w) = v.warning() {
+        crate::warnings::warn_accuracy(py, w)?;
+    }
     let run = &v.runs[0];
     let (ni, no) = (run.time.len(), run.time[0].nonlinear.len());
     let nb = run.channels[0].estimate.freq_hz.len();

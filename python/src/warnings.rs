@@ -44,6 +44,12 @@ pub fn warn_all(py: Python<'_>, warnings: &[Warning]) -> PyResult<()> {
     Ok(())
 }
 
+/// A ROM that departs from the model in words of the library (`romdyn validate`'s verdict),
+/// as an [`AccuracyWarning`].
+pub fn warn_accuracy(py: Python<'_>, text: &str) -> PyResult<()> {
+    warn_text(py, &py.get_type::<AccuracyWarning>(), text)
+}
+
 /// Each note on beams the `auto` update leaves path independent, as a [`ReferenceWarning`].
 pub fn warn_beam_notes(py: Python<'_>, messages: &[String]) -> PyResult<()> {
     for message in messages {

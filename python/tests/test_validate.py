@@ -34,3 +34,13 @@ def test_validate_refuses_bad_options(examples):
         romdyn.validate(model, inputs=["3:Fx"], outputs=["3:x"], modes=[3], averages=1)
     with pytest.raises(ValueError, match="signal"):
         romdyn.validate(model, inputs=["3:Fx"], outputs=["3:x"], modes=[3], signal="noise")
+
+
+def test_a_rom_that_misses_the_port_is_warned_as_the_cli_does(examples):
+    # Mass 3 of mass_on_springs.mbd seen along y while the ROM keeps only its x oscillator
+    # (mode 3; tests/application/validate.rs has the same case): the CLI prints "warning: the
+    # ROM does not represent ..."; Python raises it. 0.4 N RMS on K = 400 N/m: 1 mm static.
+    model = romdyn.Model(examples / "mass_on_springs.mbd")
+    with pytest.warns(romdyn.AccuracyWarning, match="does not represent the nonlinear model"):
+        v = romdyn.validate(model, inputs=["3:Fy"], outputs=["3:y"], modes=[3], validation_band=(0.0, 4.0), resolution=0.05, amplitudes=[0.4])
+    assert not v["represents"]

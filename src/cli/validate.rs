@@ -100,8 +100,8 @@ pub fn run(a: ValidateArgs) -> Result<()> {
     bar.finish_and_clear();
     let v = result.with_context(|| format!("validating the ROM of {}", path.display()))?;
     eprint!("{}", v.summary());
-    if !v.represents {
-        eprintln!("warning: the ROM does not represent the nonlinear model in the band: more modes, --residualize, or a smaller amplitude");
+    if let Some(w) = v.warning() {
+        eprintln!("warning: {w}");
     }
     let (written, _) = write_set(&romdyn::analysis::journal_path(&paths[0]), || files::write_files(&v, &a.prefix, state.t))?;
     eprintln!("wrote {}", written.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", "));

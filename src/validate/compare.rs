@@ -216,6 +216,12 @@ impl Validation {
         s
     }
 
+    /// The warning every front end gives when the ROM does not represent the model (the
+    /// CLI prints it, Python raises it as an `AccuracyWarning`).
+    pub fn warning(&self) -> Option<&'static str> {
+        (!self.represents).then_some("the ROM does not represent the nonlinear model in the band: more modes, --residualize, or a smaller amplitude")
+    }
+
     /// The verdict line.
     pub fn verdict(&self) -> String {
         let p = &self.plan;
