@@ -68,6 +68,20 @@ pub(crate) fn classify(alpha: c64, beta: f64, vectors: Option<&EigenVectors>, no
     classify_given(alpha, beta, uncertainty, route)
 }
 
+/// The evidence for an eigenvalue whose vectors could not be computed (not finite: an
+/// exactly defective eigenvalue, a double root with one vector, makes the back-substitution
+/// divide by zero). Its value is then still good to about `√ε` (a 2 x 2 Jordan block's
+/// sensitivity; the cube root, a 3 x 3 block's, is the uncertainty its label is decided
+/// with, as in [`classify`]); its error estimate is
+/// the caller's `∞`, so it is never labelled dynamic and a study lists it as unresolved
+/// (before, the infinite uncertainty labelled a −2 rad/s double root "infinite" silently).
+pub(crate) fn classify_without_vectors(alpha: c64, beta: f64, route: EigenRoute) -> Classification {
+    if beta == 0.0 {
+        return classify_given(alpha, beta, f64::INFINITY, route);
+    }
+    classify_given(alpha, beta, f64::EPSILON.cbrt(), route)
+}
+
 /// [`classify`] with the chordal uncertainty δχ given (the sparse route's right vectors
 /// alone: their backward error with the condition number taken as 1).
 pub(crate) fn classify_given(alpha: c64, beta: f64, uncertainty: f64, route: EigenRoute) -> Classification {
@@ -108,6 +122,17 @@ fn chordal_uncertainty(alpha: c64, beta: f64, w: &EigenVectors, (na, nb): (f64, 
     let denom = (uav.norm_sqr() + ubv.norm_sqr()).sqrt();
     let kappa = nu * nv / denom;
     let d = eta * (na * na + nb * nb).sqrt() * kappa;
+    // Vectors orthogonal through both matrices to rounding (κ beyond 1/ε): a repeated
+    // eigenvalue with one vector, as a critically damped mode (ζ = 1) has, or the split
+    // index-3 infinite eigenvalues of position constraints (eq. 29). First-order theory
+    // says nothing there; an m x m Jordan block moves by the m-th root of the
+    // perturbation, and m = 3 is the highest a multibody DAE's index gives, so that is the
+    // uncertainty. Without it the label went to whichever of 0 and ∞ was nearer (issue 30:
+    // the −2 rad/s double root of m = 1 kg, c = 4 N s/m, k = 4 N/m was listed "infinite"
+    // without a word).
+    if !(kappa * f64::EPSILON < 1e-3) {
+        return eta.cbrt();
+    }
     if d.is_finite() { d } else { f64::INFINITY }
 }
 

@@ -106,7 +106,7 @@ pub(crate) fn largest_entry(v: &Col<c64>) -> c64 {
 
 /// `v` to unit norm with its largest entry real positive; `u` so that `uᵀ F_yd v = 1`
 /// when that product is not rounding, else to unit norm. Rounding is judged against the
-/// magnitude of the product's own terms, `|u|ᵀ |F_yd| |v|` (`fyd_magnitude`), not against
+/// product's own terms `|u|ᵀ |F_yd| |v|` (`fyd_magnitude`), not against the normwise bound
 /// `‖u‖ ‖F_yd‖ ‖v‖`: vectors dominated by unknowns `F_yd` does not weigh (a clamp's reaction
 /// moment, 1e4 times the base's momentum in a slow mode of `examples/ham_sas.mbd`) have a
 /// small but exact product (6e-12 there), and a ROM that left them unscaled lost the mode
@@ -119,14 +119,73 @@ pub(crate) fn normalize(v: &Col<c64>, u: &Col<c64>, fyd_v: impl Fn(&Col<c64>) ->
     let v = Col::from_fn(v.nrows(), |i| v[i] * phase / nv);
     let p = dot_t(u, &fyd_v(&v));
     let nu = norm(u);
-    let scale = if p.norm() > 1e3 * f64::EPSILON * fyd_magnitude(u, &v) && p.norm() > 0.0 { c64::new(1.0, 0.0) / p } else { c64::new(1.0 / nu, 0.0) };
+    let resolved = p.norm() > 1e3 * f64::EPSILON * fyd_magnitude(u, &v) && p.norm() > 0.0;
+    let scale = if resolved { c64::new(1.0, 0.0) / p } else { c64::new(1.0 / nu, 0.0) };
     let u = Col::from_fn(u.nrows(), |i| u[i] * scale);
     (v, u)
 }
 
+/// Widens the error estimates of dynamic eigenvalues that first-order theory cannot tell
+/// apart, then relabels any whose estimate reached its own modulus
+/// ([`super::classify::resolved_kind`]). Where two computed eigenvalues lie within four
+/// times the smaller of their estimates of each other (each is within reach of the other:
+/// a sharp eigenvalue inside a wide one's disc keeps its own estimate), the estimates
+/// (first-order, eqs. 32–35) no longer hold: a nearly defective cluster (a critically damped mode, ζ = 1, splits into
+/// two roots √ε apart) is only known as a whole, so each member's error is at least the
+/// cluster's diameter (issue 30: the −2 rad/s double root was printed as −2 ± 9.5e-8 j
+/// rad/s with an estimate of 5.7e-8).
+fn widen_cluster_errors(units: &mut [Vec<Mode>], dcoef: f64) {
+    let index: Vec<(usize, usize)> = units.iter().enumerate().flat_map(|(i, u)| (0..u.len()).map(move |k| (i, k))).filter(|&(i, k)| units[i][k].kind == ModeKind::Dynamic).collect();
+    let n = index.len();
+    let mut root: Vec<usize> = (0..n).collect();
+    fn find(root: &mut [usize], mut i: usize) -> usize {
+        while root[i] != i {
+            root[i] = root[root[i]];
+            i = root[i];
+        }
+        i
+    }
+    let mode = |units: &[Vec<Mode>], j: usize| -> (c64, f64) {
+        let m = &units[index[j].0][index[j].1];
+        (m.lambda, m.error)
+    };
+    // Sorted by real part, a pair can only be linked to neighbours within reach.
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by(|&a, &b| mode(units, a).0.re.total_cmp(&mode(units, b).0.re));
+    let reach = index.iter().map(|&(i, k)| units[i][k].error).filter(|e| e.is_finite()).fold(0.0, f64::max);
+    for a in 0..n {
+        let (la, ea) = mode(units, order[a]);
+        for &jb in &order[a + 1..] {
+            let (lb, eb) = mode(units, jb);
+            if lb.re - la.re > 4.0 * ea.min(reach) {
+                break;
+            }
+            if (la - lb).norm() <= 4.0 * ea.min(eb) {
+                let (ra, rb) = (find(&mut root, order[a]), find(&mut root, jb));
+                root[ra] = rb;
+            }
+        }
+    }
+    let mut members: std::collections::HashMap<usize, Vec<usize>> = std::collections::HashMap::new();
+    for j in 0..n {
+        let r = find(&mut root, j);
+        members.entry(r).or_default().push(j);
+    }
+    for group in members.values().filter(|g| g.len() > 1) {
+        let diameter = group.iter().flat_map(|&a| group.iter().map(move |&b| (a, b))).map(|(a, b)| (mode(units, a).0 - mode(units, b).0).norm()).fold(0.0, f64::max);
+        for &j in group {
+            let m = &mut units[index[j].0][index[j].1];
+            m.error = m.error.max(diameter);
+            m.kind = super::classify::resolved_kind(&m.classification, m.lambda, m.error, dcoef);
+        }
+    }
+}
+
 /// Sorts modes (a complex pair is one unit, positive imaginary part first): dynamic by
-/// increasing |λ|, then zero, then infinite; records each pair's partner index.
-pub(crate) fn sort_units(mut units: Vec<Vec<Mode>>) -> Vec<Mode> {
+/// increasing |λ|, then zero, then infinite; records each pair's partner index. Clusters
+/// first-order estimates cannot separate get their errors widened ([`widen_cluster_errors`]).
+pub(crate) fn sort_units(mut units: Vec<Vec<Mode>>, dcoef: f64) -> Vec<Mode> {
+    widen_cluster_errors(&mut units, dcoef);
     let rank = |k: ModeKind| match k {
         ModeKind::Dynamic => 0,
         ModeKind::Zero => 1,

@@ -81,6 +81,20 @@ impl LinearModel {
         self.sparse.as_ref().map_or_else(|| &self.dense().multipliers[..], |s| &s.multipliers[..])
     }
 
+    /// `uᵀ F_yd v` of each `(u, v)` (the product a mode's left vector is scaled by,
+    /// `eigen::modes::normalize`), on the sparse DAE when there is one.
+    pub fn fyd_bilinear(&self, pairs: &[(&faer::Col<c64>, &faer::Col<c64>)]) -> Vec<c64> {
+        let dot = |u: &faer::Col<c64>, w: faer::Col<c64>| u.iter().zip(w.iter()).map(|(a, b)| a * b).sum();
+        match (&self.sparse, self.dense_if_built()) {
+            (Some(s), _) => pairs.iter().map(|(u, v)| dot(u, s.fyd.mul_complex(v))).collect(),
+            (None, Some(d)) => {
+                let fyd = d.jacobians.derivatives().0;
+                pairs.iter().map(|(u, v)| dot(u, faer::Col::from_fn(fyd.nrows(), |i| (0..fyd.ncols()).map(|j| v[j] * fyd[(i, j)]).sum()))).collect()
+            }
+            (None, None) => unreachable!("a study's linear model is built from a sparse or a dense DAE"),
+        }
+    }
+
     /// `F_yd[k, k]` of every unknown (the dynamic nodes' masses sit on the momentum rows).
     pub fn fyd_diagonal(&self) -> Vec<f64> {
         match (self.dense_if_built(), &self.sparse) {

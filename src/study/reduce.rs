@@ -2,7 +2,7 @@
 //! frequencies of interest), projection, modal damping, SVD residualization to the
 //! ordinary form, static gains against the full model, warnings.
 
-use faer::Mat;
+use faer::{c64, Mat};
 
 use crate::rom::{select_dominant_modes, select_modes, with_static_correction, DampingChange, DescriptorRom, Dominance, ModalDamping, ModeSelection, OrdinaryRom, Ranking, Selection};
 
@@ -292,7 +292,17 @@ impl Study {
             }
         }
         sel.dropped = candidates;
-        let invisible: Vec<(usize, f64)> = sel.kept.iter().filter(|&&i| dominance.is_negligible(i) && modal.modes[i].partner.is_none_or(|p| p > i)).map(|&i| (i + 1, modal.modes[i].freq_hz())).collect();
+        // A left vector that could not be scaled to uᵀ F_yd v = 1 (that product was rounding:
+        // a repeated root with one vector, a critically damped mode): the mode adds nothing,
+        // whatever the ports, and says why (issue 30).
+        let once = |i: usize| modal.modes[i].partner.is_none_or(|p| p > i);
+        let with_vectors: Vec<(usize, (&faer::Col<c64>, &faer::Col<c64>))> = sel.kept.iter().copied().filter(|&i| once(i)).filter_map(|i| Some((i, (modal.modes[i].left.as_ref()?, modal.modes[i].right.as_ref()?)))).collect();
+        let products = self.linear.fyd_bilinear(&with_vectors.iter().map(|w| w.1).collect::<Vec<_>>());
+        let unscaled: Vec<(usize, f64)> = with_vectors.iter().zip(products).filter(|(_, p)| (p - c64::new(1.0, 0.0)).norm() > 1e-6).map(|(w, _)| (w.0 + 1, modal.modes[w.0].freq_hz())).collect();
+        let invisible: Vec<(usize, f64)> = sel.kept.iter().copied().filter(|&i| dominance.is_negligible(i) && once(i) && !unscaled.iter().any(|m| m.0 == i + 1)).map(|i| (i + 1, modal.modes[i].freq_hz())).collect();
+        if !unscaled.is_empty() {
+            warnings.push(Warning::Unscaled { modes: unscaled });
+        }
         if !invisible.is_empty() {
             warnings.push(Warning::Invisible { modes: invisible });
         }

@@ -20,6 +20,9 @@ pub enum Warning {
     BelowBandKept { modes: Vec<(usize, f64)>, top_hz: f64 },
     /// Kept modes that the inputs cannot excite or the outputs cannot see.
     Invisible { modes: Vec<(usize, f64)> },
+    /// Kept modes whose left vector could not be scaled to `uᵀ F_yd v = 1` (that product is
+    /// rounding against its own terms): a modal ROM cannot represent them.
+    Unscaled { modes: Vec<(usize, f64)> },
     /// The ROM's static gain differs from the full model's.
     StaticGain { relative: f64, channel: String, reason: String },
     /// A real kept mode could not take modal damping.
@@ -80,6 +83,11 @@ impl fmt::Display for Warning {
                 "kept mode(s) {} contribute nothing to these inputs and outputs (not excited or not seen): their states add no response (--by dominance leaves them out)",
                 modes_hz(modes)
             ),
+            Warning::Unscaled { modes } => write!(
+                f,
+                "kept mode(s) {} have left and right vectors orthogonal through F_yd to rounding (uᵀ F_yd v = 0: a repeated eigenvalue with a single vector, such as a critically damped mode with ζ = 1 exactly, or a model scaled beyond double precision): a modal ROM cannot represent them and their states add no response; change that damping by a part in a million, or rescale the model",
+                modes_hz(modes)
+            ),
             Warning::StaticGain { relative, channel, reason } => write!(f, "the ROM's static gain differs from the full model's by {relative:.2e} (relative, {channel}): {reason}"),
             Warning::DampingNotApplied { mode, reason } => write!(f, "modal damping not applied to mode {mode}: {reason}"),
             Warning::SparseNotCertified { target, reason, damping_covered } => write!(
@@ -100,7 +108,7 @@ impl fmt::Display for Warning {
             ),
             Warning::UnresolvedEigenvalues { modes } => write!(
                 f,
-                "{} eigenvalue(s) are not resolved in double precision: {}; each error estimate is not below |λ|, so the value says nothing (not even its order of magnitude) and the mode is not listed as dynamic. Masses or stiffnesses spanning many decades, or a dCoef far from 1/|λ| (--dcoef), cause this: rescale the model or give --dcoef near 1/|λ| of the modes of interest",
+                "{} eigenvalue(s) are not resolved in double precision: {}; each error estimate is not below |λ| (± inf: its left and right vectors are orthogonal through F_yd to rounding, so its condition number is beyond double precision and no ROM can use the mode), so the value says nothing (not even its order of magnitude) and the mode is not listed as dynamic. A repeated eigenvalue with a single vector (a critically damped mode, ζ = 1 exactly) gives ± inf: a modal ROM cannot represent it, so change that damping by a part in a million. Masses or stiffnesses spanning many decades, or a dCoef far from 1/|λ| (--dcoef), cause the others: rescale the model or give --dcoef near 1/|λ| of the modes of interest",
                 modes.len(),
                 modes.iter().map(|(k, l, e, kind)| format!("mode {k} λ = {:.4e}{:+.4e}j rad/s ± {e:.1e}, labelled {kind}", l.re, l.im)).collect::<Vec<_>>().join(", ")
             ),

@@ -221,7 +221,13 @@ fn ham_sas_eigenanalysis_is_that_of_265f71c() {
         assert!((m.lambda - lambda).norm() <= 1e-12 * lambda.norm(), "mode {}: {} vs recorded {lambda}", i + 1, m.lambda);
         assert_eq!(m.kind.name(), r["kind"].as_str().unwrap(), "mode {}", i + 1);
         let error = r["error"].as_f64().unwrap();
-        assert!((m.error - error).abs() <= 1e-9 * error, "mode {}: error {} vs recorded {error}", i + 1, m.error);
+        // Recorded errors, except where two eigenvalues lie within four times their
+        // estimates of each other: each then carries at least their distance (the cluster
+        // widening of issue 30's defective roots; here only modes 129 and 130, 3.5e4 rad/s,
+        // 9.48e-8 → 1.29e-7 rad/s).
+        let nearest = modes.iter().enumerate().filter(|&(j, o)| j != i && o.kind == m.kind).map(|(_, o)| (o.lambda - m.lambda).norm()).fold(f64::INFINITY, f64::min);
+        let expected = if m.kind.name() == "dynamic" && nearest <= 4.0 * error { error.max(nearest) } else { error };
+        assert!((m.error - expected).abs() <= 1e-9 * expected, "mode {}: error {} vs recorded {error} (expected {expected})", i + 1, m.error);
         assert_eq!(labels[i].as_deref(), labelled[i]["label"].as_str(), "mode {}", i + 1);
         if !in_cluster(i) {
             assert_eq!(labels[i].as_deref(), r["label"].as_str(), "mode {} is in no cluster", i + 1);

@@ -27,7 +27,7 @@ use rayon::prelude::*;
 use super::balance::balance_pencil;
 use super::deflate::DynamicPart;
 use super::qz::{qz, Products};
-use crate::eigen::classify::{classify, resolved_kind, Classification, ModeKind};
+use crate::eigen::classify::{classify, classify_without_vectors, resolved_kind, Classification, ModeKind};
 use crate::eigen::modes::{conjugate_mode, normalize, sort_units};
 use crate::eigen::route::{dot_t, EigenRoute, EigenVectors};
 use crate::eigen::{EigenError, ModalAnalysis, Mode};
@@ -169,7 +169,7 @@ impl ModalAnalysis {
                 }
             }
         }
-        Ok(ModalAnalysis { route, dcoef, modes: sort_units(units) })
+        Ok(ModalAnalysis { route, dcoef, modes: sort_units(units, dcoef) })
     }
 }
 
@@ -202,7 +202,11 @@ fn qz_modes(part: &DynamicPart, route: EigenRoute, dcoef: f64) -> Result<Vec<Red
         let lambda = if lambda.re.is_finite() && lambda.im.is_finite() { lambda } else { c64::new(f64::INFINITY, 0.0) };
         // The form of eq. 30 divides multipliers by λ: no vectors for λ = 0.
         let z = raw.bare_vectors(k, pair).filter(|_| liftable).map(|(v, u)| (balanced.unscale_right(&v), balanced.unscale_left(&u)));
-        found.push((Mode { lambda, kind: class.kind, error, classification: class, right: None, left: None, partner: None }, z, pair));
+        // A finite nonzero λ without finite vectors (an exactly defective root): labelled
+        // as the undeflated route labels it, never dynamic.
+        let (class, error) = if liftable && z.is_none() { (classify_without_vectors(alpha, raw.beta[k], route), f64::INFINITY) } else { (class, error) };
+        let kind = resolved_kind(&class, lambda, error, dcoef);
+        found.push((Mode { lambda, kind, error, classification: class, right: None, left: None, partner: None }, z, pair));
         k += if pair { 2 } else { 1 };
     }
     Ok(found)

@@ -13,7 +13,7 @@ use faer::diag::Diag;
 use faer::{c64, Col, Mat, Par};
 
 use super::balance::balance_pencil;
-use crate::eigen::classify::{classify, resolved_kind, ModeKind};
+use crate::eigen::classify::{classify, classify_without_vectors, resolved_kind, ModeKind};
 use crate::eigen::modes::{conjugate_mode, normalize, sort_units};
 use crate::eigen::route::{dot_t, mul_real_complex, EigenRoute, EigenVectors};
 use crate::eigen::{EigenError, ModalAnalysis, Mode};
@@ -226,8 +226,12 @@ impl ModalAnalysis {
             let pair = raw.alpha_im[k] != 0.0 && k + 1 < n;
             let alpha = c64::new(raw.alpha_re[k], raw.alpha_im[k]);
             let vectors = raw.vectors(k, pair);
-            let class = classify(alpha, raw.beta[k], vectors.as_ref(), norms, route);
+            let class = match &vectors {
+                Some(w) => classify(alpha, raw.beta[k], Some(w), norms, route),
+                None => classify_without_vectors(alpha, raw.beta[k], route),
+            };
             let (mut lambda, error) = class.lambda_and_error(route, mu_scale, dcoef);
+            let error = if vectors.is_none() { f64::INFINITY } else { error };
             if !(lambda.re.is_finite() && lambda.im.is_finite()) {
                 lambda = c64::new(f64::INFINITY, 0.0);
             }
@@ -255,7 +259,7 @@ impl ModalAnalysis {
                 k += 1;
             }
         }
-        finish(ModalAnalysis { route, dcoef, modes: sort_units(units) }, prepared.scale)
+        finish(ModalAnalysis { route, dcoef, modes: sort_units(units, dcoef) }, prepared.scale)
     }
 
 }

@@ -33,7 +33,7 @@ use super::count::missing_in_disc;
 use super::operator::ShiftInvert;
 use super::window::{evaluate, krylov_sides, window, Eigenpair, PairVectors, Scales};
 use super::{KrylovError, SparseEigenSettings};
-use crate::eigen::classify::{classify_given, Classification};
+use crate::eigen::classify::{classify_given, resolved_kind, Classification};
 use crate::eigen::modes::{conjugate_mode, largest_entry, normalize, sort_units};
 use crate::eigen::{ModalAnalysis, Mode};
 use crate::eigen::route::EigenRoute;
@@ -476,7 +476,8 @@ fn finish(dae: &SparseLinearDae, pairs: Vec<Eigenpair>, windows: Vec<ShiftWindow
     for p in pairs {
         max_residual = max_residual.max(p.residual_right).max(p.residual_left);
         let real = p.lambda.im == 0.0;
-        let mode = Mode { lambda: p.lambda, kind: p.classification.kind, error: p.error, classification: p.classification, right: Some(p.right), left: p.left, partner: None };
+        let kind = resolved_kind(&p.classification, p.lambda, p.error, scales.dcoef);
+        let mode = Mode { lambda: p.lambda, kind, error: p.error, classification: p.classification, right: Some(p.right), left: p.left, partner: None };
         if real {
             units.push(vec![mode]);
         } else {
@@ -484,7 +485,7 @@ fn finish(dae: &SparseLinearDae, pairs: Vec<Eigenpair>, windows: Vec<ShiftWindow
             units.push(vec![mode, partner]);
         }
     }
-    let modal = ModalAnalysis { route: s.route, dcoef: scales.dcoef, modes: sort_units(units) };
+    let modal = ModalAnalysis { route: s.route, dcoef: scales.dcoef, modes: sort_units(units, scales.dcoef) };
     Ok(SparseModalAnalysis { modal, windows, certified, damping_covered, max_residual, note: if certified { None } else { note }, certificate: if certified { certificate } else { None } })
 }
 
