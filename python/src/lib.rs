@@ -18,7 +18,7 @@ use pyo3::types::PyDict;
 use romdyn::analysis::{run, NodeHistories};
 use romdyn::input::mbdyn::{read_model_text, MbdynModel, SetOverrides};
 use romdyn::output::rom_file::RomExport;
-use romdyn::study::{EigenSettings, FrequencyGrid, ReducedModel, Study, StudyError};
+use romdyn::study::{python_spelling, EigenSettings, FrequencyGrid, ReducedModel, Study, StudyError};
 
 use convert::{complex_vec, mat, responses};
 
@@ -31,8 +31,9 @@ pub(crate) fn py_err(e: StudyError) -> PyErr {
     match e {
         StudyError::Model(m) => ModelError::new_err(m.to_string()),
         // A setting named as the caller wrote it (`dcoef`, not the CLI's `--dcoef`).
-        StudyError::Option { option, message } => pyo3::exceptions::PyValueError::new_err(format!("{}: {message}", option.python_name())),
-        e => RomdynError::new_err(e.to_string()),
+        StudyError::Option { option, message } => pyo3::exceptions::PyValueError::new_err(format!("{}: {}", option.python_name(), python_spelling(&message))),
+        // Advice in the library's words ("use --solver dense") spelled as keywords.
+        e => RomdynError::new_err(python_spelling(&e.to_string())),
     }
 }
 
@@ -497,6 +498,14 @@ fn run_points<'py>(py: Python<'py>, text: &str, name: PathBuf, names: Vec<String
     results.results.into_iter().map(|r| convert::point(py, r.map_err(|e| e.message))).collect()
 }
 
+/// The library's advice with its command-line flags spelled as keyword arguments, as every
+/// warning and error reaches Python (`"--by dominance"` → `'by="dominance"'`); for tests
+/// comparing the CLI's messages with Python's.
+#[pyfunction]
+fn advice_for_python(text: &str) -> String {
+    python_spelling(text)
+}
+
 #[pymodule]
 fn _romdyn(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Model>()?;
@@ -506,6 +515,7 @@ fn _romdyn(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("ModelError", m.py().get_type::<ModelError>())?;
     warnings::register(m)?;
     m.add_function(wrap_pyfunction!(check_parameters, m)?)?;
+    m.add_function(wrap_pyfunction!(advice_for_python, m)?)?;
     m.add_function(wrap_pyfunction!(parse_set, m)?)?;
     m.add_function(wrap_pyfunction!(grid, m)?)?;
     m.add_function(wrap_pyfunction!(run_point, m)?)?;

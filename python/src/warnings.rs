@@ -32,7 +32,8 @@ fn category<'py>(py: Python<'py>, w: &Warning) -> Bound<'py, PyType> {
 }
 
 fn warn_text(py: Python<'_>, category: &Bound<'_, PyType>, text: &str) -> PyResult<()> {
-    let text = std::ffi::CString::new(text.replace('\0', " ")).unwrap_or_default();
+    // Advice in the library's words names command-line flags: spelled as keywords here.
+    let text = std::ffi::CString::new(romdyn::study::python_spelling(text).replace('\0', " ")).unwrap_or_default();
     PyErr::warn(py, category, &text, 1)
 }
 

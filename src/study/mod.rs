@@ -43,7 +43,7 @@ pub use error::StudyError;
 pub use export::RomForm;
 pub use reduce::{BelowBand, KeptMode, ReducedModel, Residualization, RomRequest, StaticGains};
 pub use response::{ChannelError, Comparison, FrequencyGrid, GridAccuracy};
-pub use setting::Setting;
+pub use setting::{python_spelling, Setting};
 pub use setup::{checked_reference_state, EigenSettings, Linearization, Ports, Study};
 pub use solver::{needs_every_mode, sparse_target, Solver, SparseRun, SPARSE_DEFAULT_COUNT};
 pub use warning::{Response, Warning};

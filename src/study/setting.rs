@@ -75,3 +75,114 @@ impl std::fmt::Display for Setting {
         f.write_str(self.cli_flag())
     }
 }
+
+/// A library message's advice, spelled as the Python package takes it: every command-line
+/// flag in `text` (`--by dominance`, `--dcoef`, `--below-band keep`) becomes the keyword
+/// argument of the same setting (`by="dominance"`, `dcoef=`, `below_band="keep"`), so a
+/// Python user is not sent to flags they never wrote (issue 30 point 7, issue 31). Flags
+/// with no Python counterpart keep their spelling and say so.
+pub fn python_spelling(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(at) = rest.find("--") {
+        let (before, from) = rest.split_at(at);
+        out.push_str(before);
+        let name_len = from[2..].find(|c: char| !(c.is_ascii_alphanumeric() || c == '-')).unwrap_or(from.len() - 2);
+        let name = from[2..2 + name_len].trim_end_matches('-');
+        if name.is_empty() {
+            out.push_str("--");
+            rest = &from[2..];
+            continue;
+        }
+        let after = &from[2 + name.len()..];
+        // A value the flag takes, when the next word is one of its known values.
+        let next = after.strip_prefix(' ').map(|s| s.split(|c: char| !(c.is_ascii_alphanumeric() || c == '.' || c == ':' || c == '_')).next().unwrap_or(""));
+        let word = next.filter(|w| flag_value(name, w));
+        let keyword = python_keyword(name);
+        match (keyword, word) {
+            (Some(k), Some(w)) if w.contains(':') => out.push_str(&format!("{k}=({})", w.replace(':', ", "))),
+            (Some(k), Some(w)) if w.parse::<f64>().is_ok() => out.push_str(&format!("{k}={w}")),
+            (Some(k), Some(w)) => out.push_str(&format!("{k}=\"{w}\"")),
+            (Some(k), None) => out.push_str(&format!("{k}=…")),
+            (None, _) => {
+                out.push_str(&format!("--{name} (romdyn's command line)"));
+                rest = after;
+                continue;
+            }
+        }
+        rest = match word {
+            Some(w) => &after[1 + w.len()..],
+            None => after,
+        };
+    }
+    out.push_str(rest);
+    out
+}
+
+/// The Python keyword of a command-line flag's setting, if the package has one.
+fn python_keyword(flag: &str) -> Option<&'static str> {
+    Some(match flag {
+        "at" | "static" => "reference",
+        "load-steps" => "load_steps",
+        "input" => "inputs",
+        "output" => "outputs",
+        "imposed" => "imposed",
+        "remove-spring" => "remove_springs",
+        "dcoef" => "dcoef",
+        "route" => "route",
+        "solver" => "solver",
+        "tolerance" => "tolerance",
+        "count" => "count",
+        "band" => "band",
+        "modes" => "modes",
+        "residualize" | "residualize-modes" => "residualize",
+        "by" => "by",
+        "below-band" => "below_band",
+        "form" => "form",
+        "fmin" => "fmin",
+        "fmax" => "fmax",
+        "points" => "points",
+        "beam-update" => "beam_update",
+        "set" => "set",
+        "amplitudes" => "amplitudes",
+        "validation-band" => "validation_band",
+        "resolution" => "resolution",
+        "averages" => "averages",
+        "time-step" => "time_step",
+        "measured" => "measured",
+        _ => return None,
+    })
+}
+
+/// Whether `word` is a value `--flag` takes (so it is part of the advice, not prose).
+fn flag_value(flag: &str, word: &str) -> bool {
+    match flag {
+        "by" => matches!(word, "dominance" | "frequency"),
+        "below-band" => matches!(word, "keep" | "drop" | "refuse"),
+        "solver" => matches!(word, "dense" | "sparse" | "auto"),
+        "route" => matches!(word, "direct" | "lambda"),
+        "form" => matches!(word, "ordinary" | "descriptor" | "both"),
+        "beam-update" => matches!(word, "incremental" | "total"),
+        "count" | "dcoef" | "tolerance" | "points" | "fmin" | "fmax" | "load-steps" | "at" | "band" | "resolution" | "averages" | "time-step" => {
+            !word.is_empty() && word.split(':').all(|p| p.parse::<f64>().is_ok())
+        }
+        _ => false,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::python_spelling;
+
+    #[test]
+    fn advice_is_spelled_as_python_takes_it() {
+        assert_eq!(python_spelling("(--by dominance leaves them out)"), "(by=\"dominance\" leaves them out)");
+        assert_eq!(python_spelling("give --dcoef near 1/|λ|"), "give dcoef=… near 1/|λ|");
+        assert_eq!(python_spelling("--below-band keep keeps them, refuse stops"), "below_band=\"keep\" keeps them, refuse stops");
+        assert_eq!(python_spelling("use --solver dense or --count 20"), "use solver=\"dense\" or count=20");
+        assert_eq!(python_spelling("--band 0:30 gives"), "band=(0, 30) gives");
+        assert_eq!(python_spelling("--residualize folds them into D"), "residualize=… folds them into D");
+        assert_eq!(python_spelling("see --pencil"), "see --pencil (romdyn's command line)");
+        assert_eq!(python_spelling("a -- b and x--"), "a -- b and x--");
+    }
+}
