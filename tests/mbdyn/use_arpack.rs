@@ -129,7 +129,8 @@ fn use_arpack_on_a_model_too_large_for_the_dense_route_writes_the_lowest_modes_a
 /// equations): `use arpack, 8, …` gives the 8 lowest modes and the second copy of the 8th
 /// (lateral j = 4, degenerate), each eigenvalue the dense route's to 1e-9 relative and the closed
 /// form's to 1e-9, each right vector in the span of the dense route's vectors of its
-/// eigenvalue (the lateral pairs are degenerate: the basis is the solver's choice) to 1e-9.
+/// eigenvalue (the lateral pairs are degenerate: the basis is the solver's choice) to 1e-9;
+/// and MBDyn 1.7.3's ARPACK eigenvalues of the same file to 1e-9.
 #[test]
 fn use_arpack_modes_equal_the_dense_routes_on_a_smaller_model() {
     let n = 30;
@@ -140,6 +141,20 @@ fn use_arpack_modes_equal_the_dense_routes_on_a_smaller_model() {
     let sparse = Eigenanalysis::at(&m.model, &state, 0, &request).unwrap();
     let dense = Eigenanalysis::at(&m.model, &state, 0, &romdyn::model::EigenRequest { solver: EigenSolverRequest::Dense, ..request.clone() }).unwrap();
     assert!(sparse.not_certified.is_none(), "{}", sparse.solver);
+    // MBDyn 1.7.3 (built here with ARPACK) on this file with final time 1e-3 (it does no
+    // eigenanalysis when the final time is the initial one) and `eigenanalysis: 0., output
+    // eigenvectors, results output precision, 16, parameter, 1.e-3, use arpack, 16, 40, 0.`:
+    // 14 of 16 Ritz values converged (INFO=1), the lateral j = 1, 2 pairs (these alpha rows,
+    // λ by MBDyn's formula) and 6 eigenvalues at λ ≈ 0 (its constrained variables', which
+    // romdyn's route removes). romdyn's sparse modes hold MBDyn's pairs to 1e-9 relative
+    // (MBDyn's own distance to the closed form: 1.1e-10).
+    let mbdyn_alpha = [[9.9999948693270690e-01, 1.0129831169994549e-03, 1.0], [9.9999948693217133e-01, 1.0129831168012313e-03, 1.0], [9.9999795299655692e-01, 2.0233643688835159e-03, 1.0], [9.9999795299597960e-01, 2.0233643687599724e-03, 1.0]];
+    for row in mbdyn_alpha {
+        let (re, im) = lambda_of_alpha(row, 5e-4);
+        let l = c64::new(re, im);
+        let nearest = sparse.modal.modes.iter().map(|m| m.lambda).min_by(|a, b| (a - l).norm().total_cmp(&(b - l).norm())).unwrap();
+        assert!((nearest - l).norm() <= 1e-9 * l.norm(), "MBDyn's {l} against romdyn's {nearest}");
+    }
     let upper = |a: &Eigenanalysis| -> Vec<usize> { (0..a.modal.modes.len()).filter(|&k| a.modal.modes[k].kind == ModeKind::Dynamic && a.modal.modes[k].lambda.im > 0.0).collect() };
     let (s, d) = (upper(&sparse), upper(&dense));
     // 8 modes asked: lateral j = 1, 2, 3 (twice each), axial j = 1 (3.2 rad/s) and the
