@@ -146,11 +146,12 @@ impl RunObserver for RunFiles {
         let file = a.file();
         let rows: Vec<_> = a.written.iter().map(|&k| (k + 1, a.modal.modes[k].lambda)).collect();
         let title = format!(
-            "Eigenanalysis {} at time {} s: dCoef {} s, {} equations, eigenvalues λ in rad/s (Λ form, paper eq. 18)",
+            "Eigenanalysis {} at time {} s: dCoef {} s, {} equations, eigenvalues λ in rad/s (Λ form, paper eq. 18); {}",
             a.index,
             a.time,
             a.dcoef,
-            a.aplus.nrows()
+            a.pencil.dim(),
+            a.solver
         );
         self.out.eigenvalues(&title, &rows)?;
         let stem = eigen_file_stem(&self.prefix, &self.eigen_suffix, a.index, self.eigen_count);

@@ -13,12 +13,12 @@ use faer::c64;
 
 use crate::limits::readable;
 
-use super::eigen::Eigenanalysis;
+use super::eigen::{check_request, Eigenanalysis};
 use super::error::{ObserverError, RunError};
 use super::observer::{Derivatives, EigenDone, RunObserver, RunStart, StepDone};
 use crate::dae::{Assembler, State};
 use crate::eigen::ModeKind;
-use crate::model::{AbortAfter, InitialValueProblem, Method, Model};
+use crate::model::{AbortAfter, EigenSolverRequest, InitialValueProblem, Method, Model};
 use crate::solve::{constraint_rate, initial_assembly, initial_derivatives_in, momentum_velocity_change, AssemblyReport, DerivativeMomenta, Integrator, NewtonSettings, NewtonWorkspace};
 
 
@@ -40,6 +40,12 @@ pub struct EigenSummary {
     /// friction force proportional to a normal reaction), with why: the eigenvalues carry
     /// the multipliers' integration noise (`Element::reaction_dependence`).
     pub reaction_dependent: Vec<String>,
+    /// How the modes were computed (dense: every eigenvalue; sparse: the lowest modes).
+    pub solver: String,
+    /// Every eigenvalue was computed (the dense route): the zero and infinite counts hold.
+    pub every_eigenvalue: bool,
+    /// The sparse route's modes are not certified: why.
+    pub not_certified: Option<String>,
 }
 
 /// What a run did.
@@ -145,6 +151,11 @@ fn step_done<'a>(asm: &'a Assembler, step: usize, time_step: f64, (iterations, r
 /// Runs `problem` on `model`, reporting every event to `observer`.
 pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunObserver) -> Result<RunReport, RunError> {
     validate(problem)?;
+    if let Some(request) = &problem.eigenanalysis
+        && let Some(&time) = request.times.first()
+    {
+        check_request(model, request).map_err(|message| RunError::Eigen { index: 0, time, message })?;
+    }
     let clock = Instant::now();
     let observed = |r: Result<(), ObserverError>| r.map_err(RunError::Observer);
     let asm = Assembler::new(model);
@@ -222,6 +233,9 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
                 infinite: e.modal.count(ModeKind::Infinite),
                 non_smooth: asm.non_smooth_elements(state),
                 reaction_dependent: asm.reaction_dependent_elements(state),
+                every_eigenvalue: matches!(request.solver, EigenSolverRequest::Dense),
+                solver: e.solver.clone(),
+                not_certified: e.not_certified.clone(),
             });
             next_eigen += 1;
         }

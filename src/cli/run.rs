@@ -79,7 +79,11 @@ fn print_summary(file: &str, r: &RunReport, written: &[PathBuf]) {
         );
     }
     for e in &r.eigenanalyses {
-        println!("eigenanalysis {} at t = {} s (dCoef = {} s): {} dynamic, {} zero, {} infinite eigenvalues", e.index, seconds(e.time), e.dcoef, e.dynamic.len(), e.zero, e.infinite);
+        if e.every_eigenvalue {
+            println!("eigenanalysis {} at t = {} s (dCoef = {} s): {} dynamic, {} zero, {} infinite eigenvalues", e.index, seconds(e.time), e.dcoef, e.dynamic.len(), e.zero, e.infinite);
+        } else {
+            println!("eigenanalysis {} at t = {} s (dCoef = {} s): {} dynamic eigenvalues, {}", e.index, seconds(e.time), e.dcoef, e.dynamic.len(), e.solver);
+        }
         const SHOWN: usize = 10;
         for l in e.dynamic.iter().take(SHOWN) {
             let (f, zeta) = (l.norm() / (2.0 * std::f64::consts::PI), if l.norm() > 0.0 { -l.re / l.norm() } else { 0.0 });
@@ -147,6 +151,9 @@ pub fn run(a: RunArgs) -> Result<()> {
     for e in &report.eigenanalyses {
         for why in &e.non_smooth {
             eprintln!("warning: eigenanalysis {} at t = {} s: {why}; the linearization takes a one-sided derivative there, and its eigenvalues describe only motion to that side", e.index, e.time);
+        }
+        if let Some(why) = &e.not_certified {
+            eprintln!("warning: eigenanalysis {} at t = {} s: the sparse route's modes are NOT certified ({why}): a mode below the highest one written may be missing", e.index, e.time);
         }
         for why in &e.reaction_dependent {
             eprintln!("warning: eigenanalysis {} at t = {} s: {why}", e.index, e.time);

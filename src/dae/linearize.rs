@@ -162,11 +162,7 @@ pub fn linearize_sparse(model: &Model, state: &State, inputs: &[InputPort], outp
     st.linearization_base(&asm.dofs);
     let form = linearization_form(model);
     let n = asm.dofs.len;
-    let sparse = |a: f64, b: f64| {
-        let t = asm.jacobian(&st, Coefficients { a, b, form, dcoef: 1.0 });
-        let entries = (0..t.values.len()).map(|k| (t.rows[k], t.cols[k], t.values[k]));
-        SparseMatrix::from_triplets(n, n, entries).unwrap_or_else(|| unreachable!("the assembler writes inside its {n} x {n} pattern"))
-    };
+    let sparse = |a: f64, b: f64| sparse_jacobian(&asm, &st, Coefficients { a, b, form, dcoef: 1.0 });
     let (fyd, fy) = (sparse(1.0, 0.0), sparse(0.0, 1.0));
     let ports = PortMap::new(model, &st);
     let b = ports.input_matrix(inputs)?;
@@ -183,4 +179,25 @@ pub fn linearize_sparse(model: &Model, state: &State, inputs: &[InputPort], outp
         constraint_form: Some(form),
         multipliers: (0..n).filter(|&i| asm.dofs.is_multiplier(i)).collect(),
     })
+}
+
+/// `a F_/ẏ + b F_/y` in the constraint form of `c` as assembled, sparse.
+fn sparse_jacobian(asm: &Assembler, st: &State, c: Coefficients) -> SparseMatrix {
+    let n = asm.dofs.len;
+    let t = asm.jacobian(st, c);
+    let entries = (0..t.values.len()).map(|k| (t.rows[k], t.cols[k], t.values[k]));
+    SparseMatrix::from_triplets(n, n, entries).unwrap_or_else(|| unreachable!("the assembler writes inside its {n} x {n} pattern"))
+}
+
+/// `J(+c)` and `J(−c)` (eqs. 13–14; MBDyn's `Aplus`, `Aminus`) at `state`, kept sparse as
+/// assembled: the matrices [`linearize`] with `Some(c)` gives dense, entry for entry, with
+/// memory proportional to the non-zeros.
+pub fn sparse_jacobian_pair(model: &Model, state: &State, c: f64) -> Result<(SparseMatrix, SparseMatrix), PortError> {
+    linearizable(model)?;
+    let asm = Assembler::new(model);
+    let mut st = state.clone();
+    st.linearization_base(&asm.dofs);
+    let form = linearization_form(model);
+    let j = |b: f64| sparse_jacobian(&asm, &st, Coefficients { a: 1.0, b, form, dcoef: c });
+    Ok((j(c), j(-c)))
 }

@@ -36,7 +36,7 @@ pub use assembly::{Assembler, Coefficients};
 pub use check::{check_jacobians, JacobianMismatch};
 pub use dofs::DofMap;
 pub use element_part::{element_part, ElementPart, ElementPartError};
-pub use linearize::{linearize, linearize_ports, linearize_sparse, NodeInput, NodeOutput};
+pub use linearize::{linearize, linearize_ports, linearize_sparse, sparse_jacobian_pair, NodeInput, NodeOutput};
 pub use ports::{InputPort, OutputPort, PortError, PortMap};
 pub use sparse::{LuPath, SparseLu, Triplets, BAND_WORK_PER_ENTRY};
 pub use state::State;

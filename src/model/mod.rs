@@ -10,7 +10,7 @@ mod summary;
 pub use beam_update::BeamUpdateChoice;
 pub use builder::{ModelBuilder, ModelError};
 pub use constraint_form::ConstraintForm;
-pub use problem::{AbortAfter, AutoCoefficient, EigenFileSuffix, EigenOutput, EigenRequest, InitialAssembly, InitialValueProblem, Method, MotionOutput, NodeAssembly, NodeSource, OrientationOutput, ResidualNorm, SuffixWidth, WrittenNode};
+pub use problem::{AbortAfter, AutoCoefficient, EigenFileSuffix, EigenOutput, EigenRequest, EigenSolverRequest, InitialAssembly, InitialValueProblem, Method, MotionOutput, NodeAssembly, NodeSource, OrientationOutput, ResidualNorm, SuffixWidth, WrittenNode};
 pub use summary::Summary;
 
 use std::collections::HashMap;

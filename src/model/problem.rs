@@ -51,6 +51,22 @@ pub struct EigenRequest {
     pub output: EigenOutput,
     /// How the analyses' files are numbered (`suffix width`, `suffix format`).
     pub file_suffix: EigenFileSuffix,
+    /// Which eigensolver the file asks for (`use lapack`, `use arpack`, `use jdqz`).
+    pub solver: EigenSolverRequest,
+}
+
+/// The eigensolver an eigenanalysis asks for (MBDyn's `use …` option, solver.cc `Eig`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum EigenSolverRequest {
+    /// Every eigenvalue of the pencil by QZ (`use lapack`, or no `use`): n x n matrices.
+    #[default]
+    Dense,
+    /// The `modes` lowest dynamic modes (λ nearest 0, Λ nearest 1; a complex pair is one
+    /// mode) by the sparse shift-invert route, memory proportional to the non-zeros:
+    /// `use arpack, NEV, NCV, TOL` (MBDyn asks ARPACK for the NEV eigenvalues of smallest
+    /// magnitude of `Aplus⁻¹ Aminus − I`) and `use jdqz, NEV, …` (the NEV eigenvalues
+    /// nearest the target Λ = 1). `card` names the option for messages.
+    Lowest { modes: usize, card: &'static str },
 }
 
 /// The number in the name of an eigenanalysis's files: MBDyn 1.7.3 writes analysis K

@@ -2,11 +2,14 @@
 //! and romdyn's JSON: `J(±c)`, the eigenvalues as MBDyn's `alpha` rows, eigenvectors and
 //! the structural nodes' configuration (MBDyn manual, "Eigenanalysis", output).
 
+use std::borrow::Cow;
+
 use faer::{c64, Mat};
 
 use crate::eigen::EnergyShare;
 use crate::kinematics::Vec3;
 use crate::eigen::{EigenRoute, ModalAnalysis, Mode};
+use crate::linear::SparseMatrix;
 use crate::model::Label;
 
 /// How `Aplus`/`Aminus` are written (`output full matrices` / `output sparse matrices`).
@@ -16,6 +19,47 @@ pub enum MatrixLayout {
     Full,
     /// `Aplus = [i j v; ...]; Aplus = spconvert(Aplus);`
     Sparse,
+}
+
+/// `Aplus = J(+c)` and `Aminus = J(−c)` as the eigenanalysis built them: dense for the dense
+/// route, sparse as assembled for the sparse one (no n x n matrix on that path unless the
+/// full layout is asked for).
+pub enum PencilMatrices {
+    Dense { aplus: Mat<f64>, aminus: Mat<f64> },
+    Sparse { aplus: SparseMatrix, aminus: SparseMatrix },
+}
+
+impl PencilMatrices {
+    /// Number of equations.
+    pub fn dim(&self) -> usize {
+        match self {
+            PencilMatrices::Dense { aplus, .. } => aplus.nrows(),
+            PencilMatrices::Sparse { aplus, .. } => aplus.nrows(),
+        }
+    }
+
+    /// `Aplus` (`plus`) or `Aminus` as a dense matrix (a copy on the sparse route: only for
+    /// the full layout, whose size the eigenanalysis checked against the dense budget).
+    pub fn full(&self, plus: bool) -> Cow<'_, Mat<f64>> {
+        match self {
+            PencilMatrices::Dense { aplus, aminus } => Cow::Borrowed(if plus { aplus } else { aminus }),
+            PencilMatrices::Sparse { aplus, aminus } => Cow::Owned(if plus { aplus } else { aminus }.to_dense()),
+        }
+    }
+
+    /// The non-zero entries `(i, j, v)` (0-based) of `Aplus` (`plus`) or `Aminus`, column by
+    /// column.
+    pub fn nonzeros(&self, plus: bool) -> Vec<(usize, usize, f64)> {
+        let mut entries: Vec<_> = match self {
+            PencilMatrices::Dense { aplus, aminus } => {
+                let m = if plus { aplus } else { aminus };
+                (0..m.ncols()).flat_map(|j| (0..m.nrows()).map(move |i| (i, j, m[(i, j)]))).filter(|e| e.2 != 0.0).collect()
+            }
+            PencilMatrices::Sparse { aplus, aminus } => if plus { aplus } else { aminus }.triplets().filter(|e| e.2 != 0.0).collect(),
+        };
+        entries.sort_by_key(|&(i, j, _)| (j, i));
+        entries
+    }
 }
 
 /// Configuration of the structural nodes at the analysis (`output geometry`).
@@ -39,10 +83,11 @@ pub struct EigenFile<'a> {
     pub time: f64,
     /// `c` [s].
     pub dcoef: f64,
-    pub aplus: &'a Mat<f64>,
-    pub aminus: &'a Mat<f64>,
+    pub pencil: &'a PencilMatrices,
     /// Whether and how the matrices are written.
     pub matrices: Option<MatrixLayout>,
+    /// How the modes were computed (the `.m` file's comment and the JSON's `solver`).
+    pub solver: &'a str,
     pub modal: &'a ModalAnalysis,
     /// Indices (into `modal.modes`) of the modes written (frequency limits applied).
     pub written: &'a [usize],

@@ -6,7 +6,7 @@
 use faer::{c64, Col, Mat};
 use serde_json::{json, Value};
 
-use super::eigen_file::{mbdyn_alpha, EigenFile};
+use super::eigen_file::{mbdyn_alpha, EigenFile, MatrixLayout};
 use super::modal::ModalReport;
 
 fn number(x: f64) -> Value {
@@ -28,7 +28,7 @@ fn vectors(n: usize, cols: &[Option<&Col<c64>>]) -> Value {
 
 /// The JSON document of one eigenanalysis.
 pub fn eigen_json(input: &str, e: &EigenFile) -> Value {
-    let n = e.aplus.nrows();
+    let n = e.pencil.dim();
     let table = ModalReport::new(e.modal, n).with_energy(e.energy.to_vec());
     let written: Vec<Value> = e.written.iter().map(|&k| serde_json::to_value(&table.eigenvalues[k]).unwrap_or(Value::Null)).collect();
     let mut doc = json!({
@@ -39,14 +39,21 @@ pub fn eigen_json(input: &str, e: &EigenFile) -> Value {
         "dCoef": e.dcoef,
         "equations": n,
         "route": e.modal.route,
+        "solver": e.solver,
         "counts": table.counts,
         "eigenvalues": written,
         "alpha": e.written.iter().map(|&k| mbdyn_alpha(&e.modal.modes[k], e.modal.route, e.dcoef).map(number).to_vec()).collect::<Vec<_>>(),
         "unknowns": e.unknown_names,
     });
-    if e.matrices.is_some() {
-        doc["Aplus"] = rows(e.aplus);
-        doc["Aminus"] = rows(e.aminus);
+    for (plus, name) in [(true, "Aplus"), (false, "Aminus")] {
+        match e.matrices {
+            None => break,
+            Some(MatrixLayout::Full) => doc[name] = rows(&e.pencil.full(plus)),
+            Some(MatrixLayout::Sparse) => {
+                let entries: Vec<Value> = e.pencil.nonzeros(plus).into_iter().map(|(i, j, v)| json!([i + 1, j + 1, number(v)])).collect();
+                doc[name] = json!({"size": [n, n], "entries": entries, "indices": "1-based [row, column, value], as the .m file's spconvert"});
+            }
+        }
     }
     if let Some(g) = e.geometry {
         doc["labels"] = json!(g.labels);

@@ -48,17 +48,12 @@ fn full(w: &mut dyn Write, name: &str, m: &Mat<f64>) -> std::io::Result<()> {
     Ok(())
 }
 
-fn sparse(w: &mut dyn Write, name: &str, m: &Mat<f64>) -> std::io::Result<()> {
+fn sparse(w: &mut dyn Write, name: &str, n: usize, entries: &[(usize, usize, f64)]) -> std::io::Result<()> {
     writeln!(w, "{name} = [")?;
-    for j in 0..m.ncols() {
-        for i in 0..m.nrows() {
-            if m[(i, j)] != 0.0 {
-                writeln!(w, "{} {} {};", i + 1, j + 1, num(m[(i, j)]))?;
-            }
-        }
+    for &(i, j, v) in entries {
+        writeln!(w, "{} {} {};", i + 1, j + 1, num(v))?;
     }
-    let n = m.nrows();
-    if n > 0 && m[(n - 1, n - 1)] == 0.0 {
+    if n > 0 && !entries.iter().any(|&(i, j, _)| i == n - 1 && j == n - 1) {
         writeln!(w, "{n} {n} 0;")?;
     }
     writeln!(w, "];")?;
@@ -89,22 +84,26 @@ fn vectors(w: &mut dyn Write, name: &str, n: usize, cols: &[Option<&Col<c64>>]) 
 
 /// Writes the `.m` script of one eigenanalysis to `w`; `input` names the model file.
 pub fn write_eigen_m(w: &mut dyn Write, input: &str, e: &EigenFile) -> std::io::Result<()> {
-    let n = e.aplus.nrows();
+    let n = e.pencil.dim();
     {
         writeln!(w, "% romdyn {} eigenanalysis {} of {input} (MBDyn .m layout; SI units: time and dCoef in s)", env!("CARGO_PKG_VERSION"), e.index)?;
         writeln!(w, "% time: {}", e.time)?;
         writeln!(w, "dTime = {};", num(e.time))?;
         writeln!(w, "% coefficient")?;
         writeln!(w, "dCoef = {};", num(e.dcoef))?;
-        if let Some(layout) = e.matrices {
-            let write_matrix = match layout {
-                MatrixLayout::Full => full,
-                MatrixLayout::Sparse => sparse,
-            };
-            writeln!(w, "% F/xPrime + dCoef * F/x")?;
-            write_matrix(w, "Aplus", e.aplus)?;
-            writeln!(w, "% F/xPrime - dCoef * F/x")?;
-            write_matrix(w, "Aminus", e.aminus)?;
+        writeln!(w, "% modes: {}", e.solver)?;
+        for (plus, name, comment) in [(true, "Aplus", "% F/xPrime + dCoef * F/x"), (false, "Aminus", "% F/xPrime - dCoef * F/x")] {
+            match e.matrices {
+                None => break,
+                Some(MatrixLayout::Full) => {
+                    writeln!(w, "{comment}")?;
+                    full(w, name, &e.pencil.full(plus))?
+                }
+                Some(MatrixLayout::Sparse) => {
+                    writeln!(w, "{comment}")?;
+                    sparse(w, name, n, &e.pencil.nonzeros(plus))?
+                }
+            }
         }
         if let Some(g) = e.geometry {
             writeln!(w, "% structural nodes labels")?;

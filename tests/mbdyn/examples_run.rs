@@ -18,7 +18,7 @@ fn every_example_reads_runs_and_has_dynamic_modes() {
         let m = read_model(&path).unwrap_or_else(|e| panic!("{e}"));
         let mut problem = m.problem.clone();
         problem.final_time = problem.initial_time + 5.0 * problem.time_step;
-        let request = problem.eigenanalysis.take().unwrap_or(EigenRequest { times: vec![], dcoef: None, lower_frequency_hz: None, upper_frequency_hz: None, output: EigenOutput::default(), file_suffix: Default::default() });
+        let request = problem.eigenanalysis.take().unwrap_or(EigenRequest { times: vec![], dcoef: None, lower_frequency_hz: None, upper_frequency_hz: None, output: EigenOutput::default(), file_suffix: Default::default(), solver: Default::default() });
         problem.eigenanalysis = Some(EigenRequest { times: vec![problem.initial_time], ..request });
         let report = run(&m.model, &problem, &mut ()).unwrap_or_else(|e| panic!("{name}: {e}"));
         assert_eq!(report.steps, 5, "{name}");

@@ -36,5 +36,6 @@ mod rigid_body_kinematics;
 mod run_command;
 mod step_drive_times;
 mod step_drives;
+mod use_arpack;
 mod variable_mass_body;
 mod varying_radius;

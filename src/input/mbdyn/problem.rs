@@ -10,7 +10,7 @@ use crate::limits::readable;
 use super::diagnostic::{MbdynError, Sources};
 use super::drives::{drive, Drives};
 use super::parser::{known, Block};
-use crate::model::{AbortAfter, AutoCoefficient, EigenFileSuffix, EigenOutput, EigenRequest, InitialValueProblem, Method, ResidualNorm, SuffixWidth};
+use crate::model::{AbortAfter, AutoCoefficient, EigenFileSuffix, EigenOutput, EigenRequest, EigenSolverRequest, InitialValueProblem, Method, ResidualNorm, SuffixWidth};
 use crate::element::drive::Drive;
 
 /// Reads the `data` block.
@@ -313,13 +313,15 @@ fn eigenanalysis(c: &mut Cursor) -> Result<EigenRequest, MbdynError> {
     } else {
         vec![c.real("eigenanalysis time [s] (or list)")?]
     };
-    let mut r = EigenRequest { times, dcoef: None, lower_frequency_hz: None, upper_frequency_hz: None, output: EigenOutput::default(), file_suffix: EigenFileSuffix::default() };
+    let mut r = EigenRequest { times, dcoef: None, lower_frequency_hz: None, upper_frequency_hz: None, output: EigenOutput::default(), file_suffix: EigenFileSuffix::default(), solver: EigenSolverRequest::Dense };
     let options = [
         "output matrices", "output full matrices", "output sparse matrices", "output eigenvectors", "output geometry", "parameter", "lower frequency limit",
         "upper frequency limit", "use lapack", "use arpack", "use jdqz", "use external", "balance", "suffix width", "suffix format",
         "matrix output precision", "results output precision",
     ];
+    let mut chosen = None;
     while !c.is_done() {
+        let span = c.here();
         match c.keyword("an eigenanalysis option", &options)? {
             "output matrices" | "output full matrices" => r.output.full_matrices = true,
             "output sparse matrices" => r.output.sparse_matrices = true,
@@ -336,12 +338,13 @@ fn eigenanalysis(c: &mut Cursor) -> Result<EigenRequest, MbdynError> {
             }
             "lower frequency limit" => r.lower_frequency_hz = Some(c.real("lower frequency limit [Hz]")?),
             "upper frequency limit" => r.upper_frequency_hz = Some(c.real("upper frequency limit [Hz]")?),
-            // Solvers map onto romdyn's own dense QZ; their tuning is ignored.
-            "use lapack" | "use external" => {}
-            "use arpack" | "use jdqz" => {
-                c.count("number of eigenvalues (nev)")?;
-                c.count("number of Arnoldi vectors (ncv)")?;
-                c.real("tolerance")?;
+            // `use external` maps onto the dense route as `use lapack`.
+            "use external" => {}
+            card @ ("use lapack" | "use arpack" | "use jdqz") => {
+                if chosen.replace(span).is_some() {
+                    return Err(c.error_at(span, "eigenanalysis: the solver is already selected (one 'use lapack', 'use arpack' or 'use jdqz', as in MBDyn)"));
+                }
+                r.solver = solver(c, card)?;
             }
             "balance" => {
                 c.keyword("a balancing", &["no", "scale", "permute", "all"])?;
@@ -365,4 +368,35 @@ fn eigenanalysis(c: &mut Cursor) -> Result<EigenRequest, MbdynError> {
         return Err(c.error_at(c.statement().span, format!("eigenanalysis: lower frequency limit {lo} Hz is above the upper limit {hi} Hz")));
     }
     Ok(r)
+}
+
+/// The arguments of `use lapack` (none), `use arpack, NEV, NCV, TOL` and `use jdqz, NEV,
+/// JMAX, EPS`, checked as MBDyn 1.7.3 checks them (solver.cc, `ReadData`): NEV > 0,
+/// NCV > NEV + 2, JMAX ≥ 20 and ≥ 2 NEV. Both sparse requests are the NEV lowest dynamic
+/// modes of romdyn's sparse route (MBDyn's ARPACK and JDQZ both look for Λ nearest 1, λ
+/// nearest 0); NCV, JMAX and the tolerance tune MBDyn's solvers and are read, not used:
+/// every returned pair passes romdyn's own true-residual test (1e-10).
+fn solver(c: &mut Cursor, card: &'static str) -> Result<EigenSolverRequest, MbdynError> {
+    if card == "use lapack" {
+        return Ok(EigenSolverRequest::Dense);
+    }
+    let span = c.here();
+    let modes = c.count("number of eigenvalues (NEV)")?;
+    if modes == 0 {
+        return Err(c.error_at(span, format!("{card}: the number of eigenvalues must be positive, found 0")));
+    }
+    let span = c.here();
+    if card == "use arpack" {
+        let ncv = c.count("number of Arnoldi vectors (NCV)")?;
+        if ncv <= modes + 2 {
+            return Err(c.error_at(span, format!("use arpack: the number of Arnoldi vectors must be more than NEV + 2 = {}, found {ncv}", modes + 2)));
+        }
+    } else {
+        let jmax = c.count("size of the search space (JMAX)")?;
+        if jmax < 20 || jmax < 2 * modes {
+            return Err(c.error_at(span, format!("use jdqz: the size of the search space must be at least 20 and at least 2 NEV = {}, found {jmax}", 2 * modes)));
+        }
+    }
+    c.real("tolerance")?;
+    Ok(EigenSolverRequest::Lowest { modes, card })
 }
