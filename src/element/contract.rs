@@ -269,6 +269,13 @@ pub trait Element: Send + Sync {
     fn unknown_kind(&self, _k: usize) -> UnknownKind {
         UnknownKind::Multiplier
     }
+    /// Its own unknowns that are generalized momenta (a modal body's `p = ∂T/∂q̇`), each
+    /// with its own equation the definition `p − p(…) = 0` (unit coefficient on `p`): they
+    /// are set from their definitions wherever dynamic nodes' momenta are
+    /// (`solve::newton::momenta_from_definitions`). None by default.
+    fn momentum_unknowns(&self) -> std::ops::Range<usize> {
+        0..0
+    }
     /// Whether a drive of the element reads the model's state (MBDyn's `model::` functions
     /// in a `string` drive): its residual then depends on nodes through the drive, and its
     /// Jacobian, as MBDyn's, holds the drive's value fixed (see
