@@ -129,3 +129,140 @@ fn modal_joint_jacobian_matches_finite_differences() {
         }
     }
 }
+
+/// Two FEM nodes: `A` at the origin (mass `ma`, inertias `ja`) and `B` at `(l, 0, 0)` (mass
+/// `mb`), one mode moving `B` along y (a spring `k` between B and the rest of the body).
+fn spring_mass_body(ma: f64, ja: [f64; 3], mb: f64, l: f64, k: f64) -> String {
+    let nodes = [FemNode { label: "A".into(), x: [0.0; 3], mass: ma, inertia: ja }, FemNode { label: "B".into(), x: [l, 0.0, 0.0], mass: mb, inertia: [0.0; 3] }];
+    fem_text(&nodes, &[vec![[0.0; 6], [0.0, 1.0, 0.0, 0.0, 0.0, 0.0]]], &[vec![mb]], &[vec![k]])
+}
+
+#[test]
+fn a_floating_spring_mass_body_vibrates_at_the_closed_form_frequency() {
+    // B (mass mb) on a spring k to a rigid body A (mass ma, inertia Jz about its centre, B at
+    // arm l): the spring sees B and A's effective mass at the attachment point,
+    // 1/m_A,eff = 1/ma + l²/Jz, so ω² = k (1/mb + 1/ma + l²/Jz). The rigid–modal coupling
+    // is invariants 3 (mb ŷ) and 4 (mb l ẑ): without them ω² would be k/mb.
+    let (ma, jz, mb, l, k) = (2.0, 0.3, 0.5, 0.8, 1.0e3);
+    let dir = temp_dir("modal-floating-spring-mass");
+    write_file(&dir, "body.fem", &spring_mass_body(ma, [0.1, 0.2, jz], mb, l, k));
+    let nodes = "structural: 1, modal, null, eye, null, null;";
+    let elements = "joint: 10, modal, 1, 1, from file, no damping, \"body.fem\", 0;";
+    let file = write_file(&dir, "m.mbd", &mbdyn_file(nodes, elements, 1.0, 1e-3, "structural nodes: 1; joints: 1;"));
+    let expected = (k * (1.0 / mb + 1.0 / ma + l * l / jz)).sqrt();
+    let computed = frequencies(Path::new(&file));
+    // 1e-9 relative: one QZ on 20 unknowns with entries from 1 to 1e3.
+    assert_eq!(computed.len(), 1, "{computed:?}");
+    assert!(common::rel(computed[0], expected) < 1e-9, "{} rad/s against the closed form {expected} rad/s", computed[0]);
+}
+
+#[test]
+fn an_interface_node_adds_its_mass_and_spring_to_a_clamped_modal_body() {
+    // The same spring-mass body clamped (A fixed): ω² = k1/mb. Node 2 (a body of mass m2 on a
+    // spring k2 to the ground) attached to FEM node B through an offset: the two masses move
+    // together on the two springs, ω² = (k1 + k2)/(mb + m2).
+    let (mb, k1, m2, k2) = (0.5, 1.0e3, 1.5, 3.0e3);
+    let dir = temp_dir("modal-interface");
+    write_file(&dir, "body.fem", &spring_mass_body(2.0, [0.1, 0.2, 0.3], mb, 0.8, k1));
+    let alone = write_file(&dir, "alone.mbd", &mbdyn_file("structural: 3, static, 0.8, 0., 0.1, eye, null, null;", "joint: 21, clamp, 3, node, node;\njoint: 10, modal, clamped, 1, from file, \"body.fem\", 0;", 1.0, 1e-3, "structural nodes: 1; joints: 2;"));
+    let computed = frequencies(Path::new(&alone));
+    assert_eq!(computed.len(), 1, "{computed:?}");
+    // 1e-9 relative: the eigenvalues of a 2 x 2 problem through one QZ.
+    assert!(common::rel(computed[0], (k1 / mb).sqrt()) < 1e-9, "alone: {} rad/s against {}", computed[0], (k1 / mb).sqrt());
+    let nodes = "structural: 2, dynamic, 0.8, 0., 0.1, eye, null, null;\nstructural: 3, static, 0.8, 0., 0.1, eye, null, null;";
+    let elements = format!(
+        "body: 1, 2, {m2}, null, diag, 0.01, 0.01, 0.01;\n\
+         joint: 21, clamp, 3, node, node;\n\
+         joint: 22, deformable displacement joint, 3, null, 2, null, linear elastic, {k2};\n\
+         joint: 10, modal, clamped, 1, from file, \"body.fem\", 1, \"B\", 2, 0., 0., -0.1;"
+    );
+    let joined = write_file(&dir, "joined.mbd", &mbdyn_file(nodes, &elements, 1.0, 1e-3, "structural nodes: 2; rigid bodies: 1; joints: 3;"));
+    let computed = frequencies(Path::new(&joined));
+    let expected = ((k1 + k2) / (mb + m2)).sqrt();
+    assert_eq!(computed.len(), 1, "{computed:?}");
+    // 1e-9 relative: one QZ on 38 unknowns with entries from 1e-2 to 3e3.
+    assert!(common::rel(computed[0], expected) < 1e-9, "joined: {} rad/s against the closed form {expected} rad/s", computed[0]);
+}
+
+/// Free-free Euler–Bernoulli beam along x on [0, l], bending in the x–y plane: `βᵢ l` the
+/// roots of `cos βl cosh βl = 1` (Blevins, "Formulas for natural frequency and mode shape",
+/// table 8-1), mode `φ = cosh βx + cos βx − σ (sinh βx + sin βx)`,
+/// `σ = (cosh βl − cos βl)/(sinh βl − sin βl)`, `ω = β² √(EI/ρA)`.
+const FREE_FREE_BETA_L: [f64; 3] = [4.730040744862704, 7.853204624095838, 10.995607838001671];
+
+fn free_free_mode(beta: f64, l: f64, x: f64) -> (f64, f64) {
+    let sigma = ((beta * l).cosh() - (beta * l).cos()) / ((beta * l).sinh() - (beta * l).sin());
+    let (bx, c, s) = (beta * x, (beta * x).cos(), (beta * x).sin());
+    (bx.cosh() + c - sigma * (bx.sinh() + s), beta * (bx.sinh() - s - sigma * (bx.cosh() + c)))
+}
+
+#[test]
+fn a_free_free_beam_as_a_modal_body_has_the_euler_bernoulli_frequencies() {
+    let (l, ei, rho_a, intervals) = (2.0, 5.0e3, 3.0, 200);
+    let h = l / intervals as f64;
+    // Simpson's weights lump the beam's mass on 201 nodes; each node gets a small inertia
+    // about the beam's axis (torsion, which the modes do not move) so that no rigid
+    // rotation is massless.
+    let weight = |i: usize| h / 3.0 * if i == 0 || i == intervals { 1.0 } else if i % 2 == 1 { 4.0 } else { 2.0 };
+    let nodes: Vec<FemNode> = (0..=intervals).map(|i| FemNode { label: format!("N{i}"), x: [i as f64 * h, 0.0, 0.0], mass: rho_a * weight(i), inertia: [1e-3 * weight(i), 0.0, 0.0] }).collect();
+    let betas: Vec<f64> = FREE_FREE_BETA_L.iter().map(|b| b / l).collect();
+    let shapes: Vec<Vec<[f64; 6]>> = betas.iter().map(|&b| nodes.iter().map(|n| {
+        let (phi, slope) = free_free_mode(b, l, n.x[0]);
+        [0.0, phi, 0.0, 0.0, 0.0, slope]
+    }).collect()).collect();
+    // Modal masses by the same quadrature (∫ρA φ² dx = ρA l for this normalization); the
+    // stiffnesses ω² M from the closed-form frequencies.
+    let masses: Vec<f64> = shapes.iter().map(|s| s.iter().zip(&nodes).map(|(v, n)| n.mass * v[1] * v[1]).sum()).collect();
+    let omegas: Vec<f64> = betas.iter().map(|b| b * b * (ei / rho_a).sqrt()).collect();
+    for m in &masses {
+        assert!(common::rel(*m, rho_a * l) < 1e-8, "modal mass {m}: Simpson's rule against ρA l = {}", rho_a * l);
+    }
+    let stiffness: Vec<f64> = masses.iter().zip(&omegas).map(|(m, w)| m * w * w).collect();
+    let dir = temp_dir("modal-free-free-beam");
+    write_file(&dir, "beam.fem", &fem_text(&nodes, &shapes, &diagonal(&masses), &diagonal(&stiffness)));
+    let file = write_file(&dir, "m.mbd", &mbdyn_file("structural: 1, modal, null, eye, null, null;", "joint: 10, modal, 1, 3, from file, \"beam.fem\", 0;", 1.0, 1e-3, "structural nodes: 1; joints: 1;"));
+    let computed = frequencies(Path::new(&file));
+    assert_eq!(computed.len(), 3, "{computed:?}");
+    // 1e-8 relative: the modes are orthogonal to the rigid motions (∫φ = ∫xφ = 0) up to
+    // Simpson's error (below 1e-9 here), whose square shifts the frequencies.
+    for (c, e) in computed.iter().zip(&omegas) {
+        assert!(common::rel(*c, *e) < 1e-8, "{c} rad/s against Euler–Bernoulli's {e} rad/s");
+    }
+}
+
+/// Momentum and angular momentum about the global origin of the model's one node at the
+/// end of a run to `final_time`, and the largest modal coordinate there.
+fn momenta_after(file: &Path, final_time: f64) -> (romdyn::kinematics::Vec3, romdyn::kinematics::Vec3, f64) {
+    let mut m = romdyn::input::mbdyn::read_model(file).unwrap_or_else(|e| panic!("{e}"));
+    m.problem.final_time = final_time;
+    let report = romdyn::analysis::run(&m.model, &m.problem, &mut ()).unwrap_or_else(|e| panic!("{e}"));
+    let asm = Assembler::new(&m.model);
+    let st = &report.final_state;
+    let (beta, gamma) = st.momenta(&asm.dofs, 0);
+    let x = st.node_frame(&asm.dofs, 0).kin.x;
+    let first = asm.dofs.element_first[0];
+    let q = (0..2).map(|k| st.y[first + k].abs()).fold(0.0, f64::max);
+    (beta, gamma + x.cross(&beta), q)
+}
+
+#[test]
+fn a_spinning_modal_body_conserves_momentum_and_angular_momentum() {
+    // The irregular two-mode body tumbling free (spin 6 rad/s about z, off its principal
+    // axes, and drifting): its centrifugal loads deform it and its spin axis wanders, but
+    // with no external load both momenta stay what they were. In momentum form the node's
+    // equations `β̇ = 0`, `γ̇ + ẋ × β = 0` are linear in the integrated unknowns, so the
+    // multistep formula conserves `β` and `γ + x × β` to Newton's tolerance (1e-10 on the
+    // residual) per step.
+    let dir = temp_dir("modal-spinning");
+    write_file(&dir, "body.fem", &irregular_body());
+    let nodes = "structural: 1, modal, 0.1, -0.2, 0.3, euler123, 0.2, -0.1, 0.4, 0.3, 0.1, -0.2, 0.5, -1.0, 6.0;";
+    let elements = "joint: 10, modal, 1, 2, from file, single factor damping, 0.02, \"body.fem\", use invariant 9, origin node, \"A\", 0;";
+    let file = write_file(&dir, "m.mbd", &mbdyn_file(nodes, elements, 1.0, 1e-3, "structural nodes: 1; joints: 1;"));
+    let (beta0, h0, _) = momenta_after(Path::new(&file), 1e-3);
+    let (beta1, h1, q) = momenta_after(Path::new(&file), 2.0);
+    // The body does deform (its modes are excited by the spin).
+    assert!(q > 1e-4, "largest modal coordinate {q}: the spin did not load the modes");
+    // 1e-9 relative over 2000 steps.
+    assert!((beta1 - beta0).norm() <= 1e-9 * beta0.norm(), "momentum {beta0} then {beta1}");
+    assert!((h1 - h0).norm() <= 1e-9 * h0.norm(), "angular momentum {h0} then {h1}");
+}
