@@ -276,6 +276,11 @@ pub trait Element: Send + Sync {
     fn momentum_unknowns(&self) -> std::ops::Range<usize> {
         0..0
     }
+    /// Initial values of its own differential unknowns that do not start at zero: `(k, y,
+    /// ẏ)` (a modal body's initial modal coordinates and rates). None by default.
+    fn initial_unknowns(&self) -> Vec<(usize, f64, f64)> {
+        Vec::new()
+    }
     /// Whether a drive of the element reads the model's state (MBDyn's `model::` functions
     /// in a `string` drive): its residual then depends on nodes through the drive, and its
     /// Jacobian, as MBDyn's, holds the drive's value fixed (see

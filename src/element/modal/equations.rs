@@ -68,9 +68,9 @@ pub(super) fn residual(e: &ModalBody, st: &dyn ElementState, out: &mut dyn Resid
         let cq: f64 = (0..n).map(|l| e.damping[(m, l)] * k.qdot[l]).sum();
         let djm = k.r * inv.inertia_derivative(m, &k.q) * k.r.transpose();
         let dt_dq = k.xdot.dot(&k.omega.cross(&k.a[m])) + 0.5 * k.omega.dot(&(djm * k.omega)) + k.omega.dot(&(k.r * inv.i5_times(m, &k.qdot)));
-        out.add(Row::Constraint(m), st.rate(n + m) - dt_dq + kq + cq - k.a[m].dot(&g));
-        let p = st.multiplier(n + m);
-        out.add(Row::Constraint(n + m), p - (k.a[m].dot(&k.xdot) + k.b[m].dot(&k.omega) + mq));
+        out.add(Row::Constraint(e.q_index(m)), st.rate(e.p_index(m)) - dt_dq + kq + cq - k.a[m].dot(&g));
+        let p = st.multiplier(e.p_index(m));
+        out.add(Row::Constraint(e.p_index(m)), p - (k.a[m].dot(&k.xdot) + k.b[m].dot(&k.omega) + mq));
     }
 }
 
@@ -97,7 +97,7 @@ pub(super) fn jacobian(e: &ModalBody, st: &dyn ElementState, out: &mut dyn Jacob
             let aj = k.a[j];
             let dj = k.r * inv.inertia_derivative(j, &k.q) * k.r.transpose();
             let c5 = k.r * inv.i5_times(j, &k.qdot);
-            let col = Col::Multiplier(j);
+            let col = Col::Multiplier(e.q_index(j));
             let force_q = -aj.cross(&g);
             let lin_q = -w.cross(&aj);
             let ang_q = -(aj.cross(&xd) + dj * w + c5);
@@ -105,15 +105,15 @@ pub(super) fn jacobian(e: &ModalBody, st: &dyn ElementState, out: &mut dyn Jacob
                 out.add(Row::Equilibrium { slot: 0, comp: 3 + c }, col, force_q[c]);
                 out.add(Row::Momentum { slot: 0, comp: c }, col, lin_q[c]);
                 out.add(Row::Momentum { slot: 0, comp: 3 + c }, col, ang_q[c]);
-                out.add(Row::Momentum { slot: 0, comp: c }, Col::Rate(j), -aj[c]);
-                out.add(Row::Momentum { slot: 0, comp: 3 + c }, Col::Rate(j), -k.b[j][c]);
+                out.add(Row::Momentum { slot: 0, comp: c }, Col::Rate(e.q_index(j)), -aj[c]);
+                out.add(Row::Momentum { slot: 0, comp: 3 + c }, Col::Rate(e.q_index(j)), -k.b[j][c]);
             }
         }
     }
     for m in 0..n {
-        let (dyn_row, def_row) = (Row::Constraint(m), Row::Constraint(n + m));
-        out.add(dyn_row, Col::Rate(n + m), 1.0);
-        out.add(def_row, Col::Multiplier(n + m), 1.0);
+        let (dyn_row, def_row) = (Row::Constraint(e.q_index(m)), Row::Constraint(e.p_index(m)));
+        out.add(dyn_row, Col::Rate(e.p_index(m)), 1.0);
+        out.add(def_row, Col::Multiplier(e.p_index(m)), 1.0);
         let am = k.a[m];
         let djm = k.r * inv.inertia_derivative(m, &k.q) * k.r.transpose();
         let c5 = k.r * inv.i5_times(m, &k.qdot);
@@ -122,10 +122,10 @@ pub(super) fn jacobian(e: &ModalBody, st: &dyn ElementState, out: &mut dyn Jacob
             if let Some(h) = &inv.dd_inertia {
                 dq -= 0.5 * w.dot(&(k.r * h[m][l] * k.r.transpose() * w));
             }
-            out.add(dyn_row, Col::Multiplier(l), dq);
-            out.add(dyn_row, Col::Rate(l), e.damping[(m, l)] - w.dot(&(k.r * inv.i5[m][l])));
-            out.add(def_row, Col::Rate(l), -e.mass[(m, l)]);
-            out.add(def_row, Col::Multiplier(l), -w.dot(&(k.r * inv.i5[l][m])));
+            out.add(dyn_row, Col::Multiplier(e.q_index(l)), dq);
+            out.add(dyn_row, Col::Rate(e.q_index(l)), e.damping[(m, l)] - w.dot(&(k.r * inv.i5[m][l])));
+            out.add(def_row, Col::Rate(e.q_index(l)), -e.mass[(m, l)]);
+            out.add(def_row, Col::Multiplier(e.q_index(l)), -w.dot(&(k.r * inv.i5[l][m])));
         }
         if floating {
             // The rotation of R moves every global vector R u by δθ × R u; gravity's aₘ·g too.

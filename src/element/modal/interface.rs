@@ -39,7 +39,7 @@ struct Place {
 
 fn place(e: &ModalBody, st: &dyn ElementState, i: usize, q: &[f64], r: &Mat3) -> Place {
     let f = &e.interfaces[i];
-    let first = 2 * e.modes() + 6 * i;
+    let first = 6 * i;
     let slot = e.interface_slot(i);
     let n2 = st.node(slot);
     let local = f.position + f.translation.iter().zip(q).map(|(t, qj)| t * *qj).sum::<Vec3>();
@@ -73,8 +73,10 @@ pub(super) fn residual(e: &ModalBody, st: &dyn ElementState, out: &mut dyn Resid
         }
         add_vec(out, Row::force(p.slot), &(-p.lambda));
         add_vec(out, Row::moment(p.slot), &(-(p.d2.cross(&p.lambda)) - p.moment));
-        for j in 0..e.modes() {
-            out.add(Row::Constraint(j), p.t[j].dot(&p.lambda) + p.rot[j].dot(&p.moment));
+        if !e.assembling {
+            for j in 0..e.modes() {
+                out.add(Row::Constraint(e.q_index(j)), p.t[j].dot(&p.lambda) + p.rot[j].dot(&p.moment));
+            }
         }
     }
 }
@@ -110,15 +112,15 @@ pub(super) fn jacobian(e: &ModalBody, st: &dyn ElementState, out: &mut dyn Jacob
         add_block(out, Row::moment(s), Col::rotation(s), &(-skew(&p.lambda) * skew(&p.d2) + skew(&p.moment)));
         add_block(out, Row::moment(s), lam, &(-skew(&p.d2)));
         add_block(out, Row::moment(s), mu, &(-p.r2));
-        for j in 0..e.modes() {
-            let col = Col::Multiplier(j);
+        for j in (0..e.modes()).filter(|_| !e.assembling) {
+            let col = Col::Multiplier(e.q_index(j));
             let (t, rj) = (p.t[j], p.rot[j]);
             let d_rot = skew_axial(&(p.r2.transpose() * r * skew(&e.interfaces[i].rotation[j])));
             for c in 0..3 {
                 out.add(pos[c], col, t[c]);
                 out.add(rot[c], col, d_rot[c]);
             }
-            let row = Row::Constraint(j);
+            let row = Row::Constraint(e.q_index(j));
             if floating {
                 let on_moment = t.cross(&p.lambda);
                 for c in 0..3 {

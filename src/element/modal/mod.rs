@@ -78,11 +78,38 @@ pub struct ModalBody {
     pub interfaces: Vec<Interface>,
     /// The modes' ordinals in the FEM file (1-based), for names and output.
     pub mode_numbers: Vec<usize>,
+    /// Initial modal coordinates and their rates (`initial value`, FEM records 3 and 4).
+    pub initial: Vec<(f64, f64)>,
+    /// The element the initial assembly uses ([`ModalBody::for_initial_assembly`]).
+    assembly: Option<Box<ModalBody>>,
+    /// Whether this is that element: the interface constraints alone, `q` held at its
+    /// initial values.
+    assembling: bool,
 }
 
 impl ModalBody {
+    /// The body; `initial` empty means every mode starts at rest at zero.
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(label: Label, frame: ModalFrame, mass: DMatrix<f64>, stiffness: DMatrix<f64>, damping: DMatrix<f64>, invariants: Invariants, interfaces: Vec<Interface>, mode_numbers: Vec<usize>, initial: Vec<(f64, f64)>) -> Self {
+        let initial = if initial.is_empty() { vec![(0.0, 0.0); mass.nrows()] } else { initial };
+        let mut body = ModalBody { label, frame, mass, stiffness, damping, invariants, interfaces, mode_numbers, initial, assembly: None, assembling: false };
+        let twin = ModalBody { assembling: true, ..body.clone() };
+        body.assembly = Some(Box::new(twin));
+        body
+    }
+
     pub fn modes(&self) -> usize {
         self.mass.nrows()
+    }
+
+    /// Own unknowns: the interfaces' six multipliers each, then `q`, then `p` (the
+    /// interfaces first, so that the initial assembly's element, which has them alone, has
+    /// this one's first unknowns).
+    pub fn q_index(&self, k: usize) -> usize {
+        6 * self.interfaces.len() + k
+    }
+    pub fn p_index(&self, k: usize) -> usize {
+        6 * self.interfaces.len() + self.modes() + k
     }
 
     /// The slot of interface `i`'s node.
@@ -101,10 +128,13 @@ impl ModalBody {
         }
     }
 
-    /// The modal coordinates `q` and their rates `q̇`.
+    /// The modal coordinates `q` and their rates `q̇` (the initial ones while assembling).
     pub fn coordinates(&self, s: &dyn ElementState) -> (Vec<f64>, Vec<f64>) {
+        if self.assembling {
+            return self.initial.iter().copied().unzip();
+        }
         let n = self.modes();
-        ((0..n).map(|k| s.multiplier(k)).collect(), (0..n).map(|k| s.rate(k)).collect())
+        ((0..n).map(|k| s.multiplier(self.q_index(k))).collect(), (0..n).map(|k| s.rate(self.q_index(k))).collect())
     }
 }
 
@@ -124,27 +154,46 @@ impl Element for ModalBody {
         v
     }
     fn multipliers(&self) -> Vec<String> {
-        let mut names: Vec<String> = self.mode_numbers.iter().map(|m| format!("modal coordinate q{m}")).collect();
-        names.extend(self.mode_numbers.iter().map(|m| format!("modal momentum p{m}")));
+        let mut names = Vec::new();
         for i in &self.interfaces {
             for c in ["Fx", "Fy", "Fz", "Mx", "My", "Mz"] {
                 names.push(format!("interface FEM node {} / node {} reaction {c}", i.fem_node, i.node));
             }
         }
+        if !self.assembling {
+            names.extend(self.mode_numbers.iter().map(|m| format!("modal coordinate q{m}")));
+            names.extend(self.mode_numbers.iter().map(|m| format!("modal momentum p{m}")));
+        }
         names
     }
     fn unknown_kind(&self, k: usize) -> UnknownKind {
-        if k < 2 * self.modes() { UnknownKind::State } else { UnknownKind::Multiplier }
+        if k < 6 * self.interfaces.len() { UnknownKind::Multiplier } else { UnknownKind::State }
     }
     fn momentum_unknowns(&self) -> std::ops::Range<usize> {
-        self.modes()..2 * self.modes()
+        if self.assembling { 0..0 } else { self.p_index(0)..self.p_index(self.modes()) }
+    }
+    fn initial_unknowns(&self) -> Vec<(usize, f64, f64)> {
+        if self.assembling {
+            return Vec::new();
+        }
+        self.initial.iter().enumerate().filter(|(_, v)| **v != (0.0, 0.0)).map(|(k, (q, qdot))| (self.q_index(k), *q, *qdot)).collect()
+    }
+    /// MBDyn's modal joint assembles its interfaces with the modal coordinates held at
+    /// their initial values (modal.cc, `InitialAssRes`): the modes are not part of the
+    /// initial assembly, as an element's differential states are not.
+    fn assembly_form(&self) -> Option<&dyn Element> {
+        self.assembly.as_deref().map(|a| a as &dyn Element)
     }
     fn residual(&self, s: &dyn ElementState, out: &mut dyn ResidualSink) {
-        equations::residual(self, s, out);
+        if !self.assembling {
+            equations::residual(self, s, out);
+        }
         interface::residual(self, s, out);
     }
     fn jacobian(&self, s: &dyn ElementState, out: &mut dyn JacobianSink) {
-        equations::jacobian(self, s, out);
+        if !self.assembling {
+            equations::jacobian(self, s, out);
+        }
         interface::jacobian(self, s, out);
     }
 }

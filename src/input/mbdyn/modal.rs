@@ -65,26 +65,29 @@ pub fn modal(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Modal
             numbers[k] = m;
         }
     }
+    // `initial value, mode, J, Q, QP, …` or one pair per mode (MBDyn 1.7.3 stores every
+    // pair of the second form in mode 1, a slip of modal.cc; romdyn gives each its mode,
+    // as the input manual says).
+    let mut initial: Vec<Option<(f64, f64)>> = vec![None; modes];
     if c.accept("initial value") {
-        let span = c.here();
-        let mut values = Vec::new();
+        // Given, it replaces the FEM file's records 3 and 4 for every mode (modal.cc).
+        initial = vec![Some((0.0, 0.0)); modes];
         if c.accept("mode") {
             loop {
-                c.count("mode number")?;
-                values.push(c.real("initial modal coordinate")?);
-                values.push(c.real("initial modal velocity")?);
+                let span = c.here();
+                let m = c.count("mode number")?;
+                let Some(k) = numbers.iter().position(|x| *x == m) else {
+                    return Err(c.error_at(span, format!("initial value: mode {m} is not one of the active modes {numbers:?}")));
+                };
+                initial[k] = Some((c.real("initial modal coordinate")?, c.real("initial modal velocity [1/s]")?));
                 if !c.accept("mode") {
                     break;
                 }
             }
         } else {
-            for _ in 0..modes {
-                values.push(c.real("initial modal coordinate")?);
-                values.push(c.real("initial modal velocity")?);
+            for v in initial.iter_mut() {
+                *v = Some((c.real("initial modal coordinate")?, c.real("initial modal velocity [1/s]")?));
             }
-        }
-        if values.iter().any(|v| *v != 0.0) {
-            return Err(c.error_at(span, "non-zero initial modal coordinates or velocities are not supported by romdyn (the modal coordinates start at zero)"));
         }
     }
     let nodes_span = c.here();
@@ -146,7 +149,9 @@ pub fn modal(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Modal
     };
     let component = component(&fem, &numbers, origin, invariant_9);
     let interfaces = interfaces(c, ctx, &fem, &component, &path)?;
-    Ok(ModalBody { label, frame, mass, stiffness, damping, invariants: Invariants::of(&component), interfaces, mode_numbers: numbers })
+    // The FEM file's records 3 and 4, unless `initial value` was given.
+    let initial = initial.iter().zip(&numbers).map(|(v, m)| v.unwrap_or((fem.modal_displacements[m - 1], fem.modal_velocities[m - 1]))).collect();
+    Ok(ModalBody::new(label, frame, mass, stiffness, damping, Invariants::of(&component), interfaces, numbers, initial))
 }
 
 /// A FEM node label: a string, or (MBDyn's legacy form) an integer.
