@@ -123,8 +123,13 @@ pub fn modal(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Modal
     }
     // romdyn reads the text file every time: the binary cache options change nothing.
     while c.accept_any(&["create binary", "use binary", "update binary"]).is_some() {}
+    // `echo, "FILE" [, precision, N]` writes the FEM data back out in MBDyn; romdyn reads
+    // it and writes nothing (the data are the FEM file's).
     if c.accept("echo") {
-        return Err(c.error("modal joint: 'echo' (writing the FEM data back to a file) is not supported by romdyn"));
+        c.string("echo file name")?;
+        if c.accept("precision") {
+            c.count("echo precision (digits)")?;
+        }
     }
     let invariant_9 = c.accept("use invariant 9");
     let mut origin = Vec3::zeros();

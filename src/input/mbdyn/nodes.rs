@@ -270,7 +270,7 @@ fn settings(c: &mut Cursor, kind: &str) -> Result<(Option<bool>, Option<NodeAsse
         } else if c.accept("output") {
             output = Some(c.flag("output flag")?);
         } else if let (span, true) = (c.here(), c.accept("accelerations")) {
-            if kind != "dynamic" && kind != "dynamic displacement" {
+            if !matches!(kind, "dynamic" | "dynamic displacement" | "modal") {
                 return Err(c.error_at(span, format!("'accelerations' is read on dynamic structural nodes only, not on a {kind} node (MBDyn 1.7.3 stops there too: \"semicolon expected\"; its static nodes have no momenta to differentiate, a dummy node writes accelerations when its base node does)")));
             }
             if accelerations.is_some() {
