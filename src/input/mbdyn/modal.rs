@@ -7,10 +7,14 @@
 //!        | single factor damping, Z | proportional damping, Z
 //!        | diag damping, {all, Z, … | COUNT, MODE, Z, …}}]
 //!     , "FEM_FILE" [, [mass | damping | stiffness] threshold, T]…
-//!     [, create binary | use binary | update binary]… [, use invariant 9]
+//!     [, create binary | use binary | update binary]… [, echo, "FILE" [, precision, N]]
 //!     [, {origin node, "FEM_LABEL" | origin position, X}]
 //!     , INTERFACES [, output, FLAG] {, "FEM_LABEL", NODE, OFFSET [, output, FLAG]}…
+//!     [, use invariant 9] [, "LEGACY_OUTPUT_FILE"]
 //! ```
+//!
+//! (`use invariant 9` where MBDyn 1.7.3's reader takes it, after the interface nodes; its
+//! manual shows it before `origin node`.)
 //!
 //! mapped onto [`ModalBody`]; the FEM file is read by [`crate::input::fem`]. Without
 //! a damping keyword MBDyn uses record 13 when the file has it (`damping from file`).
@@ -131,7 +135,9 @@ pub fn modal(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Modal
             c.count("echo precision (digits)")?;
         }
     }
-    let invariant_9 = c.accept("use invariant 9");
+    if c.peek_keyword() == Some("use invariant 9") {
+        return Err(c.error("'use invariant 9' comes after the interface nodes: MBDyn 1.7.3 reads it there (modal.cc, after the FEM data, when record 11 gives the lumped masses), not where its input manual shows it"));
+    }
     let mut origin = Vec3::zeros();
     if c.accept("origin node") {
         let span = c.here();
@@ -152,8 +158,20 @@ pub fn modal(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Modal
         Damping::Rayleigh(a, b) => a * &mass + b * &stiffness,
         Damping::Ratios(z) => DMatrix::from_fn(modes, modes, |j, k| if j == k { 2.0 * z[j] * (stiffness[(j, j)] * mass[(j, j)]).sqrt() } else { 0.0 }),
     };
-    let component = component(&fem, &numbers, origin, invariant_9);
+    let mut component = component(&fem, &numbers, origin);
     let interfaces = interfaces(c, ctx, &fem, &component, &path)?;
+    if let Some(k) = c.peek_keyword().filter(|k| *k == "use invariant 9") {
+        if fem.lumped_inertia.is_none() {
+            return Err(c.error(format!("'{k}': the FEM file '{}' has no lumped masses (record 11), so there are no invariants to use; MBDyn 1.7.3 does not read the keyword then either", path.display())));
+        }
+        c.accept(k);
+        component.invariant_9 = true;
+    }
+    // A string here is the per-element output file of MBDyn before 1.2.7, which 1.7.3
+    // reads and ignores (its output goes to the `.mod` file).
+    if c.next_is_string() {
+        c.string("legacy output file name")?;
+    }
     // The FEM file's records 3 and 4, unless `initial value` was given.
     let initial = initial.iter().zip(&numbers).map(|(v, m)| v.unwrap_or((fem.modal_displacements[m - 1], fem.modal_velocities[m - 1]))).collect();
     Ok(ModalBody::new(label, frame, mass, stiffness, damping, Invariants::of(&component), interfaces, numbers, initial))
@@ -161,7 +179,7 @@ pub fn modal(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Modal
 
 /// A FEM node label: a string, or (MBDyn's legacy form) an integer.
 fn fem_label(c: &mut Cursor) -> Result<String, MbdynError> {
-    if c.next_is_number() {
+    if !c.next_is_string() {
         return Ok(c.integer("FEM node label")?.to_string());
     }
     c.string("FEM node label (a string in double quotes, or an integer)")
@@ -202,7 +220,7 @@ fn damping(c: &mut Cursor, modes: usize) -> Result<Damping, MbdynError> {
 }
 
 /// The FEM data of the active modes in the floating frame (origin at `origin`).
-fn component(fem: &FemFile, numbers: &[usize], origin: Vec3, invariant_9: bool) -> Component {
+fn component(fem: &FemFile, numbers: &[usize], origin: Vec3) -> Component {
     let positions: Vec<Vec3> = fem.positions.iter().map(|p| Vec3::from(*p) - origin).collect();
     let shape = |range: std::ops::Range<usize>| numbers.iter().map(|m| fem.shapes[m - 1].iter().map(|s| Vec3::new(s[range.start], s[range.start + 1], s[range.start + 2])).collect()).collect();
     let lumped = fem.lumped_inertia.as_ref().map(|l| l.iter().map(|m| (m[0], Vec3::new(m[3], m[4], m[5]))).collect());
@@ -210,7 +228,7 @@ fn component(fem: &FemFile, numbers: &[usize], origin: Vec3, invariant_9: bool) 
         let i = r.inertia;
         (r.mass, Vec3::from(r.centre_of_mass) - origin, Mat3::new(i[0][0], i[0][1], i[0][2], i[1][0], i[1][1], i[1][2], i[2][0], i[2][1], i[2][2]))
     });
-    Component { positions, translations: shape(0..3), rotations: shape(3..6), lumped, rigid, invariant_9 }
+    Component { positions, translations: shape(0..3), rotations: shape(3..6), lumped, rigid, invariant_9: false }
 }
 
 fn interfaces(c: &mut Cursor, ctx: &ElementContext, fem: &FemFile, comp: &Component, path: &std::path::Path) -> Result<Vec<ModalInterface>, MbdynError> {
