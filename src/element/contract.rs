@@ -246,6 +246,11 @@ pub trait Outputs {
     fn private_data(&self, _name: &str) -> Option<PrivateDatum> {
         None
     }
+    /// Its modal coordinates (a modal body's): `(own unknown k of q, the mode's number in
+    /// the FEM file)` each, for MBDyn's `.mod` file ([`crate::dae::modal_coordinates`]).
+    fn modal_coordinates(&self) -> Vec<(usize, usize)> {
+        Vec::new()
+    }
     /// Internal forces and deformation at the element's evaluation points (beams), for
     /// output; none for other elements.
     fn sections(&self, _s: &dyn ElementState) -> Vec<SectionState> {

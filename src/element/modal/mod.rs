@@ -34,7 +34,7 @@ mod equations;
 mod interface;
 pub mod invariants;
 
-use super::contract::{Element, ElementState, JacobianSink, Label, ResidualSink};
+use super::contract::{Element, ElementState, JacobianSink, Label, Outputs, ResidualSink};
 use super::UnknownKind;
 use crate::kinematics::{Mat3, Vec3};
 use nalgebra::DMatrix;
@@ -184,6 +184,9 @@ impl Element for ModalBody {
     fn assembly_form(&self) -> Option<&dyn Element> {
         self.assembly.as_deref().map(|a| a as &dyn Element)
     }
+    fn outputs(&self) -> Option<&dyn Outputs> {
+        Some(self)
+    }
     fn residual(&self, s: &dyn ElementState, out: &mut dyn ResidualSink) {
         if !self.assembling {
             equations::residual(self, s, out);
@@ -195,5 +198,14 @@ impl Element for ModalBody {
             equations::jacobian(self, s, out);
         }
         interface::jacobian(self, s, out);
+    }
+}
+
+impl Outputs for ModalBody {
+    fn modal_coordinates(&self) -> Vec<(usize, usize)> {
+        if self.assembling {
+            return Vec::new();
+        }
+        self.mode_numbers.iter().enumerate().map(|(k, m)| (self.q_index(k), *m)).collect()
     }
 }
