@@ -1,6 +1,7 @@
 //! The files of a run, named after a prefix as MBDyn names them: `PREFIX.out` (step log),
 //! `PREFIX.mov` (node motion), `PREFIX.log` (model log), for models with beams `PREFIX.act`
-//! (internal forces) and `PREFIX.bst` (strains and curvatures), and for each eigenanalysis
+//! (internal forces) and `PREFIX.bst` (strains and curvatures), for models with modal
+//! joints `PREFIX.mod` (modal coordinates and their derivatives), and for each eigenanalysis
 //! `PREFIX_K.m` (Octave script) and `PREFIX_K.json` (romdyn's JSON), K its 0-based number
 //! as MBDyn 1.7.3 writes it for one analysis or several (`_0` unless the file's `suffix
 //! width` or `suffix format` says otherwise; [`EigenFileSuffix`]).
@@ -20,6 +21,7 @@ use super::run::RunReport;
 use crate::model::{EigenFileSuffix, InitialValueProblem, Model, MotionOutput};
 use crate::output::atomic::{commit_set, recover_set, AtomicFile, OutputError};
 use crate::output::beam_sections::BeamSectionWriter;
+use crate::output::modal_coordinates::ModalCoordinateWriter;
 use crate::output::eigen_json::eigen_json;
 use crate::output::eigen_m::write_eigen_m;
 use crate::output::model_log::write_model_log;
@@ -53,6 +55,8 @@ pub struct RunFiles {
     motion: Option<MotionOutput>,
     /// `.act` and `.bst`, opened at step 0 when the model has beams.
     beams: Option<BeamSectionWriter>,
+    /// `.mod`, when the model has modal joints.
+    modal: Option<ModalCoordinateWriter>,
     /// Whether step 0 showed elements with evaluation points (then every step is written).
     has_beams: Option<bool>,
     staged: Vec<AtomicFile>,
@@ -70,7 +74,7 @@ impl RunFiles {
         // A directory in the way of any file of the set is found before the run.
         let stems = (0..eigen_count).map(|k| eigen_file_stem(prefix, &eigen_suffix, k, eigen_count));
         let eigen_files = stems.flat_map(|s| [prefixed_path(&s, "m"), prefixed_path(&s, "json")]);
-        for path in ["out", "mov", "log", "act", "bst"].map(|e| prefixed_path(prefix, e)).into_iter().chain(eigen_files) {
+        for path in ["out", "mov", "log", "act", "bst", "mod"].map(|e| prefixed_path(prefix, e)).into_iter().chain(eigen_files) {
             if path.is_dir() {
                 return Err(OutputError::Invalid { path, message: "is a directory: the run could not write its file there".into() });
             }
@@ -79,7 +83,10 @@ impl RunFiles {
         let mov = MotionWriter::create(&prefixed_path(prefix, "mov"), OrientationOutput::Euler123Degrees, problem.output.as_ref().map_or(MotionOutput::DEFAULT_DIGITS, MotionOutput::digits))?;
         let mut log = AtomicFile::create(&prefixed_path(prefix, "log"))?;
         log.write_with(|w| write_model_log(w, input, model))?;
-        Ok(RunFiles { prefix: prefix.to_path_buf(), input: input.to_string(), eigen_count, eigen_suffix, out, mov, motion: problem.output.clone(), beams: None, has_beams: None, staged: vec![log], last_step: None, iterations: 0 })
+        let has_modes = model.elements.iter().any(|e| e.outputs().is_some_and(|o| !o.modal_coordinates().is_empty()));
+        let digits = problem.output.as_ref().map_or(MotionOutput::DEFAULT_DIGITS, MotionOutput::digits);
+        let modal = if has_modes { Some(ModalCoordinateWriter::create(&prefixed_path(prefix, "mod"), digits)?) } else { None };
+        Ok(RunFiles { prefix: prefix.to_path_buf(), input: input.to_string(), eigen_count, eigen_suffix, out, mov, motion: problem.output.clone(), beams: None, modal, has_beams: None, staged: vec![log], last_step: None, iterations: 0 })
     }
 
     /// Ends the step log and puts every file in place; returns their paths.
@@ -100,6 +107,7 @@ impl RunFiles {
 
     fn commit(self) -> Result<Vec<PathBuf>, OutputError> {
         let mut files = vec![self.out.into_file(), self.mov.into_file()];
+        files.extend(self.modal.map(ModalCoordinateWriter::into_file));
         if let Some(b) = self.beams {
             files.extend(b.into_files());
         }
@@ -124,6 +132,9 @@ impl RunObserver for RunFiles {
             None => self.mov.write_step(&e.node_kinematics())?,
             Some(m) if written => self.mov.write_rows(&motion_rows(m, &e.node_kinematics(), &e.node_accelerations(m)))?,
             Some(_) => {}
+        }
+        if let (Some(w), true) = (self.modal.as_mut(), written) {
+            w.write_step(&e.modal_coordinates())?;
         }
         if self.has_beams == Some(false) {
             return Ok(());

@@ -49,6 +49,12 @@ impl StepDone<'_> {
         self.assembler.section_states(self.state).into_iter().map(|(e, s)| (self.model.elements[e].label(), s)).collect()
     }
 
+    /// Every modal joint's modal coordinates and their derivatives
+    /// ([`crate::dae::modal_coordinates`]).
+    pub fn modal_coordinates(&self) -> Vec<crate::dae::ModalRow> {
+        crate::dae::modal_coordinates(self.assembler, self.state)
+    }
+
     /// Every structural node's position, orientation and velocities (global frame).
     pub fn node_kinematics(&self) -> Vec<(Label, NodeKinematics)> {
         self.model.nodes.iter().enumerate().map(|(i, n)| (n.label, self.state.node_frame(&self.assembler.dofs, i).kin)).collect()

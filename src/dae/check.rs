@@ -75,8 +75,10 @@ pub fn check_jacobians(asm: &Assembler, st: &State, dcoef: f64, form: Constraint
                 1e-6 * (1.0 + st.y[j].abs())
             } else if dofs.is_state(j) {
                 // An element's state (a bristle deflection of 1e-4 m whose friction law
-                // bends within a fraction of that) moves relative to its own size.
-                1e-6 * (1e-6 + st.yp[j].abs()).max((1e-6 + st.y[j].abs()) / dcoef)
+                // bends within a fraction of that) moves relative to its own size, and by at
+                // least 1e-9 (a modal coordinate at zero in a position constraint scaled by
+                // 1/c: a 1e-12 step left 5e-5 of rounding in MBDyn's modal beam_2.mbd).
+                1e-6 * (1e-6 + st.yp[j].abs()).max((1e-3 + st.y[j].abs()) / dcoef)
             } else {
                 1e-6 * (1.0 + st.yp[j].abs()).max((1.0 + st.y[j].abs()) / dcoef)
             };

@@ -18,6 +18,7 @@
 //! [`ConstraintForm`]: crate::model::ConstraintForm
 
 mod accelerations;
+mod modal_rates;
 mod assembled_check;
 mod assembly;
 mod check;
@@ -31,6 +32,7 @@ mod sparse;
 mod state;
 
 pub use accelerations::node_accelerations;
+pub use modal_rates::{modal_coordinates, ModalRow};
 pub use assembled_check::{check_assembled, AssembledMismatch};
 pub use assembly::{Assembler, Coefficients};
 pub use check::{check_jacobians, JacobianMismatch};

@@ -246,6 +246,11 @@ pub trait Outputs {
     fn private_data(&self, _name: &str) -> Option<PrivateDatum> {
         None
     }
+    /// Its modal coordinates (a modal body's): `(own unknown k of q, the mode's number in
+    /// the FEM file)` each, for MBDyn's `.mod` file ([`crate::dae::modal_coordinates`]).
+    fn modal_coordinates(&self) -> Vec<(usize, usize)> {
+        Vec::new()
+    }
     /// Internal forces and deformation at the element's evaluation points (beams), for
     /// output; none for other elements.
     fn sections(&self, _s: &dyn ElementState) -> Vec<SectionState> {
@@ -268,6 +273,18 @@ pub trait Element: Send + Sync {
     /// constraint unless the element says otherwise.
     fn unknown_kind(&self, _k: usize) -> UnknownKind {
         UnknownKind::Multiplier
+    }
+    /// Its own unknowns that are generalized momenta (a modal body's `p = ∂T/∂q̇`), each
+    /// with its own equation the definition `p − p(…) = 0` (unit coefficient on `p`): they
+    /// are set from their definitions wherever dynamic nodes' momenta are
+    /// (`solve::newton::momenta_from_definitions`). None by default.
+    fn momentum_unknowns(&self) -> std::ops::Range<usize> {
+        0..0
+    }
+    /// Initial values of its own differential unknowns that do not start at zero: `(k, y,
+    /// ẏ)` (a modal body's initial modal coordinates and rates). None by default.
+    fn initial_unknowns(&self) -> Vec<(usize, f64, f64)> {
+        Vec::new()
     }
     /// Whether a drive of the element reads the model's state (MBDyn's `model::` functions
     /// in a `string` drive): its residual then depends on nodes through the drive, and its

@@ -37,6 +37,7 @@ mod internal_force;
 mod invariant_hinge;
 mod joint;
 mod law_functions;
+pub mod modal;
 mod nlsf_rod;
 mod prestrained_rod;
 pub mod private_data;
@@ -51,6 +52,7 @@ pub use beam::{shape as beam_shape, Beam2, Beam3, BeamError, BeamUpdate, BeamNod
 pub use beam_slider::{BeamSlider, SliderBeam, SliderKind};
 pub use bistop_rod::{BistopRod, BistopStatus};
 pub use body::RigidBody;
+pub use modal::{Interface as ModalInterface, ModalBody, ModalFrame};
 pub use variable_body::VariableBody;
 pub use frame_motion::{FrameMotion, FrameState};
 pub use cardano::CardanoHinge;

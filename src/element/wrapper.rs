@@ -36,6 +36,12 @@ pub trait ElementWrapper: Send + Sync {
     fn unknown_kind(&self, k: usize) -> UnknownKind {
         self.inner().unknown_kind(k)
     }
+    fn momentum_unknowns(&self) -> std::ops::Range<usize> {
+        self.inner().momentum_unknowns()
+    }
+    fn initial_unknowns(&self) -> Vec<(usize, f64, f64)> {
+        self.inner().initial_unknowns()
+    }
     fn reads_state(&self) -> bool {
         self.inner().reads_state()
     }
@@ -89,6 +95,12 @@ impl<W: ElementWrapper> Element for W {
     }
     fn unknown_kind(&self, k: usize) -> UnknownKind {
         ElementWrapper::unknown_kind(self, k)
+    }
+    fn momentum_unknowns(&self) -> std::ops::Range<usize> {
+        ElementWrapper::momentum_unknowns(self)
+    }
+    fn initial_unknowns(&self) -> Vec<(usize, f64, f64)> {
+        ElementWrapper::initial_unknowns(self)
     }
     fn reads_state(&self) -> bool {
         ElementWrapper::reads_state(self)

@@ -226,7 +226,7 @@ pub fn parse_fem(text: &str, file: &Path) -> Result<FemFile, FemError> {
         let (line, n) = records[k];
         let (start, stop) = body(k);
         let toks = tokens(start, stop, true);
-        let place = RecordPlace { file, record: n, line: line + 1, stop_line: stop };
+        let place = RecordPlace { file, record: n, line: line + 1, stop_line: stop, warnings: Default::default() };
         match n {
             2 => {
                 let labels = place.take(&toks, h.nodes, "FEM node labels", |t| Ok(t.text.to_string()))?;
@@ -277,6 +277,7 @@ pub fn parse_fem(text: &str, file: &Path) -> Result<FemFile, FemError> {
             }
             _ => unreachable!("record 1 is first, numbers are 1..=13"),
         }
+        fem.warnings.extend(place.warnings.into_inner());
     }
     let missing: Vec<String> = [2, 5, 6, 7, 8, 9, 10].iter().filter(|n| !records.iter().any(|r| r.1 == **n)).map(|n| n.to_string()).collect();
     if !missing.is_empty() {
@@ -293,6 +294,9 @@ struct RecordPlace<'a> {
     /// Line of the record's title (1-based) and index of the line that ends it.
     line: usize,
     stop_line: usize,
+    /// Zeros after the announced values, which MBDyn skips (femgen writes a row of zeros
+    /// after record 11's in MBDyn's own tests/joints/modal/beam/beam.fem).
+    warnings: std::cell::RefCell<Vec<String>>,
 }
 
 impl RecordPlace<'_> {
@@ -301,7 +305,8 @@ impl RecordPlace<'_> {
     }
 
     /// The first `n` values of the record, each parsed by `parse`; fewer, or more numbers
-    /// after them, is an error naming the record and the header's count.
+    /// after them (but zeros, a warning), is an error naming the record and the header's
+    /// count.
     fn take<T>(&self, toks: &[Token], n: usize, what: &str, parse: impl Fn(&Token) -> Result<T, FemError>) -> Result<Vec<T>, FemError> {
         if toks.len() < n {
             let (line, column) = toks.last().map_or((self.line, 1), |t| (t.line, t.column));
@@ -309,7 +314,11 @@ impl RecordPlace<'_> {
             return Err(self.err(line, column, format!("record group {} (line {}) holds {} of the {n} {what} the header announces{end}", self.record, self.line, toks.len())));
         }
         if let Some(t) = toks.get(n).filter(|t| t.text.parse::<f64>().is_ok()) {
-            return Err(self.err(t.line, t.column, format!("record group {} (line {}) holds more than the {n} {what} the header announces: '{}' is one too many (do the header's counts match the data?)", self.record, self.line, t.text)));
+            let extra: Vec<&Token> = toks[n..].iter().take_while(|t| t.text.parse::<f64>().is_ok()).collect();
+            if !extra.iter().all(|t| t.text.parse::<f64>() == Ok(0.0)) {
+                return Err(self.err(t.line, t.column, format!("record group {} (line {}) holds more than the {n} {what} the header announces: '{}' is one too many (do the header's counts match the data?)", self.record, self.line, t.text)));
+            }
+            self.warnings.borrow_mut().push(format!("{}:{}:{}: record group {} holds {} zero(s) after the {n} {what} the header announces; romdyn, as MBDyn 1.7.3, skips them", self.file.display(), t.line, t.column, self.record, extra.len()));
         }
         toks[..n].iter().map(parse).collect()
     }

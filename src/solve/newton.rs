@@ -137,7 +137,8 @@ impl NewtonWorkspace {
 }
 
 /// Sets each dynamic node's momenta so that its momentum definition rows vanish (they read
-/// `β − Σ(…)`, linear in β and γ with unit coefficients).
+/// `β − Σ(…)`, linear in β and γ with unit coefficients), and the elements' momenta
+/// ([`crate::element::Element::momentum_unknowns`]) likewise.
 pub fn momenta_from_definitions(asm: &Assembler, st: &mut State, form: ConstraintForm) {
     let dofs = &asm.dofs;
     let r = asm.residual(st, form, 1.0);
@@ -147,6 +148,12 @@ pub fn momenta_from_definitions(asm: &Assembler, st: &mut State, form: Constrain
             for k in 0..6 {
                 st.y[f + 6 + k] -= r[f + k];
             }
+        }
+    }
+    for (e, element) in asm.model.elements.iter().enumerate() {
+        for k in element.momentum_unknowns() {
+            let j = dofs.element_first[e] + k;
+            st.y[j] -= r[j];
         }
     }
 }

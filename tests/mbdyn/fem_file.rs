@@ -110,3 +110,18 @@ fn every_truncation_is_read_or_refused() {
         }
     }
 }
+
+#[test]
+fn zeros_after_a_record_are_skipped_with_a_warning_as_mbdyn_does() {
+    // femgen wrote a twelfth row of zeros after record 11's eleven nodes in MBDyn's own
+    // tests/joints/modal/beam/beam.fem; MBDyn 1.7.3 reads the announced values and skips the
+    // rest. Zeros change nothing, so romdyn skips them too, with a warning; any other value
+    // stays an error (bad_files_are_refused_with_their_place, record 10).
+    let text = original().replace("  1 1 1 0.1 0.2 0.3\n** RECORD GROUP 13", "  1 1 1 0.1 0.2 0.3\n  0.0 0 0 0 0 0\n** RECORD GROUP 13");
+    let fem = parse_fem(&text, Path::new("f.fem")).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(fem.lumped_inertia.as_ref().map(|l| l.len()), Some(3));
+    assert!(fem.warnings.iter().any(|w| w.starts_with("f.fem:45:3: record group 11 holds 6 zero(s) after the 18 lumped inertia components")), "{:?}", fem.warnings);
+    let text = original().replace("  1 1 1 0.1 0.2 0.3\n** RECORD GROUP 13", "  1 1 1 0.1 0.2 0.3\n  0 0 1e-9\n** RECORD GROUP 13");
+    let err = parse_fem(&text, Path::new("f.fem")).err().expect("a non-zero extra value is refused").to_string();
+    assert!(err.starts_with("f.fem:45:3: record group 11 (line 41) holds more than the 18 lumped inertia components"), "{err}");
+}

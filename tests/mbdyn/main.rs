@@ -16,6 +16,7 @@ mod examples_run;
 mod fem_file;
 mod initial_assembly;
 mod mbdyn_compat;
+mod modal_joint;
 mod mbdyn_displacement_forces;
 mod mbdyn_element_drives;
 mod mbdyn_errors;

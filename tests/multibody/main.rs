@@ -18,6 +18,7 @@ mod function_hinge;
 mod hinge_friction;
 mod integrator_bathe;
 mod jacobian_check;
+mod modal_element;
 mod joint_friction;
 mod mbdyn_beam;
 mod mbdyn_joint_equations;

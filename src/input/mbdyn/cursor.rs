@@ -81,6 +81,11 @@ impl<'a> Cursor<'a> {
         self.st.args.get(self.pos).map(|a| a.text.as_str())
     }
 
+    /// Whether the next argument is a double-quoted string.
+    pub fn next_is_string(&self) -> bool {
+        matches!(self.st.args.get(self.pos).map(|a| &a.value), Some(Value::Str(_)))
+    }
+
     /// The next argument read as a keyword, if it can be one.
     pub fn peek_keyword(&self) -> Option<&'a str> {
         self.st.args.get(self.pos).and_then(|a| a.keyword.as_deref())

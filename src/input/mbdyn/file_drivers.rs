@@ -102,7 +102,7 @@ pub fn file_driver(st: &Statement, c: &mut Cursor, drivers: &mut FileDrivers) ->
 
 /// The data file's path: as written when absolute, else relative to the folder of the input
 /// file that names it.
-fn data_path(c: &Cursor, at: Span, name: &str) -> std::path::PathBuf {
+pub(super) fn data_path(c: &Cursor, at: Span, name: &str) -> std::path::PathBuf {
     let p = Path::new(name);
     if p.is_absolute() {
         return p.to_path_buf();

@@ -20,16 +20,17 @@ use crate::element::{Anchor, AngularAcceleration, ViscousBody, RevoluteHingeFric
 use crate::kinematics::{Mat3, Vec3};
 use crate::model::{Label, StructuralNode};
 
-const SUPPORTED: [&str; 44] = [
+const SUPPORTED: [&str; 45] = [
+    "modal",
     "brake", "viscous body", "angular acceleration", "gimbal rotation", "pin", "beam slider", "screw", "linear velocity", "angular velocity", "revolute rotation", "cardano hinge", "universal hinge", "cardano pin", "universal pin", "cardano rotation", "universal rotation", "axial rotation", "drive displacement", "drive displacement pin", "imposed displacement", "imposed displacement pin", "drive hinge", "deformable joint", "deformable axial joint", "invariant deformable hinge", "clamp", "revolute hinge", "plane hinge", "revolute pin", "plane pin", "spherical hinge", "spherical pin", "total joint", "total pin joint",
     "deformable displacement joint", "deformable displacement hinge", "deformable hinge", "rod", "rod with offset", "in line", "in plane", "prismatic",
     "distance", "distance with offset",
 ];
 
 /// MBDyn joints romdyn names in its "not supported" error.
-const OTHER_JOINTS: [&str; 10] = [
+const OTHER_JOINTS: [&str; 9] = [
     "coincidence", "imposed orientation",
-    "invariant deformable displacement joint", "invariant deformable joint", "linear acceleration", "modal",
+    "invariant deformable displacement joint", "invariant deformable joint", "linear acceleration",
     "plane displacement", "plane displacement pin", "point contact", "rod bezier",
 ];
 
@@ -108,6 +109,7 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
     };
     let element: Box<dyn Element> = match kind {
         "clamp" => Box::new(clamp(label, c, ctx)?),
+        "modal" => Box::new(super::modal::modal(label, c, ctx)?),
         "beam slider" => Box::new(super::beam_slider::beam_slider(label, c, ctx)?),
         "screw" => super::screw::screw(label, c, ctx)?,
         "revolute hinge" | "plane hinge" | "spherical hinge" => {

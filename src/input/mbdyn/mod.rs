@@ -31,6 +31,7 @@ mod joints;
 mod total_joint;
 mod laws;
 mod lexer;
+mod modal;
 mod model;
 mod model_namespace;
 mod nodes;

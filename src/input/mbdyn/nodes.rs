@@ -37,6 +37,8 @@ pub struct NodeEntry {
     pub accelerations: Option<bool>,
     /// A `static displacement` or `dynamic displacement` node (no rotations).
     pub displacement: bool,
+    /// A `modal` node (a dynamic node that a `modal` joint's floating frame follows).
+    pub modal: bool,
 }
 
 /// The structural nodes, in file order, and where each label is in it (a search through
@@ -76,7 +78,9 @@ pub fn node_statement(st: &Statement, c: &mut Cursor, frames: &Frames, nodes: &m
     let kind = c.keyword("the node type", &["static", "dynamic", "dummy", "modal", "static displacement", "dynamic displacement"])?;
     let ctx = Context::global(frames, st.seq);
     let (node, dummy, source, orientation) = match kind {
-        "static" | "dynamic" => {
+        // A modal node is a dynamic node (strnode.cc, `ModalNode`: a `DynamicStructNode`
+        // with velocities as unknowns where romdyn's has momenta; the same motion).
+        "static" | "dynamic" | "modal" => {
             let (node, orientation) = structural(c, &ctx, label, if kind == "static" { NodeKind::Static } else { NodeKind::Dynamic })?;
             (node, false, NodeSource::Node(label), orientation)
         }
@@ -88,8 +92,9 @@ pub fn node_statement(st: &Statement, c: &mut Cursor, frames: &Frames, nodes: &m
             let node = displacement(c, &ctx, label, if kind == "static displacement" { NodeKind::Static } else { NodeKind::Dynamic })?;
             (node, false, NodeSource::Node(label), None)
         }
-        _ => return Err(c.error_at(kind_span, format!("'{kind}' structural nodes are not supported by romdyn (supported: static, dynamic, dummy, static displacement, dynamic displacement)"))),
+        _ => return Err(c.error_at(kind_span, format!("'{kind}' structural nodes are not supported by romdyn (supported: static, dynamic, modal, dummy, static displacement, dynamic displacement)"))),
     };
+    let modal = kind == "modal";
     let (output, assembly, accelerations) = settings(c, kind)?;
     let displacement = kind.ends_with("displacement");
     // strnode.cc, `ReadStructNode`: after the settings, anything but ';' stops MBDyn too
@@ -99,7 +104,7 @@ pub fn node_statement(st: &Statement, c: &mut Cursor, frames: &Frames, nodes: &m
         e
     })?;
     nodes.1.entry(label).or_insert(nodes.0.len());
-    nodes.0.push(NodeEntry { node, dummy, span: st.span, source, output, orientation, assembly, name, accelerations, displacement });
+    nodes.0.push(NodeEntry { node, dummy, span: st.span, source, output, orientation, assembly, name, accelerations, displacement, modal });
     Ok(())
 }
 
@@ -265,7 +270,7 @@ fn settings(c: &mut Cursor, kind: &str) -> Result<(Option<bool>, Option<NodeAsse
         } else if c.accept("output") {
             output = Some(c.flag("output flag")?);
         } else if let (span, true) = (c.here(), c.accept("accelerations")) {
-            if kind != "dynamic" && kind != "dynamic displacement" {
+            if !matches!(kind, "dynamic" | "dynamic displacement" | "modal") {
                 return Err(c.error_at(span, format!("'accelerations' is read on dynamic structural nodes only, not on a {kind} node (MBDyn 1.7.3 stops there too: \"semicolon expected\"; its static nodes have no momenta to differentiate, a dummy node writes accelerations when its base node does)")));
             }
             if accelerations.is_some() {
