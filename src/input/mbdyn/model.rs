@@ -216,6 +216,9 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
     for n in nodes.structural() {
         b.node(n.clone());
     }
+    for n in &nodes.2 {
+        b.scalar_node(n.node.clone());
+    }
     if let Some(f) = &frame_motion {
         b.frame_motion(f.clone());
     }
@@ -229,6 +232,11 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
     }
     let mut found: HashMap<&'static str, (usize, Span)> = HashMap::new();
     found.insert("structural nodes", (nodes.0.len(), block(doc, "nodes").map_or(first, |b| b.span)));
+    for (kind, counter) in [(crate::model::ScalarNodeKind::Abstract, "abstract nodes"), (crate::model::ScalarNodeKind::Electric, "electric nodes"), (crate::model::ScalarNodeKind::Hydraulic, "hydraulic nodes")] {
+        if let Some(first_of_kind) = nodes.2.iter().find(|n| n.node.id.kind == kind) {
+            found.insert(counter, (nodes.2.iter().filter(|n| n.node.id.kind == kind).count(), first_of_kind.span));
+        }
+    }
     found.insert("parameter nodes", (parameter_nodes.len(), block(doc, "nodes").map_or(first, |b| b.span)));
     if let Some(b) = block(doc, "drivers") {
         found.insert("file drivers", (cards.drives.file_drivers.len(), b.span));

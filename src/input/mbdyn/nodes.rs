@@ -13,6 +13,7 @@ use super::cursor::Cursor;
 use super::diagnostic::{MbdynError, Span};
 use super::parser::{known, Statement};
 use super::references::{Context, Frame, Frames};
+use super::scalar_nodes::{scalar_node, ScalarEntry, SCALAR_TYPES};
 use crate::model::{Label, NodeAssembly, NodeKind, NodeSource, OrientationOutput, StructuralNode};
 
 /// A node of the file: a structural node of the model, or a dummy node.
@@ -40,9 +41,10 @@ pub struct NodeEntry {
 }
 
 /// The structural nodes, in file order, and where each label is in it (a search through
-/// the list at every node made N nodes O(N²) to read: 1.6 min for 10^5).
+/// the list at every node made N nodes O(N²) to read: 1.6 min for 10^5); then the scalar
+/// nodes (abstract, electric, hydraulic), in file order.
 #[derive(Default)]
-pub struct Nodes(pub Vec<NodeEntry>, std::collections::HashMap<Label, usize>);
+pub struct Nodes(pub Vec<NodeEntry>, std::collections::HashMap<Label, usize>, pub Vec<ScalarEntry>);
 
 impl Nodes {
     pub fn find(&self, label: Label) -> Option<&NodeEntry> {
@@ -63,6 +65,11 @@ pub fn node_statement(st: &Statement, c: &mut Cursor, frames: &Frames, nodes: &m
     }
     match known(&st.keyword, &NODE_TYPES) {
         Some("structural") => {}
+        Some(kind) if SCALAR_TYPES.contains(&kind) => {
+            let entry = scalar_node(kind, c, st.span, &nodes.2)?;
+            nodes.2.push(entry);
+            return c.finish();
+        }
         Some(other) => return Err(c.error_at(st.span, format!("node type '{other}' is not supported by romdyn"))),
         None => return Err(c.error_at(st.span, format!("unknown node type '{}' (MBDyn's are {})", st.keyword, NODE_TYPES.join(", ")))),
     }

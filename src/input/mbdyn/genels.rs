@@ -1,0 +1,163 @@
+//! The `genel` cards romdyn builds (input manual §Genel Element; genel.cc, `ReadGenel`):
+//! `clamp`, `spring support`, `cross spring support`, `mass`, `scalar filter` and `state
+//! space SISO`; and the abstract force (`force: L, abstract, NODE, TYPE, DRIVE`, §Abstract
+//! force). Every other genel is refused by name.
+
+use super::cursor::Cursor;
+use super::diagnostic::MbdynError;
+use super::element_context::ElementContext;
+use super::scalar_nodes::scalar_dof;
+use crate::element::{controllable_form, observable_form, AbstractForce, Element, ScalarClamp, ScalarInput, ScalarLaw, ScalarMass, ScalarSpring, StateSpaceSiso};
+use crate::model::Label;
+
+/// The genels of MBDyn 1.7.3 romdyn does not build (named in the refusal).
+const OTHER_GENELS: [&str; 7] = ["distance", "spring", "state space MIMO", "swashplate", "rotor trim", "take off", "inline"];
+
+/// `genel: LABEL, TYPE, …` after the label.
+pub fn genel(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<dyn Element>, MbdynError> {
+    let span = c.here();
+    let supported = ["clamp", "spring support", "cross spring support", "mass", "scalar filter", "state space SISO"];
+    if let Some(k) = c.accept_any(&OTHER_GENELS) {
+        return Err(c.error_at(span, format!("genel type '{k}' is not supported by romdyn (supported: {})", supported.join(", "))));
+    }
+    let kind = c.keyword("the genel type", &supported)?;
+    let scalars = &ctx.nodes.2;
+    let what = format!("genel {label} ({kind})");
+    let e: Box<dyn Element> = match kind {
+        "clamp" => {
+            let (dof, _) = scalar_dof(c, scalars, &what, true)?;
+            Box::new(ScalarClamp { label, dof, drive: super::drives::drive(c, ctx.drives, ctx.seq)? })
+        }
+        "spring support" | "cross spring support" => {
+            let row = if kind == "cross spring support" { Some(scalar_dof(c, scalars, &what, true)?.0.node) } else { None };
+            let col_span = c.here();
+            let (col, differential) = scalar_dof(c, scalars, &what, true)?;
+            if col.derivative || !differential {
+                return Err(c.error_at(col_span, format!("{what}: the algebraic value of a differential node is required (MBDyn 1.7.3: \"illegal order … for ScalarDof\")")));
+            }
+            let law = scalar_law(c, ctx, &what)?;
+            let mut x0 = 0.0;
+            if kind == "spring support" && c.accept("position") {
+                x0 = if c.accept("from node") { scalars.iter().find(|e| e.node.id == col.node).map_or(0.0, |e| e.node.value) } else { c.real("reference value X0")? };
+            }
+            Box::new(ScalarSpring { label, row: row.unwrap_or(col.node), col: col.node, law, x0 })
+        }
+        "mass" => {
+            let dof_span = c.here();
+            let (dof, differential) = scalar_dof(c, scalars, &what, true)?;
+            if dof.derivative || !differential {
+                return Err(c.error_at(dof_span, format!("{what}: the algebraic value of a differential node is required (input manual §Mass)")));
+            }
+            Box::new(ScalarMass { label, node: dof.node, mass: super::drives::drive(c, ctx.drives, ctx.seq)? })
+        }
+        _ => state_space(label, kind, c, ctx, &what)?,
+    };
+    if c.accept("output") {
+        c.flag("output flag")?;
+    }
+    Ok(e)
+}
+
+/// A 1-D linear law (`linear elastic`, `linear viscous`, `linear viscoelastic`, with
+/// `prestress` and `prestrain`).
+fn scalar_law(c: &mut Cursor, ctx: &ElementContext, what: &str) -> Result<ScalarLaw, MbdynError> {
+    let span = c.here();
+    let law = super::laws::linear_law(c, 1, ctx.laws, ctx.drives, ctx.seq)?;
+    if law.bistop.is_some() {
+        return Err(c.error_at(span, format!("{what}: a bistop law on a genel is not supported by romdyn (linear elastic, viscous and viscoelastic laws are)")));
+    }
+    Ok(ScalarLaw { stiffness: law.stiffness[(0, 0)], viscosity: law.viscosity[(0, 0)], prestrain: law.prestrain[0], prestress: law.prestress[0] })
+}
+
+/// `scalar filter, OUT, {[node dof,] IN | drive, DRIVE}, [canonical form, …,] ND, a_1 … a_ND,
+/// NN, b_0 … b_NN [, gain, G] [, balance, yes|no]` and `state space SISO, OUT, {…},
+/// ORDER, [matrix E, …,] matrix A, …, matrix B, …, matrix C, … [, matrix D, D]
+/// [, balance, …]` (genel.cc). `balance` scales the states (MBDyn's dgebal), which changes
+/// neither the transfer function nor the output: romdyn reads it and keeps the states
+/// unscaled.
+fn state_space(label: Label, kind: &'static str, c: &mut Cursor, ctx: &ElementContext, what: &str) -> Result<Box<dyn Element>, MbdynError> {
+    let scalars = &ctx.nodes.2;
+    let out_span = c.here();
+    let (output, _) = scalar_dof(c, scalars, what, true)?;
+    if output.derivative {
+        return Err(c.error_at(out_span, format!("{what}: the output must be a node's algebraic value (romdyn writes the output equation on the value)")));
+    }
+    let input = if c.accept("drive") {
+        ScalarInput::Drive(super::drives::drive(c, ctx.drives, ctx.seq)?)
+    } else {
+        c.accept("node dof");
+        ScalarInput::Dof(scalar_dof(c, scalars, what, true)?.0)
+    };
+    if let ScalarInput::Dof(d) = &input
+        && d.node == output.node
+    {
+        return Err(c.error_at(out_span, format!("{what}: the input and the output are the same node, {}", d.node)));
+    }
+    let (a, b, cc, d) = if kind == "scalar filter" {
+        let observable = if c.accept("canonical form") { c.keyword("the canonical form", &["controllable", "observable"])? == "observable" } else { false };
+        let nd_span = c.here();
+        let nd = c.count("output order (denominator degree)")?;
+        if nd < 1 || nd > 64 {
+            return Err(c.error_at(nd_span, format!("{what}: the output order must be 1 to 64, found {nd}")));
+        }
+        let den = (1..=nd).map(|i| c.real(&format!("denominator coefficient a_{i}"))).collect::<Result<Vec<_>, _>>()?;
+        let nn_span = c.here();
+        let nn = c.count("input order (numerator degree)")?;
+        if nn > nd {
+            return Err(c.error_at(nn_span, format!("{what}: the input order {nn} exceeds the output order {nd}: the filter must be proper")));
+        }
+        let mut num = vec![0.0; nd + 1];
+        for (i, slot) in num.iter_mut().enumerate().skip(nd - nn) {
+            *slot = c.real(&format!("numerator coefficient b_{}", i - (nd - nn)))?;
+        }
+        if c.accept("gain") {
+            let g = c.real("gain")?;
+            num.iter_mut().for_each(|x| *x *= g);
+        }
+        if observable { observable_form(&den, &num) } else { controllable_form(&den, &num) }
+    } else {
+        matrices(c, what)?
+    };
+    if c.accept("balance") {
+        c.flag("balance (yes or no)")?;
+    }
+    if kind == "state space SISO" && c.accept("value") {
+        return Err(c.error(format!("{what}: initial values of the states ('value, …') are not supported by romdyn (its genel states start at zero)")));
+    }
+    Ok(Box::new(StateSpaceSiso { label, output: output.node, input, a, b, c: cc, d, keyword: kind }))
+}
+
+/// `ORDER, [matrix E, …,] matrix A, a_11, …, matrix B, …, matrix C, … [, matrix D, D]` of a
+/// `state space SISO` genel (`matrix E`, a descriptor form, is refused).
+fn matrices(c: &mut Cursor, what: &str) -> Result<(Vec<f64>, Vec<f64>, Vec<f64>, f64), MbdynError> {
+    let n_span = c.here();
+    let n = c.count("state space order")?;
+    if n < 1 || n > 64 {
+        return Err(c.error_at(n_span, format!("{what}: the order must be 1 to 64, found {n}")));
+    }
+    if c.accept("matrix E") {
+        return Err(c.error(format!("{what}: 'matrix E' (a descriptor state space) is not supported by romdyn")));
+    }
+    let read = |c: &mut Cursor, name: &'static str, len: usize| -> Result<Vec<f64>, MbdynError> {
+        c.keyword(&format!("'{name}'"), &[name])?;
+        (0..len).map(|k| c.real(&format!("{name} entry {}", k + 1))).collect()
+    };
+    let a = read(c, "matrix A", n * n)?;
+    let b = read(c, "matrix B", n)?;
+    let cc = read(c, "matrix C", n)?;
+    let mut cc = cc;
+    let mut d = if c.accept("matrix D") { c.real("matrix D")? } else { 0.0 };
+    if c.accept("gain") {
+        let g = c.real("gain")?;
+        cc.iter_mut().for_each(|x| *x *= g);
+        d *= g;
+    }
+    Ok((a, b, cc, d))
+}
+
+/// `force: LABEL, abstract, NODE, TYPE, DRIVE` after `abstract` (no order: the force acts on
+/// the node's equation).
+pub fn abstract_force(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<dyn Element>, MbdynError> {
+    let (dof, _) = scalar_dof(c, &ctx.nodes.2, &format!("abstract force {label}"), false)?;
+    Ok(Box::new(AbstractForce { label, node: dof.node, value: super::drives::drive(c, ctx.drives, ctx.seq)? }))
+}

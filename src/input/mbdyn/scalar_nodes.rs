@@ -1,0 +1,118 @@
+//! Scalar nodes in the `nodes` block (input manual §Nodes: Electric Node, Abstract Node,
+//! Hydraulic Node; dataman3.cc, `ReadScalarAlgebraicNode`, `ReadScalarDifferentialNode`):
+//!
+//! ```text
+//! abstract: LABEL [, name, "…"], [algebraic | differential] [, [value,] X [, derivative, XP]]
+//!     [, scale, …] [, output, FLAG];
+//! electric: LABEL, [[value,] X [, derivative, XP]] …;      (differential)
+//! hydraulic: LABEL, [[value,] P] …;                          (algebraic, a pressure)
+//! ```
+//!
+//! and the scalar degrees of freedom (`ScalarDof`, dataman3.cc `ReadScalarDof`) that genels
+//! and abstract forces read: `LABEL, TYPE [, algebraic | differential | order, N]`, the
+//! order being read (and required) on a differential node only.
+
+use super::cursor::Cursor;
+use super::diagnostic::{MbdynError, Span};
+use crate::element::ScalarDof;
+use crate::model::{ScalarNode, ScalarNodeId, ScalarNodeKind};
+
+/// A scalar node of the file.
+#[derive(Clone, Debug)]
+pub struct ScalarEntry {
+    pub node: ScalarNode,
+    pub span: Span,
+    /// `output, yes | no` (`None`: control data's `default output`).
+    pub output: Option<bool>,
+    pub name: Option<String>,
+}
+
+/// The node types that are scalar nodes with an unknown.
+pub const SCALAR_TYPES: [&str; 3] = ["abstract", "electric", "hydraulic"];
+
+fn kind_of(keyword: &str) -> ScalarNodeKind {
+    match keyword {
+        "electric" => ScalarNodeKind::Electric,
+        "hydraulic" => ScalarNodeKind::Hydraulic,
+        _ => ScalarNodeKind::Abstract,
+    }
+}
+
+/// Reads one `abstract`, `electric` or `hydraulic` node card (its keyword is `keyword`).
+pub fn scalar_node(keyword: &'static str, c: &mut Cursor, span: Span, defined: &[ScalarEntry]) -> Result<ScalarEntry, MbdynError> {
+    let kind = kind_of(keyword);
+    let label_span = c.here();
+    let label = c.label(&format!("{keyword} node label"))?;
+    let id = ScalarNodeId { kind, label };
+    if let Some(prev) = defined.iter().find(|e| e.node.id == id) {
+        return Err(c.error_at(label_span, format!("{id} is defined twice (first at line {})", prev.span.line)));
+    }
+    let name = if c.accept("name") { Some(c.string("node name")?) } else { None };
+    let differential = match kind {
+        ScalarNodeKind::Abstract => !matches!(c.accept_any(&["algebraic", "differential"]), Some("algebraic")),
+        ScalarNodeKind::Electric => true,
+        ScalarNodeKind::Hydraulic => false,
+    };
+    let (mut value, mut derivative) = (0.0, 0.0);
+    // MBDyn reads a value when an argument follows (`value` optional), then, on a
+    // differential node, `derivative, XP` only after a value.
+    if c.accept("value") || c.next_is_number() {
+        value = c.real(&format!("initial value of {id}"))?;
+        if differential && c.accept("derivative") {
+            derivative = c.real(&format!("initial derivative of {id}"))?;
+        }
+    }
+    if c.accept("derivative") {
+        let what = if differential { "a derivative is read after a value ('value, X, derivative, XP')" } else { "an algebraic node has no derivative" };
+        return Err(c.error(format!("{id}: {what} (MBDyn 1.7.3 reads 'derivative' only after 'value' on a differential node)")));
+    }
+    let mut output = None;
+    loop {
+        if c.accept("scale") {
+            if !c.accept("default") {
+                c.real("residual scale factor")?;
+            }
+        } else if c.accept("output") {
+            output = Some(c.flag("output flag")?);
+        } else {
+            break;
+        }
+    }
+    Ok(ScalarEntry { node: ScalarNode { id, differential, value, derivative }, span, output, name })
+}
+
+/// A scalar degree of freedom `LABEL, TYPE [, algebraic | differential]` of a scalar node in
+/// `nodes`; `order` whether an order is read on a differential node (MBDyn's `bOrder`; an
+/// abstract force reads none: it writes to the node's equation whatever the order).
+/// Degrees of freedom of structural nodes and parameter nodes are refused by name.
+pub fn scalar_dof(c: &mut Cursor, nodes: &[ScalarEntry], what: &str, order: bool) -> Result<(ScalarDof, bool), MbdynError> {
+    let span = c.here();
+    let label = c.label(&format!("{what}: node label"))?;
+    let type_span = c.here();
+    let keyword = c.keyword(&format!("{what}: the node type"), &["abstract", "electric", "hydraulic", "structural", "parameter", "thermal"])?;
+    if !SCALAR_TYPES.contains(&keyword) {
+        return Err(c.error_at(type_span, format!("{what}: a degree of freedom of a {keyword} node is not supported by romdyn (genels and abstract forces connect to abstract, electric and hydraulic nodes)")));
+    }
+    let id = ScalarNodeId { kind: kind_of(keyword), label };
+    let Some(node) = nodes.iter().find(|e| e.node.id == id) else {
+        return Err(c.error_at(span, format!("{what}: {id} is not defined")));
+    };
+    let differential = node.node.differential;
+    let mut derivative = false;
+    if order && differential {
+        let order_span = c.here();
+        derivative = match c.keyword(&format!("{what}: the order of differential {id} ('algebraic' for its value, 'differential' for its derivative)"), &["algebraic", "differential", "order"])? {
+            "differential" => true,
+            "order" => match c.integer("order (0 or 1)")? {
+                0 => false,
+                1 => true,
+                n => return Err(c.error_at(order_span, format!("{what}: order {n} of {id}: a scalar node has orders 0 (value) and 1 (derivative)"))),
+            },
+            _ => false,
+        };
+    }
+    if order && !differential && let Some(k) = c.peek_keyword().filter(|k| ["algebraic", "differential", "order"].iter().any(|o| super::parser::same_keyword(k, o))) {
+        return Err(c.error(format!("{what}: {id} is algebraic, and MBDyn 1.7.3 reads no order ('{k}') after an algebraic node's type (dataman3.cc, ReadScalarDof): remove it")));
+    }
+    Ok((ScalarDof { node: id, derivative }, differential))
+}

@@ -1,0 +1,147 @@
+//! Scalar nodes (abstract, electric, hydraulic) and the genels on them (issue 34): every
+//! genel's analytic Jacobian against central finite differences of its residual, the
+//! reader's cards, and a PID position loop written with genels (examples/pid_mass.mbd)
+//! whose closed-loop poles are the roots of its characteristic polynomial; a second-order
+//! Butterworth `scalar filter` (the input manual's example) with its poles and DC gain.
+
+use std::path::Path;
+
+use crate::common;
+use common::fixtures::Noise;
+use common::mbdyn::test_file;
+use faer::c64;
+use romdyn::analysis::Reference;
+use romdyn::dae::{check_jacobians, Assembler, NodeInput, NodeOutput, State};
+use romdyn::input::mbdyn::read_model;
+use romdyn::model::ConstraintForm;
+use romdyn::rom::ModeSelection;
+use romdyn::study::{EigenSettings, Ports, RomRequest, Study};
+
+#[test]
+fn every_genel_jacobian_matches_finite_differences() {
+    let m = read_model(&test_file("genels_all.mbd")).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(m.model.scalar_nodes.len(), 7);
+    assert_eq!(m.model.elements.len(), 11);
+    for form in [ConstraintForm::Plain, ConstraintForm::Scaled] {
+        let mut model = read_model(&test_file("genels_all.mbd")).unwrap().model;
+        model.constraint_form = form;
+        let asm = Assembler::new(&model);
+        let mut st = State::initial(&model, &asm.dofs);
+        let mut n = Noise(34);
+        st.t = 0.3;
+        for x in st.y.iter_mut().chain(st.yp.iter_mut()) {
+            *x += 0.5 * n.next();
+        }
+        let checked = check_jacobians(&asm, &st, 0.37, form);
+        assert_eq!(checked.len(), 11);
+        for w in checked {
+            // Central differences of residuals linear or sinusoidal in the unknowns: 1e-8.
+            assert!(w.relative_error < 1e-8, "{form:?}: {} d({})/d({}): analytic {:e}, fd {:e} (error {:e})", w.element, w.equation, w.unknown, w.analytic, w.finite_difference, w.relative_error);
+        }
+    }
+}
+
+/// The roots of `p[0] sⁿ + p[1] sⁿ⁻¹ + … + p[n]` as the eigenvalues of its companion matrix
+/// (nalgebra's real Schur form: independent of romdyn's QZ).
+fn roots(p: &[f64]) -> Vec<c64> {
+    let n = p.len() - 1;
+    let companion = nalgebra::DMatrix::from_fn(n, n, |i, j| if i == 0 { -p[j + 1] / p[0] } else if i == j + 1 { 1.0 } else { 0.0 });
+    companion.complex_eigenvalues().iter().map(|z| c64::new(z.re, z.im)).collect()
+}
+
+/// Each of `want` is within `tol · |w|` of one of `got` (and the counts agree).
+fn assert_same_roots(got: &[c64], want: &[c64], tol: f64) {
+    assert_eq!(got.len(), want.len(), "got {got:?}, want {want:?}");
+    for w in want {
+        let d = got.iter().map(|g| (g - w).norm()).fold(f64::INFINITY, f64::min);
+        assert!(d <= tol * w.norm(), "{w} not among {got:?} (closest {d:e})");
+    }
+}
+
+/// examples/pid_mass.mbd's numbers: m, c, k and the monic filter's A1, B0, B1, B2.
+struct Pid {
+    m: f64,
+    c: f64,
+    k: f64,
+    a1: f64,
+    b: [f64; 3],
+}
+
+const PID: Pid = {
+    let (m, k, c, kp, ki, kd, tau) = (2.0, 50.0, 0.4, 100.0, 200.0, 10.0, 0.01);
+    Pid { m, c, k, a1: 1.0 / tau, b: [(kp * tau + kd) / tau, (kp + ki * tau) / tau, ki / tau] }
+};
+
+impl Pid {
+    /// `P(s) = (m s² + c s + k)(s² + A1 s) + B0 s² + B1 s + B2`.
+    fn characteristic(&self) -> [f64; 5] {
+        [self.m, self.m * self.a1 + self.c, self.c * self.a1 + self.k + self.b[0], self.k * self.a1 + self.b[1], self.b[2]]
+    }
+    /// `X/F = D/P` and `U/F = N/P` at `s` (`D = s² + A1 s`, `N = B0 s² + B1 s + B2`).
+    fn responses(&self, s: c64) -> (c64, c64) {
+        let p = self.characteristic().iter().fold(c64::new(0.0, 0.0), |acc, &x| acc * s + x);
+        let d = s * s + s * self.a1;
+        let n = s * s * self.b[0] + s * self.b[1] + self.b[2];
+        (d / p, n / p)
+    }
+}
+
+fn pid_study() -> Study {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/pid_mass.mbd");
+    let m = read_model(&path).unwrap_or_else(|e| panic!("{e}"));
+    let inputs = vec!["1:abstract".parse::<NodeInput>().unwrap()];
+    let outputs = vec!["1:abstract".parse::<NodeOutput>().unwrap(), "2:abstract".parse::<NodeOutput>().unwrap()];
+    Study::of_model(m.model, &m.problem, Reference::Initial, &Ports::Nodes { inputs, outputs }, EigenSettings::default(), None).unwrap_or_else(|e| panic!("{e}")).0
+}
+
+#[test]
+fn pid_loop_closed_loop_poles_are_the_roots_of_its_characteristic_polynomial() {
+    let study = pid_study();
+    let dynamic: Vec<c64> = study.modal().modes.iter().filter(|m| m.kind == romdyn::eigen::ModeKind::Dynamic).map(|m| m.lambda).collect();
+    // Source: the characteristic polynomial of the loop (examples/pid_mass.mbd's header),
+    // its roots by nalgebra's companion matrix; tolerance 1e-8 relative.
+    assert_same_roots(&dynamic, &roots(&PID.characteristic()), 1e-8);
+}
+
+#[test]
+fn pid_loop_rom_keeps_the_poles_static_gains_and_responses_of_the_polynomial() {
+    let study = pid_study();
+    let rom = study.reduce(&RomRequest::new(ModeSelection::band(0.0, 100.0).unwrap())).unwrap_or_else(|e| panic!("{e}"));
+    assert_same_roots(&rom.ordinary.eigenvalues, &roots(&PID.characteristic()), 1e-8);
+    // Static gains from the polynomial: X/F = D(0)/P(0) = 0 (integral action), U/F =
+    // N(0)/P(0) = B2/B2 = 1 (the controller takes the whole disturbance).
+    let full = rom.static_gains.full.as_ref().unwrap();
+    let reduced = rom.static_gains.rom.as_ref().unwrap();
+    for g in [full, reduced] {
+        assert!(g[(0, 0)].abs() < 1e-10, "x/F = {:e}", g[(0, 0)]);
+        assert!((g[(1, 0)] - 1.0).abs() < 1e-8, "u/F = {}", g[(1, 0)]);
+    }
+    // The ROM's frequency responses against D/P and N/P at 0.3, 1 and 4 Hz, 1e-8 relative.
+    let freqs = [0.3, 1.0, 4.0];
+    for (h, f) in rom.ordinary.frequency_response(&freqs).iter().zip(freqs) {
+        let (x, u) = PID.responses(c64::new(0.0, 2.0 * std::f64::consts::PI * f));
+        for (got, want) in [(h[(0, 0)], x), (h[(1, 0)], u)] {
+            assert!((got - want).norm() < 1e-8 * want.norm(), "{f} Hz: {got} vs {want}");
+        }
+    }
+}
+
+#[test]
+fn butterworth_scalar_filter_has_its_poles_and_unit_dc_gain() {
+    // The input manual's 2nd-order Butterworth at 1 Hz (§Scalar filter), its input a node
+    // held at the port's force by a unit spring support: poles ωc (−1 ± j)/√2, DC gain 1.
+    let m = read_model(&test_file("scalar_filter_butterworth.mbd")).unwrap_or_else(|e| panic!("{e}"));
+    let inputs = vec!["101:abstract".parse::<NodeInput>().unwrap()];
+    let outputs = vec!["100:abstract".parse::<NodeOutput>().unwrap(), "102:abstract".parse::<NodeOutput>().unwrap()];
+    let study = Study::of_model(m.model, &m.problem, Reference::Initial, &Ports::Nodes { inputs, outputs }, EigenSettings::default(), None).unwrap_or_else(|e| panic!("{e}")).0;
+    let wc = 2.0 * std::f64::consts::PI;
+    let pole = c64::new(-wc / 2f64.sqrt(), wc / 2f64.sqrt());
+    let dynamic: Vec<c64> = study.modal().modes.iter().filter(|m| m.kind == romdyn::eigen::ModeKind::Dynamic).map(|m| m.lambda).collect();
+    // Two filters (the scalar filter and the same one as a state space SISO): each pair twice.
+    assert_same_roots(&dynamic, &[pole, pole.conj(), pole, pole.conj()], 1e-10);
+    let rom = study.reduce(&RomRequest::new(ModeSelection::band(0.0, 10.0).unwrap())).unwrap_or_else(|e| panic!("{e}"));
+    let g = rom.static_gains.rom.as_ref().unwrap();
+    for out in 0..2 {
+        assert!((g[(out, 0)] - 1.0).abs() < 1e-10, "DC gain of output {out}: {}", g[(out, 0)]);
+    }
+}
