@@ -62,6 +62,8 @@ pub struct ScalarNode {
     pub value: f64,
     /// Initial derivative (`derivative, …`; differential nodes).
     pub derivative: f64,
+    /// Whether a run writes its rows (`.abs`, `.ele`, `.prs`: [`crate::output::scalar_nodes`]).
+    pub output: bool,
 }
 
 /// A complete model. Build it with [`ModelBuilder`].

@@ -122,7 +122,7 @@ impl Sensor {
             Measurement::Relative { direction, .. } => unit(direction, &now[i].r, name)?.dot(&(position(self.points[1]) - position((i, f)))),
             Measurement::Velocity { direction, .. } => unit(direction, &reference[i].r, name)?.dot(&(now[i].xdot + now[i].omega.cross(&(now[i].r * f)))),
             Measurement::AngularVelocity { direction, .. } => unit(direction, &reference[i].r, name)?.dot(&now[i].omega),
-            Measurement::ScalarValue { .. } | Measurement::ScalarRate { .. } => unreachable!("Sensor::new refuses scalar outputs"),
+            Measurement::ScalarValue { node } | Measurement::ScalarRate { node } => return Err(ValidateError::Port(format!("'{name}': an output on {node} is not supported by validate yet"))),
         })
     }
 

@@ -145,3 +145,86 @@ fn butterworth_scalar_filter_has_its_poles_and_unit_dc_gain() {
         assert!((g[(out, 0)] - 1.0).abs() < 1e-10, "DC gain of output {out}: {}", g[(out, 0)]);
     }
 }
+
+/// The closed form of the loop's response to a unit step of the disturbance `F`: `X/F =
+/// D/P` and `U/F = N/P` in the controllable canonical realization of `1/P`, `x(t) = c_x
+/// A⁻¹ (e^{At} − I) b` (nalgebra's matrix exponential).
+fn pid_step_response(t: f64) -> (f64, f64) {
+    let p = PID.characteristic();
+    let a = nalgebra::DMatrix::from_fn(4, 4, |i, j| if i == 0 { -p[j + 1] / p[0] } else if i == j + 1 { 1.0 } else { 0.0 });
+    let mut b = nalgebra::DVector::zeros(4);
+    b[0] = 1.0 / p[0];
+    // D(s) = s² + A1 s, N(s) = B0 s² + B1 s + B2 on the states [s³, s², s, 1]/P.
+    let cx = nalgebra::RowDVector::from_row_slice(&[0.0, 1.0, PID.a1, 0.0]);
+    let cu = nalgebra::RowDVector::from_row_slice(&[0.0, PID.b[0], PID.b[1], PID.b[2]]);
+    let integral = a.clone().try_inverse().unwrap() * ((a * t).exp() - nalgebra::DMatrix::identity(4, 4)) * b;
+    ((cx * &integral)[0], (cu * &integral)[0])
+}
+
+#[test]
+fn pid_loop_step_response_follows_the_closed_form() {
+    // examples/pid_mass.mbd with a 1 N disturbance step, integrated by romdyn (MBDyn's ms
+    // method, ρ∞ = 0.6, h = 1 ms) to 0.5 s: position and control force against the closed
+    // form; tolerance 1e-3 of the peak (the method's error, O(h²) on the slowest mode).
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/pid_mass.mbd");
+    let text = std::fs::read_to_string(&path).unwrap().replace("set: real F0 = 0.;", "set: real F0 = 1.;").replace("final time: 2.;", "final time: 0.5;");
+    let m = common::mbdyn::read(&text);
+    let report = romdyn::analysis::run(&m.model, &m.problem, &mut ()).unwrap_or_else(|e| panic!("{e}"));
+    let st = &report.final_state;
+    let first = Assembler::new(&m.model).dofs.scalar_first;
+    let (x, u) = pid_step_response(st.t);
+    let peak = (0..50).map(|k| pid_step_response(0.01 * k as f64).0.abs()).fold(0.0, f64::max);
+    assert!((st.t - 0.5).abs() < 1e-12);
+    assert!((st.y[first] - x).abs() < 1e-3 * peak, "x(0.5 s) = {:e}, closed form {x:e} (peak {peak:e})", st.y[first]);
+    assert!((st.y[first + 1] - u).abs() < 1e-3, "u(0.5 s) = {}, closed form {u}", st.y[first + 1]);
+}
+
+#[test]
+fn dof_and_node_drive_callers_read_scalar_nodes() {
+    // An abstract force driven by 'dof' of a differential node's derivative and by 'node …
+    // string "x"' of an algebraic node: its contribution is 2 ẋ₁ + 3 x₂ (MBDyn's DofDriveCaller
+    // and the node's private data "x", "xP").
+    let text = common::mbdyn::file(
+        "abstract nodes: 3; forces: 2;",
+        "abstract: 1, differential, value, 0.25, derivative, -0.5;\nabstract: 2, algebraic, value, 0.75;\nabstract: 3;",
+        "force: 1, abstract, 3, abstract, dof, 1, abstract, differential, linear, 0., 2.;\nforce: 2, abstract, 3, abstract, node, 2, abstract, string, \"x\", linear, 0., 3.;",
+    );
+    let m = common::mbdyn::read(&text);
+    let asm = Assembler::new(&m.model);
+    let st = State::initial(&m.model, &asm.dofs);
+    let f = asm.residual(&st, ConstraintForm::Plain, 1.0);
+    // Residual `… − f` on node 3's equation.
+    assert!((f[asm.dofs.scalar_first + 2] + (2.0 * -0.5 + 3.0 * 0.75)).abs() < 1e-15, "{f:?}");
+    assert!(m.model.elements.iter().all(|e| e.reads_state()));
+}
+
+#[test]
+fn unsupported_scalar_cards_are_refused_by_name_and_place() {
+    // `file` puts control data on line 2, nodes from line 4, elements after `begin: elements;`.
+    let refused = |control: &str, nodes: &str, elements: &str| -> String {
+        let text = common::mbdyn::file(control, nodes, elements);
+        match romdyn::input::mbdyn::parse_text(&text, Path::new("m.mbd")).and_then(|d| romdyn::input::mbdyn::build(&d)) {
+            Err(e) => e.to_string(),
+            Ok(_) => panic!("accepted: {text}"),
+        }
+    };
+    let nodes = "abstract: 1;\nabstract: 2, algebraic;";
+    let cases = [
+        (refused("abstract nodes: 2; thermal nodes: 1;", nodes, ""), "m.mbd:2:", "control data declares thermal nodes, which romdyn does not support"),
+        (refused("abstract nodes: 3;", &format!("{nodes}\nthermal: 3;"), ""), "m.mbd:6:", "node type 'thermal' is not supported by romdyn"),
+        (refused("abstract nodes: 2;", "abstract: 1;\nabstract: 2, algebraic, value, 1., derivative, 2.;", ""), "m.mbd:5:", "an algebraic node has no derivative"),
+        (refused("abstract nodes: 2; electric elements: 1;", nodes, ""), "m.mbd:2:", "control data declares electric elements"),
+        (refused("abstract nodes: 2;", nodes, "electric: 1, resistor, 1, 2, 10.;"), "m.mbd:8:", "element type 'electric' is not supported by romdyn"),
+        (refused("abstract nodes: 2; genels: 1;", nodes, "genel: 1, distance, 1, abstract, algebraic, 2, abstract, const, 1.;"), "m.mbd:8:", "genel type 'distance' is not supported by romdyn"),
+        (refused("abstract nodes: 2; genels: 1;", nodes, "genel: 1, spring support, 2, abstract, linear elastic, 1.;"), "m.mbd:8:", "the algebraic value of a differential node is required"),
+        (refused("abstract nodes: 2; genels: 1;", nodes, "genel: 1, mass, 1, abstract, const, 1.;"), "m.mbd:8:", "the order of differential abstract node 1"),
+        (refused("abstract nodes: 2; genels: 1;", nodes, "genel: 1, clamp, 2, abstract, algebraic, const, 1.;"), "m.mbd:8:", "abstract node 2 is algebraic"),
+        (refused("abstract nodes: 2; genels: 1;", nodes, "genel: 1, clamp, 3, abstract, const, 1.;"), "m.mbd:8:", "abstract node 3 is not defined"),
+        (refused("abstract nodes: 2; genels: 1;", nodes, "genel: 1, clamp, 1, structural, 1, algebraic, const, 1.;"), "m.mbd:8:", "a degree of freedom of a structural node is not supported by romdyn"),
+        (refused("abstract nodes: 2; genels: 1;", nodes, "genel: 1, scalar filter, 2, abstract, drive, const, 1., 1, 1., 2, 1., 1., 1.;"), "m.mbd:8:", "the input order 2 exceeds the output order 1"),
+        (refused("abstract nodes: 3;", nodes, ""), "m.mbd:2:", "control data declares 3 abstract nodes, the model has 2"),
+    ];
+    for (message, place, expected) in cases {
+        assert!(message.contains(place) && message.contains(expected), "expected '{place}' and '{expected}' in: {message}");
+    }
+}

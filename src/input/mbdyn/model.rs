@@ -84,6 +84,7 @@ fn cards(doc: &Document) -> Result<Cards, MbdynError> {
             out.drives.structural_nodes.insert(*x as u32);
         }
     }
+    out.drives.scalar_nodes = super::scalar_nodes::scan(block(doc, "nodes").map_or(&[][..], |b| &b.statements));
     out.drives.private.scan_parameter_nodes(block(doc, "nodes").map_or(&[][..], |b| &b.statements));
     for st in doc.cards.iter().filter(|st| known(&st.keyword, &["reference"]).is_some()) {
         if let Some(super::parser::Arg { value: super::parser::Value::Number(x), .. }) = st.args.first()
@@ -217,7 +218,8 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
         b.node(n.clone());
     }
     for n in &nodes.2 {
-        b.scalar_node(n.node.clone());
+        let default = control_output.scalar_nodes[n.node.id.kind as usize];
+        b.scalar_node(crate::model::ScalarNode { output: n.output.unwrap_or(default), ..n.node.clone() });
     }
     if let Some(f) = &frame_motion {
         b.frame_motion(f.clone());

@@ -114,6 +114,9 @@ pub fn node_statement(st: &Statement, c: &mut Cursor, frames: &Frames, nodes: &m
 /// output on (labels that name no node are skipped, as MBDyn does with a warning).
 fn output_card(c: &mut Cursor, nodes: &mut Nodes) -> Result<(), MbdynError> {
     let kind = c.keyword("a node type", &NODE_TYPES)?;
+    if SCALAR_TYPES.contains(&kind) {
+        return scalar_output_card(kind, c, nodes);
+    }
     if kind != "structural" {
         // Nodes romdyn does not read have no rows to switch on.
         c.skip_rest();
@@ -133,6 +136,22 @@ fn output_card(c: &mut Cursor, nodes: &mut Nodes) -> Result<(), MbdynError> {
             (l, l)
         };
         for n in nodes.0.iter_mut().filter(|n| (first..=last).contains(&n.node.label)) {
+            n.output = Some(true);
+        }
+    }
+    Ok(())
+}
+
+/// `output: abstract | electric | hydraulic, {LABEL | range, FIRST, LAST} …;`.
+fn scalar_output_card(kind: &str, c: &mut Cursor, nodes: &mut Nodes) -> Result<(), MbdynError> {
+    while !c.is_done() {
+        let (first, last) = if c.accept("range") {
+            (c.label("first node label")?, c.label("last node label")?)
+        } else {
+            let l = c.label("node label (or range)")?;
+            (l, l)
+        };
+        for n in nodes.2.iter_mut().filter(|n| n.node.id.kind.keyword() == kind && (first..=last).contains(&n.node.id.label)) {
             n.output = Some(true);
         }
     }

@@ -24,7 +24,6 @@ pub struct ScalarEntry {
     pub span: Span,
     /// `output, yes | no` (`None`: control data's `default output`).
     pub output: Option<bool>,
-    pub name: Option<String>,
 }
 
 /// The node types that are scalar nodes with an unknown.
@@ -38,6 +37,25 @@ fn kind_of(keyword: &str) -> ScalarNodeKind {
     }
 }
 
+/// The scalar nodes a nodes block declares, each with whether it is differential (a scan
+/// before the drive callers are read, which the nodes follow in MBDyn's files).
+pub fn scan(nodes: &[super::parser::Statement]) -> std::collections::HashMap<ScalarNodeId, bool> {
+    let mut out = std::collections::HashMap::new();
+    for st in nodes {
+        let Some(keyword) = super::parser::known(&st.keyword, &SCALAR_TYPES) else { continue };
+        if let Some(super::parser::Arg { value: super::parser::Value::Number(x), .. }) = st.args.first()
+            && *x >= 0.0
+            && x.fract() == 0.0
+            && *x <= u32::MAX as f64
+        {
+            let kind = kind_of(keyword);
+            let algebraic = kind == ScalarNodeKind::Hydraulic || (kind == ScalarNodeKind::Abstract && st.args.iter().take(4).any(|a| a.keyword.as_deref().is_some_and(|k| super::parser::same_keyword(k, "algebraic"))));
+            out.insert(ScalarNodeId { kind, label: *x as u32 }, !algebraic);
+        }
+    }
+    out
+}
+
 /// Reads one `abstract`, `electric` or `hydraulic` node card (its keyword is `keyword`).
 pub fn scalar_node(keyword: &'static str, c: &mut Cursor, span: Span, defined: &[ScalarEntry]) -> Result<ScalarEntry, MbdynError> {
     let kind = kind_of(keyword);
@@ -47,7 +65,10 @@ pub fn scalar_node(keyword: &'static str, c: &mut Cursor, span: Span, defined: &
     if let Some(prev) = defined.iter().find(|e| e.node.id == id) {
         return Err(c.error_at(label_span, format!("{id} is defined twice (first at line {})", prev.span.line)));
     }
-    let name = if c.accept("name") { Some(c.string("node name")?) } else { None };
+    // `name, "…"` is read and kept by MBDyn for messages only.
+    if c.accept("name") {
+        c.string("node name")?;
+    }
     let differential = match kind {
         ScalarNodeKind::Abstract => !matches!(c.accept_any(&["algebraic", "differential"]), Some("algebraic")),
         ScalarNodeKind::Electric => true,
@@ -78,7 +99,7 @@ pub fn scalar_node(keyword: &'static str, c: &mut Cursor, span: Span, defined: &
             break;
         }
     }
-    Ok(ScalarEntry { node: ScalarNode { id, differential, value, derivative }, span, output, name })
+    Ok(ScalarEntry { node: ScalarNode { id, differential, value, derivative, output: true }, span, output })
 }
 
 /// A scalar degree of freedom `LABEL, TYPE [, algebraic | differential]` of a scalar node in
