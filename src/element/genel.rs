@@ -1,6 +1,7 @@
-//! MBDyn's general elements on scalar nodes (input manual §Genel Element; genel_.cc,
-//! genfilt.cc) and the abstract force (§Abstract force): controllers, filters and scalar
-//! mechanical analogues written with abstract, electric or hydraulic nodes.
+//! MBDyn's general elements on scalar nodes (input manual §Genel Element; genel_.cc) and
+//! the abstract force (§Abstract force): scalar mechanical analogues (clamp, distance,
+//! springs, mass) written with abstract, electric or hydraulic nodes; the state-space
+//! genels are in [`super::state_space`].
 //!
 //! Residuals are romdyn's `F` (the negative of MBDyn's `AssRes`); Jacobians are the plain
 //! derivatives, which the assembler turns into `J(c)`. A node's equation
@@ -20,11 +21,11 @@ pub struct ScalarDof {
 
 impl ScalarDof {
     /// Its value at a state, the node being the element's scalar slot `slot`.
-    fn read(&self, st: &dyn ElementState, slot: usize) -> f64 {
+    pub(super) fn read(&self, st: &dyn ElementState, slot: usize) -> f64 {
         if self.derivative { st.scalar_rate(slot) } else { st.scalar_value(slot) }
     }
     /// Its column, the node being the element's scalar slot `slot`.
-    fn col(&self, slot: usize) -> Col {
+    pub(super) fn col(&self, slot: usize) -> Col {
         if self.derivative { Col::ScalarRate { slot } } else { Col::ScalarValue { slot } }
     }
 }
@@ -68,6 +69,87 @@ impl Element for ScalarClamp {
     fn jacobian(&self, _st: &dyn ElementState, out: &mut dyn JacobianSink) {
         out.add(Row::Scalar { slot: 0 }, Col::Multiplier(0), 1.0);
         out.add(Row::Constraint(0), self.dof.col(0), 1.0);
+    }
+}
+
+/// `genel: L, distance, DOF1, DOF2, DRIVE` (GenelDistance): `x₂ − x₁ − d(t) = 0`, its
+/// reaction `λ` subtracted from node 1's equation and added to node 2's (MBDyn's residual
+/// `+λ`, `−λ`). Holonomic (a multiplier) on two values, a velocity-level constraint when
+/// either dof is a derivative, as MBDyn divides by dCoef on two values only.
+pub struct ScalarDistance {
+    pub label: Label,
+    pub dofs: [ScalarDof; 2],
+    pub drive: Drive,
+}
+
+impl Element for ScalarDistance {
+    fn label(&self) -> Label {
+        self.label
+    }
+    fn type_name(&self) -> &'static str {
+        "genel distance"
+    }
+    fn nodes(&self) -> Vec<Label> {
+        Vec::new()
+    }
+    fn scalar_nodes(&self) -> Vec<ScalarNodeId> {
+        self.dofs.iter().map(|d| d.node).collect()
+    }
+    fn multipliers(&self) -> Vec<String> {
+        vec!["reaction".into()]
+    }
+    fn unknown_kind(&self, _k: usize) -> UnknownKind {
+        if self.dofs.iter().any(|d| d.derivative) { UnknownKind::VelocityConstraint } else { UnknownKind::Multiplier }
+    }
+    fn reads_state(&self) -> bool {
+        self.drive.reads_state()
+    }
+    fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
+        let lambda = st.multiplier(0);
+        out.add(Row::Scalar { slot: 0 }, -lambda);
+        out.add(Row::Scalar { slot: 1 }, lambda);
+        out.add(Row::Constraint(0), self.dofs[1].read(st, 1) - self.dofs[0].read(st, 0) - self.drive.value_in(st));
+    }
+    fn jacobian(&self, _st: &dyn ElementState, out: &mut dyn JacobianSink) {
+        out.add(Row::Scalar { slot: 0 }, Col::Multiplier(0), -1.0);
+        out.add(Row::Scalar { slot: 1 }, Col::Multiplier(0), 1.0);
+        out.add(Row::Constraint(0), self.dofs[1].col(1), 1.0);
+        out.add(Row::Constraint(0), self.dofs[0].col(0), -1.0);
+    }
+}
+
+/// `genel: L, spring, DOF1, DOF2, LAW` (GenelSpring, an elastic law): `f = f(x₂ − x₁)`
+/// (each a value or a derivative) subtracted from node 1's equation and added to node 2's.
+pub struct ScalarSpringPair {
+    pub label: Label,
+    pub dofs: [ScalarDof; 2],
+    pub law: ScalarLaw,
+}
+
+impl Element for ScalarSpringPair {
+    fn label(&self) -> Label {
+        self.label
+    }
+    fn type_name(&self) -> &'static str {
+        "genel spring"
+    }
+    fn nodes(&self) -> Vec<Label> {
+        Vec::new()
+    }
+    fn scalar_nodes(&self) -> Vec<ScalarNodeId> {
+        self.dofs.iter().map(|d| d.node).collect()
+    }
+    fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
+        let f = self.law.force(self.dofs[1].read(st, 1) - self.dofs[0].read(st, 0), 0.0);
+        out.add(Row::Scalar { slot: 0 }, -f);
+        out.add(Row::Scalar { slot: 1 }, f);
+    }
+    fn jacobian(&self, _st: &dyn ElementState, out: &mut dyn JacobianSink) {
+        let k = self.law.stiffness;
+        for (slot, sign) in [(0, -1.0), (1, 1.0)] {
+            out.add(Row::Scalar { slot }, self.dofs[1].col(1), sign * k);
+            out.add(Row::Scalar { slot }, self.dofs[0].col(0), -sign * k);
+        }
     }
 }
 
@@ -175,140 +257,6 @@ impl Element for ScalarMass {
         out.add(Row::Constraint(0), Col::Multiplier(0), 1.0);
         out.add(Row::Constraint(0), Col::ScalarRate { slot: 0 }, -1.0);
     }
-}
-
-/// The input of a state-space genel: a scalar dof or a drive (MBDyn's `ScalarValue`).
-#[derive(Clone)]
-pub enum ScalarInput {
-    Dof(ScalarDof),
-    Drive(Drive),
-}
-
-/// `genel: L, state space SISO, …` and `genel: L, scalar filter, …` (GenelStateSpaceSISO,
-/// genfilt.cc): own differential states `x` with `ẋ = A x + b u`, and the output node's
-/// equation `y − c·x − d u = 0` (the output must be an algebraic value). MBDyn's Jacobian
-/// leaves out the output row's `−d` on an input dof; romdyn writes it (the solution is the
-/// same, Newton's convergence is quadratic).
-pub struct StateSpaceSiso {
-    pub label: Label,
-    pub output: ScalarNodeId,
-    pub input: ScalarInput,
-    /// `A`, row by row (n × n).
-    pub a: Vec<f64>,
-    pub b: Vec<f64>,
-    pub c: Vec<f64>,
-    pub d: f64,
-    /// MBDyn's keyword ("state space SISO" or "scalar filter").
-    pub keyword: &'static str,
-}
-
-impl StateSpaceSiso {
-    fn order(&self) -> usize {
-        self.b.len()
-    }
-    fn input_value(&self, st: &dyn ElementState) -> f64 {
-        match &self.input {
-            ScalarInput::Dof(dof) => dof.read(st, 1),
-            ScalarInput::Drive(d) => d.value_in(st),
-        }
-    }
-}
-
-impl Element for StateSpaceSiso {
-    fn label(&self) -> Label {
-        self.label
-    }
-    fn type_name(&self) -> &'static str {
-        if self.keyword == "scalar filter" { "genel scalar filter" } else { "genel state space SISO" }
-    }
-    fn nodes(&self) -> Vec<Label> {
-        Vec::new()
-    }
-    fn scalar_nodes(&self) -> Vec<ScalarNodeId> {
-        match &self.input {
-            ScalarInput::Dof(dof) => vec![self.output, dof.node],
-            ScalarInput::Drive(_) => vec![self.output],
-        }
-    }
-    fn multipliers(&self) -> Vec<String> {
-        (1..=self.order()).map(|i| format!("state {i}")).collect()
-    }
-    fn unknown_kind(&self, _k: usize) -> UnknownKind {
-        UnknownKind::State
-    }
-    fn reads_state(&self) -> bool {
-        matches!(&self.input, ScalarInput::Drive(d) if d.reads_state())
-    }
-    fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
-        let n = self.order();
-        let u = self.input_value(st);
-        let mut y = st.scalar_value(0) - self.d * u;
-        for i in 0..n {
-            let ax: f64 = (0..n).map(|j| self.a[i * n + j] * st.multiplier(j)).sum();
-            out.add(Row::Constraint(i), st.rate(i) - ax - self.b[i] * u);
-            y -= self.c[i] * st.multiplier(i);
-        }
-        out.add(Row::Scalar { slot: 0 }, y);
-    }
-    fn jacobian(&self, _st: &dyn ElementState, out: &mut dyn JacobianSink) {
-        let n = self.order();
-        let input = match &self.input {
-            ScalarInput::Dof(dof) => Some(dof.col(1)),
-            ScalarInput::Drive(_) => None,
-        };
-        for i in 0..n {
-            out.add(Row::Constraint(i), Col::Rate(i), 1.0);
-            for j in 0..n {
-                out.add(Row::Constraint(i), Col::Multiplier(j), -self.a[i * n + j]);
-            }
-            if let Some(col) = input {
-                out.add(Row::Constraint(i), col, -self.b[i]);
-            }
-            out.add(Row::Scalar { slot: 0 }, Col::Multiplier(i), -self.c[i]);
-        }
-        out.add(Row::Scalar { slot: 0 }, Col::ScalarValue { slot: 0 }, 1.0);
-        if let Some(col) = input {
-            out.add(Row::Scalar { slot: 0 }, col, -self.d);
-        }
-    }
-}
-
-/// The controllable canonical realization MBDyn gives a `scalar filter` (genel.cc, case
-/// SCALARFILTER) of `B(s)/A(s)`, `A` monic: `den = [a_1 … a_n]`, `num = [b_0 … b_n]`
-/// (padded with leading zeros to `n + 1`, already multiplied by the gain). Returns `(A, b,
-/// c, d)`; a proper filter (`b_0 ≠ 0`) becomes a strictly proper one plus the feedthrough
-/// `d = b_0`.
-pub fn controllable_form(den: &[f64], num: &[f64]) -> (Vec<f64>, Vec<f64>, Vec<f64>, f64) {
-    let n = den.len();
-    let d = num[0];
-    let mut a = vec![0.0; n * n];
-    for j in 0..n {
-        a[j] = -den[j];
-    }
-    for i in 1..n {
-        a[i * n + i - 1] = 1.0;
-    }
-    let mut b = vec![0.0; n];
-    b[0] = 1.0;
-    let c = (1..=n).map(|i| num[i] - den[i - 1] * d).collect();
-    (a, b, c, d)
-}
-
-/// The observable canonical realization (`canonical form, observable`).
-pub fn observable_form(den: &[f64], num: &[f64]) -> (Vec<f64>, Vec<f64>, Vec<f64>, f64) {
-    let n = den.len();
-    let d = num[0];
-    let mut a = vec![0.0; n * n];
-    for i in 0..n {
-        a[i * n] = -den[i];
-        if i + 1 < n {
-            a[i * n + i + 1] = 1.0;
-        }
-    }
-    let b = (1..=n).map(|i| num[i] - den[i - 1] * d).collect();
-    let mut c = vec![0.0; n];
-    c[0] = 1.0;
-    (a, b, c, d)
 }
 
 /// `force: L, abstract, NODE, TYPE, DRIVE` (input manual §Abstract force): `f(t)` added to

@@ -21,7 +21,7 @@ use romdyn::study::{EigenSettings, Ports, RomRequest, Study};
 fn every_genel_jacobian_matches_finite_differences() {
     let m = read_model(&test_file("genels_all.mbd")).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(m.model.scalar_nodes.len(), 7);
-    assert_eq!(m.model.elements.len(), 11);
+    assert_eq!(m.model.elements.len(), 13);
     for form in [ConstraintForm::Plain, ConstraintForm::Scaled] {
         let mut model = read_model(&test_file("genels_all.mbd")).unwrap().model;
         model.constraint_form = form;
@@ -33,7 +33,7 @@ fn every_genel_jacobian_matches_finite_differences() {
             *x += 0.5 * n.next();
         }
         let checked = check_jacobians(&asm, &st, 0.37, form);
-        assert_eq!(checked.len(), 11);
+        assert_eq!(checked.len(), 13);
         for w in checked {
             // Central differences of residuals linear or sinusoidal in the unknowns: 1e-8.
             assert!(w.relative_error < 1e-8, "{form:?}: {} d({})/d({}): analytic {:e}, fd {:e} (error {:e})", w.element, w.equation, w.unknown, w.analytic, w.finite_difference, w.relative_error);
@@ -101,6 +101,9 @@ fn pid_loop_closed_loop_poles_are_the_roots_of_its_characteristic_polynomial() {
     // Source: the characteristic polynomial of the loop (examples/pid_mass.mbd's header),
     // its roots by nalgebra's companion matrix; tolerance 1e-8 relative.
     assert_same_roots(&dynamic, &roots(&PID.characteristic()), 1e-8);
+    // The modes move no mass: the table describes them by their scalar nodes.
+    let table = study.modal_report().with_energy(study.energy()).to_text();
+    assert_eq!(table.matches("no structural node moves (abstract nodes 1, 2)").count(), 3, "{table}");
 }
 
 #[test]
@@ -215,7 +218,8 @@ fn unsupported_scalar_cards_are_refused_by_name_and_place() {
         (refused("abstract nodes: 2;", "abstract: 1;\nabstract: 2, algebraic, value, 1., derivative, 2.;", ""), "m.mbd:5:", "an algebraic node has no derivative"),
         (refused("abstract nodes: 2; electric elements: 1;", nodes, ""), "m.mbd:2:", "control data declares electric elements"),
         (refused("abstract nodes: 2;", nodes, "electric: 1, resistor, 1, 2, 10.;"), "m.mbd:8:", "element type 'electric' is not supported by romdyn"),
-        (refused("abstract nodes: 2; genels: 1;", nodes, "genel: 1, distance, 1, abstract, algebraic, 2, abstract, const, 1.;"), "m.mbd:8:", "genel type 'distance' is not supported by romdyn"),
+        (refused("abstract nodes: 2; genels: 1;", nodes, "genel: 1, state space MIMO, 1, 1, abstract, algebraic;"), "m.mbd:8:", "genel type 'state space MIMO' is not supported by romdyn"),
+        (refused("abstract nodes: 2; genels: 1;", nodes, "genel: 1, spring, 1, abstract, algebraic, 2, abstract, linear viscous, 1.;"), "m.mbd:8:", "only elastic constitutive laws are allowed"),
         (refused("abstract nodes: 2; genels: 1;", nodes, "genel: 1, spring support, 2, abstract, linear elastic, 1.;"), "m.mbd:8:", "the algebraic value of a differential node is required"),
         (refused("abstract nodes: 2; genels: 1;", nodes, "genel: 1, mass, 1, abstract, const, 1.;"), "m.mbd:8:", "the order of differential abstract node 1"),
         (refused("abstract nodes: 2; genels: 1;", nodes, "genel: 1, clamp, 2, abstract, algebraic, const, 1.;"), "m.mbd:8:", "abstract node 2 is algebraic"),

@@ -1,22 +1,22 @@
 //! The `genel` cards romdyn builds (input manual §Genel Element; genel.cc, `ReadGenel`):
-//! `clamp`, `spring support`, `cross spring support`, `mass`, `scalar filter` and `state
-//! space SISO`; and the abstract force (`force: L, abstract, NODE, TYPE, DRIVE`, §Abstract
+//! `clamp`, `distance`, `spring`, `spring support`, `cross spring support`, `mass`, `scalar
+//! filter` and `state space SISO`; and the abstract force (`force: L, abstract, NODE, TYPE, DRIVE`, §Abstract
 //! force). Every other genel is refused by name.
 
 use super::cursor::Cursor;
 use super::diagnostic::MbdynError;
 use super::element_context::ElementContext;
 use super::scalar_nodes::scalar_dof;
-use crate::element::{controllable_form, observable_form, AbstractForce, Element, ScalarClamp, ScalarInput, ScalarLaw, ScalarMass, ScalarSpring, StateSpaceSiso};
+use crate::element::{controllable_form, observable_form, AbstractForce, Element, ScalarClamp, ScalarDistance, ScalarInput, ScalarLaw, ScalarMass, ScalarSpring, ScalarSpringPair, StateSpaceSiso};
 use crate::model::Label;
 
 /// The genels of MBDyn 1.7.3 romdyn does not build (named in the refusal).
-const OTHER_GENELS: [&str; 7] = ["distance", "spring", "state space MIMO", "swashplate", "rotor trim", "take off", "inline"];
+const OTHER_GENELS: [&str; 5] = ["state space MIMO", "swashplate", "rotor trim", "take off", "inline"];
 
 /// `genel: LABEL, TYPE, …` after the label.
 pub fn genel(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<dyn Element>, MbdynError> {
     let span = c.here();
-    let supported = ["clamp", "spring support", "cross spring support", "mass", "scalar filter", "state space SISO"];
+    let supported = ["clamp", "distance", "spring support", "cross spring support", "spring", "mass", "scalar filter", "state space SISO"];
     if let Some(k) = c.accept_any(&OTHER_GENELS) {
         return Err(c.error_at(span, format!("genel type '{k}' is not supported by romdyn (supported: {})", supported.join(", "))));
     }
@@ -27,6 +27,21 @@ pub fn genel(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
         "clamp" => {
             let (dof, _) = scalar_dof(c, scalars, &what, true)?;
             Box::new(ScalarClamp { label, dof, drive: super::drives::drive(c, ctx.drives, ctx.seq)? })
+        }
+        "distance" | "spring" => {
+            let first = scalar_dof(c, scalars, &what, true)?.0;
+            let second = scalar_dof(c, scalars, &what, true)?.0;
+            let dofs = [first, second];
+            if kind == "distance" {
+                Box::new(ScalarDistance { label, dofs, drive: super::drives::drive(c, ctx.drives, ctx.seq)? })
+            } else {
+                let law_span = c.here();
+                let law = scalar_law(c, ctx, &what)?;
+                if law.viscosity != 0.0 {
+                    return Err(c.error_at(law_span, format!("{what}: only elastic constitutive laws are allowed (MBDyn 1.7.3: \"only elastic constitutive laws allowed\")")));
+                }
+                Box::new(ScalarSpringPair { label, dofs, law })
+            }
         }
         "spring support" | "cross spring support" => {
             let row = if kind == "cross spring support" { Some(scalar_dof(c, scalars, &what, true)?.0.node) } else { None };
