@@ -218,6 +218,7 @@ fn unsupported_scalar_cards_are_refused_by_name_and_place() {
         (refused("abstract nodes: 2;", "abstract: 1;\nabstract: 2, algebraic, value, 1., derivative, 2.;", ""), "m.mbd:5:", "an algebraic node has no derivative"),
         (refused("abstract nodes: 2; electric elements: 1;", nodes, ""), "m.mbd:2:", "control data declares electric elements"),
         (refused("abstract nodes: 2;", nodes, "electric: 1, resistor, 1, 2, 10.;"), "m.mbd:8:", "element type 'electric' is not supported by romdyn"),
+        (refused("abstract nodes: 2;", "abstract: 1, differential, output, yes;\nabstract: 2;", ""), "m.mbd:4:", "MBDyn 1.7.3 reads a value whenever an argument follows the node type"),
         (refused("abstract nodes: 2; genels: 1;", nodes, "genel: 1, state space MIMO, 1, 1, abstract, algebraic;"), "m.mbd:8:", "genel type 'state space MIMO' is not supported by romdyn"),
         (refused("abstract nodes: 2; genels: 1;", nodes, "genel: 1, spring, 1, abstract, algebraic, 2, abstract, linear viscous, 1.;"), "m.mbd:8:", "only elastic constitutive laws are allowed"),
         (refused("abstract nodes: 2; genels: 1;", nodes, "genel: 1, spring support, 2, abstract, linear elastic, 1.;"), "m.mbd:8:", "the algebraic value of a differential node is required"),
@@ -226,9 +227,71 @@ fn unsupported_scalar_cards_are_refused_by_name_and_place() {
         (refused("abstract nodes: 2; genels: 1;", nodes, "genel: 1, clamp, 3, abstract, const, 1.;"), "m.mbd:8:", "abstract node 3 is not defined"),
         (refused("abstract nodes: 2; genels: 1;", nodes, "genel: 1, clamp, 1, structural, 1, algebraic, const, 1.;"), "m.mbd:8:", "a degree of freedom of a structural node is not supported by romdyn"),
         (refused("abstract nodes: 2; genels: 1;", nodes, "genel: 1, scalar filter, 2, abstract, drive, const, 1., 1, 1., 2, 1., 1., 1.;"), "m.mbd:8:", "the input order 2 exceeds the output order 1"),
+        (refused("abstract nodes: 2; hydraulic nodes: 1;", &format!("{nodes}\nhydraulic: 2;"), ""), "m.mbd:6:", "MBDyn 1.7.3 refuses it (\"Abstract(2) already defined\""),
         (refused("abstract nodes: 3;", nodes, ""), "m.mbd:2:", "control data declares 3 abstract nodes, the model has 2"),
     ];
     for (message, place, expected) in cases {
         assert!(message.contains(place) && message.contains(expected), "expected '{place}' and '{expected}' in: {message}");
     }
+}
+
+/// Runs `text` (an MBDyn file) with romdyn and returns the final state's scalar node values
+/// and derivatives, by node in file order.
+fn final_scalars(text: &str) -> Vec<(f64, f64)> {
+    let m = common::mbdyn::read(text);
+    let report = romdyn::analysis::run(&m.model, &m.problem, &mut ()).unwrap_or_else(|e| panic!("{e}"));
+    let first = Assembler::new(&m.model).dofs.scalar_first;
+    (0..m.model.scalar_nodes.len()).map(|i| (report.final_state.y[first + i], report.final_state.yp[first + i])).collect()
+}
+
+#[test]
+fn pid_loop_and_filters_run_as_mbdyn_1_7_3() {
+    // MBDyn 1.7.3 (built from alex-marinov/mbdyn, `output precision: 15`) on
+    // examples/pid_mass.mbd with F0 = 1 N: its .abs rows at t = 2.001 s (2001 steps, as
+    // romdyn). romdyn agrees to 1.5e-10 of each node's scale over the whole run; here the
+    // values to 1e-9 relative, node 1's derivative to 1e-8 (5e-10 left by the derivatives
+    // phase decays through the ms method's derivative recurrence).
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/pid_mass.mbd");
+    let text = std::fs::read_to_string(&path).unwrap().replace("set: real F0 = 0.;", "set: real F0 = 1.;");
+    let got = final_scalars(&text);
+    let mbdyn = [(5.138952106512982e-04, -1.675533418822703e-03), (9.776215484637594e-01, -8.667848539175486e-02)];
+    for (k, ((x, xp), (mx, mxp))) in got.iter().zip(mbdyn).enumerate() {
+        assert!((x - mx).abs() < 1e-9 * mx.abs(), "node {}: {x:e} vs MBDyn {mx:e}", k + 1);
+        assert!((xp - mxp).abs() < 1e-8 * mxp.abs(), "node {} derivative: {xp:e} vs MBDyn {mxp:e}", k + 1);
+    }
+    // tests/mbdyn_files/scalar_filter_butterworth.mbd (a 1 Hz unit sine into both filters):
+    // MBDyn 1.7.3's outputs at t = 2.001 s, both -7.071177425805828e-01 (the steady state's
+    // -sin(2π t)/√2 lagging 90°, after the transient), to 1e-12.
+    let text = std::fs::read_to_string(test_file("scalar_filter_butterworth.mbd")).unwrap();
+    let got = final_scalars(&text);
+    for k in [0, 2] {
+        assert!((got[k].0 - -7.071177425805828e-01).abs() < 1e-12, "output node {k}: {:e}", got[k].0);
+    }
+    assert!((got[1].0 - 6.283143964870634e-03).abs() < 1e-15, "input node: {:e}", got[1].0);
+}
+
+#[test]
+fn mbdyn_eigenanalysis_of_the_loops_differs_only_by_its_state_space_jacobian() {
+    // MBDyn 1.7.3's eigenanalysis at t = 0 (`eigenanalysis: 0., use lapack, output
+    // eigenvectors`, dCoef 0.5 s), its .m file's alpha rows read as λ = (Λ − 1)/(dCoef (Λ + 1)):
+    // - the Butterworth filters: ωc(−1 ± j)/√2 twice, as romdyn (7 printed digits: 1e-6);
+    let mbdyn_filter = [c64::new(-4.442882944659381, 4.4428842104493365), c64::new(-4.442882944659381, -4.4428842104493365)];
+    let wc = 2.0 * std::f64::consts::PI;
+    for l in mbdyn_filter {
+        assert!((l - c64::new(-wc / 2f64.sqrt(), l.im.signum() * wc / 2f64.sqrt())).norm() < 1e-6 * wc);
+    }
+    // - the PID loop: 2.08979 ± 22.2901j, −104.570, 0.190795, an unstable loop where its own
+    //   run (and romdyn's, and the polynomial) is stable. They are the roots of the loop's
+    //   polynomial with the filter's input column negated and its feedthrough left out,
+    //   P̃ = (m s² + c s + k)(s² + A1 s) − (N(s) − B0 D(s)): genfilt.cc's
+    //   `GenelStateSpaceSISO::AssJac` writes `+b dCoef` where the residual's derivative is
+    //   `−b dCoef`, and no `−d` on the output row. Its residual is right, so its runs agree
+    //   with romdyn's (`pid_loop_and_filters_run_as_mbdyn_1_7_3`); its linearization of a
+    //   loop closed through a state-space genel with a dof input is not.
+    let mbdyn_pid = [c64::new(2.089784612669962, 22.290082685212752), c64::new(2.0897988713475324, -22.29008121437997), c64::new(-104.57032523094162, 0.0), c64::new(0.19079540252484425, 0.0)];
+    let flipped = [PID.m, PID.m * PID.a1 + PID.c, PID.c * PID.a1 + PID.k, PID.k * PID.a1 - (PID.b[1] - PID.b[0] * PID.a1), -PID.b[2]];
+    assert_same_roots(&mbdyn_pid, &roots(&flipped), 2e-6);
+    // romdyn's poles are the true polynomial's (above), not these.
+    let study = pid_study();
+    assert!(study.modal().modes.iter().all(|m| m.lambda.re < 0.0 || m.kind != romdyn::eigen::ModeKind::Dynamic));
 }

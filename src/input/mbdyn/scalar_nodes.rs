@@ -65,6 +65,11 @@ pub fn scalar_node(keyword: &'static str, c: &mut Cursor, span: Span, defined: &
     if let Some(prev) = defined.iter().find(|e| e.node.id == id) {
         return Err(c.error_at(label_span, format!("{id} is defined twice (first at line {})", prev.span.line)));
     }
+    // dataman3.cc reads a hydraulic node with `ReadScalarAlgebraicNode(…, Node::ABSTRACT, …)`,
+    // which looks the label up among the abstract nodes defined above it.
+    if let Some(prev) = defined.iter().find(|e| kind == ScalarNodeKind::Hydraulic && e.node.id == ScalarNodeId { kind: ScalarNodeKind::Abstract, label }) {
+        return Err(c.error_at(label_span, format!("hydraulic node {label} has the label of abstract node {label} (line {}): MBDyn 1.7.3 refuses it (\"Abstract({label}) already defined\": its reader checks a hydraulic node's label among the abstract nodes)", prev.span.line)));
+    }
     // `name, "…"` is read and kept by MBDyn for messages only.
     if c.accept("name") {
         c.string("node name")?;
@@ -75,10 +80,12 @@ pub fn scalar_node(keyword: &'static str, c: &mut Cursor, span: Span, defined: &
         ScalarNodeKind::Hydraulic => false,
     };
     let (mut value, mut derivative) = (0.0, 0.0);
-    // MBDyn reads a value when an argument follows (`value` optional), then, on a
-    // differential node, `derivative, XP` only after a value.
-    if c.accept("value") || c.next_is_number() {
-        value = c.real(&format!("initial value of {id}"))?;
+    // MBDyn reads a value whenever an argument follows (`value` optional; dataman3.cc
+    // `ReadScalarAlgebraicNode`: `if (HP.IsArg())`), so `output` or `scale` right after the
+    // node type stop it too; then, on a differential node, `derivative, XP`.
+    if !c.is_done() {
+        c.accept("value");
+        value = c.real(&format!("initial value of {id} (MBDyn 1.7.3 reads a value whenever an argument follows the node type)"))?;
         if differential && c.accept("derivative") {
             derivative = c.real(&format!("initial derivative of {id}"))?;
         }
