@@ -318,8 +318,11 @@ pub trait Element: Send + Sync {
     fn label(&self) -> Label;
     /// The element type in MBDyn's words, e.g. "revolute hinge".
     fn type_name(&self) -> &'static str;
-    /// Labels of the structural nodes it connects, in slot order.
-    fn nodes(&self) -> Vec<Label>;
+    /// Labels of the structural nodes it connects, in slot order (none for an element on
+    /// scalar nodes only).
+    fn nodes(&self) -> Vec<Label> {
+        Vec::new()
+    }
     /// The scalar nodes it connects (abstract, electric, hydraulic), in slot order
     /// ([`Row::Scalar`], [`Col::ScalarValue`], [`Col::ScalarRate`]); none for most elements.
     fn scalar_nodes(&self) -> Vec<ScalarNodeId> {

@@ -47,9 +47,6 @@ impl Element for ScalarClamp {
     fn type_name(&self) -> &'static str {
         "genel clamp"
     }
-    fn nodes(&self) -> Vec<Label> {
-        Vec::new()
-    }
     fn scalar_nodes(&self) -> Vec<ScalarNodeId> {
         vec![self.dof.node]
     }
@@ -88,9 +85,6 @@ impl Element for ScalarDistance {
     }
     fn type_name(&self) -> &'static str {
         "genel distance"
-    }
-    fn nodes(&self) -> Vec<Label> {
-        Vec::new()
     }
     fn scalar_nodes(&self) -> Vec<ScalarNodeId> {
         self.dofs.iter().map(|d| d.node).collect()
@@ -132,9 +126,6 @@ impl Element for ScalarSpringPair {
     }
     fn type_name(&self) -> &'static str {
         "genel spring"
-    }
-    fn nodes(&self) -> Vec<Label> {
-        Vec::new()
     }
     fn scalar_nodes(&self) -> Vec<ScalarNodeId> {
         self.dofs.iter().map(|d| d.node).collect()
@@ -198,9 +189,6 @@ impl Element for ScalarSpring {
     fn type_name(&self) -> &'static str {
         if self.row == self.col { "genel spring support" } else { "genel cross spring support" }
     }
-    fn nodes(&self) -> Vec<Label> {
-        Vec::new()
-    }
     fn scalar_nodes(&self) -> Vec<ScalarNodeId> {
         if self.row == self.col { vec![self.row] } else { vec![self.row, self.col] }
     }
@@ -232,9 +220,6 @@ impl Element for ScalarMass {
     }
     fn type_name(&self) -> &'static str {
         "genel mass"
-    }
-    fn nodes(&self) -> Vec<Label> {
-        Vec::new()
     }
     fn scalar_nodes(&self) -> Vec<ScalarNodeId> {
         vec![self.node]
@@ -273,9 +258,6 @@ impl Element for AbstractForce {
     }
     fn type_name(&self) -> &'static str {
         "abstract force"
-    }
-    fn nodes(&self) -> Vec<Label> {
-        Vec::new()
     }
     fn scalar_nodes(&self) -> Vec<ScalarNodeId> {
         vec![self.node]

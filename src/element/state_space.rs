@@ -52,9 +52,6 @@ impl Element for StateSpaceSiso {
     fn type_name(&self) -> &'static str {
         if self.keyword == "scalar filter" { "genel scalar filter" } else { "genel state space SISO" }
     }
-    fn nodes(&self) -> Vec<Label> {
-        Vec::new()
-    }
     fn scalar_nodes(&self) -> Vec<ScalarNodeId> {
         match &self.input {
             ScalarInput::Dof(dof) => vec![self.output, dof.node],
