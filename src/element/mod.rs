@@ -62,7 +62,7 @@ pub use contract::{Col, Element, ElementState, Events, JacobianSink, Label, Latc
 pub use deformable::{DeformableDisplacement, DeformableHinge, LinearViscoelastic, Rod, RodViscosity};
 pub use distance::Distance;
 pub use genel::{AbstractForce, ScalarClamp, ScalarDistance, ScalarDof, ScalarLaw, ScalarMass, ScalarSpring, ScalarSpringPair};
-pub use state_space::{controllable_form, observable_form, ScalarInput, StateSpaceSiso};
+pub use state_space::{controllable_form, observable_form, ScalarInput, StateSpace};
 pub use deformable_joint::DeformableJoint;
 pub use invariant_hinge::InvariantDeformableHinge;
 pub use driven_element::{DrivenElement, Hint, HintValue};

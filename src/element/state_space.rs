@@ -1,5 +1,5 @@
 //! MBDyn's state-space genels on scalar nodes (input manual §Genel Element, §Scalar filter;
-//! genfilt.cc): controllers and filters, `ẋ = A x + b u`, `y = c·x + d u`.
+//! genfilt.cc): controllers and filters, `ẋ = A x + B u`, `y = C x + D u`.
 //!
 //! Residuals are romdyn's `F` (the negative of MBDyn's `AssRes`); Jacobians the plain
 //! derivatives.
@@ -15,48 +15,64 @@ pub enum ScalarInput {
     Drive(Drive),
 }
 
-/// `genel: L, state space SISO, …` and `genel: L, scalar filter, …` (GenelStateSpaceSISO,
-/// genfilt.cc): own differential states `x` with `ẋ = A x + b u`, and the output node's
-/// equation `y − c·x − d u = 0` (the output must be an algebraic value). MBDyn's Jacobian
-/// leaves out the output row's `−d` on an input dof; romdyn writes it (the solution is the
-/// same, Newton's convergence is quadratic).
-pub struct StateSpaceSiso {
+/// `genel: L, state space SISO, …`, `genel: L, state space MIMO, …` and `genel: L, scalar
+/// filter, …` (GenelStateSpaceSISO, GenelStateSpaceMIMO, genfilt.cc): own differential
+/// states `x` with `ẋ = A x + B u`, and each output node's equation `y_i − (C x)_i −
+/// (D u)_i = 0` (the outputs are algebraic values). MBDyn 1.7.3's SISO Jacobian writes the
+/// input column with the wrong sign and leaves out the output row's `−d`; romdyn writes
+/// the derivatives of the residual (the runs agree, MBDyn's eigenanalysis of a loop closed
+/// through the genel does not: tests/multibody/scalar_nodes.rs).
+pub struct StateSpace {
     pub label: Label,
-    pub output: ScalarNodeId,
-    pub input: ScalarInput,
-    /// `A`, row by row (n × n).
+    pub outputs: Vec<ScalarNodeId>,
+    pub inputs: Vec<ScalarInput>,
+    /// `A` (n × n), `B` (n × m), `C` (p × n), `D` (p × m), each row by row.
     pub a: Vec<f64>,
     pub b: Vec<f64>,
     pub c: Vec<f64>,
-    pub d: f64,
-    /// MBDyn's keyword ("state space SISO" or "scalar filter").
+    pub d: Vec<f64>,
+    /// MBDyn's keyword ("state space SISO", "state space MIMO" or "scalar filter").
     pub keyword: &'static str,
 }
 
-impl StateSpaceSiso {
+impl StateSpace {
     fn order(&self) -> usize {
-        self.b.len()
+        self.a.len().isqrt()
     }
-    fn input_value(&self, st: &dyn ElementState) -> f64 {
-        match &self.input {
-            ScalarInput::Dof(dof) => dof.read(st, 1),
-            ScalarInput::Drive(d) => d.value_in(st),
-        }
+    /// Each input's value and, for a dof, its column (its node's scalar slot follows the
+    /// outputs' and the dof inputs' before it).
+    fn inputs_at(&self, st: &dyn ElementState) -> Vec<(f64, Option<Col>)> {
+        let mut slot = self.outputs.len();
+        self.inputs
+            .iter()
+            .map(|input| match input {
+                ScalarInput::Dof(dof) => {
+                    slot += 1;
+                    (dof.read(st, slot - 1), Some(dof.col(slot - 1)))
+                }
+                ScalarInput::Drive(d) => (d.value_in(st), None),
+            })
+            .collect()
     }
 }
 
-impl Element for StateSpaceSiso {
+impl Element for StateSpace {
     fn label(&self) -> Label {
         self.label
     }
     fn type_name(&self) -> &'static str {
-        if self.keyword == "scalar filter" { "genel scalar filter" } else { "genel state space SISO" }
+        match self.keyword {
+            "scalar filter" => "genel scalar filter",
+            "state space MIMO" => "genel state space MIMO",
+            _ => "genel state space SISO",
+        }
     }
     fn scalar_nodes(&self) -> Vec<ScalarNodeId> {
-        match &self.input {
-            ScalarInput::Dof(dof) => vec![self.output, dof.node],
-            ScalarInput::Drive(_) => vec![self.output],
-        }
+        let dofs = self.inputs.iter().filter_map(|i| match i {
+            ScalarInput::Dof(dof) => Some(dof.node),
+            ScalarInput::Drive(_) => None,
+        });
+        self.outputs.iter().copied().chain(dofs).collect()
     }
     fn multipliers(&self) -> Vec<String> {
         (1..=self.order()).map(|i| format!("state {i}")).collect()
@@ -65,38 +81,47 @@ impl Element for StateSpaceSiso {
         UnknownKind::State
     }
     fn reads_state(&self) -> bool {
-        matches!(&self.input, ScalarInput::Drive(d) if d.reads_state())
+        self.inputs.iter().any(|i| matches!(i, ScalarInput::Drive(d) if d.reads_state()))
     }
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
-        let n = self.order();
-        let u = self.input_value(st);
-        let mut y = st.scalar_value(0) - self.d * u;
+        let (n, m) = (self.order(), self.inputs.len());
+        let u: Vec<f64> = self.inputs_at(st).into_iter().map(|(v, _)| v).collect();
         for i in 0..n {
             let ax: f64 = (0..n).map(|j| self.a[i * n + j] * st.multiplier(j)).sum();
-            out.add(Row::Constraint(i), st.rate(i) - ax - self.b[i] * u);
-            y -= self.c[i] * st.multiplier(i);
+            let bu: f64 = (0..m).map(|j| self.b[i * m + j] * u[j]).sum();
+            out.add(Row::Constraint(i), st.rate(i) - ax - bu);
         }
-        out.add(Row::Scalar { slot: 0 }, y);
+        for (k, _) in self.outputs.iter().enumerate() {
+            let cx: f64 = (0..n).map(|j| self.c[k * n + j] * st.multiplier(j)).sum();
+            let du: f64 = (0..m).map(|j| self.d[k * m + j] * u[j]).sum();
+            out.add(Row::Scalar { slot: k }, st.scalar_value(k) - cx - du);
+        }
     }
-    fn jacobian(&self, _st: &dyn ElementState, out: &mut dyn JacobianSink) {
-        let n = self.order();
-        let input = match &self.input {
-            ScalarInput::Dof(dof) => Some(dof.col(1)),
-            ScalarInput::Drive(_) => None,
-        };
+    fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
+        let (n, m) = (self.order(), self.inputs.len());
+        let inputs = self.inputs_at(st);
         for i in 0..n {
             out.add(Row::Constraint(i), Col::Rate(i), 1.0);
             for j in 0..n {
                 out.add(Row::Constraint(i), Col::Multiplier(j), -self.a[i * n + j]);
             }
-            if let Some(col) = input {
-                out.add(Row::Constraint(i), col, -self.b[i]);
+            for (j, (_, col)) in inputs.iter().enumerate() {
+                if let Some(col) = col {
+                    out.add(Row::Constraint(i), *col, -self.b[i * m + j]);
+                }
             }
-            out.add(Row::Scalar { slot: 0 }, Col::Multiplier(i), -self.c[i]);
         }
-        out.add(Row::Scalar { slot: 0 }, Col::ScalarValue { slot: 0 }, 1.0);
-        if let Some(col) = input {
-            out.add(Row::Scalar { slot: 0 }, col, -self.d);
+        for k in 0..self.outputs.len() {
+            let row = Row::Scalar { slot: k };
+            out.add(row, Col::ScalarValue { slot: k }, 1.0);
+            for j in 0..n {
+                out.add(row, Col::Multiplier(j), -self.c[k * n + j]);
+            }
+            for (j, (_, col)) in inputs.iter().enumerate() {
+                if let Some(col) = col {
+                    out.add(row, *col, -self.d[k * m + j]);
+                }
+            }
         }
     }
 }

@@ -19,15 +19,15 @@ use romdyn::study::{EigenSettings, Ports, RomRequest, Study};
 #[test]
 fn every_genel_jacobian_matches_finite_differences() {
     let m = read_model(&test_file("genels_all.mbd")).unwrap_or_else(|e| panic!("{e}"));
-    assert_eq!(m.model.scalar_nodes.len(), 7);
-    assert_eq!(m.model.elements.len(), 13);
+    assert_eq!(m.model.scalar_nodes.len(), 9);
+    assert_eq!(m.model.elements.len(), 14);
     let model_of = |form| {
         let mut model = read_model(&test_file("genels_all.mbd")).unwrap().model;
         model.constraint_form = form;
         model
     };
     // Central differences of residuals linear or sinusoidal in the unknowns: 1e-8.
-    assert_eq!(common::mbdyn::assert_model_jacobians(model_of, 34, 1e-8), 13);
+    assert_eq!(common::mbdyn::assert_model_jacobians(model_of, 34, 1e-8), 14);
 }
 
 /// The roots of `p[0] sⁿ + p[1] sⁿ⁻¹ + … + p[n]` as the eigenvalues of its companion matrix
@@ -124,16 +124,16 @@ fn butterworth_scalar_filter_has_its_poles_and_unit_dc_gain() {
     // held at the port's force by a unit spring support: poles ωc (−1 ± j)/√2, DC gain 1.
     let m = read_model(&test_file("scalar_filter_butterworth.mbd")).unwrap_or_else(|e| panic!("{e}"));
     let inputs = vec!["101:abstract".parse::<NodeInput>().unwrap()];
-    let outputs = vec!["100:abstract".parse::<NodeOutput>().unwrap(), "102:abstract".parse::<NodeOutput>().unwrap()];
+    let outputs = ["100:abstract", "102:abstract", "103:abstract"].map(|o| o.parse::<NodeOutput>().unwrap()).to_vec();
     let study = Study::of_model(m.model, &m.problem, Reference::Initial, &Ports::Nodes { inputs, outputs }, EigenSettings::default(), None).unwrap_or_else(|e| panic!("{e}")).0;
     let wc = 2.0 * std::f64::consts::PI;
     let pole = c64::new(-wc / 2f64.sqrt(), wc / 2f64.sqrt());
     let dynamic: Vec<c64> = study.modal().modes.iter().filter(|m| m.kind == romdyn::eigen::ModeKind::Dynamic).map(|m| m.lambda).collect();
-    // Two filters (the scalar filter and the same one as a state space SISO): each pair twice.
-    assert_same_roots(&dynamic, &[pole, pole.conj(), pole, pole.conj()], 1e-10);
+    // Three filters (the scalar filter, the same one as a state space SISO and as a MIMO).
+    assert_same_roots(&dynamic, &[pole, pole.conj(), pole, pole.conj(), pole, pole.conj()], 1e-10);
     let rom = study.reduce(&RomRequest::new(ModeSelection::band(0.0, 10.0).unwrap())).unwrap_or_else(|e| panic!("{e}"));
     let g = rom.static_gains.rom.as_ref().unwrap();
-    for out in 0..2 {
+    for out in 0..3 {
         assert!((g[(out, 0)] - 1.0).abs() < 1e-10, "DC gain of output {out}: {}", g[(out, 0)]);
     }
 }
@@ -208,7 +208,7 @@ fn unsupported_scalar_cards_are_refused_by_name_and_place() {
         (refused("abstract nodes: 2; electric elements: 1;", nodes, ""), "m.mbd:2:", "control data declares electric elements"),
         (refused("abstract nodes: 2;", nodes, "electric: 1, resistor, 1, 2, 10.;"), "m.mbd:8:", "element type 'electric' is not supported by romdyn"),
         (refused("abstract nodes: 2;", "abstract: 1, differential, output, yes;\nabstract: 2;", ""), "m.mbd:4:", "MBDyn 1.7.3 reads a value whenever an argument follows the node type"),
-        (refused("abstract nodes: 2; genels: 1;", nodes, "genel: 1, state space MIMO, 1, 1, abstract, algebraic;"), "m.mbd:8:", "genel type 'state space MIMO' is not supported by romdyn"),
+        (refused("abstract nodes: 2; genels: 1;", nodes, "genel: 1, swashplate, 1;"), "m.mbd:8:", "genel type 'swashplate' is not supported by romdyn"),
         (refused("abstract nodes: 2; genels: 1;", nodes, "genel: 1, spring, 1, abstract, algebraic, 2, abstract, linear viscous, 1.;"), "m.mbd:8:", "only elastic constitutive laws are allowed"),
         (refused("abstract nodes: 2; genels: 1;", nodes, "genel: 1, spring support, 2, abstract, linear elastic, 1.;"), "m.mbd:8:", "the algebraic value of a differential node is required"),
         (refused("abstract nodes: 2; genels: 1;", nodes, "genel: 1, mass, 1, abstract, const, 1.;"), "m.mbd:8:", "the order of differential abstract node 1"),
@@ -249,11 +249,11 @@ fn pid_loop_and_filters_run_as_mbdyn_1_7_3() {
         assert!((xp - mxp).abs() < 1e-8 * mxp.abs(), "node {} derivative: {xp:e} vs MBDyn {mxp:e}", k + 1);
     }
     // tests/mbdyn_files/scalar_filter_butterworth.mbd (a 1 Hz unit sine into both filters):
-    // MBDyn 1.7.3's outputs at t = 2.001 s, both -7.071177425805828e-01 (the steady state's
+    // MBDyn 1.7.3's outputs at t = 2.001 s, all three -7.071177425805828e-01 (the steady state's
     // -sin(2π t)/√2 lagging 90°, after the transient), to 1e-12.
     let text = std::fs::read_to_string(test_file("scalar_filter_butterworth.mbd")).unwrap();
     let got = final_scalars(&text);
-    for k in [0, 2] {
+    for k in [0, 2, 3] {
         assert!((got[k].0 - -7.071177425805828e-01).abs() < 1e-12, "output node {k}: {:e}", got[k].0);
     }
     assert!((got[1].0 - 6.283143964870634e-03).abs() < 1e-15, "input node: {:e}", got[1].0);

@@ -1,22 +1,22 @@
 //! The `genel` cards romdyn builds (input manual §Genel Element; genel.cc, `ReadGenel`):
 //! `clamp`, `distance`, `spring`, `spring support`, `cross spring support`, `mass`, `scalar
-//! filter` and `state space SISO`; and the abstract force (`force: L, abstract, NODE, TYPE, DRIVE`, §Abstract
+//! filter`, `state space SISO` and `state space MIMO`; and the abstract force (`force: L, abstract, NODE, TYPE, DRIVE`, §Abstract
 //! force). Every other genel is refused by name.
 
 use super::cursor::Cursor;
 use super::diagnostic::MbdynError;
 use super::element_context::ElementContext;
 use super::scalar_nodes::scalar_dof;
-use crate::element::{controllable_form, observable_form, AbstractForce, Element, ScalarClamp, ScalarDistance, ScalarInput, ScalarLaw, ScalarMass, ScalarSpring, ScalarSpringPair, StateSpaceSiso};
+use crate::element::{controllable_form, observable_form, AbstractForce, Element, ScalarClamp, ScalarDistance, ScalarInput, ScalarLaw, ScalarMass, ScalarSpring, ScalarSpringPair, StateSpace};
 use crate::model::Label;
 
 /// The genels of MBDyn 1.7.3 romdyn does not build (named in the refusal).
-const OTHER_GENELS: [&str; 5] = ["state space MIMO", "swashplate", "rotor trim", "take off", "inline"];
+const OTHER_GENELS: [&str; 4] = ["swashplate", "rotor trim", "take off", "inline"];
 
 /// `genel: LABEL, TYPE, …` after the label.
 pub fn genel(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<dyn Element>, MbdynError> {
     let span = c.here();
-    let supported = ["clamp", "distance", "spring support", "cross spring support", "spring", "mass", "scalar filter", "state space SISO"];
+    let supported = ["clamp", "distance", "spring support", "cross spring support", "spring", "mass", "scalar filter", "state space SISO", "state space MIMO"];
     if let Some(k) = c.accept_any(&OTHER_GENELS) {
         return Err(c.error_at(span, format!("genel type '{k}' is not supported by romdyn (supported: {})", supported.join(", "))));
     }
@@ -84,67 +84,99 @@ fn scalar_law(c: &mut Cursor, ctx: &ElementContext, what: &str) -> Result<Scalar
     Ok(ScalarLaw { stiffness: law.stiffness[(0, 0)], viscosity: law.viscosity[(0, 0)], prestrain: law.prestrain[0], prestress: law.prestress[0] })
 }
 
-/// `scalar filter, OUT, {[node dof,] IN | drive, DRIVE}, [canonical form, …,] ND, a_1 … a_ND,
-/// NN, b_0 … b_NN [, gain, G] [, balance, yes|no]` and `state space SISO, OUT, {…},
-/// ORDER, [matrix E, …,] matrix A, …, matrix B, …, matrix C, … [, matrix D, D]
-/// [, balance, …]` (genel.cc). `balance` scales the states (MBDyn's dgebal), which changes
-/// neither the transfer function nor the output: romdyn reads it and keeps the states
-/// unscaled.
-fn state_space(label: Label, kind: &'static str, c: &mut Cursor, ctx: &ElementContext, what: &str) -> Result<Box<dyn Element>, MbdynError> {
-    let scalars = &ctx.nodes.2;
-    let out_span = c.here();
-    let (output, _) = scalar_dof(c, scalars, what, true)?;
-    if output.derivative {
-        return Err(c.error_at(out_span, format!("{what}: the output must be a node's algebraic value (romdyn writes the output equation on the value)")));
+/// One input of a state-space genel (MBDyn's `ReadScalarValue`): `drive, DRIVE` or
+/// `[node dof,] DOF`.
+fn scalar_input(c: &mut Cursor, ctx: &ElementContext, what: &str) -> Result<ScalarInput, MbdynError> {
+    if c.accept("drive") {
+        return Ok(ScalarInput::Drive(super::drives::drive(c, ctx.drives, ctx.seq)?));
     }
-    let input = if c.accept("drive") {
-        ScalarInput::Drive(super::drives::drive(c, ctx.drives, ctx.seq)?)
-    } else {
-        c.accept("node dof");
-        ScalarInput::Dof(scalar_dof(c, scalars, what, true)?.0)
-    };
-    if let ScalarInput::Dof(d) = &input
-        && d.node == output.node
-    {
-        return Err(c.error_at(out_span, format!("{what}: the input and the output are the same node, {}", d.node)));
+    c.accept("node dof");
+    Ok(ScalarInput::Dof(scalar_dof(c, &ctx.nodes.2, what, true)?.0))
+}
+
+/// A count of outputs or inputs, 1 to 64.
+fn port_count(c: &mut Cursor, what: &str, of: &str) -> Result<usize, MbdynError> {
+    let span = c.here();
+    let n = c.count(&format!("number of {of}"))?;
+    if !(1..=64).contains(&n) {
+        return Err(c.error_at(span, format!("{what}: the number of {of} must be 1 to 64, found {n}")));
+    }
+    Ok(n)
+}
+
+/// `scalar filter, OUT, {[node dof,] IN | drive, DRIVE}, [canonical form, …,] ND, a_1 … a_ND,
+/// NN, b_0 … b_NN [, gain, G] [, balance, yes|no]`, `state space SISO, OUT, IN, ORDER,
+/// matrix A, …, matrix B, …, matrix C, … [, matrix D, D] [, gain, G] [, balance, …]` and
+/// `state space MIMO, P, OUT…, M, IN…, ORDER, matrix A, …, matrix B (ORDER × M), …, matrix C
+/// (P × ORDER), … [, matrix D (P × M), …] [, gain, G] [, balance, …]` (genel.cc, matrices row
+/// by row). `balance` scales the states (MBDyn's dgebal), which changes neither the transfer
+/// function nor the outputs: romdyn reads it and keeps the states unscaled.
+fn state_space(label: Label, kind: &'static str, c: &mut Cursor, ctx: &ElementContext, what: &str) -> Result<Box<dyn Element>, MbdynError> {
+    let mimo = kind == "state space MIMO";
+    let p = if mimo { port_count(c, what, "outputs")? } else { 1 };
+    let mut outputs = Vec::with_capacity(p);
+    for _ in 0..p {
+        let out_span = c.here();
+        let (output, _) = scalar_dof(c, &ctx.nodes.2, what, true)?;
+        if output.derivative {
+            return Err(c.error_at(out_span, format!("{what}: an output must be a node's algebraic value (romdyn writes the output equation on the value)")));
+        }
+        outputs.push(output.node);
+    }
+    let m = if mimo { port_count(c, what, "inputs")? } else { 1 };
+    let in_span = c.here();
+    let inputs = (0..m).map(|_| scalar_input(c, ctx, what)).collect::<Result<Vec<_>, _>>()?;
+    if let Some(node) = inputs.iter().find_map(|i| match i {
+        ScalarInput::Dof(d) if outputs.contains(&d.node) => Some(d.node),
+        _ => None,
+    }) {
+        return Err(c.error_at(in_span, format!("{what}: {node} is both an input and an output")));
     }
     let (a, b, cc, d) = if kind == "scalar filter" {
-        let observable = if c.accept("canonical form") { c.keyword("the canonical form", &["controllable", "observable"])? == "observable" } else { false };
-        let nd_span = c.here();
-        let nd = c.count("output order (denominator degree)")?;
-        if nd < 1 || nd > 64 {
-            return Err(c.error_at(nd_span, format!("{what}: the output order must be 1 to 64, found {nd}")));
-        }
-        let den = (1..=nd).map(|i| c.real(&format!("denominator coefficient a_{i}"))).collect::<Result<Vec<_>, _>>()?;
-        let nn_span = c.here();
-        let nn = c.count("input order (numerator degree)")?;
-        if nn > nd {
-            return Err(c.error_at(nn_span, format!("{what}: the input order {nn} exceeds the output order {nd}: the filter must be proper")));
-        }
-        let mut num = vec![0.0; nd + 1];
-        for (i, slot) in num.iter_mut().enumerate().skip(nd - nn) {
-            *slot = c.real(&format!("numerator coefficient b_{}", i - (nd - nn)))?;
-        }
-        if c.accept("gain") {
-            let g = c.real("gain")?;
-            num.iter_mut().for_each(|x| *x *= g);
-        }
-        if observable { observable_form(&den, &num) } else { controllable_form(&den, &num) }
+        let (a, b, cc, d) = filter(c, what)?;
+        (a, b, cc, vec![d])
     } else {
-        matrices(c, what)?
+        matrices(c, what, p, m)?
     };
     if c.accept("balance") {
         c.flag("balance (yes or no)")?;
     }
-    if kind == "state space SISO" && c.accept("value") {
+    if kind != "scalar filter" && c.accept("value") {
         return Err(c.error(format!("{what}: initial values of the states ('value, …') are not supported by romdyn (its genel states start at zero)")));
     }
-    Ok(Box::new(StateSpaceSiso { label, output: output.node, input, a, b, c: cc, d, keyword: kind }))
+    Ok(Box::new(StateSpace { label, outputs, inputs, a, b, c: cc, d, keyword: kind }))
 }
 
-/// `ORDER, [matrix E, …,] matrix A, a_11, …, matrix B, …, matrix C, … [, matrix D, D]` of a
-/// `state space SISO` genel (`matrix E`, a descriptor form, is refused).
-fn matrices(c: &mut Cursor, what: &str) -> Result<(Vec<f64>, Vec<f64>, Vec<f64>, f64), MbdynError> {
+/// `[canonical form, …,] ND, a_1 … a_ND, NN, b_0 … b_NN [, gain, G]` of a `scalar filter`:
+/// MBDyn's realization.
+fn filter(c: &mut Cursor, what: &str) -> Result<(Vec<f64>, Vec<f64>, Vec<f64>, f64), MbdynError> {
+    let observable = if c.accept("canonical form") { c.keyword("the canonical form", &["controllable", "observable"])? == "observable" } else { false };
+    let nd_span = c.here();
+    let nd = c.count("output order (denominator degree)")?;
+    if nd < 1 || nd > 64 {
+        return Err(c.error_at(nd_span, format!("{what}: the output order must be 1 to 64, found {nd}")));
+    }
+    let den = (1..=nd).map(|i| c.real(&format!("denominator coefficient a_{i}"))).collect::<Result<Vec<_>, _>>()?;
+    let nn_span = c.here();
+    let nn = c.count("input order (numerator degree)")?;
+    if nn > nd {
+        return Err(c.error_at(nn_span, format!("{what}: the input order {nn} exceeds the output order {nd}: the filter must be proper")));
+    }
+    let mut num = vec![0.0; nd + 1];
+    for (i, slot) in num.iter_mut().enumerate().skip(nd - nn) {
+        *slot = c.real(&format!("numerator coefficient b_{}", i - (nd - nn)))?;
+    }
+    if c.accept("gain") {
+        let g = c.real("gain")?;
+        num.iter_mut().for_each(|x| *x *= g);
+    }
+    Ok(if observable { observable_form(&den, &num) } else { controllable_form(&den, &num) })
+}
+
+/// `ORDER, [matrix E, …,] matrix A, …, matrix B, …, matrix C, … [, matrix D, …] [, gain, G]`
+/// of a state-space genel with `p` outputs and `m` inputs, row by row (`matrix E`, a
+/// descriptor form, is refused); the gain multiplies `C` and `D`.
+fn matrices(c: &mut Cursor, what: &str, p: usize, m: usize) -> Result<(Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>), MbdynError> {
     let n_span = c.here();
     let n = c.count("state space order")?;
     if n < 1 || n > 64 {
@@ -158,14 +190,12 @@ fn matrices(c: &mut Cursor, what: &str) -> Result<(Vec<f64>, Vec<f64>, Vec<f64>,
         (0..len).map(|k| c.real(&format!("{name} entry {}", k + 1))).collect()
     };
     let a = read(c, "matrix A", n * n)?;
-    let b = read(c, "matrix B", n)?;
-    let cc = read(c, "matrix C", n)?;
-    let mut cc = cc;
-    let mut d = if c.accept("matrix D") { c.real("matrix D")? } else { 0.0 };
+    let b = read(c, "matrix B", n * m)?;
+    let mut cc = read(c, "matrix C", p * n)?;
+    let mut d = if c.accept("matrix D") { (0..p * m).map(|k| c.real(&format!("matrix D entry {}", k + 1))).collect::<Result<Vec<_>, _>>()? } else { vec![0.0; p * m] };
     if c.accept("gain") {
         let g = c.real("gain")?;
-        cc.iter_mut().for_each(|x| *x *= g);
-        d *= g;
+        cc.iter_mut().chain(d.iter_mut()).for_each(|x| *x *= g);
     }
     Ok((a, b, cc, d))
 }
