@@ -17,8 +17,9 @@ pub enum ScalarInput {
 
 /// `genel: L, state space SISO, …`, `genel: L, state space MIMO, …` and `genel: L, scalar
 /// filter, …` (GenelStateSpaceSISO, GenelStateSpaceMIMO, genfilt.cc): own differential
-/// states `x` with `ẋ = A x + B u`, and each output node's equation `y_i − (C x)_i −
-/// (D u)_i = 0` (the outputs are algebraic values). MBDyn 1.7.3's SISO Jacobian writes the
+/// states `x` with `E ẋ = A x + B u` (`E = I` unless `matrix E` is given, a descriptor
+/// form), and each output node's equation `y_i − (C x)_i − (D u)_i = 0` (the outputs are
+/// algebraic values). MBDyn 1.7.3's SISO Jacobian writes the
 /// input column with the wrong sign and leaves out the output row's `−d`; romdyn writes
 /// the derivatives of the residual (the runs agree, MBDyn's eigenanalysis of a loop closed
 /// through the genel does not: tests/multibody/scalar_nodes.rs).
@@ -26,7 +27,9 @@ pub struct StateSpace {
     pub label: Label,
     pub outputs: Vec<ScalarNodeId>,
     pub inputs: Vec<ScalarInput>,
-    /// `A` (n × n), `B` (n × m), `C` (p × n), `D` (p × m), each row by row.
+    /// `E` (n × n, `None`: the identity), `A` (n × n), `B` (n × m), `C` (p × n), `D` (p × m),
+    /// each row by row.
+    pub e: Option<Vec<f64>>,
     pub a: Vec<f64>,
     pub b: Vec<f64>,
     pub c: Vec<f64>,
@@ -89,7 +92,11 @@ impl Element for StateSpace {
         for i in 0..n {
             let ax: f64 = (0..n).map(|j| self.a[i * n + j] * st.multiplier(j)).sum();
             let bu: f64 = (0..m).map(|j| self.b[i * m + j] * u[j]).sum();
-            out.add(Row::Constraint(i), st.rate(i) - ax - bu);
+            let ex: f64 = match &self.e {
+                Some(e) => (0..n).map(|j| e[i * n + j] * st.rate(j)).sum(),
+                None => st.rate(i),
+            };
+            out.add(Row::Constraint(i), ex - ax - bu);
         }
         for (k, _) in self.outputs.iter().enumerate() {
             let cx: f64 = (0..n).map(|j| self.c[k * n + j] * st.multiplier(j)).sum();
@@ -101,8 +108,11 @@ impl Element for StateSpace {
         let (n, m) = (self.order(), self.inputs.len());
         let inputs = self.inputs_at(st);
         for i in 0..n {
-            out.add(Row::Constraint(i), Col::Rate(i), 1.0);
             for j in 0..n {
+                let e = self.e.as_ref().map_or(f64::from(u8::from(i == j)), |e| e[i * n + j]);
+                if e != 0.0 {
+                    out.add(Row::Constraint(i), Col::Rate(j), e);
+                }
                 out.add(Row::Constraint(i), Col::Multiplier(j), -self.a[i * n + j]);
             }
             for (j, (_, col)) in inputs.iter().enumerate() {

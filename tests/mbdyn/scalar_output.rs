@@ -41,7 +41,7 @@ fn run_writes_the_abstract_nodes_rows() {
 
     // `default output: none` writes no .abs; a node's `output, yes` brings its rows back.
     let dir = temp_dir("scalar-abs-none");
-    let quiet = pid_text(&[("final time: 2.;", "final time: 0.01;"), ("forces: 1;", "forces: 1;\n    default output: none;"), ("abstract: 2, name, \"control force\", differential;", "abstract: 2, name, \"control force\", differential, output, yes;")]);
+    let quiet = pid_text(&[("final time: 2.;", "final time: 0.01;"), ("forces: 1;", "forces: 1;\n    default output: none;"), ("abstract: 2, name, \"control force\", differential;", "abstract: 2, name, \"control force\", differential, value, 0., output, yes;")]);
     let file = write_file(&dir, "pid.mbd", &quiet);
     let (ok, _, err) = romdyn_at(&dir, &["run", &file]);
     assert!(ok, "{err}");

@@ -133,6 +133,17 @@ fn butterworth_scalar_filter_has_its_poles_and_unit_dc_gain() {
     assert_same_roots(&dynamic, &[pole, pole.conj(), pole, pole.conj(), pole, pole.conj()], 1e-10);
     let rom = study.reduce(&RomRequest::new(ModeSelection::band(0.0, 10.0).unwrap())).unwrap_or_else(|e| panic!("{e}"));
     let g = rom.static_gains.rom.as_ref().unwrap();
+    // The MIMO genel in descriptor form, `2 ẋ = 2 A x + 2 B u` (`matrix E`): the same poles.
+    let text = std::fs::read_to_string(test_file("scalar_filter_butterworth.mbd")).unwrap();
+    let mimo = "        matrix A, -sqrt(2.)*WC, -(WC^2), 1., 0.,\n        matrix B, 1., 0.,\n        matrix C, 0., WC^2;";
+    assert!(text.contains(mimo));
+    let descriptor = text.replace(mimo, "        matrix E, 2., 0., 0., 2.,\n        matrix A, -2.*sqrt(2.)*WC, -2.*(WC^2), 2., 0.,\n        matrix B, 2., 0.,\n        matrix C, 0., WC^2;");
+    let m = common::mbdyn::read(&descriptor);
+    let inputs = vec!["101:abstract".parse::<NodeInput>().unwrap()];
+    let outputs = vec!["103:abstract".parse::<NodeOutput>().unwrap()];
+    let e_study = Study::of_model(m.model, &m.problem, Reference::Initial, &Ports::Nodes { inputs, outputs }, EigenSettings::default(), None).unwrap_or_else(|e| panic!("{e}")).0;
+    let dynamic: Vec<c64> = e_study.modal().modes.iter().filter(|m| m.kind == romdyn::eigen::ModeKind::Dynamic).map(|m| m.lambda).collect();
+    assert_same_roots(&dynamic, &[pole, pole.conj(), pole, pole.conj(), pole, pole.conj()], 1e-10);
     for out in 0..3 {
         assert!((g[(out, 0)] - 1.0).abs() < 1e-10, "DC gain of output {out}: {}", g[(out, 0)]);
     }

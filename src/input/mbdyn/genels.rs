@@ -132,9 +132,9 @@ fn state_space(label: Label, kind: &'static str, c: &mut Cursor, ctx: &ElementCo
     }) {
         return Err(c.error_at(in_span, format!("{what}: {node} is both an input and an output")));
     }
-    let (a, b, cc, d) = if kind == "scalar filter" {
+    let (e, a, b, cc, d) = if kind == "scalar filter" {
         let (a, b, cc, d) = filter(c, what)?;
-        (a, b, cc, vec![d])
+        (None, a, b, cc, vec![d])
     } else {
         matrices(c, what, p, m)?
     };
@@ -144,7 +144,7 @@ fn state_space(label: Label, kind: &'static str, c: &mut Cursor, ctx: &ElementCo
     if kind != "scalar filter" && c.accept("value") {
         return Err(c.error(format!("{what}: initial values of the states ('value, …') are not supported by romdyn (its genel states start at zero)")));
     }
-    Ok(Box::new(StateSpace { label, outputs, inputs, a, b, c: cc, d, keyword: kind }))
+    Ok(Box::new(StateSpace { label, outputs, inputs, e, a, b, c: cc, d, keyword: kind }))
 }
 
 /// `[canonical form, …,] ND, a_1 … a_ND, NN, b_0 … b_NN [, gain, G]` of a `scalar filter`:
@@ -173,22 +173,23 @@ fn filter(c: &mut Cursor, what: &str) -> Result<(Vec<f64>, Vec<f64>, Vec<f64>, f
     Ok(if observable { observable_form(&den, &num) } else { controllable_form(&den, &num) })
 }
 
+/// The matrices `(E, A, B, C, D)` of a state-space genel, `E` when given.
+type Matrices = (Option<Vec<f64>>, Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>);
+
 /// `ORDER, [matrix E, …,] matrix A, …, matrix B, …, matrix C, … [, matrix D, …] [, gain, G]`
-/// of a state-space genel with `p` outputs and `m` inputs, row by row (`matrix E`, a
-/// descriptor form, is refused); the gain multiplies `C` and `D`.
-fn matrices(c: &mut Cursor, what: &str, p: usize, m: usize) -> Result<(Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>), MbdynError> {
+/// of a state-space genel with `p` outputs and `m` inputs, row by row (`matrix E`: the
+/// descriptor form `E ẋ = A x + B u`); the gain multiplies `C` and `D`.
+fn matrices(c: &mut Cursor, what: &str, p: usize, m: usize) -> Result<Matrices, MbdynError> {
     let n_span = c.here();
     let n = c.count("state space order")?;
     if n < 1 || n > 64 {
         return Err(c.error_at(n_span, format!("{what}: the order must be 1 to 64, found {n}")));
     }
-    if c.accept("matrix E") {
-        return Err(c.error(format!("{what}: 'matrix E' (a descriptor state space) is not supported by romdyn")));
-    }
     let read = |c: &mut Cursor, name: &'static str, len: usize| -> Result<Vec<f64>, MbdynError> {
         c.keyword(&format!("'{name}'"), &[name])?;
         (0..len).map(|k| c.real(&format!("{name} entry {}", k + 1))).collect()
     };
+    let e = if c.peek_keyword().is_some_and(|k| super::parser::same_keyword(k, "matrix E")) { Some(read(c, "matrix E", n * n)?) } else { None };
     let a = read(c, "matrix A", n * n)?;
     let b = read(c, "matrix B", n * m)?;
     let mut cc = read(c, "matrix C", p * n)?;
@@ -197,7 +198,7 @@ fn matrices(c: &mut Cursor, what: &str, p: usize, m: usize) -> Result<(Vec<f64>,
         let g = c.real("gain")?;
         cc.iter_mut().chain(d.iter_mut()).for_each(|x| *x *= g);
     }
-    Ok((a, b, cc, d))
+    Ok((e, a, b, cc, d))
 }
 
 /// `force: LABEL, abstract, NODE, TYPE, DRIVE` after `abstract` (no order: the force acts on
