@@ -50,11 +50,24 @@ fn run_writes_the_abstract_nodes_rows() {
     assert!(text.lines().all(|l| l.starts_with("2 ")), "{text}");
 }
 
+/// The full model's static gain of output `name` in `romdyn rom`'s report (one input).
+fn full_gain(report: &str, name: &str) -> f64 {
+    let at = report.find(&format!("{name}\n  full model")).unwrap_or_else(|| panic!("{name}: {report}"));
+    report[at..].lines().nth(1).unwrap().split_whitespace().last().unwrap().parse().unwrap()
+}
+
 #[test]
 fn rom_takes_scalar_ports_from_the_command_line_and_a_ports_file() {
     let dir = temp_dir("scalar-rom");
     let file = write_file(&dir, "pid.mbd", &pid_text(&[]));
     let ports = write_file(&dir, "ports.json", r#"{ "inputs": ["1:abstract"], "outputs": ["1:abstract", "2:abstract", "1:abstract_rate"] }"#);
+    let named = write_file(&dir, "named.json", r#"{ "inputs": [{ "name": "disturbance", "type": "abstract", "node": 1 }], "outputs": [{ "name": "position", "type": "abstract", "node": 1 }, { "name": "control force", "type": "abstract", "node": 2 }] }"#);
+    let (ok, _, out) = romdyn_at(&dir, &["rom", &file, "--ports", &named, "--band", "0:100"]);
+    assert!(ok, "{out}");
+    assert!((full_gain(&out, "control force [-]") - 1.0).abs() < 1e-8 && full_gain(&out, "position [-]").abs() < 1e-10, "{out}");
+    let bad = write_file(&dir, "bad.json", r#"{ "inputs": [{ "type": "abstract", "node": 1, "direction": [1, 0, 0] }] }"#);
+    let (ok, _, err) = romdyn_at(&dir, &["rom", &file, "--ports", &bad, "--band", "0:100"]);
+    assert!(!ok && err.contains("inputs[0]") && err.contains("a 'abstract' port has no direction"), "{err}");
     for args in [vec!["rom", &file, "--ports", &ports, "--band", "0:100"], vec!["rom", &file, "--input", "1:abstract", "--output", "1:abstract", "--output", "2:abstract", "--output", "1:abstract_rate", "--band", "0:100"]] {
         let (ok, _, out) = romdyn_at(&dir, &args);
         assert!(ok, "{out}");
@@ -62,12 +75,8 @@ fn rom_takes_scalar_ports_from_the_command_line_and_a_ports_file() {
         // The static gains of the loop's polynomial (tests/multibody/scalar_nodes.rs): x/F = 0,
         // u/F = 1, ẋ/F = 0; the names carry the node kinds and units.
         assert!(out.contains("abstract node 2 [-]") && out.contains("abstract node 1 rate [1/s]"), "{out}");
-        let gain_of = |name: &str| -> f64 {
-            let at = out.find(&format!("{name}\n  full model")).unwrap_or_else(|| panic!("{name}: {out}"));
-            out[at..].lines().nth(1).unwrap().split_whitespace().last().unwrap().parse().unwrap()
-        };
-        assert!((gain_of("abstract node 2 [-]") - 1.0).abs() < 1e-8, "{out}");
-        assert!(gain_of("abstract node 1 [-]").abs() < 1e-10, "{out}");
+        assert!((full_gain(&out, "abstract node 2 [-]") - 1.0).abs() < 1e-8, "{out}");
+        assert!(full_gain(&out, "abstract node 1 [-]").abs() < 1e-10, "{out}");
     }
     // A port on a node the model does not have is named.
     let (ok, _, err) = romdyn_at(&dir, &["rom", &file, "--input", "7:abstract", "--output", "1:abstract", "--band", "0:100"]);
