@@ -134,7 +134,9 @@ impl Model {
     /// reference: "initial" (the initial time after consistent derivatives), "static" (static
     /// equilibrium, loads in `load_steps` increments) or a time [s] of the file's problem.
     /// inputs/outputs: "NODE:Fx|Fy|Fz|Mx|My|Mz" (force [N], moment [N m]) and
-    /// "NODE:x|y|z|rx|ry|rz" (displacement [m], rotation [rad]); ports: a ports file (JSON);
+    /// "NODE:x|y|z|rx|ry|rz" (displacement [m], rotation [rad]); on scalar nodes
+    /// "NODE:abstract|electric|hydraulic" (input on the node's equation, output its value)
+    /// and "NODE:abstract_rate|…" (output its derivative); ports: a ports file (JSON);
     /// remove_springs: labels of dummy springs; imposed: "NODE[:COMPONENTS]". route:
     /// "lambda" or "direct"; dcoef [s]. solver: "dense" (QZ: every eigenvalue), "sparse"
     /// (shift-invert Krylov–Schur on the sparse linearization: only the modes `count` (the

@@ -1,5 +1,7 @@
 //! The files of a run, named after a prefix as MBDyn names them: `PREFIX.out` (step log),
-//! `PREFIX.mov` (node motion), `PREFIX.log` (model log), for models with beams `PREFIX.act`
+//! `PREFIX.mov` (node motion), `PREFIX.log` (model log), for models with scalar nodes
+//! `PREFIX.abs`, `PREFIX.ele`, `PREFIX.prs` (abstract, electric, hydraulic nodes' values),
+//! for models with beams `PREFIX.act`
 //! (internal forces) and `PREFIX.bst` (strains and curvatures), for models with modal
 //! joints `PREFIX.mod` (modal coordinates and their derivatives), and for each eigenanalysis
 //! `PREFIX_K.m` (Octave script) and `PREFIX_K.json` (romdyn's JSON), K its 0-based number
@@ -27,6 +29,7 @@ use crate::output::eigen_m::write_eigen_m;
 use crate::output::model_log::write_model_log;
 use crate::output::motion::{motion_rows, MotionWriter, OrientationOutput};
 use crate::output::prefixed_path;
+use crate::output::scalar_nodes::ScalarNodeWriter;
 use crate::output::step_log::{StepLine, StepLog};
 
 /// `PREFIX_K` for analysis K of `count`, K written as `suffix` says.
@@ -51,6 +54,8 @@ pub struct RunFiles {
     eigen_suffix: EigenFileSuffix,
     out: StepLog,
     mov: MotionWriter,
+    /// `.abs`, `.ele`, `.prs` of the written scalar nodes.
+    scalars: ScalarNodeWriter,
     /// The nodes and steps the file asks for (`None`: every node, every step).
     motion: Option<MotionOutput>,
     /// `.act` and `.bst`, opened at step 0 when the model has beams.
@@ -74,19 +79,21 @@ impl RunFiles {
         // A directory in the way of any file of the set is found before the run.
         let stems = (0..eigen_count).map(|k| eigen_file_stem(prefix, &eigen_suffix, k, eigen_count));
         let eigen_files = stems.flat_map(|s| [prefixed_path(&s, "m"), prefixed_path(&s, "json")]);
-        for path in ["out", "mov", "log", "act", "bst", "mod"].map(|e| prefixed_path(prefix, e)).into_iter().chain(eigen_files) {
+        for path in ["out", "mov", "log", "act", "bst", "mod", "abs", "ele", "prs"].map(|e| prefixed_path(prefix, e)).into_iter().chain(eigen_files) {
             if path.is_dir() {
                 return Err(OutputError::Invalid { path, message: "is a directory: the run could not write its file there".into() });
             }
         }
         let out = StepLog::create(&prefixed_path(prefix, "out"), input)?;
-        let mov = MotionWriter::create(&prefixed_path(prefix, "mov"), OrientationOutput::Euler123Degrees, problem.output.as_ref().map_or(MotionOutput::DEFAULT_DIGITS, MotionOutput::digits))?;
+        let digits = problem.output.as_ref().map_or(MotionOutput::DEFAULT_DIGITS, MotionOutput::digits);
+        let mov = MotionWriter::create(&prefixed_path(prefix, "mov"), OrientationOutput::Euler123Degrees, digits)?;
+        let scalars = ScalarNodeWriter::create(prefix, model, digits)?;
         let mut log = AtomicFile::create(&prefixed_path(prefix, "log"))?;
         log.write_with(|w| write_model_log(w, input, model))?;
         let has_modes = model.elements.iter().any(|e| e.outputs().is_some_and(|o| !o.modal_coordinates().is_empty()));
         let digits = problem.output.as_ref().map_or(MotionOutput::DEFAULT_DIGITS, MotionOutput::digits);
         let modal = if has_modes { Some(ModalCoordinateWriter::create(&prefixed_path(prefix, "mod"), digits)?) } else { None };
-        Ok(RunFiles { prefix: prefix.to_path_buf(), input: input.to_string(), eigen_count, eigen_suffix, out, mov, motion: problem.output.clone(), beams: None, modal, has_beams: None, staged: vec![log], last_step: None, iterations: 0 })
+        Ok(RunFiles { prefix: prefix.to_path_buf(), input: input.to_string(), eigen_count, eigen_suffix, out, mov, scalars, motion: problem.output.clone(), beams: None, modal, has_beams: None, staged: vec![log], last_step: None, iterations: 0 })
     }
 
     /// Ends the step log and puts every file in place; returns their paths.
@@ -108,6 +115,7 @@ impl RunFiles {
     fn commit(self) -> Result<Vec<PathBuf>, OutputError> {
         let mut files = vec![self.out.into_file(), self.mov.into_file()];
         files.extend(self.modal.map(ModalCoordinateWriter::into_file));
+        files.extend(self.scalars.into_files());
         if let Some(b) = self.beams {
             files.extend(b.into_files());
         }
@@ -135,6 +143,9 @@ impl RunObserver for RunFiles {
         }
         if let (Some(w), true) = (self.modal.as_mut(), written) {
             w.write_step(&e.modal_coordinates())?;
+        }
+        if written {
+            self.scalars.write_step(e.model, &e.state.y, &e.state.yp, e.assembler.dofs.scalar_first)?;
         }
         if self.has_beams == Some(false) {
             return Ok(());

@@ -106,10 +106,10 @@ pub struct PencilArgs {
     /// Pencil file instead of a model: an MBDyn eigenanalysis .m file (Aplus = J(+c), Aminus = J(-c), dCoef; written with 'output matrices') or JSON (Fyd/Fy or J/Jstar/dcoef, B, C)
     #[arg(long, value_name = "FILE", conflicts_with_all = ["model", "at", "static_equilibrium"])]
     pub pencil: Option<PathBuf>,
-    /// ROM input of a model: NODE:Fx|Fy|Fz (force [N]) or NODE:Mx|My|Mz (moment [N m]), global frame
+    /// ROM input of a model: NODE:Fx|Fy|Fz (force [N]) or NODE:Mx|My|Mz (moment [N m]), global frame; or NODE:abstract|electric|hydraulic, added to that scalar node's equation as an abstract force (a current [A] into an electric node, a mass flow [kg/s] into a hydraulic one)
     #[arg(long = "input", value_name = "NODE:COMP", conflicts_with = "pencil")]
     pub inputs: Vec<NodeInput>,
-    /// ROM output of a model: NODE:x|y|z (displacement [m]) or NODE:rx|ry|rz (rotation [rad])
+    /// ROM output of a model: NODE:x|y|z (displacement [m]) or NODE:rx|ry|rz (rotation [rad]); or NODE:abstract|electric|hydraulic, that scalar node's value (a voltage [V], a pressure [Pa]), NODE:abstract_rate|electric_rate|hydraulic_rate its derivative
     #[arg(long = "output", value_name = "NODE:COMP", conflicts_with = "pencil")]
     pub outputs: Vec<NodeOutput>,
     /// ROM input of an .m pencil: a unit generalized force entering equation I (1-based row of Aplus/Aminus) as -dF_I = u. In romdyn's numbering a dynamic node with first unknown idx (the file's 'idx' with 'output geometry') has its force equilibrium x,y,z in rows idx+7..idx+9 and moments in idx+10..idx+12 (static node: idx+1..idx+6)

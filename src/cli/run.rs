@@ -105,8 +105,8 @@ fn print_summary(file: &str, r: &RunReport, written: &[PathBuf]) {
 pub fn run(a: RunArgs) -> Result<()> {
     let m = super::args::read_model_with_beams(&a.file, &a.set, a.beam_update, true)?;
     let input = a.file.display().to_string();
-    if m.model.nodes.is_empty() {
-        anyhow::bail!("{input}: the model has no structural nodes: nothing to run, no file written");
+    if m.model.nodes.is_empty() && m.model.scalar_nodes.is_empty() {
+        anyhow::bail!("{input}: the model has no structural or scalar nodes: nothing to run, no file written");
     }
     let stem = a.file.file_stem().map(PathBuf::from).unwrap_or_else(|| PathBuf::from("romdyn"));
     let prefix = match &a.prefix {

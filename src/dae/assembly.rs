@@ -43,6 +43,13 @@ struct Context<'a> {
     /// finite-difference check of the Jacobian, which holds those drives fixed).
     read_frames: &'a [NodeFrame],
     slots: &'a [usize],
+    /// Scalar node index of each of the element's scalar slots.
+    scalar_slots: &'a [usize],
+    /// The whole state's `y`, `ẏ` (scalar nodes' values and derivatives).
+    y: &'a [f64],
+    yp: &'a [f64],
+    /// The unknown of the first scalar node.
+    scalar_first: usize,
     multipliers: &'a [f64],
     /// Time derivatives of the element's own unknowns.
     rates: &'a [f64],
@@ -66,6 +73,15 @@ impl ElementState for Context<'_> {
     fn time(&self) -> f64 {
         self.t
     }
+    fn scalar_value(&self, slot: usize) -> f64 {
+        self.y[self.scalar_first + self.scalar_slots[slot]]
+    }
+    fn scalar_rate(&self, slot: usize) -> f64 {
+        self.yp[self.scalar_first + self.scalar_slots[slot]]
+    }
+    fn scalar_node(&self, id: crate::element::ScalarNodeId) -> Option<(f64, f64)> {
+        self.model.scalar_index(id).map(|i| (self.y[self.scalar_first + i], self.yp[self.scalar_first + i]))
+    }
     fn gravity(&self) -> Vec3 {
         self.gravity * self.load
     }
@@ -84,9 +100,10 @@ impl ElementState for Context<'_> {
 }
 
 /// Maps an element's local rows to global equations (`None`: a momentum row of a static
-/// node, which does not exist).
-fn global_row(dofs: &DofMap, slots: &[usize], first: usize, row: Row) -> Option<usize> {
+/// node, which does not exist). `e` is the element's index (its scalar slots).
+fn global_row(dofs: &DofMap, e: usize, slots: &[usize], first: usize, row: Row) -> Option<usize> {
     match row {
+        Row::Scalar { slot } => Some(dofs.scalar_first + dofs.element_scalars[e][slot]),
         Row::Equilibrium { slot, comp } => Some(dofs.equilibrium_row(slots[slot]) + comp),
         Row::Momentum { slot, comp } => (dofs.node_kind[slots[slot]] == NodeKind::Dynamic).then(|| dofs.node_first[slots[slot]] + comp),
         Row::Constraint(k) => Some(first + k),
@@ -96,6 +113,7 @@ fn global_row(dofs: &DofMap, slots: &[usize], first: usize, row: Row) -> Option<
 /// Maps an element's residual rows to equations and hands `(equation, value)` to `put`.
 struct Residual<'a, P: FnMut(usize, f64)> {
     dofs: &'a DofMap,
+    element: usize,
     slots: &'a [usize],
     first: usize,
     constraint_scale: f64,
@@ -108,7 +126,7 @@ impl<P: FnMut(usize, f64)> ResidualSink for Residual<'_, P> {
             Row::Constraint(k) if self.dofs.is_multiplier(self.first + k) => self.constraint_scale,
             _ => 1.0,
         };
-        if let Some(i) = global_row(self.dofs, self.slots, self.first, row) {
+        if let Some(i) = global_row(self.dofs, self.element, self.slots, self.first, row) {
             (self.put)(i, value * scale);
         }
     }
@@ -116,6 +134,7 @@ impl<P: FnMut(usize, f64)> ResidualSink for Residual<'_, P> {
 
 struct Jacobian<'a> {
     dofs: &'a DofMap,
+    element: usize,
     frames: &'a [NodeFrame],
     slots: &'a [usize],
     first: usize,
@@ -159,7 +178,7 @@ impl JacobianSink for Jacobian<'_> {
         };
         let a = self.c.a;
         for (i, row) in rows.into_iter().enumerate() {
-            let Some(r) = global_row(self.dofs, self.slots, self.first, row) else { continue };
+            let Some(r) = global_row(self.dofs, self.element, self.slots, self.first, row) else { continue };
             let b = self.y_coefficient(row);
             let mrow = m.row(i);
             // A block row times G (δθ = G δg) gives the row in the g columns: 3 entries.
@@ -174,7 +193,7 @@ impl JacobianSink for Jacobian<'_> {
                     let (n, fr) = (self.slots[slot], &self.frames[self.slots[slot]]);
                     (a * mrow * fr.g_matrix + b * mrow * fr.rate_derivative, self.dofs.node_first[n] + 3)
                 }
-                Col::Multiplier(_) | Col::Rate(_) => unreachable!("node_block returns node columns only"),
+                Col::Multiplier(_) | Col::Rate(_) | Col::ScalarValue { .. } | Col::ScalarRate { .. } => unreachable!("node_block returns node columns only"),
             };
             for k in 0..3 {
                 self.out.push(r, first + k, values[k]);
@@ -183,7 +202,7 @@ impl JacobianSink for Jacobian<'_> {
     }
 
     fn add(&mut self, row: Row, col: Col, v: f64) {
-        let Some(i) = global_row(self.dofs, self.slots, self.first, row) else { return };
+        let Some(i) = global_row(self.dofs, self.element, self.slots, self.first, row) else { return };
         let scaled = self.c.form == ConstraintForm::Scaled;
         let b = self.y_coefficient(row);
         let a = self.c.a;
@@ -211,6 +230,9 @@ impl JacobianSink for Jacobian<'_> {
                 self.out.push(i, j, if scaled && self.dofs.is_multiplier(j) { a } else { b } * v)
             }
             Col::Rate(k) => self.out.push(i, self.first + k, a * v),
+            // A scalar node's value is a `y` like a position, its derivative a `ẏ`.
+            Col::ScalarValue { slot } => self.out.push(i, self.dofs.scalar_first + self.dofs.element_scalars[self.element][slot], b * v),
+            Col::ScalarRate { slot } => self.out.push(i, self.dofs.scalar_first + self.dofs.element_scalars[self.element][slot], a * v),
         }
     }
 }
@@ -231,6 +253,10 @@ impl<'m> Assembler<'m> {
             frames,
             read_frames: frames,
             slots: &self.dofs.element_nodes[e],
+            scalar_slots: &self.dofs.element_scalars[e],
+            y: &st.y,
+            yp: &st.yp,
+            scalar_first: self.dofs.scalar_first,
             multipliers: &st.y[first..first + self.dofs.element_len[e]],
             rates: &st.yp[first..first + self.dofs.element_len[e]],
             t: st.t,
@@ -284,7 +310,7 @@ impl<'m> Assembler<'m> {
     fn with_all_nodes<R>(&self, st: &State, t: f64, f: impl FnOnce(&Context) -> R) -> R {
         let frames = self.frames(st);
         let slots: Vec<usize> = (0..frames.len()).collect();
-        f(&Context { model: self.model, frames: &frames, read_frames: &frames, slots: &slots, multipliers: &[], rates: &[], t, load: st.load, gravity: self.model.gravity, constraint_scale: 1.0, latched: None })
+        f(&Context { model: self.model, frames: &frames, read_frames: &frames, slots: &slots, scalar_slots: &[], y: &st.y, yp: &st.yp, scalar_first: self.dofs.scalar_first, multipliers: &[], rates: &[], t, load: st.load, gravity: self.model.gravity, constraint_scale: 1.0, latched: None })
     }
 
     /// A drive's value at time `t` reading the model's nodes at `st`, as a drive outside
@@ -304,7 +330,7 @@ impl<'m> Assembler<'m> {
         let scale = if form == ConstraintForm::Scaled { 1.0 / dcoef } else { 1.0 };
         for (e, el) in self.model.elements.iter().enumerate() {
             let ctx = self.context(&frames, st, e, scale);
-            let mut sink = Residual { dofs: &self.dofs, slots: &self.dofs.element_nodes[e], first: self.dofs.element_first[e], constraint_scale: scale, put: |i, v| f[i] += v };
+            let mut sink = Residual { dofs: &self.dofs, element: e, slots: &self.dofs.element_nodes[e], first: self.dofs.element_first[e], constraint_scale: scale, put: |i, v| f[i] += v };
             el.residual(&ctx, &mut sink);
         }
         f
@@ -327,7 +353,7 @@ impl<'m> Assembler<'m> {
         let scale = if c.form == ConstraintForm::Scaled { 1.0 / c.dcoef } else { 1.0 };
         for (e, el) in self.model.elements.iter().enumerate() {
             let ctx = self.context(&frames, st, e, scale);
-            let mut sink = Jacobian { dofs: &self.dofs, frames: &frames, slots: &self.dofs.element_nodes[e], first: self.dofs.element_first[e], c, out };
+            let mut sink = Jacobian { dofs: &self.dofs, element: e, frames: &frames, slots: &self.dofs.element_nodes[e], first: self.dofs.element_first[e], c, out };
             el.jacobian(&ctx, &mut sink);
         }
     }
@@ -456,7 +482,7 @@ impl<'m> Assembler<'m> {
                 continue;
             }
             let mut bad: Option<(usize, f64)> = None;
-            let mut sink = Residual { dofs: &self.dofs, slots: &self.dofs.element_nodes[e], first: self.dofs.element_first[e], constraint_scale: 1.0, put: |i, v: f64| {
+            let mut sink = Residual { dofs: &self.dofs, element: e, slots: &self.dofs.element_nodes[e], first: self.dofs.element_first[e], constraint_scale: 1.0, put: |i, v: f64| {
                 if !v.is_finite() && bad.is_none() {
                     bad = Some((i, v));
                 }
@@ -491,7 +517,7 @@ impl<'m> Assembler<'m> {
         let mut entries = Vec::new();
         let scale = if form == ConstraintForm::Scaled { 1.0 / dcoef } else { 1.0 };
         let ctx = Context { read_frames, ..self.context(frames, st, e, scale) };
-        let mut sink = Residual { dofs: &self.dofs, slots: &self.dofs.element_nodes[e], first: self.dofs.element_first[e], constraint_scale: scale, put: |i, v| entries.push((i, v)) };
+        let mut sink = Residual { dofs: &self.dofs, element: e, slots: &self.dofs.element_nodes[e], first: self.dofs.element_first[e], constraint_scale: scale, put: |i, v| entries.push((i, v)) };
         self.model.elements[e].residual(&ctx, &mut sink);
         entries
     }
@@ -500,7 +526,7 @@ impl<'m> Assembler<'m> {
     pub(crate) fn element_jacobian(&self, st: &State, frames: &[NodeFrame], e: usize, c: Coefficients) -> Triplets {
         let mut out = Triplets::new(self.dofs.len);
         let ctx = self.context(frames, st, e, if c.form == ConstraintForm::Scaled { 1.0 / c.dcoef } else { 1.0 });
-        let mut sink = Jacobian { dofs: &self.dofs, frames, slots: &self.dofs.element_nodes[e], first: self.dofs.element_first[e], c, out: &mut out };
+        let mut sink = Jacobian { dofs: &self.dofs, element: e, frames, slots: &self.dofs.element_nodes[e], first: self.dofs.element_first[e], c, out: &mut out };
         self.model.elements[e].jacobian(&ctx, &mut sink);
         out
     }

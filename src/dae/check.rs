@@ -36,10 +36,14 @@ impl JacobianMismatch {
     }
 }
 
-/// The unknowns (and equations) an element touches: its nodes' and its own multipliers, each
-/// with the index of the node that owns it.
+/// The unknowns (and equations) an element touches: its nodes' (structural and scalar) and
+/// its own multipliers, each with the index of the structural node that owns it.
 fn element_unknowns(dofs: &super::DofMap, e: usize) -> Vec<(usize, Option<usize>)> {
     let mut u: Vec<(usize, Option<usize>)> = dofs.element_nodes[e].iter().flat_map(|&n| (dofs.node_first[n]..dofs.node_first[n] + dofs.node_kind[n].unknowns()).map(move |j| (j, Some(n)))).collect();
+    let mut scalars = dofs.element_scalars[e].clone();
+    scalars.sort_unstable();
+    scalars.dedup();
+    u.extend(scalars.iter().map(|&k| (dofs.scalar_first + k, None)));
     u.extend((dofs.element_first[e]..dofs.element_first[e] + dofs.element_len[e]).map(|j| (j, None)));
     u
 }

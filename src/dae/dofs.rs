@@ -14,6 +14,15 @@ pub struct DofMap {
     pub element_len: Vec<usize>,
     /// Node index of each slot of each element.
     pub element_nodes: Vec<Vec<usize>>,
+    /// The unknown (= equation) of each scalar node ([`Model::scalar_nodes`]): they follow
+    /// the structural nodes' unknowns, one each.
+    pub scalar_first: usize,
+    /// Whether each scalar node is differential.
+    pub scalar_differential: Vec<bool>,
+    /// Scalar node index of each scalar slot of each element ([`Element::scalar_nodes`]).
+    ///
+    /// [`Element::scalar_nodes`]: crate::element::Element::scalar_nodes
+    pub element_scalars: Vec<Vec<usize>>,
     /// Number of unknowns (= equations).
     pub len: usize,
     /// Whether each unknown is a Lagrange multiplier of a holonomic constraint (the
@@ -34,6 +43,8 @@ pub struct DofMap {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Owner {
     Node { index: usize, offset: usize },
+    /// Scalar node `index` of [`Model::scalar_nodes`].
+    Scalar { index: usize },
     Element { index: usize, offset: usize },
 }
 
@@ -46,6 +57,8 @@ impl DofMap {
             node_first.push(first);
             first += n.kind.unknowns();
         }
+        let scalar_first = first;
+        first += model.scalar_nodes.len();
         let mut element_first = Vec::with_capacity(model.elements.len());
         let mut element_len = Vec::with_capacity(model.elements.len());
         let mut element_nodes = Vec::with_capacity(model.elements.len());
@@ -56,6 +69,7 @@ impl DofMap {
             first += k;
             element_nodes.push(e.nodes().iter().map(|l| model.node_index(*l).unwrap_or(usize::MAX)).collect());
         }
+        let element_scalars = model.elements.iter().map(|e| e.scalar_nodes().iter().map(|id| model.scalar_index(*id).unwrap_or(usize::MAX)).collect()).collect();
         let (mut multiplier, mut coordinate, mut state) = (vec![false; first], vec![false; first], vec![false; first]);
         for ((&f, &k), e) in element_first.iter().zip(&element_len).zip(&model.elements) {
             for j in 0..k {
@@ -65,7 +79,7 @@ impl DofMap {
                 multiplier[f + j] = kind == UnknownKind::Multiplier;
             }
         }
-        DofMap { node_first, node_kind: model.nodes.iter().map(|n| n.kind).collect(), node_displacement: model.nodes.iter().map(|n| model.displacement_nodes.contains(&n.label)).collect(), element_first, element_len, element_nodes, len: first, multiplier, coordinate, state }
+        DofMap { node_first, node_kind: model.nodes.iter().map(|n| n.kind).collect(), node_displacement: model.nodes.iter().map(|n| model.displacement_nodes.contains(&n.label)).collect(), element_first, element_len, element_nodes, scalar_first, scalar_differential: model.scalar_nodes.iter().map(|n| n.differential).collect(), element_scalars, len: first, multiplier, coordinate, state }
     }
 
     /// First equilibrium row of a node (after the momentum definitions of a dynamic node).
@@ -84,6 +98,9 @@ impl DofMap {
 
     /// Owner of unknown/equation `i`.
     pub fn owner(&self, i: usize) -> Owner {
+        if (self.scalar_first..self.scalar_first + self.scalar_differential.len()).contains(&i) {
+            return Owner::Scalar { index: i - self.scalar_first };
+        }
         match self.element_first.iter().rposition(|&f| f <= i) {
             Some(e) if i < self.element_first[e] + self.element_len[e] => Owner::Element { index: e, offset: i - self.element_first[e] },
             _ => {
@@ -115,6 +132,7 @@ impl DofMap {
         const NAMES: [&str; 12] = ["x", "y", "z", "gx", "gy", "gz", "beta_x", "beta_y", "beta_z", "gamma_x", "gamma_y", "gamma_z"];
         match self.owner(i) {
             Owner::Node { index, offset } => format!("node {} {}", model.nodes[index].label, NAMES[offset]),
+            Owner::Scalar { index } => format!("{} value", model.scalar_nodes[index].id),
             Owner::Element { index, offset } => {
                 let e = &model.elements[index];
                 format!("{} {} {}", e.type_name(), e.label(), e.multipliers().get(offset).cloned().unwrap_or_default())
@@ -135,6 +153,7 @@ impl DofMap {
                     (NodeKind::Static, o) => format!("node {label} {} equilibrium", EQ[o]),
                 }
             }
+            Owner::Scalar { index } => format!("{} equation", model.scalar_nodes[index].id),
             Owner::Element { index, offset } => {
                 let e = &model.elements[index];
                 format!("{} {} constraint {}", e.type_name(), e.label(), e.multipliers().get(offset).cloned().unwrap_or_default())

@@ -9,26 +9,31 @@ use super::{Assembler, Coefficients, State};
 use crate::kinematics::Vec3;
 use crate::linear::{Jacobians, LinearDae, SparseLinearDae, SparseMatrix};
 use crate::model::ConstraintForm;
-use crate::model::{Label, Model};
+use crate::model::{Label, Model, ScalarNodeId, ScalarNodeKind};
 
-const FORCES: [&str; 6] = ["Fx", "Fy", "Fz", "Mx", "My", "Mz"];
-const MOTIONS: [&str; 6] = ["x", "y", "z", "rx", "ry", "rz"];
+const FORCES: [&str; 9] = ["Fx", "Fy", "Fz", "Mx", "My", "Mz", "abstract", "electric", "hydraulic"];
+const MOTIONS: [&str; 12] = ["x", "y", "z", "rx", "ry", "rz", "abstract", "electric", "hydraulic", "abstract_rate", "electric_rate", "hydraulic_rate"];
+const SCALAR_KINDS: [ScalarNodeKind; 3] = [ScalarNodeKind::Abstract, ScalarNodeKind::Electric, ScalarNodeKind::Hydraulic];
 
-/// A force or moment component at a node, global frame (`NODE:Fx|Fy|Fz|Mx|My|Mz`) [N, N m].
+/// A force or moment component at a node, global frame (`NODE:Fx|Fy|Fz|Mx|My|Mz`) [N, N m],
+/// or an input on a scalar node's equation (`NODE:abstract|electric|hydraulic`, components
+/// 6 to 8, [`Excitation::Scalar`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct NodeInput {
     pub node: Label,
     pub component: usize,
 }
 
-/// A displacement or rotation component of a node (`NODE:x|y|z|rx|ry|rz`) [m, rad].
+/// A displacement or rotation component of a node (`NODE:x|y|z|rx|ry|rz`) [m, rad], or a
+/// scalar node's value (`NODE:abstract|electric|hydraulic`, components 6 to 8) or derivative
+/// (`NODE:abstract_rate|electric_rate|hydraulic_rate`, 9 to 11).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct NodeOutput {
     pub node: Label,
     pub component: usize,
 }
 
-fn parse_port(s: &str, names: &[&str; 6]) -> Result<(Label, usize), PortError> {
+fn parse_port(s: &str, names: &[&str]) -> Result<(Label, usize), PortError> {
     let bad = || PortError::Syntax(s.to_string(), names.join("|"));
     let (node, comp) = s.split_once(':').ok_or_else(bad)?;
     let node: Label = node.trim().parse().map_err(|_| bad())?;
@@ -60,6 +65,10 @@ impl NodeInput {
     }
     /// The same input as a port: a force at the node's origin or a moment, global axes.
     pub fn port(&self) -> InputPort {
+        if self.component >= 6 {
+            let node = ScalarNodeId { kind: SCALAR_KINDS[self.component - 6], label: self.node };
+            return InputPort { name: format!("{node}"), excitation: Excitation::Scalar { node } };
+        }
         let direction = Direction::global(unit(self.component % 3));
         let excitation = if self.component < 3 {
             Excitation::Force { point: Point::node(self.node), direction }
@@ -76,6 +85,13 @@ impl NodeOutput {
     }
     /// The same output as a port: displacement of the node's origin or rotation, global axes.
     pub fn port(&self) -> OutputPort {
+        if self.component >= 6 {
+            let node = ScalarNodeId { kind: SCALAR_KINDS[(self.component - 6) % 3], label: self.node };
+            return match self.component {
+                6..=8 => OutputPort { name: format!("{node}"), measurement: Measurement::ScalarValue { node } },
+                _ => OutputPort { name: format!("{node} rate"), measurement: Measurement::ScalarRate { node } },
+            };
+        }
         let direction = Direction::global(unit(self.component % 3));
         let measurement = if self.component < 3 {
             Measurement::Displacement { point: Point::node(self.node), direction }

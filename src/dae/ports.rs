@@ -14,7 +14,7 @@ use faer::Mat;
 use super::state::NodeFrame;
 use super::{DofMap, State};
 use crate::kinematics::{skew, Vec3};
-use crate::model::{Label, Model};
+use crate::model::{Label, Model, ScalarNodeId, ScalarNodeKind};
 
 /// The frame a direction is given in.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -78,6 +78,10 @@ pub enum Excitation {
     Moment { node: Label, direction: Direction },
     /// An actuator between two bodies: `+u d` at `to`, `−u d` at `from` [N].
     Actuator { from: Point, to: Point, direction: Direction },
+    /// `u` added to a scalar node's equation, as an abstract force (`force: …, abstract`):
+    /// a force on an abstract node, a current into an electric node [A], a mass flow into a
+    /// hydraulic node [kg/s].
+    Scalar { node: ScalarNodeId },
 }
 
 /// What an output measures.
@@ -93,6 +97,10 @@ pub enum Measurement {
     Velocity { point: Point, direction: Direction },
     /// Angular velocity of a node about a direction [rad/s].
     AngularVelocity { node: Label, direction: Direction },
+    /// The value of a scalar node (an abstract node's, a voltage [V], a pressure [Pa]).
+    ScalarValue { node: ScalarNodeId },
+    /// The time derivative of a differential scalar node.
+    ScalarRate { node: ScalarNodeId },
 }
 
 /// A named input.
@@ -114,6 +122,11 @@ impl InputPort {
     pub fn unit(&self) -> &'static str {
         match self.excitation {
             Excitation::Moment { .. } => "N m",
+            Excitation::Scalar { node } => match node.kind {
+                ScalarNodeKind::Abstract => "-",
+                ScalarNodeKind::Electric => "A",
+                ScalarNodeKind::Hydraulic => "kg/s",
+            },
             _ => "N",
         }
     }
@@ -131,6 +144,16 @@ impl OutputPort {
             Measurement::Rotation { .. } => "rad",
             Measurement::Velocity { .. } => "m/s",
             Measurement::AngularVelocity { .. } => "rad/s",
+            Measurement::ScalarValue { node } => match node.kind {
+                ScalarNodeKind::Abstract => "-",
+                ScalarNodeKind::Electric => "V",
+                ScalarNodeKind::Hydraulic => "Pa",
+            },
+            Measurement::ScalarRate { node } => match node.kind {
+                ScalarNodeKind::Abstract => "1/s",
+                ScalarNodeKind::Electric => "V/s",
+                ScalarNodeKind::Hydraulic => "Pa/s",
+            },
         }
     }
     pub fn label(&self) -> String {
@@ -138,7 +161,7 @@ impl OutputPort {
     }
     /// Whether the output is a rate (it has a row in `C̃_v`).
     pub fn is_rate(&self) -> bool {
-        matches!(self.measurement, Measurement::Velocity { .. } | Measurement::AngularVelocity { .. })
+        matches!(self.measurement, Measurement::Velocity { .. } | Measurement::AngularVelocity { .. } | Measurement::ScalarRate { .. })
     }
 }
 
@@ -149,6 +172,8 @@ pub enum PortError {
     Syntax(String, String),
     #[error("'{0}': structural node {1} is not defined")]
     UnknownNode(String, Label),
+    #[error("'{0}': {1} is not defined")]
+    UnknownScalarNode(String, ScalarNodeId),
     #[error("'{0}': the direction is zero or not finite")]
     BadDirection(String),
     #[error("'{0}': {1}")]
@@ -186,6 +211,11 @@ impl<'m> PortMap<'m> {
 
     fn node(&self, name: &str, label: Label) -> Result<usize, PortError> {
         self.model.node_index(label).ok_or_else(|| PortError::UnknownNode(name.to_string(), label))
+    }
+
+    /// The unknown (= equation) of a scalar node.
+    fn scalar(&self, name: &str, id: ScalarNodeId) -> Result<usize, PortError> {
+        self.model.scalar_index(id).map(|i| self.dofs.scalar_first + i).ok_or_else(|| PortError::UnknownScalarNode(name.to_string(), id))
     }
 
     /// Node index and the point's offset in global axes `R f` [m].
@@ -251,6 +281,7 @@ impl<'m> PortMap<'m> {
                 force(&mut col, b, rb, d);
                 force(&mut col, a, ra, -d);
             }
+            Excitation::Scalar { node } => col[self.scalar(name, *node)?] += 1.0,
         }
         Ok(col)
     }
@@ -320,6 +351,12 @@ impl<'m> PortMap<'m> {
                     t += d.cross(&fr.kin.omega).transpose();
                 }
                 (0..3).for_each(|k| c[self.dofs.node_first[i] + 3 + k] += t[k]);
+                rate = Some(cv);
+            }
+            Measurement::ScalarValue { node } => c[self.scalar(name, *node)?] += 1.0,
+            Measurement::ScalarRate { node } => {
+                let mut cv = vec![0.0; n];
+                cv[self.scalar(name, *node)?] = 1.0;
                 rate = Some(cv);
             }
         }

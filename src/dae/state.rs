@@ -46,7 +46,8 @@ fn vec3(v: &[f64], i: usize) -> Vec3 {
 
 impl State {
     /// The initial state of a model: positions, `g = 0`, `R_ref` = initial orientation,
-    /// `ẋ` and `ġ = ω` from the initial velocities, elements' own initial values
+    /// `ẋ` and `ġ = ω` from the initial velocities; scalar nodes' values and derivatives as
+    /// written; elements' own initial values
     /// ([`crate::element::Element::initial_unknowns`]); momenta and multipliers zero.
     pub fn initial(model: &Model, dofs: &DofMap) -> Self {
         let mut y = vec![0.0; dofs.len];
@@ -64,6 +65,10 @@ impl State {
                 y[dofs.element_first[e] + k] = value;
                 yp[dofs.element_first[e] + k] = rate;
             }
+        }
+        for (i, n) in model.scalar_nodes.iter().enumerate() {
+            y[dofs.scalar_first + i] = n.value;
+            yp[dofs.scalar_first + i] = n.derivative;
         }
         State { t: 0.0, load: 1.0, y, yp, r_ref: model.nodes.iter().map(|n| n.orientation).collect(), g_ref: vec![Vec3::zeros(); model.nodes.len()], w_ref: vec![Vec3::zeros(); model.nodes.len()], latched: vec![None; model.elements.len()] }
     }

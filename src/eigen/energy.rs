@@ -4,6 +4,11 @@
 //! (translation and rotation about the node). For a mode `v` with eigenvalue λ the nodal
 //! velocities are `λ v`; the share of component `k` of node `n` is
 //! `M_n,kk |v_k|² / Σ M_m,jj |v_j|²` (diagonal terms; `|λ|²` cancels).
+//!
+//! A mode that moves no structural node (a controller's, a filter's: it lives in scalar nodes, issue
+//! 34) is described instead by the scalar nodes its vector moves (`component` "abstract",
+//! "electric", "hydraulic"; shares `|v_k|² / Σ |v_j|²`, which depend on the nodes' units,
+//! so [`describe`] names the nodes without them).
 
 use super::Mode;
 use crate::dae::DofMap;
@@ -26,6 +31,8 @@ pub struct EnergyShare {
 pub struct ModalEnergy {
     /// `(node label, component, unknown index, mass)`.
     pub(super) terms: Vec<(u32, &'static str, usize, f64)>,
+    /// `(node label, kind, unknown index)` of every scalar node.
+    pub(super) scalars: Vec<(u32, &'static str, usize)>,
 }
 
 impl ModalEnergy {
@@ -47,16 +54,23 @@ impl ModalEnergy {
                 terms.push((node.label, *component, f + k, (-fyd[f + k]).max(0.0)));
             }
         }
-        ModalEnergy { terms }
+        let scalars = model.scalar_nodes.iter().enumerate().map(|(i, n)| (n.id.label, n.id.kind.keyword(), dofs.scalar_first + i)).collect();
+        ModalEnergy { terms, scalars }
     }
 
     /// Kinetic-energy shares of a mode, largest first (empty without eigenvector or mass).
     pub fn shares(&self, mode: &Mode) -> Vec<EnergyShare> {
         let Some(v) = &mode.right else { return Vec::new() };
         let mut out: Vec<EnergyShare> = self.terms.iter().map(|&(node, component, j, mass)| EnergyShare { node, component, share: mass * v[j].norm_sqr() }).collect();
-        let total: f64 = out.iter().map(|s| s.share).sum();
+        let mut total: f64 = out.iter().map(|s| s.share).sum();
         if total <= 0.0 {
-            return Vec::new();
+            // No mass moves: the mode lives in the scalar nodes (a controller, a filter).
+            out = self.scalars.iter().map(|&(node, component, j)| EnergyShare { node, component, share: v[j].norm_sqr() }).collect();
+            total = out.iter().map(|s| s.share).sum();
+            if !(total > 0.0) {
+                return Vec::new();
+            }
+            out.retain(|s| s.share > 1e-12 * total);
         }
         out.iter_mut().for_each(|s| s.share /= total);
         out.retain(|s| s.share > 0.0);
@@ -70,8 +84,28 @@ pub fn kinetic_energy_shares(model: &Model, dae: &LinearDae, mode: &Mode) -> Vec
     ModalEnergy::new(model, dae).shares(mode)
 }
 
-/// "node 3 rz 92 %, node 2 x 6 %": the components above 5 % (at least the largest).
+/// "node 3 rz 92 %, node 2 x 6 %": the components above 5 % (at least the largest); for a
+/// mode that moves no structural node, the scalar nodes it moves: "no structural node moves
+/// (abstract nodes 1, 2)".
 pub fn describe(shares: &[EnergyShare]) -> String {
+    if shares.first().is_some_and(|s| !COMPONENTS.contains(&s.component)) {
+        let mut kinds: Vec<(&str, Vec<u32>)> = Vec::new();
+        for s in shares {
+            match kinds.iter_mut().find(|(k, _)| *k == s.component) {
+                Some((_, labels)) => labels.push(s.node),
+                None => kinds.push((s.component, vec![s.node])),
+            }
+        }
+        let parts: Vec<String> = kinds
+            .into_iter()
+            .map(|(kind, mut labels)| {
+                labels.sort_unstable();
+                let list: Vec<String> = labels.iter().map(|l| l.to_string()).collect();
+                format!("{kind} node{} {}", if labels.len() > 1 { "s" } else { "" }, list.join(", "))
+            })
+            .collect();
+        return format!("no structural node moves ({})", parts.join("; "));
+    }
     shares
         .iter()
         .enumerate()

@@ -5,6 +5,42 @@ use crate::kinematics::{Mat3, Vec3};
 /// Label of a node or an element, as in MBDyn input files.
 pub type Label = u32;
 
+/// The kinds of MBDyn's scalar nodes that carry an unknown (input manual, §Nodes): each kind
+/// has its own label space, as in MBDyn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum ScalarNodeKind {
+    /// `abstract`: algebraic or differential, no unit.
+    Abstract,
+    /// `electric`: a voltage [V], differential.
+    Electric,
+    /// `hydraulic`: a pressure [Pa], algebraic.
+    Hydraulic,
+}
+
+impl ScalarNodeKind {
+    /// MBDyn's keyword of the node type: "abstract", "electric", "hydraulic".
+    pub fn keyword(self) -> &'static str {
+        match self {
+            ScalarNodeKind::Abstract => "abstract",
+            ScalarNodeKind::Electric => "electric",
+            ScalarNodeKind::Hydraulic => "hydraulic",
+        }
+    }
+}
+
+/// A scalar node: its kind and its label within that kind.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct ScalarNodeId {
+    pub kind: ScalarNodeKind,
+    pub label: Label,
+}
+
+impl std::fmt::Display for ScalarNodeId {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{} node {}", self.kind.keyword(), self.label)
+    }
+}
+
 /// Kinematics of one node, as an element sees it.
 #[derive(Clone, Debug)]
 pub struct NodeKinematics {
@@ -23,6 +59,10 @@ pub enum Row {
     Momentum { slot: usize, comp: usize },
     /// The element's own constraint equation `k`.
     Constraint(usize),
+    /// The equation of the element's scalar node `slot` (its index in
+    /// [`Element::scalar_nodes`]): an abstract node's "force" row, MBDyn's
+    /// `iGetFirstRowIndex` of a `ScalarNode`; residual `… − f`.
+    Scalar { slot: usize },
 }
 
 /// A perturbation an entry is a derivative with respect to.
@@ -38,6 +78,11 @@ pub enum Col {
     /// The time derivative of the element's own unknown `k`, a differential state
     /// ([`UnknownKind::State`]): its entries go to `F_/ẏ`.
     Rate(usize),
+    /// The value `x` of the element's scalar node `slot` (a `y` unknown).
+    ScalarValue { slot: usize },
+    /// The time derivative `ẋ` of the element's scalar node `slot` (a differential node
+    /// only): its entries go to `F_/ẏ`.
+    ScalarRate { slot: usize },
 }
 
 /// One private datum of an element ([`super::private_data`]): its value at a state, `None`
@@ -88,6 +133,21 @@ pub trait ElementState {
         0.0
     }
     fn time(&self) -> f64;
+    /// The value of the element's scalar node `slot` ([`Element::scalar_nodes`]).
+    fn scalar_value(&self, _slot: usize) -> f64 {
+        0.0
+    }
+    /// The time derivative of the element's scalar node `slot` (zero where the caller
+    /// integrates none).
+    fn scalar_rate(&self, _slot: usize) -> f64 {
+        0.0
+    }
+    /// Any scalar node of the model, `(value, derivative)`, at the state being assembled
+    /// (what a `dof` or `node` drive caller on a scalar node reads); `None` where the caller
+    /// has no model or no such node.
+    fn scalar_node(&self, _id: ScalarNodeId) -> Option<(f64, f64)> {
+        None
+    }
     /// Gravity [m/s²], already multiplied by the load factor.
     fn gravity(&self) -> Vec3;
     /// Factor on applied loads (ramped from 0 to 1 by static analysis; 1 otherwise).
@@ -263,8 +323,16 @@ pub trait Element: Send + Sync {
     fn label(&self) -> Label;
     /// The element type in MBDyn's words, e.g. "revolute hinge".
     fn type_name(&self) -> &'static str;
-    /// Labels of the structural nodes it connects, in slot order.
-    fn nodes(&self) -> Vec<Label>;
+    /// Labels of the structural nodes it connects, in slot order (none for an element on
+    /// scalar nodes only).
+    fn nodes(&self) -> Vec<Label> {
+        Vec::new()
+    }
+    /// The scalar nodes it connects (abstract, electric, hydraulic), in slot order
+    /// ([`Row::Scalar`], [`Col::ScalarValue`], [`Col::ScalarRate`]); none for most elements.
+    fn scalar_nodes(&self) -> Vec<ScalarNodeId> {
+        Vec::new()
+    }
     /// Names of its own unknowns (Lagrange multipliers), one per constraint equation.
     fn multipliers(&self) -> Vec<String> {
         Vec::new()

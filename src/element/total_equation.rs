@@ -157,6 +157,9 @@ impl ElementState for Slotted<'_> {
     fn structural_node(&self, label: Label) -> Option<&NodeKinematics> {
         self.st.structural_node(label)
     }
+    fn scalar_node(&self, id: crate::element::ScalarNodeId) -> Option<(f64, f64)> {
+        self.st.scalar_node(id)
+    }
 }
 
 fn map_row(slots: &[usize], row: Row) -> Row {
@@ -164,6 +167,8 @@ fn map_row(slots: &[usize], row: Row) -> Row {
         Row::Equilibrium { slot, comp } => Row::Equilibrium { slot: slots[slot], comp },
         Row::Momentum { slot, comp } => Row::Momentum { slot: slots[slot], comp },
         Row::Constraint(k) => Row::Constraint(k),
+        // A total joint's parts connect structural nodes only.
+        r @ Row::Scalar { .. } => r,
     }
 }
 

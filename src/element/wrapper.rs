@@ -8,7 +8,7 @@
 //! A method added to [`Element`] must be added here too, with its forward in the trait
 //! and in the blanket `impl Element`; otherwise wrappers fall back to its default.
 
-use super::contract::{Element, ElementState, Events, JacobianSink, Label, NonSmooth, Outputs, ResidualSink};
+use super::contract::{Element, ElementState, Events, JacobianSink, Label, NonSmooth, Outputs, ResidualSink, ScalarNodeId};
 use super::{BeamUpdate, HintValue};
 use super::UnknownKind;
 
@@ -29,6 +29,9 @@ pub trait ElementWrapper: Send + Sync {
     }
     fn nodes(&self) -> Vec<Label> {
         self.inner().nodes()
+    }
+    fn scalar_nodes(&self) -> Vec<ScalarNodeId> {
+        self.inner().scalar_nodes()
     }
     fn multipliers(&self) -> Vec<String> {
         self.inner().multipliers()
@@ -89,6 +92,9 @@ impl<W: ElementWrapper> Element for W {
     }
     fn nodes(&self) -> Vec<Label> {
         ElementWrapper::nodes(self)
+    }
+    fn scalar_nodes(&self) -> Vec<ScalarNodeId> {
+        ElementWrapper::scalar_nodes(self)
     }
     fn multipliers(&self) -> Vec<String> {
         ElementWrapper::multipliers(self)

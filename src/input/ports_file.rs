@@ -23,6 +23,9 @@
 //! }
 //! ```
 //!
+//! Scalar nodes (issue 34): `{ "name": "disturbance", "type": "abstract", "node": 1 }` as an
+//! input adds it to the node's equation, as an output is its value (`"abstract rate"`: its
+//! derivative); likewise `"electric"`, `"hydraulic"`; the shorthand `"1:abstract"`.
 //! A point is `"offset"` (node frame) or `"at"` (global position at the reference); pairs take
 //! `"at"` (one point, as a collocated actuator or sensor) or `"from_offset"`/`"to_offset"`.
 //! `"frame"` is `"global"` (default) or `"node"` (the `from` node's for pairs).
@@ -36,7 +39,7 @@ use serde::Deserialize;
 use crate::dae::ports::{Direction, Excitation, Frame, InputPort, Location, Measurement, OutputPort, Point};
 use crate::dae::{NodeInput, NodeOutput};
 use crate::kinematics::Vec3;
-use crate::model::Label;
+use crate::model::{Label, ScalarNodeId, ScalarNodeKind};
 
 /// What a ports file describes.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -174,8 +177,23 @@ impl Spec {
         }
         Ok(())
     }
+    /// The scalar node of a port whose type is a scalar node kind ("abstract", "electric",
+    /// "hydraulic", with " rate" for an output's derivative).
+    fn scalar(&self) -> Result<ScalarNodeId, String> {
+        self.no_point()?;
+        if self.direction.is_some() {
+            return Err(format!("a '{}' port has no direction", self.kind));
+        }
+        let kind = match self.kind.trim_end_matches(" rate") {
+            "electric" => ScalarNodeKind::Electric,
+            "hydraulic" => ScalarNodeKind::Hydraulic,
+            _ => ScalarNodeKind::Abstract,
+        };
+        Ok(ScalarNodeId { kind, label: self.node()? })
+    }
     fn input(&self, index: usize) -> Result<InputPort, String> {
         let excitation = match self.kind.as_str() {
+            "abstract" | "electric" | "hydraulic" => Excitation::Scalar { node: self.scalar()? },
             "force" => Excitation::Force { point: self.point()?, direction: self.direction()? },
             "moment" => {
                 self.no_point()?;
@@ -185,12 +203,14 @@ impl Spec {
                 let (from, to) = self.pair()?;
                 Excitation::Actuator { from, to, direction: self.direction()? }
             }
-            k => return Err(format!("input type '{k}' is not one of force, moment, actuator")),
+            k => return Err(format!("input type '{k}' is not one of force, moment, actuator, abstract, electric, hydraulic")),
         };
         Ok(InputPort { name: self.name.clone().unwrap_or_else(|| format!("input {}", index + 1)), excitation })
     }
     fn output(&self, index: usize) -> Result<OutputPort, String> {
         let measurement = match self.kind.as_str() {
+            "abstract" | "electric" | "hydraulic" => Measurement::ScalarValue { node: self.scalar()? },
+            "abstract rate" | "electric rate" | "hydraulic rate" => Measurement::ScalarRate { node: self.scalar()? },
             "displacement" => Measurement::Displacement { point: self.point()?, direction: self.direction()? },
             "velocity" => Measurement::Velocity { point: self.point()?, direction: self.direction()? },
             "rotation" => {
@@ -205,7 +225,7 @@ impl Spec {
                 let (from, to) = self.pair()?;
                 Measurement::Relative { from, to, direction: self.direction()? }
             }
-            k => return Err(format!("output type '{k}' is not one of displacement, rotation, relative, velocity, angular velocity")),
+            k => return Err(format!("output type '{k}' is not one of displacement, rotation, relative, velocity, angular velocity, abstract, electric, hydraulic (and their 'rate')")),
         };
         Ok(OutputPort { name: self.name.clone().unwrap_or_else(|| format!("output {}", index + 1)), measurement })
     }

@@ -1,6 +1,6 @@
 //! Building a model from Rust: nodes, elements and gravity, checked for consistency.
 
-use super::{ConstraintForm, Label, Model, NodeKind, StructuralNode};
+use super::{ConstraintForm, Label, Model, NodeKind, ScalarNode, ScalarNodeId, StructuralNode};
 use crate::element::Element;
 use crate::kinematics::{Mat3, Vec3};
 
@@ -13,6 +13,10 @@ pub enum ModelError {
     DuplicateElement(Label),
     #[error("{kind} {element} refers to structural node {node}, which is not defined")]
     UnknownNode { kind: &'static str, element: Label, node: Label },
+    #[error("{0} is defined twice")]
+    DuplicateScalarNode(ScalarNodeId),
+    #[error("{kind} {element} refers to {node}, which is not defined")]
+    UnknownScalarNode { kind: &'static str, element: Label, node: ScalarNodeId },
     #[error("the orientation of node {0} is not a rotation matrix")]
     BadOrientation(Label),
 }
@@ -20,6 +24,7 @@ pub enum ModelError {
 /// Collects nodes and elements; `build` checks labels and references.
 pub struct ModelBuilder {
     nodes: Vec<StructuralNode>,
+    scalar_nodes: Vec<ScalarNode>,
     elements: Vec<Box<dyn Element>>,
     /// Where each element is written ("file:line:col"), when it comes from a file.
     element_origins: Vec<Option<String>>,
@@ -33,7 +38,7 @@ pub struct ModelBuilder {
 
 impl Default for ModelBuilder {
     fn default() -> Self {
-        ModelBuilder { nodes: Vec::new(), elements: Vec::new(), element_origins: Vec::new(), gravity: None, form: ConstraintForm::Scaled, node_names: Default::default(), step_drives: Vec::new(), displacement_nodes: Default::default(), frame_motion: None }
+        ModelBuilder { nodes: Vec::new(), scalar_nodes: Vec::new(), elements: Vec::new(), element_origins: Vec::new(), gravity: None, form: ConstraintForm::Scaled, node_names: Default::default(), step_drives: Vec::new(), displacement_nodes: Default::default(), frame_motion: None }
     }
 }
 
@@ -117,6 +122,12 @@ impl ModelBuilder {
         self
     }
 
+    /// A scalar node ([`ScalarNode`]: abstract, electric, hydraulic).
+    pub fn scalar_node(&mut self, node: ScalarNode) -> &mut Self {
+        self.scalar_nodes.push(node);
+        self
+    }
+
     pub fn build(self) -> Result<Model, ModelError> {
         let mut seen = std::collections::HashSet::new();
         for n in &self.nodes {
@@ -126,6 +137,12 @@ impl ModelBuilder {
             let r = &n.orientation;
             if ((r.transpose() * r) - Mat3::identity()).norm() > 1e-9 || r.determinant() < 0.0 {
                 return Err(ModelError::BadOrientation(n.label));
+            }
+        }
+        let mut scalar_indices = std::collections::HashMap::new();
+        for (i, n) in self.scalar_nodes.iter().enumerate() {
+            if scalar_indices.insert(n.id, i).is_some() {
+                return Err(ModelError::DuplicateScalarNode(n.id));
             }
         }
         let mut seen_el = std::collections::HashSet::new();
@@ -138,11 +155,16 @@ impl ModelBuilder {
                     return Err(ModelError::UnknownNode { kind: e.type_name(), element: e.label(), node });
                 }
             }
+            if let Some(node) = e.scalar_nodes().into_iter().find(|id| !scalar_indices.contains_key(id)) {
+                return Err(ModelError::UnknownScalarNode { kind: e.type_name(), element: e.label(), node });
+            }
         }
         let node_indices = self.nodes.iter().enumerate().map(|(i, n)| (n.label, i)).collect();
         Ok(Model {
             node_indices,
             nodes: self.nodes,
+            scalar_nodes: self.scalar_nodes,
+            scalar_indices,
             elements: self.elements,
             element_origins: self.element_origins,
             gravity: self.gravity.unwrap_or_else(Vec3::zeros),

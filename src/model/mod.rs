@@ -18,7 +18,7 @@ use std::collections::HashMap;
 use crate::element::Element;
 use crate::kinematics::{Mat3, Vec3};
 
-pub use crate::element::Label;
+pub use crate::element::{Label, ScalarNodeId, ScalarNodeKind};
 
 /// Static nodes carry 6 unknowns (x, g); dynamic ones 12 (x, g, β, γ).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -47,9 +47,30 @@ pub struct StructuralNode {
     pub angular_velocity: Vec3,
 }
 
+/// A scalar node (MBDyn's `abstract`, `electric`, `hydraulic` nodes, input manual §Nodes;
+/// `ScalarAlgebraicNode`, `ScalarDifferentialNode` of MBDyn's source): one unknown `x`, its
+/// own equation, which the elements connected to it write ([`crate::element::Row::Scalar`]).
+/// A differential node's derivative `ẋ` may appear in those equations (its entries go to
+/// `F_/ẏ`); an algebraic node's may not (the reader refuses the `differential` order on it).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ScalarNode {
+    pub id: ScalarNodeId,
+    /// MBDyn's `differential` (the default of abstract nodes; electric nodes) rather than
+    /// `algebraic` (hydraulic nodes).
+    pub differential: bool,
+    /// Initial value (`value, …`).
+    pub value: f64,
+    /// Initial derivative (`derivative, …`; differential nodes).
+    pub derivative: f64,
+    /// Whether a run writes its rows (`.abs`, `.ele`, `.prs`: [`crate::output::scalar_nodes`]).
+    pub output: bool,
+}
+
 /// A complete model. Build it with [`ModelBuilder`].
 pub struct Model {
     pub nodes: Vec<StructuralNode>,
+    /// The scalar nodes ([`ScalarNode`]); their unknowns follow the structural nodes'.
+    pub scalar_nodes: Vec<ScalarNode>,
     pub elements: Vec<Box<dyn Element>>,
     /// Where each element of `elements` is written (`file:line:col`), when it was read from a
     /// file: run-time messages name it ([`Model::element_name`]).
@@ -77,6 +98,8 @@ pub struct Model {
     pub frame_motion: Option<std::sync::Arc<crate::element::FrameMotion>>,
     /// Index in `nodes` of each node label.
     node_indices: HashMap<Label, usize>,
+    /// Index in `scalar_nodes` of each scalar node.
+    scalar_indices: HashMap<ScalarNodeId, usize>,
 }
 
 impl Model {
@@ -103,5 +126,10 @@ impl Model {
     /// Index of the node with this label.
     pub fn node_index(&self, label: Label) -> Option<usize> {
         self.node_indices.get(&label).copied()
+    }
+
+    /// Index in [`Model::scalar_nodes`] of a scalar node.
+    pub fn scalar_index(&self, id: ScalarNodeId) -> Option<usize> {
+        self.scalar_indices.get(&id).copied()
     }
 }

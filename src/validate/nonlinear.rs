@@ -76,6 +76,12 @@ fn load_elements(model: &Model, reference: &[NodeKinematics], port: &InputPort, 
                 Box::new(Force::new(LOAD_LABEL - 1, label_of(a), ForceFrame::Absolute, -d, fa, drive())),
             ]
         }
+        Excitation::Scalar { node } => {
+            if model.scalar_index(*node).is_none() {
+                return Err(ValidateError::Port(format!("'{name}': {node} is not defined")));
+            }
+            vec![Box::new(crate::element::AbstractForce { label: LOAD_LABEL, node: *node, value: drive() })]
+        }
     })
 }
 
@@ -94,6 +100,9 @@ impl Sensor {
             Measurement::Displacement { point: p, .. } | Measurement::Velocity { point: p, .. } => vec![point(model, reference, p, name)?],
             Measurement::Rotation { node, .. } | Measurement::AngularVelocity { node, .. } => vec![point(model, reference, &Point::node(*node), name)?],
             Measurement::Relative { from, to, .. } => vec![point(model, reference, from, name)?, point(model, reference, to, name)?],
+            Measurement::ScalarValue { node } | Measurement::ScalarRate { node } => {
+                return Err(ValidateError::Port(format!("'{name}': an output on {node} is not supported by validate yet (its nonlinear run measures structural nodes); the ROM's own responses (rom, freq) support it")));
+            }
         };
         let mut sensor = Sensor { measurement: port.measurement.clone(), points, reference_value: 0.0 };
         // Checks the direction once, here.
@@ -113,6 +122,7 @@ impl Sensor {
             Measurement::Relative { direction, .. } => unit(direction, &now[i].r, name)?.dot(&(position(self.points[1]) - position((i, f)))),
             Measurement::Velocity { direction, .. } => unit(direction, &reference[i].r, name)?.dot(&(now[i].xdot + now[i].omega.cross(&(now[i].r * f)))),
             Measurement::AngularVelocity { direction, .. } => unit(direction, &reference[i].r, name)?.dot(&now[i].omega),
+            Measurement::ScalarValue { node } | Measurement::ScalarRate { node } => return Err(ValidateError::Port(format!("'{name}': an output on {node} is not supported by validate yet"))),
         })
     }
 

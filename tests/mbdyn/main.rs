@@ -35,6 +35,7 @@ mod octave;
 mod octave_script;
 mod rigid_body_kinematics;
 mod run_command;
+mod scalar_output;
 mod step_drive_times;
 mod step_drives;
 mod use_arpack;

@@ -160,7 +160,7 @@ fn model_errors() {
         (model("structural nodes: 2; beams: 1;", NODES, "constitutive law: 1, 3, linear elastic, 1.;\nbeam3: 5, 1, null, 2, null, 2, 1., 0., 0., eye, reference, 1, same, same;"), "m.mbd:7:49: error: constitutive law 1 has dimension 3, this element needs 6"),
         // 42. Physics romdyn cannot honour is an error, not skipped.
         // (`model: static` turns dynamic nodes static, as MBDyn: tests/mbdyn/mbdyn_syntax.rs.)
-        (model("structural nodes: 2; genels: 1;", NODES, ""), "m.mbd:2:51: error: control data declares genels, which romdyn does not support"),
+        (model("structural nodes: 2; thermal nodes: 1;", NODES, ""), "m.mbd:2:58: error: control data declares thermal nodes, which romdyn does not support"),
         // 43. (A joint that does not hold as written is now assembled: tests/mbdyn/initial_assembly.rs.)
         // 44. A dummy node cannot carry elements.
         (model("structural nodes: 3; rigid bodies: 1;", &format!("{NODES} structural: 3, dummy, 2, offset, null, eye;"), "body: 1, 3, 1., null, eye;"), "m.mbd:6:10: error: structural node 3 is a dummy node"),

@@ -99,7 +99,7 @@ fn bad_model_namespace_calls_name_the_place_and_the_problem() {
         ("-K*model::drive(1, Time)", "-K*model::drive(9, Time)", "drive caller 9 is not defined"),
         ("\"XP[1]\", linear", "\"XPP[1]\", linear", "accelerations are not supported"),
         ("node, 7, structural, string, \"X[1]\"", "node, 17, structural, string, \"X[1]\"", "declares no structural node 17"),
-        ("node, 7, structural, string, \"X[1]\"", "node, 7, abstract, string, \"X[1]\"", "romdyn reads structural nodes only"),
+        ("node, 7, structural, string, \"X[1]\"", "node, 7, abstract, string, \"X[1]\"", "the file declares no abstract node 7"),
     ];
     for (old, new, expected) in cases {
         assert!(base.contains(old), "{old}");

@@ -29,6 +29,7 @@ mod multibody_springs;
 mod nlsf_laws;
 mod nonlinear_laws;
 mod rotation_update;
+mod scalar_nodes;
 mod screw_friction;
 mod screw_joint;
 mod spinning_linearization;

@@ -15,12 +15,12 @@ use super::parser::{known, Block};
 use crate::model::{InitialAssembly, OrientationOutput};
 
 /// Entity kinds counted in control data and found in the model.
-pub const COUNTED: [&str; 10] = ["structural nodes", "parameter nodes", "rigid bodies", "joints", "joint regularizations", "forces", "beams", "gravity", "automatic structural elements", "file drivers"];
+pub const COUNTED: [&str; 14] = ["structural nodes", "abstract nodes", "electric nodes", "hydraulic nodes", "genels", "parameter nodes", "rigid bodies", "joints", "joint regularizations", "forces", "beams", "gravity", "automatic structural elements", "file drivers"];
 
 /// Counters of entities romdyn does not support: a non-zero count is an error.
-const UNSUPPORTED_COUNTERS: [&str; 16] = [
-    "abstract nodes", "electric nodes", "hydraulic nodes", "thermal nodes", "aerodynamic elements", "aeromodals",
-    "air properties", "bulk elements", "electric bulk elements", "electric elements", "external elements", "genels", "hydraulic elements",
+const UNSUPPORTED_COUNTERS: [&str; 12] = [
+    "thermal nodes", "aerodynamic elements", "aeromodals",
+    "air properties", "bulk elements", "electric bulk elements", "electric elements", "external elements", "hydraulic elements",
     "loadable elements", "output elements", "induced velocity elements",
 ];
 
@@ -86,6 +86,9 @@ pub struct ControlOutput {
     /// `default output: accelerations`: dynamic nodes write their accelerations unless
     /// their card says otherwise (dataman3.cc; `all` does not set it).
     pub accelerations: bool,
+    /// Whether abstract, electric and hydraulic nodes are written unless their card says
+    /// otherwise.
+    pub scalar_nodes: [bool; 3],
 }
 
 /// Largest `output precision` romdyn writes (17 significant digits already identify a
@@ -94,13 +97,14 @@ const MAX_OUTPUT_PRECISION: usize = 30;
 
 impl Default for ControlOutput {
     fn default() -> Self {
-        ControlOutput { structural_nodes: true, every: 1, orientation: OrientationOutput::Euler123Degrees, precision: None, accelerations: false }
+        ControlOutput { structural_nodes: true, every: 1, orientation: OrientationOutput::Euler123Degrees, precision: None, accelerations: false, scalar_nodes: [true; 3] }
     }
 }
 
 /// `default output: {all | none | structural nodes | …} …` (dataman3.cc, case
 /// DEFAULTOUTPUT): `all` and `none` set every kind, a kind's name switches it on; only the
-/// structural nodes' and the accelerations' flags matter for romdyn's files.
+/// nodes' (structural, abstract, electric, hydraulic) and the accelerations' flags matter
+/// for romdyn's files.
 fn default_output(c: &mut Cursor, out: &mut ControlOutput) -> Result<(), MbdynError> {
     const KINDS: [&str; 27] = [
         "all", "none", "reference frames", "accelerations", "drive callers", "structural nodes", "electric nodes", "thermal nodes", "abstract nodes",
@@ -109,9 +113,19 @@ fn default_output(c: &mut Cursor, out: &mut ControlOutput) -> Result<(), MbdynEr
     ];
     while !c.is_done() {
         match c.keyword("an output kind", &KINDS)? {
-            "all" | "structural nodes" => out.structural_nodes = true,
+            "all" => {
+                out.structural_nodes = true;
+                out.scalar_nodes = [true; 3];
+            }
+            "structural nodes" => out.structural_nodes = true,
+            "abstract nodes" => out.scalar_nodes[0] = true,
+            "electric nodes" => out.scalar_nodes[1] = true,
+            "hydraulic nodes" => out.scalar_nodes[2] = true,
             "accelerations" => out.accelerations = true,
-            "none" => out.structural_nodes = false,
+            "none" => {
+                out.structural_nodes = false;
+                out.scalar_nodes = [false; 3];
+            }
             _ => {}
         }
     }

@@ -53,6 +53,9 @@ pub struct Drives {
     /// Labels of the structural nodes the file declares (not the dummy ones): the nodes the
     /// `model::` functions of a string drive may read.
     pub structural_nodes: HashSet<u32>,
+    /// The scalar nodes the file declares (abstract, electric, hydraulic), each with
+    /// whether it is differential: the nodes `dof` and `node` drive callers may read.
+    pub scalar_nodes: std::collections::HashMap<crate::model::ScalarNodeId, bool>,
     /// The `drivers` block's file drivers (which `file` drive callers read).
     pub file_drivers: super::file_drivers::FileDrivers,
     /// Parameter nodes, `bind`s and the reads of `dof` and `element` drive callers.
@@ -85,7 +88,7 @@ impl Drives {
     /// the `drive caller:` cards, the variables and the structural nodes' labels as now; no
     /// scalar functions, file drivers or element reads (refused in a hint).
     pub fn for_hints(&self) -> Drives {
-        Drives { table: self.table.clone(), variables: self.variables.clone(), structural_nodes: self.structural_nodes.clone(), private: super::element_reads::PrivateReads::for_hints(), ..Drives::default() }
+        Drives { table: self.table.clone(), variables: self.variables.clone(), structural_nodes: self.structural_nodes.clone(), scalar_nodes: self.scalar_nodes.clone(), private: super::element_reads::PrivateReads::for_hints(), ..Drives::default() }
     }
     /// The drive caller cards of statements before `seq`, shared.
     pub fn defined_before(&self, seq: usize) -> DrivesBefore {
@@ -229,7 +232,7 @@ fn unchecked_drive(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) ->
         }
         "file" => super::file_drivers::file_drive(c, &drives.file_drivers, seq)?,
         "node" => node_drive(c, drives, &inner)?,
-        "dof" => super::element_reads::dof_drive(c, &drives.structural_nodes, &inner)?,
+        "dof" => super::element_reads::dof_drive(c, &drives.structural_nodes, &drives.scalar_nodes, &inner)?,
         "element" => super::element_reads::element_drive(c, &drives.private, seq, &inner)?,
         "scalar function" => {
             let name = c.peek_text().unwrap_or_default().to_string();
@@ -477,8 +480,11 @@ fn call_costs(tokens: &[super::lexer::Spanned], functions: &super::scalar_functi
 fn node_drive(c: &mut Cursor, drives: &Drives, inner: &dyn Fn(&mut Cursor) -> Result<Drive, MbdynError>) -> Result<Drive, MbdynError> {
     let label = c.label("node label")?;
     let at = c.here();
-    if c.keyword("the node type (romdyn reads structural nodes)", &["structural"]).is_err() {
-        return Err(c.error_at(at, format!("node drive caller: romdyn reads structural nodes only, found {}", c.found())));
+    if let Some(kind) = c.accept_any(&super::scalar_nodes::SCALAR_TYPES) {
+        return super::element_reads::scalar_node_drive(c, label, kind, at, &drives.scalar_nodes, inner);
+    }
+    if c.keyword("the node type (romdyn reads structural, abstract, electric and hydraulic nodes)", &["structural"]).is_err() {
+        return Err(c.error_at(at, format!("node drive caller: romdyn reads structural, abstract, electric and hydraulic nodes, found {}", c.found())));
     }
     if c.accept("index") {
         return Err(c.error("node drive caller: 'index' (deprecated in MBDyn) is not supported by romdyn: write 'string, \"NAME[i]\"'"));

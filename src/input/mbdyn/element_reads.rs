@@ -195,10 +195,13 @@ pub fn bind(c: &mut Cursor, reads: &PrivateReads, defined: &HashSet<(&'static st
 }
 
 /// `dof, NODE, TYPE, …, DRIVE` after the keyword.
-pub fn dof_drive(c: &mut Cursor, structural: &HashSet<Label>, inner: &dyn Fn(&mut Cursor) -> Result<Drive, MbdynError>) -> Result<Drive, MbdynError> {
+pub fn dof_drive(c: &mut Cursor, structural: &HashSet<Label>, scalars: &std::collections::HashMap<crate::model::ScalarNodeId, bool>, inner: &dyn Fn(&mut Cursor) -> Result<Drive, MbdynError>) -> Result<Drive, MbdynError> {
     let at = c.here();
     let label = c.label("node label")?;
     let kind_at = c.here();
+    if let Some(kind) = c.accept_any(&super::scalar_nodes::SCALAR_TYPES) {
+        return scalar_node_drive(c, label, kind, at, scalars, inner);
+    }
     match c.accept_any(&["parameter", "structural"]) {
         Some("parameter") => Err(c.error_at(
             kind_at,
@@ -229,9 +232,41 @@ pub fn dof_drive(c: &mut Cursor, structural: &HashSet<Label>, inner: &dyn Fn(&mu
         }
         None => {
             let what = c.peek_keyword().map_or_else(|| c.found(), |w| format!("'{w}'"));
-            Err(c.error_at(kind_at, format!("dof drive caller: romdyn reads parameter and structural nodes, found {what} (abstract, electric, hydraulic and thermal nodes are not supported)")))
+            Err(c.error_at(kind_at, format!("dof drive caller: romdyn reads structural, abstract, electric and hydraulic nodes, found {what} (thermal nodes are not supported)")))
         }
     }
+}
+
+/// The rest of `dof, LABEL, TYPE, [algebraic | differential,] DRIVE` and of `node, LABEL,
+/// TYPE, string, "x" | "xP", DRIVE` on a scalar node (`kind` its TYPE, read): DRIVE of the
+/// node's value or derivative (drive_.cc `DofDriveCaller`, node.cc `iGetPrivDataIdx`), read
+/// from the state the drive is evaluated in. The order is read (and required) on a
+/// differential node only, as MBDyn's `ReadScalarDof` does.
+pub fn scalar_node_drive(c: &mut Cursor, label: Label, kind: &str, at: Span, scalars: &std::collections::HashMap<crate::model::ScalarNodeId, bool>, inner: &dyn Fn(&mut Cursor) -> Result<Drive, MbdynError>) -> Result<Drive, MbdynError> {
+    let keyword = super::scalar_nodes::SCALAR_TYPES.iter().copied().find(|k| *k == kind).unwrap_or("abstract");
+    let id = crate::model::ScalarNodeId { kind: match keyword { "electric" => crate::model::ScalarNodeKind::Electric, "hydraulic" => crate::model::ScalarNodeKind::Hydraulic, _ => crate::model::ScalarNodeKind::Abstract }, label };
+    let Some(&differential) = scalars.get(&id) else {
+        return Err(c.error_at(at, format!("drive caller: the file declares no {id}")));
+    };
+    let derivative = if c.accept("string") {
+        let name_at = c.here();
+        match c.string("the private data name (\"x\" or \"xP\")")?.as_str() {
+            "x" => false,
+            "xP" if differential => true,
+            other => return Err(c.error_at(name_at, format!("node drive caller: {id} has the private data \"x\"{} , not \"{other}\"", if differential { " and \"xP\"" } else { "" }))),
+        }
+    } else if differential {
+        c.keyword(&format!("'algebraic' (value) or 'differential' (derivative) of differential {id}"), &["algebraic", "differential"])? == "differential"
+    } else {
+        false
+    };
+    let f = inner(c)?;
+    let text = format!("dof, {label}, {keyword}, {}, {f:?}", if derivative { "differential" } else { "algebraic" });
+    let cost = crate::element::drive::EvaluationCost::around([f.cost()]);
+    Ok(Drive::Expression(TimeFunction::reading_state(text, move |_, st| {
+        let Some((x, xp)) = st.and_then(|s| s.scalar_node(id)) else { return f64::NAN };
+        f.value_at(if derivative { xp } else { x }, st)
+    }).with_cost(cost)))
 }
 
 /// `element, LABEL, TYPE, string, "NAME", DRIVE` after the keyword.

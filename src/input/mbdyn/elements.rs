@@ -17,16 +17,17 @@ use crate::kinematics::{Mat3, Vec3};
 use crate::model::Label;
 
 /// Element types of MBDyn romdyn names in its "not supported" error.
-const OTHER_TYPES: [&str; 22] = [
+const OTHER_TYPES: [&str; 21] = [
     "aerodynamic beam2", "aerodynamic beam3", "aerodynamic body", "aeromodal", "aircraft instruments", "air properties", "induced velocity",
-    "electric", "hydraulic", "thermal", "rtai output", "stream output", "stream motion output", "bind", "bulk", "genel", "loadable",
+    "electric", "hydraulic", "thermal", "rtai output", "stream output", "stream motion output", "bind", "bulk", "loadable",
     "user defined", "plate", "shell4eas", "shell4easans", "membrane4eas",
 ];
 
 /// The element kind counted in control data, by element keyword.
 pub fn counted_kind(keyword: &str) -> Option<&'static str> {
-    match known(keyword, &["body", "joint", "joint regularization", "force", "couple", "beam", "beam2", "beam3", "gravity", "automatic structural"])? {
+    match known(keyword, &["body", "joint", "joint regularization", "force", "couple", "beam", "beam2", "beam3", "gravity", "automatic structural", "genel"])? {
         "body" => Some("rigid bodies"),
+        "genel" => Some("genels"),
         "joint regularization" => Some("joint regularizations"),
         "joint" => Some("joints"),
         "force" | "couple" => Some("forces"),
@@ -38,8 +39,9 @@ pub fn counted_kind(keyword: &str) -> Option<&'static str> {
 
 /// The label space of an element keyword: forces and couples share one, as do beams.
 pub fn label_space(keyword: &str) -> &'static str {
-    match known(keyword, &["body", "joint", "force", "couple", "beam", "beam2", "beam3", "automatic structural"]) {
+    match known(keyword, &["body", "joint", "force", "couple", "beam", "beam2", "beam3", "automatic structural", "genel"]) {
         Some("body") => "body",
+        Some("genel") => "genel",
         Some("joint") => "joint",
         Some("force" | "couple") => "force",
         Some("automatic structural") => "automatic structural",
@@ -49,7 +51,7 @@ pub fn label_space(keyword: &str) -> &'static str {
 
 /// One statement of the `elements` block (after the label for labelled elements).
 pub fn element(st: &Statement, c: &mut Cursor, ctx: &ElementContext) -> Result<Parsed, MbdynError> {
-    let kinds = ["body", "joint", "joint regularization", "force", "couple", "gravity", "beam", "beam2", "beam3", "automatic structural", "inertia", "output"];
+    let kinds = ["body", "joint", "joint regularization", "force", "couple", "gravity", "beam", "beam2", "beam3", "automatic structural", "inertia", "output", "genel"];
     let Some(kind) = known(&st.keyword, &kinds) else {
         if known(&st.keyword, &["hbeam", "hbeam2"]).is_some() {
             return Err(c.error_at(st.span, super::beams::HBEAM_REFUSED));
@@ -77,6 +79,7 @@ pub fn element(st: &Statement, c: &mut Cursor, ctx: &ElementContext) -> Result<P
         },
         "joint regularization" => super::total_equation::regularization(label, c)?,
         "force" | "couple" => Parsed::Element(force(kind == "couple", label, c, ctx)?),
+        "genel" => Parsed::Element(super::genels::genel(label, c, ctx)?),
         "automatic structural" => {
             ctx.node_with_label(c, label)?;
             c.skip_rest();
@@ -195,9 +198,12 @@ fn force(couple: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Re
     if c.accept("total") {
         return Err(c.error_at(span, format!("{what} type 'total' (on one node) is not implemented by MBDyn 1.7.3 (force.cc builds only 'total internal'); use a follower force and a follower couple, or 'total internal' with a second node")));
     }
-    let unsupported = ["absolute displacement", "absolute internal displacement", "abstract", "abstract internal", "modal", "external structural", "external modal", "external structural mapping", "external modal mapping"];
+    if !couple && c.accept("abstract") {
+        return super::genels::abstract_force(label, c, ctx);
+    }
+    let unsupported = ["absolute displacement", "absolute internal displacement", "abstract internal", "modal", "external structural", "external modal", "external structural mapping", "external modal mapping"];
     if let Some(k) = c.accept_any(&unsupported) {
-        return Err(c.error_at(span, format!("{what} type '{k}' is not supported by romdyn (supported: absolute, follower, absolute internal, follower internal, total internal, absolute displacement, absolute internal displacement)")));
+        return Err(c.error_at(span, format!("{what} type '{k}' is not supported by romdyn (supported: absolute, follower, absolute internal, follower internal, total internal, absolute displacement, absolute internal displacement, abstract)")));
     }
     let frame = match c.keyword(&format!("the {what} type"), &["absolute", "conservative", "follower"])? {
         "follower" => ForceFrame::Follower,

@@ -84,6 +84,7 @@ fn cards(doc: &Document) -> Result<Cards, MbdynError> {
             out.drives.structural_nodes.insert(*x as u32);
         }
     }
+    out.drives.scalar_nodes = super::scalar_nodes::scan(block(doc, "nodes").map_or(&[][..], |b| &b.statements));
     out.drives.private.scan_parameter_nodes(block(doc, "nodes").map_or(&[][..], |b| &b.statements));
     for st in doc.cards.iter().filter(|st| known(&st.keyword, &["reference"]).is_some()) {
         if let Some(super::parser::Arg { value: super::parser::Value::Number(x), .. }) = st.args.first()
@@ -216,6 +217,10 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
     for n in nodes.structural() {
         b.node(n.clone());
     }
+    for n in &nodes.2 {
+        let default = control_output.scalar_nodes[n.node.id.kind as usize];
+        b.scalar_node(crate::model::ScalarNode { output: n.output.unwrap_or(default), ..n.node.clone() });
+    }
     if let Some(f) = &frame_motion {
         b.frame_motion(f.clone());
     }
@@ -229,6 +234,11 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
     }
     let mut found: HashMap<&'static str, (usize, Span)> = HashMap::new();
     found.insert("structural nodes", (nodes.0.len(), block(doc, "nodes").map_or(first, |b| b.span)));
+    for (kind, counter) in [(crate::model::ScalarNodeKind::Abstract, "abstract nodes"), (crate::model::ScalarNodeKind::Electric, "electric nodes"), (crate::model::ScalarNodeKind::Hydraulic, "hydraulic nodes")] {
+        if let Some(first_of_kind) = nodes.2.iter().find(|n| n.node.id.kind == kind) {
+            found.insert(counter, (nodes.2.iter().filter(|n| n.node.id.kind == kind).count(), first_of_kind.span));
+        }
+    }
     found.insert("parameter nodes", (parameter_nodes.len(), block(doc, "nodes").map_or(first, |b| b.span)));
     if let Some(b) = block(doc, "drivers") {
         found.insert("file drivers", (cards.drives.file_drivers.len(), b.span));

@@ -13,6 +13,7 @@ use super::cursor::Cursor;
 use super::diagnostic::{MbdynError, Span};
 use super::parser::{known, Statement};
 use super::references::{Context, Frame, Frames};
+use super::scalar_nodes::{scalar_node, ScalarEntry, SCALAR_TYPES};
 use crate::model::{Label, NodeAssembly, NodeKind, NodeSource, OrientationOutput, StructuralNode};
 
 /// A node of the file: a structural node of the model, or a dummy node.
@@ -42,9 +43,10 @@ pub struct NodeEntry {
 }
 
 /// The structural nodes, in file order, and where each label is in it (a search through
-/// the list at every node made N nodes O(N²) to read: 1.6 min for 10^5).
+/// the list at every node made N nodes O(N²) to read: 1.6 min for 10^5); then the scalar
+/// nodes (abstract, electric, hydraulic), in file order.
 #[derive(Default)]
-pub struct Nodes(pub Vec<NodeEntry>, std::collections::HashMap<Label, usize>);
+pub struct Nodes(pub Vec<NodeEntry>, std::collections::HashMap<Label, usize>, pub Vec<ScalarEntry>);
 
 impl Nodes {
     pub fn find(&self, label: Label) -> Option<&NodeEntry> {
@@ -65,6 +67,11 @@ pub fn node_statement(st: &Statement, c: &mut Cursor, frames: &Frames, nodes: &m
     }
     match known(&st.keyword, &NODE_TYPES) {
         Some("structural") => {}
+        Some(kind) if SCALAR_TYPES.contains(&kind) => {
+            let entry = scalar_node(kind, c, st.span, &nodes.2)?;
+            nodes.2.push(entry);
+            return c.finish();
+        }
         Some(other) => return Err(c.error_at(st.span, format!("node type '{other}' is not supported by romdyn"))),
         None => return Err(c.error_at(st.span, format!("unknown node type '{}' (MBDyn's are {})", st.keyword, NODE_TYPES.join(", ")))),
     }
@@ -112,6 +119,9 @@ pub fn node_statement(st: &Statement, c: &mut Cursor, frames: &Frames, nodes: &m
 /// output on (labels that name no node are skipped, as MBDyn does with a warning).
 fn output_card(c: &mut Cursor, nodes: &mut Nodes) -> Result<(), MbdynError> {
     let kind = c.keyword("a node type", &NODE_TYPES)?;
+    if SCALAR_TYPES.contains(&kind) {
+        return scalar_output_card(kind, c, nodes);
+    }
     if kind != "structural" {
         // Nodes romdyn does not read have no rows to switch on.
         c.skip_rest();
@@ -131,6 +141,22 @@ fn output_card(c: &mut Cursor, nodes: &mut Nodes) -> Result<(), MbdynError> {
             (l, l)
         };
         for n in nodes.0.iter_mut().filter(|n| (first..=last).contains(&n.node.label)) {
+            n.output = Some(true);
+        }
+    }
+    Ok(())
+}
+
+/// `output: abstract | electric | hydraulic, {LABEL | range, FIRST, LAST} …;`.
+fn scalar_output_card(kind: &str, c: &mut Cursor, nodes: &mut Nodes) -> Result<(), MbdynError> {
+    while !c.is_done() {
+        let (first, last) = if c.accept("range") {
+            (c.label("first node label")?, c.label("last node label")?)
+        } else {
+            let l = c.label("node label (or range)")?;
+            (l, l)
+        };
+        for n in nodes.2.iter_mut().filter(|n| n.node.id.kind.keyword() == kind && (first..=last).contains(&n.node.id.label)) {
             n.output = Some(true);
         }
     }

@@ -10,8 +10,12 @@ use crate::model::Model;
 
 /// Whether MBDyn uses an element in its initial assembly: joints (deformable ones too) and
 /// beams, not bodies (variable-mass ones too), forces and couples (elman.cc:
-/// `ToBeUsedInAssembly`).
+/// `ToBeUsedInAssembly`), nor any element on scalar nodes (genels, abstract forces: MBDyn's
+/// initial assembly has structural nodes only).
 fn in_assembly(e: &dyn Element) -> bool {
+    if !e.scalar_nodes().is_empty() {
+        return false;
+    }
     let t = e.type_name();
     // A viscous body holds nothing: its force −C v on the written velocity would only be
     // balanced by the assembly's position springs (1 N/m), moving the node by C v. A brake
@@ -110,7 +114,7 @@ impl ElementState for Ctx<'_> {
 pub(super) fn row_of(slots: &[usize], first: usize, row: Row) -> Option<usize> {
     match row {
         Row::Equilibrium { slot, comp } => Some(6 * slots[slot] + comp),
-        Row::Momentum { .. } => None,
+        Row::Momentum { .. } | Row::Scalar { .. } => None,
         Row::Constraint(k) => Some(first + k),
     }
 }
