@@ -33,9 +33,11 @@ fn close(a: f64, b: f64) -> bool {
 fn integer_and_real_arithmetic_follow_mbdyn_typing() {
     // Manual, §Variables: "1/3 returns 0 because both values are implicit integers"; a
     // value assigned to a typed variable is cast to its type.
+    // `-2^2` is 4: MBDyn 1.7.3 applies the unary minus to its operand first (see
+    // `operators_bind_as_mbdyn_evaluates_them`).
     let v = variables("set: integer a = 1/3; set: real b = 1/3; set: real c = 1./3; set: integer d = 7/2.; set: real e2 = 2^3^2; set: real f = -2^2; set: integer g = 17 % 5; set: real h = 1 + 2.5;");
     let r = |n| v.real(n).unwrap();
-    assert_eq!((r("a"), r("b"), r("d"), r("e2"), r("f"), r("g"), r("h")), (0.0, 0.0, 3.0, 512.0, -4.0, 2.0, 3.5));
+    assert_eq!((r("a"), r("b"), r("d"), r("e2"), r("f"), r("g"), r("h")), (0.0, 0.0, 3.0, 512.0, 4.0, 2.0, 3.5));
     assert!(close(r("c"), 1.0 / 3.0));
 }
 
@@ -43,8 +45,45 @@ fn integer_and_real_arithmetic_follow_mbdyn_typing() {
 fn comparisons_and_logic_follow_the_operator_table() {
     let v = variables("set: bool a = 1 < 2 && !(3 == 4); set: bool b = 1 > 2 || 2 >= 2; set: bool c = 1 ~| 1; set: integer d = (2 != 2) + (3 <= 3); set: bool e3 = !1 > 2;");
     let r = |n| v.real(n).unwrap();
-    // `!` binds looser than comparisons: !1 > 2 = !(1 > 2) = 1.
-    assert_eq!((r("a"), r("b"), r("c"), r("d"), r("e3")), (1.0, 1.0, 0.0, 1.0, 1.0));
+    // `!` binds to its operand, as MBDyn 1.7.3 evaluates it: !1 > 2 = (!1) > 2 = 0.
+    assert_eq!((r("a"), r("b"), r("c"), r("d"), r("e3")), (1.0, 1.0, 0.0, 1.0, 0.0));
+}
+
+/// What MBDyn 1.7.3 prints for each `remark:` of a file of these expressions (built from the
+/// mirror's 1727489e, `mbdyn -f`; its manual's operator table puts `^` above unary minus and
+/// `!` below the comparisons, but libmbutil/mathp.cc evaluates otherwise, and romdyn gives
+/// MBDyn's numbers): exact.
+#[test]
+fn operators_bind_as_mbdyn_evaluates_them() {
+    let cases: [(&str, f64); 17] = [
+        ("-2^2", 4.0),
+        ("(-2)^2", 4.0),
+        ("3-2^2", -1.0),
+        ("2^-1", 0.0),
+        ("3*-2^2", 12.0),
+        ("2^3^2", 512.0),
+        ("-2.^2.", 4.0),
+        ("!1 > 2", 0.0),
+        ("1 || 0 && 0", 0.0),
+        ("1 ~| 1 || 1", 1.0),
+        ("0 && 0 || 1", 1.0),
+        ("1^-1", 0.0),
+        ("2.^-1", 0.5),
+        ("-sqrt(4.)^2", 4.0),
+        ("7 % 2^2", 3.0),
+        ("2^0", 1.0),
+        ("0^0", 1.0),
+    ];
+    for (k, (expr, mbdyn)) in cases.iter().enumerate() {
+        let v = variables(&format!("set: real x{k} = {expr};"));
+        assert_eq!(v.real(&format!("x{k}")).unwrap(), *mbdyn, "{expr}");
+    }
+    // MBDyn refuses a negative base with an exponent <= 0 ("invalid operands in power()").
+    for expr in ["(-2)^0", "(-2.)^-1"] {
+        let text = format!("begin: data; problem: initial value; end: data;\nset: real x = {expr};\n");
+        let e = romdyn::input::mbdyn::parse_text(&text, std::path::Path::new("p.mbd")).err().map(|e| e.to_string()).unwrap_or_default();
+        assert!(e.contains("p.mbd:2:") && e.contains("invalid operands in power()"), "{expr}: {e}");
+    }
 }
 
 #[test]

@@ -1,6 +1,9 @@
-//! Expressions of MBDyn's math parser (input manual, "General", §Variables, operator table
-//! "from higher to lower precedence"): `^`, unary `+ -`, `* / %`, `+ -`, comparisons,
-//! `!`, `&&`, `||`, `~|` (xor); declarations `[ifndef] [const] TYPE NAME [= EXPR]`,
+//! Expressions of MBDyn's math parser as MBDyn 1.7.3 evaluates them (libmbutil/mathp.cc,
+//! checked by running it; its input manual's operator table says otherwise): unary `- + !`
+//! bind to the operand that follows (`-2^2` = 4, `!1 > 2` = 0), then `^` (right
+//! associative; integer powers by products, a negative integer exponent giving 0, a negative
+//! base with an exponent ≤ 0 refused), `* / %`, `+ -`, comparisons, and `&&`, `||`, `~|`
+//! (xor) at one level from left to right (`1 || 0 && 0` = 0); declarations `[ifndef] [const] TYPE NAME [= EXPR]`,
 //! assignments `NAME = EXPR`, and statement lists `(S1; S2; …)` whose value is the last
 //! one. Expressions are evaluated as they are read, so later `set:` statements do not
 //! change earlier values.
@@ -392,38 +395,21 @@ impl<'a> Evaluator<'a> {
         Ok(value)
     }
 
+    /// `&&`, `||` and `~|`, one level, left to right (mathp.cc `logical_int`).
     fn logical(&mut self) -> Result<TypedValue, MbdynError> {
-        self.binary_level(0)
-    }
-
-    /// Levels, lowest precedence first: `~|`, `||`, `&&`.
-    fn binary_level(&mut self, level: usize) -> Result<TypedValue, MbdynError> {
-        const OPS: [&str; 3] = ["~|", "||", "&&"];
-        let Some(op) = OPS.get(level) else { return self.not() };
-        let mut v = self.binary_level(level + 1)?;
-        while self.symbol() == Some(op) {
+        let mut v = self.relational()?;
+        while let Some(op @ ("~|" | "||" | "&&")) = self.symbol() {
             let span = self.span();
             self.pos += 1;
-            let r = self.binary_level(level + 1)?;
+            let r = self.relational()?;
             let (a, b) = (v.truth().map_err(self.at(span))?, r.truth().map_err(self.at(span))?);
-            v = TypedValue::Bool(match *op {
+            v = TypedValue::Bool(match op {
                 "~|" => a != b,
                 "||" => a || b,
                 _ => a && b,
             });
         }
         Ok(v)
-    }
-
-    fn not(&mut self) -> Result<TypedValue, MbdynError> {
-        let span = self.span();
-        if self.eat("!") {
-            self.enter()?;
-            let v = self.not()?;
-            self.leave();
-            return Ok(TypedValue::Bool(!v.truth().map_err(self.at(span))?));
-        }
-        self.relational()
     }
 
     fn relational(&mut self) -> Result<TypedValue, MbdynError> {
@@ -449,35 +435,46 @@ impl<'a> Evaluator<'a> {
     }
 
     fn product(&mut self) -> Result<TypedValue, MbdynError> {
-        let mut v = self.unary()?;
+        let mut v = self.power()?;
         while let Some(op @ ("*" | "/" | "%")) = self.symbol() {
             let span = self.span();
             self.pos += 1;
-            let r = self.unary()?;
+            let r = self.power()?;
             v = v.arithmetic(op, &r).map_err(self.at(span))?;
         }
         Ok(v)
     }
 
-    fn unary(&mut self) -> Result<TypedValue, MbdynError> {
-        let span = self.span();
-        if let Some(op @ ("-" | "+")) = self.symbol() {
-            self.pos += 1;
-            self.enter()?;
-            let v = self.unary()?;
-            self.leave();
-            return if op == "-" { v.negate().map_err(self.at(span)) } else { Ok(v) };
-        }
-        let base = self.primary()?;
+    /// `UNARY [^ POWER]`: right associative, its base the unary operand (`-2^2` = 4).
+    fn power(&mut self) -> Result<TypedValue, MbdynError> {
+        let base = self.unary()?;
         if self.symbol() == Some("^") {
             let span = self.span();
             self.pos += 1;
             self.enter()?;
-            let exponent = self.unary()?;
+            let exponent = self.power()?;
             self.leave();
             return base.power(&exponent).map_err(self.at(span));
         }
         Ok(base)
+    }
+
+    /// `- + !` applied to the operand that follows (mathp.cc `unary`: `-expr()`), before any
+    /// `^`. romdyn also takes a chain of them (`--x`), which MBDyn refuses.
+    fn unary(&mut self) -> Result<TypedValue, MbdynError> {
+        let span = self.span();
+        if let Some(op @ ("-" | "+" | "!")) = self.symbol() {
+            self.pos += 1;
+            self.enter()?;
+            let v = self.unary()?;
+            self.leave();
+            return match op {
+                "-" => v.negate().map_err(self.at(span)),
+                "!" => Ok(TypedValue::Bool(!v.truth().map_err(self.at(span))?)),
+                _ => Ok(v),
+            };
+        }
+        self.primary()
     }
 
     fn primary(&mut self) -> Result<TypedValue, MbdynError> {

@@ -150,17 +150,27 @@ impl TypedValue {
     }
 
     /// `^`: integer when both are integers and the exponent is not negative.
+    /// `self ^ rhs` as MBDyn 1.7.3 computes it (mathp.cc `power_int`): a negative base with an
+    /// exponent ≤ 0 is refused; two integers give an integer by products, 1 for a zero
+    /// exponent and 0 for a negative one (`2^-1` = 0, `1^-1` = 0); otherwise `pow` of reals.
     pub fn power(&self, rhs: &TypedValue) -> Result<TypedValue, String> {
-        if let (Some(a), Some(b)) = (self.integer(), rhs.integer())
-            && (0..=u32::MAX as i64).contains(&b)
-        {
-            return a.checked_pow(b as u32).map(TypedValue::Int).ok_or_else(|| format!("integer overflow in {a}^{b}"));
+        let (Some(a), Some(b)) = (self.real(), rhs.real()) else {
+            return Err("operator '^' does not apply to strings".into());
+        };
+        if a < 0.0 && b <= 0.0 {
+            return Err(format!("a negative base raised to an exponent <= 0 ({a}^{b}): MBDyn 1.7.3 refuses it too (\"invalid operands in power()\")"));
         }
-        match (self.real(), rhs.real()) {
-            (Some(a), Some(b)) if a == 0.0 && b < 0.0 => Err("division by zero (0 raised to a negative power)".into()),
-            (Some(a), Some(b)) => Ok(TypedValue::Real(a.powf(b))),
-            _ => Err("operator '^' does not apply to strings".into()),
+        if let (Some(a), Some(b)) = (self.integer(), rhs.integer()) {
+            return match b {
+                0 => Ok(TypedValue::Int(1)),
+                b if b < 0 => Ok(TypedValue::Int(0)),
+                b => u32::try_from(b).ok().and_then(|b| a.checked_pow(b)).map(TypedValue::Int).ok_or_else(|| format!("integer overflow in {a}^{b}")),
+            };
         }
+        if a == 0.0 && b < 0.0 {
+            return Err("division by zero (0 raised to a negative power)".into());
+        }
+        Ok(TypedValue::Real(a.powf(b)))
     }
 
     pub fn negate(&self) -> Result<TypedValue, String> {
