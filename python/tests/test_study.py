@@ -173,3 +173,28 @@ def test_a_bad_setting_is_named_as_python_spells_it(examples):
     # An empty band is refused by every front end (the CLI took FMIN = FMAX).
     with pytest.raises(ValueError, match=r"^band: need 0 <= FMIN < FMAX"):
         study.reduce(band=(2.0, 2.0))
+
+
+def test_pid_loop_on_abstract_nodes_has_the_polynomial_poles(examples):
+    # Issue 34: examples/pid_mass.mbd, a mass on a spring and damper under a PID loop with a
+    # filtered derivative, written with abstract nodes and genels; ports on scalar nodes.
+    # Closed-loop poles: roots of m s^4 + (m A1 + c) s^3 + (c A1 + k + B0) s^2
+    # + (k A1 + B1) s + B2 (the file's header); X/F = (s^2 + A1 s)/P(s), so x/F = 0 and
+    # u/F = B2/B2 = 1 statically (the integrator removes the static error).
+    m, k, c, kp, ki, kd, tau = 2.0, 50.0, 0.4, 100.0, 200.0, 10.0, 0.01
+    a1, b0, b1, b2 = 1 / tau, (kp * tau + kd) / tau, (kp + ki * tau) / tau, ki / tau
+    poles = np.roots([m, m * a1 + c, c * a1 + k + b0, k * a1 + b1, b2])
+    study = romdyn.Model(examples / "pid_mass.mbd").study(inputs=["1:abstract"], outputs=["1:abstract", "2:abstract"])
+    modes = study.modes()
+    dyn = modes["eigenvalues"][[kind == "dynamic" for kind in modes["kind"]]]
+    assert len(dyn) == 4
+    for p in poles:
+        assert np.min(np.abs(dyn - p)) <= 1e-8 * abs(p), (p, dyn)
+    rom = study.reduce(count=3)  # a complex pair and two real poles: three modes
+    assert np.allclose(rom.rom_static_gain[:, 0], [0.0, 1.0], atol=1e-9)
+    for f in (0.3, 3.0):
+        s = 2j * np.pi * f
+        p = np.polyval([m, m * a1 + c, c * a1 + k + b0, k * a1 + b1, b2], s)
+        h = rom.frequency_response(np.array([f]))[0]
+        assert h[0, 0] == pytest.approx((s * s + a1 * s) / p, rel=1e-8)
+        assert h[1, 0] == pytest.approx((b0 * s * s + b1 * s + b2) / p, rel=1e-8)
