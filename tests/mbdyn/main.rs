@@ -36,6 +36,7 @@ mod rigid_body_kinematics;
 mod run_command;
 mod step_drive_times;
 mod step_drives;
+mod time_variant_laws;
 mod use_arpack;
 mod variable_mass_body;
 mod varying_radius;

@@ -1,7 +1,8 @@
 //! Constitutive laws (input manual, "General", §Constitutive Laws) that romdyn's elements
 //! honour: `linear elastic [isotropic]`, `linear elastic generic`, `linear viscous
 //! [isotropic]`, `linear viscous generic`, `linear viscoelastic [isotropic]`, `linear
-//! viscoelastic generic` (viscosity or `proportional, FACTOR`), with the optional
+//! viscoelastic generic` (viscosity or `proportional, FACTOR`), `linear time variant
+//! viscoelastic generic` (the same matrices, each times a drive caller's value), with the optional
 //! `prestress` and `prestrain` (constant; a drive on a rod); `reference, LABEL` to a
 //! `constitutive law:` card.
 //! Laws are read for 1 (rod), 3 (deformable displacement joint and hinge) or 6 (beams)
@@ -21,7 +22,7 @@ use super::cursor::Cursor;
 use super::diagnostic::{MbdynError, Span};
 use super::drives::{single_term, template_vec3, Drives};
 use super::parser::Statement;
-use crate::element::LawFunctions;
+use crate::element::{LawFunctions, TimeVariance};
 use crate::element::drive::{Drive, ScalarFunction};
 use crate::kinematics::{Mat3, Vec3};
 
@@ -39,6 +40,8 @@ pub struct LinearLaw {
     pub nonlinear: Option<&'static str>,
     /// A `linear elastic bistop` or `linear viscoelastic bistop` law's switch (1-D, rods).
     pub bistop: Option<Bistop>,
+    /// A `linear time variant viscoelastic generic` law's drives on `K` and `C`.
+    pub time_variance: Option<TimeVariance>,
 }
 
 /// The switch of MBDyn's bistop laws (constltp_impl.h, `BiStopCLWrapper`): the law acts
@@ -68,9 +71,9 @@ const KINDS: [&str; 9] = [
     "linear viscoelastic generic", "linear viscoelastic isotropic", "linear viscoelastic",
 ];
 
-const UNSUPPORTED: [&str; 14] = [
+const UNSUPPORTED: [&str; 13] = [
     "linear elastic generic axial torsion coupling", "cubic elastic generic", "inverse square elastic", "log elastic",
-    "double linear elastic", "isotropic hardening elastic", "linear time variant viscoelastic generic",
+    "double linear elastic", "isotropic hardening elastic",
     "cubic viscoelastic generic", "double linear viscoelastic", "turbulent viscoelastic", "shock absorber",
     "symbolic elastic", "symbolic viscous", "symbolic viscoelastic",
 ];
@@ -124,6 +127,9 @@ pub fn linear_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq:
     let law = nonlinear_law(c, dim, laws, drives, seq)?;
     if let Some(kind) = law.nonlinear {
         return Err(c.error_at(span, format!("constitutive law '{kind}' is supported by romdyn on {NONLINEAR_ELEMENTS}, not on this element")));
+    }
+    if law.time_variance.is_some() {
+        return Err(c.error_at(span, format!("constitutive law '{TIME_VARIANT}' is supported by romdyn on {NONLINEAR_ELEMENTS}, not on this element (MBDyn 1.7.3 runs it on an invariant deformable hinge, and refuses it on a viscous body, which needs a viscous law)")));
     }
     Ok(law)
 }
@@ -187,7 +193,30 @@ fn bistop(c: &mut Cursor, kind: &str, dim: usize, drives: &Drives, seq: usize) -
     let deactivate = super::drives::drive(c, drives, seq)?;
     let one = |x: f64| DMatrix::from_element(1, 1, x);
     let bistop = Some(Bistop { initially_active, activate, deactivate });
-    Ok(LinearLaw { stiffness: one(k), viscosity: one(v), prestrain: DVector::zeros(1), prestress: DVector::zeros(1), functions: LawFunctions::default(), nonlinear: None, bistop })
+    Ok(LinearLaw { stiffness: one(k), viscosity: one(v), prestrain: DVector::zeros(1), prestress: DVector::zeros(1), functions: LawFunctions::default(), nonlinear: None, bistop, time_variance: None })
+}
+
+/// The one time-variant law MBDyn 1.7.3 registers.
+const TIME_VARIANT: &str = "linear time variant viscoelastic generic";
+
+/// Whether the keyword `w` begins with the words of `start` (spaces and case aside).
+fn same_start(w: &str, start: &str) -> bool {
+    let squeeze = |s: &str| s.chars().filter(|c| !c.is_whitespace()).map(|c| c.to_ascii_lowercase()).collect::<String>();
+    squeeze(w).starts_with(&squeeze(start))
+}
+
+/// `linear time variant viscoelastic generic, K, DRIVE_K, {C | proportional, FACTOR},
+/// DRIVE_C` after its keyword (constltp_impl.cc, `LTVViscoElasticGenericCLR::Read`): `K`,
+/// `C` a number in 1-D, a matrix in 3-D and 6-D; `f = f_p + s_K(t) K (ε − ε_p) + s_C(t) C ε̇`
+/// (MBDyn 1.7.3 builds this law whatever `K` and `C` are: its reader's switch to an elastic
+/// or viscous law on a null matrix is compiled out).
+fn time_variant(c: &mut Cursor, dim: usize, drives: &Drives, seq: usize) -> Result<LinearLaw, MbdynError> {
+    let stiffness = matrix(c, dim, if dim == 1 { "stiffness [per unit strain]" } else { "stiffness matrix" })?;
+    let stiffness_scale = super::drives::drive(c, drives, seq)?;
+    let viscosity = if c.accept("proportional") { &stiffness * c.real("proportional damping factor [s]")? } else { matrix(c, dim, if dim == 1 { "viscosity [per unit strain rate]" } else { "viscosity matrix" })? };
+    let viscosity_scale = super::drives::drive(c, drives, seq)?;
+    let time_variance = Some(TimeVariance { stiffness: stiffness_scale, viscosity: viscosity_scale });
+    Ok(LinearLaw { stiffness, viscosity, prestrain: DVector::zeros(dim), prestress: DVector::zeros(dim), functions: LawFunctions::default(), nonlinear: None, bistop: None, time_variance })
 }
 
 /// `nlsf …` after its keyword: `K, {F_1 | null}, …, {F_dim | null}` for the elastic part,
@@ -224,7 +253,7 @@ fn nlsf(c: &mut Cursor, kind: &'static str, dim: usize, drives: &Drives, seq: us
         };
         f.viscous = functions(c)?;
     }
-    Ok(LinearLaw { stiffness: k, viscosity: v, prestrain: DVector::zeros(dim), prestress: DVector::zeros(dim), functions: f, nonlinear: Some(kind), bistop: None })
+    Ok(LinearLaw { stiffness: k, viscosity: v, prestrain: DVector::zeros(dim), prestress: DVector::zeros(dim), functions: f, nonlinear: Some(kind), bistop: None, time_variance: None })
 }
 
 /// `scalar function elastic [isotropic | orthotropic], …` after its keyword
@@ -243,7 +272,7 @@ fn function_elastic(c: &mut Cursor, kind: &'static str, dim: usize, drives: &Dri
     };
     let zero = DMatrix::zeros(dim, dim);
     let functions = LawFunctions { elastic, viscous: vec![None; dim] };
-    Ok(LinearLaw { stiffness: zero.clone(), viscosity: zero, prestrain: DVector::zeros(dim), prestress: DVector::zeros(dim), functions, nonlinear: Some(kind), bistop: None })
+    Ok(LinearLaw { stiffness: zero.clone(), viscosity: zero, prestrain: DVector::zeros(dim), prestress: DVector::zeros(dim), functions, nonlinear: Some(kind), bistop: None, time_variance: None })
 }
 
 /// A constitutive law of dimension `dim` at statement `seq`, `nlsf` included, with the drive
@@ -266,6 +295,14 @@ fn read_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq: usize
     }
     if let Some(kind) = c.accept_any(&FUNCTION_ELASTIC) {
         return Ok((function_elastic(c, kind, dim, drives, seq)?, None));
+    }
+    if c.accept(TIME_VARIANT) {
+        let mut law = time_variant(c, dim, drives, seq)?;
+        let varying = prestress_and_prestrain(c, &mut law, dim, drives, seq)?;
+        return Ok((law, varying));
+    }
+    if let Some(w) = c.peek_keyword().filter(|w| same_start(w, "linear time variant")) {
+        return Err(c.error(format!("constitutive law '{w}' is not registered by MBDyn 1.7.3 (constltp_impl.cc, `InitCL`: of the time-variant laws only '{TIME_VARIANT}', which MBDyn's manual's example writes without 'generic'), nor by romdyn: write '{TIME_VARIANT}, K, DRIVE, {{C | proportional, FACTOR}}, DRIVE' (a null C for an elastic law)")));
     }
     if let Some(kind) = c.accept_any(&BISTOP) {
         let mut law = bistop(c, kind, dim, drives, seq)?;
@@ -295,7 +332,7 @@ fn read_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq: usize
         let v = if c.accept("proportional") { &k * c.real("proportional damping factor [s]")? } else { read(c, "viscosity")? };
         (k, v)
     };
-    let mut law = LinearLaw { stiffness, viscosity, prestrain: DVector::zeros(dim), prestress: DVector::zeros(dim), functions: LawFunctions::default(), nonlinear: None, bistop: None };
+    let mut law = LinearLaw { stiffness, viscosity, prestrain: DVector::zeros(dim), prestress: DVector::zeros(dim), functions: LawFunctions::default(), nonlinear: None, bistop: None, time_variance: None };
     let varying = prestress_and_prestrain(c, &mut law, dim, drives, seq)?;
     Ok((law, varying))
 }
