@@ -132,7 +132,7 @@ fn time_variant_laws_mbdyn_does_not_register_are_refused() {
 const HINGES: &str = "time_variant_hinges.mbd";
 
 #[test]
-fn time_variant_hinges_axial_joints_beams_and_prestressed_rods_give_mbdyns_motion() {
+fn time_variant_hinges_axial_joints_beams_and_prestressed_rods_give_mbdyns_motion_too() {
     let nodes = final_nodes(HINGES);
     let kin = |k: usize| nodes[k].clone();
     // Node 3 turns about z only: its angle, which MBDyn's .mov writes as its Euler 1-2-3
@@ -151,6 +151,9 @@ fn time_variant_hinges_axial_joints_beams_and_prestressed_rods_give_mbdyns_motio
         ("node 4 vx", kin(3).xdot[0], 8.7202967680433688e-02),
         ("node 5 z", kin(4).x[2], -9.2894553847710937e-01),
         ("node 5 vz", kin(4).xdot[2], 3.3141209637580285e-02),
+        ("node 6 wx", kin(5).omega[0], 6.8113317379144098e-02),
+        ("node 6 wy", kin(5).omega[1], -3.9557107230020987e-04),
+        ("node 6 wz", kin(5).omega[2], 1.1795249468543942e-02),
     ];
     for (what, x, mbdyn) in cases {
         eprintln!("{what}: {x:.16e}, MBDyn {mbdyn:.16e}");
@@ -171,7 +174,7 @@ fn frozen_time_eigenvalues_of_the_axial_joint_and_the_beam() {
 #[test]
 fn time_variant_hinge_and_beam_jacobians_match_finite_differences() {
     let checks = assert_jacobians_after_run(&mut read_test_file(HINGES), Some(0.3), 1e-3);
-    for kind in ["deformable hinge", "deformable axial joint", "beam2", "rod"] {
+    for kind in ["deformable hinge", "deformable axial joint", "beam2", "rod", "invariant deformable hinge"] {
         assert!(checks.iter().any(|c| c.element.starts_with(kind)), "{kind} not checked: {checks:?}");
     }
 }

@@ -298,12 +298,12 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             let a = side(c, ctx, "node 1", Position::IfKeyword, None)?;
             let b = side(c, ctx, "node 2", Position::IfKeyword, Some(&a))?;
             let law_span = c.here();
-            let law = linear_law(c, 3, ctx.laws, ctx.drives, ctx.seq)?;
+            let law = super::laws::linear_or_time_variant_law(c, 3, ctx.laws, ctx.drives, ctx.seq)?;
             orientation_description(c)?;
             if law.prestrain.iter().chain(law.prestress.iter()).any(|x| *x != 0.0) {
                 return Err(c.error_at(law_span, "prestrain and prestress of an invariant deformable hinge are not supported by romdyn"));
             }
-            Box::new(InvariantDeformableHinge { label, a: a.anchor(), b: b.anchor(), law: three(&law) })
+            Box::new(InvariantDeformableHinge { label, a: a.anchor(), b: b.anchor(), law: three(&law), variance: law.time_variance.clone() })
         }
         _ => rod(kind == "rod with offset", label, c, ctx)?,
     };

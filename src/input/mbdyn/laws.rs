@@ -12,7 +12,9 @@
 //! [isotropic | orthotropic]` (ScalarFunctionsImpl.cc: `f_i = F_i(ε_i)`, no prestrain or
 //! prestress) are read in every dimension; [`nonlinear_law`] and [`axial_law`] take them
 //! (deformable displacement joint, deformable hinge, deformable joint, beams; deformable
-//! axial joint), [`linear_law`] refuses them by name.
+//! axial joint), [`linear_law`] refuses them by name. The time-variant law goes wherever
+//! the nonlinear ones go and on the invariant deformable hinge
+//! ([`linear_or_time_variant_law`]); [`linear_law`] refuses it.
 
 use std::collections::HashMap;
 
@@ -120,16 +122,25 @@ pub fn constitutive_law_card(st: &Statement, c: &mut Cursor, laws: &mut Laws, dr
     Ok(())
 }
 
-/// A linear constitutive law of dimension `dim` at statement `seq` (a nonlinear law and a
-/// prestrain that changes in time are refused by name).
+/// A linear constitutive law of dimension `dim` at statement `seq` that does not change in
+/// time (the viscous body's: a nonlinear law, a time-variant one and a prestrain that changes
+/// in time are refused by name).
 pub fn linear_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq: usize) -> Result<LinearLaw, MbdynError> {
+    let span = c.here();
+    let law = linear_or_time_variant_law(c, dim, laws, drives, seq)?;
+    if law.time_variance.is_some() {
+        return Err(c.error_at(span, format!("constitutive law '{TIME_VARIANT}' is supported by romdyn on {NONLINEAR_ELEMENTS} and the invariant deformable hinge, not on this element (MBDyn 1.7.3 refuses it on a viscous body too, which needs a viscous law)")));
+    }
+    Ok(law)
+}
+
+/// A linear constitutive law of dimension `dim` at statement `seq`, time-variant or not (the
+/// invariant deformable hinge's); a nonlinear law is refused by name.
+pub fn linear_or_time_variant_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq: usize) -> Result<LinearLaw, MbdynError> {
     let span = c.here();
     let law = nonlinear_law(c, dim, laws, drives, seq)?;
     if let Some(kind) = law.nonlinear {
         return Err(c.error_at(span, format!("constitutive law '{kind}' is supported by romdyn on {NONLINEAR_ELEMENTS}, not on this element")));
-    }
-    if law.time_variance.is_some() {
-        return Err(c.error_at(span, format!("constitutive law '{TIME_VARIANT}' is supported by romdyn on {NONLINEAR_ELEMENTS}, not on this element (MBDyn 1.7.3 runs it on an invariant deformable hinge, and refuses it on a viscous body, which needs a viscous law)")));
     }
     Ok(law)
 }
