@@ -178,3 +178,15 @@ fn time_variant_hinge_and_beam_jacobians_match_finite_differences() {
         assert!(checks.iter().any(|c| c.element.starts_with(kind)), "{kind} not checked: {checks:?}");
     }
 }
+
+#[test]
+fn a_constitutive_law_card_holds_the_time_variant_law() {
+    // Rod 2's law as a `constitutive law:` card, taken by `reference`: the same static rest
+    // z = −1 − 0.025/(1 + t) at t = 1 s (file header), to 1e-12 m as in the first test.
+    let law = "linear time variant viscoelastic generic, EA, linear, 1., 1., 0., const, 1.;";
+    let mut m = common::mbdyn::rewritten_test_file(FILE, &[("begin: nodes;", &format!("constitutive law: 2, 1, {law}\n\nbegin: nodes;")), (&format!("joint: 2, rod, 1, 2, 1.,\n        {law}"), "joint: 2, rod, 1, 2, 1., reference, 2;")]);
+    m.problem.final_time = 1.0;
+    let report = run(&m.model, &m.problem, &mut ()).unwrap_or_else(|e| panic!("{e}"));
+    let z2 = report.final_state.node_frame(&Assembler::new(&m.model).dofs, 1).kin.x[2];
+    assert!((z2 + 1.0125).abs() < 1e-12, "node 2 z = {z2}, closed form −1.0125");
+}

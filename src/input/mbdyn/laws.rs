@@ -327,9 +327,9 @@ fn read_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq: usize
             } else {
                 ""
             };
-            return Err(c.error(format!("constitutive law '{k}' is not supported by romdyn (supported: linear elastic, linear viscous, linear viscoelastic, each isotropic or generic; nlsf elastic, viscous, viscoelastic; scalar function elastic isotropic, orthotropic{rods})")));
+            return Err(c.error(format!("constitutive law '{k}' is not supported by romdyn (supported: linear elastic, linear viscous, linear viscoelastic, each isotropic or generic; {TIME_VARIANT}; nlsf elastic, viscous, viscoelastic; scalar function elastic isotropic, orthotropic{rods})")));
         }
-        return Err(c.error(format!("expected a constitutive law ({}, {}, {}, {}), found {}", KINDS.join(", "), NLSF.join(", "), FUNCTION_ELASTIC.join(", "), BISTOP.join(", "), c.found())));
+        return Err(c.error(format!("expected a constitutive law ({}, {TIME_VARIANT}, {}, {}, {}), found {}", KINDS.join(", "), NLSF.join(", "), FUNCTION_ELASTIC.join(", "), BISTOP.join(", "), c.found())));
     };
     let generic = kind.ends_with("generic");
     let read = |c: &mut Cursor, what: &str| if generic { matrix(c, dim, what) } else { Ok(DMatrix::identity(dim, dim) * c.real(what)?) };
