@@ -8,6 +8,7 @@
 
 use super::contract::{Col, ElementState, JacobianSink, ResidualSink, Row};
 use super::drive::Drive;
+use crate::kinematics::Mat3;
 
 /// The two drives of a time-variant law: `s_K(t)` on the stiffness, `s_C(t)` on the viscosity.
 #[derive(Clone, Debug, PartialEq)]
@@ -50,5 +51,8 @@ impl<S: ResidualSink + ?Sized> ResidualSink for Scaled<'_, S> {
 impl<S: JacobianSink + ?Sized> JacobianSink for Scaled<'_, S> {
     fn add(&mut self, row: Row, col: Col, value: f64) {
         self.inner.add(row, col, self.factor * value);
+    }
+    fn add_block(&mut self, rows: [Row; 3], cols: [Col; 3], m: &Mat3) {
+        self.inner.add_block(rows, cols, &(self.factor * m));
     }
 }
