@@ -24,6 +24,14 @@ pub struct TimeVariantRod {
     pub variance: TimeVariance,
 }
 
+impl TimeVariantRod {
+    /// The elastic and the viscous rod with their factors `s_K`, `s_C` at the state `st`.
+    fn scaled_parts(&self, st: &dyn ElementState) -> [(&dyn Element, f64); 2] {
+        let (sk, sc) = self.variance.scales(st);
+        [(&self.elastic, sk), (&self.viscous, sc)]
+    }
+}
+
 impl Element for TimeVariantRod {
     fn label(&self) -> Label {
         self.elastic.rod.label
@@ -41,18 +49,18 @@ impl Element for TimeVariantRod {
         self.elastic.rod.outputs()
     }
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
-        let (sk, sc) = self.variance.scales(st);
-        self.elastic.residual(st, &mut Scaled { inner: &mut *out, factor: sk });
-        self.viscous.residual(st, &mut Scaled { inner: &mut *out, factor: sc });
+        for (part, factor) in self.scaled_parts(st) {
+            part.residual(st, &mut Scaled { inner: &mut *out, factor });
+        }
         if self.prestress != 0.0 {
             let p = Pair::new(&self.elastic.rod.a, &self.elastic.rod.b, st);
             add_pair_force(out, &p, &(self.prestress / p.d.norm() * p.d));
         }
     }
     fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
-        let (sk, sc) = self.variance.scales(st);
-        self.elastic.jacobian(st, &mut Scaled { inner: &mut *out, factor: sk });
-        self.viscous.jacobian(st, &mut Scaled { inner: &mut *out, factor: sc });
+        for (part, factor) in self.scaled_parts(st) {
+            part.jacobian(st, &mut Scaled { inner: &mut *out, factor });
+        }
         if self.prestress != 0.0 {
             let p = Pair::new(&self.elastic.rod.a, &self.elastic.rod.b, st);
             let l = p.d.norm();
