@@ -83,14 +83,22 @@ impl DeformableJoint {
         self
     }
 
-    /// The law at strain `k` and rate `k̇`: `φ` and its derivatives `K = ∂φ/∂k`, `C = ∂φ/∂k̇`.
-    fn law_at(&self, k: &Vector6<f64>, k_rate: &Vector6<f64>) -> (Vector6<f64>, Matrix6<f64>, Matrix6<f64>) {
-        self.law.evaluate(k, Some(k_rate))
+    /// The joint whose law's stiffness and viscosity are scaled in time by `variance`'s
+    /// drives (MBDyn's `linear time variant viscoelastic generic`).
+    pub fn with_time_variance(mut self, variance: Option<super::TimeVariance>) -> Self {
+        self.law.time_variance = variance;
+        self
+    }
+
+    /// The law at the state `st`, strain `k` and rate `k̇`: `φ` and its derivatives `K =
+    /// ∂φ/∂k`, `C = ∂φ/∂k̇`.
+    fn law_at(&self, st: &dyn ElementState, k: &Vector6<f64>, k_rate: &Vector6<f64>) -> (Vector6<f64>, Matrix6<f64>, Matrix6<f64>) {
+        self.law.evaluate_in(st, k, Some(k_rate))
     }
 
     /// Generalized force `φ` in frame A and its derivatives `K`, `C`, relative rotation vector
     /// `θ`, relative angular velocity.
-    fn phi(&self, p: &Pair) -> (Vector6<f64>, Matrix6<f64>, Matrix6<f64>, Vec3, Vec3) {
+    fn phi(&self, st: &dyn ElementState, p: &Pair) -> (Vector6<f64>, Matrix6<f64>, Matrix6<f64>, Vec3, Vec3) {
         let qt = p.q_a.transpose();
         let theta = rotation_vector(&(qt * p.q_b));
         let w = p.omega_b - p.omega_a;
@@ -98,7 +106,7 @@ impl DeformableJoint {
         let k = Vector6::new(e[0], e[1], e[2], theta[0], theta[1], theta[2]);
         let w_a = qt * w;
         let k_rate = Vector6::new(e_rate[0], e_rate[1], e_rate[2], w_a[0], w_a[1], w_a[2]);
-        let (phi, kk, cc) = self.law_at(&k, &k_rate);
+        let (phi, kk, cc) = self.law_at(st, &k, &k_rate);
         (phi, kk, cc, theta, w)
     }
 }
@@ -124,15 +132,18 @@ impl Element for DeformableJoint {
     fn nodes(&self) -> Vec<Label> {
         node_labels(&self.a, &self.b)
     }
+    fn reads_state(&self) -> bool {
+        self.law.reads_state()
+    }
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
         let p = Pair::new(&self.a, &self.b, st);
-        let (f, m) = split(&self.phi(&p).0);
+        let (f, m) = split(&self.phi(st, &p).0);
         p.add_force(out, &(p.q_a * f));
         p.add_moment(out, &(p.q_a * m));
     }
     fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
         let p = Pair::new(&self.a, &self.b, st);
-        let (phi, k, c, theta, w) = self.phi(&p);
+        let (phi, k, c, theta, w) = self.phi(st, &p);
         let (k, c) = (&k, &c);
         let qt = p.q_a.transpose();
         // δθ = Γ⁻¹(θ) Q_aᵀ (δθ_b − δθ_a); δ(Q_aᵀ w) = Q_aᵀ (δω_b − δω_a) + Q_aᵀ [w×] δθ_a.

@@ -17,6 +17,9 @@ pub struct InvariantDeformableHinge {
     pub a: Anchor,
     pub b: Anchor,
     pub law: LinearViscoelastic,
+    /// The drives scaling `K` and `C` in time (MBDyn's `linear time variant viscoelastic
+    /// generic`; `None`: constant).
+    pub variance: Option<super::TimeVariance>,
 }
 
 /// `Γ(φ)`: `exp((φ + δφ)×) = exp((Γ(φ) δφ)×) exp(φ×)` to first order,
@@ -27,6 +30,15 @@ pub(super) fn rotation_jacobian(phi: &Vec3) -> Mat3 {
     let (a, b) = if x < 1e-4 { (0.5 - x * x / 24.0, 1.0 / 6.0 - x * x / 120.0) } else { ((1.0 - x.cos()) / (x * x), (x - x.sin()) / (x * x * x)) };
     let t = skew(phi);
     Mat3::identity() + a * t + b * t * t
+}
+
+impl InvariantDeformableHinge {
+    /// `K` and `C` at the state `st` (scaled by a time variance's drives, held in the
+    /// Jacobian).
+    fn law_at(&self, st: &dyn ElementState) -> (Mat3, Mat3) {
+        let (sk, sc) = super::time_variant_law::scales_of(self.variance.as_ref(), st);
+        (sk * self.law.stiffness, sc * self.law.viscosity)
+    }
 }
 
 /// The intermediate frame `R̂`, `θ` and the rate `w`.
@@ -47,15 +59,19 @@ impl Element for InvariantDeformableHinge {
     fn nodes(&self) -> Vec<Label> {
         node_labels(&self.a, &self.b)
     }
+    fn reads_state(&self) -> bool {
+        self.variance.as_ref().is_some_and(super::TimeVariance::reads_state)
+    }
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
         let p = Pair::new(&self.a, &self.b, st);
         let (r_hat, theta, w) = frames(&p);
-        p.add_moment(out, &(r_hat * (self.law.stiffness * theta + self.law.viscosity * w)));
+        let (k, c) = self.law_at(st);
+        p.add_moment(out, &(r_hat * (k * theta + c * w)));
     }
     fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
         let p = Pair::new(&self.a, &self.b, st);
         let (r_hat, theta, w) = frames(&p);
-        let (k, c) = (self.law.stiffness, self.law.viscosity);
+        let (k, c) = self.law_at(st);
         let m = r_hat * (k * theta + c * w);
         // δθ = D (δθ_b − δθ_a), D = Γ⁻¹(θ) Q_aᵀ; R̂ turns by δφ̂ = δθ_a + H (δθ_b − δθ_a),
         // H = ½ Q_a Γ(θ/2) D; δw = R̂ᵀ (δω_b − δω_a) + R̂ᵀ [(ω_b − ω_a)×] δφ̂;

@@ -38,6 +38,7 @@ mod run_command;
 mod scalar_output;
 mod step_drive_times;
 mod step_drives;
+mod time_variant_laws;
 mod use_arpack;
 mod variable_mass_body;
 mod varying_radius;

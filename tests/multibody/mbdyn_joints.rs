@@ -103,9 +103,9 @@ fn invariant_deformable_hinge_jacobian_matches_finite_differences() {
     assert_jacobians(|n| {
         let law = LinearViscoelastic { stiffness: 100.0 * n.matrix(), viscosity: 3.0 * n.matrix() };
         vec![
-            Box::new(InvariantDeformableHinge { label: 1, a: node(2, n), b: node(3, n), law: law.clone() }),
-            Box::new(InvariantDeformableHinge { label: 2, a: ground(n), b: node(3, n), law: law.clone() }),
-            Box::new(InvariantDeformableHinge { label: 3, a: node(1, n), b: node(2, n), law }),
+            Box::new(InvariantDeformableHinge { label: 1, a: node(2, n), b: node(3, n), law: law.clone(), variance: None }),
+            Box::new(InvariantDeformableHinge { label: 2, a: ground(n), b: node(3, n), law: law.clone(), variance: None }),
+            Box::new(InvariantDeformableHinge { label: 3, a: node(1, n), b: node(2, n), law, variance: None }),
         ]
     });
 }

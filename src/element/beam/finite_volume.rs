@@ -10,7 +10,7 @@
 use nalgebra::{Matrix6, SMatrix, Vector6};
 
 use super::law::SectionLaw;
-use crate::element::contract::{Col, JacobianSink, ResidualSink, Row, SectionState};
+use crate::element::contract::{Col, ElementState, JacobianSink, ResidualSink, Row, SectionState};
 use crate::kinematics::{skew, Mat3, Vec3};
 
 pub const POSITION: usize = 0;
@@ -28,14 +28,15 @@ pub fn stack(a: &Vec3, b: &Vec3) -> Vector6<f64> {
 
 /// Local generalized forces `[F; M] = K ([ε; κ] − e_p) + V [ε̇; κ̇] + f_p` (rates only when
 /// `rates` is given), with a nonlinear law's function terms.
-pub fn local_forces(law: &SectionLaw, strain: &Vec3, curvature: &Vec3, rates: Option<(&Vec3, &Vec3)>) -> Vector6<f64> {
-    law_at(law, strain, curvature, rates).0
+pub fn local_forces(law: &SectionLaw, st: &dyn ElementState, strain: &Vec3, curvature: &Vec3, rates: Option<(&Vec3, &Vec3)>) -> Vector6<f64> {
+    law_at(law, st, strain, curvature, rates).0
 }
 
-/// The local generalized forces and the law's tangents `∂/∂[ε; κ]`, `∂/∂[ε̇; κ̇]` there.
-pub fn law_at(law: &SectionLaw, strain: &Vec3, curvature: &Vec3, rates: Option<(&Vec3, &Vec3)>) -> (Vector6<f64>, Matrix6<f64>, Matrix6<f64>) {
+/// The local generalized forces and the law's tangents `∂/∂[ε; κ]`, `∂/∂[ε̇; κ̇]` there
+/// (at the state `st`, whose time scales a time-variant law).
+pub fn law_at(law: &SectionLaw, st: &dyn ElementState, strain: &Vec3, curvature: &Vec3, rates: Option<(&Vec3, &Vec3)>) -> (Vector6<f64>, Matrix6<f64>, Matrix6<f64>) {
     let rate = rates.map(|(strain_rate, curvature_rate)| stack(strain_rate, curvature_rate));
-    law.evaluate(&stack(strain, curvature), rate.as_ref())
+    law.evaluate_in(st, &stack(strain, curvature), rate.as_ref())
 }
 
 /// What `.act`/`.bst` write of a point at `p` with frame `r`: local forces `f`, strain and

@@ -167,14 +167,14 @@ impl Beam3 {
     }
 
     /// Local generalized forces `[F; M] = K ([ε; κ] − e_p) + V [ε̇; κ̇] + f_p`.
-    fn local_forces(&self, s: usize, k: &SectionKinematics) -> Vector6<f64> {
-        self.law_at(s, k).0
+    fn local_forces(&self, st: &dyn ElementState, s: usize, k: &SectionKinematics) -> Vector6<f64> {
+        self.law_at(st, s, k).0
     }
 
     /// The local forces and the law's tangents at point `s`.
-    fn law_at(&self, s: usize, k: &SectionKinematics) -> (Vector6<f64>, Matrix6<f64>, Matrix6<f64>) {
+    fn law_at(&self, st: &dyn ElementState, s: usize, k: &SectionKinematics) -> (Vector6<f64>, Matrix6<f64>, Matrix6<f64>) {
         let rates = self.viscous.then_some((&k.strain_rate, &k.curvature_rate));
-        finite_volume::law_at(&self.laws[s], &k.strain, &k.curvature, rates)
+        finite_volume::law_at(&self.laws[s], st, &k.strain, &k.curvature, rates)
     }
 }
 
@@ -192,6 +192,9 @@ type ElementJacobian = SMatrix<f64, 18, 36>;
 impl Element for Beam3 {
     fn label(&self) -> Label {
         self.label
+    }
+    fn reads_state(&self) -> bool {
+        self.laws.iter().any(SectionLaw::reads_state)
     }
     fn type_name(&self) -> &'static str {
         "beam3"
@@ -217,7 +220,7 @@ impl Element for Beam3 {
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
         let (terms, ks) = self.evaluate(st);
         for (s, k) in ks.iter().enumerate() {
-            finite_volume::add_point_residual(out, s, &k.p, &k.r, &self.local_forces(s, k), terms.x());
+            finite_volume::add_point_residual(out, s, &k.p, &k.r, &self.local_forces(st, s, k), terms.x());
         }
     }
 
@@ -233,7 +236,7 @@ impl Element for Beam3 {
             let d = k.tangents(&terms, &node_tangents);
             let rates = self.viscous.then_some((&d.dstrain_rate, &d.dcurvature_rate));
             let point = PointTangents { dp: &d.dp, dtheta: &d.dtheta, dstrain: &d.dstrain, dcurvature: &d.dcurvature, rates };
-            finite_volume::add_point_jacobian(&mut jac, s, &k.p, &k.r, &self.law_at(s, k), &point, terms.x());
+            finite_volume::add_point_jacobian(&mut jac, s, &k.p, &k.r, &self.law_at(st, s, k), &point, terms.x());
         }
         finite_volume::scatter_jacobian(&jac, self.viscous, out);
     }
@@ -246,7 +249,7 @@ impl Outputs for Beam3 {
         let (_, ks) = self.evaluate(st);
         ks.iter()
             .enumerate()
-            .map(|(s, k)| finite_volume::section_state(&k.p, &k.r, &k.strain, &k.curvature, &self.local_forces(s, k)))
+            .map(|(s, k)| finite_volume::section_state(&k.p, &k.r, &k.strain, &k.curvature, &self.local_forces(st, s, k)))
             .collect()
     }
 }

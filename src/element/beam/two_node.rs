@@ -186,14 +186,17 @@ impl Beam2 {
         }
     }
 
-    fn local_forces(&self, k: &Point) -> Vector6<f64> {
-        finite_volume::local_forces(&self.law, &k.strain, &k.curvature, None)
+    fn local_forces(&self, st: &dyn ElementState, k: &Point) -> Vector6<f64> {
+        finite_volume::local_forces(&self.law, st, &k.strain, &k.curvature, None)
     }
 }
 
 impl Element for Beam2 {
     fn label(&self) -> Label {
         self.label
+    }
+    fn reads_state(&self) -> bool {
+        self.law.reads_state()
     }
     fn type_name(&self) -> &'static str {
         "beam2"
@@ -216,7 +219,7 @@ impl Element for Beam2 {
 
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
         let k = self.evaluate(st);
-        finite_volume::add_point_residual(out, 0, &k.p, &k.r, &self.local_forces(&k), &k.x);
+        finite_volume::add_point_residual(out, 0, &k.p, &k.r, &self.local_forces(st, &k), &k.x);
     }
 
     fn outputs(&self) -> Option<&dyn Outputs> {
@@ -255,7 +258,7 @@ impl Element for Beam2 {
         let dstrain = k.r.transpose() * (dpp + skew(&k.pp) * dtheta);
         let point = PointTangents { dp: &dp, dtheta: &dtheta, dstrain: &dstrain, dcurvature: &dcurvature, rates: None };
         let mut jac = SMatrix::<f64, 12, 24>::zeros();
-        finite_volume::add_point_jacobian(&mut jac, 0, &k.p, &k.r, &finite_volume::law_at(&self.law, &k.strain, &k.curvature, None), &point, &k.x);
+        finite_volume::add_point_jacobian(&mut jac, 0, &k.p, &k.r, &finite_volume::law_at(&self.law, st, &k.strain, &k.curvature, None), &point, &k.x);
         finite_volume::scatter_jacobian(&jac, false, out);
     }
 }
@@ -265,7 +268,7 @@ impl Outputs for Beam2 {
     /// curvatures, in the section frame.
     fn sections(&self, st: &dyn ElementState) -> Vec<SectionState> {
         let k = self.evaluate(st);
-        vec![finite_volume::section_state(&k.p, &k.r, &k.strain, &k.curvature, &self.local_forces(&k))]
+        vec![finite_volume::section_state(&k.p, &k.r, &k.strain, &k.curvature, &self.local_forces(st, &k))]
     }
 }
 

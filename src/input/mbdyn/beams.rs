@@ -52,7 +52,7 @@ fn section_orientation(c: &mut Cursor, ctx: &ElementContext, what: &str) -> Resu
 pub(super) fn section_law(law: &LinearLaw) -> SectionLaw {
     let m = |d: &nalgebra::DMatrix<f64>| Matrix6::from_fn(|i, j| d[(i, j)]);
     let v = |d: &nalgebra::DVector<f64>| Vector6::from_fn(|i, _| d[i]);
-    let mut s = SectionLaw::viscoelastic(m(&law.stiffness), m(&law.viscosity)).with_functions(law.functions.clone());
+    let mut s = SectionLaw::viscoelastic(m(&law.stiffness), m(&law.viscosity)).with_functions(law.functions.clone()).with_time_variance(law.time_variance.clone());
     s.prestrain = v(&law.prestrain);
     s.prestress = v(&law.prestress);
     s

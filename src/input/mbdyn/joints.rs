@@ -266,14 +266,15 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             let v = |d: &nalgebra::DVector<f64>| Vec3::new(d[0], d[1], d[2]);
             if hinge {
                 orientation_description(c)?;
-                if law.nonlinear.is_some() || law.prestrain.iter().chain(law.prestress.iter()).any(|x| *x != 0.0) {
-                    Box::new(DeformableJoint::hinge(label, a.anchor(), b.anchor(), &three(&law), v(&law.prestrain), v(&law.prestress)).with_functions(law.functions.placed(3, 6)))
+                if law.nonlinear.is_some() || law.time_variance.is_some() || law.prestrain.iter().chain(law.prestress.iter()).any(|x| *x != 0.0) {
+                    Box::new(DeformableJoint::hinge(label, a.anchor(), b.anchor(), &three(&law), v(&law.prestrain), v(&law.prestress)).with_functions(law.functions.placed(3, 6)).with_time_variance(law.time_variance.clone()))
                 } else {
                     Box::new(DeformableHinge { label, a: a.anchor(), b: b.anchor(), law: three(&law) })
                 }
-            } else if law.nonlinear.is_some() {
-                // A nonlinear law keeps its prestrain and prestress apart (no rest strain).
-                Box::new(DeformableJoint::displacement(label, a.anchor(), b.anchor(), &three(&law), v(&law.prestrain), v(&law.prestress)).with_functions(law.functions.placed(0, 6)))
+            } else if law.nonlinear.is_some() || law.time_variance.is_some() {
+                // A nonlinear or time-variant law keeps its prestrain and prestress apart (no
+                // rest strain: a time-variant one would move in time).
+                Box::new(DeformableJoint::displacement(label, a.anchor(), b.anchor(), &three(&law), v(&law.prestrain), v(&law.prestress)).with_functions(law.functions.placed(0, 6)).with_time_variance(law.time_variance.clone()))
             } else {
                 let rest = rest_strain(&law).ok_or_else(|| c.error_at(law_span, "a prestress needs an invertible stiffness matrix in romdyn (it becomes a rest strain)"))?;
                 Box::new(DeformableDisplacement { label, a: a.anchor(), b: b.anchor(), law: three(&law), rest })
@@ -293,18 +294,18 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             let b = side(c, ctx, "node 2", Position::IfKeyword, Some(&a))?;
             let law = super::laws::axial_law(c, ctx.laws, ctx.drives, ctx.seq)?;
             let (k, v) = (law.stiffness[(0, 0)], law.viscosity[(0, 0)]);
-            Box::new(DeformableJoint::axial(label, a.anchor(), b.anchor(), k, v, law.prestrain[0], law.prestress[0]).with_functions(law.functions.placed(5, 6)))
+            Box::new(DeformableJoint::axial(label, a.anchor(), b.anchor(), k, v, law.prestrain[0], law.prestress[0]).with_functions(law.functions.placed(5, 6)).with_time_variance(law.time_variance.clone()))
         }
         "invariant deformable hinge" => {
             let a = side(c, ctx, "node 1", Position::IfKeyword, None)?;
             let b = side(c, ctx, "node 2", Position::IfKeyword, Some(&a))?;
             let law_span = c.here();
-            let law = linear_law(c, 3, ctx.laws, ctx.drives, ctx.seq)?;
+            let law = super::laws::linear_or_time_variant_law(c, 3, ctx.laws, ctx.drives, ctx.seq)?;
             orientation_description(c)?;
             if law.prestrain.iter().chain(law.prestress.iter()).any(|x| *x != 0.0) {
                 return Err(c.error_at(law_span, "prestrain and prestress of an invariant deformable hinge are not supported by romdyn"));
             }
-            Box::new(InvariantDeformableHinge { label, a: a.anchor(), b: b.anchor(), law: three(&law) })
+            Box::new(InvariantDeformableHinge { label, a: a.anchor(), b: b.anchor(), law: three(&law), variance: law.time_variance.clone() })
         }
         _ => rod(kind == "rod with offset", label, c, ctx)?,
     };
@@ -518,6 +519,12 @@ fn rod(offsets: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Res
     if ea < 0.0 || viscosity < 0.0 || ea + viscosity == 0.0 {
         return Err(c.error_at(law_span, format!("rod: the axial stiffness EA [N] and viscosity [N s] must not be negative, nor both zero (found {ea}, {viscosity})")));
     }
+    if let Some(variance) = law.time_variance.clone() {
+        if 1.0 + law.prestrain[0] <= 0.0 {
+            return Err(c.error_at(law_span, "rod: the prestrain leaves no positive rest length"));
+        }
+        return Ok(Box::new(time_variant_rod(label, &a, &b, l0, &law, prestrain, variance)));
+    }
     if ea == 0.0 && law.prestress[0] != 0.0 {
         return Err(c.error_at(law_span, "rod: a prestress needs an axial stiffness in romdyn (it becomes a rest length)"));
     }
@@ -540,3 +547,16 @@ fn rod(offsets: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Res
     })
 }
 
+/// A rod with a `linear time variant viscoelastic generic` law, `N = F_p + s_K(t) EA (ε −
+/// ε_p) + s_C(t) C ε̇` ([`crate::element::TimeVariantRod`]): the rod of `EA` with its
+/// prestrain (a constant one in its rest length `l₀ (1 + ε_p)`, a drive apart), the rod of
+/// `C`, and the prestress.
+fn time_variant_rod(label: Label, a: &Side, b: &Side, l0: f64, law: &LinearLaw, prestrain: Option<Drive>, variance: crate::element::TimeVariance) -> crate::element::TimeVariantRod {
+    let (ea, viscosity) = (law.stiffness[(0, 0)], law.viscosity[(0, 0)]);
+    let rest = l0 * (1.0 + law.prestrain[0]);
+    let elastic = Rod { label, a: a.anchor(), b: b.anchor(), axial_stiffness: ea * rest / l0, length: rest, viscous: None, elastic: None };
+    let elastic = crate::element::PrestrainedRod { rod: elastic, prestrain: prestrain.unwrap_or(Drive::Const(0.0)), strain_length: l0 };
+    let viscous = (viscosity != 0.0).then_some(RodViscosity { coefficient: viscosity, length: l0 });
+    let viscous = Rod { label, a: a.anchor(), b: b.anchor(), axial_stiffness: 0.0, length: l0, viscous, elastic: None };
+    crate::element::TimeVariantRod { elastic, viscous, prestress: law.prestress[0], variance }
+}

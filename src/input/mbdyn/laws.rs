@@ -1,7 +1,8 @@
 //! Constitutive laws (input manual, "General", §Constitutive Laws) that romdyn's elements
 //! honour: `linear elastic [isotropic]`, `linear elastic generic`, `linear viscous
 //! [isotropic]`, `linear viscous generic`, `linear viscoelastic [isotropic]`, `linear
-//! viscoelastic generic` (viscosity or `proportional, FACTOR`), with the optional
+//! viscoelastic generic` (viscosity or `proportional, FACTOR`), `linear time variant
+//! viscoelastic generic` (the same matrices, each times a drive caller's value), with the optional
 //! `prestress` and `prestrain` (constant; a drive on a rod); `reference, LABEL` to a
 //! `constitutive law:` card.
 //! Laws are read for 1 (rod), 3 (deformable displacement joint and hinge) or 6 (beams)
@@ -11,7 +12,9 @@
 //! [isotropic | orthotropic]` (ScalarFunctionsImpl.cc: `f_i = F_i(ε_i)`, no prestrain or
 //! prestress) are read in every dimension; [`nonlinear_law`] and [`axial_law`] take them
 //! (deformable displacement joint, deformable hinge, deformable joint, beams; deformable
-//! axial joint), [`linear_law`] refuses them by name.
+//! axial joint), [`linear_law`] refuses them by name. The time-variant law goes wherever
+//! the nonlinear ones go and on the invariant deformable hinge
+//! ([`linear_or_time_variant_law`]); [`linear_law`] refuses it.
 
 use std::collections::HashMap;
 
@@ -21,7 +24,7 @@ use super::cursor::Cursor;
 use super::diagnostic::{MbdynError, Span};
 use super::drives::{single_term, template_vec3, Drives};
 use super::parser::Statement;
-use crate::element::LawFunctions;
+use crate::element::{LawFunctions, TimeVariance};
 use crate::element::drive::{Drive, ScalarFunction};
 use crate::kinematics::{Mat3, Vec3};
 
@@ -39,6 +42,8 @@ pub struct LinearLaw {
     pub nonlinear: Option<&'static str>,
     /// A `linear elastic bistop` or `linear viscoelastic bistop` law's switch (1-D, rods).
     pub bistop: Option<Bistop>,
+    /// A `linear time variant viscoelastic generic` law's drives on `K` and `C`.
+    pub time_variance: Option<TimeVariance>,
 }
 
 /// The switch of MBDyn's bistop laws (constltp_impl.h, `BiStopCLWrapper`): the law acts
@@ -68,9 +73,9 @@ const KINDS: [&str; 9] = [
     "linear viscoelastic generic", "linear viscoelastic isotropic", "linear viscoelastic",
 ];
 
-const UNSUPPORTED: [&str; 14] = [
+const UNSUPPORTED: [&str; 13] = [
     "linear elastic generic axial torsion coupling", "cubic elastic generic", "inverse square elastic", "log elastic",
-    "double linear elastic", "isotropic hardening elastic", "linear time variant viscoelastic generic",
+    "double linear elastic", "isotropic hardening elastic",
     "cubic viscoelastic generic", "double linear viscoelastic", "turbulent viscoelastic", "shock absorber",
     "symbolic elastic", "symbolic viscous", "symbolic viscoelastic",
 ];
@@ -117,9 +122,21 @@ pub fn constitutive_law_card(st: &Statement, c: &mut Cursor, laws: &mut Laws, dr
     Ok(())
 }
 
-/// A linear constitutive law of dimension `dim` at statement `seq` (a nonlinear law and a
-/// prestrain that changes in time are refused by name).
+/// A linear constitutive law of dimension `dim` at statement `seq` that does not change in
+/// time (the viscous body's: a nonlinear law, a time-variant one and a prestrain that changes
+/// in time are refused by name).
 pub fn linear_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq: usize) -> Result<LinearLaw, MbdynError> {
+    let span = c.here();
+    let law = linear_or_time_variant_law(c, dim, laws, drives, seq)?;
+    if law.time_variance.is_some() {
+        return Err(c.error_at(span, format!("constitutive law '{TIME_VARIANT}' is supported by romdyn on {NONLINEAR_ELEMENTS} and the invariant deformable hinge, not on this element (MBDyn 1.7.3 refuses it on a viscous body too, which needs a viscous law)")));
+    }
+    Ok(law)
+}
+
+/// A linear constitutive law of dimension `dim` at statement `seq`, time-variant or not (the
+/// invariant deformable hinge's); a nonlinear law is refused by name.
+pub fn linear_or_time_variant_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq: usize) -> Result<LinearLaw, MbdynError> {
     let span = c.here();
     let law = nonlinear_law(c, dim, laws, drives, seq)?;
     if let Some(kind) = law.nonlinear {
@@ -187,7 +204,30 @@ fn bistop(c: &mut Cursor, kind: &str, dim: usize, drives: &Drives, seq: usize) -
     let deactivate = super::drives::drive(c, drives, seq)?;
     let one = |x: f64| DMatrix::from_element(1, 1, x);
     let bistop = Some(Bistop { initially_active, activate, deactivate });
-    Ok(LinearLaw { stiffness: one(k), viscosity: one(v), prestrain: DVector::zeros(1), prestress: DVector::zeros(1), functions: LawFunctions::default(), nonlinear: None, bistop })
+    Ok(LinearLaw { stiffness: one(k), viscosity: one(v), prestrain: DVector::zeros(1), prestress: DVector::zeros(1), functions: LawFunctions::default(), nonlinear: None, bistop, time_variance: None })
+}
+
+/// The one time-variant law MBDyn 1.7.3 registers.
+const TIME_VARIANT: &str = "linear time variant viscoelastic generic";
+
+/// Whether the keyword `w` begins with the words of `start` (spaces and case aside).
+fn same_start(w: &str, start: &str) -> bool {
+    let squeeze = |s: &str| s.chars().filter(|c| !c.is_whitespace()).map(|c| c.to_ascii_lowercase()).collect::<String>();
+    squeeze(w).starts_with(&squeeze(start))
+}
+
+/// `linear time variant viscoelastic generic, K, DRIVE_K, {C | proportional, FACTOR},
+/// DRIVE_C` after its keyword (constltp_impl.cc, `LTVViscoElasticGenericCLR::Read`): `K`,
+/// `C` a number in 1-D, a matrix in 3-D and 6-D; `f = f_p + s_K(t) K (ε − ε_p) + s_C(t) C ε̇`
+/// (MBDyn 1.7.3 builds this law whatever `K` and `C` are: its reader's switch to an elastic
+/// or viscous law on a null matrix is compiled out).
+fn time_variant(c: &mut Cursor, dim: usize, drives: &Drives, seq: usize) -> Result<LinearLaw, MbdynError> {
+    let stiffness = matrix(c, dim, if dim == 1 { "stiffness [per unit strain]" } else { "stiffness matrix" })?;
+    let stiffness_scale = super::drives::drive(c, drives, seq)?;
+    let viscosity = if c.accept("proportional") { &stiffness * c.real("proportional damping factor [s]")? } else { matrix(c, dim, if dim == 1 { "viscosity [per unit strain rate]" } else { "viscosity matrix" })? };
+    let viscosity_scale = super::drives::drive(c, drives, seq)?;
+    let time_variance = Some(TimeVariance { stiffness: stiffness_scale, viscosity: viscosity_scale });
+    Ok(LinearLaw { stiffness, viscosity, prestrain: DVector::zeros(dim), prestress: DVector::zeros(dim), functions: LawFunctions::default(), nonlinear: None, bistop: None, time_variance })
 }
 
 /// `nlsf …` after its keyword: `K, {F_1 | null}, …, {F_dim | null}` for the elastic part,
@@ -224,7 +264,7 @@ fn nlsf(c: &mut Cursor, kind: &'static str, dim: usize, drives: &Drives, seq: us
         };
         f.viscous = functions(c)?;
     }
-    Ok(LinearLaw { stiffness: k, viscosity: v, prestrain: DVector::zeros(dim), prestress: DVector::zeros(dim), functions: f, nonlinear: Some(kind), bistop: None })
+    Ok(LinearLaw { stiffness: k, viscosity: v, prestrain: DVector::zeros(dim), prestress: DVector::zeros(dim), functions: f, nonlinear: Some(kind), bistop: None, time_variance: None })
 }
 
 /// `scalar function elastic [isotropic | orthotropic], …` after its keyword
@@ -243,7 +283,7 @@ fn function_elastic(c: &mut Cursor, kind: &'static str, dim: usize, drives: &Dri
     };
     let zero = DMatrix::zeros(dim, dim);
     let functions = LawFunctions { elastic, viscous: vec![None; dim] };
-    Ok(LinearLaw { stiffness: zero.clone(), viscosity: zero, prestrain: DVector::zeros(dim), prestress: DVector::zeros(dim), functions, nonlinear: Some(kind), bistop: None })
+    Ok(LinearLaw { stiffness: zero.clone(), viscosity: zero, prestrain: DVector::zeros(dim), prestress: DVector::zeros(dim), functions, nonlinear: Some(kind), bistop: None, time_variance: None })
 }
 
 /// A constitutive law of dimension `dim` at statement `seq`, `nlsf` included, with the drive
@@ -267,6 +307,14 @@ fn read_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq: usize
     if let Some(kind) = c.accept_any(&FUNCTION_ELASTIC) {
         return Ok((function_elastic(c, kind, dim, drives, seq)?, None));
     }
+    if c.accept(TIME_VARIANT) {
+        let mut law = time_variant(c, dim, drives, seq)?;
+        let varying = prestress_and_prestrain(c, &mut law, dim, drives, seq)?;
+        return Ok((law, varying));
+    }
+    if let Some(w) = c.peek_keyword().filter(|w| same_start(w, "linear time variant")) {
+        return Err(c.error(format!("constitutive law '{w}' is not registered by MBDyn 1.7.3 (constltp_impl.cc, `InitCL`: of the time-variant laws only '{TIME_VARIANT}', which MBDyn's manual's example writes without 'generic'), nor by romdyn: write '{TIME_VARIANT}, K, DRIVE, {{C | proportional, FACTOR}}, DRIVE' (a null C for an elastic law)")));
+    }
     if let Some(kind) = c.accept_any(&BISTOP) {
         let mut law = bistop(c, kind, dim, drives, seq)?;
         let varying = prestress_and_prestrain(c, &mut law, dim, drives, seq)?;
@@ -279,9 +327,9 @@ fn read_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq: usize
             } else {
                 ""
             };
-            return Err(c.error(format!("constitutive law '{k}' is not supported by romdyn (supported: linear elastic, linear viscous, linear viscoelastic, each isotropic or generic; nlsf elastic, viscous, viscoelastic; scalar function elastic isotropic, orthotropic{rods})")));
+            return Err(c.error(format!("constitutive law '{k}' is not supported by romdyn (supported: linear elastic, linear viscous, linear viscoelastic, each isotropic or generic; {TIME_VARIANT}; nlsf elastic, viscous, viscoelastic; scalar function elastic isotropic, orthotropic{rods})")));
         }
-        return Err(c.error(format!("expected a constitutive law ({}, {}, {}, {}), found {}", KINDS.join(", "), NLSF.join(", "), FUNCTION_ELASTIC.join(", "), BISTOP.join(", "), c.found())));
+        return Err(c.error(format!("expected a constitutive law ({}, {TIME_VARIANT}, {}, {}, {}), found {}", KINDS.join(", "), NLSF.join(", "), FUNCTION_ELASTIC.join(", "), BISTOP.join(", "), c.found())));
     };
     let generic = kind.ends_with("generic");
     let read = |c: &mut Cursor, what: &str| if generic { matrix(c, dim, what) } else { Ok(DMatrix::identity(dim, dim) * c.real(what)?) };
@@ -295,7 +343,7 @@ fn read_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq: usize
         let v = if c.accept("proportional") { &k * c.real("proportional damping factor [s]")? } else { read(c, "viscosity")? };
         (k, v)
     };
-    let mut law = LinearLaw { stiffness, viscosity, prestrain: DVector::zeros(dim), prestress: DVector::zeros(dim), functions: LawFunctions::default(), nonlinear: None, bistop: None };
+    let mut law = LinearLaw { stiffness, viscosity, prestrain: DVector::zeros(dim), prestress: DVector::zeros(dim), functions: LawFunctions::default(), nonlinear: None, bistop: None, time_variance: None };
     let varying = prestress_and_prestrain(c, &mut law, dim, drives, seq)?;
     Ok((law, varying))
 }
