@@ -58,8 +58,7 @@ impl Scalar for c64 {
         self * f
     }
     fn eigen(h: &Mat<c64>) -> Option<(Vec<c64>, Mat<c64>)> {
-        let e = h.eigen().ok()?;
-        Some((e.S().column_vector().iter().copied().collect(), e.U().to_owned()))
+        small_eigen_complex(h)
     }
     fn kept_basis(y: &Mat<c64>, _: &[c64], keep: usize) -> Option<Mat<c64>> {
         let qr = y.subcols(0, keep).qr();
@@ -87,8 +86,7 @@ impl Scalar for f64 {
         self * f
     }
     fn eigen(h: &Mat<f64>) -> Option<(Vec<c64>, Mat<c64>)> {
-        let e = h.eigen().ok()?;
-        Some((e.S().column_vector().iter().copied().collect(), e.U().to_owned()))
+        small_eigen_real(h)
     }
     fn kept_basis(y: &Mat<c64>, theta: &[c64], keep: usize) -> Option<Mat<f64>> {
         // span(Y_k) of a conjugate-closed set of eigenvalues of a real matrix is the
@@ -451,4 +449,96 @@ fn expand_delayed(a: &mut Arnoldi<f64>, op: &mut dyn FnMut(ColRef<'_, f64>, ColM
         }
     }
     Ok(m)
+}
+
+/// faer's eigendecomposition parameters with its blocked, aggressive-early-deflation QR
+/// turned off: the Rayleigh-quotient matrices are at most a few hundred wide, where the
+/// plain double-shift QR (LAPACK's `lahqr`) is as fast, and faer 0.24's AED did not return
+/// on those of the 64-element double-bending cantilever of `tests/eigen/sparse_count.rs`
+/// (`eig --solver sparse --count 20`: over 20 CPU-minutes in release, 43 % of it in
+/// `schur_swap_22` under `aggressive_early_deflation`, measured with perf).
+fn unblocked<T>() -> faer::Spec<faer::linalg::evd::EvdParams, T>
+where
+    faer::linalg::evd::EvdParams: faer::Auto<T>,
+{
+    let mut params = <faer::linalg::evd::EvdParams as faer::Auto<T>>::auto();
+    params.schur.blocking_threshold = usize::MAX;
+    faer::Spec::new(params)
+}
+
+/// Eigenvalues and right eigenvectors of a small real matrix by [`unblocked`] QR, complex
+/// pairs as conjugate columns (faer's `Mat::eigen` convention).
+fn small_eigen_real(h: &Mat<f64>) -> Option<(Vec<c64>, Mat<c64>)> {
+    use faer::dyn_stack::{MemBuffer, MemStack};
+    use faer::linalg::evd::{evd_real, evd_scratch, ComputeEigenvectors};
+    let n = h.nrows();
+    let (mut re, mut im) = (faer::diag::Diag::<f64>::zeros(n), faer::diag::Diag::<f64>::zeros(n));
+    let mut u = Mat::<f64>::zeros(n, n);
+    let mut buffer = MemBuffer::new(evd_scratch::<f64>(n, ComputeEigenvectors::No, ComputeEigenvectors::Yes, faer::Par::Seq, unblocked()));
+    evd_real(h.as_ref(), re.as_mut(), im.as_mut(), None, Some(u.as_mut()), faer::Par::Seq, MemStack::new(&mut buffer), unblocked()).ok()?;
+    let mut values = Vec::with_capacity(n);
+    let mut vectors = Mat::<c64>::zeros(n, n);
+    let mut j = 0;
+    while j < n {
+        if im[j] == 0.0 || j + 1 == n {
+            values.push(c64::new(re[j], 0.0));
+            for i in 0..n {
+                vectors[(i, j)] = c64::new(u[(i, j)], 0.0);
+            }
+            j += 1;
+        } else {
+            values.push(c64::new(re[j], im[j]));
+            values.push(c64::new(re[j], -im[j]));
+            for i in 0..n {
+                vectors[(i, j)] = c64::new(u[(i, j)], u[(i, j + 1)]);
+                vectors[(i, j + 1)] = c64::new(u[(i, j)], -u[(i, j + 1)]);
+            }
+            j += 2;
+        }
+    }
+    Some((values, vectors))
+}
+
+/// Eigenvalues and right eigenvectors of a small complex matrix by [`unblocked`] QR.
+fn small_eigen_complex(h: &Mat<c64>) -> Option<(Vec<c64>, Mat<c64>)> {
+    use faer::dyn_stack::{MemBuffer, MemStack};
+    use faer::linalg::evd::{evd_cplx, evd_scratch, ComputeEigenvectors};
+    let n = h.nrows();
+    let mut s = faer::diag::Diag::<c64>::zeros(n);
+    let mut u = Mat::<c64>::zeros(n, n);
+    let params = unblocked::<c64>();
+    let mut buffer = MemBuffer::new(evd_scratch::<c64>(n, ComputeEigenvectors::No, ComputeEigenvectors::Yes, faer::Par::Seq, params));
+    evd_cplx(h.as_ref(), s.as_mut(), None, Some(u.as_mut()), faer::Par::Seq, MemStack::new(&mut buffer), params).ok()?;
+    Some((s.column_vector().iter().copied().collect(), u))
+}
+
+#[cfg(test)]
+mod small_eigen_tests {
+    use super::*;
+
+    /// The unblocked decompositions satisfy `H u = λ u` to rounding on a real matrix with a
+    /// complex pair and on a complex one (a 150-wide random matrix, past faer's blocking size).
+    #[test]
+    fn unblocked_eigenpairs_satisfy_their_definition() {
+        let mut seed = 12345u64;
+        let mut next = || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        let n = 150;
+        let h = Mat::<f64>::from_fn(n, n, |_, _| next());
+        let (values, vectors) = small_eigen_real(&h).unwrap();
+        let hc = Mat::<c64>::from_fn(n, n, |i, j| c64::new(h[(i, j)], 0.0));
+        let g = Mat::<c64>::from_fn(n, n, |_, _| c64::new(next(), next()));
+        let (gv, gu) = small_eigen_complex(&g).unwrap();
+        for (m, l, u) in [(&hc, &values, &vectors), (&g, &gv, &gu)] {
+            assert!(l.iter().any(|x| x.im != 0.0));
+            for k in 0..n {
+                let v = u.col(k);
+                let mv = m * v;
+                let r = Col::<c64>::from_fn(n, |i| mv[i] - v[i] * l[k]).norm_l2();
+                assert!(r <= 1e-12 * m.norm_l2() * v.norm_l2(), "pair {k}: residual {r:e}");
+            }
+        }
+    }
 }

@@ -237,7 +237,12 @@ fn counted_lowest(dae: &SparseLinearDae, pencil: &Pencil, op: &ShiftInvert, coun
                     }
                     Some(c) => {
                         missing = c.missing.max(0) as usize + unmatched;
-                        let note = format!("the argument principle counts {} eigenvalue(s) in |λ| < {r:.6e} rad/s besides the {} found there ({unmatched} seen by one Krylov run only)", c.missing, inside.len());
+                        let note = if c.missing < 0 {
+                            // More found than exist: some eigenvalue was returned twice.
+                            format!("the argument principle counts {} eigenvalue(s) in |λ| < {r:.6e} rad/s, {} fewer than the {} found there (some found twice; {unmatched} seen by one Krylov run only)", inside.len() as i64 + c.missing, -c.missing, inside.len())
+                        } else {
+                            format!("the argument principle counts {} eigenvalue(s) in |λ| < {r:.6e} rad/s besides the {} found there ({unmatched} seen by one Krylov run only)", c.missing, inside.len())
+                        };
                         best = Some((kept, r, note.clone()));
                         Some(note)
                     }
