@@ -209,7 +209,8 @@ impl ModalReport {
             "{:>7}  {:>14}  {:>15}  {:>12}  {:>14}  {:>9}  {:>8}  {:>9}{energy_column}\n",
             "mode", "Re λ [rad/s]", "Im λ [rad/s]", "freq [Hz]", "undamped [Hz]", "damping", "kind", "error"
         );
-        let num = |x: Option<f64>, w: usize| x.map_or(format!("{:>w$}", "-"), |v| format!("{v:>w$.6e}"));
+        // `+ 0.0` prints a real eigenvalue's Im λ = −0 as 0.000000e0, not -0.000000e0.
+        let num = |x: Option<f64>, w: usize| x.map_or(format!("{:>w$}", "-"), |v| format!("{:>w$.6e}", v + 0.0));
         let hz = |x: Option<f64>, w: usize| x.map_or(format!("{:>w$}", "-"), |v| format!("{v:>w$.6}"));
         for (r, partner) in rows {
             let dynamic = r.kind == ModeKind::Dynamic;
