@@ -50,6 +50,10 @@ pub enum StudyError {
     SingularImposedMotion(f64),
     #[error("{0}")]
     Application(String),
+    /// The ROM's projection is singular and kept modes could not be scaled (a repeated root
+    /// with one vector: a modal ROM cannot represent it).
+    #[error("{cause}: kept mode(s) {} have left and right vectors orthogonal through F_yd (a repeated eigenvalue with a single vector, such as a critically damped mode with ζ = 1 exactly): a modal ROM cannot represent them; change that damping by a part in a million, or leave those modes out", modes.iter().map(|k| k.to_string()).collect::<Vec<_>>().join(", "))]
+    UnscaledModes { modes: Vec<usize>, cause: RomError },
     #[error("mode(s) {} lie below the frequencies of interest (up to {top_hz:.4} Hz): static residualization is valid only above them (--below-band keep|drop)", modes.iter().map(|(k, f)| format!("{k} ({f:.4} Hz)")).collect::<Vec<_>>().join(", "))]
     ResidualizedBelowBand { modes: Vec<(usize, f64)>, top_hz: f64 },
     #[error("modal damping for mode {0}, which the ROM does not keep")]

@@ -301,7 +301,7 @@ impl Study {
         let unscaled: Vec<(usize, f64)> = with_vectors.iter().zip(products).filter(|(_, p)| (p - c64::new(1.0, 0.0)).norm() > 1e-6).map(|(w, _)| (w.0 + 1, modal.modes[w.0].freq_hz())).collect();
         let invisible: Vec<(usize, f64)> = sel.kept.iter().copied().filter(|&i| dominance.is_negligible(i) && once(i) && !unscaled.iter().any(|m| m.0 == i + 1)).map(|i| (i + 1, modal.modes[i].freq_hz())).collect();
         if !unscaled.is_empty() {
-            warnings.push(Warning::Unscaled { modes: unscaled });
+            warnings.push(Warning::Unscaled { modes: unscaled.clone() });
         }
         if !invisible.is_empty() {
             warnings.push(Warning::Invisible { modes: invisible });
@@ -336,7 +336,11 @@ impl Study {
             }
             None => Vec::new(),
         };
-        let mut ordinary = descriptor.to_ordinary()?;
+        let mut ordinary = match descriptor.to_ordinary() {
+            Ok(o) => o,
+            Err(cause @ crate::rom::RomError::SingularStatic(_)) if !unscaled.is_empty() => return Err(StudyError::UnscaledModes { modes: unscaled.iter().map(|m| m.0).collect(), cause }),
+            Err(e) => return Err(e.into()),
+        };
         let full = self.full_static_gain();
         let full_ok = full.is_ok();
         if corrected && let Ok(full) = &full {
