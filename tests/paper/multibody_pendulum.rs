@@ -177,3 +177,21 @@ fn linearization_at_a_time_step_of_a_resting_pendulum() {
     let modal = ModalAnalysis::compute(&dae.jacobians, EigenRoute::Lambda).unwrap();
     assert!((modal.modes[0].lambda - c64::new(0.0, omega())).norm() / omega() < 1e-6, "{}", modal.modes[0].lambda);
 }
+
+/// A first-order mode of a viscous element on a static node moves no mass: its kinetic
+/// energy is rounding, and the table must not attribute it to a node that happens to hold
+/// that rounding. tests/mbdyn_files/time_variant_laws.mbd at t = 0.5 s: node 3 (static) on
+/// a rod of EA = 400 N and C = 40 N s scaled by s_C = 1 + t, so λ = −EA/(C s_C) =
+/// −400/(40 · 1.5) = −6.6667 rad/s (closed form), whose vector holds node 4's components at
+/// rounding; it was listed "node 4 x 100 %". The other modes keep their descriptions.
+#[test]
+fn a_massless_first_order_mode_claims_no_kinetic_energy() {
+    use common::cli::romdyn;
+    let (ok, out, err) = romdyn(&["eig", "tests/mbdyn_files/time_variant_laws.mbd", "--at", "0.5"]);
+    assert!(ok, "{err}");
+    let rows: Vec<&str> = out.lines().filter(|l| l.trim_start().starts_with(|c: char| c.is_ascii_digit()) && l.contains(" dynamic ")).collect();
+    let first_order: Vec<&&str> = rows.iter().filter(|l| l.split_whitespace().nth(1).and_then(|r| r.parse::<f64>().ok()).is_some_and(|re| (re + 400.0 / 60.0).abs() < 1e-6)).collect();
+    assert_eq!(first_order.len(), 1, "{out}");
+    assert!(!first_order[0].contains("node "), "a massless mode claims kinetic energy: {}", first_order[0]);
+    assert!(rows.iter().filter(|l| l.contains("node ")).count() == rows.len() - 1, "the massive modes keep their descriptions: {out}");
+}
