@@ -30,3 +30,4 @@ pub use error::EigenError;
 pub use modes::{ModalAnalysis, Mode};
 pub use pipeline::{dense_modes, energy_shares};
 pub use route::EigenRoute;
+pub(crate) use route::{dot_t, mul_real_complex};

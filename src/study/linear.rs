@@ -84,12 +84,12 @@ impl LinearModel {
     /// `uᵀ F_yd v` of each `(u, v)` (the product a mode's left vector is scaled by,
     /// `eigen::modes::normalize`), on the sparse DAE when there is one.
     pub fn fyd_bilinear(&self, pairs: &[(&faer::Col<c64>, &faer::Col<c64>)]) -> Vec<c64> {
-        let dot = |u: &faer::Col<c64>, w: faer::Col<c64>| u.iter().zip(w.iter()).map(|(a, b)| a * b).sum();
+        use crate::eigen::{dot_t, mul_real_complex};
         match (&self.sparse, self.dense_if_built()) {
-            (Some(s), _) => pairs.iter().map(|(u, v)| dot(u, s.fyd.mul_complex(v))).collect(),
+            (Some(s), _) => pairs.iter().map(|(u, v)| dot_t(u, &s.fyd.mul_complex(v))).collect(),
             (None, Some(d)) => {
                 let fyd = d.jacobians.derivatives().0;
-                pairs.iter().map(|(u, v)| dot(u, faer::Col::from_fn(fyd.nrows(), |i| (0..fyd.ncols()).map(|j| v[j] * fyd[(i, j)]).sum()))).collect()
+                pairs.iter().map(|(u, v)| dot_t(u, &mul_real_complex(&fyd, v))).collect()
             }
             (None, None) => unreachable!("a study's linear model is built from a sparse or a dense DAE"),
         }

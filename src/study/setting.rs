@@ -26,6 +26,25 @@ pub enum Setting {
 }
 
 impl Setting {
+    /// Every setting.
+    pub const ALL: [Setting; 15] = [
+        Setting::ReferenceTime,
+        Setting::LoadSteps,
+        Setting::Inputs,
+        Setting::Outputs,
+        Setting::Imposed,
+        Setting::Dcoef,
+        Setting::Solver,
+        Setting::Tolerance,
+        Setting::Ranking,
+        Setting::Form,
+        Setting::Fmin,
+        Setting::Fmax,
+        Setting::Points,
+        Setting::BeamUpdate,
+        Setting::Set,
+    ];
+
     /// The command line's flag.
     pub fn cli_flag(self) -> &'static str {
         match self {
@@ -119,31 +138,21 @@ pub fn python_spelling(text: &str) -> String {
     out
 }
 
-/// The Python keyword of a command-line flag's setting, if the package has one.
+/// The Python keyword of a command-line flag's setting, if the package has one: the study's
+/// settings by [`Setting`]'s own two spellings, the ROM request's and `validate`'s here.
 fn python_keyword(flag: &str) -> Option<&'static str> {
+    if let Some(s) = Setting::ALL.iter().find(|s| s.cli_flag().strip_prefix("--") == Some(flag)) {
+        return Some(s.python_name());
+    }
     Some(match flag {
-        "at" | "static" => "reference",
-        "load-steps" => "load_steps",
-        "input" => "inputs",
-        "output" => "outputs",
-        "imposed" => "imposed",
+        "static" => "reference",
         "remove-spring" => "remove_springs",
-        "dcoef" => "dcoef",
         "route" => "route",
-        "solver" => "solver",
-        "tolerance" => "tolerance",
         "count" => "count",
         "band" => "band",
         "modes" => "modes",
         "residualize" | "residualize-modes" => "residualize",
-        "by" => "by",
         "below-band" => "below_band",
-        "form" => "form",
-        "fmin" => "fmin",
-        "fmax" => "fmax",
-        "points" => "points",
-        "beam-update" => "beam_update",
-        "set" => "set",
         "amplitudes" => "amplitudes",
         "validation-band" => "validation_band",
         "resolution" => "resolution",
