@@ -190,16 +190,20 @@ impl Model {
     /// node histories: {"time" [s] (steps,), "labels" (nodes,), "position" [m] (steps, nodes,
     /// 3), "orientation" (steps, nodes, 3, 3: node frame to global), "velocity" [m/s],
     /// "angular_velocity" [rad/s] (steps, nodes, 3)}; step 0 is the initial state.
+    /// The run's warnings (initial velocities that violate the joints, the derivatives
+    /// phase, eigenanalyses one-sided or not certified) are raised as `romdyn run` prints them
+    /// (ReferenceWarning, EigenanalysisWarning).
     fn run<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let (h, kept) = py
-            .detach(|| -> Result<(NodeHistories, Vec<String>), StudyError> {
+        let (h, kept, run_warnings) = py
+            .detach(|| -> Result<(NodeHistories, Vec<String>, Vec<romdyn::analysis::RunWarning>), StudyError> {
                 let (m, kept) = self.read(true)?;
                 let mut h = NodeHistories::default();
-                run(&m.model, &m.problem, &mut h).map_err(|cause| StudyError::Reference { file: Some(self.name.clone()), cause })?;
-                Ok((h, kept))
+                let report = run(&m.model, &m.problem, &mut h).map_err(|cause| StudyError::Reference { file: Some(self.name.clone()), cause })?;
+                Ok((h, kept, report.warnings()))
             })
             .map_err(py_err)?;
         warnings::warn_beam_notes(py, &kept)?;
+        warnings::warn_run(py, &run_warnings)?;
         let (nt, nn) = (h.time.len(), h.labels.len());
         let d = PyDict::new(py);
         d.set_item("time", h.time.into_pyarray(py))?;

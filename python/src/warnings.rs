@@ -5,12 +5,13 @@
 
 use pyo3::prelude::*;
 use pyo3::types::PyType;
+use romdyn::analysis::RunWarning;
 use romdyn::study::{Response, Warning};
 
 pyo3::create_exception!(_romdyn, RomdynWarning, pyo3::exceptions::PyUserWarning, "Base of romdyn's warnings: what a user must know about a study or a ROM that is not an error.");
-pyo3::create_exception!(_romdyn, ReferenceWarning, RomdynWarning, "The reference solution: not an equilibrium (the linear model is the frozen-time Jacobian), beams' update.");
+pyo3::create_exception!(_romdyn, ReferenceWarning, RomdynWarning, "The reference solution or a run's initial state: not an equilibrium (the linear model is the frozen-time Jacobian), beams' update, initial velocities that violate the joints, the derivatives phase.");
 pyo3::create_exception!(_romdyn, PortWarning, RomdynWarning, "An input that moves nothing or an output that sees nothing (zero to rounding).");
-pyo3::create_exception!(_romdyn, EigenanalysisWarning, RomdynWarning, "The eigenanalysis: the sparse route not certified (a mode may be missing), eigenvalues not resolved in double precision, zeros the error estimate doubts.");
+pyo3::create_exception!(_romdyn, EigenanalysisWarning, RomdynWarning, "The eigenanalysis: the sparse route not certified (a mode may be missing), eigenvalues not resolved in double precision, zeros the error estimate doubts, a run's eigenanalysis one-sided or dependent on reactions.");
 pyo3::create_exception!(_romdyn, ModeSelectionWarning, RomdynWarning, "Modes below the band dropped or kept, kept modes that add no response, damping not applied.");
 pyo3::create_exception!(_romdyn, AccuracyWarning, RomdynWarning, "The ROM departs from the full model (static gain, frequency response, transmissibility, eigenvalues of its exported A).");
 pyo3::create_exception!(_romdyn, StaticGainWarning, AccuracyWarning, "The ROM's static gain differs from the full model's beyond rounding.");
@@ -20,7 +21,8 @@ pyo3::create_exception!(_romdyn, TransmissibilityWarning, AccuracyWarning, "The 
 /// The Python category of a warning.
 fn category<'py>(py: Python<'py>, w: &Warning) -> Bound<'py, PyType> {
     match w {
-        Warning::NotInEquilibrium { .. } | Warning::IncrementalBeamsStatic { .. } => py.get_type::<ReferenceWarning>(),
+        Warning::NotInEquilibrium { .. } | Warning::IncrementalBeamsStatic { .. } | Warning::OneSided { .. } | Warning::ReactionDependent { .. } => py.get_type::<ReferenceWarning>(),
+        Warning::Run { warning } => run_category(py, warning),
         Warning::InputMovesNothing { .. } | Warning::OutputSeesNothing { .. } => py.get_type::<PortWarning>(),
         Warning::SparseNotCertified { .. } | Warning::UnresolvedEigenvalues { .. } | Warning::DoubtfulZeros { .. } => py.get_type::<EigenanalysisWarning>(),
         Warning::RomEigenvalues { .. } => py.get_type::<AccuracyWarning>(),
@@ -29,6 +31,11 @@ fn category<'py>(py: Python<'py>, w: &Warning) -> Bound<'py, PyType> {
         Warning::ResponseDeparts { response: Response::Inputs, .. } => py.get_type::<ResponseWarning>(),
         Warning::ResponseDeparts { response: Response::Transmissibility, .. } | Warning::TransmissibilityUnavailable { .. } => py.get_type::<TransmissibilityWarning>(),
     }
+}
+
+/// The Python category of a run's warning: the eigenanalyses' or the initial state's.
+fn run_category<'py>(py: Python<'py>, w: &RunWarning) -> Bound<'py, PyType> {
+    if w.is_eigenanalysis() { py.get_type::<EigenanalysisWarning>() } else { py.get_type::<ReferenceWarning>() }
 }
 
 fn warn_text(py: Python<'_>, category: &Bound<'_, PyType>, text: &str) -> PyResult<()> {
@@ -41,6 +48,14 @@ fn warn_text(py: Python<'_>, category: &Bound<'_, PyType>, text: &str) -> PyResu
 pub fn warn_all(py: Python<'_>, warnings: &[Warning]) -> PyResult<()> {
     for w in warnings {
         warn_text(py, &category(py, w), &w.to_string())?;
+    }
+    Ok(())
+}
+
+/// Raises each of a run's warnings (`Model.run()`, as `romdyn run` prints them).
+pub fn warn_run(py: Python<'_>, warnings: &[RunWarning]) -> PyResult<()> {
+    for w in warnings {
+        warn_text(py, &run_category(py, w), &w.to_string())?;
     }
     Ok(())
 }

@@ -13,12 +13,14 @@ mod history;
 mod observer;
 mod reference;
 mod run;
+mod warning;
 
 pub use check::{check_model_jacobians, JacobianCheck, JACOBIAN_CHECK_TOLERANCE};
 pub use eigen::{Eigenanalysis, DEFAULT_DCOEF};
 pub use files::{eigen_file_stem, journal_path, RunFiles};
 pub use history::NodeHistories;
 pub use observer::{Derivatives, EigenDone, ObserverError, RunObserver, RunStart, StepDone};
-pub use reference::{reference_state, static_state_from, Reference};
+pub use reference::{reference_state, reference_state_with_warnings, static_state_from, Reference};
 pub use error::RunError;
 pub use run::{run, EigenSummary, RunReport};
+pub use warning::RunWarning;

@@ -5,6 +5,7 @@
 
 use super::error::RunError;
 use super::run::run;
+use super::warning::RunWarning;
 use crate::dae::{Assembler, State};
 use crate::model::{InitialValueProblem, Model};
 use crate::solve::{static_solution, NewtonSettings};
@@ -32,16 +33,24 @@ impl Reference {
 
 /// The state at `reference`.
 pub fn reference_state(model: &Model, problem: &InitialValueProblem, reference: Reference) -> Result<State, RunError> {
+    reference_state_with_warnings(model, problem, reference).map(|(state, _)| state)
+}
+
+/// The state at `reference` with the warnings of the run that reached it (the initial
+/// state's: velocities, the derivatives phase; none for the static equilibrium).
+pub fn reference_state_with_warnings(model: &Model, problem: &InitialValueProblem, reference: Reference) -> Result<(State, Vec<RunWarning>), RunError> {
     let mut p = problem.clone();
     p.eigenanalysis = None;
     p.abort_after = None;
     p.final_time = match reference {
-        Reference::Static { load_steps } => return static_state(model, problem, load_steps),
+        Reference::Static { load_steps } => return static_state(model, problem, load_steps).map(|state| (state, Vec::new())),
         Reference::Initial => p.initial_time,
         Reference::At(t) if t.is_finite() && t >= p.initial_time => t,
         Reference::At(t) => return Err(RunError::Problem(format!("time {t} s is before the initial time {} s", p.initial_time))),
     };
-    Ok(run(model, &p, &mut ())?.final_state)
+    let report = run(model, &p, &mut ())?;
+    let warnings = report.warnings();
+    Ok((report.final_state, warnings))
 }
 
 fn static_state(model: &Model, problem: &InitialValueProblem, load_steps: usize) -> Result<State, RunError> {

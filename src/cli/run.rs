@@ -142,28 +142,8 @@ pub fn run(a: RunArgs) -> Result<()> {
     };
     let written = files.finish(&report)?;
     print_summary(&input, &report, &written);
-    if let Some((equation, rate)) = &report.inconsistent_velocity {
-        eprintln!("warning: the initial velocities do not satisfy the joints ({equation} changes at {rate:.3e} per s); they are kept for the initial derivatives, as in MBDyn, and the first step changes them");
-    }
-    if let Some(failure) = &report.mbdyn_momenta_failure {
-        eprintln!("warning: the derivatives phase did not converge with the momenta of its Newton iterations, which MBDyn keeps ({failure}); romdyn set them from their definitions at the written velocities and converged, so the motion starts from those velocities; where MBDyn's own iteration does not converge either it stops, or with `derivatives coefficient: auto` raises its tolerance");
-    }
-    for e in &report.eigenanalyses {
-        for why in &e.non_smooth {
-            eprintln!("warning: eigenanalysis {} at t = {} s: {why}; the linearization takes a one-sided derivative there, and its eigenvalues describe only motion to that side", e.index, e.time);
-        }
-        if let Some(why) = &e.not_certified {
-            eprintln!("warning: eigenanalysis {} at t = {} s: the sparse route's modes are NOT certified ({why}): a mode below the highest one written may be missing", e.index, e.time);
-        }
-        for why in &e.reaction_dependent {
-            eprintln!("warning: eigenanalysis {} at t = {} s: {why}", e.index, e.time);
-        }
-    }
-    if let Some((dcoef, tolerance)) = report.derivatives_tolerance_raised {
-        eprintln!("warning: the derivatives phase converged at no derivatives coefficient; as MBDyn does with `derivatives coefficient: auto`, it was accepted at the coefficient with the smallest residual (dCoef = {dcoef:.3e} s) with its tolerance raised to {tolerance:.3e}: the initial accelerations and reactions are not to be trusted (typically a joint that does not hold to round-off after the initial assembly, divided by dCoef, or the momenta's dCoef·ṗ left by Newton)");
-    }
-    if let Some((velocity, change)) = &report.momentum_velocity_change {
-        eprintln!("warning: the derivatives phase keeps Newton's momenta, as MBDyn's does, and they start the motion as from a written velocity changed by more than the tolerance ({velocity} by {change:.3e}; about the derivatives coefficient dCoef times the acceleration: a smaller `derivatives coefficient` reduces it)");
+    for w in report.warnings() {
+        eprintln!("warning: {w}");
     }
     Ok(())
 }

@@ -50,6 +50,15 @@ pub(super) fn incremental_beams_warning(model: &Model, reference: crate::analysi
     (beams > 0).then_some(Warning::IncrementalBeamsStatic { beams })
 }
 
+/// The elements whose linearization at `state` is one-sided ([`Warning::OneSided`]) or
+/// carries the reaction multipliers' integration noise ([`Warning::ReactionDependent`]), as a
+/// run's eigenanalysis reports them.
+pub(super) fn smoothness_warnings(model: &Model, state: &State) -> Vec<Warning> {
+    let asm = Assembler::new(model);
+    let one_sided = asm.non_smooth_elements(state).into_iter().map(|why| Warning::OneSided { why });
+    one_sided.chain(asm.reaction_dependent_elements(state).into_iter().map(|why| Warning::ReactionDependent { why })).collect()
+}
+
 /// The free direction of a model whose static matrix at its initial state is singular, in
 /// words a person recognizes: the whole model's rigid-body motion when it is one
 /// ([`whole_model_rigid_motion`]), else its largest node components ("node 2 x, node 2 y").

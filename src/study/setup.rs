@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use crate::analysis::{reference_state, static_state_from, Reference};
+use crate::analysis::{reference_state_with_warnings, static_state_from, Reference};
 use crate::dae::ports::{InputPort, OutputPort};
 use crate::dae::{linearize_sparse, NodeInput, NodeOutput, State};
 use crate::eigen::{dense_modes, energy_shares, EnergyShare, ModalEnergy};
@@ -16,7 +16,7 @@ use crate::model::{InitialValueProblem, Model};
 use crate::output::modal::ModalReport;
 use crate::rom::{select_modes, ModeSelection};
 
-use super::checks::{equilibrium_warning, incremental_beams_warning, unrestrained_motion};
+use super::checks::{equilibrium_warning, incremental_beams_warning, smoothness_warnings, unrestrained_motion};
 use super::linear::LinearModel;
 use super::solver::{needs_every_mode, sparse_target, SparseRun, SPARSE_DEFAULT_COUNT};
 use super::{Application, RomRequest, Setting, Solver, StudyError, Warning};
@@ -97,11 +97,14 @@ impl Ports {
 /// neighbouring design point's solution, same unknowns) the static equilibrium starts from
 /// it at full load; if Newton fails from there, it ramps the loads from the file's
 /// configuration as without `start`.
-pub fn checked_reference_state(model: &Model, problem: &InitialValueProblem, reference: Reference, start: Option<&State>) -> Result<State, StudyError> {
+/// The run's warnings come with it (the initial state's velocities and derivatives phase,
+/// [`Warning::Run`]).
+pub fn checked_reference_state(model: &Model, problem: &InitialValueProblem, reference: Reference, start: Option<&State>) -> Result<(State, Vec<Warning>), StudyError> {
     let result = match (reference, start) {
-        (Reference::Static { .. }, Some(start)) => static_state_from(model, problem, start).or_else(|_| reference_state(model, problem, reference)),
-        _ => reference_state(model, problem, reference),
+        (Reference::Static { .. }, Some(start)) => static_state_from(model, problem, start).map(|state| (state, Vec::new())).or_else(|_| reference_state_with_warnings(model, problem, reference)),
+        _ => reference_state_with_warnings(model, problem, reference),
     };
+    let result = result.map(|(state, warnings)| (state, warnings.into_iter().map(|warning| Warning::Run { warning }).collect()));
     result.map_err(|source| {
         let motion = matches!(reference, Reference::Static { .. }).then(|| unrestrained_motion(model)).flatten();
         match motion {
@@ -214,8 +217,10 @@ impl Study {
         };
         let lin = Linearization { reference, inputs, outputs };
         lin.validate(problem)?;
-        let state = checked_reference_state(&model, problem, reference, start)?;
-        let beams = incremental_beams_warning(&model, reference);
+        let (state, run_warnings) = checked_reference_state(&model, problem, reference, start)?;
+        let mut beams: Vec<Warning> = incremental_beams_warning(&model, reference).into_iter().collect();
+        beams.extend(run_warnings);
+        beams.extend(smoothness_warnings(&model, &state));
         let mut study = match ports {
             Ports::Nodes { inputs, outputs } => {
                 let inputs: Vec<_> = inputs.iter().map(NodeInput::port).collect();

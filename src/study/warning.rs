@@ -48,6 +48,15 @@ pub enum Warning {
     /// A static reference of beams with MBDyn's incremental update: the whole load is one
     /// step from the initial configuration, whatever the load steps.
     IncrementalBeamsStatic { beams: usize },
+    /// The run that reached the reference warned (its initial velocities, its derivatives
+    /// phase): the reference state carries what the warning says.
+    Run { warning: crate::analysis::RunWarning },
+    /// An element's residual is not differentiable at the reference (friction at rest past
+    /// breakaway, …): the linearization is one-sided. `why` names the element.
+    OneSided { why: String },
+    /// An element's linearization scales with reaction multipliers' values as integrated
+    /// (friction's normal force), whose noise the eigenvalues carry. `why` names the element.
+    ReactionDependent { why: String },
 }
 
 /// Which of a ROM's responses a [`Warning::ResponseDeparts`] is about.
@@ -132,6 +141,9 @@ impl fmt::Display for Warning {
                 f,
                 "{beams} beam(s) use MBDyn's incremental update (--beam-update incremental): their static equilibrium takes the whole load as one step from the initial configuration, whatever --load-steps (MBDyn 1.7.3's one-step result), and differs from the path-independent beams' by the discretization of large rotations; linearize after a time integration (--at) to follow a load path, or use the default update"
             ),
+            Warning::Run { warning } => write!(f, "reference solution: {warning}"),
+            Warning::OneSided { why } => write!(f, "{why}; the linearization takes a one-sided derivative there, and its eigenvalues and ROM describe only motion to that side"),
+            Warning::ReactionDependent { why } => write!(f, "{why}"),
         }
     }
 }

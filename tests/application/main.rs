@@ -8,5 +8,6 @@ mod common;
 mod application;
 mod bode_plot;
 mod reference_solution;
+mod reference_warnings;
 mod sweep;
 mod validate;
