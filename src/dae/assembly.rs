@@ -489,7 +489,7 @@ impl<'m> Assembler<'m> {
             } };
             el.residual(&ctx, &mut sink);
             if let Some((i, v)) = bad {
-                out.push(format!("{}: its contribution to {} is {v}", self.model.element_name(e), self.dofs.equation_name(self.model, i)));
+                out.push(format!("{}: its contribution to {} is {v}{}", self.model.element_name(e), self.dofs.equation_name(self.model, i), self.model.element_functions_note(e)));
             }
         }
         out

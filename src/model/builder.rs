@@ -28,6 +28,7 @@ pub struct ModelBuilder {
     elements: Vec<Box<dyn Element>>,
     /// Where each element is written ("file:line:col"), when it comes from a file.
     element_origins: Vec<Option<String>>,
+    element_functions: Vec<Vec<String>>,
     gravity: Option<Vec3>,
     form: ConstraintForm,
     node_names: std::collections::BTreeMap<Label, String>,
@@ -38,7 +39,7 @@ pub struct ModelBuilder {
 
 impl Default for ModelBuilder {
     fn default() -> Self {
-        ModelBuilder { nodes: Vec::new(), scalar_nodes: Vec::new(), elements: Vec::new(), element_origins: Vec::new(), gravity: None, form: ConstraintForm::Scaled, node_names: Default::default(), step_drives: Vec::new(), displacement_nodes: Default::default(), frame_motion: None }
+        ModelBuilder { nodes: Vec::new(), scalar_nodes: Vec::new(), elements: Vec::new(), element_origins: Vec::new(), element_functions: Vec::new(), gravity: None, form: ConstraintForm::Scaled, node_names: Default::default(), step_drives: Vec::new(), displacement_nodes: Default::default(), frame_motion: None }
     }
 }
 
@@ -81,6 +82,7 @@ impl ModelBuilder {
     pub fn boxed_element(&mut self, element: Box<dyn Element>) -> &mut Self {
         self.elements.push(element);
         self.element_origins.push(None);
+        self.element_functions.push(Vec::new());
         self
     }
 
@@ -89,6 +91,16 @@ impl ModelBuilder {
     pub fn element_from(&mut self, element: Box<dyn Element>, origin: String) -> &mut Self {
         self.elements.push(element);
         self.element_origins.push(Some(origin));
+        self.element_functions.push(Vec::new());
+        self
+    }
+
+    /// The scalar functions the last element's card uses, each as `scalar function "NAME"
+    /// (file:line:col)`, which a message about a residual that is not finite names.
+    pub fn element_uses(&mut self, functions: Vec<String>) -> &mut Self {
+        if let Some(last) = self.element_functions.last_mut() {
+            *last = functions;
+        }
         self
     }
 
@@ -167,6 +179,7 @@ impl ModelBuilder {
             scalar_indices,
             elements: self.elements,
             element_origins: self.element_origins,
+            element_functions: self.element_functions,
             gravity: self.gravity.unwrap_or_else(Vec3::zeros),
             has_gravity: self.gravity.is_some(),
             constraint_form: self.form,

@@ -75,6 +75,8 @@ pub struct Model {
     /// Where each element of `elements` is written (`file:line:col`), when it was read from a
     /// file: run-time messages name it ([`Model::element_name`]).
     pub element_origins: Vec<Option<String>>,
+    /// The scalar functions each element's card uses (`scalar function "NAME" (file:line:col)`).
+    pub element_functions: Vec<Vec<String>>,
     /// Uniform gravity field [m/s²] (zero when absent).
     pub gravity: Vec3,
     pub has_gravity: bool,
@@ -109,6 +111,16 @@ impl Model {
         match self.element_origins.get(e).and_then(Option::as_ref) {
             Some(at) => format!("{} {} ({at})", el.type_name(), el.label()),
             None => format!("{} {}", el.type_name(), el.label()),
+        }
+    }
+
+    /// The scalar functions element `e`'s card makes it evaluate, as " (it evaluates scalar
+    /// function "NAME" (file:line:col), …)", or "": what a message about a value that is not
+    /// finite adds after naming the element.
+    pub fn element_functions_note(&self, e: usize) -> String {
+        match self.element_functions.get(e).filter(|f| !f.is_empty()) {
+            Some(functions) => format!(" (it evaluates {})", functions.join(", ")),
+            None => String::new(),
         }
     }
 

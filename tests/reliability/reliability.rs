@@ -390,4 +390,20 @@ fn a_law_out_of_its_domain_is_named_by_its_element() {
     let skipped = text.replace("    output precision: 15;", "    output precision: 15;\n    skip initial joint assembly;");
     let e = run(&skipped);
     assert!(e.contains(&format!("the residual is not finite: deformable hinge 5 (f.mbd:{}:5): its contribution to node 2 moment", line + 1)) && e.contains("is NaN"), "{e}");
+    // Issue 32 point 5: the law's scalar functions are named by their own cards, the
+    // function the law names and those it is made of (`sum` of two), each once.
+    let card = |text: &str, name: &str| text.lines().position(|l| l.starts_with(&format!("scalar function: \"{name}\""))).unwrap() + 1;
+    let functions = |text: &str| format!("(it evaluates scalar function \"stiffening\" (f.mbd:{}:1), scalar function \"linear part\" (f.mbd:{}:1), scalar function \"cubic part\" (f.mbd:{}:1))", card(text, "stiffening"), card(text, "linear part"), card(text, "cubic part"));
+    assert!(run(&text).contains(&format!("from deformable hinge 5 (f.mbd:{line}:5) {}", functions(&text))), "{}", run(&text));
+    assert!(e.contains(&format!("is NaN {}", functions(&skipped))), "{e}");
+    // The same law written on a `constitutive law:` card the hinge refers to: the card's
+    // functions are the hinge's.
+    let referred = skipped
+        .replace("joint: 5, deformable hinge, 1, 2, scalar function elastic isotropic, \"stiffening\";", "joint: 5, deformable hinge, 1, 2, reference, 7;")
+        .replace("scalar function: \"stiffening\", sum, \"linear part\", \"cubic part\";", "scalar function: \"stiffening\", sum, \"linear part\", \"cubic part\";\nconstitutive law: 7, 3, scalar function elastic isotropic, \"stiffening\";");
+    assert!(referred.contains("reference, 7;") && referred.contains("constitutive law: 7"));
+    let e = run(&referred);
+    assert!(e.contains(&format!("is NaN {}", functions(&referred))), "{e}");
+    // An element that evaluates no scalar function adds nothing.
+    assert!(!e.contains("deformable hinge 2 (f.mbd") , "{e}");
 }

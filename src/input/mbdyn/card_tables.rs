@@ -20,6 +20,11 @@ pub(super) type Card = (Arc<ScalarFunction>, usize, Span, EvaluationCost);
 #[derive(Clone, Default)]
 pub struct ScalarFunctions {
     pub(super) table: Arc<RwLock<HashMap<String, Card>>>,
+    /// The names looked up by name since the last [`ScalarFunctions::take_used`] (what the
+    /// statement being read uses), and each card's operands by name: run-time messages name
+    /// the cards an element's law evaluates.
+    used: Arc<RwLock<Vec<String>>>,
+    operands: Arc<RwLock<HashMap<String, Vec<String>>>>,
 }
 
 /// The scalar functions a statement sees: those of cards before it (`model::sf::NAME`).
@@ -39,6 +44,41 @@ impl FunctionsBefore {
 impl ScalarFunctions {
     pub(super) fn card(&self, name: &str) -> Option<Card> {
         self.table.read().unwrap_or_else(|e| e.into_inner()).get(name).cloned()
+    }
+
+    /// Notes that the statement being read uses the function `name`.
+    pub(super) fn note_used(&self, name: &str) {
+        self.used.write().unwrap_or_else(|e| e.into_inner()).push(name.to_string());
+    }
+
+    /// The names noted since the last call, in order, without repeats.
+    pub(super) fn take_used(&self) -> Vec<String> {
+        let mut names = std::mem::take(&mut *self.used.write().unwrap_or_else(|e| e.into_inner()));
+        let mut seen = std::collections::HashSet::new();
+        names.retain(|n| seen.insert(n.clone()));
+        names
+    }
+
+    /// Records the functions card `name` is made of (its `sum`/`sub`/`mul`/`div` operands).
+    pub(super) fn set_operands(&self, name: &str, operands: Vec<String>) {
+        self.operands.write().unwrap_or_else(|e| e.into_inner()).insert(name.to_string(), operands);
+    }
+
+    /// `names` and the functions they are made of, each once, as `scalar function "NAME"
+    /// (at)` with `at(span)` its card's place.
+    pub(super) fn described(&self, names: &[String], at: impl Fn(Span) -> String) -> Vec<String> {
+        let operands = self.operands.read().unwrap_or_else(|e| e.into_inner());
+        let (mut queue, mut seen, mut out) = (names.to_vec(), std::collections::HashSet::new(), Vec::new());
+        while let Some(name) = (!queue.is_empty()).then(|| queue.remove(0)) {
+            if !seen.insert(name.clone()) {
+                continue;
+            }
+            if let Some(card) = self.card(&name) {
+                out.push(format!("scalar function \"{name}\" ({})", at(card.2)));
+            }
+            queue.extend(operands.get(&name).into_iter().flatten().cloned());
+        }
+        out
     }
 
     /// The functions defined before statement `seq` (what `sf::NAME` sees), shared.

@@ -95,6 +95,8 @@ const NONLINEAR_ELEMENTS: &str = "the deformable displacement joint, deformable 
 #[derive(Default)]
 pub struct Laws {
     table: HashMap<u32, (LinearLaw, usize, Span)>,
+    /// The scalar functions each law card names (an element referring to the law uses them).
+    functions: HashMap<u32, Vec<String>>,
 }
 
 /// Reads a `constitutive law: LABEL, [name, "…",] DIM, LAW;` card.
@@ -113,11 +115,14 @@ pub fn constitutive_law_card(st: &Statement, c: &mut Cursor, laws: &mut Laws, dr
         return Err(c.error_at(dim_span, format!("a constitutive law has dimension 1, 3 or 6, found {dim}")));
     }
     let law_span = c.here();
+    let before = drives.functions.take_used();
     let (law, varying) = read_law(c, dim, laws, drives, st.seq)?;
     if varying.is_some() {
         return Err(c.error_at(law_span, "a time-varying prestrain is supported by romdyn on rods only, written on the rod's own law"));
     }
     c.finish()?;
+    laws.functions.insert(label, drives.functions.take_used());
+    before.iter().for_each(|n| drives.functions.note_used(n));
     laws.table.insert(label, (law, st.seq, st.span));
     Ok(())
 }
@@ -293,7 +298,10 @@ fn read_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq: usize
     if c.accept("reference") {
         let label = c.label("constitutive law label")?;
         return match laws.table.get(&label) {
-            Some((l, s, _)) if *s < seq && l.dim() == dim => Ok((l.clone(), None)),
+            Some((l, s, _)) if *s < seq && l.dim() == dim => {
+                laws.functions.get(&label).into_iter().flatten().for_each(|n| drives.functions.note_used(n));
+                Ok((l.clone(), None))
+            }
             Some((l, s, _)) if *s < seq => Err(c.error_at(span, format!("constitutive law {label} has dimension {}, this element needs {dim}", l.dim()))),
             Some((_, _, at)) => Err(c.error_at(span, format!("constitutive law {label} is used before its definition (line {})", at.line))),
             None => Err(c.error_at(span, format!("constitutive law {label} is not defined"))),

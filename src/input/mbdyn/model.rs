@@ -254,6 +254,7 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
     let mut built: Vec<(&'static str, Span, usize, Box<dyn crate::element::Element>)> = Vec::new();
     let mut output_only = std::collections::HashSet::new();
     let mut pending = super::total_equation::Pending::default();
+    let mut uses: HashMap<usize, Vec<String>> = HashMap::new();
     for st in block(doc, "elements").map_or(&[][..], |b| &b.statements) {
         let mut c = Cursor::new(st, src);
         if super::element_reads::is_bind(&st.keyword) {
@@ -271,7 +272,12 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
         }
         let ctx = ElementContext { nodes: &nodes, frames: &cards.frames, drives: &cards.drives, laws: &cards.laws, beams: &beams, seq: st.seq, static_model };
         let label_span = c.here();
+        cards.drives.functions.take_used();
         let parsed = element(st, &mut c, &ctx)?;
+        let used = cards.drives.functions.take_used();
+        if !used.is_empty() {
+            uses.insert(st.seq, cards.drives.functions.described(&used, |at| place(src, at)));
+        }
         let parsed = match &st.driven {
             Some(head) => super::driven::wrap(head, parsed, src, &ctx)?,
             None => parsed,
@@ -356,9 +362,9 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
     pending.finish(src, &mut built)?;
     let defined = built.iter().map(|(space, at, seq, e)| ((*space, e.label()), (e.as_ref(), *at, *seq))).collect();
     let memories = cards.drives.private.resolve(src, &defined)?;
-    for (_, at, _, e) in built {
-        let origin = src.error(at, "");
-        b.element_from(e, format!("{}:{}:{}", origin.file.display(), origin.line, origin.column));
+    for (_, at, seq, e) in built {
+        b.element_from(e, place(src, at));
+        b.element_uses(uses.remove(&seq).unwrap_or_default());
     }
     // A central or time-varying field acts on every body at its node (gravity.cc, body.cc).
     if let (Some(_), Some(at)) = (&central, variable_bodies.first()) {
@@ -418,4 +424,10 @@ fn check_counts(doc: &Document, counts: &Counts, found: &HashMap<&'static str, (
         }
     }
     Ok(())
+}
+
+/// `file:line:col` of `at`, as run-time messages name a card.
+fn place(src: &super::diagnostic::Sources, at: Span) -> String {
+    let origin = src.error(at, "");
+    format!("{}:{}:{}", origin.file.display(), origin.line, origin.column)
 }

@@ -14,7 +14,10 @@ impl ScalarFunctions {
     /// The function `name` as defined before statement `seq`.
     pub fn get(&self, c: &Cursor, span: Span, name: &str, seq: usize) -> Result<Arc<ScalarFunction>, MbdynError> {
         match self.card(name) {
-            Some((f, s, _, _)) if s < seq => Ok(f),
+            Some((f, s, _, _)) if s < seq => {
+                self.note_used(name);
+                Ok(f)
+            }
             Some((_, _, at, _)) => Err(c.error_at(span, format!("scalar function \"{name}\" is used before its definition (line {})", at.line))),
             None => Err(c.error_at(span, format!("scalar function \"{name}\" is not defined"))),
         }
@@ -39,9 +42,12 @@ pub fn scalar_function_card(c: &mut Cursor, functions: &mut ScalarFunctions, seq
     if let Some((_, _, at, _)) = functions.card(&name) {
         return Err(c.error_at(span, format!("scalar function \"{name}\" is defined twice (first at line {})", at.line)));
     }
+    let before = functions.take_used();
     let f = definition(c, functions, seq)?;
     c.finish()?;
     let cost = within_budget(c, span, &name, &f)?;
+    functions.set_operands(&name, functions.take_used());
+    before.iter().for_each(|n| functions.note_used(n));
     functions.table.write().unwrap_or_else(|e| e.into_inner()).insert(name, (Arc::new(f), seq, c.statement().span, cost));
     Ok(())
 }

@@ -226,7 +226,8 @@ impl Problem<'_> {
             f.iter().any(|x| !x.is_finite())
         });
         if let Some(k) = culprit {
-            row = format!("{row}, from {}", self.layout.model.element_name(self.layout.elements[k]));
+            let e = self.layout.elements[k];
+            row = format!("{row}, from {}{}", self.layout.model.element_name(e), self.layout.model.element_functions_note(e));
         }
         match crate::element::drive::take_evaluation_failure(self.t) {
             Some(why) => format!("{row}; {why}"),
