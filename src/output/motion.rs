@@ -12,6 +12,7 @@
 //! nodes are rows computed from their base node, as MBDyn writes them. The file is written to a temporary name
 //! and renamed when the run finishes.
 
+use std::collections::HashMap;
 use std::path::Path;
 
 use super::atomic::{AtomicFile, OutputError};
@@ -69,9 +70,17 @@ pub type MotionRow = (Label, NodeKinematics, OrientationOutput, Option<Accelerat
 /// derivatives of its velocities).
 pub fn motion_rows(output: &MotionOutput, nodes: &[(Label, NodeKinematics)], accelerations: &[(Label, Accelerations)]) -> Vec<MotionRow> {
     let mut all: Vec<(NodeKinematics, Option<Accelerations>)> = Vec::with_capacity(output.nodes.len());
+    // By label, once per call: a search per written node made each output step O(n²)
+    // (50 s for a 1e5-node model's one step; issue 32's reader benchmark timed the run).
+    // The first entry of a label, as the search took.
+    let mut kinematics: HashMap<Label, &NodeKinematics> = HashMap::with_capacity(nodes.len());
+    nodes.iter().rev().for_each(|(l, k)| _ = kinematics.insert(*l, k));
+    let mut by_label: HashMap<Label, Accelerations> = HashMap::with_capacity(accelerations.len());
+    accelerations.iter().rev().for_each(|(l, a)| _ = by_label.insert(*l, *a));
+    let accelerations = by_label;
     for n in &output.nodes {
         let k = match &n.source {
-            NodeSource::Node(label) => nodes.iter().find(|(l, _)| l == label).map(|(_, k)| (k.clone(), accelerations.iter().find(|(l, _)| l == label).map(|(_, a)| *a))),
+            NodeSource::Node(label) => kinematics.get(label).map(|k| ((*k).clone(), accelerations.get(label).copied())),
             NodeSource::Offset { base, offset, orientation } => all.get(*base).map(|(b, ba)| {
                 let arm = b.r * offset;
                 let k = NodeKinematics { x: b.x + arm, r: b.r * orientation, xdot: b.xdot + b.omega.cross(&arm), omega: b.omega };
