@@ -5,12 +5,12 @@
 //! the offending card on), and for the folder holding only what the test wrote.
 
 use std::fmt::Write;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Stdio};
 
 use crate::common;
 
-use common::cli::{listing, temp_dir, write_file};
+use common::cli::{listing, temp_dir, write_file, TempDir};
 use romdyn::input::mbdyn::parse_text;
 use romdyn::limits::{MAX_EVALUATION_DEPTH, MAX_EVALUATION_TERMS, MAX_INCLUDE_DEPTH};
 
@@ -30,7 +30,7 @@ fn model(cards: &str, force: &str, final_time: f64, step: f64) -> String {
 }
 
 /// A fresh folder holding `files`.
-fn folder(name: &str, files: &[(&str, &str)]) -> PathBuf {
+fn folder(name: &str, files: &[(&str, &str)]) -> TempDir {
     let d = temp_dir(&format!("reader-limits-{name}"));
     for (f, text) in files {
         write_file(&d, f, text);
