@@ -101,7 +101,7 @@ impl AmplitudeRun {
         for (j, (u, y, z)) in series.into_iter().enumerate() {
             let rom_y: Vec<Vec<f64>> = (0..z.ncols()).map(|i| (0..z.nrows()).map(|k| z[(k, i)]).collect()).collect();
             for (i, yi) in y.iter().enumerate() {
-                let estimate = h1(&u[lead..], &yi[lead..], plan.dt, plan.segment, plan.band_hz);
+                let estimate = h1(&u[lead..], &yi[lead..], plan.dt, plan.segment, plan.band_hz, plan.kind.window());
                 if grid.is_none() {
                     grid = Some((study.full_frequency_response(&estimate.freq_hz)?, rom.ordinary.frequency_response(&estimate.freq_hz)));
                 }

@@ -1,6 +1,9 @@
 //! The H1 frequency-response estimator with Welch averaging (Bendat and Piersol, *Random
-//! Data*, 4th ed., §9.2): Hann-windowed segments overlapping by half, cross and auto spectra
-//! averaged, `H1 = G_uy / G_uu` and the coherence `γ² = |G_uy|² / (G_uu G_yy)`.
+//! Data*, 4th ed., §9.2): windowed segments overlapping by half, cross and auto spectra
+//! averaged, `H1 = G_uy / G_uu` and the coherence `γ² = |G_uy|² / (G_uu G_yy)`. Hann's
+//! window for a random input; none (rectangular) for an input periodic in the segment (a
+//! multisine at the bins, a chirp repeated every segment), whose lines then fall on the bins
+//! with no leakage (Pintelon and Schoukens, *System Identification*, 2nd ed., §2.2).
 
 use faer::c64;
 
@@ -16,6 +19,18 @@ pub struct Estimate {
     pub averages: usize,
 }
 
+/// The window each segment is multiplied by.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Window {
+    /// `½ (1 − cos 2πk/N)`: a random input, whose spectrum is continuous.
+    Hann,
+    /// None: an input periodic in the segment. Hann's window there mixes each bin with its
+    /// neighbours (−¼, ½, −¼), and the deterministic phases of the neighbouring lines do not
+    /// average out: on a 2 kg, 100 N/m, 1 N s/m oscillator the estimate was 1.3 % off from
+    /// 0.8 to 1.07 Hz and 3.4 % at the peak whatever the time step (measured, issue 33).
+    Rectangular,
+}
+
 /// Segment starts of Welch's method with half overlap over `n` samples.
 fn segment_starts(n: usize, segment: usize) -> Vec<usize> {
     if n < segment {
@@ -26,8 +41,11 @@ fn segment_starts(n: usize, segment: usize) -> Vec<usize> {
 
 /// The H1 estimate of `y/u` from samples at step `dt` [s], segments of `segment` samples (a
 /// power of two), at the bins with `band_hz.0 ≤ f ≤ band_hz.1`.
-pub fn h1(u: &[f64], y: &[f64], dt: f64, segment: usize, band_hz: (f64, f64)) -> Estimate {
-    let window: Vec<f64> = (0..segment).map(|k| 0.5 * (1.0 - (2.0 * std::f64::consts::PI * k as f64 / segment as f64).cos())).collect();
+pub fn h1(u: &[f64], y: &[f64], dt: f64, segment: usize, band_hz: (f64, f64), window: Window) -> Estimate {
+    let window: Vec<f64> = match window {
+        Window::Hann => (0..segment).map(|k| 0.5 * (1.0 - (2.0 * std::f64::consts::PI * k as f64 / segment as f64).cos())).collect(),
+        Window::Rectangular => vec![1.0; segment],
+    };
     let df = 1.0 / (segment as f64 * dt);
     let bins: Vec<usize> = (1..segment / 2).filter(|&k| (band_hz.0..=band_hz.1).contains(&(k as f64 * df))).collect();
     let (mut guu, mut gyy, mut guy) = (vec![0.0; bins.len()], vec![0.0; bins.len()], vec![c64::new(0.0, 0.0); bins.len()]);
@@ -72,7 +90,7 @@ mod tests {
         let mut rng = Rng::new(3);
         let u: Vec<f64> = (0..16384).map(|_| rng.normal()).collect();
         let y: Vec<f64> = (0..16384).map(|k| if k >= 3 { 2.0 * u[k - 3] } else { 0.0 }).collect();
-        let e = h1(&u, &y, 1e-3, 1024, (0.0, 500.0));
+        let e = h1(&u, &y, 1e-3, 1024, (0.0, 500.0), Window::Hann);
         assert_eq!(e.averages, 31);
         for (f, h) in e.freq_hz.iter().zip(&e.h) {
             let exact = c64::new(0.0, -2.0 * std::f64::consts::PI * f * 3e-3).exp() * 2.0;

@@ -61,19 +61,22 @@ fn mass_spring_damper_estimate_matches_the_closed_form() {
 
 /// The same oscillator and closed form excited by the two other signals of `--signal`: a
 /// Schroeder-phased multisine at the estimator's bins and a linear chirp repeated every Welch
-/// segment. Both are deterministic and periodic per segment, so the estimate has no random
+/// segment. Both are periodic in the segment, so the estimator takes no window (Hann's mixed
+/// each bin with its neighbours, whose deterministic phases do not average out: 1.3 % from
+/// 0.8 to 1.07 Hz and 3.6 % at the peak, whatever the step, before) and has no random
 /// error once the fade-in's transient (decay time 2M/C = 4 s against 91 s segments) has
-/// died: within 4 % at every bin with coherence ≥ 0.9. Measured: 3.6 % at most, at the
-/// 1.125 Hz peak (the Hann window's resolution bias there, (1/3)(1.5 Δf / B_r)² with
-/// B_r = C/(2π M) = 0.080 Hz, is 1.4 %), and a plateau of 1.3 % from 0.8 to 1.07 Hz that
-/// the same bias does not explain (issue 33's note: not yet understood).
+/// died. What is left is the integrator's period error (ms, ρ∞ = 0.6), which the peak
+/// magnifies by 1/ζ (ζ = 0.035): measured 0.43 % at 1.132 Hz with the default step (5.6
+/// ms) and 0.028 % with a step four times smaller (h², checked by `romdyn validate
+/// --time-step 1.4e-3`). Bounds: 0.6 % at every coherent bin, 0.2 % below 1.05 Hz (0.11 % measured at 1.02 Hz).
 #[test]
 fn multisine_and_chirp_estimates_match_the_closed_form() {
     use romdyn::validate::signal::SignalKind;
     for signal in [SignalKind::Multisine, SignalKind::Chirp] {
         let (coherent, bins, _, v) = oscillator(&ValidateOptions { signal, resolution_hz: Some(0.011), averages: 8, ..ValidateOptions::default() });
         for &(f, err, g) in &coherent {
-            assert!(err <= 0.04, "{signal:?}, {f} Hz: |H1 - H| / |H| = {err:.4} (coherence {g})");
+            let allowed = if f < 1.05 { 2e-3 } else { 6e-3 };
+            assert!(err <= allowed, "{signal:?}, {f} Hz: |H1 - H| / |H| = {err:.5} > {allowed} (coherence {g})");
         }
         assert!(coherent.len() > bins / 2, "{signal:?}: {} of {bins} bins coherent", coherent.len());
         assert!(v.represents, "{signal:?}: {}", v.summary());
