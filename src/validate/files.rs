@@ -2,7 +2,9 @@
 //! ROM on the estimate's bins), PREFIX.time.csv (input, nonlinear and ROM outputs in time),
 //! PREFIX.svg and PREFIX.png (Bode overlay with a coherence panel per channel). Each is
 //! written atomically; a command puts them in place as one set
-//! ([`crate::output::atomic::write_set`]). They describe the smallest amplitude's run.
+//! ([`crate::output::atomic::write_set`]). With several `--amplitudes` the CSVs hold every
+//! amplitude's run (columns named with the input's RMS, smallest first); the figures show
+//! the smallest amplitude's.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -16,28 +18,50 @@ use crate::output::prefixed_path;
 
 use super::Validation;
 
+/// The unit in a port's name, "N" from "node 3 Fx [N]" ("1" without one).
+fn unit(name: &str) -> &str {
+    name.rsplit_once('[').and_then(|(_, u)| u.strip_suffix(']')).unwrap_or("1")
+}
+
 /// Unit of a channel's response, "m/N" from "… [m]" and "… [N]".
 fn unit_ratio(output: &str, input: &str) -> String {
-    let unit = |s: &str| s.rsplit_once('[').and_then(|(_, u)| u.strip_suffix(']')).unwrap_or("1").to_string();
     format!("{}/{}", unit(output), unit(input))
 }
 
-/// PREFIX.csv: `frequency [Hz]`, then per channel the estimate's re/im, its coherence, the
-/// full model's and the ROM's re/im.
+/// " at A RMS UNIT" naming run `r`'s columns when there are several amplitudes, else "".
+fn amplitude_suffix(v: &Validation, r: usize) -> String {
+    if v.runs.len() < 2 {
+        return String::new();
+    }
+    let unit = v.runs[r].channels.first().map_or("1", |c| unit(&c.input));
+    let rms: Vec<String> = v.runs[r].amplitude.iter().map(|a| format!("{a:.6e}")).collect();
+    format!(" at {} RMS [{unit}]", rms.join(";"))
+}
+
+/// PREFIX.csv: `frequency [Hz]`, then per channel the estimate's re/im and its coherence
+/// (per amplitude), the full model's and the ROM's re/im.
 pub fn write_response_csv(v: &Validation, path: &Path) -> Result<(), OutputError> {
-    let run = &v.runs[0];
+    let first = &v.runs[0];
     write_atomic(path, |w: &mut dyn Write| {
         write!(w, "frequency [Hz]")?;
-        for c in &run.channels {
+        for c in &first.channels {
             let (n, u) = (format!("{} / {}", c.output, c.input).replace(',', ";"), unit_ratio(&c.output, &c.input));
-            write!(w, ",{n} estimate re [{u}],{n} estimate im [{u}],{n} coherence [1],{n} full re [{u}],{n} full im [{u}],{n} ROM re [{u}],{n} ROM im [{u}]")?;
+            for r in 0..v.runs.len() {
+                let at = amplitude_suffix(v, r);
+                write!(w, ",{n} estimate re [{u}]{at},{n} estimate im [{u}]{at},{n} coherence [1]{at}")?;
+            }
+            write!(w, ",{n} full re [{u}],{n} full im [{u}],{n} ROM re [{u}],{n} ROM im [{u}]")?;
         }
         writeln!(w)?;
-        for (k, f) in run.channels[0].estimate.freq_hz.iter().enumerate() {
+        for (k, f) in first.channels[0].estimate.freq_hz.iter().enumerate() {
             write!(w, "{f:.12e}")?;
-            for c in &run.channels {
-                let (e, fu, r) = (c.estimate.h[k], c.full[k], c.rom[k]);
-                write!(w, ",{:.12e},{:.12e},{:.6},{:.12e},{:.12e},{:.12e},{:.12e}", e.re, e.im, c.estimate.coherence[k], fu.re, fu.im, r.re, r.im)?;
+            for (i, c) in first.channels.iter().enumerate() {
+                for run in &v.runs {
+                    let e = &run.channels[i].estimate;
+                    write!(w, ",{:.12e},{:.12e},{:.6}", e.h[k].re, e.h[k].im, e.coherence[k])?;
+                }
+                let (fu, r) = (c.full[k], c.rom[k]);
+                write!(w, ",{:.12e},{:.12e},{:.12e},{:.12e}", fu.re, fu.im, r.re, r.im)?;
             }
             writeln!(w)?;
         }
@@ -45,26 +69,31 @@ pub fn write_response_csv(v: &Validation, path: &Path) -> Result<(), OutputError
     })
 }
 
-/// PREFIX.time.csv: `time [s]`, then per input run its input and per output the nonlinear
-/// model's and the ROM's change from the reference.
+/// PREFIX.time.csv: `time [s]`, then per amplitude and input run its input and per output
+/// the nonlinear model's and the ROM's change from the reference.
 pub fn write_time_csv(v: &Validation, path: &Path, t0: f64) -> Result<(), OutputError> {
-    let run = &v.runs[0];
-    let outputs: Vec<&str> = run.channels.iter().take(run.time[0].nonlinear.len()).map(|c| c.output.as_str()).collect();
+    let first = &v.runs[0];
+    let outputs: Vec<&str> = first.channels.iter().take(first.time[0].nonlinear.len()).map(|c| c.output.as_str()).collect();
     write_atomic(path, |w: &mut dyn Write| {
         write!(w, "time [s]")?;
-        for r in &run.time {
-            write!(w, ",input {}", r.input.replace(',', ";"))?;
-            for o in &outputs {
-                write!(w, ",nonlinear {o} (input {}),ROM {o} (input {})", r.input, r.input)?;
+        for (a, run) in v.runs.iter().enumerate() {
+            let at = amplitude_suffix(v, a);
+            for r in &run.time {
+                write!(w, ",input {}{at}", r.input.replace(',', ";"))?;
+                for o in &outputs {
+                    write!(w, ",nonlinear {o} (input {}){at},ROM {o} (input {}){at}", r.input, r.input)?;
+                }
             }
         }
         writeln!(w)?;
         for k in 0..v.plan.samples {
             write!(w, "{:.12e}", t0 + k as f64 * v.plan.dt)?;
-            for r in &run.time {
-                write!(w, ",{:.12e}", r.u[k])?;
-                for (y, z) in r.nonlinear.iter().zip(&r.rom) {
-                    write!(w, ",{:.12e},{:.12e}", y[k], z[k])?;
+            for run in &v.runs {
+                for r in &run.time {
+                    write!(w, ",{:.12e}", r.u[k])?;
+                    for (y, z) in r.nonlinear.iter().zip(&r.rom) {
+                        write!(w, ",{:.12e},{:.12e}", y[k], z[k])?;
+                    }
                 }
             }
             writeln!(w)?;
