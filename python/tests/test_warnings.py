@@ -122,31 +122,16 @@ def test_port_and_static_gain_warnings_reach_python(romdyn_cli):
     assert any(c is romdyn.ResponseWarning and "residualize=… (folds" in m for c, m in raised), raised
 
 
-# A 1 kg point on a 1 m rod pinned by a spherical hinge, its velocity written along the rod
-# (0.3 m/s) and the initial assembly skipped: the hinge's constraint changes at 0.3 m/s.
-ALONG_THE_ROD = """
-begin: data; problem: initial value; end: data;
-begin: initial value;
-  initial time: 0.; final time: .1; time step: 1.e-3; tolerance: 1e-10; max iterations: 20;
-end: initial value;
-begin: control data; structural nodes: 2; rigid bodies: 1; joints: 2; skip initial joint assembly; end: control data;
-begin: nodes;
-  structural: 1, static, null, eye, null, null;
-  structural: 2, dynamic, 1., 0., 0., eye, .3, 0., 0., null;
-end: nodes;
-begin: elements;
-  joint: 1, clamp, 1, node, node;
-  joint: 2, spherical hinge, 1, null, 2, -1., 0., 0.;
-  body: 2, 2, 1., null, diag, 1e-3, 1e-3, 1e-3;
-end: elements;
-"""
+# tests/mbdyn_files/velocity_along_the_rod.mbd: a point on a rod pinned by a spherical hinge,
+# its velocity written along the rod (0.3 m/s), the initial assembly skipped.
+ALONG_THE_ROD = ROOT / "tests" / "mbdyn_files" / "velocity_along_the_rod.mbd"
 
 
 def test_a_runs_warnings_reach_python_from_run_and_from_a_study(romdyn_cli, tmp_path):
     # Model.run() raised only beam notes; a study at the initial state dropped the run's
     # warnings everywhere (the CLI's `eig` too). Both now as `romdyn run` / `eig` print them.
     path = tmp_path / "rod.mbd"
-    path.write_text(ALONG_THE_ROD)
+    path.write_text(ALONG_THE_ROD.read_text())
     model = romdyn.Model(path)
     with pytest.warns(romdyn.ReferenceWarning, match=r"initial velocities do not satisfy the joints \(spherical hinge 2 constraint f x changes at 3.000e-1 per s\)"):
         history = model.run()

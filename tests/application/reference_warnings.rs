@@ -93,25 +93,11 @@ begin: elements;
 end: elements;
 ";
 
-/// A 1 kg point on a 1 m rod pinned at the origin by a spherical hinge, its velocity written
-/// along the rod (0.3 m/s), the initial assembly skipped (it would set the velocity
-/// tangent, as MBDyn's does): the hinge's position constraint changes at 0.3 m/s.
-const ALONG_THE_ROD: &str = "
-begin: data; problem: initial value; end: data;
-begin: initial value;
-  initial time: 0.; final time: .1; time step: 1.e-3; tolerance: 1e-10; max iterations: 20;
-end: initial value;
-begin: control data; structural nodes: 2; rigid bodies: 1; joints: 2; skip initial joint assembly; end: control data;
-begin: nodes;
-  structural: 1, static, null, eye, null, null;
-  structural: 2, dynamic, 1., 0., 0., eye, .3, 0., 0., null;
-end: nodes;
-begin: elements;
-  joint: 1, clamp, 1, node, node;
-  joint: 2, spherical hinge, 1, null, 2, -1., 0., 0.;
-  body: 2, 2, 1., null, diag, 1e-3, 1e-3, 1e-3;
-end: elements;
-";
+/// tests/mbdyn_files/velocity_along_the_rod.mbd: a point on a rod pinned by a spherical
+/// hinge, its velocity written along the rod (0.3 m/s), the initial assembly skipped.
+fn along_the_rod() -> String {
+    std::fs::read_to_string(crate::common::mbdyn::test_file("velocity_along_the_rod.mbd")).unwrap()
+}
 
 #[test]
 fn a_study_at_the_initial_state_carries_the_runs_warnings() {
@@ -129,7 +115,7 @@ fn a_study_at_the_initial_state_carries_the_runs_warnings() {
     // 1e-4: measured 7e-6 (the residual also carries rounding of Newton's last increment).
     assert!((tolerance - expected).abs() < 1e-4 * expected, "tolerance {tolerance:e}, expected {expected:e}");
 
-    let warnings = study_warnings(ALONG_THE_ROD, Reference::Initial, &[]);
+    let warnings = study_warnings(&along_the_rod(), Reference::Initial, &[]);
     let rates: Vec<f64> = warnings.iter().filter_map(|w| if let Warning::Run { warning: RunWarning::InconsistentVelocity { rate, .. } } = w { Some(*rate) } else { None }).collect();
     assert_eq!(rates.len(), 1, "{warnings:?}");
     // 1e-10: the file's tolerance (the rate is taken after the derivatives phase; 2.5e-12 measured).
@@ -137,7 +123,7 @@ fn a_study_at_the_initial_state_carries_the_runs_warnings() {
 
     // `romdyn eig` prints them, `romdyn run` as before.
     let dir = temp_dir("reference-warnings-initial");
-    let file = write_file(&dir, "rod.mbd", ALONG_THE_ROD);
+    let file = write_file(&dir, "rod.mbd", &along_the_rod());
     let (ok, _, err) = romdyn(&["eig", &file]);
     assert!(ok, "{err}");
     assert!(err.contains("warning: reference solution: the initial velocities do not satisfy the joints"), "{err}");
