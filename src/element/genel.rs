@@ -207,11 +207,14 @@ impl Element for ScalarSpring {
 
 /// `genel: L, mass, NODE, TYPE, algebraic, MASS` (GenelMass): an own differential unknown
 /// `u`, `u − ẋ = 0`, and `m u̇` added to the node's equation (`m ẍ + … = f`). `u` starts at
-/// zero (MBDyn starts it at the node's initial derivative).
+/// the node's initial derivative, as MBDyn's `GenelMass::SetValue` starts it (at zero the
+/// derivatives phase made ẋ = u = 0: the node lost its initial velocity).
 pub struct ScalarMass {
     pub label: Label,
     pub node: ScalarNodeId,
     pub mass: Drive,
+    /// The node's initial derivative `ẋ(t₀)`.
+    pub initial_rate: f64,
 }
 
 impl Element for ScalarMass {
@@ -229,6 +232,9 @@ impl Element for ScalarMass {
     }
     fn unknown_kind(&self, _k: usize) -> UnknownKind {
         UnknownKind::State
+    }
+    fn initial_unknowns(&self) -> Vec<(usize, f64, f64)> {
+        vec![(0, self.initial_rate, 0.0)]
     }
     fn reads_state(&self) -> bool {
         self.mass.reads_state()

@@ -295,3 +295,19 @@ fn mbdyn_eigenanalysis_of_the_loops_differs_only_by_its_state_space_jacobian() {
     let study = pid_study();
     assert!(study.modal().modes.iter().all(|m| m.lambda.re < 0.0 || m.kind != romdyn::eigen::ModeKind::Dynamic));
 }
+
+#[test]
+fn a_mass_genel_keeps_its_nodes_initial_derivative() {
+    // tests/mbdyn_files/genel_mass_initial_rate.mbd: m = 3, F = 1.5, x(0) = .5, ẋ(0) = 2;
+    // closed form x(1 s) = .5 + 2 + 1.5/(2 · 3) = 2.75, ẋ(1 s) = 2.5. The genel's own
+    // unknown started at 0, so the derivatives phase set ẋ = 0 (x(1 s) was .75). MBDyn
+    // 1.7.3 on the same file (.abs at t = 1 s): 2.7500000049935589, 2.5000000049939222.
+    // 1e-8: the method's start-up error (5e-9 in both programs).
+    let m = read_model(&test_file("genel_mass_initial_rate.mbd")).unwrap_or_else(|e| panic!("{e}"));
+    let report = romdyn::analysis::run(&m.model, &m.problem, &mut ()).unwrap_or_else(|e| panic!("{e}"));
+    let (st, first) = (&report.final_state, Assembler::new(&m.model).dofs.scalar_first);
+    assert!((st.t - 1.0).abs() < 1e-12);
+    assert!((st.y[first] - 2.75).abs() < 1e-8, "x(1 s) = {}", st.y[first]);
+    assert!((st.yp[first] - 2.5).abs() < 1e-8, "ẋ(1 s) = {}", st.yp[first]);
+    assert!((st.y[first] - 2.7500000049935589).abs() < 1e-10, "x(1 s) = {}, MBDyn 2.7500000049935589", st.y[first]);
+}

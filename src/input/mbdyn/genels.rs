@@ -63,7 +63,8 @@ pub fn genel(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             if dof.derivative || !differential {
                 return Err(c.error_at(dof_span, format!("{what}: the algebraic value of a differential node is required (input manual §Mass)")));
             }
-            Box::new(ScalarMass { label, node: dof.node, mass: super::drives::drive(c, ctx.drives, ctx.seq)? })
+            let initial_rate = scalars.iter().find(|e| e.node.id == dof.node).map_or(0.0, |e| e.node.derivative);
+            Box::new(ScalarMass { label, node: dof.node, mass: super::drives::drive(c, ctx.drives, ctx.seq)?, initial_rate })
         }
         _ => state_space(label, kind, c, ctx, &what)?,
     };
