@@ -161,6 +161,15 @@ impl Model {
         Ok(StudyPy { study })
     }
 
+    /// `romdyn.validate(self, **options)`: a ROM of this model against its nonlinear run (as
+    /// `romdyn validate`), with the keywords of `romdyn.validate` (reference, ports, mode
+    /// selection as `study()` and `Study.reduce()`; signal, amplitudes, validation_band,
+    /// resolution, averages, time_step, seed, coherence, tolerance, fit, measured).
+    #[pyo3(signature = (**options))]
+    fn validate<'py>(slf: &Bound<'py, Self>, options: Option<&Bound<'py, PyDict>>) -> PyResult<Bound<'py, PyAny>> {
+        slf.py().import("romdyn")?.getattr("validate")?.call((slf,), options)
+    }
+
     /// The lowest `count` dynamic modes, or those with natural frequency |λ|/2π in `band`
     /// (FMIN, FMAX) [Hz], by the sparse shift-invert Krylov–Schur solver (issue 13): the
     /// study of `study(solver="sparse", count=…|band=…)` without ports, so models too large

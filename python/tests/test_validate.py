@@ -44,3 +44,19 @@ def test_a_rom_that_misses_the_port_is_warned_as_the_cli_does(examples):
     with pytest.warns(romdyn.AccuracyWarning, match="does not represent the nonlinear model"):
         v = romdyn.validate(model, inputs=["3:Fy"], outputs=["3:y"], modes=[3], validation_band=(0.0, 4.0), resolution=0.05, amplitudes=[0.4])
     assert not v["represents"]
+
+
+def test_validate_is_a_method_of_the_model(examples):
+    # Model.validate(**options) is romdyn.validate(model, **options): the same seeded run,
+    # so the same estimate to the last bit, and the same refusals.
+    model = romdyn.Model(examples / "mass_on_springs.mbd")
+    options = dict(inputs=["3:Fx"], outputs=["3:x"], modes=[3], signal="multisine", resolution=0.05, averages=2)
+    a, b = model.validate(**options), romdyn.validate(model, **options)
+    assert np.array_equal(a["estimate"], b["estimate"]) and a["verdict"] == b["verdict"]
+    w = 2 * np.pi * a["freq_hz"]
+    exact = 1.0 / (100.0 - 2.0 * w**2 + 1j * w)
+    below = a["freq_hz"] < 1.05
+    # 0.2 %: the integrator's period error below the 1.125 Hz peak (no window on a multisine).
+    assert np.max(np.abs(a["estimate"][0, below, 0, 0] - exact[below]) / np.abs(exact[below])) < 2e-3
+    with pytest.raises(ValueError, match="averages"):
+        model.validate(inputs=["3:Fx"], outputs=["3:x"], modes=[3], averages=1)
