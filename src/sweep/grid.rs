@@ -64,6 +64,16 @@ pub fn single_values(parameters: &[Parameter]) -> Result<crate::input::mbdyn::Se
     Ok(out)
 }
 
+/// The point `--interpolate NAME=VALUE` gives: one value for each swept parameter
+/// `names`, in their order.
+pub fn interpolation_point(names: &[String], given: &[Parameter]) -> Result<Vec<f64>, String> {
+    let values = single_values(given)?;
+    if let Some(extra) = values.keys().find(|k| !names.contains(k)) {
+        return Err(format!("{extra}: not a swept parameter (swept: {})", names.join(", ")));
+    }
+    names.iter().map(|n| values.get(n).copied().ok_or_else(|| format!("{n}: give a value for every swept parameter (swept: {})", names.join(", ")))).collect()
+}
+
 /// The design points of several parameters: their full grid, the first parameter varying
 /// slowest (as nested loops in the order given). Each point lists one value per parameter.
 pub fn grid(parameters: &[Parameter]) -> Result<Vec<Vec<f64>>, String> {
