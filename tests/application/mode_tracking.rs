@@ -168,3 +168,86 @@ fn cli_interpolates_checks_and_writes_the_rom() {
     assert!(out.status.code() == Some(1) && stderr.contains("--interpolate KX: not a swept parameter (swept: KY)"), "{stderr}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// tests/mbdyn_files/veering_modes.mbd: the lower (`lower = true`) or upper eigenvalue ω² of
+/// `[[K1 + KC, −KC], [−KC, K2 + KC]] / M` and its eigenvector (x of nodes 2 and 3).
+fn veering_mode(k1: f64, lower: bool) -> (f64, [f64; 2]) {
+    let (k2, kc) = (250.0, 5.0);
+    let (a, b, d) = (k1 + kc, -kc, k2 + kc);
+    let (mean, half) = ((a + d) / 2.0, (((a - d) / 2.0).powi(2) + b * b).sqrt());
+    let w2 = if lower { mean - half } else { mean + half };
+    // (a − w²) x + b y = 0.
+    let v = [-b, a - w2];
+    let n = (v[0] * v[0] + v[1] * v[1]).sqrt();
+    (w2 / M, [v[0] / n, v[1] / n])
+}
+
+fn veering(set: &str) -> SweepResults {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files/veering_modes.mbd");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let p: Parameter = set.parse().unwrap();
+    let o = SweepOptions { ports: Ports::Nodes { inputs: vec!["2:Fx".parse().unwrap()], outputs: vec!["2:x".parse().unwrap()] }, ..options() };
+    sweep(&text, &path, &[p.name.clone()], grid(&[p]).unwrap(), &o, &|| {})
+}
+
+#[test]
+fn a_finely_sampled_veering_is_followed_along_its_branches() {
+    // K1 = 200 … 300 N/m in 41 points: the shapes turn by at most 0.125 rad per step (MAC ≥
+    // 0.98), so each tracked mode stays on its branch (closed form, 1e-8) while its shape
+    // goes from one mass to the other, and nothing is flagged.
+    let r = veering("K1=200:300:41");
+    let t = r.tracking();
+    assert_eq!(t.labels, vec!["node 2 x 99 %".to_string(), "node 3 x 99 %".to_string()]);
+    for k in 0..41 {
+        let k1 = r.points[k][0];
+        for (j, l) in tracked(&r, k).iter().enumerate() {
+            let w = veering_mode(k1, j == 0).0.sqrt();
+            assert!((l.im - w).abs() < 1e-8 * w, "K1 = {k1}, mode {}: {l} against {w}", j + 1);
+        }
+        assert!(t.matches[k].as_ref().unwrap().iter().all(|m| !m.as_ref().unwrap().ambiguous() && !m.as_ref().unwrap().crossing), "K1 = {k1}");
+    }
+    // Mode 1 (the lower branch) now moves the other mass: its label at the last point.
+    let last = r.results[40].as_ref().unwrap();
+    assert_eq!(last.modes[t.matches[40].as_ref().unwrap()[0].as_ref().unwrap().candidate].label, "node 3 x 99 %");
+}
+
+#[test]
+fn a_coarsely_sampled_veering_is_flagged_with_the_mac_of_the_closed_form() {
+    // K1 = 200, 225, 250, 275, 300: from 225 to 250 the lower mode's shape turns from
+    // 10.9° to 45°, MAC = cos²(34.1°) = 0.686 (closed form) < 0.8: ambiguous, flagged.
+    let r = veering("K1=200:300:5");
+    let t = r.tracking();
+    let m = t.matches[2].as_ref().unwrap()[0].as_ref().unwrap();
+    let (a, b) = (veering_mode(225.0, true).1, veering_mode(250.0, true).1);
+    let expected = (a[0] * b[0] + a[1] * b[1]).powi(2);
+    assert!((m.mac - expected).abs() < 1e-9, "MAC {} against {expected}", m.mac);
+    assert!(m.ambiguous());
+    let s = r.stacked().unwrap();
+    let flags = &s.strings.iter().find(|(n, _)| *n == "mode_flags").unwrap().1;
+    assert!(flags[2].contains("mode 1 ambiguous (MAC 0.69"), "{flags:?}");
+}
+
+#[test]
+fn ordinary_rom_states_are_the_modal_coordinates_their_names_say() {
+    // examples/mass_on_springs.mbd, 4 modes kept: before the fix the SVD's basis of E's
+    // range permuted the states (the first, named 'mode 1 re', was mode 7's). Each named pair
+    // of states must carry its mode's eigenvalues: trace 2 Re λ, determinant |λ|², nothing
+    // coupling it to the other states.
+    use romdyn::study::{Linearization, Study};
+    let lin = Linearization { reference: Reference::Initial, inputs: vec!["2:Fx".parse().unwrap(), "3:Fy".parse().unwrap()], outputs: vec!["2:x".parse().unwrap(), "3:y".parse().unwrap()] };
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/mass_on_springs.mbd");
+    let study = Study::from_model_file(&path, &lin, EigenSettings::default()).unwrap();
+    let rom = study.reduce(&RomRequest::new(ModeSelection::Lowest(4))).unwrap();
+    let x = rom.export(&study, RomForm::Ordinary);
+    assert_eq!(x.a.nrows(), 8);
+    for p in 0..4 {
+        let (i, j) = (2 * p, 2 * p + 1);
+        assert_eq!((x.state_modes[i], x.states[i].ends_with(" re")), (x.state_modes[j], true));
+        let l = study.modal().modes[x.state_modes[i] - 1].lambda;
+        let (tr, det) = (x.a[(i, i)] + x.a[(j, j)], x.a[(i, i)] * x.a[(j, j)] - x.a[(i, j)] * x.a[(j, i)]);
+        assert!((tr - 2.0 * l.re).abs() < 1e-9 * l.norm() && (det - l.norm_sqr()).abs() < 1e-9 * l.norm_sqr(), "{}: {l}", x.states[i]);
+        for k in (0..8).filter(|&k| k != i && k != j) {
+            assert!(x.a[(i, k)].abs() + x.a[(j, k)].abs() < 1e-9 * l.norm(), "{} coupled to state {k}", x.states[i]);
+        }
+    }
+}
