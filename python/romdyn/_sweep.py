@@ -87,8 +87,9 @@ class SweepResult:
 
     names: parameter names; parameters: (K, P) values; ok: (K,) bool; errors: K messages
     ("" where ok); A, B, C, D, E: (n, n, K), (n, m, K), … (``A[:, :, k]`` is point k's, NaN
-    where it failed) with the states in the tracked modes' order and phase (state_tracks: the
-    tracked mode of each state, 0 for none), so that they interpolate (``interpolate``);
+    where it failed) with the states in the tracked modes' order and phase (state_tracks:
+    (n, K), the tracked mode of each state, 0 for none, NaN where a point failed), so that
+    they interpolate (``interpolate``);
     full_static_gain, rom_static_gain: (outputs, inputs, K); inputs, outputs, states: names
     with units.
     """
@@ -114,7 +115,7 @@ class SweepResult:
             return
         for x in ("E", "A", "B", "C", "D", "full_static_gain", "rom_static_gain"):
             setattr(self, x, a[x])
-        self.state_tracks = a["state_tracks"][:, 0, :].astype(int)
+        self.state_tracks = a["state_tracks"][:, 0, :]
         self.modes = a["mode_re"] + 1j * a["mode_im"]
         self.freq_hz, self.damping, self.mode_mac = a["mode_freq_hz"], a["mode_damping"], a["mode_mac"]
         self.mode_crossing = a["mode_crossing"] == 1
