@@ -124,7 +124,7 @@ impl SweepPlot {
         let err = |e: &dyn std::fmt::Display| e.to_string();
         let height = area.dim_in_pixel().1 as i32;
         let step = ((height - 120) / self.curves.len().max(1) as i32).clamp(14, 34);
-        let font = (FONT, if step < 22 { 13 } else { 17 }).into_font();
+        let font = (FONT, if step < 22 { 14 } else { 18 }).into_font();
         area.draw(&Text::new("modes (label at the first point)", (10, 60), (FONT, 18).into_font())).map_err(|e| err(&e))?;
         for (k, c) in self.curves.iter().enumerate() {
             let y = 95 + k as i32 * step;

@@ -82,21 +82,21 @@ pub fn candidates(n: usize) -> usize {
 }
 
 /// The `n` lowest dynamic modes of a study ([`lowest_modes`]' units) with their labels (the
-/// modal table's: named, else the kinetic-energy shares) and shapes: right vectors on the
+/// modal table's label column, [`Study::mode_labels`]: the node component with the largest
+/// share of kinetic energy, "node 5 vertical (y) 25 %") and shapes: right vectors on the
 /// model's motion unknowns, adjoint vectors on their equations ([`motion_indices`]).
 pub fn point_modes(study: &Study, n: usize) -> Vec<PointMode> {
     let modal = study.modal();
-    let report = study.modal_report();
+    let labels = study.mode_labels();
     let (unknowns, equations) = study.model().map(motion_indices).unwrap_or_default();
     let restrict = |v: Option<&faer::Col<c64>>, at: &[usize]| v.map_or(Vec::new(), |v| sketch(at.iter().map(|&i| v[i]).collect()));
     lowest_units(modal, n)
         .into_iter()
         .map(|unit| {
             let first = &modal.modes[unit[0]];
-            let row = &report.eigenvalues[unit[0]];
             PointMode {
                 lambda: first.lambda,
-                label: row.label.clone().or_else(|| row.description.clone()).unwrap_or_default(),
+                label: labels[unit[0]].clone().unwrap_or_default(),
                 members: unit.iter().map(|i| i + 1).collect(),
                 shapes: unit.iter().map(|&i| restrict(modal.modes[i].right.as_ref(), &unknowns)).collect(),
                 adjoint: restrict(first.left.as_ref(), &equations),
