@@ -40,17 +40,25 @@ pub fn point<'py>(py: Python<'py>, r: Result<PointResult, String>) -> PyResult<B
             return Ok(d);
         }
     };
-    let x = &r.rom;
-    for (name, m) in [("E", &x.e), ("A", &x.a), ("B", &x.b), ("C", &x.c), ("D", &x.d)] {
-        d.set_item(name, mat(py, m))?;
-    }
-    d.set_item("full_static_gain", x.full_static_gain.as_ref().map(|m| mat(py, m)))?;
-    d.set_item("rom_static_gain", x.rom_static_gain.as_ref().map(|m| mat(py, m)))?;
+    rom_items(py, &d, &r.rom)?;
     d.set_item("modes", complex_vec(py, &r.modes.iter().map(|m| m.lambda).collect::<Vec<_>>()))?;
     d.set_item("mode_labels", r.modes.iter().map(|m| m.label.clone()).collect::<Vec<_>>())?;
     d.set_item("mode_members", r.modes.iter().map(|m| m.members.clone()).collect::<Vec<_>>())?;
     d.set_item("mode_shapes", r.modes.iter().map(|m| m.shapes.iter().map(|v| complex_vec(py, v)).collect::<Vec<_>>()).collect::<Vec<_>>())?;
     d.set_item("mode_adjoints", r.modes.iter().map(|m| complex_vec(py, &m.adjoint)).collect::<Vec<_>>())?;
+    d.set_item("warnings", r.warnings.clone())?;
+    Ok(d)
+}
+
+/// A ROM's fields as items of `d` ([`point_from_dict`] reads them back): "E" … "D", static
+/// gains, eigenvalues, state modes and frequencies, names, units, "kind", "reference_time"
+/// [s] (None without one), "dcoef" [s].
+pub fn rom_items<'py>(py: Python<'py>, d: &Bound<'py, PyDict>, x: &RomExport) -> PyResult<()> {
+    for (name, m) in [("E", &x.e), ("A", &x.a), ("B", &x.b), ("C", &x.c), ("D", &x.d)] {
+        d.set_item(name, mat(py, m))?;
+    }
+    d.set_item("full_static_gain", x.full_static_gain.as_ref().map(|m| mat(py, m)))?;
+    d.set_item("rom_static_gain", x.rom_static_gain.as_ref().map(|m| mat(py, m)))?;
     d.set_item("eigenvalues", complex_vec(py, &x.eigenvalues))?;
     d.set_item("full_eigenvalues", complex_vec(py, &x.full_eigenvalues))?;
     d.set_item("state_modes", x.state_modes.clone())?;
@@ -62,10 +70,9 @@ pub fn point<'py>(py: Python<'py>, r: Result<PointResult, String>) -> PyResult<B
     d.set_item("input_units", x.input_units.clone())?;
     d.set_item("output_units", x.output_units.clone())?;
     d.set_item("kind", x.kind)?;
-    d.set_item("warnings", r.warnings.clone())?;
     d.set_item("reference_time", x.reference_time)?;
     d.set_item("dcoef", x.dcoef)?;
-    Ok(d)
+    Ok(())
 }
 
 fn item<'py, T: FromPyObjectOwned<'py>>(d: &Bound<'py, PyDict>, key: &str) -> PyResult<T> {

@@ -11,7 +11,7 @@ use pyo3::types::PyDict;
 use romdyn::output::rom_file::RomExport;
 use romdyn::sweep::{StackError, SweepResults};
 
-use crate::convert::{complex_vec, mat, point_from_dict};
+use crate::convert::{point_from_dict, rom_items};
 use crate::RomdynError;
 
 fn stack_err(e: StackError) -> PyErr {
@@ -53,17 +53,7 @@ pub fn sweep_arrays<'py>(py: Python<'py>, file: PathBuf, names: Vec<String>, poi
 
 fn rom_dict<'py>(py: Python<'py>, r: &RomExport) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
-    for (name, m) in [("E", &r.e), ("A", &r.a), ("B", &r.b), ("C", &r.c), ("D", &r.d)] {
-        d.set_item(name, mat(py, m))?;
-    }
-    d.set_item("rom_static_gain", r.rom_static_gain.as_ref().map(|m| mat(py, m)))?;
-    d.set_item("eigenvalues", complex_vec(py, &r.eigenvalues))?;
-    d.set_item("inputs", r.inputs.clone())?;
-    d.set_item("outputs", r.outputs.clone())?;
-    d.set_item("states", r.states.clone())?;
-    d.set_item("input_units", r.input_units.clone())?;
-    d.set_item("output_units", r.output_units.clone())?;
-    d.set_item("kind", r.kind)?;
+    rom_items(py, &d, r)?;
     Ok(d)
 }
 

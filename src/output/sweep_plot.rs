@@ -1,7 +1,7 @@
 //! Frequency and damping of the tracked modes against a design parameter (a Campbell /
 //! root-locus style view of a sweep): two panels sharing the parameter axis and a legend
 //! beside them (outside the data), SVG and PNG. Each curve has its own colour and line
-//! style: 10 colours x 3 dash patterns, so 30 curves before a style repeats; points whose
+//! style: romdyn's 8 colours x 3 dash patterns, so 24 curves before a style repeats; points whose
 //! mode was matched with a low MAC (a veering) are drawn as crosses.
 
 use std::path::Path;
@@ -11,28 +11,14 @@ use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 
 use super::atomic::OutputError;
-use super::figure::{write_figure, Figure, FONT};
-
-/// Ten colours far apart (matplotlib's tab10, black for its grey).
-const PALETTE: [RGBColor; 10] = [
-    RGBColor(31, 119, 180),
-    RGBColor(214, 39, 40),
-    RGBColor(44, 160, 44),
-    RGBColor(255, 127, 14),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-    RGBColor(227, 119, 194),
-    RGBColor(0, 0, 0),
-    RGBColor(188, 189, 34),
-    RGBColor(23, 190, 207),
-];
+use super::figure::{write_figure, Figure, COLORS, FONT};
 
 /// Dash and gap lengths [px] of the three line styles: solid, dashed, dotted.
 const DASHES: [(u32, u32); 3] = [(0, 0), (12, 6), (3, 4)];
 
-/// Curve `k`'s colour and dash pattern: no two of the first 30 curves alike.
+/// Curve `k`'s colour and dash pattern: no two of the first 24 curves alike.
 fn curve_style(k: usize) -> (RGBColor, (u32, u32)) {
-    (PALETTE[k % PALETTE.len()], DASHES[(k / PALETTE.len()) % DASHES.len()])
+    (COLORS[k % COLORS.len()], DASHES[(k / COLORS.len()) % DASHES.len()])
 }
 
 /// Width of the legend beside the panels [px].
@@ -167,4 +153,18 @@ pub fn write_sweep_plot(plot: &SweepPlot, svg_path: &Path, png_path: &Path) -> R
         return Err(OutputError::Invalid { path: svg_path.to_path_buf(), message: "no design point has a mode to plot".into() });
     }
     write_figure(plot, (1200 + LEGEND_WIDTH, 1000), svg_path, png_path)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn twenty_four_curves_have_twenty_four_styles() {
+        let styles: Vec<_> = (0..24).map(curve_style).map(|(c, d)| (c.0, c.1, c.2, d)).collect();
+        for (i, a) in styles.iter().enumerate() {
+            assert!(!styles[..i].contains(a), "curve {i} repeats a style");
+        }
+        assert_eq!(curve_style(24).0, curve_style(0).0);
+    }
 }
