@@ -125,8 +125,8 @@ mod tests {
         let out = consistent_rom(&rom, &[mode], &[Some(Match { candidate: 0, mac: 1.0, crossing: false })], &[1]);
         let phase = v[1].arg();
         let rotated: Vec<c64> = v.iter().map(|x| x * c64::new(phase.cos(), -phase.sin())).collect();
-        for i in 0..2 {
-            assert!((out.rom.c[(i, 0)] - rotated[i].re).abs() < 1e-15 && (out.rom.c[(i, 1)] - rotated[i].im).abs() < 1e-15);
+        for (i, r) in rotated.iter().enumerate() {
+            assert!((out.rom.c[(i, 0)] - r.re).abs() < 1e-15 && (out.rom.c[(i, 1)] - r.im).abs() < 1e-15);
         }
         // Reference entry real positive: Im 0, Re |v₁|.
         assert!(out.rom.c[(1, 1)].abs() < 1e-15 && (out.rom.c[(1, 0)] - v[1].norm()).abs() < 1e-15);

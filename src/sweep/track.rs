@@ -246,8 +246,11 @@ pub fn track(points: &[Vec<f64>], modes: &[Option<&[PointMode]>], count: usize) 
                     && qa != qb
                     && pa != pb
                 {
-                    row[a].as_mut().map(|mt| mt.crossing = true);
-                    row[b].as_mut().map(|mt| mt.crossing = true);
+                    for x in [a, b] {
+                        if let Some(mt) = row[x].as_mut() {
+                            mt.crossing = true;
+                        }
+                    }
                 }
             }
         }

@@ -35,7 +35,7 @@ fn options() -> SweepOptions {
 fn run(set: &str) -> SweepResults {
     let (text, path) = file();
     let p: Parameter = set.parse().unwrap();
-    sweep(&text, &path, &[p.name.clone()], grid(&[p]).unwrap(), &options(), &|| {})
+    sweep(&text, &path, std::slice::from_ref(&p.name), grid(std::slice::from_ref(&p)).unwrap(), &options(), &|| {})
 }
 
 /// The tracked modes' eigenvalues at point `k`.
@@ -137,7 +137,7 @@ fn a_rom_through_a_crossing_that_keeps_one_mode_is_not_interpolated() {
     let (text, path) = file();
     let p: Parameter = "KY=100:400:8".parse().unwrap();
     let one = SweepOptions { rom: RomRequest::new(ModeSelection::Lowest(1)), ..options() };
-    let r = sweep(&text, &path, &[p.name.clone()], grid(&[p]).unwrap(), &one, &|| {});
+    let r = sweep(&text, &path, std::slice::from_ref(&p.name), grid(std::slice::from_ref(&p)).unwrap(), &one, &|| {});
     let e = r.interpolate(&[250.0]).unwrap_err().to_string();
     assert!(e.contains("do not keep the same tracked modes"), "{e}");
     assert!(r.interpolate(&[150.0]).is_ok());
@@ -187,7 +187,7 @@ fn veering(set: &str) -> SweepResults {
     let text = std::fs::read_to_string(&path).unwrap();
     let p: Parameter = set.parse().unwrap();
     let o = SweepOptions { ports: Ports::Nodes { inputs: vec!["2:Fx".parse().unwrap()], outputs: vec!["2:x".parse().unwrap()] }, ..options() };
-    sweep(&text, &path, &[p.name.clone()], grid(&[p]).unwrap(), &o, &|| {})
+    sweep(&text, &path, std::slice::from_ref(&p.name), grid(std::slice::from_ref(&p)).unwrap(), &o, &|| {})
 }
 
 #[test]
