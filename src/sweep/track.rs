@@ -10,8 +10,8 @@ use faer::c64;
 
 /// Largest number of components of a stored mode shape: a larger shape is folded into this
 /// many (a count sketch, [`sketch`]) so a sweep of a large model keeps points x modes x
-/// components within memory.
-pub const MAX_SHAPE: usize = 4096;
+/// components within memory (100 points of 15 candidate modes: 74 MB at most).
+pub const MAX_SHAPE: usize = 1024;
 
 /// A MAC at or above this is a confident match: the mode kept its shape.
 pub const CONFIDENT_MAC: f64 = 0.8;
@@ -311,7 +311,8 @@ mod tests {
         let b: Vec<c64> = a.iter().zip(&noise).map(|(x, y)| x + y * (a.iter().map(|x| x.norm_sqr()).sum::<f64>() / noise.iter().map(|x| x.norm_sqr()).sum::<f64>()).sqrt()).collect();
         let exact = mac(&a, &b);
         let folded = mac(&sketch(a), &sketch(b));
-        // 1/√4096 = 0.016; three times that.
-        assert!((exact - folded).abs() < 0.05, "exact {exact}, folded {folded}");
+        // 1/√1024 = 0.03; three times that.
+        assert!((exact - folded).abs() < 0.1, "exact {exact}, folded {folded}");
+        assert!(exact > 0.2 && exact < 0.8, "{exact}");
     }
 }
