@@ -79,7 +79,7 @@ pub fn run(a: SweepArgs) -> Result<()> {
     let text = read_text_file(&path).map_err(|e| anyhow::anyhow!("{}: {}", path.display(), e.message))?;
     let names: Vec<String> = a.pencil.set.iter().map(|p| p.name.clone()).collect();
     check_parameters(&text, &path, &names)?;
-    let at = if a.interpolate.is_empty() { None } else { Some(interpolation_point(&names, &a.interpolate).map_err(|e| anyhow::anyhow!("--interpolate {e}"))?) };
+    let at = if a.interpolate.is_empty() { None } else { Some(interpolation_point(&a.pencil.set, &a.interpolate).map_err(|e| anyhow::anyhow!("--interpolate {e}"))?) };
     let options = SweepOptions {
         reference: a.pencil.reference.reference(),
         ports: a.pencil.ports()?,
