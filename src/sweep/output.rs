@@ -137,20 +137,21 @@ impl SweepResults {
         arrays.push(table("reference_time", k, 1, |p, _| rom(p).and_then(|r| r.reference_time)));
         arrays.push(table("dcoef", k, 1, |p, _| rom(p).map(|r| r.dcoef)));
         let mode = |p: usize, j: usize| self.tracked(&tracking, p, j);
-        let m = tracking.labels.len();
+        // --lowest columns, NaN beyond the modes the first point has.
+        let m = self.modes.max(tracking.labels.len());
         arrays.push(table("mode_re", k, m, |p, j| mode(p, j).map(|l| l.re)));
         arrays.push(table("mode_im", k, m, |p, j| mode(p, j).map(|l| l.im)));
         arrays.push(table("mode_freq_hz", k, m, |p, j| mode(p, j).map(freq_hz)));
         arrays.push(table("mode_undamped_hz", k, m, |p, j| mode(p, j).map(|l| l.norm() / (2.0 * std::f64::consts::PI))));
         arrays.push(table("mode_damping", k, m, |p, j| mode(p, j).map(damping)));
-        let matched = |p: usize, j: usize| tracking.matches[p].as_ref().and_then(|r| r[j].clone());
+        let matched = |p: usize, j: usize| tracking.matches[p].as_ref().and_then(|r| r.get(j).cloned().flatten());
         arrays.push(table("mode_mac", k, m, |p, j| matched(p, j).map(|mt| mt.mac)));
         arrays.push(table("mode_crossing", k, m, |p, j| matched(p, j).map(|mt| if mt.crossing { 1.0 } else { 0.0 })));
         let errors = self.results.iter().map(|r| r.as_ref().err().map_or(String::new(), |e| e.message.clone())).collect();
         let strings = vec![
             ("parameter_names", self.names.clone()),
             ("point_errors", errors),
-            ("mode_labels", tracking.labels.clone()),
+            ("mode_labels", (0..m).map(|j| tracking.labels.get(j).cloned().unwrap_or_default()).collect()),
             ("mode_flags", (0..k).map(|p| Self::flags(&tracking, p)).collect()),
             ("inputs", first.inputs.clone()),
             ("outputs", first.outputs.clone()),
@@ -204,7 +205,9 @@ impl SweepResults {
         for n in &self.names {
             s += &format!(",{n}");
         }
-        for (j, label) in tracking.labels.iter().enumerate() {
+        let m = self.modes.max(tracking.labels.len());
+        for j in 0..m {
+            let label = tracking.labels.get(j).map_or("", |l| l.as_str());
             let head = if label.is_empty() { format!("mode {}", j + 1) } else { format!("mode {} ({label})", j + 1) };
             for col in ["Re λ [rad/s]", "Im λ [rad/s]", "freq [Hz]", "damping [-]", "MAC [-]"] {
                 s += &format!(",{}", quote(format!("{head} {col}")));
@@ -216,8 +219,8 @@ impl SweepResults {
             for v in &self.points[p] {
                 s += &format!(",{v:e}");
             }
-            for j in 0..tracking.labels.len() {
-                let mac = tracking.matches[p].as_ref().and_then(|r| r[j].as_ref()).map(|m| m.mac);
+            for j in 0..m {
+                let mac = tracking.matches[p].as_ref().and_then(|r| r.get(j)?.as_ref()).map(|m| m.mac);
                 match (self.tracked(&tracking, p, j), mac) {
                     (Some(l), Some(mac)) => s += &format!(",{:.12e},{:.12e},{:.12e},{:.6e},{mac:.4}", l.re, l.im, freq_hz(l), damping(l)),
                     _ => s += ",,,,,",
