@@ -70,63 +70,82 @@ def sweep(path, set=None, points=None, names=None, executor=None, threads=None, 
             raise ValueError("continuation runs the points one after the other: use executor=None")
         futures = [executor.submit(_point, text, name, names, p, options) for p in points]
         results = [f.result() for f in futures]
-    return SweepResult(name, names, points, results, options.get("lowest", 4))
-
-
-def _stack(results, key, shape):
-    out = np.full(shape + (len(results),), np.nan)
-    for k, r in enumerate(results):
-        if "error" not in r and r[key] is not None:
-            out[..., k] = r[key]
-    return out
+    return SweepResult(name, names, points, results, options.get("lowest", 4), text=text, options=options)
 
 
 class SweepResult:
-    """The outcome of every design point, stacked as MATLAB's ss arrays.
+    """The outcome of every design point, stacked as MATLAB's ss arrays in one modal basis.
+
+    The lowest ``lowest`` modes of the first point are followed through the others by the
+    modal assurance criterion (MAC) of their shapes, frequency breaking ties (romdyn's
+    tracking, as ``romdyn sweep``): ``modes`` (K, lowest) complex eigenvalues [rad/s] of the
+    tracked modes (a pair by its member with Im > 0, a ±a pair by +a; NaN where a point failed
+    or lost the mode), freq_hz = |Im λ|/2π, damping = −Re λ/|λ|, mode_labels (each mode's
+    label at the first point, "node 2 x 100 %"), mode_mac (K, lowest: the MAC of each match;
+    below 0.8 a veering or points too far apart), mode_crossing (K, lowest) bool, mode_flags
+    (K strings), table (the CSV text of ``--table``).
 
     names: parameter names; parameters: (K, P) values; ok: (K,) bool; errors: K messages
     ("" where ok); A, B, C, D, E: (n, n, K), (n, m, K), … (``A[:, :, k]`` is point k's, NaN
-    where it failed); full_static_gain, rom_static_gain: (outputs, inputs, K); modes: (K,
-    lowest) complex lowest dynamic eigenvalues [rad/s] (a pair by its member with Im > 0, a
-    ±a pair by +a), freq_hz = |Im λ|/2π, damping = −Re λ/|λ|; inputs, outputs, states:
-    names with units.
+    where it failed) with the states in the tracked modes' order and phase (state_tracks:
+    (n, K), the tracked mode of each state, 0 for none, NaN where a point failed), so that
+    they interpolate (``interpolate``);
+    full_static_gain, rom_static_gain: (outputs, inputs, K); inputs, outputs, states: names
+    with units.
     """
 
-    def __init__(self, file, names, points, results, lowest):
+    def __init__(self, file, names, points, results, lowest, text=None, options=None):
         self.file = file
         self.names = list(names)
         self.parameters = np.asarray(points, dtype=float).reshape(len(points), len(names))
         self.results = results
+        self.lowest = lowest
+        self._text, self._options = text, dict(options or {})
         self.ok = np.array(["error" not in r for r in results], dtype=bool)
         self.errors = [r.get("error", "") for r in results]
-        good = [r for r in results if "error" not in r]
-        K = len(results)
-        self.modes = np.full((K, lowest), np.nan + 0j)
-        for k, r in enumerate(results):
-            if "error" not in r:
-                m = np.asarray(r["modes"])[:lowest]
-                self.modes[k, : len(m)] = m
-        with np.errstate(invalid="ignore", divide="ignore"):
-            self.freq_hz = np.abs(self.modes.imag) / (2 * np.pi)
-            mag = np.abs(self.modes)
-            self.damping = np.where(mag > 0, -self.modes.real / np.where(mag > 0, mag, 1), 0.0)
-            self.damping[np.isnan(mag)] = np.nan
-        if not good:
-            self.inputs = self.outputs = self.states = []
+        a = _romdyn.sweep_arrays(file, self.names, self.parameters.tolist(), results, lowest)
+        self.table = a["table"]
+        if "A" not in a:
+            self.inputs = self.outputs = self.states = self.mode_labels = []
             self.kind = None
+            self.modes = np.full((len(results), 0), np.nan + 0j)
+            self.freq_hz = self.damping = self.mode_mac = np.full((len(results), 0), np.nan)
+            self.mode_crossing = np.zeros((len(results), 0), dtype=bool)
+            self.mode_flags = [""] * len(results)
             return
-        first = good[0]
-        sizes = {k: np.shape(first[k]) for k in "EABCD"}
-        for k, r in enumerate(results):
-            if "error" not in r and any(np.shape(r[x]) != sizes[x] for x in "EABCD"):
-                raise ValueError(f"design point {k + 1} ({self.describe(k)}): its ROM has {np.shape(r['A'])[0]} states, the first {sizes['A'][0]}; stacked arrays need one size (choose count= or modes=)")
-        for x in "EABCD":
-            setattr(self, x, _stack(results, x, sizes[x]))
-        gain = (len(first["outputs"]), len(first["inputs"]))
-        self.full_static_gain = _stack(results, "full_static_gain", gain)
-        self.rom_static_gain = _stack(results, "rom_static_gain", gain)
-        self.inputs, self.outputs, self.states = first["inputs"], first["outputs"], first["states"]
-        self.kind = first["kind"]
+        for x in ("E", "A", "B", "C", "D", "full_static_gain", "rom_static_gain"):
+            setattr(self, x, a[x])
+        self.state_tracks = a["state_tracks"][:, 0, :]
+        self.modes = a["mode_re"] + 1j * a["mode_im"]
+        self.freq_hz, self.damping, self.mode_mac = a["mode_freq_hz"], a["mode_damping"], a["mode_mac"]
+        self.mode_crossing = a["mode_crossing"] == 1
+        self.mode_labels, self.mode_flags = a["mode_labels"], a["mode_flags"]
+        self.inputs, self.outputs, self.states = a["inputs"], a["outputs"], a["states"]
+        self.kind = a["kind"]
+
+    def _values(self, values):
+        missing = [n for n in self.names if n not in values]
+        extra = [n for n in values if n not in self.names]
+        if missing or extra:
+            raise ValueError(f"interpolate: give one value for each swept parameter ({', '.join(self.names)})")
+        return [float(values[n]) for n in self.names]
+
+    def interpolate(self, check=False, **values):
+        """The ROM at an intermediate design point, e.g. ``interpolate(K=1.25)``: the stacked
+        ROMs (ordinary form) interpolated entry by entry, linearly between the grid values
+        around the point (multilinear over several parameters), in the tracked modes' basis.
+        A dict of E A B C D, eigenvalues, rom_static_gain, names and units. With
+        ``check=True`` the ROM is also computed at the point (same options) and the dict has
+        "exact" (that ROM in the same basis) and "check": relative differences of A, B, C, D,
+        the eigenvalues and the static gain (and their "text"). Raises ValueError outside the
+        sweep's range or when the ROMs around the point keep different tracked modes."""
+        v = self._values(values)
+        exact = None
+        if check:
+            if self._text is None:
+                raise ValueError("interpolate(check=True): this SweepResult has no model text to compute the point with")
+            exact = _point(self._text, self.file, self.names, v, self._options)
+        return _romdyn.interpolate_sweep(self.file, self.names, self.parameters.tolist(), self.results, self.lowest, v, exact)
 
     def describe(self, k):
         """"L = 1.5, M = 2" for point k."""

@@ -6,6 +6,7 @@
 
 mod convert;
 mod options;
+mod sweep;
 mod validate;
 mod warnings;
 
@@ -535,6 +536,8 @@ fn _romdyn(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(grid, m)?)?;
     m.add_function(wrap_pyfunction!(run_point, m)?)?;
     m.add_function(wrap_pyfunction!(run_points, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::sweep_arrays, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::interpolate_sweep, m)?)?;
     m.add_function(wrap_pyfunction!(validate::validate, m)?)?;
     Ok(())
 }

@@ -9,7 +9,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use romdyn::input::text_file::read_text_file;
 use romdyn::output::atomic::{check_output_paths, check_prefix, write_set};
 use romdyn::output::prefixed_path;
-use romdyn::sweep::{check_lowest, check_parameters, grid, sweep, worker_threads, SweepOptions};
+use romdyn::sweep::{check_lowest, check_parameters, grid, interpolation_point, run_point, sweep, worker_threads, SweepOptions};
 
 use super::args::PencilArgs;
 use super::rom::RomChoiceArgs;
@@ -20,24 +20,30 @@ pub struct SweepArgs {
     pub pencil: PencilArgs,
     #[command(flatten)]
     pub rom: RomChoiceArgs,
-    /// Number of lowest dynamic modes of the full model in the table and plot (a pair counts once)
+    /// Number of lowest dynamic modes of the full model at the first design point, followed through the others by their shapes (MAC), in the table, plot and arrays (a pair counts once)
     #[arg(long, value_name = "N", default_value_t = 4)]
     pub lowest: usize,
     /// Start each static equilibrium (--static) from the previous design point's (the points then run one after the other)
     #[arg(long, requires = "static_equilibrium")]
     pub continuation: bool,
-    /// Stacked arrays of every design point (.mat or .npz): E A B C D (n x n x K, point k is A(:,:,k)), parameters (K x P), point_ok, point_errors, mode_* (K x N), names and units
+    /// Stacked arrays of every design point (.mat or .npz): E A B C D (n x n x K, point k is A(:,:,k)) in the tracked modes' consistent basis with state_tracks, parameters (K x P), point_ok, point_errors, mode_* (K x N, tracked modes) with mode_labels, mode_mac, mode_crossing, mode_flags, names and units
     #[arg(short = 'o', long = "out", value_name = "FILE")]
     pub file: Option<PathBuf>,
     /// Write the table of the lowest modes against the parameters as CSV here (default: stdout)
     #[arg(long, value_name = "FILE.csv")]
     pub table: Option<PathBuf>,
-    /// Also write PREFIX.svg and PREFIX.png: frequency [Hz] and damping ratio of the lowest modes against one parameter
+    /// Also write PREFIX.svg and PREFIX.png: frequency [Hz] and damping ratio of the tracked modes against one parameter (Campbell diagram; crosses mark ambiguous matches)
     #[arg(long, value_name = "PREFIX")]
     pub plot: Option<PathBuf>,
     /// The parameter on the plot's horizontal axis (default: the first --set)
     #[arg(long, value_name = "NAME", requires = "plot")]
     pub against: Option<String>,
+    /// A ROM between the design points: NAME=VALUE for each swept parameter (repeatable), interpolated from the stacked ROMs in the tracked modes' basis (linearly between the grid values around it) and checked against the ROM computed there (relative differences printed)
+    #[arg(long, value_name = "NAME=VALUE")]
+    pub interpolate: Vec<romdyn::sweep::Parameter>,
+    /// Write the interpolated ROM (--interpolate) here (.json, .mat or .npz; the layout of romdyn rom -o)
+    #[arg(long, value_name = "FILE", requires = "interpolate")]
+    pub interpolated: Option<PathBuf>,
     /// Design points computed at once, 1 to the number of cores (default: the number of cores; more are reduced to it with a warning)
     #[arg(long, value_name = "N")]
     pub jobs: Option<usize>,
@@ -58,6 +64,10 @@ pub fn run(a: SweepArgs) -> Result<()> {
     let mut outputs: Vec<(&str, PathBuf)> = Vec::new();
     outputs.extend(a.file.iter().map(|p| ("-o", p.clone())));
     outputs.extend(a.table.iter().map(|p| ("--table", p.clone())));
+    if let Some(p) = &a.interpolated {
+        romdyn::output::rom_file::RomExport::check_path(p).map_err(|e| anyhow::anyhow!("--interpolated {e}"))?;
+        outputs.push(("--interpolated", p.clone()));
+    }
     if let Some(prefix) = &a.plot {
         check_prefix("--plot", prefix)?;
         outputs.extend(["svg", "png"].map(|e| ("--plot", prefixed_path(prefix, e))));
@@ -69,6 +79,7 @@ pub fn run(a: SweepArgs) -> Result<()> {
     let text = read_text_file(&path).map_err(|e| anyhow::anyhow!("{}: {}", path.display(), e.message))?;
     let names: Vec<String> = a.pencil.set.iter().map(|p| p.name.clone()).collect();
     check_parameters(&text, &path, &names)?;
+    let at = if a.interpolate.is_empty() { None } else { Some(interpolation_point(&a.pencil.set, &a.interpolate).map_err(|e| anyhow::anyhow!("--interpolate {e}"))?) };
     let options = SweepOptions {
         reference: a.pencil.reference.reference(),
         ports: a.pencil.ports()?,
@@ -96,6 +107,16 @@ pub fn run(a: SweepArgs) -> Result<()> {
     if a.table.is_none() {
         print!("{}", results.modes_csv());
     }
+    let interpolated = match &at {
+        Some(values) => {
+            let exact = run_point(&text, &path, &names, values, &options, None).map_err(|e| anyhow::anyhow!("--interpolate: the ROM at the point itself failed: {e}"))?;
+            let (rom, _, check) = results.check_interpolation(values, &exact)?;
+            let point: Vec<String> = names.iter().zip(values).map(|(n, v)| format!("{n} = {v}")).collect();
+            eprintln!("interpolated ROM at {} ({} states) against the ROM computed there: {}", point.join(", "), rom.a.nrows(), check.describe());
+            Some(rom)
+        }
+        None => None,
+    };
     if let Some((_, first)) = outputs.first() {
         let journal = romdyn::analysis::journal_path(first);
         let ((), written) = write_set(&journal, || -> Result<()> {
@@ -104,6 +125,9 @@ pub fn run(a: SweepArgs) -> Result<()> {
             }
             if let Some(p) = &a.file {
                 results.write_arrays(p).with_context(|| format!("writing {}", p.display()))?;
+            }
+            if let (Some(p), Some(rom)) = (&a.interpolated, &interpolated) {
+                rom.write(p).with_context(|| format!("writing {}", p.display()))?;
             }
             if let Some(prefix) = &a.plot {
                 results.write_plot(prefix, a.against.as_deref()).with_context(|| format!("writing {}.{{svg,png}}", prefix.display()))?;

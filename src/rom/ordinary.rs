@@ -58,6 +58,23 @@ impl DescriptorRom {
             c += &cr * &a;
             d += &cr * &b;
         }
+        // The SVD's V_d is any orthonormal basis of E's range: on a kept block E ≈ I it
+        // permuted and flipped the modal coordinates (examples/mass_on_springs.mbd, 4 modes:
+        // state 1 named 'mode 1 re' was mode 7's). The kept descriptor states are
+        // x_k = P x with P = (V_d − V_s X_a) on their rows (eq. 58); back in them, the
+        // ordinary states are the kept modes' coordinates their names say.
+        let kept = s - self.static_states;
+        let (a, b, c) = match (rank == kept).then(|| (&vd - &vs * &xa).get(..kept, ..).to_owned()) {
+            Some(p) => {
+                // A' = P A P⁻¹, C' = C P⁻¹ by solving with Pᵀ: A'ᵀ = P⁻ᵀ (P A)ᵀ, C'ᵀ = P⁻ᵀ Cᵀ.
+                let pt = p.transpose().to_owned();
+                match (solve_nonsingular(&pt, &(&p * &a).transpose().to_owned()), solve_nonsingular(&pt, &c.transpose().to_owned())) {
+                    (Some(at), Some(ct)) => (at.transpose().to_owned(), &p * &b, ct.transpose().to_owned()),
+                    _ => (a, b, c),
+                }
+            }
+            None => (a, b, c),
+        };
         Ok(OrdinaryRom {
             a,
             b,

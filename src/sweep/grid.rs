@@ -64,6 +64,24 @@ pub fn single_values(parameters: &[Parameter]) -> Result<crate::input::mbdyn::Se
     Ok(out)
 }
 
+/// The point `--interpolate NAME=VALUE` gives: one value for each swept parameter, in the
+/// order of `swept`, each within its swept values (checked before any point runs).
+pub fn interpolation_point(swept: &[Parameter], given: &[Parameter]) -> Result<Vec<f64>, String> {
+    let values = single_values(given)?;
+    let names: Vec<&str> = swept.iter().map(|p| p.name.as_str()).collect();
+    if let Some(extra) = values.keys().find(|k| !names.contains(&k.as_str())) {
+        return Err(format!("{extra}: not a swept parameter (swept: {})", names.join(", ")));
+    }
+    swept
+        .iter()
+        .map(|p| {
+            let v = *values.get(&p.name).ok_or_else(|| format!("{}: give a value for every swept parameter (swept: {})", p.name, names.join(", ")))?;
+            let (lo, hi) = p.values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| (a.min(x), b.max(x)));
+            if v >= lo && v <= hi { Ok(v) } else { Err(format!("{} = {v} is outside the sweep's values {lo} to {hi}: a ROM is only interpolated between design points", p.name)) }
+        })
+        .collect()
+}
+
 /// The design points of several parameters: their full grid, the first parameter varying
 /// slowest (as nested loops in the order given). Each point lists one value per parameter.
 pub fn grid(parameters: &[Parameter]) -> Result<Vec<Vec<f64>>, String> {
@@ -116,5 +134,15 @@ mod tests {
         let l: Parameter = "L=1,2".parse().unwrap();
         assert!(grid(&[l.clone(), l]).unwrap_err().contains("twice"));
         assert!(grid(&["A=0:1:100000".parse().unwrap(), "B=0:1:100000".parse().unwrap()]).unwrap_err().contains("limit"));
+    }
+
+    #[test]
+    fn an_interpolation_point_names_every_swept_parameter_within_its_values() {
+        let swept: Vec<Parameter> = vec!["L=1:2:3".parse().unwrap(), "M=1,3".parse().unwrap()];
+        let at = |s: &[&str]| interpolation_point(&swept, &s.iter().map(|x| x.parse().unwrap()).collect::<Vec<_>>());
+        assert_eq!(at(&["M=2", "L=1.25"]).unwrap(), vec![1.25, 2.0]);
+        assert!(at(&["L=1.25"]).unwrap_err().contains("M: give a value for every swept parameter"));
+        assert!(at(&["L=1.25", "M=2", "K=1"]).unwrap_err().contains("K: not a swept parameter"));
+        assert!(at(&["L=2.5", "M=2"]).unwrap_err().contains("L = 2.5 is outside the sweep's values 1 to 2"));
     }
 }

@@ -3,23 +3,32 @@
 //! solution, linearization, modes and ROM of the [`Study`](crate::study::Study) workflow
 //! with the same ports. Points run in parallel (rayon), or one after the other with
 //! continuation; a failed point is kept with its values and error, the others are
-//! unaffected. [`SweepResults`] stacks the ROMs as MATLAB's ss arrays (`A(:,:,k)`) and
-//! writes them with the lowest modes against the parameters.
+//! unaffected. The lowest modes of the first point are followed through the others by
+//! their shapes ([`track`]: crossings and veerings flagged); [`SweepResults`] stacks the ROMs
+//! as MATLAB's ss arrays (`A(:,:,k)`) in one modal basis, the tracked modes' ([`basis`]), so
+//! that they interpolate ([`SweepResults::interpolate`]), and writes them with the tracked
+//! modes against the parameters.
 //!
 //! A design point's work is [`run_point`] on the model file's text and the parameter
 //! values only, so another process or machine can run it (the Python package's executors).
 
+mod basis;
 mod grid;
+mod interpolate;
 mod output;
 mod point;
+mod track;
 
 use std::path::{Path, PathBuf};
 
 use rayon::prelude::*;
 
-pub use grid::{grid, single_values, Parameter, MAX_POINTS};
+pub use grid::{grid, interpolation_point, single_values, Parameter, MAX_POINTS};
+pub use basis::{consistent_rom, ConsistentRom};
+pub use interpolate::InterpolationCheck;
 pub use output::StackError;
-pub use point::{lowest_modes, overrides, run_point, PointResult, SweepOptions};
+pub use point::{candidates, lowest_modes, motion_indices, overrides, point_modes, run_point, PointResult, SweepOptions};
+pub use track::{assign, mac, mode_mac, track, Match, PointMode, Tracking, CONFIDENT_MAC};
 
 /// Most modes per design point in a sweep's table and arrays.
 pub const MAX_LOWEST: usize = 10_000;
@@ -80,6 +89,12 @@ impl SweepResults {
         self.results.iter().enumerate().filter_map(|(k, r)| r.as_ref().err().map(|e| (k, self.points[k].as_slice(), e.message.as_str())))
     }
 
+    /// The lowest modes of the first point followed through the others ([`track`]).
+    pub fn tracking(&self) -> Tracking {
+        let modes: Vec<Option<&[PointMode]>> = self.results.iter().map(|r| r.as_ref().ok().map(|r| r.modes.as_slice())).collect();
+        track(&self.points, &modes, self.modes)
+    }
+
     /// "L = 1.5, M = 2" for point `k`.
     pub fn describe_point(&self, k: usize) -> String {
         self.names.iter().zip(&self.points[k]).map(|(n, v)| format!("{n} = {v}")).collect::<Vec<_>>().join(", ")
@@ -104,7 +119,7 @@ pub fn sweep(text: &str, file: &Path, names: &[String], points: Vec<Vec<f64>>, o
         let mut out: Vec<Result<PointResult, PointFailure>> = Vec::with_capacity(points.len());
         for values in &points {
             // The last point that succeeded is the start (a failed one has no solution).
-            let start = out.iter().rev().find_map(|r| r.as_ref().ok()).map(|r| &r.state);
+            let start = out.iter().rev().find_map(|r| r.as_ref().ok()).and_then(|r| r.state.as_ref());
             let r = one(values, start);
             out.push(r);
         }

@@ -1,6 +1,7 @@
 //! A sweep's results as files: stacked arrays (MATLAB ss-array layout, `A(:,:,k)` is design
-//! point k) in `.mat` or `.npz`, a CSV table of the lowest modes against the parameters, and
-//! a plot of their frequency and damping against one parameter.
+//! point k, every point's ROM in the tracked modes' consistent basis) in `.mat` or `.npz`, a
+//! CSV table of the tracked modes against the parameters, and a plot of their frequency and
+//! damping against one parameter.
 
 use std::io::Write;
 use std::path::Path;
@@ -13,6 +14,7 @@ use crate::output::npz::NpzWriter;
 use crate::output::sweep_plot::{write_sweep_plot, ModeCurve, SweepPlot};
 use crate::output::rom_file::RomExport;
 
+use super::track::Tracking;
 use super::SweepResults;
 
 /// Why a sweep's results cannot be written.
@@ -22,6 +24,8 @@ pub enum StackError {
     NoPoint,
     #[error("the ROMs do not have the same size at every design point ({0}); stacked arrays need one size: choose the modes with --count or --modes so every point keeps as many")]
     Sizes(String),
+    #[error("interpolation: {0}")]
+    Interpolation(String),
     #[error("--against {0}: not a swept parameter (swept: {1})")]
     UnknownParameter(String, String),
     #[error("the output file must end in .mat or .npz, got {0}")]
@@ -76,46 +80,79 @@ fn table(name: &'static str, k: usize, m: usize, f: impl Fn(usize, usize) -> Opt
 }
 
 impl SweepResults {
-    fn rom(&self, k: usize) -> Option<&RomExport> {
-        self.results[k].as_ref().ok().map(|r| &r.rom)
+    /// The eigenvalue of tracked mode `j` at point `p` (`None`: failed point, mode not found).
+    fn tracked(&self, tracking: &Tracking, p: usize, j: usize) -> Option<c64> {
+        let m = tracking.matches[p].as_ref()?.get(j)?.as_ref()?;
+        Some(self.results[p].as_ref().ok()?.modes[m.candidate].lambda)
     }
 
-    /// Stacks the ROMs: every successful point must have the same sizes; a failed point's
-    /// slices are NaN and `point_ok` is 0 there, `point_errors` says why.
+    /// "modes 1 and 2 cross; mode 3 ambiguous (MAC 0.55)" for point `p` ("" when nothing).
+    fn flags(tracking: &Tracking, p: usize) -> String {
+        let Some(row) = &tracking.matches[p] else { return String::new() };
+        let crossing: Vec<String> = row.iter().enumerate().filter(|(_, m)| m.as_ref().is_some_and(|m| m.crossing)).map(|(j, _)| (j + 1).to_string()).collect();
+        let mut out = Vec::new();
+        if !crossing.is_empty() {
+            out.push(format!("modes {} crossed", crossing.join(", ")));
+        }
+        for (j, m) in row.iter().enumerate() {
+            match m {
+                Some(m) if m.ambiguous() => out.push(format!("mode {} ambiguous (MAC {:.2}: a veering, or points too far apart)", j + 1, m.mac)),
+                None => out.push(format!("mode {} not found", j + 1)),
+                _ => {}
+            }
+        }
+        out.join("; ")
+    }
+
+    /// Stacks the ROMs in the consistent basis of the tracked modes: every successful point
+    /// must have the same sizes; a failed point's slices are NaN and `point_ok` is 0 there,
+    /// `point_errors` says why.
     pub fn stacked(&self) -> Result<Stacked, StackError> {
         let k = self.points.len();
-        let first = (0..k).find_map(|p| self.rom(p)).ok_or(StackError::NoPoint)?;
+        let tracking = self.tracking();
+        let roms = self.consistent_roms();
+        let rom = |p: usize| roms[p].as_ref().map(|r| &r.rom);
+        let first_k = (0..k).find(|&p| rom(p).is_some()).ok_or(StackError::NoPoint)?;
+        let first = &roms[first_k].as_ref().ok_or(StackError::NoPoint)?.rom;
         let shape = |r: &RomExport| (dims(&r.e), dims(&r.a), dims(&r.b), dims(&r.c), dims(&r.d));
-        let differ: Vec<String> = (0..k).filter_map(|p| self.rom(p).filter(|r| shape(r) != shape(first)).map(|r| format!("point {} ({}): {} states, first point: {}", p + 1, self.describe_point(p), r.a.nrows(), first.a.nrows()))).collect();
+        let differ: Vec<String> = (0..k).filter_map(|p| rom(p).filter(|r| shape(r) != shape(first)).map(|r| format!("point {} ({}): {} states, first point: {}", p + 1, self.describe_point(p), r.a.nrows(), first.a.nrows()))).collect();
         if !differ.is_empty() {
             return Err(StackError::Sizes(differ.join("; ")));
         }
-        let (ni, no) = (first.b.ncols(), first.c.nrows());
+        let (ni, no, ns) = (first.b.ncols(), first.c.nrows(), first.a.nrows());
         let mut arrays = vec![
-            stack("E", dims(&first.e), k, |p| self.rom(p).map(|r| r.e.clone())),
-            stack("A", dims(&first.a), k, |p| self.rom(p).map(|r| r.a.clone())),
-            stack("B", dims(&first.b), k, |p| self.rom(p).map(|r| r.b.clone())),
-            stack("C", dims(&first.c), k, |p| self.rom(p).map(|r| r.c.clone())),
-            stack("D", dims(&first.d), k, |p| self.rom(p).map(|r| r.d.clone())),
-            stack("full_static_gain", (no, ni), k, |p| self.rom(p).and_then(|r| r.full_static_gain.clone())),
-            stack("rom_static_gain", (no, ni), k, |p| self.rom(p).and_then(|r| r.rom_static_gain.clone())),
+            stack("E", dims(&first.e), k, |p| rom(p).map(|r| r.e.clone())),
+            stack("A", dims(&first.a), k, |p| rom(p).map(|r| r.a.clone())),
+            stack("B", dims(&first.b), k, |p| rom(p).map(|r| r.b.clone())),
+            stack("C", dims(&first.c), k, |p| rom(p).map(|r| r.c.clone())),
+            stack("D", dims(&first.d), k, |p| rom(p).map(|r| r.d.clone())),
+            stack("full_static_gain", (no, ni), k, |p| rom(p).and_then(|r| r.full_static_gain.clone())),
+            stack("rom_static_gain", (no, ni), k, |p| rom(p).and_then(|r| r.rom_static_gain.clone())),
+            // Each state's tracked mode (1-based; 0: a mode not tracked or a static state).
+            stack("state_tracks", (ns, 1), k, |p| roms[p].as_ref().map(|r| Mat::from_fn(ns, 1, |i, _| r.state_tracks[i] as f64))),
         ];
         let np = self.names.len();
         arrays.push(table("parameters", k, np, |p, j| Some(self.points[p][j])));
         arrays.push(table("point_ok", k, 1, |p, _| Some(if self.results[p].is_ok() { 1.0 } else { 0.0 })));
-        arrays.push(table("reference_time", k, 1, |p, _| self.rom(p).and_then(|r| r.reference_time)));
-        arrays.push(table("dcoef", k, 1, |p, _| self.rom(p).map(|r| r.dcoef)));
-        let mode = |p: usize, j: usize| self.results[p].as_ref().ok().and_then(|r| r.modes.get(j).copied());
-        let m = self.modes;
+        arrays.push(table("reference_time", k, 1, |p, _| rom(p).and_then(|r| r.reference_time)));
+        arrays.push(table("dcoef", k, 1, |p, _| rom(p).map(|r| r.dcoef)));
+        let mode = |p: usize, j: usize| self.tracked(&tracking, p, j);
+        // --lowest columns, NaN beyond the modes the first point has.
+        let m = self.modes.max(tracking.labels.len());
         arrays.push(table("mode_re", k, m, |p, j| mode(p, j).map(|l| l.re)));
         arrays.push(table("mode_im", k, m, |p, j| mode(p, j).map(|l| l.im)));
         arrays.push(table("mode_freq_hz", k, m, |p, j| mode(p, j).map(freq_hz)));
         arrays.push(table("mode_undamped_hz", k, m, |p, j| mode(p, j).map(|l| l.norm() / (2.0 * std::f64::consts::PI))));
         arrays.push(table("mode_damping", k, m, |p, j| mode(p, j).map(damping)));
+        let matched = |p: usize, j: usize| tracking.matches[p].as_ref().and_then(|r| r.get(j).cloned().flatten());
+        arrays.push(table("mode_mac", k, m, |p, j| matched(p, j).map(|mt| mt.mac)));
+        arrays.push(table("mode_crossing", k, m, |p, j| matched(p, j).map(|mt| if mt.crossing { 1.0 } else { 0.0 })));
         let errors = self.results.iter().map(|r| r.as_ref().err().map_or(String::new(), |e| e.message.clone())).collect();
         let strings = vec![
             ("parameter_names", self.names.clone()),
             ("point_errors", errors),
+            ("mode_labels", (0..m).map(|j| tracking.labels.get(j).cloned().unwrap_or_default()).collect()),
+            ("mode_flags", (0..k).map(|p| Self::flags(&tracking, p)).collect()),
             ("inputs", first.inputs.clone()),
             ("outputs", first.outputs.clone()),
             ("states", first.states.clone()),
@@ -157,30 +194,40 @@ impl SweepResults {
         Ok(())
     }
 
-    /// The table of the lowest modes against the parameters, as CSV text: one row per design
-    /// point; a failed point has empty mode columns and its error.
+    /// The table of the tracked modes against the parameters, as CSV text: one row per
+    /// design point; per mode its eigenvalue, frequency, damping and the MAC of its match
+    /// (the header names each mode by its label at the first point); the flags (crossings,
+    /// ambiguous matches); a failed point has empty mode columns and its error.
     pub fn modes_csv(&self) -> String {
+        let tracking = self.tracking();
+        let quote = |s: String| if s.contains([',', '"']) { format!("\"{}\"", s.replace('"', "'")) } else { s };
         let mut s = String::from("point");
         for n in &self.names {
             s += &format!(",{n}");
         }
-        for j in 1..=self.modes {
-            s += &format!(",mode {j} Re λ [rad/s],mode {j} Im λ [rad/s],mode {j} freq [Hz],mode {j} damping [-]");
+        let m = self.modes.max(tracking.labels.len());
+        for j in 0..m {
+            let label = tracking.labels.get(j).map_or("", |l| l.as_str());
+            let head = if label.is_empty() { format!("mode {}", j + 1) } else { format!("mode {} ({label})", j + 1) };
+            for col in ["Re λ [rad/s]", "Im λ [rad/s]", "freq [Hz]", "damping [-]", "MAC [-]"] {
+                s += &format!(",{}", quote(format!("{head} {col}")));
+            }
         }
-        s += ",error\n";
+        s += ",flags,error\n";
         for (p, r) in self.results.iter().enumerate() {
             s += &(p + 1).to_string();
             for v in &self.points[p] {
                 s += &format!(",{v:e}");
             }
-            for j in 0..self.modes {
-                match r.as_ref().ok().and_then(|r| r.modes.get(j)) {
-                    Some(&l) => s += &format!(",{:.12e},{:.12e},{:.12e},{:.6e}", l.re, l.im, freq_hz(l), damping(l)),
-                    None => s += ",,,,",
+            for j in 0..m {
+                let mac = tracking.matches[p].as_ref().and_then(|r| r.get(j)?.as_ref()).map(|m| m.mac);
+                match (self.tracked(&tracking, p, j), mac) {
+                    (Some(l), Some(mac)) => s += &format!(",{:.12e},{:.12e},{:.12e},{:.6e},{mac:.4}", l.re, l.im, freq_hz(l), damping(l)),
+                    _ => s += ",,,,,",
                 }
             }
             let e = r.as_ref().err().map_or(String::new(), |e| e.message.lines().next().unwrap_or("").replace('"', "'"));
-            s += &format!(",\"{e}\"\n");
+            s += &format!(",\"{}\",\"{e}\"\n", Self::flags(&tracking, p));
         }
         s
     }
@@ -192,9 +239,11 @@ impl SweepResults {
         Ok(())
     }
 
-    /// Frequency and damping of the lowest modes against parameter `against` (default the
-    /// first); with several parameters, one curve per mode and combination of the others.
+    /// Frequency and damping of the tracked modes against parameter `against` (default the
+    /// first), each labelled by its number and its label at the first point; with several
+    /// parameters, one curve per mode and combination of the others.
     pub fn plot(&self, against: Option<&str>) -> Result<SweepPlot, StackError> {
+        let tracking = self.tracking();
         let x = match against {
             None => 0,
             Some(a) => self.names.iter().position(|n| n == a).ok_or_else(|| StackError::UnknownParameter(a.to_string(), self.names.join(", ")))?,
@@ -215,14 +264,17 @@ impl SweepResults {
             // keeps its place and breaks the line.
             list.sort_by(|a, b| self.points[*a][x].total_cmp(&self.points[*b][x]));
             let tag = other_names.iter().zip(others).map(|(n, v)| format!("{n} = {v}")).collect::<Vec<_>>().join(", ");
-            for j in 0..self.modes {
-                let lam = |p: &usize| self.results[*p].as_ref().ok().and_then(|r| r.modes.get(j).copied());
-                let label = if tag.is_empty() { format!("mode {}", j + 1) } else { format!("mode {}, {tag}", j + 1) };
+            for (j, name) in tracking.labels.iter().enumerate() {
+                let lam = |p: &usize| self.tracked(&tracking, *p, j);
+                let head = if name.is_empty() { format!("{}", j + 1) } else { format!("{}: {name}", j + 1) };
+                let label = if tag.is_empty() { head } else { format!("{head}, {tag}") };
+                let ambiguous = |p: &usize| tracking.matches[*p].as_ref().and_then(|r| r[j].as_ref()).is_some_and(|m| m.ambiguous());
                 curves.push(ModeCurve {
                     label,
                     parameter: list.iter().map(|p| self.points[*p][x]).collect(),
                     freq_hz: list.iter().map(|p| lam(p).map_or(f64::NAN, freq_hz)).collect(),
                     damping: list.iter().map(|p| lam(p).map_or(f64::NAN, damping)).collect(),
+                    ambiguous: list.iter().map(ambiguous).collect(),
                 });
             }
         }
@@ -233,7 +285,7 @@ impl SweepResults {
             1..=2 => format!(" ({} failed, not drawn: {})", failed.len(), failed.join("; ")),
             n => format!(" ({n} failed points, not drawn)"),
         };
-        Ok(SweepPlot { title: format!("{file}: lowest modes against {}{note}", self.names[x]), parameter: format!("{} (the file's set: variable, its SI units)", self.names[x]), curves })
+        Ok(SweepPlot { title: format!("{file}: modes tracked against {}{note}", self.names[x]), parameter: format!("{} (the file's set: variable, its SI units)", self.names[x]), curves })
     }
 
     /// Writes the plot as `PREFIX.svg` and `PREFIX.png`.

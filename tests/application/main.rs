@@ -6,6 +6,7 @@
 mod common;
 
 mod application;
+mod mode_tracking;
 mod bode_plot;
 mod reference_solution;
 mod reference_warnings;

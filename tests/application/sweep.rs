@@ -77,7 +77,7 @@ fn pendulum_length_sweep_matches_the_closed_form() {
         assert_eq!(r.points[k], vec![l]);
         let res = res.as_ref().unwrap();
         // Closed form ω = sqrt(M G L / (J + M L²)), relative 1e-6.
-        let w = res.modes[0];
+        let w = res.modes[0].lambda;
         assert!((w.im - omega(M, l)).abs() < 1e-6 * omega(M, l) && w.re.abs() < 1e-9, "L = {l}: {w}");
         // ROM static gain rz/Mz = 1/(M G L) [rad/(N m)] (gravity stiffness M G L), 1e-6.
         let g = res.rom.rom_static_gain.as_ref().unwrap()[(0, 0)];
@@ -100,7 +100,7 @@ fn a_failed_point_is_reported_with_its_values_and_the_others_kept() {
     }
     for k in 2..6 {
         let (m, l) = (r.points[k][0], r.points[k][1]);
-        let w = r.results[k].as_ref().unwrap().modes[0];
+        let w = r.results[k].as_ref().unwrap().modes[0].lambda;
         let expected = omega(m, l.abs());
         if l > 0.0 {
             assert!((w.im - expected).abs() < 1e-6 * expected, "M = {m}, L = {l}: {w}");
@@ -120,9 +120,11 @@ fn stacked_arrays_are_point_major_slices_with_failed_points_nan() {
     let s = r.stacked().unwrap();
     let a = s.arrays.iter().find(|a| a.name == "A").unwrap();
     assert_eq!(a.dims, vec![2, 2, 3]);
-    // A(:,:,k) is point k's A (column-major, point index slowest).
+    // A(:,:,k) is point k's A in the sweep's consistent basis (column-major, point index
+    // slowest).
+    let consistent = r.consistent_roms();
     for k in [0, 2] {
-        let rom = &r.results[k].as_ref().unwrap().rom;
+        let rom = &consistent[k].as_ref().unwrap().rom;
         for j in 0..2 {
             for i in 0..2 {
                 assert_eq!(a.data[i + 2 * j + 4 * k], rom.a[(i, j)]);
@@ -170,12 +172,12 @@ fn continuation_gives_the_same_static_solutions() {
     let cont = run("simply_supported_beam.mbd", &["N=0:4000:3"], &SweepOptions { continuation: true, ..options });
     for k in 0..3 {
         let (a, b) = (plain.results[k].as_ref().unwrap(), cont.results[k].as_ref().unwrap());
-        for (x, y) in a.modes.iter().zip(&b.modes) {
+        for (x, y) in a.modes.iter().map(|m| m.lambda).zip(b.modes.iter().map(|m| m.lambda)) {
             assert!((x - y).norm() < 1e-8 * x.norm(), "point {k}: {x} vs {y}");
         }
     }
     // The compression lowers the first bending frequency (paper Fig. 5).
-    assert!(plain.results[2].as_ref().unwrap().modes[0].im < plain.results[0].as_ref().unwrap().modes[0].im);
+    assert!(plain.results[2].as_ref().unwrap().modes[0].lambda.im < plain.results[0].as_ref().unwrap().modes[0].lambda.im);
 }
 
 #[test]
@@ -230,7 +232,7 @@ fn a_sweep_at_a_reference_time_takes_the_beam_update_eig_takes() {
     };
     let first = |choice| {
         let r = run("cantilever.mbd", &["P=500,1000"], &options(choice));
-        r.results.iter().map(|p| p.as_ref().unwrap().modes[0]).collect::<Vec<_>>()
+        r.results.iter().map(|p| p.as_ref().unwrap().modes[0].lambda).collect::<Vec<_>>()
     };
     let (auto, incremental, independent) = (first(BeamUpdateChoice::Auto), first(BeamUpdateChoice::Every(BeamUpdate::Incremental)), first(BeamUpdateChoice::Every(BeamUpdate::PathIndependent)));
     for k in 0..2 {
