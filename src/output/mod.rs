@@ -23,6 +23,7 @@ pub mod motion;
 pub mod npz;
 pub mod response_csv;
 pub mod rom_file;
+pub mod rom_script;
 pub mod scalar_nodes;
 pub mod step_log;
 pub mod sweep_plot;

@@ -273,6 +273,10 @@ impl Study {
             dcoef: self.modal.dcoef,
             full_static_gain: None,
             rom_static_gain: None,
+            sample_time: None,
+            discretization: "continuous".into(),
+            hankel_singular_values: Vec::new(),
+            error_bound: None,
         }
     }
 }
