@@ -472,6 +472,13 @@ impl Rom {
         self.export.error_bound
     }
 
+    /// Writes the ROM as `romdyn rom -o` does, the format by the extension: `.json`, `.mat`
+    /// (MATLAB v5), `.npz` or `.m` (an Octave/MATLAB script building `sys` with `ss`/`dss`,
+    /// names, units and the sampling time); atomically (a failed write leaves no file).
+    fn save(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
+        py.detach(|| self.export.write(&path)).map_err(|e| RomdynError::new_err(format!("{}: {e}", path.display())))
+    }
+
     /// Frequency response at `freq_hz` [Hz]: complex array (frequencies, outputs, inputs);
     /// of a discrete-time ROM `C (e^{jωT} I − A)⁻¹ B + D`.
     fn frequency_response<'py>(&self, py: Python<'py>, freq_hz: Vec<f64>) -> PyResult<Bound<'py, PyArray3<Complex64>>> {

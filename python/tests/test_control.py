@@ -129,6 +129,21 @@ def test_transmissibility_and_imposed_model_are_the_closed_form():
     assert sys.dcgain() == pytest.approx(1.0, rel=1e-9)  # the payload follows a static base
 
 
+def test_save_writes_the_clis_files(beam, romdyn_cli, tmp_path):
+    import json
+    import subprocess
+
+    rom = beam.reduce(count=1, residualize=[7], damping=0.02, sample_rate=FS)
+    for ext in ("json", "m"):
+        rom.save(tmp_path / f"py.{ext}")
+        subprocess.run([romdyn_cli, "rom", BEAM, "--static", "--input", "5:Fy", "--output", "5:y", "--count", "1", "--residualize-modes", "7", "--damping", "0.02", "--sample-rate", "2048", "-o", tmp_path / f"cli.{ext}"], check=True, capture_output=True)
+        assert (tmp_path / f"py.{ext}").read_text() == (tmp_path / f"cli.{ext}").read_text()
+    doc = json.loads((tmp_path / "py.json").read_text())
+    assert doc["sample_time"] == 1 / FS and doc["time"].startswith("discrete")
+    with pytest.raises(romdyn.RomdynError, match=r"unknown ROM file format \(the extension must be .json, .mat, .npz or .m\)"):
+        rom.save(tmp_path / "rom.txt")
+
+
 def test_bad_options_name_the_keyword(beam):
     with pytest.raises(ValueError, match=r'^prewarp: prewarping belongs to the Tustin method: add discretize="tustin"'):
         beam.reduce(count=1, sample_rate=FS, prewarp=100.0)
