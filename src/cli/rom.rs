@@ -86,7 +86,7 @@ pub struct ControlArgs {
     #[arg(long, value_name = "FS")]
     pub sample_rate: Option<f64>,
     /// Discretization: zoh (zero-order hold: exact for inputs held between samples), tustin (bilinear; DC gain kept) or matched (pole-zero mapping, one input and one output)
-    #[arg(long, value_name = "METHOD", default_value = "zoh")]
+    #[arg(long, value_name = "METHOD", value_parser = ["zoh", "tustin", "matched"], default_value = "zoh")]
     pub discretize: String,
     /// Tustin's prewarping frequency [Hz] (the discrete response is exact there), below FS/2
     #[arg(long, value_name = "HZ")]
@@ -126,7 +126,7 @@ pub struct RomArgs {
     /// With an imposed motion (--imposed or the ports file): write PREFIX.{csv,svg,png}, the transmissibility z/z_e of eq. 100, full model and ROM, log-log (paper Fig. 11)
     #[arg(long, value_name = "PREFIX")]
     pub transmissibility: Option<PathBuf>,
-    /// With an imposed motion: write the proper state-space model from the imposed displacements to the other outputs (.json/.mat/.npz)
+    /// With an imposed motion: write the proper state-space model from the imposed displacements to the other outputs (.json/.mat/.npz/.m)
     #[arg(long, value_name = "FILE")]
     pub imposed_out: Option<PathBuf>,
     #[command(flatten)]

@@ -22,6 +22,7 @@ pub mod modal_coordinates;
 pub mod motion;
 pub mod npz;
 pub mod response_csv;
+pub mod rom_export;
 pub mod rom_file;
 pub mod rom_script;
 pub mod scalar_nodes;

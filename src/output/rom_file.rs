@@ -24,45 +24,8 @@ use std::path::Path;
 use faer::{c64, Mat};
 use serde_json::{json, Value};
 
-/// A ROM in exportable form: `E ẋ = A x + B u`, `z = C x + D u`, with what is needed to
-/// use and check it.
-#[derive(Clone, Debug)]
-pub struct RomExport {
-    /// `"descriptor"` (D = 0, E possibly singular) or `"ordinary"` (E = I).
-    pub kind: &'static str,
-    pub e: Mat<f64>,
-    pub a: Mat<f64>,
-    pub b: Mat<f64>,
-    pub c: Mat<f64>,
-    pub d: Mat<f64>,
-    /// The ROM's own eigenvalues [rad/s].
-    pub eigenvalues: Vec<c64>,
-    /// The full model's kept eigenvalues [rad/s].
-    pub full_eigenvalues: Vec<c64>,
-    pub inputs: Vec<String>,
-    pub outputs: Vec<String>,
-    pub states: Vec<String>,
-    pub input_units: Vec<String>,
-    pub output_units: Vec<String>,
-    pub state_units: Vec<String>,
-    /// 1-based modal-table index of each state's mode (0: a static state).
-    pub state_modes: Vec<usize>,
-    /// `Im λ/2π` of each state's mode [Hz] (NaN for a static state).
-    pub state_freq_hz: Vec<f64>,
-    /// Time of the reference solution [s] (`None`: a pencil file).
-    pub reference_time: Option<f64>,
-    pub dcoef: f64,
-    pub full_static_gain: Option<Mat<f64>>,
-    pub rom_static_gain: Option<Mat<f64>>,
-    /// Sampling time of a discrete-time ROM [s] (`None`: continuous time).
-    pub sample_time: Option<f64>,
-    /// "continuous", or the discretization method ("zoh", "tustin", "matched").
-    pub discretization: String,
-    /// Hankel singular values of a balanced ROM's stable part (empty: not balanced).
-    pub hankel_singular_values: Vec<f64>,
-    /// A balanced ROM's bound on `‖G − G_r‖∞`.
-    pub error_bound: Option<f64>,
-}
+pub use super::rom_export::RomExport;
+
 
 fn rows(m: &Mat<f64>) -> Value {
     Value::Array((0..m.nrows()).map(|i| Value::Array((0..m.ncols()).map(|j| json!(m[(i, j)])).collect())).collect())
@@ -117,20 +80,6 @@ impl RomExport {
     /// Checks that `path` names a file in a known format (before any computation).
     pub fn check_path(path: &Path) -> Result<(), ExportError> {
         format_of(path).map(|_| ())
-    }
-
-    /// "continuous: E x' = A x + B u, z = C x + D u", or the discrete-time equations with the
-    /// sampling time and method: the header of every format.
-    pub fn time_domain(&self) -> String {
-        match self.sample_time {
-            Some(t) => format!("discrete: x[k+1] = A x[k] + B u[k], z[k] = C x[k] + D u[k], sampling time {t:e} s ({} Hz), {}", 1.0 / t, self.discretization),
-            None => "continuous: E x' = A x + B u, z = C x + D u".to_string(),
-        }
-    }
-
-    fn units_line(&self) -> String {
-        let eig = if self.sample_time.is_some() { "eigenvalues in the z-plane (dimensionless), full_eigenvalues in rad/s" } else { "eigenvalues in rad/s" };
-        format!("SI: inputs, outputs and states in the units listed; {eig}, frequencies in Hz, times in s")
     }
 
     /// The JSON document (matrices as arrays of rows; complex numbers as {re, im}).
@@ -235,7 +184,7 @@ impl RomExport {
                 f.add_string_list("kind", &[self.kind.to_string()])?;
                 f.add_string_list("time", &[self.time_domain()])?;
                 f.add_string_list("units", &[self.units_line()])?;
-                f.add_string_list("discretization", &[self.discretization.clone()])?;
+                f.add_string_list("discretization", std::slice::from_ref(&self.discretization))?;
                 f.add_scalar("reference_time", reference_time)?;
                 f.add_scalar("dcoef", self.dcoef)?;
                 f.add_scalar("sample_time", self.sample_time.unwrap_or(f64::NAN))?;

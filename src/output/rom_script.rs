@@ -9,7 +9,7 @@
 
 use faer::Mat;
 
-use super::rom_file::RomExport;
+use super::rom_export::RomExport;
 
 fn number(x: f64) -> String {
     if x.is_nan() {

@@ -74,9 +74,13 @@ fn square_root(x: &Mat<f64>) -> Result<Mat<f64>, RomError> {
     Ok(Mat::from_fn(x.nrows(), x.ncols(), |i, j| u[(i, j)] * s[j].max(0.0).sqrt()))
 }
 
+/// Hankel singular values (largest first) and the projections `W`, `V` of a balanced
+/// realization.
+type Balanced = (Vec<f64>, Mat<f64>, Mat<f64>);
+
 /// The balanced realization's projections of a stable `(A, B, C)`: Hankel singular values
 /// (largest first) and `W`, `V` for the states whose value exceeds `floor σ_1`.
-fn balance(a: &Mat<f64>, b: &Mat<f64>, c: &Mat<f64>, floor: f64) -> Result<(Vec<f64>, Mat<f64>, Mat<f64>), RomError> {
+fn balance(a: &Mat<f64>, b: &Mat<f64>, c: &Mat<f64>, floor: f64) -> Result<Balanced, RomError> {
     let p = lyapunov(a, &(b * b.transpose()))?;
     let q = lyapunov(&a.transpose().to_owned(), &(c.transpose() * c))?;
     let (lc, lo) = (square_root(&p)?, square_root(&q)?);

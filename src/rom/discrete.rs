@@ -167,7 +167,7 @@ impl OrdinaryRom {
                 (ad, bd, cd, dd, None)
             }
             Discretization::Matched => {
-                let (a, b, c, d) = super::matched::matched_realization(self, t)?;
+                let [a, b, c, d] = super::matched::matched_realization(self, t)?;
                 let names = (1..=a.nrows()).map(|k| format!("matched state {k}")).collect();
                 (a, b, c, d, Some(names))
             }

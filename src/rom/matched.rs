@@ -62,7 +62,7 @@ fn zeros(rom: &OrdinaryRom) -> Result<(Vec<c64>, f64, usize), RomError> {
 
 /// `(A_d, B_d, C_d, D_d)` of the matched pole-zero discretization at step `t` [s], in
 /// controllable canonical form.
-pub(super) fn matched_realization(rom: &OrdinaryRom, t: f64) -> Result<(Mat<f64>, Mat<f64>, Mat<f64>, Mat<f64>), RomError> {
+pub(super) fn matched_realization(rom: &OrdinaryRom, t: f64) -> Result<[Mat<f64>; 4], RomError> {
     if rom.b.ncols() != 1 || rom.c.nrows() != 1 {
         return Err(RomError::Discrete(format!("the matched pole-zero method maps the poles and zeros of one transfer function: this ROM has {} inputs and {} outputs (use zoh or tustin, or a single input and output)", rom.b.ncols(), rom.c.nrows())));
     }
@@ -89,7 +89,7 @@ pub(super) fn matched_realization(rom: &OrdinaryRom, t: f64) -> Result<(Mat<f64>
     let b = Mat::from_fn(n, 1, |i, _| if i == 0 { 1.0 } else { 0.0 });
     let c = Mat::from_fn(1, n, |_, j| num[j + 1] - num[0] * den[j + 1]);
     let d = Mat::from_fn(1, 1, |_, _| num[0]);
-    Ok((a, b, c, d))
+    Ok([a, b, c, d])
 }
 
 #[cfg(test)]
