@@ -42,6 +42,12 @@ def test_zoh_rom_is_scipys_and_its_poles_are_exp_lambda_t(beam):
     assert scipy.signal.StateSpace(disc.A, disc.B, disc.C, disc.D, dt=1 / FS).dt == disc.to_scipy().dt
 
 
+def test_modes_above_nyquist_warn(beam):
+    # The beam's modes up to 2 kHz at 2048 Hz: those from 1140.88 Hz up alias (romdyn eig).
+    with pytest.warns(romdyn.AccuracyWarning, match=r"4 mode\(s\) at or above the Nyquist frequency of sample_rate=2048 \(1024 Hz\): 1140.8835, 1217.9026, 1600.1956, 1653.3037 Hz"):
+        beam.reduce(band=(0, 2000), sample_rate=FS)
+
+
 def test_tustin_is_scipys_bilinear_and_keeps_the_dc_gain(beam):
     cont = beam.reduce(count=3, damping=0.02)
     disc = beam.reduce(count=3, damping=0.02, sample_rate=FS, discretize="tustin")

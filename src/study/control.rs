@@ -6,7 +6,7 @@
 
 use crate::rom::{BalancedMethod, BalancedOrder, Discretization, DiscreteRom, OrdinaryRom, Sampling};
 
-use super::{RomRequest, Setting, StudyError};
+use super::{RomRequest, Setting, StudyError, Warning};
 
 /// Balanced reduction of a ROM's stable part.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -96,9 +96,16 @@ pub(super) fn reduce_order(mut rom: OrdinaryRom, request: &RomRequest) -> Result
     Ok((rom, Some(report)))
 }
 
-/// The discrete-time ROM `request` asks for.
-pub(super) fn discretize(rom: &OrdinaryRom, request: &RomRequest) -> Result<Option<DiscreteRom>, StudyError> {
-    request.sampling.as_ref().map(|s| rom.discretize(s)).transpose().map_err(Into::into)
+/// The discrete-time ROM `request` asks for, and the warning of modes it aliases.
+pub(super) fn discretize(rom: &OrdinaryRom, request: &RomRequest) -> Result<(Option<DiscreteRom>, Option<Warning>), StudyError> {
+    let Some(sampling) = &request.sampling else { return Ok((None, None)) };
+    let discrete = rom.discretize(sampling)?;
+    let eigenvalues = if rom.a.nrows() == 0 { Vec::new() } else { rom.a.as_ref().eigenvalues().unwrap_or_default() };
+    // One frequency per pair (its member with Im λ ≥ 0), lowest first.
+    let mut freqs: Vec<f64> = eigenvalues.iter().filter(|l| l.im >= 0.0).map(|l| l.norm() / (2.0 * std::f64::consts::PI)).filter(|f| *f >= sampling.rate_hz / 2.0).collect();
+    freqs.sort_by(f64::total_cmp);
+    let warning = (!freqs.is_empty()).then_some(Warning::AboveNyquist { freqs_hz: freqs, rate_hz: sampling.rate_hz });
+    Ok((Some(discrete), warning))
 }
 
 impl OrderReduction {

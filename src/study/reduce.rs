@@ -370,7 +370,8 @@ impl Study {
             ordinary = with_static_correction(&ordinary, &target)?;
         }
         let (ordinary, order) = super::control::reduce_order(ordinary, request)?;
-        let discrete = super::control::discretize(&ordinary, request)?;
+        let (discrete, aliased) = super::control::discretize(&ordinary, request)?;
+        warnings.extend(aliased);
         let (zero, sums) = self.channel_sums();
         let rounding = StaticGains::rounding_of(self.modal_spread());
         // The LU's scale (dense route: the whole static solution) and the modal terms'.

@@ -182,3 +182,28 @@ fn the_cli_writes_discrete_balanced_roms_and_the_m_loader() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A mode above the Nyquist frequency aliases in discrete time: the ROM of the beam's 10
+/// lowest modes at 2048 Hz warns about exactly those of its undamped modes with |λ|/2π ≥
+/// 1024 Hz (the modal table's frequencies, to 1e-9).
+#[test]
+fn modes_above_nyquist_are_named() {
+    let rom = beam_rom(10, |r| {
+        r.damping = None;
+        r.sampling = romdyn::study::sampling(Some(2048.0), "zoh", None).unwrap();
+    });
+    let above: Vec<f64> = rom.kept_modes.iter().map(|m| m.lambda.norm() / (2.0 * std::f64::consts::PI)).filter(|f| *f >= 1024.0).collect();
+    assert!(above.len() >= 2, "{above:?}");
+    let warned = rom.warnings.iter().find_map(|w| match w {
+        romdyn::study::Warning::AboveNyquist { freqs_hz, rate_hz } => Some((freqs_hz.clone(), *rate_hz)),
+        _ => None,
+    });
+    let (freqs, rate) = warned.unwrap_or_else(|| panic!("no Nyquist warning in {:?}", rom.warnings));
+    assert_eq!(rate, 2048.0);
+    assert_eq!(freqs.len(), above.len(), "{freqs:?} vs {above:?}");
+    for (f, g) in freqs.iter().zip(&above) {
+        assert!((f - g).abs() < 1e-9 * g, "{f} vs {g}");
+    }
+    // Three modes (up to 424 Hz) do not alias.
+    assert!(!beam_rom(3, |r| r.sampling = romdyn::study::sampling(Some(2048.0), "zoh", None).unwrap()).warnings.iter().any(|w| matches!(w, romdyn::study::Warning::AboveNyquist { .. })));
+}
