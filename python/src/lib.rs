@@ -328,12 +328,14 @@ impl StudyPy {
     }
 
     /// The proper state-space model from the imposed displacements to the other outputs
-    /// (the CLI's `--imposed-out`): a `Rom` whose inputs are the imposed displacements.
+    /// (the CLI's `--imposed-out`): a `Rom` whose inputs are the imposed displacements, in
+    /// discrete time at `rom`'s sampling when `rom` is discrete.
     fn imposed_model(&self, rom: &Rom) -> PyResult<Rom> {
         let m = self.study.imposed_model(&rom.rom).map_err(py_err)?;
-        let export = self.study.imposed_export(&m);
+        let discrete = self.study.imposed_discrete(&m, &rom.rom).map_err(py_err)?;
+        let export = self.study.imposed_export(&m, discrete.as_ref());
         let summary = format!("imposed-motion model: {} states (dropped rate feedthrough {:.1e})\n", m.rom.a.nrows(), m.dropped_rate_feedthrough);
-        Ok(Rom { export, rom: rom.rom.clone(), summary, system: m.rom, discrete: None })
+        Ok(Rom { export, rom: rom.rom.clone(), summary, system: m.rom, discrete })
     }
 
     /// Frequency response of the full model at `freq_hz` [Hz]: complex array (frequencies,

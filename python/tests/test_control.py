@@ -133,6 +133,13 @@ def test_transmissibility_and_imposed_model_are_the_closed_form():
     assert np.allclose(imposed.frequency_response(f)[:, 0, 0], exact, rtol=1e-9, atol=0)
     sys = imposed.to_control()
     assert sys.dcgain() == pytest.approx(1.0, rel=1e-9)  # the payload follows a static base
+    # At a sample rate, the imposed model is discrete too: scipy's zero-order hold of the
+    # continuous one (1e-12), the static transmissibility still 1.
+    fast = study.imposed_model(study.reduce(count=2, sample_rate=FS))
+    assert fast.dt == 1 / FS and fast.discretization == "zoh"
+    ad, bd, _, _, _ = scipy.signal.cont2discrete((imposed.A, imposed.B, imposed.C, imposed.D), 1 / FS, method="zoh")
+    assert np.allclose(fast.A, ad, rtol=0, atol=1e-12) and np.allclose(fast.B, bd, rtol=1e-9, atol=1e-15)
+    assert fast.to_control().dcgain() == pytest.approx(1.0, rel=1e-9)
 
 
 def test_save_writes_the_clis_files(beam, romdyn_cli, tmp_path):

@@ -326,7 +326,8 @@ fn write_application_files(a: &RomArgs, study: &Study, rom: &ReducedModel, check
         let m = study.imposed_model(rom)?;
         let eig: Vec<String> = m.rom.eigenvalues.iter().map(|l| format!("{:.6}{:+.6}j", l.re, l.im)).collect();
         eprintln!("imposed-motion model: {} states, eigenvalues {}", m.rom.a.nrows(), eig.join(", "));
-        study.imposed_export(&m).write(path).with_context(|| format!("writing {}", path.display()))?;
+        let discrete = study.imposed_discrete(&m, rom)?;
+        study.imposed_export(&m, discrete.as_ref()).write(path).with_context(|| format!("writing {}", path.display()))?;
         lines.push(format!("wrote {}", path.display()));
     }
     Ok(lines)

@@ -114,18 +114,15 @@ impl DiscreteRom {
         self.sampling.period()
     }
 
-    /// `C (e^{jωT} I − A)⁻¹ B + D` at each frequency [Hz].
+    /// `C (e^{jωT} I − A)⁻¹ B + D` at each frequency [Hz]: `e^{jθ} I − A = j sin θ I + (cos θ I − A)`.
     pub fn frequency_response(&self, freq_hz: &[f64]) -> Vec<Mat<c64>> {
-        let t = self.sample_time();
         let r = &self.rom;
-        let n = r.a.nrows();
+        let id = Mat::<f64>::identity(r.a.nrows(), r.a.nrows());
         freq_hz
             .iter()
             .map(|f| {
-                let z = c64::cis(2.0 * std::f64::consts::PI * f * t);
-                let m = Mat::from_fn(n, n, |i, j| c64::new(if i == j { z.re } else { 0.0 } - r.a[(i, j)], if i == j { z.im } else { 0.0 }));
-                let x = m.partial_piv_lu().solve(super::dense::to_complex(&r.b));
-                super::dense::to_complex(&r.c) * x + super::dense::to_complex(&r.d)
+                let theta = 2.0 * std::f64::consts::PI * f * self.sample_time();
+                super::dense::transfer(theta.sin(), &id, &(&id * faer::Scale(theta.cos()) - &r.a), &r.b, &r.c, Some(&r.d))
             })
             .collect()
     }
