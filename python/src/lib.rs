@@ -292,10 +292,18 @@ impl StudyPy {
     /// depart within the frequencies of interest, …) are raised with `warnings.warn` under
     /// `romdyn.RomdynWarning` (e.g. `romdyn.TransmissibilityWarning`) and kept in
     /// `Rom.warnings`; `Rom.summary` holds the accuracy lines.
-    #[pyo3(signature = (count = None, band = None, modes = None, residualize = None, by = "frequency", below_band = "drop", damping = None, form = "ordinary", fmin = None, fmax = None, points = 400))]
+    ///
+    /// The control hand-off (the CLI's options of the same names): `minimal` (a tolerance:
+    /// remove uncontrollable and unobservable states), `balanced` (a number of states) or
+    /// `hankel_tol` (balanced truncation of the stable part, rigid-body, integrator and
+    /// unstable modes kept whole; `spa=True`: singular perturbation approximation, which keeps
+    /// the static gain), `sample_rate` [Hz] (a discrete-time ROM; `discretize` "zoh" (default),
+    /// "tustin" (with `prewarp` [Hz]) or "matched").
+    #[pyo3(signature = (count = None, band = None, modes = None, residualize = None, by = "frequency", below_band = "drop", damping = None, form = "ordinary", fmin = None, fmax = None, points = 400, minimal = None, balanced = None, hankel_tol = None, spa = false, sample_rate = None, discretize = "zoh", prewarp = None))]
     #[allow(clippy::too_many_arguments)]
-    fn reduce(&self, py: Python<'_>, count: Option<usize>, band: Option<(f64, f64)>, modes: Option<Vec<usize>>, residualize: Option<&Bound<'_, PyAny>>, by: &str, below_band: &str, damping: Option<&Bound<'_, PyAny>>, form: &str, fmin: Option<f64>, fmax: Option<f64>, points: usize) -> PyResult<Rom> {
+    fn reduce(&self, py: Python<'_>, count: Option<usize>, band: Option<(f64, f64)>, modes: Option<Vec<usize>>, residualize: Option<&Bound<'_, PyAny>>, by: &str, below_band: &str, damping: Option<&Bound<'_, PyAny>>, form: &str, fmin: Option<f64>, fmax: Option<f64>, points: usize, minimal: Option<f64>, balanced: Option<usize>, hankel_tol: Option<f64>, spa: bool, sample_rate: Option<f64>, discretize: &str, prewarp: Option<f64>) -> PyResult<Rom> {
         let request = options::request(count, band, modes, residualize, by, below_band, damping)?;
+        let request = options::control(request, minimal, balanced, hankel_tol, spa, sample_rate, discretize, prewarp)?;
         let form = options::form(form)?;
         let grid = FrequencyGrid { fmin_hz: fmin, fmax_hz: fmax, points };
         let (mut rom, check) = py
@@ -313,7 +321,35 @@ impl StudyPy {
         rom.warnings.extend(check.warnings);
         let new: Vec<_> = rom.warnings.iter().filter(|w| !study_warnings.contains(w)).cloned().collect();
         warnings::warn_all(py, &new)?;
-        Ok(Rom { export, rom, summary })
+        Ok(Rom::of(export, rom, summary))
+    }
+
+    /// The transmissibility `z/z_e` of eq. 100 (paper Fig. 11; the CLI's `--transmissibility`)
+    /// of a study with an imposed motion (`imposed=` or a ports file), full model and `rom`, at
+    /// `freq_hz` [Hz]: {"freq_hz", "outputs", "imposed" (names with units), "full", "rom"
+    /// (complex arrays (frequencies, outputs, imposed components), in the outputs' units per
+    /// imposed unit)}.
+    fn transmissibility<'py>(&self, py: Python<'py>, rom: &Rom, freq_hz: Vec<f64>) -> PyResult<Bound<'py, PyDict>> {
+        let t = py.detach(|| self.study.transmissibility(&rom.rom, &freq_hz)).map_err(py_err)?;
+        let (no, ni) = (t.outputs.len(), t.imposed.len());
+        let d = PyDict::new(py);
+        d.set_item("freq_hz", t.freq_hz.clone().into_pyarray(py))?;
+        d.set_item("outputs", t.outputs.clone())?;
+        d.set_item("imposed", t.imposed.clone())?;
+        d.set_item("full", responses(py, &t.full, no, ni)?)?;
+        d.set_item("rom", responses(py, &t.rom, no, ni)?)?;
+        Ok(d)
+    }
+
+    /// The proper state-space model from the imposed displacements to the other outputs
+    /// (the CLI's `--imposed-out`): a `Rom` whose inputs are the imposed displacements, in
+    /// discrete time at `rom`'s sampling when `rom` is discrete.
+    fn imposed_model(&self, rom: &Rom) -> PyResult<Rom> {
+        let m = self.study.imposed_model(&rom.rom).map_err(py_err)?;
+        let discrete = self.study.imposed_discrete(&m, &rom.rom).map_err(py_err)?;
+        let export = self.study.imposed_export(&m, discrete.as_ref());
+        let summary = format!("imposed-motion model: {} states (dropped rate feedthrough {:.1e})\n", m.rom.a.nrows(), m.dropped_rate_feedthrough);
+        Ok(Rom { export, rom: rom.rom.clone(), summary, system: m.rom, discrete })
     }
 
     /// Frequency response of the full model at `freq_hz` [Hz]: complex array (frequencies,
@@ -335,10 +371,14 @@ impl StudyPy {
 #[pyclass(module = "romdyn._romdyn", frozen)]
 struct Rom {
     export: RomExport,
+    /// The study's ROM this one is (or, for an imposed-motion model, was derived from).
     rom: ReducedModel,
     #[pyo3(get)]
     /// The summary `romdyn rom` prints (kept modes, static gains, their difference).
     summary: String,
+    /// The continuous ordinary system (of a descriptor ROM: its algebraic part eliminated).
+    system: romdyn::rom::OrdinaryRom,
+    discrete: Option<romdyn::rom::DiscreteRom>,
 }
 
 #[pymethods]
@@ -426,31 +466,72 @@ impl Rom {
         self.export.reference_time
     }
 
-    /// Frequency response of the ordinary ROM at `freq_hz` [Hz]: complex array (frequencies,
-    /// outputs, inputs).
+    /// Sampling time [s] of a discrete-time ROM (`sample_rate=`), None in continuous time.
+    #[getter]
+    fn dt(&self) -> Option<f64> {
+        self.export.sample_time
+    }
+    /// "continuous", or the discretization method ("zoh", "tustin", "matched").
+    #[getter]
+    fn discretization(&self) -> String {
+        self.export.discretization.clone()
+    }
+    /// Hankel singular values of a balanced ROM's stable part, largest first (empty
+    /// otherwise).
+    #[getter]
+    fn hankel_singular_values<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.export.hankel_singular_values.clone().into_pyarray(py)
+    }
+    /// A balanced ROM's bound `2 Σ dropped σ` on `‖G − G_r‖∞` (None otherwise).
+    #[getter]
+    fn error_bound(&self) -> Option<f64> {
+        self.export.error_bound
+    }
+
+    /// Writes the ROM as `romdyn rom -o` does, the format by the extension: `.json`, `.mat`
+    /// (MATLAB v5), `.npz` or `.m` (an Octave/MATLAB script building `sys` with `ss`/`dss`,
+    /// names, units and the sampling time); atomically (a failed write leaves no file).
+    fn save(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
+        py.detach(|| self.export.write(&path)).map_err(|e| RomdynError::new_err(format!("{}: {e}", path.display())))
+    }
+
+    /// Frequency response at `freq_hz` [Hz]: complex array (frequencies, outputs, inputs);
+    /// of a discrete-time ROM `C (e^{jωT} I − A)⁻¹ B + D`.
     fn frequency_response<'py>(&self, py: Python<'py>, freq_hz: Vec<f64>) -> PyResult<Bound<'py, PyArray3<Complex64>>> {
-        let h = py.detach(|| self.rom.ordinary.frequency_response(&freq_hz));
+        let h = py.detach(|| match &self.discrete {
+            Some(d) => d.frequency_response(&freq_hz),
+            None => self.system.frequency_response(&freq_hz),
+        });
         responses(py, &h, self.export.outputs.len(), self.export.inputs.len())
     }
 
-    /// The ROM as a python-control `StateSpace` with input, output and state names (the
-    /// ordinary form; a descriptor ROM is refused: build it with form="ordinary").
+    /// The ROM as a python-control `StateSpace` with input, output and state names (`dt`: the
+    /// sampling time of a discrete-time ROM). A descriptor ROM (`E` singular: its statically
+    /// residualized states are algebraic) is converted by eliminating its algebraic part, the
+    /// SVD residualization of eqs. 51–63: the ordinary form of the same ROM, same transfer
+    /// function, states the kept modes'.
     fn to_control<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        self.ordinary_only("to_control")?;
+        let (a, b, c, d, states) = self.ordinary_matrices(py);
         let kw = PyDict::new(py);
         kw.set_item("inputs", self.export.inputs.clone())?;
         kw.set_item("outputs", self.export.outputs.clone())?;
-        kw.set_item("states", self.export.states.clone())?;
-        let args = (self.a(py), self.b(py), self.c(py), self.d(py));
-        py.import("control")?.getattr("StateSpace")?.call(args, Some(&kw))
+        kw.set_item("states", states)?;
+        let control = py.import("control")?.getattr("StateSpace")?;
+        match self.export.sample_time {
+            Some(t) => control.call((a, b, c, d, t), Some(&kw)),
+            None => control.call((a, b, c, d), Some(&kw)),
+        }
     }
 
-    /// The ROM as a `scipy.signal.StateSpace` (continuous time; `.to_discrete(dt)` gives the
-    /// `dlti`). Ordinary form only.
+    /// The ROM as a `scipy.signal.StateSpace` (continuous time, or with `dt` the sampling time
+    /// of a discrete-time ROM); a descriptor ROM converted as by `to_control()`.
     fn to_scipy<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        self.ordinary_only("to_scipy")?;
-        let args = (self.a(py), self.b(py), self.c(py), self.d(py));
-        py.import("scipy.signal")?.getattr("StateSpace")?.call1(args)
+        let (a, b, c, d, _) = self.ordinary_matrices(py);
+        let kw = PyDict::new(py);
+        if let Some(t) = self.export.sample_time {
+            kw.set_item("dt", t)?;
+        }
+        py.import("scipy.signal")?.getattr("StateSpace")?.call((a, b, c, d), Some(&kw))
     }
 
     fn __repr__(&self) -> String {
@@ -459,11 +540,21 @@ impl Rom {
 }
 
 impl Rom {
-    fn ordinary_only(&self, what: &str) -> PyResult<()> {
-        match self.export.kind {
-            "ordinary" => Ok(()),
-            k => Err(RomdynError::new_err(format!("{what}: the ROM is in {k} form (E x' = A x + B u with E possibly singular); build it with form='ordinary'"))),
+    fn of(export: RomExport, rom: ReducedModel, summary: String) -> Self {
+        let (system, discrete) = (rom.ordinary.clone(), rom.discrete.clone());
+        Rom { export, rom, summary, system, discrete }
+    }
+
+    /// `A, B, C, D` and the state names of the ordinary form: the export's, or for a
+    /// descriptor ROM those of its algebraic part eliminated (eqs. 51–63).
+    #[allow(clippy::type_complexity)]
+    fn ordinary_matrices<'py>(&self, py: Python<'py>) -> (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<f64>>, Vec<String>) {
+        if self.export.kind == "ordinary" {
+            return (self.a(py), self.b(py), self.c(py), self.d(py), self.export.states.clone());
         }
+        let o = &self.system;
+        let states = self.export.states.iter().take(o.a.nrows()).cloned().collect();
+        (mat(py, &o.a), mat(py, &o.b), mat(py, &o.c), mat(py, &o.d), states)
     }
 }
 

@@ -130,6 +130,16 @@ pub fn request(count: Option<usize>, band: Option<(f64, f64)>, modes: Option<Vec
     Ok(request)
 }
 
+/// The control hand-off options of `reduce()` (the CLI's `--minimal`, `--balanced`,
+/// `--hankel-tol`, `--spa`, `--sample-rate`, `--discretize`, `--prewarp`), checked by the library.
+#[allow(clippy::too_many_arguments)]
+pub fn control(mut request: RomRequest, minimal: Option<f64>, balanced: Option<usize>, hankel_tol: Option<f64>, spa: bool, sample_rate: Option<f64>, discretize: &str, prewarp: Option<f64>) -> PyResult<RomRequest> {
+    request.minimal = romdyn::study::minimal_tolerance(minimal).map_err(py_err)?;
+    request.balanced = romdyn::study::balancing(balanced, hankel_tol, spa).map_err(py_err)?;
+    request.sampling = romdyn::study::sampling(sample_rate, discretize, prewarp).map_err(py_err)?;
+    Ok(request)
+}
+
 fn get<'py, T: FromPyObjectOwned<'py>>(d: &Bound<'py, PyDict>, key: &str) -> PyResult<Option<T>> {
     match d.get_item(key)? {
         Some(v) if !v.is_none() => v.extract().map(Some).map_err(|e| bad(key, Into::<PyErr>::into(e))),

@@ -25,7 +25,7 @@ fn category<'py>(py: Python<'py>, w: &Warning) -> Bound<'py, PyType> {
         Warning::Run { warning } => run_category(py, warning),
         Warning::InputMovesNothing { .. } | Warning::OutputSeesNothing { .. } => py.get_type::<PortWarning>(),
         Warning::SparseNotCertified { .. } | Warning::UnresolvedEigenvalues { .. } | Warning::DoubtfulZeros { .. } => py.get_type::<EigenanalysisWarning>(),
-        Warning::RomEigenvalues { .. } => py.get_type::<AccuracyWarning>(),
+        Warning::RomEigenvalues { .. } | Warning::AboveNyquist { .. } => py.get_type::<AccuracyWarning>(),
         Warning::BelowBandDropped { .. } | Warning::BelowBandKept { .. } | Warning::Invisible { .. } | Warning::Unscaled { .. } | Warning::DampingNotApplied { .. } => py.get_type::<ModeSelectionWarning>(),
         Warning::StaticGain { .. } => py.get_type::<StaticGainWarning>(),
         Warning::ResponseDeparts { response: Response::Inputs, .. } => py.get_type::<ResponseWarning>(),

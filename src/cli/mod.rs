@@ -49,7 +49,7 @@ enum Command {
     Check(check::CheckArgs),
     /// Eigenanalysis of a linear DAE: modal table with labels and error estimates
     Eig(eig::EigArgs),
-    /// Reduced-order model from selected modes; exports E, A, B, C, D (.json/.mat/.npz)
+    /// Reduced-order model from selected modes; exports E, A, B, C, D (.json/.mat/.npz/.m), balanced, minimal or discrete-time on request
     Rom(rom::RomArgs),
     /// Frequency response of the full model (and of a ROM): CSV table and Bode plot
     Freq(rom::FreqArgs),

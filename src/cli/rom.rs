@@ -67,13 +67,51 @@ impl RomChoiceArgs {
     }
 }
 
+/// The control hand-off of `rom`: minimal realization, balanced reduction, discrete time.
+#[derive(Args, Debug)]
+pub struct ControlArgs {
+    /// Remove uncontrollable and unobservable states: those whose Hankel singular value (of the system shifted to make every mode stable) is below TOL times the largest, e.g. 1e-10; the summary says how many
+    #[arg(long, value_name = "TOL")]
+    pub minimal: Option<f64>,
+    /// Balanced truncation to N states in all: the stable part is reduced, rigid-body, integrator (λ = 0) and unstable modes are kept whole; Hankel singular values and the error bound 2 Σ dropped σ in the summary (undamped modes are not stable: add --damping)
+    #[arg(long, value_name = "N")]
+    pub balanced: Option<usize>,
+    /// Balanced truncation keeping the stable states whose Hankel singular value exceeds TOL times the largest
+    #[arg(long, value_name = "TOL")]
+    pub hankel_tol: Option<f64>,
+    /// With --balanced or --hankel-tol: singular perturbation approximation instead of truncation (the static gain is kept; same error bound)
+    #[arg(long)]
+    pub spa: bool,
+    /// Discrete-time ROM at FS [Hz] (x[k+1] = A x[k] + B u[k], sampling time 1/FS s), e.g. 2048 for the paper's HAM-SAS controller; the export stores the sampling time and says discrete
+    #[arg(long, value_name = "FS")]
+    pub sample_rate: Option<f64>,
+    /// Discretization: zoh (zero-order hold: exact for inputs held between samples), tustin (bilinear; DC gain kept) or matched (pole-zero mapping, one input and one output)
+    #[arg(long, value_name = "METHOD", value_parser = ["zoh", "tustin", "matched"], default_value = "zoh")]
+    pub discretize: String,
+    /// Tustin's prewarping frequency [Hz] (the discrete response is exact there), below FS/2
+    #[arg(long, value_name = "HZ")]
+    pub prewarp: Option<f64>,
+}
+
+impl ControlArgs {
+    /// `request` with these options, checked by the library.
+    pub fn apply(&self, mut request: RomRequest) -> Result<RomRequest, romdyn::study::StudyError> {
+        request.minimal = romdyn::study::minimal_tolerance(self.minimal)?;
+        request.balanced = romdyn::study::balancing(self.balanced, self.hankel_tol, self.spa)?;
+        request.sampling = romdyn::study::sampling(self.sample_rate, &self.discretize, self.prewarp)?;
+        Ok(request)
+    }
+}
+
 #[derive(Args, Debug)]
 pub struct RomArgs {
     #[command(flatten)]
     pub pencil: PencilArgs,
     #[command(flatten)]
     pub rom: RomChoiceArgs,
-    /// ROM file: .json, .mat (MATLAB v5) or .npz (NumPy); JSON to stdout if absent
+    #[command(flatten)]
+    pub control: ControlArgs,
+    /// ROM file: .json, .mat (MATLAB v5), .npz (NumPy) or .m (an Octave/MATLAB script building sys with ss/dss, names and units); JSON to stdout if absent
     #[arg(short = 'o', long = "out", value_name = "FILE")]
     pub file: Option<PathBuf>,
     /// Also write PREFIX.csv, PREFIX.svg and PREFIX.png: Bode plot of the full model and the ROM
@@ -88,7 +126,7 @@ pub struct RomArgs {
     /// With an imposed motion (--imposed or the ports file): write PREFIX.{csv,svg,png}, the transmissibility z/z_e of eq. 100, full model and ROM, log-log (paper Fig. 11)
     #[arg(long, value_name = "PREFIX")]
     pub transmissibility: Option<PathBuf>,
-    /// With an imposed motion: write the proper state-space model from the imposed displacements to the other outputs (.json/.mat/.npz)
+    /// With an imposed motion: write the proper state-space model from the imposed displacements to the other outputs (.json/.mat/.npz/.m)
     #[arg(long, value_name = "FILE")]
     pub imposed_out: Option<PathBuf>,
     #[command(flatten)]
@@ -193,7 +231,7 @@ fn rom_outputs(a: &RomArgs) -> Result<Vec<(&'static str, PathBuf)>> {
 
 pub fn run(a: RomArgs) -> Result<()> {
     let outputs = rom_outputs(&a)?;
-    let request = a.rom.request();
+    let request = a.control.apply(a.rom.request())?;
     let study = a.pencil.study(Some(&request))?;
     let rom = study.reduce(&request)?;
     rom.check_form(a.rom.form())?;
@@ -288,7 +326,8 @@ fn write_application_files(a: &RomArgs, study: &Study, rom: &ReducedModel, check
         let m = study.imposed_model(rom)?;
         let eig: Vec<String> = m.rom.eigenvalues.iter().map(|l| format!("{:.6}{:+.6}j", l.re, l.im)).collect();
         eprintln!("imposed-motion model: {} states, eigenvalues {}", m.rom.a.nrows(), eig.join(", "));
-        study.imposed_export(&m).write(path).with_context(|| format!("writing {}", path.display()))?;
+        let discrete = study.imposed_discrete(&m, rom)?;
+        study.imposed_export(&m, discrete.as_ref()).write(path).with_context(|| format!("writing {}", path.display()))?;
         lines.push(format!("wrote {}", path.display()));
     }
     Ok(lines)

@@ -13,43 +13,19 @@
 //! | `state_modes state_freq_hz` | each state's mode (1-based modal-table index, 0 for a static state) and its frequency Im λ/2π [Hz] |
 //! | `reference_time dcoef` | where the model was linearized [s] (NaN: a pencil file) and the dCoef of its eigenanalysis [s] |
 //! | `full_static_gain rom_static_gain` | outputs × inputs (NaN when not available) |
+//! | `sample_time discretization` | discrete time: `x[k+1] = A x[k] + B u[k]` at this sampling time [s], by `"zoh"`, `"tustin"` (prewarped at F Hz) or `"matched"`; continuous: NaN (JSON null) and `"continuous"` |
+//! | `hankel_singular_values error_bound` | a balanced ROM's stable part's Hankel singular values and its bound `2 Σ dropped σ` on `‖G − G_r‖∞` (empty, NaN: not balanced) |
+//!
+//! A `.m` file is an Octave/MATLAB script with the same content that builds `sys` with
+//! `ss`/`dss` (names and units set, `Ts` when discrete): `run('rom.m')`.
 
 use std::path::Path;
 
 use faer::{c64, Mat};
 use serde_json::{json, Value};
 
-/// A ROM in exportable form: `E ẋ = A x + B u`, `z = C x + D u`, with what is needed to
-/// use and check it.
-#[derive(Clone, Debug)]
-pub struct RomExport {
-    /// `"descriptor"` (D = 0, E possibly singular) or `"ordinary"` (E = I).
-    pub kind: &'static str,
-    pub e: Mat<f64>,
-    pub a: Mat<f64>,
-    pub b: Mat<f64>,
-    pub c: Mat<f64>,
-    pub d: Mat<f64>,
-    /// The ROM's own eigenvalues [rad/s].
-    pub eigenvalues: Vec<c64>,
-    /// The full model's kept eigenvalues [rad/s].
-    pub full_eigenvalues: Vec<c64>,
-    pub inputs: Vec<String>,
-    pub outputs: Vec<String>,
-    pub states: Vec<String>,
-    pub input_units: Vec<String>,
-    pub output_units: Vec<String>,
-    pub state_units: Vec<String>,
-    /// 1-based modal-table index of each state's mode (0: a static state).
-    pub state_modes: Vec<usize>,
-    /// `Im λ/2π` of each state's mode [Hz] (NaN for a static state).
-    pub state_freq_hz: Vec<f64>,
-    /// Time of the reference solution [s] (`None`: a pencil file).
-    pub reference_time: Option<f64>,
-    pub dcoef: f64,
-    pub full_static_gain: Option<Mat<f64>>,
-    pub rom_static_gain: Option<Mat<f64>>,
-}
+pub use super::rom_export::RomExport;
+
 
 fn rows(m: &Mat<f64>) -> Value {
     Value::Array((0..m.nrows()).map(|i| Value::Array((0..m.ncols()).map(|j| json!(m[(i, j)])).collect())).collect())
@@ -66,9 +42,9 @@ pub fn unit_of_name(name: &str) -> String {
 /// Why a ROM could not be written.
 #[derive(Debug, thiserror::Error)]
 pub enum ExportError {
-    #[error("{0}: unknown ROM file format (the extension must be .json, .mat or .npz)")]
+    #[error("{0}: unknown ROM file format (the extension must be .json, .mat, .npz or .m)")]
     UnknownFormat(String),
-    #[error("{0}: is a directory; give a ROM file name ending in .json, .mat or .npz")]
+    #[error("{0}: is a directory; give a ROM file name ending in .json, .mat, .npz or .m")]
     IsDirectory(String),
     #[error(transparent)]
     Output(#[from] super::atomic::OutputError),
@@ -79,6 +55,7 @@ enum Format {
     Json,
     Mat,
     Npz,
+    MScript,
 }
 
 fn format_of(path: &Path) -> Result<Format, ExportError> {
@@ -90,6 +67,7 @@ fn format_of(path: &Path) -> Result<Format, ExportError> {
         Some("json") => Ok(Format::Json),
         Some("mat") => Ok(Format::Mat),
         Some("npz") => Ok(Format::Npz),
+        Some("m") => Ok(Format::MScript),
         _ => Err(ExportError::UnknownFormat(path.display().to_string())),
     }
 }
@@ -110,7 +88,8 @@ impl RomExport {
         let gain = |g: &Option<Mat<f64>>| g.as_ref().map_or(Value::Null, rows);
         json!({
             "kind": self.kind,
-            "units": "SI: inputs, outputs and states in the units listed; eigenvalues in rad/s, frequencies in Hz, times in s",
+            "time": self.time_domain(),
+            "units": self.units_line(),
             "E": rows(&self.e),
             "A": rows(&self.a),
             "B": rows(&self.b),
@@ -130,6 +109,10 @@ impl RomExport {
             "dcoef": self.dcoef,
             "full_static_gain": gain(&self.full_static_gain),
             "rom_static_gain": gain(&self.rom_static_gain),
+            "sample_time": self.sample_time,
+            "discretization": self.discretization,
+            "hankel_singular_values": self.hankel_singular_values,
+            "error_bound": self.error_bound,
         })
     }
 
@@ -145,6 +128,7 @@ impl RomExport {
             ("state_freq_hz", Mat::from_fn(self.state_freq_hz.len(), 1, |i, _| self.state_freq_hz[i])),
             ("full_static_gain", nan_matrix(&self.full_static_gain, no, ni)),
             ("rom_static_gain", nan_matrix(&self.rom_static_gain, no, ni)),
+            ("hankel_singular_values", Mat::from_fn(self.hankel_singular_values.len(), 1, |i, _| self.hankel_singular_values[i])),
         ]
     }
 
@@ -178,8 +162,13 @@ impl RomExport {
                     f.add_string_list(name, list)?;
                 }
                 f.add_string("kind", self.kind)?;
+                f.add_string("time", &self.time_domain())?;
+                f.add_string("units", &self.units_line())?;
+                f.add_string("discretization", &self.discretization)?;
                 f.add_scalar("reference_time", reference_time)?;
                 f.add_scalar("dcoef", self.dcoef)?;
+                f.add_scalar("sample_time", self.sample_time.unwrap_or(f64::NAN))?;
+                f.add_scalar("error_bound", self.error_bound.unwrap_or(f64::NAN))?;
                 f.write(path)?;
             }
             Format::Npz => {
@@ -193,9 +182,17 @@ impl RomExport {
                     f.add_string_list(name, list)?;
                 }
                 f.add_string_list("kind", &[self.kind.to_string()])?;
+                f.add_string_list("time", &[self.time_domain()])?;
+                f.add_string_list("units", &[self.units_line()])?;
+                f.add_string_list("discretization", std::slice::from_ref(&self.discretization))?;
                 f.add_scalar("reference_time", reference_time)?;
                 f.add_scalar("dcoef", self.dcoef)?;
+                f.add_scalar("sample_time", self.sample_time.unwrap_or(f64::NAN))?;
+                f.add_scalar("error_bound", self.error_bound.unwrap_or(f64::NAN))?;
                 f.write(path)?;
+            }
+            Format::MScript => {
+                super::atomic::write_atomic_bytes(path, super::rom_script::script(self).as_bytes())?;
             }
         }
         Ok(())

@@ -17,6 +17,10 @@ pub enum RomError {
     Imposed(String),
     #[error(transparent)]
     Eigen(#[from] EigenError),
+    #[error("discrete-time ROM: {0}")]
+    Discrete(String),
+    #[error("balanced reduction: {0}")]
+    Balanced(String),
     #[error("frequency grid: {0}")]
     Grid(String),
 }

@@ -2,12 +2,16 @@
 //! eigenvectors (descriptor form, eqs. 41–50, 64–67), SVD residualization to an ordinary
 //! state-space model (eqs. 51–63), frequency responses and static gains.
 
+mod balanced;
 mod damping;
 mod dense;
 mod descriptor;
+mod discrete;
 mod dominance;
 mod error;
 mod imposed;
+mod lyapunov;
+mod matched;
 mod null_space;
 mod ordinary;
 mod response;
@@ -16,8 +20,10 @@ mod springs;
 mod static_correction;
 mod units;
 
+pub use balanced::{BalancedMethod, BalancedOrder, BalancedReduction};
 pub use damping::{DampingChange, ModalDamping};
 pub use descriptor::DescriptorRom;
+pub use discrete::{expm, DiscreteRom, Discretization, Sampling};
 pub use dominance::{Dominance, NEGLIGIBLE_DOMINANCE};
 pub use error::RomError;
 pub use imposed::{transmissibility, ImposedModel};

@@ -247,10 +247,17 @@ impl Study {
 }
 
 impl Study {
-    /// The imposed-motion model in exportable form (inputs: the imposed displacements).
-    pub fn imposed_export(&self, m: &ImposedModel) -> crate::output::rom_file::RomExport {
+    /// The imposed-motion model in discrete time at the sampling of `rom`'s discrete form
+    /// (`None` when `rom` is continuous).
+    pub fn imposed_discrete(&self, m: &ImposedModel, rom: &ReducedModel) -> Result<Option<crate::rom::DiscreteRom>, StudyError> {
+        Ok(rom.discrete.as_ref().map(|d| m.rom.discretize(&d.sampling)).transpose()?)
+    }
+
+    /// The imposed-motion model in exportable form (inputs: the imposed displacements), its
+    /// discrete-time form `discrete` when given ([`Study::imposed_discrete`]).
+    pub fn imposed_export(&self, m: &ImposedModel, discrete: Option<&crate::rom::DiscreteRom>) -> crate::output::rom_file::RomExport {
         use crate::output::rom_file::unit_of_name;
-        let r = &m.rom;
+        let r = discrete.map_or(&m.rom, |d| &d.rom);
         let n = r.a.nrows();
         crate::output::rom_file::RomExport {
             kind: "ordinary",
@@ -263,7 +270,7 @@ impl Study {
             full_eigenvalues: Vec::new(),
             inputs: r.input_names.clone(),
             outputs: r.output_names.clone(),
-            states: (1..=n).map(|k| format!("imposed-motion state {k}")).collect(),
+            states: discrete.and_then(|d| d.state_names.clone()).unwrap_or_else(|| (1..=n).map(|k| format!("imposed-motion state {k}")).collect()),
             input_units: r.input_names.iter().map(|s| unit_of_name(s)).collect(),
             output_units: r.output_names.iter().map(|s| unit_of_name(s)).collect(),
             state_units: vec!["state of the ROM minus the imposed motion's part (see rom::imposed)".to_string(); n],
@@ -273,6 +280,10 @@ impl Study {
             dcoef: self.modal.dcoef,
             full_static_gain: None,
             rom_static_gain: None,
+            sample_time: discrete.map(|d| d.sample_time()),
+            discretization: discrete.map_or("continuous".into(), |d| d.sampling.method.name()),
+            hankel_singular_values: Vec::new(),
+            error_bound: None,
         }
     }
 }

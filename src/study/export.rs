@@ -36,11 +36,16 @@ impl ReducedModel {
         let d = &self.descriptor;
         let (kind, e, a, b, c, dd, states, state_modes): (_, _, _, _, _, _, Vec<String>, Vec<usize>) = match form {
             RomForm::Ordinary => {
-                let n = self.ordinary.a.nrows();
-                // The ordinary form's states are the kept modes' (SVD of E = I on them).
-                let modes: Vec<usize> = d.state_modes.iter().take(n).map(|m| m + 1).collect();
-                let names = d.state_names.iter().take(n).cloned().collect();
-                ("ordinary", Mat::identity(n, n), self.ordinary.a.clone(), self.ordinary.b.clone(), self.ordinary.c.clone(), self.ordinary.d.clone(), names, modes)
+                // A discrete ROM's matrices; states: the kept modes' (SVD of E = I on them),
+                // or the balanced, minimal or canonical states that replaced them.
+                let o = self.discrete.as_ref().map_or(&self.ordinary, |dr| &dr.rom);
+                let n = o.a.nrows();
+                let renamed = self.discrete.as_ref().and_then(|dr| dr.state_names.clone()).or_else(|| self.order.as_ref().and_then(|r| r.states.clone()));
+                let (names, modes) = match renamed {
+                    Some(names) => (names, vec![0; n]),
+                    None => (d.state_names.iter().take(n).cloned().collect(), d.state_modes.iter().take(n).map(|m| m + 1).collect()),
+                };
+                ("ordinary", Mat::identity(n, n), o.a.clone(), o.b.clone(), o.c.clone(), o.d.clone(), names, modes)
             }
             RomForm::Descriptor => {
                 let kept = d.state_modes.len() - d.static_states;
@@ -57,11 +62,14 @@ impl ReducedModel {
             b,
             c,
             d: dd,
-            eigenvalues: self.eigenvalues(),
+            eigenvalues: match &self.discrete {
+                Some(dr) => sorted(dr.rom.eigenvalues.clone()),
+                None => self.eigenvalues(),
+            },
             full_eigenvalues: self.selection.kept.iter().map(|&i| modal.modes[i].lambda).collect(),
             inputs: d.input_names.clone(),
             outputs: d.output_names.clone(),
-            state_units: states.iter().map(|_| "modal coordinate (scaled by u^T F_yd v = 1)".to_string()).collect(),
+            state_units: states.iter().map(|s| if s.starts_with("mode ") { "modal coordinate (scaled by u^T F_yd v = 1)" } else { "combination of modal coordinates" }.to_string()).collect(),
             states,
             input_units: d.input_names.iter().map(|n| unit_of_name(n)).collect(),
             output_units: d.output_names.iter().map(|n| unit_of_name(n)).collect(),
@@ -71,6 +79,10 @@ impl ReducedModel {
             dcoef: modal.dcoef,
             full_static_gain: self.static_gains.full.clone().ok(),
             rom_static_gain: self.static_gains.rom.clone().ok(),
+            sample_time: self.discrete.as_ref().map(|dr| dr.sample_time()),
+            discretization: self.discrete.as_ref().map_or("continuous".into(), |dr| dr.sampling.method.name()),
+            hankel_singular_values: self.order.as_ref().and_then(|o| o.balanced.as_ref()).map_or(Vec::new(), |b| b.hankel.clone()),
+            error_bound: self.order.as_ref().and_then(|o| o.balanced.as_ref()).map(|b| b.error_bound),
         }
     }
 }

@@ -25,6 +25,7 @@
 mod accuracy;
 mod application;
 mod checks;
+mod control;
 mod error;
 mod export;
 mod linear;
@@ -39,6 +40,7 @@ mod warning;
 pub use accuracy::RomCheck;
 pub use application::{parse_imposed, Application, Transmissibility};
 pub use checks::zero_channels;
+pub use control::{balancing, minimal_tolerance, sampling, Balancing, OrderReduction};
 pub use error::StudyError;
 pub use export::RomForm;
 pub use reduce::{BelowBand, KeptMode, ReducedModel, Residualization, RomRequest, StaticGains};

@@ -43,12 +43,18 @@ pub struct RomRequest {
     pub below_band: BelowBand,
     /// Modal damping of the ROM (the full model is never changed).
     pub damping: Option<ModalDamping>,
+    /// Remove uncontrollable and unobservable states with this tolerance ([`super::minimal_tolerance`]).
+    pub minimal: Option<f64>,
+    /// Balanced reduction of the stable part ([`super::balancing`]).
+    pub balanced: Option<super::Balancing>,
+    /// A discrete-time ROM at this sampling ([`super::sampling`]).
+    pub sampling: Option<crate::rom::Sampling>,
 }
 
 impl RomRequest {
     /// The projection on `selection` ranked by frequency, nothing residualized, no damping.
     pub fn new(selection: ModeSelection) -> Self {
-        RomRequest { selection, ranking: Ranking::Frequency, residualization: Residualization::None, below_band: BelowBand::Drop, damping: None }
+        RomRequest { selection, ranking: Ranking::Frequency, residualization: Residualization::None, below_band: BelowBand::Drop, damping: None, minimal: None, balanced: None, sampling: None }
     }
 
     /// The same request with `r` as residualization.
@@ -206,6 +212,11 @@ pub struct ReducedModel {
     /// at or below it.
     pub interest_top_hz: f64,
     pub warnings: Vec<Warning>,
+    /// The minimal realization and balanced reduction that made `ordinary` (`None`: its
+    /// states are the kept modes').
+    pub order: Option<super::OrderReduction>,
+    /// The discrete-time form of `ordinary` (`--sample-rate`).
+    pub discrete: Option<crate::rom::DiscreteRom>,
 }
 
 impl ReducedModel {
@@ -215,7 +226,9 @@ impl ReducedModel {
         if form != super::RomForm::Descriptor {
             return Ok(());
         }
-        let message = if self.descriptor.c_rate.is_some() {
+        let message = if self.order.is_some() || self.discrete.is_some() {
+            "descriptor: a balanced, minimal or discrete-time ROM is an ordinary state-space model (x' = A x + B u, or x[k+1] = A x[k] + B u[k]); use the ordinary form"
+        } else if self.descriptor.c_rate.is_some() {
             "descriptor: velocity outputs need z = C x + C_v x', which the descriptor export has no place for; use the ordinary form (its C and D carry them)"
         } else if self.static_correction {
             "descriptor: the sparse route's --residualize is a static correction of the ordinary ROM's D, which the descriptor form has no place for; use the ordinary form, or --solver dense"
@@ -356,6 +369,9 @@ impl Study {
             };
             ordinary = with_static_correction(&ordinary, &target)?;
         }
+        let (ordinary, order) = super::control::reduce_order(ordinary, request)?;
+        let (discrete, aliased) = super::control::discretize(&ordinary, request)?;
+        warnings.extend(aliased);
         let (zero, sums) = self.channel_sums();
         let rounding = StaticGains::rounding_of(self.modal_spread());
         // The LU's scale (dense route: the whole static solution) and the modal terms'.
@@ -403,11 +419,11 @@ impl Study {
         // summary reports (issue 30: a summary at 25.27 Hz next to an A with ±1.414e6j).
         // Removed springs and modal damping move them on purpose.
         let springs_removed = self.application.as_ref().is_some_and(|a| a.feedback.is_some());
-        if !springs_removed && request.damping.is_none() {
+        if !springs_removed && request.damping.is_none() && order.is_none() {
             let exported: Vec<faer::c64> = if ordinary.a.nrows() == 0 { Vec::new() } else { ordinary.a.as_ref().eigenvalues().unwrap_or_default() };
             warnings.extend(rom_eigenvalue_mismatch(modal, &sel.kept, &exported));
         }
-        Ok(ReducedModel { selection: sel, kept_modes, descriptor, ordinary, static_gains, damping, static_correction: corrected && full_ok, residualization: request.residualization.clone(), interest_top_hz: top, warnings })
+        Ok(ReducedModel { selection: sel, kept_modes, descriptor, ordinary, static_gains, damping, static_correction: corrected && full_ok, residualization: request.residualization.clone(), interest_top_hz: top, warnings, order, discrete })
     }
 
     /// The descriptor ROM of `sel` (kept and residualized modes): by sparse products on the

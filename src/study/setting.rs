@@ -23,11 +23,25 @@ pub enum Setting {
     BeamUpdate,
     /// A `set:` variable of the file given another value (`--set NAME=VALUE`, `set={…}`).
     Set,
+    /// A discrete-time ROM's sample rate [Hz] (`--sample-rate`, `sample_rate=`).
+    SampleRate,
+    /// Its discretization method (`--discretize zoh|tustin|matched`).
+    Discretize,
+    /// Tustin's prewarping frequency [Hz].
+    Prewarp,
+    /// Balanced reduction to a number of states (`--balanced`, `balanced=`).
+    Balanced,
+    /// Balanced reduction by a Hankel singular value tolerance.
+    HankelTol,
+    /// Singular perturbation approximation instead of truncation.
+    Spa,
+    /// Minimal realization's tolerance.
+    Minimal,
 }
 
 impl Setting {
     /// Every setting.
-    pub const ALL: [Setting; 15] = [
+    pub const ALL: [Setting; 22] = [
         Setting::ReferenceTime,
         Setting::LoadSteps,
         Setting::Inputs,
@@ -43,6 +57,13 @@ impl Setting {
         Setting::Points,
         Setting::BeamUpdate,
         Setting::Set,
+        Setting::SampleRate,
+        Setting::Discretize,
+        Setting::Prewarp,
+        Setting::Balanced,
+        Setting::HankelTol,
+        Setting::Spa,
+        Setting::Minimal,
     ];
 
     /// The command line's flag.
@@ -63,6 +84,13 @@ impl Setting {
             Setting::Points => "--points",
             Setting::BeamUpdate => "--beam-update",
             Setting::Set => "--set",
+            Setting::SampleRate => "--sample-rate",
+            Setting::Discretize => "--discretize",
+            Setting::Prewarp => "--prewarp",
+            Setting::Balanced => "--balanced",
+            Setting::HankelTol => "--hankel-tol",
+            Setting::Spa => "--spa",
+            Setting::Minimal => "--minimal",
         }
     }
 
@@ -84,6 +112,13 @@ impl Setting {
             Setting::Points => "points",
             Setting::BeamUpdate => "beam_update",
             Setting::Set => "set",
+            Setting::SampleRate => "sample_rate",
+            Setting::Discretize => "discretize",
+            Setting::Prewarp => "prewarp",
+            Setting::Balanced => "balanced",
+            Setting::HankelTol => "hankel_tol",
+            Setting::Spa => "spa",
+            Setting::Minimal => "minimal",
         }
     }
 }
@@ -172,7 +207,8 @@ fn flag_value(flag: &str, word: &str) -> bool {
         "route" => matches!(word, "direct" | "lambda"),
         "form" => matches!(word, "ordinary" | "descriptor" | "both"),
         "beam-update" => matches!(word, "incremental" | "total"),
-        "count" | "dcoef" | "tolerance" | "points" | "fmin" | "fmax" | "load-steps" | "at" | "band" | "resolution" | "averages" | "time-step" => {
+        "discretize" => matches!(word, "zoh" | "tustin" | "matched"),
+        "count" | "dcoef" | "tolerance" | "points" | "fmin" | "fmax" | "load-steps" | "at" | "band" | "resolution" | "averages" | "time-step" | "sample-rate" | "prewarp" | "balanced" | "hankel-tol" | "minimal" => {
             !word.is_empty() && word.split(':').all(|p| p.parse::<f64>().is_ok())
         }
         _ => false,

@@ -122,6 +122,12 @@ impl ReducedModel {
                 d.after.im
             );
         }
+        if let Some(order) = &self.order {
+            s += &order.describe();
+        }
+        if let Some(d) = &self.discrete {
+            s += &super::control::describe_discrete(d);
+        }
         s += &gain_table(&self.static_gains);
         if let (Some(share), Some((rel, channel))) = (self.static_gains.kept_share(), self.static_gains.largest_relative_difference()) {
             s += &format!("the ROM keeps {:.4} % of the full model's static gain (Frobenius norms); largest relative difference {rel:.1e} ({channel})\n", 100.0 * share);

@@ -57,6 +57,9 @@ pub enum Warning {
     /// An element's linearization scales with reaction multipliers' values as integrated
     /// (friction's normal force), whose noise the eigenvalues carry. `why` names the element.
     ReactionDependent { why: String },
+    /// A discrete-time ROM whose continuous eigenvalues have natural frequencies |λ|/2π
+    /// (one per pair, [Hz]) at or above the Nyquist frequency `rate/2`: they alias.
+    AboveNyquist { freqs_hz: Vec<f64>, rate_hz: f64 },
 }
 
 /// Which of a ROM's responses a [`Warning::ResponseDeparts`] is about.
@@ -126,6 +129,14 @@ impl fmt::Display for Warning {
                 "{} eigenvalue(s) are labelled zero by the eigenanalysis' uncertainty although their own error estimate is smaller than |λ|: {}; they may be slow real modes (stiffnesses or masses spanning many decades): check them with --dcoef near 1/|λ| or --route direct",
                 modes.len(),
                 modes.iter().map(|(k, l, e)| format!("mode {k} |λ| = {:.4e} rad/s ± {e:.1e}", l.norm())).collect::<Vec<_>>().join(", ")
+            ),
+            Warning::AboveNyquist { freqs_hz, rate_hz } => write!(
+                f,
+                "the ROM has {} mode(s) at or above the Nyquist frequency of --sample-rate {rate_hz} ({} Hz): {} Hz; the discrete-time ROM aliases them (their response appears folded below {} Hz): raise --sample-rate, or leave those modes out (--band, --count)",
+                freqs_hz.len(),
+                rate_hz / 2.0,
+                freqs_hz.iter().map(|f| format!("{f:.4}")).collect::<Vec<_>>().join(", "),
+                rate_hz / 2.0
             ),
             Warning::RomEigenvalues { modes, mode, reported, exported, relative } => write!(
                 f,

@@ -2,36 +2,12 @@
 //! linear between samples (the first-order hold the nonlinear run's load applies): with
 //! `M = [[A, B, 0], [0, 0, I], [0, 0, 0]]`, `e^{M T} = [[Φ, Γ₁, Γ₂], …]` and
 //! `x_{k+1} = Φ x_k + Γ₁ u_k + Γ₂ (u_{k+1} − u_k)/T` (Franklin, Powell and Workman, *Digital
-//! Control of Dynamic Systems*, §6.3.2). The exponential is Padé(6,6) with scaling and
-//! squaring (Moler and Van Loan, "Nineteen dubious ways", method 3).
+//! Control of Dynamic Systems*, §6.3.2). The exponential is [`crate::rom::expm`] (Padé(6,6)
+//! with scaling and squaring), shared with the discrete-time ROMs.
 
-use faer::linalg::solvers::Solve;
 use faer::Mat;
 
-use crate::rom::OrdinaryRom;
-
-/// `e^{X}` by the diagonal Padé approximant of degree 6 after scaling `X` to norm ≤ 1/2.
-pub fn expm(x: &Mat<f64>) -> Mat<f64> {
-    let n = x.nrows();
-    let norm = (0..n).map(|i| (0..n).map(|j| x[(i, j)].abs()).sum::<f64>()).fold(0.0, f64::max);
-    let squarings = if norm > 0.5 { (norm / 0.5).log2().ceil() as i32 } else { 0 };
-    let a = x * faer::Scale(0.5f64.powi(squarings));
-    // c_k = c_{k−1} (q − k + 1) / (k (2q − k + 1)), q = 6.
-    let q = 6;
-    let (mut c, mut power) = (1.0, Mat::<f64>::identity(n, n));
-    let (mut num, mut den) = (Mat::<f64>::identity(n, n), Mat::<f64>::identity(n, n));
-    for k in 1..=q {
-        c *= (q - k + 1) as f64 / (k * (2 * q - k + 1)) as f64;
-        power = &power * &a;
-        num += &power * faer::Scale(c);
-        den += &power * faer::Scale(if k % 2 == 0 { c } else { -c });
-    }
-    let mut e = den.partial_piv_lu().solve(&num);
-    for _ in 0..squarings {
-        e = &e * &e;
-    }
-    e
-}
+use crate::rom::{expm, OrdinaryRom};
 
 /// The ROM's outputs `z_k` (rows: samples, one column per output) for the inputs `u`
 /// (one column per input) at step `dt` [s], from `x = 0`.
@@ -73,21 +49,6 @@ pub fn simulate(rom: &OrdinaryRom, u: &Mat<f64>, dt: f64) -> Mat<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// e^{[[0, w], [−w, 0]] t} is the rotation by w t.
-    #[test]
-    fn exponential_of_a_rotation_generator() {
-        let (w, t) = (300.0, 0.1);
-        let x = Mat::from_fn(2, 2, |i, j| [[0.0, w * t], [-w * t, 0.0]][i][j]);
-        let e = expm(&x);
-        let (c, s) = ((w * t).cos(), (w * t).sin());
-        let exact = [[c, s], [-s, c]];
-        for i in 0..2 {
-            for j in 0..2 {
-                assert!((e[(i, j)] - exact[i][j]).abs() < 1e-12, "{:?}", e);
-            }
-        }
-    }
 
     /// ẋ = −a x + u with u(t) = t (linear between samples: the hold is exact) has
     /// x(t) = t/a − (1 − e^{−a t})/a².

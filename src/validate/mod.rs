@@ -35,7 +35,8 @@ use crate::model::InitialValueProblem;
 use crate::study::{Ports, ReducedModel, Study, StudyError};
 
 pub use compare::{nrmse, AmplitudeRun, Channel, TimeRecord, Validation};
-pub use discrete::{expm, simulate as simulate_rom};
+pub use crate::rom::expm;
+pub use discrete::simulate as simulate_rom;
 pub use measured::{read_measured, MeasuredChannel, MeasuredResponse};
 pub use options::{Plan, ValidateOptions};
 pub use signal::SignalKind;

@@ -8,6 +8,7 @@ mod common;
 mod application;
 mod mode_tracking;
 mod bode_plot;
+mod control;
 mod reference_solution;
 mod reference_warnings;
 mod sweep;
