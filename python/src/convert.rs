@@ -134,6 +134,11 @@ pub fn point_from_dict(d: &Bound<'_, PyDict>) -> PyResult<Result<PointResult, Po
         dcoef: item(d, "dcoef")?,
         full_static_gain: matrix(d, "full_static_gain")?,
         rom_static_gain: matrix(d, "rom_static_gain")?,
+        // A sweep's points are continuous ROMs (the sweep has no sampling options).
+        sample_time: None,
+        discretization: "continuous".into(),
+        hankel_singular_values: Vec::new(),
+        error_bound: None,
     };
     let lambdas = complex_item(d, "modes")?;
     let labels: Vec<String> = item(d, "mode_labels")?;
