@@ -165,6 +165,12 @@ pub trait ElementState {
     fn structural_node(&self, _label: Label) -> Option<&NodeKinematics> {
         None
     }
+    /// Own unknown `k` of the element `type_name` `label` and its rate, at the state being
+    /// assembled (a drive reading a modal joint's `q[N]`); `None` where the state has no
+    /// such unknown (the initial assembly, a unit test of one element).
+    fn element_unknown(&self, _type_name: &str, _label: Label, _k: usize) -> Option<(f64, f64)> {
+        None
+    }
     /// The element's data of its last event ([`Events::latch`]), `None` before any (the
     /// element's data as read).
     fn latched(&self) -> Option<&(dyn std::any::Any + Send + Sync)> {

@@ -7,6 +7,7 @@ mod common;
 
 mod application;
 mod bode_plot;
+mod modal_ports;
 mod reference_solution;
 mod sweep;
 mod validate;

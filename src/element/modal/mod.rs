@@ -202,6 +202,26 @@ impl Element for ModalBody {
 }
 
 impl Outputs for ModalBody {
+    /// MBDyn's `q[N]`, `qP[N]` (mode number N in the FEM file) and `q[#I]`, `qP[#I]` (the
+    /// I-th mode the joint uses), modal.cc's `iGetPrivDataIdx`; `qPP` and the FEM nodes'
+    /// `x[…]`, `w[…]` are not computed (`None`: the reader names them).
+    fn private_data(&self, name: &str) -> Option<crate::element::contract::PrivateDatum> {
+        let (rate, inside) = if let Some(r) = name.strip_prefix("qP[") { (true, r) } else { (false, name.strip_prefix("q[")?) };
+        let inside = inside.strip_suffix(']')?.trim();
+        let k = match inside.strip_prefix('#') {
+            Some(i) => i.trim().parse::<usize>().ok().filter(|i| (1..=self.modes()).contains(i))? - 1,
+            None => self.mode_numbers.iter().position(|m| Some(*m) == inside.parse::<usize>().ok())?,
+        };
+        let (index, initial, label) = (self.q_index(k), self.initial[k], self.label);
+        // Read through the state by the joint's label (the datum is evaluated in the reading
+        // element's state); the initial assembly, where the modes are not unknowns, reads
+        // their initial values, as the joint holds them there.
+        Some(crate::element::contract::PrivateDatum::new(move |st| {
+            let (q, qdot) = st.element_unknown("modal", label, index).unwrap_or(initial);
+            Some(if rate { qdot } else { q })
+        }))
+    }
+
     fn modal_coordinates(&self) -> Vec<(usize, usize)> {
         if self.assembling {
             return Vec::new();
