@@ -4,6 +4,7 @@
 //! released. SI units throughout: eigenvalues in rad/s, frequencies in Hz, forces in N,
 //! moments in N m, displacements in m, rotations in rad, times and dCoef in s.
 
+mod cms;
 mod convert;
 mod options;
 mod validate;
@@ -192,13 +193,15 @@ impl Model {
     /// "angular_velocity" [rad/s] (steps, nodes, 3)}; step 0 is the initial state.
     fn run<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let (h, kept) = py
-            .detach(|| -> Result<(NodeHistories, Vec<String>), StudyError> {
+            .detach(|| -> Result<(NodeHistories, (Vec<String>, Vec<String>)), StudyError> {
                 let (m, kept) = self.read(true)?;
                 let mut h = NodeHistories::default();
                 run(&m.model, &m.problem, &mut h).map_err(|cause| StudyError::Reference { file: Some(self.name.clone()), cause })?;
-                Ok((h, kept))
+                Ok((h, (kept, m.model.input_warnings())))
             })
             .map_err(py_err)?;
+        let (kept, input) = kept;
+        warnings::warn_input(py, &input)?;
         warnings::warn_beam_notes(py, &kept)?;
         let (nt, nn) = (h.time.len(), h.labels.len());
         let d = PyDict::new(py);
@@ -523,5 +526,6 @@ fn _romdyn(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run_point, m)?)?;
     m.add_function(wrap_pyfunction!(run_points, m)?)?;
     m.add_function(wrap_pyfunction!(validate::validate, m)?)?;
+    m.add_function(wrap_pyfunction!(cms::cms, m)?)?;
     Ok(())
 }

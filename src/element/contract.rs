@@ -329,6 +329,11 @@ pub trait Element: Send + Sync {
     fn label(&self) -> Label;
     /// The element type in MBDyn's words, e.g. "revolute hinge".
     fn type_name(&self) -> &'static str;
+    /// What the reader noticed in the element's own input files and let pass (a modal
+    /// joint's FEM file: zeros skipped, unequal lumped masses), each with its place.
+    fn input_warnings(&self) -> Vec<String> {
+        Vec::new()
+    }
     /// Labels of the structural nodes it connects, in slot order (none for an element on
     /// scalar nodes only).
     fn nodes(&self) -> Vec<Label> {

@@ -216,6 +216,7 @@ impl Study {
         lin.validate(problem)?;
         let state = checked_reference_state(&model, problem, reference, start)?;
         let beams = incremental_beams_warning(&model, reference);
+        let input = model.input_warnings();
         let mut study = match ports {
             Ports::Nodes { inputs, outputs } => {
                 let inputs: Vec<_> = inputs.iter().map(NodeInput::port).collect();
@@ -225,6 +226,7 @@ impl Study {
             Ports::Application(app) => Self::application_state(model, problem, state.clone(), app, eigen, progress)?,
         };
         study.warnings.splice(0..0, beams);
+        study.warnings.splice(0..0, input.into_iter().map(|message| super::Warning::InputFile { message }));
         Ok((study, state))
     }
 

@@ -80,6 +80,8 @@ pub struct ModalBody {
     pub mode_numbers: Vec<usize>,
     /// Initial modal coordinates and their rates (`initial value`, FEM records 3 and 4).
     pub initial: Vec<(f64, f64)>,
+    /// The FEM file reader's warnings ([`crate::input::fem::FemFile::warnings`]).
+    pub input_warnings: Vec<String>,
     /// The element the initial assembly uses ([`ModalBody::for_initial_assembly`]).
     assembly: Option<Box<ModalBody>>,
     /// Whether this is that element: the interface constraints alone, `q` held at its
@@ -92,7 +94,7 @@ impl ModalBody {
     #[allow(clippy::too_many_arguments)]
     pub fn new(label: Label, frame: ModalFrame, mass: DMatrix<f64>, stiffness: DMatrix<f64>, damping: DMatrix<f64>, invariants: Invariants, interfaces: Vec<Interface>, mode_numbers: Vec<usize>, initial: Vec<(f64, f64)>) -> Self {
         let initial = if initial.is_empty() { vec![(0.0, 0.0); mass.nrows()] } else { initial };
-        let mut body = ModalBody { label, frame, mass, stiffness, damping, invariants, interfaces, mode_numbers, initial, assembly: None, assembling: false };
+        let mut body = ModalBody { label, frame, mass, stiffness, damping, invariants, interfaces, mode_numbers, initial, input_warnings: Vec::new(), assembly: None, assembling: false };
         let twin = ModalBody { assembling: true, ..body.clone() };
         body.assembly = Some(Box::new(twin));
         body
@@ -144,6 +146,9 @@ impl Element for ModalBody {
     }
     fn type_name(&self) -> &'static str {
         "modal"
+    }
+    fn input_warnings(&self) -> Vec<String> {
+        self.input_warnings.clone()
     }
     fn nodes(&self) -> Vec<Label> {
         let mut v = match self.frame {
