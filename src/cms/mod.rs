@@ -18,26 +18,36 @@
 //! (joints, multipliers) are refused: the substructure is free, and its supports belong to
 //! the model that attaches it.
 //!
-//! **Craig–Bampton.** With `b` the interface nodes' coordinates and `i` the others,
+//! **Craig–Bampton, two-sided.** With `b` the interface nodes' coordinates and `i` the
+//! others, the right basis `T` and the left basis `T_L`:
 //!
 //! ```text
-//! u = T (q_n, q_b),   T = [ Φ_n  Ψ ]      Ψ = [ I ; −K_ii⁻¹ K_ib ]  (constraint modes)
-//!                          [ 0         ]
-//! K_ii φ = ω² M_ii φ  (fixed-interface normal modes, the N lowest, φᵀ M_ii φ = 1)
-//! M_cb = Tᵀ M T,   K_cb = Tᵀ K T
+//! T   = [ Φ_n   Ψ ],   Ψ   = [ −K_ii⁻¹ K_ib ; I ]     K_ii Φ_n = M_ii Φ_n Ω²
+//! T_L = [ Φ_L   Ψ_L ], Ψ_L = [ −K_ii⁻ᵀ K_biᵀ ; I ]   K_iiᵀ Φ_L = M_ii Φ_L Ω²
+//! M_cb = T_Lᵀ M T,   K_cb = T_Lᵀ K T,   Φ_Lᵀ M_ii Φ_n = I,  Φ_nᵀ M_ii Φ_n = diag(1)
 //! ```
 //!
-//! The normal modes come from the symmetric problem `L⁻¹ M_ii L⁻ᵀ v = (1/ω²) v` with
-//! `K_ii = L Lᵀ` (Cholesky), so massless coordinates (a node without a body, a body
-//! without rotary inertia) give `1/ω² = 0` and are never among the lowest modes. The
-//! constraint modes span the substructure's rigid-body motions, so the FEM file is for a
-//! `clamped` modal joint (the floating frame fixed at the FEM frame, the global one): the
-//! linear model of the substructure for small motions about its reference.
+//! (interior rows first in the blocks as written, interface rows `0` in the normal modes).
+//! MBDyn's finite-volume beams have a stiffness that is not symmetric (a beam3's rotation–
+//! translation entries differ from their transposes by 18 %), and a one-sided (Galerkin)
+//! reduction of it does not converge to the whole model's modes (−12 % at 8 modes on
+//! `examples/optical_table_top.mbd`); the two-sided one does. It fits the FEM file: the
+//! interface rows of `T` and `T_L` are the same (`I`, `0`), so the interface reactions act
+//! on the modes through `T`'s rows as the modal joint applies them, while `T`'s rows are
+//! the mode shapes written (record 8). The N lowest normal modes are the eigenvectors of
+//! `K_ii⁻¹ M_ii` with the largest `1/ω²` (massless coordinates give 0: never among them); a
+//! Cholesky factorization of the symmetric part of `K_ii` first checks that the interface
+//! holds the substructure. The constraint modes span the substructure's rigid-body motions,
+//! so the FEM file is for a `clamped` modal joint (the floating frame fixed at the FEM
+//! frame, the global one): the linear model of the substructure for small motions about its
+//! reference.
 //!
 //! The FEM file lists every structural node of the substructure (label = the node's label),
 //! at its reference position, with the mode shapes `T` at its six coordinates; record 11
 //! holds the diagonal of each node's mass block, record 12 the rigid-body inertia of `M`
-//! (exact, `Rᵀ M R` with `R` the six rigid motions).
+//! (exact, `Rᵀ M R` with `R` the six rigid motions). The inertia invariants MBDyn builds
+//! from record 11 use `T` (right) alone: gravity on the modes of a clamped joint is
+//! `T_Lᵀ M g` only where the two bases agree (a symmetric stiffness).
 
 mod reduce;
 

@@ -135,30 +135,38 @@ pub fn craig_bampton(model: &Model, problem: &InitialValueProblem, request: &Cms
     let sub = |m: &DMatrix<f64>, rows: &[usize], cols: &[usize]| DMatrix::from_fn(rows.len(), cols.len(), |r, c| m[(rows[r], cols[c])]);
     let (k_ii, k_ib, m_ii) = (sub(&s.stiffness, &interior, &interior), sub(&s.stiffness, &interior, &boundary), sub(&s.mass, &interior, &interior));
     let k_sym = (&k_ii + k_ii.transpose()) * 0.5;
-    let (psi, normal, omega) = if interior.is_empty() {
-        (DMatrix::zeros(0, boundary.len()), DMatrix::zeros(0, 0), Vec::new())
+    let (psi, psi_left, normal, omega) = if interior.is_empty() {
+        (DMatrix::zeros(0, boundary.len()), DMatrix::zeros(0, boundary.len()), (DMatrix::zeros(0, 0), DMatrix::zeros(0, 0)), Vec::new())
     } else {
         let chol = Cholesky::new(k_sym).ok_or_else(|| unfit(format!("the substructure is not restrained by its interface nodes {:?}: with them held, its stiffness is not positive definite (a mechanism, a part connected to no interface node, or a missing beam)", request.interfaces)))?;
-        let psi = -k_ii.clone().lu().solve(&k_ib).ok_or_else(|| unfit("the substructure's stiffness with its interface held is singular".into()))?;
-        let (normal, omega) = fixed_interface_modes(&chol, &m_ii, request.modes)?;
-        (psi, normal, omega)
+        let singular = || unfit("the substructure's stiffness with its interface held is singular".into());
+        let psi = -k_ii.clone().lu().solve(&k_ib).ok_or_else(singular)?;
+        let k_bi = sub(&s.stiffness, &boundary, &interior);
+        let psi_left = -k_ii.transpose().lu().solve(&k_bi.transpose()).ok_or_else(singular)?;
+        fixed_interface_modes(&chol, &m_ii, request.modes)?;
+        let (normal, normal_left, omega) = two_sided_modes(&k_ii, &m_ii, request.modes)?;
+        (psi, psi_left, (normal, normal_left), omega)
     };
     // T: rows = coordinates, columns = normal modes then constraint modes.
     let modes = request.modes + boundary.len();
-    let mut t = DMatrix::zeros(n, modes);
-    for (r, &k) in interior.iter().enumerate() {
-        for j in 0..request.modes {
-            t[(k, j)] = normal[(r, j)];
+    let basis = |psi: &DMatrix<f64>, normal: &DMatrix<f64>| {
+        let mut t = DMatrix::zeros(n, modes);
+        for (r, &k) in interior.iter().enumerate() {
+            for j in 0..request.modes {
+                t[(k, j)] = normal[(r, j)];
+            }
+            for j in 0..boundary.len() {
+                t[(k, request.modes + j)] = psi[(r, j)];
+            }
         }
-        for j in 0..boundary.len() {
-            t[(k, request.modes + j)] = psi[(r, j)];
+        for (j, &k) in boundary.iter().enumerate() {
+            t[(k, request.modes + j)] = 1.0;
         }
-    }
-    for (j, &k) in boundary.iter().enumerate() {
-        t[(k, request.modes + j)] = 1.0;
-    }
-    let m_cb = t.transpose() * &s.mass * &t;
-    let k_cb = t.transpose() * &s.stiffness * &t;
+        t
+    };
+    let (t, t_left) = (basis(&psi, &normal.0), basis(&psi_left, &normal.1));
+    let m_cb = t_left.transpose() * &s.mass * &t;
+    let k_cb = t_left.transpose() * &s.stiffness * &t;
     let to_faer = |m: &DMatrix<f64>| Mat::from_fn(modes, modes, |r, c| m[(r, c)]);
     let mut warnings = Vec::new();
     if s.damping > 1e-12 {
@@ -212,6 +220,51 @@ fn fixed_interface_modes(chol: &Cholesky<f64, nalgebra::Dyn>, m_ii: &DMatrix<f64
         omega.push(1.0 / mu.sqrt());
     }
     Ok((modes, omega))
+}
+
+/// Right and left fixed-interface modes of the whole (not symmetric) `K_ii`: the
+/// eigenvectors of `K_ii⁻¹ M_ii` with the `count` largest `1/ω²` and those of `K_ii⁻ᵀ M_ii`
+/// with the same eigenvalues, scaled so that `φ_Lᵀ M_ii φ_R = 1` (`φ_Rᵀ M_ii φ_R = 1`), and
+/// their angular frequencies [rad/s].
+fn two_sided_modes(k_ii: &DMatrix<f64>, m_ii: &DMatrix<f64>, count: usize) -> Result<(DMatrix<f64>, DMatrix<f64>, Vec<f64>), CmsError> {
+    let n = k_ii.nrows();
+    let singular = || unfit("the substructure's stiffness with its interface held is singular".into());
+    let right = k_ii.clone().lu().solve(m_ii).ok_or_else(singular)?;
+    let left = k_ii.transpose().lu().solve(m_ii).ok_or_else(singular)?;
+    let vectors = |a: &DMatrix<f64>| -> Result<(Vec<faer::c64>, Mat<faer::c64>), CmsError> {
+        let e = Mat::from_fn(n, n, |r, c| a[(r, c)]).eigen().map_err(|e| unfit(format!("fixed-interface modes: eigendecomposition failed ({e:?})")))?;
+        Ok((e.S().column_vector().iter().copied().collect(), e.U().to_owned()))
+    };
+    let ((mu_r, u_r), (mu_l, u_l)) = (vectors(&right)?, vectors(&left)?);
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by(|&a, &b| mu_r[b].re.total_cmp(&mu_r[a].re));
+    let mut order_l: Vec<usize> = (0..n).collect();
+    order_l.sort_by(|&a, &b| mu_l[b].re.total_cmp(&mu_l[a].re));
+    let real = |u: &Mat<faer::c64>, idx: &[usize]| DMatrix::from_fn(n, idx.len(), |i, j| u[(i, idx[j])].re);
+    // Right vectors of the `count` largest 1/ω², left vectors of the same eigenvalues.
+    let (phi_r, phi_l) = (real(&u_r, &order[..count]), real(&u_l, &order_l[..count]));
+    let mut omega = Vec::with_capacity(count);
+    for (j, &a) in order.iter().take(count).enumerate() {
+        let mu = mu_r[a];
+        if !(mu.re > 0.0) || mu.im.abs() > 1e-6 * mu.re {
+            return Err(unfit(format!("fixed-interface mode {}: 1/omega^2 = {mu} is not real and positive (the substructure's stiffness is not symmetric enough for real modes)", j + 1)));
+        }
+        omega.push(1.0 / mu.re.sqrt());
+    }
+    // Scale the right vectors to unit modal mass, the largest entry positive.
+    let mut phi_r = phi_r;
+    for j in 0..count {
+        let r = phi_r.column(j).into_owned();
+        let big = r.iter().copied().fold(0.0f64, |b, v| if v.abs() > b.abs() { v } else { b });
+        let norm = (m_ii * &r).dot(&r).sqrt() * big.signum();
+        phi_r.set_column(j, &(r / norm));
+    }
+    // The left vectors span the dual of the right ones: S = φ_Lᵀ M φ_R is invertible (a
+    // permutation of a diagonal but where eigenvalues repeat), and φ_L S⁻ᵀ pairs them.
+    let pairing = phi_l.transpose() * m_ii * &phi_r;
+    let inverse = pairing.clone().try_inverse().filter(|i| i.iter().all(|v| v.is_finite()) && i.amax() * pairing.amax() < 1e15).ok_or_else(|| unfit(format!("--modes {count}: the left and right fixed-interface modes do not pair (the {count}th and the next share a frequency, or a mode of the non-symmetric stiffness is defective); take one mode more or less")))?;
+    let phi_l = phi_l * inverse.transpose();
+    Ok((phi_r, phi_l, omega))
 }
 
 /// Record 11: each node's translational masses and rotational inertias (its mass block's
