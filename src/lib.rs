@@ -12,6 +12,7 @@
 //! analysis" (the paper behind `shared/METHOD.md`). Units are SI throughout.
 
 pub mod analysis;
+pub mod cms;
 pub mod dae;
 pub mod eigen;
 pub mod element;

@@ -13,7 +13,8 @@ times and dCoef in s.
 >>> sys = rom.to_control()          # python-control StateSpace with input/output names
 
 Warnings: every warning the CLI prints is raised with ``warnings.warn`` under
-``RomdynWarning`` (a ``UserWarning``): ``ReferenceWarning`` (not an equilibrium, beams'
+``RomdynWarning`` (a ``UserWarning``): ``InputWarning`` (what a reader let pass in an
+input file: a FEM file's skipped zeros, unequal lumped masses), ``ReferenceWarning`` (not an equilibrium, beams'
 update), ``PortWarning`` (an input that moves nothing, an output that sees nothing),
 ``EigenanalysisWarning`` (sparse route not certified), ``ModeSelectionWarning`` (modes below
 the band, modes that add nothing, damping not applied) and ``AccuracyWarning`` with
@@ -27,6 +28,7 @@ input file reads ``FILE:LINE:COLUMN: error: ...`` with the line and a caret.
 
 from ._romdyn import (
     AccuracyWarning,
+    InputWarning,
     EigenanalysisWarning,
     Model,
     ModelError,
@@ -42,11 +44,12 @@ from ._romdyn import (
     TransmissibilityWarning,
     validate,
 )
+from ._romdyn import cms as _cms
 from ._sweep import SweepResult, sweep
 
 __all__ = [
-    "Model", "Study", "Rom", "RomdynError", "ModelError", "load", "sweep", "SweepResult", "validate",
-    "RomdynWarning", "ReferenceWarning", "PortWarning", "EigenanalysisWarning", "ModeSelectionWarning",
+    "Model", "Study", "Rom", "RomdynError", "ModelError", "load", "sweep", "SweepResult", "validate", "cms",
+    "RomdynWarning", "InputWarning", "ReferenceWarning", "PortWarning", "EigenanalysisWarning", "ModeSelectionWarning",
     "AccuracyWarning", "StaticGainWarning", "ResponseWarning", "TransmissibilityWarning",
 ]
 
@@ -58,3 +61,19 @@ def load(path, set=None, beam_update=None):
     or "incremental" (the CLI's ``--beam-update``). Same as
     ``Model(path, set=set, beam_update=beam_update)``."""
     return Model(path, set=set, beam_update=beam_update)
+
+
+def cms(model, interface, modes, output, reference=None, load_steps=10, set=None):
+    """Reduces a substructure to MBDyn's modal-joint FEM file ``OUTPUT.fem`` with Craig–Bampton
+    modes, as ``romdyn cms MODEL --interface … --modes N -o OUTPUT``: ``model`` a ``Model`` or
+    the path of an MBDyn file (nodes, bodies, beams, deformable springs; no joints), ``interface``
+    structural node labels (six constraint modes each: unit displacement [m], rotation [rad]),
+    ``modes`` fixed-interface normal modes (the lowest, unit modal mass). ``reference``,
+    ``load_steps`` as for ``Model.study()``; ``set`` as for ``load`` when ``model`` is a path.
+    Returns {"path", "nodes", "fixed_interface_omega" [rad/s], "mass", "stiffness", "card",
+    "summary"}."""
+    if not isinstance(model, Model):
+        model = Model(model, set=set)
+    if isinstance(interface, int):
+        interface = [interface]
+    return _cms(model, list(interface), modes, output, reference=reference, load_steps=load_steps)

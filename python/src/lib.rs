@@ -4,6 +4,7 @@
 //! released. SI units throughout: eigenvalues in rad/s, frequencies in Hz, forces in N,
 //! moments in N m, displacements in m, rotations in rad, times and dCoef in s.
 
+mod cms;
 mod convert;
 mod options;
 mod sweep;
@@ -205,13 +206,15 @@ impl Model {
     /// (ReferenceWarning, EigenanalysisWarning).
     fn run<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let (h, kept, run_warnings) = py
-            .detach(|| -> Result<(NodeHistories, Vec<String>, Vec<romdyn::analysis::RunWarning>), StudyError> {
+            .detach(|| -> Result<(NodeHistories, (Vec<String>, Vec<String>), Vec<romdyn::analysis::RunWarning>), StudyError> {
                 let (m, kept) = self.read(true)?;
                 let mut h = NodeHistories::default();
                 let report = run(&m.model, &m.problem, &mut h).map_err(|cause| StudyError::Reference { file: Some(self.name.clone()), cause })?;
-                Ok((h, kept, report.warnings()))
+                Ok((h, (kept, m.model.input_warnings()), report.warnings()))
             })
             .map_err(py_err)?;
+        let (kept, input) = kept;
+        warnings::warn_input(py, &input)?;
         warnings::warn_beam_notes(py, &kept)?;
         warnings::warn_run(py, &run_warnings)?;
         let (nt, nn) = (h.time.len(), h.labels.len());
@@ -630,5 +633,6 @@ fn _romdyn(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(sweep::sweep_arrays, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::interpolate_sweep, m)?)?;
     m.add_function(wrap_pyfunction!(validate::validate, m)?)?;
+    m.add_function(wrap_pyfunction!(cms::cms, m)?)?;
     Ok(())
 }

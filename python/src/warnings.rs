@@ -9,6 +9,7 @@ use romdyn::analysis::RunWarning;
 use romdyn::study::{Response, Warning};
 
 pyo3::create_exception!(_romdyn, RomdynWarning, pyo3::exceptions::PyUserWarning, "Base of romdyn's warnings: what a user must know about a study or a ROM that is not an error.");
+pyo3::create_exception!(_romdyn, InputWarning, RomdynWarning, "What a reader noticed in an input file and let pass (a modal joint's FEM file: zeros skipped after a record, unequal lumped masses).");
 pyo3::create_exception!(_romdyn, ReferenceWarning, RomdynWarning, "The reference solution or a run's initial state: not an equilibrium (the linear model is the frozen-time Jacobian), beams' update, initial velocities that violate the joints, the derivatives phase.");
 pyo3::create_exception!(_romdyn, PortWarning, RomdynWarning, "An input that moves nothing or an output that sees nothing (zero to rounding).");
 pyo3::create_exception!(_romdyn, EigenanalysisWarning, RomdynWarning, "The eigenanalysis: the sparse route not certified (a mode may be missing), eigenvalues not resolved in double precision, zeros the error estimate doubts, a run's eigenanalysis one-sided or dependent on reactions.");
@@ -21,6 +22,7 @@ pyo3::create_exception!(_romdyn, TransmissibilityWarning, AccuracyWarning, "The 
 /// The Python category of a warning.
 fn category<'py>(py: Python<'py>, w: &Warning) -> Bound<'py, PyType> {
     match w {
+        Warning::InputFile { .. } => py.get_type::<InputWarning>(),
         Warning::NotInEquilibrium { .. } | Warning::IncrementalBeamsStatic { .. } | Warning::OneSided { .. } | Warning::ReactionDependent { .. } => py.get_type::<ReferenceWarning>(),
         Warning::Run { warning } => run_category(py, warning),
         Warning::InputMovesNothing { .. } | Warning::OutputSeesNothing { .. } => py.get_type::<PortWarning>(),
@@ -74,10 +76,20 @@ pub fn warn_beam_notes(py: Python<'_>, messages: &[String]) -> PyResult<()> {
     Ok(())
 }
 
+/// Each warning of a model's input files ([`romdyn::model::Model::input_warnings`]), as an
+/// [`InputWarning`].
+pub fn warn_input(py: Python<'_>, messages: &[String]) -> PyResult<()> {
+    for message in messages {
+        warn_text(py, &py.get_type::<InputWarning>(), message)?;
+    }
+    Ok(())
+}
+
 /// Adds the categories to the module.
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add("RomdynWarning", py.get_type::<RomdynWarning>())?;
+    m.add("InputWarning", py.get_type::<InputWarning>())?;
     m.add("ReferenceWarning", py.get_type::<ReferenceWarning>())?;
     m.add("PortWarning", py.get_type::<PortWarning>())?;
     m.add("EigenanalysisWarning", py.get_type::<EigenanalysisWarning>())?;

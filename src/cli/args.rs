@@ -75,6 +75,9 @@ pub fn read_model_with_beams(path: &std::path::Path, set: &[romdyn::sweep::Param
     let overrides = romdyn::sweep::single_values(set).map_err(|e| anyhow::anyhow!("--set {e}"))?;
     let mut m = romdyn::input::mbdyn::read_model_with(path, &overrides)?;
     update.apply(&mut m.model, integrates).map_err(|e| anyhow::anyhow!("{}: --beam-update: {e}", path.display()))?;
+    for w in m.model.input_warnings() {
+        eprintln!("warning: {w}");
+    }
     Ok(m)
 }
 

@@ -3,6 +3,7 @@
 mod allocator;
 mod args;
 mod check;
+mod cms;
 mod eig;
 mod rom;
 mod run;
@@ -72,6 +73,15 @@ enum Command {
     /// --amplitudes the linearity limit. Units: SI (inputs N or N m, outputs m, rad, m/s, rad/s;
     /// frequencies Hz, times s).
     Validate(validate::ValidateArgs),
+    /// Reduce a substructure (MBDyn file: nodes, bodies, beams, springs) to MBDyn's modal-joint FEM file with Craig–Bampton modes: PREFIX.fem
+    ///
+    /// Linearizes the substructure at rest at its reference (initial by default, --static, --at),
+    /// takes the mass and stiffness of its nodes' displacements [m] and rotations [rad], and keeps
+    /// --modes fixed-interface normal modes (interface nodes held, unit modal mass) and six static
+    /// constraint modes per --interface node. The FEM file lists every structural node at its
+    /// reference position, in the global frame; attach it with a clamped modal joint (the card is
+    /// printed). Frequencies in rad/s and Hz.
+    Cms(cms::CmsArgs),
 }
 
 /// `romdyn help --help` (or `-h`) as `romdyn help help`, and `romdyn help eig --help` as
@@ -104,6 +114,7 @@ pub fn run() -> ExitCode {
         Command::Freq(a) => rom::run_freq(a),
         Command::Sweep(a) => sweep::run(a),
         Command::Validate(a) => validate::run(a),
+        Command::Cms(a) => cms::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

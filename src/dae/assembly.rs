@@ -50,6 +50,8 @@ struct Context<'a> {
     yp: &'a [f64],
     /// The unknown of the first scalar node.
     scalar_first: usize,
+    /// The first own unknown of every element ([`DofMap::element_first`]).
+    element_first: &'a [usize],
     multipliers: &'a [f64],
     /// Time derivatives of the element's own unknowns.
     rates: &'a [f64],
@@ -93,6 +95,14 @@ impl ElementState for Context<'_> {
     }
     fn structural_node(&self, label: crate::element::Label) -> Option<&NodeKinematics> {
         self.model.node_index(label).map(|i| &self.read_frames[i].kin)
+    }
+    fn element_unknown(&self, type_name: &str, label: crate::element::Label, k: usize) -> Option<(f64, f64)> {
+        let e = self.model.elements.iter().position(|e| e.type_name() == type_name && e.label() == label)?;
+        // The elements' unknowns follow each other to the end of `y`: the element's own end
+        // is the next one's start (an initial assembly's twin has fewer unknowns).
+        let end = self.element_first.get(e + 1).copied().unwrap_or(self.y.len());
+        let i = self.element_first.get(e)? + k;
+        (i < end).then(|| (self.y[i], self.yp[i]))
     }
     fn latched(&self) -> Option<&(dyn std::any::Any + Send + Sync)> {
         self.latched
@@ -257,6 +267,7 @@ impl<'m> Assembler<'m> {
             y: &st.y,
             yp: &st.yp,
             scalar_first: self.dofs.scalar_first,
+            element_first: &self.dofs.element_first,
             multipliers: &st.y[first..first + self.dofs.element_len[e]],
             rates: &st.yp[first..first + self.dofs.element_len[e]],
             t: st.t,
@@ -310,7 +321,7 @@ impl<'m> Assembler<'m> {
     fn with_all_nodes<R>(&self, st: &State, t: f64, f: impl FnOnce(&Context) -> R) -> R {
         let frames = self.frames(st);
         let slots: Vec<usize> = (0..frames.len()).collect();
-        f(&Context { model: self.model, frames: &frames, read_frames: &frames, slots: &slots, scalar_slots: &[], y: &st.y, yp: &st.yp, scalar_first: self.dofs.scalar_first, multipliers: &[], rates: &[], t, load: st.load, gravity: self.model.gravity, constraint_scale: 1.0, latched: None })
+        f(&Context { model: self.model, frames: &frames, read_frames: &frames, slots: &slots, scalar_slots: &[], y: &st.y, yp: &st.yp, scalar_first: self.dofs.scalar_first, element_first: &self.dofs.element_first, multipliers: &[], rates: &[], t, load: st.load, gravity: self.model.gravity, constraint_scale: 1.0, latched: None })
     }
 
     /// A drive's value at time `t` reading the model's nodes at `st`, as a drive outside

@@ -26,7 +26,9 @@ pub struct NodeInput {
 
 /// A displacement or rotation component of a node (`NODE:x|y|z|rx|ry|rz`) [m, rad], or a
 /// scalar node's value (`NODE:abstract|electric|hydraulic`, components 6 to 8) or derivative
-/// (`NODE:abstract_rate|electric_rate|hydraulic_rate`, 9 to 11).
+/// (`NODE:abstract_rate|electric_rate|hydraulic_rate`, 9 to 11), or a modal joint's
+/// coordinate of mode K (`JOINT:qK`, `node` the joint's label, component
+/// [`NodeOutput::MODAL_FIRST`]` + 2 (K − 1)`) or its rate (`JOINT:qK_rate`, one more).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct NodeOutput {
     pub node: Label,
@@ -51,7 +53,15 @@ impl FromStr for NodeInput {
 impl FromStr for NodeOutput {
     type Err = PortError;
     fn from_str(s: &str) -> Result<Self, PortError> {
-        parse_port(s, &MOTIONS).map(|(node, component)| NodeOutput { node, component })
+        if let Some((joint, comp)) = s.split_once(':') {
+            let comp = comp.trim();
+            let (digits, rate) = comp.strip_suffix("_rate").map_or((comp, false), |d| (d, true));
+            let mode = digits.strip_prefix(['q', 'Q']).and_then(|d| d.parse::<usize>().ok()).filter(|m| *m >= 1);
+            if let (Some(mode), Ok(joint)) = (mode, joint.trim().parse::<Label>()) {
+                return Ok(NodeOutput::modal(joint, mode, rate));
+            }
+        }
+        parse_port(s, &MOTIONS).map(|(node, component)| NodeOutput { node, component }).map_err(|_| PortError::Syntax(s.to_string(), format!("{}|qK|qK_rate (K a mode of modal joint NODE)", MOTIONS.join("|"))))
     }
 }
 
@@ -80,11 +90,27 @@ impl NodeInput {
 }
 
 impl NodeOutput {
+    /// The first component of a modal coordinate ([`NodeOutput`]).
+    pub const MODAL_FIRST: usize = MOTIONS.len();
+
+    /// Modal joint `joint`'s coordinate of mode `mode` (its number in the FEM file, from 1),
+    /// or its rate.
+    pub fn modal(joint: Label, mode: usize, rate: bool) -> Self {
+        NodeOutput { node: joint, component: Self::MODAL_FIRST + 2 * (mode.max(1) - 1) + usize::from(rate) }
+    }
+
     pub fn name(&self) -> String {
         self.port().label()
     }
     /// The same output as a port: displacement of the node's origin or rotation, global axes.
     pub fn port(&self) -> OutputPort {
+        if self.component >= Self::MODAL_FIRST {
+            let (joint, mode) = (self.node, (self.component - Self::MODAL_FIRST) / 2 + 1);
+            return match (self.component - Self::MODAL_FIRST) % 2 {
+                0 => OutputPort { name: format!("modal {joint} q{mode}"), measurement: Measurement::ModalCoordinate { joint, mode } },
+                _ => OutputPort { name: format!("modal {joint} q{mode} rate"), measurement: Measurement::ModalRate { joint, mode } },
+            };
+        }
         if self.component >= 6 {
             let node = ScalarNodeId { kind: SCALAR_KINDS[(self.component - 6) % 3], label: self.node };
             return match self.component {

@@ -101,6 +101,12 @@ pub enum Measurement {
     ScalarValue { node: ScalarNodeId },
     /// The time derivative of a differential scalar node.
     ScalarRate { node: ScalarNodeId },
+    /// A modal joint's coordinate `q` of one mode (MBDyn's `.mod` column; `mode` is the
+    /// mode's number in the FEM file) [-: the unit of the FEM file's mode shapes, metres of
+    /// displacement per unit `q`].
+    ModalCoordinate { joint: Label, mode: usize },
+    /// Its rate `q̇` [1/s].
+    ModalRate { joint: Label, mode: usize },
 }
 
 /// A named input.
@@ -154,6 +160,8 @@ impl OutputPort {
                 ScalarNodeKind::Electric => "V/s",
                 ScalarNodeKind::Hydraulic => "Pa/s",
             },
+            Measurement::ModalCoordinate { .. } => "-",
+            Measurement::ModalRate { .. } => "1/s",
         }
     }
     pub fn label(&self) -> String {
@@ -161,7 +169,7 @@ impl OutputPort {
     }
     /// Whether the output is a rate (it has a row in `C̃_v`).
     pub fn is_rate(&self) -> bool {
-        matches!(self.measurement, Measurement::Velocity { .. } | Measurement::AngularVelocity { .. } | Measurement::ScalarRate { .. })
+        matches!(self.measurement, Measurement::Velocity { .. } | Measurement::AngularVelocity { .. } | Measurement::ScalarRate { .. } | Measurement::ModalRate { .. })
     }
 }
 
@@ -216,6 +224,17 @@ impl<'m> PortMap<'m> {
     /// The unknown (= equation) of a scalar node.
     fn scalar(&self, name: &str, id: ScalarNodeId) -> Result<usize, PortError> {
         self.model.scalar_index(id).map(|i| self.dofs.scalar_first + i).ok_or_else(|| PortError::UnknownScalarNode(name.to_string(), id))
+    }
+
+    /// The unknown of modal joint `joint`'s coordinate of mode `mode` (its number in the FEM
+    /// file).
+    fn modal(&self, name: &str, joint: Label, mode: usize) -> Result<usize, PortError> {
+        let invalid = |m: String| PortError::Invalid(name.to_string(), m);
+        let e = self.model.elements.iter().position(|e| e.type_name() == "modal" && e.label() == joint).ok_or_else(|| invalid(format!("modal joint {joint} is not defined")))?;
+        let modes = self.model.elements[e].outputs().map(|o| o.modal_coordinates()).unwrap_or_default();
+        let k = modes.iter().find(|(_, m)| *m == mode).map(|(k, _)| *k);
+        let listed: Vec<String> = modes.iter().map(|(_, m)| m.to_string()).collect();
+        k.map(|k| self.dofs.element_first[e] + k).ok_or_else(|| invalid(format!("modal joint {joint} has no mode {mode} (its modes: {}; numbers in the FEM file)", listed.join(", "))))
     }
 
     /// Node index and the point's offset in global axes `R f` [m].
@@ -357,6 +376,12 @@ impl<'m> PortMap<'m> {
             Measurement::ScalarRate { node } => {
                 let mut cv = vec![0.0; n];
                 cv[self.scalar(name, *node)?] = 1.0;
+                rate = Some(cv);
+            }
+            Measurement::ModalCoordinate { joint, mode } => c[self.modal(name, *joint, *mode)?] += 1.0,
+            Measurement::ModalRate { joint, mode } => {
+                let mut cv = vec![0.0; n];
+                cv[self.modal(name, *joint, *mode)?] = 1.0;
                 rate = Some(cv);
             }
         }

@@ -165,6 +165,12 @@ pub trait ElementState {
     fn structural_node(&self, _label: Label) -> Option<&NodeKinematics> {
         None
     }
+    /// Own unknown `k` of the element `type_name` `label` and its rate, at the state being
+    /// assembled (a drive reading a modal joint's `q[N]`); `None` where the state has no
+    /// such unknown (the initial assembly, a unit test of one element).
+    fn element_unknown(&self, _type_name: &str, _label: Label, _k: usize) -> Option<(f64, f64)> {
+        None
+    }
     /// The element's data of its last event ([`Events::latch`]), `None` before any (the
     /// element's data as read).
     fn latched(&self) -> Option<&(dyn std::any::Any + Send + Sync)> {
@@ -323,6 +329,11 @@ pub trait Element: Send + Sync {
     fn label(&self) -> Label;
     /// The element type in MBDyn's words, e.g. "revolute hinge".
     fn type_name(&self) -> &'static str;
+    /// What the reader noticed in the element's own input files and let pass (a modal
+    /// joint's FEM file: zeros skipped, unequal lumped masses), each with its place.
+    fn input_warnings(&self) -> Vec<String> {
+        Vec::new()
+    }
     /// Labels of the structural nodes it connects, in slot order (none for an element on
     /// scalar nodes only).
     fn nodes(&self) -> Vec<Label> {

@@ -157,6 +157,9 @@ impl ElementState for Slotted<'_> {
     fn structural_node(&self, label: Label) -> Option<&NodeKinematics> {
         self.st.structural_node(label)
     }
+    fn element_unknown(&self, type_name: &str, label: Label, k: usize) -> Option<(f64, f64)> {
+        self.st.element_unknown(type_name, label, k)
+    }
     fn scalar_node(&self, id: crate::element::ScalarNodeId) -> Option<(f64, f64)> {
         self.st.scalar_node(id)
     }

@@ -23,6 +23,9 @@
 //! }
 //! ```
 //!
+//! Modal coordinates (issue 35): `{ "type": "modal coordinate", "joint": 200, "mode": 1 }` is
+//! modal joint 200's `q` of mode 1 (its number in the FEM file), `"modal coordinate rate"`
+//! its `q̇`; the shorthand `"200:q1"`, `"200:q1_rate"`.
 //! Scalar nodes (issue 34): `{ "name": "disturbance", "type": "abstract", "node": 1 }` as an
 //! input adds it to the node's equation, as an output is its value (`"abstract rate"`: its
 //! derivative); likewise `"electric"`, `"hydraulic"`; the shorthand `"1:abstract"`.
@@ -100,6 +103,9 @@ struct Spec {
     to_offset: Option<[f64; 3]>,
     direction: Option<[f64; 3]>,
     frame: Option<FrameName>,
+    /// A modal joint's label and a mode's number in its FEM file (modal coordinates).
+    joint: Option<Label>,
+    mode: Option<usize>,
 }
 
 #[derive(Deserialize, Clone, Copy)]
@@ -191,7 +197,20 @@ impl Spec {
         };
         Ok(ScalarNodeId { kind, label: self.node()? })
     }
+    /// The joint and mode of a modal coordinate output (`"joint"`, `"mode"`, nothing else).
+    fn modal(&self) -> Result<(Label, usize), String> {
+        if self.node.is_some() || self.from.is_some() || self.to.is_some() || self.direction.is_some() {
+            return Err(format!("a '{}' port takes \"joint\" (a modal joint's label) and \"mode\" (a mode's number in its FEM file), no node or direction", self.kind));
+        }
+        self.no_point()?;
+        let joint = self.joint.ok_or_else(|| format!("a '{}' port needs \"joint\": the modal joint's label", self.kind))?;
+        let mode = self.mode.filter(|m| *m >= 1).ok_or_else(|| format!("a '{}' port needs \"mode\": a mode's number in the FEM file (from 1)", self.kind))?;
+        Ok((joint, mode))
+    }
     fn input(&self, index: usize) -> Result<InputPort, String> {
+        if self.joint.is_some() || self.mode.is_some() {
+            return Err("\"joint\" and \"mode\" belong to 'modal coordinate' outputs".into());
+        }
         let excitation = match self.kind.as_str() {
             "abstract" | "electric" | "hydraulic" => Excitation::Scalar { node: self.scalar()? },
             "force" => Excitation::Force { point: self.point()?, direction: self.direction()? },
@@ -225,8 +244,19 @@ impl Spec {
                 let (from, to) = self.pair()?;
                 Measurement::Relative { from, to, direction: self.direction()? }
             }
-            k => return Err(format!("output type '{k}' is not one of displacement, rotation, relative, velocity, angular velocity, abstract, electric, hydraulic (and their 'rate')")),
+            "modal coordinate" => {
+                let (joint, mode) = self.modal()?;
+                Measurement::ModalCoordinate { joint, mode }
+            }
+            "modal coordinate rate" => {
+                let (joint, mode) = self.modal()?;
+                Measurement::ModalRate { joint, mode }
+            }
+            k => return Err(format!("output type '{k}' is not one of displacement, rotation, relative, velocity, angular velocity, abstract, electric, hydraulic (and their 'rate'), modal coordinate, modal coordinate rate")),
         };
+        if (self.joint.is_some() || self.mode.is_some()) && !self.kind.starts_with("modal coordinate") {
+            return Err("\"joint\" and \"mode\" belong to 'modal coordinate' outputs".into());
+        }
         Ok(OutputPort { name: self.name.clone().unwrap_or_else(|| format!("output {}", index + 1)), measurement })
     }
 }

@@ -105,6 +105,12 @@ pub struct Model {
 }
 
 impl Model {
+    /// What the reader noticed in the elements' own input files (a modal joint's FEM file)
+    /// and let pass, each as "TYPE LABEL: FILE:LINE:COL: …"; the front ends print them.
+    pub fn input_warnings(&self) -> Vec<String> {
+        self.elements.iter().flat_map(|e| e.input_warnings().into_iter().map(move |w| format!("{} {}: {w}", e.type_name(), e.label()))).collect()
+    }
+
     /// `TYPE LABEL (file:line:col)` of element `e`, as run-time messages name it.
     pub fn element_name(&self, e: usize) -> String {
         let el = &self.elements[e];

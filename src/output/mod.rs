@@ -12,6 +12,7 @@ pub mod line_plot;
 pub mod eigen_file;
 pub mod eigen_json;
 pub mod eigen_m;
+pub mod fem_file;
 pub mod mat5;
 pub mod jacobian_check;
 pub mod matrix_market;

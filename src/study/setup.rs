@@ -221,6 +221,7 @@ impl Study {
         let mut beams: Vec<Warning> = incremental_beams_warning(&model, reference).into_iter().collect();
         beams.extend(run_warnings);
         beams.extend(smoothness_warnings(&model, &state));
+        let input = model.input_warnings();
         let mut study = match ports {
             Ports::Nodes { inputs, outputs } => {
                 let inputs: Vec<_> = inputs.iter().map(NodeInput::port).collect();
@@ -230,6 +231,7 @@ impl Study {
             Ports::Application(app) => Self::application_state(model, problem, state.clone(), app, eigen, progress)?,
         };
         study.warnings.splice(0..0, beams);
+        study.warnings.splice(0..0, input.into_iter().map(|message| super::Warning::InputFile { message }));
         Ok((study, state))
     }
 

@@ -60,6 +60,9 @@ pub enum Warning {
     /// A discrete-time ROM whose continuous eigenvalues have natural frequencies |λ|/2π
     /// (one per pair, [Hz]) at or above the Nyquist frequency `rate/2`: they alias.
     AboveNyquist { freqs_hz: Vec<f64>, rate_hz: f64 },
+    /// What the reader noticed in an element's own input file and let pass
+    /// ([`crate::model::Model::input_warnings`]).
+    InputFile { message: String },
 }
 
 /// Which of a ROM's responses a [`Warning::ResponseDeparts`] is about.
@@ -78,6 +81,7 @@ fn modes_hz(m: &[(usize, f64)]) -> String {
 impl fmt::Display for Warning {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
+            Warning::InputFile { message } => write!(f, "{message}"),
             Warning::NotInEquilibrium { residual, equation, tolerance } => write!(
                 f,
                 "the reference solution is neither an equilibrium nor a steady motion: with its velocities held and its accelerations set to zero the residual is {residual:.3e} (tolerance {tolerance:.1e}) at '{equation}'. The eigenvalues are those of the Jacobians frozen at this instant (as MBDyn's eigenanalysis computes them), not the frequencies and damping of small motions about this trajectory, which follow a time-varying linear system (a swinging pendulum's frozen eigenvalues take the centripetal tension as a stiffness); the ROM is the frozen system's. Use --static for the static equilibrium, or a reference at rest or in steady motion (a uniform spin about an axis of symmetry; a motion steady in a turning frame, a top's precession or a rotor's blades, once the model is written in that frame with MBDyn's `rigid body kinematics`)"

@@ -8,6 +8,7 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod cms_round_trip;
 mod counter_drives;
 mod derivatives_phase;
 mod displacement_nodes;

@@ -149,3 +149,26 @@ fn the_mod_file_holds_mbdyns_rows() {
         }
     }
 }
+
+#[test]
+fn drives_read_the_modal_coordinates_private_data() {
+    // tests/mbdyn_files/modal_private_data.mbd: q = Q0 cos ωt (ω² = 1000/0.5) drives a force
+    // along y on a free 1 kg node (q[1]) and q̇ one along z (qP[#1]), so the node is at
+    // y = Q0 (1 − cos ωt)/ω², z − 1 = Q0 (sin ωt/ω − t) at t = 0.1 s (the file's closed form).
+    let m = common::mbdyn::read_test_file("modal_private_data.mbd");
+    let e = m.model.elements.iter().find(|e| e.type_name() == "modal").expect("a modal joint");
+    let outputs = e.outputs().expect("outputs");
+    assert!(outputs.private_data("q[1]").is_some() && outputs.private_data("qP[#1]").is_some());
+    assert!(outputs.private_data("q[2]").is_none() && outputs.private_data("qPP[1]").is_none() && outputs.private_data("q[#0]").is_none());
+    let report = romdyn::analysis::run(&m.model, &m.problem, &mut ()).unwrap_or_else(|e| panic!("{e}"));
+    let asm = romdyn::dae::Assembler::new(&m.model);
+    let x = report.final_state.node_frame(&asm.dofs, 0).kin.x;
+    // (The run's last time, 0.1 s up to the steps' sum.)
+    let (q0, w, t) = (1e-2f64, 2000f64.sqrt(), report.final_state.t);
+    assert!((t - 0.1).abs() < 2e-5, "{t}");
+    let (y, z) = (q0 * (1.0 - (w * t).cos()) / (w * w), q0 * ((w * t).sin() / w - t));
+    // Crank–Nicolson at h = 1e-5 s, ωh = 4.5e-4: phase error ~ (ωh)² ωt/12 = 7e-8, so 1e-6
+    // of the motion's amplitude.
+    assert!((x[1] - y).abs() < 1e-6 * q0 / (w * w) * 2.0, "y = {} against {y}", x[1]);
+    assert!((x[2] - 1.0 - z).abs() < 1e-6 * q0 * t, "z − 1 = {} against {z}", x[2] - 1.0);
+}

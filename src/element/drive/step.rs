@@ -326,6 +326,9 @@ impl ElementState for AtTime<'_> {
     fn structural_node(&self, label: Label) -> Option<&NodeKinematics> {
         self.inner.structural_node(label)
     }
+    fn element_unknown(&self, type_name: &str, label: Label, k: usize) -> Option<(f64, f64)> {
+        self.inner.element_unknown(type_name, label, k)
+    }
     fn scalar_node(&self, id: crate::element::ScalarNodeId) -> Option<(f64, f64)> {
         self.inner.scalar_node(id)
     }

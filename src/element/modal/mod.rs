@@ -80,6 +80,8 @@ pub struct ModalBody {
     pub mode_numbers: Vec<usize>,
     /// Initial modal coordinates and their rates (`initial value`, FEM records 3 and 4).
     pub initial: Vec<(f64, f64)>,
+    /// The FEM file reader's warnings ([`crate::input::fem::FemFile::warnings`]).
+    pub input_warnings: Vec<String>,
     /// The element the initial assembly uses ([`ModalBody::for_initial_assembly`]).
     assembly: Option<Box<ModalBody>>,
     /// Whether this is that element: the interface constraints alone, `q` held at its
@@ -92,7 +94,7 @@ impl ModalBody {
     #[allow(clippy::too_many_arguments)]
     pub fn new(label: Label, frame: ModalFrame, mass: DMatrix<f64>, stiffness: DMatrix<f64>, damping: DMatrix<f64>, invariants: Invariants, interfaces: Vec<Interface>, mode_numbers: Vec<usize>, initial: Vec<(f64, f64)>) -> Self {
         let initial = if initial.is_empty() { vec![(0.0, 0.0); mass.nrows()] } else { initial };
-        let mut body = ModalBody { label, frame, mass, stiffness, damping, invariants, interfaces, mode_numbers, initial, assembly: None, assembling: false };
+        let mut body = ModalBody { label, frame, mass, stiffness, damping, invariants, interfaces, mode_numbers, initial, input_warnings: Vec::new(), assembly: None, assembling: false };
         let twin = ModalBody { assembling: true, ..body.clone() };
         body.assembly = Some(Box::new(twin));
         body
@@ -144,6 +146,9 @@ impl Element for ModalBody {
     }
     fn type_name(&self) -> &'static str {
         "modal"
+    }
+    fn input_warnings(&self) -> Vec<String> {
+        self.input_warnings.clone()
     }
     fn nodes(&self) -> Vec<Label> {
         let mut v = match self.frame {
@@ -202,6 +207,26 @@ impl Element for ModalBody {
 }
 
 impl Outputs for ModalBody {
+    /// MBDyn's `q[N]`, `qP[N]` (mode number N in the FEM file) and `q[#I]`, `qP[#I]` (the
+    /// I-th mode the joint uses), modal.cc's `iGetPrivDataIdx`; `qPP` and the FEM nodes'
+    /// `x[…]`, `w[…]` are not computed (`None`: the reader names them).
+    fn private_data(&self, name: &str) -> Option<crate::element::contract::PrivateDatum> {
+        let (rate, inside) = if let Some(r) = name.strip_prefix("qP[") { (true, r) } else { (false, name.strip_prefix("q[")?) };
+        let inside = inside.strip_suffix(']')?.trim();
+        let k = match inside.strip_prefix('#') {
+            Some(i) => i.trim().parse::<usize>().ok().filter(|i| (1..=self.modes()).contains(i))? - 1,
+            None => self.mode_numbers.iter().position(|m| Some(*m) == inside.parse::<usize>().ok())?,
+        };
+        let (index, initial, label) = (self.q_index(k), self.initial[k], self.label);
+        // Read through the state by the joint's label (the datum is evaluated in the reading
+        // element's state); the initial assembly, where the modes are not unknowns, reads
+        // their initial values, as the joint holds them there.
+        Some(crate::element::contract::PrivateDatum::new(move |st| {
+            let (q, qdot) = st.element_unknown("modal", label, index).unwrap_or(initial);
+            Some(if rate { qdot } else { q })
+        }))
+    }
+
     fn modal_coordinates(&self) -> Vec<(usize, usize)> {
         if self.assembling {
             return Vec::new();

@@ -174,7 +174,9 @@ pub fn modal(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Modal
     }
     // The FEM file's records 3 and 4, unless `initial value` was given.
     let initial = initial.iter().zip(&numbers).map(|(v, m)| v.unwrap_or((fem.modal_displacements[m - 1], fem.modal_velocities[m - 1]))).collect();
-    Ok(ModalBody::new(label, frame, mass, stiffness, damping, Invariants::of(&component), interfaces, numbers, initial))
+    let mut body = ModalBody::new(label, frame, mass, stiffness, damping, Invariants::of(&component), interfaces, numbers, initial);
+    body.input_warnings = fem.warnings.clone();
+    Ok(body)
 }
 
 /// A FEM node label: a string, or (MBDyn's legacy form) an integer.
