@@ -121,6 +121,10 @@ mod tests {
             dcoef: 1e-3,
             full_static_gain: None,
             rom_static_gain: None,
+            sample_time: None,
+            discretization: "continuous".into(),
+            hankel_singular_values: Vec::new(),
+            error_bound: None,
         };
         let out = consistent_rom(&rom, &[mode], &[Some(Match { candidate: 0, mac: 1.0, crossing: false })], &[1]);
         let phase = v[1].arg();

@@ -8,7 +8,7 @@ use faer::{c64, Mat};
 use crate::study::{ReducedModel, Study};
 
 use super::measured::MeasuredResponse;
-use super::welch::{h1, magnitude_random_error, Estimate};
+use super::welch::{h1, magnitude_random_error, Estimate, Window};
 use super::{Plan, ValidateError};
 
 /// MATLAB's `compare` fit, `1 − ‖y − ŷ‖ / ‖y − mean(y)‖` (System Identification Toolbox,
@@ -101,7 +101,7 @@ impl AmplitudeRun {
         for (j, (u, y, z)) in series.into_iter().enumerate() {
             let rom_y: Vec<Vec<f64>> = (0..z.ncols()).map(|i| (0..z.nrows()).map(|k| z[(k, i)]).collect()).collect();
             for (i, yi) in y.iter().enumerate() {
-                let estimate = h1(&u[lead..], &yi[lead..], plan.dt, plan.segment, plan.band_hz, plan.kind.window());
+                let estimate = h1(&u[lead..], &yi[lead..], plan.dt, plan.segment, plan.band_hz, window_for(plan.kind));
                 if grid.is_none() {
                     grid = Some((study.full_frequency_response(&estimate.freq_hz)?, rom.ordinary.frequency_response(&estimate.freq_hz)));
                 }
@@ -152,6 +152,15 @@ pub struct Validation {
     /// With several amplitudes: the largest input RMS (the first input's) up to which every
     /// amplitude is described, and the first that is not (`None`: all are).
     pub linearity_limit: Option<(Option<f64>, f64)>,
+}
+
+/// The estimator's window for an input: none where the input is periodic in the segment
+/// ([`Window::Rectangular`]).
+fn window_for(kind: super::signal::SignalKind) -> Window {
+    match kind {
+        super::signal::SignalKind::Random => Window::Hann,
+        super::signal::SignalKind::Multisine | super::signal::SignalKind::Chirp => Window::Rectangular,
+    }
 }
 
 fn relative_error(model: &[c64], data: &[c64]) -> f64 {

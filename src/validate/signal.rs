@@ -20,17 +20,6 @@ pub enum SignalKind {
     Chirp,
 }
 
-impl SignalKind {
-    /// The estimator's window for this input: none where the input is periodic in the
-    /// segment ([`super::welch::Window`]).
-    pub fn window(self) -> super::welch::Window {
-        match self {
-            SignalKind::Random => super::welch::Window::Hann,
-            SignalKind::Multisine | SignalKind::Chirp => super::welch::Window::Rectangular,
-        }
-    }
-}
-
 /// xoshiro256** seeded by SplitMix64 (Vigna, <https://prng.di.unimi.it>).
 pub struct Rng([u64; 4]);
 
