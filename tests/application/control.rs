@@ -77,10 +77,13 @@ fn tustin_keeps_the_static_gain() {
 }
 
 /// `‖G(jω)‖` over a dense log grid (4000 points, 1 Hz to 5 kHz) and at the ROM's modal
-/// frequencies, where lightly damped peaks sit.
+/// frequencies in that band, where lightly damped peaks sit.
 fn hinf_difference(g: &OrdinaryRom, r: &OrdinaryRom) -> f64 {
     let mut f: Vec<f64> = (0..4000).map(|k| 10f64.powf(k as f64 / 3999.0 * 5000f64.log10())).collect();
-    f.extend(g.a.eigenvalues().unwrap().iter().map(|l| l.im.abs() / (2.0 * std::f64::consts::PI)).filter(|x| *x > 0.0));
+    // Within the grid's band only: a rigid-body Jordan block at λ = 0 splits by rounding into
+    // ±2e-7j (after the ordinary form's states were mapped back to the modes), where both
+    // responses are 1/(m s²) ≈ 1e13 and their difference is rounding, not the reduction's error.
+    f.extend(g.a.eigenvalues().unwrap().iter().map(|l| l.im.abs() / (2.0 * std::f64::consts::PI)).filter(|x| (1.0..=5000.0).contains(x)));
     let (hg, hr) = (g.frequency_response(&f), r.frequency_response(&f));
     hg.iter().zip(&hr).map(|(a, b)| (a[(0, 0)] - b[(0, 0)]).norm()).fold(0.0, f64::max)
 }

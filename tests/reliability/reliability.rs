@@ -404,6 +404,18 @@ fn a_law_out_of_its_domain_is_named_by_its_element() {
     assert!(referred.contains("reference, 7;") && referred.contains("constitutive law: 7"));
     let e = run(&referred);
     assert!(e.contains(&format!("is NaN {}", functions(&referred))), "{e}");
+    // A force whose `dof` drive caller card takes the log of the node's x, which the node's
+    // velocity (−2 m/s from x = 1 m) drives below zero at t ≈ 0.5 s: the run names the force,
+    // the drive caller card it refers to and that card's scalar function, each by its place.
+    let thrown = "begin: data; problem: initial value; end: data;\n\
+        begin: initial value; initial time: 0.; final time: 1.; time step: 1.e-2; tolerance: 1e-9; max iterations: 20; end: initial value;\n\
+        begin: control data; structural nodes: 1; rigid bodies: 1; forces: 1; end: control data;\n\
+        scalar function: \"lg\", log, 1.;\n\
+        drive caller: 3, dof, 1, structural, 1, algebraic, scalar function, \"lg\";\n\
+        begin: nodes; structural: 1, dynamic, 1., 0., 0., eye, -2., 0., 0., null; end: nodes;\n\
+        begin: elements;\n  body: 1, 1, 1., null, eye;\n  force: 1, absolute, 1, position, null, 1., 0., 0., reference, 3;\nend: elements;\n";
+    let e = run(thrown);
+    assert!(e.contains("absolute force 1 (f.mbd:9:3): its contribution to node 1 force x equilibrium is NaN (it evaluates drive caller 3 (f.mbd:5:1), scalar function \"lg\" (f.mbd:4:1))"), "{e}");
     // An element that evaluates no scalar function adds nothing.
     assert!(!e.contains("deformable hinge 2 (f.mbd") , "{e}");
 }

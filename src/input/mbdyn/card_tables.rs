@@ -25,6 +25,14 @@ pub struct ScalarFunctions {
     /// the cards an element's law evaluates.
     used: Arc<RwLock<Vec<String>>>,
     operands: Arc<RwLock<HashMap<String, Vec<String>>>>,
+    /// Other cards an element can evaluate through a reference (`drive caller:` cards,
+    /// keyed [`drive_key`]), as messages name them: "drive caller 3 (f.mbd:5:1)".
+    named: Arc<RwLock<HashMap<String, String>>>,
+}
+
+/// The key of `drive caller:` card `label` among the names noted as used.
+pub(super) fn drive_key(label: u32) -> String {
+    format!("#drive caller {label}")
 }
 
 /// The scalar functions a statement sees: those of cards before it (`model::sf::NAME`).
@@ -64,6 +72,11 @@ impl ScalarFunctions {
         self.operands.write().unwrap_or_else(|e| e.into_inner()).insert(name.to_string(), operands);
     }
 
+    /// Records how messages name the card `key` ([`drive_key`]).
+    pub(super) fn set_named(&self, key: &str, text: String) {
+        self.named.write().unwrap_or_else(|e| e.into_inner()).insert(key.to_string(), text);
+    }
+
     /// `names` and the functions they are made of, each once, as `scalar function "NAME"
     /// (at)` with `at(span)` its card's place.
     pub(super) fn described(&self, names: &[String], at: impl Fn(Span) -> String) -> Vec<String> {
@@ -75,6 +88,8 @@ impl ScalarFunctions {
             }
             if let Some(card) = self.card(&name) {
                 out.push(format!("scalar function \"{name}\" ({})", at(card.2)));
+            } else if let Some(text) = self.named.read().unwrap_or_else(|e| e.into_inner()).get(&name) {
+                out.push(text.clone());
             }
             queue.extend(operands.get(&name).into_iter().flatten().cloned());
         }

@@ -113,7 +113,13 @@ pub fn drive_caller_card(st: &Statement, c: &mut Cursor, drives: &mut Drives) ->
         c.string("drive caller name")?;
     }
     c.accept("deferred");
+    let before = drives.functions.take_used();
     let d = drive(c, drives, st.seq)?;
+    let key = super::card_tables::drive_key(label);
+    drives.functions.set_operands(&key, drives.functions.take_used());
+    before.iter().for_each(|n| drives.functions.note_used(n));
+    let place = c.error_at(st.span, "");
+    drives.functions.set_named(&key, format!("drive caller {label} ({}:{}:{})", place.file.display(), place.line, place.column));
     // `output, {yes | no | value, FLAG | derivative, FLAG …}` (drive_.cc,
     // `DriveCallerRead::ReadOutput`) asks for MBDyn's .drv file, which romdyn does not write.
     if c.accept("output") {
@@ -272,7 +278,10 @@ fn unchecked_drive(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) ->
             let label = c.label("drive caller label")?;
             match drives.table.get(label) {
                 // A random drive copied at its first call draws after all those read.
-                Some(card) => super::counter_drives::copied(&card.drive, &drives.steps, usize::MAX),
+                Some(card) => {
+                    drives.functions.note_used(&super::card_tables::drive_key(label));
+                    super::counter_drives::copied(&card.drive, &drives.steps, usize::MAX)
+                }
                 None => {
                     return Err(c.error_at(span, format!("postponed drive caller {label}: no drive caller card {label} is read before this one (romdyn resolves a postponed drive caller inside a drive caller card when it reads the card)")));
                 }
@@ -338,7 +347,10 @@ fn unchecked_drive(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) ->
         _ => {
             let label = c.label("drive caller label")?;
             match drives.table.get(label) {
-                Some(card) if card.seq < seq => super::counter_drives::copied(&card.drive, &drives.steps, seq),
+                Some(card) if card.seq < seq => {
+                    drives.functions.note_used(&super::card_tables::drive_key(label));
+                    super::counter_drives::copied(&card.drive, &drives.steps, seq)
+                }
                 Some(card) => return Err(c.error_at(span, format!("drive caller {label} is used before its definition (line {})", card.span.line))),
                 None => return Err(c.error_at(span, format!("drive caller {label} is not defined"))),
             }
