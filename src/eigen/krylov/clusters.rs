@@ -38,6 +38,12 @@ pub(super) struct Clusters {
     pub unmatched: Vec<c64>,
 }
 
+/// Eigenvalues within this distance of λ are one cluster ([`CLUSTER`] relative to λ's
+/// distance from the shift σ, or to a thousandth of |λ|).
+fn cluster_radius(lambda: c64, sigma: c64) -> f64 {
+    CLUSTER * (lambda - sigma).norm().max(lambda.norm() * 1e-3).max(f64::MIN_POSITIVE)
+}
+
 /// Smallest `|uᵀ E v|` of unit vectors, relative to `‖E v‖`, that pairs them (a left and a
 /// right vector of different eigenvectors of one eigenvalue give rounding, ~1e-16).
 const FACING: f64 = 1e-8;
@@ -88,24 +94,22 @@ const INVERSE_ITERATIONS: usize = 3;
 const MAX_STARTS: usize = 8;
 
 /// A Ritz direction of the inverse-iterated block belongs to the cluster's eigenspace when
-/// its Ritz value θ of `(K + μ E)⁻¹ E` is at least this fraction of the block's largest
-/// (its λ within a hundred times the dominant eigenvalue's distance to μ) and its residual
-/// `‖T x − θ x‖` at most [`RITZ_RESIDUAL`] of `|θ| ‖x‖`. The block's other directions are
-/// what the iteration has not removed yet: the transients of the non-normal operator (the
-/// θ = 0 Jordan blocks of the constrained variables) and the parts along distant
-/// eigenvalues, whose Ritz values are small or unconverged. A threshold on the bare part of
+/// its eigenvalue (`μ − 1/θ`, θ its Ritz value of `(K + μ E)⁻¹ E`) lies within
+/// [`cluster_radius`] of the block's dominant one and its residual `‖T x − θ x‖` is at most
+/// this fraction of `|θ| ‖x‖`. The block's other directions are what the iteration has not
+/// removed yet: the transients of the non-normal operator (the θ = 0 Jordan blocks of the
+/// constrained variables) and the parts along other eigenvalues, whose Ritz values are far
+/// or unconverged (another eigenvalue is its own cluster's). A threshold on the bare part of
 /// each direction outside the others (what [`basis`] alone judged by before) took those for
 /// new directions: the 32-element cantilever's 13614 rad/s torsion mode (simple) kept two
 /// right directions and one left one, was left unpaired, and the count never closed.
-const RITZ_FRACTION: f64 = 1e-2;
 const RITZ_RESIDUAL: f64 = 1e-6;
 
 /// A cluster's eigenspaces after inverse subspace iteration: the dominant Ritz value λ (the
 /// refined eigenvalue) and orthonormal bases of the right and left directions whose Ritz
-/// values pass [`RITZ_FRACTION`] and [`RITZ_RESIDUAL`].
+/// values pass [`RITZ_RESIDUAL`].
 struct Refined {
     lambda: c64,
-
     right: Vec<Col<c64>>,
     left: Vec<Col<c64>>,
 }
@@ -115,8 +119,8 @@ struct Refined {
 /// cluster's `width` (the Ritz values' spread about λ), whichever is larger (each iteration
 /// shrinks the parts along the other eigenvalues by `|δ|/gap`, below 1e-5 on a beam's
 /// bending pairs), then a Rayleigh–Ritz step on each side's block: the directions of the
-/// cluster's eigenvalues are the Ritz vectors with the largest Ritz values (see
-/// [`RITZ_FRACTION`]), the bases' sizes the multiplicity each side sees. The vectors come out
+/// cluster's eigenvalues are the Ritz vectors whose eigenvalues lie next to the dominant one
+/// (see [`RITZ_RESIDUAL`]), the bases' sizes the multiplicity each side sees. The vectors come out
 /// as accurate as the factorization allows, also those of Ritz pairs far from the shift. `None`
 /// when μ cannot be factored.
 fn refine(pencil: &Pencil, lambda: c64, sigma: c64, width: f64, starts: &[&Col<c64>], extra: usize) -> Option<Refined> {
@@ -156,8 +160,9 @@ fn refine(pencil: &Pencil, lambda: c64, sigma: c64, width: f64, starts: &[&Col<c
     // The refined eigenvalue: the right block's dominant Ritz value (the left one's agrees).
     let theta = right.first().or(left.first())?.0;
     let lambda = op.lambda(theta);
+    let radius = cluster_radius(lambda, sigma);
     let keep = |list: Vec<(c64, Col<c64>)>| -> Vec<Col<c64>> {
-        let vectors: Vec<Col<c64>> = list.into_iter().map(|(_, x)| x).collect();
+        let vectors: Vec<Col<c64>> = list.into_iter().filter(|(t, _)| (op.lambda(*t) - lambda).norm() <= radius).map(|(_, x)| x).collect();
         basis(&vectors.iter().collect::<Vec<_>>(), NEW_DIRECTION)
     };
     Some(Refined { lambda, right: keep(right), left: keep(left) })
@@ -168,7 +173,7 @@ fn refine(pencil: &Pencil, lambda: c64, sigma: c64, width: f64, starts: &[&Col<c
 const DEPENDENT: f64 = 1e-8;
 
 /// The Ritz pairs `(θ, Q z)` of the block `Q` (orthonormal) with `Y = T Q`, largest |θ|
-/// first, that pass [`RITZ_FRACTION`] and [`RITZ_RESIDUAL`]; `None` when the small
+/// first, that pass [`RITZ_RESIDUAL`]; `None` when the small
 /// eigenproblem fails.
 fn ritz_directions(q: &[Col<c64>], y: &[Col<c64>]) -> Option<Vec<(c64, Col<c64>)>> {
     let m = q.len();
@@ -180,10 +185,9 @@ fn ritz_directions(q: &[Col<c64>], y: &[Col<c64>]) -> Option<Vec<(c64, Col<c64>)
     let h = Mat::<c64>::from_fn(m, m, |i, j| dot(&q[i], &y[j]));
     let e = h.eigen().ok()?;
     let thetas: Vec<c64> = e.S().column_vector().iter().copied().collect();
-    let top = thetas.iter().map(|t| t.norm()).fold(0.0, f64::max);
     let mut out: Vec<(c64, Col<c64>)> = Vec::new();
     for (k, &theta) in thetas.iter().enumerate() {
-        if !(theta.norm() >= RITZ_FRACTION * top) {
+        if !(theta.norm() > 0.0) {
             continue;
         }
         let z = e.U().col(k);
@@ -217,7 +221,7 @@ pub(super) fn pair_clusters(pencil: &Pencil, sigma: c64, right: &[(c64, Col<c64>
     // within CLUSTER of the cluster's first.
     let mut all: Vec<(c64, bool, usize)> = right.iter().enumerate().map(|(i, p)| (p.0, false, i)).chain(left.iter().enumerate().map(|(i, p)| (p.0, true, i))).collect();
     all.sort_by(|a, b| (a.0 - sigma).norm().total_cmp(&(b.0 - sigma).norm()).then(a.0.im.total_cmp(&b.0.im)));
-    let close = |a: c64, b: c64| (a - b).norm() <= CLUSTER * (a - sigma).norm().max(a.norm() * 1e-3).max(f64::MIN_POSITIVE);
+    let close = |a: c64, b: c64| (a - b).norm() <= cluster_radius(a, sigma);
     let mut used = vec![false; all.len()];
     let mut out = Clusters { pairs: Vec::new(), unmatched: Vec::new() };
     // The eigenspaces found: refined λ, right and left bases.
@@ -340,4 +344,44 @@ fn pairs_of(pencil: &Pencil, lambda: c64, qr: Vec<Col<c64>>, ql: Vec<Col<c64>>) 
         pairs.push((l, v, u));
     }
     Some(pairs)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A non-normal operator `T` on ℝ³: the eigenvalue θ = 10 on e₁ and a nilpotent block
+    /// (θ = 0 twice, `T e₃ = 1e4 e₂`), as the constrained variables' Jordan blocks make the
+    /// shift-invert operator. A block holding e₁ and w = (e₂ + e₃)/√2 after an iteration:
+    /// `T w` is orthogonal to e₁ and large, so a bare threshold on the part outside e₁ kept
+    /// w as a second direction of θ = 10; its Ritz pair (θ = 5e3, residual equal to θ) is no
+    /// eigenpair, and only e₁ is a direction of the cluster.
+    #[test]
+    fn a_non_normal_transient_is_no_direction_of_the_cluster() {
+        let t = |x: &Col<c64>| Col::from_fn(3, |i| match i {
+            0 => x[0] * 10.0,
+            1 => x[2] * 1e4,
+            _ => c64::new(0.0, 0.0),
+        });
+        let s = std::f64::consts::FRAC_1_SQRT_2;
+        let q = vec![Col::from_fn(3, |i| c64::new(if i == 0 { 1.0 } else { 0.0 }, 0.0)), Col::from_fn(3, |i| c64::new(if i == 0 { 0.0 } else { s }, 0.0))];
+        let y: Vec<Col<c64>> = q.iter().map(t).collect();
+        // The bare threshold keeps both.
+        assert_eq!(basis(&y.iter().collect::<Vec<_>>(), NEW_DIRECTION).len(), 2);
+        let kept = ritz_directions(&q, &y).unwrap();
+        assert_eq!(kept.len(), 1, "{:?}", kept.iter().map(|k| k.0).collect::<Vec<_>>());
+        assert!((kept[0].0 - c64::new(10.0, 0.0)).norm() < 1e-12 && (kept[0].1[0].norm() - 1.0).abs() < 1e-12);
+    }
+
+    /// A vector in the span of two others repeats them; one with a part of order 1 outside
+    /// does not (the test that unites two clusters' eigenspaces and drops a band's duplicate).
+    #[test]
+    fn a_vector_in_the_span_is_a_duplicate() {
+        let e = |k: usize| Col::from_fn(4, |i| c64::new(if i == k { 1.0 } else { 0.0 }, 0.0));
+        let (a, b) = (e(0), Col::from_fn(4, |i| c64::new([1.0, 1.0, 0.0, 0.0][i], 0.0)));
+        let inside = Col::from_fn(4, |i| c64::new([3.0, -2.0, 0.0, 0.0][i], 0.0));
+        assert!(outside_span(&inside, [&a, &b].into_iter()) < 1e-15);
+        let outside = Col::from_fn(4, |i| c64::new([3.0, -2.0, 1.0, 0.0][i], 0.0));
+        assert!((outside_span(&outside, [&a, &b].into_iter()) - 1.0 / 14f64.sqrt()).abs() < 1e-15);
+    }
 }
