@@ -4,7 +4,7 @@
 
 use crate::common;
 
-use common::beam_family::{beam_inertia, cantilever};
+use common::beam_family::{cantilever, MassStiffness};
 
 use common::mbdyn::read;
 use romdyn::c64;
@@ -40,51 +40,18 @@ fn beam_family_lowest_modes_match_the_mass_stiffness_problem() {
     for ea in [1e6, 1e8, 1e10] {
         let ej = 1e3;
         let (modal, dae, node_first) = default_modes(&cantilever(elements, ea, ej));
-        let (_, fy) = dae.jacobians.derivatives();
-        let inertia = beam_inertia(elements);
-        let free = 1..2 * elements + 1;
-        let dof = |node: usize, k: usize| (node - 1) * 6 + k;
-        let size = 6 * (2 * elements);
-        let mut k = faer::Mat::<f64>::zeros(size, size);
-        let mut minv_sqrt = vec![0.0; size];
-        for a in free.clone() {
-            let [m, jx, jy, jz] = inertia[a];
-            for (c, mass) in [m, m, m, jx, jy, jz].into_iter().enumerate() {
-                minv_sqrt[dof(a, c)] = 1.0 / mass.sqrt();
-            }
-            for b in free.clone() {
-                for r in 0..6 {
-                    for c in 0..6 {
-                        k[(dof(a, r), dof(b, c))] = fy[(node_first[a] + 6 + r, node_first[b] + c)];
-                    }
-                }
-            }
-        }
-        // The finite-volume beam's tangent stiffness is not symmetric (3e-3 of its largest
-        // entry here), so the general standard problem, inverted so that the lowest modes are
-        // the largest eigenvalues and keep their relative accuracy whatever EA/EJ (a
-        // backward-stable solver errs by ε times the largest eigenvalue):
-        // M^(1/2) K⁻¹ M^(1/2) x = x / ω², by an LU inverse and faer's Hessenberg QR (no QZ,
-        // no pencil): ω = 1/sqrt|ν|.
-        use faer::linalg::solvers::DenseSolveCore;
-        let k_inv = k.partial_piv_lu().inverse();
-        let flexible = faer::Mat::<f64>::from_fn(size, size, |i, j| k_inv[(i, j)] / (minv_sqrt[i] * minv_sqrt[j]));
-        let nu: Vec<c64> = flexible.as_ref().eigenvalues().unwrap();
-        let mut omega: Vec<f64> = nu.iter().map(|x| 1.0 / x.norm().sqrt()).collect();
-        omega.sort_by(f64::total_cmp);
-        let nu_max = nu.iter().map(|x| x.norm()).fold(0.0, f64::max);
+        let reference = MassStiffness::of(&dae, &node_first, elements);
+        let (omega, reference_error) = (&reference.omega, |w: f64| reference.error(w));
         let got = lowest(&modal, 20);
         assert_eq!(got.len(), 20, "EA = {ea:e}");
-        for (i, (g, w)) in got.iter().zip(&omega).enumerate() {
+        for (i, (g, w)) in got.iter().zip(omega).enumerate() {
             let rel = (g - w).abs() / w;
             assert!(rel < 1e-8, "EA = {ea:e}, mode {}: {g} vs {w} rad/s ({rel:.1e})", i + 1);
         }
         // The error column is honest: it covers the difference to the reference, less the
-        // reference's own rounding (|δν| ≤ 10 n ε ν_max with ν = 1/ω², so
-        // |δω| ≤ 10 n ε ν_max ω³ / 2).
-        let reference_error = |w: f64| 10.0 * size as f64 * f64::EPSILON * nu_max * w.powi(3) / 2.0;
+        // reference's own rounding (MassStiffness::error).
         let dynamic: Vec<_> = modal.modes.iter().filter(|m| m.kind == ModeKind::Dynamic && m.lambda.im > 0.0).take(20).collect();
-        for (m, w) in dynamic.iter().zip(&omega) {
+        for (m, w) in dynamic.iter().zip(omega) {
             let off = (m.lambda - c64::new(0.0, *w)).norm();
             assert!(off <= m.error + reference_error(*w), "EA = {ea:e}: {} vs {w}: error {:e}, reference {:e}", m.lambda, m.error, reference_error(*w));
         }

@@ -8,6 +8,7 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod beam_family;
 mod defective_roots;
 mod degenerate_pencils;
 mod dense_eigen_scaling;

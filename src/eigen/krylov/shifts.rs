@@ -28,7 +28,7 @@
 use faer::{c64, Col};
 
 use super::pencil::Pencil;
-use super::clusters::pair_clusters;
+use super::clusters::{outside_span, pair_clusters};
 use super::count::missing_in_disc;
 use super::operator::ShiftInvert;
 use super::window::{evaluate, krylov_sides, window, Eigenpair, PairVectors, Scales};
@@ -103,20 +103,30 @@ pub fn sparse_modes_with_progress(dae: &SparseLinearDae, target: ModeTarget, set
     }
 }
 
-/// Distinct pairs: a pair whose eigenvalue and vector repeat one already kept is dropped.
+/// Distinct pairs: a pair whose right vector lies in the span of the right vectors kept at
+/// its eigenvalue (within 1e-6, relative) repeats them (another window's copy of a simple
+/// mode, or a third vector of a double one) and is dropped, unless it is the better pair of
+/// a simple eigenvalue (smaller residuals), which then replaces the one it repeats. Judged by
+/// subspace, not by value: two independent vectors of a double eigenvalue are both kept.
 fn merge(into: &mut Vec<Eigenpair>, new: Vec<Eigenpair>) {
     for p in new {
-        let same = into.iter().position(|q| {
-            let close = (q.lambda - p.lambda).norm() <= 1e-7 * q.lambda.norm().max(1e-300);
-            close && (0..p.right.nrows()).fold(c64::new(0.0, 0.0), |s, i| s + q.right[i].conj() * p.right[i]).norm() / (q.right.norm_l2() * p.right.norm_l2()) > 0.99
-        });
-        match same {
-            Some(i) if into[i].residual_right.max(into[i].residual_left) <= p.residual_right.max(p.residual_left) => {}
-            Some(i) => into[i] = p,
-            None => into.push(p),
+        let near: Vec<usize> = (0..into.len()).filter(|&i| (into[i].lambda - p.lambda).norm() <= 1e-6 * p.lambda.norm().max(f64::MIN_POSITIVE)).collect();
+        let outside = outside_span(&p.right, near.iter().map(|&i| &into[i].right));
+        if outside > REPEATS {
+            into.push(p);
+            continue;
+        }
+        let worse = |q: &Eigenpair| q.residual_right.max(q.residual_left) > p.residual_right.max(p.residual_left);
+        if let [i] = near[..] {
+            if worse(&into[i]) {
+                into[i] = p;
+            }
         }
     }
 }
+
+/// A vector whose part outside a span is below this fraction of its norm lies in it.
+const REPEATS: f64 = 1e-3;
 
 fn lowest(dae: &SparseLinearDae, pencil: &Pencil, count: usize, s: &SparseEigenSettings, progress: &dyn Fn(&str)) -> Result<SparseModalAnalysis, KrylovError> {
     if count == 0 {
@@ -232,7 +242,7 @@ fn counted_lowest(dae: &SparseLinearDae, pencil: &Pencil, op: &ShiftInvert, coun
                     Some(c) if c.missing == 0 => {
                         progress(&format!("shift {sigma}: {} eigenvalues in |λ| < {r:.6e} rad/s, all found (argument principle, {} factorizations)", inside.len(), c.evaluations));
                         let window = ShiftWindow { shift: sigma, radius: r - sigma.norm(), agreed: true, found: units, rejected };
-                        let certificate = format!("the argument principle counts {} eigenvalues in |λ| < {r:.6e} rad/s, all listed", inside.len());
+                        let certificate = format!("the argument principle counts {} eigenvalues in |λ| < {r:.6e} rad/s, all found", inside.len());
                         return finish(dae, kept, vec![window], true, 1.0, None, Some(certificate), s);
                     }
                     Some(c) => {
