@@ -33,6 +33,10 @@ pub struct CmsArgs {
 }
 
 pub fn run(a: CmsArgs) -> Result<()> {
+    // The output is checked before any work (a special file, a folder, a prefix naming no file).
+    let path = romdyn::output::prefixed_path(&a.prefix, "fem");
+    romdyn::output::atomic::check_prefix("-o", &a.prefix)?;
+    romdyn::output::atomic::check_output_paths(&[("-o", path.clone())])?;
     let reference = a.reference.reference();
     let m = super::args::read_model_with_beams(&a.file, &a.set, super::args::BeamUpdateArg::Auto, reference.integrates())?;
     let request = CmsRequest { interfaces: a.interface.clone(), modes: a.modes, reference };
@@ -40,7 +44,6 @@ pub fn run(a: CmsArgs) -> Result<()> {
     for w in &cb.warnings {
         eprintln!("warning: {w}");
     }
-    let path = romdyn::output::prefixed_path(&a.prefix, "fem");
     cb.write(&path, &a.file.display().to_string())?;
     print!("{}", cb.summary(&path));
     Ok(())

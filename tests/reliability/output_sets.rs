@@ -143,6 +143,30 @@ fn a_runs_prefix_must_name_a_regular_file() {
     std::fs::remove_dir_all(&d).ok();
 }
 
+#[test]
+fn cms_checks_its_output_before_reducing() {
+    // `romdyn cms` (issue 35) writes one file, PREFIX.fem: a special file, a folder in the
+    // way and a prefix naming no file are refused before the reduction, leaving nothing.
+    let d = folder("cms-prefix");
+    std::fs::copy(crate::common::mbdyn::test_file("cms_substructure.mbd"), d.join("s.mbd")).unwrap();
+    let cms = |prefix: &str| {
+        let o = Command::new(env!("CARGO_BIN_EXE_romdyn")).args(["cms", "s.mbd", "--interface", "9", "--modes", "2", "-o", prefix]).current_dir(&d).output().unwrap();
+        (o.status.code(), String::from_utf8_lossy(&o.stdout).into_owned(), String::from_utf8_lossy(&o.stderr).into_owned())
+    };
+    assert!(Command::new("mkfifo").arg(d.join("sink.fem")).status().unwrap().success());
+    let (code, out, err) = cms("sink");
+    assert!(code == Some(1) && err.contains("-o: is a special file") && out.is_empty(), "{out}{err}");
+    let (code, out, err) = cms("nodir/");
+    assert!(code == Some(1) && err.contains("-o: names no file") && out.is_empty(), "{out}{err}");
+    std::fs::create_dir(d.join("taken.fem")).unwrap();
+    let (code, out, err) = cms("taken");
+    assert!(code == Some(1) && err.contains("is a directory") && out.is_empty(), "{out}{err}");
+    assert_eq!(outputs(&d), ["s.mbd", "sink.fem", "taken.fem"]);
+    let (code, _, err) = cms("good");
+    assert!(code == Some(0) && d.join("good.fem").is_file(), "{err}");
+    std::fs::remove_dir_all(&d).ok();
+}
+
 const BEAM: &str = include_str!("../../examples/simply_supported_beam.mbd");
 
 /// `romdyn ARGS` on the README beam (`b.mbd` in `d`), its static equilibrium, input 5:Fy,
