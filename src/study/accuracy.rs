@@ -45,7 +45,11 @@ impl Study {
     /// matrix from the inputs and, with an imposed motion, the transmissibility; a
     /// [`Warning::ResponseDeparts`] for each whose worst port pair, on its own scale, is off
     /// by more than [`ChannelError::WARN`] at or below the ROM's top frequency of interest.
+    /// A ROM given modal damping the full model lacks is checked without it
+    /// ([`ReducedModel::undamped`]).
     pub fn check_rom_on(&self, rom: &ReducedModel, freq_hz: Vec<f64>) -> Result<RomCheck, StudyError> {
+        let undamped = rom.undamped.as_ref().map(|u| ReducedModel { ordinary: u.ordinary.clone(), undamped: None, ..rom.clone() });
+        let rom = undamped.as_ref().unwrap_or(rom);
         let comparison = self.compare(rom, freq_hz)?;
         let accuracy = comparison.accuracy();
         let mut warnings = Vec::new();

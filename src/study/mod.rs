@@ -43,7 +43,7 @@ pub use checks::zero_channels;
 pub use control::{balancing, minimal_tolerance, sampling, Balancing, OrderReduction};
 pub use error::StudyError;
 pub use export::RomForm;
-pub use reduce::{BelowBand, KeptMode, ReducedModel, Residualization, RomRequest, StaticGains};
+pub use reduce::{BelowBand, KeptMode, ReducedModel, Residualization, RomRequest, StaticGains, UndampedTwin};
 pub use response::{ChannelError, Comparison, FrequencyGrid, GridAccuracy};
 pub use setting::{python_spelling, Setting};
 pub use setup::{checked_reference_state, EigenSettings, Linearization, Ports, Study};

@@ -134,7 +134,12 @@ impl ReducedModel {
         }
         if let Some(check) = check {
             let pairs = self.static_gains.output_names.len() * self.static_gains.input_names.len();
-            s += &accuracy_lines("frequency response", &check.accuracy, pairs, &self.static_gains.output_names, &self.static_gains.input_names);
+            let what = match &self.undamped {
+                Some(t) if t.before_order_reduction => "frequency response (of the modal ROM without its added modal damping, which the full model lacks, and so before the balanced reduction, whose error the Hankel bound states)",
+                Some(_) => "frequency response (of the ROM without its added modal damping, which the full model lacks)",
+                None => "frequency response",
+            };
+            s += &accuracy_lines(what, &check.accuracy, pairs, &self.static_gains.output_names, &self.static_gains.input_names);
             if let Some((t, a)) = &check.transmissibility {
                 s += &accuracy_lines("transmissibility z/z_e (eq. 100)", a, t.outputs.len() * t.imposed.len(), &t.outputs, &t.imposed);
             }
