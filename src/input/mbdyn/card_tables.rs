@@ -25,14 +25,16 @@ pub struct ScalarFunctions {
     /// the cards an element's law evaluates.
     used: Arc<RwLock<Vec<String>>>,
     operands: Arc<RwLock<HashMap<String, Vec<String>>>>,
-    /// Other cards an element can evaluate through a reference (`drive caller:` cards,
-    /// keyed [`drive_key`]), as messages name them: "drive caller 3 (f.mbd:5:1)".
-    named: Arc<RwLock<HashMap<String, String>>>,
+    /// The places of the `drive caller:` cards an element can evaluate through a reference
+    /// (noted as used under [`drive_key`]), which messages name: "drive caller 3 (f.mbd:5:1)".
+    drive_cards: Arc<RwLock<HashMap<u32, Span>>>,
 }
+
+const DRIVE_KEY: &str = "#drive caller ";
 
 /// The key of `drive caller:` card `label` among the names noted as used.
 pub(super) fn drive_key(label: u32) -> String {
-    format!("#drive caller {label}")
+    format!("{DRIVE_KEY}{label}")
 }
 
 /// The scalar functions a statement sees: those of cards before it (`model::sf::NAME`).
@@ -62,19 +64,25 @@ impl ScalarFunctions {
     /// The names noted since the last call, in order, without repeats.
     pub(super) fn take_used(&self) -> Vec<String> {
         let mut names = std::mem::take(&mut *self.used.write().unwrap_or_else(|e| e.into_inner()));
+        if names.len() < 2 {
+            return names;
+        }
         let mut seen = std::collections::HashSet::new();
         names.retain(|n| seen.insert(n.clone()));
         names
     }
 
-    /// Records the functions card `name` is made of (its `sum`/`sub`/`mul`/`div` operands).
+    /// Records the functions card `name` is made of (its `sum`/`sub`/`mul`/`div` operands;
+    /// nothing when none).
     pub(super) fn set_operands(&self, name: &str, operands: Vec<String>) {
-        self.operands.write().unwrap_or_else(|e| e.into_inner()).insert(name.to_string(), operands);
+        if !operands.is_empty() {
+            self.operands.write().unwrap_or_else(|e| e.into_inner()).insert(name.to_string(), operands);
+        }
     }
 
-    /// Records how messages name the card `key` ([`drive_key`]).
-    pub(super) fn set_named(&self, key: &str, text: String) {
-        self.named.write().unwrap_or_else(|e| e.into_inner()).insert(key.to_string(), text);
+    /// Records where `drive caller:` card `label` is written.
+    pub(super) fn set_drive_card(&self, label: u32, at: Span) {
+        self.drive_cards.write().unwrap_or_else(|e| e.into_inner()).insert(label, at);
     }
 
     /// `names` and the functions they are made of, each once, as `scalar function "NAME"
@@ -88,8 +96,10 @@ impl ScalarFunctions {
             }
             if let Some(card) = self.card(&name) {
                 out.push(format!("scalar function \"{name}\" ({})", at(card.2)));
-            } else if let Some(text) = self.named.read().unwrap_or_else(|e| e.into_inner()).get(&name) {
-                out.push(text.clone());
+            } else if let Some(label) = name.strip_prefix(DRIVE_KEY).and_then(|l| l.parse::<u32>().ok()) {
+                if let Some(&span) = self.drive_cards.read().unwrap_or_else(|e| e.into_inner()).get(&label) {
+                    out.push(format!("drive caller {label} ({})", at(span)));
+                }
             }
             queue.extend(operands.get(&name).into_iter().flatten().cloned());
         }

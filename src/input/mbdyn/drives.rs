@@ -115,11 +115,12 @@ pub fn drive_caller_card(st: &Statement, c: &mut Cursor, drives: &mut Drives) ->
     c.accept("deferred");
     let before = drives.functions.take_used();
     let d = drive(c, drives, st.seq)?;
-    let key = super::card_tables::drive_key(label);
-    drives.functions.set_operands(&key, drives.functions.take_used());
+    let used = drives.functions.take_used();
+    if !used.is_empty() {
+        drives.functions.set_operands(&super::card_tables::drive_key(label), used);
+    }
     before.iter().for_each(|n| drives.functions.note_used(n));
-    let place = c.error_at(st.span, "");
-    drives.functions.set_named(&key, format!("drive caller {label} ({}:{}:{})", place.file.display(), place.line, place.column));
+    drives.functions.set_drive_card(label, st.span);
     // `output, {yes | no | value, FLAG | derivative, FLAG …}` (drive_.cc,
     // `DriveCallerRead::ReadOutput`) asks for MBDyn's .drv file, which romdyn does not write.
     if c.accept("output") {
