@@ -58,21 +58,31 @@ impl ScalarFunction {
     /// [`EvaluationCost`]), counted over the shared operands once each: linear in the
     /// number of distinct functions, not in the (possibly exponential) count it returns.
     pub fn cost(&self) -> EvaluationCost {
-        fn walk(f: &ScalarFunction, memo: &mut HashMap<*const ScalarFunction, EvaluationCost>) -> EvaluationCost {
+        self.cost_with(&|_| None)
+    }
+
+    /// [`Self::cost`], with the costs of operands already known (`known`: a defined card's
+    /// cost, kept by the reader): the walk stops at them, so a card made of defined
+    /// functions costs O(1) to check, whatever the depth of what it is made of.
+    pub fn cost_with(&self, known: &dyn Fn(&Arc<ScalarFunction>) -> Option<EvaluationCost>) -> EvaluationCost {
+        fn walk(f: &ScalarFunction, known: &dyn Fn(&Arc<ScalarFunction>) -> Option<EvaluationCost>, memo: &mut HashMap<*const ScalarFunction, EvaluationCost>) -> EvaluationCost {
             let (ScalarFunction::Sum(a, b) | ScalarFunction::Sub(a, b) | ScalarFunction::Mul(a, b) | ScalarFunction::Div(a, b)) = f else { return EvaluationCost::LEAF };
             let mut part = |g: &Arc<ScalarFunction>| {
+                if let Some(c) = known(g) {
+                    return c;
+                }
                 let key = Arc::as_ptr(g);
                 if let Some(&c) = memo.get(&key) {
                     return c;
                 }
-                let c = walk(g, memo);
+                let c = walk(g, known, memo);
                 memo.insert(key, c);
                 c
             };
             let (ca, cb) = (part(a), part(b));
             EvaluationCost::around([ca, cb])
         }
-        walk(self, &mut HashMap::new())
+        walk(self, known, &mut HashMap::new())
     }
 
     pub fn derivative(&self, x: f64) -> f64 {

@@ -28,6 +28,10 @@ pub struct ScalarFunctions {
     /// The places of the `drive caller:` cards an element can evaluate through a reference
     /// (noted as used under [`drive_key`]), which messages name: "drive caller 3 (f.mbd:5:1)".
     drive_cards: Arc<RwLock<HashMap<u32, Span>>>,
+    /// Each defined card's cost by the address of its function (the table keeps every
+    /// function alive, so an address is never reused while it is here): a new card's cost
+    /// is found from its operands' without walking what they are made of.
+    costs: Arc<RwLock<HashMap<usize, EvaluationCost>>>,
 }
 
 const DRIVE_KEY: &str = "#drive caller ";
@@ -56,6 +60,17 @@ impl ScalarFunctions {
         self.table.read().unwrap_or_else(|e| e.into_inner()).get(name).cloned()
     }
 
+    /// Defines card `name` (its function, statement, place and cost).
+    pub(super) fn define(&self, name: String, card: Card) {
+        self.costs.write().unwrap_or_else(|e| e.into_inner()).insert(Arc::as_ptr(&card.0) as usize, card.3);
+        self.table.write().unwrap_or_else(|e| e.into_inner()).insert(name, card);
+    }
+
+    /// The cost of `f` if it is a defined card's function.
+    pub(super) fn known_cost(&self, f: &Arc<ScalarFunction>) -> Option<EvaluationCost> {
+        self.costs.read().unwrap_or_else(|e| e.into_inner()).get(&(Arc::as_ptr(f) as usize)).copied()
+    }
+
     /// Notes that the statement being read uses the function `name`.
     pub(super) fn note_used(&self, name: &str) {
         self.used.write().unwrap_or_else(|e| e.into_inner()).push(name.to_string());
@@ -63,13 +78,18 @@ impl ScalarFunctions {
 
     /// The names noted since the last call, in order, without repeats.
     pub(super) fn take_used(&self) -> Vec<String> {
-        let mut names = std::mem::take(&mut *self.used.write().unwrap_or_else(|e| e.into_inner()));
+        let names = std::mem::take(&mut *self.used.write().unwrap_or_else(|e| e.into_inner()));
         if names.len() < 2 {
             return names;
         }
-        let mut seen = std::collections::HashSet::new();
-        names.retain(|n| seen.insert(n.clone()));
-        names
+        // Few names per statement: keep each first occurrence, without copying them.
+        let mut kept: Vec<String> = Vec::with_capacity(names.len());
+        for n in names {
+            if !kept.contains(&n) {
+                kept.push(n);
+            }
+        }
+        kept
     }
 
     /// Records the functions card `name` is made of (its `sum`/`sub`/`mul`/`div` operands;

@@ -401,7 +401,8 @@ fn string_drive(text: &str, drives: &Drives, seq: usize, span: Span, origin: Str
     if let Some(why) = cost.over_budget("the drive") {
         return Err(why);
     }
-    let reads_state = tokens.windows(3).any(|w| w[0].token == Token::Word("model".into()) && w[1].token == Token::Symbol("::") && w[2].token != Token::Word("sf".into()));
+    let is_word = |t: &Token, w: &str| matches!(t, Token::Word(x) if x == w);
+    let reads_state = tokens.windows(3).any(|w| is_word(&w[0].token, "model") && w[1].token == Token::Symbol("::") && !is_word(&w[2].token, "sf"));
     let evaluate = move |vars: &mut Variables, tokens: &[super::lexer::Spanned], sources: &Sources, var: f64, reads: Option<Reads>, state: Option<&dyn ElementState>, elements: Option<RunElements>| -> Result<f64, String> {
         // MBDyn's `StringDriveCaller::dGet(dVar)` sets `Var`; `Time` is the simulation's
         // time, which is the argument unless a drive passes another value (a dof, element
@@ -459,7 +460,7 @@ fn string_drive(text: &str, drives: &Drives, seq: usize, span: Span, origin: Str
 /// calls reach, one per call: the card `LABEL` where it is written as a number, every card
 /// before the drive where it is computed.
 fn call_costs(tokens: &[super::lexer::Spanned], functions: &super::scalar_functions::FunctionsBefore, table: &DriveTable, seq: usize) -> Vec<EvaluationCost> {
-    let word = |k: usize, w: &str| tokens.get(k).is_some_and(|t| t.token == Token::Word(w.into()));
+    let word = |k: usize, w: &str| tokens.get(k).is_some_and(|t| matches!(&t.token, Token::Word(x) if x == w));
     let symbol = |k: usize, s: &'static str| tokens.get(k).is_some_and(|t| t.token == Token::Symbol(s));
     let mut costs = Vec::new();
     for k in 0..tokens.len() {

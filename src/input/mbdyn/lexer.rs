@@ -22,13 +22,21 @@ impl Token {
     /// token: a real keeps its dot or exponent (`{:?}`: "3.0", "1e-7"), since `3` would read
     /// as an integer, with MBDyn's integer arithmetic (`1/2` is 0).
     pub fn text(&self) -> String {
-        match self {
-            Token::Integer(i) => i.to_string(),
-            Token::Real(x) => format!("{x:?}"),
-            Token::Word(w) => w.clone(),
-            Token::Str(s) => format!("\"{s}\""),
-            Token::Symbol(s) => s.to_string(),
-        }
+        let mut out = String::new();
+        self.write_text(&mut out);
+        out
+    }
+
+    /// Appends [`Self::text`] to `out` (no allocation of its own).
+    pub fn write_text(&self, out: &mut String) {
+        use std::fmt::Write;
+        let _ = match self {
+            Token::Integer(i) => write!(out, "{i}"),
+            Token::Real(x) => write!(out, "{x:?}"),
+            Token::Word(w) => Ok(out.push_str(w)),
+            Token::Str(s) => write!(out, "\"{s}\""),
+            Token::Symbol(s) => Ok(out.push_str(s)),
+        };
     }
 }
 

@@ -209,14 +209,18 @@ impl Reader {
         let Some(first) = toks.first() else { return Err(self.doc.sources.error(end, "empty statement: expected a keyword before ';'")) };
         let colon = toks.iter().position(|t| t.token == Token::Symbol(":"));
         let head = &toks[..colon.unwrap_or(toks.len())];
-        let mut words = Vec::new();
+        let mut keyword = String::with_capacity(24);
         for t in head {
             match &t.token {
-                Token::Word(w) => words.push(w.to_lowercase()),
+                Token::Word(w) => {
+                    if !keyword.is_empty() {
+                        keyword.push(' ');
+                    }
+                    keyword.extend(w.chars().flat_map(char::to_lowercase));
+                }
                 other => return Err(self.doc.sources.error(t.span, format!("expected a keyword, found {}", describe(other)))),
             }
         }
-        let keyword = words.join(" ");
         let body = colon.map_or(&[][..], |c| &toks[c + 1..]);
         self.seq += 1;
         match known(&keyword, &["include", "set", "begin", "end", "remark"]) {
@@ -339,7 +343,13 @@ impl Reader {
     }
 
     fn piece(&mut self, p: &[Spanned], span: Span, end: Span) -> Result<Arg, MbdynError> {
-        let text = p.iter().map(|t| t.token.text()).collect::<Vec<_>>().join(" ");
+        let mut text = String::with_capacity(12 * p.len());
+        for (k, t) in p.iter().enumerate() {
+            if k > 0 {
+                text.push(' ');
+            }
+            t.token.write_text(&mut text);
+        }
         let Some(first) = p.first() else {
             return Ok(Arg { value: Value::Empty, span, keyword: None, text });
         };

@@ -25,12 +25,12 @@ impl ScalarFunctions {
 }
 
 /// Errors at `span` when `f` costs more than romdyn's budget (see [`EvaluationCost`]).
-fn within_budget(c: &Cursor, span: Span, name: &str, f: &ScalarFunction) -> Result<EvaluationCost, MbdynError> {
-    let cost = f.cost();
-    match cost.over_budget(&format!("scalar function \"{name}\"")) {
-        Some(why) => Err(c.error_at(span, why)),
-        None => Ok(cost),
+fn within_budget(c: &Cursor, span: Span, name: &str, f: &ScalarFunction, functions: &ScalarFunctions) -> Result<EvaluationCost, MbdynError> {
+    let cost = f.cost_with(&|g| functions.known_cost(g));
+    if cost.over_budget("").is_none() {
+        return Ok(cost);
     }
+    Err(c.error_at(span, cost.over_budget(&format!("scalar function \"{name}\"")).unwrap_or_default()))
 }
 
 const TYPES: [&str; 12] = ["const", "exp", "log", "pow", "linear", "multilinear", "chebychev", "sum", "sub", "mul", "div", "cubic spline"];
@@ -45,10 +45,10 @@ pub fn scalar_function_card(c: &mut Cursor, functions: &mut ScalarFunctions, seq
     let before = functions.take_used();
     let f = definition(c, functions, seq)?;
     c.finish()?;
-    let cost = within_budget(c, span, &name, &f)?;
+    let cost = within_budget(c, span, &name, &f, functions)?;
     functions.set_operands(&name, functions.take_used());
     before.iter().for_each(|n| functions.note_used(n));
-    functions.table.write().unwrap_or_else(|e| e.into_inner()).insert(name, (Arc::new(f), seq, c.statement().span, cost));
+    functions.define(name, (Arc::new(f), seq, c.statement().span, cost));
     Ok(())
 }
 
@@ -60,7 +60,7 @@ pub fn scalar_function(c: &mut Cursor, functions: &ScalarFunctions, seq: usize) 
     let name = c.string("the scalar function's name")?;
     if c.peek_keyword().is_some_and(|w| TYPES.iter().any(|t| super::parser::same_keyword(t, w))) {
         let f = definition(c, functions, seq)?;
-        within_budget(c, span, &name, &f)?;
+        within_budget(c, span, &name, &f, functions)?;
         return Ok(f);
     }
     functions.get(c, span, &name, seq).map(|f| (*f).clone())
