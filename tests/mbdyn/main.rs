@@ -31,6 +31,7 @@ mod mbdyn_runs;
 mod mbdyn_state_drives;
 mod mbdyn_string_element_reads;
 mod mbdyn_syntax;
+mod refusals;
 mod node_accelerations;
 mod octave;
 mod octave_script;

@@ -65,8 +65,8 @@ fn bad_file_drivers_name_the_card_the_data_file_and_the_problem() {
     refused("\"file_driver_header.dat\"", "\"no_such_data.dat\"", &format!("file driver 3: cannot read the data file \"{}\"", missing.display()));
     refused("file: 2, fixed step, 6, 2,", "file: 2, fixed step, 6, 3,", "line 2: expected 3 number(s) (one per channel), found 2");
     refused("file: 2, fixed step, 6, 2,", "file: 2, fixed step, 7, 2,", "expected 7 row(s) of data, found 6");
-    refused("file: 2, fixed step, 6, 2,", "file: 2, variable step, 2,", "'variable step' file drivers are not supported");
-    refused("file: 2, fixed step, 6, 2,", "file: 2, stream, 2,", "'stream' file drivers are not supported");
+    refused("file: 2, fixed step, 6, 2,", "file: 2, variable step, 2,", "a 'variable step' file driver is not supported by romdyn (MBDyn 1.7.3 runs it)");
+    refused("file: 2, fixed step, 6, 2,", "file: 2, stream, 2,", "a 'stream' file driver is not supported by romdyn (MBDyn 1.7.3 runs it)");
     refused("pad zeros, no, \"file_driver.dat\"", "bailout, upper, \"file_driver.dat\"", "bailout ends the run");
     refused("file, 2, 2;", "file, 2, 3;", "file driver 2 has channels 1 to 2, found 3");
     refused("file, 3, 1, amplitude", "file, 3, amplitude", "expected the channel number before 'amplitude'");

@@ -20,7 +20,7 @@ use crate::model::Label;
 /// development purposes", its reader takes node 1's absolute orientation for both nodes'
 /// beam frames when none is given (the frames are then wrong for nodes not at `eye`), and
 /// its viscoelastic variant is not built.
-pub const HBEAM_REFUSED: &str = "element type 'hbeam' is not supported by romdyn: MBDyn's manual calls it experimental (for development only); use beam2, whose curvature is exact for a uniformly bent element";
+pub const HBEAM_REFUSED: &str = "element type 'hbeam' is not supported by romdyn (MBDyn 1.7.3 runs it, but its manual calls it experimental, for development only); use beam2, whose curvature is exact for a uniformly bent element";
 
 /// Flags of `custom output` (input manual, §default beam output).
 const CUSTOM_OUTPUT: [&str; 14] = [

@@ -4,6 +4,22 @@
 use std::fmt;
 use std::path::PathBuf;
 
+/// A refusal of a card MBDyn 1.7.3 runs (issue 38 point 4: a refusal says whether MBDyn
+/// runs the card, so a user learns the file is valid MBDyn and the limit is romdyn's):
+/// "`what` is not supported by romdyn (MBDyn 1.7.3 runs it)".
+pub fn mbdyn_runs_it(what: &str) -> String {
+    format!("{what} is not supported by romdyn ({MBDYN_RUNS_IT})")
+}
+
+/// The words [`mbdyn_runs_it`] ends with.
+pub const MBDYN_RUNS_IT: &str = "MBDyn 1.7.3 runs it";
+
+/// A refusal of a name that neither romdyn nor MBDyn 1.7.3 knows: "unknown `what`
+/// 'name': MBDyn 1.7.3 has none either".
+pub fn unknown_to_both(what: &str, name: &str) -> String {
+    format!("unknown {what} '{name}': MBDyn 1.7.3 has none either")
+}
+
 /// A position in a source file (1-based line and column, in characters).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct Span {

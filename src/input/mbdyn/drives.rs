@@ -171,7 +171,7 @@ fn unchecked_drive(c: &mut Cursor, drives: &Drives, seq: usize, depth: usize) ->
             return Ok(Drive::Const(c.real("constant value of the drive")?));
         }
         if let Some(k) = c.peek_keyword().and_then(|w| UNSUPPORTED.iter().find(|u| super::parser::same_keyword(u, w))) {
-            return Err(c.error(format!("drive caller '{k}' is not supported by romdyn (supported: a number, {})", SUPPORTED.join(", "))));
+            return Err(c.error(format!("drive caller '{k}' is not supported by romdyn (an MBDyn 1.7.3 built with GiNaC runs it, one built without refuses it too; supported: a number, {})", SUPPORTED.join(", "))));
         }
         return Err(c.error(format!("expected a drive caller (a number, {}), found {}", SUPPORTED.join(", "), c.found())));
     };

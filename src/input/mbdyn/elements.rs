@@ -56,8 +56,13 @@ pub fn element(st: &Statement, c: &mut Cursor, ctx: &ElementContext) -> Result<P
         if known(&st.keyword, &["hbeam", "hbeam2"]).is_some() {
             return Err(c.error_at(st.span, super::beams::HBEAM_REFUSED));
         }
-        let name = known(&st.keyword, &OTHER_TYPES).unwrap_or(&st.keyword);
-        return Err(c.error_at(st.span, format!("element type '{name}' is not supported by romdyn")));
+        return Err(c.error_at(st.span, match known(&st.keyword, &OTHER_TYPES) {
+            // These need a module or a build option of MBDyn's; the others it runs as built here.
+            Some(name @ ("loadable" | "user defined")) => format!("element type '{name}' is not supported by romdyn (MBDyn 1.7.3 runs it with the run-time module it names loaded)"),
+            Some(name @ "rtai output") => format!("element type '{name}' is not supported by romdyn (an MBDyn 1.7.3 built with RTAI runs it)"),
+            Some(name) => super::diagnostic::mbdyn_runs_it(&format!("element type '{name}'")),
+            None => format!("{} (romdyn reads: {})", super::diagnostic::unknown_to_both("element type", &st.keyword), kinds.join(", ")),
+        }));
     };
     match kind {
         "gravity" => return gravity(c, ctx),

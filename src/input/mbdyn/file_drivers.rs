@@ -48,7 +48,7 @@ pub fn file_driver(st: &Statement, c: &mut Cursor, drivers: &mut FileDrivers) ->
         return Err(c.error_at(span, format!("file driver {label} is defined twice (first at line {})", prev.span.line)));
     }
     if let Some(kind) = c.accept_any(&REFUSED) {
-        return Err(c.error(format!("'{kind}' file drivers are not supported by romdyn (supported: fixed step)")));
+        return Err(c.error(format!("{} (supported: fixed step)", super::diagnostic::mbdyn_runs_it(&format!("a '{kind}' file driver")))));
     }
     c.keyword("the file driver type", &["fixed step"])?;
     let steps_span = c.here();

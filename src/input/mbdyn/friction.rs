@@ -18,10 +18,20 @@ pub fn follows(c: &Cursor) -> bool {
     c.peek_keyword().is_some_and(|w| w == "friction")
 }
 
+/// The joints MBDyn 1.7.3 reads `friction` on (joint.cc: `REVOLUTEHINGE` (with its alias
+/// plane hinge), `BRAKE`, `AXIALROTATION`, `J_INLINE`, `SCREWJOINT`).
+const MBDYN_FRICTION_JOINTS: [&str; 6] = ["revolute hinge", "plane hinge", "brake", "axial rotation", "in line", "screw"];
+
 /// The clean refusal of friction on a joint romdyn reads it on nowhere (`joint` in MBDyn's
-/// words: "plane hinge", "beam slider", …).
+/// words: "plane hinge", "beam slider", …), saying whether MBDyn 1.7.3 reads it there.
 pub fn refuse(c: &Cursor, joint: &str) -> MbdynError {
-    c.error(format!("joint friction on a '{joint}' joint is not supported by romdyn (supported: modlugre friction with the simple shape function on an 'in line' joint without offset and on a 'revolute hinge'; with the screw joint shape function on a 'screw')"))
+    let what = format!("joint friction on a '{joint}' joint");
+    let refusal = if MBDYN_FRICTION_JOINTS.contains(&joint) {
+        super::diagnostic::mbdyn_runs_it(&what)
+    } else {
+        format!("{what} is read by neither romdyn nor MBDyn 1.7.3 (MBDyn reads friction on revolute hinge, brake, axial rotation, in line and screw joints only)")
+    };
+    c.error(format!("{refusal} (romdyn reads modlugre friction with the simple shape function on an 'in line' joint without offset and on a 'revolute hinge'; with the screw joint shape function on a 'screw')"))
 }
 
 /// Reads `friction, [preload, P,] modlugre, σ₀, σ₁, σ₂, κ, "FUNCTION", simple` and returns
@@ -81,7 +91,7 @@ fn modlugre(c: &mut Cursor, ctx: &ElementContext) -> Result<ModLugre, MbdynError
     let span = c.here();
     let model = c.keyword("a friction model", &MODELS)?;
     if model != "modlugre" {
-        return Err(c.error_at(span, format!("friction model '{model}' is not supported by romdyn (supported: modlugre; discrete coulomb switches its equations between stick and slip, which romdyn's fixed-structure Newton and its linearization do not model)")));
+        return Err(c.error_at(span, format!("{} (supported: modlugre; discrete coulomb switches its equations between stick and slip, which romdyn's fixed-structure Newton and its linearization do not model)", super::diagnostic::mbdyn_runs_it(&format!("friction model '{model}'")))));
     }
     let sigma0 = positive(c, "modlugre sigma0 (bristle stiffness per unit normal force) [1/m]")?;
     let sigma1 = c.real("modlugre sigma1 (bristle damping per unit normal force) [s/m]")?;

@@ -18,7 +18,7 @@ pub fn genel(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
     let span = c.here();
     let supported = ["clamp", "distance", "spring support", "cross spring support", "spring", "mass", "scalar filter", "state space SISO", "state space MIMO"];
     if let Some(k) = c.accept_any(&OTHER_GENELS) {
-        return Err(c.error_at(span, format!("genel type '{k}' is not supported by romdyn (supported: {})", supported.join(", "))));
+        return Err(c.error_at(span, format!("{} (supported: {})", super::diagnostic::mbdyn_runs_it(&format!("genel type '{k}'")), supported.join(", "))));
     }
     let kind = c.keyword("the genel type", &supported)?;
     let scalars = &ctx.nodes.2;

@@ -98,12 +98,14 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
     let span = c.here();
     let Some(kind) = c.accept_any(&SUPPORTED) else {
         if let Some(w) = c.peek_keyword() {
-            let name = OTHER_JOINTS.iter().find(|o| super::parser::same_keyword(o, w)).copied().unwrap_or(w);
+            let other = OTHER_JOINTS.iter().find(|o| super::parser::same_keyword(o, w)).copied();
+            let name = other.unwrap_or(w);
             if name == "plane displacement" {
                 // joint.cc: "PlaneDispJoint: unsupported; use an InPlane and a RevoluteRotation".
                 return Err(c.error("joint type 'plane displacement' is not supported by romdyn, nor by MBDyn 1.7.3 (its reader stops: \"unsupported; use an InPlane and a RevoluteRotation\"): write an 'in plane' and a 'revolute rotation'"));
             }
-            return Err(c.error(format!("joint type '{name}' is not supported by romdyn (supported: brake, viscous body, angular acceleration, axial rotation, beam slider, screw, linear velocity, angular velocity, revolute rotation, gimbal rotation, cardano hinge, cardano pin, cardano rotation (and universal …), drive displacement, drive displacement pin, drive hinge, imposed displacement, imposed displacement pin, clamp, revolute hinge, revolute pin, spherical hinge, spherical pin (or pin), total joint, total pin joint, deformable displacement joint, deformable hinge, invariant deformable hinge, deformable joint, deformable axial joint, rod, in line, in plane, prismatic, distance)")));
+            let refusal = if other.is_some() { super::diagnostic::mbdyn_runs_it(&format!("joint type '{name}'")) } else { super::diagnostic::unknown_to_both("joint type", name) };
+            return Err(c.error(format!("{refusal} (supported: brake, viscous body, angular acceleration, axial rotation, beam slider, screw, linear velocity, angular velocity, revolute rotation, gimbal rotation, cardano hinge, cardano pin, cardano rotation (and universal …), drive displacement, drive displacement pin, drive hinge, imposed displacement, imposed displacement pin, clamp, revolute hinge, revolute pin, spherical hinge, spherical pin (or pin), total joint, total pin joint, deformable displacement joint, deformable hinge, invariant deformable hinge, deformable joint, deformable axial joint, rod, in line, in plane, prismatic, distance)")));
         }
         return Err(c.error(format!("expected a joint type, found {}", c.found())));
     };

@@ -335,7 +335,8 @@ fn read_law(c: &mut Cursor, dim: usize, laws: &Laws, drives: &Drives, seq: usize
             } else {
                 ""
             };
-            return Err(c.error(format!("constitutive law '{k}' is not supported by romdyn (supported: linear elastic, linear viscous, linear viscoelastic, each isotropic or generic; {TIME_VARIANT}; nlsf elastic, viscous, viscoelastic; scalar function elastic isotropic, orthotropic{rods})")));
+            let refusal = if k.starts_with("symbolic") { format!("constitutive law '{k}' is not supported by romdyn (an MBDyn 1.7.3 built with GiNaC runs it)") } else { super::diagnostic::mbdyn_runs_it(&format!("constitutive law '{k}'")) };
+            return Err(c.error(format!("{refusal} (supported: linear elastic, linear viscous, linear viscoelastic, each isotropic or generic; {TIME_VARIANT}; nlsf elastic, viscous, viscoelastic; scalar function elastic isotropic, orthotropic{rods})")));
         }
         return Err(c.error(format!("expected a constitutive law ({}, {TIME_VARIANT}, {}, {}, {}), found {}", KINDS.join(", "), NLSF.join(", "), FUNCTION_ELASTIC.join(", "), BISTOP.join(", "), c.found())));
     };

@@ -113,7 +113,7 @@ fn cards(doc: &Document) -> Result<Cards, MbdynError> {
             Some("constitutive law") => constitutive_law_card(st, &mut c, &mut out.laws, &out.drives)?,
             Some("scalar function") => super::scalar_functions::scalar_function_card(&mut c, &mut out.drives.functions, st.seq)?,
             Some("setenv" | "print symbol table") => {}
-            Some(other) => return Err(c.error_at(st.span, format!("'{other}' cards are not supported by romdyn"))),
+            Some(other) => return Err(c.error_at(st.span, super::diagnostic::mbdyn_runs_it(&format!("the '{other}' card")))),
             None => return Err(c.error_at(st.span, format!("unknown card '{}'", st.keyword))),
         }
     }
@@ -151,7 +151,7 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
             return Err(src.error(b.span, format!("block '{}' is not supported by romdyn", b.name)));
         };
         if name == "inverse dynamics" {
-            return Err(src.error(b.span, "block 'inverse dynamics' is not supported by romdyn"));
+            return Err(src.error(b.span, super::diagnostic::mbdyn_runs_it("block 'inverse dynamics'")));
         }
         if let Some(prev) = seen.insert(name, b.span) {
             return Err(src.error(b.span, format!("block '{name}' appears twice (first at line {})", prev.line)));

@@ -72,7 +72,7 @@ pub fn node_statement(st: &Statement, c: &mut Cursor, frames: &Frames, nodes: &m
             nodes.2.push(entry);
             return c.finish();
         }
-        Some(other) => return Err(c.error_at(st.span, format!("node type '{other}' is not supported by romdyn"))),
+        Some(other) => return Err(c.error_at(st.span, super::diagnostic::mbdyn_runs_it(&format!("node type '{other}'")))),
         None => return Err(c.error_at(st.span, format!("unknown node type '{}' (MBDyn's are {})", st.keyword, NODE_TYPES.join(", ")))),
     }
     let label_span = c.here();
