@@ -11,7 +11,9 @@ pub struct Mark {
 
 /// Characters of a text with a cursor.
 pub struct CharStream {
-    chars: Vec<char>,
+    /// The text (UTF-8: one byte per ASCII character, where a `Vec<char>` took four).
+    text: String,
+    /// The byte offset of the next character.
     pos: usize,
     pub line: usize,
     pub column: usize,
@@ -19,12 +21,12 @@ pub struct CharStream {
 
 impl CharStream {
     pub fn new(text: &str) -> Self {
-        CharStream { chars: text.chars().collect(), pos: 0, line: 1, column: 1 }
+        CharStream { text: text.to_string(), pos: 0, line: 1, column: 1 }
     }
 
     /// The character `k` places ahead of the cursor.
     pub fn peek_at(&self, k: usize) -> Option<char> {
-        self.chars.get(self.pos + k).copied()
+        self.text[self.pos..].chars().nth(k)
     }
 
     pub fn peek(&self) -> Option<char> {
@@ -34,7 +36,7 @@ impl CharStream {
     /// Consumes one character, moving the line and column.
     pub fn bump(&mut self) -> Option<char> {
         let c = self.peek()?;
-        self.pos += 1;
+        self.pos += c.len_utf8();
         if c == '\n' {
             self.line += 1;
             self.column = 1;
@@ -55,6 +57,6 @@ impl CharStream {
 
     /// Whether the text continues with `s`.
     pub fn starts_with(&self, s: &str) -> bool {
-        s.chars().enumerate().all(|(k, c)| self.peek_at(k) == Some(c))
+        self.text[self.pos..].starts_with(s)
     }
 }

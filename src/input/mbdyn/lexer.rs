@@ -69,54 +69,75 @@ impl Scanner {
     }
 }
 
-/// Splits a file's text into tokens.
-pub fn tokenize(text: &str, file: usize, sources: &Sources) -> Result<Vec<Spanned>, MbdynError> {
-    let mut s = Scanner { text: CharStream::new(text), file };
-    let mut out = Vec::new();
-    while let Some(c) = s.peek(0) {
-        let span = s.span();
-        if c.is_whitespace() {
-            s.bump();
-        } else if c == '#' {
-            while s.peek(0).is_some_and(|c| c != '\n') {
+/// A file's tokens, one at a time: the reader keeps one statement's tokens, not the
+/// whole file's (issue 32: memory, and so time, per card flat in the file's size).
+pub struct Lexer {
+    s: Scanner,
+}
+
+impl Lexer {
+    pub fn new(text: &str, file: usize) -> Self {
+        Lexer { s: Scanner { text: CharStream::new(text), file } }
+    }
+
+    /// The next token, `None` at the end of the text.
+    pub fn next_token(&mut self, sources: &Sources) -> Result<Option<Spanned>, MbdynError> {
+        let s = &mut self.s;
+        while let Some(c) = s.peek(0) {
+            let span = s.span();
+            if c.is_whitespace() {
                 s.bump();
-            }
-        } else if s.starts_with("/*") {
-            s.bump();
-            s.bump();
-            loop {
-                if s.peek(0).is_none() {
-                    return Err(sources.error(span, "unterminated comment: expected '*/' to close the '/*' opened here"));
-                }
-                if s.starts_with("*/") {
+            } else if c == '#' {
+                while s.peek(0).is_some_and(|c| c != '\n') {
                     s.bump();
-                    s.bump();
-                    break;
                 }
+            } else if s.starts_with("/*") {
                 s.bump();
-            }
-        } else if c == '"' {
-            out.push(Spanned { token: Token::Str(string(&mut s, span, sources)?), span });
-        } else if c.is_ascii_digit() || (c == '.' && s.peek(1).is_some_and(|d| d.is_ascii_digit())) {
-            out.push(Spanned { token: number(&mut s, span, sources)?, span });
-        } else if c.is_ascii_alphabetic() || c == '_' {
-            let mut w = String::new();
-            while let Some(c) = s.peek(0).filter(|c| c.is_ascii_alphanumeric() || *c == '_') {
-                w.push(c);
                 s.bump();
-            }
-            out.push(Spanned { token: Token::Word(w), span });
-        } else if let Some(sym) = SYMBOLS.iter().find(|sym| s.starts_with(sym)) {
-            for _ in 0..sym.len() {
+                loop {
+                    if s.peek(0).is_none() {
+                        return Err(sources.error(span, "unterminated comment: expected '*/' to close the '/*' opened here"));
+                    }
+                    if s.starts_with("*/") {
+                        s.bump();
+                        s.bump();
+                        break;
+                    }
+                    s.bump();
+                }
+            } else if c == '"' {
+                return Ok(Some(Spanned { token: Token::Str(string(s, span, sources)?), span }));
+            } else if c.is_ascii_digit() || (c == '.' && s.peek(1).is_some_and(|d| d.is_ascii_digit())) {
+                return Ok(Some(Spanned { token: number(s, span, sources)?, span }));
+            } else if c.is_ascii_alphabetic() || c == '_' {
+                let mut w = String::new();
+                while let Some(c) = s.peek(0).filter(|c| c.is_ascii_alphanumeric() || *c == '_') {
+                    w.push(c);
+                    s.bump();
+                }
+                return Ok(Some(Spanned { token: Token::Word(w), span }));
+            } else if let Some(sym) = SYMBOLS.iter().find(|sym| s.starts_with(sym)) {
+                for _ in 0..sym.len() {
+                    s.bump();
+                }
+                return Ok(Some(Spanned { token: Token::Symbol(sym), span }));
+            } else if c == '!' {
                 s.bump();
+                return Ok(Some(Spanned { token: Token::Symbol("!"), span }));
+            } else {
+                return Err(sources.error(span, format!("unexpected character '{}'", c.escape_default())));
             }
-            out.push(Spanned { token: Token::Symbol(sym), span });
-        } else if c == '!' {
-            s.bump();
-            out.push(Spanned { token: Token::Symbol("!"), span });
-        } else {
-            return Err(sources.error(span, format!("unexpected character '{}'", c.escape_default())));
         }
+        Ok(None)
+    }
+}
+
+/// Splits a text into tokens.
+pub fn tokenize(text: &str, file: usize, sources: &Sources) -> Result<Vec<Spanned>, MbdynError> {
+    let mut lexer = Lexer::new(text, file);
+    let mut out = Vec::new();
+    while let Some(t) = lexer.next_token(sources)? {
+        out.push(t);
     }
     Ok(out)
 }

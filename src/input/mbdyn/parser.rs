@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 
 use super::diagnostic::{MbdynError, Sources, Span};
 use super::expr::{describe, reads_current, staticize_evals, Deferred, Evaluator, Reads, SetOverrides, Variables};
-use super::lexer::{tokenize, Spanned, Token};
+use super::lexer::{Lexer, Spanned, Token};
 use super::value::TypedValue;
 use crate::element::NodeKinematics;
 use crate::limits::MAX_INCLUDE_DEPTH;
@@ -187,19 +187,36 @@ impl Reader {
         let file = self.doc.sources.files.len();
         self.doc.sources.files.push((path.to_path_buf(), text));
         self.stack.push((path.to_path_buf(), canonical(path)));
-        let tokens = tokenize(&self.doc.sources.files[file].1, file, &self.doc.sources)?;
-        let mut start = 0;
-        while start < tokens.len() {
-            let end = match statement_end(&tokens[start..]) {
-                Ok(k) => start + k,
-                Err(Some(paren)) => return Err(self.doc.sources.error(paren, "unbalanced parenthesis: expected ')' to close this '('")),
-                Err(None) => {
-                    let last = tokens.last().map_or(tokens[start].span, |t| t.span);
-                    return Err(self.doc.sources.error(last, "missing ';' at the end of this statement"));
+        // One statement's tokens at a time (the file's would be held together otherwise).
+        // A statement ends at the first ';' outside parentheses (semicolons inside separate
+        // the expressions of a statement list, `(real a = 1.; 2.*a)`); a ':' inside them
+        // shows that the next statement began before a ')'.
+        let mut lexer = Lexer::new(&self.doc.sources.files[file].1, file);
+        let mut statement: Vec<Spanned> = Vec::new();
+        let mut open: Vec<Span> = Vec::new();
+        let unbalanced = "unbalanced parenthesis: expected ')' to close this '('";
+        while let Some(t) = lexer.next_token(&self.doc.sources)? {
+            match t.token {
+                Token::Symbol("(" | "[") => open.push(t.span),
+                Token::Symbol(")" | "]") => {
+                    open.pop();
                 }
-            };
-            self.statement(&tokens[start..end], tokens[end].span, path)?;
-            start = end + 1;
+                Token::Symbol(";") if open.is_empty() => {
+                    self.statement(&statement, t.span, path)?;
+                    statement.clear();
+                    continue;
+                }
+                // A statement's ':' inside parentheses: a ')' is missing before it.
+                Token::Symbol(":") if !open.is_empty() => return Err(self.doc.sources.error(open[0], unbalanced)),
+                _ => {}
+            }
+            statement.push(t);
+        }
+        if let Some(last) = statement.last() {
+            return Err(match open.first() {
+                Some(&paren) => self.doc.sources.error(paren, unbalanced),
+                None => self.doc.sources.error(last.span, "missing ';' at the end of this statement"),
+            });
         }
         self.stack.pop();
         Ok(())
@@ -458,22 +475,3 @@ fn calls_model_drive(tokens: &[Spanned]) -> bool {
         || tokens.iter().any(|t| matches!(&t.token, Token::Str(s) if s.contains("_eval")))
 }
 
-/// Index of the ';' that ends the first statement (semicolons inside parentheses separate
-/// expressions of a statement list, `(real a = 1.; 2.*a)`). Errors with the span of an
-/// unclosed '(' (also when a ':' shows that the next statement began inside it), or with
-/// `None` when there is no ';'.
-fn statement_end(tokens: &[Spanned]) -> Result<usize, Option<Span>> {
-    let mut open: Vec<Span> = Vec::new();
-    for (k, t) in tokens.iter().enumerate() {
-        match t.token {
-            Token::Symbol("(" | "[") => open.push(t.span),
-            Token::Symbol(")" | "]") => {
-                open.pop();
-            }
-            Token::Symbol(";") if open.is_empty() => return Ok(k),
-            Token::Symbol(":") if !open.is_empty() => return Err(open.first().copied()),
-            _ => {}
-        }
-    }
-    Err(open.first().copied())
-}
