@@ -56,6 +56,20 @@ fn a_card_mbdyn_runs_is_refused_as_romdyns_limit() {
 }
 
 #[test]
+fn a_feature_of_a_card_mbdyn_runs_is_refused_as_romdyns_limit() {
+    // Options of cards romdyn reads, which MBDyn 1.7.3 honours (its input manual).
+    let cases = [
+        ("integration method", model("", "", "").replace("time step: 1.e-3;", "time step: 1.e-3; method: hope, 0.6, 0.6;")),
+        ("use in assembly", model("rigid bodies: 1; use: rigid bodies, in assembly;", "", "body: 1, 2, 1., null, eye;")),
+        ("inverse dynamics", model("", "", "").replace("problem: initial value;", "problem: inverse dynamics;")),
+    ];
+    for (what, text) in cases {
+        let got = error_of(&text);
+        assert!(got.contains("not supported by romdyn (MBDyn 1.7.3 runs it"), "{what}: {got}");
+    }
+}
+
+#[test]
 fn a_name_neither_program_knows_is_said_to_be_unknown_to_both() {
     // A typo ("revolut hinge", "aerodynamic bodyy") is not a card MBDyn runs: the message
     // must not send the user looking for a romdyn feature.

@@ -197,7 +197,7 @@ pub fn control_data(block: Option<&Block>, sources: &Sources) -> Result<(Counts,
         c.finish()?;
     }
     if let Some((item, span)) = used.filter(|_| !assembly.skip) {
-        return Err(sources.error(span, format!("'use: {item}, in assembly' is not supported by romdyn: its initial assembly uses joints and beams only, as MBDyn's does by default")));
+        return Err(sources.error(span, format!("'use: {item}, in assembly' is not supported by romdyn (MBDyn 1.7.3 runs it): its initial assembly uses joints and beams only, as MBDyn's does by default")));
     }
     Ok((counts, output, assembly))
 }

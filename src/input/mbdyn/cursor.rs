@@ -274,7 +274,7 @@ impl Cursor<'_> {
                 }
             }
         } else if self.peek_keyword().is_some_and(|k| k.eq_ignore_ascii_case("anba")) {
-            return Err(self.error("the 'anba' layout of a 6x6 matrix is not supported by romdyn (write the 36 entries by rows, in MBDyn's axes)"));
+            return Err(self.error("the 'anba' layout of a 6x6 matrix is not supported by romdyn (MBDyn 1.7.3 runs it) (write the 36 entries by rows, in MBDyn's axes)"));
         } else {
             self.accept("matr");
             for i in 0..6 {

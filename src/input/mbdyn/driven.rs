@@ -37,15 +37,15 @@ pub fn wrap(head: &Statement, parsed: Parsed, src: &Sources, ctx: &ElementContex
             // it is off (MBDyn holds them at zero), they are solved for at the switch-on.
             if inner.type_name() != "distance" && (0..inner.multipliers().len()).any(|k| inner.unknown_kind(k) == UnknownKind::Coordinate) {
                 // Switched off, its coordinate (the abscissa) would be held at its initial value.
-                return Err(c.error_at(head.span, format!("driven: a driven {} is not supported by romdyn (switched off, its abscissa would return to its initial value)", inner.type_name())));
+                return Err(c.error_at(head.span, format!("driven: a driven {} is not supported by romdyn (MBDyn 1.7.3 runs it) (switched off, its abscissa would return to its initial value)", inner.type_name())));
             }
             if (0..inner.multipliers().len()).any(|k| inner.unknown_kind(k) == UnknownKind::State) {
                 // Its own differential states (a friction model's bristle deflection) would have
                 // to be frozen while it is off and restarted when it switches on.
-                return Err(c.error_at(head.span, format!("driven: a driven {} with states of its own (joint friction) is not supported by romdyn", inner.type_name())));
+                return Err(c.error_at(head.span, format!("driven: a driven {} with states of its own (joint friction) is not supported by romdyn (MBDyn 1.7.3 runs it)", inner.type_name())));
             }
             if inner.events().is_some() {
-                return Err(c.error_at(head.span, format!("driven: a driven {} with events of its own (a bistop law, a total joint locking some rotation components only) is not supported by romdyn", inner.type_name())));
+                return Err(c.error_at(head.span, format!("driven: a driven {} with events of its own (a bistop law, a total joint locking some rotation components only) is not supported by romdyn (MBDyn 1.7.3 runs it)", inner.type_name())));
             }
             check_hints_apply(&*inner, &probes, src)?;
             Ok(Parsed::Element(Box::new(DrivenElement { drive, inner, hints })))

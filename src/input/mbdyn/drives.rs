@@ -501,7 +501,7 @@ fn node_drive(c: &mut Cursor, drives: &Drives, inner: &dyn Fn(&mut Cursor) -> Re
         return Err(c.error_at(at, format!("node drive caller: romdyn reads structural, abstract, electric and hydraulic nodes, found {}", c.found())));
     }
     if c.accept("index") {
-        return Err(c.error("node drive caller: 'index' (deprecated in MBDyn) is not supported by romdyn: write 'string, \"NAME[i]\"'"));
+        return Err(c.error("node drive caller: 'index' (deprecated in MBDyn) is not supported by romdyn (MBDyn 1.7.3 runs it): write 'string, \"NAME[i]\"'"));
     }
     c.keyword("'string' and the private data name", &["string"])?;
     let name_at = c.here();

@@ -123,7 +123,7 @@ impl PrivateReads {
     /// them (no elements block follows).
     pub fn string_reads(&self, text: &str, span: Span, reads: &[StringRead]) -> Result<(), String> {
         if self.in_hint && !reads.is_empty() {
-            return Err("model::element::… in a hint's drive is not supported by romdyn (it reads elements' private data in drives of the input file)".into());
+            return Err("model::element::… in a hint's drive is not supported by romdyn (MBDyn 1.7.3 runs it) (it reads elements' private data in drives of the input file)".into());
         }
         for r in reads {
             let (space, label) = r.element;
@@ -156,7 +156,7 @@ pub fn parameter_node(c: &mut Cursor, seen: &mut HashMap<Label, Span>) -> Result
     let kind_at = c.here();
     if !c.accept("element") {
         let what = c.accept_any(&["value", "sample and hold", "beam strain gage"]).map_or_else(|| "without 'element'".to_string(), |k| format!("'{k}'"));
-        return Err(c.error_at(kind_at, format!("parameter nodes {what} are not supported by romdyn (supported: 'parameter: LABEL, element;', bound to an element's private data)")));
+        return Err(c.error_at(kind_at, format!("parameter nodes {what} are not supported by romdyn (MBDyn 1.7.3 runs them) (supported: 'parameter: LABEL, element;', bound to an element's private data)")));
     }
     if c.accept("output") {
         c.flag("output flag")?;

@@ -208,7 +208,7 @@ fn force(couple: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Re
     }
     let unsupported = ["absolute displacement", "absolute internal displacement", "abstract internal", "modal", "external structural", "external modal", "external structural mapping", "external modal mapping"];
     if let Some(k) = c.accept_any(&unsupported) {
-        return Err(c.error_at(span, format!("{what} type '{k}' is not supported by romdyn (supported: absolute, follower, absolute internal, follower internal, total internal, absolute displacement, absolute internal displacement, abstract)")));
+        return Err(c.error_at(span, format!("{what} type '{k}' is not supported by romdyn (MBDyn 1.7.3 runs it) (supported: absolute, follower, absolute internal, follower internal, total internal, absolute displacement, absolute internal displacement, abstract)")));
     }
     let frame = match c.keyword(&format!("the {what} type"), &["absolute", "conservative", "follower"])? {
         "follower" => ForceFrame::Follower,

@@ -494,7 +494,7 @@ impl<'a> Evaluator<'a> {
                 }
                 Ok(v)
             }
-            Token::Symbol("[") => Err(self.err(span, "plugin variables ('[node, …]', '[element, …]', '[dof, …]') read run-time values and are not supported by romdyn")),
+            Token::Symbol("[") => Err(self.err(span, "plugin variables ('[node, …]', '[element, …]', '[dof, …]') read run-time values and are not supported by romdyn (MBDyn 1.7.3 runs them)")),
             Token::Word(w) => {
                 let mut name = w.clone();
                 if self.eat("::") {
@@ -581,7 +581,7 @@ impl<'a> Evaluator<'a> {
             return args[0].cast(ty).map_err(self.at(span));
         }
         if UNSUPPORTED_FUNCTIONS.contains(&name) {
-            return Err(self.err(span, format!("function '{name}' is not supported by romdyn")));
+            return Err(self.err(span, format!("function '{name}' is not supported by romdyn (MBDyn 1.7.3 runs it)")));
         }
         let Some(&(_, want)) = FUNCTIONS.iter().find(|(f, _)| *f == name) else {
             return Err(self.err(span, format!("unknown function '{name}'")));

@@ -87,7 +87,7 @@ pub fn file_driver(st: &Statement, c: &mut Cursor, drivers: &mut FileDrivers) ->
     } else if c.accept("bailout") {
         let at = c.here();
         if c.keyword("the bailout", &["none", "upper", "lower", "any"])? != "none" {
-            return Err(c.error_at(at, "a file driver's bailout ends the run when the time leaves the file's range; romdyn does not support it (write 'bailout, none' or set the final time)"));
+            return Err(c.error_at(at, "a file driver's bailout ends the run when the time leaves the file's range; romdyn does not support it (MBDyn 1.7.3 does) (write 'bailout, none' or set the final time)"));
         }
     }
     let file_span = c.here();

@@ -81,7 +81,7 @@ fn preload_and_model(c: &mut Cursor, ctx: &ElementContext, joint: &str) -> Resul
     let span = c.here();
     let shape = c.keyword("a friction shape function", &SHAPES)?;
     if shape != "simple" {
-        return Err(c.error_at(span, format!("friction shape function '{shape}' is not supported by romdyn on an '{joint}' joint (supported: simple)")));
+        return Err(c.error_at(span, format!("friction shape function '{shape}' on a '{joint}' joint is not supported by romdyn (MBDyn 1.7.3 runs it; supported: simple)")));
     }
     Ok((preload, model))
 }

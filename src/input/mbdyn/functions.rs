@@ -130,7 +130,7 @@ pub fn call(name: &str, a: &[f64]) -> Result<TypedValue, String> {
         }),
         "tan" => real(x.tan()),
         "tanh" => real(x.tanh()),
-        _ => return Err(format!("function '{name}' is not supported by romdyn")),
+        _ => return Err(format!("function '{name}' is not supported by romdyn (MBDyn 1.7.3 runs it)")),
     };
     Ok(v)
 }

@@ -80,7 +80,7 @@ fn scalar_law(c: &mut Cursor, ctx: &ElementContext, what: &str) -> Result<Scalar
     let span = c.here();
     let law = super::laws::linear_law(c, 1, ctx.laws, ctx.drives, ctx.seq)?;
     if law.bistop.is_some() {
-        return Err(c.error_at(span, format!("{what}: a bistop law on a genel is not supported by romdyn (linear elastic, viscous and viscoelastic laws are)")));
+        return Err(c.error_at(span, format!("{what}: a bistop law on a genel is not supported by romdyn (MBDyn 1.7.3 runs it) (linear elastic, viscous and viscoelastic laws are)")));
     }
     Ok(ScalarLaw { stiffness: law.stiffness[(0, 0)], viscosity: law.viscosity[(0, 0)], prestrain: law.prestrain[0], prestress: law.prestress[0] })
 }
@@ -143,7 +143,7 @@ fn state_space(label: Label, kind: &'static str, c: &mut Cursor, ctx: &ElementCo
         c.flag("balance (yes or no)")?;
     }
     if kind != "scalar filter" && c.accept("value") {
-        return Err(c.error(format!("{what}: initial values of the states ('value, …') are not supported by romdyn (its genel states start at zero)")));
+        return Err(c.error(format!("{what}: initial values of the states ('value, …') are not supported by romdyn (MBDyn 1.7.3 runs them) (its genel states start at zero)")));
     }
     Ok(Box::new(StateSpace { label, outputs, inputs, e, a, b, c: cc, d, keyword: kind }))
 }

@@ -37,7 +37,7 @@ pub fn hint(text: &str, at: Span, src: &Sources, drives: &Drives, seq: usize) ->
     let lower = text.trim().to_lowercase();
     let found = KINDS.iter().find(|(p, _)| lower.starts_with(p)).filter(|_| lower.ends_with('}'));
     let Some(&(prefix, kind)) = found else {
-        return Err(src.error(at, format!("driven: hint \"{text}\" is not supported by romdyn (supported: \"drive{{…}}\" on a distance joint, \"drive3{{…}}\" on a drive hinge, \"position-drive3{{…}}\" and \"orientation-drive3{{…}}\" on a total joint or total pin joint)")));
+        return Err(src.error(at, format!("driven: hint \"{text}\" is not supported by romdyn (MBDyn 1.7.3 runs it) (supported: \"drive{{…}}\" on a distance joint, \"drive3{{…}}\" on a drive hinge, \"position-drive3{{…}}\" and \"orientation-drive3{{…}}\" on a total joint or total pin joint)")));
     };
     let trimmed = text.trim();
     let body = trimmed[prefix.len()..trimmed.len() - 1].to_string();

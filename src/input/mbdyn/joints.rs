@@ -305,7 +305,7 @@ pub fn joint(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<d
             let law = super::laws::linear_or_time_variant_law(c, 3, ctx.laws, ctx.drives, ctx.seq)?;
             orientation_description(c)?;
             if law.prestrain.iter().chain(law.prestress.iter()).any(|x| *x != 0.0) {
-                return Err(c.error_at(law_span, "prestrain and prestress of an invariant deformable hinge are not supported by romdyn"));
+                return Err(c.error_at(law_span, "prestrain and prestress of an invariant deformable hinge are not supported by romdyn (MBDyn 1.7.3 runs them)"));
             }
             Box::new(InvariantDeformableHinge { label, a: a.anchor(), b: b.anchor(), law: three(&law), variance: law.time_variance.clone() })
         }
@@ -509,7 +509,7 @@ fn rod(offsets: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Res
         }
         Some(kind) => {
             if prestrain.is_some() {
-                return Err(c.error_at(law_span, format!("rod: a prestrain that changes in time on an '{kind}' law is not supported by romdyn")));
+                return Err(c.error_at(law_span, format!("rod: a prestrain that changes in time on an '{kind}' law is not supported by romdyn (MBDyn 1.7.3 runs it)")));
             }
             let (elastic, viscous) = (law.functions.elastic[0].clone(), law.functions.viscous[0].clone());
             let (stiffness, viscosity, prestrain, prestress) = (law.stiffness[(0, 0)], law.viscosity[(0, 0)], law.prestrain[0], law.prestress[0]);
@@ -539,7 +539,7 @@ fn rod(offsets: bool, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Res
     let rod = Rod { label, a: a.anchor(), b: b.anchor(), axial_stiffness: ea * rest / l0, length: rest, viscous, elastic: None };
     if let Some(b) = law.bistop {
         if prestrain.is_some() {
-            return Err(c.error_at(law_span, "rod: a bistop law with a prestrain that changes in time is not supported by romdyn"));
+            return Err(c.error_at(law_span, "rod: a bistop law with a prestrain that changes in time is not supported by romdyn (MBDyn 1.7.3 runs it)"));
         }
         return Ok(Box::new(crate::element::BistopRod { rod, strain_length: l0, initially_active: b.initially_active, activate: b.activate, deactivate: b.deactivate }));
     }

@@ -413,14 +413,14 @@ fn prestrain(c: &mut Cursor, dim: usize, drives: &Drives, seq: usize) -> Result<
         let terms = template_vec3(c, drives, seq, &Mat3::identity(), &|c: &mut Cursor| c.vec3_values("prestrain"))?;
         return match single_term(terms) {
             Some((v, d)) if constant(&d) => Ok(DVector::from_column_slice((v * d.value(0.0)).as_slice())),
-            _ => Err(c.error_at(span, "a time-varying prestrain is not supported by romdyn")),
+            _ => Err(c.error_at(span, "a time-varying prestrain is not supported by romdyn (MBDyn 1.7.3 runs it)")),
         };
     }
     c.accept("single");
     let v = vector(c, dim, "prestrain")?;
     let d = super::drives::drive(c, drives, seq)?;
     if !constant(&d) {
-        return Err(c.error_at(span, "a time-varying prestrain is not supported by romdyn"));
+        return Err(c.error_at(span, "a time-varying prestrain is not supported by romdyn (MBDyn 1.7.3 runs it)"));
     }
     Ok(v * d.value(0.0))
 }

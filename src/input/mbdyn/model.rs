@@ -293,7 +293,7 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
             }
             Parsed::Element(e) if e.type_name() == "variable body" => {
                 if frame_motion.is_some() {
-                    return Err(src.error(st.span, "a variable-mass body in a model with 'rigid body kinematics' is not supported by romdyn"));
+                    return Err(src.error(st.span, "a variable-mass body in a model with 'rigid body kinematics' is not supported by romdyn (MBDyn 1.7.3 runs it)"));
                 }
                 variable_bodies.push(st.span);
                 Parsed::Element(e)
@@ -368,7 +368,7 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
     }
     // A central or time-varying field acts on every body at its node (gravity.cc, body.cc).
     if let (Some(_), Some(at)) = (&central, variable_bodies.first()) {
-        return Err(src.error(*at, "a variable-mass body in a central or time-varying gravity field is not supported by romdyn (only in a uniform one)"));
+        return Err(src.error(*at, "a variable-mass body in a central or time-varying gravity field is not supported by romdyn (MBDyn 1.7.3 runs it) (only in a uniform one)"));
     }
     if let Some(field) = central {
         for (label, node, mass, offset) in bodies {

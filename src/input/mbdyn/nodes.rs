@@ -187,7 +187,7 @@ fn structural(c: &mut Cursor, ctx: &Context, label: Label, kind: NodeKind) -> Re
 /// `ReadStructNode` with `bDisp`): a point without orientation (kept the identity).
 fn displacement(c: &mut Cursor, ctx: &Context, label: Label, kind: NodeKind) -> Result<StructuralNode, MbdynError> {
     if c.accept("at reference") {
-        return Err(c.error("'at reference' on a displacement node is not supported by romdyn (write its position and velocity)"));
+        return Err(c.error("'at reference' on a displacement node is not supported by romdyn (MBDyn 1.7.3 runs it) (write its position and velocity)"));
     }
     c.accept("position");
     let position = ctx.position(c, "node position [m]")?;

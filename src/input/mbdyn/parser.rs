@@ -300,7 +300,7 @@ impl Reader {
         let inner = &body[comma + 1..];
         let inner_words: Vec<String> = inner.iter().take_while(|t| t.token != Token::Symbol(":")).map(|t| t.token.text().to_lowercase()).collect();
         match inner_words.join(" ").as_str() {
-            "existing" => return Err(self.doc.sources.error(inner[0].span, "driven: wrapping an 'existing' element is not supported by romdyn (write the element's card inside the driven card)")),
+            "existing" => return Err(self.doc.sources.error(inner[0].span, "driven: wrapping an 'existing' element is not supported by romdyn (MBDyn 1.7.3 runs it) (write the element's card inside the driven card)")),
             "driven" => return Err(self.doc.sources.error(inner[0].span, "driven: a driven element cannot wrap another driven element")),
             _ => {}
         }

@@ -26,7 +26,7 @@ pub fn data(block: &Block, sources: &Sources) -> Result<(), MbdynError> {
             Some(_) => {
                 let span = c.here();
                 if c.accept("inverse dynamics") {
-                    return Err(c.error_at(span, "problem 'inverse dynamics' is not supported by romdyn (supported: initial value)"));
+                    return Err(c.error_at(span, "problem 'inverse dynamics' is not supported by romdyn (MBDyn 1.7.3 runs it) (supported: initial value)"));
                 }
                 // `multistep` is MBDyn's deprecated name of the initial value problem.
                 c.keyword("the problem", &["initial value", "multistep"])?;
@@ -231,7 +231,7 @@ fn method(c: &mut Cursor, drives: &Drives, t0: f64, seq: usize) -> Result<(Metho
     const SUPPORTED: &str = "supported: ms, crank nicolson, implicit euler, bdf, Bathe, hybrid";
     let span = c.here();
     if let Some(m) = c.accept_any(&["hope", "third order", "thirdorder"]) {
-        return Err(c.error_at(span, format!("integration method '{m}' is not supported by romdyn ({SUPPORTED})")));
+        return Err(c.error_at(span, format!("integration method '{m}' is not supported by romdyn (MBDyn 1.7.3 runs it) ({SUPPORTED})")));
     }
     // Methods of later MBDyn versions romdyn does not implement.
     if let Some(m) = c.accept_any(&["dirk33", "dirk43", "dirk54", "ms3", "ms4", "msstc3", "msstc4", "msstc5", "mssth3", "mssth4", "mssth5", "ss2", "ss3", "ss4", "ss5"]) {
@@ -271,7 +271,7 @@ fn method(c: &mut Cursor, drives: &Drives, t0: f64, seq: usize) -> Result<(Metho
             match default {
                 "implicit euler" => Method::HybridImplicitEuler,
                 "crank nicolson" | "crank nicholson" => Method::CrankNicolson,
-                "hope" => return Err(c.error_at(span, format!("integration method 'hope' (the hybrid method's default) is not supported by romdyn ({SUPPORTED})"))),
+                "hope" => return Err(c.error_at(span, format!("integration method 'hope' (the hybrid method's default) is not supported by romdyn (MBDyn 1.7.3 runs it) ({SUPPORTED})"))),
                 _ => Method::Ms { rho },
             }
         }

@@ -119,7 +119,7 @@ pub fn scalar_dof(c: &mut Cursor, nodes: &[ScalarEntry], what: &str, order: bool
     let type_span = c.here();
     let keyword = c.keyword(&format!("{what}: the node type"), &["abstract", "electric", "hydraulic", "structural", "parameter", "thermal"])?;
     if !SCALAR_TYPES.contains(&keyword) {
-        return Err(c.error_at(type_span, format!("{what}: a degree of freedom of a {keyword} node is not supported by romdyn (genels and abstract forces connect to abstract, electric and hydraulic nodes)")));
+        return Err(c.error_at(type_span, format!("{what}: a degree of freedom of a {keyword} node is not supported by romdyn (MBDyn 1.7.3 runs it) (genels and abstract forces connect to abstract, electric and hydraulic nodes)")));
     }
     let id = ScalarNodeId { kind: kind_of(keyword), label };
     let Some(node) = nodes.iter().find(|e| e.node.id == id) else {

@@ -33,7 +33,7 @@ pub fn parts(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Optio
         Some("total equation") => {
             let j = super::total_joint::total(false, label, c, ctx, span)?;
             if j.velocity_locked.contains(&true) || j.angular_velocity_locked.contains(&true) {
-                return Err(c.error_at(span, "total equation: 'velocity' and 'angular velocity' constraints are not supported by romdyn (position and rotation constraints are)"));
+                return Err(c.error_at(span, "total equation: 'velocity' and 'angular velocity' constraints are not supported by romdyn (MBDyn 1.7.3 runs them) (position and rotation constraints are)"));
             }
             Ok(Some(Parsed::TotalEquation(j)))
         }
@@ -85,7 +85,7 @@ pub fn regularization(joint: Label, c: &mut Cursor) -> Result<Parsed, MbdynError
     match c.keyword("joint regularization type", &["tikhonov", "dynamic", "jacobian"])? {
         "tikhonov" => {}
         kind => {
-            return Err(c.error_at(span, format!("joint regularization '{kind}' is not supported by romdyn (it changes MBDyn's Newton matrix, or lags the multiplier a step: jointreg.cc); 'tikhonov' is")));
+            return Err(c.error_at(span, format!("joint regularization '{kind}' is not supported by romdyn (MBDyn 1.7.3 runs it) (it changes MBDyn's Newton matrix, or lags the multiplier a step: jointreg.cc); 'tikhonov' is")));
         }
     }
     let c_span = c.here();

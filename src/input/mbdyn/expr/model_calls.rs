@@ -108,7 +108,7 @@ impl Evaluator<'_> {
                     }
                 }
             }
-            "drivep" => Err(self.err(span, "model::drivep (a drive caller's derivative) is not supported by romdyn")),
+            "drivep" => Err(self.err(span, "model::drivep (a drive caller's derivative) is not supported by romdyn (MBDyn 1.7.3 runs it)")),
             _ => Err(self.err(span, format!("unknown function '{what}' of the model namespace"))),
         }
     }
