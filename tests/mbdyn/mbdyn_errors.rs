@@ -255,3 +255,14 @@ fn the_caret_lines_up_under_tabs() {
     // Line 3 starts with a tab: the caret line keeps it, then one space per character.
     assert_eq!(e.to_string(), "m.mbd:3:2: error: missing ';' before 'foo'\n  |\n3 | \tfoo: 1;\n  | \t^");
 }
+
+/// Columns count characters, not bytes, after multi-byte UTF-8 text (the reader keeps the
+/// text as UTF-8 with a byte cursor): the error on line 2 is at character 19.
+#[test]
+fn columns_count_characters_after_non_ascii_text() {
+    let text = "# µ-strain at 30° (température)\nset: real x = 1.; ° \n";
+    assert_eq!(error_of(text), "m.mbd:2:19: error: unexpected character '\\u{b0}'");
+    // And within a line: "é" in a string is one character.
+    let text = "set: string s = \"é\"; ° \n";
+    assert_eq!(error_of(text), "m.mbd:1:22: error: unexpected character '\\u{b0}'");
+}
