@@ -10,7 +10,9 @@ use romdyn::analysis::Reference;
 use romdyn::dae::{NodeInput, NodeOutput};
 use romdyn::input::mbdyn::MbdynModel;
 use romdyn::model::BeamUpdateChoice;
-use romdyn::study::{Application, EigenSettings, Linearization, Ports, Setting, Study, StudyError, Warning};
+use romdyn::study::{Application, Setting, Study, StudyError, StudySource, Warning};
+
+use crate::common::cli::{pendulum_variant, romdyn, temp_dir, write_file};
 
 fn model(relative: &str, replace: &[(&str, &str)]) -> MbdynModel {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(relative);
@@ -22,19 +24,15 @@ fn model(relative: &str, replace: &[(&str, &str)]) -> MbdynModel {
     romdyn::input::mbdyn::parse_text(&text, &path).and_then(|d| romdyn::input::mbdyn::build(&d)).unwrap_or_else(|e| panic!("{e}"))
 }
 
-/// The four library doors, each on the same model, reference and node ports.
+/// The library's doors (the builder with node ports, the application door), each on the same model, reference and node ports.
 fn every_door(make: &dyn Fn() -> MbdynModel, reference: Reference, input: &str, output: &str) -> Vec<(&'static str, Result<Study, StudyError>)> {
     let inputs = vec![input.parse::<NodeInput>().unwrap()];
     let outputs = vec![output.parse::<NodeOutput>().unwrap()];
     let app = Application { inputs: inputs.iter().map(NodeInput::port).collect(), outputs: outputs.iter().map(NodeOutput::port).collect(), names: Default::default(), remove_springs: Vec::new(), imposed: None };
-    let lin = Linearization { reference, inputs: inputs.clone(), outputs: outputs.clone() };
-    let eigen = EigenSettings::default;
-    let (a, b, c, d) = (make(), make(), make(), make());
+    let (a, b) = (make(), make());
     vec![
-        ("from_model", Study::from_model(a.model, &a.problem, &lin, eigen())),
-        ("from_application", Study::from_application(b.model, &b.problem, reference, &app, eigen())),
-        ("of_model (node ports)", Study::of_model(c.model, &c.problem, reference, &Ports::Nodes { inputs, outputs }, eigen(), None).map(|(s, _)| s)),
-        ("of_model (application)", Study::of_model(d.model, &d.problem, reference, &Ports::Application(app), eigen(), None).map(|(s, _)| s)),
+        ("builder (node ports)", Study::builder(StudySource::model(a.model, a.problem)).reference(reference).node_ports(inputs, outputs).build()),
+        ("builder (application)", Study::builder(StudySource::model(b.model, b.problem)).reference(reference).application(app).build()),
     ]
 }
 
@@ -78,4 +76,23 @@ fn incremental_beams_at_a_static_reference_are_warned_at_every_door() {
         let study = result.unwrap_or_else(|e| panic!("{door}: {e}"));
         assert!(study.warnings().iter().any(|w| matches!(w, Warning::IncrementalBeamsStatic { beams: 2 })), "{door}: {:?}", study.warnings());
     }
+}
+
+/// The CLI's door runs the same three checks through the same builder: `--at` after the
+/// file's final time refused naming the flag, the floating model's motion named, the
+/// incremental beams at `--static` warned about.
+#[test]
+fn the_command_line_door_runs_the_same_checks() {
+    let (ok, _, err) = romdyn(&["eig", "examples/pendulum.mbd", "--at", "5"]);
+    assert!(!ok && err.contains("--at: TIME 5 s is after the file's final time 2 s"), "{err}");
+
+    let dir = temp_dir("study-doors-cli");
+    let spring = "joint: 2, deformable joint,\n        1, null, hinge, reference, node, eye,\n        2, 0., L, 0., hinge, reference, node, eye,\n        linear elastic generic, diag, 1.e4, 1.e4, 1.e4, 1.e4, 1.e4, 1.e4;";
+    let floating = pendulum_variant(&[("    joint: 1, clamp, 1, node, node;\n", ""), ("joint: 2, revolute hinge,\n        1, position, null,\n        2, position, 0., L, 0.;", spring), ("joints: 2;", "joints: 1;")]);
+    let file = write_file(dir.as_ref(), "floating.mbd", &floating);
+    let (ok, _, err) = romdyn(&["eig", &file, "--static", "--load-steps", "1"]);
+    assert!(!ok && err.contains("unrestrained") && err.contains("rigid-body motion of the whole model"), "{err}");
+
+    let (ok, _, err) = romdyn(&["eig", "tests/mbdyn_files/beam3_tip_couple.mbd", "--static", "--beam-update", "incremental"]);
+    assert!(ok && err.contains("warning: 2 beam(s) use MBDyn's incremental update"), "{err}");
 }
