@@ -429,6 +429,8 @@ fn nonsense_options_are_refused_with_the_option_named() {
         (&["--at", "nan"][..], "--at: TIME must be a finite time"),
         (&["--static", "--load-steps", "0"][..], "--load-steps: need at least 1 load increment"),
         (&["--input", "2:Mz"][..], "--input: node 2 Mz [N m] is given twice"),
+        // The library's Setting, rendered as the flag (Python: "imposed: '2:q': …", pytest).
+        (&["--imposed", "2:q"][..], "--imposed: '2:q': expected NODE or NODE:COMPONENTS"),
     ] {
         let (ok, _, err) = model(extra);
         assert!(!ok && err.contains(expect), "{extra:?}: {err}");
