@@ -112,7 +112,8 @@ impl Study {
     }
 
     /// The dense linearization with the application's ports (imposed components last), the
-    /// DAE [`Study::from_application_dae`] starts from.
+    /// DAE a study of springs to remove or imposed motion starts from (given to the builder
+    /// with [`super::StudyBuilder::linearized`]).
     pub fn linearize_application(model: &Model, state: &State, app: &Application) -> Result<LinearDae, StudyError> {
         let (inputs, outputs) = application_ports(app);
         Ok(linearize_ports(model, state, &inputs, &outputs, None)?)

@@ -33,7 +33,7 @@ pub enum StudySource {
     ModelFile { path: PathBuf, overrides: SetOverrides },
     /// A model read or built already, with its problem; `file` (when it was read from one)
     /// names it in errors.
-    Model { model: Box<Model>, problem: InitialValueProblem, file: Option<PathBuf> },
+    Model { model: Box<Model>, problem: Box<InitialValueProblem>, file: Option<PathBuf> },
     /// A pencil file: an MBDyn eigenanalysis `.m` file (ports by equation row and unknown
     /// column in `ports`) or a JSON pencil (ports in the file, `ports` empty).
     PencilFile { path: PathBuf, ports: PencilPorts },
@@ -50,12 +50,12 @@ impl StudySource {
 
     /// A model built in Rust (`model::ModelBuilder`) or read already.
     pub fn model(model: Model, problem: InitialValueProblem) -> Self {
-        StudySource::Model { model: Box::new(model), problem, file: None }
+        StudySource::Model { model: Box::new(model), problem: Box::new(problem), file: None }
     }
 
     /// A model read from `file` (errors name the file).
     pub fn read(m: MbdynModel, file: &Path) -> Self {
-        StudySource::Model { model: Box::new(m.model), problem: m.problem, file: Some(file.to_path_buf()) }
+        StudySource::Model { model: Box::new(m.model), problem: Box::new(m.problem), file: Some(file.to_path_buf()) }
     }
 
     /// A pencil file.
@@ -174,7 +174,7 @@ impl<'p> StudyBuilder<'p> {
         let (model, problem, file) = match self.source {
             StudySource::ModelFile { ref path, ref overrides } => {
                 let m = read_model_with(path, overrides)?;
-                (Box::new(m.model), m.problem, Some(path.clone()))
+                (Box::new(m.model), Box::new(m.problem), Some(path.clone()))
             }
             StudySource::Model { model, problem, file } => (model, problem, file),
             StudySource::PencilFile { path, ports } => {
@@ -208,7 +208,7 @@ impl<'p> StudyBuilder<'p> {
             (Some(state), dae) => Study::at_state(model, &problem, state, &self.ports, dae, self.eigen, self.progress).map_err(in_file)?,
         };
         study.warnings.splice(0..0, notes.into_iter().map(|why| Warning::BeamKeptPathIndependent { why }));
-        study.problem = Some(problem);
+        study.problem = Some(*problem);
         Ok(study)
     }
 
