@@ -51,13 +51,14 @@ pub fn eigen(route: &str, dcoef: Option<f64>, solver: &str) -> PyResult<EigenSet
 }
 
 /// The modes the sparse route computes: `count` lowest or those in `band` (FMIN, FMAX) [Hz];
-/// neither: `None` (the library's default).
+/// neither: `None` (the library's default). The library checks them
+/// (`EigenSettings::validate`: at least 1 mode, 0 <= FMIN < FMAX).
 pub fn sparse_target(count: Option<usize>, band: Option<(f64, f64)>) -> PyResult<Option<ModeTarget>> {
     match (count, band) {
         (None, None) => Ok(None),
-        (Some(n), None) if n > 0 => Ok(Some(ModeTarget::Lowest(n))),
-        (None, Some((fmin_hz, fmax_hz))) => ModeSelection::band(fmin_hz, fmax_hz).map(|_| Some(ModeTarget::Band { fmin_hz, fmax_hz })).map_err(|e| bad("band", e)),
-        _ => Err(bad("count", "give at most one of count (a positive number of modes) and band (FMIN, FMAX) [Hz]")),
+        (Some(n), None) => Ok(Some(ModeTarget::Lowest(n))),
+        (None, Some((fmin_hz, fmax_hz))) => Ok(Some(ModeTarget::Band { fmin_hz, fmax_hz })),
+        (Some(_), Some(_)) => Err(bad("count", "give at most one of count (a positive number of modes) and band (FMIN, FMAX) [Hz]")),
     }
 }
 

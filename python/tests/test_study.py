@@ -263,3 +263,15 @@ def test_a_free_roms_eigenvalues_reach_python_as_the_cli_prints_them(examples, r
     # The HAM-SAS table's tipping: a real pair, one unstable, named by its motion.
     assert any(k == "real, unstable" and m and m.startswith("tipping") for k, m in zip(free["kind"], free["motion"]))
     assert romdyn.Model(examples / "pendulum.mbd").study(inputs=["2:Mz"], outputs=["2:rz"]).reduce(count=1).free_eigenvalues is None
+
+
+def test_the_sparse_target_is_checked_once_in_the_library(examples):
+    # Issue 31: EigenSettings::validate checks the modes the sparse route computes for every
+    # door; count=0 read "give at most one of count and band" in Python before.
+    model = romdyn.Model(examples / "pendulum.mbd")
+    with pytest.raises(ValueError, match=r"^count: a ROM keeps at least 1 mode$"):
+        model.study(solver="sparse", count=0)
+    with pytest.raises(ValueError, match=r"^band: need 0 <= FMIN < FMAX"):
+        model.study(solver="sparse", band=(3.0, 3.0))
+    with pytest.raises(ValueError, match=r"^band: need 0 <= FMIN < FMAX"):
+        model.sparse_modes(band=(3.0, 1.0))

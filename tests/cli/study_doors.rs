@@ -96,3 +96,20 @@ fn the_command_line_door_runs_the_same_checks() {
     let (ok, _, err) = romdyn(&["eig", "tests/mbdyn_files/beam3_tip_couple.mbd", "--static", "--beam-update", "incremental"]);
     assert!(ok && err.contains("warning: 2 beam(s) use MBDyn's incremental update"), "{err}");
 }
+
+/// The eigen settings are checked once, by the builder, before any work: a sparse target of
+/// no mode or an empty band is refused naming its setting (the CLI's `--count 0` and
+/// `--band 3:3` stop earlier, in clap, with the library's words: tests/cli/cli.rs).
+#[test]
+fn the_builder_checks_the_eigen_settings_once() {
+    use romdyn::eigen::krylov::ModeTarget;
+    use romdyn::study::EigenSettings;
+    for (target, setting) in [(ModeTarget::Lowest(0), Setting::Count), (ModeTarget::Band { fmin_hz: 3.0, fmax_hz: 3.0 }, Setting::Band)] {
+        let eigen = EigenSettings { target: Some(target), ..EigenSettings::default() };
+        match Study::builder(StudySource::model_file("examples/pendulum.mbd")).eigen(eigen).build() {
+            Err(StudyError::Option { option, .. }) => assert_eq!(option, setting),
+            Err(e) => panic!("{target:?}: {e}"),
+            Ok(_) => panic!("{target:?} accepted"),
+        }
+    }
+}
