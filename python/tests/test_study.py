@@ -275,3 +275,16 @@ def test_the_sparse_target_is_checked_once_in_the_library(examples):
         model.study(solver="sparse", band=(3.0, 3.0))
     with pytest.raises(ValueError, match=r"^band: need 0 <= FMIN < FMAX"):
         model.sparse_modes(band=(3.0, 1.0))
+
+
+def test_a_beam_the_auto_update_leaves_path_independent_warns_with_the_keyword():
+    # The study warning of tests/cli/study_doors.rs, spelled for Python (the advice's value
+    # "path-independent" kept whole: the spelling cut it at its hyphen before).
+    import pathlib
+
+    path = pathlib.Path(__file__).resolve().parents[2] / "tests" / "mbdyn_files" / "beam3_tip_couple.mbd"
+    text = path.read_text()
+    assert "    beam3: 2, 3, null" in text
+    model = romdyn.Model.from_text(text.replace("    beam3: 2, 3, null", "    driven: 2, const, 1., beam3: 2, 3, null"), name=str(path))
+    with pytest.warns(romdyn.ReferenceWarning, match=r"^beam3 2.*keeps the path-independent update.*\(beam_update=\"path-independent\" silences this\)$"):
+        model.study(reference=0.5)

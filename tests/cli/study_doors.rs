@@ -113,3 +113,18 @@ fn the_builder_checks_the_eigen_settings_once() {
         }
     }
 }
+
+/// The beams' `auto` update at a reference from a time integration: a driven beam3 cannot
+/// take MBDyn's incremental update and keeps the path-independent one; the builder makes that
+/// note a study warning, which the CLI prints with its flag (pytest: with the keyword).
+#[test]
+fn a_beam_the_auto_update_leaves_path_independent_is_a_study_warning() {
+    let dir = temp_dir("study-doors-driven-beam");
+    let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files/beam3_tip_couple.mbd")).unwrap();
+    assert!(text.contains("    beam3: 2, 3, null"));
+    let driven = write_file(dir.as_ref(), "driven.mbd", &text.replace("    beam3: 2, 3, null", "    driven: 2, const, 1., beam3: 2, 3, null"));
+    let (ok, _, err) = romdyn(&["eig", &driven, "--at", "0.5"]);
+    assert!(ok, "{err}");
+    assert_eq!(err.matches("warning: beam3").count(), 1, "{err}");
+    assert!(err.contains("warning: beam3 2") && err.contains("keeps the path-independent update") && err.contains("(--beam-update path-independent silences this)"), "{err}");
+}
