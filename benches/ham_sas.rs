@@ -10,7 +10,7 @@ use romdyn::input::mbdyn::read_model;
 use romdyn::input::ports_file::read_ports_file;
 use romdyn::eigen::{EigenRoute, ModalAnalysis};
 use romdyn::rom::ModeSelection;
-use romdyn::study::{parse_imposed, Application, EigenSettings, RomRequest, Study};
+use romdyn::study::{parse_imposed, Application, RomRequest, Study, StudySource};
 
 const BAND: ModeSelection = ModeSelection::Band { fmin_hz: 0.0, fmax_hz: 2.0 };
 
@@ -47,7 +47,7 @@ fn file_to_free_rom(bencher: divan::Bencher) {
     let app = application();
     bencher.bench(|| {
         let m = read_model("examples/ham_sas.mbd".as_ref()).unwrap();
-        let study = Study::from_application(m.model, &m.problem, Reference::Static { load_steps: 1 }, &app, EigenSettings::default()).unwrap();
+        let study = Study::builder(StudySource::model(m.model, m.problem)).reference(Reference::Static { load_steps: 1 }).application(app.clone()).build().unwrap();
         study.reduce(&RomRequest::new(BAND)).unwrap()
     });
 }
@@ -64,8 +64,8 @@ fn eigen_and_rom(bencher: divan::Bencher) {
     let st = reference_state(&m.model, &m.problem, Reference::Static { load_steps: 1 }).unwrap();
     let dae = Study::linearize_application(&m.model, &st, &app).unwrap();
     // The model is not Clone: each sample reads its own copy, outside the timed part.
-    bencher.with_inputs(|| (read_model("examples/ham_sas.mbd".as_ref()).unwrap().model, st.clone(), dae.clone())).bench_values(|(model, st, dae)| {
-        let study = Study::from_application_dae(model, &m.problem, st, dae, &app, EigenSettings::default()).unwrap();
+    bencher.with_inputs(|| (StudySource::model(read_model("examples/ham_sas.mbd".as_ref()).unwrap().model, m.problem.clone()), app.clone(), st.clone(), dae.clone())).bench_values(|(source, app, st, dae)| {
+        let study = Study::builder(source).application(app).at_state(st).linearized(dae).build().unwrap();
         study.reduce(&RomRequest::new(BAND)).unwrap()
     });
 }

@@ -9,7 +9,7 @@ use std::path::Path;
 use romdyn::analysis::Reference;
 use romdyn::input::mbdyn::read_model;
 use romdyn::rom::ModeSelection;
-use romdyn::study::{EigenSettings, Ports, Residualization, RomRequest, Study};
+use romdyn::study::{Ports, Residualization, RomRequest, Study, StudySource};
 use romdyn::validate::{validate, ValidateOptions};
 
 fn main() {
@@ -19,9 +19,10 @@ fn main() {
 fn validate_file(file: &str, load_steps: usize, input: &str, output: &str, request: &RomRequest) -> bool {
     let m = read_model(Path::new(file)).unwrap();
     let ports = Ports::Nodes { inputs: vec![input.parse().unwrap()], outputs: vec![output.parse().unwrap()] };
-    let (mut study, state) = Study::of_model(m.model, &m.problem, Reference::Static { load_steps }, &ports, EigenSettings::default().for_request(request), None).unwrap();
+    let mut study = Study::builder(StudySource::model(m.model, m.problem)).reference(Reference::Static { load_steps }).ports(ports.clone()).for_request(request).build().unwrap();
+    let (state, problem) = study.reference_and_problem().unwrap();
     let rom = study.reduce(request).unwrap();
-    validate(&mut study, &m.problem, &state, &ports, &rom, &ValidateOptions::default(), &mut |_, _| {}).unwrap().represents
+    validate(&mut study, &problem, &state, &ports, &rom, &ValidateOptions::default(), &mut |_, _| {}).unwrap().represents
 }
 
 #[divan::bench(sample_count = 3, sample_size = 1)]

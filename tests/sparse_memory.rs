@@ -14,7 +14,7 @@ use romdyn::analysis::Reference;
 use romdyn::model::ConstraintForm;
 use romdyn::model::InitialValueProblem;
 use romdyn::rom::ModeSelection;
-use romdyn::study::{EigenSettings, Ports, Residualization, RomRequest, Solver, Study};
+use romdyn::study::{EigenSettings, Ports, Residualization, RomRequest, Solver, Study, StudySource};
 
 struct Counting;
 
@@ -88,7 +88,7 @@ fn the_sparse_route_of_a_5112_equation_chain_never_allocates_a_dense_matrix() {
     let before = LIVE.load(Ordering::Relaxed);
     PEAK.store(before, Ordering::Relaxed);
     LARGEST.store(0, Ordering::Relaxed);
-    let (study, _) = Study::of_model(model, &InitialValueProblem::default(), Reference::Static { load_steps: 1 }, &ports, eigen, None).unwrap();
+    let study = Study::builder(StudySource::model(model, InitialValueProblem::default())).reference(Reference::Static { load_steps: 1 }).ports(ports).eigen(eigen).build().unwrap();
     let table = study.modal_report_of(None).unwrap().to_text();
     let rom = study.reduce(&request).unwrap();
     let h = study.full_frequency_response(&[0.1, 1.0, 3.0]).unwrap();

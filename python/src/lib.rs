@@ -1,5 +1,5 @@
 //! `romdyn._romdyn`: the Python face of romdyn's library workflow. Every function maps its
-//! arguments onto the same library calls as the CLI (`Study::of_model`, `Study::reduce`,
+//! arguments onto the same library calls as the CLI (`Study::builder`, `Study::reduce`,
 //! `sweep::run_point`) and converts the results to NumPy arrays; solves run with the GIL
 //! released. SI units throughout: eigenvalues in rad/s, frequencies in Hz, forces in N,
 //! moments in N m, displacements in m, rotations in rad, times and dCoef in s.
@@ -20,7 +20,7 @@ use pyo3::types::PyDict;
 use romdyn::analysis::{run, NodeHistories};
 use romdyn::input::mbdyn::{read_model_text, MbdynModel, SetOverrides};
 use romdyn::output::rom_file::RomExport;
-use romdyn::study::{python_spelling, EigenSettings, FrequencyGrid, ReducedModel, Study, StudyError};
+use romdyn::study::{python_spelling, EigenSettings, FrequencyGrid, ReducedModel, Study, StudyBuilder, StudyError, StudySource};
 
 use convert::{complex_vec, mat, responses};
 
@@ -78,6 +78,13 @@ impl Model {
         let mut m = read_model_text(&self.text, &self.name, &self.overrides)?;
         let kept = m.model.choose_beam_update(self.beam_update, integrates).map_err(|message| StudyError::Option { option: romdyn::study::Setting::BeamUpdate, message: format!("{}: {message}", self.name.display()) })?;
         Ok((m, kept))
+    }
+
+    /// The study of this model ([`Study::builder`]), its beams' update set as the model was
+    /// made: the road every front end takes.
+    fn builder(&self) -> Result<StudyBuilder<'static>, StudyError> {
+        let m = read_model_text(&self.text, &self.name, &self.overrides)?;
+        Ok(Study::builder(StudySource::read(m, &self.name)).beam_update(self.beam_update))
     }
 
     fn new_checked(text: String, name: PathBuf, overrides: SetOverrides, beam_update: Option<&str>) -> PyResult<Self> {
@@ -151,13 +158,7 @@ impl Model {
         let reference = options::reference(reference, load_steps)?;
         let ports = options::ports(&inputs, &outputs, ports.as_deref(), &remove_springs, imposed.as_deref())?;
         let eigen = EigenSettings { target: options::sparse_target(count, band)?, tolerance, ..options::eigen(route, dcoef, solver)? };
-        let integrates = reference.integrates();
-        let study = py.detach(|| {
-            let (m, kept) = self.read(integrates)?;
-            Ok((Study::of_model(m.model, &m.problem, reference, &ports, eigen, None).map_err(|e| e.in_file(&self.name))?, kept))
-        });
-        let ((study, _), kept) = study.map_err(py_err)?;
-        warnings::warn_beam_notes(py, &kept)?;
+        let study = py.detach(|| self.builder()?.reference(reference).ports(ports).eigen(eigen).build()).map_err(py_err)?;
         // The study's warnings, as `romdyn eig|rom` prints them.
         warnings::warn_all(py, study.warnings())?;
         Ok(StudyPy { study })
@@ -318,13 +319,19 @@ impl StudyPy {
             })
             .map_err(py_err)?;
         let export = rom.export(&self.study, form);
-        let summary = rom.summary(&self.study, Some(&check));
+        let mut summary = rom.summary(&self.study, Some(&check));
+        // The free ROM's eigenvalues when dummy springs were removed, as `romdyn rom` prints them.
+        let free = self.study.free_eigenvalues(&rom);
+        if let Some(free) = &free {
+            summary += &free.to_string();
+        }
         // The ROM's warnings the study did not already raise, then the check's (the CLI's order).
-        let study_warnings = self.study.warnings();
-        rom.warnings.extend(check.warnings);
-        let new: Vec<_> = rom.warnings.iter().filter(|w| !study_warnings.contains(w)).cloned().collect();
+        let new = rom.new_warnings(&self.study, Some(&check));
         warnings::warn_all(py, &new)?;
-        Ok(Rom::of(export, rom, summary))
+        rom.warnings.extend(check.warnings);
+        let mut rom = Rom::of(export, rom, summary);
+        rom.free = free;
+        Ok(rom)
     }
 
     /// The transmissibility `z/z_e` of eq. 100 (paper Fig. 11; the CLI's `--transmissibility`)
@@ -352,7 +359,7 @@ impl StudyPy {
         let discrete = self.study.imposed_discrete(&m, &rom.rom).map_err(py_err)?;
         let export = self.study.imposed_export(&m, discrete.as_ref());
         let summary = format!("imposed-motion model: {} states (dropped rate feedthrough {:.1e})\n", m.rom.a.nrows(), m.dropped_rate_feedthrough);
-        Ok(Rom { export, rom: rom.rom.clone(), summary, system: m.rom, discrete })
+        Ok(Rom { export, rom: rom.rom.clone(), summary, system: m.rom, discrete, free: None })
     }
 
     /// Frequency response of the full model at `freq_hz` [Hz]: complex array (frequencies,
@@ -382,10 +389,29 @@ struct Rom {
     /// The continuous ordinary system (of a descriptor ROM: its algebraic part eliminated).
     system: romdyn::rom::OrdinaryRom,
     discrete: Option<romdyn::rom::DiscreteRom>,
+    /// With dummy springs removed: the free ROM's eigenvalues.
+    free: Option<romdyn::study::FreeEigenvalues>,
 }
 
 #[pymethods]
 impl Rom {
+    /// With dummy springs removed (`remove_springs`, a ports file): the removed elements and
+    /// the free ROM's eigenvalues, as `romdyn rom` prints them: {"removed": [names], "zero":
+    /// the number at zero (rigid-body motion), "eigenvalues" [rad/s] (complex, a pair once),
+    /// "kind" ("real", "real, unstable", "oscillatory", "oscillatory, unstable"), "motion" (a
+    /// real one's motion or None)}; None without removed springs.
+    #[getter]
+    fn free_eigenvalues<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        let Some(free) = &self.free else { return Ok(None) };
+        let d = PyDict::new(py);
+        d.set_item("removed", free.removed.clone())?;
+        d.set_item("zero", free.zero)?;
+        d.set_item("eigenvalues", complex_vec(py, &free.listed.iter().map(|e| e.lambda).collect::<Vec<_>>()))?;
+        d.set_item("kind", free.listed.iter().map(|e| e.kind.name()).collect::<Vec<_>>())?;
+        d.set_item("motion", free.listed.iter().map(|e| e.motion.clone()).collect::<Vec<_>>())?;
+        Ok(Some(d))
+    }
+
     /// "ordinary" or "descriptor".
     #[getter]
     fn kind(&self) -> &'static str {
@@ -545,7 +571,7 @@ impl Rom {
 impl Rom {
     fn of(export: RomExport, rom: ReducedModel, summary: String) -> Self {
         let (system, discrete) = (rom.ordinary.clone(), rom.discrete.clone());
-        Rom { export, rom, summary, system, discrete }
+        Rom { export, rom, summary, system, discrete, free: None }
     }
 
     /// `A, B, C, D` and the state names of the ordinary form: the export's, or for a
@@ -578,7 +604,7 @@ fn parse_set(spec: &str) -> PyResult<(String, Vec<f64>)> {
 #[pyfunction]
 fn grid(parameters: Vec<(String, Vec<f64>)>) -> PyResult<Vec<Vec<f64>>> {
     let p: Vec<_> = parameters.into_iter().map(|(name, values)| romdyn::sweep::Parameter { name, values }).collect();
-    romdyn::sweep::grid(&p).map_err(RomdynError::new_err)
+    romdyn::sweep::grid(&p).map_err(py_err)
 }
 
 /// One design point (a sweep's work unit: the model text, the parameter values and the

@@ -11,7 +11,7 @@ use romdyn::dae::{NodeInput, NodeOutput};
 use romdyn::eigen::EigenRoute;
 use romdyn::rom::{ModalDamping, ModeSelection, Ranking};
 use romdyn::eigen::krylov::ModeTarget;
-use romdyn::study::{BelowBand, EigenSettings, Ports, Residualization, RomForm, RomRequest, Solver};
+use romdyn::study::{BelowBand, EigenSettings, Named, Ports, Residualization, RomForm, RomRequest, Solver};
 use romdyn::sweep::SweepOptions;
 
 use crate::py_err;
@@ -40,51 +40,36 @@ pub fn ports(inputs: &[String], outputs: &[String], file: Option<&Path>, remove_
     Ports::from_parts(file, &inputs, &outputs, remove_springs, imposed).map_err(py_err)
 }
 
+/// A keyword's word as the library's enum, by the library's one table of names (the CLI's
+/// too); a bad word raises naming the keyword.
+pub fn named<T: Named>(word: &str) -> PyResult<T> {
+    T::from_name(word).map_err(py_err)
+}
+
 pub fn eigen(route: &str, dcoef: Option<f64>, solver: &str) -> PyResult<EigenSettings> {
-    let route = match route {
-        "lambda" => EigenRoute::Lambda,
-        "direct" => EigenRoute::Direct,
-        r => return Err(bad("route", format!("'{r}': expected \"lambda\" or \"direct\""))),
-    };
-    let solver = match solver {
-        "auto" => Solver::Auto,
-        "dense" => Solver::Dense,
-        "sparse" => Solver::Sparse,
-        s => return Err(bad("solver", format!("'{s}': expected \"auto\", \"dense\" or \"sparse\""))),
-    };
-    Ok(EigenSettings { route, dcoef, solver, ..EigenSettings::default() })
+    Ok(EigenSettings { route: named::<EigenRoute>(route)?, dcoef, solver: named::<Solver>(solver)?, ..EigenSettings::default() })
 }
 
 /// The modes the sparse route computes: `count` lowest or those in `band` (FMIN, FMAX) [Hz];
-/// neither: `None` (the library's default).
+/// neither: `None` (the library's default). The library checks them
+/// (`EigenSettings::validate`: at least 1 mode, 0 <= FMIN < FMAX).
 pub fn sparse_target(count: Option<usize>, band: Option<(f64, f64)>) -> PyResult<Option<ModeTarget>> {
     match (count, band) {
         (None, None) => Ok(None),
-        (Some(n), None) if n > 0 => Ok(Some(ModeTarget::Lowest(n))),
-        (None, Some((fmin_hz, fmax_hz))) => ModeSelection::band(fmin_hz, fmax_hz).map(|_| Some(ModeTarget::Band { fmin_hz, fmax_hz })).map_err(|e| bad("band", e)),
-        _ => Err(bad("count", "give at most one of count (a positive number of modes) and band (FMIN, FMAX) [Hz]")),
+        (Some(n), None) => Ok(Some(ModeTarget::Lowest(n))),
+        (None, Some((fmin_hz, fmax_hz))) => Ok(Some(ModeTarget::Band { fmin_hz, fmax_hz })),
+        (Some(_), Some(_)) => Err(bad("count", "give at most one of count (a positive number of modes) and band (FMIN, FMAX) [Hz]")),
     }
 }
 
 /// The CLI's `--beam-update`: None or "path-independent" (default), "incremental" (MBDyn
 /// 1.7.3's beam update of beam3 and beam2).
 pub fn beam_update(u: Option<&str>) -> PyResult<romdyn::model::BeamUpdateChoice> {
-    use romdyn::element::BeamUpdate;
-    use romdyn::model::BeamUpdateChoice;
-    match u {
-        None | Some("auto") => Ok(BeamUpdateChoice::Auto),
-        Some("path-independent") => Ok(BeamUpdateChoice::Every(BeamUpdate::PathIndependent)),
-        Some("incremental") => Ok(BeamUpdateChoice::Every(BeamUpdate::Incremental)),
-        Some(u) => Err(bad("beam_update", format!("'{u}': expected \"auto\" (default: MBDyn 1.7.3's incremental update in a time integration, path independent otherwise), \"path-independent\" or \"incremental\""))),
-    }
+    u.map_or(Ok(romdyn::model::BeamUpdateChoice::Auto), named)
 }
 
 pub fn form(f: &str) -> PyResult<RomForm> {
-    match f {
-        "ordinary" => Ok(RomForm::Ordinary),
-        "descriptor" => Ok(RomForm::Descriptor),
-        f => Err(bad("form", format!("'{f}': expected \"ordinary\" or \"descriptor\""))),
-    }
+    named(f)
 }
 
 /// The ROM request of `romdyn rom`'s selection options.
@@ -104,18 +89,8 @@ pub fn request(count: Option<usize>, band: Option<(f64, f64)>, modes: Option<Vec
             Err(_) => Residualization::Modes(r.extract().map_err(|_| bad("residualize", "expected True, False or a list of modal-table indices"))?),
         },
     };
-    let ranking = match by {
-        "frequency" => Ranking::Frequency,
-        "dominance" => Ranking::Dominance,
-        b => return Err(bad("by", format!("'{b}': expected \"frequency\" or \"dominance\""))),
-    };
-    let mut request = RomRequest::new(selection).residualize(residualization).ranked_by(ranking);
-    request.below_band = match below_band {
-        "drop" => BelowBand::Drop,
-        "keep" => BelowBand::Keep,
-        "refuse" => BelowBand::Refuse,
-        b => return Err(bad("below_band", format!("'{b}': expected \"drop\", \"keep\" or \"refuse\""))),
-    };
+    let mut request = RomRequest::new(selection).residualize(residualization).ranked_by(named::<Ranking>(by)?);
+    request.below_band = named::<BelowBand>(below_band)?;
     let zeta = |z: f64| if (0.0..1.0).contains(&z) { Ok(z) } else { Err(bad("damping", format!("damping ratio {z} is outside [0, 1)"))) };
     request.damping = match damping.filter(|d| !d.is_none()) {
         None => None,

@@ -7,7 +7,6 @@ use std::path::PathBuf;
 use numpy::{IntoPyArray, PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use romdyn::study::{EigenSettings, Study};
 use romdyn::validate::{validate as validate_rom, SignalKind, ValidateError, ValidateOptions};
 
 use crate::convert::complex_vec;
@@ -53,16 +52,14 @@ pub fn validate<'py>(py: Python<'py>, model: &Model, reference: Option<&Bound<'_
     let request = options::request(count, band, modes, residualize, "frequency", "drop", None)?;
     let opts = ValidateOptions { signal: signal_of(signal)?, amplitudes, band_hz: validation_band, resolution_hz: resolution, averages, time_step, seed, coherence, tolerance, fit, measured };
     opts.check().map_err(validate_err)?;
-    let integrates = reference.integrates();
-    let (v, t0, warnings, notes) = py.detach(|| -> Result<_, ValidateError> {
-        let (m, notes) = model.read(integrates)?;
-        let (mut study, state) = Study::of_model(m.model, &m.problem, reference, &ports, EigenSettings::default().for_request(&request), None).map_err(|e| e.in_file(&model.name))?;
+    let (v, t0, warnings) = py.detach(|| -> Result<_, ValidateError> {
+        let mut study = model.builder()?.reference(reference).ports(ports.clone()).for_request(&request).build()?;
+        let (state, problem) = study.reference_and_problem()?;
         let rom = study.reduce(&request)?;
         let warnings: Vec<_> = study.warnings().iter().chain(&rom.warnings).cloned().collect();
-        Ok((validate_rom(&mut study, &m.problem, &state, &ports, &rom, &opts, &mut |_, _| {})?, state.t, warnings, notes))
+        Ok((validate_rom(&mut study, &problem, &state, &ports, &rom, &opts, &mut |_, _| {})?, state.t, warnings))
     }).map_err(validate_err)?;
     // What the CLI prints, as Python warnings: the study's and the ROM's, then the verdict's.
-    crate::warnings::warn_beam_notes(py, &notes)?;
     crate::warnings::warn_all(py, &warnings)?;
     if let Some(w) = v.warning() {
         crate::warnings::warn_accuracy(py, w)?;

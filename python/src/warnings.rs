@@ -23,7 +23,7 @@ pyo3::create_exception!(_romdyn, TransmissibilityWarning, AccuracyWarning, "The 
 fn category<'py>(py: Python<'py>, w: &Warning) -> Bound<'py, PyType> {
     match w {
         Warning::InputFile { .. } => py.get_type::<InputWarning>(),
-        Warning::NotInEquilibrium { .. } | Warning::IncrementalBeamsStatic { .. } | Warning::OneSided { .. } | Warning::ReactionDependent { .. } => py.get_type::<ReferenceWarning>(),
+        Warning::NotInEquilibrium { .. } | Warning::IncrementalBeamsStatic { .. } | Warning::BeamKeptPathIndependent { .. } | Warning::OneSided { .. } | Warning::ReactionDependent { .. } => py.get_type::<ReferenceWarning>(),
         Warning::Run { warning } => run_category(py, warning),
         Warning::InputMovesNothing { .. } | Warning::OutputSeesNothing { .. } => py.get_type::<PortWarning>(),
         Warning::SparseNotCertified { .. } | Warning::UnresolvedEigenvalues { .. } | Warning::DoubtfulZeros { .. } => py.get_type::<EigenanalysisWarning>(),

@@ -198,3 +198,93 @@ def test_pid_loop_on_abstract_nodes_has_the_polynomial_poles(examples):
         h = rom.frequency_response(np.array([f]))[0]
         assert h[0, 0] == pytest.approx((s * s + a1 * s) / p, rel=1e-8)
         assert h[1, 0] == pytest.approx((b0 * s * s + b1 * s + b2) / p, rel=1e-8)
+
+
+def test_enumerated_settings_and_sweeps_name_the_keyword(examples):
+    # Issue 31: one library table of names per enum, read by clap and by Python; a bad word
+    # is refused naming the Python keyword, with the names the table holds.
+    model = romdyn.Model(examples / "pendulum.mbd")
+    with pytest.raises(ValueError, match=r'^solver: \'bogus\': expected "auto", "dense" or "sparse"$'):
+        model.study(inputs=["2:Mz"], outputs=["2:rz"], solver="bogus")
+    with pytest.raises(ValueError, match=r'^route: \'qz\': expected "direct" or "lambda"$'):
+        model.study(inputs=["2:Mz"], outputs=["2:rz"], route="qz")
+    with pytest.raises(ValueError, match=r"^imposed: '2:q': expected NODE or NODE:COMPONENTS"):
+        model.study(inputs=["2:Mz"], outputs=["2:rz"], imposed="2:q")
+    study = model.study(inputs=["2:Mz"], outputs=["2:rz"])
+    with pytest.raises(ValueError, match=r'^by: \'size\': expected "frequency" or "dominance"$'):
+        study.reduce(count=1, by="size")
+    with pytest.raises(ValueError, match=r'^below_band: \'hide\': expected "keep", "drop" or "refuse"$'):
+        study.reduce(count=1, below_band="hide")
+    with pytest.raises(ValueError, match=r'^form: \'state\': expected "ordinary" or "descriptor"$'):
+        study.reduce(count=1, form="state")
+    with pytest.raises(ValueError, match=r"^set: L: the variable is given twice$"):
+        romdyn._romdyn.grid([("L", [1.0]), ("L", [2.0])])
+
+
+def test_the_python_door_runs_the_three_checks(examples, tmp_path):
+    # Issue 31: every door (tests/cli/study_doors.rs has the Rust and CLI ones): the reference
+    # checked against the problem, an unrestrained model named, incremental beams warned about.
+    model = romdyn.Model(examples / "pendulum.mbd")
+    with pytest.raises(ValueError, match=r"^reference: TIME 5(\.0)? s is after the file's final time 2 s"):
+        model.study(reference=5.0)
+    text = (examples / "pendulum.mbd").read_text()
+    spring = "joint: 2, deformable joint,\n        1, null, hinge, reference, node, eye,\n        2, 0., L, 0., hinge, reference, node, eye,\n        linear elastic generic, diag, 1.e4, 1.e4, 1.e4, 1.e4, 1.e4, 1.e4;"
+    for a, b in [("    joint: 1, clamp, 1, node, node;\n", ""), ("joint: 2, revolute hinge,\n        1, position, null,\n        2, position, 0., L, 0.;", spring), ("joints: 2;", "joints: 1;")]:
+        assert a in text
+        text = text.replace(a, b)
+    floating = romdyn.Model.from_text(text, name=str(tmp_path / "floating.mbd"))
+    with pytest.raises(romdyn.RomdynError, match=r"unrestrained .*rigid-body motion of the whole model"):
+        floating.study(reference="static", load_steps=1)
+    beams = romdyn.Model(examples.parent / "tests" / "mbdyn_files" / "beam3_tip_couple.mbd", beam_update="incremental")
+    with pytest.warns(romdyn.ReferenceWarning, match=r"^2 beam\(s\) use MBDyn's incremental update \(beam_update=\"incremental\"\)"):
+        beams.study(reference="static")
+
+
+def test_a_free_roms_eigenvalues_reach_python_as_the_cli_prints_them(examples, romdyn_cli):
+    # Issue 31 point 4: the free ROM's eigenvalues (dummy springs removed) were assembled in
+    # the CLI only. HAM-SAS, springs removed by its ports file: Python's Rom.free_eigenvalues
+    # and summary carry the CLI's report, number for number (its 7 printed digits).
+    ports = examples / "ham_sas_ports.json"
+    cli = subprocess.run([romdyn_cli, "rom", examples / "ham_sas.mbd", "--static", "--load-steps", "1", "--ports", ports, "--band", "0:2"], check=True, capture_output=True, text=True).stderr
+    report = cli[cli.index("removed from the full model"):]
+    report = report[: report.index("\n", report.index("ROM eigenvalues without them"))]
+    rows = [line for line in cli[cli.index("ROM eigenvalues without them"):].splitlines()[1:] if line.startswith("  ") and " Hz " in line]
+    study = romdyn.Model(examples / "ham_sas.mbd").study(reference="static", load_steps=1, ports=ports)
+    rom = study.reduce(band=(0.0, 2.0))
+    free = rom.free_eigenvalues
+    assert report in rom.summary
+    assert f"{free['zero']} zero (rigid-body motion)" in report
+    assert len(free["eigenvalues"]) == len(rows) > 0
+    for lam, kind, motion, row in zip(free["eigenvalues"], free["kind"], free["motion"], rows):
+        re, im = row.split()[:2]
+        assert lam.real == pytest.approx(float(re), rel=1e-6, abs=1e-12)
+        assert lam.imag == pytest.approx(float(im.rstrip("j")), rel=1e-6, abs=1e-12)
+        assert row.split("Hz", 1)[1].strip() == (f"real, {motion}" if motion else kind)
+    # The HAM-SAS table's tipping: a real pair, one unstable, named by its motion.
+    assert any(k == "real, unstable" and m and m.startswith("tipping") for k, m in zip(free["kind"], free["motion"]))
+    assert romdyn.Model(examples / "pendulum.mbd").study(inputs=["2:Mz"], outputs=["2:rz"]).reduce(count=1).free_eigenvalues is None
+
+
+def test_the_sparse_target_is_checked_once_in_the_library(examples):
+    # Issue 31: EigenSettings::validate checks the modes the sparse route computes for every
+    # door; count=0 read "give at most one of count and band" in Python before.
+    model = romdyn.Model(examples / "pendulum.mbd")
+    with pytest.raises(ValueError, match=r"^count: a ROM keeps at least 1 mode$"):
+        model.study(solver="sparse", count=0)
+    with pytest.raises(ValueError, match=r"^band: need 0 <= FMIN < FMAX"):
+        model.study(solver="sparse", band=(3.0, 3.0))
+    with pytest.raises(ValueError, match=r"^band: need 0 <= FMIN < FMAX"):
+        model.sparse_modes(band=(3.0, 1.0))
+
+
+def test_a_beam_the_auto_update_leaves_path_independent_warns_with_the_keyword():
+    # The study warning of tests/cli/study_doors.rs, spelled for Python (the advice's value
+    # "path-independent" kept whole: the spelling cut it at its hyphen before).
+    import pathlib
+
+    path = pathlib.Path(__file__).resolve().parents[2] / "tests" / "mbdyn_files" / "beam3_tip_couple.mbd"
+    text = path.read_text()
+    assert "    beam3: 2, 3, null" in text
+    model = romdyn.Model.from_text(text.replace("    beam3: 2, 3, null", "    driven: 2, const, 1., beam3: 2, 3, null"), name=str(path))
+    with pytest.warns(romdyn.ReferenceWarning, match=r"^beam3 2.*keeps the path-independent update.*\(beam_update=\"path-independent\" silences this\)$"):
+        model.study(reference=0.5)

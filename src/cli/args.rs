@@ -4,98 +4,42 @@ use std::path::PathBuf;
 
 use std::io::IsTerminal;
 
-use clap::{Args, ValueEnum};
+use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
+use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use romdyn::analysis::Reference;
-use romdyn::element::BeamUpdate;
 use romdyn::model::BeamUpdateChoice;
 use romdyn::dae::{NodeInput, NodeOutput};
 use romdyn::input::eigen_pencil::PencilPorts;
 use romdyn::eigen::EigenRoute;
-use romdyn::rom::{ModalDamping, ModeSelection, Ranking};
-use romdyn::study::{BelowBand, EigenSettings, FrequencyGrid, Ports, RomRequest, Solver, Study, StudyError};
+use romdyn::rom::{ModalDamping, ModeSelection};
+use romdyn::study::{EigenSettings, FrequencyGrid, Named, Ports, RomRequest, Solver, Study, StudyError, StudySource};
 
-/// Which eigensolver (`--solver`).
-#[derive(Clone, Copy, Debug, ValueEnum)]
-pub enum SolverArg {
-    /// Sparse from 400 equations on, dense below (where the complete dense spectrum costs about a second or less) and for --count with --by dominance (a --band ranked by dominance stays sparse)
-    Auto,
-    /// QZ on the whole (deflated) pencil: every eigenvalue, zero and infinite ones labelled; n x n matrices
-    Dense,
-    /// Shift-invert Krylov–Schur on the sparse linearization: only the modes asked for (--count, --band, --modes; else the 10 lowest), certified or warned about; memory grows with the non-zeros
-    Sparse,
+/// clap's parser of a library enum, from its one table of names ([`Named::NAMES`]: the same
+/// words Python takes, each with its `--help` line).
+pub fn named<T: Named + std::fmt::Debug>() -> impl clap::builder::TypedValueParser<Value = T> {
+    PossibleValuesParser::new(T::NAMES.iter().map(|(name, _, help)| PossibleValue::new(*name).help(*help))).try_map(|word| T::from_name(&word).map_err(|e| e.to_string()))
 }
 
-impl From<SolverArg> for Solver {
-    fn from(s: SolverArg) -> Self {
-        match s {
-            SolverArg::Auto => Solver::Auto,
-            SolverArg::Dense => Solver::Dense,
-            SolverArg::Sparse => Solver::Sparse,
-        }
+/// Sets the beams' update of `model`, for a result from a time integration (`integrates`) or
+/// not; beams that `auto` leaves path independent are warned on stderr.
+fn apply_beam_update(model: &mut romdyn::model::Model, choice: BeamUpdateChoice, integrates: bool) -> Result<(), String> {
+    for why in model.choose_beam_update(choice, integrates)? {
+        eprintln!("warning: {}", romdyn::study::Warning::BeamKeptPathIndependent { why });
     }
-}
-
-/// How beams (beam3, beam2) follow their nodes' rotations (`--beam-update`).
-#[derive(Clone, Copy, Debug, Default, ValueEnum)]
-pub enum BeamUpdateArg {
-    /// MBDyn's incremental update where the result comes from a time integration (`run`, a reference at a time), path independent for a static equilibrium or the initial configuration (in sweeps too); beams the incremental update cannot take (viscoelastic, driven sections) stay path independent with a warning (default)
-    #[default]
-    Auto,
-    /// Total rotations interpolated relative to the middle node: the beam is a function of the state, and a static equilibrium does not depend on load steps
-    PathIndependent,
-    /// MBDyn 1.7.3's beam.cc: rotation increments interpolated per time step, section frames and curvatures accumulated (MBDyn's numbers; path dependent; elastic section laws only)
-    Incremental,
-}
-
-impl From<BeamUpdateArg> for BeamUpdateChoice {
-    fn from(u: BeamUpdateArg) -> Self {
-        match u {
-            BeamUpdateArg::Auto => BeamUpdateChoice::Auto,
-            BeamUpdateArg::PathIndependent => BeamUpdateChoice::Every(BeamUpdate::PathIndependent),
-            BeamUpdateArg::Incremental => BeamUpdateChoice::Every(BeamUpdate::Incremental),
-        }
-    }
-}
-
-impl BeamUpdateArg {
-    /// Sets the beams' update of `model`, for a result from a time integration
-    /// (`integrates`) or not; beams that `auto` leaves path independent are warned on stderr.
-    pub fn apply(self, model: &mut romdyn::model::Model, integrates: bool) -> Result<(), String> {
-        for why in model.choose_beam_update(self.into(), integrates)? {
-            eprintln!("warning: {why} (--beam-update path-independent silences this)");
-        }
-        Ok(())
-    }
+    Ok(())
 }
 
 /// Reads an MBDyn file with its beams' rotation update set for a time integration
 /// (`integrates`) or not.
-pub fn read_model_with_beams(path: &std::path::Path, set: &[romdyn::sweep::Parameter], update: BeamUpdateArg, integrates: bool) -> anyhow::Result<romdyn::input::mbdyn::MbdynModel> {
+pub fn read_model_with_beams(path: &std::path::Path, set: &[romdyn::sweep::Parameter], update: BeamUpdateChoice, integrates: bool) -> anyhow::Result<romdyn::input::mbdyn::MbdynModel> {
     let overrides = romdyn::sweep::single_values(set).map_err(|e| anyhow::anyhow!("--set {e}"))?;
     let mut m = romdyn::input::mbdyn::read_model_with(path, &overrides)?;
-    update.apply(&mut m.model, integrates).map_err(|e| anyhow::anyhow!("{}: --beam-update: {e}", path.display()))?;
+    apply_beam_update(&mut m.model, update, integrates).map_err(|e| anyhow::anyhow!("{}: --beam-update: {e}", path.display()))?;
     for w in m.model.input_warnings() {
         eprintln!("warning: {w}");
     }
     Ok(m)
-}
-
-#[derive(Clone, Copy, Debug, ValueEnum)]
-pub enum Route {
-    /// QZ on (λ F_yd + F_y) Y = 0 (paper eq. 10)
-    Direct,
-    /// QZ on (Λ J + J*) Y = 0, λ = (1/c)(Λ+1)/(Λ−1) (paper eqs. 18–23)
-    Lambda,
-}
-
-impl From<Route> for EigenRoute {
-    fn from(r: Route) -> Self {
-        match r {
-            Route::Direct => EigenRoute::Direct,
-            Route::Lambda => EigenRoute::Lambda,
-        }
-    }
 }
 
 /// Where the linear DAE comes from and how it is eigenanalysed.
@@ -134,17 +78,17 @@ pub struct PencilArgs {
     #[arg(long, value_name = "NODE[:COMPONENTS]", conflicts_with = "pencil")]
     pub imposed: Option<String>,
     /// Eigenanalysis route (lambda by default: its pencil has no infinite eigenvalues, on which faer's QZ can stall)
-    #[arg(long, value_enum, default_value = "lambda")]
-    pub route: Route,
+    #[arg(long, value_parser = named::<EigenRoute>(), default_value = "lambda")]
+    pub route: EigenRoute,
     /// dCoef of the Λ form [s], positive and finite (default: the file's, else 1/the geometric mean of the dynamic part's |λ|: the spectrum's logarithmic centre at |Λ| = 1)
     #[arg(long, value_name = "C", allow_negative_numbers = true)]
     pub dcoef: Option<f64>,
     /// Eigensolver: dense QZ (every eigenvalue), sparse shift-invert Krylov–Schur (only the modes asked for, no n x n matrix; a progress bar on a terminal), or auto: sparse from 400 equations on, dense below or for --count with --by dominance (--band with --by dominance stays sparse)
-    #[arg(long, value_enum, default_value = "auto")]
-    pub solver: SolverArg,
+    #[arg(long, value_parser = named::<Solver>(), default_value = "auto")]
+    pub solver: Solver,
     /// Rotation update of beam3 and beam2: auto (MBDyn's incremental one for a reference at a time, --at; path independent for --static and the initial configuration), path-independent, or incremental (per time step; a static equilibrium takes it as one step from the initial configuration)
-    #[arg(long = "beam-update", value_enum, default_value = "auto")]
-    pub beam_update: BeamUpdateArg,
+    #[arg(long = "beam-update", value_parser = named::<BeamUpdateChoice>(), default_value = "auto")]
+    pub beam_update: BeamUpdateChoice,
 }
 
 impl PencilArgs {
@@ -153,37 +97,28 @@ impl PencilArgs {
     /// `request`: the ROM (or the modes of `eig`) the study is for, which tells the sparse
     /// route which modes to compute.
     pub fn study(&self, request: Option<&RomRequest>) -> Result<Study, StudyError> {
-        let eigen = match request {
-            Some(r) => self.eigen().for_request(r),
-            None => self.eigen(),
-        };
-        match (&self.pencil, &self.model) {
-            (Some(path), _) => {
-                let ports = PencilPorts { input_rows: self.input_rows.clone(), output_cols: self.output_cols.clone() };
-                Study::from_pencil_file(path, &ports, eigen)
+        let builder = match (&self.pencil, &self.model) {
+            (Some(path), _) => Study::builder(StudySource::pencil_file(path, PencilPorts { input_rows: self.input_rows.clone(), output_cols: self.output_cols.clone() })),
+            (None, Some(path)) => {
+                let overrides = romdyn::sweep::single_values(&self.set).map_err(|message| StudyError::Option { option: romdyn::study::Setting::Set, message })?;
+                Study::builder(StudySource::ModelFile { path: path.clone(), overrides }).reference(self.reference.reference()).ports(self.ports()?).beam_update(self.beam_update)
             }
-            (None, Some(path)) => Ok(self.model_study(path, eigen)?.0),
             // clap requires one of them.
-            (None, None) => Err(StudyError::NoSource),
-        }
-    }
-
-    /// The study of the model file `path` with the reference solution it was linearized at
-    /// and the file's problem (`romdyn validate` runs the model from there).
-    pub fn model_study(&self, path: &std::path::Path, eigen: EigenSettings) -> Result<(Study, romdyn::dae::State, romdyn::model::InitialValueProblem), StudyError> {
-        let overrides = romdyn::sweep::single_values(&self.set).map_err(|message| StudyError::Option { option: romdyn::study::Setting::Set, message })?;
-        let mut m = romdyn::input::mbdyn::read_model_with(path, &overrides)?;
-        let integrates = self.reference.reference().integrates();
-        self.beam_update.apply(&mut m.model, integrates).map_err(|message| StudyError::Option { option: romdyn::study::Setting::BeamUpdate, message: format!("{}: {message}", path.display()) })?;
+            (None, None) => return Err(StudyError::NoSource),
+        };
+        let builder = builder.eigen(self.eigen());
+        let builder = match request {
+            Some(r) => builder.for_request(r),
+            None => builder,
+        };
         let progress = SolverProgress::new();
-        let result = Study::of_model_with_progress(m.model, &m.problem, self.reference.reference(), &self.ports()?, eigen, None, &|line| progress.report(line));
+        let result = builder.progress(&|line| progress.report(line)).build();
         progress.finish();
-        let (study, state) = result.map_err(|e| e.in_file(path))?;
-        Ok((study, state, m.problem))
+        result
     }
 
     pub fn eigen(&self) -> EigenSettings {
-        EigenSettings { route: self.route.into(), dcoef: self.dcoef, solver: self.solver.into(), ..EigenSettings::default() }
+        EigenSettings { route: self.route, dcoef: self.dcoef, solver: self.solver, ..EigenSettings::default() }
     }
 
     /// The model's ports: --input/--output alone, or with a ports file, --remove-spring or
@@ -290,45 +225,6 @@ pub struct FrequencyArgs {
 impl FrequencyArgs {
     pub fn grid(&self) -> FrequencyGrid {
         FrequencyGrid { fmin_hz: self.fmin, fmax_hz: self.fmax, points: self.points }
-    }
-}
-
-/// How `--count` and `--band` rank modes.
-#[derive(Clone, Copy, Debug, ValueEnum)]
-pub enum By {
-    /// Natural frequency, lowest first (every mode of a band is kept)
-    Frequency,
-    /// Dominance for the chosen inputs and outputs, ‖C v‖ ‖uᵀ B‖ / |λ| (a mode's share of the low-frequency response), largest first; modes that contribute nothing are never kept
-    Dominance,
-}
-
-impl From<By> for Ranking {
-    fn from(b: By) -> Self {
-        match b {
-            By::Frequency => Ranking::Frequency,
-            By::Dominance => Ranking::Dominance,
-        }
-    }
-}
-
-/// What `--residualize` does with a mode below the frequencies of interest.
-#[derive(Clone, Copy, Debug, ValueEnum)]
-pub enum BelowBandArg {
-    /// Keep it as a dynamic mode (warning)
-    Keep,
-    /// Leave it out of the ROM (warning)
-    Drop,
-    /// Stop with an error
-    Refuse,
-}
-
-impl From<BelowBandArg> for BelowBand {
-    fn from(b: BelowBandArg) -> Self {
-        match b {
-            BelowBandArg::Keep => BelowBand::Keep,
-            BelowBandArg::Drop => BelowBand::Drop,
-            BelowBandArg::Refuse => BelowBand::Refuse,
-        }
     }
 }
 

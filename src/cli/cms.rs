@@ -38,7 +38,7 @@ pub fn run(a: CmsArgs) -> Result<()> {
     romdyn::output::atomic::check_prefix("-o", &a.prefix)?;
     romdyn::output::atomic::check_output_paths(&[("-o", path.clone())])?;
     let reference = a.reference.reference();
-    let m = super::args::read_model_with_beams(&a.file, &a.set, super::args::BeamUpdateArg::Auto, reference.integrates())?;
+    let m = super::args::read_model_with_beams(&a.file, &a.set, romdyn::model::BeamUpdateChoice::Auto, reference.integrates())?;
     let request = CmsRequest { interfaces: a.interface.clone(), modes: a.modes, reference };
     let cb = craig_bampton(&m.model, &m.problem, &request).with_context(|| a.file.display().to_string())?;
     for w in &cb.warnings {

@@ -3,23 +3,16 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
-use clap::{Args, ValueEnum};
+use clap::builder::{PossibleValue, PossibleValuesParser};
+use clap::Args;
 use romdyn::output::atomic::{check_output_paths, check_prefix, write_set};
 use romdyn::output::frequency_plot::FrequencyResponses;
 use romdyn::output::rom_file::RomExport;
 use romdyn::output::mimo_plot::MimoPlot;
-use romdyn::rom::{ModalDamping, ModeSelection};
-use romdyn::study::{ReducedModel, Residualization, RomCheck, RomForm, RomRequest, Study, Warning};
+use romdyn::rom::{ModalDamping, ModeSelection, Ranking};
+use romdyn::study::{BelowBand, ReducedModel, Residualization, RomCheck, RomForm, RomRequest, Study, Warning, DISCRETIZATIONS};
 
-use super::args::{parse_band, parse_damping, BelowBandArg, By, FrequencyArgs, PencilArgs, SelectionArgs};
-
-#[derive(Clone, Copy, Debug, ValueEnum)]
-pub enum Form {
-    /// x' = A x + B u, z = C x + D u (E = I), after SVD residualization (eqs. 51–63)
-    Ordinary,
-    /// E x' = A x + B u, z = C x (eqs. 47–50)
-    Descriptor,
-}
+use super::args::{named, parse_band, parse_damping, FrequencyArgs, PencilArgs, SelectionArgs};
 
 /// Which ROM to build: modes, residualization, ranking, damping, form (`rom` and `sweep`).
 #[derive(Args, Debug)]
@@ -33,17 +26,17 @@ pub struct RomChoiceArgs {
     #[arg(long, value_name = "I,J,...", value_delimiter = ',')]
     pub residualize_modes: Option<Vec<usize>>,
     /// Rank modes for --count and --band by natural frequency or by dominance for these inputs and outputs
-    #[arg(long, value_enum, default_value = "frequency")]
-    pub by: By,
+    #[arg(long, value_parser = named::<Ranking>(), default_value = "frequency")]
+    pub by: Ranking,
     /// What --residualize does with a dropped mode below the frequencies of interest (the band's top, or the highest kept mode): static residualization is valid only above them
-    #[arg(long, value_enum, default_value = "drop")]
-    pub below_band: BelowBandArg,
+    #[arg(long, value_parser = named::<BelowBand>(), default_value = "drop")]
+    pub below_band: BelowBand,
     /// Modal damping ratio added to the ROM (never to the full model): ZETA for every kept mode, or K=ZETA,... by modal-table index; reported in the summary
     #[arg(long, value_name = "ZETA|K=ZETA,...", value_parser = parse_damping)]
     pub damping: Option<ModalDamping>,
     /// Which form to export
-    #[arg(long, value_enum, default_value = "ordinary")]
-    pub form: Form,
+    #[arg(long, value_parser = named::<RomForm>(), default_value = "ordinary")]
+    pub form: RomForm,
 }
 
 impl RomChoiceArgs {
@@ -53,17 +46,14 @@ impl RomChoiceArgs {
             (None, true) => Residualization::Dropped,
             (None, false) => Residualization::None,
         };
-        let mut request = RomRequest::new(self.select.selection()).residualize(residualization).ranked_by(self.by.into());
-        request.below_band = self.below_band.into();
+        let mut request = RomRequest::new(self.select.selection()).residualize(residualization).ranked_by(self.by);
+        request.below_band = self.below_band;
         request.damping = self.damping.clone();
         request
     }
 
     pub fn form(&self) -> RomForm {
-        match self.form {
-            Form::Ordinary => RomForm::Ordinary,
-            Form::Descriptor => RomForm::Descriptor,
-        }
+        self.form
     }
 }
 
@@ -86,7 +76,7 @@ pub struct ControlArgs {
     #[arg(long, value_name = "FS")]
     pub sample_rate: Option<f64>,
     /// Discretization: zoh (zero-order hold: exact for inputs held between samples), tustin (bilinear; DC gain kept) or matched (pole-zero mapping, one input and one output)
-    #[arg(long, value_name = "METHOD", value_parser = ["zoh", "tustin", "matched"], default_value = "zoh")]
+    #[arg(long, value_name = "METHOD", value_parser = PossibleValuesParser::new(DISCRETIZATIONS.map(|(name, what)| PossibleValue::new(name).help(what))), default_value = "zoh")]
     pub discretize: String,
     /// Tustin's prewarping frequency [Hz] (the discrete response is exact there), below FS/2
     #[arg(long, value_name = "HZ")]
@@ -147,8 +137,8 @@ pub struct FreqArgs {
     #[arg(long)]
     pub residualize: bool,
     /// Rank modes for --count and --band by natural frequency or by dominance for these inputs and outputs
-    #[arg(long, value_enum, default_value = "frequency")]
-    pub by: By,
+    #[arg(long, value_parser = named::<Ranking>(), default_value = "frequency")]
+    pub by: Ranking,
     /// Modal damping ratio added to the overlaid ROM: ZETA, or K=ZETA,...
     #[arg(long, value_name = "ZETA|K=ZETA,...", value_parser = parse_damping)]
     pub damping: Option<ModalDamping>,
@@ -167,12 +157,6 @@ fn print_warnings(w: &[Warning]) {
 
 fn print_study(study: &Study) {
     print_warnings(study.warnings());
-}
-
-/// A ROM's warnings that the study's did not already print.
-fn print_rom_warnings(study: &Study, rom: &ReducedModel) {
-    let new: Vec<Warning> = rom.warnings.iter().filter(|w| !study.warnings().contains(w)).cloned().collect();
-    print_warnings(&new);
 }
 
 /// Writes PREFIX.csv, PREFIX.svg and PREFIX.png (into the command's set); returns the line
@@ -241,12 +225,9 @@ pub fn run(a: RomArgs) -> Result<()> {
     eprint!("{}", study.modal_report().to_text_dynamic(12));
     print_study(&study);
     eprint!("{}", rom.summary(&study, Some(&check)));
-    print_rom_warnings(&study, &rom);
-    print_warnings(&check.warnings);
-    let removed = study.removed_springs();
-    if !removed.is_empty() {
-        eprintln!("removed from the full model and the ROM (their force fed back, A + B_e K C_e): {}", removed.join(", "));
-        eprint!("{}", free_eigenvalues(&rom.descriptor.eigenvalues, |l| study.free_real_mode_label(l)));
+    print_warnings(&rom.new_warnings(&study, Some(&check)));
+    if let Some(free) = study.free_eigenvalues(&rom) {
+        eprint!("{free}");
     }
     let export = rom.export(&study, a.rom.form());
     if a.file.is_none() {
@@ -266,45 +247,12 @@ pub fn run(a: RomArgs) -> Result<()> {
     })
 }
 
-/// The eigenvalues of a ROM whose dummy springs were removed: rigid-body, unstable and
-/// oscillatory ones (the modal table above is the grounded model's); a real one with the
-/// motion of the free model's mode (`label`).
-fn free_eigenvalues(eig: &[faer::c64], label: impl Fn(f64) -> Option<String>) -> String {
-    let big = eig.iter().map(|l| l.norm()).fold(0.0, f64::max);
-    let zero = eig.iter().filter(|l| l.norm() <= 1e-6 * big).count();
-    let mut s = format!("ROM eigenvalues without them [rad/s]: {zero} zero (rigid-body motion)\n");
-    // One line per pair (its upper member), every real one.
-    for l in eig.iter().filter(|l| l.norm() > 1e-6 * big && (l.im > 1e-9 * big || l.im.abs() <= 1e-9 * big)) {
-        let real = l.im.abs() <= 1e-9 * big;
-        let kind = match (real, real.then(|| label(l.re)).flatten()) {
-            (true, Some(motion)) => format!("real, {motion}"),
-            (true, None) => (if l.re > 0.0 { "real, unstable" } else { "real" }).to_string(),
-            _ => (if l.re > 1e-9 * big { "oscillatory, unstable" } else { "oscillatory" }).to_string(),
-        };
-        s += &format!("  {:>14.6e} {:+.6e}j   {:>10.6} Hz   {kind}\n", l.re, l.im, l.norm() / (2.0 * std::f64::consts::PI));
-    }
-    s
-}
-
 /// --grid, --transmissibility, --imposed-out; returns the lines that say what was written.
 fn write_application_files(a: &RomArgs, study: &Study, rom: &ReducedModel, check: &RomCheck) -> Result<Vec<String>> {
     let mut lines = Vec::new();
     let mut wrote = |p: [PathBuf; 3]| lines.push(format!("wrote {}, {}, {}", p[0].display(), p[1].display(), p[2].display()));
     if let Some(prefix) = &a.grid {
-        let freq = check.comparison.freq_hz.clone();
-        // The imposed displacements (last outputs) are inputs of the transmissibility, not
-        // responses: the grid shows the other outputs.
-        let no = study.output_names().len() - study.imposed_len();
-        let rows = |h: Vec<faer::Mat<faer::c64>>| h.into_iter().map(|m| m.get(..no, ..).to_owned()).collect::<Vec<_>>();
-        let plot = MimoPlot {
-            title: "Transfer matrix |z/u|".into(),
-            full: rows(check.comparison.full.clone()),
-            rom: Some(rows(check.comparison.rom.clone())),
-            freq_hz: freq,
-            inputs: study.input_names().to_vec(),
-            outputs: study.output_names()[..no].to_vec(),
-            diagonal: a.diagonal,
-        };
+        let plot = study.transfer_panels(check, a.diagonal);
         wrote(plot.write_files(prefix).with_context(|| format!("writing {}.{{csv,svg,png}}", prefix.display()))?);
     }
     if let Some(prefix) = &a.transmissibility {
@@ -343,7 +291,7 @@ pub fn run_freq(a: FreqArgs) -> Result<()> {
     };
     let request = selection.map(|sel| {
         let residualization = if a.residualize { Residualization::Dropped } else { Residualization::None };
-        let mut request = RomRequest::new(sel).residualize(residualization).ranked_by(a.by.into());
+        let mut request = RomRequest::new(sel).residualize(residualization).ranked_by(a.by);
         request.damping = a.damping.clone();
         request
     });
@@ -352,9 +300,8 @@ pub fn run_freq(a: FreqArgs) -> Result<()> {
     let curves = match &request {
         Some(request) => {
             let rom = study.reduce(request)?;
-            print_rom_warnings(&study, &rom);
             let check = study.check_rom(&rom, &a.freq.grid())?;
-            print_warnings(&check.warnings);
+            print_warnings(&rom.new_warnings(&study, Some(&check)));
             check.comparison.responses(&study, "ROM")
         }
         None => study.full_responses(study.frequencies(&a.freq.grid(), &[])?)?,

@@ -73,7 +73,7 @@ pub fn run(a: SweepArgs) -> Result<()> {
         outputs.extend(["svg", "png"].map(|e| ("--plot", prefixed_path(prefix, e))));
     }
     check_output_paths(&outputs)?;
-    let points = grid(&a.pencil.set).map_err(anyhow::Error::msg)?;
+    let points = grid(&a.pencil.set)?;
     // The mode arrays hold points x lowest values of each kind: checked before allocating.
     check_lowest(a.lowest, points.len()).map_err(|e| anyhow::anyhow!("--lowest {e}"))?;
     let text = read_text_file(&path).map_err(|e| anyhow::anyhow!("{}: {}", path.display(), e.message))?;
@@ -88,7 +88,7 @@ pub fn run(a: SweepArgs) -> Result<()> {
         form: a.rom.form(),
         modes: a.lowest,
         continuation: a.continuation,
-        beam_update: romdyn::model::BeamUpdateChoice::from(a.pencil.beam_update),
+        beam_update: a.pencil.beam_update,
     };
     let bar = if std::io::stderr().is_terminal() { ProgressBar::new(points.len() as u64) } else { ProgressBar::hidden() };
     bar.set_style(ProgressStyle::with_template("{bar:30} {pos}/{len} design points eta {eta}").unwrap_or_else(|_| ProgressStyle::default_bar()));

@@ -86,7 +86,8 @@ pub fn run(a: ValidateArgs) -> Result<()> {
     options.check()?;
     let Some(path) = &a.pencil.model else { bail!("--pencil: validate runs the multibody model in time; give its MBDyn file") };
     let request = a.rom.request();
-    let (mut study, state, problem) = a.pencil.model_study(path, a.pencil.eigen().for_request(&request))?;
+    let mut study = a.pencil.study(Some(&request))?;
+    let (state, problem) = study.reference_and_problem()?;
     let rom = study.reduce(&request)?;
     for w in study.warnings().iter().chain(&rom.warnings) {
         eprintln!("warning: {w}");

@@ -6,7 +6,6 @@ use std::collections::BTreeMap;
 
 use faer::{c64, Mat};
 
-use crate::analysis::Reference;
 use crate::dae::ports::{InputPort, OutputPort};
 use crate::dae::{element_part, linearize_ports, ElementPart, NodeInput, NodeOutput, State};
 use crate::eigen::{cluster_label, degenerate_clusters, mode_label, real_mode_label, ModalEnergy};
@@ -94,23 +93,9 @@ pub struct Transmissibility {
 }
 
 impl Study {
-    /// Linearizes `model` at `reference` with the application's ports; the eigenanalysis is
-    /// that of the model as written (dummy springs present), the study's full model and its
-    /// ROMs have the springs removed.
-    /// The same checks as every door ([`Study::of_model`]: the reference checked against the
-    /// problem, an unrestrained model named, the beams' update warned about); until issue 31
-    /// this door skipped them.
-    pub fn from_application(model: Model, problem: &InitialValueProblem, reference: Reference, app: &Application, eigen: EigenSettings) -> Result<Self, StudyError> {
-        Self::of_model(model, problem, reference, &super::Ports::Application(app.clone()), eigen, None).map(|(study, _)| study)
-    }
-
-    /// [`Study::from_application`] at a given reference solution.
-    pub fn from_application_state(model: Model, problem: &InitialValueProblem, state: State, app: &Application, eigen: EigenSettings) -> Result<Self, StudyError> {
-        Self::application_state(model, problem, state, app, eigen, &|_: &str| {})
-    }
-
-    /// [`Study::from_application_state`] with the sparse solver's progress reports. Springs
-    /// to remove and imposed motion take the dense route (their corrections are dense).
+    /// The study of an application at a given reference solution, with the sparse solver's
+    /// progress reports. Springs to remove and imposed motion take the dense route (their
+    /// corrections are dense).
     pub(super) fn application_state(model: Model, problem: &InitialValueProblem, state: State, app: &Application, eigen: EigenSettings, progress: &dyn Fn(&str)) -> Result<Self, StudyError> {
         let (inputs, outputs) = application_ports(app);
         if app.remove_springs.is_empty() && app.imposed.is_none() {
@@ -127,7 +112,8 @@ impl Study {
     }
 
     /// The dense linearization with the application's ports (imposed components last), the
-    /// DAE [`Study::from_application_dae`] starts from.
+    /// DAE a study of springs to remove or imposed motion starts from (given to the builder
+    /// with [`super::StudyBuilder::linearized`]).
     pub fn linearize_application(model: &Model, state: &State, app: &Application) -> Result<LinearDae, StudyError> {
         let (inputs, outputs) = application_ports(app);
         Ok(linearize_ports(model, state, &inputs, &outputs, None)?)
@@ -137,7 +123,7 @@ impl Study {
     /// linearization `dae` ([`Study::linearize_application`]): the eigenanalysis of the model
     /// as written, the springs' ports and feedback, the free model and its warnings (the
     /// steps `romdyn rom` runs after linearizing, timed by `benches/ham_sas.rs`).
-    pub fn from_application_dae(model: Model, problem: &InitialValueProblem, state: State, dae: LinearDae, app: &Application, eigen: EigenSettings) -> Result<Self, StudyError> {
+    pub(super) fn from_application_dae(model: Model, problem: &InitialValueProblem, state: State, dae: LinearDae, app: &Application, eigen: EigenSettings) -> Result<Self, StudyError> {
         let parts = app.remove_springs.iter().map(|&l| element_part(&model, &state, l)).collect::<Result<Vec<_>, _>>()?;
         let file_dcoef = problem.eigenanalysis.as_ref().and_then(|e| e.dcoef);
         // The eigenanalysis of the model as written and the free model (springs removed, its
@@ -161,7 +147,7 @@ impl Study {
         let mut warnings: Vec<_> = equilibrium_warning(&model, &state, problem.tolerance).into_iter().collect();
         warnings.extend(port_warnings(&free, &modal));
         let applied = applied(app, parts, projected, feedback);
-        Ok(Study { linear: free, modal, sparse: None, model: Some(model), warnings, reference_time: Some(state.t), application: Some(applied) })
+        Ok(Study { linear: free, modal, sparse: None, model: Some(model), warnings, reference_time: Some(state.t), reference_state: None, problem: None, application: Some(applied) })
     }
 
     /// One label per mode ("table pitch (ry) 93 %") from the kinetic-energy shares and the
@@ -235,14 +221,6 @@ impl Study {
     pub fn imposed_model(&self, rom: &ReducedModel) -> Result<ImposedModel, StudyError> {
         let n = self.imposed_count()?;
         Ok(rom.ordinary.imposed_motion(n)?)
-    }
-}
-
-impl Study {
-    /// [`Study::from_application`] on an MBDyn input file.
-    pub fn from_application_file(path: &std::path::Path, reference: Reference, app: &Application, eigen: EigenSettings) -> Result<Self, StudyError> {
-        let m = crate::input::mbdyn::read_model(path)?;
-        Self::from_application(m.model, &m.problem, reference, app, eigen).map_err(|e| e.in_file(path))
     }
 }
 

@@ -19,6 +19,13 @@ fn bad(option: Setting, message: impl Into<String>) -> StudyError {
     StudyError::Option { option, message: message.into() }
 }
 
+/// The discretization methods by name (`--discretize`, `discretize=`) with what each does.
+pub const DISCRETIZATIONS: [(&str, &str); 3] = [
+    ("zoh", "zero-order hold: exact for inputs held between samples"),
+    ("tustin", "bilinear; DC gain kept"),
+    ("matched", "pole-zero mapping, one input and one output"),
+];
+
 /// The sampling of `--sample-rate FS --discretize METHOD [--prewarp F]` (`None` without a rate).
 pub fn sampling(rate_hz: Option<f64>, method: &str, prewarp_hz: Option<f64>) -> Result<Option<Sampling>, StudyError> {
     let method = match (method, prewarp_hz) {
@@ -26,7 +33,7 @@ pub fn sampling(rate_hz: Option<f64>, method: &str, prewarp_hz: Option<f64>) -> 
         ("tustin", p) => Discretization::Tustin { prewarp_hz: p },
         ("matched", None) => Discretization::Matched,
         ("zoh" | "matched", Some(_)) => return Err(bad(Setting::Prewarp, "prewarping belongs to the Tustin method: add --discretize tustin")),
-        (m, _) => return Err(bad(Setting::Discretize, format!("'{m}': expected zoh (zero-order hold), tustin or matched"))),
+        (m, _) => return Err(bad(Setting::Discretize, format!("'{m}': expected {}", DISCRETIZATIONS.map(|(n, what)| format!("{n} ({what})")).join(", ")))),
     };
     let Some(rate) = rate_hz else {
         return match prewarp_hz {

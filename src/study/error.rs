@@ -40,6 +40,8 @@ pub enum StudyError {
     NoPorts,
     #[error("give a MODEL file or --pencil FILE")]
     NoSource,
+    #[error("a pencil file or a linear DAE has no reference solution nor problem to run (give the model)")]
+    NoReference,
     #[error(transparent)]
     ElementPart(#[from] crate::dae::ElementPartError),
     #[error(transparent)]

@@ -9,26 +9,33 @@
 //! ```no_run
 //! use romdyn::analysis::Reference;
 //! use romdyn::rom::ModeSelection;
-//! use romdyn::study::{EigenSettings, Linearization, RomRequest, Study};
+//! use romdyn::study::{RomRequest, Study, StudySource};
 //!
-//! let lin = Linearization { reference: Reference::Static { load_steps: 10 }, inputs: vec!["5:Fy".parse()?], outputs: vec!["5:y".parse()?] };
-//! let study = Study::from_model_file("examples/simply_supported_beam.mbd".as_ref(), &lin, EigenSettings::default())?;
+//! let study = Study::builder(StudySource::model_file("examples/simply_supported_beam.mbd"))
+//!     .reference(Reference::Static { load_steps: 10 })
+//!     .node_ports(vec!["5:Fy".parse()?], vec!["5:y".parse()?])
+//!     .build()?;
 //! let rom = study.reduce(&RomRequest::new(ModeSelection::Lowest(1)))?;
 //! println!("{} states", rom.ordinary.a.nrows());
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!
-//! Extension points: new input/output kinds enter through [`Study::from_dae`] (any `B̃`, `C̃`
+//! Every front end builds its study the same way, [`Study::builder`] with a [`StudySource`]
+//! (an MBDyn file, a model, a pencil file, a linear DAE), its options checked once there.
+//! Extension points: new input/output kinds enter as [`StudySource::Dae`] (any `B̃`, `C̃`
 //! on a model's linear DAE), corrections of the full model go in before the eigenanalysis
-//! ([`Study::from_dae`] again), corrections of a ROM are fields of [`RomRequest`].
+//! (a [`StudySource::Dae`] again), corrections of a ROM are fields of [`RomRequest`].
 
 mod accuracy;
 mod application;
+mod builder;
 mod checks;
 mod control;
 mod error;
 mod export;
+mod free;
 mod linear;
+mod names;
 mod reduce;
 mod response;
 mod setting;
@@ -39,13 +46,16 @@ mod warning;
 
 pub use accuracy::RomCheck;
 pub use application::{parse_imposed, Application, Transmissibility};
+pub use builder::{StudyBuilder, StudySource};
 pub use checks::zero_channels;
-pub use control::{balancing, minimal_tolerance, sampling, Balancing, OrderReduction};
+pub use control::{balancing, minimal_tolerance, sampling, Balancing, OrderReduction, DISCRETIZATIONS};
 pub use error::StudyError;
 pub use export::RomForm;
+pub use free::{FreeEigenvalue, FreeEigenvalues, FreeKind};
 pub use reduce::{BelowBand, KeptMode, ReducedModel, Residualization, RomRequest, StaticGains, UndampedTwin};
 pub use response::{ChannelError, Comparison, FrequencyGrid, GridAccuracy};
+pub use names::{value_names, Named};
 pub use setting::{python_spelling, Setting};
-pub use setup::{checked_reference_state, EigenSettings, Linearization, Ports, Study};
+pub use setup::{checked_reference_state, EigenSettings, Ports, Study};
 pub use solver::{needs_every_mode, sparse_target, Solver, SparseRun, SPARSE_DEFAULT_COUNT};
 pub use warning::{Response, Warning};

@@ -11,11 +11,19 @@ pub enum Setting {
     Inputs,
     Outputs,
     Imposed,
+    /// The eigenanalysis route (`--route`, `route=`).
+    Route,
     Dcoef,
     Solver,
     Tolerance,
+    /// The number of modes a ROM keeps or the sparse route computes (`--count`, `count=`).
+    Count,
+    /// A band of natural frequencies [Hz] (`--band FMIN:FMAX`, `band=(FMIN, FMAX)`).
+    Band,
     /// How a `count` ranks the modes (`--by`, `by=`).
     Ranking,
+    /// What residualization does with a mode below the band (`--below-band`, `below_band=`).
+    BelowBand,
     Form,
     Fmin,
     Fmax,
@@ -41,7 +49,11 @@ pub enum Setting {
 
 impl Setting {
     /// Every setting.
-    pub const ALL: [Setting; 22] = [
+    pub const ALL: [Setting; 26] = [
+        Setting::Route,
+        Setting::BelowBand,
+        Setting::Count,
+        Setting::Band,
         Setting::ReferenceTime,
         Setting::LoadSteps,
         Setting::Inputs,
@@ -74,9 +86,13 @@ impl Setting {
             Setting::Inputs => "--input",
             Setting::Outputs => "--output",
             Setting::Imposed => "--imposed",
+            Setting::Route => "--route",
+            Setting::BelowBand => "--below-band",
             Setting::Dcoef => "--dcoef",
             Setting::Solver => "--solver",
             Setting::Tolerance => "--tolerance",
+            Setting::Count => "--count",
+            Setting::Band => "--band",
             Setting::Ranking => "--by",
             Setting::Form => "--form",
             Setting::Fmin => "--fmin",
@@ -102,9 +118,13 @@ impl Setting {
             Setting::Inputs => "inputs",
             Setting::Outputs => "outputs",
             Setting::Imposed => "imposed",
+            Setting::Route => "route",
+            Setting::BelowBand => "below_band",
             Setting::Dcoef => "dcoef",
             Setting::Solver => "solver",
             Setting::Tolerance => "tolerance",
+            Setting::Count => "count",
+            Setting::Band => "band",
             Setting::Ranking => "by",
             Setting::Form => "form",
             Setting::Fmin => "fmin",
@@ -150,7 +170,7 @@ pub fn python_spelling(text: &str) -> String {
         }
         let after = &from[2 + name.len()..];
         // A value the flag takes, when the next word is one of its known values.
-        let next = after.strip_prefix(' ').map(|s| s.split(|c: char| !(c.is_ascii_alphanumeric() || c == '.' || c == ':' || c == '_')).next().unwrap_or(""));
+        let next = after.strip_prefix(' ').map(|s| s.split(|c: char| !(c.is_ascii_alphanumeric() || c == '.' || c == ':' || c == '_' || c == '-')).next().unwrap_or("").trim_end_matches(['.', '-']));
         let word = next.filter(|w| flag_value(name, w));
         let keyword = python_keyword(name);
         match (keyword, word) {
@@ -182,12 +202,8 @@ fn python_keyword(flag: &str) -> Option<&'static str> {
     Some(match flag {
         "static" => "reference",
         "remove-spring" => "remove_springs",
-        "route" => "route",
-        "count" => "count",
-        "band" => "band",
         "modes" => "modes",
         "residualize" | "residualize-modes" => "residualize",
-        "below-band" => "below_band",
         "amplitudes" => "amplitudes",
         "validation-band" => "validation_band",
         "resolution" => "resolution",
@@ -198,16 +214,14 @@ fn python_keyword(flag: &str) -> Option<&'static str> {
     })
 }
 
-/// Whether `word` is a value `--flag` takes (so it is part of the advice, not prose).
+/// Whether `word` is a value `--flag` takes (so it is part of the advice, not prose): an
+/// enumerated setting's names from its one table ([`super::names::value_names`]).
 fn flag_value(flag: &str, word: &str) -> bool {
+    let setting = Setting::ALL.iter().find(|s| s.cli_flag().strip_prefix("--") == Some(flag));
+    if let Some(names) = setting.and_then(|s| super::names::value_names(*s)) {
+        return names.contains(&word);
+    }
     match flag {
-        "by" => matches!(word, "dominance" | "frequency"),
-        "below-band" => matches!(word, "keep" | "drop" | "refuse"),
-        "solver" => matches!(word, "dense" | "sparse" | "auto"),
-        "route" => matches!(word, "direct" | "lambda"),
-        "form" => matches!(word, "ordinary" | "descriptor" | "both"),
-        "beam-update" => matches!(word, "incremental" | "total"),
-        "discretize" => matches!(word, "zoh" | "tustin" | "matched"),
         "count" | "dcoef" | "tolerance" | "points" | "fmin" | "fmax" | "load-steps" | "at" | "band" | "resolution" | "averages" | "time-step" | "sample-rate" | "prewarp" | "balanced" | "hankel-tol" | "minimal" => {
             !word.is_empty() && word.split(':').all(|p| p.parse::<f64>().is_ok())
         }
@@ -229,5 +243,6 @@ mod tests {
         assert_eq!(python_spelling("--residualize folds them into D"), "residualize=… folds them into D");
         assert_eq!(python_spelling("see --pencil"), "see --pencil (romdyn's command line)");
         assert_eq!(python_spelling("a -- b and x--"), "a -- b and x--");
+        assert_eq!(python_spelling("(--beam-update path-independent silences this)"), "(beam_update=\"path-independent\" silences this)");
     }
 }

@@ -1,14 +1,9 @@
 //! Building a [`Study`]: where the linear DAE comes from and its eigenanalysis.
 
-use std::path::Path;
-
 use crate::analysis::{reference_state_with_warnings, static_state_from, Reference};
 use crate::dae::ports::{InputPort, OutputPort};
 use crate::dae::{linearize_sparse, NodeInput, NodeOutput, State};
 use crate::eigen::{dense_modes, energy_shares, EnergyShare, ModalEnergy};
-use crate::input::eigen_pencil::PencilPorts;
-use crate::input::mbdyn::read_model;
-use crate::input::pencil::read_pencil_file;
 use crate::eigen::krylov::{sparse_modes_with_progress, ModeTarget, SparseEigenSettings};
 use crate::eigen::{EigenRoute, ModalAnalysis};
 use crate::linear::{LinearDae, SparseLinearDae};
@@ -21,9 +16,10 @@ use super::linear::LinearModel;
 use super::solver::{needs_every_mode, sparse_target, SparseRun, SPARSE_DEFAULT_COUNT};
 use super::{Application, RomRequest, Setting, Solver, StudyError, Warning};
 
-/// Where a model is linearized and which inputs and outputs the linear DAE has.
+/// Where a model is linearized and which inputs and outputs the linear DAE has, checked
+/// against the problem once ([`Study::builder`]).
 #[derive(Clone, Debug)]
-pub struct Linearization {
+pub(super) struct Linearization {
     pub reference: Reference,
     /// Generalized forces `u` (`−ΔF = B̃ u`, eq. 38).
     pub inputs: Vec<NodeInput>,
@@ -70,7 +66,7 @@ impl Ports {
     /// names, springs and imposed motion), then node ports, springs to remove and an imposed
     /// motion (`NODE[:COMPONENTS]`); without a ports file, springs or imposed motion, node
     /// ports only.
-    pub fn from_parts(ports_file: Option<&Path>, inputs: &[NodeInput], outputs: &[NodeOutput], remove_springs: &[crate::model::Label], imposed: Option<&str>) -> Result<Self, StudyError> {
+    pub fn from_parts(ports_file: Option<&std::path::Path>, inputs: &[NodeInput], outputs: &[NodeOutput], remove_springs: &[crate::model::Label], imposed: Option<&str>) -> Result<Self, StudyError> {
         if ports_file.is_none() && remove_springs.is_empty() && imposed.is_none() {
             return Ok(Ports::Nodes { inputs: inputs.to_vec(), outputs: outputs.to_vec() });
         }
@@ -87,7 +83,7 @@ impl Ports {
             }
         }
         if let Some(s) = imposed.or(file.imposed.as_deref()) {
-            app.imposed = Some(super::parse_imposed(s).map_err(|m| StudyError::Application(format!("--imposed {m}")))?);
+            app.imposed = Some(super::parse_imposed(s).map_err(|message| StudyError::Option { option: Setting::Imposed, message })?);
         }
         Ok(Ports::Application(app))
     }
@@ -141,6 +137,23 @@ impl Default for EigenSettings {
 }
 
 impl EigenSettings {
+    /// Checks dCoef, the sparse route's tolerance and band: once, for every front end.
+    pub fn validate(&self) -> Result<(), StudyError> {
+        if let Some(c) = self.dcoef {
+            if !(c.is_finite() && c > 0.0) {
+                return Err(StudyError::Option { option: Setting::Dcoef, message: format!("dCoef must be a positive finite time step coefficient [s], got {c}") });
+            }
+        }
+        if !(self.tolerance > 0.0 && self.tolerance < 1.0) {
+            return Err(StudyError::Option { option: Setting::Tolerance, message: format!("the sparse route's residual tolerance must be in (0, 1), got {}", self.tolerance) });
+        }
+        match self.target {
+            Some(ModeTarget::Band { fmin_hz, fmax_hz }) => ModeSelection::band(fmin_hz, fmax_hz).map(|_| ()).map_err(|message| StudyError::Option { option: Setting::Band, message }),
+            Some(ModeTarget::Lowest(0)) => Err(StudyError::Option { option: Setting::Count, message: "a ROM keeps at least 1 mode".into() }),
+            _ => Ok(()),
+        }
+    }
+
     /// The same settings with the sparse target and the every-mode flag of `request`.
     pub fn for_request(mut self, request: &RomRequest) -> Self {
         self.target = Some(sparse_target(request));
@@ -158,6 +171,10 @@ pub struct Study {
     pub(super) model: Option<Model>,
     pub(super) warnings: Vec<Warning>,
     pub(super) reference_time: Option<f64>,
+    /// The reference solution the model was linearized at.
+    pub(super) reference_state: Option<State>,
+    /// The model's initial-value problem.
+    pub(super) problem: Option<InitialValueProblem>,
     /// Ports, names, removed springs and imposed motion (paper §8), when given.
     pub(super) application: Option<super::application::Applied>,
 }
@@ -166,25 +183,21 @@ pub struct Study {
 pub(super) fn quiet(_: &str) {}
 
 impl Study {
-    /// Reads an MBDyn input file and linearizes it at `lin.reference`.
-    pub fn from_model_file(path: &Path, lin: &Linearization, eigen: EigenSettings) -> Result<Self, StudyError> {
-        let m = read_model(path)?;
-        Self::from_model(m.model, &m.problem, lin, eigen).map_err(|e| e.in_file(path))
-    }
-
-    /// Linearizes a model at `lin.reference` of `problem` (the Rust API's entry).
-    /// The same checks as every door ([`Study::of_model`]).
-    pub fn from_model(model: Model, problem: &InitialValueProblem, lin: &Linearization, eigen: EigenSettings) -> Result<Self, StudyError> {
-        let ports = Ports::Nodes { inputs: lin.inputs.clone(), outputs: lin.outputs.clone() };
-        Self::of_model(model, problem, lin.reference, &ports, eigen, None).map(|(study, _)| study)
-    }
-
-    /// Linearizes a model at a given reference solution (`lin.reference` says only how it
-    /// was found).
-    pub fn from_model_state(model: Model, problem: &InitialValueProblem, state: State, lin: &Linearization, eigen: EigenSettings) -> Result<Self, StudyError> {
-        let inputs: Vec<_> = lin.inputs.iter().map(NodeInput::port).collect();
-        let outputs: Vec<_> = lin.outputs.iter().map(NodeOutput::port).collect();
-        Self::from_model_ports(model, problem, state, &inputs, &outputs, eigen, &quiet)
+    /// Linearizes at a given reference solution with `ports`; an application's dense
+    /// linearization `dae` when done already.
+    pub(super) fn at_state(model: Model, problem: &InitialValueProblem, state: State, ports: &Ports, dae: Option<LinearDae>, eigen: EigenSettings, progress: &dyn Fn(&str)) -> Result<Self, StudyError> {
+        let mut study = match (ports, dae) {
+            (Ports::Nodes { inputs, outputs }, None) => {
+                let inputs: Vec<_> = inputs.iter().map(NodeInput::port).collect();
+                let outputs: Vec<_> = outputs.iter().map(NodeOutput::port).collect();
+                Self::from_model_ports(model, problem, state.clone(), &inputs, &outputs, eigen, progress)?
+            }
+            (Ports::Application(app), None) => Self::application_state(model, problem, state.clone(), app, eigen, progress)?,
+            (Ports::Application(app), Some(dae)) => Self::from_application_dae(model, problem, state.clone(), dae, app, eigen)?,
+            (Ports::Nodes { .. }, Some(_)) => return Err(StudyError::Option { option: Setting::Inputs, message: "a linearization done already goes with an application's ports".into() }),
+        };
+        study.reference_state = Some(state);
+        Ok(study)
     }
 
     /// The sparse linearization with these ports and its eigenanalysis; `progress` gets the
@@ -200,17 +213,13 @@ impl Study {
         Ok(study)
     }
 
-    /// The one entry every front end uses for a model: `ports` node ports only (as
-    /// `romdyn rom --input/--output`) or a whole [`Application`]; the reference solution is
-    /// found from `start` when given (a sweep's continuation, see [`checked_reference_state`]).
-    /// Returns the study and the reference solution it was linearized at.
-    pub fn of_model(model: Model, problem: &InitialValueProblem, reference: Reference, ports: &Ports, eigen: EigenSettings, start: Option<&State>) -> Result<(Self, State), StudyError> {
-        Self::of_model_with_progress(model, problem, reference, ports, eigen, start, &quiet)
-    }
-
-    /// [`Study::of_model`] with the sparse eigensolver's progress reports (a line per
-    /// Krylov–Schur restart) sent to `progress`.
-    pub fn of_model_with_progress(model: Model, problem: &InitialValueProblem, reference: Reference, ports: &Ports, eigen: EigenSettings, start: Option<&State>, progress: &dyn Fn(&str)) -> Result<(Self, State), StudyError> {
+    /// The one road of every front end into a model's study ([`Study::builder`]): `ports`
+    /// node ports only (as `romdyn rom --input/--output`) or a whole [`Application`]; the
+    /// reference solution is found from `start` when given (a sweep's continuation, see
+    /// [`checked_reference_state`]); the sparse eigensolver's progress reports (a line per
+    /// Krylov–Schur restart) go to `progress`. Returns the study and the reference solution
+    /// it was linearized at.
+    pub(super) fn of_model_with_progress(model: Model, problem: &InitialValueProblem, reference: Reference, ports: &Ports, eigen: EigenSettings, start: Option<&State>, progress: &dyn Fn(&str)) -> Result<(Self, State), StudyError> {
         let (inputs, outputs) = match ports {
             Ports::Nodes { inputs, outputs } => (inputs.clone(), outputs.clone()),
             Ports::Application(_) => (Vec::new(), Vec::new()),
@@ -235,19 +244,12 @@ impl Study {
         Ok((study, state))
     }
 
-    /// Reads a pencil file: an MBDyn eigenanalysis `.m` file (ports by equation row and
-    /// unknown column) or a JSON pencil (ports in the file, `ports` empty).
-    pub fn from_pencil_file(path: &Path, ports: &PencilPorts, eigen: EigenSettings) -> Result<Self, StudyError> {
-        let file = read_pencil_file(path, ports)?;
-        Self::from_dae(file.dae, None, EigenSettings { dcoef: eigen.dcoef.or(file.dcoef), ..eigen })
-    }
-
     /// Eigenanalysis of a given linear DAE; `model` (when it is a model's linearization)
     /// gives the modes' kinetic-energy shares.
     /// `Solver::Auto` keeps a DAE without its constraint structure (a pencil file) on the
     /// dense route: the sparse solver's shift at 0 would meet the zero eigenvalues of MBDyn's
     /// constrained variables (eq. 30), which it removes only where the structure is known.
-    pub fn from_dae(dae: LinearDae, model: Option<Model>, eigen: EigenSettings) -> Result<Self, StudyError> {
+    pub(super) fn from_dae(dae: LinearDae, model: Option<Model>, eigen: EigenSettings) -> Result<Self, StudyError> {
         let eigen = if eigen.solver == Solver::Auto && dae.constraint_form.is_none() { EigenSettings { solver: Solver::Dense, ..eigen } } else { eigen };
         let sparse = eigen.solver.is_sparse(dae.dim(), eigen.every_mode)?;
         Self::from_linear(LinearModel::from_dense(dae, sparse), model, eigen, &quiet)
@@ -255,14 +257,6 @@ impl Study {
 
     /// Eigenanalysis of the study's linear model on the route `eigen.solver` picks.
     fn from_linear(linear: LinearModel, model: Option<Model>, eigen: EigenSettings, progress: &dyn Fn(&str)) -> Result<Self, StudyError> {
-        if let Some(c) = eigen.dcoef {
-            if !(c.is_finite() && c > 0.0) {
-                return Err(StudyError::Option { option: Setting::Dcoef, message: format!("dCoef must be a positive finite time step coefficient [s], got {c}") });
-            }
-        }
-        if !(eigen.tolerance > 0.0 && eigen.tolerance < 1.0) {
-            return Err(StudyError::Option { option: Setting::Tolerance, message: format!("the sparse route's residual tolerance must be in (0, 1), got {}", eigen.tolerance) });
-        }
         let sparse_dae = match linear.sparse() {
             Some(s) if eigen.solver.is_sparse(s.dim(), eigen.every_mode)? => Some(s),
             _ => None,
@@ -279,7 +273,7 @@ impl Study {
                 (dense_modes(linear.dense(), eigen.route, eigen.dcoef)?, None)
             }
         };
-        let mut study = Study { linear, modal, sparse, model, warnings: Vec::new(), reference_time: None, application: None };
+        let mut study = Study { linear, modal, sparse, model, warnings: Vec::new(), reference_time: None, reference_state: None, problem: None, application: None };
         study.warnings = study.linear_warnings();
         Ok(study)
     }
@@ -288,6 +282,26 @@ impl Study {
     /// that move nothing, a sparse eigenanalysis that is not certified.
     pub fn warnings(&self) -> &[Warning] {
         &self.warnings
+    }
+
+    /// The reference solution the model was linearized at (`None` for a pencil file or a
+    /// linear DAE).
+    pub fn reference_state(&self) -> Option<&State> {
+        self.reference_state.as_ref()
+    }
+
+    /// The model's initial-value problem (`None` for a pencil file or a linear DAE).
+    pub fn problem(&self) -> Option<&InitialValueProblem> {
+        self.problem.as_ref()
+    }
+
+    /// The reference solution and the problem, to run the model from there (`romdyn
+    /// validate`); an error for a pencil file or a linear DAE.
+    pub fn reference_and_problem(&self) -> Result<(State, InitialValueProblem), StudyError> {
+        match (&self.reference_state, &self.problem) {
+            (Some(state), Some(problem)) => Ok((state.clone(), problem.clone())),
+            _ => Err(StudyError::NoReference),
+        }
     }
 
     /// Time of the reference solution [s] (`None` for a pencil file).

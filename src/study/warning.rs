@@ -48,6 +48,9 @@ pub enum Warning {
     /// A static reference of beams with MBDyn's incremental update: the whole load is one
     /// step from the initial configuration, whatever the load steps.
     IncrementalBeamsStatic { beams: usize },
+    /// A beam the `auto` update leaves path independent in a time integration (its section
+    /// law cannot take MBDyn's incremental update): `why` names it.
+    BeamKeptPathIndependent { why: String },
     /// The run that reached the reference warned (its initial velocities, its derivatives
     /// phase): the reference state carries what the warning says.
     Run { warning: crate::analysis::RunWarning },
@@ -82,6 +85,7 @@ impl fmt::Display for Warning {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Warning::InputFile { message } => write!(f, "{message}"),
+            Warning::BeamKeptPathIndependent { why } => write!(f, "{why} (--beam-update path-independent silences this)"),
             Warning::NotInEquilibrium { residual, equation, tolerance } => write!(
                 f,
                 "the reference solution is neither an equilibrium nor a steady motion: with its velocities held and its accelerations set to zero the residual is {residual:.3e} (tolerance {tolerance:.1e}) at '{equation}'. The eigenvalues are those of the Jacobians frozen at this instant (as MBDyn's eigenanalysis computes them), not the frequencies and damping of small motions about this trajectory, which follow a time-varying linear system (a swinging pendulum's frozen eigenvalues take the centripetal tension as a stiffness); the ROM is the frozen system's. Use --static for the static equilibrium, or a reference at rest or in steady motion (a uniform spin about an axis of symmetry; a motion steady in a turning frame, a top's precession or a rotor's blades, once the model is written in that frame with MBDyn's `rigid body kinematics`)"

@@ -1,6 +1,8 @@
 //! Design points: values of an MBDyn file's `set:` variables, as a list or a linspace per
 //! variable and their full grid.
 
+use crate::study::{Setting, StudyError};
+
 /// One swept variable and its values.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Parameter {
@@ -84,16 +86,18 @@ pub fn interpolation_point(swept: &[Parameter], given: &[Parameter]) -> Result<V
 
 /// The design points of several parameters: their full grid, the first parameter varying
 /// slowest (as nested loops in the order given). Each point lists one value per parameter.
-pub fn grid(parameters: &[Parameter]) -> Result<Vec<Vec<f64>>, String> {
+/// A bad grid is a [`Setting::Set`] error, named as each front end spells it.
+pub fn grid(parameters: &[Parameter]) -> Result<Vec<Vec<f64>>, StudyError> {
+    let bad = |message: String| Err(StudyError::Option { option: Setting::Set, message });
     for (k, p) in parameters.iter().enumerate() {
         if parameters[..k].iter().any(|q| q.name == p.name) {
-            return Err(format!("--set {}: the variable is given twice", p.name));
+            return bad(format!("{}: the variable is given twice", p.name));
         }
     }
     let total = parameters.iter().try_fold(1usize, |n, p| n.checked_mul(p.values.len()).filter(|&n| n <= MAX_POINTS));
-    let Some(total) = total else { return Err(format!("the grid has more than romdyn's limit of {MAX_POINTS} design points")) };
+    let Some(total) = total else { return bad(format!("the grid has more than romdyn's limit of {MAX_POINTS} design points")) };
     if parameters.is_empty() {
-        return Err("a sweep needs at least one --set NAME=A:B:N or NAME=V1,V2,…".into());
+        return bad("a sweep needs at least one variable, NAME=A:B:N or NAME=V1,V2,…".into());
     }
     let mut points = Vec::with_capacity(total);
     for k in 0..total {
@@ -132,8 +136,8 @@ mod tests {
             assert!(e.contains(part), "{s}: {e}");
         }
         let l: Parameter = "L=1,2".parse().unwrap();
-        assert!(grid(&[l.clone(), l]).unwrap_err().contains("twice"));
-        assert!(grid(&["A=0:1:100000".parse().unwrap(), "B=0:1:100000".parse().unwrap()]).unwrap_err().contains("limit"));
+        assert_eq!(grid(&[l.clone(), l]).unwrap_err().to_string(), "--set: L: the variable is given twice");
+        assert!(grid(&["A=0:1:100000".parse().unwrap(), "B=0:1:100000".parse().unwrap()]).unwrap_err().to_string().contains("limit"));
     }
 
     #[test]

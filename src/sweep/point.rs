@@ -15,7 +15,7 @@ use crate::rom::mode_units;
 
 use super::track::{sketch, PointMode};
 use crate::output::rom_file::RomExport;
-use crate::study::{EigenSettings, Ports, RomForm, RomRequest, Study, StudyError};
+use crate::study::{EigenSettings, Ports, RomForm, RomRequest, Study, StudyError, StudySource};
 
 /// What every design point computes (the options of `romdyn rom`).
 #[derive(Clone, Debug)]
@@ -62,17 +62,20 @@ pub fn overrides(names: &[String], values: &[f64]) -> SetOverrides {
 /// Runs one design point on the text of the MBDyn file `name` (the name only labels messages
 /// and resolves includes). `start`: the previous point's reference solution (continuation).
 pub fn run_point(text: &str, name: &Path, names: &[String], values: &[f64], options: &SweepOptions, start: Option<&State>) -> Result<PointResult, StudyError> {
-    let mut m = read_model_text(text, name, &overrides(names, values))?;
-    let kept = m.model.choose_beam_update(options.beam_update, options.reference.integrates()).map_err(|message| StudyError::Option { option: crate::study::Setting::BeamUpdate, message: format!("{}: {message}", name.display()) })?;
-    let eigen = options.eigen.for_request(&options.rom);
-    let (study, state) = Study::of_model(m.model, &m.problem, options.reference, &options.ports, eigen, start).map_err(|e| e.in_file(name))?;
+    let m = read_model_text(text, name, &overrides(names, values))?;
+    let builder = Study::builder(StudySource::read(m, name)).reference(options.reference).ports(options.ports.clone()).eigen(options.eigen).for_request(&options.rom).beam_update(options.beam_update);
+    let study = match start {
+        Some(start) => builder.start(start.clone()),
+        None => builder,
+    }
+    .build()?;
+    let state = study.reference_state().cloned();
     let rom = study.reduce(&options.rom)?;
     rom.check_form(options.form)?;
     let modes = point_modes(&study, candidates(options.modes));
-    let mut warnings = kept;
-    warnings.extend(study.warnings().iter().map(|w| w.to_string()));
+    let mut warnings: Vec<String> = study.warnings().iter().map(|w| w.to_string()).collect();
     warnings.extend(rom.warnings.iter().map(|w| w.to_string()));
-    Ok(PointResult { rom: rom.export(&study, options.form), modes, warnings, state: Some(state) })
+    Ok(PointResult { rom: rom.export(&study, options.form), modes, warnings, state })
 }
 
 /// The modes a point reports when `n` are tabulated: `n` and half as many more (at least 2),

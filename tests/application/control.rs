@@ -7,13 +7,12 @@ use faer::linalg::solvers::Solve;
 use faer::{c64, Mat};
 use romdyn::analysis::Reference;
 use romdyn::rom::{BalancedMethod, BalancedOrder, ModalDamping, ModeSelection, OrdinaryRom};
-use romdyn::study::{EigenSettings, Linearization, ReducedModel, RomRequest, Study};
+use romdyn::study::{StudySource, ReducedModel, RomRequest, Study};
 
 use crate::common;
 
 fn beam_rom(modes: usize, configure: impl FnOnce(&mut RomRequest)) -> ReducedModel {
-    let lin = Linearization { reference: Reference::Static { load_steps: 10 }, inputs: vec!["5:Fy".parse().unwrap()], outputs: vec!["5:y".parse().unwrap()] };
-    let study = Study::from_model_file("examples/simply_supported_beam.mbd".as_ref(), &lin, EigenSettings::default()).unwrap();
+    let study = Study::builder(StudySource::model_file("examples/simply_supported_beam.mbd")).reference(Reference::Static { load_steps: 10 }).node_ports(vec!["5:Fy".parse().unwrap()], vec!["5:y".parse().unwrap()]).build().unwrap();
     let mut request = RomRequest::new(ModeSelection::Lowest(modes)).damped(ModalDamping::Uniform(0.02));
     configure(&mut request);
     study.reduce(&request).unwrap()
@@ -220,8 +219,7 @@ fn modes_above_nyquist_are_named() {
 /// there (|H_2%| / |H_full| at 49.04 Hz below 0.5, by the single-mode closed form).
 #[test]
 fn added_modal_damping_is_not_reported_as_a_departure() {
-    let lin = Linearization { reference: Reference::Static { load_steps: 10 }, inputs: vec!["5:Fy".parse().unwrap()], outputs: vec!["5:y".parse().unwrap()] };
-    let study = Study::from_model_file("examples/simply_supported_beam.mbd".as_ref(), &lin, EigenSettings::default()).unwrap();
+    let study = Study::builder(StudySource::model_file("examples/simply_supported_beam.mbd")).reference(Reference::Static { load_steps: 10 }).node_ports(vec!["5:Fy".parse().unwrap()], vec!["5:y".parse().unwrap()]).build().unwrap();
     let request = RomRequest::new(ModeSelection::Lowest(1)).residualize(romdyn::study::Residualization::Modes(vec![7]));
     let damped = study.reduce(&request.clone().damped(ModalDamping::Uniform(0.02))).unwrap();
     let undamped = study.reduce(&request).unwrap();

@@ -6,16 +6,15 @@ use crate::common;
 
 use common::mbdyn::test_file;
 use faer::c64;
-use romdyn::analysis::Reference;
-use romdyn::study::{EigenSettings, Linearization, Study};
+use romdyn::study::{StudySource, Study};
 
 const K: f64 = 1000.0;
 /// Modal mass 0.5 kg plus the 1.5 kg body on FEM node B.
 const MASS: f64 = 2.0;
 
 fn study(outputs: &[&str]) -> Study {
-    let lin = Linearization { reference: Reference::Initial, inputs: vec!["2:Fy".parse().unwrap()], outputs: outputs.iter().map(|o| o.parse().unwrap_or_else(|e| panic!("{e}"))).collect() };
-    Study::from_model_file(&test_file("modal_clamped_port.mbd"), &lin, EigenSettings::default()).unwrap_or_else(|e| panic!("{e}"))
+    let outputs = outputs.iter().map(|o| o.parse().unwrap_or_else(|e| panic!("{e}"))).collect();
+    Study::builder(StudySource::model_file(test_file("modal_clamped_port.mbd"))).node_ports(vec!["2:Fy".parse().unwrap()], outputs).build().unwrap_or_else(|e| panic!("{e}"))
 }
 
 #[test]
@@ -54,8 +53,7 @@ fn the_ports_file_names_modal_coordinates_and_bad_ones_are_refused() {
     assert!(refused(r#"{"outputs": [{"type": "modal coordinate", "node": 10, "mode": 1}]}"#).contains("takes \"joint\""));
     assert!(refused(r#"{"outputs": [{"type": "displacement", "node": 2, "direction": [0, 1, 0], "mode": 1}]}"#).contains("belong to 'modal coordinate' outputs"));
     // On the model: a joint that is not there, a mode the joint does not use.
-    let lin = |o: &str| Linearization { reference: Reference::Initial, inputs: vec![], outputs: vec![o.parse().unwrap()] };
-    let err = |o: &str| Study::from_model_file(&test_file("modal_clamped_port.mbd"), &lin(o), EigenSettings::default()).err().expect("refused").to_string();
+    let err = |o: &str| Study::builder(StudySource::model_file(test_file("modal_clamped_port.mbd"))).node_ports(vec![], vec![o.parse().unwrap()]).build().err().expect("refused").to_string();
     assert!(err("11:q1").contains("modal joint 11 is not defined"), "{}", err("11:q1"));
     assert!(err("10:q2").contains("modal joint 10 has no mode 2 (its modes: 1"), "{}", err("10:q2"));
     let syntax = "10:q0".parse::<romdyn::dae::NodeOutput>().err().expect("mode 0 refused").to_string();

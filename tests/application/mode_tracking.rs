@@ -233,10 +233,9 @@ fn ordinary_rom_states_are_the_modal_coordinates_their_names_say() {
     // range permuted the states (the first, named 'mode 1 re', was mode 7's). Each named pair
     // of states must carry its mode's eigenvalues: trace 2 Re λ, determinant |λ|², nothing
     // coupling it to the other states.
-    use romdyn::study::{Linearization, Study};
-    let lin = Linearization { reference: Reference::Initial, inputs: vec!["2:Fx".parse().unwrap(), "3:Fy".parse().unwrap()], outputs: vec!["2:x".parse().unwrap(), "3:y".parse().unwrap()] };
+    use romdyn::study::{StudySource, Study};
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/mass_on_springs.mbd");
-    let study = Study::from_model_file(&path, &lin, EigenSettings::default()).unwrap();
+    let study = Study::builder(StudySource::model_file(&path)).reference(Reference::Initial).node_ports(vec!["2:Fx".parse().unwrap(), "3:Fy".parse().unwrap()], vec!["2:x".parse().unwrap(), "3:y".parse().unwrap()]).build().unwrap();
     let rom = study.reduce(&RomRequest::new(ModeSelection::Lowest(4))).unwrap();
     let x = rom.export(&study, RomForm::Ordinary);
     assert_eq!(x.a.nrows(), 8);

@@ -8,15 +8,14 @@ use std::path::Path;
 
 use romdyn::analysis::{Reference, RunWarning};
 use romdyn::input::mbdyn::{read_model_text, SetOverrides};
-use romdyn::study::{EigenSettings, Ports, Study, Warning};
+use romdyn::study::{Study, StudySource, Warning};
 
 use crate::common::cli::{romdyn, temp_dir, write_file};
 
 fn study_warnings(text: &str, reference: Reference, set: &[(&str, f64)]) -> Vec<Warning> {
     let overrides: SetOverrides = set.iter().map(|(k, v)| (k.to_string(), *v)).collect();
     let m = read_model_text(text, Path::new("reference_warnings.mbd"), &overrides).unwrap_or_else(|e| panic!("{e}"));
-    let ports = Ports::Nodes { inputs: Vec::new(), outputs: Vec::new() };
-    let (study, _) = Study::of_model(m.model, &m.problem, reference, &ports, EigenSettings::default(), None).unwrap_or_else(|e| panic!("{e}"));
+    let study = Study::builder(StudySource::model(m.model, m.problem)).reference(reference).build().unwrap_or_else(|e| panic!("{e}"));
     study.warnings().to_vec()
 }
 

@@ -8,16 +8,17 @@ use romdyn::analysis::Reference;
 use romdyn::dae::{NodeInput, NodeOutput};
 use romdyn::input::mbdyn::read_model;
 use romdyn::rom::ModeSelection;
-use romdyn::study::{EigenSettings, Ports, Residualization, RomRequest, Study};
+use romdyn::study::{Ports, Residualization, RomRequest, Study, StudySource};
 use romdyn::validate::welch::magnitude_random_error;
 use romdyn::validate::{read_measured, validate, ValidateOptions, Validation};
 
 fn validated(file: &str, reference: Reference, input: &str, output: &str, request: RomRequest, options: &ValidateOptions) -> Validation {
     let m = read_model(Path::new(file)).unwrap();
     let ports = Ports::Nodes { inputs: vec![input.parse::<NodeInput>().unwrap()], outputs: vec![output.parse::<NodeOutput>().unwrap()] };
-    let (mut study, state) = Study::of_model(m.model, &m.problem, reference, &ports, EigenSettings::default(), None).unwrap();
+    let mut study = Study::builder(StudySource::model(m.model, m.problem)).reference(reference).ports(ports.clone()).build().unwrap();
+    let (state, problem) = study.reference_and_problem().unwrap();
     let rom = study.reduce(&request).unwrap();
-    validate(&mut study, &m.problem, &state, &ports, &rom, options, &mut |_, _| {}).unwrap()
+    validate(&mut study, &problem, &state, &ports, &rom, options, &mut |_, _| {}).unwrap()
 }
 
 const MASSES: &str = "examples/mass_on_springs.mbd";
@@ -146,7 +147,7 @@ fn tmp(name: &str) -> std::path::PathBuf {
 fn measured_round_trip() {
     let m = read_model(Path::new(MASSES)).unwrap();
     let ports = Ports::Nodes { inputs: vec!["3:Fx".parse().unwrap()], outputs: vec!["3:x".parse().unwrap()] };
-    let (study, _) = Study::of_model(m.model, &m.problem, Reference::Initial, &ports, EigenSettings::default(), None).unwrap();
+    let study = Study::builder(StudySource::model(m.model, m.problem)).ports(ports).build().unwrap();
     let freq: Vec<f64> = (1..=50).map(|k| 0.07 * k as f64).collect();
     let h = study.full_frequency_response(&freq).unwrap();
     let mut text = String::from("# written from the full model\nfrequency [Hz],1/1 re [m/N],1/1 im [m/N],1/1 mag [m/N],1/1 phase [deg]\n");

@@ -11,7 +11,7 @@ use romdyn::eigen::ModeKind;
 use romdyn::linear::{Jacobians, LinearDae};
 use romdyn::analysis::Reference;
 use romdyn::rom::ModeSelection;
-use romdyn::study::{EigenSettings, Linearization, RomRequest, Study, Warning};
+use romdyn::study::{EigenSettings, StudySource, RomRequest, Study, Warning};
 
 /// Every mode near `root` is either labelled dynamic with an honest error (|λ − root| within
 /// its estimate, the closed form being `root`), or listed in the study's warning about
@@ -70,12 +70,12 @@ fn oscillator(m: f64, c: f64, k: f64) -> LinearDae {
 fn a_critically_damped_root_is_honest_or_warned() {
     for dcoef in [None, Some(0.5), Some(0.1), Some(3.0)] {
         let settings = EigenSettings { dcoef, ..EigenSettings::default() };
-        let study = Study::from_dae(oscillator(1.0, 4.0, 4.0), None, settings).unwrap();
+        let study = Study::builder(StudySource::dae(oscillator(1.0, 4.0, 4.0))).eigen(settings).build().unwrap();
         assert_honest(&study, -2.0, &format!("oscillator, dCoef {dcoef:?}"));
     }
     // The Λ form at c = 1/2 s puts the root at Λ = 0 exactly: its value is exact, but its
     // vectors are orthogonal through F_yd, so a ROM keeping it must say it cannot use it.
-    let exact = Study::from_dae(oscillator(1.0, 4.0, 4.0), None, EigenSettings { dcoef: Some(0.5), ..EigenSettings::default() }).unwrap();
+    let exact = Study::builder(StudySource::dae(oscillator(1.0, 4.0, 4.0))).eigen(EigenSettings { dcoef: Some(0.5), ..EigenSettings::default() }).build().unwrap();
     let unresolved = assert_honest(&exact, -2.0, "dCoef 1/2 s");
     match exact.reduce(&RomRequest::new(ModeSelection::Lowest(2))) {
         Ok(rom) => assert!(unresolved > 0 || rom.warnings.iter().any(|w| matches!(w, Warning::Unscaled { .. })), "a ROM of the exactly defective root warns nothing: {:?}", rom.warnings),
@@ -89,7 +89,7 @@ fn a_critically_damped_root_is_honest_or_warned() {
         ..oscillator(1.0, 4.0, 4.0)
     };
     for dcoef in [None, Some(1.0 / 3.0), Some(0.2)] {
-        let study = Study::from_dae(jordan.clone(), None, EigenSettings { dcoef, ..EigenSettings::default() }).unwrap();
+        let study = Study::builder(StudySource::dae(jordan.clone())).eigen(EigenSettings { dcoef, ..EigenSettings::default() }).build().unwrap();
         assert_honest(&study, -3.0, &format!("Jordan block, dCoef {dcoef:?}"));
     }
 }
@@ -124,8 +124,7 @@ end: elements;
     )
     .unwrap();
     for dcoef in [None, Some(0.5)] {
-        let lin = Linearization { reference: Reference::Initial, inputs: vec!["2:Fx".parse().unwrap()], outputs: vec!["2:x".parse().unwrap()] };
-        let study = Study::from_model_file(&file, &lin, EigenSettings { dcoef, ..EigenSettings::default() }).unwrap();
+        let study = Study::builder(StudySource::model_file(&file)).reference(Reference::Initial).node_ports(vec!["2:Fx".parse().unwrap()], vec!["2:x".parse().unwrap()]).eigen(EigenSettings { dcoef, ..EigenSettings::default() }).build().unwrap();
         assert_honest(&study, -2.0, &format!("critically damped body, dCoef {dcoef:?}"));
         // The lightly damped y mode is resolved and dynamic: λ = −0.3 ± j √(9 − 0.09) rad/s.
         let y = study.modal().modes.iter().find(|m| m.kind == ModeKind::Dynamic && (m.lambda.im - (9.0f64 - 0.09).sqrt()).abs() < 1e-8).expect("the y mode");

@@ -15,12 +15,12 @@ use romdyn::eigen::ModeKind;
 use romdyn::model::ConstraintForm;
 use romdyn::model::{InitialValueProblem, Model};
 use romdyn::rom::ModeSelection;
-use romdyn::study::{EigenSettings, Ports, Residualization, RomRequest, Solver, Study, Warning};
+use romdyn::study::{EigenSettings, Ports, Residualization, RomRequest, Solver, Study, StudySource, Warning};
 
 fn study(model: Model, input: &str, output: &str, solver: Solver, request: &RomRequest) -> Study {
     let ports = Ports::Nodes { inputs: vec![input.parse().unwrap()], outputs: vec![output.parse().unwrap()] };
     let eigen = EigenSettings { solver, ..EigenSettings::default() }.for_request(request);
-    Study::of_model(model, &InitialValueProblem::default(), Reference::Static { load_steps: 1 }, &ports, eigen, None).unwrap().0
+    Study::builder(StudySource::model(model, InitialValueProblem::default())).reference(Reference::Static { load_steps: 1 }).ports(ports).eigen(eigen).build().unwrap()
 }
 
 /// Dynamic eigenvalues with Im λ ≥ 0 and their error estimates, in table order.
@@ -118,7 +118,7 @@ fn auto_takes_the_sparse_route_from_the_threshold_and_dense_for_dominance() {
     assert!(auto.sparse_run().is_none(), "dominance needs every mode: dense");
     let ports = Ports::Nodes { inputs: vec!["30:Fx".parse().unwrap()], outputs: vec!["30:x".parse().unwrap()] };
     let eigen = EigenSettings { solver: Solver::Sparse, ..EigenSettings::default() }.for_request(&dominance);
-    let refused = Study::of_model(hanging_chain(30, ConstraintForm::Scaled), &InitialValueProblem::default(), Reference::Static { load_steps: 1 }, &ports, eigen, None);
+    let refused = Study::builder(StudySource::model(hanging_chain(30, ConstraintForm::Scaled), InitialValueProblem::default())).reference(Reference::Static { load_steps: 1 }).ports(ports).eigen(eigen).build();
     assert!(refused.is_err_and(|e| e.to_string().contains("--solver") && e.to_string().contains("dominance")));
 }
 

@@ -10,12 +10,11 @@ use common::mbdyn::test_file;
 use romdyn::analysis::Reference;
 use romdyn::cms::{craig_bampton, CmsRequest};
 use romdyn::eigen::ModeKind;
-use romdyn::study::{EigenSettings, Linearization, Study};
+use romdyn::study::{StudySource, Study};
 
 /// The lowest `count` natural frequencies [rad/s] of an MBDyn file.
 fn lowest(path: &std::path::Path, count: usize) -> Vec<f64> {
-    let lin = Linearization { reference: Reference::Initial, inputs: vec![], outputs: vec![] };
-    let study = Study::from_model_file(path, &lin, EigenSettings::default()).unwrap_or_else(|e| panic!("{e}"));
+    let study = Study::builder(StudySource::model_file(path)).reference(Reference::Initial).build().unwrap_or_else(|e| panic!("{e}"));
     let mut w: Vec<f64> = study.modal().modes.iter().filter(|m| m.kind == ModeKind::Dynamic && m.lambda.im > 1e-6).map(|m| m.lambda.im).collect();
     w.sort_by(f64::total_cmp);
     assert!(w.len() >= count, "{} modes: {w:?}", w.len());

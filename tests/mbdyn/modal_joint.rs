@@ -7,14 +7,13 @@ use crate::common;
 use common::mbdyn::{assert_refused, test_file};
 use romdyn::analysis::Reference;
 use romdyn::eigen::ModeKind;
-use romdyn::study::{EigenSettings, Linearization, Study};
+use romdyn::study::{StudySource, Study};
 
 const FILE: &str = "modal_spring_mass.mbd";
 
 #[test]
 fn an_attached_multibody_node_moves_with_its_fem_node() {
-    let lin = Linearization { reference: Reference::Initial, inputs: vec![], outputs: vec![] };
-    let study = Study::from_model_file(&test_file(FILE), &lin, EigenSettings::default()).unwrap_or_else(|e| panic!("{e}"));
+    let study = Study::builder(StudySource::model_file(&test_file(FILE))).reference(Reference::Initial).build().unwrap_or_else(|e| panic!("{e}"));
     let im: Vec<f64> = study.modal().modes.iter().filter(|m| m.kind == ModeKind::Dynamic && m.lambda.im > 1e-6).map(|m| m.lambda.im).collect();
     // The file's closed form: ω² = k (1/(mb + m2) + 1/ma + l²/Jz) with Jz = 0.3 + 0.01 kg m².
     let expected = (1000.0f64 * (1.0 / 2.0 + 1.0 / 2.0 + 0.64 / 0.31)).sqrt();

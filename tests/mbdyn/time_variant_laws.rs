@@ -12,7 +12,7 @@ use faer::c64;
 use romdyn::analysis::{run, Reference};
 use romdyn::dae::Assembler;
 use romdyn::element::NodeKinematics;
-use romdyn::study::{EigenSettings, Linearization, Study};
+use romdyn::study::{StudySource, Study};
 
 const FILE: &str = "time_variant_laws.mbd";
 
@@ -75,8 +75,7 @@ fn pair(b: f64, k: f64) -> c64 {
 /// `eig --at 0.5` on `file` has an eigenvalue within 1e-8 relative of each of `expected`
 /// (`why` says why no more than the eigensolver's rounding separates them).
 fn assert_eigenvalues_at_half_a_second(file: &str, expected: &[(&str, c64)], why: &str) {
-    let lin = Linearization { reference: Reference::At(0.5), inputs: vec![], outputs: vec![] };
-    let study = Study::from_model_file(&path(file), &lin, EigenSettings::default()).unwrap_or_else(|e| panic!("{e}"));
+    let study = Study::builder(StudySource::model_file(&path(file))).reference(Reference::At(0.5)).build().unwrap_or_else(|e| panic!("{e}"));
     let lambdas: Vec<c64> = study.modal().modes.iter().map(|m| m.lambda).filter(|l| l.re.is_finite() && l.im.is_finite()).collect();
     for (what, l) in expected {
         let nearest = lambdas.iter().map(|x| (x - l).norm()).fold(f64::INFINITY, f64::min);

@@ -13,7 +13,7 @@ use romdyn::analysis::Reference;
 use romdyn::dae::{check_jacobians, Assembler, State};
 use romdyn::eigen::ModeKind;
 use romdyn::model::ConstraintForm;
-use romdyn::study::{EigenSettings, Linearization, Study};
+use romdyn::study::{Study, StudySource};
 
 /// A FEM node: label, position [m], lumped mass [kg] and rotational inertias [kg m²].
 struct FemNode {
@@ -75,8 +75,7 @@ fn mbdyn_file(nodes: &str, elements: &str, final_time: f64, dt: f64, counts: &st
 
 /// The dynamic eigenvalues' imaginary parts > 0 [rad/s], ascending.
 fn frequencies(file: &Path) -> Vec<f64> {
-    let lin = Linearization { reference: Reference::Initial, inputs: vec![], outputs: vec![] };
-    let study = Study::from_model_file(file, &lin, EigenSettings::default()).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+    let study = Study::builder(StudySource::model_file(file)).reference(Reference::Initial).build().unwrap_or_else(|e| panic!("{}: {e}", file.display()));
     let mut im: Vec<f64> = study.modal().modes.iter().filter(|m| m.kind == ModeKind::Dynamic && m.lambda.im > 1e-6).map(|m| m.lambda.im).collect();
     im.sort_by(f64::total_cmp);
     im

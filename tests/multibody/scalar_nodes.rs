@@ -9,12 +9,11 @@ use std::path::Path;
 use crate::common;
 use common::mbdyn::test_file;
 use faer::c64;
-use romdyn::analysis::Reference;
 use romdyn::dae::{Assembler, NodeInput, NodeOutput, State};
 use romdyn::input::mbdyn::read_model;
 use romdyn::model::ConstraintForm;
 use romdyn::rom::ModeSelection;
-use romdyn::study::{EigenSettings, Ports, RomRequest, Study};
+use romdyn::study::{RomRequest, Study, StudySource};
 
 #[test]
 fn every_genel_jacobian_matches_finite_differences() {
@@ -80,7 +79,7 @@ fn pid_study() -> Study {
     let m = read_model(&path).unwrap_or_else(|e| panic!("{e}"));
     let inputs = vec!["1:abstract".parse::<NodeInput>().unwrap()];
     let outputs = vec!["1:abstract".parse::<NodeOutput>().unwrap(), "2:abstract".parse::<NodeOutput>().unwrap()];
-    Study::of_model(m.model, &m.problem, Reference::Initial, &Ports::Nodes { inputs, outputs }, EigenSettings::default(), None).unwrap_or_else(|e| panic!("{e}")).0
+    Study::builder(StudySource::model(m.model, m.problem)).node_ports(inputs, outputs).build().unwrap_or_else(|e| panic!("{e}"))
 }
 
 #[test]
@@ -125,7 +124,7 @@ fn butterworth_scalar_filter_has_its_poles_and_unit_dc_gain() {
     let m = read_model(&test_file("scalar_filter_butterworth.mbd")).unwrap_or_else(|e| panic!("{e}"));
     let inputs = vec!["101:abstract".parse::<NodeInput>().unwrap()];
     let outputs = ["100:abstract", "102:abstract", "103:abstract"].map(|o| o.parse::<NodeOutput>().unwrap()).to_vec();
-    let study = Study::of_model(m.model, &m.problem, Reference::Initial, &Ports::Nodes { inputs, outputs }, EigenSettings::default(), None).unwrap_or_else(|e| panic!("{e}")).0;
+    let study = Study::builder(StudySource::model(m.model, m.problem)).node_ports(inputs, outputs).build().unwrap_or_else(|e| panic!("{e}"));
     let wc = 2.0 * std::f64::consts::PI;
     let pole = c64::new(-wc / 2f64.sqrt(), wc / 2f64.sqrt());
     let dynamic: Vec<c64> = study.modal().modes.iter().filter(|m| m.kind == romdyn::eigen::ModeKind::Dynamic).map(|m| m.lambda).collect();
@@ -141,7 +140,7 @@ fn butterworth_scalar_filter_has_its_poles_and_unit_dc_gain() {
     let m = common::mbdyn::read(&descriptor);
     let inputs = vec!["101:abstract".parse::<NodeInput>().unwrap()];
     let outputs = vec!["103:abstract".parse::<NodeOutput>().unwrap()];
-    let e_study = Study::of_model(m.model, &m.problem, Reference::Initial, &Ports::Nodes { inputs, outputs }, EigenSettings::default(), None).unwrap_or_else(|e| panic!("{e}")).0;
+    let e_study = Study::builder(StudySource::model(m.model, m.problem)).node_ports(inputs, outputs).build().unwrap_or_else(|e| panic!("{e}"));
     let dynamic: Vec<c64> = e_study.modal().modes.iter().filter(|m| m.kind == romdyn::eigen::ModeKind::Dynamic).map(|m| m.lambda).collect();
     assert_same_roots(&dynamic, &[pole, pole.conj(), pole, pole.conj(), pole, pole.conj()], 1e-10);
     for out in 0..3 {

@@ -17,7 +17,7 @@ use std::path::{Path, PathBuf};
 use common::cli::{romdyn, temp_dir, write_file};
 use romdyn::analysis::Reference;
 use romdyn::eigen::ModeKind;
-use romdyn::study::{EigenSettings, Linearization, Study, Warning};
+use romdyn::study::{Study, StudySource, Warning};
 
 fn model_file(name: &str) -> String {
     std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files").join(name)).unwrap()
@@ -35,8 +35,7 @@ fn variant(dir: &Path, name: &str, text: &str, replacements: &[(&str, &str)]) ->
 
 /// The dynamic eigenvalues' imaginary parts > 0 [rad/s], ascending, and the study's warnings.
 fn whirl(file: &Path) -> (Vec<f64>, Vec<Warning>) {
-    let lin = Linearization { reference: Reference::Initial, inputs: vec![], outputs: vec![] };
-    let study = Study::from_model_file(file, &lin, EigenSettings::default()).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+    let study = Study::builder(StudySource::model_file(file)).reference(Reference::Initial).build().unwrap_or_else(|e| panic!("{}: {e}", file.display()));
     let mut im: Vec<f64> = study.modal().modes.iter().filter(|m| m.kind == ModeKind::Dynamic && m.lambda.im > 1e-3).map(|m| m.lambda.im).collect();
     im.sort_by(f64::total_cmp);
     (im, study.warnings().to_vec())
@@ -112,8 +111,7 @@ fn a_sleeping_top_precesses_and_nutates_at_the_closed_form_frequencies() {
     // with Im = Jp Ω/(2 Jt).
     let omega = 20.0;
     let file = variant(&dir, "top_slow.mbd", &text, &[("OMEGA = 150.;", "OMEGA = 20.;")]);
-    let lin = Linearization { reference: Reference::Initial, inputs: vec![], outputs: vec![] };
-    let study = Study::from_model_file(&file, &lin, EigenSettings::default()).unwrap();
+    let study = Study::builder(StudySource::model_file(&file)).reference(Reference::Initial).build().unwrap();
     let growth = (4.0 * jt * mgl - (jp * omega).powi(2)).sqrt() / (2.0 * jt);
     let unstable: Vec<_> = study.modal().modes.iter().filter(|m| m.kind == ModeKind::Dynamic && m.lambda.re > 0.0).map(|m| m.lambda).collect();
     assert_eq!(unstable.len(), 2, "{unstable:?}");
@@ -173,13 +171,10 @@ fn the_rotors_rom_step_response_follows_a_small_amplitude_nonlinear_run() {
     // The ROM: the rotor at 100 rad/s linearized at rest (no load), input a moment Mx on the
     // housing, outputs the housing's tilts rx, ry; its two whirl pairs kept (the spin's zero
     // mode is not excited by a tilting moment).
-    let lin = Linearization {
-        reference: Reference::Initial,
-        inputs: vec!["2:Mx".parse::<NodeInput>().unwrap()],
-        outputs: vec!["2:rx".parse::<NodeOutput>().unwrap(), "2:ry".parse::<NodeOutput>().unwrap()],
-    };
+    let inputs = vec!["2:Mx".parse::<NodeInput>().unwrap()];
+    let outputs = vec!["2:rx".parse::<NodeOutput>().unwrap(), "2:ry".parse::<NodeOutput>().unwrap()];
     let file = variant(&dir, "rotor.mbd", &text, &[]);
-    let study = Study::from_model_file(&file, &lin, EigenSettings::default()).unwrap();
+    let study = Study::builder(StudySource::model_file(&file)).node_ports(inputs, outputs).build().unwrap();
     let rom = study.reduce(&RomRequest::new(ModeSelection::Lowest(2))).unwrap().ordinary;
     assert_eq!(rom.a.nrows(), 4, "two whirl pairs");
 

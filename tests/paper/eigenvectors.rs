@@ -76,7 +76,7 @@ fn vectors_solve_the_right_and_adjoint_problems() {
 fn a_mode_carried_by_a_scaled_reaction_keeps_its_share_of_the_rom() {
     use romdyn::linear::LinearDae;
     use romdyn::rom::ModeSelection;
-    use romdyn::study::{EigenSettings, RomRequest, Study};
+    use romdyn::study::{RomRequest, Study, StudySource};
     let (m, k, s, m2, k2) = (1.0, 4.0, 1e-9, 1e6, 1e8);
     // Unknowns x, v, g (light oscillator), x2, v2 (heavy one). Rows: ẋ − v, m v̇ + S g − u,
     // S g − k x, ẋ2 − v2, m2 v̇2 + k2 x2.
@@ -98,7 +98,7 @@ fn a_mode_carried_by_a_scaled_reaction_keeps_its_share_of_the_rom() {
     c[(0, 0)] = 1.0;
     let names = |p: &str, n: usize| (0..n).map(|i| format!("{p}{i}")).collect::<Vec<_>>();
     let dae = LinearDae { jacobians: Jacobians::Derivatives { fyd, fy }, b, c, unknown_names: names("y", 5), input_names: names("u", 1), output_names: names("z", 1), constraint_form: None, multipliers: Vec::new(), c_rate: None };
-    let study = Study::from_dae(dae, None, EigenSettings::default()).unwrap();
+    let study = Study::builder(StudySource::dae(dae)).build().unwrap();
     let light = study.modal().modes.iter().find(|md| (md.lambda.im - 2.0).abs() < 1e-9).expect("the light oscillator's +2j rad/s");
     // The vector is the reaction's: |g| / |x| = k / S = 4e9.
     let v = light.right.as_ref().unwrap();

@@ -6,7 +6,7 @@ use romdyn::input::mbdyn::read_model;
 use romdyn::input::ports_file::read_ports_file;
 use romdyn::eigen::ModeKind;
 use romdyn::rom::ModeSelection;
-use romdyn::study::{parse_imposed, Application, ChannelError, EigenSettings, FrequencyGrid, Residualization, RomRequest, Study, Warning};
+use romdyn::study::{parse_imposed, Application, ChannelError, FrequencyGrid, Residualization, RomRequest, Study, StudySource, Warning};
 
 const MODEL: &str = "examples/ham_sas.mbd";
 
@@ -14,7 +14,7 @@ fn study() -> Study {
     let ports = read_ports_file("examples/ham_sas_ports.json".as_ref()).unwrap();
     let imposed = parse_imposed(ports.imposed.as_deref().unwrap()).unwrap();
     let app = Application { inputs: ports.inputs, outputs: ports.outputs, names: ports.names, remove_springs: ports.remove_springs, imposed: Some(imposed) };
-    Study::from_application_file(MODEL.as_ref(), Reference::Static { load_steps: 1 }, &app, EigenSettings::default()).unwrap()
+    Study::builder(StudySource::model_file(MODEL)).reference(Reference::Static { load_steps: 1 }).application(app.clone()).build().unwrap()
 }
 
 #[test]
@@ -153,7 +153,7 @@ fn ham_sas_lvdt_rom_names_the_port_pairs_its_normwise_error_hides() {
     // band).
     let ports = read_ports_file("examples/ham_sas_control.json".as_ref()).unwrap();
     let app = Application { inputs: ports.inputs, outputs: ports.outputs, names: ports.names, remove_springs: vec![901, 902], imposed: None };
-    let s = Study::from_application_file(MODEL.as_ref(), Reference::Static { load_steps: 1 }, &app, EigenSettings::default()).unwrap();
+    let s = Study::builder(StudySource::model_file(MODEL)).reference(Reference::Static { load_steps: 1 }).application(app.clone()).build().unwrap();
     let band = RomRequest::new(ModeSelection::Band { fmin_hz: 0.0, fmax_hz: 2.0 });
     for (request, residualized) in [(band.clone(), false), (band.residualize(Residualization::Dropped), true)] {
         let rom = s.reduce(&request).unwrap();

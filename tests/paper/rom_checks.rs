@@ -10,7 +10,7 @@ use common::cli::{romdyn, temp_dir, write_file};
 use faer::c64;
 use romdyn::analysis::Reference;
 use romdyn::rom::ModeSelection;
-use romdyn::study::{EigenSettings, Linearization, Residualization, RomRequest, StaticGains, Study, Warning};
+use romdyn::study::{StudySource, Residualization, RomRequest, StaticGains, Study, Warning};
 
 const ISOLATOR: &str = "tests/mbdyn_files/isolator_imposed.mbd";
 // tests/mbdyn_files/isolator_imposed.mbd: payload M on spring K, damper C over base MB, base
@@ -157,8 +157,7 @@ fn a_force_on_the_clamped_ground_node_is_rounding_not_a_difference() {
 /// independent reference: no mode is truncated there, so the difference is rounding).
 #[test]
 fn static_gain_rounding_of_a_stiff_beam_is_not_a_warning() {
-    let lin = Linearization { reference: Reference::Static { load_steps: 10 }, inputs: vec!["21:Fy".parse().unwrap()], outputs: vec!["21:y".parse().unwrap()] };
-    let study = Study::from_model_file("examples/cantilever.mbd".as_ref(), &lin, EigenSettings::default()).unwrap();
+    let study = Study::builder(StudySource::model_file("examples/cantilever.mbd")).reference(Reference::Static { load_steps: 10 }).node_ports(vec!["21:Fy".parse().unwrap()], vec!["21:y".parse().unwrap()]).build().unwrap();
     let lambdas: Vec<f64> = study.modal().modes.iter().filter(|m| m.kind == romdyn::eigen::ModeKind::Dynamic).map(|m| m.lambda.norm()).collect();
     let spread = lambdas.iter().fold(0.0f64, |a, &b| a.max(b)) / lambdas.iter().fold(f64::INFINITY, |a, &b| a.min(b));
     assert!((5e3..5e4).contains(&spread), "{spread}");
@@ -179,8 +178,7 @@ fn static_gain_rounding_of_a_stiff_beam_is_not_a_warning() {
     // same absolute rounding is a larger part of it, in the ROM with every mode kept as
     // with every dropped mode residualized: no warning, and a tolerance scaled by the static
     // solution's size only (below 1e-3: a real difference of 0.1 % would still be one).
-    let lin = Linearization { reference: Reference::Static { load_steps: 10 }, inputs: vec!["21:Fy".parse().unwrap()], outputs: vec!["2:y".parse().unwrap()] };
-    let study = Study::from_model_file("examples/cantilever.mbd".as_ref(), &lin, EigenSettings::default()).unwrap();
+    let study = Study::builder(StudySource::model_file("examples/cantilever.mbd")).reference(Reference::Static { load_steps: 10 }).node_ports(vec!["21:Fy".parse().unwrap()], vec!["2:y".parse().unwrap()]).build().unwrap();
     let every = study.reduce(&RomRequest::new(ModeSelection::Band { fmin_hz: 0.0, fmax_hz: 1e9 })).unwrap();
     let residualized = study.reduce(&RomRequest::new(ModeSelection::Lowest(1)).residualize(Residualization::Dropped)).unwrap();
     let (rel_every, _) = every.static_gains.largest_relative_difference().unwrap();

@@ -10,7 +10,7 @@ use romdyn::analysis::Reference;
 use romdyn::eigen::EigenRoute;
 use romdyn::linear::{Jacobians, LinearDae};
 use romdyn::rom::{full_frequency_response, ModalDamping, ModeSelection, Ranking};
-use romdyn::study::{BelowBand, EigenSettings, Linearization, Residualization, RomRequest, Study, StudyError, Warning};
+use romdyn::study::{BelowBand, EigenSettings, StudySource, Residualization, RomRequest, Study, StudyError, Warning};
 
 /// `M v' + D v + K x = B u`, `x' = v` as a first-order DAE `y = (x, v)`:
 /// `F = [x' − v; M v' + D v + K x − B u]`, so `F_yd = diag(I, M)`, `F_y = [[0, −I], [K, D]]`
@@ -49,7 +49,7 @@ fn chain_stiffness(k: &[f64]) -> Mat<f64> {
 }
 
 fn direct(dae: LinearDae) -> Study {
-    Study::from_dae(dae, None, EigenSettings { route: EigenRoute::Direct, ..EigenSettings::default() }).unwrap()
+    Study::builder(StudySource::dae(dae)).eigen(EigenSettings { route: EigenRoute::Direct, ..EigenSettings::default() }).build().unwrap()
 }
 
 /// A 3-mass chain, input and output at the last mass, modes near 0.38, 3.2 and 6 Hz.
@@ -137,8 +137,7 @@ fn count_and_dominance_agree_where_the_lowest_modes_dominate() {
         assert_eq!(a.selection.kept, b.selection.kept, "chain, N = {n}");
     }
     let model = |file: &str, input: &str, output: &str, reference| {
-        let lin = Linearization { reference, inputs: vec![input.parse().unwrap()], outputs: vec![output.parse().unwrap()] };
-        Study::from_model_file(file.as_ref(), &lin, EigenSettings::default()).unwrap()
+        Study::builder(StudySource::model_file(file)).reference(reference).node_ports(vec![input.parse().unwrap()], vec![output.parse().unwrap()]).build().unwrap()
     };
     for study in [model("examples/pendulum.mbd", "2:Mz", "2:rz", Reference::Initial), model("examples/inverted_pendulum.mbd", "2:Mz", "2:rz", Reference::Initial)] {
         let a = study.reduce(&RomRequest::new(ModeSelection::Lowest(1))).unwrap();
@@ -230,8 +229,7 @@ fn reference_out_of_equilibrium_and_unrestrained_motion_are_reported() {
 /// −ζω ± jω√(1 − ζ²), keeps the static gain, is reported, and leaves the full model alone.
 #[test]
 fn modal_damping_applies_to_the_rom_only_and_keeps_the_static_gain() {
-    let lin = Linearization { reference: Reference::Static { load_steps: 1 }, inputs: vec!["5:Fy".parse().unwrap()], outputs: vec!["5:y".parse().unwrap()] };
-    let study = Study::from_model_file("examples/simply_supported_beam.mbd".as_ref(), &lin, EigenSettings::default()).unwrap();
+    let study = Study::builder(StudySource::model_file("examples/simply_supported_beam.mbd")).reference(Reference::Static { load_steps: 1 }).node_ports(vec!["5:Fy".parse().unwrap()], vec!["5:y".parse().unwrap()]).build().unwrap();
     let plain = study.reduce(&RomRequest::new(ModeSelection::Lowest(1))).unwrap();
     let damped = study.reduce(&RomRequest::new(ModeSelection::Lowest(1)).damped(ModalDamping::Uniform(0.02))).unwrap();
     assert_eq!(damped.damping.len(), 1);
@@ -319,8 +317,7 @@ fn random_stable_pencils_residualized_roms_keep_the_static_gain_or_warn() {
 #[test]
 fn full_model_and_rom_phases_agree_where_magnitudes_agree() {
     use romdyn::output::bode::{common_reference_phases, CurveStyle, ResponseCurve};
-    let lin = Linearization { reference: Reference::Static { load_steps: 10 }, inputs: vec!["5:Fy".parse().unwrap()], outputs: vec!["5:y".parse().unwrap()] };
-    let study = Study::from_model_file("examples/simply_supported_beam.mbd".as_ref(), &lin, EigenSettings::default()).unwrap();
+    let study = Study::builder(StudySource::model_file("examples/simply_supported_beam.mbd")).reference(Reference::Static { load_steps: 10 }).node_ports(vec!["5:Fy".parse().unwrap()], vec!["5:y".parse().unwrap()]).build().unwrap();
     let dominant = RomRequest::new(ModeSelection::Lowest(2)).ranked_by(Ranking::Dominance);
     let third = study.reduce(&dominant).unwrap().kept_modes[1].indices[0];
     let requests = [
@@ -432,6 +429,8 @@ fn nonsense_options_are_refused_with_the_option_named() {
         (&["--at", "nan"][..], "--at: TIME must be a finite time"),
         (&["--static", "--load-steps", "0"][..], "--load-steps: need at least 1 load increment"),
         (&["--input", "2:Mz"][..], "--input: node 2 Mz [N m] is given twice"),
+        // The library's Setting, rendered as the flag (Python: "imposed: '2:q': …", pytest).
+        (&["--imposed", "2:q"][..], "--imposed: '2:q': expected NODE or NODE:COMPONENTS"),
     ] {
         let (ok, _, err) = model(extra);
         assert!(!ok && err.contains(expect), "{extra:?}: {err}");

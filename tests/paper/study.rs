@@ -2,11 +2,10 @@
 
 use romdyn::analysis::Reference;
 use romdyn::rom::ModeSelection;
-use romdyn::study::{EigenSettings, FrequencyGrid, Linearization, Residualization, RomRequest, Study, StudyError};
+use romdyn::study::{FrequencyGrid, StudySource, Residualization, RomRequest, Study, StudyError};
 
 fn beam() -> Study {
-    let lin = Linearization { reference: Reference::Static { load_steps: 10 }, inputs: vec!["5:Fy".parse().unwrap()], outputs: vec!["5:y".parse().unwrap()] };
-    Study::from_model_file("examples/simply_supported_beam.mbd".as_ref(), &lin, EigenSettings::default()).unwrap()
+    Study::builder(StudySource::model_file("examples/simply_supported_beam.mbd")).reference(Reference::Static { load_steps: 10 }).node_ports(vec!["5:Fy".parse().unwrap()], vec!["5:y".parse().unwrap()]).build().unwrap()
 }
 
 #[test]
@@ -32,8 +31,8 @@ fn beam_rom_through_the_study_keeps_the_paper_static_gains() {
 
 #[test]
 fn a_rom_without_ports_is_a_typed_error() {
-    let study = Study::from_model_file("examples/pendulum.mbd".as_ref(), &Linearization { reference: Reference::Initial, inputs: vec![], outputs: vec![] }, EigenSettings::default()).unwrap();
+    let study = Study::builder(StudySource::model_file("examples/pendulum.mbd")).build().unwrap();
     assert!(matches!(study.reduce(&RomRequest::new(ModeSelection::Lowest(1))), Err(StudyError::NoPorts)));
-    let missing = Study::from_model_file("examples/no_such_file.mbd".as_ref(), &Linearization { reference: Reference::Initial, inputs: vec![], outputs: vec![] }, EigenSettings::default());
+    let missing = Study::builder(StudySource::model_file("examples/no_such_file.mbd")).build();
     assert!(matches!(missing, Err(StudyError::Model(_))));
 }
