@@ -133,6 +133,37 @@ fn keeping_every_interior_mode_reproduces_the_whole_beam_to_rounding() {
     }
 }
 
+/// Massless interior coordinates: node 13 made static (its body removed) in the whole
+/// cantilever and in the substructure. Its six coordinates have no mass, so the
+/// fixed-interface problem has 42 modes with mass and six at infinity; keeping the 42 is
+/// exact again (the constraint modes condense the massless coordinates statically, which is
+/// exact for them), and asking for 43 is refused in words.
+#[test]
+fn massless_interior_coordinates_are_condensed_exactly() {
+    let dir = common::cli::temp_dir("cms-massless");
+    let massless = |name: &str, bodies: (&str, &str)| {
+        let text = std::fs::read_to_string(test_file(name)).unwrap();
+        let text = text.replace("structural: 13, dynamic,", "structural: 13, static,").replace("    body: 113, 13, M_IN, null, diag, JX_IN, JT_IN, JT_IN;\n", "").replace(bodies.0, bodies.1);
+        common::cli::write_file(&dir, name, &text)
+    };
+    const COUNT: usize = 12;
+    let full = lowest(std::path::Path::new(&massless("cms_cantilever.mbd", ("rigid bodies: 17;", "rigid bodies: 16;"))), COUNT);
+    let sub_path = massless("cms_substructure.mbd", ("rigid bodies: 9;", "rigid bodies: 8;"));
+    let sub = romdyn::input::mbdyn::read_model(std::path::Path::new(&sub_path)).unwrap_or_else(|e| panic!("{e}"));
+    let request = |modes| CmsRequest { interfaces: vec![9], modes, reference: Reference::Initial };
+    let e = craig_bampton(&sub.model, &sub.problem, &request(43)).err().expect("43 modes refused").to_string();
+    assert!(e.contains("has 42 modes that move mass"), "{e}");
+    let cb = craig_bampton(&sub.model, &sub.problem, &request(42)).unwrap_or_else(|e| panic!("{e}"));
+    cb.write(&dir.join("cms_substructure.fem"), "cms_substructure.mbd").unwrap_or_else(|e| panic!("{e}"));
+    let text = std::fs::read_to_string(test_file("cms_reduced.mbd")).unwrap().replace("set: ifndef integer MODES = 10;", "set: integer MODES = 48;");
+    let path = common::cli::write_file(&dir, "cms_reduced.mbd", &text);
+    let reduced = lowest(std::path::Path::new(&path), COUNT);
+    let errors: Vec<f64> = reduced.iter().zip(&full).map(|(r, f)| common::rel(*r, *f)).collect();
+    eprintln!("massless node 13, N = 42: {}", errors.iter().map(|e| format!("{e:.1e}")).collect::<Vec<_>>().join("  "));
+    // 1e-8 relative, as with every coordinate massive (measured below 1e-10).
+    assert!(errors.iter().all(|e| *e < 1e-8), "{errors:?}");
+}
+
 /// A free component (no support of its own) reduced and attached through a clamped modal
 /// joint: `cms_payload_springs.mbd` hangs the free beam of `cms_substructure.mbd` on two
 /// springs at nodes 9 and 17, `cms_payload_modal.mbd` hangs its Craig–Bampton model (interface
