@@ -16,8 +16,8 @@ SUBSTRUCTURE = FILES / "cms_substructure.mbd"
 
 
 def test_cms_writes_the_cli_file(tmp_path, romdyn_cli):
-    r = romdyn.cms(str(SUBSTRUCTURE), interface=9, modes=4, output=tmp_path / "py")
-    cli = subprocess.run([romdyn_cli, "cms", SUBSTRUCTURE, "--interface", "9", "--modes", "4", "-o", tmp_path / "cli"], capture_output=True, text=True)
+    r = romdyn.cms(str(SUBSTRUCTURE), interface=9, modes=5, output=tmp_path / "py")
+    cli = subprocess.run([romdyn_cli, "cms", SUBSTRUCTURE, "--interface", "9", "--modes", "5", "-o", tmp_path / "cli"], capture_output=True, text=True)
     assert cli.returncode == 0, cli.stderr
     # The same numbers (the title names the source file the same way).
     assert (tmp_path / "py.fem").read_text() == (tmp_path / "cli.fem").read_text()
@@ -25,13 +25,13 @@ def test_cms_writes_the_cli_file(tmp_path, romdyn_cli):
     # Fixed-interface modes have unit modal mass and stiffness omega^2 (left and right modes
     # paired: phi_L^T M phi_R = 1), to rounding.
     w = np.array(r["fixed_interface_omega"])
-    assert np.allclose(np.diag(r["mass"])[:4], 1.0, rtol=1e-10)
-    assert np.allclose(np.diag(r["stiffness"])[:4], w**2, rtol=1e-10)
+    assert np.allclose(np.diag(r["mass"])[:5], 1.0, rtol=1e-10)
+    assert np.allclose(np.diag(r["stiffness"])[:5], w**2, rtol=1e-10)
     # The clamped-cantilever bending frequency of the half beam (0.5 m, EJ = 1e3 N m^2,
     # rho A = 1 kg/m): 1.875^2 sqrt(EJ / (rho A l^4)) = 444.7 rad/s; eight lumped beam3
     # nodes give 434.7 (2.2 % low).
     assert abs(w[0] / (1.8751040687**2 * np.sqrt(1e3 / 0.5**4)) - 1) < 0.03
-    assert "modal, clamped, 10, from file" in r["card"] and r["summary"].replace("py.fem", "cli.fem") == cli.stdout
+    assert "modal, clamped, 11, from file" in r["card"] and r["summary"].replace("py.fem", "cli.fem") == cli.stdout
 
 
 def test_fem_reader_warnings_are_printed_and_raised(tmp_path, romdyn_cli):

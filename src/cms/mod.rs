@@ -47,7 +47,9 @@
 //! holds the diagonal of each node's mass block, record 12 the rigid-body inertia of `M`
 //! (exact, `Rᵀ M R` with `R` the six rigid motions). The inertia invariants MBDyn builds
 //! from record 11 use `T` (right) alone: gravity on the modes of a clamped joint is
-//! `T_Lᵀ M g` only where the two bases agree (a symmetric stiffness).
+//! `T_Lᵀ M g` only where the two bases agree (a symmetric stiffness); on beam3 substructures
+//! it departs by up to 8e-3 of the largest modal load (docs/src/guide/cms.md, Limits), the
+//! weight carried by one interface node's rigid constraint modes exactly.
 
 mod reduce;
 

@@ -2,7 +2,7 @@
 //! linearization, then the Craig–Bampton transformation and the FEM file's records.
 
 use faer::Mat;
-use nalgebra::{Cholesky, DMatrix, SymmetricEigen};
+use nalgebra::{Cholesky, DMatrix};
 
 use crate::analysis::Reference;
 use crate::dae::{linearize_ports, DofMap};
@@ -141,12 +141,11 @@ pub fn craig_bampton(model: &Model, problem: &InitialValueProblem, request: &Cms
     let (psi, psi_left, normal, omega) = if interior.is_empty() {
         (DMatrix::zeros(0, boundary.len()), DMatrix::zeros(0, boundary.len()), (DMatrix::zeros(0, 0), DMatrix::zeros(0, 0)), Vec::new())
     } else {
-        let chol = Cholesky::new(k_sym).ok_or_else(|| unfit(format!("the substructure is not restrained by its interface nodes {:?}: with them held, its stiffness is not positive definite (a mechanism, a part connected to no interface node, or a missing beam)", request.interfaces)))?;
+        Cholesky::new(k_sym).ok_or_else(|| unfit(format!("the substructure is not restrained by its interface nodes {:?}: with them held, its stiffness is not positive definite (a mechanism, a part connected to no interface node, or a missing beam)", request.interfaces)))?;
         let singular = || unfit("the substructure's stiffness with its interface held is singular".into());
         let psi = -k_ii.clone().lu().solve(&k_ib).ok_or_else(singular)?;
         let k_bi = sub(&s.stiffness, &boundary, &interior);
         let psi_left = -k_ii.transpose().lu().solve(&k_bi.transpose()).ok_or_else(singular)?;
-        fixed_interface_modes(&chol, &m_ii, request.modes)?;
         let (normal, normal_left, omega) = two_sided_modes(&k_ii, &m_ii, request.modes)?;
         (psi, psi_left, (normal, normal_left), omega)
     };
@@ -195,79 +194,65 @@ pub fn craig_bampton(model: &Model, problem: &InitialValueProblem, request: &Cms
     Ok(CraigBampton { fem, fixed_interface_omega: omega, interfaces: request.interfaces.clone(), warnings })
 }
 
-/// The `count` lowest fixed-interface modes (`M_ii`-normalized, the largest entry positive)
-/// and their angular frequencies [rad/s], from `L⁻¹ M_ii L⁻ᵀ v = v/ω²`.
-fn fixed_interface_modes(chol: &Cholesky<f64, nalgebra::Dyn>, m_ii: &DMatrix<f64>, count: usize) -> Result<(DMatrix<f64>, Vec<f64>), CmsError> {
-    let l = chol.l();
-    let x = l.solve_lower_triangular(m_ii).expect("a Cholesky factor is invertible");
-    let a = l.solve_lower_triangular(&x.transpose()).expect("a Cholesky factor is invertible");
-    let eig = SymmetricEigen::new((&a + a.transpose()) * 0.5);
-    let mut order: Vec<usize> = (0..a.nrows()).collect();
-    order.sort_by(|&i, &j| eig.eigenvalues[j].total_cmp(&eig.eigenvalues[i]));
-    let largest = eig.eigenvalues.amax();
-    let with_mass = order.iter().filter(|&&k| eig.eigenvalues[k] > 1e-12 * largest).count();
-    if count > with_mass {
-        return Err(unfit(format!("--modes {count}: the substructure with its interface held has {with_mass} modes that move mass (the other coordinates are massless)")));
-    }
-    let lt = l.transpose();
-    let mut modes = DMatrix::zeros(a.nrows(), count);
-    let mut omega = Vec::with_capacity(count);
-    for (j, &k) in order.iter().take(count).enumerate() {
-        let mu = eig.eigenvalues[k];
-        let mut phi = lt.solve_upper_triangular(&eig.eigenvectors.column(k).into_owned()).expect("a Cholesky factor is invertible") / mu.sqrt();
-        let big = phi.iter().copied().fold(0.0f64, |b, v| if v.abs() > b.abs() { v } else { b });
-        if big < 0.0 {
-            phi = -phi;
-        }
-        modes.set_column(j, &phi);
-        omega.push(1.0 / mu.sqrt());
-    }
-    Ok((modes, omega))
-}
-
-/// Right and left fixed-interface modes of the whole (not symmetric) `K_ii`: the
-/// eigenvectors of `K_ii⁻¹ M_ii` with the `count` largest `1/ω²` and those of `K_ii⁻ᵀ M_ii`
-/// with the same eigenvalues, scaled so that `φ_Lᵀ M_ii φ_R = 1` (`φ_Rᵀ M_ii φ_R = 1`), and
-/// their angular frequencies [rad/s].
+/// Right and left fixed-interface modes of the whole (not symmetric) `K_ii`, and their
+/// angular frequencies [rad/s]: the right ones the eigenvectors of `A = K_ii⁻¹ M_ii` with
+/// the `count` largest `μ = 1/ω²` (unit modal mass, the largest entry positive), the left
+/// ones `φ_L = K_ii⁻ᵀ y` with `yᵀ` the matching rows of `V⁻¹` (`V` every right vector: the
+/// left eigenvectors of `A`, `yᵀ A = μ yᵀ`, so `φ_Lᵀ K_ii = ω² φ_Lᵀ M_ii`), scaled so that
+/// `Φ_Lᵀ M_ii Φ_R = I`.
+///
+/// The left vectors are not a second eigendecomposition (of `K_ii⁻ᵀ M_ii`): two runs order a
+/// double eigenvalue's vectors, or a pair that rounding made complex (`μ ± iδ`, `δ` about
+/// `ε ω_max²/ω_min²` of `μ`), each their own way, and the highest modes then did not pair
+/// (every interior mode kept was refused). A complex pair's vector `v` enters `V` as its
+/// real and imaginary parts, which span the same real plane. With every mode that has mass
+/// kept, `Φ_R` spans what `A` does not send to zero, so the reduction is exact ([`super`]).
 fn two_sided_modes(k_ii: &DMatrix<f64>, m_ii: &DMatrix<f64>, count: usize) -> Result<(DMatrix<f64>, DMatrix<f64>, Vec<f64>), CmsError> {
     let n = k_ii.nrows();
     let singular = || unfit("the substructure's stiffness with its interface held is singular".into());
-    let right = k_ii.clone().lu().solve(m_ii).ok_or_else(singular)?;
-    let left = k_ii.transpose().lu().solve(m_ii).ok_or_else(singular)?;
-    let vectors = |a: &DMatrix<f64>| -> Result<(Vec<faer::c64>, Mat<faer::c64>), CmsError> {
-        let e = Mat::from_fn(n, n, |r, c| a[(r, c)]).eigen().map_err(|e| unfit(format!("fixed-interface modes: eigendecomposition failed ({e:?})")))?;
-        Ok((e.S().column_vector().iter().copied().collect(), e.U().to_owned()))
-    };
-    let ((mu_r, u_r), (mu_l, u_l)) = (vectors(&right)?, vectors(&left)?);
+    let lu = k_ii.clone().lu();
+    let a = lu.solve(m_ii).ok_or_else(singular)?;
+    let e = Mat::from_fn(n, n, |r, c| a[(r, c)]).eigen().map_err(|e| unfit(format!("fixed-interface modes: eigendecomposition failed ({e:?})")))?;
+    let (mu, u): (Vec<faer::c64>, _) = (e.S().column_vector().iter().copied().collect(), e.U());
+    // Largest 1/ω² first; a complex pair's `+iδ` member before its `−iδ` one.
     let mut order: Vec<usize> = (0..n).collect();
-    order.sort_by(|&a, &b| mu_r[b].re.total_cmp(&mu_r[a].re));
-    let mut order_l: Vec<usize> = (0..n).collect();
-    order_l.sort_by(|&a, &b| mu_l[b].re.total_cmp(&mu_l[a].re));
-    let real = |u: &Mat<faer::c64>, idx: &[usize]| DMatrix::from_fn(n, idx.len(), |i, j| u[(i, idx[j])].re);
-    // Right vectors of the `count` largest 1/ω², left vectors of the same eigenvalues.
-    let (phi_r, phi_l) = (real(&u_r, &order[..count]), real(&u_l, &order_l[..count]));
-    let mut omega = Vec::with_capacity(count);
-    for (j, &a) in order.iter().take(count).enumerate() {
-        let mu = mu_r[a];
-        if !(mu.re > 0.0) || mu.im.abs() > 1e-6 * mu.re {
-            return Err(unfit(format!("fixed-interface mode {}: 1/omega^2 = {mu} is not real and positive (the substructure's stiffness is not symmetric enough for real modes)", j + 1)));
+    order.sort_by(|&i, &j| mu[j].re.total_cmp(&mu[i].re).then(mu[j].im.total_cmp(&mu[i].im)));
+    let mu: Vec<faer::c64> = order.iter().map(|&k| mu[k]).collect();
+    let largest = mu.iter().map(|m| m.norm()).fold(0.0, f64::max);
+    let with_mass = mu.iter().filter(|m| m.re > 1e-12 * largest).count();
+    if count > with_mass {
+        return Err(unfit(format!("--modes {count}: the substructure with its interface held has {with_mass} modes that move mass (the other coordinates are massless)")));
+    }
+    for (j, m) in mu.iter().take(count).enumerate() {
+        if m.im.abs() > 1e-6 * m.re {
+            return Err(unfit(format!("fixed-interface mode {}: 1/omega^2 = {m} is not real (the substructure's stiffness is not symmetric enough for real modes)", j + 1)));
         }
-        omega.push(1.0 / mu.re.sqrt());
     }
-    // Scale the right vectors to unit modal mass, the largest entry positive.
-    let mut phi_r = phi_r;
-    for j in 0..count {
-        let r = phi_r.column(j).into_owned();
-        let big = r.iter().copied().fold(0.0f64, |b, v| if v.abs() > b.abs() { v } else { b });
-        let norm = (m_ii * &r).dot(&r).sqrt() * big.signum();
-        phi_r.set_column(j, &(r / norm));
+    if count > 0 && count < n && (mu[count - 1] - mu[count]).norm() <= 1e-9 * mu[count - 1].norm() {
+        return Err(unfit(format!("--modes {count}: fixed-interface modes {count} and {} share a frequency ({:.9e} rad/s): keeping one of them would choose an arbitrary direction of their plane; take one mode more or less", count + 1, 1.0 / mu[count - 1].re.sqrt())));
     }
-    // The left vectors span the dual of the right ones: S = φ_Lᵀ M φ_R is invertible (a
-    // permutation of a diagonal but where eigenvalues repeat), and φ_L S⁻ᵀ pairs them.
-    let pairing = phi_l.transpose() * m_ii * &phi_r;
-    let inverse = pairing.clone().try_inverse().filter(|i| i.iter().all(|v| v.is_finite()) && i.amax() * pairing.amax() < 1e15).ok_or_else(|| unfit(format!("--modes {count}: the left and right fixed-interface modes do not pair (the {count}th and the next share a frequency, or a mode of the non-symmetric stiffness is defective); take one mode more or less")))?;
-    let phi_l = phi_l * inverse.transpose();
-    Ok((phi_r, phi_l, omega))
+    // V: real columns, unit modal mass for the kept ones (the largest entry positive), unit
+    // length for the others.
+    let mut v = DMatrix::from_fn(n, n, |i, j| {
+        let x = u[(i, order[j])];
+        if mu[j].im < 0.0 { x.im } else { x.re }
+    });
+    for j in 0..n {
+        let c = v.column(j).into_owned();
+        let big = c.iter().copied().fold(0.0f64, |b, x| if x.abs() > b.abs() { x } else { b });
+        let norm = if j < count { (m_ii * &c).dot(&c).sqrt() } else { c.norm() } * big.signum();
+        v.set_column(j, &(c / norm));
+    }
+    let defective = || unfit(format!("--modes {count}: the fixed-interface modes of the non-symmetric stiffness do not span the interior coordinates (a defective mode)"));
+    let y = v.clone().lu().try_inverse().filter(|y| y.iter().all(|x| x.is_finite()) && y.amax() * v.amax() < 1e12).ok_or_else(defective)?;
+    let phi_r = v.columns(0, count).into_owned();
+    let left = k_ii.transpose().lu().solve(&y.rows(0, count).transpose()).ok_or_else(singular)?;
+    // `leftᵀ M Φ_R = Y A V` restricted to the kept modes: `diag(μ)`, but for a pair's 2 × 2
+    // block `[[μ, δ], [−δ, μ]]`; its inverse makes `Φ_Lᵀ M Φ_R = I`.
+    let pairing = left.transpose() * m_ii * &phi_r;
+    let inverse = pairing.clone().try_inverse().filter(|i| i.iter().all(|x| x.is_finite())).ok_or_else(defective)?;
+    let omega = mu.iter().take(count).map(|m| 1.0 / m.re.sqrt()).collect();
+    Ok((phi_r, left * inverse.transpose(), omega))
 }
 
 /// Record 11: each node's translational masses and rotational inertias (its mass block's

@@ -84,23 +84,34 @@ impl Jacobians {
 }
 
 impl LinearDae {
-    /// The matrix of the static response `S Δy = B̃ u` (`ẏ = 0`). It is `F_y`, except in the
-    /// form of eq. 30, where the multipliers' columns and the constraints' rows sit in
-    /// `F_yd` (multipliers as derivatives, constraint rows scaled by 1/c): `S` takes those
-    /// from `F_yd`, which gives the plain form's `F_y` (eq. 29).
+    /// The matrix of the static response `S Δy = B̃ u` (`ẏ = 0`): [`Self::plain_derivatives`]'s
+    /// `F_y` (eq. 29's), which in the form of eq. 30 takes the constraint rows and multiplier
+    /// columns from `F_yd` (multipliers as derivatives, constraint rows scaled by 1/c).
     pub fn static_matrix(&self) -> Mat<f64> {
-        let (fyd, mut s) = self.jacobians.derivatives();
+        self.plain_derivatives().1
+    }
+
+    /// `F_yd` and `F_y` in the form of eq. 29 (plain constraints): in the form of eq. 30 the
+    /// constraint rows and multiplier columns sit in `F_yd` (`jω F_yd + F_y` is then eq. 29's
+    /// with those rows and columns multiplied by `jω`), so they move to `F_y`. Responses of
+    /// ports off those rows and columns (forces on equilibrium rows, motions and modal
+    /// coordinates read) are the same for `ω ≠ 0`, and at `ω = 0` this pencil is the static
+    /// matrix, where eq. 30's loses the constraints (NaN at f = 0 before).
+    pub fn plain_derivatives(&self) -> (Mat<f64>, Mat<f64>) {
+        let (mut fyd, mut fy) = self.jacobians.derivatives();
         if self.constraint_form == Some(ConstraintForm::Scaled) {
             for &k in &self.multipliers {
-                for i in 0..s.nrows() {
-                    s[(i, k)] = fyd[(i, k)];
+                for i in 0..fy.nrows() {
+                    fy[(i, k)] = fyd[(i, k)];
+                    fyd[(i, k)] = 0.0;
                 }
-                for j in 0..s.ncols() {
-                    s[(k, j)] = fyd[(k, j)];
+                for j in 0..fy.ncols() {
+                    fy[(k, j)] = fyd[(k, j)];
+                    fyd[(k, j)] = 0.0;
                 }
             }
         }
-        s
+        (fyd, fy)
     }
 
     /// The real eigenvalue of `(λ F_yd + F_y) v = 0` nearest `lambda` [rad/s] and its right

@@ -89,16 +89,22 @@ impl SparseLinearDae {
     /// The static matrix `S` of [`LinearDae::static_matrix`], as triplets: `F_y`, with the
     /// constraint rows and multiplier columns taken from `F_yd` in the form of eq. 30.
     fn static_triplets(&self) -> Vec<(usize, usize, f64)> {
-        let n = self.dim();
-        let mut special = vec![false; n];
+        let special = self.eq30_rows_and_columns();
+        let mut t: Vec<(usize, usize, f64)> = self.fy.triplets().filter(|&(i, j, _)| !(special[i] || special[j])).collect();
+        t.extend(self.fyd.triplets().filter(|&(i, j, _)| special[i] || special[j]));
+        t
+    }
+
+    /// Which unknowns' rows and columns sit in `F_yd` in the form of eq. 30 (constraint rows,
+    /// multipliers), [`LinearDae::plain_derivatives`]: none in eq. 29's.
+    fn eq30_rows_and_columns(&self) -> Vec<bool> {
+        let mut special = vec![false; self.dim()];
         if self.constraint_form == Some(ConstraintForm::Scaled) {
             for &k in &self.multipliers {
                 special[k] = true;
             }
         }
-        let mut t: Vec<(usize, usize, f64)> = self.fy.triplets().filter(|&(i, j, _)| !(special[i] || special[j])).collect();
-        t.extend(self.fyd.triplets().filter(|&(i, j, _)| special[i] || special[j]));
-        t
+        special
     }
 
     /// Static gain `C̃ S⁻¹ B̃` (rate outputs read zero) by one sparse LU of the static matrix (eq. 30 rows and
@@ -140,10 +146,12 @@ impl SparseLinearDae {
     }
 
     /// `z/u = (C̃ + jω C̃_v)(jω F_yd + F_y)⁻¹ B̃` at each frequency [Hz] by sparse LU (the symbolic
-    /// factorization computed once), each solve checked by its true residual.
+    /// factorization computed once), each solve checked by its true residual; `F_yd`, `F_y` in
+    /// the form of eq. 29 ([`LinearDae::plain_derivatives`]: f = 0 gives the static gain).
     pub fn frequency_response(&self, freq_hz: &[f64]) -> Result<Vec<Mat<c64>>, SparseSolveError> {
         let what = "jω F_yd + F_y";
         let n = self.dim();
+        let special = self.eq30_rows_and_columns();
         let pattern: Vec<(usize, usize)> = {
             let mut p: Vec<(usize, usize)> = self.fy.triplets().map(|(i, j, _)| (i, j)).chain(self.fyd.triplets().map(|(i, j, _)| (i, j))).collect();
             p.sort_unstable();
@@ -159,11 +167,11 @@ impl SparseLinearDae {
             let w = 2.0 * std::f64::consts::PI * f;
             let mut entries: Vec<Triplet<usize, usize, c64>> = pattern.iter().map(|&(i, j)| Triplet::new(i, j, c64::new(0.0, 0.0))).collect();
             let index = |i: usize, j: usize| pattern.binary_search(&(i, j)).unwrap_or_else(|_| unreachable!("pattern holds every entry"));
-            for (i, j, v) in self.fy.triplets() {
+            for (i, j, v) in self.fy.triplets().filter(|&(i, j, _)| !(special[i] || special[j])) {
                 entries[index(i, j)].val += c64::new(v, 0.0);
             }
             for (i, j, v) in self.fyd.triplets() {
-                entries[index(i, j)].val += c64::new(0.0, w * v);
+                entries[index(i, j)].val += if special[i] || special[j] { c64::new(v, 0.0) } else { c64::new(0.0, w * v) };
             }
             let p = SparseColMat::<usize, c64>::try_new_from_triplets(n, n, &entries).map_err(|_| SparseSolveError::Singular(what))?;
             if factors.is_none() {

@@ -29,9 +29,11 @@ pub fn frequency_grid(fmin_hz: f64, fmax_hz: f64, n: usize) -> Result<Vec<f64>, 
     Ok(log_frequencies(fmin_hz, fmax_hz, n))
 }
 
-/// `z/u = (C̃ + jω C̃_v) (jω F_yd + F_y)⁻¹ B̃` at each frequency [Hz] (outputs × inputs).
+/// `z/u = (C̃ + jω C̃_v) (jω F_yd + F_y)⁻¹ B̃` at each frequency [Hz] (outputs × inputs),
+/// with `F_yd`, `F_y` in the form of eq. 29 ([`LinearDae::plain_derivatives`]), so that f = 0
+/// gives the static gain.
 pub fn full_frequency_response(dae: &LinearDae, freq_hz: &[f64]) -> Vec<Mat<c64>> {
-    let (fyd, fy) = dae.jacobians.derivatives();
+    let (fyd, fy) = dae.plain_derivatives();
     freq_hz.iter().map(|f| transfer_with_rates(2.0 * std::f64::consts::PI * f, &fyd, &fy, &dae.b, &dae.c, dae.c_rate.as_ref(), None)).collect()
 }
 

@@ -59,3 +59,47 @@ fn the_ports_file_names_modal_coordinates_and_bad_ones_are_refused() {
     let syntax = "10:q0".parse::<romdyn::dae::NodeOutput>().err().expect("mode 0 refused").to_string();
     assert!(syntax.contains("qK|qK_rate"), "{syntax}");
 }
+
+/// The response at f = 0 against the static gain, dense and sparse, on a model whose
+/// linearization is in the form of eq. 30 (constraint rows and multipliers in `F_/ẏ`).
+fn assert_zero_frequency_is_static(file: &str, input: &str, outputs: &[&str]) {
+    let m = common::mbdyn::read_test_file(file);
+    assert_eq!(m.model.constraint_form, romdyn::model::ConstraintForm::Scaled, "{file}: the case is eq. 30's");
+    let inputs: Vec<romdyn::dae::NodeInput> = vec![input.parse().unwrap()];
+    let outputs: Vec<romdyn::dae::NodeOutput> = outputs.iter().map(|o| o.parse().unwrap()).collect();
+    let asm = romdyn::dae::Assembler::new(&m.model);
+    let state = romdyn::dae::State::initial(&m.model, &asm.dofs);
+    let dense = romdyn::dae::linearize(&m.model, &state, &inputs, &outputs, None).unwrap_or_else(|e| panic!("{e}"));
+    let gain = romdyn::rom::full_static_gain(&dense).unwrap_or_else(|e| panic!("{e}"));
+    let h = romdyn::rom::full_frequency_response(&dense, &[0.0, 1e-12]);
+    let ports = |p: &[romdyn::dae::NodeInput]| p.iter().map(romdyn::dae::NodeInput::port).collect::<Vec<_>>();
+    let out_ports: Vec<_> = outputs.iter().map(romdyn::dae::NodeOutput::port).collect();
+    let sparse = romdyn::dae::linearize_sparse(&m.model, &state, &ports(&inputs), &out_ports).unwrap_or_else(|e| panic!("{e}"));
+    let hs = sparse.frequency_response(&[0.0, 1e-12]).unwrap_or_else(|e| panic!("{file}, sparse: {e}"));
+    let scale = (0..gain.nrows()).map(|o| gain[(o, 0)].abs()).fold(0.0, f64::max);
+    for (route, h) in [("dense", &h), ("sparse", &hs)] {
+        for (k, f) in [0.0, 1e-12].iter().enumerate() {
+            for o in 0..gain.nrows() {
+                // 1e-10 of the largest gain: one LU each of the same static matrix (at 1e-12 Hz
+                // the response differs from the static gain by (ω/ω₁)² ≈ 1e-27, a rate output
+                // by ω·gain ≈ 6e-12 of it).
+                let got = h[k][(o, 0)];
+                assert!((got - c64::new(gain[(o, 0)], 0.0)).norm() <= 1e-10 * scale, "{file} {route} at {f} Hz, output {o}: {got} against the static gain {}", gain[(o, 0)]);
+            }
+        }
+    }
+}
+
+#[test]
+fn the_response_at_zero_frequency_is_the_static_gain() {
+    // Before: NaN at f = 0 on every model in the form of eq. 30 — its constraint rows and
+    // multiplier columns sit in F_/ẏ, so jω F_/ẏ + F_/y lost them at ω = 0 (the static gain
+    // restored them). The closed form here: q1 = y = F/k = 1e-3 m/N.
+    assert_zero_frequency_is_static("modal_clamped_port.mbd", "2:Fy", &["10:q1", "2:y", "10:q1_rate"]);
+    let lin = Linearization { reference: Reference::Initial, inputs: vec!["2:Fy".parse().unwrap()], outputs: vec!["10:q1".parse().unwrap()] };
+    let s = Study::from_model_file(&test_file("modal_clamped_port.mbd"), &lin, EigenSettings::default()).unwrap_or_else(|e| panic!("{e}"));
+    let h = s.full_frequency_response(&[0.0]).unwrap_or_else(|e| panic!("{e}"));
+    assert!((h[0][(0, 0)] - c64::new(1.0 / K, 0.0)).norm() < 1e-15, "{:?}", h[0][(0, 0)]);
+    // A clamped cantilever of beam3 (a clamp's multipliers): the tip's static deflection.
+    assert_zero_frequency_is_static("cms_cantilever.mbd", "17:Fy", &["17:y", "13:y", "17:rz"]);
+}

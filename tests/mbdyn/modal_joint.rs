@@ -171,3 +171,26 @@ fn drives_read_the_modal_coordinates_private_data() {
     assert!((x[1] - y).abs() < 1e-6 * q0 / (w * w) * 2.0, "y = {} against {y}", x[1]);
     assert!((x[2] - 1.0 - z).abs() < 1e-6 * q0 * t, "z − 1 = {} against {z}", x[2] - 1.0);
 }
+
+#[test]
+fn a_floating_modal_body_has_mbdyns_eigenvalues() {
+    // MBDyn 1.7.3 (built here) on tests/mbdyn_files/modal_floating_force.mbd (a free modal
+    // node, point masses, `use invariant 9`, Rayleigh damping, a 0.5 kg body on FEM node B;
+    // its force is sin 0 = 0 at t = 0) with final time 2.5e-4 and `eigenanalysis: 0., output
+    // eigenvectors, results output precision, 16, parameter, 1.e-4, use lapack, balance, no;`
+    // (2026-12-07): the `alpha` rows of its two flexible pairs, λ by MBDyn's formula (dCoef
+    // 5e-5); its other eigenvalues are the rigid motions' (λ = 0). 1e-9 relative: two QZ on
+    // 40-odd unknowns (measured below 1e-11).
+    let mbdyn_alpha = [[7.9049106374521105e-01, 1.6078112508054682e-03, 7.9053032989470740e-01], [5.0026114830912105e-01, 1.4542659128019713e-03, 5.0030767763925321e-01]];
+    let lin = Linearization { reference: Reference::Initial, inputs: vec![], outputs: vec![] };
+    let study = Study::from_model_file(&test_file("modal_floating_force.mbd"), &lin, EigenSettings::default()).unwrap_or_else(|e| panic!("{e}"));
+    let mut pairs: Vec<faer::c64> = study.modal().modes.iter().filter(|m| m.kind == ModeKind::Dynamic && m.lambda.im > 1e-6).map(|m| m.lambda).collect();
+    pairs.sort_by(|a, b| a.im.total_cmp(&b.im));
+    assert_eq!(pairs.len(), 2, "{pairs:?}");
+    for (l, row) in pairs.iter().zip(mbdyn_alpha) {
+        let (re, im) = common::lambda_of_alpha(row, 5e-5);
+        let m = faer::c64::new(re, im);
+        eprintln!("romdyn {l}, MBDyn {m}: {:.1e}", (l - m).norm() / m.norm());
+        assert!((l - m).norm() <= 1e-9 * m.norm(), "romdyn {l} rad/s, MBDyn 1.7.3 {m} rad/s");
+    }
+}

@@ -299,3 +299,49 @@ fn a_modal_coordinate_released_from_its_initial_value_oscillates_as_the_closed_f
     let expected = q0 * ((k / mb).sqrt() * t).cos();
     assert!((q - expected).abs() < 1e-4 * q0, "q({t}) = {q}, closed form {expected}");
 }
+
+#[test]
+fn a_spinning_flexible_body_settles_where_its_spring_holds_the_centrifugal_load() {
+    // Rigid part A (mass ma, Jz about its centre) and a point mass B at arm l along x on a
+    // radial spring k (the one mode moves B along x), free, spinning about z at Ω0 with its
+    // centre of mass at rest; modal damping lets the stretch settle. Closed form (rigid-body
+    // mechanics): with the reduced mass μ = ma mb/(ma + mb) and the stretch q, the spring
+    // holds B's orbit about the centre of mass, k q = μ Ω² (l + q), and the angular momentum
+    // is conserved, (Jz + μ (l + q)²) Ω = (Jz + μ l²) Ω0. The floating frame (`use invariant
+    // 9`: the inertia's q² term) must turn the spin into the stretch and the stretch into
+    // the spin: a rigid body would keep Ω0, a clamped mode would not stretch.
+    let (ma, jz, mb, l, k, omega0) = (2.0, 0.3, 0.5, 0.8, 1.0e3, 5.0);
+    let mu = ma * mb / (ma + mb);
+    let h0 = (jz + mu * l * l) * omega0;
+    // Ω from q by the momentum, q by Newton on k q − μ Ω(q)² (l + q) = 0.
+    let omega_of = |q: f64| h0 / (jz + mu * (l + q) * (l + q));
+    let mut q = 0.0;
+    for _ in 0..50 {
+        let f = |q: f64| k * q - mu * omega_of(q).powi(2) * (l + q);
+        let d = (f(q + 1e-9) - f(q - 1e-9)) / 2e-9;
+        q -= f(q) / d;
+    }
+    let omega = omega_of(q);
+    let nodes = [FemNode { label: "A".into(), x: [0.0; 3], mass: ma, inertia: [0.1, 0.2, jz] }, FemNode { label: "B".into(), x: [l, 0.0, 0.0], mass: mb, inertia: [0.0; 3] }];
+    let fem = fem_text(&nodes, &[vec![[0.0; 6], [1.0, 0.0, 0.0, 0.0, 0.0, 0.0]]], &[vec![mb]], &[vec![k]]);
+    let dir = temp_dir("modal-spin-stretch");
+    write_file(&dir, "body.fem", &fem);
+    // The node A moves on its circle about the centre of mass (at mb l/(ma + mb) along x).
+    let vy = -omega0 * mb * l / (ma + mb);
+    let node = format!("structural: 1, modal, null, eye, 0., {vy:e}, 0., 0., 0., {omega0:e};");
+    let elements = "joint: 10, modal, 1, 1, from file, single factor damping, 0.3, \"body.fem\", 0, use invariant 9;";
+    let file = write_file(&dir, "m.mbd", &mbdyn_file(&node, elements, 3.0, 1e-3, "structural nodes: 1; joints: 1;"));
+    let m = romdyn::input::mbdyn::read_model(Path::new(&file)).unwrap_or_else(|e| panic!("{e}"));
+    let report = romdyn::analysis::run(&m.model, &m.problem, &mut ()).unwrap_or_else(|e| panic!("{e}"));
+    let asm = Assembler::new(&m.model);
+    let st = &report.final_state;
+    let spin = st.node_frame(&asm.dofs, 0).kin.omega;
+    let stretch = st.y[asm.dofs.element_first[0]];
+    // The stretch is 8e-3 of the arm and Ω drops by 0.9 % of Ω0: both asserted to 1e-9
+    // relative (measured 1e-14: the settled state is steady in the floating frame, where the
+    // modal equations live, and the node's momenta are conserved by the formula; the
+    // transient, ζω = 15 1/s, has decayed by e^-45 at 3 s).
+    assert!(spin.xy().norm() < 1e-9 * omega, "{spin}");
+    assert!(common::rel(spin[2], omega) < 1e-9, "Ω {} rad/s against the closed form {omega} rad/s", spin[2]);
+    assert!(common::rel(stretch, q) < 1e-9, "q {stretch} m against the closed form {q} m");
+}
