@@ -96,8 +96,7 @@ fn the_response_at_zero_frequency_is_the_static_gain() {
     // multiplier columns sit in F_/ẏ, so jω F_/ẏ + F_/y lost them at ω = 0 (the static gain
     // restored them). The closed form here: q1 = y = F/k = 1e-3 m/N.
     assert_zero_frequency_is_static("modal_clamped_port.mbd", "2:Fy", &["10:q1", "2:y", "10:q1_rate"]);
-    let lin = Linearization { reference: Reference::Initial, inputs: vec!["2:Fy".parse().unwrap()], outputs: vec!["10:q1".parse().unwrap()] };
-    let s = Study::from_model_file(&test_file("modal_clamped_port.mbd"), &lin, EigenSettings::default()).unwrap_or_else(|e| panic!("{e}"));
+    let s = Study::builder(StudySource::model_file(test_file("modal_clamped_port.mbd"))).node_ports(vec!["2:Fy".parse().unwrap()], vec!["10:q1".parse().unwrap()]).build().unwrap_or_else(|e| panic!("{e}"));
     let h = s.full_frequency_response(&[0.0]).unwrap_or_else(|e| panic!("{e}"));
     assert!((h[0][(0, 0)] - c64::new(1.0 / K, 0.0)).norm() < 1e-15, "{:?}", h[0][(0, 0)]);
     // A clamped cantilever of beam3 (a clamp's multipliers): the tip's static deflection.

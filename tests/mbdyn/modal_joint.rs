@@ -182,8 +182,7 @@ fn a_floating_modal_body_has_mbdyns_eigenvalues() {
     // 5e-5); its other eigenvalues are the rigid motions' (λ = 0). 1e-9 relative: two QZ on
     // 40-odd unknowns (measured below 1e-11).
     let mbdyn_alpha = [[7.9049106374521105e-01, 1.6078112508054682e-03, 7.9053032989470740e-01], [5.0026114830912105e-01, 1.4542659128019713e-03, 5.0030767763925321e-01]];
-    let lin = Linearization { reference: Reference::Initial, inputs: vec![], outputs: vec![] };
-    let study = Study::from_model_file(&test_file("modal_floating_force.mbd"), &lin, EigenSettings::default()).unwrap_or_else(|e| panic!("{e}"));
+    let study = Study::builder(StudySource::model_file(test_file("modal_floating_force.mbd"))).reference(Reference::Initial).build().unwrap_or_else(|e| panic!("{e}"));
     let mut pairs: Vec<faer::c64> = study.modal().modes.iter().filter(|m| m.kind == ModeKind::Dynamic && m.lambda.im > 1e-6).map(|m| m.lambda).collect();
     pairs.sort_by(|a, b| a.im.total_cmp(&b.im));
     assert_eq!(pairs.len(), 2, "{pairs:?}");
