@@ -232,13 +232,27 @@ impl Validation {
     /// The warning every front end gives when the ROM does not represent the model (the
     /// CLI prints it, Python raises it as an `AccuracyWarning`).
     pub fn warning(&self) -> Option<&'static str> {
+        if self.unjudged().is_some() {
+            return Some("the estimate has no bin above the coherence threshold in a channel, so the ROM could not be judged there: more --averages, --signal random on an undamped structure, or a lower --coherence");
+        }
         (!self.represents).then_some("the ROM does not represent the nonlinear model in the band: more modes, --residualize, or a smaller amplitude")
+    }
+
+    /// The first channel of the smallest amplitude that the output responds to and whose
+    /// estimate has no bin with coherence at the threshold: nothing to judge the ROM by (a
+    /// multisine on an undamped structure: the fade-in's ringing never decays and leaks into
+    /// every bin without a window; the README beam had none of 51 bins coherent).
+    fn unjudged(&self) -> Option<&Channel> {
+        let run = self.runs.first()?;
+        run.channels.iter().find(|c| c.rom_error.is_none() && c.output_rms > run.silent(c))
     }
 
     /// The verdict line.
     pub fn verdict(&self) -> String {
         let p = &self.plan;
-        if self.represents {
+        if let Some(c) = self.unjudged() {
+            format!("verdict: the ROM's fidelity is NOT KNOWN: {} / {} has no bin with coherence >= {} (the estimate is not trustworthy anywhere in {:.4}..{:.4} Hz); not a departure of the ROM", c.output, c.input, p.coherence, p.band_hz.0, p.band_hz.1)
+        } else if self.represents {
             format!("verdict: the ROM represents the nonlinear model in {:.4}..{:.4} Hz (error <= {} % plus twice the estimate's random error where coherence >= {}, fit >= {})", p.band_hz.0, p.band_hz.1, 100.0 * p.tolerance, p.coherence, p.fit)
         } else {
             format!("verdict: the ROM does NOT represent the nonlinear model in {:.4}..{:.4} Hz (needs error <= {} % plus twice the estimate's random error where coherence >= {}, and fit >= {}): see the channels above", p.band_hz.0, p.band_hz.1, 100.0 * p.tolerance, p.coherence, p.fit)

@@ -50,11 +50,13 @@ pub struct ValidateOptions {
     pub amplitudes: Vec<f64>,
     /// Excited and compared band [Hz] (default: 0 to twice the ROM's top frequency of interest).
     pub band_hz: Option<(f64, f64)>,
-    /// Welch frequency resolution [Hz] (default: the lowest kept mode's frequency / 20, or an
-    /// eighth of the narrowest damped kept mode's half-power bandwidth if finer, down to 1/8 of
-    /// the former).
+    /// Welch frequency resolution [Hz] (default, from the kept modes the ports see: the lowest
+    /// one's frequency / 20, or an eighth of the narrowest damped one's half-power bandwidth if
+    /// finer, down to 1/8 of the former).
     pub resolution_hz: Option<f64>,
-    /// Number of Welch segments averaged (half overlap).
+    /// Length of the run in Welch segments: `(averages + 2)/2` of them; as many half-overlapping
+    /// segments, which the random input's estimate averages as Hann segments overlapping by
+    /// three quarters.
     pub averages: usize,
     /// Integration step and sampling period [s] (default: 1/(80 × the band's top), smaller
     /// if a kept mode needs it: [`Plan::new`]).
