@@ -41,13 +41,13 @@ pub struct ValidateArgs {
     /// Excited and compared band [Hz] (default: 0 to twice the ROM's highest frequency of interest)
     #[arg(long, value_name = "FMIN:FMAX", value_parser = parse_band)]
     pub validation_band: Option<(f64, f64)>,
-    /// Frequency resolution of the estimate [Hz] (default: the lowest kept mode's frequency / 20, or 1/8 of the narrowest damped kept mode's half-power bandwidth if finer, at most 8 times finer)
+    /// Frequency resolution of the estimate [Hz] (default, from the kept modes the ports see: the lowest one's frequency / 20, or 1/8 of the narrowest damped one's half-power bandwidth if finer, at most 8 times finer)
     #[arg(long, value_name = "HZ")]
     pub resolution: Option<f64>,
-    /// Welch segments averaged (half overlap); the run lasts (N + 2)/2 segments
+    /// Welch segments (half overlap) the run lasts (N + 2)/2 of; the random input's estimate averages Hann segments overlapping by three quarters (about N independent ones)
     #[arg(long, value_name = "N", default_value_t = 8)]
     pub averages: usize,
-    /// Integration step = sampling period [s] (default: 1/(80 x the band's top))
+    /// Integration step = sampling period [s] (default: 1/(80 x the band's top), smaller where the integrator's period error would exceed 0.5 % at a damped kept mode's peak or turn an undamped one's phase by 0.3 rad over the record)
     #[arg(long, value_name = "S")]
     pub time_step: Option<f64>,
     /// Seed of the random signal

@@ -37,7 +37,7 @@ pub struct Channel {
     pub rom_error: Option<(f64, f64)>,
     /// The same for the full linear model.
     pub full_error: Option<(f64, f64)>,
-    /// Time-domain fit of the ROM to the nonlinear run (NRMSE, 1 = perfect).
+    /// Time-domain fit of the ROM to the nonlinear run (NRMSE, 1 = perfect) after the lead-in.
     pub fit: f64,
     /// RMS of the nonlinear output's change from the reference over the compared samples
     /// (the amplitude the linearity limit is about), in the output's unit.
@@ -59,7 +59,7 @@ impl Channel {
         }
         let e = &self.estimate;
         let coherent: Vec<usize> = (0..self.rom.len()).filter(|&k| e.coherence[k] >= plan.coherence).collect();
-        let within = |k: &usize| (self.rom[*k] - e.h[*k]).norm() / e.h[*k].norm() <= plan.tolerance + 2.0 * magnitude_random_error(e.coherence[*k], e.averages);
+        let within = |k: &usize| (self.rom[*k] - e.h[*k]).norm() / e.h[*k].norm() <= plan.tolerance + 2.0 * magnitude_random_error(e.coherence[*k], e.independent);
         !coherent.is_empty() && coherent.iter().all(within) && self.fit >= plan.fit
     }
 }
@@ -197,9 +197,13 @@ impl Validation {
     pub fn summary(&self) -> String {
         let p = &self.plan;
         let mut s = format!(
-            "validation: {:?} input in {:.4}..{:.4} Hz, step {:.4e} s, {} samples ({:.4} s), Welch segments of {} samples ({:.4} Hz bins), coherence >= {}\n",
-            p.kind, p.band_hz.0, p.band_hz.1, p.dt, p.samples, p.dt * (p.samples - 1) as f64, p.segment, 1.0 / (p.segment as f64 * p.dt), p.coherence
+            "validation: {:?} input in {:.4}..{:.4} Hz, step {:.4e} s ({}), {} samples ({:.4} s), Welch segments of {} samples ({:.4} Hz bins), coherence >= {}\n",
+            p.kind, p.band_hz.0, p.band_hz.1, p.dt, p.step_rule, p.samples, p.dt * (p.samples - 1) as f64, p.segment, 1.0 / (p.segment as f64 * p.dt), p.coherence
         );
+        if !p.undamped_hz.is_empty() {
+            let f: Vec<String> = p.undamped_hz.iter().map(|f| format!("{f:.4}")).collect();
+            s += &format!("undamped kept mode(s) at {} Hz: the response to each segment's input rings beyond it, so near them the estimate is limited by leakage, not by the model (its coherence falls and those bins are not compared; where compared, its random error, sqrt((1 - g2)/(2 g2 n_d)) at coherence g2, is allowed for); more --averages narrow that region\n", f.join(", "));
+        }
         for run in &self.runs {
             let rms: Vec<String> = run.amplitude.iter().map(|a| format!("{a:.4e}")).collect();
             s += &format!("input RMS {}: ROM {} the nonlinear model\n", rms.join(", "), if run.represents(p) { "describes" } else { "does NOT describe" });
@@ -228,13 +232,27 @@ impl Validation {
     /// The warning every front end gives when the ROM does not represent the model (the
     /// CLI prints it, Python raises it as an `AccuracyWarning`).
     pub fn warning(&self) -> Option<&'static str> {
+        if self.unjudged().is_some() {
+            return Some("the estimate has no bin above the coherence threshold in a channel, so the ROM could not be judged there: more --averages, --signal random on an undamped structure, or a lower --coherence");
+        }
         (!self.represents).then_some("the ROM does not represent the nonlinear model in the band: more modes, --residualize, or a smaller amplitude")
+    }
+
+    /// The first channel of the smallest amplitude that the output responds to and whose
+    /// estimate has no bin with coherence at the threshold: nothing to judge the ROM by (a
+    /// multisine on an undamped structure: the fade-in's ringing never decays and leaks into
+    /// every bin without a window; the README beam had none of 51 bins coherent).
+    fn unjudged(&self) -> Option<&Channel> {
+        let run = self.runs.first()?;
+        run.channels.iter().find(|c| c.rom_error.is_none() && c.output_rms > run.silent(c))
     }
 
     /// The verdict line.
     pub fn verdict(&self) -> String {
         let p = &self.plan;
-        if self.represents {
+        if let Some(c) = self.unjudged() {
+            format!("verdict: the ROM's fidelity is NOT KNOWN: {} / {} has no bin with coherence >= {} (the estimate is not trustworthy anywhere in {:.4}..{:.4} Hz); not a departure of the ROM", c.output, c.input, p.coherence, p.band_hz.0, p.band_hz.1)
+        } else if self.represents {
             format!("verdict: the ROM represents the nonlinear model in {:.4}..{:.4} Hz (error <= {} % plus twice the estimate's random error where coherence >= {}, fit >= {})", p.band_hz.0, p.band_hz.1, 100.0 * p.tolerance, p.coherence, p.fit)
         } else {
             format!("verdict: the ROM does NOT represent the nonlinear model in {:.4}..{:.4} Hz (needs error <= {} % plus twice the estimate's random error where coherence >= {}, and fit >= {}): see the channels above", p.band_hz.0, p.band_hz.1, 100.0 * p.tolerance, p.coherence, p.fit)

@@ -73,15 +73,26 @@ pub type Progress<'a> = &'a mut dyn FnMut(usize, usize);
 /// Validates `rom` (a ROM of `study`, linearized at `reference` of `problem` with `ports`)
 /// against the nonlinear model and, with `options.measured`, against measurements.
 pub fn validate(study: &mut Study, problem: &InitialValueProblem, reference: &State, ports: &Ports, rom: &ReducedModel, options: &ValidateOptions, progress: Progress) -> Result<Validation, ValidateError> {
+    Ok(validate_roms(study, problem, reference, ports, std::slice::from_ref(rom), options, progress)?.remove(0))
+}
+
+/// Validates several ROMs of the same study and ports against the same nonlinear runs, as the
+/// paper's Fig. 7 overlays its ROMs on one direct response: the plan (band, resolution,
+/// step, amplitudes) is the first ROM's, the runs are done once.
+pub fn validate_roms(study: &mut Study, problem: &InitialValueProblem, reference: &State, ports: &Ports, roms: &[ReducedModel], options: &ValidateOptions, progress: Progress) -> Result<Vec<Validation>, ValidateError> {
     let (inputs, outputs) = validation_ports(ports)?;
-    if inputs.len() != rom.ordinary.b.ncols() || outputs.len() != rom.ordinary.c.nrows() {
-        return Err(ValidateError::Port(format!("the ports ({} inputs, {} outputs) are not the ROM's ({}, {})", inputs.len(), outputs.len(), rom.ordinary.b.ncols(), rom.ordinary.c.nrows())));
+    let first = roms.first().ok_or_else(|| ValidateError::Port("no ROM to validate".into()))?;
+    for rom in roms {
+        if inputs.len() != rom.ordinary.b.ncols() || outputs.len() != rom.ordinary.c.nrows() {
+            return Err(ValidateError::Port(format!("the ports ({} inputs, {} outputs) are not the ROM's ({}, {})", inputs.len(), outputs.len(), rom.ordinary.b.ncols(), rom.ordinary.c.nrows())));
+        }
     }
     let measured = options.measured.as_deref().map(read_measured).transpose()?;
-    let plan = Plan::new(study, rom, &outputs, options)?;
+    let plan = Plan::new(study, first, &outputs, options)?;
     let total = plan.amplitudes.len() * inputs.len() * plan.samples;
     let mut done = 0;
-    let mut runs = Vec::new();
+    // Per amplitude, per input: the signal and the nonlinear outputs.
+    let mut nonlinear_runs = Vec::new();
     for amplitude in &plan.amplitudes {
         let mut series = Vec::new();
         for (j, input) in inputs.iter().enumerate() {
@@ -90,13 +101,21 @@ pub fn validate(study: &mut Study, problem: &InitialValueProblem, reference: &St
             let spec = nonlinear::RunSpec { problem, reference, input, outputs: &outputs, signal: signal.clone(), dt: plan.dt };
             let y = nonlinear::run(model, &spec, &mut |k| progress(done + k, total))?;
             done += plan.samples;
-            let u = Mat::from_fn(signal.len(), inputs.len(), |k, i| if i == j { signal[k] } else { 0.0 });
-            let z = simulate_rom(&rom.ordinary, &u, plan.dt);
-            series.push((signal, y, z));
+            series.push((signal, y));
         }
-        runs.push(AmplitudeRun::new(study, rom, &plan, amplitude.clone(), series)?);
+        nonlinear_runs.push(series);
     }
-    Ok(Validation::new(study, rom, plan, runs, measured)?)
+    roms.iter().map(|rom| {
+        let mut runs = Vec::new();
+        for (amplitude, series) in plan.amplitudes.iter().zip(&nonlinear_runs) {
+            let compared = series.iter().enumerate().map(|(j, (signal, y))| {
+                let u = Mat::from_fn(signal.len(), inputs.len(), |k, i| if i == j { signal[k] } else { 0.0 });
+                (signal.clone(), y.clone(), simulate_rom(&rom.ordinary, &u, plan.dt))
+            }).collect();
+            runs.push(AmplitudeRun::new(study, rom, &plan, amplitude.clone(), compared)?);
+        }
+        Validation::new(study, rom, plan.clone(), runs, measured.clone())
+    }).collect()
 }
 
 #[cfg(test)]

@@ -10,7 +10,7 @@ use romdyn::input::mbdyn::read_model;
 use romdyn::rom::ModeSelection;
 use romdyn::study::{Ports, Residualization, RomRequest, Study, StudySource};
 use romdyn::validate::welch::magnitude_random_error;
-use romdyn::validate::{read_measured, validate, ValidateOptions, Validation};
+use romdyn::validate::{read_measured, validate, validate_roms, ValidateOptions, Validation};
 
 fn validated(file: &str, reference: Reference, input: &str, output: &str, request: RomRequest, options: &ValidateOptions) -> Validation {
     let m = read_model(Path::new(file)).unwrap();
@@ -26,8 +26,8 @@ const MASSES: &str = "examples/mass_on_springs.mbd";
 /// Mass 3 of mass_on_springs.mbd along x validated with `options`: each bin with coherence
 /// >= 0.9 as (frequency [Hz], |H1 - H| / |H|, coherence), H(jω) = 1/(K − M ω² + j C ω) the
 /// closed form (M = 2 kg, K = 100 N/m, C = 1 N s/m, the file's values), the number of bins,
-/// the estimate's averages and the validation.
-fn oscillator(options: &ValidateOptions) -> (Vec<(f64, f64, f64)>, usize, usize, Validation) {
+/// the estimate's independent averages and the validation.
+fn oscillator(options: &ValidateOptions) -> (Vec<(f64, f64, f64)>, usize, f64, Validation) {
     let v = validated(MASSES, Reference::Initial, "3:Fx", "3:x", RomRequest::new(ModeSelection::Indices(vec![3])), options);
     let c = &v.runs[0].channels[0];
     let (m, k, damping) = (2.0, 100.0, 1.0);
@@ -40,7 +40,7 @@ fn oscillator(options: &ValidateOptions) -> (Vec<(f64, f64, f64)>, usize, usize,
             (f, (c.estimate.h[i] - exact).norm() / exact.norm(), c.estimate.coherence[i])
         })
         .collect();
-    let (bins, averages) = (c.estimate.freq_hz.len(), c.estimate.averages);
+    let (bins, averages) = (c.estimate.freq_hz.len(), c.estimate.independent);
     (coherent, bins, averages, v)
 }
 
@@ -85,40 +85,58 @@ fn multisine_and_chirp_estimates_match_the_closed_form() {
 }
 
 /// The paper's Fig. 7 (§7.1): the simply supported beam's mid-span response to a mid-span
-/// force, one nonlinear run per ROM with the same signal (band 0–100 Hz): the 1-mode, the
-/// 2-mode (modes 1 and 7, the third bending) and the 1-mode with mode 7 statically
-/// residualized ROMs (the README's command).
+/// force, the 1-mode, the 2-mode (modes 1 and 7, the third bending) and the 1-mode with mode
+/// 7 statically residualized ROMs (the README's command) compared with one nonlinear run
+/// (band 0–100 Hz, 64 averages), as the figure overlays them on one direct response.
+///
+/// Reference: the full linear model's response (the modal sum, computed by direct solves).
+/// The beam is undamped: the response to each segment's input rings beyond the segment, and
+/// the H1 estimate's error is that leakage, random from segment to segment and tied to the
+/// coherence by Bendat and Piersol's `√(1 − γ²)/(γ √(2 n_d))` (2.5 % at γ² = 0.99 with 8
+/// averages: measured 4.3 % at 63.6 Hz with the defaults). With 64 averages (Hann, three
+/// quarters overlap, the input 4 bins past the band, the step 6.6e-5 s that keeps the
+/// integrator's phase drift at 49 Hz within 0.3 rad over the 17 s record) the largest error
+/// where γ² > 0.99 is measured 1.25 % (72.4 Hz); 2 % asserted. At the band's step (1.25e-4
+/// s, 4096-sample segments): 1.53 % with 64 averages, 2.08 % with 32, 2.71 % with 16.
 #[test]
 fn simply_supported_beam_fig7() {
-    let options = ValidateOptions { band_hz: Some((0.0, 100.0)), ..ValidateOptions::default() };
-    let run = |request: RomRequest| validated("examples/simply_supported_beam.mbd", Reference::Static { load_steps: 10 }, "5:Fy", "5:y", request, &options);
-    let one = run(RomRequest::new(ModeSelection::Lowest(1)));
-    let two = run(RomRequest::new(ModeSelection::Indices(vec![1, 7])));
-    let residualized = run(RomRequest::new(ModeSelection::Lowest(1)).residualize(Residualization::Modes(vec![7])));
-    for v in [&one, &two, &residualized] {
-        let c = &v.runs[0].channels[0];
-        // Estimate vs the full linear model: the undamped beam rings for ever, so the
-        // estimate of each segment carries the response to earlier segments' inputs; where
-        // the coherence is above 0.999 it agrees within 2 % (measured: 0.9 % with 32
-        // averages, 1.x % with 8).
-        for (i, f) in c.estimate.freq_hz.iter().enumerate() {
-            if c.estimate.coherence[i] > 0.999 {
-                let err = (c.estimate.h[i] - c.full[i]).norm() / c.full[i].norm();
-                assert!(err < 0.02, "{f} Hz: estimate vs full {err}");
-            }
+    let m = read_model(Path::new("examples/simply_supported_beam.mbd")).unwrap();
+    let ports = Ports::Nodes { inputs: vec!["5:Fy".parse().unwrap()], outputs: vec!["5:y".parse().unwrap()] };
+    let (mut study, state) = Study::of_model(m.model, &m.problem, Reference::Static { load_steps: 10 }, &ports, EigenSettings::default(), None).unwrap();
+    let roms = [
+        RomRequest::new(ModeSelection::Lowest(1)),
+        RomRequest::new(ModeSelection::Indices(vec![1, 7])),
+        RomRequest::new(ModeSelection::Lowest(1)).residualize(Residualization::Modes(vec![7])),
+    ]
+    .map(|r| study.reduce(&r).unwrap());
+    let options = ValidateOptions { band_hz: Some((0.0, 100.0)), averages: 64, ..ValidateOptions::default() };
+    let v = validate_roms(&mut study, &m.problem, &state, &ports, &roms, &options, &mut |_, _| {}).unwrap();
+    let [one, two, residualized] = [&v[0], &v[1], &v[2]].map(|v| &v.runs[0].channels[0]);
+    let mut compared = 0;
+    for (i, f) in one.estimate.freq_hz.iter().enumerate() {
+        if one.estimate.coherence[i] > 0.99 {
+            let err = (one.estimate.h[i] - one.full[i]).norm() / one.full[i].norm();
+            assert!(err < 0.02, "{f} Hz: estimate vs full {err}\n{}", v[0].summary());
+            compared += 1;
         }
     }
-    // The 1-mode ROM departs from the full model above the first mode (its static error is
-    // 1.6 %, paper §7.1): at the band's top, 100 Hz, its departure (measured 5.5 %) exceeds
-    // the residualized ROM's (0.8 %) more than five times (ROMs and full model in closed form).
-    let departure = |v: &Validation| {
-        let c = &v.runs[0].channels[0];
-        let k = c.full.len() - 1;
-        (c.rom[k] - c.full[k]).norm() / c.full[k].norm()
-    };
-    assert!(departure(&one) > 0.01, "{}", departure(&one));
-    assert!(departure(&one) > 5.0 * departure(&residualized), "{} vs {}", departure(&one), departure(&residualized));
-    assert!(one.summary().contains("ROM vs estimate"));
+    // Most of the 53 bins; the first mode's neighbourhood left out.
+    assert!(compared >= 30, "{compared} bins with coherence > 0.99");
+    // The 1-mode ROM departs from the full model above the first mode (static error 1.6 %,
+    // paper §7.1; 5.5 % at 100 Hz in closed form), the reduction's error, not the estimate's:
+    // the validation reports it as its largest ROM-vs-estimate error (coherence >= 0.95),
+    // above 60 Hz (measured 5.6 % at 98.3 Hz). The residualized and the 2-mode ROMs depart
+    // from the full model by 0.8 % and 2.6e-4 at the band's top; their largest error against
+    // the estimate is the estimate's own (measured 2.6 % at 63.1 Hz, where the estimate is
+    // 2.7 % from the full model at coherence 0.95–0.99): below 3 % and half the 1-mode's.
+    let (e1, f1) = one.rom_error.unwrap();
+    assert!(e1 > 0.04 && f1 > 60.0, "{e1} at {f1} Hz\n{}", v[0].summary());
+    for c in [two, residualized] {
+        let (e, f) = c.rom_error.unwrap();
+        assert!(e < 0.03 && e < e1 / 2.0, "{e} at {f} Hz");
+    }
+    assert!(v[0].summary().contains(&format!("ROM vs estimate {:.3} % at {f1:.4} Hz", 100.0 * e1)));
+    assert!(v.iter().all(|v| v.represents), "{}", v[0].summary());
 }
 
 /// A ROM wrong on purpose: mass 3's y response (2.25 Hz) by a ROM that keeps its x mode
@@ -247,8 +265,10 @@ fn every_amplitude_is_written() {
         for r in rows.iter().filter(|r| r[coherence] >= 0.99 && r[0] < 1.05) {
             let w = 2.0 * std::f64::consts::PI * r[0];
             let exact = c64::new(1.0, 0.0) / c64::new(100.0 - 2.0 * w * w, w);
-            // 0.2 %: the integrator's period error below the peak (the multisine test above).
-            assert!((c64::new(r[re], r[im]) - exact).norm() < 2e-3 * exact.norm(), "{a} N RMS, {} Hz", r[0]);
+            // 0.3 %: the integrator's period error below the peak (the multisine test above)
+            // and, with 2 averages, what is left of the fade-in's transient (decay time 4 s
+            // against a 12 s lead-in): measured 0.20 % at 0.944 Hz.
+            assert!((c64::new(r[re], r[im]) - exact).norm() < 3e-3 * exact.norm(), "{a} N RMS, {} Hz", r[0]);
         }
     }
     let (header, rows) = table("v.time.csv");
@@ -257,4 +277,22 @@ fn every_amplitude_is_written() {
         let got = (rows.iter().map(|r| r[k] * r[k]).sum::<f64>() / rows.len() as f64).sqrt();
         assert!((got - rms).abs() < 1e-9 * rms, "input RMS {got}, asked {rms}");
     }
+}
+
+/// A multisine on the undamped Fig. 7 beam: the fade-in's ringing at 49.3 Hz never decays and,
+/// with no window, leaks into every bin, so no bin reaches the coherence threshold (0 of 51
+/// measured). The verdict says the ROM could not be judged, not that it departs: the same ROM
+/// is within 2 % of the full model over the band (closed form, `rom` vs full).
+#[test]
+fn an_estimate_with_no_coherent_bin_is_not_a_departure() {
+    use romdyn::validate::signal::SignalKind;
+    let options = ValidateOptions { signal: SignalKind::Multisine, ..ValidateOptions::default() };
+    let request = RomRequest::new(ModeSelection::Lowest(1)).residualize(Residualization::Modes(vec![7]));
+    let v = validated("examples/simply_supported_beam.mbd", Reference::Static { load_steps: 10 }, "5:Fy", "5:y", request, &options);
+    let c = &v.runs[0].channels[0];
+    assert!(c.rom_error.is_none(), "{}", v.summary());
+    assert!(v.verdict().contains("NOT KNOWN") && !v.verdict().contains("does NOT represent"), "{}", v.verdict());
+    assert!(v.warning().unwrap().contains("could not be judged"));
+    let worst = c.rom.iter().zip(&c.full).map(|(r, f)| (r - f).norm() / f.norm()).fold(0.0, f64::max);
+    assert!(worst < 0.02, "ROM vs full {worst}");
 }
