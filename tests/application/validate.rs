@@ -102,7 +102,8 @@ fn multisine_and_chirp_estimates_match_the_closed_form() {
 fn simply_supported_beam_fig7() {
     let m = read_model(Path::new("examples/simply_supported_beam.mbd")).unwrap();
     let ports = Ports::Nodes { inputs: vec!["5:Fy".parse().unwrap()], outputs: vec!["5:y".parse().unwrap()] };
-    let (mut study, state) = Study::of_model(m.model, &m.problem, Reference::Static { load_steps: 10 }, &ports, EigenSettings::default(), None).unwrap();
+    let mut study = Study::builder(StudySource::model(m.model, m.problem)).reference(Reference::Static { load_steps: 10 }).ports(ports.clone()).build().unwrap();
+    let (state, problem) = study.reference_and_problem().unwrap();
     let roms = [
         RomRequest::new(ModeSelection::Lowest(1)),
         RomRequest::new(ModeSelection::Indices(vec![1, 7])),
@@ -110,7 +111,7 @@ fn simply_supported_beam_fig7() {
     ]
     .map(|r| study.reduce(&r).unwrap());
     let options = ValidateOptions { band_hz: Some((0.0, 100.0)), averages: 64, ..ValidateOptions::default() };
-    let v = validate_roms(&mut study, &m.problem, &state, &ports, &roms, &options, &mut |_, _| {}).unwrap();
+    let v = validate_roms(&mut study, &problem, &state, &ports, &roms, &options, &mut |_, _| {}).unwrap();
     let [one, two, residualized] = [&v[0], &v[1], &v[2]].map(|v| &v.runs[0].channels[0]);
     let mut compared = 0;
     for (i, f) in one.estimate.freq_hz.iter().enumerate() {
