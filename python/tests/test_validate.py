@@ -34,6 +34,10 @@ def test_validate_refuses_bad_options(examples):
         romdyn.validate(model, inputs=["3:Fx"], outputs=["3:x"], modes=[3], averages=1)
     with pytest.raises(ValueError, match="signal"):
         romdyn.validate(model, inputs=["3:Fx"], outputs=["3:x"], modes=[3], signal="noise")
+    # The keyword as Python spells it, not the CLI's flag.
+    with pytest.raises(ValueError, match=r"^validation_band: ") as e:
+        romdyn.validate(model, inputs=["3:Fx"], outputs=["3:x"], modes=[3], validation_band=(5.0, 1.0))
+    assert "--" not in str(e.value)
 
 
 def test_a_rom_that_misses_the_port_is_warned_as_the_cli_does(examples):
