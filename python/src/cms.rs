@@ -32,6 +32,7 @@ pub fn cms<'py>(py: Python<'py>, model: &Model, interface: Vec<u32>, modes: usiz
         })
         .map_err(|e| match e {
             CmsError::Study(e) => py_err(e),
+            CmsError::Option { option, message } => crate::options::bad(option, message),
             e => RomdynError::new_err(format!("{}: {e}", model.name.display())),
         })?;
     warnings::warn_input(py, &input)?;

@@ -7,6 +7,7 @@ import subprocess
 import warnings
 
 import numpy as np
+import pytest
 
 import romdyn
 
@@ -50,3 +51,12 @@ def test_fem_reader_warnings_are_printed_and_raised(tmp_path, romdyn_cli):
         model.study()
     raised = [str(w.message) for w in caught if w.category is romdyn.InputWarning]
     assert raised == [printed[0][len("warning: "):]]
+
+
+def test_cms_option_errors_name_the_keyword(tmp_path):
+    import pathlib
+    sub = romdyn.Model(pathlib.Path(__file__).resolve().parents[2] / "tests" / "mbdyn_files" / "cms_substructure.mbd")
+    # The library names the option as Python spells it, never the CLI's flag.
+    with pytest.raises(ValueError, match=r"^interface: node 9 is listed twice") as e:
+        romdyn.cms(sub, interface=[9, 9], modes=2, output=tmp_path / "x")
+    assert "--" not in str(e.value)

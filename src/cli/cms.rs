@@ -40,7 +40,11 @@ pub fn run(a: CmsArgs) -> Result<()> {
     let reference = a.reference.reference();
     let m = super::args::read_model_with_beams(&a.file, &a.set, romdyn::model::BeamUpdateChoice::Auto, reference.integrates())?;
     let request = CmsRequest { interfaces: a.interface.clone(), modes: a.modes, reference };
-    let cb = craig_bampton(&m.model, &m.problem, &request).with_context(|| a.file.display().to_string())?;
+    let cb = match craig_bampton(&m.model, &m.problem, &request) {
+        // The request's option named by its flag.
+        Err(romdyn::cms::CmsError::Option { option, message }) => anyhow::bail!("{}: --{option}: {message}", a.file.display()),
+        r => r.with_context(|| a.file.display().to_string())?,
+    };
     for w in &cb.warnings {
         eprintln!("warning: {w}");
     }

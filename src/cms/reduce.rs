@@ -33,6 +33,14 @@ pub enum CmsError {
     /// The model or the request does not fit component mode synthesis.
     #[error("{0}")]
     Unfit(String),
+    /// An option of the request that does not fit the substructure: its name as the library
+    /// and Python spell it (`interface`, `modes`; the CLI prints its flag) and why.
+    #[error("{option}: {message}")]
+    Option { option: &'static str, message: String },
+}
+
+fn bad_option(option: &'static str, message: String) -> CmsError {
+    CmsError::Option { option, message }
 }
 
 /// Mass and stiffness of the structural nodes' coordinates `(δx, δθ)` at the reference
@@ -114,26 +122,26 @@ pub fn structural_matrices(model: &Model, problem: &InitialValueProblem, referen
 pub fn craig_bampton(model: &Model, problem: &InitialValueProblem, request: &CmsRequest) -> Result<CraigBampton, CmsError> {
     let mut interface_nodes = Vec::new();
     if request.interfaces.is_empty() {
-        return Err(unfit("--interface: give at least one interface node".into()));
+        return Err(bad_option("interface", "give at least one interface node".into()));
     }
     for l in &request.interfaces {
-        let i = model.node_index(*l).ok_or_else(|| unfit(format!("--interface: structural node {l} is not defined in the substructure")))?;
+        let i = model.node_index(*l).ok_or_else(|| bad_option("interface", format!("structural node {l} is not defined in the substructure")))?;
         if interface_nodes.contains(&i) {
-            return Err(unfit(format!("--interface: node {l} is listed twice")));
+            return Err(bad_option("interface", format!("node {l} is listed twice")));
         }
         interface_nodes.push(i);
     }
     let s = structural_matrices(model, problem, request.reference)?;
     for &i in &interface_nodes {
         if (s.orientations[i] - Mat3::identity()).amax() > 1e-12 {
-            return Err(unfit(format!("--interface: node {} is not oriented as the global frame at the reference; the modal joint clamps each interface node to its FEM node with the FEM frame's orientation (MBDyn 1.7.3 uses no interface orientation), and the FEM file is written in the global frame", model.nodes[i].label)));
+            return Err(bad_option("interface", format!("node {} is not oriented as the global frame at the reference; the modal joint clamps each interface node to its FEM node with the FEM frame's orientation (MBDyn 1.7.3 uses no interface orientation), and the FEM file is written in the global frame", model.nodes[i].label)));
         }
     }
     let n = s.mass.nrows();
     let boundary: Vec<usize> = interface_nodes.iter().flat_map(|&i| (0..6).map(move |c| 6 * i + c)).collect();
     let interior: Vec<usize> = (0..n).filter(|k| !boundary.contains(k)).collect();
     if request.modes > interior.len() {
-        return Err(unfit(format!("--modes {}: the substructure has {} coordinates besides its interface's, so at most {} fixed-interface modes", request.modes, interior.len(), interior.len())));
+        return Err(bad_option("modes", format!("{}: the substructure has {} coordinates besides its interface's, so at most {} fixed-interface modes", request.modes, interior.len(), interior.len())));
     }
     let sub = |m: &DMatrix<f64>, rows: &[usize], cols: &[usize]| DMatrix::from_fn(rows.len(), cols.len(), |r, c| m[(rows[r], cols[c])]);
     let (k_ii, k_ib, m_ii) = (sub(&s.stiffness, &interior, &interior), sub(&s.stiffness, &interior, &boundary), sub(&s.mass, &interior, &interior));
@@ -221,7 +229,7 @@ fn two_sided_modes(k_ii: &DMatrix<f64>, m_ii: &DMatrix<f64>, count: usize) -> Re
     let largest = mu.iter().map(|m| m.norm()).fold(0.0, f64::max);
     let with_mass = mu.iter().filter(|m| m.re > 1e-12 * largest).count();
     if count > with_mass {
-        return Err(unfit(format!("--modes {count}: the substructure with its interface held has {with_mass} modes that move mass (the other coordinates are massless)")));
+        return Err(bad_option("modes", format!("{count}: the substructure with its interface held has {with_mass} modes that move mass (the other coordinates are massless)")));
     }
     for (j, m) in mu.iter().take(count).enumerate() {
         if m.im.abs() > 1e-6 * m.re {
@@ -229,7 +237,7 @@ fn two_sided_modes(k_ii: &DMatrix<f64>, m_ii: &DMatrix<f64>, count: usize) -> Re
         }
     }
     if count > 0 && count < n && (mu[count - 1] - mu[count]).norm() <= 1e-9 * mu[count - 1].norm() {
-        return Err(unfit(format!("--modes {count}: fixed-interface modes {count} and {} share a frequency ({:.9e} rad/s): keeping one of them would choose an arbitrary direction of their plane; take one mode more or less", count + 1, 1.0 / mu[count - 1].re.sqrt())));
+        return Err(bad_option("modes", format!("{count}: fixed-interface modes {count} and {} share a frequency ({:.9e} rad/s): keeping one of them would choose an arbitrary direction of their plane; take one mode more or less", count + 1, 1.0 / mu[count - 1].re.sqrt())));
     }
     // V: real columns, unit modal mass for the kept ones (the largest entry positive), unit
     // length for the others.
@@ -243,7 +251,7 @@ fn two_sided_modes(k_ii: &DMatrix<f64>, m_ii: &DMatrix<f64>, count: usize) -> Re
         let norm = if j < count { (m_ii * &c).dot(&c).sqrt() } else { c.norm() } * big.signum();
         v.set_column(j, &(c / norm));
     }
-    let defective = || unfit(format!("--modes {count}: the fixed-interface modes of the non-symmetric stiffness do not span the interior coordinates (a defective mode)"));
+    let defective = || bad_option("modes", format!("{count}: the fixed-interface modes of the non-symmetric stiffness do not span the interior coordinates (a defective mode)"));
     let y = v.clone().lu().try_inverse().filter(|y| y.iter().all(|x| x.is_finite()) && y.amax() * v.amax() < 1e12).ok_or_else(defective)?;
     let phi_r = v.columns(0, count).into_owned();
     let left = k_ii.transpose().lu().solve(&y.rows(0, count).transpose()).ok_or_else(singular)?;

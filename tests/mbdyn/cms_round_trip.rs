@@ -293,6 +293,14 @@ fn substructures_that_do_not_fit_are_refused_in_words() {
     assert!(refuse(vec![9], 49).contains("at most 48 fixed-interface modes"));
     // Modes 4 and 5 are the axial and torsional j = 1 (EA/m = GJ/Jx = 1e6 m²/s²).
     assert!(refuse(vec![9], 4).contains("fixed-interface modes 4 and 5 share a frequency (3.138566"));
+    // The library names the option as the library and Python spell it, never a CLI flag;
+    // the CLI prints its flag.
+    assert!(refuse(vec![9, 9], 2).starts_with("interface: "), "{}", refuse(vec![9, 9], 2));
+    assert!(refuse(vec![9], 49).starts_with("modes: 49: "), "{}", refuse(vec![9], 49));
+    let dir = common::cli::temp_dir("cms-option-flag");
+    let prefix = dir.join("x");
+    let (ok, _, err) = common::cli::romdyn(&["cms", "tests/mbdyn_files/cms_substructure.mbd", "--interface", "9,9", "--modes", "2", "-o", prefix.to_str().unwrap()]);
+    assert!(!ok && err.contains("--interface: node 9 is listed twice"), "{err}");
     let clamped = common::mbdyn::read_test_file("cms_cantilever.mbd");
     let e = craig_bampton(&clamped.model, &clamped.problem, &CmsRequest { interfaces: vec![9], modes: 1, reference: Reference::Initial }).err().expect("a joint is refused").to_string();
     assert!(e.contains("clamp 1 has unknowns of its own"), "{e}");
