@@ -26,11 +26,17 @@ pub fn beam_inertia(elements: usize) -> Vec<[f64; 4]> {
 /// GJ = EJ), clamped at node 1, with a tip mass, every node dynamic and free in 3-D (the
 /// model of issue 30: 12 (2N + 1) + 6 equations).
 pub fn cantilever(elements: usize, ea: f64, ej: f64) -> String {
+    cantilever_with_inertia(elements, ea, ej, &beam_inertia(elements))
+}
+
+/// [`cantilever`] with the nodes' masses and inertias `inertia` (`(m, J_x, J_y, J_z)` node by
+/// node, a zero allowed: a massless direction).
+pub fn cantilever_with_inertia(elements: usize, ea: f64, ej: f64, inertia: &[[f64; 4]]) -> String {
     let n = 2 * elements + 1;
     let dl = 1.0 / (n - 1) as f64;
     let mut nodes = String::new();
     let mut elems = String::from("joint: 1, clamp, 1, node, node;\n");
-    for (i, [m, jx, jy, jz]) in beam_inertia(elements).into_iter().enumerate() {
+    for (i, &[m, jx, jy, jz]) in inertia.iter().enumerate() {
         nodes += &format!("structural: {}, dynamic, {:e}, 0., 0., eye, null, null;\n", i + 1, i as f64 * dl);
         elems += &format!("body: {}, {}, {m:e}, null, diag, {jx:e}, {jy:e}, {jz:e};\n", i + 1, i + 1);
     }
@@ -70,18 +76,25 @@ impl MassStiffness {
     /// From the dense linearization of [`cantilever`]`(elements, ..)` at rest and each
     /// node's first unknown.
     pub fn of(dae: &romdyn::linear::LinearDae, node_first: &[usize], elements: usize) -> Self {
+        Self::with_inertia(dae, node_first, elements, &beam_inertia(elements))
+    }
+
+    /// The same for [`cantilever_with_inertia`]`(elements, .., inertia)`. A massless direction
+    /// (a zero in `inertia`) has `M^(1/2) = 0`: its row and column of `M^(1/2) K⁻¹ M^(1/2)`
+    /// vanish (ω = ∞), and the others are the eigenvalues of `K` condensed on the massless
+    /// directions, exactly.
+    pub fn with_inertia(dae: &romdyn::linear::LinearDae, node_first: &[usize], elements: usize, inertia: &[[f64; 4]]) -> Self {
         use faer::linalg::solvers::DenseSolveCore;
         let (_, fy) = dae.jacobians.derivatives();
-        let inertia = beam_inertia(elements);
         let free = 1..2 * elements + 1;
         let dof = |node: usize, k: usize| (node - 1) * 6 + k;
         let size = 6 * (2 * elements);
         let mut k = faer::Mat::<f64>::zeros(size, size);
-        let mut minv_sqrt = vec![0.0; size];
+        let mut m_sqrt = vec![0.0; size];
         for a in free.clone() {
             let [m, jx, jy, jz] = inertia[a];
             for (c, mass) in [m, m, m, jx, jy, jz].into_iter().enumerate() {
-                minv_sqrt[dof(a, c)] = 1.0 / mass.sqrt();
+                m_sqrt[dof(a, c)] = mass.sqrt();
             }
             for b in free.clone() {
                 for r in 0..6 {
@@ -92,11 +105,11 @@ impl MassStiffness {
             }
         }
         let k_inv = k.partial_piv_lu().inverse();
-        let flexible = faer::Mat::<f64>::from_fn(size, size, |i, j| k_inv[(i, j)] / (minv_sqrt[i] * minv_sqrt[j]));
+        let flexible = faer::Mat::<f64>::from_fn(size, size, |i, j| k_inv[(i, j)] * m_sqrt[i] * m_sqrt[j]);
         let nu: Vec<faer::c64> = flexible.as_ref().eigenvalues().unwrap();
         let mut omega: Vec<f64> = nu.iter().map(|x| 1.0 / x.norm().sqrt()).collect();
         omega.sort_by(f64::total_cmp);
-        let mass: Vec<f64> = minv_sqrt.iter().map(|x| 1.0 / (x * x)).collect();
+        let mass: Vec<f64> = m_sqrt.iter().map(|x| x * x).collect();
         let rows: SparseRows = (0..size).map(|i| (0..size).filter(|&j| k[(i, j)] != 0.0).map(|j| (j, k[(i, j)])).collect()).collect();
         // The lowest REFINED and the other copies of the last one's (a bending pair).
         let last = omega[REFINED.min(size) - 1];
