@@ -83,7 +83,7 @@ pub struct PencilArgs {
     /// dCoef of the Λ form [s], positive and finite (default: the file's, else 1/the geometric mean of the dynamic part's |λ|: the spectrum's logarithmic centre at |Λ| = 1)
     #[arg(long, value_name = "C", allow_negative_numbers = true)]
     pub dcoef: Option<f64>,
-    /// Eigensolver: dense QZ (every eigenvalue), sparse shift-invert Krylov–Schur (only the modes asked for, no n x n matrix; a progress bar on a terminal), or auto: sparse from 400 equations on, dense below or for --count with --by dominance (--band with --by dominance stays sparse)
+    /// Eigensolver: dense QZ (every eigenvalue), sparse shift-invert Krylov–Schur (only the modes asked for, no n x n matrix; a progress bar on a terminal; --count N --by dominance ranks among the 3N lowest), or auto: sparse from 400 equations on, dense below or for --count with --by dominance (--band with --by dominance stays sparse)
     #[arg(long, value_parser = named::<Solver>(), default_value = "auto")]
     pub solver: Solver,
     /// Rotation update of beam3 and beam2: auto (MBDyn's incremental one for a reference at a time, --at; path independent for --static and the initial configuration), path-independent, or incremental (per time step; a static equilibrium takes it as one step from the initial configuration)

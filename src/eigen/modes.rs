@@ -196,7 +196,21 @@ pub(crate) fn sort_units(mut units: Vec<Vec<Mode>>, dcoef: f64) -> Vec<Mode> {
             u.swap(0, 1);
         }
     }
-    let size = |m: &Mode| if m.lambda.norm().is_finite() { m.lambda.norm() } else { f64::MAX };
+    // |λ| to 12 significant digits: modes of equal |λ| (the same mass and spring, one damped,
+    // examples/mass_on_springs.mbd) are a tie broken by Re λ, not by their last bits (the
+    // eigenvalue's rounding, which changed when the two-sided quotients became compensated
+    // and swapped node 2's and node 3's y modes).
+    let size = |m: &Mode| {
+        let r = m.lambda.norm();
+        if !r.is_finite() {
+            return f64::MAX;
+        }
+        if r == 0.0 {
+            return 0.0;
+        }
+        let quantum = 10f64.powf(r.log10().floor() - 11.0);
+        (r / quantum).round() * quantum
+    };
     units.sort_by(|a, b| {
         rank(a[0].kind)
             .cmp(&rank(b[0].kind))

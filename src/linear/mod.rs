@@ -2,10 +2,12 @@
 //! `B̃`, `C̃` (eqs. 38–40), dense or sparse as assembled. Their eigenanalysis is
 //! [`crate::eigen`].
 
+mod compensated;
 mod dae;
 mod sparse;
 mod sparse_dae;
 
+pub use compensated::{Compensated, CompensatedComplex};
 pub use dae::{coefficient_from_derivatives, derivatives_from_coefficient, Jacobians, LinearDae};
 pub use sparse::{SparseMatrix, SparseScalar};
 pub use sparse_dae::{SparseLinearDae, SparseSolveError};

@@ -306,6 +306,21 @@ impl SparseMatrix {
         })
     }
 
+    /// `uᵀ M v` in twice the working precision ([`super::Compensated`]): each row's `M v`
+    /// and the outer sum carry their cancellation exactly.
+    pub fn bilinear_compensated(&self, u: &Col<c64>, v: &Col<c64>) -> c64 {
+        use super::CompensatedComplex;
+        let (u, v) = (contiguous(u.as_ref()), contiguous(v.as_ref()));
+        assert!(u.len() == self.nrows && v.len() == self.ncols, "uᵀ M v: sizes");
+        let mut acc = CompensatedComplex::default();
+        for i in 0..self.nrows {
+            let mut mv = CompensatedComplex::default();
+            (self.start[i]..self.start[i + 1]).for_each(|k| mv.add_real_times(self.val[k], v[self.col[k]]));
+            acc.add_times(u[i], mv);
+        }
+        acc.value()
+    }
+
     /// `|u|ᵀ |M| |v|`: the magnitude of the terms of `uᵀ M v`, whose rounding error is a few
     /// ε times this.
     pub fn abs_bilinear(&self, u: &Col<c64>, v: &Col<c64>) -> f64 {

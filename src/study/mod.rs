@@ -57,5 +57,5 @@ pub use response::{ChannelError, Comparison, FrequencyGrid, GridAccuracy};
 pub use names::{value_names, Named};
 pub use setting::{python_spelling, Setting};
 pub use setup::{checked_reference_state, EigenSettings, Ports, Study};
-pub use solver::{needs_every_mode, sparse_target, Solver, SparseRun, SPARSE_DEFAULT_COUNT};
+pub use solver::{needs_every_mode, sparse_target, Solver, SparseRun, DOMINANCE_POOL, SPARSE_DEFAULT_COUNT};
 pub use warning::{Response, Warning};

@@ -71,7 +71,7 @@ impl Named for Solver {
     const NAMES: &'static [(&'static str, Self, &'static str)] = &[
         ("auto", Solver::Auto, "Sparse from 400 equations on, dense below (where the complete dense spectrum costs about a second or less) and for --count with --by dominance (a --band ranked by dominance stays sparse)"),
         ("dense", Solver::Dense, "QZ on the whole (deflated) pencil: every eigenvalue, zero and infinite ones labelled; n x n matrices"),
-        ("sparse", Solver::Sparse, "Shift-invert Krylov–Schur on the sparse linearization: only the modes asked for (--count, --band, --modes; else the 10 lowest), certified or warned about; memory grows with the non-zeros"),
+        ("sparse", Solver::Sparse, "Shift-invert Krylov–Schur on the sparse linearization: only the modes asked for (--count, --band, --modes; else the 10 lowest; --count N --by dominance: ranked among the 3N lowest), certified or warned about; memory grows with the non-zeros"),
     ];
 }
 

@@ -274,9 +274,6 @@ impl Study {
             return Err(StudyError::NoPorts);
         }
         let sparse = self.sparse.is_some();
-        if sparse && super::solver::needs_every_mode(request) {
-            return Err(StudyError::Option { option: super::Setting::Ranking, message: "dominance of a --count ranks every mode of the model, and the sparse route computed only the modes asked for (use --solver dense or auto, or --band F1:F2 --by dominance: dominance of the modes in a band)".into() });
-        }
         let dominance = self.dominance();
         let mut sel = match (request.ranking, &self.sparse) {
             (Ranking::Frequency, None) => select_modes(modal, &request.selection)?,

@@ -123,8 +123,8 @@ pub struct EigenSettings {
     /// The modes the sparse route computes (`None`: the lowest [`SPARSE_DEFAULT_COUNT`]); the
     /// dense route computes every mode.
     pub target: Option<ModeTarget>,
-    /// The request needs every dynamic mode (ranking by dominance): `Auto` takes the dense
-    /// route, `Sparse` refuses.
+    /// The request ranks a count by dominance: `Auto` takes the dense route (every mode),
+    /// `Sparse` computes [`super::DOMINANCE_POOL`] times as many lowest modes to rank.
     pub every_mode: bool,
     /// Largest true relative residual of a mode from the sparse route.
     pub tolerance: f64,
@@ -266,7 +266,7 @@ impl Study {
                 let target = eigen.target.unwrap_or(ModeTarget::Lowest(SPARSE_DEFAULT_COUNT));
                 let settings = SparseEigenSettings { tolerance: eigen.tolerance, route: eigen.route, dcoef: eigen.dcoef, ..SparseEigenSettings::default() };
                 let found = sparse_modes_with_progress(s, target, &settings, progress)?;
-                let run = SparseRun::new(target, eigen.tolerance, &found);
+                let run = SparseRun { dominance_pool: eigen.every_mode, ..SparseRun::new(target, eigen.tolerance, &found) };
                 (found.modal, Some(run))
             }
             None => {

@@ -42,30 +42,38 @@ impl Solver {
     /// the dense route.
     pub const AUTO_SPARSE_FROM: usize = 400;
 
-    /// Whether a model of `equations` takes the sparse route. `every_mode`: the request needs
-    /// every dynamic mode (ranking by dominance), which only the dense route has.
+    /// Whether a model of `equations` takes the sparse route. `every_mode`: the request ranks
+    /// a `--count` or `--modes` by dominance, which `Auto` leaves to the dense route (it
+    /// compares every mode of the model); `Sparse` ranks it among the lowest
+    /// [`DOMINANCE_POOL`] times as many modes ([`sparse_target`]).
     pub fn is_sparse(self, equations: usize, every_mode: bool) -> Result<bool, StudyError> {
-        match self {
-            Solver::Dense => Ok(false),
-            Solver::Auto => Ok(!every_mode && equations >= Self::AUTO_SPARSE_FROM),
-            Solver::Sparse if every_mode => Err(StudyError::Option {
-                option: super::Setting::Solver,
-                message: "sparse: ranking a --count by dominance compares every mode of the model, and the sparse route computes only the modes asked for (use --solver dense, --by frequency, or --band F1:F2 --by dominance: dominance of the modes in a band)".into(),
-            }),
-            Solver::Sparse => Ok(true),
-        }
+        Ok(match self {
+            Solver::Dense => false,
+            Solver::Auto => !every_mode && equations >= Self::AUTO_SPARSE_FROM,
+            Solver::Sparse => true,
+        })
     }
 }
+
+/// On the sparse route a `--count N --by dominance` (or `--modes` ranked by dominance, up to
+/// index N) is ranked among the certified lowest `DOMINANCE_POOL · N` modes, not among every
+/// mode of the model as on the dense route: the modal table's header names them. Dominance
+/// `‖C̃ v‖ ‖uᵀ B̃‖ / |λ|` falls with |λ| for the same port shares, so a mode above three times
+/// as many lower ones rarely outranks them; a user who suspects one asks a band
+/// (`--band F1:F2 --by dominance`) or the dense route.
+pub const DOMINANCE_POOL: usize = 3;
 
 /// The sparse route's modes when nothing asks for particular ones: the lowest 10.
 pub const SPARSE_DEFAULT_COUNT: usize = 10;
 
 /// The modes a ROM request needs from the sparse route: the selection's, the lowest modes up
-/// to the largest modal-table index it names, and for `--residualize` of a band every mode
+/// to the largest modal-table index it names (ranked by dominance: [`DOMINANCE_POOL`] times
+/// as many), and for `--residualize` of a band every mode
 /// below the band's top (the modes below the band must be known to be left out of the
 /// static correction).
 pub fn sparse_target(request: &RomRequest) -> ModeTarget {
     let indices = |list: &[usize]| list.iter().copied().max().unwrap_or(1).max(1);
+    let pool = if request.ranking == Ranking::Dominance { DOMINANCE_POOL } else { 1 };
     let residualized = match &request.residualization {
         Residualization::Modes(list) => indices(list),
         _ => 0,
@@ -76,13 +84,14 @@ pub fn sparse_target(request: &RomRequest) -> ModeTarget {
             ModeTarget::Band { fmin_hz, fmax_hz: *fmax_hz }
         }
         ModeSelection::Band { .. } => ModeTarget::Lowest(residualized),
-        ModeSelection::Lowest(n) => ModeTarget::Lowest((*n).max(residualized)),
-        ModeSelection::Indices(list) => ModeTarget::Lowest(indices(list).max(residualized)),
+        ModeSelection::Lowest(n) => ModeTarget::Lowest((*n * pool).max(residualized)),
+        ModeSelection::Indices(list) => ModeTarget::Lowest((indices(list) * pool).max(residualized)),
     }
 }
 
 /// Whether a request needs every dynamic mode (only the dense route has them): ranking by
-/// dominance of a `--count` or index selection compares every mode of the model. Dominance
+/// dominance of a `--count` or index selection compares every mode of the model (the sparse
+/// route compares the lowest [`DOMINANCE_POOL`] times as many). Dominance
 /// in a band (`--band F1:F2 --by dominance`) ranks the modes of the band only, which the
 /// sparse route finds (and certifies) like any band: it needs no other mode.
 pub fn needs_every_mode(request: &RomRequest) -> bool {
@@ -108,11 +117,14 @@ pub struct SparseRun {
     pub windows: usize,
     /// The true-residual tolerance every returned pair met.
     pub tolerance: f64,
+    /// A `--count` or `--modes` is ranked by dominance among these modes
+    /// ([`DOMINANCE_POOL`]).
+    pub dominance_pool: bool,
 }
 
 impl SparseRun {
     pub(super) fn new(target: ModeTarget, tolerance: f64, s: &SparseModalAnalysis) -> Self {
-        SparseRun { target, certified: s.certified, note: s.note.clone(), certificate: s.certificate.clone(), max_residual: s.max_residual, damping_covered: s.damping_covered, windows: s.windows.len(), tolerance }
+        SparseRun { target, certified: s.certified, note: s.note.clone(), certificate: s.certificate.clone(), max_residual: s.max_residual, damping_covered: s.damping_covered, windows: s.windows.len(), tolerance, dominance_pool: false }
     }
 
     /// The modes asked for, as a selection of the modal table.
@@ -138,6 +150,7 @@ impl SparseRun {
     /// "20 lowest dynamic modes" or "dynamic modes in 3–40 Hz".
     pub fn describe_target(&self) -> String {
         match self.target {
+            ModeTarget::Lowest(n) if self.dominance_pool => format!("the {n} lowest dynamic modes (the candidates the dominance ranking compares, {DOMINANCE_POOL} times the modes asked)"),
             ModeTarget::Lowest(n) => format!("the {n} lowest dynamic modes"),
             ModeTarget::Band { fmin_hz, fmax_hz } => format!("the dynamic modes in {fmin_hz}–{fmax_hz} Hz"),
         }

@@ -143,14 +143,15 @@ fn simply_supported_beam_fig7() {
 }
 
 /// A ROM wrong on purpose: mass 3's y response (2.25 Hz) by a ROM that keeps its x mode
-/// (1.125 Hz) instead, which the port does not see, is flagged; the ROM keeping the y mode
-/// is not. Same band (0–4 Hz) and signal for both.
+/// (1.125 Hz, modes 3,4) instead, which the port does not see, is flagged; the ROM keeping
+/// the y mode (modes 7,8: mass 2's undamped y mode has the same |λ| and comes first, the
+/// table's tie broken by Re λ) is not. Same band (0–4 Hz) and signal for both.
 #[test]
 fn a_rom_without_the_mode_the_port_sees_is_flagged() {
     // 0.4 N RMS on K = 400 N/m: 1 mm static (the wrong ROM has no static gain to size it by).
     let options = ValidateOptions { band_hz: Some((0.0, 4.0)), resolution_hz: Some(0.05), amplitudes: vec![0.4], ..ValidateOptions::default() };
     let wrong = validated(MASSES, Reference::Initial, "3:Fy", "3:y", RomRequest::new(ModeSelection::Indices(vec![3])), &options);
-    let right = validated(MASSES, Reference::Initial, "3:Fy", "3:y", RomRequest::new(ModeSelection::Indices(vec![5])), &options);
+    let right = validated(MASSES, Reference::Initial, "3:Fy", "3:y", RomRequest::new(ModeSelection::Indices(vec![7])), &options);
     assert!(!wrong.represents && wrong.verdict().contains("does NOT represent"), "{}", wrong.summary());
     assert!(right.represents && !right.verdict().contains("NOT"), "{}", right.summary());
 }

@@ -186,7 +186,8 @@ fn ham_sas_lvdt_rom_names_the_port_pairs_its_normwise_error_hides() {
 /// 265f71c's own output on the same file, `romdyn eig examples/ham_sas.mbd --static
 /// --load-steps 1 --ports examples/ham_sas_ports.json --json --all`, recorded in
 /// tests/data/ham_sas_eig_265f71c.json. Tolerances: λ to 1e-12 relative (rounding of the
-/// same QZ), the error estimate to 1e-9 relative, kinds exactly.
+/// same QZ; a dynamic λ within its recorded error estimate, see below), the error estimate
+/// to 1e-9 relative, kinds exactly.
 ///
 /// Labels: romdyn b38fd32's output of the same command (tests/data/ham_sas_eig_b38fd32.json),
 /// exactly. They differ from 265f71c's for the modes of degenerate clusters only (issue 11
@@ -218,7 +219,13 @@ fn ham_sas_eigenanalysis_is_that_of_265f71c() {
     assert_eq!(clusters.iter().map(|c| c.len()).sum::<usize>(), 62, "{clusters:?}");
     for (i, (m, r)) in modes.iter().zip(&recorded).enumerate() {
         let lambda = faer::c64::new(r["re"].as_f64().unwrap(), r["im"].as_f64().unwrap());
-        assert!((m.lambda - lambda).norm() <= 1e-12 * lambda.norm(), "mode {}: {} vs recorded {lambda}", i + 1, m.lambda);
+        // Since 2026-12-07 a dynamic eigenvalue is its compensated two-sided Rayleigh quotient
+        // (issue 30: the beam family's lowest pair at EA/EJ = 1e7 went from 1.2e-8 to 1e-16
+        // of the refined reference), no longer QZ's own: it may move within the recorded
+        // error estimate (measured here: mode 1 moved by 2.0e-10 relative).
+        let moved = (m.lambda - lambda).norm();
+        let allowed = if r["kind"].as_str() == Some("dynamic") { r["error"].as_f64().unwrap().max(1e-12 * lambda.norm()) } else { 1e-12 * lambda.norm() };
+        assert!(moved <= allowed, "mode {}: {} vs recorded {lambda} (error estimate {})", i + 1, m.lambda, r["error"]);
         assert_eq!(m.kind.name(), r["kind"].as_str().unwrap(), "mode {}", i + 1);
         let error = r["error"].as_f64().unwrap();
         // Recorded errors, except where two eigenvalues lie within four times their
@@ -227,7 +234,20 @@ fn ham_sas_eigenanalysis_is_that_of_265f71c() {
         // 9.48e-8 → 1.29e-7 rad/s).
         let nearest = modes.iter().enumerate().filter(|&(j, o)| j != i && o.kind == m.kind).map(|(_, o)| (o.lambda - m.lambda).norm()).fold(f64::INFINITY, f64::min);
         let expected = if m.kind.name() == "dynamic" && nearest <= 4.0 * error { error.max(nearest) } else { error };
-        assert!((m.error - expected).abs() <= 1e-9 * expected, "mode {}: error {} vs recorded {error} (expected {expected})", i + 1, m.error);
+        // Inside a degenerate cluster the members' eigenvalues are equal to 12 digits, a tie
+        // the table breaks by Re λ (since 2026-12-07), so their order, and with it which
+        // member carries which error estimate, is not 265f71c's: the estimates are matched
+        // as a set (measured: the same values, permuted within the clusters 39–48, 61–66,
+        // 77–86, 101–110, 117–126).
+        let agrees = |e: f64| (m.error - e).abs() <= 1e-9 * e;
+        let same = match clusters.iter().find(|c| c.contains(&i)) {
+            Some(c) => c.iter().any(|&j| {
+                let e = recorded[j]["error"].as_f64().unwrap();
+                agrees(e) || agrees(if nearest <= 4.0 * e { e.max(nearest) } else { e })
+            }),
+            None => agrees(expected),
+        };
+        assert!(same, "mode {}: error {} vs recorded {error} (expected {expected})", i + 1, m.error);
         assert_eq!(labels[i].as_deref(), labelled[i]["label"].as_str(), "mode {}", i + 1);
         if !in_cluster(i) {
             assert_eq!(labels[i].as_deref(), r["label"].as_str(), "mode {} is in no cluster", i + 1);

@@ -15,7 +15,7 @@ use faer::{c64, Col, Mat, Par};
 use super::balance::balance_pencil;
 use crate::eigen::classify::{classify, classify_without_vectors, resolved_kind, ModeKind};
 use crate::eigen::modes::{conjugate_mode, normalize, sort_units};
-use crate::eigen::route::{dot_t, mul_real_complex, EigenRoute, EigenVectors};
+use crate::eigen::route::{mul_real_complex, EigenRoute, EigenVectors};
 use crate::eigen::{EigenError, ModalAnalysis, Mode};
 use crate::linear::{coefficient_from_derivatives, Jacobians, SparseMatrix};
 
@@ -220,6 +220,7 @@ impl ModalAnalysis {
 
         let n = a.nrows();
         let fyd_sparse = SparseMatrix::from_dense(&fyd);
+        let fy_sparse = SparseMatrix::from_dense(&fy);
         let mut units: Vec<Vec<Mode>> = Vec::with_capacity(n);
         let mut k = 0;
         while k < n {
@@ -236,12 +237,28 @@ impl ModalAnalysis {
                 lambda = c64::new(f64::INFINITY, 0.0);
             }
             // The two-sided Rayleigh quotient on the unbalanced pencil of eq. 10 bounds the
-            // error from below whatever the route and dCoef (see `rayleigh_distance`).
-            let error = match &vectors {
-                Some(w) if class.kind == ModeKind::Dynamic => error.max(rayleigh_distance(lambda, &balanced.unscale_right(&w.v), &balanced.unscale_left(&w.u), &fyd, &fy)),
-                _ => error,
+            // error from below whatever the route and dCoef: independent of dCoef and of row
+            // and column scaling, second-order accurate in the vectors (an eigenvalue that
+            // eq. 23 moved off its own vectors, Λ rounded next to ±1, shows here).
+            // Its sums compensated: a dynamic mode's eigenvalue is that quotient, as on the
+            // deflated route (`super::deflated_qz`).
+            let quotient = match &vectors {
+                Some(w) if class.kind == ModeKind::Dynamic && lambda.re.is_finite() && lambda.im.is_finite() => {
+                    let (v, u) = (balanced.unscale_right(&w.v), balanced.unscale_left(&w.u));
+                    let q = -fy_sparse.bilinear_compensated(&u, &v) / fyd_sparse.bilinear_compensated(&u, &v);
+                    Some(if q.re.is_finite() && q.im.is_finite() { Some(q) } else { None })
+                }
+                _ => None,
+            };
+            let error = match quotient {
+                Some(Some(q)) => error.max((q - lambda).norm()),
+                Some(None) => f64::INFINITY,
+                None => error,
             };
             let kind = resolved_kind(&class, lambda, error, dcoef);
+            if let (Some(Some(q)), ModeKind::Dynamic) = (quotient, kind) {
+                lambda = q;
+            }
             let (right, left) = match vectors {
                 Some(w) if kind != ModeKind::Infinite => {
                     let (v, u) = normalize(&balanced.unscale_right(&w.v), &balanced.unscale_left(&w.u), |x| mul_real_complex(&fyd, x), |a, b| fyd_sparse.abs_bilinear(a, b));
@@ -275,19 +292,6 @@ fn balanced_dcoef(fyd: &Mat<f64>, fy: &Mat<f64>) -> Option<f64> {
     (c.is_normal() && c > 0.0).then_some(c)
 }
 
-/// `|λ_R − λ|` with `λ_R = −uᵀ F_y v / uᵀ F_yd v`, the two-sided Rayleigh quotient of the
-/// right and left vectors on the pencil of eq. 10 itself: independent of the route, of
-/// dCoef and of row and column scaling, and second-order accurate in the vectors. An
-/// eigenvalue that eq. 23 moved off its own vectors (Λ rounded next to ±1 when `c |λ|` is
-/// far from 1) shows here. `∞` when `uᵀ F_yd v` vanishes.
-pub(super) fn rayleigh_distance(lambda: c64, v: &Col<c64>, u: &Col<c64>, fyd: &Mat<f64>, fy: &Mat<f64>) -> f64 {
-    if !(lambda.re.is_finite() && lambda.im.is_finite()) {
-        return 0.0;
-    }
-    let (num, den) = (dot_t(u, &mul_real_complex(fy, v)), dot_t(u, &mul_real_complex(fyd, v)));
-    let d = (-num / den - lambda).norm();
-    if d.is_finite() { d } else { f64::INFINITY }
-}
 
 
 /// Undoes [`super::degenerate::prepare`]'s scaling on the left vectors (normalized with the scaled F_yd) and
