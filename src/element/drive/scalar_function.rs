@@ -54,6 +54,14 @@ impl ScalarFunction {
         self.value_and_derivative(x).0
     }
 
+    /// The two operands of a `sum`, `sub`, `mul` or `div`.
+    pub fn operands(&self) -> Option<[&Arc<ScalarFunction>; 2]> {
+        match self {
+            ScalarFunction::Sum(a, b) | ScalarFunction::Sub(a, b) | ScalarFunction::Mul(a, b) | ScalarFunction::Div(a, b) => Some([a, b]),
+            _ => None,
+        }
+    }
+
     /// What one evaluation costs (its depth and the evaluations it makes, see
     /// [`EvaluationCost`]), counted over the shared operands once each: linear in the
     /// number of distinct functions, not in the (possibly exponential) count it returns.

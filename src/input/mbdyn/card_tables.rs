@@ -19,19 +19,21 @@ pub(super) type Card = (Arc<ScalarFunction>, usize, Span, EvaluationCost);
 /// a drive does not copy the table (which made N drives O(N²)).
 #[derive(Clone, Default)]
 pub struct ScalarFunctions {
-    pub(super) table: Arc<RwLock<HashMap<String, Card>>>,
+    pub(super) table: Arc<RwLock<HashMap<Arc<str>, Card>>>,
     /// The names looked up by name since the last [`ScalarFunctions::take_used`] (what the
-    /// statement being read uses), and each card's operands by name: run-time messages name
-    /// the cards an element's law evaluates.
+    /// statement being read uses), and the functions a `drive caller:` card uses by name:
+    /// run-time messages name the cards an element's law evaluates. (A scalar function
+    /// card's operands are found from its function and [`Self::by_address`].)
     used: Arc<RwLock<Vec<String>>>,
     operands: Arc<RwLock<HashMap<String, Vec<String>>>>,
     /// The places of the `drive caller:` cards an element can evaluate through a reference
     /// (noted as used under [`drive_key`]), which messages name: "drive caller 3 (f.mbd:5:1)".
     drive_cards: Arc<RwLock<HashMap<u32, Span>>>,
-    /// Each defined card's cost by the address of its function (the table keeps every
-    /// function alive, so an address is never reused while it is here): a new card's cost
-    /// is found from its operands' without walking what they are made of.
-    costs: Arc<RwLock<HashMap<usize, EvaluationCost>>>,
+    /// Each defined card's cost and name by the address of its function (the table keeps
+    /// every function alive, so an address is never reused while it is here): a new card's
+    /// cost is found from its operands' without walking what they are made of, and a card's
+    /// operands are named from its function (no list of names kept per card, issue 32).
+    by_address: Arc<RwLock<HashMap<usize, (EvaluationCost, Arc<str>)>>>,
 }
 
 const DRIVE_KEY: &str = "#drive caller ";
@@ -62,13 +64,15 @@ impl ScalarFunctions {
 
     /// Defines card `name` (its function, statement, place and cost).
     pub(super) fn define(&self, name: String, card: Card) {
-        self.costs.write().unwrap_or_else(|e| e.into_inner()).insert(Arc::as_ptr(&card.0) as usize, card.3);
+        // One copy of the name, shared by the table and the address map.
+        let name: Arc<str> = Arc::from(name);
+        self.by_address.write().unwrap_or_else(|e| e.into_inner()).insert(Arc::as_ptr(&card.0) as usize, (card.3, name.clone()));
         self.table.write().unwrap_or_else(|e| e.into_inner()).insert(name, card);
     }
 
     /// The cost of `f` if it is a defined card's function.
     pub(super) fn known_cost(&self, f: &Arc<ScalarFunction>) -> Option<EvaluationCost> {
-        self.costs.read().unwrap_or_else(|e| e.into_inner()).get(&(Arc::as_ptr(f) as usize)).copied()
+        self.by_address.read().unwrap_or_else(|e| e.into_inner()).get(&(Arc::as_ptr(f) as usize)).map(|(c, _)| *c)
     }
 
     /// Notes that the statement being read uses the function `name`.
@@ -92,8 +96,8 @@ impl ScalarFunctions {
         kept
     }
 
-    /// Records the functions card `name` is made of (its `sum`/`sub`/`mul`/`div` operands;
-    /// nothing when none).
+    /// Records the functions `drive caller:` card `name` ([`drive_key`]) uses (nothing when
+    /// none).
     pub(super) fn set_operands(&self, name: &str, operands: Vec<String>) {
         if !operands.is_empty() {
             self.operands.write().unwrap_or_else(|e| e.into_inner()).insert(name.to_string(), operands);
@@ -116,6 +120,9 @@ impl ScalarFunctions {
             }
             if let Some(card) = self.card(&name) {
                 out.push(format!("scalar function \"{name}\" ({})", at(card.2)));
+                // Its `sum`/`sub`/`mul`/`div` operands, by the names of their cards.
+                let by_address = self.by_address.read().unwrap_or_else(|e| e.into_inner());
+                queue.extend(card.0.operands().into_iter().flatten().filter_map(|g| by_address.get(&(Arc::as_ptr(g) as usize)).map(|(_, n)| n.to_string())));
             } else if let Some(label) = name.strip_prefix(DRIVE_KEY).and_then(|l| l.parse::<u32>().ok()) {
                 if let Some(&span) = self.drive_cards.read().unwrap_or_else(|e| e.into_inner()).get(&label) {
                     out.push(format!("drive caller {label} ({})", at(span)));

@@ -46,7 +46,8 @@ pub fn scalar_function_card(c: &mut Cursor, functions: &mut ScalarFunctions, seq
     let f = definition(c, functions, seq)?;
     c.finish()?;
     let cost = within_budget(c, span, &name, &f, functions)?;
-    functions.set_operands(&name, functions.take_used());
+    // Its operands are named from its function when a message needs them.
+    functions.take_used();
     before.iter().for_each(|n| functions.note_used(n));
     functions.define(name, (Arc::new(f), seq, c.statement().span, cost));
     Ok(())
