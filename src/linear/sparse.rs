@@ -321,6 +321,15 @@ impl SparseMatrix {
         acc.value()
     }
 
+    /// The two-sided Rayleigh quotient `λ = −uᵀ K v / uᵀ E v` of the pencil `λ E + K`
+    /// (`self` = `K`), its sums compensated ([`Self::bilinear_compensated`]): a stiff beam's
+    /// `uᵀ K v` cancels its axial stiffness down to the bending value, which plain sums lose.
+    /// `None` when it is not finite (`uᵀ E v` vanishes).
+    pub fn two_sided_quotient(&self, e: &SparseMatrix, u: &Col<c64>, v: &Col<c64>) -> Option<c64> {
+        let q = -self.bilinear_compensated(u, v) / e.bilinear_compensated(u, v);
+        (q.re.is_finite() && q.im.is_finite()).then_some(q)
+    }
+
     /// `|u|ᵀ |M| |v|`: the magnitude of the terms of `uᵀ M v`, whose rounding error is a few
     /// ε times this.
     pub fn abs_bilinear(&self, u: &Col<c64>, v: &Col<c64>) -> f64 {

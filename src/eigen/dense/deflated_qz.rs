@@ -310,8 +310,7 @@ impl WholePencil {
     /// next to 1 or −1 when `c |λ|` is far from 1) shows in `|λ_R − λ|`. `None` when
     /// `uᵀ F_yd v` vanishes.
     fn rayleigh_quotient(&self, v: &Col<c64>, u: &Col<c64>) -> Option<c64> {
-        let q = -self.fy.bilinear_compensated(u, v) / self.fyd.bilinear_compensated(u, v);
-        (q.re.is_finite() && q.im.is_finite()).then_some(q)
+        self.fy.two_sided_quotient(&self.fyd, u, v)
     }
 
     /// Label of the eigenvalue `lambda` with right and left vectors `v`, `u` of `λ F_yd + F_y`.

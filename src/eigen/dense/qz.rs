@@ -245,8 +245,7 @@ impl ModalAnalysis {
             let quotient = match &vectors {
                 Some(w) if class.kind == ModeKind::Dynamic && lambda.re.is_finite() && lambda.im.is_finite() => {
                     let (v, u) = (balanced.unscale_right(&w.v), balanced.unscale_left(&w.u));
-                    let q = -fy_sparse.bilinear_compensated(&u, &v) / fyd_sparse.bilinear_compensated(&u, &v);
-                    Some(if q.re.is_finite() && q.im.is_finite() { Some(q) } else { None })
+                    Some(fy_sparse.two_sided_quotient(&fyd_sparse, &u, &v))
                 }
                 _ => None,
             };

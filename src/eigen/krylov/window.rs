@@ -245,12 +245,12 @@ pub(super) fn evaluate(dae: &SparseLinearDae, pencil: &Pencil, scales: &Scales, 
         // left the lowest pair 1.4e-7 off at EA/EJ = 1e7, 64 elements; now 2e-11). It is
         // taken whenever its true residuals pass, else whichever of it and the Ritz value has
         // the smaller (the residuals' own rounding cannot rank two values this close).
-        let rq = -pencil.k.bilinear_compensated(&u29, &v29) / pencil.e.bilinear_compensated(&u29, &v29);
+        let rq = pencil.k.two_sided_quotient(&pencil.e, &u29, &v29);
         // The DAE's products of both vectors, split by the moved entries, serve every
         // candidate λ, the labels and the normalization.
         let norms = (scales.nyd, scales.ny);
         let (right_products, left_products) = (DaeProducts::new(dae, pencil.moved(), &v29, false, norms), DaeProducts::new(dae, pencil.moved(), &u29, true, norms));
-        let candidates: Vec<_> = [rq, lr].into_iter().filter(|l| l.re.is_finite() && l.im.is_finite()).map(|l| (l, right_products.residual(l), left_products.residual(l))).collect();
+        let candidates: Vec<_> = rq.into_iter().chain([lr]).filter(|l| l.re.is_finite() && l.im.is_finite()).map(|l| (l, right_products.residual(l), left_products.residual(l))).collect();
         let (lambda, rr, rl) = candidates
             .iter()
             .copied()
@@ -280,7 +280,7 @@ pub(super) fn evaluate(dae: &SparseLinearDae, pencil: &Pencil, scales: &Scales, 
         } else {
             lambda
         };
-        Ok(Eigenpair::new(dae, lambda, vectors, rr, rl, (lr - rq).norm(), scales))
+        Ok(Eigenpair::new(dae, lambda, vectors, rr, rl, rq.map_or(f64::INFINITY, |q| (lr - q).norm()), scales))
     })
 }
 

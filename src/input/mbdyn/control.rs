@@ -176,7 +176,7 @@ pub fn control_data(block: Option<&Block>, sources: &Sources) -> Result<(Counts,
         } else if let Some(kind) = known(&st.keyword, &UNSUPPORTED_COUNTERS) {
             let span = c.here();
             if c.count(&format!("number of {kind}"))? > 0 {
-                return Err(c.error_at(span, format!("control data declares {kind}, which romdyn does not support ({})", super::diagnostic::MBDYN_RUNS_IT.replace(" it", " them"))));
+                return Err(c.error_at(span, format!("control data declares {kind}, which romdyn does not support (MBDyn 1.7.3 runs them)")));
             }
         } else if known(&st.keyword, &IGNORED).is_some() {
             // MBDyn's assembly and output settings: romdyn uses its own.

@@ -8,11 +8,8 @@ use std::path::PathBuf;
 /// runs the card, so a user learns the file is valid MBDyn and the limit is romdyn's):
 /// "`what` is not supported by romdyn (MBDyn 1.7.3 runs it)".
 pub fn mbdyn_runs_it(what: &str) -> String {
-    format!("{what} is not supported by romdyn ({MBDYN_RUNS_IT})")
+    format!("{what} is not supported by romdyn (MBDyn 1.7.3 runs it)")
 }
-
-/// The words [`mbdyn_runs_it`] ends with.
-pub const MBDYN_RUNS_IT: &str = "MBDyn 1.7.3 runs it";
 
 /// A refusal of a name that neither romdyn nor MBDyn 1.7.3 knows: "unknown `what`
 /// 'name': MBDyn 1.7.3 has none either".
