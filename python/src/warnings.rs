@@ -26,7 +26,7 @@ fn category<'py>(py: Python<'py>, w: &Warning) -> Bound<'py, PyType> {
         Warning::NotInEquilibrium { .. } | Warning::IncrementalBeamsStatic { .. } | Warning::BeamKeptPathIndependent { .. } | Warning::OneSided { .. } | Warning::ReactionDependent { .. } => py.get_type::<ReferenceWarning>(),
         Warning::Run { warning } => run_category(py, warning),
         Warning::InputMovesNothing { .. } | Warning::OutputSeesNothing { .. } => py.get_type::<PortWarning>(),
-        Warning::SparseNotCertified { .. } | Warning::UnresolvedEigenvalues { .. } | Warning::DoubtfulZeros { .. } => py.get_type::<EigenanalysisWarning>(),
+        Warning::SparseNotCertified { .. } | Warning::DominanceAmongComputed { .. } | Warning::UnresolvedEigenvalues { .. } | Warning::DoubtfulZeros { .. } => py.get_type::<EigenanalysisWarning>(),
         Warning::RomEigenvalues { .. } | Warning::AboveNyquist { .. } => py.get_type::<AccuracyWarning>(),
         Warning::BelowBandDropped { .. } | Warning::BelowBandKept { .. } | Warning::Invisible { .. } | Warning::Unscaled { .. } | Warning::DampingNotApplied { .. } => py.get_type::<ModeSelectionWarning>(),
         Warning::StaticGain { .. } => py.get_type::<StaticGainWarning>(),

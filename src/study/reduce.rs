@@ -287,6 +287,13 @@ impl Study {
         };
         // A ROM from modes that may be incomplete carries the warning itself.
         let mut warnings: Vec<Warning> = self.sparse_warning().into_iter().collect();
+        // A count or modes ranked by dominance among modes not computed for that ranking
+        // (a band ranks the band's modes, as asked).
+        if let (Ranking::Dominance, Some(run)) = (request.ranking, &self.sparse) {
+            if !run.dominance_pool && !matches!(request.selection, ModeSelection::Band { .. }) {
+                warnings.push(Warning::DominanceAmongComputed { target: run.describe_target() });
+            }
+        }
         let mut candidates = match &request.residualization {
             Residualization::None => Vec::new(),
             Residualization::Dropped => sel.dropped.clone(),

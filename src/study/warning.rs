@@ -29,6 +29,9 @@ pub enum Warning {
     DampingNotApplied { mode: usize, reason: String },
     /// The sparse eigensolver could not certify that it found every mode asked for.
     SparseNotCertified { target: String, reason: String, damping_covered: f64 },
+    /// A count or modes ranked by dominance on a sparse study that was not computed for
+    /// that ranking: only the modes it found were compared.
+    DominanceAmongComputed { target: String },
     /// The ROM's response departs from the full model's on the response grid, within the
     /// frequencies of interest (its channel on its own scale).
     /// `full` and `rom`: the two magnitudes there (the channel's units).
@@ -113,6 +116,10 @@ impl fmt::Display for Warning {
             Warning::SparseNotCertified { target, reason, damping_covered } => write!(
                 f,
                 "the sparse eigenanalysis of {target} is not certified: {reason} (shift windows cover damping ratios up to {damping_covered:.2}); a mode may be missing from the table and the ROM: check with --solver dense, or narrow the band"
+            ),
+            Warning::DominanceAmongComputed { target } => write!(
+                f,
+                "the dominance ranking compared only the modes the sparse eigenanalysis computed ({target}): a more dominant mode outside them was not considered; build the study for the ROM's request (the CLI does: --count N --by dominance ranks among the 3N lowest) or use --solver dense"
             ),
             Warning::ResponseDeparts { response, channel, relative, at_hz, full, rom, top_hz, advice } => write!(
                 f,

@@ -204,3 +204,22 @@ fn dominance_in_a_band_takes_the_sparse_route_and_keeps_the_dense_modes() {
     let (gd, gs) = (rd.ordinary.static_gain().unwrap()[(0, 0)], rs.ordinary.static_gain().unwrap()[(0, 0)]);
     assert!((gd - gs).abs() <= 1e-8 * gd.abs(), "{gd} vs {gs}");
 }
+
+/// A sparse study not built for a dominance ranking (the Rust API's and Python's
+/// `Model.study(solver="sparse")`, which compute the 10 lowest modes) ranks a count by
+/// dominance among those only: the ROM says so (`Warning::DominanceAmongComputed`); built
+/// for the request (the CLI) it ranks among the 3N lowest and says so in the table instead.
+#[test]
+fn dominance_among_the_computed_modes_only_is_warned() {
+    let request = RomRequest::new(ModeSelection::Lowest(4)).ranked_by(romdyn::rom::Ranking::Dominance);
+    let ports = Ports::Nodes { inputs: vec!["15:Fx".parse().unwrap()], outputs: vec!["15:x".parse().unwrap()] };
+    let eigen = EigenSettings { solver: Solver::Sparse, ..EigenSettings::default() };
+    let plain = Study::builder(StudySource::model(hanging_chain(30, ConstraintForm::Scaled), InitialValueProblem::default())).reference(Reference::Static { load_steps: 1 }).ports(ports).eigen(eigen).build().unwrap();
+    assert!(!plain.sparse_run().unwrap().dominance_pool);
+    let warned = |s: &Study| s.reduce(&request).unwrap().warnings.iter().any(|w| matches!(w, romdyn::study::Warning::DominanceAmongComputed { .. }));
+    assert!(warned(&plain));
+    let for_request = study(hanging_chain(30, ConstraintForm::Scaled), "15:Fx", "15:x", Solver::Sparse, &request);
+    assert!(!warned(&for_request));
+    // A frequency count is what the sparse route computed: no such warning.
+    assert!(!plain.reduce(&RomRequest::new(ModeSelection::Lowest(4))).unwrap().warnings.iter().any(|w| matches!(w, romdyn::study::Warning::DominanceAmongComputed { .. })));
+}
