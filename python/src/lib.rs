@@ -18,7 +18,7 @@ use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use romdyn::analysis::{run, NodeHistories};
-use romdyn::input::mbdyn::{read_model_text, MbdynModel, SetOverrides};
+use romdyn::input::mbdyn::{read_model_text, MbdynModel, ReadOptions, SetOverrides};
 use romdyn::output::rom_file::RomExport;
 use romdyn::study::{python_spelling, EigenSettings, FrequencyGrid, ReducedModel, Study, StudyBuilder, StudyError, StudySource};
 
@@ -62,7 +62,7 @@ struct Model {
     name: PathBuf,
     overrides: SetOverrides,
     /// The beams' rotation update (the CLI's `--beam-update`).
-    beam_update: romdyn::model::BeamUpdateChoice,
+    beam_update: romdyn::input::mbdyn::BeamUpdateChoice,
     #[pyo3(get)]
     /// Labels of the structural nodes.
     nodes: Vec<u32>,
@@ -75,22 +75,21 @@ impl Model {
     /// The model read again, its beams' update set for a time integration (`integrates`) or
     /// not; with why beams the `auto` update leaves path independent do so.
     fn read(&self, integrates: bool) -> Result<(MbdynModel, Vec<String>), StudyError> {
-        let mut m = read_model_text(&self.text, &self.name, &self.overrides)?;
-        let kept = m.model.choose_beam_update(self.beam_update, integrates).map_err(|message| StudyError::Option { option: romdyn::study::Setting::BeamUpdate, message: format!("{}: {message}", self.name.display()) })?;
+        let mut m = read_model_text(&self.text, &self.name, ReadOptions::new(&self.overrides, self.beam_update, integrates))?;
+        let kept = std::mem::take(&mut m.beam_notes);
         Ok((m, kept))
     }
 
     /// The study of this model ([`Study::builder`]), its beams' update set as the model was
     /// made: the road every front end takes.
-    fn builder(&self) -> Result<StudyBuilder<'static>, StudyError> {
-        let m = read_model_text(&self.text, &self.name, &self.overrides)?;
-        Ok(Study::builder(StudySource::read(m, &self.name)).beam_update(self.beam_update))
+    fn builder(&self, integrates: bool) -> Result<StudyBuilder<'static>, StudyError> {
+        let m = read_model_text(&self.text, &self.name, ReadOptions::new(&self.overrides, self.beam_update, integrates))?;
+        Ok(Study::builder(StudySource::read(m, &self.name)))
     }
 
     fn new_checked(text: String, name: PathBuf, overrides: SetOverrides, beam_update: Option<&str>) -> PyResult<Self> {
         let beam_update = options::beam_update(beam_update)?;
-        let mut m = read_model_text(&text, &name, &overrides).map_err(|e| ModelError::new_err(e.to_string()))?;
-        m.model.choose_beam_update(beam_update, false).map_err(|e| ModelError::new_err(format!("{}: beam_update: {e}", name.display())))?;
+        let m = read_model_text(&text, &name, ReadOptions::new(&overrides, beam_update, false)).map_err(|e| ModelError::new_err(e.to_string()))?;
         let nodes = m.model.nodes.iter().map(|n| n.label).collect();
         let equations = romdyn::dae::Assembler::new(&m.model).dofs.len;
         Ok(Model { text, name, overrides, beam_update, nodes, equations })
@@ -158,7 +157,7 @@ impl Model {
         let reference = options::reference(reference, load_steps)?;
         let ports = options::ports(&inputs, &outputs, ports.as_deref(), &remove_springs, imposed.as_deref())?;
         let eigen = EigenSettings { target: options::sparse_target(count, band)?, tolerance, ..options::eigen(route, dcoef, solver)? };
-        let study = py.detach(|| self.builder()?.reference(reference).ports(ports).eigen(eigen).build()).map_err(py_err)?;
+        let study = py.detach(|| self.builder(reference.integrates())?.reference(reference).ports(ports).eigen(eigen).build()).map_err(py_err)?;
         // The study's warnings, as `romdyn eig|rom` prints them.
         warnings::warn_all(py, study.warnings())?;
         Ok(StudyPy { study })

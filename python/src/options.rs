@@ -64,8 +64,8 @@ pub fn sparse_target(count: Option<usize>, band: Option<(f64, f64)>) -> PyResult
 
 /// The CLI's `--beam-update`: None or "path-independent" (default), "incremental" (MBDyn
 /// 1.7.3's beam update of beam3 and beam2).
-pub fn beam_update(u: Option<&str>) -> PyResult<romdyn::model::BeamUpdateChoice> {
-    u.map_or(Ok(romdyn::model::BeamUpdateChoice::Auto), named)
+pub fn beam_update(u: Option<&str>) -> PyResult<romdyn::input::mbdyn::BeamUpdateChoice> {
+    u.map_or(Ok(romdyn::input::mbdyn::BeamUpdateChoice::Auto), named)
 }
 
 pub fn form(f: &str) -> PyResult<RomForm> {

@@ -54,7 +54,7 @@ pub fn validate<'py>(py: Python<'py>, model: &Model, reference: Option<&Bound<'_
     let opts = ValidateOptions { signal: signal_of(signal)?, amplitudes, band_hz: validation_band, resolution_hz: resolution, averages, time_step, seed, coherence, tolerance, fit, measured };
     opts.check().map_err(validate_err)?;
     let (v, t0, warnings) = py.detach(|| -> Result<_, ValidateError> {
-        let mut study = model.builder()?.reference(reference).ports(ports.clone()).for_request(&request).build()?;
+        let mut study = model.builder(reference.integrates())?.reference(reference).ports(ports.clone()).for_request(&request).build()?;
         let (state, problem) = study.reference_and_problem()?;
         let rom = study.reduce(&request)?;
         let warnings: Vec<_> = study.warnings().iter().chain(&rom.warnings).cloned().collect();

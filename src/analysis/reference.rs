@@ -25,7 +25,7 @@ pub enum Reference {
 
 impl Reference {
     /// Whether the state comes from integrating the file's problem in time (`At`), which
-    /// decides the beams' `auto` update ([`crate::model::BeamUpdateChoice`]).
+    /// decides the beams' `auto` update ([`crate::input::mbdyn::BeamUpdateChoice`]).
     pub fn integrates(&self) -> bool {
         matches!(self, Reference::At(_))
     }

@@ -8,7 +8,7 @@ use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use romdyn::analysis::Reference;
-use romdyn::model::BeamUpdateChoice;
+use romdyn::input::mbdyn::BeamUpdateChoice;
 use romdyn::dae::{NodeInput, NodeOutput};
 use romdyn::input::eigen_pencil::PencilPorts;
 use romdyn::eigen::EigenRoute;
@@ -21,21 +21,14 @@ pub fn named<T: Named + std::fmt::Debug>() -> impl clap::builder::TypedValuePars
     PossibleValuesParser::new(T::NAMES.iter().map(|(name, _, help)| PossibleValue::new(*name).help(*help))).try_map(|word| T::from_name(&word).map_err(|e| e.to_string()))
 }
 
-/// Sets the beams' update of `model`, for a result from a time integration (`integrates`) or
-/// not; beams that `auto` leaves path independent are warned on stderr.
-fn apply_beam_update(model: &mut romdyn::model::Model, choice: BeamUpdateChoice, integrates: bool) -> Result<(), String> {
-    for why in model.choose_beam_update(choice, integrates)? {
-        eprintln!("warning: {}", romdyn::study::Warning::BeamKeptPathIndependent { why });
-    }
-    Ok(())
-}
-
-/// Reads an MBDyn file with its beams' rotation update set for a time integration
-/// (`integrates`) or not.
+/// Reads an MBDyn file with its beams' rotation update chosen for a time integration
+/// (`integrates`) or not; beams that `auto` leaves path independent are warned on stderr.
 pub fn read_model_with_beams(path: &std::path::Path, set: &[romdyn::sweep::Parameter], update: BeamUpdateChoice, integrates: bool) -> anyhow::Result<romdyn::input::mbdyn::MbdynModel> {
     let overrides = romdyn::sweep::single_values(set).map_err(|e| anyhow::anyhow!("--set {e}"))?;
-    let mut m = romdyn::input::mbdyn::read_model_with(path, &overrides)?;
-    apply_beam_update(&mut m.model, update, integrates).map_err(|e| anyhow::anyhow!("{}: --beam-update: {e}", path.display()))?;
+    let m = romdyn::input::mbdyn::read_model_with(path, romdyn::input::mbdyn::ReadOptions::new(&overrides, update, integrates))?;
+    for why in &m.beam_notes {
+        eprintln!("warning: {}", romdyn::study::Warning::BeamKeptPathIndependent { why: why.clone() });
+    }
     for w in m.model.input_warnings() {
         eprintln!("warning: {w}");
     }

@@ -21,8 +21,8 @@ pub struct CheckArgs {
     #[arg(long, default_value_t = JACOBIAN_CHECK_TOLERANCE)]
     pub tolerance: f64,
     /// Rotation update of beam3 and beam2: auto (default: MBDyn 1.7.3's incremental one for a reference at a time, --at, path independent otherwise), path-independent, or incremental
-    #[arg(long = "beam-update", value_parser = super::args::named::<romdyn::model::BeamUpdateChoice>(), default_value = "auto")]
-    pub beam_update: romdyn::model::BeamUpdateChoice,
+    #[arg(long = "beam-update", value_parser = super::args::named::<romdyn::input::mbdyn::BeamUpdateChoice>(), default_value = "auto")]
+    pub beam_update: romdyn::input::mbdyn::BeamUpdateChoice,
     /// A `set:` variable of the file given another value, NAME=VALUE in the file's (SI) units, replacing what its `set:` gives NAME; repeatable
     #[arg(long = "set", value_name = "NAME=VALUE")]
     pub set: Vec<romdyn::sweep::Parameter>,

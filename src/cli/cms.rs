@@ -38,7 +38,7 @@ pub fn run(a: CmsArgs) -> Result<()> {
     romdyn::output::atomic::check_prefix("-o", &a.prefix)?;
     romdyn::output::atomic::check_output_paths(&[("-o", path.clone())])?;
     let reference = a.reference.reference();
-    let m = super::args::read_model_with_beams(&a.file, &a.set, romdyn::model::BeamUpdateChoice::Auto, reference.integrates())?;
+    let m = super::args::read_model_with_beams(&a.file, &a.set, romdyn::input::mbdyn::BeamUpdateChoice::Auto, reference.integrates())?;
     let request = CmsRequest { interfaces: a.interface.clone(), modes: a.modes, reference };
     let cb = match craig_bampton(&m.model, &m.problem, &request) {
         // The request's option named by its flag.

@@ -18,8 +18,8 @@ pub struct RunArgs {
     #[arg(short = 'o', long = "out", value_name = "PREFIX")]
     pub prefix: Option<PathBuf>,
     /// Rotation update of beam3 and beam2: auto (default: MBDyn 1.7.3's incremental one, MBDyn's numbers, where a beam can take it), incremental (every beam, or an error), or path-independent (the beam a function of the state)
-    #[arg(long = "beam-update", value_parser = super::args::named::<romdyn::model::BeamUpdateChoice>(), default_value = "auto")]
-    pub beam_update: romdyn::model::BeamUpdateChoice,
+    #[arg(long = "beam-update", value_parser = super::args::named::<romdyn::input::mbdyn::BeamUpdateChoice>(), default_value = "auto")]
+    pub beam_update: romdyn::input::mbdyn::BeamUpdateChoice,
     /// A `set:` variable of the file given another value, NAME=VALUE in the file's (SI) units, replacing what its `set:` gives NAME; repeatable
     #[arg(long = "set", value_name = "NAME=VALUE")]
     pub set: Vec<romdyn::sweep::Parameter>,

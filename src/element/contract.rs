@@ -416,12 +416,6 @@ pub trait Element: Send + Sync {
     fn outputs(&self) -> Option<&dyn Outputs> {
         None
     }
-    /// The element with a beam's (beam3, beam2) rotation update set to `update`
-    /// ([`super::BeamUpdate`]): `None` for elements it does not concern or that have it
-    /// already, an error where the element cannot take it.
-    fn beam_update(&self, _update: super::BeamUpdate) -> Option<Result<Box<dyn Element>, String>> {
-        None
-    }
 }
 
 /// Internal forces and deformation at one evaluation point of a beam, in the section frame.

@@ -9,7 +9,7 @@
 //! and in the blanket `impl Element`; otherwise wrappers fall back to its default.
 
 use super::contract::{Element, ElementState, Events, JacobianSink, Label, NonSmooth, Outputs, ResidualSink, ScalarNodeId};
-use super::{BeamUpdate, HintValue};
+use super::HintValue;
 use super::UnknownKind;
 
 /// An element built around another one. Each method forwards to [`ElementWrapper::inner`]
@@ -72,15 +72,6 @@ pub trait ElementWrapper: Send + Sync {
     fn jacobian(&self, s: &dyn ElementState, out: &mut dyn JacobianSink) {
         self.inner().jacobian(s, out)
     }
-    /// A wrapped beam keeps the default update: the wrapper would have to rebuild itself
-    /// around the changed beam, and a driven element with events is refused (driven.rs).
-    fn beam_update(&self, update: BeamUpdate) -> Option<Result<Box<dyn Element>, String>> {
-        if update == BeamUpdate::PathIndependent {
-            return None;
-        }
-        let _ = self.inner().beam_update(update)?;
-        Some(Err(format!("{} {}: the incremental beam update of a wrapped (driven) beam is not supported by romdyn", self.type_name(), self.label())))
-    }
 }
 
 impl<W: ElementWrapper> Element for W {
@@ -137,8 +128,5 @@ impl<W: ElementWrapper> Element for W {
     }
     fn jacobian(&self, s: &dyn ElementState, out: &mut dyn JacobianSink) {
         ElementWrapper::jacobian(self, s, out)
-    }
-    fn beam_update(&self, update: BeamUpdate) -> Option<Result<Box<dyn Element>, String>> {
-        ElementWrapper::beam_update(self, update)
     }
 }

@@ -1,13 +1,11 @@
 //! The model description, independent of any file format: structural nodes, elements
 //! addressed by label, gravity, and the constraint form.
 
-mod beam_update;
 mod builder;
 mod constraint_form;
 mod problem;
 mod summary;
 
-pub use beam_update::BeamUpdateChoice;
 pub use builder::{ModelBuilder, ModelError};
 pub use constraint_form::ConstraintForm;
 pub use problem::{AbortAfter, AutoCoefficient, EigenFileSuffix, EigenOutput, EigenRequest, EigenSolverRequest, InitialAssembly, InitialValueProblem, Method, MotionOutput, NodeAssembly, NodeSource, OrientationOutput, ResidualNorm, SuffixWidth, WrittenNode};
@@ -128,17 +126,6 @@ impl Model {
             Some(functions) => format!(" (it evaluates {})", functions.join(", ")),
             None => String::new(),
         }
-    }
-
-    /// Sets the rotation update of every beam3 and beam2 ([`crate::element::BeamUpdate`];
-    /// path independent unless asked): an error names a beam that cannot take it.
-    pub fn set_beam_update(&mut self, update: crate::element::BeamUpdate) -> Result<(), String> {
-        for e in self.elements.iter_mut() {
-            if let Some(changed) = e.beam_update(update) {
-                *e = changed?;
-            }
-        }
-        Ok(())
     }
 
     /// Index of the node with this label.

@@ -19,10 +19,10 @@ use std::path::{Path, PathBuf};
 use crate::analysis::Reference;
 use crate::dae::{NodeInput, NodeOutput, State};
 use crate::input::eigen_pencil::PencilPorts;
-use crate::input::mbdyn::{read_model_with, MbdynModel, SetOverrides};
+use crate::input::mbdyn::{read_model_with, BeamUpdateChoice, MbdynModel, ReadOptions, SetOverrides};
 use crate::input::pencil::read_pencil_file;
 use crate::linear::LinearDae;
-use crate::model::{BeamUpdateChoice, InitialValueProblem, Model};
+use crate::model::{InitialValueProblem, Model};
 
 use super::setup::quiet;
 use super::{Application, EigenSettings, Ports, RomRequest, Setting, Study, StudyError, Warning};
@@ -32,8 +32,9 @@ pub enum StudySource {
     /// An MBDyn input file, its `set:` variables given the values of `overrides`.
     ModelFile { path: PathBuf, overrides: SetOverrides },
     /// A model read or built already, with its problem; `file` (when it was read from one)
-    /// names it in errors.
-    Model { model: Box<Model>, problem: Box<InitialValueProblem>, file: Option<PathBuf> },
+    /// names it in errors; `beam_notes` are the reader's notes of beams that keep the
+    /// path-independent update ([`MbdynModel::beam_notes`]), each a study warning.
+    Model { model: Box<Model>, problem: Box<InitialValueProblem>, file: Option<PathBuf>, beam_notes: Vec<String> },
     /// A pencil file: an MBDyn eigenanalysis `.m` file (ports by equation row and unknown
     /// column in `ports`) or a JSON pencil (ports in the file, `ports` empty).
     PencilFile { path: PathBuf, ports: PencilPorts },
@@ -50,12 +51,13 @@ impl StudySource {
 
     /// A model built in Rust (`model::ModelBuilder`) or read already.
     pub fn model(model: Model, problem: InitialValueProblem) -> Self {
-        StudySource::Model { model: Box::new(model), problem: Box::new(problem), file: None }
+        StudySource::Model { model: Box::new(model), problem: Box::new(problem), file: None, beam_notes: Vec::new() }
     }
 
-    /// A model read from `file` (errors name the file).
+    /// A model read from `file` (errors name the file), its beams' update as the reader gave
+    /// it ([`ReadOptions`]).
     pub fn read(m: MbdynModel, file: &Path) -> Self {
-        StudySource::Model { model: Box::new(m.model), problem: Box::new(m.problem), file: Some(file.to_path_buf()) }
+        StudySource::Model { model: Box::new(m.model), problem: Box::new(m.problem), file: Some(file.to_path_buf()), beam_notes: m.beam_notes }
     }
 
     /// A pencil file.
@@ -128,9 +130,11 @@ impl<'p> StudyBuilder<'p> {
         self
     }
 
-    /// The beams' rotation update (`--beam-update`, `beam_update=`) set on a model source for
-    /// the reference (a time integration or not); beams the `auto` update leaves path
-    /// independent are warned about ([`Warning::BeamKeptPathIndependent`]).
+    /// The beams' rotation update (`--beam-update`, `beam_update=`) with which a model file
+    /// is read, for the reference (a time integration or not); beams the `auto` update leaves
+    /// path independent are warned about ([`Warning::BeamKeptPathIndependent`]). A model
+    /// read already took its update from the reader ([`ReadOptions`]): asking for one here is
+    /// refused.
     pub fn beam_update(mut self, choice: BeamUpdateChoice) -> Self {
         self.beam_update = Some(choice);
         self
@@ -171,12 +175,17 @@ impl<'p> StudyBuilder<'p> {
             StudySource::Dae { .. } => self.no_model_options("a linear DAE")?,
             _ => {}
         }
-        let (model, problem, file) = match self.source {
+        let (model, problem, file, notes) = match self.source {
             StudySource::ModelFile { ref path, ref overrides } => {
-                let m = read_model_with(path, overrides)?;
-                (Box::new(m.model), Box::new(m.problem), Some(path.clone()))
+                let options = ReadOptions::new(overrides, self.beam_update.unwrap_or_default(), self.reference.integrates());
+                // A beam that cannot take the update asked for is an error at its card.
+                let m = read_model_with(path, options)?;
+                (Box::new(m.model), Box::new(m.problem), Some(path.clone()), m.beam_notes)
             }
-            StudySource::Model { model, problem, file } => (model, problem, file),
+            StudySource::Model { .. } if self.beam_update.is_some() => {
+                return Err(StudyError::Option { option: Setting::BeamUpdate, message: "the beams' update is chosen when the file is read (input::mbdyn::ReadOptions): a model read or built already keeps its beams' update".into() });
+            }
+            StudySource::Model { model, problem, file, beam_notes } => (model, problem, file, beam_notes),
             StudySource::PencilFile { path, ports } => {
                 let file = read_pencil_file(&path, &ports)?;
                 return Study::from_dae(file.dae, None, EigenSettings { dcoef: self.eigen.dcoef.or(file.dcoef), ..self.eigen });
@@ -189,15 +198,7 @@ impl<'p> StudyBuilder<'p> {
             Some(path) => e.in_file(path),
             None => e,
         };
-        let mut model = *model;
-        let mut notes = Vec::new();
-        if let Some(choice) = self.beam_update {
-            let named = |message: String| match &file {
-                Some(path) => format!("{}: {message}", path.display()),
-                None => message,
-            };
-            notes = model.choose_beam_update(choice, self.reference.integrates()).map_err(|message| StudyError::Option { option: Setting::BeamUpdate, message: named(message) })?;
-        }
+        let model = *model;
         let mut study = match (self.state, self.linearization) {
             (None, Some(_)) => return Err(StudyError::Option { option: Setting::ReferenceTime, message: "a linearization needs the reference solution it was done at".into() }),
             (None, None) => {

@@ -6,7 +6,7 @@
 
 use crate::eigen::EigenRoute;
 use crate::element::BeamUpdate;
-use crate::model::BeamUpdateChoice;
+use crate::input::mbdyn::BeamUpdateChoice;
 use crate::rom::Ranking;
 
 use super::{BelowBand, RomForm, Setting, Solver, StudyError};

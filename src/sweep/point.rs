@@ -7,7 +7,7 @@ use faer::c64;
 
 use crate::analysis::Reference;
 use crate::dae::State;
-use crate::input::mbdyn::{read_model_text, SetOverrides};
+use crate::input::mbdyn::{read_model_text, ReadOptions, SetOverrides};
 use crate::eigen::ModalAnalysis;
 use crate::dae::DofMap;
 use crate::model::Model;
@@ -34,8 +34,8 @@ pub struct SweepOptions {
     /// The rotation update of the model's beams (beam3, beam2): `Auto` is MBDyn's incremental
     /// update at a reference reached by a time integration (`--at T`), as `romdyn eig` on
     /// the same file, and path independent at a static or initial one
-    /// ([`crate::model::BeamUpdateChoice`]).
-    pub beam_update: crate::model::BeamUpdateChoice,
+    /// ([`crate::input::mbdyn::BeamUpdateChoice`]).
+    pub beam_update: crate::input::mbdyn::BeamUpdateChoice,
 }
 
 /// What a design point gives.
@@ -62,8 +62,9 @@ pub fn overrides(names: &[String], values: &[f64]) -> SetOverrides {
 /// Runs one design point on the text of the MBDyn file `name` (the name only labels messages
 /// and resolves includes). `start`: the previous point's reference solution (continuation).
 pub fn run_point(text: &str, name: &Path, names: &[String], values: &[f64], options: &SweepOptions, start: Option<&State>) -> Result<PointResult, StudyError> {
-    let m = read_model_text(text, name, &overrides(names, values))?;
-    let builder = Study::builder(StudySource::read(m, name)).reference(options.reference).ports(options.ports.clone()).eigen(options.eigen).for_request(&options.rom).beam_update(options.beam_update);
+    let overrides = overrides(names, values);
+    let m = read_model_text(text, name, ReadOptions::new(&overrides, options.beam_update, options.reference.integrates()))?;
+    let builder = Study::builder(StudySource::read(m, name)).reference(options.reference).ports(options.ports.clone()).eigen(options.eigen).for_request(&options.rom);
     let study = match start {
         Some(start) => builder.start(start.clone()),
         None => builder,

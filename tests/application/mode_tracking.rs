@@ -28,7 +28,7 @@ fn options() -> SweepOptions {
         form: RomForm::Ordinary,
         modes: 2,
         continuation: false,
-        beam_update: romdyn::model::BeamUpdateChoice::default(),
+        beam_update: romdyn::input::mbdyn::BeamUpdateChoice::default(),
     }
 }
 

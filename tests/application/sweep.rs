@@ -25,7 +25,7 @@ fn pendulum_options() -> SweepOptions {
         form: RomForm::Ordinary,
         modes: 1,
         continuation: false,
-        beam_update: romdyn::model::BeamUpdateChoice::Every(romdyn::element::BeamUpdate::PathIndependent),
+        beam_update: romdyn::input::mbdyn::BeamUpdateChoice::Every(romdyn::element::BeamUpdate::PathIndependent),
     }
 }
 
@@ -221,7 +221,7 @@ fn a_sweep_at_a_reference_time_takes_the_beam_update_eig_takes() {
     // 1.6e-8 and 4.0e-8 relative apart at P = 500 and 1000 N, above the 1e-10 asserted), or
     // a sweep point and `eig` on the same file would part without a message.
     use romdyn::element::BeamUpdate;
-    use romdyn::model::BeamUpdateChoice;
+    use romdyn::input::mbdyn::BeamUpdateChoice;
     let options = |beam_update| SweepOptions {
         reference: Reference::At(0.002),
         ports: Ports::Nodes { inputs: vec!["21:Fy".parse().unwrap()], outputs: vec!["21:y".parse().unwrap()] },

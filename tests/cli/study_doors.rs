@@ -9,7 +9,7 @@ use std::path::Path;
 use romdyn::analysis::Reference;
 use romdyn::dae::{NodeInput, NodeOutput};
 use romdyn::input::mbdyn::MbdynModel;
-use romdyn::model::BeamUpdateChoice;
+use romdyn::input::mbdyn::{BeamUpdateChoice, ReadOptions};
 use romdyn::study::{Application, Setting, Study, StudyError, StudySource, Warning};
 
 use crate::common::cli::{pendulum_variant, romdyn, temp_dir, write_file};
@@ -67,9 +67,10 @@ fn an_unrestrained_model_is_named_at_every_door() {
 #[test]
 fn incremental_beams_at_a_static_reference_are_warned_at_every_door() {
     let make = || {
-        let mut m = model("tests/mbdyn_files/beam3_tip_couple.mbd", &[]);
-        m.model.choose_beam_update(BeamUpdateChoice::Every(romdyn::element::BeamUpdate::Incremental), false).unwrap();
-        m
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files/beam3_tip_couple.mbd");
+        let overrides = romdyn::input::mbdyn::SetOverrides::new();
+        let options = ReadOptions::new(&overrides, BeamUpdateChoice::Every(romdyn::element::BeamUpdate::Incremental), false);
+        romdyn::input::mbdyn::read_model_with(&path, options).unwrap_or_else(|e| panic!("{e}"))
     };
     let last = make().model.nodes.last().unwrap().label;
     for (door, result) in every_door(&make, Reference::Static { load_steps: 10 }, &format!("{last}:Fy"), &format!("{last}:y")) {
@@ -127,4 +128,19 @@ fn a_beam_the_auto_update_leaves_path_independent_is_a_study_warning() {
     assert!(ok, "{err}");
     assert_eq!(err.matches("warning: beam3").count(), 1, "{err}");
     assert!(err.contains("warning: beam3 2") && err.contains("keeps the path-independent update") && err.contains("(--beam-update path-independent silences this)"), "{err}");
+}
+
+/// The beams' update is a reader option: the builder reads a model file with the update asked
+/// for, and refuses one for a model read already (it would be silently ignored).
+#[test]
+fn the_beam_update_of_a_model_read_already_is_refused() {
+    let m = model("tests/mbdyn_files/beam3_tip_couple.mbd", &[]);
+    let path = Path::new("beam3_tip_couple.mbd");
+    match Study::builder(StudySource::read(m, path)).beam_update(BeamUpdateChoice::Auto).build() {
+        Err(StudyError::Option { option, message }) => assert!(option == Setting::BeamUpdate && message.contains("when the file is read"), "{message}"),
+        Err(e) => panic!("{e}"),
+        Ok(_) => panic!("a beam update on a model read already was accepted"),
+    }
+    let study = Study::builder(StudySource::model_file("tests/mbdyn_files/beam3_tip_couple.mbd")).beam_update(BeamUpdateChoice::Every(romdyn::element::BeamUpdate::Incremental)).reference(Reference::Static { load_steps: 10 }).build().unwrap_or_else(|e| panic!("{e}"));
+    assert!(study.warnings().iter().any(|w| matches!(w, Warning::IncrementalBeamsStatic { beams: 2 })), "{:?}", study.warnings());
 }

@@ -14,7 +14,7 @@ use common::fixtures::Noise;
 use romdyn::analysis::{reference_state, run, Reference};
 use romdyn::dae::{check_jacobians, Assembler, State};
 use romdyn::element::{Beam2, Beam3, BeamNode, BeamUpdate, SectionLaw, SectionOrientation};
-use romdyn::input::mbdyn::{read_model_text, SetOverrides};
+use romdyn::input::mbdyn::{read_model_text, BeamUpdateRule, ReadOptions, SetOverrides};
 use romdyn::kinematics::Vec3;
 use romdyn::model::ConstraintForm;
 use romdyn::model::ModelBuilder;
@@ -25,8 +25,7 @@ fn final_positions(file: &str, overrides: &[(&str, f64)], update: BeamUpdate) ->
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(file);
     let text = std::fs::read_to_string(&path).unwrap();
     let overrides = SetOverrides::from_iter(overrides.iter().map(|(k, v)| (k.to_string(), *v)));
-    let mut m = read_model_text(&text, &path, &overrides).unwrap_or_else(|e| panic!("{e}"));
-    m.model.set_beam_update(update).unwrap();
+    let m = read_model_text(&text, &path, ReadOptions { overrides: &overrides, beam_update: BeamUpdateRule::Every(update) }).unwrap_or_else(|e| panic!("{e}"));
     let report = run(&m.model, &m.problem, &mut ()).unwrap_or_else(|e| panic!("{e}"));
     let asm = Assembler::new(&m.model);
     (0..m.model.nodes.len()).map(|i| report.final_state.node_frame(&asm.dofs, i).kin.x).collect()
@@ -57,8 +56,7 @@ fn a_static_equilibrium_with_the_incremental_update_is_mbdyn_s_single_step() {
     // 1.7.3's one-step tip x, 0.66458978410585801 m (the ramp reaches M at its one step).
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files/beam3_tip_couple.mbd");
     let text = std::fs::read_to_string(&path).unwrap().replace("ramp, M, 0., 1., 0.", "const, M");
-    let mut m = read_model_text(&text, &path, &SetOverrides::new()).unwrap_or_else(|e| panic!("{e}"));
-    m.model.set_beam_update(BeamUpdate::Incremental).unwrap();
+    let m = read_model_text(&text, &path, ReadOptions { beam_update: BeamUpdateRule::Every(BeamUpdate::Incremental), ..Default::default() }).unwrap_or_else(|e| panic!("{e}"));
     let asm = Assembler::new(&m.model);
     for load_steps in [1, 10] {
         let st = reference_state(&m.model, &m.problem, Reference::Static { load_steps }).unwrap_or_else(|e| panic!("{e}"));
@@ -148,10 +146,35 @@ fn the_incremental_update_refuses_a_viscous_section_law() {
     let beam = Beam3::new(7, nodes, [SectionOrientation::FromNodes, SectionOrientation::FromNodes], [law.clone(), law]).unwrap();
     let message = beam.clone().with_update(BeamUpdate::Incremental).unwrap_err().to_string();
     assert!(message.contains("beam 7") && message.contains("viscous"), "{message}");
-    b.element(beam);
-    let mut model = b.build().unwrap();
-    assert!(model.set_beam_update(BeamUpdate::Incremental).unwrap_err().contains("beam 7"));
-    model.set_beam_update(BeamUpdate::PathIndependent).unwrap();
+    b.element(beam.clone().with_update(BeamUpdate::PathIndependent).unwrap());
+    b.build().unwrap();
+}
+
+/// The reader gives each beam card its update (`ReadOptions::beam_update`): asked on every
+/// beam, a viscoelastic beam3 is an error at its card; asked wherever possible (`auto` for a
+/// time integration), it keeps the path-independent update with a note naming it, and the
+/// elastic beam takes MBDyn's.
+#[test]
+fn the_reader_names_the_beam_card_that_cannot_take_the_incremental_update() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files/beam3_tip_couple.mbd");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let line = "    beam3: 2, 3, null, 4, null, 5, null, eye, reference, 1, same, same;";
+    assert!(text.contains(line));
+    let viscous = text.replace(line, "    beam3: 2, 3, null, 4, null, 5, null, eye, linear viscoelastic generic, diag, EA, EA, EA, EJ, EJ, EJ, proportional, 1.e-3, same, same;");
+    let every = ReadOptions { beam_update: BeamUpdateRule::Every(BeamUpdate::Incremental), ..Default::default() };
+    let err = read_model_text(&viscous, &path, every).err().expect("a viscous beam3 took the incremental update").to_string();
+    let row = text.lines().position(|l| l == line).unwrap() + 1;
+    assert!(err.contains(&format!("beam3_tip_couple.mbd:{row}:")) && err.contains("beam 2") && err.contains("viscous"), "{err}");
+    let auto = ReadOptions { beam_update: BeamUpdateRule::IncrementalWherePossible, ..Default::default() };
+    let m = read_model_text(&viscous, &path, auto).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(m.beam_notes.len(), 1, "{:?}", m.beam_notes);
+    assert!(m.beam_notes[0].starts_with("beam 2") && m.beam_notes[0].contains("keeps the path-independent update"), "{:?}", m.beam_notes);
+    // Beam 1 is elastic: it latches a history each step (the incremental update's events), beam 2 does not.
+    let with_events: Vec<u32> = m.model.elements.iter().filter(|e| e.type_name() == "beam3" && e.events().is_some()).map(|e| e.label()).collect();
+    assert_eq!(with_events, vec![1]);
+    // The library's default, whatever the analysis: path independent, no note.
+    let m = read_model_text(&viscous, &path, &SetOverrides::new()).unwrap_or_else(|e| panic!("{e}"));
+    assert!(m.beam_notes.is_empty() && m.model.elements.iter().all(|e| e.events().is_none()));
 }
 
 /// MBDyn 1.7.3, `mbdyn -f cantilever.mbd -o out` on examples/cantilever.mbd with

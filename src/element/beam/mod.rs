@@ -135,11 +135,17 @@ impl Beam3 {
 
     /// The beam with `update` ([`BeamUpdate`]); the incremental update refuses viscous laws.
     pub fn with_update(mut self, update: BeamUpdate) -> Result<Self, BeamError> {
+        self.check_update(update)?;
+        self.update = update;
+        Ok(self)
+    }
+
+    /// Whether the beam can take `update`: the incremental update refuses viscous laws.
+    pub fn check_update(&self, update: BeamUpdate) -> Result<(), BeamError> {
         if update == BeamUpdate::Incremental && self.viscous {
             return Err(BeamError::IncrementalViscous(self.label));
         }
-        self.update = update;
-        Ok(self)
+        Ok(())
     }
 
     /// The history of the incremental update before any step: the initial configuration.
@@ -208,12 +214,6 @@ impl Element for Beam3 {
     }
 
 
-    fn beam_update(&self, update: BeamUpdate) -> Option<Result<Box<dyn Element>, String>> {
-        if update == self.update {
-            return None;
-        }
-        Some(self.clone().with_update(update).map(|b| Box::new(b) as Box<dyn Element>).map_err(|e| e.to_string()))
-    }
 
     /// Node `s` (the volume before point `s`) receives `F_s` and `M_s + (p_s − x_s) × F_s`;
     /// node `s + 1` the opposite with arm `p_s − x_{s+1}` ([`finite_volume`]).

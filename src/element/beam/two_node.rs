@@ -210,12 +210,6 @@ impl Element for Beam2 {
     }
 
 
-    fn beam_update(&self, update: BeamUpdate) -> Option<Result<Box<dyn Element>, String>> {
-        if update == self.update {
-            return None;
-        }
-        Some(Ok(Box::new(self.clone().with_update(update))))
-    }
 
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
         let k = self.evaluate(st);

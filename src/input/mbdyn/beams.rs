@@ -11,7 +11,8 @@ use super::cursor::Cursor;
 use super::diagnostic::MbdynError;
 use super::element_context::{ElementContext, Parsed};
 use super::laws::{nonlinear_law, LinearLaw};
-use crate::element::{Beam2, Beam3, BeamNode, SectionLaw, SectionOrientation};
+use super::read_options::BeamUpdateRule;
+use crate::element::{Beam2, Beam3, BeamNode, BeamUpdate, SectionLaw, SectionOrientation};
 use crate::model::Label;
 
 /// Why `hbeam` is refused. MBDyn's hbeam.cc is a two-node beam whose position and
@@ -78,6 +79,10 @@ pub fn beam(keyword: &str, label: Label, c: &mut Cursor, ctx: &ElementContext) -
         custom_output(c)?;
         let span = c.statement().span;
         let beam = Beam2::new(label, nodes, orientation, section_law(&law)).map_err(|e| c.error_at(span, e.to_string()))?;
+        let beam = match updated(c, ctx, &format!("beam2 {label}"), Ok(()))? {
+            Some(update) => beam.with_update(update),
+            None => beam,
+        };
         return Ok(Parsed::Element(Box::new(beam)));
     }
     if keyword != "beam3" && keyword != "beam" {
@@ -91,5 +96,39 @@ pub fn beam(keyword: &str, label: Label, c: &mut Cursor, ctx: &ElementContext) -
     custom_output(c)?;
     let span = c.statement().span;
     let beam = Beam3::new(label, nodes, [orientation_i, orientation_ii], [section_law(&law_i), section_law(&law_ii)]).map_err(|e| c.error_at(span, e.to_string()))?;
+    let takes_incremental = beam.check_update(BeamUpdate::Incremental).map_err(|e| e.to_string());
+    let beam = match updated(c, ctx, &format!("beam3 {label}"), takes_incremental)? {
+        Some(update) => beam.with_update(update).map_err(|e| c.error_at(span, e.to_string()))?,
+        None => beam,
+    };
     Ok(Parsed::Element(Box::new(beam)))
+}
+
+/// The update the beam `name` takes under the reader's rule ([`BeamUpdateRule`]), `None`
+/// for the path-independent default; `takes_incremental` says why the beam itself cannot
+/// take the incremental one. A driven beam cannot either: its history would be latched by
+/// the beam's events, which a driven element does not carry (driven.rs). Where the rule asks
+/// for the incremental update wherever possible, a beam that cannot take it keeps the
+/// path-independent one with a note; where it asks for it on every beam, that is an error at
+/// the card.
+fn updated(c: &Cursor, ctx: &ElementContext, name: &str, takes_incremental: Result<(), String>) -> Result<Option<BeamUpdate>, MbdynError> {
+    let cannot = if c.statement().driven.is_some() {
+        Err(format!("{name}: the incremental beam update of a driven beam is not supported by romdyn (MBDyn 1.7.3 runs it)"))
+    } else {
+        takes_incremental
+    };
+    match ctx.beam_update {
+        BeamUpdateRule::Every(BeamUpdate::PathIndependent) => Ok(None),
+        BeamUpdateRule::Every(BeamUpdate::Incremental) => match cannot {
+            Ok(()) => Ok(Some(BeamUpdate::Incremental)),
+            Err(why) => Err(c.error_at(c.statement().span, why)),
+        },
+        BeamUpdateRule::IncrementalWherePossible => match cannot {
+            Ok(()) => Ok(Some(BeamUpdate::Incremental)),
+            Err(why) => {
+                ctx.beam_notes.borrow_mut().push(format!("{why}; this beam keeps the path-independent update, so its numbers can differ from MBDyn's (MBDyn's beam.cc is incremental)"));
+                Ok(None)
+            }
+        },
+    }
 }

@@ -47,6 +47,10 @@ pub struct ElementContext<'a> {
     pub seq: usize,
     /// `model: static` in control data: every node is static and bodies only weigh.
     pub static_model: bool,
+    /// The rotation update beam cards take.
+    pub beam_update: super::read_options::BeamUpdateRule,
+    /// Why beams keep the path-independent update where the incremental one was wanted.
+    pub beam_notes: &'a std::cell::RefCell<Vec<String>>,
 }
 
 impl<'a> ElementContext<'a> {

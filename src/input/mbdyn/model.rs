@@ -14,7 +14,7 @@ use super::element_context::{ElementContext, Parsed};
 use super::elements::{counted_kind, element, label_space};
 use super::laws::{constitutive_law_card, Laws};
 use super::nodes::{node_statement, Nodes};
-use super::expr::SetOverrides;
+use super::read_options::{BeamUpdateRule, ReadOptions};
 use super::parser::{known, same_keyword, Block, Document, CARDS};
 use super::written_nodes::{parse_file_with, parse_text_with};
 use super::problem::{data, initial_value};
@@ -25,27 +25,33 @@ use crate::model::{InitialValueProblem, Model, ModelBuilder, MotionOutput, NodeK
 pub struct MbdynModel {
     pub model: Model,
     pub problem: InitialValueProblem,
+    /// Why beams that [`BeamUpdateRule::IncrementalWherePossible`] could not give MBDyn's
+    /// incremental update keep the path-independent one (empty if none): a study makes each
+    /// a warning.
+    pub beam_notes: Vec<String>,
 }
 
 /// Reads an MBDyn input file into a model.
 pub fn read_model(path: &Path) -> Result<MbdynModel, MbdynError> {
-    read_model_with(path, &SetOverrides::new())
+    read_model_with(path, ReadOptions::default())
 }
 
-/// Reads an MBDyn input file into a model, `set:` variables overridden (a design point;
-/// a variable the file does not declare is an error).
-pub fn read_model_with(path: &Path, overrides: &SetOverrides) -> Result<MbdynModel, MbdynError> {
-    checked(parse_file_with(path, overrides)?)
+/// Reads an MBDyn input file into a model with `options` ([`ReadOptions`]: `set:`
+/// variables overridden, the beams' update; a bare `&SetOverrides` is accepted).
+pub fn read_model_with<'o>(path: &Path, options: impl Into<ReadOptions<'o>>) -> Result<MbdynModel, MbdynError> {
+    let options = options.into();
+    checked(parse_file_with(path, options.overrides)?, options.beam_update)
 }
 
 /// [`read_model_with`] on the text of a file named `name` (includes resolve relative to its
 /// folder): a sweep's work unit is the file's text, not a path another machine may lack.
-pub fn read_model_text(text: &str, name: &Path, overrides: &SetOverrides) -> Result<MbdynModel, MbdynError> {
-    checked(parse_text_with(text, name, overrides)?)
+pub fn read_model_text<'o>(text: &str, name: &Path, options: impl Into<ReadOptions<'o>>) -> Result<MbdynModel, MbdynError> {
+    let options = options.into();
+    checked(parse_text_with(text, name, options.overrides)?, options.beam_update)
 }
 
-fn checked(doc: Document) -> Result<MbdynModel, MbdynError> {
-    let m = build(&doc)?;
+fn checked(doc: Document, beam_update: BeamUpdateRule) -> Result<MbdynModel, MbdynError> {
+    let m = build_with(&doc, beam_update)?;
     // An empty, blank or comments-only file would "run" and write empty outputs.
     if m.model.nodes.is_empty() && m.model.elements.is_empty() {
         let at = Span { file: 0, line: 1, column: 1 };
@@ -143,6 +149,11 @@ fn output_meter(cd: Option<&Block>, src: &super::diagnostic::Sources, drives: &D
 
 /// Builds the model from a parsed document.
 pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
+    build_with(doc, BeamUpdateRule::default())
+}
+
+/// [`build`] with the beams' update given by `beam_update`.
+fn build_with(doc: &Document, beam_update: BeamUpdateRule) -> Result<MbdynModel, MbdynError> {
     let src = &doc.sources;
     let first = doc.blocks.first().map_or(Span::default(), |b| b.span);
     let mut seen: HashMap<&str, Span> = HashMap::new();
@@ -250,6 +261,7 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
     // Variable-mass bodies weigh in a uniform field only.
     let mut variable_bodies = Vec::new();
     let mut beams = super::element_context::BeamNodes::new();
+    let beam_notes = std::cell::RefCell::new(Vec::new());
     // Elements are kept until the block ends: a `bind` reads the ones above it.
     let mut built: Vec<(&'static str, Span, usize, Box<dyn crate::element::Element>)> = Vec::new();
     let mut output_only = std::collections::HashSet::new();
@@ -270,7 +282,7 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
         {
             output_only.insert(("inertia", *x as u32));
         }
-        let ctx = ElementContext { nodes: &nodes, frames: &cards.frames, drives: &cards.drives, laws: &cards.laws, beams: &beams, seq: st.seq, static_model };
+        let ctx = ElementContext { nodes: &nodes, frames: &cards.frames, drives: &cards.drives, laws: &cards.laws, beams: &beams, seq: st.seq, static_model, beam_update, beam_notes: &beam_notes };
         let label_span = c.here();
         cards.drives.functions.take_used();
         let parsed = element(st, &mut c, &ctx)?;
@@ -382,7 +394,7 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
     b.step_drives(cards.drives.take_stepped());
     b.step_drives(memories);
     let model = b.build().map_err(|e| src.error(first, e.to_string()))?;
-    Ok(MbdynModel { model, problem })
+    Ok(MbdynModel { model, problem, beam_notes: beam_notes.into_inner() })
 }
 
 /// A gravity field romdyn applies body by body (a constant uniform field is the model's).
