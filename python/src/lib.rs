@@ -517,8 +517,10 @@ impl Rom {
     }
 
     /// Writes the ROM as `romdyn rom -o` does, the format by the extension: `.json`, `.mat`
-    /// (MATLAB v5), `.npz` or `.m` (an Octave/MATLAB script building `sys` with `ss`/`dss`,
-    /// names, units and the sampling time); atomically (a failed write leaves no file).
+    /// (MATLAB v5), `.npz`, `.m` (an Octave/MATLAB script building `sys` with `ss`/`dss`,
+    /// names, units and the sampling time) or `.fmu` (an FMI 2.0 FMU: model exchange and
+    /// co-simulation of an ordinary ROM, co-simulation of a discrete one; its binary built
+    /// with the machine's C compiler); atomically (a failed write leaves no file).
     fn save(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
         py.detach(|| self.export.write(&path)).map_err(|e| RomdynError::new_err(format!("{}: {e}", path.display())))
     }

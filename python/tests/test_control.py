@@ -153,7 +153,7 @@ def test_save_writes_the_clis_files(beam, romdyn_cli, tmp_path):
         assert (tmp_path / f"py.{ext}").read_text() == (tmp_path / f"cli.{ext}").read_text()
     doc = json.loads((tmp_path / "py.json").read_text())
     assert doc["sample_time"] == 1 / FS and doc["time"].startswith("discrete")
-    with pytest.raises(romdyn.RomdynError, match=r"unknown ROM file format \(the extension must be .json, .mat, .npz or .m\)"):
+    with pytest.raises(romdyn.RomdynError, match=r"unknown ROM file format \(the extension must be .json, .mat, .npz, .m or .fmu\)"):
         rom.save(tmp_path / "rom.txt")
 
 

@@ -101,7 +101,7 @@ pub struct RomArgs {
     pub rom: RomChoiceArgs,
     #[command(flatten)]
     pub control: ControlArgs,
-    /// ROM file: .json, .mat (MATLAB v5), .npz (NumPy) or .m (an Octave/MATLAB script building sys with ss/dss, names and units); JSON to stdout if absent
+    /// ROM file: .json, .mat (MATLAB v5), .npz (NumPy), .m (an Octave/MATLAB script building sys with ss/dss, names and units) or .fmu (an FMI 2.0 FMU, model exchange and co-simulation, built with the C compiler $CC or cc); JSON to stdout if absent
     #[arg(short = 'o', long = "out", value_name = "FILE")]
     pub file: Option<PathBuf>,
     /// Also write PREFIX.csv, PREFIX.svg and PREFIX.png: Bode plot of the full model and the ROM

@@ -39,14 +39,6 @@ fn npy_ordered(descr: &str, shape: &[usize], fortran: bool, data: &[u8]) -> Vec<
     out
 }
 
-/// CRC-32 (IEEE 802.3, reflected polynomial 0xEDB88320), as ZIP requires.
-pub(crate) fn crc32(data: &[u8]) -> u32 {
-    let table: Vec<u32> = (0..256u32)
-        .map(|n| (0..8).fold(n, |c, _| if c & 1 != 0 { 0xEDB8_8320 ^ (c >> 1) } else { c >> 1 }))
-        .collect();
-    !data.iter().fold(!0u32, |c, &b| table[((c ^ b as u32) & 0xff) as usize] ^ (c >> 8))
-}
-
 impl NpzWriter {
     pub fn new() -> Self {
         Self::default()
@@ -100,47 +92,9 @@ impl NpzWriter {
         self.push(name, npy(&format!("<U{width}"), &[list.len()], &data))
     }
 
-    /// The ZIP archive: local headers and data, central directory, end record (stored, no
-    /// compression; date 1980-01-01).
+    /// The ZIP archive of the `.npy` members ([`super::zip::stored_archive`]).
     pub fn to_bytes(&self) -> Vec<u8> {
-        let mut out = Vec::new();
-        let mut central = Vec::new();
-        for (name, data) in &self.entries {
-            let (crc, size, offset) = (crc32(data), data.len() as u32, out.len() as u32);
-            let common = |v: &mut Vec<u8>| {
-                v.extend(20u16.to_le_bytes()); // version needed
-                v.extend(0u16.to_le_bytes()); // flags
-                v.extend(0u16.to_le_bytes()); // stored
-                v.extend(0u16.to_le_bytes()); // time
-                v.extend(0x21u16.to_le_bytes()); // date 1980-01-01
-                v.extend(crc.to_le_bytes());
-                v.extend(size.to_le_bytes());
-                v.extend(size.to_le_bytes());
-                v.extend((name.len() as u16).to_le_bytes());
-                v.extend(0u16.to_le_bytes()); // extra length
-            };
-            out.extend(0x0403_4b50u32.to_le_bytes());
-            common(&mut out);
-            out.extend(name.as_bytes());
-            out.extend(data);
-            central.extend(0x0201_4b50u32.to_le_bytes());
-            central.extend(20u16.to_le_bytes()); // version made by
-            common(&mut central);
-            central.extend([0u8; 8]); // comment length, disk, internal and external attributes
-            central.extend([0u8; 2]);
-            central.extend(offset.to_le_bytes());
-            central.extend(name.as_bytes());
-        }
-        let (cd_offset, cd_size, n) = (out.len() as u32, central.len() as u32, self.entries.len() as u16);
-        out.extend(central);
-        out.extend(0x0605_4b50u32.to_le_bytes());
-        out.extend([0u8; 4]);
-        out.extend(n.to_le_bytes());
-        out.extend(n.to_le_bytes());
-        out.extend(cd_size.to_le_bytes());
-        out.extend(cd_offset.to_le_bytes());
-        out.extend(0u16.to_le_bytes());
-        out
+        super::zip::stored_archive(&self.entries)
     }
 
     /// Writes the archive atomically.

@@ -42,10 +42,12 @@ pub fn unit_of_name(name: &str) -> String {
 /// Why a ROM could not be written.
 #[derive(Debug, thiserror::Error)]
 pub enum ExportError {
-    #[error("{0}: unknown ROM file format (the extension must be .json, .mat, .npz or .m)")]
+    #[error("{0}: unknown ROM file format (the extension must be .json, .mat, .npz, .m or .fmu)")]
     UnknownFormat(String),
-    #[error("{0}: is a directory; give a ROM file name ending in .json, .mat, .npz or .m")]
+    #[error("{0}: is a directory; give a ROM file name ending in .json, .mat, .npz, .m or .fmu")]
     IsDirectory(String),
+    #[error("{0}: {1}")]
+    Fmu(String, super::fmu::FmuError),
     #[error(transparent)]
     Output(#[from] super::atomic::OutputError),
 }
@@ -56,6 +58,7 @@ enum Format {
     Mat,
     Npz,
     MScript,
+    Fmu,
 }
 
 fn format_of(path: &Path) -> Result<Format, ExportError> {
@@ -68,6 +71,7 @@ fn format_of(path: &Path) -> Result<Format, ExportError> {
         Some("mat") => Ok(Format::Mat),
         Some("npz") => Ok(Format::Npz),
         Some("m") => Ok(Format::MScript),
+        Some("fmu") => Ok(Format::Fmu),
         _ => Err(ExportError::UnknownFormat(path.display().to_string())),
     }
 }
@@ -194,6 +198,7 @@ impl RomExport {
             Format::MScript => {
                 super::atomic::write_atomic_bytes(path, super::rom_script::script(self).as_bytes())?;
             }
+            Format::Fmu => super::fmu::write_fmu(self, path)?,
         }
         Ok(())
     }

@@ -1,6 +1,7 @@
 //! Round trip through a minimal ZIP + .npy reader.
 
 use super::*;
+use crate::output::zip::crc32;
 
 fn u16_at(b: &[u8], i: usize) -> usize {
     u16::from_le_bytes([b[i], b[i + 1]]) as usize
