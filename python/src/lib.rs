@@ -302,6 +302,21 @@ impl StudyPy {
     /// unstable modes kept whole; `spa=True`: singular perturbation approximation, which keeps
     /// the static gain), `sample_rate` [Hz] (a discrete-time ROM; `discretize` "zoh" (default),
     /// "tustin" (with `prewarp` [Hz]) or "matched").
+    /// Writes the report of `rom` (one of this study's ROMs) as `romdyn rom --report DIR`
+    /// does: `dir/index.html` (summary, warnings, modal table, each kept mode's shape
+    /// animated in 3-D on the model's nodes) and the Bode plot `dir/bode.{csv,svg,png}` on
+    /// the grid `fmin`, `fmax` [Hz] (default: a decade around the kept modes), `points`.
+    /// Returns the page's path.
+    #[pyo3(signature = (rom, dir, title = "romdyn ROM", fmin = None, fmax = None, points = 400))]
+    #[allow(clippy::too_many_arguments)]
+    fn report(&self, py: Python<'_>, rom: &Rom, dir: PathBuf, title: &str, fmin: Option<f64>, fmax: Option<f64>, points: usize) -> PyResult<PathBuf> {
+        let grid = FrequencyGrid { fmin_hz: fmin, fmax_hz: fmax, points };
+        let check = py.detach(|| self.study.check_rom(&rom.rom, &grid)).map_err(py_err)?;
+        let report = self.study.report(&rom.rom, &check, title);
+        let files = py.detach(|| report.write(&dir, &check.comparison.responses(&self.study, "ROM"))).map_err(|e| RomdynError::new_err(e.to_string()))?;
+        Ok(files[0].clone())
+    }
+
     #[pyo3(signature = (count = None, band = None, modes = None, residualize = None, by = "frequency", below_band = "drop", damping = None, form = "ordinary", fmin = None, fmax = None, points = 400, minimal = None, balanced = None, hankel_tol = None, spa = false, sample_rate = None, discretize = "zoh", prewarp = None))]
     #[allow(clippy::too_many_arguments)]
     fn reduce(&self, py: Python<'_>, count: Option<usize>, band: Option<(f64, f64)>, modes: Option<Vec<usize>>, residualize: Option<&Bound<'_, PyAny>>, by: &str, below_band: &str, damping: Option<&Bound<'_, PyAny>>, form: &str, fmin: Option<f64>, fmax: Option<f64>, points: usize, minimal: Option<f64>, balanced: Option<usize>, hankel_tol: Option<f64>, spa: bool, sample_rate: Option<f64>, discretize: &str, prewarp: Option<f64>) -> PyResult<Rom> {

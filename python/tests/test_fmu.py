@@ -87,3 +87,24 @@ def test_a_descriptor_rom_is_refused_with_the_reason(beam, tmp_path):
     with pytest.raises(romdyn.RomdynError, match=r"descriptor ROM .* has no FMU here: export the ordinary form"):
         rom.save(tmp_path / "descriptor.fmu")
     assert not (tmp_path / "descriptor.fmu").exists()
+
+
+def test_the_report_shows_the_kept_modes_on_the_geometry(beam, tmp_path):
+    import json
+
+    rom = beam.reduce(count=3)
+    page = beam.report(rom, tmp_path / "report", title="beam <3 modes>")
+    assert page == tmp_path / "report" / "index.html"
+    for name in ("bode.csv", "bode.svg", "bode.png"):
+        assert (tmp_path / "report" / name).stat().st_size > 0
+    html = page.read_text()
+    assert "<title>beam &lt;3 modes&gt;</title>" in html
+    data = json.loads(html.split('id="romdyn-geometry">')[1].split("</script>")[0])
+    # examples/simply_supported_beam.mbd: 9 nodes on a line, 4 beam3 elements (8 segments);
+    # kept modes 1, 3, 5 (romdyn eig: 49.33, 193.56, 249.76 Hz).
+    assert len(data["nodes"]) == 9 and len(data["edges"]) == 8
+    assert [m["label"].split(":")[0] for m in data["modes"]] == ["mode 1", "mode 3", "mode 5"]
+    # The first bending mode moves mid-span (node 5) most, in y, and not the supports.
+    shape = np.hypot(np.array(data["modes"][0]["shape_re"]), np.array(data["modes"][0]["shape_im"]))
+    assert np.argmax(np.linalg.norm(shape, axis=1)) == data["labels"].index(5)
+    assert np.linalg.norm(shape[data["labels"].index(1)]) < 1e-9 and np.linalg.norm(shape[data["labels"].index(9)][1]) < 1e-9

@@ -107,6 +107,9 @@ pub struct RomArgs {
     /// Also write PREFIX.csv, PREFIX.svg and PREFIX.png: Bode plot of the full model and the ROM
     #[arg(long, value_name = "PREFIX")]
     pub bode: Option<PathBuf>,
+    /// Also write DIR/index.html: a report to open in a browser (summary, warnings, modal table, Bode plot DIR/bode.{csv,svg,png}, each kept mode's shape animated in 3-D on the model's nodes)
+    #[arg(long, value_name = "DIR")]
+    pub report: Option<PathBuf>,
     /// Also write PREFIX.{csv,svg,png}: the transfer matrix as a grid of Bode-magnitude panels, full model and ROM (paper Figs. 9, 10)
     #[arg(long, value_name = "PREFIX")]
     pub grid: Option<PathBuf>,
@@ -199,6 +202,12 @@ fn rom_outputs(a: &RomArgs) -> Result<Vec<(&'static str, PathBuf)>> {
     if let Some(prefix) = &a.grid {
         out.extend(plot_files("--grid", prefix)?);
     }
+    if let Some(dir) = &a.report {
+        if dir.is_file() {
+            anyhow::bail!("--report: {} is a file; give a folder for index.html and its plots", dir.display());
+        }
+        out.extend(romdyn::output::report::Report::files(dir).map(|f| ("--report", f)));
+    }
     if let Some(prefix) = &a.transmissibility {
         out.extend(plot_files("--transmissibility", prefix)?);
         if !a.diagonal {
@@ -241,6 +250,12 @@ pub fn run(a: RomArgs) -> Result<()> {
         }
         if let Some(prefix) = &a.bode {
             lines.push(write_bode_files(&check.comparison.responses(&study, "ROM"), prefix)?);
+        }
+        if let Some(dir) = &a.report {
+            let source = a.pencil.model.as_ref().or(a.pencil.pencil.as_ref()).map_or(String::new(), |p| p.display().to_string());
+            let report = study.report(&rom, &check, &format!("ROM of {source}"));
+            let files = report.write(dir, &check.comparison.responses(&study, "ROM")).with_context(|| format!("writing the report in {}", dir.display()))?;
+            lines.push(format!("wrote {} (open it in a browser) and {}/bode.{{csv,svg,png}}", files[0].display(), dir.display()));
         }
         lines.extend(write_application_files(&a, &study, &rom, &check)?);
         Ok(lines)

@@ -24,6 +24,7 @@ pub mod modal_coordinates;
 pub mod motion;
 pub mod npz;
 pub(crate) mod zip;
+pub mod report;
 pub mod response_csv;
 pub mod rom_export;
 pub mod rom_file;

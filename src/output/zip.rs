@@ -53,6 +53,7 @@ pub(crate) fn stored_archive(entries: &[(String, Vec<u8>)]) -> Vec<u8> {
 
 /// The members of a stored archive written by [`stored_archive`]: (name, content), read
 /// back through the central directory (for tests and for checking an archive just written).
+#[cfg(test)]
 pub(crate) fn stored_members(b: &[u8]) -> Option<Vec<(String, Vec<u8>)>> {
     let u16_at = |i: usize| b.get(i..i + 2).map(|s| u16::from_le_bytes([s[0], s[1]]) as usize);
     let u32_at = |i: usize| b.get(i..i + 4).map(|s| u32::from_le_bytes([s[0], s[1], s[2], s[3]]) as usize);

@@ -37,6 +37,7 @@ mod free;
 mod linear;
 mod names;
 mod reduce;
+mod report;
 mod response;
 mod setting;
 mod setup;

@@ -10,4 +10,5 @@ mod cli;
 mod docs_commands;
 mod node_histories;
 mod pencil_input;
+mod report;
 mod study_doors;
