@@ -38,7 +38,7 @@ const GENERATED: &[(&str, Source)] = &[
 ];
 
 /// Options whose value is a file romdyn writes (not an input that must exist).
-const OUTPUT_OPTIONS: &[&str] = &["-o", "--out", "--bode", "--grid", "--transmissibility", "--imposed-out", "--table", "--plot", "--interpolated"];
+const OUTPUT_OPTIONS: &[&str] = &["-o", "--out", "--bode", "--report", "--grid", "--transmissibility", "--imposed-out", "--table", "--plot", "--interpolated"];
 
 /// Extensions of the files romdyn reads or writes; a token with one of these (or a `/`) is a path.
 const FILE_EXTENSIONS: &[&str] = &[".mbd", ".json", ".m", ".mtx", ".mat", ".npz", ".csv"];
