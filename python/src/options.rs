@@ -122,9 +122,10 @@ fn get<'py, T: FromPyObjectOwned<'py>>(d: &Bound<'py, PyDict>, key: &str) -> PyR
     }
 }
 
-/// Keys a sweep's options dict may hold (those of `Model.study` and `Study.reduce`, plus
+/// Keys a sweep's options dict may hold (those of `Model.study` and `Study.reduce`, whose
+/// balanced and minimal reductions the library refuses in a sweep with the reason, plus
 /// "lowest", "continuation" and "beam_update", the CLI's `--beam-update`).
-const KEYS: [&str; 21] = ["beam_update", "reference", "load_steps", "inputs", "outputs", "ports", "remove_springs", "imposed", "route", "dcoef", "solver", "count", "band", "modes", "residualize", "by", "below_band", "damping", "form", "lowest", "continuation"];
+const KEYS: [&str; 28] = ["beam_update", "reference", "load_steps", "inputs", "outputs", "ports", "remove_springs", "imposed", "route", "dcoef", "solver", "count", "band", "modes", "residualize", "by", "below_band", "damping", "form", "lowest", "continuation", "sample_rate", "discretize", "prewarp", "balanced", "hankel_tol", "spa", "minimal"];
 
 /// A sweep's options dict.
 pub fn sweep(d: &Bound<'_, PyDict>) -> PyResult<SweepOptions> {
@@ -148,6 +149,7 @@ pub fn sweep(d: &Bound<'_, PyDict>) -> PyResult<SweepOptions> {
         &get::<String>(d, "below_band")?.unwrap_or_else(|| "drop".into()),
         d.get_item("damping")?.as_ref(),
     )?;
+    let rom = control(rom, get(d, "minimal")?, get(d, "balanced")?, get(d, "hankel_tol")?, get(d, "spa")?.unwrap_or(false), get(d, "sample_rate")?, &get::<String>(d, "discretize")?.unwrap_or_else(|| "zoh".into()), get(d, "prewarp")?)?;
     let form = form(&get::<String>(d, "form")?.unwrap_or_else(|| "ordinary".into()))?;
     let modes = get(d, "lowest")?.unwrap_or(4);
     // The CLI's --lowest bounds (the points' count is checked with them in run_points).
@@ -157,5 +159,7 @@ pub fn sweep(d: &Bound<'_, PyDict>) -> PyResult<SweepOptions> {
         return Err(bad("continuation", "needs reference=\"static\" (it starts each static equilibrium from the previous point's)"));
     }
     let beam_update = beam_update(get::<String>(d, "beam_update")?.as_deref())?;
-    Ok(SweepOptions { reference, ports, eigen, rom, form, modes, continuation, beam_update })
+    let options = SweepOptions { reference, ports, eigen, rom, form, modes, continuation, beam_update };
+    options.check().map_err(py_err)?;
+    Ok(options)
 }

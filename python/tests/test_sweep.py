@@ -106,3 +106,15 @@ def test_interpolated_rom_at_a_midpoint_has_the_closed_form_error():
         r.interpolate(KY=450.0)
     with pytest.raises(ValueError, match="one value for each swept parameter"):
         r.interpolate(KX=1.0)
+
+
+def test_a_sweep_of_discrete_roms_and_the_refused_reductions(examples):
+    import scipy.linalg
+
+    cont = romdyn.sweep(examples / "pendulum.mbd", set={"L": [1.0, 2.0]}, **OPTIONS)
+    disc = romdyn.sweep(examples / "pendulum.mbd", set={"L": [1.0, 2.0]}, sample_rate=2048.0, **OPTIONS)
+    # Zero-order hold on the same modal states: Ad = expm(A / 2048) point by point (1e-12).
+    for k in range(2):
+        assert np.allclose(disc.A[:, :, k], scipy.linalg.expm(cont.A[:, :, k] / 2048.0), rtol=0, atol=1e-12)
+    with pytest.raises(ValueError, match=r"^balanced: "):
+        romdyn.sweep(examples / "pendulum.mbd", set={"L": [1.0]}, balanced=1, **OPTIONS)

@@ -12,7 +12,7 @@ use romdyn::output::prefixed_path;
 use romdyn::sweep::{check_lowest, check_parameters, grid, interpolation_point, run_point, sweep, worker_threads, SweepOptions};
 
 use super::args::PencilArgs;
-use super::rom::RomChoiceArgs;
+use super::rom::{ControlArgs, RomChoiceArgs};
 
 #[derive(Args, Debug)]
 pub struct SweepArgs {
@@ -20,6 +20,11 @@ pub struct SweepArgs {
     pub pencil: PencilArgs,
     #[command(flatten)]
     pub rom: RomChoiceArgs,
+    // Discrete-time ROMs at every point (--sample-rate, --discretize, --prewarp, as `romdyn rom`:
+    // the states stay the modal ones, so the stacked arrays interpolate); --balanced and
+    // --minimal are refused by the library (each point has its own basis).
+    #[command(flatten)]
+    pub control: ControlArgs,
     /// Number of lowest dynamic modes of the full model at the first design point, followed through the others by their shapes (MAC), in the table, plot and arrays (a pair counts once)
     #[arg(long, value_name = "N", default_value_t = 4)]
     pub lowest: usize,
@@ -84,12 +89,13 @@ pub fn run(a: SweepArgs) -> Result<()> {
         reference: a.pencil.reference.reference(),
         ports: a.pencil.ports()?,
         eigen: a.pencil.eigen(),
-        rom: a.rom.request(),
+        rom: a.control.apply(a.rom.request())?,
         form: a.rom.form(),
         modes: a.lowest,
         continuation: a.continuation,
         beam_update: a.pencil.beam_update,
     };
+    options.check()?;
     let bar = if std::io::stderr().is_terminal() { ProgressBar::new(points.len() as u64) } else { ProgressBar::hidden() };
     bar.set_style(ProgressStyle::with_template("{bar:30} {pos}/{len} design points eta {eta}").unwrap_or_else(|_| ProgressStyle::default_bar()));
     let pool = rayon::ThreadPoolBuilder::new().num_threads(jobs).build().context("starting the worker threads")?;

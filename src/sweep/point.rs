@@ -15,7 +15,7 @@ use crate::rom::mode_units;
 
 use super::track::{sketch, PointMode};
 use crate::output::rom_file::RomExport;
-use crate::study::{EigenSettings, Ports, RomForm, RomRequest, Study, StudyError, StudySource};
+use crate::study::{EigenSettings, Ports, RomForm, RomRequest, Setting, Study, StudyError, StudySource};
 
 /// What every design point computes (the options of `romdyn rom`).
 #[derive(Clone, Debug)]
@@ -36,6 +36,24 @@ pub struct SweepOptions {
     /// the same file, and path independent at a static or initial one
     /// ([`crate::input::mbdyn::BeamUpdateChoice`]).
     pub beam_update: crate::input::mbdyn::BeamUpdateChoice,
+}
+
+impl SweepOptions {
+    /// Refuses the ROM options whose states are not the modal coordinates the sweep tracks:
+    /// balanced reduction and the minimal realization change the state basis point by point
+    /// (each point's own Hankel or Kalman basis), so the stacked `A[:,:,k]` would neither be
+    /// in one basis nor interpolate. A discrete-time ROM keeps the modal states (`Ad` is a
+    /// function of `A` on the same coordinates) and is taken.
+    pub fn check(&self) -> Result<(), StudyError> {
+        let refuse = |option, what: &str| Err(StudyError::Option { option, message: format!("{what} is not available in a sweep: its states are each point's own basis, not the modal coordinates the sweep stacks in one basis and interpolates; reduce one design point with `romdyn rom --set` instead") });
+        if self.rom.balanced.is_some() {
+            return refuse(Setting::Balanced, "balanced reduction");
+        }
+        if self.rom.minimal.is_some() {
+            return refuse(Setting::Minimal, "the minimal realization");
+        }
+        Ok(())
+    }
 }
 
 /// What a design point gives.
@@ -62,6 +80,7 @@ pub fn overrides(names: &[String], values: &[f64]) -> SetOverrides {
 /// Runs one design point on the text of the MBDyn file `name` (the name only labels messages
 /// and resolves includes). `start`: the previous point's reference solution (continuation).
 pub fn run_point(text: &str, name: &Path, names: &[String], values: &[f64], options: &SweepOptions, start: Option<&State>) -> Result<PointResult, StudyError> {
+    options.check()?;
     let overrides = overrides(names, values);
     let m = read_model_text(text, name, ReadOptions::new(&overrides, options.beam_update, options.reference.integrates()))?;
     let builder = Study::builder(StudySource::read(m, name)).reference(options.reference).ports(options.ports.clone()).eigen(options.eigen).for_request(&options.rom);

@@ -242,3 +242,45 @@ fn a_sweep_at_a_reference_time_takes_the_beam_update_eig_takes() {
         assert!(apart > 1e-10, "point {k}: the path-independent update gave the same mode {}", independent[k]);
     }
 }
+
+/// A sweep of discrete-time ROMs (issue 37 point 3: `--sample-rate` in every export): each
+/// point's stacked `Ad` is `e^{A T}` of the same point's continuous ROM in the same
+/// consistent basis (zero-order hold keeps the modal states; the basis change is orthogonal
+/// and commutes with the exponential), to 1e-12; balanced reduction and the minimal
+/// realization are refused by the library, naming the setting.
+#[test]
+fn a_sweep_of_discrete_roms_keeps_the_modal_basis_and_refuses_balancing() {
+    let fs = 2048.0;
+    let continuous = run("pendulum.mbd", &["L=1:2:3"], &pendulum_options());
+    let mut options = pendulum_options();
+    options.rom.sampling = romdyn::study::sampling(Some(fs), "zoh", None).unwrap();
+    let discrete = run("pendulum.mbd", &["L=1:2:3"], &options);
+    let (c, d) = (continuous.consistent_roms(), discrete.consistent_roms());
+    for k in 0..3 {
+        let (c, d) = (&c[k].as_ref().unwrap().rom, &d[k].as_ref().unwrap().rom);
+        assert_eq!(d.sample_time, Some(1.0 / fs));
+        assert_eq!(c.states, d.states, "point {k}: the same modal states");
+        let at = faer::Mat::from_fn(c.a.nrows(), c.a.ncols(), |i, j| c.a[(i, j)] / fs);
+        let expected = romdyn::rom::expm(&at);
+        for i in 0..expected.nrows() {
+            for j in 0..expected.ncols() {
+                assert!((d.a[(i, j)] - expected[(i, j)]).abs() < 1e-12, "point {k}: Ad[{i},{j}] {} vs e^(A T) {}", d.a[(i, j)], expected[(i, j)]);
+            }
+        }
+    }
+    for (setting, set) in [(romdyn::study::Setting::Balanced, true), (romdyn::study::Setting::Minimal, false)] {
+        let mut options = pendulum_options();
+        if set {
+            options.rom.balanced = romdyn::study::balancing(Some(1), None, false).unwrap();
+        } else {
+            options.rom.minimal = romdyn::study::minimal_tolerance(Some(1e-9)).unwrap();
+        }
+        match options.check() {
+            Err(romdyn::study::StudyError::Option { option, message }) => assert!(option == setting && message.contains("not available in a sweep"), "{message}"),
+            other => panic!("{setting:?}: {other:?}"),
+        }
+        // A Rust caller that skips the check gets every point refused, not a mixed basis.
+        let r = run("pendulum.mbd", &["L=1:2:2"], &options);
+        assert_eq!(r.failures().count(), 2);
+    }
+}
