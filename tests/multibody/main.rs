@@ -14,6 +14,7 @@ mod beam_output;
 mod beam_rotation;
 mod beam_slider;
 mod brake;
+mod electric;
 mod function_hinge;
 mod hinge_friction;
 mod integrator_bathe;

@@ -41,6 +41,8 @@ pub struct ElementContext<'a> {
     pub frames: &'a Frames,
     pub drives: &'a Drives,
     pub laws: &'a Laws,
+    /// The `hydraulic fluid` cards.
+    pub fluids: &'a super::hydraulic::Fluids,
     /// The node labels of the beams read so far (a beam slider names them).
     pub beams: &'a BeamNodes,
     /// The statement being read (cards must come before it).

@@ -66,6 +66,7 @@ struct Cards {
     frames: Frames,
     drives: Drives,
     laws: Laws,
+    fluids: super::hydraulic::Fluids,
 }
 
 fn cards(doc: &Document) -> Result<Cards, MbdynError> {
@@ -112,6 +113,7 @@ fn cards(doc: &Document) -> Result<Cards, MbdynError> {
             Some("template drive caller") => super::templates::template_drive_caller_card(st, &mut c, &mut out.drives)?,
             Some("constitutive law") => constitutive_law_card(st, &mut c, &mut out.laws, &out.drives)?,
             Some("scalar function") => super::scalar_functions::scalar_function_card(&mut c, &mut out.drives.functions, st.seq)?,
+            Some("hydraulic fluid") => super::hydraulic::fluid_card(&mut c, st.seq, &mut out.fluids)?,
             Some("setenv" | "print symbol table") => {}
             Some(other) => return Err(c.error_at(st.span, super::diagnostic::mbdyn_runs_it(&format!("the '{other}' card")))),
             None => return Err(c.error_at(st.span, format!("unknown card '{}'", st.keyword))),
@@ -270,7 +272,7 @@ pub fn build(doc: &Document) -> Result<MbdynModel, MbdynError> {
         {
             output_only.insert(("inertia", *x as u32));
         }
-        let ctx = ElementContext { nodes: &nodes, frames: &cards.frames, drives: &cards.drives, laws: &cards.laws, beams: &beams, seq: st.seq, static_model };
+        let ctx = ElementContext { nodes: &nodes, frames: &cards.frames, drives: &cards.drives, laws: &cards.laws, fluids: &cards.fluids, beams: &beams, seq: st.seq, static_model };
         let label_span = c.here();
         cards.drives.functions.take_used();
         let parsed = element(st, &mut c, &ctx)?;

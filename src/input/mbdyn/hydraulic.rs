@@ -1,0 +1,138 @@
+//! The `hydraulic fluid` card (input manual §Hydraulic fluid; hfluid.cc,
+//! `ReadHydraulicFluid`; mbpar.cc, `GetHydraulicFluid`) and the `hydraulic` element cards
+//! (§Hydraulic Element; preselem.cc, `ReadHydraulicElem`): `actuator` and `minor loss`. The
+//! other fluids and hydraulic elements of MBDyn 1.7.3 are refused by name.
+
+use std::collections::HashMap;
+
+use super::cursor::Cursor;
+use super::diagnostic::{mbdyn_runs_it, MbdynError, Span};
+use super::electric::scalar_node_of;
+use super::element_context::ElementContext;
+use crate::element::{Actuator, Element, HydraulicFluid, MinorLoss};
+use crate::model::{Label, ScalarNodeKind};
+
+/// The fluids of `hydraulic fluid` cards by label: the fluid, the card's place in the file
+/// (an element reads the fluids defined above it) and its span.
+pub type Fluids = HashMap<Label, (HydraulicFluid, usize, Span)>;
+
+/// The hydraulic element types of MBDyn 1.7.3 romdyn does not build.
+const OTHER_ELEMENTS: [&str; 11] = ["three way minor loss", "control valve 2", "control valve", "dynamic control valve", "pressure flow control", "pressure valve", "flow valve", "orifice", "accumulator", "tank", "dynamic pipe"];
+
+/// `hydraulic fluid: LABEL [, name, "…"], FLUID;`.
+pub fn fluid_card(c: &mut Cursor, seq: usize, fluids: &mut Fluids) -> Result<(), MbdynError> {
+    let span = c.here();
+    let label = c.label("hydraulic fluid label")?;
+    if c.accept("name") {
+        c.string("hydraulic fluid name")?;
+    }
+    let fluid = fluid_properties(c, &format!("hydraulic fluid {label}"))?;
+    c.finish()?;
+    if let Some((_, _, first)) = fluids.insert(label, (fluid, seq, span)) {
+        return Err(c.error_at(span, format!("hydraulic fluid {label} is defined twice (first at line {})", first.line)));
+    }
+    Ok(())
+}
+
+/// A positive real, refused otherwise with `why`.
+fn positive(c: &mut Cursor, what: &str, why: &str) -> Result<f64, MbdynError> {
+    let span = c.here();
+    let x = c.real(what)?;
+    if !(x > f64::EPSILON) {
+        return Err(c.error_at(span, format!("{what} must be positive, found {x}{why}")));
+    }
+    Ok(x)
+}
+
+/// `[TYPE,] PROPERTIES` of a fluid (hfluid.cc: the type defaults to `incompressible`):
+/// `incompressible, density, RHO, viscosity, MU [, pressure, P0] [, temperature, T0]` and
+/// `linear compressible, density, RHO, {BETA | sound celerity, C}, P0, viscosity, MU [,
+/// temperature, T0]`, in MBDyn's order.
+fn fluid_properties(c: &mut Cursor, what: &str) -> Result<HydraulicFluid, MbdynError> {
+    let span = c.here();
+    if let Some(k) = c.accept_any(&["linear thermal compressible", "super", "exponential"]) {
+        return Err(c.error_at(span, format!("{what}: {} (supported: incompressible, linear compressible)", mbdyn_runs_it(&format!("the fluid type '{k}'")))));
+    }
+    let compressible = c.accept("linear compressible");
+    if !compressible {
+        c.accept_any(&["incompressible", "uncompressible"]);
+    }
+    // hfluid.cc refuses a missing or non-positive density and viscosity ("illegal density").
+    c.keyword(&format!("{what}: 'density'"), &["density"])?;
+    let density = positive(c, "density [kg/m^3]", "")?;
+    let fluid = if compressible {
+        let beta = if c.accept("sound celerity") { density * positive(c, "sound celerity [m/s]", "")?.powi(2) } else { positive(c, "bulk modulus [Pa]", " (MBDyn 1.7.3 refuses only a null one; a negative one makes a fluid that expands under pressure)")? };
+        let pressure = c.real("reference pressure [Pa]")?;
+        HydraulicFluid::LinearCompressible { density, bulk_modulus: beta, pressure }
+    } else {
+        HydraulicFluid::Incompressible { density }
+    };
+    c.keyword(&format!("{what}: 'viscosity' (MBDyn 1.7.3 requires a positive viscosity)"), &["viscosity"])?;
+    positive(c, "viscosity [Pa s]", "")?;
+    if !compressible && c.accept("pressure") {
+        c.real("reference pressure [Pa]")?;
+    }
+    if c.accept("temperature") {
+        c.real("reference temperature [K]")?;
+    }
+    Ok(fluid)
+}
+
+/// `fluid, {reference, LABEL | FLUID}` (or `hydraulic fluid, …`) in an element.
+fn element_fluid(c: &mut Cursor, ctx: &ElementContext, what: &str) -> Result<HydraulicFluid, MbdynError> {
+    c.keyword(&format!("{what}: 'fluid'"), &["fluid", "hydraulic fluid"])?;
+    if !c.accept("reference") {
+        return fluid_properties(c, what);
+    }
+    let span = c.here();
+    let label = c.label("hydraulic fluid label")?;
+    match ctx.fluids.get(&label) {
+        Some((fluid, seq, _)) if *seq < ctx.seq => Ok(*fluid),
+        _ => Err(c.error_at(span, format!("{what}: hydraulic fluid {label} is not defined above this element"))),
+    }
+}
+
+/// `hydraulic: LABEL, TYPE, …` after the label.
+pub fn hydraulic(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<dyn Element>, MbdynError> {
+    let span = c.here();
+    let types = ["actuator", "minor loss", "pipe"];
+    if let Some(k) = c.accept_any(&OTHER_ELEMENTS) {
+        return Err(c.error_at(span, format!("{} (supported: actuator, minor loss)", mbdyn_runs_it(&format!("hydraulic element type '{k}'")))));
+    }
+    let kind = c.keyword("the hydraulic element type", &types)?;
+    if kind == "pipe" {
+        return Err(c.error_at(span, format!("{} (supported: actuator, minor loss)", mbdyn_runs_it("hydraulic element type 'pipe'"))));
+    }
+    let what = format!("hydraulic {label} ({kind})");
+    let pressure = |c: &mut Cursor| scalar_node_of(c, &ctx.nodes.2, ScalarNodeKind::Hydraulic, &what);
+    let pressures = [pressure(c)?, pressure(c)?];
+    if kind == "minor loss" {
+        let why = " (MBDyn 1.7.3 refuses a negative one and divides by it)";
+        let loss = [positive(c, &format!("{what}: loss coefficient K12"), why)?, positive(c, &format!("{what}: loss coefficient K21"), why)?];
+        let area = positive(c, &format!("{what}: area [m^2]"), "")?;
+        let fluid = element_fluid(c, ctx, &what)?;
+        return Ok(Box::new(MinorLoss { label, pressures, loss, area, fluid }));
+    }
+    let mut nodes = [0; 2];
+    let mut offsets = [crate::kinematics::Vec3::zeros(); 2];
+    let mut first = None;
+    for k in 0..2 {
+        let n = ctx.node(c, &format!("{what}: structural node {}", k + 1))?;
+        nodes[k] = n.label;
+        offsets[k] = ctx.on(n).relative_position(c, &format!("{what}: offset {} [m]", k + 1))?;
+        first.get_or_insert(n);
+    }
+    let axis = if c.accept("direction") {
+        let dir_span = c.here();
+        let v = ctx.on(first.expect("node 1 read")).relative_vector(c, &format!("{what}: direction"))?;
+        v.try_normalize(0.0).ok_or_else(|| c.error_at(dir_span, format!("{what}: the direction is null (MBDyn 1.7.3: \"need a definite direction\")")))?
+    } else {
+        crate::kinematics::Vec3::z()
+    };
+    let areas = [positive(c, &format!("{what}: area 1 [m^2]"), "")?, positive(c, &format!("{what}: area 2 [m^2]"), "")?];
+    let length = positive(c, &format!("{what}: cylinder length [m]"), "")?;
+    let fluid1 = element_fluid(c, ctx, &what)?;
+    let fluid2 = if c.accept("same") { fluid1 } else { element_fluid(c, ctx, &what)? };
+    let initial_pressures = pressures.map(|id| ctx.nodes.2.iter().find(|e| e.node.id == id).map_or(0.0, |e| e.node.value));
+    Ok(Box::new(Actuator { label, pressures, nodes, offsets, axis, areas, length, fluids: [fluid1, fluid2], initial_pressures }))
+}
