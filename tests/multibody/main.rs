@@ -17,6 +17,7 @@ mod brake;
 mod electric;
 mod function_hinge;
 mod hinge_friction;
+mod hydraulic;
 mod integrator_bathe;
 mod jacobian_check;
 mod modal_element;

@@ -18,7 +18,12 @@ pub fn electric(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Bo
     if c.accept("discrete control") {
         return Err(c.error_at(span, format!("{} (supported: {})", mbdyn_runs_it("electric element type 'discrete control'"), types.join(", "))));
     }
-    let kind = c.keyword("the electric element type", &types)?;
+    let Some(kind) = c.accept_any(&types) else {
+        return Err(match c.peek_keyword() {
+            Some(w) => c.error(format!("{} (romdyn reads: {})", super::diagnostic::unknown_to_both("electric element type", w), types.join(", "))),
+            None => c.error(format!("expected the electric element type ({}), found {}", types.join(", "), c.found())),
+        });
+    };
     let what = format!("electric {label} ({kind})");
     let e: Box<dyn Element> = match kind {
         "motor" => motor(label, c, ctx, &what)?,

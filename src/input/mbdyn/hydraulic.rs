@@ -99,7 +99,12 @@ pub fn hydraulic(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<B
     if let Some(k) = c.accept_any(&OTHER_ELEMENTS) {
         return Err(c.error_at(span, format!("{} (supported: actuator, minor loss)", mbdyn_runs_it(&format!("hydraulic element type '{k}'")))));
     }
-    let kind = c.keyword("the hydraulic element type", &types)?;
+    let Some(kind) = c.accept_any(&types) else {
+        return Err(match c.peek_keyword() {
+            Some(w) => c.error(format!("{} (romdyn reads: actuator, minor loss)", super::diagnostic::unknown_to_both("hydraulic element type", w))),
+            None => c.error(format!("expected the hydraulic element type (actuator, minor loss), found {}", c.found())),
+        });
+    };
     if kind == "pipe" {
         return Err(c.error_at(span, format!("{} (supported: actuator, minor loss)", mbdyn_runs_it("hydraulic element type 'pipe'"))));
     }
