@@ -10,4 +10,5 @@ mod cli;
 mod docs_commands;
 mod node_histories;
 mod pencil_input;
+mod scalar_ports;
 mod study_doors;

@@ -105,3 +105,62 @@ fn dc_motor_step_response_follows_the_closed_form_and_mbdyn() {
         assert!((gxp - xp).abs() < 3e-8 * xp.abs(), "abstract node {} derivative: {gxp:e} vs MBDyn {xp:e}", k + 1);
     }
 }
+
+#[test]
+fn motor_with_its_rotor_held_is_an_rl_circuit() {
+    // dc_motor_inertia.mbd with the rotor clamped (ω = 0): L di/dt + R i = V0, so i(t) =
+    // V0/R (1 − e^{−R t/L}) and the one eigenvalue −R/L = −1000 rad/s. h = 1 µs: the ms
+    // method's error at h R/L = 1e-3 is below 1e-6 of V0/R.
+    let m = common::mbdyn::rewritten_test_file("dc_motor_inertia.mbd", &[
+        ("joint: 2, revolute hinge,\n        1, position, null, orientation, eye,\n        2, position, null, orientation, eye;", "joint: 2, clamp, 2, node, node;"),
+        ("final time: 0.1;", "final time: 0.005;"),
+        ("time step: 1.e-4;", "time step: 1.e-6;"),
+    ]);
+    let report = romdyn::analysis::run(&m.model, &m.problem, &mut ()).unwrap_or_else(|e| panic!("{e}"));
+    let asm = Assembler::new(&m.model);
+    let motor = m.model.elements.iter().position(|e| e.type_name() == "motor").unwrap();
+    let (t, i) = (report.final_state.t, report.final_state.y[asm.dofs.element_first[motor]]);
+    let want = V0 / R * (1.0 - (-R * t / L).exp());
+    assert!((i - want).abs() < 1e-6 * V0 / R, "i({t}) = {i}, closed form {want}");
+    let study = Study::builder(StudySource::model(m.model, m.problem)).node_ports(vec!["1:abstract".parse().unwrap()], vec!["1:abstract".parse().unwrap()]).build().unwrap_or_else(|e| panic!("{e}"));
+    let dynamic: Vec<c64> = study.modal().modes.iter().filter(|m| m.kind == romdyn::eigen::ModeKind::Dynamic).map(|m| m.lambda).collect();
+    assert_eq!(dynamic.len(), 1, "{dynamic:?}");
+    assert!((dynamic[0] - c64::new(-R / L, 0.0)).norm() < 1e-10 * R / L, "{}", dynamic[0]);
+}
+
+#[test]
+fn a_genel_on_an_electric_node_makes_an_rc_circuit() {
+    // A resistor R and a capacitor C from electric node 1 to ground, written as one `genel
+    // spring support` with a `linear viscoelastic` law (current V/R + C dV/dt; a `genel
+    // mass` would be an inductance-like second-order term, m d²V/dt²), and a current source
+    // I0 (`force: abstract`): C dV/dt + V/R = I0, so V(t) = I0 R (1 − e^{−t/(R C)}) and the
+    // one eigenvalue −1/(R C) = −1000 rad/s. h = 1 µs: error below 1e-6 of I0 R. MBDyn
+    // 1.7.3 on the same file (`output precision: 16`): V = 1.9865106300544138 at t =
+    // 4.999 ms, where romdyn's .ele reads 1.9865106300544102.
+    let (r, c, i0) = (1e3, 1e-6, 2e-3);
+    let text = format!(
+        "begin: data; problem: initial value; end: data;\n\
+         begin: initial value; initial time: 0.; final time: 5.e-3; time step: 1.e-6; tolerance: 1.e-12; method: ms, .6; end: initial value;\n\
+         begin: control data; electric nodes: 1; genels: 1; forces: 1; end: control data;\n\
+         begin: nodes; electric: 1, value, 0.; end: nodes;\n\
+         begin: elements;\n\
+         genel: 1, spring support, 1, electric, algebraic, linear viscoelastic, {g:e}, {c:e};\n\
+         force: 1, abstract, 1, electric, const, {i0:e};\n\
+         end: elements;\n",
+        g = 1.0 / r
+    );
+    let m = common::mbdyn::read(&text);
+    let report = romdyn::analysis::run(&m.model, &m.problem, &mut ()).unwrap_or_else(|e| panic!("{e}"));
+    let first = Assembler::new(&m.model).dofs.scalar_first;
+    let (t, v) = (report.final_state.t, report.final_state.y[first]);
+    let want = i0 * r * (1.0 - (-t / (r * c)).exp());
+    assert!((v - want).abs() < 1e-6 * i0 * r, "V({t}) = {v}, closed form {want}");
+    let study = Study::builder(StudySource::model(m.model, m.problem)).node_ports(vec!["1:electric".parse().unwrap()], vec!["1:electric".parse().unwrap()]).build().unwrap_or_else(|e| panic!("{e}"));
+    let dynamic: Vec<c64> = study.modal().modes.iter().filter(|m| m.kind == romdyn::eigen::ModeKind::Dynamic).map(|m| m.lambda).collect();
+    assert_eq!(dynamic.len(), 1, "{dynamic:?}");
+    assert!((dynamic[0] - c64::new(-1.0 / (r * c), 0.0)).norm() < 1e-10 / (r * c), "{}", dynamic[0]);
+    // Its static gain V/I0 = R through the electric ports (a current [A] in, a voltage out).
+    let rom = study.reduce(&romdyn::study::RomRequest::new(romdyn::rom::ModeSelection::Lowest(1))).unwrap_or_else(|e| panic!("{e}"));
+    let g = rom.static_gains.full.as_ref().unwrap()[(0, 0)];
+    assert!((g - r).abs() < 1e-10 * r, "V/I = {g}, R = {r}");
+}
