@@ -28,6 +28,12 @@ impl HydraulicFluid {
             HydraulicFluid::LinearCompressible { density, bulk_modulus, pressure } => density + (p - pressure) * density / bulk_modulus,
         }
     }
+    /// The reference density `ρ₀` [kg/m³] (MBDyn's `dGetDensity()` without a pressure).
+    pub fn reference_density(&self) -> f64 {
+        match *self {
+            HydraulicFluid::Incompressible { density } | HydraulicFluid::LinearCompressible { density, .. } => density,
+        }
+    }
     /// `dρ/dp` [kg/(m³ Pa)], a constant of both kinds.
     pub fn density_slope(&self) -> f64 {
         match *self {
@@ -202,19 +208,26 @@ pub struct MinorLoss {
     pub fluid: HydraulicFluid,
 }
 
-/// MBDyn's floor on `|p₁ − p₂|` in the flow's derivative (hminor.cc: 10⁸ ε Pa), where the
-/// square root's slope is infinite.
+/// MBDyn's floor on `|p₁ − p₂|` in the flow's derivative (hminor.cc, valve.cc: 10⁸ ε Pa),
+/// where the square root's slope is infinite.
 const LEAST_PRESSURE_DROP: f64 = 1e8 * f64::EPSILON;
 
+/// A turbulent orifice's mass flow `q = a √(2ρ|Δp|) sign(Δp)` [kg/s] (`a` the effective
+/// area [m²]) and its slope `∂q/∂Δp = a √(2ρ) / (2 √|Δp|)`, `|Δp|` floored as MBDyn's.
+fn orifice(area: f64, rho: f64, drop: f64) -> (f64, f64) {
+    let coef = area * (2.0 * rho).sqrt();
+    (coef * drop.signum() * drop.abs().sqrt(), coef / (2.0 * drop.abs().max(LEAST_PRESSURE_DROP).sqrt()))
+}
+
 impl MinorLoss {
-    /// The flow [kg/s] and the coefficient `A √(2ρ/κ)`, `ρ`.
-    fn flow(&self, st: &dyn ElementState) -> (f64, f64, f64, f64) {
+    /// The flow [kg/s], its slope in `Δp`, the density and `Δp`.
+    fn flow(&self, st: &dyn ElementState) -> (f64, f64, f64) {
         let (p1, p2) = (st.scalar_value(0), st.scalar_value(1));
         let drop = p1 - p2;
         let kappa = if drop > 0.0 { self.loss[0] } else { self.loss[1] };
         let rho = self.fluid.density(0.5 * (p1 + p2));
-        let coef = self.area * (2.0 * rho / kappa).sqrt();
-        (coef * drop.signum() * drop.abs().sqrt(), coef, rho, drop)
+        let (q, slope) = orifice(self.area / kappa.sqrt(), rho, drop);
+        (q, slope, rho)
     }
 }
 
@@ -234,13 +247,72 @@ impl Element for MinorLoss {
         out.add(Row::Scalar { slot: 1 }, q);
     }
     fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
-        let (q, coef, rho, drop) = self.flow(st);
-        let slope = coef / (2.0 * drop.abs().max(LEAST_PRESSURE_DROP).sqrt());
+        let (q, slope, rho) = self.flow(st);
         // q ∝ √ρ, ρ at the mean pressure: ∂q/∂pₖ gains q ρ'/(4ρ).
         let density = q * self.fluid.density_slope() / (4.0 * rho);
         for (slot, dq) in [(0, slope + density), (1, -slope + density)] {
             out.add(Row::Scalar { slot: 0 }, Col::ScalarValue { slot }, -dq);
             out.add(Row::Scalar { slot: 1 }, Col::ScalarValue { slot }, dq);
+        }
+    }
+}
+
+/// `hydraulic: L, control valve, P1, P2, P3, P4, AREA [, loss, LOSS], STATE, fluid, …`
+/// (Control_valve, valve.cc): a four-way valve of four turbulent orifices `Cd a √(2ρ|Δp|)`,
+/// `Cd = π/(π + 2)` (Merritt, as MBDyn), `ρ` the fluid's reference density. The state `s(t)`
+/// (a drive, held in [−1, 1]) opens `1 → 2` and `3 → 4` by `s AREA` when positive, `1 → 3`
+/// and `2 → 4` by `−s AREA` when negative; at rest the orifices leak `2 LOSS AREA` (`1 →
+/// 2`, `3 → 4`) and `LOSS AREA` (`1 → 3`, `2 → 4`), as MBDyn's minimum areas.
+pub struct ControlValve {
+    pub label: Label,
+    pub pressures: [ScalarNodeId; 4],
+    pub area: f64,
+    pub loss: f64,
+    pub state: super::drive::Drive,
+    /// The fluid's reference density [kg/m³].
+    pub density: f64,
+}
+
+impl ControlValve {
+    /// Each orifice: (from slot, to slot, area [m²]) at the state's valve position.
+    fn orifices(&self, st: &dyn ElementState) -> [(usize, usize, f64); 4] {
+        let s = self.state.value_in(st).clamp(-1.0, 1.0);
+        let (open, leak) = (s.abs() * self.area, self.loss * self.area);
+        let (forward, backward) = if s > 0.0 { (open, 0.0) } else { (0.0, open) };
+        [(0, 1, forward + 2.0 * leak), (0, 2, backward + leak), (1, 3, backward + leak), (2, 3, forward + 2.0 * leak)]
+    }
+}
+
+/// `π/(π + 2)`: the discharge coefficient of MBDyn's control valve.
+const VALVE_DISCHARGE: f64 = std::f64::consts::PI / (std::f64::consts::PI + 2.0);
+
+impl Element for ControlValve {
+    fn label(&self) -> Label {
+        self.label
+    }
+    fn type_name(&self) -> &'static str {
+        "control valve"
+    }
+    fn scalar_nodes(&self) -> Vec<ScalarNodeId> {
+        self.pressures.to_vec()
+    }
+    fn reads_state(&self) -> bool {
+        self.state.reads_state()
+    }
+    fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
+        for (from, to, area) in self.orifices(st) {
+            let (q, _) = orifice(VALVE_DISCHARGE * area, self.density, st.scalar_value(from) - st.scalar_value(to));
+            out.add(Row::Scalar { slot: from }, -q);
+            out.add(Row::Scalar { slot: to }, q);
+        }
+    }
+    fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
+        for (from, to, area) in self.orifices(st) {
+            let (_, slope) = orifice(VALVE_DISCHARGE * area, self.density, st.scalar_value(from) - st.scalar_value(to));
+            for (row, sign) in [(from, -1.0), (to, 1.0)] {
+                out.add(Row::Scalar { slot: row }, Col::ScalarValue { slot: from }, sign * slope);
+                out.add(Row::Scalar { slot: row }, Col::ScalarValue { slot: to }, -sign * slope);
+            }
         }
     }
 }

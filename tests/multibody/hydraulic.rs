@@ -1,10 +1,11 @@
-//! Hydraulic fluids and elements (issue 34): MBDyn's `actuator` and `minor loss` with
-//! `linear compressible` and `incompressible` fluids, on tests/mbdyn_files/
-//! hydraulic_actuator_mass.mbd (a mass on the hydraulic spring of two closed chambers) and
-//! hydraulic_minor_loss.mbd (chamber 1 fed from a supply through a minor loss): Jacobians
-//! against finite differences, the hydraulic stiffness `k = β (A₁²/V₁ + A₂²/V₂)` (its
-//! eigenvalue and step response), MBDyn 1.7.3's numbers on the same files; and the clean
-//! refusals of bad values and of the cards romdyn does not build (electric ones too).
+//! Hydraulic fluids and elements (issue 34): MBDyn's `actuator`, `minor loss` and `control
+//! valve` with `linear compressible` and `incompressible` fluids, on tests/mbdyn_files/
+//! hydraulic_actuator_mass.mbd (a mass on the hydraulic spring of two closed chambers),
+//! hydraulic_minor_loss.mbd (chamber 1 fed from a supply through a minor loss) and
+//! hydraulic_control_valve.mbd (a four-way valve between supply, chambers and tank):
+//! Jacobians against finite differences, the hydraulic stiffness `k = β (A₁²/V₁ + A₂²/V₂)`
+//! (its eigenvalue and step response), MBDyn 1.7.3's numbers on the same files; and the
+//! clean refusals of bad values and of the cards romdyn does not build (electric ones too).
 
 use crate::common;
 use common::mbdyn::{assert_refused, test_file};
@@ -44,6 +45,7 @@ fn hydraulic_element_jacobians_match_finite_differences() {
     // pressures 1e6 Pa apart, so the minor loss is off its square root's kink): 1e-7.
     assert_eq!(common::mbdyn::assert_model_jacobians(jacobians_of("hydraulic_actuator_mass.mbd"), 43, 1e-7), 6);
     assert_eq!(common::mbdyn::assert_model_jacobians(jacobians_of("hydraulic_minor_loss.mbd"), 44, 1e-7), 8);
+    assert_eq!(common::mbdyn::assert_model_jacobians(jacobians_of("hydraulic_control_valve.mbd"), 45, 1e-7), 9);
 }
 
 #[test]
@@ -103,33 +105,46 @@ fn actuator_step_response_follows_the_hydraulic_spring_and_mbdyn() {
     assert!((st.yp[piston] - -3.3259263545890104e-04).abs() < 1e-9 * 3.3259263545890104e-04, "vz = {}", st.yp[piston]);
 }
 
-#[test]
-fn minor_loss_run_follows_mbdyn() {
-    // hydraulic_minor_loss.mbd: the supply fills chamber 1 through the loss and pushes the
-    // piston; MBDyn 1.7.3 on the same file (`output precision: 16`), its rows at t =
-    // 0.01001 s. romdyn's pressures agree to 5.7e-5 Pa over the run (changes of 1e6 Pa),
-    // z to 5.6e-15 m, the velocity to 3.4e-12 m/s (peak 0.03 m/s); here 1e-10 relative
-    // (pressures), 1e-11 (position) and 1e-8 (velocity).
-    let m = read_model(&test_file("hydraulic_minor_loss.mbd")).unwrap_or_else(|e| panic!("{e}"));
+/// Runs the test file `name` and checks its final time, its hydraulic nodes' pressures (to
+/// `tolerance` relative), the piston's z (to `tolerance` of D0) and its velocity (to 1e-8
+/// relative) against MBDyn 1.7.3's rows of the same file.
+fn assert_final_state_is_mbdyns(name: &str, t: f64, pressures: &[f64], z: f64, vz: f64, tolerance: f64) {
+    let m = read_model(&test_file(name)).unwrap_or_else(|e| panic!("{e}"));
     let report = romdyn::analysis::run(&m.model, &m.problem, &mut ()).unwrap_or_else(|e| panic!("{e}"));
     let asm = Assembler::new(&m.model);
     let (st, first, piston) = (&report.final_state, asm.dofs.scalar_first, asm.dofs.node_first[1] + 2);
-    assert!((st.t - 0.01001).abs() < 1e-12);
-    for (j, want) in [2.0005974698474233e+06, 1.9328393051030464e+06, 2.0e6].into_iter().enumerate() {
-        assert!((st.y[first + j] - want).abs() < 1e-10 * want, "p{} = {}, MBDyn {want}", j + 1, st.y[first + j]);
+    assert!((st.t - t).abs() < 1e-12, "{name}: t = {}", st.t);
+    for (j, &want) in pressures.iter().enumerate() {
+        assert!((st.y[first + j] - want).abs() < tolerance * want, "{name}: p{} = {}, MBDyn {want}", j + 1, st.y[first + j]);
     }
-    assert!((st.y[piston] - 1.0009319699269739e-01).abs() < 1e-11 * D0, "z = {}", st.y[piston]);
-    assert!((st.yp[piston] - 5.7571524140725700e-04).abs() < 1e-8 * 5.7571524140725700e-04, "vz = {}", st.yp[piston]);
+    assert!((st.y[piston] - z).abs() < tolerance * D0, "{name}: z = {}, MBDyn {z}", st.y[piston]);
+    assert!((st.yp[piston] - vz).abs() < 1e-8 * vz.abs(), "{name}: vz = {}, MBDyn {vz}", st.yp[piston]);
+}
+
+#[test]
+fn minor_loss_and_control_valve_runs_follow_mbdyn() {
+    // MBDyn 1.7.3 on the same files (`output precision: 16`), its .prs and .mov rows at the
+    // final time. hydraulic_minor_loss.mbd (the supply fills chamber 1 through the loss and
+    // pushes the piston): romdyn's pressures agree to 5.7e-5 Pa over the run (changes of 1e6
+    // Pa), z to 5.6e-15 m, the velocity to 3.4e-12 m/s (peak 0.03 m/s).
+    assert_final_state_is_mbdyns("hydraulic_minor_loss.mbd", 0.01001, &[2.0005974698474233e+06, 1.9328393051030464e+06, 2.0e6], 1.0009319699269739e-01, 5.7571524140725700e-04, 1e-10);
+    // hydraulic_control_valve.mbd (a 20 Hz valve command between supply and tank): pressures
+    // to 3.2e-8 Pa over the run (changes of 5.7e4 Pa), z to 6.8e-16 m, the velocity to
+    // 5.3e-15 m/s (peak 0.016 m/s).
+    assert_final_state_is_mbdyns("hydraulic_control_valve.mbd", 0.05, &[1.0562427353670713e+06, 1.0366721380225067e+06, 2.0e6, 1.0e5], 1.0001343574233700e-01, -5.2324394282223586e-05, 1e-12);
+}
+
+/// `text` with `old` (which it must hold) replaced by `new`.
+fn changed(text: &str, old: &str, new: &str) -> String {
+    assert!(text.contains(old), "{old}");
+    text.replace(old, new)
 }
 
 #[test]
 fn bad_hydraulic_and_electric_cards_are_refused_by_name_and_place() {
     let name = "hydraulic_minor_loss.mbd";
     let original = std::fs::read_to_string(test_file(name)).unwrap();
-    let change = |old: &str, new: &str| {
-        assert!(original.contains(old), "{old}");
-        original.replace(old, new)
-    };
+    let change = |old: &str, new: &str| changed(&original, old, new);
     let actuator = "hydraulic: 1, actuator, 1, 2, 1, null, 2, null, direction, 0., 0., 1., A, A, L0,";
     let loss = "hydraulic: 2, minor loss, 3, 1, 2., 3., AL,";
     let fluid = "hydraulic fluid: 1, linear compressible, density, RHO, BETA, P0, viscosity, 1.e-2;";
@@ -143,16 +158,14 @@ fn bad_hydraulic_and_electric_cards_are_refused_by_name_and_place() {
         (change(loss, "hydraulic: 2, minor loss, 3, 1, 0., 3., AL,"), "loss coefficient K12 must be positive, found 0"),
         (change(loss, "hydraulic: 2, minor loss, 3, 4, 2., 3., AL,"), "hydraulic node 4 is not defined"),
         (change(loss, "hydraulic: 2, pipe, 3, 1, 2., 3., AL,"), "hydraulic element type 'pipe' is not supported by romdyn (MBDyn 1.7.3 runs it)"),
-        (change(loss, "hydraulic: 2, control valve, 3, 1, 2., 3., AL,"), "hydraulic element type 'control valve' is not supported by romdyn (MBDyn 1.7.3 runs it)"),
+        (change(loss, "hydraulic: 2, dynamic control valve, 3, 1, 2., 3., AL,"), "hydraulic element type 'dynamic control valve' is not supported by romdyn (MBDyn 1.7.3 runs it)"),
+        (change(loss, "hydraulic: 2, control valve, 3, 1, 2, 3, 1.e-6, loss, -0.1, const, 1.,"), "the loss must not be negative, found -0.1"),
         (change("    hydraulic elements: 2;", "    hydraulic elements: 3;"), "control data declares 3 hydraulic elements, the model has 2"),
     ];
     assert_refused(name, &original, &cases);
     let name = "dc_motor_inertia.mbd";
     let original = std::fs::read_to_string(test_file(name)).unwrap();
-    let change = |old: &str, new: &str| {
-        assert!(original.contains(old), "{old}");
-        original.replace(old, new)
-    };
+    let change = |old: &str, new: &str| changed(&original, old, new);
     let motor = "electric: 1, motor, 1, 2, 0., 0., 1., 1, 2, G, L, R;";
     let cases = [
         (change(motor, "electric: 1, motor, 1, 2, 0., 0., 1., 1, 2, G, 0., R;"), "the inductance must be positive, found 0"),

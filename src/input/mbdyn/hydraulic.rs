@@ -1,7 +1,8 @@
 //! The `hydraulic fluid` card (input manual §Hydraulic fluid; hfluid.cc,
 //! `ReadHydraulicFluid`; mbpar.cc, `GetHydraulicFluid`) and the `hydraulic` element cards
-//! (§Hydraulic Element; preselem.cc, `ReadHydraulicElem`): `actuator` and `minor loss`. The
-//! other fluids and hydraulic elements of MBDyn 1.7.3 are refused by name.
+//! (§Hydraulic Element; preselem.cc, `ReadHydraulicElem`): `actuator`, `minor loss` and
+//! `control valve`. The other fluids and hydraulic elements of MBDyn 1.7.3 are refused by
+//! name.
 
 use std::collections::HashMap;
 
@@ -9,7 +10,7 @@ use super::cursor::Cursor;
 use super::diagnostic::{mbdyn_runs_it, MbdynError, Span};
 use super::electric::scalar_node_of;
 use super::element_context::ElementContext;
-use crate::element::{Actuator, Element, HydraulicFluid, MinorLoss};
+use crate::element::{Actuator, ControlValve, Element, HydraulicFluid, MinorLoss};
 use crate::model::{Label, ScalarNodeKind};
 
 /// The fluids of `hydraulic fluid` cards by label: the fluid, the card's place in the file
@@ -17,7 +18,7 @@ use crate::model::{Label, ScalarNodeKind};
 pub type Fluids = HashMap<Label, (HydraulicFluid, usize, Span)>;
 
 /// The hydraulic element types of MBDyn 1.7.3 romdyn does not build.
-const OTHER_ELEMENTS: [&str; 11] = ["three way minor loss", "control valve 2", "control valve", "dynamic control valve", "pressure flow control", "pressure valve", "flow valve", "orifice", "accumulator", "tank", "dynamic pipe"];
+const OTHER_ELEMENTS: [&str; 10] = ["three way minor loss", "control valve 2", "dynamic control valve", "pressure flow control", "pressure valve", "flow valve", "orifice", "accumulator", "tank", "dynamic pipe"];
 
 /// `hydraulic fluid: LABEL [, name, "…"], FLUID;`.
 pub fn fluid_card(c: &mut Cursor, seq: usize, fluids: &mut Fluids) -> Result<(), MbdynError> {
@@ -95,21 +96,38 @@ fn element_fluid(c: &mut Cursor, ctx: &ElementContext, what: &str) -> Result<Hyd
 /// `hydraulic: LABEL, TYPE, …` after the label.
 pub fn hydraulic(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<dyn Element>, MbdynError> {
     let span = c.here();
-    let types = ["actuator", "minor loss", "pipe"];
+    let types = ["actuator", "minor loss", "control valve", "pipe"];
     if let Some(k) = c.accept_any(&OTHER_ELEMENTS) {
-        return Err(c.error_at(span, format!("{} (supported: actuator, minor loss)", mbdyn_runs_it(&format!("hydraulic element type '{k}'")))));
+        return Err(c.error_at(span, format!("{} (supported: actuator, minor loss, control valve)", mbdyn_runs_it(&format!("hydraulic element type '{k}'")))));
     }
     let Some(kind) = c.accept_any(&types) else {
         return Err(match c.peek_keyword() {
-            Some(w) => c.error(format!("{} (romdyn reads: actuator, minor loss)", super::diagnostic::unknown_to_both("hydraulic element type", w))),
-            None => c.error(format!("expected the hydraulic element type (actuator, minor loss), found {}", c.found())),
+            Some(w) => c.error(format!("{} (romdyn reads: actuator, minor loss, control valve)", super::diagnostic::unknown_to_both("hydraulic element type", w))),
+            None => c.error(format!("expected the hydraulic element type (actuator, minor loss, control valve), found {}", c.found())),
         });
     };
     if kind == "pipe" {
-        return Err(c.error_at(span, format!("{} (supported: actuator, minor loss)", mbdyn_runs_it("hydraulic element type 'pipe'"))));
+        return Err(c.error_at(span, format!("{} (supported: actuator, minor loss, control valve)", mbdyn_runs_it("hydraulic element type 'pipe'"))));
     }
     let what = format!("hydraulic {label} ({kind})");
     let pressure = |c: &mut Cursor| scalar_node_of(c, &ctx.nodes.2, ScalarNodeKind::Hydraulic, &what);
+    if kind == "control valve" {
+        let pressures = [pressure(c)?, pressure(c)?, pressure(c)?, pressure(c)?];
+        let area = positive(c, &format!("{what}: area [m^2]"), "")?;
+        let loss = if c.accept("loss") {
+            let span = c.here();
+            let loss = c.real("loss (leaking fraction of the area)")?;
+            if !(loss >= 0.0) {
+                return Err(c.error_at(span, format!("{what}: the loss must not be negative, found {loss} (MBDyn 1.7.3: \"negative loss_area\")")));
+            }
+            loss
+        } else {
+            0.0
+        };
+        let state = super::drives::drive(c, ctx.drives, ctx.seq)?;
+        let density = element_fluid(c, ctx, &what)?.reference_density();
+        return Ok(Box::new(ControlValve { label, pressures, area, loss, state, density }));
+    }
     let pressures = [pressure(c)?, pressure(c)?];
     if kind == "minor loss" {
         let why = " (MBDyn 1.7.3 refuses a negative one and divides by it)";
