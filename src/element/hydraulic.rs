@@ -7,31 +7,38 @@
 //! it takes out of the node (MBDyn's `AssRes` adds it; romdyn's residual, its negative,
 //! subtracts it). Pressures are in Pa, densities in kg/m³, areas in m², volumes in m³.
 
-use super::contract::{add_block, Col, Element, ElementState, JacobianSink, Label, ResidualSink, Row, ScalarNodeId, UnknownKind};
+use super::contract::{add_block, Col, Element, ElementState, Events, JacobianSink, Label, Latched, ResidualSink, Row, ScalarNodeId, UnknownKind};
 use crate::kinematics::{skew, Vec3};
 
 /// A hydraulic fluid (hfluid_.h): the density as a function of the pressure.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum HydraulicFluid {
-    /// `incompressible`: `ρ` constant [kg/m³].
-    Incompressible { density: f64 },
+    /// `incompressible`: `ρ` constant [kg/m³], the viscosity `μ` [Pa s].
+    Incompressible { density: f64, viscosity: f64 },
     /// `linear compressible`: `ρ(p) = ρ₀ + (p − p₀) ρ₀/β`, `β` the bulk modulus [Pa]
-    /// (`ρ₀ c²` when written as a sound celerity `c`), `p₀` the reference pressure [Pa].
-    LinearCompressible { density: f64, bulk_modulus: f64, pressure: f64 },
+    /// (`ρ₀ c²` when written as a sound celerity `c`), `p₀` the reference pressure [Pa], `μ`
+    /// the viscosity [Pa s].
+    LinearCompressible { density: f64, bulk_modulus: f64, pressure: f64, viscosity: f64 },
 }
 
 impl HydraulicFluid {
     /// `ρ(p)` [kg/m³].
     pub fn density(&self, p: f64) -> f64 {
         match *self {
-            HydraulicFluid::Incompressible { density } => density,
-            HydraulicFluid::LinearCompressible { density, bulk_modulus, pressure } => density + (p - pressure) * density / bulk_modulus,
+            HydraulicFluid::Incompressible { density, .. } => density,
+            HydraulicFluid::LinearCompressible { density, bulk_modulus, pressure, .. } => density + (p - pressure) * density / bulk_modulus,
         }
     }
     /// The reference density `ρ₀` [kg/m³] (MBDyn's `dGetDensity()` without a pressure).
     pub fn reference_density(&self) -> f64 {
         match *self {
-            HydraulicFluid::Incompressible { density } | HydraulicFluid::LinearCompressible { density, .. } => density,
+            HydraulicFluid::Incompressible { density, .. } | HydraulicFluid::LinearCompressible { density, .. } => density,
+        }
+    }
+    /// The viscosity `μ` [Pa s].
+    pub fn viscosity(&self) -> f64 {
+        match *self {
+            HydraulicFluid::Incompressible { viscosity, .. } | HydraulicFluid::LinearCompressible { viscosity, .. } => viscosity,
         }
     }
     /// `dρ/dp` [kg/(m³ Pa)], a constant of both kinds.
@@ -314,5 +321,124 @@ impl Element for ControlValve {
                 out.add(Row::Scalar { slot: row }, Col::ScalarValue { slot: to }, -sign * slope);
             }
         }
+    }
+}
+
+/// `hydraulic: L, pipe, P1, P2, DIAMETER, [area, A,] LENGTH, [turbulent,] [initial value,
+/// Q0,] fluid, …` (Pipe, pipe.cc): an own algebraic unknown, the mass flow `q` from node 1 to
+/// node 2 [kg/s], and the pressure drop of the flow's regime, `p₁ − p₂ = f(q)`, by the
+/// Reynolds number `Re = |q| D/(A μ)`: laminar `k_lam q` below 2000, turbulent `k_trb
+/// sign(q) |q|^{7/4}` (Blasius) above 4000, and in between MBDyn's transition: laminar below
+/// 2500 coming from laminar, turbulent above 3100 coming from turbulent, else the quartic
+/// `q k_tra (a|q|⁴ + b|q|³ + c|q|² + d|q|)` of the regime it comes from. The regime it comes
+/// from is latched at each step from the accepted state (MBDyn's `AfterConvergence`). The
+/// coefficients use the density at the nodes' initial mean pressure, as MBDyn's
+/// constructor: `k_lam = 32 L μ/(D² A ρ)`, `k_tra = L/(2 D ρ A²)`, `k_trb = 0.1582 μ^{1/4}
+/// L/(D^{5/4} A^{7/4} ρ)`.
+pub struct Pipe {
+    pub label: Label,
+    pub pressures: [ScalarNodeId; 2],
+    pub diameter: f64,
+    pub area: f64,
+    pub viscosity: f64,
+    /// `k_lam`, `k_tra`, `k_trb`.
+    pub coefficients: [f64; 3],
+    /// The regime before the first step (`turbulent`).
+    pub turbulent: bool,
+    pub initial_flow: f64,
+}
+
+impl Pipe {
+    /// `k_lam`, `k_tra`, `k_trb` of a pipe of diameter `d`, area `a`, length `l` for a fluid
+    /// of density `rho` and viscosity `mu`.
+    pub fn coefficients(d: f64, a: f64, l: f64, rho: f64, mu: f64) -> [f64; 3] {
+        [32.0 * l * mu / (d * d * a * rho), 0.5 * l / (d * rho * a * a), 0.1582 * mu.powf(0.25) * l / (d.powf(1.25) * a.powf(1.75) * rho)]
+    }
+
+    fn reynolds(&self, q: f64) -> f64 {
+        q.abs() * self.diameter / (self.area * self.viscosity)
+    }
+
+    fn turbulent_at(&self, st: &dyn ElementState) -> bool {
+        st.latched().and_then(|l| l.downcast_ref::<bool>()).copied().unwrap_or(self.turbulent)
+    }
+
+    /// The pressure drop `f(q)` [Pa] and its slope, in the regime the pipe comes from.
+    fn drop(&self, q: f64, turbulent: bool) -> (f64, f64) {
+        let [lam, tra, trb] = self.coefficients;
+        let re = self.reynolds(q);
+        let laminar = (lam * q, lam);
+        let blasius = (trb * q.signum() * q.abs().powf(1.75), 1.75 * trb * q.abs().powf(0.75));
+        if re < 2000.0 {
+            return laminar;
+        }
+        if re > 4000.0 {
+            return blasius;
+        }
+        if !turbulent && re < 2000.0 * 1.25 {
+            return laminar;
+        }
+        if turbulent && re > 4000.0 * 0.775 {
+            return blasius;
+        }
+        // pipe.cc's transition quartics in |q|, from laminar and from turbulent.
+        let dva = self.diameter / (self.viscosity * self.area);
+        let (a, b, d) = if turbulent { (9e-13 * dva.powi(3), 2e-9 * dva * dva, 0.0528) } else { (7e-13 * dva.powi(3), 8e-10 * dva * dva, 0.0542) };
+        let c = -1.8e-5 * dva;
+        let x = q.abs();
+        let g = tra * (((a * x + b) * x + c) * x + d) * x;
+        let dg = tra * (((4.0 * a * x + 3.0 * b) * x + 2.0 * c) * x + d);
+        (q * g, g + x * dg)
+    }
+}
+
+impl Element for Pipe {
+    fn label(&self) -> Label {
+        self.label
+    }
+    fn type_name(&self) -> &'static str {
+        "pipe"
+    }
+    fn scalar_nodes(&self) -> Vec<ScalarNodeId> {
+        self.pressures.to_vec()
+    }
+    fn multipliers(&self) -> Vec<String> {
+        vec!["mass flow".into()]
+    }
+    fn unknown_kind(&self, _k: usize) -> UnknownKind {
+        // An algebraic unknown of its own (MBDyn's `DofOrder::ALGEBRAIC`), not a multiplier.
+        UnknownKind::VelocityConstraint
+    }
+    fn initial_unknowns(&self) -> Vec<(usize, f64, f64)> {
+        vec![(0, self.initial_flow, 0.0)]
+    }
+    fn events(&self) -> Option<&dyn Events> {
+        Some(self)
+    }
+    fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
+        let q = st.multiplier(0);
+        out.add(Row::Scalar { slot: 0 }, -q);
+        out.add(Row::Scalar { slot: 1 }, q);
+        let (f, _) = self.drop(q, self.turbulent_at(st));
+        out.add(Row::Constraint(0), st.scalar_value(0) - st.scalar_value(1) - f);
+    }
+    fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
+        let q = st.multiplier(0);
+        out.add(Row::Scalar { slot: 0 }, Col::Multiplier(0), -1.0);
+        out.add(Row::Scalar { slot: 1 }, Col::Multiplier(0), 1.0);
+        let (_, slope) = self.drop(q, self.turbulent_at(st));
+        out.add(Row::Constraint(0), Col::Multiplier(0), -slope);
+        out.add(Row::Constraint(0), Col::ScalarValue { slot: 0 }, 1.0);
+        out.add(Row::Constraint(0), Col::ScalarValue { slot: 1 }, -1.0);
+    }
+}
+
+impl Events for Pipe {
+    /// The regime of the accepted state, kept in the transition (pipe.cc, `AfterConvergence`).
+    fn latch(&self, now: &dyn ElementState, before: &dyn ElementState) -> Option<Latched> {
+        let re = self.reynolds(before.multiplier(0));
+        let old = self.turbulent_at(now);
+        let new = if re < 2000.0 { false } else if re > 4000.0 { true } else { old };
+        (new != old).then(|| std::sync::Arc::new(new) as Latched)
     }
 }

@@ -68,7 +68,7 @@ pub use contract::{Col, Element, ElementState, Events, JacobianSink, Label, Latc
 pub use deformable::{DeformableDisplacement, DeformableHinge, LinearViscoelastic, Rod, RodViscosity};
 pub use distance::Distance;
 pub use electric::{Accelerometer, AccelerometerKind, DisplacementSensor, Motor};
-pub use hydraulic::{Actuator, ControlValve, HydraulicFluid, MinorLoss};
+pub use hydraulic::{Actuator, ControlValve, HydraulicFluid, MinorLoss, Pipe};
 pub use genel::{AbstractForce, ScalarClamp, ScalarDistance, ScalarDof, ScalarLaw, ScalarMass, ScalarSpring, ScalarSpringPair};
 pub use state_space::{controllable_form, observable_form, ScalarInput, StateSpace};
 pub use deformable_joint::DeformableJoint;

@@ -1,11 +1,12 @@
-//! Hydraulic fluids and elements (issue 34): MBDyn's `actuator`, `minor loss` and `control
-//! valve` with `linear compressible` and `incompressible` fluids, on tests/mbdyn_files/
-//! hydraulic_actuator_mass.mbd (a mass on the hydraulic spring of two closed chambers),
-//! hydraulic_minor_loss.mbd (chamber 1 fed from a supply through a minor loss) and
-//! hydraulic_control_valve.mbd (a four-way valve between supply, chambers and tank):
-//! Jacobians against finite differences, the hydraulic stiffness `k = β (A₁²/V₁ + A₂²/V₂)`
-//! (its eigenvalue and step response), MBDyn 1.7.3's numbers on the same files; and the
-//! clean refusals of bad values and of the cards romdyn does not build (electric ones too).
+//! Hydraulic fluids and elements (issue 34): MBDyn's `actuator`, `minor loss`, `control
+//! valve` and `pipe` with `linear compressible` and `incompressible` fluids, on
+//! tests/mbdyn_files/hydraulic_actuator_mass.mbd (a mass on the hydraulic spring of two
+//! closed chambers), hydraulic_minor_loss.mbd and hydraulic_pipe.mbd (chamber 1 fed from a
+//! supply through a minor loss, a pipe) and hydraulic_control_valve.mbd (a four-way valve
+//! between supply, chambers and tank): Jacobians against finite differences, the hydraulic
+//! stiffness `k = β (A₁²/V₁ + A₂²/V₂)` (its eigenvalue and step response), MBDyn 1.7.3's
+//! numbers on the same files; and the clean refusals of bad values and of the cards romdyn
+//! does not build (electric ones too).
 
 use crate::common;
 use common::mbdyn::{assert_refused, test_file};
@@ -46,6 +47,7 @@ fn hydraulic_element_jacobians_match_finite_differences() {
     assert_eq!(common::mbdyn::assert_model_jacobians(jacobians_of("hydraulic_actuator_mass.mbd"), 43, 1e-7), 6);
     assert_eq!(common::mbdyn::assert_model_jacobians(jacobians_of("hydraulic_minor_loss.mbd"), 44, 1e-7), 8);
     assert_eq!(common::mbdyn::assert_model_jacobians(jacobians_of("hydraulic_control_valve.mbd"), 45, 1e-7), 9);
+    assert_eq!(common::mbdyn::assert_model_jacobians(jacobians_of("hydraulic_pipe.mbd"), 46, 1e-7), 8);
 }
 
 #[test]
@@ -122,7 +124,7 @@ fn assert_final_state_is_mbdyns(name: &str, t: f64, pressures: &[f64], z: f64, v
 }
 
 #[test]
-fn minor_loss_and_control_valve_runs_follow_mbdyn() {
+fn minor_loss_control_valve_and_pipe_runs_follow_mbdyn() {
     // MBDyn 1.7.3 on the same files (`output precision: 16`), its .prs and .mov rows at the
     // final time. hydraulic_minor_loss.mbd (the supply fills chamber 1 through the loss and
     // pushes the piston): romdyn's pressures agree to 5.7e-5 Pa over the run (changes of 1e6
@@ -132,6 +134,13 @@ fn minor_loss_and_control_valve_runs_follow_mbdyn() {
     // to 3.2e-8 Pa over the run (changes of 5.7e4 Pa), z to 6.8e-16 m, the velocity to
     // 5.3e-15 m/s (peak 0.016 m/s).
     assert_final_state_is_mbdyns("hydraulic_control_valve.mbd", 0.05, &[1.0562427353670713e+06, 1.0366721380225067e+06, 2.0e6, 1.0e5], 1.0001343574233700e-01, -5.2324394282223586e-05, 1e-12);
+    // hydraulic_pipe.mbd (chamber 1 fed through a pipe from a ramped supply; MBDyn's .hyd
+    // rows: Reynolds numbers up to 15117, 158 steps laminar, 196 in the transition, 648
+    // turbulent, 5 crossings of the transition): pressures to 5.1e-8 Pa over the run
+    // (changes of 1.2e6 Pa), z to 4.2e-16 m, the velocity to 3.9e-15 m/s (peak 0.036 m/s).
+    // With `tolerance: 1.e-11` MBDyn 1.7.3 stopped at 4.66 ms (its pipe's residual, in Pa,
+    // cannot reach it) where romdyn ran on; the file asks 1e-8.
+    assert_final_state_is_mbdyns("hydraulic_pipe.mbd", 0.01001, &[1.9965588002626917e+06, 1.8830499392000588e+06, 2.0e6], 1.0008822708494713e-01, 1.3772927429884710e-02, 1e-12);
 }
 
 /// `text` with `old` (which it must hold) replaced by `new`.
@@ -157,7 +166,8 @@ fn bad_hydraulic_and_electric_cards_are_refused_by_name_and_place() {
         (change("fluid, reference, 1, same;", "fluid, reference, 2, same;"), "hydraulic fluid 2 is not defined above this element"),
         (change(loss, "hydraulic: 2, minor loss, 3, 1, 0., 3., AL,"), "loss coefficient K12 must be positive, found 0"),
         (change(loss, "hydraulic: 2, minor loss, 3, 4, 2., 3., AL,"), "hydraulic node 4 is not defined"),
-        (change(loss, "hydraulic: 2, pipe, 3, 1, 2., 3., AL,"), "hydraulic element type 'pipe' is not supported by romdyn (MBDyn 1.7.3 runs it)"),
+        (change(loss, "hydraulic: 2, dynamic pipe, 3, 1, 2., 3., AL,"), "hydraulic element type 'dynamic pipe' is not supported by romdyn (MBDyn 1.7.3 runs it)"),
+        (change(loss, "hydraulic: 2, pipe, 3, 1, 4.e-3, -1.,"), "length [m] must be positive, found -1"),
         (change(loss, "hydraulic: 2, dynamic control valve, 3, 1, 2., 3., AL,"), "hydraulic element type 'dynamic control valve' is not supported by romdyn (MBDyn 1.7.3 runs it)"),
         (change(loss, "hydraulic: 2, control valve, 3, 1, 2, 3, 1.e-6, loss, -0.1, const, 1.,"), "the loss must not be negative, found -0.1"),
         (change("    hydraulic elements: 2;", "    hydraulic elements: 3;"), "control data declares 3 hydraulic elements, the model has 2"),

@@ -1,7 +1,7 @@
 //! The `hydraulic fluid` card (input manual §Hydraulic fluid; hfluid.cc,
 //! `ReadHydraulicFluid`; mbpar.cc, `GetHydraulicFluid`) and the `hydraulic` element cards
-//! (§Hydraulic Element; preselem.cc, `ReadHydraulicElem`): `actuator`, `minor loss` and
-//! `control valve`. The other fluids and hydraulic elements of MBDyn 1.7.3 are refused by
+//! (§Hydraulic Element; preselem.cc, `ReadHydraulicElem`): `actuator`, `minor loss`,
+//! `control valve` and `pipe`. The other fluids and hydraulic elements of MBDyn 1.7.3 are refused by
 //! name.
 
 use std::collections::HashMap;
@@ -10,7 +10,7 @@ use super::cursor::Cursor;
 use super::diagnostic::{mbdyn_runs_it, MbdynError, Span};
 use super::electric::scalar_node_of;
 use super::element_context::ElementContext;
-use crate::element::{Actuator, ControlValve, Element, HydraulicFluid, MinorLoss};
+use crate::element::{Actuator, ControlValve, Element, HydraulicFluid, MinorLoss, Pipe};
 use crate::model::{Label, ScalarNodeKind};
 
 /// The fluids of `hydraulic fluid` cards by label: the fluid, the card's place in the file
@@ -61,15 +61,18 @@ fn fluid_properties(c: &mut Cursor, what: &str) -> Result<HydraulicFluid, MbdynE
     // hfluid.cc refuses a missing or non-positive density and viscosity ("illegal density").
     c.keyword(&format!("{what}: 'density'"), &["density"])?;
     let density = positive(c, "density [kg/m^3]", "")?;
-    let fluid = if compressible {
+    let compressibility = if compressible {
         let beta = if c.accept("sound celerity") { density * positive(c, "sound celerity [m/s]", "")?.powi(2) } else { positive(c, "bulk modulus [Pa]", " (MBDyn 1.7.3 refuses only a null one; a negative one makes a fluid that expands under pressure)")? };
-        let pressure = c.real("reference pressure [Pa]")?;
-        HydraulicFluid::LinearCompressible { density, bulk_modulus: beta, pressure }
+        Some((beta, c.real("reference pressure [Pa]")?))
     } else {
-        HydraulicFluid::Incompressible { density }
+        None
     };
     c.keyword(&format!("{what}: 'viscosity' (MBDyn 1.7.3 requires a positive viscosity)"), &["viscosity"])?;
-    positive(c, "viscosity [Pa s]", "")?;
+    let viscosity = positive(c, "viscosity [Pa s]", "")?;
+    let fluid = match compressibility {
+        Some((bulk_modulus, pressure)) => HydraulicFluid::LinearCompressible { density, bulk_modulus, pressure, viscosity },
+        None => HydraulicFluid::Incompressible { density, viscosity },
+    };
     if !compressible && c.accept("pressure") {
         c.real("reference pressure [Pa]")?;
     }
@@ -98,19 +101,20 @@ pub fn hydraulic(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<B
     let span = c.here();
     let types = ["actuator", "minor loss", "control valve", "pipe"];
     if let Some(k) = c.accept_any(&OTHER_ELEMENTS) {
-        return Err(c.error_at(span, format!("{} (supported: actuator, minor loss, control valve)", mbdyn_runs_it(&format!("hydraulic element type '{k}'")))));
+        return Err(c.error_at(span, format!("{} (supported: actuator, minor loss, control valve, pipe)", mbdyn_runs_it(&format!("hydraulic element type '{k}'")))));
     }
     let Some(kind) = c.accept_any(&types) else {
         return Err(match c.peek_keyword() {
-            Some(w) => c.error(format!("{} (romdyn reads: actuator, minor loss, control valve)", super::diagnostic::unknown_to_both("hydraulic element type", w))),
-            None => c.error(format!("expected the hydraulic element type (actuator, minor loss, control valve), found {}", c.found())),
+            Some(w) => c.error(format!("{} (romdyn reads: actuator, minor loss, control valve, pipe)", super::diagnostic::unknown_to_both("hydraulic element type", w))),
+            None => c.error(format!("expected the hydraulic element type (actuator, minor loss, control valve, pipe), found {}", c.found())),
         });
     };
-    if kind == "pipe" {
-        return Err(c.error_at(span, format!("{} (supported: actuator, minor loss, control valve)", mbdyn_runs_it("hydraulic element type 'pipe'"))));
-    }
     let what = format!("hydraulic {label} ({kind})");
     let pressure = |c: &mut Cursor| scalar_node_of(c, &ctx.nodes.2, ScalarNodeKind::Hydraulic, &what);
+    if kind == "pipe" {
+        let pressures = [pressure(c)?, pressure(c)?];
+        return pipe(label, c, ctx, &what, pressures);
+    }
     if kind == "control valve" {
         let pressures = [pressure(c)?, pressure(c)?, pressure(c)?, pressure(c)?];
         let area = positive(c, &format!("{what}: area [m^2]"), "")?;
@@ -158,4 +162,19 @@ pub fn hydraulic(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<B
     let fluid2 = if c.accept("same") { fluid1 } else { element_fluid(c, ctx, &what)? };
     let initial_pressures = pressures.map(|id| ctx.nodes.2.iter().find(|e| e.node.id == id).map_or(0.0, |e| e.node.value));
     Ok(Box::new(Actuator { label, pressures, nodes, offsets, axis, areas, length, fluids: [fluid1, fluid2], initial_pressures }))
+}
+
+/// `pipe, P1, P2, DIAMETER, [area, A,] LENGTH, [turbulent,] [initial value, Q0,] fluid, …`
+/// after its nodes (the area defaults to the diameter's circle).
+fn pipe(label: Label, c: &mut Cursor, ctx: &ElementContext, what: &str, pressures: [crate::model::ScalarNodeId; 2]) -> Result<Box<dyn Element>, MbdynError> {
+    let diameter = positive(c, &format!("{what}: hydraulic diameter [m]"), "")?;
+    let area = if c.accept("area") { positive(c, &format!("{what}: area [m^2]"), "")? } else { diameter * diameter * std::f64::consts::FRAC_PI_4 };
+    let length = positive(c, &format!("{what}: length [m]"), "")?;
+    let turbulent = c.accept("turbulent");
+    let initial_flow = if c.accept("initial value") { c.real("initial mass flow [kg/s]")? } else { 0.0 };
+    let fluid = element_fluid(c, ctx, what)?;
+    let pressure = |id| ctx.nodes.2.iter().find(|e: &&super::scalar_nodes::ScalarEntry| e.node.id == id).map_or(0.0, |e| e.node.value);
+    let rho = fluid.density(0.5 * (pressure(pressures[0]) + pressure(pressures[1])));
+    let coefficients = Pipe::coefficients(diameter, area, length, rho, fluid.viscosity());
+    Ok(Box::new(Pipe { label, pressures, diameter, area, viscosity: fluid.viscosity(), coefficients, turbulent, initial_flow }))
 }
