@@ -6,7 +6,7 @@
 use super::cursor::Cursor;
 use super::diagnostic::{mbdyn_runs_it, MbdynError};
 use super::element_context::ElementContext;
-use super::scalar_nodes::ScalarEntry;
+use super::scalar_nodes::{scalar_node_of, ScalarEntry};
 use crate::element::drive::Drive;
 use crate::element::{Accelerometer, AccelerometerKind, DisplacementSensor, Element, Motor};
 use crate::model::{Label, ScalarNodeId, ScalarNodeKind};
@@ -42,18 +42,6 @@ pub fn electric(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Bo
         _ => accelerometer(label, c, ctx, &what)?,
     };
     Ok(e)
-}
-
-/// A node label of `kind` defined in the nodes block (MBDyn's `ReadNode` of one kind: a
-/// label alone).
-pub fn scalar_node_of(c: &mut Cursor, nodes: &[ScalarEntry], kind: ScalarNodeKind, what: &str) -> Result<ScalarNodeId, MbdynError> {
-    let span = c.here();
-    let id = ScalarNodeId { kind, label: c.label(&format!("{what}: {} node label", kind.keyword()))? };
-    if nodes.iter().any(|e| e.node.id == id) {
-        Ok(id)
-    } else {
-        Err(c.error_at(span, format!("{what}: {id} is not defined")))
-    }
 }
 
 /// An abstract node that is differential (the sensors' output: MBDyn 1.7.3 reads a

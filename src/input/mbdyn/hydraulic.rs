@@ -4,18 +4,13 @@
 //! `control valve` and `pipe`. The other fluids and hydraulic elements of MBDyn 1.7.3 are refused by
 //! name.
 
-use std::collections::HashMap;
-
 use super::cursor::Cursor;
-use super::diagnostic::{mbdyn_runs_it, MbdynError, Span};
-use super::electric::scalar_node_of;
-use super::element_context::ElementContext;
+use super::diagnostic::{mbdyn_runs_it, MbdynError};
+use super::scalar_nodes::scalar_node_of;
+use super::element_context::{ElementContext, Fluids};
 use crate::element::{Actuator, ControlValve, Element, HydraulicFluid, MinorLoss, Pipe};
 use crate::model::{Label, ScalarNodeKind};
 
-/// The fluids of `hydraulic fluid` cards by label: the fluid, the card's place in the file
-/// (an element reads the fluids defined above it) and its span.
-pub type Fluids = HashMap<Label, (HydraulicFluid, usize, Span)>;
 
 /// The hydraulic element types of MBDyn 1.7.3 romdyn does not build.
 const OTHER_ELEMENTS: [&str; 10] = ["three way minor loss", "control valve 2", "dynamic control valve", "pressure flow control", "pressure valve", "flow valve", "orifice", "accumulator", "tank", "dynamic pipe"];

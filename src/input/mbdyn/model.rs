@@ -66,7 +66,7 @@ struct Cards {
     frames: Frames,
     drives: Drives,
     laws: Laws,
-    fluids: super::hydraulic::Fluids,
+    fluids: super::element_context::Fluids,
 }
 
 fn cards(doc: &Document) -> Result<Cards, MbdynError> {

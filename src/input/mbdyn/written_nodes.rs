@@ -141,7 +141,7 @@ impl WrittenNodes {
         }
         let laws = super::laws::Laws::default();
         let beams = super::element_context::BeamNodes::new();
-        let fluids = super::hydraulic::Fluids::new();
+        let fluids = super::element_context::Fluids::new();
         let ctx = super::element_context::ElementContext { nodes: &self.nodes, frames: &self.frames, drives: &self.drives, laws: &laws, fluids: &fluids, beams: &beams, seq: st.seq, static_model: false };
         let built = match super::elements::element(st, &mut Cursor::new(st, sources), &ctx) {
             Ok(super::element_context::Parsed::Element(e)) => Ok(e),
