@@ -8,7 +8,7 @@
 //! structural columns of their Jacobians; romdyn writes them, so a loop closed through a
 //! sensor linearizes exactly).
 
-use super::contract::{add_block, Col, Element, ElementState, JacobianSink, Label, ResidualSink, Row, ScalarNodeId, UnknownKind};
+use super::contract::{add_block, Col, Element, ElementState, JacobianSink, Label, Outputs, PrivateDatum, ResidualSink, Row, ScalarNodeId, UnknownKind};
 use crate::kinematics::{skew, Vec3};
 
 /// `electric: L, motor, NODE1, NODE2, DIR, V1, V2, G, L, R [, initial current, I0]` (Motor,
@@ -67,6 +67,9 @@ impl Element for Motor {
     fn initial_unknowns(&self) -> Vec<(usize, f64, f64)> {
         vec![(0, self.initial_current, self.initial_rate)]
     }
+    fn outputs(&self) -> Option<&dyn Outputs> {
+        Some(self)
+    }
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
         let n = self.axis_at(st);
         let i = st.multiplier(0);
@@ -103,6 +106,33 @@ impl Element for Motor {
         out.add(Row::Constraint(0), Col::Multiplier(0), self.resistance);
         out.add(Row::Constraint(0), Col::ScalarValue { slot: 1 }, -1.0);
         out.add(Row::Constraint(0), Col::ScalarValue { slot: 0 }, 1.0);
+    }
+}
+
+impl Outputs for Motor {
+    /// motor.cc, `Motor::dGetPrivData`: "i" the current [A], "iP" its rate [A/s], "omega"
+    /// the relative angular velocity about the axis [rad/s], "M" the torque `G i` [N m], "U"
+    /// the voltage `V₂ − V₁` [V], "Pmech" `M ω` and "Pel" `U i` [W], "R" the resistance [Ω].
+    /// The cogging terms' data (`Phimech`, `Phiel`, `M0`, `M1`) are not computed.
+    fn private_data(&self, name: &str) -> Option<PrivateDatum> {
+        let (label, nodes, axis, voltages, gain, resistance) = (self.label, self.nodes, self.axis, self.voltages, self.gain, self.resistance);
+        let current = move |st: &dyn ElementState| st.element_unknown("motor", label, 0);
+        let omega = move |st: &dyn ElementState| {
+            let (n1, n2) = (st.structural_node(nodes[0])?, st.structural_node(nodes[1])?);
+            Some((n1.r * axis).dot(&(n2.omega - n1.omega)))
+        };
+        let voltage = move |st: &dyn ElementState| Some(st.scalar_node(voltages[1])?.0 - st.scalar_node(voltages[0])?.0);
+        Some(match name {
+            "i" => PrivateDatum::new(move |st| current(st).map(|c| c.0)),
+            "iP" => PrivateDatum::new(move |st| current(st).map(|c| c.1)),
+            "omega" => PrivateDatum::new(omega),
+            "M" => PrivateDatum::new(move |st| current(st).map(|c| gain * c.0)),
+            "U" => PrivateDatum::new(voltage),
+            "Pmech" => PrivateDatum::new(move |st| Some(gain * current(st)?.0 * omega(st)?)),
+            "Pel" => PrivateDatum::new(move |st| Some(voltage(st)? * current(st)?.0)),
+            "R" => PrivateDatum::new(move |_| Some(resistance)),
+            _ => return None,
+        })
     }
 }
 

@@ -164,3 +164,32 @@ fn a_genel_on_an_electric_node_makes_an_rc_circuit() {
     let g = rom.static_gains.full.as_ref().unwrap()[(0, 0)];
     assert!((g - r).abs() < 1e-10 * r, "V/I = {g}, R = {r}");
 }
+
+#[test]
+fn motor_private_data_read_by_element_drives() {
+    // `element, 1, electric, string, NAME` drives (motor.cc's private data) on abstract
+    // forces, each held by a unit spring support on its own abstract node: the node's value
+    // is the datum. At the final state: "i" the motor's current unknown, "omega" the
+    // rotor's ω_z, "U" = V0, "M" = G i, "Pel" = V0 i, to Newton's tolerance (1e-10).
+    let data = ["i", "omega", "U", "M", "Pel"];
+    let nodes: String = (0..data.len()).map(|k| format!("    abstract: {}, differential;\n", 4 + k)).collect();
+    let elements: String = data.iter().enumerate().map(|(k, name)| format!("    genel: {}, spring support, {n}, abstract, algebraic, linear elastic, 1.;\n    force: {}, abstract, {n}, abstract, element, 1, electric, string, \"{name}\", linear, 0., 1.;\n", 3 + k, 1 + k, n = 4 + k)).collect();
+    let m = common::mbdyn::rewritten_test_file("dc_motor_inertia.mbd", &[
+        ("    abstract nodes: 3;", "    abstract nodes: 8;\n    forces: 5;"),
+        ("    genels: 2;", "    genels: 7;"),
+        ("    abstract: 3, differential, value, RB - RA;\n", &format!("    abstract: 3, differential, value, RB - RA;\n{nodes}")),
+        ("    electric: 4, displacement, 2, RA, 0., 0., 1, RB, 0., 0., 3;\n", &format!("    electric: 4, displacement, 2, RA, 0., 0., 1, RB, 0., 0., 3;\n{elements}")),
+        ("final time: 0.1;", "final time: 0.01;"),
+    ]);
+    let report = romdyn::analysis::run(&m.model, &m.problem, &mut ()).unwrap_or_else(|e| panic!("{e}"));
+    let asm = Assembler::new(&m.model);
+    let st = &report.final_state;
+    let motor = m.model.elements.iter().position(|e| e.type_name() == "motor").unwrap();
+    let i = st.y[asm.dofs.element_first[motor]];
+    let omega = st.node_frame(&asm.dofs, 1).kin.omega[2];
+    let node = |label: u32| st.y[asm.dofs.scalar_first + m.model.scalar_nodes.iter().position(|n| n.id.label == label && n.id.kind == romdyn::model::ScalarNodeKind::Abstract).unwrap()];
+    for (k, want) in [i, omega, V0, G * i, V0 * i].into_iter().enumerate() {
+        assert!((node(4 + k as u32) - want).abs() < 1e-10 * want.abs().max(1.0), "{}: {} vs {want}", data[k], node(4 + k as u32));
+    }
+    assert!(i > 0.1 && omega > 1.0, "i = {i}, ω = {omega}: the motor runs");
+}
