@@ -183,7 +183,7 @@ mod tests {
     }
 
     fn energy() -> ModalEnergy {
-        ModalEnergy { terms: (0..5).map(|n| (n as u32 + 1, "x", n, M)).collect(), scalars: Vec::new() }
+        ModalEnergy { terms: (0..5).map(|n| (n as u32 + 1, "x", n, M)).collect(), scalars: Vec::new(), non_mechanical: Vec::new() }
     }
 
     fn names() -> std::collections::BTreeMap<u32, String> {

@@ -33,6 +33,9 @@ pub struct ModalEnergy {
     pub(super) terms: Vec<(u32, &'static str, usize, f64)>,
     /// `(node label, kind, unknown index)` of every scalar node.
     pub(super) scalars: Vec<(u32, &'static str, usize)>,
+    /// The unknowns in other units than the mechanical ones: scalar nodes' and the own
+    /// unknowns of elements on scalar nodes (a motor's current, an actuator's pressures).
+    pub(super) non_mechanical: Vec<usize>,
 }
 
 impl ModalEnergy {
@@ -54,8 +57,10 @@ impl ModalEnergy {
                 terms.push((node.label, *component, f + k, (-fyd[f + k]).max(0.0)));
             }
         }
-        let scalars = model.scalar_nodes.iter().enumerate().map(|(i, n)| (n.id.label, n.id.kind.keyword(), dofs.scalar_first + i)).collect();
-        ModalEnergy { terms, scalars }
+        let scalars: Vec<(u32, &'static str, usize)> = model.scalar_nodes.iter().enumerate().map(|(i, n)| (n.id.label, n.id.kind.keyword(), dofs.scalar_first + i)).collect();
+        let own = model.elements.iter().enumerate().filter(|(_, e)| !e.scalar_nodes().is_empty()).flat_map(|(k, _)| dofs.element_first[k]..dofs.element_first[k] + dofs.element_len[k]);
+        let non_mechanical = scalars.iter().map(|s| s.2).chain(own).collect();
+        ModalEnergy { terms, scalars, non_mechanical }
     }
 
     /// Kinetic-energy shares of a mode, largest first (empty without eigenvector or mass).
@@ -68,9 +73,16 @@ impl ModalEnergy {
         // 100 %" of a kinetic energy of 1e-30 (seen on tests/mbdyn_files/time_variant_laws.mbd).
         // Reaction-dominated vectors keep their share (1e-4 of the largest entry in
         // examples/ham_sas.mbd's base modes).
+        // Pressures [Pa] or voltages next to displacements [m] differ by their units, not by
+        // rounding (a hydraulic actuator's mode moves 1e10 Pa per metre): the mass moves when
+        // its entries pass 1e-10 of the largest mechanical entry and 1e-14 of the largest of
+        // all (the same test as before in a model without scalar nodes).
         let largest = v.iter().map(|x| x.norm()).fold(0.0, f64::max);
+        let mut mechanical = v.iter().map(|x| x.norm()).collect::<Vec<f64>>();
+        self.non_mechanical.iter().for_each(|&k| mechanical[k] = 0.0);
+        let largest_mechanical = mechanical.iter().copied().fold(0.0, f64::max);
         let moved = self.terms.iter().filter(|t| t.3 > 0.0).map(|t| v[t.2].norm()).fold(0.0, f64::max);
-        if total <= 0.0 || moved <= 1e-10 * largest {
+        if total <= 0.0 || moved <= 1e-10 * largest_mechanical || moved <= 1e-14 * largest {
             // No mass moves: the mode lives in the scalar nodes (a controller, a filter), or
             // in massless nodes (then it is described by nothing rather than by rounding).
             out = self.scalars.iter().map(|&(node, component, j)| EnergyShare { node, component, share: v[j].norm_sqr() }).collect();

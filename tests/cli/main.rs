@@ -11,4 +11,5 @@ mod docs_commands;
 mod node_histories;
 mod pencil_input;
 mod report;
+mod scalar_ports;
 mod study_doors;

@@ -48,7 +48,7 @@ fn a_card_mbdyn_runs_is_refused_as_romdyns_limit() {
         }
     }
     // Control data counters MBDyn reads (dataman3.cc): "MBDyn 1.7.3 runs them".
-    let got = error_of(&model("electric elements: 1;", "", ""));
+    let got = error_of(&model("electric bulk elements: 1;", "", ""));
     if !got.contains("MBDyn 1.7.3 runs them") {
         failures.push(format!("counter: {got}"));
     }

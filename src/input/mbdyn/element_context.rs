@@ -32,6 +32,10 @@ pub enum Parsed {
     Ignored,
 }
 
+/// The fluids of `hydraulic fluid` cards by label: the fluid, the card's place in the file
+/// (an element reads the fluids defined above it) and its span.
+pub type Fluids = std::collections::HashMap<crate::model::Label, (crate::element::HydraulicFluid, usize, super::diagnostic::Span)>;
+
 /// Everything an element statement can refer to.
 /// The node labels of each `beam3` read so far, by beam label.
 pub type BeamNodes = std::collections::HashMap<crate::model::Label, [crate::model::Label; 3]>;
@@ -41,6 +45,8 @@ pub struct ElementContext<'a> {
     pub frames: &'a Frames,
     pub drives: &'a Drives,
     pub laws: &'a Laws,
+    /// The `hydraulic fluid` cards.
+    pub fluids: &'a Fluids,
     /// The node labels of the beams read so far (a beam slider names them).
     pub beams: &'a BeamNodes,
     /// The statement being read (cards must come before it).

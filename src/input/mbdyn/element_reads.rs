@@ -59,7 +59,7 @@ pub struct PrivateReads {
 
 /// Element types a `bind` or an `element` drive caller names, as label spaces
 /// (`elements::label_space`).
-const ELEMENT_TYPES: [&str; 6] = ["joint", "body", "force", "couple", "beam", "inertia"];
+const ELEMENT_TYPES: [&str; 7] = ["joint", "body", "force", "couple", "beam", "inertia", "electric"];
 
 fn space_of(kind: &'static str) -> &'static str {
     match kind {
@@ -140,7 +140,7 @@ impl PrivateReads {
 }
 
 /// The private data romdyn computes, for messages.
-const COMPUTED: &str = "it computes a body's \"E\", \"V\", \"m\", a rod's \"L\", \"LPrime\", \"rz\", \"wz\" of revolute hinges, revolute rotations and axial rotations, and \"px\" … \"pz\", \"rx\" … \"rz\", \"wx\" … \"wz\" of total joints and total pin joints";
+const COMPUTED: &str = "it computes a body's \"E\", \"V\", \"m\", a rod's \"L\", \"LPrime\", \"rz\", \"wz\" of revolute hinges, revolute rotations and axial rotations, and \"px\" … \"pz\", \"rx\" … \"rz\", \"wx\" … \"wz\" of total joints and total pin joints, and a motor's \"i\", \"iP\", \"omega\", \"M\", \"U\", \"Pmech\", \"Pel\", \"R\"";
 
 /// `parameter: LABEL, element;` in the nodes block; the other kinds (`value`, `sample and
 /// hold`, `beam strain gage`) are refused by name.

@@ -17,16 +17,18 @@ use crate::kinematics::{Mat3, Vec3};
 use crate::model::Label;
 
 /// Element types of MBDyn romdyn names in its "not supported" error.
-const OTHER_TYPES: [&str; 21] = [
+const OTHER_TYPES: [&str; 19] = [
     "aerodynamic beam2", "aerodynamic beam3", "aerodynamic body", "aeromodal", "aircraft instruments", "air properties", "induced velocity",
-    "electric", "hydraulic", "thermal", "rtai output", "stream output", "stream motion output", "bind", "bulk", "loadable",
+    "thermal", "rtai output", "stream output", "stream motion output", "bind", "bulk", "loadable",
     "user defined", "plate", "shell4eas", "shell4easans", "membrane4eas",
 ];
 
 /// The element kind counted in control data, by element keyword.
 pub fn counted_kind(keyword: &str) -> Option<&'static str> {
-    match known(keyword, &["body", "joint", "joint regularization", "force", "couple", "beam", "beam2", "beam3", "gravity", "automatic structural", "genel"])? {
+    match known(keyword, &["body", "joint", "joint regularization", "force", "couple", "beam", "beam2", "beam3", "gravity", "automatic structural", "genel", "electric", "hydraulic"])? {
         "body" => Some("rigid bodies"),
+        "electric" => Some("electric elements"),
+        "hydraulic" => Some("hydraulic elements"),
         "genel" => Some("genels"),
         "joint regularization" => Some("joint regularizations"),
         "joint" => Some("joints"),
@@ -39,8 +41,10 @@ pub fn counted_kind(keyword: &str) -> Option<&'static str> {
 
 /// The label space of an element keyword: forces and couples share one, as do beams.
 pub fn label_space(keyword: &str) -> &'static str {
-    match known(keyword, &["body", "joint", "force", "couple", "beam", "beam2", "beam3", "automatic structural", "genel"]) {
+    match known(keyword, &["body", "joint", "force", "couple", "beam", "beam2", "beam3", "automatic structural", "genel", "electric", "hydraulic"]) {
         Some("body") => "body",
+        Some("electric") => "electric",
+        Some("hydraulic") => "hydraulic",
         Some("genel") => "genel",
         Some("joint") => "joint",
         Some("force" | "couple") => "force",
@@ -51,7 +55,7 @@ pub fn label_space(keyword: &str) -> &'static str {
 
 /// One statement of the `elements` block (after the label for labelled elements).
 pub fn element(st: &Statement, c: &mut Cursor, ctx: &ElementContext) -> Result<Parsed, MbdynError> {
-    let kinds = ["body", "joint", "joint regularization", "force", "couple", "gravity", "beam", "beam2", "beam3", "automatic structural", "inertia", "output", "genel"];
+    let kinds = ["body", "joint", "joint regularization", "force", "couple", "gravity", "beam", "beam2", "beam3", "automatic structural", "inertia", "output", "genel", "electric", "hydraulic"];
     let Some(kind) = known(&st.keyword, &kinds) else {
         if known(&st.keyword, &["hbeam", "hbeam2"]).is_some() {
             return Err(c.error_at(st.span, super::beams::HBEAM_REFUSED));
@@ -85,6 +89,8 @@ pub fn element(st: &Statement, c: &mut Cursor, ctx: &ElementContext) -> Result<P
         "joint regularization" => super::total_equation::regularization(label, c)?,
         "force" | "couple" => Parsed::Element(force(kind == "couple", label, c, ctx)?),
         "genel" => Parsed::Element(super::genels::genel(label, c, ctx)?),
+        "electric" => Parsed::Element(super::electric::electric(label, c, ctx)?),
+        "hydraulic" => Parsed::Element(super::hydraulic::hydraulic(label, c, ctx)?),
         "automatic structural" => {
             ctx.node_with_label(c, label)?;
             c.skip_rest();

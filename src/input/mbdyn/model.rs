@@ -72,6 +72,7 @@ struct Cards {
     frames: Frames,
     drives: Drives,
     laws: Laws,
+    fluids: super::element_context::Fluids,
 }
 
 fn cards(doc: &Document) -> Result<Cards, MbdynError> {
@@ -118,6 +119,7 @@ fn cards(doc: &Document) -> Result<Cards, MbdynError> {
             Some("template drive caller") => super::templates::template_drive_caller_card(st, &mut c, &mut out.drives)?,
             Some("constitutive law") => constitutive_law_card(st, &mut c, &mut out.laws, &out.drives)?,
             Some("scalar function") => super::scalar_functions::scalar_function_card(&mut c, &mut out.drives.functions, st.seq)?,
+            Some("hydraulic fluid") => super::hydraulic::fluid_card(&mut c, st.seq, &mut out.fluids)?,
             Some("setenv" | "print symbol table") => {}
             Some(other) => return Err(c.error_at(st.span, super::diagnostic::mbdyn_runs_it(&format!("the '{other}' card")))),
             None => return Err(c.error_at(st.span, format!("unknown card '{}'", st.keyword))),
@@ -282,7 +284,7 @@ fn build_with(doc: &Document, beam_update: BeamUpdateRule) -> Result<MbdynModel,
         {
             output_only.insert(("inertia", *x as u32));
         }
-        let ctx = ElementContext { nodes: &nodes, frames: &cards.frames, drives: &cards.drives, laws: &cards.laws, beams: &beams, seq: st.seq, static_model, beam_update, beam_notes: &beam_notes };
+        let ctx = ElementContext { nodes: &nodes, frames: &cards.frames, drives: &cards.drives, laws: &cards.laws, fluids: &cards.fluids, beams: &beams, seq: st.seq, static_model, beam_update, beam_notes: &beam_notes };
         let label_span = c.here();
         cards.drives.functions.take_used();
         let parsed = element(st, &mut c, &ctx)?;

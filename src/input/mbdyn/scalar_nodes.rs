@@ -144,3 +144,15 @@ pub fn scalar_dof(c: &mut Cursor, nodes: &[ScalarEntry], what: &str, order: bool
     }
     Ok((ScalarDof { node: id, derivative }, differential))
 }
+
+/// A node label of `kind` defined in the nodes block (MBDyn's `ReadNode` of one kind: a
+/// label alone).
+pub fn scalar_node_of(c: &mut Cursor, nodes: &[ScalarEntry], kind: ScalarNodeKind, what: &str) -> Result<ScalarNodeId, MbdynError> {
+    let span = c.here();
+    let id = ScalarNodeId { kind, label: c.label(&format!("{what}: {} node label", kind.keyword()))? };
+    if nodes.iter().any(|e| e.node.id == id) {
+        Ok(id)
+    } else {
+        Err(c.error_at(span, format!("{what}: {id} is not defined")))
+    }
+}
