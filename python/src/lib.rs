@@ -146,17 +146,21 @@ impl Model {
     /// "NODE:x|y|z|rx|ry|rz" (displacement [m], rotation [rad]); on scalar nodes
     /// "NODE:abstract|electric|hydraulic" (input on the node's equation, output its value)
     /// and "NODE:abstract_rate|…" (output its derivative); ports: a ports file (JSON);
-    /// remove_springs: labels of dummy springs; imposed: "NODE[:COMPONENTS]". route:
+    /// remove_springs: labels of dummy springs; imposed: "NODE[:COMPONENTS]"; cut: control
+    /// loops to cut open, ["genel:LABEL" | "force:LABEL"] (as `--cut`: the element's part of
+    /// the linearization taken out, the signal across it an input "(injected)" and an output
+    /// "(returned)" after the others; the loop transfer function at the cut is
+    /// L(s) = −returned/injected; the reference stays the closed loop's). route:
     /// "lambda" or "direct"; dcoef [s]. solver: "dense" (QZ: every eigenvalue), "sparse"
     /// (shift-invert Krylov–Schur on the sparse linearization: only the modes `count` (the
     /// lowest N, default 10) or `band` (FMIN, FMAX) [Hz] ask for, no dense n x n matrix) or
     /// "auto" (sparse from 400 equations on, as `romdyn --solver auto`); `tolerance`: the
     /// sparse route's largest true relative residual of a mode.
-    #[pyo3(signature = (reference = None, load_steps = 10, inputs = Vec::new(), outputs = Vec::new(), ports = None, remove_springs = Vec::new(), imposed = None, route = "lambda", dcoef = None, solver = "auto", count = None, band = None, tolerance = 1e-10))]
+    #[pyo3(signature = (reference = None, load_steps = 10, inputs = Vec::new(), outputs = Vec::new(), ports = None, remove_springs = Vec::new(), imposed = None, cut = Vec::new(), route = "lambda", dcoef = None, solver = "auto", count = None, band = None, tolerance = 1e-10))]
     #[allow(clippy::too_many_arguments)]
-    fn study(&self, py: Python<'_>, reference: Option<&Bound<'_, PyAny>>, load_steps: usize, inputs: Vec<String>, outputs: Vec<String>, ports: Option<PathBuf>, remove_springs: Vec<u32>, imposed: Option<String>, route: &str, dcoef: Option<f64>, solver: &str, count: Option<usize>, band: Option<(f64, f64)>, tolerance: f64) -> PyResult<StudyPy> {
+    fn study(&self, py: Python<'_>, reference: Option<&Bound<'_, PyAny>>, load_steps: usize, inputs: Vec<String>, outputs: Vec<String>, ports: Option<PathBuf>, remove_springs: Vec<u32>, imposed: Option<String>, cut: Vec<String>, route: &str, dcoef: Option<f64>, solver: &str, count: Option<usize>, band: Option<(f64, f64)>, tolerance: f64) -> PyResult<StudyPy> {
         let reference = options::reference(reference, load_steps)?;
-        let ports = options::ports(&inputs, &outputs, ports.as_deref(), &remove_springs, imposed.as_deref())?;
+        let ports = options::ports(&inputs, &outputs, ports.as_deref(), &remove_springs, imposed.as_deref(), &cut)?;
         let eigen = EigenSettings { target: options::sparse_target(count, band)?, tolerance, ..options::eigen(route, dcoef, solver)? };
         let study = py.detach(|| self.builder()?.reference(reference).ports(ports).eigen(eigen).build()).map_err(py_err)?;
         // The study's warnings, as `romdyn eig|rom` prints them.

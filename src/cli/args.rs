@@ -77,6 +77,9 @@ pub struct PencilArgs {
     /// Imposed motion of a node (all six components, or NODE:x,y,rz): its forces and displacements become the last inputs and outputs; transmissibility by eq. 100
     #[arg(long, value_name = "NODE[:COMPONENTS]", conflicts_with = "pencil")]
     pub imposed: Option<String>,
+    /// Cut a control loop open at a genel or an abstract force (repeatable): its part of the linearized model is taken out and the signal that crossed it becomes an input (injected) and an output (returned), after the other inputs and outputs (before an imposed motion's); closing injected = returned gives the model as written, and the loop transfer function at the cut is L(s) = -(returned/injected). An element without own states (spring support, cross spring support, spring, abstract force) is cut at its output, a state-space genel or scalar filter at its input. The reference solution stays the closed loop's. Units: the scalar node's (abstract -, electric A or V, hydraulic kg/s or Pa)
+    #[arg(long = "cut", value_name = "genel:LABEL|force:LABEL", conflicts_with = "pencil")]
+    pub cuts: Vec<romdyn::dae::Cut>,
     /// Eigenanalysis route (lambda by default: its pencil has no infinite eigenvalues, on which faer's QZ can stall)
     #[arg(long, value_parser = named::<EigenRoute>(), default_value = "lambda")]
     pub route: EigenRoute,
@@ -124,7 +127,7 @@ impl PencilArgs {
     /// The model's ports: --input/--output alone, or with a ports file, --remove-spring or
     /// --imposed the whole application.
     pub fn ports(&self) -> Result<Ports, StudyError> {
-        Ports::from_parts(self.ports.as_deref(), &self.inputs, &self.outputs, &self.remove_spring, self.imposed.as_deref())
+        Ports::from_parts(self.ports.as_deref(), &self.inputs, &self.outputs, &self.remove_spring, self.imposed.as_deref(), &self.cuts)
     }
 }
 

@@ -19,13 +19,16 @@
 //!     { "type": "angular velocity", "node": 3, "direction": [0, 0, 1] }
 //!   ],
 //!   "remove_springs": [901, 902],
-//!   "imposed": "1:x,y,z"
+//!   "imposed": "1:x,y,z",
+//!   "cut": ["genel:4"]
 //! }
 //! ```
 //!
 //! Modal coordinates (issue 35): `{ "type": "modal coordinate", "joint": 200, "mode": 1 }` is
 //! modal joint 200's `q` of mode 1 (its number in the FEM file), `"modal coordinate rate"`
 //! its `q̇`; the shorthand `"200:q1"`, `"200:q1_rate"`.
+//! Cuts (issue 34): `"cut"` lists control loops to cut open, `"genel:LABEL"` or
+//! `"force:LABEL"` (an abstract force), as `--cut` ([`crate::dae::Cut`]).
 //! Scalar nodes (issue 34): `{ "name": "disturbance", "type": "abstract", "node": 1 }` as an
 //! input adds it to the node's equation, as an output is its value (`"abstract rate"`: its
 //! derivative); likewise `"electric"`, `"hydraulic"`; the shorthand `"1:abstract"`.
@@ -40,7 +43,7 @@ use serde::de::{self, Deserializer, MapAccess, Visitor};
 use serde::Deserialize;
 
 use crate::dae::ports::{Direction, Excitation, Frame, InputPort, Location, Measurement, OutputPort, Point};
-use crate::dae::{NodeInput, NodeOutput};
+use crate::dae::{Cut, NodeInput, NodeOutput};
 use crate::kinematics::Vec3;
 use crate::model::{Label, ScalarNodeId, ScalarNodeKind};
 
@@ -54,6 +57,8 @@ pub struct PortsFile {
     pub remove_springs: Vec<Label>,
     /// `NODE[:COMPONENTS]`.
     pub imposed: Option<String>,
+    /// Control loops cut open (`"cut": ["genel:4"]`).
+    pub cuts: Vec<Cut>,
 }
 
 /// Why a ports file could not be read.
@@ -80,6 +85,8 @@ struct Document {
     remove_springs: Vec<Label>,
     #[serde(default)]
     imposed: Option<String>,
+    #[serde(default)]
+    cut: Vec<String>,
 }
 
 /// `"NODE:COMP"` or a full port.
@@ -269,6 +276,9 @@ pub fn parse_ports(text: &str, path: &Path) -> Result<PortsFile, PortsFileError>
     for (k, v) in doc.names {
         let label: Label = k.trim().parse().map_err(|_| port_err("names", 0, &k, "keys are node labels (non-negative integers)".into()))?;
         out.names.insert(label, v);
+    }
+    for (i, c) in doc.cut.iter().enumerate() {
+        out.cuts.push(c.parse().map_err(|m| port_err("cut", i, c, m))?);
     }
     for (i, e) in doc.inputs.iter().enumerate() {
         out.inputs.push(match e {

@@ -9,6 +9,7 @@ mod application;
 mod mode_tracking;
 mod bode_plot;
 mod control;
+mod loop_cut;
 mod modal_ports;
 mod reference_solution;
 mod reference_warnings;
