@@ -311,13 +311,14 @@ mod tests {
     #[test]
     fn shorthand_and_full_ports_parse() -> Result<(), PortsFileError> {
         let text = r#"{"names": {"3": "table"}, "inputs": ["3:Fz", {"name": "A", "type": "actuator", "from": 1, "to": 2, "at": [1, 0, 0], "direction": [0, 1, 0]}],
-            "outputs": [{"name": "G", "type": "velocity", "node": 3, "offset": [0.5, 0, 0], "direction": [1, 0, 0], "frame": "node"}], "remove_springs": [9], "imposed": "1:x"}"#;
+            "outputs": [{"name": "G", "type": "velocity", "node": 3, "offset": [0.5, 0, 0], "direction": [1, 0, 0], "frame": "node"}], "remove_springs": [9], "imposed": "1:x", "cut": ["genel:4", "force:2"]}"#;
         let p = parse_ports(text, Path::new("p.json"))?;
         assert_eq!(p.inputs.len(), 2);
         assert_eq!(p.inputs[0].label(), "node 3 Fz [N]");
         assert_eq!(p.outputs[0].label(), "G [m/s]");
         assert_eq!(p.names[&3], "table");
         assert_eq!(p.remove_springs, vec![9]);
+        assert_eq!(p.cuts.iter().map(|c| c.to_string()).collect::<Vec<_>>(), ["genel:4", "force:2"]);
         Ok(())
     }
 
@@ -330,5 +331,7 @@ mod tests {
         assert_eq!(e, "p.json: outputs[0] (L): a 'relative' port needs \"from\" and \"to\" nodes");
         let e = parse_ports(r#"{"inputs": ["3:Fw"]}"#, Path::new("p.json")).unwrap_err().to_string();
         assert!(e.contains("inputs[0] (3:Fw)"), "{e}");
+        let e = parse_ports(r#"{"cut": ["genel:4", "joint:3"]}"#, Path::new("p.json")).unwrap_err().to_string();
+        assert_eq!(e, "p.json: cut[1] (joint:3): 'joint:3': expected genel:LABEL or force:LABEL (a genel or an abstract force of the model)");
     }
 }
