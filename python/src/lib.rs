@@ -145,7 +145,9 @@ impl Model {
     /// inputs/outputs: "NODE:Fx|Fy|Fz|Mx|My|Mz" (force [N], moment [N m]) and
     /// "NODE:x|y|z|rx|ry|rz" (displacement [m], rotation [rad]); on scalar nodes
     /// "NODE:abstract|electric|hydraulic" (input on the node's equation, output its value)
-    /// and "NODE:abstract_rate|…" (output its derivative); ports: a ports file (JSON);
+    /// and "NODE:abstract_rate|…" (output its derivative); fem_outputs: "JOINT:FEM_NODE:x|y|z"
+    /// (displacement [m] of a modal joint's FEM node, a sensor on the flexible body) or
+    /// "JOINT:FEM_NODE:vx|vy|vz" (its velocity [m/s]); ports: a ports file (JSON);
     /// remove_springs: labels of dummy springs; imposed: "NODE[:COMPONENTS]"; cut: control
     /// loops to cut open, ["genel:LABEL" | "force:LABEL"] (as `--cut`: the element's part of
     /// the linearization taken out, the signal across it an input "(injected)" and an output
@@ -156,11 +158,11 @@ impl Model {
     /// lowest N, default 10) or `band` (FMIN, FMAX) [Hz] ask for, no dense n x n matrix) or
     /// "auto" (sparse from 400 equations on, as `romdyn --solver auto`); `tolerance`: the
     /// sparse route's largest true relative residual of a mode.
-    #[pyo3(signature = (reference = None, load_steps = 10, inputs = Vec::new(), outputs = Vec::new(), ports = None, remove_springs = Vec::new(), imposed = None, cut = Vec::new(), route = "lambda", dcoef = None, solver = "auto", count = None, band = None, tolerance = 1e-10))]
+    #[pyo3(signature = (reference = None, load_steps = 10, inputs = Vec::new(), outputs = Vec::new(), fem_outputs = Vec::new(), ports = None, remove_springs = Vec::new(), imposed = None, cut = Vec::new(), route = "lambda", dcoef = None, solver = "auto", count = None, band = None, tolerance = 1e-10))]
     #[allow(clippy::too_many_arguments)]
-    fn study(&self, py: Python<'_>, reference: Option<&Bound<'_, PyAny>>, load_steps: usize, inputs: Vec<String>, outputs: Vec<String>, ports: Option<PathBuf>, remove_springs: Vec<u32>, imposed: Option<String>, cut: Vec<String>, route: &str, dcoef: Option<f64>, solver: &str, count: Option<usize>, band: Option<(f64, f64)>, tolerance: f64) -> PyResult<StudyPy> {
+    fn study(&self, py: Python<'_>, reference: Option<&Bound<'_, PyAny>>, load_steps: usize, inputs: Vec<String>, outputs: Vec<String>, fem_outputs: Vec<String>, ports: Option<PathBuf>, remove_springs: Vec<u32>, imposed: Option<String>, cut: Vec<String>, route: &str, dcoef: Option<f64>, solver: &str, count: Option<usize>, band: Option<(f64, f64)>, tolerance: f64) -> PyResult<StudyPy> {
         let reference = options::reference(reference, load_steps)?;
-        let ports = options::ports(&inputs, &outputs, ports.as_deref(), &remove_springs, imposed.as_deref(), &cut)?;
+        let ports = options::ports(&inputs, &outputs, &fem_outputs, ports.as_deref(), &remove_springs, imposed.as_deref(), &cut)?;
         let eigen = EigenSettings { target: options::sparse_target(count, band)?, tolerance, ..options::eigen(route, dcoef, solver)? };
         let study = py.detach(|| self.builder()?.reference(reference).ports(ports).eigen(eigen).build()).map_err(py_err)?;
         // The study's warnings, as `romdyn eig|rom` prints them.

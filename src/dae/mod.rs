@@ -41,6 +41,6 @@ pub use cut::{cut_parts, Cut, CutError, CutFamily, CutPart};
 pub use dofs::DofMap;
 pub use element_part::{element_part, ElementPart, ElementPartError};
 pub use linearize::{linearize, linearize_ports, linearize_sparse, sparse_jacobian_pair, NodeInput, NodeOutput};
-pub use ports::{InputPort, OutputPort, PortError, PortMap};
+pub use ports::{FemOutput, InputPort, OutputPort, PortError, PortMap};
 pub use sparse::{LuPath, SparseLu, Triplets, BAND_WORK_PER_ENTRY};
 pub use state::State;

@@ -26,7 +26,10 @@
 //!
 //! Modal coordinates (issue 35): `{ "type": "modal coordinate", "joint": 200, "mode": 1 }` is
 //! modal joint 200's `q` of mode 1 (its number in the FEM file), `"modal coordinate rate"`
-//! its `q̇`; the shorthand `"200:q1"`, `"200:q1_rate"`.
+//! its `q̇`; the shorthand `"200:q1"`, `"200:q1_rate"`. A FEM node of modal joint 200 (a
+//! sensor on the flexible body): `{ "type": "fem displacement", "joint": 200, "fem_node":
+//! "17", "direction": [0, 1, 0] }` (`"fem velocity"` its velocity; `"frame": "node"` the
+//! floating frame's axes).
 //! Cuts (issue 34): `"cut"` lists control loops to cut open, `"genel:LABEL"` or
 //! `"force:LABEL"` (an abstract force), as `--cut` ([`crate::dae::Cut`]).
 //! Scalar nodes (issue 34): `{ "name": "disturbance", "type": "abstract", "node": 1 }` as an
@@ -110,6 +113,7 @@ struct Spec {
     to_offset: Option<[f64; 3]>,
     direction: Option<[f64; 3]>,
     frame: Option<FrameName>,
+    fem_node: Option<String>,
     /// A modal joint's label and a mode's number in its FEM file (modal coordinates).
     joint: Option<Label>,
     mode: Option<usize>,
@@ -214,7 +218,21 @@ impl Spec {
         let mode = self.mode.filter(|m| *m >= 1).ok_or_else(|| format!("a '{}' port needs \"mode\": a mode's number in the FEM file (from 1)", self.kind))?;
         Ok((joint, mode))
     }
+    /// The joint and FEM node of a FEM node output (`"joint"`, `"fem_node"`, `"direction"`,
+    /// `"frame"`).
+    fn fem_node(&self) -> Result<(Label, String), String> {
+        if self.node.is_some() || self.from.is_some() || self.to.is_some() || self.mode.is_some() {
+            return Err(format!("a '{}' port takes \"joint\" (a modal joint's label), \"fem_node\" (a node label of its FEM file) and \"direction\", no node or mode", self.kind));
+        }
+        self.no_point()?;
+        let joint = self.joint.ok_or_else(|| format!("a '{}' port needs \"joint\": the modal joint's label", self.kind))?;
+        let fem_node = self.fem_node.clone().ok_or_else(|| format!("a '{}' port needs \"fem_node\": a node label of the joint's FEM file", self.kind))?;
+        Ok((joint, fem_node))
+    }
     fn input(&self, index: usize) -> Result<InputPort, String> {
+        if self.fem_node.is_some() {
+            return Err("\"fem_node\" belongs to 'fem displacement' and 'fem velocity' outputs".into());
+        }
         if self.joint.is_some() || self.mode.is_some() {
             return Err("\"joint\" and \"mode\" belong to 'modal coordinate' outputs".into());
         }
@@ -259,9 +277,20 @@ impl Spec {
                 let (joint, mode) = self.modal()?;
                 Measurement::ModalRate { joint, mode }
             }
-            k => return Err(format!("output type '{k}' is not one of displacement, rotation, relative, velocity, angular velocity, abstract, electric, hydraulic (and their 'rate'), modal coordinate, modal coordinate rate")),
+            "fem displacement" => {
+                let (joint, fem_node) = self.fem_node()?;
+                Measurement::FemDisplacement { joint, fem_node, direction: self.direction()? }
+            }
+            "fem velocity" => {
+                let (joint, fem_node) = self.fem_node()?;
+                Measurement::FemVelocity { joint, fem_node, direction: self.direction()? }
+            }
+            k => return Err(format!("output type '{k}' is not one of displacement, rotation, relative, velocity, angular velocity, abstract, electric, hydraulic (and their 'rate'), modal coordinate, modal coordinate rate, fem displacement, fem velocity")),
         };
-        if (self.joint.is_some() || self.mode.is_some()) && !self.kind.starts_with("modal coordinate") {
+        if self.fem_node.is_some() && !self.kind.starts_with("fem ") {
+            return Err("\"fem_node\" belongs to 'fem displacement' and 'fem velocity' outputs".into());
+        }
+        if (self.joint.is_some() || self.mode.is_some()) && !self.kind.starts_with("modal coordinate") && !self.kind.starts_with("fem ") {
             return Err("\"joint\" and \"mode\" belong to 'modal coordinate' outputs".into());
         }
         Ok(OutputPort { name: self.name.clone().unwrap_or_else(|| format!("output {}", index + 1)), measurement })

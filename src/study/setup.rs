@@ -2,7 +2,7 @@
 
 use crate::analysis::{reference_state_with_warnings, static_state_from, Reference};
 use crate::dae::ports::{InputPort, OutputPort};
-use crate::dae::{cut_parts, linearize_sparse, Cut, NodeInput, NodeOutput, State};
+use crate::dae::{cut_parts, linearize_sparse, Cut, FemOutput, NodeInput, NodeOutput, State};
 use crate::eigen::{dense_modes, energy_shares, EnergyShare, ModalEnergy};
 use crate::eigen::krylov::{sparse_modes_with_progress, ModeTarget, SparseEigenSettings};
 use crate::eigen::{EigenRoute, ModalAnalysis};
@@ -63,11 +63,12 @@ pub enum Ports {
 
 impl Ports {
     /// The ports every front end describes the same way: `ports_file` (a ports file's ports,
-    /// names, springs and imposed motion), then node ports, springs to remove and an imposed
+    /// names, springs and imposed motion), then node ports, FEM node outputs (sensors on
+    /// flexible bodies), springs to remove and an imposed
     /// motion (`NODE[:COMPONENTS]`), loops to cut open ([`Cut`]); without a ports file,
     /// springs, imposed motion or cuts, node ports only.
-    pub fn from_parts(ports_file: Option<&std::path::Path>, inputs: &[NodeInput], outputs: &[NodeOutput], remove_springs: &[crate::model::Label], imposed: Option<&str>, cuts: &[Cut]) -> Result<Self, StudyError> {
-        if ports_file.is_none() && remove_springs.is_empty() && imposed.is_none() && cuts.is_empty() {
+    pub fn from_parts(ports_file: Option<&std::path::Path>, inputs: &[NodeInput], outputs: &[NodeOutput], fem_outputs: &[FemOutput], remove_springs: &[crate::model::Label], imposed: Option<&str>, cuts: &[Cut]) -> Result<Self, StudyError> {
+        if ports_file.is_none() && fem_outputs.is_empty() && remove_springs.is_empty() && imposed.is_none() && cuts.is_empty() {
             return Ok(Ports::Nodes { inputs: inputs.to_vec(), outputs: outputs.to_vec() });
         }
         let file = match ports_file {
@@ -78,6 +79,7 @@ impl Ports {
         app.cuts.extend_from_slice(cuts);
         app.inputs.extend(inputs.iter().map(|p| p.port()));
         app.outputs.extend(outputs.iter().map(|p| p.port()));
+        app.outputs.extend(fem_outputs.iter().map(FemOutput::port));
         for l in remove_springs {
             if !app.remove_springs.contains(l) {
                 app.remove_springs.push(*l);

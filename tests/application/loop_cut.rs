@@ -21,7 +21,7 @@ fn study(file: &str, inputs: &[&str], outputs: &[&str], cuts: &[&str]) -> Result
     let inputs: Vec<NodeInput> = inputs.iter().map(|s| s.parse().unwrap()).collect();
     let outputs: Vec<NodeOutput> = outputs.iter().map(|s| s.parse().unwrap()).collect();
     let cuts: Vec<Cut> = cuts.iter().map(|s| s.parse().unwrap()).collect();
-    let ports = Ports::from_parts(None, &inputs, &outputs, &[], None, &cuts)?;
+    let ports = Ports::from_parts(None, &inputs, &outputs, &[], &[], None, &cuts)?;
     Study::builder(StudySource::model_file(example(file))).ports(ports).build()
 }
 
@@ -225,7 +225,7 @@ fn cuts_that_cannot_be_made_are_refused_with_the_option() {
     assert_eq!(refused(&["genel:4", "genel:4"]), "genel:4: named twice");
     // A structural force is not a cut: the cantilever's tip force (force 301).
     let cantilever = romdyn::input::mbdyn::read_model(&example("cantilever.mbd")).unwrap();
-    let ports = Ports::from_parts(None, &[], &[], &[], None, &["force:301".parse().unwrap()]).unwrap();
+    let ports = Ports::from_parts(None, &[], &[], &[], &[], None, &["force:301".parse().unwrap()]).unwrap();
     match Study::builder(StudySource::model(cantilever.model, cantilever.problem)).ports(ports).build() {
         Err(StudyError::Option { option: Setting::Cut, message }) => assert!(message.starts_with("force:301: force 301 is an absolute force: a cut takes a genel or an abstract force"), "{message}"),
         other => panic!("a structural force was cut: {:?}", other.err().map(|e| e.to_string())),

@@ -10,6 +10,7 @@ mod mode_tracking;
 mod bode_plot;
 mod control;
 mod loop_cut;
+mod fem_node_outputs;
 mod modal_ports;
 mod reference_solution;
 mod reference_warnings;
