@@ -193,7 +193,7 @@ impl Model {
         if count.is_none() == band.is_none() {
             return Err(options::bad("count", "give exactly one of count (a positive number of modes) and band (FMIN, FMAX) [Hz]"));
         }
-        let study = self.study(py, reference, load_steps, Vec::new(), Vec::new(), None, Vec::new(), None, "lambda", None, "sparse", count, band, tolerance)?;
+        let study = self.study(py, reference, load_steps, Vec::new(), Vec::new(), Vec::new(), None, Vec::new(), None, Vec::new(), "lambda", None, "sparse", count, band, tolerance)?;
         let Some(run) = study.study.sparse_run() else { return Err(RomdynError::new_err("the sparse route was not taken")) };
         let d = modes_dict(py, study.study.modal())?;
         d.set_item("certified", run.certified)?;

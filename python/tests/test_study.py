@@ -233,6 +233,24 @@ def test_a_cut_pid_loop_gives_the_plant_and_the_loop_transfer_function(examples)
         model.study(cut=["joint:4"])
 
 
+def test_a_fem_node_is_an_output(examples):
+    # Issue 35 point 2: fem_outputs=["JOINT:FEM_NODE:y"], a sensor on a flexible body. On
+    # tests/mbdyn_files/modal_clamped_port.mbd FEM node B moves 1 m along y per unit q1 and
+    # carries node 2: its y is q1 = 1/(k - (m + m2) w^2) F (the file's closed form), its
+    # velocity j w times that; 1e-12.
+    path = examples.parent / "tests" / "mbdyn_files" / "modal_clamped_port.mbd"
+    study = romdyn.Model(path).study(inputs=["2:Fy"], outputs=["10:q1"], fem_outputs=["10:B:y", "10:B:vy"])
+    assert study.linear()["outputs"] == ["modal 10 q1 [-]", "modal 10 FEM node B y [m]", "modal 10 FEM node B vy [m/s]"]
+    for f in (1.0, 7.0):
+        w = 2 * np.pi * f
+        h = study.frequency_response(np.array([f]))[0]
+        q = 1 / (1000.0 - 2.0 * w * w)
+        assert h[1, 0] == pytest.approx(q, rel=1e-12)
+        assert h[2, 0] == pytest.approx(1j * w * q, rel=1e-12)
+    with pytest.raises(ValueError, match=r"^fem_outputs: '10:B': expected JOINT:FEM_NODE:COMPONENT with COMPONENT one of x\|y\|z\|vx\|vy\|vz"):
+        romdyn.Model(path).study(fem_outputs=["10:B"])
+
+
 def test_enumerated_settings_and_sweeps_name_the_keyword(examples):
     # Issue 31: one library table of names per enum, read by clap and by Python; a bad word
     # is refused naming the Python keyword, with the names the table holds.

@@ -506,7 +506,7 @@ const FEM_COMPONENTS: [&str; 6] = ["x", "y", "z", "vx", "vy", "vz"];
 impl std::str::FromStr for FemOutput {
     type Err = PortError;
     fn from_str(s: &str) -> Result<Self, PortError> {
-        let bad = || PortError::Syntax(s.to_string(), format!("{} (JOINT:FEM_NODE:COMPONENT, JOINT a modal joint's label, FEM_NODE a node label of its FEM file)", FEM_COMPONENTS.join("|")));
+        let bad = || PortError::Invalid(s.to_string(), format!("expected JOINT:FEM_NODE:COMPONENT with COMPONENT one of {} (JOINT a modal joint's label, FEM_NODE a node label of its FEM file)", FEM_COMPONENTS.join("|")));
         let (joint, rest) = s.split_once(':').ok_or_else(bad)?;
         let (fem_node, comp) = rest.rsplit_once(':').ok_or_else(bad)?;
         let joint = joint.trim().parse().map_err(|_| bad())?;
