@@ -120,7 +120,7 @@ impl Study {
     pub fn linearize_application(model: &Model, state: &State, app: &Application) -> Result<LinearDae, StudyError> {
         let (inputs, outputs) = application_ports(app);
         let mut dae = linearize_ports(model, state, &inputs, &outputs, None)?;
-        for part in cut_parts(model, state, &app.cuts).map_err(super::setup::cut_error)? {
+        for part in cut_parts(model, state, &app.cuts)? {
             part.cut_dense(&mut dae, app.imposed.as_ref().map_or(0, |(_, c)| c.len()));
         }
         Ok(dae)

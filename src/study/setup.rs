@@ -185,11 +185,6 @@ pub struct Study {
 /// No progress reports.
 pub(super) fn quiet(_: &str) {}
 
-/// A cut that cannot be made, as an error of the `cut` setting.
-pub(super) fn cut_error(e: crate::dae::CutError) -> StudyError {
-    StudyError::Option { option: Setting::Cut, message: e.to_string() }
-}
-
 impl Study {
     /// Linearizes at a given reference solution with `ports`; an application's dense
     /// linearization `dae` when done already.
@@ -212,7 +207,7 @@ impl Study {
     /// last), and its eigenanalysis; `progress` gets the sparse solver's reports.
     pub(super) fn from_model_ports(model: Model, problem: &InitialValueProblem, state: State, inputs: &[InputPort], outputs: &[OutputPort], cuts: &[Cut], eigen: EigenSettings, progress: &dyn Fn(&str)) -> Result<Self, StudyError> {
         let mut sparse = linearize_sparse(&model, &state, inputs, outputs)?;
-        for part in cut_parts(&model, &state, cuts).map_err(cut_error)? {
+        for part in cut_parts(&model, &state, cuts)? {
             part.cut_sparse(&mut sparse);
         }
         let equilibrium = equilibrium_warning(&model, &state, problem.tolerance);

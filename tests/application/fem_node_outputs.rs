@@ -163,3 +163,60 @@ fn fem_node_outputs_that_do_not_exist_are_refused() {
     let e = file(r#"{"outputs": [{"type": "displacement", "node": 2, "fem_node": "17", "direction": [0, 1, 0]}]}"#).unwrap_err().to_string();
     assert!(e.contains("\"fem_node\" belongs to 'fem displacement' and 'fem velocity' outputs"), "{e}");
 }
+
+#[test]
+fn a_moving_fem_nodes_velocity_row_is_the_derivative_of_its_velocity() {
+    // modal_floating_force.mbd at t = 0.5 s of its run (the body translating, turning and
+    // vibrating: ω, q, q̇ not zero): the rows of C̃ and C̃_v of FEM node C's displacement and
+    // velocity against central differences of p = x + R (f₀ + Φ q) and
+    // ṗ = ẋ + ω × R (f₀ + Φ q) + R Φ q̇ in the unknowns and their rates (the node's kinematics
+    // from the state as the linearization reads them).
+    let mut outputs = Vec::new();
+    for k in 0..3 {
+        outputs.push(FemOutput { joint: 10, fem_node: "C".into(), component: k }.port());
+        outputs.push(FemOutput { joint: 10, fem_node: "C".into(), component: 3 + k }.port());
+    }
+    let app = Application { outputs, ..Default::default() };
+    let s = Study::builder(StudySource::model_file(test_file("modal_floating_force.mbd"))).reference(Reference::At(0.5)).application(app).build().unwrap_or_else(|e| panic!("{e}"));
+    let model = s.model().unwrap();
+    let dofs = romdyn::dae::DofMap::new(model);
+    let mut base = s.reference_state().unwrap().clone();
+    base.linearization_base(&dofs);
+    let modal = model.elements.iter().position(|e| e.type_name() == "modal").unwrap();
+    // Own unknowns of the joint: 6 interface multipliers, then q1, q2.
+    let q_first = dofs.element_first[modal] + 6;
+    let node = model.node_index(1).unwrap();
+    let f_c = Vec3::new(0.3, -0.4, 0.2);
+    let shapes = [Vec3::new(-0.3, 0.2, 0.4), Vec3::new(0.2, 0.5, -0.1)];
+    let point = |st: &romdyn::dae::State| {
+        let kin = st.node_frame(&dofs, node).kin;
+        let local = f_c + shapes[0] * st.y[q_first] + shapes[1] * st.y[q_first + 1];
+        let rate = shapes[0] * st.yp[q_first] + shapes[1] * st.yp[q_first + 1];
+        (kin.x + kin.r * local, kin.xdot + kin.omega.cross(&(kin.r * local)) + kin.r * rate)
+    };
+    let kin = base.node_frame(&dofs, node).kin;
+    assert!(kin.omega.norm() > 1e-3 && base.yp[q_first].abs() > 1e-6, "the reference moves: ω {}, q̇1 {}", kin.omega, base.yp[q_first]);
+    let dae = s.dae();
+    let c_rate = dae.c_rate.as_ref().unwrap();
+    let h = 1e-6;
+    let mut worst: f64 = 0.0;
+    for j in 0..dofs.len {
+        for rate in [false, true] {
+            let shifted = |sign: f64| {
+                let mut st = base.clone();
+                if rate { st.yp[j] += sign * h } else { st.y[j] += sign * h }
+                point(&st)
+            };
+            let ((p1, v1), (p0, v0)) = (shifted(1.0), shifted(-1.0));
+            let (dp, dv) = ((p1 - p0) / (2.0 * h), (v1 - v0) / (2.0 * h));
+            for k in 0..3 {
+                let (row_p, row_v) = (2 * k, 2 * k + 1);
+                let (got_p, got_v) = if rate { (c_rate[(row_p, j)], c_rate[(row_v, j)]) } else { (dae.c[(row_p, j)], dae.c[(row_v, j)]) };
+                worst = worst.max((got_p - dp[k]).abs()).max((got_v - dv[k]).abs());
+            }
+        }
+    }
+    // Central differences of smooth functions with h = 1e-6 on entries of order 1: 1e-7.
+    eprintln!("largest difference of the rows from central differences: {worst:.1e}");
+    assert!(worst < 1e-7, "{worst:e}");
+}
