@@ -234,3 +234,36 @@ fn cuts_that_cannot_be_made_are_refused_with_the_option() {
     assert_eq!("joint:3".parse::<Cut>().unwrap_err(), "'joint:3': expected genel:LABEL or force:LABEL (a genel or an abstract force of the model)");
     assert_eq!("genel:x".parse::<Cut>().unwrap_err(), "'genel:x': expected genel:LABEL or force:LABEL (a genel or an abstract force of the model)");
 }
+
+#[test]
+fn the_dense_and_sparse_cuts_are_the_same_and_ports_go_before_the_last() {
+    // The dense route (a study with springs removed or imposed motion) cuts the dense
+    // linearization: the same matrices as the sparse cut, entry for entry, and the cut's ports
+    // inserted before the last `last` ports (an imposed motion's, which stay last).
+    let m = romdyn::input::mbdyn::read_model(&example("pid_mass.mbd")).unwrap();
+    let asm = romdyn::dae::Assembler::new(&m.model);
+    let state = romdyn::dae::State::initial(&m.model, &asm.dofs);
+    let inputs: Vec<_> = ["1:abstract", "2:abstract"].map(|s| s.parse::<NodeInput>().unwrap().port()).to_vec();
+    let outputs: Vec<_> = ["1:abstract", "2:abstract_rate"].map(|s| s.parse::<NodeOutput>().unwrap().port()).to_vec();
+    let parts = romdyn::dae::cut_parts(&m.model, &state, &["genel:4".parse().unwrap(), "genel:3".parse().unwrap()]).unwrap();
+    let mut dense = romdyn::dae::linearize_ports(&m.model, &state, &inputs, &outputs, None).unwrap();
+    let mut sparse = romdyn::dae::linearize_sparse(&m.model, &state, &inputs, &outputs).unwrap();
+    for p in &parts {
+        p.cut_dense(&mut dense, 1);
+        p.cut_sparse(&mut sparse);
+    }
+    assert_eq!(dense.input_names, ["abstract node 1 [-]", "cut genel cross spring support 4 at abstract node 1 (injected) [-]", "cut genel scalar filter 3 at abstract node 1 (injected) [-]", "abstract node 2 [-]"]);
+    assert_eq!(dense.output_names[3], "abstract node 2 rate [1/s]");
+    assert_eq!(sparse.input_names[3], "cut genel scalar filter 3 at abstract node 1 (injected) [-]");
+    let (fyd, fy) = dense.jacobians.derivatives();
+    let same = |a: &Mat<f64>, b: &Mat<f64>| a.nrows() == b.nrows() && a.ncols() == b.ncols() && (0..a.nrows()).all(|i| (0..a.ncols()).all(|j| a[(i, j)] == b[(i, j)]));
+    assert!(same(&fyd, &sparse.fyd.to_dense()) && same(&fy, &sparse.fy.to_dense()));
+    // Columns and rows moved by the insertion: dense's [0, 2, 3, 1] are sparse's [0, 1, 2, 3].
+    let order = [0, 2, 3, 1];
+    for (d, s) in order.iter().enumerate() {
+        assert!((0..dense.b.nrows()).all(|i| dense.b[(i, d)] == sparse.b[(i, *s)]), "input {d}");
+        assert!((0..dense.c.ncols()).all(|j| dense.c[(d, j)] == sparse.c[(*s, j)]), "output {d}");
+        let (rd, rs) = (dense.c_rate.as_ref().unwrap(), sparse.c_rate.as_ref().unwrap());
+        assert!((0..rd.ncols()).all(|j| rd[(d, j)] == rs[(*s, j)]), "rate output {d}");
+    }
+}
