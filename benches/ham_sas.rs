@@ -25,7 +25,7 @@ fn main() {
 
 fn application() -> Application {
     let p = read_ports_file("examples/ham_sas_ports.json".as_ref()).unwrap();
-    Application { inputs: p.inputs, outputs: p.outputs, names: p.names, remove_springs: p.remove_springs, imposed: p.imposed.as_deref().map(|s| parse_imposed(s).unwrap()) }
+    Application { inputs: p.inputs, outputs: p.outputs, names: p.names, remove_springs: p.remove_springs, imposed: p.imposed.as_deref().map(|s| parse_imposed(s).unwrap()), cuts: Vec::new() }
 }
 
 /// Eigenanalysis with right and adjoint vectors of the linearized model as written (dummy

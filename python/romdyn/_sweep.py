@@ -35,7 +35,7 @@ def sweep(path, set=None, points=None, names=None, executor=None, threads=None, 
     path: the MBDyn input file. set: {name: "A:B:N" | [values]} (their full grid, the first
     name varying slowest) or points: a list of value lists with names: their variable names.
     options: those of ``Model.study`` and ``Study.reduce`` (reference, load_steps, inputs,
-    outputs, ports, remove_springs, imposed, route, dcoef, count, band, modes, residualize,
+    outputs, fem_outputs, ports, remove_springs, imposed, cut, route, dcoef, count, band, modes, residualize,
     by, below_band, damping, form), lowest (number of lowest modes tabulated, default 4) and
     continuation (reference="static" only: each equilibrium starts from the previous
     point's; local runs only).

@@ -144,18 +144,24 @@ impl Model {
     /// inputs/outputs: "NODE:Fx|Fy|Fz|Mx|My|Mz" (force [N], moment [N m]) and
     /// "NODE:x|y|z|rx|ry|rz" (displacement [m], rotation [rad]); on scalar nodes
     /// "NODE:abstract|electric|hydraulic" (input on the node's equation, output its value)
-    /// and "NODE:abstract_rate|…" (output its derivative); ports: a ports file (JSON);
-    /// remove_springs: labels of dummy springs; imposed: "NODE[:COMPONENTS]". route:
+    /// and "NODE:abstract_rate|…" (output its derivative); fem_outputs: "JOINT:FEM_NODE:x|y|z"
+    /// (displacement [m] of a modal joint's FEM node, a sensor on the flexible body) or
+    /// "JOINT:FEM_NODE:vx|vy|vz" (its velocity [m/s]); ports: a ports file (JSON);
+    /// remove_springs: labels of dummy springs; imposed: "NODE[:COMPONENTS]"; cut: control
+    /// loops to cut open, ["genel:LABEL" | "force:LABEL"] (as `--cut`: the element's part of
+    /// the linearization taken out, the signal across it an input "(injected)" and an output
+    /// "(returned)" after the others; the loop transfer function at the cut is
+    /// L(s) = −returned/injected; the reference stays the closed loop's). route:
     /// "lambda" or "direct"; dcoef [s]. solver: "dense" (QZ: every eigenvalue), "sparse"
     /// (shift-invert Krylov–Schur on the sparse linearization: only the modes `count` (the
     /// lowest N, default 10) or `band` (FMIN, FMAX) [Hz] ask for, no dense n x n matrix) or
     /// "auto" (sparse from 400 equations on, as `romdyn --solver auto`); `tolerance`: the
     /// sparse route's largest true relative residual of a mode.
-    #[pyo3(signature = (reference = None, load_steps = 10, inputs = Vec::new(), outputs = Vec::new(), ports = None, remove_springs = Vec::new(), imposed = None, route = "lambda", dcoef = None, solver = "auto", count = None, band = None, tolerance = 1e-10))]
+    #[pyo3(signature = (reference = None, load_steps = 10, inputs = Vec::new(), outputs = Vec::new(), fem_outputs = Vec::new(), ports = None, remove_springs = Vec::new(), imposed = None, cut = Vec::new(), route = "lambda", dcoef = None, solver = "auto", count = None, band = None, tolerance = 1e-10))]
     #[allow(clippy::too_many_arguments)]
-    fn study(&self, py: Python<'_>, reference: Option<&Bound<'_, PyAny>>, load_steps: usize, inputs: Vec<String>, outputs: Vec<String>, ports: Option<PathBuf>, remove_springs: Vec<u32>, imposed: Option<String>, route: &str, dcoef: Option<f64>, solver: &str, count: Option<usize>, band: Option<(f64, f64)>, tolerance: f64) -> PyResult<StudyPy> {
+    fn study(&self, py: Python<'_>, reference: Option<&Bound<'_, PyAny>>, load_steps: usize, inputs: Vec<String>, outputs: Vec<String>, fem_outputs: Vec<String>, ports: Option<PathBuf>, remove_springs: Vec<u32>, imposed: Option<String>, cut: Vec<String>, route: &str, dcoef: Option<f64>, solver: &str, count: Option<usize>, band: Option<(f64, f64)>, tolerance: f64) -> PyResult<StudyPy> {
         let reference = options::reference(reference, load_steps)?;
-        let ports = options::ports(&inputs, &outputs, ports.as_deref(), &remove_springs, imposed.as_deref())?;
+        let ports = options::ports(&inputs, &outputs, &fem_outputs, ports.as_deref(), &remove_springs, imposed.as_deref(), &cut)?;
         let eigen = EigenSettings { target: options::sparse_target(count, band)?, tolerance, ..options::eigen(route, dcoef, solver)? };
         let study = py.detach(|| self.builder(reference.integrates())?.reference(reference).ports(ports).eigen(eigen).build()).map_err(py_err)?;
         // The study's warnings, as `romdyn eig|rom` prints them.
@@ -186,7 +192,7 @@ impl Model {
         if count.is_none() == band.is_none() {
             return Err(options::bad("count", "give exactly one of count (a positive number of modes) and band (FMIN, FMAX) [Hz]"));
         }
-        let study = self.study(py, reference, load_steps, Vec::new(), Vec::new(), None, Vec::new(), None, "lambda", None, "sparse", count, band, tolerance)?;
+        let study = self.study(py, reference, load_steps, Vec::new(), Vec::new(), Vec::new(), None, Vec::new(), None, Vec::new(), "lambda", None, "sparse", count, band, tolerance)?;
         let Some(run) = study.study.sparse_run() else { return Err(RomdynError::new_err("the sparse route was not taken")) };
         let d = modes_dict(py, study.study.modal())?;
         d.set_item("certified", run.certified)?;

@@ -34,10 +34,12 @@ pub fn reference(r: Option<&Bound<'_, PyAny>>, load_steps: usize) -> PyResult<Re
     Ok(Reference::At(t))
 }
 
-pub fn ports(inputs: &[String], outputs: &[String], file: Option<&Path>, remove_springs: &[u32], imposed: Option<&str>) -> PyResult<Ports> {
+pub fn ports(inputs: &[String], outputs: &[String], fem_outputs: &[String], file: Option<&Path>, remove_springs: &[u32], imposed: Option<&str>, cuts: &[String]) -> PyResult<Ports> {
     let inputs = inputs.iter().map(|s| s.parse::<NodeInput>().map_err(|e| bad("inputs", e))).collect::<PyResult<Vec<_>>>()?;
     let outputs = outputs.iter().map(|s| s.parse::<NodeOutput>().map_err(|e| bad("outputs", e))).collect::<PyResult<Vec<_>>>()?;
-    Ports::from_parts(file, &inputs, &outputs, remove_springs, imposed).map_err(py_err)
+    let fem_outputs = fem_outputs.iter().map(|s| s.parse::<romdyn::dae::FemOutput>().map_err(|e| bad("fem_outputs", e))).collect::<PyResult<Vec<_>>>()?;
+    let cuts = cuts.iter().map(|s| s.parse::<romdyn::dae::Cut>().map_err(|e| bad("cut", e))).collect::<PyResult<Vec<_>>>()?;
+    Ports::from_parts(file, &inputs, &outputs, &fem_outputs, remove_springs, imposed, &cuts).map_err(py_err)
 }
 
 /// A keyword's word as the library's enum, by the library's one table of names (the CLI's
@@ -125,7 +127,7 @@ fn get<'py, T: FromPyObjectOwned<'py>>(d: &Bound<'py, PyDict>, key: &str) -> PyR
 /// Keys a sweep's options dict may hold (those of `Model.study` and `Study.reduce`, whose
 /// balanced and minimal reductions the library refuses in a sweep with the reason, plus
 /// "lowest", "continuation" and "beam_update", the CLI's `--beam-update`).
-const KEYS: [&str; 28] = ["beam_update", "reference", "load_steps", "inputs", "outputs", "ports", "remove_springs", "imposed", "route", "dcoef", "solver", "count", "band", "modes", "residualize", "by", "below_band", "damping", "form", "lowest", "continuation", "sample_rate", "discretize", "prewarp", "balanced", "hankel_tol", "spa", "minimal"];
+const KEYS: [&str; 30] = ["beam_update", "reference", "load_steps", "inputs", "outputs", "fem_outputs", "ports", "remove_springs", "imposed", "cut", "route", "dcoef", "solver", "count", "band", "modes", "residualize", "by", "below_band", "damping", "form", "lowest", "continuation", "sample_rate", "discretize", "prewarp", "balanced", "hankel_tol", "spa", "minimal"];
 
 /// A sweep's options dict.
 pub fn sweep(d: &Bound<'_, PyDict>) -> PyResult<SweepOptions> {
@@ -138,7 +140,7 @@ pub fn sweep(d: &Bound<'_, PyDict>) -> PyResult<SweepOptions> {
     let load_steps = get(d, "load_steps")?.unwrap_or(10);
     let reference = reference(d.get_item("reference")?.as_ref(), load_steps)?;
     let ports_file: Option<std::path::PathBuf> = get(d, "ports")?;
-    let ports = ports(&get::<Vec<String>>(d, "inputs")?.unwrap_or_default(), &get::<Vec<String>>(d, "outputs")?.unwrap_or_default(), ports_file.as_deref(), &get::<Vec<u32>>(d, "remove_springs")?.unwrap_or_default(), get::<String>(d, "imposed")?.as_deref())?;
+    let ports = ports(&get::<Vec<String>>(d, "inputs")?.unwrap_or_default(), &get::<Vec<String>>(d, "outputs")?.unwrap_or_default(), &get::<Vec<String>>(d, "fem_outputs")?.unwrap_or_default(), ports_file.as_deref(), &get::<Vec<u32>>(d, "remove_springs")?.unwrap_or_default(), get::<String>(d, "imposed")?.as_deref(), &get::<Vec<String>>(d, "cut")?.unwrap_or_default())?;
     let eigen = eigen(&get::<String>(d, "route")?.unwrap_or_else(|| "lambda".into()), get(d, "dcoef")?, &get::<String>(d, "solver")?.unwrap_or_else(|| "auto".into()))?;
     let rom = request(
         get(d, "count")?,

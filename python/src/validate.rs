@@ -49,7 +49,7 @@ fn validate_err(e: ValidateError) -> PyErr {
 #[allow(clippy::too_many_arguments)]
 pub fn validate<'py>(py: Python<'py>, model: &Model, reference: Option<&Bound<'_, PyAny>>, load_steps: usize, inputs: Vec<String>, outputs: Vec<String>, ports: Option<PathBuf>, count: Option<usize>, band: Option<(f64, f64)>, modes: Option<Vec<usize>>, residualize: Option<&Bound<'_, PyAny>>, signal: &str, amplitudes: Vec<f64>, validation_band: Option<(f64, f64)>, resolution: Option<f64>, averages: usize, time_step: Option<f64>, seed: u64, coherence: f64, tolerance: f64, fit: f64, measured: Option<PathBuf>) -> PyResult<Bound<'py, PyDict>> {
     let reference = options::reference(reference, load_steps)?;
-    let ports = options::ports(&inputs, &outputs, ports.as_deref(), &[], None)?;
+    let ports = options::ports(&inputs, &outputs, &[], ports.as_deref(), &[], None, &[])?;
     let request = options::request(count, band, modes, residualize, "frequency", "drop", None)?;
     let opts = ValidateOptions { signal: signal_of(signal)?, amplitudes, band_hz: validation_band, resolution_hz: resolution, averages, time_step, seed, coherence, tolerance, fit, measured };
     opts.check().map_err(validate_err)?;

@@ -200,6 +200,57 @@ def test_pid_loop_on_abstract_nodes_has_the_polynomial_poles(examples):
         assert h[1, 0] == pytest.approx((b0 * s * s + b1 * s + b2) / p, rel=1e-8)
 
 
+def test_a_cut_pid_loop_gives_the_plant_and_the_loop_transfer_function(examples):
+    # Issue 34 point 4: cut=["genel:4"] takes examples/pid_mass.mbd's link from the
+    # controller to the mass out of the linearization; the plant P = 1/(m s^2 + c s + k), the
+    # loop L = P C = -returned/injected with C = (B0 s^2 + B1 s + B2)/(s^2 + A1 s), and the
+    # closed loop (uncut) u/F = T = P C/(1 + P C), all closed forms, 1e-8.
+    m, k, c, kp, ki, kd, tau = 2.0, 50.0, 0.4, 100.0, 200.0, 10.0, 0.01
+    a1, b0, b1, b2 = 1 / tau, (kp * tau + kd) / tau, (kp + ki * tau) / tau, ki / tau
+    model = romdyn.Model(examples / "pid_mass.mbd")
+    cut = model.study(inputs=["1:abstract"], outputs=["1:abstract", "2:abstract"], cut=["genel:4"])
+    linear = cut.linear()
+    assert linear["inputs"][-1] == "cut genel cross spring support 4 at abstract node 1 (injected) [-]"
+    assert linear["outputs"][-1] == "cut genel cross spring support 4 at abstract node 1 (returned) [-]"
+    modes = cut.modes()
+    dyn = modes["eigenvalues"][[kind == "dynamic" for kind in modes["kind"]]]
+    for p in list(np.roots([m, c, k])) + [-1 / tau]:
+        assert np.min(np.abs(dyn - p)) <= 1e-8 * abs(p), (p, dyn)
+    closed = model.study(inputs=["1:abstract"], outputs=["1:abstract", "2:abstract"])
+    freqs = np.array([0.1, 0.8, 3.0, 20.0])
+    h_cut = cut.frequency_response(freqs)
+    h_closed = closed.frequency_response(freqs)
+    for f, hc, h in zip(freqs, h_cut, h_closed):
+        s = 2j * np.pi * f
+        plant = 1 / np.polyval([m, c, k], s)
+        controller = np.polyval([b0, b1, b2], s) / np.polyval([1, a1, 0], s)
+        assert hc[0, 0] == pytest.approx(plant, rel=1e-8)
+        assert -hc[2, 1] == pytest.approx(plant * controller, rel=1e-8)
+        assert h[1, 0] == pytest.approx(plant * controller / (1 + plant * controller), rel=1e-8)
+    with pytest.raises(ValueError, match=r"^cut: genel:9: the model has no genel 9"):
+        model.study(cut=["genel:9"])
+    with pytest.raises(ValueError, match=r"^cut: 'joint:4': expected genel:LABEL or force:LABEL"):
+        model.study(cut=["joint:4"])
+
+
+def test_a_fem_node_is_an_output(examples):
+    # Issue 35 point 2: fem_outputs=["JOINT:FEM_NODE:y"], a sensor on a flexible body. On
+    # tests/mbdyn_files/modal_clamped_port.mbd FEM node B moves 1 m along y per unit q1 and
+    # carries node 2: its y is q1 = 1/(k - (m + m2) w^2) F (the file's closed form), its
+    # velocity j w times that; 1e-12.
+    path = examples.parent / "tests" / "mbdyn_files" / "modal_clamped_port.mbd"
+    study = romdyn.Model(path).study(inputs=["2:Fy"], outputs=["10:q1"], fem_outputs=["10:B:y", "10:B:vy"])
+    assert study.linear()["outputs"] == ["modal 10 q1 [-]", "modal 10 FEM node B y [m]", "modal 10 FEM node B vy [m/s]"]
+    for f in (1.0, 7.0):
+        w = 2 * np.pi * f
+        h = study.frequency_response(np.array([f]))[0]
+        q = 1 / (1000.0 - 2.0 * w * w)
+        assert h[1, 0] == pytest.approx(q, rel=1e-12)
+        assert h[2, 0] == pytest.approx(1j * w * q, rel=1e-12)
+    with pytest.raises(ValueError, match=r"^fem_outputs: '10:B': expected JOINT:FEM_NODE:COMPONENT with COMPONENT one of x\|y\|z\|vx\|vy\|vz"):
+        romdyn.Model(path).study(fem_outputs=["10:B"])
+
+
 def test_enumerated_settings_and_sweeps_name_the_keyword(examples):
     # Issue 31: one library table of names per enum, read by clap and by Python; a bad word
     # is refused naming the Python keyword, with the names the table holds.

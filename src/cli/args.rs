@@ -52,6 +52,9 @@ pub struct PencilArgs {
     /// ROM output of a model: NODE:x|y|z (displacement [m]) or NODE:rx|ry|rz (rotation [rad]); or NODE:abstract|electric|hydraulic, that scalar node's value (a voltage [V], a pressure [Pa]), NODE:abstract_rate|electric_rate|hydraulic_rate its derivative
     #[arg(long = "output", value_name = "NODE:COMP", conflicts_with = "pencil")]
     pub outputs: Vec<NodeOutput>,
+    /// ROM output at a FEM node of a modal joint (a sensor on the flexible body): JOINT:FEM_NODE:x|y|z, its displacement [m], or JOINT:FEM_NODE:vx|vy|vz, its velocity [m/s], global axes; the floating frame's motion and the modes' (x + R (f0 + Phi q), linearized). FEM_NODE is a node label of the joint's FEM file
+    #[arg(long = "fem-output", value_name = "JOINT:FEM_NODE:COMP", conflicts_with = "pencil")]
+    pub fem_outputs: Vec<romdyn::dae::FemOutput>,
     /// ROM input of an .m pencil: a unit generalized force entering equation I (1-based row of Aplus/Aminus) as -dF_I = u. In romdyn's numbering a dynamic node with first unknown idx (the file's 'idx' with 'output geometry') has its force equilibrium x,y,z in rows idx+7..idx+9 and moments in idx+10..idx+12 (static node: idx+1..idx+6)
     #[arg(long = "input-row", value_name = "I", requires = "pencil")]
     pub input_rows: Vec<usize>,
@@ -70,6 +73,9 @@ pub struct PencilArgs {
     /// Imposed motion of a node (all six components, or NODE:x,y,rz): its forces and displacements become the last inputs and outputs; transmissibility by eq. 100
     #[arg(long, value_name = "NODE[:COMPONENTS]", conflicts_with = "pencil")]
     pub imposed: Option<String>,
+    /// Cut a control loop open at a genel or an abstract force (repeatable): its part of the linearized model is taken out and the signal that crossed it becomes an input (injected) and an output (returned), after the other inputs and outputs (before an imposed motion's); closing injected = returned gives the model as written, and the loop transfer function at the cut is L(s) = -(returned/injected). An element without own states (spring support, cross spring support, spring, abstract force) is cut at its output, a state-space genel or scalar filter at its input. The reference solution stays the closed loop's. Units: the scalar node's (abstract -, electric A or V, hydraulic kg/s or Pa)
+    #[arg(long = "cut", value_name = "genel:LABEL|force:LABEL", conflicts_with = "pencil")]
+    pub cuts: Vec<romdyn::dae::Cut>,
     /// Eigenanalysis route (lambda by default: its pencil has no infinite eigenvalues, on which faer's QZ can stall)
     #[arg(long, value_parser = named::<EigenRoute>(), default_value = "lambda")]
     pub route: EigenRoute,
@@ -117,7 +123,7 @@ impl PencilArgs {
     /// The model's ports: --input/--output alone, or with a ports file, --remove-spring or
     /// --imposed the whole application.
     pub fn ports(&self) -> Result<Ports, StudyError> {
-        Ports::from_parts(self.ports.as_deref(), &self.inputs, &self.outputs, &self.remove_spring, self.imposed.as_deref())
+        Ports::from_parts(self.ports.as_deref(), &self.inputs, &self.outputs, &self.fem_outputs, &self.remove_spring, self.imposed.as_deref(), &self.cuts)
     }
 }
 

@@ -146,7 +146,7 @@ fn linearizable(model: &Model) -> Result<(), PortError> {
 /// eq. 30 that row's `λ` entry goes as `1/c` in `J(c)`, which no pencil `λ F_/ẏ + F_/y`
 /// holds, while eq. 29 holds it exactly (`−C` in `F_/y`: the joint a spring of stiffness
 /// `1/C`).
-fn linearization_form(model: &Model) -> ConstraintForm {
+pub(super) fn linearization_form(model: &Model) -> ConstraintForm {
     if model.elements.iter().any(|e| e.constraint_rows_read_multipliers()) {
         ConstraintForm::Plain
     } else {

@@ -13,7 +13,7 @@ use faer::Mat;
 
 use super::state::NodeFrame;
 use super::{DofMap, State};
-use crate::kinematics::{skew, Vec3};
+use crate::kinematics::{skew, Mat3, Vec3};
 use crate::model::{Label, Model, ScalarNodeId, ScalarNodeKind};
 
 /// The frame a direction is given in.
@@ -107,6 +107,12 @@ pub enum Measurement {
     ModalCoordinate { joint: Label, mode: usize },
     /// Its rate `q̇` [1/s].
     ModalRate { joint: Label, mode: usize },
+    /// Displacement of a modal joint's FEM node along a direction (a sensor on the flexible
+    /// body): `p = x + R (f₀ + Σₖ Φₖ qₖ)` linearized, the floating frame's motion and the
+    /// modes' [m]. `Frame::Node` directions are in the floating frame.
+    FemDisplacement { joint: Label, fem_node: String, direction: Direction },
+    /// Its velocity `ṗ = ẋ + ω × R (f₀ + Φ q) + R Φ q̇` [m/s].
+    FemVelocity { joint: Label, fem_node: String, direction: Direction },
 }
 
 /// A named input.
@@ -146,9 +152,9 @@ impl OutputPort {
     /// SI unit of the output.
     pub fn unit(&self) -> &'static str {
         match self.measurement {
-            Measurement::Displacement { .. } | Measurement::Relative { .. } => "m",
+            Measurement::Displacement { .. } | Measurement::Relative { .. } | Measurement::FemDisplacement { .. } => "m",
             Measurement::Rotation { .. } => "rad",
-            Measurement::Velocity { .. } => "m/s",
+            Measurement::Velocity { .. } | Measurement::FemVelocity { .. } => "m/s",
             Measurement::AngularVelocity { .. } => "rad/s",
             Measurement::ScalarValue { node } => match node.kind {
                 ScalarNodeKind::Abstract => "-",
@@ -169,7 +175,7 @@ impl OutputPort {
     }
     /// Whether the output is a rate (it has a row in `C̃_v`).
     pub fn is_rate(&self) -> bool {
-        matches!(self.measurement, Measurement::Velocity { .. } | Measurement::AngularVelocity { .. } | Measurement::ScalarRate { .. } | Measurement::ModalRate { .. })
+        matches!(self.measurement, Measurement::Velocity { .. } | Measurement::AngularVelocity { .. } | Measurement::ScalarRate { .. } | Measurement::ModalRate { .. } | Measurement::FemVelocity { .. })
     }
 }
 
@@ -194,6 +200,20 @@ pub struct PortMap<'m> {
     model: &'m Model,
     dofs: DofMap,
     frames: Vec<NodeFrame>,
+    /// The unknowns and their rates at the reference (modal coordinates for FEM nodes).
+    y: Vec<f64>,
+    yp: Vec<f64>,
+}
+
+/// A FEM node at the reference, in global axes: `r = R (f₀ + Φ q)` from the floating frame's
+/// origin, `v = R Φ q̇`, and `R Φₖ` per own unknown `qₖ`.
+struct FlexibleAt {
+    /// The modal node's index (`None`: a clamped body's fixed frame).
+    node: Option<usize>,
+    orientation: Mat3,
+    r: Vec3,
+    deformation_rate: Vec3,
+    shapes: Vec<(usize, Vec3)>,
 }
 
 /// One output row: `C̃` and, for rates, `C̃_v`.
@@ -209,7 +229,7 @@ impl<'m> PortMap<'m> {
         let mut st = state.clone();
         st.linearization_base(&dofs);
         let frames = (0..model.nodes.len()).map(|i| st.node_frame(&dofs, i)).collect();
-        PortMap { model, dofs, frames }
+        PortMap { model, dofs, frames, y: st.y, yp: st.yp }
     }
 
     /// Number of unknowns (= equations).
@@ -235,6 +255,42 @@ impl<'m> PortMap<'m> {
         let k = modes.iter().find(|(_, m)| *m == mode).map(|(k, _)| *k);
         let listed: Vec<String> = modes.iter().map(|(_, m)| m.to_string()).collect();
         k.map(|k| self.dofs.element_first[e] + k).ok_or_else(|| invalid(format!("modal joint {joint} has no mode {mode} (its modes: {}; numbers in the FEM file)", listed.join(", "))))
+    }
+
+    /// Modal joint `joint`'s FEM node `fem_node` at the reference.
+    fn flexible(&self, name: &str, joint: Label, fem_node: &str) -> Result<FlexibleAt, PortError> {
+        let invalid = |m: String| PortError::Invalid(name.to_string(), m);
+        let e = self.model.elements.iter().position(|e| e.type_name() == "modal" && e.label() == joint).ok_or_else(|| invalid(format!("modal joint {joint} is not defined")))?;
+        let el = &self.model.elements[e];
+        let point = el.outputs().ok_or_else(|| invalid(format!("modal joint {joint} has no FEM nodes")))?.flexible_point(fem_node).map_err(invalid)?;
+        let first = self.dofs.element_first[e];
+        let (node, orientation) = match point.clamped {
+            Some((_, orientation)) => (None, orientation),
+            None => {
+                let i = self.node(name, el.nodes()[0])?;
+                (Some(i), self.frames[i].kin.r)
+            }
+        };
+        let mut local = point.position;
+        let mut rate = Vec3::zeros();
+        for &(k, phi) in &point.shapes {
+            local += phi * self.y[first + k];
+            rate += phi * self.yp[first + k];
+        }
+        let shapes = point.shapes.iter().map(|&(k, phi)| (first + k, orientation * phi)).collect();
+        Ok(FlexibleAt { node, orientation, r: orientation * local, deformation_rate: orientation * rate, shapes })
+    }
+
+    /// The global unit vector of a direction on a flexible body (node frames: its floating frame).
+    fn flexible_direction(&self, name: &str, d: &Direction, at: &FlexibleAt) -> Result<Vec3, PortError> {
+        let n = d.vector.norm();
+        if !(n > 0.0 && n.is_finite()) {
+            return Err(PortError::BadDirection(name.to_string()));
+        }
+        Ok(match d.frame {
+            Frame::Global => d.vector / n,
+            Frame::Node => at.orientation * (d.vector / n),
+        })
     }
 
     /// Node index and the point's offset in global axes `R f` [m].
@@ -379,6 +435,35 @@ impl<'m> PortMap<'m> {
                 rate = Some(cv);
             }
             Measurement::ModalCoordinate { joint, mode } => c[self.modal(name, *joint, *mode)?] += 1.0,
+            Measurement::FemDisplacement { joint, fem_node, direction } => {
+                // δp = δx + δθ × r + Σₖ R Φₖ δqₖ.
+                let at = self.flexible(name, *joint, fem_node)?;
+                let d = self.flexible_direction(name, direction, &at)?;
+                if let Some(i) = at.node {
+                    self.add_motion(&mut c, i, at.r, d, 1.0);
+                }
+                at.shapes.iter().for_each(|&(k, phi)| c[k] += d.dot(&phi));
+            }
+            Measurement::FemVelocity { joint, fem_node, direction } => {
+                // δṗ = δẋ + δω × r + ω × (δθ × r + Σₖ R Φₖ δqₖ) + δθ × v + Σₖ R Φₖ δq̇ₖ, with
+                // v = R Φ q̇ (the rigid point's terms as `Velocity`'s).
+                let at = self.flexible(name, *joint, fem_node)?;
+                let d = self.flexible_direction(name, direction, &at)?;
+                let mut cv = vec![0.0; n];
+                at.shapes.iter().for_each(|&(k, phi)| cv[k] += d.dot(&phi));
+                if let Some(i) = at.node {
+                    let fr = &self.frames[i];
+                    self.add_motion(&mut cv, i, at.r, d, 1.0);
+                    let pdot = fr.kin.xdot + fr.kin.omega.cross(&at.r) + at.deformation_rate;
+                    let mut t = (at.r.cross(&d)).transpose() * fr.rate_derivative - d.transpose() * skew(&fr.kin.omega) * skew(&at.r) + at.deformation_rate.cross(&d).transpose();
+                    if direction.frame == Frame::Node {
+                        t += d.cross(&pdot).transpose();
+                    }
+                    (0..3).for_each(|k| c[self.dofs.node_first[i] + 3 + k] += t[k]);
+                    at.shapes.iter().for_each(|&(k, phi)| c[k] += d.dot(&fr.kin.omega.cross(&phi)));
+                }
+                rate = Some(cv);
+            }
             Measurement::ModalRate { joint, mode } => {
                 let mut cv = vec![0.0; n];
                 cv[self.modal(name, *joint, *mode)?] = 1.0;
@@ -402,5 +487,45 @@ impl<'m> PortMap<'m> {
         let any_rate = rows.iter().any(|r| r.c_rate.is_some());
         let c_rate = any_rate.then(|| Mat::from_fn(rows.len(), n, |i, j| rows[i].c_rate.as_ref().map_or(0.0, |v| v[j])));
         Ok((c, c_rate))
+    }
+}
+
+/// A FEM node's displacement or velocity component in global axes, as the command line
+/// writes it: `JOINT:FEM_NODE:x|y|z` [m] or `JOINT:FEM_NODE:vx|vy|vz` [m/s] (modal joint
+/// `JOINT`, its FEM file's node label `FEM_NODE`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct FemOutput {
+    pub joint: Label,
+    pub fem_node: String,
+    /// 0..3 displacement x, y, z; 3..6 velocity x, y, z.
+    pub component: usize,
+}
+
+const FEM_COMPONENTS: [&str; 6] = ["x", "y", "z", "vx", "vy", "vz"];
+
+impl std::str::FromStr for FemOutput {
+    type Err = PortError;
+    fn from_str(s: &str) -> Result<Self, PortError> {
+        let bad = || PortError::Invalid(s.to_string(), format!("expected JOINT:FEM_NODE:COMPONENT with COMPONENT one of {} (JOINT a modal joint's label, FEM_NODE a node label of its FEM file)", FEM_COMPONENTS.join("|")));
+        let (joint, rest) = s.split_once(':').ok_or_else(bad)?;
+        let (fem_node, comp) = rest.rsplit_once(':').ok_or_else(bad)?;
+        let joint = joint.trim().parse().map_err(|_| bad())?;
+        let component = FEM_COMPONENTS.iter().position(|c| c.eq_ignore_ascii_case(comp.trim())).ok_or_else(bad)?;
+        let fem_node = fem_node.trim();
+        if fem_node.is_empty() {
+            return Err(bad());
+        }
+        Ok(FemOutput { joint, fem_node: fem_node.to_string(), component })
+    }
+}
+
+impl FemOutput {
+    /// The same output as a port, global axes.
+    pub fn port(&self) -> OutputPort {
+        let direction = Direction::global(Vec3::from_fn(|i, _| if i == self.component % 3 { 1.0 } else { 0.0 }));
+        let (joint, fem_node) = (self.joint, self.fem_node.clone());
+        let name = format!("modal {joint} FEM node {fem_node} {}", FEM_COMPONENTS[self.component]);
+        let measurement = if self.component < 3 { Measurement::FemDisplacement { joint, fem_node, direction } } else { Measurement::FemVelocity { joint, fem_node, direction } };
+        OutputPort { name, measurement }
     }
 }

@@ -303,6 +303,19 @@ pub trait NonSmooth {
     fn reaction_dependence(&self, s: &dyn ElementState) -> Option<String>;
 }
 
+/// A point of a flexible body: `p = x + R (f₀ + Σₖ Φₖ qₖ)`, `x`, `R` the floating frame
+/// (the modal node's, or a fixed frame).
+#[derive(Clone, Debug)]
+pub struct FlexiblePoint {
+    /// `f₀`, the undeformed position in the floating frame [m].
+    pub position: Vec3,
+    /// `(own unknown of qₖ, Φₖ)`: the point's translation per unit modal coordinate [m].
+    pub shapes: Vec<(usize, Vec3)>,
+    /// The fixed frame (position [m], orientation) of a clamped body; `None`: the frame is
+    /// the element's first node's.
+    pub clamped: Option<(Vec3, Mat3)>,
+}
+
 /// What an element reports beyond its equations ([`Element::outputs`]); each part has a
 /// default, so an element states only what it has.
 pub trait Outputs {
@@ -316,6 +329,11 @@ pub trait Outputs {
     /// the FEM file)` each, for MBDyn's `.mod` file ([`crate::dae::modal_coordinates`]).
     fn modal_coordinates(&self) -> Vec<(usize, usize)> {
         Vec::new()
+    }
+    /// A point of the element's flexible body (a modal joint's FEM node `fem_node`), for
+    /// outputs at points (sensors); an error in words when there is none.
+    fn flexible_point(&self, _fem_node: &str) -> Result<FlexiblePoint, String> {
+        Err("the element has no FEM nodes".into())
     }
     /// Internal forces and deformation at the element's evaluation points (beams), for
     /// output; none for other elements.

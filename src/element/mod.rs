@@ -58,13 +58,13 @@ pub use beam::{shape as beam_shape, Beam2, Beam3, BeamError, BeamUpdate, BeamNod
 pub use beam_slider::{BeamSlider, SliderBeam, SliderKind};
 pub use bistop_rod::{BistopRod, BistopStatus};
 pub use body::RigidBody;
-pub use modal::{Interface as ModalInterface, ModalBody, ModalFrame};
+pub use modal::{FemNode, Interface as ModalInterface, ModalBody, ModalFrame};
 pub use variable_body::VariableBody;
 pub use frame_motion::{FrameMotion, FrameState};
 pub use cardano::CardanoHinge;
 pub use central_gravity::CentralGravity;
 pub use wrapper::ElementWrapper;
-pub use contract::{Col, Element, ElementState, Events, JacobianSink, Label, Latched, NodeKinematics, NonSmooth, Outputs, ResidualSink, Row, ScalarNodeId, ScalarNodeKind, SectionState, UnknownKind};
+pub use contract::{Col, Element, ElementState, Events, FlexiblePoint, JacobianSink, Label, Latched, NodeKinematics, NonSmooth, Outputs, ResidualSink, Row, ScalarNodeId, ScalarNodeKind, SectionState, UnknownKind};
 pub use deformable::{DeformableDisplacement, DeformableHinge, LinearViscoelastic, Rod, RodViscosity};
 pub use distance::Distance;
 pub use electric::{Accelerometer, AccelerometerKind, DisplacementSensor, Motor};

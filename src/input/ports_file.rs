@@ -19,13 +19,19 @@
 //!     { "type": "angular velocity", "node": 3, "direction": [0, 0, 1] }
 //!   ],
 //!   "remove_springs": [901, 902],
-//!   "imposed": "1:x,y,z"
+//!   "imposed": "1:x,y,z",
+//!   "cut": ["genel:4"]
 //! }
 //! ```
 //!
 //! Modal coordinates (issue 35): `{ "type": "modal coordinate", "joint": 200, "mode": 1 }` is
 //! modal joint 200's `q` of mode 1 (its number in the FEM file), `"modal coordinate rate"`
-//! its `q̇`; the shorthand `"200:q1"`, `"200:q1_rate"`.
+//! its `q̇`; the shorthand `"200:q1"`, `"200:q1_rate"`. A FEM node of modal joint 200 (a
+//! sensor on the flexible body): `{ "type": "fem displacement", "joint": 200, "fem_node":
+//! "17", "direction": [0, 1, 0] }` (`"fem velocity"` its velocity; `"frame": "node"` the
+//! floating frame's axes).
+//! Cuts (issue 34): `"cut"` lists control loops to cut open, `"genel:LABEL"` or
+//! `"force:LABEL"` (an abstract force), as `--cut` ([`crate::dae::Cut`]).
 //! Scalar nodes (issue 34): `{ "name": "disturbance", "type": "abstract", "node": 1 }` as an
 //! input adds it to the node's equation, as an output is its value (`"abstract rate"`: its
 //! derivative); likewise `"electric"`, `"hydraulic"`; the shorthand `"1:abstract"`.
@@ -40,7 +46,7 @@ use serde::de::{self, Deserializer, MapAccess, Visitor};
 use serde::Deserialize;
 
 use crate::dae::ports::{Direction, Excitation, Frame, InputPort, Location, Measurement, OutputPort, Point};
-use crate::dae::{NodeInput, NodeOutput};
+use crate::dae::{Cut, NodeInput, NodeOutput};
 use crate::kinematics::Vec3;
 use crate::model::{Label, ScalarNodeId, ScalarNodeKind};
 
@@ -54,6 +60,8 @@ pub struct PortsFile {
     pub remove_springs: Vec<Label>,
     /// `NODE[:COMPONENTS]`.
     pub imposed: Option<String>,
+    /// Control loops cut open (`"cut": ["genel:4"]`).
+    pub cuts: Vec<Cut>,
 }
 
 /// Why a ports file could not be read.
@@ -80,6 +88,8 @@ struct Document {
     remove_springs: Vec<Label>,
     #[serde(default)]
     imposed: Option<String>,
+    #[serde(default)]
+    cut: Vec<String>,
 }
 
 /// `"NODE:COMP"` or a full port.
@@ -103,6 +113,7 @@ struct Spec {
     to_offset: Option<[f64; 3]>,
     direction: Option<[f64; 3]>,
     frame: Option<FrameName>,
+    fem_node: Option<String>,
     /// A modal joint's label and a mode's number in its FEM file (modal coordinates).
     joint: Option<Label>,
     mode: Option<usize>,
@@ -207,7 +218,21 @@ impl Spec {
         let mode = self.mode.filter(|m| *m >= 1).ok_or_else(|| format!("a '{}' port needs \"mode\": a mode's number in the FEM file (from 1)", self.kind))?;
         Ok((joint, mode))
     }
+    /// The joint and FEM node of a FEM node output (`"joint"`, `"fem_node"`, `"direction"`,
+    /// `"frame"`).
+    fn fem_node(&self) -> Result<(Label, String), String> {
+        if self.node.is_some() || self.from.is_some() || self.to.is_some() || self.mode.is_some() {
+            return Err(format!("a '{}' port takes \"joint\" (a modal joint's label), \"fem_node\" (a node label of its FEM file) and \"direction\", no node or mode", self.kind));
+        }
+        self.no_point()?;
+        let joint = self.joint.ok_or_else(|| format!("a '{}' port needs \"joint\": the modal joint's label", self.kind))?;
+        let fem_node = self.fem_node.clone().ok_or_else(|| format!("a '{}' port needs \"fem_node\": a node label of the joint's FEM file", self.kind))?;
+        Ok((joint, fem_node))
+    }
     fn input(&self, index: usize) -> Result<InputPort, String> {
+        if self.fem_node.is_some() {
+            return Err("\"fem_node\" belongs to 'fem displacement' and 'fem velocity' outputs".into());
+        }
         if self.joint.is_some() || self.mode.is_some() {
             return Err("\"joint\" and \"mode\" belong to 'modal coordinate' outputs".into());
         }
@@ -252,9 +277,20 @@ impl Spec {
                 let (joint, mode) = self.modal()?;
                 Measurement::ModalRate { joint, mode }
             }
-            k => return Err(format!("output type '{k}' is not one of displacement, rotation, relative, velocity, angular velocity, abstract, electric, hydraulic (and their 'rate'), modal coordinate, modal coordinate rate")),
+            "fem displacement" => {
+                let (joint, fem_node) = self.fem_node()?;
+                Measurement::FemDisplacement { joint, fem_node, direction: self.direction()? }
+            }
+            "fem velocity" => {
+                let (joint, fem_node) = self.fem_node()?;
+                Measurement::FemVelocity { joint, fem_node, direction: self.direction()? }
+            }
+            k => return Err(format!("output type '{k}' is not one of displacement, rotation, relative, velocity, angular velocity, abstract, electric, hydraulic (and their 'rate'), modal coordinate, modal coordinate rate, fem displacement, fem velocity")),
         };
-        if (self.joint.is_some() || self.mode.is_some()) && !self.kind.starts_with("modal coordinate") {
+        if self.fem_node.is_some() && !self.kind.starts_with("fem ") {
+            return Err("\"fem_node\" belongs to 'fem displacement' and 'fem velocity' outputs".into());
+        }
+        if (self.joint.is_some() || self.mode.is_some()) && !self.kind.starts_with("modal coordinate") && !self.kind.starts_with("fem ") {
             return Err("\"joint\" and \"mode\" belong to 'modal coordinate' outputs".into());
         }
         Ok(OutputPort { name: self.name.clone().unwrap_or_else(|| format!("output {}", index + 1)), measurement })
@@ -269,6 +305,9 @@ pub fn parse_ports(text: &str, path: &Path) -> Result<PortsFile, PortsFileError>
     for (k, v) in doc.names {
         let label: Label = k.trim().parse().map_err(|_| port_err("names", 0, &k, "keys are node labels (non-negative integers)".into()))?;
         out.names.insert(label, v);
+    }
+    for (i, c) in doc.cut.iter().enumerate() {
+        out.cuts.push(c.parse().map_err(|m| port_err("cut", i, c, m))?);
     }
     for (i, e) in doc.inputs.iter().enumerate() {
         out.inputs.push(match e {
@@ -301,13 +340,14 @@ mod tests {
     #[test]
     fn shorthand_and_full_ports_parse() -> Result<(), PortsFileError> {
         let text = r#"{"names": {"3": "table"}, "inputs": ["3:Fz", {"name": "A", "type": "actuator", "from": 1, "to": 2, "at": [1, 0, 0], "direction": [0, 1, 0]}],
-            "outputs": [{"name": "G", "type": "velocity", "node": 3, "offset": [0.5, 0, 0], "direction": [1, 0, 0], "frame": "node"}], "remove_springs": [9], "imposed": "1:x"}"#;
+            "outputs": [{"name": "G", "type": "velocity", "node": 3, "offset": [0.5, 0, 0], "direction": [1, 0, 0], "frame": "node"}], "remove_springs": [9], "imposed": "1:x", "cut": ["genel:4", "force:2"]}"#;
         let p = parse_ports(text, Path::new("p.json"))?;
         assert_eq!(p.inputs.len(), 2);
         assert_eq!(p.inputs[0].label(), "node 3 Fz [N]");
         assert_eq!(p.outputs[0].label(), "G [m/s]");
         assert_eq!(p.names[&3], "table");
         assert_eq!(p.remove_springs, vec![9]);
+        assert_eq!(p.cuts.iter().map(|c| c.to_string()).collect::<Vec<_>>(), ["genel:4", "force:2"]);
         Ok(())
     }
 
@@ -320,5 +360,7 @@ mod tests {
         assert_eq!(e, "p.json: outputs[0] (L): a 'relative' port needs \"from\" and \"to\" nodes");
         let e = parse_ports(r#"{"inputs": ["3:Fw"]}"#, Path::new("p.json")).unwrap_err().to_string();
         assert!(e.contains("inputs[0] (3:Fw)"), "{e}");
+        let e = parse_ports(r#"{"cut": ["genel:4", "joint:3"]}"#, Path::new("p.json")).unwrap_err().to_string();
+        assert_eq!(e, "p.json: cut[1] (joint:3): 'joint:3': expected genel:LABEL or force:LABEL (a genel or an abstract force of the model)");
     }
 }

@@ -7,7 +7,7 @@ use std::collections::BTreeMap;
 use faer::{c64, Mat};
 
 use crate::dae::ports::{InputPort, OutputPort};
-use crate::dae::{element_part, linearize_ports, ElementPart, NodeInput, NodeOutput, State};
+use crate::dae::{cut_parts, element_part, linearize_ports, Cut, ElementPart, NodeInput, NodeOutput, State};
 use crate::eigen::{cluster_label, degenerate_clusters, mode_label, real_mode_label, ModalEnergy};
 use crate::eigen::ModalAnalysis;
 use crate::linear::LinearDae;
@@ -29,6 +29,9 @@ pub struct Application {
     pub remove_springs: Vec<Label>,
     /// Imposed motion: node and components (0..6: x, y, z, rx, ry, rz).
     pub imposed: Option<(Label, Vec<usize>)>,
+    /// Control loops cut open at genels or abstract forces ([`Cut`]): their ports come after
+    /// the other inputs and outputs (and before the imposed components).
+    pub cuts: Vec<Cut>,
 }
 
 /// `NODE` (all six components) or `NODE:x,y,rz`.
@@ -99,7 +102,7 @@ impl Study {
     pub(super) fn application_state(model: Model, problem: &InitialValueProblem, state: State, app: &Application, eigen: EigenSettings, progress: &dyn Fn(&str)) -> Result<Self, StudyError> {
         let (inputs, outputs) = application_ports(app);
         if app.remove_springs.is_empty() && app.imposed.is_none() {
-            let mut study = Self::from_model_ports(model, problem, state, &inputs, &outputs, eigen, progress)?;
+            let mut study = Self::from_model_ports(model, problem, state, &inputs, &outputs, &app.cuts, eigen, progress)?;
             study.application = Some(applied(app, Vec::new(), None, None));
             // The labels need the application's names: the warnings stay, the study is the same.
             return Ok(study);
@@ -116,7 +119,11 @@ impl Study {
     /// with [`super::StudyBuilder::linearized`]).
     pub fn linearize_application(model: &Model, state: &State, app: &Application) -> Result<LinearDae, StudyError> {
         let (inputs, outputs) = application_ports(app);
-        Ok(linearize_ports(model, state, &inputs, &outputs, None)?)
+        let mut dae = linearize_ports(model, state, &inputs, &outputs, None)?;
+        for part in cut_parts(model, state, &app.cuts)? {
+            part.cut_dense(&mut dae, app.imposed.as_ref().map_or(0, |(_, c)| c.len()));
+        }
+        Ok(dae)
     }
 
     /// The study of an application with springs to remove or imposed motion, from its

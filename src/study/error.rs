@@ -76,6 +76,13 @@ impl From<crate::linear::SparseSolveError> for StudyError {
     }
 }
 
+/// A cut that cannot be made is an error of the `cut` setting (`--cut`, `cut=`).
+impl From<crate::dae::CutError> for StudyError {
+    fn from(e: crate::dae::CutError) -> Self {
+        StudyError::Option { option: super::Setting::Cut, message: e.to_string() }
+    }
+}
+
 impl From<MbdynError> for StudyError {
     fn from(e: MbdynError) -> Self {
         StudyError::Model(Box::new(e))

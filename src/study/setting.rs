@@ -45,11 +45,13 @@ pub enum Setting {
     Spa,
     /// Minimal realization's tolerance.
     Minimal,
+    /// A control loop cut open at a genel or an abstract force (`--cut genel:4`, `cut=[…]`).
+    Cut,
 }
 
 impl Setting {
     /// Every setting.
-    pub const ALL: [Setting; 26] = [
+    pub const ALL: [Setting; 27] = [
         Setting::Route,
         Setting::BelowBand,
         Setting::Count,
@@ -76,6 +78,7 @@ impl Setting {
         Setting::HankelTol,
         Setting::Spa,
         Setting::Minimal,
+        Setting::Cut,
     ];
 
     /// The command line's flag.
@@ -107,6 +110,7 @@ impl Setting {
             Setting::HankelTol => "--hankel-tol",
             Setting::Spa => "--spa",
             Setting::Minimal => "--minimal",
+            Setting::Cut => "--cut",
         }
     }
 
@@ -139,6 +143,7 @@ impl Setting {
             Setting::HankelTol => "hankel_tol",
             Setting::Spa => "spa",
             Setting::Minimal => "minimal",
+            Setting::Cut => "cut",
         }
     }
 }

@@ -2,7 +2,7 @@
 
 use crate::analysis::{reference_state_with_warnings, static_state_from, Reference};
 use crate::dae::ports::{InputPort, OutputPort};
-use crate::dae::{linearize_sparse, NodeInput, NodeOutput, State};
+use crate::dae::{cut_parts, linearize_sparse, Cut, FemOutput, NodeInput, NodeOutput, State};
 use crate::eigen::{dense_modes, energy_shares, EnergyShare, ModalEnergy};
 use crate::eigen::krylov::{sparse_modes_with_progress, ModeTarget, SparseEigenSettings};
 use crate::eigen::{EigenRoute, ModalAnalysis};
@@ -63,20 +63,23 @@ pub enum Ports {
 
 impl Ports {
     /// The ports every front end describes the same way: `ports_file` (a ports file's ports,
-    /// names, springs and imposed motion), then node ports, springs to remove and an imposed
-    /// motion (`NODE[:COMPONENTS]`); without a ports file, springs or imposed motion, node
-    /// ports only.
-    pub fn from_parts(ports_file: Option<&std::path::Path>, inputs: &[NodeInput], outputs: &[NodeOutput], remove_springs: &[crate::model::Label], imposed: Option<&str>) -> Result<Self, StudyError> {
-        if ports_file.is_none() && remove_springs.is_empty() && imposed.is_none() {
+    /// names, springs and imposed motion), then node ports, FEM node outputs (sensors on
+    /// flexible bodies), springs to remove and an imposed
+    /// motion (`NODE[:COMPONENTS]`), loops to cut open ([`Cut`]); without a ports file,
+    /// springs, imposed motion or cuts, node ports only.
+    pub fn from_parts(ports_file: Option<&std::path::Path>, inputs: &[NodeInput], outputs: &[NodeOutput], fem_outputs: &[FemOutput], remove_springs: &[crate::model::Label], imposed: Option<&str>, cuts: &[Cut]) -> Result<Self, StudyError> {
+        if ports_file.is_none() && fem_outputs.is_empty() && remove_springs.is_empty() && imposed.is_none() && cuts.is_empty() {
             return Ok(Ports::Nodes { inputs: inputs.to_vec(), outputs: outputs.to_vec() });
         }
         let file = match ports_file {
             Some(path) => crate::input::ports_file::read_ports_file(path)?,
             None => crate::input::ports_file::PortsFile::default(),
         };
-        let mut app = Application { inputs: file.inputs, outputs: file.outputs, names: file.names, remove_springs: file.remove_springs, imposed: None };
+        let mut app = Application { inputs: file.inputs, outputs: file.outputs, names: file.names, remove_springs: file.remove_springs, imposed: None, cuts: file.cuts };
+        app.cuts.extend_from_slice(cuts);
         app.inputs.extend(inputs.iter().map(|p| p.port()));
         app.outputs.extend(outputs.iter().map(|p| p.port()));
+        app.outputs.extend(fem_outputs.iter().map(FemOutput::port));
         for l in remove_springs {
             if !app.remove_springs.contains(l) {
                 app.remove_springs.push(*l);
@@ -190,7 +193,7 @@ impl Study {
             (Ports::Nodes { inputs, outputs }, None) => {
                 let inputs: Vec<_> = inputs.iter().map(NodeInput::port).collect();
                 let outputs: Vec<_> = outputs.iter().map(NodeOutput::port).collect();
-                Self::from_model_ports(model, problem, state.clone(), &inputs, &outputs, eigen, progress)?
+                Self::from_model_ports(model, problem, state.clone(), &inputs, &outputs, &[], eigen, progress)?
             }
             (Ports::Application(app), None) => Self::application_state(model, problem, state.clone(), app, eigen, progress)?,
             (Ports::Application(app), Some(dae)) => Self::from_application_dae(model, problem, state.clone(), dae, app, eigen)?,
@@ -200,10 +203,13 @@ impl Study {
         Ok(study)
     }
 
-    /// The sparse linearization with these ports and its eigenanalysis; `progress` gets the
-    /// sparse solver's reports.
-    pub(super) fn from_model_ports(model: Model, problem: &InitialValueProblem, state: State, inputs: &[InputPort], outputs: &[OutputPort], eigen: EigenSettings, progress: &dyn Fn(&str)) -> Result<Self, StudyError> {
-        let sparse = linearize_sparse(&model, &state, inputs, outputs)?;
+    /// The sparse linearization with these ports, loops cut open at `cuts` (their ports
+    /// last), and its eigenanalysis; `progress` gets the sparse solver's reports.
+    pub(super) fn from_model_ports(model: Model, problem: &InitialValueProblem, state: State, inputs: &[InputPort], outputs: &[OutputPort], cuts: &[Cut], eigen: EigenSettings, progress: &dyn Fn(&str)) -> Result<Self, StudyError> {
+        let mut sparse = linearize_sparse(&model, &state, inputs, outputs)?;
+        for part in cut_parts(&model, &state, cuts)? {
+            part.cut_sparse(&mut sparse);
+        }
         let equilibrium = equilibrium_warning(&model, &state, problem.tolerance);
         // The Λ form's dCoef: the file's eigenanalysis parameter (h/2) when it gives one.
         let file_dcoef = problem.eigenanalysis.as_ref().and_then(|e| e.dcoef);
@@ -235,7 +241,7 @@ impl Study {
             Ports::Nodes { inputs, outputs } => {
                 let inputs: Vec<_> = inputs.iter().map(NodeInput::port).collect();
                 let outputs: Vec<_> = outputs.iter().map(NodeOutput::port).collect();
-                Self::from_model_ports(model, problem, state.clone(), &inputs, &outputs, eigen, progress)?
+                Self::from_model_ports(model, problem, state.clone(), &inputs, &outputs, &[], eigen, progress)?
             }
             Ports::Application(app) => Self::application_state(model, problem, state.clone(), app, eigen, progress)?,
         };

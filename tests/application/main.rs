@@ -9,6 +9,8 @@ mod application;
 mod mode_tracking;
 mod bode_plot;
 mod control;
+mod loop_cut;
+mod fem_node_outputs;
 mod modal_ports;
 mod reference_solution;
 mod reference_warnings;

@@ -157,3 +157,22 @@ fn set_gives_one_run_another_value() {
     assert!(!ok && err.contains("--set Q: the file declares no variable 'Q'"), "{err}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn cut_opens_a_loop_and_refusals_name_the_option() {
+    // The closed loop of examples/pid_mass.mbd has 4 dynamic eigenvalues; cut at its link,
+    // the plant's pair and the controller's −1/τ remain, its integrator a zero eigenvalue
+    // (tests/application/loop_cut.rs checks the numbers).
+    let (ok, out, err) = romdyn(&["eig", "examples/pid_mass.mbd", "--cut", "genel:4"]);
+    assert!(ok, "{err}");
+    assert!(out.contains("3 dynamic, 1 zero"), "{out}");
+    let (ok, out, err) = romdyn(&["rom", "examples/pid_mass.mbd", "--input", "1:abstract", "--output", "1:abstract", "--cut", "genel:4", "--count", "1"]);
+    assert!(ok, "{err}");
+    assert!(out.contains("cut genel cross spring support 4 at abstract node 1 (returned) [-]"), "{out}");
+    let (ok, _, err) = romdyn(&["eig", "examples/pid_mass.mbd", "--cut", "genel:9"]);
+    assert!(!ok);
+    assert!(err.contains("--cut: genel:9: the model has no genel 9"), "{err}");
+    let (ok, _, err) = romdyn(&["eig", "examples/pid_mass.mbd", "--cut", "joint:4"]);
+    assert!(!ok);
+    assert!(err.contains("'joint:4': expected genel:LABEL or force:LABEL"), "{err}");
+}

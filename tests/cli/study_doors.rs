@@ -28,7 +28,7 @@ fn model(relative: &str, replace: &[(&str, &str)]) -> MbdynModel {
 fn every_door(make: &dyn Fn() -> MbdynModel, reference: Reference, input: &str, output: &str) -> Vec<(&'static str, Result<Study, StudyError>)> {
     let inputs = vec![input.parse::<NodeInput>().unwrap()];
     let outputs = vec![output.parse::<NodeOutput>().unwrap()];
-    let app = Application { inputs: inputs.iter().map(NodeInput::port).collect(), outputs: outputs.iter().map(NodeOutput::port).collect(), names: Default::default(), remove_springs: Vec::new(), imposed: None };
+    let app = Application { inputs: inputs.iter().map(NodeInput::port).collect(), outputs: outputs.iter().map(NodeOutput::port).collect(), names: Default::default(), remove_springs: Vec::new(), imposed: None, cuts: Vec::new() };
     let (a, b) = (make(), make());
     vec![
         ("builder (node ports)", Study::builder(StudySource::model(a.model, a.problem)).reference(reference).node_ports(inputs, outputs).build()),

@@ -13,7 +13,7 @@ const MODEL: &str = "examples/ham_sas.mbd";
 fn study() -> Study {
     let ports = read_ports_file("examples/ham_sas_ports.json".as_ref()).unwrap();
     let imposed = parse_imposed(ports.imposed.as_deref().unwrap()).unwrap();
-    let app = Application { inputs: ports.inputs, outputs: ports.outputs, names: ports.names, remove_springs: ports.remove_springs, imposed: Some(imposed) };
+    let app = Application { inputs: ports.inputs, outputs: ports.outputs, names: ports.names, remove_springs: ports.remove_springs, imposed: Some(imposed), cuts: Vec::new() };
     Study::builder(StudySource::model_file(MODEL)).reference(Reference::Static { load_steps: 1 }).application(app.clone()).build().unwrap()
 }
 
@@ -152,7 +152,7 @@ fn ham_sas_lvdt_rom_names_the_port_pairs_its_normwise_error_hides() {
     // follows the full model (3.6e-4 normwise, 0.12 on the worst pair at 3.5 Hz, above the
     // band).
     let ports = read_ports_file("examples/ham_sas_control.json".as_ref()).unwrap();
-    let app = Application { inputs: ports.inputs, outputs: ports.outputs, names: ports.names, remove_springs: vec![901, 902], imposed: None };
+    let app = Application { inputs: ports.inputs, outputs: ports.outputs, names: ports.names, remove_springs: vec![901, 902], imposed: None, cuts: Vec::new() };
     let s = Study::builder(StudySource::model_file(MODEL)).reference(Reference::Static { load_steps: 1 }).application(app.clone()).build().unwrap();
     let band = RomRequest::new(ModeSelection::Band { fmin_hz: 0.0, fmax_hz: 2.0 });
     for (request, residualized) in [(band.clone(), false), (band.residualize(Residualization::Dropped), true)] {

@@ -34,7 +34,7 @@ mod equations;
 mod interface;
 pub mod invariants;
 
-use super::contract::{Element, ElementState, JacobianSink, Label, Outputs, ResidualSink};
+use super::contract::{Element, ElementState, FlexiblePoint, JacobianSink, Label, Outputs, ResidualSink};
 use super::UnknownKind;
 use crate::kinematics::{Mat3, Vec3};
 use nalgebra::DMatrix;
@@ -65,6 +65,16 @@ pub struct Interface {
     pub offset: Vec3,
 }
 
+/// A FEM node of the body, kept for outputs at points (sensors on the flexible body).
+#[derive(Clone, Debug)]
+pub struct FemNode {
+    pub label: String,
+    /// Its undeformed position in the floating frame [m].
+    pub position: Vec3,
+    /// Its translation per unit coordinate of each mode the joint uses [m].
+    pub translation: Vec<Vec3>,
+}
+
 /// The flexible body.
 #[derive(Clone, Debug)]
 pub struct ModalBody {
@@ -82,6 +92,8 @@ pub struct ModalBody {
     pub initial: Vec<(f64, f64)>,
     /// The FEM file reader's warnings ([`crate::input::fem::FemFile::warnings`]).
     pub input_warnings: Vec<String>,
+    /// Every FEM node of the file, for outputs at points ([`Outputs::flexible_point`]).
+    pub fem_nodes: Vec<FemNode>,
     /// The element the initial assembly uses ([`ModalBody::for_initial_assembly`]).
     assembly: Option<Box<ModalBody>>,
     /// Whether this is that element: the interface constraints alone, `q` held at its
@@ -94,7 +106,7 @@ impl ModalBody {
     #[allow(clippy::too_many_arguments)]
     pub fn new(label: Label, frame: ModalFrame, mass: DMatrix<f64>, stiffness: DMatrix<f64>, damping: DMatrix<f64>, invariants: Invariants, interfaces: Vec<Interface>, mode_numbers: Vec<usize>, initial: Vec<(f64, f64)>) -> Self {
         let initial = if initial.is_empty() { vec![(0.0, 0.0); mass.nrows()] } else { initial };
-        let mut body = ModalBody { label, frame, mass, stiffness, damping, invariants, interfaces, mode_numbers, initial, input_warnings: Vec::new(), assembly: None, assembling: false };
+        let mut body = ModalBody { label, frame, mass, stiffness, damping, invariants, interfaces, mode_numbers, initial, input_warnings: Vec::new(), fem_nodes: Vec::new(), assembly: None, assembling: false };
         let twin = ModalBody { assembling: true, ..body.clone() };
         body.assembly = Some(Box::new(twin));
         body
@@ -232,5 +244,19 @@ impl Outputs for ModalBody {
             return Vec::new();
         }
         self.mode_numbers.iter().enumerate().map(|(k, m)| (self.q_index(k), *m)).collect()
+    }
+
+    /// FEM node `fem_node`: `x + R (f₀ + Σₖ Φₖ qₖ)` (the module's kinematics).
+    fn flexible_point(&self, fem_node: &str) -> Result<FlexiblePoint, String> {
+        let Some(n) = self.fem_nodes.iter().find(|n| n.label == fem_node) else {
+            let listed: Vec<&str> = self.fem_nodes.iter().take(12).map(|n| n.label.as_str()).collect();
+            let more = if self.fem_nodes.len() > 12 { ", …" } else { "" };
+            return Err(format!("modal joint {} has no FEM node \"{fem_node}\" (its FEM nodes: {}{more})", self.label, listed.join(", ")));
+        };
+        let clamped = match &self.frame {
+            ModalFrame::Node(_) => None,
+            ModalFrame::Clamped { position, orientation } => Some((*position, *orientation)),
+        };
+        Ok(FlexiblePoint { position: n.position, shapes: n.translation.iter().enumerate().map(|(k, t)| (self.q_index(k), *t)).collect(), clamped })
     }
 }
