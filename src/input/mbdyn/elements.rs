@@ -1,5 +1,5 @@
 //! The `elements` block (input manual, "Elements"): `body`, `joint` (see `joints`),
-//! `force` and `couple`, `gravity`, and `beam3` (see `beams`). Every other element
+//! `force` and `couple`, `gravity`, `beam3` (see `beams`) and `shell4eas` (see `plates`). Every other element
 //! type is named in an error; `automatic structural` (initial momenta, recomputed anyway)
 //! and the `inertia` and `output` cards (output only) are accepted and ignored.
 

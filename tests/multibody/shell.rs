@@ -1,0 +1,115 @@
+//! MBDyn's 4-node EAS shell `shell4eas` (docs/src/mbdyn/plates.md): a cantilever strip
+//! against beam theory and MBDyn 1.7.3, a simply supported square plate's modes against
+//! Kirchhoff's closed form and MBDyn 1.7.3, and its exact derivatives (hyper-dual numbers)
+//! against central differences of the residual at a deformed state.
+//!
+//! MBDyn 1.7.3 (built by shared/tools/build-mbdyn.sh): `mbdyn -f tests/mbdyn_files/FILE.mbd
+//! -o out`; positions from `out.mov` at t = 1 s (16 digits), eigenvalues from `out_0.m`
+//! (`alpha`, `dCoef` = 0.5 s: `λ = (z − 1)/((z + 1) dCoef)`, `z = (αr + i αi)/β`).
+
+use crate::common;
+use common::mbdyn::{assert_model_jacobians, read_test_file, test_file};
+
+use romdyn::analysis::{run, Reference};
+use romdyn::dae::Assembler;
+use romdyn::eigen::ModeKind;
+use romdyn::kinematics::{rotation_vector, Vec3};
+use romdyn::study::{Study, StudySource};
+
+fn final_node(name: &str, label: u32) -> (Vec3, Vec3) {
+    let m = read_test_file(name);
+    let report = run(&m.model, &m.problem, &mut ()).unwrap_or_else(|e| panic!("{e}"));
+    let asm = Assembler::new(&m.model);
+    let slot = m.model.nodes.iter().position(|n| n.label == label).unwrap();
+    let k = report.final_state.node_frame(&asm.dofs, slot).kin;
+    (k.x, rotation_vector(&k.r))
+}
+
+#[test]
+fn a_cantilever_strip_of_shells_bends_as_beam_theory_and_as_mbdyn() {
+    // tests/mbdyn_files/shell4eas_cantilever.mbd: L = 1 m, b = 0.1 m, h = 0.01 m, E = 70 GPa,
+    // ν = 0 (no anticlastic stiffening), 10 × 2 elements, tip load P = 1 N.
+    let (x, phi) = final_node("shell4eas_cantilever.mbd", 111);
+    // Euler–Bernoulli: P L³/(3 EI) = 5.7143e-4 m, P L²/(2 EI) = 8.5714e-4 rad (EI = E b h³/12);
+    // the shear term P L/(G A a_s) is 4e-8 of it. Ten bilinear elements along the span are
+    // 0.245 % stiffer (measured: 5.70028e-4 m); the slope 0.012 % off.
+    let ei = 70e9 * 0.1 * 0.01_f64.powi(3) / 12.0;
+    let deflection = 1.0 / (3.0 * ei);
+    assert!((x.z - deflection).abs() < 3e-3 * deflection, "tip z {} against {deflection}", x.z);
+    assert!((-phi.y - 1.0 / (2.0 * ei)).abs() < 2e-4 / (2.0 * ei), "tip rotation {} against {}", -phi.y, 1.0 / (2.0 * ei));
+    // MBDyn 1.7.3 on the same file, node 111: x 9.9999980570339353e-01 m, z
+    // 5.7002838173384157e-04 m, Euler angle about y −4.9110655054081943e-02 deg. Same element,
+    // same discretization: 1e-9 relative (Newton's tolerance 1e-6 N on stiffnesses of 1e9 N).
+    assert!((x.z - 5.7002838173384157e-04).abs() < 1e-9 * 5.7e-4, "tip z {} against MBDyn's", x.z);
+    assert!((x.x - 9.9999980570339353e-01).abs() < 1e-12, "tip x {} against MBDyn's", x.x);
+    assert!((phi.y.to_degrees() - -4.9110655054081943e-02).abs() < 1e-9 * 4.9e-2, "tip rotation {} deg against MBDyn's", phi.y.to_degrees());
+}
+
+/// The dynamic eigenvalues' positive imaginary parts [rad/s], ascending.
+fn frequencies(name: &str) -> Vec<f64> {
+    let file = test_file(name);
+    let study = Study::builder(StudySource::model_file(&file)).reference(Reference::Initial).build().unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+    let mut im: Vec<f64> = study.modal().modes.iter().filter(|m| m.kind == ModeKind::Dynamic && m.lambda.im > 1e-6).map(|m| m.lambda.im).collect();
+    im.sort_by(f64::total_cmp);
+    im
+}
+
+#[test]
+fn a_simply_supported_plate_of_shells_has_kirchhoff_s_modes_and_mbdyn_s() {
+    // tests/mbdyn_files/shell4eas_plate.mbd: a = 1 m, h = 0.01 m (a/h = 100: a thin plate,
+    // where shear locking would stiffen bilinear elements by orders of magnitude; the
+    // enhanced strains keep it out), E = 70 GPa, ν = 0.3, ρ = 2700 kg/m³, 4 × 4 elements,
+    // masses lumped at the nodes, edges held at z = 0.
+    let w = frequencies("shell4eas_plate.mbd");
+    // Kirchhoff: ω_mn = π² (m² + n²)/a² √(D/(ρ h)), D = E h³/(12 (1 − ν²)) = 6410.3 N m:
+    // ω_11 = 304.10 rad/s, ω_12 = ω_21 = 760.25 rad/s.
+    let d = 70e9 * 0.01_f64.powi(3) / (12.0 * (1.0 - 0.09));
+    let omega = |m: f64, n: f64| std::f64::consts::PI.powi(2) * (m * m + n * n) * (d / (2700.0 * 0.01)).sqrt();
+    // Measured mesh convergence of ω_11 (this file with N = 4, 8): 287.11, 299.91 rad/s
+    // (−5.6 %, −1.38 %: second order; Richardson's extrapolation 304.18 rad/s, 0.03 % from
+    // the closed form). The 4 × 4 mesh is asserted within its measured error.
+    assert!((w[0] / omega(1.0, 1.0) - 1.0).abs() < 0.06, "ω_11 {} against {}", w[0], omega(1.0, 1.0));
+    assert!((w[1] / omega(1.0, 2.0) - 1.0).abs() < 0.025, "ω_12 {} against {}", w[1], omega(1.0, 2.0));
+    assert!((w[1] - w[2]).abs() < 1e-9 * w[1], "ω_12 and ω_21 are one double eigenvalue: {} {}", w[1], w[2]);
+    // MBDyn 1.7.3 on the same file (its LAPACK eigenanalysis, dCoef 0.5 s): 287.1085420927675,
+    // 774.7689575365259 and 774.7690195188901 (its QZ splits the double pair by 8e-8),
+    // 1112.2777297646855 rad/s. Same element, same discretization: 1e-6 relative.
+    let mbdyn = [287.1085420927675, 0.5 * (774.7689575365259 + 774.7690195188901), 1112.2777297646855];
+    for (k, (ours, theirs)) in [w[0], w[1], w[3]].iter().zip(mbdyn).enumerate() {
+        assert!((ours - theirs).abs() < 1e-6 * theirs, "mode {k}: {ours} against MBDyn's {theirs}");
+    }
+}
+
+#[test]
+fn shell_derivatives_match_finite_differences_at_a_deformed_state() {
+    // A 2 × 1 patch of the cantilever strip's elements moved far from its initial state
+    // (every position, rotation and enhanced-strain parameter perturbed by noise of
+    // amplitude 0.5: large rotations, large stresses, so the geometric stiffness counts).
+    let text = "begin: data; problem: initial value; end: data;\n\
+        begin: initial value; initial time: 0.; final time: 1.; time step: 1.; end: initial value;\n\
+        begin: control data; structural nodes: 6; plates: 2; end: control data;\n\
+        begin: nodes;\n\
+        structural: 1, static, 0., 0., 0., eye, null, null;\n\
+        structural: 2, static, 0.5, 0., 0., eye, null, null;\n\
+        structural: 3, static, 1.1, 0.1, 0.05, eye, null, null;\n\
+        structural: 4, static, 0., 0.4, 0., eye, null, null;\n\
+        structural: 5, static, 0.5, 0.45, -0.02, 1, 0., 0., 1., 2, 0., 1., 0.2, null, null;\n\
+        structural: 6, static, 1.05, 0.5, 0., eye, null, null;\n\
+        end: nodes;\n\
+        begin: elements;\n\
+        shell4eas: 1, 5, 4, 1, 2, isotropic, E, 2.e3, nu, 0.3, thickness, 0.05, prestress, 1., 2., 0., 2., 3., 0., 0., 0., 0., 0., 0., 0.;\n\
+        shell4eas: 2, 6, 5, 2, 3, diag, 10., 8., 5., 8., 10., 5., 1., 2., 0.1, 2., 1., 0.1;\n\
+        end: elements;\n";
+    let dir = common::cli::temp_dir("h-shell-jacobian");
+    let path = common::cli::write_file(&dir, "patch.mbd", text);
+    let compared = assert_model_jacobians(
+        |form| {
+            let mut m = romdyn::input::mbdyn::read_model(std::path::Path::new(&path)).unwrap_or_else(|e| panic!("{e}"));
+            m.model.constraint_form = form;
+            m.model
+        },
+        38,
+        1e-6,
+    );
+    assert!(compared >= 2, "both shells compared: {compared}");
+}
