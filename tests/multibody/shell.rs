@@ -113,3 +113,26 @@ fn shell_derivatives_match_finite_differences_at_a_deformed_state() {
     );
     assert!(compared >= 2, "both shells compared: {compared}");
 }
+
+#[test]
+fn plate_cards_romdyn_does_not_read_are_refused_with_their_place() {
+    // shell4easans and membrane4eas: MBDyn 1.7.3 runs them (dataman4.cc reads both);
+    // a law missing its thickness or given two data only once is refused at its place.
+    let text = std::fs::read_to_string(test_file("shell4eas_cantilever.mbd")).unwrap();
+    let card = "shell4eas: 1, 102, 101, 1, 2, isotropic, E, E, nu, NU, thickness, H;";
+    assert!(text.contains(card));
+    let cases = [
+        (card.replace("shell4eas:", "shell4easans:"), "element type 'shell4easans' (shell4easans 1; romdyn reads the plate element 'shell4eas') is not supported by romdyn (MBDyn 1.7.3 runs it)"),
+        (card.replace("shell4eas:", "membrane4eas:"), "(MBDyn 1.7.3 runs it)"),
+        (card.replace(", thickness, H", ""), "the 'thickness' is missing"),
+        (card.replace("nu, NU", "E, 1."), "Young's modulus E [Pa] given twice"),
+        (card.replace("nu, NU", "nu, .5"), "must be in [0, 0.5)"),
+        (card.replace("isotropic", "plane stress orthotropic"), "(MBDyn 1.7.3 runs it)"),
+    ];
+    for (changed, expected) in cases {
+        let err = romdyn::input::mbdyn::read_model_text(&text.replace(card, &changed), &test_file("shell4eas_cantilever.mbd"), &Default::default()).err().unwrap_or_else(|| panic!("accepted: {changed}"));
+        let message = err.to_string();
+        assert!(message.contains(expected), "{message}");
+        assert!(message.contains("shell4eas_cantilever.mbd:"), "no place: {message}");
+    }
+}
