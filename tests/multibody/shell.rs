@@ -136,3 +136,39 @@ fn plate_cards_romdyn_does_not_read_are_refused_with_their_place() {
         assert!(message.contains("shell4eas_cantilever.mbd:"), "no place: {message}");
     }
 }
+
+#[test]
+fn the_plate_file_holds_mbdyn_s_stress_resultants() {
+    // `romdyn run` writes MBDyn's `.pla`: a line per shell and output instant, the label and
+    // the 12 resultants of each of the four Gauss points. MBDyn 1.7.3 on
+    // shell4eas_cantilever.mbd, out.pla, element 1 at t = 1 s (n₁₃ = P = 10 N/m of shear
+    // flux over b = .1 m, m₁₂ = −9.5 N: the bending moment per unit width at the root
+    // element's points). The large components agree to 1e-12 relative; the ones that should
+    // be zero are rounding, up to the membrane stiffness times the strains' rounding, E h ·
+    // 2.2e-16 = 1.6e-7 N/m (measured: 1.6e-7 against MBDyn's 1e-24): 1e-9 relative plus
+    // 1e-6 N/m or N.
+    let mbdyn = [
+        8.1426532183704117e-04, -1.3374058538935133e-08, 9.9999999779021707e+00, -1.4130115760814125e-08,
+        2.1390053880437770e-25, -1.2721575963990543e-11, -9.8370818016902076e-15, -9.4999980592451116e+00,
+        -1.9098446127334110e-14, 5.7445483927382012e-16, 2.5298050691328435e-15, -5.4217773843623211e-15,
+        8.1426532183436970e-04, -1.8505285686656312e-08, 9.9999999779116564e+00, -4.0593709197827889e-08,
+        -9.9282880632843924e-25, -1.4534812218653150e-11, -9.8370818016902076e-15, -9.4999980592451116e+00,
+        -1.9098446127334113e-14, 1.9536399738605617e-15, 1.0119220276531374e-14, -2.0234349134449365e-14,
+        8.1426532183625317e-04, -4.4865176003473927e-09, 9.9999999779069135e+00, -4.5724935003129294e-08,
+        9.9282880632843924e-25, -1.4609434922656695e-11, -9.0268726054793792e-15, -9.4999980592451099e+00,
+        -2.6504731699789145e-14, 1.9536399738605617e-15, 1.0119220276531374e-14, -2.0234349134449365e-14,
+        8.1426532183515770e-04, -9.6177409871706643e-09, 9.9999999779021707e+00, -8.9988910226777223e-09,
+        -2.1390053880437770e-25, -1.2741571062566454e-11, -9.0268726054793792e-15, -9.4999980592451099e+00,
+        -2.6504731699789138e-14, 5.7445483927382012e-16, 2.5298050691328435e-15, -5.4217773843623211e-15,
+    ];
+    let dir = common::cli::temp_dir("h-shell-pla");
+    let (ok, _, err) = common::cli::romdyn_at(&dir, &["run", test_file("shell4eas_cantilever.mbd").to_str().unwrap(), "-o", "c"]);
+    assert!(ok, "{err}");
+    let body = std::fs::read_to_string(dir.join("c.pla")).unwrap();
+    assert_eq!(body.lines().count(), 40, "20 shells at t = 0 and t = 1 s");
+    let row: Vec<f64> = body.lines().rev().find(|l| l.split_whitespace().next() == Some("1")).unwrap().split_whitespace().skip(1).map(|v| v.parse().unwrap()).collect();
+    assert_eq!(row.len(), 48);
+    for (k, (ours, theirs)) in row.iter().zip(mbdyn).enumerate() {
+        assert!((ours - theirs).abs() < 1e-9 * theirs.abs() + 1e-6, "component {k}: {ours} against MBDyn's {theirs}");
+    }
+}

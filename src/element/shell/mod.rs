@@ -33,7 +33,7 @@ use nalgebra::{SMatrix, SVector};
 
 use self::geometry::{enhanced_strain_matrix, metric, shape, shape_derivative, surface_frame, EAS, POINT_XI};
 use self::hyper::{add, cst_m, cst_v, lift, mat_mat, mat_t_vec, mat_vec, rotation, scale, sub, tangent, Hyper, Real, M3, V3};
-use crate::element::contract::{Col, Element, ElementState, JacobianSink, Label, ResidualSink, Row, UnknownKind};
+use crate::element::contract::{Col, Element, ElementState, JacobianSink, Label, Outputs, ResidualSink, Row, UnknownKind};
 use crate::kinematics::{rotation_vector, Mat3, Vec3};
 
 /// The shell's section law: `σ = D ε + σ₀` in MBDyn's order (n₁₁, n₁₂, n₁₃, n₂₁, n₂₂, n₂₃,
@@ -288,6 +288,9 @@ impl Element for Shell4Eas {
             out.add(Row::Constraint(k), fb[k]);
         }
     }
+    fn outputs(&self) -> Option<&dyn Outputs> {
+        Some(self)
+    }
     fn jacobian(&self, s: &dyn ElementState, out: &mut dyn JacobianSink) {
         let st = self.state(s);
         let d = &self.law.stiffness;
@@ -347,6 +350,13 @@ impl Element for Shell4Eas {
                 out.add(Row::Constraint(a), Col::Multiplier(b), kbb[(a, b)]);
             }
         }
+    }
+}
+
+impl Outputs for Shell4Eas {
+    /// MBDyn's `.pla` row: `σ_i = D (ε_i + P_i β) + σ₀` at the four Gauss points.
+    fn plate_resultants(&self, s: &dyn ElementState) -> Vec<[f64; 12]> {
+        self.state(s).stress.iter().map(|v| std::array::from_fn(|r| v[r])).collect()
     }
 }
 
