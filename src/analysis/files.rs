@@ -23,6 +23,7 @@ use super::run::RunReport;
 use crate::model::{EigenFileSuffix, InitialValueProblem, Model, MotionOutput};
 use crate::output::atomic::{commit_set, recover_set, AtomicFile, OutputError};
 use crate::output::beam_sections::BeamSectionWriter;
+use crate::output::plates::PlateWriter;
 use crate::output::modal_coordinates::ModalCoordinateWriter;
 use crate::output::eigen_json::eigen_json;
 use crate::output::eigen_m::write_eigen_m;
@@ -60,6 +61,8 @@ pub struct RunFiles {
     motion: Option<MotionOutput>,
     /// `.act` and `.bst`, opened at step 0 when the model has beams.
     beams: Option<BeamSectionWriter>,
+    /// `.pla`, when the model has shells.
+    plates: Option<PlateWriter>,
     /// `.mod`, when the model has modal joints.
     modal: Option<ModalCoordinateWriter>,
     /// Whether step 0 showed elements with evaluation points (then every step is written).
@@ -79,7 +82,7 @@ impl RunFiles {
         // A directory in the way of any file of the set is found before the run.
         let stems = (0..eigen_count).map(|k| eigen_file_stem(prefix, &eigen_suffix, k, eigen_count));
         let eigen_files = stems.flat_map(|s| [prefixed_path(&s, "m"), prefixed_path(&s, "json")]);
-        for path in ["out", "mov", "log", "act", "bst", "mod", "abs", "ele", "prs"].map(|e| prefixed_path(prefix, e)).into_iter().chain(eigen_files) {
+        for path in ["out", "mov", "log", "act", "bst", "pla", "mod", "abs", "ele", "prs"].map(|e| prefixed_path(prefix, e)).into_iter().chain(eigen_files) {
             if path.is_dir() {
                 return Err(OutputError::Invalid { path, message: "is a directory: the run could not write its file there".into() });
             }
@@ -93,7 +96,9 @@ impl RunFiles {
         let has_modes = model.elements.iter().any(|e| e.outputs().is_some_and(|o| !o.modal_coordinates().is_empty()));
         let digits = problem.output.as_ref().map_or(MotionOutput::DEFAULT_DIGITS, MotionOutput::digits);
         let modal = if has_modes { Some(ModalCoordinateWriter::create(&prefixed_path(prefix, "mod"), digits)?) } else { None };
-        Ok(RunFiles { prefix: prefix.to_path_buf(), input: input.to_string(), eigen_count, eigen_suffix, out, mov, scalars, motion: problem.output.clone(), beams: None, modal, has_beams: None, staged: vec![log], last_step: None, iterations: 0 })
+        let has_plates = model.elements.iter().any(|e| e.type_name() == "shell4eas");
+        let plates = if has_plates { Some(PlateWriter::create(&prefixed_path(prefix, "pla"))?) } else { None };
+        Ok(RunFiles { prefix: prefix.to_path_buf(), input: input.to_string(), eigen_count, eigen_suffix, out, mov, scalars, motion: problem.output.clone(), beams: None, plates, modal, has_beams: None, staged: vec![log], last_step: None, iterations: 0 })
     }
 
     /// Ends the step log and puts every file in place; returns their paths.
@@ -115,6 +120,7 @@ impl RunFiles {
     fn commit(self) -> Result<Vec<PathBuf>, OutputError> {
         let mut files = vec![self.out.into_file(), self.mov.into_file()];
         files.extend(self.modal.map(ModalCoordinateWriter::into_file));
+        files.extend(self.plates.map(PlateWriter::into_file));
         files.extend(self.scalars.into_files());
         if let Some(b) = self.beams {
             files.extend(b.into_files());
@@ -146,6 +152,9 @@ impl RunObserver for RunFiles {
         }
         if written {
             self.scalars.write_step(e.model, &e.state.y, &e.state.yp, e.assembler.dofs.scalar_first)?;
+            if let Some(p) = self.plates.as_mut() {
+                p.write_step(&e.plate_resultants())?;
+            }
         }
         if self.has_beams == Some(false) {
             return Ok(());

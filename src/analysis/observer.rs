@@ -49,6 +49,11 @@ impl StepDone<'_> {
         self.assembler.section_states(self.state).into_iter().map(|(e, s)| (self.model.elements[e].label(), s)).collect()
     }
 
+    /// Every shell's stress resultants at its Gauss points (MBDyn's `.pla` rows).
+    pub fn plate_resultants(&self) -> Vec<(Label, Vec<[f64; 12]>)> {
+        self.assembler.plate_resultants(self.state).into_iter().map(|(e, s)| (self.model.elements[e].label(), s)).collect()
+    }
+
     /// Every modal joint's modal coordinates and their derivatives
     /// ([`crate::dae::modal_coordinates`]).
     pub fn modal_coordinates(&self) -> Vec<crate::dae::ModalRow> {

@@ -27,7 +27,7 @@ struct Cli {
 
 #[derive(Subcommand, Debug)]
 enum Command {
-    /// Run an MBDyn input file: initial-value problem and eigenanalyses; writes .out, .mov, .log, .m, .json (.act, .bst with beams)
+    /// Run an MBDyn input file: initial-value problem and eigenanalyses; writes .out, .mov, .log, .m, .json (.act, .bst with beams, .pla with shells)
     ///
     /// Consistent initial derivatives, then fixed steps of the file's method from the initial to the
     /// final time [s]; at each 'eigenanalysis' time J(+c) and J(-c) (c = the file's 'parameter', else

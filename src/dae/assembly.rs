@@ -509,12 +509,22 @@ impl<'m> Assembler<'m> {
     /// Internal forces and deformation of every element that has evaluation points (beams),
     /// as `(element index, sections)`.
     pub fn section_states(&self, st: &State) -> Vec<(usize, Vec<SectionState>)> {
+        self.element_outputs(st, |o, s| o.sections(s))
+    }
+
+    /// Every shell's stress resultants at its Gauss points, by element index.
+    pub fn plate_resultants(&self, st: &State) -> Vec<(usize, Vec<[f64; 12]>)> {
+        self.element_outputs(st, |o, s| o.plate_resultants(s))
+    }
+
+    /// What `read` gives of each element's outputs at `st`, for the elements that give any.
+    fn element_outputs<T>(&self, st: &State, read: impl Fn(&dyn crate::element::Outputs, &dyn crate::element::ElementState) -> Vec<T>) -> Vec<(usize, Vec<T>)> {
         let frames = self.frames(st);
         let mut out = Vec::new();
         for (e, el) in self.model.elements.iter().enumerate() {
-            let sections = el.outputs().map(|o| o.sections(&self.context(&frames, st, e, 1.0))).unwrap_or_default();
-            if !sections.is_empty() {
-                out.push((e, sections));
+            let values = el.outputs().map(|o| read(o, &self.context(&frames, st, e, 1.0))).unwrap_or_default();
+            if !values.is_empty() {
+                out.push((e, values));
             }
         }
         out

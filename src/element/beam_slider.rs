@@ -27,7 +27,10 @@
 //! slider as written ([`BeamSlider::nearest_abscissa`], from `initial beam` and `initial
 //! node` on), where MBDyn's derivatives phase, which solves for its algebraic abscissa,
 //! puts it. MBDyn's beam slider takes no part in its initial assembly (empty
-//! `InitialAssRes`); romdyn's does, which agrees with it when the slider starts on the line.
+//! `InitialAssRes`): nor does romdyn's when the slider is written on the line
+//! ([`BeamSlider::start_rate`]), so that velocities written inconsistent with it reach the
+//! first step as MBDyn's do; written off the line (where MBDyn's derivatives phase fails),
+//! romdyn's assembly moves it onto the line.
 //!
 //! The contract has no element history, so the current beam is a function of the state, and
 //! the abscissa is a coordinate ([`UnknownKind::Coordinate`]), not a multiplier: in the form
@@ -71,6 +74,12 @@ pub struct BeamSlider {
     pub initial: f64,
     /// Half-width of the zone where the reaction passes from one beam node to the next.
     pub smearing: f64,
+    /// `Some(Ṡ₀)` for a slider written on the line: as MBDyn's, it takes no part in the
+    /// initial assembly (whose velocities then need not satisfy it), and its abscissa starts
+    /// moving at `Ṡ₀`, the written velocities' rate along the line ([`BeamSlider::start`]).
+    /// `None`: the initial assembly moves the slider onto the line and its velocity along it
+    /// (where MBDyn's derivatives phase fails).
+    pub start_rate: Option<f64>,
 }
 
 /// `s` of the finite-volume boundaries, `1/√3`.
@@ -194,6 +203,28 @@ impl BeamSlider {
     /// positions held, takes a slider that starts on the line but not at its initial
     /// node. `None` when Newton does not converge in 50 iterations.
     pub fn nearest_abscissa(&self, kin: &[NodeKinematics]) -> Option<f64> {
+        self.nearest(kin).map(|(abscissa, _)| abscissa)
+    }
+
+    /// The slider as written at `kin` (the nodes' kinematics in slot order): the nearest
+    /// abscissa `S₀`, and, when the slider's point is on the line there (within 1e-9 of the
+    /// line's length per unit abscissa), the rate `Ṡ₀ = l · (v_c − ẋ(S₀))/(l · l)` of the
+    /// written velocities along it (`v_c` the slider point's velocity, `ẋ(S₀)` the line
+    /// point's, `l = ∂x/∂S`).
+    pub fn start(&self, kin: &[NodeKinematics]) -> Option<(f64, Option<f64>)> {
+        let (abscissa, sigma) = self.nearest(kin)?;
+        let g = self.geometry(&Trial { kin, sigma });
+        if (g.xc - g.x).norm() > 1e-9 * g.l.norm().max(f64::MIN_POSITIVE) {
+            return Some((abscissa, None));
+        }
+        let b = &kin[0];
+        let vc = b.xdot + b.omega.cross(&g.fb);
+        let vx: Vec3 = (0..3).map(|j| g.n[j] * (kin[g.slots[j]].xdot + kin[g.slots[j]].omega.cross(&g.f[j]))).sum();
+        Some((abscissa, Some(g.l.dot(&(vc - vx)) / g.l.dot(&g.l))))
+    }
+
+    /// `(S, S − initial)` of the nearest point.
+    fn nearest(&self, kin: &[NodeKinematics]) -> Option<(f64, f64)> {
         let mut sigma = 0.0;
         for _ in 0..50 {
             let g = self.geometry(&Trial { kin, sigma });
@@ -205,7 +236,7 @@ impl BeamSlider {
             let step = -value / slope;
             sigma += step;
             if step.abs() <= 1e-14 * (1.0 + (self.initial + sigma).abs()) {
-                return Some(self.initial + sigma);
+                return Some((self.initial + sigma, sigma));
             }
         }
         None
@@ -301,6 +332,22 @@ impl Geometry {
     }
 }
 
+/// What the initial assembly sees of a beam slider written on the line: nothing.
+struct NotAssembled;
+
+static NOT_ASSEMBLED: NotAssembled = NotAssembled;
+
+impl Element for NotAssembled {
+    fn label(&self) -> Label {
+        0
+    }
+    fn type_name(&self) -> &'static str {
+        "beam slider"
+    }
+    fn residual(&self, _st: &dyn ElementState, _out: &mut dyn ResidualSink) {}
+    fn jacobian(&self, _st: &dyn ElementState, _out: &mut dyn JacobianSink) {}
+}
+
 impl Element for BeamSlider {
     fn label(&self) -> Label {
         self.label
@@ -322,6 +369,15 @@ impl Element for BeamSlider {
     }
     fn unknown_kind(&self, k: usize) -> UnknownKind {
         if k == 0 { UnknownKind::Coordinate } else { UnknownKind::Multiplier }
+    }
+    fn initial_unknowns(&self) -> Vec<(usize, f64, f64)> {
+        self.start_rate.map(|rate| vec![(0, 0.0, rate)]).unwrap_or_default()
+    }
+    /// Nothing, for a slider written on the line: MBDyn 1.7.3's beam slider takes no part
+    /// in its initial assembly (empty `InitialAssRes`, `InitialAssJac`), so the velocities
+    /// the assembly sets need not satisfy it and the first step changes them.
+    fn assembly_form(&self) -> Option<&dyn Element> {
+        self.start_rate.map(|_| &NOT_ASSEMBLED as &dyn Element)
     }
 
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
@@ -402,7 +458,7 @@ mod tests {
     #[test]
     fn abscissa_picks_the_beam_and_its_finite_volume() {
         let beam = SliderBeam { nodes: [1, 2, 3], offsets: [Vec3::zeros(); 3] };
-        let slider = BeamSlider { label: 1, node: 9, offset: Vec3::zeros(), orientation: Mat3::identity(), kind: SliderKind::Spherical, beams: vec![beam.clone(), SliderBeam { nodes: [3, 4, 5], ..beam }], initial: -1.0, smearing: 0.1 };
+        let slider = BeamSlider { label: 1, node: 9, offset: Vec3::zeros(), orientation: Mat3::identity(), kind: SliderKind::Spherical, beams: vec![beam.clone(), SliderBeam { nodes: [3, 4, 5], ..beam }], initial: -1.0, smearing: 0.1, start_rate: None };
         assert_eq!(slider.beam_at(-1.5), (0, -1.5));
         assert_eq!(slider.beam_at(0.9), (0, 0.9));
         assert_eq!(slider.beam_at(1.5), (1, -0.5));

@@ -53,11 +53,13 @@ mod total_equation;
 mod viscous_body;
 mod wrapper;
 mod screw_friction;
+mod shell;
 
 pub use beam::{shape as beam_shape, Beam2, Beam3, BeamError, BeamUpdate, BeamNode, SectionLaw, SectionOrientation};
 pub use beam_slider::{BeamSlider, SliderBeam, SliderKind};
 pub use bistop_rod::{BistopRod, BistopStatus};
 pub use body::RigidBody;
+pub use shell::{Shell4Eas, ShellError, ShellLaw};
 pub use modal::{FemNode, Interface as ModalInterface, ModalBody, ModalFrame};
 pub use variable_body::VariableBody;
 pub use frame_motion::{FrameMotion, FrameState};

@@ -20,6 +20,7 @@ pub mod matrix_market;
 pub mod mimo_plot;
 pub mod modal;
 pub mod model_log;
+pub mod plates;
 pub mod modal_coordinates;
 pub mod motion;
 pub mod npz;

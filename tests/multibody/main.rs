@@ -34,4 +34,5 @@ mod rotation_update;
 mod scalar_nodes;
 mod screw_friction;
 mod screw_joint;
+mod shell;
 mod spinning_linearization;

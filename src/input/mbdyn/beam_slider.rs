@@ -101,12 +101,14 @@ pub fn beam_slider(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result
         return Err(super::friction::refuse(c, "beam slider"));
     }
     let initial = 2.0 * (initial_beam as f64 - 1.0) + initial_node as f64 - 2.0;
-    let mut slider = BeamSlider { label, node: node.label, offset, orientation: frame, kind, beams, initial, smearing };
+    let mut slider = BeamSlider { label, node: node.label, offset, orientation: frame, kind, beams, initial, smearing, start_rate: None };
     // MBDyn's derivatives phase solves for the abscissa from the initial node on; romdyn
-    // starts from the point of the line nearest the slider as written.
-    let kin: Option<Vec<NodeKinematics>> = slider.nodes().iter().map(|&l| ctx.nodes.find(l).map(|n| NodeKinematics { x: n.node.position, r: n.node.orientation, xdot: Vec3::zeros(), omega: Vec3::zeros() })).collect();
-    if let Some(s) = kin.and_then(|k| slider.nearest_abscissa(&k)) {
+    // starts from the point of the line nearest the slider as written, moving along it at
+    // the written velocities' rate when the slider is on the line.
+    let kin: Option<Vec<NodeKinematics>> = slider.nodes().iter().map(|&l| ctx.nodes.find(l).map(|n| NodeKinematics { x: n.node.position, r: n.node.orientation, xdot: n.node.velocity, omega: n.node.angular_velocity })).collect();
+    if let Some((s, rate)) = kin.and_then(|k| slider.start(&k)) {
         slider.initial = s;
+        slider.start_rate = rate;
     }
     Ok(slider)
 }

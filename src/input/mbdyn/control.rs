@@ -15,7 +15,7 @@ use super::parser::{known, Block};
 use crate::model::{InitialAssembly, OrientationOutput};
 
 /// Entity kinds counted in control data and found in the model.
-pub const COUNTED: [&str; 16] = ["structural nodes", "abstract nodes", "electric nodes", "hydraulic nodes", "genels", "electric elements", "hydraulic elements", "parameter nodes", "rigid bodies", "joints", "joint regularizations", "forces", "beams", "gravity", "automatic structural elements", "file drivers"];
+pub const COUNTED: [&str; 17] = ["structural nodes", "abstract nodes", "electric nodes", "hydraulic nodes", "genels", "electric elements", "hydraulic elements", "parameter nodes", "rigid bodies", "joints", "joint regularizations", "forces", "beams", "plates", "gravity", "automatic structural elements", "file drivers"];
 
 /// Counters of entities romdyn does not support: a non-zero count is an error.
 const UNSUPPORTED_COUNTERS: [&str; 10] = [

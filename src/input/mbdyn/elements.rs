@@ -1,5 +1,5 @@
 //! The `elements` block (input manual, "Elements"): `body`, `joint` (see `joints`),
-//! `force` and `couple`, `gravity`, and `beam3` (see `beams`). Every other element
+//! `force` and `couple`, `gravity`, `beam3` (see `beams`) and `shell4eas` (see `plates`). Every other element
 //! type is named in an error; `automatic structural` (initial momenta, recomputed anyway)
 //! and the `inertia` and `output` cards (output only) are accepted and ignored.
 
@@ -17,14 +17,20 @@ use crate::kinematics::{Mat3, Vec3};
 use crate::model::Label;
 
 /// Element types of MBDyn romdyn names in its "not supported" error.
-const OTHER_TYPES: [&str; 19] = [
+const OTHER_TYPES: [&str; 16] = [
     "aerodynamic beam2", "aerodynamic beam3", "aerodynamic body", "aeromodal", "aircraft instruments", "air properties", "induced velocity",
     "thermal", "rtai output", "stream output", "stream motion output", "bind", "bulk", "loadable",
-    "user defined", "plate", "shell4eas", "shell4easans", "membrane4eas",
+    "user defined", "plate",
 ];
+
+/// The plate elements (`plates` in control data; see `plates`).
+const PLATES: [&str; 3] = ["shell4eas", "shell4easans", "membrane4eas"];
 
 /// The element kind counted in control data, by element keyword.
 pub fn counted_kind(keyword: &str) -> Option<&'static str> {
+    if known(keyword, &PLATES).is_some() {
+        return Some("plates");
+    }
     match known(keyword, &["body", "joint", "joint regularization", "force", "couple", "beam", "beam2", "beam3", "gravity", "automatic structural", "genel", "electric", "hydraulic"])? {
         "body" => Some("rigid bodies"),
         "electric" => Some("electric elements"),
@@ -41,6 +47,9 @@ pub fn counted_kind(keyword: &str) -> Option<&'static str> {
 
 /// The label space of an element keyword: forces and couples share one, as do beams.
 pub fn label_space(keyword: &str) -> &'static str {
+    if known(keyword, &PLATES).is_some() {
+        return "plate";
+    }
     match known(keyword, &["body", "joint", "force", "couple", "beam", "beam2", "beam3", "automatic structural", "genel", "electric", "hydraulic"]) {
         Some("body") => "body",
         Some("electric") => "electric",
@@ -55,7 +64,7 @@ pub fn label_space(keyword: &str) -> &'static str {
 
 /// One statement of the `elements` block (after the label for labelled elements).
 pub fn element(st: &Statement, c: &mut Cursor, ctx: &ElementContext) -> Result<Parsed, MbdynError> {
-    let kinds = ["body", "joint", "joint regularization", "force", "couple", "gravity", "beam", "beam2", "beam3", "automatic structural", "inertia", "output", "genel", "electric", "hydraulic"];
+    let kinds = ["body", "joint", "joint regularization", "force", "couple", "gravity", "beam", "beam2", "beam3", "automatic structural", "inertia", "output", "genel", "electric", "hydraulic", "shell4eas", "shell4easans", "membrane4eas"];
     let Some(kind) = known(&st.keyword, &kinds) else {
         if known(&st.keyword, &["hbeam", "hbeam2"]).is_some() {
             return Err(c.error_at(st.span, super::beams::HBEAM_REFUSED));
@@ -91,6 +100,7 @@ pub fn element(st: &Statement, c: &mut Cursor, ctx: &ElementContext) -> Result<P
         "genel" => Parsed::Element(super::genels::genel(label, c, ctx)?),
         "electric" => Parsed::Element(super::electric::electric(label, c, ctx)?),
         "hydraulic" => Parsed::Element(super::hydraulic::hydraulic(label, c, ctx)?),
+        "shell4eas" | "shell4easans" | "membrane4eas" => super::plates::plate(kind, label, c, ctx)?,
         "automatic structural" => {
             ctx.node_with_label(c, label)?;
             c.skip_rest();

@@ -1,0 +1,378 @@
+//! MBDyn's 4-node shell with enhanced assumed strains (`shell4eas`, MBDyn 1.7.3's
+//! shelleas.cc, after Witkowski, "4-node combined shell element with semi-EAS-ANS strain
+//! interpolations in 6-parameter shell theories with drilling degrees of freedom", Comput
+//! Mech 43 (2009) 307–319): a 6-parameter (drilling) shell on four structural nodes, linear
+//! elastic, with 13 enhanced-strain parameters `β` as the element's own algebraic unknowns
+//! (not condensed, as MBDyn has them). It has no inertia: masses go on the nodes (bodies).
+//!
+//! With `T̄` the average of the nodes' initial surface frames, each node's rotation relative
+//! to it `φ_n = rotvec(T̄ᵀ R_n T_nᵒ)` (`T_nᵒ` the node's surface frame in its own frame) is
+//! interpolated bilinearly to the Gauss points: `T_i = T̄ exp(φ_i) T_iᵒ`. The strains at
+//! Gauss point `i` (local Cartesian derivatives `(·)_{,α}` through the initial metric) are
+//!
+//! - `ε_α = T_iᵀ x_{,α} − ε_α⁰` (membrane `ε_α1, ε_α2`, transverse shear `ε_α3`),
+//! - `κ_α = T_iᵀ T̄ Γ(φ_i) φ_{,α} − κ_α⁰` (bending, twist and drilling),
+//!
+//! plus the enhanced part `P_i β` on the membrane and shear strains. The stress resultants
+//! `σ = D (ε + P_i β) + σ₀` (12×12 `D`, prestress `σ₀`) do virtual work on `δε`: nodes get
+//! `Σ_i α_i Bᵢᵀ σ_i` and the `β` equations `Σ_i α_i P_iᵀ σ_i = 0` (`α_i` the area factor).
+//!
+//! `T̄` stays at its initial value. MBDyn recomputes it from each step's reference
+//! rotations; within one step (a static solution in one load step, an eigenanalysis about
+//! the initial configuration) the two coincide, over many steps of large rotations they
+//! differ in the interpolation of the rotations only.
+//!
+//! Derivatives are exact: the strains are one function generic over the scalar
+//! ([`hyper`]), evaluated with hyper-dual numbers for `B` and for the geometric stiffness
+//! `σ · ∂²ε`.
+
+pub mod geometry;
+pub mod hyper;
+
+use nalgebra::{SMatrix, SVector};
+
+use self::geometry::{enhanced_strain_matrix, metric, shape, shape_derivative, surface_frame, EAS, POINT_XI};
+use self::hyper::{add, cst_m, cst_v, lift, mat_mat, mat_t_vec, mat_vec, rotation, scale, sub, tangent, Hyper, Real, M3, V3};
+use crate::element::contract::{Col, Element, ElementState, JacobianSink, Label, Outputs, ResidualSink, Row, UnknownKind};
+use crate::kinematics::{rotation_vector, Mat3, Vec3};
+
+/// The shell's section law: `σ = D ε + σ₀` in MBDyn's order (n₁₁, n₁₂, n₁₃, n₂₁, n₂₂, n₂₃,
+/// m₁₁, …, m₂₃) against (ε₁₁, …, ε₂₃, κ₁₁, …, κ₂₃).
+#[derive(Clone, Debug)]
+pub struct ShellLaw {
+    pub stiffness: SMatrix<f64, 12, 12>,
+    pub prestress: SVector<f64, 12>,
+}
+
+impl ShellLaw {
+    /// The isotropic law of MBDyn's reader (shell.cc, `isotropic`): `C = E h/(1 − ν²)`,
+    /// `D = C h²/12`, `G h`, `F = G h³/12`; membrane `C`, `ν C`, in-plane shear `2 G h`,
+    /// transverse shear `a_s G h`; bending `D`, `−ν D`, twist `2 F`, drilling `a_t F`.
+    pub fn isotropic(e: f64, nu: f64, g: f64, h: f64, shear_factor: f64, drilling_factor: f64) -> Self {
+        let c = e / (1.0 - nu * nu) * h;
+        let d = c * h * h / 12.0;
+        let gh = g * h;
+        let f = gh * h * h / 12.0;
+        let mut k = SMatrix::<f64, 12, 12>::zeros();
+        k[(0, 0)] = c;
+        k[(0, 4)] = c * nu;
+        k[(4, 0)] = c * nu;
+        k[(4, 4)] = c;
+        k[(1, 1)] = 2.0 * gh;
+        k[(3, 3)] = 2.0 * gh;
+        k[(2, 2)] = gh * shear_factor;
+        k[(5, 5)] = gh * shear_factor;
+        k[(6, 6)] = 2.0 * f;
+        k[(10, 10)] = 2.0 * f;
+        k[(7, 7)] = d;
+        k[(9, 9)] = d;
+        k[(7, 9)] = -d * nu;
+        k[(9, 7)] = -d * nu;
+        k[(8, 8)] = f * drilling_factor;
+        k[(11, 11)] = f * drilling_factor;
+        ShellLaw { stiffness: k, prestress: SVector::zeros() }
+    }
+}
+
+/// Why a shell cannot be built.
+#[derive(Debug, thiserror::Error)]
+pub enum ShellError {
+    #[error("shell4eas {0}: the four nodes do not span a quadrilateral (area factor {1:e} at a Gauss point; MBDyn numbers them counterclockwise seen from the normal, starting at the (+, +) corner)")]
+    Degenerate(Label, f64),
+}
+
+/// Per Gauss point, what the constructor computed.
+#[derive(Clone, Debug)]
+struct Point {
+    /// `T_iᵒ`: the point's surface frame relative to `T̄ exp(φ_i)`.
+    offset: M3<f64>,
+    /// `∂L_n/∂s_α` (local Cartesian derivatives), `[n][α]`.
+    dl: [[f64; 2]; 4],
+    /// `L_n(ξ_i)`.
+    l: [f64; 4],
+    /// Area factor `α_i` (weight 1).
+    area: f64,
+    /// `ε⁰`, `κ⁰` in strain order.
+    initial: [f64; 12],
+    p: SMatrix<f64, 12, EAS>,
+}
+
+/// A 4-node EAS shell (MBDyn's `shell4eas`).
+#[derive(Clone, Debug)]
+pub struct Shell4Eas {
+    pub label: Label,
+    nodes: [Label; 4],
+    /// `T_nᵒ`: each node's surface frame in the node's frame.
+    node_offset: [Mat3; 4],
+    /// `T̄`.
+    average: Mat3,
+    points: [Point; 4],
+    law: ShellLaw,
+}
+
+/// Strains of the four Gauss points, in strain order, for nodes at `x` with relative
+/// rotation vectors `phi`.
+type Strains<T> = [[T; 12]; 4];
+
+impl Shell4Eas {
+    /// A shell on four nodes (label, initial position, initial orientation), unstrained in
+    /// their initial configuration.
+    pub fn new(label: Label, nodes: [(Label, Vec3, Mat3); 4], law: ShellLaw) -> Result<Self, ShellError> {
+        let x: [Vec3; 4] = std::array::from_fn(|n| nodes[n].1);
+        let frames: [Mat3; 4] = std::array::from_fn(|n| surface_frame(&x, geometry::NODE_XI[n]));
+        let node_offset: [Mat3; 4] = std::array::from_fn(|n| nodes[n].2.transpose() * frames[n]);
+        let average = geometry::average_frame(&frames);
+        let phi: [Vec3; 4] = std::array::from_fn(|n| rotation_vector(&(average.transpose() * frames[n])));
+        let centre_frame = average * nalgebra::Rotation3::new((0..4).map(|n| phi[n] * shape(n, [0.0, 0.0])).sum::<Vec3>()).into_inner();
+        let s0 = metric(&x, &centre_frame, [0.0, 0.0]);
+        let area0 = s0.determinant();
+        let mut points = Vec::with_capacity(4);
+        for xi in POINT_XI {
+            let phi_i: Vec3 = (0..4).map(|n| phi[n] * shape(n, xi)).sum();
+            let interpolated = average * nalgebra::Rotation3::new(phi_i).into_inner();
+            let frame = surface_frame(&x, xi);
+            let s = metric(&x, &frame, xi);
+            let area = s.determinant();
+            let Some(s_inv) = s.try_inverse().filter(|_| area > 0.0 && area.is_finite()) else {
+                return Err(ShellError::Degenerate(label, area));
+            };
+            let dl = std::array::from_fn(|n| {
+                let d = [shape_derivative(n, 0, xi), shape_derivative(n, 1, xi)];
+                [d[0] * s_inv[(0, 0)] + d[1] * s_inv[(1, 0)], d[0] * s_inv[(0, 1)] + d[1] * s_inv[(1, 1)]]
+            });
+            points.push(Point {
+                offset: lift(&(interpolated.transpose() * frame)),
+                dl,
+                l: std::array::from_fn(|n| shape(n, xi)),
+                area,
+                initial: [0.0; 12],
+                p: enhanced_strain_matrix(&s0, xi, area0 / area),
+            });
+        }
+        let mut shell = Shell4Eas {
+            label,
+            nodes: std::array::from_fn(|n| nodes[n].0),
+            node_offset,
+            average,
+            points: points.try_into().expect("four Gauss points"),
+            law,
+        };
+        let initial = shell.strains::<f64>(&std::array::from_fn(|n| x[n].into()), &std::array::from_fn(|n| phi[n].into()));
+        for (p, e) in shell.points.iter_mut().zip(initial) {
+            p.initial = e;
+        }
+        Ok(shell)
+    }
+
+    /// The strains (minus the initial ones) for node positions `x` and relative rotation
+    /// vectors `phi` (generic: values, or hyper-dual derivatives).
+    fn strains<T: Real>(&self, x: &[V3<T>; 4], phi: &[V3<T>; 4]) -> Strains<T> {
+        let tbar: M3<T> = cst_m(&lift(&self.average));
+        std::array::from_fn(|i| {
+            let p = &self.points[i];
+            let comb = |v: &[V3<T>; 4], w: &dyn Fn(usize) -> f64| (0..4).fold([T::cst(0.0); 3], |acc, n| add(&acc, &scale(&v[n], T::cst(w(n)))));
+            let phi_i = comb(phi, &|n| p.l[n]);
+            let t = mat_mat(&mat_mat(&tbar, &rotation(&phi_i)), &cst_m(&p.offset));
+            let gamma = mat_mat(&tbar, &tangent(&phi_i));
+            let mut e = [T::cst(0.0); 12];
+            for a in 0..2 {
+                let y = comb(x, &|n| p.dl[n][a]);
+                let k = mat_vec(&gamma, &comb(phi, &|n| p.dl[n][a]));
+                let strain = sub(&mat_t_vec(&t, &y), &cst_v(&std::array::from_fn(|c| p.initial[3 * a + c])));
+                let curvature = sub(&mat_t_vec(&t, &k), &cst_v(&std::array::from_fn(|c| p.initial[6 + 3 * a + c])));
+                e[3 * a..3 * a + 3].copy_from_slice(&strain);
+                e[6 + 3 * a..6 + 3 * a + 3].copy_from_slice(&curvature);
+            }
+            e
+        })
+    }
+
+    /// Node positions and relative rotation vectors `φ_n = rotvec(T̄ᵀ R_n T_nᵒ)`.
+    fn coordinates(&self, s: &dyn ElementState) -> ([Vec3; 4], [Vec3; 4]) {
+        let x = std::array::from_fn(|n| s.node(n).x);
+        let phi = std::array::from_fn(|n| rotation_vector(&(self.average.transpose() * s.node(n).r * self.node_offset[n])));
+        (x, phi)
+    }
+
+    /// Strains with hyper-dual parts along coordinates `j` (ε₁) and `k` (ε₂) of the 24
+    /// (node n: position 6n..6n+3, rotation vector 6n+3..6n+6).
+    fn strains_along(&self, x: &[Vec3; 4], phi: &[Vec3; 4], j: Option<usize>, k: Option<usize>) -> Strains<Hyper> {
+        let seed = |q: usize, v: f64| Hyper { a: v, b: if j == Some(q) { 1.0 } else { 0.0 }, c: if k == Some(q) { 1.0 } else { 0.0 }, d: 0.0 };
+        let xs = std::array::from_fn(|n| std::array::from_fn(|c| seed(6 * n + c, x[n][c])));
+        let ps = std::array::from_fn(|n| std::array::from_fn(|c| seed(6 * n + 3 + c, phi[n][c])));
+        self.strains(&xs, &ps)
+    }
+
+    /// `B_i = ∂ε_i/∂q` (12 × 24 per Gauss point) and the stresses `σ_i`.
+    fn state(&self, s: &dyn ElementState) -> State {
+        let (x, phi) = self.coordinates(s);
+        let mut b = [SMatrix::<f64, 12, 24>::zeros(); 4];
+        let mut strain = [SVector::<f64, 12>::zeros(); 4];
+        for q in 0..24 {
+            let e = self.strains_along(&x, &phi, Some(q), None);
+            for i in 0..4 {
+                for r in 0..12 {
+                    b[i][(r, q)] = e[i][r].b;
+                    strain[i][r] = e[i][r].a;
+                }
+            }
+        }
+        let beta = SVector::<f64, EAS>::from_fn(|k, _| s.multiplier(k));
+        let stress = std::array::from_fn(|i| self.law.stiffness * (strain[i] + self.points[i].p * beta) + self.law.prestress);
+        State { x, phi, b, stress }
+    }
+
+    /// `A_n = Γ⁻¹(φ_n) T̄ᵀ`: `δφ_n = A_n δθ_n`.
+    fn rotation_maps(&self, phi: &[Vec3; 4]) -> [Mat3; 4] {
+        std::array::from_fn(|n| {
+            let g = Mat3::from_fn(|r, c| tangent(&<[f64; 3]>::from(phi[n]))[r][c]);
+            g.try_inverse().unwrap_or_else(Mat3::zeros) * self.average.transpose()
+        })
+    }
+
+    /// Internal forces on the 24 coordinates (positions, rotation vectors) and on `β`.
+    fn forces(&self, st: &State) -> (SVector<f64, 24>, SVector<f64, EAS>) {
+        let mut fq = SVector::<f64, 24>::zeros();
+        let mut fb = SVector::<f64, EAS>::zeros();
+        for (i, p) in self.points.iter().enumerate() {
+            fq += st.b[i].transpose() * st.stress[i] * p.area;
+            fb += p.p.transpose() * st.stress[i] * p.area;
+        }
+        (fq, fb)
+    }
+}
+
+/// One evaluation: coordinates, `B_i`, `σ_i`.
+struct State {
+    x: [Vec3; 4],
+    phi: [Vec3; 4],
+    b: [SMatrix<f64, 12, 24>; 4],
+    stress: [SVector<f64, 12>; 4],
+}
+
+fn is_rotation(q: usize) -> bool {
+    q % 6 >= 3
+}
+
+impl Element for Shell4Eas {
+    fn label(&self) -> Label {
+        self.label
+    }
+    fn type_name(&self) -> &'static str {
+        "shell4eas"
+    }
+    fn nodes(&self) -> Vec<Label> {
+        self.nodes.to_vec()
+    }
+    fn multipliers(&self) -> Vec<String> {
+        (1..=EAS).map(|k| format!("enhanced strain parameter {k}")).collect()
+    }
+    /// The enhanced-strain parameters are algebraic unknowns of the configuration (MBDyn's
+    /// `DofOrder::ALGEBRAIC`): equations not divided by dCoef, Jacobian coefficient that of
+    /// the positions.
+    fn unknown_kind(&self, _k: usize) -> UnknownKind {
+        UnknownKind::VelocityConstraint
+    }
+    fn residual(&self, s: &dyn ElementState, out: &mut dyn ResidualSink) {
+        let st = self.state(s);
+        let (fq, fb) = self.forces(&st);
+        let maps = self.rotation_maps(&st.phi);
+        for n in 0..4 {
+            let moment = maps[n].transpose() * fq.fixed_rows::<3>(6 * n + 3);
+            for c in 0..3 {
+                out.add(Row::Equilibrium { slot: n, comp: c }, fq[6 * n + c]);
+                out.add(Row::Equilibrium { slot: n, comp: 3 + c }, moment[c]);
+            }
+        }
+        for k in 0..EAS {
+            out.add(Row::Constraint(k), fb[k]);
+        }
+    }
+    fn outputs(&self) -> Option<&dyn Outputs> {
+        Some(self)
+    }
+    fn jacobian(&self, s: &dyn ElementState, out: &mut dyn JacobianSink) {
+        let st = self.state(s);
+        let d = &self.law.stiffness;
+        // K_qq = Σ α (Bᵀ D B + σ · ∂²ε), K_qβ, K_ββ.
+        let mut kqq = SMatrix::<f64, 24, 24>::zeros();
+        let mut kqb = SMatrix::<f64, 24, EAS>::zeros();
+        let mut kbb = SMatrix::<f64, EAS, EAS>::zeros();
+        for (i, p) in self.points.iter().enumerate() {
+            let db = d * st.b[i];
+            kqq += st.b[i].transpose() * db * p.area;
+            kqb += st.b[i].transpose() * d * p.p * p.area;
+            kbb += p.p.transpose() * d * p.p * p.area;
+        }
+        for j in (0..24).filter(|&j| is_rotation(j)) {
+            for k in 0..24 {
+                if is_rotation(k) && k < j {
+                    continue;
+                }
+                let e = self.strains_along(&st.x, &st.phi, Some(j), Some(k));
+                let g: f64 = (0..4).map(|i| self.points[i].area * (0..12).map(|r| st.stress[i][r] * e[i][r].d).sum::<f64>()).sum();
+                kqq[(j, k)] += g;
+                if k != j {
+                    kqq[(k, j)] += g;
+                }
+            }
+        }
+        let (fq, _) = self.forces(&st);
+        let maps = self.rotation_maps(&st.phi);
+        // Columns and rows of rotation vectors to virtual rotations: δφ_n = A_n δθ_n, the
+        // moment rows are A_nᵀ (force on φ_n).
+        let mut t = SMatrix::<f64, 24, 24>::identity();
+        for n in 0..4 {
+            t.fixed_view_mut::<3, 3>(6 * n + 3, 6 * n + 3).copy_from(&maps[n]);
+        }
+        let mut kq = t.transpose() * kqq * t;
+        for n in 0..4 {
+            let v = fq.fixed_rows::<3>(6 * n + 3).into_owned();
+            let dm = self.moment_map_derivative(&st.phi[n], &v);
+            let block = dm * maps[n];
+            let mut view = kq.fixed_view_mut::<3, 3>(6 * n + 3, 6 * n + 3);
+            view += block;
+        }
+        let kqb = t.transpose() * kqb;
+        let col = |q: usize| if is_rotation(q) { Col::Rotation { slot: q / 6, comp: q % 6 - 3 } } else { Col::Position { slot: q / 6, comp: q % 6 } };
+        let row = |q: usize| Row::Equilibrium { slot: q / 6, comp: q % 6 };
+        for r in 0..24 {
+            for c in 0..24 {
+                out.add(row(r), col(c), kq[(r, c)]);
+            }
+            for k in 0..EAS {
+                out.add(row(r), Col::Multiplier(k), kqb[(r, k)]);
+                out.add(Row::Constraint(k), col(r), kqb[(r, k)]);
+            }
+        }
+        for a in 0..EAS {
+            for b in 0..EAS {
+                out.add(Row::Constraint(a), Col::Multiplier(b), kbb[(a, b)]);
+            }
+        }
+    }
+}
+
+impl Outputs for Shell4Eas {
+    /// MBDyn's `.pla` row: `σ_i = D (ε_i + P_i β) + σ₀` at the four Gauss points.
+    fn plate_resultants(&self, s: &dyn ElementState) -> Vec<[f64; 12]> {
+        self.state(s).stress.iter().map(|v| std::array::from_fn(|r| v[r])).collect()
+    }
+}
+
+impl Shell4Eas {
+    /// `∂(T̄ Γ⁻ᵀ(φ) v)/∂φ` at fixed `v`: `−T̄ Γ⁻ᵀ (∂Γ/∂φ_k)ᵀ Γ⁻ᵀ v` column by column.
+    fn moment_map_derivative(&self, phi: &Vec3, v: &Vec3) -> Mat3 {
+        let g = Mat3::from_fn(|r, c| tangent(&<[f64; 3]>::from(*phi))[r][c]);
+        let g_inv_t = g.try_inverse().unwrap_or_else(Mat3::zeros).transpose();
+        let u = g_inv_t * v;
+        let mut out = Mat3::zeros();
+        for k in 0..3 {
+            let seeded: V3<Hyper> = std::array::from_fn(|c| Hyper { a: phi[c], b: if c == k { 1.0 } else { 0.0 }, c: 0.0, d: 0.0 });
+            let dg = tangent(&seeded);
+            let dgt_u = Vec3::from_fn(|r, _| (0..3).map(|c| dg[c][r].b * u[c]).sum());
+            out.set_column(k, &(-(self.average * g_inv_t * dgt_u)));
+        }
+        out
+    }
+}
