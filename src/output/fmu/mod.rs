@@ -1,8 +1,8 @@
 //! A ROM as an FMI 2.0 Functional Mock-up Unit (`romdyn rom … -o NAME.fmu`, Python's
-//! `Rom.save("NAME.fmu")`): one archive with model exchange and co-simulation for a
-//! continuous-time ROM (`x' = A x + B u`, `z = C x + D u`), co-simulation alone for a
-//! discrete-time one (`x[k+1] = A x[k] + B u[k]` every sampling time), named inputs, outputs
-//! and states with their SI units.
+//! `Rom.save("NAME.fmu")`): one archive with model exchange and co-simulation, of a
+//! continuous-time ROM (`x' = A x + B u`, `z = C x + D u`) or a discrete-time one
+//! (`x[k+1] = A x[k] + B u[k]` at every sampling time: time events in model exchange),
+//! named inputs, outputs and states with their SI units.
 //!
 //! The archive holds `modelDescription.xml` ([`model_description`]), the C source
 //! (`sources/ID.c`: the matrices, then romdyn's runtime `runtime.c`) and the binary built

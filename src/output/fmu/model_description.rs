@@ -34,7 +34,10 @@ fn unit_attribute(unit: Option<&String>) -> String {
 pub fn xml(export: &RomExport, id: &str, guid: &str) -> String {
     let (n, m, p) = (export.a.nrows(), export.b.ncols(), export.c.nrows());
     let discrete = export.sample_time.is_some();
-    let variability = if discrete { "discrete" } else { "continuous" };
+    // Inputs and outputs are continuous (a discrete ROM samples its inputs; its outputs
+    // follow them through D); a discrete ROM's states change at its samples only.
+    let variability = "continuous";
+    let state_variability = if discrete { "discrete" } else { "continuous" };
     let mut units: Vec<&str> = export.input_units.iter().chain(&export.output_units).map(|u| u.trim()).filter(|u| !u.is_empty() && *u != "-" && *u != "1").collect();
     units.sort_unstable();
     units.dedup();
@@ -48,9 +51,7 @@ pub fn xml(export: &RomExport, id: &str, guid: &str) -> String {
         env!("CARGO_PKG_VERSION")
     );
     let sources = format!("    <SourceFiles>\n      <File name=\"{id}.c\"/>\n    </SourceFiles>\n");
-    if !discrete {
-        s += &format!("  <ModelExchange modelIdentifier=\"{id}\" canNotUseMemoryManagementFunctions=\"true\">\n{sources}  </ModelExchange>\n");
-    }
+    s += &format!("  <ModelExchange modelIdentifier=\"{id}\" canNotUseMemoryManagementFunctions=\"true\">\n{sources}  </ModelExchange>\n");
     s += &format!("  <CoSimulation modelIdentifier=\"{id}\" canHandleVariableCommunicationStepSize=\"true\" canNotUseMemoryManagementFunctions=\"true\">\n{sources}  </CoSimulation>\n");
     if !units.is_empty() {
         s += "  <UnitDefinitions>\n";
@@ -83,7 +84,7 @@ pub fn xml(export: &RomExport, id: &str, guid: &str) -> String {
             Some(what) => format!("state {}: {what}", k + 1),
             None => format!("state {}", k + 1),
         };
-        variable(&mut s, &name, &format!("causality=\"local\" variability=\"{variability}\" initial=\"exact\""), &description, "start=\"0\"");
+        variable(&mut s, &name, &format!("causality=\"local\" variability=\"{state_variability}\" initial=\"exact\""), &description, "start=\"0\"");
     }
     if !discrete {
         for k in 0..n {

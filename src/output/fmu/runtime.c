@@ -8,6 +8,10 @@
  * Value references: inputs 0..M-1, outputs M..M+P-1, states M+P..M+P+N-1, and for a
  * continuous ROM the state derivatives M+P+N..M+P+2N-1.
  *
+ * A discrete ROM samples at t0 + k SAMPLE_TIME (k = 1, 2, ...): x <- A x + B u_k with u_k the
+ * input at the previous sample (zero-order hold), in co-simulation within doStep, in model
+ * exchange at the time events it announces (no continuous states).
+ *
  * Co-simulation of a continuous ROM steps exactly for inputs held over the step (zero-order
  * hold): x(t+h) = e^{A h} x(t) + (integral_0^h e^{A s} ds) B u, both blocks of the
  * exponential of [[A h, B h], [0, 0]] (scaling and squaring of its Taylor series). */
@@ -57,11 +61,15 @@ typedef struct {
 } fmi2EventInfo;
 
 #define K (N + M)
+/* The continuous states model exchange integrates. */
+#define NC (DISCRETE ? 0 : N)
 
 typedef struct {
     fmi2Type type;
     double time, next_sample;
     double x[N + 1], u[M + 1];
+    /* A discrete ROM's input at the last sample (model exchange). */
+    double held[M + 1];
     /* The co-simulation step's blocks for the step size `h` (0: none yet). */
     double h, phi[N * N + 1], gamma[N * M + 1];
 } Instance;
@@ -141,7 +149,6 @@ FMI2_EXPORT fmi2Component fmi2Instantiate(fmi2String name, fmi2Type type, fmi2St
                                           const fmi2CallbackFunctions *functions, fmi2Boolean visible, fmi2Boolean logging) {
     (void)name; (void)resources; (void)functions; (void)visible; (void)logging;
     if (!guid || strcmp(guid, GUID) != 0) return NULL;
-    if (DISCRETE && type == fmi2ModelExchange) return NULL;
     Instance *c = calloc(1, sizeof(Instance));
     if (!c) return NULL;
     c->type = type;
@@ -228,8 +235,19 @@ FMI2_EXPORT fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2V
 /* Model exchange: no events; the states are x. */
 FMI2_EXPORT fmi2Status fmi2EnterEventMode(fmi2Component c) { (void)c; return fmi2OK; }
 FMI2_EXPORT fmi2Status fmi2NewDiscreteStates(fmi2Component c, fmi2EventInfo *info) {
-    (void)c;
+    Instance *i = c;
     memset(info, 0, sizeof(fmi2EventInfo));
+    if (DISCRETE) {
+        double next[N + 1];
+        if (i->time >= i->next_sample - 1e-9 * SAMPLE_TIME) {
+            affine(A, B, N, i->x, i->held, next);
+            memcpy(i->x, next, sizeof(double) * N);
+            i->next_sample += SAMPLE_TIME;
+        }
+        memcpy(i->held, i->u, sizeof(double) * M);
+        info->nextEventTimeDefined = 1;
+        info->nextEventTime = i->next_sample;
+    }
     return fmi2OK;
 }
 FMI2_EXPORT fmi2Status fmi2EnterContinuousTimeMode(fmi2Component c) { (void)c; return fmi2OK; }
@@ -244,20 +262,20 @@ FMI2_EXPORT fmi2Status fmi2SetTime(fmi2Component c, fmi2Real t) {
     return fmi2OK;
 }
 FMI2_EXPORT fmi2Status fmi2SetContinuousStates(fmi2Component c, const fmi2Real x[], size_t n) {
-    if (n != N) return fmi2Error;
-    memcpy(((Instance *)c)->x, x, sizeof(double) * N);
+    if (n != NC) return fmi2Error;
+    memcpy(((Instance *)c)->x, x, sizeof(double) * NC);
     return fmi2OK;
 }
 FMI2_EXPORT fmi2Status fmi2GetDerivatives(fmi2Component c, fmi2Real dx[], size_t n) {
     Instance *i = c;
-    if (n != N) return fmi2Error;
-    affine(A, B, N, i->x, i->u, dx);
+    if (n != NC) return fmi2Error;
+    if (NC) affine(A, B, N, i->x, i->u, dx);
     return fmi2OK;
 }
 FMI2_EXPORT fmi2Status fmi2GetEventIndicators(fmi2Component c, fmi2Real z[], size_t n) { (void)c; (void)z; return n == 0 ? fmi2OK : fmi2Error; }
 FMI2_EXPORT fmi2Status fmi2GetContinuousStates(fmi2Component c, fmi2Real x[], size_t n) {
-    if (n != N) return fmi2Error;
-    memcpy(x, ((Instance *)c)->x, sizeof(double) * N);
+    if (n != NC) return fmi2Error;
+    memcpy(x, ((Instance *)c)->x, sizeof(double) * NC);
     return fmi2OK;
 }
 FMI2_EXPORT fmi2Status fmi2GetNominalsOfContinuousStates(fmi2Component c, fmi2Real x[], size_t n) {
