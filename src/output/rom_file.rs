@@ -198,7 +198,11 @@ impl RomExport {
             Format::MScript => {
                 super::atomic::write_atomic_bytes(path, super::rom_script::script(self).as_bytes())?;
             }
-            Format::Fmu => super::fmu::write_fmu(self, path)?,
+            Format::Fmu => {
+                // The model identifier is the file's name as a C identifier.
+                let bytes = super::fmu::fmu_bytes(self, &super::fmu::model_identifier(path)).map_err(|e| ExportError::Fmu(path.display().to_string(), e))?;
+                super::atomic::write_atomic_bytes(path, &bytes)?;
+            }
         }
         Ok(())
     }

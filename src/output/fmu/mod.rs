@@ -152,12 +152,5 @@ pub fn fmu_bytes(export: &RomExport, id: &str) -> Result<Vec<u8>, FmuError> {
     Ok(super::zip::stored_archive(&entries))
 }
 
-/// Writes the FMU of `export` to `path` atomically (its model identifier from the file name).
-pub fn write_fmu(export: &RomExport, path: &Path) -> Result<(), super::rom_file::ExportError> {
-    let bytes = fmu_bytes(export, &model_identifier(path)).map_err(|e| super::rom_file::ExportError::Fmu(path.display().to_string(), e))?;
-    super::atomic::write_atomic_bytes(path, &bytes)?;
-    Ok(())
-}
-
 #[cfg(test)]
 mod tests;
