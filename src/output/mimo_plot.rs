@@ -17,6 +17,7 @@ use super::figure::{write_figure, Figure, COLORS, FONT};
 use super::prefixed_path;
 
 /// A transfer matrix of the full model and of a ROM on one grid.
+#[derive(Clone, Debug)]
 pub struct MimoPlot {
     pub title: String,
     pub freq_hz: Vec<f64>,

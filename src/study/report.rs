@@ -1,9 +1,11 @@
 //! The report of a study and one of its ROMs ([`crate::output::report`]): the texts
-//! `romdyn rom` prints and the kept modes' shapes on the model's geometry.
+//! `romdyn rom` prints, the kept modes' shapes on the model's geometry and, with an imposed
+//! motion, the transmissibility.
 
 use faer::c64;
 
 use crate::dae::Assembler;
+use crate::output::mimo_plot::MimoPlot;
 use crate::output::report::{Geometry, ModeShape, Report};
 
 use super::{ReducedModel, RomCheck, Study};
@@ -16,7 +18,16 @@ impl Study {
     pub fn report(&self, rom: &ReducedModel, check: &RomCheck, title: &str) -> Report {
         let mut warnings: Vec<String> = self.warnings().iter().map(|w| w.to_string()).collect();
         warnings.extend(rom.new_warnings(self, Some(check)).iter().map(|w| w.to_string()));
-        Report { title: title.to_string(), summary: rom.summary(self, Some(check)), warnings, modal_table: self.modal_report().to_text_dynamic(12), geometry: self.geometry(rom) }
+        let transmissibility = check.transmissibility.as_ref().map(|(t, _)| MimoPlot {
+            title: "Transmissibility |z/z_e| (eq. 100)".into(),
+            freq_hz: t.freq_hz.clone(),
+            inputs: t.imposed.clone(),
+            outputs: t.outputs.clone(),
+            full: t.full.clone(),
+            rom: Some(t.rom.clone()),
+            diagonal: false,
+        });
+        Report { title: title.to_string(), summary: rom.summary(self, Some(check)), warnings, modal_table: self.modal_report().to_text_dynamic(12), geometry: self.geometry(rom), transmissibility }
     }
 
     fn geometry(&self, rom: &ReducedModel) -> Option<Geometry> {

@@ -39,3 +39,23 @@ fn a_file_for_the_report_folder_is_refused_before_any_work() {
     let (ok, _, err) = romdyn_at(&dir, &["rom", model, "--static", "--input", "5:Fy", "--output", "5:y", "--count", "1", "--report", "taken"]);
     assert!(!ok && err.contains("--report: taken is a file"), "{err}");
 }
+
+/// With an imposed motion the report carries the transmissibility (issue 37 point 6:
+/// "Bode/transmissibility … plots"): the same values as `--transmissibility` writes.
+#[test]
+fn the_report_of_an_imposed_motion_carries_the_transmissibility() {
+    let dir = temp_dir("rom-report-isolator");
+    let model = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/mbdyn_files/isolator_imposed.mbd");
+    let (ok, _, err) = romdyn_at(&dir, &["rom", model, "--input", "3:Fx", "--output", "3:x", "--imposed", "2:x", "--band", "0:30", "--transmissibility", "t", "--report", "report"]);
+    assert!(ok, "{err}");
+    let page = std::fs::read_to_string(dir.join("report/index.html")).unwrap();
+    assert!(page.contains("<img src=\"transmissibility.svg\""), "{page}");
+    for f in ["transmissibility.csv", "transmissibility.svg", "transmissibility.png"] {
+        assert!(dir.join("report").join(f).metadata().map(|m| m.len() > 0).unwrap_or(false), "{f}");
+    }
+    assert_eq!(std::fs::read_to_string(dir.join("report/transmissibility.csv")).unwrap(), std::fs::read_to_string(dir.join("t.csv")).unwrap());
+    // Without an imposed motion, no such section (the first test's beam).
+    let (ok, _, err) = romdyn_at(&dir, &["rom", model, "--input", "3:Fx", "--output", "3:x", "--band", "0:30", "--report", "plain"]);
+    assert!(ok, "{err}");
+    assert!(!std::fs::read_to_string(dir.join("plain/index.html")).unwrap().contains("transmissibility.svg"));
+}
