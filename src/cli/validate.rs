@@ -65,6 +65,9 @@ pub struct ValidateArgs {
     /// A measured frequency response, CSV: 'frequency [Hz]', then per channel 'O/I re [UNIT]','O/I im [UNIT]' or 'O/I mag [UNIT]','O/I phase [deg]' (O, I: 1-based ROM output and input); overlaid and compared
     #[arg(long, value_name = "FILE.csv")]
     pub measured: Option<PathBuf>,
+    /// Also write DIR/index.html: the report of `romdyn rom --report` with this validation in it (DIR/validation.{csv,time.csv,svg,png})
+    #[arg(long, value_name = "DIR")]
+    pub report: Option<PathBuf>,
 }
 
 impl ValidateArgs {
@@ -81,7 +84,15 @@ impl ValidateArgs {
 pub fn run(a: ValidateArgs) -> Result<()> {
     check_prefix("-o", &a.prefix)?;
     let paths = files::output_paths(&a.prefix);
-    check_output_paths(&paths.iter().map(|p| ("-o", p.clone())).collect::<Vec<_>>())?;
+    let mut outputs: Vec<(&str, PathBuf)> = paths.iter().map(|p| ("-o", p.clone())).collect();
+    if let Some(dir) = &a.report {
+        if dir.is_file() {
+            bail!("--report: {} is a file; give a folder for index.html and its plots", dir.display());
+        }
+        outputs.extend(romdyn::output::report::Report::files(dir).map(|f| ("--report", f)));
+        outputs.extend(files::output_paths(&dir.join("validation")).map(|f| ("--report", f)));
+    }
+    check_output_paths(&outputs)?;
     let options = a.options();
     options.check()?;
     let Some(path) = &a.pencil.model else { bail!("--pencil: validate runs the multibody model in time; give its MBDyn file") };
@@ -104,7 +115,22 @@ pub fn run(a: ValidateArgs) -> Result<()> {
     if let Some(w) = v.warning() {
         eprintln!("warning: {w}");
     }
-    let (written, _) = write_set(&romdyn::analysis::journal_path(&paths[0]), || files::write_files(&v, &a.prefix, state.t))?;
+    // The report's Bode plot on the default grid, as `romdyn rom --report` draws it.
+    let check = match &a.report {
+        Some(_) => Some(study.check_rom(&rom, &romdyn::study::FrequencyGrid::default())?),
+        None => None,
+    };
+    let (written, _) = write_set(&romdyn::analysis::journal_path(&paths[0]), || -> Result<Vec<PathBuf>, romdyn::output::atomic::OutputError> {
+        let mut written = files::write_files(&v, &a.prefix, state.t)?.to_vec();
+        if let (Some(dir), Some(check)) = (&a.report, &check) {
+            std::fs::create_dir_all(dir).map_err(|cause| romdyn::output::atomic::OutputError::Io { path: dir.clone(), operation: "create the folder", cause })?;
+            written.extend(files::write_files(&v, &dir.join("validation"), state.t)?);
+            let mut report = study.report(&rom, check, &format!("ROM of {} validated against its nonlinear model", path.display()));
+            report.figures.push(romdyn::output::report::Figure { heading: "Validation against the nonlinear model".into(), text: v.summary(), image: "validation.svg".into(), data: "validation.csv".into() });
+            written.extend(report.write(dir, &check.comparison.responses(&study, "ROM"))?);
+        }
+        Ok(written)
+    })?;
     eprintln!("wrote {}", written.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", "));
     Ok(())
 }

@@ -27,7 +27,7 @@ impl Study {
             rom: Some(t.rom.clone()),
             diagonal: false,
         });
-        Report { title: title.to_string(), summary: rom.summary(self, Some(check)), warnings, modal_table: self.modal_report().to_text_dynamic(12), geometry: self.geometry(rom), transmissibility }
+        Report { title: title.to_string(), summary: rom.summary(self, Some(check)), warnings, modal_table: self.modal_report().to_text_dynamic(12), geometry: self.geometry(rom), transmissibility, figures: Vec::new() }
     }
 
     fn geometry(&self, rom: &ReducedModel) -> Option<Geometry> {

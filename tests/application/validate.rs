@@ -300,3 +300,22 @@ fn an_estimate_with_no_coherent_bin_is_not_a_departure() {
     let worst = c.rom.iter().zip(&c.full).map(|(r, f)| (r - f).norm() / f.norm()).fold(0.0, f64::max);
     assert!(worst < 0.02, "ROM vs full {worst}");
 }
+
+/// `romdyn validate --report DIR` (issue 37 point 6: the report's "validation plots"): the
+/// page of `romdyn rom --report` with the validation's summary and figure in it, the
+/// validation's files beside it equal to `-o`'s.
+#[test]
+fn the_report_carries_the_validation() {
+    let dir = crate::common::cli::temp_dir("validate-report");
+    let prefix = dir.join("v").to_string_lossy().into_owned();
+    let report = dir.join("report").to_string_lossy().into_owned();
+    let (ok, _, err) = crate::common::cli::romdyn(&["validate", MASSES, "--input", "3:Fx", "--output", "3:x", "--modes", "3", "--signal", "multisine", "--validation-band", "0:2", "--resolution", "0.05", "--averages", "2", "-o", &prefix, "--report", &report]);
+    assert!(ok, "{err}");
+    let page = std::fs::read_to_string(dir.join("report/index.html")).unwrap();
+    assert!(page.contains("<h2>Validation against the nonlinear model</h2>") && page.contains("<img src=\"validation.svg\""), "{page}");
+    assert!(page.contains("id=\"romdyn-geometry\"") && page.contains("<img src=\"bode.svg\""), "{page}");
+    assert_eq!(std::fs::read_to_string(dir.join("report/validation.csv")).unwrap(), std::fs::read_to_string(dir.join("v.csv")).unwrap());
+    for f in ["validation.svg", "validation.png", "bode.svg", "bode.png"] {
+        assert!(dir.join("report").join(f).metadata().map(|m| m.len() > 0).unwrap_or(false), "{f}");
+    }
+}

@@ -46,6 +46,19 @@ pub struct Report {
     /// With an imposed motion: the transmissibility of the full model and the ROM (eq. 100),
     /// written beside the page as `transmissibility.{csv,svg,png}`.
     pub transmissibility: Option<super::mimo_plot::MimoPlot>,
+    /// Figures their writer puts beside the page (a validation against the nonlinear model).
+    pub figures: Vec<Figure>,
+}
+
+/// A section with a figure written beside the page by its own writer.
+#[derive(Clone, Debug, Default)]
+pub struct Figure {
+    pub heading: String,
+    /// What it says, as the command prints it.
+    pub text: String,
+    /// The image's and the values' file names, relative to the page.
+    pub image: String,
+    pub data: String,
 }
 
 /// `text` escaped for HTML.
@@ -77,11 +90,12 @@ impl Report {
             _ => "<h2>Kept modes</h2>\n<p>No geometry: the study has no model (a pencil file) or keeps no mode that moves a structural node.</p>\n<script>document.body.dataset.status = \"ok\";</script>\n".to_string(),
         };
         format!(
-            "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>{title}</title>\n<style>\nbody {{ font-family: sans-serif; max-width: 1000px; margin: 1em auto; color: #222; }}\npre {{ background: #f6f6f6; padding: 0.6em; overflow-x: auto; font-size: 12px; }}\ncanvas {{ border: 1px solid #ccc; cursor: grab; }}\n.warnings li {{ color: #8a4b00; }}\nimg {{ max-width: 100%; }}\n</style>\n</head>\n<body>\n<script>window.addEventListener(\"error\", (e) => {{ document.body.dataset.error = String(e.message); }});</script>\n<h1>{title}</h1>\n<p>Written by romdyn {version}. SI units: frequencies in Hz, eigenvalues in rad/s, inputs and outputs in the units of their names.</p>\n<h2>ROM</h2>\n<pre>{summary}</pre>\n<h2>Warnings</h2>\n{warnings}\n{viewer}<h2>Frequency response</h2>\n<p>The full linear model (solid) and the ROM (dashed); the values are in <a href=\"bode.csv\">bode.csv</a>.</p>\n<img src=\"bode.svg\" alt=\"Bode plot of the full model and the ROM\">\n{transmissibility}<h2>Modal table</h2>\n<pre>{modal}</pre>\n</body>\n</html>\n",
+            "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>{title}</title>\n<style>\nbody {{ font-family: sans-serif; max-width: 1000px; margin: 1em auto; color: #222; }}\npre {{ background: #f6f6f6; padding: 0.6em; overflow-x: auto; font-size: 12px; }}\ncanvas {{ border: 1px solid #ccc; cursor: grab; }}\n.warnings li {{ color: #8a4b00; }}\nimg {{ max-width: 100%; }}\n</style>\n</head>\n<body>\n<script>window.addEventListener(\"error\", (e) => {{ document.body.dataset.error = String(e.message); }});</script>\n<h1>{title}</h1>\n<p>Written by romdyn {version}. SI units: frequencies in Hz, eigenvalues in rad/s, inputs and outputs in the units of their names.</p>\n<h2>ROM</h2>\n<pre>{summary}</pre>\n<h2>Warnings</h2>\n{warnings}\n{viewer}<h2>Frequency response</h2>\n<p>The full linear model (solid) and the ROM (dashed); the values are in <a href=\"bode.csv\">bode.csv</a>.</p>\n<img src=\"bode.svg\" alt=\"Bode plot of the full model and the ROM\">\n{transmissibility}{figures}<h2>Modal table</h2>\n<pre>{modal}</pre>\n</body>\n</html>\n",
             title = html(&self.title),
             version = env!("CARGO_PKG_VERSION"),
             summary = html(&self.summary),
             modal = html(&self.modal_table),
+            figures = self.figures.iter().map(|f| format!("<h2>{}</h2>\n<pre>{}</pre>\n<p>The values are in <a href=\"{}\">{}</a>.</p>\n<img src=\"{}\" alt=\"{}\">\n", html(&f.heading), html(&f.text), html(&f.data), html(&f.data), html(&f.image), html(&f.heading))).collect::<String>(),
             transmissibility = if self.transmissibility.is_some() {
                 "<h2>Transmissibility</h2>\n<p>|z/z_e| of the full model and the ROM (eq. 100); the values are in <a href=\"transmissibility.csv\">transmissibility.csv</a>.</p>\n<img src=\"transmissibility.svg\" alt=\"Transmissibility of the full model and the ROM\">\n"
             } else {
@@ -116,7 +130,7 @@ mod tests {
     #[test]
     fn the_page_escapes_text_and_carries_the_geometry() {
         let g = Geometry { nodes: vec![[0.0; 3], [1.0, 0.0, 0.0]], node_labels: vec![1, 2], edges: vec![(0, 1)], modes: vec![ModeShape { label: "mode 1: 2 Hz".into(), translations: vec![[c64::new(0.0, 0.0); 3], [c64::new(0.0, 0.0), c64::new(1.0, 0.0), c64::new(0.0, 0.0)]] }] };
-        let page = Report { title: "a < b".into(), summary: "s".into(), warnings: vec!["w </script>".into()], modal_table: "t".into(), geometry: Some(g), transmissibility: None }.page();
+        let page = Report { title: "a < b".into(), summary: "s".into(), warnings: vec!["w </script>".into()], modal_table: "t".into(), geometry: Some(g), transmissibility: None, figures: Vec::new() }.page();
         assert!(page.contains("<title>a &lt; b</title>") && page.contains("w &lt;/script&gt;"));
         let start = page.find("id=\"romdyn-geometry\">").unwrap() + "id=\"romdyn-geometry\">".len();
         let end = start + page[start..].find("</script>").unwrap();
