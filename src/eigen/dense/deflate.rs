@@ -56,75 +56,9 @@ pub(super) struct DynamicPart {
     r_g: Mat<f64>,
     q_h1: Mat<f64>,
     r_h: Mat<f64>,
-    /// `N` and `M` (step 2), applied through their few non-identity entries.
-    n_basis: NullBasis,
-    m_basis: NullBasis,
-    /// `N X₂` and `M Y₂` with an index-1 part: the dynamic part's right and left bases in
-    /// the `D` unknowns (`None`: `N` and `M` themselves).
-    nx2: Option<Mat<f64>>,
-    my2: Option<Mat<f64>>,
-}
-
-/// The last `s` columns `Q[:, m..]` of an orthogonal `Q` from a Householder QR of an `nd x m`
-/// matrix. `Q − I` has rank at most `m` and vanishes outside the rows and columns its
-/// reflectors touch (the constraint gradients' nonzero rows: the clamped node's 6 of a beam's
-/// 1548, most rows of a chain's), so `N X = X' + (Q − I)[:, m..] X` with `X'` the rows of `X`
-/// moved down by `m` costs `|rows| |cols|` per column instead of `nd s` (issue 36: the
-/// dense products with `N` and `M` were a sixth of a 1554-equation beam's eigenanalysis).
-struct NullBasis {
-    m: usize,
-    nd: usize,
-    /// Rows and columns (of `Q[:, m..]`, counted from `m`) where `Q − I` has entries.
-    rows: Vec<usize>,
-    cols: Vec<usize>,
-    /// `(Q − I)[rows, m + cols]`.
-    block: Mat<f64>,
-}
-
-impl NullBasis {
-    fn new(q: &Mat<f64>, m: usize) -> Self {
-        let nd = q.nrows();
-        let off = |i: usize, j: usize| q[(i, j)] - if i == j { 1.0 } else { 0.0 };
-        let cols: Vec<usize> = (m..nd).filter(|&j| (0..nd).any(|i| off(i, j) != 0.0)).map(|j| j - m).collect();
-        let rows: Vec<usize> = (0..nd).filter(|&i| cols.iter().any(|&j| off(i, m + j) != 0.0)).collect();
-        let block = Mat::from_fn(rows.len(), cols.len(), |a, b| off(rows[a], m + cols[b]));
-        NullBasis { m, nd, rows, cols, block }
-    }
-
-    /// `Q[:, m..] X` (`nd x k` from `s x k`).
-    fn times(&self, x: faer::MatRef<'_, f64>) -> Mat<f64> {
-        let mut out = Mat::<f64>::zeros(self.nd, x.ncols());
-        out.as_mut().subrows_mut(self.m, self.nd - self.m).copy_from(x);
-        let picked = Mat::from_fn(self.cols.len(), x.ncols(), |a, j| x[(self.cols[a], j)]);
-        let added = &self.block * &picked;
-        for (a, &i) in self.rows.iter().enumerate() {
-            for j in 0..x.ncols() {
-                out[(i, j)] += added[(a, j)];
-            }
-        }
-        out
-    }
-
-    /// `Q[:, m..]ᵀ Y` (`s x k` from `nd x k`).
-    fn transpose_times(&self, y: faer::MatRef<'_, f64>) -> Mat<f64> {
-        let mut out = y.subrows(self.m, self.nd - self.m).to_owned();
-        let picked = Mat::from_fn(self.rows.len(), y.ncols(), |a, j| y[(self.rows[a], j)]);
-        let added = self.block.transpose() * &picked;
-        for (b, &i) in self.cols.iter().enumerate() {
-            for j in 0..y.ncols() {
-                out[(i, j)] += added[(b, j)];
-            }
-        }
-        out
-    }
-
-    /// `Q[:, m..] Z` for complex `Z`.
-    fn times_complex(&self, z: &Mat<c64>) -> Mat<c64> {
-        let re = Mat::<f64>::from_fn(z.nrows(), z.ncols(), |i, j| z[(i, j)].re);
-        let im = Mat::<f64>::from_fn(z.nrows(), z.ncols(), |i, j| z[(i, j)].im);
-        let (a, b) = (self.times(re.as_ref()), self.times(im.as_ref()));
-        Mat::from_fn(a.nrows(), a.ncols(), |i, j| c64::new(a[(i, j)], b[(i, j)]))
-    }
+    /// `N X₂` and `M Y₂`: the dynamic part's right and left bases in the `D` unknowns.
+    nx2: Mat<f64>,
+    my2: Mat<f64>,
 }
 
 /// How far above the rounding level `s ε σ_max` every singular value of a full-rank `E₁`
@@ -223,10 +157,9 @@ impl DynamicPart {
         } else {
             (Mat::identity(nd, nd), Mat::zeros(0, 0), Mat::identity(nd, nd), Mat::zeros(0, 0))
         };
-        let (n_basis, m_basis) = (NullBasis::new(&q_g, m), NullBasis::new(&q_h, m));
-        let nn = q_g.subcols(m, nd - m).to_owned();
-        let e1 = m_basis.transpose_times(fyd_dd.mul_dense(&nn).as_ref());
-        let k1 = m_basis.transpose_times(fy_dd.mul_dense(&nn).as_ref());
+        let (nn, mm) = (q_g.subcols(m, nd - m), q_h.subcols(m, nd - m));
+        let e1 = mm.transpose() * fyd_dd.mul_dense(&nn.to_owned());
+        let k1 = mm.transpose() * fy_dd.mul_dense(&nn.to_owned());
         // Step 3: index-1 part by the SVD of E₁.
         let s = nd - m;
         // A full rank with the margin below proven by bounds costs one LU; otherwise the
@@ -285,12 +218,12 @@ impl DynamicPart {
                 let k2 = a11 - a12 * &g21;
                 let x2 = v.subcols(0, rank) - v.subcols(rank, s - rank) * &g21;
                 let y2 = u.subcols(0, rank) - u.subcols(rank, s - rank) * &g12t;
-                (Mat::from_fn(rank, rank, |i, j| if i == j { sv[i] } else { 0.0 }), k2, Some(n_basis.times(x2.as_ref())), Some(m_basis.times(y2.as_ref())), certified)
+                (Mat::from_fn(rank, rank, |i, j| if i == j { sv[i] } else { 0.0 }), k2, Some(x2), Some(y2), certified)
             }
             // Full rank: no index-1 part, the dynamic part is (E₁, K₁) itself (X₂ = Y₂ = I).
             None => (e1, k1, None, None, false),
         };
-        drop(nn);
+        let times = |q: faer::MatRef<'_, f64>, x: Option<Mat<f64>>| x.map_or_else(|| q.to_owned(), |x| q * x);
         Some(DynamicPart {
             e: e2,
             k: k2,
@@ -309,10 +242,8 @@ impl DynamicPart {
             r_g,
             q_h1: q_h.subcols(0, m).to_owned(),
             r_h,
-            n_basis,
-            m_basis,
-            nx2: x2,
-            my2: y2,
+            nx2: times(nn, x2),
+            my2: times(mm, y2),
         })
     }
 
@@ -324,20 +255,14 @@ impl DynamicPart {
     /// Right vectors of the whole pencil (given form, unbalanced), one column per right
     /// vector `z` of `λ E + K` (columns of `z`, eigenvalues `lambda`).
     pub fn right(&self, z: &Mat<c64>, lambda: &[c64]) -> Mat<c64> {
-        let v_d = match &self.nx2 {
-            Some(nx2) => real_times_complex(nx2.as_ref(), z),
-            None => self.n_basis.times_complex(z),
-        };
+        let v_d = real_times_complex(self.nx2.as_ref(), z);
         let v_l = self.multiplier_part(&v_d, lambda, false);
         self.assemble(&v_d, &v_l, lambda, &self.col_scale)
     }
 
     /// Left vectors of the whole pencil from left vectors `w` of `λ E + K`.
     pub fn left(&self, w: &Mat<c64>, lambda: &[c64]) -> Mat<c64> {
-        let u_d = match &self.my2 {
-            Some(my2) => real_times_complex(my2.as_ref(), w),
-            None => self.m_basis.times_complex(w),
-        };
+        let u_d = real_times_complex(self.my2.as_ref(), w);
         let u_c = self.multiplier_part(&u_d, lambda, true);
         self.assemble(&u_d, &u_c, lambda, &self.row_scale)
     }
