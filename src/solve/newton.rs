@@ -132,7 +132,9 @@ pub struct NewtonWorkspace {
     /// when the residual norm fell to at most this fraction of the previous iteration's.
     /// Each step's first iteration factors anew, and so does any iteration after one whose
     /// residual fell less; the static analysis and the derivatives phase always do. `0`:
-    /// every iteration factors anew (full Newton). Default [`KEEP_JACOBIAN_BELOW`].
+    /// every iteration factors anew (full Newton, the default, as MBDyn's default
+    /// `newton raphson`); `romdyn run` sets [`KEEP_JACOBIAN_BELOW`] when the file asks for
+    /// `nonlinear solver: newton raphson, modified, …`.
     pub keep_jacobian_below: f64,
     /// Iterations that reused a factorization, and those that assembled and factored a
     /// Jacobian, since the workspace was made.
@@ -140,12 +142,12 @@ pub struct NewtonWorkspace {
     pub factored: usize,
 }
 
-/// The default [`NewtonWorkspace::keep_jacobian_below`].
+/// [`NewtonWorkspace::keep_jacobian_below`] of MBDyn's `modified` Newton–Raphson.
 pub const KEEP_JACOBIAN_BELOW: f64 = 0.1;
 
 impl Default for NewtonWorkspace {
     fn default() -> Self {
-        NewtonWorkspace { lu: SparseLu::default(), jacobian: Triplets::default(), keep_jacobian_below: KEEP_JACOBIAN_BELOW, reused: 0, factored: 0 }
+        NewtonWorkspace { lu: SparseLu::default(), jacobian: Triplets::default(), keep_jacobian_below: 0.0, reused: 0, factored: 0 }
     }
 }
 

@@ -87,10 +87,10 @@ pub fn initial_value(block: Option<&Block>, sources: &Sources, drives: &Drives) 
     for st in &iv.statements {
         let mut c = Cursor::new(st, sources);
         if known(&st.keyword, &["nonlinear solver"]).is_some() {
-            // `newton raphson [, true | modified, ITERATIONS [, keep jacobian matrix]]`: full
-            // Newton unless `modified` (romdyn keeps a factorization while the residual
-            // falls fast instead of for ITERATIONS iterations); other solvers are ignored.
-            a.full_newton = c.accept("newton raphson") && !c.accept("modified");
+            // `newton raphson [, true | modified, ITERATIONS [, keep jacobian matrix]]`: with
+            // `modified` romdyn keeps a factorization while the residual falls fast (instead
+            // of for ITERATIONS iterations); full Newton otherwise; other solvers ignored.
+            a.modified_newton = c.accept("newton raphson") && c.accept("modified");
             c.skip_rest();
             continue;
         }
