@@ -27,6 +27,9 @@ the machine is shared, read the ratios, not the times.
 
     python3 scripts/bench_dense_eigen.py                    # beam32, chain50, chain100
     python3 scripts/bench_dense_eigen.py --models beam32 --repeat 3
+    python3 scripts/bench_dense_eigen.py --family --repeat 1   # issue 30: 8..128 elements x EA/EJ 1e3, 1e5, 1e7
+
+The last column is the 1-minute load average when the model's row started.
 """
 
 import argparse
@@ -84,6 +87,12 @@ def chain(n, extra=""):
 
 
 MODELS = {"beam32": lambda extra="": beam(extra=extra), "chain50": lambda extra="": chain(50, extra), "chain100": lambda extra="": chain(100, extra)}
+# Issue 30's beam family (tests/common/beam_family.rs): N elements, EJ = 1e3 N m^2,
+# EA = GA = EJ * 10^k, named beamN-ek.
+FAMILY = [f"beam{n}-e{k}" for n in (8, 16, 32, 64, 128) for k in (3, 5, 7)]
+for _name in FAMILY:
+    _n, _k = _name[4:].split("-e")
+    MODELS[_name] = (lambda n, k: lambda extra="": beam(n, 1e3 * 10.0 ** k, 1e3, extra))(int(_n), int(_k))
 
 
 def pencil(out, name, dcoef):
@@ -127,29 +136,39 @@ def run_scipy(aminus, aplus, dcoef):
 
 
 def check(name, romdyn_lam, scipy_lam):
-    """Median and largest relative distance from a romdyn dynamic eigenvalue to scipy's nearest."""
-    d = [np.min(np.abs(scipy_lam - l)) / abs(l) for l in romdyn_lam]
-    if max(d) > 1e-4:
-        sys.exit(f"{name}: a romdyn eigenvalue is {max(d):.1e} (relative) from scipy's nearest")
-    return statistics.median(d), max(d)
+    """Median and largest relative distance from a romdyn dynamic eigenvalue to scipy's
+    nearest, and the largest among the 20 lowest modes (40 eigenvalues with the conjugates,
+    the ones tests/eigen/beam_family.rs asserts to 1e-8 against an independent reference).
+    Fails above 1e-4 there, except where scipy itself is the one off: on the beam at EA/EJ =
+    1e7 scipy's QZ on the unbalanced J(+-c) (LAPACK dggev permutes, does not scale) puts the
+    lowest pair 2e-6 (8 elements) to 2e-3 (64 elements) away from the reference that romdyn
+    meets to 1e-8, so the beam models at EA/EJ >= 1e7 only report the distance."""
+    d = np.array([np.min(np.abs(scipy_lam - l)) / abs(l) for l in romdyn_lam])
+    lowest = d[np.argsort(np.abs(romdyn_lam))[:40]]
+    if lowest.max() > 1e-4 and not name.endswith("-e7"):
+        sys.exit(f"{name}: one of romdyn's 20 lowest modes is {lowest.max():.1e} (relative) from scipy's nearest")
+    return float(np.median(d)), float(d.max()), float(lowest.max())
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--models", nargs="+", default=list(MODELS), choices=list(MODELS))
+    ap.add_argument("--models", nargs="+", default=["beam32", "chain50", "chain100"], choices=list(MODELS))
+    ap.add_argument("--family", action="store_true", help="the beam family of issue 30 instead of --models")
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--out", default="/tmp/romdyn-bench-dense")
     args = ap.parse_args()
     if not EXE.exists():
         sys.exit(f"{EXE} missing: cargo build --release --bin romdyn")
+    models = FAMILY if args.family else args.models
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     load = os.getloadavg()
     print(f"# {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, load average {load[0]:.2f} {load[1]:.2f} {load[2]:.2f}, "
           f"numpy {np.__version__}, scipy {scipy.__version__}, {os.cpu_count()} cores")
-    print("| model | equations | romdyn wall / CPU [s] | scipy wall / CPU [s] | ratio wall | ratio CPU | dynamic eigenvalues | distance to scipy's, median / largest |")
-    print("| --- | --- | --- | --- | --- | --- | --- | --- |")
-    for name in args.models:
+    print("| model | equations | romdyn wall / CPU [s] | scipy wall / CPU [s] | ratio wall | ratio CPU | dynamic eigenvalues | distance to scipy's, median / largest / largest of the 20 lowest modes | load |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    for name in models:
+        row_load = os.getloadavg()[0]
         path = out / f"{name}.mbd"
         path.write_text(MODELS[name]())
         # The pencil at romdyn's own dCoef (from the spectrum): at another c the QZ of
@@ -163,7 +182,7 @@ def main():
         med = lambda k: statistics.median(r[k] for r in rows)
         ratio_wall = statistics.median(r[0] / r[2] for r in rows)
         ratio_cpu = statistics.median(r[1] / r[3] for r in rows)
-        print(f"| {name} | {aplus.shape[0]} | {med(0):.2f} / {med(1):.2f} | {med(2):.2f} / {med(3):.2f} | {ratio_wall:.2f} | {ratio_cpu:.2f} | {rows[0][5]} | {rows[0][4][0]:.0e} / {max(r[4][1] for r in rows):.0e} |")
+        print(f"| {name} | {aplus.shape[0]} | {med(0):.2f} / {med(1):.2f} | {med(2):.2f} / {med(3):.2f} | {ratio_wall:.2f} | {ratio_cpu:.2f} | {rows[0][5]} | {rows[0][4][0]:.0e} / {max(r[4][1] for r in rows):.0e} / {max(r[4][2] for r in rows):.0e} | {row_load:.1f} |", flush=True)
     load = os.getloadavg()
     print(f"# load average at the end {load[0]:.2f} {load[1]:.2f} {load[2]:.2f}")
 

@@ -194,6 +194,9 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
     // One Newton workspace for the derivatives and the steps: the sparsity pattern, the
     // momenta's elimination and the symbolic factorization are built once.
     let mut workspace = NewtonWorkspace::new();
+    if problem.modified_newton {
+        workspace.keep_jacobian_below = crate::solve::KEEP_JACOBIAN_BELOW;
+    }
     let (done, mbdyn_momenta_failure) = derivatives(&asm, &mut state, problem, &derivative_settings, &mut workspace).map_err(|mut failure| {
         // Velocities that violate a joint cannot be changed by the derivatives phase, which
         // holds them: name the joint, whichever row ended the iteration.

@@ -253,6 +253,14 @@ impl Eliminated {
     /// Solves `J x = rhs` in place, `J`'s values given in the pattern's triplet order;
     /// `Err` for a zero pivot (the caller then solves the whole system).
     pub(super) fn solve(&mut self, values: &[f64], rhs: &mut [f64]) -> Result<(), SparseError> {
+        self.factor(values)?;
+        self.solve_factored(rhs);
+        Ok(())
+    }
+
+    /// Forms the pivots and the Schur complement from `J`'s values (in the pattern's triplet
+    /// order) and factors it; `Err` for a zero pivot.
+    pub(super) fn factor(&mut self, values: &[f64]) -> Result<(), SparseError> {
         self.entries.iter_mut().for_each(|v| *v = 0.0);
         let len = self.storage_len;
         for (&t, &v) in self.target.iter().zip(values) {
@@ -269,6 +277,24 @@ impl Eliminated {
             *inv = 1.0 / d;
         }
         let (entries, inverse) = (&self.entries, &self.inverse);
+        let (target, products) = (&self.target, &self.products);
+        self.inner.factor_with(|storage| {
+            for (&t, &v) in target.iter().zip(values) {
+                let t = t as usize;
+                if t < len {
+                    storage[t] += v;
+                }
+            }
+            for &[at, a, b, k] in products {
+                storage[at as usize] -= entries[a as usize] * entries[b as usize] * inverse[k as usize];
+            }
+        })
+    }
+
+    /// Solves `J x = rhs` in place with the entries and factors of the last successful
+    /// [`Eliminated::factor`].
+    pub(super) fn solve_factored(&mut self, rhs: &mut [f64]) {
+        let (entries, inverse) = (&self.entries, &self.inverse);
         // Reduced right-hand side r_R − J_Rp r_M / c, in the reduced unknowns' storage.
         let nr = self.kept_rows.len();
         let (y, momenta) = self.x.split_at_mut(nr);
@@ -278,21 +304,7 @@ impl Eliminated {
         for &(r, e, k) in &self.column {
             y[r] -= entries[e] * rhs[self.pivots[k].row] * inverse[k];
         }
-        let (target, products) = (&self.target, &self.products);
-        self.inner.solve_with(
-            |storage| {
-                for (&t, &v) in target.iter().zip(values) {
-                    let t = t as usize;
-                    if t < len {
-                        storage[t] += v;
-                    }
-                }
-                for &[at, a, b, k] in products {
-                    storage[at as usize] -= entries[a as usize] * entries[b as usize] * inverse[k as usize];
-                }
-            },
-            y,
-        )?;
+        self.inner.solve_factored(y);
         // Back substitution δp = (r_M − J_Mq δq) / c, before rhs is overwritten.
         for (k, p) in self.pivots.iter().enumerate() {
             let mut acc = rhs[p.row];
@@ -307,7 +319,6 @@ impl Eliminated {
         for (&c, &v) in self.kept_cols.iter().zip(y.iter()) {
             rhs[c] = v;
         }
-        Ok(())
     }
 }
 

@@ -140,11 +140,33 @@ impl Factored {
     /// Zeroes the storage, lets `assemble` add the values at storage indices (from
     /// [`Factored::positions`]), factors and solves `A x = rhs` in place.
     pub(super) fn solve_with(&mut self, assemble: impl FnOnce(&mut [f64]), rhs: &mut [f64]) -> Result<(), SparseError> {
+        self.factor_with(assemble)?;
+        self.solve_factored(rhs);
+        Ok(())
+    }
+
+    /// Zeroes the storage, lets `assemble` add the values at storage indices and factors.
+    pub(super) fn factor_with(&mut self, assemble: impl FnOnce(&mut [f64])) -> Result<(), SparseError> {
         match &mut self.factorization {
-            Factorization::Band { ordering, lu, rhs: x } => {
+            Factorization::Band { lu, .. } => {
                 lu.clear();
                 assemble(lu.storage_mut());
                 lu.factorize().map_err(|_| SparseError::Singular)?;
+            }
+            Factorization::General { csc, lu, values: stored, scratch } => {
+                stored.iter_mut().for_each(|v| *v = 0.0);
+                assemble(stored);
+                lu.factor(SparseColMatRef::new(csc.as_ref(), stored), MemStack::new(scratch)).map_err(|_| SparseError::Singular)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Solves `A x = rhs` in place with the factors of the last successful
+    /// [`Factored::factor_with`] (the caller keeps track that there is one).
+    pub(super) fn solve_factored(&mut self, rhs: &mut [f64]) {
+        match &mut self.factorization {
+            Factorization::Band { ordering, lu, rhs: x } => {
                 for (i, &p) in ordering.position.iter().enumerate() {
                     x[p] = rhs[i];
                 }
@@ -153,13 +175,9 @@ impl Factored {
                     rhs[i] = x[p];
                 }
             }
-            Factorization::General { csc, lu, values: stored, scratch } => {
-                stored.iter_mut().for_each(|v| *v = 0.0);
-                assemble(stored);
-                lu.factor(SparseColMatRef::new(csc.as_ref(), stored), MemStack::new(scratch)).map_err(|_| SparseError::Singular)?;
+            Factorization::General { lu, scratch, .. } => {
                 lu.solve_in_place(MatMut::from_column_major_slice_mut(rhs, self.n, 1), false, MemStack::new(scratch));
             }
         }
-        Ok(())
     }
 }

@@ -24,6 +24,16 @@ fn position_key(row: usize, col: usize) -> u64 {
 struct Pattern {
     positions: Vec<u64>,
     solver: Solver,
+    /// Which factors the last successful solve left: those of the elimination's reduced
+    /// system or of the whole one (`None` after a failed factorization).
+    factored: Option<Factors>,
+}
+
+/// The factorization a pattern's last successful solve used.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Factors {
+    Reduced,
+    Whole,
 }
 
 impl Pattern {
@@ -37,7 +47,7 @@ impl Pattern {
             None => Solver::Direct(Factored::new(j.n, &j.rows, &j.cols, path)?),
         };
         let positions = j.rows.iter().zip(&j.cols).map(|(&r, &c)| position_key(r, c)).collect();
-        Ok(Pattern { positions, solver })
+        Ok(Pattern { positions, solver, factored: None })
     }
 
     /// Whether `j`'s triplets sit at the positions this pattern was made from.
@@ -47,19 +57,37 @@ impl Pattern {
 
     /// Assembles `j`'s values, factors and solves `J x = rhs` in place.
     fn solve(&mut self, j: &Triplets, rhs: &mut [f64], path: LuPath) -> Result<(), SparseError> {
+        self.factored = None;
         match &mut self.solver {
-            Solver::Direct(f) => f.solve(&j.values, rhs),
+            Solver::Direct(f) => {
+                f.solve(&j.values, rhs)?;
+                self.factored = Some(Factors::Whole);
+            }
             Solver::Eliminated { reduced, direct } => {
                 if reduced.solve(&j.values, rhs).is_ok() {
+                    self.factored = Some(Factors::Reduced);
                     return Ok(());
                 }
                 if direct.is_none() {
                     *direct = Some(Factored::new(j.n, &j.rows, &j.cols, path)?);
                 }
                 let Some(f) = direct else { unreachable!("set above") };
-                f.solve(&j.values, rhs)
+                f.solve(&j.values, rhs)?;
+                self.factored = Some(Factors::Whole);
             }
         }
+        Ok(())
+    }
+
+    /// Solves `J x = rhs` in place with the factors of the last successful [`Pattern::solve`];
+    /// `false` (and `rhs` untouched) when there are none.
+    fn solve_again(&mut self, rhs: &mut [f64]) -> bool {
+        match (&mut self.solver, self.factored) {
+            (Solver::Direct(f), Some(Factors::Whole)) | (Solver::Eliminated { direct: Some(f), .. }, Some(Factors::Whole)) => f.solve_factored(rhs),
+            (Solver::Eliminated { reduced, .. }, Some(Factors::Reduced)) => reduced.solve_factored(rhs),
+            _ => return false,
+        }
+        true
     }
 }
 
@@ -121,14 +149,33 @@ impl SparseLu {
     pub fn solve(&mut self, j: &Triplets, rhs: &mut [f64]) -> Result<(), SparseError> {
         let same = matches!(&self.pattern, Some(p) if p.is_pattern_of(j));
         if !same {
+            self.pattern = None;
             self.pattern = Some(Pattern::new(j, self.path, &self.eliminate)?);
             self.symbolic_factorizations += 1;
         }
         let Some(p) = &mut self.pattern else { unreachable!("set above") };
         p.solve(j, rhs, self.path)?;
         if rhs.iter().any(|x| !x.is_finite()) {
+            p.factored = None;
             return Err(SparseError::Singular);
         }
         Ok(())
+    }
+
+    /// Solves `J x = rhs` in place with the factorization of the last successful
+    /// [`SparseLu::solve`], without assembling or factoring anything: the same matrix, a new
+    /// right-hand side (Newton iterations that keep their Jacobian,
+    /// [`crate::solve::NewtonSettings`]). `Ok(false)`, `rhs` untouched, when there is no such
+    /// factorization (none yet, the pattern changed, or the last one failed);
+    /// `Err(Singular)` when the solution is not finite.
+    pub fn solve_again(&mut self, rhs: &mut [f64]) -> Result<bool, SparseError> {
+        let Some(p) = &mut self.pattern else { return Ok(false) };
+        if !p.solve_again(rhs) {
+            return Ok(false);
+        }
+        if rhs.iter().any(|x| !x.is_finite()) {
+            return Err(SparseError::Singular);
+        }
+        Ok(true)
     }
 }

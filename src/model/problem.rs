@@ -232,6 +232,12 @@ pub struct InitialValueProblem {
     /// residual alone).
     pub increment_tolerance: f64,
     pub max_iterations: usize,
+    /// MBDyn's `nonlinear solver: newton raphson, modified, …`: a time step's iteration whose
+    /// residual fell fast keeps the last factorization
+    /// (`solve::NewtonWorkspace::keep_jacobian_below`; MBDyn keeps it for a fixed number of
+    /// iterations). `false` (the default, MBDyn's too): every iteration assembles and factors
+    /// its Jacobian.
+    pub modified_newton: bool,
     /// Tolerance and iteration limit of the consistent initial derivatives.
     pub derivatives_tolerance: f64,
     pub derivatives_max_iterations: usize,
@@ -308,6 +314,7 @@ impl Default for InitialValueProblem {
             residual_norm: ResidualNorm::Max,
             increment_tolerance: 1e-12,
             max_iterations: 20,
+            modified_newton: false,
             derivatives_tolerance: 1e-6,
             derivatives_max_iterations: 20,
             derivatives_coefficient: 1e-6,

@@ -165,6 +165,12 @@ impl<'a, 'm> Integrator<'a, 'm> {
         self.workspace.lu.symbolic_factorizations
     }
 
+    /// Newton's workspace: how many iterations factored a Jacobian and how many kept the
+    /// last factorization ([`NewtonWorkspace::keep_jacobian_below`]).
+    pub fn workspace(&self) -> &NewtonWorkspace {
+        &self.workspace
+    }
+
     fn snapshot(&self) -> Past {
         let dofs = &self.asm.dofs;
         let frames: Vec<_> = (0..self.state.r_ref.len()).map(|i| self.state.node_frame(dofs, i)).collect();

@@ -11,6 +11,6 @@ mod static_analysis;
 pub use crate::model::Method;
 pub use initial_assembly::{initial_assembly, AssemblyError, AssemblyReport};
 pub use integrate::{BatheCoefficients, constraint_rate, initial_derivatives, initial_derivatives_in, initial_derivatives_with, momentum_velocity_change, newton_dcoef, Integrator, StepRecord};
-pub use newton::{newton, Convergence, DerivativeMomenta, NewtonFailure, NewtonSettings, NewtonWorkspace, SolveError, Update};
+pub use newton::{newton, Convergence, DerivativeMomenta, NewtonFailure, NewtonSettings, NewtonWorkspace, SolveError, Update, KEEP_JACOBIAN_BELOW};
 pub use singular::explain_singular_matrix;
 pub use static_analysis::static_solution;

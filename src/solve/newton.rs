@@ -124,10 +124,31 @@ fn kinks_crossed(asm: &Assembler, iterates: &[State]) -> Option<String> {
 
 /// What Newton keeps from one iteration (and one step) to the next: the sparse LU with its
 /// symbolic factorization, and the Jacobian's storage.
-#[derive(Default)]
 pub struct NewtonWorkspace {
     pub lu: SparseLu,
     jacobian: Triplets,
+    /// When a time step's Newton iteration keeps its Jacobian's factorization for the next
+    /// iteration (MBDyn's `modified` Newton–Raphson, with its reuse decided by convergence):
+    /// when the residual norm fell to at most this fraction of the previous iteration's.
+    /// Each step's first iteration factors anew, and so does any iteration after one whose
+    /// residual fell less; the static analysis and the derivatives phase always do. `0`:
+    /// every iteration factors anew (full Newton, the default, as MBDyn's default
+    /// `newton raphson`); `romdyn run` sets [`KEEP_JACOBIAN_BELOW`] when the file asks for
+    /// `nonlinear solver: newton raphson, modified, …`.
+    pub keep_jacobian_below: f64,
+    /// Iterations that reused a factorization, and those that assembled and factored a
+    /// Jacobian, since the workspace was made.
+    pub reused: usize,
+    pub factored: usize,
+}
+
+/// [`NewtonWorkspace::keep_jacobian_below`] of MBDyn's `modified` Newton–Raphson.
+pub const KEEP_JACOBIAN_BELOW: f64 = 0.1;
+
+impl Default for NewtonWorkspace {
+    fn default() -> Self {
+        NewtonWorkspace { lu: SparseLu::default(), jacobian: Triplets::default(), keep_jacobian_below: 0.0, reused: 0, factored: 0 }
+    }
 }
 
 impl NewtonWorkspace {
@@ -174,6 +195,45 @@ fn norm_history(norms: &[f64], tolerance: f64) -> String {
     } else {
         format!("the residual norm stalled above the tolerance {tolerance:.1e} (by iteration {shown})")
     }
+}
+
+/// Assembles `J` at `st` into the workspace, factors it and solves `J δ = f` in place (`f`
+/// holds `−F`, `residual` `F`). A singular Jacobian is named in `singular` and one
+/// regularized step is taken; `Err` with the reason when even that fails.
+#[allow(clippy::too_many_arguments)]
+fn factor_and_solve(asm: &Assembler, st: &State, update: Update, coef: Coefficients, ws: &mut NewtonWorkspace, f: &mut Vec<f64>, residual: &[f64], singular: &std::cell::RefCell<Option<String>>) -> Result<(), String> {
+    asm.jacobian_into(st, coef, &mut ws.jacobian);
+    let j = &mut ws.jacobian;
+    if matches!(update, Update::Derivatives { .. }) {
+        // The positions are held here, so a holonomic row's value `Φ(q)/c` is not this
+        // phase's to correct: left in the right-hand side, a rounding-level violation
+        // becomes an acceleration `Φ/c²` in the constraint's direction (`0.05 − 1 + 0.95`
+        // = 4.2e-17 m of a hinge offset at c = 1e-9 s: 41.6 N in a blade's momentum
+        // derivative, its pendulum mode 14.1 rad/s after one step instead of 18.18).
+        // The increments then satisfy `Φ_/q δq̇ = 0`: accelerations consistent with the
+        // constraints at the velocities given.
+        for (i, x) in f.iter_mut().enumerate() {
+            if asm.dofs.is_multiplier(i) {
+                *x = 0.0;
+            }
+        }
+    }
+    if ws.lu.solve(j, f).is_err() {
+        if singular.borrow().is_none() {
+            *singular.borrow_mut() = super::singular::explain_singular_matrix(asm, j);
+        }
+        // A singular Jacobian, typically at the first static iteration where stiffness
+        // comes only from joint reactions that are still zero: take one regularized
+        // step, `(J + μ I) δ = −F` with μ a small fraction of the largest entry.
+        let mu = 1e-6 * j.values.iter().fold(0.0f64, |m, v| m.max(v.abs())).max(1.0);
+        for i in 0..j.n {
+            j.push(i, i, mu);
+        }
+        *f = residual.iter().map(|x| -x).collect();
+        let mut regularized = SparseLu::new();
+        regularized.solve(j, f).map_err(|e| e.to_string())?;
+    }
+    Ok(())
 }
 
 /// Iterates to convergence.
@@ -234,40 +294,25 @@ pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &Newton
             return Err(fail(st, iteration, &judged, [reason, history].into_iter().flatten().reduce(|a, b| format!("{a}; {b}"))));
         }
         drop(judged);
-        asm.jacobian_into(st, coef, &mut ws.jacobian);
-        let j = &mut ws.jacobian;
         let residual = f.clone();
         for x in f.iter_mut() {
             *x = -*x;
         }
-        if matches!(update, Update::Derivatives { .. }) {
-            // The positions are held here, so a holonomic row's value `Φ(q)/c` is not this
-            // phase's to correct: left in the right-hand side, a rounding-level violation
-            // becomes an acceleration `Φ/c²` in the constraint's direction (`0.05 − 1 + 0.95`
-            // = 4.2e-17 m of a hinge offset at c = 1e-9 s: 41.6 N in a blade's momentum
-            // derivative, its pendulum mode 14.1 rad/s after one step instead of 18.18).
-            // The increments then satisfy `Φ_/q δq̇ = 0`: accelerations consistent with the
-            // constraints at the velocities given.
-            for (i, x) in f.iter_mut().enumerate() {
-                if asm.dofs.is_multiplier(i) {
-                    *x = 0.0;
-                }
+        // A time step's iteration whose residual fell fast keeps the last factorization (the
+        // Jacobian moved only with that iteration's small correction): no assembly, no
+        // factorization, the solve alone. Otherwise, and whenever there is no factorization
+        // to keep, a fresh Jacobian.
+        let keep = matches!(update, Update::Dynamic { .. }) && iteration > 0 && norms[iteration] <= ws.keep_jacobian_below * norms[iteration - 1];
+        let kept = keep && matches!(ws.lu.solve_again(&mut f), Ok(true));
+        if kept {
+            ws.reused += 1;
+        } else {
+            if keep {
+                // A failed reuse may have written into f.
+                f = residual.iter().map(|x| -x).collect();
             }
-        }
-        if ws.lu.solve(j, &mut f).is_err() {
-            if singular.borrow().is_none() {
-                *singular.borrow_mut() = super::singular::explain_singular_matrix(asm, j);
-            }
-            // A singular Jacobian, typically at the first static iteration where stiffness
-            // comes only from joint reactions that are still zero: take one regularized
-            // step, `(J + μ I) δ = −F` with μ a small fraction of the largest entry.
-            let mu = 1e-6 * j.values.iter().fold(0.0f64, |m, v| m.max(v.abs())).max(1.0);
-            for i in 0..j.n {
-                j.push(i, i, mu);
-            }
-            f = residual.iter().map(|x| -x).collect();
-            let mut regularized = SparseLu::new();
-            regularized.solve(j, &mut f).map_err(|e| fail(st, iteration, &residual, Some(e.to_string())))?;
+            ws.factored += 1;
+            factor_and_solve(asm, st, update, coef, ws, &mut f, &residual, &singular).map_err(|e| fail(st, iteration, &residual, Some(e)))?;
         }
         if let Update::Static = update {
             limit_rotation_step(asm, &mut f);

@@ -548,3 +548,21 @@ fn where_mbdyns_momenta_leave_the_derivatives_above_the_tolerance_romdyn_sets_th
         assert!((x[0] - 6.05e-3).abs() < 1e-12, "node {}: {x:?}", k + 1);
     }
 }
+
+/// MBDyn's `nonlinear solver` card (input manual, "Nonlinear Solver": `newton raphson [,
+/// {true | modified, ITERATIONS [, keep jacobian matrix]}]`, `true` the default): romdyn keeps
+/// a factorization while the residual falls fast only when the file asks for `modified`;
+/// full Newton otherwise, as MBDyn.
+#[test]
+fn the_nonlinear_solver_card_chooses_modified_newton() {
+    let with = |card: &str| {
+        let text = format!("begin: data; problem: initial value; end: data;\nbegin: initial value; initial time: 0.; final time: 0.01; time step: 1.e-3; {card} end: initial value;\nbegin: control data; structural nodes: 1; rigid bodies: 1; end: control data;\nbegin: nodes; structural: 1, dynamic, null, eye, null, null; end: nodes;\nbegin: elements; body: 1, 1, 1., null, eye; end: elements;\n");
+        parse_text(&text, Path::new("m.mbd")).and_then(|d| build(&d)).unwrap_or_else(|e| panic!("{card}: {e}")).problem.modified_newton
+    };
+    assert!(!with(""));
+    assert!(!with("nonlinear solver: newton raphson;"));
+    assert!(!with("nonlinear solver: newton raphson, true;"));
+    assert!(with("nonlinear solver: newton raphson, modified, 4;"));
+    assert!(with("nonlinear solver: newton raphson, modified, 4, keep jacobian matrix;"));
+    assert!(!with("nonlinear solver: line search;"));
+}

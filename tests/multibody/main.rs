@@ -28,6 +28,7 @@ mod mbdyn_joints;
 mod mbdyn_loads;
 mod multibody_jacobians;
 mod multibody_springs;
+mod newton_reuse;
 mod nlsf_laws;
 mod nonlinear_laws;
 mod rotation_update;

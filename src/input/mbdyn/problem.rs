@@ -38,7 +38,8 @@ pub fn data(block: &Block, sources: &Sources) -> Result<(), MbdynError> {
     Ok(())
 }
 
-/// MBDyn's numerics settings romdyn ignores, with their deprecated spellings (`fictitious
+/// MBDyn's numerics settings romdyn ignores (`nonlinear solver` is read for its Newton–Raphson
+/// kind, before these), with their deprecated spellings (`fictitious
 /// steps …` for `dummy steps …`, `newton raphson: …` for `nonlinear solver: newton raphson,
 /// …`, `solver`, `interface solver`, `preconditioner`: solver.cc, Solver::ReadData).
 const IGNORED: [&str; 30] = [
@@ -85,6 +86,14 @@ pub fn initial_value(block: Option<&Block>, sources: &Sources, drives: &Drives) 
     let mut eigen_span = None;
     for st in &iv.statements {
         let mut c = Cursor::new(st, sources);
+        if known(&st.keyword, &["nonlinear solver"]).is_some() {
+            // `newton raphson [, true | modified, ITERATIONS [, keep jacobian matrix]]`: with
+            // `modified` romdyn keeps a factorization while the residual falls fast (instead
+            // of for ITERATIONS iterations); full Newton otherwise; other solvers ignored.
+            a.modified_newton = c.accept("newton raphson") && c.accept("modified");
+            c.skip_rest();
+            continue;
+        }
         if known(&st.keyword, &IGNORED).is_some() {
             c.skip_rest();
             continue;
