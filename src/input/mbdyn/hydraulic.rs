@@ -146,7 +146,8 @@ pub fn hydraulic(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<B
     }
     let axis = if c.accept("direction") {
         let dir_span = c.here();
-        let v = ctx.on(first.expect("node 1 read")).relative_vector(c, &format!("{what}: direction"))?;
+        let Some(first) = first else { return Err(c.error_at(dir_span, format!("{what}: a direction needs structural node 1"))) };
+        let v = ctx.on(first).relative_vector(c, &format!("{what}: direction"))?;
         v.try_normalize(0.0).ok_or_else(|| c.error_at(dir_span, format!("{what}: the direction is null (MBDyn 1.7.3: \"need a definite direction\")")))?
     } else {
         crate::kinematics::Vec3::z()

@@ -30,7 +30,9 @@ pub fn plate(keyword: &str, label: Label, c: &mut Cursor, ctx: &ElementContext) 
     }
     let law = shell_law(c)?;
     let span = c.statement().span;
-    let nodes: [_; 4] = nodes.try_into().expect("four nodes");
+    let Ok(nodes) = <[_; 4]>::try_from(nodes) else {
+        return Err(c.error_at(span, format!("shell4eas {label}: expected four nodes")));
+    };
     let shell = Shell4Eas::new(label, nodes, law).map_err(|e| c.error_at(span, e.to_string()))?;
     Ok(Parsed::Element(Box::new(shell)))
 }
