@@ -62,6 +62,7 @@ pub fn validation_ports(ports: &Ports) -> Result<(Vec<InputPort>, Vec<OutputPort
     match ports {
         Ports::Nodes { inputs, outputs } => Ok((inputs.iter().map(|p| p.port()).collect(), outputs.iter().map(|p| p.port()).collect())),
         Ports::Application(app) if !app.remove_springs.is_empty() => Err(ValidateError::Option { option: "--remove-spring", message: "the ROM without its dummy springs has no nonlinear counterpart to run (the model as written has them): validate the model without removing springs".into() }),
+        Ports::Application(app) if !app.cuts.is_empty() => Err(ValidateError::Option { option: "--cut", message: "a cut loop has no nonlinear counterpart to run (the model as written keeps the cut element closing its loop): validate the closed loop without --cut".into() }),
         Ports::Application(app) if app.imposed.is_some() => Err(ValidateError::Option { option: "--imposed", message: "an imposed motion is not validated (its inputs are the forces that impose it); validate the force inputs".into() }),
         Ports::Application(app) => Ok((app.inputs.clone(), app.outputs.clone())),
     }

@@ -319,3 +319,14 @@ fn the_report_carries_the_validation() {
         assert!(dir.join("report").join(f).metadata().map(|m| m.len() > 0).unwrap_or(false), "{f}");
     }
 }
+
+/// A cut loop (`--cut`) is refused by validate, naming the flag, as dummy-spring removal and
+/// imposed motion are: the nonlinear model keeps the cut element, so the ROM of the cut
+/// model has no nonlinear run to be compared with (it failed on a port count before).
+#[test]
+fn a_cut_loop_is_refused_by_validate_with_its_reason() {
+    let dir = crate::common::cli::temp_dir("validate-cut");
+    let prefix = dir.join("v").to_string_lossy().into_owned();
+    let (ok, _, err) = crate::common::cli::romdyn(&["validate", "examples/pid_mass.mbd", "--input", "1:abstract", "--output", "1:abstract", "--count", "2", "--cut", "genel:4", "--validation-band", "0:2", "--averages", "2", "-o", &prefix]);
+    assert!(!ok && err.contains("--cut: a cut loop has no nonlinear counterpart to run"), "{err}");
+}
