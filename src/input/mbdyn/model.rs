@@ -6,19 +6,19 @@
 use std::collections::HashMap;
 use std::path::Path;
 
-use super::control::{control_data, Counts, COUNTED};
-use super::cursor::Cursor;
-use super::diagnostic::{MbdynError, Span};
-use super::drives::{drive_caller_card, Drives};
-use super::element_context::{ElementContext, Parsed};
-use super::elements::{counted_kind, element, label_space};
-use super::laws::{constitutive_law_card, Laws};
-use super::nodes::{node_statement, Nodes};
+use super::blocks::control::{control_data, Counts, COUNTED};
+use super::syntax::cursor::Cursor;
+use super::syntax::diagnostic::{MbdynError, Span};
+use super::drives::callers::{drive_caller_card, Drives};
+use super::elements::context::{ElementContext, Parsed};
+use super::elements::block::{counted_kind, element, label_space};
+use super::elements::laws::{constitutive_law_card, Laws};
+use super::nodes::structural::{node_statement, Nodes};
 use super::read_options::{BeamUpdateRule, ReadOptions};
-use super::parser::{known, same_keyword, Block, Document, CARDS};
+use super::syntax::parser::{known, same_keyword, Block, Document, CARDS};
 use super::written_nodes::{parse_file_with, parse_text_with};
-use super::problem::{data, initial_value};
-use super::references::{reference, Frames};
+use super::blocks::problem::{data, initial_value};
+use super::syntax::references::{reference, Frames};
 use crate::model::{InitialValueProblem, Model, ModelBuilder, MotionOutput, NodeKind, NodeSource, WrittenNode};
 
 /// A model file: the model and the initial-value problem it asks for.
@@ -72,7 +72,7 @@ struct Cards {
     frames: Frames,
     drives: Drives,
     laws: Laws,
-    fluids: super::element_context::Fluids,
+    fluids: super::elements::context::Fluids,
 }
 
 fn cards(doc: &Document) -> Result<Cards, MbdynError> {
@@ -82,7 +82,7 @@ fn cards(doc: &Document) -> Result<Cards, MbdynError> {
     // read before the nodes): `structural: LABEL, KIND, …` with KIND not `dummy`.
     for st in block(doc, "nodes").map_or(&[][..], |b| &b.statements).iter().filter(|st| same_keyword(&st.keyword, "structural")) {
         let dummy = st.args.get(1).and_then(|a| a.keyword.as_deref()).is_some_and(|k| same_keyword(k, "dummy"));
-        if let Some(super::parser::Arg { value: super::parser::Value::Number(x), .. }) = st.args.first()
+        if let Some(super::syntax::parser::Arg { value: super::syntax::parser::Value::Number(x), .. }) = st.args.first()
             && !dummy
             && *x >= 0.0
             && x.fract() == 0.0
@@ -91,10 +91,10 @@ fn cards(doc: &Document) -> Result<Cards, MbdynError> {
             out.drives.structural_nodes.insert(*x as u32);
         }
     }
-    out.drives.scalar_nodes = super::scalar_nodes::scan(block(doc, "nodes").map_or(&[][..], |b| &b.statements));
+    out.drives.scalar_nodes = super::nodes::scalar::scan(block(doc, "nodes").map_or(&[][..], |b| &b.statements));
     out.drives.private.scan_parameter_nodes(block(doc, "nodes").map_or(&[][..], |b| &b.statements));
     for st in doc.cards.iter().filter(|st| known(&st.keyword, &["reference"]).is_some()) {
-        if let Some(super::parser::Arg { value: super::parser::Value::Number(x), .. }) = st.args.first()
+        if let Some(super::syntax::parser::Arg { value: super::syntax::parser::Value::Number(x), .. }) = st.args.first()
             && *x >= 0.0
             && x.fract() == 0.0
             && *x <= u32::MAX as f64
@@ -107,7 +107,7 @@ fn cards(doc: &Document) -> Result<Cards, MbdynError> {
         if !same_keyword(&st.keyword, "file") {
             return Err(c.error_at(st.span, format!("'{}' in the drivers block is not supported by romdyn (supported: file)", st.keyword)));
         }
-        super::file_drivers::file_driver(st, &mut c, &mut out.drives.file_drivers)?;
+        super::drives::file_drivers::file_driver(st, &mut c, &mut out.drives.file_drivers)?;
     }
     for st in &doc.cards {
         let mut c = Cursor::new(st, &doc.sources);
@@ -116,12 +116,12 @@ fn cards(doc: &Document) -> Result<Cards, MbdynError> {
             Some("drive caller") => {
                 drive_caller_card(st, &mut c, &mut out.drives)?;
             }
-            Some("template drive caller") => super::templates::template_drive_caller_card(st, &mut c, &mut out.drives)?,
+            Some("template drive caller") => super::drives::templates::template_drive_caller_card(st, &mut c, &mut out.drives)?,
             Some("constitutive law") => constitutive_law_card(st, &mut c, &mut out.laws, &out.drives)?,
-            Some("scalar function") => super::scalar_functions::scalar_function_card(&mut c, &mut out.drives.functions, st.seq)?,
-            Some("hydraulic fluid") => super::hydraulic::fluid_card(&mut c, st.seq, &mut out.fluids)?,
+            Some("scalar function") => super::drives::scalar_functions::scalar_function_card(&mut c, &mut out.drives.functions, st.seq)?,
+            Some("hydraulic fluid") => super::elements::hydraulic::fluid_card(&mut c, st.seq, &mut out.fluids)?,
             Some("setenv" | "print symbol table") => {}
-            Some(other) => return Err(c.error_at(st.span, super::diagnostic::mbdyn_runs_it(&format!("the '{other}' card")))),
+            Some(other) => return Err(c.error_at(st.span, super::syntax::diagnostic::mbdyn_runs_it(&format!("the '{other}' card")))),
             None => return Err(c.error_at(st.span, format!("unknown card '{}'", st.keyword))),
         }
     }
@@ -131,7 +131,7 @@ fn cards(doc: &Document) -> Result<Cards, MbdynError> {
 /// `output meter: DRIVE` in control data (dataman3.cc, case OUTPUTMETER): the drive that
 /// decides which steps are written; with `output frequency` MBDyn stops ("Output
 /// meter/frequency already defined"), and so does romdyn.
-fn output_meter(cd: Option<&Block>, src: &super::diagnostic::Sources, drives: &Drives) -> Result<Option<crate::element::drive::Drive>, MbdynError> {
+fn output_meter(cd: Option<&Block>, src: &super::syntax::diagnostic::Sources, drives: &Drives) -> Result<Option<crate::element::drive::Drive>, MbdynError> {
     let mut meter = None;
     let mut seen: Option<Span> = None;
     for st in cd.map_or(&[][..], |b| &b.statements) {
@@ -142,7 +142,7 @@ fn output_meter(cd: Option<&Block>, src: &super::diagnostic::Sources, drives: &D
         seen = Some(st.span);
         if k == "output meter" {
             let mut c = Cursor::new(st, src);
-            meter = Some(super::drives::drive(&mut c, drives, st.seq)?);
+            meter = Some(super::drives::callers::drive(&mut c, drives, st.seq)?);
             c.finish()?;
         }
     }
@@ -164,7 +164,7 @@ fn build_with(doc: &Document, beam_update: BeamUpdateRule) -> Result<MbdynModel,
             return Err(src.error(b.span, format!("block '{}' is not supported by romdyn", b.name)));
         };
         if name == "inverse dynamics" {
-            return Err(src.error(b.span, super::diagnostic::mbdyn_runs_it("block 'inverse dynamics'")));
+            return Err(src.error(b.span, super::syntax::diagnostic::mbdyn_runs_it("block 'inverse dynamics'")));
         }
         if let Some(prev) = seen.insert(name, b.span) {
             return Err(src.error(b.span, format!("block '{name}' appears twice (first at line {})", prev.line)));
@@ -184,7 +184,7 @@ fn build_with(doc: &Document, beam_update: BeamUpdateRule) -> Result<MbdynModel,
     let mut frame_motion = None;
     for st in block(doc, "control data").map_or(&[][..], |b| &b.statements).iter().filter(|st| same_keyword(&st.keyword, "rigid body kinematics")) {
         let mut c = Cursor::new(st, src);
-        frame_motion = Some(std::sync::Arc::new(super::rbk::rigid_body_kinematics(&mut c, &cards.drives, &cards.frames, st.seq)?));
+        frame_motion = Some(std::sync::Arc::new(super::blocks::rbk::rigid_body_kinematics(&mut c, &cards.drives, &cards.frames, st.seq)?));
         c.finish()?;
     }
     let mut nodes = Nodes::default();
@@ -192,7 +192,7 @@ fn build_with(doc: &Document, beam_update: BeamUpdateRule) -> Result<MbdynModel,
     for st in block(doc, "nodes").map_or(&[][..], |b| &b.statements) {
         let mut c = Cursor::new(st, src);
         if known(&st.keyword, &["parameter"]).is_some() {
-            super::element_reads::parameter_node(&mut c, &mut parameter_nodes)?;
+            super::drives::element_reads::parameter_node(&mut c, &mut parameter_nodes)?;
         } else {
             node_statement(st, &mut c, &cards.frames, &mut nodes)?;
         }
@@ -262,22 +262,22 @@ fn build_with(doc: &Document, beam_update: BeamUpdateRule) -> Result<MbdynModel,
     let mut bodies = Vec::new();
     // Variable-mass bodies weigh in a uniform field only.
     let mut variable_bodies = Vec::new();
-    let mut beams = super::element_context::BeamNodes::new();
+    let mut beams = super::elements::context::BeamNodes::new();
     let beam_notes = std::cell::RefCell::new(Vec::new());
     // Elements are kept until the block ends: a `bind` reads the ones above it.
     let mut built: Vec<(&'static str, Span, usize, Box<dyn crate::element::Element>)> = Vec::new();
     let mut output_only = std::collections::HashSet::new();
-    let mut pending = super::total_equation::Pending::default();
+    let mut pending = super::elements::total_equation::Pending::default();
     let mut uses: HashMap<usize, Vec<String>> = HashMap::new();
     for st in block(doc, "elements").map_or(&[][..], |b| &b.statements) {
         let mut c = Cursor::new(st, src);
-        if super::element_reads::is_bind(&st.keyword) {
+        if super::drives::element_reads::is_bind(&st.keyword) {
             let defined = built.iter().map(|(space, _, _, e)| (*space, e.label())).chain(output_only.iter().copied()).collect();
-            super::element_reads::bind(&mut c, &cards.drives.private, &defined)?;
+            super::drives::element_reads::bind(&mut c, &cards.drives.private, &defined)?;
             continue;
         }
         if known(&st.keyword, &["inertia"]).is_some()
-            && let Some(super::parser::Arg { value: super::parser::Value::Number(x), .. }) = st.args.first()
+            && let Some(super::syntax::parser::Arg { value: super::syntax::parser::Value::Number(x), .. }) = st.args.first()
             && *x >= 0.0
             && x.fract() == 0.0
             && *x <= u32::MAX as f64
@@ -293,7 +293,7 @@ fn build_with(doc: &Document, beam_update: BeamUpdateRule) -> Result<MbdynModel,
             uses.insert(st.seq, cards.drives.functions.described(&used, |at| place(src, at)));
         }
         let parsed = match &st.driven {
-            Some(head) => super::driven::wrap(head, parsed, src, &ctx)?,
+            Some(head) => super::elements::driven::wrap(head, parsed, src, &ctx)?,
             None => parsed,
         };
         let parsed = match parsed {
@@ -441,7 +441,7 @@ fn check_counts(doc: &Document, counts: &Counts, found: &HashMap<&'static str, (
 }
 
 /// `file:line:col` of `at`, as run-time messages name a card.
-fn place(src: &super::diagnostic::Sources, at: Span) -> String {
+fn place(src: &super::syntax::diagnostic::Sources, at: Span) -> String {
     let origin = src.error(at, "");
     format!("{}:{}:{}", origin.file.display(), origin.line, origin.column)
 }

@@ -7,7 +7,7 @@
 //! depend on load steps (the book's Beams chapter, docs/src/mbdyn/beams.md: "beam.cc is
 //! incremental").
 
-use super::expr::SetOverrides;
+use super::syntax::expr::SetOverrides;
 use crate::element::BeamUpdate;
 
 /// The beams' rotation update asked for.

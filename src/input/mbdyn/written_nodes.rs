@@ -7,12 +7,12 @@
 use std::collections::HashMap;
 use std::path::Path;
 
-use super::cursor::Cursor;
-use super::diagnostic::{MbdynError, Sources};
-use super::expr::{SetOverrides, Variables};
-use super::nodes::{node_statement, Nodes};
-use super::parser::{known, parse_file_observed, parse_text_observed, same_keyword, Document, Statement, StatementObserver};
-use super::references::{reference, Frames};
+use super::syntax::cursor::Cursor;
+use super::syntax::diagnostic::{MbdynError, Sources};
+use super::syntax::expr::{SetOverrides, Variables};
+use super::nodes::structural::{node_statement, Nodes};
+use super::syntax::parser::{known, parse_file_observed, parse_text_observed, same_keyword, Document, Statement, StatementObserver};
+use super::syntax::references::{reference, Frames};
 use crate::element::NodeKinematics;
 
 /// The structural nodes as written so far (MBDyn's `StructNode::GetXCurr` while it reads is
@@ -24,10 +24,10 @@ pub struct WrittenNodes {
     known: HashMap<u32, NodeKinematics>,
     /// The scalar function cards read so far, in `drives.functions` (a card the model's
     /// build refuses is left out): a view of the shared table.
-    visible: super::card_tables::FunctionsBefore,
+    visible: super::syntax::card_tables::FunctionsBefore,
     /// The drive caller cards read so far (one the model's build refuses is left out).
-    drives: super::drives::Drives,
-    drive_table: super::card_tables::DrivesBefore,
+    drives: super::drives::callers::Drives,
+    drive_table: super::syntax::card_tables::DrivesBefore,
     /// The drive caller cards read so far (read again when the variables change).
     drive_cards: Vec<Statement>,
     /// The generation of the variables the cards were read with
@@ -38,7 +38,7 @@ pub struct WrittenNodes {
     /// The bodies and joints read so far (`model::element::…`), built with the model's
     /// readers (without the constitutive law cards: a joint that names one is kept as the
     /// reason it could not be read).
-    elements: super::model_namespace::ElementsRead,
+    elements: super::syntax::model_namespace::ElementsRead,
 }
 
 impl StatementObserver for WrittenNodes {
@@ -66,7 +66,7 @@ impl StatementObserver for WrittenNodes {
         if known(&st.keyword, &["reference"]).is_some() {
             let _ = reference(st, &mut c, &mut self.frames);
         } else if known(&st.keyword, &["scalar function"]).is_some() {
-            let _ = super::scalar_functions::scalar_function_card(&mut c, &mut self.drives.functions, st.seq);
+            let _ = super::drives::scalar_functions::scalar_function_card(&mut c, &mut self.drives.functions, st.seq);
         } else if in_nodes_block && same_keyword(&st.keyword, "structural") && node_statement(st, &mut c, &self.frames, &mut self.nodes).is_ok() {
             if let Some(e) = self.nodes.0.last().filter(|e| !e.dummy) {
                 let n = &e.node;
@@ -78,10 +78,10 @@ impl StatementObserver for WrittenNodes {
     fn nodes(&self) -> &HashMap<u32, NodeKinematics> {
         &self.known
     }
-    fn functions(&self) -> &super::card_tables::FunctionsBefore {
+    fn functions(&self) -> &super::syntax::card_tables::FunctionsBefore {
         &self.visible
     }
-    fn drives(&self) -> &super::card_tables::DrivesBefore {
+    fn drives(&self) -> &super::syntax::card_tables::DrivesBefore {
         &self.drive_table
     }
     /// A string drive reads the variables as they stand when it is called (MBDyn's
@@ -98,14 +98,14 @@ impl StatementObserver for WrittenNodes {
         }
         self.catch_up(sources);
     }
-    fn elements(&self) -> &super::model_namespace::ElementsRead {
+    fn elements(&self) -> &super::syntax::model_namespace::ElementsRead {
         &self.elements
     }
 }
 
 impl Default for WrittenNodes {
     fn default() -> Self {
-        let drives = super::drives::Drives::default();
+        let drives = super::drives::callers::Drives::default();
         WrittenNodes {
             frames: Frames::default(),
             nodes: Nodes::default(),
@@ -128,29 +128,29 @@ impl WrittenNodes {
             return;
         }
         for old in &self.drive_cards[self.cards_read..] {
-            let _ = super::drives::drive_caller_card(old, &mut Cursor::new(old, sources), &mut self.drives);
+            let _ = super::drives::callers::drive_caller_card(old, &mut Cursor::new(old, sources), &mut self.drives);
         }
         self.cards_read = self.drive_cards.len();
     }
 
     /// Reads a body or joint card as the model does, for `model::element::…` further down.
     fn element(&mut self, st: &Statement, sources: &Sources) {
-        let Some(super::parser::Arg { value: super::parser::Value::Number(x), .. }) = st.args.first() else { return };
+        let Some(super::syntax::parser::Arg { value: super::syntax::parser::Value::Number(x), .. }) = st.args.first() else { return };
         if *x < 0.0 || x.fract() != 0.0 || *x > u32::MAX as f64 {
             return;
         }
-        let laws = super::laws::Laws::default();
-        let beams = super::element_context::BeamNodes::new();
-        let fluids = super::element_context::Fluids::new();
+        let laws = super::elements::laws::Laws::default();
+        let beams = super::elements::context::BeamNodes::new();
+        let fluids = super::elements::context::Fluids::new();
         let beam_notes = std::cell::RefCell::new(Vec::new());
-        let ctx = super::element_context::ElementContext { nodes: &self.nodes, frames: &self.frames, drives: &self.drives, laws: &laws, fluids: &fluids, beams: &beams, seq: st.seq, static_model: false, beam_update: Default::default(), beam_notes: &beam_notes };
-        let built = match super::elements::element(st, &mut Cursor::new(st, sources), &ctx) {
-            Ok(super::element_context::Parsed::Element(e)) => Ok(e),
-            Ok(super::element_context::Parsed::Body(b)) => Ok(Box::new(b) as Box<dyn crate::element::Element>),
+        let ctx = super::elements::context::ElementContext { nodes: &self.nodes, frames: &self.frames, drives: &self.drives, laws: &laws, fluids: &fluids, beams: &beams, seq: st.seq, static_model: false, beam_update: Default::default(), beam_notes: &beam_notes };
+        let built = match super::elements::block::element(st, &mut Cursor::new(st, sources), &ctx) {
+            Ok(super::elements::context::Parsed::Element(e)) => Ok(e),
+            Ok(super::elements::context::Parsed::Body(b)) => Ok(Box::new(b) as Box<dyn crate::element::Element>),
             Ok(_) => Err("it is not an element with private data".to_string()),
             Err(e) => Err(e.message),
         };
-        self.elements.insert((super::elements::label_space(&st.keyword), *x as u32), built);
+        self.elements.insert((super::elements::block::label_space(&st.keyword), *x as u32), built);
     }
 }
 
