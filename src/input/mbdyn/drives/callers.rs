@@ -630,3 +630,14 @@ pub fn other_dims_of(drives: &Drives, label: u32, except: Option<TemplateDim>) -
     dims.sort();
     if dims.is_empty() { String::new() } else { format!(" (there is one of dimension {})", dims.join(", ")) }
 }
+
+#[cfg(test)]
+mod drive_callers_table {
+    #[test]
+    fn the_book_lists_the_keywords_of_the_table() {
+        let chapter = include_str!("../../../../docs/src/mbdyn/drives.md");
+        if let Err(e) = crate::input::mbdyn::syntax::keywords::check_documented(&super::DRIVE_CALLERS, chapter) {
+            panic!("docs/src/mbdyn/drives.md: {e}");
+        }
+    }
+}

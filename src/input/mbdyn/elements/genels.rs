@@ -219,3 +219,14 @@ pub fn abstract_force(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Res
     let (dof, _) = scalar_dof(c, &ctx.nodes.2, &format!("abstract force {label}"), false)?;
     Ok(Box::new(AbstractForce { label, node: dof.node, value: callers::drive(c, ctx.drives, ctx.seq)? }))
 }
+
+#[cfg(test)]
+mod genel_types_table {
+    #[test]
+    fn the_book_lists_the_keywords_of_the_table() {
+        let chapter = include_str!("../../../../docs/src/mbdyn/elements.md");
+        if let Err(e) = crate::input::mbdyn::syntax::keywords::check_documented(&super::GENEL_TYPES, chapter) {
+            panic!("docs/src/mbdyn/elements.md: {e}");
+        }
+    }
+}

@@ -566,3 +566,14 @@ fn time_variant_rod(label: Label, a: &Side, b: &Side, l0: f64, law: &LinearLaw, 
     let viscous = Rod { label, a: a.anchor(), b: b.anchor(), axial_stiffness: 0.0, length: l0, viscous, elastic: None };
     crate::element::TimeVariantRod { elastic, viscous, prestress: law.prestress[0], variance }
 }
+
+#[cfg(test)]
+mod joint_types_table {
+    #[test]
+    fn the_book_lists_the_keywords_of_the_table() {
+        let chapter = include_str!("../../../../docs/src/mbdyn/joints.md");
+        if let Err(e) = crate::input::mbdyn::syntax::keywords::check_documented(&super::JOINT_TYPES, chapter) {
+            panic!("docs/src/mbdyn/joints.md: {e}");
+        }
+    }
+}

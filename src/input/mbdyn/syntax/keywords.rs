@@ -72,6 +72,17 @@ impl KeywordTable {
     }
 }
 
+/// Checks that a book chapter lists the keywords romdyn reads exactly as the table does, on
+/// one line `<!-- keyword table: WHAT -->` followed by the list (the book's lists are
+/// written from the tables, and a test fails when they drift).
+#[cfg(test)]
+pub fn check_documented(table: &KeywordTable, chapter: &str) -> Result<(), String> {
+    let marker = format!("<!-- keyword table: {} -->", table.what);
+    let line = chapter.lines().skip_while(|l| l.trim() != marker).nth(1).ok_or(format!("the chapter has no line after '{marker}'"))?;
+    let want = table.read().iter().map(|k| format!("`{k}`")).collect::<Vec<_>>().join(", ");
+    if line.trim() == want { Ok(()) } else { Err(format!("the chapter's list after '{marker}' is\n{line}\nthe table's is\n{want}")) }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
