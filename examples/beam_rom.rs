@@ -13,7 +13,9 @@ use romdyn::dae::linearize;
 use romdyn::input::mbdyn::read_model;
 use romdyn::eigen::{EigenRoute, ModalAnalysis, ModeKind};
 use romdyn::linear::LinearDae;
-use romdyn::output::frequency_plot::FrequencyResponses;
+use romdyn::linear::{FrequencyResponse, Port};
+use romdyn::output::frequency_plot::write_bode_files;
+use romdyn::rom::full_frequency_response;
 use romdyn::rom::{log_frequencies, DescriptorRom, OrdinaryRom, Selection};
 
 /// The dynamic pairs the output sees (|C v| above 1e-6 of the largest), lowest first, each as
@@ -50,12 +52,14 @@ fn main() -> anyhow::Result<()> {
         let g = r.static_gain()?[(0, 0)];
         println!("ROM, {name}: {} states, static gain {g:.6e} m/N ({:+.3} %)", r.a.nrows(), 100.0 * (g / exact - 1.0));
     }
-    let hz = |i: usize| modal.modes[i].lambda.norm() / (2.0 * std::f64::consts::PI);
-    let mut responses = FrequencyResponses::full(&dae, log_frequencies(hz(first[0]) / 10.0, hz(third[0]) * 3.0, 600));
+    let hz = |i: usize| romdyn::linear::hz(modal.modes[i].lambda.norm());
+    let freq = log_frequencies(hz(first[0]) / 10.0, hz(third[0]) * 3.0, 600);
+    let h = full_frequency_response(&dae, &freq);
+    let mut responses = FrequencyResponse::new(freq.clone(), Port::from_labels(&dae.input_names), Port::from_labels(&dae.output_names), h);
     for (name, r) in &roms {
-        responses = responses.with_rom(name, r);
+        responses = responses.with_reduced(name, r.frequency_response(&freq));
     }
-    let [csv, svg, png] = responses.write_files(Path::new("out/beam_rom"), "Simply supported beam, mid-span force to mid-span displacement (paper Fig. 7)")?;
+    let [csv, svg, png] = write_bode_files(&responses, Path::new("out/beam_rom"), "Simply supported beam, mid-span force to mid-span displacement (paper Fig. 7)")?;
     println!("wrote {}, {}, {}", csv.display(), svg.display(), png.display());
     Ok(())
 }

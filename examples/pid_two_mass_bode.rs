@@ -8,6 +8,7 @@
 
 use romdyn::dae::{Cut, NodeInput, NodeOutput};
 use romdyn::eigen::ModeKind;
+use romdyn::linear::{FrequencyResponse, Port};
 use romdyn::output::bode::{write_bode, BodePlot, CurveStyle, ResponseCurve};
 use romdyn::rom::{full_frequency_response, log_frequencies, ModeSelection};
 use romdyn::study::{Ports, RomRequest, Study, StudySource};
@@ -40,17 +41,22 @@ fn main() -> anyhow::Result<()> {
     let freq = log_frequencies(0.05, 20.0, 600);
     let full_plant = full_frequency_response(plant.dae(), &freq);
     let full_closed = full_frequency_response(closed.dae(), &freq);
-    let curve = |label: &str, input: &str, output: &str, values: Vec<faer::c64>, style| ResponseCurve { label: label.into(), input: input.into(), output: output.into(), freq_hz: freq.clone(), values, style };
+    // One grid and two channels (x2/d and the loop L at the cut), each with its models' curves.
     let entry = |h: &[faer::Mat<faer::c64>], i: usize, j: usize, sign: f64| h.iter().map(|m| m[(i, j)] * sign).collect::<Vec<_>>();
+    let ports = |names: [&str; 2]| names.map(|n| Port { name: n.into(), unit: String::new() }).to_vec();
+    let full = full_plant.iter().map(|m| faer::Mat::from_fn(2, 2, |i, j| if i == j { m[(i, j)] * if i == 0 { 1.0 } else { -1.0 } } else { faer::c64::new(0.0, 0.0) })).collect();
+    let response = FrequencyResponse::new(freq.clone(), ports(["d (motor force)", "w (injected at the cut)"]), ports(["x2", "L"]), full);
+    let curve = |label, (output, input), values, style| ResponseCurve { label, output, input, values, style };
     let plot = BodePlot {
         title: "Flexible drive under PID: one file, cut and closed".into(),
         magnitude_unit: "m/N (L: -)".into(),
+        response: &response,
         curves: vec![
-            curve("plant P = x2/d (cut)", "d (motor force)", "x2", entry(&full_plant, 0, 0, 1.0), CurveStyle::Full),
-            curve("plant ROM", "d (motor force)", "x2", entry(&plant_rom.ordinary.frequency_response(&freq), 0, 0, 1.0), CurveStyle::Rom),
-            curve("loop L = -returned/injected", "w (injected at the cut)", "L", entry(&full_plant, 1, 1, -1.0), CurveStyle::Full),
-            curve("closed loop x2/d", "d (motor force)", "x2", entry(&full_closed, 0, 0, 1.0), CurveStyle::Full),
-            curve("closed-loop ROM", "d (motor force)", "x2", entry(&closed_rom.ordinary.frequency_response(&freq), 0, 0, 1.0), CurveStyle::Rom),
+            curve("plant P = x2/d (cut)", (0, 0), entry(&full_plant, 0, 0, 1.0), CurveStyle::Full),
+            curve("plant ROM", (0, 0), entry(&plant_rom.ordinary.frequency_response(&freq), 0, 0, 1.0), CurveStyle::Rom),
+            curve("loop L = -returned/injected", (1, 1), entry(&full_plant, 1, 1, -1.0), CurveStyle::Full),
+            curve("closed loop x2/d", (0, 0), entry(&full_closed, 0, 0, 1.0), CurveStyle::Full),
+            curve("closed-loop ROM", (0, 0), entry(&closed_rom.ordinary.frequency_response(&freq), 0, 0, 1.0), CurveStyle::Rom),
         ],
     };
     std::fs::create_dir_all("out")?;

@@ -319,7 +319,7 @@ impl StudyPy {
         let grid = FrequencyGrid { fmin_hz: fmin, fmax_hz: fmax, points };
         let check = py.detach(|| self.study.check_rom(&rom.rom, &grid)).map_err(py_err)?;
         let report = self.study.report(&rom.rom, &check, title);
-        let files = py.detach(|| report.write(&dir, &check.comparison.responses(&self.study, "ROM"))).map_err(|e| RomdynError::new_err(e.to_string()))?;
+        let files = py.detach(|| report.write(&dir, &check.comparison)).map_err(|e| RomdynError::new_err(e.to_string()))?;
         Ok(files[0].clone())
     }
 
@@ -361,13 +361,14 @@ impl StudyPy {
     /// imposed unit)}.
     fn transmissibility<'py>(&self, py: Python<'py>, rom: &Rom, freq_hz: Vec<f64>) -> PyResult<Bound<'py, PyDict>> {
         let t = py.detach(|| self.study.transmissibility(&rom.rom, &freq_hz)).map_err(py_err)?;
-        let (no, ni) = (t.outputs.len(), t.imposed.len());
+        let (no, ni) = (t.outputs.len(), t.inputs.len());
+        let labels = |ports: &[romdyn::linear::Port]| ports.iter().map(|p| p.label()).collect::<Vec<_>>();
         let d = PyDict::new(py);
         d.set_item("freq_hz", t.freq_hz.clone().into_pyarray(py))?;
-        d.set_item("outputs", t.outputs.clone())?;
-        d.set_item("imposed", t.imposed.clone())?;
+        d.set_item("outputs", labels(&t.outputs))?;
+        d.set_item("imposed", labels(&t.inputs))?;
         d.set_item("full", responses(py, &t.full, no, ni)?)?;
-        d.set_item("rom", responses(py, &t.rom, no, ni)?)?;
+        d.set_item("rom", responses(py, t.rom(), no, ni)?)?;
         Ok(d)
     }
 

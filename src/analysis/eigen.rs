@@ -25,6 +25,7 @@ use crate::limits::check_dense;
 use crate::linear::{Jacobians, LinearDae};
 use crate::model::{EigenOutput, EigenRequest, EigenSolverRequest, Model};
 use crate::output::eigen_file::{EigenFile, Geometry, MatrixLayout, PencilMatrices};
+use crate::linear::hz;
 
 /// dCoef used when the file gives no `parameter` [s]: MBDyn's default parameter is 1 and
 /// its `dCoef` is half the parameter.
@@ -81,7 +82,7 @@ pub fn check_request(model: &Model, request: &EigenRequest) -> Result<(), String
 /// Modes whose frequency `|Im λ|/2π` lies inside the limits (MBDyn writes only those).
 fn within_limits(modal: &ModalAnalysis, r: &EigenRequest) -> Vec<usize> {
     let (lo, hi) = (r.lower_frequency_hz.unwrap_or(f64::NEG_INFINITY), r.upper_frequency_hz.unwrap_or(f64::INFINITY));
-    let freq = |l: c64| if l.re.is_finite() && l.im.is_finite() { l.im.abs() / (2.0 * std::f64::consts::PI) } else { f64::INFINITY };
+    let freq = |l: c64| if l.re.is_finite() && l.im.is_finite() { hz(l.im.abs()) } else { f64::INFINITY };
     (0..modal.modes.len()).filter(|&k| (lo..=hi).contains(&freq(modal.modes[k].lambda))).collect()
 }
 

@@ -6,7 +6,8 @@ use anyhow::{Context, Result};
 use clap::builder::{PossibleValue, PossibleValuesParser};
 use clap::Args;
 use romdyn::output::atomic::{check_output_paths, check_prefix, write_set};
-use romdyn::output::frequency_plot::FrequencyResponses;
+use romdyn::linear::FrequencyResponse;
+use romdyn::output::frequency_plot::write_bode_files as write_response_plot;
 use romdyn::output::rom_file::RomExport;
 use romdyn::output::mimo_plot::MimoPlot;
 use romdyn::rom::{ModalDamping, ModeSelection, Ranking};
@@ -164,8 +165,8 @@ fn print_study(study: &Study) {
 
 /// Writes PREFIX.csv, PREFIX.svg and PREFIX.png (into the command's set); returns the line
 /// that says so.
-fn write_bode_files(r: &FrequencyResponses, prefix: &Path) -> Result<String> {
-    let [csv, svg, png] = r.write_files(prefix, "Frequency response").with_context(|| format!("writing {}.{{csv,svg,png}}", prefix.display()))?;
+fn write_bode_files(r: &FrequencyResponse, prefix: &Path) -> Result<String> {
+    let [csv, svg, png] = write_response_plot(r, prefix, "Frequency response").with_context(|| format!("writing {}.{{csv,svg,png}}", prefix.display()))?;
     Ok(format!("wrote {}, {}, {}", csv.display(), svg.display(), png.display()))
 }
 
@@ -249,12 +250,12 @@ pub fn run(a: RomArgs) -> Result<()> {
             lines.push(format!("wrote {}", path.display()));
         }
         if let Some(prefix) = &a.bode {
-            lines.push(write_bode_files(&check.comparison.responses(&study, "ROM"), prefix)?);
+            lines.push(write_bode_files(&check.comparison, prefix)?);
         }
         if let Some(dir) = &a.report {
             let source = a.pencil.model.as_ref().or(a.pencil.pencil.as_ref()).map_or(String::new(), |p| p.display().to_string());
             let report = study.report(&rom, &check, &format!("ROM of {source}"));
-            let files = report.write(dir, &check.comparison.responses(&study, "ROM")).with_context(|| format!("writing the report in {}", dir.display()))?;
+            let files = report.write(dir, &check.comparison).with_context(|| format!("writing the report in {}", dir.display()))?;
             lines.push(format!("wrote {} (open it in a browser) and {}/bode.{{csv,svg,png}}", files[0].display(), dir.display()));
         }
         lines.extend(write_application_files(&a, &study, &rom, &check)?);
@@ -276,7 +277,7 @@ fn write_application_files(a: &RomArgs, study: &Study, rom: &ReducedModel, check
             Some((t, _)) => t.clone(),
             None => study.transmissibility(rom, &check.comparison.freq_hz)?,
         };
-        let mut plot = MimoPlot { title: "Transmissibility |z/z_e| (eq. 100)".into(), freq_hz: t.freq_hz, inputs: t.imposed, outputs: t.outputs, full: t.full, rom: Some(t.rom), diagonal: a.diagonal };
+        let mut plot = MimoPlot { title: "Transmissibility |z/z_e| (eq. 100)".into(), response: t, diagonal: a.diagonal };
         wrote(plot.write_files(prefix).with_context(|| format!("writing {}.{{csv,svg,png}}", prefix.display()))?);
         // The diagonal alone (x/x, y/y, …: paper Fig. 11) beside the whole matrix.
         if !plot.diagonal {
@@ -317,7 +318,7 @@ pub fn run_freq(a: FreqArgs) -> Result<()> {
             let rom = study.reduce(request)?;
             let check = study.check_rom(&rom, &a.freq.grid())?;
             print_warnings(&rom.new_warnings(&study, Some(&check)));
-            check.comparison.responses(&study, "ROM")
+            check.comparison
         }
         None => study.full_responses(study.frequencies(&a.freq.grid(), &[])?)?,
     };

@@ -8,6 +8,7 @@ use anyhow::{Context, Result};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use romdyn::analysis::{run as run_problem, EigenDone, ObserverError, RunFiles, RunObserver, RunReport, RunStart, StepDone};
+use romdyn::linear::hz;
 
 #[derive(Args, Debug)]
 pub struct RunArgs {
@@ -86,9 +87,9 @@ fn print_summary(file: &str, r: &RunReport, written: &[PathBuf]) {
         }
         const SHOWN: usize = 10;
         for l in e.dynamic.iter().take(SHOWN) {
-            let (f, zeta) = (l.norm() / (2.0 * std::f64::consts::PI), if l.norm() > 0.0 { -l.re / l.norm() } else { 0.0 });
+            let (f, zeta) = (hz(l.norm()), if l.norm() > 0.0 { -l.re / l.norm() } else { 0.0 });
             // freq = |Im λ|/2π as `eig` and MBDyn's .out print it; undamped = |λ|/2π.
-            println!("  λ = {:.6}{:+.6}j rad/s  (freq = {:.6} Hz, undamped = {f:.6} Hz, ζ = {:.4})", l.re, l.im, l.im.abs() / (2.0 * std::f64::consts::PI), if zeta.abs() < 5e-5 { 0.0 } else { zeta });
+            println!("  λ = {:.6}{:+.6}j rad/s  (freq = {:.6} Hz, undamped = {f:.6} Hz, ζ = {:.4})", l.re, l.im, hz(l.im.abs()), if zeta.abs() < 5e-5 { 0.0 } else { zeta });
         }
         if e.dynamic.len() > SHOWN {
             println!("  … {} more (all of them in the .m and .json files)", e.dynamic.len() - SHOWN);

@@ -127,7 +127,7 @@ pub fn run(a: ValidateArgs) -> Result<()> {
             written.extend(files::write_files(&v, &dir.join("validation"), state.t)?);
             let mut report = study.report(&rom, check, &format!("ROM of {} validated against its nonlinear model", path.display()));
             report.figures.push(romdyn::output::report::Figure { heading: "Validation against the nonlinear model".into(), text: v.summary(), image: "validation.svg".into(), data: "validation.csv".into() });
-            written.extend(report.write(dir, &check.comparison.responses(&study, "ROM"))?);
+            written.extend(report.write(dir, &check.comparison)?);
         }
         Ok(written)
     })?;

@@ -7,6 +7,7 @@ use faer::{c64, Col};
 
 use super::classify::{Classification, ModeKind};
 use super::route::{conj, dot_t, norm, EigenRoute};
+use crate::linear::hz;
 
 /// One eigenvalue with its vectors and label.
 #[derive(Clone, Debug)]
@@ -32,7 +33,7 @@ pub struct Mode {
 impl Mode {
     /// Natural frequency `|λ|/(2π)` [Hz].
     pub fn freq_hz(&self) -> f64 {
-        self.lambda.norm() / (2.0 * std::f64::consts::PI)
+        hz(self.lambda.norm())
     }
     /// Damping ratio `−Re λ / |λ|` (0 for λ = 0).
     pub fn damping(&self) -> f64 {

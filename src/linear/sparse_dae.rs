@@ -11,6 +11,7 @@ use crate::lu::PatternLu;
 use super::dae::{Jacobians, LinearDae};
 use crate::model::ConstraintForm;
 use super::sparse::SparseMatrix;
+use super::rad_per_s;
 
 /// `F_yd Δẏ + F_y Δy = B̃ u`, `z = C̃ Δy` (eqs. 38–40), sparse.
 #[derive(Clone, Debug)]
@@ -164,7 +165,7 @@ impl SparseLinearDae {
         let mut factors: Option<(PatternLu<c64>, MemBuffer)> = None;
         let mut out = Vec::with_capacity(freq_hz.len());
         for &f in freq_hz {
-            let w = 2.0 * std::f64::consts::PI * f;
+            let w = rad_per_s(f);
             let mut entries: Vec<Triplet<usize, usize, c64>> = pattern.iter().map(|&(i, j)| Triplet::new(i, j, c64::new(0.0, 0.0))).collect();
             let index = |i: usize, j: usize| pattern.binary_search(&(i, j)).unwrap_or_else(|_| unreachable!("pattern holds every entry"));
             for (i, j, v) in self.fy.triplets().filter(|&(i, j, _)| !(special[i] || special[j])) {

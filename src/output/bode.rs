@@ -11,6 +11,7 @@ use plotters::prelude::*;
 
 use super::atomic::OutputError;
 use super::figure::{write_figure, Figure, COLORS, FONT};
+use crate::linear::FrequencyResponse;
 
 const SIZE: (u32, u32) = (1200, 900);
 
@@ -21,26 +22,46 @@ pub enum CurveStyle {
     Rom,
 }
 
-/// One input→output frequency response of one model.
+/// One input→output channel of one model in a [`FrequencyResponse`]: the values, with the
+/// channel's indices into the response's ports (its grid and names stay in the response).
 #[derive(Clone, Debug)]
-pub struct ResponseCurve {
+pub struct ResponseCurve<'a> {
     /// Model name, e.g. "full model", "ROM".
-    pub label: String,
-    pub input: String,
-    pub output: String,
-    pub freq_hz: Vec<f64>,
-    /// `z/u` at each frequency.
+    pub label: &'a str,
+    /// Row (output) and column (input) of the transfer matrix.
+    pub output: usize,
+    pub input: usize,
+    /// `z/u` at each frequency of the response's grid.
     pub values: Vec<c64>,
     pub style: CurveStyle,
 }
 
-/// A Bode plot: curves sharing a magnitude unit.
+/// The curves of `panels` (output, input): for each, the full model's and then every
+/// reduced model's.
+pub fn response_curves<'a>(response: &'a FrequencyResponse, panels: &[(usize, usize)]) -> Vec<ResponseCurve<'a>> {
+    let mut curves = Vec::new();
+    for &(i, j) in panels {
+        curves.push(ResponseCurve { label: "full model", output: i, input: j, values: FrequencyResponse::channel(&response.full, i, j), style: CurveStyle::Full });
+        for (label, h) in &response.reduced {
+            curves.push(ResponseCurve { label, output: i, input: j, values: FrequencyResponse::channel(h, i, j), style: CurveStyle::Rom });
+        }
+    }
+    curves
+}
+
+/// Every channel of a response, by rows (one row per output).
+pub fn every_channel(response: &FrequencyResponse) -> Vec<(usize, usize)> {
+    (0..response.outputs.len()).flat_map(|i| (0..response.inputs.len()).map(move |j| (i, j))).collect()
+}
+
+/// A Bode plot: curves of one response sharing a magnitude unit.
 #[derive(Clone, Debug)]
-pub struct BodePlot {
+pub struct BodePlot<'a> {
     pub title: String,
     /// Unit of |z/u|, e.g. "m/N".
     pub magnitude_unit: String,
-    pub curves: Vec<ResponseCurve>,
+    pub response: &'a FrequencyResponse,
+    pub curves: Vec<ResponseCurve<'a>>,
 }
 
 /// Phase in degrees, unwrapped along the curve, starting in (−180°, 180°] (a real negative
@@ -143,28 +164,28 @@ fn peak(c: &ResponseCurve) -> f64 {
 pub const ZERO_CHANNEL: f64 = 1e-12;
 
 /// One input→output pair and the curves of every model for it.
-struct Channel<'a> {
-    output: &'a str,
-    input: &'a str,
-    curves: Vec<&'a ResponseCurve>,
+struct Channel<'p, 'a> {
+    output: usize,
+    input: usize,
+    curves: Vec<&'p ResponseCurve<'a>>,
 }
 
-fn channels(plot: &BodePlot) -> Vec<Channel<'_>> {
+fn channels<'p, 'a>(plot: &'p BodePlot<'a>) -> Vec<Channel<'p, 'a>> {
     let mut out: Vec<Channel> = Vec::new();
     for c in &plot.curves {
         match out.iter_mut().find(|ch| ch.output == c.output && ch.input == c.input) {
             Some(ch) => ch.curves.push(c),
-            None => out.push(Channel { output: &c.output, input: &c.input, curves: vec![c] }),
+            None => out.push(Channel { output: c.output, input: c.input, curves: vec![c] }),
         }
     }
     out
 }
 
-fn models(plot: &BodePlot) -> Vec<(&str, CurveStyle)> {
+fn models<'a>(plot: &BodePlot<'a>) -> Vec<(&'a str, CurveStyle)> {
     let mut labels: Vec<(&str, CurveStyle)> = Vec::new();
     for c in &plot.curves {
         if !labels.iter().any(|(l, _)| *l == c.label) {
-            labels.push((&c.label, c.style));
+            labels.push((c.label, c.style));
         }
     }
     labels
@@ -173,7 +194,7 @@ fn models(plot: &BodePlot) -> Vec<(&str, CurveStyle)> {
 /// Grid of a plot with `n_out × n_in` channels: (rows, columns).
 fn grid(plot: &BodePlot) -> (usize, usize) {
     let chans = channels(plot);
-    let outs: Vec<&str> = chans.iter().map(|c| c.output).fold(Vec::new(), |mut v, o| {
+    let outs: Vec<usize> = chans.iter().map(|c| c.output).fold(Vec::new(), |mut v, o| {
         if !v.contains(&o) {
             v.push(o)
         }
@@ -245,21 +266,22 @@ fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, series: &[(&Res
 
 fn draw_channel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, ch: &Channel, styles: &[(RGBColor, &str)], x_range: (f64, f64), plot: &BodePlot, legend: bool, font: u32, largest: f64, single: bool) -> Result<(), String> {
     let err = |e: &dyn std::fmt::Display| e.to_string();
-    let caption = format!("{} / {}", ch.output, ch.input);
+    let (output, input) = (plot.response.outputs[ch.output].label(), plot.response.inputs[ch.input].label());
+    let caption = format!("{output} / {input}");
     let zero = |c: &ResponseCurve| peak(c) <= ZERO_CHANNEL * largest;
     if ch.curves.iter().all(|c| zero(c)) {
         let area = area.margin(20, 20, 20, 20);
         area.draw(&Text::new(caption.clone(), (10, 10), (FONT, font + 2))).map_err(|e| err(&e))?;
-        let text = format!("exactly zero: {} does not respond to {}", ch.output, ch.input);
+        let text = format!("exactly zero: {output} does not respond to {input}");
         area.draw(&Text::new(text, (10, 60), (FONT, font + 2).into_font().color(&RED))).map_err(|e| err(&e))?;
         area.draw(&Text::new("(every model; nothing to plot)".to_string(), (10, 60 + 2 * font as i32), (FONT, font))).map_err(|e| err(&e))?;
         return Ok(());
     }
     let drawn: Vec<&ResponseCurve> = ch.curves.iter().copied().filter(|c| !zero(c)).collect();
     let (top, bottom) = area.split_vertically(area.dim_in_pixel().1 as i32 * 52 / 100);
-    let mag: Vec<(&ResponseCurve, Series)> = drawn.iter().map(|c| (*c, c.freq_hz.iter().zip(&c.values).filter_map(|(f, v)| magnitude_db(*v).map(|m| (*f, m))).collect())).collect();
+    let mag: Vec<(&ResponseCurve, Series)> = drawn.iter().map(|c| (*c, plot.response.freq_hz.iter().zip(&c.values).filter_map(|(f, v)| magnitude_db(*v).map(|m| (*f, m))).collect())).collect();
     let phases = common_reference_phases(&drawn);
-    let phase: Vec<(&ResponseCurve, Series)> = drawn.iter().zip(phases).map(|(c, p)| (*c, c.freq_hz.iter().copied().zip(p).filter(|(_, p)| p.is_finite()).collect())).collect();
+    let phase: Vec<(&ResponseCurve, Series)> = drawn.iter().zip(phases).map(|(c, p)| (*c, plot.response.freq_hz.iter().copied().zip(p).filter(|(_, p)| p.is_finite()).collect())).collect();
     let unit = if single { format!("magnitude [dB re 1 {}]", plot.magnitude_unit) } else { "magnitude [dB]".to_string() };
     draw_panel(&top, &mag, &unit, x_range, styles, legend, font, Some(caption.as_str()))?;
     draw_panel(&bottom, &phase, "phase [deg]", x_range, styles, false, font, None)?;
@@ -270,7 +292,7 @@ fn draw_channel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, ch: &Channel,
     Ok(())
 }
 
-impl Figure for BodePlot {
+impl Figure for BodePlot<'_> {
     fn draw<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> Result<(), String> {
         let plot = self;
         let err = |e: &dyn std::fmt::Display| e.to_string();
@@ -280,7 +302,7 @@ impl Figure for BodePlot {
         let title = if single { plot.title.clone() } else { format!("{} (magnitude in dB re 1 {})", plot.title, plot.magnitude_unit) };
         let root = root.titled(&title, (FONT, 28)).map_err(|e| err(&e))?;
         let font = if single { 18 } else { 15 };
-        let (flo, fhi) = range(plot.curves.iter().flat_map(|c| c.freq_hz.iter().copied().filter(|f| *f > 0.0)), 0.0);
+        let (flo, fhi) = range(plot.response.freq_hz.iter().copied().filter(|f| *f > 0.0), 0.0);
         // Colour by model: the full model black and solid, each ROM its own colour, dashed.
         let styles: Vec<(RGBColor, &str)> = models(plot).iter().enumerate().map(|(k, (l, _))| (COLORS[k % COLORS.len()], *l)).collect();
         let largest = plot.curves.iter().map(peak).fold(0.0, f64::max);

@@ -11,20 +11,18 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::atomic::OutputError;
-use super::bode::{log_tick_label, CurveStyle, ResponseCurve};
+use super::bode::{log_tick_label, response_curves};
 use super::response_csv::write_response_csv;
 use super::figure::{write_figure, Figure, COLORS, FONT};
 use super::prefixed_path;
+use crate::linear::FrequencyResponse;
 
-/// A transfer matrix of the full model and of a ROM on one grid.
+/// A transfer matrix of the full model and of a ROM (the response's first reduced model,
+/// if any) on one grid.
 #[derive(Clone, Debug)]
 pub struct MimoPlot {
     pub title: String,
-    pub freq_hz: Vec<f64>,
-    pub inputs: Vec<String>,
-    pub outputs: Vec<String>,
-    pub full: Vec<Mat<c64>>,
-    pub rom: Option<Vec<Mat<c64>>>,
+    pub response: FrequencyResponse,
     /// Only the panels `(i, i)`.
     pub diagonal: bool,
 }
@@ -32,9 +30,9 @@ pub struct MimoPlot {
 impl MimoPlot {
     fn panels(&self) -> Vec<(usize, usize)> {
         if self.diagonal {
-            (0..self.outputs.len().min(self.inputs.len())).map(|i| (i, i)).collect()
+            (0..self.response.outputs.len().min(self.response.inputs.len())).map(|i| (i, i)).collect()
         } else {
-            (0..self.outputs.len()).flat_map(|i| (0..self.inputs.len()).map(move |j| (i, j))).collect()
+            super::bode::every_channel(&self.response)
         }
     }
 
@@ -42,7 +40,7 @@ impl MimoPlot {
     /// squarest grid for the diagonal.
     fn shape(&self) -> (usize, usize) {
         let n = self.panels().len();
-        let row = (!self.diagonal).then_some(self.inputs.len());
+        let row = (!self.diagonal).then_some(self.response.inputs.len());
         let (rows, cols) = super::figure::grid_shape(n, row, usize::MAX);
         (cols, rows)
     }
@@ -54,37 +52,17 @@ impl MimoPlot {
     }
 
     fn points(&self, h: &[Mat<c64>], i: usize, j: usize) -> Vec<(f64, f64)> {
-        self.freq_hz.iter().zip(h).filter_map(|(f, m)| {
+        self.response.freq_hz.iter().zip(h).filter_map(|(f, m)| {
             let v = m[(i, j)].norm();
             (v > 0.0 && v.is_finite() && *f > 0.0).then_some((*f, v))
         }).collect()
-    }
-
-    /// The panels' curves, full model then ROM for each pair, for the CSV.
-    fn curves(&self) -> Vec<ResponseCurve> {
-        let curve = |label: &str, style, h: &[Mat<c64>], i: usize, j: usize| ResponseCurve {
-            label: label.into(),
-            input: self.inputs[j].clone(),
-            output: self.outputs[i].clone(),
-            freq_hz: self.freq_hz.clone(),
-            values: h.iter().map(|m| m[(i, j)]).collect(),
-            style,
-        };
-        let mut curves = Vec::new();
-        for (i, j) in self.panels() {
-            curves.push(curve("full model", CurveStyle::Full, &self.full, i, j));
-            if let Some(r) = &self.rom {
-                curves.push(curve("ROM", CurveStyle::Rom, r, i, j));
-            }
-        }
-        curves
     }
 
     /// Writes `PREFIX.csv` (complex values, magnitude and phase of every panel's curves: the
     /// layout of [`write_response_csv`]), `PREFIX.svg`, `PREFIX.png`.
     pub fn write_files(&self, prefix: &Path) -> Result<[PathBuf; 3], OutputError> {
         let paths = [prefixed_path(prefix, "csv"), prefixed_path(prefix, "svg"), prefixed_path(prefix, "png")];
-        write_response_csv(&self.curves(), &paths[0])?;
+        write_response_csv(&self.response, &response_curves(&self.response, &self.panels()), &paths[0])?;
         write_figure(self, self.size(), &paths[1], &paths[2])?;
         Ok(paths)
     }
@@ -94,30 +72,30 @@ impl Figure for MimoPlot {
     fn draw<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> Result<(), String> {
         let err = |e: &dyn std::fmt::Display| e.to_string();
         root.fill(&WHITE).map_err(|e| err(&e))?;
-        let legend = if self.rom.is_some() { "   (solid: full model, dashed: ROM)" } else { "" };
+        let legend = if !self.response.rom().is_empty() { "   (solid: full model, dashed: ROM)" } else { "" };
         let root = root.titled(&format!("{}{legend}", self.title), (FONT, 26)).map_err(|e| err(&e))?;
         let (cols, rows) = self.shape();
         let areas = root.split_evenly((rows, cols));
-        let (flo, fhi) = (self.freq_hz.first().copied().unwrap_or(0.01), self.freq_hz.last().copied().unwrap_or(100.0));
+        let (flo, fhi) = (self.response.freq_hz.first().copied().unwrap_or(0.01), self.response.freq_hz.last().copied().unwrap_or(100.0));
         // Largest magnitude of each row and column: a panel far below both is rounding noise
         // of a pair that does not couple, and is labelled so instead of drawn as a curve.
-        let peak = |i: usize, j: usize| self.full.iter().map(|m| m[(i, j)].norm()).filter(|v| v.is_finite()).fold(0.0, f64::max);
-        let (no, ni) = (self.outputs.len(), self.inputs.len());
+        let peak = |i: usize, j: usize| self.response.full.iter().map(|m| m[(i, j)].norm()).filter(|v| v.is_finite()).fold(0.0, f64::max);
+        let (no, ni) = (self.response.outputs.len(), self.response.inputs.len());
         let row_max: Vec<f64> = (0..no).map(|i| (0..ni).map(|j| peak(i, j)).fold(0.0, f64::max)).collect();
         let col_max: Vec<f64> = (0..ni).map(|j| (0..no).map(|i| peak(i, j)).fold(0.0, f64::max)).collect();
         for (k, (i, j)) in self.panels().into_iter().enumerate() {
             let area = &areas[k];
             if peak(i, j) <= 1e-7 * row_max[i].max(col_max[j]) {
-                let text = format!("{} / {}", self.outputs[i], self.inputs[j]);
+                let text = format!("{} / {}", self.response.outputs[i].label(), self.response.inputs[j].label());
                 area.draw(&Text::new(text, (10, 10), (FONT, 15))).map_err(|e| err(&e))?;
                 area.draw(&Text::new(format!("no coupling: |H| < 1e-7 of its row and column (max {:.0e})", peak(i, j)), (10, 40), (FONT, 13))).map_err(|e| err(&e))?;
                 continue;
             }
-            let full = self.points(&self.full, i, j);
-            let rom = self.rom.as_ref().map(|r| self.points(r, i, j)).unwrap_or_default();
+            let full = self.points(&self.response.full, i, j);
+            let rom = self.points(self.response.rom(), i, j);
             let (lo, hi) = full.iter().chain(&rom).fold((f64::INFINITY, 0.0f64), |(a, b), p| (a.min(p.1), b.max(p.1)));
             let (lo, hi) = if lo.is_finite() && hi > 0.0 { (lo / 2.0, hi * 2.0) } else { (1e-12, 1.0) };
-            let title = format!("{} / {}", self.outputs[i], self.inputs[j]);
+            let title = format!("{} / {}", self.response.outputs[i].label(), self.response.inputs[j].label());
             let mut chart = ChartBuilder::on(area)
                 .caption(&title, (FONT, 15))
                 .margin(6)
@@ -134,7 +112,7 @@ impl Figure for MimoPlot {
                 .x_label_formatter(&|x| log_tick_label(*x, (fhi / flo).log10()))
                 .y_label_formatter(&|y| format!("{y:.0e}"))
                 .label_style((FONT, 12))
-                .x_desc(if i + 1 == self.outputs.len() || self.diagonal { "Hz" } else { "" })
+                .x_desc(if i + 1 == no || self.diagonal { "Hz" } else { "" })
                 .axis_desc_style((FONT, 12))
                 .light_line_style(RGBColor(235, 235, 235))
                 .draw()

@@ -4,6 +4,7 @@ use serde::Serialize;
 
 use crate::eigen::{describe, EnergyShare};
 use crate::eigen::{EigenRoute, ModalAnalysis, ModeKind};
+use crate::linear::hz;
 
 /// One row of the modal table (units: rad/s, Hz).
 #[derive(Serialize, Debug, Clone)]
@@ -76,7 +77,7 @@ impl ModalReport {
                     re: representable.then_some(m.lambda.re),
                     im: representable.then_some(m.lambda.im),
                     kind: m.kind,
-                    freq_hz: if infinite { None } else { finite(m.lambda.im.abs() / (2.0 * std::f64::consts::PI)) },
+                    freq_hz: if infinite { None } else { finite(hz(m.lambda.im.abs())) },
                     undamped_freq_hz: if infinite { None } else { finite(m.freq_hz()) },
                     partner: None,
                     damping: if infinite { None } else { finite(m.damping()) },

@@ -8,17 +8,20 @@ use std::path::Path;
 
 use super::atomic::{write_atomic, OutputError};
 use super::bode::{common_reference_phases, ResponseCurve};
+use crate::linear::FrequencyResponse;
 
 fn quote(s: &str) -> String {
     if s.contains([',', '"', '\n']) { format!("\"{}\"", s.replace('"', "\"\"")) } else { s.to_string() }
 }
 
-/// Writes the curves (which must share one frequency grid) atomically.
-pub fn write_response_csv(curves: &[ResponseCurve], path: &Path) -> Result<(), OutputError> {
+/// Writes the curves of `response` atomically.
+pub fn write_response_csv(response: &FrequencyResponse, curves: &[ResponseCurve], path: &Path) -> Result<(), OutputError> {
     let invalid = |message: &str| OutputError::Invalid { path: path.to_path_buf(), message: message.into() };
-    let first = curves.first().ok_or_else(|| invalid("no curve to write"))?;
-    if curves.iter().any(|c| c.freq_hz != first.freq_hz || c.values.len() != c.freq_hz.len()) {
-        return Err(invalid("all curves must share one frequency grid"));
+    if curves.is_empty() {
+        return Err(invalid("no curve to write"));
+    }
+    if curves.iter().any(|c| c.values.len() != response.freq_hz.len()) {
+        return Err(invalid("every curve must have a value at each frequency of the grid"));
     }
     // Each channel's curves from a common reference, as the Bode plot draws them.
     let mut phases: Vec<Vec<f64>> = vec![Vec::new(); curves.len()];
@@ -36,11 +39,11 @@ pub fn write_response_csv(curves: &[ResponseCurve], path: &Path) -> Result<(), O
         writeln!(w, "# romdyn frequency response z/u; frequency in Hz; re, im and magnitude in output units per input unit (SI); phase in degrees")?;
         let mut header = vec!["freq_hz".to_string()];
         for c in curves {
-            let name = format!("{}: {} / {}", c.label, c.output, c.input);
+            let name = format!("{}: {} / {}", c.label, response.outputs[c.output].label(), response.inputs[c.input].label());
             header.extend(["re", "im", "mag", "phase_deg"].map(|k| quote(&format!("{name} {k}"))));
         }
         writeln!(w, "{}", header.join(","))?;
-        for (k, f) in first.freq_hz.iter().enumerate() {
+        for (k, f) in response.freq_hz.iter().enumerate() {
             write!(w, "{f:.10e}")?;
             for (c, p) in curves.iter().zip(&phases) {
                 let v = c.values[k];

@@ -18,6 +18,7 @@ use std::path::Path;
 use faer::c64;
 
 use super::atomic::{AtomicFile, OutputError};
+use crate::linear::hz;
 
 /// One time step as the log records it (SI: s).
 #[derive(Clone, Copy, Debug)]
@@ -102,7 +103,7 @@ impl StepLog {
 /// `ω/2π` (0 for real λ).
 fn damping_percent_and_hz(l: c64) -> (f64, f64) {
     if l.im != 0.0 {
-        (-100.0 * l.re / l.norm(), l.im / (2.0 * std::f64::consts::PI))
+        (-100.0 * l.re / l.norm(), hz(l.im))
     } else if l.re == 0.0 {
         (0.0, 0.0)
     } else {

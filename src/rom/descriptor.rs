@@ -8,6 +8,7 @@ use super::select::Selection;
 use super::RomError;
 use crate::eigen::{ModalAnalysis, Mode};
 use crate::linear::{Jacobians, LinearDae, SparseLinearDae};
+use crate::linear::rad_per_s;
 
 /// The input and output maps of the full model, dense or sparse alike.
 struct Ports<'a> {
@@ -153,6 +154,6 @@ impl DescriptorRom {
     /// `(C + jω C_v) (jω E − A)⁻¹ B` at each frequency [Hz].
     pub fn frequency_response(&self, freq_hz: &[f64]) -> Vec<Mat<c64>> {
         let minus_a = -&self.a;
-        freq_hz.iter().map(|f| transfer_with_rates(2.0 * std::f64::consts::PI * f, &self.e, &minus_a, &self.b, &self.c, self.c_rate.as_ref(), None)).collect()
+        freq_hz.iter().map(|f| transfer_with_rates(rad_per_s(*f), &self.e, &minus_a, &self.b, &self.c, self.c_rate.as_ref(), None)).collect()
     }
 }

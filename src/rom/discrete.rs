@@ -22,6 +22,7 @@ use faer::{c64, Mat};
 
 use super::dense::solve_nonsingular;
 use super::{OrdinaryRom, RomError};
+use crate::linear::rad_per_s;
 
 /// `e^{X}` by the diagonal Padé approximant of degree 6 after scaling `X` to norm ≤ 1/2.
 pub fn expm(x: &Mat<f64>) -> Mat<f64> {
@@ -121,7 +122,7 @@ impl DiscreteRom {
         freq_hz
             .iter()
             .map(|f| {
-                let theta = 2.0 * std::f64::consts::PI * f * self.sample_time();
+                let theta = rad_per_s(*f) * self.sample_time();
                 super::dense::transfer(theta.sin(), &id, &(&id * faer::Scale(theta.cos()) - &r.a), &r.b, &r.c, Some(&r.d))
             })
             .collect()
@@ -148,7 +149,7 @@ impl OrdinaryRom {
             Discretization::Tustin { prewarp_hz } => {
                 let tp = match prewarp_hz {
                     Some(f) => {
-                        let w = 2.0 * std::f64::consts::PI * f;
+                        let w = rad_per_s(f);
                         2.0 * (w * t / 2.0).tan() / w
                     }
                     None => t,
@@ -216,7 +217,7 @@ mod tests {
     fn prewarped_tustin_is_exact_at_its_frequency() {
         let (a, b, fs, fw) = (300.0, 300.0, 1000.0, 200.0);
         let rom = first_order(-a, b, 1.0, 0.0);
-        let exact = c64::new(b, 0.0) / c64::new(a, 2.0 * std::f64::consts::PI * fw);
+        let exact = c64::new(b, 0.0) / c64::new(a, rad_per_s(fw));
         let warped = rom.discretize(&Sampling::new(fs, Discretization::Tustin { prewarp_hz: Some(fw) }).unwrap()).unwrap();
         let h = warped.frequency_response(&[fw])[0][(0, 0)];
         assert!((h - exact).norm() < 1e-13 * exact.norm(), "{h} vs {exact}");

@@ -5,6 +5,7 @@ use faer::{c64, Mat};
 
 use super::dense::{solve_nonsingular, transfer};
 use super::{DescriptorRom, RomError};
+use crate::linear::rad_per_s;
 
 /// Ordinary state-space ROM with a direct transmission term.
 #[derive(Clone, Debug)]
@@ -93,7 +94,7 @@ impl OrdinaryRom {
         let n = self.a.nrows();
         let id = Mat::<f64>::identity(n, n);
         let minus_a = -&self.a;
-        freq_hz.iter().map(|f| transfer(2.0 * std::f64::consts::PI * f, &id, &minus_a, &self.b, &self.c, Some(&self.d))).collect()
+        freq_hz.iter().map(|f| transfer(rad_per_s(*f), &id, &minus_a, &self.b, &self.c, Some(&self.d))).collect()
     }
 
     /// Static gain `D − C A⁻¹ B`.

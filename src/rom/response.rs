@@ -5,6 +5,7 @@ use faer::{c64, Mat};
 use super::dense::{solve_or_free_direction, transfer_with_rates};
 use super::RomError;
 use crate::linear::LinearDae;
+use crate::linear::rad_per_s;
 
 /// `n` frequencies [Hz] spaced logarithmically from `fmin` to `fmax` (inclusive).
 pub fn log_frequencies(fmin_hz: f64, fmax_hz: f64, n: usize) -> Vec<f64> {
@@ -34,7 +35,7 @@ pub fn frequency_grid(fmin_hz: f64, fmax_hz: f64, n: usize) -> Result<Vec<f64>, 
 /// gives the static gain.
 pub fn full_frequency_response(dae: &LinearDae, freq_hz: &[f64]) -> Vec<Mat<c64>> {
     let (fyd, fy) = dae.plain_derivatives();
-    freq_hz.iter().map(|f| transfer_with_rates(2.0 * std::f64::consts::PI * f, &fyd, &fy, &dae.b, &dae.c, dae.c_rate.as_ref(), None)).collect()
+    freq_hz.iter().map(|f| transfer_with_rates(rad_per_s(*f), &fyd, &fy, &dae.b, &dae.c, dae.c_rate.as_ref(), None)).collect()
 }
 
 /// Static gain `C̃ S⁻¹ B̃` with `S` = [`LinearDae::static_matrix`] (`F_y`, with the

@@ -7,16 +7,18 @@
 use faer::c64;
 
 use super::warning::Response;
-use super::{ChannelError, Comparison, FrequencyGrid, GridAccuracy, ReducedModel, Residualization, Study, StudyError, Transmissibility, Warning};
+use super::{ChannelError, FrequencyGrid, GridAccuracy, ReducedModel, Residualization, Study, StudyError, Warning};
+use crate::linear::FrequencyResponse;
 
 /// A ROM against the full model on one grid.
 pub struct RomCheck {
-    /// Both models' responses to the inputs.
-    pub comparison: Comparison,
+    /// Both models' responses to the inputs (the ROM the response's first reduced model).
+    pub comparison: FrequencyResponse,
     /// Their agreement on the whole grid.
     pub accuracy: GridAccuracy,
-    /// With an imposed motion: both transmissibilities and their agreement.
-    pub transmissibility: Option<(Transmissibility, GridAccuracy)>,
+    /// With an imposed motion: both transmissibilities (inputs: the imposed components) and
+    /// their agreement.
+    pub transmissibility: Option<(FrequencyResponse, GridAccuracy)>,
     /// Where the ROM departs within the frequencies of interest (or why its
     /// transmissibility could not be formed).
     pub warnings: Vec<Warning>,
@@ -54,13 +56,11 @@ impl Study {
         let accuracy = comparison.accuracy();
         let mut warnings = Vec::new();
         let top = rom.interest_top_hz;
-        let inputs = self.input_names().to_vec();
-        let outputs = self.output_names().to_vec();
         // Channels zero to rounding in the full model (a force on a clamped node) have no
         // response to follow: the port warnings said so.
         let zero = self.zero_channels();
         let zero_pair = |i: usize, j: usize| zero.get(i).and_then(|r| r.get(j)).copied().unwrap_or(false);
-        if let Some(w) = self.departure(rom, Response::Inputs, &comparison, &inputs, &outputs, &zero_pair) {
+        if let Some(w) = self.departure(rom, Response::Inputs, &comparison, &zero_pair) {
             warnings.push(w);
         }
         let transmissibility = if self.imposed_len() == 0 {
@@ -68,9 +68,9 @@ impl Study {
         } else {
             match self.transmissibility(rom, &comparison.freq_hz) {
                 Ok(t) => {
-                    let c = Comparison { freq_hz: t.freq_hz.clone(), full: t.full.clone(), rom: t.rom.clone() };
-                    warnings.extend(self.departure(rom, Response::Transmissibility, &c, &t.imposed, &t.outputs, &|_, _| false));
-                    Some((t, c.accuracy()))
+                    warnings.extend(self.departure(rom, Response::Transmissibility, &t, &|_, _| false));
+                    let accuracy = t.accuracy();
+                    Some((t, accuracy))
                 }
                 Err(e) => {
                     warnings.push(Warning::TransmissibilityUnavailable { reason: e.to_string(), top_hz: top });
@@ -82,16 +82,16 @@ impl Study {
     }
 
     /// The warning for the worst port pair of `c` at or below the ROM's top of interest.
-    fn departure(&self, rom: &ReducedModel, response: Response, c: &Comparison, inputs: &[String], outputs: &[String], skip: &dyn Fn(usize, usize) -> bool) -> Option<Warning> {
+    fn departure(&self, rom: &ReducedModel, response: Response, c: &FrequencyResponse, skip: &dyn Fn(usize, usize) -> bool) -> Option<Warning> {
         let top = rom.interest_top_hz;
         let worst = c.worst_channel_up_to(top * (1.0 + 1e-9), skip)?;
         if !(worst.relative > ChannelError::WARN) && !worst.relative.is_nan() {
             return None;
         }
-        let name = |names: &[String], k: usize| names.get(k).cloned().unwrap_or_else(|| (k + 1).to_string());
-        let channel = format!("{} / {}", name(outputs, worst.output), name(inputs, worst.input));
+        let name = |ports: &[crate::linear::Port], k: usize| ports.get(k).map_or_else(|| (k + 1).to_string(), |p| p.label());
+        let channel = format!("{} / {}", name(&c.outputs, worst.output), name(&c.inputs, worst.input));
         let k = c.freq_hz.iter().position(|&f| f == worst.at_hz).unwrap_or(0);
-        let (full, reduced) = (c.full[k][(worst.output, worst.input)].norm(), c.rom[k][(worst.output, worst.input)].norm());
+        let (full, reduced) = (c.full[k][(worst.output, worst.input)].norm(), c.rom()[k][(worst.output, worst.input)].norm());
         Some(Warning::ResponseDeparts { response, channel, relative: worst.relative, at_hz: worst.at_hz, full, rom: reduced, top_hz: top, advice: self.departure_advice(rom) })
     }
 

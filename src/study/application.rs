@@ -10,7 +10,7 @@ use crate::dae::ports::{InputPort, OutputPort};
 use crate::dae::{cut_parts, element_part, linearize_ports, Cut, ElementPart, NodeInput, NodeOutput, State};
 use crate::eigen::{cluster_label, degenerate_clusters, mode_label, real_mode_label, ModalEnergy};
 use crate::eigen::ModalAnalysis;
-use crate::linear::LinearDae;
+use crate::linear::{FrequencyResponse, LinearDae, Port};
 use crate::model::{InitialValueProblem, Label, Model};
 use crate::rom::{full_frequency_response, transmissibility, with_spring_ports, without_elements, ImposedModel, SpringFeedback};
 
@@ -81,18 +81,6 @@ pub(super) struct Applied {
     /// Number of imposed components (the last inputs and outputs of the study's DAE).
     pub imposed: usize,
     pub names: BTreeMap<Label, String>,
-}
-
-/// The transmissibility `z/z_e` (eq. 100) of the full model and of a ROM on a grid.
-#[derive(Clone, Debug)]
-pub struct Transmissibility {
-    pub freq_hz: Vec<f64>,
-    /// Regular outputs (rows).
-    pub outputs: Vec<String>,
-    /// Imposed components (columns).
-    pub imposed: Vec<String>,
-    pub full: Vec<Mat<c64>>,
-    pub rom: Vec<Mat<c64>>,
 }
 
 impl Study {
@@ -213,15 +201,17 @@ impl Study {
     }
 
     /// Eq. 100 on the full model (springs removed: the result does not depend on them) and on
-    /// the ROM, at `freq_hz`.
-    pub fn transmissibility(&self, rom: &ReducedModel, freq_hz: &[f64]) -> Result<Transmissibility, StudyError> {
+    /// the ROM, at `freq_hz`: a response from the imposed components (its inputs) to the
+    /// regular outputs, the ROM its reduced model "ROM".
+    pub fn transmissibility(&self, rom: &ReducedModel, freq_hz: &[f64]) -> Result<FrequencyResponse, StudyError> {
         let n = self.imposed_count()?;
         let eq100 = |h: Vec<Mat<c64>>| h.iter().zip(freq_hz).map(|(m, f)| transmissibility(m, n).ok_or(StudyError::SingularImposedMotion(*f))).collect::<Result<Vec<_>, _>>();
         let dae = self.linear.dense();
         let full = eq100(full_frequency_response(dae, freq_hz))?;
         let rom_t = eq100(rom.ordinary.frequency_response(freq_hz))?;
         let no = dae.num_outputs() - n;
-        Ok(Transmissibility { freq_hz: freq_hz.to_vec(), outputs: dae.output_names[..no].to_vec(), imposed: dae.output_names[no..].to_vec(), full, rom: rom_t })
+        let ports = |names: &[String]| Port::from_labels(names);
+        Ok(FrequencyResponse::new(freq_hz.to_vec(), ports(&dae.output_names[no..]), ports(&dae.output_names[..no]), full).with_reduced("ROM", rom_t))
     }
 
     /// The proper state-space model from the imposed displacements to the other outputs.

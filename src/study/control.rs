@@ -7,6 +7,7 @@
 use crate::rom::{BalancedMethod, BalancedOrder, Discretization, DiscreteRom, OrdinaryRom, Sampling};
 
 use super::{RomRequest, Setting, StudyError, Warning};
+use crate::linear::hz;
 
 /// Balanced reduction of a ROM's stable part.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -109,7 +110,7 @@ pub(super) fn discretize(rom: &OrdinaryRom, request: &RomRequest) -> Result<(Opt
     let discrete = rom.discretize(sampling)?;
     let eigenvalues = if rom.a.nrows() == 0 { Vec::new() } else { rom.a.as_ref().eigenvalues().unwrap_or_default() };
     // One frequency per pair (its member with Im λ ≥ 0), lowest first.
-    let mut freqs: Vec<f64> = eigenvalues.iter().filter(|l| l.im >= 0.0).map(|l| l.norm() / (2.0 * std::f64::consts::PI)).filter(|f| *f >= sampling.rate_hz / 2.0).collect();
+    let mut freqs: Vec<f64> = eigenvalues.iter().filter(|l| l.im >= 0.0).map(|l| hz(l.norm())).filter(|f| *f >= sampling.rate_hz / 2.0).collect();
     freqs.sort_by(f64::total_cmp);
     let warning = (!freqs.is_empty()).then_some(Warning::AboveNyquist { freqs_hz: freqs, rate_hz: sampling.rate_hz });
     Ok((Some(discrete), warning))

@@ -5,6 +5,7 @@ use faer::{c64, Mat};
 use crate::output::rom_file::{unit_of_name, RomExport};
 
 use super::{ReducedModel, Study};
+use crate::linear::hz;
 
 /// Which ROM form to export.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -54,7 +55,7 @@ impl ReducedModel {
                 ("descriptor", d.e.clone(), d.a.clone(), d.b.clone(), d.c.clone(), Mat::zeros(d.c.nrows(), d.b.ncols()), names, modes)
             }
         };
-        let state_freq_hz = state_modes.iter().map(|&m| if m == 0 { f64::NAN } else { modal.modes[m - 1].lambda.im.abs() / (2.0 * std::f64::consts::PI) }).collect();
+        let state_freq_hz = state_modes.iter().map(|&m| if m == 0 { f64::NAN } else { hz(modal.modes[m - 1].lambda.im.abs()) }).collect();
         RomExport {
             kind,
             e,

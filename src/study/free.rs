@@ -6,9 +6,11 @@
 
 use faer::{c64, Mat};
 
+use crate::linear::FrequencyResponse;
 use crate::output::mimo_plot::MimoPlot;
 
 use super::{ReducedModel, RomCheck, Study, Warning};
+use crate::linear::hz;
 
 /// Below this fraction of the largest |λ| an eigenvalue is zero (a rigid-body motion of the
 /// free ROM): the springs' removal leaves rounding of that order on the exact zeros.
@@ -82,15 +84,10 @@ impl Study {
     pub fn transfer_panels(&self, check: &RomCheck, diagonal: bool) -> MimoPlot {
         let no = self.output_names().len() - self.imposed_len();
         let rows = |h: &[Mat<c64>]| h.iter().map(|m| m.get(..no, ..).to_owned()).collect::<Vec<_>>();
-        MimoPlot {
-            title: "Transfer matrix |z/u|".into(),
-            full: rows(&check.comparison.full),
-            rom: Some(rows(&check.comparison.rom)),
-            freq_hz: check.comparison.freq_hz.clone(),
-            inputs: self.input_names().to_vec(),
-            outputs: self.output_names()[..no].to_vec(),
-            diagonal,
-        }
+        let c = &check.comparison;
+        let mut response = FrequencyResponse::new(c.freq_hz.clone(), c.inputs.clone(), c.outputs[..no].to_vec(), rows(&c.full));
+        response.reduced = c.reduced.iter().map(|(label, h)| (label.clone(), rows(h))).collect();
+        MimoPlot { title: "Transfer matrix |z/u|".into(), response, diagonal }
     }
 }
 
@@ -126,7 +123,7 @@ impl std::fmt::Display for FreeEigenvalues {
                 (Some(motion), FreeKind::Real | FreeKind::RealUnstable) => format!("real, {motion}"),
                 (_, kind) => kind.name().to_string(),
             };
-            writeln!(f, "  {:>14.6e} {:+.6e}j   {:>10.6} Hz   {kind}", e.lambda.re, e.lambda.im, e.lambda.norm() / (2.0 * std::f64::consts::PI))?;
+            writeln!(f, "  {:>14.6e} {:+.6e}j   {:>10.6} Hz   {kind}", e.lambda.re, e.lambda.im, hz(e.lambda.norm()))?;
         }
         Ok(())
     }

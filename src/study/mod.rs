@@ -46,7 +46,7 @@ mod summary;
 mod warning;
 
 pub use accuracy::RomCheck;
-pub use application::{parse_imposed, Application, Transmissibility};
+pub use application::{parse_imposed, Application};
 pub use builder::{StudyBuilder, StudySource};
 pub use checks::zero_channels;
 pub use control::{balancing, minimal_tolerance, sampling, Balancing, OrderReduction, DISCRETIZATIONS};
@@ -54,7 +54,7 @@ pub use error::StudyError;
 pub use export::RomForm;
 pub use free::{FreeEigenvalue, FreeEigenvalues, FreeKind};
 pub use reduce::{BelowBand, KeptMode, ReducedModel, Residualization, RomRequest, StaticGains, UndampedTwin};
-pub use response::{ChannelError, Comparison, FrequencyGrid, GridAccuracy};
+pub use response::{default_band, ChannelError, FrequencyGrid, GridAccuracy};
 pub use names::{value_names, Named};
 pub use setting::{python_spelling, Setting};
 pub use setup::{checked_reference_state, EigenSettings, Ports, Study};

@@ -9,6 +9,7 @@ use crate::output::mimo_plot::MimoPlot;
 use crate::output::report::{Geometry, ModeShape, Report};
 
 use super::{ReducedModel, RomCheck, Study};
+use crate::linear::hz;
 
 impl Study {
     /// The report of `rom` (checked by `check`) titled `title`: its summary, every warning,
@@ -18,15 +19,7 @@ impl Study {
     pub fn report(&self, rom: &ReducedModel, check: &RomCheck, title: &str) -> Report {
         let mut warnings: Vec<String> = self.warnings().iter().map(|w| w.to_string()).collect();
         warnings.extend(rom.new_warnings(self, Some(check)).iter().map(|w| w.to_string()));
-        let transmissibility = check.transmissibility.as_ref().map(|(t, _)| MimoPlot {
-            title: "Transmissibility |z/z_e| (eq. 100)".into(),
-            freq_hz: t.freq_hz.clone(),
-            inputs: t.imposed.clone(),
-            outputs: t.outputs.clone(),
-            full: t.full.clone(),
-            rom: Some(t.rom.clone()),
-            diagonal: false,
-        });
+        let transmissibility = check.transmissibility.as_ref().map(|(t, _)| MimoPlot { title: "Transmissibility |z/z_e| (eq. 100)".into(), response: t.clone(), diagonal: false });
         Report { title: title.to_string(), summary: rom.summary(self, Some(check)), warnings, modal_table: self.modal_report().to_text_dynamic(12), geometry: self.geometry(rom), transmissibility, figures: Vec::new() }
     }
 
@@ -58,7 +51,7 @@ impl Study {
                         *c /= largest;
                     }
                 }
-                let hz = mode.lambda.im.abs() / (2.0 * std::f64::consts::PI);
+                let hz = hz(mode.lambda.im.abs());
                 Some(ModeShape { label: format!("mode {index}: {hz:.4} Hz"), translations })
             })
             .collect();

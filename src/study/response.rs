@@ -2,7 +2,8 @@
 
 use faer::{c64, Mat};
 
-use crate::output::frequency_plot::{default_band, FrequencyResponses};
+use crate::eigen::{ModalAnalysis, ModeKind};
+use crate::linear::{hz, FrequencyResponse, Port};
 use crate::rom::frequency_grid;
 
 use super::{ReducedModel, Setting, Study, StudyError};
@@ -61,21 +62,21 @@ impl ChannelError {
     pub const WARN: f64 = 0.5;
 }
 
-/// The full model's and a ROM's responses on one grid.
-pub struct Comparison {
-    pub freq_hz: Vec<f64>,
-    pub full: Vec<Mat<c64>>,
-    pub rom: Vec<Mat<c64>>,
+/// A band around the modes of interest [Hz]: a decade below the lowest and above the
+/// highest of `focus` (eigenvalues in rad/s), or of all dynamic modes when `focus` is empty.
+pub fn default_band(modal: &ModalAnalysis, focus: &[c64]) -> (f64, f64) {
+    let mut f: Vec<f64> = if focus.is_empty() { modal.of_kind(ModeKind::Dynamic).map(|i| modal.modes[i].freq_hz()).collect() } else { focus.iter().map(|l| hz(l.norm())).collect() };
+    f.retain(|x| x.is_finite() && *x > 0.0);
+    let lo = f.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = f.iter().copied().fold(0.0, f64::max);
+    if lo.is_finite() && hi > 0.0 { (lo / 10.0, hi * 10.0) } else { (0.01, 100.0) }
 }
 
-impl Comparison {
-    /// The curves to plot: the full model and the ROM (labelled `label`).
-    pub fn responses(&self, study: &Study, label: &str) -> FrequencyResponses {
-        FrequencyResponses::from_full(self.freq_hz.clone(), &self.full, study.input_names(), study.output_names()).with_response(label, &self.rom)
-    }
-
+/// A ROM's accuracy against the full model, on a response whose first reduced model is the
+/// ROM ([`Study::compare`]).
+impl FrequencyResponse {
     pub fn accuracy(&self) -> GridAccuracy {
-        let err: Vec<f64> = self.full.iter().zip(&self.rom).map(|(f, r)| (r - f).norm_l2() / f.norm_l2().max(f64::MIN_POSITIVE)).collect();
+        let err: Vec<f64> = self.full.iter().zip(self.rom()).map(|(f, r)| (r - f).norm_l2() / f.norm_l2().max(f64::MIN_POSITIVE)).collect();
         let (k, worst) = err.iter().enumerate().fold((0, 0.0f64), |(bk, bv), (k, &e)| if e > bv || e.is_nan() { (k, e) } else { (bk, bv) });
         let good = err.iter().take_while(|&&e| e <= 0.01).count();
         GridAccuracy {
@@ -85,13 +86,8 @@ impl Comparison {
             largest_relative_error: worst,
             at_hz: self.freq_hz[k],
             within_1_percent_up_to_hz: good.checked_sub(1).map(|g| self.freq_hz[g]),
-            worst_channel: self.worst_channel(),
+            worst_channel: self.worst_channel_up_to(f64::INFINITY, &|_, _| false),
         }
-    }
-
-    /// [`GridAccuracy::worst_channel`].
-    fn worst_channel(&self) -> Option<ChannelError> {
-        self.worst_channel_up_to(f64::INFINITY, &|_, _| false)
     }
 
     /// The worst port pair on its own scale over the grid points at or below `top_hz`, the
@@ -120,7 +116,7 @@ impl Comparison {
                 }
                 let big = largest(&|f| f[(i, j)].norm());
                 let around = row[i].min(col[j]);
-                let points = self.full.iter().zip(&self.rom).enumerate().take_while(|(k, _)| self.freq_hz[*k] <= top_hz);
+                let points = self.full.iter().zip(self.rom()).enumerate().take_while(|(k, _)| self.freq_hz[*k] <= top_hz);
                 if !(big > ChannelError::NEGLIGIBLE * around) && around > 1e-12 * overall {
                     for (k, (f, r)) in points {
                         consider((r[(i, j)] - f[(i, j)]).norm() / around, i, j, self.freq_hz[k]);
@@ -185,16 +181,16 @@ impl Study {
         Ok(self.linear.frequency_response(freq_hz, self.sparse.is_some())?)
     }
 
-    /// The full model's responses at `freq_hz`, to which ROMs can be added.
-    pub fn full_responses(&self, freq_hz: Vec<f64>) -> Result<FrequencyResponses, StudyError> {
+    /// The full model's response at `freq_hz`, to which ROMs can be added
+    /// ([`FrequencyResponse::with_reduced`]).
+    pub fn full_responses(&self, freq_hz: Vec<f64>) -> Result<FrequencyResponse, StudyError> {
         let h = self.full_frequency_response(&freq_hz)?;
-        Ok(FrequencyResponses::from_full(freq_hz, &h, self.input_names(), self.output_names()))
+        Ok(FrequencyResponse::new(freq_hz, Port::from_labels(self.input_names()), Port::from_labels(self.output_names()), h))
     }
 
-    /// The full model's and `rom`'s responses at `freq_hz`.
-    pub fn compare(&self, rom: &ReducedModel, freq_hz: Vec<f64>) -> Result<Comparison, StudyError> {
-        let full = self.full_frequency_response(&freq_hz)?;
-        let rom = rom.ordinary.frequency_response(&freq_hz);
-        Ok(Comparison { freq_hz, full, rom })
+    /// The full model's and `rom`'s responses at `freq_hz` (the ROM labelled "ROM").
+    pub fn compare(&self, rom: &ReducedModel, freq_hz: Vec<f64>) -> Result<FrequencyResponse, StudyError> {
+        let h = rom.ordinary.frequency_response(&freq_hz);
+        Ok(self.full_responses(freq_hz)?.with_reduced("ROM", h))
     }
 }

@@ -141,7 +141,8 @@ impl ReducedModel {
             };
             s += &accuracy_lines(what, &check.accuracy, pairs, &self.static_gains.output_names, &self.static_gains.input_names);
             if let Some((t, a)) = &check.transmissibility {
-                s += &accuracy_lines("transmissibility z/z_e (eq. 100)", a, t.outputs.len() * t.imposed.len(), &t.outputs, &t.imposed);
+                let labels = |ports: &[crate::linear::Port]| ports.iter().map(|p| p.label()).collect::<Vec<_>>();
+                s += &accuracy_lines("transmissibility z/z_e (eq. 100)", a, t.outputs.len() * t.inputs.len(), &labels(&t.outputs), &labels(&t.inputs));
             }
         }
         s

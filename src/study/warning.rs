@@ -2,6 +2,7 @@
 //! what is wrong, by how much, and what to do.
 
 use std::fmt;
+use crate::linear::hz;
 
 /// A warning about the linear model or a ROM built from it.
 #[derive(Clone, Debug, PartialEq)]
@@ -158,10 +159,10 @@ impl fmt::Display for Warning {
                 "the ROM's matrices do not have the eigenvalues its summary reports for {modes} kept mode(s): mode {mode} is reported at λ = {:.6e}{:+.6e}j rad/s ({:.4} Hz) but the nearest eigenvalue of the exported A is {:.6e}{:+.6e}j rad/s ({:.4} Hz), {relative:.1e} relative; trust the exported matrices' eigenvalues, and check the mode's error estimate in `romdyn eig`",
                 reported.re,
                 reported.im,
-                reported.norm() / (2.0 * std::f64::consts::PI),
+                hz(reported.norm()),
                 exported.re,
                 exported.im,
-                exported.norm() / (2.0 * std::f64::consts::PI)
+                hz(exported.norm())
             ),
             Warning::IncrementalBeamsStatic { beams } => write!(
                 f,

@@ -16,6 +16,7 @@ use crate::output::rom_file::RomExport;
 
 use super::track::Tracking;
 use super::SweepResults;
+use crate::linear::hz;
 
 /// Why a sweep's results cannot be written.
 #[derive(Debug, thiserror::Error)]
@@ -50,7 +51,7 @@ pub struct Stacked {
 
 /// MBDyn's frequency `|Im λ|/2π` [Hz].
 fn freq_hz(l: c64) -> f64 {
-    l.im.abs() / (2.0 * std::f64::consts::PI)
+    hz(l.im.abs())
 }
 
 /// Damping ratio `−Re λ/|λ|` (0 for λ = 0).
@@ -142,7 +143,7 @@ impl SweepResults {
         arrays.push(table("mode_re", k, m, |p, j| mode(p, j).map(|l| l.re)));
         arrays.push(table("mode_im", k, m, |p, j| mode(p, j).map(|l| l.im)));
         arrays.push(table("mode_freq_hz", k, m, |p, j| mode(p, j).map(freq_hz)));
-        arrays.push(table("mode_undamped_hz", k, m, |p, j| mode(p, j).map(|l| l.norm() / (2.0 * std::f64::consts::PI))));
+        arrays.push(table("mode_undamped_hz", k, m, |p, j| mode(p, j).map(|l| hz(l.norm()))));
         arrays.push(table("mode_damping", k, m, |p, j| mode(p, j).map(damping)));
         let matched = |p: usize, j: usize| tracking.matches[p].as_ref().and_then(|r| r.get(j).cloned().flatten());
         arrays.push(table("mode_mac", k, m, |p, j| matched(p, j).map(|mt| mt.mac)));

@@ -10,6 +10,7 @@ use crate::study::{ReducedModel, Study};
 
 use super::signal::{SignalKind, SignalSpec};
 use super::ValidateError;
+use crate::linear::{hz, rad_per_s};
 
 /// Samples per period of the band's top frequency: the input's linear interpolation then
 /// lowers |H| by `(π f dt)²/3 ≤ 0.05 %` there.
@@ -147,7 +148,7 @@ impl Plan {
     pub fn new(study: &Study, rom: &ReducedModel, outputs: &[OutputPort], o: &ValidateOptions) -> Result<Self, ValidateError> {
         o.check()?;
         let seen: Vec<_> = rom.kept_modes.iter().filter(|m| m.dominance > crate::rom::NEGLIGIBLE_DOMINANCE && m.lambda.norm() > 0.0).collect();
-        let hz = |m: &crate::study::KeptMode| m.lambda.norm() / (2.0 * PI);
+        let hz = |m: &crate::study::KeptMode| hz(m.lambda.norm());
         let zeta = |m: &crate::study::KeptMode| -m.lambda.re / m.lambda.norm();
         let band_hz = match o.band_hz {
             Some(b) => b,
@@ -222,7 +223,7 @@ fn step(seen: &[&crate::study::KeptMode], band_hz: (f64, f64), horizon: f64) -> 
         let (allowed, why) = if zeta >= MIN_DAMPING { (PEAK_ERROR * zeta, "peak error") } else { (PHASE_DRIFT / (w * horizon), "phase drift over the record") };
         let h = (allowed / PERIOD_ERROR).sqrt() / w;
         if h < best.0 {
-            best = (h, format!("the integrator's {why} at the kept mode of {:.4} Hz (damping {zeta:.2e})", w / (2.0 * PI)));
+            best = (h, format!("the integrator's {why} at the kept mode of {:.4} Hz (damping {zeta:.2e})", hz(w)));
         }
     }
     best
@@ -243,8 +244,8 @@ fn default_amplitudes(study: &Study, rom: &ReducedModel, outputs: &[OutputPort])
         let scale = |i: usize| match outputs[i].unit() {
             "m" => STATIC_FRACTION * size,
             "rad" => STATIC_FRACTION,
-            "m/s" => STATIC_FRACTION * size * 2.0 * std::f64::consts::PI * rom.interest_top_hz,
-            _ => STATIC_FRACTION * 2.0 * std::f64::consts::PI * rom.interest_top_hz,
+            "m/s" => STATIC_FRACTION * size * rad_per_s(rom.interest_top_hz),
+            _ => STATIC_FRACTION * rad_per_s(rom.interest_top_hz),
         };
         let a = (0..gain.nrows()).map(|i| scale(i) / gain[(i, j)].abs()).fold(f64::INFINITY, f64::min);
         if a.is_finite() && a > 0.0 {

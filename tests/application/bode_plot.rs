@@ -1,7 +1,8 @@
 //! Bode plot and CSV of an analytic single-degree-of-freedom response.
 
 use romdyn::c64;
-use romdyn::output::bode::{write_bode, BodePlot, CurveStyle, ResponseCurve};
+use romdyn::linear::{FrequencyResponse, Port};
+use romdyn::output::bode::{response_curves, write_bode, BodePlot};
 use romdyn::output::response_csv::write_response_csv;
 use romdyn::rom::log_frequencies;
 
@@ -18,15 +19,11 @@ fn sdof_plot_and_table() {
     let mut freq = log_frequencies(0.1, 10.0, 200);
     freq.push(10.0 / (2.0 * std::f64::consts::PI));
     freq.sort_by(f64::total_cmp);
-    let curve = |label: &str, style, k| ResponseCurve {
-        label: label.into(),
-        input: "f [N]".into(),
-        output: "x [m]".into(),
-        freq_hz: freq.clone(),
-        values: freq.iter().map(|f| sdof(*f, k)).collect(),
-        style,
-    };
-    let plot = BodePlot { title: "SDOF".into(), magnitude_unit: "m/N".into(), curves: vec![curve("full model", CurveStyle::Full, 1000.0), curve("ROM", CurveStyle::Rom, 1010.0)] };
+    let h = |k| freq.iter().map(|f| faer::Mat::from_fn(1, 1, |_, _| sdof(*f, k))).collect::<Vec<_>>();
+    let (input, output) = (Port::from_label("f [N]"), Port::from_label("x [m]"));
+    assert_eq!((input.unit.as_str(), input.ratio_unit(&output).as_str()), ("N", "m/N"));
+    let response = FrequencyResponse::new(freq.clone(), vec![input], vec![output], h(1000.0)).with_reduced("ROM", h(1010.0));
+    let plot = BodePlot { title: "SDOF".into(), magnitude_unit: "m/N".into(), response: &response, curves: response_curves(&response, &[(0, 0)]) };
     let (svg, png, csv) = (dir.join("b.svg"), dir.join("b.png"), dir.join("b.csv"));
     write_bode(&plot, &svg, &png).unwrap();
     let png_bytes = std::fs::read(&png).unwrap();
@@ -36,7 +33,7 @@ fn sdof_plot_and_table() {
     for text in ["frequency [Hz]", "phase [deg]", "dB re 1 m/N", "full model", "ROM", "x [m] / f [N]"] {
         assert!(svg_text.contains(text), "{text}");
     }
-    write_response_csv(&plot.curves, &csv).unwrap();
+    write_response_csv(&response, &plot.curves, &csv).unwrap();
     let table = std::fs::read_to_string(&csv).unwrap();
     let mut rows = table.lines().filter(|l| !l.starts_with('#'));
     let header: Vec<&str> = rows.next().unwrap().split(',').collect();

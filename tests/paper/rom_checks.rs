@@ -220,12 +220,14 @@ fn a_departure_advises_residualize_only_when_it_was_not_given() {
 /// of its own small scale (1e-7 in a row of 1e-7) keeps its own. By hand, from the matrices.
 #[test]
 fn a_pair_zero_by_symmetry_is_measured_against_its_row_and_column() {
-    use romdyn::study::{ChannelError, Comparison};
+    use romdyn::linear::{FrequencyResponse, Port};
+    use romdyn::study::ChannelError;
     let m = |a: [[f64; 3]; 2]| faer::Mat::from_fn(2, 3, |i, j| c64::new(a[i][j], 0.0));
     // Output 0 sees input 0 (1.0) and input 2 (1e-7, a weak but real coupling); output 1
     // sees input 1 (2.0); the pairs (0, 1) and (1, 0) are zero but for rounding.
     let full = m([[1.0, 1e-14, 1e-7], [3e-14, 2.0, 0.0]]);
-    let compare = |rom: [[f64; 3]; 2]| Comparison { freq_hz: vec![1.0], full: vec![full.clone()], rom: vec![m(rom)] }.accuracy().worst_channel.unwrap();
+    let ports = |n: usize| (0..n).map(|k| Port::from_label(&format!("p{k} [m]"))).collect::<Vec<_>>();
+    let compare = |rom: [[f64; 3]; 2]| FrequencyResponse::new(vec![1.0], ports(3), ports(2), vec![full.clone()]).with_reduced("ROM", vec![m(rom)]).accuracy().worst_channel.unwrap();
     // The ROM couples (0, 1) by 2e-3: 2e-3 / min(row 0's 1.0, column 1's 2.0) = 2e-3.
     let w = compare([[1.0, 2e-3, 1e-7], [0.0, 2.0, 0.0]]);
     assert_eq!((w.output, w.input), (0, 1));

@@ -316,7 +316,7 @@ fn random_stable_pencils_residualized_roms_keep_the_static_gain_or_warn() {
 /// residualized) and on the three ROMs of paper Fig. 7 (`examples/beam_rom.rs`).
 #[test]
 fn full_model_and_rom_phases_agree_where_magnitudes_agree() {
-    use romdyn::output::bode::{common_reference_phases, CurveStyle, ResponseCurve};
+    use romdyn::output::bode::{common_reference_phases, response_curves};
     let study = Study::builder(StudySource::model_file("examples/simply_supported_beam.mbd")).reference(Reference::Static { load_steps: 10 }).node_ports(vec!["5:Fy".parse().unwrap()], vec!["5:y".parse().unwrap()]).build().unwrap();
     let dominant = RomRequest::new(ModeSelection::Lowest(2)).ranked_by(Ranking::Dominance);
     let third = study.reduce(&dominant).unwrap().kept_modes[1].indices[0];
@@ -327,13 +327,13 @@ fn full_model_and_rom_phases_agree_where_magnitudes_agree() {
         RomRequest::new(ModeSelection::Lowest(1)).residualize(Residualization::Dropped),
     ];
     let freq = romdyn::rom::log_frequencies(1.0, 2000.0, 800);
-    let curve = |label: &str, style, values: Vec<faer::c64>| ResponseCurve { label: label.into(), input: "u".into(), output: "z".into(), freq_hz: freq.clone(), values, style };
     for request in requests {
         let rom = study.reduce(&request).unwrap();
         let c = study.compare(&rom, freq.clone()).unwrap();
-        let full = curve("full model", CurveStyle::Full, c.full.iter().map(|h| h[(0, 0)]).collect());
-        let reduced = curve("ROM", CurveStyle::Rom, c.rom.iter().map(|h| h[(0, 0)]).collect());
-        let p = common_reference_phases(&[&full, &reduced]);
+        let curves = response_curves(&c, &[(0, 0)]);
+        let (full, reduced) = (&curves[0], &curves[1]);
+        assert_eq!((full.label, reduced.label), ("full model", "ROM"));
+        let p = common_reference_phases(&[full, reduced]);
         let mut compared = 0;
         let agree = |k: usize| {
             let (a, b) = (full.values[k].norm(), reduced.values[k].norm());

@@ -26,3 +26,24 @@ pub use syntax::parser::Document;
 pub use read_options::{BeamUpdateChoice, BeamUpdateRule, ReadOptions};
 pub use written_nodes::{parse_file, parse_file_with, parse_text, parse_text_with};
 pub use syntax::value::TypedValue;
+
+#[cfg(test)]
+mod tests {
+    use super::syntax::keywords::{check_documented, KeywordTable};
+
+    /// The book's lists of the keywords romdyn reads are the reader's keyword tables.
+    #[test]
+    fn the_book_lists_the_keywords_of_the_tables() {
+        let chapters: [(&KeywordTable, &str, &str); 4] = [
+            (&super::elements::block::ELEMENT_TYPES, "elements.md", include_str!("../../../docs/src/mbdyn/elements.md")),
+            (&super::elements::genels::GENEL_TYPES, "elements.md", include_str!("../../../docs/src/mbdyn/elements.md")),
+            (&super::elements::joints::JOINT_TYPES, "joints.md", include_str!("../../../docs/src/mbdyn/joints.md")),
+            (&super::drives::callers::DRIVE_CALLERS, "drives.md", include_str!("../../../docs/src/mbdyn/drives.md")),
+        ];
+        for (table, name, chapter) in chapters {
+            if let Err(e) = check_documented(table, chapter) {
+                panic!("docs/src/mbdyn/{name}: {e}");
+            }
+        }
+    }
+}

@@ -10,7 +10,8 @@ use faer::c64;
 use serde_json::json;
 
 use super::atomic::{write_atomic_bytes, OutputError};
-use super::frequency_plot::FrequencyResponses;
+use super::frequency_plot::write_bode_files;
+use crate::linear::FrequencyResponse;
 
 /// One kept mode's shape at the nodes: a complex translation [1] per node, scaled so the
 /// largest has unit length.
@@ -111,12 +112,12 @@ impl Report {
 
     /// Writes `dir/index.html` and the Bode plot of `responses` beside it, and the
     /// transmissibility when there is one (the folder is made if missing; the page last).
-    pub fn write(&self, dir: &Path, responses: &FrequencyResponses) -> Result<[PathBuf; 4], OutputError> {
+    pub fn write(&self, dir: &Path, responses: &FrequencyResponse) -> Result<[PathBuf; 4], OutputError> {
         std::fs::create_dir_all(dir).map_err(|cause| OutputError::Io { path: dir.to_path_buf(), operation: "create the folder", cause })?;
         if let Some(plot) = &self.transmissibility {
             plot.write_files(&dir.join("transmissibility"))?;
         }
-        responses.write_files(&dir.join("bode"), &self.title)?;
+        write_bode_files(responses, &dir.join("bode"), &self.title)?;
         let files = Self::files(dir);
         write_atomic_bytes(&files[0], self.page().as_bytes())?;
         Ok(files)

@@ -35,7 +35,7 @@ use crate::input::mbdyn::syntax::keywords::{read, Keyword, KeywordTable, Support
 
 /// Every drive caller of MBDyn 1.7.3 (drive_.cc and the readers it registers), with whether
 /// romdyn evaluates it.
-const DRIVE_CALLERS: KeywordTable = KeywordTable {
+pub(in crate::input::mbdyn) const DRIVE_CALLERS: KeywordTable = KeywordTable {
     what: "drive caller",
     keywords: &[
         read("postponed"), read("meter"), read("closest next"), read("random"), read("fourier series"), read("sample and hold"),
@@ -629,15 +629,4 @@ pub fn other_dims_of(drives: &Drives, label: u32, except: Option<TemplateDim>) -
     }
     dims.sort();
     if dims.is_empty() { String::new() } else { format!(" (there is one of dimension {})", dims.join(", ")) }
-}
-
-#[cfg(test)]
-mod drive_callers_table {
-    #[test]
-    fn the_book_lists_the_keywords_of_the_table() {
-        let chapter = include_str!("../../../../docs/src/mbdyn/drives.md");
-        if let Err(e) = crate::input::mbdyn::syntax::keywords::check_documented(&super::DRIVE_CALLERS, chapter) {
-            panic!("docs/src/mbdyn/drives.md: {e}");
-        }
-    }
 }

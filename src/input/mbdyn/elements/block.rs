@@ -299,14 +299,3 @@ fn gravity(c: &mut Cursor, ctx: &ElementContext) -> Result<Parsed, MbdynError> {
         None => Err(c.error_at(span, "romdyn's time-varying gravity is one direction times one drive: this value combines components with different drives")),
     }
 }
-
-#[cfg(test)]
-mod element_types_table {
-    #[test]
-    fn the_book_lists_the_keywords_of_the_table() {
-        let chapter = include_str!("../../../../docs/src/mbdyn/elements.md");
-        if let Err(e) = crate::input::mbdyn::syntax::keywords::check_documented(&super::ELEMENT_TYPES, chapter) {
-            panic!("docs/src/mbdyn/elements.md: {e}");
-        }
-    }
-}

@@ -14,7 +14,7 @@ use crate::input::mbdyn::syntax::parser;
 use crate::input::mbdyn::syntax::keywords::{mbdyn_only, read, KeywordTable};
 
 /// Every genel type of MBDyn 1.7.3 (genel.cc, `ReadGenel`), with whether romdyn builds it.
-const GENEL_TYPES: KeywordTable = KeywordTable {
+pub(in crate::input::mbdyn) const GENEL_TYPES: KeywordTable = KeywordTable {
     what: "genel type",
     keywords: &[
         read("clamp"), read("distance"), read("spring support"), read("cross spring support"), read("spring"), read("mass"),
@@ -218,15 +218,4 @@ fn matrices(c: &mut Cursor, what: &str, p: usize, m: usize) -> Result<Matrices, 
 pub fn abstract_force(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<dyn Element>, MbdynError> {
     let (dof, _) = scalar_dof(c, &ctx.nodes.2, &format!("abstract force {label}"), false)?;
     Ok(Box::new(AbstractForce { label, node: dof.node, value: callers::drive(c, ctx.drives, ctx.seq)? }))
-}
-
-#[cfg(test)]
-mod genel_types_table {
-    #[test]
-    fn the_book_lists_the_keywords_of_the_table() {
-        let chapter = include_str!("../../../../docs/src/mbdyn/elements.md");
-        if let Err(e) = crate::input::mbdyn::syntax::keywords::check_documented(&super::GENEL_TYPES, chapter) {
-            panic!("docs/src/mbdyn/elements.md: {e}");
-        }
-    }
 }

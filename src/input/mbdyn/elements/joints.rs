@@ -24,7 +24,7 @@ use crate::input::mbdyn::drives::scalar_functions;
 use crate::input::mbdyn::syntax::keywords::{mbdyn_only, read, Keyword, KeywordTable, Support};
 
 /// Every joint type of MBDyn 1.7.3 (joint.cc, `ReadJoint`), with whether romdyn reads it.
-const JOINT_TYPES: KeywordTable = KeywordTable {
+pub(in crate::input::mbdyn) const JOINT_TYPES: KeywordTable = KeywordTable {
     what: "joint type",
     keywords: &[
         read("modal"), read("brake"), read("viscous body"), read("angular acceleration"), read("gimbal rotation"), read("pin"),
@@ -565,15 +565,4 @@ fn time_variant_rod(label: Label, a: &Side, b: &Side, l0: f64, law: &LinearLaw, 
     let viscous = (viscosity != 0.0).then_some(RodViscosity { coefficient: viscosity, length: l0 });
     let viscous = Rod { label, a: a.anchor(), b: b.anchor(), axial_stiffness: 0.0, length: l0, viscous, elastic: None };
     crate::element::TimeVariantRod { elastic, viscous, prestress: law.prestress[0], variance }
-}
-
-#[cfg(test)]
-mod joint_types_table {
-    #[test]
-    fn the_book_lists_the_keywords_of_the_table() {
-        let chapter = include_str!("../../../../docs/src/mbdyn/joints.md");
-        if let Err(e) = crate::input::mbdyn::syntax::keywords::check_documented(&super::JOINT_TYPES, chapter) {
-            panic!("docs/src/mbdyn/joints.md: {e}");
-        }
-    }
 }
