@@ -36,4 +36,5 @@ mod scalar_nodes;
 mod screw_friction;
 mod screw_joint;
 mod shell;
+mod shell_ans;
 mod spinning_linearization;

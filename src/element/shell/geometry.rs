@@ -14,8 +14,16 @@ pub const NODE_XI: [[f64; 2]; 4] = [[1.0, 1.0], [-1.0, 1.0], [-1.0, -1.0], [1.0,
 const G: f64 = 0.577_350_269_189_625_8;
 pub const POINT_XI: [[f64; 2]; 4] = [[-G, -G], [G, -G], [G, G], [-G, G]];
 
-/// Number of enhanced-strain parameters (MBDyn's `iGetNumDof`).
+/// `shell4easans`'s tying points A, B, C, D: the midpoints of the edges, where the
+/// transverse shear strains are sampled.
+pub const TYING_XI: [[f64; 2]; 4] = [[0.0, 1.0], [-1.0, 0.0], [0.0, -1.0], [1.0, 0.0]];
+
+/// Number of enhanced-strain parameters of `shell4eas` (MBDyn's `iGetNumDof`).
 pub const EAS: usize = 13;
+
+/// The first 7 of them, which enhance the membrane strains only: `shell4easans`'s and
+/// `membrane4eas`'s.
+pub const MEMBRANE_EAS: usize = 7;
 
 /// `L_n(ξ) = ¼ (1 + ξ₁ ξ₁ₙ)(1 + ξ₂ ξ₂ₙ)`.
 pub fn shape(n: usize, xi: [f64; 2]) -> f64 {
@@ -44,6 +52,22 @@ pub fn surface_frame(x: &[Vec3; 4], xi: [f64; 2]) -> Mat3 {
 /// coordinates with respect to natural ones.
 pub fn metric(x: &[Vec3; 4], t: &Mat3, xi: [f64; 2]) -> nalgebra::Matrix2<f64> {
     nalgebra::Matrix2::from_fn(|a, b| t.column(a).dot(&surface_tangent(x, b, xi)))
+}
+
+/// The local Cartesian derivatives `∂L_n/∂s_α` (`[n][α]`) at `ξ` in the frame `t` and the
+/// area factor `α = det S`; the area factor itself when it is not positive (a degenerate
+/// quadrilateral).
+pub fn cartesian_derivatives(x: &[Vec3; 4], t: &Mat3, xi: [f64; 2]) -> Result<([[f64; 2]; 4], f64), f64> {
+    let s = metric(x, t, xi);
+    let area = s.determinant();
+    let Some(s_inv) = s.try_inverse().filter(|_| area > 0.0 && area.is_finite()) else {
+        return Err(area);
+    };
+    let dl = std::array::from_fn(|n| {
+        let d = [shape_derivative(n, 0, xi), shape_derivative(n, 1, xi)];
+        [d[0] * s_inv[(0, 0)] + d[1] * s_inv[(1, 0)], d[0] * s_inv[(0, 1)] + d[1] * s_inv[(1, 1)]]
+    });
+    Ok((dl, area))
 }
 
 /// The average frame `T̄` of the nodes' frames `F_n`: the rotation of the rotation vector of

@@ -12,17 +12,19 @@ use nalgebra::{SMatrix, SVector};
 use super::cursor::Cursor;
 use super::diagnostic::MbdynError;
 use super::element_context::{ElementContext, Parsed};
-use crate::element::{Shell4Eas, ShellLaw};
+use crate::element::{Shell4, ShellLaw, ShellVariant};
 use crate::model::Label;
 
-/// `shell4eas` (and the refusals of the other plate elements).
+/// `shell4eas` and `shell4easans` (and the refusals of the other plate elements).
 pub fn plate(keyword: &str, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Parsed, MbdynError> {
-    if keyword != "shell4eas" {
-        return Err(c.error_at(c.statement().span, super::diagnostic::mbdyn_runs_it(&format!("element type '{keyword}' ({keyword} {label}; romdyn reads the plate element 'shell4eas')"))));
-    }
+    let variant = match keyword {
+        "shell4eas" => ShellVariant::Eas,
+        "shell4easans" => ShellVariant::EasAns,
+        _ => return Err(c.error_at(c.statement().span, super::diagnostic::mbdyn_runs_it(&format!("element type '{keyword}' ({keyword} {label}; romdyn reads the plate elements 'shell4eas' and 'shell4easans')")))),
+    };
     let mut nodes = Vec::with_capacity(4);
     for k in 1..=4 {
-        let n = ctx.node(c, &format!("node {k} of shell4eas {label}"))?;
+        let n = ctx.node(c, &format!("node {k} of {keyword} {label}"))?;
         if c.accept("orientation") {
             ctx.on(n).relative_orientation(c, &format!("orientation of node {k}"))?;
         }
@@ -31,9 +33,9 @@ pub fn plate(keyword: &str, label: Label, c: &mut Cursor, ctx: &ElementContext) 
     let law = shell_law(c)?;
     let span = c.statement().span;
     let Ok(nodes) = <[_; 4]>::try_from(nodes) else {
-        return Err(c.error_at(span, format!("shell4eas {label}: expected four nodes")));
+        return Err(c.error_at(span, format!("{keyword} {label}: expected four nodes")));
     };
-    let shell = Shell4Eas::new(label, nodes, law).map_err(|e| c.error_at(span, e.to_string()))?;
+    let shell = Shell4::new(variant, label, nodes, law).map_err(|e| c.error_at(span, e.to_string()))?;
     Ok(Parsed::Element(Box::new(shell)))
 }
 
