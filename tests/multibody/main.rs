@@ -37,4 +37,6 @@ mod screw_friction;
 mod screw_joint;
 mod shell;
 mod shell_ans;
+mod shell_laws;
+mod membrane;
 mod spinning_linearization;

@@ -17,7 +17,7 @@ use romdyn::kinematics::{rotation_vector, Vec3};
 use romdyn::study::{Study, StudySource};
 
 /// The position and rotation vector of node `label` at the end of the run of `name`.
-fn final_node(name: &str, label: u32) -> (Vec3, Vec3) {
+pub(crate) fn final_node(name: &str, label: u32) -> (Vec3, Vec3) {
     let m = read_test_file(name);
     let report = run(&m.model, &m.problem, &mut ()).unwrap_or_else(|e| panic!("{e}"));
     let asm = Assembler::new(&m.model);
@@ -120,32 +120,46 @@ pub(crate) fn assert_patch_jacobians(card: &str, dir_name: &str) -> usize {
         CARD: 2, 6, 5, 2, 3, diag, 10., 8., 5., 8., 10., 5., 1., 2., 0.1, 2., 1., 0.1;\n\
         end: elements;\n"
         .replace("CARD", card);
+    assert_text_jacobians(&text, dir_name, 38)
+}
+
+/// The Jacobian of the MBDyn file `text` at its initial state perturbed by noise (`seed`)
+/// against central differences in both constraint forms, 1e-6 relative; the number of
+/// entries compared.
+pub(crate) fn assert_text_jacobians(text: &str, dir_name: &str, seed: u64) -> usize {
     let dir = common::cli::temp_dir(dir_name);
-    let path = common::cli::write_file(&dir, "patch.mbd", &text);
+    let path = common::cli::write_file(&dir, "patch.mbd", text);
     assert_model_jacobians(
         |form| {
             let mut m = romdyn::input::mbdyn::read_model(std::path::Path::new(&path)).unwrap_or_else(|e| panic!("{e}"));
             m.model.constraint_form = form;
             m.model
         },
-        38,
+        seed,
         1e-6,
     )
 }
 
 #[test]
-fn plate_cards_romdyn_does_not_read_are_refused_with_their_place() {
-    // shell4easans and membrane4eas: MBDyn 1.7.3 runs them (dataman4.cc reads both);
-    // a law missing its thickness or given two data only once is refused at its place.
+fn bad_plate_laws_are_refused_with_their_place() {
+    // A law missing its thickness or given a datum twice, a Poisson's ratio out of range,
+    // the orthotropic law's data missing or inconsistent, its fiber angle (MBDyn 1.7.3:
+    // "fiber angle "beta" not supported yet"), a membrane law with the shells' factors: each
+    // refused at its place.
     let text = std::fs::read_to_string(test_file("shell4eas_cantilever.mbd")).unwrap();
     let card = "shell4eas: 1, 102, 101, 1, 2, isotropic, E, E, nu, NU, thickness, H;";
     assert!(text.contains(card));
+    let orthotropic = "plane stress orthotropic, E_l, E, E_t, E/2, nu_lt, NU, G, E/3";
     let cases = [
-        (card.replace("shell4eas:", "membrane4eas:"), "(MBDyn 1.7.3 runs it)"),
-        (card.replace(", thickness, H", ""), "the 'thickness' is missing"),
+        (card.replace(", thickness, H", ""), "shell isotropic law: the 'thickness' is missing"),
         (card.replace("nu, NU", "E, 1."), "Young's modulus E [Pa] given twice"),
         (card.replace("nu, NU", "nu, .5"), "must be in [0, 0.5)"),
-        (card.replace("isotropic", "plane stress orthotropic"), "(MBDyn 1.7.3 runs it)"),
+        (card.replace("isotropic, E, E, nu, NU", orthotropic).replace(", thickness, H", ""), "shell plane stress orthotropic law: the 'thickness' is missing"),
+        (card.replace("isotropic, E, E, nu, NU", &orthotropic.replace(", E_t, E/2", "")), "the transverse Young's modulus 'E_t' is missing"),
+        (card.replace("isotropic, E, E, nu, NU", &format!("{orthotropic}, nu_tl, 0.2")), "are inconsistent (nu_tl E_l must equal nu_lt E_t)"),
+        (card.replace("isotropic, E, E, nu, NU", &format!("{orthotropic}, beta, 30.")), "the fiber angle 'beta' is not supported (MBDyn 1.7.3 refuses it too"),
+        (card.replace("shell4eas:", "membrane4eas:").replace(", thickness, H", ""), "membrane isotropic law: the 'thickness' is missing"),
+        (card.replace("shell4eas:", "membrane4eas:").replace("thickness, H", "thickness, H, as, 1."), "'as'"),
     ];
     for (changed, expected) in cases {
         let err = romdyn::input::mbdyn::read_model_text(&text.replace(card, &changed), &test_file("shell4eas_cantilever.mbd"), &Default::default()).err().unwrap_or_else(|| panic!("accepted: {changed}"));
@@ -179,14 +193,20 @@ fn the_plate_file_holds_mbdyn_s_stress_resultants() {
         -2.1390053880437770e-25, -1.2741571062566454e-11, -9.0268726054793792e-15, -9.4999980592451099e+00,
         -2.6504731699789138e-14, 5.7445483927382012e-16, 2.5298050691328435e-15, -5.4217773843623211e-15,
     ];
-    let dir = common::cli::temp_dir("h-shell-pla");
-    let (ok, _, err) = common::cli::romdyn_at(&dir, &["run", test_file("shell4eas_cantilever.mbd").to_str().unwrap(), "-o", "c"]);
+    assert_last_pla_row("shell4eas_cantilever.mbd", "h-shell-pla", 40, &mbdyn);
+}
+
+/// `romdyn run FILE` writes `lines` lines to `.pla` (every plate at t = 0 and t = 1 s), and
+/// element 1's last row holds `mbdyn` (1e-9 relative plus 1e-6 N/m or N).
+pub(crate) fn assert_last_pla_row(name: &str, dir_name: &str, lines: usize, mbdyn: &[f64]) {
+    let dir = common::cli::temp_dir(dir_name);
+    let (ok, _, err) = common::cli::romdyn_at(&dir, &["run", test_file(name).to_str().unwrap(), "-o", "c"]);
     assert!(ok, "{err}");
     let body = std::fs::read_to_string(dir.join("c.pla")).unwrap();
-    assert_eq!(body.lines().count(), 40, "20 shells at t = 0 and t = 1 s");
+    assert_eq!(body.lines().count(), lines, "{name}: every plate at t = 0 and t = 1 s");
     let row: Vec<f64> = body.lines().rev().find(|l| l.split_whitespace().next() == Some("1")).unwrap().split_whitespace().skip(1).map(|v| v.parse().unwrap()).collect();
-    assert_eq!(row.len(), 48);
+    assert_eq!(row.len(), mbdyn.len());
     for (k, (ours, theirs)) in row.iter().zip(mbdyn).enumerate() {
-        assert!((ours - theirs).abs() < 1e-9 * theirs.abs() + 1e-6, "component {k}: {ours} against MBDyn's {theirs}");
+        assert!((ours - theirs).abs() < 1e-9 * theirs.abs() + 1e-6, "{name}: component {k}: {ours} against MBDyn's {theirs}");
     }
 }

@@ -78,22 +78,26 @@ pub fn average_frame(frames: &[Mat3; 4]) -> Mat3 {
     nalgebra::Rotation3::new(rotation_vector(&avg)).into_inner()
 }
 
+/// The rows of `H(ξ)` the shells and the membrane share (Witkowski's semi-EAS): ξ₁, ξ₁ξ₂ on
+/// ε₁₁ (row 0); ξ₂, ξ₁ξ₂ on ε₂₂ (row 1); ξ₁, ξ₁ξ₂ on ε₁₂ (row 2); the other rows zero.
+fn membrane_interpolation<const R: usize>(xi: [f64; 2]) -> nalgebra::SMatrix<f64, R, EAS> {
+    let mut h = nalgebra::SMatrix::<f64, R, EAS>::zeros();
+    let t = xi[0] * xi[1];
+    for (r, c, v) in [(0, 0, xi[0]), (0, 1, t), (1, 2, xi[1]), (1, 3, t), (2, 4, xi[0]), (2, 5, t)] {
+        h[(r, c)] = v;
+    }
+    h
+}
+
 /// The enhanced-strain matrix of Gauss point `xi` (12 × 13): the interpolation `H(ξ)` of
 /// the membrane and transverse-shear strains (6 × 13, Witkowski's semi-EAS), mapped by the
 /// inverse transpose of the centre's metric (`M₀⁻ᵀ`), scaled by `α₀/αᵢ` (the ratio of area
 /// factors), its rows placed as the strains are ordered (ε₁₁, ε₁₂, ε₁₃, ε₂₁, ε₂₂, ε₂₃; the
 /// curvatures are not enhanced).
 pub fn enhanced_strain_matrix(s0: &nalgebra::Matrix2<f64>, xi: [f64; 2], ratio: f64) -> nalgebra::SMatrix<f64, 12, EAS> {
-    let mut h = nalgebra::SMatrix::<f64, 6, EAS>::zeros();
-    let t = xi[0] * xi[1];
-    h[(0, 0)] = xi[0];
-    h[(0, 1)] = t;
-    h[(1, 2)] = xi[1];
-    h[(1, 3)] = t;
-    h[(2, 4)] = xi[0];
-    h[(2, 5)] = t;
+    let mut h = membrane_interpolation::<6>(xi);
     h[(3, 6)] = xi[1];
-    h[(3, 5)] = t;
+    h[(3, 5)] = xi[0] * xi[1];
     let a = 2.0 * xi[0] * (xi[1] * xi[1] - 1.0);
     let b = 2.0 * xi[1] * (xi[0] * xi[0] - 1.0);
     h[(4, 7)] = a;
@@ -134,4 +138,27 @@ pub fn enhanced_strain_matrix(s0: &nalgebra::Matrix2<f64>, xi: [f64; 2], ratio: 
         p.set_row(row, &(mapped.row(r) * ratio));
     }
     p
+}
+
+/// The enhanced-strain matrix of a membrane's Gauss point `xi` (3 × 13, only the first
+/// [`MEMBRANE_EAS`] columns used; MBDyn's membraneeas.cc): the interpolation `H(ξ)` of
+/// (ε₁₁, ε₂₂, ε₁₂) (3 × 7: ξ₁, ξ₁ξ₂ on ε₁₁; ξ₂, ξ₁ξ₂ on ε₂₂; ξ₁, ξ₁ξ₂, ξ₂ on ε₁₂), mapped by
+/// the inverse transpose of the centre's metric acting on the Green–Lagrange strains
+/// (`M₀⁻ᵀ`), scaled by `α₀/αᵢ`.
+pub fn membrane_enhanced_strain_matrix(s0: &nalgebra::Matrix2<f64>, xi: [f64; 2], ratio: f64) -> nalgebra::SMatrix<f64, 3, EAS> {
+    let mut h = membrane_interpolation::<3>(xi);
+    h[(2, 6)] = xi[1];
+    let s = |a: usize, b: usize| s0[(a, b)];
+    let m = nalgebra::Matrix3::new(
+        s(0, 0) * s(0, 0),
+        s(0, 1) * s(0, 1),
+        s(0, 1) * s(0, 0),
+        s(1, 0) * s(1, 0),
+        s(1, 1) * s(1, 1),
+        s(1, 1) * s(1, 0),
+        s(0, 0) * s(1, 0),
+        s(0, 1) * s(1, 1),
+        s(0, 0) * s(1, 1) + s(0, 1) * s(1, 0),
+    );
+    m.try_inverse().unwrap_or_else(nalgebra::Matrix3::zeros).transpose() * h * ratio
 }

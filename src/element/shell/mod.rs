@@ -35,11 +35,14 @@
 //! `σ · ∂²ε` (MBDyn's tangent of `shell4easans` takes the geometric part at the Gauss
 //! points, not through the tying points).
 
+pub mod enhanced;
 pub mod geometry;
 pub mod hyper;
+pub mod membrane;
 
 use nalgebra::{SMatrix, SVector};
 
+use self::enhanced::Sampled;
 use self::geometry::{enhanced_strain_matrix, metric, shape, surface_frame, EAS, MEMBRANE_EAS, POINT_XI, TYING_XI};
 use self::hyper::{add, cst_m, lift, mat_mat, mat_t_vec, mat_vec, rotation, scale, tangent, Hyper, Real, M3, V3};
 use crate::element::contract::{Col, Element, ElementState, JacobianSink, Label, Outputs, ResidualSink, Row, UnknownKind};
@@ -62,23 +65,37 @@ impl ShellLaw {
         let d = c * h * h / 12.0;
         let gh = g * h;
         let f = gh * h * h / 12.0;
+        Self::from_terms([c, c, c * nu], [2.0 * gh, gh * shear_factor], [d, d, -d * nu], [2.0 * f, f * drilling_factor])
+    }
+
+    /// MBDyn's `plane stress orthotropic` law (shell.cc), the orthotropy axes along the
+    /// element's first surface direction: with `C = h/(1 − ν_lt² E_t/E_l)`, `D = C h²/12`,
+    /// `F = G h³/12`: membrane `C E_l`, `C E_t`, `C ν_lt E_t`, in-plane shear `2 G h`,
+    /// transverse shear `a_s G h`; bending `D E_l`, `D E_t`, `−D ν_lt E_t`, twist `2 F`,
+    /// drilling `a_t F`.
+    pub fn orthotropic(el: f64, et: f64, nu_lt: f64, g: f64, h: f64, shear_factor: f64, drilling_factor: f64) -> Self {
+        let c = h / (1.0 - nu_lt * nu_lt * et / el);
+        let d = c * h * h / 12.0;
+        let gh = g * h;
+        let f = gh * h * h / 12.0;
+        Self::from_terms([c * el, c * et, c * nu_lt * et], [2.0 * gh, gh * shear_factor], [d * el, d * et, -d * nu_lt * et], [2.0 * f, f * drilling_factor])
+    }
+
+    /// The 12×12 law of MBDyn's isotropic and orthotropic readers from its terms:
+    /// `membrane` (ε₁₁, ε₂₂ and between them), `shear` (in-plane ε₁₂ and ε₂₁, transverse ε₁₃
+    /// and ε₂₃), `bending` (κ₁₂, κ₂₁ and between them), `twist` (κ₁₁ and κ₂₂, drilling κ₁₃ and
+    /// κ₂₃).
+    fn from_terms(membrane: [f64; 3], shear: [f64; 2], bending: [f64; 3], twist: [f64; 2]) -> Self {
         let mut k = SMatrix::<f64, 12, 12>::zeros();
-        k[(0, 0)] = c;
-        k[(0, 4)] = c * nu;
-        k[(4, 0)] = c * nu;
-        k[(4, 4)] = c;
-        k[(1, 1)] = 2.0 * gh;
-        k[(3, 3)] = 2.0 * gh;
-        k[(2, 2)] = gh * shear_factor;
-        k[(5, 5)] = gh * shear_factor;
-        k[(6, 6)] = 2.0 * f;
-        k[(10, 10)] = 2.0 * f;
-        k[(7, 7)] = d;
-        k[(9, 9)] = d;
-        k[(7, 9)] = -d * nu;
-        k[(9, 7)] = -d * nu;
-        k[(8, 8)] = f * drilling_factor;
-        k[(11, 11)] = f * drilling_factor;
+        for (r, c, v) in [(0, 0, membrane[0]), (4, 4, membrane[1]), (0, 4, membrane[2]), (7, 7, bending[0]), (9, 9, bending[1]), (7, 9, bending[2])] {
+            k[(r, c)] = v;
+            k[(c, r)] = v;
+        }
+        for (diagonal, v) in [([1, 3], shear[0]), ([2, 5], shear[1]), ([6, 10], twist[0]), ([8, 11], twist[1])] {
+            for i in diagonal {
+                k[(i, i)] = v;
+            }
+        }
         ShellLaw { stiffness: k, prestress: SVector::zeros() }
     }
 }
@@ -303,15 +320,14 @@ impl Shell4 {
         })
     }
 
+    /// Each Gauss point's `B_i`, `P_i`, `σ_i`, `α_i`.
+    fn sampled_points<'a>(&'a self, st: &'a State) -> impl Iterator<Item = Sampled<'a, 12, 24>> {
+        self.points.iter().enumerate().map(|(i, p)| Sampled { b: &st.b[i], p: &p.p, stress: &st.stress[i], area: p.area })
+    }
+
     /// Internal forces on the 24 coordinates (positions, rotation vectors) and on `β`.
     fn forces(&self, st: &State) -> (SVector<f64, 24>, SVector<f64, EAS>) {
-        let mut fq = SVector::<f64, 24>::zeros();
-        let mut fb = SVector::<f64, EAS>::zeros();
-        for (i, p) in self.points.iter().enumerate() {
-            fq += st.b[i].transpose() * st.stress[i] * p.area;
-            fb += p.p.transpose() * st.stress[i] * p.area;
-        }
-        (fq, fb)
+        enhanced::internal_forces(self.sampled_points(st))
     }
 }
 
@@ -366,17 +382,8 @@ impl Element for Shell4 {
     }
     fn jacobian(&self, s: &dyn ElementState, out: &mut dyn JacobianSink) {
         let st = self.state(s);
-        let d = &self.law.stiffness;
         // K_qq = Σ α (Bᵀ D B + σ · ∂²ε), K_qβ, K_ββ.
-        let mut kqq = SMatrix::<f64, 24, 24>::zeros();
-        let mut kqb = SMatrix::<f64, 24, EAS>::zeros();
-        let mut kbb = SMatrix::<f64, EAS, EAS>::zeros();
-        for (i, p) in self.points.iter().enumerate() {
-            let db = d * st.b[i];
-            kqq += st.b[i].transpose() * db * p.area;
-            kqb += st.b[i].transpose() * d * p.p * p.area;
-            kbb += p.p.transpose() * d * p.p * p.area;
-        }
+        let (mut kqq, kqb, kbb) = enhanced::linear_tangent(&self.law.stiffness, self.sampled_points(&st));
         for j in (0..24).filter(|&j| is_rotation(j)) {
             for k in 0..24 {
                 if is_rotation(k) && k < j {
@@ -409,27 +416,14 @@ impl Element for Shell4 {
         let kqb = t.transpose() * kqb;
         let col = |q: usize| if is_rotation(q) { Col::Rotation { slot: q / 6, comp: q % 6 - 3 } } else { Col::Position { slot: q / 6, comp: q % 6 } };
         let row = |q: usize| Row::Equilibrium { slot: q / 6, comp: q % 6 };
-        for r in 0..24 {
-            for c in 0..24 {
-                out.add(row(r), col(c), kq[(r, c)]);
-            }
-            for k in 0..self.variant.enhanced() {
-                out.add(row(r), Col::Multiplier(k), kqb[(r, k)]);
-                out.add(Row::Constraint(k), col(r), kqb[(r, k)]);
-            }
-        }
-        for a in 0..self.variant.enhanced() {
-            for b in 0..self.variant.enhanced() {
-                out.add(Row::Constraint(a), Col::Multiplier(b), kbb[(a, b)]);
-            }
-        }
+        enhanced::add_tangent(out, (&kq, &kqb, &kbb), self.variant.enhanced(), row, col);
     }
 }
 
 impl Outputs for Shell4 {
     /// MBDyn's `.pla` row: `σ_i = D (ε_i + P_i β) + σ₀` at the four Gauss points.
-    fn plate_resultants(&self, s: &dyn ElementState) -> Vec<[f64; 12]> {
-        self.state(s).stress.iter().map(|v| std::array::from_fn(|r| v[r])).collect()
+    fn plate_resultants(&self, s: &dyn ElementState) -> Vec<f64> {
+        self.state(s).stress.iter().flat_map(|v| v.iter().copied()).collect()
     }
 }
 

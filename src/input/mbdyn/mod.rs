@@ -40,6 +40,7 @@ mod model_namespace;
 mod nodes;
 mod orientation;
 mod parser;
+mod plate_laws;
 mod plates;
 mod problem;
 mod rbk;
