@@ -11,7 +11,7 @@
 use romdyn::input::mbdyn::SetOverrides;
 use romdyn::study::StudySource;
 
-use super::shell::{assert_cantilever_tip, assert_patch_jacobians, frequencies, frequencies_of};
+use super::shell::{assert_cantilever_tip, assert_last_pla_row, assert_patch_jacobians, frequencies, frequencies_of};
 use crate::common::mbdyn::test_file;
 
 /// Kirchhoff's ω_mn of the simply supported square plate of shell4eas_plate.mbd (a = 1 m,
@@ -90,4 +90,26 @@ fn a_cantilever_strip_of_ans_shells_bends_as_mbdyn_s() {
 fn ans_shell_derivatives_match_finite_differences_at_a_deformed_state() {
     let compared = assert_patch_jacobians("shell4easans", "h-shell2-ans-jacobian");
     assert!(compared >= 2, "both shells compared: {compared}");
+}
+
+#[test]
+fn the_plate_file_holds_mbdyn_s_ans_stress_resultants() {
+    // MBDyn 1.7.3's out.pla on shell4easans_cantilever.mbd, element 1 at t = 1 s: the 12
+    // resultants at each Gauss point (n₁₃ = 10 N/m of shear flux from the tying points,
+    // m₁₂ = −9.5 N). 1e-9 relative plus 1e-6 N/m or N (the zeros are rounding, as shell4eas's).
+    let mbdyn = [
+        8.1426532183561328e-04, -1.1589536392513361e-08, 9.9999999668490815e+00, -1.4714283457134911e-08,
+        2.0309295028766976e-25, -8.1697316269707195e-13, -7.1319624954175926e-15, -9.4999980592447280e+00,
+        -2.0693777982377109e-14, 3.7014969379687679e-16, 2.5298050691328435e-15, -5.1473172536261000e-15,
+        8.1426532183579759e-04, -1.6461010498950105e-08, 9.9999999668490815e+00, -4.3388428217620481e-08,
+        -8.7126360132157135e-25, -3.0489853516057079e-12, -7.1319624954175926e-15, -9.4999980592447280e+00,
+        -2.0693777982377112e-14, 1.2007938258485428e-15, 1.0119220276531374e-14, -1.9210049804444352e-14,
+        8.1426532183592683e-04, -3.1518977183649671e-09, 9.9999999668463424e+00, -4.8259902354810652e-08,
+        8.7126360132157135e-25, -3.0489853516057079e-12, -6.6021296318939516e-15, -9.4999980592447226e+00,
+        -2.7725144067969861e-14, 1.2007938258485428e-15, 1.0119220276531374e-14, -1.9210049804444352e-14,
+        8.1426532183548404e-04, -8.0233703949136208e-09, 9.9999999668463424e+00, -9.8428108160176744e-09,
+        -2.0309295028766976e-25, -8.1697316269707195e-13, -6.6021296318939500e-15, -9.4999980592447226e+00,
+        -2.7725144067969861e-14, 3.7014969379687679e-16, 2.5298050691328435e-15, -5.1473172536261000e-15,
+    ];
+    assert_last_pla_row("shell4easans_cantilever.mbd", "h-shell2-ans-pla", 40, &mbdyn);
 }
