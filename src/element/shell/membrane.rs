@@ -33,7 +33,8 @@ pub struct MembraneLaw {
 
 impl MembraneLaw {
     /// The isotropic law of MBDyn's reader (membrane.cc, `isotropic`): `C = E h/(1 − ν²)`
-    /// on ε₁₁, ε₂₂ with `ν C` between them, `2 G h` on ε₁₂.
+    /// on ε₁₁, ε₂₂ with `ν C` between them, `2 G h` on ε₁₂ = `y₁·y₂`, the engineering shear
+    /// strain: twice an isotropic sheet's `G h`, as MBDyn has it.
     pub fn isotropic(e: f64, nu: f64, g: f64, h: f64) -> Self {
         let c = e / (1.0 - nu * nu) * h;
         let stiffness = Matrix3::new(c, nu * c, 0.0, nu * c, c, 0.0, 0.0, 0.0, 2.0 * g * h);
