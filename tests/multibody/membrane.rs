@@ -93,3 +93,24 @@ fn membrane_derivatives_match_finite_differences_at_a_deformed_state() {
     let compared = assert_text_jacobians(text, "h-shell2-membrane-jacobian", 41);
     assert!(compared >= 2, "both membranes compared: {compared}");
 }
+
+#[test]
+fn a_prestressed_membrane_drum_has_the_wave_equation_s_modes_and_mbdyn_s() {
+    // tests/mbdyn_files/membrane4eas_drum.mbd: a = 1 m, tension T = 1000 N/m as prestress,
+    // ρh = 1 kg/m², 4 × 4 elements, the interior nodes dynamic displacement nodes with lumped
+    // masses, the edges clamped. Out of plane only the prestress holds it (the geometric
+    // stiffness at rest): ω_mn = π √(T/(ρh)) √(m² + n²)/a, ω_11 = 140.50 rad/s. Measured with
+    // MBDyn 1.7.3 on this mesh and on 8 × 8: 130.06, 137.81 rad/s (−7.4 %, −1.9 %: second
+    // order, Richardson's extrapolation 140.40 rad/s): the 4 × 4 mesh within its error.
+    let w = super::shell::frequencies("membrane4eas_drum.mbd");
+    let exact = std::f64::consts::PI * 1000.0_f64.sqrt() * 2.0_f64.sqrt();
+    assert!((w[0] / exact - 1.0).abs() < 0.08, "ω_11 {} against {exact}", w[0]);
+    assert!((w[1] - w[2]).abs() < 1e-9 * w[1], "ω_12 and ω_21 are one double eigenvalue: {} {}", w[1], w[2]);
+    // MBDyn 1.7.3 on the same file (its LAPACK eigenanalysis, dCoef 0.5 s): 130.05788897043254,
+    // 187.41450172298948 and 187.41453731123465 (the double pair split by 1.9e-7),
+    // 206.55910267166448 rad/s: 1e-6 relative.
+    let mbdyn = [130.05788897043254, 0.5 * (187.41450172298948 + 187.41453731123465), 206.55910267166448];
+    for (k, (ours, theirs)) in [w[0], w[1], w[3]].iter().zip(mbdyn).enumerate() {
+        assert!((ours - theirs).abs() < 1e-6 * theirs, "mode {k}: {ours} against MBDyn's {theirs}");
+    }
+}

@@ -131,7 +131,7 @@ impl ShellVariant {
 /// Why a shell cannot be built.
 #[derive(Debug, thiserror::Error)]
 pub enum ShellError {
-    #[error("{0} {1}: the four nodes do not span a quadrilateral (area factor {2:e} at a Gauss point; MBDyn numbers them counterclockwise seen from the normal, starting at the (+, +) corner)")]
+    #[error("{0} {1}: the four nodes do not span a quadrilateral (area factor {2:e} at a point where the strains are sampled; MBDyn numbers them counterclockwise seen from the normal, starting at the (+, +) corner)")]
     Degenerate(&'static str, Label, f64),
 }
 
