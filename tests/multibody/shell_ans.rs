@@ -11,7 +11,7 @@
 use romdyn::input::mbdyn::SetOverrides;
 use romdyn::study::StudySource;
 
-use super::shell::{assert_cantilever_tip, assert_last_pla_row, assert_patch_jacobians, frequencies, frequencies_of};
+use super::shell::{assert_cantilever_tip, assert_last_pla_row, assert_patch_jacobians, final_node, frequencies, frequencies_of};
 use crate::common::mbdyn::test_file;
 
 /// Kirchhoff's ω_mn of the simply supported square plate of shell4eas_plate.mbd (a = 1 m,
@@ -112,4 +112,29 @@ fn the_plate_file_holds_mbdyn_s_ans_stress_resultants() {
         -2.7725144067969861e-14, 3.7014969379687679e-16, 2.5298050691328435e-15, -5.1473172536261000e-15,
     ];
     assert_last_pla_row("shell4easans_cantilever.mbd", "h-shell2-ans-pla", 40, &mbdyn);
+}
+
+#[test]
+fn on_a_thin_skewed_mesh_the_ans_shell_locks_where_the_eas_shell_does_not() {
+    // tests/mbdyn_files/shell4eas_skewed_cantilever.mbd and shell4easans_skewed_cantilever.mbd:
+    // the cantilever strip with h = 1 mm (L/h = 1000), trapezoidal elements (the middle row's
+    // interior nodes moved by ±0.03 m along x), P = 1 mN. Beam theory: P L³/(3 EI) =
+    // 5.714e-4 m. Measured: shell4eas +1.37 % (5.7925e-4 m), shell4easans 4.128e-6 m, 138
+    // times too stiff, and stiffer as h falls (with MBDyn 1.7.3: 3.14e-5, 7.80e-6, 4.13e-6 m
+    // at h = 10, 3, 1 mm, where shell4eas stays within 1.5 %): shear locking. MBDyn's ANS
+    // samples the transverse shears as components in each tying point's Cartesian frame
+    // (t₁ along ∂x/∂ξ₁, t₂ ⟂ t₁), not as covariant components along ∂x/∂ξ₂; on a skewed
+    // element ε₂₃ at B and D then carries part of the ε₁₃ shear (our reading of the cause).
+    // romdyn follows MBDyn.
+    let ei = 70e9 * 0.1 * 0.001_f64.powi(3) / 12.0;
+    let beam = 1e-3 / (3.0 * ei);
+    let (eas, _) = final_node("shell4eas_skewed_cantilever.mbd", 111);
+    let (ans, _) = final_node("shell4easans_skewed_cantilever.mbd", 111);
+    assert!((eas.z / beam - 1.0).abs() < 0.02, "shell4eas tip {} against {beam}", eas.z);
+    assert!(ans.z > 0.0 && ans.z < 0.02 * beam, "shell4easans tip {} does not lock against {beam}", ans.z);
+    // MBDyn 1.7.3 on the same files, node 111's z: 5.7925370422790359e-04 and
+    // 4.1278233715921420e-06 m: 1e-9 relative.
+    for (ours, theirs) in [(eas.z, 5.7925370422790359e-04), (ans.z, 4.1278233715921420e-06)] {
+        assert!((ours - theirs).abs() < 1e-9 * theirs, "{ours} against MBDyn's {theirs}");
+    }
 }

@@ -11,7 +11,10 @@
 //!   shear strains are assumed natural strains (ANS, Witkowski §3.2): sampled at the
 //!   midpoints of the edges (tying points A (0, 1), B (−1, 0), C (0, −1), D (1, 0)) and
 //!   interpolated to the Gauss points, `ε_13 = ½(1 + ξ₂) ε_13^A + ½(1 − ξ₂) ε_13^C`,
-//!   `ε_23 = ½(1 − ξ₁) ε_23^B + ½(1 + ξ₁) ε_23^D`, which removes transverse shear locking.
+//!   `ε_23 = ½(1 − ξ₁) ε_23^B + ½(1 + ξ₁) ε_23^D`. The tying points' strains are, as
+//!   MBDyn has them, components in each point's Cartesian frame (`t₁` along `∂x/∂ξ₁`), not
+//!   covariant ones: on rectangles the element converges faster than `shell4eas`, on
+//!   skewed thin meshes it locks in shear (tests/multibody/shell_ans.rs).
 //!
 //! With `T̄` the average of the nodes' initial surface frames, each node's rotation relative
 //! to it `φ_n = rotvec(T̄ᵀ R_n T_nᵒ)` (`T_nᵒ` the node's surface frame in its own frame) is
