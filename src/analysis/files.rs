@@ -96,7 +96,7 @@ impl RunFiles {
         let has_modes = model.elements.iter().any(|e| e.outputs().is_some_and(|o| !o.modal_coordinates().is_empty()));
         let digits = problem.output.as_ref().map_or(MotionOutput::DEFAULT_DIGITS, MotionOutput::digits);
         let modal = if has_modes { Some(ModalCoordinateWriter::create(&prefixed_path(prefix, "mod"), digits)?) } else { None };
-        let has_plates = model.elements.iter().any(|e| e.type_name() == "shell4eas");
+        let has_plates = model.elements.iter().any(|e| matches!(e.type_name(), "shell4eas" | "shell4easans" | "membrane4eas"));
         let plates = if has_plates { Some(PlateWriter::create(&prefixed_path(prefix, "pla"))?) } else { None };
         Ok(RunFiles { prefix: prefix.to_path_buf(), input: input.to_string(), eigen_count, eigen_suffix, out, mov, scalars, motion: problem.output.clone(), beams: None, plates, modal, has_beams: None, staged: vec![log], last_step: None, iterations: 0 })
     }

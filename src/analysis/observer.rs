@@ -50,7 +50,7 @@ impl StepDone<'_> {
     }
 
     /// Every shell's stress resultants at its Gauss points (MBDyn's `.pla` rows).
-    pub fn plate_resultants(&self) -> Vec<(Label, Vec<[f64; 12]>)> {
+    pub fn plate_resultants(&self) -> Vec<(Label, Vec<f64>)> {
         self.assembler.plate_resultants(self.state).into_iter().map(|(e, s)| (self.model.elements[e].label(), s)).collect()
     }
 

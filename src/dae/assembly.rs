@@ -513,7 +513,7 @@ impl<'m> Assembler<'m> {
     }
 
     /// Every shell's stress resultants at its Gauss points, by element index.
-    pub fn plate_resultants(&self, st: &State) -> Vec<(usize, Vec<[f64; 12]>)> {
+    pub fn plate_resultants(&self, st: &State) -> Vec<(usize, Vec<f64>)> {
         self.element_outputs(st, |o, s| o.plate_resultants(s))
     }
 

@@ -340,9 +340,10 @@ pub trait Outputs {
     fn sections(&self, _s: &dyn ElementState) -> Vec<SectionState> {
         Vec::new()
     }
-    /// Stress resultants at the element's Gauss points (shells: MBDyn's `.pla` row, the 12
-    /// force and moment fluxes n₁₁ … m₂₃ [N/m, N] of each point); none for other elements.
-    fn plate_resultants(&self, _s: &dyn ElementState) -> Vec<[f64; 12]> {
+    /// Stress resultants at the element's Gauss points, MBDyn's `.pla` row after the label
+    /// (shells: the 12 force and moment fluxes n₁₁ … m₂₃ [N/m, N] of each point; membranes:
+    /// n₁₁, n₂₂, n₁₂ [N/m] of each point); none for other elements.
+    fn plate_resultants(&self, _s: &dyn ElementState) -> Vec<f64> {
         Vec::new()
     }
 }

@@ -59,7 +59,8 @@ pub use beam::{shape as beam_shape, Beam2, Beam3, BeamError, BeamUpdate, BeamNod
 pub use beam_slider::{BeamSlider, SliderBeam, SliderKind};
 pub use bistop_rod::{BistopRod, BistopStatus};
 pub use body::RigidBody;
-pub use shell::{Shell4Eas, ShellError, ShellLaw};
+pub use shell::membrane::{Membrane4, MembraneLaw};
+pub use shell::{Shell4, ShellError, ShellLaw, ShellVariant};
 pub use modal::{FemNode, Interface as ModalInterface, ModalBody, ModalFrame};
 pub use variable_body::VariableBody;
 pub use frame_motion::{FrameMotion, FrameState};

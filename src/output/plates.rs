@@ -1,6 +1,8 @@
-//! `PREFIX.pla`, MBDyn's plate output (shelleas.cc, `Output`): one line per shell and output
-//! instant, `label` then the 12 stress resultants of each of its four Gauss points
-//! (n₁₁, n₁₂, n₁₃, n₂₁, n₂₂, n₂₃ [N/m], m₁₁, …, m₂₃ [N]) in the points' frames. No header,
+//! `PREFIX.pla`, MBDyn's plate output (shelleas.cc, shelleasans.cc, membraneeas.cc,
+//! `Output`): one line per plate element and output instant, `label` then the stress
+//! resultants of each of its four Gauss points: a shell's 12 (n₁₁, n₁₂, n₁₃, n₂₁, n₂₂, n₂₃
+//! [N/m], m₁₁, …, m₂₃ [N]) in the points' frames, a membrane's 3 (n₁₁, n₂₂, n₁₂ [N/m],
+//! second Piola–Kirchhoff, in the initial points' frames). No header,
 //! so Octave's `load` reads it; written under a temporary name and renamed when the run
 //! finishes.
 
@@ -20,11 +22,11 @@ impl PlateWriter {
     }
 
     /// Appends one output instant: a line per shell.
-    pub fn write_step(&mut self, plates: &[(Label, Vec<[f64; 12]>)]) -> Result<(), OutputError> {
+    pub fn write_step(&mut self, plates: &[(Label, Vec<f64>)]) -> Result<(), OutputError> {
         self.file.write_with(|out| {
             plates.iter().try_for_each(|(label, points)| {
                 write!(out, "{label}")?;
-                for v in points.iter().flatten() {
+                for v in points {
                     write!(out, " {v:.16e}")?;
                 }
                 writeln!(out)

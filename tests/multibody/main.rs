@@ -36,4 +36,7 @@ mod scalar_nodes;
 mod screw_friction;
 mod screw_joint;
 mod shell;
+mod shell_ans;
+mod shell_laws;
+mod membrane;
 mod spinning_linearization;

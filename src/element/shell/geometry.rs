@@ -14,8 +14,16 @@ pub const NODE_XI: [[f64; 2]; 4] = [[1.0, 1.0], [-1.0, 1.0], [-1.0, -1.0], [1.0,
 const G: f64 = 0.577_350_269_189_625_8;
 pub const POINT_XI: [[f64; 2]; 4] = [[-G, -G], [G, -G], [G, G], [-G, G]];
 
-/// Number of enhanced-strain parameters (MBDyn's `iGetNumDof`).
+/// `shell4easans`'s tying points A, B, C, D: the midpoints of the edges, where the
+/// transverse shear strains are sampled.
+pub const TYING_XI: [[f64; 2]; 4] = [[0.0, 1.0], [-1.0, 0.0], [0.0, -1.0], [1.0, 0.0]];
+
+/// Number of enhanced-strain parameters of `shell4eas` (MBDyn's `iGetNumDof`).
 pub const EAS: usize = 13;
+
+/// The first 7 of them, which enhance the membrane strains only: `shell4easans`'s and
+/// `membrane4eas`'s.
+pub const MEMBRANE_EAS: usize = 7;
 
 /// `L_n(ξ) = ¼ (1 + ξ₁ ξ₁ₙ)(1 + ξ₂ ξ₂ₙ)`.
 pub fn shape(n: usize, xi: [f64; 2]) -> f64 {
@@ -46,6 +54,22 @@ pub fn metric(x: &[Vec3; 4], t: &Mat3, xi: [f64; 2]) -> nalgebra::Matrix2<f64> {
     nalgebra::Matrix2::from_fn(|a, b| t.column(a).dot(&surface_tangent(x, b, xi)))
 }
 
+/// The local Cartesian derivatives `∂L_n/∂s_α` (`[n][α]`) at `ξ` in the frame `t` and the
+/// area factor `α = det S`; the area factor itself when it is not positive (a degenerate
+/// quadrilateral).
+pub fn cartesian_derivatives(x: &[Vec3; 4], t: &Mat3, xi: [f64; 2]) -> Result<([[f64; 2]; 4], f64), f64> {
+    let s = metric(x, t, xi);
+    let area = s.determinant();
+    let Some(s_inv) = s.try_inverse().filter(|_| area > 0.0 && area.is_finite()) else {
+        return Err(area);
+    };
+    let dl = std::array::from_fn(|n| {
+        let d = [shape_derivative(n, 0, xi), shape_derivative(n, 1, xi)];
+        [d[0] * s_inv[(0, 0)] + d[1] * s_inv[(1, 0)], d[0] * s_inv[(0, 1)] + d[1] * s_inv[(1, 1)]]
+    });
+    Ok((dl, area))
+}
+
 /// The average frame `T̄` of the nodes' frames `F_n`: the rotation of the rotation vector of
 /// `Σ F_n / 4` (MBDyn: `RotManip::Rot(RotManip::VecRot(T_avg))`; for a flat element all
 /// `F_n` are equal and `T̄` is their frame).
@@ -54,22 +78,26 @@ pub fn average_frame(frames: &[Mat3; 4]) -> Mat3 {
     nalgebra::Rotation3::new(rotation_vector(&avg)).into_inner()
 }
 
+/// The rows of `H(ξ)` the shells and the membrane share (Witkowski's semi-EAS): ξ₁, ξ₁ξ₂ on
+/// ε₁₁ (row 0); ξ₂, ξ₁ξ₂ on ε₂₂ (row 1); ξ₁, ξ₁ξ₂ on ε₁₂ (row 2); the other rows zero.
+fn membrane_interpolation<const R: usize>(xi: [f64; 2]) -> nalgebra::SMatrix<f64, R, EAS> {
+    let mut h = nalgebra::SMatrix::<f64, R, EAS>::zeros();
+    let t = xi[0] * xi[1];
+    for (r, c, v) in [(0, 0, xi[0]), (0, 1, t), (1, 2, xi[1]), (1, 3, t), (2, 4, xi[0]), (2, 5, t)] {
+        h[(r, c)] = v;
+    }
+    h
+}
+
 /// The enhanced-strain matrix of Gauss point `xi` (12 × 13): the interpolation `H(ξ)` of
 /// the membrane and transverse-shear strains (6 × 13, Witkowski's semi-EAS), mapped by the
 /// inverse transpose of the centre's metric (`M₀⁻ᵀ`), scaled by `α₀/αᵢ` (the ratio of area
 /// factors), its rows placed as the strains are ordered (ε₁₁, ε₁₂, ε₁₃, ε₂₁, ε₂₂, ε₂₃; the
 /// curvatures are not enhanced).
 pub fn enhanced_strain_matrix(s0: &nalgebra::Matrix2<f64>, xi: [f64; 2], ratio: f64) -> nalgebra::SMatrix<f64, 12, EAS> {
-    let mut h = nalgebra::SMatrix::<f64, 6, EAS>::zeros();
-    let t = xi[0] * xi[1];
-    h[(0, 0)] = xi[0];
-    h[(0, 1)] = t;
-    h[(1, 2)] = xi[1];
-    h[(1, 3)] = t;
-    h[(2, 4)] = xi[0];
-    h[(2, 5)] = t;
+    let mut h = membrane_interpolation::<6>(xi);
     h[(3, 6)] = xi[1];
-    h[(3, 5)] = t;
+    h[(3, 5)] = xi[0] * xi[1];
     let a = 2.0 * xi[0] * (xi[1] * xi[1] - 1.0);
     let b = 2.0 * xi[1] * (xi[0] * xi[0] - 1.0);
     h[(4, 7)] = a;
@@ -110,4 +138,27 @@ pub fn enhanced_strain_matrix(s0: &nalgebra::Matrix2<f64>, xi: [f64; 2], ratio: 
         p.set_row(row, &(mapped.row(r) * ratio));
     }
     p
+}
+
+/// The enhanced-strain matrix of a membrane's Gauss point `xi` (3 × 13, only the first
+/// [`MEMBRANE_EAS`] columns used; MBDyn's membraneeas.cc): the interpolation `H(ξ)` of
+/// (ε₁₁, ε₂₂, ε₁₂) (3 × 7: ξ₁, ξ₁ξ₂ on ε₁₁; ξ₂, ξ₁ξ₂ on ε₂₂; ξ₁, ξ₁ξ₂, ξ₂ on ε₁₂), mapped by
+/// the inverse transpose of the centre's metric acting on the Green–Lagrange strains
+/// (`M₀⁻ᵀ`), scaled by `α₀/αᵢ`.
+pub fn membrane_enhanced_strain_matrix(s0: &nalgebra::Matrix2<f64>, xi: [f64; 2], ratio: f64) -> nalgebra::SMatrix<f64, 3, EAS> {
+    let mut h = membrane_interpolation::<3>(xi);
+    h[(2, 6)] = xi[1];
+    let s = |a: usize, b: usize| s0[(a, b)];
+    let m = nalgebra::Matrix3::new(
+        s(0, 0) * s(0, 0),
+        s(0, 1) * s(0, 1),
+        s(0, 1) * s(0, 0),
+        s(1, 0) * s(1, 0),
+        s(1, 1) * s(1, 1),
+        s(1, 1) * s(1, 0),
+        s(0, 0) * s(1, 0),
+        s(0, 1) * s(1, 1),
+        s(0, 0) * s(1, 1) + s(0, 1) * s(1, 0),
+    );
+    m.try_inverse().unwrap_or_else(nalgebra::Matrix3::zeros).transpose() * h * ratio
 }

@@ -112,10 +112,6 @@ pub fn lift(m: &crate::kinematics::Mat3) -> M3<f64> {
     std::array::from_fn(|i| std::array::from_fn(|j| m[(i, j)]))
 }
 
-pub fn cst_v<T: Real>(v: &V3<f64>) -> V3<T> {
-    v.map(T::cst)
-}
-
 pub fn cst_m<T: Real>(m: &M3<f64>) -> M3<T> {
     m.map(|r| r.map(T::cst))
 }
@@ -126,10 +122,6 @@ pub fn dot<T: Real>(a: &V3<T>, b: &V3<T>) -> T {
 
 pub fn add<T: Real>(a: &V3<T>, b: &V3<T>) -> V3<T> {
     std::array::from_fn(|i| a[i] + b[i])
-}
-
-pub fn sub<T: Real>(a: &V3<T>, b: &V3<T>) -> V3<T> {
-    std::array::from_fn(|i| a[i] - b[i])
 }
 
 pub fn scale<T: Real>(a: &V3<T>, s: T) -> V3<T> {

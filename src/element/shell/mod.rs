@@ -1,9 +1,20 @@
-//! MBDyn's 4-node shell with enhanced assumed strains (`shell4eas`, MBDyn 1.7.3's
-//! shelleas.cc, after Witkowski, "4-node combined shell element with semi-EAS-ANS strain
-//! interpolations in 6-parameter shell theories with drilling degrees of freedom", Comput
-//! Mech 43 (2009) 307–319): a 6-parameter (drilling) shell on four structural nodes, linear
-//! elastic, with 13 enhanced-strain parameters `β` as the element's own algebraic unknowns
-//! (not condensed, as MBDyn has them). It has no inertia: masses go on the nodes (bodies).
+//! MBDyn's 4-node shells (MBDyn 1.7.3's shelleas.cc and shelleasans.cc, after Witkowski,
+//! "4-node combined shell element with semi-EAS-ANS strain interpolations in 6-parameter
+//! shell theories with drilling degrees of freedom", Comput Mech 43 (2009) 307–319): a
+//! 6-parameter (drilling) shell on four structural nodes, linear elastic, with
+//! enhanced-strain parameters `β` as the element's own algebraic unknowns (not condensed,
+//! as MBDyn has them). It has no inertia: masses go on the nodes (bodies). Two variants
+//! ([`ShellVariant`]):
+//!
+//! - `shell4eas`: 13 parameters enhance the membrane and the transverse shear strains;
+//! - `shell4easans`: 7 parameters enhance the membrane strains only, and the transverse
+//!   shear strains are assumed natural strains (ANS, Witkowski §3.2): sampled at the
+//!   midpoints of the edges (tying points A (0, 1), B (−1, 0), C (0, −1), D (1, 0)) and
+//!   interpolated to the Gauss points, `ε_13 = ½(1 + ξ₂) ε_13^A + ½(1 − ξ₂) ε_13^C`,
+//!   `ε_23 = ½(1 − ξ₁) ε_23^B + ½(1 + ξ₁) ε_23^D`. The tying points' strains are, as
+//!   MBDyn has them, components in each point's Cartesian frame (`t₁` along `∂x/∂ξ₁`), not
+//!   covariant ones: on rectangles the element converges faster than `shell4eas`, on
+//!   skewed thin meshes it locks in shear (tests/multibody/shell_ans.rs).
 //!
 //! With `T̄` the average of the nodes' initial surface frames, each node's rotation relative
 //! to it `φ_n = rotvec(T̄ᵀ R_n T_nᵒ)` (`T_nᵒ` the node's surface frame in its own frame) is
@@ -13,9 +24,9 @@
 //! - `ε_α = T_iᵀ x_{,α} − ε_α⁰` (membrane `ε_α1, ε_α2`, transverse shear `ε_α3`),
 //! - `κ_α = T_iᵀ T̄ Γ(φ_i) φ_{,α} − κ_α⁰` (bending, twist and drilling),
 //!
-//! plus the enhanced part `P_i β` on the membrane and shear strains. The stress resultants
-//! `σ = D (ε + P_i β) + σ₀` (12×12 `D`, prestress `σ₀`) do virtual work on `δε`: nodes get
-//! `Σ_i α_i Bᵢᵀ σ_i` and the `β` equations `Σ_i α_i P_iᵀ σ_i = 0` (`α_i` the area factor).
+//! plus the enhanced part `P_i β`. The stress resultants `σ = D (ε + P_i β) + σ₀` (12×12
+//! `D`, prestress `σ₀`) do virtual work on `δε`: nodes get `Σ_i α_i Bᵢᵀ σ_i` and the `β`
+//! equations `Σ_i α_i P_iᵀ σ_i = 0` (`α_i` the area factor).
 //!
 //! `T̄` stays at its initial value. MBDyn recomputes it from each step's reference
 //! rotations; within one step (a static solution in one load step, an eigenanalysis about
@@ -24,15 +35,19 @@
 //!
 //! Derivatives are exact: the strains are one function generic over the scalar
 //! ([`hyper`]), evaluated with hyper-dual numbers for `B` and for the geometric stiffness
-//! `σ · ∂²ε`.
+//! `σ · ∂²ε` (MBDyn's tangent of `shell4easans` takes the geometric part at the Gauss
+//! points, not through the tying points).
 
+pub mod enhanced;
 pub mod geometry;
 pub mod hyper;
+pub mod membrane;
 
 use nalgebra::{SMatrix, SVector};
 
-use self::geometry::{enhanced_strain_matrix, metric, shape, shape_derivative, surface_frame, EAS, POINT_XI};
-use self::hyper::{add, cst_m, cst_v, lift, mat_mat, mat_t_vec, mat_vec, rotation, scale, sub, tangent, Hyper, Real, M3, V3};
+use self::enhanced::Sampled;
+use self::geometry::{enhanced_strain_matrix, metric, shape, surface_frame, EAS, MEMBRANE_EAS, POINT_XI, TYING_XI};
+use self::hyper::{add, cst_m, lift, mat_mat, mat_t_vec, mat_vec, rotation, scale, tangent, Hyper, Real, M3, V3};
 use crate::element::contract::{Col, Element, ElementState, JacobianSink, Label, Outputs, ResidualSink, Row, UnknownKind};
 use crate::kinematics::{rotation_vector, Mat3, Vec3};
 
@@ -53,43 +68,92 @@ impl ShellLaw {
         let d = c * h * h / 12.0;
         let gh = g * h;
         let f = gh * h * h / 12.0;
+        Self::from_terms([c, c, c * nu], [2.0 * gh, gh * shear_factor], [d, d, -d * nu], [2.0 * f, f * drilling_factor])
+    }
+
+    /// MBDyn's `plane stress orthotropic` law (shell.cc), the orthotropy axes along the
+    /// element's first surface direction: with `C = h/(1 − ν_lt² E_t/E_l)`, `D = C h²/12`,
+    /// `F = G h³/12`: membrane `C E_l`, `C E_t`, `C ν_lt E_t`, in-plane shear `2 G h`,
+    /// transverse shear `a_s G h`; bending `D E_l`, `D E_t`, `−D ν_lt E_t`, twist `2 F`,
+    /// drilling `a_t F`.
+    pub fn orthotropic(el: f64, et: f64, nu_lt: f64, g: f64, h: f64, shear_factor: f64, drilling_factor: f64) -> Self {
+        let c = h / (1.0 - nu_lt * nu_lt * et / el);
+        let d = c * h * h / 12.0;
+        let gh = g * h;
+        let f = gh * h * h / 12.0;
+        Self::from_terms([c * el, c * et, c * nu_lt * et], [2.0 * gh, gh * shear_factor], [d * el, d * et, -d * nu_lt * et], [2.0 * f, f * drilling_factor])
+    }
+
+    /// The 12×12 law of MBDyn's isotropic and orthotropic readers from its terms:
+    /// `membrane` (ε₁₁, ε₂₂ and between them), `shear` (in-plane ε₁₂ and ε₂₁, transverse ε₁₃
+    /// and ε₂₃), `bending` (κ₁₂, κ₂₁ and between them), `twist` (κ₁₁ and κ₂₂, drilling κ₁₃ and
+    /// κ₂₃).
+    fn from_terms(membrane: [f64; 3], shear: [f64; 2], bending: [f64; 3], twist: [f64; 2]) -> Self {
         let mut k = SMatrix::<f64, 12, 12>::zeros();
-        k[(0, 0)] = c;
-        k[(0, 4)] = c * nu;
-        k[(4, 0)] = c * nu;
-        k[(4, 4)] = c;
-        k[(1, 1)] = 2.0 * gh;
-        k[(3, 3)] = 2.0 * gh;
-        k[(2, 2)] = gh * shear_factor;
-        k[(5, 5)] = gh * shear_factor;
-        k[(6, 6)] = 2.0 * f;
-        k[(10, 10)] = 2.0 * f;
-        k[(7, 7)] = d;
-        k[(9, 9)] = d;
-        k[(7, 9)] = -d * nu;
-        k[(9, 7)] = -d * nu;
-        k[(8, 8)] = f * drilling_factor;
-        k[(11, 11)] = f * drilling_factor;
+        for (r, c, v) in [(0, 0, membrane[0]), (4, 4, membrane[1]), (0, 4, membrane[2]), (7, 7, bending[0]), (9, 9, bending[1]), (7, 9, bending[2])] {
+            k[(r, c)] = v;
+            k[(c, r)] = v;
+        }
+        for (diagonal, v) in [([1, 3], shear[0]), ([2, 5], shear[1]), ([6, 10], twist[0]), ([8, 11], twist[1])] {
+            for i in diagonal {
+                k[(i, i)] = v;
+            }
+        }
         ShellLaw { stiffness: k, prestress: SVector::zeros() }
+    }
+}
+
+/// Which of MBDyn's 4-node shells.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ShellVariant {
+    /// `shell4eas`: enhanced membrane and transverse shear strains (13 parameters).
+    Eas,
+    /// `shell4easans`: enhanced membrane strains (7 parameters), assumed natural
+    /// transverse shear strains.
+    EasAns,
+}
+
+impl ShellVariant {
+    /// MBDyn's card name.
+    pub fn name(self) -> &'static str {
+        match self {
+            ShellVariant::Eas => "shell4eas",
+            ShellVariant::EasAns => "shell4easans",
+        }
+    }
+    /// The number of enhanced-strain parameters (MBDyn's `iGetNumDof`): the first 7 of
+    /// the interpolation enhance the membrane strains, the last 6 the transverse shear.
+    fn enhanced(self) -> usize {
+        match self {
+            ShellVariant::Eas => EAS,
+            ShellVariant::EasAns => MEMBRANE_EAS,
+        }
     }
 }
 
 /// Why a shell cannot be built.
 #[derive(Debug, thiserror::Error)]
 pub enum ShellError {
-    #[error("shell4eas {0}: the four nodes do not span a quadrilateral (area factor {1:e} at a Gauss point; MBDyn numbers them counterclockwise seen from the normal, starting at the (+, +) corner)")]
-    Degenerate(Label, f64),
+    #[error("{0} {1}: the four nodes do not span a quadrilateral (area factor {2:e} at a point where the strains are sampled; MBDyn numbers them counterclockwise seen from the normal, starting at the (+, +) corner)")]
+    Degenerate(&'static str, Label, f64),
 }
 
-/// Per Gauss point, what the constructor computed.
+/// A point where the strains are sampled (a Gauss point or a tying point), from the
+/// initial configuration.
 #[derive(Clone, Debug)]
-struct Point {
+struct Sample {
     /// `T_iᵒ`: the point's surface frame relative to `T̄ exp(φ_i)`.
     offset: M3<f64>,
     /// `∂L_n/∂s_α` (local Cartesian derivatives), `[n][α]`.
     dl: [[f64; 2]; 4],
     /// `L_n(ξ_i)`.
     l: [f64; 4],
+}
+
+/// Per Gauss point, what the constructor computed.
+#[derive(Clone, Debug)]
+struct Point {
+    at: Sample,
     /// Area factor `α_i` (weight 1).
     area: f64,
     /// `ε⁰`, `κ⁰` in strain order.
@@ -97,16 +161,26 @@ struct Point {
     p: SMatrix<f64, 12, EAS>,
 }
 
-/// A 4-node EAS shell (MBDyn's `shell4eas`).
+/// An ANS tying point: where, and its initial transverse shear strain.
 #[derive(Clone, Debug)]
-pub struct Shell4Eas {
+struct Tying {
+    at: Sample,
+    initial: f64,
+}
+
+/// A 4-node shell (MBDyn's `shell4eas` or `shell4easans`).
+#[derive(Clone, Debug)]
+pub struct Shell4 {
     pub label: Label,
+    variant: ShellVariant,
     nodes: [Label; 4],
     /// `T_nᵒ`: each node's surface frame in the node's frame.
     node_offset: [Mat3; 4],
     /// `T̄`.
     average: Mat3,
     points: [Point; 4],
+    /// `shell4easans`'s tying points A, B, C, D (empty for `shell4eas`).
+    tying: Vec<Tying>,
     law: ShellLaw,
 }
 
@@ -114,77 +188,96 @@ pub struct Shell4Eas {
 /// rotation vectors `phi`.
 type Strains<T> = [[T; 12]; 4];
 
-impl Shell4Eas {
+/// The strain (in strain order) each tying point gives: ε₁₃ at A and C, ε₂₃ at B and D.
+const TYING_STRAIN: [usize; 4] = [2, 5, 2, 5];
+
+impl Shell4 {
     /// A shell on four nodes (label, initial position, initial orientation), unstrained in
     /// their initial configuration.
-    pub fn new(label: Label, nodes: [(Label, Vec3, Mat3); 4], law: ShellLaw) -> Result<Self, ShellError> {
+    pub fn new(variant: ShellVariant, label: Label, nodes: [(Label, Vec3, Mat3); 4], law: ShellLaw) -> Result<Self, ShellError> {
         let x: [Vec3; 4] = std::array::from_fn(|n| nodes[n].1);
         let frames: [Mat3; 4] = std::array::from_fn(|n| surface_frame(&x, geometry::NODE_XI[n]));
         let node_offset: [Mat3; 4] = std::array::from_fn(|n| nodes[n].2.transpose() * frames[n]);
         let average = geometry::average_frame(&frames);
         let phi: [Vec3; 4] = std::array::from_fn(|n| rotation_vector(&(average.transpose() * frames[n])));
+        let sample = |xi: [f64; 2]| {
+            let phi_i: Vec3 = (0..4).map(|n| phi[n] * shape(n, xi)).sum();
+            let interpolated = average * nalgebra::Rotation3::new(phi_i).into_inner();
+            let frame = surface_frame(&x, xi);
+            let (dl, area) = geometry::cartesian_derivatives(&x, &frame, xi).map_err(|area| ShellError::Degenerate(variant.name(), label, area))?;
+            Ok((Sample { offset: lift(&(interpolated.transpose() * frame)), dl, l: std::array::from_fn(|n| shape(n, xi)) }, area))
+        };
         let centre_frame = average * nalgebra::Rotation3::new((0..4).map(|n| phi[n] * shape(n, [0.0, 0.0])).sum::<Vec3>()).into_inner();
         let s0 = metric(&x, &centre_frame, [0.0, 0.0]);
         let area0 = s0.determinant();
         let mut points = Vec::with_capacity(4);
         for xi in POINT_XI {
-            let phi_i: Vec3 = (0..4).map(|n| phi[n] * shape(n, xi)).sum();
-            let interpolated = average * nalgebra::Rotation3::new(phi_i).into_inner();
-            let frame = surface_frame(&x, xi);
-            let s = metric(&x, &frame, xi);
-            let area = s.determinant();
-            let Some(s_inv) = s.try_inverse().filter(|_| area > 0.0 && area.is_finite()) else {
-                return Err(ShellError::Degenerate(label, area));
-            };
-            let dl = std::array::from_fn(|n| {
-                let d = [shape_derivative(n, 0, xi), shape_derivative(n, 1, xi)];
-                [d[0] * s_inv[(0, 0)] + d[1] * s_inv[(1, 0)], d[0] * s_inv[(0, 1)] + d[1] * s_inv[(1, 1)]]
-            });
-            points.push(Point {
-                offset: lift(&(interpolated.transpose() * frame)),
-                dl,
-                l: std::array::from_fn(|n| shape(n, xi)),
-                area,
-                initial: [0.0; 12],
-                p: enhanced_strain_matrix(&s0, xi, area0 / area),
-            });
+            let (at, area) = sample(xi)?;
+            let mut p = enhanced_strain_matrix(&s0, xi, area0 / area);
+            p.columns_mut(variant.enhanced(), EAS - variant.enhanced()).fill(0.0);
+            points.push(Point { at, area, initial: [0.0; 12], p });
         }
-        let mut shell = Shell4Eas {
+        let tying = match variant {
+            ShellVariant::Eas => Vec::new(),
+            ShellVariant::EasAns => TYING_XI.iter().map(|&xi| sample(xi).map(|(at, _)| Tying { at, initial: 0.0 })).collect::<Result<_, _>>()?,
+        };
+        let mut shell = Shell4 {
             label,
+            variant,
             nodes: std::array::from_fn(|n| nodes[n].0),
             node_offset,
             average,
             points: points.try_into().expect("four Gauss points"),
+            tying,
             law,
         };
-        let initial = shell.strains::<f64>(&std::array::from_fn(|n| x[n].into()), &std::array::from_fn(|n| phi[n].into()));
-        for (p, e) in shell.points.iter_mut().zip(initial) {
-            p.initial = e;
+        let (xs, ps): ([V3<f64>; 4], [V3<f64>; 4]) = (std::array::from_fn(|n| x[n].into()), std::array::from_fn(|n| phi[n].into()));
+        for k in 0..4 {
+            shell.points[k].initial = shell.sampled(&shell.points[k].at, &xs, &ps, true);
+        }
+        for k in 0..shell.tying.len() {
+            shell.tying[k].initial = shell.sampled(&shell.tying[k].at, &xs, &ps, false)[TYING_STRAIN[k]];
         }
         Ok(shell)
     }
 
-    /// The strains (minus the initial ones) for node positions `x` and relative rotation
-    /// vectors `phi` (generic: values, or hyper-dual derivatives).
-    fn strains<T: Real>(&self, x: &[V3<T>; 4], phi: &[V3<T>; 4]) -> Strains<T> {
+    /// The strains at a sample point, not minus the initial ones (generic: values, or
+    /// hyper-dual derivatives): `T_iᵀ x_{,α}` and, `with_curvature`, `T_iᵀ T̄ Γ(φ_i) φ_{,α}`.
+    fn sampled<T: Real>(&self, p: &Sample, x: &[V3<T>; 4], phi: &[V3<T>; 4], with_curvature: bool) -> [T; 12] {
         let tbar: M3<T> = cst_m(&lift(&self.average));
-        std::array::from_fn(|i| {
-            let p = &self.points[i];
-            let comb = |v: &[V3<T>; 4], w: &dyn Fn(usize) -> f64| (0..4).fold([T::cst(0.0); 3], |acc, n| add(&acc, &scale(&v[n], T::cst(w(n)))));
-            let phi_i = comb(phi, &|n| p.l[n]);
-            let t = mat_mat(&mat_mat(&tbar, &rotation(&phi_i)), &cst_m(&p.offset));
-            let gamma = mat_mat(&tbar, &tangent(&phi_i));
-            let mut e = [T::cst(0.0); 12];
-            for a in 0..2 {
-                let y = comb(x, &|n| p.dl[n][a]);
-                let k = mat_vec(&gamma, &comb(phi, &|n| p.dl[n][a]));
-                let strain = sub(&mat_t_vec(&t, &y), &cst_v(&std::array::from_fn(|c| p.initial[3 * a + c])));
-                let curvature = sub(&mat_t_vec(&t, &k), &cst_v(&std::array::from_fn(|c| p.initial[6 + 3 * a + c])));
-                e[3 * a..3 * a + 3].copy_from_slice(&strain);
-                e[6 + 3 * a..6 + 3 * a + 3].copy_from_slice(&curvature);
+        let comb = |v: &[V3<T>; 4], w: &dyn Fn(usize) -> f64| (0..4).fold([T::cst(0.0); 3], |acc, n| add(&acc, &scale(&v[n], T::cst(w(n)))));
+        let phi_i = comb(phi, &|n| p.l[n]);
+        let t = mat_mat(&mat_mat(&tbar, &rotation(&phi_i)), &cst_m(&p.offset));
+        let gamma = with_curvature.then(|| mat_mat(&tbar, &tangent(&phi_i)));
+        let mut e = [T::cst(0.0); 12];
+        for a in 0..2 {
+            e[3 * a..3 * a + 3].copy_from_slice(&mat_t_vec(&t, &comb(x, &|n| p.dl[n][a])));
+            if let Some(gamma) = &gamma {
+                let k = mat_vec(gamma, &comb(phi, &|n| p.dl[n][a]));
+                e[6 + 3 * a..6 + 3 * a + 3].copy_from_slice(&mat_t_vec(&t, &k));
             }
-            e
-        })
+        }
+        e
+    }
+
+    /// The strains (minus the initial ones) for node positions `x` and relative rotation
+    /// vectors `phi` (generic: values, or hyper-dual derivatives); `shell4easans`'s
+    /// transverse shears interpolated from its tying points.
+    fn strains<T: Real>(&self, x: &[V3<T>; 4], phi: &[V3<T>; 4]) -> Strains<T> {
+        let mut e: Strains<T> = std::array::from_fn(|i| {
+            let p = &self.points[i];
+            let raw = self.sampled(&p.at, x, phi, true);
+            std::array::from_fn(|r| raw[r] - T::cst(p.initial[r]))
+        });
+        if !self.tying.is_empty() {
+            let shear: [T; 4] = std::array::from_fn(|k| self.sampled(&self.tying[k].at, x, phi, false)[TYING_STRAIN[k]] - T::cst(self.tying[k].initial));
+            for (i, xi) in POINT_XI.iter().enumerate() {
+                let half = |s: f64, v: f64| T::cst(0.5 * (1.0 + s * v));
+                e[i][2] = half(1.0, xi[1]) * shear[0] + half(-1.0, xi[1]) * shear[2];
+                e[i][5] = half(-1.0, xi[0]) * shear[1] + half(1.0, xi[0]) * shear[3];
+            }
+        }
+        e
     }
 
     /// Node positions and relative rotation vectors `φ_n = rotvec(T̄ᵀ R_n T_nᵒ)`.
@@ -217,7 +310,7 @@ impl Shell4Eas {
                 }
             }
         }
-        let beta = SVector::<f64, EAS>::from_fn(|k, _| s.multiplier(k));
+        let beta = SVector::<f64, EAS>::from_fn(|k, _| if k < self.variant.enhanced() { s.multiplier(k) } else { 0.0 });
         let stress = std::array::from_fn(|i| self.law.stiffness * (strain[i] + self.points[i].p * beta) + self.law.prestress);
         State { x, phi, b, stress }
     }
@@ -230,15 +323,14 @@ impl Shell4Eas {
         })
     }
 
+    /// Each Gauss point's `B_i`, `P_i`, `σ_i`, `α_i`.
+    fn sampled_points<'a>(&'a self, st: &'a State) -> impl Iterator<Item = Sampled<'a, 12, 24>> {
+        self.points.iter().enumerate().map(|(i, p)| Sampled { b: &st.b[i], p: &p.p, stress: &st.stress[i], area: p.area })
+    }
+
     /// Internal forces on the 24 coordinates (positions, rotation vectors) and on `β`.
     fn forces(&self, st: &State) -> (SVector<f64, 24>, SVector<f64, EAS>) {
-        let mut fq = SVector::<f64, 24>::zeros();
-        let mut fb = SVector::<f64, EAS>::zeros();
-        for (i, p) in self.points.iter().enumerate() {
-            fq += st.b[i].transpose() * st.stress[i] * p.area;
-            fb += p.p.transpose() * st.stress[i] * p.area;
-        }
-        (fq, fb)
+        enhanced::internal_forces(self.sampled_points(st))
     }
 }
 
@@ -254,18 +346,18 @@ fn is_rotation(q: usize) -> bool {
     q % 6 >= 3
 }
 
-impl Element for Shell4Eas {
+impl Element for Shell4 {
     fn label(&self) -> Label {
         self.label
     }
     fn type_name(&self) -> &'static str {
-        "shell4eas"
+        self.variant.name()
     }
     fn nodes(&self) -> Vec<Label> {
         self.nodes.to_vec()
     }
     fn multipliers(&self) -> Vec<String> {
-        (1..=EAS).map(|k| format!("enhanced strain parameter {k}")).collect()
+        (1..=self.variant.enhanced()).map(|k| format!("enhanced strain parameter {k}")).collect()
     }
     /// The enhanced-strain parameters are algebraic unknowns of the configuration (MBDyn's
     /// `DofOrder::ALGEBRAIC`): equations not divided by dCoef, Jacobian coefficient that of
@@ -284,7 +376,7 @@ impl Element for Shell4Eas {
                 out.add(Row::Equilibrium { slot: n, comp: 3 + c }, moment[c]);
             }
         }
-        for k in 0..EAS {
+        for k in 0..self.variant.enhanced() {
             out.add(Row::Constraint(k), fb[k]);
         }
     }
@@ -293,17 +385,8 @@ impl Element for Shell4Eas {
     }
     fn jacobian(&self, s: &dyn ElementState, out: &mut dyn JacobianSink) {
         let st = self.state(s);
-        let d = &self.law.stiffness;
         // K_qq = Σ α (Bᵀ D B + σ · ∂²ε), K_qβ, K_ββ.
-        let mut kqq = SMatrix::<f64, 24, 24>::zeros();
-        let mut kqb = SMatrix::<f64, 24, EAS>::zeros();
-        let mut kbb = SMatrix::<f64, EAS, EAS>::zeros();
-        for (i, p) in self.points.iter().enumerate() {
-            let db = d * st.b[i];
-            kqq += st.b[i].transpose() * db * p.area;
-            kqb += st.b[i].transpose() * d * p.p * p.area;
-            kbb += p.p.transpose() * d * p.p * p.area;
-        }
+        let (mut kqq, kqb, kbb) = enhanced::linear_tangent(&self.law.stiffness, self.sampled_points(&st));
         for j in (0..24).filter(|&j| is_rotation(j)) {
             for k in 0..24 {
                 if is_rotation(k) && k < j {
@@ -336,31 +419,18 @@ impl Element for Shell4Eas {
         let kqb = t.transpose() * kqb;
         let col = |q: usize| if is_rotation(q) { Col::Rotation { slot: q / 6, comp: q % 6 - 3 } } else { Col::Position { slot: q / 6, comp: q % 6 } };
         let row = |q: usize| Row::Equilibrium { slot: q / 6, comp: q % 6 };
-        for r in 0..24 {
-            for c in 0..24 {
-                out.add(row(r), col(c), kq[(r, c)]);
-            }
-            for k in 0..EAS {
-                out.add(row(r), Col::Multiplier(k), kqb[(r, k)]);
-                out.add(Row::Constraint(k), col(r), kqb[(r, k)]);
-            }
-        }
-        for a in 0..EAS {
-            for b in 0..EAS {
-                out.add(Row::Constraint(a), Col::Multiplier(b), kbb[(a, b)]);
-            }
-        }
+        enhanced::add_tangent(out, (&kq, &kqb, &kbb), self.variant.enhanced(), row, col);
     }
 }
 
-impl Outputs for Shell4Eas {
+impl Outputs for Shell4 {
     /// MBDyn's `.pla` row: `σ_i = D (ε_i + P_i β) + σ₀` at the four Gauss points.
-    fn plate_resultants(&self, s: &dyn ElementState) -> Vec<[f64; 12]> {
-        self.state(s).stress.iter().map(|v| std::array::from_fn(|r| v[r])).collect()
+    fn plate_resultants(&self, s: &dyn ElementState) -> Vec<f64> {
+        self.state(s).stress.iter().flat_map(|v| v.iter().copied()).collect()
     }
 }
 
-impl Shell4Eas {
+impl Shell4 {
     /// `∂(T̄ Γ⁻ᵀ(φ) v)/∂φ` at fixed `v`: `−T̄ Γ⁻ᵀ (∂Γ/∂φ_k)ᵀ Γ⁻ᵀ v` column by column.
     fn moment_map_derivative(&self, phi: &Vec3, v: &Vec3) -> Mat3 {
         let g = Mat3::from_fn(|r, c| tangent(&<[f64; 3]>::from(*phi))[r][c]);

@@ -68,7 +68,7 @@ impl<'a> ElementContext<'a> {
         let span = c.here();
         let (n, displacement) = self.point_node(c, what)?;
         if displacement {
-            return Err(c.error_at(span, format!("structural node {} is a displacement node (no rotations): only bodies (a mass), rods and distance joints without offsets and the 'absolute displacement' forces connect to it, as in MBDyn 1.7.3", n.label)));
+            return Err(c.error_at(span, format!("structural node {} is a displacement node (no rotations): only bodies (a mass), rods and distance joints without offsets, membrane4eas and the 'absolute displacement' forces connect to it, as in MBDyn 1.7.3", n.label)));
         }
         Ok(n)
     }

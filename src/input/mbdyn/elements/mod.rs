@@ -13,6 +13,7 @@ pub(super) mod hints;
 pub(super) mod hydraulic;
 pub(super) mod joints;
 pub(super) mod laws;
+pub(super) mod plate_laws;
 pub(super) mod modal;
 pub(super) mod plates;
 pub(super) mod screw;
