@@ -32,6 +32,8 @@ pub mod frame_motion;
 mod friction;
 mod hinge_friction;
 mod hydraulic;
+mod hydraulic_pipe_dynamic;
+mod hydraulic_storage;
 mod function_hinge;
 mod genel;
 mod state_space;
@@ -71,6 +73,8 @@ pub use deformable::{DeformableDisplacement, DeformableHinge, LinearViscoelastic
 pub use distance::Distance;
 pub use electric::{Accelerometer, AccelerometerKind, DisplacementSensor, Motor};
 pub use hydraulic::{Actuator, ControlValve, HydraulicFluid, MinorLoss, Pipe};
+pub use hydraulic_pipe_dynamic::DynamicPipe;
+pub use hydraulic_storage::{Accumulator, Orifice, Tank};
 pub use genel::{AbstractForce, ScalarClamp, ScalarDistance, ScalarDof, ScalarLaw, ScalarMass, ScalarSpring, ScalarSpringPair};
 pub use state_space::{controllable_form, observable_form, ScalarInput, StateSpace};
 pub use deformable_joint::DeformableJoint;

@@ -18,6 +18,8 @@ mod electric;
 mod function_hinge;
 mod hinge_friction;
 mod hydraulic;
+mod hydraulic_elements;
+mod hydraulic_output;
 mod integrator_bathe;
 mod jacobian_check;
 mod modal_element;

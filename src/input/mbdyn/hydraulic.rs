@@ -1,8 +1,9 @@
 //! The `hydraulic fluid` card (input manual §Hydraulic fluid; hfluid.cc,
 //! `ReadHydraulicFluid`; mbpar.cc, `GetHydraulicFluid`) and the `hydraulic` element cards
 //! (§Hydraulic Element; preselem.cc, `ReadHydraulicElem`): `actuator`, `minor loss`,
-//! `control valve` and `pipe`. The other fluids and hydraulic elements of MBDyn 1.7.3 are refused by
-//! name.
+//! `control valve` and `pipe` (`dynamic pipe`, `accumulator`, `tank` and `orifice` in
+//! [`super::hydraulic_elements`]). The other fluids and hydraulic elements of MBDyn 1.7.3
+//! are refused by name.
 
 use super::cursor::Cursor;
 use super::diagnostic::{mbdyn_runs_it, MbdynError};
@@ -13,7 +14,10 @@ use crate::model::{Label, ScalarNodeKind};
 
 
 /// The hydraulic element types of MBDyn 1.7.3 romdyn does not build.
-const OTHER_ELEMENTS: [&str; 10] = ["three way minor loss", "control valve 2", "dynamic control valve", "pressure flow control", "pressure valve", "flow valve", "orifice", "accumulator", "tank", "dynamic pipe"];
+const OTHER_ELEMENTS: [&str; 6] = ["three way minor loss", "control valve 2", "dynamic control valve", "pressure flow control", "pressure valve", "flow valve"];
+
+/// The hydraulic element types romdyn builds.
+const TYPES: [&str; 8] = ["actuator", "minor loss", "control valve", "dynamic pipe", "pipe", "accumulator", "tank", "orifice"];
 
 /// `hydraulic fluid: LABEL [, name, "…"], FLUID;`.
 pub fn fluid_card(c: &mut Cursor, seq: usize, fluids: &mut Fluids) -> Result<(), MbdynError> {
@@ -31,7 +35,7 @@ pub fn fluid_card(c: &mut Cursor, seq: usize, fluids: &mut Fluids) -> Result<(),
 }
 
 /// A positive real, refused otherwise with `why`.
-fn positive(c: &mut Cursor, what: &str, why: &str) -> Result<f64, MbdynError> {
+pub(super) fn positive(c: &mut Cursor, what: &str, why: &str) -> Result<f64, MbdynError> {
     let span = c.here();
     let x = c.real(what)?;
     if !(x > f64::EPSILON) {
@@ -78,7 +82,7 @@ fn fluid_properties(c: &mut Cursor, what: &str) -> Result<HydraulicFluid, MbdynE
 }
 
 /// `fluid, {reference, LABEL | FLUID}` (or `hydraulic fluid, …`) in an element.
-fn element_fluid(c: &mut Cursor, ctx: &ElementContext, what: &str) -> Result<HydraulicFluid, MbdynError> {
+pub(super) fn element_fluid(c: &mut Cursor, ctx: &ElementContext, what: &str) -> Result<HydraulicFluid, MbdynError> {
     c.keyword(&format!("{what}: 'fluid'"), &["fluid", "hydraulic fluid"])?;
     if !c.accept("reference") {
         return fluid_properties(c, what);
@@ -94,21 +98,30 @@ fn element_fluid(c: &mut Cursor, ctx: &ElementContext, what: &str) -> Result<Hyd
 /// `hydraulic: LABEL, TYPE, …` after the label.
 pub fn hydraulic(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<dyn Element>, MbdynError> {
     let span = c.here();
-    let types = ["actuator", "minor loss", "control valve", "pipe"];
+    let types = TYPES.join(", ");
     if let Some(k) = c.accept_any(&OTHER_ELEMENTS) {
-        return Err(c.error_at(span, format!("{} (supported: actuator, minor loss, control valve, pipe)", mbdyn_runs_it(&format!("hydraulic element type '{k}'")))));
+        return Err(c.error_at(span, format!("{} (supported: {types})", mbdyn_runs_it(&format!("hydraulic element type '{k}'")))));
     }
-    let Some(kind) = c.accept_any(&types) else {
+    let Some(kind) = c.accept_any(&TYPES) else {
         return Err(match c.peek_keyword() {
-            Some(w) => c.error(format!("{} (romdyn reads: actuator, minor loss, control valve, pipe)", super::diagnostic::unknown_to_both("hydraulic element type", w))),
-            None => c.error(format!("expected the hydraulic element type (actuator, minor loss, control valve, pipe), found {}", c.found())),
+            Some(w) => c.error(format!("{} (romdyn reads: {types})", super::diagnostic::unknown_to_both("hydraulic element type", w))),
+            None => c.error(format!("expected the hydraulic element type ({types}), found {}", c.found())),
         });
     };
     let what = format!("hydraulic {label} ({kind})");
     let pressure = |c: &mut Cursor| scalar_node_of(c, &ctx.nodes.2, ScalarNodeKind::Hydraulic, &what);
-    if kind == "pipe" {
+    if kind == "accumulator" {
+        let node = pressure(c)?;
+        return super::hydraulic_elements::accumulator(label, c, ctx, &what, node);
+    }
+    if matches!(kind, "pipe" | "dynamic pipe" | "tank" | "orifice") {
         let pressures = [pressure(c)?, pressure(c)?];
-        return pipe(label, c, ctx, &what, pressures);
+        return match kind {
+            "pipe" => pipe(label, c, ctx, &what, pressures),
+            "dynamic pipe" => super::hydraulic_elements::dynamic_pipe(label, c, ctx, &what, pressures),
+            "tank" => super::hydraulic_elements::tank(label, c, ctx, &what, pressures),
+            _ => super::hydraulic_elements::orifice(label, c, ctx, &what, pressures),
+        };
     }
     if kind == "control valve" {
         let pressures = [pressure(c)?, pressure(c)?, pressure(c)?, pressure(c)?];
@@ -125,7 +138,8 @@ pub fn hydraulic(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<B
         };
         let state = super::drives::drive(c, ctx.drives, ctx.seq)?;
         let density = element_fluid(c, ctx, &what)?.reference_density();
-        return Ok(Box::new(ControlValve { label, pressures, area, loss, state, density }));
+        let output = output_flag(c, ctx)?;
+        return Ok(Box::new(ControlValve { label, pressures, area, loss, state, density, output }));
     }
     let pressures = [pressure(c)?, pressure(c)?];
     if kind == "minor loss" {
@@ -133,7 +147,8 @@ pub fn hydraulic(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<B
         let loss = [positive(c, &format!("{what}: loss coefficient K12"), why)?, positive(c, &format!("{what}: loss coefficient K21"), why)?];
         let area = positive(c, &format!("{what}: area [m^2]"), "")?;
         let fluid = element_fluid(c, ctx, &what)?;
-        return Ok(Box::new(MinorLoss { label, pressures, loss, area, fluid }));
+        let output = output_flag(c, ctx)?;
+        return Ok(Box::new(MinorLoss { label, pressures, loss, area, fluid, output }));
     }
     let mut nodes = [0; 2];
     let mut offsets = [crate::kinematics::Vec3::zeros(); 2];
@@ -156,8 +171,9 @@ pub fn hydraulic(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<B
     let length = positive(c, &format!("{what}: cylinder length [m]"), "")?;
     let fluid1 = element_fluid(c, ctx, &what)?;
     let fluid2 = if c.accept("same") { fluid1 } else { element_fluid(c, ctx, &what)? };
-    let initial_pressures = pressures.map(|id| ctx.nodes.2.iter().find(|e| e.node.id == id).map_or(0.0, |e| e.node.value));
-    Ok(Box::new(Actuator { label, pressures, nodes, offsets, axis, areas, length, fluids: [fluid1, fluid2], initial_pressures }))
+    let initial_pressures = pressures.map(|id| initial_value(ctx, id));
+    let output = output_flag(c, ctx)?;
+    Ok(Box::new(Actuator { label, pressures, nodes, offsets, axis, areas, length, fluids: [fluid1, fluid2], initial_pressures, output }))
 }
 
 /// `pipe, P1, P2, DIAMETER, [area, A,] LENGTH, [turbulent,] [initial value, Q0,] fluid, …`
@@ -169,8 +185,22 @@ fn pipe(label: Label, c: &mut Cursor, ctx: &ElementContext, what: &str, pressure
     let turbulent = c.accept("turbulent");
     let initial_flow = if c.accept("initial value") { c.real("initial mass flow [kg/s]")? } else { 0.0 };
     let fluid = element_fluid(c, ctx, what)?;
-    let pressure = |id| ctx.nodes.2.iter().find(|e: &&super::scalar_nodes::ScalarEntry| e.node.id == id).map_or(0.0, |e| e.node.value);
-    let rho = fluid.density(0.5 * (pressure(pressures[0]) + pressure(pressures[1])));
+    let rho = fluid.density(0.5 * (initial_value(ctx, pressures[0]) + initial_value(ctx, pressures[1])));
     let coefficients = Pipe::coefficients(diameter, area, length, rho, fluid.viscosity());
-    Ok(Box::new(Pipe { label, pressures, diameter, area, viscosity: fluid.viscosity(), coefficients, turbulent, initial_flow }))
+    let output = output_flag(c, ctx)?;
+    Ok(Box::new(Pipe { label, pressures, diameter, area, viscosity: fluid.viscosity(), coefficients, turbulent, initial_flow, fluid, output }))
+}
+
+/// A scalar node's initial value (its card's), where elements start their own unknowns.
+pub(super) fn initial_value(ctx: &ElementContext, id: crate::model::ScalarNodeId) -> f64 {
+    ctx.nodes.2.iter().find(|e| e.node.id == id).map_or(0.0, |e| e.node.value)
+}
+
+/// `[output, FLAG]` at the end of a hydraulic element (MBDyn's `fReadOutput`): the card's
+/// flag, else control data's `default output` of hydraulic elements.
+pub(super) fn output_flag(c: &mut Cursor, ctx: &ElementContext) -> Result<bool, MbdynError> {
+    if c.accept("output") {
+        return c.flag("output flag");
+    }
+    Ok(ctx.hydraulic_output)
 }
