@@ -183,7 +183,9 @@ fn bad_hydraulic_and_electric_cards_are_refused_by_name_and_place() {
     let cases = [
         (change(motor, "electric: 1, motor, 1, 2, 0., 0., 1., 1, 2, G, 0., R;"), "the inductance must be positive, found 0"),
         (change(motor, "electric: 1, motor, 1, 2, 0., 0., 0., 1, 2, G, L, R;"), "the axis is null"),
-        (change(motor, "electric: 1, motor, 1, 2, 0., 0., 1., 1, 2, G, L, R, M0, const, 1.;"), "the cogging torque 'M0' is not supported by romdyn (MBDyn 1.7.3 runs it)"),
+        (change(motor, "electric: 1, motor, 1, 2, 0., 0., 1., 1, 2, G, L, R, M0, const, 1.;"), "\"M0\" and \"M1\" require the motor's 'orientation' instead of an axis (MBDyn 1.7.3 refuses it too)"),
+        (change(motor, "electric: 1, motor, 1, 2, orientation, eye, 1, 2, G, L, R, M0, const, 1., terminal pairs, 0;"), "the number of terminal pairs must be at least 1, found 0"),
+        (change(motor, "electric: 1, motor, 1, 2, orientation, eye, 1, 2, G, L, R, M1, const, 1.;"), "'terminal pairs' (MBDyn 1.7.3 requires it after M0, M1)"),
         (change(motor, "electric: 1, motor, 1, 2, 0., 0., 1., 1, 2, G, L, linear, 1., 2.;"), "a resistance that varies with the current"),
         (change(motor, "electric: 1, motor, 1, 2, 0., 0., 1., 1, 3, G, L, R;"), "electric node 3 is not defined"),
         (change("    abstract: 1, differential;", "    abstract: 1, algebraic;"), "abstract node 1 is algebraic; MBDyn 1.7.3 writes a sensor into a differential abstract node"),

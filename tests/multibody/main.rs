@@ -23,6 +23,7 @@ mod hydraulic_output;
 mod integrator_bathe;
 mod jacobian_check;
 mod modal_element;
+mod motor_cogging;
 mod joint_friction;
 mod mbdyn_beam;
 mod mbdyn_joint_equations;
