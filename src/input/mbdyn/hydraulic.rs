@@ -179,16 +179,33 @@ pub fn hydraulic(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<B
 /// `pipe, P1, P2, DIAMETER, [area, A,] LENGTH, [turbulent,] [initial value, Q0,] fluid, …`
 /// after its nodes (the area defaults to the diameter's circle).
 fn pipe(label: Label, c: &mut Cursor, ctx: &ElementContext, what: &str, pressures: [crate::model::ScalarNodeId; 2]) -> Result<Box<dyn Element>, MbdynError> {
+    let PipeCard { diameter, area, length, turbulent, initial_flow, fluid } = pipe_card(c, ctx, what)?;
+    let rho = fluid.density(0.5 * (initial_value(ctx, pressures[0]) + initial_value(ctx, pressures[1])));
+    let coefficients = Pipe::coefficients(diameter, area, length, rho, fluid.viscosity());
+    let output = output_flag(c, ctx)?;
+    Ok(Box::new(Pipe { label, pressures, diameter, area, viscosity: fluid.viscosity(), coefficients, turbulent, initial_flow, fluid, output }))
+}
+
+/// The arguments a `pipe` and a `dynamic pipe` share after their nodes.
+pub(super) struct PipeCard {
+    pub diameter: f64,
+    pub area: f64,
+    pub length: f64,
+    pub turbulent: bool,
+    pub initial_flow: f64,
+    pub fluid: HydraulicFluid,
+}
+
+/// `DIAMETER, [area, A,] LENGTH, [turbulent,] [initial value, Q0,] fluid, …` (the area
+/// defaults to the diameter's circle).
+pub(super) fn pipe_card(c: &mut Cursor, ctx: &ElementContext, what: &str) -> Result<PipeCard, MbdynError> {
     let diameter = positive(c, &format!("{what}: hydraulic diameter [m]"), "")?;
     let area = if c.accept("area") { positive(c, &format!("{what}: area [m^2]"), "")? } else { diameter * diameter * std::f64::consts::FRAC_PI_4 };
     let length = positive(c, &format!("{what}: length [m]"), "")?;
     let turbulent = c.accept("turbulent");
     let initial_flow = if c.accept("initial value") { c.real("initial mass flow [kg/s]")? } else { 0.0 };
     let fluid = element_fluid(c, ctx, what)?;
-    let rho = fluid.density(0.5 * (initial_value(ctx, pressures[0]) + initial_value(ctx, pressures[1])));
-    let coefficients = Pipe::coefficients(diameter, area, length, rho, fluid.viscosity());
-    let output = output_flag(c, ctx)?;
-    Ok(Box::new(Pipe { label, pressures, diameter, area, viscosity: fluid.viscosity(), coefficients, turbulent, initial_flow, fluid, output }))
+    Ok(PipeCard { diameter, area, length, turbulent, initial_flow, fluid })
 }
 
 /// A scalar node's initial value (its card's), where elements start their own unknowns.

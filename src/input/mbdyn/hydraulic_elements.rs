@@ -6,7 +6,7 @@
 use super::cursor::Cursor;
 use super::diagnostic::MbdynError;
 use super::element_context::ElementContext;
-use super::hydraulic::{element_fluid, initial_value, output_flag, positive};
+use super::hydraulic::{element_fluid, initial_value, output_flag, pipe_card, positive, PipeCard};
 use crate::element::{Accumulator, DynamicPipe, Element, Orifice, Tank};
 use crate::model::{Label, ScalarNodeId};
 
@@ -23,12 +23,7 @@ fn not_negative(c: &mut Cursor, what: &str) -> Result<f64, MbdynError> {
 /// `dynamic pipe, P1, P2, DIAMETER, [area, A,] LENGTH, [turbulent,] [initial value, Q0,]
 /// fluid, …` after its nodes (the area defaults to the diameter's circle).
 pub fn dynamic_pipe(label: Label, c: &mut Cursor, ctx: &ElementContext, what: &str, pressures: [ScalarNodeId; 2]) -> Result<Box<dyn Element>, MbdynError> {
-    let diameter = positive(c, &format!("{what}: hydraulic diameter [m]"), "")?;
-    let area = if c.accept("area") { positive(c, &format!("{what}: area [m^2]"), "")? } else { diameter * diameter * std::f64::consts::FRAC_PI_4 };
-    let length = positive(c, &format!("{what}: length [m]"), "")?;
-    let turbulent = c.accept("turbulent");
-    let initial_flow = if c.accept("initial value") { c.real("initial mass flow [kg/s]")? } else { 0.0 };
-    let fluid = element_fluid(c, ctx, what)?;
+    let PipeCard { diameter, area, length, turbulent, initial_flow, fluid } = pipe_card(c, ctx, what)?;
     let initial_pressures = pressures.map(|id| initial_value(ctx, id));
     let output = output_flag(c, ctx)?;
     Ok(Box::new(DynamicPipe { label, pressures, diameter, area, length, fluid, turbulent, initial_pressures, initial_flow, output }))
