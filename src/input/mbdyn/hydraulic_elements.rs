@@ -6,7 +6,7 @@
 use super::cursor::Cursor;
 use super::diagnostic::MbdynError;
 use super::element_context::ElementContext;
-use super::hydraulic::{element_fluid, initial_value, output_flag, pipe_card, positive, PipeCard};
+use super::hydraulic_args::{element_fluid, initial_value, output_flag, pipe_card, positive, PipeCard};
 use crate::element::{Accumulator, DynamicPipe, Element, Orifice, Tank};
 use crate::model::{Label, ScalarNodeId};
 

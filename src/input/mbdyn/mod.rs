@@ -30,6 +30,7 @@ mod functions;
 mod genels;
 mod hints;
 mod hydraulic;
+mod hydraulic_args;
 mod hydraulic_elements;
 mod joints;
 mod total_joint;
