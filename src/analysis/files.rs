@@ -1,6 +1,7 @@
 //! The files of a run, named after a prefix as MBDyn names them: `PREFIX.out` (step log),
 //! `PREFIX.mov` (node motion), `PREFIX.log` (model log), for models with scalar nodes
 //! `PREFIX.abs`, `PREFIX.ele`, `PREFIX.prs` (abstract, electric, hydraulic nodes' values),
+//! for models with written hydraulic elements `PREFIX.hyd` (their own flows, volumes, …),
 //! for models with beams `PREFIX.act`
 //! (internal forces) and `PREFIX.bst` (strains and curvatures), for models with modal
 //! joints `PREFIX.mod` (modal coordinates and their derivatives), and for each eigenanalysis
@@ -23,6 +24,7 @@ use super::run::RunReport;
 use crate::model::{EigenFileSuffix, InitialValueProblem, Model, MotionOutput};
 use crate::output::atomic::{commit_set, recover_set, AtomicFile, OutputError};
 use crate::output::beam_sections::BeamSectionWriter;
+use crate::output::hydraulic_elements::HydraulicWriter;
 use crate::output::plates::PlateWriter;
 use crate::output::modal_coordinates::ModalCoordinateWriter;
 use crate::output::eigen_json::eigen_json;
@@ -65,6 +67,8 @@ pub struct RunFiles {
     plates: Option<PlateWriter>,
     /// `.mod`, when the model has modal joints.
     modal: Option<ModalCoordinateWriter>,
+    /// `.hyd`, when the model has written hydraulic elements.
+    hydraulic: Option<HydraulicWriter>,
     /// Whether step 0 showed elements with evaluation points (then every step is written).
     has_beams: Option<bool>,
     staged: Vec<AtomicFile>,
@@ -82,7 +86,7 @@ impl RunFiles {
         // A directory in the way of any file of the set is found before the run.
         let stems = (0..eigen_count).map(|k| eigen_file_stem(prefix, &eigen_suffix, k, eigen_count));
         let eigen_files = stems.flat_map(|s| [prefixed_path(&s, "m"), prefixed_path(&s, "json")]);
-        for path in ["out", "mov", "log", "act", "bst", "pla", "mod", "abs", "ele", "prs"].map(|e| prefixed_path(prefix, e)).into_iter().chain(eigen_files) {
+        for path in ["out", "mov", "log", "act", "bst", "pla", "mod", "abs", "ele", "prs", "hyd"].map(|e| prefixed_path(prefix, e)).into_iter().chain(eigen_files) {
             if path.is_dir() {
                 return Err(OutputError::Invalid { path, message: "is a directory: the run could not write its file there".into() });
             }
@@ -98,7 +102,9 @@ impl RunFiles {
         let modal = if has_modes { Some(ModalCoordinateWriter::create(&prefixed_path(prefix, "mod"), digits)?) } else { None };
         let has_plates = model.elements.iter().any(|e| matches!(e.type_name(), "shell4eas" | "shell4easans" | "membrane4eas"));
         let plates = if has_plates { Some(PlateWriter::create(&prefixed_path(prefix, "pla"))?) } else { None };
-        Ok(RunFiles { prefix: prefix.to_path_buf(), input: input.to_string(), eigen_count, eigen_suffix, out, mov, scalars, motion: problem.output.clone(), beams: None, plates, modal, has_beams: None, staged: vec![log], last_step: None, iterations: 0 })
+        let has_hydraulic = model.elements.iter().any(|e| e.outputs().is_some_and(|o| o.writes_hydraulic_row()));
+        let hydraulic = if has_hydraulic { Some(HydraulicWriter::create(&prefixed_path(prefix, "hyd"), digits)?) } else { None };
+        Ok(RunFiles { prefix: prefix.to_path_buf(), input: input.to_string(), eigen_count, eigen_suffix, out, mov, scalars, motion: problem.output.clone(), beams: None, plates, modal, hydraulic, has_beams: None, staged: vec![log], last_step: None, iterations: 0 })
     }
 
     /// Ends the step log and puts every file in place; returns their paths.
@@ -121,6 +127,7 @@ impl RunFiles {
         let mut files = vec![self.out.into_file(), self.mov.into_file()];
         files.extend(self.modal.map(ModalCoordinateWriter::into_file));
         files.extend(self.plates.map(PlateWriter::into_file));
+        files.extend(self.hydraulic.map(HydraulicWriter::into_file));
         files.extend(self.scalars.into_files());
         if let Some(b) = self.beams {
             files.extend(b.into_files());
@@ -154,6 +161,9 @@ impl RunObserver for RunFiles {
             self.scalars.write_step(e.model, &e.state.y, &e.state.yp, e.assembler.dofs.scalar_first)?;
             if let Some(p) = self.plates.as_mut() {
                 p.write_step(&e.plate_resultants())?;
+            }
+            if let Some(h) = self.hydraulic.as_mut() {
+                h.write_step(&e.hydraulic_rows())?;
             }
         }
         if self.has_beams == Some(false) {

@@ -54,6 +54,11 @@ impl StepDone<'_> {
         self.assembler.plate_resultants(self.state).into_iter().map(|(e, s)| (self.model.elements[e].label(), s)).collect()
     }
 
+    /// Every written hydraulic element's `.hyd` row (MBDyn's hydraulic elements' output).
+    pub fn hydraulic_rows(&self) -> Vec<(Label, Vec<f64>)> {
+        self.assembler.hydraulic_rows(self.state).into_iter().map(|(e, r)| (self.model.elements[e].label(), r)).collect()
+    }
+
     /// Every modal joint's modal coordinates and their derivatives
     /// ([`crate::dae::modal_coordinates`]).
     pub fn modal_coordinates(&self) -> Vec<crate::dae::ModalRow> {

@@ -517,6 +517,11 @@ impl<'m> Assembler<'m> {
         self.element_outputs(st, |o, s| o.plate_resultants(s))
     }
 
+    /// Every written hydraulic element's row of MBDyn's `.hyd` file, by element index.
+    pub fn hydraulic_rows(&self, st: &State) -> Vec<(usize, Vec<f64>)> {
+        self.element_outputs(st, |o, s| o.hydraulic_row(s))
+    }
+
     /// What `read` gives of each element's outputs at `st`, for the elements that give any.
     fn element_outputs<T>(&self, st: &State, read: impl Fn(&dyn crate::element::Outputs, &dyn crate::element::ElementState) -> Vec<T>) -> Vec<(usize, Vec<T>)> {
         let frames = self.frames(st);

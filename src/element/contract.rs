@@ -346,6 +346,16 @@ pub trait Outputs {
     fn plate_resultants(&self, _s: &dyn ElementState) -> Vec<f64> {
         Vec::new()
     }
+    /// Its row of MBDyn's `.hyd` file (a hydraulic element's own output: flows, volumes,
+    /// densities, … in the columns of its `Output` in MBDyn 1.7.3, SI units) at this state;
+    /// empty for other elements and for a hydraulic element whose output is off.
+    fn hydraulic_row(&self, _s: &dyn ElementState) -> Vec<f64> {
+        Vec::new()
+    }
+    /// Whether it writes a `.hyd` row ([`Outputs::hydraulic_row`]) at every output instant.
+    fn writes_hydraulic_row(&self) -> bool {
+        false
+    }
 }
 
 /// One element of the model.

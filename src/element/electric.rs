@@ -9,6 +9,7 @@
 //! sensor linearizes exactly).
 
 use super::contract::{add_block, Col, Element, ElementState, JacobianSink, Label, Outputs, PrivateDatum, ResidualSink, Row, ScalarNodeId, UnknownKind};
+pub use super::electric_cogging::Cogging;
 use crate::kinematics::{skew, Vec3};
 
 /// `electric: L, motor, NODE1, NODE2, DIR, V1, V2, G, L, R [, initial current, I0]` (Motor,
@@ -21,8 +22,9 @@ use crate::kinematics::{skew, Vec3};
 /// ```
 ///
 /// with `G` the torque and back-EMF constant [N m/A = V s/rad], `L` the inductance [H], `R`
-/// the resistance [Ω]. MBDyn's cogging terms (`M0`, `M1`, `terminal pairs`) and a
-/// resistance that varies with the current are refused by the reader.
+/// the resistance [Ω]. With MBDyn's cogging terms (`M0`, `M1`, `terminal pairs`) the torque
+/// is `M0(Φₑ) + (G + M1(Φₑ)) i` ([`Cogging`]); a resistance that varies with the current is
+/// refused by the reader.
 pub struct Motor {
     pub label: Label,
     pub nodes: [Label; 2],
@@ -37,11 +39,21 @@ pub struct Motor {
     /// `di/dt` at the initial state, from the armature equation (MBDyn's constructor sets
     /// it so: its derivatives phase then leaves the current as written).
     pub initial_rate: f64,
+    /// The cogging torque, when the card has one (`axis` is then its frame's axis 3).
+    pub cogging: Option<Cogging>,
 }
 
 impl Motor {
     fn axis_at(&self, st: &dyn ElementState) -> Vec3 {
         st.node(0).r * self.axis
+    }
+
+    /// The torque `M` [N m], `∂M/∂i` and `∂M/∂δθ₁`, `∂M/∂δθ₂`.
+    fn torque(&self, st: &dyn ElementState, i: f64) -> (f64, f64, [Vec3; 2]) {
+        let Some(c) = &self.cogging else { return (self.gain * i, self.gain, [Vec3::zeros(); 2]) };
+        let s = c.at(st);
+        let slope = s.m0_slope + s.m1_slope * i;
+        (s.m0 + (self.gain + s.m1) * i, self.gain + s.m1, s.angle_theta.map(|d| d * slope))
     }
 }
 
@@ -73,7 +85,7 @@ impl Element for Motor {
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
         let n = self.axis_at(st);
         let i = st.multiplier(0);
-        let torque = n * (self.gain * i);
+        let torque = n * self.torque(st, i).0;
         for k in 0..3 {
             out.add(Row::Equilibrium { slot: 0, comp: 3 + k }, torque[k]);
             out.add(Row::Equilibrium { slot: 1, comp: 3 + k }, -torque[k]);
@@ -87,15 +99,19 @@ impl Element for Motor {
     fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
         let n = self.axis_at(st);
         let i = st.multiplier(0);
-        // δn = δθ₁ × n = −[n×] δθ₁.
-        let dn = -skew(&n) * (self.gain * i);
-        add_block(out, Row::moment(0), Col::rotation(0), &dn);
-        add_block(out, Row::moment(1), Col::rotation(0), &-dn);
+        let (m, dm_di, dm_dtheta) = self.torque(st, i);
+        // δn = δθ₁ × n = −[n×] δθ₁; the cogging torque's angle adds n ⊗ ∂M/∂δθₖ.
+        let dn = -skew(&n) * m;
+        for (slot, d) in dm_dtheta.iter().enumerate() {
+            let block = n * d.transpose() + if slot == 0 { dn } else { crate::kinematics::Mat3::zeros() };
+            add_block(out, Row::moment(0), Col::rotation(slot), &block);
+            add_block(out, Row::moment(1), Col::rotation(slot), &-block);
+        }
         let relative = st.node(1).omega - st.node(0).omega;
         let d_theta = n.cross(&relative) * self.gain;
         for k in 0..3 {
-            out.add(Row::Equilibrium { slot: 0, comp: 3 + k }, Col::Multiplier(0), self.gain * n[k]);
-            out.add(Row::Equilibrium { slot: 1, comp: 3 + k }, Col::Multiplier(0), -self.gain * n[k]);
+            out.add(Row::Equilibrium { slot: 0, comp: 3 + k }, Col::Multiplier(0), dm_di * n[k]);
+            out.add(Row::Equilibrium { slot: 1, comp: 3 + k }, Col::Multiplier(0), -dm_di * n[k]);
             out.add(Row::Constraint(0), Col::AngularVelocity { slot: 1, comp: k }, self.gain * n[k]);
             out.add(Row::Constraint(0), Col::AngularVelocity { slot: 0, comp: k }, -self.gain * n[k]);
             out.add(Row::Constraint(0), Col::Rotation { slot: 0, comp: k }, d_theta[k]);
@@ -113,8 +129,12 @@ impl Outputs for Motor {
     /// motor.cc, `Motor::dGetPrivData`: "i" the current [A], "iP" its rate [A/s], "omega"
     /// the relative angular velocity about the axis [rad/s], "M" the torque `G i` [N m], "U"
     /// the voltage `V₂ − V₁` [V], "Pmech" `M ω` and "Pel" `U i` [W], "R" the resistance [Ω].
-    /// The cogging terms' data (`Phimech`, `Phiel`, `M0`, `M1`) are not computed.
+    /// The cogging terms' data (`Phimech`, `Phiel`, `M0`, `M1`) are not computed, nor "M"
+    /// and "Pmech" of a motor with a cogging torque.
     fn private_data(&self, name: &str) -> Option<PrivateDatum> {
+        if self.cogging.is_some() && matches!(name, "M" | "Pmech") {
+            return None;
+        }
         let (label, nodes, axis, voltages, gain, resistance) = (self.label, self.nodes, self.axis, self.voltages, self.gain, self.resistance);
         let current = move |st: &dyn ElementState| st.element_unknown("motor", label, 0);
         let omega = move |st: &dyn ElementState| {

@@ -7,7 +7,7 @@
 //! it takes out of the node (MBDyn's `AssRes` adds it; romdyn's residual, its negative,
 //! subtracts it). Pressures are in Pa, densities in kg/m³, areas in m², volumes in m³.
 
-use super::contract::{add_block, Col, Element, ElementState, Events, JacobianSink, Label, Latched, ResidualSink, Row, ScalarNodeId, UnknownKind};
+use super::contract::{add_block, Col, Element, ElementState, Events, JacobianSink, Label, Latched, Outputs, ResidualSink, Row, ScalarNodeId, UnknownKind};
 use crate::kinematics::{skew, Vec3};
 
 /// A hydraulic fluid (hfluid_.h): the density as a function of the pressure.
@@ -73,6 +73,8 @@ pub struct Actuator {
     pub fluids: [HydraulicFluid; 2],
     /// The nodes' initial pressures, where `π₁`, `π₂` start.
     pub initial_pressures: [f64; 2],
+    /// Whether it writes its `.hyd` row.
+    pub output: bool,
 }
 
 /// The actuator's kinematics at a state.
@@ -104,6 +106,33 @@ impl Actuator {
         let d = self.stroke(st).length;
         [self.areas[0] * d, self.areas[1] * (self.length - d)]
     }
+
+    /// The mass flows into the chambers [kg/s], `d(ρV)/dt` each: out of nodes 1 and 2.
+    fn flows(&self, st: &dyn ElementState, s: &Stroke) -> [f64; 2] {
+        let [a1, a2] = self.areas;
+        let [f1, f2] = self.fluids;
+        let (p1, p2) = (st.scalar_value(0), st.scalar_value(1));
+        [a1 * (f1.density_slope() * st.rate(0) * s.length + f1.density(p1) * s.rate), a2 * (f2.density_slope() * st.rate(1) * (self.length - s.length) - f2.density(p2) * s.rate)]
+    }
+}
+
+/// actuator.cc's `Output`: the chambers' mass flows [kg/s] (out of nodes 1, 2), the internal
+/// pressures `π₁`, `π₂` [Pa] and their rates [Pa/s], the volumes [m³], the densities at the
+/// nodes' pressures [kg/m³].
+impl Outputs for Actuator {
+    fn writes_hydraulic_row(&self) -> bool {
+        self.output
+    }
+    fn hydraulic_row(&self, st: &dyn ElementState) -> Vec<f64> {
+        if !self.output {
+            return Vec::new();
+        }
+        let s = self.stroke(st);
+        let [flow1, flow2] = self.flows(st, &s);
+        let [v1, v2] = [self.areas[0] * s.length, self.areas[1] * (self.length - s.length)];
+        let densities = [self.fluids[0].density(st.scalar_value(0)), self.fluids[1].density(st.scalar_value(1))];
+        vec![flow1, flow2, st.multiplier(0), st.multiplier(1), st.rate(0), st.rate(1), v1, v2, densities[0], densities[1]]
+    }
 }
 
 impl Element for Actuator {
@@ -128,6 +157,9 @@ impl Element for Actuator {
     fn initial_unknowns(&self) -> Vec<(usize, f64, f64)> {
         vec![(0, self.initial_pressures[0], 0.0), (1, self.initial_pressures[1], 0.0)]
     }
+    fn outputs(&self) -> Option<&dyn Outputs> {
+        Some(self)
+    }
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
         let s = self.stroke(st);
         let [a1, a2] = self.areas;
@@ -140,9 +172,7 @@ impl Element for Actuator {
             out.add(Row::Equilibrium { slot: 1, comp: k }, -force[k]);
             out.add(Row::Equilibrium { slot: 1, comp: 3 + k }, -moments[1][k]);
         }
-        let [f1, f2] = self.fluids;
-        let flow1 = a1 * (f1.density_slope() * st.rate(0) * s.length + f1.density(p1) * s.rate);
-        let flow2 = a2 * (f2.density_slope() * st.rate(1) * (self.length - s.length) - f2.density(p2) * s.rate);
+        let [flow1, flow2] = self.flows(st, &s);
         out.add(Row::Scalar { slot: 0 }, -flow1);
         out.add(Row::Scalar { slot: 1 }, -flow2);
         out.add(Row::Constraint(0), st.multiplier(0) - p1);
@@ -213,15 +243,17 @@ pub struct MinorLoss {
     pub loss: [f64; 2],
     pub area: f64,
     pub fluid: HydraulicFluid,
+    /// Whether it writes its `.hyd` row.
+    pub output: bool,
 }
 
 /// MBDyn's floor on `|p₁ − p₂|` in the flow's derivative (hminor.cc, valve.cc: 10⁸ ε Pa),
 /// where the square root's slope is infinite.
-const LEAST_PRESSURE_DROP: f64 = 1e8 * f64::EPSILON;
+pub(super) const LEAST_PRESSURE_DROP: f64 = 1e8 * f64::EPSILON;
 
 /// A turbulent orifice's mass flow `q = a √(2ρ|Δp|) sign(Δp)` [kg/s] (`a` the effective
 /// area [m²]) and its slope `∂q/∂Δp = a √(2ρ) / (2 √|Δp|)`, `|Δp|` floored as MBDyn's.
-fn orifice(area: f64, rho: f64, drop: f64) -> (f64, f64) {
+pub(super) fn orifice(area: f64, rho: f64, drop: f64) -> (f64, f64) {
     let coef = area * (2.0 * rho).sqrt();
     (coef * drop.signum() * drop.abs().sqrt(), coef / (2.0 * drop.abs().max(LEAST_PRESSURE_DROP).sqrt()))
 }
@@ -248,6 +280,9 @@ impl Element for MinorLoss {
     fn scalar_nodes(&self) -> Vec<ScalarNodeId> {
         self.pressures.to_vec()
     }
+    fn outputs(&self) -> Option<&dyn Outputs> {
+        Some(self)
+    }
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
         let (q, ..) = self.flow(st);
         out.add(Row::Scalar { slot: 0 }, -q);
@@ -261,6 +296,21 @@ impl Element for MinorLoss {
             out.add(Row::Scalar { slot: 0 }, Col::ScalarValue { slot }, -dq);
             out.add(Row::Scalar { slot: 1 }, Col::ScalarValue { slot }, dq);
         }
+    }
+}
+
+/// hminor.cc's `Output`: the mean velocity `q/(ρ A)` [m/s] and the mass flow `q` [kg/s]
+/// from node 1 to node 2.
+impl Outputs for MinorLoss {
+    fn writes_hydraulic_row(&self) -> bool {
+        self.output
+    }
+    fn hydraulic_row(&self, st: &dyn ElementState) -> Vec<f64> {
+        if !self.output {
+            return Vec::new();
+        }
+        let (q, _, rho) = self.flow(st);
+        vec![q / (rho * self.area), q]
     }
 }
 
@@ -278,6 +328,8 @@ pub struct ControlValve {
     pub state: super::drive::Drive,
     /// The fluid's reference density [kg/m³].
     pub density: f64,
+    /// Whether it writes its `.hyd` row.
+    pub output: bool,
 }
 
 impl ControlValve {
@@ -306,6 +358,9 @@ impl Element for ControlValve {
     fn reads_state(&self) -> bool {
         self.state.reads_state()
     }
+    fn outputs(&self) -> Option<&dyn Outputs> {
+        Some(self)
+    }
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
         for (from, to, area) in self.orifices(st) {
             let (q, _) = orifice(VALVE_DISCHARGE * area, self.density, st.scalar_value(from) - st.scalar_value(to));
@@ -321,6 +376,26 @@ impl Element for ControlValve {
                 out.add(Row::Scalar { slot: row }, Col::ScalarValue { slot: to }, -sign * slope);
             }
         }
+    }
+}
+
+/// valve.cc's `Output`: the valve's state (held in [−1, 1]) and the net mass flows into
+/// nodes 1 to 4 [kg/s].
+impl Outputs for ControlValve {
+    fn writes_hydraulic_row(&self) -> bool {
+        self.output
+    }
+    fn hydraulic_row(&self, st: &dyn ElementState) -> Vec<f64> {
+        if !self.output {
+            return Vec::new();
+        }
+        let mut row = vec![self.state.value_in(st).clamp(-1.0, 1.0), 0.0, 0.0, 0.0, 0.0];
+        for (from, to, area) in self.orifices(st) {
+            let (q, _) = orifice(VALVE_DISCHARGE * area, self.density, st.scalar_value(from) - st.scalar_value(to));
+            row[1 + from] -= q;
+            row[1 + to] += q;
+        }
+        row
     }
 }
 
@@ -346,6 +421,50 @@ pub struct Pipe {
     /// The regime before the first step (`turbulent`).
     pub turbulent: bool,
     pub initial_flow: f64,
+    /// The density at the mean of its nodes' pressures [kg/m³] (for the velocity it writes).
+    pub fluid: HydraulicFluid,
+    /// Whether it writes its `.hyd` row.
+    pub output: bool,
+}
+
+/// A pipe's flow regime (pipe.cc): laminar below `Re` 2000, turbulent above 4000, and in
+/// between laminar below 2500 coming from laminar, turbulent above 3100 coming from
+/// turbulent, else MBDyn's transition quartic `g(x) = ((a x + b) x + c) x + d` in `x =
+/// |q|`, coefficients of the regime it comes from (`dva = D/(μ A)` [s/kg]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum Regime {
+    Laminar,
+    Turbulent,
+    Transition { a: f64, b: f64, c: f64, d: f64 },
+}
+
+impl Regime {
+    pub(super) fn of(re: f64, turbulent: bool, dva: f64) -> Regime {
+        if re < 2000.0 || (!turbulent && re < 2000.0 * 1.25) {
+            return Regime::Laminar;
+        }
+        if re > 4000.0 || (turbulent && re > 4000.0 * 0.775) {
+            return Regime::Turbulent;
+        }
+        let c = -1.8e-5 * dva;
+        if turbulent {
+            Regime::Transition { a: 9e-13 * dva.powi(3), b: 2e-9 * dva * dva, c, d: 0.0528 }
+        } else {
+            Regime::Transition { a: 7e-13 * dva.powi(3), b: 8e-10 * dva * dva, c, d: 0.0542 }
+        }
+    }
+
+    /// The regime a pipe comes from after an accepted step of Reynolds number `re`
+    /// (MBDyn's `AfterConvergence`): kept in the transition.
+    pub(super) fn latched(re: f64, before: bool) -> bool {
+        if re < 2000.0 {
+            false
+        } else if re > 4000.0 {
+            true
+        } else {
+            before
+        }
+    }
 }
 
 impl Pipe {
@@ -366,29 +485,33 @@ impl Pipe {
     /// The pressure drop `f(q)` [Pa] and its slope, in the regime the pipe comes from.
     fn drop(&self, q: f64, turbulent: bool) -> (f64, f64) {
         let [lam, tra, trb] = self.coefficients;
-        let re = self.reynolds(q);
-        let laminar = (lam * q, lam);
-        let blasius = (trb * q.signum() * q.abs().powf(1.75), 1.75 * trb * q.abs().powf(0.75));
-        if re < 2000.0 {
-            return laminar;
-        }
-        if re > 4000.0 {
-            return blasius;
-        }
-        if !turbulent && re < 2000.0 * 1.25 {
-            return laminar;
-        }
-        if turbulent && re > 4000.0 * 0.775 {
-            return blasius;
-        }
-        // pipe.cc's transition quartics in |q|, from laminar and from turbulent.
         let dva = self.diameter / (self.viscosity * self.area);
-        let (a, b, d) = if turbulent { (9e-13 * dva.powi(3), 2e-9 * dva * dva, 0.0528) } else { (7e-13 * dva.powi(3), 8e-10 * dva * dva, 0.0542) };
-        let c = -1.8e-5 * dva;
-        let x = q.abs();
-        let g = tra * (((a * x + b) * x + c) * x + d) * x;
-        let dg = tra * (((4.0 * a * x + 3.0 * b) * x + 2.0 * c) * x + d);
-        (q * g, g + x * dg)
+        match Regime::of(self.reynolds(q), turbulent, dva) {
+            Regime::Laminar => (lam * q, lam),
+            Regime::Turbulent => (trb * q.signum() * q.abs().powf(1.75), 1.75 * trb * q.abs().powf(0.75)),
+            Regime::Transition { a, b, c, d } => {
+                let x = q.abs();
+                let g = tra * (((a * x + b) * x + c) * x + d) * x;
+                let dg = tra * (((4.0 * a * x + 3.0 * b) * x + 2.0 * c) * x + d);
+                (q * g, g + x * dg)
+            }
+        }
+    }
+}
+
+/// pipe.cc's `Output`: the mean velocity `q/(ρ A)` [m/s] (`ρ` at the nodes' mean
+/// pressure), the mass flow `q` [kg/s] from node 1 to node 2 and the Reynolds number.
+impl Outputs for Pipe {
+    fn writes_hydraulic_row(&self) -> bool {
+        self.output
+    }
+    fn hydraulic_row(&self, st: &dyn ElementState) -> Vec<f64> {
+        if !self.output {
+            return Vec::new();
+        }
+        let q = st.multiplier(0);
+        let rho = self.fluid.density(0.5 * (st.scalar_value(0) + st.scalar_value(1)));
+        vec![q / (rho * self.area), q, self.reynolds(q)]
     }
 }
 
@@ -415,6 +538,9 @@ impl Element for Pipe {
     fn events(&self) -> Option<&dyn Events> {
         Some(self)
     }
+    fn outputs(&self) -> Option<&dyn Outputs> {
+        Some(self)
+    }
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
         let q = st.multiplier(0);
         out.add(Row::Scalar { slot: 0 }, -q);
@@ -436,9 +562,8 @@ impl Element for Pipe {
 impl Events for Pipe {
     /// The regime of the accepted state, kept in the transition (pipe.cc, `AfterConvergence`).
     fn latch(&self, now: &dyn ElementState, before: &dyn ElementState) -> Option<Latched> {
-        let re = self.reynolds(before.multiplier(0));
         let old = self.turbulent_at(now);
-        let new = if re < 2000.0 { false } else if re > 4000.0 { true } else { old };
+        let new = Regime::latched(self.reynolds(before.multiplier(0)), old);
         (new != old).then(|| std::sync::Arc::new(new) as Latched)
     }
 }

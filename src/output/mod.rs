@@ -8,6 +8,7 @@ pub mod cleanup;
 pub mod bode;
 pub mod figure;
 pub mod frequency_plot;
+pub mod hydraulic_elements;
 pub mod line_plot;
 pub mod eigen_file;
 pub mod eigen_json;

@@ -284,7 +284,7 @@ fn build_with(doc: &Document, beam_update: BeamUpdateRule) -> Result<MbdynModel,
         {
             output_only.insert(("inertia", *x as u32));
         }
-        let ctx = ElementContext { nodes: &nodes, frames: &cards.frames, drives: &cards.drives, laws: &cards.laws, fluids: &cards.fluids, beams: &beams, seq: st.seq, static_model, beam_update, beam_notes: &beam_notes };
+        let ctx = ElementContext { nodes: &nodes, frames: &cards.frames, drives: &cards.drives, laws: &cards.laws, fluids: &cards.fluids, beams: &beams, seq: st.seq, static_model, beam_update, beam_notes: &beam_notes, hydraulic_output: control_output.hydraulic_elements };
         let label_span = c.here();
         cards.drives.functions.take_used();
         let parsed = element(st, &mut c, &ctx)?;

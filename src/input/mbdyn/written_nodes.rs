@@ -143,7 +143,7 @@ impl WrittenNodes {
         let beams = super::elements::context::BeamNodes::new();
         let fluids = super::elements::context::Fluids::new();
         let beam_notes = std::cell::RefCell::new(Vec::new());
-        let ctx = super::elements::context::ElementContext { nodes: &self.nodes, frames: &self.frames, drives: &self.drives, laws: &laws, fluids: &fluids, beams: &beams, seq: st.seq, static_model: false, beam_update: Default::default(), beam_notes: &beam_notes };
+        let ctx = super::elements::context::ElementContext { nodes: &self.nodes, frames: &self.frames, drives: &self.drives, laws: &laws, fluids: &fluids, beams: &beams, seq: st.seq, static_model: false, beam_update: Default::default(), beam_notes: &beam_notes, hydraulic_output: false };
         let built = match super::elements::block::element(st, &mut Cursor::new(st, sources), &ctx) {
             Ok(super::elements::context::Parsed::Element(e)) => Ok(e),
             Ok(super::elements::context::Parsed::Body(b)) => Ok(Box::new(b) as Box<dyn crate::element::Element>),

@@ -89,6 +89,8 @@ pub struct ControlOutput {
     /// Whether abstract, electric and hydraulic nodes are written unless their card says
     /// otherwise.
     pub scalar_nodes: [bool; 3],
+    /// Whether hydraulic elements write their `.hyd` rows unless their card says otherwise.
+    pub hydraulic_elements: bool,
 }
 
 /// Largest `output precision` romdyn writes (17 significant digits already identify a
@@ -97,7 +99,7 @@ const MAX_OUTPUT_PRECISION: usize = 30;
 
 impl Default for ControlOutput {
     fn default() -> Self {
-        ControlOutput { structural_nodes: true, every: 1, orientation: OrientationOutput::Euler123Degrees, precision: None, accelerations: false, scalar_nodes: [true; 3] }
+        ControlOutput { structural_nodes: true, every: 1, orientation: OrientationOutput::Euler123Degrees, precision: None, accelerations: false, scalar_nodes: [true; 3], hydraulic_elements: true }
     }
 }
 
@@ -116,15 +118,18 @@ fn default_output(c: &mut Cursor, out: &mut ControlOutput) -> Result<(), MbdynEr
             "all" => {
                 out.structural_nodes = true;
                 out.scalar_nodes = [true; 3];
+                out.hydraulic_elements = true;
             }
             "structural nodes" => out.structural_nodes = true,
             "abstract nodes" => out.scalar_nodes[0] = true,
             "electric nodes" => out.scalar_nodes[1] = true,
             "hydraulic nodes" => out.scalar_nodes[2] = true,
+            "hydraulic elements" => out.hydraulic_elements = true,
             "accelerations" => out.accelerations = true,
             "none" => {
                 out.structural_nodes = false;
                 out.scalar_nodes = [false; 3];
+                out.hydraulic_elements = false;
             }
             _ => {}
         }

@@ -58,6 +58,9 @@ pub struct ElementContext<'a> {
     pub beam_update: crate::input::mbdyn::read_options::BeamUpdateRule,
     /// Why beams keep the path-independent update where the incremental one was wanted.
     pub beam_notes: &'a std::cell::RefCell<Vec<String>>,
+    /// Whether hydraulic elements write their `.hyd` rows unless their card says otherwise
+    /// (control data's `default output`).
+    pub hydraulic_output: bool,
 }
 
 impl<'a> ElementContext<'a> {

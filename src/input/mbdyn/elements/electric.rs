@@ -8,7 +8,7 @@ use crate::input::mbdyn::syntax::diagnostic::{mbdyn_runs_it, MbdynError};
 use super::context::ElementContext;
 use crate::input::mbdyn::nodes::scalar::{scalar_node_of, ScalarEntry};
 use crate::element::drive::Drive;
-use crate::element::{Accelerometer, AccelerometerKind, DisplacementSensor, Element, Motor};
+use crate::element::{Accelerometer, AccelerometerKind, Cogging, DisplacementSensor, Element, Motor};
 use crate::model::{Label, ScalarNodeId, ScalarNodeKind};
 use crate::input::mbdyn::drives::callers;
 use crate::input::mbdyn::syntax::diagnostic;
@@ -63,8 +63,11 @@ fn motor(label: Label, c: &mut Cursor, ctx: &ElementContext, what: &str) -> Resu
     let n2 = ctx.node(c, &format!("{what}: structural node 2"))?;
     let on = ctx.on(n1);
     let dir_span = c.here();
+    let mut frame = None;
     let axis = if c.accept("orientation") {
-        on.relative_orientation(c, &format!("{what}: orientation (axis 3 is the motor's)"))?.column(2).into_owned()
+        let r = on.relative_orientation(c, &format!("{what}: orientation (axis 3 is the motor's)"))?;
+        frame = Some(r);
+        r.column(2).into_owned()
     } else {
         on.relative_vector(c, &format!("{what}: axis"))?.try_normalize(0.0).ok_or_else(|| c.error_at(dir_span, format!("{what}: the axis is null (MBDyn 1.7.3: \"illegal motor direction\")")))?
     };
@@ -82,14 +85,43 @@ fn motor(label: Label, c: &mut Cursor, ctx: &ElementContext, what: &str) -> Resu
         _ => return Err(c.error_at(r_span, format!("{what}: {}", mbdyn_runs_it("a resistance that varies with the current (a drive caller of |i|)")))),
     };
     let initial_current = if c.accept("initial current") { c.real("initial current [A]")? } else { 0.0 };
-    if let Some(k) = c.accept_any(&["M0", "M1"]) {
-        return Err(c.error(format!("{what}: {} (romdyn's motor torque is G i)", mbdyn_runs_it(&format!("the cogging torque '{k}'")))));
-    }
+    let cogging = cogging(c, ctx, what, frame)?;
     // motor.cc's constructor: `iP = (V₂ − V₁ − G ω − R i₀)/L` at the written state.
     let value = |id| ctx.nodes.2.iter().find(|e: &&ScalarEntry| e.node.id == id).map_or(0.0, |e| e.node.value);
     let omega = (n1.orientation * axis).dot(&(n2.angular_velocity - n1.angular_velocity));
     let initial_rate = (value(v2) - value(v1) - gain * omega - resistance * initial_current) / inductance;
-    Ok(Box::new(Motor { label, nodes: [n1.label, n2.label], axis, voltages: [v1, v2], gain, inductance, resistance, initial_current, initial_rate }))
+    Ok(Box::new(Motor { label, nodes: [n1.label, n2.label], axis, voltages: [v1, v2], gain, inductance, resistance, initial_current, initial_rate, cogging }))
+}
+
+/// `[M0, DRIVE,] [M1, DRIVE,] terminal pairs, P` of a motor with an `orientation` (elec.cc:
+/// either drive needs the orientation and the pairs; a missing one is zero).
+fn cogging(c: &mut Cursor, ctx: &ElementContext, what: &str, frame: Option<crate::kinematics::Mat3>) -> Result<Option<Cogging>, MbdynError> {
+    let span = c.here();
+    let read = |c: &mut Cursor, key: &str| -> Result<Option<Drive>, MbdynError> {
+        if !c.accept(key) {
+            return Ok(None);
+        }
+        let at = c.here();
+        let d = callers::drive(c, ctx.drives, ctx.seq)?;
+        if !Cogging::differentiable(&d) {
+            return Err(c.error_at(at, format!("{what}: {} (the Jacobian needs the slope of '{key}' in the electrical angle: romdyn differentiates const, ramp, step, sine, cosine, polynomial, exponential, tanh drives, their sums and products)", mbdyn_runs_it("this cogging drive"))));
+        }
+        Ok(Some(d))
+    };
+    let (m0, m1) = (read(c, "M0")?, read(c, "M1")?);
+    if m0.is_none() && m1.is_none() {
+        return Ok(None);
+    }
+    let Some(frame) = frame else {
+        return Err(c.error_at(span, format!("{what}: \"M0\" and \"M1\" require the motor's 'orientation' instead of an axis (MBDyn 1.7.3 refuses it too)")));
+    };
+    c.keyword(&format!("{what}: 'terminal pairs' (MBDyn 1.7.3 requires it after M0, M1)"), &["terminal pairs"])?;
+    let p_span = c.here();
+    let pairs = c.integer("number of terminal pairs")?;
+    if pairs < 1 {
+        return Err(c.error_at(p_span, format!("{what}: the number of terminal pairs must be at least 1, found {pairs} (MBDyn 1.7.3: \"must be greater than zero\")")));
+    }
+    Ok(Some(Cogging { frame, pairs: pairs as f64, m0: m0.unwrap_or(Drive::Const(0.0)), m1: m1.unwrap_or(Drive::Const(0.0)) }))
 }
 
 /// `accelerometer, {translational | rotational}, NODE, ABSTRACT, DIR [, position, OFFSET]`.

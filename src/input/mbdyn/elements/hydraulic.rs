@@ -1,22 +1,26 @@
 //! The `hydraulic fluid` card (input manual §Hydraulic fluid; hfluid.cc,
 //! `ReadHydraulicFluid`; mbpar.cc, `GetHydraulicFluid`) and the `hydraulic` element cards
 //! (§Hydraulic Element; preselem.cc, `ReadHydraulicElem`): `actuator`, `minor loss`,
-//! `control valve` and `pipe`. The other fluids and hydraulic elements of MBDyn 1.7.3 are refused by
-//! name.
+//! `control valve` and `pipe` (`dynamic pipe`, `accumulator`, `tank` and `orifice` in
+//! [`super::hydraulic_elements`]). The other fluids and hydraulic elements of MBDyn 1.7.3
+//! are refused by name.
 
 use crate::input::mbdyn::syntax::cursor::Cursor;
+use super::hydraulic_args::{element_fluid, fluid_properties, initial_value, output_flag, pipe_card, positive, PipeCard};
 use crate::input::mbdyn::syntax::diagnostic::{mbdyn_runs_it, MbdynError};
 use crate::input::mbdyn::nodes::scalar::scalar_node_of;
 use super::context::{ElementContext, Fluids};
-use crate::element::{Actuator, ControlValve, Element, HydraulicFluid, MinorLoss, Pipe};
+use crate::element::{Actuator, ControlValve, Element, MinorLoss, Pipe};
 use crate::model::{Label, ScalarNodeKind};
 use crate::input::mbdyn::drives::callers;
-use crate::input::mbdyn::nodes::scalar;
 use crate::input::mbdyn::syntax::diagnostic;
 
 
 /// The hydraulic element types of MBDyn 1.7.3 romdyn does not build.
-const OTHER_ELEMENTS: [&str; 10] = ["three way minor loss", "control valve 2", "dynamic control valve", "pressure flow control", "pressure valve", "flow valve", "orifice", "accumulator", "tank", "dynamic pipe"];
+const OTHER_ELEMENTS: [&str; 6] = ["three way minor loss", "control valve 2", "dynamic control valve", "pressure flow control", "pressure valve", "flow valve"];
+
+/// The hydraulic element types romdyn builds.
+const TYPES: [&str; 8] = ["actuator", "minor loss", "control valve", "dynamic pipe", "pipe", "accumulator", "tank", "orifice"];
 
 /// `hydraulic fluid: LABEL [, name, "…"], FLUID;`.
 pub fn fluid_card(c: &mut Cursor, seq: usize, fluids: &mut Fluids) -> Result<(), MbdynError> {
@@ -33,85 +37,33 @@ pub fn fluid_card(c: &mut Cursor, seq: usize, fluids: &mut Fluids) -> Result<(),
     Ok(())
 }
 
-/// A positive real, refused otherwise with `why`.
-fn positive(c: &mut Cursor, what: &str, why: &str) -> Result<f64, MbdynError> {
-    let span = c.here();
-    let x = c.real(what)?;
-    if !(x > f64::EPSILON) {
-        return Err(c.error_at(span, format!("{what} must be positive, found {x}{why}")));
-    }
-    Ok(x)
-}
-
-/// `[TYPE,] PROPERTIES` of a fluid (hfluid.cc: the type defaults to `incompressible`):
-/// `incompressible, density, RHO, viscosity, MU [, pressure, P0] [, temperature, T0]` and
-/// `linear compressible, density, RHO, {BETA | sound celerity, C}, P0, viscosity, MU [,
-/// temperature, T0]`, in MBDyn's order.
-fn fluid_properties(c: &mut Cursor, what: &str) -> Result<HydraulicFluid, MbdynError> {
-    let span = c.here();
-    if let Some(k) = c.accept_any(&["linear thermal compressible", "super", "exponential"]) {
-        return Err(c.error_at(span, format!("{what}: {} (supported: incompressible, linear compressible)", mbdyn_runs_it(&format!("the fluid type '{k}'")))));
-    }
-    let compressible = c.accept("linear compressible");
-    if !compressible {
-        c.accept_any(&["incompressible", "uncompressible"]);
-    }
-    // hfluid.cc refuses a missing or non-positive density and viscosity ("illegal density").
-    c.keyword(&format!("{what}: 'density'"), &["density"])?;
-    let density = positive(c, "density [kg/m^3]", "")?;
-    let compressibility = if compressible {
-        let beta = if c.accept("sound celerity") { density * positive(c, "sound celerity [m/s]", "")?.powi(2) } else { positive(c, "bulk modulus [Pa]", " (MBDyn 1.7.3 refuses only a null one; a negative one makes a fluid that expands under pressure)")? };
-        Some((beta, c.real("reference pressure [Pa]")?))
-    } else {
-        None
-    };
-    c.keyword(&format!("{what}: 'viscosity' (MBDyn 1.7.3 requires a positive viscosity)"), &["viscosity"])?;
-    let viscosity = positive(c, "viscosity [Pa s]", "")?;
-    let fluid = match compressibility {
-        Some((bulk_modulus, pressure)) => HydraulicFluid::LinearCompressible { density, bulk_modulus, pressure, viscosity },
-        None => HydraulicFluid::Incompressible { density, viscosity },
-    };
-    if !compressible && c.accept("pressure") {
-        c.real("reference pressure [Pa]")?;
-    }
-    if c.accept("temperature") {
-        c.real("reference temperature [K]")?;
-    }
-    Ok(fluid)
-}
-
-/// `fluid, {reference, LABEL | FLUID}` (or `hydraulic fluid, …`) in an element.
-fn element_fluid(c: &mut Cursor, ctx: &ElementContext, what: &str) -> Result<HydraulicFluid, MbdynError> {
-    c.keyword(&format!("{what}: 'fluid'"), &["fluid", "hydraulic fluid"])?;
-    if !c.accept("reference") {
-        return fluid_properties(c, what);
-    }
-    let span = c.here();
-    let label = c.label("hydraulic fluid label")?;
-    match ctx.fluids.get(&label) {
-        Some((fluid, seq, _)) if *seq < ctx.seq => Ok(*fluid),
-        _ => Err(c.error_at(span, format!("{what}: hydraulic fluid {label} is not defined above this element"))),
-    }
-}
-
 /// `hydraulic: LABEL, TYPE, …` after the label.
 pub fn hydraulic(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Box<dyn Element>, MbdynError> {
     let span = c.here();
-    let types = ["actuator", "minor loss", "control valve", "pipe"];
+    let types = TYPES.join(", ");
     if let Some(k) = c.accept_any(&OTHER_ELEMENTS) {
-        return Err(c.error_at(span, format!("{} (supported: actuator, minor loss, control valve, pipe)", mbdyn_runs_it(&format!("hydraulic element type '{k}'")))));
+        return Err(c.error_at(span, format!("{} (supported: {types})", mbdyn_runs_it(&format!("hydraulic element type '{k}'")))));
     }
-    let Some(kind) = c.accept_any(&types) else {
+    let Some(kind) = c.accept_any(&TYPES) else {
         return Err(match c.peek_keyword() {
-            Some(w) => c.error(format!("{} (romdyn reads: actuator, minor loss, control valve, pipe)", diagnostic::unknown_to_both("hydraulic element type", w))),
-            None => c.error(format!("expected the hydraulic element type (actuator, minor loss, control valve, pipe), found {}", c.found())),
+            Some(w) => c.error(format!("{} (romdyn reads: {types})", diagnostic::unknown_to_both("hydraulic element type", w))),
+            None => c.error(format!("expected the hydraulic element type ({types}), found {}", c.found())),
         });
     };
     let what = format!("hydraulic {label} ({kind})");
     let pressure = |c: &mut Cursor| scalar_node_of(c, &ctx.nodes.2, ScalarNodeKind::Hydraulic, &what);
-    if kind == "pipe" {
+    if kind == "accumulator" {
+        let node = pressure(c)?;
+        return super::hydraulic_elements::accumulator(label, c, ctx, &what, node);
+    }
+    if matches!(kind, "pipe" | "dynamic pipe" | "tank" | "orifice") {
         let pressures = [pressure(c)?, pressure(c)?];
-        return pipe(label, c, ctx, &what, pressures);
+        return match kind {
+            "pipe" => pipe(label, c, ctx, &what, pressures),
+            "dynamic pipe" => super::hydraulic_elements::dynamic_pipe(label, c, ctx, &what, pressures),
+            "tank" => super::hydraulic_elements::tank(label, c, ctx, &what, pressures),
+            _ => super::hydraulic_elements::orifice(label, c, ctx, &what, pressures),
+        };
     }
     if kind == "control valve" {
         let pressures = [pressure(c)?, pressure(c)?, pressure(c)?, pressure(c)?];
@@ -128,7 +80,8 @@ pub fn hydraulic(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<B
         };
         let state = callers::drive(c, ctx.drives, ctx.seq)?;
         let density = element_fluid(c, ctx, &what)?.reference_density();
-        return Ok(Box::new(ControlValve { label, pressures, area, loss, state, density }));
+        let output = output_flag(c, ctx)?;
+        return Ok(Box::new(ControlValve { label, pressures, area, loss, state, density, output }));
     }
     let pressures = [pressure(c)?, pressure(c)?];
     if kind == "minor loss" {
@@ -136,7 +89,8 @@ pub fn hydraulic(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<B
         let loss = [positive(c, &format!("{what}: loss coefficient K12"), why)?, positive(c, &format!("{what}: loss coefficient K21"), why)?];
         let area = positive(c, &format!("{what}: area [m^2]"), "")?;
         let fluid = element_fluid(c, ctx, &what)?;
-        return Ok(Box::new(MinorLoss { label, pressures, loss, area, fluid }));
+        let output = output_flag(c, ctx)?;
+        return Ok(Box::new(MinorLoss { label, pressures, loss, area, fluid, output }));
     }
     let mut nodes = [0; 2];
     let mut offsets = [crate::kinematics::Vec3::zeros(); 2];
@@ -159,21 +113,17 @@ pub fn hydraulic(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<B
     let length = positive(c, &format!("{what}: cylinder length [m]"), "")?;
     let fluid1 = element_fluid(c, ctx, &what)?;
     let fluid2 = if c.accept("same") { fluid1 } else { element_fluid(c, ctx, &what)? };
-    let initial_pressures = pressures.map(|id| ctx.nodes.2.iter().find(|e| e.node.id == id).map_or(0.0, |e| e.node.value));
-    Ok(Box::new(Actuator { label, pressures, nodes, offsets, axis, areas, length, fluids: [fluid1, fluid2], initial_pressures }))
+    let initial_pressures = pressures.map(|id| initial_value(ctx, id));
+    let output = output_flag(c, ctx)?;
+    Ok(Box::new(Actuator { label, pressures, nodes, offsets, axis, areas, length, fluids: [fluid1, fluid2], initial_pressures, output }))
 }
 
 /// `pipe, P1, P2, DIAMETER, [area, A,] LENGTH, [turbulent,] [initial value, Q0,] fluid, …`
 /// after its nodes (the area defaults to the diameter's circle).
 fn pipe(label: Label, c: &mut Cursor, ctx: &ElementContext, what: &str, pressures: [crate::model::ScalarNodeId; 2]) -> Result<Box<dyn Element>, MbdynError> {
-    let diameter = positive(c, &format!("{what}: hydraulic diameter [m]"), "")?;
-    let area = if c.accept("area") { positive(c, &format!("{what}: area [m^2]"), "")? } else { diameter * diameter * std::f64::consts::FRAC_PI_4 };
-    let length = positive(c, &format!("{what}: length [m]"), "")?;
-    let turbulent = c.accept("turbulent");
-    let initial_flow = if c.accept("initial value") { c.real("initial mass flow [kg/s]")? } else { 0.0 };
-    let fluid = element_fluid(c, ctx, what)?;
-    let pressure = |id| ctx.nodes.2.iter().find(|e: &&scalar::ScalarEntry| e.node.id == id).map_or(0.0, |e| e.node.value);
-    let rho = fluid.density(0.5 * (pressure(pressures[0]) + pressure(pressures[1])));
+    let PipeCard { diameter, area, length, turbulent, initial_flow, fluid } = pipe_card(c, ctx, what)?;
+    let rho = fluid.density(0.5 * (initial_value(ctx, pressures[0]) + initial_value(ctx, pressures[1])));
     let coefficients = Pipe::coefficients(diameter, area, length, rho, fluid.viscosity());
-    Ok(Box::new(Pipe { label, pressures, diameter, area, viscosity: fluid.viscosity(), coefficients, turbulent, initial_flow }))
+    let output = output_flag(c, ctx)?;
+    Ok(Box::new(Pipe { label, pressures, diameter, area, viscosity: fluid.viscosity(), coefficients, turbulent, initial_flow, fluid, output }))
 }

@@ -11,6 +11,8 @@ pub(super) mod friction;
 pub(super) mod genels;
 pub(super) mod hints;
 pub(super) mod hydraulic;
+pub(super) mod hydraulic_args;
+pub(super) mod hydraulic_elements;
 pub(super) mod joints;
 pub(super) mod laws;
 pub(super) mod plate_laws;
