@@ -205,7 +205,7 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
     if problem.modified_newton {
         workspace.keep_jacobian_below = crate::solve::KEEP_JACOBIAN_BELOW;
     }
-    let (done, mbdyn_momenta_failure) = derivatives(&asm, &mut state, problem, &derivative_settings, &mut workspace).map_err(|mut failure| {
+    let (done, mbdyn_momenta_failure) = derivatives(&asm, &mut state, problem, &derivative_settings, &mut workspace, report.inconsistent_velocity.is_none()).map_err(|mut failure| {
         // Velocities that violate a joint cannot be changed by the derivatives phase, which
         // holds them: name the joint, whichever row ended the iteration.
         if let Some((equation, rate)) = &report.inconsistent_velocity {
@@ -318,15 +318,16 @@ enum DerivativesFallback {
 /// whose residual has no dCoef·ṗ floor, returning MBDyn's way's failure with the result;
 /// MBDyn stops there. The first failure is reported when nothing converges.
 ///
-/// Without `auto`, when neither way converges at the file's coefficient, `auto`'s
-/// coefficients and last chance follow (issue 38 point 2): a classic beam slider's
+/// Without `auto`, when neither way converges at the file's coefficient with the residual
+/// left on a node's equilibrium (`velocities_consistent`: the written velocities satisfy the
+/// joints), `auto`'s coefficients and last chance follow (issue 38 point 2): a classic beam slider's
 /// reaction moments act on the rotation of the beam node that holds the abscissa while its
 /// constraints act on the positions that define the line's tangent, so with the velocities
 /// held no inertia sets those multipliers; their Newton step needs velocity increments the
 /// phase puts back, and the equilibrium rows stall (the sky-engin beam slider: 1.1 N from
 /// the first iteration on). MBDyn 1.7.3, starting the abscissa at the initial node, takes
 /// another path and converges there; the steps that follow correct what the phase leaves.
-fn derivatives(asm: &Assembler, state: &mut State, problem: &InitialValueProblem, settings: &NewtonSettings, workspace: &mut NewtonWorkspace) -> Result<(crate::solve::Convergence, DerivativesFallback), crate::solve::NewtonFailure> {
+fn derivatives(asm: &Assembler, state: &mut State, problem: &InitialValueProblem, settings: &NewtonSettings, workspace: &mut NewtonWorkspace, velocities_consistent: bool) -> Result<(crate::solve::Convergence, DerivativesFallback), crate::solve::NewtonFailure> {
     let initial = problem.derivatives_coefficient * problem.time_step;
     if let Some(auto) = problem.derivatives_coefficient_auto {
         return coefficients_in_turn(asm, state, settings, workspace, auto.sequence(initial).collect()).map_err(|(failure, _)| failure);
@@ -341,8 +342,11 @@ fn derivatives(asm: &Assembler, state: &mut State, problem: &InitialValueProblem
         return Ok((done, DerivativesFallback::MomentaFromDefinitions(failure)));
     }
     // A singular Jacobian (an unknown no equation determines) is the model's, not the
-    // coefficient's: refused as it is.
-    if failure.singular {
+    // coefficient's, and a constraint the held positions or velocities violate (its row the
+    // worst, or written velocities off a joint) is the file's: refused as they are, where
+    // MBDyn stops too. Only a residual left on the nodes' equilibrium goes on.
+    let on_equilibrium = failure.worst_equation.starts_with("node ") && failure.worst_equation.ends_with(" equilibrium");
+    if failure.singular || !on_equilibrium || !velocities_consistent {
         return Err(failure);
     }
     let sequence = crate::model::AutoCoefficient::default().sequence(initial).skip(1).collect();
