@@ -9,10 +9,13 @@
 #   MBDYN=/path/to/mbdyn ROMDYN=target/release/romdyn scripts/compare_mbdyn.sh examples
 #   TIMEOUT=60 scripts/compare_mbdyn.sh /work/mbdyn-collection   (see mbdyn_collection.sh)
 #   ROMDYN_ARGS="--beam-update path-independent" scripts/compare_mbdyn.sh examples
+#   CPU=120 TIMEOUT=600 nice -n 5 scripts/compare_mbdyn.sh DIR   (120 s of CPU per run)
 #
 # The files are FOLDER/*.mbd, or the paths listed in FOLDER/list.txt when it exists (MBDyn
 # input files often have no extension). Each program runs in the file's own directory (so
-# `include:` and file drivers find their neighbours), limited to TIMEOUT seconds (600).
+# `include:` and file drivers find their neighbours), limited to TIMEOUT seconds (600) of
+# wall time and, when CPU is set, to CPU seconds of CPU time (`ulimit -t`; a run stopped by
+# either is a timeout).
 # OUTDIR/summary.tsv gets one line a file: name, mbdyn ok|failed|timeout, romdyn
 # ok|failed|timeout, romdyn's first error message without its file:line:col, worst position
 # and eigenvalue differences, the worst eigenvalue difference beyond what MBDyn's printed
@@ -110,6 +113,10 @@ pair_nearest() {
 }
 
 limit=${TIMEOUT:-600}
+cpu=${CPU:-unlimited}
+# Exit status of a run stopped by the wall-clock or the CPU limit (SIGXCPU, or SIGKILL past
+# the hard limit): 124, 152, 137.
+run_state() { case $1 in 0) echo ok ;; 124|152|137) echo timeout ;; *) echo failed ;; esac; }
 case "$mbdyn" in /*) ;; *) mbdyn=$(pwd)/$mbdyn ;; esac
 case "$romdyn" in /*) ;; *) romdyn=$(pwd)/$romdyn ;; esac
 case "$out" in /*) ;; *) out=$(pwd)/$out ;; esac
@@ -129,10 +136,10 @@ while IFS= read -r f; do
     if [ -n "${MBDYN_OUTPUTS:-}" ] && [ -s "$m/state" ]; then
         mstate=$(cat "$m/state")
     else
-        mstate=$( (cd "$dir" && timeout "$limit" "$mbdyn" -f "$base" -o "$m/$name" > "$m/stdout" 2>&1 < /dev/null); rc=$?; [ $rc -eq 0 ] && echo ok || { [ $rc -eq 124 ] && echo timeout || echo failed; })
+        mstate=$( (cd "$dir" && ulimit -t "$cpu" && timeout "$limit" "$mbdyn" -f "$base" -o "$m/$name" > "$m/stdout" 2>&1 < /dev/null); run_state $?)
         echo "$mstate" > "$m/state"
     fi
-    rstate=$( (cd "$dir" && timeout "$limit" "$romdyn" run "$base" ${romdyn_args[@]+"${romdyn_args[@]}"} -o "$r/$name" > "$r/stdout" 2> "$r/stderr" < /dev/null); rc=$?; [ $rc -eq 0 ] && echo ok || { [ $rc -eq 124 ] && echo timeout || echo failed; })
+    rstate=$( (cd "$dir" && ulimit -t "$cpu" && timeout "$limit" "$romdyn" run "$base" ${romdyn_args[@]+"${romdyn_args[@]}"} -o "$r/$name" > "$r/stdout" 2> "$r/stderr" < /dev/null); run_state $?)
     ms=$mstate; [ "$mstate" = failed ] && ms="failed ($(grep -v '^$' "$m/stdout" | grep -iv 'aborting' | tail -1))"
     rerr=$(grep -m1 -E 'error' "$r/stderr" | tr '\t' ' ' | sed -E 's/^[^ ]*:[0-9]+:[0-9]+: //; s/^error: //')
     [ -z "$rerr" ] && rerr=$(head -1 "$r/stderr")

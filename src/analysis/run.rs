@@ -80,6 +80,13 @@ pub struct RunReport {
     /// (stepsol.cc, `DerivativeSolver::Advance`: "choose those coefficient with smallest
     /// residual error and increase the tolerance, so it will converge in any case").
     pub derivatives_tolerance_raised: Option<(f64, f64)>,
+    /// Without `derivatives coefficient: auto`, when the derivatives phase did not converge
+    /// at the file's coefficient either way (MBDyn's momenta, romdyn's): that failure, after
+    /// which the coefficients of MBDyn's `auto` were tried in turn (and, if none converged,
+    /// its last chance, `derivatives_tolerance_raised`). MBDyn's own iteration may take
+    /// another path there: it starts a beam slider's abscissa at its initial node, romdyn at
+    /// the line's point nearest the slider.
+    pub derivatives_auto_fallback: Option<String>,
     /// Requested eigenanalysis times the run did not reach [s].
     pub eigen_times_not_reached: Vec<f64>,
     pub final_state: State,
@@ -180,6 +187,7 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
         momentum_velocity_change: None,
         mbdyn_momenta_failure: None,
         derivatives_tolerance_raised: None,
+        derivatives_auto_fallback: None,
         eigen_times_not_reached: times.to_vec(),
         final_state: state.clone(),
     };
@@ -197,7 +205,7 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
     if problem.modified_newton {
         workspace.keep_jacobian_below = crate::solve::KEEP_JACOBIAN_BELOW;
     }
-    let (done, mbdyn_momenta_failure) = derivatives(&asm, &mut state, problem, &derivative_settings, &mut workspace).map_err(|mut failure| {
+    let (done, mbdyn_momenta_failure) = derivatives(&asm, &mut state, problem, &derivative_settings, &mut workspace, report.inconsistent_velocity.is_none()).map_err(|mut failure| {
         // Velocities that violate a joint cannot be changed by the derivatives phase, which
         // holds them: name the joint, whichever row ended the iteration.
         if let Some((equation, rate)) = &report.inconsistent_velocity {
@@ -211,6 +219,10 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
         DerivativesFallback::None => {}
         DerivativesFallback::MomentaFromDefinitions(f) => report.mbdyn_momenta_failure = Some(f.to_string()),
         DerivativesFallback::ToleranceRaised { dcoef, tolerance } => report.derivatives_tolerance_raised = Some((dcoef, tolerance)),
+        DerivativesFallback::Auto { failure, raised } => {
+            report.derivatives_auto_fallback = Some(failure.to_string());
+            report.derivatives_tolerance_raised = raised;
+        }
     }
     report.momentum_velocity_change = momentum_velocity_change(&asm, &state).filter(|(_, dv)| dv.abs() > problem.tolerance);
     observed(observer.derivatives(&Derivatives { time: state.t, iterations: done.iterations, residual_norm: done.residual_norm }))?;
@@ -290,6 +302,10 @@ enum DerivativesFallback {
     MomentaFromDefinitions(crate::solve::NewtonFailure),
     /// MBDyn's last chance with `auto`: at `dcoef` [s] with the tolerance raised.
     ToleranceRaised { dcoef: f64, tolerance: f64 },
+    /// Without `auto` in the file, after both ways failed at its coefficient (`failure`):
+    /// `auto`'s coefficients, converged at one of them, or at its last chance (`raised`:
+    /// the coefficient and the raised tolerance).
+    Auto { failure: crate::solve::NewtonFailure, raised: Option<(f64, f64)> },
 }
 
 /// The initial derivatives at the file's derivatives coefficient, and with `auto` at the
@@ -301,12 +317,52 @@ enum DerivativesFallback {
 /// Without `auto`, the same coefficient with the momenta from their definitions (romdyn's),
 /// whose residual has no dCoef·ṗ floor, returning MBDyn's way's failure with the result;
 /// MBDyn stops there. The first failure is reported when nothing converges.
-fn derivatives(asm: &Assembler, state: &mut State, problem: &InitialValueProblem, settings: &NewtonSettings, workspace: &mut NewtonWorkspace) -> Result<(crate::solve::Convergence, DerivativesFallback), crate::solve::NewtonFailure> {
+///
+/// Without `auto`, when neither way converges at the file's coefficient with the residual
+/// left on a node's equilibrium (`velocities_consistent`: the written velocities satisfy the
+/// joints), `auto`'s coefficients and last chance follow (issue 38 point 2): a classic beam slider's
+/// reaction moments act on the rotation of the beam node that holds the abscissa while its
+/// constraints act on the positions that define the line's tangent, so with the velocities
+/// held no inertia sets those multipliers; their Newton step needs velocity increments the
+/// phase puts back, and the equilibrium rows stall (the sky-engin beam slider: 1.1 N from
+/// the first iteration on). MBDyn 1.7.3, starting the abscissa at the initial node, takes
+/// another path and converges there; the steps that follow correct what the phase leaves.
+fn derivatives(asm: &Assembler, state: &mut State, problem: &InitialValueProblem, settings: &NewtonSettings, workspace: &mut NewtonWorkspace, velocities_consistent: bool) -> Result<(crate::solve::Convergence, DerivativesFallback), crate::solve::NewtonFailure> {
     let initial = problem.derivatives_coefficient * problem.time_step;
-    let coefficients: Vec<f64> = match problem.derivatives_coefficient_auto {
-        Some(auto) => auto.sequence(initial).collect(),
-        None => vec![initial],
+    if let Some(auto) = problem.derivatives_coefficient_auto {
+        return coefficients_in_turn(asm, state, settings, workspace, auto.sequence(initial).collect()).map_err(|(failure, _)| failure);
+    }
+    let failure = match coefficients_in_turn(asm, state, settings, workspace, vec![initial]) {
+        Ok(done) => return Ok(done),
+        Err((failure, _)) => failure,
     };
+    let mut trial = state.clone();
+    if let Ok(done) = initial_derivatives_in(asm, &mut trial, settings, initial, DerivativeMomenta::FromDefinitions, workspace) {
+        *state = trial;
+        return Ok((done, DerivativesFallback::MomentaFromDefinitions(failure)));
+    }
+    // A singular Jacobian (an unknown no equation determines) is the model's, not the
+    // coefficient's, and a constraint the held positions or velocities violate (its row the
+    // worst, or written velocities off a joint) is the file's: refused as they are, where
+    // MBDyn stops too. Only a residual left on the nodes' equilibrium goes on.
+    let on_equilibrium = failure.worst_equation.starts_with("node ") && failure.worst_equation.ends_with(" equilibrium");
+    if failure.singular || !on_equilibrium || !velocities_consistent {
+        return Err(failure);
+    }
+    let sequence = crate::model::AutoCoefficient::default().sequence(initial).skip(1).collect();
+    match coefficients_in_turn(asm, state, settings, workspace, sequence) {
+        Ok((done, DerivativesFallback::ToleranceRaised { dcoef, tolerance })) => Ok((done, DerivativesFallback::Auto { failure, raised: Some((dcoef, tolerance)) })),
+        Ok((done, _)) => Ok((done, DerivativesFallback::Auto { failure, raised: None })),
+        Err(_) => Err(failure),
+    }
+}
+
+/// MBDyn's `derivatives coefficient: auto` (stepsol.cc, `DerivativeSolver::Advance`): the
+/// `coefficients` in turn, each from the state as given, with MBDyn's momenta; when none
+/// converges, the one of the smallest final residual again with the tolerance raised to
+/// 1.01 times that residual (MBDyn's last chance; one coefficient alone has none). The
+/// first failure (and whether a last chance was tried) when nothing converges.
+fn coefficients_in_turn(asm: &Assembler, state: &mut State, settings: &NewtonSettings, workspace: &mut NewtonWorkspace, coefficients: Vec<f64>) -> Result<(crate::solve::Convergence, DerivativesFallback), (crate::solve::NewtonFailure, bool)> {
     let mut first_failure: Option<crate::solve::NewtonFailure> = None;
     // The coefficient with the smallest final residual (MBDyn's dCoefBest, dResErrMin).
     let mut best: Option<(f64, f64)> = None;
@@ -325,25 +381,18 @@ fn derivatives(asm: &Assembler, state: &mut State, problem: &InitialValueProblem
             }
         }
     }
-    if problem.derivatives_coefficient_auto.is_some() {
-        if let Some((dcoef, residual)) = best {
-            let tolerance = 1.01 * residual;
-            let raised = NewtonSettings { tolerance, ..*settings };
-            let mut trial = state.clone();
-            if let Ok(done) = initial_derivatives_in(asm, &mut trial, &raised, dcoef, DerivativeMomenta::AsNewton, workspace) {
-                *state = trial;
-                return Ok((done, DerivativesFallback::ToleranceRaised { dcoef, tolerance }));
-            }
-        }
-        return Err(first_failure.unwrap_or_else(|| unreachable!("at least one coefficient is tried")));
+    let first_failure = first_failure.unwrap_or_else(|| unreachable!("at least one coefficient is tried"));
+    if coefficients.len() < 2 {
+        return Err((first_failure, false));
     }
-    for &dcoef in &coefficients {
+    if let Some((dcoef, residual)) = best {
+        let tolerance = 1.01 * residual;
+        let raised = NewtonSettings { tolerance, ..*settings };
         let mut trial = state.clone();
-        if let Ok(done) = initial_derivatives_in(asm, &mut trial, settings, dcoef, DerivativeMomenta::FromDefinitions, workspace) {
+        if let Ok(done) = initial_derivatives_in(asm, &mut trial, &raised, dcoef, DerivativeMomenta::AsNewton, workspace) {
             *state = trial;
-            let failure = first_failure.unwrap_or_else(|| unreachable!("MBDyn's way failed first"));
-            return Ok((done, DerivativesFallback::MomentaFromDefinitions(failure)));
+            return Ok((done, DerivativesFallback::ToleranceRaised { dcoef, tolerance }));
         }
     }
-    Err(first_failure.unwrap_or_else(|| unreachable!("at least one coefficient is tried")))
+    Err((first_failure, true))
 }

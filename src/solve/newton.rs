@@ -63,6 +63,9 @@ pub struct NewtonFailure {
     pub worst_equation: String,
     pub worst_value: f64,
     pub reason: Option<String>,
+    /// Whether an iteration met a singular Jacobian (and took a regularized step): a model
+    /// no coefficient or tolerance makes solvable, typically an unconnected unknown.
+    pub singular: bool,
 }
 
 /// A converged Newton iteration.
@@ -201,7 +204,7 @@ fn norm_history(norms: &[f64], tolerance: f64) -> String {
 /// holds `−F`, `residual` `F`). A singular Jacobian is named in `singular` and one
 /// regularized step is taken; `Err` with the reason when even that fails.
 #[allow(clippy::too_many_arguments)]
-fn factor_and_solve(asm: &Assembler, st: &State, update: Update, coef: Coefficients, ws: &mut NewtonWorkspace, f: &mut Vec<f64>, residual: &[f64], singular: &std::cell::RefCell<Option<String>>) -> Result<(), String> {
+fn factor_and_solve(asm: &Assembler, st: &State, update: Update, coef: Coefficients, ws: &mut NewtonWorkspace, f: &mut Vec<f64>, residual: &[f64], singular: &std::cell::RefCell<Option<String>>, met_singular: &std::cell::Cell<bool>) -> Result<(), String> {
     asm.jacobian_into(st, coef, &mut ws.jacobian);
     let j = &mut ws.jacobian;
     if matches!(update, Update::Derivatives { .. }) {
@@ -219,6 +222,7 @@ fn factor_and_solve(asm: &Assembler, st: &State, update: Update, coef: Coefficie
         }
     }
     if ws.lu.solve(j, f).is_err() {
+        met_singular.set(true);
         if singular.borrow().is_none() {
             *singular.borrow_mut() = super::singular::explain_singular_matrix(asm, j);
         }
@@ -256,10 +260,11 @@ pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &Newton
     };
     // Why the matrix was singular, when an iteration found it so (named in a failure).
     let singular: std::cell::RefCell<Option<String>> = Default::default();
+    let met_singular = std::cell::Cell::new(false);
     let fail = |st: &State, iteration, f: &[f64], reason: Option<String>| {
         let (i, _) = worst(f);
         let reason = [reason, singular.borrow().clone()].into_iter().flatten().reduce(|a, b| format!("{a}; {b}"));
-        NewtonFailure { time: st.t, iteration, residual_norm: measure(f), worst_equation: asm.dofs.equation_name(asm.model, i), worst_value: f[i], reason }
+        NewtonFailure { time: st.t, iteration, residual_norm: measure(f), worst_equation: asm.dofs.equation_name(asm.model, i), worst_value: f[i], reason, singular: met_singular.get() }
     };
     // The last iterates, kept for a failure to name the kinks they cross (see below), and
     // every iteration's residual norm, for a failure to say how Newton went.
@@ -312,7 +317,7 @@ pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &Newton
                 f = residual.iter().map(|x| -x).collect();
             }
             ws.factored += 1;
-            factor_and_solve(asm, st, update, coef, ws, &mut f, &residual, &singular).map_err(|e| fail(st, iteration, &residual, Some(e)))?;
+            factor_and_solve(asm, st, update, coef, ws, &mut f, &residual, &singular, &met_singular).map_err(|e| fail(st, iteration, &residual, Some(e)))?;
         }
         if let Update::Static = update {
             limit_rotation_step(asm, &mut f);

@@ -9,6 +9,7 @@
 mod common;
 
 mod cms_round_trip;
+mod collection_classes;
 mod counter_drives;
 mod derivatives_phase;
 mod displacement_nodes;

@@ -121,6 +121,9 @@ fn cards(doc: &Document) -> Result<Cards, MbdynError> {
             Some("scalar function") => super::drives::scalar_functions::scalar_function_card(&mut c, &mut out.drives.functions, st.seq)?,
             Some("hydraulic fluid") => super::elements::hydraulic::fluid_card(&mut c, st.seq, &mut out.fluids)?,
             Some("setenv" | "print symbol table") => {}
+            // mbdyn.cc, `ModuleLoad_int`: only an MBDyn built with libltdl loads modules (the
+            // 1.7.3 built here stops: "dynamic modules not supported; libltdl support needed").
+            Some("module load") => return Err(c.error_at(st.span, "the 'module load' card is not supported by romdyn (an MBDyn 1.7.3 built with run-time modules runs it, with the module it names)")),
             Some(other) => return Err(c.error_at(st.span, super::syntax::diagnostic::mbdyn_runs_it(&format!("the '{other}' card")))),
             None => return Err(c.error_at(st.span, format!("unknown card '{}'", st.keyword))),
         }

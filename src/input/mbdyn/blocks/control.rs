@@ -18,9 +18,9 @@ use crate::model::{InitialAssembly, OrientationOutput};
 pub const COUNTED: [&str; 17] = ["structural nodes", "abstract nodes", "electric nodes", "hydraulic nodes", "genels", "electric elements", "hydraulic elements", "parameter nodes", "rigid bodies", "joints", "joint regularizations", "forces", "beams", "plates", "gravity", "automatic structural elements", "file drivers"];
 
 /// Counters of entities romdyn does not support: a non-zero count is an error.
-const UNSUPPORTED_COUNTERS: [&str; 10] = [
+const UNSUPPORTED_COUNTERS: [&str; 9] = [
     "thermal nodes", "aerodynamic elements", "aeromodals",
-    "air properties", "bulk elements", "electric bulk elements", "external elements",
+    "bulk elements", "electric bulk elements", "external elements",
     "loadable elements", "output elements", "induced velocity elements",
 ];
 
@@ -178,6 +178,9 @@ pub fn control_data(block: Option<&Block>, sources: &Sources) -> Result<(Counts,
         } else if let Some(kind) = known(&st.keyword, &COUNTED) {
             let n = if kind == "gravity" { 1 } else { c.count(&format!("number of {kind}"))? };
             counts.insert(kind, (n, st.span));
+        } else if known(&st.keyword, &["air properties"]).is_some() {
+            // dataman3.cc: `air properties;` takes no count (like `gravity`): one card.
+            return Err(c.error_at(st.span, "control data declares air properties (aerodynamics), which romdyn does not support (MBDyn 1.7.3 runs them)"));
         } else if let Some(kind) = known(&st.keyword, &UNSUPPORTED_COUNTERS) {
             let span = c.here();
             if c.count(&format!("number of {kind}"))? > 0 {

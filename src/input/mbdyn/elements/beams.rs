@@ -76,6 +76,7 @@ pub fn beam(keyword: &str, label: Label, c: &mut Cursor, ctx: &ElementContext) -
         let nodes = [beam_node(c, ctx, "node 1")?, beam_node(c, ctx, "node 2")?];
         let orientation = section_orientation(c, ctx, "orientation of section I")?;
         let law = nonlinear_law(c, 6, ctx.laws, ctx.drives, ctx.seq)?;
+        refuse_piezoelectric(c, keyword, label)?;
         custom_output(c)?;
         let span = c.statement().span;
         let beam = Beam2::new(label, nodes, orientation, section_law(&law)).map_err(|e| c.error_at(span, e.to_string()))?;
@@ -93,6 +94,7 @@ pub fn beam(keyword: &str, label: Label, c: &mut Cursor, ctx: &ElementContext) -
     let law_i = nonlinear_law(c, 6, ctx.laws, ctx.drives, ctx.seq)?;
     let orientation_ii = if c.accept("same") { orientation_i.clone() } else { section_orientation(c, ctx, "orientation of section II")? };
     let law_ii = if c.accept("same") { law_i.clone() } else { nonlinear_law(c, 6, ctx.laws, ctx.drives, ctx.seq)? };
+    refuse_piezoelectric(c, keyword, label)?;
     custom_output(c)?;
     let span = c.statement().span;
     let beam = Beam3::new(label, nodes, [orientation_i, orientation_ii], [section_law(&law_i), section_law(&law_ii)]).map_err(|e| c.error_at(span, e.to_string()))?;
@@ -102,6 +104,16 @@ pub fn beam(keyword: &str, label: Label, c: &mut Cursor, ctx: &ElementContext) -
         None => beam,
     };
     Ok(Parsed::Element(Box::new(beam)))
+}
+
+/// beam.cc, beam2.cc: a `piezoelectric actuator` after the section laws adds forces from
+/// abstract nodes' voltages, which romdyn's beams do not have: refused by name.
+fn refuse_piezoelectric(c: &mut Cursor, keyword: &str, label: Label) -> Result<(), MbdynError> {
+    let at = c.here();
+    if c.accept("piezoelectric actuator") {
+        return Err(c.error_at(at, crate::input::mbdyn::syntax::diagnostic::mbdyn_runs_it(&format!("{keyword} {label}: the 'piezoelectric actuator' option"))));
+    }
+    Ok(())
 }
 
 /// The update the beam `name` takes under the reader's rule ([`BeamUpdateRule`]), `None`

@@ -32,8 +32,8 @@ pub(in crate::input::mbdyn) const ELEMENT_TYPES: KeywordTable = KeywordTable {
         mbdyn_only("aircraft instruments"), mbdyn_only("air properties"), mbdyn_only("induced velocity"), mbdyn_only("thermal"),
         mbdyn_only("stream output"), mbdyn_only("stream motion output"), mbdyn_only("bind"), mbdyn_only("bulk"), mbdyn_only("plate"),
         Keyword { name: "rtai output", support: Support::MbdynRunsWhen("an MBDyn 1.7.3 built with RTAI runs it") },
-        Keyword { name: "loadable", support: Support::MbdynRunsWhen("MBDyn 1.7.3 runs it with the run-time module it names loaded") },
-        Keyword { name: "user defined", support: Support::MbdynRunsWhen("MBDyn 1.7.3 runs it with the run-time module it names loaded") },
+        Keyword { name: "loadable", support: Support::MbdynRunsWhen("an MBDyn 1.7.3 built with run-time modules runs it, with the module it names loaded") },
+        Keyword { name: "user defined", support: Support::MbdynRunsWhen("an MBDyn 1.7.3 built with run-time modules runs it, with the module it names loaded") },
     ],
 };
 
