@@ -34,7 +34,8 @@
 # default) and with `nonlinear solver: newton raphson, modified, 4;` (MBDyn's modified
 # Newton, reusing a factorization up to 4 iterations; romdyn's reuse while the residual falls
 # fast, InitialValueProblem::modified_newton): romdyn's `full` and `modified` rows, MBDyn's
-# settings `default`, `klu`, `naive` (colamd, chain N = 10 only) and `klu-modified`
+# settings `default`, `klu`, `naive` (colamd, chain N = 10 only), `klu-modified` and
+# `naive-modified` (N = 10 only)
 # (`--mbdyn klu,klu-modified` runs only those). The last line of each case is romdyn's
 # fastest against MBDyn's fastest.
 # Times are whole processes (start-up and output files included), median of R runs
@@ -189,6 +190,7 @@ MODIFIED="    nonlinear solver: newton raphson, modified, 4;"
 # romdyn's settings and MBDyn's: name and the solver lines (empty: the default).
 ROMDYN_SETTINGS=("full|" "modified|$MODIFIED")
 SETTINGS=("default|" "klu|    linear solver: klu;" "naive|    linear solver: naive, colamd;" "klu-modified|    linear solver: klu;
+$MODIFIED" "naive-modified|    linear solver: naive, colamd;
 $MODIFIED")
 
 generate() {
@@ -252,7 +254,7 @@ mbdyn_settings() {
     local s name
     for s in "${SETTINGS[@]}"; do
         name="${s%%|*}"
-        [ "$name" = naive ] && [ "$1" != chain_10 ] && continue
+        [[ "$name" == naive* ]] && [ "$1" != chain_10 ] && continue
         [ -z "$MBDYN_ONLY" ] || [[ "$MBDYN_ONLY" == *",$name,"* ]] || continue
         echo "$name"
     done
