@@ -7,6 +7,10 @@
 //!     eigen::krylov::sparse_modes factors and iterates on (the chain of the tests and of
 //!     benches/sparse_eigen.rs linearized at rest in MBDyn's form, eq. 30, then mapped to
 //!     eq. 29), Matrix Market coordinate real general, 17 N + 12 rows.
+//! cargo run --release --example sparse_pencil -- export-mbdyn FILE DIR
+//!     the same for an MBDyn file, linearized at its initial state (scripts/bench_sparse_run.py:
+//!     the pencil `romdyn run FILE` solves when the file asks for `use arpack` at the
+//!     initial time of a model at rest there).
 //! cargo run --release --example sparse_pencil -- solve DIR COUNT [REPEAT] [--right-only]
 //!     reads DIR/E.mtx, DIR/K.mtx, runs sparse_modes(Lowest(COUNT)) REPEAT times on
 //!     E ẏ + K y = 0 and prints the fastest wall time [s] and the eigenvalues [rad/s]
@@ -51,9 +55,10 @@ fn run() -> Result<()> {
     let settings = SparseEigenSettings { left_vectors: !right_only, ..Default::default() };
     match args.iter().map(String::as_str).collect::<Vec<_>>().as_slice() {
         ["export", n, dir] => export(n.parse().context("N: a number of links")?, Path::new(dir)),
+        ["export-mbdyn", file, dir] => export_mbdyn(Path::new(file), Path::new(dir)),
         ["solve", dir, count] => solve(Path::new(dir), count.parse().context("COUNT: a number of modes")?, 1, &settings),
         ["solve", dir, count, repeat] => solve(Path::new(dir), count.parse().context("COUNT: a number of modes")?, repeat.parse().context("REPEAT: a number of runs")?, &settings),
-        _ => bail!("usage: sparse_pencil export N DIR | sparse_pencil solve DIR COUNT [REPEAT] [--right-only]"),
+        _ => bail!("usage: sparse_pencil export N DIR | sparse_pencil export-mbdyn FILE DIR | sparse_pencil solve DIR COUNT [REPEAT] [--right-only]"),
     }
 }
 
@@ -62,8 +67,18 @@ fn export(n: u32, dir: &Path) -> Result<()> {
     let asm = Assembler::new(&model);
     let mut st = State::initial(&model, &asm.dofs);
     static_solution(&asm, &mut st, 1, &NewtonSettings::default())?;
-    let dae = linearize_sparse(&model, &st, &[], &[])?;
-    let (e, k) = shift_invert_pencil(&dae)?;
+    write_pencil(&linearize_sparse(&model, &st, &[], &[])?, dir)
+}
+
+fn export_mbdyn(file: &Path, dir: &Path) -> Result<()> {
+    let read = romdyn::input::mbdyn::read_model(file)?;
+    let asm = Assembler::new(&read.model);
+    let st = State::initial(&read.model, &asm.dofs);
+    write_pencil(&linearize_sparse(&read.model, &st, &[], &[])?, dir)
+}
+
+fn write_pencil(dae: &SparseLinearDae, dir: &Path) -> Result<()> {
+    let (e, k) = shift_invert_pencil(dae)?;
     std::fs::create_dir_all(dir)?;
     write_sparse_matrix(&dir.join("E.mtx"), &e)?;
     write_sparse_matrix(&dir.join("K.mtx"), &k)?;

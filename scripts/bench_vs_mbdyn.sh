@@ -2,7 +2,7 @@
 # Side-by-side time integration, romdyn vs MBDyn, on the same generated MBDyn input files
 # (issue 14). Optional, not part of CI; `cargo test` never runs it.
 #
-#   scripts/bench_vs_mbdyn.sh [--runs R] [--only NAME] [--generate-only] [OUTDIR]
+#   scripts/bench_vs_mbdyn.sh [--runs R] [--only NAME] [--mbdyn S1,S2] [--generate-only] [OUTDIR]
 #
 # Files (written to OUTDIR, default /tmp/romdyn-bench):
 #   chain_N.mbd   N-link pendulum chain, N = 10, 100, 1000: a static ground node clamped,
@@ -30,20 +30,31 @@
 # MBDyn: `mbdyn` on PATH or /root/mbdyn/bin/mbdyn, run as `mbdyn -f FILE -o PREFIX` with its
 # default linear solver and with `linear solver: klu` (and `naive, colamd`); skipped when
 # absent. The final node positions (last block of the .mov files) must agree to 1e-6 m.
+# Newton: each program runs each file twice, with full Newton (no card, both programs'
+# default) and with `nonlinear solver: newton raphson, modified, 4;` (MBDyn's modified
+# Newton, reusing a factorization up to 4 iterations; romdyn's reuse while the residual falls
+# fast, InitialValueProblem::modified_newton): romdyn's `full` and `modified` rows, MBDyn's
+# settings `default`, `klu`, `naive` (colamd, chain N = 10 only), `klu-modified` and
+# `naive-modified` (N = 10 only)
+# (`--mbdyn klu,klu-modified` runs only those). The last line of each case is romdyn's
+# fastest against MBDyn's fastest.
 # Times are whole processes (start-up and output files included), median of R runs
-# (default 3) of /usr/bin/time's elapsed and user+system seconds; ratio = romdyn / MBDyn.
+# (default 3) of /usr/bin/time's elapsed and user+system seconds, the programs and settings
+# alternating run by run; ratio = romdyn / MBDyn.
 set -euo pipefail
 
 RUNS=3
 ONLY=""
+MBDYN_ONLY=""
 GENERATE_ONLY=0
 OUT=/tmp/romdyn-bench
 while [ $# -gt 0 ]; do
     case "$1" in
         --runs) RUNS="$2"; shift 2 ;;
         --only) ONLY="$2"; shift 2 ;;
+        --mbdyn) MBDYN_ONLY=",$2,"; shift 2 ;;
         --generate-only) GENERATE_ONLY=1; shift ;;
-        -h|--help) sed -n '2,25p' "$0"; exit 0 ;;
+        -h|--help) sed -n '2,37p' "$0"; exit 0 ;;
         *) OUT="$1"; shift ;;
     esac
 done
@@ -175,8 +186,12 @@ EOF
 }
 
 CASES=(chain_10 chain_100 chain_1000 cantilever)
-# MBDyn's settings: name and the 'linear solver' line (empty: its default).
-SETTINGS=("default|" "klu|    linear solver: klu;" "naive|    linear solver: naive, colamd;")
+MODIFIED="    nonlinear solver: newton raphson, modified, 4;"
+# romdyn's settings and MBDyn's: name and the solver lines (empty: the default).
+ROMDYN_SETTINGS=("full|" "modified|$MODIFIED")
+SETTINGS=("default|" "klu|    linear solver: klu;" "naive|    linear solver: naive, colamd;" "klu-modified|    linear solver: klu;
+$MODIFIED" "naive-modified|    linear solver: naive, colamd;
+$MODIFIED")
 
 generate() {
     local case="$1" name="$2" line="$3"
@@ -189,6 +204,7 @@ generate() {
 for c in "${CASES[@]}"; do
     [ -z "$ONLY" ] || [ "$ONLY" = "$c" ] || continue
     generate "$c" "" ""
+    generate "$c" "modified" "$MODIFIED"
     for s in "${SETTINGS[@]}"; do
         generate "$c" "${s%%|*}" "${s#*|}"
     done
@@ -200,19 +216,23 @@ echo "files in $OUT"
 # median of numbers on stdin
 median() { sort -g | awk '{a[NR]=$1} END{print (NR%2 ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2)}'; }
 
-# timed R CMD...: prints "wall cpu" medians; the command's output goes to $OUT/last.log
-timed() {
-    local walls=() cpus=() i
-    for i in $(seq 1 "$RUNS"); do
-        if ! /usr/bin/time -f "%e %U %S" -o "$OUT/time.txt" "$@" >"$OUT/last.log" 2>&1; then
-            echo "failed: $*" >&2
-            tail -n 5 "$OUT/last.log" >&2
-            return 1
-        fi
-        read -r w u s < <(tail -n 1 "$OUT/time.txt")
-        walls+=("$w"); cpus+=("$(awk "BEGIN{print $u+$s}")")
-    done
-    echo "$(printf '%s\n' "${walls[@]}" | median) $(printf '%s\n' "${cpus[@]}" | median)"
+# once KEY CMD...: runs CMD once, appends "wall cpu" to $OUT/KEY.times; the command's
+# output goes to $OUT/last.log
+once() {
+    local key="$1" w u s
+    shift
+    if ! /usr/bin/time -f "%e %U %S" -o "$OUT/time.txt" "$@" >"$OUT/last.log" 2>&1; then
+        echo "failed: $*" >&2
+        tail -n 5 "$OUT/last.log" >&2
+        return 1
+    fi
+    read -r w u s < <(tail -n 1 "$OUT/time.txt")
+    echo "$w $(awk "BEGIN{print $u+$s}")" >>"$OUT/$key.times"
+}
+
+# medians KEY: "wall cpu" medians of $OUT/KEY.times
+medians() {
+    echo "$(cut -d' ' -f1 "$OUT/$1.times" | median) $(cut -d' ' -f2 "$OUT/$1.times" | median)"
 }
 
 # final positions: the last block of a .mov (one line per node), "label x y z" sorted by label
@@ -229,25 +249,53 @@ max_difference() {
 
 nodes_of() { case "$1" in chain_*) echo $(( ${1#chain_} + 1 )) ;; cantilever) echo 2001 ;; esac; }
 
-printf '%s\n' "machine: $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg), $(date -u '+%Y-%m-%d %H:%M UTC'); $RUNS runs, medians"
-printf '%-12s %12s %12s %-9s %12s %12s %10s %10s %12s\n' case romdyn_wall romdyn_cpu mbdyn mbdyn_wall mbdyn_cpu wall_ratio cpu_ratio max_dx_m
-for c in "${CASES[@]}"; do
-    [ -z "$ONLY" ] || [ "$ONLY" = "$c" ] || continue
-    t="$(timed "$ROMDYN" run "$OUT/$c.mbd" -o "$OUT/${c}_romdyn")" || continue
-    read -r rw rc <<<"$t"
-    final_positions "$OUT/${c}_romdyn.mov" "$(nodes_of "$c")" >"$OUT/${c}_romdyn.final"
-    if [ -z "$MBDYN" ]; then
-        printf '%-12s %12s %12s %-9s\n' "$c" "$rw" "$rc" "(no mbdyn)"
-        continue
-    fi
+# MBDyn's settings run on CASE: naive only at N = 10, and those --mbdyn names.
+mbdyn_settings() {
+    local s name
     for s in "${SETTINGS[@]}"; do
         name="${s%%|*}"
-        [ "$name" = naive ] && [ "$c" != chain_10 ] && continue
-        t="$(timed "$MBDYN" -f "$OUT/${c}_$name.mbd" -o "$OUT/${c}_$name")" || continue
-        read -r mw mc <<<"$t"
-        final_positions "$OUT/${c}_$name.mov" "$(nodes_of "$c")" >"$OUT/${c}_$name.final"
-        dx="$(max_difference "$OUT/${c}_romdyn.final" "$OUT/${c}_$name.final")"
-        printf '%-12s %12s %12s %-9s %12s %12s %10.3f %10.3f %12s\n' "$c" "$rw" "$rc" "$name" "$mw" "$mc" \
-            "$(awk "BEGIN{print $rw/$mw}")" "$(awk "BEGIN{print $rc/$mc}")" "$dx"
+        [[ "$name" == naive* ]] && [ "$1" != chain_10 ] && continue
+        [ -z "$MBDYN_ONLY" ] || [[ "$MBDYN_ONLY" == *",$name,"* ]] || continue
+        echo "$name"
     done
+}
+
+printf '%s\n' "machine: $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg), $(date -u '+%Y-%m-%d %H:%M UTC'); $RUNS alternating runs, medians"
+printf '%-12s %-9s %12s %12s %-13s %12s %12s %10s %10s %12s\n' case romdyn romdyn_wall romdyn_cpu mbdyn mbdyn_wall mbdyn_cpu wall_ratio cpu_ratio max_dx_m
+for c in "${CASES[@]}"; do
+    [ -z "$ONLY" ] || [ "$ONLY" = "$c" ] || continue
+    rm -f "$OUT"/"$c"_*.times
+    settings=()
+    [ -n "$MBDYN" ] && mapfile -t settings < <(mbdyn_settings "$c")
+    # Alternating: every romdyn and MBDyn setting once per round.
+    for i in $(seq 1 "$RUNS"); do
+        for r in "${ROMDYN_SETTINGS[@]}"; do
+            rname="${r%%|*}"
+            file="$OUT/$c.mbd"; [ "$rname" = modified ] && file="$OUT/${c}_modified.mbd"
+            once "${c}_romdyn_$rname" "$ROMDYN" run "$file" -o "$OUT/${c}_romdyn_$rname"
+        done
+        for name in "${settings[@]}"; do
+            once "${c}_mbdyn_$name" "$MBDYN" -f "$OUT/${c}_$name.mbd" -o "$OUT/${c}_$name"
+        done
+    done
+    best_r="" best_m=""
+    for r in "${ROMDYN_SETTINGS[@]}"; do
+        rname="${r%%|*}"
+        read -r rw rc <<<"$(medians "${c}_romdyn_$rname")"
+        [ -z "$best_r" ] || awk "BEGIN{exit !($rc < ${best_r##* })}" && best_r="$rname $rc"
+        final_positions "$OUT/${c}_romdyn_$rname.mov" "$(nodes_of "$c")" >"$OUT/${c}_romdyn_$rname.final"
+        if [ ${#settings[@]} -eq 0 ]; then
+            printf '%-12s %-9s %12s %12s %-13s\n' "$c" "$rname" "$rw" "$rc" "(no mbdyn)"
+            continue
+        fi
+        for name in "${settings[@]}"; do
+            read -r mw mc <<<"$(medians "${c}_mbdyn_$name")"
+            [ -n "$best_m" ] && ! awk "BEGIN{exit !($mc < ${best_m##* })}" || best_m="$name $mc"
+            final_positions "$OUT/${c}_$name.mov" "$(nodes_of "$c")" >"$OUT/${c}_$name.final"
+            dx="$(max_difference "$OUT/${c}_romdyn_$rname.final" "$OUT/${c}_$name.final")"
+            printf '%-12s %-9s %12s %12s %-13s %12s %12s %10.3f %10.3f %12s\n' "$c" "$rname" "$rw" "$rc" "$name" "$mw" "$mc" \
+                "$(awk "BEGIN{print $rw/$mw}")" "$(awk "BEGIN{print $rc/$mc}")" "$dx"
+        done
+    done
+    [ -n "$best_m" ] && printf '%-12s fastest: romdyn %s (%s s CPU) / MBDyn %s (%s s CPU) = %.3f\n' "$c" "${best_r% *}" "${best_r##* }" "${best_m% *}" "${best_m##* }" "$(awk "BEGIN{print ${best_r##* }/${best_m##* }}")"
 done

@@ -13,6 +13,7 @@ mod defective_roots;
 mod degenerate_pencils;
 mod dense_eigen_scaling;
 mod eigen_deflation;
+mod half_size;
 mod sparse_cli;
 mod sparse_count;
 mod sparse_dae;

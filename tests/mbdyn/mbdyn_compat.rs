@@ -549,20 +549,58 @@ fn where_mbdyns_momenta_leave_the_derivatives_above_the_tolerance_romdyn_sets_th
     }
 }
 
-/// MBDyn's `nonlinear solver` card (input manual, "Nonlinear Solver": `newton raphson [,
-/// {true | modified, ITERATIONS [, keep jacobian matrix]}]`, `true` the default): romdyn keeps
-/// a factorization while the residual falls fast only when the file asks for `modified`;
-/// full Newton otherwise, as MBDyn.
+/// A one-body model whose initial value block carries `cards`, read.
+fn with_newton_cards(cards: &str) -> Result<bool, String> {
+    let text = format!("begin: data; problem: initial value; end: data;\nbegin: initial value; initial time: 0.; final time: 0.01; time step: 1.e-3;\n{cards}\nend: initial value;\nbegin: control data; structural nodes: 1; rigid bodies: 1; end: control data;\nbegin: nodes; structural: 1, dynamic, null, eye, null, null; end: nodes;\nbegin: elements; body: 1, 1, 1., null, eye; end: elements;\n");
+    parse_text(&text, Path::new("m.mbd")).and_then(|d| build(&d)).map(|m| m.problem.modified_newton).map_err(|e| e.to_string())
+}
+
+/// MBDyn's `nonlinear solver` card and its deprecated spelling, every form MBDyn 1.7.3 reads
+/// (input manual, "Nonlinear Solver": `newton raphson [, {true | modified, ITERATIONS [, keep
+/// jacobian matrix] [, honor element requests]}]`, the same after `line search`; solver.cc,
+/// `Solver::ReadData`: also `keep jacobian`, and the deprecated `newton raphson: {true |
+/// modified [, ITERATIONS]}`): romdyn keeps a factorization while the residual falls fast
+/// exactly when MBDyn would run its modified Newton; full Newton otherwise, as MBDyn, and
+/// the last card read decides (both set MBDyn's one `bTrueNewtonRaphson`).
 #[test]
 fn the_nonlinear_solver_card_chooses_modified_newton() {
-    let with = |card: &str| {
-        let text = format!("begin: data; problem: initial value; end: data;\nbegin: initial value; initial time: 0.; final time: 0.01; time step: 1.e-3; {card} end: initial value;\nbegin: control data; structural nodes: 1; rigid bodies: 1; end: control data;\nbegin: nodes; structural: 1, dynamic, null, eye, null, null; end: nodes;\nbegin: elements; body: 1, 1, 1., null, eye; end: elements;\n");
-        parse_text(&text, Path::new("m.mbd")).and_then(|d| build(&d)).unwrap_or_else(|e| panic!("{card}: {e}")).problem.modified_newton
-    };
+    let with = |card: &str| with_newton_cards(card).unwrap_or_else(|e| panic!("{card}: {e}"));
     assert!(!with(""));
     assert!(!with("nonlinear solver: newton raphson;"));
     assert!(!with("nonlinear solver: newton raphson, true;"));
     assert!(with("nonlinear solver: newton raphson, modified, 4;"));
     assert!(with("nonlinear solver: newton raphson, modified, 4, keep jacobian matrix;"));
+    assert!(with("nonlinear solver: newton raphson, modified, 5, keep jacobian;"));
+    assert!(with("nonlinear solver: newton raphson, modified, 5, honor element requests;"));
+    assert!(with("nonlinear solver: newton raphson, modified, 5, keep jacobian matrix, honor element requests;"));
     assert!(!with("nonlinear solver: line search;"));
+    assert!(!with("nonlinear solver: line search, abort at lambda min, no, verbose, yes;"));
+    assert!(with("nonlinear solver: line search, modified, 3, keep jacobian matrix, lambda min, 1e-1;"));
+    // The deprecated spelling (MBDyn: "Newton Raphson is deprecated"), ITERATIONS optional.
+    assert!(with("newton raphson: modified, 4;"));
+    assert!(with("newton raphson: modified;"));
+    assert!(!with("newton raphson: true;"));
+    // The last card wins; `default` and `matrix free` leave the kind as it was.
+    assert!(!with("newton raphson: modified, 4; nonlinear solver: newton raphson;"));
+    assert!(with("nonlinear solver: newton raphson; newton raphson: modified, 1;"));
+    assert!(with("newton raphson: modified, 4; nonlinear solver: default;"));
+}
+
+/// A Newton card MBDyn would refuse, or whose word it does not know, is an error at the
+/// argument, saying what was expected (MBDyn reads ITERATIONS with `GetInt` after
+/// `modified`, and warns and runs full Newton after an unknown word in the deprecated card:
+/// romdyn asks for one it knows rather than guess).
+#[test]
+fn a_bad_newton_card_is_refused_where_it_is_wrong() {
+    for (card, at, expected) in [
+        ("nonlinear solver: newton raphson, modified;", "m.mbd:3:", "the iterations one Jacobian matrix is reused for"),
+        ("nonlinear solver: newton raphson, modified, 2.5;", "m.mbd:3:45", "a whole number"),
+        ("nonlinear solver: newton raphson, modified, -1;", "m.mbd:3:45", "cannot be negative"),
+        ("nonlinear solver: newton raphson, modified, 4, keep everything;", "m.mbd:3:48", "unexpected extra argument"),
+        ("nonlinear solver: broyden;", "m.mbd:3:19", "the nonlinear solver (newton raphson, line search, default, matrix free)"),
+        ("newton raphson: sometimes;", "m.mbd:3:17", "the Newton-Raphson kind (true, modified)"),
+    ] {
+        let e = with_newton_cards(card).expect_err(card);
+        assert!(e.contains(at) && e.contains(expected), "{card}: {e}");
+    }
 }

@@ -27,6 +27,7 @@ use rayon::prelude::*;
 use super::balance::balance_pencil;
 use super::deflate::DynamicPart;
 use super::qz::{qz, Products};
+use super::second_order::{half_size_modes, split};
 use crate::eigen::classify::{classify, classify_without_vectors, resolved_kind, Classification, ModeKind};
 use crate::eigen::modes::{conjugate_mode, normalize, sort_units};
 use crate::eigen::route::{EigenRoute, EigenVectors};
@@ -75,6 +76,25 @@ impl ModalAnalysis {
     /// whole pencil (to rounding); when the structure is not there it runs that.
     /// `dcoef` as in [`ModalAnalysis::compute_with_dcoef`].
     pub fn of_dae(dae: &LinearDae, route: EigenRoute, dcoef: Option<f64>) -> Result<Self, EigenError> {
+        Self::of_dae_with(dae, route, dcoef, true)
+    }
+
+    /// [`ModalAnalysis::of_dae`] with QZ on the whole dynamic part even where the half-size
+    /// route applies: the general route the half-size one is checked against.
+    pub fn of_dae_by_qz(dae: &LinearDae, route: EigenRoute, dcoef: Option<f64>) -> Result<Self, EigenError> {
+        Self::of_dae_with(dae, route, dcoef, false)
+    }
+
+    /// Half the size of the dynamic part when it is an undamped structure at rest's (the
+    /// size of the problem [`ModalAnalysis::of_dae`] then solves in the Λ route), `None`
+    /// otherwise.
+    pub fn half_size(dae: &LinearDae) -> Option<usize> {
+        let (fyd, fy) = dae.jacobians.derivatives();
+        let part = DynamicPart::new(&fyd, &fy, dae.constraint_form, &dae.multipliers)?;
+        split(&part.e, &part.k).map(|sets| sets[0].len())
+    }
+
+    fn of_dae_with(dae: &LinearDae, route: EigenRoute, dcoef: Option<f64>, half_size: bool) -> Result<Self, EigenError> {
         let jacobians = &dae.jacobians;
         if jacobians.dim() == 0 {
             return Err(EigenError::Empty);
@@ -128,7 +148,13 @@ impl ModalAnalysis {
                 EigenRoute::Direct => EigenRoute::Lambda,
                 EigenRoute::Lambda => EigenRoute::Direct,
             };
-            let (found, whole) = rayon::join(|| qz_modes(&part, route, dcoef).or_else(|_| qz_modes(&part, other, dcoef)), || WholePencil::new(&fyd, &fy, route, dcoef));
+            // An undamped structure at rest: half the size, two standard eigenproblems
+            // instead of QZ (`super::second_order`); QZ when that structure is missing.
+            let solve = || match half_size.then(|| half_size_reduced(&part, route, dcoef)).flatten() {
+                Some(found) => Ok(found),
+                None => qz_modes(&part, route, dcoef).or_else(|_| qz_modes(&part, other, dcoef)),
+            };
+            let (found, whole) = rayon::join(solve, || WholePencil::new(&fyd, &fy, route, dcoef));
             let mut found = found?;
             let with: Vec<(usize, Col<c64>, Col<c64>)> = found.iter_mut().enumerate().filter_map(|(i, f)| f.1.take().map(|(v, u)| (i, v, u))).collect();
             let lambdas: Vec<c64> = with.iter().map(|w| found[w.0].0.lambda).collect();
@@ -186,6 +212,28 @@ impl ModalAnalysis {
 /// A mode of the dynamic part with its reduced right and left vectors (`None` for λ = 0
 /// or ∞, whose vectors the form of eq. 30 cannot lift) and whether it stands for a pair.
 type ReducedMode = (Mode, Option<(Col<c64>, Col<c64>)>, bool);
+
+/// The dynamic part's modes at half its size (Λ route only), each with its vectors; labels
+/// and errors are placeholders, decided on the whole pencil by the caller as for QZ's.
+fn half_size_reduced(part: &DynamicPart, route: EigenRoute, dcoef: f64) -> Option<Vec<ReducedMode>> {
+    if route != EigenRoute::Lambda {
+        return None;
+    }
+    let modes = half_size_modes(&part.e, &part.k, dcoef)?;
+    Some(
+        modes
+            .into_iter()
+            .map(|m| {
+                // Eq. 23 inverted, as WholePencil::classify: Λ = (cλ + 1)/(cλ − 1).
+                let mu = (m.lambda * dcoef + 1.0) / (m.lambda * dcoef - 1.0);
+                let s = 1.0 / (1.0 + mu.norm_sqr()).sqrt();
+                let class = classify_without_vectors(mu * s, s, route);
+                let mode = Mode { lambda: m.lambda, kind: class.kind, error: f64::INFINITY, classification: class, right: None, left: None, partner: None };
+                (mode, Some((m.right, m.left)), m.pair)
+            })
+            .collect(),
+    )
+}
 
 /// The dynamic part's modes by QZ on the route's pencil (balanced), labelled on it.
 fn qz_modes(part: &DynamicPart, route: EigenRoute, dcoef: f64) -> Result<Vec<ReducedMode>, EigenError> {

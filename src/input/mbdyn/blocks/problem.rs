@@ -38,15 +38,15 @@ pub fn data(block: &Block, sources: &Sources) -> Result<(), MbdynError> {
     Ok(())
 }
 
-/// MBDyn's numerics settings romdyn ignores (`nonlinear solver` is read for its Newton–Raphson
-/// kind, before these), with their deprecated spellings (`fictitious
-/// steps …` for `dummy steps …`, `newton raphson: …` for `nonlinear solver: newton raphson,
-/// …`, `solver`, `interface solver`, `preconditioner`: solver.cc, Solver::ReadData).
-const IGNORED: [&str; 30] = [
-    "strategy", "min time step", "max time step", "modify residual test", "nonlinear solver", "linear solver", "solver", "threads",
+/// MBDyn's numerics settings romdyn ignores (`nonlinear solver` and its deprecated spelling
+/// `newton raphson: …` are read for the Newton–Raphson kind, before these), with their
+/// deprecated spellings (`fictitious steps …` for `dummy steps …`, `solver`, `interface
+/// solver`, `preconditioner`: solver.cc, Solver::ReadData).
+const IGNORED: [&str; 28] = [
+    "strategy", "min time step", "max time step", "modify residual test", "linear solver", "solver", "threads",
     "dummy steps tolerance", "dummy steps max iterations", "dummy steps number", "dummy steps ratio",
     "dummy steps method", "output", "output meter", "real time", "fictitious steps tolerance", "fictitious steps max iterations",
-    "fictitious steps number", "fictitious steps ratio", "fictitious steps method", "newton raphson", "interface linear solver",
+    "fictitious steps number", "fictitious steps ratio", "fictitious steps method", "interface linear solver",
     "interface solver", "preconditioner", "max residual", "enforce constraint equations", "pod", "time step pattern", "min time step pattern",
 ];
 
@@ -86,12 +86,10 @@ pub fn initial_value(block: Option<&Block>, sources: &Sources, drives: &Drives) 
     let mut eigen_span = None;
     for st in &iv.statements {
         let mut c = Cursor::new(st, sources);
-        if known(&st.keyword, &["nonlinear solver"]).is_some() {
-            // `newton raphson [, true | modified, ITERATIONS [, keep jacobian matrix]]`: with
-            // `modified` romdyn keeps a factorization while the residual falls fast (instead
-            // of for ITERATIONS iterations); full Newton otherwise; other solvers ignored.
-            a.modified_newton = c.accept("newton raphson") && c.accept("modified");
-            c.skip_rest();
+        if let Some(card) = known(&st.keyword, &["nonlinear solver", "newton raphson"]) {
+            if let Some(modified) = newton_kind(&mut c, card == "newton raphson")? {
+                a.modified_newton = modified;
+            }
             continue;
         }
         if known(&st.keyword, &IGNORED).is_some() {
@@ -164,6 +162,58 @@ pub fn initial_value(block: Option<&Block>, sources: &Sources, drives: &Drives) 
         ));
     }
     Ok(a)
+}
+
+/// Whether a Newton card asks for the modified method (`None`: it leaves the choice as it
+/// was), read as MBDyn 1.7.3 does (solver.cc, `Solver::ReadData`, cases NONLINEARSOLVER and
+/// NEWTONRAPHSON; input manual, "Nonlinear Solver"):
+/// - `nonlinear solver: {newton raphson | line search} [, true | , modified, ITERATIONS [,
+///   keep jacobian [matrix]] [, honor element requests]] …` sets full or modified Newton
+///   (`true` only after `newton raphson`; line search's own settings follow and are
+///   ignored: romdyn runs its Newton); `default` and `matrix free` leave it as it was;
+/// - the deprecated `newton raphson: {true | modified [, ITERATIONS]};` (MBDyn warns that it
+///   is deprecated; without ITERATIONS it reuses the matrix for 2).
+///
+/// With `modified` romdyn keeps a factorization while the residual falls fast
+/// (`InitialValueProblem::modified_newton`) instead of for ITERATIONS iterations, which it
+/// reads and checks but does not use.
+fn newton_kind(c: &mut Cursor, deprecated: bool) -> Result<Option<bool>, MbdynError> {
+    if deprecated {
+        // MBDyn warns and runs full Newton after another word; romdyn asks for one it knows.
+        let modified = c.keyword("the Newton-Raphson kind", &["true", "modified"])? == "modified";
+        if modified && !c.is_done() {
+            reuse_count(c)?;
+        }
+        c.finish()?;
+        return Ok(Some(modified));
+    }
+    let solver = c.keyword("the nonlinear solver", &["newton raphson", "line search", "default", "matrix free"])?;
+    if matches!(solver, "default" | "matrix free") {
+        c.skip_rest();
+        return Ok(None);
+    }
+    let modified = !(solver == "newton raphson" && c.accept("true")) && c.accept("modified");
+    if modified {
+        reuse_count(c)?;
+        c.accept_any(&["keep jacobian", "keep jacobian matrix"]);
+        c.accept("honor element requests");
+    }
+    if solver == "newton raphson" {
+        c.finish()?;
+    } else {
+        c.skip_rest();
+    }
+    Ok(Some(modified))
+}
+
+/// The iterations a modified Newton reuses one matrix for (MBDyn reads an integer).
+fn reuse_count(c: &mut Cursor) -> Result<(), MbdynError> {
+    let span = c.here();
+    let n = c.integer("the iterations one Jacobian matrix is reused for")?;
+    if n < 0 {
+        return Err(c.error_at(span, format!("the iterations one Jacobian matrix is reused for cannot be negative, found {n}")));
+    }
+    Ok(())
 }
 
 /// `tolerance: {null | RES} [, test, …[, scale]] [, {null | SOL} [, test, …]]`: romdyn tests
