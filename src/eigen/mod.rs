@@ -15,6 +15,7 @@
 
 mod classify;
 mod cluster;
+mod componentwise;
 pub mod dense;
 mod energy;
 mod error;

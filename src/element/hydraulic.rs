@@ -7,7 +7,7 @@
 //! it takes out of the node (MBDyn's `AssRes` adds it; romdyn's residual, its negative,
 //! subtracts it). Pressures are in Pa, densities in kg/m³, areas in m², volumes in m³.
 
-use super::contract::{add_block, Col, Element, ElementState, Events, JacobianSink, Label, Latched, ResidualSink, Row, ScalarNodeId, UnknownKind};
+use super::contract::{add_block, Col, Element, ElementState, EnergyStore, Events, JacobianSink, Label, Latched, Outputs, ResidualSink, Row, ScalarNodeId, UnknownKind};
 use crate::kinematics::{skew, Vec3};
 
 /// A hydraulic fluid (hfluid_.h): the density as a function of the pressure.
@@ -128,6 +128,9 @@ impl Element for Actuator {
     fn initial_unknowns(&self) -> Vec<(usize, f64, f64)> {
         vec![(0, self.initial_pressures[0], 0.0), (1, self.initial_pressures[1], 0.0)]
     }
+    fn outputs(&self) -> Option<&dyn Outputs> {
+        Some(self)
+    }
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
         let s = self.stroke(st);
         let [a1, a2] = self.areas;
@@ -200,6 +203,20 @@ impl Element for Actuator {
             out.add(Row::Constraint(k), Col::Multiplier(k), 1.0);
             out.add(Row::Constraint(k), Col::ScalarValue { slot: k }, -1.0);
         }
+    }
+}
+
+impl Outputs for Actuator {
+    /// Each chamber's compression energy `½ (V/β) p²` [J] on its pressure unknown `π`, with
+    /// `V/β = V ρ'(p)/ρ₀` (the fluid's `dρ/dp = ρ₀/β`; zero for an incompressible fluid).
+    fn energy_stores(&self, st: &dyn ElementState) -> Vec<EnergyStore> {
+        let volumes = self.volumes(st);
+        (0..2)
+            .map(|k| {
+                let f = self.fluids[k];
+                EnergyStore { unknown: k, weight: volumes[k].abs() * f.density_slope() / f.reference_density(), rate: false, name: format!("chamber {} pressure", k + 1), mode: None }
+            })
+            .collect()
     }
 }
 

@@ -34,7 +34,7 @@ mod equations;
 mod interface;
 pub mod invariants;
 
-use super::contract::{Element, ElementState, FlexiblePoint, JacobianSink, Label, Outputs, ResidualSink};
+use super::contract::{Element, ElementState, EnergyStore, FlexiblePoint, JacobianSink, Label, Outputs, ResidualSink};
 use super::UnknownKind;
 use crate::kinematics::{Mat3, Vec3};
 use nalgebra::DMatrix;
@@ -244,6 +244,16 @@ impl Outputs for ModalBody {
             return Vec::new();
         }
         self.mode_numbers.iter().enumerate().map(|(k, m)| (self.q_index(k), *m)).collect()
+    }
+
+    /// Each mode's own kinetic energy `½ Mₖₖ q̇ₖ²` [J] (the diagonal of the `½ q̇ᵀ M q̇` term
+    /// of `T`; the floating frame's share is its node's), so that the modal table names the
+    /// flexible body's modes ("modal joint 10 mode 3 64 %").
+    fn energy_stores(&self, _s: &dyn ElementState) -> Vec<EnergyStore> {
+        if self.assembling {
+            return Vec::new();
+        }
+        self.mode_numbers.iter().enumerate().map(|(k, &m)| EnergyStore { unknown: self.q_index(k), weight: self.mass[(k, k)], rate: true, name: format!("mode {m}"), mode: Some(m) }).collect()
     }
 
     /// FEM node `fem_node`: `x + R (f₀ + Σₖ Φₖ qₖ)` (the module's kinematics).
