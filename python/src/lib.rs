@@ -146,7 +146,7 @@ impl Model {
     /// "NODE:abstract|electric|hydraulic" (input on the node's equation, output its value)
     /// and "NODE:abstract_rate|…" (output its derivative); fem_outputs: "JOINT:FEM_NODE:x|y|z"
     /// (displacement [m] of a modal joint's FEM node, a sensor on the flexible body) or
-    /// "JOINT:FEM_NODE:vx|vy|vz" (its velocity [m/s]); ports: a ports file (JSON);
+    /// "JOINT:FEM_NODE:vx|vy|vz" (its velocity [m/s]) or "JOINT:FEM_NODE:rx|ry|rz" (its rotation [rad]); ports: a ports file (JSON);
     /// remove_springs: labels of dummy springs; imposed: "NODE[:COMPONENTS]"; cut: control
     /// loops to cut open, ["genel:LABEL" | "force:LABEL"] (as `--cut`: the element's part of
     /// the linearization taken out, the signal across it an input "(injected)" and an output

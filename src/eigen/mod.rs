@@ -15,7 +15,7 @@
 
 mod classify;
 mod cluster;
-mod componentwise;
+pub(crate) mod componentwise;
 pub mod dense;
 mod energy;
 mod error;

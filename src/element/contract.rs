@@ -311,6 +311,9 @@ pub struct FlexiblePoint {
     pub position: Vec3,
     /// `(own unknown of qₖ, Φₖ)`: the point's translation per unit modal coordinate [m].
     pub shapes: Vec<(usize, Vec3)>,
+    /// `(own unknown of qₖ, Φrₖ)`: its rotation per unit modal coordinate [rad], in the
+    /// floating frame (zero where the FEM file has translations only).
+    pub rotation_shapes: Vec<(usize, Vec3)>,
     /// The fixed frame (position [m], orientation) of a clamped body; `None`: the frame is
     /// the element's first node's.
     pub clamped: Option<(Vec3, Mat3)>,

@@ -150,7 +150,8 @@ impl Study {
                 (projected, feedback, free)
             },
         );
-        let modal = modal.map_err(|e| e.with_unknown_names(&dae.unknown_names))?;
+        let mut modal = modal.map_err(|e| e.with_unknown_names(&dae.unknown_names))?;
+        super::checks::refine_errors(&mut modal, &free, Some(&model));
         let mut warnings: Vec<_> = equilibrium_warning(&model, &state, problem.tolerance).into_iter().collect();
         let classes = crate::eigen::ModalEnergy::non_mechanical_mask(&model);
         warnings.extend(port_warnings(&free, &modal, (classes.len() == free.dim()).then_some(&classes[..])));

@@ -361,3 +361,22 @@ fn label_warnings(modal: &crate::eigen::ModalAnalysis) -> Vec<Warning> {
     }
     w
 }
+
+/// The modes' error estimates refined by units where the model mixes them
+/// ([`crate::eigen::componentwise::refine_errors_by_units`]; issue 34: the hydraulic
+/// actuator's ±1414 rad/s pair, right to 1e-10, read 2.2e-2 rad/s).
+pub(super) fn refine_errors(modal: &mut ModalAnalysis, linear: &LinearModel, model: Option<&Model>) {
+    let Some(model) = model else { return };
+    let classes = crate::eigen::ModalEnergy::non_mechanical_mask(model);
+    if !classes.iter().any(|c| *c) || classes.len() != linear.dim() {
+        return;
+    }
+    let (fyd, fy) = match linear.sparse() {
+        Some(s) => (s.fyd.clone(), s.fy.clone()),
+        None => {
+            let (fyd, fy) = linear.dense().jacobians.derivatives();
+            (crate::linear::SparseMatrix::from_dense(&fyd), crate::linear::SparseMatrix::from_dense(&fy))
+        }
+    };
+    crate::eigen::componentwise::refine_errors_by_units(modal, &fyd, &fy, &classes);
+}

@@ -279,6 +279,8 @@ impl Study {
                 (dense_modes(linear.dense(), eigen.route, eigen.dcoef)?, None)
             }
         };
+        let mut modal = modal;
+        super::checks::refine_errors(&mut modal, &linear, model.as_ref());
         let mut study = Study { linear, modal, sparse, model, warnings: Vec::new(), reference_time: None, reference_state: None, problem: None, application: None };
         study.warnings = study.linear_warnings();
         Ok(study)

@@ -27,7 +27,6 @@ use rayon::prelude::*;
 use super::balance::balance_pencil;
 use super::deflate::DynamicPart;
 use super::qz::{qz, Products};
-use crate::eigen::componentwise::componentwise_error;
 use crate::eigen::classify::{classify, classify_without_vectors, resolved_kind, Classification, ModeKind};
 use crate::eigen::modes::{conjugate_mode, normalize, sort_units};
 use crate::eigen::route::{EigenRoute, EigenVectors};
@@ -146,10 +145,6 @@ impl ModalAnalysis {
                     let class = whole.classify(lambda, &v, &u, route, dcoef);
                     let error = class.lambda_and_error(route, whole.mu_scale, dcoef).1;
                     let quotient = whole.rayleigh_quotient(&v, &u);
-                    // The smaller of the normwise and the componentwise estimates (both
-                    // first-order bounds; the latter does not depend on units).
-                    let componentwise = componentwise_error(&whole.fyd, &whole.fy, quotient.unwrap_or(lambda), &v, &u, &whole.col, &whole.row);
-                    let error = componentwise.map_or(error, |c| error.min(c));
                     let finite = lambda.re.is_finite() && lambda.im.is_finite();
                     let error = if finite { error.max(quotient.map_or(f64::INFINITY, |q| (q - lambda).norm())) } else { error };
                     let kind = resolved_kind(&class, lambda, error, dcoef);

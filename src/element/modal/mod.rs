@@ -73,6 +73,8 @@ pub struct FemNode {
     pub position: Vec3,
     /// Its translation per unit coordinate of each mode the joint uses [m].
     pub translation: Vec<Vec3>,
+    /// Its rotation per unit coordinate of each mode [rad] (the FEM file's 6-DOF shapes).
+    pub rotation: Vec<Vec3>,
 }
 
 /// The flexible body.
@@ -267,6 +269,7 @@ impl Outputs for ModalBody {
             ModalFrame::Node(_) => None,
             ModalFrame::Clamped { position, orientation } => Some((*position, *orientation)),
         };
-        Ok(FlexiblePoint { position: n.position, shapes: n.translation.iter().enumerate().map(|(k, t)| (self.q_index(k), *t)).collect(), clamped })
+        let per_mode = |shapes: &[Vec3]| shapes.iter().enumerate().map(|(k, t)| (self.q_index(k), *t)).collect();
+        Ok(FlexiblePoint { position: n.position, shapes: per_mode(&n.translation), rotation_shapes: per_mode(&n.rotation), clamped })
     }
 }
