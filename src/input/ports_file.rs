@@ -292,7 +292,7 @@ impl Spec {
             k => return Err(format!("output type '{k}' is not one of displacement, rotation, relative, velocity, angular velocity, abstract, electric, hydraulic (and their 'rate'), modal coordinate, modal coordinate rate, fem displacement, fem velocity, fem rotation")),
         };
         if self.fem_node.is_some() && !self.kind.starts_with("fem ") {
-            return Err("\"fem_node\" belongs to 'fem displacement' and 'fem velocity' outputs".into());
+            return Err("\"fem_node\" belongs to 'fem displacement', 'fem velocity' and 'fem rotation' outputs".into());
         }
         if (self.joint.is_some() || self.mode.is_some()) && !self.kind.starts_with("modal coordinate") && !self.kind.starts_with("fem ") {
             return Err("\"joint\" and \"mode\" belong to 'modal coordinate' outputs".into());
