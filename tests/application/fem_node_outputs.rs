@@ -176,16 +176,7 @@ fn a_moving_fem_nodes_velocity_row_is_the_derivative_of_its_velocity() {
         outputs.push(FemOutput { joint: 10, fem_node: "C".into(), component: k }.port());
         outputs.push(FemOutput { joint: 10, fem_node: "C".into(), component: 3 + k }.port());
     }
-    let app = Application { outputs, ..Default::default() };
-    let s = Study::builder(StudySource::model_file(test_file("modal_floating_force.mbd"))).reference(Reference::At(0.5)).application(app).build().unwrap_or_else(|e| panic!("{e}"));
-    let model = s.model().unwrap();
-    let dofs = romdyn::dae::DofMap::new(model);
-    let mut base = s.reference_state().unwrap().clone();
-    base.linearization_base(&dofs);
-    let modal = model.elements.iter().position(|e| e.type_name() == "modal").unwrap();
-    // Own unknowns of the joint: 6 interface multipliers, then q1, q2.
-    let q_first = dofs.element_first[modal] + 6;
-    let node = model.node_index(1).unwrap();
+    let Moving { study: s, dofs, base, q_first, node } = moving(outputs);
     let f_c = Vec3::new(0.3, -0.4, 0.2);
     let shapes = [Vec3::new(-0.3, 0.2, 0.4), Vec3::new(0.2, 0.5, -0.1)];
     let point = |st: &romdyn::dae::State| {
@@ -229,16 +220,8 @@ fn a_moving_fem_nodes_rotation_row_is_the_derivative_of_its_orientation() {
     // of modal_point_masses.fem (node C: (−0.2, 0.4, 0.1) and (0.3, 0.2, −0.4) rad per unit
     // q), R the modal node's frame from the state as the linearization reads it.
     let outputs = (6..9).map(|k| FemOutput { joint: 10, fem_node: "C".into(), component: k }.port()).collect();
-    let app = Application { outputs, ..Default::default() };
-    let s = Study::builder(StudySource::model_file(test_file("modal_floating_force.mbd"))).reference(Reference::At(0.5)).application(app).build().unwrap_or_else(|e| panic!("{e}"));
+    let Moving { study: s, dofs, base, q_first, node } = moving(outputs);
     assert_eq!(s.output_names()[0], "modal 10 FEM node C rx [rad]");
-    let model = s.model().unwrap();
-    let dofs = romdyn::dae::DofMap::new(model);
-    let mut base = s.reference_state().unwrap().clone();
-    base.linearization_base(&dofs);
-    let modal = model.elements.iter().position(|e| e.type_name() == "modal").unwrap();
-    let q_first = dofs.element_first[modal] + 6;
-    let node = model.node_index(1).unwrap();
     let shapes = [Vec3::new(-0.2, 0.4, 0.1), Vec3::new(0.3, 0.2, -0.4)];
     let orientation = |st: &romdyn::dae::State| {
         let psi = shapes[0] * st.y[q_first] + shapes[1] * st.y[q_first + 1];
@@ -282,4 +265,28 @@ fn a_clamped_components_fem_node_turns_as_the_whole_beams_node() {
         let e = largest_relative(&h_every[k], &h_full[k]);
         assert!(e < 1e-8, "every mode, {f} Hz: {e:e}");
     }
+}
+
+/// modal_floating_force.mbd at t = 0.5 s of its run with `outputs`, and what central
+/// differences of its FEM nodes read: the unknowns' numbering, the reference in the
+/// linearization form, the joint's first modal coordinate (after its 6 interface
+/// multipliers) and the modal node's index.
+struct Moving {
+    study: Study,
+    dofs: romdyn::dae::DofMap,
+    base: romdyn::dae::State,
+    q_first: usize,
+    node: usize,
+}
+
+fn moving(outputs: Vec<OutputPort>) -> Moving {
+    let app = Application { outputs, ..Default::default() };
+    let study = Study::builder(StudySource::model_file(test_file("modal_floating_force.mbd"))).reference(Reference::At(0.5)).application(app).build().unwrap_or_else(|e| panic!("{e}"));
+    let model = study.model().unwrap();
+    let dofs = romdyn::dae::DofMap::new(model);
+    let mut base = study.reference_state().unwrap().clone();
+    base.linearization_base(&dofs);
+    let modal = model.elements.iter().position(|e| e.type_name() == "modal").unwrap();
+    let (q_first, node) = (dofs.element_first[modal] + 6, model.node_index(1).unwrap());
+    Moving { study, dofs, base, q_first, node }
 }
