@@ -73,7 +73,7 @@ impl EnergyShare {
 
 /// An unknown that stores energy or takes part by participation, with what it is.
 #[derive(Clone, Debug)]
-struct Part {
+pub(super) struct Part {
     who: EnergyShare,
     unknown: usize,
     /// A store's `½ weight |y|²` (or `|ẏ|²` when `rate`).
@@ -95,8 +95,8 @@ pub struct ModalEnergy {
     /// The unknowns in other units than the mechanical ones: scalar nodes' and the own
     /// unknowns of elements on scalar nodes (a motor's current, an actuator's pressures).
     pub(super) non_mechanical: Vec<usize>,
-    stores: Vec<Part>,
-    signals: Vec<Part>,
+    pub(super) stores: Vec<Part>,
+    pub(super) signals: Vec<Part>,
 }
 
 impl ModalEnergy {
