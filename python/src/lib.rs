@@ -146,7 +146,7 @@ impl Model {
     /// "NODE:abstract|electric|hydraulic" (input on the node's equation, output its value)
     /// and "NODE:abstract_rate|…" (output its derivative); fem_outputs: "JOINT:FEM_NODE:x|y|z"
     /// (displacement [m] of a modal joint's FEM node, a sensor on the flexible body) or
-    /// "JOINT:FEM_NODE:vx|vy|vz" (its velocity [m/s]); ports: a ports file (JSON);
+    /// "JOINT:FEM_NODE:vx|vy|vz" (its velocity [m/s]) or "JOINT:FEM_NODE:rx|ry|rz" (its rotation [rad]); ports: a ports file (JSON);
     /// remove_springs: labels of dummy springs; imposed: "NODE[:COMPONENTS]"; cut: control
     /// loops to cut open, ["genel:LABEL" | "force:LABEL"] (as `--cut`: the element's part of
     /// the linearization taken out, the signal across it an input "(injected)" and an output
@@ -257,10 +257,39 @@ impl StudyPy {
 
     /// The modal table as arrays: "eigenvalues" [rad/s] (complex), "kind" ("dynamic", "zero",
     /// "infinite"), "freq_hz" (|Im λ|/2π, MBDyn's), "undamped_hz" (|λ|/2π), "damping"
-    /// (−Re λ/|λ|), "error" [rad/s], "partner" (index of a conjugate, -1 if none), "dcoef" [s].
+    /// (−Re λ/|λ|), "error" [rad/s], "partner" (index of a conjugate, -1 if none), "dcoef" [s];
+    /// "description" (the modal table's: "node 2 y 75 %, modal joint 10 mode 1 25 %") and
+    /// "energy", each mode's shares as dicts {"node", "component", "share"} plus, for an
+    /// element's own unknown, "element" ("motor", "actuator", "modal joint", …), "state"
+    /// ("current", "chamber 1 pressure", "mode 3") and, for a modal joint's mode, "mode" (its
+    /// number in the FEM file).
     fn modes<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let modal = self.study.modal();
         let d = modes_dict(py, modal)?;
+        let energy = self.study.energy();
+        d.set_item("description", energy.iter().map(|s| romdyn::eigen::describe(s)).collect::<Vec<_>>())?;
+        let shares = energy
+            .iter()
+            .map(|mode| {
+                mode.iter()
+                    .map(|s| {
+                        let e = PyDict::new(py);
+                        e.set_item("node", s.node)?;
+                        e.set_item("component", s.component)?;
+                        e.set_item("share", s.share)?;
+                        if let Some(element) = &s.element {
+                            e.set_item("element", element)?;
+                            e.set_item("state", s.state.clone())?;
+                        }
+                        if let Some(m) = s.mode {
+                            e.set_item("mode", m)?;
+                        }
+                        Ok(e)
+                    })
+                    .collect::<PyResult<Vec<_>>>()
+            })
+            .collect::<PyResult<Vec<_>>>()?;
+        d.set_item("energy", shares)?;
         d.set_item("partner", modal.modes.iter().map(|m| m.partner.map_or(-1, |p| p as i64)).collect::<Vec<_>>().into_pyarray(py))?;
         d.set_item("dcoef", modal.dcoef)?;
         Ok(d)

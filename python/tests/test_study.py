@@ -339,3 +339,27 @@ def test_a_beam_the_auto_update_leaves_path_independent_warns_with_the_keyword()
     model = romdyn.Model.from_text(text.replace("    beam3: 2, 3, null", "    driven: 2, const, 1., beam3: 2, 3, null"), name=str(path))
     with pytest.warns(romdyn.ReferenceWarning, match=r"^beam3 2.*keeps the path-independent update.*\(beam_update=\"path-independent\" silences this\)$"):
         model.study(reference=0.5)
+
+
+def test_mode_labels_name_element_states_and_fem_rotations(examples):
+    # Issues 34 and 35: Study.modes() carries the modal table's shares. On
+    # tests/mbdyn_files/modal_clamped_port.mbd the one mode is 25 % the modal joint's mode 1
+    # (modal mass 0.5 kg) and 75 % node 2's 1.5 kg body along y (closed form, 1e-10); on the
+    # hydraulic actuator, half the piston's kinetic energy and a quarter each chamber's
+    # compression energy (tests/multibody/hydraulic.rs), 1e-8.
+    files = examples.parent / "tests" / "mbdyn_files"
+    modes = romdyn.Model(files / "modal_clamped_port.mbd").study().modes()
+    first = int(np.flatnonzero(np.array(modes["kind"]) == "dynamic")[0])
+    assert modes["description"][first] == "node 2 y 75 %, modal joint 10 mode 1 25 %"
+    modal = [s for s in modes["energy"][first] if s.get("element") == "modal joint"][0]
+    assert (modal["node"], modal["mode"], modal["state"]) == (10, 1, "mode 1")
+    assert modal["share"] == pytest.approx(0.25, abs=1e-10)
+    actuator = romdyn.Model(files / "hydraulic_actuator_mass.mbd", set={"F0": 0.0}).study().modes()
+    first = int(np.flatnonzero(np.array(actuator["kind"]) == "dynamic")[0])
+    shares = {(s.get("element"), s.get("state"), s["component"]): s["share"] for s in actuator["energy"][first]}
+    assert shares[(None, None, "z")] == pytest.approx(0.5, abs=1e-8)
+    assert shares[("actuator", "chamber 1 pressure", "element")] == pytest.approx(0.25, abs=1e-8)
+    assert actuator["error"][first] < 1e-8
+    # A FEM node's rotation as an output [rad].
+    study = romdyn.Model(files / "modal_floating_force.mbd").study(inputs=["2:Fy"], fem_outputs=["10:C:rz"])
+    assert study.linear()["outputs"] == ["modal 10 FEM node C rz [rad]"]

@@ -160,7 +160,7 @@ struct Solved {
 fn dense(model: &Model, state: &State, dcoef: f64) -> Result<Solved, String> {
     let dae = linearize(model, state, &[], &[], Some(dcoef)).map_err(|e| e.to_string())?;
     let modal = dense_modes(&dae, EigenRoute::Lambda, None).map_err(|e| e.to_string())?;
-    let energy_of = ModalEnergy::new(model, &dae);
+    let energy_of = ModalEnergy::new(model, &dae).at_state(model, state);
     let LinearDae { jacobians: Jacobians::Coefficient { j: aplus, jstar: aminus, .. }, unknown_names, .. } = dae else {
         return Err("linearization did not return J(±c)".into());
     };
@@ -177,7 +177,7 @@ fn sparse(model: &Model, state: &State, dcoef: f64, modes: usize, card: &str) ->
     let found = sparse_modes(&dae, ModeTarget::Lowest(modes), &settings).map_err(|e| format!("{card}, {modes}: {e}"))?;
     let mut diagonal = vec![0.0; dae.dim()];
     dae.fyd.triplets().filter(|&(i, j, _)| i == j).for_each(|(i, _, v)| diagonal[i] += v);
-    let energy_of = ModalEnergy::from_fyd_diagonal(model, &diagonal);
+    let energy_of = ModalEnergy::from_fyd_diagonal(model, &diagonal).at_state(model, state);
     let (aplus, aminus) = sparse_jacobian_pair(model, state, dcoef).map_err(|e| e.to_string())?;
     let certified = match &found.certificate {
         Some(c) if found.certified => format!("certified ({c})"),

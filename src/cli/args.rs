@@ -52,7 +52,7 @@ pub struct PencilArgs {
     /// ROM output of a model: NODE:x|y|z (displacement [m]) or NODE:rx|ry|rz (rotation [rad]); or NODE:abstract|electric|hydraulic, that scalar node's value (a voltage [V], a pressure [Pa]), NODE:abstract_rate|electric_rate|hydraulic_rate its derivative
     #[arg(long = "output", value_name = "NODE:COMP", conflicts_with = "pencil")]
     pub outputs: Vec<NodeOutput>,
-    /// ROM output at a FEM node of a modal joint (a sensor on the flexible body): JOINT:FEM_NODE:x|y|z, its displacement [m], or JOINT:FEM_NODE:vx|vy|vz, its velocity [m/s], global axes; the floating frame's motion and the modes' (x + R (f0 + Phi q), linearized). FEM_NODE is a node label of the joint's FEM file
+    /// ROM output at a FEM node of a modal joint (a sensor on the flexible body): JOINT:FEM_NODE:x|y|z, its displacement [m], JOINT:FEM_NODE:vx|vy|vz, its velocity [m/s], or JOINT:FEM_NODE:rx|ry|rz, its rotation [rad] (the FEM file's rotational mode shapes), global axes; the floating frame's motion and the modes' (x + R (f0 + Phi q), linearized). FEM_NODE is a node label of the joint's FEM file
     #[arg(long = "fem-output", value_name = "JOINT:FEM_NODE:COMP", conflicts_with = "pencil")]
     pub fem_outputs: Vec<romdyn::dae::FemOutput>,
     /// ROM input of an .m pencil: a unit generalized force entering equation I (1-based row of Aplus/Aminus) as -dF_I = u. In romdyn's numbering a dynamic node with first unknown idx (the file's 'idx' with 'output geometry') has its force equilibrium x,y,z in rows idx+7..idx+9 and moments in idx+10..idx+12 (static node: idx+1..idx+6)

@@ -466,6 +466,14 @@ impl<'m> Assembler<'m> {
         self.model.elements.iter().enumerate().filter_map(named).collect()
     }
 
+    /// Every element's energy stores at `st` ([`crate::element::Outputs::energy_stores`]):
+    /// `(element index, global unknown, store)`.
+    pub fn energy_stores(&self, st: &State) -> Vec<(usize, usize, crate::element::EnergyStore)> {
+        let frames = self.frames(st);
+        let stores = |(e, el): (usize, &Box<dyn crate::element::Element>)| el.outputs().map(|o| o.energy_stores(&self.context(&frames, st, e, 1.0)).into_iter().map(move |s| (e, self.dofs.element_first[e] + s.unknown, s)).collect::<Vec<_>>()).unwrap_or_default();
+        self.model.elements.iter().enumerate().flat_map(stores).collect()
+    }
+
     /// Every element whose Jacobian at `st` depends on reaction multipliers' values
     /// ([`Element::reaction_dependence`]), as "in line 3: …".
     ///

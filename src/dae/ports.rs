@@ -113,6 +113,11 @@ pub enum Measurement {
     FemDisplacement { joint: Label, fem_node: String, direction: Direction },
     /// Its velocity `ṗ = ẋ + ω × R (f₀ + Φ q) + R Φ q̇` [m/s].
     FemVelocity { joint: Label, fem_node: String, direction: Direction },
+    /// Rotation of a modal joint's FEM node about a direction [rad]: its orientation
+    /// `R exp([ψ×])`, `ψ = Σₖ Φrₖ qₖ` the modes' rotations (the FEM file's 6-DOF shapes;
+    /// MBDyn's `R (I + [ψ×])` to first order), linearized: `δθ + R J(ψ) Σₖ Φrₖ δqₖ`, `δθ`
+    /// the floating frame's rotation and `J` the exponential's left Jacobian (`I` at `q = 0`).
+    FemRotation { joint: Label, fem_node: String, direction: Direction },
 }
 
 /// A named input.
@@ -153,7 +158,7 @@ impl OutputPort {
     pub fn unit(&self) -> &'static str {
         match self.measurement {
             Measurement::Displacement { .. } | Measurement::Relative { .. } | Measurement::FemDisplacement { .. } => "m",
-            Measurement::Rotation { .. } => "rad",
+            Measurement::Rotation { .. } | Measurement::FemRotation { .. } => "rad",
             Measurement::Velocity { .. } | Measurement::FemVelocity { .. } => "m/s",
             Measurement::AngularVelocity { .. } => "rad/s",
             Measurement::ScalarValue { node } => match node.kind {
@@ -214,6 +219,18 @@ struct FlexibleAt {
     r: Vec3,
     deformation_rate: Vec3,
     shapes: Vec<(usize, Vec3)>,
+    /// `R J(ψ) Φrₖ` per own unknown `qₖ` (the rotation's, [`Measurement::FemRotation`]).
+    rotation_shapes: Vec<(usize, Vec3)>,
+}
+
+/// The left Jacobian `J(ψ) = I + (1 − cos θ)/θ² [ψ×] + (θ − sin θ)/θ³ [ψ×]²` (`θ = |ψ|`) of
+/// the exponential map: `δ(exp[ψ×]) exp[ψ×]ᵀ = [J(ψ) δψ ×]`.
+fn exponential_left_jacobian(psi: &Vec3) -> Mat3 {
+    let t = psi.norm();
+    let s = skew(psi);
+    // Series below 1e-4 rad (the closed forms cancel there): 1/2 − θ²/24, 1/6 − θ²/120.
+    let (a, b) = if t < 1e-4 { (0.5 - t * t / 24.0, 1.0 / 6.0 - t * t / 120.0) } else { ((1.0 - t.cos()) / (t * t), (t - t.sin()) / (t * t * t)) };
+    Mat3::identity() + s * a + s * s * b
 }
 
 /// One output row: `C̃` and, for rates, `C̃_v`.
@@ -278,7 +295,10 @@ impl<'m> PortMap<'m> {
             rate += phi * self.yp[first + k];
         }
         let shapes = point.shapes.iter().map(|&(k, phi)| (first + k, orientation * phi)).collect();
-        Ok(FlexibleAt { node, orientation, r: orientation * local, deformation_rate: orientation * rate, shapes })
+        let psi: Vec3 = point.rotation_shapes.iter().map(|&(k, phi)| phi * self.y[first + k]).sum();
+        let turn = orientation * exponential_left_jacobian(&psi);
+        let rotation_shapes = point.rotation_shapes.iter().map(|&(k, phi)| (first + k, turn * phi)).collect();
+        Ok(FlexibleAt { node, orientation, r: orientation * local, deformation_rate: orientation * rate, shapes, rotation_shapes })
     }
 
     /// The global unit vector of a direction on a flexible body (node frames: its floating frame).
@@ -464,6 +484,15 @@ impl<'m> PortMap<'m> {
                 }
                 rate = Some(cv);
             }
+            Measurement::FemRotation { joint, fem_node, direction } => {
+                // δθₙ = δθ + Σₖ R J(ψ) Φrₖ δqₖ (a clamped body's frame does not turn).
+                let at = self.flexible(name, *joint, fem_node)?;
+                let d = self.flexible_direction(name, direction, &at)?;
+                if let Some(i) = at.node {
+                    (0..3).for_each(|k| c[self.dofs.node_first[i] + 3 + k] += d[k]);
+                }
+                at.rotation_shapes.iter().for_each(|&(k, phi)| c[k] += d.dot(&phi));
+            }
             Measurement::ModalRate { joint, mode } => {
                 let mut cv = vec![0.0; n];
                 cv[self.modal(name, *joint, *mode)?] = 1.0;
@@ -490,18 +519,19 @@ impl<'m> PortMap<'m> {
     }
 }
 
-/// A FEM node's displacement or velocity component in global axes, as the command line
-/// writes it: `JOINT:FEM_NODE:x|y|z` [m] or `JOINT:FEM_NODE:vx|vy|vz` [m/s] (modal joint
-/// `JOINT`, its FEM file's node label `FEM_NODE`).
+/// A FEM node's displacement, velocity or rotation component in global axes, as the command
+/// line writes it: `JOINT:FEM_NODE:x|y|z` [m], `JOINT:FEM_NODE:vx|vy|vz` [m/s] or
+/// `JOINT:FEM_NODE:rx|ry|rz` [rad] (modal joint `JOINT`, its FEM file's node label
+/// `FEM_NODE`).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct FemOutput {
     pub joint: Label,
     pub fem_node: String,
-    /// 0..3 displacement x, y, z; 3..6 velocity x, y, z.
+    /// 0..3 displacement x, y, z; 3..6 velocity x, y, z; 6..9 rotation about x, y, z.
     pub component: usize,
 }
 
-const FEM_COMPONENTS: [&str; 6] = ["x", "y", "z", "vx", "vy", "vz"];
+const FEM_COMPONENTS: [&str; 9] = ["x", "y", "z", "vx", "vy", "vz", "rx", "ry", "rz"];
 
 impl std::str::FromStr for FemOutput {
     type Err = PortError;
@@ -525,7 +555,11 @@ impl FemOutput {
         let direction = Direction::global(Vec3::from_fn(|i, _| if i == self.component % 3 { 1.0 } else { 0.0 }));
         let (joint, fem_node) = (self.joint, self.fem_node.clone());
         let name = format!("modal {joint} FEM node {fem_node} {}", FEM_COMPONENTS[self.component]);
-        let measurement = if self.component < 3 { Measurement::FemDisplacement { joint, fem_node, direction } } else { Measurement::FemVelocity { joint, fem_node, direction } };
+        let measurement = match self.component {
+            0..3 => Measurement::FemDisplacement { joint, fem_node, direction },
+            3..6 => Measurement::FemVelocity { joint, fem_node, direction },
+            _ => Measurement::FemRotation { joint, fem_node, direction },
+        };
         OutputPort { name, measurement }
     }
 }

@@ -88,7 +88,7 @@ impl ModalEnergy {
             .terms
             .iter()
             .enumerate()
-            .map(|(t, &(node, component, _, _))| EnergyShare { node, component, share: basis.iter().map(|q| q[t].norm_sqr()).sum::<f64>() / rank })
+            .map(|(t, &(node, component, _, _))| EnergyShare::of_node(node, component, basis.iter().map(|q| q[t].norm_sqr()).sum::<f64>() / rank))
             .collect();
         out.retain(|s| s.share > 0.0);
         out.sort_by(|a, b| b.share.total_cmp(&a.share));
@@ -183,7 +183,7 @@ mod tests {
     }
 
     fn energy() -> ModalEnergy {
-        ModalEnergy { terms: (0..5).map(|n| (n as u32 + 1, "x", n, M)).collect(), scalars: Vec::new(), non_mechanical: Vec::new() }
+        ModalEnergy { terms: (0..5).map(|n| (n as u32 + 1, "x", n, M)).collect(), ..Default::default() }
     }
 
     fn names() -> std::collections::BTreeMap<u32, String> {

@@ -1,33 +1,92 @@
-//! Which node and component a mode moves: shares of its kinetic energy (issue 3, item 7).
+//! Which node, component or element state a mode lives in: shares of the energy it
+//! stores (issue 3, item 7; issues 34 and 35).
 //!
 //! A dynamic node's momentum-definition rows of `F_/ẏ` hold `−M_n`, its 6x6 mass matrix
 //! (translation and rotation about the node). For a mode `v` with eigenvalue λ the nodal
-//! velocities are `λ v`; the share of component `k` of node `n` is
-//! `M_n,kk |v_k|² / Σ M_m,jj |v_j|²` (diagonal terms; `|λ|²` cancels).
+//! velocities are `λ v`; node component `k` holds the kinetic energy `½ M_n,kk |λ v_k|²`
+//! (diagonal terms). Elements add the energy their own unknowns store
+//! ([`crate::element::EnergyStore`], physical energies in joules, so that the shares do not
+//! depend on units): a motor's current `½ L |v_i|²`, an actuator chamber's pressure
+//! `½ (V/β) |v_p|²`, a modal joint's mode `½ Mₖₖ |λ v_q|²`. Physical energy rather than a
+//! per-group normalization: it compares a current with a rotor's speed the way the mode
+//! trades one for the other (the DC motor's −974 rad/s mode is 97 % magnetic energy, its
+//! −25.7 rad/s mode 97 % the rotor's), with no scale to choose. A structure's strain energy
+//! is not counted (it needs the stiffness matrix per element, which a sparse linearization
+//! does not keep): a mass on a spring is the mass's alone, a mass on a fluid column shares
+//! its energy with the column's compression.
 //!
-//! A mode that moves no structural node (a controller's, a filter's: it lives in scalar nodes, issue
-//! 34) is described instead by the scalar nodes its vector moves (`component` "abstract",
-//! "electric", "hydraulic"; shares `|v_k|² / Σ |v_j|²`, which depend on the nodes' units,
-//! so [`describe`] names the nodes without them).
+//! Unknowns that store no energy (abstract nodes, electric and hydraulic node values,
+//! genels' and filters' states: a controller's signals) take part by their participation
+//! factor `πₖ = vₖ (F_/ẏᵀ u)ₖ` (Pérez-Arriaga, Verghese and Schweppe, 1982: with `uᵀ F_/ẏ v
+//! = 1` the factors of all unknowns add up to 1, and they do not change when an unknown or
+//! an equation is scaled, so they do not depend on units either). The signals hold
+//! `P = |Σπ| / (|Σπ| + |1 − Σπ|)` of the mode (each `P |πₖ| / Σ|π|`), the energy stores the
+//! rest in proportion to their energies: the mode of a PID loop's derivative filter says it
+//! lives in the controller. Without a left vector (the sparse route's modes) the signals
+//! take no part, and a mode with no energy at all is shared over the scalar nodes by
+//! `|vₖ|²` (which depends on their units).
 
 use super::Mode;
-use crate::dae::DofMap;
+use crate::dae::{Assembler, DofMap, State};
 use crate::linear::LinearDae;
 use crate::model::{Model, NodeKind};
+use faer::c64;
 
 pub(super) const COMPONENTS: [&str; 6] = ["x", "y", "z", "rx", "ry", "rz"];
 
-/// One node component's share of a mode's kinetic energy.
+/// One node component's, scalar node's or element state's share of a mode.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct EnergyShare {
+    /// The node's label (structural or scalar), or the element's.
     pub node: u32,
+    /// "x" … "rz" of a structural node; "abstract", "electric", "hydraulic" of a scalar
+    /// node; "element" of an element's own unknown.
     pub component: &'static str,
     /// Fraction in [0, 1].
     pub share: f64,
+    /// An element's own unknown: the element's type ("motor", "actuator", "modal joint",
+    /// "genel mass"), its label in `node`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub element: Option<String>,
+    /// What that unknown is ("current", "chamber 1 pressure", "mode 3").
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub state: Option<String>,
+    /// A modal joint's mode: its number in the FEM file.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mode: Option<usize>,
 }
 
-/// The diagonal mass terms of every dynamic node component, read once from `F_/ẏ`, to
-/// share out the kinetic energy of any number of modes.
+impl EnergyShare {
+    pub(super) fn of_node(node: u32, component: &'static str, share: f64) -> Self {
+        EnergyShare { node, component, share, element: None, state: None, mode: None }
+    }
+
+    /// "node 3 rz", "abstract node 1", "motor 5 current", "modal joint 10 mode 3".
+    pub fn who(&self) -> String {
+        match &self.element {
+            Some(e) => format!("{e} {} {}", self.node, self.state.as_deref().unwrap_or("")).trim_end().to_string(),
+            None if COMPONENTS.contains(&self.component) => format!("node {} {}", self.node, self.component),
+            None => format!("{} node {}", self.component, self.node),
+        }
+    }
+}
+
+/// An unknown that stores energy or takes part by participation, with what it is.
+#[derive(Clone, Debug)]
+pub(super) struct Part {
+    who: EnergyShare,
+    unknown: usize,
+    /// A store's `½ weight |y|²` (or `|ẏ|²` when `rate`).
+    weight: f64,
+    rate: bool,
+    /// A signal's column of `F_/ẏ` (row, value), when known.
+    column: Vec<(usize, f64)>,
+}
+
+/// The diagonal mass terms of every dynamic node component, read once from `F_/ẏ`, the
+/// elements' energy stores and the signals' columns of `F_/ẏ`, to share out any number of
+/// modes.
+#[derive(Default)]
 pub struct ModalEnergy {
     /// `(node label, component, unknown index, mass)`.
     pub(super) terms: Vec<(u32, &'static str, usize, f64)>,
@@ -36,15 +95,22 @@ pub struct ModalEnergy {
     /// The unknowns in other units than the mechanical ones: scalar nodes' and the own
     /// unknowns of elements on scalar nodes (a motor's current, an actuator's pressures).
     pub(super) non_mechanical: Vec<usize>,
+    pub(super) stores: Vec<Part>,
+    pub(super) signals: Vec<Part>,
 }
 
 impl ModalEnergy {
+    /// From a dense linearization (the signals' columns of its `F_/ẏ` included), the
+    /// elements' stores at the model's initial state ([`ModalEnergy::at_state`]).
     pub fn new(model: &Model, dae: &LinearDae) -> Self {
         let (fyd, _) = dae.jacobians.derivatives();
-        Self::from_fyd_diagonal(model, &(0..fyd.nrows()).map(|k| fyd[(k, k)]).collect::<Vec<_>>())
+        let energy = Self::from_fyd_diagonal(model, &(0..fyd.nrows()).map(|k| fyd[(k, k)]).collect::<Vec<_>>());
+        let columns = energy.signal_unknowns().iter().map(|&k| (0..fyd.nrows()).map(|i| (i, fyd[(i, k)])).filter(|e| e.1 != 0.0).collect()).collect();
+        energy.with_fyd_columns(columns)
     }
 
-    /// The same from the diagonal of `F_/ẏ` alone (a sparse linearization's).
+    /// The same from the diagonal of `F_/ẏ` alone (a sparse linearization's): the signals'
+    /// columns unknown ([`ModalEnergy::with_fyd_columns`] gives them).
     pub fn from_fyd_diagonal(model: &Model, fyd: &[f64]) -> Self {
         let dofs = DofMap::new(model);
         let mut terms = Vec::new();
@@ -58,16 +124,86 @@ impl ModalEnergy {
             }
         }
         let scalars: Vec<(u32, &'static str, usize)> = model.scalar_nodes.iter().enumerate().map(|(i, n)| (n.id.label, n.id.kind.keyword(), dofs.scalar_first + i)).collect();
-        let own = model.elements.iter().enumerate().filter(|(_, e)| !e.scalar_nodes().is_empty()).flat_map(|(k, _)| dofs.element_first[k]..dofs.element_first[k] + dofs.element_len[k]);
-        let non_mechanical = scalars.iter().map(|s| s.2).chain(own).collect();
-        ModalEnergy { terms, scalars, non_mechanical }
+        let non_mechanical = Self::non_mechanical_mask(model).iter().enumerate().filter(|(_, m)| **m).map(|(k, _)| k).collect();
+        let state = State::initial(model, &dofs);
+        ModalEnergy { terms, scalars, non_mechanical, ..Default::default() }.at_state(model, &state)
     }
 
-    /// Kinetic-energy shares of a mode, largest first (empty without eigenvector or mass).
+    /// The elements' energy stores evaluated at `state` (an actuator's chamber volumes
+    /// follow its stroke), and the signals: scalar nodes and the own unknowns of elements on
+    /// scalar nodes that store nothing.
+    pub fn at_state(mut self, model: &Model, state: &State) -> Self {
+        let asm = Assembler::new(model);
+        let element = |e: usize| {
+            let el = &model.elements[e];
+            (el.label(), if el.type_name() == "modal" { "modal joint".to_string() } else { el.type_name().to_string() })
+        };
+        self.stores = asm
+            .energy_stores(state)
+            .into_iter()
+            .map(|(e, unknown, s)| {
+                let (label, kind) = element(e);
+                let who = EnergyShare { element: Some(kind), state: Some(s.name), mode: s.mode, ..EnergyShare::of_node(label, "element", 0.0) };
+                Part { who, unknown, weight: s.weight.max(0.0), rate: s.rate, column: Vec::new() }
+            })
+            .collect();
+        let stored: Vec<usize> = self.stores.iter().map(|s| s.unknown).collect();
+        let mut signals: Vec<Part> = self.scalars.iter().map(|&(node, kind, unknown)| Part { who: EnergyShare::of_node(node, kind, 0.0), unknown, weight: 0.0, rate: false, column: Vec::new() }).collect();
+        for (e, el) in model.elements.iter().enumerate() {
+            if el.scalar_nodes().is_empty() {
+                continue;
+            }
+            let (label, kind) = element(e);
+            for (k, name) in el.multipliers().into_iter().enumerate() {
+                let unknown = asm.dofs.element_first[e] + k;
+                if !stored.contains(&unknown) {
+                    let who = EnergyShare { element: Some(kind.clone()), state: Some(name), ..EnergyShare::of_node(label, "element", 0.0) };
+                    signals.push(Part { who, unknown, weight: 0.0, rate: false, column: Vec::new() });
+                }
+            }
+        }
+        // Columns given before (a dense linearization's) stay with their unknowns.
+        for s in &mut signals {
+            s.column = self.signals.iter().find(|o| o.unknown == s.unknown).map(|o| o.column.clone()).unwrap_or_default();
+        }
+        self.signals = signals;
+        self
+    }
+
+    /// Every unknown in other units than the mechanical ones (`true`, by index): scalar
+    /// nodes' and the own unknowns of elements on scalar nodes.
+    pub fn non_mechanical_mask(model: &Model) -> Vec<bool> {
+        let dofs = DofMap::new(model);
+        let mut mask = vec![false; dofs.len];
+        (0..model.scalar_nodes.len()).for_each(|i| mask[dofs.scalar_first + i] = true);
+        for (k, e) in model.elements.iter().enumerate() {
+            if !e.scalar_nodes().is_empty() {
+                mask[dofs.element_first[k]..dofs.element_first[k] + dofs.element_len[k]].fill(true);
+            }
+        }
+        mask
+    }
+
+    /// The signals' unknowns, in the order [`ModalEnergy::with_fyd_columns`] takes their columns.
+    pub fn signal_unknowns(&self) -> Vec<usize> {
+        self.signals.iter().map(|s| s.unknown).collect()
+    }
+
+    /// The signals' columns of `F_/ẏ` (row, value), one per [`ModalEnergy::signal_unknowns`].
+    pub fn with_fyd_columns(mut self, columns: Vec<Vec<(usize, f64)>>) -> Self {
+        self.signals.iter_mut().zip(columns).for_each(|(s, c)| s.column = c);
+        self
+    }
+
+    /// Shares of a mode, largest first (empty without eigenvector, energy or participation).
     pub fn shares(&self, mode: &Mode) -> Vec<EnergyShare> {
         let Some(v) = &mode.right else { return Vec::new() };
-        let mut out: Vec<EnergyShare> = self.terms.iter().map(|&(node, component, j, mass)| EnergyShare { node, component, share: mass * v[j].norm_sqr() }).collect();
-        let mut total: f64 = out.iter().map(|s| s.share).sum();
+        // Stores of a value (a current) against kinetic energies `½ m |λ v|²`: only for a
+        // finite nonzero λ; otherwise the kinetic energies alone, `|λ|²` cancelling.
+        let lam2 = mode.lambda.norm_sqr();
+        let moving = lam2.is_finite() && lam2 > 0.0;
+        let speed2 = if moving { lam2 } else { 1.0 };
+        let mut out: Vec<EnergyShare> = self.terms.iter().map(|&(node, component, j, mass)| EnergyShare::of_node(node, component, mass * v[j].norm_sqr() * speed2)).collect();
         // A mode whose massive components are rounding next to its largest entry moves no
         // mass: a first-order mode of a viscous element on a static node gave "node 4 x
         // 100 %" of a kinetic energy of 1e-30 (seen on tests/mbdyn_files/time_variant_laws.mbd).
@@ -82,20 +218,54 @@ impl ModalEnergy {
         self.non_mechanical.iter().for_each(|&k| mechanical[k] = 0.0);
         let largest_mechanical = mechanical.iter().copied().fold(0.0, f64::max);
         let moved = self.terms.iter().filter(|t| t.3 > 0.0).map(|t| v[t.2].norm()).fold(0.0, f64::max);
-        if total <= 0.0 || moved <= 1e-10 * largest_mechanical || moved <= 1e-14 * largest {
-            // No mass moves: the mode lives in the scalar nodes (a controller, a filter), or
-            // in massless nodes (then it is described by nothing rather than by rounding).
-            out = self.scalars.iter().map(|&(node, component, j)| EnergyShare { node, component, share: v[j].norm_sqr() }).collect();
-            total = out.iter().map(|s| s.share).sum();
-            if !(total > 0.0) {
-                return Vec::new();
-            }
-            out.retain(|s| s.share > 1e-12 * total);
+        if moved <= 1e-10 * largest_mechanical || moved <= 1e-14 * largest {
+            out.clear();
         }
-        out.iter_mut().for_each(|s| s.share /= total);
+        for s in self.stores.iter().filter(|s| s.rate || moving) {
+            out.push(EnergyShare { share: s.weight * v[s.unknown].norm_sqr() * if s.rate { speed2 } else { 1.0 }, ..s.who.clone() });
+        }
+        let total: f64 = out.iter().map(|s| s.share).sum();
+        let has_energy = total > 0.0 && total.is_finite();
+        match (self.participation(mode), has_energy) {
+            (Some((p, signals)), true) => {
+                out.iter_mut().for_each(|s| s.share *= (1.0 - p) / total);
+                out.extend(signals);
+            }
+            (None, true) => out.iter_mut().for_each(|s| s.share /= total),
+            (Some((p, signals)), false) if p > 0.0 => out = signals.into_iter().map(|s| EnergyShare { share: s.share / p, ..s }).collect(),
+            _ => {
+                // No energy and no participation: the scalar nodes the vector moves.
+                out = self.scalars.iter().map(|&(node, component, j)| EnergyShare::of_node(node, component, v[j].norm_sqr())).collect();
+                let total: f64 = out.iter().map(|s| s.share).sum();
+                if !(total > 0.0) {
+                    return Vec::new();
+                }
+                out.retain(|s| s.share > 1e-12 * total);
+                out.iter_mut().for_each(|s| s.share /= total);
+            }
+        }
         out.retain(|s| s.share > 0.0);
         out.sort_by(|a, b| b.share.total_cmp(&a.share));
         out
+    }
+
+    /// The signals' part `P` of a mode and their shares (`P |πₖ| / Σ|π|`, module doc);
+    /// `None` without a left vector or without a signal that has a column of `F_/ẏ`.
+    fn participation(&self, mode: &Mode) -> Option<(f64, Vec<EnergyShare>)> {
+        let (v, u) = (mode.right.as_ref()?, mode.left.as_ref()?);
+        if self.signals.iter().all(|s| s.column.is_empty()) {
+            return None;
+        }
+        let pi: Vec<c64> = self.signals.iter().map(|s| v[s.unknown] * s.column.iter().fold(c64::new(0.0, 0.0), |acc, &(i, x)| acc + u[i] * x)).collect();
+        let sum: c64 = pi.iter().sum();
+        let magnitude: f64 = pi.iter().map(|p| p.norm()).sum();
+        let (inside, outside) = (sum.norm(), (c64::new(1.0, 0.0) - sum).norm());
+        if !(magnitude > 0.0 && magnitude.is_finite() && inside + outside > 0.0) {
+            return Some((0.0, Vec::new()));
+        }
+        let p = inside / (inside + outside);
+        let shares = self.signals.iter().zip(&pi).filter(|(_, x)| x.norm() > 1e-12 * magnitude).map(|(s, x)| EnergyShare { share: p * x.norm() / magnitude, ..s.who.clone() }).collect();
+        Some((p, shares))
     }
 }
 
@@ -104,33 +274,14 @@ pub fn kinetic_energy_shares(model: &Model, dae: &LinearDae, mode: &Mode) -> Vec
     ModalEnergy::new(model, dae).shares(mode)
 }
 
-/// "node 3 rz 92 %, node 2 x 6 %": the components above 5 % (at least the largest); for a
-/// mode that moves no structural node, the scalar nodes it moves: "no structural node moves
-/// (abstract nodes 1, 2)".
+/// "node 3 rz 92 %, node 2 x 6 %", "motor 1 current 97 %, node 2 rz 3 %", "abstract node 3
+/// 71 %, genel mass 1 derivative 12 %": the shares of at least 5 % (at least the largest).
 pub fn describe(shares: &[EnergyShare]) -> String {
-    if shares.first().is_some_and(|s| !COMPONENTS.contains(&s.component)) {
-        let mut kinds: Vec<(&str, Vec<u32>)> = Vec::new();
-        for s in shares {
-            match kinds.iter_mut().find(|(k, _)| *k == s.component) {
-                Some((_, labels)) => labels.push(s.node),
-                None => kinds.push((s.component, vec![s.node])),
-            }
-        }
-        let parts: Vec<String> = kinds
-            .into_iter()
-            .map(|(kind, mut labels)| {
-                labels.sort_unstable();
-                let list: Vec<String> = labels.iter().map(|l| l.to_string()).collect();
-                format!("{kind} node{} {}", if labels.len() > 1 { "s" } else { "" }, list.join(", "))
-            })
-            .collect();
-        return format!("no structural node moves ({})", parts.join("; "));
-    }
     shares
         .iter()
         .enumerate()
         .filter(|(i, s)| *i == 0 || s.share >= 0.05)
-        .map(|(_, s)| format!("node {} {} {:.0} %", s.node, s.component, 100.0 * s.share))
+        .map(|(_, s)| format!("{} {:.0} %", s.who(), 100.0 * s.share))
         .collect::<Vec<_>>()
         .join(", ")
 }
@@ -142,6 +293,9 @@ pub fn describe(shares: &[EnergyShare]) -> String {
 /// without gravity the axis letters only. `None` without shares.
 pub fn mode_label(shares: &[EnergyShare], names: &std::collections::BTreeMap<u32, String>, gravity: &crate::kinematics::Vec3) -> Option<String> {
     let top = shares.iter().max_by(|a, b| a.share.total_cmp(&b.share))?;
+    if !is_node_component(top) {
+        return Some(format!("{} {:.0} %", top.who(), 100.0 * top.share));
+    }
     let node = names.get(&top.node).cloned().unwrap_or_else(|| format!("node {}", top.node));
     Some(format!("{node} {}", motion_words(top.component, top.share, gravity)?))
 }
@@ -181,18 +335,26 @@ pub(super) fn motion_words(component: &str, share: f64, gravity: &crate::kinemat
 /// shares.
 pub fn real_mode_label(shares: &[EnergyShare], names: &std::collections::BTreeMap<u32, String>, gravity: &crate::kinematics::Vec3, lambda: f64) -> Option<String> {
     let top = shares.iter().max_by(|a, b| a.share.total_cmp(&b.share))?;
-    let k = COMPONENTS.iter().position(|c| *c == top.component)?;
-    let tipping = gravity.norm() > 0.0 && k >= 3 && k % 3 != gravity.iamax();
+    let k = COMPONENTS.iter().position(|c| *c == top.component).filter(|_| is_node_component(top)).unwrap_or(0);
+    let tipping = is_node_component(top) && gravity.norm() > 0.0 && k >= 3 && k % 3 != gravity.iamax();
     let head = if tipping {
         let parts: Vec<String> = shares
             .iter()
             .enumerate()
             .filter(|(i, s)| *i == 0 || s.share >= 0.05)
-            .map(|(_, s)| format!("{} {} {:.0} %", names.get(&s.node).cloned().unwrap_or_else(|| format!("node {}", s.node)), s.component, 100.0 * s.share))
+            .map(|(_, s)| match names.get(&s.node).filter(|_| is_node_component(s)) {
+                Some(name) => format!("{name} {} {:.0} %", s.component, 100.0 * s.share),
+                None => format!("{} {:.0} %", s.who(), 100.0 * s.share),
+            })
             .collect();
         format!("tipping ({}): {}", top.component, parts.join(", "))
     } else {
         mode_label(shares, names, gravity)?
     };
     Some(format!("{head}, {}", if lambda > 0.0 { "unstable" } else { "stable" }))
+}
+
+/// Whether a share is a structural node's component (not a scalar node's or an element's).
+fn is_node_component(s: &EnergyShare) -> bool {
+    s.element.is_none() && COMPONENTS.contains(&s.component)
 }

@@ -15,6 +15,7 @@
 
 mod classify;
 mod cluster;
+pub(crate) mod componentwise;
 pub mod dense;
 mod energy;
 mod error;

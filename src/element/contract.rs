@@ -311,9 +311,29 @@ pub struct FlexiblePoint {
     pub position: Vec3,
     /// `(own unknown of qₖ, Φₖ)`: the point's translation per unit modal coordinate [m].
     pub shapes: Vec<(usize, Vec3)>,
+    /// `(own unknown of qₖ, Φrₖ)`: its rotation per unit modal coordinate [rad], in the
+    /// floating frame (zero where the FEM file has translations only).
+    pub rotation_shapes: Vec<(usize, Vec3)>,
     /// The fixed frame (position [m], orientation) of a clamped body; `None`: the frame is
     /// the element's first node's.
     pub clamped: Option<(Vec3, Mat3)>,
+}
+
+/// Energy one of an element's own unknowns stores, for the modal table's shares
+/// ([`crate::eigen::ModalEnergy`]): `½ weight |y|²` of the unknown's value (`rate: false`:
+/// a motor's magnetic energy `½ L i²` [J], a fluid volume's compression energy `½ (V/β) p²`)
+/// or `½ weight |ẏ|²` of its rate (`rate: true`: a flexible body's mode, `½ Mₖₖ q̇ₖ²`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct EnergyStore {
+    /// The own unknown `k`.
+    pub unknown: usize,
+    /// The coefficient of `½ |y|²` (or `½ |ẏ|²`) in the energy [J per unit squared].
+    pub weight: f64,
+    pub rate: bool,
+    /// What the unknown is, in words: "current", "chamber 1 pressure", "mode 3".
+    pub name: String,
+    /// The mode's number in a FEM file (a modal joint's modes).
+    pub mode: Option<usize>,
 }
 
 /// What an element reports beyond its equations ([`Element::outputs`]); each part has a
@@ -334,6 +354,11 @@ pub trait Outputs {
     /// outputs at points (sensors); an error in words when there is none.
     fn flexible_point(&self, _fem_node: &str) -> Result<FlexiblePoint, String> {
         Err("the element has no FEM nodes".into())
+    }
+    /// The energy its own unknowns store at `s` ([`EnergyStore`]: a motor's current, an
+    /// actuator's chamber pressures, a modal joint's modes); none for most elements.
+    fn energy_stores(&self, _s: &dyn ElementState) -> Vec<EnergyStore> {
+        Vec::new()
     }
     /// Internal forces and deformation at the element's evaluation points (beams), for
     /// output; none for other elements.

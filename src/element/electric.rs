@@ -8,7 +8,7 @@
 //! structural columns of their Jacobians; romdyn writes them, so a loop closed through a
 //! sensor linearizes exactly).
 
-use super::contract::{add_block, Col, Element, ElementState, JacobianSink, Label, Outputs, PrivateDatum, ResidualSink, Row, ScalarNodeId, UnknownKind};
+use super::contract::{add_block, Col, Element, ElementState, EnergyStore, JacobianSink, Label, Outputs, PrivateDatum, ResidualSink, Row, ScalarNodeId, UnknownKind};
 pub use super::electric_cogging::Cogging;
 use crate::kinematics::{skew, Vec3};
 
@@ -126,6 +126,11 @@ impl Element for Motor {
 }
 
 impl Outputs for Motor {
+    /// The inductance's magnetic energy `½ L i²` [J] (the modal table's shares: a mode that
+    /// lives in the current says so).
+    fn energy_stores(&self, _s: &dyn ElementState) -> Vec<EnergyStore> {
+        vec![EnergyStore { unknown: 0, weight: self.inductance, rate: false, name: "current".into(), mode: None }]
+    }
     /// motor.cc, `Motor::dGetPrivData`: "i" the current [A], "iP" its rate [A/s], "omega"
     /// the relative angular velocity about the axis [rad/s], "M" the torque `G i` [N m], "U"
     /// the voltage `V₂ − V₁` [V], "Pmech" `M ω` and "Pel" `U i` [W], "R" the resistance [Ω].

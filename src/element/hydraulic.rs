@@ -7,7 +7,7 @@
 //! it takes out of the node (MBDyn's `AssRes` adds it; romdyn's residual, its negative,
 //! subtracts it). Pressures are in Pa, densities in kg/m³, areas in m², volumes in m³.
 
-use super::contract::{add_block, Col, Element, ElementState, Events, JacobianSink, Label, Latched, Outputs, ResidualSink, Row, ScalarNodeId, UnknownKind};
+use super::contract::{add_block, Col, Element, ElementState, EnergyStore, Events, JacobianSink, Label, Latched, Outputs, ResidualSink, Row, ScalarNodeId, UnknownKind};
 use crate::kinematics::{skew, Vec3};
 
 /// A hydraulic fluid (hfluid_.h): the density as a function of the pressure.
@@ -120,6 +120,17 @@ impl Actuator {
 /// pressures `π₁`, `π₂` [Pa] and their rates [Pa/s], the volumes [m³], the densities at the
 /// nodes' pressures [kg/m³].
 impl Outputs for Actuator {
+    /// Each chamber's compression energy `½ (V/β) p²` [J] on its pressure unknown `π`, with
+    /// `V/β = V ρ'(p)/ρ₀` (the fluid's `dρ/dp = ρ₀/β`; zero for an incompressible fluid).
+    fn energy_stores(&self, st: &dyn ElementState) -> Vec<EnergyStore> {
+        let volumes = self.volumes(st);
+        (0..2)
+            .map(|k| {
+                let f = self.fluids[k];
+                EnergyStore { unknown: k, weight: volumes[k].abs() * f.density_slope() / f.reference_density(), rate: false, name: format!("chamber {} pressure", k + 1), mode: None }
+            })
+            .collect()
+    }
     fn writes_hydraulic_row(&self) -> bool {
         self.output
     }
@@ -232,6 +243,7 @@ impl Element for Actuator {
         }
     }
 }
+
 
 /// `hydraulic: L, minor loss, P1, P2, K12, K21, AREA, fluid, …` (MinorLoss, hminor.cc): the
 /// turbulent mass flow from node 1 to node 2, `q = A √(2ρ/κ) sign(p₁ − p₂) √|p₁ − p₂|`, `κ`

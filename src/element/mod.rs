@@ -70,7 +70,7 @@ pub use frame_motion::{FrameMotion, FrameState};
 pub use cardano::CardanoHinge;
 pub use central_gravity::CentralGravity;
 pub use wrapper::ElementWrapper;
-pub use contract::{Col, Element, ElementState, Events, FlexiblePoint, JacobianSink, Label, Latched, NodeKinematics, NonSmooth, Outputs, ResidualSink, Row, ScalarNodeId, ScalarNodeKind, SectionState, UnknownKind};
+pub use contract::{Col, Element, ElementState, EnergyStore, Events, FlexiblePoint, JacobianSink, Label, Latched, NodeKinematics, NonSmooth, Outputs, ResidualSink, Row, ScalarNodeId, ScalarNodeKind, SectionState, UnknownKind};
 pub use deformable::{DeformableDisplacement, DeformableHinge, LinearViscoelastic, Rod, RodViscosity};
 pub use distance::Distance;
 pub use electric::{Accelerometer, AccelerometerKind, Cogging, DisplacementSensor, Motor};

@@ -231,7 +231,7 @@ impl Spec {
     }
     fn input(&self, index: usize) -> Result<InputPort, String> {
         if self.fem_node.is_some() {
-            return Err("\"fem_node\" belongs to 'fem displacement' and 'fem velocity' outputs".into());
+            return Err("\"fem_node\" belongs to 'fem displacement', 'fem velocity' and 'fem rotation' outputs".into());
         }
         if self.joint.is_some() || self.mode.is_some() {
             return Err("\"joint\" and \"mode\" belong to 'modal coordinate' outputs".into());
@@ -285,10 +285,14 @@ impl Spec {
                 let (joint, fem_node) = self.fem_node()?;
                 Measurement::FemVelocity { joint, fem_node, direction: self.direction()? }
             }
-            k => return Err(format!("output type '{k}' is not one of displacement, rotation, relative, velocity, angular velocity, abstract, electric, hydraulic (and their 'rate'), modal coordinate, modal coordinate rate, fem displacement, fem velocity")),
+            "fem rotation" => {
+                let (joint, fem_node) = self.fem_node()?;
+                Measurement::FemRotation { joint, fem_node, direction: self.direction()? }
+            }
+            k => return Err(format!("output type '{k}' is not one of displacement, rotation, relative, velocity, angular velocity, abstract, electric, hydraulic (and their 'rate'), modal coordinate, modal coordinate rate, fem displacement, fem velocity, fem rotation")),
         };
         if self.fem_node.is_some() && !self.kind.starts_with("fem ") {
-            return Err("\"fem_node\" belongs to 'fem displacement' and 'fem velocity' outputs".into());
+            return Err("\"fem_node\" belongs to 'fem displacement', 'fem velocity' and 'fem rotation' outputs".into());
         }
         if (self.joint.is_some() || self.mode.is_some()) && !self.kind.starts_with("modal coordinate") && !self.kind.starts_with("fem ") {
             return Err("\"joint\" and \"mode\" belong to 'modal coordinate' outputs".into());

@@ -33,10 +33,7 @@ fn rows(m: &Mat<f64>) -> Value {
 
 /// The SI unit in a port name's brackets ("node 5 y [m]" → "m"), or "" when it has none.
 pub fn unit_of_name(name: &str) -> String {
-    match (name.rfind('['), name.rfind(']')) {
-        (Some(a), Some(b)) if a < b => name[a + 1..b].to_string(),
-        _ => String::new(),
-    }
+    crate::linear::Port::from_label(name).unit
 }
 
 /// Why a ROM could not be written.

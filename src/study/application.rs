@@ -138,9 +138,11 @@ impl Study {
                 (projected, feedback, free)
             },
         );
-        let modal = modal.map_err(|e| e.with_unknown_names(&dae.unknown_names))?;
+        let mut modal = modal.map_err(|e| e.with_unknown_names(&dae.unknown_names))?;
+        super::checks::refine_errors(&mut modal, &free, Some(&model));
         let mut warnings: Vec<_> = equilibrium_warning(&model, &state, problem.tolerance).into_iter().collect();
-        warnings.extend(port_warnings(&free, &modal));
+        let classes = crate::eigen::ModalEnergy::non_mechanical_mask(&model);
+        warnings.extend(port_warnings(&free, &modal, (classes.len() == free.dim()).then_some(&classes[..])));
         let applied = applied(app, parts, projected, feedback);
         Ok(Study { linear: free, modal, sparse: None, model: Some(model), warnings, reference_time: Some(state.t), reference_state: None, problem: None, application: Some(applied) })
     }

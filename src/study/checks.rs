@@ -155,14 +155,36 @@ pub(super) fn whole_model_rigid_motion(model: &Model, x: &[f64]) -> Option<Strin
 /// the vectors would give were they aligned; the eigenvectors are accurate to about 1e-12 of
 /// their norms), a static gain below 1e-12 of that bound's largest over the modes, `/|λ|`
 /// (the modes' `uᵀ F_yd v = 1` give it the channel's units).
-pub fn zero_channels(dae: &LinearDae, modal: &ModalAnalysis) -> Vec<Vec<bool>> {
-    zero_channels_of(&dae.b, &dae.c, dae.c_rate.as_ref(), modal, full_static_gain(dae).ok().as_ref())
+///
+/// Units (issue 34): the largest channel is the largest of the same output and input units
+/// (a piston's metres are not rounding next to its chambers' pascals), and the vectors'
+/// norms in the rounding floor run over the unknowns of the port's own kind (mechanical, or
+/// scalar nodes and their elements' unknowns: `classes`, `true` for the latter, by index;
+/// `None`: one kind).
+pub fn zero_channels(dae: &LinearDae, modal: &ModalAnalysis, classes: Option<&[bool]>) -> Vec<Vec<bool>> {
+    zero_channels_of(&dae.b, &dae.c, dae.c_rate.as_ref(), modal, full_static_gain(dae).ok().as_ref(), classes, &units(&dae.output_names, &dae.input_names))
 }
 
 /// [`zero_channels`] from `B̃`, `C̃`, `C̃_v`, the modes and the full static gain (`None`: none).
-pub(super) fn zero_channels_of(b: &Mat<f64>, c: &Mat<f64>, c_rate: Option<&Mat<f64>>, modal: &ModalAnalysis, gain: Option<&Mat<f64>>) -> Vec<Vec<bool>> {
-    let sums = modal_sums(b, c, c_rate, modal);
-    zero_from_sums(&sums, gain)
+pub(super) fn zero_channels_of(b: &Mat<f64>, c: &Mat<f64>, c_rate: Option<&Mat<f64>>, modal: &ModalAnalysis, gain: Option<&Mat<f64>>, classes: Option<&[bool]>, units: &Units) -> Vec<Vec<bool>> {
+    let sums = modal_sums(b, c, c_rate, modal, classes);
+    zero_from_sums(&sums, gain, units)
+}
+
+/// The outputs' and the inputs' units, as their ports have them ([`Port::from_label`]).
+pub(super) type Units = (Vec<String>, Vec<String>);
+
+pub(super) fn units(outputs: &[String], inputs: &[String]) -> Units {
+    let unit = |name: &String| crate::linear::Port::from_label(name).unit;
+    (outputs.iter().map(unit).collect(), inputs.iter().map(unit).collect())
+}
+
+/// The port's kind when every unknown (or equation) it touches is of one (`Some(true)`:
+/// non-mechanical), `None` when mixed or without classes.
+fn port_class(entries: &[(usize, f64)], classes: Option<&[bool]>) -> Option<bool> {
+    let classes = classes?;
+    let first = classes.get(entries.first()?.0).copied()?;
+    entries.iter().all(|e| classes.get(e.0) == Some(&first)).then_some(first)
 }
 
 /// Per channel (outputs × inputs), over the dynamic modes: the largest static contribution
@@ -176,7 +198,7 @@ pub(super) struct ModalSums {
     pub absolute: Mat<f64>,
 }
 
-pub(super) fn modal_sums(b: &Mat<f64>, c: &Mat<f64>, c_rate: Option<&Mat<f64>>, modal: &ModalAnalysis) -> ModalSums {
+pub(super) fn modal_sums(b: &Mat<f64>, c: &Mat<f64>, c_rate: Option<&Mat<f64>>, modal: &ModalAnalysis, classes: Option<&[bool]>) -> ModalSums {
     let (no, ni) = (c.nrows(), b.ncols());
     let mut residue = Mat::<f64>::zeros(no, ni);
     let mut bound = Mat::<f64>::zeros(no, ni);
@@ -189,18 +211,25 @@ pub(super) fn modal_sums(b: &Mat<f64>, c: &Mat<f64>, c_rate: Option<&Mat<f64>>, 
     let b_cols: Vec<Vec<(usize, f64)>> = (0..ni).map(|j| nonzeros(b.nrows(), &|k| b[(k, j)])).collect();
     let l2 = |e: &[(usize, f64)]| e.iter().map(|x| x.1 * x.1).sum::<f64>().sqrt();
     let (c_norm, rate_norm, b_norm): (Vec<f64>, Vec<f64>, Vec<f64>) = (c_rows.iter().map(|r| l2(r)).collect(), rate_rows.iter().map(|r| l2(r)).collect(), b_cols.iter().map(|r| l2(r)).collect());
-    let vec_norm = |x: &faer::Col<c64>| x.iter().map(|z| z.norm_sqr()).sum::<f64>().sqrt();
+    // Each port's kind: the vectors' norms in its rounding floor run over that kind only.
+    let out_class: Vec<Option<bool>> = c_rows.iter().zip(&rate_rows).map(|(r, v)| port_class(&[&r[..], &v[..]].concat(), classes)).collect();
+    let in_class: Vec<Option<bool>> = b_cols.iter().map(|col| port_class(col, classes)).collect();
+    let in_kind = |k: usize, kind: Option<bool>| kind.is_none_or(|m| classes.and_then(|c| c.get(k)).copied().unwrap_or(m) == m);
+    let vec_norm = |x: &faer::Col<c64>, kind: Option<bool>| x.iter().enumerate().filter(|(k, _)| in_kind(*k, kind)).map(|(_, z)| z.norm_sqr()).sum::<f64>().sqrt();
     for i in modal.of_kind(ModeKind::Dynamic) {
         let m = &modal.modes[i];
         let (Some(v), Some(u)) = (&m.right, &m.left) else { continue };
         let lam = m.lambda.norm().max(f64::MIN_POSITIVE);
-        let (nv, nu) = (vec_norm(v), vec_norm(u));
+        let kinds = [None, Some(false), Some(true)];
+        let norms = |x: &faer::Col<c64>| kinds.map(|k| vec_norm(x, k));
+        let (nv, nu) = (norms(v), norms(u));
+        let index = |kind: Option<bool>| kinds.iter().position(|k| *k == kind).unwrap_or(0);
         let read = |row: &[(usize, f64)]| row.iter().fold(c64::new(0.0, 0.0), |s, &(k, x)| s + v[k] * x);
         let cv: Vec<c64> = c_rows.iter().zip(&rate_rows).map(|(row, rate)| read(row) + m.lambda * read(rate)).collect();
         let ub: Vec<c64> = b_cols.iter().map(|col| col.iter().fold(c64::new(0.0, 0.0), |s, &(k, x)| s + u[k] * x)).collect();
         for r in 0..no {
             for c in 0..ni {
-                let aligned = (c_norm[r] + m.lambda.norm() * rate_norm[r]) * nv * nu * b_norm[c] / lam;
+                let aligned = (c_norm[r] + m.lambda.norm() * rate_norm[r]) * nv[index(out_class[r])] * nu[index(in_class[c])] * b_norm[c] / lam;
                 bound[(r, c)] = bound[(r, c)].max(aligned);
                 let contribution = (cv[r] * ub[c]).norm() / lam;
                 absolute[(r, c)] += contribution;
@@ -214,19 +243,31 @@ pub(super) fn modal_sums(b: &Mat<f64>, c: &Mat<f64>, c_rate: Option<&Mat<f64>>, 
     ModalSums { residue, bound, absolute }
 }
 
-fn zero_from_sums(sums: &ModalSums, gain: Option<&Mat<f64>>) -> Vec<Vec<bool>> {
+fn zero_from_sums(sums: &ModalSums, gain: Option<&Mat<f64>>, units: &Units) -> Vec<Vec<bool>> {
     let (residue, bound) = (&sums.residue, &sums.bound);
     let (no, ni) = (residue.nrows(), residue.ncols());
-    let max_res = residue.norm_max();
-    let max_gain = gain.map_or(0.0, |g| g.norm_max());
     let max_bound = bound.norm_max();
+    let any = residue.norm_max() > 0.0 || gain.is_some_and(|g| g.norm_max() > 0.0) || max_bound > 0.0;
+    // The largest channel of the same units as (r, c).
+    let unit = |names: &[String], k: usize| names.get(k).map_or("", String::as_str).to_string();
+    let same = |r: usize, c: usize| {
+        let (mut max_res, mut max_gain) = (0.0f64, 0.0f64);
+        for i in (0..no).filter(|&i| unit(&units.0, i) == unit(&units.0, r)) {
+            for j in (0..ni).filter(|&j| unit(&units.1, j) == unit(&units.1, c)) {
+                max_res = max_res.max(residue[(i, j)]);
+                max_gain = max_gain.max(gain.map_or(0.0, |g| g[(i, j)].abs()));
+            }
+        }
+        (max_res, max_gain)
+    };
     (0..no)
         .map(|r| {
             (0..ni)
                 .map(|c| {
+                    let (max_res, max_gain) = same(r, c);
                     let modal_zero = residue[(r, c)] <= 1e-10 * max_res;
                     let static_zero = gain.is_none_or(|g| g[(r, c)].abs() <= 1e-12 * max_gain || g[(r, c)].abs() <= 1e-12 * bound[(r, c)]);
-                    modal_zero && static_zero && (max_res > 0.0 || max_gain > 0.0 || max_bound > 0.0)
+                    modal_zero && static_zero && any
                 })
                 .collect()
         })
@@ -235,13 +276,13 @@ fn zero_from_sums(sums: &ModalSums, gain: Option<&Mat<f64>>) -> Vec<Vec<bool>> {
 
 /// Inputs whose every response is zero, outputs that see no input (the dense DAE of
 /// `linear`, its static gain computed once there).
-pub(super) fn port_warnings(linear: &LinearModel, modal: &ModalAnalysis) -> Vec<Warning> {
+pub(super) fn port_warnings(linear: &LinearModel, modal: &ModalAnalysis, classes: Option<&[bool]>) -> Vec<Warning> {
     let dae = linear.dense();
     if dae.b.ncols() == 0 || dae.c.nrows() == 0 {
         // No port pair to judge: the full static gain (one n x n factorization) is not needed.
         return Vec::new();
     }
-    let zero = zero_channels_of(&dae.b, &dae.c, dae.c_rate.as_ref(), modal, linear.dense_static_gain().ok());
+    let zero = zero_channels_of(&dae.b, &dae.c, dae.c_rate.as_ref(), modal, linear.dense_static_gain().ok(), classes, &units(&dae.output_names, &dae.input_names));
     channel_warnings(&zero, &dae.input_names, &dae.output_names)
 }
 
@@ -269,7 +310,7 @@ impl Study {
     /// sparse eigenanalysis that is not certified.
     pub(super) fn linear_warnings(&self) -> Vec<Warning> {
         let mut w = match &self.sparse {
-            None => port_warnings(&self.linear, &self.modal),
+            None => port_warnings(&self.linear, &self.modal, self.unit_classes().as_deref()),
             Some(_) => channel_warnings(&self.zero_channels(), self.linear.input_names(), self.linear.output_names()),
         };
         w.extend(self.sparse_warning());
@@ -285,12 +326,20 @@ impl Study {
 
     /// [`Study::zero_channels`] and the modal sums it came from.
     pub(super) fn channel_sums(&self) -> (Vec<Vec<bool>>, ModalSums) {
-        let sums = modal_sums(self.linear.b(), self.linear.c(), self.linear.c_rate(), &self.modal);
+        let sums = modal_sums(self.linear.b(), self.linear.c(), self.linear.c_rate(), &self.modal, self.unit_classes().as_deref());
+        let units = units(self.linear.output_names(), self.linear.input_names());
         if self.sparse.is_none() {
-            return (zero_from_sums(&sums, self.linear.dense_static_gain().ok()), sums);
+            return (zero_from_sums(&sums, self.linear.dense_static_gain().ok(), &units), sums);
         }
         let gain = self.linear.sparse_static_gain().and_then(Result::ok);
-        (zero_from_sums(&sums, gain.as_ref()), sums)
+        (zero_from_sums(&sums, gain.as_ref(), &units), sums)
+    }
+
+    /// The unknowns' kinds for the port checks (`true`: non-mechanical), when the model is
+    /// known and numbers the linear model's unknowns.
+    pub(super) fn unit_classes(&self) -> Option<Vec<bool>> {
+        let mask = crate::eigen::ModalEnergy::non_mechanical_mask(self.model.as_ref()?);
+        (mask.len() == self.linear.dim()).then_some(mask)
     }
 
     /// The warning that the sparse eigenanalysis is not certified, when it is not.
@@ -311,4 +360,23 @@ fn label_warnings(modal: &crate::eigen::ModalAnalysis) -> Vec<Warning> {
         w.push(Warning::DoubtfulZeros { modes: zeros });
     }
     w
+}
+
+/// The modes' error estimates refined by units where the model mixes them
+/// ([`crate::eigen::componentwise::refine_errors_by_units`]; issue 34: the hydraulic
+/// actuator's ±1414 rad/s pair, right to 1e-10, read 2.2e-2 rad/s).
+pub(super) fn refine_errors(modal: &mut ModalAnalysis, linear: &LinearModel, model: Option<&Model>) {
+    let Some(model) = model else { return };
+    let classes = crate::eigen::ModalEnergy::non_mechanical_mask(model);
+    if !classes.iter().any(|c| *c) || classes.len() != linear.dim() {
+        return;
+    }
+    let (fyd, fy) = match linear.sparse() {
+        Some(s) => (s.fyd.clone(), s.fy.clone()),
+        None => {
+            let (fyd, fy) = linear.dense().jacobians.derivatives();
+            (crate::linear::SparseMatrix::from_dense(&fyd), crate::linear::SparseMatrix::from_dense(&fy))
+        }
+    };
+    crate::eigen::componentwise::refine_errors_by_units(modal, &fyd, &fy, &classes);
 }

@@ -95,6 +95,27 @@ impl LinearModel {
         }
     }
 
+    /// The columns `cols` of `F_yd`, each as (row, value) of its nonzeros.
+    pub fn fyd_columns(&self, cols: &[usize]) -> Vec<Vec<(usize, f64)>> {
+        let mut out = vec![Vec::new(); cols.len()];
+        let at = |j: usize| cols.iter().position(|&c| c == j);
+        match (self.dense_if_built(), &self.sparse) {
+            (Some(d), _) => {
+                let (fyd, _) = d.jacobians.derivatives();
+                for (k, &j) in cols.iter().enumerate() {
+                    out[k] = (0..fyd.nrows()).map(|i| (i, fyd[(i, j)])).filter(|e| e.1 != 0.0).collect();
+                }
+            }
+            (None, Some(s)) => s.fyd.triplets().for_each(|(i, j, v)| {
+                if let Some(k) = at(j).filter(|_| v != 0.0) {
+                    out[k].push((i, v));
+                }
+            }),
+            (None, None) => unreachable!("a study's linear model is built from a sparse or a dense DAE"),
+        }
+        out
+    }
+
     /// `F_yd[k, k]` of every unknown (the dynamic nodes' masses sit on the momentum rows).
     pub fn fyd_diagonal(&self) -> Vec<f64> {
         match (self.dense_if_built(), &self.sparse) {

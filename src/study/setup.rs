@@ -279,6 +279,8 @@ impl Study {
                 (dense_modes(linear.dense(), eigen.route, eigen.dcoef)?, None)
             }
         };
+        let mut modal = modal;
+        super::checks::refine_errors(&mut modal, &linear, model.as_ref());
         let mut study = Study { linear, modal, sparse, model, warnings: Vec::new(), reference_time: None, reference_state: None, problem: None, application: None };
         study.warnings = study.linear_warnings();
         Ok(study)
@@ -373,9 +375,17 @@ impl Study {
         }
     }
 
-    /// The diagonal mass terms of the model's dynamic nodes (`None` without a model).
+    /// The diagonal mass terms of the model's dynamic nodes, the elements' energy stores at
+    /// the reference and the signals' columns of `F_yd` (`None` without a model).
     pub(super) fn modal_energy(&self) -> Option<ModalEnergy> {
-        self.model.as_ref().map(|model| ModalEnergy::from_fyd_diagonal(model, &self.linear.fyd_diagonal()))
+        let model = self.model.as_ref()?;
+        let energy = ModalEnergy::from_fyd_diagonal(model, &self.linear.fyd_diagonal());
+        let energy = match &self.reference_state {
+            Some(state) => energy.at_state(model, state),
+            None => energy,
+        };
+        let columns = self.linear.fyd_columns(&energy.signal_unknowns());
+        Some(energy.with_fyd_columns(columns))
     }
 
     /// The modal table with kinetic-energy shares, and a label column when nodes have names

@@ -123,7 +123,7 @@ impl AmplitudeRun {
     }
 
     fn silent(&self, c: &Channel) -> f64 {
-        let unit = |s: &str| s.rsplit_once('[').map(|x| x.1.to_string());
+        let unit = |s: &str| crate::linear::Port::from_label(s).unit;
         SILENT * self.channels.iter().filter(|d| unit(&d.output) == unit(&c.output)).map(|d| d.output_rms.max(d.rom_rms)).fold(0.0, f64::max)
     }
 }

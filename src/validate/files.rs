@@ -19,8 +19,9 @@ use crate::output::prefixed_path;
 use super::Validation;
 
 /// The unit in a port's name, "N" from "node 3 Fx [N]" ("1" without one).
-fn unit(name: &str) -> &str {
-    name.rsplit_once('[').and_then(|(_, u)| u.strip_suffix(']')).unwrap_or("1")
+fn unit(name: &str) -> String {
+    let unit = crate::linear::Port::from_label(name).unit;
+    if unit.is_empty() { "1".to_string() } else { unit }
 }
 
 /// Unit of a channel's response, "m/N" from "… [m]" and "… [N]".
@@ -33,7 +34,7 @@ fn amplitude_suffix(v: &Validation, r: usize) -> String {
     if v.runs.len() < 2 {
         return String::new();
     }
-    let unit = v.runs[r].channels.first().map_or("1", |c| unit(&c.input));
+    let unit = v.runs[r].channels.first().map_or_else(|| "1".to_string(), |c| unit(&c.input));
     let rms: Vec<String> = v.runs[r].amplitude.iter().map(|a| format!("{a:.6e}")).collect();
     format!(" at {} RMS [{unit}]", rms.join(";"))
 }

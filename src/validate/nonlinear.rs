@@ -103,7 +103,7 @@ impl Sensor {
             Measurement::ScalarValue { node } | Measurement::ScalarRate { node } => {
                 return Err(ValidateError::Port(format!("'{name}': an output on {node} is not supported by validate yet (its nonlinear run measures structural nodes); the ROM's own responses (rom, freq) support it")));
             }
-            Measurement::ModalCoordinate { joint, .. } | Measurement::ModalRate { joint, .. } | Measurement::FemDisplacement { joint, .. } | Measurement::FemVelocity { joint, .. } => {
+            Measurement::ModalCoordinate { joint, .. } | Measurement::ModalRate { joint, .. } | Measurement::FemDisplacement { joint, .. } | Measurement::FemVelocity { joint, .. } | Measurement::FemRotation { joint, .. } => {
                 return Err(ValidateError::Port(format!("'{name}': an output on modal joint {joint}'s coordinates or FEM nodes is not supported by validate yet (its nonlinear run measures structural nodes); the ROM's own responses (rom, freq) support it")));
             }
         };
@@ -125,7 +125,7 @@ impl Sensor {
             Measurement::Relative { direction, .. } => unit(direction, &now[i].r, name)?.dot(&(position(self.points[1]) - position((i, f)))),
             Measurement::Velocity { direction, .. } => unit(direction, &reference[i].r, name)?.dot(&(now[i].xdot + now[i].omega.cross(&(now[i].r * f)))),
             Measurement::AngularVelocity { direction, .. } => unit(direction, &reference[i].r, name)?.dot(&now[i].omega),
-            Measurement::ScalarValue { .. } | Measurement::ScalarRate { .. } | Measurement::ModalCoordinate { .. } | Measurement::ModalRate { .. } | Measurement::FemDisplacement { .. } | Measurement::FemVelocity { .. } => return Err(ValidateError::Port(format!("'{name}': this output is not supported by validate yet"))),
+            Measurement::ScalarValue { .. } | Measurement::ScalarRate { .. } | Measurement::ModalCoordinate { .. } | Measurement::ModalRate { .. } | Measurement::FemDisplacement { .. } | Measurement::FemVelocity { .. } | Measurement::FemRotation { .. } => return Err(ValidateError::Port(format!("'{name}': this output is not supported by validate yet"))),
         })
     }
 

@@ -152,7 +152,7 @@ fn fem_node_outputs_that_do_not_exist_are_refused() {
     assert!(refused("10:D:y").contains("modal joint 10 has no FEM node \"D\" (its FEM nodes: A, B, C)"), "{}", refused("10:D:y"));
     assert!(refused("11:A:y").contains("modal joint 11 is not defined"), "{}", refused("11:A:y"));
     let syntax = "10:A:q".parse::<FemOutput>().unwrap_err().to_string();
-    assert_eq!(syntax, "'10:A:q': expected JOINT:FEM_NODE:COMPONENT with COMPONENT one of x|y|z|vx|vy|vz (JOINT a modal joint's label, FEM_NODE a node label of its FEM file)");
+    assert_eq!(syntax, "'10:A:q': expected JOINT:FEM_NODE:COMPONENT with COMPONENT one of x|y|z|vx|vy|vz|rx|ry|rz (JOINT a modal joint's label, FEM_NODE a node label of its FEM file)");
     let file = |text: &str| romdyn::input::ports_file::parse_ports(text, "p.json".as_ref());
     let p = file(r#"{"outputs": [{"name": "tip", "type": "fem displacement", "joint": 200, "fem_node": "17", "direction": [0, 1, 0]}, {"type": "fem velocity", "joint": 200, "fem_node": "17", "direction": [0, 1, 0]}]}"#).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(p.outputs[0].label(), "tip [m]");
@@ -161,7 +161,7 @@ fn fem_node_outputs_that_do_not_exist_are_refused() {
     let e = file(r#"{"outputs": [{"type": "fem displacement", "joint": 200, "direction": [0, 1, 0]}]}"#).unwrap_err().to_string();
     assert!(e.contains("needs \"fem_node\""), "{e}");
     let e = file(r#"{"outputs": [{"type": "displacement", "node": 2, "fem_node": "17", "direction": [0, 1, 0]}]}"#).unwrap_err().to_string();
-    assert!(e.contains("\"fem_node\" belongs to 'fem displacement' and 'fem velocity' outputs"), "{e}");
+    assert!(e.contains("\"fem_node\" belongs to 'fem displacement', 'fem velocity' and 'fem rotation' outputs"), "{e}");
 }
 
 #[test]
@@ -176,16 +176,7 @@ fn a_moving_fem_nodes_velocity_row_is_the_derivative_of_its_velocity() {
         outputs.push(FemOutput { joint: 10, fem_node: "C".into(), component: k }.port());
         outputs.push(FemOutput { joint: 10, fem_node: "C".into(), component: 3 + k }.port());
     }
-    let app = Application { outputs, ..Default::default() };
-    let s = Study::builder(StudySource::model_file(test_file("modal_floating_force.mbd"))).reference(Reference::At(0.5)).application(app).build().unwrap_or_else(|e| panic!("{e}"));
-    let model = s.model().unwrap();
-    let dofs = romdyn::dae::DofMap::new(model);
-    let mut base = s.reference_state().unwrap().clone();
-    base.linearization_base(&dofs);
-    let modal = model.elements.iter().position(|e| e.type_name() == "modal").unwrap();
-    // Own unknowns of the joint: 6 interface multipliers, then q1, q2.
-    let q_first = dofs.element_first[modal] + 6;
-    let node = model.node_index(1).unwrap();
+    let Moving { study: s, dofs, base, q_first, node } = moving(outputs);
     let f_c = Vec3::new(0.3, -0.4, 0.2);
     let shapes = [Vec3::new(-0.3, 0.2, 0.4), Vec3::new(0.2, 0.5, -0.1)];
     let point = |st: &romdyn::dae::State| {
@@ -219,4 +210,83 @@ fn a_moving_fem_nodes_velocity_row_is_the_derivative_of_its_velocity() {
     // Central differences of smooth functions with h = 1e-6 on entries of order 1: 1e-7.
     eprintln!("largest difference of the rows from central differences: {worst:.1e}");
     assert!(worst < 1e-7, "{worst:e}");
+}
+
+#[test]
+fn a_moving_fem_nodes_rotation_row_is_the_derivative_of_its_orientation() {
+    // modal_floating_force.mbd at t = 0.5 s (the body turning and vibrating, q ≠ 0): the rows
+    // of C̃ of FEM node C's rotation about x, y, z against central differences of the rotation
+    // vector of R_C(y) R_C(y₀)ᵀ, R_C = R exp([ψ×]), ψ = Σₖ Φrₖ qₖ with the rotational shapes
+    // of modal_point_masses.fem (node C: (−0.2, 0.4, 0.1) and (0.3, 0.2, −0.4) rad per unit
+    // q), R the modal node's frame from the state as the linearization reads it.
+    let outputs = (6..9).map(|k| FemOutput { joint: 10, fem_node: "C".into(), component: k }.port()).collect();
+    let Moving { study: s, dofs, base, q_first, node } = moving(outputs);
+    assert_eq!(s.output_names()[0], "modal 10 FEM node C rx [rad]");
+    let shapes = [Vec3::new(-0.2, 0.4, 0.1), Vec3::new(0.3, 0.2, -0.4)];
+    let orientation = |st: &romdyn::dae::State| {
+        let psi = shapes[0] * st.y[q_first] + shapes[1] * st.y[q_first + 1];
+        st.node_frame(&dofs, node).kin.r * nalgebra::Rotation3::new(psi).into_inner()
+    };
+    let r0 = orientation(&base);
+    assert!(base.y[q_first].abs() > 1e-6 && base.node_frame(&dofs, node).kin.omega.norm() > 1e-3, "the reference moves and is deformed");
+    let dae = s.dae();
+    let h = 1e-6;
+    let mut worst: f64 = 0.0;
+    for j in 0..dofs.len {
+        let turned = |sign: f64| {
+            let mut st = base.clone();
+            st.y[j] += sign * h;
+            romdyn::kinematics::rotation_vector(&(orientation(&st) * r0.transpose()))
+        };
+        let d = (turned(1.0) - turned(-1.0)) / (2.0 * h);
+        for k in 0..3 {
+            worst = worst.max((dae.c[(k, j)] - d[k]).abs());
+        }
+    }
+    // Central differences of smooth functions with h = 1e-6 on entries of order 1: 1e-7.
+    eprintln!("largest difference of the rotation rows from central differences: {worst:.1e}");
+    assert!(worst < 1e-7, "{worst:e}");
+}
+
+#[test]
+fn a_clamped_components_fem_node_turns_as_the_whole_beams_node() {
+    // The CMS round trip with every interior mode kept (exact, as the translations above):
+    // FEM node 17's and 13's rotations about y and z against the whole cantilever's nodes 17
+    // and 13 (beam node rotations), 1e-8 relative on the largest entry, 0 to 400 Hz.
+    let dir = common::cli::temp_dir("fem-node-rotations");
+    let full = study(&test_file("cms_cantilever.mbd"), &["9:Fy", "9:Fz"], &["17:ry", "17:rz", "13:rz"], &[]);
+    let every = reduced(&dir, 48, &["200:17:ry", "200:17:rz", "200:13:rz"]);
+    let freqs = [0.0, 5.0, 17.0, 60.0, 140.0, 400.0];
+    let h_full = full.full_frequency_response(&freqs).unwrap_or_else(|e| panic!("{e}"));
+    let h_every = every.full_frequency_response(&freqs).unwrap_or_else(|e| panic!("{e}"));
+    for (k, f) in freqs.iter().enumerate() {
+        let scale = (0..3).flat_map(|i| (0..2).map(move |j| (i, j))).map(|(i, j)| h_full[k][(i, j)].norm()).fold(0.0, f64::max);
+        assert!(scale > 0.0, "{f} Hz: the beam does not turn");
+        let e = largest_relative(&h_every[k], &h_full[k]);
+        assert!(e < 1e-8, "every mode, {f} Hz: {e:e}");
+    }
+}
+
+/// modal_floating_force.mbd at t = 0.5 s of its run with `outputs`, and what central
+/// differences of its FEM nodes read: the unknowns' numbering, the reference in the
+/// linearization form, the joint's first modal coordinate (after its 6 interface
+/// multipliers) and the modal node's index.
+struct Moving {
+    study: Study,
+    dofs: romdyn::dae::DofMap,
+    base: romdyn::dae::State,
+    q_first: usize,
+    node: usize,
+}
+
+fn moving(outputs: Vec<OutputPort>) -> Moving {
+    let app = Application { outputs, ..Default::default() };
+    let study = Study::builder(StudySource::model_file(test_file("modal_floating_force.mbd"))).reference(Reference::At(0.5)).application(app).build().unwrap_or_else(|e| panic!("{e}"));
+    let model = study.model().unwrap();
+    let dofs = romdyn::dae::DofMap::new(model);
+    let mut base = study.reference_state().unwrap().clone();
+    base.linearization_base(&dofs);
+    let modal = model.elements.iter().position(|e| e.type_name() == "modal").unwrap();
+    let (q_first, node) = (dofs.element_first[modal] + 6, model.node_index(1).unwrap());
+    Moving { study, dofs, base, q_first, node }
 }

@@ -12,6 +12,7 @@ mod control;
 mod loop_cut;
 mod fem_node_outputs;
 mod modal_ports;
+mod modal_labels;
 mod reference_solution;
 mod reference_warnings;
 mod sweep;

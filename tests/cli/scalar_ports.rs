@@ -32,3 +32,30 @@ fn actuator_rom_gains_from_piston_force_to_chamber_pressures_are_the_closed_form
     assert!(stderr.contains("full model: not available (the static matrix of the full model is singular"), "{stderr}");
     assert!(!stderr.contains("warning"), "{stderr}");
 }
+
+#[test]
+fn actuator_rom_with_metres_and_pascals_out_judges_each_output_on_its_own_scale() {
+    // Issue 34: with the piston's displacement [m] beside the chambers' pressures [Pa] (1e10
+    // Pa per metre), the port check said "output node 2 z responds to no input", and the
+    // mode's error column read 2.2e-2 rad/s. Now each output is judged against the largest
+    // response in its own units and the eigenvalue's error is componentwise.
+    let dir = temp_dir("actuator-rom-units");
+    let out = dir.join("actuator_rom.json");
+    let args = ["rom", "tests/mbdyn_files/hydraulic_actuator_mass.mbd", "--input", "2:Fz", "--output", "2:z", "--output", "1:hydraulic", "--output", "2:hydraulic", "--count", "1", "--set", "F0=0", "-o", out.to_str().unwrap()];
+    let (ok, stdout, stderr) = romdyn(&args);
+    assert!(ok, "{stdout}\n{stderr}");
+    assert!(!stderr.contains("responds to no input") && !stderr.contains("warning"), "{stderr}");
+    // The closed form: the ROM's static gain of the piston is 1/k, k = β A² (1/V₁ + 1/V₂)
+    // = 2e7 N/m, 1e-10 relative.
+    let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    let k = 1e9 * 1e-6 * 2.0 / 1e-4;
+    let got = v["rom_static_gain"][0][0].as_f64().unwrap();
+    assert!((got - 1.0 / k).abs() < 1e-10 / k, "dz/dF = {got}, closed form {}", 1.0 / k);
+    // The modal table's error column: below 1e-8 rad/s (the eigenvalue ±j √(k/M) is right to
+    // 1e-10 relative, tests/multibody/hydraulic.rs).
+    let (ok, stdout, stderr) = romdyn(&["eig", "tests/mbdyn_files/hydraulic_actuator_mass.mbd", "--set", "F0=0"]);
+    assert!(ok, "{stderr}");
+    let row = stdout.lines().find(|l| l.trim_start().starts_with("1,2")).unwrap_or_else(|| panic!("{stdout}"));
+    let error: f64 = row.split_whitespace().nth(7).and_then(|e| e.parse().ok()).unwrap_or_else(|| panic!("{row}"));
+    assert!(error < 1e-8, "{row}");
+}

@@ -71,6 +71,27 @@ fn dc_motor_eigenvalues_are_the_closed_form_and_mbdyns() {
 }
 
 #[test]
+fn dc_motor_modes_are_labelled_by_the_rotor_and_the_current_they_live_in() {
+    // Issue 34: the modal table shares a mode out over the rotor's kinetic energy ½ J |λ φ|²
+    // and the inductance's magnetic energy ½ L |i|². Closed form: J λ² φ = G i (the rotor's
+    // equation), so the current's share is L / (L + G²/(J λ²)) in either mode: 97.4 % in the
+    // −974 rad/s mode, 2.6 % in the −25.7 rad/s one. Tolerance 1e-8.
+    let m = read_model(&test_file("dc_motor_inertia.mbd")).unwrap_or_else(|e| panic!("{e}"));
+    let study = Study::builder(StudySource::model(m.model, m.problem)).build().unwrap_or_else(|e| panic!("{e}"));
+    let energy = study.energy();
+    for (i, mode) in study.modal().modes.iter().enumerate().filter(|(_, m)| m.kind == romdyn::eigen::ModeKind::Dynamic) {
+        let lambda2 = mode.lambda.norm_sqr();
+        let current = L / (L + G * G / (J * lambda2));
+        let share = |who: &str| energy[i].iter().find(|s| s.who() == who).map_or(0.0, |s| s.share);
+        assert!((share("motor 1 current") - current).abs() < 1e-8, "λ = {}: {:?}", mode.lambda, energy[i]);
+        assert!((share("node 2 rz") - (1.0 - current)).abs() < 1e-8, "λ = {}: {:?}", mode.lambda, energy[i]);
+        let (top, label) = if current > 0.5 { ("motor 1 current", current) } else { ("node 2 rz", 1.0 - current) };
+        let text = romdyn::eigen::describe(&energy[i]);
+        assert!(text.starts_with(&format!("{top} {:.0} %", 100.0 * label)), "{text}");
+    }
+}
+
+#[test]
 fn dc_motor_step_response_follows_the_closed_form_and_mbdyn() {
     let m = read_model(&test_file("dc_motor_inertia.mbd")).unwrap_or_else(|e| panic!("{e}"));
     let report = romdyn::analysis::run(&m.model, &m.problem, &mut ()).unwrap_or_else(|e| panic!("{e}"));
@@ -159,6 +180,10 @@ fn a_genel_on_an_electric_node_makes_an_rc_circuit() {
     let dynamic: Vec<c64> = study.modal().modes.iter().filter(|m| m.kind == romdyn::eigen::ModeKind::Dynamic).map(|m| m.lambda).collect();
     assert_eq!(dynamic.len(), 1, "{dynamic:?}");
     assert!((dynamic[0] - c64::new(-1.0 / (r * c), 0.0)).norm() < 1e-10 / (r * c), "{}", dynamic[0]);
+    // The mode lives in the capacitor's voltage, the one state (its participation factor 1).
+    let energy = study.energy();
+    let i = study.modal().modes.iter().position(|m| m.kind == romdyn::eigen::ModeKind::Dynamic).unwrap();
+    assert_eq!(romdyn::eigen::describe(&energy[i]), "electric node 1 100 %");
     // Its static gain V/I0 = R through the electric ports (a current [A] in, a voltage out).
     let rom = study.reduce(&romdyn::study::RomRequest::new(romdyn::rom::ModeSelection::Lowest(1))).unwrap_or_else(|e| panic!("{e}"));
     let g = rom.static_gains.full.as_ref().unwrap()[(0, 0)];

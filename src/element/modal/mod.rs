@@ -34,7 +34,7 @@ mod equations;
 mod interface;
 pub mod invariants;
 
-use super::contract::{Element, ElementState, FlexiblePoint, JacobianSink, Label, Outputs, ResidualSink};
+use super::contract::{Element, ElementState, EnergyStore, FlexiblePoint, JacobianSink, Label, Outputs, ResidualSink};
 use super::UnknownKind;
 use crate::kinematics::{Mat3, Vec3};
 use nalgebra::DMatrix;
@@ -73,6 +73,8 @@ pub struct FemNode {
     pub position: Vec3,
     /// Its translation per unit coordinate of each mode the joint uses [m].
     pub translation: Vec<Vec3>,
+    /// Its rotation per unit coordinate of each mode [rad] (the FEM file's 6-DOF shapes).
+    pub rotation: Vec<Vec3>,
 }
 
 /// The flexible body.
@@ -246,6 +248,16 @@ impl Outputs for ModalBody {
         self.mode_numbers.iter().enumerate().map(|(k, m)| (self.q_index(k), *m)).collect()
     }
 
+    /// Each mode's own kinetic energy `½ Mₖₖ q̇ₖ²` [J] (the diagonal of the `½ q̇ᵀ M q̇` term
+    /// of `T`; the floating frame's share is its node's), so that the modal table names the
+    /// flexible body's modes ("modal joint 10 mode 3 64 %").
+    fn energy_stores(&self, _s: &dyn ElementState) -> Vec<EnergyStore> {
+        if self.assembling {
+            return Vec::new();
+        }
+        self.mode_numbers.iter().enumerate().map(|(k, &m)| EnergyStore { unknown: self.q_index(k), weight: self.mass[(k, k)], rate: true, name: format!("mode {m}"), mode: Some(m) }).collect()
+    }
+
     /// FEM node `fem_node`: `x + R (f₀ + Σₖ Φₖ qₖ)` (the module's kinematics).
     fn flexible_point(&self, fem_node: &str) -> Result<FlexiblePoint, String> {
         let Some(n) = self.fem_nodes.iter().find(|n| n.label == fem_node) else {
@@ -257,6 +269,7 @@ impl Outputs for ModalBody {
             ModalFrame::Node(_) => None,
             ModalFrame::Clamped { position, orientation } => Some((*position, *orientation)),
         };
-        Ok(FlexiblePoint { position: n.position, shapes: n.translation.iter().enumerate().map(|(k, t)| (self.q_index(k), *t)).collect(), clamped })
+        let per_mode = |shapes: &[Vec3]| shapes.iter().enumerate().map(|(k, t)| (self.q_index(k), *t)).collect();
+        Ok(FlexiblePoint { position: n.position, shapes: per_mode(&n.translation), rotation_shapes: per_mode(&n.rotation), clamped })
     }
 }

@@ -177,7 +177,7 @@ pub fn modal(label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Modal
     let initial = initial.iter().zip(&numbers).map(|(v, m)| v.unwrap_or((fem.modal_displacements[m - 1], fem.modal_velocities[m - 1]))).collect();
     let mut body = ModalBody::new(label, frame, mass, stiffness, damping, Invariants::of(&component), interfaces, numbers, initial);
     body.input_warnings = fem.warnings.clone();
-    body.fem_nodes = fem.node_labels.iter().enumerate().map(|(i, l)| FemNode { label: l.clone(), position: component.positions[i], translation: component.translations.iter().map(|t| t[i]).collect() }).collect();
+    body.fem_nodes = fem.node_labels.iter().enumerate().map(|(i, l)| FemNode { label: l.clone(), position: component.positions[i], translation: component.translations.iter().map(|t| t[i]).collect(), rotation: component.rotations.iter().map(|t| t[i]).collect() }).collect();
     Ok(body)
 }
 
