@@ -26,7 +26,7 @@ pub struct ModeRow {
     /// One-line label of a dynamic mode, e.g. "table pitch (ry) 93 %" (multibody models).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub label: Option<String>,
-    /// Dominant node components by kinetic energy, e.g. "node 3 rz 92 %" (multibody models).
+    /// Where the mode lives: shares of its energy over node components, element stores and signal states, e.g. "node 3 rz 92 %" (multibody models).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub description: Option<String>,
     /// 1-based index of the other member of a complex or ± real pair.
@@ -202,8 +202,8 @@ impl ModalReport {
         }
         let labels = self.eigenvalues.iter().any(|r| r.label.is_some());
         let energy_column = match (labels, self.eigenvalues.iter().any(|r| r.description.is_some())) {
-            (true, _) => format!("  {:<36}  kinetic energy", "label"),
-            (false, true) => "  kinetic energy".to_string(),
+            (true, _) => format!("  {:<36}  energy share", "label"),
+            (false, true) => "  energy share".to_string(),
             (false, false) => String::new(),
         };
         s += &format!(
