@@ -76,7 +76,8 @@ pub fn default_band(modal: &ModalAnalysis, focus: &[c64]) -> (f64, f64) {
 /// ROM ([`Study::compare`]).
 impl FrequencyResponse {
     pub fn accuracy(&self) -> GridAccuracy {
-        let err: Vec<f64> = self.full.iter().zip(self.rom()).map(|(f, r)| (r - f).norm_l2() / f.norm_l2().max(f64::MIN_POSITIVE)).collect();
+        // A response without a ROM at some frequency has no accuracy there: NaN, never 0.
+        let err: Vec<f64> = self.full.iter().enumerate().map(|(k, f)| self.rom().get(k).map_or(f64::NAN, |r| (r - f).norm_l2() / f.norm_l2().max(f64::MIN_POSITIVE))).collect();
         let (k, worst) = err.iter().enumerate().fold((0, 0.0f64), |(bk, bv), (k, &e)| if e > bv || e.is_nan() { (k, e) } else { (bk, bv) });
         let good = err.iter().take_while(|&&e| e <= 0.01).count();
         GridAccuracy {
