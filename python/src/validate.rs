@@ -24,8 +24,8 @@ fn signal_of(s: &str) -> PyResult<SignalKind> {
 fn validate_err(e: ValidateError) -> PyErr {
     match e {
         ValidateError::Study(e) => py_err(e),
-        // The CLI's flag respelled as the keyword argument (`--validation-band` -> `validation_band`).
-        ValidateError::Option { option, message } => options::bad(&option.trim_start_matches('-').replace('-', "_"), romdyn::study::python_spelling(&message)),
+        // The setting by its keyword argument (`validation_band`, not `--validation-band`).
+        ValidateError::Option { option, message } => options::bad(option.python_name(), romdyn::study::python_spelling(&message)),
         e => RomdynError::new_err(romdyn::study::python_spelling(&e.to_string())),
     }
 }

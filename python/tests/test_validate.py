@@ -1,6 +1,7 @@
 """romdyn.validate(): `romdyn validate` from Python (issue 33)."""
 import numpy as np
 import pytest
+from pathlib import Path
 
 import romdyn
 
@@ -37,6 +38,18 @@ def test_validate_refuses_bad_options(examples):
     # The keyword as Python spells it, not the CLI's flag.
     with pytest.raises(ValueError, match=r"^validation_band: ") as e:
         romdyn.validate(model, inputs=["3:Fx"], outputs=["3:x"], modes=[3], validation_band=(5.0, 1.0))
+    assert "--" not in str(e.value)
+
+
+def test_a_refused_port_names_the_python_keyword(tmp_path):
+    # An imposed motion (from a ports file) has no nonlinear counterpart to validate; the
+    # refusal names the keyword `imposed` (romdyn::study::Setting), not the CLI's `--imposed`.
+    root = Path(__file__).resolve().parents[2]
+    ports = tmp_path / "ports.json"
+    ports.write_text('{"inputs": ["3:Fx"], "outputs": ["3:x"], "imposed": "2:x"}')
+    model = romdyn.Model(root / "tests" / "mbdyn_files" / "isolator_imposed.mbd")
+    with pytest.raises(ValueError, match=r"^imposed: an imposed motion is not validated") as e:
+        romdyn.validate(model, ports=ports, count=2)
     assert "--" not in str(e.value)
 
 

@@ -56,7 +56,7 @@ pub use free::{FreeEigenvalue, FreeEigenvalues, FreeKind};
 pub use reduce::{BelowBand, KeptMode, ReducedModel, Residualization, RomRequest, StaticGains, UndampedTwin};
 pub use response::{default_band, ChannelError, FrequencyGrid, GridAccuracy};
 pub use names::{value_names, Named};
-pub use setting::{python_spelling, Setting};
+pub use setting::{python_spelling, Setting, COMMAND_LINE_ONLY};
 pub use setup::{checked_reference_state, EigenSettings, Ports, Study};
 pub use solver::{needs_every_mode, sparse_target, Solver, SparseRun, DOMINANCE_POOL, SPARSE_DEFAULT_COUNT};
 pub use warning::{Response, Warning};

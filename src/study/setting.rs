@@ -7,10 +7,14 @@
 pub enum Setting {
     /// The reference time (`--at`, `reference=`).
     ReferenceTime,
+    /// A static equilibrium as the reference (`--static`, `reference="static"`).
+    StaticEquilibrium,
     LoadSteps,
     Inputs,
     Outputs,
     Imposed,
+    /// Dummy springs removed from the linear model (`--remove-spring`, `remove_springs=`).
+    RemoveSprings,
     /// The eigenanalysis route (`--route`, `route=`).
     Route,
     Dcoef,
@@ -20,6 +24,12 @@ pub enum Setting {
     Count,
     /// A band of natural frequencies [Hz] (`--band FMIN:FMAX`, `band=(FMIN, FMAX)`).
     Band,
+    /// Modes kept by index (`--modes`, `modes=`).
+    Modes,
+    /// Every dropped mode above the band statically residualized (`--residualize`).
+    Residualize,
+    /// Chosen dropped modes statically residualized (`--residualize-modes`, `residualize=[…]`).
+    ResidualizeModes,
     /// How a `count` ranks the modes (`--by`, `by=`).
     Ranking,
     /// What residualization does with a mode below the band (`--below-band`, `below_band=`).
@@ -47,23 +57,50 @@ pub enum Setting {
     Minimal,
     /// A control loop cut open at a genel or an abstract force (`--cut genel:4`, `cut=[…]`).
     Cut,
+    /// Modal damping ratios added to the ROM (`--damping`, `damping=`).
+    Damping,
+    /// The number of lowest modes a sweep tracks (`--lowest`, `lowest=`).
+    Lowest,
+    /// A validation's excitation (`--signal`, `signal=`).
+    Signal,
+    /// A validation's input RMS values [N or N m].
+    Amplitudes,
+    /// A validation's excited and compared band [Hz].
+    ValidationBand,
+    /// A validation's frequency resolution [Hz].
+    Resolution,
+    /// A validation's number of Welch segments.
+    Averages,
+    /// A validation's integration step and sampling period [s].
+    TimeStep,
+    /// A validation's coherence threshold.
+    Coherence,
+    /// A validation's time-domain fit threshold.
+    Fit,
+    /// A measured frequency response to compare with (a CSV file).
+    Measured,
 }
 
 impl Setting {
     /// Every setting.
-    pub const ALL: [Setting; 27] = [
-        Setting::Route,
-        Setting::BelowBand,
-        Setting::Count,
-        Setting::Band,
+    pub const ALL: [Setting; 43] = [
         Setting::ReferenceTime,
+        Setting::StaticEquilibrium,
         Setting::LoadSteps,
         Setting::Inputs,
         Setting::Outputs,
         Setting::Imposed,
+        Setting::RemoveSprings,
+        Setting::Route,
+        Setting::BelowBand,
         Setting::Dcoef,
         Setting::Solver,
         Setting::Tolerance,
+        Setting::Count,
+        Setting::Band,
+        Setting::Modes,
+        Setting::Residualize,
+        Setting::ResidualizeModes,
         Setting::Ranking,
         Setting::Form,
         Setting::Fmin,
@@ -79,74 +116,88 @@ impl Setting {
         Setting::Spa,
         Setting::Minimal,
         Setting::Cut,
+        Setting::Damping,
+        Setting::Lowest,
+        Setting::Signal,
+        Setting::Amplitudes,
+        Setting::ValidationBand,
+        Setting::Resolution,
+        Setting::Averages,
+        Setting::TimeStep,
+        Setting::Coherence,
+        Setting::Fit,
+        Setting::Measured,
     ];
+
+    /// The setting's two spellings: the command line's flag and the Python package's
+    /// keyword argument. The one table both front ends' names come from.
+    fn spellings(self) -> (&'static str, &'static str) {
+        match self {
+            Setting::ReferenceTime => ("--at", "reference"),
+            Setting::StaticEquilibrium => ("--static", "reference"),
+            Setting::LoadSteps => ("--load-steps", "load_steps"),
+            Setting::Inputs => ("--input", "inputs"),
+            Setting::Outputs => ("--output", "outputs"),
+            Setting::Imposed => ("--imposed", "imposed"),
+            Setting::RemoveSprings => ("--remove-spring", "remove_springs"),
+            Setting::Route => ("--route", "route"),
+            Setting::BelowBand => ("--below-band", "below_band"),
+            Setting::Dcoef => ("--dcoef", "dcoef"),
+            Setting::Solver => ("--solver", "solver"),
+            Setting::Tolerance => ("--tolerance", "tolerance"),
+            Setting::Count => ("--count", "count"),
+            Setting::Band => ("--band", "band"),
+            Setting::Modes => ("--modes", "modes"),
+            Setting::Residualize => ("--residualize", "residualize"),
+            Setting::ResidualizeModes => ("--residualize-modes", "residualize"),
+            Setting::Ranking => ("--by", "by"),
+            Setting::Form => ("--form", "form"),
+            Setting::Fmin => ("--fmin", "fmin"),
+            Setting::Fmax => ("--fmax", "fmax"),
+            Setting::Points => ("--points", "points"),
+            Setting::BeamUpdate => ("--beam-update", "beam_update"),
+            Setting::Set => ("--set", "set"),
+            Setting::SampleRate => ("--sample-rate", "sample_rate"),
+            Setting::Discretize => ("--discretize", "discretize"),
+            Setting::Prewarp => ("--prewarp", "prewarp"),
+            Setting::Balanced => ("--balanced", "balanced"),
+            Setting::HankelTol => ("--hankel-tol", "hankel_tol"),
+            Setting::Spa => ("--spa", "spa"),
+            Setting::Minimal => ("--minimal", "minimal"),
+            Setting::Cut => ("--cut", "cut"),
+            Setting::Damping => ("--damping", "damping"),
+            Setting::Lowest => ("--lowest", "lowest"),
+            Setting::Signal => ("--signal", "signal"),
+            Setting::Amplitudes => ("--amplitudes", "amplitudes"),
+            Setting::ValidationBand => ("--validation-band", "validation_band"),
+            Setting::Resolution => ("--resolution", "resolution"),
+            Setting::Averages => ("--averages", "averages"),
+            Setting::TimeStep => ("--time-step", "time_step"),
+            Setting::Coherence => ("--coherence", "coherence"),
+            Setting::Fit => ("--fit", "fit"),
+            Setting::Measured => ("--measured", "measured"),
+        }
+    }
 
     /// The command line's flag.
     pub fn cli_flag(self) -> &'static str {
-        match self {
-            Setting::ReferenceTime => "--at",
-            Setting::LoadSteps => "--load-steps",
-            Setting::Inputs => "--input",
-            Setting::Outputs => "--output",
-            Setting::Imposed => "--imposed",
-            Setting::Route => "--route",
-            Setting::BelowBand => "--below-band",
-            Setting::Dcoef => "--dcoef",
-            Setting::Solver => "--solver",
-            Setting::Tolerance => "--tolerance",
-            Setting::Count => "--count",
-            Setting::Band => "--band",
-            Setting::Ranking => "--by",
-            Setting::Form => "--form",
-            Setting::Fmin => "--fmin",
-            Setting::Fmax => "--fmax",
-            Setting::Points => "--points",
-            Setting::BeamUpdate => "--beam-update",
-            Setting::Set => "--set",
-            Setting::SampleRate => "--sample-rate",
-            Setting::Discretize => "--discretize",
-            Setting::Prewarp => "--prewarp",
-            Setting::Balanced => "--balanced",
-            Setting::HankelTol => "--hankel-tol",
-            Setting::Spa => "--spa",
-            Setting::Minimal => "--minimal",
-            Setting::Cut => "--cut",
-        }
+        self.spellings().0
     }
 
     /// The Python package's keyword argument.
     pub fn python_name(self) -> &'static str {
-        match self {
-            Setting::ReferenceTime => "reference",
-            Setting::LoadSteps => "load_steps",
-            Setting::Inputs => "inputs",
-            Setting::Outputs => "outputs",
-            Setting::Imposed => "imposed",
-            Setting::Route => "route",
-            Setting::BelowBand => "below_band",
-            Setting::Dcoef => "dcoef",
-            Setting::Solver => "solver",
-            Setting::Tolerance => "tolerance",
-            Setting::Count => "count",
-            Setting::Band => "band",
-            Setting::Ranking => "by",
-            Setting::Form => "form",
-            Setting::Fmin => "fmin",
-            Setting::Fmax => "fmax",
-            Setting::Points => "points",
-            Setting::BeamUpdate => "beam_update",
-            Setting::Set => "set",
-            Setting::SampleRate => "sample_rate",
-            Setting::Discretize => "discretize",
-            Setting::Prewarp => "prewarp",
-            Setting::Balanced => "balanced",
-            Setting::HankelTol => "hankel_tol",
-            Setting::Spa => "spa",
-            Setting::Minimal => "minimal",
-            Setting::Cut => "cut",
-        }
+        self.spellings().1
+    }
+
+    /// The setting a command-line flag (`--dcoef`) sets, if it is one of the library's.
+    pub fn from_cli_flag(flag: &str) -> Option<Setting> {
+        Self::ALL.into_iter().find(|s| s.cli_flag() == flag)
     }
 }
+
+/// Command-line flags the library's messages may name that have no Python counterpart: the
+/// advice keeps them, marked as the command line's ([`python_spelling`]).
+pub const COMMAND_LINE_ONLY: [&str; 6] = ["--pencil", "--input-row", "--output-col", "--all", "--against", "--report"];
 
 /// The command line's spelling, as the library's messages print it.
 impl std::fmt::Display for Setting {
@@ -198,32 +249,16 @@ pub fn python_spelling(text: &str) -> String {
     out
 }
 
-/// The Python keyword of a command-line flag's setting, if the package has one: the study's
-/// settings by [`Setting`]'s own two spellings, the ROM request's and `validate`'s here.
+/// The Python keyword of a command-line flag's setting, if the package has one.
 fn python_keyword(flag: &str) -> Option<&'static str> {
-    if let Some(s) = Setting::ALL.iter().find(|s| s.cli_flag().strip_prefix("--") == Some(flag)) {
-        return Some(s.python_name());
-    }
-    Some(match flag {
-        "static" => "reference",
-        "remove-spring" => "remove_springs",
-        "modes" => "modes",
-        "residualize" | "residualize-modes" => "residualize",
-        "amplitudes" => "amplitudes",
-        "validation-band" => "validation_band",
-        "resolution" => "resolution",
-        "averages" => "averages",
-        "time-step" => "time_step",
-        "measured" => "measured",
-        _ => return None,
-    })
+    Setting::from_cli_flag(&format!("--{flag}")).map(Setting::python_name)
 }
 
 /// Whether `word` is a value `--flag` takes (so it is part of the advice, not prose): an
 /// enumerated setting's names from its one table ([`super::names::value_names`]).
 fn flag_value(flag: &str, word: &str) -> bool {
-    let setting = Setting::ALL.iter().find(|s| s.cli_flag().strip_prefix("--") == Some(flag));
-    if let Some(names) = setting.and_then(|s| super::names::value_names(*s)) {
+    let setting = Setting::from_cli_flag(&format!("--{flag}"));
+    if let Some(names) = setting.and_then(super::names::value_names) {
         return names.contains(&word);
     }
     match flag {
@@ -236,7 +271,21 @@ fn flag_value(flag: &str, word: &str) -> bool {
 
 #[cfg(test)]
 mod tests {
-    use super::python_spelling;
+    use super::{python_spelling, Setting};
+
+    /// Every variant is in [`Setting::ALL`] once (the match below stops compiling when a
+    /// variant is added without it), and no two settings share a flag.
+    #[test]
+    fn every_setting_is_listed_once() {
+        let listed = |s: Setting| match s {
+            Setting::ReferenceTime | Setting::StaticEquilibrium | Setting::LoadSteps | Setting::Inputs | Setting::Outputs | Setting::Imposed | Setting::RemoveSprings | Setting::Route | Setting::BelowBand | Setting::Dcoef | Setting::Solver | Setting::Tolerance | Setting::Count | Setting::Band | Setting::Modes | Setting::Residualize | Setting::ResidualizeModes | Setting::Ranking | Setting::Form | Setting::Fmin | Setting::Fmax | Setting::Points | Setting::BeamUpdate | Setting::Set | Setting::SampleRate | Setting::Discretize | Setting::Prewarp | Setting::Balanced | Setting::HankelTol | Setting::Spa | Setting::Minimal | Setting::Cut | Setting::Damping | Setting::Lowest | Setting::Signal | Setting::Amplitudes | Setting::ValidationBand | Setting::Resolution | Setting::Averages | Setting::TimeStep | Setting::Coherence | Setting::Fit | Setting::Measured => Setting::ALL.iter().filter(|t| **t == s).count(),
+        };
+        for s in Setting::ALL {
+            assert_eq!(listed(s), 1, "{s:?}");
+            assert_eq!(Setting::from_cli_flag(s.cli_flag()), Some(s), "{s:?}: its flag is another setting's");
+            assert!(s.cli_flag().starts_with("--") && !s.python_name().contains('-'), "{s:?}");
+        }
+    }
 
     #[test]
     fn advice_is_spelled_as_python_takes_it() {

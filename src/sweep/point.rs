@@ -45,7 +45,7 @@ impl SweepOptions {
     /// in one basis nor interpolate. A discrete-time ROM keeps the modal states (`Ad` is a
     /// function of `A` on the same coordinates) and is taken.
     pub fn check(&self) -> Result<(), StudyError> {
-        let refuse = |option, what: &str| Err(StudyError::Option { option, message: format!("{what} is not available in a sweep: its states are each point's own basis, not the modal coordinates the sweep stacks in one basis and interpolates; reduce one design point with `romdyn rom --set` instead") });
+        let refuse = |option, what: &str| Err(StudyError::Option { option, message: format!("{what} is not available in a sweep: its states are each point's own basis, not the modal coordinates the sweep stacks in one basis and interpolates; reduce one design point on its own (its values given with --set) instead") });
         if self.rom.balanced.is_some() {
             return refuse(Setting::Balanced, "balanced reduction");
         }

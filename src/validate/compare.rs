@@ -5,7 +5,7 @@ use std::sync::Arc;
 
 use faer::{c64, Mat};
 
-use crate::study::{ReducedModel, Study};
+use crate::study::{ReducedModel, Setting, Study};
 
 use super::measured::MeasuredResponse;
 use super::welch::{h1, magnitude_random_error, Estimate, Window};
@@ -182,7 +182,7 @@ impl Validation {
             for ch in &m.channels {
                 let (i, j) = (ch.output, ch.input);
                 if i >= study.output_names().len() || j >= study.input_names().len() {
-                    return Err(ValidateError::Option { option: "--measured", message: format!("{}: channel {} names output {} and input {}, the ROM has {} outputs and {} inputs", m.path.display(), ch.name, i + 1, j + 1, study.output_names().len(), study.input_names().len()) });
+                    return Err(ValidateError::Option { option: Setting::Measured, message: format!("{}: channel {} names output {} and input {}, the ROM has {} outputs and {} inputs", m.path.display(), ch.name, i + 1, j + 1, study.output_names().len(), study.input_names().len()) });
                 }
                 let f: Vec<c64> = full.iter().map(|h| h[(i, j)]).collect();
                 let r: Vec<c64> = romh.iter().map(|h| h[(i, j)]).collect();

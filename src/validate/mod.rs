@@ -32,7 +32,7 @@ use faer::Mat;
 use crate::dae::ports::{InputPort, OutputPort};
 use crate::dae::State;
 use crate::model::InitialValueProblem;
-use crate::study::{Ports, ReducedModel, Study, StudyError};
+use crate::study::{Ports, ReducedModel, Setting, Study, StudyError};
 
 pub use compare::{nrmse, AmplitudeRun, Channel, TimeRecord, Validation};
 pub use crate::rom::expm;
@@ -45,10 +45,10 @@ pub use signal::SignalKind;
 #[derive(Debug, thiserror::Error)]
 pub enum ValidateError {
     #[error("{option}: {message}")]
-    Option { option: &'static str, message: String },
+    Option { option: Setting, message: String },
     #[error("{0}")]
     Port(String),
-    #[error("the nonlinear run failed at step {step} of {steps} (t = {time} s): {reason}; a smaller --amplitude keeps the model nearer its reference, a smaller --time-step helps Newton")]
+    #[error("the nonlinear run failed at step {step} of {steps} (t = {time} s): {reason}; smaller --amplitudes keep the model nearer its reference, a smaller --time-step helps Newton")]
     Step { step: usize, steps: usize, time: f64, reason: String },
     #[error(transparent)]
     Study(#[from] StudyError),
@@ -61,9 +61,9 @@ pub enum ValidateError {
 pub fn validation_ports(ports: &Ports) -> Result<(Vec<InputPort>, Vec<OutputPort>), ValidateError> {
     match ports {
         Ports::Nodes { inputs, outputs } => Ok((inputs.iter().map(|p| p.port()).collect(), outputs.iter().map(|p| p.port()).collect())),
-        Ports::Application(app) if !app.remove_springs.is_empty() => Err(ValidateError::Option { option: "--remove-spring", message: "the ROM without its dummy springs has no nonlinear counterpart to run (the model as written has them): validate the model without removing springs".into() }),
-        Ports::Application(app) if !app.cuts.is_empty() => Err(ValidateError::Option { option: "--cut", message: "a cut loop has no nonlinear counterpart to run (the model as written keeps the cut element closing its loop): validate the closed loop without --cut".into() }),
-        Ports::Application(app) if app.imposed.is_some() => Err(ValidateError::Option { option: "--imposed", message: "an imposed motion is not validated (its inputs are the forces that impose it); validate the force inputs".into() }),
+        Ports::Application(app) if !app.remove_springs.is_empty() => Err(ValidateError::Option { option: Setting::RemoveSprings, message: "the ROM without its dummy springs has no nonlinear counterpart to run (the model as written has them): validate the model without removing springs".into() }),
+        Ports::Application(app) if !app.cuts.is_empty() => Err(ValidateError::Option { option: Setting::Cut, message: "a cut loop has no nonlinear counterpart to run (the model as written keeps the cut element closing its loop): validate the closed loop without --cut".into() }),
+        Ports::Application(app) if app.imposed.is_some() => Err(ValidateError::Option { option: Setting::Imposed, message: "an imposed motion is not validated (its inputs are the forces that impose it); validate the force inputs".into() }),
         Ports::Application(app) => Ok((app.inputs.clone(), app.outputs.clone())),
     }
 }

@@ -6,7 +6,7 @@ use std::f64::consts::PI;
 use std::path::PathBuf;
 
 use crate::dae::ports::OutputPort;
-use crate::study::{ReducedModel, Study};
+use crate::study::{ReducedModel, Setting, Study};
 
 use super::signal::{SignalKind, SignalSpec};
 use super::ValidateError;
@@ -79,7 +79,7 @@ impl Default for ValidateOptions {
     }
 }
 
-fn positive(option: &'static str, v: Option<f64>, what: &str) -> Result<(), ValidateError> {
+fn positive(option: Setting, v: Option<f64>, what: &str) -> Result<(), ValidateError> {
     match v {
         Some(x) if !(x > 0.0 && x.is_finite()) => Err(ValidateError::Option { option, message: format!("{what} must be positive and finite, got {x}") }),
         _ => Ok(()),
@@ -90,22 +90,22 @@ impl ValidateOptions {
     /// Refuses settings out of range, naming the option.
     pub fn check(&self) -> Result<(), ValidateError> {
         for a in &self.amplitudes {
-            positive("--amplitudes", Some(*a), "an RMS input amplitude [N or N m]")?;
+            positive(Setting::Amplitudes, Some(*a), "an RMS input amplitude [N or N m]")?;
         }
         if let Some((lo, hi)) = self.band_hz {
             if !(lo >= 0.0 && hi > lo && hi.is_finite()) {
-                return Err(ValidateError::Option { option: "--validation-band", message: format!("need 0 <= FMIN < FMAX [Hz], got {lo}:{hi}") });
+                return Err(ValidateError::Option { option: Setting::ValidationBand, message: format!("need 0 <= FMIN < FMAX [Hz], got {lo}:{hi}") });
             }
         }
-        positive("--resolution", self.resolution_hz, "the frequency resolution [Hz]")?;
-        positive("--time-step", self.time_step, "the time step [s]")?;
+        positive(Setting::Resolution, self.resolution_hz, "the frequency resolution [Hz]")?;
+        positive(Setting::TimeStep, self.time_step, "the time step [s]")?;
         if self.averages < 2 || self.averages > 1000 {
-            return Err(ValidateError::Option { option: "--averages", message: format!("need 2 to 1000 Welch segments (coherence is 1 with one), got {}", self.averages) });
+            return Err(ValidateError::Option { option: Setting::Averages, message: format!("need 2 to 1000 Welch segments (coherence is 1 with one), got {}", self.averages) });
         }
         let unit = |option, v: f64, what| if (0.0..=1.0).contains(&v) { Ok(()) } else { Err(ValidateError::Option { option, message: format!("{what} must be in [0, 1], got {v}") }) };
-        unit("--coherence", self.coherence, "the coherence threshold")?;
-        unit("--fit", self.fit, "the NRMSE fit threshold")?;
-        positive("--tolerance", Some(self.tolerance), "the relative error tolerance")
+        unit(Setting::Coherence, self.coherence, "the coherence threshold")?;
+        unit(Setting::Fit, self.fit, "the NRMSE fit threshold")?;
+        positive(Setting::Tolerance, Some(self.tolerance), "the relative error tolerance")
     }
 }
 
@@ -153,7 +153,7 @@ impl Plan {
         let band_hz = match o.band_hz {
             Some(b) => b,
             None if rom.interest_top_hz > 0.0 => (0.0, 2.0 * rom.interest_top_hz),
-            None => return Err(ValidateError::Option { option: "--validation-band", message: "the ROM keeps no oscillating mode to take the band from: give FMIN:FMAX [Hz]".into() }),
+            None => return Err(ValidateError::Option { option: Setting::ValidationBand, message: "the ROM keeps no oscillating mode to take the band from: give FMIN:FMAX [Hz]".into() }),
         };
         let lowest = seen.iter().map(|m| hz(m)).fold(band_hz.1, f64::min);
         // A damped kept mode's half-power bandwidth `B_r = |Re λ|/π` [Hz] over 8: Hann's
@@ -166,7 +166,7 @@ impl Plan {
         let segment_of = |dt: f64| ((1.0 / (resolution * dt)).ceil().max(64.0) as usize).next_power_of_two();
         let record = |dt: f64| (o.averages + 1) as f64 * (segment_of(dt) / 2) as f64 * dt;
         let (dt, step_rule) = match o.time_step {
-            Some(dt) => (dt, "--time-step".to_string()),
+            Some(dt) => (dt, Setting::TimeStep.to_string()),
             // The record's length depends on the step through the segment's power of two:
             // from the shortest it can be, until the step no longer shortens it.
             None => {
@@ -185,10 +185,10 @@ impl Plan {
         let lead_in = segment / 2;
         let samples = lead_in + (o.averages + 1) * segment / 2;
         if segment > MAX_SAMPLES || samples > MAX_SAMPLES {
-            return Err(ValidateError::Option { option: "--resolution", message: format!("{samples} steps of {dt:.3e} s for a resolution of {resolution:.3e} Hz: more than {MAX_SAMPLES}; a coarser --resolution, fewer --averages or a larger --time-step") });
+            return Err(ValidateError::Option { option: Setting::Resolution, message: format!("{samples} steps of {dt:.3e} s for a resolution of {resolution:.3e} Hz: more than {MAX_SAMPLES}; a coarser --resolution, fewer --averages or a larger --time-step") });
         }
         if 1.0 / (2.0 * dt) <= band_hz.1 {
-            return Err(ValidateError::Option { option: "--time-step", message: format!("{dt} s samples up to {:.4} Hz only, below the band's top {} Hz", 0.5 / dt, band_hz.1) });
+            return Err(ValidateError::Option { option: Setting::TimeStep, message: format!("{dt} s samples up to {:.4} Hz only, below the band's top {} Hz", 0.5 / dt, band_hz.1) });
         }
         let undamped_hz = seen.iter().filter(|m| zeta(m) < MIN_DAMPING).map(|m| hz(m)).filter(|f| (band_hz.0..=band_hz.1).contains(f)).collect();
         let amplitudes = if o.amplitudes.is_empty() { vec![default_amplitudes(study, rom, outputs)?] } else { o.amplitudes.iter().map(|a| vec![*a; rom.ordinary.b.ncols()]).collect() };
@@ -239,7 +239,7 @@ fn default_amplitudes(study: &Study, rom: &ReducedModel, outputs: &[OutputPort])
         2.0 * m.nodes.iter().map(|n| (n.position - centre).norm()).fold(0.0, f64::max)
     });
     let size = if size > 0.0 { size } else { 1.0 };
-    let gain = rom.ordinary.static_gain().map_err(|e| ValidateError::Option { option: "--amplitudes", message: format!("the ROM has no static gain to size the input by ({e}): give the inputs' RMS [N or N m]") })?;
+    let gain = rom.ordinary.static_gain().map_err(|e| ValidateError::Option { option: Setting::Amplitudes, message: format!("the ROM has no static gain to size the input by ({e}): give the inputs' RMS [N or N m]") })?;
     (0..gain.ncols()).map(|j| {
         let scale = |i: usize| match outputs[i].unit() {
             "m" => STATIC_FRACTION * size,
@@ -251,7 +251,7 @@ fn default_amplitudes(study: &Study, rom: &ReducedModel, outputs: &[OutputPort])
         if a.is_finite() && a > 0.0 {
             Ok(a)
         } else {
-            Err(ValidateError::Option { option: "--amplitudes", message: format!("input {} has no static response at the outputs to size it by: give the inputs' RMS [N or N m]", j + 1) })
+            Err(ValidateError::Option { option: Setting::Amplitudes, message: format!("input {} has no static response at the outputs to size it by: give the inputs' RMS [N or N m]", j + 1) })
         }
     }).collect()
 }

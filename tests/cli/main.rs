@@ -8,6 +8,7 @@ mod common;
 
 mod cli;
 mod docs_commands;
+mod flag_spellings;
 mod node_histories;
 mod pencil_input;
 mod report;

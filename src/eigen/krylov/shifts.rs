@@ -130,7 +130,7 @@ const REPEATS: f64 = 1e-3;
 
 fn lowest(dae: &SparseLinearDae, pencil: &Pencil, count: usize, s: &SparseEigenSettings, progress: &dyn Fn(&str)) -> Result<SparseModalAnalysis, KrylovError> {
     if count == 0 {
-        return Err(KrylovError::Request("--count must be at least 1".into()));
+        return Err(KrylovError::Request("the number of modes asked for must be at least 1, got 0".into()));
     }
     if !s.left_vectors {
         return lowest_right_only(dae, pencil, count, s, progress);
