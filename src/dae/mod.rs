@@ -38,7 +38,7 @@ pub use assembled_check::{check_assembled, AssembledMismatch};
 pub use assembly::{Assembler, Coefficients};
 pub use check::{check_jacobians, JacobianMismatch};
 pub use cut::{cut_parts, Cut, CutError, CutFamily, CutPart};
-pub use dofs::DofMap;
+pub use dofs::{DofMap, Owner};
 pub use element_part::{element_part, ElementPart, ElementPartError};
 pub use linearize::{linearize, linearize_ports, linearize_sparse, sparse_jacobian_pair, NodeInput, NodeOutput};
 pub use ports::{FemOutput, InputPort, OutputPort, PortError, PortMap};

@@ -9,7 +9,7 @@
 //! between them ([`BatheCoefficients`]).
 
 use super::newton::{momenta_from_definitions, newton, Convergence, DerivativeMomenta, NewtonFailure, NewtonSettings, NewtonWorkspace, Update};
-use crate::dae::{Assembler, State};
+use crate::dae::{Assembler, Owner, State};
 use crate::kinematics::{gibbs_from_rotation, gibbs_g, Mat3, Vec3};
 use crate::model::ConstraintForm;
 use crate::model::{Method, NodeKind};
@@ -380,8 +380,9 @@ pub fn initial_derivatives(asm: &Assembler, st: &mut State, settings: &NewtonSet
 }
 
 /// The largest rate of change of a constraint, `max |Φ_/q q̇ + Φ_/t|`, at the state's
-/// positions and velocities, with the equation's name: non-zero when the velocities written
-/// in a file do not satisfy the joints (the first step then changes them). A one-sided
+/// positions and velocities (and differential scalar nodes' values and derivatives), with
+/// the equation's name: non-zero when the velocities written in a file do not satisfy the
+/// joints (the first step then changes them). A one-sided
 /// difference along `q̇` and `t` (steps of 1e-5 s), third order. A velocity-level constraint's own
 /// value `ψ(q, q̇, t)` is its violation.
 pub fn constraint_rate(asm: &Assembler, st: &State) -> Option<(String, f64)> {
@@ -394,6 +395,12 @@ pub fn constraint_rate(asm: &Assembler, st: &State) -> Option<(String, f64)> {
             }
         }
         for i in (0..dofs.len).filter(|&i| dofs.is_coordinate(i)) {
+            m.y[i] += s * st.yp[i];
+        }
+        // A differential scalar node's value (a pressure, a capacitor's voltage) moves with
+        // its derivative too: a clamp driving it along a ramp is then satisfied.
+        for (k, _) in dofs.scalar_differential.iter().enumerate().filter(|(_, d)| **d) {
+            let i = dofs.scalar_first + k;
             m.y[i] += s * st.yp[i];
         }
         m.t += s;
@@ -413,7 +420,12 @@ pub fn constraint_rate(asm: &Assembler, st: &State) -> Option<(String, f64)> {
         let d2 = (4.0 * two[i] - 3.0 * now[i] - four[i]) / (4.0 * eps);
         (4.0 * d1 - d2) / 3.0
     };
-    (0..dofs.len).filter(|&i| dofs.is_multiplier(i)).map(|i| (i, rate(i))).chain(velocity).fold(None, |best: Option<(usize, f64)>, (i, v)| match best {
+    // A constraint of an element that reads an algebraic scalar node (a clamp driving a
+    // pressure node) is kept at every instant by that node's value, which has no derivative
+    // of its own to move with: its rate is the drive's, not a violation.
+    let algebraic_scalar = |e: usize| dofs.element_scalars[e].iter().any(|&k| dofs.scalar_differential.get(k) == Some(&false));
+    let reads_algebraic = |i: usize| matches!(dofs.owner(i), Owner::Element { index, .. } if algebraic_scalar(index));
+    (0..dofs.len).filter(|&i| dofs.is_multiplier(i)).map(|i| (i, rate(i))).chain(velocity).filter(|&(i, _)| !reads_algebraic(i)).fold(None, |best: Option<(usize, f64)>, (i, v)| match best {
         Some((_, b)) if b.abs() >= v.abs() => best,
         _ => Some((i, v)),
     }).map(|(i, v)| (dofs.equation_name(asm.model, i), v))

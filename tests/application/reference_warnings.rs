@@ -131,3 +131,40 @@ fn a_study_at_the_initial_state_carries_the_runs_warnings() {
     assert!(err.contains("warning: the initial velocities do not satisfy the joints"), "{err}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A scalar node clamped to a ramp satisfies its clamp: a differential one's value moves with
+/// its derivative, an algebraic one follows the drive at every instant. The rate check moved
+/// only structural positions, and a pressure ramped at
+/// 1e9 Pa/s (tests/mbdyn_files/hydraulic_dynamic_pipe.mbd) read as "the initial velocities
+/// do not satisfy the joints (genel clamp 1 … changes at -1.000e9 per s)": a hydraulic node
+/// is algebraic (its value has no derivative to move with, and the clamp holds it at every
+/// instant). The same for differential and algebraic abstract nodes; a structural violation
+/// is still reported (the rod test above).
+#[test]
+fn a_scalar_node_clamped_to_a_ramp_is_not_reported_as_violating_its_clamp() {
+    let pipe = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mbdyn_files/hydraulic_dynamic_pipe.mbd")).unwrap();
+    let abstract_ramp = "
+begin: data; problem: initial value; end: data;
+begin: initial value; initial time: 0.; final time: 0.01; time step: 1.e-3; tolerance: 1.e-9; end: initial value;
+begin: control data; abstract nodes: 3; genels: 3; end: control data;
+begin: nodes; abstract: 1, differential, value, 0., derivative, 250.; abstract: 2, differential; abstract: 3, algebraic, value, 1.; end: nodes;
+begin: elements;
+  genel: 1, clamp, 1, abstract, algebraic, ramp, 250., 0., forever, 0.;
+  genel: 3, clamp, 3, abstract, ramp, 40., 0., forever, 1.;
+  genel: 2, spring support, 2, abstract, algebraic, linear elastic, 4.;
+end: elements;
+";
+    for (name, text) in [("dynamic pipe", pipe.as_str()), ("abstract ramp", abstract_ramp)] {
+        let warnings = study_warnings(text, Reference::Initial, &[]);
+        let rates: Vec<String> = warnings.iter().filter_map(|w| if let Warning::Run { warning: RunWarning::InconsistentVelocity { equation, rate } } = w { Some(format!("{equation}: {rate:e}")) } else { None }).collect();
+        assert!(rates.is_empty(), "{name}: {rates:?}");
+    }
+    // With the differential node's derivative written as 0, its clamp Φ = x − 250 t changes
+    // at ẋ − 250 = −250 per s (closed form): a true violation, still reported.
+    let written_zero = abstract_ramp.replace("derivative, 250.", "derivative, 0.");
+    let warnings = study_warnings(&written_zero, Reference::Initial, &[]);
+    let rates: Vec<f64> = warnings.iter().filter_map(|w| if let Warning::Run { warning: RunWarning::InconsistentVelocity { rate, .. } } = w { Some(*rate) } else { None }).collect();
+    assert_eq!(rates.len(), 1, "{warnings:?}");
+    // 1e-9 relative: the rate's third-order difference is exact on a linear drive.
+    assert!((rates[0] + 250.0).abs() < 1e-9 * 250.0, "rate {}", rates[0]);
+}
