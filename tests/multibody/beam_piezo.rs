@@ -17,7 +17,7 @@ use common::mbdyn::{assert_model_jacobians, assert_refused, test_file as file};
 use romdyn::analysis::run;
 use romdyn::dae::{Assembler, Coefficients};
 use romdyn::input::mbdyn::{read_model_text, BeamUpdateRule, ReadOptions, SetOverrides};
-use romdyn::kinematics::{euler123, Vec3};
+use romdyn::kinematics::{euler123, rotation_vector, Vec3};
 use romdyn::model::{ConstraintForm, ScalarNodeId, ScalarNodeKind};
 
 /// Node `label`'s position and Euler angles 123 (MBDyn's `.mov` orientation) at `final_time` (the file's own when `None`)
@@ -254,4 +254,48 @@ fn bad_piezoelectric_actuators_are_refused_at_their_place() {
     let e = romdyn::input::mbdyn::parse_text(&with("piezoelectric actuator, 1, 11, 0., 0., 0., 0., 0., 1.e-3, same;"), &file(name)).and_then(|d| romdyn::input::mbdyn::build(&d)).err().unwrap().to_string();
     let line = original.lines().position(|l| l.contains("piezoelectric actuator")).unwrap() + 1;
     assert!(e.contains(&format!("{name}:{line}:")), "{e}");
+}
+
+#[test]
+fn the_initial_assembly_keeps_the_piezoelectric_beam_with_its_voltages_held() {
+    // piezo_beam_cantilever.mbd with 100 V on from the start (a genel clamp on the node's
+    // initial value) and the initial assembly run. MBDyn 1.7.3 keeps the beam there, its
+    // actuation read from the node (pzbeam.cc): "Initial assembly iterations reached maximum
+    // number 1; aborting..." (and with 20 or 1000 iterations too). romdyn left every element
+    // on scalar nodes out of its assembly, the beam with them, and passed; it now stops
+    // where MBDyn stops, and with 20 iterations converges.
+    let text = std::fs::read_to_string(file("piezo_beam_cantilever.mbd")).unwrap();
+    let changed = |iterations: &str| {
+        let mut t = text.clone();
+        for (old, new) in [
+            ("    skip initial joint assembly;\n", iterations),
+            ("abstract: 10, differential;", "abstract: 10, differential, value, 100.;"),
+            ("genel: 1, spring support, 10, abstract, algebraic, linear elastic, 1.;", "genel: 1, clamp, 10, abstract, algebraic, const, 100.;"),
+            ("    force: 10, abstract, 10, abstract, cosine, 0., pi/1.e-3, 50., half, 0.;\n", ""),
+            ("    forces: 1;\n", ""),
+        ] {
+            assert!(t.contains(old), "{old}");
+            t = t.replace(old, new);
+        }
+        romdyn::input::mbdyn::read_model_text(&t, &file("piezo_beam_cantilever.mbd"), &SetOverrides::default()).unwrap_or_else(|e| panic!("{e}"))
+    };
+    let m = changed("");
+    let asm = Assembler::new(&m.model);
+    let mut st = romdyn::dae::State::initial(&m.model, &asm.dofs);
+    let e = romdyn::solve::initial_assembly(&m.model, &mut st, &m.problem.assembly).err().map(|e| e.to_string()).unwrap_or_default();
+    assert!(e.contains("initial assembly did not converge in 1 iteration"), "{e}");
+    // With 20 iterations: the 100 V bend the beam against the assembly's unit springs on the
+    // positions and rotations of nodes 2 and 3. Linear theory (a cantilever EJ = 100 N m²
+    // under the uniform moment 0.1 N m and the springs' forces −y and moments −θ at x = 0.5
+    // and 1 m, flexibilities from the closed forms): y2 = −1.225923e-4 m, y3 = −4.914688e-4
+    // m, θ3 = −9.850854e-4 rad. romdyn: 3.6e-4, 2.2e-4 and 2.4e-5 from them (one three-node
+    // element under point loads: the mesh error); asserted 1e-3.
+    let m = changed("    max iterations: 20;\n");
+    let mut st = romdyn::dae::State::initial(&m.model, &asm.dofs);
+    romdyn::solve::initial_assembly(&m.model, &mut st, &m.problem.assembly).unwrap_or_else(|e| panic!("{e}"));
+    let at = |label: u32| st.node_frame(&asm.dofs, m.model.nodes.iter().position(|n| n.label == label).unwrap()).kin;
+    let (n2, n3) = (at(2), at(3));
+    for (got, linear) in [(n2.x.y, -1.225923349e-4), (n3.x.y, -4.914687987e-4), (rotation_vector(&n3.r).z, -9.850854352e-4)] {
+        assert!((got - linear).abs() < 1e-3 * linear.abs(), "{got} against linear theory's {linear}");
+    }
 }
