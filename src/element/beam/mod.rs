@@ -139,10 +139,11 @@ impl Beam3 {
     }
 
     /// The beam with MBDyn's `piezoelectric actuator` ([`piezo`]): one actuation matrix
-    /// per evaluation point.
-    pub fn with_piezo(mut self, piezo: PiezoActuator) -> Self {
+    /// per evaluation point (two).
+    pub fn with_piezo(mut self, piezo: PiezoActuator) -> Result<Self, PiezoError> {
+        piezo.check_points(self.label, 2)?;
         self.piezo = Some(piezo);
-        self
+        Ok(self)
     }
 
     /// The beam with `update` ([`BeamUpdate`]); the incremental update refuses viscous laws.

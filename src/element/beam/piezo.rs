@@ -46,14 +46,11 @@ pub enum PiezoError {
 }
 
 impl PiezoActuator {
-    /// An actuator with `electrodes` and one 6 × N matrix per evaluation point of beam
-    /// `label`, which has `points` of them.
-    pub fn new(label: Label, electrodes: Vec<ScalarNodeId>, matrices: Vec<DMatrix<f64>>, points: usize) -> Result<Self, PiezoError> {
+    /// An actuator of beam `label` with `electrodes` and one 6 × N matrix per evaluation
+    /// point (the beam's `with_piezo` checks their number).
+    pub fn new(label: Label, electrodes: Vec<ScalarNodeId>, matrices: Vec<DMatrix<f64>>) -> Result<Self, PiezoError> {
         if electrodes.is_empty() {
             return Err(PiezoError::NoElectrode(label));
-        }
-        if matrices.len() != points {
-            return Err(PiezoError::Points(label, matrices.len(), points));
         }
         for (s, t) in matrices.iter().enumerate() {
             if t.nrows() != 6 || t.ncols() != electrodes.len() {
@@ -64,6 +61,12 @@ impl PiezoActuator {
             }
         }
         Ok(PiezoActuator { electrodes, matrices })
+    }
+
+    /// Whether the actuator fits beam `label` with `points` evaluation points (one matrix
+    /// each).
+    pub fn check_points(&self, label: Label, points: usize) -> Result<(), PiezoError> {
+        if self.matrices.len() == points { Ok(()) } else { Err(PiezoError::Points(label, self.matrices.len(), points)) }
     }
 
     /// The electrodes' nodes, in scalar-slot order.

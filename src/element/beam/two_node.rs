@@ -27,7 +27,7 @@ use nalgebra::{Matrix6, SMatrix, Vector6};
 
 use super::finite_volume::{self, put, PointTangents, POSITION};
 use super::incremental::StepHistory;
-use super::{BeamError, BeamNode, BeamUpdate, PiezoActuator, SectionLaw, SectionOrientation};
+use super::{BeamError, BeamNode, BeamUpdate, PiezoActuator, PiezoError, SectionLaw, SectionOrientation};
 use crate::element::contract::{Element, ElementState, JacobianSink, Label, Latched, ResidualSink, ScalarNodeId, SectionState};
 use crate::element::deformable::inverse_rotation_jacobian;
 use crate::element::invariant_hinge::rotation_jacobian;
@@ -129,9 +129,10 @@ impl Beam2 {
 
     /// The beam with MBDyn's `piezoelectric actuator` ([`super::piezo`]): one actuation
     /// matrix, at the evaluation point.
-    pub fn with_piezo(mut self, piezo: PiezoActuator) -> Self {
+    pub fn with_piezo(mut self, piezo: PiezoActuator) -> Result<Self, PiezoError> {
+        piezo.check_points(self.label, 1)?;
         self.piezo = Some(piezo);
-        self
+        Ok(self)
     }
 
     /// The beam with `update` ([`BeamUpdate`]).

@@ -43,7 +43,7 @@ pub fn piezoelectric_actuator(c: &mut Cursor, ctx: &ElementContext, keyword: &st
         let second = if c.accept("same") { matrices[0].clone() } else { mat6xn(c, n, &format!("{name}: actuation matrix of section II ('same' or 6x{n} values) [N/V, N m/V]"))? };
         matrices.push(second);
     }
-    PiezoActuator::new(label, electrodes, matrices, points).map(Some).map_err(|e| c.error_at(at, e.to_string()))
+    PiezoActuator::new(label, electrodes, matrices).map(Some).map_err(|e| c.error_at(at, e.to_string()))
 }
 
 /// An electrode: the label of a differential abstract node.

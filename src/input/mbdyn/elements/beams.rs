@@ -84,7 +84,7 @@ pub fn beam(keyword: &str, label: Label, c: &mut Cursor, ctx: &ElementContext) -
         let span = c.statement().span;
         let mut beam = Beam2::new(label, nodes, orientation, section_law(&law)).map_err(|e| c.error_at(span, e.to_string()))?;
         if let Some(piezo) = piezo {
-            beam = beam.with_piezo(piezo);
+            beam = beam.with_piezo(piezo).map_err(|e| c.error_at(span, e.to_string()))?;
         }
         let beam = match updated(c, ctx, &format!("beam2 {label}"), Ok(()))? {
             Some(update) => beam.with_update(update),
@@ -105,7 +105,7 @@ pub fn beam(keyword: &str, label: Label, c: &mut Cursor, ctx: &ElementContext) -
     let span = c.statement().span;
     let mut beam = Beam3::new(label, nodes, [orientation_i, orientation_ii], [section_law(&law_i), section_law(&law_ii)]).map_err(|e| c.error_at(span, e.to_string()))?;
     if let Some(piezo) = piezo {
-        beam = beam.with_piezo(piezo);
+        beam = beam.with_piezo(piezo).map_err(|e| c.error_at(span, e.to_string()))?;
     }
     let takes_incremental = beam.check_update(BeamUpdate::Incremental).map_err(|e| e.to_string());
     let beam = match updated(c, ctx, &format!("beam3 {label}"), takes_incremental)? {
