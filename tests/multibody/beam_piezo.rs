@@ -309,12 +309,12 @@ fn an_actuator_that_does_not_fit_its_beam_is_an_error() {
     let nodes = [BeamNode::new(1, Vec3::zeros(), Mat3::identity(), Vec3::zeros()), BeamNode::new(2, Vec3::x(), Mat3::identity(), Vec3::zeros())];
     let beam = Beam2::new(7, nodes, SectionOrientation::Given(Mat3::identity()), SectionLaw::diagonal(1e6, 1e6, 1e6, 1e2, 1e2, 1e2)).unwrap();
     let two = PiezoActuator::new(7, electrode.clone(), vec![DMatrix::zeros(6, 1); 2]).unwrap();
-    let e = beam.with_piezo(two).err().expect("two matrices on beam2").to_string();
+    let e = beam.with_piezo(two).expect_err("two matrices on beam2").to_string();
     assert_eq!(e, "beam 7: the piezoelectric actuator has 2 actuation matrices, the beam 1 evaluation points");
-    let e = PiezoActuator::new(7, electrode.clone(), vec![DMatrix::zeros(6, 2)]).err().expect("6x2 for one electrode").to_string();
+    let e = PiezoActuator::new(7, electrode.clone(), vec![DMatrix::zeros(6, 2)]).expect_err("6x2 for one electrode").to_string();
     assert_eq!(e, "beam 7: actuation matrix 1 is 6x2, expected 6x1 (one column per electrode)");
-    let e = PiezoActuator::new(7, electrode, vec![DMatrix::from_element(6, 1, f64::NAN)]).err().expect("NaN").to_string();
+    let e = PiezoActuator::new(7, electrode, vec![DMatrix::from_element(6, 1, f64::NAN)]).expect_err("NaN").to_string();
     assert_eq!(e, "beam 7: actuation matrix 1 has a value that is not finite");
-    let e = PiezoActuator::new(7, Vec::new(), vec![DMatrix::zeros(6, 0)]).err().expect("no electrode").to_string();
+    let e = PiezoActuator::new(7, Vec::new(), vec![DMatrix::zeros(6, 0)]).expect_err("no electrode").to_string();
     assert_eq!(e, "beam 7: a piezoelectric actuator needs at least one electrode");
 }
