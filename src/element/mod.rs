@@ -58,7 +58,7 @@ mod wrapper;
 mod screw_friction;
 mod shell;
 
-pub use beam::{shape as beam_shape, Beam2, Beam3, BeamError, BeamUpdate, BeamNode, SectionLaw, SectionOrientation};
+pub use beam::{shape as beam_shape, Beam2, Beam3, BeamError, BeamUpdate, BeamNode, PiezoActuator, PiezoError, SectionLaw, SectionOrientation};
 pub use beam_slider::{BeamSlider, SliderBeam, SliderKind};
 pub use bistop_rod::{BistopRod, BistopStatus};
 pub use body::RigidBody;

@@ -9,6 +9,7 @@
 mod common;
 
 mod beam2;
+mod beam_piezo;
 mod beam_incremental;
 mod beam_output;
 mod beam_rotation;

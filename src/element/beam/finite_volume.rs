@@ -26,12 +26,6 @@ pub fn stack(a: &Vec3, b: &Vec3) -> Vector6<f64> {
     Vector6::new(a.x, a.y, a.z, b.x, b.y, b.z)
 }
 
-/// Local generalized forces `[F; M] = K ([ε; κ] − e_p) + V [ε̇; κ̇] + f_p` (rates only when
-/// `rates` is given), with a nonlinear law's function terms.
-pub fn local_forces(law: &SectionLaw, st: &dyn ElementState, strain: &Vec3, curvature: &Vec3, rates: Option<(&Vec3, &Vec3)>) -> Vector6<f64> {
-    law_at(law, st, strain, curvature, rates).0
-}
-
 /// The local generalized forces and the law's tangents `∂/∂[ε; κ]`, `∂/∂[ε̇; κ̇]` there
 /// (at the state `st`, whose time scales a time-variant law).
 pub fn law_at(law: &SectionLaw, st: &dyn ElementState, strain: &Vec3, curvature: &Vec3, rates: Option<(&Vec3, &Vec3)>) -> (Vector6<f64>, Matrix6<f64>, Matrix6<f64>) {

@@ -10,17 +10,19 @@
 mod finite_volume;
 mod incremental;
 mod law;
+mod piezo;
 mod section;
 pub mod shape;
 mod two_node;
 
 pub use incremental::BeamUpdate;
 pub use law::SectionLaw;
+pub use piezo::{PiezoActuator, PiezoError};
 pub use two_node::Beam2;
 
 use nalgebra::{Matrix6, SMatrix, Vector6};
 
-use super::contract::{Element, ElementState, JacobianSink, Label, Latched, ResidualSink, SectionState};
+use super::contract::{Element, ElementState, JacobianSink, Label, Latched, ResidualSink, ScalarNodeId, SectionState};
 use crate::kinematics::{gibbs_from_rotation, gibbs_rotation, Mat3, Vec3};
 use finite_volume::PointTangents;
 use incremental::StepHistory;
@@ -89,6 +91,8 @@ pub struct Beam3 {
     laws: [SectionLaw; 2],
     viscous: bool,
     update: BeamUpdate,
+    /// The sections' voltage-driven forces ([`piezo`]), when the card has them.
+    piezo: Option<PiezoActuator>,
 }
 
 const POINT_NAMES: [&str; 2] = ["I", "II"];
@@ -130,7 +134,16 @@ impl Beam3 {
             laws,
             viscous,
             update: BeamUpdate::PathIndependent,
+            piezo: None,
         })
+    }
+
+    /// The beam with MBDyn's `piezoelectric actuator` ([`piezo`]): one actuation matrix
+    /// per evaluation point (two).
+    pub fn with_piezo(mut self, piezo: PiezoActuator) -> Result<Self, PiezoError> {
+        piezo.check_points(self.label, 2)?;
+        self.piezo = Some(piezo);
+        Ok(self)
     }
 
     /// The beam with `update` ([`BeamUpdate`]); the incremental update refuses viscous laws.
@@ -172,15 +185,20 @@ impl Beam3 {
         (terms, k)
     }
 
-    /// Local generalized forces `[F; M] = K ([ε; κ] − e_p) + V [ε̇; κ̇] + f_p`.
+    /// Local generalized forces `[F; M] = K ([ε; κ] − e_p) + V [ε̇; κ̇] + f_p (+ T_s V)`.
     fn local_forces(&self, st: &dyn ElementState, s: usize, k: &SectionKinematics) -> Vector6<f64> {
         self.law_at(st, s, k).0
     }
 
-    /// The local forces and the law's tangents at point `s`.
+    /// The local forces (a piezoelectric actuator's `T_s V` included) and the law's
+    /// tangents at point `s`.
     fn law_at(&self, st: &dyn ElementState, s: usize, k: &SectionKinematics) -> (Vector6<f64>, Matrix6<f64>, Matrix6<f64>) {
         let rates = self.viscous.then_some((&k.strain_rate, &k.curvature_rate));
-        finite_volume::law_at(&self.laws[s], st, &k.strain, &k.curvature, rates)
+        let (mut f, kk, vv) = finite_volume::law_at(&self.laws[s], st, &k.strain, &k.curvature, rates);
+        if let Some(piezo) = &self.piezo {
+            f += piezo.local_forces(s, st);
+        }
+        (f, kk, vv)
     }
 }
 
@@ -208,12 +226,14 @@ impl Element for Beam3 {
     fn nodes(&self) -> Vec<Label> {
         self.nodes.to_vec()
     }
+    /// A piezoelectric actuator's electrodes (abstract nodes), else none.
+    fn scalar_nodes(&self) -> Vec<ScalarNodeId> {
+        self.piezo.as_ref().map_or_else(Vec::new, |p| p.electrodes().to_vec())
+    }
 
     fn events(&self) -> Option<&dyn Events> {
         if self.update == BeamUpdate::Incremental { Some(self) } else { None }
     }
-
-
 
     /// Node `s` (the volume before point `s`) receives `F_s` and `M_s + (p_s − x_s) × F_s`;
     /// node `s + 1` the opposite with arm `p_s − x_{s+1}` ([`finite_volume`]).
@@ -237,6 +257,9 @@ impl Element for Beam3 {
             let rates = self.viscous.then_some((&d.dstrain_rate, &d.dcurvature_rate));
             let point = PointTangents { dp: &d.dp, dtheta: &d.dtheta, dstrain: &d.dstrain, dcurvature: &d.dcurvature, rates };
             finite_volume::add_point_jacobian(&mut jac, s, &k.p, &k.r, &self.law_at(st, s, k), &point, terms.x());
+            if let Some(piezo) = &self.piezo {
+                piezo.add_voltage_jacobian(out, s, &k.p, &k.r, terms.x());
+            }
         }
         finite_volume::scatter_jacobian(&jac, self.viscous, out);
     }

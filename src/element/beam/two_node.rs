@@ -23,12 +23,12 @@
 //! `P_i`, `R(g_i) = R_i P_iᵀ`, `g = (g_1 + g_2)/2`, `g′ = (g_2 − g_1)/ℓ`, the section frame
 //! `R_s = R(g) R_s,ref` and the curvature `κ = R_s,refᵀ Gᵀ(g) g′ + κ_ref`.
 
-use nalgebra::{SMatrix, Vector6};
+use nalgebra::{Matrix6, SMatrix, Vector6};
 
 use super::finite_volume::{self, put, PointTangents, POSITION};
 use super::incremental::StepHistory;
-use super::{BeamError, BeamNode, BeamUpdate, SectionLaw, SectionOrientation};
-use crate::element::contract::{Element, ElementState, JacobianSink, Label, Latched, ResidualSink, SectionState};
+use super::{BeamError, BeamNode, BeamUpdate, PiezoActuator, PiezoError, SectionLaw, SectionOrientation};
+use crate::element::contract::{Element, ElementState, JacobianSink, Label, Latched, ResidualSink, ScalarNodeId, SectionState};
 use crate::element::deformable::inverse_rotation_jacobian;
 use crate::element::invariant_hinge::rotation_jacobian;
 use crate::kinematics::{gibbs_from_rotation, gibbs_g, gibbs_g_inverse, gibbs_gt_apply, gibbs_gt_derivative, gibbs_rotation, rotation_vector, skew, Mat3, Vec3};
@@ -56,6 +56,8 @@ pub struct Beam2 {
     initial_strain: Vec3,
     law: SectionLaw,
     update: BeamUpdate,
+    /// The section's voltage-driven forces ([`super::piezo`]), when the card has them.
+    piezo: Option<PiezoActuator>,
 }
 
 /// The evaluation point's state.
@@ -121,7 +123,16 @@ impl Beam2 {
             initial_strain: r0.transpose() * (chord / length),
             law,
             update: BeamUpdate::PathIndependent,
+            piezo: None,
         })
+    }
+
+    /// The beam with MBDyn's `piezoelectric actuator` ([`super::piezo`]): one actuation
+    /// matrix, at the evaluation point.
+    pub fn with_piezo(mut self, piezo: PiezoActuator) -> Result<Self, PiezoError> {
+        piezo.check_points(self.label, 1)?;
+        self.piezo = Some(piezo);
+        Ok(self)
     }
 
     /// The beam with `update` ([`BeamUpdate`]).
@@ -187,7 +198,16 @@ impl Beam2 {
     }
 
     fn local_forces(&self, st: &dyn ElementState, k: &Point) -> Vector6<f64> {
-        finite_volume::local_forces(&self.law, st, &k.strain, &k.curvature, None)
+        self.law_at(st, k).0
+    }
+
+    /// The local forces `K ([ε; κ] − e_p) + f_p (+ T V)` and the law's tangents.
+    fn law_at(&self, st: &dyn ElementState, k: &Point) -> (Vector6<f64>, Matrix6<f64>, Matrix6<f64>) {
+        let (mut f, kk, vv) = finite_volume::law_at(&self.law, st, &k.strain, &k.curvature, None);
+        if let Some(piezo) = &self.piezo {
+            f += piezo.local_forces(0, st);
+        }
+        (f, kk, vv)
     }
 }
 
@@ -204,12 +224,14 @@ impl Element for Beam2 {
     fn nodes(&self) -> Vec<Label> {
         self.nodes.to_vec()
     }
+    /// A piezoelectric actuator's electrodes (abstract nodes), else none.
+    fn scalar_nodes(&self) -> Vec<ScalarNodeId> {
+        self.piezo.as_ref().map_or_else(Vec::new, |p| p.electrodes().to_vec())
+    }
 
     fn events(&self) -> Option<&dyn Events> {
         if self.update == BeamUpdate::Incremental { Some(self) } else { None }
     }
-
-
 
     fn residual(&self, st: &dyn ElementState, out: &mut dyn ResidualSink) {
         let k = self.evaluate(st);
@@ -252,8 +274,11 @@ impl Element for Beam2 {
         let dstrain = k.r.transpose() * (dpp + skew(&k.pp) * dtheta);
         let point = PointTangents { dp: &dp, dtheta: &dtheta, dstrain: &dstrain, dcurvature: &dcurvature, rates: None };
         let mut jac = SMatrix::<f64, 12, 24>::zeros();
-        finite_volume::add_point_jacobian(&mut jac, 0, &k.p, &k.r, &finite_volume::law_at(&self.law, st, &k.strain, &k.curvature, None), &point, &k.x);
+        finite_volume::add_point_jacobian(&mut jac, 0, &k.p, &k.r, &self.law_at(st, &k), &point, &k.x);
         finite_volume::scatter_jacobian(&jac, false, out);
+        if let Some(piezo) = &self.piezo {
+            piezo.add_voltage_jacobian(out, 0, &k.p, &k.r, &k.x);
+        }
     }
 }
 

@@ -82,14 +82,14 @@ impl Problem<'_> {
     fn element_residual(&self, k: usize, kin: &[NodeKinematics], lambda: &[f64], t: f64, f: &mut [f64]) {
         let (slots, first) = (&self.layout.slots[k], self.layout.first[k]);
         let m = self.layout.element(k).multipliers().len();
-        let ctx = Ctx { model: self.layout.model, kin, slots, multipliers: &lambda[first - 6 * self.layout.nodes()..][..m], t };
+        let ctx = Ctx { model: self.layout.model, kin, slots, scalars: &self.layout.scalars[k], multipliers: &lambda[first - 6 * self.layout.nodes()..][..m], t };
         self.layout.element(k).residual(&ctx, &mut Residual { slots, first, f });
     }
 
     fn element_jacobian(&self, k: usize, kin: &[NodeKinematics], lambda: &[f64], g_matrix: Option<&[Mat3]>, out: &mut Triplets) {
         let (slots, first) = (&self.layout.slots[k], self.layout.first[k]);
         let m = self.layout.element(k).multipliers().len();
-        let ctx = Ctx { model: self.layout.model, kin, slots, multipliers: &lambda[first - 6 * self.layout.nodes()..][..m], t: self.t };
+        let ctx = Ctx { model: self.layout.model, kin, slots, scalars: &self.layout.scalars[k], multipliers: &lambda[first - 6 * self.layout.nodes()..][..m], t: self.t };
         self.layout.element(k).jacobian(&ctx, &mut Jacobian { slots, first, g_matrix, velocity_rows: &self.velocity_rows, out });
     }
 
@@ -369,7 +369,7 @@ fn velocity_rows(layout: &Layout, kin: &[NodeKinematics], t: f64) -> Vec<bool> {
     for k in 0..layout.elements.len() {
         let (slots, first) = (&layout.slots[k], layout.first[k]);
         let m = layout.element(k).multipliers().len();
-        let ctx = Ctx { model: layout.model, kin, slots, multipliers: &lambda[first - 6 * layout.nodes()..][..m], t };
+        let ctx = Ctx { model: layout.model, kin, slots, scalars: &layout.scalars[k], multipliers: &lambda[first - 6 * layout.nodes()..][..m], t };
         layout.element(k).jacobian(&ctx, &mut VelocityProbe { first, rows: &mut rows });
     }
     rows

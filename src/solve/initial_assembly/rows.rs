@@ -10,13 +10,15 @@ use crate::model::Model;
 
 /// Whether MBDyn uses an element in its initial assembly: joints (deformable ones too) and
 /// beams, not bodies (variable-mass ones too), forces and couples (elman.cc:
-/// `ToBeUsedInAssembly`), nor any element on scalar nodes (genels, abstract forces: MBDyn's
-/// initial assembly has structural nodes only).
+/// `ToBeUsedInAssembly`), nor any other element on scalar nodes (genels, abstract forces:
+/// MBDyn's initial assembly has structural nodes only). A beam with a piezoelectric
+/// actuator stays, its voltages held at the scalar nodes' initial values (pzbeam.cc's
+/// residual reads them; its columns have no place here).
 fn in_assembly(e: &dyn Element) -> bool {
-    if !e.scalar_nodes().is_empty() {
+    let t = e.type_name();
+    if !e.scalar_nodes().is_empty() && t != "beam3" && t != "beam2" {
         return false;
     }
-    let t = e.type_name();
     // A viscous body holds nothing: its force −C v on the written velocity would only be
     // balanced by the assembly's position springs (1 N/m), moving the node by C v. A brake
     // adds nothing there either (brake.cc has no initial assembly rows).
@@ -30,6 +32,8 @@ pub(super) struct Layout<'m> {
     pub(super) elements: Vec<usize>,
     /// Node index of each slot, per element in `elements`.
     pub(super) slots: Vec<Vec<usize>>,
+    /// The initial values of each element's scalar nodes, in its scalar slots (held).
+    pub(super) scalars: Vec<Vec<f64>>,
     /// First multiplier row of each element in `elements`.
     pub(super) first: Vec<usize>,
     pub(super) len: usize,
@@ -38,15 +42,16 @@ pub(super) struct Layout<'m> {
 impl<'m> Layout<'m> {
     pub(super) fn new(model: &'m Model) -> Self {
         let mut len = 6 * model.nodes.len();
-        let (mut elements, mut slots, mut first) = (Vec::new(), Vec::new(), Vec::new());
+        let (mut elements, mut slots, mut first, mut scalars) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
         for (i, e) in model.elements.iter().enumerate().filter(|(_, e)| in_assembly(e.as_ref())) {
             let e = e.assembly_form().unwrap_or(e.as_ref());
             elements.push(i);
             slots.push(e.nodes().iter().map(|l| model.node_index(*l).unwrap_or(usize::MAX)).collect());
+            scalars.push(e.scalar_nodes().iter().map(|id| model.scalar_index(*id).map_or(0.0, |i| model.scalar_nodes[i].value)).collect());
             first.push(len);
             len += e.multipliers().len();
         }
-        Layout { model, elements, slots, first, len }
+        Layout { model, elements, slots, scalars, first, len }
     }
     pub(super) fn nodes(&self) -> usize {
         self.model.nodes.len()
@@ -85,6 +90,7 @@ pub(super) struct Ctx<'a> {
     pub(super) model: &'a Model,
     pub(super) kin: &'a [NodeKinematics],
     pub(super) slots: &'a [usize],
+    pub(super) scalars: &'a [f64],
     pub(super) multipliers: &'a [f64],
     pub(super) t: f64,
 }
@@ -98,6 +104,9 @@ impl ElementState for Ctx<'_> {
     }
     fn time(&self) -> f64 {
         self.t
+    }
+    fn scalar_value(&self, slot: usize) -> f64 {
+        self.scalars[slot]
     }
     fn gravity(&self) -> Vec3 {
         Vec3::zeros()

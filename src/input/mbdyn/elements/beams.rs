@@ -1,14 +1,17 @@
 //! `beam3` (input manual, "Elements", §Three-node beam element): three nodes with offsets
 //! (and optional orientations), then for evaluation points I and II a section orientation
-//! (global, or `from nodes`) and a 6-D constitutive law, `same` repeating point I's.
+//! (global, or `from nodes`) and a 6-D constitutive law, `same` repeating point I's, then an
+//! optional `piezoelectric actuator` ([`super::beam_piezo`]).
 //! `beam:` is the same card as `beam3` (MBDyn reads both with one reader). `beam2`: two
 //! nodes with offsets (and optional orientations), one section orientation (global, or
-//! `from nodes`) and one 6-D law (elastic: a viscous one is refused).
+//! `from nodes`), one 6-D law (elastic: a viscous one is refused) and an optional
+//! `piezoelectric actuator` with one matrix.
 
 use nalgebra::{Matrix6, Vector6};
 
 use crate::input::mbdyn::syntax::cursor::Cursor;
 use crate::input::mbdyn::syntax::diagnostic::MbdynError;
+use super::beam_piezo::piezoelectric_actuator;
 use super::context::{ElementContext, Parsed};
 use super::laws::{nonlinear_law, LinearLaw};
 use crate::input::mbdyn::read_options::BeamUpdateRule;
@@ -69,17 +72,20 @@ fn custom_output(c: &mut Cursor) -> Result<(), MbdynError> {
 }
 
 /// `beam3: LABEL, NODE_1, …, NODE_3, …, R_I, LAW_I, {same | R_II}, {same | LAW_II}
-/// [, custom output, FLAGS…]`; `beam2: LABEL, NODE_1, …, NODE_2, …, R_I, LAW_I [, custom
-/// output, FLAGS…]`.
+/// [, piezoelectric actuator, …] [, custom output, FLAGS…]`; `beam2: LABEL, NODE_1, …,
+/// NODE_2, …, R_I, LAW_I [, piezoelectric actuator, …] [, custom output, FLAGS…]`.
 pub fn beam(keyword: &str, label: Label, c: &mut Cursor, ctx: &ElementContext) -> Result<Parsed, MbdynError> {
     if keyword == "beam2" {
         let nodes = [beam_node(c, ctx, "node 1")?, beam_node(c, ctx, "node 2")?];
         let orientation = section_orientation(c, ctx, "orientation of section I")?;
         let law = nonlinear_law(c, 6, ctx.laws, ctx.drives, ctx.seq)?;
-        refuse_piezoelectric(c, keyword, label)?;
+        let piezo = piezoelectric_actuator(c, ctx, keyword, label, 1)?;
         custom_output(c)?;
         let span = c.statement().span;
-        let beam = Beam2::new(label, nodes, orientation, section_law(&law)).map_err(|e| c.error_at(span, e.to_string()))?;
+        let mut beam = Beam2::new(label, nodes, orientation, section_law(&law)).map_err(|e| c.error_at(span, e.to_string()))?;
+        if let Some(piezo) = piezo {
+            beam = beam.with_piezo(piezo).map_err(|e| c.error_at(span, e.to_string()))?;
+        }
         let beam = match updated(c, ctx, &format!("beam2 {label}"), Ok(()))? {
             Some(update) => beam.with_update(update),
             None => beam,
@@ -94,26 +100,19 @@ pub fn beam(keyword: &str, label: Label, c: &mut Cursor, ctx: &ElementContext) -
     let law_i = nonlinear_law(c, 6, ctx.laws, ctx.drives, ctx.seq)?;
     let orientation_ii = if c.accept("same") { orientation_i.clone() } else { section_orientation(c, ctx, "orientation of section II")? };
     let law_ii = if c.accept("same") { law_i.clone() } else { nonlinear_law(c, 6, ctx.laws, ctx.drives, ctx.seq)? };
-    refuse_piezoelectric(c, keyword, label)?;
+    let piezo = piezoelectric_actuator(c, ctx, keyword, label, 2)?;
     custom_output(c)?;
     let span = c.statement().span;
-    let beam = Beam3::new(label, nodes, [orientation_i, orientation_ii], [section_law(&law_i), section_law(&law_ii)]).map_err(|e| c.error_at(span, e.to_string()))?;
+    let mut beam = Beam3::new(label, nodes, [orientation_i, orientation_ii], [section_law(&law_i), section_law(&law_ii)]).map_err(|e| c.error_at(span, e.to_string()))?;
+    if let Some(piezo) = piezo {
+        beam = beam.with_piezo(piezo).map_err(|e| c.error_at(span, e.to_string()))?;
+    }
     let takes_incremental = beam.check_update(BeamUpdate::Incremental).map_err(|e| e.to_string());
     let beam = match updated(c, ctx, &format!("beam3 {label}"), takes_incremental)? {
         Some(update) => beam.with_update(update).map_err(|e| c.error_at(span, e.to_string()))?,
         None => beam,
     };
     Ok(Parsed::Element(Box::new(beam)))
-}
-
-/// beam.cc, beam2.cc: a `piezoelectric actuator` after the section laws adds forces from
-/// abstract nodes' voltages, which romdyn's beams do not have: refused by name.
-fn refuse_piezoelectric(c: &mut Cursor, keyword: &str, label: Label) -> Result<(), MbdynError> {
-    let at = c.here();
-    if c.accept("piezoelectric actuator") {
-        return Err(c.error_at(at, crate::input::mbdyn::syntax::diagnostic::mbdyn_runs_it(&format!("{keyword} {label}: the 'piezoelectric actuator' option"))));
-    }
-    Ok(())
 }
 
 /// The update the beam `name` takes under the reader's rule ([`BeamUpdateRule`]), `None`

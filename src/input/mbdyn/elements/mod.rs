@@ -1,5 +1,6 @@
 //! The `elements` block: the element types romdyn reads, by family (bodies, joints, beams, forces, genels, electric, hydraulic, plates, modal), their constitutive laws, and the table of element types from which the refusals are written.
 
+pub(super) mod beam_piezo;
 pub(super) mod beam_slider;
 pub(super) mod beams;
 pub(super) mod block;
