@@ -119,3 +119,50 @@ fn a_damped_beam_is_not_split() {
     assert!(ModalAnalysis::deflated_size(&dae).is_some());
     assert_eq!(ModalAnalysis::half_size(&dae), None);
 }
+
+/// Each route's vectors against the reference of tests/eigen/vector_reference.rs.
+#[test]
+fn measure_vectors_against_the_reference() {
+    use crate::vector_reference::{orthonormal, subspace_sine, ShiftedPencil};
+    use common::beam_family::MassStiffness;
+    let only: Option<usize> = std::env::var("HVEC_ONLY").ok().map(|s| s.parse().unwrap());
+    for elements in [8, 16] {
+        for ea in [1e6, 1e8, 1e10] {
+            if only.is_some_and(|o| o != elements) { continue; }
+            let m = read(&cantilever(elements, ea, 1e3));
+            let asm = Assembler::new(&m.model);
+            let st = State::initial(&m.model, &asm.dofs);
+            let dae = linearize(&m.model, &st, &[], &[], None).unwrap();
+            let reference = MassStiffness::of(&dae, &asm.dofs.node_first, elements);
+            let half = ModalAnalysis::of_dae(&dae, EigenRoute::Lambda, None).unwrap();
+            let general = ModalAnalysis::of_dae_by_qz(&dae, EigenRoute::Lambda, None).unwrap();
+            let (fyd, fy) = dae.jacobians.derivatives();
+            let w = &reference.omega;
+            let mut first = 0;
+            let first_at: usize = std::env::var("HVEC_FIRST").ok().map_or(0, |s| s.parse().unwrap());
+            first = first_at;
+            while first < 20 {
+                let m_copies = w.iter().skip(first).take_while(|&&x| x / w[first] - 1.0 <= 1e-6).count();
+                let gap = w.iter().map(|x| (x / w[first] - 1.0).abs()).filter(|&g| g > 1e-6).fold(f64::INFINITY, f64::min);
+                let delta = (gap / 16.0).min(1e-4);
+                let shift = c64::new(0.0, w[first] * (1.0 - delta));
+                                let qr = ShiftedPencil::new(&fyd, &fy, shift, false).subspace(m_copies).unwrap();
+                let ql = ShiftedPencil::new(&fyd, &fy, shift, true).subspace(m_copies).unwrap();
+                let s_max = w.last().unwrap().powi(2);
+                let gap_s = w.iter().filter(|x| (*x / w[first] - 1.0).abs() > 1e-6).map(|x| (x * x - w[first] * w[first]).abs()).fold(f64::INFINITY, f64::min);
+                let cond = s_max / gap_s;
+                let angle = |modes: &[Mode]| {
+                    let mine: Vec<&Mode> = modes.iter().filter(|g| g.kind == ModeKind::Dynamic && g.lambda.im > 0.0 && (g.lambda.im / w[first] - 1.0).abs() <= 1e-6).collect();
+                    assert_eq!(mine.len(), m_copies);
+                    let pr = orthonormal(mine.iter().map(|g| g.right.clone().unwrap()).collect());
+                    let pl = orthonormal(mine.iter().map(|g| g.left.clone().unwrap()).collect());
+                    (subspace_sine(&pr, &qr), subspace_sine(&pl, &ql))
+                };
+                let (hr, hl) = angle(&half.modes);
+                let (gr, gl) = angle(&general.modes);
+                eprintln!("ROW {elements} {:e} {first} m={m_copies} w={:.6e} gap={gap:.1e} | half R {hr:.1e} L {hl:.1e} | qz R {gr:.1e} L {gl:.1e} | cond {cond:.1e} eps*cond {:.1e}", ea / 1e3, w[first], cond * f64::EPSILON);
+                first += m_copies;
+            }
+        }
+    }
+}
