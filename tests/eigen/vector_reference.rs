@@ -38,17 +38,6 @@ pub fn orthonormal(mut q: Vec<Col<c64>>) -> Vec<Col<c64>> {
     q
 }
 
-/// `‖(I − Q Qᴴ) x‖ / ‖x‖` for an orthonormal `Q`: the sine of the angle between `x` and
-/// `span(Q)`.
-pub fn sine_to_span(x: &Col<c64>, q: &[Col<c64>]) -> f64 {
-    let mut r = x.clone();
-    for u in q {
-        let d = dot(u, &r);
-        r = Col::from_fn(r.nrows(), |i| r[i] - d * u[i]);
-    }
-    r.norm_l2() / x.norm_l2()
-}
-
 /// The largest principal angle's sine between two subspaces of one dimension, each given by
 /// an orthonormal basis: the largest singular value of `(I − Q Qᴴ) P`.
 pub fn subspace_sine(p: &[Col<c64>], q: &[Col<c64>]) -> f64 {
