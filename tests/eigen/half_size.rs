@@ -61,10 +61,10 @@ fn angles(modes: &[Mode], omega: f64, copies: usize, right: &[faer::Col<c64>], l
 /// One member of the beam family (tests/common/beam_family.rs): the half-size route is
 /// taken (the dynamic part, 24 N unknowns, splits into 12 N positions and 12 N momenta) and
 /// gives QZ's labels, eigenvalues (each route's compensated two-sided quotient; measured
-/// within 4.8e-16 relative, asserted 1e-10) and backward errors at rounding level (right
-/// vectors at most 5.0e-16, QZ's 7.0e-17; asserted 1e-14 for both sides). Then each route's
-/// vectors against the reference, cluster by cluster (a bending pair is one cluster of two),
-/// over the 20 lowest eigenvalues and the 8 highest; returns the largest ratio of a low
+/// within 7.6e-16 relative, asserted 1e-10) and backward errors at rounding level (right
+/// vectors at most 8.7e-17, QZ's 7.0e-17; left 2.2e-18, QZ's 1.5e-18; asserted 1e-14).
+/// Then each route's vectors against the reference, cluster by cluster (a bending pair is
+/// one cluster of two), over the 20 lowest eigenvalues and the 8 highest; returns the largest ratio of a low
 /// cluster's angle to its estimate `ε s_max / min |s − s_j|` (`s = ω²` of the mass–stiffness
 /// reference: the Davis–Kahan bound of a backward-stable solver in mass-normalized
 /// coordinates), and the largest angle among the highest, half-size and QZ.
