@@ -20,3 +20,4 @@ mod sparse_dae;
 mod sparse_eigen;
 mod sparse_rom;
 mod sparse_study;
+mod vector_reference;
