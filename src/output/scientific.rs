@@ -14,27 +14,22 @@
 
 use std::io::Write;
 
-/// `5^k` for `k = 0..=32` (`5^32 < 2^75`, so that `m 5^k < 2^128` for `m < 2^53`).
-const POW5: [u128; 33] = {
-    let mut t = [1u128; 33];
+/// `base^k` for `k = 0..N`.
+const fn powers<const N: usize>(base: u128) -> [u128; N] {
+    let mut t = [1u128; N];
     let mut k = 1;
-    while k < 33 {
-        t[k] = t[k - 1] * 5;
+    while k < N {
+        t[k] = t[k - 1] * base;
         k += 1;
     }
     t
-};
+}
+
+/// `5^k` for `k = 0..=32` (`5^32 < 2^75`, so that `m 5^k < 2^128` for `m < 2^53`).
+const POW5: [u128; 33] = powers(5);
 
 /// `10^k` for `k = 0..=18`.
-const POW10: [u64; 19] = {
-    let mut t = [1u64; 19];
-    let mut k = 1;
-    while k < 19 {
-        t[k] = t[k - 1] * 10;
-        k += 1;
-    }
-    t
-};
+const POW10: [u128; 19] = powers(10);
 
 /// Appends `v` as `format!("{v:.digits$e}")` writes it.
 pub fn push_scientific(out: &mut Vec<u8>, v: f64, digits: usize) {
@@ -85,7 +80,7 @@ fn push_exact(out: &mut Vec<u8>, v: f64, digits: usize) -> bool {
     let m = (bits & ((1u64 << 52) - 1)) | (1u64 << 52);
     let q = biased - 1075;
     let d = digits as i32;
-    let (low, high) = (POW10[digits], POW10[digits + 1]);
+    let (low, high) = (POW10[digits] as u64, POW10[digits + 1] as u64);
     // The decimal exponent: floor(log10 2^b) of the leading bit's power b, which is E or
     // E − 1, corrected by the digits' count.
     let b = q + 52;
