@@ -26,7 +26,8 @@
 #
 # MBDyn writes 16 digits (`output precision: 16`, which romdyn reads and ignores: it
 # always writes 13), so that the positions can be compared to 1e-6 m on coordinates of 10 m.
-# romdyn: `romdyn run FILE` (release build: target/release/romdyn, else `romdyn` on PATH).
+# romdyn: `romdyn run FILE` ($ROMDYN if set, else the release build target/release/romdyn,
+# else `romdyn` on PATH).
 # MBDyn: `mbdyn` on PATH or /root/mbdyn/bin/mbdyn, run as `mbdyn -f FILE -o PREFIX` with its
 # default linear solver and with `linear solver: klu` (and `naive, colamd`); skipped when
 # absent. The final node positions (last block of the .mov files) must agree to 1e-6 m.
@@ -39,7 +40,7 @@
 # (`--mbdyn klu,klu-modified` runs only those). The last line of each case is romdyn's
 # fastest against MBDyn's fastest.
 # Times are whole processes (start-up and output files included), median of R runs
-# (default 3) of /usr/bin/time's elapsed and user+system seconds, the programs and settings
+# (default 3) of elapsed and user+system seconds (bash's `times`, to the millisecond), the programs and settings
 # alternating run by run; ratio = romdyn / MBDyn.
 set -euo pipefail
 
@@ -54,14 +55,14 @@ while [ $# -gt 0 ]; do
         --only) ONLY="$2"; shift 2 ;;
         --mbdyn) MBDYN_ONLY=",$2,"; shift 2 ;;
         --generate-only) GENERATE_ONLY=1; shift ;;
-        -h|--help) sed -n '2,37p' "$0"; exit 0 ;;
+        -h|--help) sed -n '2,44p' "$0"; exit 0 ;;
         *) OUT="$1"; shift ;;
     esac
 done
 mkdir -p "$OUT"
 
 here="$(cd "$(dirname "$0")/.." && pwd)"
-ROMDYN="$here/target/release/romdyn"
+ROMDYN="${ROMDYN:-$here/target/release/romdyn}"
 [ -x "$ROMDYN" ] || ROMDYN="$(command -v romdyn || true)"
 MBDYN="$(command -v mbdyn || true)"
 [ -n "$MBDYN" ] || { [ -x /root/mbdyn/bin/mbdyn ] && MBDYN=/root/mbdyn/bin/mbdyn; } || true
@@ -216,18 +217,27 @@ echo "files in $OUT"
 # median of numbers on stdin
 median() { sort -g | awk '{a[NR]=$1} END{print (NR%2 ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2)}'; }
 
+# cpu_seconds 1m2.345s -> 62.345
+cpu_seconds() { echo "$1" | awk -Fm '{sub("s", "", $2); print $1 * 60 + $2}'; }
+
 # once KEY CMD...: runs CMD once, appends "wall cpu" to $OUT/KEY.times; the command's
 # output goes to $OUT/last.log
 once() {
     local key="$1" w u s
     shift
-    if ! /usr/bin/time -f "%e %U %S" -o "$OUT/time.txt" "$@" >"$OUT/last.log" 2>&1; then
+    # CPU seconds to the millisecond: bash's `times` (the children's user and system
+    # times of the subshell that ran the command); /usr/bin/time rounds to 10 ms, which is
+    # an eighth of romdyn's run at N = 10.
+    local t0 t1
+    t0=$(date +%s.%N)
+    if ! ( "$@" >"$OUT/last.log" 2>&1 || exit 1; times >"$OUT/time.txt" ); then
         echo "failed: $*" >&2
         tail -n 5 "$OUT/last.log" >&2
         return 1
     fi
-    read -r w u s < <(tail -n 1 "$OUT/time.txt")
-    echo "$w $(awk "BEGIN{print $u+$s}")" >>"$OUT/$key.times"
+    t1=$(date +%s.%N)
+    read -r u s < <(tail -n 1 "$OUT/time.txt")
+    echo "$(awk "BEGIN{print $t1 - $t0}") $(cpu_seconds "$u") $(cpu_seconds "$s")" | awk '{printf "%.3f %.3f\n", $1, $2 + $3}' >>"$OUT/$key.times"
 }
 
 # medians KEY: "wall cpu" medians of $OUT/KEY.times

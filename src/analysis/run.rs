@@ -56,6 +56,10 @@ pub struct RunReport {
     pub newton_iterations: usize,
     /// Newton iterations of the initial derivatives.
     pub derivatives_iterations: usize,
+    /// Newton iterations (derivatives and steps) that assembled and factored a Jacobian;
+    /// the others solved with the last factorization (MBDyn's `modified` Newton–Raphson,
+    /// [`crate::solve::NewtonWorkspace::keep_jacobian_below`]).
+    pub factorizations: usize,
     pub wall_time: Duration,
     pub eigenanalyses: Vec<EigenSummary>,
     /// What MBDyn's initial assembly changed.
@@ -180,6 +184,7 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
         steps: 0,
         newton_iterations: 0,
         derivatives_iterations: 0,
+        factorizations: 0,
         wall_time: Duration::ZERO,
         eigenanalyses: Vec::new(),
         assembly,
@@ -269,6 +274,7 @@ pub fn run(model: &Model, problem: &InitialValueProblem, observer: &mut dyn RunO
         observed(observer.step(&step_done(&asm, step, problem.time_step, (r.iterations, r.residual_norm), &integrator.state)))?;
         eigenanalyses_due(&integrator.state, observer, &mut report)?;
     }
+    report.factorizations = integrator.workspace().factored;
     report.final_state = integrator.state;
     report.wall_time = clock.elapsed();
     Ok(report)

@@ -65,11 +65,12 @@ fn seconds(t: f64) -> String {
 
 fn print_summary(file: &str, r: &RunReport, written: &[PathBuf]) {
     println!(
-        "romdyn run {file}: {} steps to t = {} s, {} Newton iterations (+{} for the initial derivatives), wall time {:.3} s",
+        "romdyn run {file}: {} steps to t = {} s, {} Newton iterations (+{} for the initial derivatives; {} of all with a new Jacobian factorization), wall time {:.3} s",
         r.steps,
         seconds(r.final_state.t),
         r.newton_iterations,
         r.derivatives_iterations,
+        r.factorizations,
         r.wall_time.as_secs_f64()
     );
     let a = &r.assembly;

@@ -111,6 +111,7 @@ impl ElementState for Context<'_> {
 
 /// Maps an element's local rows to global equations (`None`: a momentum row of a static
 /// node, which does not exist). `e` is the element's index (its scalar slots).
+#[inline]
 fn global_row(dofs: &DofMap, e: usize, slots: &[usize], first: usize, row: Row) -> Option<usize> {
     match row {
         Row::Scalar { slot } => Some(dofs.scalar_first + dofs.element_scalars[e][slot]),

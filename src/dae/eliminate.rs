@@ -261,34 +261,40 @@ impl Eliminated {
     /// Forms the pivots and the Schur complement from `J`'s values (in the pattern's triplet
     /// order) and factors it; `Err` for a zero pivot.
     pub(super) fn factor(&mut self, values: &[f64]) -> Result<(), SparseError> {
-        self.entries.iter_mut().for_each(|v| *v = 0.0);
         let len = self.storage_len;
-        for (&t, &v) in self.target.iter().zip(values) {
-            let t = t as usize;
-            if t >= len {
-                self.entries[t - len] += v;
-            }
-        }
-        for (inv, p) in self.inverse.iter_mut().zip(&self.pivots) {
-            let d = self.entries[p.entry];
-            if d == 0.0 || !d.is_finite() {
-                return Err(SparseError::Singular);
-            }
-            *inv = 1.0 / d;
-        }
-        let (entries, inverse) = (&self.entries, &self.inverse);
-        let (target, products) = (&self.target, &self.products);
-        self.inner.factor_with(|storage| {
+        let (entries, inverse) = (&mut self.entries, &mut self.inverse);
+        let (target, products, pivots) = (&self.target, &self.products, &self.pivots);
+        let mut zero_pivot = false;
+        // One pass over the triplets: J_Rq's values into the factorization's storage, the
+        // others (pivots, J_Mq, J_Rp) into `entries`; then the products of J_Rp J_Mq / c.
+        let factored = self.inner.factor_with(|storage| {
+            entries.iter_mut().for_each(|v| *v = 0.0);
             for (&t, &v) in target.iter().zip(values) {
                 let t = t as usize;
                 if t < len {
                     storage[t] += v;
+                } else {
+                    entries[t - len] += v;
                 }
+            }
+            for (inv, p) in inverse.iter_mut().zip(pivots) {
+                let d = entries[p.entry];
+                zero_pivot |= d == 0.0 || !d.is_finite();
+                *inv = 1.0 / d;
+            }
+            if zero_pivot {
+                // No Schur complement: what is factored is discarded below and the caller
+                // solves the whole system (a rare case: one wasted factorization).
+                return;
             }
             for &[at, a, b, k] in products {
                 storage[at as usize] -= entries[a as usize] * entries[b as usize] * inverse[k as usize];
             }
-        })
+        });
+        if zero_pivot {
+            return Err(SparseError::Singular);
+        }
+        factored
     }
 
     /// Solves `J x = rhs` in place with the entries and factors of the last successful

@@ -13,6 +13,7 @@ use std::io::Write;
 use std::path::Path;
 
 use super::atomic::{AtomicFile, OutputError};
+use super::scientific::push_scientific;
 use crate::element::SectionState;
 use crate::kinematics::Vec3;
 use crate::model::Label;
@@ -23,16 +24,22 @@ pub struct BeamSectionWriter {
     strains: AtomicFile,
 }
 
-fn line(out: &mut dyn Write, label: Label, sections: &[SectionState], pick: impl Fn(&SectionState) -> [Vec3; 2]) -> std::io::Result<()> {
-    write!(out, "{label}")?;
-    for s in sections {
-        for v in pick(s) {
-            for c in v.iter() {
-                write!(out, " {c:.12e}")?;
+/// Every beam's line of one output instant, written at once.
+fn lines(out: &mut dyn Write, beams: &[(Label, Vec<SectionState>)], pick: impl Fn(&SectionState) -> [Vec3; 2]) -> std::io::Result<()> {
+    let mut text = Vec::new();
+    for (label, sections) in beams {
+        let _ = write!(text, "{label}");
+        for s in sections {
+            for v in pick(s) {
+                for &c in v.iter() {
+                    text.push(b' ');
+                    push_scientific(&mut text, c, 12);
+                }
             }
         }
+        text.push(b'\n');
     }
-    writeln!(out)
+    out.write_all(&text)
 }
 
 impl BeamSectionWriter {
@@ -42,8 +49,8 @@ impl BeamSectionWriter {
 
     /// Appends one output instant: a line per beam in each file.
     pub fn write_step(&mut self, beams: &[(Label, Vec<SectionState>)]) -> Result<(), OutputError> {
-        self.forces.write_with(|out| beams.iter().try_for_each(|(label, s)| line(out, *label, s, |x| [x.force, x.moment])))?;
-        self.strains.write_with(|out| beams.iter().try_for_each(|(label, s)| line(out, *label, s, |x| [x.strain, x.curvature])))
+        self.forces.write_with(|out| lines(out, beams, |x| [x.force, x.moment]))?;
+        self.strains.write_with(|out| lines(out, beams, |x| [x.strain, x.curvature]))
     }
 
     /// Flushes and renames both files into place.

@@ -31,6 +31,7 @@ pub mod response_csv;
 pub mod rom_export;
 pub mod rom_file;
 pub mod rom_script;
+pub mod scientific;
 pub mod scalar_nodes;
 pub mod step_log;
 pub mod sweep_plot;

@@ -13,9 +13,11 @@
 //! and renamed when the run finishes.
 
 use std::collections::HashMap;
+use std::io::Write;
 use std::path::Path;
 
 use super::atomic::{AtomicFile, OutputError};
+use super::scientific::push_scientific;
 use crate::element::NodeKinematics;
 use crate::kinematics::{euler123, rotation_vector, Mat3, Vec3};
 pub use crate::model::OrientationOutput;
@@ -27,6 +29,8 @@ pub struct MotionWriter {
     orientation: OrientationOutput,
     /// Digits after the decimal point ([`MotionOutput::digits`]).
     digits: usize,
+    /// One output instant's text.
+    text: Vec<u8>,
 }
 
 /// Euler angles `[a, b, c]` of `R = R_i(a) R_j(b) R_k(c)` for the axis sequences 3-1-3 and
@@ -112,7 +116,7 @@ pub fn motion_rows(output: &MotionOutput, nodes: &[(Label, NodeKinematics)], acc
 impl MotionWriter {
     /// Numbers in scientific notation with `digits` after the decimal point.
     pub fn create(path: &Path, orientation: OrientationOutput, digits: usize) -> Result<Self, OutputError> {
-        Ok(MotionWriter { file: AtomicFile::create(path)?, orientation, digits })
+        Ok(MotionWriter { file: AtomicFile::create(path)?, orientation, digits, text: Vec::new() })
     }
 
     /// Appends one output instant: a line per node, orientations in the writer's form.
@@ -121,28 +125,22 @@ impl MotionWriter {
         self.write_rows(&rows)
     }
 
-    /// Appends one output instant: a line per row, each with its own orientation form.
+    /// Appends one output instant: a line per row, each with its own orientation form
+    /// (formed in the writer's buffer, then written at once).
     pub fn write_rows(&mut self, rows: &[MotionRow]) -> Result<(), OutputError> {
-        let d = self.digits;
-        self.file.write_with(|out| {
-            for (label, k, how, acc) in rows {
-                write!(out, "{label}")?;
-                for c in k.x.iter() {
-                    write!(out, " {c:.d$e}")?;
-                }
-                for c in orientation_values(&k.r, *how) {
-                    write!(out, " {c:.d$e}")?;
-                }
-                let acc = acc.iter().flat_map(|(a, wd)| [*a, *wd]);
-                for v in [k.xdot, k.omega].into_iter().chain(acc) {
-                    for c in v.iter() {
-                        write!(out, " {c:.d$e}")?;
-                    }
-                }
-                writeln!(out)?;
+        let (d, text) = (self.digits, &mut self.text);
+        text.clear();
+        for (label, k, how, acc) in rows {
+            let _ = write!(text, "{label}");
+            let acc = acc.iter().flat_map(|(a, wd)| [*a, *wd]);
+            let vectors = [k.xdot, k.omega].into_iter().chain(acc).flat_map(|v| [v[0], v[1], v[2]]);
+            for c in k.x.iter().copied().chain(orientation_values(&k.r, *how)).chain(vectors) {
+                text.push(b' ');
+                push_scientific(text, c, d);
             }
-            Ok(())
-        })
+            text.push(b'\n');
+        }
+        self.file.write_with(|out| out.write_all(text))
     }
 
     /// Flushes and renames the file into place.
