@@ -27,7 +27,7 @@ use crate::output::beam_sections::BeamSectionWriter;
 use crate::output::hydraulic_elements::HydraulicWriter;
 use crate::output::plates::PlateWriter;
 use crate::output::modal_coordinates::ModalCoordinateWriter;
-use crate::output::eigen_json::eigen_json;
+use crate::output::eigen_json::write_eigen_json;
 use crate::output::eigen_m::write_eigen_m;
 use crate::output::model_log::write_model_log;
 use crate::output::motion::{motion_rows, MotionWriter, OrientationOutput};
@@ -199,8 +199,7 @@ impl RunObserver for RunFiles {
         let mut m = AtomicFile::create(&prefixed_path(&stem, "m"))?;
         m.write_with(|w| write_eigen_m(w, &self.input, &file))?;
         let mut json = AtomicFile::create(&prefixed_path(&stem, "json"))?;
-        let text = serde_json::to_string_pretty(&eigen_json(&self.input, &file))?;
-        json.write_with(|w| writeln!(w, "{text}"))?;
+        json.write_with(|w| write_eigen_json(w, &self.input, &file).map_err(std::io::Error::from))?;
         self.staged.extend([m, json]);
         Ok(())
     }

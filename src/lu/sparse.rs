@@ -38,6 +38,13 @@ impl<T: ComplexField> PatternLu<T> {
         Ok(PatternLu { symbolic, numeric: NumericLu::new(), par })
     }
 
+    /// Factors of matrices whose pattern `symbolic` analyzed (a copy of an analysis shared
+    /// by several factorizations of one pattern in different arithmetic or at different
+    /// shifts: the Krylov operator's, `eigen::krylov`).
+    pub fn with_symbolic(symbolic: SymbolicLu<usize>, par: Par) -> Self {
+        PatternLu { symbolic, numeric: NumericLu::new(), par }
+    }
+
     /// The symbolic analysis (ordering and structure of the factors).
     pub fn symbolic(&self) -> &SymbolicLu<usize> {
         &self.symbolic

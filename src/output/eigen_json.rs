@@ -2,68 +2,207 @@
 //! modal table (labels, error estimates, kinetic-energy shares) and the unknowns' names.
 //! Matrices are arrays of rows; complex numbers `{"re", "im"}`; missing eigenvectors and
 //! non-finite numbers are `null`.
+//!
+//! Written as it is serialized, never held whole: the large parts (every mode's energy
+//! shares, the sparse pencil's entries, the eigenvectors' rows) are produced item by item
+//! straight into the writer. On the 96,024-equation spring chain's 40 modes the document
+//! built as one `serde_json::Value` and then printed to a string took 1.4 GB at its peak
+//! for a 112 MB file (issue 36, point 3). The bytes are those `serde_json`'s pretty printer
+//! gives the same document as a `Value`: every object's keys in sorted order, the small
+//! pieces (a mode's row, an energy share) serialized through `Value`, which sorts them.
 
-use faer::{c64, Col, Mat};
+use std::cell::RefCell;
+use std::collections::BTreeMap;
+use std::io::Write;
+
+use faer::c64;
+use serde::ser::{SerializeMap, SerializeSeq};
+use serde::{Serialize, Serializer};
 use serde_json::{json, Value};
 
 use super::eigen_file::{mbdyn_alpha, EigenFile, MatrixLayout};
 use super::modal::ModalReport;
+use crate::eigen::EnergyShare;
 
 fn number(x: f64) -> Value {
     if x.is_finite() { json!(x) } else { Value::Null }
 }
 
-fn rows(m: &Mat<f64>) -> Value {
-    Value::Array((0..m.nrows()).map(|i| Value::Array((0..m.ncols()).map(|j| number(m[(i, j)])).collect())).collect())
+/// A sequence serialized from an iterator, item by item (once: the iterator is consumed).
+struct Stream<I>(RefCell<Option<I>>);
+
+fn stream<I>(items: I) -> Stream<I> {
+    Stream(RefCell::new(Some(items)))
 }
 
-fn complex(z: c64) -> Value {
-    json!({"re": number(z.re), "im": number(z.im)})
+impl<I: Iterator<Item = T>, T: Serialize> Serialize for Stream<I> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let items = self.0.borrow_mut().take().ok_or_else(|| serde::ser::Error::custom("a streamed sequence serialized twice"))?;
+        let mut seq = s.serialize_seq(None)?;
+        for item in items {
+            seq.serialize_element(&item)?;
+        }
+        seq.end()
+    }
 }
 
-/// Vectors as rows of the n x k matrix (one column per written mode).
-fn vectors(n: usize, cols: &[Option<&Col<c64>>]) -> Value {
-    Value::Array((0..n).map(|i| Value::Array(cols.iter().map(|c| c.map_or(Value::Null, |v| complex(v[i]))).collect())).collect())
+/// `T` serialized as `serde_json::Value` serializes it: an object's keys sorted.
+struct Sorted<'a, T>(&'a T);
+
+impl<T: Serialize> Serialize for Sorted<'_, T> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        serde_json::to_value(self.0).map_err(serde::ser::Error::custom)?.serialize(s)
+    }
 }
 
-/// The JSON document of one eigenanalysis.
-pub fn eigen_json(input: &str, e: &EigenFile) -> Value {
+/// A complex number as `{"im": …, "re": …}` (the sorted keys), `null` for a missing vector.
+struct Complex(Option<c64>);
+
+impl Serialize for Complex {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let Some(z) = self.0 else { return s.serialize_none() };
+        let mut map = s.serialize_map(Some(2))?;
+        map.serialize_entry("im", &number(z.im))?;
+        map.serialize_entry("re", &number(z.re))?;
+        map.end()
+    }
+}
+
+/// One mode's row of the modal table with its energy shares (borrowed, streamed).
+struct Row<'a> {
+    fields: serde_json::Map<String, Value>,
+    energy: &'a [EnergyShare],
+}
+
+impl Serialize for Row<'_> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let energy = (!self.energy.is_empty()).then_some(("energy", self.energy));
+        let mut map = s.serialize_map(None)?;
+        let mut pending = energy;
+        for (key, value) in &self.fields {
+            if let Some((name, shares)) = pending.filter(|(name, _)| *name < key.as_str()) {
+                map.serialize_entry(name, &stream(shares.iter().map(Sorted)))?;
+                pending = None;
+            }
+            map.serialize_entry(key, value)?;
+        }
+        if let Some((name, shares)) = pending {
+            map.serialize_entry(name, &stream(shares.iter().map(Sorted)))?;
+        }
+        map.end()
+    }
+}
+
+/// A sparse `Aplus`/`Aminus`: `{"entries": [[i, j, v], …], "indices": …, "size": [n, n]}`.
+struct SparseEntries {
+    entries: Vec<(usize, usize, f64)>,
+    n: usize,
+}
+
+impl Serialize for SparseEntries {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let mut map = s.serialize_map(Some(3))?;
+        map.serialize_entry("entries", &stream(self.entries.iter().map(|&(i, j, v)| (i + 1, j + 1, number(v)))))?;
+        map.serialize_entry("indices", "1-based [row, column, value], as the .m file's spconvert")?;
+        map.serialize_entry("size", &[self.n, self.n])?;
+        map.end()
+    }
+}
+
+/// A top-level entry of the document.
+enum Part<'a> {
+    Plain(Value),
+    Rows(Vec<Row<'a>>),
+    /// The sparse `Aplus`/`Aminus` (`plus`): `{"entries": [[i, j, v], …], "indices": …,
+    /// "size": [n, n]}`.
+    Sparse(bool),
+    /// The dense `Aplus`/`Aminus` as rows (`plus`).
+    Full(bool),
+    /// `VR` (`right`) or `VL`: n rows, one complex entry per written mode.
+    Vectors(bool),
+}
+
+/// The document's parts, serialized with the file they come from.
+struct Document<'a, 'f> {
+    file: &'a EigenFile<'f>,
+    parts: BTreeMap<&'static str, Part<'a>>,
+}
+
+impl Serialize for Document<'_, '_> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let e = self.file;
+        let n = e.pencil.dim();
+        let mut map = s.serialize_map(Some(self.parts.len()))?;
+        for (key, part) in &self.parts {
+            match part {
+                Part::Plain(v) => map.serialize_entry(key, v)?,
+                Part::Rows(rows) => map.serialize_entry(key, rows)?,
+                Part::Sparse(plus) => map.serialize_entry(key, &SparseEntries { entries: e.pencil.nonzeros(*plus), n })?,
+                Part::Full(plus) => {
+                    let full = e.pencil.full(*plus);
+                    let m: &faer::Mat<f64> = &full;
+                    map.serialize_entry(key, &stream((0..m.nrows()).map(|i| stream((0..m.ncols()).map(move |j| number(m[(i, j)]))))))?
+                }
+                Part::Vectors(right) => {
+                    let modes: Vec<_> = e.written.iter().map(|&k| &e.modal.modes[k]).map(|m| if *right { m.right.as_ref() } else { m.left.as_ref() }).collect();
+                    map.serialize_entry(key, &stream((0..n).map(|i| stream(modes.iter().map(move |c| Complex(c.map(|v| v[i])))))))?
+                }
+            }
+        }
+        map.end()
+    }
+}
+
+/// Writes the JSON document of one eigenanalysis (pretty-printed, a final newline) to `w`
+/// (buffered by the caller: `output::atomic`'s files are).
+pub fn write_eigen_json(w: &mut dyn Write, input: &str, e: &EigenFile) -> serde_json::Result<()> {
     let n = e.pencil.dim();
-    let table = ModalReport::new(e.modal, n).with_energy(e.energy.to_vec());
-    let written: Vec<Value> = e.written.iter().map(|&k| serde_json::to_value(&table.eigenvalues[k]).unwrap_or(Value::Null)).collect();
-    let mut doc = json!({
-        "input": input,
-        "analysis": e.index,
-        "units": "time and dcoef in s; eigenvalues in rad/s; frequencies in Hz; positions in m; rotation vectors in rad",
-        "dTime": e.time,
-        "dCoef": e.dcoef,
-        "equations": n,
-        "route": e.modal.route,
-        "solver": e.solver,
-        "counts": table.counts,
-        "eigenvalues": written,
-        "alpha": e.written.iter().map(|&k| mbdyn_alpha(&e.modal.modes[k], e.modal.route, e.dcoef).map(number).to_vec()).collect::<Vec<_>>(),
-        "unknowns": e.unknown_names,
-    });
+    let table = ModalReport::new(e.modal, n).with_descriptions(e.energy);
+    let rows = e
+        .written
+        .iter()
+        .map(|&k| {
+            let fields = match serde_json::to_value(&table.eigenvalues[k])? {
+                Value::Object(fields) => fields,
+                _ => unreachable!("a mode's row serializes as an object"),
+            };
+            Ok(Row { fields, energy: e.energy.get(k).map_or(&[][..], Vec::as_slice) })
+        })
+        .collect::<serde_json::Result<Vec<_>>>()?;
+    let mut parts: BTreeMap<&'static str, Part> = BTreeMap::new();
+    let mut plain = |key, value| parts.insert(key, Part::Plain(value));
+    plain("input", json!(input));
+    plain("analysis", json!(e.index));
+    plain("units", json!("time and dcoef in s; eigenvalues in rad/s; frequencies in Hz; positions in m; rotation vectors in rad"));
+    plain("dTime", json!(e.time));
+    plain("dCoef", json!(e.dcoef));
+    plain("equations", json!(n));
+    plain("route", serde_json::to_value(e.modal.route)?);
+    plain("solver", json!(e.solver));
+    plain("counts", serde_json::to_value(&table.counts)?);
+    plain("alpha", Value::Array(e.written.iter().map(|&k| Value::Array(mbdyn_alpha(&e.modal.modes[k], e.modal.route, e.dcoef).map(number).to_vec())).collect()));
+    plain("unknowns", json!(e.unknown_names));
+    if let Some(g) = e.geometry {
+        plain("labels", json!(g.labels));
+        plain("idx", json!(g.first_index));
+        plain("X0", Value::Array(g.position.iter().zip(&g.rotation_vector).flat_map(|(x, p)| [x.x, x.y, x.z, p.x, p.y, p.z]).map(number).collect()));
+    }
+    parts.insert("eigenvalues", Part::Rows(rows));
     for (plus, name) in [(true, "Aplus"), (false, "Aminus")] {
         match e.matrices {
-            None => break,
-            Some(MatrixLayout::Full) => doc[name] = rows(&e.pencil.full(plus)),
+            None => {}
+            Some(MatrixLayout::Full) => {
+                parts.insert(name, Part::Full(plus));
+            }
             Some(MatrixLayout::Sparse) => {
-                let entries: Vec<Value> = e.pencil.nonzeros(plus).into_iter().map(|(i, j, v)| json!([i + 1, j + 1, number(v)])).collect();
-                doc[name] = json!({"size": [n, n], "entries": entries, "indices": "1-based [row, column, value], as the .m file's spconvert"});
+                parts.insert(name, Part::Sparse(plus));
             }
         }
     }
-    if let Some(g) = e.geometry {
-        doc["labels"] = json!(g.labels);
-        doc["idx"] = json!(g.first_index);
-        doc["X0"] = Value::Array(g.position.iter().zip(&g.rotation_vector).flat_map(|(x, p)| [x.x, x.y, x.z, p.x, p.y, p.z]).map(number).collect());
-    }
     if e.eigenvectors {
-        let modes = || e.written.iter().map(|&k| &e.modal.modes[k]);
-        doc["VR"] = vectors(n, &modes().map(|m| m.right.as_ref()).collect::<Vec<_>>());
-        doc["VL"] = vectors(n, &modes().map(|m| m.left.as_ref()).collect::<Vec<_>>());
+        parts.insert("VR", Part::Vectors(true));
+        parts.insert("VL", Part::Vectors(false));
     }
-    doc
+    serde_json::to_writer_pretty(&mut *w, &Document { file: e, parts })?;
+    w.write_all(b"\n").map_err(serde_json::Error::io)
 }

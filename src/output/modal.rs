@@ -134,10 +134,20 @@ impl ModalReport {
     }
 
     /// Attaches kinetic-energy shares (one list per mode, in table order).
-    pub fn with_energy(mut self, shares: Vec<Vec<EnergyShare>>) -> Self {
-        for (row, s) in self.eigenvalues.iter_mut().zip(shares) {
-            row.description = (!s.is_empty()).then(|| describe(&s));
+    pub fn with_energy(self, shares: Vec<Vec<EnergyShare>>) -> Self {
+        let mut report = self.with_descriptions(&shares);
+        for (row, s) in report.eigenvalues.iter_mut().zip(shares) {
             row.energy = s;
+        }
+        report
+    }
+
+    /// Attaches the one-line descriptions of the kinetic-energy shares (one list per mode,
+    /// in table order), not the shares themselves (a writer that streams them, e.g.
+    /// `eigen_json`, borrows them instead of copying a list per mode).
+    pub fn with_descriptions(mut self, shares: &[Vec<EnergyShare>]) -> Self {
+        for (row, s) in self.eigenvalues.iter_mut().zip(shares) {
+            row.description = (!s.is_empty()).then(|| describe(s));
         }
         self
     }

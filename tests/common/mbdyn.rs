@@ -157,3 +157,33 @@ pub fn assert_model_jacobians(model_of: impl Fn(ConstraintForm) -> Model, seed: 
     }
     compared
 }
+
+/// The string of `n` masses (`tests/mbdyn/use_arpack.rs` describes it) with `eigenanalysis: 0., OPTIONS;` (12 n + 24 equations).
+pub fn string_of_masses(n: usize, options: &str) -> String {
+    let mut t = format!(
+        "begin: data; problem: initial value; end: data;
+begin: initial value; initial time: 0.; final time: 0.; time step: 1.e-3; tolerance: 1.e-10;
+    eigenanalysis: 0., {options};
+end: initial value;
+begin: control data; skip initial joint assembly; structural nodes: {}; rigid bodies: {n}; joints: {}; end: control data;
+begin: nodes;
+    structural: 0, static, null, eye, null, null;
+    structural: {}, static, {}., 0., 0., eye, null, null;
+",
+        n + 2,
+        n + 3,
+        n + 1,
+        n + 1
+    );
+    for i in 1..=n {
+        t += &format!("    structural: {i}, dynamic displacement, {i}., 0., 0., null;\n");
+    }
+    t += &format!("end: nodes;\nbegin: elements;\n    joint: 0, clamp, 0, node, node;\n    joint: {}, clamp, {}, node, node;\n", n + 2, n + 1);
+    for i in 1..=n + 1 {
+        if i <= n {
+            t += &format!("    body: {i}, {i}, 1.;\n");
+        }
+        t += &format!("    joint: {i}, rod, {}, {i}, 0.9, linear elastic, 900.;\n", i - 1);
+    }
+    t + "end: elements;\n"
+}

@@ -111,3 +111,26 @@ pub fn lambda_of_alpha(row: [f64; 3], dcoef: f64) -> (f64, f64) {
     let d = dcoef * ((ar + b).powi(2) + ai * ai);
     ((ar * ar + ai * ai - b * b) / d, 2.0 * ai * b / d)
 }
+
+/// Asserts that `text` is what `serde_json`'s pretty printer gives for the document it holds
+/// (each object's keys sorted, the same layout), number tokens aside: serde_json's reader
+/// rounds some decimals one unit off in the last place (without its `float_roundtrip`
+/// feature), so a number's digits are not compared, only that it is one on both sides.
+pub fn assert_canonical_json(text: &str) {
+    let value: serde_json::Value = serde_json::from_str(text).unwrap();
+    let reprint = serde_json::to_string_pretty(&value).unwrap() + "\n";
+    let layout = |t: &str| -> Vec<String> {
+        t.lines()
+            .map(|l| {
+                let (key, value) = l.rsplit_once(": ").map_or(("", l), |(k, v)| (k, v));
+                let bare = value.trim().trim_end_matches(',');
+                if bare.parse::<f64>().is_ok() { format!("{key}: <number>{}", if value.ends_with(',') { "," } else { "" }) } else { l.to_string() }
+            })
+            .collect()
+    };
+    let (a, b) = (layout(text), layout(&reprint));
+    assert_eq!(a.len(), b.len(), "lines");
+    if let Some(k) = (0..a.len()).find(|&k| a[k] != b[k]) {
+        panic!("line {}: {:?} where serde_json prints {:?}", k + 1, a[k], b[k]);
+    }
+}

@@ -15,6 +15,7 @@ use crate::common;
 
 use common::cli::{romdyn_at, temp_dir, write_file};
 use common::lambda_of_alpha;
+use common::mbdyn::string_of_masses;
 use std::path::Path;
 
 use faer::c64;
@@ -24,36 +25,6 @@ use romdyn::eigen::ModeKind;
 use romdyn::input::mbdyn::{build, parse_text};
 use romdyn::model::EigenSolverRequest;
 use serde_json::Value;
-
-/// The string of `n` masses with `eigenanalysis: 0., OPTIONS;` (12 n + 24 equations).
-fn string_of_masses(n: usize, options: &str) -> String {
-    let mut t = format!(
-        "begin: data; problem: initial value; end: data;
-begin: initial value; initial time: 0.; final time: 0.; time step: 1.e-3; tolerance: 1.e-10;
-    eigenanalysis: 0., {options};
-end: initial value;
-begin: control data; skip initial joint assembly; structural nodes: {}; rigid bodies: {n}; joints: {}; end: control data;
-begin: nodes;
-    structural: 0, static, null, eye, null, null;
-    structural: {}, static, {}., 0., 0., eye, null, null;
-",
-        n + 2,
-        n + 3,
-        n + 1,
-        n + 1
-    );
-    for i in 1..=n {
-        t += &format!("    structural: {i}, dynamic displacement, {i}., 0., 0., null;\n");
-    }
-    t += &format!("end: nodes;\nbegin: elements;\n    joint: 0, clamp, 0, node, node;\n    joint: {}, clamp, {}, node, node;\n", n + 2, n + 1);
-    for i in 1..=n + 1 {
-        if i <= n {
-            t += &format!("    body: {i}, {i}, 1.;\n");
-        }
-        t += &format!("    joint: {i}, rod, {}, {i}, 0.9, linear elastic, 900.;\n", i - 1);
-    }
-    t + "end: elements;\n"
-}
 
 /// The closed form's `count` lowest natural frequencies [rad/s] of the string of `n`
 /// masses, each repeated as often as it occurs (lateral ones twice), ascending.
@@ -89,7 +60,11 @@ fn use_arpack_on_a_model_too_large_for_the_dense_route_writes_the_lowest_modes_a
     let (ok, out, err) = romdyn_at(&dir, &["run", &sparse]);
     assert!(ok, "{err}");
     assert!(out.contains("22 dynamic eigenvalues, the 10 lowest dynamic modes (use arpack), sparse shift-invert Krylov-Schur route: certified"), "{out}");
-    let json: Value = serde_json::from_str(&std::fs::read_to_string(dir.join("sparse_0.json")).unwrap()).unwrap();
+    let text = std::fs::read_to_string(dir.join("sparse_0.json")).unwrap();
+    let json: Value = serde_json::from_str(&text).unwrap();
+    // Streamed part by part (src/output/eigen_json.rs), laid out as serde_json prints the
+    // whole document (sparse triplets, vectors, energy shares).
+    common::assert_canonical_json(&text);
     let dcoef = json["dCoef"].as_f64().unwrap();
     assert_eq!(dcoef, 5e-4);
     let alpha: Vec<[f64; 3]> = json["alpha"].as_array().unwrap().iter().map(|r| [0, 1, 2].map(|k| r[k].as_f64().unwrap())).collect();

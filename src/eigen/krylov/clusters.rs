@@ -16,6 +16,7 @@ use faer::linalg::solvers::DenseSolveCore;
 use faer::{c64, Col, Mat};
 
 use super::pencil::Pencil;
+use crate::eigen::route::norm;
 
 /// Ritz values closer than this, relative to their distance from the shift (or to |λ|),
 /// are one cluster. Those far from the shift are only that accurate (the cantilever's
@@ -53,12 +54,12 @@ const FACING: f64 = 1e-8;
 fn basis(vectors: &[&Col<c64>], new_direction: f64) -> Vec<Col<c64>> {
     let mut q: Vec<Col<c64>> = Vec::new();
     for v in vectors {
-        let nv = v.norm_l2();
+        let nv = norm(v);
         if !(nv > 0.0) {
             continue;
         }
         let w = outside(v, &q);
-        let nw = w.norm_l2();
+        let nw = norm(&w);
         if nw > new_direction * nv {
             q.push(Col::from_fn(w.nrows(), |i| w[i] / nw));
         }
@@ -84,7 +85,7 @@ fn outside(v: &Col<c64>, q: &[Col<c64>]) -> Col<c64> {
 /// from repeating them (0 when it lies in their span).
 pub(super) fn outside_span<'a>(x: &Col<c64>, vectors: impl Iterator<Item = &'a Col<c64>>) -> f64 {
     let q = basis(&vectors.collect::<Vec<_>>(), DEPENDENT);
-    outside(x, &q).norm_l2() / x.norm_l2().max(f64::MIN_POSITIVE)
+    norm(&outside(x, &q)) / norm(x).max(f64::MIN_POSITIVE)
 }
 
 /// Inverse iterations per completed eigenspace.
@@ -194,7 +195,7 @@ fn ritz_directions(q: &[Col<c64>], y: &[Col<c64>]) -> Option<Vec<(c64, Col<c64>)
         let x = Col::from_fn(n, |i| (0..m).fold(c64::new(0.0, 0.0), |s, j| s + q[j][i] * z[j]));
         let tx = Col::from_fn(n, |i| (0..m).fold(c64::new(0.0, 0.0), |s, j| s + y[j][i] * z[j]));
         let r = (0..n).map(|i| (tx[i] - theta * x[i]).norm_sqr()).sum::<f64>().sqrt();
-        if r <= RITZ_RESIDUAL * theta.norm() * x.norm_l2() {
+        if r <= RITZ_RESIDUAL * theta.norm() * norm(&x) {
             out.push((theta, x));
         }
     }
@@ -287,7 +288,7 @@ fn pairs_of(pencil: &Pencil, lambda: c64, qr: Vec<Col<c64>>, ql: Vec<Col<c64>>) 
     if m == 1 && ml == 1 {
         let (v, u) = (qr.into_iter().next()?, ql.into_iter().next()?);
         let ev = pencil.e.mul_complex(&v);
-        if !(dot_t(&u, &ev).norm() > FACING * ev.norm_l2()) {
+        if !(dot_t(&u, &ev).norm() > FACING * norm(&ev)) {
             return None;
         }
         return Some(vec![(lambda, v, u)]);
@@ -319,7 +320,7 @@ fn pairs_of(pencil: &Pencil, lambda: c64, qr: Vec<Col<c64>>, ql: Vec<Col<c64>>) 
     // M's smallest singular value against its largest: the two bases must face each other.
     let sv = me.singular_values().ok()?;
     let (big, small) = (sv.iter().copied().fold(0.0, f64::max), sv.iter().copied().fold(f64::INFINITY, f64::min));
-    let scale = ev.iter().map(|x| x.norm_l2()).fold(0.0, f64::max);
+    let scale = ev.iter().map(norm).fold(0.0, f64::max);
     if !(small > 1e-8 * big && small > FACING * scale) {
         return None;
     }

@@ -14,7 +14,6 @@
 
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::sparse::linalg::lu::simplicial::{self, SimplicialLu};
-use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use faer::reborrow::ReborrowMut;
 use faer::{c64, Col, ColMut, ColRef, Mat, MatMut, Par};
 
@@ -130,10 +129,13 @@ impl<'a> ShiftInvert<'a> {
     pub fn new(pencil: &'a Pencil, sigma: c64) -> Result<Self, KrylovError> {
         let n = pencil.dim();
         let singular = || KrylovError::Singular(sigma);
+        let shifted = pencil.shifted();
+        let symbolic = || pencil.symbolic().cloned().ok_or_else(singular);
         let (factor, scratch) = if sigma.im == 0.0 {
-            let (col_ptr, row_idx, values) = pencil.k.csc_sum(&pencil.e, |v| v, |v| sigma.re * v, |x, y| x + y);
-            let a = SparseColMat::<usize, f64>::new(SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx), values);
-            let mut lu = PatternLu::<f64>::analyze(a.symbolic(), Par::Seq).map_err(|_| singular())?;
+            let mut values = Vec::new();
+            shifted.values_into(&mut values, |k, e| k + sigma.re * e);
+            let a = shifted.matrix(&values);
+            let mut lu = PatternLu::<f64>::with_symbolic(symbolic()?, Par::Seq);
             let numeric_scratch = lu.factor_scratch();
             let scratch = lu.solve_scratch(2);
             // faer chose its simplicial factorization when its numeric scratch is the
@@ -143,7 +145,7 @@ impl<'a> ShiftInvert<'a> {
                 let mut buf = MemBuffer::try_new(numeric_scratch).map_err(|_| singular())?;
                 let (mut row_fwd, mut row_inv) = (vec![0usize; n], vec![0usize; n]);
                 let mut simplicial_lu = SimplicialLu::new();
-                simplicial::factorize_simplicial_numeric_lu(&mut row_fwd, &mut row_inv, &mut simplicial_lu, a.as_ref(), lu.symbolic().col_perm(), MemStack::new(&mut buf)).map_err(|_| singular())?;
+                simplicial::factorize_simplicial_numeric_lu(&mut row_fwd, &mut row_inv, &mut simplicial_lu, a, lu.symbolic().col_perm(), MemStack::new(&mut buf)).map_err(|_| singular())?;
                 let (col_fwd, col_inv) = lu.symbolic().col_perm().arrays();
                 let (col_fwd, col_inv) = (col_fwd.to_vec(), col_inv.to_vec());
                 let (e_rows, et_rows) = (pencil.e.rows_in_order(&row_fwd), pencil.e.transpose_rows_in_order(&col_fwd));
@@ -152,15 +154,15 @@ impl<'a> ShiftInvert<'a> {
                 (Factor::RealSimplicial(Box::new(Simplicial { lu: simplicial_lu, row_fwd, row_inv, col_fwd, col_inv, e_rows, et_rows, u_recip })), scratch)
             } else {
                 let mut buf = MemBuffer::try_new(numeric_scratch).map_err(|_| singular())?;
-                lu.factor(a.as_ref(), MemStack::new(&mut buf)).map_err(|_| singular())?;
+                lu.factor(a, MemStack::new(&mut buf)).map_err(|_| singular())?;
                 (Factor::Real(lu), scratch)
             }
         } else {
-            let (col_ptr, row_idx, values) = pencil.k.csc_sum(&pencil.e, |v| c64::new(v, 0.0), |v| sigma * v, |x, y| x + y);
-            let a = SparseColMat::<usize, c64>::new(SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx), values);
-            let mut lu = PatternLu::<c64>::analyze(a.symbolic(), Par::Seq).map_err(|_| singular())?;
+            let mut values = Vec::new();
+            shifted.values_into(&mut values, |k, e| c64::new(k, 0.0) + sigma * e);
+            let mut lu = PatternLu::<c64>::with_symbolic(symbolic()?, Par::Seq);
             let mut buf = MemBuffer::try_new(lu.factor_scratch()).map_err(|_| singular())?;
-            lu.factor(a.as_ref(), MemStack::new(&mut buf)).map_err(|_| singular())?;
+            lu.factor(shifted.matrix(&values), MemStack::new(&mut buf)).map_err(|_| singular())?;
             let scratch = lu.solve_scratch(1);
             (Factor::Complex(lu), scratch)
         };
@@ -328,6 +330,7 @@ impl Entry for c64 {
 mod tests {
     use super::*;
     use faer::sparse::linalg::lu::factorize_symbolic_lu;
+    use faer::sparse::SparseColMat;
     use faer::Conj;
 
     /// The four triangular loops against faer's own solves (independent code) on the

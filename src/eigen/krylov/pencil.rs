@@ -8,6 +8,10 @@
 //! the constrained variables' eigenvalues become infinite (harmless for shift-invert, they map
 //! to θ = 0), and vectors map back as `v₃₀[L] = v₂₉[L]/λ`, `u₃₀[C] = u₂₉[C]/λ`.
 
+use std::sync::OnceLock;
+
+use faer::sparse::linalg::lu::{factorize_symbolic_lu, SymbolicLu};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{c64, Col};
 
 use super::KrylovError;
@@ -20,6 +24,21 @@ pub(super) struct Pencil {
     pub k: SparseMatrix,
     /// Constraint rows / multiplier columns moved from `F_yd` (form of eq. 30), else empty.
     moved: Vec<bool>,
+    /// The pattern of `K + σ E` and the symbolic LU analysis of it, made once for every
+    /// shift and every point of the count (`count.rs`): each factorization is numeric only.
+    shifted: OnceLock<Shifted>,
+    symbolic: OnceLock<Option<SymbolicLu<usize>>>,
+}
+
+/// `K` and `E` on the union of their patterns (faer's compressed columns, row indices
+/// ascending; an entry one of them lacks is 0 there), so that `K + σ E`'s values are one
+/// pass over two arrays: the same numbers `SparseMatrix::csc_sum` gives (`k + σ·0 = k`,
+/// `0 + σ e = σ e`; only the sign of a zero may differ).
+pub(super) struct Shifted {
+    pub col_ptr: Vec<usize>,
+    pub row_idx: Vec<usize>,
+    k: Vec<f64>,
+    e: Vec<f64>,
 }
 
 impl Pencil {
@@ -45,7 +64,7 @@ impl Pencil {
         let e = SparseMatrix::from_triplets(n, n, dae.fyd.triplets().filter(|&(i, j, _)| !(moved[i] || moved[j])));
         let k = SparseMatrix::from_triplets(n, n, dae.fy.triplets().chain(dae.fyd.triplets().filter(|&(i, j, _)| moved[i] || moved[j])));
         match (e, k) {
-            (Some(e), Some(k)) => Ok(Pencil { e, k, moved }),
+            (Some(e), Some(k)) => Ok(Pencil { e, k, moved, shifted: OnceLock::new(), symbolic: OnceLock::new() }),
             _ => unreachable!("entries of an n x n model stay inside n x n"),
         }
     }
@@ -60,8 +79,43 @@ impl Pencil {
         self.k.nrows()
     }
 
+    /// The pattern of `K + σ E` with `K`'s and `E`'s values on it.
+    pub fn shifted(&self) -> &Shifted {
+        self.shifted.get_or_init(|| {
+            let (col_ptr, row_idx, ke) = self.k.csc_sum(&self.e, |v| (v, 0.0), |v| (0.0, v), |x, y| (x.0 + y.0, x.1 + y.1));
+            let (k, e) = ke.into_iter().unzip();
+            Shifted { col_ptr, row_idx, k, e }
+        })
+    }
+
+    /// The symbolic LU analysis (COLAMD column ordering, structure of the factors) of the
+    /// pattern of `K + σ E`, shared by every shift; `None` when faer's analysis fails.
+    pub fn symbolic(&self) -> Option<&SymbolicLu<usize>> {
+        self.symbolic
+            .get_or_init(|| {
+                let s = self.shifted();
+                let n = self.dim();
+                factorize_symbolic_lu(SymbolicSparseColMatRef::new_checked(n, n, &s.col_ptr, None, &s.row_idx), Default::default()).ok()
+            })
+            .as_ref()
+    }
+
     /// A right (`left = false`) or left vector of eq. 29 as a vector of the DAE's pencil.
     pub fn to_dae(&self, x: &Col<c64>, lambda: c64) -> Col<c64> {
         Col::from_fn(x.nrows(), |i| if self.moved[i] { x[i] / lambda } else { x[i] })
+    }
+}
+
+impl Shifted {
+    /// The values of `K + σ E` on the pattern, into `out` (resized).
+    pub fn values_into<T: Copy>(&self, out: &mut Vec<T>, value: impl Fn(f64, f64) -> T) {
+        out.clear();
+        out.extend(self.k.iter().zip(&self.e).map(|(&k, &e)| value(k, e)));
+    }
+
+    /// `K + σ E` with the values `values` (from [`Self::values_into`]).
+    pub fn matrix<'a, T>(&'a self, values: &'a [T]) -> SparseColMatRef<'a, usize, T> {
+        let n = self.col_ptr.len() - 1;
+        SparseColMatRef::new(SymbolicSparseColMatRef::new_checked(n, n, &self.col_ptr, None, &self.row_idx), values)
     }
 }
