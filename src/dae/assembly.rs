@@ -528,7 +528,7 @@ impl<'m> Assembler<'m> {
 
     /// Every written hydraulic element's row of MBDyn's `.hyd` file, by element index.
     pub fn hydraulic_rows(&self, st: &State) -> Vec<(usize, Vec<f64>)> {
-        self.element_outputs(st, |o, s| o.hydraulic_row(s))
+        self.element_outputs(st, |o, s| if o.writes_hydraulic_row() { o.hydraulic_row(s) } else { Vec::new() })
     }
 
     /// What `read` gives of each element's outputs at `st`, for the elements that give any.

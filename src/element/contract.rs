@@ -373,7 +373,7 @@ pub trait Outputs {
     }
     /// Its row of MBDyn's `.hyd` file (a hydraulic element's own output: flows, volumes,
     /// densities, … in the columns of its `Output` in MBDyn 1.7.3, SI units) at this state;
-    /// empty for other elements and for a hydraulic element whose output is off.
+    /// read only where [`Outputs::writes_hydraulic_row`] says so.
     fn hydraulic_row(&self, _s: &dyn ElementState) -> Vec<f64> {
         Vec::new()
     }

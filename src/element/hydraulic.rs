@@ -135,9 +135,6 @@ impl Outputs for Actuator {
         self.output
     }
     fn hydraulic_row(&self, st: &dyn ElementState) -> Vec<f64> {
-        if !self.output {
-            return Vec::new();
-        }
         let s = self.stroke(st);
         let [flow1, flow2] = self.flows(st, &s);
         let [v1, v2] = [self.areas[0] * s.length, self.areas[1] * (self.length - s.length)];
@@ -318,9 +315,6 @@ impl Outputs for MinorLoss {
         self.output
     }
     fn hydraulic_row(&self, st: &dyn ElementState) -> Vec<f64> {
-        if !self.output {
-            return Vec::new();
-        }
         let (q, _, rho) = self.flow(st);
         vec![q / (rho * self.area), q]
     }
@@ -398,9 +392,6 @@ impl Outputs for ControlValve {
         self.output
     }
     fn hydraulic_row(&self, st: &dyn ElementState) -> Vec<f64> {
-        if !self.output {
-            return Vec::new();
-        }
         let mut row = vec![self.state.value_in(st).clamp(-1.0, 1.0), 0.0, 0.0, 0.0, 0.0];
         for (from, to, area) in self.orifices(st) {
             let (q, _) = orifice(VALVE_DISCHARGE * area, self.density, st.scalar_value(from) - st.scalar_value(to));
@@ -518,9 +509,6 @@ impl Outputs for Pipe {
         self.output
     }
     fn hydraulic_row(&self, st: &dyn ElementState) -> Vec<f64> {
-        if !self.output {
-            return Vec::new();
-        }
         let q = st.multiplier(0);
         let rho = self.fluid.density(0.5 * (st.scalar_value(0) + st.scalar_value(1)));
         vec![q / (rho * self.area), q, self.reynolds(q)]

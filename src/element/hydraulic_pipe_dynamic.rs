@@ -208,9 +208,6 @@ impl Outputs for DynamicPipe {
         self.output
     }
     fn hydraulic_row(&self, st: &dyn ElementState) -> Vec<f64> {
-        if !self.output {
-            return Vec::new();
-        }
         let s = self.at(st);
         let slope = self.fluid.density_slope();
         // MBDyn writes after `AfterConvergence`: the regime this state leaves.

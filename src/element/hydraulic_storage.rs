@@ -152,9 +152,6 @@ impl Outputs for Accumulator {
         self.output
     }
     fn hydraulic_row(&self, st: &dyn ElementState) -> Vec<f64> {
-        if !self.output {
-            return Vec::new();
-        }
         let rho = self.fluid.reference_density();
         vec![st.multiplier(0), st.multiplier(1), st.rate(1), self.piston(st).gas, -rho * st.multiplier(1) * self.area, 0.0]
     }
@@ -269,9 +266,6 @@ impl Outputs for Tank {
         self.output
     }
     fn hydraulic_row(&self, st: &dyn ElementState) -> Vec<f64> {
-        if !self.output {
-            return Vec::new();
-        }
         let f = self.flows(st);
         vec![st.multiplier(0), st.rate(0), -f.inflow[0], f.outflow[0]]
     }
@@ -364,9 +358,6 @@ impl Outputs for Orifice {
         self.output
     }
     fn hydraulic_row(&self, st: &dyn ElementState) -> Vec<f64> {
-        if !self.output {
-            return Vec::new();
-        }
         let (q, _, _, rho, turbulent) = self.flow(st);
         let velocity = q / (rho * self.pipe_area);
         vec![velocity, q, (rho * velocity * self.diameter / self.fluid.viscosity()).abs(), if turbulent { 1.0 } else { 0.0 }]
