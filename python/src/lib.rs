@@ -17,7 +17,7 @@ use numpy::{Complex64, IntoPyArray, PyArray1, PyArray2, PyArray3, PyArrayMethods
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use romdyn::analysis::{run, NodeHistories};
+use romdyn::analysis::{run, NodeHistories, RunReport};
 use romdyn::input::mbdyn::{read_model_text, MbdynModel, ReadOptions, SetOverrides};
 use romdyn::output::rom_file::RomExport;
 use romdyn::study::{python_spelling, EigenSettings, FrequencyGrid, ReducedModel, Study, StudyBuilder, StudyError, StudySource};
@@ -207,22 +207,29 @@ impl Model {
     /// node histories: {"time" [s] (steps,), "labels" (nodes,), "position" [m] (steps, nodes,
     /// 3), "orientation" (steps, nodes, 3, 3: node frame to global), "velocity" [m/s],
     /// "angular_velocity" [rad/s] (steps, nodes, 3)}; step 0 is the initial state.
+    /// What `romdyn run` prints of the run comes along: "steps", "newton_iterations",
+    /// "derivatives_iterations", "factorizations" (Newton iterations with a new Jacobian),
+    /// "wall_time" [s], "assembly" (MBDyn's initial assembly: "iterations", "test",
+    /// "moved_position" [m], "moved_rotation" [rad], "moved_velocity" [m/s],
+    /// "moved_angular_velocity" [rad/s]) and "eigenanalyses", one dict per eigenanalysis
+    /// of the file ("index", "time" [s], "dcoef" [s], "eigenvalues" [rad/s] (the dynamic
+    /// ones, complex), "zero", "infinite", "solver", "every_eigenvalue", "certified").
     /// The run's warnings (initial velocities that violate the joints, the derivatives
     /// phase, eigenanalyses one-sided or not certified) are raised as `romdyn run` prints them
     /// (ReferenceWarning, EigenanalysisWarning).
     fn run<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let (h, kept, run_warnings) = py
-            .detach(|| -> Result<(NodeHistories, (Vec<String>, Vec<String>), Vec<romdyn::analysis::RunWarning>), StudyError> {
+        let (h, kept, report) = py
+            .detach(|| -> Result<(NodeHistories, (Vec<String>, Vec<String>), RunReport), StudyError> {
                 let (m, kept) = self.read(true)?;
                 let mut h = NodeHistories::default();
                 let report = run(&m.model, &m.problem, &mut h).map_err(|cause| StudyError::Reference { file: Some(self.name.clone()), cause })?;
-                Ok((h, (kept, m.model.input_warnings()), report.warnings()))
+                Ok((h, (kept, m.model.input_warnings()), report))
             })
             .map_err(py_err)?;
         let (kept, input) = kept;
         warnings::warn_input(py, &input)?;
         warnings::warn_beam_notes(py, &kept)?;
-        warnings::warn_run(py, &run_warnings)?;
+        warnings::warn_run(py, &report.warnings())?;
         let (nt, nn) = (h.time.len(), h.labels.len());
         let d = PyDict::new(py);
         d.set_item("time", h.time.into_pyarray(py))?;
@@ -231,8 +238,45 @@ impl Model {
         d.set_item("orientation", h.orientation.into_pyarray(py).reshape([nt, nn, 3, 3])?)?;
         d.set_item("velocity", h.velocity.into_pyarray(py).reshape([nt, nn, 3])?)?;
         d.set_item("angular_velocity", h.angular_velocity.into_pyarray(py).reshape([nt, nn, 3])?)?;
+        run_report_items(py, &d, &report)?;
         Ok(d)
     }
+}
+
+/// The counters and summaries `romdyn run` prints, into `d` (Model.run).
+fn run_report_items<'py>(py: Python<'py>, d: &Bound<'py, PyDict>, r: &RunReport) -> PyResult<()> {
+    d.set_item("steps", r.steps)?;
+    d.set_item("newton_iterations", r.newton_iterations)?;
+    d.set_item("derivatives_iterations", r.derivatives_iterations)?;
+    d.set_item("factorizations", r.factorizations)?;
+    d.set_item("wall_time", r.wall_time.as_secs_f64())?;
+    let a = PyDict::new(py);
+    a.set_item("iterations", r.assembly.iterations)?;
+    a.set_item("test", r.assembly.test)?;
+    a.set_item("moved_position", r.assembly.moved_position)?;
+    a.set_item("moved_rotation", r.assembly.moved_rotation)?;
+    a.set_item("moved_velocity", r.assembly.moved_velocity)?;
+    a.set_item("moved_angular_velocity", r.assembly.moved_angular_velocity)?;
+    d.set_item("assembly", a)?;
+    let eigen = r
+        .eigenanalyses
+        .iter()
+        .map(|e| {
+            let x = PyDict::new(py);
+            x.set_item("index", e.index)?;
+            x.set_item("time", e.time)?;
+            x.set_item("dcoef", e.dcoef)?;
+            x.set_item("eigenvalues", complex_vec(py, &e.dynamic))?;
+            x.set_item("zero", e.zero)?;
+            x.set_item("infinite", e.infinite)?;
+            x.set_item("solver", e.solver.clone())?;
+            x.set_item("every_eigenvalue", e.every_eigenvalue)?;
+            x.set_item("certified", e.not_certified.is_none())?;
+            Ok(x)
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    d.set_item("eigenanalyses", eigen)?;
+    Ok(())
 }
 
 /// A linear DAE with its eigenanalysis (romdyn's `Study`).

@@ -2,6 +2,7 @@
 //! static analysis with load ramping, consistent initial derivatives, and fixed-step
 //! implicit multistep integration in predictor–corrector form (eqs. 2–5).
 
+mod forward_difference;
 mod initial_assembly;
 mod integrate;
 mod newton;

@@ -168,3 +168,44 @@ end: elements;
     // 1e-9 relative: the rate's third-order difference is exact on a linear drive.
     assert!((rates[0] + 250.0).abs() < 1e-9 * 250.0, "rate {}", rates[0]);
 }
+
+/// A drive that changes within microseconds: node 1 follows `x = A (1 − cos ωt)` by a drive
+/// displacement pin and abstract node 2 is clamped to `B (1 − cos ωt)`, half cosines over
+/// 1 ms (ω = π / 1 ms, A = 5 cm, B = 50), both written at rest, as the drives start. The
+/// rates at t = 0 are 0 (closed form). A fixed difference in time read the drives' own
+/// curvature as rates: the initial assembly gave node 1 a velocity of A ω⁴ ε³ / 4 =
+/// 1.2e-6 m/s (second order at ε = 1e-6 s; MBDyn 1.7.3 writes 0 on this file, its drives'
+/// derivatives being analytic), and the check of written velocities reported "genel clamp 2
+/// … changes at 1.622 per s" (third order at 1e-5 s), a violation that is not there.
+#[test]
+fn a_drive_that_changes_within_microseconds_is_not_read_as_a_velocity() {
+    let fast = "
+begin: data; problem: initial value; end: data;
+begin: initial value; initial time: 0.; final time: 2.e-4; time step: 1.e-5; tolerance: 1.e-6; max iterations: 20; end: initial value;
+begin: control data; structural nodes: 1; rigid bodies: 1; joints: 1; abstract nodes: 1; genels: 1; end: control data;
+begin: nodes;
+  structural: 1, dynamic, null, eye, null, null;
+  abstract: 2, differential, value, 0., derivative, 0.;
+end: nodes;
+begin: elements;
+  body: 1, 1, 2., null, diag, 1., 1., 1.;
+  joint: 1, drive displacement pin, 1, null, null, single, 1., 0., 0., cosine, 0., pi/1.e-3, 0.05, half, 0.;
+  genel: 2, clamp, 2, abstract, algebraic, cosine, 0., pi/1.e-3, 50., half, 0.;
+end: elements;
+";
+    let m = read_model_text(fast, Path::new("fast_drives.mbd"), &SetOverrides::default()).unwrap_or_else(|e| panic!("{e}"));
+    let report = romdyn::analysis::run(&m.model, &m.problem, &mut ()).unwrap_or_else(|e| panic!("{e}"));
+    // 1e-12 m/s: the drive's rate is 0 exactly; the extrapolated difference leaves rounding.
+    assert!(report.assembly.moved_velocity < 1e-12, "{:?}", report.assembly);
+    assert!(report.inconsistent_velocity.is_none(), "{:?}", report.inconsistent_velocity);
+
+    // With the abstract node's derivative written as 3, its clamp Φ = x − B (1 − cos ωt)
+    // changes at ẋ − 0 = 3 per s (closed form): a true violation, still reported.
+    let written = fast.replace("derivative, 0.", "derivative, 3.");
+    let warnings = study_warnings(&written, Reference::Initial, &[]);
+    let rates: Vec<f64> = warnings.iter().filter_map(|w| if let Warning::Run { warning: RunWarning::InconsistentVelocity { rate, .. } } = w { Some(*rate) } else { None }).collect();
+    assert_eq!(rates.len(), 1, "{warnings:?}");
+    // 1e-7 per s: B (1 − cos ωh) is rounded to B · 1.1e-16, 1e-7 per s at h = 5e-8 s
+    // (measured 5.3e-9).
+    assert!((rates[0] - 3.0).abs() < 1e-7, "rate {}", rates[0]);
+}

@@ -25,6 +25,7 @@
 //! `angular velocity`, `axial rotation`'s spin) has only its velocity row, its reaction on
 //! the velocity rows (drvj.cc, `LinearVelocityJoint::InitialAssRes`).
 
+use super::forward_difference::forward_derivatives;
 use crate::dae::{SparseLu, State, Triplets};
 use crate::element::NodeKinematics;
 use crate::kinematics::{gibbs_g, gibbs_rotation, Mat3, Vec3};
@@ -149,14 +150,12 @@ impl Problem<'_> {
                 b[6 * i + 3 + c] = s.velocity_stiffness * w0[c];
             }
         }
-        // Forward in time, second order, (−3 R(t) + 4 R(t + ε) − R(t + 2ε)) / (2ε): drives
-        // usually start at the initial time with a kink (a cosine held at its initial value
-        // before t₀), where a central difference would see half the kink (ω² A ε / 4) and
-        // MBDyn's drives give their derivative from t₀ on (`GetP`, e.g. 0 for the cosine).
-        let eps = 1e-6 * self.t.abs().max(1.0);
-        let mut at = [vec![0.0; self.layout.len], vec![0.0; self.layout.len], vec![0.0; self.layout.len]];
+        // `f_/t` and `Φ_/t` forward in time, extrapolated (forward_derivatives): drives
+        // usually start at the initial time with a kink, where MBDyn's drives give their
+        // derivative from t₀ on (`GetP`, e.g. 0 for the cosine).
         let n6 = 6 * n;
-        for k in (0..self.layout.elements.len()).filter(|&k| !self.layout.element(k).multipliers().is_empty()) {
+        let joints: Vec<usize> = (0..self.layout.elements.len()).filter(|&k| !self.layout.element(k).multipliers().is_empty()).collect();
+        for &k in &joints {
             if reaction_rate_without_geometry(self.layout.element(k).type_name()) {
                 let mut own = Triplets::new(self.layout.len);
                 self.element_jacobian(k, &kin, &u.lambda, None, &mut own);
@@ -168,12 +167,18 @@ impl Problem<'_> {
             } else {
                 self.element_jacobian(k, &kin, &u.lambda, None, &mut a);
             }
-            for (j, r) in at.iter_mut().enumerate() {
-                self.element_residual(k, &kin, &u.lambda, self.t + j as f64 * eps, r);
-            }
         }
-        for i in 0..self.layout.len {
-            b[i] -= (4.0 * at[1][i] - 3.0 * at[0][i] - at[2][i]) / (2.0 * eps);
+        let residual_at = |h: f64| {
+            let mut r = vec![0.0; self.layout.len];
+            for &k in &joints {
+                self.element_residual(k, &kin, &u.lambda, self.t + h, &mut r);
+            }
+            r
+        };
+        let rows: Vec<usize> = (0..self.layout.len).collect();
+        let rate = forward_derivatives(&rows, self.t, &residual_at(0.0), residual_at);
+        for (bi, ri) in b.iter_mut().zip(rate) {
+            *bi -= ri;
         }
         if self.velocity_rows.iter().any(|v| *v) {
             // Velocity-level constraints: `−Φ(q, 0, t)` on the right.
