@@ -28,8 +28,14 @@ by |lambda|) and scipy's equal the closed form to 1e-9 relative, and romdyn's co
 certified. Ratios: romdyn's whole process (CPU seconds, user + system) over scipy's solve
 (CPU seconds). Medians of RUNS; the header gives the load average.
 
+With `--baseline BIN` another romdyn binary (a copy of an earlier build) runs too, in the
+same alternation: its whole process is reported beside this one's, and its modes (the
+.json's eigenvalues, every mode with its conjugate) must equal this build's to 1e-12
+relative, its count certified as well.
+
     python3 scripts/bench_sparse_run.py                     # N = 8000, 20 modes, 3 runs
     python3 scripts/bench_sparse_run.py --masses 600 --runs 1
+    python3 scripts/bench_sparse_run.py --baseline /tmp/romdyn-main --no-build
 """
 
 import argparse
@@ -98,6 +104,11 @@ def romdyn_modes(path):
     return sorted(out)
 
 
+def json_eigenvalues(path):
+    """Every eigenvalue of the run's .json (re, im), in the file's order."""
+    return [complex(e["re"], e["im"]) for e in json.loads(Path(path).read_text())["eigenvalues"]]
+
+
 def worst(found, want):
     return max(abs(x - y) / y for x, y in zip(found, want)) if len(found) >= len(want) else math.inf
 
@@ -110,6 +121,7 @@ def main():
     ap.add_argument("--runs", type=int, default=3, help="alternating runs of each, medians reported")
     ap.add_argument("--workdir", default="/tmp/romdyn_bench_sparse_run", help="where the files go")
     ap.add_argument("--no-build", action="store_true", help="use the binaries as built")
+    ap.add_argument("--baseline", help="another romdyn binary run beside this one (its modes must equal this one's to 1e-12)")
     a = ap.parse_args()
     if not a.no_build:
         subprocess.run(["cargo", "build", "--release", "--bin", "romdyn", "--example", "sparse_pencil"], cwd=ROOT, check=True)
@@ -120,15 +132,21 @@ def main():
     pencil = work / f"pencil{a.masses}"
     subprocess.run([EXPORT, "export-mbdyn", model, pencil], check=True, capture_output=True)
     want = closed_form(a.masses, a.count)
-    rows = {"romdyn": [], "scipy right": [], "scipy right + left": []}
+    rows = {"romdyn": [], "baseline": [], "scipy right": [], "scipy right + left": []}
+    romdyns = [("romdyn", ROMDYN)] + ([("baseline", Path(a.baseline).resolve())] if a.baseline else [])
     failed = False
+    same = 0.0
     for _ in range(a.runs):
-        out, wall, cpu, mb = timed([ROMDYN, "run", model, "-o", work / "romdyn"], cwd=work)
-        if "certified" not in out or "NOT certified" in out:
-            print(f"romdyn's count is not certified:\n{out[-1500:]}")
-            failed = True
-        off = worst(romdyn_modes(work / "romdyn_0.json"), want)
-        rows["romdyn"].append((wall, cpu, mb, off))
+        for name, binary in romdyns:
+            out, wall, cpu, mb = timed([binary, "run", model, "-o", work / name], cwd=work)
+            if "certified" not in out or "NOT certified" in out:
+                print(f"{name}'s count is not certified:\n{out[-1500:]}")
+                failed = True
+            off = worst(romdyn_modes(work / f"{name}_0.json"), want)
+            rows[name].append((wall, cpu, mb, off))
+        if a.baseline:
+            mine, theirs = json_eigenvalues(work / "romdyn_0.json"), json_eigenvalues(work / "baseline_0.json")
+            same = max(same, math.inf if len(mine) != len(theirs) else max(abs(x - y) / abs(y) for x, y in zip(mine, theirs)))
         for name, side in (("scipy right", "right"), ("scipy right + left", "left")):
             out, wall, cpu, mb = timed([sys.executable, WORKER, "--scipy-worker", pencil, a.count, 1, side])
             lines = out.strip().splitlines()
@@ -140,12 +158,16 @@ def main():
     print(f"# string of {a.masses} masses, {12 * a.masses + 24} equations, {a.count} lowest modes; medians of {a.runs} alternating runs")
     print("# first column: romdyn's wall seconds, scipy's solve CPU seconds; proc. CPU: the whole process's")
     print(f"{'':<26} {'wall/CPU [s]':>12} {'proc. CPU':>9} {'peak MB':>8} {'vs closed form':>15}")
-    med = {k: [statistics.median(x[i] for x in v) for i in range(3)] + [max(x[3] for x in v)] for k, v in rows.items()}
+    med = {k: [statistics.median(x[i] for x in v) for i in range(3)] + [max(x[3] for x in v)] for k, v in rows.items() if v}
     for k, (t, cpu, mb, off) in med.items():
-        label = "romdyn run" if k == "romdyn" else f"{k} (solve)"
+        label = {"romdyn": "romdyn run", "baseline": "baseline romdyn run"}.get(k, f"{k} (solve)")
         print(f"{label:<26} {t:>12.3f} {cpu:>9.3f} {mb:>8.0f} {off:>15.1e}")
         failed |= not off <= 1e-9
     r = med["romdyn"]
+    if a.baseline:
+        b = med["baseline"]
+        print(f"romdyn / baseline whole process: CPU {r[1] / b[1]:.2f}, peak memory {r[2] / b[2]:.2f}; largest relative difference of their eigenvalues {same:.1e}")
+        failed |= not same <= 1e-12
     for k in ("scipy right", "scipy right + left"):
         print(f"romdyn whole process CPU / {k} solve: {r[1] / med[k][0]:.2f}; peak memory {r[2] / med[k][2]:.2f}")
     sys.exit(1 if failed else 0)

@@ -101,10 +101,16 @@ impl DofMap {
         if (self.scalar_first..self.scalar_first + self.scalar_differential.len()).contains(&i) {
             return Owner::Scalar { index: i - self.scalar_first };
         }
-        match self.element_first.iter().rposition(|&f| f <= i) {
+        // The last element (node) whose first unknown is at or before i: `element_first` and
+        // `node_first` are non-decreasing, so a binary search finds what a scan from the end
+        // did (an element without unknowns shares its first index with the next one; the
+        // last of them is the one that can own i). The scan took 0.6 s to name the 96,024
+        // unknowns of a 8000-mass string.
+        let last_at_or_before = |firsts: &[usize]| firsts.partition_point(|&f| f <= i).checked_sub(1);
+        match last_at_or_before(&self.element_first) {
             Some(e) if i < self.element_first[e] + self.element_len[e] => Owner::Element { index: e, offset: i - self.element_first[e] },
             _ => {
-                let n = self.node_first.iter().rposition(|&f| f <= i).unwrap_or(0);
+                let n = last_at_or_before(&self.node_first).unwrap_or(0);
                 Owner::Node { index: n, offset: i - self.node_first[n] }
             }
         }
@@ -159,5 +165,59 @@ impl DofMap {
                 format!("{} {} constraint {}", e.type_name(), e.label(), e.multipliers().get(offset).cloned().unwrap_or_default())
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The binary search of `owner` against the scan from the end it replaced, on every
+    /// unknown of a numbering with elements that own no unknowns (bodies) before, between
+    /// and after those that do, and a scalar node.
+    #[test]
+    fn owner_by_binary_search_is_the_scan_from_the_end() {
+        let node_first = vec![0, 12, 18, 30];
+        let element_len = vec![0, 3, 0, 0, 1, 0, 6, 0];
+        let scalar_first = 42;
+        let mut element_first = Vec::new();
+        let mut first = scalar_first + 1;
+        for &k in &element_len {
+            element_first.push(first);
+            first += k;
+        }
+        let len = first;
+        let dofs = DofMap {
+            node_first: node_first.clone(),
+            node_kind: vec![NodeKind::Dynamic, NodeKind::Static, NodeKind::Dynamic, NodeKind::Dynamic],
+            node_displacement: vec![false; 4],
+            element_first: element_first.clone(),
+            element_len: element_len.clone(),
+            element_nodes: vec![Vec::new(); element_len.len()],
+            scalar_first,
+            scalar_differential: vec![true],
+            element_scalars: vec![Vec::new(); element_len.len()],
+            len,
+            multiplier: vec![false; len],
+            coordinate: vec![false; len],
+            state: vec![false; len],
+        };
+        let scan = |i: usize| {
+            if i == scalar_first {
+                return Owner::Scalar { index: 0 };
+            }
+            match element_first.iter().rposition(|&f| f <= i) {
+                Some(e) if i < element_first[e] + element_len[e] => Owner::Element { index: e, offset: i - element_first[e] },
+                _ => {
+                    let n = node_first.iter().rposition(|&f| f <= i).unwrap_or(0);
+                    Owner::Node { index: n, offset: i - node_first[n] }
+                }
+            }
+        };
+        for i in 0..len {
+            assert_eq!(dofs.owner(i), scan(i), "unknown {i}");
+        }
+        assert_eq!(dofs.owner(43), Owner::Element { index: 1, offset: 0 });
+        assert_eq!(dofs.owner(47), Owner::Element { index: 6, offset: 0 });
     }
 }

@@ -18,10 +18,12 @@ pub fn dense_modes(dae: &LinearDae, route: EigenRoute, dcoef: Option<f64>) -> Re
 /// Kinetic-energy shares of every mode of `modes`; a member of a cluster of degenerate
 /// modes ([`degenerate_clusters`]) has the cluster's shares ([`ModalEnergy::subspace_shares`]).
 pub fn energy_shares(energy: &ModalEnergy, modes: &[Mode]) -> Vec<Vec<EnergyShare>> {
-    let mut out: Vec<_> = modes.iter().map(|m| energy.shares(m)).collect();
+    // A cluster member's own shares are not computed (they were, then replaced: 32 of the
+    // 40 modes of the 96,024-equation spring chain's 20 lowest, 0.2 s of its run).
+    let mut of_cluster: Vec<Option<Vec<EnergyShare>>> = vec![None; modes.len()];
     for cluster in degenerate_clusters(modes) {
         let shares = energy.subspace_shares(&cluster.iter().map(|&i| &modes[i]).collect::<Vec<_>>());
-        cluster.iter().for_each(|&i| out[i] = shares.clone());
+        cluster.iter().for_each(|&i| of_cluster[i] = Some(shares.clone()));
     }
-    out
+    modes.iter().zip(of_cluster).map(|(m, shares)| shares.unwrap_or_else(|| energy.shares(m))).collect()
 }

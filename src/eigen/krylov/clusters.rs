@@ -17,6 +17,7 @@ use faer::{c64, Col, Mat};
 
 use super::pencil::Pencil;
 use crate::eigen::route::norm;
+use crate::linear::{contiguous, contiguous_mut};
 
 /// Ritz values closer than this, relative to their distance from the shift (or to |λ|),
 /// are one cluster. Those far from the shift are only that accurate (the cantilever's
@@ -67,14 +68,17 @@ fn basis(vectors: &[&Col<c64>], new_direction: f64) -> Vec<Col<c64>> {
     q
 }
 
-/// The part of `v` outside the span of the orthonormal `q` (modified Gram–Schmidt, twice).
+/// The part of `v` outside the span of the orthonormal `q` (modified Gram–Schmidt, twice;
+/// on the vectors' slices: indexing the columns entry by entry took 0.28 s of the 96,024-
+/// equation spring chain's cluster refinement, the same sums in the same order).
 fn outside(v: &Col<c64>, q: &[Col<c64>]) -> Col<c64> {
     let mut w = v.clone();
     for _ in 0..2 {
         for b in q {
-            let d = b.iter().zip(w.iter()).fold(c64::new(0.0, 0.0), |s, (x, y)| s + x.conj() * y);
-            for i in 0..w.nrows() {
-                w[i] -= b[i] * d;
+            let (bs, ws) = (contiguous(b.as_ref()), contiguous_mut(w.as_mut()));
+            let d = bs.iter().zip(ws.iter()).fold(c64::new(0.0, 0.0), |s, (x, y)| s + x.conj() * y);
+            for (wi, bi) in ws.iter_mut().zip(bs) {
+                *wi -= bi * d;
             }
         }
     }

@@ -34,7 +34,9 @@ pub struct SparseEigenSettings {
     pub route: crate::eigen::EigenRoute,
     /// dCoef of the Λ route's labels; `None`: `‖F_yd‖_F / ‖F_y‖_F` as for the dense route.
     pub dcoef: Option<f64>,
-    /// Left (adjoint) vectors and the count check by the adjoint run (the default). `false`:
+    /// Left (adjoint) vectors (the default): for the lowest modes from each eigenvalue's
+    /// inverse iteration, certified by the argument-principle count; for a band from the
+    /// adjoint Krylov run, whose agreement with the right run is the band's check. `false`:
     /// right vectors only, from the right Krylov run alone (half the work: scipy's `eigs`
     /// does the same), each pair still checked by its true right residual; the modes have
     /// no left vectors, their error estimates take the condition number as 1 (a lower

@@ -76,10 +76,10 @@ pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted:
     let scales = Scales::new(dae, s);
     let op = ShiftInvert::new(pencil, sigma)?;
     if !s.left_vectors {
-        let run = krylov_run(pencil, &op, wanted, s, false, 1, progress)?;
+        let run = krylov_run(pencil, &op, wanted, s, false, Placement::RightOnly, 1, progress)?;
         return right_only(dae, pencil, &op, run, s, &scales, progress);
     }
-    let sides = krylov_sides(dae, pencil, &op, wanted, s, 0, progress)?;
+    let sides = krylov_sides(dae, pencil, &op, wanted, s, 0, true, progress)?;
     // Radius of the disc each run covers: the farthest converged eigenvalue (everything
     // when the run exhausted the finite spectrum).
     let radius = sides.reach(sigma);
@@ -115,9 +115,31 @@ pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted:
     Ok(WindowResult { shift: sigma, radius, agreed, checked: true, clean, pairs, rejected })
 }
 
+/// How a run shares the machine and how wide its real basis is.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(super) enum Placement {
+    /// Beside the adjoint run, a core each.
+    BesideAdjoint,
+    /// Alone (its sweeps on both cores): the right run of [`SparseEigenSettings::left_vectors`]
+    /// false, tuned as scipy's `eigs` is asked.
+    RightOnly,
+    /// Alone, for the counted lowest modes (`shifts.rs`), whose left vectors come from the
+    /// clusters' inverse iteration: a wider basis ([`COUNTED_EXTRA`]).
+    Counted,
+}
+
+/// Columns beyond 2 nev of the counted route's right run (basis beyond the second-level
+/// cache). Measured (2026-12-07, release, CPU s of `sparse_pencil solve DIR 20`, 24
+/// wanted, load 10-12): the 96,024-equation spring chain 2 nev + 20 / 40 / 60 / 80: 293 /
+/// 197 / 141 / 131 applications, 20 / 5 / 1 / 0 restarts, 5.62 / 4.96 / 4.36 / 4.43 s;
+/// the 102,012-equation hanging chain 121 / 131 / 111 applications, 5.57 / 5.70 / 5.43 s
+/// (20 / 40 / 60), the 17,012-equation one 0.68 / 0.68 / 0.65 s.
+const COUNTED_EXTRA: usize = 60;
+
 /// One Krylov–Schur run on `T` (`transpose` false: right vectors) or `Tᵀ` (left vectors)
-/// with the start vector of `seed`.
-pub(super) fn krylov_run(pencil: &Pencil, op: &ShiftInvert, wanted: usize, s: &SparseEigenSettings, transpose: bool, seed: u64, progress: &dyn Fn(&str)) -> Result<Run, KrylovError> {
+/// with the start vector of `seed`, placed as `placement` says.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn krylov_run(pencil: &Pencil, op: &ShiftInvert, wanted: usize, s: &SparseEigenSettings, transpose: bool, placement: Placement, seed: u64, progress: &dyn Fn(&str)) -> Result<Run, KrylovError> {
     let n = pencil.dim();
     let sigma = op.sigma;
     // Basis of three times the wanted count: measured on the 20 lowest modes of the hanging
@@ -146,9 +168,10 @@ pub(super) fn krylov_run(pencil: &Pencil, op: &ShiftInvert, wanted: usize, s: &S
     // equations (11 MB) the instructions fell too (right only 1.02e9 -> 0.93e9) but the
     // sweeps read 22 % more of a basis beyond that cache: not taken there.
     let roomy = 2 * wanted + 40;
-    let real_basis = (2 * wanted + if n * roomy * std::mem::size_of::<f64>() <= 2 << 20 { 40 } else { 20 }).min(n);
-    // The right run alone has both cores: its sweeps over the basis go on two threads.
-    let parallel = !s.left_vectors && n >= PARALLEL_FROM && rayon::current_num_threads() > 1;
+    let extra = if n * roomy * std::mem::size_of::<f64>() <= 2 << 20 { 40 } else if placement == Placement::Counted { COUNTED_EXTRA } else { 20 };
+    let real_basis = (2 * wanted + extra).min(n);
+    // A run alone has both cores: its sweeps over the basis go on two threads.
+    let parallel = placement != Placement::BesideAdjoint && n >= PARALLEL_FROM && rayon::current_num_threads() > 1;
     let real_settings = |seed| Settings { wanted, basis: real_basis, tolerance: s.krylov_tolerance, max_restarts: s.max_restarts, seed, parallel };
     let settings = |seed| Settings { wanted, basis, tolerance: s.krylov_tolerance, max_restarts: s.max_restarts, seed, parallel };
     let side = if transpose { "adjoint" } else { "right" };
@@ -183,10 +206,19 @@ impl Sides {
     }
 }
 
-/// Both runs at the factored shift, with the start vectors of `round` (each round its own).
-pub(super) fn krylov_sides(dae: &SparseLinearDae, pencil: &Pencil, op: &ShiftInvert, wanted: usize, s: &SparseEigenSettings, round: u64, progress: &dyn Fn(&str)) -> Result<Sides, KrylovError> {
+/// Both runs at the factored shift (`adjoint` false: the right run alone, placed as
+/// [`Placement::Counted`], no left pairs), with the start vectors of `round` (each round
+/// its own).
+#[allow(clippy::too_many_arguments)]
+pub(super) fn krylov_sides(dae: &SparseLinearDae, pencil: &Pencil, op: &ShiftInvert, wanted: usize, s: &SparseEigenSettings, round: u64, adjoint: bool, progress: &dyn Fn(&str)) -> Result<Sides, KrylovError> {
     let sigma = op.sigma;
     let (seed_right, seed_left) = (2 * round + 1, 2 * round + 2);
+    if !adjoint {
+        let run = krylov_run(pencil, op, wanted, s, false, Placement::Counted, seed_right, progress)?;
+        progress(&format!("shift {sigma}: {} operator applications, {} restarts (right run)", run.applications, run.restarts));
+        let (right, right_all) = lambdas(op, run);
+        return Ok(checked_sides(dae, pencil, sigma, s, (right, right_all), (Vec::new(), true)));
+    }
     // The two runs are independent (one factorization, read only): the adjoint run goes
     // to a second thread while this one does the right run and reports progress. Its own
     // progress is not reported (the caller's callback need not be thread-safe); both take
@@ -195,11 +227,11 @@ pub(super) fn krylov_sides(dae: &SparseLinearDae, pencil: &Pencil, op: &ShiftInv
     // wait for its workers, which all wait for it (tests/eigen/sparse_eigen.rs, the rayon-workers
     // test).
     let (right_run, left_run) = if rayon::current_thread_index().is_some() {
-        (krylov_run(pencil, op, wanted, s, false, seed_right, progress), krylov_run(pencil, op, wanted, s, true, seed_left, &|_| {}))
+        (krylov_run(pencil, op, wanted, s, false, Placement::BesideAdjoint, seed_right, progress), krylov_run(pencil, op, wanted, s, true, Placement::BesideAdjoint, seed_left, &|_| {}))
     } else {
         std::thread::scope(|scope| {
-            let left = scope.spawn(|| krylov_run(pencil, op, wanted, s, true, seed_left, &|_| {}));
-            let right = krylov_run(pencil, op, wanted, s, false, seed_right, progress);
+            let left = scope.spawn(|| krylov_run(pencil, op, wanted, s, true, Placement::BesideAdjoint, seed_left, &|_| {}));
+            let right = krylov_run(pencil, op, wanted, s, false, Placement::BesideAdjoint, seed_right, progress);
             let left = left.join().unwrap_or_else(|_| Err(KrylovError::Breakdown("the adjoint Krylov run panicked".into())));
             (right, left)
         })
@@ -209,8 +241,12 @@ pub(super) fn krylov_sides(dae: &SparseLinearDae, pencil: &Pencil, op: &ShiftInv
         "shift {sigma}: {} + {} operator applications, {} + {} restarts (right + adjoint run)",
         right_run.applications, left_run.applications, right_run.restarts, left_run.restarts
     ));
-    let (right, right_all) = lambdas(op, right_run);
-    let (left, left_all) = lambdas(op, left_run);
+    Ok(checked_sides(dae, pencil, sigma, s, lambdas(op, right_run), lambdas(op, left_run)))
+}
+
+/// The runs' pairs (with whether each run exhausted the finite spectrum) checked by their
+/// true residuals, as [`Sides`].
+fn checked_sides(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, s: &SparseEigenSettings, (right, right_all): (Vec<(c64, Col<c64>)>, bool), (left, left_all): (Vec<(c64, Col<c64>)>, bool)) -> Sides {
     let reach = |l: &[(c64, Col<c64>)], all: bool| if all { f64::INFINITY } else { l.iter().map(|(x, _)| (x - sigma).norm()).fold(0.0, f64::max) };
     let (right_reach, left_reach) = (reach(&right, right_all), reach(&left, left_all));
     let norms = (dae.fyd.norm_l2(), dae.fy.norm_l2());
@@ -231,7 +267,7 @@ pub(super) fn krylov_sides(dae: &SparseLinearDae, pencil: &Pencil, op: &ShiftInv
     };
     let right = keep(right, false);
     let left = keep(left, true);
-    Ok(Sides { right, left, right_reach, left_reach, rejected, trouble })
+    Sides { right, left, right_reach, left_reach, rejected, trouble }
 }
 
 /// Each pair's residuals, vectors and label, one after the other (on the pool's threads
