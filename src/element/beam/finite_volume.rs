@@ -4,8 +4,10 @@
 //! volume with `+(F, M + (p − x_s) × F)` and node `s + 1`'s with the opposite (arm `p −
 //! x_{s+1}`); the residual holds `−` what a node receives. The Jacobian is built per point
 //! from the derivatives of its position, frame, strains and curvatures with respect to the
-//! element's perturbations: a `3 × C` matrix with columns `12 i + 3 k + c` for node `i`,
-//! kind `k` (0 position, 1 rotation δθ, 2 velocity, 3 angular velocity), component `c`.
+//! element's perturbations: a `3 × C` matrix with columns `6 i + 3 k + c` for node `i`, kind
+//! `k` (0 position, 1 rotation δθ), component `c`, and, when the law is viscous, `6 n + 6 i
+//! + 3 (k − 2) + c` for kinds 2 (velocity) and 3 (angular velocity) on an element of `n`
+//! nodes: an elastic beam's tangents hold only the `6 n` columns that can be non-zero.
 
 use nalgebra::{Matrix6, SMatrix, Vector6};
 
@@ -14,10 +16,20 @@ use crate::element::contract::{Col, ElementState, JacobianSink, ResidualSink, Ro
 use crate::kinematics::{skew, Mat3, Vec3};
 
 pub const POSITION: usize = 0;
+pub const ROTATION: usize = 1;
+pub const VELOCITY: usize = 2;
+pub const ANGULAR_VELOCITY: usize = 3;
 
-/// `t[:, block(node, kind)] += m`.
-pub fn put<const C: usize>(t: &mut SMatrix<f64, 3, C>, node: usize, kind: usize, m: &Mat3) {
-    let mut v = t.fixed_view_mut::<3, 3>(0, 12 * node + 3 * kind);
+/// The first column of node `node`'s perturbations of kind `kind` on an element of `nodes`
+/// nodes.
+pub const fn column(nodes: usize, node: usize, kind: usize) -> usize {
+    if kind < VELOCITY { 6 * node + 3 * kind } else { 6 * nodes + 6 * node + 3 * (kind - VELOCITY) }
+}
+
+/// `t[:, block(node, kind)] += m` on an element of `nodes` nodes (velocity kinds only in
+/// a tangent with `12 nodes` columns).
+pub fn put<const C: usize>(t: &mut SMatrix<f64, 3, C>, nodes: usize, node: usize, kind: usize, m: &Mat3) {
+    let mut v = t.fixed_view_mut::<3, 3>(0, column(nodes, node, kind));
     v += m;
 }
 
@@ -83,7 +95,7 @@ pub fn add_point_jacobian<const R: usize, const C: usize>(jac: &mut SMatrix<f64,
     for (node, sign) in [(s, -1.0), (s + 1, 1.0)] {
         let arm = p - x[node];
         let mut darm = *d.dp;
-        put(&mut darm, node, POSITION, &-Mat3::identity());
+        put(&mut darm, R / 6, node, POSITION, &-Mat3::identity());
         let dm = dmoment + skew(&arm) * dforce - skew(&force) * darm;
         let mut rows = jac.fixed_view_mut::<3, C>(6 * node, 0);
         rows += sign * dforce;
@@ -103,7 +115,7 @@ pub fn scatter_jacobian<const R: usize, const C: usize>(jac: &SMatrix<f64, R, C>
             for slot in 0..nodes {
                 let cols = [Col::position(slot), Col::rotation(slot), Col::velocity(slot), Col::angular_velocity(slot)];
                 for (kind, c) in cols.into_iter().enumerate().take(kinds) {
-                    let block: Mat3 = jac.fixed_view::<3, 3>(r, 12 * slot + 3 * kind).into();
+                    let block: Mat3 = jac.fixed_view::<3, 3>(r, column(nodes, slot, kind)).into();
                     out.add_block(rows, c, &block);
                 }
             }

@@ -210,8 +210,9 @@ fn interpolate_frames(frames: &[Mat3; 3], xi: f64) -> Mat3 {
     gibbs_rotation(&g) * frames[1]
 }
 
-/// Rows 6 i..6 i + 6 of the element residual's derivative: node `i`'s force and moment.
-type ElementJacobian = SMatrix<f64, 18, 36>;
+/// Rows 6 i..6 i + 6 of the element residual's derivative: node `i`'s force and moment;
+/// the `C` columns of [`finite_volume::column`].
+type ElementJacobian<const C: usize> = SMatrix<f64, 18, C>;
 
 impl Element for Beam3 {
     fn label(&self) -> Label {
@@ -249,9 +250,21 @@ impl Element for Beam3 {
     }
 
     fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
+        // An elastic law's forces do not depend on the velocities: their 18 columns are zero.
+        if self.viscous {
+            self.jacobian_in::<36>(st, out);
+        } else {
+            self.jacobian_in::<18>(st, out);
+        }
+    }
+}
+
+impl Beam3 {
+    /// The Jacobian with `C` columns: 18 (positions and rotations) or 36 (and velocities).
+    fn jacobian_in<const C: usize>(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
         let (terms, ks) = self.evaluate(st);
-        let node_tangents = terms.tangents();
-        let mut jac = ElementJacobian::zeros();
+        let node_tangents = terms.tangents::<C>();
+        let mut jac = ElementJacobian::<C>::zeros();
         for (s, k) in ks.iter().enumerate() {
             let d = k.tangents(&terms, &node_tangents);
             let rates = self.viscous.then_some((&d.dstrain_rate, &d.dcurvature_rate));

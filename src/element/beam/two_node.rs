@@ -25,7 +25,7 @@
 
 use nalgebra::{Matrix6, SMatrix, Vector6};
 
-use super::finite_volume::{self, put, PointTangents, POSITION};
+use super::finite_volume::{self, PointTangents, POSITION, ROTATION};
 use super::incremental::StepHistory;
 use super::{BeamError, BeamNode, BeamUpdate, PiezoActuator, PiezoError, SectionLaw, SectionOrientation};
 use crate::element::contract::{Element, ElementState, JacobianSink, Label, Latched, ResidualSink, ScalarNodeId, SectionState};
@@ -35,10 +35,14 @@ use crate::kinematics::{gibbs_from_rotation, gibbs_g, gibbs_g_inverse, gibbs_gt_
 use crate::element::Events;
 use crate::element::Outputs;
 
-const ROTATION: usize = 1;
+/// Derivative of a 3-vector with respect to the element's 12 node perturbations (positions
+/// and rotations: the law is elastic).
+type Tangent = SMatrix<f64, 3, 12>;
 
-/// Derivative of a 3-vector with respect to the element's 24 node perturbations.
-type Tangent = SMatrix<f64, 3, 24>;
+/// `t[:, block(node, kind)] += m` on the 2-node element.
+fn put(t: &mut Tangent, node: usize, kind: usize, m: &Mat3) {
+    finite_volume::put(t, 2, node, kind, m);
+}
 
 /// Two-node beam (MBDyn's `beam2`).
 #[derive(Clone, Debug)]
@@ -273,7 +277,7 @@ impl Element for Beam2 {
         };
         let dstrain = k.r.transpose() * (dpp + skew(&k.pp) * dtheta);
         let point = PointTangents { dp: &dp, dtheta: &dtheta, dstrain: &dstrain, dcurvature: &dcurvature, rates: None };
-        let mut jac = SMatrix::<f64, 12, 24>::zeros();
+        let mut jac = SMatrix::<f64, 12, 12>::zeros();
         finite_volume::add_point_jacobian(&mut jac, 0, &k.p, &k.r, &self.law_at(st, &k), &point, &k.x);
         finite_volume::scatter_jacobian(&jac, false, out);
         if let Some(piezo) = &self.piezo {
