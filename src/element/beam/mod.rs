@@ -187,7 +187,12 @@ impl Beam3 {
 
     /// Local generalized forces `[F; M] = K ([ε; κ] − e_p) + V [ε̇; κ̇] + f_p (+ T_s V)`.
     fn local_forces(&self, st: &dyn ElementState, s: usize, k: &SectionKinematics) -> Vector6<f64> {
-        self.law_at(st, s, k).0
+        let rates = self.viscous.then_some((&k.strain_rate, &k.curvature_rate));
+        let mut f = finite_volume::force_at(&self.laws[s], st, &k.strain, &k.curvature, rates);
+        if let Some(piezo) = &self.piezo {
+            f += piezo.local_forces(s, st);
+        }
+        f
     }
 
     /// The local forces (a piezoelectric actuator's `T_s V` included) and the law's
@@ -267,7 +272,7 @@ impl Beam3 {
         let mut jac = ElementJacobian::<C>::zeros();
         for (s, k) in ks.iter().enumerate() {
             let d = k.tangents(&terms, &node_tangents);
-            let rates = self.viscous.then_some((&d.dstrain_rate, &d.dcurvature_rate));
+            let rates = d.rates.as_ref().map(|(dstrain_rate, dcurvature_rate)| (dstrain_rate, dcurvature_rate));
             let point = PointTangents { dp: &d.dp, dtheta: &d.dtheta, dstrain: &d.dstrain, dcurvature: &d.dcurvature, rates };
             finite_volume::add_point_jacobian(&mut jac, s, &k.p, &k.r, &self.law_at(st, s, k), &point, terms.x());
             if let Some(piezo) = &self.piezo {

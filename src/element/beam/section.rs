@@ -35,7 +35,10 @@ use crate::kinematics::{gibbs_from_rotation, gibbs_g, gibbs_g_inverse, gibbs_g_i
 /// Derivative of a 3-vector with respect to the element's `C` node perturbations.
 pub type Tangent<const C: usize> = SMatrix<f64, 3, C>;
 
-use super::finite_volume::{ANGULAR_VELOCITY, POSITION, ROTATION, VELOCITY};
+use super::finite_volume::{embed, put_rotation, strain_tangent, RotationTangent, ANGULAR_VELOCITY, POSITION, ROTATION, VELOCITY};
+
+/// A tangent on the nine rotation columns ([`RotationTangent`]).
+pub type Rotational = RotationTangent<9>;
 
 /// `t[:, block(node, kind)] += m` on the 3-node element.
 fn put<const C: usize>(t: &mut Tangent<C>, node: usize, kind: usize, m: &Mat3) {
@@ -89,7 +92,7 @@ struct NodeRates {
 /// Derivatives of the node terms with respect to the element's perturbations.
 pub struct NodeTangents<const C: usize> {
     dy: [Tangent<C>; 3],
-    dg: [Tangent<C>; 3],
+    dg: [Rotational; 3],
     /// `∂ẏ_i`, `∂ġ_i`, when the law is viscous.
     rates: Option<([Tangent<C>; 3], [Tangent<C>; 3])>,
 }
@@ -148,18 +151,18 @@ impl NodeTerms {
             put(&mut d, i, ROTATION, &-skew(&a[i]));
             d
         });
-        let mut dg = [Tangent::zeros(); 3];
+        let mut dg = [Rotational::zeros(); 3];
         if self.middle_relative {
             for i in [0, 2] {
                 // δg_i = Γ(g_i) Tᵀ (δθ_i − δθ_2).
                 let m = gamma[i] * tt;
-                put(&mut dg[i], i, ROTATION, &m);
-                put(&mut dg[i], 1, ROTATION, &-m);
+                put_rotation(&mut dg[i], i, &m);
+                put_rotation(&mut dg[i], 1, &-m);
             }
         } else {
             for (i, d) in dg.iter_mut().enumerate() {
                 // δg_i = Γ(g_i) δθ_i (the base P_i is fixed).
-                put(d, i, ROTATION, &gamma[i]);
+                put_rotation(d, i, &gamma[i]);
             }
         }
         let rates = self.rates.as_ref().map(|_| {
@@ -178,7 +181,7 @@ impl NodeTerms {
                 let mut dw = single(i, ANGULAR_VELOCITY, &tt);
                 put(&mut dw, 1, ANGULAR_VELOCITY, &-tt);
                 put(&mut dw, 1, ROTATION, &(tt * skew(&rel)));
-                dgdot[i] = gibbs_g_inverse_derivative(&self.g[i], &w) * dg[i] + gamma[i] * dw;
+                dgdot[i] = gibbs_g_inverse_derivative(&self.g[i], &w) * embed::<C, 9>(&dg[i]) + gamma[i] * dw;
             }
             (dydot, dgdot)
         });
@@ -219,13 +222,13 @@ struct SectionRates {
 /// Derivatives of an evaluation point's state with respect to the element's perturbations.
 pub struct SectionTangents<const C: usize> {
     pub dp: Tangent<C>,
-    /// Virtual rotation of the section frame.
-    pub dtheta: Tangent<C>,
+    /// Virtual rotation of the section frame (rotation columns: it depends on the nodes'
+    /// rotations alone, as the curvature does).
+    pub dtheta: Rotational,
     pub dstrain: Tangent<C>,
-    pub dcurvature: Tangent<C>,
-    /// Zero unless the law is viscous.
-    pub dstrain_rate: Tangent<C>,
-    pub dcurvature_rate: Tangent<C>,
+    pub dcurvature: Rotational,
+    /// `(∂ε̇, ∂κ̇)` when the law is viscous.
+    pub rates: Option<(Tangent<C>, Tangent<C>)>,
 }
 
 /// `Σ w_i v_i` (interpolation from the nodes).
@@ -233,7 +236,7 @@ pub fn combine(w: &[f64; 3], v: &[Vec3; 3]) -> Vec3 {
     w[0] * v[0] + w[1] * v[1] + w[2] * v[2]
 }
 
-fn combine_t<const C: usize>(w: &[f64; 3], v: &[Tangent<C>; 3]) -> Tangent<C> {
+fn combine_t<const C: usize>(w: &[f64; 3], v: &[SMatrix<f64, 3, C>; 3]) -> SMatrix<f64, 3, C> {
     v[0] * w[0] + v[1] * w[1] + v[2] * w[2]
 }
 
@@ -277,20 +280,22 @@ impl SectionKinematics {
         let (dg, dgp) = (combine_t(nv, &nt.dg), combine_t(nd, &nt.dg));
         let mut dtheta = tg * dg;
         if node.middle_relative {
-            put(&mut dtheta, 1, ROTATION, &Mat3::identity());
+            put_rotation(&mut dtheta, 1, &Mat3::identity());
         }
-        let dstrain = rt * (dpp + skew(pp) * dtheta);
+        let dstrain = strain_tangent(&rt, &dpp, pp, &dtheta);
         let dcurvature = self.r0t * (dgt_gp * dg + gm.transpose() * dgp);
-        let mut s = SectionTangents { dp, dtheta, dstrain, dcurvature, dstrain_rate: Tangent::zeros(), dcurvature_rate: Tangent::zeros() };
+        let mut s = SectionTangents { dp, dtheta, dstrain, dcurvature, rates: None };
         if let (Some(r), Some((dydot, dgdot))) = (&self.rates, &nt.rates) {
             let dppd = combine_t(nd, dydot);
             let (dgd, dgpd) = (combine_t(nv, dgdot), combine_t(nd, dgdot));
+            let (dg, dgp) = (embed::<C, 9>(&dg), embed::<C, 9>(&dgp));
             let mut domega = node.t * (gibbs_rate_derivative(g, &r.gd) * dg + gm * dgd);
             put(&mut domega, 1, ANGULAR_VELOCITY, &Mat3::identity());
             put(&mut domega, 1, ROTATION, &-skew(&r.spin));
-            s.dstrain_rate = rt * (skew(&r.u) * s.dtheta + dppd + skew(pp) * domega - skew(&r.omega) * dpp);
+            let dstrain_rate = rt * (skew(&r.u) * embed::<C, 9>(&s.dtheta) + dppd + skew(pp) * domega - skew(&r.omega) * dpp);
             let dg_total = (gibbs_gt_second_derivative(g, gp, &r.gd) + gibbs_gt_derivative(g, &r.gpd)) * dg;
-            s.dcurvature_rate = self.r0t * (dg_total + dgt_gp * dgd + gibbs_gt_derivative_in_a(g, &r.gd) * dgp + gm.transpose() * dgpd);
+            let dcurvature_rate = self.r0t * (dg_total + dgt_gp * dgd + gibbs_gt_derivative_in_a(g, &r.gd) * dgp + gm.transpose() * dgpd);
+            s.rates = Some((dstrain_rate, dcurvature_rate));
         }
         s
     }
