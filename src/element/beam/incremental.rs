@@ -17,6 +17,7 @@
 //! equilibrium then depends on the load path and the predictor, as MBDyn's does (the book,
 //! docs/src/mbdyn/beams.md: "beam.cc is incremental"); the path-independent beam is romdyn's default.
 
+use std::borrow::Cow;
 use std::sync::Arc;
 
 use crate::element::contract::{ElementState, Latched};
@@ -48,9 +49,10 @@ pub struct StepHistory<const N: usize, const S: usize> {
 }
 
 impl<const N: usize, const S: usize> StepHistory<N, S> {
-    /// The history a state carries, `initial` where it carries none.
-    pub fn of(st: &dyn ElementState, initial: impl FnOnce() -> Self) -> Self {
-        st.latched().and_then(|l| l.downcast_ref::<Self>()).cloned().unwrap_or_else(initial)
+    /// The history a state carries (borrowed, not copied: residuals and Jacobians read it
+    /// at every iteration), `initial` where it carries none.
+    pub fn of(st: &dyn ElementState, initial: impl FnOnce() -> Self) -> Cow<'_, Self> {
+        st.latched().and_then(|l| l.downcast_ref::<Self>()).map_or_else(|| Cow::Owned(initial()), Cow::Borrowed)
     }
 
     pub fn latched(self) -> Latched {

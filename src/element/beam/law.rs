@@ -70,6 +70,23 @@ impl SectionLaw {
         self.evaluate_scaled(scales_of(self.time_variance.as_ref(), st), e, rate)
     }
 
+    /// The generalized force alone at the state `st` (what a residual needs): the first
+    /// value of [`SectionLaw::evaluate_in`], by the same operations, without forming the
+    /// tangents (a constant law's `K`, `V` are not copied: `1 · K` is `K`).
+    pub fn force_in(&self, st: &dyn ElementState, e: &Vector6<f64>, rate: Option<&Vector6<f64>>) -> Vector6<f64> {
+        let (sk, sc) = scales_of(self.time_variance.as_ref(), st);
+        let elastic = e - self.prestrain;
+        let mut f = if sk == 1.0 { self.stiffness * elastic } else { (sk * self.stiffness) * elastic } + self.prestress;
+        if let Some(r) = rate {
+            f += if sc == 1.0 { self.viscosity * r } else { (sc * self.viscosity) * r };
+        }
+        for i in 0..self.functions.len().min(6) {
+            let r = rate.map_or(0.0, |r| r[i]);
+            f[i] += self.functions.component(i, elastic[i], r).0;
+        }
+        f
+    }
+
     /// [`SectionLaw::evaluate_in`] with a time-variant law's drives at 1 (a constant law's
     /// force: a unit test of the law alone).
     pub fn evaluate(&self, e: &Vector6<f64>, rate: Option<&Vector6<f64>>) -> (Vector6<f64>, Matrix6<f64>, Matrix6<f64>) {

@@ -187,7 +187,12 @@ impl Beam3 {
 
     /// Local generalized forces `[F; M] = K ([ε; κ] − e_p) + V [ε̇; κ̇] + f_p (+ T_s V)`.
     fn local_forces(&self, st: &dyn ElementState, s: usize, k: &SectionKinematics) -> Vector6<f64> {
-        self.law_at(st, s, k).0
+        let rates = self.viscous.then_some((&k.strain_rate, &k.curvature_rate));
+        let mut f = finite_volume::force_at(&self.laws[s], st, &k.strain, &k.curvature, rates);
+        if let Some(piezo) = &self.piezo {
+            f += piezo.local_forces(s, st);
+        }
+        f
     }
 
     /// The local forces (a piezoelectric actuator's `T_s V` included) and the law's
@@ -210,8 +215,9 @@ fn interpolate_frames(frames: &[Mat3; 3], xi: f64) -> Mat3 {
     gibbs_rotation(&g) * frames[1]
 }
 
-/// Rows 6 i..6 i + 6 of the element residual's derivative: node `i`'s force and moment.
-type ElementJacobian = SMatrix<f64, 18, 36>;
+/// Rows 6 i..6 i + 6 of the element residual's derivative: node `i`'s force and moment;
+/// the `C` columns of [`finite_volume::column`].
+type ElementJacobian<const C: usize> = SMatrix<f64, 18, C>;
 
 impl Element for Beam3 {
     fn label(&self) -> Label {
@@ -249,12 +255,24 @@ impl Element for Beam3 {
     }
 
     fn jacobian(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
+        // An elastic law's forces do not depend on the velocities: their 18 columns are zero.
+        if self.viscous {
+            self.jacobian_in::<36>(st, out);
+        } else {
+            self.jacobian_in::<18>(st, out);
+        }
+    }
+}
+
+impl Beam3 {
+    /// The Jacobian with `C` columns: 18 (positions and rotations) or 36 (and velocities).
+    fn jacobian_in<const C: usize>(&self, st: &dyn ElementState, out: &mut dyn JacobianSink) {
         let (terms, ks) = self.evaluate(st);
-        let node_tangents = terms.tangents();
-        let mut jac = ElementJacobian::zeros();
+        let node_tangents = terms.tangents::<C>();
+        let mut jac = ElementJacobian::<C>::zeros();
         for (s, k) in ks.iter().enumerate() {
             let d = k.tangents(&terms, &node_tangents);
-            let rates = self.viscous.then_some((&d.dstrain_rate, &d.dcurvature_rate));
+            let rates = d.rates.as_ref().map(|(dstrain_rate, dcurvature_rate)| (dstrain_rate, dcurvature_rate));
             let point = PointTangents { dp: &d.dp, dtheta: &d.dtheta, dstrain: &d.dstrain, dcurvature: &d.dcurvature, rates };
             finite_volume::add_point_jacobian(&mut jac, s, &k.p, &k.r, &self.law_at(st, s, k), &point, terms.x());
             if let Some(piezo) = &self.piezo {

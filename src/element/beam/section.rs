@@ -22,8 +22,9 @@
 //! per-step history in [`SectionReference::orientation`] and
 //! [`SectionReference::accumulated_curvature`].
 //!
-//! Each derivative is a 3x36 [`Tangent`]: columns `12 i + 3 k + c` for node `i`, kind `k`
-//! (0 position, 1 rotation δθ, 2 velocity, 3 angular velocity), component `c`.
+//! Each derivative is a [`Tangent`] with the columns of [`super::finite_volume::column`]:
+//! `C = 18` (positions and rotations of the three nodes) for an elastic law, `C = 36` (and
+//! the velocities) for a viscous one.
 
 use nalgebra::SMatrix;
 
@@ -31,15 +32,20 @@ use super::shape;
 use crate::element::contract::ElementState;
 use crate::kinematics::{gibbs_from_rotation, gibbs_g, gibbs_g_inverse, gibbs_g_inverse_derivative, gibbs_gt_apply, gibbs_gt_derivative, gibbs_gt_derivative_in_a, gibbs_gt_second_derivative, gibbs_rate_derivative, gibbs_rotation, skew, Mat3, Vec3};
 
-/// Derivative of a 3-vector with respect to the element's node perturbations.
-pub type Tangent = SMatrix<f64, 3, 36>;
+/// Derivative of a 3-vector with respect to the element's `C` node perturbations.
+pub type Tangent<const C: usize> = SMatrix<f64, 3, C>;
 
-pub use super::finite_volume::{put, POSITION};
-pub const ROTATION: usize = 1;
-pub const VELOCITY: usize = 2;
-pub const ANGULAR_VELOCITY: usize = 3;
+use super::finite_volume::{embed, put_rotation, strain_tangent, RotationTangent, ANGULAR_VELOCITY, POSITION, ROTATION, VELOCITY};
 
-fn single(node: usize, kind: usize, m: &Mat3) -> Tangent {
+/// A tangent on the nine rotation columns ([`RotationTangent`]).
+pub type Rotational = RotationTangent<9>;
+
+/// `t[:, block(node, kind)] += m` on the 3-node element.
+fn put<const C: usize>(t: &mut Tangent<C>, node: usize, kind: usize, m: &Mat3) {
+    super::finite_volume::put(t, 3, node, kind, m);
+}
+
+fn single<const C: usize>(node: usize, kind: usize, m: &Mat3) -> Tangent<C> {
     let mut t = Tangent::zeros();
     put(&mut t, node, kind, m);
     t
@@ -73,8 +79,6 @@ pub struct NodeTerms {
     a: [Vec3; 3],
     y: [Vec3; 3],
     g: [Vec3; 3],
-    /// `Γ(g_i) = G(g_i)⁻¹`.
-    gamma: [Mat3; 3],
     omega: [Vec3; 3],
     /// `ẏ_i`, `ġ_i`, when the law is viscous.
     rates: Option<NodeRates>,
@@ -86,11 +90,11 @@ struct NodeRates {
 }
 
 /// Derivatives of the node terms with respect to the element's perturbations.
-pub struct NodeTangents {
-    dy: [Tangent; 3],
-    dg: [Tangent; 3],
+pub struct NodeTangents<const C: usize> {
+    dy: [Tangent<C>; 3],
+    dg: [Rotational; 3],
     /// `∂ẏ_i`, `∂ġ_i`, when the law is viscous.
-    rates: Option<([Tangent; 3], [Tangent; 3])>,
+    rates: Option<([Tangent<C>; 3], [Tangent<C>; 3])>,
 }
 
 impl NodeTerms {
@@ -101,21 +105,19 @@ impl NodeTerms {
         let a: [Vec3; 3] = std::array::from_fn(|i| n[i].r * offsets[i]);
         let y = std::array::from_fn(|i| n[i].x + a[i]);
         let mut g = [Vec3::zeros(); 3];
-        let mut gamma = [Mat3::identity(); 3];
         for i in [0, 2] {
             g[i] = gibbs_from_rotation(&(tt * n[i].r * initial[i].transpose()));
-            gamma[i] = gibbs_g_inverse(&g[i]);
         }
         let omega = std::array::from_fn(|i| n[i].omega);
         let rates = with_rates.then(|| {
             let ydot = std::array::from_fn(|i| n[i].xdot + n[i].omega.cross(&a[i]));
             let mut gdot = [Vec3::zeros(); 3];
             for i in [0, 2] {
-                gdot[i] = gamma[i] * (tt * (n[i].omega - n[1].omega));
+                gdot[i] = gibbs_g_inverse(&g[i]) * (tt * (n[i].omega - n[1].omega));
             }
             NodeRates { ydot, gdot }
         });
-        NodeTerms { t, middle_relative: true, x: std::array::from_fn(|i| n[i].x), a, y, g, gamma, omega, rates }
+        NodeTerms { t, middle_relative: true, x: std::array::from_fn(|i| n[i].x), a, y, g, omega, rates }
     }
 
     /// The node terms of MBDyn's incremental update: `R(g_i) = R_i P_iᵀ` for all three
@@ -125,9 +127,8 @@ impl NodeTerms {
         let a: [Vec3; 3] = std::array::from_fn(|i| n[i].r * offsets[i]);
         let y = std::array::from_fn(|i| n[i].x + a[i]);
         let g: [Vec3; 3] = std::array::from_fn(|i| gibbs_from_rotation(&(n[i].r * base[i].transpose())));
-        let gamma = std::array::from_fn(|i| gibbs_g_inverse(&g[i]));
         let omega = std::array::from_fn(|i| n[i].omega);
-        NodeTerms { t: Mat3::identity(), middle_relative: false, x: std::array::from_fn(|i| n[i].x), a, y, g, gamma, omega, rates: None }
+        NodeTerms { t: Mat3::identity(), middle_relative: false, x: std::array::from_fn(|i| n[i].x), a, y, g, omega, rates: None }
     }
 
     /// The nodes' positions `x_i`.
@@ -136,25 +137,32 @@ impl NodeTerms {
     }
 
     /// `∂y_i`, `∂g_i` (and `∂ẏ_i`, `∂ġ_i` when viscous).
-    pub fn tangents(&self) -> NodeTangents {
+    pub fn tangents<const C: usize>(&self) -> NodeTangents<C> {
         let (a, tt) = (&self.a, self.t.transpose());
+        // `Γ(g_i) = G(g_i)⁻¹` (`g_2 = 0` when relative to the middle node: not needed).
+        let mut gamma = [Mat3::identity(); 3];
+        for i in 0..3 {
+            if !self.middle_relative || i != 1 {
+                gamma[i] = gibbs_g_inverse(&self.g[i]);
+            }
+        }
         let dy = std::array::from_fn(|i| {
             let mut d = single(i, POSITION, &Mat3::identity());
             put(&mut d, i, ROTATION, &-skew(&a[i]));
             d
         });
-        let mut dg = [Tangent::zeros(); 3];
+        let mut dg = [Rotational::zeros(); 3];
         if self.middle_relative {
             for i in [0, 2] {
                 // δg_i = Γ(g_i) Tᵀ (δθ_i − δθ_2).
-                let m = self.gamma[i] * tt;
-                put(&mut dg[i], i, ROTATION, &m);
-                put(&mut dg[i], 1, ROTATION, &-m);
+                let m = gamma[i] * tt;
+                put_rotation(&mut dg[i], i, &m);
+                put_rotation(&mut dg[i], 1, &-m);
             }
         } else {
             for (i, d) in dg.iter_mut().enumerate() {
                 // δg_i = Γ(g_i) δθ_i (the base P_i is fixed).
-                put(d, i, ROTATION, &self.gamma[i]);
+                put_rotation(d, i, &gamma[i]);
             }
         }
         let rates = self.rates.as_ref().map(|_| {
@@ -173,7 +181,7 @@ impl NodeTerms {
                 let mut dw = single(i, ANGULAR_VELOCITY, &tt);
                 put(&mut dw, 1, ANGULAR_VELOCITY, &-tt);
                 put(&mut dw, 1, ROTATION, &(tt * skew(&rel)));
-                dgdot[i] = gibbs_g_inverse_derivative(&self.g[i], &w) * dg[i] + self.gamma[i] * dw;
+                dgdot[i] = gibbs_g_inverse_derivative(&self.g[i], &w) * embed::<C, 9>(&dg[i]) + gamma[i] * dw;
             }
             (dydot, dgdot)
         });
@@ -194,14 +202,11 @@ pub struct SectionKinematics {
     pub curvature_rate: Vec3,
     nv: [f64; 3],
     nd: [f64; 3],
-    /// `p′`, `g`, `g′`, `G(g)`, `T G(g)`, `R_s⁰ᵀ`, `∂(Gᵀ(g) g′)/∂g`.
+    /// `p′`, `g`, `g′`, `R_s⁰ᵀ`.
     pp: Vec3,
     g: Vec3,
     gp: Vec3,
-    gm: Mat3,
-    tg: Mat3,
     r0t: Mat3,
-    dgt_gp: Mat3,
     rates: Option<SectionRates>,
 }
 
@@ -215,15 +220,15 @@ struct SectionRates {
 }
 
 /// Derivatives of an evaluation point's state with respect to the element's perturbations.
-pub struct SectionTangents {
-    pub dp: Tangent,
-    /// Virtual rotation of the section frame.
-    pub dtheta: Tangent,
-    pub dstrain: Tangent,
-    pub dcurvature: Tangent,
-    /// Zero unless the law is viscous.
-    pub dstrain_rate: Tangent,
-    pub dcurvature_rate: Tangent,
+pub struct SectionTangents<const C: usize> {
+    pub dp: Tangent<C>,
+    /// Virtual rotation of the section frame (rotation columns: it depends on the nodes'
+    /// rotations alone, as the curvature does).
+    pub dtheta: Rotational,
+    pub dstrain: Tangent<C>,
+    pub dcurvature: Rotational,
+    /// `(∂ε̇, ∂κ̇)` when the law is viscous.
+    pub rates: Option<(Tangent<C>, Tangent<C>)>,
 }
 
 /// `Σ w_i v_i` (interpolation from the nodes).
@@ -231,7 +236,7 @@ pub fn combine(w: &[f64; 3], v: &[Vec3; 3]) -> Vec3 {
     w[0] * v[0] + w[1] * v[1] + w[2] * v[2]
 }
 
-fn combine_t(w: &[f64; 3], v: &[Tangent; 3]) -> Tangent {
+fn combine_t<const C: usize>(w: &[f64; 3], v: &[SMatrix<f64, 3, C>; 3]) -> SMatrix<f64, 3, C> {
     v[0] * w[0] + v[1] * w[1] + v[2] * w[2]
 }
 
@@ -241,18 +246,17 @@ impl SectionKinematics {
         let nd = shape::derivatives(reference.xi).map(|d| d / reference.dsdxi);
         let (p, pp) = (combine(&nv, &node.y), combine(&nd, &node.y));
         let (g, gp) = (combine(&nv, &node.g), combine(&nd, &node.g));
-        let (gm, r0t) = (gibbs_g(&g), reference.orientation.transpose());
+        let r0t = reference.orientation.transpose();
         let r = node.t * gibbs_rotation(&g) * reference.orientation;
         let rt = r.transpose();
-        let tg = node.t * gm;
         let strain = rt * pp - reference.initial_strain;
-        let dgt_gp = gibbs_gt_derivative(&g, &gp);
         let mut curvature = r0t * gibbs_gt_apply(&g, &gp);
         if let Some(kappa_ref) = &reference.accumulated_curvature {
             curvature += kappa_ref;
         }
-        let mut s = SectionKinematics { p, r, strain, curvature, strain_rate: Vec3::zeros(), curvature_rate: Vec3::zeros(), nv, nd, pp, g, gp, gm, tg, r0t, dgt_gp, rates: None };
+        let mut s = SectionKinematics { p, r, strain, curvature, strain_rate: Vec3::zeros(), curvature_rate: Vec3::zeros(), nv, nd, pp, g, gp, r0t, rates: None };
         if let Some(rates) = &node.rates {
+            let (tg, dgt_gp) = (node.t * gibbs_g(&g), gibbs_gt_derivative(&g, &gp));
             let ppd = combine(&nd, &rates.ydot);
             let (gd, gpd) = (combine(&nv, &rates.gdot), combine(&nd, &rates.gdot));
             let spin = tg * gd;
@@ -266,27 +270,32 @@ impl SectionKinematics {
     }
 
     /// The derivatives of this point's state, from its element's node tangents.
-    pub fn tangents(&self, node: &NodeTerms, nt: &NodeTangents) -> SectionTangents {
-        let (nv, nd, pp, g, gp, gm) = (&self.nv, &self.nd, &self.pp, &self.g, &self.gp, &self.gm);
+    pub fn tangents<const C: usize>(&self, node: &NodeTerms, nt: &NodeTangents<C>) -> SectionTangents<C> {
+        let (nv, nd, pp, g, gp) = (&self.nv, &self.nd, &self.pp, &self.g, &self.gp);
+        // `G(g)`, `T G(g)`, `∂(Gᵀ(g) g′)/∂g`: what only the derivatives use.
+        let gm = &gibbs_g(g);
+        let (tg, dgt_gp) = (node.t * gm, gibbs_gt_derivative(g, gp));
         let rt = self.r.transpose();
         let (dp, dpp) = (combine_t(nv, &nt.dy), combine_t(nd, &nt.dy));
         let (dg, dgp) = (combine_t(nv, &nt.dg), combine_t(nd, &nt.dg));
-        let mut dtheta = self.tg * dg;
+        let mut dtheta = tg * dg;
         if node.middle_relative {
-            put(&mut dtheta, 1, ROTATION, &Mat3::identity());
+            put_rotation(&mut dtheta, 1, &Mat3::identity());
         }
-        let dstrain = rt * (dpp + skew(pp) * dtheta);
-        let dcurvature = self.r0t * (self.dgt_gp * dg + gm.transpose() * dgp);
-        let mut s = SectionTangents { dp, dtheta, dstrain, dcurvature, dstrain_rate: Tangent::zeros(), dcurvature_rate: Tangent::zeros() };
+        let dstrain = strain_tangent(&rt, &dpp, pp, &dtheta);
+        let dcurvature = self.r0t * (dgt_gp * dg + gm.transpose() * dgp);
+        let mut s = SectionTangents { dp, dtheta, dstrain, dcurvature, rates: None };
         if let (Some(r), Some((dydot, dgdot))) = (&self.rates, &nt.rates) {
             let dppd = combine_t(nd, dydot);
             let (dgd, dgpd) = (combine_t(nv, dgdot), combine_t(nd, dgdot));
+            let (dg, dgp) = (embed::<C, 9>(&dg), embed::<C, 9>(&dgp));
             let mut domega = node.t * (gibbs_rate_derivative(g, &r.gd) * dg + gm * dgd);
             put(&mut domega, 1, ANGULAR_VELOCITY, &Mat3::identity());
             put(&mut domega, 1, ROTATION, &-skew(&r.spin));
-            s.dstrain_rate = rt * (skew(&r.u) * s.dtheta + dppd + skew(pp) * domega - skew(&r.omega) * dpp);
+            let dstrain_rate = rt * (skew(&r.u) * embed::<C, 9>(&s.dtheta) + dppd + skew(pp) * domega - skew(&r.omega) * dpp);
             let dg_total = (gibbs_gt_second_derivative(g, gp, &r.gd) + gibbs_gt_derivative(g, &r.gpd)) * dg;
-            s.dcurvature_rate = self.r0t * (dg_total + self.dgt_gp * dgd + gibbs_gt_derivative_in_a(g, &r.gd) * dgp + gm.transpose() * dgpd);
+            let dcurvature_rate = self.r0t * (dg_total + dgt_gp * dgd + gibbs_gt_derivative_in_a(g, &r.gd) * dgp + gm.transpose() * dgpd);
+            s.rates = Some((dstrain_rate, dcurvature_rate));
         }
         s
     }

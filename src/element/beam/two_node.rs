@@ -25,7 +25,7 @@
 
 use nalgebra::{Matrix6, SMatrix, Vector6};
 
-use super::finite_volume::{self, put, PointTangents, POSITION};
+use super::finite_volume::{self, put_rotation, strain_tangent, PointTangents, RotationTangent, POSITION, ROTATION};
 use super::incremental::StepHistory;
 use super::{BeamError, BeamNode, BeamUpdate, PiezoActuator, PiezoError, SectionLaw, SectionOrientation};
 use crate::element::contract::{Element, ElementState, JacobianSink, Label, Latched, ResidualSink, ScalarNodeId, SectionState};
@@ -35,10 +35,14 @@ use crate::kinematics::{gibbs_from_rotation, gibbs_g, gibbs_g_inverse, gibbs_gt_
 use crate::element::Events;
 use crate::element::Outputs;
 
-const ROTATION: usize = 1;
+/// Derivative of a 3-vector with respect to the element's 12 node perturbations (positions
+/// and rotations: the law is elastic).
+type Tangent = SMatrix<f64, 3, 12>;
 
-/// Derivative of a 3-vector with respect to the element's 24 node perturbations.
-type Tangent = SMatrix<f64, 3, 24>;
+/// `t[:, block(node, kind)] += m` on the 2-node element.
+fn put(t: &mut Tangent, node: usize, kind: usize, m: &Mat3) {
+    finite_volume::put(t, 2, node, kind, m);
+}
 
 /// Two-node beam (MBDyn's `beam2`).
 #[derive(Clone, Debug)]
@@ -198,7 +202,11 @@ impl Beam2 {
     }
 
     fn local_forces(&self, st: &dyn ElementState, k: &Point) -> Vector6<f64> {
-        self.law_at(st, k).0
+        let mut f = finite_volume::force_at(&self.law, st, &k.strain, &k.curvature, None);
+        if let Some(piezo) = &self.piezo {
+            f += piezo.local_forces(0, st);
+        }
+        f
     }
 
     /// The local forces `K ([ε; κ] − e_p) + f_p (+ T V)` and the law's tangents.
@@ -254,26 +262,26 @@ impl Element for Beam2 {
         let (dtheta, dcurvature) = match &k.incremental {
             // δg_i = Γ(g_i) δθ_i; δθ_s = G(g) δg; δκ = R_s,refᵀ (∂(Gᵀ(g) g′)/∂g δg + Gᵀ(g) δg′).
             Some(inc) => {
-                let (mut dg, mut dgp) = (Tangent::zeros(), Tangent::zeros());
+                let (mut dg, mut dgp) = (RotationTangent::<6>::zeros(), RotationTangent::<6>::zeros());
                 for i in 0..2 {
-                    put(&mut dg, i, ROTATION, &(0.5 * inc.gamma[i]));
-                    put(&mut dgp, i, ROTATION, &(if i == 0 { -1.0 } else { 1.0 } / self.length * inc.gamma[i]));
+                    put_rotation(&mut dg, i, &(0.5 * inc.gamma[i]));
+                    put_rotation(&mut dgp, i, &(if i == 0 { -1.0 } else { 1.0 } / self.length * inc.gamma[i]));
                 }
                 let gm = gibbs_g(&inc.g);
                 (gm * dg, inc.frame.transpose() * (gibbs_gt_derivative(&inc.g, &inc.gp) * dg + gm.transpose() * dgp))
             }
             None => {
-                let (mut drel, mut dtheta) = (Tangent::zeros(), Tangent::zeros());
-                put(&mut drel, 0, ROTATION, &-k.d);
-                put(&mut drel, 1, ROTATION, &k.d);
-                put(&mut dtheta, 0, ROTATION, &(Mat3::identity() - k.h));
-                put(&mut dtheta, 1, ROTATION, &k.h);
+                let (mut drel, mut dtheta) = (RotationTangent::<6>::zeros(), RotationTangent::<6>::zeros());
+                put_rotation(&mut drel, 0, &-k.d);
+                put_rotation(&mut drel, 1, &k.d);
+                put_rotation(&mut dtheta, 0, &(Mat3::identity() - k.h));
+                put_rotation(&mut dtheta, 1, &k.h);
                 (dtheta, self.orientation.transpose() * drel / self.length)
             }
         };
-        let dstrain = k.r.transpose() * (dpp + skew(&k.pp) * dtheta);
+        let dstrain = strain_tangent(&k.r.transpose(), &dpp, &k.pp, &dtheta);
         let point = PointTangents { dp: &dp, dtheta: &dtheta, dstrain: &dstrain, dcurvature: &dcurvature, rates: None };
-        let mut jac = SMatrix::<f64, 12, 24>::zeros();
+        let mut jac = SMatrix::<f64, 12, 12>::zeros();
         finite_volume::add_point_jacobian(&mut jac, 0, &k.p, &k.r, &self.law_at(st, &k), &point, &k.x);
         finite_volume::scatter_jacobian(&jac, false, out);
         if let Some(piezo) = &self.piezo {
