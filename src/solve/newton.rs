@@ -135,6 +135,9 @@ pub struct NewtonWorkspace {
     values: Vec<f64>,
     /// The node frames of the iterate, computed once for its residual and its Jacobian.
     frames: Frames,
+    /// Whether `frames` are those of the solution the last Newton iteration returned (it
+    /// converged on the residual of that very state).
+    frames_of_solution: bool,
     /// When a time step's Newton iteration keeps its Jacobian's factorization for the next
     /// iteration (MBDyn's `modified` Newton–Raphson, with its reuse decided by convergence):
     /// when the residual norm fell to at most this fraction of the previous iteration's.
@@ -155,13 +158,19 @@ pub const KEEP_JACOBIAN_BELOW: f64 = 0.1;
 
 impl Default for NewtonWorkspace {
     fn default() -> Self {
-        NewtonWorkspace { lu: SparseLu::default(), jacobian: Triplets::default(), values: Vec::new(), frames: Frames::default(), keep_jacobian_below: 0.0, reused: 0, factored: 0 }
+        NewtonWorkspace { lu: SparseLu::default(), jacobian: Triplets::default(), values: Vec::new(), frames: Frames::default(), frames_of_solution: false, keep_jacobian_below: 0.0, reused: 0, factored: 0 }
     }
 }
 
 impl NewtonWorkspace {
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// The node frames of the state the last [`newton`] returned, when it converged on that
+    /// state's residual (not after a last increment): a time step re-bases with them.
+    pub fn frames_of_solution(&self) -> Option<&Frames> {
+        self.frames_of_solution.then_some(&self.frames)
     }
 }
 
@@ -274,6 +283,7 @@ pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &Newton
         Update::Derivatives { .. } => asm.dofs.node_first.iter().flat_map(|&f| (f..f + 6).map(|i| (i, st.y[i], st.yp[i]))).collect(),
         _ => Vec::new(),
     };
+    ws.frames_of_solution = false;
     if !matches!(update, Update::Static) {
         ws.lu.eliminating(&asm.dofs.momentum_pairs());
     }
@@ -310,6 +320,7 @@ pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &Newton
         let norm = measure(&judged);
         norms.push(norm);
         if norm <= settings.tolerance {
+            ws.frames_of_solution = held.is_empty();
             return Ok(Convergence { iterations: iteration, residual_norm: norm });
         }
         if !norm.is_finite() || iteration == settings.max_iterations {
