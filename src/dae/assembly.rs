@@ -1,10 +1,11 @@
 //! Assembly of the residual `F(y, ẏ, t)` and of `a F_/ẏ + b F_/y` from the nodes and the
 //! elements' contributions (`a = 1, b = c` gives `J(c)`, eq. 5).
 
+use super::jacobian_sink::{global_row, Entries, Jacobian, Shape, Values};
 use super::state::NodeFrame;
 use super::{DofMap, State, Triplets};
-use crate::element::{Col, ElementState, JacobianSink, NodeKinematics, ResidualSink, Row, SectionState};
-use crate::kinematics::{skew, Mat3, Vec3};
+use crate::element::{ElementState, NodeKinematics, ResidualSink, Row, SectionState};
+use crate::kinematics::{skew, Vec3};
 use crate::model::ConstraintForm;
 use crate::model::{Model, NodeKind};
 
@@ -26,6 +27,18 @@ impl Coefficients {
     /// `F_/y` in the plain form (static analysis).
     pub fn static_analysis() -> Self {
         Coefficients { a: 0.0, b: 1.0, form: ConstraintForm::Plain, dcoef: 1.0 }
+    }
+}
+
+/// The node frames of one state ([`Assembler::frames_into`]), kept by a Newton iteration
+/// for its residual and its Jacobian.
+#[derive(Clone, Debug, Default)]
+pub struct Frames(Vec<NodeFrame>);
+
+impl std::ops::Deref for Frames {
+    type Target = [NodeFrame];
+    fn deref(&self) -> &[NodeFrame] {
+        &self.0
     }
 }
 
@@ -109,18 +122,6 @@ impl ElementState for Context<'_> {
     }
 }
 
-/// Maps an element's local rows to global equations (`None`: a momentum row of a static
-/// node, which does not exist). `e` is the element's index (its scalar slots).
-#[inline]
-fn global_row(dofs: &DofMap, e: usize, slots: &[usize], first: usize, row: Row) -> Option<usize> {
-    match row {
-        Row::Scalar { slot } => Some(dofs.scalar_first + dofs.element_scalars[e][slot]),
-        Row::Equilibrium { slot, comp } => Some(dofs.equilibrium_row(slots[slot]) + comp),
-        Row::Momentum { slot, comp } => (dofs.node_kind[slots[slot]] == NodeKind::Dynamic).then(|| dofs.node_first[slots[slot]] + comp),
-        Row::Constraint(k) => Some(first + k),
-    }
-}
-
 /// Maps an element's residual rows to equations and hands `(equation, value)` to `put`.
 struct Residual<'a, P: FnMut(usize, f64)> {
     dofs: &'a DofMap,
@@ -139,111 +140,6 @@ impl<P: FnMut(usize, f64)> ResidualSink for Residual<'_, P> {
         };
         if let Some(i) = global_row(self.dofs, self.element, self.slots, self.first, row) {
             (self.put)(i, value * scale);
-        }
-    }
-}
-
-struct Jacobian<'a> {
-    dofs: &'a DofMap,
-    element: usize,
-    frames: &'a [NodeFrame],
-    slots: &'a [usize],
-    first: usize,
-    c: Coefficients,
-    out: &'a mut Triplets,
-}
-
-impl Jacobian<'_> {
-    /// Coefficient of a `y`-derivative in `row`: `y`-derivatives of holonomic constraint rows
-    /// belong to `F_/ẏ` in the form of eq. 30.
-    fn y_coefficient(&self, row: Row) -> f64 {
-        match row {
-            Row::Constraint(k) if self.c.form == ConstraintForm::Scaled && self.dofs.is_multiplier(self.first + k) => self.c.a,
-            _ => self.c.b,
-        }
-    }
-}
-
-/// The node columns a 3x3 block covers, when it is one kind of one node's.
-fn node_block(cols: &[Col; 3]) -> Option<Col> {
-    let first = cols[0];
-    let same = match first {
-        Col::Position { slot, comp: 0 } => *cols == Col::position(slot),
-        Col::Rotation { slot, comp: 0 } => *cols == Col::rotation(slot),
-        Col::Velocity { slot, comp: 0 } => *cols == Col::velocity(slot),
-        Col::AngularVelocity { slot, comp: 0 } => *cols == Col::angular_velocity(slot),
-        _ => false,
-    };
-    same.then_some(first)
-}
-
-impl JacobianSink for Jacobian<'_> {
-    fn add_block(&mut self, rows: [Row; 3], cols: [Col; 3], m: &Mat3) {
-        let Some(block) = node_block(&cols) else {
-            for (i, row) in rows.into_iter().enumerate() {
-                for (j, col) in cols.into_iter().enumerate() {
-                    self.add(row, col, m[(i, j)]);
-                }
-            }
-            return;
-        };
-        let a = self.c.a;
-        for (i, row) in rows.into_iter().enumerate() {
-            let Some(r) = global_row(self.dofs, self.element, self.slots, self.first, row) else { continue };
-            let b = self.y_coefficient(row);
-            let mrow = m.row(i);
-            // A block row times G (δθ = G δg) gives the row in the g columns: 3 entries.
-            let (values, first) = match block {
-                Col::Position { slot, .. } => (b * mrow, self.dofs.node_first[self.slots[slot]]),
-                Col::Velocity { slot, .. } => (a * mrow, self.dofs.node_first[self.slots[slot]]),
-                Col::Rotation { slot, .. } => {
-                    let n = self.slots[slot];
-                    (b * mrow * self.frames[n].g_matrix, self.dofs.node_first[n] + 3)
-                }
-                Col::AngularVelocity { slot, .. } => {
-                    let (n, fr) = (self.slots[slot], &self.frames[self.slots[slot]]);
-                    (a * mrow * fr.g_matrix + b * mrow * fr.rate_derivative, self.dofs.node_first[n] + 3)
-                }
-                Col::Multiplier(_) | Col::Rate(_) | Col::ScalarValue { .. } | Col::ScalarRate { .. } => unreachable!("node_block returns node columns only"),
-            };
-            for k in 0..3 {
-                self.out.push(r, first + k, values[k]);
-            }
-        }
-    }
-
-    fn add(&mut self, row: Row, col: Col, v: f64) {
-        let Some(i) = global_row(self.dofs, self.element, self.slots, self.first, row) else { return };
-        let scaled = self.c.form == ConstraintForm::Scaled;
-        let b = self.y_coefficient(row);
-        let a = self.c.a;
-        match col {
-            Col::Position { slot, comp } => self.out.push(i, self.dofs.node_first[self.slots[slot]] + comp, b * v),
-            Col::Velocity { slot, comp } => self.out.push(i, self.dofs.node_first[self.slots[slot]] + comp, a * v),
-            Col::Rotation { slot, comp } => {
-                let (n, fr) = (self.slots[slot], &self.frames[self.slots[slot]]);
-                for k in 0..3 {
-                    self.out.push(i, self.dofs.node_first[n] + 3 + k, b * v * fr.g_matrix[(comp, k)]);
-                }
-            }
-            Col::AngularVelocity { slot, comp } => {
-                let (n, fr) = (self.slots[slot], &self.frames[self.slots[slot]]);
-                for k in 0..3 {
-                    let value = a * v * fr.g_matrix[(comp, k)] + b * v * fr.rate_derivative[(comp, k)];
-                    self.out.push(i, self.dofs.node_first[n] + 3 + k, value);
-                }
-            }
-            Col::Multiplier(k) => {
-                // A multiplier is algebraic in eq. 30; any other own unknown (a velocity
-                // constraint's, a coordinate) is a `y` like a position, with its row's
-                // coefficient (the row of a holonomic constraint is `Φ/c`).
-                let j = self.first + k;
-                self.out.push(i, j, if scaled && self.dofs.is_multiplier(j) { a } else { b } * v)
-            }
-            Col::Rate(k) => self.out.push(i, self.first + k, a * v),
-            // A scalar node's value is a `y` like a position, its derivative a `ẏ`.
-            Col::ScalarValue { slot } => self.out.push(i, self.dofs.scalar_first + self.dofs.element_scalars[self.element][slot], b * v),
-            Col::ScalarRate { slot } => self.out.push(i, self.dofs.scalar_first + self.dofs.element_scalars[self.element][slot], a * v),
         }
     }
 }
@@ -334,14 +230,29 @@ impl<'m> Assembler<'m> {
 
     /// `F(y, ẏ, t)`; constraint rows are divided by `dcoef` in the form of eq. 30.
     pub fn residual(&self, st: &State, form: ConstraintForm, dcoef: f64) -> Vec<f64> {
-        let frames = self.frames(st);
+        self.residual_with(st, &self.frames(st), form, dcoef)
+    }
+
+    /// The node frames of `st` into `out`, for [`Assembler::residual_at`] and
+    /// [`Assembler::jacobian_at`] (a Newton iteration computes them once for both).
+    pub fn frames_into(&self, st: &State, out: &mut Frames) {
+        out.0.clear();
+        out.0.extend((0..self.model.nodes.len()).map(|i| st.node_frame(&self.dofs, i)));
+    }
+
+    /// [`Assembler::residual`] with the node frames of `st` given ([`Assembler::frames_into`]).
+    pub fn residual_at(&self, st: &State, frames: &Frames, form: ConstraintForm, dcoef: f64) -> Vec<f64> {
+        self.residual_with(st, frames, form, dcoef)
+    }
+
+    fn residual_with(&self, st: &State, frames: &[NodeFrame], form: ConstraintForm, dcoef: f64) -> Vec<f64> {
         let mut f = vec![0.0; self.dofs.len];
         for (i, fr) in frames.iter().enumerate() {
             self.node_residual(st, i, fr, &mut f);
         }
         let scale = if form == ConstraintForm::Scaled { 1.0 / dcoef } else { 1.0 };
         for (e, el) in self.model.elements.iter().enumerate() {
-            let ctx = self.context(&frames, st, e, scale);
+            let ctx = self.context(frames, st, e, scale);
             let mut sink = Residual { dofs: &self.dofs, element: e, slots: &self.dofs.element_nodes[e], first: self.dofs.element_first[e], constraint_scale: scale, put: |i, v| f[i] += v };
             el.residual(&ctx, &mut sink);
         }
@@ -358,16 +269,38 @@ impl<'m> Assembler<'m> {
     /// [`Assembler::jacobian`] into `out`, reusing its storage (Newton iterations).
     pub fn jacobian_into(&self, st: &State, c: Coefficients, out: &mut Triplets) {
         out.clear(self.dofs.len);
-        let frames = self.frames(st);
+        out.shape = Some(self.assemble_jacobian(st, &self.frames(st), c, out));
+    }
+
+    /// [`Assembler::jacobian_into`] with the node frames of `st` given; `out.shape` is the
+    /// fingerprint of the positions ([`Shape`]).
+    pub fn jacobian_at(&self, st: &State, frames: &Frames, c: Coefficients, out: &mut Triplets) {
+        out.clear(self.dofs.len);
+        out.shape = Some(self.assemble_jacobian(st, frames, c, out));
+    }
+
+    /// The values of [`Assembler::jacobian_at`]'s triplets alone, in their order, into
+    /// `values`, and the fingerprint of their positions: where it equals that of earlier
+    /// triplets, the values sit at those triplets' positions (Newton's iterations on a known
+    /// pattern map no row or column and push no index).
+    pub fn jacobian_values_at(&self, st: &State, frames: &Frames, c: Coefficients, values: &mut Vec<f64>) -> Shape {
+        values.clear();
+        self.assemble_jacobian(st, frames, c, &mut Values(values))
+    }
+
+    fn assemble_jacobian<O: Entries>(&self, st: &State, frames: &[NodeFrame], c: Coefficients, out: &mut O) -> Shape {
         for (i, fr) in frames.iter().enumerate() {
             self.node_jacobian(st, i, fr, c, out);
         }
         let scale = if c.form == ConstraintForm::Scaled { 1.0 / c.dcoef } else { 1.0 };
+        let mut shape = Shape::of_model(self.dofs.len, self.model.elements.len());
         for (e, el) in self.model.elements.iter().enumerate() {
-            let ctx = self.context(&frames, st, e, scale);
-            let mut sink = Jacobian { dofs: &self.dofs, element: e, frames: &frames, slots: &self.dofs.element_nodes[e], first: self.dofs.element_first[e], c, out };
+            let ctx = self.context(frames, st, e, scale);
+            let mut sink = Jacobian { dofs: &self.dofs, element: e, frames, slots: &self.dofs.element_nodes[e], first: self.dofs.element_first[e], c, out: &mut *out, shape: shape.element(e) };
             el.jacobian(&ctx, &mut sink);
+            shape = sink.shape;
         }
+        shape
     }
 
     /// A dynamic node's own terms: `β`, `γ` in the momentum definitions; `β̇` and
@@ -403,26 +336,26 @@ impl<'m> Assembler<'m> {
         }
     }
 
-    fn node_jacobian(&self, st: &State, i: usize, fr: &NodeFrame, c: Coefficients, out: &mut Triplets) {
+    fn node_jacobian<O: Entries>(&self, st: &State, i: usize, fr: &NodeFrame, c: Coefficients, out: &mut O) {
         let first = self.dofs.node_first[i];
         if let (Some(m), NodeKind::Dynamic) = (&self.model.frame_motion, self.dofs.node_kind[i]) {
             let wx = skew(&m.at(st.t).w);
             for k in 0..3 {
                 for j in 0..3 {
-                    out.push(first + 6 + k, first + 6 + j, 2.0 * c.b * wx[(k, j)]);
-                    out.push(first + 9 + k, first + 9 + j, c.b * wx[(k, j)]);
+                    out.put(first + 6 + k, first + 6 + j, 2.0 * c.b * wx[(k, j)]);
+                    out.put(first + 9 + k, first + 9 + j, c.b * wx[(k, j)]);
                 }
             }
         }
         if self.dofs.node_displacement[i] {
             let row = if self.dofs.node_kind[i] == NodeKind::Dynamic { first + 9 } else { first + 3 };
-            (0..3).for_each(|k| out.push(row + k, first + 3 + k, c.b));
+            (0..3).for_each(|k| out.put(row + k, first + 3 + k, c.b));
             if self.dofs.node_kind[i] == NodeKind::Dynamic {
                 for k in 0..3 {
-                    out.push(first + k, first + 6 + k, c.b);
-                    out.push(first + 3 + k, first + 9 + k, c.b);
-                    out.push(first + 6 + k, first + 6 + k, c.a);
-                    out.push(first + 9 + k, first + 9 + k, c.a);
+                    out.put(first + k, first + 6 + k, c.b);
+                    out.put(first + 3 + k, first + 9 + k, c.b);
+                    out.put(first + 6 + k, first + 6 + k, c.a);
+                    out.put(first + 9 + k, first + 9 + k, c.a);
                 }
             }
             return;
@@ -433,14 +366,14 @@ impl<'m> Assembler<'m> {
         let (beta, _) = st.momenta(&self.dofs, i);
         let (bx, vx) = (skew(&beta), skew(&fr.kin.xdot));
         for k in 0..3 {
-            out.push(first + k, first + 6 + k, c.b);
-            out.push(first + 3 + k, first + 9 + k, c.b);
-            out.push(first + 6 + k, first + 6 + k, c.a);
-            out.push(first + 9 + k, first + 9 + k, c.a);
+            out.put(first + k, first + 6 + k, c.b);
+            out.put(first + 3 + k, first + 9 + k, c.b);
+            out.put(first + 6 + k, first + 6 + k, c.a);
+            out.put(first + 9 + k, first + 9 + k, c.a);
             for j in 0..3 {
                 // ∂(ẋ × β)/∂ẋ = −[β×], ∂(ẋ × β)/∂β = [ẋ×].
-                out.push(first + 9 + k, first + j, -c.a * bx[(k, j)]);
-                out.push(first + 9 + k, first + 6 + j, c.b * vx[(k, j)]);
+                out.put(first + 9 + k, first + j, -c.a * bx[(k, j)]);
+                out.put(first + 9 + k, first + 6 + j, c.b * vx[(k, j)]);
             }
         }
     }
@@ -561,7 +494,7 @@ impl<'m> Assembler<'m> {
     pub(crate) fn element_jacobian(&self, st: &State, frames: &[NodeFrame], e: usize, c: Coefficients) -> Triplets {
         let mut out = Triplets::new(self.dofs.len);
         let ctx = self.context(frames, st, e, if c.form == ConstraintForm::Scaled { 1.0 / c.dcoef } else { 1.0 });
-        let mut sink = Jacobian { dofs: &self.dofs, element: e, frames, slots: &self.dofs.element_nodes[e], first: self.dofs.element_first[e], c, out: &mut out };
+        let mut sink = Jacobian { dofs: &self.dofs, element: e, frames, slots: &self.dofs.element_nodes[e], first: self.dofs.element_first[e], c, out: &mut out, shape: Shape::default() };
         self.model.elements[e].jacobian(&ctx, &mut sink);
         out
     }

@@ -16,6 +16,9 @@ pub struct Triplets {
     pub rows: Vec<usize>,
     pub cols: Vec<usize>,
     pub values: Vec<f64>,
+    /// The fingerprint of the element calls the assembler made these triplets from
+    /// ([`super::Assembler::jacobian_at`]); `None` for triplets made otherwise.
+    pub shape: Option<super::Shape>,
 }
 
 impl Triplets {
@@ -25,6 +28,7 @@ impl Triplets {
     /// Empties the triplets (keeping their storage) for an `n`x`n` matrix.
     pub fn clear(&mut self, n: usize) {
         self.n = n;
+        self.shape = None;
         self.rows.clear();
         self.cols.clear();
         self.values.clear();
@@ -94,7 +98,7 @@ impl Factored {
         if path == LuPath::Auto {
             let ordering = BandOrdering::reverse_cuthill_mckee(n, rows, cols);
             if ordering.factorization_work() <= BAND_WORK_PER_ENTRY * csc.row_idx().len().max(1) {
-                let lu = BandLu::new(n, ordering.kl, ordering.ku);
+                let lu = BandLu::with_pattern(n, ordering.kl, ordering.ku, rows.iter().zip(cols).map(|(&r, &c)| (ordering.position[r], ordering.position[c])));
                 let position = rows.iter().zip(cols).map(|(&r, &c)| lu.index(ordering.position[r], ordering.position[c])).collect();
                 let factorization = Factorization::Band { ordering, lu, rhs: vec![0.0; n] };
                 return Ok(Factored { n, position, factorization });

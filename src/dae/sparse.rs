@@ -4,6 +4,7 @@
 //! reverse Cuthill–McKee renumbering when the band is narrow, faer's sparse LU otherwise.
 
 use super::eliminate::Eliminated;
+use super::jacobian_sink::Shape;
 pub use super::factored::{LuPath, SparseError, Triplets, BAND_WORK_PER_ENTRY};
 use super::factored::Factored;
 
@@ -23,6 +24,9 @@ fn position_key(row: usize, col: usize) -> u64 {
 /// A sparsity pattern: the triplet positions it was made from and its solver.
 struct Pattern {
     positions: Vec<u64>,
+    /// The fingerprint of the assembler's calls behind those positions, when known
+    /// ([`Triplets::shape`]): values with the same fingerprint sit at the same positions.
+    shape: Option<Shape>,
     solver: Solver,
     /// Which factors the last successful solve left: those of the elimination's reduced
     /// system or of the whole one (`None` after a failed factorization).
@@ -47,7 +51,7 @@ impl Pattern {
             None => Solver::Direct(Factored::new(j.n, &j.rows, &j.cols, path)?),
         };
         let positions = j.rows.iter().zip(&j.cols).map(|(&r, &c)| position_key(r, c)).collect();
-        Ok(Pattern { positions, solver, factored: None })
+        Ok(Pattern { positions, shape: j.shape, solver, factored: None })
     }
 
     /// Whether `j`'s triplets sit at the positions this pattern was made from.
@@ -55,24 +59,26 @@ impl Pattern {
         self.positions.len() == j.rows.len() && self.positions.iter().zip(j.rows.iter().zip(&j.cols)).all(|(&p, (&r, &c))| p == position_key(r, c))
     }
 
-    /// Assembles `j`'s values, factors and solves `J x = rhs` in place.
-    fn solve(&mut self, j: &Triplets, rhs: &mut [f64], path: LuPath) -> Result<(), SparseError> {
+    /// Assembles `values` (one per triplet of the pattern, in its order), factors and solves
+    /// `J x = rhs` in place.
+    fn solve(&mut self, n: usize, values: &[f64], rhs: &mut [f64], path: LuPath) -> Result<(), SparseError> {
         self.factored = None;
         match &mut self.solver {
             Solver::Direct(f) => {
-                f.solve(&j.values, rhs)?;
+                f.solve(values, rhs)?;
                 self.factored = Some(Factors::Whole);
             }
             Solver::Eliminated { reduced, direct } => {
-                if reduced.solve(&j.values, rhs).is_ok() {
+                if reduced.solve(values, rhs).is_ok() {
                     self.factored = Some(Factors::Reduced);
                     return Ok(());
                 }
                 if direct.is_none() {
-                    *direct = Some(Factored::new(j.n, &j.rows, &j.cols, path)?);
+                    let (rows, cols): (Vec<usize>, Vec<usize>) = self.positions.iter().map(|&p| ((p >> 32) as usize, (p & u32::MAX as u64) as usize)).unzip();
+                    *direct = Some(Factored::new(n, &rows, &cols, path)?);
                 }
                 let Some(f) = direct else { unreachable!("set above") };
-                f.solve(&j.values, rhs)?;
+                f.solve(values, rhs)?;
                 self.factored = Some(Factors::Whole);
             }
         }
@@ -154,12 +160,37 @@ impl SparseLu {
             self.symbolic_factorizations += 1;
         }
         let Some(p) = &mut self.pattern else { unreachable!("set above") };
-        p.solve(j, rhs, self.path)?;
+        p.shape = j.shape;
+        p.solve(j.n, &j.values, rhs, self.path)?;
         if rhs.iter().any(|x| !x.is_finite()) {
             p.factored = None;
             return Err(SparseError::Singular);
         }
         Ok(())
+    }
+
+    /// Solves `J x = rhs` in place for `J` given by its values alone, in the order of the
+    /// triplets of the current pattern, when `shape` is the fingerprint that pattern was made
+    /// with ([`super::Assembler::jacobian_values_at`]); `Ok(false)`, nothing factored and
+    /// `rhs` untouched, when there is no such pattern (the caller then assembles triplets
+    /// and calls [`SparseLu::solve`]).
+    pub fn solve_values(&mut self, n: usize, values: &[f64], shape: Shape, rhs: &mut [f64]) -> Result<bool, SparseError> {
+        let Some(p) = &mut self.pattern else { return Ok(false) };
+        if p.shape != Some(shape) || p.positions.len() != values.len() {
+            return Ok(false);
+        }
+        p.solve(n, values, rhs, self.path)?;
+        if rhs.iter().any(|x| !x.is_finite()) {
+            p.factored = None;
+            return Err(SparseError::Singular);
+        }
+        Ok(true)
+    }
+
+    /// Whether there is a pattern that values with a fingerprint can be solved on
+    /// ([`SparseLu::solve_values`]).
+    pub fn knows_shape(&self) -> bool {
+        matches!(&self.pattern, Some(Pattern { shape: Some(_), .. }))
     }
 
     /// Solves `J x = rhs` in place with the factorization of the last successful

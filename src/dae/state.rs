@@ -106,8 +106,14 @@ impl State {
     /// Re-bases every node's orientation: `R_ref ← R(g) R(g_ref) R_ref`, `g ← 0`, `ġ ← ω`
     /// (since `G(0) = I`), `g_ref ← 0`, `W_ref ← 0`; the kinematics are unchanged.
     pub fn rebase(&mut self, dofs: &DofMap) {
-        for i in 0..self.r_ref.len() {
-            let fr = self.node_frame(dofs, i);
+        let frames: Vec<NodeFrame> = (0..self.r_ref.len()).map(|i| self.node_frame(dofs, i)).collect();
+        self.rebase_with(dofs, &frames);
+    }
+
+    /// [`State::rebase`] with this state's node frames given ([`State::node_frame`] of every
+    /// node): a time step computes them once for its snapshot and the re-basing.
+    pub fn rebase_with(&mut self, dofs: &DofMap, frames: &[NodeFrame]) {
+        for (i, fr) in frames.iter().enumerate() {
             self.r_ref[i] = fr.kin.r;
             self.g_ref[i] = Vec3::zeros();
             self.w_ref[i] = Vec3::zeros();

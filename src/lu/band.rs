@@ -146,6 +146,21 @@ pub struct BandLu {
     pivot: Vec<usize>,
     /// Rows of `L` below the diagonal in each column up to its last nonzero.
     lower: Vec<usize>,
+    /// The last column each row of the matrix can hold a nonzero in: the band's edge
+    /// `i + ku`, or the pattern's ([`BandLu::with_pattern`]).
+    row_end: Vec<usize>,
+    /// `row_end` as the factorization goes: rows swapped, rows updated by a pivot row reach
+    /// its last column.
+    fill_end: Vec<usize>,
+    /// The last row each column can hold a nonzero in: the band's edge `j + kl`, or the
+    /// last row of the pattern whose first entry is at or left of column `j` (a row's
+    /// first nonzero never moves left: updates fill to the right, and a row swapped at
+    /// step `k` goes to a row that held a nonzero in column `k`).
+    col_end: Vec<usize>,
+    /// The first row each column of `U` holds a nonzero in after the last factorization
+    /// (`min { i : fill_end[i] ≥ j }`; before any, the band's edge `j − kl − ku`): where
+    /// [`BandLu::clear`] and the back substitution start.
+    upper_top: Vec<usize>,
 }
 
 /// A zero pivot: the matrix is singular.
@@ -155,7 +170,35 @@ pub struct ZeroPivot;
 impl BandLu {
     pub fn new(n: usize, kl: usize, ku: usize) -> Self {
         let ld = 2 * kl + ku + 1;
-        BandLu { n, kl, ku, ld, band: vec![0.0; ld * n], pivot: vec![0; n], lower: vec![0; n] }
+        let last = n.saturating_sub(1);
+        let row_end: Vec<usize> = (0..n).map(|i| (i + ku).min(last)).collect();
+        let col_end = (0..n).map(|j| (j + kl).min(last)).collect();
+        let upper_top = (0..n).map(|j| j.saturating_sub(kl + ku)).collect();
+        BandLu { n, kl, ku, ld, band: vec![0.0; ld * n], pivot: vec![0; n], lower: vec![0; n], fill_end: row_end.clone(), row_end, col_end, upper_top }
+    }
+
+    /// A band LU for matrices whose nonzeros all lie at the renumbered `(i, j)` of
+    /// `entries`: each row's elimination then stops at its last entry and its fill's, and
+    /// each column's pivot search at its last possible row, instead of the band's edges
+    /// (the same operations on the same nonzeros, fewer zeros visited).
+    pub fn with_pattern(n: usize, kl: usize, ku: usize, entries: impl Iterator<Item = (usize, usize)>) -> Self {
+        let mut lu = BandLu::new(n, kl, ku);
+        let mut row_start: Vec<usize> = (0..n).collect();
+        lu.row_end.iter_mut().enumerate().for_each(|(i, e)| *e = i);
+        for (i, j) in entries {
+            lu.row_end[i] = lu.row_end[i].max(j);
+            row_start[i] = row_start[i].min(j);
+        }
+        // col_end[j] = max { i : row_start[i] ≤ j }, at least j: the rows by their first
+        // column, then a running maximum.
+        lu.col_end.iter_mut().enumerate().for_each(|(j, e)| *e = j);
+        for (i, &s) in row_start.iter().enumerate() {
+            lu.col_end[s] = lu.col_end[s].max(i);
+        }
+        for j in 1..n {
+            lu.col_end[j] = lu.col_end[j].max(lu.col_end[j - 1]);
+        }
+        lu
     }
 
     /// Index in the band storage of entry `(i, j)` of the renumbered matrix
@@ -165,9 +208,15 @@ impl BandLu {
         j * self.ld + self.kl + self.ku + i - j
     }
 
-    /// Zeroes the storage for a new matrix.
+    /// Zeroes the storage for a new matrix: in each column, the rows the last factorization
+    /// can have left a nonzero in (`U` from [`BandLu::upper_top`], `L` to the column's last
+    /// possible row); the rest of the band is zero already.
     pub fn clear(&mut self) {
-        self.band.iter_mut().for_each(|v| *v = 0.0);
+        let (ld, kv) = (self.ld, self.kl + self.ku);
+        for (j, (&top, &end)) in self.upper_top.iter().zip(&self.col_end).enumerate() {
+            let col = j * ld + kv - j;
+            self.band[col + top..=col + end].iter_mut().for_each(|v| *v = 0.0);
+        }
     }
 
     /// The storage, indexed by [`BandLu::index`].
@@ -183,12 +232,33 @@ impl BandLu {
 
     /// Factors the assembled matrix in place: `P A = L U`.
     pub fn factorize(&mut self) -> Result<(), ZeroPivot> {
+        let done = self.eliminate();
+        // Where U's columns start, from how far each row reached (a failed factorization's
+        // rows too: `clear` must reach every nonzero it left).
+        let mut next = 0;
+        for (j, top) in self.upper_top.iter_mut().enumerate() {
+            *top = j;
+        }
+        for (i, &end) in self.fill_end.iter().enumerate() {
+            for top in self.upper_top.iter_mut().take(end + 1).skip(next.max(i)) {
+                *top = i;
+            }
+            next = next.max(end + 1);
+        }
+        done
+    }
+
+    /// The elimination of [`BandLu::factorize`].
+    fn eliminate(&mut self) -> Result<(), ZeroPivot> {
         let (n, kl, ld) = (self.n, self.kl, self.ld);
         let kv = self.kl + self.ku;
-        // The fill rows above the original band start as zero (done by `clear`).
-        let mut last_col = 0; // last column U reaches so far
+        // The fill rows above the original band start as zero (done by `clear`). Entries of
+        // row i right of `fill_end[i]` are zero: the row's own, and those its updates by
+        // pivot rows brought in (LAPACK's `gbtf2` goes to the furthest column any row
+        // reached; the same nonzeros, fewer zeros visited).
+        self.fill_end.copy_from_slice(&self.row_end);
         for j in 0..n {
-            let km = kl.min(n - 1 - j);
+            let km = kl.min(self.col_end[j] - j);
             let col = j * ld + kv; // index of (j, j)
             let mut p = 0;
             let mut best = self.band[col].abs();
@@ -202,13 +272,14 @@ impl BandLu {
             if best == 0.0 || !best.is_finite() {
                 return Err(ZeroPivot);
             }
-            last_col = last_col.max((j + self.ku + p).min(n - 1));
             if p != 0 {
-                // Swap rows j and j + p in columns j..=last_col.
-                for c in j..=last_col {
+                // Swap rows j and j + p in columns j up to the later of their last nonzeros.
+                let end = self.fill_end[j].max(self.fill_end[j + p]);
+                for c in j..=end {
                     let row_j = c * ld + kv + j - c;
                     self.band.swap(row_j, row_j + p);
                 }
+                self.fill_end.swap(j, j + p);
             }
             // Rows below the last nonzero of column j take no update: skip them (the
             // renumbered band is far from full, so this is most of the work saved).
@@ -221,16 +292,22 @@ impl BandLu {
             if km == 0 {
                 continue;
             }
+            let end = self.fill_end[j];
+            for e in &mut self.fill_end[j + 1..=j + km] {
+                *e = (*e).max(end);
+            }
             let (head, tail) = self.band.split_at_mut((j + 1) * ld);
             let l = &head[col + 1..=col + km];
-            for c in j + 1..=last_col {
-                let row_j = (c - j - 1) * ld + kv + j - c; // (j, c) in `tail`; c ≤ j + kv
+            // (j, c) in `tail` for c = j + 1: then one column (ld rows) right and one row up.
+            let mut row_j = kv - 1;
+            for _ in j + 1..=end {
                 let t = tail[row_j];
                 if t != 0.0 {
                     for (x, &li) in tail[row_j + 1..=row_j + km].iter_mut().zip(l) {
                         *x -= t * li;
                     }
                 }
+                row_j += ld - 1;
             }
         }
         Ok(())
@@ -258,7 +335,7 @@ impl BandLu {
             let col = j * ld + kv;
             b[j] /= self.band[col];
             let bj = b[j];
-            let top = j.saturating_sub(kv);
+            let top = self.upper_top[j];
             if bj != 0.0 {
                 // Column j of U above the diagonal: rows top..j at col − (j − i).
                 for (i, x) in b[top..j].iter_mut().enumerate() {
@@ -308,6 +385,60 @@ mod tests {
             let r: f64 = (0..n).map(|j| dense[(i, j)] * x[j]).sum::<f64>() - b[i];
             assert!(r.abs() < 1e-12, "residual {r} in row {i}");
         }
+    }
+
+    /// Stopping each row at its pattern's last entry and its fill's visits only zeros less:
+    /// the same factors and solution, bit for bit, as sweeping to the band's edge (a pattern
+    /// sparse inside its band, pivoting needed).
+    #[test]
+    fn a_pattern_inside_the_band_gives_the_same_factors_as_the_whole_band() {
+        let (n, kl, ku): (usize, usize, usize) = (60, 4, 3);
+        let mut seed = 5u64;
+        let mut next = || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            ((seed >> 33) as f64 / (1u64 << 31) as f64) - 0.5
+        };
+        let mut entries = Vec::new();
+        for j in 0..n {
+            for i in j.saturating_sub(ku)..(j + kl + 1).min(n) {
+                // About a third of the band; no diagonal in rows 4, 8, 16, … (a multiple of
+                // 4 and not of 3), whose row and column meet their neighbour's instead
+                // (structurally nonsingular, a pivot from below needed).
+                let swapped = |k: usize| k % 4 == 0 && k + 1 < n;
+                let diagonal = i == j && (!swapped(i) || i % 3 == 0);
+                let pair = (swapped(j) && i == j + 1) || (swapped(i) && j == i + 1);
+                if diagonal || pair || (i * 7 + j * 3) % 3 == 0 && i != j {
+                    entries.push((i, j, next()));
+                }
+            }
+        }
+        let mut whole = BandLu::new(n, kl, ku);
+        let mut patterned = BandLu::with_pattern(n, kl, ku, entries.iter().map(|&(i, j, _)| (i, j)));
+        for &(i, j, v) in &entries {
+            whole.add(whole.index(i, j), v);
+            patterned.add(patterned.index(i, j), v);
+        }
+        whole.factorize().unwrap();
+        patterned.factorize().unwrap();
+        assert!(whole.pivot.iter().enumerate().any(|(j, &p)| p != j), "no row interchange: the test would not cover them");
+        assert_eq!(whole.band, patterned.band);
+        let mut x: Vec<f64> = (0..n).map(|i| (i as f64).cos()).collect();
+        let mut y = x.clone();
+        whole.solve_in_place(&mut x);
+        patterned.solve_in_place(&mut y);
+        assert_eq!(x, y);
+        // `clear` after a factorization leaves no fill behind: other values on the same
+        // pattern factor as in fresh storage.
+        let mut fresh = BandLu::with_pattern(n, kl, ku, entries.iter().map(|&(i, j, _)| (i, j)));
+        patterned.clear();
+        for &(i, j, v) in &entries {
+            let w = v * v - 0.1;
+            patterned.add(patterned.index(i, j), w);
+            fresh.add(fresh.index(i, j), w);
+        }
+        patterned.factorize().unwrap();
+        fresh.factorize().unwrap();
+        assert_eq!(patterned.band, fresh.band);
     }
 
     #[test]

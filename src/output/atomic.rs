@@ -40,6 +40,11 @@ fn temp_path(path: &Path) -> PathBuf {
     path.with_file_name(format!(".{name}.tmp-{}-{unique}", std::process::id()))
 }
 
+/// Bytes a file collects before each write to the system: a run's per-step files (`.mov`,
+/// `.out`, a few kB a step) go out in a few hundred kB at a time instead of 8 kB (the
+/// default), a tenth of the write calls.
+const WRITE_BUFFER: usize = 1 << 18;
+
 /// A file being written under a temporary name; [`AtomicFile::commit`] puts it in place.
 /// Dropped without a commit (an error, a failed run), it removes its temporary file.
 pub struct AtomicFile {
@@ -68,7 +73,7 @@ impl AtomicFile {
                 return Err(io("create a temporary file", e));
             }
         };
-        Ok(AtomicFile { path: path.to_path_buf(), tmp, out: Some(BufWriter::new(file)) })
+        Ok(AtomicFile { path: path.to_path_buf(), tmp, out: Some(BufWriter::with_capacity(WRITE_BUFFER, file)) })
     }
 
     /// The target path.
@@ -78,9 +83,9 @@ impl AtomicFile {
 
     /// Runs `write` on the file's stream, naming the file in an error.
     pub fn write_with(&mut self, write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>) -> Result<(), OutputError> {
-        let path = self.path.clone();
-        let out = self.out.as_mut().ok_or_else(|| OutputError::Invalid { path: path.clone(), message: "written after commit".into() })?;
-        write(out).map_err(|source| OutputError::Io { path, operation: "write", cause: source })
+        let AtomicFile { path, out, .. } = self;
+        let out = out.as_mut().ok_or_else(|| OutputError::Invalid { path: path.clone(), message: "written after commit".into() })?;
+        write(out).map_err(|source| OutputError::Io { path: path.clone(), operation: "write", cause: source })
     }
 
     /// Flushes and syncs the temporary file (it stays under its temporary name).

@@ -13,11 +13,13 @@
 //! worst equation; it has no solution test, so SolErr and SolConv are 0. The file ends with
 //! an `# End of simulation` line and is put in place only when the run finishes.
 
+use std::io::Write as _;
 use std::path::Path;
 
 use faer::c64;
 
 use super::atomic::{AtomicFile, OutputError};
+use super::scientific::push_scientific;
 use crate::linear::hz;
 
 /// One time step as the log records it (SI: s).
@@ -36,6 +38,9 @@ pub struct StepLine {
 /// A `.out` file being written.
 pub struct StepLog {
     file: AtomicFile,
+    /// A `Step` line being formed (its numbers by [`push_scientific`], byte for byte
+    /// `format!`'s).
+    line: Vec<u8>,
 }
 
 impl StepLog {
@@ -46,7 +51,7 @@ impl StepLog {
             writeln!(w, "# romdyn {} step log of {input} (MBDyn .out layout)", env!("CARGO_PKG_VERSION"))?;
             writeln!(w, "# units: Time, TStep [s]; ResErr = max |F_i| in the units of equation i (N, N m, kg m/s, m, rad)")
         })?;
-        Ok(StepLog { file })
+        Ok(StepLog { file, line: Vec::new() })
     }
 
     /// `# Derivatives solution step at time t performed in n iterations with e error`.
@@ -56,13 +61,20 @@ impl StepLog {
 
     /// One `Step` line; step 0 is preceded by the key line.
     pub fn step(&mut self, s: &StepLine) -> Result<(), OutputError> {
-        self.file.write_with(|w| {
-            if s.step == 0 {
-                writeln!(w, "# Key for lines starting with \"Step\":")?;
-                writeln!(w, "# Step Time TStep NIter ResErr SolErr SolConv Out")?;
-            }
-            writeln!(w, "Step {} {:.12e} {:.12e} {} {:.6e} 0 0 {}", s.step, s.time, s.time_step, s.iterations, s.residual_norm, u8::from(s.written))
-        })
+        let line = &mut self.line;
+        line.clear();
+        if s.step == 0 {
+            line.extend_from_slice(b"# Key for lines starting with \"Step\":\n# Step Time TStep NIter ResErr SolErr SolConv Out\n");
+        }
+        // `Step {} {:.12e} {:.12e} {} {:.6e} 0 0 {}`.
+        let _ = write!(line, "Step {} ", s.step);
+        push_scientific(line, s.time, 12);
+        line.push(b' ');
+        push_scientific(line, s.time_step, 12);
+        let _ = write!(line, " {} ", s.iterations);
+        push_scientific(line, s.residual_norm, 6);
+        let _ = writeln!(line, " 0 0 {}", u8::from(s.written));
+        self.file.write_with(|w| w.write_all(line))
     }
 
     /// An eigenvalue table: `title` as a comment line, then one row per `(number, λ)`.

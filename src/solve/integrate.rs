@@ -10,7 +10,7 @@
 
 use super::newton::{momenta_from_definitions, newton, Convergence, DerivativeMomenta, NewtonFailure, NewtonSettings, NewtonWorkspace, Update};
 use super::forward_difference::forward_derivatives;
-use crate::dae::{Assembler, Owner, State};
+use crate::dae::{Assembler, Frames, Owner, State};
 use crate::kinematics::{gibbs_from_rotation, gibbs_g, Mat3, Vec3};
 use crate::model::ConstraintForm;
 use crate::model::{Method, NodeKind};
@@ -145,6 +145,9 @@ pub struct Integrator<'a, 'm> {
     /// Whether an element has events, latched after each prediction
     /// ([`crate::element::Element::latch`]).
     events: bool,
+    /// The node frames of the solution at the start of a step, for its snapshot and its
+    /// re-basing.
+    frames: Frames,
 }
 
 impl<'a, 'm> Integrator<'a, 'm> {
@@ -158,7 +161,7 @@ impl<'a, 'm> Integrator<'a, 'm> {
     /// they are built once per run (on large models their set-up is the run's peak memory).
     pub fn with_workspace(asm: &'a Assembler<'m>, state: State, method: Method, h: f64, settings: NewtonSettings, workspace: NewtonWorkspace) -> Self {
         let multiplier_increment = vec![0.0; asm.dofs.len];
-        Integrator { asm, method, h, settings, state, workspace, previous: None, multiplier_increment, accepted: 0, events: asm.has_events() }
+        Integrator { asm, method, h, settings, state, workspace, previous: None, multiplier_increment, accepted: 0, events: asm.has_events(), frames: Frames::default() }
     }
 
     /// Number of symbolic factorizations so far (1 for a fixed sparsity pattern).
@@ -172,9 +175,18 @@ impl<'a, 'm> Integrator<'a, 'm> {
         &self.workspace
     }
 
+    /// Re-bases the state Newton converged to, with the node frames of its last residual
+    /// when they are this state's ([`NewtonWorkspace::frames_of_solution`]).
+    fn rebase_converged(&mut self) {
+        match self.workspace.frames_of_solution() {
+            Some(frames) => self.state.rebase_with(&self.asm.dofs, frames),
+            None => self.state.rebase(&self.asm.dofs),
+        }
+    }
+
+    /// The solution now, from its node frames (`self.frames`, [`Assembler::frames_into`]).
     fn snapshot(&self) -> Past {
-        let dofs = &self.asm.dofs;
-        let frames: Vec<_> = (0..self.state.r_ref.len()).map(|i| self.state.node_frame(dofs, i)).collect();
+        let frames = &self.frames;
         Past { y: self.state.y.clone(), yp: self.state.yp.clone(), rotation: frames.iter().map(|f| f.kin.r).collect(), omega: frames.iter().map(|f| f.kin.omega).collect() }
     }
 
@@ -198,14 +210,16 @@ impl<'a, 'm> Integrator<'a, 'm> {
         if let Method::Bathe { rho } = self.method {
             return self.bathe_step(rho);
         }
-        let dofs = &self.asm.dofs;
-        let form = self.asm.model.constraint_form;
+        let asm = self.asm;
+        let dofs = &asm.dofs;
+        let form = asm.model.constraint_form;
+        asm.frames_into(&self.state, &mut self.frames);
         let current = self.snapshot();
         // The step drives' memory from the accepted state, at the new time (a failed
         // attempt is redone from the same memory: the step number is the same).
-        self.asm.begin_step(&self.state, self.accepted + 1, self.state.t + self.h);
+        asm.begin_step(&self.state, self.accepted + 1, self.state.t + self.h);
         let accepted = self.events.then(|| self.state.clone());
-        self.state.rebase(dofs);
+        self.state.rebase_with(dofs, &self.frames);
         let [a1, a2, b0, b1, b2] = coefficients(self.method, self.h, self.previous.is_none());
         let (y1, yp1) = (self.state.y.clone(), self.state.yp.clone());
         let (y2, yp2) = match &self.previous {
@@ -239,7 +253,7 @@ impl<'a, 'm> Integrator<'a, 'm> {
                 self.multiplier_increment[i] = b0 * self.state.y[i] + b1 * y1[i] + b2 * y2[i] - a2 * previous;
             }
         }
-        self.state.rebase(dofs);
+        self.rebase_converged();
         self.previous = Some(current);
         self.accepted += 1;
         Ok(StepRecord { t: self.state.t, iterations: done.iterations, residual_norm: done.residual_norm })
@@ -249,17 +263,19 @@ impl<'a, 'm> Integrator<'a, 'm> {
     /// after its own prediction and events (MBDyn's `AfterPredict` and `AfterConvergence` per
     /// sub-step), the orientations re-based between them.
     fn bathe_step(&mut self, rho: f64) -> Result<StepRecord, NewtonFailure> {
-        let dofs = &self.asm.dofs;
-        let form = self.asm.model.constraint_form;
+        let asm = self.asm;
+        let dofs = &asm.dofs;
+        let form = asm.model.constraint_form;
         let c = BatheCoefficients::new(rho, self.h);
+        asm.frames_into(&self.state, &mut self.frames);
         let start = self.snapshot();
         let t0 = self.state.t;
-        self.asm.begin_step(&self.state, self.accepted + 1, t0 + self.h);
+        asm.begin_step(&self.state, self.accepted + 1, t0 + self.h);
         let held = |i: usize| form == ConstraintForm::Scaled && dofs.is_multiplier(i);
 
         // First sub-step: the trapezoidal rule over γh.
         let before = self.events.then(|| self.state.clone());
-        self.state.rebase(dofs);
+        self.state.rebase_with(dofs, &self.frames);
         let (y0, yp0) = (self.state.y.clone(), self.state.yp.clone());
         for i in (0..dofs.len).filter(|&i| !held(i)) {
             self.state.y[i] = y0[i] + c.first * 2.0 * yp0[i];
@@ -273,7 +289,7 @@ impl<'a, 'm> Integrator<'a, 'm> {
 
         // Second sub-step, over the whole step.
         let before = self.events.then(|| self.state.clone());
-        self.state.rebase(dofs);
+        self.rebase_converged();
         let (ys, yps) = (self.state.y.clone(), self.state.yp.clone());
         let (y0, yp0) = self.past_in_current_frames(&start);
         let [m0, n0, n1] = c.predictor;
@@ -289,7 +305,7 @@ impl<'a, 'm> Integrator<'a, 'm> {
             self.asm.latch_events(&mut self.state, before);
         }
         let second = newton(self.asm, &mut self.state, Update::Dynamic { dcoef: b0, form }, &self.settings, &mut self.workspace)?;
-        self.state.rebase(dofs);
+        self.rebase_converged();
         self.previous = Some(start);
         self.accepted += 1;
         Ok(StepRecord { t: self.state.t, iterations: first.iterations + second.iterations, residual_norm: second.residual_norm })

@@ -1,6 +1,6 @@
 //! Newton's method on `F = 0` with `J δ = −F` (eq. 5), sparse LU with symbolic reuse.
 
-use crate::dae::{Assembler, Coefficients, SparseLu, State, Triplets};
+use crate::dae::{Assembler, Coefficients, Frames, SparseLu, State, Triplets};
 use crate::model::ConstraintForm;
 use crate::model::{NodeKind, ResidualNorm};
 
@@ -130,6 +130,14 @@ fn kinks_crossed(asm: &Assembler, iterates: &[State]) -> Option<String> {
 pub struct NewtonWorkspace {
     pub lu: SparseLu,
     jacobian: Triplets,
+    /// The Jacobian's values alone, when the LU knows its pattern
+    /// ([`Assembler::jacobian_values_at`]).
+    values: Vec<f64>,
+    /// The node frames of the iterate, computed once for its residual and its Jacobian.
+    frames: Frames,
+    /// Whether `frames` are those of the solution the last Newton iteration returned (it
+    /// converged on the residual of that very state).
+    frames_of_solution: bool,
     /// When a time step's Newton iteration keeps its Jacobian's factorization for the next
     /// iteration (MBDyn's `modified` Newton–Raphson, with its reuse decided by convergence):
     /// when the residual norm fell to at most this fraction of the previous iteration's.
@@ -150,13 +158,19 @@ pub const KEEP_JACOBIAN_BELOW: f64 = 0.1;
 
 impl Default for NewtonWorkspace {
     fn default() -> Self {
-        NewtonWorkspace { lu: SparseLu::default(), jacobian: Triplets::default(), keep_jacobian_below: 0.0, reused: 0, factored: 0 }
+        NewtonWorkspace { lu: SparseLu::default(), jacobian: Triplets::default(), values: Vec::new(), frames: Frames::default(), frames_of_solution: false, keep_jacobian_below: 0.0, reused: 0, factored: 0 }
     }
 }
 
 impl NewtonWorkspace {
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// The node frames of the state the last [`newton`] returned, when it converged on that
+    /// state's residual (not after a last increment): a time step re-bases with them.
+    pub fn frames_of_solution(&self) -> Option<&Frames> {
+        self.frames_of_solution.then_some(&self.frames)
     }
 }
 
@@ -200,13 +214,12 @@ fn norm_history(norms: &[f64], tolerance: f64) -> String {
     }
 }
 
-/// Assembles `J` at `st` into the workspace, factors it and solves `J δ = f` in place (`f`
-/// holds `−F`, `residual` `F`). A singular Jacobian is named in `singular` and one
-/// regularized step is taken; `Err` with the reason when even that fails.
+/// Assembles `J` at `st` (whose node frames are `ws.frames`) into the workspace, factors it
+/// and solves `J δ = f` in place (`f` holds `−F`, `residual` `F`): the values alone when the
+/// LU knows their pattern, triplets otherwise. A singular Jacobian is named in `singular`
+/// and one regularized step is taken; `Err` with the reason when even that fails.
 #[allow(clippy::too_many_arguments)]
 fn factor_and_solve(asm: &Assembler, st: &State, update: Update, coef: Coefficients, ws: &mut NewtonWorkspace, f: &mut Vec<f64>, residual: &[f64], singular: &std::cell::RefCell<Option<String>>, met_singular: &std::cell::Cell<bool>) -> Result<(), String> {
-    asm.jacobian_into(st, coef, &mut ws.jacobian);
-    let j = &mut ws.jacobian;
     if matches!(update, Update::Derivatives { .. }) {
         // The positions are held here, so a holonomic row's value `Φ(q)/c` is not this
         // phase's to correct: left in the right-hand side, a rounding-level violation
@@ -221,7 +234,26 @@ fn factor_and_solve(asm: &Assembler, st: &State, update: Update, coef: Coefficie
             }
         }
     }
-    if ws.lu.solve(j, f).is_err() {
+    let by_values = if ws.lu.knows_shape() {
+        let shape = asm.jacobian_values_at(st, &ws.frames, coef, &mut ws.values);
+        ws.lu.solve_values(asm.dofs.len, &ws.values, shape, f)
+    } else {
+        Ok(false)
+    };
+    let solved = match by_values {
+        Ok(true) => Ok(()),
+        Ok(false) => {
+            asm.jacobian_at(st, &ws.frames, coef, &mut ws.jacobian);
+            ws.lu.solve(&ws.jacobian, f)
+        }
+        Err(e) => {
+            // The triplets, for the explanation and the regularized step below.
+            asm.jacobian_at(st, &ws.frames, coef, &mut ws.jacobian);
+            Err(e)
+        }
+    };
+    if solved.is_err() {
+        let j = &mut ws.jacobian;
         met_singular.set(true);
         if singular.borrow().is_none() {
             *singular.borrow_mut() = super::singular::explain_singular_matrix(asm, j);
@@ -251,6 +283,7 @@ pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &Newton
         Update::Derivatives { .. } => asm.dofs.node_first.iter().flat_map(|&f| (f..f + 6).map(|i| (i, st.y[i], st.yp[i]))).collect(),
         _ => Vec::new(),
     };
+    ws.frames_of_solution = false;
     if !matches!(update, Update::Static) {
         ws.lu.eliminating(&asm.dofs.momentum_pairs());
     }
@@ -274,7 +307,8 @@ pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &Newton
         if iteration + KINK_ITERATES > settings.max_iterations {
             last_iterates.push(st.clone());
         }
-        let mut f = asm.residual(st, form, dcoef);
+        asm.frames_into(st, &mut ws.frames);
+        let mut f = asm.residual_at(st, &ws.frames, form, dcoef);
         // The derivatives phase holds the positions, so it judges a holonomic row by the
         // violation `Φ` itself, not `Φ/c`: at MBDyn's `derivatives coefficient: 1e-10`
         // (c = 1e-13 s) a hinge offset's 4.2e-17 m of rounding reads 4.2e-4 and no iteration
@@ -286,6 +320,7 @@ pub fn newton(asm: &Assembler, st: &mut State, update: Update, settings: &Newton
         let norm = measure(&judged);
         norms.push(norm);
         if norm <= settings.tolerance {
+            ws.frames_of_solution = held.is_empty();
             return Ok(Convergence { iterations: iteration, residual_norm: norm });
         }
         if !norm.is_finite() || iteration == settings.max_iterations {

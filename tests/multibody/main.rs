@@ -16,6 +16,7 @@ mod beam_rotation;
 mod beam_slider;
 mod brake;
 mod electric;
+mod fixed_pattern;
 mod function_hinge;
 mod hinge_friction;
 mod hydraulic;
