@@ -499,3 +499,74 @@ impl<'m> Assembler<'m> {
         out
     }
 }
+
+#[cfg(test)]
+mod column_tests {
+    use super::*;
+    use crate::element::{Anchor, Col, JacobianSink, Joint, RigidBody};
+    use crate::kinematics::Mat3;
+    use crate::model::ModelBuilder;
+
+    /// Forwards single entries and blocks: a column through it is the trait's own
+    /// `add_column`, one `add` per entry.
+    struct PerEntry<'s, S: JacobianSink>(&'s mut S);
+
+    impl<S: JacobianSink> JacobianSink for PerEntry<'_, S> {
+        fn add(&mut self, row: Row, col: Col, v: f64) {
+            self.0.add(row, col, v);
+        }
+        fn add_block(&mut self, rows: [Row; 3], cols: [Col; 3], m: &Mat3) {
+            self.0.add_block(rows, cols, m);
+        }
+    }
+
+    /// The assembler's sink takes a multiplier's column at once (`add_column`, the joints'
+    /// reactions): the same triplets, values bit for bit and fingerprint as one `add` per
+    /// entry (the independent reference), for every joint that writes reaction columns, in
+    /// both constraint forms, at a turned, moving state with nonzero multipliers.
+    #[test]
+    fn a_column_at_once_is_its_entries_one_by_one() {
+        let node = |label, offset: Vec3| Anchor::Node { label, offset, orientation: Mat3::identity() };
+        for form in [ConstraintForm::Scaled, ConstraintForm::Plain] {
+            let mut b = ModelBuilder::new();
+            b.static_node(0, Vec3::zeros(), Mat3::identity()).element(Joint::clamp(10, 0, Vec3::zeros(), Mat3::identity()));
+            for i in 1..=3u32 {
+                b.dynamic_node(i, Vec3::new(0.1 * f64::from(i), 0.0, 0.0), Mat3::identity(), Vec3::zeros(), Vec3::zeros());
+                b.element(RigidBody::new(i, i, 0.1, Vec3::zeros(), 1e-4 * Mat3::identity()));
+            }
+            b.element(Joint::revolute_hinge(21, node(0, Vec3::zeros()), node(1, Vec3::new(-0.1, 0.0, 0.0))));
+            b.element(Joint::spherical_hinge(22, node(1, Vec3::new(0.02, 0.01, 0.0)), node(2, Vec3::new(-0.08, 0.0, 0.01))));
+            b.element(Joint::total(23, node(2, Vec3::zeros()), node(3, Vec3::new(-0.1, 0.0, 0.0)), [true, false, true], [false, true, true]));
+            b.element(Joint::prismatic(24, node(1, Vec3::zeros()), node(3, Vec3::zeros())));
+            b.constraint_form(form);
+            let model = b.build().expect("valid model");
+            let asm = Assembler::new(&model);
+            let mut st = State::initial(&model, &asm.dofs);
+            // Every unknown and rate away from zero: turned nodes, multipliers, velocities.
+            for (k, (y, yp)) in st.y.iter_mut().zip(st.yp.iter_mut()).enumerate() {
+                *y += 0.05 * ((k as f64) * 0.7).sin();
+                *yp += 0.3 * ((k as f64) * 1.3).cos();
+            }
+            let frames = asm.frames(&st);
+            let c = Coefficients::newton(1e-3, form);
+            let scale = if form == ConstraintForm::Scaled { 1e3 } else { 1.0 };
+            let mut columns = 0;
+            for (e, el) in model.elements.iter().enumerate() {
+                let ctx = asm.context(&frames, &st, e, scale);
+                let (mut at_once, mut one_by_one) = (Triplets::new(asm.dofs.len), Triplets::new(asm.dofs.len));
+                let sink = |out| Jacobian { dofs: &asm.dofs, element: e, frames: &frames, slots: &asm.dofs.element_nodes[e], first: asm.dofs.element_first[e], c, out, shape: Shape::default() };
+                let mut first = sink(&mut at_once);
+                el.jacobian(&ctx, &mut first);
+                let first_shape = first.shape;
+                let mut second = sink(&mut one_by_one);
+                el.jacobian(&ctx, &mut PerEntry(&mut second));
+                assert_eq!(first_shape, second.shape, "element {e}");
+                assert_eq!((&at_once.rows, &at_once.cols), (&one_by_one.rows, &one_by_one.cols), "element {e}");
+                let bits = |t: &Triplets| t.values.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(&at_once), bits(&one_by_one), "element {e}");
+                columns += at_once.cols.iter().filter(|&&j| asm.dofs.is_multiplier(j)).count();
+            }
+            assert!(columns > 100, "{columns} entries in multiplier columns");
+        }
+    }
+}

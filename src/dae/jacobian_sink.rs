@@ -19,8 +19,9 @@ use crate::kinematics::Mat3;
 use crate::model::{ConstraintForm, NodeKind};
 
 /// Maps an element's local row to its global equation (`None`: a momentum row of a static
-/// node, which does not exist). `e` is the element's index (its scalar slots).
-#[inline]
+/// node, which does not exist). `e` is the element's index (its scalar slots). Inlined into
+/// the residual's sink, where it runs for every entry.
+#[inline(always)]
 pub(super) fn global_row(dofs: &DofMap, e: usize, slots: &[usize], first: usize, row: Row) -> Option<usize> {
     match row {
         Row::Scalar { slot } => Some(dofs.scalar_first + dofs.element_scalars[e][slot]),
@@ -222,6 +223,24 @@ impl<O: Entries> JacobianSink for Jacobian<'_, O> {
             for k in 0..3 {
                 self.out.put(r, first + k, values[k]);
             }
+        }
+    }
+
+    /// A multiplier's column: the entries, values and fingerprint of one `add` per entry,
+    /// the column mapped once.
+    fn add_column(&mut self, rows: &[Row], col: Col, values: &[f64]) {
+        let Col::Multiplier(k) = col else {
+            for (&row, &v) in rows.iter().zip(values) {
+                self.add(row, col, v);
+            }
+            return;
+        };
+        let j = self.first + k;
+        let algebraic = self.c.form == ConstraintForm::Scaled && self.dofs.is_multiplier(j);
+        for (&row, &v) in rows.iter().zip(values) {
+            self.shape = self.shape.call(row, col);
+            let Some(i) = self.row(row) else { continue };
+            self.out.put(i, j, if algebraic { self.c.a } else { self.y_coefficient(row) } * v);
         }
     }
 
