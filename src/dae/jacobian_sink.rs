@@ -226,24 +226,6 @@ impl<O: Entries> JacobianSink for Jacobian<'_, O> {
         }
     }
 
-    /// A multiplier's column: the entries, values and fingerprint of one `add` per entry,
-    /// the column mapped once.
-    fn add_column(&mut self, rows: &[Row], col: Col, values: &[f64]) {
-        let Col::Multiplier(k) = col else {
-            for (&row, &v) in rows.iter().zip(values) {
-                self.add(row, col, v);
-            }
-            return;
-        };
-        let j = self.first + k;
-        let algebraic = self.c.form == ConstraintForm::Scaled && self.dofs.is_multiplier(j);
-        for (&row, &v) in rows.iter().zip(values) {
-            self.shape = self.shape.call(row, col);
-            let Some(i) = self.row(row) else { continue };
-            self.out.put(i, j, if algebraic { self.c.a } else { self.y_coefficient(row) } * v);
-        }
-    }
-
     fn add(&mut self, row: Row, col: Col, v: f64) {
         self.shape = self.shape.call(row, col);
         let Some(i) = self.row(row) else { return };

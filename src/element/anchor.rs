@@ -109,22 +109,14 @@ impl Pair {
     /// moment `dm` on B (both opposite on A, the force with its arm from `x_a`).
     pub fn add_reaction_column(&self, out: &mut dyn JacobianSink, col: Col, df: &Vec3, dm: &Vec3) {
         let (b, mb, ma) = (self.slot_b, self.f_b.cross(df) + dm, self.h.cross(df) + dm);
-        // The entries in the order of one `add` per entry: by component, B's force and
-        // moment rows, then A's.
-        let (mut rows, mut values, mut len) = ([Row::Constraint(0); 12], [0.0; 12], 0);
-        let mut push = |row, v| {
-            (rows[len], values[len]) = (row, v);
-            len += 1;
-        };
         for i in 0..3 {
-            push(Row::Equilibrium { slot: b, comp: i }, df[i]);
-            push(Row::Equilibrium { slot: b, comp: 3 + i }, mb[i]);
+            out.add(Row::Equilibrium { slot: b, comp: i }, col, df[i]);
+            out.add(Row::Equilibrium { slot: b, comp: 3 + i }, col, mb[i]);
             if let Some(a) = self.slot_a {
-                push(Row::Equilibrium { slot: a, comp: i }, -df[i]);
-                push(Row::Equilibrium { slot: a, comp: 3 + i }, -ma[i]);
+                out.add(Row::Equilibrium { slot: a, comp: i }, col, -df[i]);
+                out.add(Row::Equilibrium { slot: a, comp: 3 + i }, col, -ma[i]);
             }
         }
-        out.add_column(&rows[..len], col, &values[..len]);
     }
 
     /// Jacobian of [`Pair::add_force`] for `F = Q_a φ`: geometric terms at fixed `φ`, plus

@@ -194,14 +194,6 @@ pub trait JacobianSink {
             }
         }
     }
-    /// One column's entries in `rows`, in order: the same as `add(rows[k], col,
-    /// values[k])` for each `k` (the assembler takes the column once: a joint's
-    /// multiplier column, [`Pair::add_reaction_column`](super::anchor::Pair)).
-    fn add_column(&mut self, rows: &[Row], col: Col, values: &[f64]) {
-        for (&row, &v) in rows.iter().zip(values) {
-            self.add(row, col, v);
-        }
-    }
 }
 
 /// Rows of a 3-vector quantity.
