@@ -19,8 +19,9 @@ use crate::kinematics::Mat3;
 use crate::model::{ConstraintForm, NodeKind};
 
 /// Maps an element's local row to its global equation (`None`: a momentum row of a static
-/// node, which does not exist). `e` is the element's index (its scalar slots).
-#[inline]
+/// node, which does not exist). `e` is the element's index (its scalar slots). Inlined into
+/// the residual's sink, where it runs for every entry.
+#[inline(always)]
 pub(super) fn global_row(dofs: &DofMap, e: usize, slots: &[usize], first: usize, row: Row) -> Option<usize> {
     match row {
         Row::Scalar { slot } => Some(dofs.scalar_first + dofs.element_scalars[e][slot]),

@@ -14,6 +14,34 @@ pub enum Anchor {
     Node { label: Label, offset: Vec3, orientation: Mat3 },
 }
 
+/// Up to four derivative blocks `(columns, ∂/∂columns)`, one node's positions or rotations
+/// each (both sides' positions and rotations), held without allocation: the joints form
+/// them at every Jacobian.
+#[derive(Clone, Copy)]
+pub(super) struct Blocks {
+    items: [([Col; 3], Mat3); 4],
+    len: usize,
+}
+
+impl Blocks {
+    pub fn new() -> Self {
+        Blocks { items: [(Col::position(0), Mat3::zeros()); 4], len: 0 }
+    }
+
+    /// Appends a block (at most four).
+    pub fn push(&mut self, cols: [Col; 3], m: Mat3) {
+        self.items[self.len] = (cols, m);
+        self.len += 1;
+    }
+}
+
+impl std::ops::Deref for Blocks {
+    type Target = [([Col; 3], Mat3)];
+    fn deref(&self) -> &Self::Target {
+        &self.items[..self.len]
+    }
+}
+
 /// Frame kinematics of both anchors (A may be fixed in space).
 pub(super) struct Pair {
     pub slot_a: Option<usize>,
@@ -96,7 +124,6 @@ impl Pair {
     pub fn add_force_jacobian(&self, out: &mut dyn JacobianSink, force: &Vec3, dphi: &[([Col; 3], Mat3)]) {
         let (b, fx, fbx, hx) = (self.slot_b, skew(force), skew(&self.f_b), skew(&self.h));
         add_block(out, Row::moment(b), Col::rotation(b), &(fx * fbx));
-        let mut rows = vec![(Row::force(b), self.q_a), (Row::moment(b), fbx * self.q_a)];
         if let Some(a) = self.slot_a {
             add_block(out, Row::force(b), Col::rotation(a), &(-fx));
             add_block(out, Row::moment(b), Col::rotation(a), &(-fbx * fx));
@@ -105,6 +132,12 @@ impl Pair {
             add_block(out, Row::moment(a), Col::rotation(b), &(-fx * fbx));
             add_block(out, Row::moment(a), Col::position(a), &(-fx));
             add_block(out, Row::moment(a), Col::rotation(a), &(hx * fx));
+        }
+        if dphi.is_empty() {
+            return;
+        }
+        let mut rows = vec![(Row::force(b), self.q_a), (Row::moment(b), fbx * self.q_a)];
+        if let Some(a) = self.slot_a {
             rows.push((Row::force(a), -self.q_a));
             rows.push((Row::moment(a), -hx * self.q_a));
         }
@@ -117,11 +150,18 @@ impl Pair {
 
     /// `∂(Q_aᵀ d)/∂q` blocks.
     pub fn strain_derivatives(&self) -> Vec<([Col; 3], Mat3)> {
+        self.strain_blocks().to_vec()
+    }
+
+    /// [`Pair::strain_derivatives`] without allocation.
+    pub fn strain_blocks(&self) -> Blocks {
         let qt = self.q_a.transpose();
-        let mut v = vec![(Col::position(self.slot_b), qt), (Col::rotation(self.slot_b), -qt * skew(&self.f_b))];
+        let mut v = Blocks::new();
+        v.push(Col::position(self.slot_b), qt);
+        v.push(Col::rotation(self.slot_b), -qt * skew(&self.f_b));
         if let Some(a) = self.slot_a {
-            v.push((Col::position(a), -qt));
-            v.push((Col::rotation(a), qt * skew(&self.h)));
+            v.push(Col::position(a), -qt);
+            v.push(Col::rotation(a), qt * skew(&self.h));
         }
         v
     }

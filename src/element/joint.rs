@@ -9,7 +9,7 @@
 //! `F = λ_p`, as MBDyn's planej.cc); the reactions `Φ_/qᵀ λ` are a force `F = Q_a λ_p` at `p_b` and a moment
 //! `m = Q_a Pᵀ λ_r` with `P = ½ (tr M I − M)`, `M = Q_aᵀ Q_b`, equal and opposite on A.
 
-use super::anchor::{node_labels, Anchor, Pair};
+use super::anchor::{node_labels, Anchor, Blocks, Pair};
 use super::contract::{add_block, Col, Element, ElementState, JacobianSink, ResidualSink, Row};
 use crate::kinematics::{axial_of_skew_part, skew, skew_part_jacobian, Mat3, Vec3};
 use super::contract::Label;
@@ -196,13 +196,14 @@ impl Element for Joint {
         let force = if global { lambda_p } else { p.q_a * lambda_p };
 
         // Constraint rows: ∂c/∂q from the anchors, ∂r/∂θ_b = P Q_aᵀ = −∂r/∂θ_a.
-        let dc = if global { global_position_derivatives(&p) } else { p.strain_derivatives() };
-        let mut dr = vec![(Col::rotation(b), pm * qt)];
+        let dc = if global { global_position_derivatives(&p) } else { p.strain_blocks() };
+        let mut dr = Blocks::new();
+        dr.push(Col::rotation(b), pm * qt);
         if let Some(a) = p.slot_a {
-            dr.push((Col::rotation(a), -pm * qt));
+            dr.push(Col::rotation(a), -pm * qt);
         }
         for (row, (is_pos, comp)) in self.locked().enumerate() {
-            for (cols, m) in if is_pos { &dc } else { &dr } {
+            for (cols, m) in if is_pos { dc.iter() } else { dr.iter() } {
                 for (j, col) in cols.iter().enumerate() {
                     out.add(Row::Constraint(row), *col, m[(comp, j)]);
                 }
@@ -243,11 +244,13 @@ impl Outputs for Joint {
 }
 
 /// `∂(p_b − p_a)/∂q` blocks: `δd = δx_b − [f_b×] δθ_b − δx_a + [f_a×] δθ_a`.
-fn global_position_derivatives(p: &Pair) -> Vec<([Col; 3], Mat3)> {
-    let mut v = vec![(Col::position(p.slot_b), Mat3::identity()), (Col::rotation(p.slot_b), -skew(&p.f_b))];
+fn global_position_derivatives(p: &Pair) -> Blocks {
+    let mut v = Blocks::new();
+    v.push(Col::position(p.slot_b), Mat3::identity());
+    v.push(Col::rotation(p.slot_b), -skew(&p.f_b));
     if let Some(a) = p.slot_a {
-        v.push((Col::position(a), -Mat3::identity()));
-        v.push((Col::rotation(a), skew(&p.f_a)));
+        v.push(Col::position(a), -Mat3::identity());
+        v.push(Col::rotation(a), skew(&p.f_a));
     }
     v
 }

@@ -252,6 +252,8 @@ impl BandLu {
     fn eliminate(&mut self) -> Result<(), ZeroPivot> {
         let (n, kl, ld) = (self.n, self.kl, self.ld);
         let kv = self.kl + self.ku;
+        // Loops over `a..b + 1` rather than `a..=b`: the inclusive range's iterator keeps an
+        // extra flag that the optimizer does not remove from these inner loops.
         // The fill rows above the original band start as zero (done by `clear`). Entries of
         // row i right of `fill_end[i]` are zero: the row's own, and those its updates by
         // pivot rows brought in (LAPACK's `gbtf2` goes to the furthest column any row
@@ -262,7 +264,7 @@ impl BandLu {
             let col = j * ld + kv; // index of (j, j)
             let mut p = 0;
             let mut best = self.band[col].abs();
-            for i in 1..=km {
+            for i in 1..km + 1 {
                 let a = self.band[col + i].abs();
                 if a > best || best.is_nan() {
                     (p, best) = (i, a);
@@ -275,7 +277,7 @@ impl BandLu {
             if p != 0 {
                 // Swap rows j and j + p in columns j up to the later of their last nonzeros.
                 let end = self.fill_end[j].max(self.fill_end[j + p]);
-                for c in j..=end {
+                for c in j..end + 1 {
                     let row_j = c * ld + kv + j - c;
                     self.band.swap(row_j, row_j + p);
                 }
@@ -283,7 +285,7 @@ impl BandLu {
             }
             // Rows below the last nonzero of column j take no update: skip them (the
             // renumbered band is far from full, so this is most of the work saved).
-            let km = (1..=km).rev().find(|&i| self.band[col + i] != 0.0).unwrap_or(0);
+            let km = (1..km + 1).rev().find(|&i| self.band[col + i] != 0.0).unwrap_or(0);
             self.lower[j] = km;
             let inv = 1.0 / self.band[col];
             for v in &mut self.band[col + 1..=col + km] {
@@ -300,7 +302,7 @@ impl BandLu {
             let l = &head[col + 1..=col + km];
             // (j, c) in `tail` for c = j + 1: then one column (ld rows) right and one row up.
             let mut row_j = kv - 1;
-            for _ in j + 1..=end {
+            for _ in j + 1..end + 1 {
                 let t = tail[row_j];
                 if t != 0.0 {
                     for (x, &li) in tail[row_j + 1..=row_j + km].iter_mut().zip(l) {

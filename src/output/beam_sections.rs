@@ -13,7 +13,7 @@ use std::io::Write;
 use std::path::Path;
 
 use super::atomic::{AtomicFile, OutputError};
-use super::scientific::push_scientific;
+use super::scientific::{push_scientific, push_unsigned};
 use crate::element::SectionState;
 use crate::kinematics::Vec3;
 use crate::model::Label;
@@ -22,35 +22,39 @@ use crate::model::Label;
 pub struct BeamSectionWriter {
     forces: AtomicFile,
     strains: AtomicFile,
+    /// One output instant's text.
+    text: Vec<u8>,
 }
 
-/// Every beam's line of one output instant, written at once.
-fn lines(out: &mut dyn Write, beams: &[(Label, Vec<SectionState>)], pick: impl Fn(&SectionState) -> [Vec3; 2]) -> std::io::Result<()> {
-    let mut text = Vec::new();
+/// Every beam's line of one output instant, formed in `text` (cleared first; kept between
+/// instants so that its storage is reused) and written at once.
+fn lines(out: &mut dyn Write, text: &mut Vec<u8>, beams: &[(Label, Vec<SectionState>)], pick: impl Fn(&SectionState) -> [Vec3; 2]) -> std::io::Result<()> {
+    text.clear();
     for (label, sections) in beams {
-        let _ = write!(text, "{label}");
+        push_unsigned(text, u64::from(*label));
         for s in sections {
             for v in pick(s) {
                 for &c in v.iter() {
                     text.push(b' ');
-                    push_scientific(&mut text, c, 12);
+                    push_scientific(text, c, 12);
                 }
             }
         }
         text.push(b'\n');
     }
-    out.write_all(&text)
+    out.write_all(text)
 }
 
 impl BeamSectionWriter {
     pub fn create(forces: &Path, strains: &Path) -> Result<Self, OutputError> {
-        Ok(BeamSectionWriter { forces: AtomicFile::create(forces)?, strains: AtomicFile::create(strains)? })
+        Ok(BeamSectionWriter { forces: AtomicFile::create(forces)?, strains: AtomicFile::create(strains)?, text: Vec::new() })
     }
 
     /// Appends one output instant: a line per beam in each file.
     pub fn write_step(&mut self, beams: &[(Label, Vec<SectionState>)]) -> Result<(), OutputError> {
-        self.forces.write_with(|out| lines(out, beams, |x| [x.force, x.moment]))?;
-        self.strains.write_with(|out| lines(out, beams, |x| [x.strain, x.curvature]))
+        let text = &mut self.text;
+        self.forces.write_with(|out| lines(out, text, beams, |x| [x.force, x.moment]))?;
+        self.strains.write_with(|out| lines(out, text, beams, |x| [x.strain, x.curvature]))
     }
 
     /// Flushes and renames both files into place.

@@ -13,11 +13,10 @@
 //! and renamed when the run finishes.
 
 use std::collections::HashMap;
-use std::io::Write;
 use std::path::Path;
 
 use super::atomic::{AtomicFile, OutputError};
-use super::scientific::push_scientific;
+use super::scientific::{push_scientific, push_unsigned};
 use crate::element::NodeKinematics;
 use crate::kinematics::{euler123, rotation_vector, Mat3, Vec3};
 pub use crate::model::OrientationOutput;
@@ -48,15 +47,16 @@ fn euler321(r: &Mat3) -> Vec3 {
     Vec3::new(r[(1, 0)].atan2(r[(0, 0)]), b, r[(2, 1)].atan2(r[(2, 2)]))
 }
 
-/// The numbers a row writes for orientation `r`.
-fn orientation_values(r: &Mat3, how: OrientationOutput) -> Vec<f64> {
+/// The numbers a row writes for orientation `r`: the first `len` of the array.
+fn orientation_values(r: &Mat3, how: OrientationOutput) -> ([f64; 9], usize) {
+    let three = |v: Vec3| ([v[0], v[1], v[2], 0.0, 0.0, 0.0, 0.0, 0.0, 0.0], 3);
     match how {
-        OrientationOutput::Euler123Degrees => euler123(r).map(f64::to_degrees).iter().copied().collect(),
-        OrientationOutput::Euler313Degrees => euler313(r).map(f64::to_degrees).iter().copied().collect(),
-        OrientationOutput::Euler321Degrees => euler321(r).map(f64::to_degrees).iter().copied().collect(),
-        OrientationOutput::RotationVector => rotation_vector(r).iter().copied().collect(),
-        OrientationOutput::Matrix => (0..9).map(|k| r[(k / 3, k % 3)]).collect(),
-        OrientationOutput::Unwritten => Vec::new(),
+        OrientationOutput::Euler123Degrees => three(euler123(r).map(f64::to_degrees)),
+        OrientationOutput::Euler313Degrees => three(euler313(r).map(f64::to_degrees)),
+        OrientationOutput::Euler321Degrees => three(euler321(r).map(f64::to_degrees)),
+        OrientationOutput::RotationVector => three(rotation_vector(r)),
+        OrientationOutput::Matrix => (std::array::from_fn(|k| r[(k / 3, k % 3)]), 9),
+        OrientationOutput::Unwritten => ([0.0; 9], 0),
     }
 }
 
@@ -131,10 +131,11 @@ impl MotionWriter {
         let (d, text) = (self.digits, &mut self.text);
         text.clear();
         for (label, k, how, acc) in rows {
-            let _ = write!(text, "{label}");
+            push_unsigned(text, u64::from(*label));
             let acc = acc.iter().flat_map(|(a, wd)| [*a, *wd]);
             let vectors = [k.xdot, k.omega].into_iter().chain(acc).flat_map(|v| [v[0], v[1], v[2]]);
-            for c in k.x.iter().copied().chain(orientation_values(&k.r, *how)).chain(vectors) {
+            let (angles, len) = orientation_values(&k.r, *how);
+            for c in k.x.iter().copied().chain(angles[..len].iter().copied()).chain(vectors) {
                 text.push(b' ');
                 push_scientific(text, c, d);
             }

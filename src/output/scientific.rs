@@ -9,8 +9,9 @@
 //! `m 5^s 2^(q + s)` with `s = D − E` in 128-bit integers, the remainder compared exactly
 //! with one half. Where that does not fit (`s` outside 0..=32: values below about
 //! `10^(D−32)` or of `10^(D+1)` and above, subnormals), where the remainder is exactly one
-//! half (Rust's tie rule decides), for zero's sign, infinities and NaN, and for `D > 17`,
-//! the number is written by `format!` itself.
+//! half (Rust's tie rule decides), for infinities and NaN, and for `D > 17`, the number is
+//! written by `format!` itself. Zeros (half the numbers of a planar model's `.mov`) are
+//! written directly: `0.000e0`, `-0.000e0` for `-0.0`, as `format!` writes them.
 
 use std::io::Write;
 
@@ -69,8 +70,12 @@ fn scaled(m: u64, q: i32, s: i32) -> Option<(u64, std::cmp::Ordering)> {
 /// The digits by integer arithmetic; `false` (nothing written) where [`push_scientific`]
 /// leaves the number to `format!`.
 fn push_exact(out: &mut Vec<u8>, v: f64, digits: usize) -> bool {
-    if !v.is_finite() || v == 0.0 || digits > 17 {
+    if !v.is_finite() || digits > 17 {
         return false;
+    }
+    if v == 0.0 {
+        push_zero(out, v.is_sign_negative(), digits);
+        return true;
     }
     let bits = v.abs().to_bits();
     let biased = (bits >> 52) as i32;
@@ -146,9 +151,64 @@ fn push_exact(out: &mut Vec<u8>, v: f64, digits: usize) -> bool {
     true
 }
 
+/// Appends `n` in decimal, as `format!("{n}")` writes it (the per-step writers' labels and
+/// counts).
+pub fn push_unsigned(out: &mut Vec<u8>, mut n: u64) {
+    let mut text = [0u8; 20];
+    let mut at = text.len();
+    loop {
+        at -= 1;
+        text[at] = b'0' + (n % 10) as u8;
+        n /= 10;
+        if n == 0 {
+            break;
+        }
+    }
+    out.extend_from_slice(&text[at..]);
+}
+
+/// A zero with `digits` zeros after the point (`D = 0`: no point), signed as `format!`
+/// signs `-0.0`.
+fn push_zero(out: &mut Vec<u8>, negative: bool, digits: usize) {
+    const ZEROS: &[u8; 17] = b"00000000000000000";
+    if negative {
+        out.push(b'-');
+    }
+    out.push(b'0');
+    if digits > 0 {
+        out.push(b'.');
+        out.extend_from_slice(&ZEROS[..digits]);
+    }
+    out.extend_from_slice(b"e0");
+}
+
 #[cfg(test)]
 mod tests {
-    use super::push_scientific;
+    use super::{push_scientific, push_unsigned};
+
+    /// Decimal integers byte for byte as `format!` writes them (the independent source):
+    /// every power of ten and its neighbours up to `u64::MAX`, and pseudo-random values.
+    #[test]
+    fn writes_integers_as_format_writes() {
+        let mut values = vec![0, 1, 9, u64::MAX, u64::MAX - 1, u32::MAX as u64];
+        let mut p = 1u64;
+        while let Some(next) = p.checked_mul(10) {
+            values.extend([p - 1, p, p + 1]);
+            p = next;
+        }
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        for _ in 0..10_000 {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            values.extend([seed, seed >> (seed % 64)]);
+        }
+        for n in values {
+            let mut out = b"x".to_vec();
+            push_unsigned(&mut out, n);
+            assert_eq!(String::from_utf8(out).unwrap(), format!("x{n}"));
+        }
+    }
 
     fn check(v: f64, digits: usize) {
         let mut out = Vec::new();

@@ -13,13 +13,12 @@
 //! worst equation; it has no solution test, so SolErr and SolConv are 0. The file ends with
 //! an `# End of simulation` line and is put in place only when the run finishes.
 
-use std::io::Write as _;
 use std::path::Path;
 
 use faer::c64;
 
 use super::atomic::{AtomicFile, OutputError};
-use super::scientific::push_scientific;
+use super::scientific::{push_scientific, push_unsigned};
 use crate::linear::hz;
 
 /// One time step as the log records it (SI: s).
@@ -67,13 +66,17 @@ impl StepLog {
             line.extend_from_slice(b"# Key for lines starting with \"Step\":\n# Step Time TStep NIter ResErr SolErr SolConv Out\n");
         }
         // `Step {} {:.12e} {:.12e} {} {:.6e} 0 0 {}`.
-        let _ = write!(line, "Step {} ", s.step);
+        line.extend_from_slice(b"Step ");
+        push_unsigned(line, s.step as u64);
+        line.push(b' ');
         push_scientific(line, s.time, 12);
         line.push(b' ');
         push_scientific(line, s.time_step, 12);
-        let _ = write!(line, " {} ", s.iterations);
+        line.push(b' ');
+        push_unsigned(line, s.iterations as u64);
+        line.push(b' ');
         push_scientific(line, s.residual_norm, 6);
-        let _ = writeln!(line, " 0 0 {}", u8::from(s.written));
+        line.extend_from_slice(if s.written { b" 0 0 1\n" } else { b" 0 0 0\n" });
         self.file.write_with(|w| w.write_all(line))
     }
 
