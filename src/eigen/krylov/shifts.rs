@@ -251,7 +251,7 @@ fn counted_lowest(dae: &SparseLinearDae, pencil: &Pencil, op: &ShiftInvert, coun
                 // So are the right run's unconverged Ritz values beyond it: rough places of
                 // the eigenvalues next beyond the circle, whose pull swings the phase where
                 // the circle passes them (on the 96,024-equation string's 20 lowest modes
-                // 129 -> 77 factorizations).
+                // 129 -> 85 factorizations).
                 let beyond: Vec<c64> = pairs.iter().map(|p| p.lambda).chain(clusters.unmatched.iter().copied()).chain(failed.iter().copied()).filter(|l| l.norm() > r).flat_map(with_conjugate).chain(ritz_beyond.iter().copied().filter(|l| l.norm() > r)).collect();
                 let counted = missing_in_disc(pencil, r, &inside, &beyond);
                 let units = pairs.iter().filter(|p| p.lambda.norm() < r).count();
