@@ -222,5 +222,17 @@ mod tests {
         assert_eq!(missing_in_disc(&pencil, 0.999, &[], &bogus).unwrap().missing, 0);
         assert_eq!(missing_in_disc(&pencil, 3.0, &given, &j(5.0)).unwrap().missing, 2);
         assert!(missing_in_disc(&pencil, 3.0, &given, &j(4.0)).is_some() && missing_in_disc(&pencil, 3.0, &given, &j(2.5)).is_none());
+        // Rough places of the eigenvalues beyond the circle, as a Krylov run's unconverged
+        // Ritz values give them (each with its conjugate; off the axis, off in magnitude,
+        // one twice, one where no eigenvalue is): the copy of ω = 2 still counted missing,
+        // none once it is given.
+        let ritz: Vec<c64> = [c64::new(-1e-3, 4.99), c64::new(2e-2, 5.2), c64::new(0.0, 5.0), c64::new(0.0, 5.0), c64::new(-0.3, 3.5)].into_iter().flat_map(|l| [l, l.conj()]).collect();
+        assert_eq!(missing_in_disc(&pencil, 3.0, &given, &ritz).unwrap().missing, 2);
+        assert_eq!(missing_in_disc(&pencil, 3.0, &all, &ritz).unwrap().missing, 0);
+        // One without its conjugate: `g` is not real on the real axis, the phase from λ = R
+        // to λ = −R is no multiple of π (3.5j alone turns it by 0.451 π, numpy's unwrapped
+        // angle on 2e5 points), and the count is refused, not rounded. (Several such can sum
+        // near a whole multiple: the caller passes each with its conjugate.)
+        assert!(missing_in_disc(&pencil, 3.0, &all, &[c64::new(0.0, 3.5)]).is_none());
     }
 }

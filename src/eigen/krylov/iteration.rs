@@ -93,6 +93,10 @@ pub(super) struct Run {
     /// Operator applications and restarts of the run.
     pub applications: usize,
     pub restarts: usize,
+    /// The Ritz values of the last Rayleigh quotient not returned as pairs (unconverged,
+    /// or beyond the wanted ones; a real basis's with their conjugates): approximations of
+    /// the eigenvalues next beyond those returned, which the count (`count.rs`) divides out.
+    pub unconverged: Vec<c64>,
 }
 
 /// `V[:, 0..k] ← V[:, 0..size] Q` (`k` = Q's columns) and `V[:, k] ← V[:, size]`, in place:
@@ -263,7 +267,8 @@ pub(super) fn krylov_schur<T: Scalar>(n: usize, op: &mut dyn FnMut(ColRef<'_, T>
             let xs = ritz_vectors(v, size, &y, &g, s.parallel);
             let pairs = chosen.iter().zip(xs).map(|(&i, x)| RitzPair { theta: theta[i], x }).collect();
             let next = (size > want).then(|| theta[want].norm());
-            return Ok(Run { pairs, next, complete: converged >= want, applications: a.applications, restarts });
+            let unconverged = theta[converged..size].to_vec();
+            return Ok(Run { pairs, next, complete: converged >= want, applications: a.applications, restarts, unconverged });
         }
         // Restart: keep the leading Ritz vectors (wanted plus half the rest) as an
         // orthonormal basis Q of their invariant subspace, checked: ‖H Q − Q S‖ small with

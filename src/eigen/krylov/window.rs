@@ -197,6 +197,10 @@ pub(super) struct Sides {
     pub rejected: usize,
     /// Nearest distance to σ of a rejected pair.
     pub trouble: f64,
+    /// The right run's last Ritz values not returned as pairs, as λ (with their
+    /// conjugates): the eigenvalues next beyond those found, roughly (the counted route
+    /// divides those outside its circle out of the count; empty for two runs).
+    pub unconverged: Vec<c64>,
 }
 
 impl Sides {
@@ -216,8 +220,12 @@ pub(super) fn krylov_sides(dae: &SparseLinearDae, pencil: &Pencil, op: &ShiftInv
     if !adjoint {
         let run = krylov_run(pencil, op, wanted, s, false, Placement::Counted, seed_right, progress)?;
         progress(&format!("shift {sigma}: {} operator applications, {} restarts (right run)", run.applications, run.restarts));
+        let top = run.pairs.first().map_or(0.0, |p| p.theta.norm());
+        let unconverged: Vec<c64> = run.unconverged.iter().filter(|t| t.norm() > NULL_THETA * top).map(|&t| op.lambda(t)).filter(|l| l.re.is_finite() && l.im.is_finite()).collect();
         let (right, right_all) = lambdas(op, run);
-        return Ok(checked_sides(dae, pencil, sigma, s, (right, right_all), (Vec::new(), true)));
+        let mut sides = checked_sides(dae, pencil, sigma, s, (right, right_all), (Vec::new(), true));
+        sides.unconverged = unconverged;
+        return Ok(sides);
     }
     // The two runs are independent (one factorization, read only): the adjoint run goes
     // to a second thread while this one does the right run and reports progress. Its own
@@ -267,7 +275,7 @@ fn checked_sides(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, s: &SparseE
     };
     let right = keep(right, false);
     let left = keep(left, true);
-    Sides { right, left, right_reach, left_reach, rejected, trouble }
+    Sides { right, left, right_reach, left_reach, rejected, trouble, unconverged: Vec::new() }
 }
 
 /// Each pair's residuals, vectors and label, one after the other (on the pool's threads
