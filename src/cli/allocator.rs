@@ -16,19 +16,9 @@ static ALLOCATOR: ReportingAllocator = ReportingAllocator;
 /// Writes the message without allocating (the size digit by digit into a stack buffer).
 fn out_of_memory(bytes: usize) -> ! {
     let mut digits = [0u8; 20];
-    let mut at = digits.len();
-    let mut n = bytes;
-    loop {
-        at -= 1;
-        digits[at] = b'0' + (n % 10) as u8;
-        n /= 10;
-        if n == 0 {
-            break;
-        }
-    }
     let mut err = std::io::stderr().lock();
     let _ = err.write_all(b"romdyn: error: out of memory: the system refused ");
-    let _ = err.write_all(&digits[at..]);
+    let _ = err.write_all(romdyn::output::scientific::decimal(bytes as u64, &mut digits));
     let _ = err.write_all(b" bytes (the model or pencil is too large for this machine's memory or the process's limit)\n");
     std::process::exit(1)
 }

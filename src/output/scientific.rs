@@ -153,8 +153,14 @@ fn push_exact(out: &mut Vec<u8>, v: f64, digits: usize) -> bool {
 
 /// Appends `n` in decimal, as `format!("{n}")` writes it (the per-step writers' labels and
 /// counts).
-pub fn push_unsigned(out: &mut Vec<u8>, mut n: u64) {
+pub fn push_unsigned(out: &mut Vec<u8>, n: u64) {
     let mut text = [0u8; 20];
+    out.extend_from_slice(decimal(n, &mut text));
+}
+
+/// `n` in decimal, written digit by digit into `text` without allocating (also what the
+/// command line's allocator prints when memory runs out); the digits are the returned tail.
+pub fn decimal(mut n: u64, text: &mut [u8; 20]) -> &[u8] {
     let mut at = text.len();
     loop {
         at -= 1;
@@ -164,7 +170,7 @@ pub fn push_unsigned(out: &mut Vec<u8>, mut n: u64) {
             break;
         }
     }
-    out.extend_from_slice(&text[at..]);
+    &text[at..]
 }
 
 /// A zero with `digits` zeros after the point (`D = 0`: no point), signed as `format!`
