@@ -23,10 +23,13 @@ pub enum MatrixLayout {
 
 /// `Aplus = J(+c)` and `Aminus = J(−c)` as the eigenanalysis built them: dense for the dense
 /// route, sparse as assembled for the sparse one (no n x n matrix on that path unless the
-/// full layout is asked for).
+/// full layout is asked for), or not assembled at all on the sparse route when the file asks
+/// for neither layout (the sparse route solves on `F_/ẏ`, `F_/y`; `J(±c)` are only written).
 pub enum PencilMatrices {
     Dense { aplus: Mat<f64>, aminus: Mat<f64> },
     Sparse { aplus: SparseMatrix, aminus: SparseMatrix },
+    /// Not assembled: `dim` equations. [`EigenFile::matrices`] is `None` with it.
+    Unassembled { dim: usize },
 }
 
 impl PencilMatrices {
@@ -35,30 +38,39 @@ impl PencilMatrices {
         match self {
             PencilMatrices::Dense { aplus, .. } => aplus.nrows(),
             PencilMatrices::Sparse { aplus, .. } => aplus.nrows(),
+            PencilMatrices::Unassembled { dim } => *dim,
         }
     }
 
+    /// Whether `Aplus` and `Aminus` are held (anything but [`PencilMatrices::Unassembled`]).
+    pub fn is_assembled(&self) -> bool {
+        !matches!(self, PencilMatrices::Unassembled { .. })
+    }
+
     /// `Aplus` (`plus`) or `Aminus` as a dense matrix (a copy on the sparse route: only for
-    /// the full layout, whose size the eigenanalysis checked against the dense budget).
-    pub fn full(&self, plus: bool) -> Cow<'_, Mat<f64>> {
+    /// the full layout, whose size the eigenanalysis checked against the dense budget);
+    /// `None` when not assembled.
+    pub fn full(&self, plus: bool) -> Option<Cow<'_, Mat<f64>>> {
         match self {
-            PencilMatrices::Dense { aplus, aminus } => Cow::Borrowed(if plus { aplus } else { aminus }),
-            PencilMatrices::Sparse { aplus, aminus } => Cow::Owned(if plus { aplus } else { aminus }.to_dense()),
+            PencilMatrices::Dense { aplus, aminus } => Some(Cow::Borrowed(if plus { aplus } else { aminus })),
+            PencilMatrices::Sparse { aplus, aminus } => Some(Cow::Owned(if plus { aplus } else { aminus }.to_dense())),
+            PencilMatrices::Unassembled { .. } => None,
         }
     }
 
     /// The non-zero entries `(i, j, v)` (0-based) of `Aplus` (`plus`) or `Aminus`, column by
-    /// column.
-    pub fn nonzeros(&self, plus: bool) -> Vec<(usize, usize, f64)> {
+    /// column; `None` when not assembled.
+    pub fn nonzeros(&self, plus: bool) -> Option<Vec<(usize, usize, f64)>> {
         let mut entries: Vec<_> = match self {
             PencilMatrices::Dense { aplus, aminus } => {
                 let m = if plus { aplus } else { aminus };
                 (0..m.ncols()).flat_map(|j| (0..m.nrows()).map(move |i| (i, j, m[(i, j)]))).filter(|e| e.2 != 0.0).collect()
             }
             PencilMatrices::Sparse { aplus, aminus } => if plus { aplus } else { aminus }.triplets().filter(|e| e.2 != 0.0).collect(),
+            PencilMatrices::Unassembled { .. } => return None,
         };
         entries.sort_by_key(|&(i, j, _)| (j, i));
-        entries
+        Some(entries)
     }
 }
 

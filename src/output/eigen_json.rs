@@ -150,6 +150,12 @@ enum Part<'a> {
     Vectors(bool),
 }
 
+/// The error when the document asks for `Aplus`/`Aminus` that were not assembled (never, by
+/// `Eigenanalysis::file`; a file without them must not look complete).
+fn unassembled<E: serde::ser::Error>() -> E {
+    E::custom("J(+c) and J(-c) were not assembled for this eigenanalysis")
+}
+
 /// The document's parts, serialized with the file they come from.
 struct Document<'a, 'f> {
     file: &'a EigenFile<'f>,
@@ -165,9 +171,9 @@ impl Serialize for Document<'_, '_> {
             match part {
                 Part::Plain(v) => map.serialize_entry(key, v)?,
                 Part::Rows(rows) => map.serialize_entry(key, rows)?,
-                Part::Sparse(plus) => map.serialize_entry(key, &SparseEntries { entries: e.pencil.nonzeros(*plus), n })?,
+                Part::Sparse(plus) => map.serialize_entry(key, &SparseEntries { entries: e.pencil.nonzeros(*plus).ok_or_else(unassembled::<S::Error>)?, n })?,
                 Part::Full(plus) => {
-                    let full = e.pencil.full(*plus);
+                    let full = e.pencil.full(*plus).ok_or_else(unassembled::<S::Error>)?;
                     let m: &faer::Mat<f64> = &full;
                     map.serialize_entry(key, &stream((0..m.nrows()).map(|i| stream((0..m.ncols()).map(move |j| number(m[(i, j)]))))))?
                 }

@@ -82,6 +82,12 @@ fn vectors(w: &mut dyn Write, name: &str, n: usize, cols: &[Option<&Col<c64>>]) 
     Ok(())
 }
 
+/// The error when the file asks for `Aplus`/`Aminus` that were not assembled (never, by
+/// `Eigenanalysis::file`; a file without them must not look complete).
+fn unassembled() -> std::io::Error {
+    std::io::Error::other("J(+c) and J(-c) were not assembled for this eigenanalysis")
+}
+
 /// Writes the `.m` script of one eigenanalysis to `w`; `input` names the model file.
 pub fn write_eigen_m(w: &mut dyn Write, input: &str, e: &EigenFile) -> std::io::Result<()> {
     let n = e.pencil.dim();
@@ -97,11 +103,11 @@ pub fn write_eigen_m(w: &mut dyn Write, input: &str, e: &EigenFile) -> std::io::
                 None => break,
                 Some(MatrixLayout::Full) => {
                     writeln!(w, "{comment}")?;
-                    full(w, name, &e.pencil.full(plus))?
+                    full(w, name, &*e.pencil.full(plus).ok_or_else(unassembled)?)?
                 }
                 Some(MatrixLayout::Sparse) => {
                     writeln!(w, "{comment}")?;
-                    sparse(w, name, n, &e.pencil.nonzeros(plus))?
+                    sparse(w, name, n, &e.pencil.nonzeros(plus).ok_or_else(unassembled)?)?
                 }
             }
         }

@@ -164,6 +164,56 @@ fn use_arpack_modes_equal_the_dense_routes_on_a_smaller_model() {
     }
 }
 
+/// `J(±c)` are assembled on the sparse route only when the file writes them: without `output
+/// sparse matrices` (or full) the analysis holds no pencil and its `.m`/JSON carry no
+/// `Aplus`/`Aminus`; with it, the written `Aplus`/`Aminus` are `J(±c)` assembled
+/// independently at the same state (`sparse_jacobian_pair`, eqs. 13–14), entry for entry. A
+/// file that asks for matrices the analysis does not hold is an error, never a file without
+/// them.
+#[test]
+fn use_arpack_assembles_the_written_pencil_only_when_the_file_asks_for_it() {
+    use romdyn::output::eigen_file::MatrixLayout;
+    use romdyn::output::eigen_json::write_eigen_json;
+    use romdyn::output::eigen_m::write_eigen_m;
+    let n = 30;
+    let analysis = |card: &str| {
+        let m = common::mbdyn::read(&string_of_masses(n, card));
+        let state = State::initial(&m.model, &Assembler::new(&m.model).dofs);
+        let request = m.problem.eigenanalysis.clone().unwrap();
+        let a = Eigenanalysis::at(&m.model, &state, 0, &request).unwrap();
+        (m, state, a)
+    };
+    let m_text = |a: &Eigenanalysis| {
+        let mut text = Vec::new();
+        write_eigen_m(&mut text, "string.mbd", &a.file()).unwrap();
+        String::from_utf8(text).unwrap()
+    };
+    let (_, _, plain) = analysis("parameter, 1.e-3, use arpack, 8, 20, 0.");
+    assert!(!plain.pencil.is_assembled());
+    assert_eq!(plain.pencil.dim(), 12 * n + 24);
+    let text = m_text(&plain);
+    assert!(text.contains("dCoef = ") && !text.contains("Aplus") && !text.contains("Aminus"), "{text}");
+    // Asked for anyway (not by `Eigenanalysis::file`): an error from both writers.
+    let mut file = plain.file();
+    file.matrices = Some(MatrixLayout::Sparse);
+    assert!(write_eigen_m(&mut Vec::new(), "string.mbd", &file).is_err());
+    assert!(write_eigen_json(&mut Vec::new(), "string.mbd", &file).is_err());
+
+    let (m, state, with) = analysis("output sparse matrices, parameter, 1.e-3, use arpack, 8, 20, 0.");
+    assert!(with.pencil.is_assembled());
+    // The same modes either way (the pencil is only written).
+    let lambdas = |a: &Eigenanalysis| a.modal.modes.iter().map(|m| m.lambda).collect::<Vec<_>>();
+    assert_eq!(lambdas(&plain), lambdas(&with));
+    let (aplus, aminus) = romdyn::dae::sparse_jacobian_pair(&m.model, &state, with.dcoef).unwrap();
+    for (plus, independent) in [(true, &aplus), (false, &aminus)] {
+        let mut want: Vec<(usize, usize, f64)> = independent.triplets().filter(|e| e.2 != 0.0).collect();
+        want.sort_by_key(|&(i, j, _)| (j, i));
+        assert_eq!(with.pencil.nonzeros(plus).unwrap(), want);
+    }
+    let text = m_text(&with);
+    assert!(text.contains("Aplus = spconvert(Aplus);") && text.contains("Aminus = spconvert(Aminus);"), "{text}");
+}
+
 /// The card's arguments are checked as MBDyn 1.7.3 checks them (solver.cc `ReadData`),
 /// each refusal at its file:line:column.
 #[test]
