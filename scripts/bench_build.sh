@@ -33,7 +33,8 @@ done
 
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 WORK=$(mktemp -d /tmp/romdyn-bench-build.XXXXXX)
-if [ "$KEEP" = 0 ]; then trap 'rm -rf "$WORK"' EXIT; fi
+# Removed at the end unless --keep, or a command failed (its log is kept for reading).
+trap '[ "$KEEP" = 1 ] || rm -rf "$WORK"' EXIT
 ISSUE_INSTALL=644
 ISSUE_TEST=317
 
