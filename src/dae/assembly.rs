@@ -2,6 +2,7 @@
 //! elements' contributions (`a = 1, b = c` gives `J(c)`, eq. 5).
 
 use super::jacobian_sink::{global_row, Entries, Jacobian, Shape, Values};
+use super::prefetch;
 use super::state::NodeFrame;
 use super::{DofMap, State, Triplets};
 use crate::element::{ElementState, NodeKinematics, ResidualSink, Row, SectionState};
@@ -153,6 +154,16 @@ impl<'m> Assembler<'m> {
         (0..self.model.nodes.len()).map(|i| st.node_frame(&self.dofs, i)).collect()
     }
 
+    /// Asks the caches for element `e`'s data ahead of its evaluation, when there is such
+    /// an element ([`prefetch`]).
+    #[inline(always)]
+    fn prefetch(&self, st: &State, e: usize) {
+        if let Some(el) = self.model.elements.get(e) {
+            let slots = self.dofs.element_nodes.get(e).map_or(&[][..], Vec::as_slice);
+            prefetch::element(el.as_ref(), slots, st.latched.get(e).and_then(Option::as_ref));
+        }
+    }
+
     fn context<'a>(&'a self, frames: &'a [NodeFrame], st: &'a State, e: usize, constraint_scale: f64) -> Context<'a> {
         let first = self.dofs.element_first[e];
         Context {
@@ -252,6 +263,7 @@ impl<'m> Assembler<'m> {
         }
         let scale = if form == ConstraintForm::Scaled { 1.0 / dcoef } else { 1.0 };
         for (e, el) in self.model.elements.iter().enumerate() {
+            self.prefetch(st, e + prefetch::AHEAD);
             let ctx = self.context(frames, st, e, scale);
             let mut sink = Residual { dofs: &self.dofs, element: e, slots: &self.dofs.element_nodes[e], first: self.dofs.element_first[e], constraint_scale: scale, put: |i, v| f[i] += v };
             el.residual(&ctx, &mut sink);
@@ -295,6 +307,7 @@ impl<'m> Assembler<'m> {
         let scale = if c.form == ConstraintForm::Scaled { 1.0 / c.dcoef } else { 1.0 };
         let mut shape = Shape::of_model(self.dofs.len, self.model.elements.len());
         for (e, el) in self.model.elements.iter().enumerate() {
+            self.prefetch(st, e + prefetch::AHEAD);
             let ctx = self.context(frames, st, e, scale);
             let mut sink = Jacobian { dofs: &self.dofs, element: e, frames, slots: &self.dofs.element_nodes[e], first: self.dofs.element_first[e], c, out: &mut *out, shape: shape.element(e) };
             el.jacobian(&ctx, &mut sink);

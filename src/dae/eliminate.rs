@@ -8,6 +8,11 @@
 //! system's, up to rounding.
 
 use super::factored::{Factored, LuPath, SparseError, Triplets};
+use crate::lu::prefetch;
+
+/// How many triplets (and Schur products) ahead [`Eliminated::factor`]'s scatter asks the
+/// caches for the storage it will add to ([`prefetch`]).
+const SCATTER_AHEAD: usize = 32;
 
 /// One eliminated unknown `p` and its equation `m`, with the pivot's entry.
 #[derive(Clone, Copy, Debug)]
@@ -269,7 +274,17 @@ impl Eliminated {
         // others (pivots, J_Mq, J_Rp) into `entries`; then the products of J_Rp J_Mq / c.
         let factored = self.inner.factor_with(|storage| {
             entries.iter_mut().for_each(|v| *v = 0.0);
-            for (&t, &v) in target.iter().zip(values) {
+            for (k, (&t, &v)) in target.iter().zip(values).enumerate() {
+                // The storage an entry [`SCATTER_AHEAD`] on adds to: its place is in `target`,
+                // which the hardware cannot read ahead.
+                if let Some(&ahead) = target.get(k + SCATTER_AHEAD) {
+                    let ahead = ahead as usize;
+                    if ahead < len {
+                        prefetch::at(storage, ahead);
+                    } else {
+                        prefetch::at(entries, ahead - len);
+                    }
+                }
                 let t = t as usize;
                 if t < len {
                     storage[t] += v;
@@ -287,7 +302,10 @@ impl Eliminated {
                 // solves the whole system (a rare case: one wasted factorization).
                 return;
             }
-            for &[at, a, b, k] in products {
+            for (i, &[at, a, b, k]) in products.iter().enumerate() {
+                if let Some(ahead) = products.get(i + SCATTER_AHEAD) {
+                    prefetch::at(storage, ahead[0] as usize);
+                }
                 storage[at as usize] -= entries[a as usize] * entries[b as usize] * inverse[k as usize];
             }
         });

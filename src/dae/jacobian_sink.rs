@@ -58,7 +58,13 @@ impl Shape {
     /// (the first column says which).
     #[inline]
     fn block(self, rows: &[Row; 3], first_col: Col) -> Self {
-        self.with(col_code(first_col) | 1 << 63).with(row_code(rows[0])).with(row_code(rows[1])).with(row_code(rows[2]))
+        self.block_in(&rows.map(row_code), first_col)
+    }
+
+    /// [`Shape::block`] with the rows' codes given ([`row_code`]).
+    #[inline]
+    fn block_in(self, rows: &[u64; 3], first_col: Col) -> Self {
+        self.with(col_code(first_col) | 1 << 63).with(rows[0]).with(rows[1]).with(rows[2])
     }
 
     /// A new element's calls follow.
@@ -193,35 +199,68 @@ fn node_block(cols: &[Col; 3]) -> Option<Col> {
     same.then_some(first)
 }
 
+impl<O: Entries> Jacobian<'_, O> {
+    /// Row `i` of a block `m` of one node's columns of one kind (`block`, its first column)
+    /// in equation `r`, whose `y` coefficient is `b`: 3 entries.
+    #[inline(always)]
+    fn put_block_row(&mut self, block: Col, r: usize, b: f64, m: &Mat3, i: usize) {
+        let a = self.c.a;
+        let mrow = m.row(i);
+        // A block row times G (δθ = G δg) gives the row in the g columns: 3 entries.
+        let (values, first) = match block {
+            Col::Position { slot, .. } => (b * mrow, self.node_first(slot)),
+            Col::Velocity { slot, .. } => (a * mrow, self.node_first(slot)),
+            Col::Rotation { slot, .. } => (b * mrow * self.frames[self.slots[slot]].g_matrix, self.node_first(slot) + 3),
+            Col::AngularVelocity { slot, .. } => {
+                let fr = &self.frames[self.slots[slot]];
+                (a * mrow * fr.g_matrix + b * mrow * fr.rate_derivative, self.node_first(slot) + 3)
+            }
+            Col::Multiplier(_) | Col::Rate(_) | Col::ScalarValue { .. } | Col::ScalarRate { .. } => unreachable!("node_block returns node columns only"),
+        };
+        for k in 0..3 {
+            self.out.put(r, first + k, values[k]);
+        }
+    }
+
+    /// A block whose columns are not one node's of one kind: entry by entry.
+    fn add_entries(&mut self, rows: [Row; 3], cols: [Col; 3], m: &Mat3) {
+        for (i, row) in rows.into_iter().enumerate() {
+            for (j, col) in cols.into_iter().enumerate() {
+                self.add(row, col, m[(i, j)]);
+            }
+        }
+    }
+}
+
 impl<O: Entries> JacobianSink for Jacobian<'_, O> {
     fn add_block(&mut self, rows: [Row; 3], cols: [Col; 3], m: &Mat3) {
         let Some(block) = node_block(&cols) else {
-            for (i, row) in rows.into_iter().enumerate() {
-                for (j, col) in cols.into_iter().enumerate() {
-                    self.add(row, col, m[(i, j)]);
-                }
-            }
+            self.add_entries(rows, cols, m);
             return;
         };
         self.shape = self.shape.block(&rows, block);
-        let a = self.c.a;
         for (i, row) in rows.into_iter().enumerate() {
             let Some(r) = self.row(row) else { continue };
             let b = self.y_coefficient(row);
-            let mrow = m.row(i);
-            // A block row times G (δθ = G δg) gives the row in the g columns: 3 entries.
-            let (values, first) = match block {
-                Col::Position { slot, .. } => (b * mrow, self.node_first(slot)),
-                Col::Velocity { slot, .. } => (a * mrow, self.node_first(slot)),
-                Col::Rotation { slot, .. } => (b * mrow * self.frames[self.slots[slot]].g_matrix, self.node_first(slot) + 3),
-                Col::AngularVelocity { slot, .. } => {
-                    let fr = &self.frames[self.slots[slot]];
-                    (a * mrow * fr.g_matrix + b * mrow * fr.rate_derivative, self.node_first(slot) + 3)
-                }
-                Col::Multiplier(_) | Col::Rate(_) | Col::ScalarValue { .. } | Col::ScalarRate { .. } => unreachable!("node_block returns node columns only"),
+            self.put_block_row(block, r, b, m, i);
+        }
+    }
+
+    /// As one [`JacobianSink::add_block`] per block (the same entries, values and
+    /// fingerprint), the rows mapped once.
+    fn add_blocks(&mut self, rows: [Row; 3], cols: &[[Col; 3]], m: &[Mat3]) {
+        let mapped = rows.map(|row| (self.row(row), self.y_coefficient(row)));
+        let codes = rows.map(row_code);
+        for (c, m) in cols.iter().zip(m) {
+            let Some(block) = node_block(c) else {
+                self.add_entries(rows, *c, m);
+                continue;
             };
-            for k in 0..3 {
-                self.out.put(r, first + k, values[k]);
+            self.shape = self.shape.block_in(&codes, block);
+            for (i, &(r, b)) in mapped.iter().enumerate() {
+                if let Some(r) = r {
+                    self.put_block_row(block, r, b, m, i);
+                }
             }
         }
     }
@@ -261,5 +300,73 @@ impl<O: Entries> JacobianSink for Jacobian<'_, O> {
             Col::ScalarValue { slot } => self.out.put(i, self.scalar_unknown(slot), b * v),
             Col::ScalarRate { slot } => self.out.put(i, self.scalar_unknown(slot), a * v),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Jacobian, Shape, Values};
+    use crate::dae::{Assembler, Coefficients, State, Triplets};
+    use crate::element::{Col, JacobianSink, Row};
+    use crate::kinematics::{Mat3, Vec3};
+    use crate::model::{ConstraintForm, ModelBuilder};
+
+    /// [`JacobianSink::add_blocks`] against one [`JacobianSink::add_block`] per block (the
+    /// path every element took before): the same triplets, bit for bit, the same values
+    /// alone and the same fingerprint, on three moving, turned dynamic nodes (their `G` and
+    /// `∂(G ġ)/∂g` are not trivial), for blocks of every node column kind and a block whose
+    /// columns are not one node's, in force and momentum rows.
+    #[test]
+    fn blocks_at_once_are_the_blocks_one_by_one() {
+        let mut b = ModelBuilder::new();
+        for label in 1..=3 {
+            let l = label as f64;
+            b.dynamic_node(label, Vec3::new(l, 0.1 * l, 0.0), Mat3::identity(), Vec3::new(0.2, -l, 0.3), Vec3::new(0.5, 0.1 * l, -0.7));
+        }
+        let model = b.build().unwrap();
+        let asm = Assembler::new(&model);
+        let mut st = State::initial(&model, &asm.dofs);
+        for (k, y) in st.y.iter_mut().enumerate() {
+            *y += 0.1 * (k as f64).sin();
+        }
+        let frames = asm.frames(&st);
+        let c = Coefficients::newton(0.37, ConstraintForm::Scaled);
+        let slots = [0, 1, 2];
+        let m = |k: usize| Mat3::from_fn(|i, j| ((10 * k + 3 * i + j) as f64 * 0.77).cos());
+        let cols = [Col::position(0), Col::rotation(1), Col::velocity(2), Col::angular_velocity(0), [Col::Position { slot: 0, comp: 0 }, Col::Rotation { slot: 1, comp: 2 }, Col::Velocity { slot: 2, comp: 1 }], Col::rotation(2)];
+        let blocks: Vec<Mat3> = (0..cols.len()).map(m).collect();
+        let row_sets = [Row::force(1), Row::moment(0), Row::linear_momentum(2), Row::angular_momentum(1)];
+
+        let (mut at_once, mut one_by_one) = (Triplets::new(asm.dofs.len), Triplets::new(asm.dofs.len));
+        let (mut values_at_once, mut values_one_by_one) = (Vec::new(), Vec::new());
+        let shapes = {
+            let mut sink = |out: &mut Triplets, values: &mut Vec<f64>, together: bool| {
+                let mut triplets = Jacobian { dofs: &asm.dofs, element: 0, frames: &frames, slots: &slots, first: 0, c, out, shape: Shape::default() };
+                let mut alone = Jacobian { dofs: &asm.dofs, element: 0, frames: &frames, slots: &slots, first: 0, c, out: &mut Values(values), shape: Shape::default() };
+                for rows in row_sets {
+                    if together {
+                        triplets.add_blocks(rows, &cols, &blocks);
+                        alone.add_blocks(rows, &cols, &blocks);
+                    } else {
+                        for (c, m) in cols.iter().zip(&blocks) {
+                            triplets.add_block(rows, *c, m);
+                            alone.add_block(rows, *c, m);
+                        }
+                    }
+                }
+                (triplets.shape, alone.shape)
+            };
+            [sink(&mut at_once, &mut values_at_once, true), sink(&mut one_by_one, &mut values_one_by_one, false)]
+        };
+        assert_eq!(shapes[0], shapes[1]);
+        assert_eq!(shapes[0].0, shapes[0].1);
+        assert_eq!((&at_once.rows, &at_once.cols), (&one_by_one.rows, &one_by_one.cols));
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&at_once.values), bits(&one_by_one.values));
+        assert_eq!(bits(&values_at_once), bits(&at_once.values));
+        assert_eq!(bits(&values_one_by_one), bits(&one_by_one.values));
+        // 4 row sets of 3 rows: 5 node blocks of 3 entries a row, and the mixed block's
+        // position, rotation (3 entries, through G) and velocity columns.
+        assert_eq!(at_once.values.len(), 4 * 3 * (5 * 3 + 5));
     }
 }

@@ -29,6 +29,7 @@ mod eliminate;
 mod factored;
 mod jacobian_sink;
 mod linearize;
+mod prefetch;
 pub mod ports;
 mod sparse;
 mod state;

@@ -75,13 +75,10 @@ impl Element for RigidBody {
         // δS = −[S×] δθ.
         add_block(out, Row::moment(0), Col::rotation(0), &(-skew(&g) * sx));
         let j = n.r * self.inertia_about_node() * n.r.transpose();
-        let (lin, ang) = (Row::linear_momentum(0), Row::angular_momentum(0));
-        add_block(out, lin, Col::velocity(0), &(-self.mass * Mat3::identity()));
-        add_block(out, lin, Col::angular_velocity(0), &sx);
-        add_block(out, lin, Col::rotation(0), &(skew(&n.omega) * sx));
-        add_block(out, ang, Col::velocity(0), &(-sx));
-        add_block(out, ang, Col::angular_velocity(0), &(-j));
-        add_block(out, ang, Col::rotation(0), &(-skew(&n.xdot) * sx + skew(&(j * n.omega)) - j * skew(&n.omega)));
+        // Each momentum row's three blocks at once (the sink maps the rows once).
+        let cols = [Col::velocity(0), Col::angular_velocity(0), Col::rotation(0)];
+        out.add_blocks(Row::linear_momentum(0), &cols, &[-self.mass * Mat3::identity(), sx, skew(&n.omega) * sx]);
+        out.add_blocks(Row::angular_momentum(0), &cols, &[-sx, -j, -skew(&n.xdot) * sx + skew(&(j * n.omega)) - j * skew(&n.omega)]);
         if let Some(f) = &self.frame {
             super::frame_motion::body_jacobian(&f.at(st.time()), self.mass, &s, &j, st, out);
         }

@@ -194,6 +194,15 @@ pub trait JacobianSink {
             }
         }
     }
+    /// Blocks `m[k]` in the same three rows at columns `cols[k]`, in order: the same entries
+    /// as one [`JacobianSink::add_block`] per block (the assembler maps the rows once; an
+    /// element with many blocks in a row of three equations, a beam, hands them at once).
+    fn add_blocks(&mut self, rows: [Row; 3], cols: &[[Col; 3]], m: &[Mat3]) {
+        debug_assert_eq!(cols.len(), m.len());
+        for (c, m) in cols.iter().zip(m) {
+            self.add_block(rows, *c, m);
+        }
+    }
 }
 
 /// Rows of a 3-vector quantity.

@@ -163,6 +163,9 @@ pub struct BandLu {
     upper_top: Vec<usize>,
 }
 
+/// How many columns ahead [`BandLu::solve_in_place`] asks the caches for.
+const SOLVE_AHEAD: usize = 16;
+
 /// A zero pivot: the matrix is singular.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ZeroPivot;
@@ -315,11 +318,17 @@ impl BandLu {
         Ok(())
     }
 
-    /// Solves `A x = b` in place with the factors (in the renumbered ordering).
+    /// Solves `A x = b` in place with the factors (in the renumbered ordering). Each sweep
+    /// asks for the factors' column [`SOLVE_AHEAD`] columns on ([`super::prefetch`]): the
+    /// columns' segments are too short and far apart for the hardware to follow.
     pub fn solve_in_place(&self, b: &mut [f64]) {
         let (n, ld) = (self.n, self.ld);
         let kv = self.kl + self.ku;
         for j in 0..n {
+            if j + SOLVE_AHEAD < n {
+                let ahead = (j + SOLVE_AHEAD) * ld + kv;
+                super::prefetch::lines(self.band.as_ptr().wrapping_add(ahead), 8 * (self.lower[j + SOLVE_AHEAD] + 1));
+            }
             let p = self.pivot[j];
             if p != j {
                 b.swap(j, p);
@@ -334,6 +343,11 @@ impl BandLu {
             }
         }
         for j in (0..n).rev() {
+            if j >= SOLVE_AHEAD {
+                let ahead = j - SOLVE_AHEAD;
+                let top = self.upper_top[ahead];
+                super::prefetch::lines(self.band.as_ptr().wrapping_add(ahead * ld + kv - (ahead - top)), 8 * (ahead - top + 1));
+            }
             let col = j * ld + kv;
             b[j] /= self.band[col];
             let bj = b[j];

@@ -6,6 +6,7 @@
 
 mod band;
 mod certified;
+pub(crate) mod prefetch;
 mod sparse;
 
 pub(crate) use band::{BandLu, BandOrdering};

@@ -146,19 +146,30 @@ pub fn add_point_jacobian<const R: usize, const C: usize, const K: usize>(jac: &
 
 /// Hands the element Jacobian (rows `6 i + …` node `i`'s force and moment, columns as the
 /// tangents') to the sink: positions and rotations, and velocities when `viscous`.
+/// Each row of three equations goes to the sink at once ([`JacobianSink::add_blocks`]): its
+/// blocks by node, each node's by kind.
 pub fn scatter_jacobian<const R: usize, const C: usize>(jac: &SMatrix<f64, R, C>, viscous: bool, out: &mut dyn JacobianSink) {
     let kinds = if viscous { 4 } else { 2 };
     let nodes = R / 6;
+    debug_assert!(nodes <= MOST_NODES);
+    let mut cols = [[Col::Multiplier(0); 3]; 4 * MOST_NODES];
+    let mut blocks = [Mat3::zeros(); 4 * MOST_NODES];
     for node in 0..nodes {
         for (half, rows) in [Row::force(node), Row::moment(node)].into_iter().enumerate() {
             let r = 6 * node + 3 * half;
+            let mut k = 0;
             for slot in 0..nodes {
-                let cols = [Col::position(slot), Col::rotation(slot), Col::velocity(slot), Col::angular_velocity(slot)];
-                for (kind, c) in cols.into_iter().enumerate().take(kinds) {
-                    let block: Mat3 = jac.fixed_view::<3, 3>(r, column(nodes, slot, kind)).into();
-                    out.add_block(rows, c, &block);
+                let slot_cols = [Col::position(slot), Col::rotation(slot), Col::velocity(slot), Col::angular_velocity(slot)];
+                for (kind, c) in slot_cols.into_iter().enumerate().take(kinds) {
+                    cols[k] = c;
+                    blocks[k] = jac.fixed_view::<3, 3>(r, column(nodes, slot, kind)).into();
+                    k += 1;
                 }
             }
+            out.add_blocks(rows, &cols[..k], &blocks[..k]);
         }
     }
 }
+
+/// The most nodes of a finite-volume beam (`beam3`).
+const MOST_NODES: usize = 3;
