@@ -55,6 +55,24 @@ impl CharStream {
         (self.pos, self.line, self.column) = (m.pos, m.line, m.column);
     }
 
+    /// Consumes the ASCII characters that `take` accepts, up to the first it refuses, and
+    /// returns them: the words and numbers of a reader, sliced from the text instead of
+    /// pushed into a string one character at a time. `take` must refuse `\n` (the column
+    /// moves by one per byte taken, the line not at all).
+    pub fn take_ascii_while(&mut self, take: impl Fn(u8) -> bool) -> &str {
+        let start = self.pos;
+        let len = self.text.as_bytes()[start..].iter().take_while(|&&b| b.is_ascii() && take(b)).count();
+        debug_assert!(!self.text.as_bytes()[start..start + len].contains(&b'\n'), "take_ascii_while: a newline taken");
+        self.pos += len;
+        self.column += len;
+        &self.text[start..start + len]
+    }
+
+    /// The text from `mark` to the cursor.
+    pub fn since(&self, mark: Mark) -> &str {
+        &self.text[mark.pos..self.pos]
+    }
+
     /// Whether the text continues with `s`.
     pub fn starts_with(&self, s: &str) -> bool {
         self.text[self.pos..].starts_with(s)

@@ -43,22 +43,66 @@ impl SparseMatrix {
     }
 
     /// An `nrows x ncols` matrix from `(row, col, value)` entries; duplicates are summed
-    /// and entries that sum to zero are dropped. `None` when an index is out of range.
+    /// in the order given and entries that sum to zero are dropped. `None` when an index is
+    /// out of range. See [`Self::from_triplet_parts`].
     pub fn from_triplets(nrows: usize, ncols: usize, entries: impl IntoIterator<Item = (usize, usize, f64)>) -> Option<Self> {
-        let mut e: Vec<(usize, usize, f64)> = entries.into_iter().collect();
-        if e.iter().any(|&(i, j, _)| i >= nrows || j >= ncols) {
+        let entries = entries.into_iter();
+        let capacity = entries.size_hint().0;
+        let (mut rows, mut cols, mut values) = (Vec::with_capacity(capacity), Vec::with_capacity(capacity), Vec::with_capacity(capacity));
+        for (i, j, v) in entries {
+            rows.push(i);
+            cols.push(j);
+            values.push(v);
+        }
+        Self::from_triplet_parts(nrows, ncols, &rows, &cols, &values)
+    }
+
+    /// [`Self::from_triplets`] of the entries `(rows[k], cols[k], values[k])`, in time linear
+    /// in their number (sorting them by comparison took O(entries log entries): 4–6 % of a
+    /// sparse eigenanalysis' samples): a stable counting sort by row, then each row's
+    /// entries sorted by column stably (a row holds a few dozen), so the duplicates of a
+    /// position are summed from 0 in the order given — each sum the one a dense
+    /// accumulation `m[(i, j)] += v` over the entries in order gives
+    /// ([`crate::dae::Triplets::to_dense`], the dense linearization's). One temporary of
+    /// 16 bytes an entry (the comparison sort's copy took 24); the result's arrays are
+    /// written only as far as the sums kept (the memory beyond them is never touched, so not
+    /// resident: `F_/ẏ` keeps about a third of the assembler's entries).
+    pub fn from_triplet_parts(nrows: usize, ncols: usize, rows: &[usize], cols: &[usize], values: &[f64]) -> Option<Self> {
+        assert!(rows.len() == values.len() && cols.len() == values.len(), "from_triplet_parts: one row and one column per value");
+        if rows.iter().any(|&i| i >= nrows) || cols.iter().any(|&j| j >= ncols) {
             return None;
         }
-        e.sort_unstable_by_key(|&(i, j, _)| (i, j));
-        let mut start = vec![0; nrows + 1];
-        let (mut col, mut val) = (Vec::with_capacity(e.len()), Vec::with_capacity(e.len()));
-        let mut k = 0;
+        let nnz = values.len();
+        // next[i]: where row i's next entry goes (row pointers, moved along by the scatter).
+        let mut next = vec![0usize; nrows + 1];
+        for &i in rows {
+            next[i + 1] += 1;
+        }
         for i in 0..nrows {
-            while k < e.len() && e[k].0 == i {
-                let j = e[k].1;
+            next[i + 1] += next[i];
+        }
+        let row_start = next.clone();
+        let mut by_row = vec![(0usize, 0.0f64); nnz];
+        for k in 0..nnz {
+            let p = &mut next[rows[k]];
+            by_row[*p] = (cols[k], values[k]);
+            *p += 1;
+        }
+        drop(next);
+        // Each row by column (stable: a position's duplicates keep their order), each run of
+        // one position summed, zero sums dropped.
+        let mut start = Vec::with_capacity(nrows + 1);
+        start.push(0);
+        let (mut col, mut val) = (Vec::with_capacity(nnz), Vec::with_capacity(nnz));
+        for i in 0..nrows {
+            let row = &mut by_row[row_start[i]..row_start[i + 1]];
+            row.sort_by_key(|&(j, _)| j);
+            let mut k = 0;
+            while k < row.len() {
+                let j = row[k].0;
                 let mut x = 0.0;
-                while k < e.len() && e[k].0 == i && e[k].1 == j {
-                    x += e[k].2;
+                while k < row.len() && row[k].0 == j {
+                    x += row[k].1;
                     k += 1;
                 }
                 if x != 0.0 {
@@ -66,7 +110,7 @@ impl SparseMatrix {
                     val.push(x);
                 }
             }
-            start[i + 1] = col.len();
+            start.push(col.len());
         }
         Some(SparseMatrix { nrows, ncols, start, col, val })
     }
@@ -442,6 +486,73 @@ mod tests {
             assert_eq!(row_idx, a.symbolic().row_idx());
             assert_eq!(val, a.val());
         }
+    }
+
+    /// `from_triplets` against a dense accumulation of the same entries in the order given
+    /// (`m[(i, j)] += v`, independent code): every stored value bit for bit, columns
+    /// ascending in each row, every non-zero of the dense sum stored and no zero. The
+    /// entries are duplicates of few positions with magnitudes from 1e-3 to 1e16, so that
+    /// summing a position's duplicates in another order changes its last bits (checked: the
+    /// reversed order differs somewhere), a position whose entries cancel exactly, an empty
+    /// row and column, non-square shapes; rows of about 600 entries and of about 27.
+    #[test]
+    fn from_triplets_sums_duplicates_in_the_order_given() {
+        for (nrows, ncols, count) in [(7, 5, 4000), (300, 40, 8000)] {
+            check_against_dense_sum(nrows, ncols, count);
+        }
+        assert!(SparseMatrix::from_triplets(3, 2, [(3, 0, 1.0)]).is_none());
+        assert!(SparseMatrix::from_triplets(3, 2, [(0, 2, 1.0)]).is_none());
+        assert_eq!(SparseMatrix::from_triplets(0, 0, []).unwrap().nnz(), 0);
+    }
+
+    fn check_against_dense_sum(nrows: usize, ncols: usize, count: usize) {
+        // A small linear congruential generator: reproducible, no dependency.
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            seed = seed.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+            seed >> 33
+        };
+        let mut entries = Vec::new();
+        for _ in 0..count {
+            let (i, j) = ((next() % nrows as u64) as usize, (next() % ncols as u64) as usize);
+            if i == 3 || j == 2 || (i, j) == (6, 4) {
+                continue; // row 3 and column 2 stay empty, (6, 4) is set below
+            }
+            let scale = [1e-3, 0.1, 1.0, 7.0, 1e8, 1e16][(next() % 6) as usize];
+            let sign = if next() % 2 == 0 { 1.0 } else { -1.0 };
+            entries.push((i, j, sign * scale * (1.0 + (next() % 1000) as f64 / 997.0)));
+        }
+        // A position whose entries cancel exactly (dropped).
+        entries.extend([(6, 4, 0.25), (6, 4, 0.5), (6, 4, -0.75)]);
+        let dense_sum = |order: &mut dyn Iterator<Item = &(usize, usize, f64)>| {
+            let mut m = Mat::<f64>::zeros(nrows, ncols);
+            order.for_each(|&(i, j, v)| m[(i, j)] += v);
+            m
+        };
+        let forward = dense_sum(&mut entries.iter());
+        let reversed = dense_sum(&mut entries.iter().rev());
+        assert!((0..nrows).any(|i| (0..ncols).any(|j| forward[(i, j)].to_bits() != reversed[(i, j)].to_bits())), "the entries do not depend on the order of summation");
+        let m = SparseMatrix::from_triplets(nrows, ncols, entries.iter().copied()).unwrap();
+        assert_eq!((m.nrows(), m.ncols()), (nrows, ncols));
+        let mut stored = 0;
+        for i in 0..nrows {
+            let row = &m.col[m.start[i]..m.start[i + 1]];
+            assert!(row.windows(2).all(|w| w[0] < w[1]), "row {i}: columns {row:?} not ascending");
+            for j in 0..ncols {
+                let want = forward[(i, j)];
+                match row.iter().position(|&c| c == j) {
+                    Some(p) => assert_eq!(m.val[m.start[i] + p].to_bits(), want.to_bits(), "({i}, {j})"),
+                    None => assert!(want == 0.0, "({i}, {j}): {want} not stored"),
+                }
+                stored += usize::from(want != 0.0);
+            }
+        }
+        assert_eq!(m.nnz(), stored);
+        assert!(m.triplets().all(|(i, j, v)| i != 3 && j != 2 && v != 0.0 && (i, j) != (6, 4)));
+        // The same from the parts.
+        let (rows, cols, values): (Vec<usize>, Vec<usize>, Vec<f64>) = (entries.iter().map(|e| e.0).collect(), entries.iter().map(|e| e.1).collect(), entries.iter().map(|e| e.2).collect());
+        let parts = SparseMatrix::from_triplet_parts(nrows, ncols, &rows, &cols, &values).unwrap();
+        assert_eq!((parts.start, parts.col, parts.val.iter().map(|v| v.to_bits()).collect::<Vec<_>>()), (m.start.clone(), m.col.clone(), m.val.iter().map(|v| v.to_bits()).collect::<Vec<_>>()));
     }
 
     /// The reordered rows, and the transpose's, multiply as the matrix and its transpose do

@@ -110,12 +110,8 @@ impl Lexer {
             } else if c.is_ascii_digit() || (c == '.' && s.peek(1).is_some_and(|d| d.is_ascii_digit())) {
                 return Ok(Some(Spanned { token: number(s, span, sources)?, span }));
             } else if c.is_ascii_alphabetic() || c == '_' {
-                let mut w = String::new();
-                while let Some(c) = s.peek(0).filter(|c| c.is_ascii_alphanumeric() || *c == '_') {
-                    w.push(c);
-                    s.bump();
-                }
-                return Ok(Some(Spanned { token: Token::Word(w), span }));
+                let w = s.text.take_ascii_while(|b| b.is_ascii_alphanumeric() || b == b'_');
+                return Ok(Some(Spanned { token: Token::Word(w.to_string()), span }));
             } else if let Some(sym) = SYMBOLS.iter().find(|sym| s.starts_with(sym)) {
                 for _ in 0..sym.len() {
                     s.bump();
@@ -175,27 +171,21 @@ fn string(s: &mut Scanner, span: Span, sources: &Sources) -> Result<String, Mbdy
 }
 
 fn number(s: &mut Scanner, span: Span, sources: &Sources) -> Result<Token, MbdynError> {
-    let mut text = String::new();
-    let mut real = false;
-    while let Some(c) = s.peek(0).filter(|c| c.is_ascii_digit() || *c == '.') {
-        real |= c == '.';
-        text.push(c);
-        s.bump();
-    }
+    let start = s.text.mark();
+    let mut real = s.text.take_ascii_while(|b| b.is_ascii_digit() || b == b'.').contains('.');
     if matches!(s.peek(0), Some('e' | 'E')) {
         let sign = matches!(s.peek(1), Some('+' | '-'));
         let first_digit = if sign { 2 } else { 1 };
         if s.peek(first_digit).is_some_and(|d| d.is_ascii_digit()) {
             real = true;
             for _ in 0..first_digit {
-                text.push(s.bump().unwrap_or('e'));
-            }
-            while let Some(d) = s.peek(0).filter(|d| d.is_ascii_digit()) {
-                text.push(d);
                 s.bump();
             }
+            s.text.take_ascii_while(|b| b.is_ascii_digit());
         }
     }
+    // The number's text as written: a slice of the file (no string built per number).
+    let text = s.text.since(start);
     if s.peek(0).is_some_and(|c| c.is_ascii_alphabetic() || c == '_') {
         return Err(sources.error(span, format!("'{text}{}' is not a valid number", s.peek(0).unwrap_or(' '))));
     }

@@ -373,8 +373,8 @@ impl Reader {
         let is_variable = |t: &Spanned| matches!(&t.token, Token::Word(w) if self.doc.variables.get(w).is_some());
         // A phrase of names (and integers, as in "euler 321") that is not an expression.
         let phrase = matches!(first.token, Token::Word(_)) && p.iter().all(|t| matches!(t.token, Token::Word(_) | Token::Integer(_))) && !(p.len() == 1 && is_variable(first));
-        let lower = text.to_lowercase();
         if phrase {
+            let lower = text.to_lowercase();
             return Ok(Arg { value: Value::Word(lower.clone()), span, keyword: Some(lower), text });
         }
         if self.element_card && reads_current(p) {
@@ -393,7 +393,7 @@ impl Reader {
             TypedValue::Str(s) => Value::Str(s),
             v => Value::Number(v.real().unwrap_or(0.0)),
         };
-        let keyword = (p.len() == 1 && matches!(first.token, Token::Word(_))).then(|| lower.clone());
+        let keyword = (p.len() == 1 && matches!(first.token, Token::Word(_))).then(|| text.to_lowercase());
         Ok(Arg { value, span, keyword, text })
     }
 
