@@ -102,7 +102,13 @@ impl Pencil {
 
     /// A right (`left = false`) or left vector of eq. 29 as a vector of the DAE's pencil.
     pub fn to_dae(&self, x: &Col<c64>, lambda: c64) -> Col<c64> {
-        Col::from_fn(x.nrows(), |i| if self.moved[i] { x[i] / lambda } else { x[i] })
+        let mut out = x.clone();
+        for (o, &m) in crate::linear::contiguous_mut(out.as_mut()).iter_mut().zip(&self.moved) {
+            if m {
+                *o = *o / lambda;
+            }
+        }
+        out
     }
 }
 

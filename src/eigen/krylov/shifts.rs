@@ -33,7 +33,7 @@ use super::pencil::Pencil;
 use super::clusters::{outside_span, pair_clusters};
 use super::count::missing_in_disc;
 use super::operator::ShiftInvert;
-use super::window::{evaluate, krylov_sides, window, Eigenpair, PairVectors, Scales};
+use super::window::{evaluate, krylov_sides, window, Eigenpair, Magnitudes, PairVectors, Scales};
 use super::{KrylovError, SparseEigenSettings};
 use crate::eigen::classify::{classify_given, resolved_kind, Classification};
 use crate::eigen::modes::{conjugate_mode, largest_entry, normalize, sort_units};
@@ -527,7 +527,11 @@ fn finish(dae: &SparseLinearDae, pairs: Vec<Eigenpair>, windows: Vec<ShiftWindow
 impl Eigenpair {
     /// The accepted pair (`Im λ ≥ 0`) labelled as the dense route labels it, its vectors
     /// normalized as it does: a real λ gets real vectors (their phase removed).
-    pub(super) fn new(dae: &SparseLinearDae, lambda: c64, mut w: PairVectors, residual_right: f64, residual_left: f64, spread: f64, sc: &Scales) -> Self {
+    /// `magnitudes`: the products of `|v|` and `|u|` with `|F_yd|`, `|F_y|` when the caller
+    /// has them (used for a complex λ, whose vectors stay as they are; a real λ's get their
+    /// phase removed here and their products formed again).
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn new(dae: &SparseLinearDae, lambda: c64, mut w: PairVectors, residual_right: f64, residual_left: f64, spread: f64, sc: &Scales, magnitudes: Option<Magnitudes>) -> Self {
         let real = lambda.im.abs() <= 1e-9 * lambda.norm();
         let lambda = if real {
             // The phase of the largest entry removed (the products are linear in the vector,
@@ -548,7 +552,7 @@ impl Eigenpair {
         } else {
             lambda
         };
-        let error = residual_error(dae, lambda, &w, spread);
+        let error = residual_error(dae, lambda, &w, spread, if real { None } else { magnitudes });
         let classification = label_by_error(lambda, error, sc);
         let (right, left) = normalize(&w.v, &w.u, |x| dae.fyd.mul_complex(x), |a, b| dae.fyd.abs_bilinear(a, b));
         Eigenpair { lambda, right, left: Some(left), residual_right, residual_left, classification, error }
@@ -588,15 +592,18 @@ impl Eigenpair {
 /// the condition number) let a beam's shear stiffness (GA = 1e8 N) swamp its bending
 /// modes. The label of eqs. 32–35 follows from this error: never dynamic when it reaches
 /// |λ|.
-fn residual_error(dae: &SparseLinearDae, lambda: c64, w: &PairVectors, spread: f64) -> f64 {
+/// `magnitudes`: `|F_yd| |v|`, `|F_y| |v|` and the transposed products of `|u|`, when the
+/// caller formed them already (else formed here).
+fn residual_error(dae: &SparseLinearDae, lambda: c64, w: &PairVectors, spread: f64, magnitudes: Option<Magnitudes>) -> f64 {
     let gamma = f64::EPSILON * (dae.fyd.max_row_len().max(dae.fy.max_row_len()) + 2) as f64;
-    let rounding = |x: &Col<c64>, y: &Col<c64>, transpose: bool| {
+    let products = |x: &Col<c64>, transpose: bool| {
         let ax: Vec<f64> = x.iter().map(|e| e.norm()).collect();
-        let (d, k) = (dae.fyd.abs_mul(&ax, transpose), dae.fy.abs_mul(&ax, transpose));
-        gamma * y.iter().enumerate().map(|(i, e)| e.norm() * (lambda.norm() * d[i] + k[i])).sum::<f64>()
+        (dae.fyd.abs_mul(&ax, transpose), dae.fy.abs_mul(&ax, transpose))
     };
+    let Magnitudes { right, left } = magnitudes.unwrap_or_else(|| Magnitudes { right: products(&w.v, false), left: products(&w.u, true) });
+    let rounding = |(d, k): &(Vec<f64>, Vec<f64>), y: &Col<c64>| gamma * y.iter().enumerate().map(|(i, e)| e.norm() * (lambda.norm() * d[i] + k[i])).sum::<f64>();
     let denom = crate::eigen::route::dot_t(&w.u, &w.fydv).norm();
-    let e = spread + rounding(&w.v, &w.u, false).max(rounding(&w.u, &w.v, true)) / denom;
+    let e = spread + rounding(&right, &w.u).max(rounding(&left, &w.v)) / denom;
     if e.is_finite() { e } else { f64::INFINITY }
 }
 

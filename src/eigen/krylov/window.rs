@@ -12,7 +12,7 @@ use super::pencil::Pencil;
 use super::{KrylovError, SparseEigenSettings};
 use crate::eigen::Classification;
 use crate::eigen::route::EigenRoute;
-use crate::linear::SparseLinearDae;
+use crate::linear::{contiguous, contiguous_mut, SparseLinearDae};
 
 /// An eigenpair of the DAE's pencil `λ F_yd + F_y` (the DAE's own constraint form), its
 /// representative with `Im λ ≥ 0`.
@@ -314,7 +314,9 @@ pub(super) fn evaluate(dae: &SparseLinearDae, pencil: &Pencil, scales: &Scales, 
         // EA = 1e8 N) hide a wrong pair, which this one does not (the 64-element cantilever's
         // spurious 4.3 + 14296j rad/s, made of an axial mode's refined subspace, passed the
         // norm-wise test and failed this one).
-        if !(entrywise_residual(dae, lambda, &vectors.v, &vectors.fydv, &vectors.fyv, false) <= s.tolerance && entrywise_residual(dae, lambda, &vectors.u, &vectors.ufyd, &vectors.ufy, true) <= s.tolerance) {
+        let (right_entrywise, right_magnitude) = entrywise_residual(dae, lambda, &vectors.v, &vectors.fydv, &vectors.fyv, false);
+        let (left_entrywise, left_magnitude) = entrywise_residual(dae, lambda, &vectors.u, &vectors.ufyd, &vectors.ufy, true);
+        if !(right_entrywise <= s.tolerance && left_entrywise <= s.tolerance) {
             return Err(lambda);
         }
         let mut vectors = vectors;
@@ -324,7 +326,9 @@ pub(super) fn evaluate(dae: &SparseLinearDae, pencil: &Pencil, scales: &Scales, 
         } else {
             lambda
         };
-        Ok(Eigenpair::new(dae, lambda, vectors, rr, rl, rq.map_or(f64::INFINITY, |q| (lr - q).norm()), scales))
+        // The conjugation keeps the moduli: the products of |v| and |u| serve the error
+        // estimate as they are.
+        Ok(Eigenpair::new(dae, lambda, vectors, rr, rl, rq.map_or(f64::INFINITY, |q| (lr - q).norm()), scales, Some(Magnitudes { right: right_magnitude, left: left_magnitude })))
     })
 }
 
@@ -366,13 +370,22 @@ fn right_only(dae: &SparseLinearDae, pencil: &Pencil, op: &ShiftInvert, run: Run
 }
 
 /// `‖(λ F_yd + F_y) x‖ / ‖(|λ| |F_yd| + |F_y|) |x|‖` (transposed for a left vector), from the
-/// products `F_yd x`, `F_y x` already formed.
-fn entrywise_residual(dae: &SparseLinearDae, lambda: c64, x: &Col<c64>, dx: &Col<c64>, yx: &Col<c64>, transpose: bool) -> f64 {
+/// products `F_yd x`, `F_y x` already formed; with the products `|F_yd| |x|`, `|F_y| |x|` it
+/// took (the error estimate, `shifts.rs`' `residual_error`, needs the same ones).
+fn entrywise_residual(dae: &SparseLinearDae, lambda: c64, x: &Col<c64>, dx: &Col<c64>, yx: &Col<c64>, transpose: bool) -> (f64, (Vec<f64>, Vec<f64>)) {
     let ax: Vec<f64> = x.iter().map(|e| e.norm()).collect();
     let (d, k) = (dae.fyd.abs_mul(&ax, transpose), dae.fy.abs_mul(&ax, transpose));
     let r = (0..dx.nrows()).map(|i| (lambda * dx[i] + yx[i]).norm_sqr()).sum::<f64>().sqrt();
     let scale = (0..dx.nrows()).map(|i| (lambda.norm() * d[i] + k[i]).powi(2)).sum::<f64>().sqrt();
-    r / scale
+    (r / scale, (d, k))
+}
+
+/// `(|F_yd| |v|, |F_y| |v|)` and `(|F_ydᵀ| |u|, |F_yᵀ| |u|)` of a pair's vectors as
+/// [`entrywise_residual`] formed them, for the error estimate of [`Eigenpair::new`] (the
+/// same products of the same vectors: computed once, not twice).
+pub(super) struct Magnitudes {
+    pub right: (Vec<f64>, Vec<f64>),
+    pub left: (Vec<f64>, Vec<f64>),
 }
 
 /// Vectors from this length on are long enough for the hand-over to other threads to pay
@@ -435,7 +448,16 @@ impl DaeProducts {
     /// `(F_yd x, F_y x)` at λ.
     fn at(&self, lambda: c64) -> (Col<c64>, Col<c64>) {
         let inv = c64::new(1.0, 0.0) / lambda;
-        let part = |(a, b): &(Col<c64>, Col<c64>)| if self.norm2.1 == 0.0 { a.clone() } else { Col::from_fn(a.nrows(), |i| a[i] + b[i] * inv) };
+        // On the columns' slices (the same sums as entry by entry).
+        let part = |(a, b): &(Col<c64>, Col<c64>)| {
+            let mut out = a.clone();
+            if self.norm2.1 != 0.0 {
+                for (o, bi) in contiguous_mut(out.as_mut()).iter_mut().zip(contiguous(b.as_ref())) {
+                    *o = *o + bi * inv;
+                }
+            }
+            out
+        };
         (part(&self.fyd), part(&self.fy))
     }
 
