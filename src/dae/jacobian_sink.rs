@@ -340,7 +340,7 @@ mod tests {
         let (mut at_once, mut one_by_one) = (Triplets::new(asm.dofs.len), Triplets::new(asm.dofs.len));
         let (mut values_at_once, mut values_one_by_one) = (Vec::new(), Vec::new());
         let shapes = {
-            let mut sink = |out: &mut Triplets, values: &mut Vec<f64>, together: bool| {
+            let sink = |out: &mut Triplets, values: &mut Vec<f64>, together: bool| {
                 let mut triplets = Jacobian { dofs: &asm.dofs, element: 0, frames: &frames, slots: &slots, first: 0, c, out, shape: Shape::default() };
                 let mut alone = Jacobian { dofs: &asm.dofs, element: 0, frames: &frames, slots: &slots, first: 0, c, out: &mut Values(values), shape: Shape::default() };
                 for rows in row_sets {

@@ -1,7 +1,8 @@
 //! Cache hints for the assembler's passes over the elements (issue 36 point 4). Every
-//! element is its own heap allocation (a `beam3` about 2.4 kB, a rigid body 136 B), with its
-//! node slots and its latched data in two more; a pass over a large model (the 1000-beam
-//! cantilever: about 3 MB of elements, passed twice per Newton iteration that factors)
+//! element is its own heap allocation (a `beam3` with its two section laws over 1.5 kB, a
+//! rigid body about 120 B), with its node slots and its latched data in two more; a pass
+//! over a large model (the 1000-beam cantilever: megabytes of elements, passed twice per
+//! Newton iteration that factors)
 //! finds them evicted by the factorization's arrays since the last pass, and each element's
 //! first loads then wait on memory (perf, 2026-12-07: a rigid body's residual spends two
 //! thirds of its time on its first load). Asking for the element a few places ahead while
@@ -14,7 +15,7 @@ use crate::lu::prefetch::lines;
 /// residual takes about 100 ns, a memory load about as long.
 pub(super) const AHEAD: usize = 2;
 
-/// The most bytes of one element asked for (a `beam3` is about 2.4 kB).
+/// The most bytes of one element asked for: a bound on the hints per element.
 const MOST: usize = 4096;
 
 /// Asks for an element's own data, its node slots and its latched data.
