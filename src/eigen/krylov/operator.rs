@@ -370,6 +370,16 @@ mod tests {
     use faer::sparse::SparseColMat;
     use faer::Conj;
 
+    /// A xorshift sequence from `seed`, uniform in [−0.5, 0.5): the tests' random matrices.
+    fn uniform_around_zero(mut seed: u64) -> impl FnMut() -> f64 {
+        move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        }
+    }
+
     /// The four triangular loops against faer's own solves (independent code) on the
     /// simplicial LU of a random sparse matrix: the same bits.
     #[test]
@@ -377,13 +387,7 @@ mod tests {
         use faer::sparse::linalg::triangular_solve as ts;
         use faer::sparse::Triplet;
         let n = 60;
-        let mut seed = 0x2545_F491_4F6C_DD1Du64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
+        let mut next = uniform_around_zero(0x2545_F491_4F6C_DD1D);
         let mut t = Vec::new();
         for i in 0..n {
             t.push(Triplet::new(i, i, 0.1 + next()));
@@ -435,13 +439,7 @@ mod tests {
     fn block_application_equals_one_by_one() {
         use crate::linear::SparseLinearDae;
         let n = 80;
-        let mut seed = 0x9E37_79B9_7F4A_7C15u64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
+        let mut next = uniform_around_zero(0x9E37_79B9_7F4A_7C15);
         let (mut e, mut k) = (Vec::new(), Vec::new());
         for i in 0..n {
             e.push((i, i, 1.0 + next()));
