@@ -237,54 +237,28 @@ pub fn write_eigen_json(w: &mut dyn Write, input: &str, e: &EigenFile) -> serde_
         parts.insert("VR", Part::Vectors(true));
         parts.insert("VL", Part::Vectors(false));
     }
-    let mut gathered = Gathered { out: w, buf: Vec::with_capacity(GATHERED_BYTES + 4096) };
+    let mut gathered = gathered(w);
     serde_json::to_writer_pretty(&mut gathered, &Document { file: e, parts })?;
-    gathered.buf.push(b'\n');
-    gathered.out.write_all(&gathered.buf).map_err(serde_json::Error::io)
+    gathered.write_all(b"\n").and_then(|()| gathered.flush()).map_err(serde_json::Error::io)
 }
 
-/// Bytes [`Gathered`] holds before handing them on.
+/// Bytes gathered before they are handed to the caller's writer.
 const GATHERED_BYTES: usize = 1 << 20;
 
-/// The document's bytes gathered in memory and handed to the caller's writer a megabyte at a
-/// time: serde_json's pretty printer writes each key, colon, indentation and number on its
-/// own (about twenty writes per energy share, 960,000 shares on the 96,024-equation
-/// string), each a dynamic call through `dyn Write` into a `BufWriter`, which took most of
-/// the `.json`'s time; here each is a copy into a `Vec`. The bytes are the same.
-struct Gathered<'w> {
-    out: &'w mut dyn Write,
-    buf: Vec<u8>,
-}
-
-impl Write for Gathered<'_> {
-    #[inline]
-    fn write(&mut self, bytes: &[u8]) -> std::io::Result<usize> {
-        self.write_all(bytes)?;
-        Ok(bytes.len())
-    }
-
-    #[inline]
-    fn write_all(&mut self, bytes: &[u8]) -> std::io::Result<()> {
-        self.buf.extend_from_slice(bytes);
-        if self.buf.len() >= GATHERED_BYTES {
-            self.out.write_all(&self.buf)?;
-            self.buf.clear();
-        }
-        Ok(())
-    }
-
-    fn flush(&mut self) -> std::io::Result<()> {
-        self.out.write_all(&self.buf)?;
-        self.buf.clear();
-        self.out.flush()
-    }
+/// The caller's writer behind a buffer of [`GATHERED_BYTES`] whose type serde_json sees:
+/// its pretty printer writes each key, colon, indentation and number on its own (about
+/// twenty writes per energy share, 960,000 shares on the 96,024-equation string), which
+/// through `dyn Write` were each a dynamic call and took most of the `.json`'s time; into
+/// a `BufWriter` each is a copy, handed on a megabyte at a time. The bytes are the same.
+fn gathered(w: &mut dyn Write) -> std::io::BufWriter<&mut dyn Write> {
+    std::io::BufWriter::with_capacity(GATHERED_BYTES, w)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    /// A document of about 3 MB written through [`Gathered`] (three hand-overs of a
+    /// A document of about 3 MB written through [`gathered`] (three hand-overs of a
     /// megabyte and the rest) is, byte for byte, what serde_json's pretty printer writes
     /// straight into a `Vec`, and reaches the writer in megabyte pieces, not item by item.
     #[test]
@@ -304,9 +278,10 @@ mod tests {
         let want = serde_json::to_vec_pretty(&doc).unwrap();
         assert!(want.len() > 3 * GATHERED_BYTES, "{} bytes", want.len());
         let mut out = Counting(Vec::new(), 0);
-        let mut gathered = Gathered { out: &mut out, buf: Vec::new() };
+        let mut gathered = gathered(&mut out);
         serde_json::to_writer_pretty(&mut gathered, &doc).unwrap();
         gathered.flush().unwrap();
+        drop(gathered);
         assert_eq!(out.0, want);
         assert!(out.1 <= want.len() / GATHERED_BYTES + 1, "{} writes", out.1);
     }
