@@ -94,20 +94,8 @@ pub(super) fn outside_span<'a>(x: &Col<c64>, vectors: impl Iterator<Item = &'a C
     norm(&outside(x, &q)) / norm(x).max(f64::MIN_POSITIVE)
 }
 
-/// Inverse iterations per completed eigenspace (then one more application for the
-/// Rayleigh–Ritz step). Two: each shrinks the parts along the other eigenvalues by
-/// `|δ|/gap` ([`SHIFT_OFFSET`]), about 2e-8 on the 96,024-equation string's double
-/// eigenvalues, whose second vector comes from a random start (three iterations at
-/// `|δ| = 1e-6 |λ − σ|`, 2e-5 each, left about the same, 1e-14, of it).
-const INVERSE_ITERATIONS: usize = 2;
-
-/// The factored point's distance from the cluster's eigenvalue, `|δ|`, relative to
-/// `|λ − σ|` (at least a thousandth of |λ|), unless ten times the cluster's width is more:
-/// far enough from λ that `K + μE` is factored as any other matrix (its smallest singular
-/// value ~|δ| ‖E‖ stays a million times its rounding), near enough that each iteration
-/// takes the other eigenvalues' parts down by `|δ|/gap`. A Ritz value known only to a few
-/// digits (far from the shift) converges at its own error over the gap whatever `|δ|` is.
-const SHIFT_OFFSET: f64 = 1e-9;
+/// Inverse iterations per completed eigenspace.
+const INVERSE_ITERATIONS: usize = 3;
 
 /// Most start vectors a cluster's inverse iteration takes from the Krylov runs.
 const MAX_STARTS: usize = 8;
@@ -134,15 +122,16 @@ struct Refined {
 }
 
 /// Orthonormal bases of λ's right and left eigenspaces by inverse subspace iteration with
-/// the operator factored at `μ = λ + δ`, `|δ|` [`SHIFT_OFFSET`] of |λ − σ| or ten times the
+/// the operator factored at `μ = λ + δ`, `|δ|` a millionth of |λ − σ| or ten times the
 /// cluster's `width` (the Ritz values' spread about λ), whichever is larger (each iteration
-/// shrinks the parts along the other eigenvalues by `|δ|/gap`), then a Rayleigh–Ritz step on each side's block: the directions of the
+/// shrinks the parts along the other eigenvalues by `|δ|/gap`, below 1e-5 on a beam's
+/// bending pairs), then a Rayleigh–Ritz step on each side's block: the directions of the
 /// cluster's eigenvalues are the Ritz vectors whose eigenvalues lie next to the dominant one
 /// (see [`RITZ_RESIDUAL`]), the bases' sizes the multiplicity each side sees. The vectors come out
 /// as accurate as the factorization allows, also those of Ritz pairs far from the shift. `None`
 /// when μ cannot be factored.
 fn refine(pencil: &Pencil, lambda: c64, sigma: c64, width: f64, starts: &[&Col<c64>], extra: usize) -> Option<Refined> {
-    let d = (SHIFT_OFFSET * (lambda - sigma).norm().max(lambda.norm() * 1e-3)).max(10.0 * width).max(f64::MIN_POSITIVE);
+    let d = (1e-6 * (lambda - sigma).norm().max(lambda.norm() * 1e-3)).max(10.0 * width).max(f64::MIN_POSITIVE);
     let mu = lambda + c64::new(d * std::f64::consts::FRAC_1_SQRT_2, d * std::f64::consts::FRAC_1_SQRT_2);
     let op = super::operator::ShiftInvert::new(pencil, mu).ok()?;
     let mut ws = op.workspace();
@@ -401,9 +390,9 @@ mod tests {
     /// blocks [[0, −1], [ω², 0]]): `λ = 2j` is double, its right eigenvectors `(1, λ)` and
     /// left ones `(λ, 1)` on the two ω = 2 blocks (closed form). The cluster is given one
     /// right vector, the first block's, off by 1e-9 elsewhere, as a single-vector Krylov
-    /// run gives it; its inverse iteration ([`INVERSE_ITERATIONS`] at [`SHIFT_OFFSET`], one
-    /// random start) must return both pairs of the eigenspace: λ = 2j, each vector on the
-    /// two ω = 2 blocks alone with the closed form's ratio, the two independent, `Uᵀ E V = I`.
+    /// run gives it; its inverse iteration (one random start) must return both pairs of the
+    /// eigenspace: λ = 2j, each vector on the two ω = 2 blocks alone with the closed form's
+    /// ratio, the two independent, `Uᵀ E V = I`.
     #[test]
     fn a_double_eigenvalue_gets_both_pairs_from_one_vector() {
         use crate::linear::{SparseLinearDae, SparseMatrix};
