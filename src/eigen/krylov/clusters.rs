@@ -386,6 +386,57 @@ mod tests {
         assert!((kept[0].0 - c64::new(10.0, 0.0)).norm() < 1e-12 && (kept[0].1[0].norm() - 1.0).abs() < 1e-12);
     }
 
+    /// Undamped oscillators ω = 1, 2, 5, 2, 3 as the first-order pencil `λ E + K` (E = I, K
+    /// blocks [[0, −1], [ω², 0]]): `λ = 2j` is double, its right eigenvectors `(1, λ)` and
+    /// left ones `(λ, 1)` on the two ω = 2 blocks (closed form). The cluster is given one
+    /// right vector, the first block's, off by 1e-9 elsewhere, as a single-vector Krylov
+    /// run gives it; its inverse iteration (one random start) must return both pairs of the
+    /// eigenspace: λ = 2j, each vector on the two ω = 2 blocks alone with the closed form's
+    /// ratio, the two independent, `Uᵀ E V = I`.
+    #[test]
+    fn a_double_eigenvalue_gets_both_pairs_from_one_vector() {
+        use crate::linear::{SparseLinearDae, SparseMatrix};
+        let omegas = [1.0, 2.0, 5.0, 2.0, 3.0];
+        let n = 2 * omegas.len();
+        let e = SparseMatrix::from_triplets(n, n, (0..n).map(|i| (i, i, 1.0))).unwrap();
+        let k = SparseMatrix::from_triplets(n, n, omegas.iter().enumerate().flat_map(|(i, w)| [(2 * i, 2 * i + 1, -1.0), (2 * i + 1, 2 * i, w * w)])).unwrap();
+        let names = (0..n).map(|i| format!("y{i}")).collect();
+        let dae = SparseLinearDae { fyd: e, fy: k, b: Mat::zeros(n, 0), c: Mat::zeros(0, n), c_rate: None, unknown_names: names, input_names: Vec::new(), output_names: Vec::new(), constraint_form: None, multipliers: Vec::new() };
+        let pencil = Pencil::new(&dae).unwrap();
+        let lambda = c64::new(0.0, 2.0);
+        let start = Col::<c64>::from_fn(n, |i| match i {
+            2 => c64::new(1.0, 0.0),
+            3 => lambda,
+            _ => c64::new(1e-9 * (i as f64 + 1.0), 0.0),
+        });
+        let out = pair_clusters(&pencil, c64::new(0.0, 0.0), &[(lambda * (1.0 + 1e-12), start)], &[], 1);
+        assert!(out.unmatched.is_empty(), "{:?}", out.unmatched);
+        assert_eq!(out.pairs.len(), 2);
+        let blocks = [1usize, 3];
+        for (l, v, u) in &out.pairs {
+            assert!((l - lambda).norm() <= 1e-13 * 2.0, "λ = {l}");
+            let (nv, nu) = (norm(v), norm(u));
+            for i in (0..omegas.len()).filter(|i| !blocks.contains(i)) {
+                assert!(v[2 * i].norm().max(v[2 * i + 1].norm()) <= 1e-13 * nv && u[2 * i].norm().max(u[2 * i + 1].norm()) <= 1e-13 * nu, "oscillator {i}");
+            }
+            for &b in &blocks {
+                assert!((v[2 * b + 1] - lambda * v[2 * b]).norm() <= 1e-13 * nv, "right, block {b}");
+                assert!((u[2 * b] - lambda * u[2 * b + 1]).norm() <= 1e-13 * nu, "left, block {b}");
+            }
+        }
+        // Independent: the two right vectors' coefficients on the blocks' (1, λ).
+        let (va, vb) = (&out.pairs[0].1, &out.pairs[1].1);
+        let det = va[2] * vb[6] - va[6] * vb[2];
+        assert!(det.norm() >= 1e-3 * norm(va) * norm(vb), "det {det}");
+        for (i, p) in out.pairs.iter().enumerate() {
+            for (j, q) in out.pairs.iter().enumerate() {
+                let d = dot_t(&p.2, &q.1);
+                let want = if i == j { 1.0 } else { 0.0 };
+                assert!((d - c64::new(want, 0.0)).norm() <= 1e-12, "u{i}ᵀ E v{j} = {d}");
+            }
+        }
+    }
+
     /// A vector in the span of two others repeats them; one with a part of order 1 outside
     /// does not (the test that unites two clusters' eigenspaces and drops a band's duplicate).
     #[test]
