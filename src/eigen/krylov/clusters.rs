@@ -395,14 +395,9 @@ mod tests {
     /// ratio, the two independent, `Uᵀ E V = I`.
     #[test]
     fn a_double_eigenvalue_gets_both_pairs_from_one_vector() {
-        use crate::linear::{SparseLinearDae, SparseMatrix};
         let omegas = [1.0, 2.0, 5.0, 2.0, 3.0];
         let n = 2 * omegas.len();
-        let e = SparseMatrix::from_triplets(n, n, (0..n).map(|i| (i, i, 1.0))).unwrap();
-        let k = SparseMatrix::from_triplets(n, n, omegas.iter().enumerate().flat_map(|(i, w)| [(2 * i, 2 * i + 1, -1.0), (2 * i + 1, 2 * i, w * w)])).unwrap();
-        let names = (0..n).map(|i| format!("y{i}")).collect();
-        let dae = SparseLinearDae { fyd: e, fy: k, b: Mat::zeros(n, 0), c: Mat::zeros(0, n), c_rate: None, unknown_names: names, input_names: Vec::new(), output_names: Vec::new(), constraint_form: None, multipliers: Vec::new() };
-        let pencil = Pencil::new(&dae).unwrap();
+        let pencil = crate::eigen::krylov::pencil::oscillators(&omegas);
         let lambda = c64::new(0.0, 2.0);
         let start = Col::<c64>::from_fn(n, |i| match i {
             2 => c64::new(1.0, 0.0),

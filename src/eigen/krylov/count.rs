@@ -308,6 +308,7 @@ fn count_in_disc(pencil: &Pencil, radius: f64, found: &[c64], beyond: &[c64], ha
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::eigen::krylov::pencil::oscillators;
     use crate::linear::{SparseLinearDae, SparseMatrix};
 
     /// Three decoupled oscillators `ẋ = v, v̇ = −ωₖ² x` (ω = 1, 2, 2: a repeated pair) as a
@@ -316,12 +317,7 @@ mod tests {
     #[test]
     fn counts_the_oscillators_inside_each_circle() {
         let omegas = [1.0, 2.0, 2.0, 5.0];
-        let n = 2 * omegas.len();
-        let e = SparseMatrix::from_triplets(n, n, (0..n).map(|i| (i, i, 1.0))).unwrap();
-        let k = SparseMatrix::from_triplets(n, n, omegas.iter().enumerate().flat_map(|(i, w)| [(2 * i, 2 * i + 1, -1.0), (2 * i + 1, 2 * i, w * w)])).unwrap();
-        let names = (0..n).map(|i| format!("y{i}")).collect();
-        let dae = SparseLinearDae { fyd: e, fy: k, b: faer::Mat::zeros(n, 0), c: faer::Mat::zeros(0, n), c_rate: None, unknown_names: names, input_names: Vec::new(), output_names: Vec::new(), constraint_form: None, multipliers: Vec::new() };
-        let pencil = Pencil::new(&dae).unwrap();
+        let pencil = oscillators(&omegas);
         let j = |w: f64| [c64::new(0.0, w), c64::new(0.0, -w)];
         // Nothing given: the count itself (2 per oscillator inside).
         for (radius, inside) in [(0.5, 0), (1.5, 2), (3.0, 6), (10.0, 8)] {
@@ -378,12 +374,7 @@ mod tests {
     #[test]
     fn the_drift_removed_keeps_the_count() {
         let omegas: Vec<f64> = (1..=1000).flat_map(|w| [w as f64, w as f64]).collect();
-        let n = 2 * omegas.len();
-        let e = SparseMatrix::from_triplets(n, n, (0..n).map(|i| (i, i, 1.0))).unwrap();
-        let k = SparseMatrix::from_triplets(n, n, omegas.iter().enumerate().flat_map(|(i, w)| [(2 * i, 2 * i + 1, -1.0), (2 * i + 1, 2 * i, w * w)])).unwrap();
-        let names = (0..n).map(|i| format!("y{i}")).collect();
-        let dae = SparseLinearDae { fyd: e, fy: k, b: faer::Mat::zeros(n, 0), c: faer::Mat::zeros(0, n), c_rate: None, unknown_names: names, input_names: Vec::new(), output_names: Vec::new(), constraint_form: None, multipliers: Vec::new() };
-        let pencil = Pencil::new(&dae).unwrap();
+        let pencil = oscillators(&omegas);
         let j = |w: f64| [c64::new(0.0, w), c64::new(0.0, -w)];
         let pairs = |ws: &[f64]| -> Vec<c64> { ws.iter().flat_map(|&w| j(w)).collect() };
         let inside: Vec<f64> = (1..=9).flat_map(|w| [w as f64, w as f64]).collect();

@@ -125,3 +125,16 @@ impl Shifted {
         SparseColMatRef::new(SymbolicSparseColMatRef::new_checked(n, n, &self.col_ptr, None, &self.row_idx), values)
     }
 }
+
+/// Decoupled undamped oscillators `ẋ = v, v̇ = −ωₖ² x` as a first-order pencil `λ E + K`,
+/// E = I, K = [[0, −1], [ωₖ², 0]] blocks: eigenvalues ±jωₖ (closed form). For the tests
+/// of the count and the clusters.
+#[cfg(test)]
+pub(super) fn oscillators(omegas: &[f64]) -> Pencil {
+    let n = 2 * omegas.len();
+    let e = SparseMatrix::from_triplets(n, n, (0..n).map(|i| (i, i, 1.0))).unwrap();
+    let k = SparseMatrix::from_triplets(n, n, omegas.iter().enumerate().flat_map(|(i, w)| [(2 * i, 2 * i + 1, -1.0), (2 * i + 1, 2 * i, w * w)])).unwrap();
+    let names = (0..n).map(|i| format!("y{i}")).collect();
+    let dae = SparseLinearDae { fyd: e, fy: k, b: faer::Mat::zeros(n, 0), c: faer::Mat::zeros(0, n), c_rate: None, unknown_names: names, input_names: Vec::new(), output_names: Vec::new(), constraint_form: None, multipliers: Vec::new() };
+    Pencil::new(&dae).unwrap()
+}
