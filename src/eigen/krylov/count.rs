@@ -311,9 +311,9 @@ mod tests {
     use crate::eigen::krylov::pencil::oscillators;
     use crate::linear::{SparseLinearDae, SparseMatrix};
 
-    /// Three decoupled oscillators `ẋ = v, v̇ = −ωₖ² x` (ω = 1, 2, 2: a repeated pair) as a
-    /// first-order pencil `λ E + K`, E = I, K = [[0, −1], [ω², 0]] blocks: eigenvalues ±jωₖ
-    /// (closed form). The count inside |λ| < R is the number of ±jωₖ with ωₖ < R.
+    /// Four decoupled oscillators ([`oscillators`], ω = 1, 2, 2, 5: a repeated pair),
+    /// eigenvalues ±jωₖ (closed form). The count inside |λ| < R is the number of ±jωₖ with
+    /// ωₖ < R.
     #[test]
     fn counts_the_oscillators_inside_each_circle() {
         let omegas = [1.0, 2.0, 2.0, 5.0];
