@@ -242,4 +242,3 @@ pub fn sparse_jacobian_pair(model: &Model, state: &State, c: f64) -> Result<(Spa
     let j = |b: f64| sparse_jacobian(&asm, &st, Coefficients { a: 1.0, b, form, dcoef: c });
     Ok((j(c), j(-c)))
 }
-

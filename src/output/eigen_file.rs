@@ -32,6 +32,10 @@ pub enum PencilMatrices {
     Unassembled { dim: usize },
 }
 
+/// What a writer says when a file asks for `Aplus`/`Aminus` that were not assembled (never,
+/// by `Eigenanalysis::file`; a file without them must not look complete).
+pub(crate) const UNASSEMBLED: &str = "J(+c) and J(-c) were not assembled for this eigenanalysis";
+
 impl PencilMatrices {
     /// Number of equations.
     pub fn dim(&self) -> usize {

@@ -150,10 +150,9 @@ enum Part<'a> {
     Vectors(bool),
 }
 
-/// The error when the document asks for `Aplus`/`Aminus` that were not assembled (never, by
-/// `Eigenanalysis::file`; a file without them must not look complete).
+/// The error when the document asks for `Aplus`/`Aminus` that were not assembled.
 fn unassembled<E: serde::ser::Error>() -> E {
-    E::custom("J(+c) and J(-c) were not assembled for this eigenanalysis")
+    E::custom(super::eigen_file::UNASSEMBLED)
 }
 
 /// The document's parts, serialized with the file they come from.

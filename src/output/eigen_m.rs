@@ -82,10 +82,9 @@ fn vectors(w: &mut dyn Write, name: &str, n: usize, cols: &[Option<&Col<c64>>]) 
     Ok(())
 }
 
-/// The error when the file asks for `Aplus`/`Aminus` that were not assembled (never, by
-/// `Eigenanalysis::file`; a file without them must not look complete).
+/// The error when the file asks for `Aplus`/`Aminus` that were not assembled.
 fn unassembled() -> std::io::Error {
-    std::io::Error::other("J(+c) and J(-c) were not assembled for this eigenanalysis")
+    std::io::Error::other(super::eigen_file::UNASSEMBLED)
 }
 
 /// Writes the `.m` script of one eigenanalysis to `w`; `input` names the model file.
