@@ -71,7 +71,8 @@ fn flags(text: &str) -> Vec<String> {
     found
 }
 
-fn library_sources(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
+/// The library's Rust sources under `dir` (not the command line's `src/cli`, not `main.rs`).
+pub(crate) fn library_sources(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
     for entry in std::fs::read_dir(dir).unwrap() {
         let path = entry.unwrap().path();
         if path.is_dir() {

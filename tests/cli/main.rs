@@ -14,3 +14,4 @@ mod pencil_input;
 mod report;
 mod scalar_ports;
 mod study_doors;
+mod unit_test_reach;
