@@ -10,21 +10,26 @@
 //!
 //! Equation numbers in doc comments refer to "Reduced order models from multibody
 //! analysis" (the paper behind `shared/METHOD.md`). Units are SI throughout.
+//!
+//! Two crates: `romdyn-core` (core/: model, element, dae, solve, linear, eigen, rom,
+//! kinematics, lu, limits; no files, workflows or command line), re-exported here module by
+//! module, and this one (input, output, analysis, study, cms, sweep, validate, and the
+//! command line in src/cli).
 
 pub mod analysis;
 pub mod cms;
-pub mod dae;
-pub mod eigen;
-pub mod element;
+pub use romdyn_core::dae;
+pub use romdyn_core::eigen;
+pub use romdyn_core::element;
 pub mod input;
-pub mod kinematics;
-pub mod limits;
-pub mod linear;
-pub mod lu;
-pub mod model;
+pub use romdyn_core::kinematics;
+pub use romdyn_core::limits;
+pub use romdyn_core::linear;
+pub use romdyn_core::lu;
+pub use romdyn_core::model;
 pub mod output;
-pub mod rom;
-pub mod solve;
+pub use romdyn_core::rom;
+pub use romdyn_core::solve;
 pub mod study;
 pub mod sweep;
 pub mod validate;

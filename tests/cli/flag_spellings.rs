@@ -71,7 +71,8 @@ fn flags(text: &str) -> Vec<String> {
     found
 }
 
-/// The library's Rust sources under `dir` (not the command line's `src/cli`, not `main.rs`).
+/// The library's Rust sources under `dir` (`src/` or `core/src/`; not the command line's
+/// `src/cli`, not `main.rs`).
 pub(crate) fn library_sources(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
     for entry in std::fs::read_dir(dir).unwrap() {
         let path = entry.unwrap().path();
@@ -103,9 +104,12 @@ fn every_flag_a_library_message_spells_is_a_flag_python_can_respell() {
         assert!(ok, "romdyn {sub} --help: {err}");
         cli.extend(flags(&out));
     }
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let mut files = Vec::new();
-    library_sources(&root, &mut files);
+    // Both crates' sources: the root's src/ and the numerical core's core/src/.
+    for dir in ["src", "core/src"] {
+        library_sources(&root.join(dir), &mut files);
+    }
     assert!(files.len() > 100, "{} library files found under {}", files.len(), root.display());
     let mut unknown = Vec::new();
     let mut seen = BTreeSet::new();

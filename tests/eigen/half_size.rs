@@ -1,5 +1,5 @@
 //! Issue 36 point 2: the dense route solves an undamped structure at rest's dynamic part at
-//! half its size (`src/eigen/dense/second_order.rs`: positions and momenta split by the
+//! half its size (`core/src/eigen/dense/second_order.rs`: positions and momenta split by the
 //! pencil's zeros, `K q = ω² M q` in Cayley form, the first-order right and left vectors
 //! rebuilt). Its labels, eigenvalues and backward errors are checked against QZ on the whole
 //! dynamic part (`ModalAnalysis::of_dae_by_qz`, the general route); its vectors, and QZ's,

@@ -1,5 +1,5 @@
 //! The derivatives phase holds the positions: a holonomic constraint's rounding-level
-//! violation is not its to correct (src/solve/newton.rs). Before, `Φ/c` stayed in Newton's
+//! violation is not its to correct (core/src/solve/newton.rs). Before, `Φ/c` stayed in Newton's
 //! right-hand side and became an acceleration `Φ/c²` along the constraint: on
 //! tests/mbdyn_files/hinged_blade_derivatives.mbd (a hinge offset 0.05 − 1 = −0.95, not exact
 //! in binary: Φ = 4.2e-17 m, c = 1e-9 s) 41.6 N of the hinge's 210 N reaction went into the

@@ -15,7 +15,7 @@
 
 mod classify;
 mod cluster;
-pub(crate) mod componentwise;
+pub mod componentwise;
 pub mod dense;
 mod energy;
 mod error;
@@ -31,4 +31,4 @@ pub use error::EigenError;
 pub use modes::{ModalAnalysis, Mode};
 pub use pipeline::{dense_modes, energy_shares};
 pub use route::EigenRoute;
-pub(crate) use route::{dot_t, mul_real_complex};
+pub use route::{dot_t, mul_real_complex};

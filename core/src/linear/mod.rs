@@ -4,12 +4,14 @@
 
 mod compensated;
 mod dae;
+mod accuracy;
 mod response;
 mod sparse;
 mod sparse_dae;
 
 pub use compensated::{Compensated, CompensatedComplex};
 pub use dae::{coefficient_from_derivatives, derivatives_from_coefficient, Jacobians, LinearDae};
+pub use accuracy::{ChannelError, GridAccuracy};
 pub use response::{hz, rad_per_s, FrequencyResponse, Port};
 pub use sparse::{SparseMatrix, SparseScalar};
 pub use sparse_dae::{SparseLinearDae, SparseSolveError};

@@ -25,7 +25,7 @@ use crate::linear::SparseMatrix;
 /// (`true` for the non-mechanical unknowns and equations, by index) sets each entry's
 /// rounding floor to its own kind's largest (a piston's metres are not rounding next to its
 /// chambers' pascals). The labels (dynamic, zero, infinite) stay those of eqs. 32–35.
-pub(crate) fn refine_errors_by_units(modal: &mut crate::eigen::ModalAnalysis, fyd: &SparseMatrix, fy: &SparseMatrix, classes: &[bool]) {
+pub fn refine_errors_by_units(modal: &mut crate::eigen::ModalAnalysis, fyd: &SparseMatrix, fy: &SparseMatrix, classes: &[bool]) {
     if !classes.iter().any(|c| *c) || classes.len() != fyd.nrows() {
         return;
     }

@@ -28,7 +28,7 @@ pub(crate) fn conj(v: &Col<c64>) -> Col<c64> {
 }
 
 /// `M v` for real `M` and complex `v`.
-pub(crate) fn mul_real_complex(m: &Mat<f64>, v: &Col<c64>) -> Col<c64> {
+pub fn mul_real_complex(m: &Mat<f64>, v: &Col<c64>) -> Col<c64> {
     let re = Col::<f64>::from_fn(v.nrows(), |i| v[i].re);
     let im = Col::<f64>::from_fn(v.nrows(), |i| v[i].im);
     let (r, s) = (m * &re, m * &im);
@@ -36,7 +36,7 @@ pub(crate) fn mul_real_complex(m: &Mat<f64>, v: &Col<c64>) -> Col<c64> {
 }
 
 /// `uᵀ w` (no conjugation).
-pub(crate) fn dot_t(u: &Col<c64>, w: &Col<c64>) -> c64 {
+pub fn dot_t(u: &Col<c64>, w: &Col<c64>) -> c64 {
     u.iter().zip(w.iter()).fold(c64::new(0.0, 0.0), |s, (a, b)| s + a * b)
 }
 
