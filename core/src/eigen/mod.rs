@@ -9,7 +9,7 @@
 //! - [`kinetic_energy_shares`], [`degenerate_clusters`]: which node and component a mode
 //!   moves, and the labels of (nearly) repeated modes;
 //! - [`dense_modes`], [`energy_shares`]: the dense eigenanalysis and the modes' shares as
-//!   `romdyn run` and a [`crate::study::Study`] both take them.
+//!   `romdyn run` and a `romdyn::study::Study` both take them.
 //!
 //! The linear DAE's types themselves live in [`crate::linear`].
 

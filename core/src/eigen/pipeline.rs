@@ -1,5 +1,5 @@
 //! The eigenanalysis of a model's linearization as every front end runs it (`romdyn run`'s
-//! eigenanalyses, [`crate::analysis`], and `romdyn eig`/`rom`, [`crate::study::Study`]): the
+//! eigenanalyses, `romdyn::analysis`, and `romdyn eig`/`rom`, `romdyn::study::Study`): the
 //! dense route solves and labels the pencil (eqs. 10–11, 29–35) and the modes' kinetic-energy
 //! shares are read from `F_/ẏ`'s mass terms, the members of a degenerate cluster sharing
 //! their cluster's (which do not depend on the basis the eigensolver chose). The same

@@ -60,7 +60,7 @@ pub struct ScalarNode {
     pub value: f64,
     /// Initial derivative (`derivative, …`; differential nodes).
     pub derivative: f64,
-    /// Whether a run writes its rows (`.abs`, `.ele`, `.prs`: [`crate::output::scalar_nodes`]).
+    /// Whether a run writes its rows (`.abs`, `.ele`, `.prs`: `romdyn::output::scalar_nodes`).
     pub output: bool,
 }
 

@@ -15,7 +15,7 @@
 //!   frequency (same book §6.3.3); its states are a controllable canonical form's.
 //!
 //! The matrix exponential is Padé(6,6) with scaling and squaring (Moler and Van Loan,
-//! "Nineteen dubious ways", method 3); [`crate::validate`] uses it for its exact simulation.
+//! "Nineteen dubious ways", method 3); `romdyn::validate` uses it for its exact simulation.
 
 use faer::linalg::solvers::Solve;
 use faer::{c64, Mat};

@@ -92,7 +92,7 @@ pub struct ModalBody {
     pub mode_numbers: Vec<usize>,
     /// Initial modal coordinates and their rates (`initial value`, FEM records 3 and 4).
     pub initial: Vec<(f64, f64)>,
-    /// The FEM file reader's warnings ([`crate::input::fem::FemFile::warnings`]).
+    /// The FEM file reader's warnings (`romdyn::input::fem::FemFile::warnings`).
     pub input_warnings: Vec<String>,
     /// Every FEM node of the file, for outputs at points ([`Outputs::flexible_point`]).
     pub fem_nodes: Vec<FemNode>,
