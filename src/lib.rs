@@ -11,17 +11,18 @@
 //! Equation numbers in doc comments refer to "Reduced order models from multibody
 //! analysis" (the paper behind `shared/METHOD.md`). Units are SI throughout.
 //!
-//! Two crates: `romdyn-core` (core/: model, element, dae, solve, linear, eigen, rom,
+//! Three crates: `romdyn-core` (core/: model, element, dae, solve, linear, eigen, rom,
 //! kinematics, lu, limits; no files, workflows or command line), re-exported here module by
-//! module, and this one (input, output, analysis, study, cms, sweep, validate, and the
-//! command line in src/cli).
+//! module; `romdyn-input` (input/: the readers, on the core alone), re-exported as
+//! `input`; and this one (output, analysis, study, cms, sweep, validate, and the command
+//! line in src/cli).
 
 pub mod analysis;
 pub mod cms;
 pub use romdyn_core::dae;
 pub use romdyn_core::eigen;
 pub use romdyn_core::element;
-pub mod input;
+pub use romdyn_input as input;
 pub use romdyn_core::kinematics;
 pub use romdyn_core::limits;
 pub use romdyn_core::linear;

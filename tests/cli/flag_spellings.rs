@@ -71,7 +71,7 @@ fn flags(text: &str) -> Vec<String> {
     found
 }
 
-/// The library's Rust sources under `dir` (`src/` or `core/src/`; not the command line's
+/// The library's Rust sources under `dir` (`src/`, `core/src/`, `input/src/`; not the command line's
 /// `src/cli`, not `main.rs`).
 pub(crate) fn library_sources(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
     for entry in std::fs::read_dir(dir).unwrap() {
@@ -106,8 +106,8 @@ fn every_flag_a_library_message_spells_is_a_flag_python_can_respell() {
     }
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let mut files = Vec::new();
-    // Both crates' sources: the root's src/ and the numerical core's core/src/.
-    for dir in ["src", "core/src"] {
+    // The three crates' sources: the root's src/, the core's core/src/, the readers' input/src/.
+    for dir in ["src", "core/src", "input/src"] {
         library_sources(&root.join(dir), &mut files);
     }
     assert!(files.len() > 100, "{} library files found under {}", files.len(), root.display());

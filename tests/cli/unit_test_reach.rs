@@ -4,8 +4,8 @@
 //! element constructors, the solvers and the outputs a second time (issue 36 point 5: one
 //! such test took the unit-test binary from 26,192 to 48,922 monomorphized items, measured
 //! with `-Zprint-mono-items`, and `cargo test`'s build from 150 to 196 CPU-seconds). This
-//! finds the whole-model entry points in the `#[cfg(test)]` parts of `src/` and `core/src/`
-//! (the numerical core's unit tests are a binary of their own, the same way); such a test
+//! finds the whole-model entry points in the `#[cfg(test)]` parts of `src/`, `core/src/` and
+//! `input/src/` (each crate's unit tests are a binary of their own, the same way); such a test
 //! belongs in `tests/`.
 
 use std::path::Path;
@@ -40,7 +40,7 @@ fn the_finder_sees_a_whole_model_call_in_tests_only() {
 #[test]
 fn no_unit_test_reads_a_model_or_solves_its_reference() {
     let mut files = Vec::new();
-    for dir in ["src", "core/src"] {
+    for dir in ["src", "core/src", "input/src"] {
         library_sources(&Path::new(env!("CARGO_MANIFEST_DIR")).join(dir), &mut files);
     }
     assert!(files.len() > 100, "{} sources found", files.len());
