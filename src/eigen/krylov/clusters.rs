@@ -38,28 +38,7 @@ const NEW_DIRECTION: f64 = 2e-2;
 pub(super) struct Clusters {
     pub pairs: Vec<(c64, Col<c64>, Col<c64>)>,
     pub unmatched: Vec<c64>,
-    /// The Ritz values (`Im λ ≥ 0`) of the clusters left unrefined beyond what a request
-    /// for the lowest modes needs ([`Enough`]), in order of their distance from the shift.
-    pub skipped: Vec<c64>,
 }
-
-/// How many modes a request for the lowest ones needs from [`pair_clusters`]: once the
-/// refined eigenspaces hold more than `modes` pairs (the `modes`-th and at least one more,
-/// which the count's circle is drawn short of), a cluster whose Ritz value lies more than
-/// [`SKIP_MARGIN`] beyond every refined eigenvalue is not refined (its inverse iteration,
-/// a complex LU and two block iterations, and its pairs' evaluation are for nothing: on the
-/// 96,024-equation string one of 13). The caller keeps its Ritz value and must not draw the
-/// circle within [`SKIP_MARGIN`] of it (else it asks again with `None`).
-#[derive(Clone, Copy)]
-pub(super) struct Enough {
-    pub modes: usize,
-}
-
-/// Relative margin between a skipped cluster's Ritz value and everything refined or
-/// counted: far wider than [`CLUSTER`] (a far Ritz value spread 1e-4 about its eigenvalue
-/// on the 64-element cantilever), so a skipped cluster is never part of a refined
-/// eigenspace and its eigenvalue lies outside the count's circle.
-pub(super) const SKIP_MARGIN: f64 = 1e-2;
 
 /// Eigenvalues within this distance of λ are one cluster ([`CLUSTER`] relative to λ's
 /// distance from the shift σ, or to a thousandth of |λ|).
@@ -247,35 +226,24 @@ fn dot_t(x: &Col<c64>, y: &Col<c64>) -> c64 {
 
 /// Groups the right and left pairs (`Im λ ≥ 0`, each an eigenpair that passed its own
 /// residual) by eigenvalue and pairs their vectors.
-pub(super) fn pair_clusters(pencil: &Pencil, sigma: c64, right: &[(c64, Col<c64>)], left: &[(c64, Col<c64>)], extra: usize, enough: Option<Enough>) -> Clusters {
+pub(super) fn pair_clusters(pencil: &Pencil, sigma: c64, right: &[(c64, Col<c64>)], left: &[(c64, Col<c64>)], extra: usize) -> Clusters {
     // Every candidate, sorted by λ's distance to σ; a cluster is a run of candidates each
     // within CLUSTER of the cluster's first.
     let mut all: Vec<(c64, bool, usize)> = right.iter().enumerate().map(|(i, p)| (p.0, false, i)).chain(left.iter().enumerate().map(|(i, p)| (p.0, true, i))).collect();
     all.sort_by(|a, b| (a.0 - sigma).norm().total_cmp(&(b.0 - sigma).norm()).then(a.0.im.total_cmp(&b.0.im)));
     let close = |a: c64, b: c64| (a - b).norm() <= cluster_radius(a, sigma);
     let mut used = vec![false; all.len()];
-    let mut out = Clusters { pairs: Vec::new(), unmatched: Vec::new(), skipped: Vec::new() };
+    let mut out = Clusters { pairs: Vec::new(), unmatched: Vec::new() };
     // The eigenspaces found: refined λ, right and left bases.
     let mut spaces: Vec<Refined> = Vec::new();
-    let mut skipping = false;
     for i in 0..all.len() {
         if used[i] {
             continue;
         }
         let head = all[i].0;
-        if let (Some(e), false) = (enough, skipping) {
-            let found: usize = spaces.iter().map(|g| g.right.len().min(g.left.len())).sum();
-            let top = spaces.iter().map(|g| (g.lambda - sigma).norm()).fold(0.0, f64::max);
-            // Every later cluster is at least as far from the shift: all are skipped.
-            skipping = found > e.modes && (head - sigma).norm() > top * (1.0 + SKIP_MARGIN);
-        }
         let members: Vec<usize> = (i..all.len()).filter(|&j| !used[j] && close(head, all[j].0)).collect();
         for &j in &members {
             used[j] = true;
-        }
-        if skipping {
-            out.skipped.push(head);
-            continue;
         }
         let rights: Vec<&Col<c64>> = members.iter().filter(|&&j| !all[j].1).map(|&j| &right[all[j].2].1).collect();
         let lefts: Vec<&Col<c64>> = members.iter().filter(|&&j| all[j].1).map(|&j| &left[all[j].2].1).collect();
@@ -436,7 +404,7 @@ mod tests {
             3 => lambda,
             _ => c64::new(1e-9 * (i as f64 + 1.0), 0.0),
         });
-        let out = pair_clusters(&pencil, c64::new(0.0, 0.0), &[(lambda * (1.0 + 1e-12), start)], &[], 1, None);
+        let out = pair_clusters(&pencil, c64::new(0.0, 0.0), &[(lambda * (1.0 + 1e-12), start)], &[], 1);
         assert!(out.unmatched.is_empty(), "{:?}", out.unmatched);
         assert_eq!(out.pairs.len(), 2);
         let blocks = [1usize, 3];
@@ -462,42 +430,6 @@ mod tests {
                 assert!((d - c64::new(want, 0.0)).norm() <= 1e-12, "u{i}ᵀ E v{j} = {d}");
             }
         }
-    }
-
-    /// Oscillators ω = 1, 2, 3, 3.02, 5 (closed-form eigenvalues jω, right eigenvectors
-    /// `(1, jω)` on each block), each given as one right Ritz pair: asked for the clusters
-    /// two modes need, the four lowest are refined (the third is the first beyond the
-    /// second; 3.02 lies within SKIP_MARGIN of 3 and is refined too) and 5 is skipped, its
-    /// Ritz value kept; without the request all five are refined. The refined eigenvalues
-    /// equal the closed form to 1e-13 relative.
-    #[test]
-    fn clusters_beyond_the_request_are_skipped() {
-        let omegas = [1.0, 2.0, 3.0, 5.0, 3.02];
-        let n = 2 * omegas.len();
-        let pencil = crate::eigen::krylov::pencil::oscillators(&omegas);
-        let rights: Vec<(c64, Col<c64>)> = omegas
-            .iter()
-            .enumerate()
-            .map(|(k, &w)| {
-                let l = c64::new(0.0, w);
-                (l, Col::from_fn(n, |i| if i == 2 * k { c64::new(1.0, 0.0) } else if i == 2 * k + 1 { l } else { c64::new(0.0, 0.0) }))
-            })
-            .collect();
-        let sigma = c64::new(0.0, 0.0);
-        let sorted = |out: &Clusters| {
-            let mut l: Vec<f64> = out.pairs.iter().map(|p| p.0.im).collect();
-            l.sort_by(f64::total_cmp);
-            assert!(out.pairs.iter().all(|p| (p.0 - c64::new(0.0, p.0.im)).norm() <= 1e-13 * p.0.norm()));
-            l
-        };
-        let close = |got: Vec<f64>, want: &[f64]| got.len() == want.len() && got.iter().zip(want).all(|(g, w)| (g - w).abs() <= 1e-13 * w);
-        let some = pair_clusters(&pencil, sigma, &rights, &[], 1, Some(Enough { modes: 2 }));
-        assert!(some.unmatched.is_empty());
-        assert!(close(sorted(&some), &[1.0, 2.0, 3.0, 3.02]), "{:?}", sorted(&some));
-        assert_eq!(some.skipped, vec![c64::new(0.0, 5.0)]);
-        let all = pair_clusters(&pencil, sigma, &rights, &[], 1, None);
-        assert!(all.unmatched.is_empty() && all.skipped.is_empty());
-        assert!(close(sorted(&all), &[1.0, 2.0, 3.0, 3.02, 5.0]), "{:?}", sorted(&all));
     }
 
     /// A vector in the span of two others repeats them; one with a part of order 1 outside

@@ -131,15 +131,10 @@ impl Shifted {
 /// of the count and the clusters.
 #[cfg(test)]
 pub(super) fn oscillators(omegas: &[f64]) -> Pencil {
-    Pencil::new(&oscillator_dae(omegas)).unwrap()
-}
-
-/// The DAE `E ẏ + K y = 0` of [`oscillators`] (for tests of the whole sparse route).
-#[cfg(test)]
-pub(super) fn oscillator_dae(omegas: &[f64]) -> SparseLinearDae {
     let n = 2 * omegas.len();
     let e = SparseMatrix::from_triplets(n, n, (0..n).map(|i| (i, i, 1.0))).unwrap();
     let k = SparseMatrix::from_triplets(n, n, omegas.iter().enumerate().flat_map(|(i, w)| [(2 * i, 2 * i + 1, -1.0), (2 * i + 1, 2 * i, w * w)])).unwrap();
     let names = (0..n).map(|i| format!("y{i}")).collect();
-    SparseLinearDae { fyd: e, fy: k, b: faer::Mat::zeros(n, 0), c: faer::Mat::zeros(0, n), c_rate: None, unknown_names: names, input_names: Vec::new(), output_names: Vec::new(), constraint_form: None, multipliers: Vec::new() }
+    let dae = SparseLinearDae { fyd: e, fy: k, b: faer::Mat::zeros(n, 0), c: faer::Mat::zeros(0, n), c_rate: None, unknown_names: names, input_names: Vec::new(), output_names: Vec::new(), constraint_form: None, multipliers: Vec::new() };
+    Pencil::new(&dae).unwrap()
 }

@@ -30,7 +30,7 @@
 use faer::{c64, Col};
 
 use super::pencil::Pencil;
-use super::clusters::{outside_span, pair_clusters, Enough, SKIP_MARGIN};
+use super::clusters::{outside_span, pair_clusters};
 use super::count::missing_in_disc;
 use super::operator::ShiftInvert;
 use super::window::{evaluate, krylov_sides, window, Eigenpair, Magnitudes, PairVectors, Scales};
@@ -220,31 +220,22 @@ fn counted_lowest(dae: &SparseLinearDae, pencil: &Pencil, op: &ShiftInvert, coun
         // basis's Ritz values come in conjugate pairs, but the converged prefix may end
         // between the two of one.
         let ritz_beyond: Vec<c64> = sides.unconverged.iter().filter(|l| l.im >= 0.0).flat_map(|&l| with_conjugate(l)).collect();
-        // The clusters beyond what the count needs are left unrefined (`Enough`); should the
-        // circle come within SKIP_MARGIN of one of them, all are refined, as before.
-        let attempt = |enough: Option<Enough>| {
-            let clusters = pair_clusters(pencil, sigma, &rights, &[], 1 + round, enough);
-            let mut known: Vec<f64> = clusters.unmatched.iter().chain(&clusters.skipped).map(|l| l.norm()).collect();
-            let (mut pairs, mut failed) = (Vec::new(), Vec::new());
-            for e in evaluate(dae, pencil, &scales, s, clusters.pairs) {
-                match e {
-                    Ok(p) => pairs.push(p),
-                    Err(l) => {
-                        known.push(l.norm());
-                        failed.push(l);
-                    }
+        let clusters = pair_clusters(pencil, sigma, &rights, &[], 1 + round);
+        let mut known: Vec<f64> = clusters.unmatched.iter().map(|l| l.norm()).collect();
+        let mut pairs = Vec::new();
+        let mut failed = Vec::new();
+        for e in evaluate(dae, pencil, &scales, s, clusters.pairs) {
+            match e {
+                Ok(p) => pairs.push(p),
+                Err(l) => {
+                    rejected += 1;
+                    known.push(l.norm());
+                    failed.push(l);
                 }
             }
-            let radius = count_radius(&pairs, &known, count);
-            let nearest_skipped = clusters.skipped.iter().map(|l| l.norm()).fold(f64::INFINITY, f64::min);
-            let clear = radius.is_some_and(|r| r < nearest_skipped * (1.0 - SKIP_MARGIN));
-            (clusters.unmatched, clusters.skipped, pairs, failed, radius, clear)
-        };
-        let first = attempt(Some(Enough { modes: count }));
-        let (unmatched, skipped, pairs, failed, radius, _) = if first.1.is_empty() || first.5 { first } else { attempt(None) };
-        rejected += failed.len();
+        }
         let mut missing = 0;
-        let note = match radius {
+        let note = match count_radius(&pairs, &known, count) {
             None if exhausted => {
                 let r = pairs.iter().map(|p| p.lambda.norm()).fold(0.0, f64::max) * 1.05 + f64::MIN_POSITIVE;
                 let note = format!("only {} mode(s) exist or were found, {count} asked", pairs.len());
@@ -254,16 +245,14 @@ fn counted_lowest(dae: &SparseLinearDae, pencil: &Pencil, op: &ShiftInvert, coun
             None => Some(format!("the Krylov runs found fewer than the {count} modes asked")),
             Some(r) => {
                 let inside: Vec<c64> = pairs.iter().filter(|p| p.lambda.norm() < r).flat_map(|p| with_conjugate(p.lambda)).collect();
-                let unmatched_inside = unmatched.iter().filter(|l| l.norm() < r).count();
+                let unmatched = clusters.unmatched.iter().filter(|l| l.norm() < r).count();
                 // Everything seen outside the circle is divided out too: no change to the
                 // count, fewer points where the circle passes near them (`count.rs`).
                 // So are the right run's unconverged Ritz values beyond it: rough places of
                 // the eigenvalues next beyond the circle, whose pull swings the phase where
                 // the circle passes them (on the 96,024-equation string's 20 lowest modes
                 // 129 -> 85 factorizations).
-                // So are the skipped clusters' Ritz values (all beyond the circle by
-                // SKIP_MARGIN at least).
-                let beyond: Vec<c64> = pairs.iter().map(|p| p.lambda).chain(unmatched.iter().copied()).chain(failed.iter().copied()).chain(skipped.iter().copied()).filter(|l| l.norm() > r).flat_map(with_conjugate).chain(ritz_beyond.iter().copied().filter(|l| l.norm() > r)).collect();
+                let beyond: Vec<c64> = pairs.iter().map(|p| p.lambda).chain(clusters.unmatched.iter().copied()).chain(failed.iter().copied()).filter(|l| l.norm() > r).flat_map(with_conjugate).chain(ritz_beyond.iter().copied().filter(|l| l.norm() > r)).collect();
                 let counted = missing_in_disc(pencil, r, &inside, &beyond);
                 let units = pairs.iter().filter(|p| p.lambda.norm() < r).count();
                 let kept: Vec<Eigenpair> = pairs.into_iter().filter(|p| p.lambda.norm() < r).collect();
@@ -277,12 +266,12 @@ fn counted_lowest(dae: &SparseLinearDae, pencil: &Pencil, op: &ShiftInvert, coun
                         return finish(dae, kept, vec![window], true, 1.0, None, Some(certificate), s);
                     }
                     Some(c) => {
-                        missing = c.missing.max(0) as usize + unmatched_inside;
+                        missing = c.missing.max(0) as usize + unmatched;
                         let note = if c.missing < 0 {
                             // More found than exist: some eigenvalue was returned twice.
-                            format!("the argument principle counts {} eigenvalue(s) in |λ| < {r:.6e} rad/s, {} fewer than the {} found there (some found twice; {unmatched_inside} seen by one Krylov run only)", inside.len() as i64 + c.missing, -c.missing, inside.len())
+                            format!("the argument principle counts {} eigenvalue(s) in |λ| < {r:.6e} rad/s, {} fewer than the {} found there (some found twice; {unmatched} seen by one Krylov run only)", inside.len() as i64 + c.missing, -c.missing, inside.len())
                         } else {
-                            format!("the argument principle counts {} eigenvalue(s) in |λ| < {r:.6e} rad/s besides the {} found there ({unmatched_inside} seen by one Krylov run only)", c.missing, inside.len())
+                            format!("the argument principle counts {} eigenvalue(s) in |λ| < {r:.6e} rad/s besides the {} found there ({unmatched} seen by one Krylov run only)", c.missing, inside.len())
                         };
                         best = Some((kept, r, note.clone()));
                         Some(note)
@@ -653,31 +642,6 @@ mod tests {
 
     fn facts(radius: f64, clean: f64, agreed: bool, rejected: usize) -> WindowFacts {
         WindowFacts { shift: c64::new(0.0, 0.0), radius, agreed, checked: true, clean, rejected }
-    }
-
-    /// The lowest modes of undamped oscillators (closed form: ±jω), counted, with the
-    /// clusters beyond the request left unrefined (`Enough`): ω = 1…300 asked for 4 (the
-    /// circle between 4 and 5, 6, 7, … skipped), and ω = 1, 2, 2(1 + 5e-7), 2.03, 4…300
-    /// asked for 2, where the first gap after the second mode ends at the skipped 2.03 and
-    /// the circle (√(2 · 2.03)) comes within SKIP_MARGIN of it: every cluster is refined
-    /// again before the count. Both certified, every returned eigenvalue a closed-form one
-    /// to 1e-12 relative, none missing below the circle.
-    #[test]
-    fn the_count_certifies_with_clusters_skipped() {
-        let settings = SparseEigenSettings::default();
-        let rest = (4..=300).map(|k| k as f64);
-        for (omegas, count, want) in [((1..=300).map(|k| k as f64).collect::<Vec<_>>(), 4, vec![1.0, 2.0, 3.0, 4.0]), ([1.0, 2.0, 2.0 * (1.0 + 5e-7), 2.03].into_iter().chain(rest).collect(), 2, vec![1.0, 2.0, 2.0 * (1.0 + 5e-7)])] {
-            let dae = super::super::pencil::oscillator_dae(&omegas);
-            let out = sparse_modes(&dae, ModeTarget::Lowest(count), &settings).unwrap();
-            assert!(out.certified, "{:?}", out.note);
-            let mut got: Vec<f64> = out.modal.modes.iter().filter(|m| m.lambda.im > 0.0).map(|m| m.lambda.im).collect();
-            got.sort_by(f64::total_cmp);
-            assert_eq!(got.len(), want.len(), "{got:?}");
-            for (g, w) in got.iter().zip(&want) {
-                assert!((g - w).abs() <= 1e-12 * w, "{g} against {w}");
-            }
-            assert!(out.modal.modes.iter().all(|m| m.lambda.re.abs() <= 1e-12 * m.lambda.norm()));
-        }
     }
 
     /// The runs disagree (or a pair fails its residual test) at |λ| = 5, inside their reach

@@ -97,7 +97,7 @@ pub(super) fn window(dae: &SparseLinearDae, pencil: &Pencil, sigma: c64, wanted:
         }
         trouble = trouble.min((l - sigma).norm());
     };
-    let clusters = pair_clusters(pencil, sigma, &sides.right, &sides.left, 1, None);
+    let clusters = pair_clusters(pencil, sigma, &sides.right, &sides.left, 1);
     for l in &clusters.unmatched {
         flag(*l, &mut agreed);
     }
