@@ -38,7 +38,7 @@ use super::{KrylovError, SparseEigenSettings};
 use crate::eigen::classify::{classify_given, resolved_kind, Classification};
 use crate::eigen::modes::{conjugate_mode, largest_entry, normalize, sort_units};
 use crate::eigen::{ModalAnalysis, Mode};
-use crate::eigen::route::EigenRoute;
+use crate::eigen::route::{modulus, EigenRoute};
 use crate::linear::SparseLinearDae;
 
 /// Which modes to compute.
@@ -597,11 +597,11 @@ impl Eigenpair {
 fn residual_error(dae: &SparseLinearDae, lambda: c64, w: &PairVectors, spread: f64, magnitudes: Option<Magnitudes>) -> f64 {
     let gamma = f64::EPSILON * (dae.fyd.max_row_len().max(dae.fy.max_row_len()) + 2) as f64;
     let products = |x: &Col<c64>, transpose: bool| {
-        let ax: Vec<f64> = x.iter().map(|e| e.norm()).collect();
+        let ax: Vec<f64> = x.iter().map(|&e| modulus(e)).collect();
         (dae.fyd.abs_mul(&ax, transpose), dae.fy.abs_mul(&ax, transpose))
     };
     let Magnitudes { right, left } = magnitudes.unwrap_or_else(|| Magnitudes { right: products(&w.v, false), left: products(&w.u, true) });
-    let rounding = |(d, k): &(Vec<f64>, Vec<f64>), y: &Col<c64>| gamma * y.iter().enumerate().map(|(i, e)| e.norm() * (lambda.norm() * d[i] + k[i])).sum::<f64>();
+    let rounding = |(d, k): &(Vec<f64>, Vec<f64>), y: &Col<c64>| gamma * y.iter().enumerate().map(|(i, &e)| modulus(e) * (lambda.norm() * d[i] + k[i])).sum::<f64>();
     let denom = crate::eigen::route::dot_t(&w.u, &w.fydv).norm();
     let e = spread + rounding(&right, &w.u).max(rounding(&left, &w.v)) / denom;
     if e.is_finite() { e } else { f64::INFINITY }

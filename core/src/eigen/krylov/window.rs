@@ -373,7 +373,7 @@ fn right_only(dae: &SparseLinearDae, pencil: &Pencil, op: &ShiftInvert, run: Run
 /// products `F_yd x`, `F_y x` already formed; with the products `|F_yd| |x|`, `|F_y| |x|` it
 /// took (the error estimate, `shifts.rs`' `residual_error`, needs the same ones).
 fn entrywise_residual(dae: &SparseLinearDae, lambda: c64, x: &Col<c64>, dx: &Col<c64>, yx: &Col<c64>, transpose: bool) -> (f64, (Vec<f64>, Vec<f64>)) {
-    let ax: Vec<f64> = x.iter().map(|e| e.norm()).collect();
+    let ax: Vec<f64> = x.iter().map(|&e| crate::eigen::route::modulus(e)).collect();
     let (d, k) = (dae.fyd.abs_mul(&ax, transpose), dae.fy.abs_mul(&ax, transpose));
     let r = (0..dx.nrows()).map(|i| (lambda * dx[i] + yx[i]).norm_sqr()).sum::<f64>().sqrt();
     let scale = (0..dx.nrows()).map(|i| (lambda.norm() * d[i] + k[i]).powi(2)).sum::<f64>().sqrt();
