@@ -308,7 +308,8 @@ mod tests {
         let n = 20000;
         let a: Vec<c64> = (0..n).map(|i| c64::new(((i * 7919) % 101) as f64 - 50.0, 0.0)).collect();
         let noise: Vec<c64> = (0..n).map(|i| c64::new(0.0, ((i * 104729) % 97) as f64 - 48.0)).collect();
-        let b: Vec<c64> = a.iter().zip(&noise).map(|(x, y)| x + y * (a.iter().map(|x| x.norm_sqr()).sum::<f64>() / noise.iter().map(|x| x.norm_sqr()).sum::<f64>()).sqrt()).collect();
+        let scale = (a.iter().map(|x| x.norm_sqr()).sum::<f64>() / noise.iter().map(|x| x.norm_sqr()).sum::<f64>()).sqrt();
+        let b: Vec<c64> = a.iter().zip(&noise).map(|(x, y)| x + y * scale).collect();
         let exact = mac(&a, &b);
         let folded = mac(&sketch(a), &sketch(b));
         // 1/√1024 = 0.03; three times that.
