@@ -4,8 +4,8 @@
 //!
 //! A crate of its own, `romdyn-input`, on the numerical core alone (`romdyn-core`), re-exported
 //! by `romdyn` as `romdyn::input`, so the compiler keeps the readers off the writers and
-//! workflows. Its dev-profile opt-level is 0 (issue 36 point 5: a file is read once; the
-//! root Cargo.toml's profiles and docs/src/performance/overview.md).
+//! workflows (issue 36 point 5: the root Cargo.toml's profiles and
+//! docs/src/performance/overview.md).
 
 // The core's modules under the names the reader's paths use (`crate::element`, ...).
 use romdyn_core::{dae, element, kinematics, limits, linear, model};
