@@ -1,4 +1,5 @@
-//! Frequency grids and responses of a study, and a ROM's accuracy on a grid.
+//! Frequency grids and responses of a study, and a ROM's accuracy on a grid (computed by
+//! `linear::accuracy` in the core, re-exported here).
 
 use faer::{c64, Mat};
 
