@@ -44,7 +44,6 @@ pub(crate) fn norm(v: &Col<c64>) -> f64 {
     v.iter().map(|x| x.norm_sqr()).sum::<f64>().sqrt()
 }
 
-
 /// `|z|` as `√(re² + im²)` (one square root, correctly rounded, of a sum within 1 ulp: the
 /// result within 2 ulp of `|z|`) where `re² + im²` is a normal number, 0 for 0, else by
 /// `hypot` (scaled: no overflow or underflow). The sparse route's error estimates and
